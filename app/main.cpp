@@ -1,0 +1,27 @@
+// layerlab: the command-line front end. Every failure is one message on
+// stderr, location first, and a non-zero exit.
+#include <cstdio>
+#include <exception>
+
+#include <CLI/CLI.hpp>
+
+#include "app/commands.h"
+#include "framework/error.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"layerlab: model, factorize and analyse layered light-field near-eye displays"};
+  app.require_subcommand(1);
+  layerlab::app::AddInfoCommand(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const layerlab::Error& e) {
+    std::fprintf(stderr, "layerlab: error: %s\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "layerlab: internal error: %s\n", e.what());
+    return 3;
+  }
+  return 0;
+}

@@ -1,0 +1,147 @@
+// Scene elements and the registry that builds them by type name.
+//
+// A scene is read in three visible phases (see systems/scene.h):
+//   1. parse: JSON -> element nodes {type, name, parameters, JSON pointer};
+//   2. build: each node's type is looked up here and its factory reads its
+//      parameters (unit-aware, every key accounted for);
+//   3. compile (systems/compile.h): the optical path is walked from the eye
+//      outward into the optically equivalent DisplaySystem.
+//
+// Elements come in a closed set of kinds, because the compile step gives
+// each kind a role on the path; types within a kind are open: a new type is
+// one file in elements/ and one line in elements/builtin_elements.def
+// (the registry is in elements/registry.h).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "framework/error.h"
+#include "framework/params.h"
+#include "framework/polarization.h"
+
+namespace layerlab {
+
+enum class ElementKind { kEye, kLens, kCombiner, kInlineOptic, kPanel, kBacklight };
+
+// "an eye", "a lens", "a combiner", "an in-line optic", "a panel", "a backlight".
+std::string KindName(ElementKind kind);
+
+class Element {
+ public:
+  virtual ~Element() = default;
+  virtual ElementKind kind() const = 0;
+  // Names of the outgoing connections, read from the element's JSON object
+  // (each names the next element away from the eye). A backlight has none.
+  virtual std::vector<std::string> output_ports() const { return {"next"}; }
+  // True when the element acts on polarization (compile then tracks Jones vectors).
+  virtual bool polarizing() const { return false; }
+
+  const std::string& type() const { return type_; }
+  const std::string& name() const { return name_; }
+  const Location& where() const { return where_; }
+
+ private:
+  friend class ElementRegistry;
+  std::string type_, name_;
+  Location where_;
+};
+
+// A thin main lens that floats the panels (paper Eq. 1).
+class LensElement : public Element {
+ public:
+  ElementKind kind() const final { return ElementKind::kLens; }
+  virtual double focal_length() const = 0;                // m
+  virtual std::optional<double> clear_aperture() const = 0;  // m, diameter
+};
+
+// Splits the path; each output port is one branch toward the panels.
+class CombinerElement : public Element {
+ public:
+  ElementKind kind() const final { return ElementKind::kCombiner; }
+  // Whether light through `port` is mirrored about the vertical axis (flip x)
+  // or the horizontal axis (flip y) in eye space.
+  virtual bool flips_x(size_t port) const = 0;
+  virtual bool flips_y(size_t port) const = 0;
+  // Applies the combiner to light leaving `port`'s side toward the eye.
+  virtual void transfer(size_t port, Light& light) const = 0;
+};
+
+// Something light passes through on its way (a wave plate, a filter).
+class InlineOpticElement : public Element {
+ public:
+  ElementKind kind() const final { return ElementKind::kInlineOptic; }
+  virtual void transfer(Light& light) const = 0;
+};
+
+enum class PupilShape { kSquare, kRound };
+enum class PupilSampling { kGrid, kJittered, kPoisson };
+
+// The viewer: pupil, its sampling for retinal images, where it sits, and the
+// eyebox and views the target light field is sampled over.
+struct EyeModel {
+  double pupil_diameter = 4e-3;  // m; the side of a square pupil; 0 is a pinhole
+  PupilShape pupil_shape = PupilShape::kSquare;
+  int pupil_samples_x = 9, pupil_samples_y = 9;
+  PupilSampling pupil_sampling = PupilSampling::kGrid;
+  uint64_t pupil_seed = 1;
+  double eye_relief = 0.01;  // m, pupil plane to main lens
+  double accommodation_min = 0.0, accommodation_max = 2.6;  // D
+  std::array<double, 3> chromatic_defocus = {0, 0, 0};     // D added per channel
+  double eyebox_width = 6e-3, eyebox_height = 6e-3;         // m
+  int views_x = 13, views_y = 13;
+};
+
+class EyeElement : public Element {
+ public:
+  explicit EyeElement(EyeModel model) : model_(model) {}
+  ElementKind kind() const final { return ElementKind::kEye; }
+  const EyeModel& model() const { return model_; }
+
+ private:
+  EyeModel model_;
+};
+
+// A transmissive panel as mounted: its pixel grid, the region the images use,
+// its photometric response, and its placement behind the main lens.
+struct PanelSpec {
+  double pitch_x = 0, pitch_y = 0;  // m
+  int64_t resolution_cols = 0, resolution_rows = 0;
+  int64_t active_cols = 0, active_rows = 0, active_left = 0, active_top = 0;
+  Rgb max_transmittance = {1, 1, 1};
+  double gamma = 2.2;
+  double black_level = 0.0;  // transmittance at input 0, relative to the maximum
+  bool reversed = false;     // mounted back to front: mirrored about its vertical axis
+  // Exactly one of the two placements is given; compile derives the other.
+  std::optional<double> distance;      // m from the main lens
+  std::optional<Depth> virtual_depth;  // of the floated image, from the eye
+  std::array<double, 2> offset = {0, 0};  // m, in the panel plane, eye-space x right, y up
+  double rotation = 0.0;                  // rad, in-plane, counterclockwise as the eye sees it
+  double polarization_angle = 0.0;        // rad, axis of the exit polarizer
+};
+
+class PanelElement : public Element {
+ public:
+  explicit PanelElement(PanelSpec spec) : spec_(spec) {}
+  ElementKind kind() const final { return ElementKind::kPanel; }
+  const PanelSpec& spec() const { return spec_; }
+
+ private:
+  PanelSpec spec_;
+};
+
+class BacklightElement : public Element {
+ public:
+  explicit BacklightElement(double luminance) : luminance_(luminance) {}
+  ElementKind kind() const final { return ElementKind::kBacklight; }
+  std::vector<std::string> output_ports() const final { return {}; }
+  double luminance() const { return luminance_; }  // cd/m^2
+
+ private:
+  double luminance_;
+};
+
+}  // namespace layerlab

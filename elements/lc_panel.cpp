@@ -1,0 +1,87 @@
+// lc_panel: a transmissive liquid-crystal attenuator panel.
+//
+// | key               | type                 | default        | meaning                                      |
+// |-------------------|----------------------|----------------|----------------------------------------------|
+// | pixel_pitch       | length or [x, y]     | required       | "117 um"                                     |
+// | resolution        | [cols, rows]         | required       | the whole panel                              |
+// | active_region     | {cols, rows, left, top} | whole panel | the pixels the images use; left/top default to centered |
+// | distance          | length               | one of the two | from the main lens (physical)                |
+// | virtual_depth     | depth                | one of the two | of the floated image, from the eye ("0.4 D") |
+// | max_transmittance | fraction or [r,g,b]  | 0.3            | transmittance at full input                  |
+// | gamma             | number               | 2.2            | transmittance = (input)^gamma                |
+// | black_level       | fraction             | 0              | transmittance at input 0, relative to max    |
+// | reversed          | boolean              | false          | mounted back to front (mirrored about its vertical axis) |
+// | offset            | [length, length]     | [0, 0]         | lateral shift in the panel plane (eye-space x right, y up) |
+// | rotation          | angle                | 0              | in-plane, counterclockwise as the eye sees it |
+// | polarization      | angle                | 0 deg          | axis of the exit polarizer, from eye-space x |
+// | next              | name                 | required       | the panel behind, or the backlight           |
+#include <algorithm>
+#include <cmath>
+
+#include "elements/element.h"
+#include "elements/registry.h"
+
+namespace layerlab {
+namespace {
+
+constexpr int64_t kMaxPixels = 1 << 15;
+
+std::unique_ptr<Element> MakeLcPanel(Params& p) {
+  PanelSpec s;
+  auto pitch = p.quantity_pair("pixel_pitch", Dimension::kLength, {0.0, 0.0});
+  if (!p.has("pixel_pitch")) p.raw("pixel_pitch");  // reports the missing key
+  p.require_range("pixel_pitch", std::min(pitch[0], pitch[1]), 0.0, 0.01, true, false);
+  p.require_range("pixel_pitch", std::max(pitch[0], pitch[1]), 0.0, 0.01, true, false);
+  s.pitch_x = pitch[0];
+  s.pitch_y = pitch[1];
+
+  auto resolution = p.integer_pair("resolution", 1, kMaxPixels);
+  s.resolution_cols = resolution[0];
+  s.resolution_rows = resolution[1];
+  s.active_cols = s.resolution_cols;
+  s.active_rows = s.resolution_rows;
+  p.mark_read("active_region");
+  if (p.has("active_region")) {
+    Params region = p.object("active_region");
+    s.active_cols = region.integer("cols", 1, s.resolution_cols);
+    s.active_rows = region.integer("rows", 1, s.resolution_rows);
+    s.active_left = region.integer("left", 0, s.resolution_cols - s.active_cols,
+                                   (s.resolution_cols - s.active_cols) / 2);
+    s.active_top = region.integer("top", 0, s.resolution_rows - s.active_rows,
+                                  (s.resolution_rows - s.active_rows) / 2);
+    region.check_all_read();
+  }
+
+  s.distance = p.optional_quantity("distance", Dimension::kLength);
+  s.virtual_depth = p.optional_depth("virtual_depth");
+  if (s.distance && s.virtual_depth)
+    p.fail("virtual_depth", "give either \"distance\" (from the lens) or \"virtual_depth\" (from the eye), not both");
+  if (!s.distance && !s.virtual_depth)
+    p.fail("distance", "missing placement: give \"distance\" (from the lens, e.g. \"72.81 mm\") or "
+                       "\"virtual_depth\" (from the eye, e.g. \"0.4 D\")");
+  if (s.distance && !(*s.distance > 0))
+    p.fail("distance", "the panel must be behind the lens (distance > 0), got " + FormatFixed(*s.distance, 6) + " m");
+
+  s.max_transmittance = p.fraction_rgb("max_transmittance", 0.3);
+  for (double t : s.max_transmittance)
+    if (!(t > 0)) p.fail("max_transmittance", "a panel that passes no light cannot show an image");
+  s.gamma = p.quantity("gamma", Dimension::kFraction, s.gamma);
+  p.require_range("gamma", s.gamma, 0.1, 10.0, false, false);
+  s.black_level = p.fraction_rgb("black_level", 0.0)[0];
+  if (s.black_level >= 1.0) p.fail("black_level", "must be below 1 (the panel's maximum)");
+  s.reversed = p.boolean("reversed", false);
+  s.offset = p.quantity_pair("offset", Dimension::kLength, {0.0, 0.0});
+  p.require_range("offset", std::abs(s.offset[0]) + std::abs(s.offset[1]), 0.0, 1.0, false, false);
+  s.rotation = p.quantity("rotation", Dimension::kAngle, 0.0);
+  p.require_range("rotation", s.rotation, -3.2, 3.2, false, false);
+  s.polarization_angle = p.quantity("polarization", Dimension::kAngle, 0.0);
+  return std::make_unique<PanelElement>(s);
+}
+
+}  // namespace
+
+ElementType LcPanelType() {
+  return {"lc_panel", ElementKind::kPanel, "transmissive LC attenuator panel", MakeLcPanel};
+}
+
+}  // namespace layerlab

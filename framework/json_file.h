@@ -1,0 +1,28 @@
+// Strict JSON input: malformed text is reported with line and column,
+// duplicate keys are refused (nlohmann would keep the last one silently),
+// and size and nesting are bounded before anything recurses.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace layerlab {
+
+struct JsonLimits {
+  size_t max_bytes = 16u << 20;  // scene and measurement files are small
+  int max_depth = 64;
+};
+
+// `file` names the source in messages; the text is parsed as is.
+nlohmann::json ParseJson(const std::string& text, const std::string& file,
+                         const JsonLimits& limits = {});
+
+// Reads and parses a file; refuses a missing, unreadable or oversized file.
+nlohmann::json ReadJsonFile(const std::string& path, const JsonLimits& limits = {});
+
+// "object", "array", "string", "number", "boolean", "null" for messages.
+std::string JsonKindName(const nlohmann::json& value);
+
+}  // namespace layerlab

@@ -1,0 +1,73 @@
+// The optically equivalent model of a display (paper Fig. 1, right): virtual
+// layers in eye space, grouped into branches that add, each a product of its
+// layers, seen by an eye. Everything downstream of compile sees only this.
+//
+// Eye-space conventions (docs/lightfield-format.md): x right, y up, z from
+// the pupil into the display, meters; depths are also kept in diopters so
+// that a layer at infinity (0 D) stays finite. A layer's pixel grid is
+// described in tan-angle units as seen from the pupil center: the pixel
+// (row i, col j) of a layer covers tan-angles around
+//   offset + R(rotation) * ((j + 0.5 - cols/2) * tan_pitch_x, (rows/2 - i - 0.5) * tan_pitch_y),
+// with columns counted in the panel's own order after applying flip_x/flip_y.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "elements/element.h"
+
+namespace layerlab {
+
+struct VirtualLayer {
+  std::string name;           // the panel element
+  int branch = 0;             // index into DisplaySystem::branches
+  int position_in_branch = 0; // 0 is nearest the eye
+  double diopters = 0;        // eye-space depth, 1/z
+  double depth = 0;           // z in m (+inf at 0 D)
+  double panel_distance = 0;  // physical, from the main lens, m
+  double magnification = 0;   // M (+inf at 0 D)
+  double pitch_x = 0, pitch_y = 0;          // virtual pixel pitch at depth z, m (+inf at 0 D)
+  double tan_pitch_x = 0, tan_pitch_y = 0;  // tan-angle per pixel, seen from the pupil center
+  int cols = 0, rows = 0;                   // the active region
+  double offset_x = 0, offset_y = 0;        // tan-angle of the grid center
+  double rotation = 0;                      // rad
+  bool flip_x = false, flip_y = false;      // panel order against eye-space order
+  double fov_x = 0, fov_y = 0;              // rad, Eq. 2
+  double max_cpd = 0;                       // Nyquist at the grid center
+  PanelSpec panel;                          // as mounted, for panel-ready output
+};
+
+struct Branch {
+  std::string name;         // "bs.reflected", or "main" without a combiner
+  std::vector<int> layers;  // indices into DisplaySystem::layers, nearest the eye first
+  Rgb optics_efficiency{};  // combiners and in-line optics, per channel
+  Rgb efficiency{};         // also times every panel's maximum transmittance
+  std::string backlight;
+  double backlight_luminance = 0;  // cd/m^2
+};
+
+struct DisplaySystem {
+  std::string name, file;
+  EyeModel eye;
+  std::string lens;
+  double focal_length = 0;
+  std::optional<double> clear_aperture;
+
+  std::vector<VirtualLayer> layers;  // farthest first (ascending diopters)
+  std::vector<Branch> branches;
+
+  double fov_x = 0, fov_y = 0;  // rad: the smallest layer field (Eq. 2)
+  double max_cpd = 0;           // the finest layer's Nyquist frequency
+  std::optional<double> vignetting_free_fov_x, vignetting_free_fov_y;  // rad, from the clear aperture
+
+  Rgb peak_luminance{};       // cd/m^2 at full white on every panel
+  Rgb brightness_efficiency{};  // luminance at the eye per luminance emitted by the backlights
+  double luminance_efficiency = 0;  // the same, Rec.709-luminance weighted
+
+  bool polarization_tracked = false;
+  std::vector<std::string> components;  // what this system uses, in words
+  std::vector<std::string> warnings;
+};
+
+}  // namespace layerlab

@@ -1,0 +1,68 @@
+#include "systems/scene.h"
+
+#include <map>
+
+#include "framework/json_file.h"
+
+namespace layerlab {
+
+const SceneNode* Scene::find(const std::string& element_name) const {
+  for (const SceneNode& node : nodes)
+    if (node.element->name() == element_name) return &node;
+  return nullptr;
+}
+
+const std::vector<std::string>& SceneTaskKeys() {
+  static const std::vector<std::string> keys = {};
+  return keys;
+}
+
+Scene ParseScene(nlohmann::json document, const std::string& file, const ElementRegistry& registry) {
+  Scene scene;
+  scene.file = file;
+  scene.document = std::move(document);
+  Params top(scene.document, {file, ""});
+
+  std::string format = top.string("format", kSceneFormat);
+  if (format != kSceneFormat)
+    top.fail("format", "unknown scene format \"" + format + "\"; this layerlab reads \"" + kSceneFormat + "\"");
+  scene.name = top.string("name", "");
+  scene.description = top.string("description", "");
+  for (const std::string& key : SceneTaskKeys()) top.mark_read(key);
+
+  const nlohmann::json& elements = top.raw("elements");
+  Location elements_at = top.where("elements");
+  if (!elements.is_array()) throw Error(elements_at, "expected an array of elements, got " + JsonKindName(elements));
+  if (elements.empty()) throw Error(elements_at, "the scene has no elements");
+  top.check_all_read();
+
+  std::map<std::string, size_t> index_of_name;
+  for (size_t i = 0; i < elements.size(); ++i) {
+    Params params(elements[i], elements_at.child(i));
+    SceneNode node;
+    node.where = params.where();
+    node.element = registry.create(params);
+    const std::string& name = node.element->name();
+    if (auto [it, fresh] = index_of_name.emplace(name, i); !fresh)
+      params.fail("name", "element name \"" + name + "\" is already used by /elements/" + std::to_string(it->second));
+    for (const std::string& port : node.element->output_ports()) {
+      std::string target = params.string(port);
+      if (target.empty()) params.fail(port, "names no element");
+      node.outputs.push_back(target);
+    }
+    params.check_all_read();
+    scene.nodes.push_back(std::move(node));
+  }
+  return scene;
+}
+
+Scene LoadScene(const std::string& path, const ElementRegistry& registry) {
+  return ParseScene(ReadJsonFile(path), path, registry);
+}
+
+Scene LoadScene(const std::string& path) {
+  static const ElementRegistry builtins = ElementRegistry::WithBuiltins();
+  return LoadScene(path, builtins);
+}
+
+}  // namespace layerlab

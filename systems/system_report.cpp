@@ -1,0 +1,152 @@
+#include "systems/system_report.h"
+
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <numbers>
+
+namespace layerlab {
+namespace {
+
+double Deg(double rad) { return rad * 180.0 / std::numbers::pi; }
+
+std::string F(double v, int decimals) { return FormatFixed(v, decimals); }
+
+std::string Rgb3(const Rgb& v, int decimals) {
+  return F(v[0], decimals) + " " + F(v[1], decimals) + " " + F(v[2], decimals);
+}
+
+std::string Row(const char* format, ...) __attribute__((format(printf, 1, 2)));
+std::string Row(const char* format, ...) {
+  char buf[512];
+  va_list args;
+  va_start(args, format);
+  std::vsnprintf(buf, sizeof buf, format, args);
+  va_end(args);
+  return std::string(buf) + "\n";
+}
+
+std::string FlipName(const VirtualLayer& l) {
+  if (l.flip_x && l.flip_y) return "x,y";
+  if (l.flip_x) return "x";
+  if (l.flip_y) return "y";
+  return "-";
+}
+
+}  // namespace
+
+nlohmann::json JsonNumber(double value) {
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  return value;
+}
+
+std::string FormatSystemTable(const DisplaySystem& s) {
+  const EyeModel& eye = s.eye;
+  std::string out;
+  out += s.file + (s.name.empty() ? "" : ": " + s.name) + "\n\n";
+  out += Row("eye      pupil %s mm %s, %d x %d samples; eye relief %s mm; eyebox %s x %s mm, %d x %d views;\n"
+             "         accommodation %s to %s D",
+             F(eye.pupil_diameter * 1e3, 2).c_str(), eye.pupil_shape == PupilShape::kSquare ? "square" : "round",
+             eye.pupil_samples_x, eye.pupil_samples_y, F(eye.eye_relief * 1e3, 2).c_str(),
+             F(eye.eyebox_width * 1e3, 2).c_str(), F(eye.eyebox_height * 1e3, 2).c_str(), eye.views_x, eye.views_y,
+             F(eye.accommodation_min, 2).c_str(), F(eye.accommodation_max, 2).c_str());
+  std::string aperture = "clear aperture unlimited";
+  if (s.clear_aperture)
+    aperture = "clear aperture " + F(*s.clear_aperture * 1e3, 2) + " mm (vignetting-free field " +
+               F(Deg(*s.vignetting_free_fov_x), 1) + " x " + F(Deg(*s.vignetting_free_fov_y), 1) + " deg)";
+  out += Row("lens     \"%s\": focal length %s mm, %s", s.lens.c_str(), F(s.focal_length * 1e3, 2).c_str(),
+             aperture.c_str());
+
+  out += "\nvirtual layers (farthest first; depth from the eye, distance from the lens)\n";
+  out += Row("%-3s %-12s %-24s %8s %9s %10s %8s %10s %11s %15s %7s %5s", "#", "panel", "branch", "depth", "depth",
+             "distance", "magnif.", "pixel", "pixels", "field of view", "max f", "flip");
+  out += Row("%-3s %-12s %-24s %8s %9s %10s %8s %10s %11s %15s %7s %5s", "", "", "", "(D)", "(m)", "(mm)", "", "(mm)",
+             "", "(deg)", "(cpd)", "");
+  for (size_t k = 0; k < s.layers.size(); ++k) {
+    const VirtualLayer& l = s.layers[k];
+    std::string pixels = std::to_string(l.cols) + " x " + std::to_string(l.rows);
+    std::string fov = F(Deg(l.fov_x), 2) + " x " + F(Deg(l.fov_y), 2);
+    out += Row("%-3zu %-12s %-24s %8s %9s %10s %8s %10s %11s %15s %7s %5s", k, l.name.c_str(),
+               s.branches[l.branch].name.c_str(), F(l.diopters, 3).c_str(), F(l.depth, 4).c_str(),
+               F(l.panel_distance * 1e3, 2).c_str(), F(l.magnification, 2).c_str(), F(l.pitch_x * 1e3, 3).c_str(),
+               pixels.c_str(), fov.c_str(), F(l.max_cpd, 2).c_str(), FlipName(l).c_str());
+  }
+
+  out += "\nbranches (added at the eye; each the product of its layers, nearest the eye first)\n";
+  out += Row("%-3s %-24s %-10s %-22s %-22s %-12s %10s", "#", "name", "layers", "optics eff. (R G B)",
+             "efficiency (R G B)", "backlight", "(cd/m2)");
+  for (size_t b = 0; b < s.branches.size(); ++b) {
+    const Branch& br = s.branches[b];
+    std::string layers;
+    for (int k : br.layers) layers += (layers.empty() ? "" : ",") + std::to_string(k);
+    out += Row("%-3zu %-24s %-10s %-22s %-22s %-12s %10s", b, br.name.c_str(), layers.c_str(),
+               Rgb3(br.optics_efficiency, 4).c_str(), Rgb3(br.efficiency, 4).c_str(), br.backlight.c_str(),
+               F(br.backlight_luminance, 1).c_str());
+  }
+
+  out += "\nsystem\n";
+  out += Row("  field of view          %s x %s deg (the smallest layer's, Eq. 2)", F(Deg(s.fov_x), 2).c_str(),
+             F(Deg(s.fov_y), 2).c_str());
+  out += Row("  highest frequency      %s cpd (finest layer, at its center)", F(s.max_cpd, 2).c_str());
+  out += Row("  peak luminance         %s cd/m2 (R G B, full white on every panel)", Rgb3(s.peak_luminance, 2).c_str());
+  out += Row("  brightness efficiency  %s (luminance-weighted; R G B %s): light at the eye / light the backlights emit",
+             F(s.luminance_efficiency, 4).c_str(), Rgb3(s.brightness_efficiency, 4).c_str());
+  out += "  components             ";
+  for (size_t i = 0; i < s.components.size(); ++i) out += (i ? "\n                         " : "") + s.components[i];
+  out += "\n";
+  for (const std::string& w : s.warnings) out += "warning: " + w + "\n";
+  return out;
+}
+
+nlohmann::json SystemToJson(const DisplaySystem& s) {
+  using nlohmann::json;
+  const EyeModel& eye = s.eye;
+  json j;
+  j["file"] = s.file;
+  j["name"] = s.name;
+  j["eye"] = {{"pupil_diameter_m", eye.pupil_diameter},
+              {"pupil_shape", eye.pupil_shape == PupilShape::kSquare ? "square" : "round"},
+              {"pupil_samples", {eye.pupil_samples_x, eye.pupil_samples_y}},
+              {"eye_relief_m", eye.eye_relief},
+              {"eyebox_m", {eye.eyebox_width, eye.eyebox_height}},
+              {"views", {eye.views_x, eye.views_y}},
+              {"accommodation_range_D", {eye.accommodation_min, eye.accommodation_max}}};
+  j["lens"] = {{"name", s.lens}, {"focal_length_m", s.focal_length},
+               {"clear_aperture_m", s.clear_aperture ? json(*s.clear_aperture) : json(nullptr)}};
+  for (const VirtualLayer& l : s.layers) {
+    j["layers"].push_back({{"name", l.name},
+                           {"branch", l.branch},
+                           {"position_in_branch", l.position_in_branch},
+                           {"diopters", l.diopters},
+                           {"depth_m", JsonNumber(l.depth)},
+                           {"panel_distance_m", l.panel_distance},
+                           {"magnification", JsonNumber(l.magnification)},
+                           {"pixel_pitch_m", {JsonNumber(l.pitch_x), JsonNumber(l.pitch_y)}},
+                           {"tan_pitch", {l.tan_pitch_x, l.tan_pitch_y}},
+                           {"pixels", {l.cols, l.rows}},
+                           {"offset_tan", {l.offset_x, l.offset_y}},
+                           {"rotation_rad", l.rotation},
+                           {"flip", {l.flip_x, l.flip_y}},
+                           {"fov_deg", {Deg(l.fov_x), Deg(l.fov_y)}},
+                           {"max_cpd", l.max_cpd}});
+  }
+  for (const Branch& b : s.branches)
+    j["branches"].push_back({{"name", b.name},
+                             {"layers", b.layers},
+                             {"optics_efficiency_rgb", b.optics_efficiency},
+                             {"efficiency_rgb", b.efficiency},
+                             {"backlight", b.backlight},
+                             {"backlight_luminance_cd_m2", b.backlight_luminance}});
+  j["fov_deg"] = {Deg(s.fov_x), Deg(s.fov_y)};
+  j["max_cpd"] = s.max_cpd;
+  if (s.vignetting_free_fov_x) j["vignetting_free_fov_deg"] = {Deg(*s.vignetting_free_fov_x), Deg(*s.vignetting_free_fov_y)};
+  j["peak_luminance_cd_m2_rgb"] = s.peak_luminance;
+  j["brightness_efficiency_rgb"] = s.brightness_efficiency;
+  j["brightness_efficiency"] = s.luminance_efficiency;
+  j["polarization_tracked"] = s.polarization_tracked;
+  j["components"] = s.components;
+  j["warnings"] = s.warnings;
+  return j;
+}
+
+}  // namespace layerlab

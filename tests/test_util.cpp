@@ -1,0 +1,44 @@
+#include "tests/test_util.h"
+
+#include <cmath>
+
+#include "framework/json_file.h"
+
+namespace layerlab::testing {
+
+::testing::AssertionResult Close(double actual, double expected, double rel_tol, double abs_tol) {
+  double tolerance = std::max(abs_tol, rel_tol * std::abs(expected));
+  if (std::abs(actual - expected) <= tolerance) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << actual << " differs from " << expected << " by "
+                                       << std::abs(actual - expected) << " (tolerance " << tolerance << ")";
+}
+
+std::string ExamplePath(const std::string& name) { return std::string(LAYERLAB_SOURCE_DIR) + "/examples/" + name; }
+
+nlohmann::json ReadExample(const std::string& name) { return ReadJsonFile(ExamplePath(name)); }
+
+DisplaySystem CompileJson(const nlohmann::json& scene, const ElementRegistry& registry, const std::string& file) {
+  return Compile(ParseScene(scene, file, registry));
+}
+
+DisplaySystem CompileJson(const nlohmann::json& scene, const std::string& file) {
+  static const ElementRegistry builtins = ElementRegistry::WithBuiltins();
+  return CompileJson(scene, builtins, file);
+}
+
+std::string CompileError(const nlohmann::json& scene) {
+  try {
+    CompileJson(scene);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+nlohmann::json& ElementNamed(nlohmann::json& scene, const std::string& name) {
+  for (auto& e : scene["elements"])
+    if (e.value("name", "") == name) return e;
+  throw std::runtime_error("no element named " + name);
+}
+
+}  // namespace layerlab::testing

@@ -1,0 +1,30 @@
+// One home for test helpers: tolerances, scene fixtures, captured errors.
+#pragma once
+
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "systems/compile.h"
+
+namespace layerlab::testing {
+
+// |actual - expected| <= max(abs_tol, rel_tol * |expected|).
+::testing::AssertionResult Close(double actual, double expected, double rel_tol, double abs_tol = 0.0);
+
+std::string ExamplePath(const std::string& name);  // examples/<name>
+nlohmann::json ReadExample(const std::string& name);
+
+// Parses and compiles a scene given as JSON; throws layerlab::Error.
+DisplaySystem CompileJson(const nlohmann::json& scene, const std::string& file = "scene.json");
+DisplaySystem CompileJson(const nlohmann::json& scene, const ElementRegistry& registry,
+                          const std::string& file = "scene.json");
+
+// The Error's what() from compiling `scene`, or "" if it compiled.
+std::string CompileError(const nlohmann::json& scene);
+
+// Finds the element named `name` in a scene document.
+nlohmann::json& ElementNamed(nlohmann::json& scene, const std::string& name);
+
+}  // namespace layerlab::testing
