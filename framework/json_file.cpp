@@ -76,9 +76,20 @@ class StructureGuard {
 
 // nlohmann's messages start "[json.exception.parse_error.101] parse error at
 // line 3, column 5: "; we give our own position and keep the explanation.
-std::string Explanation(const std::string& what) {
-  size_t colon = what.find(": ");
-  return colon == std::string::npos ? what : what.substr(colon + 2);
+std::string Explanation(std::string what) {
+  if (!what.empty() && what[0] == '[') what = what.substr(what.find("] ") + 2);
+  if (what.rfind("parse error", 0) == 0) what = what.substr(what.find(": ") + 2);
+  return what;
+}
+
+// "file:line:column" of a byte offset.
+std::string PositionOf(const std::string& text, size_t byte, const std::string& file) {
+  size_t line = 1, column = 1;
+  for (size_t i = 0; i < byte && i < text.size(); ++i) {
+    if (text[i] == '\n') ++line, column = 1;
+    else ++column;
+  }
+  return file + ":" + std::to_string(line) + ":" + std::to_string(column);
 }
 
 }  // namespace
@@ -91,14 +102,15 @@ json ParseJson(const std::string& text, const std::string& file, const JsonLimit
   try {
     return json::parse(text, std::ref(guard));
   } catch (const json::parse_error& e) {
-    size_t byte = e.byte == 0 ? 0 : e.byte - 1;
-    size_t line = 1, column = 1;
-    for (size_t i = 0; i < byte && i < text.size(); ++i) {
-      if (text[i] == '\n') ++line, column = 1;
-      else ++column;
-    }
-    throw Error(file + ":" + std::to_string(line) + ":" + std::to_string(column) +
-                ": malformed JSON: " + Explanation(e.what()));
+    throw Error(PositionOf(text, e.byte == 0 ? 0 : e.byte - 1, file) + ": malformed JSON: " + Explanation(e.what()));
+  } catch (const json::out_of_range& e) {
+    // "number overflow parsing '1e400'": nlohmann gives no position; find the literal.
+    std::string what = Explanation(e.what());
+    size_t open = what.find('\''), close = what.rfind('\'');
+    size_t at = 0;
+    if (open != std::string::npos && close > open) at = text.find(what.substr(open + 1, close - open - 1));
+    throw Error(PositionOf(text, at == std::string::npos ? 0 : at, file) + ": malformed JSON: " + what +
+                " (the number is beyond the range of a double)");
   }
 }
 

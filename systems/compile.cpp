@@ -27,9 +27,11 @@ class Walker {
     system_.name = scene_.name;
     system_.eye = static_cast<const EyeElement&>(*eye_node.element).model();
     visited_.insert(&eye_node);
+    stack_.push_back(&eye_node);
 
     const SceneNode& lens_node = Follow(eye_node, 0, {ElementKind::kLens});
     const auto& lens = static_cast<const LensElement&>(*lens_node.element);
+    stack_.push_back(&lens_node);
     system_.lens = lens.name();
     system_.focal_length = lens.focal_length();
     system_.clear_aperture = lens.clear_aperture();

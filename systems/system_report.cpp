@@ -78,7 +78,10 @@ std::string FormatSystemTable(const DisplaySystem& s) {
   for (size_t b = 0; b < s.branches.size(); ++b) {
     const Branch& br = s.branches[b];
     std::string layers;
-    for (int k : br.layers) layers += (layers.empty() ? "" : ",") + std::to_string(k);
+    for (int k : br.layers) {
+      if (!layers.empty()) layers += ',';
+      layers += std::to_string(k);
+    }
     out += Row("%-3zu %-24s %-10s %-22s %-22s %-12s %10s", b, br.name.c_str(), layers.c_str(),
                Rgb3(br.optics_efficiency, 4).c_str(), Rgb3(br.efficiency, 4).c_str(), br.backlight.c_str(),
                F(br.backlight_luminance, 1).c_str());

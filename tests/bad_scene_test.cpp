@@ -1,1 +1,179 @@
+// Bad scenes: each is refused with one message naming the file, the JSON
+// pointer of the bad value and what was expected. Messages are asserted verbatim.
+#include <functional>
+
+#include "framework/json_file.h"
 #include "tests/test_util.h"
+
+namespace layerlab {
+namespace {
+
+using nlohmann::json;
+using testing::ElementNamed;
+using testing::ReadExample;
+
+struct BadScene {
+  std::string name;
+  std::string base;  // example file
+  std::function<void(json&)> mutate;
+  std::string message;
+};
+
+void PrintTo(const BadScene& c, std::ostream* os) { *os << c.name; }
+
+class BadSceneTest : public ::testing::TestWithParam<BadScene> {};
+
+TEST_P(BadSceneTest, IsRefusedWithItsLocation) {
+  const BadScene& c = GetParam();
+  json scene = ReadExample(c.base);
+  c.mutate(scene);
+  EXPECT_EQ(testing::CompileError(scene), c.message);
+}
+
+const std::string kMul = "multiplicative_2layer.json";
+const std::string kHybrid = "paper_prototype.json";
+
+const BadScene kCases[] = {
+    {"UnknownType", kMul, [](json& s) { ElementNamed(s, "lens")["type"] = "thin_lense"; },
+     "scene.json: /elements/1/type: unknown element type \"thin_lense\"; did you mean \"thin_lens\"? Known types: "
+     "backlight, eye, half_mirror, hwp, lc_panel, pbs, thin_lens"},
+    {"MisspelledKey", kMul,
+     [](json& s) {
+       json& lens = ElementNamed(s, "lens");
+       lens["focal_lenght"] = lens["focal_length"];
+       lens.erase("focal_length");
+       lens["focal_length"] = "75 mm";
+     },
+     "scene.json: /elements/1/focal_lenght: unknown key \"focal_lenght\"; did you mean \"focal_length\"?"},
+    {"MissingRequiredKey", kMul, [](json& s) { ElementNamed(s, "lens").erase("focal_length"); },
+     "scene.json: /elements/1/focal_length: missing required key \"focal_length\""},
+    {"WrongKindOfUnit", kMul, [](json& s) { ElementNamed(s, "lens")["focal_length"] = "75 deg"; },
+     "scene.json: /elements/1/focal_length: 'deg' is an angle unit; expected a length in m, cm, mm, um, nm"},
+    {"UnknownUnit", kMul, [](json& s) { ElementNamed(s, "front")["pixel_pitch"] = "117 uu"; },
+     "scene.json: /elements/2/pixel_pitch: unknown unit 'uu' in \"117 uu\"; expected a length in m, cm, mm, um, nm"},
+    {"BareNumberForADepth", kMul, [](json& s) { ElementNamed(s, "front")["virtual_depth"] = 2.2; },
+     "scene.json: /elements/2/virtual_depth: expected a depth with its unit, such as \"0.4 D\" or \"2.5 m\", got a number"},
+    {"NonFiniteQuantity", kMul, [](json& s) { ElementNamed(s, "lens")["focal_length"] = "nan mm"; },
+     "scene.json: /elements/1/focal_length: \"nan mm\" is not a finite number"},
+    {"TransmittanceAboveOne", kMul, [](json& s) { ElementNamed(s, "rear")["max_transmittance"] = 1.5; },
+     "scene.json: /elements/3/max_transmittance: expected a fraction in [0, 1], got 1.5"},
+    {"ZeroPixelPitch", kMul, [](json& s) { ElementNamed(s, "rear")["pixel_pitch"] = "0 um"; },
+     "scene.json: /elements/3/pixel_pitch: must be in (0, 0.01] (SI units), got 0"},
+    {"NonPositiveFocalLength", kMul, [](json& s) { ElementNamed(s, "lens")["focal_length"] = "-75 mm"; },
+     "scene.json: /elements/1/focal_length: must be in (0, 10] (SI units), got -0.075"},
+    {"FractionalResolution", kMul, [](json& s) { ElementNamed(s, "rear")["resolution"] = {1280.5, 800}; },
+     "scene.json: /elements/3/resolution/0: expected an integer in [1, 32768], got 1280.5"},
+    {"NegativeResolution", kMul, [](json& s) { ElementNamed(s, "rear")["resolution"] = {1280, -1}; },
+     "scene.json: /elements/3/resolution/1: expected an integer in [1, 32768], got -1"},
+    {"StringViews", kMul, [](json& s) { ElementNamed(s, "eye")["views"] = {"13", 13}; },
+     "scene.json: /elements/0/views/0: expected an integer in [1, 256], got a string \"13\""},
+    {"HugeViews", kMul, [](json& s) { ElementNamed(s, "eye")["views"] = {1e12, 13}; },
+     "scene.json: /elements/0/views/0: expected an integer in [1, 256], got 1000000000000.0"},
+    {"InvertedAccommodationRange", kMul, [](json& s) { ElementNamed(s, "eye")["accommodation_range"] = {"2.6 D", "0 D"}; },
+     "scene.json: /elements/0/accommodation_range: the range is inverted or empty: 2.600 D is not below 0.000 D "
+     "(give [far, near] in diopters, far first)"},
+    {"DanglingConnection", kMul, [](json& s) { ElementNamed(s, "eye")["next"] = "lenz"; },
+     "scene.json: /elements/0/next: dangling connection: no element is named \"lenz\"; did you mean \"lens\"?"},
+    {"CyclicConnection", kMul, [](json& s) { ElementNamed(s, "rear")["next"] = "front"; },
+     "scene.json: /elements/3/next: cyclic connection: \"front\" is already on the path from the eye to \"rear\""},
+    {"CycleBackToTheLens", kMul, [](json& s) { ElementNamed(s, "rear")["next"] = "lens"; },
+     "scene.json: /elements/3/next: cyclic connection: \"lens\" is already on the path from the eye to \"rear\""},
+    {"PanelWhereTheLensBelongs", kMul, [](json& s) { ElementNamed(s, "eye")["next"] = "front"; },
+     "scene.json: /elements/0/next: \"front\" is lc_panel, a panel; a lens was expected here"},
+    {"CombinerAfterAPanel", kHybrid,
+     [](json& s) {
+       ElementNamed(s, "rear_a")["next"] = "mirror2";
+       s["elements"].push_back({{"type", "half_mirror"}, {"name", "mirror2"}, {"transmitted", "backlight_a"},
+                                {"reflected", "backlight_b"}});
+       ElementNamed(s, "rear_b")["next"] = "front_b";
+     },
+     "scene.json: /elements/4/next: \"mirror2\" is half_mirror, a combiner; a panel or a backlight was expected here"},
+    {"PanelBeyondTheFocalLength", kMul,
+     [](json& s) {
+       json& rear = ElementNamed(s, "rear");
+       rear.erase("virtual_depth");
+       rear["distance"] = "80 mm";
+     },
+     "scene.json: /elements/3/distance: the panel is 80.00 mm from the lens, beyond the focal length 75.00 mm: the "
+     "lens would form a real, inverted image, not a floating virtual one"},
+    {"TwoPanelsOfAStackAtOneDepth", kMul, [](json& s) { ElementNamed(s, "rear")["virtual_depth"] = "2.2 D"; },
+     "scene.json: /elements/3/virtual_depth: panels \"front\" and \"rear\" of one stack are at the same depth "
+     "(2.2000 D); a stack needs distinct planes"},
+    {"StackOutOfOrder", kMul,
+     [](json& s) {
+       ElementNamed(s, "front")["virtual_depth"] = "0.4 D";
+       ElementNamed(s, "rear")["virtual_depth"] = "2.2 D";
+     },
+     "scene.json: /elements/3/virtual_depth: panel \"rear\" is behind \"front\" in the stack but nearer the lens "
+     "(64.17 mm < 72.81 mm); list each stack from the eye outward"},
+    {"BothPlacements", kMul, [](json& s) { ElementNamed(s, "rear")["distance"] = "70 mm"; },
+     "scene.json: /elements/3/virtual_depth: give either \"distance\" (from the lens) or \"virtual_depth\" (from the "
+     "eye), not both"},
+    {"NoPlacement", kMul, [](json& s) { ElementNamed(s, "rear").erase("virtual_depth"); },
+     "scene.json: /elements/3/distance: missing placement: give \"distance\" (from the lens, e.g. \"72.81 mm\") or "
+     "\"virtual_depth\" (from the eye, e.g. \"0.4 D\")"},
+    {"ImageInFrontOfTheLens", kMul, [](json& s) { ElementNamed(s, "front")["virtual_depth"] = "150 D"; },
+     "scene.json: /elements/2/virtual_depth: a virtual image at 150.000 D (6.67 mm from the eye) would not lie "
+     "behind the lens, which is 10.00 mm from the eye (below 100.0 D)"},
+    {"NoEye", kMul, [](json& s) { s["elements"].erase(0); },
+     "scene.json: /elements: the scene has no eye; the optical path starts at an element of type \"eye\""},
+    {"TwoEyes", kMul,
+     [](json& s) {
+       json eye = s["elements"][0];
+       eye["name"] = "eye2";
+       s["elements"].push_back(eye);
+     },
+     "scene.json: /elements/5: a second eye \"eye2\"; the scene already has \"eye\" (one eye per scene)"},
+    {"ElementOffThePath", kMul,
+     [](json& s) { s["elements"].push_back({{"type", "backlight"}, {"name", "spare"}, {"luminance", "100 cd/m2"}}); },
+     "scene.json: /elements/5: element \"spare\" (backlight) is not on the optical path from the eye"},
+    {"SharedElement", kHybrid, [](json& s) { ElementNamed(s, "rear_b")["next"] = "backlight_a"; },
+     "scene.json: /elements/7/next: \"backlight_a\" is already reached by another connection; each element sits on "
+     "one optical path"},
+    {"DuplicateElementName", kMul, [](json& s) { ElementNamed(s, "backlight")["name"] = "rear"; },
+     "scene.json: /elements/4/name: element name \"rear\" is already used by /elements/3"},
+    {"MirrorPassesMoreThanItGets", kHybrid, [](json& s) { ElementNamed(s, "half_mirror")["transmittance"] = 0.6; },
+     "scene.json: /elements/2/transmittance: reflectance + transmittance is 1.1000 in channel R; a passive mirror "
+     "cannot exceed 1"},
+    {"UnknownFormat", kMul, [](json& s) { s["format"] = "layerlab-scene/2"; },
+     "scene.json: /format: unknown scene format \"layerlab-scene/2\"; this layerlab reads \"layerlab-scene/1\""},
+    {"UnknownTopLevelKey", kMul, [](json& s) { s["element"] = json::array(); },
+     "scene.json: /element: unknown key \"element\"; did you mean \"elements\"?"},
+    {"ElementsNotAnArray", kMul, [](json& s) { s["elements"] = json::object(); },
+     "scene.json: /elements: expected an array of elements, got an object"},
+    {"EyeReliefBeyondTheFocalLength", kMul, [](json& s) { ElementNamed(s, "eye")["eye_relief"] = "8 cm"; },
+     "scene.json: /elements/1/focal_length: the eye relief (80.00 mm) must be shorter than the focal length (75.00 "
+     "mm) to float the panels in front of the eye"},
+    {"BadPupilShape", kMul, [](json& s) { ElementNamed(s, "eye")["pupil_shape"] = "roun"; },
+     "scene.json: /elements/0/pupil_shape: \"roun\" is not one of square or round; did you mean \"round\"?"},
+    {"SpectralTableMissesAChannel", "hybrid_pbs_hwp.json",
+     [](json& s) {
+       ElementNamed(s, "pbs")["transmittance_p"] = {{"wavelengths", {"500 nm", "700 nm"}}, {"values", {0.9, 0.9}}};
+     },
+     "scene.json: /elements/2/transmittance_p/wavelengths: the table covers 500 to 700 nm but channel B is at 465 nm"},
+};
+
+INSTANTIATE_TEST_SUITE_P(Scenes, BadSceneTest, ::testing::ValuesIn(kCases),
+                         [](const auto& test_info) { return test_info.param.name; });
+
+TEST(BadSceneText, MalformedJsonGivesLineAndColumn) {
+  try {
+    ParseJson("{\n  \"elements\": [\n    {\"type\": \"eye\",}\n  ]\n}", "scene.json");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "scene.json:3:20: malformed JSON: syntax error while parsing object key - unexpected '}'; "
+                           "expected string literal");
+  }
+}
+
+TEST(BadSceneText, DuplicateKeyInAnElement) {
+  try {
+    ParseJson(R"({"elements": [{"type": "eye", "name": "a", "name": "b"}]})", "scene.json");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "scene.json: /elements/0/name: duplicate key \"name\" (each key may appear once per object)");
+  }
+}
+
+}  // namespace
+}  // namespace layerlab

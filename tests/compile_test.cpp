@@ -1,1 +1,120 @@
+// The compiled paper prototype and its variants against numbers derived by hand.
+#include <cmath>
+#include <numbers>
+
 #include "tests/test_util.h"
+
+namespace layerlab {
+namespace {
+
+using testing::Close;
+using testing::CompileJson;
+using testing::ElementNamed;
+using testing::ReadExample;
+
+constexpr double kDeg = 180 / std::numbers::pi;
+
+TEST(Compile, PaperPrototypeMatchesTable1) {
+  DisplaySystem s = CompileJson(ReadExample("paper_prototype.json"));
+  ASSERT_EQ(s.layers.size(), 4u);
+  ASSERT_EQ(s.branches.size(), 2u);
+  const double f = 0.075, e = 0.01, p = 117e-6;
+  const double diopters[] = {0.4, 1.0, 1.6, 2.2};
+  const double distance_mm[] = {72.81, 69.72, 66.85, 64.17};
+  const double magnification[] = {34.2, 14.2, 9.2, 6.93};
+  for (int k = 0; k < 4; ++k) {
+    const VirtualLayer& l = s.layers[k];
+    double d = 1 / diopters[k] - e;      // image distance behind the lens
+    double M = 1 + d / f;                // = d / s with 1/s = 1/f + 1/d
+    EXPECT_TRUE(Close(l.diopters, diopters[k], 1e-12));
+    EXPECT_TRUE(Close(l.panel_distance * 1e3, distance_mm[k], 0, 0.005)) << l.name;
+    EXPECT_TRUE(Close(l.magnification, M, 1e-12));
+    EXPECT_TRUE(Close(l.magnification, magnification[k], 0, 0.01));
+    EXPECT_TRUE(Close(l.pitch_x, M * p, 1e-12));
+    EXPECT_TRUE(Close(l.tan_pitch_x, M * p * diopters[k], 1e-12));
+    EXPECT_EQ(l.cols, 400);
+    EXPECT_EQ(l.rows, 200);
+  }
+  // The farthest layer sets the field: 2 atan(4.0014 mm x 400 / (2 x 2.5 m)).
+  EXPECT_TRUE(Close(s.fov_x * kDeg, 2 * std::atan(34.2 * p * 400 / 5.0) * kDeg, 1e-12));
+  EXPECT_TRUE(Close(s.fov_x * kDeg, 35.5, 0, 0.05));
+  EXPECT_TRUE(Close(s.fov_y * kDeg, 18.2, 0, 0.05));
+  EXPECT_TRUE(Close(s.max_cpd, 1 / (2 * std::atan(34.2 * p / 2.5) * kDeg), 1e-12));
+  EXPECT_TRUE(Close(s.max_cpd, 5.4, 0, 0.06));
+}
+
+TEST(Compile, PaperBranchesPairFarAndMidPlanes) {
+  // Eq. 5: l = P1 t1 . P3 t3 + P2 t2 . P4 t4 with 1 the farthest plane.
+  DisplaySystem s = CompileJson(ReadExample("paper_prototype.json"));
+  EXPECT_EQ(s.branches[0].layers, (std::vector<int>{2, 0}));  // 1.6 D in front of 0.4 D
+  EXPECT_EQ(s.branches[1].layers, (std::vector<int>{3, 1}));  // 2.2 D in front of 1.0 D
+  EXPECT_EQ(s.layers[2].position_in_branch, 0);
+  EXPECT_EQ(s.layers[0].position_in_branch, 1);
+}
+
+TEST(Compile, FlipsComeFromReversedPanelsAndTheMirror) {
+  DisplaySystem s = CompileJson(ReadExample("paper_prototype.json"));
+  auto layer = [&](const std::string& name) {
+    for (const VirtualLayer& l : s.layers)
+      if (l.name == name) return l;
+    throw std::runtime_error(name);
+  };
+  EXPECT_FALSE(layer("rear_a").flip_x);  // transmitted, mounted normally
+  EXPECT_TRUE(layer("front_a").flip_x);  // transmitted, reversed
+  EXPECT_TRUE(layer("rear_b").flip_x);   // reflected by the horizontal fold
+  EXPECT_FALSE(layer("front_b").flip_x); // reflected and reversed: the two cancel
+  for (const VirtualLayer& l : s.layers) EXPECT_FALSE(l.flip_y);
+}
+
+TEST(Compile, BrightnessOfTheDisplayVariants) {
+  // Per backlight: half mirror 0.5 times two panels at 0.3 each.
+  DisplaySystem hybrid = CompileJson(ReadExample("paper_prototype.json"));
+  DisplaySystem multiplicative = CompileJson(ReadExample("multiplicative_2layer.json"));
+  DisplaySystem additive = CompileJson(ReadExample("additive_2layer.json"));
+  EXPECT_TRUE(Close(hybrid.luminance_efficiency, 0.5 * 0.3 * 0.3, 1e-12));
+  EXPECT_TRUE(Close(multiplicative.luminance_efficiency, 0.3 * 0.3, 1e-12));
+  EXPECT_TRUE(Close(additive.luminance_efficiency, 0.5 * 0.3, 1e-12));
+  EXPECT_TRUE(Close(hybrid.luminance_efficiency / multiplicative.luminance_efficiency, 0.5, 1e-12));
+  // Full white with both 250 cd/m2 backlights: 2 x 250 x 0.045.
+  EXPECT_TRUE(Close(hybrid.peak_luminance[1], 22.5, 1e-12));
+  for (const Branch& b : hybrid.branches) EXPECT_TRUE(Close(b.efficiency[0], 0.045, 1e-12));
+}
+
+TEST(Compile, PanelAtTheFocalPlaneIsALayerAtInfinity) {
+  nlohmann::json scene = ReadExample("multiplicative_2layer.json");
+  nlohmann::json& rear = ElementNamed(scene, "rear");
+  rear.erase("virtual_depth");
+  rear["distance"] = "75 mm";
+  DisplaySystem s = CompileJson(scene);
+  const VirtualLayer& l = s.layers[0];
+  EXPECT_EQ(l.diopters, 0.0);
+  EXPECT_TRUE(std::isinf(l.depth));
+  EXPECT_TRUE(Close(l.tan_pitch_x, 117e-6 / 0.075, 1e-12));
+  EXPECT_TRUE(std::isfinite(s.fov_x));
+  EXPECT_TRUE(Close(s.fov_x, 2 * std::atan(400 * 117e-6 / 0.075 / 2), 1e-12));
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_EQ(s.warnings[0], "panel \"rear\" sits at the focal plane: its image is at infinity (0 D)");
+}
+
+TEST(Compile, DistanceAndVirtualDepthAgree) {
+  nlohmann::json scene = ReadExample("multiplicative_2layer.json");
+  nlohmann::json& rear = ElementNamed(scene, "rear");
+  rear.erase("virtual_depth");
+  rear["distance"] = "72.8070175 mm";  // 1 / (1/75 + 1/2490) mm
+  DisplaySystem s = CompileJson(scene);
+  EXPECT_TRUE(Close(s.layers[0].diopters, 0.4, 1e-5));
+}
+
+TEST(Compile, ListsOnlyTheComponentsInUse) {
+  DisplaySystem multiplicative = CompileJson(ReadExample("multiplicative_2layer.json"));
+  EXPECT_EQ(multiplicative.components,
+            (std::vector<std::string>{"thin-lens floating (2 virtual layers)", "multiplicative stacks in 1 branch",
+                                      "no polarization model (no polarizing element)",
+                                      "mirrored layers (reversed panels or reflected branches)"}));
+  DisplaySystem pbs = CompileJson(ReadExample("hybrid_pbs_hwp.json"));
+  EXPECT_TRUE(pbs.polarization_tracked);
+  EXPECT_FALSE(CompileJson(ReadExample("paper_prototype.json")).polarization_tracked);
+}
+
+}  // namespace
+}  // namespace layerlab
