@@ -1,0 +1,46 @@
+#include "framework/atomic_file.h"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "framework/error.h"
+
+namespace layerlab {
+
+AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
+  static std::atomic<unsigned> counter{0};
+  std::filesystem::path p(path_);
+  temp_ = (p.parent_path() / ("." + p.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
+                              std::to_string(counter++)))
+              .string();
+}
+
+AtomicFile::~AtomicFile() {
+  if (!committed_) std::remove(temp_.c_str());
+}
+
+void AtomicFile::Commit() {
+  if (std::rename(temp_.c_str(), path_.c_str()) != 0)
+    throw Error(path_ + ": cannot move the finished file into place: " + std::strerror(errno));
+  committed_ = true;
+}
+
+void WriteFileAtomically(const std::string& path, const std::string& contents) {
+  AtomicFile file(path);
+  {
+    std::ofstream out(file.temp_path(), std::ios::binary);
+    if (!out) throw Error(path + ": cannot open for writing: " + std::strerror(errno));
+    out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
+    out.flush();
+    if (!out) throw Error(path + ": write failed (disk full?): " + std::strerror(errno));
+  }
+  file.Commit();
+}
+
+}  // namespace layerlab

@@ -1,0 +1,30 @@
+// Nothing half-written: every output goes to a temporary file in the same
+// folder and is renamed into place only once it is complete.
+#pragma once
+
+#include <string>
+
+namespace layerlab {
+
+class AtomicFile {
+ public:
+  // Picks a temporary name next to `path` (same folder, so rename is atomic).
+  explicit AtomicFile(std::string path);
+  ~AtomicFile();  // removes the temporary file unless committed
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+
+  const std::string& temp_path() const { return temp_; }
+  const std::string& path() const { return path_; }
+  // Renames the temporary file to the final path; throws layerlab::Error.
+  void Commit();
+
+ private:
+  std::string path_, temp_;
+  bool committed_ = false;
+};
+
+// Writes `contents` to `path` atomically; throws layerlab::Error naming the file.
+void WriteFileAtomically(const std::string& path, const std::string& contents);
+
+}  // namespace layerlab

@@ -1,0 +1,37 @@
+// OpenEXR images: linear float pixels, interleaved channels. Reading checks
+// the header before allocating (OpenEXR sets no size limit of its own) and
+// refuses non-finite or negative values, naming the file, pixel and channel.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace layerlab {
+
+struct Image {
+  int width = 0, height = 0;
+  std::vector<std::string> channels;  // e.g. {"R", "G", "B"} or {"Z"}
+  std::vector<float> pixels;          // [row][col][channel], row 0 at the top
+
+  float at(int row, int col, int channel) const {
+    return pixels[(static_cast<size_t>(row) * width + col) * channels.size() + channel];
+  }
+};
+
+struct ExrLimits {
+  long long max_pixels = 64ll << 20;  // 64 Mpixel
+};
+
+// Reads the named channels (all must exist; half or float). Throws layerlab::Error.
+Image ReadExr(const std::string& path, const std::vector<std::string>& channels, const ExrLimits& limits = {});
+
+// Writes float channels, ZIP-compressed, atomically.
+void WriteExr(const std::string& path, const Image& image);
+
+// The data window size of an EXR file without reading its pixels.
+struct ExrSize {
+  int width, height;
+};
+ExrSize ReadExrSize(const std::string& path);
+
+}  // namespace layerlab

@@ -1,0 +1,49 @@
+// A light field in the two-plane parameterization of docs/lightfield-format.md:
+// a ray passes v on the pupil plane (z = 0) and x on the origin plane (z = z_lf),
+// p(z) = v + (x - v) z / z_lf. Views are pupil positions, cell-centered over
+// the eyebox (row 0 at the top); pixels are origin-plane positions,
+// cell-centered over the window (row 0 at the top). Values are linear RGB.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace layerlab {
+
+struct LightFieldGeometry {
+  double origin_z = 1.0;  // z_lf, m
+  double window_left = -0.5, window_top = 0.5, window_width = 1.0, window_height = 1.0;  // m, on the origin plane
+  int cols = 1, rows = 1;         // pixels per view
+  int views_x = 1, views_y = 1;   // views per row, per column
+  double eyebox_width = 6e-3, eyebox_height = 6e-3;  // m
+
+  // Pupil position of view column c / view row r.
+  double view_x(int c) const { return -eyebox_width / 2 + (c + 0.5) * eyebox_width / views_x; }
+  double view_y(int r) const { return eyebox_height / 2 - (r + 0.5) * eyebox_height / views_y; }
+  // Origin-plane position of pixel column j / pixel row i.
+  double pixel_x(int j) const { return window_left + (j + 0.5) * window_width / cols; }
+  double pixel_y(int i) const { return window_top - (i + 0.5) * window_height / rows; }
+
+  size_t view_count() const { return static_cast<size_t>(views_x) * views_y; }
+  size_t pixels_per_view() const { return static_cast<size_t>(cols) * rows; }
+  size_t ray_count() const { return view_count() * pixels_per_view(); }
+  // Index of view (row r, col c); views are stored row-major.
+  size_t view_index(int r, int c) const { return static_cast<size_t>(r) * views_x + c; }
+};
+
+struct LightField {
+  LightFieldGeometry geometry;
+  // [view][row][col][channel], channels R, G, B.
+  std::vector<float> rgb;
+  // [view][row][col], eye-space z (m) of the first surface; empty when absent.
+  std::vector<float> depth;
+  std::string scene;  // free text from the manifest
+
+  explicit LightField(const LightFieldGeometry& g = {}) : geometry(g), rgb(g.ray_count() * 3, 0.0f) {}
+
+  float* view(size_t v) { return rgb.data() + v * geometry.pixels_per_view() * 3; }
+  const float* view(size_t v) const { return rgb.data() + v * geometry.pixels_per_view() * 3; }
+};
+
+}  // namespace layerlab

@@ -1,0 +1,215 @@
+#include "framework/lightfield_io.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <regex>
+
+#include "framework/atomic_file.h"
+#include "framework/error.h"
+#include "framework/exr_image.h"
+#include "framework/json_file.h"
+#include "framework/parallel.h"
+#include "framework/params.h"
+
+namespace layerlab {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kMaxViewsPerAxis = 256;
+constexpr int kMaxPixelsPerAxis = 16384;
+
+// "views/r{row:02}_c{col:02}.exr" with row and col filled in.
+std::string FillPattern(const std::string& pattern, int row, int col) {
+  std::string out;
+  for (size_t i = 0; i < pattern.size();) {
+    if (pattern[i] == '{') {
+      size_t close = pattern.find('}', i);
+      std::string field = pattern.substr(i + 1, close - i - 1);
+      std::string name = field.substr(0, field.find(':'));
+      int width = field.find(':') == std::string::npos ? 0 : std::stoi(field.substr(field.find(':') + 1));
+      std::string number = std::to_string(name == "row" ? row : col);
+      if (static_cast<int>(number.size()) < width) number.insert(0, width - number.size(), '0');
+      out += number;
+      i = close + 1;
+    } else {
+      out += pattern[i++];
+    }
+  }
+  return out;
+}
+
+// Refuses patterns that could name files outside the folder, and unknown fields.
+void CheckPattern(Params& manifest, const std::string& key, const std::string& pattern) {
+  fs::path p(pattern);
+  if (p.is_absolute()) manifest.fail(key, "\"" + pattern + "\" must be relative to the light-field folder");
+  for (const fs::path& part : p)
+    if (part == "..") manifest.fail(key, "\"" + pattern + "\" escapes the light-field folder ('..')");
+  static const std::regex field(R"(\{(row|col)(:0?[1-9])?\})");
+  std::string rest = std::regex_replace(pattern, field, "");
+  if (rest.find('{') != std::string::npos || rest.find('}') != std::string::npos)
+    manifest.fail(key, "\"" + pattern + "\" may use only the fields {row}, {col}, {row:02} and {col:02}");
+  if (pattern.find("{row") == std::string::npos || pattern.find("{col") == std::string::npos)
+    manifest.fail(key, "\"" + pattern + "\" must contain both {row} and {col}");
+}
+
+// Files in the pattern's folder that look like views but are not declared.
+void RefuseExtraFiles(const std::string& folder, const std::string& pattern, const LightFieldGeometry& g) {
+  fs::path dir = fs::path(folder) / fs::path(pattern).parent_path();
+  std::string name_pattern = fs::path(pattern).filename().string();
+  std::string regex_text;
+  for (size_t i = 0; i < name_pattern.size();) {
+    if (name_pattern[i] == '{') {
+      regex_text += "([0-9]+)";
+      i = name_pattern.find('}', i) + 1;
+    } else {
+      char c = name_pattern[i++];
+      if (std::string(".^$|()[]*+?\\").find(c) != std::string::npos) regex_text += '\\';
+      regex_text += c;
+    }
+  }
+  std::regex re(regex_text);
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    std::string name = entry.path().filename().string();
+    std::smatch m;
+    if (!std::regex_match(name, m, re)) continue;
+    bool row_first = name_pattern.find("{row") < name_pattern.find("{col");
+    long row = std::stol(m[row_first ? 1 : 2]), col = std::stol(m[row_first ? 2 : 1]);
+    if (row >= g.views_y || col >= g.views_x || FillPattern(pattern, row, col) != (fs::path(pattern).parent_path() / name).string())
+      throw Error((fs::path(folder) / "lightfield.json").string() + ": extra view file " +
+                  (fs::path(pattern).parent_path() / name).string() + " (the manifest declares " +
+                  std::to_string(g.views_y) + " x " + std::to_string(g.views_x) + " views)");
+  }
+}
+
+struct Manifest {
+  std::string path;
+  LightFieldGeometry geometry;
+  std::string views_pattern, depth_pattern, scene;
+};
+
+Manifest ReadManifest(const std::string& folder) {
+  std::string manifest_path = (fs::path(folder) / "lightfield.json").string();
+  if (!fs::is_directory(folder)) throw Error(folder + ": not a light-field folder (no such directory)");
+  if (!fs::exists(manifest_path)) throw Error(folder + ": not a light-field folder (no lightfield.json)");
+  nlohmann::json doc = ReadJsonFile(manifest_path);
+  Params m(doc, {manifest_path, ""});
+
+  std::string format = m.string("format");
+  if (format != kLightFieldFormat)
+    m.fail("format", "unknown light-field format \"" + format + "\"; this layerlab reads \"" + kLightFieldFormat + "\"");
+  LightFieldGeometry g;
+  g.origin_z = m.quantity("origin_plane_z", Dimension::kLength);
+  m.require_range("origin_plane_z", g.origin_z, 0.0, 1e6, true, false);
+  Params window = m.object("window");
+  g.window_left = window.quantity("left", Dimension::kLength);
+  g.window_top = window.quantity("top", Dimension::kLength);
+  g.window_width = window.quantity("width", Dimension::kLength);
+  g.window_height = window.quantity("height", Dimension::kLength);
+  window.require_range("width", g.window_width, 0.0, 1e6, true, false);
+  window.require_range("height", g.window_height, 0.0, 1e6, true, false);
+  window.check_all_read();
+  Params resolution = m.object("resolution");
+  g.cols = static_cast<int>(resolution.integer("cols", 1, kMaxPixelsPerAxis));
+  g.rows = static_cast<int>(resolution.integer("rows", 1, kMaxPixelsPerAxis));
+  resolution.check_all_read();
+  Params views = m.object("views");
+  g.views_y = static_cast<int>(views.integer("rows", 1, kMaxViewsPerAxis));
+  g.views_x = static_cast<int>(views.integer("cols", 1, kMaxViewsPerAxis));
+  g.eyebox_width = views.quantity("eyebox_width", Dimension::kLength);
+  g.eyebox_height = views.quantity("eyebox_height", Dimension::kLength);
+  views.require_range("eyebox_width", g.eyebox_width, 0.0, 1.0, false, false);
+  views.require_range("eyebox_height", g.eyebox_height, 0.0, 1.0, false, false);
+  views.check_all_read();
+  std::string color = m.string("color", "linear-rec709");
+  if (color != "linear-rec709") m.fail("color", "unknown color encoding \"" + color + "\"; expected \"linear-rec709\"");
+  std::string views_pattern = m.string("views_pattern");
+  CheckPattern(m, "views_pattern", views_pattern);
+  std::string depth_pattern = m.string("depth_pattern", "");
+  if (!depth_pattern.empty()) CheckPattern(m, "depth_pattern", depth_pattern);
+  std::string scene = m.string("scene", "");
+  m.check_all_read();
+  return {manifest_path, g, views_pattern, depth_pattern, scene};
+}
+
+}  // namespace
+
+LightFieldGeometry ReadLightFieldGeometry(const std::string& folder) { return ReadManifest(folder).geometry; }
+
+LightField ReadLightField(const std::string& folder, const LightFieldReadOptions& options) {
+  const auto [manifest_path, g, views_pattern, depth_pattern, scene] = ReadManifest(folder);
+  const size_t ray_count = g.ray_count();
+  if (ray_count > (size_t{1} << 31))
+    throw Error(manifest_path + ": " + std::to_string(ray_count) + " rays is beyond the 2^31 this layerlab handles");
+  LightField lf(g);
+  lf.scene = scene;
+
+  for (int r = 0; r < g.views_y; ++r)
+    for (int c = 0; c < g.views_x; ++c) {
+      std::string file = (fs::path(folder) / FillPattern(views_pattern, r, c)).string();
+      if (!fs::exists(file))
+        throw Error(manifest_path + ": view (row " + std::to_string(r) + ", col " + std::to_string(c) + ") is missing: " + file);
+    }
+  RefuseExtraFiles(folder, views_pattern, g);
+
+  bool with_depth = options.load_depth && !depth_pattern.empty();
+  if (with_depth) lf.depth.assign(ray_count, 0.0f);
+  const size_t pixels = g.pixels_per_view();
+  ParallelFor(g.view_count(), [&](size_t v) {
+    int r = static_cast<int>(v / g.views_x), c = static_cast<int>(v % g.views_x);
+    std::string file = (fs::path(folder) / FillPattern(views_pattern, r, c)).string();
+    Image image = ReadExr(file, {"R", "G", "B"});
+    if (image.width != g.cols || image.height != g.rows)
+      throw Error(file + ": is " + std::to_string(image.width) + " x " + std::to_string(image.height) +
+                  " pixels; the manifest declares " + std::to_string(g.cols) + " x " + std::to_string(g.rows));
+    std::copy(image.pixels.begin(), image.pixels.end(), lf.view(v));
+    if (!with_depth) return;
+    std::string depth_file = (fs::path(folder) / FillPattern(depth_pattern, r, c)).string();
+    if (!fs::exists(depth_file))
+      throw Error(manifest_path + ": depth_pattern is given but " + depth_file + " is missing");
+    Image depth = ReadExr(depth_file, {"Z"});
+    if (depth.width != g.cols || depth.height != g.rows)
+      throw Error(depth_file + ": is " + std::to_string(depth.width) + " x " + std::to_string(depth.height) +
+                  " pixels; the manifest declares " + std::to_string(g.cols) + " x " + std::to_string(g.rows));
+    std::copy(depth.pixels.begin(), depth.pixels.end(), lf.depth.begin() + v * pixels);
+  });
+  return lf;
+}
+
+void WriteLightField(const LightField& lf, const std::string& folder) {
+  const LightFieldGeometry& g = lf.geometry;
+  if (lf.rgb.size() != g.ray_count() * 3 || (!lf.depth.empty() && lf.depth.size() != g.ray_count()))
+    throw Error(folder + ": internal error: light-field buffers do not match the geometry");
+  const std::string views_pattern = "views/r{row:02}_c{col:02}.exr";
+  const std::string depth_pattern = "depth/r{row:02}_c{col:02}.exr";
+  std::error_code ec;
+  fs::create_directories(fs::path(folder) / "views", ec);
+  if (!lf.depth.empty()) fs::create_directories(fs::path(folder) / "depth", ec);
+  if (ec) throw Error(folder + ": cannot create the folder: " + ec.message());
+
+  const size_t pixels = g.pixels_per_view();
+  ParallelFor(g.view_count(), [&](size_t v) {
+    int r = static_cast<int>(v / g.views_x), c = static_cast<int>(v % g.views_x);
+    Image image{g.cols, g.rows, {"R", "G", "B"}, std::vector<float>(lf.view(v), lf.view(v) + pixels * 3)};
+    WriteExr((fs::path(folder) / FillPattern(views_pattern, r, c)).string(), image);
+    if (lf.depth.empty()) return;
+    Image depth{g.cols, g.rows, {"Z"}, std::vector<float>(lf.depth.begin() + v * pixels, lf.depth.begin() + (v + 1) * pixels)};
+    WriteExr((fs::path(folder) / FillPattern(depth_pattern, r, c)).string(), depth);
+  });
+
+  nlohmann::json manifest = {
+      {"format", kLightFieldFormat},
+      {"origin_plane_z", g.origin_z},
+      {"window", {{"left", g.window_left}, {"top", g.window_top}, {"width", g.window_width}, {"height", g.window_height}}},
+      {"resolution", {{"cols", g.cols}, {"rows", g.rows}}},
+      {"views", {{"rows", g.views_y}, {"cols", g.views_x}, {"eyebox_width", g.eyebox_width}, {"eyebox_height", g.eyebox_height}}},
+      {"color", "linear-rec709"},
+      {"views_pattern", views_pattern},
+      {"scene", lf.scene}};
+  if (!lf.depth.empty()) manifest["depth_pattern"] = depth_pattern;
+  WriteFileAtomically((fs::path(folder) / "lightfield.json").string(), manifest.dump(2) + "\n");
+}
+
+}  // namespace layerlab

@@ -1,0 +1,27 @@
+// The light-field folder of docs/lightfield-format.md: lightfield.json, one
+// EXR per view (views/r00_c00.exr) and optional depth maps (depth/...).
+#pragma once
+
+#include <string>
+
+#include "framework/lightfield.h"
+
+namespace layerlab {
+
+inline constexpr const char* kLightFieldFormat = "lightfield/1";
+
+struct LightFieldReadOptions {
+  bool load_depth = true;
+};
+
+// Validates the manifest (format version, sizes, patterns that stay inside
+// the folder), then every view file (present, right size, finite, non-negative).
+LightField ReadLightField(const std::string& folder, const LightFieldReadOptions& options = {});
+
+// The manifest alone, validated as above.
+LightFieldGeometry ReadLightFieldGeometry(const std::string& folder);
+
+// Writes the folder (creating it), every file atomically, the manifest last.
+void WriteLightField(const LightField& lf, const std::string& folder);
+
+}  // namespace layerlab

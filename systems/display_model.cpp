@@ -1,0 +1,80 @@
+#include "systems/display_model.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "framework/error.h"
+
+namespace layerlab {
+
+DisplayModel::DisplayModel(const DisplaySystem& system, const LightFieldGeometry& lf, Sampling sampling)
+    : system_(system), lf_(lf) {
+  for (const VirtualLayer& layer : system.layers) projections_.emplace_back(layer, lf, sampling);
+  white_luminance_ = *std::max_element(system.peak_luminance.begin(), system.peak_luminance.end());
+  for (const Branch& b : system.branches) {
+    std::array<float, 3> w{};
+    for (int c = 0; c < 3; ++c) w[c] = static_cast<float>(b.backlight_luminance * b.efficiency[c] / white_luminance_);
+    weights_.push_back(w);
+  }
+}
+
+Patterns DisplayModel::UniformPatterns(float value) const {
+  Patterns t;
+  for (const LayerProjection& p : projections_) t.emplace_back(p.cols(), p.rows(), value);
+  return t;
+}
+
+void DisplayModel::SynthesizeBranchView(size_t b, size_t view, const Patterns& t, float* out) const {
+  const std::vector<int>& layers = branch_layers(b);
+  projections_[layers[0]].Gather(view, t[layers[0]].rgb.data(), out);
+  for (size_t k = 1; k < layers.size(); ++k) projections_[layers[k]].GatherMultiply(view, t[layers[k]].rgb.data(), out);
+  const std::array<float, 3>& w = weights_[b];
+  const size_t n = lf_.pixels_per_view();
+  for (size_t ray = 0; ray < n; ++ray)
+    for (int c = 0; c < 3; ++c) out[ray * 3 + c] *= w[c];
+}
+
+void DisplayModel::SynthesizeView(size_t view, const Patterns& t, float* out, float* scratch) const {
+  const size_t n = lf_.pixels_per_view() * 3;
+  std::fill(out, out + n, 0.0f);
+  for (size_t b = 0; b < branch_count(); ++b) {
+    SynthesizeBranchView(b, view, t, scratch);
+    for (size_t k = 0; k < n; ++k) out[k] += scratch[k];
+  }
+}
+
+LightField DisplayModel::Synthesize(const Patterns& t) const {
+  LightField lf(lf_);
+  const size_t views = lf_.view_count();
+#pragma omp parallel
+  {
+    std::vector<float> scratch(lf_.pixels_per_view() * 3);
+#pragma omp for schedule(dynamic)
+    for (size_t v = 0; v < views; ++v) SynthesizeView(v, t, lf.view(v), scratch.data());
+  }
+  return lf;
+}
+
+LightFieldGeometry DisplayLightFieldGeometry(const DisplaySystem& system, double origin_diopters) {
+  if (system.layers.empty()) throw Error("the display has no layers");
+  double near = 0, far = INFINITY;
+  for (const VirtualLayer& l : system.layers) near = std::max(near, l.diopters), far = std::min(far, l.diopters);
+  if (origin_diopters < 0) origin_diopters = 0.5 * (near + far);
+  if (!(origin_diopters > 0)) throw Error("the light-field origin plane must be at a finite depth (above 0 D)");
+  const VirtualLayer& farthest = system.layers.front();
+  LightFieldGeometry g;
+  g.origin_z = 1.0 / origin_diopters;
+  g.window_width = 2 * g.origin_z * std::tan(system.fov_x / 2);
+  g.window_height = 2 * g.origin_z * std::tan(system.fov_y / 2);
+  g.window_left = -g.window_width / 2;
+  g.window_top = g.window_height / 2;
+  g.cols = farthest.cols;
+  g.rows = farthest.rows;
+  g.views_x = system.eye.views_x;
+  g.views_y = system.eye.views_y;
+  g.eyebox_width = system.eye.eyebox_width;
+  g.eyebox_height = system.eye.eyebox_height;
+  return g;
+}
+
+}  // namespace layerlab

@@ -1,0 +1,69 @@
+// A compiled display bound to the rays of a light field: one projection per
+// layer and per-channel branch weights, so that the synthesized light field
+//   l~ = sum_b w_b * prod_{k in b} P_k t_k        (paper Eq. 3-5)
+// covers additive (one layer per branch), multiplicative (one branch) and
+// hybrid displays with any number of branches and layers.
+//
+// Units: light-field values are display-relative. A value of 1 is the
+// luminance of the display's brightest channel at full white on every panel
+// (white_luminance(), cd/m^2); w_b[c] is branch b's share of it in channel c,
+// so sum_b w_b[c] <= 1, with 1 reached by the brightest channel.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "framework/lightfield.h"
+#include "systems/display_system.h"
+#include "systems/projection.h"
+
+namespace layerlab {
+
+// A layer's transmittance pattern in [0, 1], [row][col][rgb], in the panel's
+// own pixel order (flips already applied by the projection).
+struct LayerPattern {
+  int cols = 0, rows = 0;
+  std::vector<float> rgb;
+
+  LayerPattern() = default;
+  LayerPattern(int c, int r, float value) : cols(c), rows(r), rgb(static_cast<size_t>(c) * r * 3, value) {}
+  size_t pixel_count() const { return static_cast<size_t>(cols) * rows; }
+};
+using Patterns = std::vector<LayerPattern>;
+
+class DisplayModel {
+ public:
+  DisplayModel(const DisplaySystem& system, const LightFieldGeometry& lf, Sampling sampling = Sampling::kNearest);
+
+  const DisplaySystem& system() const { return system_; }
+  const LightFieldGeometry& geometry() const { return lf_; }
+  size_t layer_count() const { return projections_.size(); }
+  const LayerProjection& projection(size_t k) const { return projections_[k]; }
+  size_t branch_count() const { return system_.branches.size(); }
+  const std::vector<int>& branch_layers(size_t b) const { return system_.branches[b].layers; }
+  const std::array<float, 3>& weight(size_t b) const { return weights_[b]; }
+  double white_luminance() const { return white_luminance_; }
+
+  Patterns UniformPatterns(float value) const;
+
+  // The light of branch b alone for one view: w_b prod_k P_k t_k.
+  void SynthesizeBranchView(size_t b, size_t view, const Patterns& t, float* out) const;
+  // The whole display for one view; `scratch` holds one view (pixels x 3).
+  void SynthesizeView(size_t view, const Patterns& t, float* out, float* scratch) const;
+  LightField Synthesize(const Patterns& t) const;
+
+ private:
+  DisplaySystem system_;
+  LightFieldGeometry lf_;
+  std::vector<LayerProjection> projections_;
+  std::vector<std::array<float, 3>> weights_;
+  double white_luminance_ = 0;
+};
+
+// The geometry the display itself suggests: its field of view (the farthest
+// layer's frustum) cut at the origin plane `origin_diopters` (default: the
+// middle of the layers' dioptric range), the farthest layer's pixel count,
+// and the eye's views and eyebox.
+LightFieldGeometry DisplayLightFieldGeometry(const DisplaySystem& system, double origin_diopters = -1);
+
+}  // namespace layerlab
