@@ -1,0 +1,169 @@
+// The light-field folder format: round trip, and every kind of bad folder
+// refused with the file (and pixel, channel) named.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "framework/exr_image.h"
+#include "framework/json_file.h"
+#include "framework/lightfield_io.h"
+#include "tests/test_util.h"
+
+namespace layerlab {
+namespace {
+
+namespace fs = std::filesystem;
+
+class LightFieldFolder : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("layerlab_lf_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    LightFieldGeometry g;
+    g.origin_z = 0.7692;
+    g.window_left = -0.2;
+    g.window_top = 0.1;
+    g.window_width = 0.4;
+    g.window_height = 0.2;
+    g.cols = 8;
+    g.rows = 5;
+    g.views_x = 3;
+    g.views_y = 2;
+    lf_ = LightField(g);
+    for (size_t k = 0; k < lf_.rgb.size(); ++k) lf_.rgb[k] = 0.001f * float(k % 997);
+    lf_.depth.assign(g.ray_count(), 1.5f);
+    lf_.scene = "test";
+    WriteLightField(lf_, dir_.string());
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string ReadError() {
+    try {
+      ReadLightField(dir_.string());
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return "";
+  }
+  std::string Path(const std::string& rel) const { return (dir_ / rel).string(); }
+  void EditManifest(const std::function<void(nlohmann::json&)>& edit) {
+    nlohmann::json m = ReadJsonFile(Path("lightfield.json"));
+    edit(m);
+    std::ofstream(Path("lightfield.json")) << m.dump(2);
+  }
+
+  fs::path dir_;
+  LightField lf_;
+};
+
+TEST_F(LightFieldFolder, RoundTripsExactly) {
+  LightField back = ReadLightField(dir_.string());
+  EXPECT_EQ(back.rgb, lf_.rgb);
+  EXPECT_EQ(back.depth, lf_.depth);
+  EXPECT_EQ(back.scene, "test");
+  EXPECT_EQ(back.geometry.views_x, 3);
+  EXPECT_DOUBLE_EQ(back.geometry.window_width, 0.4);
+  // No temporary files are left behind.
+  for (const auto& e : fs::recursive_directory_iterator(dir_))
+    EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
+}
+
+TEST_F(LightFieldFolder, MissingView) {
+  fs::remove(Path("views/r01_c02.exr"));
+  EXPECT_EQ(ReadError(), Path("lightfield.json") + ": view (row 1, col 2) is missing: " + Path("views/r01_c02.exr"));
+}
+
+TEST_F(LightFieldFolder, ExtraView) {
+  fs::copy_file(Path("views/r01_c02.exr"), Path("views/r02_c00.exr"));
+  EXPECT_EQ(ReadError(), Path("lightfield.json") +
+                             ": extra view file views/r02_c00.exr (the manifest declares 2 x 3 views)");
+}
+
+TEST_F(LightFieldFolder, ViewOfTheWrongSize) {
+  Image small{4, 5, {"R", "G", "B"}, std::vector<float>(4 * 5 * 3, 0.5f)};
+  WriteExr(Path("views/r00_c01.exr"), small);
+  EXPECT_EQ(ReadError(), Path("views/r00_c01.exr") + ": is 4 x 5 pixels; the manifest declares 8 x 5");
+}
+
+TEST_F(LightFieldFolder, NonFiniteAndNegativePixelsAreNamed) {
+  Image image{8, 5, {"R", "G", "B"}, std::vector<float>(8 * 5 * 3, 0.5f)};
+  image.pixels[(2 * 8 + 3) * 3 + 1] = NAN;
+  WriteExr(Path("views/r01_c01.exr"), image);
+  EXPECT_EQ(ReadError(), Path("views/r01_c01.exr") +
+                             ": pixel (row 2, col 3) channel G is NaN; light must be finite and non-negative");
+  image.pixels[(2 * 8 + 3) * 3 + 1] = -0.25f;
+  WriteExr(Path("views/r01_c01.exr"), image);
+  EXPECT_EQ(ReadError(), Path("views/r01_c01.exr") +
+                             ": pixel (row 2, col 3) channel G is negative (-0.250000); light must be finite and non-negative");
+  image.pixels[(2 * 8 + 3) * 3 + 1] = INFINITY;
+  WriteExr(Path("views/r01_c01.exr"), image);
+  EXPECT_EQ(ReadError(), Path("views/r01_c01.exr") +
+                             ": pixel (row 2, col 3) channel G is +inf; light must be finite and non-negative");
+}
+
+TEST_F(LightFieldFolder, UnknownFormatVersion) {
+  EditManifest([](nlohmann::json& m) { m["format"] = "lightfield/2"; });
+  EXPECT_EQ(ReadError(), Path("lightfield.json") +
+                             ": /format: unknown light-field format \"lightfield/2\"; this layerlab reads \"lightfield/1\"");
+}
+
+TEST_F(LightFieldFolder, PatternsMayNotEscapeTheFolder) {
+  EditManifest([](nlohmann::json& m) { m["views_pattern"] = "../views/r{row:02}_c{col:02}.exr"; });
+  EXPECT_EQ(ReadError(), Path("lightfield.json") +
+                             ": /views_pattern: \"../views/r{row:02}_c{col:02}.exr\" escapes the light-field folder ('..')");
+  EditManifest([](nlohmann::json& m) { m["views_pattern"] = "/etc/r{row}_c{col}.exr"; });
+  EXPECT_EQ(ReadError(), Path("lightfield.json") + ": /views_pattern: \"/etc/r{row}_c{col}.exr\" must be relative to the light-field folder");
+}
+
+TEST_F(LightFieldFolder, ManifestValuesAreChecked) {
+  EditManifest([](nlohmann::json& m) { m["resolution"]["cols"] = 8.5; });
+  EXPECT_EQ(ReadError(), Path("lightfield.json") + ": /resolution/cols: expected an integer in [1, 16384], got 8.5");
+  EditManifest([](nlohmann::json& m) { m["resolution"]["cols"] = 8; m["views"]["eyebox_widht"] = 0.006; });
+  EXPECT_EQ(ReadError(), Path("lightfield.json") +
+                             ": /views/eyebox_widht: unknown key \"eyebox_widht\"; did you mean \"eyebox_width\"?");
+}
+
+TEST_F(LightFieldFolder, TruncatedExr) {
+  std::string file = Path("views/r00_c00.exr");
+  fs::resize_file(file, fs::file_size(file) / 2);
+  std::string error = ReadError();
+  EXPECT_EQ(error.rfind(file + ": corrupt or truncated OpenEXR file: ", 0), 0u) << error;
+}
+
+TEST_F(LightFieldFolder, NotAnExr) {
+  std::ofstream(Path("views/r00_c00.exr")) << "P6 8 5 255\n";
+  EXPECT_EQ(ReadError(), Path("views/r00_c00.exr") + ": not an OpenEXR file");
+}
+
+TEST_F(LightFieldFolder, HugeDeclaredSizeIsRefusedBeforeAllocating) {
+  // Rewrite the dataWindow attribute (box2i: xmin ymin xmax ymax) to 1e9 x 1e9 pixels.
+  std::string file = Path("views/r00_c00.exr");
+  std::fstream f(file, std::ios::in | std::ios::out | std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  size_t at = bytes.find(std::string("dataWindow\0box2i\0", 17));
+  ASSERT_NE(at, std::string::npos);
+  int32_t box[4] = {0, 0, 1000000000, 1000000000};
+  f.seekp(std::streamoff(at + 17 + 4));
+  f.write(reinterpret_cast<const char*>(box), sizeof box);
+  f.close();
+  std::string error = ReadError();
+  EXPECT_EQ(error.rfind(file + ": ", 0), 0u) << error;
+  EXPECT_NE(error.find("OpenEXR"), std::string::npos) << error;
+}
+
+TEST(DiceTarget, LoadsFromSharedData) {
+  std::string folder = std::string(LAYERLAB_DATA_DIR) + "/dice";
+  if (!fs::exists(folder + "/lightfield.json")) GTEST_SKIP() << "no " << folder;
+  LightField lf = ReadLightField(folder);
+  EXPECT_EQ(lf.geometry.ray_count(), 13u * 13 * 400 * 200);
+  EXPECT_DOUBLE_EQ(lf.geometry.origin_z, 0.7692);
+  ASSERT_EQ(lf.depth.size(), lf.geometry.ray_count());
+  // Depth maps hold the dice (0.43 to 2.5 m) and the back plane at 3 m.
+  auto [lo, hi] = std::minmax_element(lf.depth.begin(), lf.depth.end());
+  EXPECT_GT(*lo, 0.40f);
+  EXPECT_LT(*hi, 3.01f);
+}
+
+}  // namespace
+}  // namespace layerlab
