@@ -1,9 +1,11 @@
-// layerlab info SCENE.json [--json]: the compiled display system.
+// layerlab info SCENE.json [--target LF_DIR] [--json]: the compiled display
+// system, the light field it is bound to, and the layer pixels rays reach.
 #include <iostream>
 #include <memory>
 #include <string>
 
 #include "app/commands.h"
+#include "framework/lightfield_io.h"
 #include "systems/compile.h"
 #include "systems/system_report.h"
 
@@ -11,19 +13,29 @@ namespace layerlab::app {
 
 void AddInfoCommand(CLI::App& app) {
   struct Options {
-    std::string scene;
+    std::string scene, target;
     bool json = false;
   };
   auto options = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("info", "Compile a scene and print its optically equivalent system");
   cmd->add_option("scene", options->scene, "Scene file (JSON)")->required();
+  cmd->add_option("--target", options->target,
+                  "Light-field folder whose rays to bind the display to (default: the display's own frustum, "
+                  "origin plane mid-range)");
   cmd->add_flag("--json", options->json, "Print the system as JSON for machines");
   cmd->callback([options] {
     DisplaySystem system = Compile(LoadScene(options->scene));
-    if (options->json)
-      std::cout << SystemToJson(system).dump(2) << "\n";
-    else
-      std::cout << FormatSystemTable(system);
+    LightFieldGeometry geometry =
+        options->target.empty() ? DisplayLightFieldGeometry(system) : ReadLightFieldGeometry(options->target);
+    DisplayModel model(system, geometry);
+    std::vector<LayerCoverage> coverage = Coverage(model);
+    if (options->json) {
+      nlohmann::json j = SystemToJson(system);
+      j.update(CoverageToJson(model, coverage));
+      std::cout << j.dump(2) << "\n";
+    } else {
+      std::cout << FormatSystemTable(system) << FormatCoverage(model, coverage);
+    }
   });
 }
 

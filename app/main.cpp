@@ -12,6 +12,9 @@ int main(int argc, char** argv) {
   CLI::App app{"layerlab: model, factorize and analyse layered light-field near-eye displays"};
   app.require_subcommand(1);
   layerlab::app::AddInfoCommand(app);
+#if LAYERLAB_WITH_EMBREE
+  layerlab::app::AddRenderTargetCommand(app);
+#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
+#include <algorithm>
 #include <numbers>
 
 namespace layerlab {
@@ -149,6 +150,50 @@ nlohmann::json SystemToJson(const DisplaySystem& s) {
   j["polarization_tracked"] = s.polarization_tracked;
   j["components"] = s.components;
   j["warnings"] = s.warnings;
+  return j;
+}
+
+}  // namespace layerlab
+
+namespace layerlab {
+
+std::vector<LayerCoverage> Coverage(const DisplayModel& model) {
+  std::vector<LayerCoverage> out;
+  for (size_t k = 0; k < model.layer_count(); ++k) {
+    std::vector<uint8_t> reached = model.projection(k).ReachedPixels();
+    out.push_back({model.system().layers[k].name, static_cast<size_t>(std::count(reached.begin(), reached.end(), 1)),
+                   reached.size()});
+  }
+  return out;
+}
+
+std::string FormatCoverage(const DisplayModel& model, const std::vector<LayerCoverage>& coverage) {
+  const LightFieldGeometry& g = model.geometry();
+  std::string out = "\nlight field\n";
+  out += Row("  %d x %d views over %s x %s mm, %d x %d pixels each, origin plane %s D (%s m): %s M rays", g.views_x,
+             g.views_y, F(g.eyebox_width * 1e3, 2).c_str(), F(g.eyebox_height * 1e3, 2).c_str(), g.cols, g.rows,
+             F(1 / g.origin_z, 3).c_str(), F(g.origin_z, 4).c_str(), F(g.ray_count() / 1e6, 2).c_str());
+  out += Row("  window on the origin plane %s x %s mm, top left (%s, %s) mm", F(g.window_width * 1e3, 2).c_str(),
+             F(g.window_height * 1e3, 2).c_str(), F(g.window_left * 1e3, 2).c_str(), F(g.window_top * 1e3, 2).c_str());
+  out += "\nlayer pixels some ray reads (solvers touch only these)\n";
+  out += Row("%-3s %-12s %10s %10s %8s", "#", "panel", "reached", "pixels", "share");
+  for (size_t k = 0; k < coverage.size(); ++k)
+    out += Row("%-3zu %-12s %10zu %10zu %7s%%", k, coverage[k].name.c_str(), coverage[k].reached, coverage[k].total,
+               F(100.0 * coverage[k].reached / coverage[k].total, 1).c_str());
+  return out;
+}
+
+nlohmann::json CoverageToJson(const DisplayModel& model, const std::vector<LayerCoverage>& coverage) {
+  const LightFieldGeometry& g = model.geometry();
+  nlohmann::json j;
+  j["light_field"] = {{"origin_plane_z_m", g.origin_z},
+                      {"window_m", {{"left", g.window_left}, {"top", g.window_top}, {"width", g.window_width}, {"height", g.window_height}}},
+                      {"pixels", {g.cols, g.rows}},
+                      {"views", {g.views_x, g.views_y}},
+                      {"eyebox_m", {g.eyebox_width, g.eyebox_height}},
+                      {"rays", g.ray_count()}};
+  for (const LayerCoverage& c : coverage)
+    j["layer_coverage"].push_back({{"name", c.name}, {"reached_pixels", c.reached}, {"pixels", c.total}});
   return j;
 }
 

@@ -2,9 +2,11 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "systems/display_model.h"
 #include "systems/display_system.h"
 
 namespace layerlab {
@@ -14,6 +16,16 @@ std::string FormatSystemTable(const DisplaySystem& system);
 // Keys carry their unit (depth_m, fov_deg, ...); infinities are written as
 // the strings "inf" / "-inf", since JSON has no infinity.
 nlohmann::json SystemToJson(const DisplaySystem& system);
+
+// The light field a display is bound to and, per layer, how many of its
+// pixels some ray reads (solvers touch only those).
+struct LayerCoverage {
+  std::string name;
+  size_t reached = 0, total = 0;
+};
+std::vector<LayerCoverage> Coverage(const DisplayModel& model);
+std::string FormatCoverage(const DisplayModel& model, const std::vector<LayerCoverage>& coverage);
+nlohmann::json CoverageToJson(const DisplayModel& model, const std::vector<LayerCoverage>& coverage);
 
 // A finite number as itself, an infinite one as "inf" / "-inf".
 nlohmann::json JsonNumber(double value);

@@ -1,0 +1,39 @@
+#include "systems/target/png_image.h"
+
+#include <cstring>
+#include <vector>
+
+#include <png.h>
+
+#include "framework/error.h"
+
+namespace layerlab {
+
+Image ReadPngLinear(const std::string& path, long long max_pixels) {
+  png_image png;
+  std::memset(&png, 0, sizeof png);
+  png.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_file(&png, path.c_str()))
+    throw Error(path + ": cannot read PNG: " + png.message);
+  if (static_cast<long long>(png.width) * png.height > max_pixels) {
+    std::string size = std::to_string(png.width) + " x " + std::to_string(png.height);
+    png_image_free(&png);
+    throw Error(path + ": is " + size + " pixels; the limit is " + std::to_string(max_pixels));
+  }
+  png.format = PNG_FORMAT_LINEAR_RGB;  // 16-bit linear, alpha composited over black
+  std::vector<png_uint_16> buffer(PNG_IMAGE_SIZE(png) / sizeof(png_uint_16));
+  if (!png_image_finish_read(&png, nullptr, buffer.data(), 0, nullptr)) {
+    std::string message = png.message;
+    png_image_free(&png);
+    throw Error(path + ": cannot decode PNG: " + message);
+  }
+  Image image;
+  image.width = static_cast<int>(png.width);
+  image.height = static_cast<int>(png.height);
+  image.channels = {"R", "G", "B"};
+  image.pixels.resize(buffer.size());
+  for (size_t i = 0; i < buffer.size(); ++i) image.pixels[i] = buffer[i] / 65535.0f;
+  return image;
+}
+
+}  // namespace layerlab

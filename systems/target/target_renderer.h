@@ -1,0 +1,39 @@
+// Renders a target scene into a light field with Embree: view (r, c) is the
+// pupil point v = (view_x(c), view_y(r), 0), and pixel (i, j) the rays from v
+// through its samples on the shared window of the origin plane (a sheared
+// frustum, docs/lightfield-format.md). A pixel's color is the mean of its
+// samples; its depth is the eye-space z of the first surface along the ray
+// through the pixel center.
+//
+// Planes are unlit: the value is the texture at the exact hit point,
+// p = v + (x - v) z / z_lf in double precision, so a grating is exact. Meshes
+// are Lambertian: texture * (ambient + (1 - ambient) max(0, n . to_light)),
+// n the geometric normal turned toward the viewer; their depth is refined in
+// double precision against the hit triangle's plane.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <limits>
+
+#include "framework/lightfield.h"
+#include "systems/target/target_scene.h"
+
+namespace layerlab {
+
+// Depth of a pixel whose center ray hits nothing. EXR depth channels hold
+// finite, non-negative values, so "no surface" is the largest float.
+inline constexpr float kBackgroundDepth = std::numeric_limits<float>::max();
+
+struct RenderStats {
+  uint64_t rays = 0;     // traced, center rays for depth included
+  double seconds = 0;    // wall time, scene build included
+};
+
+// Called after each view is done with (views done, views in all), from the
+// rendering threads (one call at a time is not promised: lock if needed).
+using RenderProgress = std::function<void(size_t, size_t)>;
+
+LightField RenderTarget(const TargetScene& target, RenderStats* stats = nullptr, const RenderProgress& progress = {});
+
+}  // namespace layerlab

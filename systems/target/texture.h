@@ -1,0 +1,78 @@
+// Textures: linear RGB as a function of a position (s, t), in meters, on a
+// surface's texture plane (s right, t up). A plane's texture plane is the plane
+// itself, centered on the plane's center; a mesh maps its texture coordinates
+// (u, v) to s = (u - 0.5) * uv_size, t = (v - 0.5) * uv_size.
+//
+// Angular quantities (cycles per degree, periods in degrees) become lengths at
+// the surface's reference depth (length_or_angle.h): linear on the plane.
+//
+// | type         | key          | type              | default  | meaning                                    |
+// |--------------|--------------|-------------------|----------|--------------------------------------------|
+// | constant     | color        | fraction or [r,g,b] | required | linear RGB                               |
+// | grating      | frequency    | cpd               | required | mean * (1 + contrast * cos(2 pi f (s cos o + t sin o) + phase)) |
+// |              | phase        | angle             | 0 deg    | 0: a bright bar through the center         |
+// |              | orientation  | angle             | 0 deg    | of the wave vector from +s; 0 = vertical bars |
+// |              | contrast     | fraction          | 1        | Michelson contrast                         |
+// |              | mean         | number >= 0       | 0.5      | mean linear luminance                      |
+// | checkerboard | period       | length or angle   | required | one dark plus one bright square            |
+// |              | low, high    | fraction or [r,g,b] | 0, 1   | the two colors; a low square has its corner at the origin |
+// | noise        | band         | [cpd, cpd]        | required | frequencies of the components, uniform in the band |
+// |              | components   | integer           | 64       | random-phase, random-orientation sinusoids |
+// |              | seed         | integer           | 1        | same seed, same texture, on every machine  |
+// |              | contrast     | fraction          | 0.3      | RMS contrast before clamping at 0          |
+// |              | mean         | number >= 0       | 0.5      |                                            |
+// | image        | file         | path              | required | .exr (channels R, G, B) or .png (sRGB, alpha over black), relative to the target file |
+// |              | size         | [w, h] lengths or angles | the surface's default | what the image covers, centered |
+// |              | wrap         | clamp, repeat     | clamp    | outside the image                          |
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "framework/exr_image.h"
+#include "framework/params.h"
+
+namespace layerlab {
+
+class Texture {
+ public:
+  virtual ~Texture() = default;
+  // Linear RGB at (s, t), meters on the texture plane.
+  virtual Rgb Evaluate(double s, double t) const = 0;
+  // A few words for the light field's scene text: "grating 2 cpd".
+  virtual std::string Describe() const = 0;
+};
+
+// What a texture on one surface needs to know.
+struct TextureFrame {
+  double reference_depth = 1.0;               // m; angles become lengths here
+  std::array<double, 2> default_size{1, 1};   // m: what an image covers unless "size" is given
+  std::string base_dir;                       // image files are relative to this
+};
+
+std::unique_ptr<Texture> ParseTexture(Params& p, const TextureFrame& frame);
+
+// The same textures for in-process targets (frequencies already in cycles per meter).
+struct GratingSpec {
+  double cycles_per_meter = 0;
+  double phase = 0;        // rad
+  double orientation = 0;  // rad
+  double contrast = 1;
+  double mean = 0.5;
+  std::string description = "grating";
+};
+std::unique_ptr<Texture> MakeConstantTexture(const Rgb& color);
+std::unique_ptr<Texture> MakeGratingTexture(const GratingSpec& spec);
+std::unique_ptr<Texture> MakeCheckerboardTexture(double period, const Rgb& low, const Rgb& high);
+// Frequencies in cycles per meter.
+std::unique_ptr<Texture> MakeNoiseTexture(double min_frequency, double max_frequency, int components, uint64_t seed,
+                                          double contrast, double mean);
+enum class TextureWrap { kClamp, kRepeat };
+// `image` has channels R, G, B; it covers [-w/2, w/2] x [-h/2, h/2], row 0 at +h/2.
+std::unique_ptr<Texture> MakeImageTexture(Image image, std::array<double, 2> size, TextureWrap wrap,
+                                          const std::string& description);
+
+}  // namespace layerlab
