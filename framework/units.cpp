@@ -41,6 +41,9 @@ constexpr std::array kUnits = {
     Unit{"nits", Dimension::kLuminance, 1.0},
     Unit{"cpd", Dimension::kAngularFrequency, 1.0},
     Unit{"%", Dimension::kFraction, 1e-2},
+    Unit{"s", Dimension::kTime, 1.0},
+    Unit{"ms", Dimension::kTime, 1e-3},
+    Unit{"min", Dimension::kTime, 60.0},
 };
 
 std::optional<Unit> FindUnit(std::string_view symbol) {
@@ -79,6 +82,7 @@ std::string DimensionName(Dimension d) {
     case Dimension::kLuminance: return "a luminance";
     case Dimension::kAngularFrequency: return "an angular frequency";
     case Dimension::kFraction: return "a fraction";
+    case Dimension::kTime: return "a duration";
   }
   return "a quantity";
 }

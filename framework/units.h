@@ -14,6 +14,7 @@ enum class Dimension {
   kLuminance,         // cd/m2, nit
   kAngularFrequency,  // cpd (cycles per degree)
   kFraction,          // bare number or %
+  kTime,              // s, ms, min
 };
 
 // "a length", "an angle", ... for messages.

@@ -1,0 +1,87 @@
+// layerlab solve SCENE.json --target LF_DIR --solver NAME --out DIR: factorize
+// a target light field into panel images, with progress on the terminal.
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "app/commands.h"
+#include "framework/lightfield_io.h"
+#include "solvers/solution_writer.h"
+#include "solvers/solve_config.h"
+#include "systems/compile.h"
+
+namespace layerlab::app {
+
+void AddSolveCommand(CLI::App& app) {
+  struct Options {
+    std::string scene, target, solver, out, sampling, target_range;
+    int iterations = 0, sub_iterations = 0, threads = -1;
+    double time_budget = -1, tolerance = -1, initial_value = -2;
+    bool write_lightfield = false;
+  };
+  auto o = std::make_shared<Options>();
+  CLI::App* cmd = app.add_subcommand("solve", "Factorize a target light field into layer patterns");
+  cmd->add_option("scene", o->scene, "Scene file (JSON); its \"solve\" section gives the defaults")->required();
+  cmd->add_option("--target", o->target, "Target light-field folder");
+  cmd->add_option("--solver", o->solver, "Solver: " + JoinWords(SolverRegistry::Builtins().names(), ", "));
+  cmd->add_option("--out", o->out, "Output folder")->required();
+  cmd->add_option("--iterations", o->iterations, "Outer iterations");
+  cmd->add_option("--sub-iterations", o->sub_iterations, "Updates per set and outer iteration (hybrid)");
+  cmd->add_option("--time-budget", o->time_budget, "Stop after this many seconds");
+  cmd->add_option("--tolerance", o->tolerance, "Stop when the objective changes by less than this, relative");
+  cmd->add_option("--initial", o->initial_value, "Initial transmittance (negative: random)");
+  cmd->add_option("--threads", o->threads, "Worker threads (0: all cores)");
+  cmd->add_option("--sampling", o->sampling, "Layer sampling: nearest or bilinear");
+  cmd->add_option("--target-range", o->target_range, "Target values beyond the display: clip or scale");
+  cmd->add_flag("--write-lightfield", o->write_lightfield, "Also write the synthesized light field");
+  cmd->callback([o] {
+    Scene scene = LoadScene(o->scene);
+    DisplaySystem system = Compile(scene);
+    SolveConfig config = ReadSolveConfig(scene);
+    if (!o->solver.empty() && o->solver != config.solver) {
+      config.solver = o->solver;
+      SolverRegistry::Builtins().create(o->solver);  // names the known ones if unknown
+      config.options = SolverRegistry::Builtins().find(o->solver)->defaults;
+    }
+    SolverOptions& opt = config.options;
+    if (!o->target.empty()) config.target = o->target;
+    if (config.target.empty()) throw Error("no target: give --target LF_DIR or \"solve\": {\"target\": ...} in " + o->scene);
+    if (o->iterations) opt.iterations = o->iterations;
+    if (o->sub_iterations) opt.sub_iterations = o->sub_iterations;
+    if (o->time_budget >= 0) opt.time_budget = o->time_budget;
+    if (o->tolerance >= 0) opt.tolerance = o->tolerance;
+    if (o->initial_value > -2) opt.initial_value = o->initial_value;
+    if (o->threads >= 0) opt.threads = o->threads;
+    if (!o->sampling.empty()) config.sampling = SamplingFromString(o->sampling);
+    if (!o->target_range.empty()) {
+      if (o->target_range != "clip" && o->target_range != "scale")
+        throw Error("--target-range: \"" + o->target_range + "\" is not one of clip or scale");
+      opt.target_range = o->target_range == "clip" ? TargetRange::kClip : TargetRange::kScale;
+    }
+
+    std::fprintf(stderr, "loading %s\n", config.target.c_str());
+    LightField target = ReadLightField(config.target, {.load_depth = false});
+    DisplayModel model(system, target.geometry, config.sampling);
+    const bool tty = ::isatty(2);
+    opt.progress = [&](int iteration, double seconds, double psnr) {
+      std::fprintf(stderr, "%s%s iteration %d/%d  %.2f s  PSNR %.2f dB%s", tty ? "\r" : "", config.solver.c_str(),
+                   iteration, opt.iterations, seconds, psnr, tty ? "   " : "\n");
+      std::fflush(stderr);
+    };
+    Patterns patterns;
+    SolverReport report = SolverRegistry::Builtins().create(config.solver)->Solve(model, target, opt, &patterns);
+    if (tty) std::fprintf(stderr, "\n");
+    for (const std::string& w : report.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    std::cout << report.BriefReport() << "\n";
+    if (!report.IsSolutionUsable()) throw Error("the solve failed: " + report.message + "; nothing was written");
+    WriteSolution(model, patterns, report, o->out, {.write_lightfield = o->write_lightfield});
+    std::cout << "wrote " << o->out << "/{patterns,panels,trace.csv,report.txt,report.json"
+              << (o->write_lightfield ? ",lightfield" : "") << "}\n";
+  });
+}
+
+}  // namespace layerlab::app

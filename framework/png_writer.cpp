@@ -1,0 +1,42 @@
+#include "framework/png_writer.h"
+
+#include <png.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+
+#include "framework/atomic_file.h"
+#include "framework/error.h"
+
+namespace layerlab {
+
+void WritePng8(const std::string& path, int width, int height, int channels, const std::vector<uint8_t>& pixels) {
+  if (width <= 0 || height <= 0 || (channels != 1 && channels != 3 && channels != 4) ||
+      pixels.size() != static_cast<size_t>(width) * height * channels)
+    throw Error(path + ": internal error: PNG buffer does not match its size");
+  AtomicFile out(path);
+  FILE* file = std::fopen(out.temp_path().c_str(), "wb");
+  if (!file) throw Error(path + ": cannot open for writing: " + std::strerror(errno));
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png ? png_create_info_struct(png) : nullptr;
+  volatile bool ok = png && info;  // survives longjmp
+  if (ok && setjmp(png_jmpbuf(png)) == 0) {
+    png_init_io(png, file);
+    int type = channels == 1 ? PNG_COLOR_TYPE_GRAY : channels == 3 ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_RGBA;
+    png_set_IHDR(png, info, width, height, 8, type, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
+                 PNG_FILTER_TYPE_DEFAULT);
+    png_write_info(png, info);
+    for (int row = 0; row < height; ++row)
+      png_write_row(png, const_cast<png_bytep>(pixels.data() + static_cast<size_t>(row) * width * channels));
+    png_write_end(png, nullptr);
+  } else {
+    ok = false;
+  }
+  png_destroy_write_struct(png ? &png : nullptr, info ? &info : nullptr);
+  bool closed = std::fclose(file) == 0;
+  if (!ok || !closed) throw Error(path + ": cannot write PNG (disk full?)");
+  out.Commit();
+}
+
+}  // namespace layerlab

@@ -1,0 +1,225 @@
+// additive-trust-region: the box-constrained linear least squares of an
+// additive display (every branch a single layer),
+//   min_t || l - A t ||^2,  A t = sum_b w_b P_b t_b,  0 <= t <= 1,
+// by a matrix-free projected trust-region Newton-CG method (in the manner of
+// TRON, Lin & More 1999): at each iteration the variables held at a bound by
+// the gradient are fixed, a Steihaug conjugate-gradient step on the others
+// (Hessian 2 A^T A applied as P and P^T passes, never stored) is bounded by
+// the trust radius, and a projected backtracking search keeps the iterate in
+// the box. Why not Ceres: at paper scale the problem has 40 M residuals of
+// two parameters each; Ceres would store that Jacobian (about 80 M entries
+// plus per-residual-block overhead, several GB) where this stores vectors of
+// the size of the layers.
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "solvers/solve_loop.h"
+
+namespace layerlab {
+namespace {
+
+// A vector over all layer pixels and channels (one block per layer).
+using Vec = std::vector<std::vector<double>>;
+
+Vec Zeros(const Patterns& shape) {
+  Vec v;
+  for (const LayerPattern& p : shape) v.emplace_back(p.rgb.size(), 0.0);
+  return v;
+}
+double Dot(const Vec& a, const Vec& b) {
+  double s = 0;
+  for (size_t k = 0; k < a.size(); ++k)
+    for (size_t i = 0; i < a[k].size(); ++i) s += a[k][i] * b[k][i];
+  return s;
+}
+void Axpy(double alpha, const Vec& x, Vec* y) {
+  for (size_t k = 0; k < x.size(); ++k)
+    for (size_t i = 0; i < x[k].size(); ++i) (*y)[k][i] += alpha * x[k][i];
+}
+
+class AdditiveOperator {
+ public:
+  explicit AdditiveOperator(const DisplayModel& model) : model_(model), n_(model.geometry().pixels_per_view() * 3) {}
+
+  // Into one view: (A x) where x is given as float patterns.
+  void Apply(size_t view, const Patterns& x, float* out, float* scratch) const {
+    std::fill(out, out + n_, 0.0f);
+    for (size_t b = 0; b < model_.branch_count(); ++b) {
+      int k = model_.branch_layers(b)[0];
+      model_.projection(k).Gather(view, x[k].rgb.data(), scratch);
+      const auto& w = model_.weight(b);
+      for (size_t i = 0; i < n_; ++i) out[i] += w[i % 3] * scratch[i];
+    }
+  }
+  // accum += A^T y for one view (y of one view).
+  void ApplyTranspose(size_t view, const float* y, Vec* accum, float* scratch) const {
+    for (size_t b = 0; b < model_.branch_count(); ++b) {
+      int k = model_.branch_layers(b)[0];
+      const auto& w = model_.weight(b);
+      for (size_t i = 0; i < n_; ++i) scratch[i] = w[i % 3] * y[i];
+      model_.projection(k).ScatterAdd(view, scratch, (*accum)[k].data());
+    }
+  }
+
+  // Returns ||A x - l||^2; if gradient is given, it becomes 2 A^T (A x - l).
+  double Residual(const Patterns& x, const LightField& l, Vec* gradient) const {
+    double total = 0;
+    const size_t views = model_.geometry().view_count();
+    if (gradient) *gradient = Zeros(x);
+#pragma omp parallel reduction(+ : total)
+    {
+      std::vector<float> r(n_), scratch(n_);
+      Vec local = gradient ? Zeros(x) : Vec();
+#pragma omp for schedule(dynamic)
+      for (size_t v = 0; v < views; ++v) {
+        Apply(v, x, r.data(), scratch.data());
+        const float* lv = l.view(v);
+        double sum = 0;
+        for (size_t i = 0; i < n_; ++i) {
+          r[i] -= lv[i];
+          sum += double(r[i]) * r[i];
+          r[i] *= 2.0f;
+        }
+        total += sum;
+        if (gradient) ApplyTranspose(v, r.data(), &local, scratch.data());
+      }
+      if (gradient) {
+#pragma omp critical
+        Axpy(1.0, local, gradient);
+      }
+    }
+    return total;
+  }
+
+  // H p = 2 A^T A p, restricted to `free` entries; returns p^T H p.
+  double Hessian(const Vec& p, const Vec& free, Vec* hp, const Patterns& shape) const {
+    Patterns pf = shape;
+    for (size_t k = 0; k < p.size(); ++k)
+      for (size_t i = 0; i < p[k].size(); ++i) pf[k].rgb[i] = static_cast<float>(p[k][i]);
+    *hp = Zeros(shape);
+    const size_t views = model_.geometry().view_count();
+#pragma omp parallel
+    {
+      std::vector<float> ap(n_), scratch(n_);
+      Vec local = Zeros(shape);
+#pragma omp for schedule(dynamic)
+      for (size_t v = 0; v < views; ++v) {
+        Apply(v, pf, ap.data(), scratch.data());
+        for (size_t i = 0; i < n_; ++i) ap[i] *= 2.0f;
+        ApplyTranspose(v, ap.data(), &local, scratch.data());
+      }
+#pragma omp critical
+      Axpy(1.0, local, hp);
+    }
+    for (size_t k = 0; k < hp->size(); ++k)
+      for (size_t i = 0; i < (*hp)[k].size(); ++i) (*hp)[k][i] *= free[k][i];
+    return Dot(p, *hp);
+  }
+
+ private:
+  const DisplayModel& model_;
+  size_t n_;
+};
+
+class AdditiveTrustRegionSolver final : public Solver {
+ public:
+  SolverReport Solve(const DisplayModel& model, const LightField& target, const SolverOptions& options,
+                     Patterns* t) const override {
+    SolveLoop loop("additive-trust-region", model, target, options, t);
+    for (size_t b = 0; b < model.branch_count(); ++b)
+      if (model.branch_layers(b).size() != 1) {
+        loop.Fail("additive-trust-region needs one layer per branch; branch \"" + model.system().branches[b].name +
+                  "\" stacks " + std::to_string(model.branch_layers(b).size()) + " (use hybrid)");
+        return loop.Finish();
+      }
+    if (!loop.Start()) return loop.Finish();
+    const LightField& l = loop.target();
+    AdditiveOperator A(model);
+
+    Vec g;
+    double f = A.Residual(*t, l, &g);
+    double radius = -1;
+    constexpr int kMaxCg = 25;
+    do {
+      // Variables pressed against a bound by the gradient stay there this step.
+      Vec free = Zeros(*t);
+      for (size_t k = 0; k < t->size(); ++k)
+        for (size_t i = 0; i < free[k].size(); ++i) {
+          float x = (*t)[k].rgb[i];
+          bool held = (x <= 0.0f && g[k][i] > 0) || (x >= 1.0f && g[k][i] < 0);
+          free[k][i] = held ? 0.0 : 1.0;
+        }
+      Vec residual = Zeros(*t), d = Zeros(*t), p, hp;
+      for (size_t k = 0; k < g.size(); ++k)
+        for (size_t i = 0; i < g[k].size(); ++i) residual[k][i] = -g[k][i] * free[k][i];
+      double gnorm = std::sqrt(Dot(residual, residual));
+      if (gnorm == 0) break;  // stationary: the projected gradient vanishes
+      if (radius < 0) radius = gnorm;
+      p = residual;
+      double rr = gnorm * gnorm;
+      // Steihaug CG on the free variables, bounded by the trust radius.
+      for (int j = 0; j < kMaxCg; ++j) {
+        double curvature = A.Hessian(p, free, &hp, *t);
+        double dd = Dot(d, d), dp = Dot(d, p), pp = Dot(p, p);
+        auto to_boundary = [&] {
+          double tau = (-dp + std::sqrt(dp * dp + pp * (radius * radius - dd))) / pp;
+          Axpy(tau, p, &d);
+        };
+        if (curvature <= 0) {
+          to_boundary();
+          break;
+        }
+        double alpha = rr / curvature;
+        if (dd + 2 * alpha * dp + alpha * alpha * pp >= radius * radius) {
+          to_boundary();
+          break;
+        }
+        Axpy(alpha, p, &d);
+        Axpy(-alpha, hp, &residual);
+        double rr_next = Dot(residual, residual);
+        if (std::sqrt(rr_next) <= 1e-2 * gnorm) break;
+        for (size_t k = 0; k < p.size(); ++k)
+          for (size_t i = 0; i < p[k].size(); ++i) p[k][i] = residual[k][i] + (rr_next / rr) * p[k][i];
+        rr = rr_next;
+      }
+      // Projected backtracking search along d.
+      Patterns trial = *t;
+      double step = 1.0, f_trial = f, decrease = 0;
+      bool accepted = false;
+      for (int tries = 0; tries < 20 && !accepted; ++tries, step *= 0.5) {
+        decrease = 0;
+        for (size_t k = 0; k < t->size(); ++k)
+          for (size_t i = 0; i < d[k].size(); ++i) {
+            double x = std::clamp(double((*t)[k].rgb[i]) + step * d[k][i], 0.0, 1.0);
+            trial[k].rgb[i] = static_cast<float>(x);
+            decrease += g[k][i] * (double(trial[k].rgb[i]) - (*t)[k].rgb[i]);
+          }
+        f_trial = A.Residual(trial, l, nullptr);
+        accepted = f_trial <= f + 1e-4 * decrease;
+      }
+      if (!accepted) {
+        loop.Fail("the projected search found no decrease (objective " + std::to_string(f) + ")");
+        break;
+      }
+      double dnorm = std::sqrt(Dot(d, d));
+      radius = step < 1.0 ? std::max(0.25 * radius, step * dnorm) : std::max(radius, 2.0 * dnorm);
+      *t = std::move(trial);
+      f = A.Residual(*t, l, &g);
+    } while (loop.EndIteration(f));
+    return loop.Finish();
+  }
+};
+
+}  // namespace
+
+SolverType AdditiveTrustRegionSolverType() {
+  SolverOptions defaults;
+  defaults.iterations = 200;
+  defaults.tolerance = 1e-6;
+  return {"additive-trust-region",
+          "box-constrained least squares of an additive display by a matrix-free projected trust-region Newton-CG method",
+          [] { return std::make_unique<AdditiveTrustRegionSolver>(); }, defaults};
+}
+
+}  // namespace layerlab

@@ -1,0 +1,26 @@
+// The non-negative multiplicative update (Lee-Seung, as in tensor displays)
+// of one layer `a` of one branch b, weighted per channel:
+//   Q   = w_b prod_{k in b, k != a} P_k t_k           (the rest of the branch)
+//   t_a <- clamp(t_a * P_a^T(r o Q) / P_a^T(l~_b o Q), floor, 1),   l~_b = Q o P_a t_a
+// where r is what the branch should emit (the target, or for the hybrid
+// algorithm the target minus the other branches, floored at 0). It is the
+// ratio of the negative and positive parts of the gradient of ||r - l~_b||^2,
+// so for r >= 0 it never increases that error. A pixel whose denominator is
+// below epsilon (no ray reaches it, or the rest of the branch is black there)
+// keeps its value.
+#pragma once
+
+#include <functional>
+
+#include "solvers/solver.h"
+#include "systems/display_model.h"
+
+namespace layerlab {
+
+// Fills `out` ([row][col][rgb] of one view) with what the branch should emit.
+using BranchTarget = std::function<void(size_t view, float* out)>;
+
+void UpdateLayerMultiplicative(const DisplayModel& model, size_t branch, int layer, const BranchTarget& branch_target,
+                               const SolverOptions& options, Patterns* t);
+
+}  // namespace layerlab

@@ -1,0 +1,100 @@
+#include "solvers/objective.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "framework/error.h"
+
+namespace layerlab {
+
+std::array<float, 3> DisplayMaximum(const DisplayModel& model) {
+  std::array<float, 3> max{0, 0, 0};
+  for (size_t b = 0; b < model.branch_count(); ++b)
+    for (int c = 0; c < 3; ++c) max[c] += model.weight(b)[c];
+  return max;
+}
+
+LightField PrepareTarget(const DisplayModel& model, const LightField& target, TargetRange range, SolverReport* report) {
+  const std::array<float, 3> max = DisplayMaximum(model);
+  LightField out = target;
+  size_t beyond = 0;
+  double worst = 1.0;  // largest value / maximum
+  for (size_t k = 0; k < out.rgb.size(); ++k) {
+    float v = out.rgb[k], m = max[k % 3];
+    if (v > m) {
+      ++beyond;
+      worst = std::max(worst, double(v) / m);
+    }
+  }
+  report->out_of_range = beyond;
+  report->target_scale = 1.0;
+  if (beyond == 0) return out;
+  char share[64];
+  std::snprintf(share, sizeof share, "%.4f%%", 100.0 * beyond / out.rgb.size());
+  if (range == TargetRange::kClip) {
+    for (size_t k = 0; k < out.rgb.size(); ++k) out.rgb[k] = std::min(out.rgb[k], max[k % 3]);
+    report->warnings.push_back(std::to_string(beyond) + " target values (" + share +
+                               ") exceed what the display can show (up to " + std::to_string(worst) +
+                               " times its maximum); clipped (target_range: clip)");
+  } else {
+    float scale = static_cast<float>(1.0 / worst);
+    // Rounding may leave the brightest value a hair above the maximum.
+    for (size_t k = 0; k < out.rgb.size(); ++k) out.rgb[k] = std::min(out.rgb[k] * scale, max[k % 3]);
+    report->target_scale = scale;
+    report->warnings.push_back(std::to_string(beyond) + " target values (" + share +
+                               ") exceed what the display can show; the whole target was scaled by " +
+                               std::to_string(scale) + " (target_range: scale)");
+  }
+  return out;
+}
+
+double Objective(const DisplayModel& model, const LightField& target, const Patterns& t) {
+  const LightFieldGeometry& g = model.geometry();
+  const size_t n = g.pixels_per_view() * 3;
+  double total = 0;
+#pragma omp parallel reduction(+ : total)
+  {
+    std::vector<float> synthesized(n), scratch(n);
+#pragma omp for schedule(dynamic)
+    for (size_t v = 0; v < g.view_count(); ++v) {
+      model.SynthesizeView(v, t, synthesized.data(), scratch.data());
+      const float* l = target.view(v);
+      double sum = 0;
+      for (size_t k = 0; k < n; ++k) {
+        double d = double(l[k]) - synthesized[k];
+        sum += d * d;
+      }
+      total += sum;
+    }
+  }
+  return total;
+}
+
+double PsnrDb(double objective, size_t samples) {
+  if (objective <= 0) return std::numeric_limits<double>::infinity();
+  return 10.0 * std::log10(double(samples) / objective);
+}
+
+Patterns InitialPatterns(const DisplayModel& model, const SolverOptions& options) {
+  if (options.initial_value >= 0) return model.UniformPatterns(static_cast<float>(options.initial_value));
+  Patterns t = model.UniformPatterns(0.5f);
+  std::mt19937_64 rng(options.seed);
+  std::uniform_real_distribution<float> u(0.25f, 0.75f);
+  for (LayerPattern& p : t)
+    for (float& v : p.rgb) v = u(rng);
+  return t;
+}
+
+void RequireSameRays(const DisplayModel& model, const LightField& target) {
+  const LightFieldGeometry &a = model.geometry(), &b = target.geometry;
+  bool same = a.cols == b.cols && a.rows == b.rows && a.views_x == b.views_x && a.views_y == b.views_y &&
+              a.origin_z == b.origin_z && a.window_left == b.window_left && a.window_top == b.window_top &&
+              a.window_width == b.window_width && a.window_height == b.window_height &&
+              a.eyebox_width == b.eyebox_width && a.eyebox_height == b.eyebox_height;
+  if (!same || target.rgb.size() != b.ray_count() * 3)
+    throw Error("the display model is bound to other rays than the target's light field");
+}
+
+}  // namespace layerlab

@@ -1,0 +1,125 @@
+#include "solvers/solution_writer.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "framework/atomic_file.h"
+#include "framework/error.h"
+#include "framework/exr_image.h"
+#include "framework/lightfield_io.h"
+#include "framework/png_writer.h"
+#include "systems/system_report.h"
+
+namespace layerlab {
+
+namespace fs = std::filesystem;
+
+PanelEncoding EncodeForPanel(const VirtualLayer& layer, const LayerPattern& pattern) {
+  const PanelSpec& panel = layer.panel;
+  PanelEncoding out;
+  out.pixels.assign(static_cast<size_t>(panel.resolution_cols) * panel.resolution_rows * 3, 0);
+  const double black = panel.black_level, inverse_gamma = 1.0 / panel.gamma;
+  for (int row = 0; row < pattern.rows; ++row)
+    for (int col = 0; col < pattern.cols; ++col)
+      for (int c = 0; c < 3; ++c) {
+        double t = pattern.rgb[(static_cast<size_t>(row) * pattern.cols + col) * 3 + c];
+        double drive = (t - black) / (1.0 - black);
+        if (drive < 0) ++out.below_black_level, drive = 0;
+        double code = std::round(255.0 * std::pow(std::min(drive, 1.0), inverse_gamma));
+        size_t at = ((static_cast<size_t>(row) + panel.active_top) * panel.resolution_cols + col + panel.active_left) * 3 + c;
+        out.pixels[at] = static_cast<uint8_t>(code);
+      }
+  return out;
+}
+
+nlohmann::json ReportToJson(const SolverReport& r) {
+  nlohmann::json j = {{"solver", r.solver},
+                      {"termination", ToString(r.termination)},
+                      {"message", r.message},
+                      {"usable", r.IsSolutionUsable()},
+                      {"iterations", r.iterations},
+                      {"seconds", r.seconds},
+                      {"rays", r.rays},
+                      {"initial_objective", r.initial_objective},
+                      {"final_objective", r.final_objective},
+                      {"final_psnr_db", JsonNumber(r.final_psnr_db)},
+                      {"target_out_of_range", r.out_of_range},
+                      {"target_scale", r.target_scale},
+                      {"warnings", r.warnings},
+                      {"brief", r.BriefReport()}};
+  for (const IterationRecord& t : r.trace)
+    j["trace"].push_back({{"iteration", t.iteration}, {"seconds", t.seconds}, {"objective", t.objective},
+                          {"psnr_db", JsonNumber(t.psnr_db)}});
+  return j;
+}
+
+std::string TraceCsv(const SolverReport& report) {
+  std::string csv = "iteration,seconds,objective,psnr_db\n";
+  char line[160];
+  for (const IterationRecord& r : report.trace) {
+    std::snprintf(line, sizeof line, "%d,%.6f,%.9g,", r.iteration, r.seconds, r.objective);
+    csv += line;
+    if (std::isinf(r.psnr_db)) {
+      csv += "inf\n";
+    } else {
+      std::snprintf(line, sizeof line, "%.6f\n", r.psnr_db);
+      csv += line;
+    }
+  }
+  return csv;
+}
+
+namespace {
+std::string PatternFile(const std::string& folder, const VirtualLayer& layer) {
+  return (fs::path(folder) / "patterns" / (layer.name + ".exr")).string();
+}
+}  // namespace
+
+Patterns ReadPatterns(const DisplayModel& model, const std::string& folder) {
+  Patterns t;
+  for (size_t k = 0; k < model.layer_count(); ++k) {
+    const VirtualLayer& layer = model.system().layers[k];
+    std::string file = PatternFile(folder, layer);
+    Image image = ReadExr(file, {"R", "G", "B"});
+    if (image.width != layer.cols || image.height != layer.rows)
+      throw Error(file + ": is " + std::to_string(image.width) + " x " + std::to_string(image.height) +
+                  " pixels; layer \"" + layer.name + "\" has " + std::to_string(layer.cols) + " x " +
+                  std::to_string(layer.rows));
+    for (float v : image.pixels)
+      if (v > 1.0f) throw Error(file + ": a transmittance above 1 (" + std::to_string(v) + ")");
+    LayerPattern p(layer.cols, layer.rows, 0);
+    p.rgb = std::move(image.pixels);
+    t.push_back(std::move(p));
+  }
+  return t;
+}
+
+void WriteSolution(const DisplayModel& model, const Patterns& t, const SolverReport& report, const std::string& folder,
+                   const SolutionFiles& what) {
+  std::error_code ec;
+  fs::create_directories(fs::path(folder) / "patterns", ec);
+  fs::create_directories(fs::path(folder) / "panels", ec);
+  if (ec) throw Error(folder + ": cannot create the output folder: " + ec.message());
+  SolverReport annotated = report;
+  for (size_t k = 0; k < model.layer_count(); ++k) {
+    const VirtualLayer& layer = model.system().layers[k];
+    WriteExr(PatternFile(folder, layer), Image{t[k].cols, t[k].rows, {"R", "G", "B"}, t[k].rgb});
+    PanelEncoding panel = EncodeForPanel(layer, t[k]);
+    if (panel.below_black_level)
+      annotated.warnings.push_back("panel \"" + layer.name + "\": " + std::to_string(panel.below_black_level) +
+                                   " values are darker than its black level and were encoded as 0");
+    WritePng8((fs::path(folder) / "panels" / (layer.name + ".png")).string(), int(layer.panel.resolution_cols),
+              int(layer.panel.resolution_rows), 3, panel.pixels);
+  }
+  WriteFileAtomically((fs::path(folder) / "trace.csv").string(), TraceCsv(annotated));
+  WriteFileAtomically((fs::path(folder) / "report.txt").string(), annotated.FullReport());
+  WriteFileAtomically((fs::path(folder) / "report.json").string(), ReportToJson(annotated).dump(2) + "\n");
+  if (what.write_lightfield) {
+    LightField synthesized = model.Synthesize(t);
+    synthesized.scene = "synthesized by layerlab " + report.solver + " for " + model.system().file;
+    WriteLightField(synthesized, (fs::path(folder) / "lightfield").string());
+  }
+}
+
+}  // namespace layerlab

@@ -1,0 +1,41 @@
+// Everything a solve leaves on disk, each file written atomically:
+//   patterns/<layer>.exr     the optimizer's patterns (linear transmittance,
+//                            panel pixel order: mirrored where the layer is)
+//   panels/<panel>.png       panel-ready 8-bit images: gamma- and
+//                            black-level-encoded for the panel, placed at the
+//                            active region of the panel's full pixel grid
+//   trace.csv                iteration, seconds, objective, psnr_db
+//   report.txt, report.json  the solver's report
+//   lightfield/              the synthesized light field (on request)
+#pragma once
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "solvers/solver.h"
+#include "systems/display_model.h"
+
+namespace layerlab {
+
+struct PanelEncoding {
+  std::vector<uint8_t> pixels;  // [row][col][rgb] over the whole panel
+  size_t below_black_level = 0; // values the panel cannot make as dark as asked
+};
+
+// Encodes a layer's pattern for its panel: code = 255 ((t - b) / (1 - b))^(1/gamma).
+PanelEncoding EncodeForPanel(const VirtualLayer& layer, const LayerPattern& pattern);
+
+nlohmann::json ReportToJson(const SolverReport& report);
+std::string TraceCsv(const SolverReport& report);
+
+// Loads patterns written by WriteSolution back (for retinal images and analysis).
+Patterns ReadPatterns(const DisplayModel& model, const std::string& folder);
+
+struct SolutionFiles {
+  bool write_lightfield = false;
+};
+void WriteSolution(const DisplayModel& model, const Patterns& t, const SolverReport& report,
+                   const std::string& folder, const SolutionFiles& what = {});
+
+}  // namespace layerlab

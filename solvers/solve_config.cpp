@@ -1,0 +1,49 @@
+#include "solvers/solve_config.h"
+
+#include <filesystem>
+
+#include "framework/params.h"
+
+namespace layerlab {
+
+SolveConfig ReadSolveConfig(const Scene& scene) {
+  SolveConfig config;
+  if (!scene.document.contains("solve")) {
+    config.options = SolverRegistry::Builtins().find(config.solver)->defaults;
+    return config;
+  }
+  Params p(scene.document["solve"], {scene.file, "/solve"});
+  config.solver = p.string("solver", config.solver);
+  const SolverType* type = SolverRegistry::Builtins().find(config.solver);
+  if (!type) {
+    try {
+      SolverRegistry::Builtins().create(config.solver);
+    } catch (const Error& e) {
+      p.fail("solver", e.message());
+    }
+  }
+  SolverOptions& o = config.options;
+  o = type->defaults;
+  if (p.has("target")) {
+    std::filesystem::path target = p.string("target");
+    config.target = target.is_absolute() ? target.string()
+                                         : (std::filesystem::path(scene.file).parent_path() / target).lexically_normal().string();
+  }
+  o.iterations = static_cast<int>(p.integer("iterations", 1, 1000000, o.iterations));
+  o.sub_iterations = static_cast<int>(p.integer("sub_iterations", 1, 1000, o.sub_iterations));
+  o.time_budget = p.quantity("time_budget", Dimension::kTime, o.time_budget);
+  p.require_range("time_budget", o.time_budget, 0, 1e7, false, false);
+  o.tolerance = p.quantity("tolerance", Dimension::kFraction, o.tolerance);
+  p.require_range("tolerance", o.tolerance, 0, 1, false, true);
+  o.initial_value = p.quantity("initial_value", Dimension::kFraction, o.initial_value);
+  p.require_range("initial_value", o.initial_value, -1, 1, false, false);
+  o.seed = static_cast<uint64_t>(p.integer("seed", 0, INT64_MAX, static_cast<int64_t>(o.seed)));
+  o.threads = static_cast<int>(p.integer("threads", 0, 1024, o.threads));
+  config.sampling = p.choice("sampling", {"nearest", "bilinear"}, "nearest") == "nearest" ? Sampling::kNearest
+                                                                                          : Sampling::kBilinear;
+  o.target_range = p.choice("target_range", {"clip", "scale"}, "clip") == "clip" ? TargetRange::kClip : TargetRange::kScale;
+  p.check_all_read();
+  return config;
+}
+
+}  // namespace layerlab

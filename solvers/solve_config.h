@@ -1,0 +1,28 @@
+// The "solve" section of a scene file: which solver, with which options, on
+// which target. The command line overrides any of it.
+//
+//   "solve": { "solver": "hybrid", "target": "../data/dice", "iterations": 30,
+//              "sub_iterations": 3, "time_budget": "60 s"?, "tolerance": 0,
+//              "initial_value": 0.5, "seed": 1, "threads": 0,
+//              "sampling": "nearest", "target_range": "clip" }
+#pragma once
+
+#include <string>
+
+#include "solvers/solver.h"
+#include "systems/projection.h"
+#include "systems/scene.h"
+
+namespace layerlab {
+
+struct SolveConfig {
+  std::string solver = "hybrid";
+  std::string target;  // light-field folder, resolved against the scene file's folder
+  Sampling sampling = Sampling::kNearest;
+  SolverOptions options;  // the solver's defaults, then the scene's values
+};
+
+// Reads scene.document["solve"] if present (strictly: unknown keys are errors).
+SolveConfig ReadSolveConfig(const Scene& scene);
+
+}  // namespace layerlab

@@ -1,0 +1,103 @@
+#include "solvers/solve_loop.h"
+
+#include <omp.h>
+
+#include <cmath>
+
+#include "framework/error.h"
+
+namespace layerlab {
+
+SolveLoop::SolveLoop(std::string solver, const DisplayModel& model, const LightField& target,
+                     const SolverOptions& options, Patterns* patterns)
+    : model_(model), source_(target), options_(options), patterns_(patterns) {
+  report_.solver = std::move(solver);
+  start_ = std::chrono::steady_clock::now();
+}
+
+SolveLoop::~SolveLoop() {
+  if (saved_threads_) omp_set_num_threads(saved_threads_);
+}
+
+double SolveLoop::Seconds() const {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+}
+
+bool SolveLoop::Start() {
+  std::string error;
+  if (!options_.IsValid(&error)) {
+    report_.termination = Termination::kInvalidOptions;
+    report_.message = error;
+    return false;
+  }
+  if (options_.threads > 0) {
+    saved_threads_ = omp_get_max_threads();
+    omp_set_num_threads(options_.threads);
+  }
+  try {
+    RequireSameRays(model_, source_);
+    prepared_ = PrepareTarget(model_, source_, options_.target_range, &report_);
+  } catch (const Error& e) {
+    Fail(e.what());
+    return false;
+  }
+  report_.rays = model_.geometry().ray_count();
+  *patterns_ = InitialPatterns(model_, options_);
+  start_ = std::chrono::steady_clock::now();
+  double objective = Objective(model_, *prepared_, *patterns_);
+  report_.initial_objective = objective;
+  return Record(objective);
+}
+
+bool SolveLoop::Record(double objective) {
+  IterationRecord r{iteration_, Seconds(), objective, PsnrDb(objective, report_.rays * 3)};
+  report_.trace.push_back(r);
+  report_.iterations = iteration_;
+  report_.final_objective = objective;
+  report_.final_psnr_db = r.psnr_db;
+  if (options_.progress) options_.progress(iteration_, r.seconds, r.psnr_db);
+  if (!std::isfinite(objective)) {
+    Fail("the objective became " + std::to_string(objective) + " at iteration " + std::to_string(iteration_));
+    return false;
+  }
+  return true;
+}
+
+bool SolveLoop::EndIteration(std::optional<double> objective) {
+  if (stopped_) return false;
+  ++iteration_;
+  double previous = report_.final_objective;
+  double value = objective ? *objective : Objective(model_, *prepared_, *patterns_);
+  if (!Record(value)) return false;
+  if (options_.tolerance > 0 && std::abs(previous - value) <= options_.tolerance * std::max(previous, 1e-300)) {
+    report_.termination = Termination::kConverged;
+    report_.message = "relative objective change below " + std::to_string(options_.tolerance);
+    stopped_ = true;
+  } else if (iteration_ >= options_.iterations) {
+    report_.termination = Termination::kIterationLimit;
+    report_.message = "";
+    stopped_ = true;
+  } else if (options_.time_budget > 0 && Seconds() >= options_.time_budget) {
+    report_.termination = Termination::kTimeBudget;
+    report_.message = "stopped after " + std::to_string(Seconds()) + " s";
+    stopped_ = true;
+  }
+  return !stopped_;
+}
+
+void SolveLoop::Fail(const std::string& message) {
+  report_.termination = Termination::kFailed;
+  report_.message = message;
+  stopped_ = true;
+}
+
+SolverReport SolveLoop::Finish() {
+  report_.seconds = Seconds();
+  if (report_.termination == Termination::kNotRun && !report_.trace.empty()) {
+    report_.termination = Termination::kIterationLimit;
+    report_.message = "";
+  }
+  return report_;
+}
+
+}  // namespace layerlab

@@ -1,0 +1,48 @@
+// The bookkeeping every iterative solver shares: validate options, prepare
+// the target and the initial patterns, then record error against wall time
+// after each iteration and decide when to stop.
+#pragma once
+
+#include <chrono>
+#include <optional>
+
+#include "solvers/objective.h"
+#include "solvers/solver.h"
+
+namespace layerlab {
+
+class SolveLoop {
+ public:
+  SolveLoop(std::string solver, const DisplayModel& model, const LightField& target, const SolverOptions& options,
+            Patterns* patterns);
+  ~SolveLoop();
+
+  // False (and the report says why) when the solve cannot start.
+  bool Start();
+  const LightField& target() const { return *prepared_; }
+  int iteration() const { return iteration_; }  // iterations completed
+  double Seconds() const;
+
+  // Records the objective after an iteration; false when it is time to stop.
+  // `objective` may be passed when the solver computed it anyway.
+  bool EndIteration(std::optional<double> objective = std::nullopt);
+  // Stops with a failure (for example a non-finite objective).
+  void Fail(const std::string& message);
+  SolverReport Finish();
+
+ private:
+  bool Record(double objective);
+
+  const DisplayModel& model_;
+  const LightField& source_;
+  SolverOptions options_;
+  Patterns* patterns_;
+  std::optional<LightField> prepared_;
+  SolverReport report_;
+  std::chrono::steady_clock::time_point start_;
+  int iteration_ = 0;
+  int saved_threads_ = 0;
+  bool stopped_ = false;
+};
+
+}  // namespace layerlab

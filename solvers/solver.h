@@ -1,0 +1,113 @@
+// Solvers factorize a target light field into layer patterns for a display:
+//   argmin_t || l - sum_b w_b prod_{k in b} P_k t_k ||^2,  0 <= t <= 1   (paper Eq. 6)
+// Options in, a report out (in the manner of ceres::Solver): a plain options
+// struct with IsValid(), and a report that starts as "not run", holds the
+// termination reason, a trace row per iteration (error against wall time),
+// BriefReport(), FullReport() and IsSolutionUsable(). Solve() does not throw
+// for bad options or a failed run: the report says what happened.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "framework/lightfield.h"
+#include "systems/display_model.h"
+
+namespace layerlab {
+
+// What to do with target values the display cannot reach (above the sum of
+// its branch weights in a channel).
+enum class TargetRange { kClip, kScale };
+std::string ToString(TargetRange r);
+
+struct SolverOptions {
+  // Outer iterations (hybrid: passes over all multiplicative sets). Change it
+  // to trade time for error; the trace shows where the error stops improving.
+  int iterations = 30;
+  // Hybrid: updates of one set before moving on (the paper's 3).
+  int sub_iterations = 3;
+  // Wall-clock budget in seconds; 0 means none. Checked between iterations.
+  double time_budget = 0;
+  // Stop when the objective changes by less than this, relative; 0 runs every iteration.
+  double tolerance = 0;
+  // For random initial patterns.
+  uint64_t seed = 1;
+  // Initial transmittance of every pixel, or "random" in [0.25, 0.75] when negative.
+  double initial_value = 0.5;
+  // Worker threads; 0 uses every core.
+  int threads = 0;
+  // Multiplicative updates: denominators below this keep the pixel as is,
+  // and transmittance never drops below `floor`, so no pixel locks at zero.
+  double epsilon = 1e-12;
+  double floor = 1e-6;
+  TargetRange target_range = TargetRange::kClip;
+  // Called after every iteration (progress display); may be empty.
+  std::function<void(int iteration, double seconds, double psnr_db)> progress;
+
+  // False with "field: value: constraint" in *error when an option is out of range.
+  bool IsValid(std::string* error) const;
+};
+
+enum class Termination { kNotRun, kIterationLimit, kTimeBudget, kConverged, kInvalidOptions, kFailed };
+std::string ToString(Termination t);
+
+struct IterationRecord {
+  int iteration = 0;      // 0 is the initial guess
+  double seconds = 0;     // wall time since the solve started
+  double objective = 0;   // sum of squared errors over rays and channels
+  double psnr_db = 0;     // peak 1 (display-relative units); +inf for a perfect fit
+};
+
+struct SolverReport {
+  std::string solver;
+  Termination termination = Termination::kNotRun;
+  std::string message = "not run";
+  int iterations = 0;
+  double seconds = 0;
+  double initial_objective = 0, final_objective = 0, final_psnr_db = 0;
+  size_t rays = 0;
+  // Target preparation: how many values were beyond the display's range and what was done.
+  size_t out_of_range = 0;
+  double target_scale = 1;
+  std::vector<std::string> warnings;
+  std::vector<IterationRecord> trace;
+
+  bool IsSolutionUsable() const;
+  std::string BriefReport() const;
+  std::string FullReport() const;
+};
+
+class Solver {
+ public:
+  virtual ~Solver() = default;
+  // `patterns` holds one pattern per layer; it is initialised by the solver.
+  virtual SolverReport Solve(const DisplayModel& model, const LightField& target, const SolverOptions& options,
+                             Patterns* patterns) const = 0;
+};
+
+struct SolverType {
+  std::string name;
+  std::string summary;
+  std::function<std::unique_ptr<Solver>()> make;
+  SolverOptions defaults;  // what this solver runs with unless told otherwise
+};
+
+class SolverRegistry {
+ public:
+  void add(SolverType type);
+  const SolverType* find(const std::string& name) const;
+  std::vector<std::string> names() const;
+  // Throws layerlab::Error listing the known names for an unknown one.
+  std::unique_ptr<Solver> create(const std::string& name) const;
+
+  static const SolverRegistry& Builtins();
+
+ private:
+  std::map<std::string, SolverType> types_;
+};
+
+}  // namespace layerlab

@@ -1,0 +1,54 @@
+#include <cmath>
+#include <cstdio>
+
+#include "solvers/solver.h"
+
+namespace layerlab {
+namespace {
+
+std::string Db(double psnr) {
+  if (std::isinf(psnr)) return "inf dB";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2f dB", psnr);
+  return buf;
+}
+
+}  // namespace
+
+bool SolverReport::IsSolutionUsable() const {
+  return termination == Termination::kIterationLimit || termination == Termination::kTimeBudget ||
+         termination == Termination::kConverged;
+}
+
+std::string SolverReport::BriefReport() const {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "%s: %s after %d iterations in %.3f s, PSNR %s (objective %.6g -> %.6g)",
+                solver.c_str(), ToString(termination).c_str(), iterations, seconds, Db(final_psnr_db).c_str(),
+                initial_objective, final_objective);
+  return buf;
+}
+
+std::string SolverReport::FullReport() const {
+  std::string out = "solver               " + solver + "\n";
+  out += "termination          " + ToString(termination) + (message.empty() ? "" : " (" + message + ")") + "\n";
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "iterations           %d\nwall time            %.3f s\nrays x channels      %zu\n",
+                iterations, seconds, rays * 3);
+  out += buf;
+  std::snprintf(buf, sizeof buf, "objective            %.9g -> %.9g (sum of squared errors)\n", initial_objective,
+                final_objective);
+  out += buf;
+  out += "PSNR                 " + Db(trace.empty() ? 0 : trace.front().psnr_db) + " -> " + Db(final_psnr_db) +
+         " (peak 1 = display white)\n";
+  std::snprintf(buf, sizeof buf, "target out of range  %zu values; scale %.6g\n", out_of_range, target_scale);
+  out += buf;
+  for (const std::string& w : warnings) out += "warning: " + w + "\n";
+  out += "\niteration  seconds     objective        PSNR (dB)\n";
+  for (const IterationRecord& r : trace) {
+    std::snprintf(buf, sizeof buf, "%9d  %8.3f  %14.6f  %s\n", r.iteration, r.seconds, r.objective, Db(r.psnr_db).c_str());
+    out += buf;
+  }
+  return out;
+}
+
+}  // namespace layerlab
