@@ -35,6 +35,15 @@ std::string CompileError(const nlohmann::json& scene) {
   return "";
 }
 
+nlohmann::json ShrunkExample(const std::string& name, int cols, int rows, int views) {
+  nlohmann::json scene = ReadExample(name);
+  for (auto& e : scene["elements"]) {
+    if (e["type"] == "lc_panel") e["active_region"] = {{"cols", cols}, {"rows", rows}};
+    if (e["type"] == "eye") e["views"] = {views, views};
+  }
+  return scene;
+}
+
 nlohmann::json& ElementNamed(nlohmann::json& scene, const std::string& name) {
   for (auto& e : scene["elements"])
     if (e.value("name", "") == name) return e;

@@ -24,6 +24,10 @@ DisplaySystem CompileJson(const nlohmann::json& scene, const ElementRegistry& re
 // The Error's what() from compiling `scene`, or "" if it compiled.
 std::string CompileError(const nlohmann::json& scene);
 
+// An example display shrunk for fast tests: every panel's active region
+// `cols` x `rows`, the eye's views `views` x `views`.
+nlohmann::json ShrunkExample(const std::string& name, int cols, int rows, int views);
+
 // Finds the element named `name` in a scene document.
 nlohmann::json& ElementNamed(nlohmann::json& scene, const std::string& name);
 

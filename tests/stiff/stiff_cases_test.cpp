@@ -1,0 +1,139 @@
+// Stiff and extreme cases for every solver that accepts the display: the
+// outputs stay finite, the bounds hold exactly, and the objective ends no
+// worse than the initial guess.
+#include <cmath>
+#include <functional>
+
+#include "solvers/solver.h"
+#include "tests/test_util.h"
+
+namespace layerlab {
+namespace {
+
+using nlohmann::json;
+using testing::ElementNamed;
+using testing::ShrunkExample;
+
+struct StiffCase {
+  std::string name;
+  std::function<json()> scene;
+  std::function<void(LightField&)> target;  // edits a mid-gray target
+  TargetRange range = TargetRange::kClip;
+};
+
+void PrintTo(const StiffCase& c, std::ostream* os) { *os << c.name; }
+
+json Multiplicative() { return ShrunkExample("multiplicative_2layer.json", 24, 12, 3); }
+json Hybrid() { return ShrunkExample("paper_prototype.json", 24, 12, 3); }
+json Additive() { return ShrunkExample("additive_2layer.json", 24, 12, 3); }
+
+void Keep(LightField&) {}
+
+const StiffCase kCases[] = {
+    {"ZeroTargetHybrid", Hybrid, [](LightField& l) { std::fill(l.rgb.begin(), l.rgb.end(), 0.0f); }},
+    {"ZeroTargetMultiplicative", Multiplicative, [](LightField& l) { std::fill(l.rgb.begin(), l.rgb.end(), 0.0f); }},
+    {"ZeroTargetAdditive", Additive, [](LightField& l) { std::fill(l.rgb.begin(), l.rgb.end(), 0.0f); }},
+    {"AllOnesHybrid", Hybrid, [](LightField& l) { std::fill(l.rgb.begin(), l.rgb.end(), 1.0f); }},
+    {"AllOnesMultiplicative", Multiplicative, [](LightField& l) { std::fill(l.rgb.begin(), l.rgb.end(), 1.0f); }},
+    {"AllOnesAdditive", Additive, [](LightField& l) { std::fill(l.rgb.begin(), l.rgb.end(), 1.0f); }},
+    {"OverBrightClipped", Hybrid, [](LightField& l) { for (float& v : l.rgb) v *= 40.0f; }},
+    {"OverBrightScaled", Hybrid, [](LightField& l) { for (float& v : l.rgb) v *= 40.0f; }, TargetRange::kScale},
+    {"HdrAdditiveScaled", Additive, [](LightField& l) { l.rgb[17] = 1e4f; }, TargetRange::kScale},
+    {"NearlyCoincidentLayers",
+     [] {
+       json s = Multiplicative();
+       ElementNamed(s, "front")["virtual_depth"] = "1.001 D";
+       ElementNamed(s, "rear")["virtual_depth"] = "1.0 D";
+       return s;
+     },
+     Keep},
+    {"NearlyCoincidentHybridPlanes",
+     [] {
+       json s = Hybrid();
+       ElementNamed(s, "front_a")["virtual_depth"] = "1.0000001 D";
+       ElementNamed(s, "rear_a")["virtual_depth"] = "1.0 D";
+       ElementNamed(s, "front_b")["virtual_depth"] = "1.0000002 D";
+       ElementNamed(s, "rear_b")["virtual_depth"] = "0.9999999 D";
+       return s;
+     },
+     Keep},
+    {"LayersFarApart",  // 4.45 D, the spacing the paper questions
+     [] {
+       json s = Multiplicative();
+       ElementNamed(s, "front")["virtual_depth"] = "4.55 D";
+       ElementNamed(s, "rear")["virtual_depth"] = "0.1 D";
+       return s;
+     },
+     Keep},
+    {"SingleLayer",
+     [] {
+       json s = Multiplicative();
+       ElementNamed(s, "lens")["next"] = "rear";
+       s["elements"].erase(2);  // the front panel
+       return s;
+     },
+     Keep},
+    {"SingleView",
+     [] {
+       json s = Hybrid();
+       ElementNamed(s, "eye")["views"] = {1, 1};
+       return s;
+     },
+     Keep},
+    {"SinglePixel", [] { return ShrunkExample("paper_prototype.json", 1, 1, 2); }, Keep},
+    {"LayerAtInfinity",
+     [] {
+       json s = Multiplicative();
+       ElementNamed(s, "rear")["virtual_depth"] = "0 D";
+       return s;
+     },
+     Keep},
+};
+
+class StiffCaseTest : public ::testing::TestWithParam<std::tuple<StiffCase, std::string>> {};
+
+TEST_P(StiffCaseTest, StaysFiniteBoundedAndNoWorse) {
+  const auto& [c, solver_name] = GetParam();
+  DisplaySystem system = testing::CompileJson(c.scene());
+  bool one_branch = system.branches.size() == 1;
+  bool single_layers = std::all_of(system.branches.begin(), system.branches.end(),
+                                   [](const Branch& b) { return b.layers.size() == 1; });
+  if (solver_name == "multiplicative" && !one_branch) GTEST_SKIP() << "multiplicative needs one branch";
+  if (solver_name == "additive-trust-region" && !single_layers) GTEST_SKIP() << "additive needs one layer per branch";
+
+  DisplayModel model(system, DisplayLightFieldGeometry(system, 1.3));
+  LightField target(model.geometry());
+  for (size_t k = 0; k < target.rgb.size(); ++k) target.rgb[k] = 0.2f + 0.6f * float((k * 7919) % 101) / 100.0f;
+  c.target(target);
+
+  SolverOptions o = SolverRegistry::Builtins().find(solver_name)->defaults;
+  o.iterations = 8;
+  o.target_range = c.range;
+  Patterns t;
+  SolverReport r = SolverRegistry::Builtins().create(solver_name)->Solve(model, target, o, &t);
+  ASSERT_TRUE(r.IsSolutionUsable()) << r.FullReport();
+  ASSERT_EQ(t.size(), system.layers.size());
+  for (const LayerPattern& p : t)
+    for (float v : p.rgb) {
+      ASSERT_TRUE(std::isfinite(v));
+      ASSERT_GE(v, 0.0f);
+      ASSERT_LE(v, 1.0f);
+    }
+  for (const IterationRecord& it : r.trace) ASSERT_TRUE(std::isfinite(it.objective)) << it.iteration;
+  EXPECT_LE(r.final_objective, r.initial_objective * (1 + 1e-9) + 1e-12) << r.FullReport();
+  if (c.range == TargetRange::kScale && r.out_of_range) {
+    EXPECT_LT(r.target_scale, 1.0);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Stiff, StiffCaseTest,
+                         ::testing::Combine(::testing::ValuesIn(kCases),
+                                            ::testing::Values("hybrid", "multiplicative", "additive-trust-region")),
+                         [](const auto& test_info) {
+                           std::string solver = std::get<1>(test_info.param);
+                           std::replace(solver.begin(), solver.end(), '-', '_');
+                           return std::get<0>(test_info.param).name + "_" + solver;
+                         });
+
+}  // namespace
+}  // namespace layerlab
