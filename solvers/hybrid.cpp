@@ -27,29 +27,37 @@ class HybridSolver final : public Solver {
     for (size_t b = 0; b < branches; ++b)
       for (int c = 0; c < 3; ++c) total[c] += model.weight(b)[c];
     std::vector<bool> started(branches, false);
+    LightField chase(model.geometry());  // what the set being updated should emit
 
     do {
       for (size_t m = 0; m < branches; ++m) {
-        BranchTarget chase = [&](size_t view, float* out) {
-          const float* lv = l.view(view);
-          std::copy(lv, lv + n, out);
-          thread_local std::vector<float> other;
-          other.resize(n);
-          for (size_t b = 0; b < branches; ++b) {
-            if (b == m) continue;
-            if (started[b]) {
-              model.SynthesizeBranchView(b, view, *t, other.data());
-              for (size_t k = 0; k < n; ++k) out[k] -= other[k];
-            } else {
-              for (size_t k = 0; k < n; ++k) out[k] -= lv[k] * model.weight(b)[k % 3] / total[k % 3];
+        // The other sets stay fixed while this one is updated: their light is computed once.
+        const size_t views = model.geometry().view_count();
+#pragma omp parallel
+        {
+          std::vector<float> other(n);
+#pragma omp for schedule(dynamic)
+          for (size_t view = 0; view < views; ++view) {
+            const float* lv = l.view(view);
+            float* out = chase.view(view);
+            std::copy(lv, lv + n, out);
+            for (size_t b = 0; b < branches; ++b) {
+              if (b == m) continue;
+              if (started[b]) {
+                model.SynthesizeBranchView(b, view, *t, other.data());
+                for (size_t k = 0; k < n; ++k) out[k] -= other[k];
+              } else {
+                for (size_t k = 0; k < n; ++k) out[k] -= lv[k] * model.weight(b)[k % 3] / total[k % 3];
+              }
             }
+            for (size_t k = 0; k < n; ++k) out[k] = std::max(out[k], 0.0f);
           }
-          for (size_t k = 0; k < n; ++k) out[k] = std::max(out[k], 0.0f);
-        };
+        }
+        BranchTarget target_of_set = [&](size_t view, float*) { return chase.view(view); };
         std::vector<int> order = model.branch_layers(m);
         std::sort(order.begin(), order.end());
         for (int s = 0; s < options.sub_iterations; ++s)
-          for (int layer : order) UpdateLayerMultiplicative(model, m, layer, chase, options, t);
+          for (int layer : order) UpdateLayerMultiplicative(model, m, layer, target_of_set, options, t);
         started[m] = true;
       }
     } while (loop.EndIteration());

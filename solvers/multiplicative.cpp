@@ -2,7 +2,6 @@
 // (a stack of any number of layers), each iteration updating every layer once,
 // from the farthest to the nearest.
 #include <algorithm>
-#include <cstring>
 
 #include "framework/error.h"
 #include "solvers/multiplicative_update.h"
@@ -23,8 +22,7 @@ class MultiplicativeSolver final : public Solver {
     }
     if (!loop.Start()) return loop.Finish();
     const LightField& l = loop.target();
-    const size_t n = model.geometry().pixels_per_view() * 3;
-    BranchTarget whole = [&](size_t view, float* out) { std::memcpy(out, l.view(view), n * sizeof(float)); };
+    BranchTarget whole = [&](size_t view, float*) { return l.view(view); };
     std::vector<int> order = model.branch_layers(0);
     std::sort(order.begin(), order.end());
     do {

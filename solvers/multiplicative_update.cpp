@@ -17,7 +17,7 @@ void UpdateLayerMultiplicative(const DisplayModel& model, size_t branch, int lay
 
 #pragma omp parallel
   {
-    std::vector<float> rest(n), sampled(n), target(n), scratch(n);
+    std::vector<float> rest(n), sampled(n), target_scratch(n), scratch(n);
     std::vector<double> num(m, 0.0), den(m, 0.0);
 #pragma omp for schedule(dynamic)
     for (size_t v = 0; v < g.view_count(); ++v) {
@@ -25,7 +25,7 @@ void UpdateLayerMultiplicative(const DisplayModel& model, size_t branch, int lay
       for (int other : layers)
         if (other != layer) model.projection(other).GatherMultiply(v, (*t)[other].rgb.data(), rest.data());
       P.Gather(v, (*t)[layer].rgb.data(), sampled.data());
-      branch_target(v, target.data());
+      const float* target = branch_target(v, target_scratch.data());
       for (size_t k = 0; k < n; ++k) {
         scratch[k] = target[k] * rest[k];          // r o Q
         sampled[k] = sampled[k] * rest[k] * rest[k];  // l~_b o Q

@@ -17,8 +17,9 @@
 
 namespace layerlab {
 
-// Fills `out` ([row][col][rgb] of one view) with what the branch should emit.
-using BranchTarget = std::function<void(size_t view, float* out)>;
+// What the branch should emit in one view ([row][col][rgb]): a pointer to
+// stored values, or to `scratch` after filling it.
+using BranchTarget = std::function<const float*(size_t view, float* scratch)>;
 
 void UpdateLayerMultiplicative(const DisplayModel& model, size_t branch, int layer, const BranchTarget& branch_target,
                                const SolverOptions& options, Patterns* t);
