@@ -1,0 +1,56 @@
+// The eye's view: a planar retina indexed by visual angle, each sample the
+// mean over pupil points of the radiance along the ray from the pupil point
+// through the in-focus point of that retinal direction.
+//
+// With accommodation D_a (z_a = 1/D_a) a retinal sample at angles (ax, ay)
+// has the in-focus point (z_a tan ax, z_a tan ay, z_a). The ray from pupil
+// point u through it meets depth z at tan-angle tan(a) + u (1/z - D_a): at a
+// layer of D_k diopters it reads the layer at tan(a) + u (D_k - D_a). So a
+// point at depth z blurs over pupil * |1/z - D_a| (tan units): geometric
+// optics, finite at D_a = 0 and D_k = 0.
+#pragma once
+
+#include <array>
+#include <functional>
+#include <vector>
+
+#include "framework/exr_image.h"
+#include "systems/display_model.h"
+
+namespace layerlab {
+
+struct RetinaGrid {
+  int cols = 0, rows = 0;
+  double resolution = 0;      // rad per sample, both axes
+  double center_x = 0, center_y = 0;  // rad, the grid's center direction
+  // Visual angle of sample column j (left to right) and row i (top to bottom).
+  double angle_x(int j) const { return center_x + (j + 0.5 - 0.5 * cols) * resolution; }
+  double angle_y(int i) const { return center_y + (0.5 * rows - i - 0.5) * resolution; }
+};
+
+// A grid covering `field_x` x `field_y` radians at `resolution` radians per sample.
+RetinaGrid MakeRetinaGrid(double field_x, double field_y, double resolution);
+
+struct PupilPoint {
+  double x = 0, y = 0;  // m, on the pupil plane
+};
+// The eye's pupil samples: a cell-centered grid over the pupil's square (a
+// round pupil keeps the points inside its circle), jittered within the
+// cells, or a Poisson-disk set; a zero pupil is one point at the center.
+std::vector<PupilPoint> PupilSamples(const EyeModel& eye);
+
+// Accommodation per color channel: D_a plus the eye's chromatic defocus.
+std::array<double, 3> ChannelAccommodation(const EyeModel& eye, double diopters);
+
+// The display: mean over pupil points of sum_b w_b prod_k t_k(tan(a) + u (D_k - D_a)),
+// with each layer sampled by its projection's rule. RGB, display-relative units.
+Image RetinaOfDisplay(const DisplayModel& model, const Patterns& t, const RetinaGrid& retina,
+                      const std::vector<PupilPoint>& pupil, const std::array<double, 3>& accommodation);
+
+// Natural viewing: the radiance along the ray from a pupil point with tan-direction
+// (dx, dy) (the ray passes (x + dx z, y + dy z, z) at depth z).
+using SceneRadiance = std::function<Rgb(const PupilPoint& origin, double dx, double dy)>;
+Image RetinaOfScene(const SceneRadiance& scene, const RetinaGrid& retina, const std::vector<PupilPoint>& pupil,
+                    const std::array<double, 3>& accommodation);
+
+}  // namespace layerlab

@@ -1,0 +1,187 @@
+// Retinal images against geometric optics.
+#include <cmath>
+#include <numbers>
+
+#include "systems/retina.h"
+#include "tests/test_util.h"
+
+namespace layerlab {
+namespace {
+
+using testing::Close;
+using testing::CompileJson;
+using testing::ElementNamed;
+
+constexpr double kDeg = std::numbers::pi / 180;
+
+EyeModel Eye(int samples, double pupil = 4e-3) {
+  EyeModel eye;
+  eye.pupil_diameter = pupil;
+  eye.pupil_samples_x = eye.pupil_samples_y = samples;
+  return eye;
+}
+
+TEST(Pupil, GridIsCellCenteredOverTheSquare) {
+  std::vector<PupilPoint> p = PupilSamples(Eye(9));
+  ASSERT_EQ(p.size(), 81u);
+  EXPECT_TRUE(Close(p.front().x, -2e-3 + 2e-3 / 9, 1e-12));
+  EXPECT_TRUE(Close(p.front().y, 2e-3 - 2e-3 / 9, 1e-12));
+  EXPECT_TRUE(Close(p.back().x, 2e-3 - 2e-3 / 9, 1e-12));
+}
+
+TEST(Pupil, RoundJitteredPoissonAndPinhole) {
+  EyeModel eye = Eye(9);
+  eye.pupil_shape = PupilShape::kRound;
+  std::vector<PupilPoint> round = PupilSamples(eye);
+  EXPECT_LT(round.size(), 81u);
+  EXPECT_GT(round.size(), 50u);  // about pi/4 of them
+  for (const PupilPoint& q : round) EXPECT_LE(std::hypot(q.x, q.y), 2e-3);
+  eye.pupil_sampling = PupilSampling::kJittered;
+  eye.pupil_shape = PupilShape::kSquare;
+  std::vector<PupilPoint> jittered = PupilSamples(eye);
+  ASSERT_EQ(jittered.size(), 81u);
+  for (size_t k = 0; k < 81; ++k) {  // each point stays in its cell
+    int j = int(k % 9), i = int(k / 9);
+    EXPECT_GE(jittered[k].x, -2e-3 + j * 4e-3 / 9 - 1e-15);
+    EXPECT_LE(jittered[k].x, -2e-3 + (j + 1) * 4e-3 / 9 + 1e-15);
+    EXPECT_LE(jittered[k].y, 2e-3 - i * 4e-3 / 9 + 1e-15);
+  }
+  eye.pupil_sampling = PupilSampling::kPoisson;
+  std::vector<PupilPoint> poisson = PupilSamples(eye);
+  EXPECT_GT(poisson.size(), 40u);
+  EXPECT_EQ(PupilSamples(Eye(9, 0.0)).size(), 1u);
+}
+
+// The extent of the retinal image of a bright point at depth z.
+double BlurDiameter(double z, double accommodation, const RetinaGrid& retina, int samples) {
+  // A disk a little larger than one retinal sample, so every pupil ray lights one.
+  double radius = 0.75 * retina.resolution * z;
+  SceneRadiance point = [&](const PupilPoint& u, double dx, double dy) {
+    double x = u.x + dx * z, y = u.y + dy * z;
+    return x * x + y * y <= radius * radius ? Rgb{1, 1, 1} : Rgb{0, 0, 0};
+  };
+  Image image = RetinaOfScene(point, retina, PupilSamples(Eye(samples)), {accommodation, accommodation, accommodation});
+  double lo = INFINITY, hi = -INFINITY;
+  for (int j = 0; j < retina.cols; ++j)
+    for (int i = 0; i < retina.rows; ++i)
+      if (image.at(i, j, 0) > 0) lo = std::min(lo, retina.angle_x(j)), hi = std::max(hi, retina.angle_x(j));
+  return hi - lo;
+}
+
+TEST(Retina, PointBlurMatchesGeometricOptics) {
+  // Three rows through the center: the odd pupil grid has a row at u_y = 0,
+  // so the central row shows the blur's full width.
+  RetinaGrid retina = MakeRetinaGrid(1.2 * kDeg, 0.015 * kDeg, 0.005 * kDeg);
+  const int n = 41;
+  const double pupil = 4e-3;
+  for (double z : {0.4545, 1.0, 2.5})
+    for (double accommodation : {0.0, 0.4, 1.3, 2.2}) {
+      double expected = pupil * std::abs(1 / z - accommodation);  // rad, small angles
+      double measured = BlurDiameter(z, accommodation, retina, n);
+      // Pupil samples span (n - 1)/n of the pupil; the disk adds up to 1.5 samples.
+      EXPECT_NEAR(measured, expected * (n - 1) / n, 2 * retina.resolution)
+          << "z " << z << " m, accommodation " << accommodation << " D";
+    }
+}
+
+// A one-panel display at 1 D with a checkerboard of one-pixel squares.
+struct OneLayer {
+  DisplaySystem system;
+  std::unique_ptr<DisplayModel> model;
+  Patterns t;
+};
+OneLayer OneLayerDisplay(const std::string& depth) {
+  nlohmann::json scene = testing::ShrunkExample("multiplicative_2layer.json", 64, 48, 3);
+  ElementNamed(scene, "lens")["next"] = "rear";
+  scene["elements"].erase(2);
+  ElementNamed(scene, "rear")["virtual_depth"] = depth;
+  OneLayer d;
+  d.system = CompileJson(scene);
+  d.model = std::make_unique<DisplayModel>(d.system, DisplayLightFieldGeometry(d.system, 1.0));
+  d.t = d.model->UniformPatterns(0);
+  for (int i = 0; i < 48; ++i)
+    for (int j = 0; j < 64; ++j)
+      for (int c = 0; c < 3; ++c) d.t[0].rgb[(size_t(i) * 64 + j) * 3 + c] = ((i / 2 + j / 3) % 2) ? 0.9f : 0.1f + 0.2f * c;
+  return d;
+}
+
+TEST(Retina, LayerAtTheFocusDepthIsSharp) {
+  OneLayer d = OneLayerDisplay("1.0 D");
+  const VirtualLayer& layer = d.system.layers[0];
+  RetinaGrid retina = MakeRetinaGrid(10 * kDeg, 8 * kDeg, 0.03 * kDeg);
+  Image image = RetinaOfDisplay(*d.model, d.t, retina, PupilSamples(d.system.eye), {1.0, 1.0, 1.0});
+  const double w = d.model->weight(0)[0];
+  for (int i = 0; i < retina.rows; i += 7)
+    for (int j = 0; j < retina.cols; j += 5) {
+      // With the eye focused on the layer every pupil ray reads the same pixel.
+      int col = int(std::floor(std::tan(retina.angle_x(j)) / layer.tan_pitch_x + 32));
+      int row = int(std::floor(24 - std::tan(retina.angle_y(i)) / layer.tan_pitch_y));
+      if (col < 0 || col >= 64 || row < 0 || row >= 48) continue;
+      int panel_col = layer.flip_x ? 63 - col : col;
+      for (int c = 0; c < 3; ++c)
+        ASSERT_NEAR(image.at(i, j, c), w * d.t[0].rgb[(size_t(row) * 64 + panel_col) * 3 + c], 1e-6) << i << "," << j;
+    }
+}
+
+TEST(Retina, OneLayerDisplayMatchesNaturalViewingOfThatPlane) {
+  OneLayer d = OneLayerDisplay("1.0 D");
+  const VirtualLayer& layer = d.system.layers[0];
+  const double w = d.model->weight(0)[0];
+  // Natural viewing of the same pixels painted on a plane at 1 m, traced in meters.
+  SceneRadiance plane = [&](const PupilPoint& u, double dx, double dy) {
+    double x = u.x + dx * layer.depth, y = u.y + dy * layer.depth;
+    int col = int(std::floor(x / layer.pitch_x + 32)), row = int(std::floor(24 - y / layer.pitch_y));
+    if (col < 0 || col >= 64 || row < 0 || row >= 48) return Rgb{0, 0, 0};
+    int panel_col = layer.flip_x ? 63 - col : col;
+    const float* p = &d.t[0].rgb[(size_t(row) * 64 + panel_col) * 3];
+    return Rgb{w * p[0], w * p[1], w * p[2]};
+  };
+  RetinaGrid retina = MakeRetinaGrid(6 * kDeg, 4 * kDeg, 0.05 * kDeg);
+  std::vector<PupilPoint> pupil = PupilSamples(d.system.eye);
+  for (double accommodation : {0.0, 0.6, 1.0, 1.9}) {
+    std::array<double, 3> focus{accommodation, accommodation, accommodation};
+    Image display = RetinaOfDisplay(*d.model, d.t, retina, pupil, focus);
+    Image natural = RetinaOfScene(plane, retina, pupil, focus);
+    for (size_t k = 0; k < display.pixels.size(); ++k)
+      ASSERT_NEAR(display.pixels[k], natural.pixels[k], 1e-5) << "accommodation " << accommodation << ", sample " << k;
+  }
+}
+
+TEST(Retina, MeanLuminanceDoesNotChangeWithAccommodation) {
+  nlohmann::json scene = testing::ShrunkExample("paper_prototype.json", 120, 60, 3);
+  DisplaySystem system = CompileJson(scene);
+  DisplayModel model(system, DisplayLightFieldGeometry(system));
+  Patterns t = model.UniformPatterns(0);
+  for (size_t k = 0; k < t.size(); ++k)
+    for (size_t p = 0; p < t[k].rgb.size(); ++p) t[k].rgb[p] = 0.3f + 0.6f * float(((p / 3) * (k + 3) * 2654435761u) % 1000) / 1000;
+  // The central 8 x 4 degrees, well inside every layer's field at every focus.
+  RetinaGrid retina = MakeRetinaGrid(8 * kDeg, 4 * kDeg, 0.05 * kDeg);
+  std::vector<PupilPoint> pupil = PupilSamples(system.eye);
+  auto mean = [&](double accommodation) {
+    Image image = RetinaOfDisplay(model, t, retina, pupil, {accommodation, accommodation, accommodation});
+    double s = 0;
+    for (float v : image.pixels) s += v;
+    return s / image.pixels.size();
+  };
+  double reference = mean(1.3);
+  for (double accommodation : {0.0, 0.4, 1.0, 2.2, 2.6}) EXPECT_TRUE(Close(mean(accommodation), reference, 0.01));
+}
+
+TEST(Retina, ChromaticDefocusShiftsEachChannelsFocus) {
+  OneLayer d = OneLayerDisplay("1.0 D");
+  d.system.eye.chromatic_defocus = {0.5, 0.0, -0.5};
+  RetinaGrid retina = MakeRetinaGrid(6 * kDeg, 4 * kDeg, 0.05 * kDeg);
+  std::vector<PupilPoint> pupil = PupilSamples(d.system.eye);
+  std::array<double, 3> focus = ChannelAccommodation(d.system.eye, 1.0);
+  Image mixed = RetinaOfDisplay(*d.model, d.t, retina, pupil, focus);
+  // Channel R focused at 1.5 D equals an image focused there for all channels.
+  Image red = RetinaOfDisplay(*d.model, d.t, retina, pupil, {1.5, 1.5, 1.5});
+  Image green = RetinaOfDisplay(*d.model, d.t, retina, pupil, {1.0, 1.0, 1.0});
+  for (size_t p = 0; p < mixed.pixels.size() / 3; ++p) {
+    ASSERT_FLOAT_EQ(mixed.pixels[p * 3], red.pixels[p * 3]);
+    ASSERT_FLOAT_EQ(mixed.pixels[p * 3 + 1], green.pixels[p * 3 + 1]);
+  }
+}
+
+}  // namespace
+}  // namespace layerlab
