@@ -7,6 +7,8 @@
 namespace layerlab::app {
 
 void AddInfoCommand(CLI::App& app);
+void AddSolveCommand(CLI::App& app);
+void AddContrastCommand(CLI::App& app);
 #if LAYERLAB_WITH_EMBREE
 void AddRenderTargetCommand(CLI::App& app);  // render-target TARGET.json OUT_DIR
 #endif

@@ -10,7 +10,8 @@ namespace layerlab {
 DisplayModel::DisplayModel(const DisplaySystem& system, const LightFieldGeometry& lf, Sampling sampling)
     : system_(system), lf_(lf) {
   for (const VirtualLayer& layer : system.layers) projections_.emplace_back(layer, lf, sampling);
-  white_luminance_ = *std::max_element(system.peak_luminance.begin(), system.peak_luminance.end());
+  for (const Branch& b : system.branches)
+    for (int c = 0; c < 3; ++c) white_luminance_ = std::max(white_luminance_, b.backlight_luminance * b.efficiency[c]);
   for (const Branch& b : system.branches) {
     std::array<float, 3> w{};
     for (int c = 0; c < 3; ++c) w[c] = static_cast<float>(b.backlight_luminance * b.efficiency[c] / white_luminance_);

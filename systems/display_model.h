@@ -4,10 +4,12 @@
 // covers additive (one layer per branch), multiplicative (one branch) and
 // hybrid displays with any number of branches and layers.
 //
-// Units: light-field values are display-relative. A value of 1 is the
-// luminance of the display's brightest channel at full white on every panel
-// (white_luminance(), cd/m^2); w_b[c] is branch b's share of it in channel c,
-// so sum_b w_b[c] <= 1, with 1 reached by the brightest channel.
+// Units: light-field values are display-relative, as in the paper's Eq. 6
+// (where every branch adds with weight 1). A value of 1 is the luminance of
+// the brightest branch at full white in its brightest channel
+// (white_luminance(), cd/m^2); w_b[c] is branch b's full white in channel c
+// relative to it. A half-mirror hybrid thus has w = 1 for both branches and
+// can show up to 2; a PBS/HWP hybrid has per-channel weights a little below 1.
 #pragma once
 
 #include <array>

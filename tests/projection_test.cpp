@@ -218,11 +218,12 @@ TEST(Synthesis, SumOfProductsMatchesExplicitMatrices) {
   system.branches[0].efficiency = {0.045, 0.04, 0.03};
   system.branches[1].efficiency = {0.02, 0.045, 0.045};
   for (Branch& b : system.branches) b.backlight_luminance = 100;
-  system.peak_luminance = {6.5, 8.5, 7.5};
   LightFieldGeometry g = SmallGeometry();
   DisplayModel model(system, g, Sampling::kNearest);
-  EXPECT_FLOAT_EQ(model.weight(0)[0], 4.5f / 8.5f);
-  EXPECT_FLOAT_EQ(model.weight(1)[2], 4.5f / 8.5f);
+  // The brightest branch and channel (4.5 cd/m2) is 1; the rest relative to it.
+  EXPECT_FLOAT_EQ(model.weight(0)[0], 1.0f);
+  EXPECT_FLOAT_EQ(model.weight(0)[2], 3.0f / 4.5f);
+  EXPECT_FLOAT_EQ(model.weight(1)[0], 2.0f / 4.5f);
 
   Patterns t = model.UniformPatterns(0);
   for (size_t k = 0; k < t.size(); ++k) t[k].rgb = RandomValues(t[k].rgb.size(), 10 + unsigned(k));
@@ -239,7 +240,7 @@ TEST(Synthesis, SumOfProductsMatchesExplicitMatrices) {
         for (size_t p = 0; p < t[k].pixel_count(); ++p) tk[p] = t[k].rgb[p * 3 + c];
         product = product.cwiseProduct(M[k] * tk);
       }
-      total += system.branches[b].backlight_luminance * system.branches[b].efficiency[c] / 8.5 * product;
+      total += system.branches[b].backlight_luminance * system.branches[b].efficiency[c] / 4.5 * product;
     }
     for (size_t r = 0; r < g.ray_count(); ++r) ASSERT_NEAR(synthesized.rgb[r * 3 + c], total[r], 1e-6) << r;
   }

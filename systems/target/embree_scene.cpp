@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <mutex>
+#include <sstream>
 #include <vector>
 
 #include <embree3/rtcore.h>
@@ -33,8 +34,14 @@ const char* ErrorCodeName(RTCError code) {
   }
 }
 
+std::string Number(double x) {
+  std::ostringstream out;
+  out << x;
+  return out.str();
+}
+
 std::string Triple(double x, double y, double z) {
-  return "(" + std::to_string(x) + ", " + std::to_string(y) + ", " + std::to_string(z) + ")";
+  return "(" + Number(x) + ", " + Number(y) + ", " + Number(z) + ")";
 }
 
 }  // namespace
@@ -134,7 +141,7 @@ RayHit EmbreeScene::Intersect(const std::array<float, 3>& origin, const std::arr
   if (!finite || !nonzero || !(t_near >= 0) || !(t_far >= t_near))
     throw Error("Embree: internal error: refusing to trace the ray from " + Triple(origin[0], origin[1], origin[2]) +
                 " along " + Triple(direction[0], direction[1], direction[2]) + " for t in [" +
-                std::to_string(t_near) + ", " + std::to_string(t_far) + "]");
+                Number(t_near) + ", " + Number(t_far) + "]");
 
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);

@@ -124,14 +124,14 @@ class ObjParser {
   }
 
   // A 1-based or negative (relative) index into a list of `count` entries.
-  uint32_t Resolve(std::string_view token, size_t count, const char* what) const {
+  uint32_t Resolve(std::string_view token, size_t count, const char* what, const char* plural) const {
     std::optional<long long> index = ParseInteger(token);
     if (!index) Fail(std::string(what) + " index \"" + std::string(token) + "\" is not an integer");
     if (*index == 0) Fail(std::string(what) + " index 0 is invalid; OBJ indices start at 1");
     long long resolved = *index > 0 ? *index - 1 : static_cast<long long>(count) + *index;
     if (resolved < 0 || resolved >= static_cast<long long>(count))
       Fail(std::string(what) + " index " + std::string(token) + " is out of range (" + std::to_string(count) + " " +
-           what + (count == 1 ? "" : "s") + " defined so far)");
+           (count == 1 ? what : plural) + " defined so far)");
     return static_cast<uint32_t>(resolved);
   }
 
@@ -155,9 +155,9 @@ class ObjParser {
                        normal.find('/') != std::string_view::npos;
       if (malformed)
         Fail("\"" + std::string(corner) + "\" is not a face vertex (expected i, i/t, i/t/n or i//n)");
-      positions.push_back(Resolve(vertex, mesh_.positions.size(), "vertex"));
-      if (!uv.empty()) uvs.push_back(Resolve(uv, mesh_.uvs.size(), "texture coordinate"));
-      if (!normal.empty()) Resolve(normal, normals_, "normal");
+      positions.push_back(Resolve(vertex, mesh_.positions.size(), "vertex", "vertices"));
+      if (!uv.empty()) uvs.push_back(Resolve(uv, mesh_.uvs.size(), "texture coordinate", "texture coordinates"));
+      if (!normal.empty()) Resolve(normal, normals_, "normal", "normals");
     }
     if (!uvs.empty() && uvs.size() != positions.size())
       Fail("the face mixes vertices with and without texture coordinates");

@@ -1,8 +1,9 @@
 // Where a pixel's samples land on the origin plane. One sample is the pixel
 // center; n samples are stratified over the pixel footprint (an nx x ny grid
 // of cells, nx * ny = n, as square as n allows) and jittered inside their
-// cells by a hash of (seed, view, row, col), so any thread order gives the
-// same image.
+// cells by a hash of (seed, row, col), so any thread order gives the same
+// image. Every view uses the same jitter: the origin plane is where all views
+// share their samples, so a point there has exactly zero disparity.
 #pragma once
 
 #include <array>
@@ -25,10 +26,10 @@ class PixelSampler {
 
   int samples() const { return n_; }
 
-  // Origin-plane position (x, y) of sample k of pixel (row i, col j) in view v.
-  std::array<double, 2> Sample(size_t view, int i, int j, int k) const {
+  // Origin-plane position (x, y) of sample k of pixel (row i, col j), in every view.
+  std::array<double, 2> Sample(int i, int j, int k) const {
     if (n_ == 1) return {g_.pixel_x(j), g_.pixel_y(i)};
-    uint64_t key = (static_cast<uint64_t>(view) * g_.rows + i) * g_.cols + j;
+    uint64_t key = static_cast<uint64_t>(i) * g_.cols + j;
     SplitMix64 random(MixSeed(seed_, key * 4096 + k));
     double cell_x = (k % nx_ + random.uniform()) / nx_;  // in [0, 1) across the pixel, left to right
     double cell_y = (k / nx_ + random.uniform()) / ny_;  // top to bottom

@@ -21,7 +21,7 @@ LightField RenderPlaneLightField(const LightFieldGeometry& g, double z, const Te
       for (int j = 0; j < g.cols; ++j) {
         double sum[3] = {0, 0, 0};
         for (int k = 0; k < sampler.samples(); ++k) {
-          auto [x, y] = sampler.Sample(view, i, j, k);
+          auto [x, y] = sampler.Sample(i, j, k);
           Rgb c = texture.Evaluate(vx + (x - vx) * s - center[0], vy + (y - vy) * s - center[1]);
           for (int ch = 0; ch < 3; ++ch) sum[ch] += c[ch];
         }

@@ -1,5 +1,7 @@
 #include "systems/target/png_image.h"
 
+#include <array>
+#include <cmath>
 #include <cstring>
 #include <vector>
 
@@ -8,6 +10,10 @@
 #include "framework/error.h"
 
 namespace layerlab {
+
+double SrgbToLinear(double encoded) {
+  return encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4);
+}
 
 Image ReadPngLinear(const std::string& path, long long max_pixels) {
   png_image png;
@@ -20,19 +26,22 @@ Image ReadPngLinear(const std::string& path, long long max_pixels) {
     png_image_free(&png);
     throw Error(path + ": is " + size + " pixels; the limit is " + std::to_string(max_pixels));
   }
-  png.format = PNG_FORMAT_LINEAR_RGB;  // 16-bit linear, alpha composited over black
-  std::vector<png_uint_16> buffer(PNG_IMAGE_SIZE(png) / sizeof(png_uint_16));
-  if (!png_image_finish_read(&png, nullptr, buffer.data(), 0, nullptr)) {
+  png.format = PNG_FORMAT_RGB;
+  std::vector<png_byte> buffer(PNG_IMAGE_SIZE(png));
+  png_color black = {0, 0, 0};
+  if (!png_image_finish_read(&png, &black, buffer.data(), 0, nullptr)) {
     std::string message = png.message;
     png_image_free(&png);
     throw Error(path + ": cannot decode PNG: " + message);
   }
+  std::array<float, 256> linear;
+  for (int i = 0; i < 256; ++i) linear[i] = static_cast<float>(SrgbToLinear(i / 255.0));
   Image image;
   image.width = static_cast<int>(png.width);
   image.height = static_cast<int>(png.height);
   image.channels = {"R", "G", "B"};
   image.pixels.resize(buffer.size());
-  for (size_t i = 0; i < buffer.size(); ++i) image.pixels[i] = buffer[i] / 65535.0f;
+  for (size_t i = 0; i < buffer.size(); ++i) image.pixels[i] = linear[buffer[i]];
   return image;
 }
 

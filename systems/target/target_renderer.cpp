@@ -128,7 +128,7 @@ LightField RenderTarget(const TargetScene& target, RenderStats* stats, const Ren
       for (int j = 0; j < g.cols; ++j) {
         double sum[3] = {0, 0, 0};
         for (int k = 0; k < n; ++k) {
-          auto [x, y] = sampler.Sample(view, i, j, k);
+          auto [x, y] = sampler.Sample(i, j, k);
           Sample s = tracer.Trace(vx, vy, x, y);
           for (int ch = 0; ch < 3; ++ch) sum[ch] += s.color[ch];
           if (n == 1 && std::isfinite(s.z)) depth[static_cast<size_t>(i) * g.cols + j] = static_cast<float>(s.z);

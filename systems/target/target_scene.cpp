@@ -184,13 +184,14 @@ TargetMesh ParseMesh(Params& o, const std::string& base_dir, std::string& descri
   for (size_t i = 0; i < target.mesh.positions.size(); ++i) {
     Vec3& p = target.mesh.positions[i];
     Vec3 q{p[0] * scale, p[1] * scale, p[2] * scale};
+    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], q[k]), hi[k] = std::max(hi[k], q[k]);
     for (int row = 0; row < 3; ++row)
       p[row] = position[row] + r[row][0] * q[0] + r[row][1] * q[1] + r[row][2] * q[2];
     if (!(p[2] > 0))
       o.fail("position", path + ": vertex " + std::to_string(i) + " lands at z = " + FormatFixed(p[2], 4) +
                              " m, not in front of the pupil plane (z > 0)");
-    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
   }
+  // The mesh's own size (before rotation), so turning a mesh keeps its texture.
   double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
   target.uv_size = o.quantity("uv_size", Dimension::kLength, extent > 0 ? extent : 1.0);
   o.require_range("uv_size", target.uv_size, 0.0, 1e3, true, false);

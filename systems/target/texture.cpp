@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "framework/error.h"
+#include "systems/target/fast_cos.h"
 #include "systems/target/length_or_angle.h"
 #include "systems/target/png_image.h"
 #include "systems/target/random.h"
@@ -76,26 +77,28 @@ class NoiseTexture final : public Texture {
       double f = f_min + (f_max - f_min) * random.uniform();
       double orientation = std::numbers::pi * random.uniform();
       double phase = kTwoPi * random.uniform();
-      waves_.push_back({kTwoPi * f * std::cos(orientation), kTwoPi * f * std::sin(orientation), phase});
+      kx_.push_back(kTwoPi * f * std::cos(orientation));
+      ky_.push_back(kTwoPi * f * std::sin(orientation));
+      phase_.push_back(phase);
     }
   }
   Rgb Evaluate(double s, double t) const override {
     double sum = 0;
-    for (const Wave& w : waves_) sum += std::cos(w.kx * s + w.ky * t + w.phase);
+    const double *kx = kx_.data(), *ky = ky_.data(), *phase = phase_.data();
+    const size_t n = kx_.size();
+#pragma omp simd reduction(+ : sum)
+    for (size_t k = 0; k < n; ++k) sum += FastCos(kx[k] * s + ky[k] * t + phase[k]);
     double value = std::max(0.0, mean_ * (1.0 + contrast_ * amplitude_ * sum));
     return {value, value, value};
   }
   std::string Describe() const override {
-    return "noise " + std::to_string(waves_.size()) + " components, " + Number(f_min_) + " to " + Number(f_max_) +
+    return "noise " + std::to_string(kx_.size()) + " components, " + Number(f_min_) + " to " + Number(f_max_) +
            " cycles/m";
   }
 
  private:
-  struct Wave {
-    double kx, ky, phase;
-  };
   double f_min_, f_max_, contrast_, mean_, amplitude_;
-  std::vector<Wave> waves_;
+  std::vector<double> kx_, ky_, phase_;  // rad per meter, rad
 };
 
 class ImageTexture final : public Texture {

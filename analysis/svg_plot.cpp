@@ -1,0 +1,115 @@
+#include "analysis/svg_plot.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace layerlab {
+namespace {
+
+std::string Escape(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '<') out += "&lt;";
+    else if (c == '>') out += "&gt;";
+    else if (c == '&') out += "&amp;";
+    else if (c == '"') out += "&quot;";
+    else out += c;
+  }
+  return out;
+}
+
+std::string Num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2f", v);
+  return buf;
+}
+
+std::string TickLabel(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", std::abs(v) < 1e-12 ? 0.0 : v);
+  return buf;
+}
+
+}  // namespace
+
+std::vector<double> NiceTicks(double lo, double hi, int target_count) {
+  double span = hi - lo;
+  if (!(span > 0)) return {lo};
+  double raw = span / std::max(1, target_count);
+  double magnitude = std::pow(10.0, std::floor(std::log10(raw)));
+  double step = magnitude;
+  for (double m : {1.0, 2.0, 2.5, 5.0, 10.0})
+    if (m * magnitude >= raw) {
+      step = m * magnitude;
+      break;
+    }
+  std::vector<double> ticks;
+  for (double t = std::ceil(lo / step - 1e-9) * step; t <= hi + 1e-9 * step; t += step) ticks.push_back(t);
+  return ticks;
+}
+
+std::string RenderSvg(const std::vector<PlotPanel>& panels, int columns, const std::string& title) {
+  const double w = 360, h = 260, left = 58, right = 12, top = 30, bottom = 44, legend_height = 24;
+  int rows = static_cast<int>((panels.size() + columns - 1) / columns);
+  double page_w = w * columns, page_h = 36 + h * rows + legend_height;
+  std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + Num(page_w) + "\" height=\"" + Num(page_h) +
+                    "\" viewBox=\"0 0 " + Num(page_w) + " " + Num(page_h) +
+                    "\" font-family=\"Helvetica, Arial, sans-serif\" font-size=\"11\">\n";
+  svg += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  svg += "<text x=\"" + Num(page_w / 2) + "\" y=\"20\" text-anchor=\"middle\" font-size=\"14\">" + Escape(title) + "</text>\n";
+  for (size_t p = 0; p < panels.size(); ++p) {
+    const PlotPanel& panel = panels[p];
+    double ox = w * (p % columns), oy = 36 + h * (p / columns);
+    double x0 = ox + left, x1 = ox + w - right, y0 = oy + h - bottom, y1 = oy + top;
+    auto X = [&](double x) { return x0 + (x - panel.x_min) / (panel.x_max - panel.x_min) * (x1 - x0); };
+    auto Y = [&](double y) { return y0 - (y - panel.y_min) / (panel.y_max - panel.y_min) * (y0 - y1); };
+    svg += "<g>\n<text x=\"" + Num((x0 + x1) / 2) + "\" y=\"" + Num(oy + 18) + "\" text-anchor=\"middle\" font-size=\"12\">" +
+           Escape(panel.title) + "</text>\n";
+    for (double t : NiceTicks(panel.x_min, panel.x_max, 6)) {
+      svg += "<line x1=\"" + Num(X(t)) + "\" y1=\"" + Num(y0) + "\" x2=\"" + Num(X(t)) + "\" y2=\"" + Num(y1) +
+             "\" stroke=\"#eee\"/>\n";
+      svg += "<text x=\"" + Num(X(t)) + "\" y=\"" + Num(y0 + 14) + "\" text-anchor=\"middle\">" + TickLabel(t) + "</text>\n";
+    }
+    for (double t : NiceTicks(panel.y_min, panel.y_max, 5)) {
+      svg += "<line x1=\"" + Num(x0) + "\" y1=\"" + Num(Y(t)) + "\" x2=\"" + Num(x1) + "\" y2=\"" + Num(Y(t)) +
+             "\" stroke=\"#eee\"/>\n";
+      svg += "<text x=\"" + Num(x0 - 5) + "\" y=\"" + Num(Y(t) + 4) + "\" text-anchor=\"end\">" + TickLabel(t) + "</text>\n";
+    }
+    svg += "<rect x=\"" + Num(x0) + "\" y=\"" + Num(y1) + "\" width=\"" + Num(x1 - x0) + "\" height=\"" + Num(y0 - y1) +
+           "\" fill=\"none\" stroke=\"#333\"/>\n";
+    svg += "<text x=\"" + Num((x0 + x1) / 2) + "\" y=\"" + Num(y0 + 32) + "\" text-anchor=\"middle\">" +
+           Escape(panel.x_label) + "</text>\n";
+    svg += "<text transform=\"translate(" + Num(ox + 16) + "," + Num((y0 + y1) / 2) +
+           ") rotate(-90)\" text-anchor=\"middle\">" + Escape(panel.y_label) + "</text>\n";
+    for (const PlotMarker& m : panel.markers)
+      svg += "<line x1=\"" + Num(X(m.x)) + "\" y1=\"" + Num(y0) + "\" x2=\"" + Num(X(m.x)) + "\" y2=\"" + Num(y1) +
+             "\" stroke=\"" + m.color + "\"" + (m.dashed ? " stroke-dasharray=\"5,4\"" : "") + "/>\n";
+    for (const PlotLine& line : panel.lines) {
+      std::string points;
+      for (size_t k = 0; k < line.x.size(); ++k) {
+        if (!std::isfinite(line.y[k])) continue;
+        double y = std::clamp(line.y[k], panel.y_min, panel.y_max);
+        points += Num(X(line.x[k])) + "," + Num(Y(y)) + " ";
+      }
+      svg += "<polyline fill=\"none\" stroke=\"" + line.color + "\" stroke-width=\"1.6\"" +
+             (line.dashed ? " stroke-dasharray=\"6,3\"" : "") + " points=\"" + points + "\"><title>" +
+             Escape(line.label) + "</title></polyline>\n";
+    }
+    svg += "</g>\n";
+  }
+  // One legend for all panels, from the first panel's lines.
+  if (!panels.empty()) {
+    double x = 20, y = page_h - 8;
+    for (const PlotLine& line : panels.front().lines) {
+      svg += "<line x1=\"" + Num(x) + "\" y1=\"" + Num(y - 4) + "\" x2=\"" + Num(x + 24) + "\" y2=\"" + Num(y - 4) +
+             "\" stroke=\"" + line.color + "\" stroke-width=\"2\"" + (line.dashed ? " stroke-dasharray=\"6,3\"" : "") + "/>\n";
+      svg += "<text x=\"" + Num(x + 30) + "\" y=\"" + Num(y) + "\">" + Escape(line.label) + "</text>\n";
+      x += 40 + 7 * line.label.size();
+    }
+  }
+  svg += "</svg>\n";
+  return svg;
+}
+
+}  // namespace layerlab

@@ -1,0 +1,360 @@
+// The target renderer against geometry worked out here from the ray equation
+// of docs/lightfield-format.md, p(z) = v + (x - v) z / z_lf, with view and
+// pixel positions written out from that document (not taken from the code):
+//   v_x = -W_e/2 + (c + 0.5) W_e / N_c,  v_y = H_e/2 - (r + 0.5) H_e / N_r,
+//   x = x0 + (j + 0.5) W / cols,         y = y0 - (i + 0.5) H / rows.
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "framework/json_file.h"
+#include "systems/target/plane_lightfield.h"
+#include "systems/target/target_renderer.h"
+#include "systems/target/target_scene.h"
+#include "tests/render_test_util.h"
+#include "tests/test_util.h"
+
+namespace layerlab {
+namespace {
+
+using nlohmann::json;
+using testing::Close;
+
+constexpr double kPi = std::numbers::pi;
+
+double ViewX(const LightFieldGeometry& g, int c) { return -g.eyebox_width / 2 + (c + 0.5) * g.eyebox_width / g.views_x; }
+double ViewY(const LightFieldGeometry& g, int r) { return g.eyebox_height / 2 - (r + 0.5) * g.eyebox_height / g.views_y; }
+double PixelX(const LightFieldGeometry& g, int j) { return g.window_left + (j + 0.5) * g.window_width / g.cols; }
+double PixelY(const LightFieldGeometry& g, int i) { return g.window_top - (i + 0.5) * g.window_height / g.rows; }
+
+float Red(const LightField& lf, int view_row, int view_col, int i, int j) {
+  const LightFieldGeometry& g = lf.geometry;
+  return lf.view(static_cast<size_t>(view_row) * g.views_x + view_col)[(static_cast<size_t>(i) * g.cols + j) * 3];
+}
+float DepthAt(const LightField& lf, int view_row, int view_col, int i, int j) {
+  const LightFieldGeometry& g = lf.geometry;
+  return lf.depth[(static_cast<size_t>(view_row) * g.views_x + view_col) * g.pixels_per_view() +
+                  static_cast<size_t>(i) * g.cols + j];
+}
+
+json LightFieldJson(const std::string& origin, json fov, json resolution, json views) {
+  return {{"origin_plane", origin}, {"field_of_view", fov}, {"resolution", resolution}, {"views", views},
+          {"eyebox", {"6 mm", "6 mm"}}};
+}
+
+json Target(json light_field, json objects, int spp = 1) {
+  return {{"format", "layerlab-target/1"}, {"light_field", light_field}, {"samples_per_pixel", spp},
+          {"objects", objects}};
+}
+
+json GratingPlane(const std::string& depth, const std::string& orientation, const std::string& frequency = "2 cpd") {
+  return {{"type", "plane"},
+          {"depth", depth},
+          {"texture", {{"type", "grating"}, {"frequency", frequency}, {"orientation", orientation}, {"phase", "30 deg"}}}};
+}
+
+// Least squares a cos(w u) + b sin(w u) + c; returns (phase, amplitude) of cos(w u + phase).
+std::array<double, 2> FitSinusoid(const std::vector<double>& u, const std::vector<double>& value, double w) {
+  double m[3][4] = {};
+  for (size_t k = 0; k < u.size(); ++k) {
+    double basis[3] = {std::cos(w * u[k]), std::sin(w * u[k]), 1.0};
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) m[r][c] += basis[r] * basis[c];
+      m[r][3] += basis[r] * value[k];
+    }
+  }
+  for (int p = 0; p < 3; ++p)  // Gauss-Jordan; the system is well conditioned over many periods
+    for (int r = 0; r < 3; ++r) {
+      if (r == p) continue;
+      double f = m[r][p] / m[p][p];
+      for (int c = 0; c < 4; ++c) m[r][c] -= f * m[p][c];
+    }
+  double a = m[0][3] / m[0][0], b = m[1][3] / m[1][1];
+  return {std::atan2(-b, a), std::hypot(a, b)};
+}
+
+double Wrap(double angle) { return std::remainder(angle, 2 * kPi); }
+
+struct ParallaxCase {
+  std::string name;
+  bool vertical;
+  std::string plane_depth;
+};
+
+void PrintTo(const ParallaxCase& c, std::ostream* os) { *os << c.name; }
+
+class ParallaxTest : public ::testing::TestWithParam<ParallaxCase> {};
+
+// A grating at depth z seen from view v: the pixel at x reads the plane at
+// v + (x - v) s, s = z / z_lf, so the pattern on the origin plane is
+// cos(w x + phase_v) with w = 2 pi f s and phase_v = 2 pi f v (1 - s) + phase_0:
+// a feature moves by dv (1 - z_lf / z) between views.
+TEST_P(ParallaxTest, GratingMovesAsTheRayEquationPredicts) {
+  const ParallaxCase& c = GetParam();
+  json lf = c.vertical ? LightFieldJson("1.3 D", {"0.5 deg", "4 deg"}, {2, 240}, {1, 5})
+                       : LightFieldJson("1.3 D", {"4 deg", "0.5 deg"}, {240, 2}, {5, 1});
+  TargetScene target =
+      ParseTarget(Target(lf, {GratingPlane(c.plane_depth, c.vertical ? "90 deg" : "0 deg")}), "target.json");
+  LightField rendered = RenderTarget(target);
+  const LightFieldGeometry& g = target.geometry;
+  const double z = target.planes[0].depth, s = z / g.origin_z;
+  const double f = 2 / (z * kPi / 180);  // cycles per meter on the plane
+  const double w = 2 * kPi * f * s;      // radians per meter on the origin plane
+  const int n = c.vertical ? g.rows : g.cols;
+  const double pixel = c.vertical ? g.window_height / g.rows : g.window_width / g.cols;
+
+  std::vector<double> u(n);
+  for (int k = 0; k < n; ++k) u[k] = c.vertical ? PixelY(g, k) : PixelX(g, k);
+  std::vector<double> phases;
+  for (int view = 0; view < 5; ++view) {
+    std::vector<double> values(n);
+    for (int k = 0; k < n; ++k)
+      values[k] = c.vertical ? Red(rendered, view, 0, k, 0) : Red(rendered, 0, view, 0, k);
+    auto [phase, amplitude] = FitSinusoid(u, values, w);
+    EXPECT_TRUE(Close(amplitude, 0.5, 1e-5)) << "view " << view;
+    phases.push_back(phase);
+  }
+  for (int view = 1; view < 5; ++view) {
+    double dv = c.vertical ? ViewY(g, view) - ViewY(g, 0) : ViewX(g, view) - ViewX(g, 0);
+    double expected_shift = dv * (1 - g.origin_z / z);  // m on the origin plane
+    double measured_shift = expected_shift - Wrap(phases[view] - phases[0] + w * expected_shift) / w;
+    EXPECT_NEAR(measured_shift / pixel, expected_shift / pixel, 1e-3)
+        << "view " << view << ": shift in pixels (" << pixel * 1e6 << " um each)";
+  }
+  // The phase of view 0 itself: 2 pi f v (1 - s) + 30 deg.
+  double v0 = c.vertical ? ViewY(g, 0) : ViewX(g, 0);
+  EXPECT_NEAR(Wrap(phases[0] - (2 * kPi * f * v0 * (1 - s) + kPi / 6)), 0, 1e-4);
+}
+
+INSTANTIATE_TEST_SUITE_P(Planes, ParallaxTest,
+                         ::testing::Values(ParallaxCase{"BehindOriginHorizontal", false, "0.7 D"},
+                                           ParallaxCase{"InFrontOfOriginHorizontal", false, "2 D"},
+                                           ParallaxCase{"BehindOriginVertical", true, "0.7 D"},
+                                           ParallaxCase{"InFrontOfOriginVertical", true, "2 D"}),
+                         [](const auto& test) { return test.param.name; });
+
+TEST(TargetRendererTest, PlaneOnTheOriginPlaneHasNoParallax) {
+  json noise = {{"type", "plane"},
+                {"depth", "1.3 D"},
+                {"texture", {{"type", "noise"}, {"band", {"1 cpd", "6 cpd"}}, {"seed", 3}}}};
+  json lf = LightFieldJson("1.3 D", {"6 deg", "3 deg"}, {48, 24}, {3, 3});
+  for (int spp : {1, 4}) {
+    TargetScene target = ParseTarget(Target(lf, {noise}, spp), "target.json");
+    LightField rendered = RenderTarget(target);
+    const LightFieldGeometry& g = target.geometry;
+    double worst = 0;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c)
+        for (int i = 0; i < g.rows; ++i)
+          for (int j = 0; j < g.cols; ++j) {
+            worst = std::max(worst, std::abs(double(Red(rendered, r, c, i, j)) - Red(rendered, 1, 1, i, j)));
+            if (spp == 1) {
+              EXPECT_NEAR(Red(rendered, r, c, i, j), target.planes[0].texture->Evaluate(PixelX(g, j), PixelY(g, i))[0],
+                          1e-6);
+            }
+          }
+    EXPECT_LT(worst, 1e-6) << spp << " samples per pixel";
+    EXPECT_GT(rendered.rgb[0], 0.0f);
+  }
+}
+
+// Zero crossings of the grating along the central row of the central view,
+// against the visual angle atan(x / z_lf) seen from the pupil center.
+double MeasuredCyclesPerDegree(const LightField& lf, double mean) {
+  const LightFieldGeometry& g = lf.geometry;
+  std::vector<double> crossings;
+  int i = g.rows / 2;
+  for (int j = 0; j + 1 < g.cols; ++j) {
+    double a = Red(lf, 0, 0, i, j) - mean, b = Red(lf, 0, 0, i, j + 1) - mean;
+    double ta = std::atan(PixelX(g, j) / g.origin_z) * 180 / kPi, tb = std::atan(PixelX(g, j + 1) / g.origin_z) * 180 / kPi;
+    if (std::abs(ta) > 3 || std::abs(tb) > 3 || (a > 0) == (b > 0)) continue;
+    crossings.push_back(ta + (tb - ta) * a / (a - b));
+  }
+  if (crossings.size() < 4) return 0;
+  return (crossings.size() - 1) / 2.0 / (crossings.back() - crossings.front());
+}
+
+TEST(TargetRendererTest, GratingHasTheRequestedCyclesPerDegreeAtTheViewCenter) {
+  json example = ReadJsonFile(testing::ExamplePath("targets/grating_1.3D.json"));
+  for (const char* depth : {"1.3 D", "0.5 D", "2.5 D"}) {
+    for (const char* frequency : {"2 cpd", "4 cpd"}) {
+      json target = example;
+      target["objects"][0]["depth"] = depth;
+      target["objects"][0]["texture"]["frequency"] = frequency;
+      TargetScene scene = ParseTarget(target, testing::ExamplePath("targets/grating_1.3D.json"));
+      scene.geometry.views_x = scene.geometry.views_y = 1;  // the pupil center, v = 0
+      double measured = MeasuredCyclesPerDegree(RenderTarget(scene), 0.5);
+      // Over +-3 deg a grating linear on the plane reads at most 0.3% above its on-axis frequency.
+      EXPECT_TRUE(Close(measured, std::atof(frequency), 3e-3)) << depth << ", " << frequency;
+    }
+  }
+}
+
+TEST(TargetRendererTest, PixelSamplesCoverThePixelFootprint) {
+  // Four pixels per period: averaging over the footprint attenuates the
+  // grating by sinc(1/4) = sin(pi/4) / (pi/4) = 0.9003; center sampling keeps 1.
+  json lf = LightFieldJson("1 D", {"16 deg", "1 deg"}, {256, 2}, {1, 1});
+  for (auto [spp, attenuation] : {std::pair{1, 1.0}, std::pair{64, std::sin(kPi / 4) / (kPi / 4)}}) {
+    TargetScene target = ParseTarget(Target(lf, {GratingPlane("1 D", "0 deg", "1 cpd")}, spp), "target.json");
+    const LightFieldGeometry& g = target.geometry;
+    double pixel = g.window_width / g.cols;
+    // Set the frequency so that one period is exactly four pixels on the origin plane.
+    GratingSpec spec;
+    spec.cycles_per_meter = 1 / (4 * pixel);
+    spec.phase = 0.3;
+    target.planes[0].texture = MakeGratingTexture(spec);
+    LightField rendered = RenderTarget(target);
+    std::vector<double> u, values;
+    for (int j = 0; j < g.cols; ++j) u.push_back(PixelX(g, j)), values.push_back(Red(rendered, 0, 0, 0, j));
+    auto [phase, amplitude] = FitSinusoid(u, values, 2 * kPi * spec.cycles_per_meter);
+    EXPECT_TRUE(Close(amplitude, 0.5 * attenuation, 5e-3)) << spp << " samples per pixel";
+    EXPECT_NEAR(Wrap(phase - 0.3), 0, 5e-3);
+  }
+}
+
+// A quad tilted about y: z = 1 m + 0.3 x. The ray from (v, 0) with direction
+// (d, 1), d = (x - v) / z_lf, meets it at z = (1 + 0.3 v_x) / (1 - 0.3 d_x).
+TEST(TargetRendererTest, TiltedQuadDepthMatchesRayPlaneIntersection) {
+  std::string dir = testing::ScratchDir();
+  testing::WriteTextFile(dir + "/tilted.obj", "v -1 -1 -0.3\nv 1 -1 0.3\nv 1 1 0.3\nv -1 1 -0.3\nf 1 2 3 4\n");
+  json mesh = {{"type", "mesh"}, {"file", "tilted.obj"}, {"position", {0, 0, "1 m"}}};
+  json lf = LightFieldJson("1 D", {"20 deg", "10 deg"}, {40, 20}, {3, 3});
+  TargetScene target = ParseTarget(Target(lf, {mesh}, 4), dir + "/target.json");
+  RenderStats stats;
+  LightField rendered = RenderTarget(target, &stats);
+  const LightFieldGeometry& g = target.geometry;
+  ASSERT_EQ(rendered.depth.size(), g.ray_count());
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c)
+      for (int i = 0; i < g.rows; ++i)
+        for (int j = 0; j < g.cols; ++j) {
+          double vx = ViewX(g, c), dx = (PixelX(g, j) - vx) / g.origin_z;
+          double z = (1 + 0.3 * vx) / (1 - 0.3 * dx);
+          ASSERT_NEAR(DepthAt(rendered, r, c, i, j), z, 1e-6 * z) << "view " << r << "," << c << " pixel " << i << "," << j;
+        }
+  // Four jittered samples and one center ray for depth per pixel.
+  EXPECT_EQ(stats.rays, g.ray_count() * 5);
+}
+
+// Slab intersection of a ray with the unit cube [-1, 1]^3 after undoing the
+// die's placement (scale 5 cm, 30 deg about y, centered at (1 cm, 0, 1 m)).
+double CubeDepth(double vx, double vy, double dx, double dy, bool& near_edge) {
+  const double c = std::cos(kPi / 6), s = std::sin(kPi / 6), scale = 0.05;
+  double o[3] = {vx - 0.01, vy, -1.0}, d[3] = {dx, dy, 1.0};
+  // Local = Ry(30)^T (p - center) / scale, Ry = [[c, 0, s], [0, 1, 0], [-s, 0, c]].
+  double lo[3] = {(c * o[0] - s * o[2]) / scale, o[1] / scale, (s * o[0] + c * o[2]) / scale};
+  double ld[3] = {(c * d[0] - s * d[2]) / scale, d[1] / scale, (s * d[0] + c * d[2]) / scale};
+  double t0 = -INFINITY, t1 = INFINITY;
+  for (int k = 0; k < 3; ++k) {
+    double a = (-1 - lo[k]) / ld[k], b = (1 - lo[k]) / ld[k];
+    t0 = std::max(t0, std::min(a, b));
+    t1 = std::min(t1, std::max(a, b));
+  }
+  near_edge = std::abs(t1 - t0) < 1e-3;
+  return t0 <= t1 ? t0 : INFINITY;  // t is the eye-space z since d_z = 1
+}
+
+TEST(TargetRendererTest, RotatedCubeDepthMatchesSlabIntersection) {
+  json die = {{"type", "mesh"},
+              {"file", "die.obj"},
+              {"scale", "5 cm"},
+              {"position", {"1 cm", 0, "1 D"}},
+              {"rotation", {0, "30 deg", 0}},
+              {"color", 0.5}};
+  json lf = LightFieldJson("1.3 D", {"8 deg", "6 deg"}, {64, 48}, {3, 3});
+  TargetScene target = ParseTarget(Target(lf, {die}, 1), testing::ExamplePath("targets/target.json"));
+  RenderStats stats;
+  LightField rendered = RenderTarget(target, &stats);
+  const LightFieldGeometry& g = target.geometry;
+  int hits = 0, misses = 0;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c)
+      for (int i = 0; i < g.rows; ++i)
+        for (int j = 0; j < g.cols; ++j) {
+          double vx = ViewX(g, c), vy = ViewY(g, r);
+          bool near_edge = false;
+          double z = CubeDepth(vx, vy, (PixelX(g, j) - vx) / g.origin_z, (PixelY(g, i) - vy) / g.origin_z, near_edge);
+          if (near_edge) continue;
+          float depth = DepthAt(rendered, r, c, i, j);
+          if (std::isinf(z)) {
+            ++misses;
+            ASSERT_EQ(depth, kBackgroundDepth) << "pixel " << i << "," << j;
+            ASSERT_EQ(Red(rendered, r, c, i, j), 0.0f);
+          } else {
+            ++hits;
+            ASSERT_NEAR(depth, z, 1e-6 * z) << "pixel " << i << "," << j;
+          }
+        }
+  EXPECT_GT(hits, 1000);
+  EXPECT_GT(misses, 1000);
+  EXPECT_EQ(stats.rays, g.ray_count());  // one sample per pixel doubles as the depth ray
+}
+
+TEST(TargetRendererTest, MeshShadingIsLambertianPlusAmbient) {
+  std::string dir = testing::ScratchDir();
+  testing::WriteTextFile(dir + "/card.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n");
+  json card = {{"type", "mesh"}, {"file", "card.obj"}, {"position", {0, 0, "1 m"}}, {"color", {0.5, 0.25, 1}}};
+  json lf = LightFieldJson("1 D", {"4 deg", "4 deg"}, {4, 4}, {1, 1});
+  const double s45 = std::sqrt(0.5);
+  // (direction to the light, expected shade): the card faces the viewer, normal (0, 0, -1).
+  for (auto [to_light, shade] : {std::pair{json{0, 0, -1}, 1.0}, std::pair{json{0, 1, -1}, 0.2 + 0.8 * s45},
+                                 std::pair{json{1, 0, 0}, 0.2}, std::pair{json{0, 0, 1}, 0.2}}) {
+    json t = Target(lf, {card});
+    t["light"] = {{"direction_to_light", to_light}, {"ambient", 0.2}};
+    LightField rendered = RenderTarget(ParseTarget(t, dir + "/target.json"));
+    const double color[3] = {0.5, 0.25, 1.0};
+    for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(rendered.rgb[ch], color[ch] * shade, 1e-6) << to_light.dump();
+  }
+}
+
+TEST(TargetRendererTest, FinitePlaneShowsBackgroundAroundIt) {
+  json plane = {{"type", "plane"},
+                {"depth", "1 D"},
+                {"size", {"1 deg", "1 deg"}},
+                {"texture", {{"type", "constant"}, {"color", 0.7}}}};
+  json t = Target(LightFieldJson("1 D", {"10 deg", "10 deg"}, {21, 21}, {1, 1}), {plane});
+  t["background"] = {0.1, 0.2, 0.3};
+  LightField rendered = RenderTarget(ParseTarget(t, "target.json"));
+  const float* center = rendered.view(0) + (10 * 21 + 10) * 3;
+  EXPECT_FLOAT_EQ(center[0], 0.7f);
+  EXPECT_FLOAT_EQ(rendered.depth[10 * 21 + 10], 1.0f);
+  EXPECT_FLOAT_EQ(rendered.rgb[0], 0.1f);
+  EXPECT_FLOAT_EQ(rendered.rgb[2], 0.3f);
+  EXPECT_EQ(rendered.depth[0], kBackgroundDepth);
+}
+
+TEST(TargetRendererTest, EmbreeAndDirectPlaneLightFieldsAgree) {
+  json noise = {{"type", "plane"},
+                {"depth", "0.7 D"},
+                {"center", {"1 cm", "-2 cm"}},
+                {"texture", {{"type", "noise"}, {"band", {"0.5 cpd", "5 cpd"}}, {"seed", 9}, {"contrast", 0.5}}}};
+  json t = Target(LightFieldJson("1.3 D", {"12 deg", "6 deg"}, {60, 30}, {3, 2}), {noise}, 4);
+  t["seed"] = 3;
+  TargetScene target = ParseTarget(t, "target.json");
+  LightField traced = RenderTarget(target);
+  const TargetPlane& plane = target.planes[0];
+  LightField direct = RenderPlaneLightField(target.geometry, plane.depth, *plane.texture, {4, 3}, plane.center);
+  ASSERT_EQ(traced.rgb.size(), direct.rgb.size());
+  double worst = 0;
+  for (size_t k = 0; k < traced.rgb.size(); ++k) worst = std::max(worst, std::abs(double(traced.rgb[k]) - direct.rgb[k]));
+  EXPECT_LT(worst, 1e-5);
+  EXPECT_EQ(traced.depth, direct.depth);
+  // A different seed moves the samples.
+  LightField other = RenderPlaneLightField(target.geometry, plane.depth, *plane.texture, {4, 4}, plane.center);
+  EXPECT_NE(other.rgb, direct.rgb);
+}
+
+TEST(TargetRendererTest, RenderingIsDeterministic) {
+  TargetScene target = LoadTarget(testing::ExamplePath("targets/dice.json"));
+  target.geometry.views_x = target.geometry.views_y = 2;
+  target.geometry.cols = 80;
+  target.geometry.rows = 40;
+  LightField a = RenderTarget(target), b = RenderTarget(target);
+  EXPECT_EQ(a.rgb, b.rgb);
+  EXPECT_EQ(a.depth, b.depth);
+  target.seed = 2;
+  EXPECT_NE(RenderTarget(target).rgb, a.rgb);
+}
+
+}  // namespace
+}  // namespace layerlab

@@ -1,0 +1,212 @@
+// TARGET.json: the examples parse into the geometry the light-field format
+// documents, and bad targets are refused with file, pointer and reason, verbatim.
+#include <cmath>
+#include <functional>
+
+#include "framework/json_file.h"
+#include "systems/target/target_scene.h"
+#include "tests/render_test_util.h"
+#include "tests/test_util.h"
+
+namespace layerlab {
+namespace {
+
+using nlohmann::json;
+using testing::Close;
+
+TEST(TargetSceneTest, GratingExampleTakesItsFrustumFromThePaperPrototype) {
+  TargetScene t = LoadTarget(testing::ExamplePath("targets/grating_1.3D.json"));
+  const LightFieldGeometry& g = t.geometry;
+  // The example window of docs/lightfield-format.md: the 35.5 x 18.2 deg frustum cut at 1.3 D.
+  EXPECT_TRUE(Close(g.origin_z, 1 / 1.3, 1e-12));
+  EXPECT_TRUE(Close(g.window_left, -0.24624, 0, 5e-6));
+  EXPECT_TRUE(Close(g.window_top, 0.12312, 0, 5e-6));
+  EXPECT_TRUE(Close(g.window_width, 0.49248, 0, 1e-5));
+  EXPECT_TRUE(Close(g.window_height, 0.24624, 0, 1e-5));
+  EXPECT_EQ(g.cols, 400);
+  EXPECT_EQ(g.rows, 200);
+  EXPECT_EQ(g.views_x, 13);
+  EXPECT_EQ(g.views_y, 13);
+  EXPECT_DOUBLE_EQ(g.eyebox_width, 6e-3);
+  ASSERT_EQ(t.planes.size(), 1u);
+  EXPECT_TRUE(Close(t.planes[0].depth, 1 / 1.3, 1e-12));
+  EXPECT_EQ(t.samples_per_pixel, 1);
+  EXPECT_NE(t.description.find("plane at 1.30 D (grating 2 cpd)"), std::string::npos) << t.description;
+}
+
+TEST(TargetSceneTest, DiceExamplePlacesItsMeshesInEyeSpace) {
+  TargetScene t = LoadTarget(testing::ExamplePath("targets/dice.json"));
+  ASSERT_EQ(t.meshes.size(), 2u);
+  ASSERT_EQ(t.planes.size(), 1u);
+  EXPECT_EQ(t.meshes[0].mesh.triangles.size(), 12u);
+  // The die is 2 file units across, scaled by 4 cm, centered at (10 cm, 2 cm, 1 m).
+  double sum[3] = {0, 0, 0};
+  for (const auto& p : t.meshes[0].mesh.positions)
+    for (int k = 0; k < 3; ++k) sum[k] += p[k] / 8;
+  EXPECT_TRUE(Close(sum[0], 0.10, 0, 1e-12));
+  EXPECT_TRUE(Close(sum[1], 0.02, 0, 1e-12));
+  EXPECT_TRUE(Close(sum[2], 1.00, 0, 1e-12));
+  EXPECT_TRUE(Close(t.meshes[0].uv_size, 0.08, 1e-12));
+  EXPECT_EQ(t.samples_per_pixel, 4);
+}
+
+TEST(TargetSceneTest, MeshPlacementIsScaleThenRotationXYZThenTranslation) {
+  std::string dir = testing::ScratchDir();
+  testing::WriteTextFile(dir + "/point.obj", "v 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n");
+  json target = {
+      {"format", "layerlab-target/1"},
+      {"light_field", {{"origin_plane", "1 D"}, {"field_of_view", {"10 deg", "10 deg"}}, {"resolution", {8, 8}},
+                       {"views", {1, 1}}, {"eyebox", {"1 mm", "1 mm"}}}},
+      {"objects", {{{"type", "mesh"}, {"file", "point.obj"}, {"scale", "1 cm"}, {"position", {0, 0, "2 D"}},
+                    {"rotation", {"90 deg", "0 deg", "90 deg"}}}}}};
+  TargetScene t = ParseTarget(target, dir + "/target.json");
+  const auto& p = t.meshes[0].mesh.positions;
+  // Rx(90) maps y to z and z to -y; then Rz(90) maps x to y and y to -x.
+  auto expect = [&](int i, double x, double y, double z) {
+    EXPECT_TRUE(Close(p[i][0], x, 0, 1e-15)) << i;
+    EXPECT_TRUE(Close(p[i][1], y, 0, 1e-15)) << i;
+    EXPECT_TRUE(Close(p[i][2], z, 0, 1e-15)) << i;
+  };
+  expect(0, 0, 0.01, 0.5);   // x -> x -> y
+  expect(1, 0, 0, 0.51);     // y -> z -> z
+  expect(2, 0.01, 0, 0.5);   // z -> -y -> x
+}
+
+json BaseTarget() {
+  return {{"format", "layerlab-target/1"},
+          {"light_field",
+           {{"origin_plane", "1.3 D"}, {"field_of_view", {"10 deg", "5 deg"}}, {"resolution", {40, 20}},
+            {"views", {3, 3}}, {"eyebox", {"6 mm", "6 mm"}}}},
+          {"objects",
+           {{{"type", "plane"}, {"depth", "1.3 D"}, {"texture", {{"type", "grating"}, {"frequency", "2 cpd"}}}}}}};
+}
+
+struct BadTarget {
+  std::string name;
+  std::function<void(json&)> mutate;
+  std::string message;  // after "<dir>/target.json: "
+};
+
+void PrintTo(const BadTarget& c, std::ostream* os) { *os << c.name; }
+
+class BadTargetTest : public ::testing::TestWithParam<BadTarget> {};
+
+TEST_P(BadTargetTest, IsRefusedWithItsLocation) {
+  // Targets live in examples/targets/ so that "display" and mesh paths resolve.
+  std::string file = testing::ExamplePath("targets/target.json");
+  json target = BaseTarget();
+  GetParam().mutate(target);
+  try {
+    ParseTarget(target, file);
+    FAIL() << "accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), file + ": " + GetParam().message);
+  }
+}
+
+const BadTarget kBadTargets[] = {
+    {"WrongFormat", [](json& t) { t["format"] = "layerlab-target/2"; },
+     "/format: unknown target format \"layerlab-target/2\"; this layerlab reads \"layerlab-target/1\""},
+    {"MisspelledTopKey", [](json& t) { t["sample_per_pixel"] = 4; },
+     "/sample_per_pixel: unknown key \"sample_per_pixel\"; did you mean \"samples_per_pixel\"?"},
+    {"NoWindow", [](json& t) { t["light_field"].erase("field_of_view"); },
+     "/light_field: the light field needs its window: give \"field_of_view\", \"window\" or \"display\""},
+    {"TwoWindows",
+     [](json& t) { t["light_field"]["window"] = {{"left", 0}, {"top", 0}, {"width", 1}, {"height", 1}}; },
+     "/light_field/window: \"field_of_view\" already sets the window; give only one of \"field_of_view\", "
+     "\"window\" and \"display\""},
+    {"DisplayAndViews",
+     [](json& t) {
+       t["light_field"].erase("field_of_view");
+       t["light_field"]["display"] = "../paper_prototype.json";
+     },
+     "/light_field/views: comes from the display (\"display\": \"../paper_prototype.json\"); remove it here"},
+    {"MissingDisplay",
+     [](json& t) {
+       t["light_field"].erase("field_of_view");
+       t["light_field"]["display"] = "../no_such_display.json";
+     },
+     "/light_field/display: no such scene file: " + testing::ExamplePath("targets/../no_such_display.json")},
+    {"OriginAtInfinity", [](json& t) { t["light_field"]["origin_plane"] = "0 D"; },
+     "/light_field/origin_plane: must be nearer than infinity (more than 0 D)"},
+    {"FieldOfViewTooWide", [](json& t) { t["light_field"]["field_of_view"][0] = "190 deg"; },
+     "/light_field/field_of_view/0: must be in (0, 3.141593) (SI units), got 3.316126"},
+    {"MisspelledLightFieldKey", [](json& t) { t["light_field"]["eye_box"] = t["light_field"]["eyebox"]; },
+     "/light_field/eye_box: unknown key \"eye_box\"; did you mean \"eyebox\"?"},
+    {"TooManyRays", [](json& t) { t["light_field"]["resolution"] = {16384, 16384}; },
+     "/light_field: 2415919104 rays (views x pixels) is beyond the 2^31 this layerlab handles"},
+    {"NoObjects", [](json& t) { t["objects"] = json::array(); },
+     "/objects: no objects: the light field would show only the background"},
+    {"ObjectTypeTypo", [](json& t) { t["objects"][0]["type"] = "plain"; },
+     "/objects/0/type: \"plain\" is not one of plane or mesh; did you mean \"plane\"?"},
+    {"BareDepth", [](json& t) { t["objects"][0]["depth"] = 0.77; },
+     "/objects/0/depth: expected a depth with its unit, such as \"0.4 D\" or \"2.5 m\", got a number"},
+    {"PlaneKeyTypo", [](json& t) { t["objects"][0]["centre"] = {0, 0}; },
+     "/objects/0/centre: unknown key \"centre\"; did you mean \"center\"?"},
+    {"TextureKeyTypo", [](json& t) { t["objects"][0]["texture"]["frequncy"] = "1 cpd"; },
+     "/objects/0/texture/frequncy: unknown key \"frequncy\"; did you mean \"frequency\"?"},
+    {"BadBackground", [](json& t) { t["background"] = {0, 0}; },
+     "/background: expected one fraction or three [r, g, b], got 2 values"},
+    {"ZeroLightDirection", [](json& t) { t["light"] = {{"direction_to_light", {0, 0, 0}}}; },
+     "/light/direction_to_light: must be a non-zero, finite direction"},
+    {"MeshColorAndTexture",
+     [](json& t) {
+       t["objects"][0] = {{"type", "mesh"}, {"file", "die.obj"}, {"position", {0, 0, "1 D"}}, {"scale", "1 cm"}, {"color", 0.5},
+                          {"texture", {{"type", "constant"}, {"color", 1}}}};
+     },
+     "/objects/0/texture: give \"color\" or \"texture\", not both"},
+    {"MeshBehindTheEye",
+     [](json& t) { t["objects"][0] = {{"type", "mesh"}, {"file", "die.obj"}, {"position", {0, 0, "5 cm"}}, {"scale", "10 cm"}}; },
+     "/objects/0/position: " + testing::ExamplePath("targets/die.obj") +
+         ": vertex 0 lands at z = -0.0500 m, not in front of the pupil plane (z > 0)"},
+    {"MeshPositionNotThree",
+     [](json& t) { t["objects"][0] = {{"type", "mesh"}, {"file", "die.obj"}, {"position", {0, "1 D"}}}; },
+     "/objects/0/position: expected [x, y, z]: lengths, z also as a depth such as \"1 D\", got [0,\"1 D\"]"},
+};
+
+INSTANTIATE_TEST_SUITE_P(Targets, BadTargetTest, ::testing::ValuesIn(kBadTargets),
+                         [](const auto& test) { return test.param.name; });
+
+TEST(TargetSceneTest, TextureOnAMeshWithoutTextureCoordinatesIsRefused) {
+  std::string dir = testing::ScratchDir();
+  testing::WriteTextFile(dir + "/plain.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  json target = BaseTarget();
+  target["objects"][0] = {{"type", "mesh"}, {"file", "plain.obj"}, {"position", {0, 0, "1 m"}},
+                          {"texture", {{"type", "checkerboard"}, {"period", "1 cm"}}}};
+  try {
+    ParseTarget(target, dir + "/target.json");
+    FAIL() << "accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), dir + "/target.json: /objects/0/texture: " + dir +
+                                         "/plain.obj has no texture coordinates (OBJ vt, PLY u v); give it a "
+                                         "\"color\" instead");
+  }
+}
+
+TEST(TargetSceneTest, MeshErrorsNameTheMeshFileAndLine) {
+  std::string dir = testing::ScratchDir();
+  testing::WriteTextFile(dir + "/broken.obj", "v 0 0 0\nv 1 0 0\nv 0 1 nan\nf 1 2 3\n");
+  json target = BaseTarget();
+  target["objects"][0] = {{"type", "mesh"}, {"file", "broken.obj"}, {"position", {0, 0, "1 m"}}};
+  try {
+    ParseTarget(target, dir + "/target.json");
+    FAIL() << "accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), dir + "/broken.obj:3: vertex coordinate \"nan\" is not a finite number");
+  }
+}
+
+TEST(TargetSceneTest, DefaultPlaneCoversEveryRay) {
+  LightFieldGeometry g;
+  g.origin_z = 1.0;
+  g.window_left = -0.1, g.window_top = 0.3, g.window_width = 0.4, g.window_height = 0.2;
+  g.eyebox_width = 0.01, g.eyebox_height = 0.02;
+  // At z = 2 rays reach x = v (1 - 2) + 2 x_lf: from -0.005 - 0.2 to 0.005 + 0.6.
+  std::array<double, 2> size = CoveringSize(g, 2.0, {0, 0});
+  EXPECT_TRUE(Close(size[0], 2 * 0.605 * 1.02, 1e-12));
+  // y from -0.01 * -1 ... : v_y (1 - 2) + 2 y_lf, y_lf in [0.1, 0.3]: up to 0.01 + 0.6.
+  EXPECT_TRUE(Close(size[1], 2 * 0.61 * 1.02, 1e-12));
+}
+
+}  // namespace
+}  // namespace layerlab
