@@ -30,28 +30,6 @@ RayTaps LayerProjection::Taps(size_t view, int i, int j) const {
                      view_gain_ * lf_.view_y(vr) + pixel_gain_ * lf_.pixel_y(i));
 }
 
-template <class Op>
-void LayerProjection::ForEachTap(size_t view, Op op) const {
-  const int vr = static_cast<int>(view / lf_.views_x), vc = static_cast<int>(view % lf_.views_x);
-  if (separable() && sampling() == Sampling::kNearest) {
-    const AxisTap* col_tap = &col_taps_[static_cast<size_t>(vc) * lf_.cols];
-    const AxisTap* row_tap = &row_taps_[static_cast<size_t>(vr) * lf_.rows];
-    for (int i = 0; i < lf_.rows; ++i) {
-      if (row_tap[i].i0 < 0) continue;
-      const size_t ray_row = static_cast<size_t>(i) * lf_.cols;
-      const int32_t pixel_row = row_tap[i].i0 * cols();
-      for (int j = 0; j < lf_.cols; ++j)
-        if (col_tap[j].i0 >= 0) op(ray_row + j, pixel_row + col_tap[j].i0, 1.0f);
-    }
-    return;
-  }
-  for (int i = 0; i < lf_.rows; ++i)
-    for (int j = 0; j < lf_.cols; ++j) {
-      RayTaps taps = Taps(view, i, j);
-      for (int t = 0; t < taps.count; ++t) op(static_cast<size_t>(i) * lf_.cols + j, taps.index[t], taps.weight[t]);
-    }
-}
-
 void LayerProjection::Gather(size_t view, const float* pattern, float* out) const {
   std::fill(out, out + lf_.pixels_per_view() * 3, 0.0f);
   ForEachTap(view, [&](size_t ray, int32_t pixel, float w) {
@@ -60,8 +38,33 @@ void LayerProjection::Gather(size_t view, const float* pattern, float* out) cons
 }
 
 void LayerProjection::GatherMultiply(size_t view, const float* pattern, float* out) const {
-  // Multiplying by a sum of taps needs the sum first; one view's buffer is small.
-  std::vector<float> sampled(lf_.pixels_per_view() * 3);
+  const int vr = static_cast<int>(view / lf_.views_x), vc = static_cast<int>(view % lf_.views_x);
+  if (separable() && sampling() == Sampling::kNearest) {
+    // One tap per ray: multiply in place; rays that miss the layer go dark.
+    const AxisTap* col_tap = &col_taps_[static_cast<size_t>(vc) * lf_.cols];
+    const AxisTap* row_tap = &row_taps_[static_cast<size_t>(vr) * lf_.rows];
+    for (int i = 0; i < lf_.rows; ++i) {
+      float* ray = out + static_cast<size_t>(i) * lf_.cols * 3;
+      if (row_tap[i].i0 < 0) {
+        std::fill(ray, ray + static_cast<size_t>(lf_.cols) * 3, 0.0f);
+        continue;
+      }
+      const float* pixel_row = pattern + static_cast<size_t>(row_tap[i].i0) * cols() * 3;
+      for (int j = 0; j < lf_.cols; ++j, ray += 3) {
+        const int32_t col = col_tap[j].i0;
+        if (col < 0) {
+          ray[0] = ray[1] = ray[2] = 0.0f;
+          continue;
+        }
+        const float* p = pixel_row + static_cast<size_t>(col) * 3;
+        ray[0] *= p[0], ray[1] *= p[1], ray[2] *= p[2];
+      }
+    }
+    return;
+  }
+  // Multiplying by a sum of taps needs the sum first.
+  thread_local std::vector<float> sampled;
+  sampled.resize(lf_.pixels_per_view() * 3);
   Gather(view, pattern, sampled.data());
   for (size_t k = 0; k < sampled.size(); ++k) out[k] *= sampled[k];
 }

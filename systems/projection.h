@@ -46,10 +46,12 @@ class LayerProjection {
   // 1 for each layer pixel some ray of the light field reads.
   std::vector<uint8_t> ReachedPixels() const;
 
- private:
+  // Calls op(ray, pixel, weight) for every tap of the rays of one view that
+  // reach the layer: the one loop that kernels fuse their work into.
   template <class Op>
   void ForEachTap(size_t view, Op op) const;
 
+ private:
   LightFieldGeometry lf_;
   LayerSampler sampler_;
   // A ray's tan-angle on the layer is view_gain * v + pixel_gain * x (per axis).
@@ -57,5 +59,27 @@ class LayerProjection {
   std::vector<AxisTap> col_taps_;  // [view col][pixel col], separable layers only
   std::vector<AxisTap> row_taps_;  // [view row][pixel row]
 };
+
+template <class Op>
+void LayerProjection::ForEachTap(size_t view, Op op) const {
+  const int vr = static_cast<int>(view / lf_.views_x), vc = static_cast<int>(view % lf_.views_x);
+  if (separable() && sampling() == Sampling::kNearest) {
+    const AxisTap* col_tap = &col_taps_[static_cast<size_t>(vc) * lf_.cols];
+    const AxisTap* row_tap = &row_taps_[static_cast<size_t>(vr) * lf_.rows];
+    for (int i = 0; i < lf_.rows; ++i) {
+      if (row_tap[i].i0 < 0) continue;
+      const size_t ray_row = static_cast<size_t>(i) * lf_.cols;
+      const int32_t pixel_row = row_tap[i].i0 * cols();
+      for (int j = 0; j < lf_.cols; ++j)
+        if (col_tap[j].i0 >= 0) op(ray_row + j, pixel_row + col_tap[j].i0, 1.0f);
+    }
+    return;
+  }
+  for (int i = 0; i < lf_.rows; ++i)
+    for (int j = 0; j < lf_.cols; ++j) {
+      RayTaps taps = Taps(view, i, j);
+      for (int t = 0; t < taps.count; ++t) op(static_cast<size_t>(i) * lf_.cols + j, taps.index[t], taps.weight[t]);
+    }
+}
 
 }  // namespace layerlab
