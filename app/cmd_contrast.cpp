@@ -5,38 +5,16 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
-#include <sstream>
 
 #include "analysis/contrast.h"
 #include "app/commands.h"
+#include "app/number_list.h"
 #include "framework/atomic_file.h"
 #include "solvers/solve_config.h"
 #include "systems/compile.h"
 #include "systems/system_report.h"
 
 namespace layerlab::app {
-namespace {
-
-std::vector<double> ParseList(const std::string& text, const std::string& option) {
-  std::vector<double> values;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    try {
-      size_t used = 0;
-      values.push_back(std::stod(item, &used));
-      if (used != item.size()) throw std::invalid_argument(item);
-    } catch (const std::exception&) {
-      throw Error(option + ": \"" + item + "\" is not a number (give a comma-separated list such as 0.7,1.3,1.9)");
-    }
-    if (!std::isfinite(values.back()) || values.back() < 0) throw Error(option + ": values must be finite and >= 0");
-  }
-  if (values.empty()) throw Error(option + ": give at least one value");
-  return values;
-}
-
-}  // namespace
-
 void AddContrastCommand(CLI::App& app) {
   struct Options {
     std::vector<std::string> scenes;
@@ -56,9 +34,9 @@ void AddContrastCommand(CLI::App& app) {
   cmd->add_option("--strip-rows", o->strip_rows, "Light-field rows around the axis (default 24)");
   cmd->callback([o] {
     ContrastOptions options;
-    options.target_diopters = ParseList(o->depths, "--depths");
-    options.frequencies = ParseList(o->frequencies, "--frequencies");
-    std::vector<double> range = ParseList(o->accommodation, "--accommodation");
+    options.target_diopters = ParseNumberList(o->depths, "--depths");
+    options.frequencies = ParseNumberList(o->frequencies, "--frequencies");
+    std::vector<double> range = ParseNumberList(o->accommodation, "--accommodation");
     if (range.size() != 3) throw Error("--accommodation: give first,last,step");
     options.accommodation_min = range[0];
     options.accommodation_max = range[1];

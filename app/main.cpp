@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   layerlab::app::AddInfoCommand(app);
   layerlab::app::AddSolveCommand(app);
   layerlab::app::AddContrastCommand(app);
+  layerlab::app::AddRetinaCommand(app);
 #if LAYERLAB_WITH_EMBREE
   layerlab::app::AddRenderTargetCommand(app);
 #endif

@@ -3,6 +3,7 @@
 #include <png.h>
 
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 
@@ -37,6 +38,21 @@ void WritePng8(const std::string& path, int width, int height, int channels, con
   bool closed = std::fclose(file) == 0;
   if (!ok || !closed) throw Error(path + ": cannot write PNG (disk full?)");
   out.Commit();
+}
+
+size_t WriteSrgbPng(const std::string& path, int width, int height, const std::vector<float>& rgb, double white) {
+  if (!(white > 0)) throw Error(path + ": internal error: white must be positive");
+  std::vector<uint8_t> pixels(rgb.size());
+  size_t clipped = 0;
+  for (size_t k = 0; k < rgb.size(); ++k) {
+    double v = rgb[k] / white;
+    if (v > 1) ++clipped;
+    v = v > 1 ? 1.0 : v > 0 ? v : 0.0;  // NaN lands on 0
+    double encoded = v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1 / 2.4) - 0.055;
+    pixels[k] = static_cast<uint8_t>(std::lround(255 * encoded));
+  }
+  WritePng8(path, width, height, 3, pixels);
+  return clipped;
 }
 
 }  // namespace layerlab

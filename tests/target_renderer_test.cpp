@@ -11,6 +11,7 @@
 #include "systems/target/plane_lightfield.h"
 #include "systems/target/target_renderer.h"
 #include "systems/target/target_scene.h"
+#include "systems/target/target_tracer.h"
 #include "tests/render_test_util.h"
 #include "tests/test_util.h"
 
@@ -354,6 +355,24 @@ TEST(TargetRendererTest, RenderingIsDeterministic) {
   EXPECT_EQ(a.depth, b.depth);
   target.seed = 2;
   EXPECT_NE(RenderTarget(target).rgb, a.rgb);
+}
+
+// Natural viewing traces from any pupil point in any direction: a ray from
+// (vx, vy, 0) along (dx, dy, 1) meets the plane at depth z at (vx + dx z, vy + dy z).
+TEST(TargetTracerTest, RayInAnyDirectionReadsThePlaneWhereItMeetsIt) {
+  TargetScene target = ParseTarget(
+      Target(LightFieldJson("1.3 D", {"10 deg", "6 deg"}, {20, 12}, {3, 3}), {GratingPlane("0.8 D", "20 deg")}),
+      "target.json");
+  TargetTracer tracer(target);
+  const TargetPlane& plane = target.planes[0];
+  for (double vx : {-0.0017, 0.0, 0.0021})
+    for (double dx : {-0.05, 0.013, 0.07}) {
+      const double vy = 0.6 * vx, dy = -0.4 * dx, z = plane.depth;
+      TracedSample s = tracer.TraceDirection(vx, vy, dx, dy);
+      Rgb expected = plane.texture->Evaluate(vx + dx * z - plane.center[0], vy + dy * z - plane.center[1]);
+      EXPECT_NEAR(s.z, z, 1e-12);
+      EXPECT_NEAR(s.color[0], expected[0], 1e-12) << "from " << vx << " along " << dx;
+    }
 }
 
 }  // namespace

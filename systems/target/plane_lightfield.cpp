@@ -1,7 +1,5 @@
 #include "systems/target/plane_lightfield.h"
 
-#include <tbb/parallel_for.h>
-
 #include "systems/target/pixel_sampling.h"
 
 namespace layerlab {
@@ -13,7 +11,8 @@ LightField RenderPlaneLightField(const LightFieldGeometry& g, double z, const Te
   lf.scene = "plane at " + FormatFixed(1.0 / z, 2) + " D (" + texture.Describe() + ")";
   const PixelSampler sampler(g, sampling.samples_per_pixel, sampling.seed);
   const double s = z / g.origin_z;
-  tbb::parallel_for(size_t{0}, g.view_count(), [&](size_t view) {
+#pragma omp parallel for schedule(dynamic)
+  for (size_t view = 0; view < g.view_count(); ++view) {
     const double vx = g.view_x(static_cast<int>(view % g.views_x));
     const double vy = g.view_y(static_cast<int>(view / g.views_x));
     float* out = lf.view(view);
@@ -28,7 +27,7 @@ LightField RenderPlaneLightField(const LightFieldGeometry& g, double z, const Te
         for (int ch = 0; ch < 3; ++ch)
           out[(static_cast<size_t>(i) * g.cols + j) * 3 + ch] = static_cast<float>(sum[ch] / sampler.samples());
       }
-  });
+  }
   return lf;
 }
 

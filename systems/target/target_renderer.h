@@ -3,13 +3,7 @@
 // through its samples on the shared window of the origin plane (a sheared
 // frustum, docs/lightfield-format.md). A pixel's color is the mean of its
 // samples; its depth is the eye-space z of the first surface along the ray
-// through the pixel center.
-//
-// Planes are unlit: the value is the texture at the exact hit point,
-// p = v + (x - v) z / z_lf in double precision, so a grating is exact. Meshes
-// are Lambertian: texture * (ambient + (1 - ambient) max(0, n . to_light)),
-// n the geometric normal turned toward the viewer; their depth is refined in
-// double precision against the hit triangle's plane.
+// through the pixel center. Shading: target_tracer.h.
 #pragma once
 
 #include <cstdint>

@@ -1,0 +1,105 @@
+// Natural viewing of a light-field target (systems/lightfield_radiance.h)
+// against the plane it was made from, and against hand-derived interpolation.
+#include <cmath>
+#include <numbers>
+
+#include "systems/lightfield_radiance.h"
+#include "systems/target/plane_lightfield.h"
+#include "systems/target/texture.h"
+#include "tests/test_util.h"
+
+namespace layerlab {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180;
+
+// 13 x 13 views over 6 mm, a 10 x 6 deg window on the origin plane at 1.3 D.
+LightFieldGeometry Geometry(int cols = 200, int rows = 120) {
+  LightFieldGeometry g;
+  g.origin_z = 1 / 1.3;
+  g.window_width = 2 * g.origin_z * std::tan(5 * kDeg);
+  g.window_height = 2 * g.origin_z * std::tan(3 * kDeg);
+  g.window_left = -g.window_width / 2;
+  g.window_top = g.window_height / 2;
+  g.cols = cols, g.rows = rows;
+  g.views_x = g.views_y = 13;
+  return g;
+}
+
+std::unique_ptr<Texture> Grating(double cycles_per_meter) {
+  GratingSpec spec;
+  spec.cycles_per_meter = cycles_per_meter;
+  spec.phase = 0.3;
+  return MakeGratingTexture(spec);
+}
+
+TEST(LightFieldRadiance, PlaneOnTheOriginPlaneReadsItsPixelFromAnyPupilPoint) {
+  const LightFieldGeometry g = Geometry();
+  auto texture = Grating(40);
+  LightField lf = RenderPlaneLightField(g, g.origin_z, *texture);
+  SceneRadiance radiance = LightFieldRadiance(lf);
+  // Pupil points between views and off the view grid's centers; rays through pixel centers.
+  for (PupilPoint u : {PupilPoint{0.0011, -0.0007}, PupilPoint{-0.0019, 0.0016}, PupilPoint{0, 0}})
+    for (int j : {3, 77, 150})
+      for (int i : {5, 60}) {
+        double x = g.pixel_x(j), y = g.pixel_y(i);
+        Rgb value = radiance(u, (x - u.x) / g.origin_z, (y - u.y) / g.origin_z);
+        Rgb expected = texture->Evaluate(x, y);
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(value[c], expected[c], 2e-6) << "pixel " << i << "," << j;
+      }
+}
+
+TEST(LightFieldRadiance, BetweenTwoViewsItAveragesThem) {
+  const LightFieldGeometry g = Geometry();
+  auto texture = Grating(60);
+  LightField lf = RenderPlaneLightField(g, 0.5, *texture);  // 2 D: parallax against the 1.3 D origin
+  SceneRadiance radiance = LightFieldRadiance(lf);
+  const int i = 40, j = 90, r = 6;
+  const double x = g.pixel_x(j), y = g.pixel_y(i);
+  // Halfway between view columns 4 and 5 of view row 6 (whose v_y is 0).
+  PupilPoint u{0.5 * (g.view_x(4) + g.view_x(5)), g.view_y(r)};
+  Rgb value = radiance(u, (x - u.x) / g.origin_z, (y - u.y) / g.origin_z);
+  const size_t p = (static_cast<size_t>(i) * g.cols + j) * 3;
+  double expected = 0.5 * (lf.view(g.view_index(r, 4))[p] + lf.view(g.view_index(r, 5))[p]);
+  EXPECT_NEAR(value[0], expected, 1e-6);
+  EXPECT_GT(std::abs(lf.view(g.view_index(r, 4))[p] - lf.view(g.view_index(r, 5))[p]), 0.01)  // the views differ
+      << "the test needs parallax between the two views";
+}
+
+TEST(LightFieldRadiance, OutsideTheWindowIsDark) {
+  const LightFieldGeometry g = Geometry(20, 10);
+  LightField lf = RenderPlaneLightField(g, g.origin_z, *MakeConstantTexture({1, 1, 1}));
+  SceneRadiance radiance = LightFieldRadiance(lf);
+  Rgb outside = radiance({0, 0}, std::tan(5.5 * kDeg), 0);
+  Rgb inside = radiance({0, 0}, std::tan(4.5 * kDeg), 0);
+  EXPECT_EQ(outside[0], 0.0);
+  EXPECT_NEAR(inside[0], 1.0, 1e-6);
+}
+
+// Retinal images of natural viewing: through the light field of a plane, and
+// of the plane itself (the ray meets it at u + d z), at focus and out of focus.
+TEST(LightFieldRadiance, RetinaMatchesTheAnalyticPlaneAtEveryFocus) {
+  const LightFieldGeometry g = Geometry(400, 60);
+  const double z = 1 / 1.0;
+  auto texture = Grating(1.0 / (z * kDeg));  // 1 cpd at the line of sight
+  LightField lf = RenderPlaneLightField(g, z, *texture);
+  SceneRadiance from_lf = LightFieldRadiance(lf);
+  SceneRadiance plane = [&](const PupilPoint& u, double dx, double dy) {
+    return texture->Evaluate(u.x + dx * z, u.y + dy * z);
+  };
+  EyeModel eye;
+  eye.pupil_samples_x = eye.pupil_samples_y = 9;
+  const std::vector<PupilPoint> pupil = PupilSamples(eye);
+  RetinaGrid grid = MakeRetinaGrid(6 * kDeg, 1 * kDeg, 0.02 * kDeg);
+  for (double focus : {0.4, 1.0, 1.6}) {
+    const std::array<double, 3> a{focus, focus, focus};
+    Image seen = RetinaOfScene(from_lf, grid, pupil, a), expected = RetinaOfScene(plane, grid, pupil, a);
+    double worst = 0;
+    for (size_t k = 0; k < seen.pixels.size(); ++k) worst = std::max(worst, double(std::abs(seen.pixels[k] - expected.pixels[k])));
+    // Bilinear interpolation of a 1 cpd grating sampled at ~0.025 deg: error (pi f h)^2 / 2 of the amplitude.
+    EXPECT_LT(worst, 2e-3) << "focus " << focus << " D";
+  }
+}
+
+}  // namespace
+}  // namespace layerlab
