@@ -9,6 +9,7 @@
 
 #include "analysis/svg_plot.h"
 #include "framework/error.h"
+#include "solvers/solve_config.h"
 #include "systems/display_model.h"
 #include "systems/retina.h"
 
@@ -62,12 +63,6 @@ PlaneTextureFactory CosineGrating(double mean, double contrast) {
       return Rgb{v, v, v};
     };
   };
-}
-
-std::string DefaultSolverFor(const DisplaySystem& system) {
-  if (system.branches.size() == 1) return "multiplicative";
-  bool single = std::all_of(system.branches.begin(), system.branches.end(), [](const Branch& b) { return b.layers.size() == 1; });
-  return single ? "additive-trust-region" : "hybrid";
 }
 
 std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displays, const ContrastOptions& o) {

@@ -56,7 +56,6 @@ struct ContrastCurve {
   std::string solver;
 };
 
-std::string DefaultSolverFor(const DisplaySystem& system);
 std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displays, const ContrastOptions& options);
 
 // CSV (one row per display, depth, frequency and accommodation), the peak

@@ -59,7 +59,7 @@ void AddContrastCommand(CLI::App& app) {
       d.system = Compile(scene);
       d.name = scene.name.empty() ? std::filesystem::path(file).stem().string() : std::filesystem::path(file).stem().string();
       if (scene.document.contains("solve")) {
-        SolveConfig config = ReadSolveConfig(scene);
+        SolveConfig config = ReadSolveConfig(scene, d.system);
         d.solver = config.solver;
         d.options = config.options;
         d.options_given = true;

@@ -71,7 +71,7 @@ void AddRetinaCommand(CLI::App& app) {
     // Everything is read and checked before anything is written.
     Scene scene = LoadScene(o->scene);
     DisplaySystem system = Compile(scene);
-    SolveConfig config = ReadSolveConfig(scene);
+    SolveConfig config = ReadSolveConfig(scene, system);
     if (!o->sampling.empty()) config.sampling = SamplingFromString(o->sampling);
     if (!o->target.empty() && !o->target_scene.empty()) throw Error("give --target or --target-scene, not both");
 

@@ -41,7 +41,7 @@ void AddSolveCommand(CLI::App& app) {
   cmd->callback([o] {
     Scene scene = LoadScene(o->scene);
     DisplaySystem system = Compile(scene);
-    SolveConfig config = ReadSolveConfig(scene);
+    SolveConfig config = ReadSolveConfig(scene, system);
     if (!o->solver.empty() && o->solver != config.solver) {
       config.solver = o->solver;
       SolverRegistry::Builtins().create(o->solver);  // names the known ones if unknown

@@ -1,13 +1,22 @@
 #include "solvers/solve_config.h"
 
+#include <algorithm>
 #include <filesystem>
 
 #include "framework/params.h"
 
 namespace layerlab {
 
-SolveConfig ReadSolveConfig(const Scene& scene) {
+std::string DefaultSolverFor(const DisplaySystem& system) {
+  if (system.branches.size() == 1) return "multiplicative";
+  bool single = std::all_of(system.branches.begin(), system.branches.end(),
+                            [](const Branch& b) { return b.layers.size() == 1; });
+  return single ? "additive-trust-region" : "hybrid";
+}
+
+SolveConfig ReadSolveConfig(const Scene& scene, const DisplaySystem& system) {
   SolveConfig config;
+  config.solver = DefaultSolverFor(system);
   if (!scene.document.contains("solve")) {
     config.options = SolverRegistry::Builtins().find(config.solver)->defaults;
     return config;

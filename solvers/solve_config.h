@@ -10,19 +10,24 @@
 #include <string>
 
 #include "solvers/solver.h"
+#include "systems/display_system.h"
 #include "systems/projection.h"
 #include "systems/scene.h"
 
 namespace layerlab {
 
 struct SolveConfig {
-  std::string solver = "hybrid";
+  std::string solver;  // default: DefaultSolverFor(system)
   std::string target;  // light-field folder, resolved against the scene file's folder
   Sampling sampling = Sampling::kNearest;
   SolverOptions options;  // the solver's defaults, then the scene's values
 };
 
+// The solver a display's structure calls for: one branch -> multiplicative,
+// one layer per branch -> additive-trust-region, else hybrid.
+std::string DefaultSolverFor(const DisplaySystem& system);
+
 // Reads scene.document["solve"] if present (strictly: unknown keys are errors).
-SolveConfig ReadSolveConfig(const Scene& scene);
+SolveConfig ReadSolveConfig(const Scene& scene, const DisplaySystem& system);
 
 }  // namespace layerlab

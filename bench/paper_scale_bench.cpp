@@ -1,0 +1,238 @@
+// The paper-scale workloads, each against its target on this machine
+// (docs/performance.md), and the straightforward formulation the paper used
+// (explicit sparse projection matrices) timed in the same run.
+//
+//   build/layerlab_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+//   build/layerlab_bench --smoke      # seconds: reduced scale, for CI
+//
+// Counters: target_s is the target for the row, vs_target the
+// measured time over it (below 1 meets it), peak_rss_MB the process's peak
+// so far (benchmarks run in the order below, the sparse ones last).
+#include <benchmark/benchmark.h>
+
+#include <Eigen/Sparse>
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "bench/bench_setup.h"
+#include "solvers/solver.h"
+#include "systems/retina.h"
+
+namespace layerlab::bench {
+namespace {
+
+constexpr double kDeg = 3.14159265358979323846 / 180;
+
+template <class F>
+double Timed(benchmark::State& state, F f) {
+  auto start = std::chrono::steady_clock::now();
+  f();
+  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  state.SetIterationTime(seconds);
+  return seconds;
+}
+
+void Report(benchmark::State& state, double target_seconds, double measured_seconds) {
+  state.counters["target_s"] = target_seconds;
+  state.counters["vs_target"] = measured_seconds / target_seconds;
+  state.counters["peak_rss_MB"] = PeakRssMb();
+}
+
+// One solve of `iterations`; the time of the last iteration alone (the trace's
+// difference), or of the whole solve, is what the benchmark reports.
+SolverReport RunSolver(const Workload& w, const std::string& solver, SolverOptions options) {
+  Patterns t;
+  return SolverRegistry::Builtins().create(solver)->Solve(*w.model, w.target, options, &t);
+}
+
+void BM_Synthesis(benchmark::State& state) {
+  const Workload& w = GetWorkload("paper_prototype");
+  Patterns t = w.model->UniformPatterns(0.5f);
+  for (auto _ : state) benchmark::DoNotOptimize(w.model->Synthesize(t).rgb.data());
+  state.counters["rays_per_s"] = benchmark::Counter(double(w.target.geometry.ray_count()), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["peak_rss_MB"] = PeakRssMb();
+  state.SetLabel(w.target_name);
+}
+
+void BM_HybridIteration(benchmark::State& state) {
+  const Workload& w = GetWorkload("paper_prototype");
+  SolverOptions o = SolverRegistry::Builtins().find("hybrid")->defaults;
+  o.iterations = 1;
+  double last = 0;
+  for (auto _ : state) {
+    SolverReport r = RunSolver(w, "hybrid", o);
+    last = r.trace.back().seconds - r.trace.front().seconds;
+    state.SetIterationTime(last);
+  }
+  Report(state, 0.15, last);
+  state.SetLabel(w.target_name + ", 2 sets x 3 sub-iterations");
+}
+
+void BM_HybridSchedule(benchmark::State& state) {
+  const Workload& w = GetWorkload("paper_prototype");
+  SolverOptions o = SolverRegistry::Builtins().find("hybrid")->defaults;  // 30 x 3
+  SolverReport r;
+  for (auto _ : state) {
+    r = RunSolver(w, "hybrid", o);
+    state.SetIterationTime(r.seconds);
+  }
+  state.counters["psnr_dB"] = r.final_psnr_db;
+  Report(state, 5.0, r.seconds);
+  state.SetLabel(w.target_name + ", 30 x 3");
+}
+
+void BM_MultiplicativeIteration(benchmark::State& state) {
+  const Workload& w = GetWorkload("multiplicative_2layer");
+  SolverOptions o = SolverRegistry::Builtins().find("multiplicative")->defaults;
+  o.iterations = 1;
+  double last = 0;
+  for (auto _ : state) {
+    SolverReport r = RunSolver(w, "multiplicative", o);
+    last = r.trace.back().seconds - r.trace.front().seconds;
+    state.SetIterationTime(last);
+  }
+  Report(state, 0.025, last);
+  state.SetLabel(w.target_name + ", 2 layers");
+}
+
+void BM_AdditiveToConvergence(benchmark::State& state) {
+  const Workload& w = GetWorkload("additive_2layer");
+  SolverOptions o = SolverRegistry::Builtins().find("additive-trust-region")->defaults;
+  o.tolerance = 1e-6;
+  o.iterations = 1000;
+  SolverReport r;
+  for (auto _ : state) {
+    r = RunSolver(w, "additive-trust-region", o);
+    state.SetIterationTime(r.seconds);
+  }
+  state.counters["iterations"] = r.iterations;
+  state.counters["psnr_dB"] = r.final_psnr_db;
+  Report(state, 5.0, r.seconds);
+  state.SetLabel(w.target_name + ", " + ToString(r.termination));
+}
+
+void BM_RetinaImage(benchmark::State& state) {
+  const Workload& w = GetWorkload("paper_prototype");
+  Patterns t = w.model->UniformPatterns(0.5f);
+  const RetinaGrid grid = Settings().smoke ? MakeRetinaGrid(4 * kDeg, 2 * kDeg, 0.1 * kDeg)
+                                           : MakeRetinaGrid(w.system.fov_x, w.system.fov_y, w.system.fov_x / 400);
+  const std::vector<PupilPoint> pupil = PupilSamples(w.system.eye);
+  double last = 0;
+  for (auto _ : state)
+    last = Timed(state, [&] { benchmark::DoNotOptimize(RetinaOfDisplay(*w.model, t, grid, pupil, {1.3, 1.3, 1.3}).pixels.data()); });
+  state.counters["retina_samples"] = double(grid.cols) * grid.rows;
+  state.counters["pupil_samples"] = double(pupil.size());
+  Report(state, 0.020, last);
+}
+
+// ---- The paper's formulation: P_k as explicit sparse matrices (rays x pixels). ----
+
+using SparseP = Eigen::SparseMatrix<float, Eigen::RowMajor, int>;
+using RaysRgb = Eigen::Matrix<float, Eigen::Dynamic, 3, Eigen::RowMajor>;
+
+SparseP BuildSparse(const LayerProjection& P) {
+  const LightFieldGeometry& g = P.geometry();
+  std::vector<Eigen::Triplet<float, int>> entries;
+  entries.reserve(g.ray_count());
+  for (size_t v = 0; v < g.view_count(); ++v)
+    P.ForEachTap(v, [&](size_t ray, int32_t pixel, float weight) {
+      entries.emplace_back(static_cast<int>(v * g.pixels_per_view() + ray), pixel, weight);
+    });
+  SparseP m(static_cast<int>(g.ray_count()), static_cast<int>(P.pixel_count()));
+  m.setFromTriplets(entries.begin(), entries.end());
+  return m;
+}
+
+Eigen::Map<const RaysRgb> AsMatrix(const std::vector<float>& v) {
+  return {v.data(), static_cast<Eigen::Index>(v.size() / 3), 3};
+}
+
+struct SparseModel {
+  std::vector<SparseP> P;
+  double build_seconds = 0;
+};
+const SparseModel& GetSparse(const std::string& example) {
+  static std::map<std::string, SparseModel> cache;
+  auto it = cache.find(example);
+  if (it != cache.end()) return it->second;
+  const Workload& w = GetWorkload(example);
+  SparseModel s;
+  auto start = std::chrono::steady_clock::now();
+  for (size_t k = 0; k < w.model->layer_count(); ++k) s.P.push_back(BuildSparse(w.model->projection(k)));
+  s.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return cache.emplace(example, std::move(s)).first->second;
+}
+
+void BM_SynthesisSparse(benchmark::State& state) {
+  const Workload& w = GetWorkload("paper_prototype");
+  const SparseModel& s = GetSparse("paper_prototype");
+  Patterns t = w.model->UniformPatterns(0.5f);
+  for (auto _ : state) {
+    RaysRgb total = RaysRgb::Zero(s.P[0].rows(), 3);
+    for (size_t b = 0; b < w.model->branch_count(); ++b) {
+      RaysRgb product = RaysRgb::Ones(s.P[0].rows(), 3);
+      for (int k : w.model->branch_layers(b)) product = product.cwiseProduct(s.P[k] * AsMatrix(t[k].rgb));
+      total += product;
+    }
+    benchmark::DoNotOptimize(total.data());
+  }
+  state.counters["build_s"] = s.build_seconds;
+  state.counters["peak_rss_MB"] = PeakRssMb();
+}
+
+// One multiplicative 2-layer iteration (each layer updated once) with sparse
+// matrices: t_a <- t_a * P_a^T (l o Q) / P_a^T ((P_a t_a) o Q o Q), Q = P_b t_b.
+void BM_MultiplicativeIterationSparse(benchmark::State& state) {
+  const Workload& w = GetWorkload("multiplicative_2layer");
+  const SparseModel& s = GetSparse("multiplicative_2layer");
+  Patterns t = w.model->UniformPatterns(0.5f);
+  Eigen::Map<const RaysRgb> l(w.target.rgb.data(), s.P[0].rows(), 3);
+  for (auto _ : state) {
+    for (int a = 0; a < 2; ++a) {
+      const int b = 1 - a;
+      RaysRgb q = s.P[b] * AsMatrix(t[b].rgb);
+      RaysRgb num = s.P[a].transpose() * l.cwiseProduct(q);
+      RaysRgb den = s.P[a].transpose() * (s.P[a] * AsMatrix(t[a].rgb)).cwiseProduct(q).cwiseProduct(q);
+      for (size_t k = 0; k < t[a].rgb.size(); ++k) {
+        float d = den.data()[k];
+        if (d > 1e-12f) t[a].rgb[k] = std::clamp(t[a].rgb[k] * num.data()[k] / d, 1e-6f, 1.0f);
+      }
+    }
+  }
+  state.counters["build_s"] = s.build_seconds;
+  state.counters["peak_rss_MB"] = PeakRssMb();
+}
+
+}  // namespace
+}  // namespace layerlab::bench
+
+using namespace layerlab::bench;
+BENCHMARK(BM_Synthesis)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_HybridIteration)->Unit(benchmark::kMillisecond)->UseManualTime();
+BENCHMARK(BM_MultiplicativeIteration)->Unit(benchmark::kMillisecond)->UseManualTime();
+BENCHMARK(BM_RetinaImage)->Unit(benchmark::kMillisecond)->UseManualTime();
+BENCHMARK(BM_HybridSchedule)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(1);
+BENCHMARK(BM_AdditiveToConvergence)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(1);
+BENCHMARK(BM_SynthesisSparse)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_MultiplicativeIterationSparse)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+int main(int argc, char** argv) {
+  std::vector<char*> args;
+  for (int k = 0; k < argc; ++k) {
+    if (std::strcmp(argv[k], "--smoke") == 0) {
+      Settings().smoke = true;
+      continue;
+    }
+    args.push_back(argv[k]);
+  }
+  int count = static_cast<int>(args.size());
+  benchmark::Initialize(&count, args.data());
+  if (benchmark::ReportUnrecognizedArguments(count, args.data())) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
