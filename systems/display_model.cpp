@@ -46,14 +46,20 @@ void DisplayModel::SynthesizeView(size_t view, const Patterns& t, float* out, fl
 
 LightField DisplayModel::Synthesize(const Patterns& t) const {
   LightField lf(lf_);
+  Synthesize(t, &lf);
+  return lf;
+}
+
+void DisplayModel::Synthesize(const Patterns& t, LightField* out) const {
+  if (out->rgb.size() != lf_.ray_count() * 3) throw Error("Synthesize: the output light field has other rays than the model");
+  out->geometry = lf_;
   const size_t views = lf_.view_count();
 #pragma omp parallel
   {
     std::vector<float> scratch(lf_.pixels_per_view() * 3);
 #pragma omp for schedule(dynamic)
-    for (size_t v = 0; v < views; ++v) SynthesizeView(v, t, lf.view(v), scratch.data());
+    for (size_t v = 0; v < views; ++v) SynthesizeView(v, t, out->view(v), scratch.data());
   }
-  return lf;
 }
 
 LightFieldGeometry DisplayLightFieldGeometry(const DisplaySystem& system, double origin_diopters) {

@@ -53,6 +53,8 @@ class DisplayModel {
   // The whole display for one view; `scratch` holds one view (pixels x 3).
   void SynthesizeView(size_t view, const Patterns& t, float* out, float* scratch) const;
   LightField Synthesize(const Patterns& t) const;
+  // Into a light field of this model's geometry, reusing its memory.
+  void Synthesize(const Patterns& t, LightField* out) const;
 
  private:
   DisplaySystem system_;
