@@ -9,6 +9,9 @@ namespace layerlab::app {
 void AddInfoCommand(CLI::App& app);
 void AddSolveCommand(CLI::App& app);
 void AddContrastCommand(CLI::App& app);
+#if LAYERLAB_WITH_CERES
+void AddFitCommand(CLI::App& app);  // fit SCENE.json MEASUREMENTS.json --out CALIBRATED.json
+#endif
 #if LAYERLAB_WITH_EMBREE
 void AddRenderTargetCommand(CLI::App& app);  // render-target TARGET.json OUT_DIR
 #endif

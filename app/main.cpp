@@ -14,6 +14,9 @@ int main(int argc, char** argv) {
   layerlab::app::AddInfoCommand(app);
   layerlab::app::AddSolveCommand(app);
   layerlab::app::AddContrastCommand(app);
+#if LAYERLAB_WITH_CERES
+  layerlab::app::AddFitCommand(app);
+#endif
 #if LAYERLAB_WITH_EMBREE
   layerlab::app::AddRenderTargetCommand(app);
 #endif
