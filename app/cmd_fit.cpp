@@ -39,8 +39,12 @@ void AddFitCommand(CLI::App& app) {
     DisplaySystem system = Compile(LoadScene(o->scene));
     Measurements measurements = ReadMeasurementsFile(o->measurements);
     CalibrationOptions options;
-    options.loss = RobustLossFromString(o->loss);
-    options.reference = AxisReferenceFromString(o->reference);
+    try {
+      options.loss = RobustLossFromString(o->loss);
+      options.reference = AxisReferenceFromString(o->reference);
+    } catch (const Error& e) {
+      throw Error(std::string(o->loss == ToString(options.loss) ? "--reference: " : "--loss: ") + e.message());
+    }
     options.fit_focal_length = o->fit_focal_length;
     if (o->marker_loss_arcmin >= 0) options.marker_loss_scale = o->marker_loss_arcmin / 60.0 * std::numbers::pi / 180.0;
     if (o->luminance_loss >= 0) options.luminance_loss_scale = o->luminance_loss;
