@@ -10,6 +10,9 @@ void AddInfoCommand(CLI::App& app);
 void AddSolveCommand(CLI::App& app);
 void AddContrastCommand(CLI::App& app);
 void AddRetinaCommand(CLI::App& app);  // retina SCENE.json --patterns DIR --out DIR
+#if LAYERLAB_WITH_CERES
+void AddFitCommand(CLI::App& app);  // fit SCENE.json MEASUREMENTS.json --out CALIBRATED.json
+#endif
 #if LAYERLAB_WITH_EMBREE
 void AddRenderTargetCommand(CLI::App& app);  // render-target TARGET.json OUT_DIR
 #endif

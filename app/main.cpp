@@ -15,6 +15,9 @@ int main(int argc, char** argv) {
   layerlab::app::AddSolveCommand(app);
   layerlab::app::AddContrastCommand(app);
   layerlab::app::AddRetinaCommand(app);
+#if LAYERLAB_WITH_CERES
+  layerlab::app::AddFitCommand(app);
+#endif
 #if LAYERLAB_WITH_EMBREE
   layerlab::app::AddRenderTargetCommand(app);
 #endif

@@ -1,0 +1,73 @@
+// layerlab fit SCENE.json MEASUREMENTS.json --out CALIBRATED.json: the display
+// as built, fitted with Ceres to what a camera at the eye measured
+// (docs/measurements-format.md). Writes a scene file every other command
+// reads unchanged, and prints the calibration report.
+#include <iostream>
+#include <memory>
+#include <numbers>
+#include <string>
+
+#include "app/commands.h"
+#include "framework/atomic_file.h"
+#include "systems/calibration/calibrated_scene.h"
+#include "systems/calibration/calibration.h"
+#include "systems/compile.h"
+
+namespace layerlab::app {
+
+void AddFitCommand(CLI::App& app) {
+  struct Options {
+    std::string scene, measurements, out, report, loss = "none", reference = "camera";
+    double marker_loss_arcmin = -1, luminance_loss = -1;
+    bool fit_focal_length = false;
+  };
+  auto o = std::make_shared<Options>();
+  CLI::App* cmd = app.add_subcommand("fit", "Calibrate a scene from measurements of the built display (Ceres)");
+  cmd->add_option("scene", o->scene, "Scene file as designed (JSON)")->required();
+  cmd->add_option("measurements", o->measurements, "Measurements file (layerlab-measurements/1)")->required();
+  cmd->add_option("--out", o->out, "Calibrated scene file to write")->required();
+  cmd->add_option("--report", o->report, "Also write the report as JSON to this file");
+  cmd->add_option("--loss", o->loss, "Robust loss against outliers: none, huber or cauchy");
+  cmd->add_option("--marker-loss-scale", o->marker_loss_arcmin,
+                  "Marker error (arcmin) where the robust loss starts to discount (default 1)");
+  cmd->add_option("--luminance-loss-scale", o->luminance_loss,
+                  "Luminance error, relative to the brightest reading, where the robust loss starts (default 0.02)");
+  cmd->add_option("--reference", o->reference, "Eye axis: camera, or farthest-panel (centers the farthest panel)");
+  cmd->add_flag("--fit-focal-length", o->fit_focal_length,
+                "Also fit the lens focal length (needs captures from two or more camera positions)");
+  cmd->callback([o] {
+    DisplaySystem system = Compile(LoadScene(o->scene));
+    Measurements measurements = ReadMeasurementsFile(o->measurements);
+    CalibrationOptions options;
+    try {
+      options.loss = RobustLossFromString(o->loss);
+      options.reference = AxisReferenceFromString(o->reference);
+    } catch (const Error& e) {
+      throw Error(std::string(o->loss == ToString(options.loss) ? "--reference: " : "--loss: ") + e.message());
+    }
+    options.fit_focal_length = o->fit_focal_length;
+    if (o->marker_loss_arcmin >= 0) options.marker_loss_scale = o->marker_loss_arcmin / 60.0 * std::numbers::pi / 180.0;
+    if (o->luminance_loss >= 0) options.luminance_loss_scale = o->luminance_loss;
+
+    CalibratedDisplay display;
+    CalibrationReport report = Calibrate(system, measurements, options, &display);
+    std::cout << report.FullReport();
+    if (!o->report.empty()) WriteFileAtomically(o->report, report.ToJson().dump(2) + "\n");
+    if (!report.IsSolutionUsable()) throw Error("the calibration failed: " + report.message + "; nothing was written");
+
+    nlohmann::ordered_json calibrated = CalibratedSceneDocument(ReadDocumentInOrder(o->scene), o->scene, display);
+    RebaseRelativePaths(calibrated, o->scene, o->out);
+    // The calibrated scene must compile before it replaces anything.
+    AtomicFile file(o->out);
+    WriteFileAtomically(file.temp_path(), calibrated.dump(2) + "\n");
+    try {
+      Compile(LoadScene(file.temp_path()));
+    } catch (const Error& e) {
+      throw Error(o->out + ": the calibrated scene does not compile (" + e.message() + "); nothing was written");
+    }
+    file.Commit();
+    std::cout << "wrote " << o->out << (o->report.empty() ? "" : " and " + o->report) << "\n";
+  });
+}
+
+}  // namespace layerlab::app
