@@ -32,6 +32,13 @@ class LayerProjection {
   const LayerSampler& sampler() const { return sampler_; }
   const LightFieldGeometry& geometry() const { return lf_; }
 
+  // Nearest sampling of an axis-aligned layer reads one pixel per ray, from
+  // two tables per view: ray (i, j) reads pixel (row_taps(v)[i].i0,
+  // col_taps(v)[j].i0), and misses the layer where either is -1.
+  bool one_tap() const { return separable() && sampling() == Sampling::kNearest; }
+  const AxisTap* row_taps(size_t view) const { return &row_taps_[(view / lf_.views_x) * lf_.rows]; }
+  const AxisTap* col_taps(size_t view) const { return &col_taps_[(view % lf_.views_x) * lf_.cols]; }
+
   // The taps of ray (pixel row i, col j) of view v.
   RayTaps Taps(size_t view, int i, int j) const;
 
