@@ -9,6 +9,7 @@ namespace layerlab::app {
 void AddInfoCommand(CLI::App& app);
 void AddSolveCommand(CLI::App& app);
 void AddContrastCommand(CLI::App& app);
+void AddCompareCommand(CLI::App& app);  // compare SCENES... --target LF_DIR --out DIR
 void AddRetinaCommand(CLI::App& app);  // retina SCENE.json --patterns DIR --out DIR
 #if LAYERLAB_WITH_CERES
 void AddFitCommand(CLI::App& app);  // fit SCENE.json MEASUREMENTS.json --out CALIBRATED.json

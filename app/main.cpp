@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   layerlab::app::AddSolveCommand(app);
   layerlab::app::AddContrastCommand(app);
   layerlab::app::AddRetinaCommand(app);
+  layerlab::app::AddCompareCommand(app);
 #if LAYERLAB_WITH_CERES
   layerlab::app::AddFitCommand(app);
 #endif

@@ -91,6 +91,12 @@ void SolveLoop::Fail(const std::string& message) {
   stopped_ = true;
 }
 
+void SolveLoop::Converge(const std::string& message) {
+  report_.termination = Termination::kConverged;
+  report_.message = message;
+  stopped_ = true;
+}
+
 SolverReport SolveLoop::Finish() {
   report_.seconds = Seconds();
   if (report_.termination == Termination::kNotRun && !report_.trace.empty()) {

@@ -28,6 +28,8 @@ class SolveLoop {
   bool EndIteration(std::optional<double> objective = std::nullopt);
   // Stops with a failure (for example a non-finite objective).
   void Fail(const std::string& message);
+  // Stops because no further step can lower the objective.
+  void Converge(const std::string& message);
   SolverReport Finish();
 
  private:

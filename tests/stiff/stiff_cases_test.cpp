@@ -129,6 +129,7 @@ std::vector<std::tuple<StiffCase, std::string>> Applicable() {
     bool single_layers = std::all_of(system.branches.begin(), system.branches.end(),
                                      [](const Branch& b) { return b.layers.size() == 1; });
     out.emplace_back(c, "hybrid");
+    out.emplace_back(c, "joint");
     if (system.branches.size() == 1) out.emplace_back(c, "multiplicative");
     if (single_layers) out.emplace_back(c, "additive-trust-region");
   }

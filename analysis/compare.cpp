@@ -1,0 +1,112 @@
+#include "analysis/compare.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "analysis/svg_plot.h"
+
+namespace layerlab {
+namespace {
+
+std::string Psnr(double db) {
+  if (std::isinf(db)) return "inf";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3f", db);
+  return text;
+}
+
+}  // namespace
+
+std::vector<CompareResult> RunComparison(const std::vector<CompareRun>& runs, const LightField& target,
+                                         const std::function<void(const std::string&)>& progress) {
+  std::vector<CompareResult> results;
+  for (const CompareRun& run : runs) {
+    DisplayModel model(run.system, target.geometry, run.sampling);
+    SolverOptions options = run.options;
+    const std::string label = run.display + " / " + run.solver;
+    if (progress)
+      options.progress = [&](int iteration, double seconds, double psnr) {
+        char line[160];
+        std::snprintf(line, sizeof line, "%s: iteration %d  %.2f s  PSNR %s dB", label.c_str(), iteration, seconds,
+                      Psnr(psnr).c_str());
+        progress(line);
+      };
+    Patterns t;
+    CompareResult r{run.display, run.solver, {}, run.system.brightness_efficiency, run.system.luminance_efficiency};
+    r.report = SolverRegistry::Builtins().create(run.solver)->Solve(model, target, options, &t);
+    results.push_back(std::move(r));
+  }
+  return results;
+}
+
+std::string CompareTable(const std::vector<CompareResult>& results) {
+  std::string out =
+      "display                      solver                  PSNR (dB)   seconds  iterations  brightness (lum.)  "
+      "brightness R G B          termination\n";
+  for (const CompareResult& r : results) {
+    char line[400];
+    std::snprintf(line, sizeof line, "%-28s %-22s %10s %9.2f %11d %18.4f  %.4f %.4f %.4f   %s\n", r.display.c_str(),
+                  r.solver.c_str(), Psnr(r.report.final_psnr_db).c_str(), r.report.seconds, r.report.iterations,
+                  r.luminance_efficiency, r.brightness_efficiency[0], r.brightness_efficiency[1],
+                  r.brightness_efficiency[2], ToString(r.report.termination).c_str());
+    out += line;
+  }
+  return out;
+}
+
+std::string CompareCsv(const std::vector<CompareResult>& results) {
+  std::string out =
+      "display,solver,final_psnr_db,seconds,iterations,luminance_efficiency,efficiency_r,efficiency_g,efficiency_b,"
+      "termination\n";
+  for (const CompareResult& r : results) {
+    char line[400];
+    std::snprintf(line, sizeof line, "%s,%s,%s,%.6f,%d,%.6f,%.6f,%.6f,%.6f,%s\n", r.display.c_str(), r.solver.c_str(),
+                  Psnr(r.report.final_psnr_db).c_str(), r.report.seconds, r.report.iterations, r.luminance_efficiency,
+                  r.brightness_efficiency[0], r.brightness_efficiency[1], r.brightness_efficiency[2],
+                  ToString(r.report.termination).c_str());
+    out += line;
+  }
+  return out;
+}
+
+std::string TracesCsv(const std::vector<CompareResult>& results) {
+  std::string out = "display,solver,iteration,seconds,objective,psnr_db\n";
+  for (const CompareResult& r : results)
+    for (const IterationRecord& row : r.report.trace) {
+      char line[300];
+      std::snprintf(line, sizeof line, "%s,%s,%d,%.6f,%.9g,%s\n", r.display.c_str(), r.solver.c_str(), row.iteration,
+                    row.seconds, row.objective, Psnr(row.psnr_db).c_str());
+      out += line;
+    }
+  return out;
+}
+
+std::string PsnrAgainstTimeSvg(const std::vector<CompareResult>& results) {
+  static const char* kColors[] = {"#d62728", "#1f77b4", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf"};
+  PlotPanel panel;
+  panel.title = "PSNR against wall time";
+  panel.x_label = "wall time (s)";
+  panel.y_label = "PSNR (dB)";
+  double t_max = 0, y_min = INFINITY, y_max = -INFINITY;
+  for (size_t k = 0; k < results.size(); ++k) {
+    PlotLine line{results[k].display + " / " + results[k].solver, kColors[k % 8], false, {}, {}};
+    for (const IterationRecord& row : results[k].report.trace) {
+      if (!std::isfinite(row.psnr_db)) continue;
+      line.x.push_back(row.seconds);
+      line.y.push_back(row.psnr_db);
+      t_max = std::max(t_max, row.seconds);
+      // The first iterate (often the flat initial guess) would squash the interesting range.
+      if (row.iteration > 0) y_min = std::min(y_min, row.psnr_db);
+      y_max = std::max(y_max, row.psnr_db);
+    }
+    panel.lines.push_back(std::move(line));
+  }
+  if (!std::isfinite(y_min)) y_min = 0, y_max = 1;
+  panel.x_max = t_max > 0 ? t_max * 1.02 : 1;
+  panel.y_min = std::floor(y_min - 0.5);
+  panel.y_max = std::ceil(y_max + 0.5);
+  return RenderSvg({panel}, 1, "Error against run time");
+}
+
+}  // namespace layerlab

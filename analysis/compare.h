@@ -1,0 +1,39 @@
+// Several displays and solvers on one target: error against wall time for
+// each run, and what each display costs in brightness.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "solvers/solver.h"
+#include "systems/display_system.h"
+
+namespace layerlab {
+
+struct CompareRun {
+  std::string display;  // a name for the scene
+  DisplaySystem system;
+  std::string solver;
+  SolverOptions options;
+  Sampling sampling = Sampling::kNearest;
+};
+
+struct CompareResult {
+  std::string display, solver;
+  SolverReport report;
+  Rgb brightness_efficiency{};  // light at the eye per light emitted, per channel
+  double luminance_efficiency = 0;
+};
+
+// Runs each in turn on `target` (each display bound to the target's rays).
+// `progress` gets a line per iteration.
+std::vector<CompareResult> RunComparison(const std::vector<CompareRun>& runs, const LightField& target,
+                                         const std::function<void(const std::string&)>& progress = {});
+
+std::string CompareTable(const std::vector<CompareResult>& results);  // fixed-width text
+std::string CompareCsv(const std::vector<CompareResult>& results);    // one row per run
+std::string TracesCsv(const std::vector<CompareResult>& results);     // one row per run and iteration
+std::string PsnrAgainstTimeSvg(const std::vector<CompareResult>& results);
+
+}  // namespace layerlab

@@ -1,0 +1,98 @@
+// layerlab compare SCENES... --target LF_DIR --out DIR: several displays and
+// solvers on one target; a table (PSNR, seconds, iterations, brightness) and
+// one plot of PSNR against wall time with every run on it.
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "analysis/compare.h"
+#include "app/commands.h"
+#include "framework/atomic_file.h"
+#include "framework/error.h"
+#include "framework/lightfield_io.h"
+#include "solvers/solve_config.h"
+#include "systems/compile.h"
+
+namespace layerlab::app {
+namespace {
+
+std::vector<std::string> SplitNames(const std::string& text) {
+  std::vector<std::string> names;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ','))
+    if (!item.empty()) names.push_back(item);
+  return names;
+}
+
+// Why `solver` cannot factorize `system`, or "" when it can.
+std::string Unsuitable(const std::string& solver, const DisplaySystem& system) {
+  if (solver == "multiplicative" && system.branches.size() != 1) return "needs a display of one branch";
+  if (solver == "additive-trust-region")
+    for (const Branch& b : system.branches)
+      if (b.layers.size() != 1) return "needs one layer per branch";
+  return "";
+}
+
+}  // namespace
+
+void AddCompareCommand(CLI::App& app) {
+  struct Options {
+    std::vector<std::string> scenes;
+    std::string target, out, solvers;
+    int iterations = 0;
+    double time_budget = -1;
+  };
+  auto o = std::make_shared<Options>();
+  CLI::App* cmd = app.add_subcommand("compare", "Several displays and solvers on one target: PSNR against time");
+  cmd->add_option("scenes", o->scenes, "Display scene files (JSON)")->required();
+  cmd->add_option("--target", o->target, "Target light-field folder")->required();
+  cmd->add_option("--out", o->out, "Output folder")->required();
+  cmd->add_option("--solvers", o->solvers, "Solvers to run on each display, comma-separated (default: each scene's own)");
+  cmd->add_option("--iterations", o->iterations, "Iterations of every run (default: each solver's)");
+  cmd->add_option("--time-budget", o->time_budget, "Seconds each run may take");
+  cmd->callback([o] {
+    for (const std::string& name : SplitNames(o->solvers)) SolverRegistry::Builtins().create(name);  // names known ones
+    if (o->iterations < 0) throw Error("--iterations: must be positive");
+    std::vector<CompareRun> runs;
+    for (const std::string& file : o->scenes) {
+      Scene scene = LoadScene(file);
+      DisplaySystem system = Compile(scene);
+      SolveConfig config = ReadSolveConfig(scene, system);
+      std::vector<std::string> solvers = SplitNames(o->solvers);
+      if (solvers.empty()) solvers.push_back(config.solver);
+      for (const std::string& solver : solvers) {
+        const std::string name = std::filesystem::path(file).stem().string();
+        if (std::string why = Unsuitable(solver, system); !why.empty()) {
+          std::fprintf(stderr, "compare: skipped %s / %s: the solver %s\n", name.c_str(), solver.c_str(), why.c_str());
+          continue;
+        }
+        SolverOptions options = solver == config.solver ? config.options : SolverRegistry::Builtins().find(solver)->defaults;
+        if (o->iterations > 0) options.iterations = o->iterations;
+        if (o->time_budget >= 0) options.time_budget = o->time_budget;
+        runs.push_back({name, system, solver, options, config.sampling});
+      }
+    }
+    if (runs.empty()) throw Error("compare: no display and solver fit together; nothing to run");
+    std::fprintf(stderr, "loading %s\n", o->target.c_str());
+    LightField target = ReadLightField(o->target, {.load_depth = false});
+    std::vector<CompareResult> results = RunComparison(runs, target, [](const std::string& line) {
+      std::fprintf(stderr, "compare: %s\n", line.c_str());
+    });
+    for (const CompareResult& r : results)
+      if (!r.report.IsSolutionUsable())
+        throw Error("compare: " + r.display + " / " + r.solver + " failed: " + r.report.message + "; nothing was written");
+
+    std::filesystem::create_directories(o->out);
+    const std::string table = CompareTable(results);
+    WriteFileAtomically(o->out + "/compare.txt", table);
+    WriteFileAtomically(o->out + "/compare.csv", CompareCsv(results));
+    WriteFileAtomically(o->out + "/traces.csv", TracesCsv(results));
+    WriteFileAtomically(o->out + "/psnr_vs_time.svg", PsnrAgainstTimeSvg(results));
+    std::cout << table << "wrote " << o->out << "/{compare.txt,compare.csv,traces.csv,psnr_vs_time.svg}\n";
+  });
+}
+
+}  // namespace layerlab::app
