@@ -10,10 +10,17 @@
 // two parameters each; Ceres would store that Jacobian (about 80 M entries
 // plus per-residual-block overhead, several GB) where this stores vectors of
 // the size of the layers.
+//
+// When every layer is separable (no rotation) the whole solve runs in layer
+// space (additive_gram.h): A^T l and ||l||^2 are summed over the rays once,
+// and every objective, gradient and Hessian product after that comes from
+// the Kronecker-factored normal matrix. Rotated layers take a pass over the
+// rays for each.
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
+#include "solvers/additive_gram.h"
 #include "solvers/solve_loop.h"
 
 namespace layerlab {
@@ -122,6 +129,49 @@ class AdditiveOperator {
   size_t n_;
 };
 
+// The same interface from the normal matrix: f = x^T G x - 2 x^T A^T l + ||l||^2.
+class GramOperator {
+ public:
+  GramOperator(const DisplayModel& model, const AdditiveOperator& rays, const LightField& l, const Patterns& shape)
+      : gram_(model) {
+    Patterns zero = shape;
+    for (LayerPattern& p : zero) std::fill(p.rgb.begin(), p.rgb.end(), 0.0f);
+    Vec g0;
+    squared_target_ = rays.Residual(zero, l, &g0);  // ||l||^2 and -2 A^T l
+    target_ = std::move(g0);
+    for (auto& block : target_)
+      for (double& v : block) v *= -0.5;
+  }
+
+  double Residual(const Patterns& x, const LightField&, Vec* gradient) const {
+    Vec xv = Zeros(x), gx;
+    for (size_t k = 0; k < x.size(); ++k)
+      for (size_t i = 0; i < x[k].rgb.size(); ++i) xv[k][i] = x[k].rgb[i];
+    gram_.Apply(xv, &gx);
+    // Cancellation leaves round-off of about 1e-16 ||l||^2: clamp it at a perfect fit.
+    const double f = std::max(0.0, Dot(xv, gx) - 2 * Dot(target_, xv) + squared_target_);
+    if (gradient) {
+      *gradient = std::move(gx);
+      Axpy(-1.0, target_, gradient);
+      for (auto& block : *gradient)
+        for (double& v : block) v *= 2.0;
+    }
+    return f;
+  }
+
+  double Hessian(const Vec& p, const Vec& free, Vec* hp, const Patterns&) const {
+    gram_.Apply(p, hp);
+    for (size_t k = 0; k < hp->size(); ++k)
+      for (size_t i = 0; i < (*hp)[k].size(); ++i) (*hp)[k][i] *= 2.0 * free[k][i];
+    return Dot(p, *hp);
+  }
+
+ private:
+  AdditiveGram gram_;
+  Vec target_;  // A^T l
+  double squared_target_ = 0;
+};
+
 class AdditiveTrustRegionSolver final : public Solver {
  public:
   SolverReport Solve(const DisplayModel& model, const LightField& target, const SolverOptions& options,
@@ -135,7 +185,20 @@ class AdditiveTrustRegionSolver final : public Solver {
       }
     if (!loop.Start()) return loop.Finish();
     const LightField& l = loop.target();
-    AdditiveOperator A(model);
+    AdditiveOperator rays(model);
+    if (AdditiveGram::Applicable(model)) {
+      GramOperator gram(model, rays, l, *t);
+      Run(gram, l, &loop, t);
+    } else {
+      Run(rays, l, &loop, t);
+    }
+    return loop.Finish();
+  }
+
+ private:
+  template <class Operator>
+  static void Run(const Operator& A, const LightField& l, SolveLoop* loop_pointer, Patterns* t) {
+    SolveLoop& loop = *loop_pointer;
 
     Vec g;
     double f = A.Residual(*t, l, &g);
@@ -207,7 +270,6 @@ class AdditiveTrustRegionSolver final : public Solver {
       *t = std::move(trial);
       f = A.Residual(*t, l, &g);
     } while (loop.EndIteration(f));
-    return loop.Finish();
   }
 };
 

@@ -71,6 +71,26 @@ TEST(Solvers, AdditiveTrustRegionRecoversAKnownTarget) {
   ExpectInBounds(t);
 }
 
+// The solve in layer space (normal matrix) and the one over the rays (a
+// rotation of 1e-12 rad sends every layer to the general path) take the same steps.
+TEST(Solvers, AdditiveTrustRegionInLayerSpaceMatchesTheRayPath) {
+  Fixture f = MakeFixture("additive_2layer.json");
+  for (float& v : f.target.rgb) v = std::min(1.0f, v * 1.3f);  // not exactly reachable
+  SolverOptions o = SolverRegistry::Builtins().find("additive-trust-region")->defaults;
+  o.iterations = 6;
+  o.tolerance = 0;
+  Patterns a, b;
+  SolverReport fast = RunSolver("additive-trust-region", f, o, &a);
+  DisplaySystem rotated = f.system;
+  for (VirtualLayer& layer : rotated.layers) layer.rotation = 1e-12;
+  DisplayModel model(rotated, f.target.geometry);
+  SolverReport slow = SolverRegistry::Builtins().create("additive-trust-region")->Solve(model, f.target, o, &b);
+  ASSERT_TRUE(fast.IsSolutionUsable() && slow.IsSolutionUsable());
+  ASSERT_EQ(fast.trace.size(), slow.trace.size());
+  for (size_t k = 0; k < fast.trace.size(); ++k)
+    EXPECT_NEAR(fast.trace[k].objective, slow.trace[k].objective, 1e-4 * slow.trace[k].objective) << "iteration " << k;
+}
+
 TEST(Solvers, MultiplicativeRecoversAKnownTarget) {
   Fixture f = MakeFixture("multiplicative_2layer.json");
   SolverOptions o;
