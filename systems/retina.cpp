@@ -58,6 +58,98 @@ std::array<double, 3> ChannelAccommodation(const EyeModel& eye, double diopters)
   return {diopters + eye.chromatic_defocus[0], diopters + eye.chromatic_defocus[1], diopters + eye.chromatic_defocus[2]};
 }
 
+namespace {
+
+// Where the rays of one pupil point read one layer, for one channel's focus:
+// the ray through retinal sample (i, j) meets the layer at tan-angle
+// (tan x_j + u_x blur, tan y_i + u_y blur), blur = D_k - D_a; for a layer
+// without rotation its column depends only on j and its row only on i.
+struct LayerTables {
+  std::vector<AxisTap> cols, rows;  // separable layers; empty otherwise
+  double blur = 0;
+};
+
+// The value a ray reads from one channel of a pattern.
+inline double Read(const RayTaps& taps, const LayerPattern& t, int c) {
+  double value = 0;
+  for (int q = 0; q < taps.count; ++q) value += taps.weight[q] * t.rgb[size_t(taps.index[q]) * 3 + c];
+  return value;
+}
+inline double Read(const AxisTap& row, const AxisTap& col, const LayerPattern& t, int c) {
+  double value = 0;
+  const int32_t ri[2] = {row.i0, row.i1}, ci[2] = {col.i0, col.i1};
+  const float rw[2] = {row.w0, row.w1}, cw[2] = {col.w0, col.w1};
+  for (int a = 0; a < 2; ++a) {
+    if (ri[a] < 0) continue;
+    for (int b = 0; b < 2; ++b)
+      if (ci[b] >= 0) value += double(rw[a]) * cw[b] * t.rgb[(size_t(ri[a]) * t.cols + ci[b]) * 3 + c];
+  }
+  return value;
+}
+
+// The common case: one focus for all channels, every layer nearest-sampled
+// without rotation. Each ray reads one pixel per layer at a table offset.
+void NearestRetina(const DisplayModel& model, const Patterns& t, const RetinaGrid& retina,
+                   const std::vector<PupilPoint>& pupil, const std::vector<LayerTables>& tables, Image* image) {
+  const size_t layers = model.layer_count();
+  // Pattern offsets: row i of layer k for pupil point p, and column j.
+  std::vector<int32_t> row_offset(pupil.size() * layers * retina.rows), col_offset(pupil.size() * layers * retina.cols);
+  for (size_t p = 0; p < pupil.size(); ++p)
+    for (size_t k = 0; k < layers; ++k) {
+      const LayerTables& table = tables[p * layers + k];
+      for (int i = 0; i < retina.rows; ++i)
+        row_offset[(p * layers + k) * retina.rows + i] = table.rows[i].i0 < 0 ? -1 : table.rows[i].i0 * t[k].cols * 3;
+      for (int j = 0; j < retina.cols; ++j)
+        col_offset[(p * layers + k) * retina.cols + j] = table.cols[j].i0 < 0 ? -1 : table.cols[j].i0 * 3;
+    }
+  std::vector<int> members, start{0};
+  std::vector<float> weights;
+  for (size_t b = 0; b < model.branch_count(); ++b) {
+    for (int k : model.branch_layers(b)) members.push_back(k);
+    start.push_back(static_cast<int>(members.size()));
+    for (int c = 0; c < 3; ++c) weights.push_back(model.weight(b)[c]);
+  }
+  const double inverse_count = 1.0 / pupil.size();
+#pragma omp parallel
+  {
+    std::vector<double> sum(size_t(retina.cols) * 3);
+    std::vector<int32_t> rows(layers);
+    std::vector<const int32_t*> cols(layers);
+#pragma omp for schedule(dynamic)
+    for (int i = 0; i < retina.rows; ++i) {
+      std::fill(sum.begin(), sum.end(), 0.0);
+      for (size_t p = 0; p < pupil.size(); ++p) {
+        for (size_t k = 0; k < layers; ++k) {
+          rows[k] = row_offset[(p * layers + k) * retina.rows + i];
+          cols[k] = &col_offset[(p * layers + k) * retina.cols];
+        }
+        for (int j = 0; j < retina.cols; ++j) {
+          float ray[3] = {0, 0, 0};
+          for (size_t b = 0; b + 1 < start.size(); ++b) {
+            float product[3] = {weights[b * 3], weights[b * 3 + 1], weights[b * 3 + 2]};
+            for (int m = start[b]; m < start[b + 1]; ++m) {
+              const int k = members[m];
+              const int32_t col = cols[k][j];
+              if (rows[k] < 0 || col < 0) {
+                product[0] = product[1] = product[2] = 0;
+                break;
+              }
+              const float* v = t[k].rgb.data() + rows[k] + col;
+              product[0] *= v[0], product[1] *= v[1], product[2] *= v[2];
+            }
+            ray[0] += product[0], ray[1] += product[1], ray[2] += product[2];
+          }
+          sum[size_t(j) * 3] += ray[0], sum[size_t(j) * 3 + 1] += ray[1], sum[size_t(j) * 3 + 2] += ray[2];
+        }
+      }
+      for (size_t k = 0; k < sum.size(); ++k)
+        image->pixels[size_t(i) * retina.cols * 3 + k] = static_cast<float>(sum[k] * inverse_count);
+    }
+  }
+}
+
+}  // namespace
+
 Image RetinaOfDisplay(const DisplayModel& model, const Patterns& t, const RetinaGrid& retina,
                       const std::vector<PupilPoint>& pupil, const std::array<double, 3>& accommodation) {
   Image image{retina.cols, retina.rows, {"R", "G", "B"}, std::vector<float>(size_t(retina.cols) * retina.rows * 3, 0.0f)};
@@ -65,35 +157,60 @@ Image RetinaOfDisplay(const DisplayModel& model, const Patterns& t, const Retina
   for (int j = 0; j < retina.cols; ++j) tan_x[j] = std::tan(retina.angle_x(j));
   for (int i = 0; i < retina.rows; ++i) tan_y[i] = std::tan(retina.angle_y(i));
   const bool same_focus = accommodation[0] == accommodation[1] && accommodation[1] == accommodation[2];
+  const int foci = same_focus ? 1 : 3;
   const size_t layers = model.layer_count();
   const double inverse_count = 1.0 / pupil.size();
+
+  // [pupil point][layer][focus]
+  std::vector<LayerTables> tables(pupil.size() * layers * foci);
+#pragma omp parallel for schedule(dynamic)
+  for (size_t p = 0; p < pupil.size(); ++p)
+    for (size_t k = 0; k < layers; ++k)
+      for (int f = 0; f < foci; ++f) {
+        const LayerSampler& s = model.projection(k).sampler();
+        LayerTables& table = tables[(p * layers + k) * foci + f];
+        table.blur = s.diopters() - accommodation[f];
+        if (!s.separable()) continue;
+        table.cols.resize(retina.cols), table.rows.resize(retina.rows);
+        for (int j = 0; j < retina.cols; ++j) table.cols[j] = s.Column(tan_x[j] + pupil[p].x * table.blur);
+        for (int i = 0; i < retina.rows; ++i) table.rows[i] = s.Row(tan_y[i] + pupil[p].y * table.blur);
+      }
+
+  bool one_tap = same_focus;
+  for (size_t k = 0; k < layers; ++k) one_tap = one_tap && model.projection(k).one_tap();
+  if (one_tap) {
+    NearestRetina(model, t, retina, pupil, tables, &image);
+    return image;
+  }
 
 #pragma omp parallel
   {
     std::vector<double> sum(size_t(retina.cols) * 3);
-    std::vector<RayTaps> taps(layers * 3);  // per layer and channel focus
+    std::vector<double> value(layers * 3);  // per layer and channel, for the current ray
 #pragma omp for schedule(dynamic)
     for (int i = 0; i < retina.rows; ++i) {
       std::fill(sum.begin(), sum.end(), 0.0);
-      for (const PupilPoint& u : pupil)
+      for (size_t p = 0; p < pupil.size(); ++p)
         for (int j = 0; j < retina.cols; ++j) {
           for (size_t k = 0; k < layers; ++k) {
             const LayerSampler& s = model.projection(k).sampler();
-            for (int c = 0; c < (same_focus ? 1 : 3); ++c) {
-              double blur = s.diopters() - accommodation[c];
-              taps[k * 3 + c] = s.At(tan_x[j] + u.x * blur, tan_y[i] + u.y * blur);
+            for (int c = 0; c < 3; ++c) {
+              const LayerTables& table = tables[(p * layers + k) * foci + (same_focus ? 0 : c)];
+              if (c > 0 && same_focus && s.separable()) {
+                value[k * 3 + c] = Read(table.rows[i], table.cols[j], t[k], c);
+                continue;
+              }
+              value[k * 3 + c] = s.separable() ? Read(table.rows[i], table.cols[j], t[k], c)
+                                               : Read(s.At(tan_x[j] + pupil[p].x * table.blur,
+                                                           tan_y[i] + pupil[p].y * table.blur),
+                                                      t[k], c);
             }
           }
           for (size_t b = 0; b < model.branch_count(); ++b) {
             const auto& w = model.weight(b);
             for (int c = 0; c < 3; ++c) {
               double product = w[c];
-              for (int k : model.branch_layers(b)) {
-                const RayTaps& tap = taps[k * 3 + (same_focus ? 0 : c)];
-                double value = 0;
-                for (int q = 0; q < tap.count; ++q) value += tap.weight[q] * t[k].rgb[size_t(tap.index[q]) * 3 + c];
-                product *= value;
-              }
+              for (int k : model.branch_layers(b)) product *= value[k * 3 + c];
               sum[size_t(j) * 3 + c] += product;
             }
           }
