@@ -1,5 +1,6 @@
 // layerlab solve SCENE.json --target LF_DIR --solver NAME --out DIR: factorize
 // a target light field into panel images, with progress on the terminal.
+#include <omp.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -9,7 +10,9 @@
 #include <string>
 
 #include "app/commands.h"
+#include "framework/interrupt.h"
 #include "framework/lightfield_io.h"
+#include "solvers/memory_estimate.h"
 #include "solvers/solution_writer.h"
 #include "solvers/solve_config.h"
 #include "systems/compile.h"
@@ -22,6 +25,7 @@ void AddSolveCommand(CLI::App& app) {
     int iterations = 0, sub_iterations = 0, threads = -1;
     double time_budget = -1, tolerance = -1, initial_value = -2;
     bool write_lightfield = false;
+    std::string max_memory;
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("solve", "Factorize a target light field into layer patterns");
@@ -38,6 +42,7 @@ void AddSolveCommand(CLI::App& app) {
   cmd->add_option("--sampling", o->sampling, "Layer sampling: nearest or bilinear");
   cmd->add_option("--target-range", o->target_range, "Target values beyond the display: clip or scale");
   cmd->add_flag("--write-lightfield", o->write_lightfield, "Also write the synthesized light field");
+  cmd->add_option("--max-memory", o->max_memory, "Refuse a run estimated to need more (e.g. 2 GB; default: the machine's memory)");
   cmd->callback([o] {
     Scene scene = LoadScene(o->scene);
     DisplaySystem system = Compile(scene);
@@ -63,7 +68,17 @@ void AddSolveCommand(CLI::App& app) {
       opt.target_range = o->target_range == "clip" ? TargetRange::kClip : TargetRange::kScale;
     }
 
-    std::fprintf(stderr, "loading %s\n", config.target.c_str());
+    // Refuse what cannot fit before reading the views.
+    const MemoryEstimate need = EstimateSolveMemory(system, ReadLightFieldGeometry(config.target), config.solver,
+                                                    opt.threads > 0 ? opt.threads : omp_get_max_threads());
+    const size_t limit = o->max_memory.empty() ? PhysicalMemory() : ParseByteSize(o->max_memory, "--max-memory");
+    if (limit > 0 && need.bytes > limit)
+      throw Error("the solve needs about " + FormatBytes(double(need.bytes)) + " (" + need.breakdown + "), more than " +
+                  (o->max_memory.empty() ? "this machine's " + FormatBytes(double(limit)) + " of memory"
+                                         : "--max-memory " + FormatBytes(double(limit))) +
+                  "; nothing was read or written");
+    std::fprintf(stderr, "loading %s (the solve needs about %s)\n", config.target.c_str(),
+                 FormatBytes(double(need.bytes)).c_str());
     LightField target = ReadLightField(config.target, {.load_depth = false});
     DisplayModel model(system, target.geometry, config.sampling);
     const bool tty = ::isatty(2);
@@ -72,6 +87,8 @@ void AddSolveCommand(CLI::App& app) {
                    iteration, opt.iterations, seconds, psnr, tty ? "   " : "\n");
       std::fflush(stderr);
     };
+    InstallInterruptHandler();
+    opt.interrupted = Interrupted;
     Patterns patterns;
     SolverReport report = SolverRegistry::Builtins().create(config.solver)->Solve(model, target, opt, &patterns);
     if (tty) std::fprintf(stderr, "\n");
@@ -81,6 +98,9 @@ void AddSolveCommand(CLI::App& app) {
     WriteSolution(model, patterns, report, o->out, {.write_lightfield = o->write_lightfield});
     std::cout << "wrote " << o->out << "/{patterns,panels,trace.csv,report.txt,report.json"
               << (o->write_lightfield ? ",lightfield" : "") << "}\n";
+    if (report.termination == Termination::kInterrupted)
+      throw InterruptedError("interrupted: " + o->out + " holds the patterns of iteration " +
+                             std::to_string(report.iterations) + ", the last complete one");
   });
 }
 

@@ -1,5 +1,6 @@
 // layerlab: the command-line front end. Every failure is one message on
 // stderr, location first, and a non-zero exit.
+#include <csignal>
 #include <cstdio>
 #include <exception>
 
@@ -7,6 +8,7 @@
 
 #include "app/commands.h"
 #include "framework/error.h"
+#include "framework/interrupt.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"layerlab: model, factorize and analyse layered light-field near-eye displays"};
@@ -22,10 +24,16 @@ int main(int argc, char** argv) {
 #if LAYERLAB_WITH_EMBREE
   layerlab::app::AddRenderTargetCommand(app);
 #endif
+  // Past a file-size limit, write() should fail with EFBIG (and the atomic
+  // writers clean up) instead of the process dying half-way.
+  std::signal(SIGXFSZ, SIG_IGN);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
+  } catch (const layerlab::InterruptedError& e) {
+    std::fprintf(stderr, "layerlab: %s\n", e.what());
+    return 130;
   } catch (const layerlab::Error& e) {
     std::fprintf(stderr, "layerlab: error: %s\n", e.what());
     return 1;

@@ -77,6 +77,10 @@ bool SolveLoop::EndIteration(std::optional<double> objective) {
     report_.termination = Termination::kIterationLimit;
     report_.message = "";
     stopped_ = true;
+  } else if (options_.interrupted && options_.interrupted()) {
+    report_.termination = Termination::kInterrupted;
+    report_.message = "interrupted after iteration " + std::to_string(iteration_);
+    stopped_ = true;
   } else if (options_.time_budget > 0 && Seconds() >= options_.time_budget) {
     report_.termination = Termination::kTimeBudget;
     report_.message = "stopped after " + std::to_string(Seconds()) + " s";

@@ -47,12 +47,15 @@ struct SolverOptions {
   TargetRange target_range = TargetRange::kClip;
   // Called after every iteration (progress display); may be empty.
   std::function<void(int iteration, double seconds, double psnr_db)> progress;
+  // Asked after every iteration; true stops the solve with the patterns of
+  // that iteration, usable (Ctrl-C: framework/interrupt.h). May be empty.
+  std::function<bool()> interrupted;
 
   // False with "field: value: constraint" in *error when an option is out of range.
   bool IsValid(std::string* error) const;
 };
 
-enum class Termination { kNotRun, kIterationLimit, kTimeBudget, kConverged, kInvalidOptions, kFailed };
+enum class Termination { kNotRun, kIterationLimit, kTimeBudget, kConverged, kInterrupted, kInvalidOptions, kFailed };
 std::string ToString(Termination t);
 
 struct IterationRecord {

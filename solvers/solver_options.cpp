@@ -32,6 +32,7 @@ std::string ToString(Termination t) {
     case Termination::kIterationLimit: return "iteration limit";
     case Termination::kTimeBudget: return "time budget";
     case Termination::kConverged: return "converged";
+    case Termination::kInterrupted: return "interrupted";
     case Termination::kInvalidOptions: return "invalid options";
     case Termination::kFailed: return "failed";
   }

@@ -17,7 +17,7 @@ std::string Db(double psnr) {
 
 bool SolverReport::IsSolutionUsable() const {
   return termination == Termination::kIterationLimit || termination == Termination::kTimeBudget ||
-         termination == Termination::kConverged;
+         termination == Termination::kConverged || termination == Termination::kInterrupted;
 }
 
 std::string SolverReport::BriefReport() const {

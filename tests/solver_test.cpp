@@ -168,6 +168,26 @@ TEST(Solvers, HybridCompensatesUnequalChannelEfficiencies) {
   EXPECT_GT(r.final_psnr_db, 50.0) << r.FullReport();
 }
 
+TEST(Solvers, InterruptionKeepsTheLastCompleteIterationUsable) {
+  for (const char* solver : {"hybrid", "joint", "multiplicative", "additive-trust-region"}) {
+    Fixture g = MakeFixture(std::string(solver) == "multiplicative" ? "multiplicative_2layer.json"
+                            : std::string(solver) == "additive-trust-region" ? "additive_2layer.json"
+                                                                              : "paper_prototype.json");
+    SolverOptions o = SolverRegistry::Builtins().find(solver)->defaults;
+    o.iterations = 50;
+    o.tolerance = 0;
+    int asked = 0;
+    o.interrupted = [&] { return ++asked >= 3; };
+    Patterns t;
+    SolverReport r = RunSolver(solver, g, o, &t);
+    EXPECT_EQ(r.termination, Termination::kInterrupted) << solver << ": " << r.FullReport();
+    EXPECT_TRUE(r.IsSolutionUsable()) << solver;
+    EXPECT_EQ(r.iterations, 3) << solver;
+    // The patterns are those of the recorded objective.
+    EXPECT_NEAR(Objective(*g.model, g.target, t), r.final_objective, 1e-4 * r.final_objective + 1e-9) << solver;
+  }
+}
+
 TEST(Solvers, MultiplicativeNeverIncreasesTheObjective) {
   Fixture f = MakeFixture("multiplicative_2layer.json");
   // A target the display cannot reproduce exactly: the dice-like mix of two
