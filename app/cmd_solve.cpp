@@ -4,6 +4,8 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <filesystem>
+#include <optional>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -14,6 +16,7 @@
 #include "framework/lightfield_io.h"
 #include "solvers/memory_estimate.h"
 #include "solvers/solution_writer.h"
+#include "solvers/solver_checkpoint.h"
 #include "solvers/solve_config.h"
 #include "systems/compile.h"
 
@@ -24,7 +27,8 @@ void AddSolveCommand(CLI::App& app) {
     std::string scene, target, solver, out, sampling, target_range;
     int iterations = 0, sub_iterations = 0, threads = -1;
     double time_budget = -1, tolerance = -1, initial_value = -2;
-    bool write_lightfield = false;
+    bool write_lightfield = false, resume = false;
+    int checkpoint_every = 0;
     std::string max_memory;
   };
   auto o = std::make_shared<Options>();
@@ -42,6 +46,8 @@ void AddSolveCommand(CLI::App& app) {
   cmd->add_option("--sampling", o->sampling, "Layer sampling: nearest or bilinear");
   cmd->add_option("--target-range", o->target_range, "Target values beyond the display: clip or scale");
   cmd->add_flag("--write-lightfield", o->write_lightfield, "Also write the synthesized light field");
+  cmd->add_option("--checkpoint-every", o->checkpoint_every, "Write OUT/checkpoint every N iterations (and when stopped early)");
+  cmd->add_flag("--resume", o->resume, "Continue from OUT/checkpoint (same scene, target and solver)");
   cmd->add_option("--max-memory", o->max_memory, "Refuse a run estimated to need more (e.g. 2 GB; default: the machine's memory)");
   cmd->callback([o] {
     Scene scene = LoadScene(o->scene);
@@ -89,6 +95,18 @@ void AddSolveCommand(CLI::App& app) {
     };
     InstallInterruptHandler();
     opt.interrupted = Interrupted;
+    const std::string checkpoint_folder = (std::filesystem::path(o->out) / "checkpoint").string();
+    if (o->checkpoint_every < 0) throw Error("--checkpoint-every: must be 0 (none) or positive");
+    if (o->checkpoint_every > 0) {
+      opt.checkpoint_every = o->checkpoint_every;
+      opt.checkpoint = [&](const SolverCheckpoint& c) { WriteCheckpoint(model, c, checkpoint_folder); };
+    }
+    std::optional<SolverCheckpoint> resume;
+    if (o->resume) {
+      resume = ReadCheckpoint(model, checkpoint_folder);
+      opt.resume = &*resume;
+      std::fprintf(stderr, "resuming %s from iteration %d\n", resume->solver.c_str(), resume->iteration);
+    }
     Patterns patterns;
     SolverReport report = SolverRegistry::Builtins().create(config.solver)->Solve(model, target, opt, &patterns);
     if (tty) std::fprintf(stderr, "\n");

@@ -203,7 +203,7 @@ class AdditiveTrustRegionSolver final : public Solver {
     Vec g;
     double f = A.Residual(*t, l, &g);
     const double start_objective = f;
-    double radius = -1;
+    double radius = loop.ResumedState("radius", -1);
     constexpr int kMaxCg = 25;
     do {
       // Variables pressed against a bound by the gradient stay there this step.
@@ -275,6 +275,7 @@ class AdditiveTrustRegionSolver final : public Solver {
       radius = step < 1.0 ? std::max(0.25 * radius, step * dnorm) : std::max(radius, 2.0 * dnorm);
       *t = std::move(trial);
       f = A.Residual(*t, l, &g);
+      loop.SetState("radius", radius);
     } while (loop.EndIteration(f));
   }
 };

@@ -26,7 +26,8 @@ class HybridSolver final : public Solver {
     std::array<float, 3> total{0, 0, 0};
     for (size_t b = 0; b < branches; ++b)
       for (int c = 0; c < 3; ++c) total[c] += model.weight(b)[c];
-    std::vector<bool> started(branches, false);
+    // After one iteration every set has emitted light of its own.
+    std::vector<bool> started(branches, loop.resumed() && loop.iteration() > 0);
     LightField chase(model.geometry());  // what the set being updated should emit
 
     do {

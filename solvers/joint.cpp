@@ -315,8 +315,12 @@ class JointSolver final : public Solver {
     for (size_t b = 0; b < model.branch_count(); ++b) longest = std::max(longest, model.branch_layers(b).size());
     const double plain_alpha = 1.0 / static_cast<double>(longest);
     double alpha = plain_alpha;
+    bool plain = true;  // the step just taken was a plain one
+    if (loop.resumed()) {  // continue as after the accepted iterate the checkpoint holds
+      alpha = std::min(loop.ResumedState("alpha", plain_alpha) * kGrowth, kMaxRelaxation * plain_alpha);
+      plain = false;
+    }
     Step(accepted_ratio, alpha, floor, t);
-    bool plain = true;  // the step just taken had alpha = 1
     while (true) {
       const double objective = pass.Run(l, *t, options.epsilon, &ratio);
       if (!(objective <= accepted_objective)) {
@@ -331,6 +335,7 @@ class JointSolver final : public Solver {
         plain = true;
         continue;
       }
+      loop.SetState("alpha", alpha);
       if (!loop.EndIteration(objective)) break;
       accepted = *t;
       accepted_objective = objective;

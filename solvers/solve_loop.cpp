@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "framework/error.h"
+#include "solvers/solver_checkpoint.h"
 
 namespace layerlab {
 
@@ -42,11 +43,44 @@ bool SolveLoop::Start() {
     return false;
   }
   report_.rays = model_.geometry().ray_count();
+  if (const SolverCheckpoint* c = options_.resume) {
+    if (c->solver != report_.solver) {
+      Fail("the checkpoint is of solver \"" + c->solver + "\", not \"" + report_.solver + "\"");
+      return false;
+    }
+    if (c->iteration >= options_.iterations) {
+      Fail("the checkpoint is at iteration " + std::to_string(c->iteration) + ", not below the iteration limit " +
+           std::to_string(options_.iterations));
+      return false;
+    }
+    *patterns_ = c->patterns;
+    iteration_ = c->iteration;
+    state_ = c->state;
+    report_.trace = c->trace;
+    report_.initial_objective = c->trace.front().objective;
+    report_.final_objective = c->trace.back().objective;
+    report_.final_psnr_db = c->trace.back().psnr_db;
+    report_.iterations = iteration_;
+    start_ = std::chrono::steady_clock::now() -
+             std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(c->seconds));
+    return true;
+  }
   *patterns_ = InitialPatterns(model_, options_);
   start_ = std::chrono::steady_clock::now();
   double objective = Objective(model_, *prepared_, *patterns_);
   report_.initial_objective = objective;
   return Record(objective);
+}
+
+double SolveLoop::ResumedState(const std::string& key, double fresh) const {
+  if (!options_.resume) return fresh;
+  auto it = options_.resume->state.find(key);
+  return it == options_.resume->state.end() ? fresh : it->second;
+}
+
+void SolveLoop::WriteCheckpoint() {
+  SolverCheckpoint c{report_.solver, iteration_, Seconds(), *patterns_, state_, report_.trace};
+  options_.checkpoint(c);
 }
 
 bool SolveLoop::Record(double objective) {
@@ -86,6 +120,11 @@ bool SolveLoop::EndIteration(std::optional<double> objective) {
     report_.message = "stopped after " + std::to_string(Seconds()) + " s";
     stopped_ = true;
   }
+  // A stop short of the goal also checkpoints, so that the run can go on.
+  const bool short_stop = stopped_ && (report_.termination == Termination::kInterrupted ||
+                                       report_.termination == Termination::kTimeBudget);
+  if (options_.checkpoint && options_.checkpoint_every > 0 && (iteration_ % options_.checkpoint_every == 0 || short_stop))
+    WriteCheckpoint();
   return !stopped_;
 }
 

@@ -4,7 +4,9 @@
 #pragma once
 
 #include <chrono>
+#include <map>
 #include <optional>
+#include <string>
 
 #include "solvers/objective.h"
 #include "solvers/solver.h"
@@ -30,10 +32,18 @@ class SolveLoop {
   void Fail(const std::string& message);
   // Stops because no further step can lower the objective.
   void Converge(const std::string& message);
+
+  // Resuming: the state the checkpoint carried (empty for a fresh solve).
+  bool resumed() const { return options_.resume != nullptr; }
+  double ResumedState(const std::string& key, double fresh) const;
+  // What this solver carries between iterations, for checkpoints: set it
+  // before EndIteration.
+  void SetState(const std::string& key, double value) { state_[key] = value; }
   SolverReport Finish();
 
  private:
   bool Record(double objective);
+  void WriteCheckpoint();
 
   const DisplayModel& model_;
   const LightField& source_;
@@ -45,6 +55,7 @@ class SolveLoop {
   int iteration_ = 0;
   int saved_threads_ = 0;
   bool stopped_ = false;
+  std::map<std::string, double> state_;
 };
 
 }  // namespace layerlab

@@ -51,6 +51,14 @@ struct SolverOptions {
   // that iteration, usable (Ctrl-C: framework/interrupt.h). May be empty.
   std::function<bool()> interrupted;
 
+  // Checkpoints: called after every `checkpoint_every` iterations with what a
+  // resumed solve needs (solver_checkpoint.h). Empty or 0: none.
+  std::function<void(const struct SolverCheckpoint&)> checkpoint;
+  int checkpoint_every = 0;
+  // Resuming: continue from a checkpoint of the same solver, display and
+  // target; the resumed solve reaches the same patterns as an uninterrupted one.
+  const struct SolverCheckpoint* resume = nullptr;
+
   // False with "field: value: constraint" in *error when an option is out of range.
   bool IsValid(std::string* error) const;
 };

@@ -7,6 +7,7 @@
 #include "solvers/objective.h"
 #include "solvers/solution_writer.h"
 #include "solvers/solver.h"
+#include "solvers/solver_checkpoint.h"
 #include "tests/test_util.h"
 
 namespace layerlab {
@@ -185,6 +186,48 @@ TEST(Solvers, InterruptionKeepsTheLastCompleteIterationUsable) {
     EXPECT_EQ(r.iterations, 3) << solver;
     // The patterns are those of the recorded objective.
     EXPECT_NEAR(Objective(*g.model, g.target, t), r.final_objective, 1e-4 * r.final_objective + 1e-9) << solver;
+  }
+}
+
+// A solve stopped at a checkpoint and resumed reaches the very patterns of an
+// uninterrupted one (one thread: the sums across threads would otherwise
+// merge in a varying order).
+TEST(Solvers, ResumedFromACheckpointMatchesAnUninterruptedSolve) {
+  for (const char* solver : {"hybrid", "joint", "multiplicative", "additive-trust-region"}) {
+    Fixture g = MakeFixture(std::string(solver) == "multiplicative" ? "multiplicative_2layer.json"
+                            : std::string(solver) == "additive-trust-region" ? "additive_2layer.json"
+                                                                              : "paper_prototype.json");
+    for (float& v : g.target.rgb) v = std::min(1.0f, 1.2f * v);  // not exactly reachable: every iteration moves
+    SolverOptions o = SolverRegistry::Builtins().find(solver)->defaults;
+    o.iterations = 6;
+    o.tolerance = 0;
+    o.threads = 1;
+    Patterns straight;
+    SolverReport whole = RunSolver(solver, g, o, &straight);
+    ASSERT_TRUE(whole.IsSolutionUsable()) << solver << ": " << whole.FullReport();
+
+    std::vector<SolverCheckpoint> saved;
+    SolverOptions first = o;
+    first.checkpoint_every = 3;
+    first.checkpoint = [&](const SolverCheckpoint& c) { saved.push_back(c); };
+    first.interrupted = [&] { return !saved.empty(); };
+    Patterns partial;
+    SolverReport stopped = RunSolver(solver, g, first, &partial);
+    ASSERT_EQ(stopped.termination, Termination::kInterrupted) << solver;
+    // The periodic checkpoint at 3, and one where the interruption stopped the solve (4).
+    ASSERT_EQ(saved.size(), 2u) << solver;
+    EXPECT_EQ(saved[0].iteration, 3) << solver;
+    EXPECT_EQ(saved[1].iteration, 4) << solver;
+
+    SolverOptions second = o;
+    second.resume = &saved[0];
+    Patterns resumed;
+    SolverReport rest = RunSolver(solver, g, second, &resumed);
+    ASSERT_TRUE(rest.IsSolutionUsable()) << solver << ": " << rest.FullReport();
+    EXPECT_EQ(rest.iterations, 6) << solver;
+    ASSERT_EQ(rest.trace.size(), whole.trace.size()) << solver;
+    for (size_t k = 0; k < straight.size(); ++k) EXPECT_EQ(resumed[k].rgb, straight[k].rgb) << solver << " layer " << k;
+    EXPECT_EQ(rest.final_objective, whole.final_objective) << solver;
   }
 }
 

@@ -1,0 +1,90 @@
+#include "solvers/solver_checkpoint.h"
+
+#include <cmath>
+#include <filesystem>
+
+#include "framework/atomic_file.h"
+#include "framework/error.h"
+#include "framework/exr_image.h"
+#include "framework/json_file.h"
+
+namespace layerlab {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string PatternName(const VirtualLayer& layer, int iteration) {
+  return layer.name + "-iteration" + std::to_string(iteration) + ".exr";
+}
+
+}  // namespace
+
+void WriteCheckpoint(const DisplayModel& model, const SolverCheckpoint& c, const std::string& folder) {
+  std::error_code ec;
+  fs::create_directories(folder, ec);
+  if (ec) throw Error(folder + ": cannot create the checkpoint folder: " + ec.message());
+  nlohmann::json files = nlohmann::json::object();
+  for (size_t k = 0; k < model.layer_count(); ++k) {
+    const VirtualLayer& layer = model.system().layers[k];
+    const std::string name = PatternName(layer, c.iteration);
+    WriteExr((fs::path(folder) / name).string(), Image{c.patterns[k].cols, c.patterns[k].rows, {"R", "G", "B"}, c.patterns[k].rgb});
+    files[layer.name] = name;
+  }
+  nlohmann::json trace = nlohmann::json::array();
+  for (const IterationRecord& r : c.trace)
+    trace.push_back({r.iteration, r.seconds, r.objective, std::isinf(r.psnr_db) ? nlohmann::json("inf") : nlohmann::json(r.psnr_db)});
+  nlohmann::json doc = {{"format", "layerlab-checkpoint/1"}, {"solver", c.solver},   {"iteration", c.iteration},
+                        {"seconds", c.seconds},                {"patterns", files},    {"state", c.state},
+                        {"trace", trace}};
+  WriteFileAtomically((fs::path(folder) / "checkpoint.json").string(), doc.dump(1) + "\n");
+  // The new checkpoint is complete: the old pattern files can go.
+  for (const auto& entry : fs::directory_iterator(folder, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.size() > 4 && name.ends_with(".exr") && name.find("-iteration") != std::string::npos &&
+        name.find("-iteration" + std::to_string(c.iteration) + ".exr") == std::string::npos)
+      fs::remove(entry.path(), ec);
+  }
+}
+
+SolverCheckpoint ReadCheckpoint(const DisplayModel& model, const std::string& folder) {
+  const std::string file = (fs::path(folder) / "checkpoint.json").string();
+  nlohmann::json doc = ReadJsonFile(file);
+  SolverCheckpoint c;
+  try {
+    if (doc.at("format") != "layerlab-checkpoint/1") throw Error(file + ": /format: not a layerlab-checkpoint/1 file");
+    c.solver = doc.at("solver").get<std::string>();
+    c.iteration = doc.at("iteration").get<int>();
+    c.seconds = doc.at("seconds").get<double>();
+    for (const auto& [key, value] : doc.at("state").items()) c.state[key] = value.get<double>();
+    for (const auto& row : doc.at("trace")) {
+      IterationRecord r{row.at(0).get<int>(), row.at(1).get<double>(), row.at(2).get<double>(), INFINITY};
+      if (!row.at(3).is_string()) r.psnr_db = row.at(3).get<double>();
+      c.trace.push_back(r);
+    }
+    if (c.iteration < 0 || c.trace.empty() || c.trace.back().iteration != c.iteration)
+      throw Error(file + ": /trace does not end at /iteration " + std::to_string(c.iteration));
+    for (size_t k = 0; k < model.layer_count(); ++k) {
+      const VirtualLayer& layer = model.system().layers[k];
+      if (!doc.at("patterns").contains(layer.name))
+        throw Error(file + ": /patterns: no pattern for layer \"" + layer.name + "\" (a checkpoint of another display?)");
+      const std::string name = doc["patterns"][layer.name].get<std::string>();
+      if (name.find('/') != std::string::npos || name.find("..") != std::string::npos)
+        throw Error(file + ": /patterns/" + layer.name + ": \"" + name + "\" must be a file name in the checkpoint folder");
+      Image image = ReadExr((fs::path(folder) / name).string(), {"R", "G", "B"});
+      if (image.width != layer.cols || image.height != layer.rows)
+        throw Error((fs::path(folder) / name).string() + ": " + std::to_string(image.width) + " x " +
+                    std::to_string(image.height) + " pixels; layer \"" + layer.name + "\" has " +
+                    std::to_string(layer.cols) + " x " + std::to_string(layer.rows));
+      for (float v : image.pixels)
+        if (!(v >= 0.0f && v <= 1.0f)) throw Error((fs::path(folder) / name).string() + ": a transmittance outside [0, 1]");
+      LayerPattern p(layer.cols, layer.rows, 0);
+      p.rgb = std::move(image.pixels);
+      c.patterns.push_back(std::move(p));
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(file + ": not a valid checkpoint: " + e.what());
+  }
+  return c;
+}
+
+}  // namespace layerlab
