@@ -78,7 +78,7 @@ TEST(Solvers, AdditiveTrustRegionInLayerSpaceMatchesTheRayPath) {
   Fixture f = MakeFixture("additive_2layer.json");
   for (float& v : f.target.rgb) v = std::min(1.0f, v * 1.3f);  // not exactly reachable
   SolverOptions o = SolverRegistry::Builtins().find("additive-trust-region")->defaults;
-  o.iterations = 6;
+  o.iterations = 3;  // while the objective still moves by more than the ray path's float round-off
   o.tolerance = 0;
   Patterns a, b;
   SolverReport fast = RunSolver("additive-trust-region", f, o, &a);
@@ -86,7 +86,8 @@ TEST(Solvers, AdditiveTrustRegionInLayerSpaceMatchesTheRayPath) {
   for (VirtualLayer& layer : rotated.layers) layer.rotation = 1e-12;
   DisplayModel model(rotated, f.target.geometry);
   SolverReport slow = SolverRegistry::Builtins().create("additive-trust-region")->Solve(model, f.target, o, &b);
-  ASSERT_TRUE(fast.IsSolutionUsable() && slow.IsSolutionUsable());
+  ASSERT_TRUE(fast.IsSolutionUsable()) << fast.FullReport();
+  ASSERT_TRUE(slow.IsSolutionUsable()) << slow.FullReport();
   ASSERT_EQ(fast.trace.size(), slow.trace.size());
   for (size_t k = 0; k < fast.trace.size(); ++k)
     EXPECT_NEAR(fast.trace[k].objective, slow.trace[k].objective, 1e-4 * slow.trace[k].objective) << "iteration " << k;
