@@ -240,8 +240,8 @@ std::string RetinaSection(const RunReportPage& page) {
   nlohmann::json states = nlohmann::json::array();
   for (const ReportRetinaState& s : page.retina) {
     h += "<tr><td>" + F(s.diopters, 2) + (s.declared ? " &#9679;" : "") + "</td><td>" + F(s.display_mean_cd_m2, 2) +
-         "</td><td>" + F(s.natural_mean_cd_m2, 2) + "</td><td class=\"l\">" + Links(s.display.links) +
-         Links(s.natural.links) + "</td></tr>\n";
+         "</td><td>" + F(s.natural_mean_cd_m2, 2) + "</td><td class=\"l\">display" + Links(s.display.links) +
+         (s.natural.links.empty() ? "" : " &middot; natural" + Links(s.natural.links)) + "</td></tr>\n";
     nlohmann::json j = {{"diopters", s.diopters},
                         {"display", s.display.src},
                         {"display_caption", s.display.caption},

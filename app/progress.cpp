@@ -35,8 +35,13 @@ void Progress::Draw(size_t done, const std::string& detail) {
 
 void Progress::Update(size_t done, const std::string& detail) {
   std::lock_guard<std::mutex> lock(mutex_);
-  if (finished_) return;
-  if (!tty_) {
+  if (finished_ || done < last_done_) return;
+  last_done_ = done;
+  if (tty_) {  // redraws at most 20 times a second, and always the last
+    const auto now = std::chrono::steady_clock::now();
+    if (done < total_ && now - last_draw_ < std::chrono::milliseconds(50)) return;
+    last_draw_ = now;
+  } else {
     const size_t tenths = std::min(done, total_) * 10 / total_;
     if (tenths <= printed_tenths_ && done < total_) return;
     if (done >= total_ && printed_tenths_ == 10) return;

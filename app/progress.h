@@ -31,6 +31,8 @@ class Progress {
   std::string label_;
   size_t total_;
   size_t printed_tenths_ = 0;
+  size_t last_done_ = 0;  // counts from many threads may arrive out of order: never drawn backwards
+  std::chrono::steady_clock::time_point last_draw_{};
   bool tty_, open_line_ = false, finished_ = false;
   std::chrono::steady_clock::time_point start_;
 };
