@@ -18,6 +18,14 @@ std::string Psnr(double db) {
 
 }  // namespace
 
+std::string UnsuitableSolver(const std::string& solver, const DisplaySystem& system) {
+  if (solver == "multiplicative" && system.branches.size() != 1) return "needs a display of one branch";
+  if (solver == "additive-trust-region")
+    for (const Branch& b : system.branches)
+      if (b.layers.size() != 1) return "needs one layer per branch";
+  return "";
+}
+
 std::vector<CompareResult> RunComparison(const std::vector<CompareRun>& runs, const LightField& target,
                                          const std::function<void(const std::string&)>& progress) {
   std::vector<CompareResult> results;

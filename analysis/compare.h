@@ -26,6 +26,9 @@ struct CompareResult {
   double luminance_efficiency = 0;
 };
 
+// Why `solver` cannot factorize `system`, or "" when it can.
+std::string UnsuitableSolver(const std::string& solver, const DisplaySystem& system);
+
 // Runs each in turn on `target` (each display bound to the target's rays).
 // `progress` gets a line per iteration.
 std::vector<CompareResult> RunComparison(const std::vector<CompareRun>& runs, const LightField& target,

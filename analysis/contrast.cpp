@@ -4,12 +4,14 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <map>
 #include <numbers>
 
 #include "analysis/svg_plot.h"
 #include "framework/error.h"
 #include "solvers/solve_config.h"
+#include "systems/compile.h"
 #include "systems/display_model.h"
 #include "systems/retina.h"
 
@@ -63,6 +65,20 @@ PlaneTextureFactory CosineGrating(double mean, double contrast) {
       return Rgb{v, v, v};
     };
   };
+}
+
+ContrastDisplay LoadContrastDisplay(const std::string& scene_file) {
+  Scene scene = LoadScene(scene_file);
+  ContrastDisplay d;
+  d.system = Compile(scene);
+  d.name = std::filesystem::path(scene_file).stem().string();
+  if (scene.document.contains("solve")) {
+    SolveConfig config = ReadSolveConfig(scene, d.system);
+    d.solver = config.solver;
+    d.options = config.options;
+    d.options_given = true;
+  }
+  return d;
 }
 
 std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displays, const ContrastOptions& o) {

@@ -35,6 +35,10 @@ struct ContrastDisplay {
   bool options_given = false;
 };
 
+// A display for the sweep from its scene file: named after the file, with the
+// solver and options of its "solve" section when it has one.
+ContrastDisplay LoadContrastDisplay(const std::string& scene_file);
+
 struct ContrastOptions {
   std::vector<double> target_diopters = {0.7, 1.3, 1.9};
   std::vector<double> frequencies = {2.0, 4.0};  // cpd

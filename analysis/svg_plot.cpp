@@ -50,9 +50,27 @@ std::vector<double> NiceTicks(double lo, double hi, int target_count) {
 }
 
 std::string RenderSvg(const std::vector<PlotPanel>& panels, int columns, const std::string& title) {
-  const double w = 360, h = 260, left = 58, right = 12, top = 30, bottom = 44, legend_height = 24;
+  const double w = 360, h = 260, left = 58, right = 12, top = 30, bottom = 44, legend_row = 18;
   int rows = static_cast<int>((panels.size() + columns - 1) / columns);
-  double page_w = w * columns, page_h = 36 + h * rows + legend_height;
+  const double page_w = w * columns;
+  // One legend for all panels, from the first panel's lines, wrapped into rows that fit the page.
+  struct LegendEntry {
+    double x;
+    int row;
+  };
+  std::vector<LegendEntry> legend;
+  int legend_rows = 0;
+  if (!panels.empty()) {
+    double x = 20;
+    legend_rows = 1;
+    for (const PlotLine& line : panels.front().lines) {
+      double width = 40 + 6.5 * line.label.size();
+      if (x > 20 && x + width > page_w - 8) x = 20, ++legend_rows;
+      legend.push_back({x, legend_rows - 1});
+      x += width;
+    }
+  }
+  const double page_h = 36 + h * rows + 6 + legend_row * legend_rows;
   std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + Num(page_w) + "\" height=\"" + Num(page_h) +
                     "\" viewBox=\"0 0 " + Num(page_w) + " " + Num(page_h) +
                     "\" font-family=\"Helvetica, Arial, sans-serif\" font-size=\"11\">\n";
@@ -98,15 +116,12 @@ std::string RenderSvg(const std::vector<PlotPanel>& panels, int columns, const s
     }
     svg += "</g>\n";
   }
-  // One legend for all panels, from the first panel's lines.
-  if (!panels.empty()) {
-    double x = 20, y = page_h - 8;
-    for (const PlotLine& line : panels.front().lines) {
-      svg += "<line x1=\"" + Num(x) + "\" y1=\"" + Num(y - 4) + "\" x2=\"" + Num(x + 24) + "\" y2=\"" + Num(y - 4) +
-             "\" stroke=\"" + line.color + "\" stroke-width=\"2\"" + (line.dashed ? " stroke-dasharray=\"6,3\"" : "") + "/>\n";
-      svg += "<text x=\"" + Num(x + 30) + "\" y=\"" + Num(y) + "\">" + Escape(line.label) + "</text>\n";
-      x += 40 + 7 * line.label.size();
-    }
+  for (size_t k = 0; k < legend.size(); ++k) {
+    const PlotLine& line = panels.front().lines[k];
+    double x = legend[k].x, y = 36 + h * rows + legend_row * (legend[k].row + 1) - 4;
+    svg += "<line x1=\"" + Num(x) + "\" y1=\"" + Num(y - 4) + "\" x2=\"" + Num(x + 24) + "\" y2=\"" + Num(y - 4) +
+           "\" stroke=\"" + line.color + "\" stroke-width=\"2\"" + (line.dashed ? " stroke-dasharray=\"6,3\"" : "") + "/>\n";
+    svg += "<text x=\"" + Num(x + 30) + "\" y=\"" + Num(y) + "\">" + Escape(line.label) + "</text>\n";
   }
   svg += "</svg>\n";
   return svg;

@@ -27,15 +27,6 @@ std::vector<std::string> SplitNames(const std::string& text) {
   return names;
 }
 
-// Why `solver` cannot factorize `system`, or "" when it can.
-std::string Unsuitable(const std::string& solver, const DisplaySystem& system) {
-  if (solver == "multiplicative" && system.branches.size() != 1) return "needs a display of one branch";
-  if (solver == "additive-trust-region")
-    for (const Branch& b : system.branches)
-      if (b.layers.size() != 1) return "needs one layer per branch";
-  return "";
-}
-
 }  // namespace
 
 void AddCompareCommand(CLI::App& app) {
@@ -65,7 +56,7 @@ void AddCompareCommand(CLI::App& app) {
       if (solvers.empty()) solvers.push_back(config.solver);
       for (const std::string& solver : solvers) {
         const std::string name = std::filesystem::path(file).stem().string();
-        if (std::string why = Unsuitable(solver, system); !why.empty()) {
+        if (std::string why = UnsuitableSolver(solver, system); !why.empty()) {
           std::fprintf(stderr, "compare: skipped %s / %s: the solver %s\n", name.c_str(), solver.c_str(), why.c_str());
           continue;
         }

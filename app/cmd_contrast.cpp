@@ -53,19 +53,7 @@ void AddContrastCommand(CLI::App& app) {
     options.progress = [](const std::string& what) { std::fprintf(stderr, "contrast: %s\n", what.c_str()); };
 
     std::vector<ContrastDisplay> displays;
-    for (const std::string& file : o->scenes) {
-      Scene scene = LoadScene(file);
-      ContrastDisplay d;
-      d.system = Compile(scene);
-      d.name = scene.name.empty() ? std::filesystem::path(file).stem().string() : std::filesystem::path(file).stem().string();
-      if (scene.document.contains("solve")) {
-        SolveConfig config = ReadSolveConfig(scene, d.system);
-        d.solver = config.solver;
-        d.options = config.options;
-        d.options_given = true;
-      }
-      displays.push_back(std::move(d));
-    }
+    for (const std::string& file : o->scenes) displays.push_back(LoadContrastDisplay(file));
     auto start = std::chrono::steady_clock::now();
     std::vector<ContrastCurve> curves = RunContrast(displays, options);
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -3,21 +3,17 @@
 // target itself (natural viewing) when one is given, as EXR (linear,
 // display-relative) and PNG (sRGB, 1 = the brightest branch's full white).
 #include <algorithm>
-#include <chrono>
+#include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
 
+#include "analysis/retina_sweep.h"
 #include "app/commands.h"
 #include "app/number_list.h"
-#include "framework/atomic_file.h"
 #include "framework/error.h"
 #include "framework/lightfield_io.h"
-#include "framework/png_writer.h"
-#include "framework/polarization.h"
 #include "solvers/solution_writer.h"
 #include "solvers/solve_config.h"
 #include "systems/compile.h"
@@ -29,23 +25,6 @@
 #endif
 
 namespace layerlab::app {
-namespace {
-
-constexpr double kDeg = 3.14159265358979323846 / 180;
-
-double MeanLuminance(const Image& image) {
-  double sum = 0;
-  for (size_t k = 0; k < image.pixels.size(); ++k) sum += kLuminanceWeights[k % 3] * image.pixels[k];
-  return sum / (double(image.width) * image.height);
-}
-
-std::string StateName(double diopters) {
-  char name[32];
-  std::snprintf(name, sizeof name, "%.2fD", diopters);
-  return name;
-}
-
-}  // namespace
 
 void AddRetinaCommand(CLI::App& app) {
   struct Options {
@@ -83,16 +62,13 @@ void AddRetinaCommand(CLI::App& app) {
                  states.end());
 
     if (!(o->resolution > 0) || !(o->resolution < 10)) throw Error("--resolution: give degrees in (0, 10)");
-    double field_x = system.fov_x, field_y = system.fov_y;
+    double field_x = 0, field_y = 0;  // deg; 0: the display's field of view
     if (!o->field.empty()) {
       std::vector<double> f = ParseNumberList(o->field, "--field");
       if (f.size() != 2 || !(f[0] > 0) || !(f[1] > 0) || f[0] >= 170 || f[1] >= 170)
         throw Error("--field: give W,H in degrees, each in (0, 170)");
-      field_x = f[0] * kDeg, field_y = f[1] * kDeg;
+      field_x = f[0], field_y = f[1];
     }
-    const RetinaGrid grid = MakeRetinaGrid(field_x, field_y, o->resolution * kDeg);
-    const std::vector<PupilPoint> pupil = PupilSamples(system.eye);
-
     std::optional<LightField> target_lf;
     if (!o->target.empty()) target_lf = ReadLightField(o->target, {.load_depth = false});
     const LightFieldGeometry g = target_lf ? target_lf->geometry : DisplayLightFieldGeometry(system);
@@ -113,38 +89,13 @@ void AddRetinaCommand(CLI::App& app) {
     }
 #endif
 
-    namespace fs = std::filesystem;
-    fs::create_directories(fs::path(o->out) / "display");
-    if (natural) fs::create_directories(fs::path(o->out) / "natural");
-    std::fprintf(stderr, "retina: %d x %d samples of %.3f deg, %zu pupil points, %zu accommodation states\n", grid.cols,
-                 grid.rows, o->resolution, pupil.size(), states.size());
-    std::string csv = "accommodation_D,display_mean_cd_m2,natural_mean_cd_m2,display_clipped_in_png,seconds\n";
-    const double white = model.white_luminance();
-    for (size_t s = 0; s < states.size(); ++s) {
-      auto start = std::chrono::steady_clock::now();
-      const auto focus = ChannelAccommodation(system.eye, states[s]);
-      const std::string name = StateName(states[s]);
-      Image display = RetinaOfDisplay(model, t, grid, pupil, focus);
-      WriteExr((fs::path(o->out) / "display" / (name + ".exr")).string(), display);
-      size_t clipped =
-          WriteSrgbPng((fs::path(o->out) / "display" / (name + ".png")).string(), grid.cols, grid.rows, display.pixels);
-      double natural_mean = NAN;
-      if (natural) {
-        Image seen = RetinaOfScene(natural, grid, pupil, focus);
-        WriteExr((fs::path(o->out) / "natural" / (name + ".exr")).string(), seen);
-        WriteSrgbPng((fs::path(o->out) / "natural" / (name + ".png")).string(), grid.cols, grid.rows, seen.pixels);
-        natural_mean = MeanLuminance(seen) * white;
-      }
-      double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      char row[160];
-      std::snprintf(row, sizeof row, "%.4f,%.6g,%.6g,%zu,%.3f\n", states[s], MeanLuminance(display) * white,
-                    natural_mean, clipped, seconds);
-      csv += row;
-      std::fprintf(stderr, "retina: %zu/%zu  %s  %.2f s\n", s + 1, states.size(), name.c_str(), seconds);
-    }
-    WriteFileAtomically((fs::path(o->out) / "retina.csv").string(), csv);
+    RetinaSweepOptions sweep{states, o->resolution, field_x, field_y};
+    std::fprintf(stderr, "retina: %zu accommodation states of %.3f deg samples\n", states.size(), o->resolution);
+    WriteRetinaSweep(model, t, natural, sweep, o->out, [](size_t done, size_t total, const RetinaStateResult& r) {
+      std::fprintf(stderr, "retina: %zu/%zu  %s  %.2f s\n", done, total, r.name.c_str(), r.seconds);
+    });
     std::printf("wrote %s/{display%s,retina.csv}: %zu states; values are display-relative (1 = %.4g cd/m2)\n",
-                o->out.c_str(), natural ? ",natural" : "", states.size(), white);
+                o->out.c_str(), natural ? ",natural" : "", states.size(), model.white_luminance());
   });
 }
 

@@ -1,7 +1,7 @@
 // layerlab solve SCENE.json --target LF_DIR --solver NAME --out DIR: factorize
-// a target light field into panel images, with progress on the terminal.
+// a target light field (or a target scene, rendered first) into panel images,
+// with progress on the terminal.
 #include <omp.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -12,6 +12,8 @@
 #include <string>
 
 #include "app/commands.h"
+#include "app/progress.h"
+#include "app/target_source.h"
 #include "framework/interrupt.h"
 #include "framework/lightfield_io.h"
 #include "solvers/memory_estimate.h"
@@ -34,7 +36,7 @@ void AddSolveCommand(CLI::App& app) {
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("solve", "Factorize a target light field into layer patterns");
   cmd->add_option("scene", o->scene, "Scene file (JSON); its \"solve\" section gives the defaults")->required();
-  cmd->add_option("--target", o->target, "Target light-field folder");
+  cmd->add_option("--target", o->target, "Target light-field folder (default: the scene's solve section)");
   cmd->add_option("--solver", o->solver, "Solver: " + JoinWords(SolverRegistry::Builtins().names(), ", "));
   cmd->add_option("--out", o->out, "Output folder")->required();
   cmd->add_option("--iterations", o->iterations, "Outer iterations");
@@ -60,7 +62,9 @@ void AddSolveCommand(CLI::App& app) {
     }
     SolverOptions& opt = config.options;
     if (!o->target.empty()) config.target = o->target;
-    if (config.target.empty()) throw Error("no target: give --target LF_DIR or \"solve\": {\"target\": ...} in " + o->scene);
+    if (!o->target.empty()) config.target_scene.clear();
+    if (config.target.empty() && config.target_scene.empty())
+      throw Error("no target: give --target LF_DIR or \"solve\": {\"target\": ...} or {\"target_scene\": ...} in " + o->scene);
     if (o->iterations) opt.iterations = o->iterations;
     if (o->sub_iterations) opt.sub_iterations = o->sub_iterations;
     if (o->time_budget >= 0) opt.time_budget = o->time_budget;
@@ -75,24 +79,19 @@ void AddSolveCommand(CLI::App& app) {
     }
 
     // Refuse what cannot fit before reading the views.
-    const MemoryEstimate need = EstimateSolveMemory(system, ReadLightFieldGeometry(config.target), config.solver,
-                                                    opt.threads > 0 ? opt.threads : omp_get_max_threads());
-    const size_t limit = o->max_memory.empty() ? PhysicalMemory() : ParseByteSize(o->max_memory, "--max-memory");
-    if (limit > 0 && need.bytes > limit)
-      throw Error("the solve needs about " + FormatBytes(double(need.bytes)) + " (" + need.breakdown + "), more than " +
-                  (o->max_memory.empty() ? "this machine's " + FormatBytes(double(limit)) + " of memory"
-                                         : "--max-memory " + FormatBytes(double(limit))) +
-                  "; nothing was read or written");
-    std::fprintf(stderr, "loading %s (the solve needs about %s)\n", config.target.c_str(),
-                 FormatBytes(double(need.bytes)).c_str());
-    LightField target = ReadLightField(config.target, {.load_depth = false});
-    DisplayModel model(system, target.geometry, config.sampling);
-    const bool tty = ::isatty(2);
-    opt.progress = [&](int iteration, double seconds, double psnr) {
-      std::fprintf(stderr, "%s%s iteration %d/%d  %.2f s  PSNR %.2f dB%s", tty ? "\r" : "", config.solver.c_str(),
-                   iteration, opt.iterations, seconds, psnr, tty ? "   " : "\n");
-      std::fflush(stderr);
-    };
+    if (!config.target.empty()) {
+      const MemoryEstimate need = EstimateSolveMemory(system, ReadLightFieldGeometry(config.target), config.solver,
+                                                      opt.threads > 0 ? opt.threads : omp_get_max_threads());
+      const size_t limit = o->max_memory.empty() ? PhysicalMemory() : ParseByteSize(o->max_memory, "--max-memory");
+      if (limit > 0 && need.bytes > limit)
+        throw Error("the solve needs about " + FormatBytes(double(need.bytes)) + " (" + need.breakdown + "), more than " +
+                    (o->max_memory.empty() ? "this machine's " + FormatBytes(double(limit)) + " of memory"
+                                           : "--max-memory " + FormatBytes(double(limit))) +
+                    "; nothing was read or written");
+      std::fprintf(stderr, "the solve needs about %s\n", FormatBytes(double(need.bytes)).c_str());
+    }
+    std::unique_ptr<Target> target = LoadOrRenderTarget(config, "target");
+    DisplayModel model(system, target->light_field.geometry, config.sampling);
     InstallInterruptHandler();
     opt.interrupted = Interrupted;
     const std::string checkpoint_folder = (std::filesystem::path(o->out) / "checkpoint").string();
@@ -108,8 +107,17 @@ void AddSolveCommand(CLI::App& app) {
       std::fprintf(stderr, "resuming %s from iteration %d\n", resume->solver.c_str(), resume->iteration);
     }
     Patterns patterns;
-    SolverReport report = SolverRegistry::Builtins().create(config.solver)->Solve(model, target, opt, &patterns);
-    if (tty) std::fprintf(stderr, "\n");
+    SolverReport report;
+    {
+      Progress progress(config.solver, opt.iterations);
+      opt.progress = [&](int iteration, double, double psnr) {
+        char detail[64];
+        std::snprintf(detail, sizeof detail, "iterations  PSNR %.2f dB", psnr);
+        progress.Update(iteration, detail);
+      };
+      report = SolverRegistry::Builtins().create(config.solver)->Solve(model, target->light_field, opt, &patterns);
+      progress.Finish(ToString(report.termination));
+    }
     for (const std::string& w : report.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     std::cout << report.BriefReport() << "\n";
     if (!report.IsSolutionUsable()) throw Error("the solve failed: " + report.message + "; nothing was written");

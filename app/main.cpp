@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   CLI::App app{"layerlab: model, factorize and analyse layered light-field near-eye displays"};
   app.require_subcommand(1);
   layerlab::app::AddInfoCommand(app);
+  layerlab::app::AddRunCommand(app);
   layerlab::app::AddSolveCommand(app);
   layerlab::app::AddContrastCommand(app);
   layerlab::app::AddRetinaCommand(app);

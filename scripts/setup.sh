@@ -6,7 +6,8 @@ cd "$(dirname "$0")/.."
 
 packages=(cmake ninja-build g++ pkg-config
           libembree-dev libeigen3-dev nlohmann-json3-dev libopenexr-dev libceres-dev
-          libcli11-dev libtbb-dev libgtest-dev libgmock-dev libbenchmark-dev libpng-dev)
+          libcli11-dev libtbb-dev libgtest-dev libgmock-dev libbenchmark-dev libpng-dev
+          chromium fonts-liberation)  # headless Chromium for the report's end-to-end test
 
 missing=()
 for p in "${packages[@]}"; do

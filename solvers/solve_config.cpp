@@ -7,6 +7,12 @@
 
 namespace layerlab {
 
+std::string ResolveAgainstScene(const Scene& scene, const std::string& path) {
+  std::filesystem::path p = path;
+  if (p.is_absolute()) return p.string();
+  return (std::filesystem::path(scene.file).parent_path() / p).lexically_normal().string();
+}
+
 std::string DefaultSolverFor(const DisplaySystem& system) {
   if (system.branches.size() == 1) return "multiplicative";
   bool single = std::all_of(system.branches.begin(), system.branches.end(),
@@ -33,11 +39,10 @@ SolveConfig ReadSolveConfig(const Scene& scene, const DisplaySystem& system) {
   }
   SolverOptions& o = config.options;
   o = type->defaults;
-  if (p.has("target")) {
-    std::filesystem::path target = p.string("target");
-    config.target = target.is_absolute() ? target.string()
-                                         : (std::filesystem::path(scene.file).parent_path() / target).lexically_normal().string();
-  }
+  if (p.has("target") && p.has("target_scene"))
+    p.fail("target_scene", "give \"target\" (a light-field folder) or \"target_scene\" (a target scene to render), not both");
+  if (p.has("target")) config.target = ResolveAgainstScene(scene, p.string("target"));
+  if (p.has("target_scene")) config.target_scene = ResolveAgainstScene(scene, p.string("target_scene"));
   o.iterations = static_cast<int>(p.integer("iterations", 1, 1000000, o.iterations));
   o.sub_iterations = static_cast<int>(p.integer("sub_iterations", 1, 1000, o.sub_iterations));
   o.time_budget = p.quantity("time_budget", Dimension::kTime, o.time_budget);

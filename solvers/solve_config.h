@@ -1,6 +1,10 @@
 // The "solve" section of a scene file: which solver, with which options, on
 // which target. The command line overrides any of it.
 //
+// The target is a light-field folder ("target") or a target scene file
+// ("target_scene", docs/target-format.md, rendered with Embree), never both;
+// paths are relative to the scene file's folder.
+//
 //   "solve": { "solver": "hybrid", "target": "../data/dice", "iterations": 30,
 //              "sub_iterations": 3, "time_budget": "60 s"?, "tolerance": 0,
 //              "initial_value": 0.5, "seed": 1, "threads": 0,
@@ -18,7 +22,8 @@ namespace layerlab {
 
 struct SolveConfig {
   std::string solver;  // default: DefaultSolverFor(system)
-  std::string target;  // light-field folder, resolved against the scene file's folder
+  std::string target;        // light-field folder, resolved against the scene file's folder
+  std::string target_scene;  // or a target scene (layerlab-target/1) to render, resolved likewise
   Sampling sampling = Sampling::kNearest;
   SolverOptions options;  // the solver's defaults, then the scene's values
 };
@@ -26,6 +31,9 @@ struct SolveConfig {
 // The solver a display's structure calls for: one branch -> multiplicative,
 // one layer per branch -> additive-trust-region, else hybrid.
 std::string DefaultSolverFor(const DisplaySystem& system);
+
+// A path written in the scene file, relative to the scene file's folder.
+std::string ResolveAgainstScene(const Scene& scene, const std::string& path);
 
 // Reads scene.document["solve"] if present (strictly: unknown keys are errors).
 SolveConfig ReadSolveConfig(const Scene& scene, const DisplaySystem& system);

@@ -1,0 +1,343 @@
+#include "analysis/html_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include <nlohmann/json.hpp>
+
+namespace layerlab {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180;
+
+std::string Esc(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '<') out += "&lt;";
+    else if (c == '>') out += "&gt;";
+    else if (c == '&') out += "&amp;";
+    else if (c == '"') out += "&quot;";
+    else out += c;
+  }
+  return out;
+}
+
+std::string F(double v, int decimals) {
+  if (std::isnan(v)) return "&ndash;";
+  if (std::isinf(v)) return v > 0 ? "&infin;" : "&minus;&infin;";
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", decimals, v);
+  return text;
+}
+
+std::string Links(const std::vector<std::pair<std::string, std::string>>& links) {
+  std::string out;
+  for (const auto& [label, path] : links)
+    out += " <a class=\"file\" href=\"" + Esc(path) + "\">" + Esc(label) + "</a>";
+  return out;
+}
+
+std::string Figure(const ReportImage& image, const std::string& id = "", const std::string& extra_class = "") {
+  std::string id_attr = id.empty() ? "" : " id=\"" + id + "\"";
+  return "<figure class=\"" + extra_class + "\"><a" + (id.empty() ? "" : " id=\"" + id + "-link\"") + " href=\"" +
+         Esc(image.src) + "\"><img" + id_attr + " src=\"" + Esc(image.src) + "\" alt=\"" + Esc(image.caption) +
+         "\"></a><figcaption" + (id.empty() ? "" : " id=\"" + id + "-caption\"") + ">" + Esc(image.caption) +
+         Links(image.links) + "</figcaption></figure>\n";
+}
+
+std::string Rgb3(const Rgb& v, int decimals) { return F(v[0], decimals) + " / " + F(v[1], decimals) + " / " + F(v[2], decimals); }
+
+// Channels relative to the strongest: how far white drifts in color.
+std::string Balance(const Rgb& v) {
+  double m = std::max({v[0], v[1], v[2]});
+  if (!(m > 0)) return "&ndash;";
+  return F(v[0] / m, 3) + " : " + F(v[1] / m, 3) + " : " + F(v[2] / m, 3);
+}
+
+constexpr const char* kStyle = R"CSS(
+body{font:14px/1.45 system-ui,-apple-system,"Segoe UI",Helvetica,Arial,sans-serif;margin:0;color:#1b1b1b;background:#f6f6f4}
+header{background:#20303c;color:#fff;padding:18px 28px}
+header h1{margin:0 0 4px;font-size:22px}
+header p{margin:2px 0;color:#cfd8df}
+header code{color:#fff}
+nav{margin-top:8px}
+nav a{color:#9fd0ff;margin-right:14px;text-decoration:none}
+main{padding:8px 28px 40px;max-width:1500px}
+section{background:#fff;border:1px solid #ddd;border-radius:6px;margin:18px 0;padding:6px 18px 16px}
+h2{font-size:18px;margin:12px 0 8px;border-bottom:1px solid #eee;padding-bottom:4px}
+h3{font-size:15px;margin:14px 0 6px}
+table{border-collapse:collapse;margin:6px 0 10px;font-variant-numeric:tabular-nums;display:block;overflow-x:auto;max-width:100%}
+th,td{border:1px solid #ddd;padding:3px 8px;text-align:right;white-space:nowrap}
+th{background:#f0f2f4;font-weight:600}
+td.l,th.l{text-align:left}
+.grid{display:flex;flex-wrap:wrap;gap:14px;align-items:flex-start}
+figure{margin:0;max-width:100%}
+figure img{display:block;max-width:100%;border:1px solid #ccc;background:#000;image-rendering:pixelated}
+figure.plot img{background:#fff;image-rendering:auto}
+figure.small img{width:300px}
+figure.panel img{width:420px}
+figure.retina{flex:1 1 420px}
+figure.retina img{width:100%}
+figcaption{font-size:12px;color:#444;margin-top:3px}
+a.file{font-size:12px;margin-left:4px;padding:0 4px;border:1px solid #b8c4ce;border-radius:3px;text-decoration:none;color:#20507a}
+.slider{display:flex;align-items:center;gap:12px;margin:8px 0 12px;flex-wrap:wrap}
+.slider input{flex:1 1 420px}
+#state{font-size:18px;font-weight:600;min-width:190px}
+.warn{color:#8a4b00}
+pre{background:#f4f4f4;padding:8px;overflow:auto;font-size:12px}
+.muted{color:#666}
+)CSS";
+
+// Runs before anything loads, so that every script and resource error is counted.
+constexpr const char* kErrorCatcher = R"JS(
+window.layerlabErrors = [];
+window.addEventListener('error', function (e) {
+  var t = e.target;
+  window.layerlabErrors.push(t && t !== window && (t.src || t.href) ? 'could not load ' + (t.src || t.href)
+                                                                     : String(e.message || e.type));
+}, true);
+)JS";
+
+constexpr const char* kScript = R"JS(
+(function () {
+  var states = window.layerlabStates || [];
+  var slider = document.getElementById('accommodation');
+  function setImage(id, src, links) {
+    var img = document.getElementById(id);
+    if (!img) return;
+    img.src = src;
+    document.getElementById(id + '-link').href = src;
+    var caption = document.getElementById(id + '-caption');
+    caption.innerHTML = '';
+    caption.appendChild(document.createTextNode(links.caption));
+    links.files.forEach(function (f) {
+      var a = document.createElement('a');
+      a.className = 'file'; a.href = f[1]; a.textContent = f[0];
+      caption.appendChild(document.createTextNode(' ')); caption.appendChild(a);
+    });
+  }
+  function show(k) {
+    var s = states[k];
+    if (!s) return;
+    document.getElementById('state').textContent = 'focused at ' + s.diopters.toFixed(2) + ' D' +
+        (s.diopters > 0 ? ' (' + (1 / s.diopters).toFixed(2) + ' m)' : ' (infinity)');
+    setImage('retina-display', s.display, {caption: s.display_caption, files: s.display_links});
+    if (s.natural) setImage('retina-natural', s.natural, {caption: s.natural_caption, files: s.natural_links});
+  }
+  if (slider) {
+    slider.addEventListener('input', function () { show(+slider.value); });
+    show(+slider.value);
+  }
+  window.layerlabShow = show;
+
+  if (new URLSearchParams(location.search).get('selftest') !== '1') return;
+  function imageReady(img) {
+    return new Promise(function (resolve) {
+      if (img.complete) return resolve();
+      img.addEventListener('load', resolve); img.addEventListener('error', resolve);
+    });
+  }
+  window.addEventListener('load', function () {
+    var out = document.getElementById('selftest');
+    var problems = [];
+    var images = Array.prototype.slice.call(document.images);
+    Promise.all(images.map(imageReady)).then(function () {
+      images.forEach(function (img) {
+        if (!(img.naturalWidth > 0)) problems.push('image not shown: ' + img.getAttribute('src'));
+      });
+      var detail = images.length + ' images';
+      var shown = document.getElementById('retina-display');
+      if (slider && shown && states.length > 1) {
+        var before = shown.getAttribute('src');
+        var to = (+slider.value + 1) % states.length;
+        slider.value = String(to);
+        slider.dispatchEvent(new Event('input', {bubbles: true}));
+        var after = shown.getAttribute('src');
+        if (after === before) problems.push('moving the slider did not change the retinal image (' + before + ')');
+        detail += '; slider moved from ' + before + ' to ' + after;
+        return imageReady(shown).then(function () {
+          if (!(shown.naturalWidth > 0)) problems.push('the image after the slider moved did not load: ' + after);
+          return detail;
+        });
+      }
+      if (document.getElementById('retina')) problems.push('the retina section has no working slider');
+      return detail + '; no retina slider';
+    }).then(function (detail) {
+      problems = problems.concat(window.layerlabErrors);
+      out.textContent = (problems.length ? 'FAIL ' + problems.join('; ') : 'PASS') + ' (' + detail + ')';
+      out.hidden = false;
+    });
+  });
+})();
+)JS";
+
+std::string SystemSection(const RunReportPage& page) {
+  const DisplaySystem& s = *page.system;
+  std::string h = "<section id=\"system\"><h2>Display system</h2>\n";
+  h += "<p>" + Esc(s.name.empty() ? s.file : s.name) + Links(page.system_links) + "</p>\n";
+  h += "<table><tr><th class=\"l\">field of view</th><td>" + F(s.fov_x / kDeg, 2) + " &times; " + F(s.fov_y / kDeg, 2) +
+       " deg</td></tr>\n";
+  h += "<tr><th class=\"l\">highest frequency</th><td>" + F(s.max_cpd, 2) + " cpd</td></tr>\n";
+  h += "<tr><th class=\"l\">peak luminance (R / G / B)</th><td>" + Rgb3(s.peak_luminance, 1) + " cd/m&sup2;</td></tr>\n";
+  h += "<tr><th class=\"l\">brightness efficiency</th><td>" + F(s.luminance_efficiency, 4) + " (R / G / B " +
+       Rgb3(s.brightness_efficiency, 4) + ")</td></tr>\n";
+  h += "<tr><th class=\"l\">eye</th><td>pupil " + F(s.eye.pupil_diameter * 1e3, 1) + " mm, eyebox " +
+       F(s.eye.eyebox_width * 1e3, 1) + " &times; " + F(s.eye.eyebox_height * 1e3, 1) + " mm, " +
+       std::to_string(s.eye.views_x) + " &times; " + std::to_string(s.eye.views_y) + " views</td></tr>\n";
+  h += "<tr><th class=\"l\">lens</th><td>" + Esc(s.lens) + ", f = " + F(s.focal_length * 1e3, 2) + " mm</td></tr></table>\n";
+
+  h += "<h3>Virtual layers (farthest first)</h3>\n<table><tr><th>#</th><th class=\"l\">panel</th><th class=\"l\">branch</th>"
+       "<th>depth (D)</th><th>depth (m)</th><th>panel distance (mm)</th><th>magnification</th><th>virtual pixel (mm)</th>"
+       "<th>pixels</th><th>field of view (deg)</th><th>max f (cpd)</th></tr>\n";
+  for (size_t k = 0; k < s.layers.size(); ++k) {
+    const VirtualLayer& l = s.layers[k];
+    h += "<tr><td>" + std::to_string(k) + "</td><td class=\"l\">" + Esc(l.name) + "</td><td class=\"l\">" +
+         Esc(s.branches[l.branch].name) + "</td><td>" + F(l.diopters, 3) + "</td><td>" + F(l.depth, 4) + "</td><td>" +
+         F(l.panel_distance * 1e3, 2) + "</td><td>" + F(l.magnification, 2) + "</td><td>" + F(l.pitch_x * 1e3, 3) +
+         "</td><td>" + std::to_string(l.cols) + " &times; " + std::to_string(l.rows) + "</td><td>" +
+         F(l.fov_x / kDeg, 2) + " &times; " + F(l.fov_y / kDeg, 2) + "</td><td>" + F(l.max_cpd, 2) + "</td></tr>\n";
+  }
+  h += "</table>\n<h3>Branches (added at the eye)</h3>\n<table><tr><th>#</th><th class=\"l\">name</th><th class=\"l\">layers</th>"
+       "<th>optics efficiency (R / G / B)</th><th>efficiency (R / G / B)</th><th class=\"l\">backlight</th>"
+       "<th>luminance (cd/m&sup2;)</th></tr>\n";
+  for (size_t b = 0; b < s.branches.size(); ++b) {
+    const Branch& br = s.branches[b];
+    std::string layers;
+    for (int k : br.layers) layers += (layers.empty() ? "" : ", ") + s.layers[k].name;
+    h += "<tr><td>" + std::to_string(b) + "</td><td class=\"l\">" + Esc(br.name) + "</td><td class=\"l\">" + Esc(layers) +
+         "</td><td>" + Rgb3(br.optics_efficiency, 4) + "</td><td>" + Rgb3(br.efficiency, 4) + "</td><td class=\"l\">" +
+         Esc(br.backlight) + "</td><td>" + F(br.backlight_luminance, 1) + "</td></tr>\n";
+  }
+  h += "</table>\n";
+  for (const std::string& w : s.warnings) h += "<p class=\"warn\">warning: " + Esc(w) + "</p>\n";
+  return h + "</section>\n";
+}
+
+std::string RetinaSection(const RunReportPage& page) {
+  std::string h = "<section id=\"retina\"><h2>What the eye sees: retinal images over accommodation</h2>\n";
+  h += "<p class=\"muted\">Drag the slider to focus the eye (a focal stack). Linear values are display-relative (1 = " +
+       F(page.white_cd_m2, 1) + " cd/m&sup2;, the brightest branch at full white); the PNGs are sRGB with 1 as white." +
+       Links(page.retina_links) + "</p>\n";
+  size_t start = 0;
+  for (size_t k = 0; k < page.retina.size(); ++k)
+    if (page.retina[k].declared) {
+      start = k;
+      break;
+    }
+  h += "<div class=\"slider\"><label for=\"accommodation\">accommodation</label><input type=\"range\" id=\"accommodation\" min=\"0\" max=\"" +
+       std::to_string(page.retina.size() - 1) + "\" step=\"1\" value=\"" + std::to_string(start) +
+       "\" list=\"declared-states\"><span id=\"state\"></span></div>\n<datalist id=\"declared-states\">";
+  for (size_t k = 0; k < page.retina.size(); ++k)
+    if (page.retina[k].declared) h += "<option value=\"" + std::to_string(k) + "\"></option>";
+  h += "</datalist>\n<div class=\"grid\">\n";
+  const ReportRetinaState& first = page.retina[start];
+  h += Figure(first.display, "retina-display", "retina");
+  if (!first.natural.src.empty()) h += Figure(first.natural, "retina-natural", "retina");
+  h += "</div>\n<h3>Mean luminance at the retina</h3>\n<table><tr><th>accommodation (D)</th><th>display (cd/m&sup2;)</th>"
+       "<th>natural viewing (cd/m&sup2;)</th><th class=\"l\">images</th></tr>\n";
+  nlohmann::json states = nlohmann::json::array();
+  for (const ReportRetinaState& s : page.retina) {
+    h += "<tr><td>" + F(s.diopters, 2) + (s.declared ? " &#9679;" : "") + "</td><td>" + F(s.display_mean_cd_m2, 2) +
+         "</td><td>" + F(s.natural_mean_cd_m2, 2) + "</td><td class=\"l\">display" + Links(s.display.links) +
+         (s.natural.links.empty() ? "" : " &middot; natural" + Links(s.natural.links)) + "</td></tr>\n";
+    nlohmann::json j = {{"diopters", s.diopters},
+                        {"display", s.display.src},
+                        {"display_caption", s.display.caption},
+                        {"display_links", s.display.links}};
+    if (!s.natural.src.empty()) {
+      j["natural"] = s.natural.src;
+      j["natural_caption"] = s.natural.caption;
+      j["natural_links"] = s.natural.links;
+    }
+    states.push_back(j);
+  }
+  h += "</table>\n<p class=\"muted\">&#9679; a declared accommodation state (the slider's tick marks); the others are the focal stack.</p>\n";
+  std::string data = states.dump();
+  for (size_t at = data.find("</"); at != std::string::npos; at = data.find("</", at + 3)) data.replace(at, 2, "<\\/");
+  h += "<script>window.layerlabStates = " + data + ";</script>\n";
+  return h + "</section>\n";
+}
+
+std::string ContrastSection(const RunReportPage& page) {
+  std::string h = "<section id=\"contrast\"><h2>Accommodation support: normalized contrast (Fig. 5)</h2>\n";
+  h += "<p class=\"muted\">A cosine grating on a plane at each target depth; each display is factorized for it and the eye "
+       "sweeps its focus. A display supports accommodation when its peak follows the target depth (dashed green).</p>\n";
+  h += "<div class=\"grid\">" + Figure(page.contrast_plot, "", "plot") + "</div>\n";
+  h += "<h3>Peaks</h3>\n<table><tr><th class=\"l\">display</th><th>target (D)</th><th>f (cpd)</th><th>peak (D)</th>"
+       "<th>peak contrast</th><th>at target</th><th class=\"l\">solver</th><th>PSNR (dB)</th><th>solve (s)</th></tr>\n";
+  for (const ContrastCurve& c : page.contrast)
+    h += "<tr><td class=\"l\">" + Esc(c.display) + "</td><td>" + F(c.target_diopters, 2) + "</td><td>" + F(c.frequency, 1) +
+         "</td><td>" + F(c.peak.at_parabola, 3) + "</td><td>" + F(c.peak.value, 3) + "</td><td>" + F(c.at_target, 3) +
+         "</td><td class=\"l\">" + Esc(c.solver) + "</td><td>" + (c.display == "natural" ? "&ndash;" : F(c.psnr_db, 2)) +
+         "</td><td>" + F(c.solve_seconds, 2) + "</td></tr>\n";
+  return h + "</table>\n</section>\n";
+}
+
+std::string CompareSection(const RunReportPage& page) {
+  std::string h = "<section id=\"compare\"><h2>Displays side by side on the same target</h2>\n";
+  h += "<p class=\"muted\">Brightness efficiency: light at the eye per light the backlights emit. Balance: the channels "
+       "relative to the strongest (1 : 1 : 1 keeps white white; the factorization compensates the rest).</p>\n";
+  h += "<table><tr><th class=\"l\">display</th><th class=\"l\">solver</th><th>PSNR (dB)</th><th>seconds</th>"
+       "<th>iterations</th><th>brightness (luminance)</th><th>brightness R / G / B</th><th>balance R : G : B</th>"
+       "<th class=\"l\">termination</th></tr>\n";
+  for (const CompareResult& r : page.compare)
+    h += "<tr><td class=\"l\">" + Esc(r.display) + "</td><td class=\"l\">" + Esc(r.solver) + "</td><td>" +
+         F(r.report.final_psnr_db, 2) + "</td><td>" + F(r.report.seconds, 2) + "</td><td>" +
+         std::to_string(r.report.iterations) + "</td><td>" + F(r.luminance_efficiency, 4) + "</td><td>" +
+         Rgb3(r.brightness_efficiency, 4) + "</td><td>" + Balance(r.brightness_efficiency) + "</td><td class=\"l\">" +
+         Esc(ToString(r.report.termination)) + "</td></tr>\n";
+  h += "</table>\n<div class=\"grid\">" + Figure(page.compare_plot, "", "plot") + "</div>\n";
+  return h + "</section>\n";
+}
+
+}  // namespace
+
+std::string RenderRunReport(const RunReportPage& page) {
+  std::string h = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>" + Esc(page.title) +
+                  "</title>\n<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<style>" + kStyle +
+                  "</style>\n<script>" + kErrorCatcher + "</script>\n</head><body>\n";
+  h += "<header><h1>" + Esc(page.title) + "</h1><p>" + Esc(page.description) + "</p><p>scene <code>" +
+       Esc(page.scene_file) + "</code> &middot; <code>" + Esc(page.command) + "</code></p>\n<nav>";
+  const std::pair<bool, std::string> sections[] = {
+      {true, "steps|Steps"},
+      {page.system != nullptr, "system|Display system"},
+      {!page.target_source.empty(), "target|Target"},
+      {page.solved, "solve|Factorization"},
+      {!page.retina.empty(), "retina|Retinal images"},
+      {!page.contrast_plot.src.empty(), "contrast|Contrast"},
+      {!page.compare_plot.src.empty(), "compare|Comparison"}};
+  for (const auto& [shown, anchor] : sections)
+    if (shown) h += "<a href=\"#" + anchor.substr(0, anchor.find('|')) + "\">" + anchor.substr(anchor.find('|') + 1) + "</a>";
+  h += "</nav></header>\n<main>\n";
+  h += "<pre id=\"selftest\" hidden></pre>\n";
+  h += "<section id=\"steps\"><h2>Steps</h2><table><tr><th class=\"l\">step</th><th>wall time (s)</th></tr>\n";
+  for (const auto& [step, seconds] : page.steps)
+    h += "<tr><td class=\"l\">" + Esc(step) + "</td><td>" + F(seconds, 2) + "</td></tr>\n";
+  h += "</table>\n";
+  for (const std::string& w : page.warnings) h += "<p class=\"warn\">warning: " + Esc(w) + "</p>\n";
+  h += "</section>\n";
+
+  if (page.system) h += SystemSection(page);
+  if (!page.target_source.empty()) {
+    h += "<section id=\"target\"><h2>Target</h2><p>" + Esc(page.target_source) + "</p><div class=\"grid\">" +
+         Figure(page.target, "", "panel") + "</div></section>\n";
+  }
+  if (page.solved) {
+    h += "<section id=\"solve\"><h2>Factorization</h2><p>" + Esc(page.solve_brief) + Links(page.solve_links) + "</p>\n";
+    h += "<div class=\"grid\">" + Figure(page.psnr_plot, "", "plot") + "</div>\n";
+    h += "<h3>Layer patterns (linear transmittance, panel pixel order)</h3><div class=\"grid\">\n";
+    for (const ReportImage& p : page.patterns) h += Figure(p, "", "small");
+    h += "</div>\n<h3>Panel-ready images (gamma- and black-level-encoded, full panel)</h3><div class=\"grid\">\n";
+    for (const ReportImage& p : page.panels) h += Figure(p, "", "panel");
+    h += "</div></section>\n";
+  }
+  if (!page.retina.empty()) h += RetinaSection(page);
+  if (!page.contrast_plot.src.empty()) h += ContrastSection(page);
+  if (!page.compare_plot.src.empty()) h += CompareSection(page);
+  h += "</main>\n<script>" + std::string(kScript) + "</script>\n</body></html>\n";
+  return h;
+}
+
+}  // namespace layerlab

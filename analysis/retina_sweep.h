@@ -1,0 +1,46 @@
+// Retinal images over accommodation, written to a folder: what the eye sees
+// of the display at each state, and of the target itself (natural viewing)
+// when a scene radiance is given.
+//
+//   display/<state>.exr, .png   linear display-relative RGB; sRGB PNG with 1 =
+//                               the brightest branch's full white (values
+//                               above are clipped and counted in retina.csv)
+//   natural/<state>.exr, .png   the same for natural viewing
+//   retina.csv                  one row per state: mean luminance (cd/m2), clipping, seconds
+// <state> is the accommodation with two decimals: "0.40D".
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "systems/display_model.h"
+#include "systems/retina.h"
+
+namespace layerlab {
+
+struct RetinaSweepOptions {
+  std::vector<double> states;        // D, in the order written
+  double resolution = 0.05;          // deg per sample
+  double field_x = 0, field_y = 0;   // deg; 0: the display's field of view
+};
+
+struct RetinaStateResult {
+  double diopters = 0;
+  std::string name;                  // "0.40D": the file stem in display/ and natural/
+  double display_mean_cd_m2 = 0;
+  double natural_mean_cd_m2 = 0;     // NaN without natural viewing
+  size_t display_clipped_in_png = 0;
+  double seconds = 0;
+};
+
+std::string RetinaStateName(double diopters);
+
+// Writes the folder (creating it); `progress` gets each state as it is done.
+// `natural` may be empty. Throws layerlab::Error for bad options.
+std::vector<RetinaStateResult> WriteRetinaSweep(
+    const DisplayModel& model, const Patterns& t, const SceneRadiance& natural, const RetinaSweepOptions& options,
+    const std::string& folder,
+    const std::function<void(size_t done, size_t total, const RetinaStateResult&)>& progress = {});
+
+}  // namespace layerlab

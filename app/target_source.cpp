@@ -1,0 +1,61 @@
+#include "app/target_source.h"
+
+#include <cstdio>
+
+#include "app/progress.h"
+#include "framework/error.h"
+#include "framework/lightfield_io.h"
+#include "framework/png_writer.h"
+#include "systems/lightfield_radiance.h"
+
+namespace layerlab::app {
+
+SceneRadiance Target::Natural() const {
+#if LAYERLAB_WITH_EMBREE
+  if (tracer) {
+    const TargetTracer* t = tracer.get();
+    return [t](const PupilPoint& u, double dx, double dy) { return t->TraceDirection(u.x, u.y, dx, dy).color; };
+  }
+#endif
+  return LightFieldRadiance(light_field);
+}
+
+std::unique_ptr<Target> LoadOrRenderTarget(const SolveConfig& config, const std::string& label) {
+  auto target = std::make_unique<Target>();
+  if (!config.target.empty()) {
+    target->source = config.target;
+    std::fprintf(stderr, "%s: loading the light field %s\n", label.c_str(), config.target.c_str());
+    target->light_field = ReadLightField(config.target, {.load_depth = false});
+    return target;
+  }
+  if (config.target_scene.empty()) throw Error("no target: give \"solve\": {\"target\": LF_DIR} or {\"target_scene\": TARGET.json}");
+  target->source = config.target_scene;
+#if LAYERLAB_WITH_EMBREE
+  target->scene = std::make_unique<TargetScene>(LoadTarget(config.target_scene));
+  const LightFieldGeometry& g = target->scene->geometry;
+  Progress progress(label, g.view_count());
+  char what[160];
+  std::snprintf(what, sizeof what, "%d x %d pixels", g.cols, g.rows);
+  RenderStats stats;
+  target->light_field = RenderTarget(*target->scene, &stats, [&](size_t done, size_t total) {
+    progress.Update(done, std::string("views rendered, ") + what);
+  });
+  std::snprintf(what, sizeof what, "%zu views of %d x %d pixels, %.1f Mrays/s", g.view_count(), g.cols, g.rows,
+                stats.rays / std::max(stats.seconds, 1e-9) / 1e6);
+  progress.Finish(what);
+  target->tracer = std::make_unique<TargetTracer>(*target->scene);
+  target->rendered = true;
+  return target;
+#else
+  throw Error(config.target_scene + ": rendering a target scene needs Embree (this build has LAYERLAB_WITH_EMBREE=OFF); "
+              "render it elsewhere with `layerlab render-target` and give the folder as \"target\"");
+#endif
+}
+
+void WriteCenterView(const LightField& lf, const std::string& path) {
+  const LightFieldGeometry& g = lf.geometry;
+  const float* view = lf.view(g.view_index(g.views_y / 2, g.views_x / 2));
+  WriteSrgbPng(path, g.cols, g.rows, std::vector<float>(view, view + g.pixels_per_view() * 3));
+}
+
+}  // namespace layerlab::app

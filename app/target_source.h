@@ -1,0 +1,42 @@
+// The target of a run: a light-field folder read from disk, or a target scene
+// (docs/target-format.md) rendered with Embree. A rendered target keeps its
+// ray tracer, so that natural viewing on the retina is traced exactly rather
+// than interpolated from the views.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "framework/lightfield.h"
+#include "solvers/solve_config.h"
+#include "systems/retina.h"
+#if LAYERLAB_WITH_EMBREE
+#include "systems/target/target_renderer.h"
+#include "systems/target/target_scene.h"
+#include "systems/target/target_tracer.h"
+#endif
+
+namespace layerlab::app {
+
+struct Target {
+  LightField light_field;
+  std::string source;  // the folder or the target scene file
+  bool rendered = false;
+#if LAYERLAB_WITH_EMBREE
+  std::unique_ptr<TargetScene> scene;  // stable address: the tracer refers to it
+  std::unique_ptr<TargetTracer> tracer;
+#endif
+  // Radiance along any ray from the pupil: traced when rendered, else read
+  // from the light field (which must then outlive the returned function).
+  SceneRadiance Natural() const;
+};
+
+// Reads config.target, or renders config.target_scene with a progress bar of
+// views. Throws layerlab::Error when neither is given or the scene needs
+// Embree and this build has none.
+std::unique_ptr<Target> LoadOrRenderTarget(const SolveConfig& config, const std::string& label);
+
+// The center view as an sRGB PNG (1 = white), to show what the target looks like.
+void WriteCenterView(const LightField& lf, const std::string& path);
+
+}  // namespace layerlab::app
