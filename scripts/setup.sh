@@ -8,6 +8,8 @@ packages=(cmake ninja-build g++ pkg-config
           libembree-dev libeigen3-dev nlohmann-json3-dev libopenexr-dev libceres-dev
           libcli11-dev libtbb-dev libgtest-dev libgmock-dev libbenchmark-dev libpng-dev)
 
+packages+=(clang-14 libclang-rt-14-dev libomp-14-dev)  # the fuzz build in .ci/run (docs/robustness.md)
+
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
