@@ -2,7 +2,9 @@
 
 #include <cmath>
 #include <cstring>
+#include <cstdint>
 #include <fstream>
+#include <map>
 
 #include <OpenEXR/IexBaseExc.h>
 #include <OpenEXR/ImfChannelList.h>
@@ -10,6 +12,7 @@
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/openexr.h>
 
 #include "framework/atomic_file.h"
 #include "framework/error.h"
@@ -38,11 +41,101 @@ void RequireExrMagic(const std::string& path) {
     throw Error(path + ": not an OpenEXR file");
 }
 
+// Walks the headers the way OpenEXR's C++ reader does (Header::readFrom): known
+// fixed-size types are read at their own size whatever the declared one,
+// channel lists and previews by their content, everything else at the declared
+// size. Each read that allocates must fit in what is left of the file. The C
+// core's parse (below) alone does not suffice: it trusts declared sizes where
+// the C++ reader does not, and the two can part ways on a corrupt file.
+void RequireCppHeaderWithinFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in) throw Error(path + ": cannot open for reading: " + std::strerror(errno));
+  const long long file_size = static_cast<long long>(in.tellg());
+  in.seekg(0);
+  auto corrupt = [&](const std::string& why) { return Error(path + ": corrupt or truncated OpenEXR file: " + why); };
+  unsigned char start[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+  in.read(reinterpret_cast<char*>(start), 8);
+  if (in.gcount() != 8) throw corrupt("no version field");
+  const bool multipart = start[5] & 0x10, long_names = start[5] & 0x04;  // version flags, bits 12 and 10
+  const size_t max_name = long_names ? 255 : 31;
+  auto remaining = [&] { return file_size - static_cast<long long>(in.tellg()); };
+  auto read_name = [&](std::string& out) {
+    out.clear();
+    for (char c; in.get(c);) {
+      if (c == '\0') return;
+      if (out.size() == max_name) throw corrupt("a header name longer than " + std::to_string(max_name) + " bytes");
+      out += c;
+    }
+    throw corrupt("the header ends inside a name");
+  };
+  auto read_u32 = [&]() {
+    unsigned char b[4];
+    in.read(reinterpret_cast<char*>(b), 4);
+    if (in.gcount() != 4) throw corrupt("the header ends early");
+    return static_cast<uint32_t>(b[0]) | static_cast<uint32_t>(b[1]) << 8 | static_cast<uint32_t>(b[2]) << 16 |
+           static_cast<uint32_t>(b[3]) << 24;
+  };
+  static const std::map<std::string, int> kFixedSizes = {
+      {"box2i", 16}, {"box2f", 16}, {"chromaticities", 32}, {"compression", 1}, {"deepImageState", 1},
+      {"double", 8}, {"envmap", 1}, {"float", 4}, {"int", 4}, {"keycode", 28}, {"lineOrder", 1},
+      {"m33f", 36}, {"m33d", 72}, {"m44f", 64}, {"m44d", 128}, {"rational", 8}, {"tiledesc", 9},
+      {"timecode", 8}, {"v2i", 8}, {"v2f", 8}, {"v2d", 16}, {"v3i", 12}, {"v3f", 12}, {"v3d", 24}};
+  for (bool more = true; more;) {
+    int attributes = 0;
+    for (std::string name, type, channel;; ++attributes) {
+      read_name(name);
+      if (name.empty()) break;
+      read_name(type);
+      const int32_t size = static_cast<int32_t>(read_u32());
+      if (size < 0) throw corrupt("attribute \"" + name + "\" has a negative size");
+      if (auto fixed = kFixedSizes.find(type); fixed != kFixedSizes.end()) {
+        in.seekg(fixed->second, std::ios::cur);
+      } else if (type == "chlist") {
+        for (read_name(channel); !channel.empty(); read_name(channel)) in.seekg(16, std::ios::cur);
+      } else if (type == "preview") {
+        const long long pixels = static_cast<long long>(read_u32()) * read_u32();
+        if (pixels * 4 > remaining()) throw corrupt("the preview image runs past the end of the file");
+        in.seekg(pixels * 4, std::ios::cur);
+      } else {
+        if (size > remaining())
+          throw corrupt("attribute \"" + name + "\" declares " + std::to_string(size) + " bytes; the file has " +
+                        std::to_string(remaining()) + " left");
+        in.seekg(size, std::ios::cur);
+      }
+      if (!in || remaining() < 0) throw corrupt("the header ends inside attribute \"" + name + "\"");
+    }
+    more = multipart && attributes > 0;
+  }
+}
+
+// OpenEXR's C++ reader allocates each header attribute at its declared size
+// before reading it: a few hundred bytes could make it allocate and clear
+// gigabytes. OpenEXR's C core parses headers with sizes checked against the
+// file, so it reads the headers first; the C++ reader runs only on what it accepts.
+void RequireSaneExrHeaders(const std::string& path) {
+  RequireExrMagic(path);
+  RequireCppHeaderWithinFile(path);
+  thread_local std::string message;
+  message.clear();
+  exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+  init.error_handler_fn = [](exr_const_context_t, exr_result_t, const char* text) {
+    if (message.empty() && text) message = text;
+  };
+  init.max_image_width = init.max_image_height = kMaxSide;
+  init.max_tile_width = init.max_tile_height = kMaxSide;
+  exr_context_t context = nullptr;
+  exr_result_t result = exr_start_read(&context, path.c_str(), &init);
+  exr_finish(&context);
+  if (result != EXR_ERR_SUCCESS)
+    throw Error(path + ": corrupt or truncated OpenEXR file: " +
+                (message.empty() ? std::string(exr_get_default_error_message(result)) : message));
+}
+
 }  // namespace
 
 ExrSize ReadExrSize(const std::string& path) {
   LimitHeaderSizes();
-  RequireExrMagic(path);
+  RequireSaneExrHeaders(path);
   try {
     Imf::InputFile file(path.c_str());
     const Imath::Box2i& dw = file.header().dataWindow();
@@ -54,7 +147,7 @@ ExrSize ReadExrSize(const std::string& path) {
 
 Image ReadExr(const std::string& path, const std::vector<std::string>& channels, const ExrLimits& limits) {
   LimitHeaderSizes();
-  RequireExrMagic(path);
+  RequireSaneExrHeaders(path);
   Image image;
   image.channels = channels;
   try {

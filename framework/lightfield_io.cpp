@@ -139,12 +139,18 @@ Manifest ReadManifest(const std::string& folder) {
 LightFieldGeometry ReadLightFieldGeometry(const std::string& folder) { return ReadManifest(folder).geometry; }
 
 LightField ReadLightField(const std::string& folder, const LightFieldReadOptions& options) {
-  const auto [manifest_path, g, views_pattern, depth_pattern, scene] = ReadManifest(folder);
+  const Manifest manifest = ReadManifest(folder);
+  // References, not a structured binding: the lambda below captures them, which
+  // clang before 16 refuses for bindings.
+  const std::string& manifest_path = manifest.path;
+  const LightFieldGeometry& g = manifest.geometry;
+  const std::string& views_pattern = manifest.views_pattern;
+  const std::string& depth_pattern = manifest.depth_pattern;
   const size_t ray_count = g.ray_count();
   if (ray_count > (size_t{1} << 31))
     throw Error(manifest_path + ": " + std::to_string(ray_count) + " rays is beyond the 2^31 this layerlab handles");
   LightField lf(g);
-  lf.scene = scene;
+  lf.scene = manifest.scene;
 
   for (int r = 0; r < g.views_y; ++r)
     for (int c = 0; c < g.views_x; ++c) {

@@ -126,6 +126,9 @@ Depth ParseDepth(std::string_view text) {
   if (unit && unit->dimension == Dimension::kLength) {
     double meters = s.number * unit->to_si;
     if (!(meters > 0)) throw Error("a depth of " + std::string(text) + " is not in front of the eye");
+    // Below about 1e-308 m (subnormal) the power 1 / meters overflows to inf.
+    if (!std::isfinite(1.0 / meters))
+      throw Error("a depth of " + std::string(text) + " is too close to the eye (its optical power is not finite)");
     return {1.0 / meters};
   }
   throw Error("\"" + std::string(text) + "\" is not a depth; expected diopters (D) or a distance in " +

@@ -57,5 +57,18 @@ TEST(Units, RefusesImpossibleDepths) {
   EXPECT_THROW(ParseDepth("3 deg"), Error);
 }
 
+// Found by fuzz/units_fuzz (corpus: fuzz/corpus/units/depth_subnormal_meters): a
+// subnormal distance has an infinite power and used to come back as inf diopters.
+TEST(Units, RefusesDepthsWithoutAFinitePower) {
+  try {
+    ParseDepth("1e-320 m");
+    ADD_FAILURE() << "1e-320 m was accepted";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "a depth of 1e-320 m is too close to the eye (its optical power is not finite)");
+  }
+  EXPECT_THROW(ParseDepth("1e-300 nm"), Error);
+  EXPECT_DOUBLE_EQ(ParseDepth("1e-300 m").diopters, 1e300);
+}
+
 }  // namespace
 }  // namespace layerlab

@@ -1,0 +1,18 @@
+// The light-field manifest: the input is written as lightfield.json into a
+// per-process scratch folder, then read and validated by ReadLightFieldGeometry.
+#include <cstddef>
+#include <cstdint>
+
+#include "framework/error.h"
+#include "framework/lightfield_io.h"
+#include "fuzz/fuzz_util.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  const auto& folder = layerlab::fuzz::ScratchDir();
+  layerlab::fuzz::WriteBytes(folder / "lightfield.json", data, size);
+  try {
+    (void)layerlab::ReadLightFieldGeometry(folder.string());
+  } catch (const layerlab::Error&) {
+  }
+  return 0;
+}

@@ -1,0 +1,18 @@
+// Calibration measurements: strict JSON, then ParseMeasurements (the reader
+// behind `layerlab fit`). Built only with LAYERLAB_WITH_CERES.
+#include <cstddef>
+#include <cstdint>
+
+#include "framework/error.h"
+#include "framework/json_file.h"
+#include "fuzz/fuzz_util.h"
+#include "systems/calibration/measurements.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  try {
+    nlohmann::json document = layerlab::ParseJson(layerlab::fuzz::AsString(data, size), "measurements.json");
+    (void)layerlab::ParseMeasurements(document, "measurements.json");
+  } catch (const layerlab::Error&) {
+  }
+  return 0;
+}
