@@ -7,22 +7,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "analysis/svg_plot.h"
+
 namespace layerlab {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180;
-
-std::string Esc(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else if (c == '"') out += "&quot;";
-    else out += c;
-  }
-  return out;
-}
 
 std::string F(double v, int decimals) {
   if (std::isnan(v)) return "&ndash;";
@@ -35,15 +25,15 @@ std::string F(double v, int decimals) {
 std::string Links(const std::vector<std::pair<std::string, std::string>>& links) {
   std::string out;
   for (const auto& [label, path] : links)
-    out += " <a class=\"file\" href=\"" + Esc(path) + "\">" + Esc(label) + "</a>";
+    out += " <a class=\"file\" href=\"" + Escape(path) + "\">" + Escape(label) + "</a>";
   return out;
 }
 
 std::string Figure(const ReportImage& image, const std::string& id = "", const std::string& extra_class = "") {
   std::string id_attr = id.empty() ? "" : " id=\"" + id + "\"";
   return "<figure class=\"" + extra_class + "\"><a" + (id.empty() ? "" : " id=\"" + id + "-link\"") + " href=\"" +
-         Esc(image.src) + "\"><img" + id_attr + " src=\"" + Esc(image.src) + "\" alt=\"" + Esc(image.caption) +
-         "\"></a><figcaption" + (id.empty() ? "" : " id=\"" + id + "-caption\"") + ">" + Esc(image.caption) +
+         Escape(image.src) + "\"><img" + id_attr + " src=\"" + Escape(image.src) + "\" alt=\"" + Escape(image.caption) +
+         "\"></a><figcaption" + (id.empty() ? "" : " id=\"" + id + "-caption\"") + ">" + Escape(image.caption) +
          Links(image.links) + "</figcaption></figure>\n";
 }
 
@@ -176,7 +166,7 @@ constexpr const char* kScript = R"JS(
 std::string SystemSection(const RunReportPage& page) {
   const DisplaySystem& s = *page.system;
   std::string h = "<section id=\"system\"><h2>Display system</h2>\n";
-  h += "<p>" + Esc(s.name.empty() ? s.file : s.name) + Links(page.system_links) + "</p>\n";
+  h += "<p>" + Escape(s.name.empty() ? s.file : s.name) + Links(page.system_links) + "</p>\n";
   h += "<table><tr><th class=\"l\">field of view</th><td>" + F(s.fov_x / kDeg, 2) + " &times; " + F(s.fov_y / kDeg, 2) +
        " deg</td></tr>\n";
   h += "<tr><th class=\"l\">highest frequency</th><td>" + F(s.max_cpd, 2) + " cpd</td></tr>\n";
@@ -186,15 +176,15 @@ std::string SystemSection(const RunReportPage& page) {
   h += "<tr><th class=\"l\">eye</th><td>pupil " + F(s.eye.pupil_diameter * 1e3, 1) + " mm, eyebox " +
        F(s.eye.eyebox_width * 1e3, 1) + " &times; " + F(s.eye.eyebox_height * 1e3, 1) + " mm, " +
        std::to_string(s.eye.views_x) + " &times; " + std::to_string(s.eye.views_y) + " views</td></tr>\n";
-  h += "<tr><th class=\"l\">lens</th><td>" + Esc(s.lens) + ", f = " + F(s.focal_length * 1e3, 2) + " mm</td></tr></table>\n";
+  h += "<tr><th class=\"l\">lens</th><td>" + Escape(s.lens) + ", f = " + F(s.focal_length * 1e3, 2) + " mm</td></tr></table>\n";
 
   h += "<h3>Virtual layers (farthest first)</h3>\n<table><tr><th>#</th><th class=\"l\">panel</th><th class=\"l\">branch</th>"
        "<th>depth (D)</th><th>depth (m)</th><th>panel distance (mm)</th><th>magnification</th><th>virtual pixel (mm)</th>"
        "<th>pixels</th><th>field of view (deg)</th><th>max f (cpd)</th></tr>\n";
   for (size_t k = 0; k < s.layers.size(); ++k) {
     const VirtualLayer& l = s.layers[k];
-    h += "<tr><td>" + std::to_string(k) + "</td><td class=\"l\">" + Esc(l.name) + "</td><td class=\"l\">" +
-         Esc(s.branches[l.branch].name) + "</td><td>" + F(l.diopters, 3) + "</td><td>" + F(l.depth, 4) + "</td><td>" +
+    h += "<tr><td>" + std::to_string(k) + "</td><td class=\"l\">" + Escape(l.name) + "</td><td class=\"l\">" +
+         Escape(s.branches[l.branch].name) + "</td><td>" + F(l.diopters, 3) + "</td><td>" + F(l.depth, 4) + "</td><td>" +
          F(l.panel_distance * 1e3, 2) + "</td><td>" + F(l.magnification, 2) + "</td><td>" + F(l.pitch_x * 1e3, 3) +
          "</td><td>" + std::to_string(l.cols) + " &times; " + std::to_string(l.rows) + "</td><td>" +
          F(l.fov_x / kDeg, 2) + " &times; " + F(l.fov_y / kDeg, 2) + "</td><td>" + F(l.max_cpd, 2) + "</td></tr>\n";
@@ -206,12 +196,12 @@ std::string SystemSection(const RunReportPage& page) {
     const Branch& br = s.branches[b];
     std::string layers;
     for (int k : br.layers) layers += (layers.empty() ? "" : ", ") + s.layers[k].name;
-    h += "<tr><td>" + std::to_string(b) + "</td><td class=\"l\">" + Esc(br.name) + "</td><td class=\"l\">" + Esc(layers) +
+    h += "<tr><td>" + std::to_string(b) + "</td><td class=\"l\">" + Escape(br.name) + "</td><td class=\"l\">" + Escape(layers) +
          "</td><td>" + Rgb3(br.optics_efficiency, 4) + "</td><td>" + Rgb3(br.efficiency, 4) + "</td><td class=\"l\">" +
-         Esc(br.backlight) + "</td><td>" + F(br.backlight_luminance, 1) + "</td></tr>\n";
+         Escape(br.backlight) + "</td><td>" + F(br.backlight_luminance, 1) + "</td></tr>\n";
   }
   h += "</table>\n";
-  for (const std::string& w : s.warnings) h += "<p class=\"warn\">warning: " + Esc(w) + "</p>\n";
+  for (const std::string& w : s.warnings) h += "<p class=\"warn\">warning: " + Escape(w) + "</p>\n";
   return h + "</section>\n";
 }
 
@@ -268,9 +258,9 @@ std::string ContrastSection(const RunReportPage& page) {
   h += "<h3>Peaks</h3>\n<table><tr><th class=\"l\">display</th><th>target (D)</th><th>f (cpd)</th><th>peak (D)</th>"
        "<th>peak contrast</th><th>at target</th><th class=\"l\">solver</th><th>PSNR (dB)</th><th>solve (s)</th></tr>\n";
   for (const ContrastCurve& c : page.contrast)
-    h += "<tr><td class=\"l\">" + Esc(c.display) + "</td><td>" + F(c.target_diopters, 2) + "</td><td>" + F(c.frequency, 1) +
+    h += "<tr><td class=\"l\">" + Escape(c.display) + "</td><td>" + F(c.target_diopters, 2) + "</td><td>" + F(c.frequency, 1) +
          "</td><td>" + F(c.peak.at_parabola, 3) + "</td><td>" + F(c.peak.value, 3) + "</td><td>" + F(c.at_target, 3) +
-         "</td><td class=\"l\">" + Esc(c.solver) + "</td><td>" + (c.display == "natural" ? "&ndash;" : F(c.psnr_db, 2)) +
+         "</td><td class=\"l\">" + Escape(c.solver) + "</td><td>" + (c.display == "natural" ? "&ndash;" : F(c.psnr_db, 2)) +
          "</td><td>" + F(c.solve_seconds, 2) + "</td></tr>\n";
   return h + "</table>\n</section>\n";
 }
@@ -283,11 +273,11 @@ std::string CompareSection(const RunReportPage& page) {
        "<th>iterations</th><th>brightness (luminance)</th><th>brightness R / G / B</th><th>balance R : G : B</th>"
        "<th class=\"l\">termination</th></tr>\n";
   for (const CompareResult& r : page.compare)
-    h += "<tr><td class=\"l\">" + Esc(r.display) + "</td><td class=\"l\">" + Esc(r.solver) + "</td><td>" +
+    h += "<tr><td class=\"l\">" + Escape(r.display) + "</td><td class=\"l\">" + Escape(r.solver) + "</td><td>" +
          F(r.report.final_psnr_db, 2) + "</td><td>" + F(r.report.seconds, 2) + "</td><td>" +
          std::to_string(r.report.iterations) + "</td><td>" + F(r.luminance_efficiency, 4) + "</td><td>" +
          Rgb3(r.brightness_efficiency, 4) + "</td><td>" + Balance(r.brightness_efficiency) + "</td><td class=\"l\">" +
-         Esc(ToString(r.report.termination)) + "</td></tr>\n";
+         Escape(ToString(r.report.termination)) + "</td></tr>\n";
   h += "</table>\n<div class=\"grid\">" + Figure(page.compare_plot, "", "plot") + "</div>\n";
   return h + "</section>\n";
 }
@@ -295,11 +285,11 @@ std::string CompareSection(const RunReportPage& page) {
 }  // namespace
 
 std::string RenderRunReport(const RunReportPage& page) {
-  std::string h = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>" + Esc(page.title) +
+  std::string h = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>" + Escape(page.title) +
                   "</title>\n<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<style>" + kStyle +
                   "</style>\n<script>" + kErrorCatcher + "</script>\n</head><body>\n";
-  h += "<header><h1>" + Esc(page.title) + "</h1><p>" + Esc(page.description) + "</p><p>scene <code>" +
-       Esc(page.scene_file) + "</code> &middot; <code>" + Esc(page.command) + "</code></p>\n<nav>";
+  h += "<header><h1>" + Escape(page.title) + "</h1><p>" + Escape(page.description) + "</p><p>scene <code>" +
+       Escape(page.scene_file) + "</code> &middot; <code>" + Escape(page.command) + "</code></p>\n<nav>";
   const std::pair<bool, std::string> sections[] = {
       {true, "steps|Steps"},
       {page.system != nullptr, "system|Display system"},
@@ -314,18 +304,18 @@ std::string RenderRunReport(const RunReportPage& page) {
   h += "<pre id=\"selftest\" hidden></pre>\n";
   h += "<section id=\"steps\"><h2>Steps</h2><table><tr><th class=\"l\">step</th><th>wall time (s)</th></tr>\n";
   for (const auto& [step, seconds] : page.steps)
-    h += "<tr><td class=\"l\">" + Esc(step) + "</td><td>" + F(seconds, 2) + "</td></tr>\n";
+    h += "<tr><td class=\"l\">" + Escape(step) + "</td><td>" + F(seconds, 2) + "</td></tr>\n";
   h += "</table>\n";
-  for (const std::string& w : page.warnings) h += "<p class=\"warn\">warning: " + Esc(w) + "</p>\n";
+  for (const std::string& w : page.warnings) h += "<p class=\"warn\">warning: " + Escape(w) + "</p>\n";
   h += "</section>\n";
 
   if (page.system) h += SystemSection(page);
   if (!page.target_source.empty()) {
-    h += "<section id=\"target\"><h2>Target</h2><p>" + Esc(page.target_source) + "</p><div class=\"grid\">" +
+    h += "<section id=\"target\"><h2>Target</h2><p>" + Escape(page.target_source) + "</p><div class=\"grid\">" +
          Figure(page.target, "", "panel") + "</div></section>\n";
   }
   if (page.solved) {
-    h += "<section id=\"solve\"><h2>Factorization</h2><p>" + Esc(page.solve_brief) + Links(page.solve_links) + "</p>\n";
+    h += "<section id=\"solve\"><h2>Factorization</h2><p>" + Escape(page.solve_brief) + Links(page.solve_links) + "</p>\n";
     h += "<div class=\"grid\">" + Figure(page.psnr_plot, "", "plot") + "</div>\n";
     h += "<h3>Layer patterns (linear transmittance, panel pixel order)</h3><div class=\"grid\">\n";
     for (const ReportImage& p : page.patterns) h += Figure(p, "", "small");

@@ -5,8 +5,6 @@
 #include <cstdio>
 
 namespace layerlab {
-namespace {
-
 std::string Escape(const std::string& text) {
   std::string out;
   for (char c : text) {
@@ -18,6 +16,8 @@ std::string Escape(const std::string& text) {
   }
   return out;
 }
+
+namespace {
 
 std::string Num(double v) {
   char buf[32];

@@ -31,6 +31,9 @@ struct PlotPanel {
 // Panels laid out in `columns` columns; each panel about 360 x 260 px.
 std::string RenderSvg(const std::vector<PlotPanel>& panels, int columns, const std::string& title);
 
+// Text for XML and HTML: < > & " escaped.
+std::string Escape(const std::string& text);
+
 // Round-number ticks covering [lo, hi].
 std::vector<double> NiceTicks(double lo, double hi, int target_count);
 
