@@ -1,5 +1,6 @@
 #include "framework/exr_image.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <cstdint>
@@ -93,9 +94,11 @@ void RequireCppHeaderWithinFile(const std::string& path) {
       } else if (type == "chlist") {
         for (read_name(channel); !channel.empty(); read_name(channel)) in.seekg(16, std::ios::cur);
       } else if (type == "preview") {
-        const long long pixels = static_cast<long long>(read_u32()) * read_u32();
-        if (pixels * 4 > remaining()) throw corrupt("the preview image runs past the end of the file");
-        in.seekg(pixels * 4, std::ios::cur);
+        // Two 32-bit sides: their product can pass 2^63, so divide instead.
+        const uint64_t width = read_u32(), height = read_u32();
+        const uint64_t left = static_cast<uint64_t>(std::max(remaining(), 0LL));
+        if (width != 0 && height > left / 4 / width) throw corrupt("the preview image runs past the end of the file");
+        in.seekg(static_cast<std::streamoff>(width * height * 4), std::ios::cur);
       } else {
         if (size > remaining())
           throw corrupt("attribute \"" + name + "\" declares " + std::to_string(size) + " bytes; the file has " +

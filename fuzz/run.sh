@@ -1,16 +1,28 @@
 #!/usr/bin/env bash
-# Replays every fuzz target's seed corpus, then fuzzes each target for SECONDS
-# from a fresh copy of that corpus. Exits non-zero on any finding (crash,
-# sanitizer report, uncaught exception, leak, timeout, out of memory); the
-# input that caused it is kept in BUILD_DIR/fuzz-findings/<target>/.
-# Usage: fuzz/run.sh BUILD_DIR [SECONDS]   (BUILD_DIR configured with -DLAYERLAB_FUZZ=ON)
+# Replays every fuzz target's seed corpus, then fuzzes each target from a fresh
+# copy of that corpus, for a time or for a number of executions. Exits non-zero
+# on any finding (crash, sanitizer report, uncaught exception, leak, timeout,
+# out of memory); the input that caused it is kept in BUILD_DIR/fuzz-findings/<target>/.
+# Usage: fuzz/run.sh BUILD_DIR [SECONDS | --runs N] [--seed K]
+#   (BUILD_DIR configured with -DLAYERLAB_FUZZ=ON; SECONDS defaults to 20.)
+# With --runs and --seed the run is reproducible: the same inputs in the same
+# order on every machine (CI runs this way, so a red CI is never a lucky draw).
 set -uo pipefail
-if [ $# -lt 1 ] || [ $# -gt 2 ]; then
-  echo "usage: $0 BUILD_DIR [SECONDS]" >&2
-  exit 2
-fi
+usage() { echo "usage: $0 BUILD_DIR [SECONDS | --runs N] [--seed K]" >&2; exit 2; }
+[ $# -ge 1 ] || usage
 build=$(cd "$1" && pwd) || exit 2
-seconds=${2:-20}
+shift
+seconds=20 runs="" seed=""
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --runs) [ $# -ge 2 ] && [[ "$2" =~ ^[1-9][0-9]*$ ]] || usage; runs=$2; shift 2 ;;
+    --seed) [ $# -ge 2 ] && [[ "$2" =~ ^[1-9][0-9]*$ ]] || usage; seed=$2; shift 2 ;;
+    *) [[ "$1" =~ ^[1-9][0-9]*$ ]] || usage; seconds=$1; shift ;;
+  esac
+done
+budget=(-max_total_time="$seconds")
+[ -n "$runs" ] && budget=(-runs="$runs")
+[ -n "$seed" ] && budget+=(-seed="$seed")
 corpora=$(cd "$(dirname "$0")/corpus" && pwd)
 findings="$build/fuzz-findings"
 scratch=$(mktemp -d "${TMPDIR:-/tmp}/layerlab-fuzz-run.XXXXXX")
@@ -52,7 +64,7 @@ for exe in "${targets[@]}"; do
   mkdir -p "$work"
   cp -r "$seeds/." "$work/"
   start=$(date +%s)
-  "$exe" "$work" -max_total_time="$seconds" -timeout=25 -rss_limit_mb=2048 -print_final_stats=1 \
+  "$exe" "$work" "${budget[@]}" -timeout=25 -rss_limit_mb=2048 -print_final_stats=1 \
          -artifact_prefix="$findings/$target/" >"$log" 2>&1
   status=$?
   elapsed=$(( $(date +%s) - start ))

@@ -9,6 +9,7 @@
 
 #include "solvers/multiplicative_update.h"
 #include "solvers/solve_loop.h"
+#include "systems/view_synthesizer.h"
 
 namespace layerlab {
 namespace {
@@ -34,6 +35,7 @@ class HybridSolver final : public Solver {
       for (size_t m = 0; m < branches; ++m) {
         // The other sets stay fixed while this one is updated: their light is computed once.
         const size_t views = model.geometry().view_count();
+        const ViewSynthesizer synthesizer(model, *t);
 #pragma omp parallel
         {
           std::vector<float> other(n);
@@ -45,7 +47,7 @@ class HybridSolver final : public Solver {
             for (size_t b = 0; b < branches; ++b) {
               if (b == m) continue;
               if (started[b]) {
-                model.SynthesizeBranchView(b, view, *t, other.data());
+                synthesizer.Branch(b, view, other.data());
                 for (size_t k = 0; k < n; ++k) out[k] -= other[k];
               } else {
                 for (size_t k = 0; k < n; ++k) out[k] -= lv[k] * model.weight(b)[k % 3] / total[k % 3];

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <vector>
 
+#include "framework/rgb4.h"
+#include "systems/one_tap_view.h"
+
 namespace layerlab {
 namespace {
 
@@ -10,66 +13,35 @@ namespace {
 // run over the few rays per view that reach it, at most a few hundred per
 // thread: float is exact enough there, and the merge across threads is in double.
 struct Sums {
-  std::vector<float> num, den;
+  std::vector<Rgb4> num, den;  // one-tap kernel
+  std::vector<float> num3, den3;  // general kernel
 };
 
-// Every layer of the branch reads one pixel per ray (nearest sampling, no
-// rotation): one pass over the rays of a view, row by row, with the rest of
-// the branch multiplied on the fly, so nothing of view size is stored.
-void AccumulateOneTap(const DisplayModel& model, const std::vector<int>& layers, int layer, const Patterns& t,
-                      const std::array<float, 3>& w, size_t view, const float* target, Sums* sums) {
+// One-tap branches (one_tap_view.h), layer a first in `layers`.
+template <int L>
+void AccumulateOneTap(const DisplayModel& model, const int* layers, const PaddedLayers& padded, Rgb4 w, size_t view,
+                      const float* target, Sums* sums) {
   const LightFieldGeometry& g = model.geometry();
-  const LayerProjection& P = model.projection(layer);
-  struct Other {
-    const AxisTap* rows;
-    const AxisTap* cols;
-    const float* pattern;
-    int cols_count;
-    const float* row = nullptr;  // the pattern row of the current ray row
-  };
-  std::vector<Other> others;  // small: the branch's other layers
-  for (int k : layers)
-    if (k != layer) {
-      const LayerProjection& Q = model.projection(k);
-      others.push_back({Q.row_taps(view), Q.col_taps(view), t[k].rgb.data(), Q.cols()});
-    }
-  const AxisTap* rows_a = P.row_taps(view);
-  const AxisTap* cols_a = P.col_taps(view);
-  const float* pattern_a = t[layer].rgb.data();
-  float* num = sums->num.data();
-  float* den = sums->den.data();
-
+  const OneTapView<L> v(model, layers, view);
+  const auto& columns = v.columns();
+  const Rgb4* const layer_a = padded.pixels(layers[0]);
   for (int i = 0; i < g.rows; ++i) {
-    if (rows_a[i].i0 < 0) continue;
-    bool dark = false;  // some other layer misses this whole row: the rest of the branch is 0
-    for (Other& o : others) {
-      if (o.rows[i].i0 < 0) dark = true;
-      else o.row = o.pattern + static_cast<size_t>(o.rows[i].i0) * o.cols_count * 3;
-    }
-    if (dark) continue;
-    const size_t row_a = static_cast<size_t>(rows_a[i].i0) * P.cols();
+    const Rgb4* rows[L];
+    if (!v.Rows(padded, i, rows)) continue;
+    const size_t row_a = rows[0] - layer_a;
+    Rgb4* num = sums->num.data() + row_a;
+    Rgb4* den = sums->den.data() + row_a;
     const float* r = target + static_cast<size_t>(i) * g.cols * 3;
-    for (int j = 0; j < g.cols; ++j, r += 3) {
-      if (cols_a[j].i0 < 0) continue;
-      float q0 = w[0], q1 = w[1], q2 = w[2];
-      for (const Other& o : others) {
-        const int32_t c = o.cols[j].i0;
-        if (c < 0) {
-          q0 = q1 = q2 = 0;
-          break;
-        }
-        const float* p = o.row + static_cast<size_t>(c) * 3;
-        q0 *= p[0], q1 *= p[1], q2 *= p[2];
-      }
-      const size_t pixel = (row_a + cols_a[j].i0) * 3;
-      const float* s = pattern_a + pixel;
-      num[pixel] += r[0] * q0;
-      num[pixel + 1] += r[1] * q1;
-      num[pixel + 2] += r[2] * q2;
-      den[pixel] += s[0] * q0 * q0;
-      den[pixel + 1] += s[1] * q1 * q1;
-      den[pixel + 2] += s[2] * q2 * q2;
-    }
+    auto accumulate = [&](const typename OneTapView<L>::Column& c, Rgb4 l) {
+      Rgb4 q = w;
+      for (int k = 1; k < L; ++k) q *= rows[k][c.pixel[k]];
+      const int32_t a = c.pixel[0];
+      num[a] += l * q;
+      den[a] += rows[0][a] * q * q;
+    };
+    const size_t safe = v.OverreadSafe(i);
+    for (size_t e = 0; e < safe; ++e) accumulate(columns[e], LoadRgbOver(r + columns[e].ray * 3));
+    for (size_t e = safe; e < columns.size(); ++e) accumulate(columns[e], LoadRgb(r + columns[e].ray * 3));
   }
 }
 
@@ -87,8 +59,8 @@ void AccumulateGeneral(const DisplayModel& model, const std::vector<int>& layers
   P.ForEachTap(view, [&](size_t ray, int32_t pixel, float weight) {
     for (int c = 0; c < 3; ++c) {
       const float q = rest[ray * 3 + c];
-      sums->num[static_cast<size_t>(pixel) * 3 + c] += weight * target[ray * 3 + c] * q;
-      sums->den[static_cast<size_t>(pixel) * 3 + c] += weight * sampled[ray * 3 + c] * q * q;
+      sums->num3[static_cast<size_t>(pixel) * 3 + c] += weight * target[ray * 3 + c] * q;
+      sums->den3[static_cast<size_t>(pixel) * 3 + c] += weight * sampled[ray * 3 + c] * q * q;
     }
   });
 }
@@ -101,32 +73,55 @@ void UpdateLayerMultiplicative(const DisplayModel& model, size_t branch, int lay
   const std::vector<int>& layers = model.branch_layers(branch);
   const std::array<float, 3> w = model.weight(branch);
   const size_t n = g.pixels_per_view() * 3;
-  const size_t m = model.projection(layer).pixel_count() * 3;
-  const bool one_tap = std::all_of(layers.begin(), layers.end(), [&](int k) { return model.projection(k).one_tap(); });
+  const size_t pixels = model.projection(layer).pixel_count();
+  const size_t m = pixels * 3;
+  const bool one_tap = OneTapBranch(model, branch);
   // Reused across calls (fresh megabytes would be page-faulted in on every update).
   thread_local std::vector<double> numerator_memory, denominator_memory;
+  thread_local PaddedLayers padded_memory;
   numerator_memory.assign(m, 0.0), denominator_memory.assign(m, 0.0);
-  double* numerator = numerator_memory.data();  // the calling thread's, shared with the workers
+  // The calling thread's, shared with the workers.
+  double* numerator = numerator_memory.data();
   double* denominator = denominator_memory.data();
+  PaddedLayers& padded = padded_memory;
+  std::vector<int> a_first{layer};  // the kernels' layer order
+  for (int k : layers)
+    if (k != layer) a_first.push_back(k);
+  if (one_tap) padded.Pad(*t, layers);
+  const Rgb4 w4{w[0], w[1], w[2], 0.0f};
 
 #pragma omp parallel
   {
     thread_local Sums sums;
     thread_local std::vector<float> target_scratch;
-    sums.num.assign(m, 0.0f), sums.den.assign(m, 0.0f);
+    if (one_tap)
+      sums.num.assign(pixels, Rgb4{}), sums.den.assign(pixels, Rgb4{});
+    else
+      sums.num3.assign(m, 0.0f), sums.den3.assign(m, 0.0f);
     target_scratch.resize(n);
 #pragma omp for schedule(dynamic)
     for (size_t v = 0; v < g.view_count(); ++v) {
       const float* target = branch_target(v, target_scratch.data());
-      if (one_tap)
-        AccumulateOneTap(model, layers, layer, *t, w, v, target, &sums);
-      else
-        AccumulateGeneral(model, layers, layer, *t, w, v, target, &sums);
+      switch (one_tap ? layers.size() : 0) {
+        case 1: AccumulateOneTap<1>(model, a_first.data(), padded, w4, v, target, &sums); break;
+        case 2: AccumulateOneTap<2>(model, a_first.data(), padded, w4, v, target, &sums); break;
+        case 3: AccumulateOneTap<3>(model, a_first.data(), padded, w4, v, target, &sums); break;
+        case 4: AccumulateOneTap<4>(model, a_first.data(), padded, w4, v, target, &sums); break;
+        default: AccumulateGeneral(model, layers, layer, *t, w, v, target, &sums);
+      }
     }
 #pragma omp critical
-    for (size_t k = 0; k < m; ++k) {
-      numerator[k] += sums.num[k];
-      denominator[k] += sums.den[k];
+    if (one_tap) {
+      for (size_t k = 0; k < pixels; ++k)
+        for (int c = 0; c < 3; ++c) {
+          numerator[k * 3 + c] += sums.num[k][c];
+          denominator[k * 3 + c] += sums.den[k][c];
+        }
+    } else {
+      for (size_t k = 0; k < m; ++k) {
+        numerator[k] += sums.num3[k];
+        denominator[k] += sums.den3[k];
+      }
     }
   }
 

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "framework/error.h"
+#include "systems/view_synthesizer.h"
 
 namespace layerlab {
 
@@ -54,12 +55,13 @@ double Objective(const DisplayModel& model, const LightField& target, const Patt
   const LightFieldGeometry& g = model.geometry();
   const size_t n = g.pixels_per_view() * 3;
   double total = 0;
+  const ViewSynthesizer synthesizer(model, t);
 #pragma omp parallel reduction(+ : total)
   {
     std::vector<float> synthesized(n), scratch(n);
 #pragma omp for schedule(dynamic)
     for (size_t v = 0; v < g.view_count(); ++v) {
-      model.SynthesizeView(v, t, synthesized.data(), scratch.data());
+      synthesizer.View(v, synthesized.data(), scratch.data());
       const float* l = target.view(v);
       double sum = 0;
       for (size_t k = 0; k < n; ++k) {

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "framework/error.h"
+#include "systems/view_synthesizer.h"
 
 namespace layerlab {
 
@@ -35,15 +36,6 @@ void DisplayModel::SynthesizeBranchView(size_t b, size_t view, const Patterns& t
     for (int c = 0; c < 3; ++c) out[ray * 3 + c] *= w[c];
 }
 
-void DisplayModel::SynthesizeView(size_t view, const Patterns& t, float* out, float* scratch) const {
-  const size_t n = lf_.pixels_per_view() * 3;
-  std::fill(out, out + n, 0.0f);
-  for (size_t b = 0; b < branch_count(); ++b) {
-    SynthesizeBranchView(b, view, t, scratch);
-    for (size_t k = 0; k < n; ++k) out[k] += scratch[k];
-  }
-}
-
 LightField DisplayModel::Synthesize(const Patterns& t) const {
   LightField lf(lf_);
   Synthesize(t, &lf);
@@ -54,11 +46,12 @@ void DisplayModel::Synthesize(const Patterns& t, LightField* out) const {
   if (out->rgb.size() != lf_.ray_count() * 3) throw Error("Synthesize: the output light field has other rays than the model");
   out->geometry = lf_;
   const size_t views = lf_.view_count();
+  const ViewSynthesizer synthesizer(*this, t);
 #pragma omp parallel
   {
     std::vector<float> scratch(lf_.pixels_per_view() * 3);
 #pragma omp for schedule(dynamic)
-    for (size_t v = 0; v < views; ++v) SynthesizeView(v, t, out->view(v), scratch.data());
+    for (size_t v = 0; v < views; ++v) synthesizer.View(v, out->view(v), scratch.data());
   }
 }
 

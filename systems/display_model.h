@@ -48,10 +48,9 @@ class DisplayModel {
 
   Patterns UniformPatterns(float value) const;
 
-  // The light of branch b alone for one view: w_b prod_k P_k t_k.
+  // The light of branch b alone for one view, w_b prod_k P_k t_k, through
+  // the projections (ViewSynthesizer takes the fast path where it can).
   void SynthesizeBranchView(size_t b, size_t view, const Patterns& t, float* out) const;
-  // The whole display for one view; `scratch` holds one view (pixels x 3).
-  void SynthesizeView(size_t view, const Patterns& t, float* out, float* scratch) const;
   LightField Synthesize(const Patterns& t) const;
   // Into a light field of this model's geometry, reusing its memory.
   void Synthesize(const Patterns& t, LightField* out) const;

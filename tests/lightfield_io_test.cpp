@@ -174,6 +174,19 @@ TEST_F(LightFieldFolder, AttributeSizeBeyondTheFileIsRefused) {
       << error;
 }
 
+// Found by fuzz/exr_fuzz in CI (fuzz/corpus/exr/preview_size_overflow.exr): a
+// preview's two 32-bit sides multiplied in 64 bits overflowed (UBSan).
+TEST_F(LightFieldFolder, PreviewSidesNearTwoToThe32AreRefused) {
+  std::string file = Path("views/r00_c00.exr");
+  std::string bytes = std::string("\x76\x2f\x31\x01\x02\0\0\0", 8) + std::string("thumb\0preview\0", 14) +
+                      std::string("\x08\0\0\0", 4) + std::string(8, '\xff') + "pixels";
+  std::ofstream(file, std::ios::binary) << bytes;
+  EXPECT_EQ(ReadError(), file + ": corrupt or truncated OpenEXR file: the preview image runs past the end of the file");
+  fs::copy_file(std::string(LAYERLAB_SOURCE_DIR) + "/fuzz/corpus/exr/preview_size_overflow.exr", file,
+                fs::copy_options::overwrite_existing);
+  EXPECT_EQ(ReadError().rfind(file + ": corrupt or truncated OpenEXR file: ", 0), 0u);
+}
+
 TEST(DiceTarget, LoadsFromSharedData) {
   std::string folder = std::string(LAYERLAB_DATA_DIR) + "/dice";
   if (!fs::exists(folder + "/lightfield.json")) GTEST_SKIP() << "no " << folder;

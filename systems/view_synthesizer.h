@@ -1,0 +1,30 @@
+// The light field of one set of patterns, view by view: branches that take
+// the one-tap fast path (one_tap_view.h) read patterns padded once here; the
+// others go through the projections.
+#pragma once
+
+#include "systems/display_model.h"
+#include "systems/one_tap_view.h"
+
+namespace layerlab {
+
+class ViewSynthesizer {
+ public:
+  // Keeps references to both; `t` must not change while this is in use.
+  ViewSynthesizer(const DisplayModel& model, const Patterns& t);
+
+  // out = the whole display's light in one view; `scratch` holds one view.
+  void View(size_t view, float* out, float* scratch) const;
+  // out = branch b's light alone in one view.
+  void Branch(size_t b, size_t view, float* out) const;
+
+ private:
+  void AddBranch(size_t b, size_t view, float* out, float* scratch) const;
+
+  const DisplayModel& model_;
+  const Patterns& t_;
+  std::vector<bool> one_tap_;
+  PaddedLayers padded_;
+};
+
+}  // namespace layerlab
