@@ -1,5 +1,7 @@
 #include "systems/one_tap_view.h"
 
+#include "framework/error.h"
+
 namespace layerlab {
 
 bool OneTapBranch(const DisplayModel& model, size_t b) {
@@ -21,44 +23,46 @@ void PaddedLayers::PadAll(const Patterns& t) {
 namespace {
 
 template <int L>
-void AddBranchView(const DisplayModel& model, size_t b, size_t view, const PaddedLayers& padded, float* out) {
-  const std::array<float, 3>& w = model.weight(b);
-  const Rgb4 w4{w[0], w[1], w[2], 0.0f};
-  const OneTapView<L> v(model, model.branch_layers(b).data(), view);
-  const auto& columns = v.columns();
-  const int cols = model.geometry().cols;
-  for (int i = 0; i < model.geometry().rows; ++i) {
-    const Rgb4* rows[L];
-    if (!v.Rows(padded, i, rows)) continue;
-    float* row_out = out + static_cast<size_t>(i) * cols * 3;
-    auto light = [&](const typename OneTapView<L>::Column& c) {
-      Rgb4 p = w4;
-      for (int k = 0; k < L; ++k) p *= rows[k][c.pixel[k]];
-      return p;
-    };
-    // Lane 3 of the light is 0: adding it to the next ray's red changes nothing.
-    const size_t safe = v.OverreadSafe(i);
-    for (size_t e = 0; e < safe; ++e) {
-      float* o = row_out + columns[e].ray * 3;
-      const Rgb4 sum = LoadRgbOver(o) + light(columns[e]);
-      std::memcpy(o, &sum, sizeof sum);
-    }
-    for (size_t e = safe; e < columns.size(); ++e) {
-      float* o = row_out + columns[e].ray * 3;
-      StoreRgb(LoadRgb(o) + light(columns[e]), o);
-    }
+void AddRowOf(const OneTapView<L>& v, const PaddedLayers& padded, int i, Rgb4 w, Rgb4* row) {
+  const Rgb4* rows[L];
+  if (!v.Rows(padded, i, rows)) return;
+  for (const auto& c : v.columns()) {
+    Rgb4 p = w;
+    for (int k = 0; k < L; ++k) p *= rows[k][c.pixel[k]];
+    row[c.ray] += p;
   }
+}
+
+using AnyOneTapView = std::variant<OneTapView<1>, OneTapView<2>, OneTapView<3>, OneTapView<4>>;
+
+AnyOneTapView ViewOf(const DisplayModel& model, size_t b, size_t view) {
+  static_assert(kMaxOneTapLayers == 4);
+  const int* layers = model.branch_layers(b).data();
+  switch (model.branch_layers(b).size()) {
+    case 1: return OneTapView<1>(model, layers, view);
+    case 2: return OneTapView<2>(model, layers, view);
+    case 3: return OneTapView<3>(model, layers, view);
+    case 4: return OneTapView<4>(model, layers, view);
+  }
+  throw Error("branch " + std::to_string(b) + " does not take the one-tap path");
 }
 
 }  // namespace
 
-void AddBranchViewOneTap(const DisplayModel& model, size_t b, size_t view, const PaddedLayers& padded, float* out) {
-  switch (model.branch_layers(b).size()) {
-    case 1: return AddBranchView<1>(model, b, view, padded, out);
-    case 2: return AddBranchView<2>(model, b, view, padded, out);
-    case 3: return AddBranchView<3>(model, b, view, padded, out);
-    case 4: return AddBranchView<4>(model, b, view, padded, out);
-  }
+OneTapBranchView::OneTapBranchView(const DisplayModel& model, size_t b, size_t view) : view_(ViewOf(model, b, view)) {
+  const std::array<float, 3>& w = model.weight(b);
+  weight_ = Rgb4{w[0], w[1], w[2], 0.0f};
+}
+
+void OneTapBranchView::AddRow(const PaddedLayers& padded, int i, Rgb4* row) const {
+  std::visit([&](const auto& v) { AddRowOf(v, padded, i, weight_, row); }, view_);
+}
+
+void PackRow(const Rgb4* row, int cols, bool last, float* out) {
+  // Each 16-byte store spills its padding onto the next ray's red, which the next store overwrites.
+  const int safe = last ? cols - 1 : cols;
+  for (int j = 0; j < safe; ++j) std::memcpy(out + j * 3, &row[j], sizeof(Rgb4));
+  if (last) StoreRgb(row[cols - 1], out + (cols - 1) * 3);
 }
 
 }  // namespace layerlab

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <variant>
 #include <vector>
 
 #include "framework/rgb4.h"
@@ -42,27 +43,24 @@ class OneTapView {
   };
 
   // `layers`: L layer indices (of one branch, in any order).
-  OneTapView(const DisplayModel& model, const int* layers, size_t view) : model_(model) {
+  OneTapView(const DisplayModel& model, const int* layers, size_t view) : model_(&model) {
     for (int k = 0; k < L; ++k) {
       const LayerProjection& p = model.projection(layers[k]);
       layers_[k] = layers[k];
       row_taps_[k] = p.row_taps(view);
       cols_[k] = p.cols();
     }
-    thread_local std::vector<Column> memory;
-    columns_ = &memory;
-    memory.clear();
+    columns_.reserve(model.geometry().cols);
     for (int j = 0; j < model.geometry().cols; ++j) {
       Column c{j, {}};
       bool reached = true;
       for (int k = 0; k < L; ++k) reached = reached && (c.pixel[k] = model.projection(layers[k]).col_taps(view)[j].i0) >= 0;
-      if (reached) memory.push_back(c);
+      if (reached) columns_.push_back(c);
     }
   }
 
-  // The columns of the rays that reach every layer, left to right. Valid until
-  // the next OneTapView<L> of this thread.
-  const std::vector<Column>& columns() const { return *columns_; }
+  // The columns of the rays that reach every layer, left to right.
+  const std::vector<Column>& columns() const { return columns_; }
 
   // rows[k] = the pattern row of layer k that ray row i reads; false if some layer misses it.
   bool Rows(const PaddedLayers& padded, int i, const Rgb4* rows[L]) const {
@@ -77,21 +75,32 @@ class OneTapView {
   // How many of the listed columns of ray row i may read one float past their
   // ray (into the next ray's red): all but the view's very last ray.
   size_t OverreadSafe(int i) const {
-    const std::vector<Column>& c = *columns_;
-    const bool last = i == model_.geometry().rows - 1 && !c.empty() && c.back().ray == model_.geometry().cols - 1;
+    const std::vector<Column>& c = columns_;
+    const bool last = i == model_->geometry().rows - 1 && !c.empty() && c.back().ray == model_->geometry().cols - 1;
     return c.size() - (last ? 1 : 0);
   }
 
  private:
-  const DisplayModel& model_;
+  const DisplayModel* model_;
   int layers_[L];
   const AxisTap* row_taps_[L];
   int cols_[L];
-  const std::vector<Column>* columns_;
+  std::vector<Column> columns_;
 };
 
-// out (one view, [ray][rgb]) += the light of branch b (w_b prod_k P_k t_k);
-// the branch must take the fast path.
-void AddBranchViewOneTap(const DisplayModel& model, size_t b, size_t view, const PaddedLayers& padded, float* out);
+// One view of a fast-path branch, whatever its number of layers.
+class OneTapBranchView {
+ public:
+  OneTapBranchView(const DisplayModel& model, size_t b, size_t view);
+  // row[j] += the light of the branch in ray (i, j) of the view, w_b prod_k P_k t_k.
+  void AddRow(const PaddedLayers& padded, int i, Rgb4* row) const;
+
+ private:
+  std::variant<OneTapView<1>, OneTapView<2>, OneTapView<3>, OneTapView<4>> view_;
+  Rgb4 weight_;
+};
+
+// One ray row [ray][rgb, 0] into [ray][rgb]; `last` says if it ends its buffer.
+void PackRow(const Rgb4* row, int cols, bool last, float* out);
 
 }  // namespace layerlab

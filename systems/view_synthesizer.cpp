@@ -1,30 +1,47 @@
 #include "systems/view_synthesizer.h"
 
+#include <algorithm>
+
 namespace layerlab {
 
 ViewSynthesizer::ViewSynthesizer(const DisplayModel& model, const Patterns& t) : model_(model), t_(t) {
   for (size_t b = 0; b < model.branch_count(); ++b) {
-    one_tap_.push_back(OneTapBranch(model, b));
-    if (one_tap_.back()) padded_.Pad(t, model.branch_layers(b));
+    const bool fast = OneTapBranch(model, b);
+    (fast ? one_tap_ : general_).push_back(b);
+    if (fast) padded_.Pad(t, model.branch_layers(b));
   }
 }
 
-void ViewSynthesizer::AddBranch(size_t b, size_t view, float* out, float* scratch) const {
-  if (one_tap_[b]) return AddBranchViewOneTap(model_, b, view, padded_, out);
-  model_.SynthesizeBranchView(b, view, t_, scratch);
-  const size_t n = model_.geometry().pixels_per_view() * 3;
-  for (size_t k = 0; k < n; ++k) out[k] += scratch[k];
+void ViewSynthesizer::OneTapBranches(const std::vector<size_t>& branches, size_t view, float* out) const {
+  const LightFieldGeometry& g = model_.geometry();
+  std::vector<OneTapBranchView> views;
+  for (size_t b : branches) views.emplace_back(model_, b, view);
+  thread_local std::vector<Rgb4> row;
+  row.resize(g.cols);
+  for (int i = 0; i < g.rows; ++i) {
+    std::fill(row.begin(), row.end(), Rgb4{});
+    for (const OneTapBranchView& v : views) v.AddRow(padded_, i, row.data());
+    PackRow(row.data(), g.cols, i == g.rows - 1, out + static_cast<size_t>(i) * g.cols * 3);
+  }
 }
 
 void ViewSynthesizer::View(size_t view, float* out, float* scratch) const {
-  std::fill(out, out + model_.geometry().pixels_per_view() * 3, 0.0f);
-  for (size_t b = 0; b < model_.branch_count(); ++b) AddBranch(b, view, out, scratch);
+  const size_t n = model_.geometry().pixels_per_view() * 3;
+  if (one_tap_.empty())
+    std::fill(out, out + n, 0.0f);
+  else
+    OneTapBranches(one_tap_, view, out);
+  for (size_t b : general_) {
+    model_.SynthesizeBranchView(b, view, t_, scratch);
+    for (size_t k = 0; k < n; ++k) out[k] += scratch[k];
+  }
 }
 
 void ViewSynthesizer::Branch(size_t b, size_t view, float* out) const {
-  if (!one_tap_[b]) return model_.SynthesizeBranchView(b, view, t_, out);
-  std::fill(out, out + model_.geometry().pixels_per_view() * 3, 0.0f);
-  AddBranchViewOneTap(model_, b, view, padded_, out);
+  if (std::find(one_tap_.begin(), one_tap_.end(), b) != one_tap_.end())
+    OneTapBranches({b}, view, out);
+  else
+    model_.SynthesizeBranchView(b, view, t_, out);
 }
 
 }  // namespace layerlab

@@ -19,11 +19,12 @@ class ViewSynthesizer {
   void Branch(size_t b, size_t view, float* out) const;
 
  private:
-  void AddBranch(size_t b, size_t view, float* out, float* scratch) const;
+  // out = the light of `branches` (all fast-path) in one view, row by row.
+  void OneTapBranches(const std::vector<size_t>& branches, size_t view, float* out) const;
 
   const DisplayModel& model_;
   const Patterns& t_;
-  std::vector<bool> one_tap_;
+  std::vector<size_t> one_tap_, general_;  // branches by path
   PaddedLayers padded_;
 };
 

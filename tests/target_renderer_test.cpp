@@ -43,7 +43,9 @@ json LightFieldJson(const std::string& origin, json fov, json resolution, json v
           {"eyebox", {"6 mm", "6 mm"}}};
 }
 
-json Target(json light_field, json objects, int spp = 1) {
+// A vector, not a json: `json objects = {one}` is an array of one under GCC
+// but a copy of `one` under Clang (which follows CWG 2137 for one-element lists).
+json Target(json light_field, std::vector<json> objects, int spp = 1) {
   return {{"format", "layerlab-target/1"}, {"light_field", light_field}, {"samples_per_pixel", spp},
           {"objects", objects}};
 }
