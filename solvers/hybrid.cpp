@@ -35,10 +35,12 @@ class HybridSolver final : public Solver {
       for (size_t m = 0; m < branches; ++m) {
         // The other sets stay fixed while this one is updated: their light is computed once.
         const size_t views = model.geometry().view_count();
-        const ViewSynthesizer synthesizer(model, *t);
+        thread_local PaddedLayers workspace;
+        const ViewSynthesizer synthesizer(model, *t, &workspace);
 #pragma omp parallel
         {
-          std::vector<float> other(n);
+          thread_local std::vector<float> other;
+          other.resize(n);
 #pragma omp for schedule(dynamic)
           for (size_t view = 0; view < views; ++view) {
             const float* lv = l.view(view);

@@ -55,13 +55,15 @@ double Objective(const DisplayModel& model, const LightField& target, const Patt
   const LightFieldGeometry& g = model.geometry();
   const size_t n = g.pixels_per_view() * 3;
   double total = 0;
-  const ViewSynthesizer synthesizer(model, t);
+  thread_local PaddedLayers workspace;
+  const ViewSynthesizer synthesizer(model, t, &workspace);
 #pragma omp parallel reduction(+ : total)
   {
-    std::vector<float> synthesized(n), scratch(n);
+    thread_local std::vector<float> synthesized;
+    synthesized.resize(n);
 #pragma omp for schedule(dynamic)
     for (size_t v = 0; v < g.view_count(); ++v) {
-      synthesizer.View(v, synthesized.data(), scratch.data());
+      synthesizer.View(v, synthesized.data());
       const float* l = target.view(v);
       double sum = 0;
       for (size_t k = 0; k < n; ++k) {

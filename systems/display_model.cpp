@@ -46,13 +46,10 @@ void DisplayModel::Synthesize(const Patterns& t, LightField* out) const {
   if (out->rgb.size() != lf_.ray_count() * 3) throw Error("Synthesize: the output light field has other rays than the model");
   out->geometry = lf_;
   const size_t views = lf_.view_count();
-  const ViewSynthesizer synthesizer(*this, t);
-#pragma omp parallel
-  {
-    std::vector<float> scratch(lf_.pixels_per_view() * 3);
-#pragma omp for schedule(dynamic)
-    for (size_t v = 0; v < views; ++v) synthesizer.View(v, out->view(v), scratch.data());
-  }
+  thread_local PaddedLayers workspace;
+  const ViewSynthesizer synthesizer(*this, t, &workspace);
+#pragma omp parallel for schedule(dynamic)
+  for (size_t v = 0; v < views; ++v) synthesizer.View(v, out->view(v));
 }
 
 LightFieldGeometry DisplayLightFieldGeometry(const DisplaySystem& system, double origin_diopters) {

@@ -4,11 +4,12 @@
 
 namespace layerlab {
 
-ViewSynthesizer::ViewSynthesizer(const DisplayModel& model, const Patterns& t) : model_(model), t_(t) {
+ViewSynthesizer::ViewSynthesizer(const DisplayModel& model, const Patterns& t, PaddedLayers* workspace)
+    : model_(model), t_(t), padded_(*workspace) {
   for (size_t b = 0; b < model.branch_count(); ++b) {
     const bool fast = OneTapBranch(model, b);
     (fast ? one_tap_ : general_).push_back(b);
-    if (fast) padded_.Pad(t, model.branch_layers(b));
+    if (fast) workspace->Pad(t, model.branch_layers(b));
   }
 }
 
@@ -25,14 +26,17 @@ void ViewSynthesizer::OneTapBranches(const std::vector<size_t>& branches, size_t
   }
 }
 
-void ViewSynthesizer::View(size_t view, float* out, float* scratch) const {
+void ViewSynthesizer::View(size_t view, float* out) const {
   const size_t n = model_.geometry().pixels_per_view() * 3;
   if (one_tap_.empty())
     std::fill(out, out + n, 0.0f);
   else
     OneTapBranches(one_tap_, view, out);
+  if (general_.empty()) return;
+  thread_local std::vector<float> scratch;
+  scratch.resize(n);
   for (size_t b : general_) {
-    model_.SynthesizeBranchView(b, view, t_, scratch);
+    model_.SynthesizeBranchView(b, view, t_, scratch.data());
     for (size_t k = 0; k < n; ++k) out[k] += scratch[k];
   }
 }

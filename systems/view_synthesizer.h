@@ -10,11 +10,14 @@ namespace layerlab {
 
 class ViewSynthesizer {
  public:
-  // Keeps references to both; `t` must not change while this is in use.
-  ViewSynthesizer(const DisplayModel& model, const Patterns& t);
+  // Keeps references to all three; `t` must not change while this is in use.
+  // `workspace` holds the padded patterns: a caller that synthesizes often
+  // passes the same one every time (a thread_local of its own) so that its
+  // megabytes are not page-faulted in again on every call.
+  ViewSynthesizer(const DisplayModel& model, const Patterns& t, PaddedLayers* workspace);
 
-  // out = the whole display's light in one view; `scratch` holds one view.
-  void View(size_t view, float* out, float* scratch) const;
+  // out = the whole display's light in one view.
+  void View(size_t view, float* out) const;
   // out = branch b's light alone in one view.
   void Branch(size_t b, size_t view, float* out) const;
 
@@ -25,7 +28,7 @@ class ViewSynthesizer {
   const DisplayModel& model_;
   const Patterns& t_;
   std::vector<size_t> one_tap_, general_;  // branches by path
-  PaddedLayers padded_;
+  const PaddedLayers& padded_;
 };
 
 }  // namespace layerlab
