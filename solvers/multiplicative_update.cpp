@@ -17,9 +17,13 @@ struct Sums {
   std::vector<float> num3, den3;  // general kernel
 };
 
-// One-tap branches (one_tap_view.h), layer a first in `layers`.
+// One-tap branches (one_tap_view.h), layer a first in `layers`. With one
+// tap of weight 1 per ray, w_b and layer a's own value are the same for every
+// ray a pixel sums, so they come out of the sums:
+//   num = w_b sum r q,   den = w_b^2 t_a sum q^2,   q = prod_{k != a} P_k t_k,
+// and the kernel sums r q and q^2 alone (FinishOneTapSums puts them back).
 template <int L>
-void AccumulateOneTap(const DisplayModel& model, const int* layers, const PaddedLayers& padded, Rgb4 w, size_t view,
+void AccumulateOneTap(const DisplayModel& model, const int* layers, const PaddedLayers& padded, size_t view,
                       const float* target, Sums* sums) {
   const LightFieldGeometry& g = model.geometry();
   const OneTapView<L> v(model, layers, view);
@@ -33,15 +37,27 @@ void AccumulateOneTap(const DisplayModel& model, const int* layers, const Padded
     Rgb4* den = sums->den.data() + row_a;
     const float* r = target + static_cast<size_t>(i) * g.cols * 3;
     auto accumulate = [&](const typename OneTapView<L>::Column& c, Rgb4 l) {
-      Rgb4 q = w;
-      for (int k = 1; k < L; ++k) q *= rows[k][c.pixel[k]];
       const int32_t a = c.pixel[0];
-      num[a] += l * q;
-      den[a] += rows[0][a] * q * q;
+      if constexpr (L == 1) {
+        num[a] += l;
+        den[a] += Rgb4{1, 1, 1, 0};
+      } else {
+        Rgb4 q = rows[1][c.pixel[1]];
+        for (int k = 2; k < L; ++k) q *= rows[k][c.pixel[k]];
+        num[a] += l * q;
+        den[a] += q * q;
+      }
     };
     const size_t safe = v.OverreadSafe(i);
     for (size_t e = 0; e < safe; ++e) accumulate(columns[e], LoadRgbOver(r + columns[e].ray * 3));
     for (size_t e = safe; e < columns.size(); ++e) accumulate(columns[e], LoadRgb(r + columns[e].ray * 3));
+  }
+}
+
+void FinishOneTapSums(const std::array<float, 3>& w, const std::vector<float>& t_a, double* num, double* den) {
+  for (size_t k = 0; k < t_a.size(); ++k) {
+    num[k] *= w[k % 3];
+    den[k] *= double(w[k % 3]) * w[k % 3] * t_a[k];
   }
 }
 
@@ -88,7 +104,6 @@ void UpdateLayerMultiplicative(const DisplayModel& model, size_t branch, int lay
   for (int k : layers)
     if (k != layer) a_first.push_back(k);
   if (one_tap) padded.Pad(*t, layers);
-  const Rgb4 w4{w[0], w[1], w[2], 0.0f};
 
 #pragma omp parallel
   {
@@ -103,10 +118,10 @@ void UpdateLayerMultiplicative(const DisplayModel& model, size_t branch, int lay
     for (size_t v = 0; v < g.view_count(); ++v) {
       const float* target = branch_target(v, target_scratch.data());
       switch (one_tap ? layers.size() : 0) {
-        case 1: AccumulateOneTap<1>(model, a_first.data(), padded, w4, v, target, &sums); break;
-        case 2: AccumulateOneTap<2>(model, a_first.data(), padded, w4, v, target, &sums); break;
-        case 3: AccumulateOneTap<3>(model, a_first.data(), padded, w4, v, target, &sums); break;
-        case 4: AccumulateOneTap<4>(model, a_first.data(), padded, w4, v, target, &sums); break;
+        case 1: AccumulateOneTap<1>(model, a_first.data(), padded, v, target, &sums); break;
+        case 2: AccumulateOneTap<2>(model, a_first.data(), padded, v, target, &sums); break;
+        case 3: AccumulateOneTap<3>(model, a_first.data(), padded, v, target, &sums); break;
+        case 4: AccumulateOneTap<4>(model, a_first.data(), padded, v, target, &sums); break;
         default: AccumulateGeneral(model, layers, layer, *t, w, v, target, &sums);
       }
     }
@@ -126,6 +141,7 @@ void UpdateLayerMultiplicative(const DisplayModel& model, size_t branch, int lay
   }
 
   std::vector<float>& pattern = (*t)[layer].rgb;
+  if (one_tap) FinishOneTapSums(w, pattern, numerator, denominator);
   const float floor = static_cast<float>(options.floor);
   for (size_t k = 0; k < m; ++k) {
     if (!(denominator[k] > options.epsilon)) continue;

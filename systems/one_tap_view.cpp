@@ -35,34 +35,44 @@ void AddRowOf(const OneTapView<L>& v, const PaddedLayers& padded, int i, Rgb4 w,
 
 using AnyOneTapView = std::variant<OneTapView<1>, OneTapView<2>, OneTapView<3>, OneTapView<4>>;
 
-AnyOneTapView ViewOf(const DisplayModel& model, size_t b, size_t view) {
+template <class... Args>
+AnyOneTapView ViewOf(const DisplayModel& model, size_t b, Args... args) {
   static_assert(kMaxOneTapLayers == 4);
   const int* layers = model.branch_layers(b).data();
   switch (model.branch_layers(b).size()) {
-    case 1: return OneTapView<1>(model, layers, view);
-    case 2: return OneTapView<2>(model, layers, view);
-    case 3: return OneTapView<3>(model, layers, view);
-    case 4: return OneTapView<4>(model, layers, view);
+    case 1: return OneTapView<1>(model, layers, args...);
+    case 2: return OneTapView<2>(model, layers, args...);
+    case 3: return OneTapView<3>(model, layers, args...);
+    case 4: return OneTapView<4>(model, layers, args...);
   }
   throw Error("branch " + std::to_string(b) + " does not take the one-tap path");
 }
 
+Rgb4 WeightOf(const DisplayModel& model, size_t b) {
+  const std::array<float, 3>& w = model.weight(b);
+  return Rgb4{w[0], w[1], w[2], 0.0f};
+}
+
 }  // namespace
 
-OneTapBranchView::OneTapBranchView(const DisplayModel& model, size_t b, size_t view) : view_(ViewOf(model, b, view)) {
-  const std::array<float, 3>& w = model.weight(b);
-  weight_ = Rgb4{w[0], w[1], w[2], 0.0f};
-}
+OneTapBranchView::OneTapBranchView(const DisplayModel& model, size_t b, size_t view)
+    : view_(ViewOf(model, b, view)), weight_(WeightOf(model, b)) {}
+
+OneTapBranchView::OneTapBranchView(const DisplayModel& model, size_t b, const AxisTap* const* row_taps,
+                                   const AxisTap* const* col_taps, int ray_rows, int ray_cols)
+    : view_(ViewOf(model, b, row_taps, col_taps, ray_rows, ray_cols)), weight_(WeightOf(model, b)) {}
 
 void OneTapBranchView::AddRow(const PaddedLayers& padded, int i, Rgb4* row) const {
   std::visit([&](const auto& v) { AddRowOf(v, padded, i, weight_, row); }, view_);
 }
 
-void PackRow(const Rgb4* row, int cols, bool last, float* out) {
-  // Each 16-byte store spills its padding onto the next ray's red, which the next store overwrites.
-  const int safe = last ? cols - 1 : cols;
-  for (int j = 0; j < safe; ++j) std::memcpy(out + j * 3, &row[j], sizeof(Rgb4));
-  if (last) StoreRgb(row[cols - 1], out + (cols - 1) * 3);
+void PackRow(const Rgb4* row, int cols, float* out) {
+  if (cols <= 0) return;
+  // Each 16-byte store spills its padding onto the next ray's red, which the
+  // next store overwrites; the last ray is stored exactly, so that rows may be
+  // written by different threads in any order.
+  for (int j = 0; j + 1 < cols; ++j) std::memcpy(out + j * 3, &row[j], sizeof(Rgb4));
+  StoreRgb(row[cols - 1], out + (cols - 1) * 3);
 }
 
 }  // namespace layerlab

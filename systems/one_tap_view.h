@@ -8,6 +8,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <variant>
 #include <vector>
@@ -42,22 +43,30 @@ class OneTapView {
     int32_t pixel[L];  // column read in each layer
   };
 
-  // `layers`: L layer indices (of one branch, in any order).
-  OneTapView(const DisplayModel& model, const int* layers, size_t view) : model_(&model) {
+  // Rays on a grid of ray_rows x ray_cols (a light-field view, or the retina
+  // for one pupil point): ray column j reads column col_taps[k][j].i0 of layer
+  // layers[k] and ray row i its row row_taps[k][i].i0 (-1: misses it).
+  OneTapView(const DisplayModel& model, const int* layers, const AxisTap* const* row_taps,
+             const AxisTap* const* col_taps, int ray_rows, int ray_cols)
+      : ray_rows_(ray_rows), ray_cols_(ray_cols) {
     for (int k = 0; k < L; ++k) {
-      const LayerProjection& p = model.projection(layers[k]);
       layers_[k] = layers[k];
-      row_taps_[k] = p.row_taps(view);
-      cols_[k] = p.cols();
+      row_taps_[k] = row_taps[k];
+      cols_[k] = model.projection(layers[k]).cols();
     }
-    columns_.reserve(model.geometry().cols);
-    for (int j = 0; j < model.geometry().cols; ++j) {
+    columns_.reserve(ray_cols);
+    for (int j = 0; j < ray_cols; ++j) {
       Column c{j, {}};
       bool reached = true;
-      for (int k = 0; k < L; ++k) reached = reached && (c.pixel[k] = model.projection(layers[k]).col_taps(view)[j].i0) >= 0;
+      for (int k = 0; k < L; ++k) reached = reached && (c.pixel[k] = col_taps[k][j].i0) >= 0;
       if (reached) columns_.push_back(c);
     }
   }
+
+  // The rays of light-field view `view`; `layers`: L layer indices.
+  OneTapView(const DisplayModel& model, const int* layers, size_t view)
+      : OneTapView(model, layers, Taps(model, layers, view, true).data(), Taps(model, layers, view, false).data(),
+                   model.geometry().rows, model.geometry().cols) {}
 
   // The columns of the rays that reach every layer, left to right.
   const std::vector<Column>& columns() const { return columns_; }
@@ -73,15 +82,22 @@ class OneTapView {
   }
 
   // How many of the listed columns of ray row i may read one float past their
-  // ray (into the next ray's red): all but the view's very last ray.
+  // ray (into the next ray's red) in a [row][col][rgb] buffer of this grid:
+  // all but the grid's very last ray.
   size_t OverreadSafe(int i) const {
-    const std::vector<Column>& c = columns_;
-    const bool last = i == model_->geometry().rows - 1 && !c.empty() && c.back().ray == model_->geometry().cols - 1;
-    return c.size() - (last ? 1 : 0);
+    const bool last = i == ray_rows_ - 1 && !columns_.empty() && columns_.back().ray == ray_cols_ - 1;
+    return columns_.size() - (last ? 1 : 0);
   }
 
  private:
-  const DisplayModel* model_;
+  static std::array<const AxisTap*, L> Taps(const DisplayModel& model, const int* layers, size_t view, bool rows) {
+    std::array<const AxisTap*, L> taps;
+    for (int k = 0; k < L; ++k)
+      taps[k] = rows ? model.projection(layers[k]).row_taps(view) : model.projection(layers[k]).col_taps(view);
+    return taps;
+  }
+
+  int ray_rows_, ray_cols_;
   int layers_[L];
   const AxisTap* row_taps_[L];
   int cols_[L];
@@ -91,7 +107,11 @@ class OneTapView {
 // One view of a fast-path branch, whatever its number of layers.
 class OneTapBranchView {
  public:
+  // Light-field view `view`.
   OneTapBranchView(const DisplayModel& model, size_t b, size_t view);
+  // Any grid of rays (OneTapView); the tables are per layer of the branch, in its order.
+  OneTapBranchView(const DisplayModel& model, size_t b, const AxisTap* const* row_taps, const AxisTap* const* col_taps,
+                   int ray_rows, int ray_cols);
   // row[j] += the light of the branch in ray (i, j) of the view, w_b prod_k P_k t_k.
   void AddRow(const PaddedLayers& padded, int i, Rgb4* row) const;
 
@@ -100,7 +120,7 @@ class OneTapBranchView {
   Rgb4 weight_;
 };
 
-// One ray row [ray][rgb, 0] into [ray][rgb]; `last` says if it ends its buffer.
-void PackRow(const Rgb4* row, int cols, bool last, float* out);
+// One ray row [ray][rgb, 0] into [ray][rgb], writing exactly cols x 3 floats.
+void PackRow(const Rgb4* row, int cols, float* out);
 
 }  // namespace layerlab

@@ -1,5 +1,7 @@
 #include "systems/retina.h"
 
+#include "systems/one_tap_view.h"
+
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -87,63 +89,37 @@ inline double Read(const AxisTap& row, const AxisTap& col, const LayerPattern& t
   return value;
 }
 
-// The common case: one focus for all channels, every layer nearest-sampled
-// without rotation. Each ray reads one pixel per layer at a table offset.
+// The common case: one focus for all channels, every branch on the one-tap
+// path (one_tap_view.h), the pupil points in the role of views: each retinal
+// row sums, for every pupil point, every branch's row of products.
 void NearestRetina(const DisplayModel& model, const Patterns& t, const RetinaGrid& retina,
                    const std::vector<PupilPoint>& pupil, const std::vector<LayerTables>& tables, Image* image) {
   const size_t layers = model.layer_count();
-  // Pattern offsets: row i of layer k for pupil point p, and column j.
-  std::vector<int32_t> row_offset(pupil.size() * layers * retina.rows), col_offset(pupil.size() * layers * retina.cols);
+  thread_local PaddedLayers padded_memory;
+  PaddedLayers& padded = padded_memory;  // the calling thread's, shared with the workers
+  padded.PadAll(t);
+  std::vector<OneTapBranchView> views;  // [pupil point][branch]
   for (size_t p = 0; p < pupil.size(); ++p)
-    for (size_t k = 0; k < layers; ++k) {
-      const LayerTables& table = tables[p * layers + k];
-      for (int i = 0; i < retina.rows; ++i)
-        row_offset[(p * layers + k) * retina.rows + i] = table.rows[i].i0 < 0 ? -1 : table.rows[i].i0 * t[k].cols * 3;
-      for (int j = 0; j < retina.cols; ++j)
-        col_offset[(p * layers + k) * retina.cols + j] = table.cols[j].i0 < 0 ? -1 : table.cols[j].i0 * 3;
+    for (size_t b = 0; b < model.branch_count(); ++b) {
+      std::vector<const AxisTap*> rows, cols;
+      for (int k : model.branch_layers(b)) {
+        rows.push_back(tables[p * layers + k].rows.data());
+        cols.push_back(tables[p * layers + k].cols.data());
+      }
+      views.emplace_back(model, b, rows.data(), cols.data(), retina.rows, retina.cols);
     }
-  std::vector<int> members, start{0};
-  std::vector<float> weights;
-  for (size_t b = 0; b < model.branch_count(); ++b) {
-    for (int k : model.branch_layers(b)) members.push_back(k);
-    start.push_back(static_cast<int>(members.size()));
-    for (int c = 0; c < 3; ++c) weights.push_back(model.weight(b)[c]);
-  }
-  const double inverse_count = 1.0 / pupil.size();
+  const float inverse_count = static_cast<float>(1.0 / pupil.size());
 #pragma omp parallel
   {
-    std::vector<double> sum(size_t(retina.cols) * 3);
-    std::vector<int32_t> rows(layers);
-    std::vector<const int32_t*> cols(layers);
+    thread_local std::vector<Rgb4> sum;
+    sum.resize(retina.cols);
 #pragma omp for schedule(dynamic)
     for (int i = 0; i < retina.rows; ++i) {
-      std::fill(sum.begin(), sum.end(), 0.0);
-      for (size_t p = 0; p < pupil.size(); ++p) {
-        for (size_t k = 0; k < layers; ++k) {
-          rows[k] = row_offset[(p * layers + k) * retina.rows + i];
-          cols[k] = &col_offset[(p * layers + k) * retina.cols];
-        }
-        for (int j = 0; j < retina.cols; ++j) {
-          float ray[3] = {0, 0, 0};
-          for (size_t b = 0; b + 1 < start.size(); ++b) {
-            float product[3] = {weights[b * 3], weights[b * 3 + 1], weights[b * 3 + 2]};
-            for (int m = start[b]; m < start[b + 1]; ++m) {
-              const int k = members[m];
-              const int32_t col = cols[k][j];
-              if (rows[k] < 0 || col < 0) {
-                product[0] = product[1] = product[2] = 0;
-                break;
-              }
-              const float* v = t[k].rgb.data() + rows[k] + col;
-              product[0] *= v[0], product[1] *= v[1], product[2] *= v[2];
-            }
-            ray[0] += product[0], ray[1] += product[1], ray[2] += product[2];
-          }
-          sum[size_t(j) * 3] += ray[0], sum[size_t(j) * 3 + 1] += ray[1], sum[size_t(j) * 3 + 2] += ray[2];
-        }
-      }
-      for (size_t k = 0; k < sum.size(); ++k)
-        image->pixels[size_t(i) * retina.cols * 3 + k] = static_cast<float>(sum[k] * inverse_count);
+      // At most a few hundred terms of at most 1 each per pixel: float holds them.
+      std::fill(sum.begin(), sum.end(), Rgb4{});
+      for (const OneTapBranchView& v : views) v.AddRow(padded, i, sum.data());
+      for (Rgb4& value : sum) value *= inverse_count;
+      PackRow(sum.data(), retina.cols, image->pixels.data() + size_t(i) * retina.cols * 3);
     }
   }
 }
@@ -177,7 +153,7 @@ Image RetinaOfDisplay(const DisplayModel& model, const Patterns& t, const Retina
       }
 
   bool one_tap = same_focus;
-  for (size_t k = 0; k < layers; ++k) one_tap = one_tap && model.projection(k).one_tap();
+  for (size_t b = 0; b < model.branch_count(); ++b) one_tap = one_tap && OneTapBranch(model, b);
   if (one_tap) {
     NearestRetina(model, t, retina, pupil, tables, &image);
     return image;

@@ -22,7 +22,7 @@ void ViewSynthesizer::OneTapBranches(const std::vector<size_t>& branches, size_t
   for (int i = 0; i < g.rows; ++i) {
     std::fill(row.begin(), row.end(), Rgb4{});
     for (const OneTapBranchView& v : views) v.AddRow(padded_, i, row.data());
-    PackRow(row.data(), g.cols, i == g.rows - 1, out + static_cast<size_t>(i) * g.cols * 3);
+    PackRow(row.data(), g.cols, out + static_cast<size_t>(i) * g.cols * 3);
   }
 }
 

@@ -203,9 +203,11 @@ TEST(Retina, ChromaticDefocusShiftsEachChannelsFocus) {
   // Channel R focused at 1.5 D equals an image focused there for all channels.
   Image red = RetinaOfDisplay(*d.model, d.t, retina, pupil, {1.5, 1.5, 1.5});
   Image green = RetinaOfDisplay(*d.model, d.t, retina, pupil, {1.0, 1.0, 1.0});
+  // The per-channel path sums the 81 pupil points in double, the one-focus
+  // fast path in float: they agree to float rounding of such a sum (81 x 2^-24).
   for (size_t p = 0; p < mixed.pixels.size() / 3; ++p) {
-    ASSERT_FLOAT_EQ(mixed.pixels[p * 3], red.pixels[p * 3]);
-    ASSERT_FLOAT_EQ(mixed.pixels[p * 3 + 1], green.pixels[p * 3 + 1]);
+    ASSERT_NEAR(mixed.pixels[p * 3], red.pixels[p * 3], 5e-6);
+    ASSERT_NEAR(mixed.pixels[p * 3 + 1], green.pixels[p * 3 + 1], 5e-6);
   }
 }
 
