@@ -51,44 +51,15 @@ LightField PrepareTarget(const DisplayModel& model, const LightField& target, Ta
   return out;
 }
 
-namespace {
-
-// sum_k (a_k - b_k)^2 in double. Four independent sums: one sum's chain of
-// dependent additions would cost an add's latency per value (GCC does not
-// reorder floating-point sums without -ffast-math).
-double SquaredDistance(const float* a, const float* b, size_t n) {
-  double sum[4] = {0, 0, 0, 0};
-  size_t k = 0;
-  for (; k + 4 <= n; k += 4)
-    for (int q = 0; q < 4; ++q) {
-      const double d = double(a[k + q]) - b[k + q];
-      sum[q] += d * d;
-    }
-  for (; k < n; ++k) {
-    const double d = double(a[k]) - b[k];
-    sum[0] += d * d;
-  }
-  return (sum[0] + sum[1]) + (sum[2] + sum[3]);
-}
-
-}  // namespace
-
 double Objective(const DisplayModel& model, const LightField& target, const Patterns& t) {
-  const LightFieldGeometry& g = model.geometry();
-  const size_t n = g.pixels_per_view() * 3;
-  double total = 0;
   thread_local PaddedLayers workspace;
   const ViewSynthesizer synthesizer(model, t, &workspace);
-#pragma omp parallel reduction(+ : total)
-  {
-    thread_local std::vector<float> synthesized;
-    synthesized.resize(n);
-#pragma omp for schedule(dynamic)
-    for (size_t v = 0; v < g.view_count(); ++v) {
-      synthesizer.View(v, synthesized.data());
-      total += SquaredDistance(target.view(v), synthesized.data(), n);
-    }
-  }
+  // Per view, then summed in view order: the same value for any thread count.
+  std::vector<double> per_view(model.geometry().view_count());
+#pragma omp parallel for schedule(dynamic)
+  for (size_t v = 0; v < per_view.size(); ++v) per_view[v] = synthesizer.SquaredError(v, target.view(v));
+  double total = 0;
+  for (double e : per_view) total += e;
   return total;
 }
 

@@ -20,6 +20,9 @@ class ViewSynthesizer {
   void View(size_t view, float* out) const;
   // out = branch b's light alone in one view.
   void Branch(size_t b, size_t view, float* out) const;
+  // Sum over the rays and channels of one view of (target - light)^2, in
+  // double; `target` is that view, [row][col][rgb].
+  double SquaredError(size_t view, const float* target) const;
 
  private:
   // out = the light of `branches` (all fast-path) in one view, row by row.
