@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "framework/rgb4.h"
+#include "solvers/one_tap_update.h"
 #include "systems/one_tap_view.h"
 
 namespace layerlab {
@@ -13,47 +13,12 @@ namespace {
 // run over the few rays per view that reach it, at most a few hundred per
 // thread: float is exact enough there, and the merge across threads is in double.
 struct Sums {
-  std::vector<Rgb4> num, den;  // one-tap kernel
-  std::vector<float> num3, den3;  // general kernel
+  std::vector<float> num3, den3;
 };
 
-// One-tap branches (one_tap_view.h), layer a first in `layers`. With one
-// tap of weight 1 per ray, w_b and layer a's own value are the same for every
-// ray a pixel sums, so they come out of the sums:
-//   num = w_b sum r q,   den = w_b^2 t_a sum q^2,   q = prod_{k != a} P_k t_k,
-// and the kernel sums r q and q^2 alone (FinishOneTapSums puts them back).
-template <int L>
-void AccumulateOneTap(const DisplayModel& model, const int* layers, const PaddedLayers& padded, size_t view,
-                      const float* target, Sums* sums) {
-  const LightFieldGeometry& g = model.geometry();
-  const OneTapView<L> v(model, layers, view);
-  const auto& columns = v.columns();
-  const Rgb4* const layer_a = padded.pixels(layers[0]);
-  for (int i = 0; i < g.rows; ++i) {
-    const Rgb4* rows[L];
-    if (!v.Rows(padded, i, rows)) continue;
-    const size_t row_a = rows[0] - layer_a;
-    Rgb4* num = sums->num.data() + row_a;
-    Rgb4* den = sums->den.data() + row_a;
-    const float* r = target + static_cast<size_t>(i) * g.cols * 3;
-    auto accumulate = [&](const typename OneTapView<L>::Column& c, Rgb4 l) {
-      const int32_t a = c.pixel[0];
-      if constexpr (L == 1) {
-        num[a] += l;
-        den[a] += Rgb4{1, 1, 1, 0};
-      } else {
-        Rgb4 q = rows[1][c.pixel[1]];
-        for (int k = 2; k < L; ++k) q *= rows[k][c.pixel[k]];
-        num[a] += l * q;
-        den[a] += q * q;
-      }
-    };
-    const size_t safe = v.OverreadSafe(i);
-    for (size_t e = 0; e < safe; ++e) accumulate(columns[e], LoadRgbOver(r + columns[e].ray * 3));
-    for (size_t e = safe; e < columns.size(); ++e) accumulate(columns[e], LoadRgb(r + columns[e].ray * 3));
-  }
-}
-
+// With one tap of weight 1 per ray (the one-tap path), w_b and layer a's own
+// value are the same for every ray a pixel sums, so OneTapUpdateSums leaves
+// them out:  num = w_b sum r q,  den = w_b^2 t_a sum q^2.  They go back here.
 void FinishOneTapSums(const std::array<float, 3>& w, const std::vector<float>& t_a, double* num, double* den) {
   for (size_t k = 0; k < t_a.size(); ++k) {
     num[k] *= w[k % 3];
@@ -94,45 +59,27 @@ void UpdateLayerMultiplicative(const DisplayModel& model, size_t branch, int lay
   const bool one_tap = OneTapBranch(model, branch);
   // Reused across calls (fresh megabytes would be page-faulted in on every update).
   thread_local std::vector<double> numerator_memory, denominator_memory;
-  thread_local PaddedLayers padded_memory;
   numerator_memory.assign(m, 0.0), denominator_memory.assign(m, 0.0);
   // The calling thread's, shared with the workers.
   double* numerator = numerator_memory.data();
   double* denominator = denominator_memory.data();
-  PaddedLayers& padded = padded_memory;
-  std::vector<int> a_first{layer};  // the kernels' layer order
-  for (int k : layers)
-    if (k != layer) a_first.push_back(k);
-  if (one_tap) padded.Pad(*t, layers);
 
+  if (one_tap) {
+    std::vector<int> a_first{layer};
+    for (int k : layers)
+      if (k != layer) a_first.push_back(k);
+    OneTapUpdateSums(model, a_first, *t, branch_target, numerator, denominator);
+  } else {
 #pragma omp parallel
-  {
-    thread_local Sums sums;
-    thread_local std::vector<float> target_scratch;
-    if (one_tap)
-      sums.num.assign(pixels, Rgb4{}), sums.den.assign(pixels, Rgb4{});
-    else
+    {
+      thread_local Sums sums;
+      thread_local std::vector<float> target_scratch;
       sums.num3.assign(m, 0.0f), sums.den3.assign(m, 0.0f);
-    target_scratch.resize(n);
+      target_scratch.resize(n);
 #pragma omp for schedule(dynamic)
-    for (size_t v = 0; v < g.view_count(); ++v) {
-      const float* target = branch_target(v, target_scratch.data());
-      switch (one_tap ? layers.size() : 0) {
-        case 1: AccumulateOneTap<1>(model, a_first.data(), padded, v, target, &sums); break;
-        case 2: AccumulateOneTap<2>(model, a_first.data(), padded, v, target, &sums); break;
-        case 3: AccumulateOneTap<3>(model, a_first.data(), padded, v, target, &sums); break;
-        case 4: AccumulateOneTap<4>(model, a_first.data(), padded, v, target, &sums); break;
-        default: AccumulateGeneral(model, layers, layer, *t, w, v, target, &sums);
-      }
-    }
+      for (size_t v = 0; v < g.view_count(); ++v)
+        AccumulateGeneral(model, layers, layer, *t, w, v, branch_target(v, target_scratch.data()), &sums);
 #pragma omp critical
-    if (one_tap) {
-      for (size_t k = 0; k < pixels; ++k)
-        for (int c = 0; c < 3; ++c) {
-          numerator[k * 3 + c] += sums.num[k][c];
-          denominator[k * 3 + c] += sums.den[k][c];
-        }
-    } else {
       for (size_t k = 0; k < m; ++k) {
         numerator[k] += sums.num3[k];
         denominator[k] += sums.den3[k];

@@ -1,0 +1,25 @@
+// The sums of the multiplicative update (multiplicative_update.h) for a
+// branch on the one-tap path (one_tap_view.h), with w_b and t_a factored out:
+//   num[pixel][c] += sum r q,   den[pixel][c] += sum q^2,   q = prod_{k != a} P_k t_k
+// over the rays that read `pixel` of layer a.
+//
+// View column by view column: within one, each layer's column depends on the
+// ray's column alone, so every other layer is resampled once to the rays'
+// columns (its rows x the light field's columns). The sums then accumulate in
+// the rays' columns, row by row over the column's views, in contiguous vector
+// loops without a per-ray index; they reach layer a's pixels in one scatter
+// per view column.
+#pragma once
+
+#include <vector>
+
+#include "solvers/multiplicative_update.h"
+
+namespace layerlab {
+
+// `layers`: the branch's layers, layer a first. num and den hold layer a's
+// pixels x 3 and are added to.
+void OneTapUpdateSums(const DisplayModel& model, const std::vector<int>& layers, const Patterns& t,
+                      const BranchTarget& branch_target, double* num, double* den);
+
+}  // namespace layerlab
