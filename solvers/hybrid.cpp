@@ -41,8 +41,9 @@ class HybridSolver final : public Solver {
         {
           thread_local std::vector<float> other;
           other.resize(n);
-#pragma omp for schedule(dynamic)
-          for (size_t view = 0; view < views; ++view) {
+#pragma omp for schedule(static)
+          for (size_t order = 0; order < views; ++order) {
+            const size_t view = synthesizer.ViewInColumnOrder(order);
             const float* lv = l.view(view);
             float* out = chase.view(view);
             std::copy(lv, lv + n, out);

@@ -56,8 +56,11 @@ double Objective(const DisplayModel& model, const LightField& target, const Patt
   const ViewSynthesizer synthesizer(model, t, &workspace);
   // Per view, then summed in view order: the same value for any thread count.
   std::vector<double> per_view(model.geometry().view_count());
-#pragma omp parallel for schedule(dynamic)
-  for (size_t v = 0; v < per_view.size(); ++v) per_view[v] = synthesizer.SquaredError(v, target.view(v));
+#pragma omp parallel for schedule(static)
+  for (size_t k = 0; k < per_view.size(); ++k) {
+    const size_t v = synthesizer.ViewInColumnOrder(k);
+    per_view[v] = synthesizer.SquaredError(v, target.view(v));
+  }
   double total = 0;
   for (double e : per_view) total += e;
   return total;

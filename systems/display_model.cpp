@@ -48,8 +48,11 @@ void DisplayModel::Synthesize(const Patterns& t, LightField* out) const {
   const size_t views = lf_.view_count();
   thread_local PaddedLayers workspace;
   const ViewSynthesizer synthesizer(*this, t, &workspace);
-#pragma omp parallel for schedule(dynamic)
-  for (size_t v = 0; v < views; ++v) synthesizer.View(v, out->view(v));
+#pragma omp parallel for schedule(static)
+  for (size_t k = 0; k < views; ++k) {
+    const size_t v = synthesizer.ViewInColumnOrder(k);
+    synthesizer.View(v, out->view(v));
+  }
 }
 
 LightFieldGeometry DisplayLightFieldGeometry(const DisplaySystem& system, double origin_diopters) {

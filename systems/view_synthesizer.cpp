@@ -1,9 +1,32 @@
 #include "systems/view_synthesizer.h"
 
 #include <algorithm>
+#include <atomic>
 
 namespace layerlab {
 namespace {
+
+// One thread's one-tap layers resampled to the rays' columns of one view
+// column ([layer][its row][ray column]): within a view column a layer's
+// column depends on the ray's column alone. Rebuilt when a thread moves to
+// another view column or another synthesizer.
+struct ColumnCache {
+  uint64_t owner = 0;
+  int vc = -1;
+  std::vector<std::vector<Rgb4>> layers;
+};
+
+std::atomic<uint64_t> next_id{1};
+
+// row[j] += w prod_k layer_k[j] over one ray row of one branch (L layers).
+template <int L>
+void AddBranchRow(const Rgb4* const* layers, Rgb4 w, int cols, Rgb4* row) {
+  for (int j = 0; j < cols; ++j) {
+    Rgb4 p = w * layers[0][j];
+    for (int k = 1; k < L; ++k) p *= layers[k][j];
+    row[j] += p;
+  }
+}
 
 using Double4 = double __attribute__((vector_size(32)));
 
@@ -19,7 +42,7 @@ inline void AddSquared(Double4& sum, Rgb4 target, Rgb4 light) {
 }  // namespace
 
 ViewSynthesizer::ViewSynthesizer(const DisplayModel& model, const Patterns& t, PaddedLayers* workspace)
-    : model_(model), t_(t), padded_(*workspace) {
+    : model_(model), t_(t), padded_(*workspace), id_(next_id++) {
   for (size_t b = 0; b < model.branch_count(); ++b) {
     const bool fast = OneTapBranch(model, b);
     (fast ? one_tap_ : general_).push_back(b);
@@ -27,15 +50,59 @@ ViewSynthesizer::ViewSynthesizer(const DisplayModel& model, const Patterns& t, P
   }
 }
 
+size_t ViewSynthesizer::ViewInColumnOrder(size_t k) const {
+  const LightFieldGeometry& g = model_.geometry();
+  return g.view_index(static_cast<int>(k % g.views_y), static_cast<int>(k / g.views_y));
+}
+
+void ViewSynthesizer::OneTapRow(const std::vector<size_t>& branches, size_t view, int i, Rgb4* row) const {
+  const LightFieldGeometry& g = model_.geometry();
+  thread_local ColumnCache cache;
+  const int vc = static_cast<int>(view % g.views_x);
+  if (cache.owner != id_ || cache.vc != vc) {
+    cache.owner = id_, cache.vc = vc;
+    cache.layers.resize(model_.layer_count());
+    for (size_t b : one_tap_)
+      for (int k : model_.branch_layers(b)) {
+        const LayerProjection& P = model_.projection(k);
+        const AxisTap* col = P.col_taps(static_cast<size_t>(vc));  // view vc: row 0, column vc
+        const Rgb4* source = padded_.pixels(k);
+        std::vector<Rgb4>& out = cache.layers[k];
+        out.resize(static_cast<size_t>(P.rows()) * g.cols);
+        for (int r = 0; r < P.rows(); ++r)
+          for (int j = 0; j < g.cols; ++j)
+            out[static_cast<size_t>(r) * g.cols + j] =
+                col[j].i0 < 0 ? Rgb4{} : source[static_cast<size_t>(r) * P.cols() + col[j].i0];
+      }
+  }
+  std::fill(row, row + g.cols, Rgb4{});
+  for (size_t b : branches) {
+    const std::vector<int>& layers = model_.branch_layers(b);
+    const Rgb4* rows[kMaxOneTapLayers];
+    bool reached = true;
+    for (size_t k = 0; k < layers.size() && reached; ++k) {
+      const int32_t r = model_.projection(layers[k]).row_taps(view)[i].i0;
+      reached = r >= 0;
+      if (reached) rows[k] = cache.layers[layers[k]].data() + static_cast<size_t>(r) * g.cols;
+    }
+    if (!reached) continue;
+    const std::array<float, 3>& w = model_.weight(b);
+    const Rgb4 w4{w[0], w[1], w[2], 0.0f};
+    switch (layers.size()) {
+      case 1: AddBranchRow<1>(rows, w4, g.cols, row); break;
+      case 2: AddBranchRow<2>(rows, w4, g.cols, row); break;
+      case 3: AddBranchRow<3>(rows, w4, g.cols, row); break;
+      case 4: AddBranchRow<4>(rows, w4, g.cols, row); break;
+    }
+  }
+}
+
 void ViewSynthesizer::OneTapBranches(const std::vector<size_t>& branches, size_t view, float* out) const {
   const LightFieldGeometry& g = model_.geometry();
-  std::vector<OneTapBranchView> views;
-  for (size_t b : branches) views.emplace_back(model_, b, view);
   thread_local std::vector<Rgb4> row;
   row.resize(g.cols);
   for (int i = 0; i < g.rows; ++i) {
-    std::fill(row.begin(), row.end(), Rgb4{});
-    for (const OneTapBranchView& v : views) v.AddRow(padded_, i, row.data());
+    OneTapRow(branches, view, i, row.data());
     PackRow(row.data(), g.cols, out + static_cast<size_t>(i) * g.cols * 3);
   }
 }
@@ -74,15 +141,12 @@ double ViewSynthesizer::SquaredError(size_t view, const float* target) const {
     for (; k + 3 <= n; k += 3) AddSquared(sum[k & 1], LoadRgb(target + k), LoadRgb(light.data() + k));
     return (sum[0][0] + sum[1][0]) + (sum[0][1] + sum[1][1]) + (sum[0][2] + sum[1][2]);
   }
-  // Row by row from the padded light: nothing of view size is written.
-  std::vector<OneTapBranchView> views;
-  for (size_t b : one_tap_) views.emplace_back(model_, b, view);
+  // Row by row: nothing of view size is written.
   thread_local std::vector<Rgb4> row;
   row.resize(g.cols);
   Double4 sum[2] = {};  // two chains of dependent additions, not one
   for (int i = 0; i < g.rows; ++i) {
-    std::fill(row.begin(), row.end(), Rgb4{});
-    for (const OneTapBranchView& v : views) v.AddRow(padded_, i, row.data());
+    OneTapRow(one_tap_, view, i, row.data());
     const float* l = target + static_cast<size_t>(i) * g.cols * 3;
     int j = 0;
     for (; j + 1 < g.cols; ++j) AddSquared(sum[j & 1], LoadRgbOver(l + j * 3), row[j]);

@@ -3,6 +3,8 @@
 // others go through the projections.
 #pragma once
 
+#include <cstdint>
+
 #include "systems/display_model.h"
 #include "systems/one_tap_view.h"
 
@@ -24,14 +26,23 @@ class ViewSynthesizer {
   // double; `target` is that view, [row][col][rgb].
   double SquaredError(size_t view, const float* target) const;
 
+  // The k-th view in view-column order. Each thread keeps the layers
+  // resampled for the last view column it synthesized: loops over views that
+  // go in this order and hand each thread a run of them (schedule(static))
+  // resample each layer about once per view column and thread.
+  size_t ViewInColumnOrder(size_t k) const;
+
  private:
   // out = the light of `branches` (all fast-path) in one view, row by row.
   void OneTapBranches(const std::vector<size_t>& branches, size_t view, float* out) const;
+  // row = the light of `branches` in ray row i of one view, [ray][rgb, 0].
+  void OneTapRow(const std::vector<size_t>& branches, size_t view, int i, Rgb4* row) const;
 
   const DisplayModel& model_;
   const Patterns& t_;
   std::vector<size_t> one_tap_, general_;  // branches by path
   const PaddedLayers& padded_;
+  uint64_t id_;  // tells this synthesizer's per-thread caches from an earlier one's
 };
 
 }  // namespace layerlab
