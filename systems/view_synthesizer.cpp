@@ -30,11 +30,10 @@ void AddBranchRow(const Rgb4* const* layers, Rgb4 w, int cols, Rgb4* row) {
 
 using Double4 = double __attribute__((vector_size(32)));
 
-// sum += (target - light)^2 of one ray (lane 3 ignored). By reference: a
-// 32-byte vector passed by value would change the ABI between SSE and AVX builds.
+// sum += (target - light)^2 of one ray in lanes 0-2; lane 3 sums whatever
+// the padding lanes hold and is never read. By reference: a 32-byte vector
+// passed by value would change the ABI between SSE and AVX builds.
 inline void AddSquared(Double4& sum, Rgb4 target, Rgb4 light) {
-  target[3] = 0.0f;
-  light[3] = 0.0f;
   const Double4 d = __builtin_convertvector(target, Double4) - __builtin_convertvector(light, Double4);
   sum += d * d;
 }
