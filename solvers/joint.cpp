@@ -23,14 +23,15 @@
 #include <cmath>
 #include <vector>
 
+#include "solvers/joint_column_pass.h"
 #include "solvers/solve_loop.h"
+#include "systems/one_tap_view.h"
 
 namespace layerlab {
 namespace {
 
 constexpr double kGrowth = 1.3;
 constexpr double kMaxRelaxation = 8.0;
-constexpr size_t kMaxUniformBranches = 8;
 
 // What one pass sums, per thread: per layer numerator and denominator, and the objective.
 struct PassSums {
@@ -53,9 +54,8 @@ class JointPass {
     one_tap_ = true;
     for (size_t k = 0; k < layers; ++k) one_tap_ = one_tap_ && model.projection(k).one_tap();
     num_.resize(layers), den_.resize(layers);
-    uniform_ = static_cast<int>(model.branch_layers(0).size());
-    for (size_t b = 0; b < model.branch_count(); ++b)
-      if (static_cast<int>(model.branch_layers(b).size()) != uniform_ || b >= kMaxUniformBranches) uniform_ = 0;
+    column_pass_ = true;
+    for (size_t b = 0; b < model.branch_count(); ++b) column_pass_ = column_pass_ && OneTapBranch(model, b);
   }
 
   // ratio[k][pixel * 3 + c] = numerator / denominator (or 1 where the
@@ -67,6 +67,11 @@ class JointPass {
     for (size_t k = 0; k < layers; ++k) {
       num[k].assign(t[k].rgb.size(), 0.0);
       den[k].assign(t[k].rgb.size(), 0.0);
+    }
+    if (column_pass_) {
+      const double objective = JointColumnPass(model_, l, t, &num, &den);
+      Ratios(epsilon, ratio);
+      return objective;
     }
     double objective = 0;
 #pragma omp parallel reduction(+ : objective)
@@ -80,11 +85,7 @@ class JointPass {
       sums.objective = 0;
 #pragma omp for schedule(dynamic)
       for (size_t v = 0; v < model_.geometry().view_count(); ++v) {
-        if (one_tap_ && uniform_ == 1)
-          ViewUniform<1>(l.view(v), t, v, &sums);
-        else if (one_tap_ && uniform_ == 2)
-          ViewUniform<2>(l.view(v), t, v, &sums);
-        else if (one_tap_)
+        if (one_tap_)
           ViewOneTap(l.view(v), t, v, &sums);
         else
           ViewGeneral(l.view(v), t, v, &sums);
@@ -97,77 +98,16 @@ class JointPass {
           den[k][i] += sums.den[k][i];
         }
     }
-    ratio->resize(layers);
-    for (size_t k = 0; k < layers; ++k) {
-      (*ratio)[k].resize(num[k].size());
-      for (size_t i = 0; i < num[k].size(); ++i) (*ratio)[k][i] = den[k][i] > epsilon ? num[k][i] / den[k][i] : 1.0;
-    }
+    Ratios(epsilon, ratio);
     return objective;
   }
 
  private:
-  // The common displays (additive, 2-layer stacks and their hybrids): every
-  // branch has L layers, nearest sampling, no rotation. The same sums as
-  // ViewOneTap with the branch structure unrolled at compile time.
-  template <int L>
-  void ViewUniform(const float* target, const Patterns& t, size_t view, PassSums* sums) const {
-    const LightFieldGeometry& g = model_.geometry();
-    const int branches = static_cast<int>(model_.branch_count());
-    struct Member {
-      const AxisTap* rows;
-      const AxisTap* cols;
-      const float* pattern;
-      float* num;
-      float* den;
-      int cols_count;
-      int32_t row_offset;
-    };
-    Member m[kMaxUniformBranches][L];
-    for (int b = 0; b < branches; ++b)
-      for (int k = 0; k < L; ++k) {
-        const int layer = members_[branch_start_[b] + k];
-        const LayerProjection& P = model_.projection(layer);
-        m[b][k] = {P.row_taps(view), P.col_taps(view), t[layer].rgb.data(), sums->num[layer].data(),
-                   sums->den[layer].data(), t[layer].cols, -1};
-      }
-    for (int i = 0; i < g.rows; ++i) {
-      for (int b = 0; b < branches; ++b)
-        for (int k = 0; k < L; ++k) m[b][k].row_offset = m[b][k].rows[i].i0 < 0 ? -1 : m[b][k].rows[i].i0 * m[b][k].cols_count * 3;
-      const float* l = target + static_cast<size_t>(i) * g.cols * 3;
-      double row_error = 0;
-      for (int j = 0; j < g.cols; ++j, l += 3) {
-        float s[kMaxUniformBranches][L][3];
-        int32_t at[kMaxUniformBranches][L];  // pattern offset of the pixel read, -1: missed
-        float synthesized[3] = {0, 0, 0};
-        for (int b = 0; b < branches; ++b) {
-          float p[3] = {weights_[b * 3], weights_[b * 3 + 1], weights_[b * 3 + 2]};
-          for (int k = 0; k < L; ++k) {
-            const int32_t c = m[b][k].cols[j].i0;
-            at[b][k] = m[b][k].row_offset < 0 || c < 0 ? -1 : m[b][k].row_offset + c * 3;
-            for (int ch = 0; ch < 3; ++ch) {
-              s[b][k][ch] = at[b][k] < 0 ? 0.0f : m[b][k].pattern[at[b][k] + ch];
-              p[ch] *= s[b][k][ch];
-            }
-          }
-          for (int ch = 0; ch < 3; ++ch) synthesized[ch] += p[ch];
-        }
-        for (int ch = 0; ch < 3; ++ch) {
-          const double e = double(l[ch]) - synthesized[ch];
-          row_error += e * e;
-        }
-        for (int b = 0; b < branches; ++b)
-          for (int k = 0; k < L; ++k) {
-            if (at[b][k] < 0) continue;
-            for (int ch = 0; ch < 3; ++ch) {
-              float q = weights_[b * 3 + ch];
-              for (int o = 0; o < L; ++o)
-                if (o != k) q *= s[b][o][ch];
-              m[b][k].num[at[b][k] + ch] += l[ch] * q;
-              m[b][k].den[at[b][k] + ch] += synthesized[ch] * q;
-            }
-          }
-      }
-      sums->objective += row_error;
+  void Ratios(double epsilon, std::vector<std::vector<double>>* ratio) const {
+    ratio->resize(num_.size());
+    for (size_t k = 0; k < num_.size(); ++k) {
+      (*ratio)[k].resize(num_[k].size());
+      for (size_t i = 0; i < num_[k].size(); ++i) (*ratio)[k][i] = den_[k][i] > epsilon ? num_[k][i] / den_[k][i] : 1.0;
     }
   }
 
@@ -281,7 +221,7 @@ class JointPass {
   std::vector<int> members_, branch_start_;  // branch b's layers: members_[branch_start_[b] .. branch_start_[b + 1])
   std::vector<float> weights_;               // [branch][channel]
   bool one_tap_ = true;
-  int uniform_ = 0;  // layers per branch when every branch has as many (and few branches), else 0
+  bool column_pass_ = false;  // every branch on the one-tap path: JointColumnPass
   // Pass sums merged across threads; kept between passes (fresh megabytes would be faulted in each time).
   mutable std::vector<std::vector<double>> num_, den_;
 };

@@ -158,8 +158,8 @@ TEST(Solvers, JointKernelsAgree) {
     EXPECT_NEAR(a.trace[k].objective, b.trace[k].objective, 1e-4 * a.trace[k].objective) << "iteration " << k;
 }
 
-// The one-tap fast path (one_tap_view.h) of synthesis and of the
-// multiplicative update against the projections' general path, which a
+// The one-tap fast paths (synthesis, the multiplicative update, the joint
+// solver's pass) against the projections' general path, which a
 // rotation of 0 that is not exactly 0 selects, for branches of 1 to 5 layers
 // (5 is past the fast path's limit: both sides take the general path).
 TEST(Solvers, OneTapFastPathMatchesTheGeneralPath) {
@@ -186,14 +186,18 @@ TEST(Solvers, OneTapFastPathMatchesTheGeneralPath) {
     SolverOptions o;
     o.iterations = 2;
     o.initial_value = -1;
-    Patterns pa, pb;
-    SolverReport ra = SolverRegistry::Builtins().create("hybrid")->Solve(fast, f.target, o, &pa);
-    SolverReport rb = SolverRegistry::Builtins().create("hybrid")->Solve(general, f.target, o, &pb);
-    ASSERT_EQ(ra.trace.size(), rb.trace.size()) << name;
-    for (size_t k = 0; k < ra.trace.size(); ++k)
-      EXPECT_NEAR(ra.trace[k].objective, rb.trace[k].objective, 1e-5 * rb.trace[k].objective) << name << ", iteration " << k;
-    for (size_t k = 0; k < pa.size(); ++k)
-      for (size_t i = 0; i < pa[k].rgb.size(); ++i) ASSERT_NEAR(pa[k].rgb[i], pb[k].rgb[i], 1e-4) << name << ", layer " << k;
+    for (const std::string solver : {"hybrid", "joint"}) {
+      Patterns pa, pb;
+      SolverReport ra = SolverRegistry::Builtins().create(solver)->Solve(fast, f.target, o, &pa);
+      SolverReport rb = SolverRegistry::Builtins().create(solver)->Solve(general, f.target, o, &pb);
+      ASSERT_EQ(ra.trace.size(), rb.trace.size()) << solver << ", " << name;
+      for (size_t k = 0; k < ra.trace.size(); ++k)
+        EXPECT_NEAR(ra.trace[k].objective, rb.trace[k].objective, 1e-5 * rb.trace[k].objective)
+            << solver << ", " << name << ", iteration " << k;
+      for (size_t k = 0; k < pa.size(); ++k)
+        for (size_t i = 0; i < pa[k].rgb.size(); ++i)
+          ASSERT_NEAR(pa[k].rgb[i], pb[k].rgb[i], 1e-4) << solver << ", " << name << ", layer " << k;
+    }
   }
 }
 

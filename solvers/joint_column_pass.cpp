@@ -1,0 +1,218 @@
+#include "solvers/joint_column_pass.h"
+
+#include <cstdint>
+
+#include "framework/rgb4.h"
+#include "systems/one_tap_view.h"
+
+namespace layerlab {
+namespace {
+
+using Double4 = double __attribute__((vector_size(32)));
+
+// One thread's work space, kept across passes (fresh megabytes would be
+// page-faulted in on every pass).
+struct Workspace {
+  std::vector<std::vector<Rgb4>> resampled;           // [layer][its row][ray column]
+  std::vector<std::vector<Rgb4>> column_num, column_den;  // [layer][its row][ray column]
+  std::vector<std::vector<uint8_t>> touched;          // [layer][its row]
+  std::vector<std::vector<Rgb4>> num, den;            // [layer][pixel]
+  std::vector<Rgb4> light;                            // one ray row of the whole display
+};
+
+// light[j] += w prod_k rows[k][j] over one ray row.
+template <int L>
+void AddBranchLight(const Rgb4* const* rows, Rgb4 w, int cols, Rgb4* light) {
+  const Rgb4* r[L];
+  for (int k = 0; k < L; ++k) r[k] = rows[k];
+  for (int j = 0; j < cols; ++j) {
+    Rgb4 p = w;
+    for (int k = 0; k < L; ++k) p *= r[k][j];
+    light[j] += p;
+  }
+}
+
+// For every layer a of one branch over one ray row, q_a = w prod_{k != a} rows[k][j]:
+// num[a][j] += l_j q_a, den[a][j] += light[j] q_a. `exact_last`: read the
+// last ray's three floats exactly (it ends its view).
+template <int L>
+void AddBranchSums(const Rgb4* const* rows, Rgb4 w, int cols, const float* l, bool exact_last, const Rgb4* light,
+                   Rgb4* const* num, Rgb4* const* den) {
+  const Rgb4* r[L];
+  Rgb4* n[L];
+  Rgb4* d[L];
+  for (int k = 0; k < L; ++k) r[k] = rows[k], n[k] = num[k], d[k] = den[k];
+  auto add = [&](int j, Rgb4 lj) {
+    Rgb4 prefix[L];  // w times the layers before a
+    Rgb4 p = w;
+    for (int k = 0; k < L; ++k) {
+      prefix[k] = p;
+      p *= r[k][j];
+    }
+    Rgb4 suffix = Rgb4{1, 1, 1, 1};  // the layers after a
+    for (int a = L - 1; a >= 0; --a) {
+      const Rgb4 q = prefix[a] * suffix;
+      n[a][j] += lj * q;
+      d[a][j] += light[j] * q;
+      suffix *= r[a][j];
+    }
+  };
+  const int safe = exact_last ? cols - 1 : cols;
+  for (int j = 0; j < safe; ++j) add(j, LoadRgbOver(l + j * 3));
+  for (int j = safe; j < cols; ++j) add(j, LoadRgb(l + j * 3));
+}
+
+void Resize(const DisplayModel& model, Workspace* w) {
+  const int cols = model.geometry().cols;
+  const size_t layers = model.layer_count();
+  w->resampled.resize(layers), w->column_num.resize(layers), w->column_den.resize(layers);
+  w->touched.resize(layers), w->num.resize(layers), w->den.resize(layers);
+  for (size_t k = 0; k < layers; ++k) {
+    const LayerProjection& P = model.projection(k);
+    const size_t cells = static_cast<size_t>(P.rows()) * cols;
+    w->resampled[k].resize(cells);
+    if (w->column_num[k].size() != cells) {
+      w->column_num[k].assign(cells, Rgb4{});
+      w->column_den[k].assign(cells, Rgb4{});
+    }
+    w->touched[k].assign(P.rows(), 0);
+    w->num[k].assign(P.pixel_count(), Rgb4{});
+    w->den[k].assign(P.pixel_count(), Rgb4{});
+  }
+  w->light.resize(cols);
+}
+
+// ||l - l~||^2 over the rays of view column vc; the sums into w.
+double ViewColumn(const DisplayModel& model, const LightField& l, const PaddedLayers& padded, int vc, Workspace* w) {
+  const LightFieldGeometry& g = model.geometry();
+  const int cols = g.cols;
+  const size_t layers = model.layer_count();
+  for (size_t k = 0; k < layers; ++k) {
+    const LayerProjection& P = model.projection(k);
+    const AxisTap* col = P.col_taps(static_cast<size_t>(vc));  // view vc: row 0, column vc
+    const Rgb4* source = padded.pixels(static_cast<int>(k));
+    Rgb4* out = w->resampled[k].data();
+    for (int r = 0; r < P.rows(); ++r)
+      for (int j = 0; j < cols; ++j)
+        out[static_cast<size_t>(r) * cols + j] = col[j].i0 < 0 ? Rgb4{} : source[static_cast<size_t>(r) * P.cols() + col[j].i0];
+  }
+
+  Double4 error[2] = {};
+  std::vector<const Rgb4*> row(layers);  // each layer's resampled row for the current ray row, or null
+  std::vector<int32_t> layer_row(layers);
+  for (int vr = 0; vr < g.views_y; ++vr) {
+    const size_t view = g.view_index(vr, vc);
+    const float* target = l.view(view);
+    for (int i = 0; i < g.rows; ++i) {
+      for (size_t k = 0; k < layers; ++k) {
+        layer_row[k] = model.projection(k).row_taps(view)[i].i0;
+        row[k] = layer_row[k] < 0 ? nullptr : w->resampled[k].data() + static_cast<size_t>(layer_row[k]) * cols;
+      }
+      // The whole display's light in this ray row.
+      Rgb4* light = w->light.data();
+      std::fill(light, light + cols, Rgb4{});
+      const Rgb4* rows[kMaxOneTapLayers];
+      auto branch_rows = [&](size_t b) {
+        const std::vector<int>& members = model.branch_layers(b);
+        for (size_t m = 0; m < members.size(); ++m)
+          if (!(rows[m] = row[members[m]])) return false;
+        return true;
+      };
+      auto weight = [&](size_t b) {
+        const std::array<float, 3>& wb = model.weight(b);
+        return Rgb4{wb[0], wb[1], wb[2], 0.0f};
+      };
+      for (size_t b = 0; b < model.branch_count(); ++b) {
+        if (!branch_rows(b)) continue;
+        switch (model.branch_layers(b).size()) {
+          case 1: AddBranchLight<1>(rows, weight(b), cols, light); break;
+          case 2: AddBranchLight<2>(rows, weight(b), cols, light); break;
+          case 3: AddBranchLight<3>(rows, weight(b), cols, light); break;
+          case 4: AddBranchLight<4>(rows, weight(b), cols, light); break;
+        }
+      }
+      const float* lr = target + static_cast<size_t>(i) * cols * 3;
+      const bool exact_last = i == g.rows - 1;  // the view's last ray is read exactly
+      // Lane 3 sums what the padding lanes hold and is never read.
+      auto add_error = [&](int j, Rgb4 lj) {
+        const Double4 d = __builtin_convertvector(lj, Double4) - __builtin_convertvector(light[j], Double4);
+        error[j & 1] += d * d;
+      };
+      const int safe = exact_last ? cols - 1 : cols;
+      for (int j = 0; j < safe; ++j) add_error(j, LoadRgbOver(lr + j * 3));
+      for (int j = safe; j < cols; ++j) add_error(j, LoadRgb(lr + j * 3));
+
+      // Each layer's sums in the rays' columns.
+      for (size_t b = 0; b < model.branch_count(); ++b) {
+        if (!branch_rows(b)) continue;
+        const std::vector<int>& members = model.branch_layers(b);
+        Rgb4* num[kMaxOneTapLayers];
+        Rgb4* den[kMaxOneTapLayers];
+        for (size_t m = 0; m < members.size(); ++m) {
+          const int a = members[m];
+          w->touched[a][layer_row[a]] = 1;
+          num[m] = w->column_num[a].data() + static_cast<size_t>(layer_row[a]) * cols;
+          den[m] = w->column_den[a].data() + static_cast<size_t>(layer_row[a]) * cols;
+        }
+        switch (members.size()) {
+          case 1: AddBranchSums<1>(rows, weight(b), cols, lr, exact_last, light, num, den); break;
+          case 2: AddBranchSums<2>(rows, weight(b), cols, lr, exact_last, light, num, den); break;
+          case 3: AddBranchSums<3>(rows, weight(b), cols, lr, exact_last, light, num, den); break;
+          case 4: AddBranchSums<4>(rows, weight(b), cols, lr, exact_last, light, num, den); break;
+        }
+      }
+    }
+  }
+
+  // Column sums to each layer's pixels; each row read is cleared for the next view column.
+  for (size_t k = 0; k < layers; ++k) {
+    const LayerProjection& P = model.projection(k);
+    const AxisTap* col = P.col_taps(static_cast<size_t>(vc));
+    for (int r = 0; r < P.rows(); ++r) {
+      if (!w->touched[k][r]) continue;
+      Rgb4* num = w->column_num[k].data() + static_cast<size_t>(r) * cols;
+      Rgb4* den = w->column_den[k].data() + static_cast<size_t>(r) * cols;
+      Rgb4* pixel_num = w->num[k].data() + static_cast<size_t>(r) * P.cols();
+      Rgb4* pixel_den = w->den[k].data() + static_cast<size_t>(r) * P.cols();
+      for (int j = 0; j < cols; ++j) {
+        if (const int32_t c = col[j].i0; c >= 0) {
+          pixel_num[c] += num[j];
+          pixel_den[c] += den[j];
+        }
+        num[j] = den[j] = Rgb4{};
+      }
+      w->touched[k][r] = 0;
+    }
+  }
+  return (error[0][0] + error[1][0]) + (error[0][1] + error[1][1]) + (error[0][2] + error[1][2]);
+}
+
+}  // namespace
+
+double JointColumnPass(const DisplayModel& model, const LightField& l, const Patterns& t,
+                       std::vector<std::vector<double>>* num, std::vector<std::vector<double>>* den) {
+  thread_local PaddedLayers padded_memory;
+  PaddedLayers& padded = padded_memory;  // the calling thread's, shared with the workers
+  padded.PadAll(t);
+  const int view_columns = model.geometry().views_x;
+  std::vector<double> error(view_columns);  // summed in view-column order: the same for any thread count
+#pragma omp parallel
+  {
+    thread_local Workspace w;
+    Resize(model, &w);
+#pragma omp for schedule(dynamic)
+    for (int vc = 0; vc < view_columns; ++vc) error[vc] = ViewColumn(model, l, padded, vc, &w);
+#pragma omp critical
+    for (size_t k = 0; k < model.layer_count(); ++k)
+      for (size_t p = 0; p < w.num[k].size(); ++p)
+        for (int c = 0; c < 3; ++c) {
+          (*num)[k][p * 3 + c] += w.num[k][p][c];
+          (*den)[k][p * 3 + c] += w.den[k][p][c];
+        }
+  }
+  double total = 0;
+  for (double e : error) total += e;
+  return total;
+}
+
+}  // namespace layerlab

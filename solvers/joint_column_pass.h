@@ -1,0 +1,21 @@
+// The joint solver's pass (joint.cpp) for displays whose branches are all on
+// the one-tap path (one_tap_view.h), in the layout of one_tap_update.h: view
+// column by view column, every layer resampled once to the rays' columns,
+// the per-ray work in contiguous rows, and the sums scattered to each layer's
+// pixels once per view column. For every layer a of branch b it adds
+//   num_a += P_a^T(l o Q_a),  den_a += P_a^T(l~ o Q_a),   Q_a = w_b prod_{k in b, k != a} P_k t_k,
+// with l~ the whole display's light, and returns ||l - l~||^2.
+#pragma once
+
+#include <vector>
+
+#include "framework/lightfield.h"
+#include "systems/display_model.h"
+
+namespace layerlab {
+
+// num[k], den[k]: layer k's pixels x 3, added to.
+double JointColumnPass(const DisplayModel& model, const LightField& l, const Patterns& t,
+                       std::vector<std::vector<double>>* num, std::vector<std::vector<double>>* den);
+
+}  // namespace layerlab
