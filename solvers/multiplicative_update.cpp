@@ -13,7 +13,7 @@ namespace {
 // run over the few rays per view that reach it, at most a few hundred per
 // thread: float is exact enough there, and the merge across threads is in double.
 struct Sums {
-  std::vector<float> num3, den3;
+  std::vector<float> num, den;
 };
 
 // With one tap of weight 1 per ray (the one-tap path), w_b and layer a's own
@@ -40,8 +40,8 @@ void AccumulateGeneral(const DisplayModel& model, const std::vector<int>& layers
   P.ForEachTap(view, [&](size_t ray, int32_t pixel, float weight) {
     for (int c = 0; c < 3; ++c) {
       const float q = rest[ray * 3 + c];
-      sums->num3[static_cast<size_t>(pixel) * 3 + c] += weight * target[ray * 3 + c] * q;
-      sums->den3[static_cast<size_t>(pixel) * 3 + c] += weight * sampled[ray * 3 + c] * q * q;
+      sums->num[static_cast<size_t>(pixel) * 3 + c] += weight * target[ray * 3 + c] * q;
+      sums->den[static_cast<size_t>(pixel) * 3 + c] += weight * sampled[ray * 3 + c] * q * q;
     }
   });
 }
@@ -54,8 +54,7 @@ void UpdateLayerMultiplicative(const DisplayModel& model, size_t branch, int lay
   const std::vector<int>& layers = model.branch_layers(branch);
   const std::array<float, 3> w = model.weight(branch);
   const size_t n = g.pixels_per_view() * 3;
-  const size_t pixels = model.projection(layer).pixel_count();
-  const size_t m = pixels * 3;
+  const size_t m = model.projection(layer).pixel_count() * 3;
   const bool one_tap = OneTapBranch(model, branch);
   // Reused across calls (fresh megabytes would be page-faulted in on every update).
   thread_local std::vector<double> numerator_memory, denominator_memory;
@@ -74,15 +73,15 @@ void UpdateLayerMultiplicative(const DisplayModel& model, size_t branch, int lay
     {
       thread_local Sums sums;
       thread_local std::vector<float> target_scratch;
-      sums.num3.assign(m, 0.0f), sums.den3.assign(m, 0.0f);
+      sums.num.assign(m, 0.0f), sums.den.assign(m, 0.0f);
       target_scratch.resize(n);
 #pragma omp for schedule(dynamic)
       for (size_t v = 0; v < g.view_count(); ++v)
         AccumulateGeneral(model, layers, layer, *t, w, v, branch_target(v, target_scratch.data()), &sums);
 #pragma omp critical
       for (size_t k = 0; k < m; ++k) {
-        numerator[k] += sums.num3[k];
-        denominator[k] += sums.den3[k];
+        numerator[k] += sums.num[k];
+        denominator[k] += sums.den[k];
       }
     }
   }
