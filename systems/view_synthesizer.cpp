@@ -128,6 +128,49 @@ void ViewSynthesizer::Branch(size_t b, size_t view, float* out) const {
     model_.SynthesizeBranchView(b, view, t_, out);
 }
 
+bool ViewSynthesizer::Remainder(const std::vector<size_t>& branches, size_t view, const float* target,
+                                float* out) const {
+  for (size_t b : branches)
+    if (std::find(one_tap_.begin(), one_tap_.end(), b) == one_tap_.end()) return false;
+  const LightFieldGeometry& g = model_.geometry();
+  thread_local std::vector<Rgb4> row;
+  row.resize(g.cols);
+  for (int i = 0; i < g.rows; ++i) {
+    OneTapRow(branches, view, i, row.data());
+    const size_t start = static_cast<size_t>(i) * g.cols * 3;
+    for (int j = 0; j < g.cols; ++j) {
+      const Rgb4 d = LoadRgb(target + start + j * 3) - row[j];
+      for (int c = 0; c < 3; ++c) out[start + j * 3 + c] = std::max(d[c], 0.0f);
+    }
+  }
+  return true;
+}
+
+bool ViewSynthesizer::RemainderAndError(const std::vector<size_t>& branches, size_t view, const float* target,
+                                        float* out, double* error) const {
+  if (!general_.empty()) return false;
+  std::vector<size_t> rest;
+  for (size_t b : one_tap_)
+    if (std::find(branches.begin(), branches.end(), b) == branches.end()) rest.push_back(b);
+  const LightFieldGeometry& g = model_.geometry();
+  thread_local std::vector<Rgb4> light, rest_light;
+  light.resize(g.cols), rest_light.resize(g.cols);
+  Double4 sum[2] = {};
+  for (int i = 0; i < g.rows; ++i) {
+    OneTapRow(branches, view, i, light.data());
+    OneTapRow(rest, view, i, rest_light.data());
+    const size_t start = static_cast<size_t>(i) * g.cols * 3;
+    for (int j = 0; j < g.cols; ++j) {
+      const Rgb4 l = LoadRgb(target + start + j * 3);
+      const Rgb4 d = l - light[j];
+      for (int c = 0; c < 3; ++c) out[start + j * 3 + c] = std::max(d[c], 0.0f);
+      AddSquared(sum[j & 1], l, rest_light[j] + light[j]);
+    }
+  }
+  *error = (sum[0][0] + sum[1][0]) + (sum[0][1] + sum[1][1]) + (sum[0][2] + sum[1][2]);
+  return true;
+}
+
 double ViewSynthesizer::SquaredError(size_t view, const float* target) const {
   const LightFieldGeometry& g = model_.geometry();
   const size_t n = g.pixels_per_view() * 3;

@@ -22,6 +22,16 @@ class ViewSynthesizer {
   void View(size_t view, float* out) const;
   // out = branch b's light alone in one view.
   void Branch(size_t b, size_t view, float* out) const;
+  // out = max(0, target - the light of `branches`) over one view, row by row,
+  // if every one of them is on the one-tap path; false (out untouched) if not.
+  bool Remainder(const std::vector<size_t>& branches, size_t view, const float* target, float* out) const;
+  // True if every branch is on the one-tap path.
+  bool AllOneTap() const { return general_.empty(); }
+  // Remainder, and in the same pass the whole display's squared error as
+  // SquaredError gives it; false (nothing done) unless every branch is on
+  // the one-tap path.
+  bool RemainderAndError(const std::vector<size_t>& branches, size_t view, const float* target, float* out,
+                         double* error) const;
   // Sum over the rays and channels of one view of (target - light)^2, in
   // double; `target` is that view, [row][col][rgb].
   double SquaredError(size_t view, const float* target) const;
