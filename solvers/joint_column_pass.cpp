@@ -8,8 +8,6 @@
 namespace layerlab {
 namespace {
 
-using Double4 = double __attribute__((vector_size(32)));
-
 // One thread's work space, kept across passes (fresh megabytes would be
 // page-faulted in on every pass).
 struct Workspace {
@@ -97,7 +95,7 @@ double ViewColumn(const DisplayModel& model, const LightField& l, const PaddedLa
         out[static_cast<size_t>(r) * cols + j] = col[j].i0 < 0 ? Rgb4{} : source[static_cast<size_t>(r) * P.cols() + col[j].i0];
   }
 
-  Double4 error[2] = {};
+  double error = 0;
   std::vector<const Rgb4*> row(layers);  // each layer's resampled row for the current ray row, or null
   std::vector<int32_t> layer_row(layers);
   for (int vr = 0; vr < g.views_y; ++vr) {
@@ -133,14 +131,7 @@ double ViewColumn(const DisplayModel& model, const LightField& l, const PaddedLa
       }
       const float* lr = target + static_cast<size_t>(i) * cols * 3;
       const bool exact_last = i == g.rows - 1;  // the view's last ray is read exactly
-      // Lane 3 sums what the padding lanes hold and is never read.
-      auto add_error = [&](int j, Rgb4 lj) {
-        const Double4 d = __builtin_convertvector(lj, Double4) - __builtin_convertvector(light[j], Double4);
-        error[j & 1] += d * d;
-      };
-      const int safe = exact_last ? cols - 1 : cols;
-      for (int j = 0; j < safe; ++j) add_error(j, LoadRgbOver(lr + j * 3));
-      for (int j = safe; j < cols; ++j) add_error(j, LoadRgb(lr + j * 3));
+      error += SquaredErrorRow(lr, light, cols, exact_last);
 
       // Each layer's sums in the rays' columns.
       for (size_t b = 0; b < model.branch_count(); ++b) {
@@ -184,7 +175,7 @@ double ViewColumn(const DisplayModel& model, const LightField& l, const PaddedLa
       w->touched[k][r] = 0;
     }
   }
-  return (error[0][0] + error[1][0]) + (error[0][1] + error[1][1]) + (error[0][2] + error[1][2]);
+  return error;
 }
 
 }  // namespace

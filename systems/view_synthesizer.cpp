@@ -28,15 +28,6 @@ void AddBranchRow(const Rgb4* const* layers, Rgb4 w, int cols, Rgb4* row) {
   }
 }
 
-using Double4 = double __attribute__((vector_size(32)));
-
-// sum += (target - light)^2 of one ray in lanes 0-2; lane 3 sums whatever
-// the padding lanes hold and is never read. By reference: a 32-byte vector
-// passed by value would change the ABI between SSE and AVX builds.
-inline void AddSquared(Double4& sum, Rgb4 target, Rgb4 light) {
-  const Double4 d = __builtin_convertvector(target, Double4) - __builtin_convertvector(light, Double4);
-  sum += d * d;
-}
 
 }  // namespace
 
@@ -155,19 +146,19 @@ bool ViewSynthesizer::RemainderAndError(const std::vector<size_t>& branches, siz
   const LightFieldGeometry& g = model_.geometry();
   thread_local std::vector<Rgb4> light, rest_light;
   light.resize(g.cols), rest_light.resize(g.cols);
-  Double4 sum[2] = {};
+  double sum = 0;
   for (int i = 0; i < g.rows; ++i) {
     OneTapRow(branches, view, i, light.data());
     OneTapRow(rest, view, i, rest_light.data());
     const size_t start = static_cast<size_t>(i) * g.cols * 3;
     for (int j = 0; j < g.cols; ++j) {
-      const Rgb4 l = LoadRgb(target + start + j * 3);
-      const Rgb4 d = l - light[j];
+      const Rgb4 d = LoadRgb(target + start + j * 3) - light[j];
       for (int c = 0; c < 3; ++c) out[start + j * 3 + c] = std::max(d[c], 0.0f);
-      AddSquared(sum[j & 1], l, rest_light[j] + light[j]);
+      rest_light[j] += light[j];  // now the whole display's
     }
+    sum += SquaredErrorRow(target + start, rest_light.data(), g.cols, i == g.rows - 1);
   }
-  *error = (sum[0][0] + sum[1][0]) + (sum[0][1] + sum[1][1]) + (sum[0][2] + sum[1][2]);
+  *error = sum;
   return true;
 }
 
@@ -178,23 +169,22 @@ double ViewSynthesizer::SquaredError(size_t view, const float* target) const {
     thread_local std::vector<float> light;
     light.resize(n);
     View(view, light.data());
-    Double4 sum[2] = {};
-    size_t k = 0;
-    for (; k + 3 <= n; k += 3) AddSquared(sum[k & 1], LoadRgb(target + k), LoadRgb(light.data() + k));
-    return (sum[0][0] + sum[1][0]) + (sum[0][1] + sum[1][1]) + (sum[0][2] + sum[1][2]);
+    double sum = 0;
+    for (size_t k = 0; k < n; ++k) {
+      const double d = double(target[k]) - light[k];
+      sum += d * d;
+    }
+    return sum;
   }
   // Row by row: nothing of view size is written.
   thread_local std::vector<Rgb4> row;
   row.resize(g.cols);
-  Double4 sum[2] = {};  // two chains of dependent additions, not one
+  double sum = 0;
   for (int i = 0; i < g.rows; ++i) {
     OneTapRow(one_tap_, view, i, row.data());
-    const float* l = target + static_cast<size_t>(i) * g.cols * 3;
-    int j = 0;
-    for (; j + 1 < g.cols; ++j) AddSquared(sum[j & 1], LoadRgbOver(l + j * 3), row[j]);
-    AddSquared(sum[j & 1], LoadRgb(l + j * 3), row[j]);
+    sum += SquaredErrorRow(target + static_cast<size_t>(i) * g.cols * 3, row.data(), g.cols, i == g.rows - 1);
   }
-  return (sum[0][0] + sum[1][0]) + (sum[0][1] + sum[1][1]) + (sum[0][2] + sum[1][2]);
+  return sum;
 }
 
 }  // namespace layerlab
