@@ -55,12 +55,9 @@ Rgb4 WeightOf(const DisplayModel& model, size_t b) {
 
 }  // namespace
 
-OneTapBranchView::OneTapBranchView(const DisplayModel& model, size_t b, size_t view)
-    : view_(ViewOf(model, b, view)), weight_(WeightOf(model, b)) {}
-
 OneTapBranchView::OneTapBranchView(const DisplayModel& model, size_t b, const AxisTap* const* row_taps,
-                                   const AxisTap* const* col_taps, int ray_rows, int ray_cols)
-    : view_(ViewOf(model, b, row_taps, col_taps, ray_rows, ray_cols)), weight_(WeightOf(model, b)) {}
+                                   const AxisTap* const* col_taps, int ray_cols)
+    : view_(ViewOf(model, b, row_taps, col_taps, ray_cols)), weight_(WeightOf(model, b)) {}
 
 void OneTapBranchView::AddRow(const PaddedLayers& padded, int i, Rgb4* row) const {
   std::visit([&](const auto& v) { AddRowOf(v, padded, i, weight_, row); }, view_);

@@ -1,10 +1,14 @@
 // The fast path of the common case: every layer of a branch read with nearest
-// sampling and no rotation (LayerProjection::one_tap). In one view the column a
-// layer reads then depends on the ray's column only and its row on the ray's
-// row only, so the rays of a view that reach every layer of the branch are
-// listed once (OneTapView::columns), and each ray row is one pass over that
-// list with every layer's pattern row fixed. Patterns are read padded to
-// [pixel][rgb, 0] (PaddedLayers) so that a pixel is one vector load.
+// sampling and no rotation (LayerProjection::one_tap), at most
+// kMaxOneTapLayers per branch. Patterns are read padded to [pixel][rgb, 0]
+// (PaddedLayers) so that a pixel is one vector load.
+//
+// For a grid of rays whose column taps depend on the ray's column only and
+// row taps on its row only (a retina for one pupil point), OneTapView lists
+// once the columns of the rays that reach every layer; each ray row is then
+// one pass over that list with every layer's pattern row fixed. The
+// light-field passes go further, view column by view column
+// (view_synthesizer.h, solvers/one_tap_update.h, solvers/joint_column_pass.h).
 #pragma once
 
 #include <algorithm>
@@ -43,12 +47,11 @@ class OneTapView {
     int32_t pixel[L];  // column read in each layer
   };
 
-  // Rays on a grid of ray_rows x ray_cols (a light-field view, or the retina
+  // Rays on a grid of rows x ray_cols (a light-field view, or the retina
   // for one pupil point): ray column j reads column col_taps[k][j].i0 of layer
   // layers[k] and ray row i its row row_taps[k][i].i0 (-1: misses it).
   OneTapView(const DisplayModel& model, const int* layers, const AxisTap* const* row_taps,
-             const AxisTap* const* col_taps, int ray_rows, int ray_cols)
-      : ray_rows_(ray_rows), ray_cols_(ray_cols) {
+             const AxisTap* const* col_taps, int ray_cols) {
     for (int k = 0; k < L; ++k) {
       layers_[k] = layers[k];
       row_taps_[k] = row_taps[k];
@@ -63,11 +66,6 @@ class OneTapView {
     }
   }
 
-  // The rays of light-field view `view`; `layers`: L layer indices.
-  OneTapView(const DisplayModel& model, const int* layers, size_t view)
-      : OneTapView(model, layers, Taps(model, layers, view, true).data(), Taps(model, layers, view, false).data(),
-                   model.geometry().rows, model.geometry().cols) {}
-
   // The columns of the rays that reach every layer, left to right.
   const std::vector<Column>& columns() const { return columns_; }
 
@@ -81,23 +79,7 @@ class OneTapView {
     return true;
   }
 
-  // How many of the listed columns of ray row i may read one float past their
-  // ray (into the next ray's red) in a [row][col][rgb] buffer of this grid:
-  // all but the grid's very last ray.
-  size_t OverreadSafe(int i) const {
-    const bool last = i == ray_rows_ - 1 && !columns_.empty() && columns_.back().ray == ray_cols_ - 1;
-    return columns_.size() - (last ? 1 : 0);
-  }
-
  private:
-  static std::array<const AxisTap*, L> Taps(const DisplayModel& model, const int* layers, size_t view, bool rows) {
-    std::array<const AxisTap*, L> taps;
-    for (int k = 0; k < L; ++k)
-      taps[k] = rows ? model.projection(layers[k]).row_taps(view) : model.projection(layers[k]).col_taps(view);
-    return taps;
-  }
-
-  int ray_rows_, ray_cols_;
   int layers_[L];
   const AxisTap* row_taps_[L];
   int cols_[L];
@@ -107,11 +89,9 @@ class OneTapView {
 // One view of a fast-path branch, whatever its number of layers.
 class OneTapBranchView {
  public:
-  // Light-field view `view`.
-  OneTapBranchView(const DisplayModel& model, size_t b, size_t view);
-  // Any grid of rays (OneTapView); the tables are per layer of the branch, in its order.
+  // The tables are per layer of the branch, in its order (OneTapView).
   OneTapBranchView(const DisplayModel& model, size_t b, const AxisTap* const* row_taps, const AxisTap* const* col_taps,
-                   int ray_rows, int ray_cols);
+                   int ray_cols);
   // row[j] += the light of the branch in ray (i, j) of the view, w_b prod_k P_k t_k.
   void AddRow(const PaddedLayers& padded, int i, Rgb4* row) const;
 

@@ -106,7 +106,7 @@ void NearestRetina(const DisplayModel& model, const Patterns& t, const RetinaGri
         rows.push_back(tables[p * layers + k].rows.data());
         cols.push_back(tables[p * layers + k].cols.data());
       }
-      views.emplace_back(model, b, rows.data(), cols.data(), retina.rows, retina.cols);
+      views.emplace_back(model, b, rows.data(), cols.data(), retina.cols);
     }
   const float inverse_count = static_cast<float>(1.0 / pupil.size());
 #pragma omp parallel
