@@ -9,7 +9,7 @@ packages=(cmake ninja-build g++ pkg-config
           libcli11-dev libtbb-dev libgtest-dev libgmock-dev libbenchmark-dev libpng-dev
           chromium fonts-liberation)  # headless Chromium for the report's end-to-end test
 
-packages+=(clang-14 libclang-rt-14-dev libomp-14-dev)  # the fuzz build in .ci/run (docs/robustness.md)
+packages+=(clang-14 libclang-rt-14-dev libomp-14-dev)  # the sanitizer and fuzz build in .ci/run (docs/robustness.md)
 
 missing=()
 for p in "${packages[@]}"; do
