@@ -11,24 +11,10 @@ namespace {
 // One thread's work space, kept across passes (fresh megabytes would be
 // page-faulted in on every pass).
 struct Workspace {
-  std::vector<std::vector<Rgb4>> resampled;           // [layer][its row][ray column]
-  std::vector<std::vector<Rgb4>> column_num, column_den;  // [layer][its row][ray column]
-  std::vector<std::vector<uint8_t>> touched;          // [layer][its row]
-  std::vector<std::vector<Rgb4>> num, den;            // [layer][pixel]
-  std::vector<Rgb4> light;                            // one ray row of the whole display
+  std::vector<std::vector<Rgb4>> resampled;  // [layer][its row][ray column]
+  std::vector<ColumnSums> sums;              // [layer]
+  std::vector<Rgb4> light;                   // one ray row of the whole display
 };
-
-// light[j] += w prod_k rows[k][j] over one ray row.
-template <int L>
-void AddBranchLight(const Rgb4* const* rows, Rgb4 w, int cols, Rgb4* light) {
-  const Rgb4* r[L];
-  for (int k = 0; k < L; ++k) r[k] = rows[k];
-  for (int j = 0; j < cols; ++j) {
-    Rgb4 p = w;
-    for (int k = 0; k < L; ++k) p *= r[k][j];
-    light[j] += p;
-  }
-}
 
 // For every layer a of one branch over one ray row, q_a = w prod_{k != a} rows[k][j]:
 // num[a][j] += l_j q_a, den[a][j] += light[j] q_a. `exact_last`: read the
@@ -61,23 +47,10 @@ void AddBranchSums(const Rgb4* const* rows, Rgb4 w, int cols, const float* l, bo
 }
 
 void Resize(const DisplayModel& model, Workspace* w) {
-  const int cols = model.geometry().cols;
   const size_t layers = model.layer_count();
-  w->resampled.resize(layers), w->column_num.resize(layers), w->column_den.resize(layers);
-  w->touched.resize(layers), w->num.resize(layers), w->den.resize(layers);
-  for (size_t k = 0; k < layers; ++k) {
-    const LayerProjection& P = model.projection(k);
-    const size_t cells = static_cast<size_t>(P.rows()) * cols;
-    w->resampled[k].resize(cells);
-    if (w->column_num[k].size() != cells) {
-      w->column_num[k].assign(cells, Rgb4{});
-      w->column_den[k].assign(cells, Rgb4{});
-    }
-    w->touched[k].assign(P.rows(), 0);
-    w->num[k].assign(P.pixel_count(), Rgb4{});
-    w->den[k].assign(P.pixel_count(), Rgb4{});
-  }
-  w->light.resize(cols);
+  w->resampled.resize(layers), w->sums.resize(layers);
+  for (size_t k = 0; k < layers; ++k) w->sums[k].Reset(model.projection(k), model.geometry().cols);
+  w->light.resize(model.geometry().cols);
 }
 
 // ||l - l~||^2 over the rays of view column vc; the sums into w.
@@ -85,15 +58,8 @@ double ViewColumn(const DisplayModel& model, const LightField& l, const PaddedLa
   const LightFieldGeometry& g = model.geometry();
   const int cols = g.cols;
   const size_t layers = model.layer_count();
-  for (size_t k = 0; k < layers; ++k) {
-    const LayerProjection& P = model.projection(k);
-    const AxisTap* col = P.col_taps(static_cast<size_t>(vc));  // view vc: row 0, column vc
-    const Rgb4* source = padded.pixels(static_cast<int>(k));
-    Rgb4* out = w->resampled[k].data();
-    for (int r = 0; r < P.rows(); ++r)
-      for (int j = 0; j < cols; ++j)
-        out[static_cast<size_t>(r) * cols + j] = col[j].i0 < 0 ? Rgb4{} : source[static_cast<size_t>(r) * P.cols() + col[j].i0];
-  }
+  for (size_t k = 0; k < layers; ++k)
+    ResampleToRayColumns(model.projection(k), padded.pixels(static_cast<int>(k)), vc, cols, &w->resampled[k]);
 
   double error = 0;
   std::vector<const Rgb4*> row(layers);  // each layer's resampled row for the current ray row, or null
@@ -122,12 +88,7 @@ double ViewColumn(const DisplayModel& model, const LightField& l, const PaddedLa
       };
       for (size_t b = 0; b < model.branch_count(); ++b) {
         if (!branch_rows(b)) continue;
-        switch (model.branch_layers(b).size()) {
-          case 1: AddBranchLight<1>(rows, weight(b), cols, light); break;
-          case 2: AddBranchLight<2>(rows, weight(b), cols, light); break;
-          case 3: AddBranchLight<3>(rows, weight(b), cols, light); break;
-          case 4: AddBranchLight<4>(rows, weight(b), cols, light); break;
-        }
+        AddBranchLightRow(rows, static_cast<int>(model.branch_layers(b).size()), weight(b), cols, light);
       }
       const float* lr = target + static_cast<size_t>(i) * cols * 3;
       const bool exact_last = i == g.rows - 1;  // the view's last ray is read exactly
@@ -141,9 +102,8 @@ double ViewColumn(const DisplayModel& model, const LightField& l, const PaddedLa
         Rgb4* den[kMaxOneTapLayers];
         for (size_t m = 0; m < members.size(); ++m) {
           const int a = members[m];
-          w->touched[a][layer_row[a]] = 1;
-          num[m] = w->column_num[a].data() + static_cast<size_t>(layer_row[a]) * cols;
-          den[m] = w->column_den[a].data() + static_cast<size_t>(layer_row[a]) * cols;
+          num[m] = w->sums[a].num(layer_row[a]);
+          den[m] = w->sums[a].den(layer_row[a]);
         }
         switch (members.size()) {
           case 1: AddBranchSums<1>(rows, weight(b), cols, lr, exact_last, light, num, den); break;
@@ -155,26 +115,7 @@ double ViewColumn(const DisplayModel& model, const LightField& l, const PaddedLa
     }
   }
 
-  // Column sums to each layer's pixels; each row read is cleared for the next view column.
-  for (size_t k = 0; k < layers; ++k) {
-    const LayerProjection& P = model.projection(k);
-    const AxisTap* col = P.col_taps(static_cast<size_t>(vc));
-    for (int r = 0; r < P.rows(); ++r) {
-      if (!w->touched[k][r]) continue;
-      Rgb4* num = w->column_num[k].data() + static_cast<size_t>(r) * cols;
-      Rgb4* den = w->column_den[k].data() + static_cast<size_t>(r) * cols;
-      Rgb4* pixel_num = w->num[k].data() + static_cast<size_t>(r) * P.cols();
-      Rgb4* pixel_den = w->den[k].data() + static_cast<size_t>(r) * P.cols();
-      for (int j = 0; j < cols; ++j) {
-        if (const int32_t c = col[j].i0; c >= 0) {
-          pixel_num[c] += num[j];
-          pixel_den[c] += den[j];
-        }
-        num[j] = den[j] = Rgb4{};
-      }
-      w->touched[k][r] = 0;
-    }
-  }
+  for (size_t k = 0; k < layers; ++k) w->sums[k].Scatter(model.projection(k), vc);
   return error;
 }
 
@@ -194,12 +135,7 @@ double JointColumnPass(const DisplayModel& model, const LightField& l, const Pat
 #pragma omp for schedule(dynamic)
     for (int vc = 0; vc < view_columns; ++vc) error[vc] = ViewColumn(model, l, padded, vc, &w);
 #pragma omp critical
-    for (size_t k = 0; k < model.layer_count(); ++k)
-      for (size_t p = 0; p < w.num[k].size(); ++p)
-        for (int c = 0; c < 3; ++c) {
-          (*num)[k][p * 3 + c] += w.num[k][p][c];
-          (*den)[k][p * 3 + c] += w.den[k][p][c];
-        }
+    for (size_t k = 0; k < model.layer_count(); ++k) w.sums[k].AddTo((*num)[k].data(), (*den)[k].data());
   }
   double total = 0;
   for (double e : error) total += e;

@@ -1,5 +1,6 @@
 #include "solvers/one_tap_update.h"
 
+#include <algorithm>
 #include <cstdint>
 
 #include "framework/rgb4.h"
@@ -12,9 +13,7 @@ namespace {
 // page-faulted in on every update).
 struct Workspace {
   std::vector<std::vector<Rgb4>> resampled;  // other layer k: [its row][ray column]
-  std::vector<Rgb4> column_num, column_den;  // [layer a row][ray column]
-  std::vector<uint8_t> touched;              // layer a rows that hold column sums
-  std::vector<Rgb4> num, den;                // [layer a pixel]
+  ColumnSums sums;                           // layer a's
   std::vector<float> scratch;                // one view of the branch target, if it needs one
   std::vector<Rgb4> product;                 // one ray row of the other layers' product
 };
@@ -42,16 +41,8 @@ void Accumulate(const DisplayModel& model, const std::vector<int>& layers, const
   const int cols = g.cols;
   const LayerProjection& Pa = model.projection(layers[0]);
 
-  // Each other layer at the rays' columns of this view column (0 where a ray misses it).
-  for (int k = 1; k < L; ++k) {
-    const LayerProjection& P = model.projection(layers[k]);
-    const AxisTap* col = P.col_taps(static_cast<size_t>(vc));  // view vc: row 0, column vc
-    const Rgb4* source = padded.pixels(layers[k]);
-    std::vector<Rgb4>& out = w->resampled[k - 1];
-    for (int r = 0; r < P.rows(); ++r)
-      for (int j = 0; j < cols; ++j)
-        out[static_cast<size_t>(r) * cols + j] = col[j].i0 < 0 ? Rgb4{} : source[static_cast<size_t>(r) * P.cols() + col[j].i0];
-  }
+  for (int k = 1; k < L; ++k)
+    ResampleToRayColumns(model.projection(layers[k]), padded.pixels(layers[k]), vc, cols, &w->resampled[k - 1]);
 
   for (int vr = 0; vr < g.views_y; ++vr) {
     const size_t view = g.view_index(vr, vc);
@@ -69,40 +60,18 @@ void Accumulate(const DisplayModel& model, const std::vector<int>& layers, const
         if (reached) q_rows[k - 1] = w->resampled[k - 1].data() + static_cast<size_t>(r) * cols;
       }
       if (!reached) continue;
-      w->touched[ra] = 1;
-      Rgb4* num = w->column_num.data() + static_cast<size_t>(ra) * cols;
-      Rgb4* den = w->column_den.data() + static_cast<size_t>(ra) * cols;
       const float* l = target + static_cast<size_t>(i) * cols * 3;
       const Rgb4* q = L == 1 ? nullptr : q_rows[0];
       if constexpr (L > 2) {  // the product of the other layers, then the sums
-        for (int j = 0; j < cols; ++j) {
-          Rgb4 p = q_rows[0][j];
-          for (int k = 1; k < L - 1; ++k) p *= q_rows[k][j];
-          w->product[j] = p;
-        }
+        std::fill(w->product.begin(), w->product.end(), Rgb4{});
+        AddBranchLightRow(q_rows, L - 1, Rgb4{1, 1, 1, 0}, cols, w->product.data());
         q = w->product.data();
       }
-      RowSums(l, q, num, den, cols);
+      RowSums(l, q, w->sums.num(ra), w->sums.den(ra), cols);
     }
   }
 
-  // Column sums to layer a's pixels; each row read is cleared for the next view column.
-  const AxisTap* col_a = Pa.col_taps(static_cast<size_t>(vc));
-  for (int r = 0; r < Pa.rows(); ++r) {
-    if (!w->touched[r]) continue;
-    Rgb4* num = w->column_num.data() + static_cast<size_t>(r) * cols;
-    Rgb4* den = w->column_den.data() + static_cast<size_t>(r) * cols;
-    Rgb4* pixel_num = w->num.data() + static_cast<size_t>(r) * Pa.cols();
-    Rgb4* pixel_den = w->den.data() + static_cast<size_t>(r) * Pa.cols();
-    for (int j = 0; j < cols; ++j) {
-      if (const int32_t c = col_a[j].i0; c >= 0) {
-        pixel_num[c] += num[j];
-        pixel_den[c] += den[j];
-      }
-      num[j] = den[j] = Rgb4{};
-    }
-    w->touched[r] = 0;
-  }
+  w->sums.Scatter(Pa, vc);
 }
 
 }  // namespace
@@ -111,7 +80,6 @@ void OneTapUpdateSums(const DisplayModel& model, const std::vector<int>& layers,
                       const BranchTarget& branch_target, double* num, double* den) {
   const LightFieldGeometry& g = model.geometry();
   const LayerProjection& Pa = model.projection(layers[0]);
-  const size_t pixels = Pa.pixel_count();
   thread_local PaddedLayers padded_memory;
   PaddedLayers& padded = padded_memory;  // the calling thread's, shared with the workers
   padded.Pad(t, std::vector<int>(layers.begin() + 1, layers.end()));
@@ -122,16 +90,7 @@ void OneTapUpdateSums(const DisplayModel& model, const std::vector<int>& layers,
   {
     thread_local Workspace w;
     w.resampled.resize(layers.size() - 1);
-    for (size_t k = 1; k < layers.size(); ++k)
-      w.resampled[k - 1].resize(static_cast<size_t>(model.projection(layers[k]).rows()) * g.cols);
-    const size_t column_cells = static_cast<size_t>(Pa.rows()) * g.cols;
-    if (w.column_num.size() != column_cells) {
-      w.column_num.assign(column_cells, Rgb4{});
-      w.column_den.assign(column_cells, Rgb4{});
-    }
-    w.touched.assign(Pa.rows(), 0);
-    w.num.assign(pixels, Rgb4{});
-    w.den.assign(pixels, Rgb4{});
+    w.sums.Reset(Pa, g.cols);
     w.scratch.resize(g.pixels_per_view() * 3);
     w.product.resize(g.cols);
 #pragma omp for schedule(dynamic)
@@ -144,11 +103,7 @@ void OneTapUpdateSums(const DisplayModel& model, const std::vector<int>& layers,
       }
     }
 #pragma omp critical
-    for (size_t k = 0; k < pixels; ++k)
-      for (int c = 0; c < 3; ++c) {
-        num[k * 3 + c] += w.num[k][c];
-        den[k * 3 + c] += w.den[k][c];
-      }
+    w.sums.AddTo(num, den);
   }
 }
 

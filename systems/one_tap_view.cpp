@@ -63,6 +63,79 @@ void OneTapBranchView::AddRow(const PaddedLayers& padded, int i, Rgb4* row) cons
   std::visit([&](const auto& v) { AddRowOf(v, padded, i, weight_, row); }, view_);
 }
 
+void ResampleToRayColumns(const LayerProjection& P, const Rgb4* pixels, int vc, int ray_cols, std::vector<Rgb4>* out) {
+  const AxisTap* col = P.col_taps(static_cast<size_t>(vc));  // view vc: row 0, column vc
+  out->resize(static_cast<size_t>(P.rows()) * ray_cols);
+  Rgb4* o = out->data();
+  for (int r = 0; r < P.rows(); ++r)
+    for (int j = 0; j < ray_cols; ++j)
+      o[static_cast<size_t>(r) * ray_cols + j] = col[j].i0 < 0 ? Rgb4{} : pixels[static_cast<size_t>(r) * P.cols() + col[j].i0];
+}
+
+namespace {
+
+template <int L>
+void AddBranchLightRowOf(const Rgb4* const* rows, Rgb4 w, int cols, Rgb4* row) {
+  const Rgb4* r[L];
+  for (int k = 0; k < L; ++k) r[k] = rows[k];
+  for (int j = 0; j < cols; ++j) {
+    Rgb4 p = w;
+    for (int k = 0; k < L; ++k) p *= r[k][j];
+    row[j] += p;
+  }
+}
+
+}  // namespace
+
+void AddBranchLightRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, Rgb4* row) {
+  static_assert(kMaxOneTapLayers == 4);
+  switch (layers) {
+    case 1: return AddBranchLightRowOf<1>(rows, w, cols, row);
+    case 2: return AddBranchLightRowOf<2>(rows, w, cols, row);
+    case 3: return AddBranchLightRowOf<3>(rows, w, cols, row);
+    case 4: return AddBranchLightRowOf<4>(rows, w, cols, row);
+  }
+}
+
+void ColumnSums::Reset(const LayerProjection& P, int ray_cols) {
+  const size_t cells = static_cast<size_t>(P.rows()) * ray_cols;
+  if (column_num_.size() != cells) {
+    column_num_.assign(cells, Rgb4{});
+    column_den_.assign(cells, Rgb4{});
+  }
+  ray_cols_ = ray_cols;
+  touched_.assign(P.rows(), 0);
+  pixel_num_.assign(P.pixel_count(), Rgb4{});
+  pixel_den_.assign(P.pixel_count(), Rgb4{});
+}
+
+void ColumnSums::Scatter(const LayerProjection& P, int vc) {
+  const AxisTap* col = P.col_taps(static_cast<size_t>(vc));
+  for (int r = 0; r < P.rows(); ++r) {
+    if (!touched_[r]) continue;
+    Rgb4* num = &column_num_[static_cast<size_t>(r) * ray_cols_];
+    Rgb4* den = &column_den_[static_cast<size_t>(r) * ray_cols_];
+    Rgb4* pixel_num = &pixel_num_[static_cast<size_t>(r) * P.cols()];
+    Rgb4* pixel_den = &pixel_den_[static_cast<size_t>(r) * P.cols()];
+    for (int j = 0; j < ray_cols_; ++j) {
+      if (const int32_t c = col[j].i0; c >= 0) {
+        pixel_num[c] += num[j];
+        pixel_den[c] += den[j];
+      }
+      num[j] = den[j] = Rgb4{};
+    }
+    touched_[r] = 0;
+  }
+}
+
+void ColumnSums::AddTo(double* num, double* den) const {
+  for (size_t k = 0; k < pixel_num_.size(); ++k)
+    for (int c = 0; c < 3; ++c) {
+      num[k * 3 + c] += pixel_num_[k][c];
+      den[k * 3 + c] += pixel_den_[k][c];
+    }
+}
+
 void PackRow(const Rgb4* row, int cols, float* out) {
   if (cols <= 0) return;
   // Each 16-byte store spills its padding onto the next ray's red, which the

@@ -100,6 +100,37 @@ class OneTapBranchView {
   Rgb4 weight_;
 };
 
+// Layer P's padded pattern at the rays' columns of view column vc,
+// [its row][ray column], 0 where a ray misses the layer: within a view
+// column a layer's column tap depends on the ray's column alone.
+void ResampleToRayColumns(const LayerProjection& P, const Rgb4* pixels, int vc, int ray_cols, std::vector<Rgb4>* out);
+
+// row[j] += w prod_k rows[k][j] over one ray row of a branch of `layers`
+// (1 to kMaxOneTapLayers) layers, each row resampled to the rays' columns.
+void AddBranchLightRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, Rgb4* row);
+
+// One layer's multiplicative-update sums (numerator and denominator) for one
+// thread: summed in the rays' columns over the ray rows of a view column,
+// then scattered to the layer's pixels once per view column.
+class ColumnSums {
+ public:
+  // For a pass: the pixel sums zeroed (the column sums are always clear between view columns).
+  void Reset(const LayerProjection& P, int ray_cols);
+  // The column sums of layer row r, marked as holding sums.
+  Rgb4* num(int r) { touched_[r] = 1; return &column_num_[static_cast<size_t>(r) * ray_cols_]; }
+  Rgb4* den(int r) { touched_[r] = 1; return &column_den_[static_cast<size_t>(r) * ray_cols_]; }
+  // The column sums into the pixel sums through view column vc's column taps; clears them.
+  void Scatter(const LayerProjection& P, int vc);
+  // num[pixel * 3 + c] += the pixel sums, and den likewise (merging threads, in double).
+  void AddTo(double* num, double* den) const;
+
+ private:
+  int ray_cols_ = 0;
+  std::vector<Rgb4> column_num_, column_den_;  // [layer row][ray column]
+  std::vector<uint8_t> touched_;               // layer rows that hold column sums
+  std::vector<Rgb4> pixel_num_, pixel_den_;    // [pixel]
+};
+
 // One ray row [ray][rgb, 0] into [ray][rgb], writing exactly cols x 3 floats.
 void PackRow(const Rgb4* row, int cols, float* out);
 

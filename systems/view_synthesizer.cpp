@@ -18,16 +18,13 @@ struct ColumnCache {
 
 std::atomic<uint64_t> next_id{1};
 
-// row[j] += w prod_k layer_k[j] over one ray row of one branch (L layers).
-template <int L>
-void AddBranchRow(const Rgb4* const* layers, Rgb4 w, int cols, Rgb4* row) {
+// out = max(0, target - light) over one ray row ([ray][rgb] and [ray][rgb, 0]).
+void RemainderRow(const float* target, const Rgb4* light, int cols, float* out) {
   for (int j = 0; j < cols; ++j) {
-    Rgb4 p = w * layers[0][j];
-    for (int k = 1; k < L; ++k) p *= layers[k][j];
-    row[j] += p;
+    const Rgb4 d = LoadRgb(target + j * 3) - light[j];
+    for (int c = 0; c < 3; ++c) out[j * 3 + c] = std::max(d[c], 0.0f);
   }
 }
-
 
 }  // namespace
 
@@ -53,17 +50,8 @@ void ViewSynthesizer::OneTapRow(const std::vector<size_t>& branches, size_t view
     cache.owner = id_, cache.vc = vc;
     cache.layers.resize(model_.layer_count());
     for (size_t b : one_tap_)
-      for (int k : model_.branch_layers(b)) {
-        const LayerProjection& P = model_.projection(k);
-        const AxisTap* col = P.col_taps(static_cast<size_t>(vc));  // view vc: row 0, column vc
-        const Rgb4* source = padded_.pixels(k);
-        std::vector<Rgb4>& out = cache.layers[k];
-        out.resize(static_cast<size_t>(P.rows()) * g.cols);
-        for (int r = 0; r < P.rows(); ++r)
-          for (int j = 0; j < g.cols; ++j)
-            out[static_cast<size_t>(r) * g.cols + j] =
-                col[j].i0 < 0 ? Rgb4{} : source[static_cast<size_t>(r) * P.cols() + col[j].i0];
-      }
+      for (int k : model_.branch_layers(b))
+        ResampleToRayColumns(model_.projection(k), padded_.pixels(k), vc, g.cols, &cache.layers[k]);
   }
   std::fill(row, row + g.cols, Rgb4{});
   for (size_t b : branches) {
@@ -78,12 +66,7 @@ void ViewSynthesizer::OneTapRow(const std::vector<size_t>& branches, size_t view
     if (!reached) continue;
     const std::array<float, 3>& w = model_.weight(b);
     const Rgb4 w4{w[0], w[1], w[2], 0.0f};
-    switch (layers.size()) {
-      case 1: AddBranchRow<1>(rows, w4, g.cols, row); break;
-      case 2: AddBranchRow<2>(rows, w4, g.cols, row); break;
-      case 3: AddBranchRow<3>(rows, w4, g.cols, row); break;
-      case 4: AddBranchRow<4>(rows, w4, g.cols, row); break;
-    }
+    AddBranchLightRow(rows, static_cast<int>(layers.size()), w4, g.cols, row);
   }
 }
 
@@ -129,10 +112,7 @@ bool ViewSynthesizer::Remainder(const std::vector<size_t>& branches, size_t view
   for (int i = 0; i < g.rows; ++i) {
     OneTapRow(branches, view, i, row.data());
     const size_t start = static_cast<size_t>(i) * g.cols * 3;
-    for (int j = 0; j < g.cols; ++j) {
-      const Rgb4 d = LoadRgb(target + start + j * 3) - row[j];
-      for (int c = 0; c < 3; ++c) out[start + j * 3 + c] = std::max(d[c], 0.0f);
-    }
+    RemainderRow(target + start, row.data(), g.cols, out + start);
   }
   return true;
 }
@@ -151,11 +131,8 @@ bool ViewSynthesizer::RemainderAndError(const std::vector<size_t>& branches, siz
     OneTapRow(branches, view, i, light.data());
     OneTapRow(rest, view, i, rest_light.data());
     const size_t start = static_cast<size_t>(i) * g.cols * 3;
-    for (int j = 0; j < g.cols; ++j) {
-      const Rgb4 d = LoadRgb(target + start + j * 3) - light[j];
-      for (int c = 0; c < 3; ++c) out[start + j * 3 + c] = std::max(d[c], 0.0f);
-      rest_light[j] += light[j];  // now the whole display's
-    }
+    RemainderRow(target + start, light.data(), g.cols, out + start);
+    for (int j = 0; j < g.cols; ++j) rest_light[j] += light[j];  // now the whole display's
     sum += SquaredErrorRow(target + start, rest_light.data(), g.cols, i == g.rows - 1);
   }
   *error = sum;
