@@ -2,7 +2,7 @@
 
 #include <cstdint>
 
-#include "framework/rgb4.h"
+#include "framework/row_kernels.h"
 #include "systems/one_tap_view.h"
 
 namespace layerlab {

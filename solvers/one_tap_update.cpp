@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 
-#include "framework/rgb4.h"
+#include "framework/row_kernels.h"
 #include "systems/one_tap_view.h"
 
 namespace layerlab {
@@ -17,22 +17,6 @@ struct Workspace {
   std::vector<float> scratch;                // one view of the branch target, if it needs one
   std::vector<Rgb4> product;                 // one ray row of the other layers' product
 };
-
-// One ray row of the column sums: num[j] += r_j q[j], den[j] += q[j]^2, r in
-// [ray][rgb] (read exactly), the others [ray][rgb, 0]; q = nullptr means 1.
-void RowSums(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int count) {
-  int j = 0;
-  for (; j + 1 < count; ++j) {  // all but the last ray read one float past their own
-    const Rgb4 qj = q ? q[j] : Rgb4{1, 1, 1, 0};
-    num[j] += LoadRgbOver(r + j * 3) * qj;
-    den[j] += qj * qj;
-  }
-  for (; j < count; ++j) {
-    const Rgb4 qj = q ? q[j] : Rgb4{1, 1, 1, 0};
-    num[j] += LoadRgb(r + j * 3) * qj;
-    den[j] += qj * qj;
-  }
-}
 
 template <int L>
 void Accumulate(const DisplayModel& model, const std::vector<int>& layers, const PaddedLayers& padded,
@@ -67,7 +51,7 @@ void Accumulate(const DisplayModel& model, const std::vector<int>& layers, const
         AddBranchLightRow(q_rows, L - 1, Rgb4{1, 1, 1, 0}, cols, w->product.data());
         q = w->product.data();
       }
-      RowSums(l, q, w->sums.num(ra), w->sums.den(ra), cols);
+      UpdateSumsRow(l, q, w->sums.num(ra), w->sums.den(ra), cols);
     }
   }
 

@@ -72,31 +72,6 @@ void ResampleToRayColumns(const LayerProjection& P, const Rgb4* pixels, int vc, 
       o[static_cast<size_t>(r) * ray_cols + j] = col[j].i0 < 0 ? Rgb4{} : pixels[static_cast<size_t>(r) * P.cols() + col[j].i0];
 }
 
-namespace {
-
-template <int L>
-void AddBranchLightRowOf(const Rgb4* const* rows, Rgb4 w, int cols, Rgb4* row) {
-  const Rgb4* r[L];
-  for (int k = 0; k < L; ++k) r[k] = rows[k];
-  for (int j = 0; j < cols; ++j) {
-    Rgb4 p = w;
-    for (int k = 0; k < L; ++k) p *= r[k][j];
-    row[j] += p;
-  }
-}
-
-}  // namespace
-
-void AddBranchLightRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, Rgb4* row) {
-  static_assert(kMaxOneTapLayers == 4);
-  switch (layers) {
-    case 1: return AddBranchLightRowOf<1>(rows, w, cols, row);
-    case 2: return AddBranchLightRowOf<2>(rows, w, cols, row);
-    case 3: return AddBranchLightRowOf<3>(rows, w, cols, row);
-    case 4: return AddBranchLightRowOf<4>(rows, w, cols, row);
-  }
-}
-
 void ColumnSums::Reset(const LayerProjection& P, int ray_cols) {
   const size_t cells = static_cast<size_t>(P.rows()) * ray_cols;
   if (column_num_.size() != cells) {
@@ -134,15 +109,6 @@ void ColumnSums::AddTo(double* num, double* den) const {
       num[k * 3 + c] += pixel_num_[k][c];
       den[k * 3 + c] += pixel_den_[k][c];
     }
-}
-
-void PackRow(const Rgb4* row, int cols, float* out) {
-  if (cols <= 0) return;
-  // Each 16-byte store spills its padding onto the next ray's red, which the
-  // next store overwrites; the last ray is stored exactly, so that rows may be
-  // written by different threads in any order.
-  for (int j = 0; j + 1 < cols; ++j) std::memcpy(out + j * 3, &row[j], sizeof(Rgb4));
-  StoreRgb(row[cols - 1], out + (cols - 1) * 3);
 }
 
 }  // namespace layerlab

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "framework/rgb4.h"
+#include "framework/row_kernels.h"
 #include "systems/display_model.h"
 
 namespace layerlab {
@@ -105,10 +106,6 @@ class OneTapBranchView {
 // column a layer's column tap depends on the ray's column alone.
 void ResampleToRayColumns(const LayerProjection& P, const Rgb4* pixels, int vc, int ray_cols, std::vector<Rgb4>* out);
 
-// row[j] += w prod_k rows[k][j] over one ray row of a branch of `layers`
-// (1 to kMaxOneTapLayers) layers, each row resampled to the rays' columns.
-void AddBranchLightRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, Rgb4* row);
-
 // One layer's multiplicative-update sums (numerator and denominator) for one
 // thread: summed in the rays' columns over the ray rows of a view column,
 // then scattered to the layer's pixels once per view column.
@@ -130,8 +127,5 @@ class ColumnSums {
   std::vector<uint8_t> touched_;               // layer rows that hold column sums
   std::vector<Rgb4> pixel_num_, pixel_den_;    // [pixel]
 };
-
-// One ray row [ray][rgb, 0] into [ray][rgb], writing exactly cols x 3 floats.
-void PackRow(const Rgb4* row, int cols, float* out);
 
 }  // namespace layerlab

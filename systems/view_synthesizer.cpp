@@ -18,14 +18,6 @@ struct ColumnCache {
 
 std::atomic<uint64_t> next_id{1};
 
-// out = max(0, target - light) over one ray row ([ray][rgb] and [ray][rgb, 0]).
-void RemainderRow(const float* target, const Rgb4* light, int cols, float* out) {
-  for (int j = 0; j < cols; ++j) {
-    const Rgb4 d = LoadRgb(target + j * 3) - light[j];
-    for (int c = 0; c < 3; ++c) out[j * 3 + c] = std::max(d[c], 0.0f);
-  }
-}
-
 }  // namespace
 
 ViewSynthesizer::ViewSynthesizer(const DisplayModel& model, const Patterns& t, PaddedLayers* workspace)

@@ -1,0 +1,164 @@
+#include "framework/row_kernels.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+#include "framework/error.h"
+#include "framework/row_kernels_isa.h"
+
+namespace layerlab {
+namespace baseline {
+namespace {
+
+template <int L>
+void AddBranchLightRowOf(const Rgb4* const* rows, Rgb4 w, int cols, Rgb4* row) {
+  const Rgb4* r[L];
+  for (int k = 0; k < L; ++k) r[k] = rows[k];
+  for (int j = 0; j < cols; ++j) {
+    Rgb4 p = w;
+    for (int k = 0; k < L; ++k) p *= r[k][j];
+    row[j] += p;
+  }
+}
+
+}  // namespace
+
+void AddBranchLightRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, Rgb4* row) {
+  switch (layers) {
+    case 1: return AddBranchLightRowOf<1>(rows, w, cols, row);
+    case 2: return AddBranchLightRowOf<2>(rows, w, cols, row);
+    case 3: return AddBranchLightRowOf<3>(rows, w, cols, row);
+    case 4: return AddBranchLightRowOf<4>(rows, w, cols, row);
+  }
+}
+
+void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int cols) {
+  int j = 0;
+  for (; j + 1 < cols; ++j) {  // all but the last ray read one float past their own
+    const Rgb4 qj = q ? q[j] : Rgb4{1, 1, 1, 0};
+    num[j] += LoadRgbOver(r + j * 3) * qj;
+    den[j] += qj * qj;
+  }
+  for (; j < cols; ++j) {
+    const Rgb4 qj = q ? q[j] : Rgb4{1, 1, 1, 0};
+    num[j] += LoadRgb(r + j * 3) * qj;
+    den[j] += qj * qj;
+  }
+}
+
+// Two-double vectors, one SSE register each (a four-double vector without
+// AVX is emulated through the stack, and each ray's add then waits on a
+// store); even and odd rays on separate sums so that no add waits for the last.
+double SquaredErrorRow(const float* target, const Rgb4* light, int cols, bool exact_last) {
+  using Double2 = double __attribute__((vector_size(16)));
+  // Channels 0-1 and 2-3 of a ray, in double; lane 3 is padding, never read.
+#if defined(__SSE2__)
+  // GCC 12 turns the generic form below into scalar conversions.
+  auto low = [](Rgb4 v) { return Double2(_mm_cvtps_pd(__m128(v))); };
+  auto high = [](Rgb4 v) { return Double2(_mm_cvtps_pd(_mm_movehl_ps(__m128(v), __m128(v)))); };
+#else
+  auto low = [](Rgb4 v) { return __builtin_convertvector(__builtin_shufflevector(v, v, 0, 1), Double2); };
+  auto high = [](Rgb4 v) { return __builtin_convertvector(__builtin_shufflevector(v, v, 2, 3), Double2); };
+#endif
+  Double2 rg0 = {}, b0 = {}, rg1 = {}, b1 = {};
+  const int safe = exact_last ? cols - 1 : cols;
+  int j = 0;
+  for (; j + 1 < safe; j += 2) {
+    const Rgb4 t0 = LoadRgbOver(target + j * 3), t1 = LoadRgbOver(target + j * 3 + 3);
+    const Double2 rg_d0 = low(t0) - low(light[j]), b_d0 = high(t0) - high(light[j]);
+    const Double2 rg_d1 = low(t1) - low(light[j + 1]), b_d1 = high(t1) - high(light[j + 1]);
+    rg0 += rg_d0 * rg_d0, b0 += b_d0 * b_d0;
+    rg1 += rg_d1 * rg_d1, b1 += b_d1 * b_d1;
+  }
+  for (; j < cols; ++j) {
+    const Rgb4 t = j < safe ? LoadRgbOver(target + j * 3) : LoadRgb(target + j * 3);
+    const Double2 rg_d = low(t) - low(light[j]), b_d = high(t) - high(light[j]);
+    rg0 += rg_d * rg_d, b0 += b_d * b_d;
+  }
+  return (rg0[0] + rg1[0]) + (rg0[1] + rg1[1]) + (b0[0] + b1[0]);
+}
+
+void RemainderRow(const float* target, const Rgb4* light, int cols, float* out) {
+  for (int j = 0; j < cols; ++j) {
+    const Rgb4 d = LoadRgb(target + j * 3) - light[j];
+    for (int c = 0; c < 3; ++c) out[j * 3 + c] = std::max(d[c], 0.0f);
+  }
+}
+
+void PackRow(const Rgb4* row, int cols, float* out) {
+  if (cols <= 0) return;
+  // Each 16-byte store spills its padding onto the next ray's red, which the
+  // next store overwrites; the last ray is stored exactly.
+  for (int j = 0; j + 1 < cols; ++j) std::memcpy(out + j * 3, &row[j], sizeof(Rgb4));
+  StoreRgb(row[cols - 1], out + (cols - 1) * 3);
+}
+
+}  // namespace baseline
+
+namespace {
+
+// LAYERLAB_ROW_KERNELS=baseline|avx2 picks the build (for measurements); unset: the best the CPU has.
+RowKernelIsa FromEnvironment() {
+  const char* v = std::getenv("LAYERLAB_ROW_KERNELS");
+  if (v == nullptr || std::strcmp(v, "avx2") == 0) return RowKernelIsa::kAvx2;
+  if (std::strcmp(v, "baseline") == 0) return RowKernelIsa::kBaseline;
+  throw Error(std::string("LAYERLAB_ROW_KERNELS=") + v + ": expected baseline or avx2");
+}
+
+std::atomic<RowKernelIsa>& Wanted() {
+  static std::atomic<RowKernelIsa> wanted{FromEnvironment()};
+  return wanted;
+}
+
+bool UseAvx2() {
+#if LAYERLAB_ROW_KERNELS_AVX2
+  return Wanted().load(std::memory_order_relaxed) == RowKernelIsa::kAvx2 && CpuHasAvx2();
+#else
+  return false;
+#endif
+}
+}  // namespace
+
+bool CpuHasAvx2() {
+#if LAYERLAB_ROW_KERNELS_AVX2
+  static const bool has = __builtin_cpu_supports("avx2");
+  return has;
+#else
+  return false;
+#endif
+}
+
+RowKernelIsa ActiveRowKernels() { return UseAvx2() ? RowKernelIsa::kAvx2 : RowKernelIsa::kBaseline; }
+
+bool ForceRowKernels(RowKernelIsa isa) {
+  if (isa == RowKernelIsa::kAvx2 && !CpuHasAvx2()) return false;
+  Wanted().store(isa, std::memory_order_relaxed);
+  return true;
+}
+
+#if LAYERLAB_ROW_KERNELS_AVX2
+#define LAYERLAB_DISPATCH(call) return UseAvx2() ? avx2::call : baseline::call
+#else
+#define LAYERLAB_DISPATCH(call) return baseline::call
+#endif
+
+void AddBranchLightRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, Rgb4* row) {
+  LAYERLAB_DISPATCH(AddBranchLightRow(rows, layers, w, cols, row));
+}
+void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int cols) {
+  LAYERLAB_DISPATCH(UpdateSumsRow(r, q, num, den, cols));
+}
+double SquaredErrorRow(const float* target, const Rgb4* light, int cols, bool exact_last) {
+  LAYERLAB_DISPATCH(SquaredErrorRow(target, light, cols, exact_last));
+}
+void RemainderRow(const float* target, const Rgb4* light, int cols, float* out) {
+  LAYERLAB_DISPATCH(RemainderRow(target, light, cols, out));
+}
+void PackRow(const Rgb4* row, int cols, float* out) { LAYERLAB_DISPATCH(PackRow(row, cols, out)); }
+
+#undef LAYERLAB_DISPATCH
+
+}  // namespace layerlab

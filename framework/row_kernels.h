@@ -1,0 +1,40 @@
+// The per-ray-row kernels of the one-tap passes (synthesis, multiplicative
+// update, objective, chase remainders): one ray row at a time, rays as
+// [ray][rgb, 0] (Rgb4) or packed [ray][rgb]. Two builds of each: the
+// baseline (SSE2, one ray per instruction) and, on CPUs that have it, AVX2
+// (two rays per instruction). Both do the same operations in the same order
+// on every lane, so their results are bit for bit the same; tests check it.
+#pragma once
+
+#include "framework/rgb4.h"
+
+namespace layerlab {
+
+// row[j] += w prod_k rows[k][j], k < layers (1 to 4).
+void AddBranchLightRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, Rgb4* row);
+
+// The multiplicative update's column sums over one ray row:
+// num[j] += r_j q[j], den[j] += q[j]^2; r packed [ray][rgb], q = nullptr means 1.
+void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int cols);
+
+// Sum over the row of (target - light)^2, channels 0-2, in double; `target`
+// packed. All rays but the last read one float past their own unless
+// `exact_last` is false (then the last does too).
+double SquaredErrorRow(const float* target, const Rgb4* light, int cols, bool exact_last);
+
+// out = max(0, target - light), target and out packed; writes exactly cols x 3 floats.
+void RemainderRow(const float* target, const Rgb4* light, int cols, float* out);
+
+// out = row packed; writes exactly cols x 3 floats, so that rows may be
+// written by different threads in any order.
+void PackRow(const Rgb4* row, int cols, float* out);
+
+enum class RowKernelIsa { kBaseline, kAvx2 };
+// The build the kernels use: AVX2 where the CPU has it, unless forced here
+// or by LAYERLAB_ROW_KERNELS=baseline in the environment.
+RowKernelIsa ActiveRowKernels();
+// For tests and benchmarks: use `isa` from now on (kAvx2 only where the CPU has it; false otherwise).
+bool ForceRowKernels(RowKernelIsa isa);
+bool CpuHasAvx2();
+
+}  // namespace layerlab

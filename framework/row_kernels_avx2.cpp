@@ -1,0 +1,121 @@
+// The AVX2 build of row_kernels.h: two rays per 256-bit instruction where the
+// baseline takes one, the same operations in the same order on every lane
+// (no FMA), so that both builds give the same bits. Per function target
+// attributes rather than -mavx2 for the file: inline functions of shared
+// headers compiled here must not replace the baseline's copies at link time.
+#include "framework/row_kernels_isa.h"
+
+#if LAYERLAB_ROW_KERNELS_AVX2
+
+#include <immintrin.h>
+
+#define LAYERLAB_AVX2 __attribute__((target("avx2")))
+
+namespace layerlab::avx2 {
+namespace {
+
+// Rays j and j + 1 of a packed row as two Rgb4 lanes, each with the next
+// float in lane 3 as LoadRgbOver reads it: p[0..7] must be readable.
+LAYERLAB_AVX2 inline __m256 LoadTwoRaysOver(const float* p) {
+  return _mm256_permutevar8x32_ps(_mm256_loadu_ps(p), _mm256_setr_epi32(0, 1, 2, 3, 3, 4, 5, 6));
+}
+
+// Two Rgb4 lanes as six packed floats, then two floats of padding: writes p[0..7].
+LAYERLAB_AVX2 inline void StoreTwoRaysOver(__m256 v, float* p) {
+  _mm256_storeu_ps(p, _mm256_permutevar8x32_ps(v, _mm256_setr_epi32(0, 1, 2, 4, 5, 6, 7, 7)));
+}
+
+LAYERLAB_AVX2 inline __m256 Twice(Rgb4 v) { return _mm256_set_m128(__m128(v), __m128(v)); }
+
+// One ray's (target - light)^2 in four doubles (lane 3 padding, never read).
+LAYERLAB_AVX2 inline __m256d Squared(Rgb4 t, Rgb4 l) {
+  const __m256d diff = _mm256_sub_pd(_mm256_cvtps_pd(__m128(t)), _mm256_cvtps_pd(__m128(l)));
+  return _mm256_mul_pd(diff, diff);
+}
+
+template <int L>
+LAYERLAB_AVX2 void AddBranchLightRowOf(const Rgb4* const* rows, Rgb4 w, int cols, Rgb4* row) {
+  const float* r[L];
+  for (int k = 0; k < L; ++k) r[k] = reinterpret_cast<const float*>(rows[k]);
+  float* out = reinterpret_cast<float*>(row);
+  const __m256 w2 = Twice(w);
+  int j = 0;
+  for (; j + 1 < cols; j += 2) {
+    __m256 p = w2;
+    for (int k = 0; k < L; ++k) p = _mm256_mul_ps(p, _mm256_loadu_ps(r[k] + j * 4));
+    _mm256_storeu_ps(out + j * 4, _mm256_add_ps(_mm256_loadu_ps(out + j * 4), p));
+  }
+  for (; j < cols; ++j) {
+    Rgb4 p = w;
+    for (int k = 0; k < L; ++k) p *= rows[k][j];
+    row[j] += p;
+  }
+}
+
+}  // namespace
+
+LAYERLAB_AVX2 void AddBranchLightRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, Rgb4* row) {
+  switch (layers) {
+    case 1: return AddBranchLightRowOf<1>(rows, w, cols, row);
+    case 2: return AddBranchLightRowOf<2>(rows, w, cols, row);
+    case 3: return AddBranchLightRowOf<3>(rows, w, cols, row);
+    case 4: return AddBranchLightRowOf<4>(rows, w, cols, row);
+  }
+}
+
+LAYERLAB_AVX2 void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int cols) {
+  float* n = reinterpret_cast<float*>(num);
+  float* d = reinterpret_cast<float*>(den);
+  const __m256 ones = _mm256_setr_ps(1, 1, 1, 0, 1, 1, 1, 0);
+  int j = 0;
+  for (; j + 3 <= cols; j += 2) {  // rays j, j + 1 read up to ray j + 2's green
+    const __m256 qj = q ? _mm256_loadu_ps(reinterpret_cast<const float*>(q + j)) : ones;
+    _mm256_storeu_ps(n + j * 4, _mm256_add_ps(_mm256_loadu_ps(n + j * 4), _mm256_mul_ps(LoadTwoRaysOver(r + j * 3), qj)));
+    _mm256_storeu_ps(d + j * 4, _mm256_add_ps(_mm256_loadu_ps(d + j * 4), _mm256_mul_ps(qj, qj)));
+  }
+  for (; j < cols; ++j) {
+    const Rgb4 qj = q ? q[j] : Rgb4{1, 1, 1, 0};
+    num[j] += (j + 1 < cols ? LoadRgbOver(r + j * 3) : LoadRgb(r + j * 3)) * qj;
+    den[j] += qj * qj;
+  }
+}
+
+LAYERLAB_AVX2 double SquaredErrorRow(const float* target, const Rgb4* light, int cols, bool exact_last) {
+  __m256d even = _mm256_setzero_pd(), odd = _mm256_setzero_pd();
+  const int safe = exact_last ? cols - 1 : cols;
+  int j = 0;
+  for (; j + 1 < safe; j += 2) {
+    even = _mm256_add_pd(even, Squared(LoadRgbOver(target + j * 3), light[j]));
+    odd = _mm256_add_pd(odd, Squared(LoadRgbOver(target + j * 3 + 3), light[j + 1]));
+  }
+  for (; j < cols; ++j)
+    even = _mm256_add_pd(even, Squared(j < safe ? LoadRgbOver(target + j * 3) : LoadRgb(target + j * 3), light[j]));
+  alignas(32) double e[4], o[4];
+  _mm256_store_pd(e, even), _mm256_store_pd(o, odd);
+  return (e[0] + o[0]) + (e[1] + o[1]) + (e[2] + o[2]);
+}
+
+LAYERLAB_AVX2 void RemainderRow(const float* target, const Rgb4* light, int cols, float* out) {
+  const float* l = reinterpret_cast<const float*>(light);
+  const __m256 zero = _mm256_setzero_ps();
+  int j = 0;
+  // max(0, d), in this order, is std::max(d, 0.0f) for every d, -0 included.
+  for (; j + 3 <= cols; j += 2)
+    StoreTwoRaysOver(_mm256_max_ps(zero, _mm256_sub_ps(LoadTwoRaysOver(target + j * 3), _mm256_loadu_ps(l + j * 4))),
+                     out + j * 3);
+  for (; j < cols; ++j) {
+    const Rgb4 d = LoadRgb(target + j * 3) - light[j];
+    for (int c = 0; c < 3; ++c) out[j * 3 + c] = d[c] < 0.0f ? 0.0f : d[c];
+  }
+}
+
+LAYERLAB_AVX2 void PackRow(const Rgb4* row, int cols, float* out) {
+  const float* in = reinterpret_cast<const float*>(row);
+  int j = 0;
+  for (; j + 3 <= cols; j += 2) StoreTwoRaysOver(_mm256_loadu_ps(in + j * 4), out + j * 3);
+  for (; j < cols; ++j) StoreRgb(row[j], out + j * 3);
+}
+
+}  // namespace layerlab::avx2
+
+#endif  // LAYERLAB_ROW_KERNELS_AVX2

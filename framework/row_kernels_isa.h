@@ -1,0 +1,33 @@
+// The two builds behind row_kernels.h, for its dispatch only.
+#pragma once
+
+#include "framework/rgb4.h"
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define LAYERLAB_ROW_KERNELS_AVX2 1
+#else
+#define LAYERLAB_ROW_KERNELS_AVX2 0
+#endif
+
+namespace layerlab {
+
+namespace baseline {
+void AddBranchLightRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, Rgb4* row);
+void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int cols);
+double SquaredErrorRow(const float* target, const Rgb4* light, int cols, bool exact_last);
+void RemainderRow(const float* target, const Rgb4* light, int cols, float* out);
+void PackRow(const Rgb4* row, int cols, float* out);
+}  // namespace baseline
+
+#if LAYERLAB_ROW_KERNELS_AVX2
+// Call only where CpuHasAvx2().
+namespace avx2 {
+void AddBranchLightRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, Rgb4* row);
+void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int cols);
+double SquaredErrorRow(const float* target, const Rgb4* light, int cols, bool exact_last);
+void RemainderRow(const float* target, const Rgb4* light, int cols, float* out);
+void PackRow(const Rgb4* row, int cols, float* out);
+}  // namespace avx2
+#endif
+
+}  // namespace layerlab

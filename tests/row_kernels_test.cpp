@@ -1,0 +1,186 @@
+// The per-row kernels against plain loops in double, and their AVX2 build
+// against the baseline bit for bit, on rows of every length up to 41 (both
+// parities, shorter than one AVX2 step, and tails of every kind).
+#include "framework/row_kernels.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <random>
+#include <vector>
+
+namespace layerlab {
+namespace {
+
+constexpr float kGuard = 12345.0f;  // written past a row's end: must survive
+
+struct Row {
+  std::vector<float> packed;  // [ray][rgb], then one guard float
+  std::vector<Rgb4> padded;   // [ray][rgb, 0]
+};
+
+Row RandomRow(int cols, std::mt19937& rng, float lo = 0.0f, float hi = 1.0f) {
+  std::uniform_real_distribution<float> u(lo, hi);
+  Row r;
+  for (int j = 0; j < cols * 3; ++j) r.packed.push_back(u(rng));
+  r.packed.push_back(u(rng));  // the over-read float a row's last ray may read when exact_last is false
+  for (int j = 0; j < cols; ++j) r.padded.push_back(Rgb4{u(rng), u(rng), u(rng), 0.0f});
+  return r;
+}
+
+bool SameBits(const void* a, const void* b, size_t bytes) { return std::memcmp(a, b, bytes) == 0; }
+
+// Runs `f` with each build; `f` returns what it computed as bytes.
+template <typename F>
+void ExpectSameInBothBuilds(F f, const char* what, int cols) {
+  if (!CpuHasAvx2()) return;
+  ASSERT_TRUE(ForceRowKernels(RowKernelIsa::kBaseline));
+  const std::vector<unsigned char> base = f();
+  ASSERT_TRUE(ForceRowKernels(RowKernelIsa::kAvx2));
+  const std::vector<unsigned char> avx = f();
+  EXPECT_TRUE(base.size() == avx.size() && SameBits(base.data(), avx.data(), base.size()))
+      << what << ", " << cols << " rays";
+}
+
+template <typename T>
+std::vector<unsigned char> Bytes(const std::vector<T>& v) {
+  std::vector<unsigned char> b(v.size() * sizeof(T));
+  std::memcpy(b.data(), v.data(), b.size());
+  return b;
+}
+
+class RowKernels : public ::testing::Test {
+ protected:
+  void TearDown() override { ForceRowKernels(RowKernelIsa::kAvx2); }
+};
+
+TEST_F(RowKernels, BranchLightIsTheWeightedProductOfTheLayers) {
+  std::mt19937 rng(1);
+  for (int layers = 1; layers <= 4; ++layers)
+    for (int cols = 1; cols <= 41; ++cols) {
+      std::vector<Row> in;
+      for (int k = 0; k < layers; ++k) in.push_back(RandomRow(cols, rng));
+      const Row start = RandomRow(cols, rng);
+      const Rgb4 w{0.5f, 0.25f, 0.75f, 0.0f};
+      auto run = [&] {
+        const Rgb4* rows[4];
+        for (int k = 0; k < layers; ++k) rows[k] = in[k].padded.data();
+        std::vector<Rgb4> out = start.padded;
+        out.push_back(Rgb4{kGuard, kGuard, kGuard, kGuard});
+        AddBranchLightRow(rows, layers, w, cols, out.data());
+        return out;
+      };
+      const std::vector<Rgb4> out = run();
+      for (int j = 0; j < cols; ++j)
+        for (int c = 0; c < 3; ++c) {
+          double p = w[c];
+          for (int k = 0; k < layers; ++k) p *= in[k].padded[j][c];
+          ASSERT_NEAR(out[j][c], start.padded[j][c] + p, 1e-6) << layers << " layers, ray " << j;
+        }
+      ASSERT_EQ(out[cols][0], kGuard);
+      ExpectSameInBothBuilds([&] { return Bytes(run()); }, "branch light", cols);
+    }
+}
+
+TEST_F(RowKernels, UpdateSumsAddTargetTimesProductAndProductSquared) {
+  std::mt19937 rng(2);
+  for (bool unit_q : {false, true})
+    for (int cols = 1; cols <= 41; ++cols) {
+      const Row r = RandomRow(cols, rng), q = RandomRow(cols, rng), n0 = RandomRow(cols, rng), d0 = RandomRow(cols, rng);
+      auto run = [&] {
+        std::vector<Rgb4> num = n0.padded, den = d0.padded;
+        num.push_back(Rgb4{kGuard, kGuard, kGuard, kGuard}), den.push_back(num.back());
+        UpdateSumsRow(r.packed.data(), unit_q ? nullptr : q.padded.data(), num.data(), den.data(), cols);
+        std::vector<Rgb4> both = num;
+        both.insert(both.end(), den.begin(), den.end());
+        return both;
+      };
+      const std::vector<Rgb4> both = run();
+      for (int j = 0; j < cols; ++j)
+        for (int c = 0; c < 3; ++c) {
+          const double qj = unit_q ? 1.0 : q.padded[j][c];
+          ASSERT_NEAR(both[j][c], n0.padded[j][c] + double(r.packed[j * 3 + c]) * qj, 1e-6);
+          ASSERT_NEAR(both[cols + 1 + j][c], d0.padded[j][c] + qj * qj, 1e-6);
+        }
+      ASSERT_EQ(both[cols][0], kGuard);
+      ASSERT_EQ(both[2 * cols + 1][0], kGuard);
+      // Lane 3 (padding) may differ; channels 0-2 must not.
+      ExpectSameInBothBuilds(
+          [&] {
+            std::vector<float> rgb;
+            for (const Rgb4& v : run()) rgb.insert(rgb.end(), {v[0], v[1], v[2]});
+            return Bytes(rgb);
+          },
+          "update sums", cols);
+    }
+}
+
+TEST_F(RowKernels, SquaredErrorIsTheDoubleSumOverChannels) {
+  std::mt19937 rng(3);
+  for (bool exact_last : {true, false})
+    for (int cols = 1; cols <= 41; ++cols) {
+      const Row t = RandomRow(cols, rng), l = RandomRow(cols, rng);
+      double expected = 0;
+      for (int j = 0; j < cols; ++j)
+        for (int c = 0; c < 3; ++c) {
+          const double d = double(t.packed[j * 3 + c]) - l.padded[j][c];
+          expected += d * d;
+        }
+      const double got = SquaredErrorRow(t.packed.data(), l.padded.data(), cols, exact_last);
+      ASSERT_NEAR(got, expected, 1e-12 * cols);
+      ExpectSameInBothBuilds(
+          [&] {
+            const double e = SquaredErrorRow(t.packed.data(), l.padded.data(), cols, exact_last);
+            return Bytes(std::vector<double>{e});
+          },
+          "squared error", cols);
+    }
+}
+
+TEST_F(RowKernels, RemainderIsTheNonNegativePartAndWritesExactlyTheRow) {
+  std::mt19937 rng(4);
+  for (int cols = 1; cols <= 41; ++cols) {
+    Row t = RandomRow(cols, rng, -0.5f, 1.0f);
+    const Row l = RandomRow(cols, rng, 0.0f, 0.5f);
+    t.packed[0] = -0.0f;  // max(-0 - 0, 0) keeps std::max's answer, -0
+    auto run = [&] {
+      std::vector<float> out(cols * 3 + 4, kGuard);
+      RemainderRow(t.packed.data(), l.padded.data(), cols, out.data());
+      return out;
+    };
+    const std::vector<float> out = run();
+    for (int j = 0; j < cols; ++j)
+      for (int c = 0; c < 3; ++c)
+        ASSERT_EQ(out[j * 3 + c], std::max(t.packed[j * 3 + c] - l.padded[j][c], 0.0f)) << j;
+    for (int k = cols * 3; k < cols * 3 + 4; ++k) ASSERT_EQ(out[k], kGuard);
+    ExpectSameInBothBuilds([&] { return Bytes(run()); }, "remainder", cols);
+  }
+}
+
+TEST_F(RowKernels, PackDropsThePaddingAndWritesExactlyTheRow) {
+  std::mt19937 rng(5);
+  for (int cols = 1; cols <= 41; ++cols) {
+    const Row in = RandomRow(cols, rng);
+    auto run = [&] {
+      std::vector<float> out(cols * 3 + 4, kGuard);
+      PackRow(in.padded.data(), cols, out.data());
+      return out;
+    };
+    const std::vector<float> out = run();
+    for (int j = 0; j < cols; ++j)
+      for (int c = 0; c < 3; ++c) ASSERT_EQ(out[j * 3 + c], in.padded[j][c]);
+    for (int k = cols * 3; k < cols * 3 + 4; ++k) ASSERT_EQ(out[k], kGuard);
+    ExpectSameInBothBuilds([&] { return Bytes(run()); }, "pack", cols);
+  }
+}
+
+TEST_F(RowKernels, ForcingABuildTheCpuLacksIsRefused) {
+  EXPECT_TRUE(ForceRowKernels(RowKernelIsa::kBaseline));
+  EXPECT_EQ(ActiveRowKernels(), RowKernelIsa::kBaseline);
+  EXPECT_EQ(ForceRowKernels(RowKernelIsa::kAvx2), CpuHasAvx2());
+  EXPECT_EQ(ActiveRowKernels(), CpuHasAvx2() ? RowKernelIsa::kAvx2 : RowKernelIsa::kBaseline);
+}
+
+}  // namespace
+}  // namespace layerlab
