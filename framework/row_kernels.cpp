@@ -49,35 +49,65 @@ void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int cols
   }
 }
 
-// Two-double vectors, one SSE register each (a four-double vector without
-// AVX is emulated through the stack, and each ray's add then waits on a
-// store); even and odd rays on separate sums so that no add waits for the last.
-double SquaredErrorRow(const float* target, const Rgb4* light, int cols, bool exact_last) {
-  using Double2 = double __attribute__((vector_size(16)));
-  // Channels 0-1 and 2-3 of a ray, in double; lane 3 is padding, never read.
+// The squared errors are summed in two-double vectors, one SSE register each
+// (a four-double vector without AVX is emulated through the stack, and each
+// ray's add then waits on a store), even and odd rays on separate sums so
+// that no add waits for the last.
+namespace {
+
+using Double2 = double __attribute__((vector_size(16)));
+
+// Channels 0-1 and 2-3 of a ray, in double; lane 3 is padding, never read.
 #if defined(__SSE2__)
-  // GCC 12 turns the generic form below into scalar conversions.
-  auto low = [](Rgb4 v) { return Double2(_mm_cvtps_pd(__m128(v))); };
-  auto high = [](Rgb4 v) { return Double2(_mm_cvtps_pd(_mm_movehl_ps(__m128(v), __m128(v)))); };
+// GCC 12 turns the generic form below into scalar conversions.
+inline Double2 Low(Rgb4 v) { return Double2(_mm_cvtps_pd(__m128(v))); }
+inline Double2 High(Rgb4 v) { return Double2(_mm_cvtps_pd(_mm_movehl_ps(__m128(v), __m128(v)))); }
 #else
-  auto low = [](Rgb4 v) { return __builtin_convertvector(__builtin_shufflevector(v, v, 0, 1), Double2); };
-  auto high = [](Rgb4 v) { return __builtin_convertvector(__builtin_shufflevector(v, v, 2, 3), Double2); };
+inline Double2 Low(Rgb4 v) { return __builtin_convertvector(__builtin_shufflevector(v, v, 0, 1), Double2); }
+inline Double2 High(Rgb4 v) { return __builtin_convertvector(__builtin_shufflevector(v, v, 2, 3), Double2); }
 #endif
+
+// rg += (t - l)^2 in channels 0-1, b in 2 (and the padding).
+inline void AddSquared(Rgb4 t, Rgb4 l, Double2& rg, Double2& b) {
+  const Double2 d_rg = Low(t) - Low(l), d_b = High(t) - High(l);
+  rg += d_rg * d_rg, b += d_b * d_b;
+}
+
+}  // namespace
+
+double UpdateSumsAndErrorRow(const float* r, const Rgb4* q, const Rgb4* own, Rgb4 w, Rgb4* num, Rgb4* den,
+                             int cols) {
+  Double2 rg0 = {}, b0 = {}, rg1 = {}, b1 = {};  // even rays, odd rays
+  auto ray = [&](int j, Rgb4 rj, Double2& rg, Double2& b) {
+    const Rgb4 qj = q ? q[j] : Rgb4{1, 1, 1, 0};
+    num[j] += rj * qj;
+    den[j] += qj * qj;
+    AddSquared(rj, w * own[j] * qj, rg, b);
+  };
+  int j = 0;
+  for (; j + 2 < cols; j += 2) {  // neither is the last ray: both may read one float past their own
+    ray(j, LoadRgbOver(r + j * 3), rg0, b0);
+    ray(j + 1, LoadRgbOver(r + j * 3 + 3), rg1, b1);
+  }
+  for (; j < cols; ++j) {
+    const Rgb4 rj = j + 1 < cols ? LoadRgbOver(r + j * 3) : LoadRgb(r + j * 3);
+    if (j % 2 == 0)
+      ray(j, rj, rg0, b0);
+    else
+      ray(j, rj, rg1, b1);
+  }
+  return (rg0[0] + rg1[0]) + (rg0[1] + rg1[1]) + (b0[0] + b1[0]);
+}
+
+double SquaredErrorRow(const float* target, const Rgb4* light, int cols, bool exact_last) {
   Double2 rg0 = {}, b0 = {}, rg1 = {}, b1 = {};
   const int safe = exact_last ? cols - 1 : cols;
   int j = 0;
   for (; j + 1 < safe; j += 2) {
-    const Rgb4 t0 = LoadRgbOver(target + j * 3), t1 = LoadRgbOver(target + j * 3 + 3);
-    const Double2 rg_d0 = low(t0) - low(light[j]), b_d0 = high(t0) - high(light[j]);
-    const Double2 rg_d1 = low(t1) - low(light[j + 1]), b_d1 = high(t1) - high(light[j + 1]);
-    rg0 += rg_d0 * rg_d0, b0 += b_d0 * b_d0;
-    rg1 += rg_d1 * rg_d1, b1 += b_d1 * b_d1;
+    AddSquared(LoadRgbOver(target + j * 3), light[j], rg0, b0);
+    AddSquared(LoadRgbOver(target + j * 3 + 3), light[j + 1], rg1, b1);
   }
-  for (; j < cols; ++j) {
-    const Rgb4 t = j < safe ? LoadRgbOver(target + j * 3) : LoadRgb(target + j * 3);
-    const Double2 rg_d = low(t) - low(light[j]), b_d = high(t) - high(light[j]);
-    rg0 += rg_d * rg_d, b0 += b_d * b_d;
-  }
+  for (; j < cols; ++j) AddSquared(j < safe ? LoadRgbOver(target + j * 3) : LoadRgb(target + j * 3), light[j], rg0, b0);
   return (rg0[0] + rg1[0]) + (rg0[1] + rg1[1]) + (b0[0] + b1[0]);
 }
 
@@ -150,6 +180,10 @@ void AddBranchLightRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, Rg
 }
 void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int cols) {
   LAYERLAB_DISPATCH(UpdateSumsRow(r, q, num, den, cols));
+}
+double UpdateSumsAndErrorRow(const float* r, const Rgb4* q, const Rgb4* own, Rgb4 w, Rgb4* num, Rgb4* den,
+                             int cols) {
+  LAYERLAB_DISPATCH(UpdateSumsAndErrorRow(r, q, own, w, num, den, cols));
 }
 double SquaredErrorRow(const float* target, const Rgb4* light, int cols, bool exact_last) {
   LAYERLAB_DISPATCH(SquaredErrorRow(target, light, cols, exact_last));

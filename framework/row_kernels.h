@@ -17,6 +17,12 @@ void AddBranchLightRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, Rg
 // num[j] += r_j q[j], den[j] += q[j]^2; r packed [ray][rgb], q = nullptr means 1.
 void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int cols);
 
+// UpdateSumsRow, and in the same pass the squared error of the branch's
+// light w own[j] q[j] against r over the row (in double, as SquaredErrorRow
+// sums it), `own` being the updated layer's values at the rays.
+double UpdateSumsAndErrorRow(const float* r, const Rgb4* q, const Rgb4* own, Rgb4 w, Rgb4* num, Rgb4* den,
+                             int cols);
+
 // Sum over the row of (target - light)^2, channels 0-2, in double; `target`
 // packed. All rays but the last read one float past their own unless
 // `exact_last` is false (then the last does too).

@@ -80,6 +80,36 @@ LAYERLAB_AVX2 void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4*
   }
 }
 
+LAYERLAB_AVX2 double UpdateSumsAndErrorRow(const float* r, const Rgb4* q, const Rgb4* own, Rgb4 w, Rgb4* num,
+                                           Rgb4* den, int cols) {
+  float* n = reinterpret_cast<float*>(num);
+  float* d = reinterpret_cast<float*>(den);
+  const float* o = reinterpret_cast<const float*>(own);
+  const __m256 ones = _mm256_setr_ps(1, 1, 1, 0, 1, 1, 1, 0), w2 = Twice(w);
+  __m256d even = _mm256_setzero_pd(), odd = _mm256_setzero_pd();
+  int j = 0;
+  for (; j + 3 <= cols; j += 2) {  // j even; rays j, j + 1 read up to ray j + 2's green
+    const __m256 qj = q ? _mm256_loadu_ps(reinterpret_cast<const float*>(q + j)) : ones;
+    const __m256 rj = LoadTwoRaysOver(r + j * 3);
+    _mm256_storeu_ps(n + j * 4, _mm256_add_ps(_mm256_loadu_ps(n + j * 4), _mm256_mul_ps(rj, qj)));
+    _mm256_storeu_ps(d + j * 4, _mm256_add_ps(_mm256_loadu_ps(d + j * 4), _mm256_mul_ps(qj, qj)));
+    const __m256 light = _mm256_mul_ps(_mm256_mul_ps(w2, _mm256_loadu_ps(o + j * 4)), qj);
+    even = _mm256_add_pd(even, Squared(Rgb4(_mm256_castps256_ps128(rj)), Rgb4(_mm256_castps256_ps128(light))));
+    odd = _mm256_add_pd(odd, Squared(Rgb4(_mm256_extractf128_ps(rj, 1)), Rgb4(_mm256_extractf128_ps(light, 1))));
+  }
+  for (; j < cols; ++j) {
+    const Rgb4 qj = q ? q[j] : Rgb4{1, 1, 1, 0};
+    const Rgb4 rj = j + 1 < cols ? LoadRgbOver(r + j * 3) : LoadRgb(r + j * 3);
+    num[j] += rj * qj;
+    den[j] += qj * qj;
+    __m256d& sum = j % 2 == 0 ? even : odd;
+    sum = _mm256_add_pd(sum, Squared(rj, w * own[j] * qj));
+  }
+  alignas(32) double e[4], od[4];
+  _mm256_store_pd(e, even), _mm256_store_pd(od, odd);
+  return (e[0] + od[0]) + (e[1] + od[1]) + (e[2] + od[2]);
+}
+
 LAYERLAB_AVX2 double SquaredErrorRow(const float* target, const Rgb4* light, int cols, bool exact_last) {
   __m256d even = _mm256_setzero_pd(), odd = _mm256_setzero_pd();
   const int safe = exact_last ? cols - 1 : cols;

@@ -14,6 +14,8 @@ namespace layerlab {
 namespace baseline {
 void AddBranchLightRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, Rgb4* row);
 void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int cols);
+double UpdateSumsAndErrorRow(const float* r, const Rgb4* q, const Rgb4* own, Rgb4 w, Rgb4* num, Rgb4* den,
+                             int cols);
 double SquaredErrorRow(const float* target, const Rgb4* light, int cols, bool exact_last);
 void RemainderRow(const float* target, const Rgb4* light, int cols, float* out);
 void PackRow(const Rgb4* row, int cols, float* out);
@@ -24,6 +26,8 @@ void PackRow(const Rgb4* row, int cols, float* out);
 namespace avx2 {
 void AddBranchLightRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, Rgb4* row);
 void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int cols);
+double UpdateSumsAndErrorRow(const float* r, const Rgb4* q, const Rgb4* own, Rgb4 w, Rgb4* num, Rgb4* den,
+                             int cols);
 double SquaredErrorRow(const float* target, const Rgb4* light, int cols, bool exact_last);
 void RemainderRow(const float* target, const Rgb4* light, int cols, float* out);
 void PackRow(const Rgb4* row, int cols, float* out);

@@ -2,6 +2,7 @@
 // (a stack of any number of layers), each iteration updating every layer once,
 // from the farthest to the nearest.
 #include <algorithm>
+#include <optional>
 
 #include "framework/error.h"
 #include "solvers/multiplicative_update.h"
@@ -25,9 +26,19 @@ class MultiplicativeSolver final : public Solver {
     BranchTarget whole = [&](size_t view, float*) { return l.view(view); };
     std::vector<int> order = model.branch_layers(0);
     std::sort(order.begin(), order.end());
+    // The pass that gives an iteration's objective also gives the sums of the
+    // next iteration's first update (both read the same patterns), which is
+    // applied only if there is a next iteration.
+    LayerUpdate first;
+    ComputeLayerUpdate(model, 0, order[0], whole, *t, &first);
+    std::optional<double> objective;
     do {
-      for (int layer : order) UpdateLayerMultiplicative(model, 0, layer, whole, options, t);
-    } while (loop.EndIteration());
+      ApplyLayerUpdate(first, options, t);
+      for (size_t k = 1; k < order.size(); ++k) UpdateLayerMultiplicative(model, 0, order[k], whole, options, t);
+      double error = 0;
+      const bool fused = ComputeLayerUpdate(model, 0, order[0], whole, *t, &first, &error);
+      objective = fused ? std::optional<double>(error) : std::nullopt;
+    } while (loop.EndIteration(objective));
     return loop.Finish();
   }
 };

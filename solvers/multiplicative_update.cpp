@@ -48,53 +48,69 @@ void AccumulateGeneral(const DisplayModel& model, const std::vector<int>& layers
 
 }  // namespace
 
-void UpdateLayerMultiplicative(const DisplayModel& model, size_t branch, int layer, const BranchTarget& branch_target,
-                               const SolverOptions& options, Patterns* t) {
+bool ComputeLayerUpdate(const DisplayModel& model, size_t branch, int layer, const BranchTarget& branch_target,
+                        const Patterns& t, LayerUpdate* update, double* error) {
   const LightFieldGeometry& g = model.geometry();
   const std::vector<int>& layers = model.branch_layers(branch);
   const std::array<float, 3> w = model.weight(branch);
   const size_t n = g.pixels_per_view() * 3;
   const size_t m = model.projection(layer).pixel_count() * 3;
   const bool one_tap = OneTapBranch(model, branch);
-  // Reused across calls (fresh megabytes would be page-faulted in on every update).
-  thread_local std::vector<double> numerator_memory, denominator_memory;
-  numerator_memory.assign(m, 0.0), denominator_memory.assign(m, 0.0);
+  update->branch = branch, update->layer = layer;
+  update->num.assign(m, 0.0), update->den.assign(m, 0.0);
   // The calling thread's, shared with the workers.
-  double* numerator = numerator_memory.data();
-  double* denominator = denominator_memory.data();
+  double* numerator = update->num.data();
+  double* denominator = update->den.data();
 
   if (one_tap) {
     std::vector<int> a_first{layer};
     for (int k : layers)
       if (k != layer) a_first.push_back(k);
-    OneTapUpdateSums(model, a_first, *t, branch_target, numerator, denominator);
-  } else {
+    thread_local std::vector<double> view_errors;
+    view_errors.assign(error ? g.view_count() : 0, 0.0);
+    OneTapUpdateSums(model, a_first, t, branch_target, w, numerator, denominator, error ? view_errors.data() : nullptr);
+    FinishOneTapSums(w, t[layer].rgb, numerator, denominator);
+    if (error) {
+      *error = 0;
+      for (double e : view_errors) *error += e;  // in view order: the same for any thread count
+    }
+    return error != nullptr;
+  }
 #pragma omp parallel
-    {
-      thread_local Sums sums;
-      thread_local std::vector<float> target_scratch;
-      sums.num.assign(m, 0.0f), sums.den.assign(m, 0.0f);
-      target_scratch.resize(n);
+  {
+    thread_local Sums sums;
+    thread_local std::vector<float> target_scratch;
+    sums.num.assign(m, 0.0f), sums.den.assign(m, 0.0f);
+    target_scratch.resize(n);
 #pragma omp for schedule(dynamic)
-      for (size_t v = 0; v < g.view_count(); ++v)
-        AccumulateGeneral(model, layers, layer, *t, w, v, branch_target(v, target_scratch.data()), &sums);
+    for (size_t v = 0; v < g.view_count(); ++v)
+      AccumulateGeneral(model, layers, layer, t, w, v, branch_target(v, target_scratch.data()), &sums);
 #pragma omp critical
-      for (size_t k = 0; k < m; ++k) {
-        numerator[k] += sums.num[k];
-        denominator[k] += sums.den[k];
-      }
+    for (size_t k = 0; k < m; ++k) {
+      numerator[k] += sums.num[k];
+      denominator[k] += sums.den[k];
     }
   }
+  return false;
+}
 
-  std::vector<float>& pattern = (*t)[layer].rgb;
-  if (one_tap) FinishOneTapSums(w, pattern, numerator, denominator);
+void ApplyLayerUpdate(const LayerUpdate& update, const SolverOptions& options, Patterns* t) {
+  std::vector<float>& pattern = (*t)[update.layer].rgb;
   const float floor = static_cast<float>(options.floor);
-  for (size_t k = 0; k < m; ++k) {
-    if (!(denominator[k] > options.epsilon)) continue;
-    double updated = pattern[k] * (numerator[k] / denominator[k]);
+  for (size_t k = 0; k < pattern.size(); ++k) {
+    if (!(update.den[k] > options.epsilon)) continue;
+    double updated = pattern[k] * (update.num[k] / update.den[k]);
     // NaN fails both comparisons and lands on the floor rather than passing through.
     pattern[k] = updated >= 1.0 ? 1.0f : updated > floor ? static_cast<float>(updated) : floor;
   }
+}
+
+void UpdateLayerMultiplicative(const DisplayModel& model, size_t branch, int layer, const BranchTarget& branch_target,
+                               const SolverOptions& options, Patterns* t) {
+  // Reused across calls (fresh megabytes would be page-faulted in on every update).
+  thread_local LayerUpdate update;
+  ComputeLayerUpdate(model, branch, layer, branch_target, *t, &update);
+  ApplyLayerUpdate(update, options, t);
 }
 
 }  // namespace layerlab

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <functional>
+#include <vector>
 
 #include "solvers/solver.h"
 #include "systems/display_model.h"
@@ -23,5 +24,22 @@ using BranchTarget = std::function<const float*(size_t view, float* scratch)>;
 
 void UpdateLayerMultiplicative(const DisplayModel& model, size_t branch, int layer, const BranchTarget& branch_target,
                                const SolverOptions& options, Patterns* t);
+
+// The same update in two steps, so that its pass over the rays can be made
+// early: the multiplicative solver makes the next iteration's first one in
+// the pass that gives the objective.
+struct LayerUpdate {
+  size_t branch = 0;
+  int layer = -1;
+  std::vector<double> num, den;  // layer pixels x 3, the ratio's two sides
+};
+// The sums from the patterns `t` as they are now. With `error`, and if the
+// branch is on the one-tap path, the same pass also gives the branch's
+// squared error against `branch_target` (summed per view, then in view
+// order); returns whether it did.
+bool ComputeLayerUpdate(const DisplayModel& model, size_t branch, int layer, const BranchTarget& branch_target,
+                        const Patterns& t, LayerUpdate* update, double* error = nullptr);
+// Applies it to patterns in which nothing has changed since it was computed.
+void ApplyLayerUpdate(const LayerUpdate& update, const SolverOptions& options, Patterns* t);
 
 }  // namespace layerlab

@@ -13,29 +13,41 @@ namespace {
 // page-faulted in on every update).
 struct Workspace {
   std::vector<std::vector<Rgb4>> resampled;  // other layer k: [its row][ray column]
+  std::vector<Rgb4> own;                     // layer a likewise, for the error
   ColumnSums sums;                           // layer a's
   std::vector<float> scratch;                // one view of the branch target, if it needs one
   std::vector<Rgb4> product;                 // one ray row of the other layers' product
+  std::vector<Rgb4> zeros;                   // one ray row of no light
 };
 
 template <int L>
 void Accumulate(const DisplayModel& model, const std::vector<int>& layers, const PaddedLayers& padded,
-                const BranchTarget& branch_target, int vc, Workspace* w) {
+                const BranchTarget& branch_target, Rgb4 weight, int vc, double* view_errors, Workspace* w) {
   const LightFieldGeometry& g = model.geometry();
   const int cols = g.cols;
   const LayerProjection& Pa = model.projection(layers[0]);
 
   for (int k = 1; k < L; ++k)
     ResampleToRayColumns(model.projection(layers[k]), padded.pixels(layers[k]), vc, cols, &w->resampled[k - 1]);
+  if (view_errors) ResampleToRayColumns(Pa, padded.pixels(layers[0]), vc, cols, &w->own);
 
   for (int vr = 0; vr < g.views_y; ++vr) {
     const size_t view = g.view_index(vr, vc);
     const float* target = branch_target(view, w->scratch.data());
     const AxisTap* row_taps[L];
     for (int k = 0; k < L; ++k) row_taps[k] = model.projection(layers[k]).row_taps(view);
+    double error = 0;  // this view's, in row order
+    // A ray that misses a layer gets no light from the branch: its error is r^2.
+    auto unlit_row = [&](int i) {
+      if (view_errors)
+        error += SquaredErrorRow(target + static_cast<size_t>(i) * cols * 3, w->zeros.data(), cols, i == g.rows - 1);
+    };
     for (int i = 0; i < g.rows; ++i) {
       const int32_t ra = row_taps[0][i].i0;
-      if (ra < 0) continue;
+      if (ra < 0) {
+        unlit_row(i);
+        continue;
+      }
       const Rgb4* q_rows[L > 1 ? L - 1 : 1] = {};
       bool reached = true;
       for (int k = 1; k < L && reached; ++k) {
@@ -43,7 +55,10 @@ void Accumulate(const DisplayModel& model, const std::vector<int>& layers, const
         reached = r >= 0;
         if (reached) q_rows[k - 1] = w->resampled[k - 1].data() + static_cast<size_t>(r) * cols;
       }
-      if (!reached) continue;
+      if (!reached) {
+        unlit_row(i);
+        continue;
+      }
       const float* l = target + static_cast<size_t>(i) * cols * 3;
       const Rgb4* q = L == 1 ? nullptr : q_rows[0];
       if constexpr (L > 2) {  // the product of the other layers, then the sums
@@ -51,8 +66,13 @@ void Accumulate(const DisplayModel& model, const std::vector<int>& layers, const
         AddBranchLightRow(q_rows, L - 1, Rgb4{1, 1, 1, 0}, cols, w->product.data());
         q = w->product.data();
       }
-      UpdateSumsRow(l, q, w->sums.num(ra), w->sums.den(ra), cols);
+      if (view_errors)
+        error += UpdateSumsAndErrorRow(l, q, w->own.data() + static_cast<size_t>(ra) * cols, weight, w->sums.num(ra),
+                                       w->sums.den(ra), cols);
+      else
+        UpdateSumsRow(l, q, w->sums.num(ra), w->sums.den(ra), cols);
     }
+    if (view_errors) view_errors[view] = error;
   }
 
   w->sums.Scatter(Pa, vc);
@@ -61,12 +81,14 @@ void Accumulate(const DisplayModel& model, const std::vector<int>& layers, const
 }  // namespace
 
 void OneTapUpdateSums(const DisplayModel& model, const std::vector<int>& layers, const Patterns& t,
-                      const BranchTarget& branch_target, double* num, double* den) {
+                      const BranchTarget& branch_target, const std::array<float, 3>& weight, double* num, double* den,
+                      double* view_errors) {
   const LightFieldGeometry& g = model.geometry();
   const LayerProjection& Pa = model.projection(layers[0]);
   thread_local PaddedLayers padded_memory;
   PaddedLayers& padded = padded_memory;  // the calling thread's, shared with the workers
-  padded.Pad(t, std::vector<int>(layers.begin() + 1, layers.end()));
+  padded.Pad(t, view_errors ? layers : std::vector<int>(layers.begin() + 1, layers.end()));
+  const Rgb4 w4{weight[0], weight[1], weight[2], 0.0f};
 
   // View columns go to threads whole; each thread sums its own in float (a
   // pixel gets a few rays per view) and the merge is in double.
@@ -77,13 +99,14 @@ void OneTapUpdateSums(const DisplayModel& model, const std::vector<int>& layers,
     w.sums.Reset(Pa, g.cols);
     w.scratch.resize(g.pixels_per_view() * 3);
     w.product.resize(g.cols);
+    w.zeros.assign(g.cols, Rgb4{});
 #pragma omp for schedule(dynamic)
     for (int vc = 0; vc < g.views_x; ++vc) {
       switch (layers.size()) {
-        case 1: Accumulate<1>(model, layers, padded, branch_target, vc, &w); break;
-        case 2: Accumulate<2>(model, layers, padded, branch_target, vc, &w); break;
-        case 3: Accumulate<3>(model, layers, padded, branch_target, vc, &w); break;
-        case 4: Accumulate<4>(model, layers, padded, branch_target, vc, &w); break;
+        case 1: Accumulate<1>(model, layers, padded, branch_target, w4, vc, view_errors, &w); break;
+        case 2: Accumulate<2>(model, layers, padded, branch_target, w4, vc, view_errors, &w); break;
+        case 3: Accumulate<3>(model, layers, padded, branch_target, w4, vc, view_errors, &w); break;
+        case 4: Accumulate<4>(model, layers, padded, branch_target, w4, vc, view_errors, &w); break;
       }
     }
 #pragma omp critical

@@ -11,6 +11,7 @@
 // per view column.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "solvers/multiplicative_update.h"
@@ -18,8 +19,11 @@
 namespace layerlab {
 
 // `layers`: the branch's layers, layer a first. num and den hold layer a's
-// pixels x 3 and are added to.
+// pixels x 3 and are added to. With `view_errors` (one per view), the same
+// pass also gives each view's sum of (r - w_b prod_k P_k t_k)^2 over its
+// rays and channels, the branch's own error against what it should emit.
 void OneTapUpdateSums(const DisplayModel& model, const std::vector<int>& layers, const Patterns& t,
-                      const BranchTarget& branch_target, double* num, double* den);
+                      const BranchTarget& branch_target, const std::array<float, 3>& weight, double* num, double* den,
+                      double* view_errors = nullptr);
 
 }  // namespace layerlab

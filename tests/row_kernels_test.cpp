@@ -116,6 +116,52 @@ TEST_F(RowKernels, UpdateSumsAddTargetTimesProductAndProductSquared) {
     }
 }
 
+TEST_F(RowKernels, FusedUpdateSumsAlsoGiveTheBranchError) {
+  std::mt19937 rng(6);
+  const Rgb4 w{0.5f, 0.25f, 0.75f, 0.0f};
+  for (bool unit_q : {false, true})
+    for (int cols = 1; cols <= 41; ++cols) {
+      const Row r = RandomRow(cols, rng), q = RandomRow(cols, rng), own = RandomRow(cols, rng);
+      const Row n0 = RandomRow(cols, rng), d0 = RandomRow(cols, rng);
+      auto run = [&](double* error) {
+        std::vector<Rgb4> num = n0.padded, den = d0.padded;
+        *error = UpdateSumsAndErrorRow(r.packed.data(), unit_q ? nullptr : q.padded.data(), own.padded.data(), w,
+                                       num.data(), den.data(), cols);
+        std::vector<float> rgb;
+        for (const std::vector<Rgb4>* v : {&num, &den})
+          for (const Rgb4& x : *v) rgb.insert(rgb.end(), {x[0], x[1], x[2]});
+        return rgb;
+      };
+      // The sums are UpdateSumsRow's, bit for bit.
+      std::vector<Rgb4> num = n0.padded, den = d0.padded;
+      UpdateSumsRow(r.packed.data(), unit_q ? nullptr : q.padded.data(), num.data(), den.data(), cols);
+      double error = 0;
+      const std::vector<float> fused = run(&error);
+      for (int j = 0; j < cols; ++j)
+        for (int c = 0; c < 3; ++c) {
+          ASSERT_EQ(fused[j * 3 + c], num[j][c]);
+          ASSERT_EQ(fused[(cols + j) * 3 + c], den[j][c]);
+        }
+      double expected = 0;
+      for (int j = 0; j < cols; ++j)
+        for (int c = 0; c < 3; ++c) {
+          const double light = double(w[c]) * own.padded[j][c] * (unit_q ? 1.0 : q.padded[j][c]);
+          const double d = r.packed[j * 3 + c] - light;
+          expected += d * d;
+        }
+      ASSERT_NEAR(error, expected, 1e-6 * expected + 1e-12);
+      ExpectSameInBothBuilds(
+          [&] {
+            double e = 0;
+            std::vector<unsigned char> b = Bytes(run(&e));
+            const unsigned char* eb = reinterpret_cast<const unsigned char*>(&e);
+            b.insert(b.end(), eb, eb + sizeof e);
+            return b;
+          },
+          "fused update sums and error", cols);
+    }
+}
+
 TEST_F(RowKernels, SquaredErrorIsTheDoubleSumOverChannels) {
   std::mt19937 rng(3);
   for (bool exact_last : {true, false})

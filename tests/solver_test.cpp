@@ -186,7 +186,9 @@ TEST(Solvers, OneTapFastPathMatchesTheGeneralPath) {
     SolverOptions o;
     o.iterations = 2;
     o.initial_value = -1;
-    for (const std::string solver : {"hybrid", "joint"}) {
+    std::vector<std::string> solvers = {"hybrid", "joint"};
+    if (shape.size() == 1) solvers.push_back("multiplicative");  // its objective comes from an update's pass
+    for (const std::string& solver : solvers) {
       Patterns pa, pb;
       SolverReport ra = SolverRegistry::Builtins().create(solver)->Solve(fast, f.target, o, &pa);
       SolverReport rb = SolverRegistry::Builtins().create(solver)->Solve(general, f.target, o, &pb);
@@ -290,6 +292,22 @@ TEST(Solvers, MultiplicativeNeverIncreasesTheObjective) {
   ASSERT_EQ(r.trace.size(), 41u);
   for (size_t k = 1; k < r.trace.size(); ++k)
     EXPECT_LE(r.trace[k].objective, r.trace[k - 1].objective * (1 + 1e-7)) << "iteration " << k;
+}
+
+// The solver records each iteration's objective from the pass that also
+// makes the next iteration's first update: it is the patterns' objective.
+TEST(Solvers, MultiplicativeRecordsTheObjectiveOfItsPatterns) {
+  const Fixture f = MakeFixture("multiplicative_2layer.json");
+  for (int iterations : {1, 2, 5}) {
+    SolverOptions o;
+    o.iterations = iterations;
+    o.initial_value = -1;
+    Patterns t;
+    const SolverReport r = RunSolver("multiplicative", f, o, &t);
+    ASSERT_EQ(r.trace.size(), size_t(iterations) + 1);
+    const double exact = Objective(*f.model, f.target, t);
+    EXPECT_NEAR(r.final_objective, exact, 1e-6 * exact) << iterations << " iterations";
+  }
 }
 
 TEST(Solvers, MultiplicativeRefusesSeveralBranches) {
