@@ -66,40 +66,69 @@ class HybridSolver final : public Solver {
         }
       }
     };
-    // The next iteration's first chase (set 0's) and this iteration's
-    // objective from one pass over the rays, when every set is on the
-    // one-tap path; nothing otherwise (the loop then computes the objective).
-    auto chase_and_objective = [&]() -> std::optional<double> {
-      thread_local PaddedLayers workspace;
-      const ViewSynthesizer synthesizer(model, *t, &workspace);
-      if (branches < 2 || !synthesizer.AllOneTap()) return std::nullopt;
+    // Where every set is on the one-tap path, a set's chase is computed view
+    // by view inside the pass of its first update (the update reads each
+    // view right after it is written), and the pass that gives an
+    // iteration's objective also gives set 0's next chase and the sums of
+    // its next first update, applied only if there is a next iteration.
+    auto others_of = [&](size_t m) {
       std::vector<size_t> others;
-      for (size_t b = 1; b < branches; ++b) others.push_back(b);
-      std::vector<double> per_view(views);  // summed in view order: the same for any thread count
-#pragma omp parallel for schedule(static)
-      for (size_t order = 0; order < views; ++order) {
-        const size_t view = synthesizer.ViewInColumnOrder(order);
-        synthesizer.RemainderAndError(others, view, l.view(view), chase.view(view), &per_view[view]);
-      }
-      double total_error = 0;
-      for (double e : per_view) total_error += e;
-      return total_error;
+      for (size_t b = 0; b < branches; ++b)
+        if (b != m) others.push_back(b);
+      return others;
     };
-
-    bool chase_ready = false;  // set 0's chase came with the last iteration's objective
+    auto layers_of = [&](size_t m) {
+      std::vector<int> order = model.branch_layers(m);
+      std::sort(order.begin(), order.end());
+      return order;
+    };
+    BranchTarget stored_chase = [&](size_t view, float*) { return chase.view(view); };
+    LayerUpdate next_first;  // set 0's first update of the next iteration
+    bool next_first_ready = false;
     std::optional<double> objective;
     do {
       for (size_t m = 0; m < branches; ++m) {
-        if (!(m == 0 && chase_ready)) compute_chase(m);
-        BranchTarget target_of_set = [&](size_t view, float*) { return chase.view(view); };
-        std::vector<int> order = model.branch_layers(m);
-        std::sort(order.begin(), order.end());
+        const std::vector<int> order = layers_of(m);
+        const std::vector<size_t> others = others_of(m);
+        thread_local PaddedLayers workspace;
+        const ViewSynthesizer synthesizer(model, *t, &workspace);
+        const bool others_started = std::all_of(others.begin(), others.end(), [&](size_t b) { return bool(started[b]); });
+        bool first_done = false;
+        if (m == 0 && next_first_ready) {
+          ApplyLayerUpdate(next_first, options, t);
+          first_done = true;
+        } else if (synthesizer.AllOneTap() && others_started && !others.empty()) {
+          BranchTarget chase_on_the_way = [&](size_t view, float*) {
+            synthesizer.Remainder(others, view, l.view(view), chase.view(view));
+            return static_cast<const float*>(chase.view(view));
+          };
+          UpdateLayerMultiplicative(model, m, order[0], chase_on_the_way, options, t);
+          first_done = true;
+        } else {
+          compute_chase(m);
+        }
         for (int s = 0; s < options.sub_iterations; ++s)
-          for (int layer : order) UpdateLayerMultiplicative(model, m, layer, target_of_set, options, t);
+          for (size_t k = 0; k < order.size(); ++k)
+            if (!(s == 0 && k == 0 && first_done)) UpdateLayerMultiplicative(model, m, order[k], stored_chase, options, t);
         started[m] = true;
       }
-      objective = chase_and_objective();
-      chase_ready = objective.has_value();
+      next_first_ready = false;
+      objective.reset();
+      thread_local PaddedLayers workspace;
+      const ViewSynthesizer synthesizer(model, *t, &workspace);
+      if (branches >= 2 && synthesizer.AllOneTap()) {
+        const std::vector<size_t> others = others_of(0);
+        std::vector<double> per_view(views);  // summed in view order: the same for any thread count
+        BranchTarget chase_and_error = [&](size_t view, float*) {
+          synthesizer.RemainderAndError(others, view, l.view(view), chase.view(view), &per_view[view]);
+          return static_cast<const float*>(chase.view(view));
+        };
+        ComputeLayerUpdate(model, 0, layers_of(0)[0], chase_and_error, *t, &next_first);
+        double total_error = 0;
+        for (double e : per_view) total_error += e;
+        objective = total_error;
+        next_first_ready = true;
+      }
     } while (loop.EndIteration(objective));
     return loop.Finish();
   }
