@@ -1,6 +1,7 @@
 #include "solvers/joint_column_pass.h"
 
 #include <cstdint>
+#include <omp.h>
 
 #include "framework/row_kernels.h"
 #include "systems/one_tap_view.h"
@@ -53,20 +54,23 @@ void Resize(const DisplayModel& model, Workspace* w) {
   w->light.resize(model.geometry().cols);
 }
 
-// ||l - l~||^2 over the rays of view column vc; the sums into w.
-double ViewColumn(const DisplayModel& model, const LightField& l, const PaddedLayers& padded, int vc, Workspace* w) {
+// The sums over views [vr_begin, vr_end) of view column vc into w, and each
+// view's ||l - l~||^2 into view_errors.
+void ViewRun(const DisplayModel& model, const LightField& l, const PaddedLayers& padded, int vc, int vr_begin,
+             int vr_end, double* view_errors, Workspace* w) {
   const LightFieldGeometry& g = model.geometry();
   const int cols = g.cols;
   const size_t layers = model.layer_count();
   for (size_t k = 0; k < layers; ++k)
     ResampleToRayColumns(model.projection(k), padded.pixels(static_cast<int>(k)), vc, cols, &w->resampled[k]);
 
-  double error = 0;
   std::vector<const Rgb4*> row(layers);  // each layer's resampled row for the current ray row, or null
   std::vector<int32_t> layer_row(layers);
-  for (int vr = 0; vr < g.views_y; ++vr) {
+  for (int vr = vr_begin; vr < vr_end; ++vr) {
     const size_t view = g.view_index(vr, vc);
     const float* target = l.view(view);
+    double& error = view_errors[view];
+    error = 0;
     for (int i = 0; i < g.rows; ++i) {
       for (size_t k = 0; k < layers; ++k) {
         layer_row[k] = model.projection(k).row_taps(view)[i].i0;
@@ -116,7 +120,6 @@ double ViewColumn(const DisplayModel& model, const LightField& l, const PaddedLa
   }
 
   for (size_t k = 0; k < layers; ++k) w->sums[k].Scatter(model.projection(k), vc);
-  return error;
 }
 
 }  // namespace
@@ -126,16 +129,27 @@ double JointColumnPass(const DisplayModel& model, const LightField& l, const Pat
   thread_local PaddedLayers padded_memory;
   PaddedLayers& padded = padded_memory;  // the calling thread's, shared with the workers
   padded.PadAll(t);
-  const int view_columns = model.geometry().views_x;
-  std::vector<double> error(view_columns);  // summed in view-column order: the same for any thread count
+  const LightFieldGeometry& g = model.geometry();
+  std::vector<double> error(g.view_count());  // summed in view order: the same for any thread count
+  std::vector<std::vector<const ColumnSums*>> thread_sums(model.layer_count());  // [layer][thread]
 #pragma omp parallel
   {
     thread_local Workspace w;
     Resize(model, &w);
-#pragma omp for schedule(dynamic)
-    for (int vc = 0; vc < view_columns; ++vc) error[vc] = ViewColumn(model, l, padded, vc, &w);
-#pragma omp critical
-    for (size_t k = 0; k < model.layer_count(); ++k) w.sums[k].AddTo((*num)[k].data(), (*den)[k].data());
+    const int threads = omp_get_num_threads(), me = omp_get_thread_num();
+#pragma omp single
+    for (auto& s : thread_sums) s.resize(threads);
+    for (size_t k = 0; k < model.layer_count(); ++k) thread_sums[k][me] = &w.sums[k];
+    ForEachViewRunOfThread(g, me, threads, [&](int vc, int vr_begin, int vr_end) {
+      ViewRun(model, l, padded, vc, vr_begin, vr_end, error.data(), &w);
+    });
+#pragma omp barrier
+    // Merged in thread order, each thread a share of each layer's pixels.
+    for (size_t k = 0; k < model.layer_count(); ++k) {
+      const size_t pixels = model.projection(k).pixel_count();
+      ColumnSums::Merge(thread_sums[k], pixels * me / threads, pixels * (me + 1) / threads, (*num)[k].data(),
+                        (*den)[k].data());
+    }
   }
   double total = 0;
   for (double e : error) total += e;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <omp.h>
 
 #include "framework/row_kernels.h"
 #include "systems/one_tap_view.h"
@@ -22,7 +23,8 @@ struct Workspace {
 
 template <int L>
 void Accumulate(const DisplayModel& model, const std::vector<int>& layers, const PaddedLayers& padded,
-                const BranchTarget& branch_target, Rgb4 weight, int vc, double* view_errors, Workspace* w) {
+                const BranchTarget& branch_target, Rgb4 weight, int vc, int vr_begin, int vr_end, double* view_errors,
+                Workspace* w) {
   const LightFieldGeometry& g = model.geometry();
   const int cols = g.cols;
   const LayerProjection& Pa = model.projection(layers[0]);
@@ -31,7 +33,7 @@ void Accumulate(const DisplayModel& model, const std::vector<int>& layers, const
     ResampleToRayColumns(model.projection(layers[k]), padded.pixels(layers[k]), vc, cols, &w->resampled[k - 1]);
   if (view_errors) ResampleToRayColumns(Pa, padded.pixels(layers[0]), vc, cols, &w->own);
 
-  for (int vr = 0; vr < g.views_y; ++vr) {
+  for (int vr = vr_begin; vr < vr_end; ++vr) {
     const size_t view = g.view_index(vr, vc);
     const float* target = branch_target(view, w->scratch.data());
     const AxisTap* row_taps[L];
@@ -90,8 +92,10 @@ void OneTapUpdateSums(const DisplayModel& model, const std::vector<int>& layers,
   padded.Pad(t, view_errors ? layers : std::vector<int>(layers.begin() + 1, layers.end()));
   const Rgb4 w4{weight[0], weight[1], weight[2], 0.0f};
 
-  // View columns go to threads whole; each thread sums its own in float (a
-  // pixel gets a few rays per view) and the merge is in double.
+  // Each thread takes an equal run of views (ForEachViewRunOfThread), sums
+  // them in float (a pixel gets a few rays per view), and the merge is in
+  // double, in thread order: the same bits for a given thread count.
+  std::vector<const ColumnSums*> thread_sums;
 #pragma omp parallel
   {
     thread_local Workspace w;
@@ -100,17 +104,21 @@ void OneTapUpdateSums(const DisplayModel& model, const std::vector<int>& layers,
     w.scratch.resize(g.pixels_per_view() * 3);
     w.product.resize(g.cols);
     w.zeros.assign(g.cols, Rgb4{});
-#pragma omp for schedule(dynamic)
-    for (int vc = 0; vc < g.views_x; ++vc) {
+    const int threads = omp_get_num_threads(), me = omp_get_thread_num();
+#pragma omp single
+    thread_sums.resize(threads);
+    thread_sums[me] = &w.sums;
+    ForEachViewRunOfThread(g, me, threads, [&](int vc, int vr_begin, int vr_end) {
       switch (layers.size()) {
-        case 1: Accumulate<1>(model, layers, padded, branch_target, w4, vc, view_errors, &w); break;
-        case 2: Accumulate<2>(model, layers, padded, branch_target, w4, vc, view_errors, &w); break;
-        case 3: Accumulate<3>(model, layers, padded, branch_target, w4, vc, view_errors, &w); break;
-        case 4: Accumulate<4>(model, layers, padded, branch_target, w4, vc, view_errors, &w); break;
+        case 1: Accumulate<1>(model, layers, padded, branch_target, w4, vc, vr_begin, vr_end, view_errors, &w); break;
+        case 2: Accumulate<2>(model, layers, padded, branch_target, w4, vc, vr_begin, vr_end, view_errors, &w); break;
+        case 3: Accumulate<3>(model, layers, padded, branch_target, w4, vc, vr_begin, vr_end, view_errors, &w); break;
+        case 4: Accumulate<4>(model, layers, padded, branch_target, w4, vc, vr_begin, vr_end, view_errors, &w); break;
       }
-    }
-#pragma omp critical
-    w.sums.AddTo(num, den);
+    });
+#pragma omp barrier
+    const size_t pixels = Pa.pixel_count();
+    ColumnSums::Merge(thread_sums, pixels * me / threads, pixels * (me + 1) / threads, num, den);
   }
 }
 

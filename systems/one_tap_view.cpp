@@ -103,12 +103,14 @@ void ColumnSums::Scatter(const LayerProjection& P, int vc) {
   }
 }
 
-void ColumnSums::AddTo(double* num, double* den) const {
-  for (size_t k = 0; k < pixel_num_.size(); ++k)
-    for (int c = 0; c < 3; ++c) {
-      num[k * 3 + c] += pixel_num_[k][c];
-      den[k * 3 + c] += pixel_den_[k][c];
-    }
+void ColumnSums::Merge(const std::vector<const ColumnSums*>& sums, size_t begin, size_t end, double* num,
+                       double* den) {
+  for (const ColumnSums* s : sums)
+    for (size_t k = begin; k < end; ++k)
+      for (int c = 0; c < 3; ++c) {
+        num[k * 3 + c] += s->pixel_num_[k][c];
+        den[k * 3 + c] += s->pixel_den_[k][c];
+      }
 }
 
 }  // namespace layerlab

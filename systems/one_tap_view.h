@@ -106,6 +106,22 @@ class OneTapBranchView {
 // column a layer's column tap depends on the ray's column alone.
 void ResampleToRayColumns(const LayerProjection& P, const Rgb4* pixels, int vc, int ray_cols, std::vector<Rgb4>* out);
 
+// Thread `me` of `threads`' equal share of the views in view-column order,
+// as runs within one view column: f(vc, vr_begin, vr_end) for each. Whole
+// view columns per thread would leave one thread idle for a column in
+// thirteen; only the columns a run boundary cuts are resampled twice.
+template <class F>
+void ForEachViewRunOfThread(const LightFieldGeometry& g, int me, int threads, F f) {
+  const int64_t views = int64_t(g.views_x) * g.views_y;
+  const int64_t end = views * (me + 1) / threads;
+  for (int64_t k = views * me / threads; k < end;) {
+    const int vc = static_cast<int>(k / g.views_y), vr_begin = static_cast<int>(k % g.views_y);
+    const int vr_end = static_cast<int>(std::min<int64_t>(g.views_y, vr_begin + (end - k)));
+    f(vc, vr_begin, vr_end);
+    k += vr_end - vr_begin;
+  }
+}
+
 // One layer's multiplicative-update sums (numerator and denominator) for one
 // thread: summed in the rays' columns over the ray rows of a view column,
 // then scattered to the layer's pixels once per view column.
@@ -118,8 +134,9 @@ class ColumnSums {
   Rgb4* den(int r) { touched_[r] = 1; return &column_den_[static_cast<size_t>(r) * ray_cols_]; }
   // The column sums into the pixel sums through view column vc's column taps; clears them.
   void Scatter(const LayerProjection& P, int vc);
-  // num[pixel * 3 + c] += the pixel sums, and den likewise (merging threads, in double).
-  void AddTo(double* num, double* den) const;
+  // num[pixel * 3 + c] += each of `sums`' pixel sums in their order, for
+  // pixels in [begin, end), and den likewise (merging threads, in double).
+  static void Merge(const std::vector<const ColumnSums*>& sums, size_t begin, size_t end, double* num, double* den);
 
  private:
   int ray_cols_ = 0;

@@ -379,6 +379,26 @@ TEST(SolverReport, PerfectFitIsInfinityNotNull) {
   EXPECT_EQ(TraceCsv(r), "iteration,seconds,objective,psnr_db\n0,0.000000,0,inf\n");
 }
 
+// Thread sums merge in thread order and objectives in view order, so two
+// runs with the same thread count give the same bits.
+TEST(Solvers, TwoRunsWithTwoThreadsGiveTheSameBits) {
+  for (const auto& [example, solvers] : std::vector<std::pair<std::string, std::vector<std::string>>>{
+           {"paper_prototype.json", {"hybrid", "joint"}}, {"multiplicative_2layer.json", {"multiplicative"}}}) {
+    const Fixture f = MakeFixture(example, 64, 32, 7);
+    for (const std::string& solver : solvers) {
+      SolverOptions o;
+      o.iterations = 3;
+      o.threads = 2;
+      o.initial_value = -1;
+      Patterns a, b;
+      const SolverReport ra = RunSolver(solver, f, o, &a), rb = RunSolver(solver, f, o, &b);
+      ASSERT_EQ(ra.trace.size(), rb.trace.size());
+      for (size_t k = 0; k < ra.trace.size(); ++k) EXPECT_EQ(ra.trace[k].objective, rb.trace[k].objective) << solver;
+      for (size_t k = 0; k < a.size(); ++k) EXPECT_EQ(a[k].rgb, b[k].rgb) << solver << ", layer " << k;
+    }
+  }
+}
+
 TEST(Solvers, ObjectiveIsSummedInDouble) {
   // 13.5 M equal errors of 1e-3: float accumulation would drift by ~1e-4 relative.
   Fixture f = MakeFixture("multiplicative_2layer.json", 400, 200, 13);
