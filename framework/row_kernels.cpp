@@ -126,6 +126,50 @@ void PackRow(const Rgb4* row, int cols, float* out) {
   StoreRgb(row[cols - 1], out + (cols - 1) * 3);
 }
 
+namespace {
+
+// One ray of JointSumsRow: prefix products from the front, suffix from the back.
+template <int L>
+inline void JointSumsRay(const Rgb4* const* r, Rgb4 w, int j, Rgb4 lj, const Rgb4* light, Rgb4* const* n,
+                         Rgb4* const* d) {
+  Rgb4 prefix[L];  // w times the layers before a
+  Rgb4 p = w;
+  for (int k = 0; k < L; ++k) {
+    prefix[k] = p;
+    p *= r[k][j];
+  }
+  Rgb4 suffix = Rgb4{1, 1, 1, 1};  // the layers after a
+  for (int a = L - 1; a >= 0; --a) {
+    const Rgb4 q = prefix[a] * suffix;
+    n[a][j] += lj * q;
+    d[a][j] += light[j] * q;
+    suffix *= r[a][j];
+  }
+}
+
+template <int L>
+void JointSumsRowOf(const Rgb4* const* rows, Rgb4 w, int cols, const float* l, bool exact_last, const Rgb4* light,
+                    Rgb4* const* num, Rgb4* const* den) {
+  const Rgb4* r[L];
+  Rgb4* n[L];
+  Rgb4* d[L];
+  for (int k = 0; k < L; ++k) r[k] = rows[k], n[k] = num[k], d[k] = den[k];
+  const int safe = exact_last ? cols - 1 : cols;
+  for (int j = 0; j < cols; ++j) JointSumsRay<L>(r, w, j, j < safe ? LoadRgbOver(l + j * 3) : LoadRgb(l + j * 3), light, n, d);
+}
+
+}  // namespace
+
+void JointSumsRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, const float* l, bool exact_last,
+                  const Rgb4* light, Rgb4* const* num, Rgb4* const* den) {
+  switch (layers) {
+    case 1: return JointSumsRowOf<1>(rows, w, cols, l, exact_last, light, num, den);
+    case 2: return JointSumsRowOf<2>(rows, w, cols, l, exact_last, light, num, den);
+    case 3: return JointSumsRowOf<3>(rows, w, cols, l, exact_last, light, num, den);
+    case 4: return JointSumsRowOf<4>(rows, w, cols, l, exact_last, light, num, den);
+  }
+}
+
 }  // namespace baseline
 
 namespace {
@@ -192,6 +236,10 @@ void RemainderRow(const float* target, const Rgb4* light, int cols, float* out) 
   LAYERLAB_DISPATCH(RemainderRow(target, light, cols, out));
 }
 void PackRow(const Rgb4* row, int cols, float* out) { LAYERLAB_DISPATCH(PackRow(row, cols, out)); }
+void JointSumsRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, const float* l, bool exact_last,
+                  const Rgb4* light, Rgb4* const* num, Rgb4* const* den) {
+  LAYERLAB_DISPATCH(JointSumsRow(rows, layers, w, cols, l, exact_last, light, num, den));
+}
 
 #undef LAYERLAB_DISPATCH
 

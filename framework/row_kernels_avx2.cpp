@@ -52,7 +52,66 @@ LAYERLAB_AVX2 void AddBranchLightRowOf(const Rgb4* const* rows, Rgb4 w, int cols
   }
 }
 
+template <int L>
+LAYERLAB_AVX2 void JointSumsRowOf(const Rgb4* const* rows, Rgb4 w, int cols, const float* l, bool exact_last,
+                                  const Rgb4* light, Rgb4* const* num, Rgb4* const* den) {
+  const float* r[L];
+  float* n[L];
+  float* d[L];
+  for (int k = 0; k < L; ++k) {
+    r[k] = reinterpret_cast<const float*>(rows[k]);
+    n[k] = reinterpret_cast<float*>(num[k]), d[k] = reinterpret_cast<float*>(den[k]);
+  }
+  const float* li = reinterpret_cast<const float*>(light);
+  const __m256 w2 = Twice(w), ones = _mm256_set1_ps(1.0f);
+  int j = 0;
+  for (; j + 3 <= cols; j += 2) {  // rays j, j + 1 read up to ray j + 2's green
+    __m256 rk[L], prefix[L];
+    __m256 p = w2;
+    for (int k = 0; k < L; ++k) {
+      rk[k] = _mm256_loadu_ps(r[k] + j * 4);
+      prefix[k] = p;
+      p = _mm256_mul_ps(p, rk[k]);
+    }
+    const __m256 lj = LoadTwoRaysOver(l + j * 3), lightj = _mm256_loadu_ps(li + j * 4);
+    __m256 suffix = ones;
+    for (int a = L - 1; a >= 0; --a) {
+      const __m256 q = _mm256_mul_ps(prefix[a], suffix);
+      _mm256_storeu_ps(n[a] + j * 4, _mm256_add_ps(_mm256_loadu_ps(n[a] + j * 4), _mm256_mul_ps(lj, q)));
+      _mm256_storeu_ps(d[a] + j * 4, _mm256_add_ps(_mm256_loadu_ps(d[a] + j * 4), _mm256_mul_ps(lightj, q)));
+      suffix = _mm256_mul_ps(suffix, rk[a]);
+    }
+  }
+  const int safe = exact_last ? cols - 1 : cols;
+  for (; j < cols; ++j) {
+    const Rgb4 lj = j < safe ? LoadRgbOver(l + j * 3) : LoadRgb(l + j * 3);
+    Rgb4 prefix[L];
+    Rgb4 p = w;
+    for (int k = 0; k < L; ++k) {
+      prefix[k] = p;
+      p *= rows[k][j];
+    }
+    Rgb4 suffix = Rgb4{1, 1, 1, 1};
+    for (int a = L - 1; a >= 0; --a) {
+      const Rgb4 q = prefix[a] * suffix;
+      num[a][j] += lj * q;
+      den[a][j] += light[j] * q;
+      suffix *= rows[a][j];
+    }
+  }
+}
+
 }  // namespace
+
+LAYERLAB_AVX2 void JointSumsRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, const float* l, bool exact_last,
+                                const Rgb4* light, Rgb4* const* num, Rgb4* const* den) {
+  switch (layers) {
+    case 1: return JointSumsRowOf<1>(rows, w, cols, l, exact_last, light, num, den);
+    case 2: return JointSumsRowOf<2>(rows, w, cols, l, exact_last, light, num, den);
+    case 3: return JointSumsRowOf<3>(rows, w, cols, l, exact_last, light, num, den);
+    case 4: return JointSumsRowOf<4>(rows, w, cols, l, exact_last, light, num, den);
+  }
+}
 
 LAYERLAB_AVX2 void AddBranchLightRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, Rgb4* row) {
   switch (layers) {

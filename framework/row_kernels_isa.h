@@ -19,6 +19,8 @@ double UpdateSumsAndErrorRow(const float* r, const Rgb4* q, const Rgb4* own, Rgb
 double SquaredErrorRow(const float* target, const Rgb4* light, int cols, bool exact_last);
 void RemainderRow(const float* target, const Rgb4* light, int cols, float* out);
 void PackRow(const Rgb4* row, int cols, float* out);
+void JointSumsRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, const float* l, bool exact_last,
+                  const Rgb4* light, Rgb4* const* num, Rgb4* const* den);
 }  // namespace baseline
 
 #if LAYERLAB_ROW_KERNELS_AVX2
@@ -31,6 +33,8 @@ double UpdateSumsAndErrorRow(const float* r, const Rgb4* q, const Rgb4* own, Rgb
 double SquaredErrorRow(const float* target, const Rgb4* light, int cols, bool exact_last);
 void RemainderRow(const float* target, const Rgb4* light, int cols, float* out);
 void PackRow(const Rgb4* row, int cols, float* out);
+void JointSumsRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, const float* l, bool exact_last,
+                  const Rgb4* light, Rgb4* const* num, Rgb4* const* den);
 }  // namespace avx2
 #endif
 

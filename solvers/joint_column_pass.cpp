@@ -17,36 +17,6 @@ struct Workspace {
   std::vector<Rgb4> light;                   // one ray row of the whole display
 };
 
-// For every layer a of one branch over one ray row, q_a = w prod_{k != a} rows[k][j]:
-// num[a][j] += l_j q_a, den[a][j] += light[j] q_a. `exact_last`: read the
-// last ray's three floats exactly (it ends its view).
-template <int L>
-void AddBranchSums(const Rgb4* const* rows, Rgb4 w, int cols, const float* l, bool exact_last, const Rgb4* light,
-                   Rgb4* const* num, Rgb4* const* den) {
-  const Rgb4* r[L];
-  Rgb4* n[L];
-  Rgb4* d[L];
-  for (int k = 0; k < L; ++k) r[k] = rows[k], n[k] = num[k], d[k] = den[k];
-  auto add = [&](int j, Rgb4 lj) {
-    Rgb4 prefix[L];  // w times the layers before a
-    Rgb4 p = w;
-    for (int k = 0; k < L; ++k) {
-      prefix[k] = p;
-      p *= r[k][j];
-    }
-    Rgb4 suffix = Rgb4{1, 1, 1, 1};  // the layers after a
-    for (int a = L - 1; a >= 0; --a) {
-      const Rgb4 q = prefix[a] * suffix;
-      n[a][j] += lj * q;
-      d[a][j] += light[j] * q;
-      suffix *= r[a][j];
-    }
-  };
-  const int safe = exact_last ? cols - 1 : cols;
-  for (int j = 0; j < safe; ++j) add(j, LoadRgbOver(l + j * 3));
-  for (int j = safe; j < cols; ++j) add(j, LoadRgb(l + j * 3));
-}
-
 void Resize(const DisplayModel& model, Workspace* w) {
   const size_t layers = model.layer_count();
   w->resampled.resize(layers), w->sums.resize(layers);
@@ -109,12 +79,7 @@ void ViewRun(const DisplayModel& model, const LightField& l, const PaddedLayers&
           num[m] = w->sums[a].num(layer_row[a]);
           den[m] = w->sums[a].den(layer_row[a]);
         }
-        switch (members.size()) {
-          case 1: AddBranchSums<1>(rows, weight(b), cols, lr, exact_last, light, num, den); break;
-          case 2: AddBranchSums<2>(rows, weight(b), cols, lr, exact_last, light, num, den); break;
-          case 3: AddBranchSums<3>(rows, weight(b), cols, lr, exact_last, light, num, den); break;
-          case 4: AddBranchSums<4>(rows, weight(b), cols, lr, exact_last, light, num, den); break;
-        }
+        JointSumsRow(rows, static_cast<int>(members.size()), weight(b), cols, lr, exact_last, light, num, den);
       }
     }
   }

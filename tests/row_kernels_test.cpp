@@ -162,6 +162,43 @@ TEST_F(RowKernels, FusedUpdateSumsAlsoGiveTheBranchError) {
     }
 }
 
+TEST_F(RowKernels, JointSumsUseEachLayersProductOfTheOthers) {
+  std::mt19937 rng(7);
+  const Rgb4 w{0.5f, 0.25f, 0.75f, 0.0f};
+  for (int layers = 1; layers <= 4; ++layers)
+    for (bool exact_last : {true, false})
+      for (int cols = 1; cols <= 41; ++cols) {
+        std::vector<Row> in;
+        for (int k = 0; k < layers; ++k) in.push_back(RandomRow(cols, rng));
+        const Row l = RandomRow(cols, rng), light = RandomRow(cols, rng), start = RandomRow(cols, rng);
+        auto run = [&] {
+          std::vector<std::vector<Rgb4>> num(layers, start.padded), den(layers, start.padded);
+          const Rgb4* rows[4];
+          Rgb4 *n[4], *d[4];
+          for (int k = 0; k < layers; ++k) rows[k] = in[k].padded.data(), n[k] = num[k].data(), d[k] = den[k].data();
+          JointSumsRow(rows, layers, w, cols, l.packed.data(), exact_last, light.padded.data(), n, d);
+          std::vector<float> rgb;  // num then den, layer by layer, channels 0-2
+          for (const auto* sums : {&num, &den})
+            for (const std::vector<Rgb4>& layer : *sums)
+              for (const Rgb4& v : layer) rgb.insert(rgb.end(), {v[0], v[1], v[2]});
+          return rgb;
+        };
+        const std::vector<float> got = run();
+        const size_t per_layer = size_t(cols) * 3;
+        for (int a = 0; a < layers; ++a)
+          for (int j = 0; j < cols; ++j)
+            for (int c = 0; c < 3; ++c) {
+              double q = w[c];
+              for (int k = 0; k < layers; ++k)
+                if (k != a) q *= in[k].padded[j][c];
+              const size_t at = a * per_layer + j * 3 + c;
+              ASSERT_NEAR(got[at], start.padded[j][c] + l.packed[j * 3 + c] * q, 1e-6);
+              ASSERT_NEAR(got[layers * per_layer + at], start.padded[j][c] + light.padded[j][c] * q, 1e-6);
+            }
+        ExpectSameInBothBuilds([&] { return Bytes(run()); }, "joint sums", cols);
+      }
+}
+
 TEST_F(RowKernels, SquaredErrorIsTheDoubleSumOverChannels) {
   std::mt19937 rng(3);
   for (bool exact_last : {true, false})
