@@ -70,7 +70,7 @@ void BM_Synthesis(benchmark::State& state) {
 // and write, as the hybrid's pass for the other set's light does).
 void BM_MemoryFloorRead(benchmark::State& state) {
   const Workload& w = GetWorkload("paper_prototype");
-  const std::vector<float>& l = w.target.rgb;
+  const auto& l = w.target.rgb;
   const size_t n = l.size() / 4;
   for (auto _ : state) {
     using V = float __attribute__((vector_size(16)));
@@ -93,7 +93,7 @@ void BM_MemoryFloorRead(benchmark::State& state) {
 
 void BM_MemoryFloorCopy(benchmark::State& state) {
   const Workload& w = GetWorkload("paper_prototype");
-  const std::vector<float>& l = w.target.rgb;
+  const auto& l = w.target.rgb;
   std::vector<float> out(l.size());
   for (auto _ : state) {
 #pragma omp parallel for

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "framework/huge_page_allocator.h"
+
 namespace layerlab {
 
 struct LightFieldGeometry {
@@ -35,7 +37,7 @@ struct LightFieldGeometry {
 struct LightField {
   LightFieldGeometry geometry;
   // [view][row][col][channel], channels R, G, B.
-  std::vector<float> rgb;
+  std::vector<float, HugePageAllocator<float>> rgb;
   // [view][row][col], eye-space z (m) of the first surface; empty when absent.
   std::vector<float> depth;
   std::string scene;  // free text from the manifest

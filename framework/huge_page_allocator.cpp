@@ -1,0 +1,37 @@
+#include "framework/huge_page_allocator.h"
+
+#include <cstdlib>
+
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
+
+namespace layerlab {
+namespace {
+constexpr size_t kHugePage = size_t(2) << 20;
+}
+
+void* AllocateLarge(size_t bytes) {
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  if (bytes >= kHugePage) {
+    const size_t rounded = (bytes + kHugePage - 1) / kHugePage * kHugePage;
+    void* p = std::aligned_alloc(kHugePage, rounded);
+    if (p == nullptr) throw std::bad_alloc();
+    madvise(p, rounded, MADV_HUGEPAGE);  // a hint: refused, the pages are just small
+    return p;
+  }
+#endif
+  return ::operator new(bytes);
+}
+
+void FreeLarge(void* p, size_t bytes) {
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  if (bytes >= kHugePage) {
+    std::free(p);
+    return;
+  }
+#endif
+  ::operator delete(p);
+}
+
+}  // namespace layerlab

@@ -1,0 +1,31 @@
+#include "framework/huge_page_allocator.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace layerlab {
+namespace {
+
+TEST(HugePageAllocator, LargeBlocksAreAlignedToHugePagesAndSmallOnesWork) {
+  for (size_t floats : {size_t(1), size_t(1000), size_t(3) << 19, (size_t(162) << 20) / 4}) {
+    std::vector<float, HugePageAllocator<float>> v(floats, 1.5f);
+    if (floats * sizeof(float) >= (size_t(2) << 20)) {
+      EXPECT_EQ(reinterpret_cast<uintptr_t>(v.data()) % (uintptr_t(2) << 20), 0u) << floats;
+    }
+    v.back() = 2.5f;
+    if (floats > 1) EXPECT_EQ(v.front(), 1.5f);
+    EXPECT_EQ(v.back(), 2.5f);
+    std::vector<float, HugePageAllocator<float>> copy = v;  // copies and frees through the same allocator
+    EXPECT_EQ(copy, v);
+  }
+}
+
+TEST(HugePageAllocator, AnImpossibleSizeIsRefused) {
+  HugePageAllocator<float> a;
+  EXPECT_THROW(a.allocate(static_cast<size_t>(-1) / 2), std::bad_array_new_length);
+}
+
+}  // namespace
+}  // namespace layerlab
