@@ -15,7 +15,9 @@ TEST(HugePageAllocator, LargeBlocksAreAlignedToHugePagesAndSmallOnesWork) {
       EXPECT_EQ(reinterpret_cast<uintptr_t>(v.data()) % (uintptr_t(2) << 20), 0u) << floats;
     }
     v.back() = 2.5f;
-    if (floats > 1) EXPECT_EQ(v.front(), 1.5f);
+    if (floats > 1) {
+      EXPECT_EQ(v.front(), 1.5f);
+    }
     EXPECT_EQ(v.back(), 2.5f);
     std::vector<float, HugePageAllocator<float>> copy = v;  // copies and frees through the same allocator
     EXPECT_EQ(copy, v);
