@@ -20,6 +20,7 @@ class HybridSolver final : public Solver {
   SolverReport Solve(const DisplayModel& model, const LightField& target, const SolverOptions& options,
                      Patterns* t) const override {
     SolveLoop loop("hybrid", model, target, options, t);
+    LightField chase(model.geometry());  // what the set being updated should emit; allocated in the set-up
     if (!loop.Start()) return loop.Finish();
     const LightField& l = loop.target();
     const size_t branches = model.branch_count();
@@ -30,7 +31,6 @@ class HybridSolver final : public Solver {
       for (int c = 0; c < 3; ++c) total[c] += model.weight(b)[c];
     // After one iteration every set has emitted light of its own.
     std::vector<bool> started(branches, loop.resumed() && loop.iteration() > 0);
-    LightField chase(model.geometry());  // what the set being updated should emit
 
     const size_t views = model.geometry().view_count();
     // chase = max(0, target - the light of every set but m).
@@ -42,6 +42,10 @@ class HybridSolver final : public Solver {
       for (size_t b = 0; b < branches; ++b)
         if (b != m) others.push_back(b);
       if (!std::all_of(others.begin(), others.end(), [&](size_t b) { return bool(started[b]); })) others.clear();
+      std::array<float, 3> unstarted_share_left{1, 1, 1};  // 1 - the unstarted sets' shares
+      for (size_t b = 0; b < branches; ++b)
+        if (b != m && !started[b])
+          for (int c = 0; c < 3; ++c) unstarted_share_left[c] -= model.weight(b)[c] / total[c];
 #pragma omp parallel
       {
         thread_local std::vector<float> other;
@@ -52,15 +56,13 @@ class HybridSolver final : public Solver {
           const float* lv = l.view(view);
           float* out = chase.view(view);
           if (!others.empty() && synthesizer.Remainder(others, view, lv, out)) continue;
-          std::copy(lv, lv + n, out);
+          // The sets not yet started take their shares of the target at once.
+          for (size_t k = 0; k < n; k += 3)
+            for (int c = 0; c < 3; ++c) out[k + c] = lv[k + c] * unstarted_share_left[c];
           for (size_t b = 0; b < branches; ++b) {
-            if (b == m) continue;
-            if (started[b]) {
-              synthesizer.Branch(b, view, other.data());
-              for (size_t k = 0; k < n; ++k) out[k] -= other[k];
-            } else {
-              for (size_t k = 0; k < n; ++k) out[k] -= lv[k] * model.weight(b)[k % 3] / total[k % 3];
-            }
+            if (b == m || !started[b]) continue;
+            synthesizer.Branch(b, view, other.data());
+            for (size_t k = 0; k < n; ++k) out[k] -= other[k];
           }
           for (size_t k = 0; k < n; ++k) out[k] = std::max(out[k], 0.0f);
         }

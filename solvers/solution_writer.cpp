@@ -40,6 +40,7 @@ nlohmann::json ReportToJson(const SolverReport& r) {
                       {"usable", r.IsSolutionUsable()},
                       {"iterations", r.iterations},
                       {"seconds", r.seconds},
+                      {"setup_seconds", r.setup_seconds},
                       {"rays", r.rays},
                       {"initial_objective", r.initial_objective},
                       {"final_objective", r.final_objective},

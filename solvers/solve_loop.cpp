@@ -66,7 +66,9 @@ bool SolveLoop::Start() {
     return true;
   }
   *patterns_ = InitialPatterns(model_, options_);
-  start_ = std::chrono::steady_clock::now();
+  const auto now = std::chrono::steady_clock::now();
+  report_.setup_seconds = std::chrono::duration<double>(now - start_).count();
+  start_ = now;
   double objective = Objective(model_, *prepared_, *patterns_);
   report_.initial_objective = objective;
   return Record(objective);

@@ -19,7 +19,10 @@ class SolveLoop {
             Patterns* patterns);
   ~SolveLoop();
 
-  // False (and the report says why) when the solve cannot start.
+  // False (and the report says why) when the solve cannot start. The clock
+  // of the trace starts here; the time since construction (preparing the
+  // target, and whatever the solver allocated before calling this) is the
+  // report's setup_seconds.
   bool Start();
   const LightField& target() const { return *prepared_; }
   int iteration() const { return iteration_; }  // iterations completed

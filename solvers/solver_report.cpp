@@ -32,8 +32,9 @@ std::string SolverReport::FullReport() const {
   std::string out = "solver               " + solver + "\n";
   out += "termination          " + ToString(termination) + (message.empty() ? "" : " (" + message + ")") + "\n";
   char buf[256];
-  std::snprintf(buf, sizeof buf, "iterations           %d\nwall time            %.3f s\nrays x channels      %zu\n",
-                iterations, seconds, rays * 3);
+  std::snprintf(buf, sizeof buf,
+                "iterations           %d\nwall time            %.3f s (after %.3f s of set-up)\nrays x channels      %zu\n",
+                iterations, seconds, setup_seconds, rays * 3);
   out += buf;
   std::snprintf(buf, sizeof buf, "objective            %.9g -> %.9g (sum of squared errors)\n", initial_objective,
                 final_objective);
