@@ -107,6 +107,7 @@ class JointPass {
     ratio->resize(num_.size());
     for (size_t k = 0; k < num_.size(); ++k) {
       (*ratio)[k].resize(num_[k].size());
+#pragma omp parallel for schedule(static)
       for (size_t i = 0; i < num_[k].size(); ++i) (*ratio)[k][i] = den_[k][i] > epsilon ? num_[k][i] / den_[k][i] : 1.0;
     }
   }
@@ -226,9 +227,13 @@ class JointPass {
   mutable std::vector<std::vector<double>> num_, den_;
 };
 
+// Elementwise, so the same bits for any thread count; threads because a
+// power per value (a million of them for the paper's prototype) costs a
+// good part of a pass.
 void Step(const std::vector<std::vector<double>>& ratio, double alpha, float floor, Patterns* t) {
   for (size_t k = 0; k < t->size(); ++k) {
     std::vector<float>& p = (*t)[k].rgb;
+#pragma omp parallel for schedule(static)
     for (size_t i = 0; i < p.size(); ++i) {
       const double r = alpha == 1.0 ? ratio[k][i] : std::pow(ratio[k][i], alpha);
       const double updated = p[i] * r;
