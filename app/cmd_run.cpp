@@ -18,6 +18,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <set>
 #include <string>
 
 #include "analysis/compare.h"
@@ -32,6 +33,7 @@
 #include "framework/error.h"
 #include "framework/lightfield_io.h"
 #include "framework/png_writer.h"
+#include "framework/stale_files.h"
 #include "solvers/solution_writer.h"
 #include "solvers/solve_config.h"
 #include "systems/compile.h"
@@ -307,6 +309,15 @@ void AddRunCommand(CLI::App& app) {
     page.steps.emplace_back("total", Since(run_start));
     for (const std::string& w : page.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     WriteFileAtomically((out / "index.html").string(), RenderRunReport(page));
+    // The step folders are the run's: what an earlier run left there (a
+    // retinal state or a view no longer asked for) goes, now that everything
+    // new is in place.
+    const std::set<std::string> written = CommittedPaths();
+    size_t stale = 0;
+    for (const char* step_folder : {"target", "solve", "retina", "contrast", "compare"})
+      stale += RemoveFilesNotIn((out / step_folder).string(), written);
+    if (stale > 0)
+      std::printf("run: removed %zu file%s an earlier run left in %s\n", stale, stale == 1 ? "" : "s", o->out.c_str());
     if (page.solved) std::cout << report.BriefReport() << "\n";
     std::printf("run: %.1f s; open %s in a browser (no server needed)\n", Since(run_start),
                 (fs::absolute(out) / "index.html").lexically_normal().c_str());

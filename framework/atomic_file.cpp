@@ -8,10 +8,23 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 
 #include "framework/error.h"
 
 namespace layerlab {
+namespace {
+
+std::mutex committed_mutex;
+std::set<std::string> committed;
+
+std::string Normal(const std::string& path) {
+  std::error_code ec;
+  std::filesystem::path p = std::filesystem::absolute(path, ec);
+  return (ec ? std::filesystem::path(path) : p).lexically_normal().string();
+}
+
+}  // namespace
 
 AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
   static std::atomic<unsigned> counter{0};
@@ -29,6 +42,14 @@ void AtomicFile::Commit() {
   if (std::rename(temp_.c_str(), path_.c_str()) != 0)
     throw Error(path_ + ": cannot move the finished file into place: " + std::strerror(errno));
   committed_ = true;
+  const std::string normal = Normal(path_);
+  std::lock_guard<std::mutex> lock(committed_mutex);
+  committed.insert(normal);
+}
+
+std::set<std::string> CommittedPaths() {
+  std::lock_guard<std::mutex> lock(committed_mutex);
+  return committed;
 }
 
 void WriteFileAtomically(const std::string& path, const std::string& contents) {

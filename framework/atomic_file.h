@@ -2,6 +2,7 @@
 // folder and is renamed into place only once it is complete.
 #pragma once
 
+#include <set>
 #include <string>
 
 namespace layerlab {
@@ -23,6 +24,9 @@ class AtomicFile {
   std::string path_, temp_;
   bool committed_ = false;
 };
+
+// Every path this process has committed so far, absolute and lexically normal.
+std::set<std::string> CommittedPaths();
 
 // Writes `contents` to `path` atomically; throws layerlab::Error naming the file.
 void WriteFileAtomically(const std::string& path, const std::string& contents);
