@@ -5,9 +5,6 @@
 
 #include <cstring>
 #include <vector>
-#if defined(__SSE2__)
-#include <immintrin.h>  // for row_kernels.cpp
-#endif
 
 namespace layerlab {
 

@@ -5,6 +5,9 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
 
 #include "framework/error.h"
 #include "framework/row_kernels_isa.h"
