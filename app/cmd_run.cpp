@@ -314,8 +314,12 @@ void AddRunCommand(CLI::App& app) {
     // new is in place.
     const std::set<std::string> written = CommittedPaths();
     size_t stale = 0;
+    std::vector<std::string> inputs;  // a target read from a step folder of an earlier run stays
+    if (!in.solve.target.empty())
+      inputs.push_back(fs::is_directory(in.solve.target) ? in.solve.target
+                                                         : fs::path(in.solve.target).parent_path().string());
     for (const char* step_folder : {"target", "solve", "retina", "contrast", "compare"})
-      stale += RemoveFilesNotIn((out / step_folder).string(), written);
+      stale += RemoveFilesNotIn((out / step_folder).string(), written, inputs);
     if (stale > 0)
       std::printf("run: removed %zu file%s an earlier run left in %s\n", stale, stale == 1 ? "" : "s", o->out.c_str());
     if (page.solved) std::cout << report.BriefReport() << "\n";

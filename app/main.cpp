@@ -9,6 +9,7 @@
 #include "app/commands.h"
 #include "framework/error.h"
 #include "framework/interrupt.h"
+#include "framework/row_kernels.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"layerlab: model, factorize and analyse layered light-field near-eye displays"};
@@ -29,6 +30,7 @@ int main(int argc, char** argv) {
   // writers clean up) instead of the process dying half-way.
   std::signal(SIGXFSZ, SIG_IGN);
   try {
+    layerlab::ActiveRowKernels();  // a bad LAYERLAB_ROW_KERNELS is an error here, not inside a parallel loop
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);

@@ -1,6 +1,7 @@
 #include "framework/huge_page_allocator.h"
 
 #include <cstdlib>
+#include <new>
 
 #if defined(__linux__)
 #include <sys/mman.h>
@@ -14,6 +15,7 @@ constexpr size_t kHugePage = size_t(2) << 20;
 void* AllocateLarge(size_t bytes) {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
   if (bytes >= kHugePage) {
+    if (bytes > static_cast<size_t>(-1) - (kHugePage - 1)) throw std::bad_alloc();
     const size_t rounded = (bytes + kHugePage - 1) / kHugePage * kHugePage;
     void* p = std::aligned_alloc(kHugePage, rounded);
     if (p == nullptr) throw std::bad_alloc();

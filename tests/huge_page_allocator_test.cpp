@@ -27,6 +27,7 @@ TEST(HugePageAllocator, LargeBlocksAreAlignedToHugePagesAndSmallOnesWork) {
 TEST(HugePageAllocator, AnImpossibleSizeIsRefused) {
   HugePageAllocator<float> a;
   EXPECT_THROW(a.allocate(static_cast<size_t>(-1) / 2), std::bad_array_new_length);
+  EXPECT_THROW(a.allocate(static_cast<size_t>(-1) / 4), std::bad_alloc);  // fits, but not once rounded to 2 MB
 }
 
 }  // namespace
