@@ -3,6 +3,8 @@
 // (no FMA), so that both builds give the same bits. Per function target
 // attributes rather than -mavx2 for the file: inline functions of shared
 // headers compiled here must not replace the baseline's copies at link time.
+// The rays a two-ray step leaves at a row's end go to the baseline itself,
+// except in the error sums, whose even/odd partial sums must carry on.
 #include "framework/row_kernels_isa.h"
 
 #if LAYERLAB_ROW_KERNELS_AVX2
@@ -45,11 +47,9 @@ LAYERLAB_AVX2 void AddBranchLightRowOf(const Rgb4* const* rows, Rgb4 w, int cols
     for (int k = 0; k < L; ++k) p = _mm256_mul_ps(p, _mm256_loadu_ps(r[k] + j * 4));
     _mm256_storeu_ps(out + j * 4, _mm256_add_ps(_mm256_loadu_ps(out + j * 4), p));
   }
-  for (; j < cols; ++j) {
-    Rgb4 p = w;
-    for (int k = 0; k < L; ++k) p *= rows[k][j];
-    row[j] += p;
-  }
+  const Rgb4* rest[L];
+  for (int k = 0; k < L; ++k) rest[k] = rows[k] + j;
+  baseline::AddBranchLightRow(rest, L, w, cols - j, row + j);
 }
 
 template <int L>
@@ -82,23 +82,10 @@ LAYERLAB_AVX2 void JointSumsRowOf(const Rgb4* const* rows, Rgb4 w, int cols, con
       suffix = _mm256_mul_ps(suffix, rk[a]);
     }
   }
-  const int safe = exact_last ? cols - 1 : cols;
-  for (; j < cols; ++j) {
-    const Rgb4 lj = j < safe ? LoadRgbOver(l + j * 3) : LoadRgb(l + j * 3);
-    Rgb4 prefix[L];
-    Rgb4 p = w;
-    for (int k = 0; k < L; ++k) {
-      prefix[k] = p;
-      p *= rows[k][j];
-    }
-    Rgb4 suffix = Rgb4{1, 1, 1, 1};
-    for (int a = L - 1; a >= 0; --a) {
-      const Rgb4 q = prefix[a] * suffix;
-      num[a][j] += lj * q;
-      den[a][j] += light[j] * q;
-      suffix *= rows[a][j];
-    }
-  }
+  const Rgb4* rest[L];
+  Rgb4 *rest_num[L], *rest_den[L];
+  for (int k = 0; k < L; ++k) rest[k] = rows[k] + j, rest_num[k] = num[k] + j, rest_den[k] = den[k] + j;
+  baseline::JointSumsRow(rest, L, w, cols - j, l + j * 3, exact_last, light + j, rest_num, rest_den);
 }
 
 }  // namespace
@@ -132,11 +119,7 @@ LAYERLAB_AVX2 void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4*
     _mm256_storeu_ps(n + j * 4, _mm256_add_ps(_mm256_loadu_ps(n + j * 4), _mm256_mul_ps(LoadTwoRaysOver(r + j * 3), qj)));
     _mm256_storeu_ps(d + j * 4, _mm256_add_ps(_mm256_loadu_ps(d + j * 4), _mm256_mul_ps(qj, qj)));
   }
-  for (; j < cols; ++j) {
-    const Rgb4 qj = q ? q[j] : Rgb4{1, 1, 1, 0};
-    num[j] += (j + 1 < cols ? LoadRgbOver(r + j * 3) : LoadRgb(r + j * 3)) * qj;
-    den[j] += qj * qj;
-  }
+  baseline::UpdateSumsRow(r + j * 3, q ? q + j : nullptr, num + j, den + j, cols - j);
 }
 
 LAYERLAB_AVX2 double UpdateSumsAndErrorRow(const float* r, const Rgb4* q, const Rgb4* own, Rgb4 w, Rgb4* num,
@@ -192,17 +175,14 @@ LAYERLAB_AVX2 void RemainderRow(const float* target, const Rgb4* light, int cols
   for (; j + 3 <= cols; j += 2)
     StoreTwoRaysOver(_mm256_max_ps(zero, _mm256_sub_ps(LoadTwoRaysOver(target + j * 3), _mm256_loadu_ps(l + j * 4))),
                      out + j * 3);
-  for (; j < cols; ++j) {
-    const Rgb4 d = LoadRgb(target + j * 3) - light[j];
-    for (int c = 0; c < 3; ++c) out[j * 3 + c] = d[c] < 0.0f ? 0.0f : d[c];
-  }
+  baseline::RemainderRow(target + j * 3, light + j, cols - j, out + j * 3);
 }
 
 LAYERLAB_AVX2 void PackRow(const Rgb4* row, int cols, float* out) {
   const float* in = reinterpret_cast<const float*>(row);
   int j = 0;
   for (; j + 3 <= cols; j += 2) StoreTwoRaysOver(_mm256_loadu_ps(in + j * 4), out + j * 3);
-  for (; j < cols; ++j) StoreRgb(row[j], out + j * 3);
+  baseline::PackRow(row + j, cols - j, out + j * 3);
 }
 
 }  // namespace layerlab::avx2

@@ -84,6 +84,8 @@ class HybridSolver final : public Solver {
       std::sort(order.begin(), order.end());
       return order;
     };
+    bool all_one_tap = true;
+    for (size_t b = 0; b < branches; ++b) all_one_tap = all_one_tap && OneTapBranch(model, b);
     BranchTarget stored_chase = [&](size_t view, float*) { return chase.view(view); };
     LayerUpdate next_first;  // set 0's first update of the next iteration
     bool next_first_ready = false;
@@ -92,14 +94,14 @@ class HybridSolver final : public Solver {
       for (size_t m = 0; m < branches; ++m) {
         const std::vector<int> order = layers_of(m);
         const std::vector<size_t> others = others_of(m);
-        thread_local PaddedLayers workspace;
-        const ViewSynthesizer synthesizer(model, *t, &workspace);
         const bool others_started = std::all_of(others.begin(), others.end(), [&](size_t b) { return bool(started[b]); });
         bool first_done = false;
         if (m == 0 && next_first_ready) {
           ApplyLayerUpdate(next_first, options, t);
           first_done = true;
-        } else if (synthesizer.AllOneTap() && others_started && !others.empty()) {
+        } else if (all_one_tap && others_started && !others.empty()) {
+          thread_local PaddedLayers workspace;
+          const ViewSynthesizer synthesizer(model, *t, &workspace);
           BranchTarget chase_on_the_way = [&](size_t view, float*) {
             synthesizer.Remainder(others, view, l.view(view), chase.view(view));
             return static_cast<const float*>(chase.view(view));
@@ -116,9 +118,9 @@ class HybridSolver final : public Solver {
       }
       next_first_ready = false;
       objective.reset();
-      thread_local PaddedLayers workspace;
-      const ViewSynthesizer synthesizer(model, *t, &workspace);
-      if (branches >= 2 && synthesizer.AllOneTap()) {
+      if (branches >= 2 && all_one_tap) {
+        thread_local PaddedLayers workspace;
+        const ViewSynthesizer synthesizer(model, *t, &workspace);
         const std::vector<size_t> others = others_of(0);
         std::vector<double> per_view(views);  // summed in view order: the same for any thread count
         BranchTarget chase_and_error = [&](size_t view, float*) {

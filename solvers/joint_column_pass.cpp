@@ -110,11 +110,8 @@ double JointColumnPass(const DisplayModel& model, const LightField& l, const Pat
     });
 #pragma omp barrier
     // Merged in thread order, each thread a share of each layer's pixels.
-    for (size_t k = 0; k < model.layer_count(); ++k) {
-      const size_t pixels = model.projection(k).pixel_count();
-      ColumnSums::Merge(thread_sums[k], pixels * me / threads, pixels * (me + 1) / threads, (*num)[k].data(),
-                        (*den)[k].data());
-    }
+    for (size_t k = 0; k < model.layer_count(); ++k)
+      ColumnSums::Merge(thread_sums[k], me, threads, (*num)[k].data(), (*den)[k].data());
   }
   double total = 0;
   for (double e : error) total += e;

@@ -117,8 +117,7 @@ void OneTapUpdateSums(const DisplayModel& model, const std::vector<int>& layers,
       }
     });
 #pragma omp barrier
-    const size_t pixels = Pa.pixel_count();
-    ColumnSums::Merge(thread_sums, pixels * me / threads, pixels * (me + 1) / threads, num, den);
+    ColumnSums::Merge(thread_sums, me, threads, num, den);
   }
 }
 

@@ -103,8 +103,9 @@ void ColumnSums::Scatter(const LayerProjection& P, int vc) {
   }
 }
 
-void ColumnSums::Merge(const std::vector<const ColumnSums*>& sums, size_t begin, size_t end, double* num,
-                       double* den) {
+void ColumnSums::Merge(const std::vector<const ColumnSums*>& sums, int part, int parts, double* num, double* den) {
+  const size_t pixels = sums.front()->pixel_num_.size();
+  const size_t begin = pixels * part / parts, end = pixels * (part + 1) / parts;
   for (const ColumnSums* s : sums)
     for (size_t k = begin; k < end; ++k)
       for (int c = 0; c < 3; ++c) {
