@@ -8,6 +8,7 @@
 #include <optional>
 #include <cstdio>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -25,9 +26,10 @@
 namespace layerlab::app {
 
 void AddSolveCommand(CLI::App& app) {
+  constexpr int kUnset = std::numeric_limits<int>::min();  // any value given is checked by SolverOptions
   struct Options {
     std::string scene, target, solver, out, sampling, target_range;
-    int iterations = 0, sub_iterations = 0, threads = -1;
+    int iterations = 0, sub_iterations = 0, warm_start_iterations = kUnset, threads = -1;
     double time_budget = -1, tolerance = -1, initial_value = -2;
     bool write_lightfield = false, resume = false;
     int checkpoint_every = 0;
@@ -41,6 +43,8 @@ void AddSolveCommand(CLI::App& app) {
   cmd->add_option("--out", o->out, "Output folder")->required();
   cmd->add_option("--iterations", o->iterations, "Outer iterations");
   cmd->add_option("--sub-iterations", o->sub_iterations, "Updates per set and outer iteration (hybrid)");
+  cmd->add_option("--warm-start-iterations", o->warm_start_iterations,
+                  "Iterations made by the hybrid solver before quasi-Newton steps (quasi-newton)");
   cmd->add_option("--time-budget", o->time_budget, "Stop after this many seconds");
   cmd->add_option("--tolerance", o->tolerance, "Stop when the objective changes by less than this, relative");
   cmd->add_option("--initial", o->initial_value, "Initial transmittance (negative: random)");
@@ -67,6 +71,7 @@ void AddSolveCommand(CLI::App& app) {
       throw Error("no target: give --target LF_DIR or \"solve\": {\"target\": ...} or {\"target_scene\": ...} in " + o->scene);
     if (o->iterations) opt.iterations = o->iterations;
     if (o->sub_iterations) opt.sub_iterations = o->sub_iterations;
+    if (o->warm_start_iterations != kUnset) opt.warm_start_iterations = o->warm_start_iterations;
     if (o->time_budget >= 0) opt.time_budget = o->time_budget;
     if (o->tolerance >= 0) opt.tolerance = o->tolerance;
     if (o->initial_value > -2) opt.initial_value = o->initial_value;

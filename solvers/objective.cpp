@@ -17,13 +17,13 @@ std::array<float, 3> DisplayMaximum(const DisplayModel& model) {
   return max;
 }
 
-LightField PrepareTarget(const DisplayModel& model, const LightField& target, TargetRange range, SolverReport* report) {
+std::optional<LightField> PrepareTarget(const DisplayModel& model, const LightField& target, TargetRange range,
+                                        SolverReport* report) {
   const std::array<float, 3> max = DisplayMaximum(model);
-  LightField out = target;
   size_t beyond = 0;
   double worst = 1.0;  // largest value / maximum
-  for (size_t k = 0; k < out.rgb.size(); ++k) {
-    float v = out.rgb[k], m = max[k % 3];
+  for (size_t k = 0; k < target.rgb.size(); ++k) {
+    float v = target.rgb[k], m = max[k % 3];
     if (v > m) {
       ++beyond;
       worst = std::max(worst, double(v) / m);
@@ -31,7 +31,8 @@ LightField PrepareTarget(const DisplayModel& model, const LightField& target, Ta
   }
   report->out_of_range = beyond;
   report->target_scale = 1.0;
-  if (beyond == 0) return out;
+  if (beyond == 0) return std::nullopt;
+  LightField out = target;
   char share[64];
   std::snprintf(share, sizeof share, "%.4f%%", 100.0 * beyond / out.rgb.size());
   if (range == TargetRange::kClip) {

@@ -2,6 +2,7 @@
 // a set of patterns, and the initial guess.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "framework/lightfield.h"
@@ -13,10 +14,12 @@ namespace layerlab {
 // The most each channel can show: the sum of the branch weights.
 std::array<float, 3> DisplayMaximum(const DisplayModel& model);
 
-// A copy of `target` with values beyond the display's maximum clipped, or
-// the whole target scaled down by one factor, as `range` says; records the
-// count and factor in the report and warns when anything changed.
-LightField PrepareTarget(const DisplayModel& model, const LightField& target, TargetRange range, SolverReport* report);
+// Where values of `target` exceed the display's maximum: a copy with them
+// clipped, or with the whole target scaled down by one factor, as `range`
+// says; nothing (use `target` as it is) where none does. Records the count
+// and factor in the report and warns when anything changed.
+std::optional<LightField> PrepareTarget(const DisplayModel& model, const LightField& target, TargetRange range,
+                                        SolverReport* report);
 
 // Sum over rays and channels of (target - synthesized)^2, in double.
 double Objective(const DisplayModel& model, const LightField& target, const Patterns& t);

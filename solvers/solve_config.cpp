@@ -45,6 +45,8 @@ SolveConfig ReadSolveConfig(const Scene& scene, const DisplaySystem& system) {
   if (p.has("target_scene")) config.target_scene = ResolveAgainstScene(scene, p.string("target_scene"));
   o.iterations = static_cast<int>(p.integer("iterations", 1, 1000000, o.iterations));
   o.sub_iterations = static_cast<int>(p.integer("sub_iterations", 1, 1000, o.sub_iterations));
+  o.warm_start_iterations =
+      static_cast<int>(p.integer("warm_start_iterations", 0, 1000000, o.warm_start_iterations));
   o.time_budget = p.quantity("time_budget", Dimension::kTime, o.time_budget);
   p.require_range("time_budget", o.time_budget, 0, 1e7, false, false);
   o.tolerance = p.quantity("tolerance", Dimension::kFraction, o.tolerance);

@@ -6,7 +6,7 @@
 // paths are relative to the scene file's folder.
 //
 //   "solve": { "solver": "hybrid", "target": "../data/dice", "iterations": 30,
-//              "sub_iterations": 3, "time_budget": "60 s"?, "tolerance": 0,
+//              "sub_iterations": 3, "warm_start_iterations": 2, "time_budget": "60 s"?, "tolerance": 0,
 //              "initial_value": 0.5, "seed": 1, "threads": 0,
 //              "sampling": "nearest", "target_range": "clip" }
 #pragma once

@@ -53,6 +53,7 @@ bool SolveLoop::Start() {
            std::to_string(options_.iterations));
       return false;
     }
+    report_.setup_seconds = Seconds();
     *patterns_ = c->patterns;
     iteration_ = c->iteration;
     state_ = c->state;
@@ -69,7 +70,7 @@ bool SolveLoop::Start() {
   const auto now = std::chrono::steady_clock::now();
   report_.setup_seconds = std::chrono::duration<double>(now - start_).count();
   start_ = now;
-  double objective = Objective(model_, *prepared_, *patterns_);
+  double objective = Objective(model_, target(), *patterns_);
   report_.initial_objective = objective;
   return Record(objective);
 }
@@ -103,7 +104,7 @@ bool SolveLoop::EndIteration(std::optional<double> objective) {
   if (stopped_) return false;
   ++iteration_;
   double previous = report_.final_objective;
-  double value = objective ? *objective : Objective(model_, *prepared_, *patterns_);
+  double value = objective ? *objective : Objective(model_, target(), *patterns_);
   if (!Record(value)) return false;
   if (options_.tolerance > 0 && std::abs(previous - value) <= options_.tolerance * std::max(previous, 1e-300)) {
     report_.termination = Termination::kConverged;

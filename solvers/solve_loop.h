@@ -24,7 +24,7 @@ class SolveLoop {
   // target, and whatever the solver allocated before calling this) is the
   // report's setup_seconds.
   bool Start();
-  const LightField& target() const { return *prepared_; }
+  const LightField& target() const { return prepared_ ? *prepared_ : source_; }
   int iteration() const { return iteration_; }  // iterations completed
   double Seconds() const;
 
@@ -52,7 +52,7 @@ class SolveLoop {
   const LightField& source_;
   SolverOptions options_;
   Patterns* patterns_;
-  std::optional<LightField> prepared_;
+  std::optional<LightField> prepared_;  // the target clipped or scaled, if it had to be
   SolverReport report_;
   std::chrono::steady_clock::time_point start_;
   int iteration_ = 0;

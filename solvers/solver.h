@@ -30,6 +30,9 @@ struct SolverOptions {
   int iterations = 30;
   // Hybrid: updates of one set before moving on (the paper's 3).
   int sub_iterations = 3;
+  // quasi-newton: the first iterations made by the hybrid solver, whose
+  // early steps gain more per second; 0 starts with quasi-Newton steps.
+  int warm_start_iterations = 0;
   // Wall-clock budget in seconds; 0 means none. Checked between iterations.
   double time_budget = 0;
   // Stop when the objective changes by less than this, relative; 0 runs every iteration.

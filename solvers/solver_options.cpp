@@ -16,6 +16,8 @@ bool SolverOptions::IsValid(std::string* error) const {
   };
   if (iterations < 1 || iterations > 1000000) return fail("iterations", iterations, "must be in [1, 1000000]");
   if (sub_iterations < 1 || sub_iterations > 1000) return fail("sub_iterations", sub_iterations, "must be in [1, 1000]");
+  if (warm_start_iterations < 0 || warm_start_iterations > 1000000)
+    return fail("warm_start_iterations", warm_start_iterations, "must be in [0, 1000000]");
   if (!(time_budget >= 0) || !std::isfinite(time_budget)) return fail("time_budget", time_budget, "must be >= 0 seconds (0 = none)");
   if (!(tolerance >= 0) || !(tolerance < 1)) return fail("tolerance", tolerance, "must be in [0, 1)");
   if (!(initial_value <= 1) || std::isnan(initial_value) || (initial_value >= 0 && initial_value < floor))

@@ -106,7 +106,7 @@ TEST(RunConfig, BadInputIsRefusedWithItsLocation) {
             "cpd");
   EXPECT_EQ(RunError({{"compare", {{"solvers", {"hybird"}}}}}),
             "examples/scene.json: /run/compare/solvers/0: unknown solver \"hybird\"; did you mean \"hybrid\"? Known "
-            "solvers: additive-trust-region, hybrid, joint, multiplicative");
+            "solvers: additive-trust-region, hybrid, joint, multiplicative, quasi-newton");
 }
 
 TEST(SolveConfig, TargetSceneIsResolvedAndExclusive) {

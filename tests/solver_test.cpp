@@ -1,9 +1,11 @@
 // Each solver recovers a target synthesized from known patterns through the
 // same model; the multiplicative rules never increase the objective; bounds
 // hold exactly; options and reports behave as documented.
+#include <algorithm>
 #include <cmath>
 #include <random>
 
+#include "solvers/joint_pass.h"
 #include "solvers/objective.h"
 #include "solvers/solution_writer.h"
 #include "solvers/solver.h"
@@ -117,28 +119,95 @@ TEST(Solvers, HybridRecoversAKnownTarget) {
   ExpectInBounds(t);
 }
 
-// joint updates every layer at once; it must reach what hybrid reaches, on
-// every kind of display, and the objective it records never rises (a step
-// that would raise it is rejected).
-class JointTest : public ::testing::TestWithParam<std::string> {};
+// The solvers that move every layer at once recover a known target on every
+// kind of display, and the objective they record never rises (joint rejects
+// a step that would raise it; quasi-newton halves it, after warm-up
+// iterations of hybrid, which never raise it either). joint reaches 62-138 dB
+// and quasi-newton 128-147 dB in 400 iterations (when written).
+class EveryLayerAtOnceTest : public ::testing::TestWithParam<std::tuple<std::string, std::string>> {};
 
-TEST_P(JointTest, RecoversAKnownTargetWithoutRaisingTheObjective) {
-  Fixture f = MakeFixture(GetParam());
-  SolverOptions o = SolverRegistry::Builtins().find("joint")->defaults;
+TEST_P(EveryLayerAtOnceTest, RecoversAKnownTargetWithoutRaisingTheObjective) {
+  const auto& [solver, display] = GetParam();
+  Fixture f = MakeFixture(display);
+  SolverOptions o = SolverRegistry::Builtins().find(solver)->defaults;
   o.iterations = 400;
   Patterns t;
-  SolverReport r = RunSolver("joint", f, o, &t);
+  SolverReport r = RunSolver(solver, f, o, &t);
   ASSERT_TRUE(r.IsSolutionUsable()) << r.FullReport();
   RecordProperty("psnr_db", std::to_string(r.final_psnr_db));
-  EXPECT_GT(r.final_psnr_db, 50.0) << r.FullReport();
+  EXPECT_GT(r.final_psnr_db, solver == "joint" ? 50.0 : 100.0) << r.FullReport();
   ExpectInBounds(t);
   for (size_t k = 1; k < r.trace.size(); ++k) EXPECT_LE(r.trace[k].objective, r.trace[k - 1].objective) << "iteration " << k;
+  EXPECT_NEAR(Objective(*f.model, f.target, t), r.final_objective, 1e-4 * r.final_objective + 1e-9);
 }
 
-INSTANTIATE_TEST_SUITE_P(Displays, JointTest,
-                         ::testing::Values("paper_prototype.json", "multiplicative_2layer.json", "additive_2layer.json",
-                                           "hybrid_pbs_hwp.json"),
-                         [](const auto& p) { return p.param.substr(0, p.param.find('.')); });
+INSTANTIATE_TEST_SUITE_P(Displays, EveryLayerAtOnceTest,
+                         ::testing::Combine(::testing::Values("joint", "quasi-newton"),
+                                            ::testing::Values("paper_prototype.json", "multiplicative_2layer.json",
+                                                              "additive_2layer.json", "hybrid_pbs_hwp.json")),
+                         [](const auto& p) {
+                           std::string name = std::get<0>(p.param) + "_" + std::get<1>(p.param);
+                           name = name.substr(0, name.find('.'));
+                           std::replace(name.begin(), name.end(), '-', '_');
+                           return name;
+                         });
+
+// Its first warm_start_iterations are the hybrid's, bit for bit, under one
+// trace and clock; fewer iterations than that are the hybrid's alone.
+TEST(Solvers, QuasiNewtonStartsWithTheHybridsIterations) {
+  const Fixture f = MakeFixture("paper_prototype.json");
+  SolverOptions o = SolverRegistry::Builtins().find("quasi-newton")->defaults;
+  ASSERT_EQ(o.warm_start_iterations, 2);
+  o.iterations = 5;
+  o.threads = 1;
+  Patterns a, b, c;
+  const SolverReport qn = RunSolver("quasi-newton", f, o, &a);
+  const SolverReport hybrid = RunSolver("hybrid", f, o, &b);
+  ASSERT_EQ(qn.trace.size(), 6u);
+  EXPECT_EQ(qn.solver, "quasi-newton");
+  EXPECT_EQ(qn.termination, Termination::kIterationLimit);
+  for (size_t k = 0; k <= 2; ++k) EXPECT_EQ(qn.trace[k].objective, hybrid.trace[k].objective) << k;
+  for (size_t k = 1; k < qn.trace.size(); ++k) EXPECT_GE(qn.trace[k].seconds, qn.trace[k - 1].seconds) << k;
+  for (size_t k = 3; k < qn.trace.size(); ++k) EXPECT_LT(qn.trace[k].objective, qn.trace[k - 1].objective) << k;
+
+  o.iterations = 1;
+  const SolverReport short_one = RunSolver("quasi-newton", f, o, &c);
+  ASSERT_EQ(short_one.trace.size(), 2u);
+  EXPECT_EQ(short_one.solver, "quasi-newton");
+  EXPECT_EQ(short_one.trace[1].objective, hybrid.trace[1].objective);
+
+  o.warm_start_iterations = -1;
+  EXPECT_EQ(RunSolver("quasi-newton", f, o, &c).message, "warm_start_iterations: -1: must be in [0, 1000000]");
+}
+
+// The joint pass's gradient, 2 (den - num), against central differences of
+// the objective as objective.h computes it, on the fast path and the general one.
+TEST(Solvers, JointPassGradientMatchesFiniteDifferences) {
+  Fixture f = MakeFixture("paper_prototype.json", 24, 12, 3);
+  for (float& v : f.target.rgb) v = std::min(1.0f, 1.3f * v);
+  DisplaySystem rotated = f.system;
+  for (VirtualLayer& layer : rotated.layers) layer.rotation = 1e-12;
+  const DisplayModel general(rotated, f.target.geometry);
+  Patterns t = KnownPatterns(*f.model, 11);
+  for (const DisplayModel* model : {static_cast<const DisplayModel*>(f.model.get()), &general}) {
+    JointPass pass(*model);
+    const double objective = pass.Run(f.target, t);
+    EXPECT_NEAR(objective, Objective(*model, f.target, t), 1e-5 * objective);
+    std::mt19937 rng(5);
+    for (size_t k = 0; k < t.size(); ++k)
+      for (int trial = 0; trial < 6; ++trial) {
+        const size_t i = std::uniform_int_distribution<size_t>(0, t[k].rgb.size() - 1)(rng);
+        const double gradient = 2.0 * (pass.denominator()[k][i] - pass.numerator()[k][i]);
+        const float h = 1e-2f;
+        Patterns plus = t, minus = t;
+        plus[k].rgb[i] += h;
+        minus[k].rgb[i] -= h;
+        // The objective is quadratic in one value: central differences are exact up to round-off.
+        const double difference = (Objective(*model, f.target, plus) - Objective(*model, f.target, minus)) / (2 * h);
+        EXPECT_NEAR(gradient, difference, 1e-3 * std::abs(difference) + 1e-4) << "layer " << k << ", value " << i;
+      }
+  }
+}
 
 // The unrolled kernel for uniform branches and the general one (bilinear
 // sampling takes it) give the same first step on nearest-sampled rays.
@@ -186,7 +255,7 @@ TEST(Solvers, OneTapFastPathMatchesTheGeneralPath) {
     SolverOptions o;
     o.iterations = 2;
     o.initial_value = -1;
-    std::vector<std::string> solvers = {"hybrid", "joint"};
+    std::vector<std::string> solvers = {"hybrid", "joint", "quasi-newton"};
     if (shape.size() == 1) solvers.push_back("multiplicative");  // its objective comes from an update's pass
     for (const std::string& solver : solvers) {
       Patterns pa, pb;
@@ -216,7 +285,7 @@ TEST(Solvers, HybridCompensatesUnequalChannelEfficiencies) {
 }
 
 TEST(Solvers, InterruptionKeepsTheLastCompleteIterationUsable) {
-  for (const char* solver : {"hybrid", "joint", "multiplicative", "additive-trust-region"}) {
+  for (const char* solver : {"hybrid", "joint", "quasi-newton", "multiplicative", "additive-trust-region"}) {
     Fixture g = MakeFixture(std::string(solver) == "multiplicative" ? "multiplicative_2layer.json"
                             : std::string(solver) == "additive-trust-region" ? "additive_2layer.json"
                                                                               : "paper_prototype.json");
@@ -236,10 +305,10 @@ TEST(Solvers, InterruptionKeepsTheLastCompleteIterationUsable) {
 }
 
 // A solve stopped at a checkpoint and resumed reaches the very patterns of an
-// uninterrupted one (one thread: the sums across threads would otherwise
+// uninterrupted one (quasi-newton: see below; one thread: the sums across threads would otherwise
 // merge in a varying order).
 TEST(Solvers, ResumedFromACheckpointMatchesAnUninterruptedSolve) {
-  for (const char* solver : {"hybrid", "joint", "multiplicative", "additive-trust-region"}) {
+  for (const char* solver : {"hybrid", "joint", "quasi-newton", "multiplicative", "additive-trust-region"}) {
     Fixture g = MakeFixture(std::string(solver) == "multiplicative" ? "multiplicative_2layer.json"
                             : std::string(solver) == "additive-trust-region" ? "additive_2layer.json"
                                                                               : "paper_prototype.json");
@@ -272,6 +341,14 @@ TEST(Solvers, ResumedFromACheckpointMatchesAnUninterruptedSolve) {
     ASSERT_TRUE(rest.IsSolutionUsable()) << solver << ": " << rest.FullReport();
     EXPECT_EQ(rest.iterations, 6) << solver;
     ASSERT_EQ(rest.trace.size(), whole.trace.size()) << solver;
+    if (std::string(solver) == "quasi-newton") {
+      // Its checkpoint holds patterns, not curvature pairs: it goes on from
+      // the checkpoint's patterns with a fresh memory, still descending.
+      for (size_t k = 0; k <= 3; ++k) EXPECT_EQ(rest.trace[k].objective, whole.trace[k].objective) << k;
+      for (size_t k = 4; k < rest.trace.size(); ++k) EXPECT_LT(rest.trace[k].objective, rest.trace[k - 1].objective) << k;
+      EXPECT_NEAR(Objective(*g.model, g.target, resumed), rest.final_objective, 1e-4 * rest.final_objective);
+      continue;
+    }
     for (size_t k = 0; k < straight.size(); ++k) EXPECT_EQ(resumed[k].rgb, straight[k].rgb) << solver << " layer " << k;
     EXPECT_EQ(rest.final_objective, whole.final_objective) << solver;
   }
@@ -383,7 +460,8 @@ TEST(SolverReport, PerfectFitIsInfinityNotNull) {
 // runs with the same thread count give the same bits.
 TEST(Solvers, TwoRunsWithTwoThreadsGiveTheSameBits) {
   for (const auto& [example, solvers] : std::vector<std::pair<std::string, std::vector<std::string>>>{
-           {"paper_prototype.json", {"hybrid", "joint"}}, {"multiplicative_2layer.json", {"multiplicative"}}}) {
+           {"paper_prototype.json", {"hybrid", "joint", "quasi-newton"}},
+           {"multiplicative_2layer.json", {"multiplicative"}}}) {
     const Fixture f = MakeFixture(example, 64, 32, 7);
     for (const std::string& solver : solvers) {
       SolverOptions o;
@@ -421,7 +499,7 @@ TEST(SolverRegistry, UnknownSolverListsTheKnownOnes) {
     FAIL();
   } catch (const Error& e) {
     EXPECT_STREQ(e.what(), "unknown solver \"hybird\"; did you mean \"hybrid\"? Known solvers: additive-trust-region, "
-                           "hybrid, joint, multiplicative");
+                           "hybrid, joint, multiplicative, quasi-newton");
   }
 }
 

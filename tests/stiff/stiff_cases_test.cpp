@@ -130,6 +130,7 @@ std::vector<std::tuple<StiffCase, std::string>> Applicable() {
                                      [](const Branch& b) { return b.layers.size() == 1; });
     out.emplace_back(c, "hybrid");
     out.emplace_back(c, "joint");
+    out.emplace_back(c, "quasi-newton");
     if (system.branches.size() == 1) out.emplace_back(c, "multiplicative");
     if (single_layers) out.emplace_back(c, "additive-trust-region");
   }
