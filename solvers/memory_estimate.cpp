@@ -23,13 +23,16 @@ MemoryEstimate EstimateSolveMemory(const DisplaySystem& system, const LightField
                                    int threads) {
   threads = std::max(threads, 1);
   const double light_field = double(g.ray_count()) * 3 * sizeof(float);
-  // The target as read and its prepared copy (clipped or scaled); the hybrid
-  // also keeps what the set being updated should emit.
-  const int copies = solver == "hybrid" ? 3 : 2;
+  // The target as read and, if values exceed the display, its clipped or
+  // scaled copy; the hybrid (and quasi-newton's warm start) also keeps what
+  // the set being updated should emit.
+  const int copies = solver == "hybrid" || solver == "quasi-newton" ? 3 : 2;
   double layer_pixels = 0;
   for (const VirtualLayer& layer : system.layers) layer_pixels += double(layer.cols) * layer.rows * 3;
   // Patterns (float), merged sums (2 double), per-thread sums (2 float), kept ratios (double).
-  const double layers = layer_pixels * (4 + 16 + 8.0 * threads + 8);
+  double layers = layer_pixels * (4 + 16 + 8.0 * threads + 8);
+  // quasi-newton: 9 work vectors and 4 pairs of 2, in double (quasi_newton.cpp).
+  if (solver == "quasi-newton") layers += layer_pixels * 8 * (9 + 4 * 2);
   const double views = double(g.pixels_per_view()) * 3 * sizeof(float) * 4 * threads;  // per-thread view buffers
   const double program = 64e6;  // code, libraries, the thread pool
   MemoryEstimate e;
