@@ -244,6 +244,20 @@ TEST(CalibrationTest, CollinearMarkersAreReported) {
   EXPECT_LT(WorstGeometryError(built, m, report, display, setup.noise.marker_sigma, false), kSigmas);
 }
 
+// A panel built mirrored (its "reversed" wrong in the scene): its markers
+// fit the mirror image far better, and the report says so for that panel only.
+TEST(CalibrationTest, MirroredPanelIsReported) {
+  const std::vector<PanelTruth> truth = ExampleTruth();
+  DisplaySystem built = BuiltSystem(Designed(), truth);
+  built.layers[1].flip_x = !built.layers[1].flip_x;
+  const Measurements m = testing::SyntheticMeasurements(built, truth, GeometrySetup(0.3));
+  CalibratedDisplay display;
+  const CalibrationReport report = Calibrate(Designed(), m, CalibrationOptions{}, &display);
+  for (size_t k = 0; k < Designed().layers.size(); ++k)
+    EXPECT_EQ(HasWarning(report, "panel \"" + Designed().layers[k].name + "\": its markers fit a mirror image"), k == 1)
+        << Designed().layers[k].name << "\n" << report.FullReport();
+}
+
 TEST(CalibrationTest, FarthestPanelReferenceCentersItAndFitsTheCamera) {
   // The farthest panel defines the axis: built centered and level, seen by a turned camera.
   std::vector<PanelTruth> truth = ExampleTruth();
