@@ -1,5 +1,7 @@
 #include "solvers/joint_pass.h"
 
+#include <omp.h>
+
 #include "solvers/joint_column_pass.h"
 #include "systems/one_tap_view.h"
 
@@ -35,8 +37,12 @@ double JointPass::Run(const LightField& l, const Patterns& t) {
     den_[k].assign(t[k].rgb.size(), 0.0);
   }
   if (column_pass_) return JointColumnPass(model_, l, t, &num_, &den_);
-  double objective = 0;
-#pragma omp parallel reduction(+ : objective)
+  // Views split evenly and statically, each view's error kept apart and
+  // summed in view order, thread sums merged in thread order: the same
+  // bits for a given thread count.
+  std::vector<double> view_error(model_.geometry().view_count());
+  std::vector<const PassSums*> parts;
+#pragma omp parallel
   {
     thread_local PassSums sums;
     sums.num.resize(layers), sums.den.resize(layers);
@@ -44,22 +50,31 @@ double JointPass::Run(const LightField& l, const Patterns& t) {
       sums.num[k].assign(t[k].rgb.size(), 0.0f);
       sums.den[k].assign(t[k].rgb.size(), 0.0f);
     }
-    sums.objective = 0;
-#pragma omp for schedule(dynamic)
-    for (size_t v = 0; v < model_.geometry().view_count(); ++v) {
+    const int threads = omp_get_num_threads(), me = omp_get_thread_num();
+#pragma omp single
+    parts.resize(threads);
+    parts[me] = &sums;
+#pragma omp for schedule(static)
+    for (size_t v = 0; v < view_error.size(); ++v) {
+      sums.objective = 0;
       if (one_tap_)
         ViewOneTap(l.view(v), t, v, &sums);
       else
         ViewGeneral(l.view(v), t, v, &sums);
+      view_error[v] = sums.objective;
     }
-    objective += sums.objective;
-#pragma omp critical
-    for (size_t k = 0; k < layers; ++k)
-      for (size_t i = 0; i < num_[k].size(); ++i) {
-        num_[k][i] += sums.num[k][i];
-        den_[k][i] += sums.den[k][i];
-      }
+    // (the loop's barrier: every part is complete) Each thread merges a share of every layer's values.
+    for (size_t k = 0; k < layers; ++k) {
+      const size_t size = num_[k].size(), begin = size * me / threads, end = size * (me + 1) / threads;
+      for (const PassSums* part : parts)
+        for (size_t i = begin; i < end; ++i) {
+          num_[k][i] += part->num[k][i];
+          den_[k][i] += part->den[k][i];
+        }
+    }
   }
+  double objective = 0;
+  for (double e : view_error) objective += e;
   return objective;
 }
 

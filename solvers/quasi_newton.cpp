@@ -13,7 +13,8 @@
 // from the joint solver's plain multiplicative step, (1 / L) t / (2 den) per
 // value (L: layers in the longest branch), scaled by the last pair's
 // curvature; the projected step is halved until it lowers the objective
-// enough (Armijo), so the objective never rises.
+// enough (Armijo), so the objective never rises. Where no halving of the
+// pairs' direction does, the plain step is tried before the solve stops.
 //
 // From a flat start the hybrid solver's first iterations gain more per
 // second (each layer solved exactly against the others), so the first
@@ -139,6 +140,22 @@ void Direction(const std::deque<Pair>& pairs, const Vector& g, const Vector& h, 
   for (size_t i = 0; i < n; ++i) q[i] = -q[i] * free[i];
 }
 
+// x_new = clamp(x + step d, lo, hi), rounded to float as the patterns are
+// (so that the pairs see the step the patterns took); change = x_new - x.
+void ProjectedStep(const Vector& x, const Vector& d, double step, double lo, double hi, Vector* x_new, Vector* change) {
+#pragma omp parallel for schedule(static)
+  for (size_t i = 0; i < x.size(); ++i) {
+    (*x_new)[i] = static_cast<float>(std::clamp(x[i] + step * d[i], lo, hi));
+    (*change)[i] = (*x_new)[i] - x[i];
+  }
+}
+
+// d = -h g over the free values: the plain multiplicative step's direction.
+void PlainDirection(const Vector& g, const Vector& h, const Vector& free, Vector* d) {
+#pragma omp parallel for schedule(static)
+  for (size_t i = 0; i < g.size(); ++i) (*d)[i] = -h[i] * g[i] * free[i];
+}
+
 class QuasiNewtonSolver final : public Solver {
  public:
   SolverReport Solve(const DisplayModel& model, const LightField& target, const SolverOptions& options,
@@ -157,6 +174,12 @@ class QuasiNewtonSolver final : public Solver {
     SolverReport warm = SolverRegistry::Builtins().create("hybrid")->Solve(model, target, first, t);
     warm.solver = "quasi-newton";
     SolverCheckpoint start{"quasi-newton", warm.iterations, warm.seconds, *t, {}, warm.trace};
+    // The budget is checked after the stop request: a warm start that used it up ends the solve too.
+    if (warm_done && options.time_budget > 0 && warm.seconds >= options.time_budget) {
+      warm.termination = Termination::kTimeBudget;
+      warm.message = "stopped after " + std::to_string(warm.seconds) + " s";
+      warm_done = false;
+    }
     if (!warm_done) {  // stopped where this solve stops: its limit, budget, interruption, or a failure
       const bool short_stop = warm.termination == Termination::kInterrupted || warm.termination == Termination::kTimeBudget;
       if (short_stop && options.checkpoint && options.checkpoint_every > 0) options.checkpoint(start);
@@ -191,29 +214,42 @@ class QuasiNewtonSolver final : public Solver {
     layout.Gather(*t, &x);
     double f = pass.Run(l, *t);
     layout.GradientAndScale(pass, x, plain, options.epsilon, &g, &h);
+    // Halves the projected step along d until it lowers the objective
+    // enough; x_new, change and *f_new are then the step's. A step whose
+    // slope clamping (or rounding) leaves non-negative is not evaluated.
+    auto line_search = [&](double* f_new) {
+      for (int halving = 0; halving <= kMaxHalvings; ++halving) {
+        ProjectedStep(x, d, std::ldexp(1.0, -halving), lo, hi, &x_new, &change);
+        const double slope = Dot(g, change);
+        if (!(slope < 0)) continue;
+        layout.Scatter(x_new, t);
+        *f_new = pass.Run(l, *t);
+        if (*f_new <= f + kArmijo * slope) return true;  // NaN fails: halved
+      }
+      return false;
+    };
+    // The plain step's direction, the pairs forgotten.
+    auto plain_direction = [&] {
+      while (!pairs.empty()) spare.push_back(std::move(pairs.front())), pairs.pop_front();
+      PlainDirection(g, h, free, &d);
+    };
+
     while (true) {
 #pragma omp parallel for schedule(static)
       for (size_t i = 0; i < n; ++i)
         free[i] = h[i] > 0 && !(x[i] <= lo && g[i] > 0) && !(x[i] >= hi && g[i] < 0) ? 1.0 : 0.0;
       Direction(pairs, g, h, free, &d);
-      if (!(Dot(g, d) < 0)) {  // not a descent direction: the plain step's, and the pairs forgotten
-        while (!pairs.empty()) spare.push_back(std::move(pairs.front())), pairs.pop_front();
-#pragma omp parallel for schedule(static)
-        for (size_t i = 0; i < n; ++i) d[i] = -h[i] * g[i] * free[i];
+      bool from_pairs = !pairs.empty();
+      if (!(Dot(g, d) < 0)) plain_direction(), from_pairs = false;
+      if (!(Dot(g, d) < 0)) {
+        loop.Converge("the projected gradient is zero: a stationary point of the bounded problem");
+        break;
       }
-
-      double step = 1.0, f_new = 0;
-      bool lowered = false;
-      for (int halving = 0; halving <= kMaxHalvings && !lowered; ++halving, step *= 0.5) {
-#pragma omp parallel for schedule(static)
-        for (size_t i = 0; i < n; ++i) {
-          x_new[i] = std::clamp(x[i] + step * d[i], lo, hi);
-          change[i] = x_new[i] - x[i];
-        }
-        layout.Scatter(x_new, t);
-        f_new = pass.Run(l, *t);
-        // NaN fails the comparison: the step is halved.
-        lowered = f_new <= f + kArmijo * Dot(g, change);
+      double f_new = f;
+      bool lowered = line_search(&f_new);
+      if (!lowered && from_pairs) {  // the curvature pairs misled: the plain step before giving up
+        plain_direction();
+        lowered = line_search(&f_new);
       }
       if (!lowered) {
         layout.Scatter(x, t);

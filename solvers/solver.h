@@ -59,7 +59,10 @@ struct SolverOptions {
   std::function<void(const struct SolverCheckpoint&)> checkpoint;
   int checkpoint_every = 0;
   // Resuming: continue from a checkpoint of the same solver, display and
-  // target; the resumed solve reaches the same patterns as an uninterrupted one.
+  // target; the resumed solve reaches the same patterns as an uninterrupted
+  // one (quasi-newton: its curvature pairs are not kept, so it goes on from
+  // the checkpoint's patterns with a fresh memory, and a checkpoint written
+  // during its warm start resumes with quasi-Newton steps).
   const struct SolverCheckpoint* resume = nullptr;
 
   // False with "field: value: constraint" in *error when an option is out of range.

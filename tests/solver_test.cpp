@@ -178,6 +178,30 @@ TEST(Solvers, QuasiNewtonStartsWithTheHybridsIterations) {
 
   o.warm_start_iterations = -1;
   EXPECT_EQ(RunSolver("quasi-newton", f, o, &c).message, "warm_start_iterations: -1: must be in [0, 1000000]");
+
+  // A budget the warm start used up ends the solve there.
+  o.warm_start_iterations = 1;
+  o.iterations = 50;
+  o.time_budget = 1e-9;
+  const SolverReport budget = RunSolver("quasi-newton", f, o, &c);
+  EXPECT_EQ(budget.termination, Termination::kTimeBudget) << budget.FullReport();
+  EXPECT_EQ(budget.iterations, 1);
+}
+
+// Every value held at the floor by a gradient pushing down (a black target):
+// no direction is left, and the solve says so instead of running on.
+TEST(Solvers, QuasiNewtonStopsAtAStationaryPoint) {
+  Fixture f = MakeFixture("paper_prototype.json");
+  std::fill(f.target.rgb.begin(), f.target.rgb.end(), 0.0f);
+  SolverOptions o = SolverRegistry::Builtins().find("quasi-newton")->defaults;
+  o.iterations = 100000;
+  Patterns t;
+  const SolverReport r = RunSolver("quasi-newton", f, o, &t);
+  EXPECT_EQ(r.termination, Termination::kConverged) << r.FullReport();
+  EXPECT_LT(r.iterations, 1000) << r.FullReport();
+  EXPECT_LT(r.final_objective, 1e-9) << r.FullReport();  // pixels no ray reaches keep their start
+  EXPECT_NE(r.message.find("stationary point"), std::string::npos) << r.message;
+  for (size_t k = 1; k < r.trace.size(); ++k) EXPECT_LE(r.trace[k].objective, r.trace[k - 1].objective) << k;
 }
 
 // The joint pass's gradient, 2 (den - num), against central differences of
@@ -474,6 +498,23 @@ TEST(Solvers, TwoRunsWithTwoThreadsGiveTheSameBits) {
       for (size_t k = 0; k < ra.trace.size(); ++k) EXPECT_EQ(ra.trace[k].objective, rb.trace[k].objective) << solver;
       for (size_t k = 0; k < a.size(); ++k) EXPECT_EQ(a[k].rgb, b[k].rgb) << solver << ", layer " << k;
     }
+  }
+  // The general path (a rotation of 1e-12 selects it) of the solvers that move every layer at once.
+  const Fixture f = MakeFixture("paper_prototype.json", 64, 32, 7);
+  DisplaySystem rotated = f.system;
+  for (VirtualLayer& layer : rotated.layers) layer.rotation = 1e-12;
+  const DisplayModel general(rotated, f.target.geometry);
+  for (const std::string solver : {"joint", "quasi-newton"}) {
+    SolverOptions o;
+    o.iterations = 4;
+    o.threads = 2;
+    o.initial_value = -1;
+    Patterns a, b;
+    const SolverReport ra = SolverRegistry::Builtins().create(solver)->Solve(general, f.target, o, &a);
+    const SolverReport rb = SolverRegistry::Builtins().create(solver)->Solve(general, f.target, o, &b);
+    ASSERT_EQ(ra.trace.size(), rb.trace.size()) << solver;
+    for (size_t k = 0; k < ra.trace.size(); ++k) EXPECT_EQ(ra.trace[k].objective, rb.trace[k].objective) << solver;
+    for (size_t k = 0; k < a.size(); ++k) EXPECT_EQ(a[k].rgb, b[k].rgb) << solver << ", general path, layer " << k;
   }
 }
 
