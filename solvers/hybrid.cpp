@@ -33,14 +33,18 @@ class HybridSolver final : public Solver {
     std::vector<bool> started(branches, loop.resumed() && loop.iteration() > 0);
 
     const size_t views = model.geometry().view_count();
+    auto others_of = [&](size_t m) {
+      std::vector<size_t> others;
+      for (size_t b = 0; b < branches; ++b)
+        if (b != m) others.push_back(b);
+      return others;
+    };
     // chase = max(0, target - the light of every set but m).
     auto compute_chase = [&](size_t m) {
       // The other sets stay fixed while this one is updated: their light is computed once.
       thread_local PaddedLayers workspace;
       const ViewSynthesizer synthesizer(model, *t, &workspace);
-      std::vector<size_t> others;  // the other sets, if all have emitted light of their own
-      for (size_t b = 0; b < branches; ++b)
-        if (b != m) others.push_back(b);
+      std::vector<size_t> others = others_of(m);  // the other sets, if all have emitted light of their own
       if (!std::all_of(others.begin(), others.end(), [&](size_t b) { return bool(started[b]); })) others.clear();
       std::array<float, 3> unstarted_share_left{1, 1, 1};  // 1 - the unstarted sets' shares
       for (size_t b = 0; b < branches; ++b)
@@ -73,12 +77,6 @@ class HybridSolver final : public Solver {
     // view right after it is written), and the pass that gives an
     // iteration's objective also gives set 0's next chase and the sums of
     // its next first update, applied only if there is a next iteration.
-    auto others_of = [&](size_t m) {
-      std::vector<size_t> others;
-      for (size_t b = 0; b < branches; ++b)
-        if (b != m) others.push_back(b);
-      return others;
-    };
     auto layers_of = [&](size_t m) {
       std::vector<int> order = model.branch_layers(m);
       std::sort(order.begin(), order.end());

@@ -14,7 +14,7 @@
 
 namespace layerlab {
 
-// num[k], den[k]: layer k's pixels x 3, added to.
+// num[k], den[k]: layer k's pixels x 3, written.
 double JointColumnPass(const DisplayModel& model, const LightField& l, const Patterns& t,
                        std::vector<std::vector<double>>* num, std::vector<std::vector<double>>* den);
 

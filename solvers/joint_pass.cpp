@@ -2,6 +2,7 @@
 
 #include <omp.h>
 
+#include "framework/thread_merge.h"
 #include "solvers/joint_column_pass.h"
 #include "systems/one_tap_view.h"
 
@@ -32,16 +33,13 @@ JointPass::JointPass(const DisplayModel& model) : model_(model) {
 
 double JointPass::Run(const LightField& l, const Patterns& t) {
   const size_t layers = model_.layer_count();
-  for (size_t k = 0; k < layers; ++k) {
-    num_[k].assign(t[k].rgb.size(), 0.0);
-    den_[k].assign(t[k].rgb.size(), 0.0);
-  }
+  for (size_t k = 0; k < layers; ++k) num_[k].resize(t[k].rgb.size()), den_[k].resize(t[k].rgb.size());  // written whole
   if (column_pass_) return JointColumnPass(model_, l, t, &num_, &den_);
   // Views split evenly and statically, each view's error kept apart and
   // summed in view order, thread sums merged in thread order: the same
   // bits for a given thread count.
   std::vector<double> view_error(model_.geometry().view_count());
-  std::vector<const PassSums*> parts;
+  std::vector<std::vector<const float*>> nums(layers), dens(layers);  // [layer][thread]
 #pragma omp parallel
   {
     thread_local PassSums sums;
@@ -52,8 +50,8 @@ double JointPass::Run(const LightField& l, const Patterns& t) {
     }
     const int threads = omp_get_num_threads(), me = omp_get_thread_num();
 #pragma omp single
-    parts.resize(threads);
-    parts[me] = &sums;
+    for (size_t k = 0; k < layers; ++k) nums[k].resize(threads), dens[k].resize(threads);
+    for (size_t k = 0; k < layers; ++k) nums[k][me] = sums.num[k].data(), dens[k][me] = sums.den[k].data();
 #pragma omp for schedule(static)
     for (size_t v = 0; v < view_error.size(); ++v) {
       sums.objective = 0;
@@ -63,14 +61,9 @@ double JointPass::Run(const LightField& l, const Patterns& t) {
         ViewGeneral(l.view(v), t, v, &sums);
       view_error[v] = sums.objective;
     }
-    // (the loop's barrier: every part is complete) Each thread merges a share of every layer's values.
-    for (size_t k = 0; k < layers; ++k) {
-      const size_t size = num_[k].size(), begin = size * me / threads, end = size * (me + 1) / threads;
-      for (const PassSums* part : parts)
-        for (size_t i = begin; i < end; ++i) {
-          num_[k][i] += part->num[k][i];
-          den_[k][i] += part->den[k][i];
-        }
+    for (size_t k = 0; k < layers; ++k) {  // after the loop's barrier
+      MergeInThreadOrder(nums[k], num_[k].size() / 3, 3, me, threads, num_[k].data());
+      MergeInThreadOrder(dens[k], den_[k].size() / 3, 3, me, threads, den_[k].data());
     }
   }
   double objective = 0;

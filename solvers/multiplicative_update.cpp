@@ -1,8 +1,11 @@
 #include "solvers/multiplicative_update.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <vector>
 
+#include "framework/thread_merge.h"
 #include "solvers/one_tap_update.h"
 #include "systems/one_tap_view.h"
 
@@ -57,7 +60,7 @@ bool ComputeLayerUpdate(const DisplayModel& model, size_t branch, int layer, con
   const size_t m = model.projection(layer).pixel_count() * 3;
   const bool one_tap = OneTapBranch(model, branch);
   update->branch = branch, update->layer = layer;
-  update->num.assign(m, 0.0), update->den.assign(m, 0.0);
+  update->num.resize(m), update->den.resize(m);  // written whole by the merge
   // The calling thread's, shared with the workers.
   double* numerator = update->num.data();
   double* denominator = update->den.data();
@@ -76,20 +79,22 @@ bool ComputeLayerUpdate(const DisplayModel& model, size_t branch, int layer, con
     }
     return error != nullptr;
   }
+  std::vector<const float*> nums, dens;  // [thread]
 #pragma omp parallel
   {
     thread_local Sums sums;
     thread_local std::vector<float> target_scratch;
     sums.num.assign(m, 0.0f), sums.den.assign(m, 0.0f);
     target_scratch.resize(n);
-#pragma omp for schedule(dynamic)
+    const int threads = omp_get_num_threads(), me = omp_get_thread_num();
+#pragma omp single
+    nums.resize(threads), dens.resize(threads);
+    nums[me] = sums.num.data(), dens[me] = sums.den.data();
+#pragma omp for schedule(static)
     for (size_t v = 0; v < g.view_count(); ++v)
       AccumulateGeneral(model, layers, layer, t, w, v, branch_target(v, target_scratch.data()), &sums);
-#pragma omp critical
-    for (size_t k = 0; k < m; ++k) {
-      numerator[k] += sums.num[k];
-      denominator[k] += sums.den[k];
-    }
+    MergeInThreadOrder(nums, m / 3, 3, me, threads, numerator);
+    MergeInThreadOrder(dens, m / 3, 3, me, threads, denominator);
   }
   return false;
 }

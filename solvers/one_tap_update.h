@@ -19,7 +19,7 @@
 namespace layerlab {
 
 // `layers`: the branch's layers, layer a first. num and den hold layer a's
-// pixels x 3 and are added to. With `view_errors` (one per view), the same
+// pixels x 3 and are written. With `view_errors` (one per view), the same
 // pass also gives each view's sum of (r - w_b prod_k P_k t_k)^2 over its
 // rays and channels, the branch's own error against what it should emit.
 void OneTapUpdateSums(const DisplayModel& model, const std::vector<int>& layers, const Patterns& t,

@@ -63,10 +63,10 @@ double Dot(const Vector& a, const Vector& b) {
 // Every layer's values one after another.
 class Layout {
  public:
-  explicit Layout(const Patterns& t) {
-    for (const LayerPattern& p : t) {
+  explicit Layout(const DisplayModel& model) {
+    for (size_t k = 0; k < model.layer_count(); ++k) {
       offset_.push_back(size_);
-      size_ += p.rgb.size();
+      size_ += model.projection(k).pixel_count() * 3;
     }
   }
   size_t size() const { return size_; }
@@ -197,7 +197,7 @@ class QuasiNewtonSolver final : public Solver {
                            Patterns* t) const {
     SolveLoop loop("quasi-newton", model, target, options, t);
     // Work vectors allocated and touched in the set-up.
-    const Layout layout(model.UniformPatterns(0.0f));
+    const Layout layout(model);
     const size_t n = layout.size();
     Vector x(n), g(n), h(n), d(n), x_new(n), g_new(n), h_new(n), free(n), change(n);
     std::deque<Pair> pairs;

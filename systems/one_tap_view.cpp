@@ -1,6 +1,7 @@
 #include "systems/one_tap_view.h"
 
 #include "framework/error.h"
+#include "framework/thread_merge.h"
 
 namespace layerlab {
 
@@ -104,14 +105,14 @@ void ColumnSums::Scatter(const LayerProjection& P, int vc) {
 }
 
 void ColumnSums::Merge(const std::vector<const ColumnSums*>& sums, int part, int parts, double* num, double* den) {
+  std::vector<const float*> nums, dens;
+  for (const ColumnSums* s : sums) {
+    nums.push_back(reinterpret_cast<const float*>(s->pixel_num_.data()));
+    dens.push_back(reinterpret_cast<const float*>(s->pixel_den_.data()));
+  }
   const size_t pixels = sums.front()->pixel_num_.size();
-  const size_t begin = pixels * part / parts, end = pixels * (part + 1) / parts;
-  for (const ColumnSums* s : sums)
-    for (size_t k = begin; k < end; ++k)
-      for (int c = 0; c < 3; ++c) {
-        num[k * 3 + c] += s->pixel_num_[k][c];
-        den[k * 3 + c] += s->pixel_den_[k][c];
-      }
+  MergeInThreadOrder(nums, pixels, 4, part, parts, num);
+  MergeInThreadOrder(dens, pixels, 4, part, parts, den);
 }
 
 }  // namespace layerlab

@@ -134,9 +134,9 @@ class ColumnSums {
   Rgb4* den(int r) { touched_[r] = 1; return &column_den_[static_cast<size_t>(r) * ray_cols_]; }
   // The column sums into the pixel sums through view column vc's column taps; clears them.
   void Scatter(const LayerProjection& P, int vc);
-  // num[pixel * 3 + c] += each of `sums`' pixel sums in their order, and
-  // den likewise (merging threads, in double), for share `part` of `parts`
-  // of the pixels: each thread of a team merges its own share.
+  // num[pixel * 3 + c] = the sum of `sums`' pixel sums in their order, and
+  // den likewise (merging threads, in double; framework/thread_merge.h), for
+  // share `part` of `parts` of the pixels: each thread of a team merges its own share.
   static void Merge(const std::vector<const ColumnSums*>& sums, int part, int parts, double* num, double* den);
 
  private:

@@ -499,12 +499,12 @@ TEST(Solvers, TwoRunsWithTwoThreadsGiveTheSameBits) {
       for (size_t k = 0; k < a.size(); ++k) EXPECT_EQ(a[k].rgb, b[k].rgb) << solver << ", layer " << k;
     }
   }
-  // The general path (a rotation of 1e-12 selects it) of the solvers that move every layer at once.
+  // The general path (a rotation of 1e-12 selects it).
   const Fixture f = MakeFixture("paper_prototype.json", 64, 32, 7);
   DisplaySystem rotated = f.system;
   for (VirtualLayer& layer : rotated.layers) layer.rotation = 1e-12;
   const DisplayModel general(rotated, f.target.geometry);
-  for (const std::string solver : {"joint", "quasi-newton"}) {
+  for (const std::string solver : {"hybrid", "joint", "quasi-newton"}) {
     SolverOptions o;
     o.iterations = 4;
     o.threads = 2;
