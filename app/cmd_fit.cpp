@@ -9,8 +9,8 @@
 
 #include "app/commands.h"
 #include "framework/atomic_file.h"
-#include "systems/calibration/calibrated_scene.h"
-#include "systems/calibration/calibration.h"
+#include "calibration/calibrated_scene.h"
+#include "calibration/calibration.h"
 #include "systems/compile.h"
 
 namespace layerlab::app {

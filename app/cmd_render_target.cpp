@@ -8,8 +8,8 @@
 
 #include "app/commands.h"
 #include "framework/lightfield_io.h"
-#include "systems/target/target_renderer.h"
-#include "systems/target/target_scene.h"
+#include "targets/target_renderer.h"
+#include "targets/target_scene.h"
 
 namespace layerlab::app {
 

@@ -20,8 +20,8 @@
 #include "systems/lightfield_radiance.h"
 #include "systems/retina.h"
 #if LAYERLAB_WITH_EMBREE
-#include "systems/target/target_scene.h"
-#include "systems/target/target_tracer.h"
+#include "targets/target_scene.h"
+#include "targets/target_tracer.h"
 #endif
 
 namespace layerlab::app {

@@ -11,9 +11,9 @@
 #include "solvers/solve_config.h"
 #include "systems/retina.h"
 #if LAYERLAB_WITH_EMBREE
-#include "systems/target/target_renderer.h"
-#include "systems/target/target_scene.h"
-#include "systems/target/target_tracer.h"
+#include "targets/target_renderer.h"
+#include "targets/target_scene.h"
+#include "targets/target_tracer.h"
 #endif
 
 namespace layerlab::app {

@@ -6,7 +6,7 @@
 #include "framework/error.h"
 #include "framework/json_file.h"
 #include "fuzz/fuzz_util.h"
-#include "systems/calibration/measurements.h"
+#include "calibration/measurements.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {

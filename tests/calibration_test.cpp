@@ -7,9 +7,9 @@
 #include <numbers>
 
 #include "framework/json_file.h"
-#include "systems/calibration/calibrated_scene.h"
-#include "systems/calibration/calibration.h"
-#include "systems/calibration/scalar_fit.h"
+#include "calibration/calibrated_scene.h"
+#include "calibration/calibration.h"
+#include "calibration/scalar_fit.h"
 #include "tests/calibration_test_util.h"
 #include "tests/test_util.h"
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "systems/calibration/calibration.h"
-#include "systems/calibration/synthetic_measurements.h"
+#include "calibration/calibration.h"
+#include "calibration/synthetic_measurements.h"
 
 namespace layerlab::testing {
 

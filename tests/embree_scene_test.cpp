@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "framework/error.h"
-#include "systems/target/embree_scene.h"
+#include "targets/embree_scene.h"
 #include "tests/test_util.h"
 
 namespace layerlab {

@@ -13,8 +13,8 @@
 
 #include "framework/atomic_file.h"
 #include "framework/json_file.h"
-#include "systems/calibration/calibrated_scene.h"
-#include "systems/calibration/calibration.h"
+#include "calibration/calibrated_scene.h"
+#include "calibration/calibration.h"
 #include "tests/calibration_test_util.h"
 #include "tests/test_util.h"
 

@@ -2,7 +2,7 @@
 #include <cstring>
 
 #include "framework/error.h"
-#include "systems/target/mesh_io.h"
+#include "targets/mesh_io.h"
 #include "tests/render_test_util.h"
 
 namespace layerlab {

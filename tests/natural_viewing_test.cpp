@@ -4,8 +4,8 @@
 #include <numbers>
 
 #include "systems/lightfield_radiance.h"
-#include "systems/target/plane_lightfield.h"
-#include "systems/target/texture.h"
+#include "targets/plane_lightfield.h"
+#include "targets/texture.h"
 #include "tests/test_util.h"
 
 namespace layerlab {

@@ -8,10 +8,10 @@
 #include <vector>
 
 #include "framework/json_file.h"
-#include "systems/target/plane_lightfield.h"
-#include "systems/target/target_renderer.h"
-#include "systems/target/target_scene.h"
-#include "systems/target/target_tracer.h"
+#include "targets/plane_lightfield.h"
+#include "targets/target_renderer.h"
+#include "targets/target_scene.h"
+#include "targets/target_tracer.h"
 #include "tests/render_test_util.h"
 #include "tests/test_util.h"
 

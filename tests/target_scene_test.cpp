@@ -4,7 +4,7 @@
 #include <functional>
 
 #include "framework/json_file.h"
-#include "systems/target/target_scene.h"
+#include "targets/target_scene.h"
 #include "tests/render_test_util.h"
 #include "tests/test_util.h"
 

@@ -8,9 +8,9 @@
 
 #include "framework/error.h"
 #include "framework/exr_image.h"
-#include "systems/target/fast_cos.h"
-#include "systems/target/length_or_angle.h"
-#include "systems/target/texture.h"
+#include "targets/fast_cos.h"
+#include "targets/length_or_angle.h"
+#include "targets/texture.h"
 #include "tests/render_test_util.h"
 #include "tests/test_util.h"
 

@@ -1,0 +1,69 @@
+#include <ceres/loss_function.h>
+
+#include "calibration/fit_steps.h"
+
+namespace layerlab {
+
+ceres::LossFunction* MakeLoss(RobustLoss loss, double scale) {
+  switch (loss) {
+    case RobustLoss::kHuber: return new ceres::HuberLoss(scale);
+    case RobustLoss::kCauchy: return new ceres::CauchyLoss(scale);
+    case RobustLoss::kNone: return nullptr;
+  }
+  return nullptr;
+}
+
+int LayerIndex(const DisplaySystem& system, const std::string& name) {
+  for (size_t k = 0; k < system.layers.size(); ++k)
+    if (system.layers[k].name == name) return static_cast<int>(k);
+  throw Error("no panel named \"" + name + "\"");  // CheckMeasurements has refused it before
+}
+
+const CalibratedPanel* CalibratedDisplay::find(const std::string& panel) const {
+  for (const CalibratedPanel& p : panels)
+    if (p.name == panel) return &p;
+  return nullptr;
+}
+
+CalibrationReport Calibrate(const DisplaySystem& system, const Measurements& measurements,
+                            const CalibrationOptions& options, CalibratedDisplay* display) {
+  CalibrationReport report;
+  report.scene = system.file;
+  report.measurements = measurements.file;
+  report.options = options;
+  std::string invalid;
+  if (!options.IsValid(&invalid)) {
+    report.message = "invalid options: " + invalid;
+    return report;
+  }
+  try {
+    CheckMeasurements(measurements, system);
+  } catch (const Error& e) {
+    report.message = e.what();
+    return report;
+  }
+
+  *display = CalibratedDisplay{};
+  display->lens = system.lens;
+  display->focal_length = system.focal_length;
+  for (const VirtualLayer& layer : system.layers) {
+    CalibratedPanel panel;
+    panel.name = layer.name;
+    panel.distance = layer.panel_distance;
+    panel.offset_x = layer.panel.offset[0];
+    panel.offset_y = layer.panel.offset[1];
+    panel.rotation = layer.panel.rotation;
+    panel.gamma = layer.panel.gamma;
+    panel.black_level = layer.panel.black_level;
+    display->panels.push_back(panel);
+    report.panels.push_back(PanelResiduals{layer.name});
+  }
+  if (!FitGeometry(system, measurements, options, display, &report)) return report;
+  if (!FitLuminance(system, measurements, options, display, &report)) return report;
+  report.usable = true;
+  report.message = "fitted " + std::to_string(report.markers) + " markers and " +
+                   std::to_string(report.luminance_samples) + " luminance samples";
+  return report;
+}
+
+}  // namespace layerlab

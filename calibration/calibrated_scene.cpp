@@ -1,0 +1,111 @@
+#include "calibration/calibrated_scene.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <numbers>
+#include <set>
+#include <sstream>
+
+#include "framework/error.h"
+
+namespace layerlab {
+namespace {
+
+using nlohmann::ordered_json;
+
+std::string WithUnit(double si_value, double scale, const char* unit) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.12g %s", si_value * scale, unit);
+  return buf;
+}
+
+double Rounded(double value) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.12g", value);
+  return std::strtod(buf, nullptr);
+}
+
+// Replaces keys in place; "distance" takes the place of "virtual_depth"; new
+// keys go before the element's connection ("next"), or last.
+void Update(ordered_json& element, const std::vector<std::pair<std::string, ordered_json>>& values) {
+  std::map<std::string, ordered_json> pending(values.begin(), values.end());
+  std::set<std::string> present;
+  for (auto it = element.begin(); it != element.end(); ++it) present.insert(it.key());
+  if (pending.count("distance")) present.insert("virtual_depth");
+  ordered_json updated = ordered_json::object();
+  auto emit_new = [&] {
+    for (const auto& [key, value] : values)
+      if (!present.count(key) && pending.count(key)) updated[key] = value, pending.erase(key);
+  };
+  for (auto it = element.begin(); it != element.end(); ++it) {
+    const std::string& key = it.key();
+    if (key == "next") emit_new();
+    if (key == "virtual_depth" && pending.count("distance")) {
+      updated["distance"] = pending["distance"];
+      pending.erase("distance");
+    } else if (pending.count(key)) {
+      updated[key] = pending[key];
+      pending.erase(key);
+    } else {
+      updated[key] = *it;
+    }
+  }
+  emit_new();
+  element = std::move(updated);
+}
+
+ordered_json& ElementNamed(ordered_json& scene, const std::string& file, const std::string& name) {
+  if (scene.contains("elements") && scene["elements"].is_array())
+    for (ordered_json& e : scene["elements"])
+      if (e.is_object() && e.contains("name") && e["name"] == name) return e;
+  throw Error(Location{file, "/elements"}, "no element named \"" + name + "\" to write the calibration into");
+}
+
+}  // namespace
+
+ordered_json CalibratedSceneDocument(const ordered_json& scene, const std::string& file, const CalibratedDisplay& display) {
+  ordered_json out = scene;
+  for (const CalibratedPanel& panel : display.panels) {
+    std::vector<std::pair<std::string, ordered_json>> values;
+    if (panel.geometry_measured || display.focal_length_fitted) values.push_back({"distance", WithUnit(panel.distance, 1e3, "mm")});
+    if (panel.geometry_measured) {
+      values.push_back({"offset", {WithUnit(panel.offset_x, 1e3, "mm"), WithUnit(panel.offset_y, 1e3, "mm")}});
+      values.push_back({"rotation", WithUnit(panel.rotation, 180.0 / std::numbers::pi, "deg")});
+    }
+    if (panel.luminance_measured) {
+      values.push_back({"gamma", Rounded(panel.gamma)});
+      values.push_back({"black_level", Rounded(panel.black_level)});
+    }
+    if (!values.empty()) Update(ElementNamed(out, file, panel.name), values);
+  }
+  if (display.focal_length_fitted)
+    Update(ElementNamed(out, file, display.lens), {{"focal_length", WithUnit(display.focal_length, 1e3, "mm")}});
+  return out;
+}
+
+void RebaseRelativePaths(ordered_json& scene, const std::string& from_file, const std::string& to_file) {
+  namespace fs = std::filesystem;
+  if (!scene.contains("solve") || !scene["solve"].is_object()) return;
+  ordered_json& solve = scene["solve"];
+  if (!solve.contains("target") || !solve["target"].is_string()) return;
+  const fs::path target = solve["target"].get<std::string>();
+  if (target.is_absolute()) return;
+  const fs::path from = fs::absolute(fs::path(from_file).parent_path()), to = fs::absolute(fs::path(to_file).parent_path());
+  solve["target"] = (from / target).lexically_normal().lexically_relative(to.lexically_normal()).generic_string();
+}
+
+ordered_json ReadDocumentInOrder(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path + ": cannot open for reading");
+  std::ostringstream text;
+  text << in.rdbuf();
+  try {
+    return ordered_json::parse(text.str());
+  } catch (const ordered_json::exception& e) {
+    throw Error(path + ": malformed JSON: " + e.what());
+  }
+}
+
+}  // namespace layerlab

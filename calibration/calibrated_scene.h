@@ -1,0 +1,38 @@
+// The calibrated scene: the input scene's document with what the calibration
+// measured replaced and everything else, key order included, left as it was,
+// so that every other command reads it unchanged.
+//
+// | key          | written for                                | form                              |
+// |--------------|--------------------------------------------|-----------------------------------|
+// | distance     | a panel with markers; every panel when the focal length was fitted (its physical distance is what stays) | "72.8123456789 mm", in the place of "virtual_depth" |
+// | offset       | a panel with markers                       | ["0.12 mm", "-0.05 mm"]           |
+// | rotation     | a panel with markers                       | "0.15 deg"                        |
+// | gamma        | a panel with luminance data                | number                            |
+// | black_level  | a panel with luminance data                | number                            |
+// | focal_length | the lens, when fitted                      | "75.0123 mm"                      |
+//
+// Values carry twelve significant digits, far finer than any measurement, so
+// that the file read back gives the fitted numbers to 1e-11.
+#pragma once
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "calibration/calibration.h"
+
+namespace layerlab {
+
+// `scene` is the document of `file` (named in errors).
+nlohmann::ordered_json CalibratedSceneDocument(const nlohmann::ordered_json& scene, const std::string& file,
+                                               const CalibratedDisplay& display);
+
+// A relative "solve"/"target" path re-expressed from the folder of `from_file`
+// (the input scene) to that of `to_file` (the calibrated one), so that the
+// calibrated scene finds the same target wherever it is written.
+void RebaseRelativePaths(nlohmann::ordered_json& scene, const std::string& from_file, const std::string& to_file);
+
+// A scene file's document with its keys in file order (LoadScene has checked it).
+nlohmann::ordered_json ReadDocumentInOrder(const std::string& path);
+
+}  // namespace layerlab

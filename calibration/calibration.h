@@ -1,0 +1,144 @@
+// Calibration of a built display from measurements (docs/measurements-format.md):
+// options in, a report out, in the manner of ceres::Solver.
+//
+// Geometry (marker_model.h), per panel with markers: its distance from the lens
+// (which sets its magnification and image depth), its lateral offset and its
+// in-plane rotation; optionally the lens focal length, shared by all panels;
+// the camera's pointing when the axis is referenced to the farthest panel. The
+// flips are known from the scene (reversed panels, mirrored branches) and are
+// not fitted, but a panel whose markers fit a mirror image far better is reported.
+// Photometry (luminance_model.h), per panel with luminance data: the maximum
+// luminance, the black level and gamma.
+//
+// The fit starts from the scene's values. Whatever the data cannot determine
+// is held at its scene value and the report says so (a warning naming the
+// parameter), never fitted silently; uncertainties come from ceres::Covariance.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "calibration/measurements.h"
+#include "systems/display_system.h"
+
+namespace layerlab {
+
+enum class RobustLoss { kNone, kHuber, kCauchy };
+std::string ToString(RobustLoss loss);
+RobustLoss RobustLossFromString(const std::string& name);  // throws layerlab::Error naming the known ones
+
+// What defines the eye's axis and its horizontal.
+enum class AxisReference {
+  // The measuring camera's: its principal point is the axis, its rows the horizontal.
+  kCamera,
+  // The farthest panel's image center and rows, as the paper centers the
+  // farthest panel on its camera: that panel's offset and rotation become 0,
+  // the camera's pan, tilt and roll are fitted instead.
+  kFarthestPanel,
+};
+std::string ToString(AxisReference reference);
+AxisReference AxisReferenceFromString(const std::string& name);  // throws layerlab::Error
+
+struct CalibrationOptions {
+  // Also fit the main lens's focal length. Only parallax tells it from the
+  // panel distances: the markers must be seen from more than one camera
+  // position, or it keeps its scene value and the report says so.
+  bool fit_focal_length = false;
+  // Discounts outliers (a misdetected marker, a reading of the wrong pattern).
+  // Turn it on when the report counts markers far beyond the noise.
+  RobustLoss loss = RobustLoss::kNone;
+  // Where the loss starts to discount: a marker's angular error (rad), and a
+  // luminance residual relative to the panel's brightest reading. About three
+  // times the noise is a good choice.
+  double marker_loss_scale = 2.908882086657216e-4;  // 1 arcmin
+  double luminance_loss_scale = 0.02;
+  AxisReference reference = AxisReference::kCamera;
+  // Levenberg-Marquardt; the problems are small, so the tolerances are tight.
+  int max_iterations = 200;
+  double function_tolerance = 1e-14;
+  double parameter_tolerance = 1e-13;
+
+  // False with "field: value: constraint" in *error when an option is out of range.
+  bool IsValid(std::string* error) const;
+};
+
+enum class ParameterStatus {
+  kFitted,
+  kUndetermined,  // the data cannot determine it: held at its scene value
+  kReference,     // fixed by the axis reference
+  kNotFitted,     // not asked for (the focal length without fit_focal_length)
+};
+std::string ToString(ParameterStatus status);
+
+struct ParameterEstimate {
+  std::string element;   // a panel, the lens, or "camera"
+  std::string quantity;  // distance, virtual_depth, offset_x, offset_y, rotation, focal_length,
+                         // pan, tilt, roll, max_luminance, black_level, gamma
+  double scene_value = 0;          // SI (m, rad, D); max_luminance in the measurements' unit
+  double value = 0;                // after the fit
+  std::optional<double> std_dev;   // one standard deviation; empty when not fitted or not estimable
+  ParameterStatus status = ParameterStatus::kFitted;
+  bool derived = false;            // computed from fitted ones (virtual_depth)
+};
+
+struct PanelResiduals {
+  std::string panel;
+  int markers = 0;
+  double marker_rms_before = 0, marker_rms_after = 0;  // rad, the angular error per marker
+  int luminance_samples = 0;
+  double luminance_rms_before = 0, luminance_rms_after = 0;  // relative to the panel's brightest reading
+};
+
+struct CalibrationReport {
+  std::string scene, measurements;  // files, for the report
+  CalibrationOptions options;
+  bool usable = false;
+  std::string message = "not run";
+
+  int markers = 0, captures = 0, camera_positions = 0, luminance_samples = 0;
+  double marker_rms_before = 0, marker_rms_after = 0;  // rad, over all markers
+  double marker_noise = 0;                             // rad per axis, estimated; NaN when not estimable
+  double luminance_rms_before = 0, luminance_rms_after = 0;
+  std::string geometry_solver, luminance_solver;  // Ceres' brief reports
+  std::vector<PanelResiduals> panels;
+  std::vector<ParameterEstimate> parameters;
+  std::vector<std::string> warnings;
+
+  bool IsSolutionUsable() const { return usable; }
+  const ParameterEstimate* find(const std::string& element, const std::string& quantity) const;
+  std::string BriefReport() const;
+  std::string FullReport() const;
+  nlohmann::json ToJson() const;
+};
+
+// The display as calibrated: what the calibrated scene file is written from.
+struct CalibratedPanel {
+  std::string name;
+  bool geometry_measured = false, luminance_measured = false;
+  double distance = 0;                  // m, from the lens
+  double offset_x = 0, offset_y = 0;    // m, in the panel plane, eye-space x right, y up
+  double rotation = 0;                  // rad, counterclockwise as the eye sees it
+  double gamma = 0, black_level = 0;
+  double max_luminance = 0;             // in the measurements' unit; 0 when not measured
+};
+
+struct CalibratedDisplay {
+  std::string lens;
+  double focal_length = 0;  // m
+  bool focal_length_fitted = false;
+  std::vector<CalibratedPanel> panels;  // in the system's layer order (farthest first)
+
+  const CalibratedPanel* find(const std::string& panel) const;
+};
+
+// Fits `system` (compiled from the scene as designed) to `measurements`.
+// Does not throw: bad options, measurements that do not belong to the
+// system, and a failed solve land in the report's message; *display is
+// usable only when report.IsSolutionUsable().
+CalibrationReport Calibrate(const DisplaySystem& system, const Measurements& measurements,
+                            const CalibrationOptions& options, CalibratedDisplay* display);
+
+}  // namespace layerlab

@@ -1,0 +1,37 @@
+// The two independent parts of Calibrate() (calibration.h), and how the
+// report shows a value. Internal to calibration/.
+#pragma once
+
+#include <string>
+
+#include "calibration/calibration.h"
+
+namespace layerlab {
+
+// Each fills its part of *display and *report; false (with report->message)
+// when no usable result came out.
+bool FitGeometry(const DisplaySystem& system, const Measurements& measurements, const CalibrationOptions& options,
+                 CalibratedDisplay* display, CalibrationReport* report);
+bool FitLuminance(const DisplaySystem& system, const Measurements& measurements, const CalibrationOptions& options,
+                  CalibratedDisplay* display, CalibrationReport* report);
+
+// A parameter's value in the unit the report shows it in: "72.8123 mm", "0.1500 deg", "2.4000".
+std::string ShowValue(const std::string& quantity, double si_value);
+// The unit the report shows a quantity in ("mm", "deg", "D", "arcmin", "").
+std::string ShowUnit(const std::string& quantity);
+double ArcminFromRadians(double radians);
+
+}  // namespace layerlab
+
+namespace ceres {
+class LossFunction;
+}
+
+namespace layerlab {
+
+// The robust loss of the options at `scale` (null for none); the caller owns it.
+ceres::LossFunction* MakeLoss(RobustLoss loss, double scale);
+// The index of the layer showing panel `name` (which must exist).
+int LayerIndex(const DisplaySystem& system, const std::string& name);
+
+}  // namespace layerlab

@@ -1,0 +1,113 @@
+#include "calibration/synthetic_measurements.h"
+
+#include <cmath>
+#include <numbers>
+
+#include <Eigen/Geometry>
+
+#include "framework/random.h"
+
+namespace layerlab {
+namespace {
+
+class Gaussian {
+ public:
+  explicit Gaussian(uint64_t seed) : random_(seed) {}
+  double uniform() { return random_.uniform(); }
+  double operator()() {  // Box-Muller
+    const double u = 1.0 - random_.uniform(), v = random_.uniform();
+    return std::sqrt(-2.0 * std::log(u)) * std::cos(2.0 * std::numbers::pi * v);
+  }
+
+ private:
+  SplitMix64 random_;
+};
+
+std::vector<double> Spaced(int count, double first, double last) {
+  std::vector<double> out;
+  for (int i = 0; i < count; ++i)
+    out.push_back(std::round(count == 1 ? 0.5 * (first + last) : first + (last - first) * i / (count - 1)));
+  return out;
+}
+
+}  // namespace
+
+std::array<double, 2> ImagedMarker(const DisplaySystem& truth, const VirtualLayer& layer, double col, double row,
+                                   const SyntheticCamera& camera, const std::array<double, 2>& position) {
+  const PanelSpec& p = layer.panel;
+  // The pixel in eye-space order: a flipped axis counts from the other end (display_system.h).
+  double j = col - static_cast<double>(p.active_left), i = row - static_cast<double>(p.active_top);
+  if (layer.flip_x) j = static_cast<double>(p.active_cols) - 1 - j;
+  if (layer.flip_y) i = static_cast<double>(p.active_rows) - 1 - i;
+  const Eigen::Vector2d local((j + 0.5 - 0.5 * static_cast<double>(p.active_cols)) * p.pitch_x,
+                              (0.5 * static_cast<double>(p.active_rows) - i - 0.5) * p.pitch_y);
+  const Eigen::Vector2d on_panel = Eigen::Vector2d(p.offset[0], p.offset[1]) + Eigen::Rotation2Dd(p.rotation) * local;
+  // The thin lens images the panel plane at s into an upright virtual image at d = s f / (f - s), magnified f / (f - s).
+  const double s = layer.panel_distance, f = truth.focal_length, e = truth.eye.eye_relief;
+  const double image_distance = s * f / (f - s), magnification = f / (f - s);
+  const Eigen::Vector3d image(magnification * on_panel.x(), magnification * on_panel.y(), image_distance + e);
+  const Eigen::Vector3d ray = image - Eigen::Vector3d(position[0], position[1], 0.0);
+  const Eigen::Vector3d turn(-camera.tilt, camera.pan, camera.roll);
+  const Eigen::Matrix3d eye_from_camera =
+      turn.norm() > 0 ? Eigen::AngleAxisd(turn.norm(), turn.normalized()).toRotationMatrix() : Eigen::Matrix3d::Identity();
+  const Eigen::Vector3d seen = eye_from_camera.transpose() * ray;
+  return {std::atan(seen.x() / seen.z()), std::atan(seen.y() / seen.z())};
+}
+
+std::vector<Capture> SyntheticCaptures(const DisplaySystem& truth, const MarkerGrid& grid, const SyntheticCamera& camera,
+                                       const SyntheticNoise& noise) {
+  Gaussian gaussian(noise.seed);
+  std::vector<Capture> captures;
+  for (size_t c = 0; c < camera.positions.size(); ++c) {
+    Capture capture;
+    capture.camera_position = camera.positions[c];
+    capture.where = {"synthetic", "/captures/" + std::to_string(c)};
+    for (const VirtualLayer& layer : truth.layers) {
+      const PanelSpec& p = layer.panel;
+      PanelMarkers markers;
+      markers.panel = layer.name;
+      markers.where = capture.where.child("markers").child(layer.name);
+      const double cols = static_cast<double>(p.active_cols) - 1, rows = static_cast<double>(p.active_rows) - 1;
+      for (double row : Spaced(grid.rows, p.active_top + grid.inset * rows, p.active_top + (1 - grid.inset) * rows))
+        for (double col : Spaced(grid.cols, p.active_left + grid.inset * cols, p.active_left + (1 - grid.inset) * cols)) {
+          MarkerObservation m;
+          m.col = col;
+          m.row = row;
+          m.where = markers.where.child(markers.markers.size());
+          auto angle = ImagedMarker(truth, layer, col, row, camera, capture.camera_position);
+          angle[0] += noise.marker_sigma * gaussian();
+          angle[1] += noise.marker_sigma * gaussian();
+          if (noise.outlier_fraction > 0 && gaussian.uniform() < noise.outlier_fraction) {
+            const double direction = 2 * std::numbers::pi * gaussian.uniform();
+            angle[0] += noise.outlier_size * std::cos(direction);
+            angle[1] += noise.outlier_size * std::sin(direction);
+          }
+          m.angle_x = angle[0];
+          m.angle_y = angle[1];
+          if (camera.intrinsics) m.camera_pixel = CameraPixelFromAngle(*camera.intrinsics, angle[0], angle[1]);
+          markers.markers.push_back(m);
+        }
+      capture.panels.push_back(std::move(markers));
+    }
+    captures.push_back(std::move(capture));
+  }
+  return captures;
+}
+
+PanelLuminance SyntheticLuminance(const std::string& panel, const std::vector<int>& codes, double max_luminance,
+                                  double black_level, double gamma, const SyntheticNoise& noise) {
+  Gaussian gaussian(noise.seed);
+  PanelLuminance curve;
+  curve.panel = panel;
+  curve.levels = InputLevels::k8Bit;
+  curve.where = {"synthetic", "/luminance/" + panel};
+  for (int code : codes) {
+    const double x = code / 255.0;
+    const double ideal = max_luminance * (black_level + (1 - black_level) * std::pow(x, gamma));
+    const double reading = std::max(0.0, ideal + noise.luminance_sigma * max_luminance * gaussian());
+    curve.samples.push_back({x, reading, curve.where.child("samples").child(curve.samples.size())});
+  }
+  return curve;
+}
+
+}  // namespace layerlab

@@ -1,0 +1,52 @@
+// Synthetic measurements of a display whose true placement is known, for the
+// tests and the example file. Markers are imaged by an explicit construction
+// (the point on the panel, its virtual image through the thin lens, the ray
+// from the camera's entrance pupil), independent of marker_model.h's closed
+// form; noise is Gaussian from SplitMix64, the same numbers on every machine.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "calibration/measurements.h"
+#include "systems/display_system.h"
+
+namespace layerlab {
+
+// Markers on a cols x rows grid over each panel's active region, inset by a
+// fraction of it on every side; pixel centers.
+struct MarkerGrid {
+  int cols = 7, rows = 5;
+  double inset = 0.1;
+};
+
+struct SyntheticCamera {
+  std::optional<CameraIntrinsics> intrinsics;  // markers in camera pixels when set, as angles otherwise
+  std::vector<std::array<double, 2>> positions = {{0.0, 0.0}};  // m, one capture each
+  double pan = 0, tilt = 0, roll = 0;  // rad, as marker_model.h turns the camera
+};
+
+struct SyntheticNoise {
+  double marker_sigma = 0;      // rad per axis
+  double outlier_fraction = 0;  // markers moved by outlier_size, in a random direction
+  double outlier_size = 0;      // rad
+  double luminance_sigma = 0;   // relative to the panel's maximum luminance
+  uint64_t seed = 1;
+};
+
+// The visual angles (rad) at which `camera` sees panel pixel (col, row) of `layer`.
+std::array<double, 2> ImagedMarker(const DisplaySystem& truth, const VirtualLayer& layer, double col, double row,
+                                   const SyntheticCamera& camera, const std::array<double, 2>& position);
+
+// One capture per camera position, every panel's grid in each.
+std::vector<Capture> SyntheticCaptures(const DisplaySystem& truth, const MarkerGrid& grid,
+                                       const SyntheticCamera& camera, const SyntheticNoise& noise);
+
+// Luminance at 8-bit `codes` of L(x) = max (black + (1 - black) x^gamma), plus noise.
+PanelLuminance SyntheticLuminance(const std::string& panel, const std::vector<int>& codes, double max_luminance,
+                                  double black_level, double gamma, const SyntheticNoise& noise);
+
+}  // namespace layerlab

@@ -1,0 +1,294 @@
+#include "targets/target_scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+#include <optional>
+
+#include "framework/json_file.h"
+#include "systems/compile.h"
+#include "targets/length_or_angle.h"
+
+namespace layerlab {
+namespace {
+
+using nlohmann::json;
+
+constexpr int kMaxViewsPerAxis = 256;
+constexpr int kMaxPixelsPerAxis = 16384;
+constexpr size_t kMaxObjects = 4096;
+
+using Vec3 = std::array<double, 3>;
+
+std::string Diopters(double z) { return FormatFixed(1.0 / z, 2) + " D"; }
+
+// A depth given as "1.3 D" or "0.77 m", strictly in front of the eye and finite.
+double RequiredDepth(Params& p, const std::string& key) {
+  std::optional<Depth> d = p.optional_depth(key);
+  if (!d) p.raw(key);  // throws: missing required key
+  if (!(d->diopters > 0)) p.fail(key, "must be nearer than infinity (more than 0 D)");
+  if (d->diopters > 1000) p.fail(key, "is nearer than 1 mm to the eye");
+  return 1.0 / d->diopters;
+}
+
+// Reads a JSON array of exactly `n` values as a Params with keys "0", "1", ...
+Params ArrayParams(Params& p, const std::string& key, size_t n, const std::string& expected) {
+  const json& v = p.raw(key);
+  if (!v.is_array() || v.size() != n) p.fail(key, "expected " + expected + ", got " + v.dump());
+  json object = json::object();
+  for (size_t i = 0; i < n; ++i) object[std::to_string(i)] = v[i];
+  return Params(std::move(object), p.where(key));
+}
+
+// z of a position: a length ("770 mm", or a number in meters) or a depth ("1.3 D").
+double DepthOrLength(Params& p, const std::string& key) {
+  const json& v = p.raw(key);
+  if (v.is_string()) {
+    std::string text = v.get<std::string>();
+    try {
+      return ParseQuantity(text, Dimension::kLength);
+    } catch (const Error&) {
+    }
+    std::optional<Depth> d = p.optional_depth(key);
+    if (!(d->diopters > 0)) p.fail(key, "must be nearer than infinity (more than 0 D)");
+    return 1.0 / d->diopters;
+  }
+  return p.quantity(key, Dimension::kLength);
+}
+
+LightFieldGeometry ParseLightField(Params& lf, const std::string& base_dir) {
+  LightFieldGeometry g;
+  g.origin_z = RequiredDepth(lf, "origin_plane");
+
+  std::vector<std::string> window_keys;
+  for (const char* key : {"field_of_view", "window", "display"})
+    if (lf.has(key)) window_keys.push_back(key);
+  if (window_keys.empty())
+    throw Error(lf.where(), "the light field needs its window: give \"field_of_view\", \"window\" or \"display\"");
+  if (window_keys.size() > 1)
+    lf.fail(window_keys[1], "\"" + window_keys[0] + "\" already sets the window; give only one of "
+                            "\"field_of_view\", \"window\" and \"display\"");
+
+  std::optional<std::array<int64_t, 2>> default_resolution;
+  if (lf.has("display")) {
+    std::string display = lf.string("display");
+    std::string path = (std::filesystem::path(base_dir) / display).string();
+    if (!std::filesystem::exists(path)) lf.fail("display", "no such scene file: " + path);
+    DisplaySystem system = Compile(LoadScene(path));
+    for (const char* key : {"views", "eyebox"})
+      if (lf.has(key))
+        lf.fail(key, std::string("comes from the display (\"display\": \"") + display + "\"); remove it here");
+    g.views_x = system.eye.views_x;
+    g.views_y = system.eye.views_y;
+    g.eyebox_width = system.eye.eyebox_width;
+    g.eyebox_height = system.eye.eyebox_height;
+    g.window_width = 2 * g.origin_z * std::tan(system.fov_x / 2);
+    g.window_height = 2 * g.origin_z * std::tan(system.fov_y / 2);
+    g.window_left = -g.window_width / 2;
+    g.window_top = g.window_height / 2;
+    // The layer that sets the field of view (the farthest) sets the resolution.
+    for (const VirtualLayer& layer : system.layers)
+      if (layer.fov_x == system.fov_x) {
+        default_resolution = std::array<int64_t, 2>{layer.cols, layer.rows};
+        break;
+      }
+  } else {
+    if (lf.has("field_of_view")) {
+      Params fov = ArrayParams(lf, "field_of_view", 2, "two angles [horizontal, vertical]");
+      double fov_x = fov.quantity("0", Dimension::kAngle), fov_y = fov.quantity("1", Dimension::kAngle);
+      fov.require_range("0", fov_x, 0.0, std::numbers::pi, true, true);
+      fov.require_range("1", fov_y, 0.0, std::numbers::pi, true, true);
+      g.window_width = 2 * g.origin_z * std::tan(fov_x / 2);
+      g.window_height = 2 * g.origin_z * std::tan(fov_y / 2);
+      g.window_left = -g.window_width / 2;
+      g.window_top = g.window_height / 2;
+    } else {
+      Params window = lf.object("window");
+      g.window_left = window.quantity("left", Dimension::kLength);
+      g.window_top = window.quantity("top", Dimension::kLength);
+      g.window_width = window.quantity("width", Dimension::kLength);
+      g.window_height = window.quantity("height", Dimension::kLength);
+      window.require_range("width", g.window_width, 0.0, 1e3, true, false);
+      window.require_range("height", g.window_height, 0.0, 1e3, true, false);
+      window.check_all_read();
+    }
+    std::array<int64_t, 2> views = lf.integer_pair("views", 1, kMaxViewsPerAxis);
+    g.views_x = static_cast<int>(views[0]);
+    g.views_y = static_cast<int>(views[1]);
+    lf.raw("eyebox");  // required
+    std::array<double, 2> eyebox = lf.quantity_pair("eyebox", Dimension::kLength, {0, 0});
+    lf.require_range("eyebox", eyebox[0], 0.0, 0.1, false, false);
+    lf.require_range("eyebox", eyebox[1], 0.0, 0.1, false, false);
+    g.eyebox_width = eyebox[0];
+    g.eyebox_height = eyebox[1];
+  }
+
+  std::array<int64_t, 2> resolution = default_resolution && !lf.has("resolution")
+                                          ? *default_resolution
+                                          : lf.integer_pair("resolution", 1, kMaxPixelsPerAxis);
+  lf.mark_read("resolution");
+  g.cols = static_cast<int>(resolution[0]);
+  g.rows = static_cast<int>(resolution[1]);
+  if (g.ray_count() > (size_t{1} << 31))
+    throw Error(lf.where(), std::to_string(g.ray_count()) + " rays (views x pixels) is beyond the 2^31 this layerlab handles");
+  lf.check_all_read();
+  return g;
+}
+
+// Rotation about x, then y, then z (eye-space axes): R = Rz Ry Rx.
+std::array<Vec3, 3> RotationMatrix(double ax, double ay, double az) {
+  double cx = std::cos(ax), sx = std::sin(ax), cy = std::cos(ay), sy = std::sin(ay), cz = std::cos(az),
+         sz = std::sin(az);
+  return {{{cz * cy, cz * sy * sx - sz * cx, cz * sy * cx + sz * sx},
+           {sz * cy, sz * sy * sx + cz * cx, sz * sy * cx - cz * sx},
+           {-sy, cy * sx, cy * cx}}};
+}
+
+TargetPlane ParsePlane(Params& o, const LightFieldGeometry& g, const std::string& base_dir, std::string& description) {
+  TargetPlane plane;
+  plane.depth = RequiredDepth(o, "depth");
+  plane.center = o.quantity_pair("center", Dimension::kLength, {0, 0});
+  plane.size = o.has("size") ? LengthOrAnglePair(o, "size", plane.depth) : CoveringSize(g, plane.depth, plane.center);
+  o.mark_read("size");
+  double scale = plane.depth / g.origin_z;
+  TextureFrame frame{plane.depth, {g.window_width * scale, g.window_height * scale}, base_dir};
+  Params texture = o.object("texture");
+  plane.texture = ParseTexture(texture, frame);
+  o.check_all_read();
+  description = "plane at " + Diopters(plane.depth) + " (" + plane.texture->Describe() + ")";
+  return plane;
+}
+
+TargetMesh ParseMesh(Params& o, const std::string& base_dir, std::string& description) {
+  TargetMesh target;
+  target.file = o.string("file");
+  std::string path = (std::filesystem::path(base_dir) / target.file).string();
+  target.mesh = ReadMesh(path);
+
+  double scale = o.quantity("scale", Dimension::kLength, 1.0);
+  o.require_range("scale", scale, 0.0, 1e3, true, false);
+  Vec3 angles{0, 0, 0};
+  if (o.has("rotation")) {
+    Params rotation = ArrayParams(o, "rotation", 3, "three angles [about x, about y, about z]");
+    for (int k = 0; k < 3; ++k) angles[k] = rotation.quantity(std::to_string(k), Dimension::kAngle);
+  }
+  o.mark_read("rotation");
+  Params position_params = ArrayParams(o, "position", 3, "[x, y, z]: lengths, z also as a depth such as \"1 D\"");
+  Vec3 position{position_params.quantity("0", Dimension::kLength), position_params.quantity("1", Dimension::kLength),
+                DepthOrLength(position_params, "2")};
+  position_params.require_range("2", position[2], 0.0, 1e3, true, false);
+
+  std::array<Vec3, 3> r = RotationMatrix(angles[0], angles[1], angles[2]);
+  Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
+  for (size_t i = 0; i < target.mesh.positions.size(); ++i) {
+    Vec3& p = target.mesh.positions[i];
+    Vec3 q{p[0] * scale, p[1] * scale, p[2] * scale};
+    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], q[k]), hi[k] = std::max(hi[k], q[k]);
+    for (int row = 0; row < 3; ++row)
+      p[row] = position[row] + r[row][0] * q[0] + r[row][1] * q[1] + r[row][2] * q[2];
+    if (!(p[2] > 0))
+      o.fail("position", path + ": vertex " + std::to_string(i) + " lands at z = " + FormatFixed(p[2], 4) +
+                             " m, not in front of the pupil plane (z > 0)");
+  }
+  // The mesh's own size (before rotation), so turning a mesh keeps its texture.
+  double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  target.uv_size = o.quantity("uv_size", Dimension::kLength, extent > 0 ? extent : 1.0);
+  o.require_range("uv_size", target.uv_size, 0.0, 1e3, true, false);
+
+  if (o.has("color") && o.has("texture")) o.fail("texture", "give \"color\" or \"texture\", not both");
+  if (o.has("texture")) {
+    if (!target.mesh.has_uvs())
+      o.fail("texture", path + " has no texture coordinates (OBJ vt, PLY u v); give it a \"color\" instead");
+    TextureFrame frame{position[2], {target.uv_size, target.uv_size}, base_dir};
+    Params texture = o.object("texture");
+    target.texture = ParseTexture(texture, frame);
+  } else {
+    target.texture = MakeConstantTexture(o.fraction_rgb("color", 0.8));
+  }
+  o.check_all_read();
+  description = "mesh " + target.file + " at " + Diopters(position[2]) + " (" +
+                std::to_string(target.mesh.triangles.size()) + " triangles)";
+  return target;
+}
+
+TargetLight ParseLight(Params& l) {
+  TargetLight light;
+  if (l.has("direction_to_light")) {
+    Params d = ArrayParams(l, "direction_to_light", 3, "three numbers [x, y, z]");
+    Vec3 v{d.quantity("0", Dimension::kFraction), d.quantity("1", Dimension::kFraction),
+           d.quantity("2", Dimension::kFraction)};
+    double norm = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if (!(norm > 0) || !std::isfinite(norm)) l.fail("direction_to_light", "must be a non-zero, finite direction");
+    light.to_light = {v[0] / norm, v[1] / norm, v[2] / norm};
+  }
+  l.mark_read("direction_to_light");
+  light.ambient = l.quantity("ambient", Dimension::kFraction, light.ambient);
+  l.require_range("ambient", light.ambient, 0.0, 1.0, false, false);
+  l.check_all_read();
+  return light;
+}
+
+}  // namespace
+
+std::array<double, 2> CoveringSize(const LightFieldGeometry& g, double z, std::array<double, 2> center) {
+  double s = z / g.origin_z;
+  auto half_extent = [&](double x0, double x1, double eyebox, double c) {
+    double half = 0;
+    for (double x : {x0, x1})
+      for (double v : {-eyebox / 2, eyebox / 2}) half = std::max(half, std::abs(v * (1 - s) + x * s - c));
+    return half;
+  };
+  double half_w = half_extent(g.window_left, g.window_left + g.window_width, g.eyebox_width, center[0]);
+  double half_h = half_extent(g.window_top - g.window_height, g.window_top, g.eyebox_height, center[1]);
+  const double margin = 1.02;  // beyond every ray, float rounding included
+  return {2 * half_w * margin, 2 * half_h * margin};
+}
+
+TargetScene ParseTarget(const json& document, const std::string& file) {
+  Params p(document, {file, ""});
+  const std::string base_dir = std::filesystem::path(file).parent_path().string();
+  TargetScene target;
+  target.file = file;
+  std::string format = p.string("format");
+  if (format != kTargetFormat)
+    p.fail("format", "unknown target format \"" + format + "\"; this layerlab reads \"" + kTargetFormat + "\"");
+  std::string description = p.string("description", "");
+
+  Params lf = p.object("light_field");
+  target.geometry = ParseLightField(lf, base_dir);
+  target.samples_per_pixel = static_cast<int>(p.integer("samples_per_pixel", 1, 1024, 4));
+  target.seed = static_cast<uint64_t>(p.integer("seed", 0, INT64_MAX, 1));
+  target.background = p.fraction_rgb("background", 0.0);
+  if (p.has("light")) {
+    Params light = p.object("light");
+    target.light = ParseLight(light);
+  }
+
+  const json& objects = p.raw("objects");
+  Location objects_at = p.where("objects");
+  if (!objects.is_array()) p.fail("objects", "expected an array of objects, got " + JsonKindName(objects));
+  if (objects.empty()) p.fail("objects", "no objects: the light field would show only the background");
+  if (objects.size() > kMaxObjects)
+    p.fail("objects", std::to_string(objects.size()) + " objects; the limit is " + std::to_string(kMaxObjects));
+  std::vector<std::string> parts;
+  if (!description.empty()) parts.push_back(description);
+  for (size_t i = 0; i < objects.size(); ++i) {
+    Params o(objects[i], objects_at.child(i));
+    o.string("type");  // required
+    std::string type = o.choice("type", {"plane", "mesh"}, "");
+    std::string what;
+    if (type == "plane")
+      target.planes.push_back(ParsePlane(o, target.geometry, base_dir, what));
+    else
+      target.meshes.push_back(ParseMesh(o, base_dir, what));
+    parts.push_back(what);
+  }
+  p.check_all_read();
+  for (size_t i = 0; i < parts.size(); ++i) target.description += (i ? "; " : "") + parts[i];
+  return target;
+}
+
+TargetScene LoadTarget(const std::string& path) { return ParseTarget(ReadJsonFile(path), path); }
+
+}  // namespace layerlab

@@ -1,0 +1,71 @@
+// A target scene (TARGET.json, docs/target-format.md): the light field to
+// render (origin plane, window, views) and what it shows, placed in eye space
+// (x right, y up, z from the pupil away from the viewer, meters).
+//
+// Phases: ParseTarget reads every key (unknown keys are refused with a
+// suggestion), compiles the display named by "display" when there is one,
+// loads meshes and images and places the meshes in eye space. Rendering
+// (target_renderer.h) sees only the TargetScene.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "framework/lightfield.h"
+#include "framework/params.h"
+#include "targets/mesh_io.h"
+#include "targets/texture.h"
+
+namespace layerlab {
+
+inline constexpr const char* kTargetFormat = "layerlab-target/1";
+
+// A fronto-parallel textured rectangle, unlit: its value is its texture.
+struct TargetPlane {
+  double depth = 1.0;                // z, m
+  std::array<double, 2> center{};    // m; also the texture's origin
+  std::array<double, 2> size{};      // m
+  std::shared_ptr<const Texture> texture;
+};
+
+// A triangle mesh in eye space, Lambertian under the scene's light.
+struct TargetMesh {
+  std::string file;
+  TriangleMesh mesh;                  // positions in eye space, m
+  std::shared_ptr<const Texture> texture;  // a constant one for "color"
+  double uv_size = 1.0;               // m per unit of texture coordinate
+};
+
+// shade = ambient + (1 - ambient) * max(0, n . to_light), n facing the viewer.
+struct TargetLight {
+  std::array<double, 3> to_light{-0.4, 0.6, -0.7};  // unit vector from the surface toward the light
+  double ambient = 0.2;
+};
+
+struct TargetScene {
+  std::string file;
+  LightFieldGeometry geometry;
+  int samples_per_pixel = 4;
+  uint64_t seed = 1;
+  Rgb background{0, 0, 0};
+  TargetLight light;
+  std::vector<TargetPlane> planes;
+  std::vector<TargetMesh> meshes;
+  std::string description;  // for the light field's "scene" text
+};
+
+// `file` names the document in messages; relative paths inside it resolve
+// against the file's folder.
+TargetScene ParseTarget(const nlohmann::json& document, const std::string& file);
+TargetScene LoadTarget(const std::string& path);
+
+// The smallest rectangle, centered on `center`, that every ray of `g` crosses
+// at depth z inside of (with a small margin): the default size of a plane.
+std::array<double, 2> CoveringSize(const LightFieldGeometry& g, double z, std::array<double, 2> center);
+
+}  // namespace layerlab

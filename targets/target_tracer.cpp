@@ -1,0 +1,83 @@
+#include "targets/target_tracer.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace layerlab {
+namespace {
+
+using Vec3 = std::array<double, 3>;
+
+Vec3 Sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+double Dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+Vec3 Cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+}  // namespace
+
+TargetTracer::TargetTracer(const TargetScene& target) : target_(target) {
+  for (size_t i = 0; i < target.planes.size(); ++i) {
+    const TargetPlane& p = target.planes[i];
+    double x0 = p.center[0] - p.size[0] / 2, x1 = p.center[0] + p.size[0] / 2;
+    double y0 = p.center[1] - p.size[1] / 2, y1 = p.center[1] + p.size[1] / 2;
+    std::array<std::array<double, 3>, 4> corners{{{x0, y0, p.depth}, {x1, y0, p.depth}, {x1, y1, p.depth},
+                                                  {x0, y1, p.depth}}};
+    std::array<std::array<uint32_t, 3>, 2> triangles{{{0, 1, 2}, {0, 2, 3}}};
+    Register(scene_.AddTriangles(target.file + ": plane " + std::to_string(i), corners, triangles),
+             {true, i});
+  }
+  for (size_t i = 0; i < target.meshes.size(); ++i) {
+    const TriangleMesh& m = target.meshes[i].mesh;
+    Register(scene_.AddTriangles(target.meshes[i].file, m.positions, m.triangles), {false, i});
+  }
+  scene_.Commit();
+}
+
+TracedSample TargetTracer::TraceDirection(double vx, double vy, double dx, double dy) const {
+  // Direction with unit z: the ray parameter is the eye-space depth.
+  Vec3 origin{vx, vy, 0}, direction{dx, dy, 1.0};
+  RayHit hit = scene_.Intersect({static_cast<float>(vx), static_cast<float>(vy), 0.0f},
+                                {static_cast<float>(direction[0]), static_cast<float>(direction[1]), 1.0f});
+  if (!hit.hit()) return {target_.background, INFINITY};
+  const Surface& surface = surfaces_[hit.geom_id];
+  if (surface.is_plane) {
+    const TargetPlane& plane = target_.planes[surface.index];
+    double z = plane.depth;
+    return {plane.texture->Evaluate(vx + direction[0] * z - plane.center[0], vy + direction[1] * z - plane.center[1]),
+            z};
+  }
+  const TargetMesh& mesh = target_.meshes[surface.index];
+  const auto& tri = mesh.mesh.triangles[hit.prim_id];
+  const Vec3 &p0 = mesh.mesh.positions[tri[0]], &p1 = mesh.mesh.positions[tri[1]], &p2 = mesh.mesh.positions[tri[2]];
+  Vec3 n = Cross(Sub(p1, p0), Sub(p2, p0));
+  double n_dot_d = Dot(n, direction);
+  double z = n_dot_d != 0 ? Dot(n, Sub(p0, origin)) / n_dot_d : hit.t;
+  if (!std::isfinite(z) || std::abs(z - hit.t) > 1e-3 * hit.t) z = hit.t;  // grazing: keep Embree's
+  double length = std::sqrt(Dot(n, n));
+  double lambert = 0;
+  if (length > 0) {
+    if (n_dot_d > 0) length = -length;  // face the viewer
+    lambert = std::max(0.0, Dot(n, target_.light.to_light) / length);
+  }
+  double shade = target_.light.ambient + (1 - target_.light.ambient) * lambert;
+  double s = 0, t = 0;
+  if (mesh.mesh.has_uvs()) {
+    const auto& tuv = mesh.mesh.triangle_uvs[hit.prim_id];
+    double w0 = 1.0 - hit.u - hit.v;
+    for (int k = 0; k < 2; ++k) {
+      double uv = w0 * mesh.mesh.uvs[tuv[0]][k] + hit.u * mesh.mesh.uvs[tuv[1]][k] + hit.v * mesh.mesh.uvs[tuv[2]][k];
+      (k == 0 ? s : t) = (uv - 0.5) * mesh.uv_size;
+    }
+  }
+  Rgb c = mesh.texture->Evaluate(s, t);
+  return {{c[0] * shade, c[1] * shade, c[2] * shade}, z};
+}
+
+void TargetTracer::Register(unsigned id, Surface surface) {
+  if (id >= surfaces_.size()) surfaces_.resize(id + 1);
+  surfaces_[id] = surface;
+}
+
+
+}  // namespace layerlab
