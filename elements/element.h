@@ -25,9 +25,9 @@
 
 namespace layerlab {
 
-enum class ElementKind { kEye, kLens, kCombiner, kInlineOptic, kPanel, kBacklight };
+enum class ElementKind { kEye, kLens, kMirror, kCombiner, kInlineOptic, kPanel, kBacklight };
 
-// "an eye", "a lens", "a combiner", "an in-line optic", "a panel", "a backlight".
+// "an eye", "a lens", "a mirror", "a combiner", "an in-line optic", "a panel", "a backlight".
 std::string KindName(ElementKind kind);
 
 class Element {
@@ -40,22 +40,43 @@ class Element {
   // True when the element acts on polarization (compile then tracks Jones vectors).
   virtual bool polarizing() const { return false; }
 
+  // First-order optics in the path unfolded from the eye (systems/ray_transfer.h):
+  // the element's optical power in 1/m (0 for a flat element).
+  virtual double power() const { return 0; }
+
   const std::string& type() const { return type_; }
   const std::string& name() const { return name_; }
   const Location& where() const { return where_; }
+  // Path length from the element before it (toward the eye), when the scene
+  // gives "gap"; read by the registry for every element between eye and backlight.
+  const std::optional<double>& gap() const { return gap_; }
 
  private:
   friend class ElementRegistry;
   std::string type_, name_;
   Location where_;
+  std::optional<double> gap_;
 };
 
-// A thin main lens that floats the panels (paper Eq. 1).
+// A thin lens of either sign, anywhere on the path (paper Eq. 1 for the magnifier).
 class LensElement : public Element {
  public:
   ElementKind kind() const final { return ElementKind::kLens; }
-  virtual double focal_length() const = 0;                // m
+  virtual double focal_length() const = 0;                // m, nonzero; negative diverges
   virtual std::optional<double> clear_aperture() const = 0;  // m, diameter
+  double power() const final { return 1.0 / focal_length(); }
+};
+
+// A fold mirror: it reverses one eye-space axis of what lies behind it and,
+// when curved, acts as a lens of power 1/f in the unfolded path (f = R / 2).
+class MirrorElement : public Element {
+ public:
+  ElementKind kind() const final { return ElementKind::kMirror; }
+  virtual std::optional<double> focal_length() const = 0;  // m; none for a flat mirror
+  virtual bool flips_x() const = 0;
+  virtual bool flips_y() const = 0;
+  virtual void transfer(Light& light) const = 0;  // its reflectance, toward the eye
+  double power() const final { return focal_length() ? 1.0 / *focal_length() : 0.0; }
 };
 
 // Splits the path; each output port is one branch toward the panels.
@@ -88,7 +109,7 @@ struct EyeModel {
   int pupil_samples_x = 9, pupil_samples_y = 9;
   PupilSampling pupil_sampling = PupilSampling::kGrid;
   uint64_t pupil_seed = 1;
-  double eye_relief = 0.01;  // m, pupil plane to main lens
+  double eye_relief = 0.01;  // m, pupil plane to the first lens or curved mirror placed without a "gap"
   double accommodation_min = 0.0, accommodation_max = 2.6;  // D
   std::array<double, 3> chromatic_defocus = {0, 0, 0};     // D added per channel
   double eyebox_width = 6e-3, eyebox_height = 6e-3;         // m
@@ -106,7 +127,7 @@ class EyeElement : public Element {
 };
 
 // A transmissive panel as mounted: its pixel grid, the region the images use,
-// its photometric response, and its placement behind the main lens.
+// its photometric response, and its placement on the optical path.
 struct PanelSpec {
   double pitch_x = 0, pitch_y = 0;  // m
   int64_t resolution_cols = 0, resolution_rows = 0;
@@ -115,9 +136,10 @@ struct PanelSpec {
   double gamma = 2.2;
   double black_level = 0.0;  // transmittance at input 0, relative to the maximum
   bool reversed = false;     // mounted back to front: mirrored about its vertical axis
-  // Exactly one of the two placements is given; compile derives the other.
-  std::optional<double> distance;      // m from the main lens
-  std::optional<Depth> virtual_depth;  // of the floated image, from the eye
+  // At most one of the placements is given (the element's "gap" is the third);
+  // compile derives the rest.
+  std::optional<double> distance;      // m from the nearest lens or curved mirror before it
+  std::optional<Depth> virtual_depth;  // of the panel's final image, from the eye
   std::array<double, 2> offset = {0, 0};  // m, in the panel plane, eye-space x right, y up
   double rotation = 0.0;                  // rad, in-plane, counterclockwise as the eye sees it
   double polarization_angle = 0.0;        // rad, axis of the exit polarizer

@@ -5,8 +5,9 @@
 // | pixel_pitch       | length or [x, y]     | required       | "117 um"                                     |
 // | resolution        | [cols, rows]         | required       | the whole panel                              |
 // | active_region     | {cols, rows, left, top} | whole panel | the pixels the images use; left/top default to centered |
-// | distance          | length               | one of the two | from the main lens (physical)                |
-// | virtual_depth     | depth                | one of the two | of the floated image, from the eye ("0.4 D") |
+// | distance          | length               | one of three   | from the nearest lens or curved mirror in front of it (physical) |
+// | virtual_depth     | depth                | one of three   | of its final image, from the eye ("0.4 D"); compile solves for the physical place |
+// | gap               | length               | one of three   | path length from the element before it (the panel in front, a mirror, a lens) |
 // | max_transmittance | fraction or [r,g,b]  | 0.3            | transmittance at full input                  |
 // | gamma             | number               | 2.2            | transmittance = (input)^gamma                |
 // | black_level       | fraction             | 0              | transmittance at input 0, relative to max    |
@@ -56,7 +57,10 @@ std::unique_ptr<Element> MakeLcPanel(Params& p) {
   s.virtual_depth = p.optional_depth("virtual_depth");
   if (s.distance && s.virtual_depth)
     p.fail("virtual_depth", "give either \"distance\" (from the lens) or \"virtual_depth\" (from the eye), not both");
-  if (!s.distance && !s.virtual_depth)
+  if (p.has("gap") && (s.distance || s.virtual_depth))
+    p.fail("gap", std::string("give one placement: \"gap\" (from the element before) or \"") +
+                      (s.distance ? "distance\" (from the lens)" : "virtual_depth\" (from the eye)") + ", not both");
+  if (!s.distance && !s.virtual_depth && !p.has("gap"))
     p.fail("distance", "missing placement: give \"distance\" (from the lens, e.g. \"72.81 mm\") or "
                        "\"virtual_depth\" (from the eye, e.g. \"0.4 D\")");
   if (s.distance && !(*s.distance > 0))

@@ -8,6 +8,7 @@ std::string KindName(ElementKind kind) {
   switch (kind) {
     case ElementKind::kEye: return "an eye";
     case ElementKind::kLens: return "a lens";
+    case ElementKind::kMirror: return "a mirror";
     case ElementKind::kCombiner: return "a combiner";
     case ElementKind::kInlineOptic: return "an in-line optic";
     case ElementKind::kPanel: return "a panel";
@@ -48,6 +49,14 @@ std::unique_ptr<Element> ElementRegistry::create(Params& params) const {
   for (unsigned char c : name)
     if (!(std::isalnum(c) || c == '_' || c == '-' || c == '.'))
       params.fail("name", "\"" + name + "\" may use only letters, digits, '_', '-' and '.'");
+  std::optional<double> gap;
+  if (type->kind != ElementKind::kEye && type->kind != ElementKind::kBacklight) {
+    gap = params.optional_quantity("gap", Dimension::kLength);
+    if (gap && !(*gap > 0))
+      params.fail("gap", "the path length from the element before must be positive, got " + FormatFixed(*gap * 1e3, 3) +
+                             " mm");
+    if (gap) params.require_range("gap", *gap, 0.0, 100.0, true, false);
+  }
   std::unique_ptr<Element> element = type->make(params);
   if (element->kind() != type->kind)
     throw Error(params.where(), "element type \"" + type_name + "\" built " + KindName(element->kind()) +
@@ -55,6 +64,7 @@ std::unique_ptr<Element> ElementRegistry::create(Params& params) const {
   element->type_ = type_name;
   element->name_ = name;
   element->where_ = params.where();
+  element->gap_ = gap;
   return element;
 }
 

@@ -1,10 +1,14 @@
-// thin_lens: the main (magnifier) lens that floats the panels (paper Eq. 1).
+// thin_lens: an ideal thin lens anywhere on the path: the magnifier that floats
+// the panels (paper Eq. 1), a relay lens, a field lens, a diverging lens.
 //
-// | key            | type   | default   | meaning                                    |
-// |----------------|--------|-----------|--------------------------------------------|
-// | focal_length   | length | required  | f > 0                                      |
-// | clear_aperture | length | unlimited | diameter; bounds the vignetting-free field |
-// | next           | name   | required  | a combiner, an in-line optic or a panel    |
+// | key            | type   | default   | meaning                                              |
+// |----------------|--------|-----------|------------------------------------------------------|
+// | focal_length   | length | required  | nonzero; negative for a diverging lens               |
+// | clear_aperture | length | unlimited | diameter; a warning names the layers it vignettes    |
+// | gap            | length | see below | path length from the element before it; the first lens on a path may omit it and sit at the eye's eye_relief |
+// | next           | name   | required  | the next element away from the eye                   |
+#include <cmath>
+
 #include "elements/element.h"
 #include "elements/registry.h"
 
@@ -24,7 +28,8 @@ class ThinLens final : public LensElement {
 
 std::unique_ptr<Element> MakeThinLens(Params& p) {
   double f = p.quantity("focal_length", Dimension::kLength);
-  p.require_range("focal_length", f, 0.0, 10.0, true, false);
+  if (f == 0) p.fail("focal_length", "a thin lens needs a nonzero focal length (0 would be infinite power)");
+  if (std::abs(f) > 10.0) p.fail("focal_length", "must be at most 10 m either way, got " + FormatFixed(f, 4) + " m");
   std::optional<double> aperture = p.optional_quantity("clear_aperture", Dimension::kLength);
   if (aperture) p.require_range("clear_aperture", *aperture, 0.0, 10.0, true, false);
   return std::make_unique<ThinLens>(f, aperture);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <optional>
 #include <set>
@@ -11,11 +12,28 @@
 namespace layerlab {
 namespace {
 
-// One optical action between the eye and a branch's front panel.
-struct PathStep {
+// An element that acts on light on its way to the eye (efficiency, polarization).
+struct LightStep {
   const Element* element;
   size_t port;  // for combiners
 };
+
+// What the walk knows at one point of one path from the eye.
+struct PathState {
+  std::vector<PathStep> steps;     // the elements passed, nearest the eye first
+  std::vector<LightStep> light;    // those that act on light
+  RayTransfer<double> transfer;    // pupil -> the last placed element
+  double placed_at = 0;            // that element's position (the pupil: 0)
+  std::string placed_name;         // and its name ("" for the pupil)
+  std::optional<double> previous_position;  // of the element just before; none when it is flat and unplaced
+  std::string previous_name;
+  std::optional<size_t> last_power;  // index into steps of the nearest lens or curved mirror
+  bool flip_x = false, flip_y = false;
+  std::string label;
+};
+
+std::string Mm(double meters) { return FormatFixed(meters * 1e3, 2) + " mm"; }
+std::string Quoted(const std::string& name) { return "\"" + name + "\""; }
 
 class Walker {
  public:
@@ -26,22 +44,14 @@ class Walker {
     system_.file = scene_.file;
     system_.name = scene_.name;
     system_.eye = static_cast<const EyeElement&>(*eye_node.element).model();
+    system_.eye_name = eye_node.element->name();
     visited_.insert(&eye_node);
     stack_.push_back(&eye_node);
 
-    const SceneNode& lens_node = Follow(eye_node, 0, {ElementKind::kLens});
-    const auto& lens = static_cast<const LensElement&>(*lens_node.element);
-    stack_.push_back(&lens_node);
-    system_.lens = lens.name();
-    system_.focal_length = lens.focal_length();
-    system_.clear_aperture = lens.clear_aperture();
-    if (system_.eye.eye_relief >= system_.focal_length)
-      Fail(lens_node.where.child("focal_length"),
-           "the eye relief (" + Mm(system_.eye.eye_relief) + ") must be shorter than the focal length (" +
-               Mm(system_.focal_length) + ") to float the panels in front of the eye");
-
-    const SceneNode& first = Follow(lens_node, 0, kAfterLens);
-    Walk(first, {}, false, false, "");
+    PathState start;
+    start.previous_position = 0.0;
+    start.previous_name = eye_node.element->name();
+    Walk(Follow(eye_node, 0, kOptics), start);
 
     for (const SceneNode& node : scene_.nodes)
       if (!visited_.count(&node))
@@ -52,12 +62,11 @@ class Walker {
   }
 
  private:
-  inline static const std::vector<ElementKind> kAfterLens = {ElementKind::kCombiner, ElementKind::kInlineOptic,
-                                                             ElementKind::kPanel};
+  inline static const std::vector<ElementKind> kOptics = {ElementKind::kLens, ElementKind::kMirror,
+                                                          ElementKind::kCombiner, ElementKind::kInlineOptic,
+                                                          ElementKind::kPanel};
 
   [[noreturn]] static void Fail(const Location& at, const std::string& message) { throw Error(at, message); }
-
-  static std::string Mm(double meters) { return FormatFixed(meters * 1e3, 2) + " mm"; }
 
   const SceneNode& FindEye() const {
     const SceneNode* eye = nullptr;
@@ -100,49 +109,114 @@ class Walker {
     return *next;
   }
 
-  void Walk(const SceneNode& node, std::vector<PathStep> path, bool flip_x, bool flip_y, const std::string& label) {
+  // "gap" counts from the element before, which must have a place of its own.
+  double AfterPrevious(const SceneNode& node, const PathState& state, double gap) const {
+    if (!state.previous_position)
+      Fail(node.where.child("gap"), "\"gap\" is measured from " + Quoted(state.previous_name) +
+                                        ", which has no place of its own (a flat element without \"gap\"); give " +
+                                        Quoted(state.previous_name) + " a \"gap\" as well");
+    return *state.previous_position + gap;
+  }
+
+  // Moves the state's transfer to `position` (beyond the last placed element).
+  static void Advance(PathState& state, double position, const std::string& name) {
+    state.transfer = state.transfer.then_gap(position - state.placed_at);
+    state.placed_at = position;
+    state.placed_name = name;
+  }
+
+  // A lens, mirror, combiner or in-line optic: its place, power, flips and light.
+  PathStep Pass(const SceneNode& node, size_t port, PathState& state) {
+    const Element& e = *node.element;
+    PathStep step{e.name(), e.type(), e.kind(), "", std::nullopt, e.power(), false, false, std::nullopt};
+    const bool first_power = !state.last_power;
+    if (e.gap()) {
+      step.position = AfterPrevious(node, state, *e.gap());
+    } else if (e.power() != 0 && first_power) {
+      step.position = system_.eye.eye_relief;  // the magnifier, as the paper places it
+      if (!(*step.position > state.placed_at))
+        Fail(node.where.child("gap"), Quoted(e.name()) + " would sit at the eye's eye_relief (" +
+                                          Mm(*step.position) + " from the pupil), which is not behind " +
+                                          Quoted(state.placed_name) + " (" + Mm(state.placed_at) +
+                                          "); give it a \"gap\" from " + Quoted(state.previous_name));
+    } else if (e.power() != 0) {
+      Fail(node.where.child("gap"), "missing placement: " + Quoted(e.name()) + " is not the first lens or curved "
+                                    "mirror on its path, so the eye's eye_relief does not place it; give \"gap\" "
+                                    "(the path length from " + Quoted(state.previous_name) + ")");
+    }
+    if (step.position) {
+      Advance(state, *step.position, e.name());
+      state.transfer = state.transfer.then_power(e.power());
+    }
+    if (e.power() != 0) state.last_power = state.steps.size();
+    if (e.kind() == ElementKind::kLens) step.clear_aperture = static_cast<const LensElement&>(e).clear_aperture();
+    if (e.kind() == ElementKind::kMirror) {
+      const auto& mirror = static_cast<const MirrorElement&>(e);
+      step.flips_x = mirror.flips_x();
+      step.flips_y = mirror.flips_y();
+    }
+    if (e.kind() == ElementKind::kCombiner) {
+      const auto& combiner = static_cast<const CombinerElement&>(e);
+      step.port = e.output_ports()[port];
+      step.flips_x = combiner.flips_x(port);
+      step.flips_y = combiner.flips_y(port);
+    }
+    state.flip_x = state.flip_x != step.flips_x;
+    state.flip_y = state.flip_y != step.flips_y;
+    state.previous_position = step.position;
+    state.previous_name = e.name();
+    state.light.push_back({&e, port});
+    state.steps.push_back(step);
+    return step;
+  }
+
+  void Walk(const SceneNode& node, PathState state) {
     stack_.push_back(&node);
     const Element& e = *node.element;
     if (e.kind() == ElementKind::kCombiner) {
-      const auto& combiner = static_cast<const CombinerElement&>(e);
       ++combiners_;
       for (size_t port = 0; port < e.output_ports().size(); ++port) {
-        std::vector<PathStep> branch_path = path;
-        branch_path.push_back({&e, port});
-        const SceneNode& next = Follow(node, port, kAfterLens);
-        std::string branch_label = (label.empty() ? "" : label + "/") + e.name() + "." + e.output_ports()[port];
-        Walk(next, branch_path, flip_x != combiner.flips_x(port), flip_y != combiner.flips_y(port), branch_label);
+        PathState branch = state;
+        Pass(node, port, branch);
+        branch.label = (state.label.empty() ? "" : state.label + "/") + e.name() + "." + e.output_ports()[port];
+        Walk(Follow(node, port, kOptics), branch);
       }
-    } else if (e.kind() == ElementKind::kInlineOptic) {
-      path.push_back({&e, 0});
-      Walk(Follow(node, 0, kAfterLens), path, flip_x, flip_y, label);
+    } else if (e.kind() == ElementKind::kPanel) {
+      if (state.label.empty()) state.label = "main";
+      Stack(node, state);
     } else {
-      Stack(node, path, flip_x, flip_y, label.empty() ? "main" : label);
+      Pass(node, 0, state);
+      Walk(Follow(node, 0, kOptics), state);
     }
     stack_.pop_back();
   }
 
   // A panel stack from its front panel back to the backlight.
-  void Stack(const SceneNode& front, const std::vector<PathStep>& path, bool flip_x, bool flip_y,
-             const std::string& label) {
+  void Stack(const SceneNode& front, PathState state) {
     Branch branch;
-    branch.name = label;
+    branch.name = state.label;
     int branch_index = static_cast<int>(system_.branches.size());
     const SceneNode* node = &front;
     std::optional<VirtualLayer> previous;
     Rgb panels_transmittance = {1, 1, 1};
     double polarization_angle = 0;
+    const std::vector<LightStep> light = state.light;
     while (node->element->kind() == ElementKind::kPanel) {
       const auto& panel = static_cast<const PanelElement&>(*node->element);
-      VirtualLayer layer = Float(*node, panel.spec(), flip_x, flip_y);
+      VirtualLayer layer = Float(*node, panel.spec(), state, previous ? &*previous : nullptr);
       layer.branch = branch_index;
       layer.position_in_branch = static_cast<int>(branch.layers.size());
-      if (previous) CheckOrder(*previous, layer, *node);
       if (branch.layers.empty()) polarization_angle = panel.spec().polarization_angle;
       for (int c = 0; c < 3; ++c) panels_transmittance[c] *= panel.spec().max_transmittance[c];
       branch.layers.push_back(static_cast<int>(system_.layers.size()));
       system_.layers.push_back(layer);
       previous = layer;
+
+      Advance(state, layer.position, layer.name);
+      state.previous_position = layer.position;
+      state.previous_name = layer.name;
+      state.steps.push_back({layer.name, node->element->type(), ElementKind::kPanel, "", layer.position, 0, false,
+                             false, std::nullopt});
       stack_.push_back(node);
       node = &Follow(*node, 0, {ElementKind::kPanel, ElementKind::kBacklight});
     }
@@ -150,67 +224,131 @@ class Walker {
     const auto& backlight = static_cast<const BacklightElement&>(*node->element);
     branch.backlight = backlight.name();
     branch.backlight_luminance = backlight.luminance();
-    branch.optics_efficiency = PathEfficiency(path, polarization_angle);
+    branch.optics_efficiency = PathEfficiency(light, polarization_angle);
     for (int c = 0; c < 3; ++c) branch.efficiency[c] = branch.optics_efficiency[c] * panels_transmittance[c];
     system_.branches.push_back(branch);
   }
 
-  VirtualLayer Float(const SceneNode& node, const PanelSpec& spec, bool flip_x, bool flip_y) {
-    const double f = system_.focal_length, e = system_.eye.eye_relief;
+  // Where the panel sits on its path, and the image the optics in front of it form.
+  VirtualLayer Float(const SceneNode& node, const PanelSpec& spec, const PathState& state,
+                     const VirtualLayer* front) {
     VirtualLayer layer;
     layer.name = node.element->name();
     layer.panel = spec;
+    layer.path = state.steps;
+    const double lens_at = state.last_power ? *state.steps[*state.last_power].position : 0.0;
+    const char* key = spec.virtual_depth ? "virtual_depth" : spec.distance ? "distance" : "gap";
     if (spec.virtual_depth) {
-      double D = spec.virtual_depth->diopters;
-      if (!(D < 1.0 / e))
-        Fail(node.where.child("virtual_depth"),
-             "a virtual image at " + FormatFixed(D, 3) + " D (" + Mm(1.0 / D) +
-                 " from the eye) would not lie behind the lens, which is " + Mm(e) + " from the eye (below " +
-                 FormatFixed(1.0 / e, 1) + " D)");
-      layer.panel_distance = PanelDistanceForDiopters(D, f, e);
+      const double D = spec.virtual_depth->diopters;
+      bool solvable = false;
+      const double t = GapForDiopters(state.transfer, D, &solvable);
+      if (!solvable)
+        Fail(node.where.child(key), "no place behind " + Quoted(state.placed_name) + " images the panel at " +
+                                        FormatFixed(D, 3) + " D: the optics in front of it image every plane behind "
+                                        "it at " + FormatFixed(state.transfer.c / state.transfer.d, 3) + " D");
+      layer.position = state.placed_at + t;
+      if (!front && !(t > 0)) FailUnreachableDepth(node, state, D);
+    } else if (spec.distance) {
+      if (!state.last_power)
+        Fail(node.where.child(key), "\"distance\" is measured from the nearest lens or curved mirror in front of the "
+                                    "panel, and none lies between the eye and " + Quoted(layer.name) +
+                                    "; give \"gap\" (from " + Quoted(state.previous_name) +
+                                    ") or \"virtual_depth\" (from the eye)");
+      layer.position = lens_at + *spec.distance;
     } else {
-      layer.panel_distance = *spec.distance;
-      if (layer.panel_distance > f)
-        Fail(node.where.child("distance"),
-             "the panel is " + Mm(layer.panel_distance) + " from the lens, beyond the focal length " + Mm(f) +
-                 ": the lens would form a real, inverted image, not a floating virtual one");
+      layer.position = AfterPrevious(node, state, *node.element->gap());
     }
-    FloatedImage image = FloatPanel(layer.panel_distance, f, e);
-    layer.diopters = image.diopters;
-    layer.depth = image.depth;
-    layer.magnification = image.magnification;
-    layer.pitch_x = image.magnification * spec.pitch_x;
-    layer.pitch_y = image.magnification * spec.pitch_y;
-    layer.tan_pitch_x = image.tan_per_meter * spec.pitch_x;
-    layer.tan_pitch_y = image.tan_per_meter * spec.pitch_y;
+    layer.panel_distance = layer.position - lens_at;
+    if (front) CheckOrder(*front, layer, node, key, state.last_power.has_value());
+    if (!(layer.position > state.placed_at))
+      Fail(node.where.child(key), "panel " + Quoted(layer.name) + " would be " + Mm(layer.position) +
+                                      " from the pupil, not behind " + Quoted(state.placed_name) + " (" +
+                                      Mm(state.placed_at) + "), which comes before it on the path");
+
+    RayTransfer<double> m = state.transfer.then_gap(layer.position - state.placed_at);
+    // a + t c is zero to within its rounding at the focal plane: the image is at infinity.
+    const double a_rounding = 8 * std::numeric_limits<double>::epsilon() *
+                              (std::abs(state.transfer.a) + std::abs((layer.position - state.placed_at) * state.transfer.c));
+    if (spec.virtual_depth) m.a = spec.virtual_depth->diopters * m.b;
+    else if (std::abs(m.a) <= a_rounding) m.a = 0;
+    if (m.b == 0)
+      Fail(node.where.child(key), "panel " + Quoted(layer.name) + " is imaged into the pupil plane, where no eye "
+                                  "can focus; move it or the optics in front of it");
+    const double D = m.a / m.b;
+    if (D < 0) FailBehindTheEye(node, key, state, layer, D);
+    layer.transfer = m;
+    layer.diopters = D;
+    layer.depth = D == 0 ? std::numeric_limits<double>::infinity() : 1.0 / D;
+    layer.inverted = m.b < 0;
+    const double inf = std::numeric_limits<double>::infinity();
+    layer.magnification = m.a == 0 ? (layer.inverted ? -inf : inf) : 1.0 / m.a;
+    const double tan_per_meter = 1.0 / std::abs(m.b);
+    layer.pitch_x = std::abs(layer.magnification) * spec.pitch_x;
+    layer.pitch_y = std::abs(layer.magnification) * spec.pitch_y;
+    layer.tan_pitch_x = tan_per_meter * spec.pitch_x;
+    layer.tan_pitch_y = tan_per_meter * spec.pitch_y;
     layer.cols = static_cast<int>(spec.active_cols);
     layer.rows = static_cast<int>(spec.active_rows);
-    layer.offset_x = image.tan_per_meter * spec.offset[0];
-    layer.offset_y = image.tan_per_meter * spec.offset[1];
+    layer.offset_x = tan_per_meter * spec.offset[0];
+    layer.offset_y = tan_per_meter * spec.offset[1];
     layer.rotation = spec.rotation;
-    layer.flip_x = flip_x != spec.reversed;
-    layer.flip_y = flip_y;
+    layer.flip_x = (state.flip_x != layer.inverted) != spec.reversed;
+    layer.flip_y = state.flip_y != layer.inverted;
     layer.fov_x = FieldOfView(layer.tan_pitch_x, layer.cols);
     layer.fov_y = FieldOfView(layer.tan_pitch_y, layer.rows);
     layer.max_cpd = std::max(NyquistCyclesPerDegree(layer.tan_pitch_x), NyquistCyclesPerDegree(layer.tan_pitch_y));
-    if (spec.virtual_depth == std::nullopt && image.diopters == 0)
+    if (spec.virtual_depth == std::nullopt && D == 0)
       system_.warnings.push_back("panel \"" + layer.name + "\" sits at the focal plane: its image is at infinity (0 D)");
     return layer;
   }
 
-  void CheckOrder(const VirtualLayer& front, const VirtualLayer& back, const SceneNode& node) const {
-    const char* key = back.panel.virtual_depth ? "virtual_depth" : "distance";
-    if (back.panel_distance == front.panel_distance || back.diopters == front.diopters)
-      Fail(node.where.child(key), "panels \"" + front.name + "\" and \"" + back.name + "\" of one stack are at the same depth (" +
-                                      FormatFixed(back.diopters, 4) + " D); a stack needs distinct planes");
-    if (back.panel_distance < front.panel_distance)
-      Fail(node.where.child(key), "panel \"" + back.name + "\" is behind \"" + front.name + "\" in the stack but nearer the lens (" +
-                                      Mm(back.panel_distance) + " < " + Mm(front.panel_distance) +
-                                      "); list each stack from the eye outward");
+  // A virtual_depth that no place behind the last placed element reaches.
+  [[noreturn]] void FailUnreachableDepth(const SceneNode& node, const PathState& state, double D) const {
+    const Location at = node.where.child("virtual_depth");
+    const std::string wanted = "a virtual image at " + FormatFixed(D, 3) + " D (" + Mm(1.0 / D) + " from the eye)";
+    int powers = 0;
+    for (const PathStep& s : state.steps) powers += s.power != 0;
+    // One lens and free space before it: panels behind it are imaged nearer than the lens itself.
+    const bool magnifier_only = powers == 1 && state.steps[*state.last_power].kind == ElementKind::kLens &&
+                                state.placed_name == state.steps[*state.last_power].element;
+    if (magnifier_only)
+      Fail(at, wanted + " would not lie behind the lens, which is " + Mm(state.placed_at) + " from the eye (below " +
+                   FormatFixed(1.0 / state.placed_at, 1) + " D)");
+    const double nearest = state.transfer.a / state.transfer.b, farthest = state.transfer.c / state.transfer.d;
+    Fail(at, wanted + " cannot be formed behind " + Quoted(state.placed_name) + " (" + Mm(state.placed_at) +
+                 " from the pupil): panels behind it are imaged between " + FormatFixed(std::min(nearest, farthest), 3) +
+                 " and " + FormatFixed(std::max(nearest, farthest), 3) + " D");
   }
 
-  Rgb PathEfficiency(const std::vector<PathStep>& path, double polarization_angle) {
-    bool polarized = std::any_of(path.begin(), path.end(), [](const PathStep& s) { return s.element->polarizing(); });
+  [[noreturn]] void FailBehindTheEye(const SceneNode& node, const char* key, const PathState& state,
+                                     const VirtualLayer& layer, double D) const {
+    const Location at = node.where.child(key);
+    int powers = 0;
+    for (const PathStep& s : state.steps) powers += s.power != 0;
+    if (powers == 1 && state.steps[*state.last_power].kind == ElementKind::kLens) {
+      const double f = 1.0 / state.steps[*state.last_power].power;
+      if (layer.panel_distance > f)
+        Fail(at, "the panel is " + Mm(layer.panel_distance) + " from the lens, beyond the focal length " + Mm(f) +
+                     ": the lens would form a real, inverted image, not a floating virtual one");
+    }
+    Fail(at, "panel " + Quoted(layer.name) + " would be imaged " + Mm(-1.0 / D) + " behind the eye (" +
+                 FormatFixed(D, 3) + " D): the optics in front of it form a real image that converges into the eye, "
+                 "which no eye can focus");
+  }
+
+  void CheckOrder(const VirtualLayer& front, const VirtualLayer& back, const SceneNode& node, const char* key,
+                  bool has_lens) const {
+    if (back.position == front.position)
+      Fail(node.where.child(key), "panels \"" + front.name + "\" and \"" + back.name + "\" of one stack are at the same depth (" +
+                                      FormatFixed(front.diopters, 4) + " D); a stack needs distinct planes");
+    if (back.position < front.position)
+      Fail(node.where.child(key), "panel \"" + back.name + "\" is behind \"" + front.name + "\" in the stack but nearer the " +
+                                      (has_lens ? "lens (" : "eye (") + Mm(back.panel_distance) + " < " +
+                                      Mm(front.panel_distance) + "); list each stack from the eye outward");
+  }
+
+  Rgb PathEfficiency(const std::vector<LightStep>& path, double polarization_angle) {
+    bool polarized = std::any_of(path.begin(), path.end(), [](const LightStep& s) { return s.element->polarizing(); });
     system_.polarization_tracked = system_.polarization_tracked || polarized;
     Light light;
     for (ChannelLight& channel : light) {
@@ -218,14 +356,18 @@ class Walker {
       if (polarized) channel.field = LinearPolarization(polarization_angle);
     }
     for (auto step = path.rbegin(); step != path.rend(); ++step) {  // from the panel toward the eye
-      if (step->element->kind() == ElementKind::kCombiner)
-        static_cast<const CombinerElement*>(step->element)->transfer(step->port, light);
-      else
-        static_cast<const InlineOpticElement*>(step->element)->transfer(light);
+      switch (step->element->kind()) {
+        case ElementKind::kCombiner: static_cast<const CombinerElement*>(step->element)->transfer(step->port, light); break;
+        case ElementKind::kInlineOptic: static_cast<const InlineOpticElement*>(step->element)->transfer(light); break;
+        case ElementKind::kMirror: static_cast<const MirrorElement*>(step->element)->transfer(light); break;
+        default: break;  // thin lenses are ideal
+      }
     }
     return {light[0].power(), light[1].power(), light[2].power()};
   }
 
+  void FindMagnifier();
+  void CheckApertures();
   void Finish();
 
   const Scene& scene_;
@@ -234,6 +376,63 @@ class Walker {
   std::vector<const SceneNode*> stack_;
   int combiners_ = 0;
 };
+
+// The paper's layout: one lens, the first element with power on every path.
+void Walker::FindMagnifier() {
+  std::optional<std::string> lens;
+  for (const VirtualLayer& l : system_.layers) {
+    std::vector<const PathStep*> powered;
+    for (const PathStep& s : l.path)
+      if (s.power != 0) powered.push_back(&s);
+    if (powered.size() != 1 || powered[0]->kind != ElementKind::kLens || (lens && *lens != powered[0]->element)) return;
+    lens = powered[0]->element;
+  }
+  if (!lens) return;
+  const auto& element = static_cast<const LensElement&>(*scene_.find(*lens)->element);
+  system_.lens = *lens;
+  system_.focal_length = element.focal_length();
+  system_.clear_aperture = element.clear_aperture();
+  for (const PathStep& s : system_.layers.front().path)
+    if (s.element == *lens) system_.eye.eye_relief = *s.position;  // pupil to magnifier, however it was placed
+}
+
+// Warns of every lens whose clear aperture cuts rays from the eyebox to a layer's field.
+void Walker::CheckApertures() {
+  const EyeModel& eye = system_.eye;
+  std::vector<std::pair<std::string, std::vector<std::string>>> cut;  // lens -> layers
+  for (const VirtualLayer& l : system_.layers) {
+    RayTransfer<double> m;
+    double at = 0;
+    for (const PathStep& s : l.path) {
+      if (!s.position) continue;
+      m = m.then_gap(*s.position - at);
+      at = *s.position;
+      if (s.clear_aperture) {
+        // The ray from pupil point x toward tan-angle t of the layer has slope t - x D;
+        // its height here is a x + b (t - x D). The largest over the eyebox and field corners:
+        const double tx = 0.5 * l.cols * l.tan_pitch_x + std::abs(l.offset_x);
+        const double ty = 0.5 * l.rows * l.tan_pitch_y + std::abs(l.offset_y);
+        double largest = 0;
+        for (double x : {-0.5 * eye.eyebox_width, 0.5 * eye.eyebox_width})
+          for (double y : {-0.5 * eye.eyebox_height, 0.5 * eye.eyebox_height})
+            for (double u : {-tx, tx})
+              for (double v : {-ty, ty}) {
+                const double hx = m.a * x + m.b * (u - x * l.diopters), hy = m.a * y + m.b * (v - y * l.diopters);
+                largest = std::max(largest, std::hypot(hx, hy));
+              }
+        if (largest > 0.5 * *s.clear_aperture) {
+          auto it = std::find_if(cut.begin(), cut.end(), [&](const auto& c) { return c.first == s.element; });
+          if (it == cut.end()) cut.push_back({s.element, {}}), it = cut.end() - 1;
+          it->second.push_back(Quoted(l.name) + " (rays up to " + Mm(largest) + " from its axis)");
+        }
+      }
+      m = m.then_power(s.power);
+    }
+  }
+  for (const auto& [lens, layers] : cut)
+    system_.warnings.push_back("the clear aperture of " + Quoted(lens) + " vignettes " + JoinWords(layers, ", ") +
+                               " seen from the edges of the eyebox");
+}
 
 void Walker::Finish() {
   auto& layers = system_.layers;
@@ -265,18 +464,33 @@ void Walker::Finish() {
     system_.luminance_efficiency += kLuminanceWeights[c] * system_.brightness_efficiency[c];
   }
 
+  FindMagnifier();
   const EyeModel& eye = system_.eye;
-  if (system_.clear_aperture) {
+  if (!system_.lens.empty() && system_.clear_aperture) {
     double radius = *system_.clear_aperture / 2;
     auto field = [&](double eyebox) { return 2 * std::atan(std::max(0.0, radius - eyebox / 2) / eye.eye_relief); };
     system_.vignetting_free_fov_x = field(eye.eyebox_width);
     system_.vignetting_free_fov_y = field(eye.eyebox_height);
-    if (*system_.vignetting_free_fov_x < system_.fov_x || *system_.vignetting_free_fov_y < system_.fov_y)
-      system_.warnings.push_back("the lens aperture vignettes the field of view from the edges of the eyebox");
   }
+  CheckApertures();
 
   auto& parts = system_.components;
-  parts.push_back("thin-lens floating (" + std::to_string(layers.size()) + " virtual layers)");
+  if (!system_.lens.empty()) {
+    parts.push_back("thin-lens floating (" + std::to_string(layers.size()) + " virtual layers)");
+  } else {
+    std::set<std::string> lenses, mirrors;
+    for (const VirtualLayer& l : layers)
+      for (const PathStep& s : l.path) {
+        if (s.kind == ElementKind::kLens) lenses.insert(s.element);
+        if (s.kind == ElementKind::kMirror) mirrors.insert(s.element);
+      }
+    if (lenses.empty() && mirrors.empty())
+      parts.push_back("direct view, no optics with power (" + std::to_string(layers.size()) + " layers)");
+    else
+      parts.push_back("first-order optics: " + std::to_string(lenses.size()) + " lens" + (lenses.size() == 1 ? "" : "es") +
+                      ", " + std::to_string(mirrors.size()) + " mirror" + (mirrors.size() == 1 ? "" : "s") + " (" +
+                      std::to_string(layers.size()) + " virtual layers)");
+  }
   if (system_.branches.size() > 1)
     parts.push_back("additive combination of " + std::to_string(system_.branches.size()) + " branches (" +
                     std::to_string(combiners_) + " combiner" + (combiners_ > 1 ? "s" : "") + ")");
@@ -285,6 +499,8 @@ void Walker::Finish() {
   if (products) parts.push_back("multiplicative stacks in " + std::to_string(products) + " branch" + (products > 1 ? "es" : ""));
   parts.push_back(system_.polarization_tracked ? "polarization (Jones vectors per channel)"
                                                : "no polarization model (no polarizing element)");
+  if (std::any_of(layers.begin(), layers.end(), [](const VirtualLayer& l) { return l.inverted; }))
+    parts.push_back("inverted layers (real intermediate images)");
   if (std::any_of(layers.begin(), layers.end(), [](const VirtualLayer& l) { return l.flip_x || l.flip_y; }))
     parts.push_back("mirrored layers (reversed panels or reflected branches)");
   if (std::any_of(layers.begin(), layers.end(), [](const VirtualLayer& l) { return l.rotation != 0; }))

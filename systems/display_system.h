@@ -16,8 +16,20 @@
 #include <vector>
 
 #include "elements/element.h"
+#include "systems/ray_transfer.h"
 
 namespace layerlab {
+
+// One element between the eye and a panel, in path order.
+struct PathStep {
+  std::string element, type;
+  ElementKind kind = ElementKind::kLens;
+  std::string port;                        // the combiner port this path takes
+  std::optional<double> position;          // m of unfolded path length from the pupil; none for a flat element without "gap"
+  double power = 0;                        // 1/m: lenses and curved mirrors
+  bool flips_x = false, flips_y = false;   // mirror reversal (fold mirrors, reflected combiner ports)
+  std::optional<double> clear_aperture;    // m, diameter
+};
 
 struct VirtualLayer {
   std::string name;           // the panel element
@@ -25,8 +37,12 @@ struct VirtualLayer {
   int position_in_branch = 0; // 0 is nearest the eye
   double diopters = 0;        // eye-space depth, 1/z
   double depth = 0;           // z in m (+inf at 0 D)
-  double panel_distance = 0;  // physical, from the main lens, m
-  double magnification = 0;   // M (+inf at 0 D)
+  double panel_distance = 0;  // physical, m: from the nearest lens or curved mirror before it (from the pupil without one)
+  double position = 0;        // m of unfolded path length from the pupil to the panel
+  double magnification = 0;   // M, signed: negative when a real intermediate image inverts it (+-inf at 0 D)
+  bool inverted = false;      // M < 0: the image is turned by 180 degrees (both axes flip)
+  RayTransfer<double> transfer;  // pupil -> panel, unfolded (mirror reversals kept in flip_x/flip_y)
+  std::vector<PathStep> path;    // the elements from the eye to this panel, nearest the eye first
   double pitch_x = 0, pitch_y = 0;          // virtual pixel pitch at depth z, m (+inf at 0 D)
   double tan_pitch_x = 0, tan_pitch_y = 0;  // tan-angle per pixel, seen from the pupil center
   int cols = 0, rows = 0;                   // the active region
@@ -49,7 +65,10 @@ struct Branch {
 
 struct DisplaySystem {
   std::string name, file;
+  std::string eye_name;
   EyeModel eye;
+  // The magnifier when every path holds one and the same lens and nothing
+  // else with power (the paper's layout); `lens` is empty otherwise.
   std::string lens;
   double focal_length = 0;
   std::optional<double> clear_aperture;
@@ -59,7 +78,7 @@ struct DisplaySystem {
 
   double fov_x = 0, fov_y = 0;  // rad: the smallest layer field (Eq. 2)
   double max_cpd = 0;           // the finest layer's Nyquist frequency
-  std::optional<double> vignetting_free_fov_x, vignetting_free_fov_y;  // rad, from the clear aperture
+  std::optional<double> vignetting_free_fov_x, vignetting_free_fov_y;  // rad, from the magnifier's clear aperture
 
   Rgb peak_luminance{};       // cd/m^2 at full white on every panel
   Rgb brightness_efficiency{};  // luminance at the eye per luminance emitted by the backlights

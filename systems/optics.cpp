@@ -4,29 +4,35 @@
 #include <limits>
 #include <numbers>
 
+#include "systems/ray_transfer.h"
+
 namespace layerlab {
+namespace {
+
+RayTransfer<double> Magnifier(double f, double e) { return RayTransfer<double>().then_gap(e).then_power(1.0 / f); }
+
+}  // namespace
 
 FloatedImage FloatPanel(double s, double f, double e) {
   const double inf = std::numeric_limits<double>::infinity();
-  double gap = f - s;  // 0 at the focal plane
-  double denominator = s * f + e * gap;
+  RayTransfer<double> m = Magnifier(f, e).then_gap(s);
+  if (s == f) m.a = 0;  // exactly at the focal plane: a = 1 - s/f rounds to +-1e-16 for some f
   FloatedImage image;
-  image.diopters = gap / denominator;
-  image.tan_per_meter = f / denominator;
-  if (gap > 0) {
-    image.image_distance = s * f / gap;
-    image.depth = image.image_distance + e;
-    image.magnification = f / gap;
-  } else {
-    image.image_distance = image.depth = image.magnification = inf;
+  image.diopters = m.diopters();
+  image.tan_per_meter = m.tan_per_meter();
+  image.magnification = m.a > 0 ? m.magnification() : inf;
+  image.image_distance = image.depth = inf;
+  if (m.a > 0) {
+    image.depth = 1.0 / image.diopters;
+    image.image_distance = image.depth - e;
   }
   return image;
 }
 
 double PanelDistanceForDiopters(double diopters, double f, double e) {
   if (diopters == 0) return f;
-  double d = 1.0 / diopters - e;
-  return d * f / (d + f);
+  bool solvable = false;
+  return GapForDiopters(Magnifier(f, e), diopters, &solvable);
 }
 
 double FieldOfView(double tan_pitch, double pixels) { return 2.0 * std::atan(0.5 * pixels * tan_pitch); }

@@ -1,4 +1,5 @@
-// First-order optics of a magnifier display (paper Eq. 1 and 2).
+// First-order optics of a magnifier display (paper Eq. 1 and 2), as one case
+// of the ray-transfer composition in systems/ray_transfer.h.
 //
 // A panel at distance s behind a thin lens of focal length f (0 < s <= f)
 // forms an upright virtual image at d = s f / (f - s) behind the lens,

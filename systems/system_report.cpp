@@ -5,6 +5,9 @@
 #include <cstdio>
 #include <algorithm>
 #include <numbers>
+#include <optional>
+
+#include "systems/intermediate_images.h"
 
 namespace layerlab {
 namespace {
@@ -34,6 +37,56 @@ std::string FlipName(const VirtualLayer& l) {
   return "-";
 }
 
+std::string Length(double meters) {
+  if (std::isinf(meters)) return meters > 0 ? "infinity" : "-infinity";
+  return F(meters * 1e3, 2) + " mm";
+}
+
+// Each branch's path, element by element (unfolded, positions from the pupil),
+// with the image each panel forms after each lens or curved mirror.
+std::string FormatOpticalPaths(const DisplaySystem& s) {
+  std::string out = "\noptical paths (unfolded from the eye; position = path length from the pupil)\n";
+  for (const Branch& b : s.branches) {
+    const VirtualLayer& back = s.layers[b.layers.back()];
+    out += "  branch \"" + b.name + "\"\n";
+    std::optional<double> previous;
+    auto element_row = [&](const std::string& what, std::optional<double> position, const std::string& detail) {
+      std::string place = position ? Length(*position) : "(flat, unplaced)";
+      std::string gap = position && previous ? "gap " + Length(*position - *previous) : "";
+      out += Row("    %-34s %16s  %-14s %s", what.c_str(), place.c_str(), gap.c_str(), detail.c_str());
+      if (position) previous = position;
+    };
+    element_row("eye \"" + s.eye_name + "\"", 0.0, "pupil");
+    previous = 0.0;
+    auto panel_row = [&](const VirtualLayer& l) {
+      element_row("panel \"" + l.name + "\"", l.position, "image at " + F(l.diopters, 3) + " D");
+    };
+    for (const PathStep& step : back.path) {
+      if (step.kind == ElementKind::kPanel) {
+        for (int k : b.layers)
+          if (s.layers[k].name == step.element) panel_row(s.layers[k]);
+        continue;
+      }
+      std::string detail;
+      if (step.power != 0) detail = "f " + Length(1.0 / step.power) + " (" + F(step.power, 2) + " D)";
+      if (!step.port.empty()) detail += (detail.empty() ? "" : ", ") + std::string("port ") + step.port;
+      if (step.flips_x || step.flips_y) detail += (detail.empty() ? "" : ", ") + std::string("mirrors ") + (step.flips_x ? "x" : "y");
+      element_row(step.type + " \"" + step.element + "\"", step.position, detail);
+    }
+    panel_row(back);
+    for (int k : b.layers) {
+      const VirtualLayer& l = s.layers[k];
+      std::string chain;
+      for (const IntermediateImage& image : IntermediateImages(l))
+        chain += (chain.empty() ? "" : "; ") + std::string("after \"") + image.after + "\" " +
+                 (std::isinf(image.position) ? std::string("at infinity") : "at " + Length(image.position)) + " (" +
+                 (image.real ? "real" : "virtual") + ", M " + F(image.magnification, 2) + ")";
+      if (!chain.empty()) out += "    images of \"" + l.name + "\": " + chain + "\n";
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 nlohmann::json JsonNumber(double value) {
@@ -45,20 +98,23 @@ std::string FormatSystemTable(const DisplaySystem& s) {
   const EyeModel& eye = s.eye;
   std::string out;
   out += s.file + (s.name.empty() ? "" : ": " + s.name) + "\n\n";
-  out += Row("eye      pupil %s mm %s, %d x %d samples; eye relief %s mm; eyebox %s x %s mm, %d x %d views;\n"
+  const std::string relief = s.lens.empty() ? "" : "; eye relief " + F(eye.eye_relief * 1e3, 2) + " mm";
+  out += Row("eye      pupil %s mm %s, %d x %d samples%s; eyebox %s x %s mm, %d x %d views;\n"
              "         accommodation %s to %s D",
              F(eye.pupil_diameter * 1e3, 2).c_str(), eye.pupil_shape == PupilShape::kSquare ? "square" : "round",
-             eye.pupil_samples_x, eye.pupil_samples_y, F(eye.eye_relief * 1e3, 2).c_str(),
+             eye.pupil_samples_x, eye.pupil_samples_y, relief.c_str(),
              F(eye.eyebox_width * 1e3, 2).c_str(), F(eye.eyebox_height * 1e3, 2).c_str(), eye.views_x, eye.views_y,
              F(eye.accommodation_min, 2).c_str(), F(eye.accommodation_max, 2).c_str());
-  std::string aperture = "clear aperture unlimited";
-  if (s.clear_aperture)
-    aperture = "clear aperture " + F(*s.clear_aperture * 1e3, 2) + " mm (vignetting-free field " +
-               F(Deg(*s.vignetting_free_fov_x), 1) + " x " + F(Deg(*s.vignetting_free_fov_y), 1) + " deg)";
-  out += Row("lens     \"%s\": focal length %s mm, %s", s.lens.c_str(), F(s.focal_length * 1e3, 2).c_str(),
-             aperture.c_str());
-
-  out += "\nvirtual layers (farthest first; depth from the eye, distance from the lens)\n";
+  if (!s.lens.empty()) {
+    std::string aperture = "clear aperture unlimited";
+    if (s.clear_aperture)
+      aperture = "clear aperture " + F(*s.clear_aperture * 1e3, 2) + " mm (vignetting-free field " +
+                 F(Deg(*s.vignetting_free_fov_x), 1) + " x " + F(Deg(*s.vignetting_free_fov_y), 1) + " deg)";
+    out += Row("lens     \"%s\": focal length %s mm, %s", s.lens.c_str(), F(s.focal_length * 1e3, 2).c_str(),
+               aperture.c_str());
+  }
+  out += FormatOpticalPaths(s);
+  out += "\nvirtual layers (farthest first; depth from the eye, distance from the nearest lens in front)\n";
   out += Row("%-3s %-12s %-24s %8s %9s %10s %8s %10s %11s %15s %7s %5s", "#", "panel", "branch", "depth", "depth",
              "distance", "magnif.", "pixel", "pixels", "field of view", "max f", "flip");
   out += Row("%-3s %-12s %-24s %8s %9s %10s %8s %10s %11s %15s %7s %5s", "", "", "", "(D)", "(m)", "(mm)", "", "(mm)",

@@ -36,7 +36,7 @@ const std::string kHybrid = "paper_prototype.json";
 const BadScene kCases[] = {
     {"UnknownType", kMul, [](json& s) { ElementNamed(s, "lens")["type"] = "thin_lense"; },
      "scene.json: /elements/1/type: unknown element type \"thin_lense\"; did you mean \"thin_lens\"? Known types: "
-     "backlight, eye, half_mirror, hwp, lc_panel, pbs, thin_lens"},
+     "backlight, eye, half_mirror, hwp, lc_panel, mirror, pbs, thin_lens"},
     {"MisspelledKey", kMul,
      [](json& s) {
        json& lens = ElementNamed(s, "lens");
@@ -59,8 +59,8 @@ const BadScene kCases[] = {
      "scene.json: /elements/3/max_transmittance: expected a fraction in [0, 1], got 1.5"},
     {"ZeroPixelPitch", kMul, [](json& s) { ElementNamed(s, "rear")["pixel_pitch"] = "0 um"; },
      "scene.json: /elements/3/pixel_pitch: must be in (0, 0.01] (SI units), got 0"},
-    {"NonPositiveFocalLength", kMul, [](json& s) { ElementNamed(s, "lens")["focal_length"] = "-75 mm"; },
-     "scene.json: /elements/1/focal_length: must be in (0, 10] (SI units), got -0.075"},
+    {"ZeroFocalLength", kMul, [](json& s) { ElementNamed(s, "lens")["focal_length"] = "0 mm"; },
+     "scene.json: /elements/1/focal_length: a thin lens needs a nonzero focal length (0 would be infinite power)"},
     {"FractionalResolution", kMul, [](json& s) { ElementNamed(s, "rear")["resolution"] = {1280.5, 800}; },
      "scene.json: /elements/3/resolution/0: expected an integer in [1, 32768], got 1280.5"},
     {"NegativeResolution", kMul, [](json& s) { ElementNamed(s, "rear")["resolution"] = {1280, -1}; },
@@ -78,8 +78,12 @@ const BadScene kCases[] = {
      "scene.json: /elements/3/next: cyclic connection: \"front\" is already on the path from the eye to \"rear\""},
     {"CycleBackToTheLens", kMul, [](json& s) { ElementNamed(s, "rear")["next"] = "lens"; },
      "scene.json: /elements/3/next: cyclic connection: \"lens\" is already on the path from the eye to \"rear\""},
-    {"PanelWhereTheLensBelongs", kMul, [](json& s) { ElementNamed(s, "eye")["next"] = "front"; },
-     "scene.json: /elements/0/next: \"front\" is lc_panel, a panel; a lens was expected here"},
+    // Without the lens the panels are viewed directly, which is a display of its own; the lens is then left over.
+    {"LensLeftOffThePath", kMul, [](json& s) { ElementNamed(s, "eye")["next"] = "front"; },
+     "scene.json: /elements/1: element \"lens\" (thin_lens) is not on the optical path from the eye"},
+    {"BacklightRightAfterTheEye", kMul, [](json& s) { ElementNamed(s, "eye")["next"] = "backlight"; },
+     "scene.json: /elements/0/next: \"backlight\" is backlight, a backlight; a lens, a mirror, a combiner, an in-line "
+     "optic or a panel was expected here"},
     {"CombinerAfterAPanel", kHybrid,
      [](json& s) {
        ElementNamed(s, "rear_a")["next"] = "mirror2";
@@ -141,9 +145,6 @@ const BadScene kCases[] = {
      "scene.json: /element: unknown key \"element\"; did you mean \"elements\"?"},
     {"ElementsNotAnArray", kMul, [](json& s) { s["elements"] = json::object(); },
      "scene.json: /elements: expected an array of elements, got an object"},
-    {"EyeReliefBeyondTheFocalLength", kMul, [](json& s) { ElementNamed(s, "eye")["eye_relief"] = "8 cm"; },
-     "scene.json: /elements/1/focal_length: the eye relief (80.00 mm) must be shorter than the focal length (75.00 "
-     "mm) to float the panels in front of the eye"},
     {"BadPupilShape", kMul, [](json& s) { ElementNamed(s, "eye")["pupil_shape"] = "roun"; },
      "scene.json: /elements/0/pupil_shape: \"roun\" is not one of square or round; did you mean \"round\"?"},
     {"SpectralTableMissesAChannel", "hybrid_pbs_hwp.json",
