@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "analysis/layout_svg.h"
 #include "analysis/svg_plot.h"
 
 namespace layerlab {
@@ -66,6 +67,7 @@ td.l,th.l{text-align:left}
 figure{margin:0;max-width:100%}
 figure img{display:block;max-width:100%;border:1px solid #ccc;background:#000;image-rendering:pixelated}
 figure.plot img{background:#fff;image-rendering:auto}
+figure.layout svg{display:block;max-width:100%;height:auto;border:1px solid #ccc}
 figure.small img{width:300px}
 figure.panel img{width:420px}
 figure.retina{flex:1 1 420px}
@@ -138,6 +140,11 @@ constexpr const char* kScript = R"JS(
         if (!(img.naturalWidth > 0)) problems.push('image not shown: ' + img.getAttribute('src'));
       });
       var detail = images.length + ' images';
+      var layout = document.querySelector('#layout svg');
+      if (!layout) problems.push('no optical layout diagram');
+      else if (!(layout.getBoundingClientRect().width > 100) || layout.querySelectorAll('rect').length < 2)
+        problems.push('the optical layout diagram is not drawn');
+      else detail += ', the layout diagram';
       var shown = document.getElementById('retina-display');
       if (slider && shown && states.length > 1) {
         var before = shown.getAttribute('src');
@@ -167,6 +174,7 @@ std::string SystemSection(const RunReportPage& page) {
   const DisplaySystem& s = *page.system;
   std::string h = "<section id=\"system\"><h2>Display system</h2>\n";
   h += "<p>" + Escape(s.name.empty() ? s.file : s.name) + Links(page.system_links) + "</p>\n";
+  h += "<figure class=\"layout\" id=\"layout\">" + RenderLayoutSvg(s, false) + "</figure>\n";
   h += "<table><tr><th class=\"l\">field of view</th><td>" + F(s.fov_x / kDeg, 2) + " &times; " + F(s.fov_y / kDeg, 2) +
        " deg</td></tr>\n";
   h += "<tr><th class=\"l\">highest frequency</th><td>" + F(s.max_cpd, 2) + " cpd</td></tr>\n";
@@ -176,7 +184,9 @@ std::string SystemSection(const RunReportPage& page) {
   h += "<tr><th class=\"l\">eye</th><td>pupil " + F(s.eye.pupil_diameter * 1e3, 1) + " mm, eyebox " +
        F(s.eye.eyebox_width * 1e3, 1) + " &times; " + F(s.eye.eyebox_height * 1e3, 1) + " mm, " +
        std::to_string(s.eye.views_x) + " &times; " + std::to_string(s.eye.views_y) + " views</td></tr>\n";
-  h += "<tr><th class=\"l\">lens</th><td>" + Escape(s.lens) + ", f = " + F(s.focal_length * 1e3, 2) + " mm</td></tr></table>\n";
+  if (!s.lens.empty())
+    h += "<tr><th class=\"l\">lens</th><td>" + Escape(s.lens) + ", f = " + F(s.focal_length * 1e3, 2) + " mm</td></tr>\n";
+  h += "</table>\n";
 
   h += "<h3>Virtual layers (farthest first)</h3>\n<table><tr><th>#</th><th class=\"l\">panel</th><th class=\"l\">branch</th>"
        "<th>depth (D)</th><th>depth (m)</th><th>panel distance (mm)</th><th>magnification</th><th>virtual pixel (mm)</th>"

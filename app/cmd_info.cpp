@@ -1,10 +1,13 @@
-// layerlab info SCENE.json [--target LF_DIR] [--json]: the compiled display
-// system, the light field it is bound to, and the layer pixels rays reach.
+// layerlab info SCENE.json [--target LF_DIR] [--json] [--layout FILE.svg]: the
+// compiled display system, its optical paths, the light field it is bound to,
+// and the layer pixels rays reach.
 #include <iostream>
 #include <memory>
 #include <string>
 
+#include "analysis/layout_svg.h"
 #include "app/commands.h"
+#include "framework/atomic_file.h"
 #include "framework/lightfield_io.h"
 #include "systems/compile.h"
 #include "systems/system_report.h"
@@ -13,7 +16,7 @@ namespace layerlab::app {
 
 void AddInfoCommand(CLI::App& app) {
   struct Options {
-    std::string scene, target;
+    std::string scene, target, layout;
     bool json = false;
   };
   auto options = std::make_shared<Options>();
@@ -23,11 +26,13 @@ void AddInfoCommand(CLI::App& app) {
                   "Light-field folder whose rays to bind the display to (default: the display's own frustum, "
                   "origin plane mid-range)");
   cmd->add_flag("--json", options->json, "Print the system as JSON for machines");
+  cmd->add_option("--layout", options->layout, "Also write the side view of the unfolded optical path (SVG)");
   cmd->callback([options] {
     DisplaySystem system = Compile(LoadScene(options->scene));
     LightFieldGeometry geometry =
         options->target.empty() ? DisplayLightFieldGeometry(system) : ReadLightFieldGeometry(options->target);
     DisplayModel model(system, geometry);
+    if (!options->layout.empty()) WriteFileAtomically(options->layout, RenderLayoutSvg(system));
     std::vector<LayerCoverage> coverage = Coverage(model);
     if (options->json) {
       nlohmann::json j = SystemToJson(system);

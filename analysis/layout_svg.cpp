@@ -1,0 +1,162 @@
+#include "analysis/layout_svg.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "analysis/svg_plot.h"
+#include "systems/intermediate_images.h"
+
+namespace layerlab {
+namespace {
+
+constexpr double kWidth = 1000, kLeft = 70, kRight = 40, kRowHeight = 96, kTop = 46, kStripHeight = 120;
+const char* kBranchColors[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"};
+
+std::string Num(double v) { return FormatFixed(v, 1); }
+std::string Label(double v, int decimals) { return FormatFixed(v == 0 ? 0.0 : v, decimals); }  // no "-0"
+
+std::string Text(double x, double y, const std::string& text, const std::string& extra = "") {
+  return "<text x=\"" + Num(x) + "\" y=\"" + Num(y) + "\" " + extra + ">" + Escape(text) + "</text>\n";
+}
+
+std::string Line(double x1, double y1, double x2, double y2, const std::string& style) {
+  return "<line x1=\"" + Num(x1) + "\" y1=\"" + Num(y1) + "\" x2=\"" + Num(x2) + "\" y2=\"" + Num(y2) + "\" " + style +
+         "/>\n";
+}
+
+// Positions of one branch's elements; a flat element without a place of its own
+// is drawn halfway between its placed neighbours.
+std::vector<double> DrawnPositions(const VirtualLayer& back) {
+  std::vector<double> out;
+  double last = 0;
+  for (size_t i = 0; i < back.path.size(); ++i) {
+    if (back.path[i].position) {
+      out.push_back(last = *back.path[i].position);
+      continue;
+    }
+    double next = back.position;
+    for (size_t j = i + 1; j < back.path.size(); ++j)
+      if (back.path[j].position) {
+        next = *back.path[j].position;
+        break;
+      }
+    out.push_back(0.5 * (last + next));
+  }
+  return out;
+}
+
+std::string Glyph(const PathStep& step, double x, double y) {
+  const std::string name = Text(x, y - 34, step.element, "text-anchor=\"middle\" font-size=\"11\"");
+  switch (step.kind) {
+    case ElementKind::kLens: {
+      const bool converging = step.power > 0;
+      const double tip = converging ? -6 : 6;
+      return name + Line(x, y - 26, x, y + 26, "stroke=\"#333\" stroke-width=\"2\"") +
+             "<path d=\"M" + Num(x - 5) + " " + Num(y - 26 - tip) + " L" + Num(x) + " " + Num(y - 26) + " L" + Num(x + 5) +
+             " " + Num(y - 26 - tip) + " M" + Num(x - 5) + " " + Num(y + 26 + tip) + " L" + Num(x) + " " + Num(y + 26) +
+             " L" + Num(x + 5) + " " + Num(y + 26 + tip) + "\" fill=\"none\" stroke=\"#333\" stroke-width=\"2\"/>\n";
+    }
+    case ElementKind::kMirror:
+      if (step.power != 0)
+        return name + "<path d=\"M" + Num(x - 8) + " " + Num(y - 24) + " Q" + Num(x + (step.power > 0 ? 10 : -10)) + " " +
+               Num(y) + " " + Num(x - 8) + " " + Num(y + 24) + "\" fill=\"none\" stroke=\"#555\" stroke-width=\"3\"/>\n";
+      return name + Line(x - 14, y + 20, x + 14, y - 20, "stroke=\"#555\" stroke-width=\"3\"");
+    case ElementKind::kCombiner:
+      return name + Line(x - 14, y + 20, x + 14, y - 20, "stroke=\"#69c\" stroke-width=\"3\" stroke-dasharray=\"5,3\"") +
+             Text(x, y + 40, step.port, "text-anchor=\"middle\" font-size=\"10\" fill=\"#555\"");
+    case ElementKind::kInlineOptic:
+      return name + "<rect x=\"" + Num(x - 3) + "\" y=\"" + Num(y - 18) + "\" width=\"6\" height=\"36\" fill=\"#cde\" "
+             "stroke=\"#357\"/>\n";
+    default:
+      return name;
+  }
+}
+
+}  // namespace
+
+std::string RenderLayoutSvg(const DisplaySystem& s, bool standalone) {
+  const size_t rows = s.branches.size();
+  double farthest = 0, max_diopters = 0;
+  for (const VirtualLayer& l : s.layers) {
+    farthest = std::max(farthest, l.position);
+    max_diopters = std::max(max_diopters, l.diopters);
+  }
+  max_diopters = std::max({max_diopters * 1.1, s.eye.accommodation_max, 0.5});
+  const double plot_width = kWidth - kLeft - kRight;
+  auto x_of = [&](double position) { return kLeft + plot_width * position / (farthest * 1.06); };
+  const double strip_top = kTop + rows * kRowHeight + 48;
+  auto x_of_diopters = [&](double D) { return kLeft + plot_width * (1 - D / max_diopters); };
+  const double height = strip_top + kStripHeight;
+
+  std::string svg = std::string("<svg ") + (standalone ? "xmlns=\"http://www.w3.org/2000/svg\" " : "") + "width=\"" + Num(kWidth) + "\" height=\"" + Num(height) +
+                    "\" viewBox=\"0 0 " + Num(kWidth) + " " + Num(height) + "\" font-family=\"Liberation Sans, Arial, "
+                    "sans-serif\" role=\"img\" aria-label=\"optical layout\">\n";
+  svg += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  svg += Text(kLeft, 20, "Optical path unfolded from the eye, to scale (path length from the pupil, mm)",
+              "font-size=\"14\" font-weight=\"bold\"");
+
+  // The physical rows: one per branch.
+  std::vector<double> panel_x(s.layers.size()), panel_y(s.layers.size());
+  for (size_t b = 0; b < rows; ++b) {
+    const Branch& branch = s.branches[b];
+    const std::string color = kBranchColors[b % 6];
+    const double y = kTop + b * kRowHeight + kRowHeight / 2;
+    const VirtualLayer& back = s.layers[branch.layers.back()];
+    svg += Text(4, y - 40, branch.name, "font-size=\"11\" fill=\"" + color + "\"");
+    svg += Line(x_of(0), y, x_of(back.position), y, "stroke=\"" + color + "\" stroke-width=\"1\"");
+    svg += "<ellipse cx=\"" + Num(x_of(0) - 10) + "\" cy=\"" + Num(y) + "\" rx=\"10\" ry=\"14\" fill=\"#fff\" stroke=\"#333\"/>\n";
+    svg += Text(x_of(0) - 10, y + 30, "eye", "text-anchor=\"middle\" font-size=\"11\"");
+    const std::vector<double> at = DrawnPositions(back);
+    for (size_t i = 0; i < back.path.size(); ++i)
+      if (back.path[i].kind != ElementKind::kPanel) svg += Glyph(back.path[i], x_of(at[i]), y);
+    for (int k : branch.layers) {
+      const VirtualLayer& l = s.layers[k];
+      const double x = x_of(l.position);
+      panel_x[k] = x, panel_y[k] = y;
+      svg += "<rect x=\"" + Num(x - 2.5) + "\" y=\"" + Num(y - 22) + "\" width=\"5\" height=\"44\" fill=\"" + color + "\"/>\n";
+      svg += Text(x + 4, y + 34 + 10 * l.position_in_branch, l.name, "font-size=\"11\" fill=\"" + color + "\"");
+      // Real intermediate images (a relay's): where the light converges on its way to the eye.
+      for (const IntermediateImage& image : IntermediateImages(l)) {
+        if (!image.real || !(image.position > 0) || image.position > l.position) continue;
+        const double xi = x_of(image.position);
+        svg += Line(xi, y - 14, xi, y + 14, "stroke=\"" + color + "\" stroke-width=\"1.5\" stroke-dasharray=\"2,2\"");
+        svg += Text(xi, y - 18 - 10 * l.position_in_branch, "real image of " + l.name,
+                    "text-anchor=\"middle\" font-size=\"9\" fill=\"" + color + "\"");
+      }
+    }
+  }
+  for (double mm : NiceTicks(0, farthest * 1.06e3, 8)) {
+    const double x = x_of(mm * 1e-3), y = kTop + rows * kRowHeight;
+    svg += Line(x, y - 4, x, y + 2, "stroke=\"#999\"") + Text(x, y + 14, Label(mm, 0), "text-anchor=\"middle\" font-size=\"10\" fill=\"#555\"");
+  }
+
+  // The eye-space strip: images on a diopter axis (near on the left, infinity on the right).
+  svg += Text(kLeft, strip_top - 8, "Images of the panels in eye space (diopters from the eye; 0 D is infinity)",
+              "font-size=\"13\" font-weight=\"bold\"");
+  const double axis_y = strip_top + kStripHeight - 30;
+  svg += "<rect x=\"" + Num(x_of_diopters(s.eye.accommodation_max)) + "\" y=\"" + Num(strip_top + 4) + "\" width=\"" +
+         Num(x_of_diopters(s.eye.accommodation_min) - x_of_diopters(s.eye.accommodation_max)) + "\" height=\"" +
+         Num(axis_y - strip_top - 4) + "\" fill=\"#f3f3f3\"/>\n";
+  svg += Text(x_of_diopters(s.eye.accommodation_max) + 4, strip_top + 16, "accommodation range", "font-size=\"10\" fill=\"#888\"");
+  svg += Line(kLeft, axis_y, kLeft + plot_width, axis_y, "stroke=\"#333\"");
+  for (double D : NiceTicks(0, max_diopters, 8)) {
+    if (D > max_diopters) continue;
+    const double x = x_of_diopters(D);
+    svg += Line(x, axis_y, x, axis_y + 5, "stroke=\"#333\"") +
+           Text(x, axis_y + 17, Label(D, 1) + " D", "text-anchor=\"middle\" font-size=\"10\"");
+  }
+  for (size_t k = 0; k < s.layers.size(); ++k) {
+    const VirtualLayer& l = s.layers[k];
+    const std::string color = kBranchColors[l.branch % 6];
+    const double x = x_of_diopters(l.diopters);
+    svg += Line(panel_x[k], panel_y[k] + 22, x, axis_y - 44, "stroke=\"" + color + "\" stroke-dasharray=\"3,3\" stroke-opacity=\"0.6\"");
+    svg += Line(x, axis_y - 44, x, axis_y, "stroke=\"" + color + "\" stroke-width=\"3\"");
+    svg += Text(x, axis_y - 48 - 11 * (k % 2), l.name + " " + FormatFixed(l.diopters, 2) + " D" +
+                                                    (l.inverted ? " (inverted)" : ""),
+                "text-anchor=\"middle\" font-size=\"10\" fill=\"" + color + "\"");
+  }
+  return svg + "</svg>\n";
+}
+
+}  // namespace layerlab
