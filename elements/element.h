@@ -41,8 +41,12 @@ class Element {
   virtual bool polarizing() const { return false; }
 
   // First-order optics in the path unfolded from the eye (systems/ray_transfer.h):
-  // the element's optical power in 1/m (0 for a flat element).
+  // the element's optical power in 1/m (0 for a flat element) ...
   virtual double power() const { return 0; }
+  // ... in subframe k of a time-multiplexed display; `powers_given` is how many
+  // subframes the element describes (0: the same power in all).
+  virtual double power_in_subframe(int k) const { return power(); }
+  virtual int powers_given() const { return 0; }
 
   const std::string& type() const { return type_; }
   const std::string& name() const { return name_; }
@@ -64,7 +68,9 @@ class LensElement : public Element {
   ElementKind kind() const final { return ElementKind::kLens; }
   virtual double focal_length() const = 0;                // m, nonzero; negative diverges
   virtual std::optional<double> clear_aperture() const = 0;  // m, diameter
-  double power() const final { return 1.0 / focal_length(); }
+  double power() const override { return 1.0 / focal_length(); }
+  // A focus-tunable lens changes its power from subframe to subframe.
+  virtual bool tunable() const { return false; }
 };
 
 // A fold mirror: it reverses one eye-space axis of what lies behind it and,

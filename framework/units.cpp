@@ -44,6 +44,8 @@ constexpr std::array kUnits = {
     Unit{"s", Dimension::kTime, 1.0},
     Unit{"ms", Dimension::kTime, 1e-3},
     Unit{"min", Dimension::kTime, 60.0},
+    Unit{"Hz", Dimension::kFrequency, 1.0},
+    Unit{"kHz", Dimension::kFrequency, 1e3},
 };
 
 std::optional<Unit> FindUnit(std::string_view symbol) {
@@ -83,6 +85,7 @@ std::string DimensionName(Dimension d) {
     case Dimension::kAngularFrequency: return "an angular frequency";
     case Dimension::kFraction: return "a fraction";
     case Dimension::kTime: return "a duration";
+    case Dimension::kFrequency: return "a frequency";
   }
   return "a quantity";
 }

@@ -15,6 +15,7 @@ enum class Dimension {
   kAngularFrequency,  // cpd (cycles per degree)
   kFraction,          // bare number or %
   kTime,              // s, ms, min
+  kFrequency,         // Hz, kHz
 };
 
 // "a length", "an angle", ... for messages.

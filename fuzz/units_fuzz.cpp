@@ -15,7 +15,8 @@ namespace {
 constexpr layerlab::Dimension kDimensions[] = {
     layerlab::Dimension::kLength,           layerlab::Dimension::kOpticalPower, layerlab::Dimension::kAngle,
     layerlab::Dimension::kLuminance,        layerlab::Dimension::kAngularFrequency,
-    layerlab::Dimension::kFraction,         layerlab::Dimension::kTime};
+    layerlab::Dimension::kFraction,         layerlab::Dimension::kTime,
+    layerlab::Dimension::kFrequency};
 
 }  // namespace
 

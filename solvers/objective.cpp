@@ -6,6 +6,7 @@
 #include <random>
 
 #include "framework/error.h"
+#include "framework/random.h"
 #include "systems/view_synthesizer.h"
 
 namespace layerlab {
@@ -73,6 +74,18 @@ double PsnrDb(double objective, size_t samples) {
 }
 
 Patterns InitialPatterns(const DisplayModel& model, const SolverOptions& options) {
+  if (options.initial_value >= 0 && model.system().subframes > 1) {
+    // Subframes that start equal get equal updates and stay equal (a rank-1
+    // display K times over): each starts a little apart, the same on every machine.
+    Patterns t = model.UniformPatterns(static_cast<float>(options.initial_value));
+    const std::vector<VirtualLayer>& layers = model.system().layers;
+    for (size_t k = 0; k < t.size(); ++k) {
+      SplitMix64 random(options.seed * 1000003u + static_cast<uint64_t>(layers[k].subframe) * 131u + k);
+      for (float& v : t[k].rgb)
+        v = std::clamp(static_cast<float>(v * (0.8 + 0.4 * random.uniform())), 0.0f, 1.0f);
+    }
+    return t;
+  }
   if (options.initial_value >= 0) return model.UniformPatterns(static_cast<float>(options.initial_value));
   Patterns t = model.UniformPatterns(0.5f);
   std::mt19937_64 rng(options.seed);

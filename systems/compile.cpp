@@ -28,6 +28,7 @@ struct PathState {
   std::optional<double> previous_position;  // of the element just before; none when it is flat and unplaced
   std::string previous_name;
   std::optional<size_t> last_power;  // index into steps of the nearest lens or curved mirror
+  std::string tunable;               // a focus-tunable element passed, if any
   bool flip_x = false, flip_y = false;
   std::string label;
 };
@@ -45,13 +46,44 @@ class Walker {
     system_.name = scene_.name;
     system_.eye = static_cast<const EyeElement&>(*eye_node.element).model();
     system_.eye_name = eye_node.element->name();
-    visited_.insert(&eye_node);
-    stack_.push_back(&eye_node);
+    system_.subframes = scene_.subframes;
+    system_.frame_rate = scene_.frame_rate;
+    const int K = scene_.subframes;
+    bool time_varying = false;
+    for (const SceneNode& node : scene_.nodes) time_varying = time_varying || node.element->powers_given() > 0;
 
-    PathState start;
-    start.previous_position = 0.0;
-    start.previous_name = eye_node.element->name();
-    Walk(Follow(eye_node, 0, kOptics), start);
+    // Each subframe is its own walk of the same path (a tunable lens takes its
+    // power of that subframe); its layers and branches are kept apart.
+    for (subframe_ = 0; subframe_ < K; ++subframe_) {
+      visited_ = {&eye_node};
+      stack_ = {&eye_node};
+      const size_t first_layer = system_.layers.size(), first_branch = system_.branches.size();
+      PathState start;
+      start.previous_position = 0.0;
+      start.previous_name = eye_node.element->name();
+      try {
+        Walk(Follow(eye_node, 0, kOptics), start);
+      } catch (const Error& e) {
+        if (!time_varying) throw;
+        throw Error(e.where(), e.message() + " (in subframe " + std::to_string(subframe_ + 1) + " of " +
+                                   std::to_string(K) + ")");
+      }
+      if (K == 1) continue;
+      const std::string suffix = "@" + std::to_string(subframe_ + 1);
+      for (size_t k = first_layer; k < system_.layers.size(); ++k) {
+        system_.layers[k].name += suffix;
+        system_.layers[k].subframe = subframe_;
+      }
+      for (size_t b = first_branch; b < system_.branches.size(); ++b) {
+        Branch& branch = system_.branches[b];
+        branch.name += suffix;
+        branch.subframe = subframe_;
+        for (int c = 0; c < 3; ++c) {  // the eye sees the mean over subframes
+          branch.optics_efficiency[c] /= K;
+          branch.efficiency[c] /= K;
+        }
+      }
+    }
 
     for (const SceneNode& node : scene_.nodes)
       if (!visited_.count(&node))
@@ -128,27 +160,34 @@ class Walker {
   // A lens, mirror, combiner or in-line optic: its place, power, flips and light.
   PathStep Pass(const SceneNode& node, size_t port, PathState& state) {
     const Element& e = *node.element;
-    PathStep step{e.name(), e.type(), e.kind(), "", std::nullopt, e.power(), false, false, std::nullopt};
+    if (e.powers_given() > 0 && e.powers_given() != scene_.subframes)
+      Fail(node.where, Quoted(e.name()) + " gives " + std::to_string(e.powers_given()) + " powers, one per subframe, "
+                       "but the scene shows " + std::to_string(scene_.subframes) + " (\"subframes\": " +
+                       std::to_string(scene_.subframes) + " at the top of the scene)");
+    const double power = e.power_in_subframe(subframe_);
+    const bool powered = e.kind() == ElementKind::kLens || power != 0;
+    if (e.powers_given() > 0) state.tunable = e.name();
+    PathStep step{e.name(), e.type(), e.kind(), "", std::nullopt, power, false, false, std::nullopt};
     const bool first_power = !state.last_power;
     if (e.gap()) {
       step.position = AfterPrevious(node, state, *e.gap());
-    } else if (e.power() != 0 && first_power) {
+    } else if (powered && first_power) {
       step.position = system_.eye.eye_relief;  // the magnifier, as the paper places it
       if (!(*step.position > state.placed_at))
         Fail(node.where.child("gap"), Quoted(e.name()) + " would sit at the eye's eye_relief (" +
                                           Mm(*step.position) + " from the pupil), which is not behind " +
                                           Quoted(state.placed_name) + " (" + Mm(state.placed_at) +
                                           "); give it a \"gap\" from " + Quoted(state.previous_name));
-    } else if (e.power() != 0) {
+    } else if (powered) {
       Fail(node.where.child("gap"), "missing placement: " + Quoted(e.name()) + " is not the first lens or curved "
                                     "mirror on its path, so the eye's eye_relief does not place it; give \"gap\" "
                                     "(the path length from " + Quoted(state.previous_name) + ")");
     }
     if (step.position) {
       Advance(state, *step.position, e.name());
-      state.transfer = state.transfer.then_power(e.power());
+      state.transfer = state.transfer.then_power(power);
     }
-    if (e.power() != 0) state.last_power = state.steps.size();
+    if (powered) state.last_power = state.steps.size();
     if (e.kind() == ElementKind::kLens) step.clear_aperture = static_cast<const LensElement&>(e).clear_aperture();
     if (e.kind() == ElementKind::kMirror) {
       const auto& mirror = static_cast<const MirrorElement&>(e);
@@ -233,8 +272,13 @@ class Walker {
   VirtualLayer Float(const SceneNode& node, const PanelSpec& spec, const PathState& state,
                      const VirtualLayer* front) {
     VirtualLayer layer;
-    layer.name = node.element->name();
+    layer.name = layer.element = node.element->name();
+    layer.subframe = subframe_;
     layer.panel = spec;
+    if (spec.virtual_depth && !state.tunable.empty())
+      Fail(node.where.child("virtual_depth"), "\"virtual_depth\" places a panel where its image should be, but behind "
+                                              "the tunable " + Quoted(state.tunable) + " the image moves from subframe "
+                                              "to subframe; place " + Quoted(layer.name) + " by \"distance\" or \"gap\"");
     layer.path = state.steps;
     const double lens_at = state.last_power ? *state.steps[*state.last_power].position : 0.0;
     const char* key = spec.virtual_depth ? "virtual_depth" : spec.distance ? "distance" : "gap";
@@ -375,6 +419,7 @@ class Walker {
   std::set<const SceneNode*> visited_;
   std::vector<const SceneNode*> stack_;
   int combiners_ = 0;
+  int subframe_ = 0;
 };
 
 // The paper's layout: one lens, the first element with power on every path.
@@ -389,6 +434,7 @@ void Walker::FindMagnifier() {
   }
   if (!lens) return;
   const auto& element = static_cast<const LensElement&>(*scene_.find(*lens)->element);
+  if (element.tunable()) return;
   system_.lens = *lens;
   system_.focal_length = element.focal_length();
   system_.clear_aperture = element.clear_aperture();
@@ -455,8 +501,9 @@ void Walker::Finish() {
   }
 
   double emitted = 0;
+  std::set<std::string> backlights;  // each once, whatever the subframes
   for (const Branch& b : system_.branches) {
-    emitted += b.backlight_luminance;
+    if (backlights.insert(b.backlight).second) emitted += b.backlight_luminance;
     for (int c = 0; c < 3; ++c) system_.peak_luminance[c] += b.backlight_luminance * b.efficiency[c];
   }
   for (int c = 0; c < 3; ++c) {
@@ -491,11 +538,18 @@ void Walker::Finish() {
                       ", " + std::to_string(mirrors.size()) + " mirror" + (mirrors.size() == 1 ? "" : "s") + " (" +
                       std::to_string(layers.size()) + " virtual layers)");
   }
-  if (system_.branches.size() > 1)
-    parts.push_back("additive combination of " + std::to_string(system_.branches.size()) + " branches (" +
-                    std::to_string(combiners_) + " combiner" + (combiners_ > 1 ? "s" : "") + ")");
+  const int K = system_.subframes;
+  if (K > 1)
+    parts.push_back("time multiplexing: " + std::to_string(K) + " subframes per frame at " +
+                    FormatFixed(system_.frame_rate, 0) + " Hz (panels refresh at " +
+                    FormatFixed(K * system_.frame_rate, 0) + " Hz), seen as their mean");
+  const size_t branches = system_.branches.size() / K;
+  const int combiners = combiners_ / K;
+  if (branches > 1)
+    parts.push_back("additive combination of " + std::to_string(branches) + " branches (" +
+                    std::to_string(combiners) + " combiner" + (combiners > 1 ? "s" : "") + ")");
   int products = 0;
-  for (const Branch& b : system_.branches) products += b.layers.size() > 1;
+  for (const Branch& b : system_.branches) products += b.subframe == 0 && b.layers.size() > 1;
   if (products) parts.push_back("multiplicative stacks in " + std::to_string(products) + " branch" + (products > 1 ? "es" : ""));
   parts.push_back(system_.polarization_tracked ? "polarization (Jones vectors per channel)"
                                                : "no polarization model (no polarizing element)");

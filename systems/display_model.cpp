@@ -12,7 +12,8 @@ DisplayModel::DisplayModel(const DisplaySystem& system, const LightFieldGeometry
     : system_(system), lf_(lf) {
   for (const VirtualLayer& layer : system.layers) projections_.emplace_back(layer, lf, sampling);
   for (const Branch& b : system.branches)
-    for (int c = 0; c < 3; ++c) white_luminance_ = std::max(white_luminance_, b.backlight_luminance * b.efficiency[c]);
+    for (int c = 0; c < 3; ++c)  // a subframe's branch shown in every subframe of the frame
+      white_luminance_ = std::max(white_luminance_, b.backlight_luminance * b.efficiency[c] * system.subframes);
   for (const Branch& b : system.branches) {
     std::array<float, 3> w{};
     for (int c = 0; c < 3; ++c) w[c] = static_cast<float>(b.backlight_luminance * b.efficiency[c] / white_luminance_);

@@ -10,6 +10,8 @@
 // (white_luminance(), cd/m^2); w_b[c] is branch b's full white in channel c
 // relative to it. A half-mirror hybrid thus has w = 1 for both branches and
 // can show up to 2; a PBS/HWP hybrid has per-channel weights a little below 1.
+// A time-multiplexed display's branches are each one subframe's: white is a
+// branch at full white in every subframe, so each weighs 1/K.
 #pragma once
 
 #include <array>

@@ -32,7 +32,9 @@ struct PathStep {
 };
 
 struct VirtualLayer {
-  std::string name;           // the panel element
+  std::string name;           // the panel element, and "@k" (1-based) for subframe k of a time-multiplexed display
+  std::string element;        // the panel element
+  int subframe = 0;           // 0-based
   int branch = 0;             // index into DisplaySystem::branches
   int position_in_branch = 0; // 0 is nearest the eye
   double diopters = 0;        // eye-space depth, 1/z
@@ -55,9 +57,10 @@ struct VirtualLayer {
 };
 
 struct Branch {
-  std::string name;         // "bs.reflected", or "main" without a combiner
+  std::string name;         // "bs.reflected", or "main" without a combiner; "@k" for subframe k
+  int subframe = 0;
   std::vector<int> layers;  // indices into DisplaySystem::layers, nearest the eye first
-  Rgb optics_efficiency{};  // combiners and in-line optics, per channel
+  Rgb optics_efficiency{};  // combiners, mirrors and in-line optics, per channel; over subframes, 1/K of it each
   Rgb efficiency{};         // also times every panel's maximum transmittance
   std::string backlight;
   double backlight_luminance = 0;  // cd/m^2
@@ -75,6 +78,10 @@ struct DisplaySystem {
 
   std::vector<VirtualLayer> layers;  // farthest first (ascending diopters)
   std::vector<Branch> branches;
+  // Time multiplexing: K subframes per frame, the eye sees their mean; each
+  // subframe's layers and branches are their own (a panel holds K patterns).
+  int subframes = 1;
+  double frame_rate = 60;  // Hz; the panels refresh at subframes x frame_rate
 
   double fov_x = 0, fov_y = 0;  // rad: the smallest layer field (Eq. 2)
   double max_cpd = 0;           // the finest layer's Nyquist frequency

@@ -28,6 +28,9 @@ Scene ParseScene(nlohmann::json document, const std::string& file, const Element
     top.fail("format", "unknown scene format \"" + format + "\"; this layerlab reads \"" + kSceneFormat + "\"");
   scene.name = top.string("name", "");
   scene.description = top.string("description", "");
+  scene.subframes = static_cast<int>(top.integer("subframes", 1, 64, 1));
+  scene.frame_rate = top.quantity("frame_rate", Dimension::kFrequency, 60.0);
+  top.require_range("frame_rate", scene.frame_rate, 0.0, 1e4, true, false);
   for (const std::string& key : SceneTaskKeys()) top.mark_read(key);
 
   const nlohmann::json& elements = top.raw("elements");

@@ -1,6 +1,7 @@
 // A scene file: named elements and how they connect along the optical path.
 //
 //   { "format": "layerlab-scene/1", "name": "...", "description": "...",
+//     "subframes": 1, "frame_rate": "60 Hz",
 //     "elements": [ { "type": "eye", "name": "eye", "next": "lens", ... },
 //                   { "type": "thin_lens", "name": "lens", "next": "bs", ... },
 //                   { "type": "half_mirror", "name": "bs",
@@ -35,6 +36,8 @@ struct Scene {
   std::string name;
   std::string description;
   std::vector<SceneNode> nodes;
+  int subframes = 1;         // patterns shown per frame, time-multiplexed; the eye sees their mean
+  double frame_rate = 60.0;  // Hz, frames (not subframes) per second
   nlohmann::json document;  // the whole parsed file, for later phases
 
   const SceneNode* find(const std::string& element_name) const;

@@ -105,6 +105,9 @@ std::string FormatSystemTable(const DisplaySystem& s) {
              eye.pupil_samples_x, eye.pupil_samples_y, relief.c_str(),
              F(eye.eyebox_width * 1e3, 2).c_str(), F(eye.eyebox_height * 1e3, 2).c_str(), eye.views_x, eye.views_y,
              F(eye.accommodation_min, 2).c_str(), F(eye.accommodation_max, 2).c_str());
+  if (s.subframes > 1)
+    out += Row("time     %d subframes per frame at %s Hz: the panels refresh at %s Hz; the eye sees the mean", s.subframes,
+               F(s.frame_rate, 1).c_str(), F(s.subframes * s.frame_rate, 1).c_str());
   if (!s.lens.empty()) {
     std::string aperture = "clear aperture unlimited";
     if (s.clear_aperture)
@@ -175,6 +178,8 @@ nlohmann::json SystemToJson(const DisplaySystem& s) {
                {"clear_aperture_m", s.clear_aperture ? json(*s.clear_aperture) : json(nullptr)}};
   for (const VirtualLayer& l : s.layers) {
     j["layers"].push_back({{"name", l.name},
+                           {"element", l.element},
+                           {"subframe", l.subframe},
                            {"branch", l.branch},
                            {"position_in_branch", l.position_in_branch},
                            {"diopters", l.diopters},
@@ -197,6 +202,9 @@ nlohmann::json SystemToJson(const DisplaySystem& s) {
                              {"efficiency_rgb", b.efficiency},
                              {"backlight", b.backlight},
                              {"backlight_luminance_cd_m2", b.backlight_luminance}});
+  j["subframes"] = s.subframes;
+  j["frame_rate_hz"] = s.frame_rate;
+  j["panel_refresh_rate_hz"] = s.subframes * s.frame_rate;
   j["fov_deg"] = {Deg(s.fov_x), Deg(s.fov_y)};
   j["max_cpd"] = s.max_cpd;
   if (s.vignetting_free_fov_x) j["vignetting_free_fov_deg"] = {Deg(*s.vignetting_free_fov_x), Deg(*s.vignetting_free_fov_y)};
