@@ -1,9 +1,13 @@
 #include "tests/calibration_test_util.h"
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include <Eigen/Dense>
+
+#include "framework/json_file.h"
+#include "tests/test_util.h"
 
 namespace layerlab::testing {
 namespace {
@@ -22,16 +26,54 @@ std::vector<PanelTruth> ExampleTruth() {
   };
 }
 
-DisplaySystem BuiltSystem(const DisplaySystem& designed, const std::vector<PanelTruth>& truth) {
-  DisplaySystem built = designed;
-  for (const PanelTruth& t : truth)
-    for (VirtualLayer& layer : built.layers)
-      if (layer.name == t.name) {
-        layer.panel_distance += t.distance_change;
-        layer.panel.offset = {t.offset_x, t.offset_y};
-        layer.panel.rotation = t.rotation;
+std::string Meters(double m) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.17g m", m);
+  return buf;
+}
+
+std::string Radians(double rad) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.17g rad", rad);
+  return buf;
+}
+
+nlohmann::json BuiltScene(const DisplaySystem& designed, const std::vector<PanelTruth>& truth,
+                          const std::vector<OpticTruth>& optics) {
+  nlohmann::json scene = ReadJsonFile(designed.file);
+  for (const VirtualLayer& layer : designed.layers) {
+    nlohmann::json& panel = ElementNamed(scene, layer.name);
+    double change = 0;
+    for (const PanelTruth& t : truth)
+      if (t.name == layer.name) {
+        change = t.distance_change;
+        panel["offset"] = {Meters(t.offset_x), Meters(t.offset_y)};
+        panel["rotation"] = Radians(t.rotation);
       }
-  return built;
+    if (panel.contains("virtual_depth")) {
+      panel.erase("virtual_depth");
+      panel["distance"] = Meters(layer.panel_distance);
+    }
+    if (panel.contains("distance")) panel["distance"] = Meters(layer.panel_distance + change);
+    else panel["gap"] = Meters(layer.position - layer.path.back().position.value_or(0.0) + change);
+  }
+  for (const OpticTruth& t : optics) {
+    nlohmann::json& optic = ElementNamed(scene, t.name);
+    if (t.gap_change != 0)
+      for (const VirtualLayer& layer : designed.layers)
+        for (size_t j = 0; j < layer.path.size(); ++j)
+          if (layer.path[j].element == t.name) {
+            const double before = j == 0 ? 0.0 : layer.path[j - 1].position.value_or(0.0);
+            optic["gap"] = Meters(*layer.path[j].position - before + t.gap_change);
+          }
+    if (t.focal_length) optic["focal_length"] = Meters(*t.focal_length);
+  }
+  return scene;
+}
+
+DisplaySystem BuiltSystem(const DisplaySystem& designed, const std::vector<PanelTruth>& truth,
+                          const std::vector<OpticTruth>& optics) {
+  return CompileJson(BuiltScene(designed, truth, optics), designed.file);
 }
 
 SyntheticSetup ExampleSetup() {
@@ -63,12 +105,11 @@ Measurements SyntheticMeasurements(const DisplaySystem& built, const std::vector
   return m;
 }
 
-GeometrySigma ExpectedGeometrySigma(const DisplaySystem& built, const VirtualLayer& layer, const PanelMarkers& markers,
-                                    int positions, double sigma) {
-  const double s = layer.panel_distance, f = built.focal_length, e = built.eye.eye_relief;
-  const double denominator = s * f + e * (f - s);
-  const double T = f / denominator;             // tan-angle per meter in the panel plane
-  const double dT = -f * (f - e) / (denominator * denominator);
+GeometrySigma ExpectedGeometrySigma(const VirtualLayer& layer, const PanelMarkers& markers, int positions, double sigma) {
+  // B = b + s d of the transfer up to the last element with power (free space keeps d): T = 1 / |B|, dT/ds = -d / B |B|.
+  const double B = layer.transfer.b;
+  const double T = 1.0 / std::abs(B);
+  const double dT = -layer.transfer.d / (B * std::abs(B));
   const PanelSpec& p = layer.panel;
   double spread = 0;  // sum of |l|^2 over the markers, l from the active region's center
   for (const MarkerObservation& o : markers.markers) {
@@ -79,6 +120,33 @@ GeometrySigma ExpectedGeometrySigma(const DisplaySystem& built, const VirtualLay
   spread *= positions;
   const double n = static_cast<double>(markers.markers.size() * positions);
   return {sigma / (std::abs(dT) * std::sqrt(spread)), sigma / (T * std::sqrt(n)), sigma / (T * std::sqrt(spread))};
+}
+
+std::vector<double> BruteForceSigmas(const nlohmann::json& built_scene, const std::vector<SceneParameter>& parameters,
+                                     const SyntheticSetup& setup, double sigma) {
+  SyntheticNoise quiet = setup.noise;
+  quiet.marker_sigma = quiet.outlier_fraction = 0;
+  auto angles = [&](const SceneParameter* p, double change) {
+    nlohmann::json scene = built_scene;
+    if (p) p->apply(scene, change);
+    const DisplaySystem system = CompileJson(scene, "built.json");
+    std::vector<double> out;
+    for (const Capture& c : SyntheticCaptures(system, setup.grid, setup.camera, quiet))
+      for (const PanelMarkers& panel : c.panels)
+        for (const MarkerObservation& m : panel.markers) out.push_back(m.angle_x), out.push_back(m.angle_y);
+    return out;
+  };
+  const size_t rows = angles(nullptr, 0).size();
+  Eigen::MatrixXd J(rows, parameters.size());
+  for (size_t i = 0; i < parameters.size(); ++i) {
+    const std::vector<double> plus = angles(&parameters[i], parameters[i].step);
+    const std::vector<double> minus = angles(&parameters[i], -parameters[i].step);
+    for (size_t r = 0; r < rows; ++r) J(r, i) = (plus[r] - minus[r]) / (2 * parameters[i].step);
+  }
+  const Eigen::MatrixXd covariance = (J.transpose() * J).inverse();
+  std::vector<double> out;
+  for (size_t i = 0; i < parameters.size(); ++i) out.push_back(sigma * std::sqrt(covariance(i, i)));
+  return out;
 }
 
 LuminanceSigma ExpectedLuminanceSigma(const std::vector<int>& codes, double max_luminance, double black_level,
