@@ -1,5 +1,6 @@
 #include "tests/calibration_test_util.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -50,12 +51,14 @@ nlohmann::json BuiltScene(const DisplaySystem& designed, const std::vector<Panel
         panel["offset"] = {Meters(t.offset_x), Meters(t.offset_y)};
         panel["rotation"] = Radians(t.rotation);
       }
+    const bool behind_optics =
+        std::any_of(layer.path.begin(), layer.path.end(), [](const PathStep& s) { return s.power != 0; });
     if (panel.contains("virtual_depth")) {
       panel.erase("virtual_depth");
-      panel["distance"] = Meters(layer.panel_distance);
+      panel[behind_optics ? "distance" : "gap"] = 0;  // set below
     }
     if (panel.contains("distance")) panel["distance"] = Meters(layer.panel_distance + change);
-    else panel["gap"] = Meters(layer.position - layer.path.back().position.value_or(0.0) + change);
+    else panel["gap"] = Meters(layer.position - (layer.path.empty() ? 0.0 : layer.path.back().position.value_or(0.0)) + change);
   }
   for (const OpticTruth& t : optics) {
     nlohmann::json& optic = ElementNamed(scene, t.name);
@@ -86,6 +89,25 @@ SyntheticSetup ExampleSetup() {
   setup.noise.seed = 20240601;
   for (int code = 0; code < 255; code += 16) setup.luminance_codes.push_back(code);
   setup.luminance_codes.push_back(255);
+  return setup;
+}
+
+std::vector<PanelTruth> PerBranchTruth() {
+  return {
+      {"front_a", 0.30e-3, 0.20e-3, -0.10e-3, 0.20 * kDeg, 0, 0, 0},
+      {"rear_a", -0.40e-3, -0.30e-3, 0.25e-3, -0.30 * kDeg, 0, 0, 0},
+      {"front_b", 0.25e-3, 0.15e-3, 0.30e-3, 0.10 * kDeg, 0, 0, 0},
+      {"rear_b", -0.30e-3, -0.20e-3, -0.15e-3, -0.25 * kDeg, 0, 0, 0},  // nearer: its image at 0 D moves forward
+  };
+}
+
+std::vector<OpticTruth> PerBranchOptics() { return {{"lens_a", 0.50e-3, {}}, {"lens_b", -0.40e-3, {}}}; }
+
+SyntheticSetup PerBranchSetup() {
+  SyntheticSetup setup = ExampleSetup();
+  setup.camera.positions = {{0.0, 0.0}, {-3e-3, 0.0}, {3e-3, 0.0}, {0.0, -3e-3}, {0.0, 3e-3}};
+  setup.noise.seed = 20261201;
+  setup.luminance_codes.clear();
   return setup;
 }
 

@@ -37,7 +37,8 @@ std::vector<PanelTruth> ExampleTruth();
 
 // The scene `designed` was compiled from (its file), as built: every panel
 // placed by its physical distance from the optics in front ("distance" in the
-// place of "virtual_depth", so that it stays put when the optics change), moved,
+// place of "virtual_depth", so that it stays put when the optics change; "gap"
+// without optics in front), moved,
 // offset and turned as `truth` says; every optic's gap and focal length as
 // `optics` says.
 nlohmann::json BuiltScene(const DisplaySystem& designed, const std::vector<PanelTruth>& truth,
@@ -57,6 +58,13 @@ struct SyntheticSetup {
 // panel from three camera positions, 0.3 arcmin noise per axis, luminance at
 // 17 levels with 0.3 % noise.
 SyntheticSetup ExampleSetup();
+
+// examples/per_branch_magnifiers_measurements.json: each branch's lens off its
+// designed gap, every panel moved, offset and turned; the example's camera
+// from five positions (the center and 3 mm to each side), no luminance data.
+std::vector<PanelTruth> PerBranchTruth();
+std::vector<OpticTruth> PerBranchOptics();
+SyntheticSetup PerBranchSetup();
 
 Measurements SyntheticMeasurements(const DisplaySystem& built, const std::vector<PanelTruth>& truth,
                                    const SyntheticSetup& setup);
