@@ -35,7 +35,9 @@ void Update(ordered_json& element, const std::vector<std::pair<std::string, orde
   std::map<std::string, ordered_json> pending(values.begin(), values.end());
   std::set<std::string> present;
   for (auto it = element.begin(); it != element.end(); ++it) present.insert(it.key());
-  if (!placement_key.empty() && pending.count(placement_key)) present.insert("virtual_depth");
+  // The placement waits for the "virtual_depth" it replaces, wherever that stands ("next" may come first).
+  const bool replaces = !placement_key.empty() && pending.count(placement_key) && element.contains("virtual_depth");
+  if (replaces) present.insert(placement_key);
   ordered_json updated = ordered_json::object();
   auto emit_new = [&] {
     for (const auto& [key, value] : values)
@@ -44,7 +46,7 @@ void Update(ordered_json& element, const std::vector<std::pair<std::string, orde
   for (auto it = element.begin(); it != element.end(); ++it) {
     const std::string& key = it.key();
     if (key == "next") emit_new();
-    if (key == "virtual_depth" && !placement_key.empty() && pending.count(placement_key)) {
+    if (key == "virtual_depth" && replaces) {
       updated[placement_key] = pending[placement_key];
       pending.erase(placement_key);
     } else if (pending.count(key)) {

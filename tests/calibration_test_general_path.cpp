@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "framework/atomic_file.h"
 #include "calibration/calibrated_scene.h"
 #include "calibration/calibration.h"
 #include "calibration/marker_model.h"
@@ -323,6 +324,35 @@ TEST(GeneralPathCalibrationTest, PanelsWithoutOpticsKeepTheirGaps) {
       EXPECT_FALSE(e.contains("distance")) << e.dump();
     }
   const DisplaySystem calibrated = testing::CompileJson(json::parse(document.dump()), "calibrated.json");
+  for (size_t k = 0; k < built.layers.size(); ++k)
+    EXPECT_NEAR(calibrated.layers[k].position, built.layers[k].position, 1e-9) << built.layers[k].name;
+}
+
+
+// A fold mirror between lens_a and front_a, front_a placed by "gap" from it:
+// a fitted lens gap moves the mirror and the panel with it, so the panel's
+// gap is counted from where the fitted lens puts the mirror.
+TEST(GeneralPathCalibrationTest, PanelGapBehindAFoldFollowsTheFittedLens) {
+  json scene = testing::ReadExample("per_branch_magnifiers.json");
+  testing::ElementNamed(scene, "lens_a")["next"] = "fold";
+  scene["elements"].push_back({{"type", "mirror"}, {"name", "fold"}, {"gap", "20 mm"}, {"next", "front_a"}});
+  json& front = testing::ElementNamed(scene, "front_a");
+  front.erase("virtual_depth");
+  front["gap"] = "32 mm";
+  const std::string file = ::testing::TempDir() + "/folded_per_branch.json";
+  WriteFileAtomically(file, scene.dump(2));
+  const DisplaySystem designed = Compile(LoadScene(file));
+  const std::vector<PanelTruth> truth = testing::PerBranchTruth();
+  const DisplaySystem built = testing::BuiltSystem(designed, truth, testing::PerBranchOptics());
+  const Measurements m = testing::SyntheticMeasurements(built, truth, AnglesOnly(0));
+  CalibratedDisplay display;
+  const CalibrationReport report = Calibrate(designed, m, LensGaps(), &display);
+  ASSERT_TRUE(report.IsSolutionUsable()) << report.message;
+  EXPECT_LT(report.marker_rms_after, 1e-10) << report.FullReport();
+  const nlohmann::ordered_json document = CalibratedSceneDocument(ReadDocumentInOrder(file), file, display);
+  json written = json::parse(document.dump());
+  EXPECT_TRUE(testing::ElementNamed(written, "front_a").contains("gap"));
+  const DisplaySystem calibrated = testing::CompileJson(written, "calibrated.json");
   for (size_t k = 0; k < built.layers.size(); ++k)
     EXPECT_NEAR(calibrated.layers[k].position, built.layers[k].position, 1e-9) << built.layers[k].name;
 }
