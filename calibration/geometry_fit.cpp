@@ -107,7 +107,7 @@ std::vector<Optic> FindOptics(const DisplaySystem& system, const std::vector<boo
   return optics;
 }
 
-// One layer's parameters, each fit index read through `value` (-1: none).
+// One layer's parameters, each read through `value` from its index in the fit.
 template <typename T, typename Value>
 MarkerParameters<T> LayerParameters(const PanelIndices& p, int pan, int tilt, int roll, const LayerOptics& layer_optics,
                                     const std::vector<Optic>& optics, Value value) {

@@ -22,9 +22,8 @@ using testing::ExampleTruth;
 using testing::PanelTruth;
 using testing::SyntheticSetup;
 
-constexpr double kArcmin = std::numbers::pi / 180.0 / 60.0;
-// A recovered value may lie this many (independently derived) standard deviations from the truth.
-constexpr double kSigmas = 4.0;
+using testing::kArcmin;
+using testing::kSigmas;
 
 const DisplaySystem& Designed() {
   static const DisplaySystem system = Compile(LoadScene(testing::ExamplePath("paper_prototype.json")));
@@ -115,14 +114,7 @@ TEST(CalibrationTest, WithoutNoiseRecoversPlacementsExactly) {
   CalibratedDisplay display;
   const CalibrationReport report = Calibrate(Designed(), m, CalibrationOptions{}, &display);
   ASSERT_TRUE(report.IsSolutionUsable()) << report.message;
-  for (const VirtualLayer& layer : built.layers) {
-    const CalibratedPanel* p = display.find(layer.name);
-    ASSERT_NE(p, nullptr);
-    EXPECT_NEAR(p->distance, layer.panel_distance, 1e-9) << layer.name;
-    EXPECT_NEAR(p->offset_x, layer.panel.offset[0], 1e-9) << layer.name;
-    EXPECT_NEAR(p->offset_y, layer.panel.offset[1], 1e-9) << layer.name;
-    EXPECT_NEAR(p->rotation, layer.panel.rotation, 1e-9) << layer.name;
-  }
+  testing::ExpectPlacementsOf(built, display, 1e-9);
   EXPECT_LT(report.marker_rms_after, 1e-10);
 }
 
@@ -275,13 +267,7 @@ TEST(CalibrationTest, FarthestPanelReferenceCentersItAndFitsTheCamera) {
   EXPECT_EQ(farthest->offset_x, 0.0);
   EXPECT_EQ(farthest->rotation, 0.0);
   EXPECT_EQ(report.find("rear_a", "offset_x")->status, ParameterStatus::kReference);
-  for (const VirtualLayer& layer : built.layers) {
-    const CalibratedPanel* p = display.find(layer.name);
-    EXPECT_NEAR(p->distance, layer.panel_distance, 1e-9) << layer.name;
-    EXPECT_NEAR(p->offset_x, layer.panel.offset[0], 1e-9) << layer.name;
-    EXPECT_NEAR(p->offset_y, layer.panel.offset[1], 1e-9) << layer.name;
-    EXPECT_NEAR(p->rotation, layer.panel.rotation, 1e-9) << layer.name;
-  }
+  testing::ExpectPlacementsOf(built, display, 1e-9);
   EXPECT_NEAR(report.find("camera", "pan")->value, setup.camera.pan, 1e-9);
   EXPECT_NEAR(report.find("camera", "tilt")->value, setup.camera.tilt, 1e-9);
   EXPECT_NEAR(report.find("camera", "roll")->value, setup.camera.roll, 1e-9);

@@ -18,14 +18,12 @@ namespace layerlab {
 namespace {
 
 using nlohmann::json;
-using testing::Meters;
 using testing::OpticTruth;
 using testing::PanelTruth;
-using testing::Radians;
 using testing::SyntheticSetup;
 
-constexpr double kArcmin = std::numbers::pi / 180.0 / 60.0;
-constexpr double kSigmas = 4.0;
+using testing::kArcmin;
+using testing::kSigmas;
 
 DisplaySystem Example(const std::string& name) { return Compile(LoadScene(testing::ExamplePath(name))); }
 
@@ -131,14 +129,9 @@ TEST(GeneralPathCalibrationTest, WithoutNoiseRecoversEachBranchsLensGapExactly) 
       EXPECT_EQ(report.find(lens, "focal_length")->status,
                 focal_lengths_too ? ParameterStatus::kFitted : ParameterStatus::kNotFitted);
     }
-    for (const VirtualLayer& layer : built.layers) {
-      const CalibratedPanel* p = display.find(layer.name);
-      EXPECT_NEAR(p->distance, layer.panel_distance, 1e-9) << layer.name;
-      EXPECT_NEAR(p->offset_x, layer.panel.offset[0], 1e-9) << layer.name;
-      EXPECT_NEAR(p->offset_y, layer.panel.offset[1], 1e-9) << layer.name;
-      EXPECT_NEAR(p->rotation, layer.panel.rotation, 1e-9) << layer.name;
+    testing::ExpectPlacementsOf(built, display, 1e-9);
+    for (const VirtualLayer& layer : built.layers)
       EXPECT_NEAR(report.find(layer.name, "virtual_depth")->value, layer.diopters, 1e-7) << layer.name;
-    }
   }
 }
 
@@ -158,7 +151,7 @@ TEST(GeneralPathCalibrationTest, RecoversEachBranchsLensGapWithinTheNoise) {
     json copy = built_scene;
     const double at = std::stod(testing::ElementNamed(copy, o.name)["gap"].get<std::string>());  // "0.0155 m"
     parameters.push_back({o.name + " gap", 1e-6, [o, at](json& s, double d) {
-                            testing::ElementNamed(s, o.name)["gap"] = Meters(at + d);
+                            testing::ElementNamed(s, o.name)["gap"] = testing::Exact(at + d, "m");
                           }});
   }
   for (const VirtualLayer& layer : built.layers) {
@@ -166,16 +159,16 @@ TEST(GeneralPathCalibrationTest, RecoversEachBranchsLensGapWithinTheNoise) {
     const double s0 = layer.panel_distance, x0 = layer.panel.offset[0], y0 = layer.panel.offset[1],
                  r0 = layer.panel.rotation;
     parameters.push_back({name + " distance", 1e-6, [=](json& s, double d) {
-                            testing::ElementNamed(s, name)["distance"] = Meters(s0 + d);
+                            testing::ElementNamed(s, name)["distance"] = testing::Exact(s0 + d, "m");
                           }});
     parameters.push_back({name + " offset_x", 1e-6, [=](json& s, double d) {
-                            testing::ElementNamed(s, name)["offset"] = {Meters(x0 + d), Meters(y0)};
+                            testing::ElementNamed(s, name)["offset"] = {testing::Exact(x0 + d, "m"), testing::Exact(y0, "m")};
                           }});
     parameters.push_back({name + " offset_y", 1e-6, [=](json& s, double d) {
-                            testing::ElementNamed(s, name)["offset"] = {Meters(x0), Meters(y0 + d)};
+                            testing::ElementNamed(s, name)["offset"] = {testing::Exact(x0, "m"), testing::Exact(y0 + d, "m")};
                           }});
     parameters.push_back({name + " rotation", 1e-5, [=](json& s, double d) {
-                            testing::ElementNamed(s, name)["rotation"] = Radians(r0 + d);
+                            testing::ElementNamed(s, name)["rotation"] = testing::Exact(r0 + d, "rad");
                           }});
   }
   const std::vector<double> expected = testing::BruteForceSigmas(built_scene, parameters, AnglesOnly(0), sigma);

@@ -14,7 +14,6 @@ namespace layerlab::testing {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
-constexpr double kArcmin = kDeg / 60.0;
 
 }  // namespace
 
@@ -27,16 +26,10 @@ std::vector<PanelTruth> ExampleTruth() {
   };
 }
 
-std::string Meters(double m) {
+std::string Exact(double value, const std::string& unit) {
   char buf[64];
-  std::snprintf(buf, sizeof buf, "%.17g m", m);
-  return buf;
-}
-
-std::string Radians(double rad) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.17g rad", rad);
-  return buf;
+  std::snprintf(buf, sizeof buf, "%.17g ", value);
+  return buf + unit;
 }
 
 nlohmann::json BuiltScene(const DisplaySystem& designed, const std::vector<PanelTruth>& truth,
@@ -48,8 +41,8 @@ nlohmann::json BuiltScene(const DisplaySystem& designed, const std::vector<Panel
     for (const PanelTruth& t : truth)
       if (t.name == layer.name) {
         change = t.distance_change;
-        panel["offset"] = {Meters(t.offset_x), Meters(t.offset_y)};
-        panel["rotation"] = Radians(t.rotation);
+        panel["offset"] = {Exact(t.offset_x, "m"), Exact(t.offset_y, "m")};
+        panel["rotation"] = Exact(t.rotation, "rad");
       }
     const bool behind_optics =
         std::any_of(layer.path.begin(), layer.path.end(), [](const PathStep& s) { return s.power != 0; });
@@ -57,8 +50,8 @@ nlohmann::json BuiltScene(const DisplaySystem& designed, const std::vector<Panel
       panel.erase("virtual_depth");
       panel[behind_optics ? "distance" : "gap"] = 0;  // set below
     }
-    if (panel.contains("distance")) panel["distance"] = Meters(layer.panel_distance + change);
-    else panel["gap"] = Meters(layer.position - (layer.path.empty() ? 0.0 : layer.path.back().position.value_or(0.0)) + change);
+    if (panel.contains("distance")) panel["distance"] = Exact(layer.panel_distance + change, "m");
+    else panel["gap"] = Exact(layer.position - (layer.path.empty() ? 0.0 : layer.path.back().position.value_or(0.0)) + change, "m");
   }
   for (const OpticTruth& t : optics) {
     nlohmann::json& optic = ElementNamed(scene, t.name);
@@ -67,9 +60,9 @@ nlohmann::json BuiltScene(const DisplaySystem& designed, const std::vector<Panel
         for (size_t j = 0; j < layer.path.size(); ++j)
           if (layer.path[j].element == t.name) {
             const double before = j == 0 ? 0.0 : layer.path[j - 1].position.value_or(0.0);
-            optic["gap"] = Meters(*layer.path[j].position - before + t.gap_change);
+            optic["gap"] = Exact(*layer.path[j].position - before + t.gap_change, "m");
           }
-    if (t.focal_length) optic["focal_length"] = Meters(*t.focal_length);
+    if (t.focal_length) optic["focal_length"] = Exact(*t.focal_length, "m");
   }
   return scene;
 }
@@ -77,6 +70,17 @@ nlohmann::json BuiltScene(const DisplaySystem& designed, const std::vector<Panel
 DisplaySystem BuiltSystem(const DisplaySystem& designed, const std::vector<PanelTruth>& truth,
                           const std::vector<OpticTruth>& optics) {
   return CompileJson(BuiltScene(designed, truth, optics), designed.file);
+}
+
+void ExpectPlacementsOf(const DisplaySystem& built, const CalibratedDisplay& display, double tolerance) {
+  for (const VirtualLayer& layer : built.layers) {
+    const CalibratedPanel* p = display.find(layer.name);
+    ASSERT_NE(p, nullptr) << layer.name;
+    EXPECT_NEAR(p->distance, layer.panel_distance, tolerance) << layer.name;
+    EXPECT_NEAR(p->offset_x, layer.panel.offset[0], tolerance) << layer.name;
+    EXPECT_NEAR(p->offset_y, layer.panel.offset[1], tolerance) << layer.name;
+    EXPECT_NEAR(p->rotation, layer.panel.rotation, tolerance) << layer.name;
+  }
 }
 
 SyntheticSetup ExampleSetup() {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <functional>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -15,6 +16,10 @@
 #include "calibration/synthetic_measurements.h"
 
 namespace layerlab::testing {
+
+inline constexpr double kArcmin = std::numbers::pi / 180.0 / 60.0;
+// A recovered value may lie this many (independently derived) standard deviations from the truth.
+inline constexpr double kSigmas = 4.0;
 
 // How one panel is really built, against the scene as designed.
 struct PanelTruth {
@@ -59,6 +64,9 @@ struct SyntheticSetup {
 // 17 levels with 0.3 % noise.
 SyntheticSetup ExampleSetup();
 
+// Every panel's distance, offset and rotation in `display` are those of `built` to within `tolerance` (SI).
+void ExpectPlacementsOf(const DisplaySystem& built, const CalibratedDisplay& display, double tolerance);
+
 // examples/per_branch_magnifiers_measurements.json: each branch's lens off its
 // designed gap, every panel moved, offset and turned; the example's camera
 // from five positions (the center and 3 mm to each side), no luminance data.
@@ -100,8 +108,7 @@ struct SceneParameter {
 std::vector<double> BruteForceSigmas(const nlohmann::json& built_scene, const std::vector<SceneParameter>& parameters,
                                      const SyntheticSetup& setup, double sigma);
 
-// A length or angle as the scene reads it ("0.0123456789 m", "0.25 deg").
-std::string Meters(double m);
-std::string Radians(double rad);
+// A value as the scene reads it, to the last bit: Exact(0.0155, "m") is "0.015500000000000000 m".
+std::string Exact(double value, const std::string& unit);
 
 }  // namespace layerlab::testing
