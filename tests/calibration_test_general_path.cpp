@@ -350,5 +350,23 @@ TEST(GeneralPathCalibrationTest, PanelGapBehindAFoldFollowsTheFittedLens) {
     EXPECT_NEAR(calibrated.layers[k].position, built.layers[k].position, 1e-9) << built.layers[k].name;
 }
 
+// Through a 4f relay the images are inverted (B < 0): the fit sees the panels
+// turned by 180 degrees and still recovers them, to the last digits without noise.
+TEST(GeneralPathCalibrationTest, RecoversPanelsSeenInvertedThroughARelay) {
+  const DisplaySystem designed = Example("relay_magnifier.json");
+  ASSERT_TRUE(designed.layers[0].inverted && designed.layers[1].inverted);
+  const std::vector<PanelTruth> truth = {{"front", 0.2e-3, 0.1e-3, -0.2e-3, 0.2 * std::numbers::pi / 180, 0, 0, 0},
+                                         {"rear", -0.3e-3, -0.15e-3, 0.1e-3, -0.1 * std::numbers::pi / 180, 0, 0, 0}};
+  const DisplaySystem built = testing::BuiltSystem(designed, truth);
+  const Measurements m = testing::SyntheticMeasurements(built, truth, AnglesOnly(0));
+  CalibratedDisplay display;
+  const CalibrationReport report = Calibrate(designed, m, CalibrationOptions{}, &display);
+  ASSERT_TRUE(report.IsSolutionUsable()) << report.message;
+  EXPECT_GT(report.marker_rms_before, 5 * kArcmin);
+  EXPECT_LT(report.marker_rms_after, 1e-10) << report.FullReport();
+  testing::ExpectPlacementsOf(built, display, 1e-9);
+  EXPECT_TRUE(report.warnings.empty()) << report.FullReport();
+}
+
 }  // namespace
 }  // namespace layerlab
