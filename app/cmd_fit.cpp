@@ -19,7 +19,7 @@ void AddFitCommand(CLI::App& app) {
   struct Options {
     std::string scene, measurements, out, report, loss = "none", reference = "camera";
     double marker_loss_arcmin = -1, luminance_loss = -1;
-    bool fit_focal_length = false;
+    bool fit_focal_length = false, fit_lens_gaps = false;
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("fit", "Calibrate a scene from measurements of the built display (Ceres)");
@@ -34,7 +34,11 @@ void AddFitCommand(CLI::App& app) {
                   "Luminance error, relative to the brightest reading, where the robust loss starts (default 0.02)");
   cmd->add_option("--reference", o->reference, "Eye axis: camera, or farthest-panel (centers the farthest panel)");
   cmd->add_flag("--fit-focal-length", o->fit_focal_length,
-                "Also fit the lens focal length (needs captures from two or more camera positions)");
+                "Also fit the focal length of every lens and curved mirror (needs captures from two or more camera "
+                "positions)");
+  cmd->add_flag("--fit-lens-gaps", o->fit_lens_gaps,
+                "Also fit the gap of every lens and curved mirror (needs two or more camera positions and two panels "
+                "at different depths behind it)");
   cmd->callback([o] {
     DisplaySystem system = Compile(LoadScene(o->scene));
     Measurements measurements = ReadMeasurementsFile(o->measurements);
@@ -46,6 +50,7 @@ void AddFitCommand(CLI::App& app) {
       throw Error(std::string(o->loss == ToString(options.loss) ? "--reference: " : "--loss: ") + e.message());
     }
     options.fit_focal_length = o->fit_focal_length;
+    options.fit_lens_gaps = o->fit_lens_gaps;
     if (o->marker_loss_arcmin >= 0) options.marker_loss_scale = o->marker_loss_arcmin / 60.0 * std::numbers::pi / 180.0;
     if (o->luminance_loss >= 0) options.luminance_loss_scale = o->luminance_loss;
 

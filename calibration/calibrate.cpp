@@ -1,3 +1,5 @@
+#include <algorithm>
+
 #include <ceres/loss_function.h>
 
 #include "calibration/fit_steps.h"
@@ -25,6 +27,12 @@ const CalibratedPanel* CalibratedDisplay::find(const std::string& panel) const {
   return nullptr;
 }
 
+const CalibratedOptic* CalibratedDisplay::find_optic(const std::string& name) const {
+  for (const CalibratedOptic& o : optics)
+    if (o.name == name) return &o;
+  return nullptr;
+}
+
 CalibrationReport Calibrate(const DisplaySystem& system, const Measurements& measurements,
                             const CalibrationOptions& options, CalibratedDisplay* display) {
   CalibrationReport report;
@@ -44,12 +52,12 @@ CalibrationReport Calibrate(const DisplaySystem& system, const Measurements& mea
   }
 
   *display = CalibratedDisplay{};
-  display->lens = system.lens;
-  display->focal_length = system.focal_length;
   for (const VirtualLayer& layer : system.layers) {
     CalibratedPanel panel;
     panel.name = layer.name;
+    panel.behind_optics = std::any_of(layer.path.begin(), layer.path.end(), [](const PathStep& s) { return s.power != 0; });
     panel.distance = layer.panel_distance;
+    panel.gap = layer.position - (layer.path.empty() ? 0.0 : layer.path.back().position.value_or(0.0));
     panel.offset_x = layer.panel.offset[0];
     panel.offset_y = layer.panel.offset[1];
     panel.rotation = layer.panel.rotation;

@@ -27,13 +27,17 @@ double Rounded(double value) {
   return std::strtod(buf, nullptr);
 }
 
-// Replaces keys in place; "distance" takes the place of "virtual_depth"; new
-// keys go before the element's connection ("next"), or last.
-void Update(ordered_json& element, const std::vector<std::pair<std::string, ordered_json>>& values) {
+// Replaces keys in place; the placement (`placement_key`, if any) takes the
+// place of "virtual_depth"; new keys go before the element's connection
+// ("next"), or last.
+void Update(ordered_json& element, const std::vector<std::pair<std::string, ordered_json>>& values,
+            const std::string& placement_key = "") {
   std::map<std::string, ordered_json> pending(values.begin(), values.end());
   std::set<std::string> present;
   for (auto it = element.begin(); it != element.end(); ++it) present.insert(it.key());
-  if (pending.count("distance")) present.insert("virtual_depth");
+  // The placement waits for the "virtual_depth" it replaces, wherever that stands ("next" may come first).
+  const bool replaces = !placement_key.empty() && pending.count(placement_key) && element.contains("virtual_depth");
+  if (replaces) present.insert(placement_key);
   ordered_json updated = ordered_json::object();
   auto emit_new = [&] {
     for (const auto& [key, value] : values)
@@ -42,9 +46,9 @@ void Update(ordered_json& element, const std::vector<std::pair<std::string, orde
   for (auto it = element.begin(); it != element.end(); ++it) {
     const std::string& key = it.key();
     if (key == "next") emit_new();
-    if (key == "virtual_depth" && pending.count("distance")) {
-      updated["distance"] = pending["distance"];
-      pending.erase("distance");
+    if (key == "virtual_depth" && replaces) {
+      updated[placement_key] = pending[placement_key];
+      pending.erase(placement_key);
     } else if (pending.count(key)) {
       updated[key] = pending[key];
       pending.erase(key);
@@ -69,7 +73,12 @@ ordered_json CalibratedSceneDocument(const ordered_json& scene, const std::strin
   ordered_json out = scene;
   for (const CalibratedPanel& panel : display.panels) {
     std::vector<std::pair<std::string, ordered_json>> values;
-    if (panel.geometry_measured || display.focal_length_fitted) values.push_back({"distance", WithUnit(panel.distance, 1e3, "mm")});
+    ordered_json& element = ElementNamed(out, file, panel.name);
+    // Its place as the scene gives it: a "gap" stays a gap; "distance" and
+    // "virtual_depth" become the distance from the optics in front (a gap without any).
+    const std::string key = element.contains("gap") || !panel.behind_optics ? "gap" : "distance";
+    if (panel.geometry_measured || panel.optics_fitted)
+      values.push_back({key, WithUnit(key == "gap" ? panel.gap : panel.distance, 1e3, "mm")});
     if (panel.geometry_measured) {
       values.push_back({"offset", {WithUnit(panel.offset_x, 1e3, "mm"), WithUnit(panel.offset_y, 1e3, "mm")}});
       values.push_back({"rotation", WithUnit(panel.rotation, 180.0 / std::numbers::pi, "deg")});
@@ -78,10 +87,14 @@ ordered_json CalibratedSceneDocument(const ordered_json& scene, const std::strin
       values.push_back({"gamma", Rounded(panel.gamma)});
       values.push_back({"black_level", Rounded(panel.black_level)});
     }
-    if (!values.empty()) Update(ElementNamed(out, file, panel.name), values);
+    if (!values.empty()) Update(element, values, key);
   }
-  if (display.focal_length_fitted)
-    Update(ElementNamed(out, file, display.lens), {{"focal_length", WithUnit(display.focal_length, 1e3, "mm")}});
+  for (const CalibratedOptic& optic : display.optics) {
+    std::vector<std::pair<std::string, ordered_json>> values;
+    if (optic.gap_fitted) values.push_back({"gap", WithUnit(optic.gap, 1e3, "mm")});
+    if (optic.focal_length_fitted) values.push_back({"focal_length", WithUnit(optic.focal_length, 1e3, "mm")});
+    if (!values.empty()) Update(ElementNamed(out, file, optic.name), values);
+  }
   return out;
 }
 

@@ -1,10 +1,12 @@
 // Calibration of a built display from measurements (docs/measurements-format.md):
 // options in, a report out, in the manner of ceres::Solver.
 //
-// Geometry (marker_model.h), per panel with markers: its distance from the lens
-// (which sets its magnification and image depth), its lateral offset and its
-// in-plane rotation; optionally the lens focal length, shared by all panels;
-// the camera's pointing when the axis is referenced to the farthest panel. The
+// Geometry (marker_model.h), per panel with markers: its distance from the
+// nearest lens or curved mirror in front of it (which sets its magnification
+// and image depth), its lateral offset and its in-plane rotation; optionally
+// the focal lengths and gaps of the lenses and curved mirrors on the paths,
+// each shared by every panel behind it; the camera's pointing when the axis is
+// referenced to the farthest panel. The
 // flips are known from the scene (reversed panels, mirrored branches) and are
 // not fitted, but a panel whose markers fit a mirror image far better is reported.
 // Photometry (luminance_model.h), per panel with luminance data: the maximum
@@ -43,10 +45,15 @@ std::string ToString(AxisReference reference);
 AxisReference AxisReferenceFromString(const std::string& name);  // throws layerlab::Error
 
 struct CalibrationOptions {
-  // Also fit the main lens's focal length. Only parallax tells it from the
+  // Also fit the focal length of every lens and curved mirror on the paths
+  // (the magnifier's, on the paper's layout). Only parallax tells it from the
   // panel distances: the markers must be seen from more than one camera
   // position, or it keeps its scene value and the report says so.
   bool fit_focal_length = false;
+  // Also fit the gap of every lens and curved mirror (from the element before
+  // it; the magnifier placed by the eye's eye_relief: from the pupil). Again
+  // only parallax sees it, and only with two panels at different depths behind it.
+  bool fit_lens_gaps = false;
   // Discounts outliers (a misdetected marker, a reading of the wrong pattern).
   // Turn it on when the report counts markers far beyond the noise.
   RobustLoss loss = RobustLoss::kNone;
@@ -69,13 +76,13 @@ enum class ParameterStatus {
   kFitted,
   kUndetermined,  // the data cannot determine it: held at its scene value
   kReference,     // fixed by the axis reference
-  kNotFitted,     // not asked for (the focal length without fit_focal_length)
+  kNotFitted,     // not asked for (a focal length without fit_focal_length, a gap without fit_lens_gaps)
 };
 std::string ToString(ParameterStatus status);
 
 struct ParameterEstimate {
-  std::string element;   // a panel, the lens, or "camera"
-  std::string quantity;  // distance, virtual_depth, offset_x, offset_y, rotation, focal_length,
+  std::string element;   // a panel, a lens or curved mirror, or "camera"
+  std::string quantity;  // distance, virtual_depth, offset_x, offset_y, rotation, focal_length, gap,
                          // pan, tilt, roll, max_luminance, black_level, gamma
   double scene_value = 0;          // SI (m, rad, D); max_luminance in the measurements' unit
   double value = 0;                // after the fit
@@ -118,20 +125,32 @@ struct CalibrationReport {
 struct CalibratedPanel {
   std::string name;
   bool geometry_measured = false, luminance_measured = false;
-  double distance = 0;                  // m, from the lens
+  // Some element with power in front of it had its focal length or gap fitted:
+  // its physical place is what stays, so it is written even without markers.
+  bool optics_fitted = false;
+  bool behind_optics = false;           // some lens or curved mirror lies in front of it
+  double distance = 0;                  // m, from the nearest of them (from the pupil without one)
+  double gap = 0;                       // m, from the element before it on its path
   double offset_x = 0, offset_y = 0;    // m, in the panel plane, eye-space x right, y up
   double rotation = 0;                  // rad, counterclockwise as the eye sees it
   double gamma = 0, black_level = 0;
   double max_luminance = 0;             // in the measurements' unit; 0 when not measured
 };
 
-struct CalibratedDisplay {
-  std::string lens;
+// A lens or curved mirror on the paths.
+struct CalibratedOptic {
+  std::string name;
   double focal_length = 0;  // m
-  bool focal_length_fitted = false;
+  double gap = 0;           // m, from the element before it (the pupil for the magnifier placed by eye_relief)
+  bool focal_length_fitted = false, gap_fitted = false;
+};
+
+struct CalibratedDisplay {
+  std::vector<CalibratedOptic> optics;  // every lens and curved mirror on a measured path, nearest the eye first
   std::vector<CalibratedPanel> panels;  // in the system's layer order (farthest first)
 
   const CalibratedPanel* find(const std::string& panel) const;
+  const CalibratedOptic* find_optic(const std::string& name) const;
 };
 
 // Fits `system` (compiled from the scene as designed) to `measurements`.

@@ -15,7 +15,8 @@ struct Shown {
 
 Shown ShownAs(const std::string& quantity) {
   constexpr double kDeg = 180.0 / std::numbers::pi;
-  if (quantity == "distance" || quantity == "focal_length" || quantity == "offset_x" || quantity == "offset_y")
+  if (quantity == "distance" || quantity == "focal_length" || quantity == "gap" || quantity == "offset_x" ||
+      quantity == "offset_y")
     return {"mm", 1e3, 4};
   if (quantity == "virtual_depth") return {"D", 1, 4};
   if (quantity == "rotation") return {"deg", kDeg, 4};
@@ -74,7 +75,7 @@ std::string CalibrationReport::FullReport() const {
   if (options.loss != RobustLoss::kNone)
     out += " (scales " + Arcmin(options.marker_loss_scale) + ", " + Percent(options.luminance_loss_scale) + ")";
   out += "; axis reference " + ToString(options.reference) + "; focal length " +
-         (options.fit_focal_length ? "fitted" : "fixed") + "\n";
+         (options.fit_focal_length ? "fitted" : "fixed") + (options.fit_lens_gaps ? "; lens gaps fitted" : "") + "\n";
   if (markers) {
     out += "geometry    " + std::to_string(markers) + " markers in " + std::to_string(captures) + " capture" +
            (captures > 1 ? "s" : "") + " from " + std::to_string(camera_positions) + " camera position" +
@@ -135,7 +136,8 @@ nlohmann::json CalibrationReport::ToJson() const {
                   {"marker_loss_scale_arcmin", ArcminFromRadians(options.marker_loss_scale)},
                   {"luminance_loss_scale", options.luminance_loss_scale},
                   {"axis_reference", ToString(options.reference)},
-                  {"fit_focal_length", options.fit_focal_length}};
+                  {"fit_focal_length", options.fit_focal_length},
+                  {"fit_lens_gaps", options.fit_lens_gaps}};
   j["geometry"] = {{"markers", markers},
                    {"captures", captures},
                    {"camera_positions", camera_positions},

@@ -23,23 +23,41 @@ struct MarkerDatum {
   Location where;
 };
 
+// A lens or curved mirror on the path of some panel with markers.
+struct Optic {
+  std::string name;
+  double focal_length = 0;  // as designed, m
+  double position = 0;      // m of path length from the pupil
+  double gap = 0;           // from the element before it (the pupil), m
+  std::string before;       // that element's name; "" for the pupil
+  bool placed_before = true;  // whether that element has a place of its own, so that "gap" can be written
+  std::vector<int> layers;  // whose path holds it
+  int focal = -1, gap_index = -1;  // into the ScalarFit
+};
+
+// The residual of one marker. Parameter blocks: distance, offset_x, offset_y,
+// rotation, pan, tilt, roll, then a gap and a focal length per element of `optics`.
 struct MarkerCost {
   MarkerPlacement placement;
-  double eye_relief, angle_x, angle_y;
+  LayerOptics optics;
+  double angle_x, angle_y;
 
   template <typename T>
-  bool operator()(const T* f, const T* s, const T* ox, const T* oy, const T* rotation, const T* pan, const T* tilt,
-                  const T* roll, T* residual) const {
-    const MarkerParameters<T> q{*f, *s, *ox, *oy, *rotation, *pan, *tilt, *roll};
+  bool operator()(T const* const* p, T* residual) const {
+    MarkerParameters<T> q{p[0][0], p[1][0], p[2][0], p[3][0], p[4][0], p[5][0], p[6][0], {}, {}};
+    for (size_t i = 0; i < optics.element.size(); ++i) {
+      q.gaps.push_back(p[7 + 2 * i][0]);
+      q.focal_lengths.push_back(p[8 + 2 * i][0]);
+    }
     T angle[2];
-    PredictVisualAngle(q, eye_relief, placement, angle);
+    PredictVisualAngle(q, optics, placement, angle);
     residual[0] = angle[0] - angle_x;
     residual[1] = angle[1] - angle_y;
     return true;
   }
 };
 
-using MarkerCostFunction = ceres::AutoDiffCostFunction<MarkerCost, 2, 1, 1, 1, 1, 1, 1, 1, 1>;
+using MarkerCostFunction = ceres::DynamicAutoDiffCostFunction<MarkerCost, 4>;
 
 // Indices into the ScalarFit of one panel's parameters.
 struct PanelIndices {
@@ -48,7 +66,60 @@ struct PanelIndices {
 
 std::string Quoted(const std::string& name) { return "\"" + name + "\""; }
 
-double Diopters(double s, double f, double e) { return (f - s) / (s * f + e * (f - s)); }
+// The lenses and curved mirrors on the paths of `measured` layers, nearest the
+// eye first, and each layer's view of them (marker_model.h's c_i).
+std::vector<Optic> FindOptics(const DisplaySystem& system, const std::vector<bool>& measured,
+                              std::vector<LayerOptics>* layer_optics) {
+  std::vector<Optic> optics;
+  layer_optics->assign(system.layers.size(), {});
+  for (size_t k = 0; k < system.layers.size(); ++k) {
+    if (!measured[k]) continue;
+    const std::vector<PathStep>& path = system.layers[k].path;
+    double previous_optic = 0;
+    for (size_t j = 0; j < path.size(); ++j) {
+      const PathStep& step = path[j];
+      if (step.power == 0) continue;
+      auto it = std::find_if(optics.begin(), optics.end(), [&](const Optic& o) { return o.name == step.element; });
+      if (it == optics.end()) {
+        Optic o;
+        o.name = step.element;
+        o.focal_length = 1.0 / step.power;
+        o.position = *step.position;
+        // The nearest element before it with a place (the magnifier placed by eye_relief may follow an unplaced one).
+        double placed_at = 0;
+        for (size_t i = j; i-- > 0;)
+          if (path[i].position) {
+            placed_at = *path[i].position;
+            break;
+          }
+        o.gap = o.position - placed_at;
+        o.before = j > 0 ? path[j - 1].element : "";
+        o.placed_before = j == 0 || path[j - 1].position.has_value();
+        optics.push_back(o);
+        it = optics.end() - 1;
+      }
+      it->layers.push_back(static_cast<int>(k));
+      (*layer_optics)[k].element.push_back(static_cast<int>(it - optics.begin()));
+      (*layer_optics)[k].fixed_spacing.push_back(it->position - previous_optic - it->gap);
+      previous_optic = it->position;
+    }
+  }
+  return optics;
+}
+
+// One layer's parameters, each read through `value` from its index in the fit.
+template <typename T, typename Value>
+MarkerParameters<T> LayerParameters(const PanelIndices& p, int pan, int tilt, int roll, const LayerOptics& layer_optics,
+                                    const std::vector<Optic>& optics, Value value) {
+  MarkerParameters<T> q{value(p.distance), value(p.offset_x), value(p.offset_y), value(p.rotation),
+                        value(pan),        value(tilt),       value(roll),       {},
+                        {}};
+  for (int o : layer_optics.element) {
+    q.gaps.push_back(value(optics[o].gap_index));
+    q.focal_lengths.push_back(value(optics[o].focal));
+  }
+  return q;
+}
 
 // Markers that fit a mirror image of the panel far better than the panel as
 // the scene mounts it: a "reversed" or a combiner fold that is wrong.
@@ -83,12 +154,55 @@ void CheckMirroring(const DisplaySystem& system, const std::vector<std::vector<c
   }
 }
 
+// Every panel's place with the optics as fitted: a fitted gap moves everything
+// behind the element (gaps count from the element before), a panel keeps its
+// distance from the nearest element with power in front of it.
+void PlaceAsFitted(const DisplaySystem& system, const std::vector<Optic>& optics, CalibratedDisplay* display) {
+  struct Walked {
+    double position = 0;      // of the panel, fitted
+    double before = 0;        // of the element before it, fitted (0: the pupil)
+    bool before_is_panel = false;
+    std::string before_name;
+  };
+  std::map<std::string, double> panel_at;
+  std::vector<Walked> walked(system.layers.size());
+  for (size_t k = 0; k < system.layers.size(); ++k) {
+    const VirtualLayer& layer = system.layers[k];
+    CalibratedPanel& panel = display->panels[k];
+    double shift = 0, optic_at = 0;
+    for (const PathStep& step : layer.path) {
+      if (step.power != 0) {
+        const CalibratedOptic* fitted = display->find_optic(step.element);
+        auto designed = std::find_if(optics.begin(), optics.end(), [&](const Optic& o) { return o.name == step.element; });
+        if (fitted && designed != optics.end()) {
+          shift += fitted->gap - designed->gap;
+          panel.optics_fitted = panel.optics_fitted || fitted->gap_fitted || fitted->focal_length_fitted;
+        }
+        optic_at = *step.position + shift;
+      }
+      if (step.kind == ElementKind::kPanel) {
+        walked[k].before_is_panel = true;
+        walked[k].before_name = step.element;
+      } else {
+        walked[k].before_is_panel = false;
+        walked[k].before = step.position.value_or(0.0) + shift;
+      }
+    }
+    walked[k].position = optic_at + panel.distance;
+    panel_at[layer.name] = walked[k].position;
+  }
+  for (size_t k = 0; k < system.layers.size(); ++k) {
+    const Walked& w = walked[k];
+    display->panels[k].gap = w.position - (w.before_is_panel ? panel_at.at(w.before_name) : w.before);
+  }
+}
+
 }  // namespace
 
 bool FitGeometry(const DisplaySystem& system, const Measurements& measurements, const CalibrationOptions& options,
                  CalibratedDisplay* display, CalibrationReport* report) {
-  const double e = system.eye.eye_relief, f0 = system.focal_length;
   const int layer_count = static_cast<int>(system.layers.size());
+  const bool magnifier = !system.lens.empty();  // the paper's layout: one lens, the same on every path
 
   std::vector<MarkerDatum> data;
   std::set<std::pair<double, double>> positions;
@@ -111,6 +225,7 @@ bool FitGeometry(const DisplaySystem& system, const Measurements& measurements, 
   for (const MarkerDatum& d : data) by_layer[d.layer].push_back(&d);
   std::vector<PointSpread> spread(layer_count);
   std::vector<int> positions_seen(layer_count, 0);
+  std::vector<bool> measured(layer_count);
   for (int k = 0; k < layer_count; ++k) {
     std::vector<Point2> pixels;
     std::set<std::pair<double, double>> seen_from;
@@ -121,7 +236,10 @@ bool FitGeometry(const DisplaySystem& system, const Measurements& measurements, 
     }
     spread[k] = Spread(pixels);
     positions_seen[k] = static_cast<int>(seen_from.size());
+    measured[k] = !by_layer[k].empty();
   }
+  std::vector<LayerOptics> layer_optics;
+  std::vector<Optic> optics = FindOptics(system, measured, &layer_optics);
 
   const bool farthest_reference = options.reference == AxisReference::kFarthestPanel;
   if (farthest_reference && spread[0].distinct < 2) {
@@ -144,7 +262,12 @@ bool FitGeometry(const DisplaySystem& system, const Measurements& measurements, 
     fit.Hold(index);
     status[index] = why;
   };
-  const int focal = add({"the focal length of " + Quoted(system.lens), f0, 0, e * (1 + 1e-6), std::nullopt}, "focal_length");
+  for (Optic& o : optics) {
+    std::optional<double> beyond_the_eye;  // the magnifier's focal point stays behind the eye
+    if (magnifier) beyond_the_eye = system.eye.eye_relief * (1 + 1e-6);
+    o.focal = add({"the focal length of " + Quoted(o.name), o.focal_length, 0, beyond_the_eye, std::nullopt}, "focal_length");
+    o.gap_index = add({"the gap of " + Quoted(o.name), o.gap, 0, std::nullopt, std::nullopt}, "gap");
+  }
   const int pan = add({"the camera's pan", 0, 1, {}, {}}, "pan");
   const int tilt = add({"the camera's tilt", 0, 1, {}, {}}, "tilt");
   const int roll = add({"the camera's roll", 0, 1, {}, {}}, "roll");
@@ -158,8 +281,9 @@ bool FitGeometry(const DisplaySystem& system, const Measurements& measurements, 
     }
     const bool reference = farthest_reference && k == 0;
     std::optional<double> beyond_focus;
-    if (!options.fit_focal_length) beyond_focus = f0;
-    index[k].distance = add({"the distance of " + panel, layer.panel_distance, 2, 1e-3 * f0, beyond_focus}, "distance");
+    if (magnifier && !options.fit_focal_length) beyond_focus = system.focal_length;
+    const double closest = 1e-3 * (magnifier ? system.focal_length : layer.panel_distance);
+    index[k].distance = add({"the distance of " + panel, layer.panel_distance, 2, closest, beyond_focus}, "distance");
     index[k].rotation = add({"the rotation of " + panel, reference ? 0.0 : layer.panel.rotation, 3, {}, {}}, "rotation");
     index[k].offset_x = add({"the offset x of " + panel, reference ? 0.0 : layer.panel.offset[0], 4, {}, {}}, "offset_x");
     index[k].offset_y = add({"the offset y of " + panel, reference ? 0.0 : layer.panel.offset[1], 4, {}, {}}, "offset_y");
@@ -184,18 +308,30 @@ bool FitGeometry(const DisplaySystem& system, const Measurements& measurements, 
                                          "direction; add markers off the line");
     }
   }
-  if (!options.fit_focal_length) {
-    hold(focal, ParameterStatus::kNotFitted);
-  } else {
+  // Only parallax tells an element's focal length or gap from the distances of the panels behind it.
+  for (const Optic& o : optics) {
     bool parallax = false;
-    for (int k = 0; k < layer_count; ++k)
+    for (int k : o.layers)
       parallax = parallax || (index[k].distance >= 0 && !fit.held(index[k].distance) && positions_seen[k] >= 2);
-    if (!parallax) {
-      hold(focal, ParameterStatus::kUndetermined);
-      report->warnings.push_back("the focal length cannot be told from the panel distances while each panel is seen "
-                                 "from one camera position only: it keeps its scene value (" +
-                                 ShowValue("focal_length", f0) + "); add captures from other camera positions "
-                                 "(\"camera_position\") to fit it");
+    const std::string named = magnifier ? "" : " of " + Quoted(o.name);
+    auto no_parallax = [&](int i, const std::string& what) {
+      hold(i, ParameterStatus::kUndetermined);
+      report->warnings.push_back(what + " cannot be told from the panel distances while each panel " +
+                                 (magnifier ? "" : "behind it ") + "is seen from one camera position only: it keeps "
+                                 "its scene value (" + ShowValue(quantity[i], fit.parameter(i).start) + "); add "
+                                 "captures from other camera positions (\"camera_position\") to fit it");
+    };
+    if (!options.fit_focal_length) hold(o.focal, ParameterStatus::kNotFitted);
+    else if (!parallax) no_parallax(o.focal, "the focal length" + named);
+    if (!options.fit_lens_gaps) {
+      hold(o.gap_index, ParameterStatus::kNotFitted);
+    } else if (!o.placed_before) {
+      hold(o.gap_index, ParameterStatus::kNotFitted);
+      report->warnings.push_back("the gap of " + Quoted(o.name) + " is not fitted: " + Quoted(o.before) +
+                                 " before it has no place of its own (a flat element without \"gap\"), so no gap "
+                                 "could be written; give " + Quoted(o.before) + " a \"gap\"");
+    } else if (!parallax) {
+      no_parallax(o.gap_index, "the gap of " + Quoted(o.name));
     }
   }
   if (!farthest_reference)
@@ -203,9 +339,13 @@ bool FitGeometry(const DisplaySystem& system, const Measurements& measurements, 
 
   for (const MarkerDatum& d : data) {
     const PanelIndices& p = index[d.layer];
-    fit.AddResidual(new MarkerCostFunction(new MarkerCost{d.placement, e, d.angle_x, d.angle_y}),
-                    MakeLoss(options.loss, options.marker_loss_scale),
-                    {focal, p.distance, p.offset_x, p.offset_y, p.rotation, pan, tilt, roll});
+    const LayerOptics& path = layer_optics[d.layer];
+    auto* cost = new MarkerCostFunction(new MarkerCost{d.placement, path, d.angle_x, d.angle_y});
+    std::vector<int> blocks = {p.distance, p.offset_x, p.offset_y, p.rotation, pan, tilt, roll};
+    for (int o : path.element) blocks.push_back(optics[o].gap_index), blocks.push_back(optics[o].focal);
+    for (size_t i = 0; i < blocks.size(); ++i) cost->AddParameterBlock(1);
+    cost->SetNumResiduals(2);
+    fit.AddResidual(cost, MakeLoss(options.loss, options.marker_loss_scale), blocks);
   }
 
   ScalarFitOptions fit_options;
@@ -227,36 +367,51 @@ bool FitGeometry(const DisplaySystem& system, const Measurements& measurements, 
                                JoinWords(partners, " and ") + " without changing any residual): it keeps its scene "
                                "value (" + ShowValue(quantity[u.index], fit.parameter(u.index).start) + ")");
   }
-  const double f = fit.value(focal);
-  for (int k = 0; k < layer_count; ++k)
-    if (index[k].distance >= 0 && fit.value(index[k].distance) > f) {
+
+  // The layer's parameters as designed (seen by an unturned camera) and as fitted.
+  auto parameters_before = [&](int k) {
+    const VirtualLayer& layer = system.layers[k];
+    MarkerParameters<double> q = LayerParameters<double>(index[k], pan, tilt, roll, layer_optics[k], optics,
+                                                         [&](int i) { return fit.parameter(i).start; });
+    q.distance = layer.panel_distance;
+    q.offset_x = layer.panel.offset[0], q.offset_y = layer.panel.offset[1], q.rotation = layer.panel.rotation;
+    q.pan = q.tilt = q.roll = 0;
+    return q;
+  };
+  auto parameters_after = [&](int k) {
+    return LayerParameters<double>(index[k], pan, tilt, roll, layer_optics[k], optics,
+                                   [&](int i) { return fit.value(i); });
+  };
+  for (int k = 0; k < layer_count; ++k) {
+    if (by_layer[k].empty()) continue;
+    const MarkerParameters<double> q = parameters_after(k);
+    const RayTransfer<double> m = LayerTransfer(layer_optics[k], q);
+    const std::vector<int>& on_path = layer_optics[k].element;
+    if (magnifier && q.distance > q.focal_lengths[0]) {
       report->message = "the fit puts panel " + Quoted(system.layers[k].name) + " " +
-                        ShowValue("distance", fit.value(index[k].distance)) + " from the lens, beyond the focal length " +
-                        ShowValue("focal_length", f) + ": the measurements do not match this display";
+                        ShowValue("distance", q.distance) + " from the lens, beyond the focal length " +
+                        ShowValue("focal_length", q.focal_lengths[0]) + ": the measurements do not match this display";
       return false;
     }
+    if (!magnifier && (m.b == 0 || m.diopters() < 0)) {
+      report->message = "the fit images panel " + Quoted(system.layers[k].name) + " " +
+                        (m.b == 0 ? "into the pupil plane" : "behind the eye (" + FormatFixed(m.diopters(), 3) + " D)") +
+                        (on_path.empty() ? "" : ", through the optics in front of it as fitted") +
+                        ": the measurements do not match this display";
+      return false;
+    }
+  }
   report->marker_noise = result.noise;
   if (result.covariance.size() == 0)
     report->warnings.push_back("no uncertainties for the geometry: " + result.covariance_message);
 
-  // Residuals before (the scene as designed, seen by an unturned camera) and after.
-  auto parameters_before = [&](int k) {
-    const VirtualLayer& layer = system.layers[k];
-    return MarkerParameters<double>{f0, layer.panel_distance, layer.panel.offset[0], layer.panel.offset[1],
-                                    layer.panel.rotation, 0, 0, 0};
-  };
-  auto parameters_after = [&](int k) {
-    const PanelIndices& p = index[k];
-    return MarkerParameters<double>{f, fit.value(p.distance), fit.value(p.offset_x), fit.value(p.offset_y),
-                                    fit.value(p.rotation), fit.value(pan), fit.value(tilt), fit.value(roll)};
-  };
   std::vector<double> before(layer_count, 0.0), after(layer_count, 0.0), components;
   double sum_before = 0, sum_after = 0;
   std::vector<std::pair<double, const MarkerDatum*>> errors;
   for (const MarkerDatum& d : data) {
     double a[2], b[2];
-    PredictVisualAngle(parameters_before(d.layer), e, d.placement, a);
-    PredictVisualAngle(parameters_after(d.layer), e, d.placement, b);
+    PredictVisualAngle(parameters_before(d.layer), layer_optics[d.layer], d.placement, a);
+    PredictVisualAngle(parameters_after(d.layer), layer_optics[d.layer], d.placement, b);
     const double error_before = std::pow(a[0] - d.angle_x, 2) + std::pow(a[1] - d.angle_y, 2);
     const double error_after = std::pow(b[0] - d.angle_x, 2) + std::pow(b[1] - d.angle_y, 2);
     before[d.layer] += error_before, after[d.layer] += error_after;
@@ -299,10 +454,13 @@ bool FitGeometry(const DisplaySystem& system, const Measurements& measurements, 
     if (p.status == ParameterStatus::kFitted && result.covariance.size()) p.std_dev = std::sqrt(result.covariance(i, i));
     return p;
   };
-  ParameterEstimate lens = estimate(system.lens, focal);
-  report->parameters.push_back(lens);
-  display->focal_length = f;
-  display->focal_length_fitted = lens.status == ParameterStatus::kFitted;
+  auto fitted = [&](int i) { return status[i] == ParameterStatus::kFitted; };
+  display->optics.clear();
+  for (const Optic& o : optics) {
+    report->parameters.push_back(estimate(o.name, o.focal));
+    if (options.fit_lens_gaps) report->parameters.push_back(estimate(o.name, o.gap_index));
+    display->optics.push_back({o.name, fit.value(o.focal), fit.value(o.gap_index), fitted(o.focal), fitted(o.gap_index)});
+  }
   for (int k = 0; k < layer_count; ++k) {
     if (by_layer[k].empty()) continue;
     const VirtualLayer& layer = system.layers[k];
@@ -312,15 +470,25 @@ bool FitGeometry(const DisplaySystem& system, const Measurements& measurements, 
     depth.quantity = "virtual_depth";
     depth.derived = true;
     depth.scene_value = layer.diopters;
-    const double s = distance.value;
-    depth.value = Diopters(s, f, e);
+    depth.value = LayerTransfer(layer_optics[k], parameters_after(k)).diopters();
     if (distance.std_dev) {
-      // Propagated through D(s, f) with the covariance of (s, f).
-      const double q = s * f + e * (f - s), n = f - s;
-      const double ds = (-q - n * (f - e)) / (q * q), df = (q - n * (s + e)) / (q * q);
-      const Eigen::MatrixXd& c = result.covariance;
-      const double variance = ds * ds * c(p.distance, p.distance) + 2 * ds * df * c(p.distance, focal) +
-                              df * df * c(focal, focal);
+      // Propagated through D(s, g, f) with the covariance of the path's parameters (derivatives by dual numbers).
+      std::vector<int> on_path = {p.distance};
+      for (int o : layer_optics[k].element) on_path.push_back(optics[o].gap_index), on_path.push_back(optics[o].focal);
+      std::vector<double> gradient;
+      for (int wrt : on_path) {
+        using Dual = ceres::Jet<double, 1>;
+        const auto q = LayerParameters<Dual>(p, pan, tilt, roll, layer_optics[k], optics, [&](int i) {
+          Dual x(fit.value(i));
+          if (i == wrt) x.v[0] = 1;
+          return x;
+        });
+        gradient.push_back(LayerTransfer(layer_optics[k], q).diopters().v[0]);
+      }
+      double variance = 0;
+      for (size_t a = 0; a < on_path.size(); ++a)
+        for (size_t b = 0; b < on_path.size(); ++b)
+          variance += gradient[a] * gradient[b] * result.covariance(on_path[a], on_path[b]);
       depth.std_dev = std::sqrt(std::max(0.0, variance));
     }
     report->parameters.push_back(distance);
@@ -329,11 +497,12 @@ bool FitGeometry(const DisplaySystem& system, const Measurements& measurements, 
 
     CalibratedPanel& out = display->panels[k];
     out.geometry_measured = true;
-    out.distance = s;
+    out.distance = distance.value;
     out.offset_x = fit.value(p.offset_x);
     out.offset_y = fit.value(p.offset_y);
     out.rotation = fit.value(p.rotation);
   }
+  PlaceAsFitted(system, optics, display);
   if (farthest_reference)
     for (int i : {pan, tilt, roll}) report->parameters.push_back(estimate("camera", i));
   return true;

@@ -6,22 +6,28 @@
 //   l = (sx (c - left + 1/2 - cols/2) p_x,  sy (rows/2 - (r - top) - 1/2) p_y)
 // from the active region's center, in eye-space order (x right, y up): sx, sy
 // are -1 on an axis the compiled layer flips (a reversed panel, a mirrored
-// branch), which is display_system.h's pixel convention with the mirroring
-// undone. Placed at offset o and rotation theta in its plane, at distance s
-// behind a thin lens of focal length f with the pupil e in front of it, the
-// pupil center sees it at tan-angle (optics.h, Eq. 1)
-//   t0 = T (o + R(theta) l),   T = f / (s f + e (f - s))   [tan per meter],
-// and a camera displaced by c in the pupil plane sees the image plane
-// (D = (f - s) / (s f + e (f - s)) diopters) with parallax:
-//   t = t0 - c D.
+// branch, an inverted image), which is display_system.h's pixel convention
+// with the mirroring undone. Placed at offset o and rotation theta in its
+// plane, it is seen through the layer's path: the elements with power on it
+// (lenses, curved mirrors) at the path lengths their gaps set, each of focal
+// length f_i, and the panel at its distance s behind the last of them (from
+// the pupil without one) compose the ray transfer (systems/ray_transfer.h)
+//   M = T(s) L(1/f_n) T(c_n + g_n) ... L(1/f_1) T(c_1 + g_1),
+// where g_i is element i's gap and c_i the path length between it and the
+// element with power before it that no fitted gap covers (flat elements:
+// half mirrors, fold mirrors, combiners). The pupil center sees the panel point
+// at tan-angle t0 = (o + R(theta) l) / |B|, and a camera displaced by c in the
+// pupil plane sees the image plane (A / B diopters) with parallax:
+//   t = t0 - c A / B.
 // The camera may be turned against the eye's axes (pan right, tilt up, roll
 // counterclockwise as the eye sees it): R_cam is the rotation by the vector
 // (-tilt, pan, roll), and the camera sees d = R_cam^T (t, 1) at the visual
 // angles (atan(d_x / d_z), atan(d_y / d_z)). Everything stays finite at the
-// focal plane (D = 0).
+// focal plane (A = 0).
 #pragma once
 
 #include <cmath>
+#include <vector>
 
 #include <ceres/rotation.h>
 
@@ -42,21 +48,40 @@ inline MarkerPlacement PlaceMarker(const VirtualLayer& layer, double col, double
   return {layer.flip_x ? -x : x, layer.flip_y ? -y : y, camera_x, camera_y};
 }
 
-// The fitted parameters of the model, by role.
-template <typename T>
-struct MarkerParameters {
-  T focal_length, distance, offset_x, offset_y, rotation;
-  T pan, tilt, roll;
+// The elements with power on a layer's path, nearest the eye first: for each,
+// its index among the fit's elements and c_i (m), the path length before its
+// gap that no fitted gap covers.
+struct LayerOptics {
+  std::vector<int> element;
+  std::vector<double> fixed_spacing;
 };
 
+// The fitted parameters of the model for one layer, by role.
 template <typename T>
-void PredictVisualAngle(const MarkerParameters<T>& q, double eye_relief, const MarkerPlacement& m, T angle[2]) {
+struct MarkerParameters {
+  T distance, offset_x, offset_y, rotation;
+  T pan, tilt, roll;
+  std::vector<T> gaps, focal_lengths;  // of LayerOptics' elements, in its order
+};
+
+// Pupil -> panel: the one composition every fitted layer goes through.
+template <typename T>
+RayTransfer<T> LayerTransfer(const LayerOptics& optics, const MarkerParameters<T>& q) {
+  RayTransfer<T> m;
+  for (size_t i = 0; i < optics.fixed_spacing.size(); ++i)
+    m = m.then_gap(T(optics.fixed_spacing[i]) + q.gaps[i]).then_power(T(1) / q.focal_lengths[i]);
+  return m.then_gap(q.distance);
+}
+
+template <typename T>
+void PredictVisualAngle(const MarkerParameters<T>& q, const LayerOptics& optics, const MarkerPlacement& m, T angle[2]) {
+  using std::abs;
   using std::atan;
   using std::cos;
   using std::sin;
-  const T denominator = q.distance * q.focal_length + eye_relief * (q.focal_length - q.distance);
-  const T tan_per_meter = q.focal_length / denominator;
-  const T diopters = (q.focal_length - q.distance) / denominator;
+  const RayTransfer<T> transfer = LayerTransfer(optics, q);
+  const T tan_per_meter = T(1) / abs(transfer.b);
+  const T diopters = transfer.diopters();
   const T c = cos(q.rotation), s = sin(q.rotation);
   const T x = q.offset_x + c * m.local_x - s * m.local_y;
   const T y = q.offset_y + s * m.local_x + c * m.local_y;

@@ -42,11 +42,13 @@ std::array<double, 2> ImagedMarker(const DisplaySystem& truth, const VirtualLaye
   const Eigen::Vector2d local((j + 0.5 - 0.5 * static_cast<double>(p.active_cols)) * p.pitch_x,
                               (0.5 * static_cast<double>(p.active_rows) - i - 0.5) * p.pitch_y);
   const Eigen::Vector2d on_panel = Eigen::Vector2d(p.offset[0], p.offset[1]) + Eigen::Rotation2Dd(p.rotation) * local;
-  // The thin lens images the panel plane at s into an upright virtual image at d = s f / (f - s), magnified f / (f - s).
-  const double s = layer.panel_distance, f = truth.focal_length, e = truth.eye.eye_relief;
-  const double image_distance = s * f / (f - s), magnification = f / (f - s);
-  const Eigen::Vector3d image(magnification * on_panel.x(), magnification * on_panel.y(), image_distance + e);
-  const Eigen::Vector3d ray = image - Eigen::Vector3d(position[0], position[1], 0.0);
+  // The ray the camera at `position` sees it along: the ray leaving pupil point c with slope u meets the
+  // unfolded panel plane at A c + B u (ray_transfer.h), where the point lies at on_panel turned by 180
+  // degrees when the image is inverted (B < 0; the flips above include that turn).
+  const RayTransfer<double>& m = layer.transfer;
+  const double sign = m.b < 0 ? -1.0 : 1.0;
+  const Eigen::Vector3d ray((sign * on_panel.x() - m.a * position[0]) / m.b,
+                            (sign * on_panel.y() - m.a * position[1]) / m.b, 1.0);
   const Eigen::Vector3d turn(-camera.tilt, camera.pan, camera.roll);
   const Eigen::Matrix3d eye_from_camera =
       turn.norm() > 0 ? Eigen::AngleAxisd(turn.norm(), turn.normalized()).toRotationMatrix() : Eigen::Matrix3d::Identity();

@@ -1,8 +1,10 @@
 // Synthetic measurements of a display whose true placement is known, for the
-// tests and the example file. Markers are imaged by an explicit construction
-// (the point on the panel, its virtual image through the thin lens, the ray
-// from the camera's entrance pupil), independent of marker_model.h's closed
-// form; noise is Gaussian from SplitMix64, the same numbers on every machine.
+// tests and the example file. Markers are imaged through each layer's compiled
+// ray transfer (the truth's: systems/compile.cpp composes it from the scene),
+// by an explicit construction apart from marker_model.h's parameterization
+// (the pixel counted from the other end on a flipped axis, the point placed
+// by an Eigen rotation, the slope of the camera's ray solved from the
+// transfer); noise is Gaussian from SplitMix64, the same numbers on every machine.
 #pragma once
 
 #include <array>

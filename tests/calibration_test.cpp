@@ -22,9 +22,8 @@ using testing::ExampleTruth;
 using testing::PanelTruth;
 using testing::SyntheticSetup;
 
-constexpr double kArcmin = std::numbers::pi / 180.0 / 60.0;
-// A recovered value may lie this many (independently derived) standard deviations from the truth.
-constexpr double kSigmas = 4.0;
+using testing::kArcmin;
+using testing::kSigmas;
 
 const DisplaySystem& Designed() {
   static const DisplaySystem system = Compile(LoadScene(testing::ExamplePath("paper_prototype.json")));
@@ -62,7 +61,7 @@ double WorstGeometryError(const DisplaySystem& built, const Measurements& m, con
   for (const VirtualLayer& layer : built.layers) {
     const PanelMarkers& markers = m.captures.front().panels[LayerIndexIn(built, layer.name)];
     testing::GeometrySigma expected =
-        testing::ExpectedGeometrySigma(built, layer, markers, static_cast<int>(m.captures.size()), sigma);
+        testing::ExpectedGeometrySigma(layer, markers, static_cast<int>(m.captures.size()), sigma);
     const CalibratedPanel* p = display.find(layer.name);
     EXPECT_NE(p, nullptr);
     if (!p) return INFINITY;
@@ -115,21 +114,14 @@ TEST(CalibrationTest, WithoutNoiseRecoversPlacementsExactly) {
   CalibratedDisplay display;
   const CalibrationReport report = Calibrate(Designed(), m, CalibrationOptions{}, &display);
   ASSERT_TRUE(report.IsSolutionUsable()) << report.message;
-  for (const VirtualLayer& layer : built.layers) {
-    const CalibratedPanel* p = display.find(layer.name);
-    ASSERT_NE(p, nullptr);
-    EXPECT_NEAR(p->distance, layer.panel_distance, 1e-9) << layer.name;
-    EXPECT_NEAR(p->offset_x, layer.panel.offset[0], 1e-9) << layer.name;
-    EXPECT_NEAR(p->offset_y, layer.panel.offset[1], 1e-9) << layer.name;
-    EXPECT_NEAR(p->rotation, layer.panel.rotation, 1e-9) << layer.name;
-  }
+  testing::ExpectPlacementsOf(built, display, 1e-9);
   EXPECT_LT(report.marker_rms_after, 1e-10);
 }
 
 TEST(CalibrationTest, FitsTheFocalLengthFromParallax) {
   std::vector<PanelTruth> truth = ExampleTruth();
-  DisplaySystem built = BuiltSystem(Designed(), truth);
-  built.focal_length = 75.4e-3;  // the lens is not quite as specified
+  // The lens is not quite as specified; the panels stand at their distances from it.
+  const DisplaySystem built = BuiltSystem(Designed(), truth, {{"lens", 0.0, 75.4e-3}});
   SyntheticSetup setup = GeometrySetup(0.3);
   setup.camera.positions = {{-2e-3, 0.0}, {2e-3, 0.0}, {0.0, -2e-3}, {0.0, 2e-3}};
   const Measurements m = testing::SyntheticMeasurements(built, truth, setup);
@@ -275,13 +267,7 @@ TEST(CalibrationTest, FarthestPanelReferenceCentersItAndFitsTheCamera) {
   EXPECT_EQ(farthest->offset_x, 0.0);
   EXPECT_EQ(farthest->rotation, 0.0);
   EXPECT_EQ(report.find("rear_a", "offset_x")->status, ParameterStatus::kReference);
-  for (const VirtualLayer& layer : built.layers) {
-    const CalibratedPanel* p = display.find(layer.name);
-    EXPECT_NEAR(p->distance, layer.panel_distance, 1e-9) << layer.name;
-    EXPECT_NEAR(p->offset_x, layer.panel.offset[0], 1e-9) << layer.name;
-    EXPECT_NEAR(p->offset_y, layer.panel.offset[1], 1e-9) << layer.name;
-    EXPECT_NEAR(p->rotation, layer.panel.rotation, 1e-9) << layer.name;
-  }
+  testing::ExpectPlacementsOf(built, display, 1e-9);
   EXPECT_NEAR(report.find("camera", "pan")->value, setup.camera.pan, 1e-9);
   EXPECT_NEAR(report.find("camera", "tilt")->value, setup.camera.tilt, 1e-9);
   EXPECT_NEAR(report.find("camera", "roll")->value, setup.camera.roll, 1e-9);

@@ -1,15 +1,19 @@
 #include "tests/calibration_test_util.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include <Eigen/Dense>
+
+#include "framework/json_file.h"
+#include "tests/test_util.h"
 
 namespace layerlab::testing {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
-constexpr double kArcmin = kDeg / 60.0;
 
 }  // namespace
 
@@ -22,16 +26,61 @@ std::vector<PanelTruth> ExampleTruth() {
   };
 }
 
-DisplaySystem BuiltSystem(const DisplaySystem& designed, const std::vector<PanelTruth>& truth) {
-  DisplaySystem built = designed;
-  for (const PanelTruth& t : truth)
-    for (VirtualLayer& layer : built.layers)
-      if (layer.name == t.name) {
-        layer.panel_distance += t.distance_change;
-        layer.panel.offset = {t.offset_x, t.offset_y};
-        layer.panel.rotation = t.rotation;
+std::string Exact(double value, const std::string& unit) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.17g ", value);
+  return buf + unit;
+}
+
+nlohmann::json BuiltScene(const DisplaySystem& designed, const std::vector<PanelTruth>& truth,
+                          const std::vector<OpticTruth>& optics) {
+  nlohmann::json scene = ReadJsonFile(designed.file);
+  for (const VirtualLayer& layer : designed.layers) {
+    nlohmann::json& panel = ElementNamed(scene, layer.name);
+    double change = 0;
+    for (const PanelTruth& t : truth)
+      if (t.name == layer.name) {
+        change = t.distance_change;
+        panel["offset"] = {Exact(t.offset_x, "m"), Exact(t.offset_y, "m")};
+        panel["rotation"] = Exact(t.rotation, "rad");
       }
-  return built;
+    const bool behind_optics =
+        std::any_of(layer.path.begin(), layer.path.end(), [](const PathStep& s) { return s.power != 0; });
+    if (panel.contains("virtual_depth")) {
+      panel.erase("virtual_depth");
+      panel[behind_optics ? "distance" : "gap"] = 0;  // set below
+    }
+    if (panel.contains("distance")) panel["distance"] = Exact(layer.panel_distance + change, "m");
+    else panel["gap"] = Exact(layer.position - (layer.path.empty() ? 0.0 : layer.path.back().position.value_or(0.0)) + change, "m");
+  }
+  for (const OpticTruth& t : optics) {
+    nlohmann::json& optic = ElementNamed(scene, t.name);
+    if (t.gap_change != 0)
+      for (const VirtualLayer& layer : designed.layers)
+        for (size_t j = 0; j < layer.path.size(); ++j)
+          if (layer.path[j].element == t.name) {
+            const double before = j == 0 ? 0.0 : layer.path[j - 1].position.value_or(0.0);
+            optic["gap"] = Exact(*layer.path[j].position - before + t.gap_change, "m");
+          }
+    if (t.focal_length) optic["focal_length"] = Exact(*t.focal_length, "m");
+  }
+  return scene;
+}
+
+DisplaySystem BuiltSystem(const DisplaySystem& designed, const std::vector<PanelTruth>& truth,
+                          const std::vector<OpticTruth>& optics) {
+  return CompileJson(BuiltScene(designed, truth, optics), designed.file);
+}
+
+void ExpectPlacementsOf(const DisplaySystem& built, const CalibratedDisplay& display, double tolerance) {
+  for (const VirtualLayer& layer : built.layers) {
+    const CalibratedPanel* p = display.find(layer.name);
+    ASSERT_NE(p, nullptr) << layer.name;
+    EXPECT_NEAR(p->distance, layer.panel_distance, tolerance) << layer.name;
+    EXPECT_NEAR(p->offset_x, layer.panel.offset[0], tolerance) << layer.name;
+    EXPECT_NEAR(p->offset_y, layer.panel.offset[1], tolerance) << layer.name;
+    EXPECT_NEAR(p->rotation, layer.panel.rotation, tolerance) << layer.name;
+  }
 }
 
 SyntheticSetup ExampleSetup() {
@@ -44,6 +93,25 @@ SyntheticSetup ExampleSetup() {
   setup.noise.seed = 20240601;
   for (int code = 0; code < 255; code += 16) setup.luminance_codes.push_back(code);
   setup.luminance_codes.push_back(255);
+  return setup;
+}
+
+std::vector<PanelTruth> PerBranchTruth() {
+  return {
+      {"front_a", 0.30e-3, 0.20e-3, -0.10e-3, 0.20 * kDeg, 0, 0, 0},
+      {"rear_a", -0.40e-3, -0.30e-3, 0.25e-3, -0.30 * kDeg, 0, 0, 0},
+      {"front_b", 0.25e-3, 0.15e-3, 0.30e-3, 0.10 * kDeg, 0, 0, 0},
+      {"rear_b", -0.30e-3, -0.20e-3, -0.15e-3, -0.25 * kDeg, 0, 0, 0},  // nearer: its image at 0 D moves forward
+  };
+}
+
+std::vector<OpticTruth> PerBranchOptics() { return {{"lens_a", 0.50e-3, {}}, {"lens_b", -0.40e-3, {}}}; }
+
+SyntheticSetup PerBranchSetup() {
+  SyntheticSetup setup = ExampleSetup();
+  setup.camera.positions = {{0.0, 0.0}, {-3e-3, 0.0}, {3e-3, 0.0}, {0.0, -3e-3}, {0.0, 3e-3}};
+  setup.noise.seed = 20261201;
+  setup.luminance_codes.clear();
   return setup;
 }
 
@@ -63,12 +131,11 @@ Measurements SyntheticMeasurements(const DisplaySystem& built, const std::vector
   return m;
 }
 
-GeometrySigma ExpectedGeometrySigma(const DisplaySystem& built, const VirtualLayer& layer, const PanelMarkers& markers,
-                                    int positions, double sigma) {
-  const double s = layer.panel_distance, f = built.focal_length, e = built.eye.eye_relief;
-  const double denominator = s * f + e * (f - s);
-  const double T = f / denominator;             // tan-angle per meter in the panel plane
-  const double dT = -f * (f - e) / (denominator * denominator);
+GeometrySigma ExpectedGeometrySigma(const VirtualLayer& layer, const PanelMarkers& markers, int positions, double sigma) {
+  // B = b + s d of the transfer up to the last element with power (free space keeps d): T = 1 / |B|, dT/ds = -d / B |B|.
+  const double B = layer.transfer.b;
+  const double T = 1.0 / std::abs(B);
+  const double dT = -layer.transfer.d / (B * std::abs(B));
   const PanelSpec& p = layer.panel;
   double spread = 0;  // sum of |l|^2 over the markers, l from the active region's center
   for (const MarkerObservation& o : markers.markers) {
@@ -79,6 +146,33 @@ GeometrySigma ExpectedGeometrySigma(const DisplaySystem& built, const VirtualLay
   spread *= positions;
   const double n = static_cast<double>(markers.markers.size() * positions);
   return {sigma / (std::abs(dT) * std::sqrt(spread)), sigma / (T * std::sqrt(n)), sigma / (T * std::sqrt(spread))};
+}
+
+std::vector<double> BruteForceSigmas(const nlohmann::json& built_scene, const std::vector<SceneParameter>& parameters,
+                                     const SyntheticSetup& setup, double sigma) {
+  SyntheticNoise quiet = setup.noise;
+  quiet.marker_sigma = quiet.outlier_fraction = 0;
+  auto angles = [&](const SceneParameter* p, double change) {
+    nlohmann::json scene = built_scene;
+    if (p) p->apply(scene, change);
+    const DisplaySystem system = CompileJson(scene, "built.json");
+    std::vector<double> out;
+    for (const Capture& c : SyntheticCaptures(system, setup.grid, setup.camera, quiet))
+      for (const PanelMarkers& panel : c.panels)
+        for (const MarkerObservation& m : panel.markers) out.push_back(m.angle_x), out.push_back(m.angle_y);
+    return out;
+  };
+  const size_t rows = angles(nullptr, 0).size();
+  Eigen::MatrixXd J(rows, parameters.size());
+  for (size_t i = 0; i < parameters.size(); ++i) {
+    const std::vector<double> plus = angles(&parameters[i], parameters[i].step);
+    const std::vector<double> minus = angles(&parameters[i], -parameters[i].step);
+    for (size_t r = 0; r < rows; ++r) J(r, i) = (plus[r] - minus[r]) / (2 * parameters[i].step);
+  }
+  const Eigen::MatrixXd covariance = (J.transpose() * J).inverse();
+  std::vector<double> out;
+  for (size_t i = 0; i < parameters.size(); ++i) out.push_back(sigma * std::sqrt(covariance(i, i)));
+  return out;
 }
 
 LuminanceSigma ExpectedLuminanceSigma(const std::vector<int>& codes, double max_luminance, double black_level,

@@ -168,16 +168,10 @@ TEST(MeasurementsTest, WrittenFileReadsBackTheSame) {
   ASSERT_EQ(back.luminance_sample_count(), m.luminance_sample_count());
 }
 
-// The example file is what ExampleTruth() and ExampleSetup() produce, so that
-// the true values its documentation states are the ones it was made from.
-TEST(ExampleMeasurements, IsMadeFromItsKnownTruth) {
-  const std::vector<testing::PanelTruth> truth = testing::ExampleTruth();
-  Measurements m = testing::SyntheticMeasurements(testing::BuiltSystem(Designed(), truth), truth,
-                                                  testing::ExampleSetup());
-  m.description = "Synthetic measurements of examples/paper_prototype.json as built with known placements, "
-                  "0.3 arcmin marker noise and 0.3 % luminance noise; docs/measurements-format.md lists the true "
-                  "values.";
-  const std::string path = testing::ExamplePath(kExample);
+// An example file is what its truth and setup produce, so that the true
+// values its documentation states are the ones it was made from.
+void ExpectExampleFileIs(const Measurements& m, const std::string& name) {
+  const std::string path = testing::ExamplePath(name);
   if (std::getenv("LAYERLAB_REGENERATE_EXAMPLES")) WriteFileAtomically(path, FormatMeasurements(m));
   const Measurements file = ReadMeasurementsFile(path);
   ASSERT_EQ(file.captures.size(), m.captures.size());
@@ -197,6 +191,27 @@ TEST(ExampleMeasurements, IsMadeFromItsKnownTruth) {
     for (size_t i = 0; i < m.luminance[p].samples.size(); ++i)
       ASSERT_NEAR(LuminanceOf(file, m.luminance[p].panel).samples[i].luminance, m.luminance[p].samples[i].luminance,
                   1e-5 * m.luminance[p].samples[i].luminance + 1e-9);
+}
+
+TEST(ExampleMeasurements, IsMadeFromItsKnownTruth) {
+  const std::vector<testing::PanelTruth> truth = testing::ExampleTruth();
+  Measurements m = testing::SyntheticMeasurements(testing::BuiltSystem(Designed(), truth), truth,
+                                                  testing::ExampleSetup());
+  m.description = "Synthetic measurements of examples/paper_prototype.json as built with known placements, "
+                  "0.3 arcmin marker noise and 0.3 % luminance noise; docs/measurements-format.md lists the true "
+                  "values.";
+  ExpectExampleFileIs(m, kExample);
+}
+
+TEST(ExampleMeasurements, PerBranchIsMadeFromItsKnownTruth) {
+  const DisplaySystem designed = Compile(LoadScene(testing::ExamplePath("per_branch_magnifiers.json")));
+  const std::vector<testing::PanelTruth> truth = testing::PerBranchTruth();
+  Measurements m = testing::SyntheticMeasurements(testing::BuiltSystem(designed, truth, testing::PerBranchOptics()),
+                                                  truth, testing::PerBranchSetup());
+  m.description = "Synthetic measurements of examples/per_branch_magnifiers.json as built with each branch's lens "
+                  "off its gap (lens_a +0.5 mm, lens_b -0.4 mm) and every panel moved, 0.3 arcmin marker noise; "
+                  "tests/calibration_test_util.cpp (PerBranchTruth) lists the true values.";
+  ExpectExampleFileIs(m, "per_branch_magnifiers_measurements.json");
 }
 
 // The calibrated scene: the fitted values land in the scene file and come back
