@@ -22,6 +22,7 @@ void AddContrastCommand(CLI::App& app) {
     std::string reference = "sampled", grating = "angle";
     double resolution = 0.01, field = 20;
     int strip_rows = 24;
+    bool no_peak_uncertainty = false;
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("contrast", "Normalized contrast against accommodation (Fig. 5)");
@@ -40,6 +41,8 @@ void AddContrastCommand(CLI::App& app) {
   cmd->add_option("--grating", o->grating,
                   "Grating uniform in visual angle (angle, default) or in meters on the plane (plane, before issue 19)")
       ->check(CLI::IsMember({"angle", "plane"}));
+  cmd->add_flag("--no-peak-uncertainty", o->no_peak_uncertainty,
+                "Skip the second sweep on a retina moved by half a sample (the peaks' uncertainty)");
   cmd->callback([o] {
     ContrastOptions options;
     options.target_diopters = ParseNumberList(o->depths, "--depths");
@@ -54,6 +57,7 @@ void AddContrastCommand(CLI::App& app) {
     options.strip_rows = o->strip_rows;
     options.reference = o->reference == "sampled" ? ContrastReference::kSampledTarget : ContrastReference::kContinuous;
     options.grating = o->grating == "angle" ? GratingSpacing::kVisualAngle : GratingSpacing::kPlane;
+    options.peak_uncertainty = !o->no_peak_uncertainty;
     if (!(o->resolution > 0) || !(o->field > 0) || o->strip_rows < 1)
       throw Error("--retina-resolution, --retina-field and --strip-rows must be positive");
     for (double f : options.frequencies)
