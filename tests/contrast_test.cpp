@@ -12,8 +12,6 @@ namespace layerlab {
 namespace {
 
 using testing::Close;
-using testing::CompileJson;
-using testing::ElementNamed;
 
 constexpr double kDeg = std::numbers::pi / 180;
 
@@ -21,12 +19,12 @@ constexpr double kDeg = std::numbers::pi / 180;
 // that can show the sampled target exactly.
 ContrastDisplay OneLayerAt(double diopters) {
   nlohmann::json scene = testing::ReadExample("multiplicative_2layer.json");
-  ElementNamed(scene, "lens")["next"] = "rear";
+  testing::ElementNamed(scene, "lens")["next"] = "rear";
   scene["elements"].erase(2);
-  ElementNamed(scene, "rear")["virtual_depth"] = std::to_string(diopters) + " D";
+  testing::ElementNamed(scene, "rear")["virtual_depth"] = std::to_string(diopters) + " D";
   ContrastDisplay d;
   d.name = "one_layer";
-  d.system = CompileJson(scene);
+  d.system = testing::CompileJson(scene);
   d.solver = "multiplicative";
   return d;
 }
