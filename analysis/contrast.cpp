@@ -13,7 +13,9 @@
 #include "solvers/solve_config.h"
 #include "systems/compile.h"
 #include "systems/display_model.h"
+#include "systems/lightfield_radiance.h"
 #include "systems/retina.h"
+#include "targets/plane_lightfield.h"
 
 namespace layerlab {
 namespace {
@@ -24,19 +26,6 @@ double Seconds(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
 }
 
-// The light field of the textured plane at D_t, which is also the origin plane:
-// every view sees the texture at the pixel's own origin-plane position.
-LightField PlaneTarget(const LightFieldGeometry& g, const PlaneTexture& texture) {
-  LightField lf(g);
-  for (int i = 0; i < g.rows; ++i)
-    for (int j = 0; j < g.cols; ++j) {
-      Rgb value = texture(g.pixel_x(j), g.pixel_y(i));
-      for (size_t v = 0; v < g.view_count(); ++v)
-        for (int c = 0; c < 3; ++c) lf.view(v)[(size_t(i) * g.cols + j) * 3 + c] = static_cast<float>(value[c]);
-    }
-  return lf;
-}
-
 // Luminance along the central retinal row, for the Fourier amplitude.
 std::vector<double> CentralRow(const Image& image) {
   std::vector<double> row(image.width);
@@ -44,6 +33,15 @@ std::vector<double> CentralRow(const Image& image) {
   for (int j = 0; j < image.width; ++j)
     for (int c = 0; c < 3; ++c) row[j] += kLuminanceWeights[c] * image.at(i, j, c);
   return row;
+}
+
+bool IsNatural(const ContrastCurve& c) { return c.display.rfind("natural", 0) == 0; }
+
+bool SameGeometry(const LightFieldGeometry& a, const LightFieldGeometry& b) {
+  return a.origin_z == b.origin_z && a.window_left == b.window_left && a.window_top == b.window_top &&
+         a.window_width == b.window_width && a.window_height == b.window_height && a.cols == b.cols &&
+         a.rows == b.rows && a.views_x == b.views_x && a.views_y == b.views_y && a.eyebox_width == b.eyebox_width &&
+         a.eyebox_height == b.eyebox_height;
 }
 
 double Interpolate(const std::vector<double>& x, const std::vector<double>& y, double at) {
@@ -57,14 +55,23 @@ double Interpolate(const std::vector<double>& x, const std::vector<double>& y, d
 
 }  // namespace
 
-PlaneTextureFactory CosineGrating(double mean, double contrast) {
-  return [mean, contrast](double depth, double cpd) -> PlaneTexture {
-    double k = cpd / (depth * kDeg);  // cycles per meter on the plane
-    return [=](double s, double) {
-      double v = mean * (1 + contrast * std::cos(2 * std::numbers::pi * k * s));
-      return Rgb{v, v, v};
-    };
+PlaneTextureFactory CosineGrating(double mean, double contrast, GratingSpacing spacing) {
+  return [=](double depth, double cpd) -> std::shared_ptr<const Texture> {
+    GratingSpec spec;
+    spec.cycles_per_meter = cpd / (depth * kDeg);  // at the line of sight
+    spec.angle_depth = spacing == GratingSpacing::kVisualAngle ? depth : 0;
+    spec.mean = mean;
+    spec.contrast = contrast;
+    return MakeGratingTexture(spec);
   };
+}
+
+std::string ConventionLabel(ContrastReference reference, GratingSpacing spacing) {
+  std::string r = reference == ContrastReference::kSampledTarget
+                      ? "reference: natural viewing of the sampled target light field, pixels read as the layers are"
+                      : "reference: natural viewing of the continuous plane";
+  return r + (spacing == GratingSpacing::kVisualAngle ? "; grating uniform in visual angle"
+                                                      : "; grating uniform on the plane (meters)");
 }
 
 ContrastDisplay LoadContrastDisplay(const std::string& scene_file) {
@@ -77,6 +84,7 @@ ContrastDisplay LoadContrastDisplay(const std::string& scene_file) {
     d.solver = config.solver;
     d.options = config.options;
     d.options_given = true;
+    d.sampling = config.sampling;
   }
   return d;
 }
@@ -93,36 +101,73 @@ std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displ
   }
   const EyeModel& eye = displays.front().system.eye;
   std::vector<PupilPoint> pupil = PupilSamples(eye);
-  RetinaGrid retina = MakeRetinaGrid(o.retina_field * kDeg, 3 * o.retina_resolution * kDeg, o.retina_resolution * kDeg);
-  std::vector<double> degrees(retina.cols);
-  for (int j = 0; j < retina.cols; ++j) degrees[j] = retina.angle_x(j) / kDeg;
+  const RetinaGrid retina = MakeRetinaGrid(o.retina_field * kDeg, 3 * o.retina_resolution * kDeg, o.retina_resolution * kDeg);
+  RetinaGrid shifted = retina;  // for the peaks' sampling uncertainty
+  shifted.center_x += 0.5 * retina.resolution;
+  const PlaneTextureFactory texture_of = o.texture ? o.texture : CosineGrating(0.5, 1.0, o.grating);
+  const std::string convention = ConventionLabel(o.reference, o.grating);
 
-  auto amplitude = [&](const Image& image, double f) {
-    std::vector<double> row = CentralRow(image);
-    int n = WholeCycleSamples(retina.cols, o.retina_resolution, f);
-    int start = (retina.cols - n) / 2;
+  auto amplitude = [&](const Image& image, const RetinaGrid& grid, double f) {
+    std::vector<double> row = CentralRow(image), degrees(grid.cols);
+    for (int j = 0; j < grid.cols; ++j) degrees[j] = grid.angle_x(j) / kDeg;
+    int n = WholeCycleSamples(grid.cols, o.retina_resolution, f);
+    int start = (grid.cols - n) / 2;
     return FourierAmplitude(std::vector<double>(row.begin() + start, row.begin() + start + n),
                             std::vector<double>(degrees.begin() + start, degrees.begin() + start + n), f);
+  };
+  // Amplitudes over the accommodation range, on the retina and (for the
+  // uncertainty) on the shifted retina.
+  using RetinalImage = std::function<Image(const RetinaGrid&, const std::array<double, 3>&)>;
+  auto sweep = [&](const RetinalImage& image, double f, double reference, ContrastCurve* curve) {
+    for (double a : accommodation) {
+      curve->contrast.push_back(amplitude(image(retina, ChannelAccommodation(eye, a)), retina, f) / reference);
+      if (o.peak_uncertainty)
+        curve->contrast_shifted.push_back(amplitude(image(shifted, ChannelAccommodation(eye, a)), shifted, f) / reference);
+    }
+  };
+  auto blank = [&](const std::string& name, double dt, double f) {
+    ContrastCurve c;
+    c.display = name, c.target_diopters = dt, c.frequency = f, c.accommodation = accommodation, c.convention = convention;
+    return c;
   };
 
   std::vector<ContrastCurve> curves;
   for (double f : o.frequencies)
     for (double dt : o.target_diopters) {
-      PlaneTexture texture = o.texture(1 / dt, f);
+      std::shared_ptr<const Texture> texture = texture_of(1 / dt, f);
       char label[96];
       std::snprintf(label, sizeof label, "target %.2f D, %.1f cpd", dt, f);
-      // Natural viewing of the plane, and its amplitude focused on it.
-      auto start = std::chrono::steady_clock::now();
+      // The continuous plane at D_t as the eye sees it.
       SceneRadiance plane = [&](const PupilPoint& u, double dx, double dy) {
-        return texture(u.x + dx / dt, u.y + dy / dt);
+        return texture->Evaluate(u.x + dx / dt, u.y + dy / dt);
       };
-      ContrastCurve natural{"natural", dt, f, accommodation, {}, {}, 0, 0, 0, 0, "-"};
-      double reference = amplitude(RetinaOfScene(plane, retina, pupil, ChannelAccommodation(eye, dt)), f);
-      if (!(reference > 0)) throw Error(std::string("contrast: the target has no component at ") + label);
-      for (double a : accommodation)
-        natural.contrast.push_back(amplitude(RetinaOfScene(plane, retina, pupil, ChannelAccommodation(eye, a)), f) / reference);
-      natural.sweep_seconds = Seconds(start);
-      curves.push_back(natural);
+      auto natural_image = [&](const SceneRadiance& scene) -> RetinalImage {
+        return [scene, &pupil](const RetinaGrid& grid, const std::array<double, 3>& focus) {
+          return RetinaOfScene(scene, grid, pupil, focus);
+        };
+      };
+      auto reference_of = [&](const RetinalImage& natural) {
+        double r = amplitude(natural(retina, ChannelAccommodation(eye, dt)), retina, f);
+        if (!(r > 0)) throw Error(std::string("contrast: the target has no component at ") + label);
+        return r;
+      };
+      // Natural viewing curves already drawn, by what they saw.
+      struct Drawn {
+        LightFieldGeometry geometry;
+        Sampling sampling;
+      };
+      std::vector<Drawn> drawn;
+      double continuous_reference = 0;
+      if (o.reference == ContrastReference::kContinuous) {
+        auto start = std::chrono::steady_clock::now();
+        RetinalImage natural = natural_image(plane);
+        continuous_reference = reference_of(natural);
+        ContrastCurve c = blank("natural", dt, f);
+        c.solver = "-";
+        sweep(natural, f, continuous_reference, &c);
+        c.sweep_seconds = Seconds(start);
+        curves.push_back(std::move(c));
+      }
 
       for (const ContrastDisplay& d : displays) {
         if (o.progress) o.progress(d.name + ": " + label);
@@ -131,51 +176,81 @@ std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displ
         g.rows = std::min(g.rows, o.strip_rows);
         g.window_height = g.rows * row_height;
         g.window_top = g.window_height / 2;
-        DisplayModel model(d.system, g);
-        LightField target = PlaneTarget(g, texture);
-        ContrastCurve curve{d.name, dt, f, accommodation, {}, {}, 0, 0, 0, 0, ""};
+        DisplayModel model(d.system, g, d.sampling);
+        LightField target = RenderPlaneLightField(g, g.origin_z, *texture);  // the plane is the origin plane
+
+        double reference = continuous_reference;
+        if (o.reference == ContrastReference::kSampledTarget) {
+          auto start = std::chrono::steady_clock::now();
+          RetinalImage natural = natural_image(LightFieldRadiance(target, d.sampling));
+          reference = reference_of(natural);
+          bool seen = std::any_of(drawn.begin(), drawn.end(), [&](const Drawn& k) {
+            return k.sampling == d.sampling && SameGeometry(k.geometry, g);
+          });
+          if (!seen) {
+            // One natural curve per distinct target; named after the display when it is not the first.
+            ContrastCurve c = blank(drawn.empty() ? "natural" : "natural (" + d.name + ")", dt, f);
+            c.solver = "-";
+            sweep(natural, f, reference, &c);
+            c.sweep_seconds = Seconds(start);
+            curves.push_back(std::move(c));
+            drawn.push_back({g, d.sampling});
+          }
+        }
+
+        ContrastCurve curve = blank(d.name, dt, f);
         curve.solver = d.solver.empty() ? DefaultSolverFor(d.system) : d.solver;
         SolverOptions options = d.options_given ? d.options : SolverRegistry::Builtins().find(curve.solver)->defaults;
         Patterns t;
-        start = std::chrono::steady_clock::now();
+        auto start = std::chrono::steady_clock::now();
         SolverReport report = SolverRegistry::Builtins().create(curve.solver)->Solve(model, target, options, &t);
         if (!report.IsSolutionUsable()) throw Error("contrast: " + d.name + ": " + report.message);
         curve.solve_seconds = Seconds(start);
         curve.psnr_db = report.final_psnr_db;
         start = std::chrono::steady_clock::now();
-        for (double a : accommodation)
-          curve.contrast.push_back(amplitude(RetinaOfDisplay(model, t, retina, pupil, ChannelAccommodation(eye, a)), f) /
-                                   reference);
+        sweep([&](const RetinaGrid& grid, const std::array<double, 3>& focus) {
+                return RetinaOfDisplay(model, t, grid, pupil, focus);
+              },
+              f, reference, &curve);
         curve.sweep_seconds = Seconds(start);
-        curves.push_back(curve);
+        curves.push_back(std::move(curve));
       }
     }
   for (ContrastCurve& c : curves) {
     c.peak = FindPeak(c.accommodation, c.contrast);
+    c.estimate = EstimatePeak(c.accommodation, c.contrast, c.contrast_shifted, o.flat_limit);
     c.at_target = Interpolate(c.accommodation, c.contrast, c.target_diopters);
   }
   return curves;
 }
 
 std::string ContrastCsv(const std::vector<ContrastCurve>& curves) {
-  std::string csv = "display,target_D,frequency_cpd,accommodation_D,normalized_contrast\n";
+  std::string csv = "display,target_D,frequency_cpd,accommodation_D,normalized_contrast,normalized_contrast_half_sample_shift\n";
   char line[256];
   for (const ContrastCurve& c : curves)
     for (size_t k = 0; k < c.accommodation.size(); ++k) {
-      std::snprintf(line, sizeof line, "%s,%.4f,%.4f,%.4f,%.6f\n", c.display.c_str(), c.target_diopters, c.frequency,
+      std::snprintf(line, sizeof line, "%s,%.4f,%.4f,%.4f,%.6f,", c.display.c_str(), c.target_diopters, c.frequency,
                     c.accommodation[k], c.contrast[k]);
       csv += line;
+      if (k < c.contrast_shifted.size()) {
+        std::snprintf(line, sizeof line, "%.6f", c.contrast_shifted[k]);
+        csv += line;
+      }
+      csv += "\n";
     }
   return csv;
 }
 
 std::string PeakTable(const std::vector<ContrastCurve>& curves) {
-  std::string out = "display                  target (D)  f (cpd)  peak (D)  parabola (D)  peak contrast  at target  solver                 PSNR (dB)  solve (s)  sweep (s)\n";
+  std::string out;
+  if (!curves.empty()) out += "# " + curves.front().convention + "\n";
+  out += "display                  target (D)  f (cpd)  peak (D)  parabola (D)  +- (D)  placed  peak contrast  at target  solver                 PSNR (dB)  solve (s)  sweep (s)\n";
   char line[320];
   for (const ContrastCurve& c : curves) {
-    std::snprintf(line, sizeof line, "%-24s %10.2f %8.1f %9.2f %13.3f %14.3f %10.3f  %-22s %9.2f %10.3f %10.3f\n",
-                  c.display.c_str(), c.target_diopters, c.frequency, c.peak.at_grid, c.peak.at_parabola, c.peak.value,
-                  c.at_target, c.solver.c_str(), c.psnr_db, c.solve_seconds, c.sweep_seconds);
+    std::snprintf(line, sizeof line, "%-24s %10.2f %8.1f %9.2f %13.3f %7.3f  %-6s %14.3f %10.3f  %-22s %9.2f %10.3f %10.3f\n",
+                  c.display.c_str(), c.target_diopters, c.frequency, c.peak.at_grid, c.estimate.at,
+                  c.estimate.uncertainty, c.estimate.flat ? "flat" : "yes", c.peak.value, c.at_target, c.solver.c_str(),
+                  c.psnr_db, c.solve_seconds, c.sweep_seconds);
     out += line;
   }
   return out;
@@ -188,7 +263,7 @@ std::string ContrastSvg(const std::vector<ContrastCurve>& curves) {
   for (const ContrastCurve& c : curves) {
     if (std::find(frequencies.begin(), frequencies.end(), c.frequency) == frequencies.end()) frequencies.push_back(c.frequency);
     if (std::find(depths.begin(), depths.end(), c.target_diopters) == depths.end()) depths.push_back(c.target_diopters);
-    if (c.display != "natural" && std::find(displays.begin(), displays.end(), c.display) == displays.end())
+    if (!IsNatural(c) && std::find(displays.begin(), displays.end(), c.display) == displays.end())
       displays.push_back(c.display);
   }
   double y_max = 0.1;
@@ -210,7 +285,7 @@ std::string ContrastSvg(const std::vector<ContrastCurve>& curves) {
         panel.x_min = c.accommodation.front();
         panel.x_max = c.accommodation.back();
         size_t index = std::find(displays.begin(), displays.end(), c.display) - displays.begin();
-        panel.lines.push_back({c.display, c.display == "natural" ? "#000" : kColors[index % 7], c.display == "natural",
+        panel.lines.push_back({c.display, IsNatural(c) ? "#000" : kColors[index % 7], IsNatural(c),
                                c.accommodation, c.contrast});
       }
       panels.push_back(panel);

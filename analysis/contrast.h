@@ -4,9 +4,16 @@
 // Fourier amplitude of the retinal image there divided by that of natural
 // viewing focused at D_t. A display supports accommodation when the curve's
 // peak follows D_t.
+//
+// Conventions (docs/accommodation.md), each with the earlier one as an option:
+// the reference is natural viewing of the sampled target light field, read
+// as the display reads its layers (a perfect display scores 1), or of the
+// continuous plane; the grating is uniform in visual angle (f cpd across the
+// whole field) or in meters on the plane (f cpd at the line of sight only).
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -14,17 +21,22 @@
 #include "framework/params.h"
 #include "solvers/solver.h"
 #include "systems/display_system.h"
+#include "systems/layer_sampler.h"
+#include "targets/texture.h"
 
 namespace layerlab {
 
-// Linear RGB of the target texture at a point (s, t) in meters on its plane,
-// for a plane at depth `depth` carrying `cycles_per_degree` at the line of sight.
-using PlaneTexture = std::function<Rgb(double s, double t)>;
-using PlaneTextureFactory = std::function<PlaneTexture(double depth, double cycles_per_degree)>;
+// The target texture on a plane at depth `depth` carrying `cycles_per_degree`.
+using PlaneTextureFactory = std::function<std::shared_ptr<const Texture>(double depth, double cycles_per_degree)>;
 
-// A cosine grating of vertical bars, mean * (1 + contrast cos(2 pi k s)),
-// k = f / (depth * pi / 180) cycles per meter: f cpd at the line of sight.
-PlaneTextureFactory CosineGrating(double mean = 0.5, double contrast = 1.0);
+enum class GratingSpacing {
+  kVisualAngle,  // f cpd at every angle seen from the pupil center
+  kPlane,        // f / (depth pi / 180) cycles per meter: f cpd at the line of sight only
+};
+// A cosine grating of vertical bars, mean * (1 + contrast cos(2 pi f a)), with
+// a the visual angle in degrees (kVisualAngle) or its small-angle stand-in s / (depth pi / 180).
+PlaneTextureFactory CosineGrating(double mean = 0.5, double contrast = 1.0,
+                                  GratingSpacing spacing = GratingSpacing::kVisualAngle);
 
 struct ContrastDisplay {
   std::string name;
@@ -33,11 +45,18 @@ struct ContrastDisplay {
                            // one layer per branch -> additive-trust-region, else hybrid
   SolverOptions options;   // "" solver: that solver's defaults
   bool options_given = false;
+  Sampling sampling = Sampling::kNearest;  // the layers' and so natural viewing's
 };
 
 // A display for the sweep from its scene file: named after the file, with the
-// solver and options of its "solve" section when it has one.
+// solver, options and sampling of its "solve" section when it has one.
 ContrastDisplay LoadContrastDisplay(const std::string& scene_file);
+
+enum class ContrastReference {
+  kSampledTarget,  // natural viewing of the target light field the display is asked to show
+  kContinuous,     // natural viewing of the continuous textured plane
+};
+std::string ConventionLabel(ContrastReference reference, GratingSpacing spacing);
 
 struct ContrastOptions {
   std::vector<double> target_diopters = {0.7, 1.3, 1.9};
@@ -46,15 +65,25 @@ struct ContrastOptions {
   double retina_resolution = 0.01;  // deg
   double retina_field = 20.0;       // deg, horizontal, centered
   int strip_rows = 24;              // light-field rows around the axis (the grating is vertical)
-  PlaneTextureFactory texture = CosineGrating();
+  ContrastReference reference = ContrastReference::kSampledTarget;
+  GratingSpacing grating = GratingSpacing::kVisualAngle;  // for the default texture
+  PlaneTextureFactory texture;      // empty: CosineGrating(0.5, 1, grating)
+  // Sweep again with the retina moved by half a sample, for each peak's
+  // sampling uncertainty; a peak that moves more than flat_limit (one
+  // accommodation step) is "flat": the curve is too flat to place one.
+  bool peak_uncertainty = true;
+  double flat_limit = 0.05;  // D
   std::function<void(const std::string&)> progress;
 };
 
 struct ContrastCurve {
+  std::string convention;  // ConventionLabel(reference, grating)
   std::string display;  // "natural" for natural viewing
   double target_diopters = 0, frequency = 0;
   std::vector<double> accommodation, contrast;
+  std::vector<double> contrast_shifted;  // the retina moved half a sample; empty without peak_uncertainty
   Peak peak;
+  PeakEstimate estimate;
   double at_target = 0;       // contrast with the eye focused at D_t (interpolated)
   double solve_seconds = 0, sweep_seconds = 0, psnr_db = 0;
   std::string solver;

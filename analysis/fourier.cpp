@@ -34,4 +34,21 @@ Peak FindPeak(const std::vector<double>& x, const std::vector<double>& y) {
   return p;
 }
 
+PeakEstimate EstimatePeak(const std::vector<double>& x, const std::vector<double>& y,
+                          const std::vector<double>& y_other, double flat_limit) {
+  if (!y_other.empty() && y_other.size() != y.size()) throw Error("EstimatePeak: mismatched samples");
+  auto placeable = [](const std::vector<double>& v) {
+    const size_t top = std::max_element(v.begin(), v.end()) - v.begin();
+    return top > 0 && top + 1 < v.size() && v[top - 1] - 2 * v[top] + v[top + 1] < 0;
+  };
+  PeakEstimate e;
+  e.at = FindPeak(x, y).at_parabola;
+  e.flat = !placeable(y);
+  if (!y_other.empty()) {
+    e.uncertainty = std::abs(FindPeak(x, y_other).at_parabola - e.at);
+    e.flat = e.flat || !placeable(y_other) || e.uncertainty > flat_limit * (1 + 1e-9);
+  }
+  return e;
+}
+
 }  // namespace layerlab

@@ -23,4 +23,18 @@ struct Peak {
 };
 Peak FindPeak(const std::vector<double>& x, const std::vector<double>& y);
 
+// A peak with its sampling uncertainty, from the curve `y` and the same curve
+// sampled differently (`y_other`, e.g. the retina moved by half a sample;
+// may be empty): the uncertainty is how far the two parabola peaks lie apart.
+// The curve is too flat to place a peak ("flat") when that exceeds
+// `flat_limit`, or when either curve's maximum is at an end of the range or
+// its top is not concave (no parabola vertex).
+struct PeakEstimate {
+  double at = 0;           // the parabola peak of y
+  double uncertainty = 0;  // same units as x
+  bool flat = false;
+};
+PeakEstimate EstimatePeak(const std::vector<double>& x, const std::vector<double>& y,
+                          const std::vector<double>& y_other, double flat_limit);
+
 }  // namespace layerlab

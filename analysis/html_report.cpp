@@ -9,6 +9,7 @@
 
 #include "analysis/layout_svg.h"
 #include "analysis/svg_plot.h"
+#include "systems/system_report.h"
 
 namespace layerlab {
 namespace {
@@ -177,7 +178,8 @@ std::string SystemSection(const RunReportPage& page) {
   h += "<figure class=\"layout\" id=\"layout\">" + RenderLayoutSvg(s, false) + "</figure>\n";
   h += "<table><tr><th class=\"l\">field of view</th><td>" + F(s.fov_x / kDeg, 2) + " &times; " + F(s.fov_y / kDeg, 2) +
        " deg</td></tr>\n";
-  h += "<tr><th class=\"l\">highest frequency</th><td>" + F(s.max_cpd, 2) + " cpd</td></tr>\n";
+  h += "<tr><th class=\"l\">highest frequency</th><td>" + F(EveryLayerMaxCpd(s), 2) + " cpd on every layer, " +
+       F(s.max_cpd, 2) + " cpd on the finest</td></tr>\n";
   h += "<tr><th class=\"l\">peak luminance (R / G / B)</th><td>" + Rgb3(s.peak_luminance, 1) + " cd/m&sup2;</td></tr>\n";
   h += "<tr><th class=\"l\">brightness efficiency</th><td>" + F(s.luminance_efficiency, 4) + " (R / G / B " +
        Rgb3(s.brightness_efficiency, 4) + ")</td></tr>\n";
@@ -265,12 +267,14 @@ std::string ContrastSection(const RunReportPage& page) {
   h += "<p class=\"muted\">A cosine grating on a plane at each target depth; each display is factorized for it and the eye "
        "sweeps its focus. A display supports accommodation when its peak follows the target depth (dashed green).</p>\n";
   h += "<div class=\"grid\">" + Figure(page.contrast_plot, "", "plot") + "</div>\n";
+  if (!page.contrast.empty()) h += "<p class=\"muted\">" + Escape(page.contrast.front().convention) + ".</p>\n";
   h += "<h3>Peaks</h3>\n<table><tr><th class=\"l\">display</th><th>target (D)</th><th>f (cpd)</th><th>peak (D)</th>"
        "<th>peak contrast</th><th>at target</th><th class=\"l\">solver</th><th>PSNR (dB)</th><th>solve (s)</th></tr>\n";
   for (const ContrastCurve& c : page.contrast)
     h += "<tr><td class=\"l\">" + Escape(c.display) + "</td><td>" + F(c.target_diopters, 2) + "</td><td>" + F(c.frequency, 1) +
-         "</td><td>" + F(c.peak.at_parabola, 3) + "</td><td>" + F(c.peak.value, 3) + "</td><td>" + F(c.at_target, 3) +
-         "</td><td class=\"l\">" + Escape(c.solver) + "</td><td>" + (c.display == "natural" ? "&ndash;" : F(c.psnr_db, 2)) +
+         "</td><td>" + F(c.estimate.at, 3) + " &plusmn; " + F(c.estimate.uncertainty, 3) + (c.estimate.flat ? " (flat)" : "") +
+         "</td><td>" + F(c.peak.value, 3) + "</td><td>" + F(c.at_target, 3) +
+         "</td><td class=\"l\">" + Escape(c.solver) + "</td><td>" + (c.solver == "-" ? "&ndash;" : F(c.psnr_db, 2)) +
          "</td><td>" + F(c.solve_seconds, 2) + "</td></tr>\n";
   return h + "</table>\n</section>\n";
 }

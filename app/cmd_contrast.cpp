@@ -19,8 +19,10 @@ void AddContrastCommand(CLI::App& app) {
   struct Options {
     std::vector<std::string> scenes;
     std::string out, depths = "0.7,1.3,1.9", frequencies = "2,4", accommodation = "0,2.6,0.05";
+    std::string reference = "sampled", grating = "angle";
     double resolution = 0.01, field = 20;
     int strip_rows = 24;
+    bool no_peak_uncertainty = false;
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("contrast", "Normalized contrast against accommodation (Fig. 5)");
@@ -32,6 +34,15 @@ void AddContrastCommand(CLI::App& app) {
   cmd->add_option("--retina-resolution", o->resolution, "Retinal sample size in degrees (default 0.01)");
   cmd->add_option("--retina-field", o->field, "Retinal field width in degrees (default 20)");
   cmd->add_option("--strip-rows", o->strip_rows, "Light-field rows around the axis (default 24)");
+  cmd->add_option("--reference", o->reference,
+                  "Normalize by natural viewing of the sampled target light field (sampled, default) or of the "
+                  "continuous plane (continuous, the convention before issue 19)")
+      ->check(CLI::IsMember({"sampled", "continuous"}));
+  cmd->add_option("--grating", o->grating,
+                  "Grating uniform in visual angle (angle, default) or in meters on the plane (plane, before issue 19)")
+      ->check(CLI::IsMember({"angle", "plane"}));
+  cmd->add_flag("--no-peak-uncertainty", o->no_peak_uncertainty,
+                "Skip the second sweep on a retina moved by half a sample (the peaks' uncertainty)");
   cmd->callback([o] {
     ContrastOptions options;
     options.target_diopters = ParseNumberList(o->depths, "--depths");
@@ -44,6 +55,9 @@ void AddContrastCommand(CLI::App& app) {
     options.retina_resolution = o->resolution;
     options.retina_field = o->field;
     options.strip_rows = o->strip_rows;
+    options.reference = o->reference == "sampled" ? ContrastReference::kSampledTarget : ContrastReference::kContinuous;
+    options.grating = o->grating == "angle" ? GratingSpacing::kVisualAngle : GratingSpacing::kPlane;
+    options.peak_uncertainty = !o->no_peak_uncertainty;
     if (!(o->resolution > 0) || !(o->field > 0) || o->strip_rows < 1)
       throw Error("--retina-resolution, --retina-field and --strip-rows must be positive");
     for (double f : options.frequencies)

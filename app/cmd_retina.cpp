@@ -76,7 +76,7 @@ void AddRetinaCommand(CLI::App& app) {
     const Patterns t = ReadPatterns(model, o->patterns);
 
     SceneRadiance natural;
-    if (target_lf) natural = LightFieldRadiance(*target_lf);
+    if (target_lf) natural = LightFieldRadiance(*target_lf, config.sampling);  // read as the layers are
 #if LAYERLAB_WITH_EMBREE
     std::optional<TargetScene> target_scene;
     std::unique_ptr<TargetTracer> tracer;

@@ -20,10 +20,17 @@ Bracket Around(double at, double lo, double step, int count) {
   return {k, k + 1, f - k};
 }
 
+// The cell of `count` cells of `step` from `lo` that contains `at`, as a bracket of one.
+Bracket Containing(double at, double lo, double step, int count) {
+  int k = std::clamp(static_cast<int>(std::floor((at - lo) / step)), 0, count - 1);
+  return {k, k, 0.0};
+}
+
 }  // namespace
 
-SceneRadiance LightFieldRadiance(const LightField& lf) {
-  return [&lf](const PupilPoint& u, double dx, double dy) -> Rgb {
+SceneRadiance LightFieldRadiance(const LightField& lf, Sampling pixels) {
+  const bool nearest = pixels == Sampling::kNearest;
+  return [&lf, nearest](const PupilPoint& u, double dx, double dy) -> Rgb {
     const LightFieldGeometry& g = lf.geometry;
     const double x = u.x + dx * g.origin_z, y = u.y + dy * g.origin_z;
     const double pixel_w = g.window_width / g.cols, pixel_h = g.window_height / g.rows;
@@ -31,8 +38,9 @@ SceneRadiance LightFieldRadiance(const LightField& lf) {
     if (x < g.window_left || x > g.window_left + g.window_width || y > g.window_top ||
         y < g.window_top - g.window_height)
       return {0, 0, 0};
-    const Bracket col = Around(x, g.window_left, pixel_w, g.cols);
-    const Bracket row = Around(g.window_top - y, 0.0, pixel_h, g.rows);  // rows run down
+    const Bracket col = nearest ? Containing(x, g.window_left, pixel_w, g.cols) : Around(x, g.window_left, pixel_w, g.cols);
+    const Bracket row = nearest ? Containing(g.window_top - y, 0.0, pixel_h, g.rows)  // rows run down
+                                : Around(g.window_top - y, 0.0, pixel_h, g.rows);
     const Bracket vcol = Around(u.x, -g.eyebox_width / 2, g.eyebox_width / g.views_x, g.views_x);
     const Bracket vrow = Around(g.eyebox_height / 2 - u.y, 0.0, g.eyebox_height / g.views_y, g.views_y);
 

@@ -94,6 +94,12 @@ nlohmann::json JsonNumber(double value) {
   return value;
 }
 
+double EveryLayerMaxCpd(const DisplaySystem& s) {
+  double lowest = INFINITY;
+  for (const VirtualLayer& l : s.layers) lowest = std::min(lowest, l.max_cpd);
+  return s.layers.empty() ? 0 : lowest;
+}
+
 std::string FormatSystemTable(const DisplaySystem& s) {
   const EyeModel& eye = s.eye;
   std::string out;
@@ -150,7 +156,9 @@ std::string FormatSystemTable(const DisplaySystem& s) {
   out += "\nsystem\n";
   out += Row("  field of view          %s x %s deg (the smallest layer's, Eq. 2)", F(Deg(s.fov_x), 2).c_str(),
              F(Deg(s.fov_y), 2).c_str());
-  out += Row("  highest frequency      %s cpd (finest layer, at its center)", F(s.max_cpd, 2).c_str());
+  out += Row("  highest frequency      %s cpd on every layer (the coarsest layer's Nyquist); %s cpd on the finest layer "
+             "(both at the layer's center)",
+             F(EveryLayerMaxCpd(s), 2).c_str(), F(s.max_cpd, 2).c_str());
   out += Row("  peak luminance         %s cd/m2 (R G B, full white on every panel)", Rgb3(s.peak_luminance, 2).c_str());
   out += Row("  brightness efficiency  %s (luminance-weighted; R G B %s): light at the eye / light the backlights emit",
              F(s.luminance_efficiency, 4).c_str(), Rgb3(s.brightness_efficiency, 4).c_str());
@@ -206,7 +214,8 @@ nlohmann::json SystemToJson(const DisplaySystem& s) {
   j["frame_rate_hz"] = s.frame_rate;
   j["panel_refresh_rate_hz"] = s.subframes * s.frame_rate;
   j["fov_deg"] = {Deg(s.fov_x), Deg(s.fov_y)};
-  j["max_cpd"] = s.max_cpd;
+  j["max_cpd"] = s.max_cpd;  // the finest layer's
+  j["max_cpd_every_layer"] = EveryLayerMaxCpd(s);
   if (s.vignetting_free_fov_x) j["vignetting_free_fov_deg"] = {Deg(*s.vignetting_free_fov_x), Deg(*s.vignetting_free_fov_y)};
   j["peak_luminance_cd_m2_rgb"] = s.peak_luminance;
   j["brightness_efficiency_rgb"] = s.brightness_efficiency;

@@ -13,6 +13,10 @@ namespace layerlab {
 
 std::string FormatSystemTable(const DisplaySystem& system);
 
+// The highest frequency every layer can show: the coarsest layer's Nyquist
+// (system.max_cpd is the finest layer's).
+double EveryLayerMaxCpd(const DisplaySystem& system);
+
 // Keys carry their unit (depth_m, fov_deg, ...); infinities are written as
 // the strings "inf" / "-inf", since JSON has no infinity.
 nlohmann::json SystemToJson(const DisplaySystem& system);

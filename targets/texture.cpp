@@ -38,17 +38,21 @@ class ConstantTexture final : public Texture {
 class GratingTexture final : public Texture {
  public:
   explicit GratingTexture(const GratingSpec& spec)
-      : spec_(spec), kx_(kTwoPi * spec.cycles_per_meter * std::cos(spec.orientation)),
-        ky_(kTwoPi * spec.cycles_per_meter * std::sin(spec.orientation)) {}
+      : spec_(spec), k_(kTwoPi * spec.cycles_per_meter), cos_(std::cos(spec.orientation)),
+        sin_(std::sin(spec.orientation)) {}
   Rgb Evaluate(double s, double t) const override {
-    double value = spec_.mean * (1.0 + spec_.contrast * std::cos(kx_ * s + ky_ * t + spec_.phase));
+    double w = s * cos_ + t * sin_;  // along the wave vector
+    // Uniform in visual angle: z atan(w / z) is w at the line of sight and
+    // grows as the angle, not as its tangent.
+    if (spec_.angle_depth > 0) w = spec_.angle_depth * std::atan(w / spec_.angle_depth);
+    double value = spec_.mean * (1.0 + spec_.contrast * std::cos(k_ * w + spec_.phase));
     return {value, value, value};
   }
   std::string Describe() const override { return spec_.description; }
 
  private:
   GratingSpec spec_;
-  double kx_, ky_;  // rad per meter
+  double k_, cos_, sin_;  // rad per meter; the wave vector's direction
 };
 
 class CheckerboardTexture final : public Texture {
@@ -195,7 +199,9 @@ std::unique_ptr<Texture> ParseTexture(Params& p, const TextureFrame& frame) {
     g.orientation = p.quantity("orientation", Dimension::kAngle, 0.0);
     g.contrast = Fraction(p, "contrast", 1.0);
     g.mean = NonNegative(p, "mean", 0.5);
-    g.description = "grating " + Number(cpd) + " cpd";
+    bool in_angle = p.choice("uniform", {"plane", "angle"}, "plane") == "angle";
+    if (in_angle) g.angle_depth = z;
+    g.description = "grating " + Number(cpd) + " cpd" + (in_angle ? " in visual angle" : "");
     texture = MakeGratingTexture(g);
   } else if (type == "checkerboard") {
     double period = LengthOrAngle(p, "period", z);

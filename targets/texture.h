@@ -14,6 +14,7 @@
 // |              | orientation  | angle             | 0 deg    | of the wave vector from +s; 0 = vertical bars |
 // |              | contrast     | fraction          | 1        | Michelson contrast                         |
 // |              | mean         | number >= 0       | 0.5      | mean linear luminance                      |
+// |              | uniform      | plane, angle      | plane    | plane: f at the line of sight, linear in meters; angle: f cpd everywhere as seen from the point z in front of the center (the phase goes as z atan(w / z), w = s cos o + t sin o) |
 // | checkerboard | period       | length or angle   | required | one dark plus one bright square            |
 // |              | low, high    | fraction or [r,g,b] | 0, 1   | the two colors; a low square has its corner at the origin |
 // | noise        | band         | [cpd, cpd]        | required | frequencies of the components, uniform in the band |
@@ -62,6 +63,10 @@ struct GratingSpec {
   double orientation = 0;  // rad
   double contrast = 1;
   double mean = 0.5;
+  // 0: uniform on the plane. z > 0: uniform in visual angle as seen from the
+  // point z in front of the texture origin, cycles_per_meter there at the
+  // line of sight (the phase along the wave vector is 2 pi k z atan(w / z)).
+  double angle_depth = 0;  // m
   std::string description = "grating";
 };
 std::unique_ptr<Texture> MakeConstantTexture(const Rgb& color);

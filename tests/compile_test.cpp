@@ -2,6 +2,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "systems/system_report.h"
 #include "tests/test_util.h"
 
 namespace layerlab {
@@ -41,6 +42,10 @@ TEST(Compile, PaperPrototypeMatchesTable1) {
   EXPECT_TRUE(Close(s.fov_y * kDeg, 18.2, 0, 0.05));
   EXPECT_TRUE(Close(s.max_cpd, 1 / (2 * std::atan(34.2 * p / 2.5) * kDeg), 1e-12));
   EXPECT_TRUE(Close(s.max_cpd, 5.4, 0, 0.06));
+  // What every layer can show is the coarsest layer's Nyquist: the 2.2 D layer's.
+  const double M = 1 + (1 / 2.2 - e) / f;
+  EXPECT_TRUE(Close(EveryLayerMaxCpd(s), 1 / (2 * std::atan(M * p * 2.2) * kDeg), 1e-12));
+  EXPECT_TRUE(Close(EveryLayerMaxCpd(s), 4.89, 0, 0.005));
 }
 
 TEST(Compile, PaperBranchesPairFarAndMidPlanes) {

@@ -66,6 +66,27 @@ TEST(LightFieldRadiance, BetweenTwoViewsItAveragesThem) {
       << "the test needs parallax between the two views";
 }
 
+// Between two pixel centers of one view: nearest (the default, as the layers
+// are read) holds the pixel containing the crossing, bilinear blends the two.
+TEST(LightFieldRadiance, NearestHoldsThePixelBilinearBlends) {
+  const LightFieldGeometry g = Geometry();
+  LightField lf = RenderPlaneLightField(g, g.origin_z, *Grating(60));
+  const int i = 30, j = 120, r = 6, c = 6;  // the central view: v = (0, 0)
+  const PupilPoint u{g.view_x(c), g.view_y(r)};
+  const size_t here = (static_cast<size_t>(i) * g.cols + j) * 3, right = here + 3;
+  const float* view = lf.view(g.view_index(r, c));
+  ASSERT_GT(std::abs(view[here] - view[right]), 0.01) << "the test needs neighbours that differ";
+  const double pixel = g.window_width / g.cols, y = g.pixel_y(i);
+  for (double fraction : {0.3, 0.7}) {
+    const double x = g.pixel_x(j) + fraction * pixel;  // crossing the origin plane here
+    const double dx = (x - u.x) / g.origin_z, dy = (y - u.y) / g.origin_z;
+    // Pixel j spans [center - pitch/2, center + pitch/2): 0.3 is still in it, 0.7 in j + 1.
+    EXPECT_NEAR(LightFieldRadiance(lf)(u, dx, dy)[0], fraction < 0.5 ? view[here] : view[right], 1e-7);
+    EXPECT_NEAR(LightFieldRadiance(lf, Sampling::kBilinear)(u, dx, dy)[0],
+                (1 - fraction) * view[here] + fraction * view[right], 1e-6);
+  }
+}
+
 TEST(LightFieldRadiance, OutsideTheWindowIsDark) {
   const LightFieldGeometry g = Geometry(20, 10);
   LightField lf = RenderPlaneLightField(g, g.origin_z, *MakeConstantTexture({1, 1, 1}));
@@ -83,7 +104,7 @@ TEST(LightFieldRadiance, RetinaMatchesTheAnalyticPlaneAtEveryFocus) {
   const double z = 1 / 1.0;
   auto texture = Grating(1.0 / (z * kDeg));  // 1 cpd at the line of sight
   LightField lf = RenderPlaneLightField(g, z, *texture);
-  SceneRadiance from_lf = LightFieldRadiance(lf);
+  SceneRadiance from_lf = LightFieldRadiance(lf, Sampling::kBilinear);
   SceneRadiance plane = [&](const PupilPoint& u, double dx, double dy) {
     return texture->Evaluate(u.x + dx * z, u.y + dy * z);
   };

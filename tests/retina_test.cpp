@@ -2,6 +2,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "systems/lightfield_radiance.h"
 #include "systems/retina.h"
 #include "tests/test_util.h"
 
@@ -144,6 +145,46 @@ TEST(Retina, OneLayerDisplayMatchesNaturalViewingOfThatPlane) {
     Image natural = RetinaOfScene(plane, retina, pupil, focus);
     for (size_t k = 0; k < display.pixels.size(); ++k)
       ASSERT_NEAR(display.pixels[k], natural.pixels[k], 1e-5) << "accommodation " << accommodation << ", sample " << k;
+  }
+}
+
+// Natural viewing of the light field a one-layer display on the origin plane
+// emits equals the display itself, for a random pattern, at every focus:
+// under the default sampling and under bilinear, where each side reads as
+// the other. Natural viewing read bilinearly against nearest layers does not.
+TEST(Retina, OneLayerDisplayEqualsNaturalViewingOfItsLightFieldOnARandomPattern) {
+  OneLayer d = OneLayerDisplay("1.0 D");
+  for (size_t i = 0; i < d.t[0].rgb.size(); ++i) d.t[0].rgb[i] = float((i * 2654435761u) % 1000) / 1000;
+  RetinaGrid retina = MakeRetinaGrid(6 * kDeg, 4 * kDeg, 0.05 * kDeg);
+  // Off the symmetric grid, so that no ray crosses the plane exactly on a pixel edge.
+  retina.center_x = 0.3183 * retina.resolution, retina.center_y = 0.2718 * retina.resolution;
+  RetinaGrid inner = MakeRetinaGrid(4 * kDeg, 3 * kDeg, 0.05 * kDeg);
+  inner.center_x = retina.center_x, inner.center_y = retina.center_y;
+  std::vector<PupilPoint> pupil = PupilSamples(d.system.eye);
+  const LightFieldGeometry g = d.model->geometry();
+  ASSERT_TRUE(Close(g.origin_z, d.system.layers[0].depth, 1e-12));
+  DisplayModel bilinear(d.system, g, Sampling::kBilinear);
+  const LightField nearest_lf = d.model->Synthesize(d.t), bilinear_lf = bilinear.Synthesize(d.t);
+  auto rms = [](const Image& a, const Image& b) {
+    double s = 0;
+    for (size_t k = 0; k < a.pixels.size(); ++k) s += double(a.pixels[k] - b.pixels[k]) * (a.pixels[k] - b.pixels[k]);
+    return std::sqrt(s / a.pixels.size());
+  };
+  for (double accommodation : {0.0, 0.6, 1.0, 1.9}) {
+    std::array<double, 3> focus{accommodation, accommodation, accommodation};
+    Image display = RetinaOfDisplay(*d.model, d.t, retina, pupil, focus);
+    Image natural = RetinaOfScene(LightFieldRadiance(nearest_lf), retina, pupil, focus);
+    for (size_t k = 0; k < display.pixels.size(); ++k)
+      ASSERT_NEAR(display.pixels[k], natural.pixels[k], 1e-5) << "accommodation " << accommodation << ", sample " << k;
+    // Within half a pixel of the layer's edge bilinear layers blend toward 0
+    // and the light field holds its edge pixel: compare where no ray gets there.
+    Image display_bilinear = RetinaOfDisplay(bilinear, d.t, inner, pupil, focus);
+    Image natural_bilinear = RetinaOfScene(LightFieldRadiance(bilinear_lf, Sampling::kBilinear), inner, pupil, focus);
+    EXPECT_LT(rms(display_bilinear, natural_bilinear), 1e-5) << "bilinear, accommodation " << accommodation;
+    if (accommodation == 1.0) {  // in focus, a pixel-held pattern against its bilinear blend
+      EXPECT_GT(rms(display, RetinaOfScene(LightFieldRadiance(nearest_lf, Sampling::kBilinear), retina, pupil, focus)),
+                0.05);
+    }
   }
 }
 

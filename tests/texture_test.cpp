@@ -62,6 +62,28 @@ TEST(TextureTest, GratingPhaseAndOrientation) {
   EXPECT_TRUE(Close(grating->Evaluate(0, -period / 4)[0], 1.0, 0, 1e-12));
 }
 
+TEST(TextureTest, GratingUniformInVisualAngleIsTheFrequencyAtEveryAngle) {
+  // 2 cpd at 0.8 m, orientation 30 deg: along the wave vector the point at
+  // angle a from the center (w = z tan a) has phase 2 pi f a, a in degrees.
+  TextureFrame frame;
+  frame.reference_depth = 0.8;
+  auto grating = Parse({{"type", "grating"}, {"frequency", "2 cpd"}, {"orientation", "30 deg"}, {"uniform", "angle"}},
+                       frame);
+  auto plane = Parse({{"type", "grating"}, {"frequency", "2 cpd"}, {"orientation", "30 deg"}}, frame);
+  const double o = 30 * kDeg;
+  for (double a_deg : {-14.3, -3.1, 0.0, 0.2, 6.55, 12.0}) {
+    const double w = 0.8 * std::tan(a_deg * kDeg), along = 0.017;  // along: a shift along the bars changes nothing
+    const double s = w * std::cos(o) - along * std::sin(o), t = w * std::sin(o) + along * std::cos(o);
+    EXPECT_TRUE(Close(grating->Evaluate(s, t)[0], 0.5 * (1 + std::cos(2 * std::numbers::pi * 2 * a_deg)), 0, 1e-12))
+        << a_deg << " deg";
+    // Uniform on the plane: the small-angle 2 pi f w / (z pi / 180) instead.
+    EXPECT_TRUE(Close(plane->Evaluate(s, t)[0], 0.5 * (1 + std::cos(2 * std::numbers::pi * 2 * w / (0.8 * kDeg))), 0, 1e-12));
+  }
+  EXPECT_EQ(grating->Describe(), "grating 2 cpd in visual angle");
+  EXPECT_EQ(ParseError({{"type", "grating"}, {"frequency", "2 cpd"}, {"uniform", "angles"}}, frame).substr(0, 45),
+            "target.json: /texture/uniform: \"angles\" is no");
+}
+
 TEST(TextureTest, CheckerboardPeriodAsAngleOrLength) {
   TextureFrame frame;
   frame.reference_depth = 2;

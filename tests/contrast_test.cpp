@@ -1,0 +1,161 @@
+// The accommodation analysis (analysis/contrast.h, analysis/fourier.h)
+// against what a perfect display, a pure grating and a hand-made curve must give.
+#include <cmath>
+#include <complex>
+#include <numbers>
+
+#include "analysis/contrast.h"
+#include "systems/retina.h"
+#include "tests/test_util.h"
+
+namespace layerlab {
+namespace {
+
+using testing::Close;
+
+constexpr double kDeg = std::numbers::pi / 180;
+
+// The multiplicative example's rear panel alone, at `diopters`: a display
+// that can show the sampled target exactly.
+ContrastDisplay OneLayerAt(double diopters) {
+  nlohmann::json scene = testing::ReadExample("multiplicative_2layer.json");
+  testing::ElementNamed(scene, "lens")["next"] = "rear";
+  scene["elements"].erase(2);
+  testing::ElementNamed(scene, "rear")["virtual_depth"] = std::to_string(diopters) + " D";
+  ContrastDisplay d;
+  d.name = "one_layer";
+  d.system = testing::CompileJson(scene);
+  d.solver = "multiplicative";
+  return d;
+}
+
+const ContrastCurve& Curve(const std::vector<ContrastCurve>& curves, const std::string& display, double f) {
+  for (const ContrastCurve& c : curves)
+    if (c.display == display && c.frequency == f) return c;
+  throw Error("no curve " + display);
+}
+
+TEST(Contrast, PerfectOneLayerDisplayScoresOneAtItsPeak) {
+  const double dt = 1.3;
+  ContrastDisplay d = OneLayerAt(dt);
+  ContrastOptions o;
+  o.target_diopters = {dt};
+  o.accommodation_min = 1.0, o.accommodation_max = 1.6;
+  std::vector<ContrastCurve> curves = RunContrast({d}, o);
+  for (double f : {2.0, 4.0}) {
+    const ContrastCurve& c = Curve(curves, "one_layer", f);
+    EXPECT_GT(c.psnr_db, 100) << "the one-layer display reproduces its target";
+    EXPECT_TRUE(Close(c.peak.value, 1.0, 0, 0.005)) << f << " cpd: " << c.peak.value;
+    EXPECT_TRUE(Close(c.peak.at_grid, dt, 0, 1e-9)) << f << " cpd";
+    EXPECT_FALSE(c.estimate.flat) << f << " cpd";
+    EXPECT_TRUE(Close(c.estimate.at, dt, 0, 0.01)) << f << " cpd";
+  }
+
+  // Against the continuous plane the same display loses the pixel hold:
+  // in focus it shows the grating sampled at its pixel centers and held over
+  // each pixel, whose component at f is sinc(f p) of the cosine's, p the
+  // pixel's angle (uniform in tan, so 3 % finer at the field's edge).
+  o.reference = ContrastReference::kContinuous;
+  o.accommodation_min = dt, o.accommodation_max = dt + 0.05;
+  curves = RunContrast({d}, o);
+  const double p = std::atan(d.system.layers[0].tan_pitch_x) / kDeg;
+  for (double f : {2.0, 4.0}) {
+    const double sinc = std::sin(std::numbers::pi * f * p) / (std::numbers::pi * f * p);
+    EXPECT_TRUE(Close(Curve(curves, "one_layer", f).contrast[0], sinc, 0.01)) << f << " cpd, pixel " << p << " deg";
+  }
+}
+
+// The in-focus retinal row of natural viewing of the default grating, and its
+// frequency in windows across the field, found by scanning the Fourier kernel.
+struct Window {
+  double peak_frequency = 0, ideal_peak_frequency = 0, amplitude_at_f = 0, phase_at_f = 0;
+  double worst_error = 0;  // against the ideal grating, mean removed
+};
+std::vector<Window> LocalFrequencies(GratingSpacing spacing, double dt, double f) {
+  auto texture = CosineGrating(0.5, 1.0, spacing)(1 / dt, f);
+  SceneRadiance plane = [&](const PupilPoint& u, double dx, double dy) {
+    return texture->Evaluate(u.x + dx / dt, u.y + dy / dt);
+  };
+  EyeModel eye;
+  RetinaGrid retina = MakeRetinaGrid(20 * kDeg, 0.01 * kDeg, 0.01 * kDeg);
+  Image image = RetinaOfScene(plane, retina, PupilSamples(eye), {dt, dt, dt});
+  // Five windows of 4 degrees (8 cycles of 2 cpd) from edge to edge.
+  std::vector<Window> windows;
+  const int n = 400;
+  for (int w = 0; w < 5; ++w) {
+    std::vector<double> values, degrees;
+    for (int j = w * n; j < (w + 1) * n; ++j) values.push_back(image.at(0, j, 1)), degrees.push_back(retina.angle_x(j) / kDeg);
+    Window out;
+    out.amplitude_at_f = FourierAmplitude(values, degrees, f);
+    // Without the mean, whose kernel's side lobes would pull the scan's peak.
+    double mean = 0;
+    for (double v : values) mean += v / values.size();
+    for (double& v : values) v -= mean;
+    // The scan's peak for the ideal cos(2 pi f a) on the same samples: the
+    // kernel of a finite window puts it a little off f.
+    std::vector<double> ideal;
+    for (double a : degrees) ideal.push_back(0.5 * std::cos(2 * std::numbers::pi * f * a));
+    double best = -1, best_ideal = -1;
+    for (double g = 0.9 * f; g <= 1.1 * f; g += 0.0005) {
+      double a = FourierAmplitude(values, degrees, g), b = FourierAmplitude(ideal, degrees, g);
+      if (a > best) best = a, out.peak_frequency = g;
+      if (b > best_ideal) best_ideal = b, out.ideal_peak_frequency = g;
+    }
+    out.worst_error = 0;
+    for (size_t k = 0; k < values.size(); ++k) out.worst_error = std::max(out.worst_error, std::abs(values[k] - ideal[k]));
+    std::complex<double> sum = 0;
+    for (size_t k = 0; k < values.size(); ++k) sum += values[k] * std::polar(1.0, -2 * std::numbers::pi * f * degrees[k]);
+    out.phase_at_f = std::arg(sum);
+    windows.push_back(out);
+  }
+  return windows;
+}
+
+TEST(Contrast, InFocusNaturalGratingIsOneFrequencyOverTheWholeField) {
+  for (double f : {2.0, 4.0})
+    for (double dt : {0.7, 1.9}) {
+      for (const Window& w : LocalFrequencies(GratingSpacing::kVisualAngle, dt, f)) {
+        EXPECT_LT(w.worst_error, 1e-6) << f << " cpd at " << dt << " D";  // it is 0.5 (1 + cos(2 pi f a))
+        EXPECT_NEAR(w.peak_frequency, w.ideal_peak_frequency, 1e-9) << f << " cpd at " << dt << " D";
+        EXPECT_NEAR(w.peak_frequency, f, 0.005) << f << " cpd at " << dt << " D";
+        EXPECT_NEAR(w.amplitude_at_f, 0.5, 1e-4) << f << " cpd at " << dt << " D";
+        EXPECT_NEAR(w.phase_at_f, 0.0, 1e-3) << f << " cpd at " << dt << " D";  // cos(2 pi f a): no drift
+      }
+      // The plane-uniform grating of before drifts: finer by 1 / cos^2 off
+      // axis, 2 % over the outer windows (6 to 10 deg), and off in phase.
+      std::vector<Window> plane = LocalFrequencies(GratingSpacing::kPlane, dt, f);
+      EXPECT_NEAR(plane[2].peak_frequency, plane[2].ideal_peak_frequency, 0.0011);
+      for (int w : {0, 4}) {
+        EXPECT_GT(plane[w].peak_frequency, f * 1.012) << f << " cpd";
+        EXPECT_GT(std::abs(plane[w].phase_at_f), 0.5) << f << " cpd";
+      }
+    }
+}
+
+TEST(FindPeak, ParabolaThroughAParabolaIsItsVertex) {
+  std::vector<double> x, y, shifted, far, rising;
+  auto parabola = [](double at, double vertex) { return 1 - 4 * (at - vertex) * (at - vertex); };
+  for (int k = 0; k <= 20; ++k) {
+    x.push_back(0.05 * k);
+    y.push_back(parabola(x.back(), 0.62));
+    shifted.push_back(parabola(x.back(), 0.66));
+    far.push_back(parabola(x.back(), 0.74));
+    rising.push_back(x.back());
+  }
+  EXPECT_TRUE(Close(FindPeak(x, y).at_parabola, 0.62, 1e-12));
+  PeakEstimate same = EstimatePeak(x, y, y, 0.05);
+  EXPECT_TRUE(Close(same.at, 0.62, 1e-12));
+  EXPECT_EQ(same.uncertainty, 0.0);
+  EXPECT_FALSE(same.flat);
+  // Sampled another way the peak moves by 0.04: that is its uncertainty, within the limit.
+  PeakEstimate moved = EstimatePeak(x, y, shifted, 0.05);
+  EXPECT_TRUE(Close(moved.uncertainty, 0.04, 1e-9));
+  EXPECT_FALSE(moved.flat);
+  EXPECT_TRUE(EstimatePeak(x, y, far, 0.05).flat);          // moved by 0.12
+  EXPECT_TRUE(EstimatePeak(x, y, rising, 0.05).flat);       // the other sampling has no vertex
+  EXPECT_TRUE(EstimatePeak(x, rising, {}, 0.05).flat);      // the maximum at the end of the range
+  EXPECT_FALSE(EstimatePeak(x, y, {}, 0.05).flat);
+}
+
+}  // namespace
+}  // namespace layerlab
