@@ -184,7 +184,7 @@ LightField ReadLightField(const std::string& folder, const LightFieldReadOptions
   return lf;
 }
 
-void WriteLightField(const LightField& lf, const std::string& folder) {
+std::vector<std::string> WriteLightField(const LightField& lf, const std::string& folder) {
   const LightFieldGeometry& g = lf.geometry;
   if (lf.rgb.size() != g.ray_count() * 3 || (!lf.depth.empty() && lf.depth.size() != g.ray_count()))
     throw Error(folder + ": internal error: light-field buffers do not match the geometry");
@@ -216,6 +216,14 @@ void WriteLightField(const LightField& lf, const std::string& folder) {
       {"scene", lf.scene}};
   if (!lf.depth.empty()) manifest["depth_pattern"] = depth_pattern;
   WriteFileAtomically((fs::path(folder) / "lightfield.json").string(), manifest.dump(2) + "\n");
+  std::vector<std::string> written;
+  for (int r = 0; r < g.views_y; ++r)
+    for (int c = 0; c < g.views_x; ++c) {
+      written.push_back(FillPattern(views_pattern, r, c));
+      if (!lf.depth.empty()) written.push_back(FillPattern(depth_pattern, r, c));
+    }
+  written.push_back("lightfield.json");
+  return written;
 }
 
 }  // namespace layerlab
