@@ -12,6 +12,7 @@
 #include "framework/atomic_file.h"
 #include "framework/error.h"
 #include "framework/lightfield_io.h"
+#include "framework/staged_output.h"
 #include "solvers/solve_config.h"
 #include "systems/compile.h"
 
@@ -67,6 +68,9 @@ void AddCompareCommand(CLI::App& app) {
       }
     }
     if (runs.empty()) throw Error("compare: no display and solver fit together; nothing to run");
+    std::vector<NamedInput> inputs = {{o->target, "the target"}};
+    for (const std::string& file : o->scenes) inputs.push_back({file, "a scene"});
+    StagedOutput stage(o->out, "compare", {"compare.txt", "compare.csv", "traces.csv", "psnr_vs_time.svg"}, inputs);
     std::fprintf(stderr, "loading %s\n", o->target.c_str());
     LightField target = ReadLightField(o->target, {.load_depth = false});
     std::vector<CompareResult> results = RunComparison(runs, target, [](const std::string& line) {
@@ -76,12 +80,16 @@ void AddCompareCommand(CLI::App& app) {
       if (!r.report.IsSolutionUsable())
         throw Error("compare: " + r.display + " / " + r.solver + " failed: " + r.report.message + "; nothing was written");
 
-    std::filesystem::create_directories(o->out);
     const std::string table = CompareTable(results);
-    WriteFileAtomically(o->out + "/compare.txt", table);
-    WriteFileAtomically(o->out + "/compare.csv", CompareCsv(results));
-    WriteFileAtomically(o->out + "/traces.csv", TracesCsv(results));
-    WriteFileAtomically(o->out + "/psnr_vs_time.svg", PsnrAgainstTimeSvg(results));
+    try {
+      WriteFileAtomically(stage.staging() + "/compare.txt", table);
+      WriteFileAtomically(stage.staging() + "/compare.csv", CompareCsv(results));
+      WriteFileAtomically(stage.staging() + "/traces.csv", TracesCsv(results));
+      WriteFileAtomically(stage.staging() + "/psnr_vs_time.svg", PsnrAgainstTimeSvg(results));
+    } catch (const Error& e) {
+      throw stage.Explain(e);
+    }
+    stage.Commit();
     std::cout << table << "wrote " << o->out << "/{compare.txt,compare.csv,traces.csv,psnr_vs_time.svg}\n";
   });
 }
