@@ -98,8 +98,10 @@ void AddSolveCommand(CLI::App& app) {
     const std::string checkpoint_folder = (std::filesystem::path(o->out) / "checkpoint").string();
     if (o->checkpoint_every < 0) throw Error("--checkpoint-every: must be 0 (none) or positive");
     opt.checkpoint_every = o->checkpoint_every;
-    const CheckpointInputs digest =
-        CheckpointDigest(model, config.sampling, target->light_field, config.solver, opt);
+    // Hashing the target costs a pass over it: only when a checkpoint is written or read.
+    const CheckpointInputs digest = o->checkpoint_every > 0 || o->resume
+                                        ? CheckpointDigest(model, config.sampling, target->light_field, config.solver, opt)
+                                        : CheckpointInputs{};
     if (o->checkpoint_every > 0)
       opt.checkpoint = [&](const SolverCheckpoint& c) { WriteCheckpoint(model, c, checkpoint_folder, digest); };
     std::optional<SolverCheckpoint> resume;
