@@ -249,7 +249,7 @@ RunOutcome RunPipeline(const RunRequest& request) {
     if (in.run.compare.enabled) {
       auto start = Clock::now();
       const CompareRunConfig& c = in.run.compare;
-      const bool overridden = c.iterations > 0 || c.time_budget >= 0;
+      const bool overridden = c.iterations || c.time_budget;
       std::vector<std::pair<std::string, const DisplaySystem*>> displays = {{in.name, &in.system}};
       std::vector<const SolveConfig*> configs = {&in.solve};
       for (const OtherDisplay& d : in.compare) displays.push_back({d.name, &d.system}), configs.push_back(&d.config);
@@ -268,8 +268,8 @@ RunOutcome RunPipeline(const RunRequest& request) {
           CompareRun run{name, *system, solver,
                          solver == configs[k]->solver ? configs[k]->options : SolverRegistry::Builtins().find(solver)->defaults,
                          configs[k]->sampling};
-          if (c.iterations > 0) run.options.iterations = c.iterations;
-          if (c.time_budget >= 0) run.options.time_budget = c.time_budget;
+          run.options.iterations = c.iterations.value_or(run.options.iterations);
+          run.options.time_budget = c.time_budget.value_or(run.options.time_budget);
           Progress progress("compare " + name + " / " + solver, run.options.iterations);
           run.options.progress = [&](int iteration, double, double psnr) {
             progress.Update(iteration, "iterations  PSNR " + Psnr(psnr));

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "analysis/compare.h"
@@ -34,8 +35,8 @@ void AddCompareCommand(CLI::App& app) {
   struct Options {
     std::vector<std::string> scenes;
     std::string target, out, solvers;
-    int iterations = 0;
-    double time_budget = -1;
+    std::optional<int> iterations;
+    std::optional<double> time_budget;
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("compare", "Several displays and solvers on one target: PSNR against time");
@@ -47,7 +48,8 @@ void AddCompareCommand(CLI::App& app) {
   cmd->add_option("--time-budget", o->time_budget, "Seconds each run may take");
   cmd->callback([o] {
     for (const std::string& name : SplitNames(o->solvers)) SolverRegistry::Builtins().create(name);  // names known ones
-    if (o->iterations < 0) throw Error("--iterations: must be positive");
+    if (o->iterations && *o->iterations <= 0) throw Error("--iterations: must be positive");
+    if (o->time_budget && !(*o->time_budget >= 0)) throw Error("--time-budget: must be 0 (none) or more seconds");
     std::vector<CompareRun> runs;
     for (const std::string& file : o->scenes) {
       Scene scene = LoadScene(file);
@@ -62,8 +64,8 @@ void AddCompareCommand(CLI::App& app) {
           continue;
         }
         SolverOptions options = solver == config.solver ? config.options : SolverRegistry::Builtins().find(solver)->defaults;
-        if (o->iterations > 0) options.iterations = o->iterations;
-        if (o->time_budget >= 0) options.time_budget = o->time_budget;
+        options.iterations = o->iterations.value_or(options.iterations);
+        options.time_budget = o->time_budget.value_or(options.time_budget);
         runs.push_back({name, system, solver, options, config.sampling});
       }
     }
