@@ -154,9 +154,11 @@ CompareRunConfig ReadCompare(Params& run, const Scene& scene) {
       }
     }
   }
-  c.iterations = static_cast<int>(p.integer("iterations", 1, 1000000, c.iterations));
-  c.time_budget = p.quantity("time_budget", Dimension::kTime, c.time_budget);
-  if (p.has("time_budget")) p.require_range("time_budget", c.time_budget, 0, 1e7, true, false);
+  if (p.has("iterations")) c.iterations = static_cast<int>(p.integer("iterations", 1, 1000000));
+  if (p.has("time_budget")) {
+    c.time_budget = p.quantity("time_budget", Dimension::kTime);
+    p.require_range("time_budget", *c.time_budget, 0, 1e7, true, false);
+  }
   p.check_all_read();
   return c;
 }

@@ -40,8 +40,8 @@ struct CompareRunConfig {
   bool enabled = false;
   std::vector<std::string> scenes;   // displays beside this one (resolved paths)
   std::vector<std::string> solvers;  // empty: each scene's own solver
-  int iterations = 0;                // 0: each run's own
-  double time_budget = -1;           // s; negative: each run's own
+  std::optional<int> iterations;     // unset: each run's own
+  std::optional<double> time_budget; // s; unset: each run's own
 };
 
 struct RunConfig {

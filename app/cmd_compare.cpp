@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "analysis/compare.h"
@@ -12,6 +13,7 @@
 #include "framework/atomic_file.h"
 #include "framework/error.h"
 #include "framework/lightfield_io.h"
+#include "framework/staged_output.h"
 #include "solvers/solve_config.h"
 #include "systems/compile.h"
 
@@ -33,8 +35,8 @@ void AddCompareCommand(CLI::App& app) {
   struct Options {
     std::vector<std::string> scenes;
     std::string target, out, solvers;
-    int iterations = 0;
-    double time_budget = -1;
+    std::optional<int> iterations;
+    std::optional<double> time_budget;
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("compare", "Several displays and solvers on one target: PSNR against time");
@@ -46,7 +48,8 @@ void AddCompareCommand(CLI::App& app) {
   cmd->add_option("--time-budget", o->time_budget, "Seconds each run may take");
   cmd->callback([o] {
     for (const std::string& name : SplitNames(o->solvers)) SolverRegistry::Builtins().create(name);  // names known ones
-    if (o->iterations < 0) throw Error("--iterations: must be positive");
+    if (o->iterations && *o->iterations <= 0) throw Error("--iterations: must be positive");
+    if (o->time_budget && !(*o->time_budget >= 0)) throw Error("--time-budget: must be 0 (none) or more seconds");
     std::vector<CompareRun> runs;
     for (const std::string& file : o->scenes) {
       Scene scene = LoadScene(file);
@@ -61,12 +64,15 @@ void AddCompareCommand(CLI::App& app) {
           continue;
         }
         SolverOptions options = solver == config.solver ? config.options : SolverRegistry::Builtins().find(solver)->defaults;
-        if (o->iterations > 0) options.iterations = o->iterations;
-        if (o->time_budget >= 0) options.time_budget = o->time_budget;
+        options.iterations = o->iterations.value_or(options.iterations);
+        options.time_budget = o->time_budget.value_or(options.time_budget);
         runs.push_back({name, system, solver, options, config.sampling});
       }
     }
     if (runs.empty()) throw Error("compare: no display and solver fit together; nothing to run");
+    std::vector<NamedInput> inputs = {{o->target, "the target"}};
+    for (const std::string& file : o->scenes) inputs.push_back({file, "a scene"});
+    StagedOutput stage(o->out, "compare", {"compare.txt", "compare.csv", "traces.csv", "psnr_vs_time.svg"}, inputs);
     std::fprintf(stderr, "loading %s\n", o->target.c_str());
     LightField target = ReadLightField(o->target, {.load_depth = false});
     std::vector<CompareResult> results = RunComparison(runs, target, [](const std::string& line) {
@@ -76,12 +82,16 @@ void AddCompareCommand(CLI::App& app) {
       if (!r.report.IsSolutionUsable())
         throw Error("compare: " + r.display + " / " + r.solver + " failed: " + r.report.message + "; nothing was written");
 
-    std::filesystem::create_directories(o->out);
     const std::string table = CompareTable(results);
-    WriteFileAtomically(o->out + "/compare.txt", table);
-    WriteFileAtomically(o->out + "/compare.csv", CompareCsv(results));
-    WriteFileAtomically(o->out + "/traces.csv", TracesCsv(results));
-    WriteFileAtomically(o->out + "/psnr_vs_time.svg", PsnrAgainstTimeSvg(results));
+    try {
+      WriteFileAtomically(stage.staging() + "/compare.txt", table);
+      WriteFileAtomically(stage.staging() + "/compare.csv", CompareCsv(results));
+      WriteFileAtomically(stage.staging() + "/traces.csv", TracesCsv(results));
+      WriteFileAtomically(stage.staging() + "/psnr_vs_time.svg", PsnrAgainstTimeSvg(results));
+    } catch (const Error& e) {
+      throw stage.Explain(e);
+    }
+    stage.Commit();
     std::cout << table << "wrote " << o->out << "/{compare.txt,compare.csv,traces.csv,psnr_vs_time.svg}\n";
   });
 }

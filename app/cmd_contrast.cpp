@@ -10,6 +10,8 @@
 #include "app/commands.h"
 #include "app/number_list.h"
 #include "framework/atomic_file.h"
+#include "framework/error.h"
+#include "framework/staged_output.h"
 #include "solvers/solve_config.h"
 #include "systems/compile.h"
 #include "systems/system_report.h"
@@ -68,15 +70,22 @@ void AddContrastCommand(CLI::App& app) {
 
     std::vector<ContrastDisplay> displays;
     for (const std::string& file : o->scenes) displays.push_back(LoadContrastDisplay(file));
+    std::vector<NamedInput> inputs;
+    for (const std::string& file : o->scenes) inputs.push_back({file, "a scene"});
+    StagedOutput stage(o->out, "contrast", {"contrast.csv", "peaks.txt", "contrast.svg"}, inputs);
     auto start = std::chrono::steady_clock::now();
     std::vector<ContrastCurve> curves = RunContrast(displays, options);
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    std::filesystem::create_directories(o->out);
     std::string peaks = PeakTable(curves);
-    WriteFileAtomically(o->out + "/contrast.csv", ContrastCsv(curves));
-    WriteFileAtomically(o->out + "/peaks.txt", peaks);
-    WriteFileAtomically(o->out + "/contrast.svg", ContrastSvg(curves));
+    try {
+      WriteFileAtomically(stage.staging() + "/contrast.csv", ContrastCsv(curves));
+      WriteFileAtomically(stage.staging() + "/peaks.txt", peaks);
+      WriteFileAtomically(stage.staging() + "/contrast.svg", ContrastSvg(curves));
+    } catch (const Error& e) {
+      throw stage.Explain(e);
+    }
+    stage.Commit();
     std::cout << peaks;
     std::printf("sweep of %zu curves in %.2f s; wrote %s/{contrast.csv,peaks.txt,contrast.svg}\n", curves.size(), seconds,
                 o->out.c_str());

@@ -2,6 +2,7 @@
 // as built, fitted with Ceres to what a camera at the eye measured
 // (docs/measurements-format.md). Writes a scene file every other command
 // reads unchanged, and prints the calibration report.
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <numbers>
@@ -9,6 +10,7 @@
 
 #include "app/commands.h"
 #include "framework/atomic_file.h"
+#include "framework/staged_output.h"
 #include "calibration/calibrated_scene.h"
 #include "calibration/calibration.h"
 #include "systems/compile.h"
@@ -40,6 +42,9 @@ void AddFitCommand(CLI::App& app) {
                 "Also fit the gap of every lens and curved mirror (needs two or more camera positions and two panels "
                 "at different depths behind it)");
   cmd->callback([o] {
+    const std::vector<NamedInput> inputs = {{o->scene, "the scene"}, {o->measurements, "the measurements"}};
+    RefuseOutputOverlappingInputs(o->out, inputs);
+    if (!o->report.empty()) RefuseOutputOverlappingInputs(o->report, inputs);
     DisplaySystem system = Compile(LoadScene(o->scene));
     Measurements measurements = ReadMeasurementsFile(o->measurements);
     CalibrationOptions options;
@@ -61,7 +66,8 @@ void AddFitCommand(CLI::App& app) {
     if (!report.IsSolutionUsable()) throw Error("the calibration failed: " + report.message + "; nothing was written");
 
     nlohmann::ordered_json calibrated = CalibratedSceneDocument(ReadDocumentInOrder(o->scene), o->scene, display);
-    RebaseRelativePaths(calibrated, o->scene, o->out);
+    // Absolute: a bare file name has no parent folder to rebase from.
+    RebaseRelativePaths(calibrated, std::filesystem::absolute(o->scene).string(), std::filesystem::absolute(o->out).string());
     // The calibrated scene must compile before it replaces anything.
     AtomicFile file(o->out);
     WriteFileAtomically(file.temp_path(), calibrated.dump(2) + "\n");

@@ -7,7 +7,9 @@
 #include <string>
 
 #include "app/commands.h"
+#include "framework/error.h"
 #include "framework/lightfield_io.h"
+#include "framework/staged_output.h"
 #include "targets/target_renderer.h"
 #include "targets/target_scene.h"
 
@@ -23,6 +25,8 @@ void AddRenderTargetCommand(CLI::App& app) {
   cmd->add_option("out_dir", options->out_dir, "Light-field folder to write (created if needed)")->required();
   cmd->callback([options] {
     TargetScene target = LoadTarget(options->target);
+    StagedOutput stage(options->out_dir, "render-target", {"views", "depth", "lightfield.json"},
+                       {{options->target, "the target scene"}});
     const LightFieldGeometry& g = target.geometry;
     std::fprintf(stderr, "render-target: %d x %d views of %d x %d pixels, %d samples per pixel; %s\n", g.views_x,
                  g.views_y, g.cols, g.rows, target.samples_per_pixel, target.description.c_str());
@@ -36,7 +40,12 @@ void AddRenderTargetCommand(CLI::App& app) {
       printed_tenths = tenths;
       std::fprintf(stderr, "render-target: %zu / %zu views rendered\n", done, total);
     });
-    WriteLightField(lf, options->out_dir);
+    try {
+      WriteLightField(lf, stage.staging());
+    } catch (const Error& e) {
+      throw stage.Explain(e);
+    }
+    stage.Commit();
     std::fprintf(stderr, "render-target: %.2f s, %llu rays (%.1f Mrays/s); wrote %s\n", stats.seconds,
                  static_cast<unsigned long long>(stats.rays), stats.rays / stats.seconds / 1e6,
                  options->out_dir.c_str());

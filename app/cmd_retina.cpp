@@ -14,6 +14,7 @@
 #include "app/number_list.h"
 #include "framework/error.h"
 #include "framework/lightfield_io.h"
+#include "framework/staged_output.h"
 #include "solvers/solution_writer.h"
 #include "solvers/solve_config.h"
 #include "systems/compile.h"
@@ -69,6 +70,9 @@ void AddRetinaCommand(CLI::App& app) {
         throw Error("--field: give W,H in degrees, each in (0, 170)");
       field_x = f[0], field_y = f[1];
     }
+    StagedOutput stage(o->out, "retina", {"display", "natural", "retina.csv"},
+                       {{o->scene, "the scene"}, {o->patterns, "the patterns"}, {o->target, "the target"},
+                        {o->target_scene, "the target scene"}});
     std::optional<LightField> target_lf;
     if (!o->target.empty()) target_lf = ReadLightField(o->target, {.load_depth = false});
     const LightFieldGeometry g = target_lf ? target_lf->geometry : DisplayLightFieldGeometry(system);
@@ -91,9 +95,14 @@ void AddRetinaCommand(CLI::App& app) {
 
     RetinaSweepOptions sweep{states, o->resolution, field_x, field_y};
     std::fprintf(stderr, "retina: %zu accommodation states of %.3f deg samples\n", states.size(), o->resolution);
-    WriteRetinaSweep(model, t, natural, sweep, o->out, [](size_t done, size_t total, const RetinaStateResult& r) {
-      std::fprintf(stderr, "retina: %zu/%zu  %s  %.2f s\n", done, total, r.name.c_str(), r.seconds);
-    });
+    try {
+      WriteRetinaSweep(model, t, natural, sweep, stage.staging(), [](size_t done, size_t total, const RetinaStateResult& r) {
+        std::fprintf(stderr, "retina: %zu/%zu  %s  %.2f s\n", done, total, r.name.c_str(), r.seconds);
+      });
+    } catch (const Error& e) {
+      throw stage.Explain(e);
+    }
+    stage.Commit();
     std::printf("wrote %s/{display%s,retina.csv}: %zu states; values are display-relative (1 = %.4g cd/m2)\n",
                 o->out.c_str(), natural ? ",natural" : "", states.size(), model.white_luminance());
   });

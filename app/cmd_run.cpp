@@ -1,6 +1,6 @@
-// layerlab run SCENE.json --out DIR: the main job. Does what the scene's
-// "solve" and "run" sections declare (docs/run-section.md), in order, with a
-// progress bar per long step, and writes a report that opens without a server:
+// layerlab run SCENE.json --out DIR: the main job (analysis/run_pipeline.h,
+// docs/run-section.md). Does what the scene's "solve" and "run" sections
+// declare, in order, and writes a report that opens without a server:
 //
 //   DIR/system.txt, system.json      the compiled system
 //   DIR/target/                      the target's center view (and the rendered light field)
@@ -8,323 +8,38 @@
 //   DIR/retina/                      retinal images over accommodation (display, natural)
 //   DIR/contrast/                    the contrast sweep (CSV, peaks, SVG)
 //   DIR/compare/                     other displays on the same target (table, CSV, SVG)
-//   DIR/index.html                   the report, written last
-//
-// Everything is read and checked before anything runs; what is not declared
-// is not computed.
+//   DIR/index.html                   the report
 #include <chrono>
-#include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
 #include <memory>
-#include <set>
+#include <optional>
 #include <string>
 
-#include "analysis/compare.h"
-#include "analysis/contrast.h"
-#include "analysis/html_report.h"
-#include "analysis/retina_sweep.h"
-#include "analysis/run_config.h"
+#include "analysis/run_pipeline.h"
 #include "app/commands.h"
-#include "app/progress.h"
-#include "app/target_source.h"
-#include "framework/atomic_file.h"
-#include "framework/error.h"
-#include "framework/lightfield_io.h"
-#include "framework/png_writer.h"
-#include "framework/stale_files.h"
-#include "solvers/solution_writer.h"
-#include "solvers/solve_config.h"
-#include "systems/compile.h"
-#include "systems/system_report.h"
 
 namespace layerlab::app {
-namespace {
-
-namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
-
-double Since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
-
-std::string Psnr(double db) {
-  char text[32];
-  std::snprintf(text, sizeof text, std::isinf(db) ? "inf" : "%.2f dB", db);
-  return text;
-}
-
-// A compare run of another scene, compiled before anything runs.
-struct OtherDisplay {
-  std::string name;
-  DisplaySystem system;
-  SolveConfig config;
-};
-
-struct RunInputs {
-  Scene scene;
-  DisplaySystem system;
-  SolveConfig solve;
-  RunConfig run;
-  std::string name;  // the scene file's stem
-  std::vector<OtherDisplay> compare;
-  std::vector<ContrastDisplay> contrast;
-  bool has_target() const { return !solve.target.empty() || !solve.target_scene.empty(); }
-};
-
-RunInputs ReadInputs(const std::string& file, int iterations, int threads) {
-  RunInputs in{LoadScene(file), {}, {}, {}, fs::path(file).stem().string(), {}, {}};
-  in.system = Compile(in.scene);
-  in.solve = ReadSolveConfig(in.scene, in.system);
-  if (iterations > 0) in.solve.options.iterations = iterations;
-  if (threads >= 0) in.solve.options.threads = threads;
-  in.run = ReadRunConfig(in.scene, in.system);
-  const Location run_at{file, "/run"};
-  if (!in.has_target()) {
-    if (in.run.retina.enabled) throw Error(run_at.child("retina"), "retinal images need a target to factorize: give \"solve\": {\"target\": ...} or {\"target_scene\": ...}");
-    if (in.run.compare.enabled) throw Error(run_at.child("compare"), "a comparison needs a target: give \"solve\": {\"target\": ...} or {\"target_scene\": ...}");
-    if (!in.run.contrast.enabled)
-      throw Error(file + ": nothing to run: give a target in the \"solve\" section or analyses in a \"run\" section (docs/run-section.md)");
-  }
-  if (std::string why = UnsuitableSolver(in.solve.solver, in.system); !why.empty())
-    throw Error(Location{file, "/solve/solver"}, "the solver " + in.solve.solver + " " + why);
-  if (in.run.compare.enabled) {
-    std::vector<std::string> files = {file};
-    files.insert(files.end(), in.run.compare.scenes.begin(), in.run.compare.scenes.end());
-    for (size_t k = 1; k < files.size(); ++k) {
-      Scene other = LoadScene(files[k]);
-      OtherDisplay d{fs::path(files[k]).stem().string(), Compile(other), {}};
-      d.config = ReadSolveConfig(other, d.system);
-      // Without a "solve" section of its own, a display runs as this one does, so that the runs compare.
-      if (!other.document.contains("solve") && d.config.solver == in.solve.solver) {
-        d.config.options = in.solve.options;
-        d.config.sampling = in.solve.sampling;
-      }
-      in.compare.push_back(std::move(d));
-    }
-  }
-  if (in.run.contrast.enabled) {
-    ContrastDisplay self{in.name, in.system, in.solve.solver, in.solve.options, true};
-    in.contrast.push_back(self);
-    for (const std::string& other : in.run.contrast.scenes) in.contrast.push_back(LoadContrastDisplay(other));
-  }
-  return in;
-}
-
-ReportImage Picture(const std::string& caption, const std::string& src,
-                    std::vector<std::pair<std::string, std::string>> links = {}) {
-  return {caption, src, std::move(links)};
-}
-
-}  // namespace
 
 void AddRunCommand(CLI::App& app) {
-  struct Options {
-    std::string scene, out;
-    int iterations = 0, threads = -1;
-  };
-  auto o = std::make_shared<Options>();
+  auto request = std::make_shared<RunRequest>();
   CLI::App* cmd = app.add_subcommand(
       "run", "The main job: solve, retinal images, contrast and comparisons as the scene declares; a report in OUT/index.html");
-  cmd->add_option("scene", o->scene, "Scene file (JSON) with \"solve\" and \"run\" sections (docs/run-section.md)")->required();
-  cmd->add_option("--out", o->out, "Output folder")->required();
-  cmd->add_option("--iterations", o->iterations, "Outer iterations of the main solve (default: the scene's)");
-  cmd->add_option("--threads", o->threads, "Worker threads of the main solve (0: all cores)");
-  cmd->callback([o] {
-    const auto run_start = Clock::now();
-    if (o->iterations < 0) throw Error("--iterations: must be positive");
-    RunInputs in = ReadInputs(o->scene, o->iterations, o->threads);
-    const fs::path out = o->out;
-    std::error_code ec;
-    fs::create_directories(out, ec);
-    if (ec) throw Error(o->out + ": cannot create the output folder: " + ec.message());
-
-    RunReportPage page;
-    page.title = "layerlab run: " + (in.scene.name.empty() ? in.name : in.scene.name);
-    page.scene_file = o->scene;
-    page.description = in.scene.description;
-    page.command = "layerlab run " + o->scene + " --out " + o->out +
-                   (o->iterations ? " --iterations " + std::to_string(o->iterations) : "");
-    page.system = &in.system;
-    WriteFileAtomically((out / "system.txt").string(), FormatSystemTable(in.system));
-    WriteFileAtomically((out / "system.json").string(), SystemToJson(in.system).dump(2) + "\n");
-    page.system_links = {{"system.txt", "system.txt"}, {"system.json", "system.json"}};
-    auto step = [&](const std::string& what, Clock::time_point start) { page.steps.emplace_back(what, Since(start)); };
-
-    // Target and solve.
-    std::unique_ptr<Target> target;
-    std::unique_ptr<DisplayModel> model;
-    Patterns patterns;
-    SolverReport report;
-    if (in.has_target()) {
-      auto start = Clock::now();
-      target = LoadOrRenderTarget(in.solve, "target");
-      fs::create_directories(out / "target");
-      WriteCenterView(target->light_field, (out / "target" / "center_view.png").string());
-      std::vector<std::pair<std::string, std::string>> links;
-      if (target->rendered) {
-        WriteLightField(target->light_field, (out / "target" / "lightfield").string());
-        links.push_back({"light field", "target/lightfield/lightfield.json"});
-      }
-      const LightFieldGeometry& g = target->light_field.geometry;
-      page.target_source = (target->rendered ? "rendered from " : "light field ") + target->source + ": " +
-                           std::to_string(g.views_x) + " x " + std::to_string(g.views_y) + " views of " +
-                           std::to_string(g.cols) + " x " + std::to_string(g.rows) + " pixels";
-      page.target = Picture("center view (sRGB, 1 = white)", "target/center_view.png", links);
-      step(target->rendered ? "render the target" : "load the target", start);
-
-      start = Clock::now();
-      model = std::make_unique<DisplayModel>(in.system, g, in.solve.sampling);
-      SolverOptions options = in.solve.options;
-      Progress progress("solve " + in.solve.solver, options.iterations);
-      options.progress = [&](int iteration, double, double psnr) {
-        progress.Update(iteration, "iterations  PSNR " + Psnr(psnr));
-      };
-      report = SolverRegistry::Builtins().create(in.solve.solver)->Solve(*model, target->light_field, options, &patterns);
-      progress.Finish(report.BriefReport());
-      for (const std::string& w : report.warnings) page.warnings.push_back("solve: " + w);
-      if (!report.IsSolutionUsable()) throw Error("the solve failed: " + report.message + "; the report was not written");
-      const std::string solve_dir = (out / "solve").string();
-      WriteSolution(*model, patterns, report, solve_dir, {.write_lightfield = in.run.write_lightfield});
-      fs::create_directories(out / "solve" / "pattern_previews");
-      for (size_t k = 0; k < in.system.layers.size(); ++k) {
-        const VirtualLayer& layer = in.system.layers[k];
-        const std::string preview = "solve/pattern_previews/" + layer.name + ".png";
-        WriteSrgbPng((out / preview).string(), patterns[k].cols, patterns[k].rows, patterns[k].rgb);
-        page.patterns.push_back(Picture(layer.name + " (" + FormatFixed(layer.diopters, 2) + " D)", preview,
-                                        {{"EXR", "solve/patterns/" + layer.name + ".exr"}}));
-        const std::string panel = "solve/panels/" + layer.name + ".png";
-        page.panels.push_back(Picture(layer.name + ": " + std::to_string(layer.panel.resolution_cols) + " x " +
-                                          std::to_string(layer.panel.resolution_rows) + " panel",
-                                      panel, {{"PNG", panel}}));
-      }
-      CompareResult self{in.name, in.solve.solver, report, in.system.brightness_efficiency, in.system.luminance_efficiency};
-      WriteFileAtomically((out / "solve" / "psnr_vs_time.svg").string(), PsnrAgainstTimeSvg({self}));
-      page.solved = true;
-      page.solve_brief = report.BriefReport();
-      page.psnr_plot = Picture("PSNR against wall time", "solve/psnr_vs_time.svg",
-                               {{"SVG", "solve/psnr_vs_time.svg"}, {"CSV", "solve/trace.csv"}});
-      page.solve_links = {{"report.txt", "solve/report.txt"}, {"report.json", "solve/report.json"},
-                          {"trace.csv", "solve/trace.csv"}};
-      if (in.run.write_lightfield) page.solve_links.push_back({"synthesized light field", "solve/lightfield/lightfield.json"});
-      step("solve (" + in.solve.solver + ", " + std::to_string(report.iterations) + " iterations)", start);
-    }
-
-    if (in.run.retina.enabled) {
-      auto start = Clock::now();
-      const RetinaRunConfig& r = in.run.retina;
-      const SceneRadiance natural = r.natural ? target->Natural() : SceneRadiance{};
-      RetinaSweepOptions sweep{r.states(), r.resolution, r.field_x, r.field_y};
-      Progress progress("retina", sweep.states.size());
-      std::vector<RetinaStateResult> states =
-          WriteRetinaSweep(*model, patterns, natural, sweep, (out / "retina").string(),
-                           [&](size_t done, size_t, const RetinaStateResult& s) {
-                             progress.Update(done, "accommodation states traced (" + s.name + ")");
-                           });
-      progress.Finish(std::to_string(states.size()) + " states");
-      for (const RetinaStateResult& s : states) {
-        ReportRetinaState rs;
-        rs.diopters = s.diopters;
-        for (double d : r.accommodation) rs.declared |= std::abs(d - s.diopters) < 1e-9;
-        const std::string d = "retina/display/" + s.name, n = "retina/natural/" + s.name;
-        const std::string at = FormatFixed(s.diopters, 2) + " D";
-        rs.display = Picture("the display, focused at " + at, d + ".png", {{"PNG", d + ".png"}, {"EXR", d + ".exr"}});
-        if (natural)
-          rs.natural = Picture("natural viewing of the target, focused at " + at, n + ".png",
-                               {{"PNG", n + ".png"}, {"EXR", n + ".exr"}});
-        rs.display_mean_cd_m2 = s.display_mean_cd_m2;
-        rs.natural_mean_cd_m2 = s.natural_mean_cd_m2;
-        page.retina.push_back(rs);
-      }
-      page.retina_links = {{"retina.csv", "retina/retina.csv"}};
-      page.white_cd_m2 = model->white_luminance();
-      step("retina (" + std::to_string(states.size()) + " accommodation states)", start);
-    }
-
-    if (in.run.contrast.enabled) {
-      auto start = Clock::now();
-      ContrastOptions options = in.run.contrast.options;
-      const size_t total = in.contrast.size() * options.frequencies.size() * options.target_diopters.size();
-      Progress progress("contrast", total);
-      size_t started = 0;
-      options.progress = [&](const std::string& what) { progress.Update(started++, "curves; now " + what); };
-      page.contrast = RunContrast(in.contrast, options);
-      progress.Finish(std::to_string(page.contrast.size()) + " curves");
-      fs::create_directories(out / "contrast");
-      WriteFileAtomically((out / "contrast" / "contrast.csv").string(), ContrastCsv(page.contrast));
-      WriteFileAtomically((out / "contrast" / "peaks.txt").string(), PeakTable(page.contrast));
-      WriteFileAtomically((out / "contrast" / "contrast.svg").string(), ContrastSvg(page.contrast));
-      page.contrast_plot = Picture("normalized contrast against accommodation", "contrast/contrast.svg",
-                                   {{"SVG", "contrast/contrast.svg"}, {"CSV", "contrast/contrast.csv"},
-                                    {"peaks", "contrast/peaks.txt"}});
-      step("contrast sweep (" + std::to_string(total) + " solves)", start);
-    }
-
-    if (in.run.compare.enabled) {
-      auto start = Clock::now();
-      const CompareRunConfig& c = in.run.compare;
-      const bool overridden = c.iterations > 0 || c.time_budget >= 0;
-      std::vector<std::pair<std::string, const DisplaySystem*>> displays = {{in.name, &in.system}};
-      std::vector<const SolveConfig*> configs = {&in.solve};
-      for (const OtherDisplay& d : in.compare) displays.push_back({d.name, &d.system}), configs.push_back(&d.config);
-      for (size_t k = 0; k < displays.size(); ++k) {
-        std::vector<std::string> solvers = c.solvers.empty() ? std::vector<std::string>{configs[k]->solver} : c.solvers;
-        for (const std::string& solver : solvers) {
-          const auto& [name, system] = displays[k];
-          if (std::string why = UnsuitableSolver(solver, *system); !why.empty()) {
-            page.warnings.push_back("compare: skipped " + name + " / " + solver + ": the solver " + why);
-            continue;
-          }
-          if (k == 0 && solver == in.solve.solver && !overridden) {  // the main solve already ran this
-            page.compare.push_back({name, solver, report, system->brightness_efficiency, system->luminance_efficiency});
-            continue;
-          }
-          CompareRun run{name, *system, solver,
-                         solver == configs[k]->solver ? configs[k]->options : SolverRegistry::Builtins().find(solver)->defaults,
-                         configs[k]->sampling};
-          if (c.iterations > 0) run.options.iterations = c.iterations;
-          if (c.time_budget >= 0) run.options.time_budget = c.time_budget;
-          Progress progress("compare " + name + " / " + solver, run.options.iterations);
-          run.options.progress = [&](int iteration, double, double psnr) {
-            progress.Update(iteration, "iterations  PSNR " + Psnr(psnr));
-          };
-          CompareResult result = RunComparison({run}, target->light_field).front();
-          progress.Finish(result.report.BriefReport());
-          if (!result.report.IsSolutionUsable())
-            throw Error("compare: " + name + " / " + solver + " failed: " + result.report.message);
-          page.compare.push_back(std::move(result));
-        }
-      }
-      fs::create_directories(out / "compare");
-      WriteFileAtomically((out / "compare" / "compare.txt").string(), CompareTable(page.compare));
-      WriteFileAtomically((out / "compare" / "compare.csv").string(), CompareCsv(page.compare));
-      WriteFileAtomically((out / "compare" / "traces.csv").string(), TracesCsv(page.compare));
-      WriteFileAtomically((out / "compare" / "psnr_vs_time.svg").string(), PsnrAgainstTimeSvg(page.compare));
-      page.compare_plot = Picture("PSNR against wall time, every display and solver", "compare/psnr_vs_time.svg",
-                                  {{"SVG", "compare/psnr_vs_time.svg"}, {"CSV", "compare/compare.csv"},
-                                   {"traces", "compare/traces.csv"}});
-      step("compare (" + std::to_string(page.compare.size()) + " runs)", start);
-      std::cout << CompareTable(page.compare);
-    }
-
-    page.steps.emplace_back("total", Since(run_start));
-    for (const std::string& w : page.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
-    WriteFileAtomically((out / "index.html").string(), RenderRunReport(page));
-    // The step folders are the run's: what an earlier run left there (a
-    // retinal state or a view no longer asked for) goes, now that everything
-    // new is in place.
-    const std::set<std::string> written = CommittedPaths();
-    size_t stale = 0;
-    std::vector<std::string> inputs;  // a target read from a step folder of an earlier run stays
-    if (!in.solve.target.empty())
-      inputs.push_back(fs::is_directory(in.solve.target) ? in.solve.target
-                                                         : fs::path(in.solve.target).parent_path().string());
-    for (const char* step_folder : {"target", "solve", "retina", "contrast", "compare"})
-      stale += RemoveFilesNotIn((out / step_folder).string(), written, inputs);
-    if (stale > 0)
-      std::printf("run: removed %zu file%s an earlier run left in %s\n", stale, stale == 1 ? "" : "s", o->out.c_str());
-    if (page.solved) std::cout << report.BriefReport() << "\n";
-    std::printf("run: %.1f s; open %s in a browser (no server needed)\n", Since(run_start),
-                (fs::absolute(out) / "index.html").lexically_normal().c_str());
+  cmd->add_option("scene", request->scene, "Scene file (JSON) with \"solve\" and \"run\" sections (docs/run-section.md)")->required();
+  cmd->add_option("--out", request->out, "Output folder")->required();
+  cmd->add_option("--iterations", request->iterations, "Outer iterations of the main solve (default: the scene's)");
+  cmd->add_option("--threads", request->threads, "Worker threads of the main solve (0: all cores)");
+  cmd->callback([request] {
+    const auto start = std::chrono::steady_clock::now();
+    const RunOutcome outcome = RunPipeline(*request);
+    for (const std::string& w : outcome.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    std::cout << outcome.compare_table;
+    if (!outcome.removed.empty())
+      std::printf("run: removed %zu file%s an earlier run wrote into %s\n", outcome.removed.size(),
+                  outcome.removed.size() == 1 ? "" : "s", request->out.c_str());
+    if (outcome.solved) std::cout << outcome.report.BriefReport() << "\n";
+    std::printf("run: %.1f s; open %s in a browser (no server needed)\n",
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), outcome.index_html.c_str());
   });
 }
 

@@ -1,22 +1,21 @@
 // layerlab solve SCENE.json --target LF_DIR --solver NAME --out DIR: factorize
 // a target light field (or a target scene, rendered first) into panel images,
 // with progress on the terminal.
-#include <omp.h>
-
 #include <cmath>
 #include <filesystem>
 #include <optional>
 #include <cstdio>
 #include <iostream>
-#include <limits>
+#include <map>
 #include <memory>
 #include <string>
 
 #include "app/commands.h"
-#include "app/progress.h"
-#include "app/target_source.h"
+#include "analysis/target_source.h"
+#include "framework/progress.h"
 #include "framework/interrupt.h"
 #include "framework/lightfield_io.h"
+#include "framework/staged_output.h"
 #include "solvers/memory_estimate.h"
 #include "solvers/solution_writer.h"
 #include "solvers/solver_checkpoint.h"
@@ -26,11 +25,10 @@
 namespace layerlab::app {
 
 void AddSolveCommand(CLI::App& app) {
-  constexpr int kUnset = std::numeric_limits<int>::min();  // any value given is checked by SolverOptions
   struct Options {
     std::string scene, target, solver, out, sampling, target_range;
-    int iterations = 0, sub_iterations = 0, warm_start_iterations = kUnset, threads = -1;
-    double time_budget = -1, tolerance = -1, initial_value = -2;
+    std::optional<int> iterations, sub_iterations, warm_start_iterations, threads;
+    std::optional<double> time_budget, tolerance, initial_value;
     bool write_lightfield = false, resume = false;
     int checkpoint_every = 0;
     std::string max_memory;
@@ -69,13 +67,14 @@ void AddSolveCommand(CLI::App& app) {
     if (!o->target.empty()) config.target_scene.clear();
     if (config.target.empty() && config.target_scene.empty())
       throw Error("no target: give --target LF_DIR or \"solve\": {\"target\": ...} or {\"target_scene\": ...} in " + o->scene);
-    if (o->iterations) opt.iterations = o->iterations;
-    if (o->sub_iterations) opt.sub_iterations = o->sub_iterations;
-    if (o->warm_start_iterations != kUnset) opt.warm_start_iterations = o->warm_start_iterations;
-    if (o->time_budget >= 0) opt.time_budget = o->time_budget;
-    if (o->tolerance >= 0) opt.tolerance = o->tolerance;
-    if (o->initial_value > -2) opt.initial_value = o->initial_value;
-    if (o->threads >= 0) opt.threads = o->threads;
+    // Any value given is checked by SolverOptions.
+    opt.iterations = o->iterations.value_or(opt.iterations);
+    opt.sub_iterations = o->sub_iterations.value_or(opt.sub_iterations);
+    opt.warm_start_iterations = o->warm_start_iterations.value_or(opt.warm_start_iterations);
+    opt.time_budget = o->time_budget.value_or(opt.time_budget);
+    opt.tolerance = o->tolerance.value_or(opt.tolerance);
+    opt.initial_value = o->initial_value.value_or(opt.initial_value);
+    opt.threads = o->threads.value_or(opt.threads);
     if (!o->sampling.empty()) config.sampling = SamplingFromString(o->sampling);
     if (!o->target_range.empty()) {
       if (o->target_range != "clip" && o->target_range != "scale")
@@ -83,30 +82,31 @@ void AddSolveCommand(CLI::App& app) {
       opt.target_range = o->target_range == "clip" ? TargetRange::kClip : TargetRange::kScale;
     }
 
-    // Refuse what cannot fit before reading the views.
-    if (!config.target.empty()) {
-      const MemoryEstimate need = EstimateSolveMemory(system, ReadLightFieldGeometry(config.target), config.solver,
-                                                      opt.threads > 0 ? opt.threads : omp_get_max_threads());
-      const size_t limit = o->max_memory.empty() ? PhysicalMemory() : ParseByteSize(o->max_memory, "--max-memory");
-      if (limit > 0 && need.bytes > limit)
-        throw Error("the solve needs about " + FormatBytes(double(need.bytes)) + " (" + need.breakdown + "), more than " +
-                    (o->max_memory.empty() ? "this machine's " + FormatBytes(double(limit)) + " of memory"
-                                           : "--max-memory " + FormatBytes(double(limit))) +
-                    "; nothing was read or written");
-      std::fprintf(stderr, "the solve needs about %s\n", FormatBytes(double(need.bytes)).c_str());
-    }
+    // Refuse what cannot fit before reading the views or rendering the target.
+    const size_t limit = o->max_memory.empty() ? 0 : ParseByteSize(o->max_memory, "--max-memory");
+    const size_t need = RefuseSolveBeyondMemory(system, config, opt.threads, limit,
+                                                "--max-memory " + FormatBytes(double(limit)));
+    std::fprintf(stderr, "the solve needs about %s\n", FormatBytes(double(need)).c_str());
+    // The results are built beside the earlier ones and switched into place when complete.
+    StagedOutput stage(o->out, "solve", {"patterns", "panels", "lightfield", "trace.csv", "report.txt", "report.json", "checkpoint"},
+                       {{o->scene, "the scene"}, {config.target, "the target"}, {config.target_scene, "the target scene"}});
+    for (const std::string& line : stage.recovered()) std::fprintf(stderr, "solve: %s\n", line.c_str());
     std::unique_ptr<Target> target = LoadOrRenderTarget(config, "target");
     DisplayModel model(system, target->light_field.geometry, config.sampling);
     InstallInterruptHandler();
     opt.interrupted = Interrupted;
     const std::string checkpoint_folder = (std::filesystem::path(o->out) / "checkpoint").string();
     if (o->checkpoint_every < 0) throw Error("--checkpoint-every: must be 0 (none) or positive");
-    if (o->checkpoint_every > 0) {
-      opt.checkpoint_every = o->checkpoint_every;
-      opt.checkpoint = [&](const SolverCheckpoint& c) { WriteCheckpoint(model, c, checkpoint_folder); };
-    }
+    opt.checkpoint_every = o->checkpoint_every;
+    // Hashing the target costs a pass over it: only when a checkpoint is written or read.
+    const CheckpointInputs digest = o->checkpoint_every > 0 || o->resume
+                                        ? CheckpointDigest(model, config.sampling, target->light_field, config.solver, opt)
+                                        : CheckpointInputs{};
+    if (o->checkpoint_every > 0)
+      opt.checkpoint = [&](const SolverCheckpoint& c) { WriteCheckpoint(model, c, checkpoint_folder, digest); };
     std::optional<SolverCheckpoint> resume;
     if (o->resume) {
+      RefuseMismatchedCheckpoint(checkpoint_folder, digest);
       resume = ReadCheckpoint(model, checkpoint_folder);
       opt.resume = &*resume;
       std::fprintf(stderr, "resuming %s from iteration %d\n", resume->solver.c_str(), resume->iteration);
@@ -126,7 +126,15 @@ void AddSolveCommand(CLI::App& app) {
     for (const std::string& w : report.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     std::cout << report.BriefReport() << "\n";
     if (!report.IsSolutionUsable()) throw Error("the solve failed: " + report.message + "; nothing was written");
-    WriteSolution(model, patterns, report, o->out, {.write_lightfield = o->write_lightfield});
+    try {
+      WriteSolution(model, patterns, report, stage.staging(), {.write_lightfield = o->write_lightfield});
+    } catch (const Error& e) {
+      throw stage.Explain(e);
+    }
+    const StagedOutput::Switched switched = stage.Commit();
+    if (!switched.removed.empty())
+      std::fprintf(stderr, "solve: removed %zu file%s an earlier solve wrote into %s\n", switched.removed.size(),
+                   switched.removed.size() == 1 ? "" : "s", o->out.c_str());
     std::cout << "wrote " << o->out << "/{patterns,panels,trace.csv,report.txt,report.json"
               << (o->write_lightfield ? ",lightfield" : "") << "}\n";
     if (report.termination == Termination::kInterrupted)

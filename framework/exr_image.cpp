@@ -1,5 +1,6 @@
 #include "framework/exr_image.h"
 
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -17,6 +18,7 @@
 
 #include "framework/atomic_file.h"
 #include "framework/error.h"
+#include "framework/file_kind.h"
 
 namespace layerlab {
 namespace {
@@ -116,6 +118,7 @@ void RequireCppHeaderWithinFile(const std::string& path) {
 // gigabytes. OpenEXR's C core parses headers with sizes checked against the
 // file, so it reads the headers first; the C++ reader runs only on what it accepts.
 void RequireSaneExrHeaders(const std::string& path) {
+  RequireRegularFile(path, "EXR file");  // a FIFO would block the open below
   RequireExrMagic(path);
   RequireCppHeaderWithinFile(path);
   thread_local std::string message;

@@ -1,5 +1,6 @@
 #include "framework/json_file.h"
 
+
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -7,6 +8,7 @@
 #include <vector>
 
 #include "framework/error.h"
+#include "framework/file_kind.h"
 
 namespace layerlab {
 namespace {
@@ -117,7 +119,12 @@ json ParseJson(const std::string& text, const std::string& file, const JsonLimit
 json ReadJsonFile(const std::string& path, const JsonLimits& limits) {
   std::error_code ec;
   auto size = std::filesystem::file_size(path, ec);
-  if (ec) throw Error(path + ": cannot read: " + ec.message());
+  if (ec) {
+    const std::string why = ec.message();
+    std::error_code link_ec;  // something is there: a FIFO, a folder, a link loop is named as such
+    if (std::filesystem::exists(std::filesystem::symlink_status(path, link_ec))) RequireRegularFile(path);
+    throw Error(path + ": cannot read: " + why);
+  }
   if (size > limits.max_bytes)
     throw Error({path, ""}, "file is " + std::to_string(size) + " bytes; the limit is " +
                                 std::to_string(limits.max_bytes));

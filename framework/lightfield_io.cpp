@@ -1,13 +1,18 @@
 #include "framework/lightfield_io.h"
 
 #include <algorithm>
+#include <charconv>
+#include <climits>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <regex>
+#include <set>
 
 #include "framework/atomic_file.h"
 #include "framework/error.h"
 #include "framework/exr_image.h"
+#include "framework/file_kind.h"
 #include "framework/json_file.h"
 #include "framework/parallel.h"
 #include "framework/params.h"
@@ -76,12 +81,36 @@ void RefuseExtraFiles(const std::string& folder, const std::string& pattern, con
     std::smatch m;
     if (!std::regex_match(name, m, re)) continue;
     bool row_first = name_pattern.find("{row") < name_pattern.find("{col");
-    long row = std::stol(m[row_first ? 1 : 2]), col = std::stol(m[row_first ? 2 : 1]);
+    auto number = [](const std::string& digits) {  // beyond any view count when it overflows
+      long v = LONG_MAX;
+      std::from_chars(digits.data(), digits.data() + digits.size(), v);
+      return v;
+    };
+    long row = number(m[row_first ? 1 : 2]), col = number(m[row_first ? 2 : 1]);
     if (row >= g.views_y || col >= g.views_x || FillPattern(pattern, row, col) != (fs::path(pattern).parent_path() / name).string())
       throw Error((fs::path(folder) / "lightfield.json").string() + ": extra view file " +
                   (fs::path(pattern).parent_path() / name).string() + " (the manifest declares " +
                   std::to_string(g.views_y) + " x " + std::to_string(g.views_x) + " views)");
   }
+}
+
+// Every view gets a file name of its own, within the file system's limits.
+void CheckViewNames(Params& manifest, const std::string& key, const std::string& pattern, const LightFieldGeometry& g) {
+  std::map<std::string, std::pair<int, int>> seen;
+  for (int r = 0; r < g.views_y; ++r)
+    for (int c = 0; c < g.views_x; ++c) {
+      const std::string name = FillPattern(pattern, r, c);
+      if (name.size() >= PATH_MAX) manifest.fail(key, "view paths of " + std::to_string(name.size()) + " bytes are beyond the file system's limit");
+      for (const fs::path& part : fs::path(name))
+        if (part.string().size() > NAME_MAX)
+          manifest.fail(key, "\"" + part.string().substr(0, 40) + "...\" is " + std::to_string(part.string().size()) +
+                                 " bytes, beyond the file system's limit of " + std::to_string(NAME_MAX) + " for a name");
+      auto [it, fresh] = seen.emplace(name, std::make_pair(r, c));
+      if (!fresh)
+        manifest.fail(key, "\"" + pattern + "\" maps views (row " + std::to_string(it->second.first) + ", col " +
+                               std::to_string(it->second.second) + ") and (row " + std::to_string(r) + ", col " +
+                               std::to_string(c) + ") to one file, " + name);
+    }
 }
 
 struct Manifest {
@@ -92,8 +121,14 @@ struct Manifest {
 
 Manifest ReadManifest(const std::string& folder) {
   std::string manifest_path = (fs::path(folder) / "lightfield.json").string();
-  if (!fs::is_directory(folder)) throw Error(folder + ": not a light-field folder (no such directory)");
-  if (!fs::exists(manifest_path)) throw Error(folder + ": not a light-field folder (no lightfield.json)");
+  std::error_code ec;
+  if (!fs::is_directory(folder, ec)) {
+    if (ec && ec != std::errc::no_such_file_or_directory) RequireFolder(folder, "light-field folder");  // a loop, an overlong name
+    throw Error(folder + ": not a light-field folder (no such directory)");
+  }
+  if (!fs::exists(fs::symlink_status(manifest_path, ec))) throw Error(folder + ": not a light-field folder (no lightfield.json)");
+  RequireRegularFile(manifest_path, "manifest");
+  RequireInsideFolder(manifest_path, folder, "manifest");
   nlohmann::json doc = ReadJsonFile(manifest_path);
   Params m(doc, {manifest_path, ""});
 
@@ -131,6 +166,8 @@ Manifest ReadManifest(const std::string& folder) {
   if (!depth_pattern.empty()) CheckPattern(m, "depth_pattern", depth_pattern);
   std::string scene = m.string("scene", "");
   m.check_all_read();
+  CheckViewNames(m, "views_pattern", views_pattern, g);
+  if (!depth_pattern.empty()) CheckViewNames(m, "depth_pattern", depth_pattern, g);
   return {manifest_path, g, views_pattern, depth_pattern, scene};
 }
 
@@ -155,8 +192,11 @@ LightField ReadLightField(const std::string& folder, const LightFieldReadOptions
   for (int r = 0; r < g.views_y; ++r)
     for (int c = 0; c < g.views_x; ++c) {
       std::string file = (fs::path(folder) / FillPattern(views_pattern, r, c)).string();
-      if (!fs::exists(file))
+      std::error_code ec;
+      if (!fs::exists(fs::symlink_status(file, ec)))
         throw Error(manifest_path + ": view (row " + std::to_string(r) + ", col " + std::to_string(c) + ") is missing: " + file);
+      RequireRegularFile(file, "view");  // never opened otherwise: a FIFO would block
+      RequireInsideFolder(file, folder, "view");
     }
   RefuseExtraFiles(folder, views_pattern, g);
 
@@ -173,8 +213,11 @@ LightField ReadLightField(const std::string& folder, const LightFieldReadOptions
     std::copy(image.pixels.begin(), image.pixels.end(), lf.view(v));
     if (!with_depth) return;
     std::string depth_file = (fs::path(folder) / FillPattern(depth_pattern, r, c)).string();
-    if (!fs::exists(depth_file))
+    std::error_code ec;
+    if (!fs::exists(fs::symlink_status(depth_file, ec)))
       throw Error(manifest_path + ": depth_pattern is given but " + depth_file + " is missing");
+    RequireRegularFile(depth_file, "depth map");
+    RequireInsideFolder(depth_file, folder, "depth map");
     Image depth = ReadExr(depth_file, {"Z"});
     if (depth.width != g.cols || depth.height != g.rows)
       throw Error(depth_file + ": is " + std::to_string(depth.width) + " x " + std::to_string(depth.height) +
@@ -184,7 +227,7 @@ LightField ReadLightField(const std::string& folder, const LightFieldReadOptions
   return lf;
 }
 
-void WriteLightField(const LightField& lf, const std::string& folder) {
+std::vector<std::string> WriteLightField(const LightField& lf, const std::string& folder) {
   const LightFieldGeometry& g = lf.geometry;
   if (lf.rgb.size() != g.ray_count() * 3 || (!lf.depth.empty() && lf.depth.size() != g.ray_count()))
     throw Error(folder + ": internal error: light-field buffers do not match the geometry");
@@ -216,6 +259,14 @@ void WriteLightField(const LightField& lf, const std::string& folder) {
       {"scene", lf.scene}};
   if (!lf.depth.empty()) manifest["depth_pattern"] = depth_pattern;
   WriteFileAtomically((fs::path(folder) / "lightfield.json").string(), manifest.dump(2) + "\n");
+  std::vector<std::string> written;
+  for (int r = 0; r < g.views_y; ++r)
+    for (int c = 0; c < g.views_x; ++c) {
+      written.push_back(FillPattern(views_pattern, r, c));
+      if (!lf.depth.empty()) written.push_back(FillPattern(depth_pattern, r, c));
+    }
+  written.push_back("lightfield.json");
+  return written;
 }
 
 }  // namespace layerlab

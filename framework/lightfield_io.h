@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "framework/lightfield.h"
 
@@ -21,7 +22,8 @@ LightField ReadLightField(const std::string& folder, const LightFieldReadOptions
 // The manifest alone, validated as above.
 LightFieldGeometry ReadLightFieldGeometry(const std::string& folder);
 
-// Writes the folder (creating it), every file atomically, the manifest last.
-void WriteLightField(const LightField& lf, const std::string& folder);
+// Writes the folder (creating it), every file atomically, the manifest last;
+// returns the files written, relative to `folder`.
+std::vector<std::string> WriteLightField(const LightField& lf, const std::string& folder);
 
 }  // namespace layerlab

@@ -96,8 +96,9 @@ Patterns ReadPatterns(const DisplayModel& model, const std::string& folder) {
   return t;
 }
 
-void WriteSolution(const DisplayModel& model, const Patterns& t, const SolverReport& report, const std::string& folder,
-                   const SolutionFiles& what) {
+std::vector<std::string> WriteSolution(const DisplayModel& model, const Patterns& t, const SolverReport& report,
+                                       const std::string& folder, const SolutionFiles& what) {
+  std::vector<std::string> written;
   std::error_code ec;
   fs::create_directories(fs::path(folder) / "patterns", ec);
   fs::create_directories(fs::path(folder) / "panels", ec);
@@ -106,21 +107,26 @@ void WriteSolution(const DisplayModel& model, const Patterns& t, const SolverRep
   for (size_t k = 0; k < model.layer_count(); ++k) {
     const VirtualLayer& layer = model.system().layers[k];
     WriteExr(PatternFile(folder, layer), Image{t[k].cols, t[k].rows, {"R", "G", "B"}, t[k].rgb});
+    written.push_back("patterns/" + layer.name + ".exr");
     PanelEncoding panel = EncodeForPanel(layer, t[k]);
     if (panel.below_black_level)
       annotated.warnings.push_back("panel \"" + layer.name + "\": " + std::to_string(panel.below_black_level) +
                                    " values are darker than its black level and were encoded as 0");
     WritePng8((fs::path(folder) / "panels" / (layer.name + ".png")).string(), int(layer.panel.resolution_cols),
               int(layer.panel.resolution_rows), 3, panel.pixels);
+    written.push_back("panels/" + layer.name + ".png");
   }
   WriteFileAtomically((fs::path(folder) / "trace.csv").string(), TraceCsv(annotated));
   WriteFileAtomically((fs::path(folder) / "report.txt").string(), annotated.FullReport());
   WriteFileAtomically((fs::path(folder) / "report.json").string(), ReportToJson(annotated).dump(2) + "\n");
+  written.insert(written.end(), {"trace.csv", "report.txt", "report.json"});
   if (what.write_lightfield) {
     LightField synthesized = model.Synthesize(t);
     synthesized.scene = "synthesized by layerlab " + report.solver + " for " + model.system().file;
-    WriteLightField(synthesized, (fs::path(folder) / "lightfield").string());
+    for (const std::string& f : WriteLightField(synthesized, (fs::path(folder) / "lightfield").string()))
+      written.push_back("lightfield/" + f);
   }
+  return written;
 }
 
 }  // namespace layerlab

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -35,7 +36,8 @@ Patterns ReadPatterns(const DisplayModel& model, const std::string& folder);
 struct SolutionFiles {
   bool write_lightfield = false;
 };
-void WriteSolution(const DisplayModel& model, const Patterns& t, const SolverReport& report,
-                   const std::string& folder, const SolutionFiles& what = {});
+// Returns the files written, relative to `folder`.
+std::vector<std::string> WriteSolution(const DisplayModel& model, const Patterns& t, const SolverReport& report,
+                                       const std::string& folder, const SolutionFiles& what = {});
 
 }  // namespace layerlab

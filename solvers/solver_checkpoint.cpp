@@ -1,12 +1,15 @@
 #include "solvers/solver_checkpoint.h"
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 #include "framework/atomic_file.h"
 #include "framework/error.h"
 #include "framework/exr_image.h"
+#include "framework/content_digest.h"
 #include "framework/json_file.h"
+#include "systems/system_report.h"
 
 namespace layerlab {
 namespace fs = std::filesystem;
@@ -19,7 +22,8 @@ std::string PatternName(const VirtualLayer& layer, int iteration) {
 
 }  // namespace
 
-void WriteCheckpoint(const DisplayModel& model, const SolverCheckpoint& c, const std::string& folder) {
+void WriteCheckpoint(const DisplayModel& model, const SolverCheckpoint& c, const std::string& folder,
+                     const CheckpointInputs& inputs) {
   std::error_code ec;
   fs::create_directories(folder, ec);
   if (ec) throw Error(folder + ": cannot create the checkpoint folder: " + ec.message());
@@ -35,7 +39,7 @@ void WriteCheckpoint(const DisplayModel& model, const SolverCheckpoint& c, const
     trace.push_back({r.iteration, r.seconds, r.objective, std::isinf(r.psnr_db) ? nlohmann::json("inf") : nlohmann::json(r.psnr_db)});
   nlohmann::json doc = {{"format", "layerlab-checkpoint/1"}, {"solver", c.solver},   {"iteration", c.iteration},
                         {"seconds", c.seconds},                {"patterns", files},    {"state", c.state},
-                        {"trace", trace}};
+                        {"trace", trace},                      {"digest", inputs}};
   WriteFileAtomically((fs::path(folder) / "checkpoint.json").string(), doc.dump(1) + "\n");
   // The new checkpoint is complete: the old pattern files can go.
   for (const auto& entry : fs::directory_iterator(folder, ec)) {
@@ -85,6 +89,44 @@ SolverCheckpoint ReadCheckpoint(const DisplayModel& model, const std::string& fo
     throw Error(file + ": not a valid checkpoint: " + e.what());
   }
   return c;
+}
+
+CheckpointInputs CheckpointDigest(const DisplayModel& model, Sampling sampling, const LightField& target,
+                                                    const std::string& solver, const SolverOptions& o) {
+  const LightFieldGeometry& g = target.geometry;
+  const double geometry[] = {g.origin_z, g.window_left, g.window_top, g.window_width, g.window_height,
+                             g.eyebox_width, g.eyebox_height, double(g.cols), double(g.rows), double(g.views_x), double(g.views_y)};
+  ContentDigest target_digest;
+  target_digest.add(geometry, sizeof geometry).add(target.rgb.data(), target.rgb.size() * sizeof(float));
+  char options[256];
+  std::snprintf(options, sizeof options, "sub_iterations=%d warm_start=%d seed=%llu initial=%.17g epsilon=%.17g floor=%.17g range=%d",
+                o.sub_iterations, o.warm_start_iterations, static_cast<unsigned long long>(o.seed), o.initial_value,
+                o.epsilon, o.floor, static_cast<int>(o.target_range));
+  return {{"display", ContentDigest().add(SystemToJson(model.system()).dump()).add(&sampling, sizeof sampling).hex()},
+          {"target", target_digest.hex()},
+          {"solver", solver},
+          {"options", options}};
+}
+
+void RefuseMismatchedCheckpoint(const std::string& folder, const CheckpointInputs& now) {
+  const std::string file = (fs::path(folder) / "checkpoint.json").string();
+  CheckpointInputs recorded;
+  const nlohmann::json doc = ReadJsonFile(file);
+  if (doc.contains("digest") && doc["digest"].is_object())
+    for (const auto& [key, value] : doc["digest"].items())
+      if (value.is_string()) recorded[key] = value.get<std::string>();
+  if (recorded.empty())
+    throw Error(file + ": /digest: the checkpoint does not record what it was made for (an older layerlab); "
+                "it cannot be resumed safely. Nothing was written");
+  static const std::map<std::string, std::string> names = {
+      {"display", "display (scene or sampling)"}, {"target", "target"}, {"solver", "solver"}, {"options", "solver options"}};
+  for (const auto& [key, value] : now) {
+    auto it = recorded.find(key);
+    if (it == recorded.end() || it->second != value)
+      throw Error(file + ": /digest/" + key + ": the checkpoint was made for another " + names.at(key) + " (" +
+                  (it == recorded.end() ? std::string("none recorded") : it->second) + "; this run: " + value +
+                  "); resume with the same inputs or start afresh without --resume. Nothing was written");
+  }
 }
 
 }  // namespace layerlab

@@ -134,6 +134,13 @@ const BadScene kCases[] = {
     {"SharedElement", kHybrid, [](json& s) { ElementNamed(s, "rear_b")["next"] = "backlight_a"; },
      "scene.json: /elements/7/next: \"backlight_a\" is already reached by another connection; each element sits on "
      "one optical path"},
+    {"ElementNameBeyondTheFileNameLimit", kMul,
+     [](json& s) {
+       ElementNamed(s, "backlight")["name"] = std::string(232, 'b');
+       ElementNamed(s, "rear")["next"] = std::string(232, 'b');
+     },
+     "scene.json: /elements/4/name: element name of 232 bytes; output files are named after elements, and the file "
+     "system allows names of 255 bytes: at most 231"},
     {"DuplicateElementName", kMul, [](json& s) { ElementNamed(s, "backlight")["name"] = "rear"; },
      "scene.json: /elements/4/name: element name \"rear\" is already used by /elements/3"},
     {"MirrorPassesMoreThanItGets", kHybrid, [](json& s) { ElementNamed(s, "half_mirror")["transmittance"] = 0.6; },

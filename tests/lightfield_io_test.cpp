@@ -1,5 +1,10 @@
 // The light-field folder format: round trip, and every kind of bad folder
 // refused with the file (and pixel, channel) named.
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/un.h>
+#include <unistd.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -185,6 +190,70 @@ TEST_F(LightFieldFolder, PreviewSidesNearTwoToThe32AreRefused) {
   fs::copy_file(std::string(LAYERLAB_SOURCE_DIR) + "/fuzz/corpus/exr/preview_size_overflow.exr", file,
                 fs::copy_options::overwrite_existing);
   EXPECT_EQ(ReadError().rfind(file + ": corrupt or truncated OpenEXR file: ", 0), 0u);
+}
+
+// Issue 17: special files, links and names are refused with the path and the
+// reason, before anything is opened (a FIFO view used to block the solve forever).
+TEST_F(LightFieldFolder, SpecialFilesAndLinksAmongTheViewsAreRefusedWithoutBlocking) {
+  const std::string view = Path("views/r00_c01.exr");
+  fs::remove(view);
+  ASSERT_EQ(mkfifo(view.c_str(), 0600), 0);
+  EXPECT_EQ(ReadError(), view + ": the view is a FIFO, not a regular file; it is not read");
+  fs::remove(view);
+  fs::create_directory(view);
+  EXPECT_EQ(ReadError(), view + ": the view is a folder, not a regular file; it is not read");
+  fs::remove(view);
+  const int s = socket(AF_UNIX, SOCK_STREAM, 0);
+  sockaddr_un address{};
+  address.sun_family = AF_UNIX;
+  std::snprintf(address.sun_path, sizeof address.sun_path, "%s", view.c_str());
+  if (view.size() < sizeof address.sun_path && bind(s, reinterpret_cast<sockaddr*>(&address), sizeof address) == 0) {
+    EXPECT_EQ(ReadError(), view + ": the view is a socket, not a regular file; it is not read");
+  }
+  close(s);
+  fs::remove(view);
+  fs::create_symlink("/dev/zero", view);
+  EXPECT_EQ(ReadError(), view + ": the view is a device, not a regular file; it is not read");
+  fs::remove(view);
+  fs::create_symlink("r00_c01.exr", view);  // a link to itself
+  EXPECT_EQ(ReadError(), view + ": the view is a symbolic link loop (too many levels of links)");
+  fs::remove(view);
+  fs::create_symlink("no_such_file.exr", view);
+  EXPECT_EQ(ReadError(), view + ": the view is a symbolic link to nothing (dangling)");
+  fs::remove(view);
+  const fs::path outside = dir_.string() + "_outside.exr";
+  fs::copy_file(Path("views/r00_c00.exr"), outside, fs::copy_options::overwrite_existing);
+  fs::create_symlink(outside, view);
+  EXPECT_EQ(ReadError(), view + ": the view is a symbolic link to " + outside.string() + ", outside " + dir_.string() +
+                             "; links out of the folder are not followed");
+  fs::remove(outside);
+  fs::remove(view);
+  fs::create_symlink("r00_c00.exr", view);  // a link inside the folder is fine
+  EXPECT_EQ(ReadError(), "");
+  fs::remove(Path("lightfield.json"));
+  ASSERT_EQ(mkfifo(Path("lightfield.json").c_str(), 0600), 0);
+  EXPECT_EQ(ReadError(), Path("lightfield.json") + ": the manifest is a FIFO, not a regular file; it is not read");
+}
+
+TEST_F(LightFieldFolder, ViewNamesThatOverflowCollideOrExceedTheNameLimitAreRefused) {
+  fs::copy_file(Path("views/r01_c02.exr"), Path("views/r99999999999999999999_c00.exr"));
+  EXPECT_EQ(ReadError(), Path("lightfield.json") +
+                             ": extra view file views/r99999999999999999999_c00.exr (the manifest declares 2 x 3 views)");
+  fs::remove(Path("views/r99999999999999999999_c00.exr"));
+  EditManifest([](nlohmann::json& m) {
+    m["views"]["rows"] = 12;
+    m["views"]["cols"] = 12;
+    m["views_pattern"] = "views/r{row}{col}.exr";
+  });
+  EXPECT_EQ(ReadError(), Path("lightfield.json") + ": /views_pattern: \"views/r{row}{col}.exr\" maps views (row 1, col 10) "
+                         "and (row 11, col 0) to one file, views/r110.exr");
+  EditManifest([](nlohmann::json& m) {
+    m["views"]["rows"] = 2;
+    m["views"]["cols"] = 3;
+    m["views_pattern"] = "views/" + std::string(300, 'x') + "{row}_{col}.exr";
+  });
+  EXPECT_EQ(ReadError(), Path("lightfield.json") + ": /views_pattern: \"" + std::string(40, 'x') +
+                             "...\" is 307 bytes, beyond the file system's limit of 255 for a name");
 }
 
 TEST(DiceTarget, LoadsFromSharedData) {

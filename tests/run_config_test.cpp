@@ -85,7 +85,7 @@ TEST(RunConfig, ContrastAndCompareReadUnitsAndResolvePaths) {
   EXPECT_TRUE(testing::Close(c.contrast.options.retina_resolution, 0.02, 1e-12));
   ASSERT_EQ(c.compare.scenes.size(), 1u);
   EXPECT_EQ(c.compare.scenes[0], "examples/hybrid_pbs_hwp.json");
-  EXPECT_EQ(c.compare.iterations, 5);
+  EXPECT_EQ(c.compare.iterations.value_or(0), 5);
 }
 
 TEST(RunConfig, BadInputIsRefusedWithItsLocation) {

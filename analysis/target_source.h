@@ -16,7 +16,7 @@
 #include "targets/target_tracer.h"
 #endif
 
-namespace layerlab::app {
+namespace layerlab {
 
 struct Target {
   LightField light_field;
@@ -36,7 +36,18 @@ struct Target {
 // Embree and this build has none.
 std::unique_ptr<Target> LoadOrRenderTarget(const SolveConfig& config, const std::string& label);
 
+// The target's geometry without reading its views or rendering it: the
+// light field's manifest, or the target scene's declared geometry.
+LightFieldGeometry TargetGeometry(const SolveConfig& config);
+
+// Refuses (layerlab::Error with the estimate and its parts) a solve of
+// `config` estimated to need more than `limit` bytes; `limit_name` says
+// where the limit came from ("--max-memory 200.0 MB"). A limit of 0: the
+// machine's memory. Returns the estimate. Reads no views, renders nothing.
+size_t RefuseSolveBeyondMemory(const DisplaySystem& system, const SolveConfig& config, int threads, size_t limit = 0,
+                               const std::string& limit_name = "");
+
 // The center view as an sRGB PNG (1 = white), to show what the target looks like.
 void WriteCenterView(const LightField& lf, const std::string& path);
 
-}  // namespace layerlab::app
+}  // namespace layerlab

@@ -1,11 +1,11 @@
-#include "app/progress.h"
+#include "framework/progress.h"
 
 #include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
 
-namespace layerlab::app {
+namespace layerlab {
 
 bool Progress::Terminal() { return ::isatty(2) == 1; }
 
@@ -60,4 +60,4 @@ void Progress::Finish(const std::string& summary) {
   finished_ = true;
 }
 
-}  // namespace layerlab::app
+}  // namespace layerlab

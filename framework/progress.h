@@ -8,7 +8,7 @@
 #include <mutex>
 #include <string>
 
-namespace layerlab::app {
+namespace layerlab {
 
 class Progress {
  public:
@@ -37,4 +37,4 @@ class Progress {
   std::chrono::steady_clock::time_point start_;
 };
 
-}  // namespace layerlab::app
+}  // namespace layerlab

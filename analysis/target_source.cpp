@@ -1,14 +1,18 @@
-#include "app/target_source.h"
+#include "analysis/target_source.h"
+
+#include <omp.h>
 
 #include <cstdio>
 
-#include "app/progress.h"
+#include "framework/progress.h"
 #include "framework/error.h"
 #include "framework/lightfield_io.h"
 #include "framework/png_writer.h"
+#include "solvers/memory_estimate.h"
+#include "targets/target_scene.h"
 #include "systems/lightfield_radiance.h"
 
-namespace layerlab::app {
+namespace layerlab {
 
 SceneRadiance Target::Natural() const {
 #if LAYERLAB_WITH_EMBREE
@@ -52,10 +56,29 @@ std::unique_ptr<Target> LoadOrRenderTarget(const SolveConfig& config, const std:
 #endif
 }
 
+LightFieldGeometry TargetGeometry(const SolveConfig& config) {
+  if (!config.target.empty()) return ReadLightFieldGeometry(config.target);
+  if (config.target_scene.empty()) throw Error("no target: give \"solve\": {\"target\": LF_DIR} or {\"target_scene\": TARGET.json}");
+  return LoadTarget(config.target_scene).geometry;
+}
+
+size_t RefuseSolveBeyondMemory(const DisplaySystem& system, const SolveConfig& config, int threads, size_t limit,
+                               const std::string& limit_name) {
+  const MemoryEstimate need = EstimateSolveMemory(system, TargetGeometry(config), config.solver,
+                                                  threads > 0 ? threads : omp_get_max_threads());
+  const bool machine = limit == 0;
+  if (machine) limit = PhysicalMemory();
+  if (limit > 0 && need.bytes > limit)
+    throw Error("the solve needs about " + FormatBytes(double(need.bytes)) + " (" + need.breakdown + "), more than " +
+                (machine ? "this machine's " + FormatBytes(double(limit)) + " of memory" : limit_name) +
+                "; nothing was read or written");
+  return need.bytes;
+}
+
 void WriteCenterView(const LightField& lf, const std::string& path) {
   const LightFieldGeometry& g = lf.geometry;
   const float* view = lf.view(g.view_index(g.views_y / 2, g.views_x / 2));
   WriteSrgbPng(path, g.cols, g.rows, std::vector<float>(view, view + g.pixels_per_view() * 3));
 }
 
-}  // namespace layerlab::app
+}  // namespace layerlab

@@ -1,0 +1,125 @@
+#!/usr/bin/env bash
+# `internal error` means a bug: every command meets a corpus of hostile inputs
+# (the fuzzers' seed corpora, and light-field folders, scenes, measurement
+# files, pattern folders, checkpoints and output folders with FIFOs, sockets,
+# devices, looping, dangling and outside links, folders where files belong,
+# overflowing numbers and overlong names) and must refuse each with a clear
+# error: never `internal error`, never a signal, never a hang (30 s each).
+# Usage: hostile_inputs.sh LAYERLAB SOURCE_DIR WORK_DIR
+set -u
+layerlab=$(realpath "$1") source=$(realpath "$2") work=$3
+rm -rf "$work"
+mkdir -p "$work/lf" "$work/scenes" "$work/measurements" "$work/out"
+cd "$work" || exit 1
+small=$source/examples/small/hybrid_small.json
+measurements=$source/examples/paper_prototype_measurements.json
+failures=0 runs=0
+try() {  # try LABEL COMMAND...: any outcome but a clear one is a failure
+  local label=$1
+  shift
+  runs=$((runs + 1))
+  timeout 30 "$@" >log.out 2>log.err </dev/null
+  local code=$?
+  local why=""
+  [ "$code" -eq 124 ] && why="hung (30 s)"
+  [ "$code" -gt 128 ] && why="killed by signal $((code - 128))"
+  [ "$code" -eq 3 ] || grep -q "internal error" log.err && why="internal error: $(grep -m1 'internal error' log.err)"
+  if [ -n "$why" ]; then
+    echo "FAIL: $label: $why"
+    failures=$((failures + 1))
+  fi
+}
+long=$(printf 'n%.0s' $(seq 300))
+
+# Light fields: a good one, then one copy per oddity.
+"$layerlab" render-target "$source/examples/small/small_dice_target.json" lf/good >/dev/null 2>&1 || { echo "FAIL: cannot render"; exit 1; }
+"$layerlab" solve "$small" --target lf/good --iterations 1 --out good_solution >/dev/null 2>&1 || { echo "FAIL: cannot solve"; exit 1; }
+variant() { rm -rf "lf/$1"; cp -r lf/good "lf/$1"; }
+v=lf/good/views/r00_c00.exr
+variant fifo_view && rm "lf/fifo_view/views/r00_c00.exr" && mkfifo "lf/fifo_view/views/r00_c00.exr"
+variant loop_view && ln -sf r00_c00.exr "lf/loop_view/views/r00_c00.exr"
+variant dangling_view && ln -sf nothing.exr "lf/dangling_view/views/r00_c00.exr"
+variant folder_view && rm "lf/folder_view/views/r00_c00.exr" && mkdir "lf/folder_view/views/r00_c00.exr"
+variant device_view && ln -sf /dev/zero "lf/device_view/views/r00_c00.exr"
+variant outside_view && ln -sf "$work/lf/good/views/r00_c01.exr" "lf/outside_view/views/r00_c00.exr"
+variant socket_view && rm "lf/socket_view/views/r00_c00.exr" &&
+  { python3 -c "import socket,sys; socket.socket(socket.AF_UNIX).bind(sys.argv[1])" "lf/socket_view/views/r00_c00.exr" 2>/dev/null || true; }
+variant huge_number && cp "$v" "lf/huge_number/views/r99999999999999999999999_c00.exr"
+variant fifo_manifest && rm "lf/fifo_manifest/lightfield.json" && mkfifo "lf/fifo_manifest/lightfield.json"
+variant loop_manifest && ln -sf lightfield.json "lf/loop_manifest/lightfield.json"
+variant folder_manifest && rm "lf/folder_manifest/lightfield.json" && mkdir "lf/folder_manifest/lightfield.json"
+variant views_folder_link && rm -r "lf/views_folder_link/views" && ln -s views "lf/views_folder_link/views"
+variant long_pattern && sed -i "s#views/r{row:02}#views/$long{row:02}#" "lf/long_pattern/lightfield.json"
+variant truncated_view && head -c 300 "$v" >"lf/truncated_view/views/r00_c00.exr"
+mkfifo lf/fifo_folder
+ln -s loop_folder lf/loop_folder
+for m in "$source"/fuzz/corpus/lightfield_manifest/*; do
+  name=manifest_$(basename "$m")
+  variant "$name" && cp "$m" "lf/$name/lightfield.json"
+done
+
+# Scenes and measurement files.
+cp "$source"/fuzz/corpus/scene/* scenes/
+mkfifo scenes/fifo.json
+ln -s loop.json scenes/loop.json
+ln -s nothing.json scenes/dangling.json
+mkdir scenes/folder.json
+cp "$source"/fuzz/corpus/measurements/* measurements/
+mkfifo measurements/fifo.json
+ln -s loop.json measurements/loop.json
+
+# Pattern folders and checkpoints.
+mkdir -p patterns
+cp -r good_solution patterns/fifo && rm patterns/fifo/patterns/rear_a.exr && mkfifo patterns/fifo/patterns/rear_a.exr
+cp -r good_solution patterns/loop && ln -sf rear_a.exr patterns/loop/patterns/rear_a.exr
+cp -r good_solution patterns/folder && rm patterns/folder/patterns/rear_a.exr && mkdir patterns/folder/patterns/rear_a.exr
+for kind in fifo loop truncated folder; do
+  mkdir -p "checkpoint_$kind/checkpoint"
+done
+mkfifo checkpoint_fifo/checkpoint/checkpoint.json
+ln -s checkpoint.json checkpoint_loop/checkpoint/checkpoint.json
+echo '{"format": "layerlab-checkpoint/1", "solver"' >checkpoint_truncated/checkpoint/checkpoint.json
+mkdir checkpoint_folder/checkpoint/checkpoint.json
+
+# Output folders.
+mkfifo out/fifo
+touch out/file
+ln -s loop out/loop
+mkdir -p out/fifo_root && mkfifo out/fifo_root/patterns && mkfifo out/fifo_root/retina.csv
+mkdir -p out/link_root && ln -s /tmp out/link_root/patterns
+
+for s in scenes/*; do
+  try "info $s" "$layerlab" info "$s"
+  # A scene that compiles is a valid one: the heavy commands only for those that are refused.
+  "$layerlab" info "$s" >/dev/null 2>&1 && continue
+  try "solve $s" "$layerlab" solve "$s" --target lf/good --iterations 1 --out o
+  try "run $s" "$layerlab" run "$s" --iterations 1 --out o
+  try "retina $s" "$layerlab" retina "$s" --patterns good_solution --out o
+  try "contrast $s" "$layerlab" contrast "$s" --out o
+  try "compare $s" "$layerlab" compare "$s" --target lf/good --iterations 1 --out o
+  try "fit $s" "$layerlab" fit "$s" "$measurements" --out o.json
+done
+for l in lf/*; do
+  [ "$l" = lf/good ] && continue
+  try "solve --target $l" "$layerlab" solve "$small" --target "$l" --iterations 1 --out o
+  try "compare --target $l" "$layerlab" compare "$small" --target "$l" --iterations 1 --out o
+  try "retina --target $l" "$layerlab" retina "$small" --patterns good_solution --target "$l" --out o
+done
+for m in measurements/*; do
+  try "fit $m" "$layerlab" fit "$source/examples/paper_prototype.json" "$m" --out o.json
+done
+for p in patterns/*; do
+  try "retina --patterns $p" "$layerlab" retina "$small" --patterns "$p" --out o
+done
+for c in checkpoint_*; do
+  try "solve --resume $c" "$layerlab" solve "$small" --target lf/good --iterations 2 --resume --out "$c"
+done
+for o in out/fifo out/file out/loop out/fifo_root out/link_root "out/$long" "out/$long/deeper"; do
+  try "solve --out $o" "$layerlab" solve "$small" --target lf/good --iterations 1 --out "$o"
+  try "retina --out $o" "$layerlab" retina "$small" --patterns good_solution --out "$o"
+  try "run --out $o" "$layerlab" run "$small" --iterations 1 --out "$o"
+  try "render-target --out $o" "$layerlab" render-target "$source/examples/small/small_dice_target.json" "$o"
+done
+echo "$runs commands on hostile inputs, $failures ended otherwise than in a clear error"
+[ "$failures" -eq 0 ] || exit 1
+echo PASS
