@@ -139,8 +139,15 @@ class HybridSolver final : public Solver {
 }  // namespace
 
 SolverType HybridSolverType() {
-  return {"hybrid", "the paper's algorithm (Fig. 2): each multiplicative set chases the target minus the others",
-          [] { return std::make_unique<HybridSolver>(); }, SolverOptions{}};
+  SolverType type;
+  type.name = "hybrid";
+  type.summary = "the paper's algorithm (Fig. 2): each multiplicative set chases the target minus the others";
+  type.make = [] { return std::make_unique<HybridSolver>(); };
+  type.defaults = SolverOptions{};
+  type.default_rank = 1;
+  type.memory.light_fields = 1;  // the chase: what the set being updated should emit
+  type.options = {SubIterationsKey()};
+  return type;
 }
 
 }  // namespace layerlab

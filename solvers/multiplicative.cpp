@@ -11,14 +11,18 @@
 namespace layerlab {
 namespace {
 
+std::string Unsuitable(const DisplaySystem& system) {
+  if (system.branches.size() == 1) return "";
+  return "needs a display of one branch; this one has " + std::to_string(system.branches.size()) + " (use hybrid)";
+}
+
 class MultiplicativeSolver final : public Solver {
  public:
   SolverReport Solve(const DisplayModel& model, const LightField& target, const SolverOptions& options,
                      Patterns* t) const override {
     SolveLoop loop("multiplicative", model, target, options, t);
-    if (model.branch_count() != 1) {
-      loop.Fail("the multiplicative solver needs a display of one branch; this one has " +
-                std::to_string(model.branch_count()) + " (use hybrid)");
+    if (std::string why = Unsuitable(model.system()); !why.empty()) {
+      loop.Fail("the multiplicative solver " + why);
       return loop.Finish();
     }
     if (!loop.Start()) return loop.Finish();
@@ -48,8 +52,14 @@ class MultiplicativeSolver final : public Solver {
 SolverType MultiplicativeSolverType() {
   SolverOptions defaults;
   defaults.iterations = 90;  // as many updates of each layer as the hybrid's 30 x 3
-  return {"multiplicative", "non-negative multiplicative update rules for one stack of any number of layers",
-          [] { return std::make_unique<MultiplicativeSolver>(); }, defaults};
+  SolverType type;
+  type.name = "multiplicative";
+  type.summary = "non-negative multiplicative update rules for one stack of any number of layers";
+  type.make = [] { return std::make_unique<MultiplicativeSolver>(); };
+  type.defaults = defaults;
+  type.unsuitable = Unsuitable;
+  type.default_rank = 3;
+  return type;
 }
 
 }  // namespace layerlab

@@ -54,6 +54,14 @@ SolverReport RunSolver(const std::string& solver, const Fixture& f, SolverOption
   return SolverRegistry::Builtins().create(solver)->Solve(*f.model, f.target, options, t);
 }
 
+// The first of the examples whose display the solver suits (its type says which).
+std::string ExampleFor(const std::string& solver) {
+  for (const char* example : {"paper_prototype.json", "multiplicative_2layer.json", "additive_2layer.json"})
+    if (UnsuitableSolver(solver, CompileJson(ShrunkExample(example, 8, 4, 2))).empty()) return example;
+  ADD_FAILURE() << solver << " suits none of the examples";
+  return "paper_prototype.json";
+}
+
 void ExpectInBounds(const Patterns& t) {
   for (const LayerPattern& p : t)
     for (float v : p.rgb) {
@@ -309,10 +317,8 @@ TEST(Solvers, HybridCompensatesUnequalChannelEfficiencies) {
 }
 
 TEST(Solvers, InterruptionKeepsTheLastCompleteIterationUsable) {
-  for (const char* solver : {"hybrid", "joint", "quasi-newton", "multiplicative", "additive-trust-region"}) {
-    Fixture g = MakeFixture(std::string(solver) == "multiplicative" ? "multiplicative_2layer.json"
-                            : std::string(solver) == "additive-trust-region" ? "additive_2layer.json"
-                                                                              : "paper_prototype.json");
+  for (const std::string& solver : SolverRegistry::Builtins().names()) {
+    Fixture g = MakeFixture(ExampleFor(solver));
     SolverOptions o = SolverRegistry::Builtins().find(solver)->defaults;
     o.iterations = 50;
     o.tolerance = 0;
@@ -332,10 +338,8 @@ TEST(Solvers, InterruptionKeepsTheLastCompleteIterationUsable) {
 // uninterrupted one (quasi-newton: see below; one thread: the sums across threads would otherwise
 // merge in a varying order).
 TEST(Solvers, ResumedFromACheckpointMatchesAnUninterruptedSolve) {
-  for (const char* solver : {"hybrid", "joint", "quasi-newton", "multiplicative", "additive-trust-region"}) {
-    Fixture g = MakeFixture(std::string(solver) == "multiplicative" ? "multiplicative_2layer.json"
-                            : std::string(solver) == "additive-trust-region" ? "additive_2layer.json"
-                                                                              : "paper_prototype.json");
+  for (const std::string& solver : SolverRegistry::Builtins().names()) {
+    Fixture g = MakeFixture(ExampleFor(solver));
     for (float& v : g.target.rgb) v = std::min(1.0f, 1.2f * v);  // not exactly reachable: every iteration moves
     SolverOptions o = SolverRegistry::Builtins().find(solver)->defaults;
     o.iterations = 6;
@@ -365,7 +369,7 @@ TEST(Solvers, ResumedFromACheckpointMatchesAnUninterruptedSolve) {
     ASSERT_TRUE(rest.IsSolutionUsable()) << solver << ": " << rest.FullReport();
     EXPECT_EQ(rest.iterations, 6) << solver;
     ASSERT_EQ(rest.trace.size(), whole.trace.size()) << solver;
-    if (std::string(solver) == "quasi-newton") {
+    if (solver == "quasi-newton") {
       // Its checkpoint holds patterns, not curvature pairs: it goes on from
       // the checkpoint's patterns with a fresh memory, still descending.
       for (size_t k = 0; k <= 3; ++k) EXPECT_EQ(rest.trace[k].objective, whole.trace[k].objective) << k;
