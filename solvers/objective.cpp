@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <random>
 
 #include "framework/error.h"
+#include "framework/random.h"
 #include "systems/view_synthesizer.h"
 
 namespace layerlab {
@@ -75,10 +75,9 @@ double PsnrDb(double objective, size_t samples) {
 Patterns InitialPatterns(const DisplayModel& model, const SolverOptions& options) {
   if (options.initial_value >= 0) return model.UniformPatterns(static_cast<float>(options.initial_value));
   Patterns t = model.UniformPatterns(0.5f);
-  std::mt19937_64 rng(options.seed);
-  std::uniform_real_distribution<float> u(0.25f, 0.75f);
+  SplitMix64 rng(options.seed);  // the same patterns with every standard library
   for (LayerPattern& p : t)
-    for (float& v : p.rgb) v = u(rng);
+    for (float& v : p.rgb) v = static_cast<float>(0.25 + 0.5 * rng.uniform());
   return t;
 }
 

@@ -6,7 +6,7 @@
 
 namespace layerlab {
 
-#define LAYERLAB_SOLVER(Name) SolverType Name##SolverType();
+#define LAYERLAB_SOLVER(Name, file) SolverType Name##SolverType();
 #include "solvers/builtin_solvers.def"
 #undef LAYERLAB_SOLVER
 
@@ -55,7 +55,7 @@ std::string UnsuitableSolver(const std::string& solver, const DisplaySystem& sys
 
 SolverRegistry SolverRegistry::WithBuiltins() {
   SolverRegistry r;
-#define LAYERLAB_SOLVER(Name) r.add(Name##SolverType());
+#define LAYERLAB_SOLVER(Name, file) r.add(Name##SolverType());
 #include "solvers/builtin_solvers.def"
 #undef LAYERLAB_SOLVER
   return r;

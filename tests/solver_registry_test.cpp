@@ -2,10 +2,7 @@
 // gets by default, what they hold in memory and which "solve" keys they
 // read; a solver registered here, as a new one would be, is run by
 // `compare` like the built-ins.
-#include "analysis/compare.h"
-#include "solvers/memory_estimate.h"
-#include "solvers/solve_config.h"
-#include "systems/scene.h"
+#include "layerlab.h"  // the data-flow header: the phases used here all come through it
 #include "tests/support/near_first_solver.h"
 #include "tests/test_util.h"
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <random>
 
+#include "framework/random.h"
 #include "solvers/joint_pass.h"
 #include "solvers/objective.h"
 #include "solvers/solution_writer.h"
@@ -413,6 +414,26 @@ TEST(Solvers, MultiplicativeRecordsTheObjectiveOfItsPatterns) {
     const double exact = Objective(*f.model, f.target, t);
     EXPECT_NEAR(r.final_objective, exact, 1e-6 * exact) << iterations << " iterations";
   }
+}
+
+// Random initial patterns come from framework/random.h, the same with every
+// standard library: SplitMix64 from seed 1 gives 0x910a2dec89025cc1,
+// 0xbeeb8da1658eec67, 0xf893a2eefb32555e (an independent implementation of
+// Steele, Lea and Flood's published algorithm), i.e. uniforms (x >> 11) 2^-53 of
+// 0.5665615751722809, 0.7457817572627011, 0.9710027535867962.
+TEST(Solvers, RandomInitialPatternsComeFromTheProjectsGenerator) {
+  SplitMix64 reference(1);
+  EXPECT_EQ(reference.next(), 0x910a2dec89025cc1ull);
+  EXPECT_EQ(reference.next(), 0xbeeb8da1658eec67ull);
+  EXPECT_EQ(reference.next(), 0xf893a2eefb32555eull);
+  const Fixture f = MakeFixture("multiplicative_2layer.json", 8, 4, 2);
+  SolverOptions o;
+  o.initial_value = -1;
+  o.seed = 1;
+  const Patterns t = InitialPatterns(*f.model, o);
+  EXPECT_EQ(t[0].rgb[0], float(0.25 + 0.5 * 0.5665615751722809));
+  EXPECT_EQ(t[0].rgb[1], float(0.25 + 0.5 * 0.7457817572627011));
+  EXPECT_EQ(t[0].rgb[2], float(0.25 + 0.5 * 0.9710027535867962));
 }
 
 TEST(Solvers, MultiplicativeRefusesSeveralBranches) {
