@@ -5,16 +5,12 @@
 #include <cstdio>
 
 #include "analysis/svg_plot.h"
+#include "solvers/objective.h"
 
 namespace layerlab {
 namespace {
 
-std::string Psnr(double db) {
-  if (std::isinf(db)) return "inf";
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3f", db);
-  return text;
-}
+std::string Psnr(double db) { return FormatPsnr(db, 3); }
 
 }  // namespace
 

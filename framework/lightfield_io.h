@@ -5,6 +5,7 @@
 #include <string>
 
 #include "framework/lightfield.h"
+#include "framework/params.h"
 
 namespace layerlab {
 
@@ -20,6 +21,11 @@ LightField ReadLightField(const std::string& folder, const LightFieldReadOptions
 
 // The manifest alone, validated as above.
 LightFieldGeometry ReadLightFieldGeometry(const std::string& folder);
+
+// A "window" object (lightfield.json, and a target scene's light_field): the
+// origin-plane rectangle {left, top, width, height} in lengths, width and
+// height in (0, 1e6] m; every key required, no others.
+void ReadLightFieldWindow(Params window, LightFieldGeometry* geometry);
 
 // Writes the folder (creating it), every file atomically, the manifest last.
 void WriteLightField(const LightField& lf, const std::string& folder);

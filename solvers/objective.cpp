@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "framework/error.h"
@@ -70,6 +71,13 @@ double Objective(const DisplayModel& model, const LightField& target, const Patt
 double PsnrDb(double objective, size_t samples) {
   if (objective <= 0) return std::numeric_limits<double>::infinity();
   return 10.0 * std::log10(double(samples) / objective);
+}
+
+std::string FormatPsnr(double db, int decimals) {
+  if (std::isinf(db)) return "inf";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.*f", decimals, db);
+  return text;
 }
 
 Patterns InitialPatterns(const DisplayModel& model, const SolverOptions& options) {
