@@ -41,7 +41,8 @@ void AddCompareCommand(CLI::App& app) {
   cmd->add_option("scenes", o->scenes, "Display scene files (JSON)")->required();
   cmd->add_option("--target", o->target, "Target light-field folder")->required();
   cmd->add_option("--out", o->out, "Output folder")->required();
-  cmd->add_option("--solvers", o->solvers, "Solvers to run on each display, comma-separated, or \"all\" for every solver that suits it "
+  cmd->add_option("--solvers", o->solvers,
+                  "Solvers to run on each display, comma-separated, or \"all\" for every solver that suits it "
                   "(default: each scene's own)");
   cmd->add_option("--iterations", o->iterations, "Iterations of every run (default: each solver's)");
   cmd->add_option("--time-budget", o->time_budget, "Seconds each run may take");

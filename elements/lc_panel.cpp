@@ -10,7 +10,7 @@
 // | gap               | length               | one of three   | path length from the element before it (the panel in front, a mirror, a lens) |
 // | max_transmittance | fraction or [r,g,b]  | 0.3            | transmittance at full input                  |
 // | gamma             | number               | 2.2            | transmittance = (input)^gamma                |
-// | black_level       | fraction             | 0              | transmittance at input 0, relative to max; [r,g,b] only with equal values |
+// | black_level       | fraction             | 0              | transmittance at input 0, relative to max ([r,g,b]: equal values) |
 // | reversed          | boolean              | false          | mounted back to front (mirrored about its vertical axis) |
 // | offset            | [length, length]     | [0, 0]         | lateral shift in the panel plane (eye-space x right, y up) |
 // | rotation          | angle                | 0              | in-plane, counterclockwise as the eye sees it |

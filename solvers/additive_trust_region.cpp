@@ -185,11 +185,8 @@ class AdditiveTrustRegionSolver final : public Solver {
   SolverReport Solve(const DisplayModel& model, const LightField& target, const SolverOptions& options,
                      Patterns* t) const override {
     SolveLoop loop("additive-trust-region", model, target, options, t);
-    if (std::string why = Unsuitable(model.system()); !why.empty()) {
-      loop.Fail("additive-trust-region " + why);
-      return loop.Finish();
-    }
-    if (!loop.Start()) return loop.Finish();
+    const std::string why = Unsuitable(model.system());
+    if (!loop.Start(why.empty() ? why : "additive-trust-region " + why)) return loop.Finish();
     const LightField& l = loop.target();
     AdditiveOperator rays(model);
     if (AdditiveGram::Applicable(model)) {
@@ -294,12 +291,10 @@ SolverType AdditiveTrustRegionSolverType() {
   SolverOptions defaults;
   defaults.iterations = 200;
   defaults.tolerance = 1e-6;
-  SolverType type;
-  type.name = "additive-trust-region";
-  type.summary =
-      "box-constrained least squares of an additive display by a matrix-free projected trust-region Newton-CG method";
-  type.make = [] { return std::make_unique<AdditiveTrustRegionSolver>(); };
-  type.defaults = defaults;
+  SolverType type("additive-trust-region",
+                  "box-constrained least squares of an additive display by a matrix-free projected trust-region "
+                  "Newton-CG method",
+                  [] { return std::make_unique<AdditiveTrustRegionSolver>(); }, defaults);
   type.unsuitable = Unsuitable;
   type.default_rank = 2;
   return type;

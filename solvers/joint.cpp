@@ -118,12 +118,9 @@ class JointSolver final : public Solver {
 SolverType JointSolverType() {
   SolverOptions defaults;
   defaults.iterations = 200;
-  SolverType type;
-  type.name = "joint";
-  type.summary = "every layer of every branch at once, one pass per iteration, over-relaxed multiplicative steps";
-  type.make = [] { return std::make_unique<JointSolver>(); };
-  type.defaults = defaults;
-  return type;
+  return SolverType("joint",
+                    "every layer of every branch at once, one pass per iteration, over-relaxed multiplicative steps",
+                    [] { return std::make_unique<JointSolver>(); }, defaults);
 }
 
 }  // namespace layerlab

@@ -21,11 +21,8 @@ class MultiplicativeSolver final : public Solver {
   SolverReport Solve(const DisplayModel& model, const LightField& target, const SolverOptions& options,
                      Patterns* t) const override {
     SolveLoop loop("multiplicative", model, target, options, t);
-    if (std::string why = Unsuitable(model.system()); !why.empty()) {
-      loop.Fail("the multiplicative solver " + why);
-      return loop.Finish();
-    }
-    if (!loop.Start()) return loop.Finish();
+    const std::string why = Unsuitable(model.system());
+    if (!loop.Start(why.empty() ? why : "the multiplicative solver " + why)) return loop.Finish();
     const LightField& l = loop.target();
     BranchTarget whole = [&](size_t view, float*) { return l.view(view); };
     std::vector<int> order = model.branch_layers(0);
@@ -52,11 +49,8 @@ class MultiplicativeSolver final : public Solver {
 SolverType MultiplicativeSolverType() {
   SolverOptions defaults;
   defaults.iterations = 90;  // as many updates of each layer as the hybrid's 30 x 3
-  SolverType type;
-  type.name = "multiplicative";
-  type.summary = "non-negative multiplicative update rules for one stack of any number of layers";
-  type.make = [] { return std::make_unique<MultiplicativeSolver>(); };
-  type.defaults = defaults;
+  SolverType type("multiplicative", "non-negative multiplicative update rules for one stack of any number of layers",
+                  [] { return std::make_unique<MultiplicativeSolver>(); }, defaults);
   type.unsuitable = Unsuitable;
   type.default_rank = 3;
   return type;

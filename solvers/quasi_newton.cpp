@@ -287,11 +287,9 @@ SolverType QuasiNewtonSolverType() {
   SolverOptions defaults;
   defaults.iterations = 200;
   defaults.warm_start_iterations = 2;
-  SolverType type;
-  type.name = "quasi-newton";
-  type.summary = "projected L-BFGS on every layer at once after warm_start_iterations of hybrid, one pass per step";
-  type.make = [] { return std::make_unique<QuasiNewtonSolver>(); };
-  type.defaults = defaults;
+  SolverType type("quasi-newton",
+                  "projected L-BFGS on every layer at once after warm_start_iterations of hybrid, one pass per step",
+                  [] { return std::make_unique<QuasiNewtonSolver>(); }, defaults);
   // The warm start's chase; 9 work vectors and kMemory pairs of 2, in double.
   type.memory.light_fields = 1;
   type.memory.layer_doubles = 9 + kMemory * 2;

@@ -131,6 +131,11 @@ struct SolverMemory {
 // Everything the rest of the program knows about a solver: adding one is its
 // file and a line in builtin_solvers.def (or SolverRegistry::add at run time).
 struct SolverType {
+  SolverType() = default;
+  SolverType(std::string name_, std::string summary_, std::function<std::unique_ptr<Solver>()> make_,
+             SolverOptions defaults_ = {})
+      : name(std::move(name_)), summary(std::move(summary_)), make(std::move(make_)), defaults(std::move(defaults_)) {}
+
   std::string name;
   std::string summary;
   std::function<std::unique_ptr<Solver>()> make;

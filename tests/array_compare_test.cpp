@@ -17,7 +17,8 @@ TEST(ArrayCompare, NearCountsAndShowsTheFirstMismatch) {
   EXPECT_TRUE(ArraysNear(std::vector<double>{1, 2.001, 3, 4}, e, 1e-3));
   const ::testing::AssertionResult r = ArraysNear(std::vector<double>{1, 2.1, 3, 4.5}, e, 1e-3, 1e-6);
   ASSERT_FALSE(r);
-  EXPECT_STREQ(r.message(), "2 of 4 values differ by more than max(1e-06, 0.001 |expected|); the first at 1: 2.1 against 2");
+  EXPECT_STREQ(r.message(),
+               "2 of 4 values differ by more than max(1e-06, 0.001 |expected|); the first at 1: 2.1 against 2");
   EXPECT_FALSE(ArraysNear(std::vector<double>{1, std::nan(""), 3, 4}, e, 1.0));
   EXPECT_STREQ(ArraysNear(std::vector<double>{1, 2}, e, 1.0).message(), "sizes differ: 2 against 4");
 }

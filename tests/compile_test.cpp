@@ -46,7 +46,8 @@ TEST(Compile, PaperPrototypeMatchesTable1) {
 // An [r, g, b] black level of equal values is read whole, as the scalar is
 // (different values are refused: bad_scene_test BlackLevelPerChannel).
 TEST(Compile, BlackLevelIsReadAsOneValueForAllChannels) {
-  for (const nlohmann::json& given : {nlohmann::json(0.02), nlohmann::json("2 %"), nlohmann::json({0.02, 0.02, 0.02})}) {
+  for (const nlohmann::json& given :
+       {nlohmann::json(0.02), nlohmann::json("2 %"), nlohmann::json({0.02, 0.02, 0.02})}) {
     nlohmann::json scene = ReadExample("multiplicative_2layer.json");
     ElementNamed(scene, "rear")["black_level"] = given;
     const DisplaySystem s = CompileJson(scene);

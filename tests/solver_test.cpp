@@ -533,7 +533,8 @@ TEST(Solvers, TwoRunsWithTwoThreadsGiveTheSameBits) {
       const SolverReport ra = RunSolver(solver, f, o, &a), rb = RunSolver(solver, f, o, &b);
       ASSERT_EQ(ra.trace.size(), rb.trace.size());
       for (size_t k = 0; k < ra.trace.size(); ++k) EXPECT_EQ(ra.trace[k].objective, rb.trace[k].objective) << solver;
-      for (size_t k = 0; k < a.size(); ++k) EXPECT_TRUE(ArraysSameBits(a[k].rgb, b[k].rgb)) << solver << ", layer " << k;
+      for (size_t k = 0; k < a.size(); ++k)
+        EXPECT_TRUE(ArraysSameBits(a[k].rgb, b[k].rgb)) << solver << ", layer " << k;
     }
   }
   // The general path (a rotation of 1e-12 selects it).

@@ -25,11 +25,8 @@ class NearFirstSolver final : public Solver {
   SolverReport Solve(const DisplayModel& model, const LightField& target, const SolverOptions& options,
                      Patterns* t) const override {
     SolveLoop loop("near-first", model, target, options, t);
-    if (std::string why = NearFirstUnsuitable(model.system()); !why.empty()) {
-      loop.Fail("near-first " + why);
+    if (!loop.Start(NearFirstUnsuitable(model.system()).empty() ? "" : "near-first needs a display of one branch"))
       return loop.Finish();
-    }
-    if (!loop.Start()) return loop.Finish();
     const LightField& l = loop.target();
     const BranchTarget whole = [&](size_t view, float*) { return l.view(view); };
     std::vector<int> order = model.branch_layers(0);
@@ -44,11 +41,8 @@ class NearFirstSolver final : public Solver {
 inline SolverType NearFirstSolverType() {
   SolverOptions defaults;
   defaults.iterations = 40;
-  SolverType type;
-  type.name = "near-first";
-  type.summary = "multiplicative updates of one stack, nearest layer first";
-  type.make = [] { return std::make_unique<NearFirstSolver>(); };
-  type.defaults = defaults;
+  SolverType type("near-first", "multiplicative updates of one stack, nearest layer first",
+                  [] { return std::make_unique<NearFirstSolver>(); }, defaults);
   type.unsuitable = NearFirstUnsuitable;
   type.default_rank = 0;  // never a display's default
   return type;
