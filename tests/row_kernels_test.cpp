@@ -1,7 +1,7 @@
 // The per-row kernels against plain loops in double, and their AVX2 build
 // against the baseline bit for bit, on rows of every length up to 41 (both
 // parities, shorter than one AVX2 step, and tails of every kind).
-#include "framework/row_kernels.h"
+#include "systems/row_kernels.h"
 
 #include <gtest/gtest.h>
 
