@@ -5,29 +5,25 @@
 #include <cstdio>
 
 #include "analysis/svg_plot.h"
+#include "solvers/objective.h"
 
 namespace layerlab {
 namespace {
 
-std::string Psnr(double db) {
-  if (std::isinf(db)) return "inf";
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3f", db);
-  return text;
-}
+std::string Psnr(double db) { return FormatPsnr(db, 3); }
 
 }  // namespace
 
-std::string UnsuitableSolver(const std::string& solver, const DisplaySystem& system) {
-  if (solver == "multiplicative" && system.branches.size() != 1) return "needs a display of one branch";
-  if (solver == "additive-trust-region")
-    for (const Branch& b : system.branches)
-      if (b.layers.size() != 1) return "needs one layer per branch";
-  return "";
+std::vector<std::string> SuitableSolvers(const DisplaySystem& system, const SolverRegistry& registry) {
+  std::vector<std::string> out;
+  for (const std::string& name : registry.names())
+    if (registry.get(name).Unsuitable(system).empty()) out.push_back(name);
+  return out;
 }
 
 std::vector<CompareResult> RunComparison(const std::vector<CompareRun>& runs, const LightField& target,
-                                         const std::function<void(const std::string&)>& progress) {
+                                         const std::function<void(const std::string&)>& progress,
+                                         const SolverRegistry& registry) {
   std::vector<CompareResult> results;
   for (const CompareRun& run : runs) {
     DisplayModel model(run.system, target.geometry, run.sampling);
@@ -42,7 +38,7 @@ std::vector<CompareResult> RunComparison(const std::vector<CompareRun>& runs, co
       };
     Patterns t;
     CompareResult r{run.display, run.solver, {}, run.system.brightness_efficiency, run.system.luminance_efficiency};
-    r.report = SolverRegistry::Builtins().create(run.solver)->Solve(model, target, options, &t);
+    r.report = registry.create(run.solver)->Solve(model, target, options, &t);
     results.push_back(std::move(r));
   }
   return results;

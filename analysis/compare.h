@@ -26,13 +26,15 @@ struct CompareResult {
   double luminance_efficiency = 0;
 };
 
-// Why `solver` cannot factorize `system`, or "" when it can.
-std::string UnsuitableSolver(const std::string& solver, const DisplaySystem& system);
+// Every solver of `registry` that suits `system` (SolverType::unsuitable), by name.
+std::vector<std::string> SuitableSolvers(const DisplaySystem& system,
+                                         const SolverRegistry& registry = SolverRegistry::Builtins());
 
-// Runs each in turn on `target` (each display bound to the target's rays).
-// `progress` gets a line per iteration.
+// Runs each in turn on `target` (each display bound to the target's rays),
+// the solvers taken from `registry`. `progress` gets a line per iteration.
 std::vector<CompareResult> RunComparison(const std::vector<CompareRun>& runs, const LightField& target,
-                                         const std::function<void(const std::string&)>& progress = {});
+                                         const std::function<void(const std::string&)>& progress = {},
+                                         const SolverRegistry& registry = SolverRegistry::Builtins());
 
 std::string CompareTable(const std::vector<CompareResult>& results);  // fixed-width text
 std::string CompareCsv(const std::vector<CompareResult>& results);    // one row per run

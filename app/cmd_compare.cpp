@@ -43,11 +43,15 @@ void AddCompareCommand(CLI::App& app) {
   cmd->add_option("scenes", o->scenes, "Display scene files (JSON)")->required();
   cmd->add_option("--target", o->target, "Target light-field folder")->required();
   cmd->add_option("--out", o->out, "Output folder")->required();
-  cmd->add_option("--solvers", o->solvers, "Solvers to run on each display, comma-separated (default: each scene's own)");
+  cmd->add_option("--solvers", o->solvers,
+                  "Solvers to run on each display, comma-separated, or \"all\" for every solver that suits it "
+                  "(default: each scene's own)");
   cmd->add_option("--iterations", o->iterations, "Iterations of every run (default: each solver's)");
   cmd->add_option("--time-budget", o->time_budget, "Seconds each run may take");
   cmd->callback([o] {
-    for (const std::string& name : SplitNames(o->solvers)) SolverRegistry::Builtins().create(name);  // names known ones
+    const bool all = o->solvers == "all";
+    if (!all)
+      for (const std::string& name : SplitNames(o->solvers)) SolverRegistry::Builtins().get(name);  // names known ones
     if (o->iterations && *o->iterations <= 0) throw Error("--iterations: must be positive");
     if (o->time_budget && !(*o->time_budget >= 0)) throw Error("--time-budget: must be 0 (none) or more seconds");
     std::vector<CompareRun> runs;
@@ -55,7 +59,7 @@ void AddCompareCommand(CLI::App& app) {
       Scene scene = LoadScene(file);
       DisplaySystem system = Compile(scene);
       SolveConfig config = ReadSolveConfig(scene, system);
-      std::vector<std::string> solvers = SplitNames(o->solvers);
+      std::vector<std::string> solvers = all ? SuitableSolvers(system) : SplitNames(o->solvers);
       if (solvers.empty()) solvers.push_back(config.solver);
       for (const std::string& solver : solvers) {
         const std::string name = std::filesystem::path(file).stem().string();

@@ -9,7 +9,7 @@
 #include "app/commands.h"
 #include "framework/error.h"
 #include "framework/interrupt.h"
-#include "framework/row_kernels.h"
+#include "systems/row_kernels.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"layerlab: model, factorize and analyse layered light-field near-eye displays"};

@@ -10,7 +10,7 @@
 // | gap               | length               | one of three   | path length from the element before it (the panel in front, a mirror, a lens) |
 // | max_transmittance | fraction or [r,g,b]  | 0.3            | transmittance at full input                  |
 // | gamma             | number               | 2.2            | transmittance = (input)^gamma                |
-// | black_level       | fraction             | 0              | transmittance at input 0, relative to max    |
+// | black_level       | fraction             | 0              | transmittance at input 0, relative to max ([r,g,b]: equal values) |
 // | reversed          | boolean              | false          | mounted back to front (mirrored about its vertical axis) |
 // | offset            | [length, length]     | [0, 0]         | lateral shift in the panel plane (eye-space x right, y up) |
 // | rotation          | angle                | 0              | in-plane, counterclockwise as the eye sees it |
@@ -71,7 +71,15 @@ std::unique_ptr<Element> MakeLcPanel(Params& p) {
     if (!(t > 0)) p.fail("max_transmittance", "a panel that passes no light cannot show an image");
   s.gamma = p.quantity("gamma", Dimension::kFraction, s.gamma);
   p.require_range("gamma", s.gamma, 0.1, 10.0, false, false);
-  s.black_level = p.fraction_rgb("black_level", 0.0)[0];
+  // One black level for all channels is what the panel model (and the
+  // panel-image encoding) holds: an [r, g, b] of different values is refused,
+  // not cut to its red.
+  const Rgb black = p.fraction_rgb("black_level", 0.0);
+  if (black[1] != black[0] || black[2] != black[0])
+    p.fail("black_level", "one value for all channels, got [" + FormatFixed(black[0], 4) + ", " +
+                              FormatFixed(black[1], 4) + ", " + FormatFixed(black[2], 4) +
+                              "] (a per-channel black level is not modelled)");
+  s.black_level = black[0];
   if (s.black_level >= 1.0) p.fail("black_level", "must be below 1 (the panel's maximum)");
   s.reversed = p.boolean("reversed", false);
   s.offset = p.quantity_pair("offset", Dimension::kLength, {0.0, 0.0});

@@ -138,14 +138,7 @@ Manifest ReadManifest(const std::string& folder) {
   LightFieldGeometry g;
   g.origin_z = m.quantity("origin_plane_z", Dimension::kLength);
   m.require_range("origin_plane_z", g.origin_z, 0.0, 1e6, true, false);
-  Params window = m.object("window");
-  g.window_left = window.quantity("left", Dimension::kLength);
-  g.window_top = window.quantity("top", Dimension::kLength);
-  g.window_width = window.quantity("width", Dimension::kLength);
-  g.window_height = window.quantity("height", Dimension::kLength);
-  window.require_range("width", g.window_width, 0.0, 1e6, true, false);
-  window.require_range("height", g.window_height, 0.0, 1e6, true, false);
-  window.check_all_read();
+  ReadLightFieldWindow(m.object("window"), &g);
   Params resolution = m.object("resolution");
   g.cols = static_cast<int>(resolution.integer("cols", 1, kMaxPixelsPerAxis));
   g.rows = static_cast<int>(resolution.integer("rows", 1, kMaxPixelsPerAxis));
@@ -172,6 +165,16 @@ Manifest ReadManifest(const std::string& folder) {
 }
 
 }  // namespace
+
+void ReadLightFieldWindow(Params window, LightFieldGeometry* g) {
+  g->window_left = window.quantity("left", Dimension::kLength);
+  g->window_top = window.quantity("top", Dimension::kLength);
+  g->window_width = window.quantity("width", Dimension::kLength);
+  g->window_height = window.quantity("height", Dimension::kLength);
+  window.require_range("width", g->window_width, 0.0, 1e6, true, false);
+  window.require_range("height", g->window_height, 0.0, 1e6, true, false);
+  window.check_all_read();
+}
 
 LightFieldGeometry ReadLightFieldGeometry(const std::string& folder) { return ReadManifest(folder).geometry; }
 

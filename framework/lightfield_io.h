@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "framework/lightfield.h"
+#include "framework/params.h"
 
 namespace layerlab {
 
@@ -21,6 +22,11 @@ LightField ReadLightField(const std::string& folder, const LightFieldReadOptions
 
 // The manifest alone, validated as above.
 LightFieldGeometry ReadLightFieldGeometry(const std::string& folder);
+
+// A "window" object (lightfield.json, and a target scene's light_field): the
+// origin-plane rectangle {left, top, width, height} in lengths, width and
+// height in (0, 1e6] m; every key required, no others.
+void ReadLightFieldWindow(Params window, LightFieldGeometry* geometry);
 
 // Writes the folder (creating it), every file atomically, the manifest last;
 // returns the files written, relative to `folder`.

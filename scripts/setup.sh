@@ -10,6 +10,7 @@ packages=(cmake ninja-build g++ pkg-config
           chromium fonts-liberation)  # headless Chromium for the report's end-to-end test
 
 packages+=(clang-14 libclang-rt-14-dev libomp-14-dev)  # the sanitizer and fuzz build in .ci/run (docs/robustness.md)
+packages+=(clang-format-14)  # the layout check in .ci/run (scripts/check_format.sh)
 
 missing=()
 for p in "${packages[@]}"; do

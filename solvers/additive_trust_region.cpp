@@ -172,18 +172,21 @@ class GramOperator {
   double squared_target_ = 0;
 };
 
+std::string Unsuitable(const DisplaySystem& system) {
+  for (const Branch& b : system.branches)
+    if (b.layers.size() != 1)
+      return "needs one layer per branch; branch \"" + b.name + "\" stacks " + std::to_string(b.layers.size()) +
+             " (use hybrid)";
+  return "";
+}
+
 class AdditiveTrustRegionSolver final : public Solver {
  public:
   SolverReport Solve(const DisplayModel& model, const LightField& target, const SolverOptions& options,
                      Patterns* t) const override {
     SolveLoop loop("additive-trust-region", model, target, options, t);
-    for (size_t b = 0; b < model.branch_count(); ++b)
-      if (model.branch_layers(b).size() != 1) {
-        loop.Fail("additive-trust-region needs one layer per branch; branch \"" + model.system().branches[b].name +
-                  "\" stacks " + std::to_string(model.branch_layers(b).size()) + " (use hybrid)");
-        return loop.Finish();
-      }
-    if (!loop.Start()) return loop.Finish();
+    const std::string why = Unsuitable(model.system());
+    if (!loop.Start(why.empty() ? why : "additive-trust-region " + why)) return loop.Finish();
     const LightField& l = loop.target();
     AdditiveOperator rays(model);
     if (AdditiveGram::Applicable(model)) {
@@ -288,9 +291,13 @@ SolverType AdditiveTrustRegionSolverType() {
   SolverOptions defaults;
   defaults.iterations = 200;
   defaults.tolerance = 1e-6;
-  return {"additive-trust-region",
-          "box-constrained least squares of an additive display by a matrix-free projected trust-region Newton-CG method",
-          [] { return std::make_unique<AdditiveTrustRegionSolver>(); }, defaults};
+  SolverType type("additive-trust-region",
+                  "box-constrained least squares of an additive display by a matrix-free projected trust-region "
+                  "Newton-CG method",
+                  [] { return std::make_unique<AdditiveTrustRegionSolver>(); }, defaults);
+  type.unsuitable = Unsuitable;
+  type.default_rank = 2;
+  return type;
 }
 
 }  // namespace layerlab

@@ -118,8 +118,9 @@ class JointSolver final : public Solver {
 SolverType JointSolverType() {
   SolverOptions defaults;
   defaults.iterations = 200;
-  return {"joint", "every layer of every branch at once, one pass per iteration, over-relaxed multiplicative steps",
-          [] { return std::make_unique<JointSolver>(); }, defaults};
+  return SolverType("joint",
+                    "every layer of every branch at once, one pass per iteration, over-relaxed multiplicative steps",
+                    [] { return std::make_unique<JointSolver>(); }, defaults);
 }
 
 }  // namespace layerlab

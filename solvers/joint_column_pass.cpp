@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cstdint>
 
-#include "framework/row_kernels.h"
+#include "systems/row_kernels.h"
 #include "systems/one_tap_view.h"
 
 namespace layerlab {

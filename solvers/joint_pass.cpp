@@ -2,7 +2,7 @@
 
 #include <omp.h>
 
-#include "framework/thread_merge.h"
+#include "systems/thread_merge.h"
 #include "solvers/joint_column_pass.h"
 #include "systems/one_tap_view.h"
 

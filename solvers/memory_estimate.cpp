@@ -20,19 +20,18 @@ std::string FormatBytes(double bytes) {
 }
 
 MemoryEstimate EstimateSolveMemory(const DisplaySystem& system, const LightFieldGeometry& g, const std::string& solver,
-                                   int threads) {
+                                   int threads, const SolverRegistry& registry) {
+  const SolverMemory& own = registry.get(solver).memory;
   threads = std::max(threads, 1);
   const double light_field = double(g.ray_count()) * 3 * sizeof(float);
   // The target as read and, if values exceed the display, its clipped or
-  // scaled copy; the hybrid (and quasi-newton's warm start) also keeps what
-  // the set being updated should emit.
-  const int copies = solver == "hybrid" || solver == "quasi-newton" ? 3 : 2;
+  // scaled copy, then the solver's own light fields.
+  const int copies = 2 + own.light_fields;
   double layer_pixels = 0;
   for (const VirtualLayer& layer : system.layers) layer_pixels += double(layer.cols) * layer.rows * 3;
-  // Patterns (float), merged sums (2 double), per-thread sums (2 float), kept ratios (double).
+  // Patterns (float), merged sums (2 double), per-thread sums (2 float), kept ratios (double), the solver's own.
   double layers = layer_pixels * (4 + 16 + 8.0 * threads + 8);
-  // quasi-newton: 9 work vectors and 4 pairs of 2, in double (quasi_newton.cpp).
-  if (solver == "quasi-newton") layers += layer_pixels * 8 * (9 + 4 * 2);
+  if (own.layer_doubles > 0) layers += layer_pixels * 8 * own.layer_doubles;
   const double views = double(g.pixels_per_view()) * 3 * sizeof(float) * 4 * threads;  // per-thread view buffers
   const double program = 64e6;  // code, libraries, the thread pool
   MemoryEstimate e;

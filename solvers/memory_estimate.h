@@ -7,6 +7,7 @@
 #include <string>
 
 #include "framework/lightfield.h"
+#include "solvers/solver.h"
 #include "systems/display_system.h"
 
 namespace layerlab {
@@ -16,8 +17,10 @@ struct MemoryEstimate {
   std::string breakdown;  // "target 162.2 MB x 3 (...) + layers ... + program 64 MB"
 };
 
+// The common part plus what the solver's type states (SolverType::memory).
 MemoryEstimate EstimateSolveMemory(const DisplaySystem& system, const LightFieldGeometry& geometry,
-                                   const std::string& solver, int threads);
+                                   const std::string& solver, int threads,
+                                   const SolverRegistry& registry = SolverRegistry::Builtins());
 
 // "512 MB", "2 GB", "1.5 GiB", or a bare number of bytes; throws layerlab::Error naming `option`.
 size_t ParseByteSize(const std::string& text, const std::string& option);

@@ -11,17 +11,18 @@
 namespace layerlab {
 namespace {
 
+std::string Unsuitable(const DisplaySystem& system) {
+  if (system.branches.size() == 1) return "";
+  return "needs a display of one branch; this one has " + std::to_string(system.branches.size()) + " (use hybrid)";
+}
+
 class MultiplicativeSolver final : public Solver {
  public:
   SolverReport Solve(const DisplayModel& model, const LightField& target, const SolverOptions& options,
                      Patterns* t) const override {
     SolveLoop loop("multiplicative", model, target, options, t);
-    if (model.branch_count() != 1) {
-      loop.Fail("the multiplicative solver needs a display of one branch; this one has " +
-                std::to_string(model.branch_count()) + " (use hybrid)");
-      return loop.Finish();
-    }
-    if (!loop.Start()) return loop.Finish();
+    const std::string why = Unsuitable(model.system());
+    if (!loop.Start(why.empty() ? why : "the multiplicative solver " + why)) return loop.Finish();
     const LightField& l = loop.target();
     BranchTarget whole = [&](size_t view, float*) { return l.view(view); };
     std::vector<int> order = model.branch_layers(0);
@@ -48,8 +49,11 @@ class MultiplicativeSolver final : public Solver {
 SolverType MultiplicativeSolverType() {
   SolverOptions defaults;
   defaults.iterations = 90;  // as many updates of each layer as the hybrid's 30 x 3
-  return {"multiplicative", "non-negative multiplicative update rules for one stack of any number of layers",
-          [] { return std::make_unique<MultiplicativeSolver>(); }, defaults};
+  SolverType type("multiplicative", "non-negative multiplicative update rules for one stack of any number of layers",
+                  [] { return std::make_unique<MultiplicativeSolver>(); }, defaults);
+  type.unsuitable = Unsuitable;
+  type.default_rank = 3;
+  return type;
 }
 
 }  // namespace layerlab

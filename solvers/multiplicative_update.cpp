@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "framework/thread_merge.h"
+#include "systems/thread_merge.h"
 #include "solvers/one_tap_update.h"
 #include "systems/one_tap_view.h"
 

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
-#include <random>
 
 #include "framework/error.h"
 #include "framework/random.h"
@@ -73,6 +73,13 @@ double PsnrDb(double objective, size_t samples) {
   return 10.0 * std::log10(double(samples) / objective);
 }
 
+std::string FormatPsnr(double db, int decimals) {
+  if (std::isinf(db)) return "inf";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.*f", decimals, db);
+  return text;
+}
+
 Patterns InitialPatterns(const DisplayModel& model, const SolverOptions& options) {
   if (options.initial_value >= 0 && model.system().subframes > 1) {
     // Subframes that start equal get equal updates and stay equal (a rank-1
@@ -88,10 +95,9 @@ Patterns InitialPatterns(const DisplayModel& model, const SolverOptions& options
   }
   if (options.initial_value >= 0) return model.UniformPatterns(static_cast<float>(options.initial_value));
   Patterns t = model.UniformPatterns(0.5f);
-  std::mt19937_64 rng(options.seed);
-  std::uniform_real_distribution<float> u(0.25f, 0.75f);
+  SplitMix64 rng(options.seed);  // the same patterns with every standard library
   for (LayerPattern& p : t)
-    for (float& v : p.rgb) v = u(rng);
+    for (float& v : p.rgb) v = static_cast<float>(0.25 + 0.5 * rng.uniform());
   return t;
 }
 

@@ -26,6 +26,8 @@ double Objective(const DisplayModel& model, const LightField& target, const Patt
 
 // 10 log10(1 / MSE) with MSE = objective / samples; +inf for a perfect fit.
 double PsnrDb(double objective, size_t samples);
+// A PSNR for reports and tables: "31.42" with `decimals` digits, or "inf".
+std::string FormatPsnr(double db, int decimals);
 
 // Every pixel `initial_value`, or uniform in [0.25, 0.75] from `seed` when it is negative.
 Patterns InitialPatterns(const DisplayModel& model, const SolverOptions& options);

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <omp.h>
 
-#include "framework/row_kernels.h"
+#include "systems/row_kernels.h"
 #include "systems/one_tap_view.h"
 
 namespace layerlab {

@@ -13,30 +13,34 @@ std::string ResolveAgainstScene(const Scene& scene, const std::string& path) {
   return (std::filesystem::path(scene.file).parent_path() / p).lexically_normal().string();
 }
 
-std::string DefaultSolverFor(const DisplaySystem& system) {
-  if (system.branches.size() == 1) return "multiplicative";
-  bool single = std::all_of(system.branches.begin(), system.branches.end(),
-                            [](const Branch& b) { return b.layers.size() == 1; });
-  return single ? "additive-trust-region" : "hybrid";
-}
+std::string DefaultSolverFor(const DisplaySystem& system) { return SolverRegistry::Builtins().DefaultFor(system); }
 
-SolveConfig ReadSolveConfig(const Scene& scene, const DisplaySystem& system) {
+SolveConfig ReadSolveConfig(const Scene& scene, const DisplaySystem& system, const SolverRegistry& registry) {
   SolveConfig config;
-  config.solver = DefaultSolverFor(system);
+  config.solver = registry.DefaultFor(system);
   if (!scene.document.contains("solve")) {
-    config.options = SolverRegistry::Builtins().find(config.solver)->defaults;
+    config.options = registry.get(config.solver).defaults;
     return config;
   }
   Params p(scene.document["solve"], {scene.file, "/solve"});
   config.solver = p.string("solver", config.solver);
-  const SolverType* type = SolverRegistry::Builtins().find(config.solver);
+  const SolverType* type = registry.find(config.solver);
   if (!type) {
     try {
-      SolverRegistry::Builtins().create(config.solver);
+      registry.get(config.solver);
     } catch (const Error& e) {
       p.fail("solver", e.message());
     }
   }
+  // A key that sets an option of other solvers only is an error, not ignored.
+  for (const std::string& name : registry.names())
+    for (const SolverOptionKey& key : registry.get(name).options)
+      if (p.has(key.key) && !type->Reads(key.key)) {
+        std::vector<std::string> readers;
+        for (const std::string& reader : registry.names())
+          if (registry.get(reader).Reads(key.key)) readers.push_back(reader);
+        p.fail(key.key, "the solver \"" + config.solver + "\" does not read it (" + JoinWords(readers, ", ") + " do)");
+      }
   SolverOptions& o = config.options;
   o = type->defaults;
   if (p.has("target") && p.has("target_scene"))

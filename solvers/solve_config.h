@@ -28,14 +28,17 @@ struct SolveConfig {
   SolverOptions options;  // the solver's defaults, then the scene's values
 };
 
-// The solver a display's structure calls for: one branch -> multiplicative,
-// one layer per branch -> additive-trust-region, else hybrid.
+// The solver a display's structure calls for (SolverRegistry::DefaultFor of
+// the built-ins: one branch -> multiplicative, one layer per branch ->
+// additive-trust-region, else hybrid).
 std::string DefaultSolverFor(const DisplaySystem& system);
 
 // A path written in the scene file, relative to the scene file's folder.
 std::string ResolveAgainstScene(const Scene& scene, const std::string& path);
 
-// Reads scene.document["solve"] if present (strictly: unknown keys are errors).
-SolveConfig ReadSolveConfig(const Scene& scene, const DisplaySystem& system);
+// Reads scene.document["solve"] if present (strictly: unknown keys, and keys
+// of options the chosen solver does not read, are errors).
+SolveConfig ReadSolveConfig(const Scene& scene, const DisplaySystem& system,
+                            const SolverRegistry& registry = SolverRegistry::Builtins());
 
 }  // namespace layerlab

@@ -24,7 +24,11 @@ double SolveLoop::Seconds() const {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
 }
 
-bool SolveLoop::Start() {
+bool SolveLoop::Start(const std::string& refusal) {
+  if (!refusal.empty()) {
+    Fail(refusal);
+    return false;
+  }
   std::string error;
   if (!options_.IsValid(&error)) {
     report_.termination = Termination::kInvalidOptions;

@@ -22,8 +22,9 @@ class SolveLoop {
   // False (and the report says why) when the solve cannot start. The clock
   // of the trace starts here; the time since construction (preparing the
   // target, and whatever the solver allocated before calling this) is the
-  // report's setup_seconds.
-  bool Start();
+  // report's setup_seconds. A non-empty `refusal` (why the display does not
+  // suit the solver, SolverType::unsuitable in the solver's words) fails first.
+  bool Start(const std::string& refusal = "");
   const LightField& target() const { return prepared_ ? *prepared_ : source_; }
   int iteration() const { return iteration_; }  // iterations completed
   double Seconds() const;

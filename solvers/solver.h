@@ -109,25 +109,72 @@ class Solver {
                              Patterns* patterns) const = 0;
 };
 
+// A "solve" key of a scene file that sets a SolverOptions field
+// (solvers/solve_config.cpp reads them all).
+struct SolverOptionKey {
+  std::string key;      // the JSON key, also the field's name
+  std::string meaning;  // one line, for listings
+};
+// The keys every solver reads (the solve loop's: iterations, time_budget, ...).
+const std::vector<SolverOptionKey>& CommonSolverOptionKeys();
+// sub_iterations: the hybrid's, read also by quasi-newton's warm start.
+SolverOptionKey SubIterationsKey();
+
+// What a solver holds beyond what every solve holds (solvers/memory_estimate.h
+// adds the target, its prepared copy, the patterns, the layer sums and the
+// per-thread buffers).
+struct SolverMemory {
+  int light_fields = 0;      // light-field-sized float buffers of its own (hybrid: the chase)
+  double layer_doubles = 0;  // doubles per layer value of its own (quasi-newton: work vectors and pairs)
+};
+
+// Everything the rest of the program knows about a solver: adding one is its
+// file and a line in builtin_solvers.def (or SolverRegistry::add at run time).
 struct SolverType {
+  SolverType() = default;
+  SolverType(std::string name_, std::string summary_, std::function<std::unique_ptr<Solver>()> make_,
+             SolverOptions defaults_ = {})
+      : name(std::move(name_)), summary(std::move(summary_)), make(std::move(make_)), defaults(std::move(defaults_)) {}
+
   std::string name;
   std::string summary;
   std::function<std::unique_ptr<Solver>()> make;
   SolverOptions defaults;  // what this solver runs with unless told otherwise
+  // Why it cannot factorize `system`, worded to follow the solver's name
+  // ("needs a display of one branch; ..."), or "" when it can. Empty: every display.
+  std::function<std::string(const DisplaySystem&)> unsuitable;
+  // Among the solvers that suit a display, the one of highest rank is its
+  // default (the most specific fit); 0: never chosen by default.
+  int default_rank = 0;
+  SolverMemory memory;
+  // The keys it reads beyond CommonSolverOptionKeys().
+  std::vector<SolverOptionKey> options;
+
+  std::string Unsuitable(const DisplaySystem& system) const { return unsuitable ? unsuitable(system) : ""; }
+  bool Reads(const std::string& key) const;  // a common key or one of `options`
 };
 
 class SolverRegistry {
  public:
-  void add(SolverType type);
+  void add(SolverType type);  // fails if the name is taken
   const SolverType* find(const std::string& name) const;
   std::vector<std::string> names() const;
   // Throws layerlab::Error listing the known names for an unknown one.
-  std::unique_ptr<Solver> create(const std::string& name) const;
+  const SolverType& get(const std::string& name) const;
+  std::unique_ptr<Solver> create(const std::string& name) const { return get(name).make(); }
+  // The suitable solver of highest default_rank; throws layerlab::Error when none suits.
+  std::string DefaultFor(const DisplaySystem& system) const;
 
   static const SolverRegistry& Builtins();
+  static SolverRegistry WithBuiltins();  // a copy to add to
 
  private:
   std::map<std::string, SolverType> types_;
 };
+
+// Why the named solver cannot factorize `system`, or "" when it can; throws
+// layerlab::Error for an unknown name.
+std::string UnsuitableSolver(const std::string& solver, const DisplaySystem& system,
+                             const SolverRegistry& registry = SolverRegistry::Builtins());
 
 }  // namespace layerlab

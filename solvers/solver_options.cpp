@@ -7,6 +7,21 @@ namespace layerlab {
 
 std::string ToString(TargetRange r) { return r == TargetRange::kClip ? "clip" : "scale"; }
 
+const std::vector<SolverOptionKey>& CommonSolverOptionKeys() {
+  static const std::vector<SolverOptionKey> keys = {
+      {"iterations", "outer iterations"},
+      {"time_budget", "wall-clock budget (0: none)"},
+      {"tolerance", "stop when the objective changes by less than this, relative (0: never)"},
+      {"initial_value", "initial transmittance, or negative for random in [0.25, 0.75]"},
+      {"seed", "for random initial patterns"},
+      {"threads", "worker threads (0: every core)"},
+      {"target_range", "what to do with target values beyond the display: clip or scale"},
+  };
+  return keys;
+}
+
+SolverOptionKey SubIterationsKey() { return {"sub_iterations", "updates of one multiplicative set before the next"}; }
+
 bool SolverOptions::IsValid(std::string* error) const {
   auto fail = [&](const std::string& field, double value, const std::string& constraint) {
     std::ostringstream s;

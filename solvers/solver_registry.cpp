@@ -1,15 +1,24 @@
+#include <algorithm>
+
 #include "framework/error.h"
 #include "framework/params.h"
 #include "solvers/solver.h"
 
 namespace layerlab {
 
-#define LAYERLAB_SOLVER(Name) SolverType Name##SolverType();
+#define LAYERLAB_SOLVER(Name, file) SolverType Name##SolverType();
 #include "solvers/builtin_solvers.def"
 #undef LAYERLAB_SOLVER
 
+bool SolverType::Reads(const std::string& key) const {
+  auto named = [&](const SolverOptionKey& o) { return o.key == key; };
+  const std::vector<SolverOptionKey>& common = CommonSolverOptionKeys();
+  return std::any_of(common.begin(), common.end(), named) || std::any_of(options.begin(), options.end(), named);
+}
+
 void SolverRegistry::add(SolverType type) {
   std::string name = type.name;
+  if (!type.make) throw Error("solver \"" + name + "\" has no factory");
   if (!types_.emplace(name, std::move(type)).second) throw Error("solver \"" + name + "\" is registered twice");
 }
 
@@ -24,21 +33,36 @@ std::vector<std::string> SolverRegistry::names() const {
   return out;
 }
 
-std::unique_ptr<Solver> SolverRegistry::create(const std::string& name) const {
-  if (const SolverType* type = find(name)) return type->make();
+const SolverType& SolverRegistry::get(const std::string& name) const {
+  if (const SolverType* type = find(name)) return *type;
   std::string msg = "unknown solver \"" + name + "\"";
   if (auto near = ClosestWord(name, names())) msg += "; did you mean \"" + *near + "\"?";
   throw Error(msg + " Known solvers: " + JoinWords(names(), ", "));
 }
 
-const SolverRegistry& SolverRegistry::Builtins() {
-  static const SolverRegistry registry = [] {
-    SolverRegistry r;
-#define LAYERLAB_SOLVER(Name) r.add(Name##SolverType());
+std::string SolverRegistry::DefaultFor(const DisplaySystem& system) const {
+  const SolverType* best = nullptr;
+  for (const auto& [name, type] : types_)
+    if (type.default_rank > 0 && (!best || type.default_rank > best->default_rank) && type.Unsuitable(system).empty())
+      best = &type;
+  if (!best) throw Error("no registered solver is a default for this display (" + JoinWords(names(), ", ") + ")");
+  return best->name;
+}
+
+std::string UnsuitableSolver(const std::string& solver, const DisplaySystem& system, const SolverRegistry& registry) {
+  return registry.get(solver).Unsuitable(system);
+}
+
+SolverRegistry SolverRegistry::WithBuiltins() {
+  SolverRegistry r;
+#define LAYERLAB_SOLVER(Name, file) r.add(Name##SolverType());
 #include "solvers/builtin_solvers.def"
 #undef LAYERLAB_SOLVER
-    return r;
-  }();
+  return r;
+}
+
+const SolverRegistry& SolverRegistry::Builtins() {
+  static const SolverRegistry registry = WithBuiltins();
   return registry;
 }
 

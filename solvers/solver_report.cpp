@@ -1,17 +1,13 @@
 #include <cmath>
 #include <cstdio>
 
+#include "solvers/objective.h"
 #include "solvers/solver.h"
 
 namespace layerlab {
 namespace {
 
-std::string Db(double psnr) {
-  if (std::isinf(psnr)) return "inf dB";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.2f dB", psnr);
-  return buf;
-}
+std::string Db(double psnr) { return FormatPsnr(psnr, 2) + " dB"; }
 
 }  // namespace
 

@@ -1,7 +1,7 @@
 #include "systems/one_tap_view.h"
 
 #include "framework/error.h"
-#include "framework/thread_merge.h"
+#include "systems/thread_merge.h"
 
 namespace layerlab {
 

@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "framework/rgb4.h"
-#include "framework/row_kernels.h"
+#include "systems/row_kernels.h"
 #include "systems/display_model.h"
 
 namespace layerlab {
@@ -135,7 +135,7 @@ class ColumnSums {
   // The column sums into the pixel sums through view column vc's column taps; clears them.
   void Scatter(const LayerProjection& P, int vc);
   // num[pixel * 3 + c] = the sum of `sums`' pixel sums in their order, and
-  // den likewise (merging threads, in double; framework/thread_merge.h), for
+  // den likewise (merging threads, in double; systems/thread_merge.h), for
   // share `part` of `parts` of the pixels: each thread of a team merges its own share.
   static void Merge(const std::vector<const ColumnSums*>& sums, int part, int parts, double* num, double* den);
 

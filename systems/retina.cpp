@@ -4,9 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <random>
 
 #include "framework/error.h"
+#include "framework/random.h"
 
 namespace layerlab {
 
@@ -27,8 +27,8 @@ std::vector<PupilPoint> PupilSamples(const EyeModel& eye) {
   const int nx = eye.pupil_samples_x, ny = eye.pupil_samples_y;
   const bool round = eye.pupil_shape == PupilShape::kRound;
   auto inside = [&](double x, double y) { return !round || x * x + y * y <= 0.25 * a * a; };
-  std::mt19937_64 rng(eye.pupil_seed);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  SplitMix64 rng(eye.pupil_seed);  // the same points with every standard library
+  auto unit = [&](SplitMix64& r) { return r.uniform(); };
   std::vector<PupilPoint> points;
   if (eye.pupil_sampling == PupilSampling::kPoisson) {
     // Dart throwing with a minimum distance that packs about nx * ny points.

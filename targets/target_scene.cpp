@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "framework/json_file.h"
+#include "framework/lightfield_io.h"
 #include "systems/compile.h"
 #include "targets/length_or_angle.h"
 
@@ -104,14 +105,7 @@ LightFieldGeometry ParseLightField(Params& lf, const std::string& base_dir) {
       g.window_left = -g.window_width / 2;
       g.window_top = g.window_height / 2;
     } else {
-      Params window = lf.object("window");
-      g.window_left = window.quantity("left", Dimension::kLength);
-      g.window_top = window.quantity("top", Dimension::kLength);
-      g.window_width = window.quantity("width", Dimension::kLength);
-      g.window_height = window.quantity("height", Dimension::kLength);
-      window.require_range("width", g.window_width, 0.0, 1e3, true, false);
-      window.require_range("height", g.window_height, 0.0, 1e3, true, false);
-      window.check_all_read();
+      ReadLightFieldWindow(lf.object("window"), &g);
     }
     std::array<int64_t, 2> views = lf.integer_pair("views", 1, kMaxViewsPerAxis);
     g.views_x = static_cast<int>(views[0]);

@@ -57,6 +57,9 @@ const BadScene kCases[] = {
      "scene.json: /elements/1/focal_length: \"nan mm\" is not a finite number"},
     {"TransmittanceAboveOne", kMul, [](json& s) { ElementNamed(s, "rear")["max_transmittance"] = 1.5; },
      "scene.json: /elements/3/max_transmittance: expected a fraction in [0, 1], got 1.5"},
+    {"BlackLevelPerChannel", kMul, [](json& s) { ElementNamed(s, "rear")["black_level"] = {0.01, 0.02, 0.01}; },
+     "scene.json: /elements/3/black_level: one value for all channels, got [0.0100, 0.0200, 0.0100] (a per-channel "
+     "black level is not modelled)"},
     {"ZeroPixelPitch", kMul, [](json& s) { ElementNamed(s, "rear")["pixel_pitch"] = "0 um"; },
      "scene.json: /elements/3/pixel_pitch: must be in (0, 0.01] (SI units), got 0"},
     {"ZeroFocalLength", kMul, [](json& s) { ElementNamed(s, "lens")["focal_length"] = "0 mm"; },

@@ -48,6 +48,24 @@ TEST(Compile, PaperPrototypeMatchesTable1) {
   EXPECT_TRUE(Close(EveryLayerMaxCpd(s), 4.89, 0, 0.005));
 }
 
+// An [r, g, b] black level of equal values is read whole, as the scalar is
+// (different values are refused: bad_scene_test BlackLevelPerChannel).
+TEST(Compile, BlackLevelIsReadAsOneValueForAllChannels) {
+  for (const nlohmann::json& given :
+       {nlohmann::json(0.02), nlohmann::json("2 %"), nlohmann::json({0.02, 0.02, 0.02})}) {
+    nlohmann::json scene = ReadExample("multiplicative_2layer.json");
+    ElementNamed(scene, "rear")["black_level"] = given;
+    const DisplaySystem s = CompileJson(scene);
+    int found = 0;
+    for (const VirtualLayer& l : s.layers)
+      if (l.name == "rear") {
+        EXPECT_DOUBLE_EQ(l.panel.black_level, 0.02) << given.dump();
+        ++found;
+      }
+    EXPECT_EQ(found, 1) << given.dump();
+  }
+}
+
 TEST(Compile, PaperBranchesPairFarAndMidPlanes) {
   // Eq. 5: l = P1 t1 . P3 t3 + P2 t2 . P4 t4 with 1 the farthest plane.
   DisplaySystem s = CompileJson(ReadExample("paper_prototype.json"));

@@ -74,6 +74,11 @@ TEST_F(LightFieldFolder, RoundTripsExactly) {
     EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
 }
 
+TEST_F(LightFieldFolder, WindowOfNoWidth) {
+  EditManifest([](nlohmann::json& m) { m["window"]["width"] = "0 m"; });
+  EXPECT_EQ(ReadError(), Path("lightfield.json") + ": /window/width: must be in (0, 1000000] (SI units), got 0");
+}
+
 TEST_F(LightFieldFolder, MissingView) {
   fs::remove(Path("views/r01_c02.exr"));
   EXPECT_EQ(ReadError(), Path("lightfield.json") + ": view (row 1, col 2) is missing: " + Path("views/r01_c02.exr"));

@@ -41,6 +41,10 @@ TEST(Pupil, RoundJitteredPoissonAndPinhole) {
   eye.pupil_shape = PupilShape::kSquare;
   std::vector<PupilPoint> jittered = PupilSamples(eye);
   ASSERT_EQ(jittered.size(), 81u);
+  // The jitter is framework/random.h's from pupil_seed 1: its first two
+  // uniforms (tests/solver_test.cpp RandomInitialPatternsComeFromTheProjectsGenerator).
+  EXPECT_DOUBLE_EQ(jittered[0].x, -2e-3 + 0.5665615751722809 * 4e-3 / 9);
+  EXPECT_DOUBLE_EQ(jittered[0].y, 2e-3 - 0.7457817572627011 * 4e-3 / 9);
   for (size_t k = 0; k < 81; ++k) {  // each point stays in its cell
     int j = int(k % 9), i = int(k / 9);
     EXPECT_GE(jittered[k].x, -2e-3 + j * 4e-3 / 9 - 1e-15);

@@ -115,6 +115,12 @@ const BadTarget kBadTargets[] = {
      [](json& t) { t["light_field"]["window"] = {{"left", 0}, {"top", 0}, {"width", 1}, {"height", 1}}; },
      "/light_field/window: \"field_of_view\" already sets the window; give only one of \"field_of_view\", "
      "\"window\" and \"display\""},
+    {"WindowOfNoWidth",  // the same reader and bounds as lightfield.json's window (framework/lightfield_io.h)
+     [](json& t) {
+       t["light_field"].erase("field_of_view");
+       t["light_field"]["window"] = {{"left", "-1 m"}, {"top", "1 m"}, {"width", "0 m"}, {"height", "2 m"}};
+     },
+     "/light_field/window/width: must be in (0, 1000000] (SI units), got 0"},
     {"DisplayAndViews",
      [](json& t) {
        t["light_field"].erase("field_of_view");

@@ -5,6 +5,7 @@
 #include <functional>
 
 #include "solvers/solver.h"
+#include "tests/support/near_first_solver.h"
 #include "tests/test_util.h"
 
 namespace layerlab {
@@ -28,6 +29,16 @@ json Hybrid() { return ShrunkExample("paper_prototype.json", 24, 12, 3); }
 json Additive() { return ShrunkExample("additive_2layer.json", 24, 12, 3); }
 
 void Keep(LightField&) {}
+
+// The built-ins and one registered here, as a new solver would be.
+const SolverRegistry& StiffSolvers() {
+  static const SolverRegistry registry = [] {
+    SolverRegistry r = SolverRegistry::WithBuiltins();
+    r.add(testing::NearFirstSolverType());
+    return r;
+  }();
+  return registry;
+}
 
 const StiffCase kCases[] = {
     {"ZeroTargetHybrid", Hybrid, [](LightField& l) { std::fill(l.rgb.begin(), l.rgb.end(), 0.0f); }},
@@ -101,11 +112,11 @@ TEST_P(StiffCaseTest, StaysFiniteBoundedAndNoWorse) {
   for (size_t k = 0; k < target.rgb.size(); ++k) target.rgb[k] = 0.2f + 0.6f * float((k * 7919) % 101) / 100.0f;
   c.target(target);
 
-  SolverOptions o = SolverRegistry::Builtins().find(solver_name)->defaults;
+  SolverOptions o = StiffSolvers().get(solver_name).defaults;
   o.iterations = 8;
   o.target_range = c.range;
   Patterns t;
-  SolverReport r = SolverRegistry::Builtins().create(solver_name)->Solve(model, target, o, &t);
+  SolverReport r = StiffSolvers().create(solver_name)->Solve(model, target, o, &t);
   ASSERT_TRUE(r.IsSolutionUsable()) << r.FullReport();
   ASSERT_EQ(t.size(), system.layers.size());
   for (const LayerPattern& p : t)
@@ -121,18 +132,13 @@ TEST_P(StiffCaseTest, StaysFiniteBoundedAndNoWorse) {
   }
 }
 
-// Every case with every solver that accepts its display.
+// Every case with every registered solver that accepts its display.
 std::vector<std::tuple<StiffCase, std::string>> Applicable() {
   std::vector<std::tuple<StiffCase, std::string>> out;
   for (const StiffCase& c : kCases) {
     DisplaySystem system = testing::CompileJson(c.scene());
-    bool single_layers = std::all_of(system.branches.begin(), system.branches.end(),
-                                     [](const Branch& b) { return b.layers.size() == 1; });
-    out.emplace_back(c, "hybrid");
-    out.emplace_back(c, "joint");
-    out.emplace_back(c, "quasi-newton");
-    if (system.branches.size() == 1) out.emplace_back(c, "multiplicative");
-    if (single_layers) out.emplace_back(c, "additive-trust-region");
+    for (const std::string& solver : StiffSolvers().names())
+      if (StiffSolvers().get(solver).Unsuitable(system).empty()) out.emplace_back(c, solver);
   }
   return out;
 }

@@ -5,7 +5,7 @@
 // headers compiled here must not replace the baseline's copies at link time.
 // The rays a two-ray step leaves at a row's end go to the baseline itself,
 // except in the error sums, whose even/odd partial sums must carry on.
-#include "framework/row_kernels_isa.h"
+#include "systems/row_kernels_isa.h"
 
 #if LAYERLAB_ROW_KERNELS_AVX2
 

@@ -1,4 +1,4 @@
-#include "framework/row_kernels.h"
+#include "systems/row_kernels.h"
 
 #include <algorithm>
 #include <atomic>
@@ -10,7 +10,7 @@
 #endif
 
 #include "framework/error.h"
-#include "framework/row_kernels_isa.h"
+#include "systems/row_kernels_isa.h"
 
 namespace layerlab {
 namespace baseline {
