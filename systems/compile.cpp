@@ -33,6 +33,11 @@ struct PathState {
   std::string label;
 };
 
+// Limits that keep the compile linear in the scene and the solvers' float products meaningful.
+constexpr size_t kMaxPathElements = 256;  // from the eye to a backlight (each layer keeps its path)
+constexpr size_t kMaxStackPanels = 32;    // 0.5^32 = 2.3e-10 of white at the solvers' start
+constexpr size_t kMaxLayers = 1024;       // virtual layers, over every branch and subframe
+
 std::string Mm(double meters) { return FormatFixed(meters * 1e3, 2) + " mm"; }
 std::string Quoted(const std::string& name) { return "\"" + name + "\""; }
 
@@ -210,6 +215,10 @@ class Walker {
   }
 
   void Walk(const SceneNode& node, PathState state) {
+    if (stack_.size() >= kMaxPathElements)
+      Fail(node.where, "the path from the eye to " + Quoted(node.element->name()) + " passes more than " +
+                           std::to_string(kMaxPathElements) + " elements; layerlab compiles paths of up to " +
+                           std::to_string(kMaxPathElements));
     stack_.push_back(&node);
     const Element& e = *node.element;
     if (e.kind() == ElementKind::kCombiner) {
@@ -241,6 +250,16 @@ class Walker {
     double polarization_angle = 0;
     const std::vector<LightStep> light = state.light;
     while (node->element->kind() == ElementKind::kPanel) {
+      if (branch.layers.size() == kMaxStackPanels)
+        Fail(node->where, "a stack of more than " + std::to_string(kMaxStackPanels) + " panels: the product of " +
+                              std::to_string(kMaxStackPanels + 1) + " transmittances (" +
+                              FormatFixed(std::pow(0.5, kMaxStackPanels + 1) * 1e12, 3) + "e-12 of white with every "
+                              "panel at the solvers' start of 0.5) leaves the light field to float rounding and, with "
+                              "hundreds of panels, underflows it to zero; layerlab takes at most " +
+                              std::to_string(kMaxStackPanels) + " panels per stack");
+      if (system_.layers.size() == kMaxLayers)
+        Fail(node->where, "more than " + std::to_string(kMaxLayers) + " virtual layers (over every branch and "
+                          "subframe); layerlab compiles displays of up to " + std::to_string(kMaxLayers));
       const auto& panel = static_cast<const PanelElement&>(*node->element);
       VirtualLayer layer = Float(*node, panel.spec(), state, previous ? &*previous : nullptr);
       layer.branch = branch_index;

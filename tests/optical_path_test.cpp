@@ -446,6 +446,41 @@ TEST(OpticalPath, PlacementErrorsNameTheKeyAndTheOptics) {
                                 "imaged between -15.385 and 16.667 D");
 }
 
+TEST(OpticalPath, ScenesBeyondTheLimitsAreRefusedUpFront) {
+  // A chain of 300 half mirrors (each reflected port a panel): each layer keeps its path, so the compile's
+  // memory would grow with the square of the chain.
+  json chain = json::array({Eye("bs0")});
+  for (int i = 0; i < 300; ++i) {
+    chain.push_back({{"type", "half_mirror"}, {"name", "bs" + std::to_string(i)},
+                     {"transmitted", i + 1 < 300 ? "bs" + std::to_string(i + 1) : "last"},
+                     {"reflected", "p" + std::to_string(i)}});
+    json panel = Panel("p" + std::to_string(i), "bl" + std::to_string(i));
+    panel["virtual_depth"] = "1 D";
+    chain.push_back(panel);
+    chain.push_back(Backlight("bl" + std::to_string(i)));
+  }
+  json last = Panel("last", "bl_last");
+  last["virtual_depth"] = "1 D";
+  chain.push_back(last);
+  chain.push_back(Backlight("bl_last"));
+  EXPECT_EQ(testing::CompileError(Scene(chain)),
+            "scene.json: /elements/766: the path from the eye to \"bs255\" passes more than 256 elements; layerlab "
+            "compiles paths of up to 256");
+
+  // A stack of 40 panels: products of 40 transmittances.
+  json stack = json::array({Eye("p0")});
+  for (int i = 0; i < 40; ++i) {
+    json panel = Panel("p" + std::to_string(i), i + 1 < 40 ? "p" + std::to_string(i + 1) : "bl");
+    if (i == 0) panel["virtual_depth"] = "2 D";
+    else panel["gap"] = "0.1 mm";
+    stack.push_back(panel);
+  }
+  stack.push_back(Backlight("bl"));
+  const std::string error = testing::CompileError(Scene(stack));
+  EXPECT_NE(error.find("scene.json: /elements/33: a stack of more than 32 panels"), std::string::npos) << error;
+  EXPECT_NE(error.find("underflows"), std::string::npos) << error;
+}
+
 TEST(OpticalPath, ApertureThatCutsTheFieldIsNamed) {
   json scene = ReadExample("multiplicative_2layer.json");
   ElementNamed(scene, "lens")["clear_aperture"] = "8 mm";
