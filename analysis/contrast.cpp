@@ -101,7 +101,8 @@ std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displ
   }
   const EyeModel& eye = displays.front().system.eye;
   std::vector<PupilPoint> pupil = PupilSamples(eye);
-  const RetinaGrid retina = MakeRetinaGrid(o.retina_field * kDeg, 3 * o.retina_resolution * kDeg, o.retina_resolution * kDeg);
+  const RetinaGrid retina =
+      MakeRetinaGrid(o.retina_field * kDeg, 3 * o.retina_resolution * kDeg, o.retina_resolution * kDeg);
   RetinaGrid shifted = retina;  // for the peaks' sampling uncertainty
   shifted.center_x += 0.5 * retina.resolution;
   const PlaneTextureFactory texture_of = o.texture ? o.texture : CosineGrating(0.5, 1.0, o.grating);
@@ -122,12 +123,14 @@ std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displ
     for (double a : accommodation) {
       curve->contrast.push_back(amplitude(image(retina, ChannelAccommodation(eye, a)), retina, f) / reference);
       if (o.peak_uncertainty)
-        curve->contrast_shifted.push_back(amplitude(image(shifted, ChannelAccommodation(eye, a)), shifted, f) / reference);
+        curve->contrast_shifted.push_back(amplitude(image(shifted, ChannelAccommodation(eye, a)), shifted, f) /
+                                          reference);
     }
   };
   auto blank = [&](const std::string& name, double dt, double f) {
     ContrastCurve c;
-    c.display = name, c.target_diopters = dt, c.frequency = f, c.accommodation = accommodation, c.convention = convention;
+    c.display = name, c.target_diopters = dt, c.frequency = f, c.accommodation = accommodation,
+    c.convention = convention;
     return c;
   };
 
@@ -208,9 +211,8 @@ std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displ
         curve.solve_seconds = Seconds(start);
         curve.psnr_db = report.final_psnr_db;
         start = std::chrono::steady_clock::now();
-        sweep([&](const RetinaGrid& grid, const std::array<double, 3>& focus) {
-                return RetinaOfDisplay(model, t, grid, pupil, focus);
-              },
+        sweep([&](const RetinaGrid& grid,
+                  const std::array<double, 3>& focus) { return RetinaOfDisplay(model, t, grid, pupil, focus); },
               f, reference, &curve);
         curve.sweep_seconds = Seconds(start);
         curves.push_back(std::move(curve));
@@ -225,7 +227,8 @@ std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displ
 }
 
 std::string ContrastCsv(const std::vector<ContrastCurve>& curves) {
-  std::string csv = "display,target_D,frequency_cpd,accommodation_D,normalized_contrast,normalized_contrast_half_sample_shift\n";
+  std::string csv =
+      "display,target_D,frequency_cpd,accommodation_D,normalized_contrast,normalized_contrast_half_sample_shift\n";
   char line[256];
   for (const ContrastCurve& c : curves)
     for (size_t k = 0; k < c.accommodation.size(); ++k) {
@@ -244,10 +247,13 @@ std::string ContrastCsv(const std::vector<ContrastCurve>& curves) {
 std::string PeakTable(const std::vector<ContrastCurve>& curves) {
   std::string out;
   if (!curves.empty()) out += "# " + curves.front().convention + "\n";
-  out += "display                  target (D)  f (cpd)  peak (D)  parabola (D)  +- (D)  placed  peak contrast  at target  solver                 PSNR (dB)  solve (s)  sweep (s)\n";
+  out +=
+      "display                  target (D)  f (cpd)  peak (D)  parabola (D)  +- (D)  placed  peak contrast  at target  "
+      "solver                 PSNR (dB)  solve (s)  sweep (s)\n";
   char line[320];
   for (const ContrastCurve& c : curves) {
-    std::snprintf(line, sizeof line, "%-24s %10.2f %8.1f %9.2f %13.3f %7.3f  %-6s %14.3f %10.3f  %-22s %9.2f %10.3f %10.3f\n",
+    std::snprintf(line, sizeof line,
+                  "%-24s %10.2f %8.1f %9.2f %13.3f %7.3f  %-6s %14.3f %10.3f  %-22s %9.2f %10.3f %10.3f\n",
                   c.display.c_str(), c.target_diopters, c.frequency, c.peak.at_grid, c.estimate.at,
                   c.estimate.uncertainty, c.estimate.flat ? "flat" : "yes", c.peak.value, c.at_target, c.solver.c_str(),
                   c.psnr_db, c.solve_seconds, c.sweep_seconds);
@@ -261,7 +267,8 @@ std::string ContrastSvg(const std::vector<ContrastCurve>& curves) {
   std::vector<double> frequencies, depths;
   std::vector<std::string> displays;
   for (const ContrastCurve& c : curves) {
-    if (std::find(frequencies.begin(), frequencies.end(), c.frequency) == frequencies.end()) frequencies.push_back(c.frequency);
+    if (std::find(frequencies.begin(), frequencies.end(), c.frequency) == frequencies.end())
+      frequencies.push_back(c.frequency);
     if (std::find(depths.begin(), depths.end(), c.target_diopters) == depths.end()) depths.push_back(c.target_diopters);
     if (!IsNatural(c) && std::find(displays.begin(), displays.end(), c.display) == displays.end())
       displays.push_back(c.display);
@@ -285,8 +292,8 @@ std::string ContrastSvg(const std::vector<ContrastCurve>& curves) {
         panel.x_min = c.accommodation.front();
         panel.x_max = c.accommodation.back();
         size_t index = std::find(displays.begin(), displays.end(), c.display) - displays.begin();
-        panel.lines.push_back({c.display, IsNatural(c) ? "#000" : kColors[index % 7], IsNatural(c),
-                               c.accommodation, c.contrast});
+        panel.lines.push_back(
+            {c.display, IsNatural(c) ? "#000" : kColors[index % 7], IsNatural(c), c.accommodation, c.contrast});
       }
       panels.push_back(panel);
     }

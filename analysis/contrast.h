@@ -41,9 +41,9 @@ PlaneTextureFactory CosineGrating(double mean = 0.5, double contrast = 1.0,
 struct ContrastDisplay {
   std::string name;
   DisplaySystem system;
-  std::string solver;      // "" picks by structure: one branch -> multiplicative,
-                           // one layer per branch -> additive-trust-region, else hybrid
-  SolverOptions options;   // "" solver: that solver's defaults
+  std::string solver;     // "" picks by structure: one branch -> multiplicative,
+                          // one layer per branch -> additive-trust-region, else hybrid
+  SolverOptions options;  // "" solver: that solver's defaults
   bool options_given = false;
   Sampling sampling = Sampling::kNearest;  // the layers' and so natural viewing's
 };
@@ -60,14 +60,14 @@ std::string ConventionLabel(ContrastReference reference, GratingSpacing spacing)
 
 struct ContrastOptions {
   std::vector<double> target_diopters = {0.7, 1.3, 1.9};
-  std::vector<double> frequencies = {2.0, 4.0};  // cpd
+  std::vector<double> frequencies = {2.0, 4.0};                                        // cpd
   double accommodation_min = 0.0, accommodation_max = 2.6, accommodation_step = 0.05;  // D
-  double retina_resolution = 0.01;  // deg
-  double retina_field = 20.0;       // deg, horizontal, centered
-  int strip_rows = 24;              // light-field rows around the axis (the grating is vertical)
+  double retina_resolution = 0.01;                                                     // deg
+  double retina_field = 20.0;                                                          // deg, horizontal, centered
+  int strip_rows = 24;  // light-field rows around the axis (the grating is vertical)
   ContrastReference reference = ContrastReference::kSampledTarget;
   GratingSpacing grating = GratingSpacing::kVisualAngle;  // for the default texture
-  PlaneTextureFactory texture;      // empty: CosineGrating(0.5, 1, grating)
+  PlaneTextureFactory texture;                            // empty: CosineGrating(0.5, 1, grating)
   // Sweep again with the retina moved by half a sample, for each peak's
   // sampling uncertainty; a peak that moves more than flat_limit (one
   // accommodation step) is "flat": the curve is too flat to place one.
@@ -78,13 +78,13 @@ struct ContrastOptions {
 
 struct ContrastCurve {
   std::string convention;  // ConventionLabel(reference, grating)
-  std::string display;  // "natural" for natural viewing
+  std::string display;     // "natural" for natural viewing
   double target_diopters = 0, frequency = 0;
   std::vector<double> accommodation, contrast;
   std::vector<double> contrast_shifted;  // the retina moved half a sample; empty without peak_uncertainty
   Peak peak;
   PeakEstimate estimate;
-  double at_target = 0;       // contrast with the eye focused at D_t (interpolated)
+  double at_target = 0;  // contrast with the eye focused at D_t (interpolated)
   double solve_seconds = 0, sweep_seconds = 0, psnr_db = 0;
   std::string solver;
 };

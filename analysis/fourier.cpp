@@ -9,7 +9,8 @@
 
 namespace layerlab {
 
-double FourierAmplitude(const std::vector<double>& values, const std::vector<double>& degrees, double cycles_per_degree) {
+double FourierAmplitude(const std::vector<double>& values, const std::vector<double>& degrees,
+                        double cycles_per_degree) {
   if (values.size() != degrees.size() || values.empty()) throw Error("FourierAmplitude: mismatched samples");
   std::complex<double> sum = 0;
   for (size_t k = 0; k < values.size(); ++k)

@@ -8,7 +8,8 @@ namespace layerlab {
 // The amplitude of the component of frequency `cycles_per_degree` in the
 // samples `values` taken at `degrees` (uniformly spaced): 2/N |sum v e^{-2 pi i f a}|.
 // Exact for a cosine when the samples span a whole number of cycles.
-double FourierAmplitude(const std::vector<double>& values, const std::vector<double>& degrees, double cycles_per_degree);
+double FourierAmplitude(const std::vector<double>& values, const std::vector<double>& degrees,
+                        double cycles_per_degree);
 
 // The largest whole number of cycles of `cycles_per_degree` that fits in `count`
 // samples of `resolution_deg`, as a sample count (at least 1).
@@ -17,9 +18,9 @@ int WholeCycleSamples(int count, double resolution_deg, double cycles_per_degree
 // The peak of a sampled curve: the grid argmax, and the vertex of the parabola
 // through it and its neighbours (the grid value at an end of the range).
 struct Peak {
-  double at_grid = 0;       // the x of the largest sample
-  double at_parabola = 0;   // refined
-  double value = 0;         // the largest sample
+  double at_grid = 0;      // the x of the largest sample
+  double at_parabola = 0;  // refined
+  double value = 0;        // the largest sample
 };
 Peak FindPeak(const std::vector<double>& x, const std::vector<double>& y);
 

@@ -39,7 +39,9 @@ std::string Figure(const ReportImage& image, const std::string& id = "", const s
          Links(image.links) + "</figcaption></figure>\n";
 }
 
-std::string Rgb3(const Rgb& v, int decimals) { return F(v[0], decimals) + " / " + F(v[1], decimals) + " / " + F(v[2], decimals); }
+std::string Rgb3(const Rgb& v, int decimals) {
+  return F(v[0], decimals) + " / " + F(v[1], decimals) + " / " + F(v[2], decimals);
+}
 
 // Channels relative to the strongest: how far white drifts in color.
 std::string Balance(const Rgb& v) {
@@ -180,37 +182,43 @@ std::string SystemSection(const RunReportPage& page) {
        " deg</td></tr>\n";
   h += "<tr><th class=\"l\">highest frequency</th><td>" + F(EveryLayerMaxCpd(s), 2) + " cpd on every layer, " +
        F(s.max_cpd, 2) + " cpd on the finest</td></tr>\n";
-  h += "<tr><th class=\"l\">peak luminance (R / G / B)</th><td>" + Rgb3(s.peak_luminance, 1) + " cd/m&sup2;</td></tr>\n";
+  h +=
+      "<tr><th class=\"l\">peak luminance (R / G / B)</th><td>" + Rgb3(s.peak_luminance, 1) + " cd/m&sup2;</td></tr>\n";
   h += "<tr><th class=\"l\">brightness efficiency</th><td>" + F(s.luminance_efficiency, 4) + " (R / G / B " +
        Rgb3(s.brightness_efficiency, 4) + ")</td></tr>\n";
   h += "<tr><th class=\"l\">eye</th><td>pupil " + F(s.eye.pupil_diameter * 1e3, 1) + " mm, eyebox " +
        F(s.eye.eyebox_width * 1e3, 1) + " &times; " + F(s.eye.eyebox_height * 1e3, 1) + " mm, " +
        std::to_string(s.eye.views_x) + " &times; " + std::to_string(s.eye.views_y) + " views</td></tr>\n";
   if (!s.lens.empty())
-    h += "<tr><th class=\"l\">lens</th><td>" + Escape(s.lens) + ", f = " + F(s.focal_length * 1e3, 2) + " mm</td></tr>\n";
+    h += "<tr><th class=\"l\">lens</th><td>" + Escape(s.lens) + ", f = " + F(s.focal_length * 1e3, 2) +
+         " mm</td></tr>\n";
   h += "</table>\n";
 
-  h += "<h3>Virtual layers (farthest first)</h3>\n<table><tr><th>#</th><th class=\"l\">panel</th><th class=\"l\">branch</th>"
-       "<th>depth (D)</th><th>depth (m)</th><th>panel distance (mm)</th><th>magnification</th><th>virtual pixel (mm)</th>"
+  h += "<h3>Virtual layers (farthest first)</h3>\n<table><tr><th>#</th><th class=\"l\">panel</th><th "
+       "class=\"l\">branch</th>"
+       "<th>depth (D)</th><th>depth (m)</th><th>panel distance (mm)</th><th>magnification</th><th>virtual pixel "
+       "(mm)</th>"
        "<th>pixels</th><th>field of view (deg)</th><th>max f (cpd)</th></tr>\n";
   for (size_t k = 0; k < s.layers.size(); ++k) {
     const VirtualLayer& l = s.layers[k];
     h += "<tr><td>" + std::to_string(k) + "</td><td class=\"l\">" + Escape(l.name) + "</td><td class=\"l\">" +
-         Escape(s.branches[l.branch].name) + "</td><td>" + F(l.diopters, 3) + "</td><td>" + F(l.depth, 4) + "</td><td>" +
-         F(l.panel_distance * 1e3, 2) + "</td><td>" + F(l.magnification, 2) + "</td><td>" + F(l.pitch_x * 1e3, 3) +
-         "</td><td>" + std::to_string(l.cols) + " &times; " + std::to_string(l.rows) + "</td><td>" +
-         F(l.fov_x / kDeg, 2) + " &times; " + F(l.fov_y / kDeg, 2) + "</td><td>" + F(l.max_cpd, 2) + "</td></tr>\n";
+         Escape(s.branches[l.branch].name) + "</td><td>" + F(l.diopters, 3) + "</td><td>" + F(l.depth, 4) +
+         "</td><td>" + F(l.panel_distance * 1e3, 2) + "</td><td>" + F(l.magnification, 2) + "</td><td>" +
+         F(l.pitch_x * 1e3, 3) + "</td><td>" + std::to_string(l.cols) + " &times; " + std::to_string(l.rows) +
+         "</td><td>" + F(l.fov_x / kDeg, 2) + " &times; " + F(l.fov_y / kDeg, 2) + "</td><td>" + F(l.max_cpd, 2) +
+         "</td></tr>\n";
   }
-  h += "</table>\n<h3>Branches (added at the eye)</h3>\n<table><tr><th>#</th><th class=\"l\">name</th><th class=\"l\">layers</th>"
+  h += "</table>\n<h3>Branches (added at the eye)</h3>\n<table><tr><th>#</th><th class=\"l\">name</th><th "
+       "class=\"l\">layers</th>"
        "<th>optics efficiency (R / G / B)</th><th>efficiency (R / G / B)</th><th class=\"l\">backlight</th>"
        "<th>luminance (cd/m&sup2;)</th></tr>\n";
   for (size_t b = 0; b < s.branches.size(); ++b) {
     const Branch& br = s.branches[b];
     std::string layers;
     for (int k : br.layers) layers += (layers.empty() ? "" : ", ") + s.layers[k].name;
-    h += "<tr><td>" + std::to_string(b) + "</td><td class=\"l\">" + Escape(br.name) + "</td><td class=\"l\">" + Escape(layers) +
-         "</td><td>" + Rgb3(br.optics_efficiency, 4) + "</td><td>" + Rgb3(br.efficiency, 4) + "</td><td class=\"l\">" +
-         Escape(br.backlight) + "</td><td>" + F(br.backlight_luminance, 1) + "</td></tr>\n";
+    h += "<tr><td>" + std::to_string(b) + "</td><td class=\"l\">" + Escape(br.name) + "</td><td class=\"l\">" +
+         Escape(layers) + "</td><td>" + Rgb3(br.optics_efficiency, 4) + "</td><td>" + Rgb3(br.efficiency, 4) +
+         "</td><td class=\"l\">" + Escape(br.backlight) + "</td><td>" + F(br.backlight_luminance, 1) + "</td></tr>\n";
   }
   h += "</table>\n";
   for (const std::string& w : s.warnings) h += "<p class=\"warn\">warning: " + Escape(w) + "</p>\n";
@@ -228,7 +236,8 @@ std::string RetinaSection(const RunReportPage& page) {
       start = k;
       break;
     }
-  h += "<div class=\"slider\"><label for=\"accommodation\">accommodation</label><input type=\"range\" id=\"accommodation\" min=\"0\" max=\"" +
+  h += "<div class=\"slider\"><label for=\"accommodation\">accommodation</label><input type=\"range\" "
+       "id=\"accommodation\" min=\"0\" max=\"" +
        std::to_string(page.retina.size() - 1) + "\" step=\"1\" value=\"" + std::to_string(start) +
        "\" list=\"declared-states\"><span id=\"state\"></span></div>\n<datalist id=\"declared-states\">";
   for (size_t k = 0; k < page.retina.size(); ++k)
@@ -237,7 +246,8 @@ std::string RetinaSection(const RunReportPage& page) {
   const ReportRetinaState& first = page.retina[start];
   h += Figure(first.display, "retina-display", "retina");
   if (!first.natural.src.empty()) h += Figure(first.natural, "retina-natural", "retina");
-  h += "</div>\n<h3>Mean luminance at the retina</h3>\n<table><tr><th>accommodation (D)</th><th>display (cd/m&sup2;)</th>"
+  h += "</div>\n<h3>Mean luminance at the retina</h3>\n<table><tr><th>accommodation (D)</th><th>display "
+       "(cd/m&sup2;)</th>"
        "<th>natural viewing (cd/m&sup2;)</th><th class=\"l\">images</th></tr>\n";
   nlohmann::json states = nlohmann::json::array();
   for (const ReportRetinaState& s : page.retina) {
@@ -255,7 +265,8 @@ std::string RetinaSection(const RunReportPage& page) {
     }
     states.push_back(j);
   }
-  h += "</table>\n<p class=\"muted\">&#9679; a declared accommodation state (the slider's tick marks); the others are the focal stack.</p>\n";
+  h += "</table>\n<p class=\"muted\">&#9679; a declared accommodation state (the slider's tick marks); the others are "
+       "the focal stack.</p>\n";
   std::string data = states.dump();
   for (size_t at = data.find("</"); at != std::string::npos; at = data.find("</", at + 3)) data.replace(at, 2, "<\\/");
   h += "<script>window.layerlabStates = " + data + ";</script>\n";
@@ -264,16 +275,18 @@ std::string RetinaSection(const RunReportPage& page) {
 
 std::string ContrastSection(const RunReportPage& page) {
   std::string h = "<section id=\"contrast\"><h2>Accommodation support: normalized contrast (Fig. 5)</h2>\n";
-  h += "<p class=\"muted\">A cosine grating on a plane at each target depth; each display is factorized for it and the eye "
-       "sweeps its focus. A display supports accommodation when its peak follows the target depth (dashed green).</p>\n";
+  h +=
+      "<p class=\"muted\">A cosine grating on a plane at each target depth; each display is factorized for it and the "
+      "eye "
+      "sweeps its focus. A display supports accommodation when its peak follows the target depth (dashed green).</p>\n";
   h += "<div class=\"grid\">" + Figure(page.contrast_plot, "", "plot") + "</div>\n";
   if (!page.contrast.empty()) h += "<p class=\"muted\">" + Escape(page.contrast.front().convention) + ".</p>\n";
   h += "<h3>Peaks</h3>\n<table><tr><th class=\"l\">display</th><th>target (D)</th><th>f (cpd)</th><th>peak (D)</th>"
        "<th>peak contrast</th><th>at target</th><th class=\"l\">solver</th><th>PSNR (dB)</th><th>solve (s)</th></tr>\n";
   for (const ContrastCurve& c : page.contrast)
-    h += "<tr><td class=\"l\">" + Escape(c.display) + "</td><td>" + F(c.target_diopters, 2) + "</td><td>" + F(c.frequency, 1) +
-         "</td><td>" + F(c.estimate.at, 3) + " &plusmn; " + F(c.estimate.uncertainty, 3) + (c.estimate.flat ? " (flat)" : "") +
-         "</td><td>" + F(c.peak.value, 3) + "</td><td>" + F(c.at_target, 3) +
+    h += "<tr><td class=\"l\">" + Escape(c.display) + "</td><td>" + F(c.target_diopters, 2) + "</td><td>" +
+         F(c.frequency, 1) + "</td><td>" + F(c.estimate.at, 3) + " &plusmn; " + F(c.estimate.uncertainty, 3) +
+         (c.estimate.flat ? " (flat)" : "") + "</td><td>" + F(c.peak.value, 3) + "</td><td>" + F(c.at_target, 3) +
          "</td><td class=\"l\">" + Escape(c.solver) + "</td><td>" + (c.solver == "-" ? "&ndash;" : F(c.psnr_db, 2)) +
          "</td><td>" + F(c.solve_seconds, 2) + "</td></tr>\n";
   return h + "</table>\n</section>\n";
@@ -281,8 +294,9 @@ std::string ContrastSection(const RunReportPage& page) {
 
 std::string CompareSection(const RunReportPage& page) {
   std::string h = "<section id=\"compare\"><h2>Displays side by side on the same target</h2>\n";
-  h += "<p class=\"muted\">Brightness efficiency: light at the eye per light the backlights emit. Balance: the channels "
-       "relative to the strongest (1 : 1 : 1 keeps white white; the factorization compensates the rest).</p>\n";
+  h +=
+      "<p class=\"muted\">Brightness efficiency: light at the eye per light the backlights emit. Balance: the channels "
+      "relative to the strongest (1 : 1 : 1 keeps white white; the factorization compensates the rest).</p>\n";
   h += "<table><tr><th class=\"l\">display</th><th class=\"l\">solver</th><th>PSNR (dB)</th><th>seconds</th>"
        "<th>iterations</th><th>brightness (luminance)</th><th>brightness R / G / B</th><th>balance R : G : B</th>"
        "<th class=\"l\">termination</th></tr>\n";
@@ -300,20 +314,20 @@ std::string CompareSection(const RunReportPage& page) {
 
 std::string RenderRunReport(const RunReportPage& page) {
   std::string h = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>" + Escape(page.title) +
-                  "</title>\n<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<style>" + kStyle +
-                  "</style>\n<script>" + kErrorCatcher + "</script>\n</head><body>\n";
+                  "</title>\n<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<style>" +
+                  kStyle + "</style>\n<script>" + kErrorCatcher + "</script>\n</head><body>\n";
   h += "<header><h1>" + Escape(page.title) + "</h1><p>" + Escape(page.description) + "</p><p>scene <code>" +
        Escape(page.scene_file) + "</code> &middot; <code>" + Escape(page.command) + "</code></p>\n<nav>";
-  const std::pair<bool, std::string> sections[] = {
-      {true, "steps|Steps"},
-      {page.system != nullptr, "system|Display system"},
-      {!page.target_source.empty(), "target|Target"},
-      {page.solved, "solve|Factorization"},
-      {!page.retina.empty(), "retina|Retinal images"},
-      {!page.contrast_plot.src.empty(), "contrast|Contrast"},
-      {!page.compare_plot.src.empty(), "compare|Comparison"}};
+  const std::pair<bool, std::string> sections[] = {{true, "steps|Steps"},
+                                                   {page.system != nullptr, "system|Display system"},
+                                                   {!page.target_source.empty(), "target|Target"},
+                                                   {page.solved, "solve|Factorization"},
+                                                   {!page.retina.empty(), "retina|Retinal images"},
+                                                   {!page.contrast_plot.src.empty(), "contrast|Contrast"},
+                                                   {!page.compare_plot.src.empty(), "compare|Comparison"}};
   for (const auto& [shown, anchor] : sections)
-    if (shown) h += "<a href=\"#" + anchor.substr(0, anchor.find('|')) + "\">" + anchor.substr(anchor.find('|') + 1) + "</a>";
+    if (shown)
+      h += "<a href=\"#" + anchor.substr(0, anchor.find('|')) + "\">" + anchor.substr(anchor.find('|') + 1) + "</a>";
   h += "</nav></header>\n<main>\n";
   h += "<pre id=\"selftest\" hidden></pre>\n";
   h += "<section id=\"steps\"><h2>Steps</h2><table><tr><th class=\"l\">step</th><th>wall time (s)</th></tr>\n";
@@ -329,7 +343,8 @@ std::string RenderRunReport(const RunReportPage& page) {
          Figure(page.target, "", "panel") + "</div></section>\n";
   }
   if (page.solved) {
-    h += "<section id=\"solve\"><h2>Factorization</h2><p>" + Escape(page.solve_brief) + Links(page.solve_links) + "</p>\n";
+    h += "<section id=\"solve\"><h2>Factorization</h2><p>" + Escape(page.solve_brief) + Links(page.solve_links) +
+         "</p>\n";
     h += "<div class=\"grid\">" + Figure(page.psnr_plot, "", "plot") + "</div>\n";
     h += "<h3>Layer patterns (linear transmittance, panel pixel order)</h3><div class=\"grid\">\n";
     for (const ReportImage& p : page.patterns) h += Figure(p, "", "small");

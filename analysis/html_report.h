@@ -21,14 +21,14 @@ namespace layerlab {
 
 struct ReportImage {
   std::string caption;
-  std::string src;                                       // the PNG or SVG shown
+  std::string src;                                         // the PNG or SVG shown
   std::vector<std::pair<std::string, std::string>> links;  // label, path: "EXR", "retina/display/0.40D.exr"
 };
 
 struct ReportRetinaState {
   double diopters = 0;
-  bool declared = false;        // one of the listed accommodation states (not only the focal stack)
-  ReportImage display, natural; // natural.src empty without natural viewing
+  bool declared = false;         // one of the listed accommodation states (not only the focal stack)
+  ReportImage display, natural;  // natural.src empty without natural viewing
   double display_mean_cd_m2 = 0, natural_mean_cd_m2 = 0;
 };
 

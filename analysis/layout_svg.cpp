@@ -52,21 +52,24 @@ std::string Glyph(const PathStep& step, double x, double y) {
     case ElementKind::kLens: {
       const bool converging = step.power > 0;
       const double tip = converging ? -6 : 6;
-      return name + Line(x, y - 26, x, y + 26, "stroke=\"#333\" stroke-width=\"2\"") +
-             "<path d=\"M" + Num(x - 5) + " " + Num(y - 26 - tip) + " L" + Num(x) + " " + Num(y - 26) + " L" + Num(x + 5) +
-             " " + Num(y - 26 - tip) + " M" + Num(x - 5) + " " + Num(y + 26 + tip) + " L" + Num(x) + " " + Num(y + 26) +
-             " L" + Num(x + 5) + " " + Num(y + 26 + tip) + "\" fill=\"none\" stroke=\"#333\" stroke-width=\"2\"/>\n";
+      return name + Line(x, y - 26, x, y + 26, "stroke=\"#333\" stroke-width=\"2\"") + "<path d=\"M" + Num(x - 5) +
+             " " + Num(y - 26 - tip) + " L" + Num(x) + " " + Num(y - 26) + " L" + Num(x + 5) + " " + Num(y - 26 - tip) +
+             " M" + Num(x - 5) + " " + Num(y + 26 + tip) + " L" + Num(x) + " " + Num(y + 26) + " L" + Num(x + 5) + " " +
+             Num(y + 26 + tip) + "\" fill=\"none\" stroke=\"#333\" stroke-width=\"2\"/>\n";
     }
     case ElementKind::kMirror:
       if (step.power != 0)
-        return name + "<path d=\"M" + Num(x - 8) + " " + Num(y - 24) + " Q" + Num(x + (step.power > 0 ? 10 : -10)) + " " +
-               Num(y) + " " + Num(x - 8) + " " + Num(y + 24) + "\" fill=\"none\" stroke=\"#555\" stroke-width=\"3\"/>\n";
+        return name + "<path d=\"M" + Num(x - 8) + " " + Num(y - 24) + " Q" + Num(x + (step.power > 0 ? 10 : -10)) +
+               " " + Num(y) + " " + Num(x - 8) + " " + Num(y + 24) +
+               "\" fill=\"none\" stroke=\"#555\" stroke-width=\"3\"/>\n";
       return name + Line(x - 14, y + 20, x + 14, y - 20, "stroke=\"#555\" stroke-width=\"3\"");
     case ElementKind::kCombiner:
-      return name + Line(x - 14, y + 20, x + 14, y - 20, "stroke=\"#69c\" stroke-width=\"3\" stroke-dasharray=\"5,3\"") +
+      return name +
+             Line(x - 14, y + 20, x + 14, y - 20, "stroke=\"#69c\" stroke-width=\"3\" stroke-dasharray=\"5,3\"") +
              Text(x, y + 40, step.port, "text-anchor=\"middle\" font-size=\"10\" fill=\"#555\"");
     case ElementKind::kInlineOptic:
-      return name + "<rect x=\"" + Num(x - 3) + "\" y=\"" + Num(y - 18) + "\" width=\"6\" height=\"36\" fill=\"#cde\" "
+      return name + "<rect x=\"" + Num(x - 3) + "\" y=\"" + Num(y - 18) +
+             "\" width=\"6\" height=\"36\" fill=\"#cde\" "
              "stroke=\"#357\"/>\n";
     default:
       return name;
@@ -89,8 +92,9 @@ std::string RenderLayoutSvg(const DisplaySystem& s, bool standalone) {
   auto x_of_diopters = [&](double D) { return kLeft + plot_width * (1 - D / max_diopters); };
   const double height = strip_top + kStripHeight;
 
-  std::string svg = std::string("<svg ") + (standalone ? "xmlns=\"http://www.w3.org/2000/svg\" " : "") + "width=\"" + Num(kWidth) + "\" height=\"" + Num(height) +
-                    "\" viewBox=\"0 0 " + Num(kWidth) + " " + Num(height) + "\" font-family=\"Liberation Sans, Arial, "
+  std::string svg = std::string("<svg ") + (standalone ? "xmlns=\"http://www.w3.org/2000/svg\" " : "") + "width=\"" +
+                    Num(kWidth) + "\" height=\"" + Num(height) + "\" viewBox=\"0 0 " + Num(kWidth) + " " + Num(height) +
+                    "\" font-family=\"Liberation Sans, Arial, "
                     "sans-serif\" role=\"img\" aria-label=\"optical layout\">\n";
   svg += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
   svg += Text(kLeft, 20, "Optical path unfolded from the eye, to scale (path length from the pupil, mm)",
@@ -105,7 +109,8 @@ std::string RenderLayoutSvg(const DisplaySystem& s, bool standalone) {
     const VirtualLayer& back = s.layers[branch.layers.back()];
     svg += Text(4, y - 40, branch.name, "font-size=\"11\" fill=\"" + color + "\"");
     svg += Line(x_of(0), y, x_of(back.position), y, "stroke=\"" + color + "\" stroke-width=\"1\"");
-    svg += "<ellipse cx=\"" + Num(x_of(0) - 10) + "\" cy=\"" + Num(y) + "\" rx=\"10\" ry=\"14\" fill=\"#fff\" stroke=\"#333\"/>\n";
+    svg += "<ellipse cx=\"" + Num(x_of(0) - 10) + "\" cy=\"" + Num(y) +
+           "\" rx=\"10\" ry=\"14\" fill=\"#fff\" stroke=\"#333\"/>\n";
     svg += Text(x_of(0) - 10, y + 30, "eye", "text-anchor=\"middle\" font-size=\"11\"");
     const std::vector<double> at = DrawnPositions(back);
     for (size_t i = 0; i < back.path.size(); ++i)
@@ -114,7 +119,8 @@ std::string RenderLayoutSvg(const DisplaySystem& s, bool standalone) {
       const VirtualLayer& l = s.layers[k];
       const double x = x_of(l.position);
       panel_x[k] = x, panel_y[k] = y;
-      svg += "<rect x=\"" + Num(x - 2.5) + "\" y=\"" + Num(y - 22) + "\" width=\"5\" height=\"44\" fill=\"" + color + "\"/>\n";
+      svg += "<rect x=\"" + Num(x - 2.5) + "\" y=\"" + Num(y - 22) + "\" width=\"5\" height=\"44\" fill=\"" + color +
+             "\"/>\n";
       svg += Text(x + 4, y + 34 + 10 * l.position_in_branch, l.name, "font-size=\"11\" fill=\"" + color + "\"");
       // Real intermediate images (a relay's): where the light converges on its way to the eye.
       for (const IntermediateImage& image : IntermediateImages(l)) {
@@ -128,7 +134,8 @@ std::string RenderLayoutSvg(const DisplaySystem& s, bool standalone) {
   }
   for (double mm : NiceTicks(0, farthest * 1.06e3, 8)) {
     const double x = x_of(mm * 1e-3), y = kTop + rows * kRowHeight;
-    svg += Line(x, y - 4, x, y + 2, "stroke=\"#999\"") + Text(x, y + 14, Label(mm, 0), "text-anchor=\"middle\" font-size=\"10\" fill=\"#555\"");
+    svg += Line(x, y - 4, x, y + 2, "stroke=\"#999\"") +
+           Text(x, y + 14, Label(mm, 0), "text-anchor=\"middle\" font-size=\"10\" fill=\"#555\"");
   }
 
   // The eye-space strip: images on a diopter axis (near on the left, infinity on the right).
@@ -138,7 +145,8 @@ std::string RenderLayoutSvg(const DisplaySystem& s, bool standalone) {
   svg += "<rect x=\"" + Num(x_of_diopters(s.eye.accommodation_max)) + "\" y=\"" + Num(strip_top + 4) + "\" width=\"" +
          Num(x_of_diopters(s.eye.accommodation_min) - x_of_diopters(s.eye.accommodation_max)) + "\" height=\"" +
          Num(axis_y - strip_top - 4) + "\" fill=\"#f3f3f3\"/>\n";
-  svg += Text(x_of_diopters(s.eye.accommodation_max) + 4, strip_top + 16, "accommodation range", "font-size=\"10\" fill=\"#888\"");
+  svg += Text(x_of_diopters(s.eye.accommodation_max) + 4, strip_top + 16, "accommodation range",
+              "font-size=\"10\" fill=\"#888\"");
   svg += Line(kLeft, axis_y, kLeft + plot_width, axis_y, "stroke=\"#333\"");
   for (double D : NiceTicks(0, max_diopters, 8)) {
     if (D > max_diopters) continue;
@@ -150,10 +158,11 @@ std::string RenderLayoutSvg(const DisplaySystem& s, bool standalone) {
     const VirtualLayer& l = s.layers[k];
     const std::string color = kBranchColors[l.branch % 6];
     const double x = x_of_diopters(l.diopters);
-    svg += Line(panel_x[k], panel_y[k] + 22, x, axis_y - 44, "stroke=\"" + color + "\" stroke-dasharray=\"3,3\" stroke-opacity=\"0.6\"");
+    svg += Line(panel_x[k], panel_y[k] + 22, x, axis_y - 44,
+                "stroke=\"" + color + "\" stroke-dasharray=\"3,3\" stroke-opacity=\"0.6\"");
     svg += Line(x, axis_y - 44, x, axis_y, "stroke=\"" + color + "\" stroke-width=\"3\"");
-    svg += Text(x, axis_y - 48 - 11 * (k % 2), l.name + " " + FormatFixed(l.diopters, 2) + " D" +
-                                                    (l.inverted ? " (inverted)" : ""),
+    svg += Text(x, axis_y - 48 - 11 * (k % 2),
+                l.name + " " + FormatFixed(l.diopters, 2) + " D" + (l.inverted ? " (inverted)" : ""),
                 "text-anchor=\"middle\" font-size=\"10\" fill=\"" + color + "\"");
   }
   return svg + "</svg>\n";

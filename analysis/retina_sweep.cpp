@@ -57,7 +57,8 @@ std::vector<RetinaStateResult> WriteRetinaSweep(
     const auto focus = ChannelAccommodation(system.eye, state);
     Image display = RetinaOfDisplay(model, t, grid, pupil, focus);
     WriteExr((out / "display" / (r.name + ".exr")).string(), display);
-    r.display_clipped_in_png = WriteSrgbPng((out / "display" / (r.name + ".png")).string(), grid.cols, grid.rows, display.pixels);
+    r.display_clipped_in_png =
+        WriteSrgbPng((out / "display" / (r.name + ".png")).string(), grid.cols, grid.rows, display.pixels);
     r.display_mean_cd_m2 = MeanLuminance(display) * white;
     r.natural_mean_cd_m2 = NAN;
     if (natural) {

@@ -20,16 +20,16 @@
 namespace layerlab {
 
 struct RetinaSweepOptions {
-  std::vector<double> states;        // D, in the order written
-  double resolution = 0.05;          // deg per sample
-  double field_x = 0, field_y = 0;   // deg; 0: the display's field of view
+  std::vector<double> states;       // D, in the order written
+  double resolution = 0.05;         // deg per sample
+  double field_x = 0, field_y = 0;  // deg; 0: the display's field of view
 };
 
 struct RetinaStateResult {
   double diopters = 0;
-  std::string name;                  // "0.40D": the file stem in display/ and natural/
+  std::string name;  // "0.40D": the file stem in display/ and natural/
   double display_mean_cd_m2 = 0;
-  double natural_mean_cd_m2 = 0;     // NaN without natural viewing
+  double natural_mean_cd_m2 = 0;  // NaN without natural viewing
   size_t display_clipped_in_png = 0;
   double seconds = 0;
 };

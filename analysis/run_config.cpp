@@ -63,7 +63,8 @@ std::vector<double> DepthRange(Params& parent, const std::string& key) {
   p.require_range("to", to, 0, kMaxDiopters, false, false);
   if (!(to > from)) p.fail("to", FormatFixed(to, 2) + " D is not beyond \"from\" (" + FormatFixed(from, 2) + " D)");
   if (!(step > 0) || step > to - from)
-    p.fail("step", FormatFixed(step, 3) + " D: give a step above 0 and at most to - from (" + FormatFixed(to - from, 2) + " D)");
+    p.fail("step", FormatFixed(step, 3) + " D: give a step above 0 and at most to - from (" +
+                       FormatFixed(to - from, 2) + " D)");
   if ((to - from) / step > kMaxStates) p.fail("step", "more than " + std::to_string(kMaxStates) + " states");
   std::vector<double> values;
   for (int k = 0;; ++k) {

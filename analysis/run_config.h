@@ -38,10 +38,10 @@ struct ContrastRunConfig {
 
 struct CompareRunConfig {
   bool enabled = false;
-  std::vector<std::string> scenes;   // displays beside this one (resolved paths)
-  std::vector<std::string> solvers;  // empty: each scene's own solver
-  std::optional<int> iterations;     // unset: each run's own
-  std::optional<double> time_budget; // s; unset: each run's own
+  std::vector<std::string> scenes;    // displays beside this one (resolved paths)
+  std::vector<std::string> solvers;   // empty: each scene's own solver
+  std::optional<int> iterations;      // unset: each run's own
+  std::optional<double> time_budget;  // s; unset: each run's own
 };
 
 struct RunConfig {

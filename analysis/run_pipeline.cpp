@@ -66,10 +66,17 @@ RunInputs ReadInputs(const std::string& file, std::optional<int> iterations, std
   in.run = ReadRunConfig(in.scene, in.system);
   const Location run_at{file, "/run"};
   if (!in.has_target()) {
-    if (in.run.retina.enabled) throw Error(run_at.child("retina"), "retinal images need a target to factorize: give \"solve\": {\"target\": ...} or {\"target_scene\": ...}");
-    if (in.run.compare.enabled) throw Error(run_at.child("compare"), "a comparison needs a target: give \"solve\": {\"target\": ...} or {\"target_scene\": ...}");
+    if (in.run.retina.enabled)
+      throw Error(
+          run_at.child("retina"),
+          "retinal images need a target to factorize: give \"solve\": {\"target\": ...} or {\"target_scene\": ...}");
+    if (in.run.compare.enabled)
+      throw Error(run_at.child("compare"),
+                  "a comparison needs a target: give \"solve\": {\"target\": ...} or {\"target_scene\": ...}");
     if (!in.run.contrast.enabled)
-      throw Error(file + ": nothing to run: give a target in the \"solve\" section or analyses in a \"run\" section (docs/run-section.md)");
+      throw Error(file +
+                  ": nothing to run: give a target in the \"solve\" section or analyses in a \"run\" section "
+                  "(docs/run-section.md)");
   }
   if (std::string why = UnsuitableSolver(in.solve.solver, in.system); !why.empty())
     throw Error(Location{file, "/solve/solver"}, "the solver " + in.solve.solver + " " + why);
@@ -113,9 +120,8 @@ RunOutcome RunPipeline(const RunRequest& request) {
   const auto run_start = Clock::now();
   RunInputs in = ReadInputs(request.scene, request.iterations, request.threads);
   if (in.has_target()) RefuseSolveBeyondMemory(in.system, in.solve, in.solve.options.threads);
-  std::vector<NamedInput> inputs = {{request.scene, "the scene"},
-                                    {in.solve.target, "the target"},
-                                    {in.solve.target_scene, "the target scene"}};
+  std::vector<NamedInput> inputs = {
+      {request.scene, "the scene"}, {in.solve.target, "the target"}, {in.solve.target_scene, "the target scene"}};
   for (const std::string& s : in.run.compare.scenes) inputs.push_back({s, "a compared scene"});
   for (const std::string& s : in.run.contrast.scenes) inputs.push_back({s, "a contrast scene"});
   StagedOutput stage(request.out, "run", RunOutputRoots(), inputs);
@@ -166,10 +172,12 @@ RunOutcome RunPipeline(const RunRequest& request) {
       options.progress = [&](int iteration, double, double psnr) {
         progress.Update(iteration, "iterations  PSNR " + Psnr(psnr));
       };
-      report = SolverRegistry::Builtins().create(in.solve.solver)->Solve(*model, target->light_field, options, &patterns);
+      report =
+          SolverRegistry::Builtins().create(in.solve.solver)->Solve(*model, target->light_field, options, &patterns);
       progress.Finish(report.BriefReport());
       for (const std::string& w : report.warnings) page.warnings.push_back("solve: " + w);
-      if (!report.IsSolutionUsable()) throw Error("the solve failed: " + report.message + "; the report was not written");
+      if (!report.IsSolutionUsable())
+        throw Error("the solve failed: " + report.message + "; the report was not written");
       const std::string solve_dir = (out / "solve").string();
       WriteSolution(*model, patterns, report, solve_dir, {.write_lightfield = in.run.write_lightfield});
       fs::create_directories(out / "solve" / "pattern_previews");
@@ -184,15 +192,17 @@ RunOutcome RunPipeline(const RunRequest& request) {
                                           std::to_string(layer.panel.resolution_rows) + " panel",
                                       panel, {{"PNG", panel}}));
       }
-      CompareResult self{in.name, in.solve.solver, report, in.system.brightness_efficiency, in.system.luminance_efficiency};
+      CompareResult self{in.name, in.solve.solver, report, in.system.brightness_efficiency,
+                         in.system.luminance_efficiency};
       WriteFileAtomically((out / "solve" / "psnr_vs_time.svg").string(), PsnrAgainstTimeSvg({self}));
       page.solved = true;
       page.solve_brief = report.BriefReport();
       page.psnr_plot = Picture("PSNR against wall time", "solve/psnr_vs_time.svg",
                                {{"SVG", "solve/psnr_vs_time.svg"}, {"CSV", "solve/trace.csv"}});
-      page.solve_links = {{"report.txt", "solve/report.txt"}, {"report.json", "solve/report.json"},
-                          {"trace.csv", "solve/trace.csv"}};
-      if (in.run.write_lightfield) page.solve_links.push_back({"synthesized light field", "solve/lightfield/lightfield.json"});
+      page.solve_links = {
+          {"report.txt", "solve/report.txt"}, {"report.json", "solve/report.json"}, {"trace.csv", "solve/trace.csv"}};
+      if (in.run.write_lightfield)
+        page.solve_links.push_back({"synthesized light field", "solve/lightfield/lightfield.json"});
       step("solve (" + in.solve.solver + ", " + std::to_string(report.iterations) + " iterations)", start);
     }
 
@@ -240,9 +250,9 @@ RunOutcome RunPipeline(const RunRequest& request) {
       WriteFileAtomically((out / "contrast" / "contrast.csv").string(), ContrastCsv(page.contrast));
       WriteFileAtomically((out / "contrast" / "peaks.txt").string(), PeakTable(page.contrast));
       WriteFileAtomically((out / "contrast" / "contrast.svg").string(), ContrastSvg(page.contrast));
-      page.contrast_plot = Picture("normalized contrast against accommodation", "contrast/contrast.svg",
-                                   {{"SVG", "contrast/contrast.svg"}, {"CSV", "contrast/contrast.csv"},
-                                    {"peaks", "contrast/peaks.txt"}});
+      page.contrast_plot = Picture(
+          "normalized contrast against accommodation", "contrast/contrast.svg",
+          {{"SVG", "contrast/contrast.svg"}, {"CSV", "contrast/contrast.csv"}, {"peaks", "contrast/peaks.txt"}});
       step("contrast sweep (" + std::to_string(total) + " solves)", start);
     }
 
@@ -265,9 +275,10 @@ RunOutcome RunPipeline(const RunRequest& request) {
             page.compare.push_back({name, solver, report, system->brightness_efficiency, system->luminance_efficiency});
             continue;
           }
-          CompareRun run{name, *system, solver,
-                         solver == configs[k]->solver ? configs[k]->options : SolverRegistry::Builtins().find(solver)->defaults,
-                         configs[k]->sampling};
+          CompareRun run{
+              name, *system, solver,
+              solver == configs[k]->solver ? configs[k]->options : SolverRegistry::Builtins().find(solver)->defaults,
+              configs[k]->sampling};
           run.options.iterations = c.iterations.value_or(run.options.iterations);
           run.options.time_budget = c.time_budget.value_or(run.options.time_budget);
           Progress progress("compare " + name + " / " + solver, run.options.iterations);
@@ -286,9 +297,9 @@ RunOutcome RunPipeline(const RunRequest& request) {
       WriteFileAtomically((out / "compare" / "compare.csv").string(), CompareCsv(page.compare));
       WriteFileAtomically((out / "compare" / "traces.csv").string(), TracesCsv(page.compare));
       WriteFileAtomically((out / "compare" / "psnr_vs_time.svg").string(), PsnrAgainstTimeSvg(page.compare));
-      page.compare_plot = Picture("PSNR against wall time, every display and solver", "compare/psnr_vs_time.svg",
-                                  {{"SVG", "compare/psnr_vs_time.svg"}, {"CSV", "compare/compare.csv"},
-                                   {"traces", "compare/traces.csv"}});
+      page.compare_plot = Picture(
+          "PSNR against wall time, every display and solver", "compare/psnr_vs_time.svg",
+          {{"SVG", "compare/psnr_vs_time.svg"}, {"CSV", "compare/compare.csv"}, {"traces", "compare/traces.csv"}});
       step("compare (" + std::to_string(page.compare.size()) + " runs)", start);
       outcome.compare_table = CompareTable(page.compare);
     }

@@ -8,11 +8,16 @@ namespace layerlab {
 std::string Escape(const std::string& text) {
   std::string out;
   for (char c : text) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else if (c == '"') out += "&quot;";
-    else out += c;
+    if (c == '<')
+      out += "&lt;";
+    else if (c == '>')
+      out += "&gt;";
+    else if (c == '&')
+      out += "&amp;";
+    else if (c == '"')
+      out += "&quot;";
+    else
+      out += c;
   }
   return out;
 }
@@ -75,24 +80,27 @@ std::string RenderSvg(const std::vector<PlotPanel>& panels, int columns, const s
                     "\" viewBox=\"0 0 " + Num(page_w) + " " + Num(page_h) +
                     "\" font-family=\"Helvetica, Arial, sans-serif\" font-size=\"11\">\n";
   svg += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  svg += "<text x=\"" + Num(page_w / 2) + "\" y=\"20\" text-anchor=\"middle\" font-size=\"14\">" + Escape(title) + "</text>\n";
+  svg += "<text x=\"" + Num(page_w / 2) + "\" y=\"20\" text-anchor=\"middle\" font-size=\"14\">" + Escape(title) +
+         "</text>\n";
   for (size_t p = 0; p < panels.size(); ++p) {
     const PlotPanel& panel = panels[p];
     double ox = w * (p % columns), oy = 36 + h * (p / columns);
     double x0 = ox + left, x1 = ox + w - right, y0 = oy + h - bottom, y1 = oy + top;
     auto X = [&](double x) { return x0 + (x - panel.x_min) / (panel.x_max - panel.x_min) * (x1 - x0); };
     auto Y = [&](double y) { return y0 - (y - panel.y_min) / (panel.y_max - panel.y_min) * (y0 - y1); };
-    svg += "<g>\n<text x=\"" + Num((x0 + x1) / 2) + "\" y=\"" + Num(oy + 18) + "\" text-anchor=\"middle\" font-size=\"12\">" +
-           Escape(panel.title) + "</text>\n";
+    svg += "<g>\n<text x=\"" + Num((x0 + x1) / 2) + "\" y=\"" + Num(oy + 18) +
+           "\" text-anchor=\"middle\" font-size=\"12\">" + Escape(panel.title) + "</text>\n";
     for (double t : NiceTicks(panel.x_min, panel.x_max, 6)) {
       svg += "<line x1=\"" + Num(X(t)) + "\" y1=\"" + Num(y0) + "\" x2=\"" + Num(X(t)) + "\" y2=\"" + Num(y1) +
              "\" stroke=\"#eee\"/>\n";
-      svg += "<text x=\"" + Num(X(t)) + "\" y=\"" + Num(y0 + 14) + "\" text-anchor=\"middle\">" + TickLabel(t) + "</text>\n";
+      svg += "<text x=\"" + Num(X(t)) + "\" y=\"" + Num(y0 + 14) + "\" text-anchor=\"middle\">" + TickLabel(t) +
+             "</text>\n";
     }
     for (double t : NiceTicks(panel.y_min, panel.y_max, 5)) {
       svg += "<line x1=\"" + Num(x0) + "\" y1=\"" + Num(Y(t)) + "\" x2=\"" + Num(x1) + "\" y2=\"" + Num(Y(t)) +
              "\" stroke=\"#eee\"/>\n";
-      svg += "<text x=\"" + Num(x0 - 5) + "\" y=\"" + Num(Y(t) + 4) + "\" text-anchor=\"end\">" + TickLabel(t) + "</text>\n";
+      svg += "<text x=\"" + Num(x0 - 5) + "\" y=\"" + Num(Y(t) + 4) + "\" text-anchor=\"end\">" + TickLabel(t) +
+             "</text>\n";
     }
     svg += "<rect x=\"" + Num(x0) + "\" y=\"" + Num(y1) + "\" width=\"" + Num(x1 - x0) + "\" height=\"" + Num(y0 - y1) +
            "\" fill=\"none\" stroke=\"#333\"/>\n";
@@ -120,7 +128,8 @@ std::string RenderSvg(const std::vector<PlotPanel>& panels, int columns, const s
     const PlotLine& line = panels.front().lines[k];
     double x = legend[k].x, y = 36 + h * rows + legend_row * (legend[k].row + 1) - 4;
     svg += "<line x1=\"" + Num(x) + "\" y1=\"" + Num(y - 4) + "\" x2=\"" + Num(x + 24) + "\" y2=\"" + Num(y - 4) +
-           "\" stroke=\"" + line.color + "\" stroke-width=\"2\"" + (line.dashed ? " stroke-dasharray=\"6,3\"" : "") + "/>\n";
+           "\" stroke=\"" + line.color + "\" stroke-width=\"2\"" + (line.dashed ? " stroke-dasharray=\"6,3\"" : "") +
+           "/>\n";
     svg += "<text x=\"" + Num(x + 30) + "\" y=\"" + Num(y) + "\">" + Escape(line.label) + "</text>\n";
   }
   svg += "</svg>\n";

@@ -9,7 +9,7 @@ namespace layerlab {
 
 struct PlotLine {
   std::string label;
-  std::string color;       // CSS color
+  std::string color;  // CSS color
   bool dashed = false;
   std::vector<double> x, y;
 };

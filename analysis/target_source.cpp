@@ -4,13 +4,13 @@
 
 #include <cstdio>
 
-#include "framework/progress.h"
 #include "framework/error.h"
 #include "framework/lightfield_io.h"
 #include "framework/png_writer.h"
+#include "framework/progress.h"
 #include "solvers/memory_estimate.h"
-#include "targets/target_scene.h"
 #include "systems/lightfield_radiance.h"
+#include "targets/target_scene.h"
 
 namespace layerlab {
 
@@ -32,7 +32,8 @@ std::unique_ptr<Target> LoadOrRenderTarget(const SolveConfig& config, const std:
     target->light_field = ReadLightField(config.target, {.load_depth = false});
     return target;
   }
-  if (config.target_scene.empty()) throw Error("no target: give \"solve\": {\"target\": LF_DIR} or {\"target_scene\": TARGET.json}");
+  if (config.target_scene.empty())
+    throw Error("no target: give \"solve\": {\"target\": LF_DIR} or {\"target_scene\": TARGET.json}");
   target->source = config.target_scene;
 #if LAYERLAB_WITH_EMBREE
   target->scene = std::make_unique<TargetScene>(LoadTarget(config.target_scene));
@@ -51,21 +52,23 @@ std::unique_ptr<Target> LoadOrRenderTarget(const SolveConfig& config, const std:
   target->rendered = true;
   return target;
 #else
-  throw Error(config.target_scene + ": rendering a target scene needs Embree (this build has LAYERLAB_WITH_EMBREE=OFF); "
+  throw Error(config.target_scene +
+              ": rendering a target scene needs Embree (this build has LAYERLAB_WITH_EMBREE=OFF); "
               "render it elsewhere with `layerlab render-target` and give the folder as \"target\"");
 #endif
 }
 
 LightFieldGeometry TargetGeometry(const SolveConfig& config) {
   if (!config.target.empty()) return ReadLightFieldGeometry(config.target);
-  if (config.target_scene.empty()) throw Error("no target: give \"solve\": {\"target\": LF_DIR} or {\"target_scene\": TARGET.json}");
+  if (config.target_scene.empty())
+    throw Error("no target: give \"solve\": {\"target\": LF_DIR} or {\"target_scene\": TARGET.json}");
   return LoadTarget(config.target_scene).geometry;
 }
 
 size_t RefuseSolveBeyondMemory(const DisplaySystem& system, const SolveConfig& config, int threads, size_t limit,
                                const std::string& limit_name) {
-  const MemoryEstimate need = EstimateSolveMemory(system, TargetGeometry(config), config.solver,
-                                                  threads > 0 ? threads : omp_get_max_threads());
+  const MemoryEstimate need =
+      EstimateSolveMemory(system, TargetGeometry(config), config.solver, threads > 0 ? threads : omp_get_max_threads());
   const bool machine = limit == 0;
   if (machine) limit = PhysicalMemory();
   if (limit > 0 && need.bytes > limit)

@@ -67,7 +67,8 @@ void AddCompareCommand(CLI::App& app) {
           std::fprintf(stderr, "compare: skipped %s / %s: the solver %s\n", name.c_str(), solver.c_str(), why.c_str());
           continue;
         }
-        SolverOptions options = solver == config.solver ? config.options : SolverRegistry::Builtins().find(solver)->defaults;
+        SolverOptions options =
+            solver == config.solver ? config.options : SolverRegistry::Builtins().find(solver)->defaults;
         options.iterations = o->iterations.value_or(options.iterations);
         options.time_budget = o->time_budget.value_or(options.time_budget);
         runs.push_back({name, system, solver, options, config.sampling});
@@ -79,12 +80,12 @@ void AddCompareCommand(CLI::App& app) {
     StagedOutput stage(o->out, "compare", {"compare.txt", "compare.csv", "traces.csv", "psnr_vs_time.svg"}, inputs);
     std::fprintf(stderr, "loading %s\n", o->target.c_str());
     LightField target = ReadLightField(o->target, {.load_depth = false});
-    std::vector<CompareResult> results = RunComparison(runs, target, [](const std::string& line) {
-      std::fprintf(stderr, "compare: %s\n", line.c_str());
-    });
+    std::vector<CompareResult> results = RunComparison(
+        runs, target, [](const std::string& line) { std::fprintf(stderr, "compare: %s\n", line.c_str()); });
     for (const CompareResult& r : results)
       if (!r.report.IsSolutionUsable())
-        throw Error("compare: " + r.display + " / " + r.solver + " failed: " + r.report.message + "; nothing was written");
+        throw Error("compare: " + r.display + " / " + r.solver + " failed: " + r.report.message +
+                    "; nothing was written");
 
     const std::string table = CompareTable(results);
     try {

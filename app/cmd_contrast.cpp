@@ -87,8 +87,8 @@ void AddContrastCommand(CLI::App& app) {
     }
     stage.Commit();
     std::cout << peaks;
-    std::printf("sweep of %zu curves in %.2f s; wrote %s/{contrast.csv,peaks.txt,contrast.svg}\n", curves.size(), seconds,
-                o->out.c_str());
+    std::printf("sweep of %zu curves in %.2f s; wrote %s/{contrast.csv,peaks.txt,contrast.svg}\n", curves.size(),
+                seconds, o->out.c_str());
   });
 }
 

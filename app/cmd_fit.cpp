@@ -9,10 +9,10 @@
 #include <string>
 
 #include "app/commands.h"
-#include "framework/atomic_file.h"
-#include "framework/staged_output.h"
 #include "calibration/calibrated_scene.h"
 #include "calibration/calibration.h"
+#include "framework/atomic_file.h"
+#include "framework/staged_output.h"
 #include "systems/compile.h"
 
 namespace layerlab::app {
@@ -67,7 +67,8 @@ void AddFitCommand(CLI::App& app) {
 
     nlohmann::ordered_json calibrated = CalibratedSceneDocument(ReadDocumentInOrder(o->scene), o->scene, display);
     // Absolute: a bare file name has no parent folder to rebase from.
-    RebaseRelativePaths(calibrated, std::filesystem::absolute(o->scene).string(), std::filesystem::absolute(o->out).string());
+    RebaseRelativePaths(calibrated, std::filesystem::absolute(o->scene).string(),
+                        std::filesystem::absolute(o->out).string());
     // The calibrated scene must compile before it replaces anything.
     AtomicFile file(o->out);
     WriteFileAtomically(file.temp_path(), calibrated.dump(2) + "\n");

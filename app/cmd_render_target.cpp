@@ -20,7 +20,8 @@ void AddRenderTargetCommand(CLI::App& app) {
     std::string target, out_dir;
   };
   auto options = std::make_shared<Options>();
-  CLI::App* cmd = app.add_subcommand("render-target", "Render a target scene (planes, meshes) into a light-field folder");
+  CLI::App* cmd =
+      app.add_subcommand("render-target", "Render a target scene (planes, meshes) into a light-field folder");
   cmd->add_option("target", options->target, "Target scene file (JSON)")->required();
   cmd->add_option("out_dir", options->out_dir, "Light-field folder to write (created if needed)")->required();
   cmd->callback([options] {

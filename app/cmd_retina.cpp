@@ -45,7 +45,8 @@ void AddRetinaCommand(CLI::App& app) {
 #endif
   cmd->add_option("--resolution", o->resolution, "Retinal sample size in degrees (default 0.05)");
   cmd->add_option("--field", o->field, "Retinal field W,H in degrees (default: the display's field of view)");
-  cmd->add_option("--sampling", o->sampling, "Layer sampling: nearest or bilinear (default: the scene's solve section)");
+  cmd->add_option("--sampling", o->sampling,
+                  "Layer sampling: nearest or bilinear (default: the scene's solve section)");
   cmd->add_option("--out", o->out, "Output folder")->required();
   cmd->callback([o] {
     // Everything is read and checked before anything is written.
@@ -71,7 +72,9 @@ void AddRetinaCommand(CLI::App& app) {
       field_x = f[0], field_y = f[1];
     }
     StagedOutput stage(o->out, "retina", {"display", "natural", "retina.csv"},
-                       {{o->scene, "the scene"}, {o->patterns, "the patterns"}, {o->target, "the target"},
+                       {{o->scene, "the scene"},
+                        {o->patterns, "the patterns"},
+                        {o->target, "the target"},
                         {o->target_scene, "the target scene"}});
     std::optional<LightField> target_lf;
     if (!o->target.empty()) target_lf = ReadLightField(o->target, {.load_depth = false});
@@ -96,9 +99,10 @@ void AddRetinaCommand(CLI::App& app) {
     RetinaSweepOptions sweep{states, o->resolution, field_x, field_y};
     std::fprintf(stderr, "retina: %zu accommodation states of %.3f deg samples\n", states.size(), o->resolution);
     try {
-      WriteRetinaSweep(model, t, natural, sweep, stage.staging(), [](size_t done, size_t total, const RetinaStateResult& r) {
-        std::fprintf(stderr, "retina: %zu/%zu  %s  %.2f s\n", done, total, r.name.c_str(), r.seconds);
-      });
+      WriteRetinaSweep(model, t, natural, sweep, stage.staging(),
+                       [](size_t done, size_t total, const RetinaStateResult& r) {
+                         std::fprintf(stderr, "retina: %zu/%zu  %s  %.2f s\n", done, total, r.name.c_str(), r.seconds);
+                       });
     } catch (const Error& e) {
       throw stage.Explain(e);
     }

@@ -23,9 +23,12 @@ namespace layerlab::app {
 
 void AddRunCommand(CLI::App& app) {
   auto request = std::make_shared<RunRequest>();
-  CLI::App* cmd = app.add_subcommand(
-      "run", "The main job: solve, retinal images, contrast and comparisons as the scene declares; a report in OUT/index.html");
-  cmd->add_option("scene", request->scene, "Scene file (JSON) with \"solve\" and \"run\" sections (docs/run-section.md)")->required();
+  CLI::App* cmd = app.add_subcommand("run",
+                                     "The main job: solve, retinal images, contrast and comparisons as the scene "
+                                     "declares; a report in OUT/index.html");
+  cmd->add_option("scene", request->scene,
+                  "Scene file (JSON) with \"solve\" and \"run\" sections (docs/run-section.md)")
+      ->required();
   cmd->add_option("--out", request->out, "Output folder")->required();
   cmd->add_option("--iterations", request->iterations, "Outer iterations of the main solve (default: the scene's)");
   cmd->add_option("--threads", request->threads, "Worker threads of the main solve (0: all cores)");
@@ -39,7 +42,8 @@ void AddRunCommand(CLI::App& app) {
                   outcome.removed.size() == 1 ? "" : "s", request->out.c_str());
     if (outcome.solved) std::cout << outcome.report.BriefReport() << "\n";
     std::printf("run: %.1f s; open %s in a browser (no server needed)\n",
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), outcome.index_html.c_str());
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                outcome.index_html.c_str());
   });
 }
 

@@ -2,24 +2,24 @@
 // a target light field (or a target scene, rendered first) into panel images,
 // with progress on the terminal.
 #include <cmath>
-#include <filesystem>
-#include <optional>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 
-#include "app/commands.h"
 #include "analysis/target_source.h"
-#include "framework/progress.h"
+#include "app/commands.h"
 #include "framework/interrupt.h"
 #include "framework/lightfield_io.h"
+#include "framework/progress.h"
 #include "framework/staged_output.h"
 #include "solvers/memory_estimate.h"
 #include "solvers/solution_writer.h"
-#include "solvers/solver_checkpoint.h"
 #include "solvers/solve_config.h"
+#include "solvers/solver_checkpoint.h"
 #include "systems/compile.h"
 
 namespace layerlab::app {
@@ -50,9 +50,11 @@ void AddSolveCommand(CLI::App& app) {
   cmd->add_option("--sampling", o->sampling, "Layer sampling: nearest or bilinear");
   cmd->add_option("--target-range", o->target_range, "Target values beyond the display: clip or scale");
   cmd->add_flag("--write-lightfield", o->write_lightfield, "Also write the synthesized light field");
-  cmd->add_option("--checkpoint-every", o->checkpoint_every, "Write OUT/checkpoint every N iterations (and when stopped early)");
+  cmd->add_option("--checkpoint-every", o->checkpoint_every,
+                  "Write OUT/checkpoint every N iterations (and when stopped early)");
   cmd->add_flag("--resume", o->resume, "Continue from OUT/checkpoint (same scene, target and solver)");
-  cmd->add_option("--max-memory", o->max_memory, "Refuse a run estimated to need more (e.g. 2 GB; default: the machine's memory)");
+  cmd->add_option("--max-memory", o->max_memory,
+                  "Refuse a run estimated to need more (e.g. 2 GB; default: the machine's memory)");
   cmd->callback([o] {
     Scene scene = LoadScene(o->scene);
     DisplaySystem system = Compile(scene);
@@ -66,7 +68,8 @@ void AddSolveCommand(CLI::App& app) {
     if (!o->target.empty()) config.target = o->target;
     if (!o->target.empty()) config.target_scene.clear();
     if (config.target.empty() && config.target_scene.empty())
-      throw Error("no target: give --target LF_DIR or \"solve\": {\"target\": ...} or {\"target_scene\": ...} in " + o->scene);
+      throw Error("no target: give --target LF_DIR or \"solve\": {\"target\": ...} or {\"target_scene\": ...} in " +
+                  o->scene);
     // Any value given is checked by SolverOptions.
     opt.iterations = o->iterations.value_or(opt.iterations);
     opt.sub_iterations = o->sub_iterations.value_or(opt.sub_iterations);
@@ -84,12 +87,13 @@ void AddSolveCommand(CLI::App& app) {
 
     // Refuse what cannot fit before reading the views or rendering the target.
     const size_t limit = o->max_memory.empty() ? 0 : ParseByteSize(o->max_memory, "--max-memory");
-    const size_t need = RefuseSolveBeyondMemory(system, config, opt.threads, limit,
-                                                "--max-memory " + FormatBytes(double(limit)));
+    const size_t need =
+        RefuseSolveBeyondMemory(system, config, opt.threads, limit, "--max-memory " + FormatBytes(double(limit)));
     std::fprintf(stderr, "the solve needs about %s\n", FormatBytes(double(need)).c_str());
     // The results are built beside the earlier ones and switched into place when complete.
-    StagedOutput stage(o->out, "solve", {"patterns", "panels", "lightfield", "trace.csv", "report.txt", "report.json", "checkpoint"},
-                       {{o->scene, "the scene"}, {config.target, "the target"}, {config.target_scene, "the target scene"}});
+    StagedOutput stage(
+        o->out, "solve", {"patterns", "panels", "lightfield", "trace.csv", "report.txt", "report.json", "checkpoint"},
+        {{o->scene, "the scene"}, {config.target, "the target"}, {config.target_scene, "the target scene"}});
     for (const std::string& line : stage.recovered()) std::fprintf(stderr, "solve: %s\n", line.c_str());
     std::unique_ptr<Target> target = LoadOrRenderTarget(config, "target");
     DisplayModel model(system, target->light_field.geometry, config.sampling);
@@ -99,9 +103,10 @@ void AddSolveCommand(CLI::App& app) {
     if (o->checkpoint_every < 0) throw Error("--checkpoint-every: must be 0 (none) or positive");
     opt.checkpoint_every = o->checkpoint_every;
     // Hashing the target costs a pass over it: only when a checkpoint is written or read.
-    const CheckpointInputs digest = o->checkpoint_every > 0 || o->resume
-                                        ? CheckpointDigest(model, config.sampling, target->light_field, config.solver, opt)
-                                        : CheckpointInputs{};
+    const CheckpointInputs digest =
+        o->checkpoint_every > 0 || o->resume
+            ? CheckpointDigest(model, config.sampling, target->light_field, config.solver, opt)
+            : CheckpointInputs{};
     if (o->checkpoint_every > 0)
       opt.checkpoint = [&](const SolverCheckpoint& c) { WriteCheckpoint(model, c, checkpoint_folder, digest); };
     std::optional<SolverCheckpoint> resume;

@@ -10,8 +10,8 @@ void AddInfoCommand(CLI::App& app);
 void AddSolveCommand(CLI::App& app);
 void AddContrastCommand(CLI::App& app);
 void AddCompareCommand(CLI::App& app);  // compare SCENES... --target LF_DIR --out DIR
-void AddRetinaCommand(CLI::App& app);  // retina SCENE.json --patterns DIR --out DIR
-void AddRunCommand(CLI::App& app);     // run SCENE.json --out DIR: the main job and its report
+void AddRetinaCommand(CLI::App& app);   // retina SCENE.json --patterns DIR --out DIR
+void AddRunCommand(CLI::App& app);      // run SCENE.json --out DIR: the main job and its report
 #if LAYERLAB_WITH_CERES
 void AddFitCommand(CLI::App& app);  // fit SCENE.json MEASUREMENTS.json --out CALIBRATED.json
 #endif

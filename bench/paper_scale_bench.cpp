@@ -61,7 +61,8 @@ void BM_Synthesis(benchmark::State& state) {
     w.model->Synthesize(t, &out);
     benchmark::DoNotOptimize(out.rgb.data());
   }
-  state.counters["rays_per_s"] = benchmark::Counter(double(w.target.geometry.ray_count()), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["rays_per_s"] =
+      benchmark::Counter(double(w.target.geometry.ray_count()), benchmark::Counter::kIsIterationInvariantRate);
   state.counters["peak_rss_MB"] = PeakRssMb();
   state.SetLabel(w.target_name);
 }
@@ -89,7 +90,8 @@ void BM_MemoryFloorRead(benchmark::State& state) {
     }
     benchmark::DoNotOptimize(total);
   }
-  state.counters["GB_per_s"] = benchmark::Counter(double(l.size()) * 4e-9, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["GB_per_s"] =
+      benchmark::Counter(double(l.size()) * 4e-9, benchmark::Counter::kIsIterationInvariantRate);
 }
 
 void BM_MemoryFloorCopy(benchmark::State& state) {
@@ -101,7 +103,8 @@ void BM_MemoryFloorCopy(benchmark::State& state) {
     for (size_t k = 0; k < l.size(); ++k) out[k] = l[k];
     benchmark::DoNotOptimize(out.data());
   }
-  state.counters["GB_per_s"] = benchmark::Counter(double(l.size()) * 8e-9, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["GB_per_s"] =
+      benchmark::Counter(double(l.size()) * 8e-9, benchmark::Counter::kIsIterationInvariantRate);
 }
 
 // The passes an iteration is made of: one multiplicative update of one layer
@@ -115,8 +118,9 @@ void BM_UpdatePass(benchmark::State& state) {
   BranchTarget whole = [&](size_t view, float*) { return l.view(view); };
   SolverOptions o;
   for (auto _ : state) UpdateLayerMultiplicative(*w.model, 0, w.model->branch_layers(0)[0], whole, o, &t);
-  state.counters["ns_per_ray"] = benchmark::Counter(double(l.geometry.ray_count()) * 1e-9,
-                                                   benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.counters["ns_per_ray"] =
+      benchmark::Counter(double(l.geometry.ray_count()) * 1e-9,
+                         benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
   state.SetLabel(w.target_name);
 }
 
@@ -124,8 +128,9 @@ void BM_ObjectivePass(benchmark::State& state) {
   const Workload& w = GetWorkload("paper_prototype");
   Patterns t = w.model->UniformPatterns(0.5f);
   for (auto _ : state) benchmark::DoNotOptimize(Objective(*w.model, w.target, t));
-  state.counters["ns_per_ray"] = benchmark::Counter(double(w.target.geometry.ray_count()) * 1e-9,
-                                                   benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.counters["ns_per_ray"] =
+      benchmark::Counter(double(w.target.geometry.ray_count()) * 1e-9,
+                         benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
   state.SetLabel(w.target_name);
 }
 
@@ -136,8 +141,9 @@ void BM_JointPass(benchmark::State& state) {
   Patterns t = w.model->UniformPatterns(0.5f);
   JointPass pass(*w.model);
   for (auto _ : state) benchmark::DoNotOptimize(pass.Run(w.target, t));
-  state.counters["ns_per_ray"] = benchmark::Counter(double(w.target.geometry.ray_count()) * 1e-9,
-                                                   benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.counters["ns_per_ray"] =
+      benchmark::Counter(double(w.target.geometry.ray_count()) * 1e-9,
+                         benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
   state.SetLabel(w.target_name);
 }
 
@@ -226,7 +232,9 @@ void BM_RetinaImage(benchmark::State& state) {
   const std::vector<PupilPoint> pupil = PupilSamples(w.system.eye);
   double last = 0;
   for (auto _ : state)
-    last = Timed(state, [&] { benchmark::DoNotOptimize(RetinaOfDisplay(*w.model, t, grid, pupil, {1.3, 1.3, 1.3}).pixels.data()); });
+    last = Timed(state, [&] {
+      benchmark::DoNotOptimize(RetinaOfDisplay(*w.model, t, grid, pupil, {1.3, 1.3, 1.3}).pixels.data());
+    });
   state.counters["retina_samples"] = double(grid.cols) * grid.rows;
   state.counters["pupil_samples"] = double(pupil.size());
   Report(state, 0.020, last);

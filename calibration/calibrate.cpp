@@ -8,9 +8,12 @@ namespace layerlab {
 
 ceres::LossFunction* MakeLoss(RobustLoss loss, double scale) {
   switch (loss) {
-    case RobustLoss::kHuber: return new ceres::HuberLoss(scale);
-    case RobustLoss::kCauchy: return new ceres::CauchyLoss(scale);
-    case RobustLoss::kNone: return nullptr;
+    case RobustLoss::kHuber:
+      return new ceres::HuberLoss(scale);
+    case RobustLoss::kCauchy:
+      return new ceres::CauchyLoss(scale);
+    case RobustLoss::kNone:
+      return nullptr;
   }
   return nullptr;
 }
@@ -55,7 +58,8 @@ CalibrationReport Calibrate(const DisplaySystem& system, const Measurements& mea
   for (const VirtualLayer& layer : system.layers) {
     CalibratedPanel panel;
     panel.name = layer.name;
-    panel.behind_optics = std::any_of(layer.path.begin(), layer.path.end(), [](const PathStep& s) { return s.power != 0; });
+    panel.behind_optics =
+        std::any_of(layer.path.begin(), layer.path.end(), [](const PathStep& s) { return s.power != 0; });
     panel.distance = layer.panel_distance;
     panel.gap = layer.position - (layer.path.empty() ? 0.0 : layer.path.back().position.value_or(0.0));
     panel.offset_x = layer.panel.offset[0];

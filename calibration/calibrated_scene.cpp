@@ -69,7 +69,8 @@ ordered_json& ElementNamed(ordered_json& scene, const std::string& file, const s
 
 }  // namespace
 
-ordered_json CalibratedSceneDocument(const ordered_json& scene, const std::string& file, const CalibratedDisplay& display) {
+ordered_json CalibratedSceneDocument(const ordered_json& scene, const std::string& file,
+                                     const CalibratedDisplay& display) {
   ordered_json out = scene;
   for (const CalibratedPanel& panel : display.panels) {
     std::vector<std::pair<std::string, ordered_json>> values;
@@ -105,7 +106,8 @@ void RebaseRelativePaths(ordered_json& scene, const std::string& from_file, cons
   if (!solve.contains("target") || !solve["target"].is_string()) return;
   const fs::path target = solve["target"].get<std::string>();
   if (target.is_absolute()) return;
-  const fs::path from = fs::absolute(fs::path(from_file).parent_path()), to = fs::absolute(fs::path(to_file).parent_path());
+  const fs::path from = fs::absolute(fs::path(from_file).parent_path()),
+                 to = fs::absolute(fs::path(to_file).parent_path());
   solve["target"] = (from / target).lexically_normal().lexically_relative(to.lexically_normal()).generic_string();
 }
 

@@ -81,14 +81,14 @@ enum class ParameterStatus {
 std::string ToString(ParameterStatus status);
 
 struct ParameterEstimate {
-  std::string element;   // a panel, a lens or curved mirror, or "camera"
-  std::string quantity;  // distance, virtual_depth, offset_x, offset_y, rotation, focal_length, gap,
-                         // pan, tilt, roll, max_luminance, black_level, gamma
-  double scene_value = 0;          // SI (m, rad, D); max_luminance in the measurements' unit
-  double value = 0;                // after the fit
-  std::optional<double> std_dev;   // one standard deviation; empty when not fitted or not estimable
+  std::string element;            // a panel, a lens or curved mirror, or "camera"
+  std::string quantity;           // distance, virtual_depth, offset_x, offset_y, rotation, focal_length, gap,
+                                  // pan, tilt, roll, max_luminance, black_level, gamma
+  double scene_value = 0;         // SI (m, rad, D); max_luminance in the measurements' unit
+  double value = 0;               // after the fit
+  std::optional<double> std_dev;  // one standard deviation; empty when not fitted or not estimable
   ParameterStatus status = ParameterStatus::kFitted;
-  bool derived = false;            // computed from fitted ones (virtual_depth)
+  bool derived = false;  // computed from fitted ones (virtual_depth)
 };
 
 struct PanelResiduals {
@@ -128,13 +128,13 @@ struct CalibratedPanel {
   // Some element with power in front of it had its focal length or gap fitted:
   // its physical place is what stays, so it is written even without markers.
   bool optics_fitted = false;
-  bool behind_optics = false;           // some lens or curved mirror lies in front of it
-  double distance = 0;                  // m, from the nearest of them (from the pupil without one)
-  double gap = 0;                       // m, from the element before it on its path
-  double offset_x = 0, offset_y = 0;    // m, in the panel plane, eye-space x right, y up
-  double rotation = 0;                  // rad, counterclockwise as the eye sees it
+  bool behind_optics = false;         // some lens or curved mirror lies in front of it
+  double distance = 0;                // m, from the nearest of them (from the pupil without one)
+  double gap = 0;                     // m, from the element before it on its path
+  double offset_x = 0, offset_y = 0;  // m, in the panel plane, eye-space x right, y up
+  double rotation = 0;                // rad, counterclockwise as the eye sees it
   double gamma = 0, black_level = 0;
-  double max_luminance = 0;             // in the measurements' unit; 0 when not measured
+  double max_luminance = 0;  // in the measurements' unit; 0 when not measured
 };
 
 // A lens or curved mirror on the paths.

@@ -1,7 +1,7 @@
 #include <cmath>
 
-#include "framework/params.h"
 #include "calibration/calibration.h"
+#include "framework/params.h"
 
 namespace layerlab {
 namespace {
@@ -20,8 +20,8 @@ Enum FromString(const std::string& name, const std::string& what, const std::pai
 
 constexpr std::pair<const char*, RobustLoss> kLosses[] = {
     {"none", RobustLoss::kNone}, {"huber", RobustLoss::kHuber}, {"cauchy", RobustLoss::kCauchy}};
-constexpr std::pair<const char*, AxisReference> kReferences[] = {
-    {"camera", AxisReference::kCamera}, {"farthest-panel", AxisReference::kFarthestPanel}};
+constexpr std::pair<const char*, AxisReference> kReferences[] = {{"camera", AxisReference::kCamera},
+                                                                 {"farthest-panel", AxisReference::kFarthestPanel}};
 
 std::string Number(double x) {
   char buf[32];
@@ -51,10 +51,14 @@ AxisReference AxisReferenceFromString(const std::string& name) {
 
 std::string ToString(ParameterStatus status) {
   switch (status) {
-    case ParameterStatus::kFitted: return "fitted";
-    case ParameterStatus::kUndetermined: return "undetermined";
-    case ParameterStatus::kReference: return "reference";
-    case ParameterStatus::kNotFitted: return "not fitted";
+    case ParameterStatus::kFitted:
+      return "fitted";
+    case ParameterStatus::kUndetermined:
+      return "undetermined";
+    case ParameterStatus::kReference:
+      return "reference";
+    case ParameterStatus::kNotFitted:
+      return "not fitted";
   }
   return "?";
 }

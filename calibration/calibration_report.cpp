@@ -29,8 +29,10 @@ Shown ShownAs(const std::string& quantity) {
 std::string Show(const std::string& quantity, double value, bool with_unit) {
   const Shown s = ShownAs(quantity);
   char buf[64];
-  if (s.decimals < 0) std::snprintf(buf, sizeof buf, "%.5g", value);
-  else std::snprintf(buf, sizeof buf, "%.*f", s.decimals, value * s.scale);
+  if (s.decimals < 0)
+    std::snprintf(buf, sizeof buf, "%.5g", value);
+  else
+    std::snprintf(buf, sizeof buf, "%.*f", s.decimals, value * s.scale);
   std::string text = buf;
   if (text.find_first_not_of("-0.") == std::string::npos) text = FormatFixed(0.0, s.decimals < 0 ? 0 : s.decimals);
   return with_unit && *s.unit ? text + " " + s.unit : text;
@@ -63,7 +65,8 @@ const ParameterEstimate* CalibrationReport::find(const std::string& element, con
 std::string CalibrationReport::BriefReport() const {
   std::string out = std::string("calibration: ") + (usable ? "usable" : "NOT usable") + " (" + message + ")";
   if (markers) out += "; markers: RMS " + Arcmin(marker_rms_before) + " -> " + Arcmin(marker_rms_after);
-  if (luminance_samples) out += "; luminance: RMS " + Percent(luminance_rms_before) + " -> " + Percent(luminance_rms_after);
+  if (luminance_samples)
+    out += "; luminance: RMS " + Percent(luminance_rms_before) + " -> " + Percent(luminance_rms_after);
   if (!warnings.empty()) out += "; " + std::to_string(warnings.size()) + " warning" + (warnings.size() > 1 ? "s" : "");
   return out;
 }
@@ -88,8 +91,9 @@ std::string CalibrationReport::FullReport() const {
     out += "geometry    no markers: not fitted\n";
   }
   if (luminance_samples) {
-    out += "luminance   " + std::to_string(luminance_samples) + " samples; residual RMS " + Percent(luminance_rms_before) +
-           " (scene) -> " + Percent(luminance_rms_after) + " (fitted), of each panel's brightest reading\n";
+    out += "luminance   " + std::to_string(luminance_samples) + " samples; residual RMS " +
+           Percent(luminance_rms_before) + " (scene) -> " + Percent(luminance_rms_after) +
+           " (fitted), of each panel's brightest reading\n";
     size_t start = 0;
     while (start < luminance_solver.size()) {
       size_t end = luminance_solver.find('\n', start);
@@ -101,13 +105,15 @@ std::string CalibrationReport::FullReport() const {
     out += "luminance   no samples: not fitted\n";
   }
 
-  out += "\n" + Pad("panel", 12) + Pad("markers", 8) + Pad("RMS scene", 16) + Pad("RMS fitted", 16) + Pad("samples", 8) +
-         Pad("RMS scene", 10) + "RMS fitted\n";
+  out += "\n" + Pad("panel", 12) + Pad("markers", 8) + Pad("RMS scene", 16) + Pad("RMS fitted", 16) +
+         Pad("samples", 8) + Pad("RMS scene", 10) + "RMS fitted\n";
   for (const PanelResiduals& p : panels) {
     out += Pad(p.panel, 12) + Pad(std::to_string(p.markers), 8);
-    out += p.markers ? Pad(Arcmin(p.marker_rms_before), 16) + Pad(Arcmin(p.marker_rms_after), 16) : Pad("-", 16) + Pad("-", 16);
+    out += p.markers ? Pad(Arcmin(p.marker_rms_before), 16) + Pad(Arcmin(p.marker_rms_after), 16)
+                     : Pad("-", 16) + Pad("-", 16);
     out += Pad(std::to_string(p.luminance_samples), 8);
-    out += p.luminance_samples ? Pad(Percent(p.luminance_rms_before), 10) + Percent(p.luminance_rms_after) : Pad("-", 10) + "-";
+    out += p.luminance_samples ? Pad(Percent(p.luminance_rms_before), 10) + Percent(p.luminance_rms_after)
+                               : Pad("-", 10) + "-";
     out += "\n";
   }
 
@@ -161,11 +167,12 @@ nlohmann::json CalibrationReport::ToJson() const {
   j["panels"] = panel_list;
   json parameter_list = json::array();
   for (const ParameterEstimate& p : parameters) {
-    const char* si = p.quantity == "virtual_depth"                                       ? "D"
-                     : p.quantity == "max_luminance"                                     ? "as measured"
-                     : p.quantity == "gamma" || p.quantity == "black_level"              ? ""
-                     : p.quantity == "rotation" || p.quantity == "pan" || p.quantity == "tilt" || p.quantity == "roll" ? "rad"
-                                                                                         : "m";
+    const char* si = p.quantity == "virtual_depth"                          ? "D"
+                     : p.quantity == "max_luminance"                        ? "as measured"
+                     : p.quantity == "gamma" || p.quantity == "black_level" ? ""
+                     : p.quantity == "rotation" || p.quantity == "pan" || p.quantity == "tilt" || p.quantity == "roll"
+                         ? "rad"
+                         : "m";
     parameter_list.push_back({{"element", p.element},
                               {"quantity", p.quantity},
                               {"unit", si},

@@ -5,11 +5,11 @@
 
 #include <ceres/ceres.h>
 
-#include "framework/params.h"
 #include "calibration/fit_steps.h"
 #include "calibration/marker_model.h"
 #include "calibration/scalar_fit.h"
 #include "calibration/similarity_fit.h"
+#include "framework/params.h"
 
 namespace layerlab {
 namespace {
@@ -26,12 +26,12 @@ struct MarkerDatum {
 // A lens or curved mirror on the path of some panel with markers.
 struct Optic {
   std::string name;
-  double focal_length = 0;  // as designed, m
-  double position = 0;      // m of path length from the pupil
-  double gap = 0;           // from the element before it (the pupil), m
-  std::string before;       // that element's name; "" for the pupil
-  bool placed_before = true;  // whether that element has a place of its own, so that "gap" can be written
-  std::vector<int> layers;  // whose path holds it
+  double focal_length = 0;         // as designed, m
+  double position = 0;             // m of path length from the pupil
+  double gap = 0;                  // from the element before it (the pupil), m
+  std::string before;              // that element's name; "" for the pupil
+  bool placed_before = true;       // whether that element has a place of its own, so that "gap" can be written
+  std::vector<int> layers;         // whose path holds it
   int focal = -1, gap_index = -1;  // into the ScalarFit
 };
 
@@ -111,8 +111,14 @@ std::vector<Optic> FindOptics(const DisplaySystem& system, const std::vector<boo
 template <typename T, typename Value>
 MarkerParameters<T> LayerParameters(const PanelIndices& p, int pan, int tilt, int roll, const LayerOptics& layer_optics,
                                     const std::vector<Optic>& optics, Value value) {
-  MarkerParameters<T> q{value(p.distance), value(p.offset_x), value(p.offset_y), value(p.rotation),
-                        value(pan),        value(tilt),       value(roll),       {},
+  MarkerParameters<T> q{value(p.distance),
+                        value(p.offset_x),
+                        value(p.offset_y),
+                        value(p.rotation),
+                        value(pan),
+                        value(tilt),
+                        value(roll),
+                        {},
                         {}};
   for (int o : layer_optics.element) {
     q.gaps.push_back(value(optics[o].gap_index));
@@ -148,7 +154,8 @@ void CheckMirroring(const DisplaySystem& system, const std::vector<std::vector<c
     if (ArcminFromRadians(as_given) > 1.0 && mirrored < 0.25 * as_given)
       report->warnings.push_back("panel " + Quoted(system.layers[k].name) +
                                  ": its markers fit a mirror image of the panel far better than the panel as the scene "
-                                 "mounts it (RMS " + FormatFixed(ArcminFromRadians(mirrored), 3) + " arcmin mirrored, " +
+                                 "mounts it (RMS " +
+                                 FormatFixed(ArcminFromRadians(mirrored), 3) + " arcmin mirrored, " +
                                  FormatFixed(ArcminFromRadians(as_given), 3) +
                                  " arcmin as mounted): check its \"reversed\" and the combiner's fold");
   }
@@ -159,8 +166,8 @@ void CheckMirroring(const DisplaySystem& system, const std::vector<std::vector<c
 // distance from the nearest element with power in front of it.
 void PlaceAsFitted(const DisplaySystem& system, const std::vector<Optic>& optics, CalibratedDisplay* display) {
   struct Walked {
-    double position = 0;      // of the panel, fitted
-    double before = 0;        // of the element before it, fitted (0: the pupil)
+    double position = 0;  // of the panel, fitted
+    double before = 0;    // of the element before it, fitted (0: the pupil)
     bool before_is_panel = false;
     std::string before_name;
   };
@@ -173,7 +180,8 @@ void PlaceAsFitted(const DisplaySystem& system, const std::vector<Optic>& optics
     for (const PathStep& step : layer.path) {
       if (step.power != 0) {
         const CalibratedOptic* fitted = display->find_optic(step.element);
-        auto designed = std::find_if(optics.begin(), optics.end(), [&](const Optic& o) { return o.name == step.element; });
+        auto designed =
+            std::find_if(optics.begin(), optics.end(), [&](const Optic& o) { return o.name == step.element; });
         if (fitted && designed != optics.end()) {
           shift += fitted->gap - designed->gap;
           panel.optics_fitted = panel.optics_fitted || fitted->gap_fitted || fitted->focal_length_fitted;
@@ -212,8 +220,14 @@ bool FitGeometry(const DisplaySystem& system, const Measurements& measurements, 
     for (const PanelMarkers& markers : capture.panels) {
       const int k = LayerIndex(system, markers.panel);
       for (const MarkerObservation& o : markers.markers)
-        data.push_back({k, c, PlaceMarker(system.layers[k], o.col, o.row, capture.camera_position[0], capture.camera_position[1]),
-                        {o.col, o.row}, o.angle_x, o.angle_y, o.where});
+        data.push_back(
+            {k,
+             c,
+             PlaceMarker(system.layers[k], o.col, o.row, capture.camera_position[0], capture.camera_position[1]),
+             {o.col, o.row},
+             o.angle_x,
+             o.angle_y,
+             o.where});
     }
   }
   report->markers = static_cast<int>(data.size());
@@ -243,8 +257,9 @@ bool FitGeometry(const DisplaySystem& system, const Measurements& measurements, 
 
   const bool farthest_reference = options.reference == AxisReference::kFarthestPanel;
   if (farthest_reference && spread[0].distinct < 2) {
-    report->message = "the axis reference \"farthest-panel\" needs markers at two or more pixels of the farthest panel " +
-                      Quoted(system.layers[0].name) + (by_layer[0].empty() ? ", which has none" : "");
+    report->message =
+        "the axis reference \"farthest-panel\" needs markers at two or more pixels of the farthest panel " +
+        Quoted(system.layers[0].name) + (by_layer[0].empty() ? ", which has none" : "");
     return false;
   }
   CheckMirroring(system, by_layer, report);
@@ -265,7 +280,8 @@ bool FitGeometry(const DisplaySystem& system, const Measurements& measurements, 
   for (Optic& o : optics) {
     std::optional<double> beyond_the_eye;  // the magnifier's focal point stays behind the eye
     if (magnifier) beyond_the_eye = system.eye.eye_relief * (1 + 1e-6);
-    o.focal = add({"the focal length of " + Quoted(o.name), o.focal_length, 0, beyond_the_eye, std::nullopt}, "focal_length");
+    o.focal =
+        add({"the focal length of " + Quoted(o.name), o.focal_length, 0, beyond_the_eye, std::nullopt}, "focal_length");
     o.gap_index = add({"the gap of " + Quoted(o.name), o.gap, 0, std::nullopt, std::nullopt}, "gap");
   }
   const int pan = add({"the camera's pan", 0, 1, {}, {}}, "pan");
@@ -284,9 +300,12 @@ bool FitGeometry(const DisplaySystem& system, const Measurements& measurements, 
     if (magnifier && !options.fit_focal_length) beyond_focus = system.focal_length;
     const double closest = 1e-3 * (magnifier ? system.focal_length : layer.panel_distance);
     index[k].distance = add({"the distance of " + panel, layer.panel_distance, 2, closest, beyond_focus}, "distance");
-    index[k].rotation = add({"the rotation of " + panel, reference ? 0.0 : layer.panel.rotation, 3, {}, {}}, "rotation");
-    index[k].offset_x = add({"the offset x of " + panel, reference ? 0.0 : layer.panel.offset[0], 4, {}, {}}, "offset_x");
-    index[k].offset_y = add({"the offset y of " + panel, reference ? 0.0 : layer.panel.offset[1], 4, {}, {}}, "offset_y");
+    index[k].rotation =
+        add({"the rotation of " + panel, reference ? 0.0 : layer.panel.rotation, 3, {}, {}}, "rotation");
+    index[k].offset_x =
+        add({"the offset x of " + panel, reference ? 0.0 : layer.panel.offset[0], 4, {}, {}}, "offset_x");
+    index[k].offset_y =
+        add({"the offset y of " + panel, reference ? 0.0 : layer.panel.offset[1], 4, {}, {}}, "offset_y");
     if (reference)
       for (int i : {index[k].rotation, index[k].offset_x, index[k].offset_y}) hold(i, ParameterStatus::kReference);
     if (spread[k].distinct == 1) {
@@ -299,13 +318,16 @@ bool FitGeometry(const DisplaySystem& system, const Measurements& measurements, 
       report->warnings.push_back(
           panel + ": its markers show a single panel pixel (" + FormatFixed(pixel.real(), 1) + ", " +
           FormatFixed(pixel.imag(), 1) + "), which fixes the offset but not the rotation" +
-          (parallax ? "" : " nor the magnification") + ": its " + (parallax ? "rotation keeps its scene value (" :
-          "distance and rotation keep their scene values (" + ShowValue("distance", layer.panel_distance) + ", ") +
+          (parallax ? "" : " nor the magnification") + ": its " +
+          (parallax ? "rotation keeps its scene value ("
+                    : "distance and rotation keep their scene values (" + ShowValue("distance", layer.panel_distance) +
+                          ", ") +
           ShowValue("rotation", layer.panel.rotation) + "); show markers at three or more pixels not on one line");
     } else if (spread[k].collinear) {
-      report->warnings.push_back(panel + ": its markers lie on one line of the panel, so its magnification and rotation "
-                                         "rest on that line's length and tilt alone and nothing checks the other "
-                                         "direction; add markers off the line");
+      report->warnings.push_back(panel +
+                                 ": its markers lie on one line of the panel, so its magnification and rotation "
+                                 "rest on that line's length and tilt alone and nothing checks the other "
+                                 "direction; add markers off the line");
     }
   }
   // Only parallax tells an element's focal length or gap from the distances of the panels behind it.
@@ -317,19 +339,25 @@ bool FitGeometry(const DisplaySystem& system, const Measurements& measurements, 
     auto no_parallax = [&](int i, const std::string& what) {
       hold(i, ParameterStatus::kUndetermined);
       report->warnings.push_back(what + " cannot be told from the panel distances while each panel " +
-                                 (magnifier ? "" : "behind it ") + "is seen from one camera position only: it keeps "
-                                 "its scene value (" + ShowValue(quantity[i], fit.parameter(i).start) + "); add "
+                                 (magnifier ? "" : "behind it ") +
+                                 "is seen from one camera position only: it keeps "
+                                 "its scene value (" +
+                                 ShowValue(quantity[i], fit.parameter(i).start) +
+                                 "); add "
                                  "captures from other camera positions (\"camera_position\") to fit it");
     };
-    if (!options.fit_focal_length) hold(o.focal, ParameterStatus::kNotFitted);
-    else if (!parallax) no_parallax(o.focal, "the focal length" + named);
+    if (!options.fit_focal_length)
+      hold(o.focal, ParameterStatus::kNotFitted);
+    else if (!parallax)
+      no_parallax(o.focal, "the focal length" + named);
     if (!options.fit_lens_gaps) {
       hold(o.gap_index, ParameterStatus::kNotFitted);
     } else if (!o.placed_before) {
       hold(o.gap_index, ParameterStatus::kNotFitted);
       report->warnings.push_back("the gap of " + Quoted(o.name) + " is not fitted: " + Quoted(o.before) +
                                  " before it has no place of its own (a flat element without \"gap\"), so no gap "
-                                 "could be written; give " + Quoted(o.before) + " a \"gap\"");
+                                 "could be written; give " +
+                                 Quoted(o.before) + " a \"gap\"");
     } else if (!parallax) {
       no_parallax(o.gap_index, "the gap of " + Quoted(o.name));
     }
@@ -364,8 +392,10 @@ bool FitGeometry(const DisplaySystem& system, const Measurements& measurements, 
     std::vector<std::string> partners;
     for (int i : u.partners) partners.push_back(fit.parameter(i).name);
     report->warnings.push_back("the data do not determine " + fit.parameter(u.index).name + " (it trades off against " +
-                               JoinWords(partners, " and ") + " without changing any residual): it keeps its scene "
-                               "value (" + ShowValue(quantity[u.index], fit.parameter(u.index).start) + ")");
+                               JoinWords(partners, " and ") +
+                               " without changing any residual): it keeps its scene "
+                               "value (" +
+                               ShowValue(quantity[u.index], fit.parameter(u.index).start) + ")");
   }
 
   // The layer's parameters as designed (seen by an unturned camera) and as fitted.
@@ -394,10 +424,11 @@ bool FitGeometry(const DisplaySystem& system, const Measurements& measurements, 
       return false;
     }
     if (!magnifier && (m.b == 0 || m.diopters() < 0)) {
-      report->message = "the fit images panel " + Quoted(system.layers[k].name) + " " +
-                        (m.b == 0 ? "into the pupil plane" : "behind the eye (" + FormatFixed(m.diopters(), 3) + " D)") +
-                        (on_path.empty() ? "" : ", through the optics in front of it as fitted") +
-                        ": the measurements do not match this display";
+      report->message =
+          "the fit images panel " + Quoted(system.layers[k].name) + " " +
+          (m.b == 0 ? "into the pupil plane" : "behind the eye (" + FormatFixed(m.diopters(), 3) + " D)") +
+          (on_path.empty() ? "" : ", through the optics in front of it as fitted") +
+          ": the measurements do not match this display";
       return false;
     }
   }
@@ -439,7 +470,8 @@ bool FitGeometry(const DisplaySystem& system, const Measurements& measurements, 
       report->warnings.push_back(std::to_string(beyond) + " marker" + (beyond > 1 ? "s lie" : " lies") +
                                  " beyond 6 sigma of the noise (the worst " +
                                  FormatFixed(ArcminFromRadians(worst->first), 3) + " arcmin, at " +
-                                 worst->second->where.str() + "): outliers bias a least-squares fit; a robust loss "
+                                 worst->second->where.str() +
+                                 "): outliers bias a least-squares fit; a robust loss "
                                  "(huber or cauchy) discounts them");
   }
 
@@ -451,7 +483,8 @@ bool FitGeometry(const DisplaySystem& system, const Measurements& measurements, 
     p.scene_value = fit.parameter(i).start;
     p.value = fit.value(i);
     p.status = status[i];
-    if (p.status == ParameterStatus::kFitted && result.covariance.size()) p.std_dev = std::sqrt(result.covariance(i, i));
+    if (p.status == ParameterStatus::kFitted && result.covariance.size())
+      p.std_dev = std::sqrt(result.covariance(i, i));
     return p;
   };
   auto fitted = [&](int i) { return status[i] == ParameterStatus::kFitted; };
@@ -459,7 +492,8 @@ bool FitGeometry(const DisplaySystem& system, const Measurements& measurements, 
   for (const Optic& o : optics) {
     report->parameters.push_back(estimate(o.name, o.focal));
     if (options.fit_lens_gaps) report->parameters.push_back(estimate(o.name, o.gap_index));
-    display->optics.push_back({o.name, fit.value(o.focal), fit.value(o.gap_index), fitted(o.focal), fitted(o.gap_index)});
+    display->optics.push_back(
+        {o.name, fit.value(o.focal), fit.value(o.gap_index), fitted(o.focal), fitted(o.gap_index)});
   }
   for (int k = 0; k < layer_count; ++k) {
     if (by_layer[k].empty()) continue;

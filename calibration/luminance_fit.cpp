@@ -4,10 +4,10 @@
 
 #include <ceres/ceres.h>
 
-#include "framework/params.h"
 #include "calibration/fit_steps.h"
 #include "calibration/luminance_model.h"
 #include "calibration/scalar_fit.h"
+#include "framework/params.h"
 
 namespace layerlab {
 namespace {
@@ -24,7 +24,8 @@ struct LuminanceCost {
 
 using LuminanceCostFunction = ceres::AutoDiffCostFunction<LuminanceCost, 1, 1, 1, 1>;
 
-double Rms(const std::vector<LuminanceSample>& samples, double scale, double max_luminance, double black, double gamma) {
+double Rms(const std::vector<LuminanceSample>& samples, double scale, double max_luminance, double black,
+           double gamma) {
   double sum = 0;
   for (const LuminanceSample& s : samples)
     sum += std::pow(ModelLuminance(s.level, max_luminance, black, gamma) - s.luminance / scale, 2);
@@ -64,10 +65,12 @@ bool FitCurve(const VirtualLayer& layer, const PanelLuminance& curve, const Cali
   if (levels.size() < 3 || !between) {
     fit.Hold(black), fit.Hold(gamma);
     status[black] = status[gamma] = ParameterStatus::kUndetermined;
-    report->warnings.push_back(panel + ": luminance at fewer than three distinct input levels, or at none strictly "
-                                       "between black and full, cannot fix gamma and black level: they keep their "
-                                       "scene values (" + ShowValue("gamma", gamma0) + ", " +
-                                       ShowValue("black_level", black0) + "); only the maximum luminance is fitted");
+    report->warnings.push_back(panel +
+                               ": luminance at fewer than three distinct input levels, or at none strictly "
+                               "between black and full, cannot fix gamma and black level: they keep their "
+                               "scene values (" +
+                               ShowValue("gamma", gamma0) + ", " + ShowValue("black_level", black0) +
+                               "); only the maximum luminance is fitted");
   }
   for (const LuminanceSample& s : curve.samples)
     fit.AddResidual(new LuminanceCostFunction(new LuminanceCost{s.level, s.luminance / scale}),
@@ -91,12 +94,15 @@ bool FitCurve(const VirtualLayer& layer, const PanelLuminance& curve, const Cali
     std::vector<std::string> partners;
     for (int i : u.partners) partners.push_back(fit.parameter(i).name);
     report->warnings.push_back("the data do not determine " + fit.parameter(u.index).name + " (it trades off against " +
-                               JoinWords(partners, " and ") + " without changing any residual): it keeps its scene "
-                               "value (" + ShowValue(names[u.index], fit.parameter(u.index).start) + ")");
+                               JoinWords(partners, " and ") +
+                               " without changing any residual): it keeps its scene "
+                               "value (" +
+                               ShowValue(names[u.index], fit.parameter(u.index).start) + ")");
   }
   if (result.covariance.size() == 0)
     report->warnings.push_back("no uncertainties for the luminance of " + panel + ": " + result.covariance_message);
-  residuals->luminance_rms_after = Rms(curve.samples, scale, fit.value(max_luminance), fit.value(black), fit.value(gamma));
+  residuals->luminance_rms_after =
+      Rms(curve.samples, scale, fit.value(max_luminance), fit.value(black), fit.value(gamma));
 
   for (int i : {max_luminance, black, gamma}) {
     ParameterEstimate p;
@@ -106,7 +112,8 @@ bool FitCurve(const VirtualLayer& layer, const PanelLuminance& curve, const Cali
     p.scene_value = fit.parameter(i).start * unit;
     p.value = fit.value(i) * unit;
     p.status = status[i];
-    if (p.status == ParameterStatus::kFitted && result.covariance.size()) p.std_dev = std::sqrt(result.covariance(i, i)) * unit;
+    if (p.status == ParameterStatus::kFitted && result.covariance.size())
+      p.std_dev = std::sqrt(result.covariance(i, i)) * unit;
     report->parameters.push_back(p);
   }
   out->luminance_measured = true;

@@ -41,10 +41,13 @@ struct MarkerPlacement {
   double camera_x = 0, camera_y = 0;  // c, m
 };
 
-inline MarkerPlacement PlaceMarker(const VirtualLayer& layer, double col, double row, double camera_x, double camera_y) {
+inline MarkerPlacement PlaceMarker(const VirtualLayer& layer, double col, double row, double camera_x,
+                                   double camera_y) {
   const PanelSpec& p = layer.panel;
-  const double x = (col - static_cast<double>(p.active_left) + 0.5 - 0.5 * static_cast<double>(p.active_cols)) * p.pitch_x;
-  const double y = (0.5 * static_cast<double>(p.active_rows) - (row - static_cast<double>(p.active_top)) - 0.5) * p.pitch_y;
+  const double x =
+      (col - static_cast<double>(p.active_left) + 0.5 - 0.5 * static_cast<double>(p.active_cols)) * p.pitch_x;
+  const double y =
+      (0.5 * static_cast<double>(p.active_rows) - (row - static_cast<double>(p.active_top)) - 0.5) * p.pitch_y;
   return {layer.flip_x ? -x : x, layer.flip_y ? -y : y, camera_x, camera_y};
 }
 
@@ -85,7 +88,8 @@ void PredictVisualAngle(const MarkerParameters<T>& q, const LayerOptics& optics,
   const T c = cos(q.rotation), s = sin(q.rotation);
   const T x = q.offset_x + c * m.local_x - s * m.local_y;
   const T y = q.offset_y + s * m.local_x + c * m.local_y;
-  const T eye_direction[3] = {tan_per_meter * x - m.camera_x * diopters, tan_per_meter * y - m.camera_y * diopters, T(1)};
+  const T eye_direction[3] = {tan_per_meter * x - m.camera_x * diopters, tan_per_meter * y - m.camera_y * diopters,
+                              T(1)};
   const T camera_from_eye[3] = {q.tilt, -q.pan, -q.roll};  // the inverse of R_cam
   T d[3];
   ceres::AngleAxisRotatePoint(camera_from_eye, eye_direction, d);

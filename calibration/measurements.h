@@ -15,8 +15,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "framework/error.h"
 #include "calibration/camera_model.h"
+#include "framework/error.h"
 #include "systems/display_system.h"
 
 namespace layerlab {

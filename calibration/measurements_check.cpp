@@ -1,7 +1,7 @@
 #include <algorithm>
 
-#include "framework/params.h"
 #include "calibration/measurements.h"
+#include "framework/params.h"
 
 namespace layerlab {
 namespace {
@@ -13,8 +13,10 @@ const VirtualLayer& PanelNamed(const DisplaySystem& system, const std::string& n
     names.push_back(layer.name);
   }
   std::string msg = "no panel named \"" + name + "\" in " + (system.file.empty() ? "the scene" : system.file);
-  if (auto near = ClosestWord(name, names)) msg += "; did you mean \"" + *near + "\"?";
-  else msg += "; its panels are " + JoinWords(names, " and ");
+  if (auto near = ClosestWord(name, names))
+    msg += "; did you mean \"" + *near + "\"?";
+  else
+    msg += "; its panels are " + JoinWords(names, " and ");
   throw Error(where, msg);
 }
 
@@ -25,7 +27,8 @@ void CheckMeasurements(const Measurements& measurements, const DisplaySystem& sy
     for (const PanelMarkers& markers : capture.panels) {
       const PanelSpec& panel = PanelNamed(system, markers.panel, markers.where).panel;
       for (const MarkerObservation& m : markers.markers) {
-        const double cols = static_cast<double>(panel.resolution_cols), rows = static_cast<double>(panel.resolution_rows);
+        const double cols = static_cast<double>(panel.resolution_cols),
+                     rows = static_cast<double>(panel.resolution_rows);
         if (m.col < -0.5 || m.col > cols - 0.5 || m.row < -0.5 || m.row > rows - 0.5)
           throw Error(m.where.child("panel_pixel"),
                       "(" + FormatFixed(m.col, 1) + ", " + FormatFixed(m.row, 1) + ") is off the panel's " +
@@ -35,7 +38,8 @@ void CheckMeasurements(const Measurements& measurements, const DisplaySystem& sy
     }
   for (const PanelLuminance& curve : measurements.luminance) {
     PanelNamed(system, curve.panel, curve.where);
-    bool lit = std::any_of(curve.samples.begin(), curve.samples.end(), [](const LuminanceSample& s) { return s.luminance > 0; });
+    bool lit = std::any_of(curve.samples.begin(), curve.samples.end(),
+                           [](const LuminanceSample& s) { return s.luminance > 0; });
     if (!lit) throw Error(curve.where.child("samples"), "every reading is zero: the panel's response cannot be fitted");
   }
 }

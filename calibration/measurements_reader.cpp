@@ -1,8 +1,8 @@
 #include <cmath>
 
+#include "calibration/measurements.h"
 #include "framework/json_file.h"
 #include "framework/params.h"
-#include "calibration/measurements.h"
 
 namespace layerlab {
 namespace {
@@ -69,8 +69,9 @@ MarkerObservation ReadMarker(Params p, const std::optional<CameraIntrinsics>& ca
   } else {
     m.camera_pixel = NumberPair(p, "camera_pixel", "[u, v]");
     if (!camera)
-      p.fail("camera_pixel", "a camera pixel needs the camera's intrinsics: add \"camera\": {\"fx\", \"fy\", "
-                             "\"cx\", \"cy\"} at the top level, or give \"angle\" instead");
+      p.fail("camera_pixel",
+             "a camera pixel needs the camera's intrinsics: add \"camera\": {\"fx\", \"fy\", "
+             "\"cx\", \"cy\"} at the top level, or give \"angle\" instead");
     auto angle = AngleFromCameraPixel(*camera, (*m.camera_pixel)[0], (*m.camera_pixel)[1]);
     if (!angle)
       p.fail("camera_pixel", "the camera's distortion (k1, k2) folds back before this pixel: it cannot be undistorted");
@@ -101,7 +102,8 @@ Capture ReadCapture(Params p, const std::optional<CameraIntrinsics>& camera) {
     panel.where = markers_at.child(it.key());
     if (!it->is_array()) throw Error(panel.where, "expected an array of markers, got " + JsonKindName(*it));
     if (it->empty()) throw Error(panel.where, "an empty list of markers; leave the panel out instead");
-    for (size_t i = 0; i < it->size(); ++i) panel.markers.push_back(ReadMarker(Params((*it)[i], panel.where.child(i)), camera));
+    for (size_t i = 0; i < it->size(); ++i)
+      panel.markers.push_back(ReadMarker(Params((*it)[i], panel.where.child(i)), camera));
     c.panels.push_back(std::move(panel));
   }
   p.check_all_read();
@@ -113,10 +115,12 @@ PanelLuminance ReadLuminance(Params p, const std::string& panel) {
   l.panel = panel;
   l.where = p.where();
   if (!p.has("levels")) p.raw("levels");  // reports the missing key
-  l.levels = p.choice("levels", {"8-bit", "fraction"}, "8-bit") == "8-bit" ? InputLevels::k8Bit : InputLevels::kFraction;
+  l.levels =
+      p.choice("levels", {"8-bit", "fraction"}, "8-bit") == "8-bit" ? InputLevels::k8Bit : InputLevels::kFraction;
   const json& samples = p.raw("samples");
   Location at = p.where("samples");
-  if (!samples.is_array()) throw Error(at, "expected an array of [level, luminance] pairs, got " + JsonKindName(samples));
+  if (!samples.is_array())
+    throw Error(at, "expected an array of [level, luminance] pairs, got " + JsonKindName(samples));
   if (samples.empty()) throw Error(at, "no samples; leave the panel out instead");
   for (size_t i = 0; i < samples.size(); ++i) {
     const json& pair = samples[i];
@@ -165,8 +169,8 @@ Measurements ParseMeasurements(const json& document, const std::string& file) {
   Params top(document, {file, ""});
   std::string format = top.string("format");
   if (format != kMeasurementsFormat)
-    top.fail("format", "unknown measurements format \"" + format + "\"; this layerlab reads \"" +
-                           kMeasurementsFormat + "\"");
+    top.fail("format",
+             "unknown measurements format \"" + format + "\"; this layerlab reads \"" + kMeasurementsFormat + "\"");
   m.description = top.string("description", "");
   top.mark_read("camera");
   if (top.has("camera")) m.camera = ReadCamera(top.object("camera"));

@@ -86,7 +86,7 @@ ordered_json MeasurementsToJson(const Measurements& m) {
     for (const Capture& capture : m.captures) {
       ordered_json c;
       c["camera_position"] = {Value(Significant(capture.camera_position[0], 12)),
-                             Value(Significant(capture.camera_position[1], 12))};
+                              Value(Significant(capture.camera_position[1], 12))};
       ordered_json markers = ordered_json::object();
       for (const PanelMarkers& panel : capture.panels) {
         ordered_json list = ordered_json::array();
@@ -112,7 +112,8 @@ ordered_json MeasurementsToJson(const Measurements& m) {
       const bool bits = curve.levels == InputLevels::k8Bit;
       ordered_json samples = ordered_json::array();
       for (const LuminanceSample& s : curve.samples)
-        samples.push_back({Value(bits ? std::round(s.level * 255) : Significant(s.level, 12)), Value(Significant(s.luminance, 6))});
+        samples.push_back(
+            {Value(bits ? std::round(s.level * 255) : Significant(s.level, 12)), Value(Significant(s.luminance, 6))});
       curves[curve.panel] = {{"levels", bits ? "8-bit" : "fraction"}, {"samples", samples}};
     }
     doc["luminance"] = curves;

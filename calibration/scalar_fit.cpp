@@ -117,8 +117,10 @@ ScalarFitResult ScalarFit::Solve(const ScalarFitOptions& options) {
   while (true) {
     for (int i = 0; i < size(); ++i) {
       if (!used_[i]) continue;
-      if (held_[i]) problem_.SetParameterBlockConstant(&values_[i]);
-      else problem_.SetParameterBlockVariable(&values_[i]);
+      if (held_[i])
+        problem_.SetParameterBlockConstant(&values_[i]);
+      else
+        problem_.SetParameterBlockVariable(&values_[i]);
     }
     const std::vector<int> free = FreeParameters();
     result.free_parameters = static_cast<int>(free.size());
@@ -148,7 +150,8 @@ ScalarFitResult ScalarFit::Solve(const ScalarFitOptions& options) {
     if (computed) {
       if (!std::isfinite(result.noise)) {
         result.covariance_message = "no redundancy (" + std::to_string(result.residuals) + " residuals for " +
-                                    std::to_string(result.free_parameters) + " parameters): the noise, and so the "
+                                    std::to_string(result.free_parameters) +
+                                    " parameters): the noise, and so the "
                                     "uncertainties, cannot be estimated";
         return result;
       }
@@ -157,15 +160,17 @@ ScalarFitResult ScalarFit::Solve(const ScalarFitOptions& options) {
       covariance.GetCovarianceMatrix(blocks, free_covariance.data());
       result.covariance = Eigen::MatrixXd::Zero(size(), size());
       for (int a = 0; a < n; ++a)
-        for (int b = 0; b < n; ++b) result.covariance(free[a], free[b]) = free_covariance(a, b) * result.noise * result.noise;
+        for (int b = 0; b < n; ++b)
+          result.covariance(free[a], free[b]) = free_covariance(a, b) * result.noise * result.noise;
       return result;
     }
 
     // Rank deficient: hold one parameter of the first unseen direction and solve again.
     std::vector<Eigen::VectorXd> unseen = NullDirections(free);
     if (unseen.empty()) {
-      result.covariance_message = "the covariance is numerically singular (ceres::Covariance refused it) although "
-                                  "no parameter direction is unseen by the data; no uncertainties are given";
+      result.covariance_message =
+          "the covariance is numerically singular (ceres::Covariance refused it) although "
+          "no parameter direction is unseen by the data; no uncertainties are given";
       return result;
     }
     const Eigen::VectorXd& v = unseen.front();

@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Core>
 #include <ceres/ceres.h>
+#include <Eigen/Core>
 
 namespace layerlab {
 

@@ -50,14 +50,15 @@ std::array<double, 2> ImagedMarker(const DisplaySystem& truth, const VirtualLaye
   const Eigen::Vector3d ray((sign * on_panel.x() - m.a * position[0]) / m.b,
                             (sign * on_panel.y() - m.a * position[1]) / m.b, 1.0);
   const Eigen::Vector3d turn(-camera.tilt, camera.pan, camera.roll);
-  const Eigen::Matrix3d eye_from_camera =
-      turn.norm() > 0 ? Eigen::AngleAxisd(turn.norm(), turn.normalized()).toRotationMatrix() : Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d eye_from_camera = turn.norm() > 0
+                                              ? Eigen::AngleAxisd(turn.norm(), turn.normalized()).toRotationMatrix()
+                                              : Eigen::Matrix3d::Identity();
   const Eigen::Vector3d seen = eye_from_camera.transpose() * ray;
   return {std::atan(seen.x() / seen.z()), std::atan(seen.y() / seen.z())};
 }
 
-std::vector<Capture> SyntheticCaptures(const DisplaySystem& truth, const MarkerGrid& grid, const SyntheticCamera& camera,
-                                       const SyntheticNoise& noise) {
+std::vector<Capture> SyntheticCaptures(const DisplaySystem& truth, const MarkerGrid& grid,
+                                       const SyntheticCamera& camera, const SyntheticNoise& noise) {
   Gaussian gaussian(noise.seed);
   std::vector<Capture> captures;
   for (size_t c = 0; c < camera.positions.size(); ++c) {
@@ -71,7 +72,8 @@ std::vector<Capture> SyntheticCaptures(const DisplaySystem& truth, const MarkerG
       markers.where = capture.where.child("markers").child(layer.name);
       const double cols = static_cast<double>(p.active_cols) - 1, rows = static_cast<double>(p.active_rows) - 1;
       for (double row : Spaced(grid.rows, p.active_top + grid.inset * rows, p.active_top + (1 - grid.inset) * rows))
-        for (double col : Spaced(grid.cols, p.active_left + grid.inset * cols, p.active_left + (1 - grid.inset) * cols)) {
+        for (double col :
+             Spaced(grid.cols, p.active_left + grid.inset * cols, p.active_left + (1 - grid.inset) * cols)) {
           MarkerObservation m;
           m.col = col;
           m.row = row;

@@ -28,7 +28,7 @@ struct MarkerGrid {
 struct SyntheticCamera {
   std::optional<CameraIntrinsics> intrinsics;  // markers in camera pixels when set, as angles otherwise
   std::vector<std::array<double, 2>> positions = {{0.0, 0.0}};  // m, one capture each
-  double pan = 0, tilt = 0, roll = 0;  // rad, as marker_model.h turns the camera
+  double pan = 0, tilt = 0, roll = 0;                           // rad, as marker_model.h turns the camera
 };
 
 struct SyntheticNoise {

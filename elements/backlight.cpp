@@ -17,8 +17,6 @@ std::unique_ptr<Element> MakeBacklight(Params& p) {
 
 }  // namespace
 
-ElementType BacklightType() {
-  return {"backlight", ElementKind::kBacklight, "uniform white backlight", MakeBacklight};
-}
+ElementType BacklightType() { return {"backlight", ElementKind::kBacklight, "uniform white backlight", MakeBacklight}; }
 
 }  // namespace layerlab

@@ -66,7 +66,7 @@ class Element {
 class LensElement : public Element {
  public:
   ElementKind kind() const final { return ElementKind::kLens; }
-  virtual double focal_length() const = 0;                // m, nonzero; negative diverges
+  virtual double focal_length() const = 0;                   // m, nonzero; negative diverges
   virtual std::optional<double> clear_aperture() const = 0;  // m, diameter
   double power() const override { return 1.0 / focal_length(); }
   // A focus-tunable lens changes its power from subframe to subframe.
@@ -117,7 +117,7 @@ struct EyeModel {
   uint64_t pupil_seed = 1;
   double eye_relief = 0.01;  // m, pupil plane to the first lens or curved mirror placed without a "gap"
   double accommodation_min = 0.0, accommodation_max = 2.6;  // D
-  std::array<double, 3> chromatic_defocus = {0, 0, 0};     // D added per channel
+  std::array<double, 3> chromatic_defocus = {0, 0, 0};      // D added per channel
   double eyebox_width = 6e-3, eyebox_height = 6e-3;         // m
   int views_x = 13, views_y = 13;
 };
@@ -144,8 +144,8 @@ struct PanelSpec {
   bool reversed = false;     // mounted back to front: mirrored about its vertical axis
   // At most one of the placements is given (the element's "gap" is the third);
   // compile derives the rest.
-  std::optional<double> distance;      // m from the nearest lens or curved mirror before it
-  std::optional<Depth> virtual_depth;  // of the panel's final image, from the eye
+  std::optional<double> distance;         // m from the nearest lens or curved mirror before it
+  std::optional<Depth> virtual_depth;     // of the panel's final image, from the eye
   std::array<double, 2> offset = {0, 0};  // m, in the panel plane, eye-space x right, y up
   double rotation = 0.0;                  // rad, in-plane, counterclockwise as the eye sees it
   double polarization_angle = 0.0;        // rad, axis of the exit polarizer

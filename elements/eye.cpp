@@ -25,8 +25,8 @@ std::unique_ptr<Element> MakeEye(Params& p) {
   EyeModel m;
   m.pupil_diameter = p.quantity("pupil_diameter", Dimension::kLength, m.pupil_diameter);
   p.require_range("pupil_diameter", m.pupil_diameter, 0.0, 0.02, false, false);
-  m.pupil_shape = p.choice("pupil_shape", {"square", "round"}, "square") == "square" ? PupilShape::kSquare
-                                                                                     : PupilShape::kRound;
+  m.pupil_shape =
+      p.choice("pupil_shape", {"square", "round"}, "square") == "square" ? PupilShape::kSquare : PupilShape::kRound;
   if (p.has("pupil_samples")) {
     auto n = p.integer_pair("pupil_samples", 1, 1024);
     m.pupil_samples_x = static_cast<int>(n[0]);

@@ -35,8 +35,8 @@ std::unique_ptr<Element> MakeHalfMirror(Params& p) {
   Rgb t = p.fraction_rgb("transmittance", 0.5);
   for (int c = 0; c < 3; ++c)
     if (r[c] + t[c] > 1.0 + 1e-12)
-      p.fail("transmittance", "reflectance + transmittance is " + FormatFixed(r[c] + t[c], 4) +
-                                  " in channel " + kChannelNames[c] + "; a passive mirror cannot exceed 1");
+      p.fail("transmittance", "reflectance + transmittance is " + FormatFixed(r[c] + t[c], 4) + " in channel " +
+                                  kChannelNames[c] + "; a passive mirror cannot exceed 1");
   return std::make_unique<HalfMirror>(r, t, ReadFold(p));
 }
 

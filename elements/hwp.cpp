@@ -47,8 +47,8 @@ std::unique_ptr<Element> MakeHwp(Params& p) {
   bool achromatic = p.boolean("achromatic", false);
   std::array<double, 3> retardance{};
   for (int c = 0; c < 3; ++c)
-    retardance[c] = achromatic ? std::numbers::pi
-                               : (2.0 * order + 1.0) * std::numbers::pi * design / kChannelWavelengths[c];
+    retardance[c] =
+        achromatic ? std::numbers::pi : (2.0 * order + 1.0) * std::numbers::pi * design / kChannelWavelengths[c];
   return std::make_unique<HalfWavePlate>(axis, retardance, ReadSpectralFraction(p, "transmittance", 1.0));
 }
 

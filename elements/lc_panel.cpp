@@ -46,10 +46,9 @@ std::unique_ptr<Element> MakeLcPanel(Params& p) {
     Params region = p.object("active_region");
     s.active_cols = region.integer("cols", 1, s.resolution_cols);
     s.active_rows = region.integer("rows", 1, s.resolution_rows);
-    s.active_left = region.integer("left", 0, s.resolution_cols - s.active_cols,
-                                   (s.resolution_cols - s.active_cols) / 2);
-    s.active_top = region.integer("top", 0, s.resolution_rows - s.active_rows,
-                                  (s.resolution_rows - s.active_rows) / 2);
+    s.active_left =
+        region.integer("left", 0, s.resolution_cols - s.active_cols, (s.resolution_cols - s.active_cols) / 2);
+    s.active_top = region.integer("top", 0, s.resolution_rows - s.active_rows, (s.resolution_rows - s.active_rows) / 2);
     region.check_all_read();
   }
 
@@ -61,8 +60,9 @@ std::unique_ptr<Element> MakeLcPanel(Params& p) {
     p.fail("gap", std::string("give one placement: \"gap\" (from the element before) or \"") +
                       (s.distance ? "distance\" (from the lens)" : "virtual_depth\" (from the eye)") + ", not both");
   if (!s.distance && !s.virtual_depth && !p.has("gap"))
-    p.fail("distance", "missing placement: give \"distance\" (from the lens, e.g. \"72.81 mm\") or "
-                       "\"virtual_depth\" (from the eye, e.g. \"0.4 D\")");
+    p.fail("distance",
+           "missing placement: give \"distance\" (from the lens, e.g. \"72.81 mm\") or "
+           "\"virtual_depth\" (from the eye, e.g. \"0.4 D\")");
   if (s.distance && !(*s.distance > 0))
     p.fail("distance", "the panel must be behind the lens (distance > 0), got " + FormatFixed(*s.distance, 6) + " m");
 
@@ -92,8 +92,6 @@ std::unique_ptr<Element> MakeLcPanel(Params& p) {
 
 }  // namespace
 
-ElementType LcPanelType() {
-  return {"lc_panel", ElementKind::kPanel, "transmissive LC attenuator panel", MakeLcPanel};
-}
+ElementType LcPanelType() { return {"lc_panel", ElementKind::kPanel, "transmissive LC attenuator panel", MakeLcPanel}; }
 
 }  // namespace layerlab

@@ -37,8 +37,10 @@ class Mirror final : public MirrorElement {
 
 std::unique_ptr<Element> MakeMirror(Params& p) {
   std::optional<double> f = p.optional_quantity("focal_length", Dimension::kLength);
-  if (f && *f == 0) p.fail("focal_length", "a curved mirror needs a nonzero focal length; leave it out for a flat mirror");
-  if (f && std::abs(*f) > 10.0) p.fail("focal_length", "must be at most 10 m either way, got " + FormatFixed(*f, 4) + " m");
+  if (f && *f == 0)
+    p.fail("focal_length", "a curved mirror needs a nonzero focal length; leave it out for a flat mirror");
+  if (f && std::abs(*f) > 10.0)
+    p.fail("focal_length", "must be at most 10 m either way, got " + FormatFixed(*f, 4) + " m");
   Rgb reflectance = p.fraction_rgb("reflectance", 1.0);
   for (double r : reflectance)
     if (!(r > 0)) p.fail("reflectance", "a mirror that reflects no light shows nothing behind it");

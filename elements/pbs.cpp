@@ -70,8 +70,6 @@ std::unique_ptr<Element> MakePbs(Params& p) {
 
 }  // namespace
 
-ElementType PbsType() {
-  return {"pbs", ElementKind::kCombiner, "polarizing beam splitter", MakePbs};
-}
+ElementType PbsType() { return {"pbs", ElementKind::kCombiner, "polarizing beam splitter", MakePbs}; }
 
 }  // namespace layerlab

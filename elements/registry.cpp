@@ -6,13 +6,20 @@ namespace layerlab {
 
 std::string KindName(ElementKind kind) {
   switch (kind) {
-    case ElementKind::kEye: return "an eye";
-    case ElementKind::kLens: return "a lens";
-    case ElementKind::kMirror: return "a mirror";
-    case ElementKind::kCombiner: return "a combiner";
-    case ElementKind::kInlineOptic: return "an in-line optic";
-    case ElementKind::kPanel: return "a panel";
-    case ElementKind::kBacklight: return "a backlight";
+    case ElementKind::kEye:
+      return "an eye";
+    case ElementKind::kLens:
+      return "a lens";
+    case ElementKind::kMirror:
+      return "a mirror";
+    case ElementKind::kCombiner:
+      return "a combiner";
+    case ElementKind::kInlineOptic:
+      return "an in-line optic";
+    case ElementKind::kPanel:
+      return "a panel";
+    case ElementKind::kBacklight:
+      return "a backlight";
   }
   return "an element";
 }
@@ -20,8 +27,7 @@ std::string KindName(ElementKind kind) {
 void ElementRegistry::add(ElementType type) {
   if (type.name.empty() || !type.make) throw Error("an element type needs a name and a factory");
   std::string name = type.name;
-  if (!types_.emplace(name, std::move(type)).second)
-    throw Error("element type \"" + name + "\" is registered twice");
+  if (!types_.emplace(name, std::move(type)).second) throw Error("element type \"" + name + "\" is registered twice");
 }
 
 const ElementType* ElementRegistry::find(const std::string& name) const {
@@ -53,8 +59,8 @@ std::unique_ptr<Element> ElementRegistry::create(Params& params) const {
   if (type->kind != ElementKind::kEye && type->kind != ElementKind::kBacklight) {
     gap = params.optional_quantity("gap", Dimension::kLength);
     if (gap && !(*gap > 0))
-      params.fail("gap", "the path length from the element before must be positive, got " + FormatFixed(*gap * 1e3, 3) +
-                             " mm");
+      params.fail(
+          "gap", "the path length from the element before must be positive, got " + FormatFixed(*gap * 1e3, 3) + " mm");
     if (gap) params.require_range("gap", *gap, 0.0, 100.0, true, false);
   }
   std::unique_ptr<Element> element = type->make(params);

@@ -18,8 +18,8 @@ Rgb ReadSpectralFraction(Params& params, const std::string& key, double fallback
   if (!wavelengths.is_array() || wavelengths.size() < 2)
     table.fail("wavelengths", "expected an array of at least two wavelengths");
   if (!values.is_array() || values.size() != wavelengths.size())
-    table.fail("values", "expected an array with one fraction per wavelength (" +
-                             std::to_string(wavelengths.size()) + ")");
+    table.fail("values",
+               "expected an array with one fraction per wavelength (" + std::to_string(wavelengths.size()) + ")");
 
   std::vector<double> nm(wavelengths.size()), fraction(values.size());
   for (size_t i = 0; i < nm.size(); ++i) {
@@ -38,8 +38,8 @@ Rgb ReadSpectralFraction(Params& params, const std::string& key, double fallback
     double w = kChannelWavelengths[c];
     if (w < nm.front() || w > nm.back())
       table.fail("wavelengths", "the table covers " + FormatFixed(nm.front() * 1e9, 0) + " to " +
-                                    FormatFixed(nm.back() * 1e9, 0) + " nm but channel " +
-                                    kChannelNames[c] + " is at " + FormatFixed(w * 1e9, 0) + " nm");
+                                    FormatFixed(nm.back() * 1e9, 0) + " nm but channel " + kChannelNames[c] +
+                                    " is at " + FormatFixed(w * 1e9, 0) + " nm");
     size_t hi = std::upper_bound(nm.begin(), nm.end(), w) - nm.begin();
     hi = std::min(hi, nm.size() - 1);
     size_t lo = hi - 1;

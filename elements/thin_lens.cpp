@@ -37,8 +37,6 @@ std::unique_ptr<Element> MakeThinLens(Params& p) {
 
 }  // namespace
 
-ElementType ThinLensType() {
-  return {"thin_lens", ElementKind::kLens, "ideal thin magnifier lens", MakeThinLens};
-}
+ElementType ThinLensType() { return {"thin_lens", ElementKind::kLens, "ideal thin magnifier lens", MakeThinLens}; }
 
 }  // namespace layerlab

@@ -41,9 +41,10 @@ class TunableLens final : public LensElement {
 std::unique_ptr<Element> MakeTunableLens(Params& p) {
   const bool by_power = p.has("powers"), by_length = p.has("focal_lengths");
   if (by_power == by_length)
-    p.fail(by_power ? "focal_lengths" : "powers", by_power ? "give either \"powers\" or \"focal_lengths\", not both"
-                                                           : "missing key: give \"powers\" (one optical power per "
-                                                             "subframe, e.g. [\"13.9 D\", \"12.0 D\"]) or \"focal_lengths\"");
+    p.fail(by_power ? "focal_lengths" : "powers",
+           by_power ? "give either \"powers\" or \"focal_lengths\", not both"
+                    : "missing key: give \"powers\" (one optical power per "
+                      "subframe, e.g. [\"13.9 D\", \"12.0 D\"]) or \"focal_lengths\"");
   const std::string key = by_power ? "powers" : "focal_lengths";
   const nlohmann::json& list = p.raw(key);
   const Location at = p.where(key);
@@ -54,9 +55,13 @@ std::unique_ptr<Element> MakeTunableLens(Params& p) {
     const Location item = at.child(i);
     double v = 0;
     try {
-      if (list[i].is_number()) v = list[i].get<double>();
-      else if (list[i].is_string()) v = ParseQuantity(list[i].get<std::string>(), by_power ? Dimension::kOpticalPower : Dimension::kLength);
-      else throw Error("expected " + std::string(by_power ? "an optical power" : "a length") + ", got " + JsonKindName(list[i]));
+      if (list[i].is_number())
+        v = list[i].get<double>();
+      else if (list[i].is_string())
+        v = ParseQuantity(list[i].get<std::string>(), by_power ? Dimension::kOpticalPower : Dimension::kLength);
+      else
+        throw Error("expected " + std::string(by_power ? "an optical power" : "a length") + ", got " +
+                    JsonKindName(list[i]));
     } catch (const Error& e) {
       throw Error(item, e.message());
     }

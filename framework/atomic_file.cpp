@@ -29,8 +29,8 @@ std::string Normal(const std::string& path) {
 AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
   static std::atomic<unsigned> counter{0};
   std::filesystem::path p(path_);
-  temp_ = (p.parent_path() / ("." + p.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
-                              std::to_string(counter++)))
+  temp_ = (p.parent_path() /
+           ("." + p.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++)))
               .string();
 }
 

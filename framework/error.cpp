@@ -2,13 +2,9 @@
 
 namespace layerlab {
 
-Location Location::child(const std::string& key) const {
-  return {file, pointer + "/" + EscapePointerToken(key)};
-}
+Location Location::child(const std::string& key) const { return {file, pointer + "/" + EscapePointerToken(key)}; }
 
-Location Location::child(size_t index) const {
-  return {file, pointer + "/" + std::to_string(index)};
-}
+Location Location::child(size_t index) const { return {file, pointer + "/" + std::to_string(index)}; }
 
 std::string Location::str() const {
   std::string p = pointer.empty() ? "/" : pointer;
@@ -23,9 +19,12 @@ Error::Error(const Location& where, const std::string& message)
 std::string EscapePointerToken(const std::string& token) {
   std::string out;
   for (char c : token) {
-    if (c == '~') out += "~0";
-    else if (c == '/') out += "~1";
-    else out += c;
+    if (c == '~')
+      out += "~0";
+    else if (c == '/')
+      out += "~1";
+    else
+      out += c;
   }
   return out;
 }

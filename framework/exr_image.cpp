@@ -1,10 +1,9 @@
 #include "framework/exr_image.h"
 
-
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <map>
 
@@ -78,11 +77,30 @@ void RequireCppHeaderWithinFile(const std::string& path) {
     return static_cast<uint32_t>(b[0]) | static_cast<uint32_t>(b[1]) << 8 | static_cast<uint32_t>(b[2]) << 16 |
            static_cast<uint32_t>(b[3]) << 24;
   };
-  static const std::map<std::string, int> kFixedSizes = {
-      {"box2i", 16}, {"box2f", 16}, {"chromaticities", 32}, {"compression", 1}, {"deepImageState", 1},
-      {"double", 8}, {"envmap", 1}, {"float", 4}, {"int", 4}, {"keycode", 28}, {"lineOrder", 1},
-      {"m33f", 36}, {"m33d", 72}, {"m44f", 64}, {"m44d", 128}, {"rational", 8}, {"tiledesc", 9},
-      {"timecode", 8}, {"v2i", 8}, {"v2f", 8}, {"v2d", 16}, {"v3i", 12}, {"v3f", 12}, {"v3d", 24}};
+  static const std::map<std::string, int> kFixedSizes = {{"box2i", 16},
+                                                         {"box2f", 16},
+                                                         {"chromaticities", 32},
+                                                         {"compression", 1},
+                                                         {"deepImageState", 1},
+                                                         {"double", 8},
+                                                         {"envmap", 1},
+                                                         {"float", 4},
+                                                         {"int", 4},
+                                                         {"keycode", 28},
+                                                         {"lineOrder", 1},
+                                                         {"m33f", 36},
+                                                         {"m33d", 72},
+                                                         {"m44f", 64},
+                                                         {"m44d", 128},
+                                                         {"rational", 8},
+                                                         {"tiledesc", 9},
+                                                         {"timecode", 8},
+                                                         {"v2i", 8},
+                                                         {"v2f", 8},
+                                                         {"v2d", 16},
+                                                         {"v3i", 12},
+                                                         {"v3f", 12},
+                                                         {"v3d", 24}};
   for (bool more = true; more;) {
     int attributes = 0;
     for (std::string name, type, channel;; ++attributes) {
@@ -168,7 +186,8 @@ Image ReadExr(const std::string& path, const std::vector<std::string>& channels,
     for (const std::string& name : channels)
       if (!available.findChannel(name.c_str())) {
         std::string present;
-        for (auto it = available.begin(); it != available.end(); ++it) present += std::string(present.empty() ? "" : ", ") + it.name();
+        for (auto it = available.begin(); it != available.end(); ++it)
+          present += std::string(present.empty() ? "" : ", ") + it.name();
         throw Error(path + ": has no channel " + name + " (it has " + (present.empty() ? "none" : present) + ")");
       }
     image.width = static_cast<int>(width);
@@ -180,8 +199,8 @@ Image ReadExr(const std::string& path, const std::vector<std::string>& channels,
     char* base = reinterpret_cast<char*>(image.pixels.data()) -
                  (static_cast<ptrdiff_t>(dw.min.y) * width + dw.min.x) * static_cast<ptrdiff_t>(n * sizeof(float));
     for (size_t c = 0; c < n; ++c)
-      frame.insert(channels[c].c_str(), Imf::Slice(Imf::FLOAT, base + c * sizeof(float), n * sizeof(float),
-                                                   n * sizeof(float) * width));
+      frame.insert(channels[c].c_str(),
+                   Imf::Slice(Imf::FLOAT, base + c * sizeof(float), n * sizeof(float), n * sizeof(float) * width));
     file.setFrameBuffer(frame);
     file.readPixels(dw.min.y, dw.max.y);
   } catch (const Error&) {
@@ -195,7 +214,9 @@ Image ReadExr(const std::string& path, const std::vector<std::string>& channels,
     size_t pixel = k / channels.size();
     throw Error(path + ": pixel (row " + std::to_string(pixel / image.width) + ", col " +
                 std::to_string(pixel % image.width) + ") channel " + channels[k % channels.size()] + " is " +
-                (std::isnan(v) ? "NaN" : std::isinf(v) ? (v > 0 ? "+inf" : "-inf") : "negative (" + std::to_string(v) + ")") +
+                (std::isnan(v)   ? "NaN"
+                 : std::isinf(v) ? (v > 0 ? "+inf" : "-inf")
+                                 : "negative (" + std::to_string(v) + ")") +
                 "; light must be finite and non-negative");
   }
   return image;
@@ -214,8 +235,8 @@ void WriteExr(const std::string& path, const Image& image) {
     char* base = const_cast<char*>(reinterpret_cast<const char*>(image.pixels.data()));
     for (size_t c = 0; c < n; ++c) {
       header.channels().insert(image.channels[c].c_str(), Imf::Channel(Imf::FLOAT));
-      frame.insert(image.channels[c].c_str(),
-                   Imf::Slice(Imf::FLOAT, base + c * sizeof(float), n * sizeof(float), n * sizeof(float) * image.width));
+      frame.insert(image.channels[c].c_str(), Imf::Slice(Imf::FLOAT, base + c * sizeof(float), n * sizeof(float),
+                                                         n * sizeof(float) * image.width));
     }
     Imf::OutputFile file(out.temp_path().c_str(), header);
     file.setFrameBuffer(frame);

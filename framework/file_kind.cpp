@@ -39,12 +39,14 @@ std::string Kind(mode_t mode) {
 
 void RequireRegularFile(const std::string& path, const std::string& what) {
   const mode_t mode = StatOrRefuse(path, what);
-  if (!S_ISREG(mode)) throw Error(path + ": the " + what + " is " + Kind(mode) + ", not a regular file; it is not read");
+  if (!S_ISREG(mode))
+    throw Error(path + ": the " + what + " is " + Kind(mode) + ", not a regular file; it is not read");
 }
 
 void RequireFolder(const std::string& path, const std::string& what) {
   const mode_t mode = StatOrRefuse(path, what);
-  if (!S_ISDIR(mode)) throw Error(path + ": the " + what + " is " + (S_ISREG(mode) ? "a file" : Kind(mode)) + ", not a folder");
+  if (!S_ISDIR(mode))
+    throw Error(path + ": the " + what + " is " + (S_ISREG(mode) ? "a file" : Kind(mode)) + ", not a folder");
 }
 
 void RequireInsideFolder(const std::string& path, const std::string& folder, const std::string& what) {

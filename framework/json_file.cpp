@@ -1,6 +1,5 @@
 #include "framework/json_file.h"
 
-
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -25,8 +24,7 @@ class StructureGuard {
       case json::parse_event_t::object_start:
       case json::parse_event_t::array_start:
         if (static_cast<int>(frames_.size()) >= max_depth_)
-          throw Error({file_, Pointer()}, "JSON nesting deeper than " + std::to_string(max_depth_) +
-                                              " levels");
+          throw Error({file_, Pointer()}, "JSON nesting deeper than " + std::to_string(max_depth_) + " levels");
         frames_.push_back({event == json::parse_event_t::array_start, {}, {}, 0});
         break;
       case json::parse_event_t::key: {
@@ -66,8 +64,7 @@ class StructureGuard {
   std::string Pointer() const {
     std::string p;
     for (size_t i = 0; i + 1 < frames_.size(); ++i)
-      p += "/" + (frames_[i].is_array ? std::to_string(frames_[i].index)
-                                      : EscapePointerToken(frames_[i].key));
+      p += "/" + (frames_[i].is_array ? std::to_string(frames_[i].index) : EscapePointerToken(frames_[i].key));
     return p;
   }
 
@@ -88,8 +85,10 @@ std::string Explanation(std::string what) {
 std::string PositionOf(const std::string& text, size_t byte, const std::string& file) {
   size_t line = 1, column = 1;
   for (size_t i = 0; i < byte && i < text.size(); ++i) {
-    if (text[i] == '\n') ++line, column = 1;
-    else ++column;
+    if (text[i] == '\n')
+      ++line, column = 1;
+    else
+      ++column;
   }
   return file + ":" + std::to_string(line) + ":" + std::to_string(column);
 }
@@ -98,8 +97,8 @@ std::string PositionOf(const std::string& text, size_t byte, const std::string& 
 
 json ParseJson(const std::string& text, const std::string& file, const JsonLimits& limits) {
   if (text.size() > limits.max_bytes)
-    throw Error({file, ""}, "file is " + std::to_string(text.size()) + " bytes; the limit is " +
-                                std::to_string(limits.max_bytes));
+    throw Error({file, ""},
+                "file is " + std::to_string(text.size()) + " bytes; the limit is " + std::to_string(limits.max_bytes));
   StructureGuard guard(file, limits.max_depth);
   try {
     return json::parse(text, std::ref(guard));
@@ -126,8 +125,8 @@ json ReadJsonFile(const std::string& path, const JsonLimits& limits) {
     throw Error(path + ": cannot read: " + why);
   }
   if (size > limits.max_bytes)
-    throw Error({path, ""}, "file is " + std::to_string(size) + " bytes; the limit is " +
-                                std::to_string(limits.max_bytes));
+    throw Error({path, ""},
+                "file is " + std::to_string(size) + " bytes; the limit is " + std::to_string(limits.max_bytes));
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path + ": cannot open for reading");
   std::ostringstream text;
@@ -137,15 +136,22 @@ json ReadJsonFile(const std::string& path, const JsonLimits& limits) {
 
 std::string JsonKindName(const json& value) {
   switch (value.type()) {
-    case json::value_t::object: return "an object";
-    case json::value_t::array: return "an array";
-    case json::value_t::string: return "a string";
-    case json::value_t::boolean: return "a boolean";
-    case json::value_t::null: return "null";
+    case json::value_t::object:
+      return "an object";
+    case json::value_t::array:
+      return "an array";
+    case json::value_t::string:
+      return "a string";
+    case json::value_t::boolean:
+      return "a boolean";
+    case json::value_t::null:
+      return "null";
     case json::value_t::number_integer:
     case json::value_t::number_unsigned:
-    case json::value_t::number_float: return "a number";
-    default: return "a value";
+    case json::value_t::number_float:
+      return "a number";
+    default:
+      return "a value";
   }
 }
 

@@ -16,8 +16,7 @@ struct JsonLimits {
 };
 
 // `file` names the source in messages; the text is parsed as is.
-nlohmann::json ParseJson(const std::string& text, const std::string& file,
-                         const JsonLimits& limits = {});
+nlohmann::json ParseJson(const std::string& text, const std::string& file, const JsonLimits& limits = {});
 
 // Reads and parses a file; refuses a missing, unreadable or oversized file.
 nlohmann::json ReadJsonFile(const std::string& path, const JsonLimits& limits = {});

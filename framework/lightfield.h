@@ -14,11 +14,11 @@
 namespace layerlab {
 
 struct LightFieldGeometry {
-  double origin_z = 1.0;  // z_lf, m
+  double origin_z = 1.0;                                                                 // z_lf, m
   double window_left = -0.5, window_top = 0.5, window_width = 1.0, window_height = 1.0;  // m, on the origin plane
-  int cols = 1, rows = 1;         // pixels per view
-  int views_x = 1, views_y = 1;   // views per row, per column
-  double eyebox_width = 6e-3, eyebox_height = 6e-3;  // m
+  int cols = 1, rows = 1;                                                                // pixels per view
+  int views_x = 1, views_y = 1;                                                          // views per row, per column
+  double eyebox_width = 6e-3, eyebox_height = 6e-3;                                      // m
 
   // Pupil position of view column c / view row r.
   double view_x(int c) const { return -eyebox_width / 2 + (c + 0.5) * eyebox_width / views_x; }

@@ -87,7 +87,8 @@ void RefuseExtraFiles(const std::string& folder, const std::string& pattern, con
       return v;
     };
     long row = number(m[row_first ? 1 : 2]), col = number(m[row_first ? 2 : 1]);
-    if (row >= g.views_y || col >= g.views_x || FillPattern(pattern, row, col) != (fs::path(pattern).parent_path() / name).string())
+    if (row >= g.views_y || col >= g.views_x ||
+        FillPattern(pattern, row, col) != (fs::path(pattern).parent_path() / name).string())
       throw Error((fs::path(folder) / "lightfield.json").string() + ": extra view file " +
                   (fs::path(pattern).parent_path() / name).string() + " (the manifest declares " +
                   std::to_string(g.views_y) + " x " + std::to_string(g.views_x) + " views)");
@@ -100,11 +101,14 @@ void CheckViewNames(Params& manifest, const std::string& key, const std::string&
   for (int r = 0; r < g.views_y; ++r)
     for (int c = 0; c < g.views_x; ++c) {
       const std::string name = FillPattern(pattern, r, c);
-      if (name.size() >= PATH_MAX) manifest.fail(key, "view paths of " + std::to_string(name.size()) + " bytes are beyond the file system's limit");
+      if (name.size() >= PATH_MAX)
+        manifest.fail(key,
+                      "view paths of " + std::to_string(name.size()) + " bytes are beyond the file system's limit");
       for (const fs::path& part : fs::path(name))
         if (part.string().size() > NAME_MAX)
           manifest.fail(key, "\"" + part.string().substr(0, 40) + "...\" is " + std::to_string(part.string().size()) +
-                                 " bytes, beyond the file system's limit of " + std::to_string(NAME_MAX) + " for a name");
+                                 " bytes, beyond the file system's limit of " + std::to_string(NAME_MAX) +
+                                 " for a name");
       auto [it, fresh] = seen.emplace(name, std::make_pair(r, c));
       if (!fresh)
         manifest.fail(key, "\"" + pattern + "\" maps views (row " + std::to_string(it->second.first) + ", col " +
@@ -123,10 +127,12 @@ Manifest ReadManifest(const std::string& folder) {
   std::string manifest_path = (fs::path(folder) / "lightfield.json").string();
   std::error_code ec;
   if (!fs::is_directory(folder, ec)) {
-    if (ec && ec != std::errc::no_such_file_or_directory) RequireFolder(folder, "light-field folder");  // a loop, an overlong name
+    if (ec && ec != std::errc::no_such_file_or_directory)
+      RequireFolder(folder, "light-field folder");  // a loop, an overlong name
     throw Error(folder + ": not a light-field folder (no such directory)");
   }
-  if (!fs::exists(fs::symlink_status(manifest_path, ec))) throw Error(folder + ": not a light-field folder (no lightfield.json)");
+  if (!fs::exists(fs::symlink_status(manifest_path, ec)))
+    throw Error(folder + ": not a light-field folder (no lightfield.json)");
   RequireRegularFile(manifest_path, "manifest");
   RequireInsideFolder(manifest_path, folder, "manifest");
   nlohmann::json doc = ReadJsonFile(manifest_path);
@@ -134,7 +140,8 @@ Manifest ReadManifest(const std::string& folder) {
 
   std::string format = m.string("format");
   if (format != kLightFieldFormat)
-    m.fail("format", "unknown light-field format \"" + format + "\"; this layerlab reads \"" + kLightFieldFormat + "\"");
+    m.fail("format",
+           "unknown light-field format \"" + format + "\"; this layerlab reads \"" + kLightFieldFormat + "\"");
   LightFieldGeometry g;
   g.origin_z = m.quantity("origin_plane_z", Dimension::kLength);
   m.require_range("origin_plane_z", g.origin_z, 0.0, 1e6, true, false);
@@ -197,7 +204,8 @@ LightField ReadLightField(const std::string& folder, const LightFieldReadOptions
       std::string file = (fs::path(folder) / FillPattern(views_pattern, r, c)).string();
       std::error_code ec;
       if (!fs::exists(fs::symlink_status(file, ec)))
-        throw Error(manifest_path + ": view (row " + std::to_string(r) + ", col " + std::to_string(c) + ") is missing: " + file);
+        throw Error(manifest_path + ": view (row " + std::to_string(r) + ", col " + std::to_string(c) +
+                    ") is missing: " + file);
       RequireRegularFile(file, "view");  // never opened otherwise: a FIFO would block
       RequireInsideFolder(file, folder, "view");
     }
@@ -247,16 +255,22 @@ std::vector<std::string> WriteLightField(const LightField& lf, const std::string
     Image image{g.cols, g.rows, {"R", "G", "B"}, std::vector<float>(lf.view(v), lf.view(v) + pixels * 3)};
     WriteExr((fs::path(folder) / FillPattern(views_pattern, r, c)).string(), image);
     if (lf.depth.empty()) return;
-    Image depth{g.cols, g.rows, {"Z"}, std::vector<float>(lf.depth.begin() + v * pixels, lf.depth.begin() + (v + 1) * pixels)};
+    Image depth{
+        g.cols, g.rows, {"Z"}, std::vector<float>(lf.depth.begin() + v * pixels, lf.depth.begin() + (v + 1) * pixels)};
     WriteExr((fs::path(folder) / FillPattern(depth_pattern, r, c)).string(), depth);
   });
 
   nlohmann::json manifest = {
       {"format", kLightFieldFormat},
       {"origin_plane_z", g.origin_z},
-      {"window", {{"left", g.window_left}, {"top", g.window_top}, {"width", g.window_width}, {"height", g.window_height}}},
+      {"window",
+       {{"left", g.window_left}, {"top", g.window_top}, {"width", g.window_width}, {"height", g.window_height}}},
       {"resolution", {{"cols", g.cols}, {"rows", g.rows}}},
-      {"views", {{"rows", g.views_y}, {"cols", g.views_x}, {"eyebox_width", g.eyebox_width}, {"eyebox_height", g.eyebox_height}}},
+      {"views",
+       {{"rows", g.views_y},
+        {"cols", g.views_x},
+        {"eyebox_width", g.eyebox_width},
+        {"eyebox_height", g.eyebox_height}}},
       {"color", "linear-rec709"},
       {"views_pattern", views_pattern},
       {"scene", lf.scene}};

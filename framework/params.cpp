@@ -31,9 +31,7 @@ const json& Params::at(const std::string& key) {
 
 const json& Params::raw(const std::string& key) { return at(key); }
 
-void Params::fail(const std::string& key, const std::string& message) const {
-  throw Error(where_.child(key), message);
-}
+void Params::fail(const std::string& key, const std::string& message) const { throw Error(where_.child(key), message); }
 
 double Params::quantity_value(const json& v, const Location& loc, Dimension d) const {
   if (v.is_number()) {
@@ -43,7 +41,9 @@ double Params::quantity_value(const json& v, const Location& loc, Dimension d) c
   }
   if (!v.is_string())
     throw Error(loc, "expected " + DimensionName(d) + " (a number in SI units or a string such as \"" +
-                         (d == Dimension::kLength ? "75 mm" : d == Dimension::kAngle ? "36 deg" : "1") +
+                         (d == Dimension::kLength  ? "75 mm"
+                          : d == Dimension::kAngle ? "36 deg"
+                                                   : "1") +
                          "\"), got " + JsonKindName(v));
   try {
     return ParseQuantity(v.get<std::string>(), d);
@@ -52,9 +52,7 @@ double Params::quantity_value(const json& v, const Location& loc, Dimension d) c
   }
 }
 
-double Params::quantity(const std::string& key, Dimension d) {
-  return quantity_value(at(key), where_.child(key), d);
-}
+double Params::quantity(const std::string& key, Dimension d) { return quantity_value(at(key), where_.child(key), d); }
 
 double Params::quantity(const std::string& key, Dimension d, double fallback) {
   return optional_quantity(key, d).value_or(fallback);
@@ -84,8 +82,7 @@ int64_t Params::integer(const std::string& key, int64_t min, int64_t max) {
   std::string range = "an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "]";
   if (v.is_number_unsigned()) {
     uint64_t u = v.get<uint64_t>();
-    if (max >= 0 && u <= static_cast<uint64_t>(max) && static_cast<int64_t>(u) >= min)
-      return static_cast<int64_t>(u);
+    if (max >= 0 && u <= static_cast<uint64_t>(max) && static_cast<int64_t>(u) >= min) return static_cast<int64_t>(u);
     fail(key, "expected " + range + ", got " + v.dump());
   }
   if (v.is_number_integer()) {
@@ -95,8 +92,7 @@ int64_t Params::integer(const std::string& key, int64_t min, int64_t max) {
   }
   if (v.is_number_float()) {
     double x = v.get<double>();
-    if (std::isfinite(x) && x == std::floor(x) && x >= static_cast<double>(min) &&
-        x <= static_cast<double>(max))
+    if (std::isfinite(x) && x == std::floor(x) && x >= static_cast<double>(min) && x <= static_cast<double>(max))
       return static_cast<int64_t>(x);
     fail(key, "expected " + range + ", got " + v.dump());
   }
@@ -148,10 +144,9 @@ Rgb Params::fraction_rgb(const std::string& key) {
   const json& v = at(key);
   Location loc = where_.child(key);
   if (v.is_array()) {
-    if (v.size() != 3) throw Error(loc, "expected one fraction or three [r, g, b], got " +
-                                            std::to_string(v.size()) + " values");
-    return {fraction_value(v[0], loc.child(0)), fraction_value(v[1], loc.child(1)),
-            fraction_value(v[2], loc.child(2))};
+    if (v.size() != 3)
+      throw Error(loc, "expected one fraction or three [r, g, b], got " + std::to_string(v.size()) + " values");
+    return {fraction_value(v[0], loc.child(0)), fraction_value(v[1], loc.child(1)), fraction_value(v[2], loc.child(2))};
   }
   double x = fraction_value(v, loc);
   return {x, x, x};
@@ -162,8 +157,7 @@ Rgb Params::fraction_rgb(const std::string& key, double fallback) {
   return has(key) ? fraction_rgb(key) : Rgb{fallback, fallback, fallback};
 }
 
-std::array<double, 2> Params::quantity_pair(const std::string& key, Dimension d,
-                                            std::array<double, 2> fallback) {
+std::array<double, 2> Params::quantity_pair(const std::string& key, Dimension d, std::array<double, 2> fallback) {
   read_.insert(key);
   if (!has(key)) return fallback;
   const json& v = at(key);
@@ -190,8 +184,8 @@ Params Params::object(const std::string& key) {
   return child;
 }
 
-void Params::require_range(const std::string& key, double value, double lo, double hi,
-                           bool lo_open, bool hi_open) const {
+void Params::require_range(const std::string& key, double value, double lo, double hi, bool lo_open,
+                           bool hi_open) const {
   bool ok = (lo_open ? value > lo : value >= lo) && (hi_open ? value < hi : value <= hi);
   if (ok) return;
   auto bound = [](double b) {
@@ -201,8 +195,8 @@ void Params::require_range(const std::string& key, double value, double lo, doub
     if (s.back() == '.') s.pop_back();
     return s;
   };
-  fail(key, "must be in " + std::string(lo_open ? "(" : "[") + bound(lo) + ", " + bound(hi) +
-                (hi_open ? ")" : "]") + " (SI units), got " + bound(value));
+  fail(key, "must be in " + std::string(lo_open ? "(" : "[") + bound(lo) + ", " + bound(hi) + (hi_open ? ")" : "]") +
+                " (SI units), got " + bound(value));
 }
 
 void Params::check_all_read() const {
@@ -210,8 +204,10 @@ void Params::check_all_read() const {
   for (auto it = object_->begin(); it != object_->end(); ++it) {
     if (read_.count(it.key())) continue;
     std::string msg = "unknown key \"" + it.key() + "\"";
-    if (auto near = ClosestWord(it.key(), known)) msg += "; did you mean \"" + *near + "\"?";
-    else if (!known.empty()) msg += "; known keys: " + JoinWords(known, ", ");
+    if (auto near = ClosestWord(it.key(), known))
+      msg += "; did you mean \"" + *near + "\"?";
+    else if (!known.empty())
+      msg += "; known keys: " + JoinWords(known, ", ");
     throw Error(where_.child(it.key()), msg);
   }
 }
@@ -231,8 +227,7 @@ size_t EditDistance(const std::string& a, const std::string& b) {
   return row[b.size()];
 }
 
-std::optional<std::string> ClosestWord(const std::string& word,
-                                       const std::vector<std::string>& candidates) {
+std::optional<std::string> ClosestWord(const std::string& word, const std::vector<std::string>& candidates) {
   std::optional<std::string> best;
   size_t best_distance = std::max<size_t>(2, word.size() / 3) + 1;
   for (const std::string& c : candidates) {

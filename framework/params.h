@@ -48,16 +48,14 @@ class Params {
   std::string string(const std::string& key);
   std::string string(const std::string& key, const std::string& fallback);
   // One of `allowed`, or an error listing them.
-  std::string choice(const std::string& key, const std::vector<std::string>& allowed,
-                     const std::string& fallback);
+  std::string choice(const std::string& key, const std::vector<std::string>& allowed, const std::string& fallback);
 
   // A fraction in [0, 1]: a number, "30 %", or an [r, g, b] array of those.
   Rgb fraction_rgb(const std::string& key, double fallback);
   Rgb fraction_rgb(const std::string& key);
 
   // A pair of quantities, [x, y], or one quantity used for both.
-  std::array<double, 2> quantity_pair(const std::string& key, Dimension d,
-                                      std::array<double, 2> fallback);
+  std::array<double, 2> quantity_pair(const std::string& key, Dimension d, std::array<double, 2> fallback);
   std::array<int64_t, 2> integer_pair(const std::string& key, int64_t min, int64_t max);
 
   // The raw value (marks it read), for element-specific structures.
@@ -67,8 +65,7 @@ class Params {
   Params object(const std::string& key);
 
   // Refuses a value that is present but outside (lo, hi) or [lo, hi].
-  void require_range(const std::string& key, double value, double lo, double hi,
-                     bool lo_open, bool hi_open) const;
+  void require_range(const std::string& key, double value, double lo, double hi, bool lo_open, bool hi_open) const;
 
   // Throws for the first key that was never read, suggesting the closest read one.
   void check_all_read() const;
@@ -91,8 +88,7 @@ class Params {
 // Edit distance, for "did you mean" suggestions.
 size_t EditDistance(const std::string& a, const std::string& b);
 // The candidate closest to `word`, if it is close enough to be a likely typo.
-std::optional<std::string> ClosestWord(const std::string& word,
-                                       const std::vector<std::string>& candidates);
+std::optional<std::string> ClosestWord(const std::string& word, const std::vector<std::string>& candidates);
 // "a, b or c".
 std::string JoinWords(const std::vector<std::string>& words, const std::string& last_sep = " or ");
 

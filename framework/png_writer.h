@@ -1,8 +1,8 @@
 // 8-bit PNG output, written atomically.
 #pragma once
 
-#include <cstdint>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 

@@ -10,7 +10,9 @@ namespace layerlab {
 bool Progress::Terminal() { return ::isatty(2) == 1; }
 
 Progress::Progress(std::string label, size_t total)
-    : label_(std::move(label)), total_(std::max<size_t>(total, 1)), tty_(Terminal()),
+    : label_(std::move(label)),
+      total_(std::max<size_t>(total, 1)),
+      tty_(Terminal()),
       start_(std::chrono::steady_clock::now()) {}
 
 Progress::~Progress() {

@@ -145,10 +145,14 @@ void RefuseOutputOverlappingInputs(const std::string& output, const std::vector<
   for (const NamedInput& in : inputs) {
     if (in.path.empty()) continue;
     const fs::path real = RealPath(in.path);
-    const char* relation = out == real ? "is" : Under(out, real) ? "lies inside" : Under(real, out) ? "contains" : nullptr;
+    const char* relation = out == real        ? "is"
+                           : Under(out, real) ? "lies inside"
+                           : Under(real, out) ? "contains"
+                                              : nullptr;
     if (!relation) continue;
     std::string resolved;
-    if (real.string() != fs::absolute(in.path).lexically_normal().string() || out.string() != fs::absolute(output).lexically_normal().string())
+    if (real.string() != fs::absolute(in.path).lexically_normal().string() ||
+        out.string() != fs::absolute(output).lexically_normal().string())
       resolved = " (real paths " + out.string() + " and " + real.string() + ")";
     throw Error(output + ": the output " + relation + " " + in.what + " " + in.path + resolved +
                 ", which would be overwritten or removed; write elsewhere. Nothing was read or written");
@@ -162,13 +166,13 @@ StagedOutput::StagedOutput(std::string folder, std::string command, std::vector<
   // The folder may contain inputs (a scene beside its results), but not lie inside one.
   const fs::path real_dir = RealPath(folder_);
   for (const NamedInput& in : inputs_)
-    if (!in.path.empty() && Under(real_dir, RealPath(in.path)))
-      RefuseOutputOverlappingInputs(folder_, {in});
+    if (!in.path.empty() && Under(real_dir, RealPath(in.path))) RefuseOutputOverlappingInputs(folder_, {in});
   for (const std::string& root : roots_) RefuseOutputOverlappingInputs((dir / root).string(), inputs_);
 
   struct stat st;
   if (::stat(folder_.c_str(), &st) == 0) {
-    if (!S_ISDIR(st.st_mode)) throw Error(folder_ + ": the output folder is " + KindAt(dir) + ", not a folder; nothing was written");
+    if (!S_ISDIR(st.st_mode))
+      throw Error(folder_ + ": the output folder is " + KindAt(dir) + ", not a folder; nothing was written");
   } else if (errno == ENOENT) {
     std::error_code ec;
     fs::create_directories(dir, ec);
@@ -181,7 +185,8 @@ StagedOutput::StagedOutput(std::string folder, std::string command, std::vector<
     bool is_dir = false, is_file = false;
     const std::string kind = KindAt(dir / root, &is_dir, &is_file);
     if (!kind.empty() && !is_dir && !is_file)
-      throw Error((dir / root).string() + ": is " + kind + " where layerlab writes its output; it is not followed or replaced, "
+      throw Error((dir / root).string() + ": is " + kind +
+                  " where layerlab writes its output; it is not followed or replaced, "
                   "move it away. Nothing was written");
   }
 
@@ -199,20 +204,21 @@ StagedOutput::StagedOutput(std::string folder, std::string command, std::vector<
   for (const fs::path& journal : journals) {
     try {
       RunJournal(dir, journal, ReadJsonFile(journal.string()));
-      recovered_.push_back("finished the switch-over that an interrupted run began (" + journal.filename().string() + ")");
+      recovered_.push_back("finished the switch-over that an interrupted run began (" + journal.filename().string() +
+                           ")");
     } catch (const nlohmann::json::exception& e) {
       throw Error(journal.string() + ": not a valid switch-over journal (" + e.what() + "); remove it to go on");
     }
   }
-  for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+  for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator();
+       it.increment(ec)) {
     const std::string name = it->path().filename().string();
     std::smatch m;
     const bool staging = std::regex_match(name, m, staging_name);
     if (staging || std::regex_match(name, m, temp_name)) {
       if (!ProcessAlive(std::stol(m[staging ? 2 : 1]))) dead.push_back(it->path());
       if (staging && it->is_directory()) it.disable_recursion_pending();
-    } else if (it.depth() == 0 && it->is_directory() &&
-               std::find(roots_.begin(), roots_.end(), name) == roots_.end()) {
+    } else if (it.depth() == 0 && it->is_directory() && std::find(roots_.begin(), roots_.end(), name) == roots_.end()) {
       it.disable_recursion_pending();  // the user's folders beside the outputs are not searched
     }
   }
@@ -244,7 +250,8 @@ StagedOutput::Switched StagedOutput::Commit() {
   const fs::path dir(folder_), staging(staging_);
   Switched result;
   std::error_code ec;
-  for (auto it = fs::recursive_directory_iterator(staging, ec); !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+  for (auto it = fs::recursive_directory_iterator(staging, ec); !ec && it != fs::recursive_directory_iterator();
+       it.increment(ec)) {
     if (it->is_directory()) continue;
     const std::string rel = it->path().lexically_relative(staging).string();
     if (!it->is_regular_file()) throw Error(it->path().string() + ": internal error: not a file in the staging folder");
@@ -264,10 +271,12 @@ StagedOutput::Switched StagedOutput::Commit() {
       const bool last = std::next(it) == p.end();
       if (kind.empty()) break;
       if (!last && !is_dir)
-        throw Error(at.string() + ": is " + kind + " where the output needs a folder; it is not followed or replaced. "
+        throw Error(at.string() + ": is " + kind +
+                    " where the output needs a folder; it is not followed or replaced. "
                     "The earlier results are unchanged");
       if (last && !is_file && kind != "a symbolic link")
-        throw Error(at.string() + ": is " + kind + " where the output file " + rel + " belongs. The earlier results are unchanged");
+        throw Error(at.string() + ": is " + kind + " where the output file " + rel +
+                    " belongs. The earlier results are unchanged");
     }
   }
 
@@ -275,10 +284,12 @@ StagedOutput::Switched StagedOutput::Commit() {
   const fs::path manifest = dir / OutputManifestName(command_);
   std::vector<fs::path> protected_paths;
   for (const NamedInput& in : inputs_)
-    if (!in.path.empty()) protected_paths.push_back(RealPath(in.path)), protected_paths.push_back(fs::absolute(in.path).lexically_normal());
+    if (!in.path.empty())
+      protected_paths.push_back(RealPath(in.path)), protected_paths.push_back(fs::absolute(in.path).lexically_normal());
   for (const std::string& rel : ReadManifestFiles(manifest)) {
     if (now.count(rel)) continue;
-    if (std::none_of(roots_.begin(), roots_.end(), [&](const std::string& r) { return Under(fs::path(rel), fs::path(r)); }))
+    if (std::none_of(roots_.begin(), roots_.end(),
+                     [&](const std::string& r) { return Under(fs::path(rel), fs::path(r)); }))
       continue;
     const fs::path at = fs::absolute(dir / rel).lexically_normal();
     if (!ParentsAreFolders(dir, rel)) continue;
@@ -292,14 +303,13 @@ StagedOutput::Switched StagedOutput::Commit() {
   }
 
   nlohmann::json files = result.written;
-  WriteFileAtomically((staging / OutputManifestName(command_)).string(),
-                      nlohmann::json{{"format", kManifestFormat}, {"command", command_}, {"files", files}}.dump(1) + "\n");
+  WriteFileAtomically(
+      (staging / OutputManifestName(command_)).string(),
+      nlohmann::json{{"format", kManifestFormat}, {"command", command_}, {"files", files}}.dump(1) + "\n");
   nlohmann::json move = result.written;
   move.push_back(OutputManifestName(command_));
-  const nlohmann::json journal = {{"format", kJournalFormat},
-                                  {"staging", staging.filename().string()},
-                                  {"move", move},
-                                  {"remove", result.removed}};
+  const nlohmann::json journal = {
+      {"format", kJournalFormat}, {"staging", staging.filename().string()}, {"move", move}, {"remove", result.removed}};
   const fs::path journal_path = dir / JournalName(command_);
   WriteFileAtomically(journal_path.string(), journal.dump(1) + "\n");
   RunJournal(dir, journal_path, journal);

@@ -40,8 +40,7 @@ class StagedOutput {
   // processes left (their staging folders, temporary files) is removed;
   // recovered() says what was done. Throws layerlab::Error before anything
   // is written when a check fails.
-  StagedOutput(std::string folder, std::string command, std::vector<std::string> roots,
-               std::vector<NamedInput> inputs);
+  StagedOutput(std::string folder, std::string command, std::vector<std::string> roots, std::vector<NamedInput> inputs);
   // Without Commit(): removes the staging folder, and the output folder if
   // this object created it and it is empty again.
   ~StagedOutput();

@@ -64,8 +64,7 @@ Split SplitNumberAndUnit(std::string_view text) {
   while (!text.empty() && text.back() == ' ') text.remove_suffix(1);
   double value = 0.0;
   auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (ec == std::errc::result_out_of_range)
-    throw Error("the number in \"" + std::string(text) + "\" is out of range");
+  if (ec == std::errc::result_out_of_range) throw Error("the number in \"" + std::string(text) + "\" is out of range");
   if (ec != std::errc() || end == text.data())
     throw Error("\"" + std::string(text) + "\" does not start with a number");
   std::string_view unit(end, text.data() + text.size() - end);
@@ -78,14 +77,22 @@ Split SplitNumberAndUnit(std::string_view text) {
 
 std::string DimensionName(Dimension d) {
   switch (d) {
-    case Dimension::kLength: return "a length";
-    case Dimension::kOpticalPower: return "an optical power";
-    case Dimension::kAngle: return "an angle";
-    case Dimension::kLuminance: return "a luminance";
-    case Dimension::kAngularFrequency: return "an angular frequency";
-    case Dimension::kFraction: return "a fraction";
-    case Dimension::kTime: return "a duration";
-    case Dimension::kFrequency: return "a frequency";
+    case Dimension::kLength:
+      return "a length";
+    case Dimension::kOpticalPower:
+      return "an optical power";
+    case Dimension::kAngle:
+      return "an angle";
+    case Dimension::kLuminance:
+      return "a luminance";
+    case Dimension::kAngularFrequency:
+      return "an angular frequency";
+    case Dimension::kFraction:
+      return "a fraction";
+    case Dimension::kTime:
+      return "a duration";
+    case Dimension::kFrequency:
+      return "a frequency";
   }
   return "a quantity";
 }
@@ -104,16 +111,15 @@ double ParseQuantity(std::string_view text, Dimension d) {
   Split s = SplitNumberAndUnit(text);
   if (s.unit.empty()) {
     if (d == Dimension::kFraction) return s.number;
-    throw Error("\"" + std::string(text) + "\" has no unit; expected " + DimensionName(d) +
-                " in " + AcceptedUnits(d));
+    throw Error("\"" + std::string(text) + "\" has no unit; expected " + DimensionName(d) + " in " + AcceptedUnits(d));
   }
   std::optional<Unit> unit = FindUnit(s.unit);
   if (!unit)
-    throw Error("unknown unit '" + std::string(s.unit) + "' in \"" + std::string(text) +
-                "\"; expected " + DimensionName(d) + " in " + AcceptedUnits(d));
+    throw Error("unknown unit '" + std::string(s.unit) + "' in \"" + std::string(text) + "\"; expected " +
+                DimensionName(d) + " in " + AcceptedUnits(d));
   if (unit->dimension != d)
-    throw Error("'" + std::string(s.unit) + "' is " + DimensionName(unit->dimension) +
-                " unit; expected " + DimensionName(d) + " in " + AcceptedUnits(d));
+    throw Error("'" + std::string(s.unit) + "' is " + DimensionName(unit->dimension) + " unit; expected " +
+                DimensionName(d) + " in " + AcceptedUnits(d));
   double value = s.number * unit->to_si;
   if (!std::isfinite(value)) throw Error("\"" + std::string(text) + "\" is out of range");
   return value;

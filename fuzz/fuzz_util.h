@@ -2,13 +2,13 @@
 // entry points that read files, and the one way bad input may be refused.
 #pragma once
 
+#include <unistd.h>
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <unistd.h>
 
 namespace layerlab::fuzz {
 

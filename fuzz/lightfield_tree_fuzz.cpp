@@ -53,20 +53,36 @@ void MakeSocket(const fs::path& p) {
 void MakeEntry(Bytes& in, const fs::path& p, const fs::path& good, const fs::path& outside) {
   std::error_code ec;
   switch (in.next() % 10) {
-    case 0: case 1: fs::copy_file(good, p, ec); break;
+    case 0:
+    case 1:
+      fs::copy_file(good, p, ec);
+      break;
     case 2: {  // truncated at a byte-chosen length
       const auto bytes = fs::file_size(good, ec);
       fs::copy_file(good, p, ec);
       if (!ec && bytes > 0) fs::resize_file(p, in.next() % bytes, ec);
       break;
     }
-    case 3: mkfifo(p.c_str(), 0600); break;
-    case 4: MakeSocket(p); break;
-    case 5: fs::create_directory(p, ec); break;
-    case 6: fs::create_symlink(p.filename(), p, ec); break;  // loops
-    case 7: fs::create_symlink("no_such_file.exr", p, ec); break;
-    case 8: fs::create_symlink(in.next() % 2 ? "/dev/zero" : outside.c_str(), p, ec); break;
-    default: break;  // missing
+    case 3:
+      mkfifo(p.c_str(), 0600);
+      break;
+    case 4:
+      MakeSocket(p);
+      break;
+    case 5:
+      fs::create_directory(p, ec);
+      break;
+    case 6:
+      fs::create_symlink(p.filename(), p, ec);
+      break;  // loops
+    case 7:
+      fs::create_symlink("no_such_file.exr", p, ec);
+      break;
+    case 8:
+      fs::create_symlink(in.next() % 2 ? "/dev/zero" : outside.c_str(), p, ec);
+      break;
+    default:
+      break;  // missing
   }
 }
 
@@ -101,7 +117,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     fs::create_directories(views, ec);
   }
   for (int r = 0; r < 2; ++r)
-    for (int c = 0; c < 2; ++c) MakeEntry(in, views / ("r0" + std::to_string(r) + "_c0" + std::to_string(c) + ".exr"), good, outside);
+    for (int c = 0; c < 2; ++c)
+      MakeEntry(in, views / ("r0" + std::to_string(r) + "_c0" + std::to_string(c) + ".exr"), good, outside);
   // Extra entries named from the bytes: r<digits>_c<digits>.exr, numbers of any length.
   for (int extra = in.next() % 4; extra > 0; --extra) {
     std::string name = "r";
@@ -111,15 +128,24 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   }
   // The manifest: a file, a FIFO, a loop, a folder, or a link out of the folder.
   switch (in.next() % 8) {
-    case 0: mkfifo((lf / "lightfield.json").c_str(), 0600); break;
-    case 1: fs::create_symlink("lightfield.json", lf / "lightfield.json", ec); break;
-    case 2: fs::create_directory(lf / "lightfield.json", ec); break;
+    case 0:
+      mkfifo((lf / "lightfield.json").c_str(), 0600);
+      break;
+    case 1:
+      fs::create_symlink("lightfield.json", lf / "lightfield.json", ec);
+      break;
+    case 2:
+      fs::create_directory(lf / "lightfield.json", ec);
+      break;
     case 3: {
-      layerlab::fuzz::WriteBytes(scratch / "outside.json", reinterpret_cast<const uint8_t*>(kManifest), std::strlen(kManifest));
+      layerlab::fuzz::WriteBytes(scratch / "outside.json", reinterpret_cast<const uint8_t*>(kManifest),
+                                 std::strlen(kManifest));
       fs::create_symlink(scratch / "outside.json", lf / "lightfield.json", ec);
       break;
     }
-    default: layerlab::fuzz::WriteBytes(lf / "lightfield.json", reinterpret_cast<const uint8_t*>(kManifest), std::strlen(kManifest));
+    default:
+      layerlab::fuzz::WriteBytes(lf / "lightfield.json", reinterpret_cast<const uint8_t*>(kManifest),
+                                 std::strlen(kManifest));
   }
   try {
     (void)layerlab::ReadLightField(lf.string(), {.load_depth = false});

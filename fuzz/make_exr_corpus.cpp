@@ -13,8 +13,8 @@
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfOutputFile.h>
-#include <OpenEXR/ImfTiledOutputFile.h>
 #include <OpenEXR/ImfTileDescriptionAttribute.h>
+#include <OpenEXR/ImfTiledOutputFile.h>
 
 #include "framework/exr_image.h"
 
@@ -80,7 +80,9 @@ int main(int argc, char** argv) {
   }
   fs::path out(argv[1]);
   fs::create_directories(out);
-  layerlab::WriteExr((out / "rgb_2x2.exr").string(), Image{2, 2, {"R", "G", "B"}, {0, 0.1f, 0.2f, 0.3f, 0.4f, 0.5f, 0.6f, 0.7f, 0.8f, 0.9f, 1.0f, 2.0f}});
+  layerlab::WriteExr(
+      (out / "rgb_2x2.exr").string(),
+      Image{2, 2, {"R", "G", "B"}, {0, 0.1f, 0.2f, 0.3f, 0.4f, 0.5f, 0.6f, 0.7f, 0.8f, 0.9f, 1.0f, 2.0f}});
   layerlab::WriteExr((out / "z_3x1.exr").string(), Image{3, 1, {"Z"}, {0.5f, 1.0f, 4.0f}});
   layerlab::WriteExr((out / "rgbz_1x1.exr").string(), Image{1, 1, {"R", "G", "B", "Z"}, {1, 1, 1, 2}});
   layerlab::WriteExr((out / "negative_1x1.exr").string(), Image{1, 1, {"R", "G", "B"}, {1, -1, 1}});

@@ -13,10 +13,9 @@
 namespace {
 
 constexpr layerlab::Dimension kDimensions[] = {
-    layerlab::Dimension::kLength,           layerlab::Dimension::kOpticalPower, layerlab::Dimension::kAngle,
-    layerlab::Dimension::kLuminance,        layerlab::Dimension::kAngularFrequency,
-    layerlab::Dimension::kFraction,         layerlab::Dimension::kTime,
-    layerlab::Dimension::kFrequency};
+    layerlab::Dimension::kLength,    layerlab::Dimension::kOpticalPower,     layerlab::Dimension::kAngle,
+    layerlab::Dimension::kLuminance, layerlab::Dimension::kAngularFrequency, layerlab::Dimension::kFraction,
+    layerlab::Dimension::kTime,      layerlab::Dimension::kFrequency};
 
 }  // namespace
 

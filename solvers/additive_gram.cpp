@@ -56,7 +56,9 @@ AdditiveGram::AdditiveGram(const DisplayModel& model) : model_(model) {
       auto rows_of = [&](const LayerProjection& P) {
         return [&P, &g](int r) { return P.row_taps(static_cast<size_t>(r) * g.views_x); };
       };
-      auto cols_of = [](const LayerProjection& P) { return [&P](int c) { return P.col_taps(static_cast<size_t>(c)); }; };
+      auto cols_of = [](const LayerProjection& P) {
+        return [&P](int c) { return P.col_taps(static_cast<size_t>(c)); };
+      };
       blocks_.push_back({a, b, AxisGram(g.views_y, g.rows, Pa.rows(), Pb.rows(), rows_of(Pa), rows_of(Pb)),
                          AxisGram(g.views_x, g.cols, Pa.cols(), Pb.cols(), cols_of(Pa), cols_of(Pb))});
     }
@@ -77,11 +79,11 @@ void AdditiveGram::Apply(const LayerVectors& x, LayerVectors* out) const {
         Eigen::Map<const Dense, 0, Eigen::Stride<Eigen::Dynamic, 3>> xb(
             x[block.b].data() + c, Pb.rows(), Pb.cols(), Eigen::Stride<Eigen::Dynamic, 3>(3 * Pb.cols(), 3));
         const double w = double(weight_[a][c]) * weight_[block.b][c];
-        Dense rx = block.rows * xb;                               // rows_a x cols_b
+        Dense rx = block.rows * xb;                                      // rows_a x cols_b
         sum.noalias() += w * (block.cols * rx.transpose()).transpose();  // (C rx^T)^T = rx C^T
       }
       Eigen::Map<Dense, 0, Eigen::Stride<Eigen::Dynamic, 3>> oa((*out)[a].data() + c, Pa.rows(), Pa.cols(),
-                                                                 Eigen::Stride<Eigen::Dynamic, 3>(3 * Pa.cols(), 3));
+                                                                Eigen::Stride<Eigen::Dynamic, 3>(3 * Pa.cols(), 3));
       oa = sum;
     }
 }

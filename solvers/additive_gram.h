@@ -34,7 +34,7 @@ class AdditiveGram {
 
  private:
   struct Block {
-    int a, b;  // layers
+    int a, b;                                                 // layers
     Eigen::SparseMatrix<double, Eigen::RowMajor> rows, cols;  // R_ab (rows_a x rows_b), C_ab (cols_a x cols_b)
   };
   const DisplayModel& model_;

@@ -291,10 +291,11 @@ SolverType AdditiveTrustRegionSolverType() {
   SolverOptions defaults;
   defaults.iterations = 200;
   defaults.tolerance = 1e-6;
-  SolverType type("additive-trust-region",
-                  "box-constrained least squares of an additive display by a matrix-free projected trust-region "
-                  "Newton-CG method",
-                  [] { return std::make_unique<AdditiveTrustRegionSolver>(); }, defaults);
+  SolverType type(
+      "additive-trust-region",
+      "box-constrained least squares of an additive display by a matrix-free projected trust-region "
+      "Newton-CG method",
+      [] { return std::make_unique<AdditiveTrustRegionSolver>(); }, defaults);
   type.unsuitable = Unsuitable;
   type.default_rank = 2;
   return type;

@@ -76,9 +76,9 @@ class HybridSolver final : public Solver {
 }  // namespace
 
 SolverType HybridSolverType() {
-  SolverType type("hybrid",
-                  "the paper's algorithm (Fig. 2): each multiplicative set chases the target minus the others",
-                  [] { return std::make_unique<HybridSolver>(); }, SolverOptions{});
+  SolverType type(
+      "hybrid", "the paper's algorithm (Fig. 2): each multiplicative set chases the target minus the others",
+      [] { return std::make_unique<HybridSolver>(); }, SolverOptions{});
   type.default_rank = 1;
   type.memory.light_fields = 1;  // the chase: what the set being updated should emit
   type.options = {SubIterationsKey()};

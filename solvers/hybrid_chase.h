@@ -60,7 +60,7 @@ class HybridChase {
   std::vector<bool> started_;
   std::array<float, 3> total_weight_{0, 0, 0};
   bool all_one_tap_ = true;
-  PaddedLayers padded_;  // the synthesizers' padded patterns
+  PaddedLayers padded_;                       // the synthesizers' padded patterns
   std::optional<ViewSynthesizer> following_;  // of the pass in progress
 };
 

@@ -78,7 +78,7 @@ class JointSolver final : public Solver {
     for (size_t b = 0; b < model.branch_count(); ++b) longest = std::max(longest, model.branch_layers(b).size());
     const double plain_alpha = 1.0 / static_cast<double>(longest);
     double alpha = plain_alpha;
-    bool plain = true;  // the step just taken was a plain one
+    bool plain = true;     // the step just taken was a plain one
     if (loop.resumed()) {  // continue as after the accepted iterate the checkpoint holds
       alpha = std::min(loop.ResumedState("alpha", plain_alpha) * kGrowth, kMaxRelaxation * plain_alpha);
       plain = false;
@@ -118,9 +118,9 @@ class JointSolver final : public Solver {
 SolverType JointSolverType() {
   SolverOptions defaults;
   defaults.iterations = 200;
-  return SolverType("joint",
-                    "every layer of every branch at once, one pass per iteration, over-relaxed multiplicative steps",
-                    [] { return std::make_unique<JointSolver>(); }, defaults);
+  return SolverType(
+      "joint", "every layer of every branch at once, one pass per iteration, over-relaxed multiplicative steps",
+      [] { return std::make_unique<JointSolver>(); }, defaults);
 }
 
 }  // namespace layerlab

@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cstdint>
 
-#include "systems/row_kernels.h"
 #include "systems/one_tap_view.h"
+#include "systems/row_kernels.h"
 
 namespace layerlab {
 namespace {

@@ -2,9 +2,9 @@
 
 #include <omp.h>
 
-#include "systems/thread_merge.h"
 #include "solvers/joint_column_pass.h"
 #include "systems/one_tap_view.h"
+#include "systems/thread_merge.h"
 
 namespace layerlab {
 
@@ -33,7 +33,8 @@ JointPass::JointPass(const DisplayModel& model) : model_(model) {
 
 double JointPass::Run(const LightField& l, const Patterns& t) {
   const size_t layers = model_.layer_count();
-  for (size_t k = 0; k < layers; ++k) num_[k].resize(t[k].rgb.size()), den_[k].resize(t[k].rgb.size());  // written whole
+  for (size_t k = 0; k < layers; ++k)
+    num_[k].resize(t[k].rgb.size()), den_[k].resize(t[k].rgb.size());  // written whole
   if (column_pass_) return JointColumnPass(model_, l, t, &num_, &den_);
   // Views split evenly and statically, each view's error kept apart and
   // summed in view order, thread sums merged in thread order: the same

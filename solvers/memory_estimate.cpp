@@ -52,13 +52,20 @@ size_t ParseByteSize(const std::string& text, const std::string& option) {
   std::string unit = text.substr(used);
   while (!unit.empty() && unit.front() == ' ') unit.erase(0, 1);
   double scale = 0;
-  if (unit.empty() || unit == "B") scale = 1;
-  else if (unit == "kB" || unit == "KB") scale = 1e3;
-  else if (unit == "MB") scale = 1e6;
-  else if (unit == "GB") scale = 1e9;
-  else if (unit == "KiB") scale = 1024.0;
-  else if (unit == "MiB") scale = 1024.0 * 1024;
-  else if (unit == "GiB") scale = 1024.0 * 1024 * 1024;
+  if (unit.empty() || unit == "B")
+    scale = 1;
+  else if (unit == "kB" || unit == "KB")
+    scale = 1e3;
+  else if (unit == "MB")
+    scale = 1e6;
+  else if (unit == "GB")
+    scale = 1e9;
+  else if (unit == "KiB")
+    scale = 1024.0;
+  else if (unit == "MiB")
+    scale = 1024.0 * 1024;
+  else if (unit == "GiB")
+    scale = 1024.0 * 1024 * 1024;
   if (used == 0 || scale == 0 || !std::isfinite(value) || !(value > 0) || value * scale > 1e15)
     throw Error(option + ": \"" + text + "\" is not a memory size (give e.g. 512 MB, 2 GB or 1.5 GiB)");
   return static_cast<size_t>(value * scale);

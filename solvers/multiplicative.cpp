@@ -49,8 +49,9 @@ class MultiplicativeSolver final : public Solver {
 SolverType MultiplicativeSolverType() {
   SolverOptions defaults;
   defaults.iterations = 90;  // as many updates of each layer as the hybrid's 30 x 3
-  SolverType type("multiplicative", "non-negative multiplicative update rules for one stack of any number of layers",
-                  [] { return std::make_unique<MultiplicativeSolver>(); }, defaults);
+  SolverType type(
+      "multiplicative", "non-negative multiplicative update rules for one stack of any number of layers",
+      [] { return std::make_unique<MultiplicativeSolver>(); }, defaults);
   type.unsuitable = Unsuitable;
   type.default_rank = 3;
   return type;

@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <vector>
 
-#include "systems/thread_merge.h"
 #include "solvers/one_tap_update.h"
 #include "systems/one_tap_view.h"
+#include "systems/thread_merge.h"
 
 namespace layerlab {
 namespace {

@@ -88,8 +88,7 @@ Patterns InitialPatterns(const DisplayModel& model, const SolverOptions& options
     const std::vector<VirtualLayer>& layers = model.system().layers;
     for (size_t k = 0; k < t.size(); ++k) {
       SplitMix64 random(options.seed * 1000003u + static_cast<uint64_t>(layers[k].subframe) * 131u + k);
-      for (float& v : t[k].rgb)
-        v = std::clamp(static_cast<float>(v * (0.8 + 0.4 * random.uniform())), 0.0f, 1.0f);
+      for (float& v : t[k].rgb) v = std::clamp(static_cast<float>(v * (0.8 + 0.4 * random.uniform())), 0.0f, 1.0f);
     }
     return t;
   }

@@ -1,11 +1,11 @@
 #include "solvers/one_tap_update.h"
 
+#include <omp.h>
 #include <algorithm>
 #include <cstdint>
-#include <omp.h>
 
-#include "systems/row_kernels.h"
 #include "systems/one_tap_view.h"
+#include "systems/row_kernels.h"
 
 namespace layerlab {
 namespace {
@@ -110,10 +110,18 @@ void OneTapUpdateSums(const DisplayModel& model, const std::vector<int>& layers,
     thread_sums[me] = &w.sums;
     ForEachViewRunOfThread(g, me, threads, [&](int vc, int vr_begin, int vr_end) {
       switch (layers.size()) {
-        case 1: Accumulate<1>(model, layers, padded, branch_target, w4, vc, vr_begin, vr_end, view_errors, &w); break;
-        case 2: Accumulate<2>(model, layers, padded, branch_target, w4, vc, vr_begin, vr_end, view_errors, &w); break;
-        case 3: Accumulate<3>(model, layers, padded, branch_target, w4, vc, vr_begin, vr_end, view_errors, &w); break;
-        case 4: Accumulate<4>(model, layers, padded, branch_target, w4, vc, vr_begin, vr_end, view_errors, &w); break;
+        case 1:
+          Accumulate<1>(model, layers, padded, branch_target, w4, vc, vr_begin, vr_end, view_errors, &w);
+          break;
+        case 2:
+          Accumulate<2>(model, layers, padded, branch_target, w4, vc, vr_begin, vr_end, view_errors, &w);
+          break;
+        case 3:
+          Accumulate<3>(model, layers, padded, branch_target, w4, vc, vr_begin, vr_end, view_errors, &w);
+          break;
+        case 4:
+          Accumulate<4>(model, layers, padded, branch_target, w4, vc, vr_begin, vr_end, view_errors, &w);
+          break;
       }
     });
 #pragma omp barrier

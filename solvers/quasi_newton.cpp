@@ -181,7 +181,8 @@ class QuasiNewtonSolver final : public Solver {
       warm_done = false;
     }
     if (!warm_done) {  // stopped where this solve stops: its limit, budget, interruption, or a failure
-      const bool short_stop = warm.termination == Termination::kInterrupted || warm.termination == Termination::kTimeBudget;
+      const bool short_stop =
+          warm.termination == Termination::kInterrupted || warm.termination == Termination::kTimeBudget;
       if (short_stop && options.checkpoint && options.checkpoint_every > 0) options.checkpoint(start);
       return warm;
     }
@@ -287,9 +288,10 @@ SolverType QuasiNewtonSolverType() {
   SolverOptions defaults;
   defaults.iterations = 200;
   defaults.warm_start_iterations = 2;
-  SolverType type("quasi-newton",
-                  "projected L-BFGS on every layer at once after warm_start_iterations of hybrid, one pass per step",
-                  [] { return std::make_unique<QuasiNewtonSolver>(); }, defaults);
+  SolverType type(
+      "quasi-newton",
+      "projected L-BFGS on every layer at once after warm_start_iterations of hybrid, one pass per step",
+      [] { return std::make_unique<QuasiNewtonSolver>(); }, defaults);
   // The warm start's chase; 9 work vectors and kMemory pairs of 2, in double.
   type.memory.light_fields = 1;
   type.memory.layer_doubles = 9 + kMemory * 2;

@@ -27,7 +27,8 @@ PanelEncoding EncodeForPanel(const VirtualLayer& layer, const LayerPattern& patt
         double drive = (t - black) / (1.0 - black);
         if (drive < 0) ++out.below_black_level, drive = 0;
         double code = std::round(255.0 * std::pow(std::min(drive, 1.0), inverse_gamma));
-        size_t at = ((static_cast<size_t>(row) + panel.active_top) * panel.resolution_cols + col + panel.active_left) * 3 + c;
+        size_t at =
+            ((static_cast<size_t>(row) + panel.active_top) * panel.resolution_cols + col + panel.active_left) * 3 + c;
         out.pixels[at] = static_cast<uint8_t>(code);
       }
   return out;
@@ -50,7 +51,9 @@ nlohmann::json ReportToJson(const SolverReport& r) {
                       {"warnings", r.warnings},
                       {"brief", r.BriefReport()}};
   for (const IterationRecord& t : r.trace)
-    j["trace"].push_back({{"iteration", t.iteration}, {"seconds", t.seconds}, {"objective", t.objective},
+    j["trace"].push_back({{"iteration", t.iteration},
+                          {"seconds", t.seconds},
+                          {"objective", t.objective},
                           {"psnr_db", JsonNumber(t.psnr_db)}});
   return j;
 }

@@ -20,8 +20,8 @@
 namespace layerlab {
 
 struct PanelEncoding {
-  std::vector<uint8_t> pixels;  // [row][col][rgb] over the whole panel
-  size_t below_black_level = 0; // values the panel cannot make as dark as asked
+  std::vector<uint8_t> pixels;   // [row][col][rgb] over the whole panel
+  size_t below_black_level = 0;  // values the panel cannot make as dark as asked
 };
 
 // Encodes a layer's pattern for its panel: code = 255 ((t - b) / (1 - b))^(1/gamma).

@@ -44,13 +44,13 @@ SolveConfig ReadSolveConfig(const Scene& scene, const DisplaySystem& system, con
   SolverOptions& o = config.options;
   o = type->defaults;
   if (p.has("target") && p.has("target_scene"))
-    p.fail("target_scene", "give \"target\" (a light-field folder) or \"target_scene\" (a target scene to render), not both");
+    p.fail("target_scene",
+           "give \"target\" (a light-field folder) or \"target_scene\" (a target scene to render), not both");
   if (p.has("target")) config.target = ResolveAgainstScene(scene, p.string("target"));
   if (p.has("target_scene")) config.target_scene = ResolveAgainstScene(scene, p.string("target_scene"));
   o.iterations = static_cast<int>(p.integer("iterations", 1, 1000000, o.iterations));
   o.sub_iterations = static_cast<int>(p.integer("sub_iterations", 1, 1000, o.sub_iterations));
-  o.warm_start_iterations =
-      static_cast<int>(p.integer("warm_start_iterations", 0, 1000000, o.warm_start_iterations));
+  o.warm_start_iterations = static_cast<int>(p.integer("warm_start_iterations", 0, 1000000, o.warm_start_iterations));
   o.time_budget = p.quantity("time_budget", Dimension::kTime, o.time_budget);
   p.require_range("time_budget", o.time_budget, 0, 1e7, false, false);
   o.tolerance = p.quantity("tolerance", Dimension::kFraction, o.tolerance);
@@ -59,9 +59,10 @@ SolveConfig ReadSolveConfig(const Scene& scene, const DisplaySystem& system, con
   p.require_range("initial_value", o.initial_value, -1, 1, false, false);
   o.seed = static_cast<uint64_t>(p.integer("seed", 0, INT64_MAX, static_cast<int64_t>(o.seed)));
   o.threads = static_cast<int>(p.integer("threads", 0, 1024, o.threads));
-  config.sampling = p.choice("sampling", {"nearest", "bilinear"}, "nearest") == "nearest" ? Sampling::kNearest
-                                                                                          : Sampling::kBilinear;
-  o.target_range = p.choice("target_range", {"clip", "scale"}, "clip") == "clip" ? TargetRange::kClip : TargetRange::kScale;
+  config.sampling =
+      p.choice("sampling", {"nearest", "bilinear"}, "nearest") == "nearest" ? Sampling::kNearest : Sampling::kBilinear;
+  o.target_range =
+      p.choice("target_range", {"clip", "scale"}, "clip") == "clip" ? TargetRange::kClip : TargetRange::kScale;
   p.check_all_read();
   return config;
 }

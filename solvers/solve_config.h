@@ -21,7 +21,7 @@
 namespace layerlab {
 
 struct SolveConfig {
-  std::string solver;  // default: DefaultSolverFor(system)
+  std::string solver;        // default: DefaultSolverFor(system)
   std::string target;        // light-field folder, resolved against the scene file's folder
   std::string target_scene;  // or a target scene (layerlab-target/1) to render, resolved likewise
   Sampling sampling = Sampling::kNearest;

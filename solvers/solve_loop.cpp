@@ -128,9 +128,10 @@ bool SolveLoop::EndIteration(std::optional<double> objective) {
     stopped_ = true;
   }
   // A stop short of the goal also checkpoints, so that the run can go on.
-  const bool short_stop = stopped_ && (report_.termination == Termination::kInterrupted ||
-                                       report_.termination == Termination::kTimeBudget);
-  if (options_.checkpoint && options_.checkpoint_every > 0 && (iteration_ % options_.checkpoint_every == 0 || short_stop))
+  const bool short_stop =
+      stopped_ && (report_.termination == Termination::kInterrupted || report_.termination == Termination::kTimeBudget);
+  if (options_.checkpoint && options_.checkpoint_every > 0 &&
+      (iteration_ % options_.checkpoint_every == 0 || short_stop))
     WriteCheckpoint();
   return !stopped_;
 }

@@ -73,10 +73,10 @@ enum class Termination { kNotRun, kIterationLimit, kTimeBudget, kConverged, kInt
 std::string ToString(Termination t);
 
 struct IterationRecord {
-  int iteration = 0;      // 0 is the initial guess
-  double seconds = 0;     // wall time since the solve started
-  double objective = 0;   // sum of squared errors over rays and channels
-  double psnr_db = 0;     // peak 1 (display-relative units); +inf for a perfect fit
+  int iteration = 0;     // 0 is the initial guess
+  double seconds = 0;    // wall time since the solve started
+  double objective = 0;  // sum of squared errors over rays and channels
+  double psnr_db = 0;    // peak 1 (display-relative units); +inf for a perfect fit
 };
 
 struct SolverReport {

@@ -5,9 +5,9 @@
 #include <filesystem>
 
 #include "framework/atomic_file.h"
+#include "framework/content_digest.h"
 #include "framework/error.h"
 #include "framework/exr_image.h"
-#include "framework/content_digest.h"
 #include "framework/json_file.h"
 #include "systems/system_report.h"
 
@@ -31,15 +31,22 @@ void WriteCheckpoint(const DisplayModel& model, const SolverCheckpoint& c, const
   for (size_t k = 0; k < model.layer_count(); ++k) {
     const VirtualLayer& layer = model.system().layers[k];
     const std::string name = PatternName(layer, c.iteration);
-    WriteExr((fs::path(folder) / name).string(), Image{c.patterns[k].cols, c.patterns[k].rows, {"R", "G", "B"}, c.patterns[k].rgb});
+    WriteExr((fs::path(folder) / name).string(),
+             Image{c.patterns[k].cols, c.patterns[k].rows, {"R", "G", "B"}, c.patterns[k].rgb});
     files[layer.name] = name;
   }
   nlohmann::json trace = nlohmann::json::array();
   for (const IterationRecord& r : c.trace)
-    trace.push_back({r.iteration, r.seconds, r.objective, std::isinf(r.psnr_db) ? nlohmann::json("inf") : nlohmann::json(r.psnr_db)});
-  nlohmann::json doc = {{"format", "layerlab-checkpoint/1"}, {"solver", c.solver},   {"iteration", c.iteration},
-                        {"seconds", c.seconds},                {"patterns", files},    {"state", c.state},
-                        {"trace", trace},                      {"digest", inputs}};
+    trace.push_back({r.iteration, r.seconds, r.objective,
+                     std::isinf(r.psnr_db) ? nlohmann::json("inf") : nlohmann::json(r.psnr_db)});
+  nlohmann::json doc = {{"format", "layerlab-checkpoint/1"},
+                        {"solver", c.solver},
+                        {"iteration", c.iteration},
+                        {"seconds", c.seconds},
+                        {"patterns", files},
+                        {"state", c.state},
+                        {"trace", trace},
+                        {"digest", inputs}};
   WriteFileAtomically((fs::path(folder) / "checkpoint.json").string(), doc.dump(1) + "\n");
   // The new checkpoint is complete: the old pattern files can go.
   for (const auto& entry : fs::directory_iterator(folder, ec)) {
@@ -70,17 +77,20 @@ SolverCheckpoint ReadCheckpoint(const DisplayModel& model, const std::string& fo
     for (size_t k = 0; k < model.layer_count(); ++k) {
       const VirtualLayer& layer = model.system().layers[k];
       if (!doc.at("patterns").contains(layer.name))
-        throw Error(file + ": /patterns: no pattern for layer \"" + layer.name + "\" (a checkpoint of another display?)");
+        throw Error(file + ": /patterns: no pattern for layer \"" + layer.name +
+                    "\" (a checkpoint of another display?)");
       const std::string name = doc["patterns"][layer.name].get<std::string>();
       if (name.find('/') != std::string::npos || name.find("..") != std::string::npos)
-        throw Error(file + ": /patterns/" + layer.name + ": \"" + name + "\" must be a file name in the checkpoint folder");
+        throw Error(file + ": /patterns/" + layer.name + ": \"" + name +
+                    "\" must be a file name in the checkpoint folder");
       Image image = ReadExr((fs::path(folder) / name).string(), {"R", "G", "B"});
       if (image.width != layer.cols || image.height != layer.rows)
         throw Error((fs::path(folder) / name).string() + ": " + std::to_string(image.width) + " x " +
                     std::to_string(image.height) + " pixels; layer \"" + layer.name + "\" has " +
                     std::to_string(layer.cols) + " x " + std::to_string(layer.rows));
       for (float v : image.pixels)
-        if (!(v >= 0.0f && v <= 1.0f)) throw Error((fs::path(folder) / name).string() + ": a transmittance outside [0, 1]");
+        if (!(v >= 0.0f && v <= 1.0f))
+          throw Error((fs::path(folder) / name).string() + ": a transmittance outside [0, 1]");
       LayerPattern p(layer.cols, layer.rows, 0);
       p.rgb = std::move(image.pixels);
       c.patterns.push_back(std::move(p));
@@ -92,14 +102,16 @@ SolverCheckpoint ReadCheckpoint(const DisplayModel& model, const std::string& fo
 }
 
 CheckpointInputs CheckpointDigest(const DisplayModel& model, Sampling sampling, const LightField& target,
-                                                    const std::string& solver, const SolverOptions& o) {
+                                  const std::string& solver, const SolverOptions& o) {
   const LightFieldGeometry& g = target.geometry;
-  const double geometry[] = {g.origin_z, g.window_left, g.window_top, g.window_width, g.window_height,
-                             g.eyebox_width, g.eyebox_height, double(g.cols), double(g.rows), double(g.views_x), double(g.views_y)};
+  const double geometry[] = {g.origin_z,      g.window_left,     g.window_top,     g.window_width,
+                             g.window_height, g.eyebox_width,    g.eyebox_height,  double(g.cols),
+                             double(g.rows),  double(g.views_x), double(g.views_y)};
   ContentDigest target_digest;
   target_digest.add(geometry, sizeof geometry).add(target.rgb.data(), target.rgb.size() * sizeof(float));
   char options[256];
-  std::snprintf(options, sizeof options, "sub_iterations=%d warm_start=%d seed=%llu initial=%.17g epsilon=%.17g floor=%.17g range=%d",
+  std::snprintf(options, sizeof options,
+                "sub_iterations=%d warm_start=%d seed=%llu initial=%.17g epsilon=%.17g floor=%.17g range=%d",
                 o.sub_iterations, o.warm_start_iterations, static_cast<unsigned long long>(o.seed), o.initial_value,
                 o.epsilon, o.floor, static_cast<int>(o.target_range));
   return {{"display", ContentDigest().add(SystemToJson(model.system()).dump()).add(&sampling, sizeof sampling).hex()},
@@ -116,10 +128,13 @@ void RefuseMismatchedCheckpoint(const std::string& folder, const CheckpointInput
     for (const auto& [key, value] : doc["digest"].items())
       if (value.is_string()) recorded[key] = value.get<std::string>();
   if (recorded.empty())
-    throw Error(file + ": /digest: the checkpoint does not record what it was made for (an older layerlab); "
+    throw Error(file +
+                ": /digest: the checkpoint does not record what it was made for (an older layerlab); "
                 "it cannot be resumed safely. Nothing was written");
-  static const std::map<std::string, std::string> names = {
-      {"display", "display (scene or sampling)"}, {"target", "target"}, {"solver", "solver"}, {"options", "solver options"}};
+  static const std::map<std::string, std::string> names = {{"display", "display (scene or sampling)"},
+                                                           {"target", "target"},
+                                                           {"solver", "solver"},
+                                                           {"options", "solver options"}};
   for (const auto& [key, value] : now) {
     auto it = recorded.find(key);
     if (it == recorded.end() || it->second != value)

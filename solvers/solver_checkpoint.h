@@ -29,7 +29,7 @@ using CheckpointInputs = std::map<std::string, std::string>;
 // target's geometry and every value of its views, the solver, and the options
 // that change the result (not iterations, time budget, tolerance or threads).
 CheckpointInputs CheckpointDigest(const DisplayModel& model, Sampling sampling, const LightField& target,
-                                                    const std::string& solver, const SolverOptions& options);
+                                  const std::string& solver, const SolverOptions& options);
 // Throws layerlab::Error naming what differs between the digest recorded in
 // folder/checkpoint.json and `now`, and that nothing was written.
 void RefuseMismatchedCheckpoint(const std::string& folder, const CheckpointInputs& now);

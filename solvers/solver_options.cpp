@@ -30,28 +30,38 @@ bool SolverOptions::IsValid(std::string* error) const {
     return false;
   };
   if (iterations < 1 || iterations > 1000000) return fail("iterations", iterations, "must be in [1, 1000000]");
-  if (sub_iterations < 1 || sub_iterations > 1000) return fail("sub_iterations", sub_iterations, "must be in [1, 1000]");
+  if (sub_iterations < 1 || sub_iterations > 1000)
+    return fail("sub_iterations", sub_iterations, "must be in [1, 1000]");
   if (warm_start_iterations < 0 || warm_start_iterations > 1000000)
     return fail("warm_start_iterations", warm_start_iterations, "must be in [0, 1000000]");
-  if (!(time_budget >= 0) || !std::isfinite(time_budget)) return fail("time_budget", time_budget, "must be >= 0 seconds (0 = none)");
+  if (!(time_budget >= 0) || !std::isfinite(time_budget))
+    return fail("time_budget", time_budget, "must be >= 0 seconds (0 = none)");
   if (!(tolerance >= 0) || !(tolerance < 1)) return fail("tolerance", tolerance, "must be in [0, 1)");
   if (!(initial_value <= 1) || std::isnan(initial_value) || (initial_value >= 0 && initial_value < floor))
     return fail("initial_value", initial_value, "must be in [floor, 1], or negative for random");
   if (threads < 0 || threads > 1024) return fail("threads", threads, "must be in [0, 1024] (0 = all cores)");
   if (!(epsilon > 0) || !(epsilon < 1e-3)) return fail("epsilon", epsilon, "must be in (0, 1e-3)");
-  if (!(floor > 0) || !(floor < 0.1)) return fail("floor", floor, "must be in (0, 0.1): a zero transmittance never recovers");
+  if (!(floor > 0) || !(floor < 0.1))
+    return fail("floor", floor, "must be in (0, 0.1): a zero transmittance never recovers");
   return true;
 }
 
 std::string ToString(Termination t) {
   switch (t) {
-    case Termination::kNotRun: return "not run";
-    case Termination::kIterationLimit: return "iteration limit";
-    case Termination::kTimeBudget: return "time budget";
-    case Termination::kConverged: return "converged";
-    case Termination::kInterrupted: return "interrupted";
-    case Termination::kInvalidOptions: return "invalid options";
-    case Termination::kFailed: return "failed";
+    case Termination::kNotRun:
+      return "not run";
+    case Termination::kIterationLimit:
+      return "iteration limit";
+    case Termination::kTimeBudget:
+      return "time budget";
+    case Termination::kConverged:
+      return "converged";
+    case Termination::kInterrupted:
+      return "interrupted";
+    case Termination::kInvalidOptions:
+      return "invalid options";
+    case Termination::kFailed:
+      return "failed";
   }
   return "unknown";
 }

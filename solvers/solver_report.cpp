@@ -28,9 +28,10 @@ std::string SolverReport::FullReport() const {
   std::string out = "solver               " + solver + "\n";
   out += "termination          " + ToString(termination) + (message.empty() ? "" : " (" + message + ")") + "\n";
   char buf[256];
-  std::snprintf(buf, sizeof buf,
-                "iterations           %d\nwall time            %.3f s (after %.3f s of set-up)\nrays x channels      %zu\n",
-                iterations, seconds, setup_seconds, rays * 3);
+  std::snprintf(
+      buf, sizeof buf,
+      "iterations           %d\nwall time            %.3f s (after %.3f s of set-up)\nrays x channels      %zu\n",
+      iterations, seconds, setup_seconds, rays * 3);
   out += buf;
   std::snprintf(buf, sizeof buf, "objective            %.9g -> %.9g (sum of squared errors)\n", initial_objective,
                 final_objective);
@@ -42,7 +43,8 @@ std::string SolverReport::FullReport() const {
   for (const std::string& w : warnings) out += "warning: " + w + "\n";
   out += "\niteration  seconds     objective        PSNR (dB)\n";
   for (const IterationRecord& r : trace) {
-    std::snprintf(buf, sizeof buf, "%9d  %8.3f  %14.6f  %s\n", r.iteration, r.seconds, r.objective, Db(r.psnr_db).c_str());
+    std::snprintf(buf, sizeof buf, "%9d  %8.3f  %14.6f  %s\n", r.iteration, r.seconds, r.objective,
+                  Db(r.psnr_db).c_str());
     out += buf;
   }
   return out;

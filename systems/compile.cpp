@@ -20,11 +20,11 @@ struct LightStep {
 
 // What the walk knows at one point of one path from the eye.
 struct PathState {
-  std::vector<PathStep> steps;     // the elements passed, nearest the eye first
-  std::vector<LightStep> light;    // those that act on light
-  RayTransfer<double> transfer;    // pupil -> the last placed element
-  double placed_at = 0;            // that element's position (the pupil: 0)
-  std::string placed_name;         // and its name ("" for the pupil)
+  std::vector<PathStep> steps;              // the elements passed, nearest the eye first
+  std::vector<LightStep> light;             // those that act on light
+  RayTransfer<double> transfer;             // pupil -> the last placed element
+  double placed_at = 0;                     // that element's position (the pupil: 0)
+  std::string placed_name;                  // and its name ("" for the pupil)
   std::optional<double> previous_position;  // of the element just before; none when it is flat and unplaced
   std::string previous_name;
   std::optional<size_t> last_power;  // index into steps of the nearest lens or curved mirror
@@ -70,8 +70,8 @@ class Walker {
         Walk(Follow(eye_node, 0, kOptics), start);
       } catch (const Error& e) {
         if (!time_varying) throw;
-        throw Error(e.where(), e.message() + " (in subframe " + std::to_string(subframe_ + 1) + " of " +
-                                   std::to_string(K) + ")");
+        throw Error(e.where(),
+                    e.message() + " (in subframe " + std::to_string(subframe_ + 1) + " of " + std::to_string(K) + ")");
       }
       if (K == 1) continue;
       const std::string suffix = "@" + std::to_string(subframe_ + 1);
@@ -99,9 +99,8 @@ class Walker {
   }
 
  private:
-  inline static const std::vector<ElementKind> kOptics = {ElementKind::kLens, ElementKind::kMirror,
-                                                          ElementKind::kCombiner, ElementKind::kInlineOptic,
-                                                          ElementKind::kPanel};
+  inline static const std::vector<ElementKind> kOptics = {
+      ElementKind::kLens, ElementKind::kMirror, ElementKind::kCombiner, ElementKind::kInlineOptic, ElementKind::kPanel};
 
   [[noreturn]] static void Fail(const Location& at, const std::string& message) { throw Error(at, message); }
 
@@ -114,7 +113,8 @@ class Walker {
                              eye->element->name() + "\" (one eye per scene)");
       eye = &node;
     }
-    if (!eye) Fail({scene_.file, "/elements"}, "the scene has no eye; the optical path starts at an element of type \"eye\"");
+    if (!eye)
+      Fail({scene_.file, "/elements"}, "the scene has no eye; the optical path starts at an element of type \"eye\"");
     return *eye;
   }
 
@@ -166,9 +166,11 @@ class Walker {
   PathStep Pass(const SceneNode& node, size_t port, PathState& state) {
     const Element& e = *node.element;
     if (e.powers_given() > 0 && e.powers_given() != scene_.subframes)
-      Fail(node.where, Quoted(e.name()) + " gives " + std::to_string(e.powers_given()) + " powers, one per subframe, "
-                       "but the scene shows " + std::to_string(scene_.subframes) + " (\"subframes\": " +
-                       std::to_string(scene_.subframes) + " at the top of the scene)");
+      Fail(node.where, Quoted(e.name()) + " gives " + std::to_string(e.powers_given()) +
+                           " powers, one per subframe, "
+                           "but the scene shows " +
+                           std::to_string(scene_.subframes) + " (\"subframes\": " + std::to_string(scene_.subframes) +
+                           " at the top of the scene)");
     const double power = e.power_in_subframe(subframe_);
     const bool powered = e.kind() == ElementKind::kLens || power != 0;
     if (e.powers_given() > 0) state.tunable = e.name();
@@ -179,14 +181,16 @@ class Walker {
     } else if (powered && first_power) {
       step.position = system_.eye.eye_relief;  // the magnifier, as the paper places it
       if (!(*step.position > state.placed_at))
-        Fail(node.where.child("gap"), Quoted(e.name()) + " would sit at the eye's eye_relief (" +
-                                          Mm(*step.position) + " from the pupil), which is not behind " +
-                                          Quoted(state.placed_name) + " (" + Mm(state.placed_at) +
-                                          "); give it a \"gap\" from " + Quoted(state.previous_name));
+        Fail(node.where.child("gap"), Quoted(e.name()) + " would sit at the eye's eye_relief (" + Mm(*step.position) +
+                                          " from the pupil), which is not behind " + Quoted(state.placed_name) + " (" +
+                                          Mm(state.placed_at) + "); give it a \"gap\" from " +
+                                          Quoted(state.previous_name));
     } else if (powered) {
-      Fail(node.where.child("gap"), "missing placement: " + Quoted(e.name()) + " is not the first lens or curved "
-                                    "mirror on its path, so the eye's eye_relief does not place it; give \"gap\" "
-                                    "(the path length from " + Quoted(state.previous_name) + ")");
+      Fail(node.where.child("gap"), "missing placement: " + Quoted(e.name()) +
+                                        " is not the first lens or curved "
+                                        "mirror on its path, so the eye's eye_relief does not place it; give \"gap\" "
+                                        "(the path length from " +
+                                        Quoted(state.previous_name) + ")");
     }
     if (step.position) {
       Advance(state, *step.position, e.name());
@@ -253,13 +257,16 @@ class Walker {
       if (branch.layers.size() == kMaxStackPanels)
         Fail(node->where, "a stack of more than " + std::to_string(kMaxStackPanels) + " panels: the product of " +
                               std::to_string(kMaxStackPanels + 1) + " transmittances (" +
-                              FormatFixed(std::pow(0.5, kMaxStackPanels + 1) * 1e12, 3) + "e-12 of white with every "
+                              FormatFixed(std::pow(0.5, kMaxStackPanels + 1) * 1e12, 3) +
+                              "e-12 of white with every "
                               "panel at the solvers' start of 0.5) leaves the light field to float rounding and, with "
                               "hundreds of panels, underflows it to zero; layerlab takes at most " +
                               std::to_string(kMaxStackPanels) + " panels per stack");
       if (system_.layers.size() == kMaxLayers)
-        Fail(node->where, "more than " + std::to_string(kMaxLayers) + " virtual layers (over every branch and "
-                          "subframe); layerlab compiles displays of up to " + std::to_string(kMaxLayers));
+        Fail(node->where, "more than " + std::to_string(kMaxLayers) +
+                              " virtual layers (over every branch and "
+                              "subframe); layerlab compiles displays of up to " +
+                              std::to_string(kMaxLayers));
       const auto& panel = static_cast<const PanelElement&>(*node->element);
       VirtualLayer layer = Float(*node, panel.spec(), state, previous ? &*previous : nullptr);
       layer.branch = branch_index;
@@ -273,8 +280,8 @@ class Walker {
       Advance(state, layer.position, layer.name);
       state.previous_position = layer.position;
       state.previous_name = layer.name;
-      state.steps.push_back({layer.name, node->element->type(), ElementKind::kPanel, "", layer.position, 0, false,
-                             false, std::nullopt});
+      state.steps.push_back(
+          {layer.name, node->element->type(), ElementKind::kPanel, "", layer.position, 0, false, false, std::nullopt});
       stack_.push_back(node);
       node = &Follow(*node, 0, {ElementKind::kPanel, ElementKind::kBacklight});
     }
@@ -288,16 +295,19 @@ class Walker {
   }
 
   // Where the panel sits on its path, and the image the optics in front of it form.
-  VirtualLayer Float(const SceneNode& node, const PanelSpec& spec, const PathState& state,
-                     const VirtualLayer* front) {
+  VirtualLayer Float(const SceneNode& node, const PanelSpec& spec, const PathState& state, const VirtualLayer* front) {
     VirtualLayer layer;
     layer.name = layer.element = node.element->name();
     layer.subframe = subframe_;
     layer.panel = spec;
     if (spec.virtual_depth && !state.tunable.empty())
-      Fail(node.where.child("virtual_depth"), "\"virtual_depth\" places a panel where its image should be, but behind "
-                                              "the tunable " + Quoted(state.tunable) + " the image moves from subframe "
-                                              "to subframe; place " + Quoted(layer.name) + " by \"distance\" or \"gap\"");
+      Fail(node.where.child("virtual_depth"),
+           "\"virtual_depth\" places a panel where its image should be, but behind "
+           "the tunable " +
+               Quoted(state.tunable) +
+               " the image moves from subframe "
+               "to subframe; place " +
+               Quoted(layer.name) + " by \"distance\" or \"gap\"");
     layer.path = state.steps;
     const double lens_at = state.last_power ? *state.steps[*state.last_power].position : 0.0;
     const char* key = spec.virtual_depth ? "virtual_depth" : spec.distance ? "distance" : "gap";
@@ -307,16 +317,19 @@ class Walker {
       const double t = GapForDiopters(state.transfer, D, &solvable);
       if (!solvable)
         Fail(node.where.child(key), "no place behind " + Quoted(state.placed_name) + " images the panel at " +
-                                        FormatFixed(D, 3) + " D: the optics in front of it image every plane behind "
-                                        "it at " + FormatFixed(state.transfer.c / state.transfer.d, 3) + " D");
+                                        FormatFixed(D, 3) +
+                                        " D: the optics in front of it image every plane behind "
+                                        "it at " +
+                                        FormatFixed(state.transfer.c / state.transfer.d, 3) + " D");
       layer.position = state.placed_at + t;
       if (!front && !(t > 0)) FailUnreachableDepth(node, state, D);
     } else if (spec.distance) {
       if (!state.last_power)
-        Fail(node.where.child(key), "\"distance\" is measured from the nearest lens or curved mirror in front of the "
-                                    "panel, and none lies between the eye and " + Quoted(layer.name) +
-                                    "; give \"gap\" (from " + Quoted(state.previous_name) +
-                                    ") or \"virtual_depth\" (from the eye)");
+        Fail(node.where.child(key),
+             "\"distance\" is measured from the nearest lens or curved mirror in front of the "
+             "panel, and none lies between the eye and " +
+                 Quoted(layer.name) + "; give \"gap\" (from " + Quoted(state.previous_name) +
+                 ") or \"virtual_depth\" (from the eye)");
       layer.position = lens_at + *spec.distance;
     } else {
       layer.position = AfterPrevious(node, state, *node.element->gap());
@@ -330,13 +343,17 @@ class Walker {
 
     RayTransfer<double> m = state.transfer.then_gap(layer.position - state.placed_at);
     // a + t c is zero to within its rounding at the focal plane: the image is at infinity.
-    const double a_rounding = 8 * std::numeric_limits<double>::epsilon() *
-                              (std::abs(state.transfer.a) + std::abs((layer.position - state.placed_at) * state.transfer.c));
-    if (spec.virtual_depth) m.a = spec.virtual_depth->diopters * m.b;
-    else if (std::abs(m.a) <= a_rounding) m.a = 0;
+    const double a_rounding =
+        8 * std::numeric_limits<double>::epsilon() *
+        (std::abs(state.transfer.a) + std::abs((layer.position - state.placed_at) * state.transfer.c));
+    if (spec.virtual_depth)
+      m.a = spec.virtual_depth->diopters * m.b;
+    else if (std::abs(m.a) <= a_rounding)
+      m.a = 0;
     if (m.b == 0)
-      Fail(node.where.child(key), "panel " + Quoted(layer.name) + " is imaged into the pupil plane, where no eye "
-                                  "can focus; move it or the optics in front of it");
+      Fail(node.where.child(key), "panel " + Quoted(layer.name) +
+                                      " is imaged into the pupil plane, where no eye "
+                                      "can focus; move it or the optics in front of it");
     const double D = m.a / m.b;
     if (D < 0) FailBehindTheEye(node, key, state, layer, D);
     layer.transfer = m;
@@ -361,7 +378,8 @@ class Walker {
     layer.fov_y = FieldOfView(layer.tan_pitch_y, layer.rows);
     layer.max_cpd = std::max(NyquistCyclesPerDegree(layer.tan_pitch_x), NyquistCyclesPerDegree(layer.tan_pitch_y));
     if (spec.virtual_depth == std::nullopt && D == 0)
-      system_.warnings.push_back("panel \"" + layer.name + "\" sits at the focal plane: its image is at infinity (0 D)");
+      system_.warnings.push_back("panel \"" + layer.name +
+                                 "\" sits at the focal plane: its image is at infinity (0 D)");
     return layer;
   }
 
@@ -379,8 +397,9 @@ class Walker {
                    FormatFixed(1.0 / state.placed_at, 1) + " D)");
     const double nearest = state.transfer.a / state.transfer.b, farthest = state.transfer.c / state.transfer.d;
     Fail(at, wanted + " cannot be formed behind " + Quoted(state.placed_name) + " (" + Mm(state.placed_at) +
-                 " from the pupil): panels behind it are imaged between " + FormatFixed(std::min(nearest, farthest), 3) +
-                 " and " + FormatFixed(std::max(nearest, farthest), 3) + " D");
+                 " from the pupil): panels behind it are imaged between " +
+                 FormatFixed(std::min(nearest, farthest), 3) + " and " + FormatFixed(std::max(nearest, farthest), 3) +
+                 " D");
   }
 
   [[noreturn]] void FailBehindTheEye(const SceneNode& node, const char* key, const PathState& state,
@@ -395,19 +414,22 @@ class Walker {
                      ": the lens would form a real, inverted image, not a floating virtual one");
     }
     Fail(at, "panel " + Quoted(layer.name) + " would be imaged " + Mm(-1.0 / D) + " behind the eye (" +
-                 FormatFixed(D, 3) + " D): the optics in front of it form a real image that converges into the eye, "
+                 FormatFixed(D, 3) +
+                 " D): the optics in front of it form a real image that converges into the eye, "
                  "which no eye can focus");
   }
 
   void CheckOrder(const VirtualLayer& front, const VirtualLayer& back, const SceneNode& node, const char* key,
                   bool has_lens) const {
     if (back.position == front.position)
-      Fail(node.where.child(key), "panels \"" + front.name + "\" and \"" + back.name + "\" of one stack are at the same depth (" +
-                                      FormatFixed(front.diopters, 4) + " D); a stack needs distinct planes");
+      Fail(node.where.child(key), "panels \"" + front.name + "\" and \"" + back.name +
+                                      "\" of one stack are at the same depth (" + FormatFixed(front.diopters, 4) +
+                                      " D); a stack needs distinct planes");
     if (back.position < front.position)
-      Fail(node.where.child(key), "panel \"" + back.name + "\" is behind \"" + front.name + "\" in the stack but nearer the " +
-                                      (has_lens ? "lens (" : "eye (") + Mm(back.panel_distance) + " < " +
-                                      Mm(front.panel_distance) + "); list each stack from the eye outward");
+      Fail(node.where.child(key), "panel \"" + back.name + "\" is behind \"" + front.name +
+                                      "\" in the stack but nearer the " + (has_lens ? "lens (" : "eye (") +
+                                      Mm(back.panel_distance) + " < " + Mm(front.panel_distance) +
+                                      "); list each stack from the eye outward");
   }
 
   Rgb PathEfficiency(const std::vector<LightStep>& path, double polarization_angle) {
@@ -420,10 +442,17 @@ class Walker {
     }
     for (auto step = path.rbegin(); step != path.rend(); ++step) {  // from the panel toward the eye
       switch (step->element->kind()) {
-        case ElementKind::kCombiner: static_cast<const CombinerElement*>(step->element)->transfer(step->port, light); break;
-        case ElementKind::kInlineOptic: static_cast<const InlineOpticElement*>(step->element)->transfer(light); break;
-        case ElementKind::kMirror: static_cast<const MirrorElement*>(step->element)->transfer(light); break;
-        default: break;  // thin lenses are ideal
+        case ElementKind::kCombiner:
+          static_cast<const CombinerElement*>(step->element)->transfer(step->port, light);
+          break;
+        case ElementKind::kInlineOptic:
+          static_cast<const InlineOpticElement*>(step->element)->transfer(light);
+          break;
+        case ElementKind::kMirror:
+          static_cast<const MirrorElement*>(step->element)->transfer(light);
+          break;
+        default:
+          break;  // thin lenses are ideal
       }
     }
     return {light[0].power(), light[1].power(), light[2].power()};
@@ -507,7 +536,8 @@ void Walker::Finish() {
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return layers[a].diopters < layers[b].diopters; });
   std::vector<int> new_index(layers.size());
   std::vector<VirtualLayer> sorted;
-  for (size_t i = 0; i < order.size(); ++i) new_index[order[i]] = static_cast<int>(i), sorted.push_back(layers[order[i]]);
+  for (size_t i = 0; i < order.size(); ++i)
+    new_index[order[i]] = static_cast<int>(i), sorted.push_back(layers[order[i]]);
   layers = std::move(sorted);
   for (Branch& b : system_.branches)
     for (int& k : b.layers) k = new_index[k];
@@ -553,9 +583,9 @@ void Walker::Finish() {
     if (lenses.empty() && mirrors.empty())
       parts.push_back("direct view, no optics with power (" + std::to_string(layers.size()) + " layers)");
     else
-      parts.push_back("first-order optics: " + std::to_string(lenses.size()) + " lens" + (lenses.size() == 1 ? "" : "es") +
-                      ", " + std::to_string(mirrors.size()) + " mirror" + (mirrors.size() == 1 ? "" : "s") + " (" +
-                      std::to_string(layers.size()) + " virtual layers)");
+      parts.push_back("first-order optics: " + std::to_string(lenses.size()) + " lens" +
+                      (lenses.size() == 1 ? "" : "es") + ", " + std::to_string(mirrors.size()) + " mirror" +
+                      (mirrors.size() == 1 ? "" : "s") + " (" + std::to_string(layers.size()) + " virtual layers)");
   }
   const int K = system_.subframes;
   if (K > 1)
@@ -565,11 +595,12 @@ void Walker::Finish() {
   const size_t branches = system_.branches.size() / K;
   const int combiners = combiners_ / K;
   if (branches > 1)
-    parts.push_back("additive combination of " + std::to_string(branches) + " branches (" +
-                    std::to_string(combiners) + " combiner" + (combiners > 1 ? "s" : "") + ")");
+    parts.push_back("additive combination of " + std::to_string(branches) + " branches (" + std::to_string(combiners) +
+                    " combiner" + (combiners > 1 ? "s" : "") + ")");
   int products = 0;
   for (const Branch& b : system_.branches) products += b.subframe == 0 && b.layers.size() > 1;
-  if (products) parts.push_back("multiplicative stacks in " + std::to_string(products) + " branch" + (products > 1 ? "es" : ""));
+  if (products)
+    parts.push_back("multiplicative stacks in " + std::to_string(products) + " branch" + (products > 1 ? "es" : ""));
   parts.push_back(system_.polarization_tracked ? "polarization (Jones vectors per channel)"
                                                : "no polarization model (no polarizing element)");
   if (std::any_of(layers.begin(), layers.end(), [](const VirtualLayer& l) { return l.inverted; }))

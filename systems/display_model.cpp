@@ -44,7 +44,8 @@ LightField DisplayModel::Synthesize(const Patterns& t) const {
 }
 
 void DisplayModel::Synthesize(const Patterns& t, LightField* out) const {
-  if (out->rgb.size() != lf_.ray_count() * 3) throw Error("Synthesize: the output light field has other rays than the model");
+  if (out->rgb.size() != lf_.ray_count() * 3)
+    throw Error("Synthesize: the output light field has other rays than the model");
   out->geometry = lf_;
   const size_t views = lf_.view_count();
   thread_local PaddedLayers workspace;

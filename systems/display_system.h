@@ -24,28 +24,29 @@ namespace layerlab {
 struct PathStep {
   std::string element, type;
   ElementKind kind = ElementKind::kLens;
-  std::string port;                        // the combiner port this path takes
-  std::optional<double> position;          // m of unfolded path length from the pupil; none for a flat element without "gap"
-  double power = 0;                        // 1/m: lenses and curved mirrors
-  bool flips_x = false, flips_y = false;   // mirror reversal (fold mirrors, reflected combiner ports)
-  std::optional<double> clear_aperture;    // m, diameter
+  std::string port;                // the combiner port this path takes
+  std::optional<double> position;  // m of unfolded path length from the pupil; none for a flat element without "gap"
+  double power = 0;                // 1/m: lenses and curved mirrors
+  bool flips_x = false, flips_y = false;  // mirror reversal (fold mirrors, reflected combiner ports)
+  std::optional<double> clear_aperture;   // m, diameter
 };
 
 struct VirtualLayer {
-  std::string name;           // the panel element, and "@k" (1-based) for subframe k of a time-multiplexed display
-  std::string element;        // the panel element
-  int subframe = 0;           // 0-based
-  int branch = 0;             // index into DisplaySystem::branches
-  int position_in_branch = 0; // 0 is nearest the eye
-  double diopters = 0;        // eye-space depth, 1/z
-  double depth = 0;           // z in m (+inf at 0 D)
-  double panel_distance = 0;  // physical, m: from the nearest lens or curved mirror before it (from the pupil without one)
-  double position = 0;        // m of unfolded path length from the pupil to the panel
-  double magnification = 0;   // M, signed: negative when a real intermediate image inverts it (+-inf at 0 D)
-  bool inverted = false;      // M < 0: the image is turned by 180 degrees (both axes flip)
-  RayTransfer<double> transfer;  // pupil -> panel, unfolded (mirror reversals kept in flip_x/flip_y)
-  std::vector<PathStep> path;    // the elements from the eye to this panel, nearest the eye first
-  double pitch_x = 0, pitch_y = 0;          // virtual pixel pitch at depth z, m (+inf at 0 D)
+  std::string name;            // the panel element, and "@k" (1-based) for subframe k of a time-multiplexed display
+  std::string element;         // the panel element
+  int subframe = 0;            // 0-based
+  int branch = 0;              // index into DisplaySystem::branches
+  int position_in_branch = 0;  // 0 is nearest the eye
+  double diopters = 0;         // eye-space depth, 1/z
+  double depth = 0;            // z in m (+inf at 0 D)
+  double panel_distance =
+      0;                // physical, m: from the nearest lens or curved mirror before it (from the pupil without one)
+  double position = 0;  // m of unfolded path length from the pupil to the panel
+  double magnification = 0;         // M, signed: negative when a real intermediate image inverts it (+-inf at 0 D)
+  bool inverted = false;            // M < 0: the image is turned by 180 degrees (both axes flip)
+  RayTransfer<double> transfer;     // pupil -> panel, unfolded (mirror reversals kept in flip_x/flip_y)
+  std::vector<PathStep> path;       // the elements from the eye to this panel, nearest the eye first
+  double pitch_x = 0, pitch_y = 0;  // virtual pixel pitch at depth z, m (+inf at 0 D)
   double tan_pitch_x = 0, tan_pitch_y = 0;  // tan-angle per pixel, seen from the pupil center
   int cols = 0, rows = 0;                   // the active region
   double offset_x = 0, offset_y = 0;        // tan-angle of the grid center
@@ -57,7 +58,7 @@ struct VirtualLayer {
 };
 
 struct Branch {
-  std::string name;         // "bs.reflected", or "main" without a combiner; "@k" for subframe k
+  std::string name;  // "bs.reflected", or "main" without a combiner; "@k" for subframe k
   int subframe = 0;
   std::vector<int> layers;  // indices into DisplaySystem::layers, nearest the eye first
   Rgb optics_efficiency{};  // combiners, mirrors and in-line optics, per channel; over subframes, 1/K of it each
@@ -83,12 +84,12 @@ struct DisplaySystem {
   int subframes = 1;
   double frame_rate = 60;  // Hz; the panels refresh at subframes x frame_rate
 
-  double fov_x = 0, fov_y = 0;  // rad: the smallest layer field (Eq. 2)
-  double max_cpd = 0;           // the finest layer's Nyquist frequency
+  double fov_x = 0, fov_y = 0;                                         // rad: the smallest layer field (Eq. 2)
+  double max_cpd = 0;                                                  // the finest layer's Nyquist frequency
   std::optional<double> vignetting_free_fov_x, vignetting_free_fov_y;  // rad, from the magnifier's clear aperture
 
-  Rgb peak_luminance{};       // cd/m^2 at full white on every panel
-  Rgb brightness_efficiency{};  // luminance at the eye per luminance emitted by the backlights
+  Rgb peak_luminance{};             // cd/m^2 at full white on every panel
+  Rgb brightness_efficiency{};      // luminance at the eye per luminance emitted by the backlights
   double luminance_efficiency = 0;  // the same, Rec.709-luminance weighted
 
   bool polarization_tracked = false;

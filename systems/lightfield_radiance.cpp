@@ -38,7 +38,8 @@ SceneRadiance LightFieldRadiance(const LightField& lf, Sampling pixels) {
     if (x < g.window_left || x > g.window_left + g.window_width || y > g.window_top ||
         y < g.window_top - g.window_height)
       return {0, 0, 0};
-    const Bracket col = nearest ? Containing(x, g.window_left, pixel_w, g.cols) : Around(x, g.window_left, pixel_w, g.cols);
+    const Bracket col =
+        nearest ? Containing(x, g.window_left, pixel_w, g.cols) : Around(x, g.window_left, pixel_w, g.cols);
     const Bracket row = nearest ? Containing(g.window_top - y, 0.0, pixel_h, g.rows)  // rows run down
                                 : Around(g.window_top - y, 0.0, pixel_h, g.rows);
     const Bracket vcol = Around(u.x, -g.eyebox_width / 2, g.eyebox_width / g.views_x, g.views_x);

@@ -41,10 +41,14 @@ AnyOneTapView ViewOf(const DisplayModel& model, size_t b, Args... args) {
   static_assert(kMaxOneTapLayers == 4);
   const int* layers = model.branch_layers(b).data();
   switch (model.branch_layers(b).size()) {
-    case 1: return OneTapView<1>(model, layers, args...);
-    case 2: return OneTapView<2>(model, layers, args...);
-    case 3: return OneTapView<3>(model, layers, args...);
-    case 4: return OneTapView<4>(model, layers, args...);
+    case 1:
+      return OneTapView<1>(model, layers, args...);
+    case 2:
+      return OneTapView<2>(model, layers, args...);
+    case 3:
+      return OneTapView<3>(model, layers, args...);
+    case 4:
+      return OneTapView<4>(model, layers, args...);
   }
   throw Error("branch " + std::to_string(b) + " does not take the one-tap path");
 }
@@ -70,7 +74,8 @@ void ResampleToRayColumns(const LayerProjection& P, const Rgb4* pixels, int vc, 
   Rgb4* o = out->data();
   for (int r = 0; r < P.rows(); ++r)
     for (int j = 0; j < ray_cols; ++j)
-      o[static_cast<size_t>(r) * ray_cols + j] = col[j].i0 < 0 ? Rgb4{} : pixels[static_cast<size_t>(r) * P.cols() + col[j].i0];
+      o[static_cast<size_t>(r) * ray_cols + j] =
+          col[j].i0 < 0 ? Rgb4{} : pixels[static_cast<size_t>(r) * P.cols() + col[j].i0];
 }
 
 void ColumnSums::Reset(const LayerProjection& P, int ray_cols) {

@@ -18,8 +18,8 @@
 #include <vector>
 
 #include "framework/rgb4.h"
-#include "systems/row_kernels.h"
 #include "systems/display_model.h"
+#include "systems/row_kernels.h"
 
 namespace layerlab {
 
@@ -130,8 +130,14 @@ class ColumnSums {
   // For a pass: the pixel sums zeroed (the column sums are always clear between view columns).
   void Reset(const LayerProjection& P, int ray_cols);
   // The column sums of layer row r, marked as holding sums.
-  Rgb4* num(int r) { touched_[r] = 1; return &column_num_[static_cast<size_t>(r) * ray_cols_]; }
-  Rgb4* den(int r) { touched_[r] = 1; return &column_den_[static_cast<size_t>(r) * ray_cols_]; }
+  Rgb4* num(int r) {
+    touched_[r] = 1;
+    return &column_num_[static_cast<size_t>(r) * ray_cols_];
+  }
+  Rgb4* den(int r) {
+    touched_[r] = 1;
+    return &column_den_[static_cast<size_t>(r) * ray_cols_];
+  }
   // The column sums into the pixel sums through view column vc's column taps; clears them.
   void Scatter(const LayerProjection& P, int vc);
   // num[pixel * 3 + c] = the sum of `sums`' pixel sums in their order, and

@@ -2,7 +2,6 @@
 
 #include <cmath>
 
-
 namespace layerlab {
 
 LayerProjection::LayerProjection(const VirtualLayer& layer, const LightFieldGeometry& lf, Sampling sampling)
@@ -14,11 +13,13 @@ LayerProjection::LayerProjection(const VirtualLayer& layer, const LightFieldGeom
   col_taps_.resize(static_cast<size_t>(lf.views_x) * lf.cols);
   for (int c = 0; c < lf.views_x; ++c)
     for (int j = 0; j < lf.cols; ++j)
-      col_taps_[static_cast<size_t>(c) * lf.cols + j] = sampler_.Column(view_gain_ * lf.view_x(c) + pixel_gain_ * lf.pixel_x(j));
+      col_taps_[static_cast<size_t>(c) * lf.cols + j] =
+          sampler_.Column(view_gain_ * lf.view_x(c) + pixel_gain_ * lf.pixel_x(j));
   row_taps_.resize(static_cast<size_t>(lf.views_y) * lf.rows);
   for (int r = 0; r < lf.views_y; ++r)
     for (int i = 0; i < lf.rows; ++i)
-      row_taps_[static_cast<size_t>(r) * lf.rows + i] = sampler_.Row(view_gain_ * lf.view_y(r) + pixel_gain_ * lf.pixel_y(i));
+      row_taps_[static_cast<size_t>(r) * lf.rows + i] =
+          sampler_.Row(view_gain_ * lf.view_y(r) + pixel_gain_ * lf.pixel_y(i));
 }
 
 RayTaps LayerProjection::Taps(size_t view, int i, int j) const {
@@ -77,7 +78,8 @@ void LayerProjection::ScatterAdd(size_t view, const float* values, double* accum
 
 std::vector<uint8_t> LayerProjection::ReachedPixels() const {
   std::vector<uint8_t> reached(pixel_count(), 0);
-  for (size_t v = 0; v < lf_.view_count(); ++v) ForEachTap(v, [&](size_t, int32_t pixel, float) { reached[pixel] = 1; });
+  for (size_t v = 0; v < lf_.view_count(); ++v)
+    ForEachTap(v, [&](size_t, int32_t pixel, float) { reached[pixel] = 1; });
   return reached;
 }
 

@@ -17,7 +17,8 @@ RetinaGrid MakeRetinaGrid(double field_x, double field_y, double resolution) {
   g.resolution = resolution;
   g.cols = std::max(1, static_cast<int>(std::lround(field_x / resolution)));
   g.rows = std::max(1, static_cast<int>(std::lround(field_y / resolution)));
-  if (double(g.cols) * g.rows > 1e8) throw Error("a retina of " + std::to_string(g.cols) + " x " + std::to_string(g.rows) + " samples is too large");
+  if (double(g.cols) * g.rows > 1e8)
+    throw Error("a retina of " + std::to_string(g.cols) + " x " + std::to_string(g.rows) + " samples is too large");
   return g;
 }
 
@@ -57,7 +58,8 @@ std::vector<PupilPoint> PupilSamples(const EyeModel& eye) {
 }
 
 std::array<double, 3> ChannelAccommodation(const EyeModel& eye, double diopters) {
-  return {diopters + eye.chromatic_defocus[0], diopters + eye.chromatic_defocus[1], diopters + eye.chromatic_defocus[2]};
+  return {diopters + eye.chromatic_defocus[0], diopters + eye.chromatic_defocus[1],
+          diopters + eye.chromatic_defocus[2]};
 }
 
 namespace {
@@ -128,7 +130,8 @@ void NearestRetina(const DisplayModel& model, const Patterns& t, const RetinaGri
 
 Image RetinaOfDisplay(const DisplayModel& model, const Patterns& t, const RetinaGrid& retina,
                       const std::vector<PupilPoint>& pupil, const std::array<double, 3>& accommodation) {
-  Image image{retina.cols, retina.rows, {"R", "G", "B"}, std::vector<float>(size_t(retina.cols) * retina.rows * 3, 0.0f)};
+  Image image{
+      retina.cols, retina.rows, {"R", "G", "B"}, std::vector<float>(size_t(retina.cols) * retina.rows * 3, 0.0f)};
   std::vector<double> tan_x(retina.cols), tan_y(retina.rows);
   for (int j = 0; j < retina.cols; ++j) tan_x[j] = std::tan(retina.angle_x(j));
   for (int i = 0; i < retina.rows; ++i) tan_y[i] = std::tan(retina.angle_y(i));
@@ -176,10 +179,10 @@ Image RetinaOfDisplay(const DisplayModel& model, const Patterns& t, const Retina
                 value[k * 3 + c] = Read(table.rows[i], table.cols[j], t[k], c);
                 continue;
               }
-              value[k * 3 + c] = s.separable() ? Read(table.rows[i], table.cols[j], t[k], c)
-                                               : Read(s.At(tan_x[j] + pupil[p].x * table.blur,
-                                                           tan_y[i] + pupil[p].y * table.blur),
-                                                      t[k], c);
+              value[k * 3 + c] =
+                  s.separable()
+                      ? Read(table.rows[i], table.cols[j], t[k], c)
+                      : Read(s.At(tan_x[j] + pupil[p].x * table.blur, tan_y[i] + pupil[p].y * table.blur), t[k], c);
             }
           }
           for (size_t b = 0; b < model.branch_count(); ++b) {
@@ -200,7 +203,8 @@ Image RetinaOfDisplay(const DisplayModel& model, const Patterns& t, const Retina
 
 Image RetinaOfScene(const SceneRadiance& scene, const RetinaGrid& retina, const std::vector<PupilPoint>& pupil,
                     const std::array<double, 3>& accommodation) {
-  Image image{retina.cols, retina.rows, {"R", "G", "B"}, std::vector<float>(size_t(retina.cols) * retina.rows * 3, 0.0f)};
+  Image image{
+      retina.cols, retina.rows, {"R", "G", "B"}, std::vector<float>(size_t(retina.cols) * retina.rows * 3, 0.0f)};
   const bool same_focus = accommodation[0] == accommodation[1] && accommodation[1] == accommodation[2];
   const double inverse_count = 1.0 / pupil.size();
 #pragma omp parallel for schedule(dynamic)

@@ -21,7 +21,7 @@ namespace layerlab {
 
 struct RetinaGrid {
   int cols = 0, rows = 0;
-  double resolution = 0;      // rad per sample, both axes
+  double resolution = 0;              // rad per sample, both axes
   double center_x = 0, center_y = 0;  // rad, the grid's center direction
   // Visual angle of sample column j (left to right) and row i (top to bottom).
   double angle_x(int j) const { return center_x + (j + 0.5 - 0.5 * cols) * resolution; }

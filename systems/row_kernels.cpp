@@ -31,10 +31,14 @@ void AddBranchLightRowOf(const Rgb4* const* rows, Rgb4 w, int cols, Rgb4* row) {
 
 void AddBranchLightRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, Rgb4* row) {
   switch (layers) {
-    case 1: return AddBranchLightRowOf<1>(rows, w, cols, row);
-    case 2: return AddBranchLightRowOf<2>(rows, w, cols, row);
-    case 3: return AddBranchLightRowOf<3>(rows, w, cols, row);
-    case 4: return AddBranchLightRowOf<4>(rows, w, cols, row);
+    case 1:
+      return AddBranchLightRowOf<1>(rows, w, cols, row);
+    case 2:
+      return AddBranchLightRowOf<2>(rows, w, cols, row);
+    case 3:
+      return AddBranchLightRowOf<3>(rows, w, cols, row);
+    case 4:
+      return AddBranchLightRowOf<4>(rows, w, cols, row);
   }
 }
 
@@ -78,8 +82,7 @@ inline void AddSquared(Rgb4 t, Rgb4 l, Double2& rg, Double2& b) {
 
 }  // namespace
 
-double UpdateSumsAndErrorRow(const float* r, const Rgb4* q, const Rgb4* own, Rgb4 w, Rgb4* num, Rgb4* den,
-                             int cols) {
+double UpdateSumsAndErrorRow(const float* r, const Rgb4* q, const Rgb4* own, Rgb4 w, Rgb4* num, Rgb4* den, int cols) {
   Double2 rg0 = {}, b0 = {}, rg1 = {}, b1 = {};  // even rays, odd rays
   auto ray = [&](int j, Rgb4 rj, Double2& rg, Double2& b) {
     const Rgb4 qj = q ? q[j] : Rgb4{1, 1, 1, 0};
@@ -158,7 +161,8 @@ void JointSumsRowOf(const Rgb4* const* rows, Rgb4 w, int cols, const float* l, b
   Rgb4* d[L];
   for (int k = 0; k < L; ++k) r[k] = rows[k], n[k] = num[k], d[k] = den[k];
   const int safe = exact_last ? cols - 1 : cols;
-  for (int j = 0; j < cols; ++j) JointSumsRay<L>(r, w, j, j < safe ? LoadRgbOver(l + j * 3) : LoadRgb(l + j * 3), light, n, d);
+  for (int j = 0; j < cols; ++j)
+    JointSumsRay<L>(r, w, j, j < safe ? LoadRgbOver(l + j * 3) : LoadRgb(l + j * 3), light, n, d);
 }
 
 }  // namespace
@@ -166,10 +170,14 @@ void JointSumsRowOf(const Rgb4* const* rows, Rgb4 w, int cols, const float* l, b
 void JointSumsRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, const float* l, bool exact_last,
                   const Rgb4* light, Rgb4* const* num, Rgb4* const* den) {
   switch (layers) {
-    case 1: return JointSumsRowOf<1>(rows, w, cols, l, exact_last, light, num, den);
-    case 2: return JointSumsRowOf<2>(rows, w, cols, l, exact_last, light, num, den);
-    case 3: return JointSumsRowOf<3>(rows, w, cols, l, exact_last, light, num, den);
-    case 4: return JointSumsRowOf<4>(rows, w, cols, l, exact_last, light, num, den);
+    case 1:
+      return JointSumsRowOf<1>(rows, w, cols, l, exact_last, light, num, den);
+    case 2:
+      return JointSumsRowOf<2>(rows, w, cols, l, exact_last, light, num, den);
+    case 3:
+      return JointSumsRowOf<3>(rows, w, cols, l, exact_last, light, num, den);
+    case 4:
+      return JointSumsRowOf<4>(rows, w, cols, l, exact_last, light, num, den);
   }
 }
 
@@ -228,8 +236,7 @@ void AddBranchLightRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, Rg
 void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int cols) {
   LAYERLAB_DISPATCH(UpdateSumsRow(r, q, num, den, cols));
 }
-double UpdateSumsAndErrorRow(const float* r, const Rgb4* q, const Rgb4* own, Rgb4 w, Rgb4* num, Rgb4* den,
-                             int cols) {
+double UpdateSumsAndErrorRow(const float* r, const Rgb4* q, const Rgb4* own, Rgb4 w, Rgb4* num, Rgb4* den, int cols) {
   LAYERLAB_DISPATCH(UpdateSumsAndErrorRow(r, q, own, w, num, den, cols));
 }
 double SquaredErrorRow(const float* target, const Rgb4* light, int cols, bool exact_last) {

@@ -20,8 +20,7 @@ void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int cols
 // UpdateSumsRow, and in the same pass the squared error of the branch's
 // light w own[j] q[j] against r over the row (in double, as SquaredErrorRow
 // sums it), `own` being the updated layer's values at the rays.
-double UpdateSumsAndErrorRow(const float* r, const Rgb4* q, const Rgb4* own, Rgb4 w, Rgb4* num, Rgb4* den,
-                             int cols);
+double UpdateSumsAndErrorRow(const float* r, const Rgb4* q, const Rgb4* own, Rgb4 w, Rgb4* num, Rgb4* den, int cols);
 
 // The joint solver's sums for every layer a of one branch of `layers` (1 to
 // 4) over one ray row, q_a = w prod_{k != a} rows[k][j]:

@@ -93,19 +93,27 @@ LAYERLAB_AVX2 void JointSumsRowOf(const Rgb4* const* rows, Rgb4 w, int cols, con
 LAYERLAB_AVX2 void JointSumsRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, const float* l, bool exact_last,
                                 const Rgb4* light, Rgb4* const* num, Rgb4* const* den) {
   switch (layers) {
-    case 1: return JointSumsRowOf<1>(rows, w, cols, l, exact_last, light, num, den);
-    case 2: return JointSumsRowOf<2>(rows, w, cols, l, exact_last, light, num, den);
-    case 3: return JointSumsRowOf<3>(rows, w, cols, l, exact_last, light, num, den);
-    case 4: return JointSumsRowOf<4>(rows, w, cols, l, exact_last, light, num, den);
+    case 1:
+      return JointSumsRowOf<1>(rows, w, cols, l, exact_last, light, num, den);
+    case 2:
+      return JointSumsRowOf<2>(rows, w, cols, l, exact_last, light, num, den);
+    case 3:
+      return JointSumsRowOf<3>(rows, w, cols, l, exact_last, light, num, den);
+    case 4:
+      return JointSumsRowOf<4>(rows, w, cols, l, exact_last, light, num, den);
   }
 }
 
 LAYERLAB_AVX2 void AddBranchLightRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, Rgb4* row) {
   switch (layers) {
-    case 1: return AddBranchLightRowOf<1>(rows, w, cols, row);
-    case 2: return AddBranchLightRowOf<2>(rows, w, cols, row);
-    case 3: return AddBranchLightRowOf<3>(rows, w, cols, row);
-    case 4: return AddBranchLightRowOf<4>(rows, w, cols, row);
+    case 1:
+      return AddBranchLightRowOf<1>(rows, w, cols, row);
+    case 2:
+      return AddBranchLightRowOf<2>(rows, w, cols, row);
+    case 3:
+      return AddBranchLightRowOf<3>(rows, w, cols, row);
+    case 4:
+      return AddBranchLightRowOf<4>(rows, w, cols, row);
   }
 }
 
@@ -116,14 +124,15 @@ LAYERLAB_AVX2 void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4*
   int j = 0;
   for (; j + 3 <= cols; j += 2) {  // rays j, j + 1 read up to ray j + 2's green
     const __m256 qj = q ? _mm256_loadu_ps(reinterpret_cast<const float*>(q + j)) : ones;
-    _mm256_storeu_ps(n + j * 4, _mm256_add_ps(_mm256_loadu_ps(n + j * 4), _mm256_mul_ps(LoadTwoRaysOver(r + j * 3), qj)));
+    _mm256_storeu_ps(n + j * 4,
+                     _mm256_add_ps(_mm256_loadu_ps(n + j * 4), _mm256_mul_ps(LoadTwoRaysOver(r + j * 3), qj)));
     _mm256_storeu_ps(d + j * 4, _mm256_add_ps(_mm256_loadu_ps(d + j * 4), _mm256_mul_ps(qj, qj)));
   }
   baseline::UpdateSumsRow(r + j * 3, q ? q + j : nullptr, num + j, den + j, cols - j);
 }
 
-LAYERLAB_AVX2 double UpdateSumsAndErrorRow(const float* r, const Rgb4* q, const Rgb4* own, Rgb4 w, Rgb4* num,
-                                           Rgb4* den, int cols) {
+LAYERLAB_AVX2 double UpdateSumsAndErrorRow(const float* r, const Rgb4* q, const Rgb4* own, Rgb4 w, Rgb4* num, Rgb4* den,
+                                           int cols) {
   float* n = reinterpret_cast<float*>(num);
   float* d = reinterpret_cast<float*>(den);
   const float* o = reinterpret_cast<const float*>(own);

@@ -50,9 +50,10 @@ Scene ParseScene(nlohmann::json document, const std::string& file, const Element
     // Names become file names (patterns/<name>.exr, checkpoint/<name>-iteration<N>.exr): they must fit NAME_MAX.
     constexpr size_t kMaxName = NAME_MAX - sizeof("-iteration2147483647.exr") + 1;
     if (name.size() > kMaxName)
-      params.fail("name", "element name of " + std::to_string(name.size()) + " bytes; output files are named after "
-                  "elements, and the file system allows names of " + std::to_string(NAME_MAX) + " bytes: at most " +
-                  std::to_string(kMaxName));
+      params.fail("name", "element name of " + std::to_string(name.size()) +
+                              " bytes; output files are named after "
+                              "elements, and the file system allows names of " +
+                              std::to_string(NAME_MAX) + " bytes: at most " + std::to_string(kMaxName));
     if (auto [it, fresh] = index_of_name.emplace(name, i); !fresh)
       params.fail("name", "element name \"" + name + "\" is already used by /elements/" + std::to_string(it->second));
     for (const std::string& port : node.element->output_ports()) {

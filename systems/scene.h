@@ -38,7 +38,7 @@ struct Scene {
   std::vector<SceneNode> nodes;
   int subframes = 1;         // patterns shown per frame, time-multiplexed; the eye sees their mean
   double frame_rate = 60.0;  // Hz, frames (not subframes) per second
-  nlohmann::json document;  // the whole parsed file, for later phases
+  nlohmann::json document;   // the whole parsed file, for later phases
 
   const SceneNode* find(const std::string& element_name) const;
 };

@@ -1,9 +1,9 @@
 #include "systems/system_report.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
-#include <algorithm>
 #include <numbers>
 #include <optional>
 
@@ -70,7 +70,8 @@ std::string FormatOpticalPaths(const DisplaySystem& s) {
       std::string detail;
       if (step.power != 0) detail = "f " + Length(1.0 / step.power) + " (" + F(step.power, 2) + " D)";
       if (!step.port.empty()) detail += (detail.empty() ? "" : ", ") + std::string("port ") + step.port;
-      if (step.flips_x || step.flips_y) detail += (detail.empty() ? "" : ", ") + std::string("mirrors ") + (step.flips_x ? "x" : "y");
+      if (step.flips_x || step.flips_y)
+        detail += (detail.empty() ? "" : ", ") + std::string("mirrors ") + (step.flips_x ? "x" : "y");
       element_row(step.type + " \"" + step.element + "\"", step.position, detail);
     }
     panel_row(back);
@@ -105,15 +106,16 @@ std::string FormatSystemTable(const DisplaySystem& s) {
   std::string out;
   out += s.file + (s.name.empty() ? "" : ": " + s.name) + "\n\n";
   const std::string relief = s.lens.empty() ? "" : "; eye relief " + F(eye.eye_relief * 1e3, 2) + " mm";
-  out += Row("eye      pupil %s mm %s, %d x %d samples%s; eyebox %s x %s mm, %d x %d views;\n"
-             "         accommodation %s to %s D",
-             F(eye.pupil_diameter * 1e3, 2).c_str(), eye.pupil_shape == PupilShape::kSquare ? "square" : "round",
-             eye.pupil_samples_x, eye.pupil_samples_y, relief.c_str(),
-             F(eye.eyebox_width * 1e3, 2).c_str(), F(eye.eyebox_height * 1e3, 2).c_str(), eye.views_x, eye.views_y,
-             F(eye.accommodation_min, 2).c_str(), F(eye.accommodation_max, 2).c_str());
+  out +=
+      Row("eye      pupil %s mm %s, %d x %d samples%s; eyebox %s x %s mm, %d x %d views;\n"
+          "         accommodation %s to %s D",
+          F(eye.pupil_diameter * 1e3, 2).c_str(), eye.pupil_shape == PupilShape::kSquare ? "square" : "round",
+          eye.pupil_samples_x, eye.pupil_samples_y, relief.c_str(), F(eye.eyebox_width * 1e3, 2).c_str(),
+          F(eye.eyebox_height * 1e3, 2).c_str(), eye.views_x, eye.views_y, F(eye.accommodation_min, 2).c_str(),
+          F(eye.accommodation_max, 2).c_str());
   if (s.subframes > 1)
-    out += Row("time     %d subframes per frame at %s Hz: the panels refresh at %s Hz; the eye sees the mean", s.subframes,
-               F(s.frame_rate, 1).c_str(), F(s.subframes * s.frame_rate, 1).c_str());
+    out += Row("time     %d subframes per frame at %s Hz: the panels refresh at %s Hz; the eye sees the mean",
+               s.subframes, F(s.frame_rate, 1).c_str(), F(s.subframes * s.frame_rate, 1).c_str());
   if (!s.lens.empty()) {
     std::string aperture = "clear aperture unlimited";
     if (s.clear_aperture)
@@ -156,9 +158,10 @@ std::string FormatSystemTable(const DisplaySystem& s) {
   out += "\nsystem\n";
   out += Row("  field of view          %s x %s deg (the smallest layer's, Eq. 2)", F(Deg(s.fov_x), 2).c_str(),
              F(Deg(s.fov_y), 2).c_str());
-  out += Row("  highest frequency      %s cpd on every layer (the coarsest layer's Nyquist); %s cpd on the finest layer "
-             "(both at the layer's center)",
-             F(EveryLayerMaxCpd(s), 2).c_str(), F(s.max_cpd, 2).c_str());
+  out +=
+      Row("  highest frequency      %s cpd on every layer (the coarsest layer's Nyquist); %s cpd on the finest layer "
+          "(both at the layer's center)",
+          F(EveryLayerMaxCpd(s), 2).c_str(), F(s.max_cpd, 2).c_str());
   out += Row("  peak luminance         %s cd/m2 (R G B, full white on every panel)", Rgb3(s.peak_luminance, 2).c_str());
   out += Row("  brightness efficiency  %s (luminance-weighted; R G B %s): light at the eye / light the backlights emit",
              F(s.luminance_efficiency, 4).c_str(), Rgb3(s.brightness_efficiency, 4).c_str());
@@ -182,7 +185,8 @@ nlohmann::json SystemToJson(const DisplaySystem& s) {
               {"eyebox_m", {eye.eyebox_width, eye.eyebox_height}},
               {"views", {eye.views_x, eye.views_y}},
               {"accommodation_range_D", {eye.accommodation_min, eye.accommodation_max}}};
-  j["lens"] = {{"name", s.lens}, {"focal_length_m", s.focal_length},
+  j["lens"] = {{"name", s.lens},
+               {"focal_length_m", s.focal_length},
                {"clear_aperture_m", s.clear_aperture ? json(*s.clear_aperture) : json(nullptr)}};
   for (const VirtualLayer& l : s.layers) {
     j["layers"].push_back({{"name", l.name},
@@ -216,7 +220,8 @@ nlohmann::json SystemToJson(const DisplaySystem& s) {
   j["fov_deg"] = {Deg(s.fov_x), Deg(s.fov_y)};
   j["max_cpd"] = s.max_cpd;  // the finest layer's
   j["max_cpd_every_layer"] = EveryLayerMaxCpd(s);
-  if (s.vignetting_free_fov_x) j["vignetting_free_fov_deg"] = {Deg(*s.vignetting_free_fov_x), Deg(*s.vignetting_free_fov_y)};
+  if (s.vignetting_free_fov_x)
+    j["vignetting_free_fov_deg"] = {Deg(*s.vignetting_free_fov_x), Deg(*s.vignetting_free_fov_y)};
   j["peak_luminance_cd_m2_rgb"] = s.peak_luminance;
   j["brightness_efficiency_rgb"] = s.brightness_efficiency;
   j["brightness_efficiency"] = s.luminance_efficiency;
@@ -259,12 +264,14 @@ std::string FormatCoverage(const DisplayModel& model, const std::vector<LayerCov
 nlohmann::json CoverageToJson(const DisplayModel& model, const std::vector<LayerCoverage>& coverage) {
   const LightFieldGeometry& g = model.geometry();
   nlohmann::json j;
-  j["light_field"] = {{"origin_plane_z_m", g.origin_z},
-                      {"window_m", {{"left", g.window_left}, {"top", g.window_top}, {"width", g.window_width}, {"height", g.window_height}}},
-                      {"pixels", {g.cols, g.rows}},
-                      {"views", {g.views_x, g.views_y}},
-                      {"eyebox_m", {g.eyebox_width, g.eyebox_height}},
-                      {"rays", g.ray_count()}};
+  j["light_field"] = {
+      {"origin_plane_z_m", g.origin_z},
+      {"window_m",
+       {{"left", g.window_left}, {"top", g.window_top}, {"width", g.window_width}, {"height", g.window_height}}},
+      {"pixels", {g.cols, g.rows}},
+      {"views", {g.views_x, g.views_y}},
+      {"eyebox_m", {g.eyebox_width, g.eyebox_height}},
+      {"rays", g.ray_count()}};
   for (const LayerCoverage& c : coverage)
     j["layer_coverage"].push_back({{"name", c.name}, {"reached_pixels", c.reached}, {"pixels", c.total}});
   return j;

@@ -24,13 +24,20 @@ struct GeometryDeleter {
 
 const char* ErrorCodeName(RTCError code) {
   switch (code) {
-    case RTC_ERROR_NONE: return "no error";
-    case RTC_ERROR_INVALID_ARGUMENT: return "invalid argument";
-    case RTC_ERROR_INVALID_OPERATION: return "invalid operation";
-    case RTC_ERROR_OUT_OF_MEMORY: return "out of memory";
-    case RTC_ERROR_UNSUPPORTED_CPU: return "unsupported CPU";
-    case RTC_ERROR_CANCELLED: return "cancelled";
-    default: return "unknown error";
+    case RTC_ERROR_NONE:
+      return "no error";
+    case RTC_ERROR_INVALID_ARGUMENT:
+      return "invalid argument";
+    case RTC_ERROR_INVALID_OPERATION:
+      return "invalid operation";
+    case RTC_ERROR_OUT_OF_MEMORY:
+      return "out of memory";
+    case RTC_ERROR_UNSUPPORTED_CPU:
+      return "unsupported CPU";
+    case RTC_ERROR_CANCELLED:
+      return "cancelled";
+    default:
+      return "unknown error";
   }
 }
 
@@ -40,9 +47,7 @@ std::string Number(double x) {
   return out.str();
 }
 
-std::string Triple(double x, double y, double z) {
-  return "(" + Number(x) + ", " + Number(y) + ", " + Number(z) + ")";
-}
+std::string Triple(double x, double y, double z) { return "(" + Number(x) + ", " + Number(y) + ", " + Number(z) + ")"; }
 
 }  // namespace
 
@@ -59,7 +64,8 @@ struct EmbreeScene::Impl {
   static void OnError(void* user, RTCError code, const char* message) {
     auto* self = static_cast<Impl*>(user);
     std::lock_guard<std::mutex> lock(self->error_mutex);
-    if (self->error.empty()) self->error = std::string(ErrorCodeName(code)) + (message ? std::string(": ") + message : "");
+    if (self->error.empty())
+      self->error = std::string(ErrorCodeName(code)) + (message ? std::string(": ") + message : "");
   }
 
   void ThrowIfFailed(const std::string& call) {
@@ -131,8 +137,8 @@ void EmbreeScene::Commit() {
   impl_->committed = true;
 }
 
-RayHit EmbreeScene::Intersect(const std::array<float, 3>& origin, const std::array<float, 3>& direction,
-                              float t_near, float t_far) const {
+RayHit EmbreeScene::Intersect(const std::array<float, 3>& origin, const std::array<float, 3>& direction, float t_near,
+                              float t_far) const {
   if (!impl_->committed) throw Error("Embree: internal error: intersect before the scene was committed");
   bool finite = std::isfinite(origin[0]) && std::isfinite(origin[1]) && std::isfinite(origin[2]) &&
                 std::isfinite(direction[0]) && std::isfinite(direction[1]) && std::isfinite(direction[2]) &&
@@ -140,8 +146,8 @@ RayHit EmbreeScene::Intersect(const std::array<float, 3>& origin, const std::arr
   bool nonzero = direction[0] != 0 || direction[1] != 0 || direction[2] != 0;
   if (!finite || !nonzero || !(t_near >= 0) || !(t_far >= t_near))
     throw Error("Embree: internal error: refusing to trace the ray from " + Triple(origin[0], origin[1], origin[2]) +
-                " along " + Triple(direction[0], direction[1], direction[2]) + " for t in [" +
-                Number(t_near) + ", " + Number(t_far) + "]");
+                " along " + Triple(direction[0], direction[1], direction[2]) + " for t in [" + Number(t_near) + ", " +
+                Number(t_far) + "]");
 
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);

@@ -24,8 +24,8 @@ struct RayHit {
   float t = std::numeric_limits<float>::infinity();  // ray parameter of the closest hit
   unsigned geom_id = kNoGeometry;                    // as returned by AddTriangles
   unsigned prim_id = kNoGeometry;                    // triangle index within that geometry
-  float u = 0, v = 0;                 // barycentrics: p = (1 - u - v) p0 + u p1 + v p2
-  std::array<float, 3> normal{};      // geometric normal (p1 - p0) x (p2 - p0), not normalized
+  float u = 0, v = 0;                                // barycentrics: p = (1 - u - v) p0 + u p1 + v p2
+  std::array<float, 3> normal{};                     // geometric normal (p1 - p0) x (p2 - p0), not normalized
 
   bool hit() const { return geom_id != kNoGeometry; }
 };

@@ -100,11 +100,12 @@ class ObjParser {
         Fail("a vertex needs 3 coordinates (x y z), got " + std::to_string(args) + " values");
       if (mesh_.positions.size() >= limits_.max_vertices)
         Fail("more than " + std::to_string(limits_.max_vertices) + " vertices");
-      mesh_.positions.push_back({Number(t[1], "vertex coordinate"), Number(t[2], "vertex coordinate"),
-                                 Number(t[3], "vertex coordinate")});
+      mesh_.positions.push_back(
+          {Number(t[1], "vertex coordinate"), Number(t[2], "vertex coordinate"), Number(t[3], "vertex coordinate")});
       for (size_t k = 4; k < t.size(); ++k) Number(t[k], "vertex value");
     } else if (keyword == "vt") {
-      if (args < 1 || args > 3) Fail("a texture coordinate needs 1 to 3 values (u [v [w]]), got " + std::to_string(args));
+      if (args < 1 || args > 3)
+        Fail("a texture coordinate needs 1 to 3 values (u [v [w]]), got " + std::to_string(args));
       if (mesh_.uvs.size() >= limits_.max_vertices)
         Fail("more than " + std::to_string(limits_.max_vertices) + " texture coordinates");
       mesh_.uvs.push_back({Number(t[1], "texture coordinate"), args >= 2 ? Number(t[2], "texture coordinate") : 0.0});
@@ -147,14 +148,13 @@ class ObjParser {
       size_t slash1 = corner.find('/');
       size_t slash2 = slash1 == std::string_view::npos ? std::string_view::npos : corner.find('/', slash1 + 1);
       std::string_view vertex = corner.substr(0, slash1);
-      std::string_view uv = slash1 == std::string_view::npos ? std::string_view()
-                                                              : corner.substr(slash1 + 1, slash2 - slash1 - 1);
+      std::string_view uv =
+          slash1 == std::string_view::npos ? std::string_view() : corner.substr(slash1 + 1, slash2 - slash1 - 1);
       std::string_view normal = slash2 == std::string_view::npos ? std::string_view() : corner.substr(slash2 + 1);
       bool malformed = vertex.empty() || (slash2 != std::string_view::npos && normal.empty()) ||
                        (slash1 != std::string_view::npos && slash2 == std::string_view::npos && uv.empty()) ||
                        normal.find('/') != std::string_view::npos;
-      if (malformed)
-        Fail("\"" + std::string(corner) + "\" is not a face vertex (expected i, i/t, i/t/n or i//n)");
+      if (malformed) Fail("\"" + std::string(corner) + "\" is not a face vertex (expected i, i/t, i/t/n or i//n)");
       positions.push_back(Resolve(vertex, mesh_.positions.size(), "vertex", "vertices"));
       if (!uv.empty()) uvs.push_back(Resolve(uv, mesh_.uvs.size(), "texture coordinate", "texture coordinates"));
       if (!normal.empty()) Resolve(normal, normals_, "normal", "normals");
@@ -198,10 +198,18 @@ std::optional<PlyType> PlyTypeNamed(std::string_view name) {
 
 size_t PlyTypeSize(PlyType t) {
   switch (t) {
-    case PlyType::kInt8: case PlyType::kUint8: return 1;
-    case PlyType::kInt16: case PlyType::kUint16: return 2;
-    case PlyType::kInt32: case PlyType::kUint32: case PlyType::kFloat32: return 4;
-    case PlyType::kFloat64: return 8;
+    case PlyType::kInt8:
+    case PlyType::kUint8:
+      return 1;
+    case PlyType::kInt16:
+    case PlyType::kUint16:
+      return 2;
+    case PlyType::kInt32:
+    case PlyType::kUint32:
+    case PlyType::kFloat32:
+      return 4;
+    case PlyType::kFloat64:
+      return 8;
   }
   return 1;
 }
@@ -260,12 +268,18 @@ class PlyBody {
     uint64_t u = 0;
     for (size_t i = 0; i < n; ++i) u |= static_cast<uint64_t>(b[i]) << (8 * i);  // little endian
     switch (type) {
-      case PlyType::kInt8: return static_cast<int8_t>(u);
-      case PlyType::kUint8: return static_cast<uint8_t>(u);
-      case PlyType::kInt16: return static_cast<int16_t>(u);
-      case PlyType::kUint16: return static_cast<uint16_t>(u);
-      case PlyType::kInt32: return static_cast<int32_t>(u);
-      case PlyType::kUint32: return static_cast<uint32_t>(u);
+      case PlyType::kInt8:
+        return static_cast<int8_t>(u);
+      case PlyType::kUint8:
+        return static_cast<uint8_t>(u);
+      case PlyType::kInt16:
+        return static_cast<int16_t>(u);
+      case PlyType::kUint16:
+        return static_cast<uint16_t>(u);
+      case PlyType::kInt32:
+        return static_cast<int32_t>(u);
+      case PlyType::kUint32:
+        return static_cast<uint32_t>(u);
       case PlyType::kFloat32: {
         uint32_t bits = static_cast<uint32_t>(u);
         float f;
@@ -377,8 +391,8 @@ TriangleMesh ParsePlyImpl(const std::string& bytes, const std::string& file, con
     if (index < 0 || vertex_element->properties[index].is_list)
       throw Error(file + ": the vertex element has no scalar property " + name);
   int iu = vertex_element->find({"u", "s", "texture_u"}), iv = vertex_element->find({"v", "t", "texture_v"});
-  bool with_uvs = iu >= 0 && iv >= 0 && !vertex_element->properties[iu].is_list &&
-                  !vertex_element->properties[iv].is_list;
+  bool with_uvs =
+      iu >= 0 && iv >= 0 && !vertex_element->properties[iu].is_list && !vertex_element->properties[iv].is_list;
   int ilist = face_element->find({"vertex_indices", "vertex_index"});
   if (ilist < 0 || !face_element->properties[ilist].is_list)
     throw Error(file + ": the face element has no list property vertex_indices");
@@ -474,7 +488,8 @@ TriangleMesh ReadMesh(const std::string& path, const MeshLimits& limits) {
   auto size = std::filesystem::file_size(path, ec);
   if (ec) throw Error(path + ": cannot read: " + ec.message());
   if (size > limits.max_bytes)
-    throw Error(path + ": file is " + std::to_string(size) + " bytes; the limit is " + std::to_string(limits.max_bytes));
+    throw Error(path + ": file is " + std::to_string(size) + " bytes; the limit is " +
+                std::to_string(limits.max_bytes));
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path + ": cannot open for reading");
   std::ostringstream contents;

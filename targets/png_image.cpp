@@ -19,8 +19,7 @@ Image ReadPngLinear(const std::string& path, long long max_pixels) {
   png_image png;
   std::memset(&png, 0, sizeof png);
   png.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_file(&png, path.c_str()))
-    throw Error(path + ": cannot read PNG: " + png.message);
+  if (!png_image_begin_read_from_file(&png, path.c_str())) throw Error(path + ": cannot read PNG: " + png.message);
   if (static_cast<long long>(png.width) * png.height > max_pixels) {
     std::string size = std::to_string(png.width) + " x " + std::to_string(png.height);
     png_image_free(&png);

@@ -20,8 +20,8 @@ namespace layerlab {
 inline constexpr float kBackgroundDepth = std::numeric_limits<float>::max();
 
 struct RenderStats {
-  uint64_t rays = 0;     // traced, center rays for depth included
-  double seconds = 0;    // wall time, scene build included
+  uint64_t rays = 0;   // traced, center rays for depth included
+  double seconds = 0;  // wall time, scene build included
 };
 
 // Called after each view is done with (views done, views in all), from the

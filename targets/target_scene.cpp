@@ -68,8 +68,9 @@ LightFieldGeometry ParseLightField(Params& lf, const std::string& base_dir) {
   if (window_keys.empty())
     throw Error(lf.where(), "the light field needs its window: give \"field_of_view\", \"window\" or \"display\"");
   if (window_keys.size() > 1)
-    lf.fail(window_keys[1], "\"" + window_keys[0] + "\" already sets the window; give only one of "
-                            "\"field_of_view\", \"window\" and \"display\"");
+    lf.fail(window_keys[1], "\"" + window_keys[0] +
+                                "\" already sets the window; give only one of "
+                                "\"field_of_view\", \"window\" and \"display\"");
 
   std::optional<std::array<int64_t, 2>> default_resolution;
   if (lf.has("display")) {
@@ -125,7 +126,8 @@ LightFieldGeometry ParseLightField(Params& lf, const std::string& base_dir) {
   g.cols = static_cast<int>(resolution[0]);
   g.rows = static_cast<int>(resolution[1]);
   if (g.ray_count() > (size_t{1} << 31))
-    throw Error(lf.where(), std::to_string(g.ray_count()) + " rays (views x pixels) is beyond the 2^31 this layerlab handles");
+    throw Error(lf.where(),
+                std::to_string(g.ray_count()) + " rays (views x pixels) is beyond the 2^31 this layerlab handles");
   lf.check_all_read();
   return g;
 }
@@ -179,8 +181,7 @@ TargetMesh ParseMesh(Params& o, const std::string& base_dir, std::string& descri
     Vec3& p = target.mesh.positions[i];
     Vec3 q{p[0] * scale, p[1] * scale, p[2] * scale};
     for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], q[k]), hi[k] = std::max(hi[k], q[k]);
-    for (int row = 0; row < 3; ++row)
-      p[row] = position[row] + r[row][0] * q[0] + r[row][1] * q[1] + r[row][2] * q[2];
+    for (int row = 0; row < 3; ++row) p[row] = position[row] + r[row][0] * q[0] + r[row][1] * q[1] + r[row][2] * q[2];
     if (!(p[2] > 0))
       o.fail("position", path + ": vertex " + std::to_string(i) + " lands at z = " + FormatFixed(p[2], 4) +
                              " m, not in front of the pupil plane (z > 0)");

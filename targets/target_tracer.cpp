@@ -21,11 +21,10 @@ TargetTracer::TargetTracer(const TargetScene& target) : target_(target) {
     const TargetPlane& p = target.planes[i];
     double x0 = p.center[0] - p.size[0] / 2, x1 = p.center[0] + p.size[0] / 2;
     double y0 = p.center[1] - p.size[1] / 2, y1 = p.center[1] + p.size[1] / 2;
-    std::array<std::array<double, 3>, 4> corners{{{x0, y0, p.depth}, {x1, y0, p.depth}, {x1, y1, p.depth},
-                                                  {x0, y1, p.depth}}};
+    std::array<std::array<double, 3>, 4> corners{
+        {{x0, y0, p.depth}, {x1, y0, p.depth}, {x1, y1, p.depth}, {x0, y1, p.depth}}};
     std::array<std::array<uint32_t, 3>, 2> triangles{{{0, 1, 2}, {0, 2, 3}}};
-    Register(scene_.AddTriangles(target.file + ": plane " + std::to_string(i), corners, triangles),
-             {true, i});
+    Register(scene_.AddTriangles(target.file + ": plane " + std::to_string(i), corners, triangles), {true, i});
   }
   for (size_t i = 0; i < target.meshes.size(); ++i) {
     const TriangleMesh& m = target.meshes[i].mesh;
@@ -78,6 +77,5 @@ void TargetTracer::Register(unsigned id, Surface surface) {
   if (id >= surfaces_.size()) surfaces_.resize(id + 1);
   surfaces_[id] = surface;
 }
-
 
 }  // namespace layerlab

@@ -7,10 +7,10 @@
 #include <sstream>
 
 #include "framework/error.h"
+#include "framework/random.h"
 #include "targets/fast_cos.h"
 #include "targets/length_or_angle.h"
 #include "targets/png_image.h"
-#include "framework/random.h"
 
 namespace layerlab {
 namespace {
@@ -38,7 +38,9 @@ class ConstantTexture final : public Texture {
 class GratingTexture final : public Texture {
  public:
   explicit GratingTexture(const GratingSpec& spec)
-      : spec_(spec), k_(kTwoPi * spec.cycles_per_meter), cos_(std::cos(spec.orientation)),
+      : spec_(spec),
+        k_(kTwoPi * spec.cycles_per_meter),
+        cos_(std::cos(spec.orientation)),
         sin_(std::sin(spec.orientation)) {}
   Rgb Evaluate(double s, double t) const override {
     double w = s * cos_ + t * sin_;  // along the wave vector
@@ -225,8 +227,8 @@ std::unique_ptr<Texture> ParseTexture(Params& p, const TextureFrame& frame) {
     std::string path = (std::filesystem::path(frame.base_dir) / file).string();
     std::array<double, 2> size = p.has("size") ? LengthOrAnglePair(p, "size", z) : frame.default_size;
     p.mark_read("size");
-    TextureWrap wrap = p.choice("wrap", {"clamp", "repeat"}, "clamp") == "clamp" ? TextureWrap::kClamp
-                                                                                  : TextureWrap::kRepeat;
+    TextureWrap wrap =
+        p.choice("wrap", {"clamp", "repeat"}, "clamp") == "clamp" ? TextureWrap::kClamp : TextureWrap::kRepeat;
     Image image = LoadImage(p, path);
     texture = MakeImageTexture(std::move(image), size, wrap, "image " + file);
   }

@@ -52,27 +52,46 @@ const BadScene kCases[] = {
     {"UnknownUnit", kMul, [](json& s) { ElementNamed(s, "front")["pixel_pitch"] = "117 uu"; },
      "scene.json: /elements/2/pixel_pitch: unknown unit 'uu' in \"117 uu\"; expected a length in m, cm, mm, um, nm"},
     {"BareNumberForADepth", kMul, [](json& s) { ElementNamed(s, "front")["virtual_depth"] = 2.2; },
-     "scene.json: /elements/2/virtual_depth: expected a depth with its unit, such as \"0.4 D\" or \"2.5 m\", got a number"},
+     "scene.json: /elements/2/virtual_depth: expected a depth with its unit, such as \"0.4 D\" or \"2.5 m\", got a "
+     "number"},
     {"NonFiniteQuantity", kMul, [](json& s) { ElementNamed(s, "lens")["focal_length"] = "nan mm"; },
      "scene.json: /elements/1/focal_length: \"nan mm\" is not a finite number"},
     {"TransmittanceAboveOne", kMul, [](json& s) { ElementNamed(s, "rear")["max_transmittance"] = 1.5; },
      "scene.json: /elements/3/max_transmittance: expected a fraction in [0, 1], got 1.5"},
-    {"BlackLevelPerChannel", kMul, [](json& s) { ElementNamed(s, "rear")["black_level"] = {0.01, 0.02, 0.01}; },
+    {"BlackLevelPerChannel", kMul,
+     [](json& s) {
+       ElementNamed(s, "rear")["black_level"] = {0.01, 0.02, 0.01};
+     },
      "scene.json: /elements/3/black_level: one value for all channels, got [0.0100, 0.0200, 0.0100] (a per-channel "
      "black level is not modelled)"},
     {"ZeroPixelPitch", kMul, [](json& s) { ElementNamed(s, "rear")["pixel_pitch"] = "0 um"; },
      "scene.json: /elements/3/pixel_pitch: must be in (0, 0.01] (SI units), got 0"},
     {"ZeroFocalLength", kMul, [](json& s) { ElementNamed(s, "lens")["focal_length"] = "0 mm"; },
      "scene.json: /elements/1/focal_length: a thin lens needs a nonzero focal length (0 would be infinite power)"},
-    {"FractionalResolution", kMul, [](json& s) { ElementNamed(s, "rear")["resolution"] = {1280.5, 800}; },
+    {"FractionalResolution", kMul,
+     [](json& s) {
+       ElementNamed(s, "rear")["resolution"] = {1280.5, 800};
+     },
      "scene.json: /elements/3/resolution/0: expected an integer in [1, 32768], got 1280.5"},
-    {"NegativeResolution", kMul, [](json& s) { ElementNamed(s, "rear")["resolution"] = {1280, -1}; },
+    {"NegativeResolution", kMul,
+     [](json& s) {
+       ElementNamed(s, "rear")["resolution"] = {1280, -1};
+     },
      "scene.json: /elements/3/resolution/1: expected an integer in [1, 32768], got -1"},
-    {"StringViews", kMul, [](json& s) { ElementNamed(s, "eye")["views"] = {"13", 13}; },
+    {"StringViews", kMul,
+     [](json& s) {
+       ElementNamed(s, "eye")["views"] = {"13", 13};
+     },
      "scene.json: /elements/0/views/0: expected an integer in [1, 256], got a string \"13\""},
-    {"HugeViews", kMul, [](json& s) { ElementNamed(s, "eye")["views"] = {1e12, 13}; },
+    {"HugeViews", kMul,
+     [](json& s) {
+       ElementNamed(s, "eye")["views"] = {1e12, 13};
+     },
      "scene.json: /elements/0/views/0: expected an integer in [1, 256], got 1000000000000.0"},
-    {"InvertedAccommodationRange", kMul, [](json& s) { ElementNamed(s, "eye")["accommodation_range"] = {"2.6 D", "0 D"}; },
+    {"InvertedAccommodationRange", kMul,
+     [](json& s) {
+       ElementNamed(s, "eye")["accommodation_range"] = {"2.6 D", "0 D"};
+     },
      "scene.json: /elements/0/accommodation_range: the range is inverted or empty: 2.600 D is not below 0.000 D "
      "(give [far, near] in diopters, far first)"},
     {"DanglingConnection", kMul, [](json& s) { ElementNamed(s, "eye")["next"] = "lenz"; },
@@ -90,7 +109,9 @@ const BadScene kCases[] = {
     {"CombinerAfterAPanel", kHybrid,
      [](json& s) {
        ElementNamed(s, "rear_a")["next"] = "mirror2";
-       s["elements"].push_back({{"type", "half_mirror"}, {"name", "mirror2"}, {"transmitted", "backlight_a"},
+       s["elements"].push_back({{"type", "half_mirror"},
+                                {"name", "mirror2"},
+                                {"transmitted", "backlight_a"},
                                 {"reflected", "backlight_b"}});
        ElementNamed(s, "rear_b")["next"] = "front_b";
      },
@@ -132,7 +153,9 @@ const BadScene kCases[] = {
      },
      "scene.json: /elements/5: a second eye \"eye2\"; the scene already has \"eye\" (one eye per scene)"},
     {"ElementOffThePath", kMul,
-     [](json& s) { s["elements"].push_back({{"type", "backlight"}, {"name", "spare"}, {"luminance", "100 cd/m2"}}); },
+     [](json& s) {
+       s["elements"].push_back({{"type", "backlight"}, {"name", "spare"}, {"luminance", "100 cd/m2"}});
+     },
      "scene.json: /elements/5: element \"spare\" (backlight) is not on the optical path from the eye"},
     {"SharedElement", kHybrid, [](json& s) { ElementNamed(s, "rear_b")["next"] = "backlight_a"; },
      "scene.json: /elements/7/next: \"backlight_a\" is already reached by another connection; each element sits on "
@@ -172,8 +195,9 @@ TEST(BadSceneText, MalformedJsonGivesLineAndColumn) {
     ParseJson("{\n  \"elements\": [\n    {\"type\": \"eye\",}\n  ]\n}", "scene.json");
     FAIL();
   } catch (const Error& e) {
-    EXPECT_STREQ(e.what(), "scene.json:3:20: malformed JSON: syntax error while parsing object key - unexpected '}'; "
-                           "expected string literal");
+    EXPECT_STREQ(e.what(),
+                 "scene.json:3:20: malformed JSON: syntax error while parsing object key - unexpected '}'; "
+                 "expected string literal");
   }
 }
 
@@ -182,7 +206,8 @@ TEST(BadSceneText, DuplicateKeyInAnElement) {
     ParseJson(R"({"elements": [{"type": "eye", "name": "a", "name": "b"}]})", "scene.json");
     FAIL();
   } catch (const Error& e) {
-    EXPECT_STREQ(e.what(), "scene.json: /elements/0/name: duplicate key \"name\" (each key may appear once per object)");
+    EXPECT_STREQ(e.what(),
+                 "scene.json: /elements/0/name: duplicate key \"name\" (each key may appear once per object)");
   }
 }
 

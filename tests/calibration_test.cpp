@@ -6,10 +6,10 @@
 #include <cstdlib>
 #include <numbers>
 
-#include "framework/json_file.h"
 #include "calibration/calibrated_scene.h"
 #include "calibration/calibration.h"
 #include "calibration/scalar_fit.h"
+#include "framework/json_file.h"
 #include "tests/calibration_test_util.h"
 #include "tests/test_util.h"
 
@@ -72,9 +72,10 @@ double WorstGeometryError(const DisplaySystem& built, const Measurements& m, con
     for (double e : errors) worst = std::max(worst, e);
     if (!check_std_dev) continue;
     // The reported uncertainties (ceres::Covariance, scaled by the residuals' noise) agree with these.
-    const std::pair<const char*, double> quantities[] = {
-        {"distance", expected.distance}, {"offset_x", expected.offset}, {"offset_y", expected.offset},
-        {"rotation", expected.rotation}};
+    const std::pair<const char*, double> quantities[] = {{"distance", expected.distance},
+                                                         {"offset_x", expected.offset},
+                                                         {"offset_y", expected.offset},
+                                                         {"rotation", expected.rotation}};
     for (const auto& [quantity, sd] : quantities) {
       const ParameterEstimate* estimate = report.find(layer.name, quantity);
       EXPECT_NE(estimate, nullptr) << layer.name << " " << quantity;
@@ -159,8 +160,9 @@ TEST(CalibrationTest, FocalLengthWithoutParallaxIsUndetermined) {
   EXPECT_EQ(f->status, ParameterStatus::kUndetermined);
   EXPECT_FALSE(f->std_dev.has_value());
   EXPECT_EQ(f->value, Designed().focal_length);
-  EXPECT_TRUE(HasWarning(report, "the focal length cannot be told from the panel distances while each panel is seen "
-                                 "from one camera position only"))
+  EXPECT_TRUE(HasWarning(report,
+                         "the focal length cannot be told from the panel distances while each panel is seen "
+                         "from one camera position only"))
       << report.FullReport();
 }
 
@@ -187,7 +189,8 @@ TEST(CalibrationTest, RobustLossDiscountsOutliersThatBiasLeastSquares) {
     ASSERT_TRUE(robust.IsSolutionUsable()) << robust.message;
     // A tenth of the markers is lost to the outliers.
     EXPECT_LT(WorstGeometryError(built, m, robust, display, sigma / std::sqrt(0.9), false), kSigmas)
-        << ToString(loss) << "\n" << robust.FullReport();
+        << ToString(loss) << "\n"
+        << robust.FullReport();
     EXPECT_TRUE(testing::Close(robust.marker_noise, sigma, 0.25)) << ToString(loss);
   }
 }
@@ -211,9 +214,10 @@ TEST(CalibrationTest, OneMarkerPerPanelLeavesDistanceAndRotationUndetermined) {
     }
     EXPECT_EQ(report.find(layer.name, "offset_x")->status, ParameterStatus::kFitted);
   }
-  EXPECT_TRUE(HasWarning(report, "panel \"rear_a\": its markers show a single panel pixel (640.0, 400.0), which fixes "
-                                 "the offset but not the rotation nor the magnification: its distance and rotation "
-                                 "keep their scene values (72.8070 mm, 0.0000 deg)"))
+  EXPECT_TRUE(HasWarning(report,
+                         "panel \"rear_a\": its markers show a single panel pixel (640.0, 400.0), which fixes "
+                         "the offset but not the rotation nor the magnification: its distance and rotation "
+                         "keep their scene values (72.8070 mm, 0.0000 deg)"))
       << report.FullReport();
   // Two residuals per panel for its two offsets: nothing is left to estimate the noise from.
   EXPECT_TRUE(HasWarning(report, "no uncertainties for the geometry: no redundancy")) << report.FullReport();
@@ -247,7 +251,8 @@ TEST(CalibrationTest, MirroredPanelIsReported) {
   const CalibrationReport report = Calibrate(Designed(), m, CalibrationOptions{}, &display);
   for (size_t k = 0; k < Designed().layers.size(); ++k)
     EXPECT_EQ(HasWarning(report, "panel \"" + Designed().layers[k].name + "\": its markers fit a mirror image"), k == 1)
-        << Designed().layers[k].name << "\n" << report.FullReport();
+        << Designed().layers[k].name << "\n"
+        << report.FullReport();
 }
 
 TEST(CalibrationTest, FarthestPanelReferenceCentersItAndFitsTheCamera) {
@@ -294,7 +299,8 @@ TEST(CalibrationTest, RecoversGammaFromNoisyLuminance) {
   EXPECT_EQ(gamma->scene_value, 2.4);
   EXPECT_LT(std::abs(display.find("rear_a")->gamma - 2.4), kSigmas * expected) << report.FullReport();
   ASSERT_TRUE(gamma->std_dev.has_value());
-  EXPECT_TRUE(*gamma->std_dev > 0.5 * expected && *gamma->std_dev < 1.5 * expected) << *gamma->std_dev << " vs " << expected;
+  EXPECT_TRUE(*gamma->std_dev > 0.5 * expected && *gamma->std_dev < 1.5 * expected)
+      << *gamma->std_dev << " vs " << expected;
   EXPECT_NEAR(display.find("rear_a")->max_luminance, 120.0, 120.0 * kSigmas * sigma);
   // Panels without markers keep their geometry; without luminance, their curve.
   EXPECT_FALSE(display.find("rear_a")->geometry_measured);
@@ -388,7 +394,7 @@ TEST(ScalarFitTest, InfeasibleHeldValueIsAFailedSolveNotACrash) {
   ScalarFit fit;
   const int a = fit.Add({"a", 5.0, 0, 0.0, 1.0});  // held outside its bounds
   const int b = fit.Add({"b", 0.0, 0, {}, {}});
-  fit.Add({"unused", 0.0, 0, 0.0, 1.0});            // in no residual: its bounds must not reach Ceres
+  fit.Add({"unused", 0.0, 0, 0.0, 1.0});  // in no residual: its bounds must not reach Ceres
   fit.Hold(a);
   fit.AddResidual(new ceres::AutoDiffCostFunction<SumCost, 1, 1, 1>(new SumCost{1.0}), nullptr, {a, b});
   const ScalarFitResult result = fit.Solve(ScalarFitOptions{});

@@ -7,10 +7,10 @@
 #include <cmath>
 #include <numbers>
 
-#include "framework/atomic_file.h"
 #include "calibration/calibrated_scene.h"
 #include "calibration/calibration.h"
 #include "calibration/marker_model.h"
+#include "framework/atomic_file.h"
 #include "tests/calibration_test_util.h"
 #include "tests/test_util.h"
 
@@ -80,8 +80,10 @@ TEST(GeneralPathCalibrationTest, SyntheticMarkersMatchARayTracedThroughTheElemen
             const double x = turn * (p.offset[0] + c * m.local_x - s * m.local_y);
             const double y = turn * (p.offset[1] + s * m.local_x + c * m.local_y);
             const auto angle = ImagedMarker(built, layer, col, row, SyntheticCamera{}, camera);
-            EXPECT_NEAR(angle[0], std::atan(TracedSlope(layer, camera[0], x)), 1e-12) << built.file << " " << layer.name;
-            EXPECT_NEAR(angle[1], std::atan(TracedSlope(layer, camera[1], y)), 1e-12) << built.file << " " << layer.name;
+            EXPECT_NEAR(angle[0], std::atan(TracedSlope(layer, camera[0], x)), 1e-12)
+                << built.file << " " << layer.name;
+            EXPECT_NEAR(angle[1], std::atan(TracedSlope(layer, camera[1], y)), 1e-12)
+                << built.file << " " << layer.name;
             ++checked;
           }
     }
@@ -161,12 +163,14 @@ TEST(GeneralPathCalibrationTest, RecoversEachBranchsLensGapWithinTheNoise) {
     parameters.push_back({name + " distance", 1e-6, [=](json& s, double d) {
                             testing::ElementNamed(s, name)["distance"] = testing::Exact(s0 + d, "m");
                           }});
-    parameters.push_back({name + " offset_x", 1e-6, [=](json& s, double d) {
-                            testing::ElementNamed(s, name)["offset"] = {testing::Exact(x0 + d, "m"), testing::Exact(y0, "m")};
-                          }});
-    parameters.push_back({name + " offset_y", 1e-6, [=](json& s, double d) {
-                            testing::ElementNamed(s, name)["offset"] = {testing::Exact(x0, "m"), testing::Exact(y0 + d, "m")};
-                          }});
+    parameters.push_back(
+        {name + " offset_x", 1e-6, [=](json& s, double d) {
+           testing::ElementNamed(s, name)["offset"] = {testing::Exact(x0 + d, "m"), testing::Exact(y0, "m")};
+         }});
+    parameters.push_back(
+        {name + " offset_y", 1e-6, [=](json& s, double d) {
+           testing::ElementNamed(s, name)["offset"] = {testing::Exact(x0, "m"), testing::Exact(y0 + d, "m")};
+         }});
     parameters.push_back({name + " rotation", 1e-5, [=](json& s, double d) {
                             testing::ElementNamed(s, name)["rotation"] = testing::Exact(r0 + d, "rad");
                           }});
@@ -190,8 +194,8 @@ TEST(GeneralPathCalibrationTest, RecoversEachBranchsLensGapWithinTheNoise) {
       ASSERT_EQ(gap->status, ParameterStatus::kFitted);
       ASSERT_TRUE(gap->std_dev.has_value());
       const double truth_gap = gap->scene_value + o.gap_change;
-      EXPECT_LT(std::abs(gap->value - truth_gap), kSigmas * *gap->std_dev)
-          << o.name << " seed " << seed << "\n" << report.FullReport();
+      EXPECT_LT(std::abs(gap->value - truth_gap), kSigmas * *gap->std_dev) << o.name << " seed " << seed << "\n"
+                                                                           << report.FullReport();
       EXPECT_TRUE(*gap->std_dev > 0.7 * expected[i] && *gap->std_dev < 1.3 * expected[i])
           << o.name << ": reported " << *gap->std_dev << ", brute force " << expected[i];
       ++i;
@@ -199,7 +203,8 @@ TEST(GeneralPathCalibrationTest, RecoversEachBranchsLensGapWithinTheNoise) {
     for (const VirtualLayer& layer : built.layers) {
       const CalibratedPanel* p = display.find(layer.name);
       const double values[] = {p->distance, p->offset_x, p->offset_y, p->rotation};
-      const double truths[] = {layer.panel_distance, layer.panel.offset[0], layer.panel.offset[1], layer.panel.rotation};
+      const double truths[] = {layer.panel_distance, layer.panel.offset[0], layer.panel.offset[1],
+                               layer.panel.rotation};
       const char* quantities[] = {"distance", "offset_x", "offset_y", "rotation"};
       for (int q = 0; q < 4; ++q, ++i) {
         EXPECT_LT(std::abs(values[q] - truths[q]), kSigmas * expected[i]) << parameters[i].name << " seed " << seed;
@@ -320,7 +325,6 @@ TEST(GeneralPathCalibrationTest, PanelsWithoutOpticsKeepTheirGaps) {
   for (size_t k = 0; k < built.layers.size(); ++k)
     EXPECT_NEAR(calibrated.layers[k].position, built.layers[k].position, 1e-9) << built.layers[k].name;
 }
-
 
 // A fold mirror between lens_a and front_a, front_a placed by "gap" from it:
 // a fitted lens gap moves the mirror and the panel with it, so the panel's

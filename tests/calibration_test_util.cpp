@@ -50,8 +50,11 @@ nlohmann::json BuiltScene(const DisplaySystem& designed, const std::vector<Panel
       panel.erase("virtual_depth");
       panel[behind_optics ? "distance" : "gap"] = 0;  // set below
     }
-    if (panel.contains("distance")) panel["distance"] = Exact(layer.panel_distance + change, "m");
-    else panel["gap"] = Exact(layer.position - (layer.path.empty() ? 0.0 : layer.path.back().position.value_or(0.0)) + change, "m");
+    if (panel.contains("distance"))
+      panel["distance"] = Exact(layer.panel_distance + change, "m");
+    else
+      panel["gap"] =
+          Exact(layer.position - (layer.path.empty() ? 0.0 : layer.path.back().position.value_or(0.0)) + change, "m");
   }
   for (const OpticTruth& t : optics) {
     nlohmann::json& optic = ElementNamed(scene, t.name);
@@ -131,7 +134,8 @@ Measurements SyntheticMeasurements(const DisplaySystem& built, const std::vector
   return m;
 }
 
-GeometrySigma ExpectedGeometrySigma(const VirtualLayer& layer, const PanelMarkers& markers, int positions, double sigma) {
+GeometrySigma ExpectedGeometrySigma(const VirtualLayer& layer, const PanelMarkers& markers, int positions,
+                                    double sigma) {
   // B = b + s d of the transfer up to the last element with power (free space keeps d): T = 1 / |B|, dT/ds = -d / B |B|.
   const double B = layer.transfer.b;
   const double T = 1.0 / std::abs(B);
@@ -186,7 +190,8 @@ LuminanceSigma ExpectedLuminanceSigma(const std::vector<int>& codes, double max_
   }
   const Eigen::Matrix3d covariance = (J.transpose() * J).inverse();
   const double scale = sigma * max_luminance;
-  return {scale * std::sqrt(covariance(0, 0)), scale * std::sqrt(covariance(1, 1)), scale * std::sqrt(covariance(2, 2))};
+  return {scale * std::sqrt(covariance(0, 0)), scale * std::sqrt(covariance(1, 1)),
+          scale * std::sqrt(covariance(2, 2))};
 }
 
 }  // namespace layerlab::testing

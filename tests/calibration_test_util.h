@@ -24,17 +24,17 @@ inline constexpr double kSigmas = 4.0;
 // How one panel is really built, against the scene as designed.
 struct PanelTruth {
   std::string name;
-  double distance_change = 0;           // m, added to the designed distance from the lens
-  double offset_x = 0, offset_y = 0;    // m
-  double rotation = 0;                  // rad
+  double distance_change = 0;         // m, added to the designed distance from the lens
+  double offset_x = 0, offset_y = 0;  // m
+  double rotation = 0;                // rad
   double max_luminance = 0, black_level = 0, gamma = 0;
 };
 
 // How a lens or curved mirror is really built.
 struct OpticTruth {
   std::string name;
-  double gap_change = 0;                // m, added to its designed gap
-  std::optional<double> focal_length;   // m; as designed when empty
+  double gap_change = 0;               // m, added to its designed gap
+  std::optional<double> focal_length;  // m; as designed when empty
 };
 
 // The true values examples/paper_prototype_measurements.json was made from.
@@ -85,7 +85,8 @@ Measurements SyntheticMeasurements(const DisplaySystem& built, const std::vector
 struct GeometrySigma {
   double distance = 0, offset = 0, rotation = 0;
 };
-GeometrySigma ExpectedGeometrySigma(const VirtualLayer& layer, const PanelMarkers& markers, int positions, double sigma);
+GeometrySigma ExpectedGeometrySigma(const VirtualLayer& layer, const PanelMarkers& markers, int positions,
+                                    double sigma);
 
 // The same for the luminance curve, from the Jacobian of
 // L = max (b + (1 - b) x^gamma) at the true values, samples at `codes` with

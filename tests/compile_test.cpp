@@ -25,8 +25,8 @@ TEST(Compile, PaperPrototypeMatchesTable1) {
   const double magnification[] = {34.2, 14.2, 9.2, 6.93};
   for (int k = 0; k < 4; ++k) {
     const VirtualLayer& l = s.layers[k];
-    double d = 1 / diopters[k] - e;      // image distance behind the lens
-    double M = 1 + d / f;                // = d / s with 1/s = 1/f + 1/d
+    double d = 1 / diopters[k] - e;  // image distance behind the lens
+    double M = 1 + d / f;            // = d / s with 1/s = 1/f + 1/d
     EXPECT_TRUE(Close(l.diopters, diopters[k], 1e-12));
     EXPECT_TRUE(Close(l.panel_distance * 1e3, distance_mm[k], 0, 0.005)) << l.name;
     EXPECT_TRUE(Close(l.magnification, M, 1e-12));
@@ -82,10 +82,10 @@ TEST(Compile, FlipsComeFromReversedPanelsAndTheMirror) {
       if (l.name == name) return l;
     throw std::runtime_error(name);
   };
-  EXPECT_FALSE(layer("rear_a").flip_x);  // transmitted, mounted normally
-  EXPECT_TRUE(layer("front_a").flip_x);  // transmitted, reversed
-  EXPECT_TRUE(layer("rear_b").flip_x);   // reflected by the horizontal fold
-  EXPECT_FALSE(layer("front_b").flip_x); // reflected and reversed: the two cancel
+  EXPECT_FALSE(layer("rear_a").flip_x);   // transmitted, mounted normally
+  EXPECT_TRUE(layer("front_a").flip_x);   // transmitted, reversed
+  EXPECT_TRUE(layer("rear_b").flip_x);    // reflected by the horizontal fold
+  EXPECT_FALSE(layer("front_b").flip_x);  // reflected and reversed: the two cancel
   for (const VirtualLayer& l : s.layers) EXPECT_FALSE(l.flip_y);
 }
 

@@ -84,7 +84,8 @@ std::vector<Window> LocalFrequencies(GratingSpacing spacing, double dt, double f
   const int n = 400;
   for (int w = 0; w < 5; ++w) {
     std::vector<double> values, degrees;
-    for (int j = w * n; j < (w + 1) * n; ++j) values.push_back(image.at(0, j, 1)), degrees.push_back(retina.angle_x(j) / kDeg);
+    for (int j = w * n; j < (w + 1) * n; ++j)
+      values.push_back(image.at(0, j, 1)), degrees.push_back(retina.angle_x(j) / kDeg);
     Window out;
     out.amplitude_at_f = FourierAmplitude(values, degrees, f);
     // Without the mean, whose kernel's side lobes would pull the scan's peak.
@@ -102,9 +103,11 @@ std::vector<Window> LocalFrequencies(GratingSpacing spacing, double dt, double f
       if (b > best_ideal) best_ideal = b, out.ideal_peak_frequency = g;
     }
     out.worst_error = 0;
-    for (size_t k = 0; k < values.size(); ++k) out.worst_error = std::max(out.worst_error, std::abs(values[k] - ideal[k]));
+    for (size_t k = 0; k < values.size(); ++k)
+      out.worst_error = std::max(out.worst_error, std::abs(values[k] - ideal[k]));
     std::complex<double> sum = 0;
-    for (size_t k = 0; k < values.size(); ++k) sum += values[k] * std::polar(1.0, -2 * std::numbers::pi * f * degrees[k]);
+    for (size_t k = 0; k < values.size(); ++k)
+      sum += values[k] * std::polar(1.0, -2 * std::numbers::pi * f * degrees[k]);
     out.phase_at_f = std::arg(sum);
     windows.push_back(out);
   }
@@ -151,9 +154,9 @@ TEST(FindPeak, ParabolaThroughAParabolaIsItsVertex) {
   PeakEstimate moved = EstimatePeak(x, y, shifted, 0.05);
   EXPECT_TRUE(Close(moved.uncertainty, 0.04, 1e-9));
   EXPECT_FALSE(moved.flat);
-  EXPECT_TRUE(EstimatePeak(x, y, far, 0.05).flat);          // moved by 0.12
-  EXPECT_TRUE(EstimatePeak(x, y, rising, 0.05).flat);       // the other sampling has no vertex
-  EXPECT_TRUE(EstimatePeak(x, rising, {}, 0.05).flat);      // the maximum at the end of the range
+  EXPECT_TRUE(EstimatePeak(x, y, far, 0.05).flat);      // moved by 0.12
+  EXPECT_TRUE(EstimatePeak(x, y, rising, 0.05).flat);   // the other sampling has no vertex
+  EXPECT_TRUE(EstimatePeak(x, rising, {}, 0.05).flat);  // the maximum at the end of the range
   EXPECT_FALSE(EstimatePeak(x, y, {}, 0.05).flat);
 }
 

@@ -1,5 +1,5 @@
-#include "framework/error.h"
 #include "framework/json_file.h"
+#include "framework/error.h"
 #include "tests/test_util.h"
 
 namespace layerlab {
@@ -16,7 +16,8 @@ std::string JsonError(const std::string& text, JsonLimits limits = {}) {
 
 TEST(JsonFile, MalformedTextGivesLineAndColumn) {
   EXPECT_EQ(JsonError("{\n  \"a\": 1,\n  \"b\": }"),
-            "in.json:3:8: malformed JSON: syntax error while parsing value - unexpected '}'; expected '[', '{', or a literal");
+            "in.json:3:8: malformed JSON: syntax error while parsing value - unexpected '}'; expected '[', '{', or a "
+            "literal");
 }
 
 TEST(JsonFile, DuplicateKeysAreRefusedWithTheirPointer) {
@@ -31,15 +32,19 @@ TEST(JsonFile, DuplicateKeysAreRefusedWithTheirPointer) {
 TEST(JsonFile, NestingAndSizeAreBounded) {
   std::string deep(100, '[');
   deep += std::string(100, ']');
-  EXPECT_EQ(JsonError(deep), "in.json: /0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0: JSON nesting deeper than 64 levels");
+  EXPECT_EQ(JsonError(deep),
+            "in.json: "
+            "/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/"
+            "0/0/0/0/0/0/0/0/0/0/0: JSON nesting deeper than 64 levels");
   JsonLimits small;
   small.max_bytes = 10;
   EXPECT_EQ(JsonError(R"({"a": "0123456789"})", small), "in.json: /: file is 19 bytes; the limit is 10");
 }
 
 TEST(JsonFile, HugeNumbersAreRefusedNotInfinite) {
-  EXPECT_EQ(JsonError("{\n\"f\": 1e400}"),
-            "in.json:2:6: malformed JSON: number overflow parsing '1e400' (the number is beyond the range of a double)");
+  EXPECT_EQ(
+      JsonError("{\n\"f\": 1e400}"),
+      "in.json:2:6: malformed JSON: number overflow parsing '1e400' (the number is beyond the range of a double)");
 }
 
 TEST(JsonFile, MissingFileIsNamed) {

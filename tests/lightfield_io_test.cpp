@@ -86,8 +86,8 @@ TEST_F(LightFieldFolder, MissingView) {
 
 TEST_F(LightFieldFolder, ExtraView) {
   fs::copy_file(Path("views/r01_c02.exr"), Path("views/r02_c00.exr"));
-  EXPECT_EQ(ReadError(), Path("lightfield.json") +
-                             ": extra view file views/r02_c00.exr (the manifest declares 2 x 3 views)");
+  EXPECT_EQ(ReadError(),
+            Path("lightfield.json") + ": extra view file views/r02_c00.exr (the manifest declares 2 x 3 views)");
 }
 
 TEST_F(LightFieldFolder, ViewOfTheWrongSize) {
@@ -104,8 +104,9 @@ TEST_F(LightFieldFolder, NonFiniteAndNegativePixelsAreNamed) {
                              ": pixel (row 2, col 3) channel G is NaN; light must be finite and non-negative");
   image.pixels[(2 * 8 + 3) * 3 + 1] = -0.25f;
   WriteExr(Path("views/r01_c01.exr"), image);
-  EXPECT_EQ(ReadError(), Path("views/r01_c01.exr") +
-                             ": pixel (row 2, col 3) channel G is negative (-0.250000); light must be finite and non-negative");
+  EXPECT_EQ(ReadError(),
+            Path("views/r01_c01.exr") +
+                ": pixel (row 2, col 3) channel G is negative (-0.250000); light must be finite and non-negative");
   image.pixels[(2 * 8 + 3) * 3 + 1] = INFINITY;
   WriteExr(Path("views/r01_c01.exr"), image);
   EXPECT_EQ(ReadError(), Path("views/r01_c01.exr") +
@@ -114,22 +115,28 @@ TEST_F(LightFieldFolder, NonFiniteAndNegativePixelsAreNamed) {
 
 TEST_F(LightFieldFolder, UnknownFormatVersion) {
   EditManifest([](nlohmann::json& m) { m["format"] = "lightfield/2"; });
-  EXPECT_EQ(ReadError(), Path("lightfield.json") +
-                             ": /format: unknown light-field format \"lightfield/2\"; this layerlab reads \"lightfield/1\"");
+  EXPECT_EQ(ReadError(),
+            Path("lightfield.json") +
+                ": /format: unknown light-field format \"lightfield/2\"; this layerlab reads \"lightfield/1\"");
 }
 
 TEST_F(LightFieldFolder, PatternsMayNotEscapeTheFolder) {
   EditManifest([](nlohmann::json& m) { m["views_pattern"] = "../views/r{row:02}_c{col:02}.exr"; });
-  EXPECT_EQ(ReadError(), Path("lightfield.json") +
-                             ": /views_pattern: \"../views/r{row:02}_c{col:02}.exr\" escapes the light-field folder ('..')");
+  EXPECT_EQ(ReadError(),
+            Path("lightfield.json") +
+                ": /views_pattern: \"../views/r{row:02}_c{col:02}.exr\" escapes the light-field folder ('..')");
   EditManifest([](nlohmann::json& m) { m["views_pattern"] = "/etc/r{row}_c{col}.exr"; });
-  EXPECT_EQ(ReadError(), Path("lightfield.json") + ": /views_pattern: \"/etc/r{row}_c{col}.exr\" must be relative to the light-field folder");
+  EXPECT_EQ(ReadError(), Path("lightfield.json") +
+                             ": /views_pattern: \"/etc/r{row}_c{col}.exr\" must be relative to the light-field folder");
 }
 
 TEST_F(LightFieldFolder, ManifestValuesAreChecked) {
   EditManifest([](nlohmann::json& m) { m["resolution"]["cols"] = 8.5; });
   EXPECT_EQ(ReadError(), Path("lightfield.json") + ": /resolution/cols: expected an integer in [1, 16384], got 8.5");
-  EditManifest([](nlohmann::json& m) { m["resolution"]["cols"] = 8; m["views"]["eyebox_widht"] = 0.006; });
+  EditManifest([](nlohmann::json& m) {
+    m["resolution"]["cols"] = 8;
+    m["views"]["eyebox_widht"] = 0.006;
+  });
   EXPECT_EQ(ReadError(), Path("lightfield.json") +
                              ": /views/eyebox_widht: unknown key \"eyebox_widht\"; did you mean \"eyebox_width\"?");
 }
@@ -171,8 +178,9 @@ TEST_F(LightFieldFolder, AttributeSizeBeyondTheFileIsRefused) {
   std::string bytes = std::string("\x76\x2f\x31\x01\x02\0\0\0", 8) + std::string("comments\0string\0", 16) +
                       std::string("\x00\x00\x00\x70", 4) + "a few bytes";
   std::ofstream(file, std::ios::binary) << bytes;
-  EXPECT_EQ(ReadError(), file + ": corrupt or truncated OpenEXR file: attribute \"comments\" declares "
-                                "1879048192 bytes; the file has 11 left");
+  EXPECT_EQ(ReadError(), file +
+                             ": corrupt or truncated OpenEXR file: attribute \"comments\" declares "
+                             "1879048192 bytes; the file has 11 left");
   EXPECT_THROW(ReadExrSize(file), Error);
   // The channel list declares one byte less than it holds: the C++ reader reads
   // it by content, the C core by its size, and the next attribute then read by
@@ -180,7 +188,8 @@ TEST_F(LightFieldFolder, AttributeSizeBeyondTheFileIsRefused) {
   fs::copy_file(std::string(LAYERLAB_SOURCE_DIR) + "/fuzz/corpus/exr/chlist_size_mismatch.exr", file,
                 fs::copy_options::overwrite_existing);
   std::string error = ReadError();
-  EXPECT_EQ(error.rfind(file + ": corrupt or truncated OpenEXR file: attribute \"lineOrdev/1\x01\x02\" declares ", 0), 0u)
+  EXPECT_EQ(error.rfind(file + ": corrupt or truncated OpenEXR file: attribute \"lineOrdev/1\x01\x02\" declares ", 0),
+            0u)
       << error;
 }
 
@@ -242,16 +251,18 @@ TEST_F(LightFieldFolder, SpecialFilesAndLinksAmongTheViewsAreRefusedWithoutBlock
 
 TEST_F(LightFieldFolder, ViewNamesThatOverflowCollideOrExceedTheNameLimitAreRefused) {
   fs::copy_file(Path("views/r01_c02.exr"), Path("views/r99999999999999999999_c00.exr"));
-  EXPECT_EQ(ReadError(), Path("lightfield.json") +
-                             ": extra view file views/r99999999999999999999_c00.exr (the manifest declares 2 x 3 views)");
+  EXPECT_EQ(ReadError(),
+            Path("lightfield.json") +
+                ": extra view file views/r99999999999999999999_c00.exr (the manifest declares 2 x 3 views)");
   fs::remove(Path("views/r99999999999999999999_c00.exr"));
   EditManifest([](nlohmann::json& m) {
     m["views"]["rows"] = 12;
     m["views"]["cols"] = 12;
     m["views_pattern"] = "views/r{row}{col}.exr";
   });
-  EXPECT_EQ(ReadError(), Path("lightfield.json") + ": /views_pattern: \"views/r{row}{col}.exr\" maps views (row 1, col 10) "
-                         "and (row 11, col 0) to one file, views/r110.exr");
+  EXPECT_EQ(ReadError(), Path("lightfield.json") +
+                             ": /views_pattern: \"views/r{row}{col}.exr\" maps views (row 1, col 10) "
+                             "and (row 11, col 0) to one file, views/r110.exr");
   EditManifest([](nlohmann::json& m) {
     m["views"]["rows"] = 2;
     m["views"]["cols"] = 3;

@@ -11,10 +11,10 @@
 #include <fstream>
 #include <functional>
 
-#include "framework/atomic_file.h"
-#include "framework/json_file.h"
 #include "calibration/calibrated_scene.h"
 #include "calibration/calibration.h"
+#include "framework/atomic_file.h"
+#include "framework/json_file.h"
 #include "tests/calibration_test_util.h"
 #include "tests/test_util.h"
 
@@ -100,12 +100,19 @@ TEST_P(BadMeasurementsTest, IsRefusedWithItsLocation) {
 
 const BadMeasurements kBad[] = {
     {"WrongFormat", [](json& d) { d["format"] = "layerlab-scene/1"; },
-     "m.json: /format: unknown measurements format \"layerlab-scene/1\"; this layerlab reads \"layerlab-measurements/1\""},
-    {"MisspelledKey", [](json& d) { d["captures"][0]["markers"]["rear_a"][0]["panel_pixle"] = {1, 2}; },
+     "m.json: /format: unknown measurements format \"layerlab-scene/1\"; this layerlab reads "
+     "\"layerlab-measurements/1\""},
+    {"MisspelledKey",
+     [](json& d) {
+       d["captures"][0]["markers"]["rear_a"][0]["panel_pixle"] = {1, 2};
+     },
      "m.json: /captures/0/markers/rear_a/0/panel_pixle: unknown key \"panel_pixle\"; did you mean \"panel_pixel\"?"},
     {"MarkerAsNumber", [](json& d) { d["captures"][0]["markers"]["rear_a"][1] = 3; },
      "m.json: /captures/0/markers/rear_a/1: expected an object, got a number"},
-    {"PixelNotAPair", [](json& d) { d["captures"][0]["markers"]["rear_a"][0]["panel_pixel"] = {1, 2, 3}; },
+    {"PixelNotAPair",
+     [](json& d) {
+       d["captures"][0]["markers"]["rear_a"][0]["panel_pixel"] = {1, 2, 3};
+     },
      "m.json: /captures/0/markers/rear_a/0/panel_pixel: expected two values [col, row], got an array [1,2,3]"},
     {"PixelNotANumber", [](json& d) { d["captures"][0]["markers"]["rear_a"][0]["camera_pixel"][1] = "12"; },
      "m.json: /captures/0/markers/rear_a/0/camera_pixel/1: expected a number, got a string"},
@@ -128,12 +135,18 @@ const BadMeasurements kBad[] = {
     {"Nothing", [](json& d) { d.erase("captures"), d.erase("luminance"); },
      "m.json: /: nothing to fit: the file has neither \"captures\" with markers nor \"luminance\""},
     {"UnknownPanel", [](json& d) { d["captures"][0]["markers"]["rear_c"] = d["captures"][0]["markers"]["rear_a"]; },
-     "m.json: /captures/0/markers/rear_c: no panel named \"rear_c\" in " + testing::ExamplePath("paper_prototype.json") +
-         "; did you mean \"rear_a\"?"},
-    {"PixelOffThePanel", [](json& d) { d["captures"][0]["markers"]["rear_a"][1]["panel_pixel"] = {1280, 10}; },
+     "m.json: /captures/0/markers/rear_c: no panel named \"rear_c\" in " +
+         testing::ExamplePath("paper_prototype.json") + "; did you mean \"rear_a\"?"},
+    {"PixelOffThePanel",
+     [](json& d) {
+       d["captures"][0]["markers"]["rear_a"][1]["panel_pixel"] = {1280, 10};
+     },
      "m.json: /captures/0/markers/rear_a/1/panel_pixel: (1280.0, 10.0) is off the panel's 1280 x 800 grid (columns "
      "and rows count from 0)"},
-    {"AllDark", [](json& d) { d["luminance"]["rear_a"]["samples"] = {{0, 0}, {255, 0}}; },
+    {"AllDark",
+     [](json& d) {
+       d["luminance"]["rear_a"]["samples"] = {{0, 0}, {255, 0}};
+     },
      "m.json: /luminance/rear_a/samples: every reading is zero: the panel's response cannot be fitted"},
 };
 
@@ -153,8 +166,8 @@ TEST(MeasurementsTest, MalformedFileNamesTheFile) {
 
 TEST(MeasurementsTest, WrittenFileReadsBackTheSame) {
   const std::vector<testing::PanelTruth> truth = testing::ExampleTruth();
-  const Measurements m = testing::SyntheticMeasurements(testing::BuiltSystem(Designed(), truth), truth,
-                                                        testing::ExampleSetup());
+  const Measurements m =
+      testing::SyntheticMeasurements(testing::BuiltSystem(Designed(), truth), truth, testing::ExampleSetup());
   const Measurements back = ParseMeasurements(json::parse(FormatMeasurements(m)), "back.json");
   ASSERT_EQ(back.marker_count(), m.marker_count());
   for (size_t c = 0; c < m.captures.size(); ++c)
@@ -195,11 +208,12 @@ void ExpectExampleFileIs(const Measurements& m, const std::string& name) {
 
 TEST(ExampleMeasurements, IsMadeFromItsKnownTruth) {
   const std::vector<testing::PanelTruth> truth = testing::ExampleTruth();
-  Measurements m = testing::SyntheticMeasurements(testing::BuiltSystem(Designed(), truth), truth,
-                                                  testing::ExampleSetup());
-  m.description = "Synthetic measurements of examples/paper_prototype.json as built with known placements, "
-                  "0.3 arcmin marker noise and 0.3 % luminance noise; docs/measurements-format.md lists the true "
-                  "values.";
+  Measurements m =
+      testing::SyntheticMeasurements(testing::BuiltSystem(Designed(), truth), truth, testing::ExampleSetup());
+  m.description =
+      "Synthetic measurements of examples/paper_prototype.json as built with known placements, "
+      "0.3 arcmin marker noise and 0.3 % luminance noise; docs/measurements-format.md lists the true "
+      "values.";
   ExpectExampleFileIs(m, kExample);
 }
 
@@ -208,9 +222,10 @@ TEST(ExampleMeasurements, PerBranchIsMadeFromItsKnownTruth) {
   const std::vector<testing::PanelTruth> truth = testing::PerBranchTruth();
   Measurements m = testing::SyntheticMeasurements(testing::BuiltSystem(designed, truth, testing::PerBranchOptics()),
                                                   truth, testing::PerBranchSetup());
-  m.description = "Synthetic measurements of examples/per_branch_magnifiers.json as built with each branch's lens "
-                  "off its gap (lens_a +0.5 mm, lens_b -0.4 mm) and every panel moved, 0.3 arcmin marker noise; "
-                  "tests/calibration_test_util.cpp (PerBranchTruth) lists the true values.";
+  m.description =
+      "Synthetic measurements of examples/per_branch_magnifiers.json as built with each branch's lens "
+      "off its gap (lens_a +0.5 mm, lens_b -0.4 mm) and every panel moved, 0.3 arcmin marker noise; "
+      "tests/calibration_test_util.cpp (PerBranchTruth) lists the true values.";
   ExpectExampleFileIs(m, "per_branch_magnifiers_measurements.json");
 }
 
@@ -237,9 +252,9 @@ TEST(CalibratedSceneTest, LoadsBackWithTheFittedValues) {
     EXPECT_NEAR(layer.panel.gamma, p->gamma, 1e-10) << layer.name;
     EXPECT_NEAR(layer.panel.black_level, p->black_level, 1e-10) << layer.name;
   }
-  EXPECT_NE(std::find(calibrated.components.begin(), calibrated.components.end(),
-                      "rotated layers (general projection path)"),
-            calibrated.components.end());
+  EXPECT_NE(
+      std::find(calibrated.components.begin(), calibrated.components.end(), "rotated layers (general projection path)"),
+      calibrated.components.end());
   // Only calibrated keys changed: the panel's "virtual_depth" became its "distance", in its place.
   const auto& elements = document["elements"];
   EXPECT_EQ(elements[3]["name"], "front_a");

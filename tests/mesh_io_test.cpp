@@ -51,7 +51,8 @@ TEST(ObjTest, FanTriangulatesPolygonsAndResolvesNegativeIndices) {
 }
 
 TEST(ObjTest, TextureIndicesAreIndependentOfVertexIndices) {
-  TriangleMesh m = ParseObj("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 0.25 0\nvt 0.5 0\nvn 0 0 1\nf 1/3 2/1/1 3/2\n", "m.obj");
+  TriangleMesh m =
+      ParseObj("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 0.25 0\nvt 0.5 0\nvn 0 0 1\nf 1/3 2/1/1 3/2\n", "m.obj");
   EXPECT_EQ(m.triangles[0], (Tri{0, 1, 2}));
   EXPECT_EQ(m.triangle_uvs[0], (Tri{2, 0, 1}));
 }
@@ -79,8 +80,10 @@ TEST(ObjTest, RefusesBadInputNamingFileAndLine) {
   EXPECT_EQ(ObjError(t + "f 1/ 2 3\n"), "m.obj:4: \"1/\" is not a face vertex (expected i, i/t, i/t/n or i//n)");
   EXPECT_EQ(ObjError(t + "vt 0 0\nf 1/2 2/1 3/1\n"),
             "m.obj:5: texture coordinate index 2 is out of range (1 texture coordinate defined so far)");
-  EXPECT_EQ(ObjError(t + "vn 0 0 1\nf 1//2 2//1 3//1\n"), "m.obj:5: normal index 2 is out of range (1 normal defined so far)");
-  EXPECT_EQ(ObjError(t + "vt 0 0\nf 1/1 2 3\n"), "m.obj:5: the face mixes vertices with and without texture coordinates");
+  EXPECT_EQ(ObjError(t + "vn 0 0 1\nf 1//2 2//1 3//1\n"),
+            "m.obj:5: normal index 2 is out of range (1 normal defined so far)");
+  EXPECT_EQ(ObjError(t + "vt 0 0\nf 1/1 2 3\n"),
+            "m.obj:5: the face mixes vertices with and without texture coordinates");
   EXPECT_EQ(ObjError(t + "vt 0 0\nf 1/1 2/1 3/1\nf 1 2 3\n"),
             "m.obj:6: the face has no texture coordinates, but the faces above it do");
   EXPECT_EQ(ObjError("curv 0 1 1 2\n"),
@@ -156,8 +159,9 @@ TEST(PlyTest, ReadsBinaryLittleEndianExactly) {
 
 TEST(PlyTest, RefusesBadInputNamingTheElement) {
   EXPECT_EQ(PlyError("solid\n"), "m.ply: not a PLY file (the first line is not \"ply\")");
-  EXPECT_EQ(PlyError("ply\nformat binary_big_endian 1.0\nend_header\n"),
-            "m.ply: header line 2: binary_big_endian PLY is not supported; convert it to binary_little_endian or ascii");
+  EXPECT_EQ(
+      PlyError("ply\nformat binary_big_endian 1.0\nend_header\n"),
+      "m.ply: header line 2: binary_big_endian PLY is not supported; convert it to binary_little_endian or ascii");
   EXPECT_EQ(PlyError("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"),
             "m.ply: the PLY header has no end_header line");
   EXPECT_EQ(PlyError("ply\nformat ascii 1.0\nelement vertex 1\nproperty quad x\nend_header\n"),

@@ -116,7 +116,8 @@ TEST(LightFieldRadiance, RetinaMatchesTheAnalyticPlaneAtEveryFocus) {
     const std::array<double, 3> a{focus, focus, focus};
     Image seen = RetinaOfScene(from_lf, grid, pupil, a), expected = RetinaOfScene(plane, grid, pupil, a);
     double worst = 0;
-    for (size_t k = 0; k < seen.pixels.size(); ++k) worst = std::max(worst, double(std::abs(seen.pixels[k] - expected.pixels[k])));
+    for (size_t k = 0; k < seen.pixels.size(); ++k)
+      worst = std::max(worst, double(std::abs(seen.pixels[k] - expected.pixels[k])));
     // Bilinear interpolation of a 1 cpd grating sampled at ~0.025 deg: error (pi f h)^2 / 2 of the amplitude.
     EXPECT_LT(worst, 2e-3) << "focus " << focus << " D";
   }

@@ -42,7 +42,7 @@ const VirtualLayer& Layer(const DisplaySystem& s, const std::string& name) {
 // ---- Successive Gaussian imaging ------------------------------------------------
 
 struct GaussianImage {
-  double position;       // from the pupil
+  double position;  // from the pupil
   double magnification;
 };
 
@@ -79,10 +79,12 @@ TEST(OpticalPath, TwoLensEffectiveFocalLength) {
   // Panel at the pair's front focal point: image at infinity, a pixel subtends p / EFL.
   const double f1 = 0.06, f2 = 0.04, d = 0.03, p = 100e-6;
   const double efl = f1 * f2 / (f1 + f2 - d), ffd = f2 * (f1 - d) / (f1 + f2 - d);
-  json scene = Scene({Eye("l1"),
-                      {{"type", "thin_lens"}, {"name", "l1"}, {"focal_length", Mm(f1)}, {"next", "l2"}},
-                      {{"type", "thin_lens"}, {"name", "l2"}, {"focal_length", Mm(f2)}, {"gap", Mm(d)}, {"next", "panel"}},
-                      Panel("panel", "bl", p), Backlight("bl")});
+  json scene =
+      Scene({Eye("l1"),
+             {{"type", "thin_lens"}, {"name", "l1"}, {"focal_length", Mm(f1)}, {"next", "l2"}},
+             {{"type", "thin_lens"}, {"name", "l2"}, {"focal_length", Mm(f2)}, {"gap", Mm(d)}, {"next", "panel"}},
+             Panel("panel", "bl", p),
+             Backlight("bl")});
   ElementNamed(scene, "panel")["gap"] = ffd;
   DisplaySystem s = CompileJson(scene);
   EXPECT_LT(std::abs(s.layers[0].diopters), 1e-12);
@@ -124,8 +126,11 @@ TEST(OpticalPath, DirectViewPanelsAreWhereTheyAre) {
 
 TEST(OpticalPath, PerBranchMagnifiersPlaceFourPlanes) {
   DisplaySystem s = CompileJson(ReadExample("per_branch_magnifiers.json"));
-  const std::map<std::string, std::pair<double, double>> want = {  // diopters, focal length
-      {"front_a", {2.4, 0.06}}, {"rear_a", {0.8, 0.06}}, {"front_b", {1.6, 0.08}}, {"rear_b", {0.0, 0.08}}};
+  const std::map<std::string, std::pair<double, double>> want = {// diopters, focal length
+                                                                 {"front_a", {2.4, 0.06}},
+                                                                 {"rear_a", {0.8, 0.06}},
+                                                                 {"front_b", {1.6, 0.08}},
+                                                                 {"rear_b", {0.0, 0.08}}};
   for (const auto& [name, d_f] : want) {
     const VirtualLayer& l = Layer(s, name);
     const auto [D, f] = d_f;
@@ -169,8 +174,10 @@ void Fold(Ray& ray, Frame& f, bool horizontal) {
   ray.d -= 2 * ray.d.dot(n) * n;
   const Eigen::Matrix3d r = Eigen::Matrix3d::Identity() - 2 * n * n.transpose();
   const Eigen::Vector3d e1 = r * f.e1, e2 = r * f.e2, e3 = r * f.e3;
-  if (horizontal) f = {f.origin, -e1, e2, e3};
-  else f = {f.origin, e1, -e2, e3};
+  if (horizontal)
+    f = {f.origin, -e1, e2, e3};
+  else
+    f = {f.origin, e1, -e2, e3};
 }
 
 // What the test knows of each element it wrote, to trace it.
@@ -178,8 +185,8 @@ struct Built {
   std::string type;
   double power = 0;
   bool horizontal = true;
-  bool reflect = false;      // a combiner's reflected port on this path
-  std::optional<double> gap; // as written
+  bool reflect = false;       // a combiner's reflected port on this path
+  std::optional<double> gap;  // as written
 };
 
 class RandomChains : public ::testing::Test {
@@ -191,8 +198,8 @@ class RandomChains : public ::testing::Test {
 
 // Traces rays through one panel's folded path and compares the landing pixel
 // with the compiled layer's prediction from the ray's eye-space start.
-double WorstPixelError(const VirtualLayer& layer, const std::vector<Built>& elements, const std::vector<double>& positions,
-                       SplitMix64& random) {
+double WorstPixelError(const VirtualLayer& layer, const std::vector<Built>& elements,
+                       const std::vector<double>& positions, SplitMix64& random) {
   double worst = 0;
   for (int trial = 0; trial < 8; ++trial) {
     const double x0 = (random.uniform() - 0.5) * 6e-3, y0 = (random.uniform() - 0.5) * 6e-3;
@@ -221,8 +228,8 @@ double WorstPixelError(const VirtualLayer& layer, const std::vector<Built>& elem
     const double jp = layer.flip_x ? layer.cols - 1 - je : je, ip = layer.flip_y ? layer.rows - 1 - ie : ie;
     worst = std::max({worst, std::abs(col - jp), std::abs(row - ip)});
     if (std::getenv("LAYERLAB_TRACE_DEBUG") && (std::abs(col - jp) > 1e-6 || std::abs(row - ip) > 1e-6))
-      std::printf("%s: traced (%g, %g) predicted (%g, %g) flips %d %d inverted %d\n", layer.name.c_str(), col, row, jp, ip,
-                  layer.flip_x, layer.flip_y, layer.inverted);
+      std::printf("%s: traced (%g, %g) predicted (%g, %g) flips %d %d inverted %d\n", layer.name.c_str(), col, row, jp,
+                  ip, layer.flip_x, layer.flip_y, layer.inverted);
   }
   return worst;
 }
@@ -235,8 +242,8 @@ TEST_F(RandomChains, RaysTracedThroughTheFoldedPathLandOnThePredictedPixel) {
     std::vector<Built> built;
     const int count = static_cast<int>(Uniform(0, 5));
     elements.push_back(Eye(count > 0 ? "e0" : "front", Uniform(0.005, 0.03)));
-    double placed_at = 0;                   // the last placed element's position
-    std::optional<double> lens_at;          // the nearest lens or curved mirror's
+    double placed_at = 0;           // the last placed element's position
+    std::optional<double> lens_at;  // the nearest lens or curved mirror's
     for (int i = 0; i < count; ++i) {
       const std::string name = "e" + std::to_string(i), next = i + 1 < count ? "e" + std::to_string(i + 1) : "front";
       json e = {{"name", name}};
@@ -283,9 +290,12 @@ TEST_F(RandomChains, RaysTracedThroughTheFoldedPathLandOnThePredictedPixel) {
     }
     const bool last_floats = count > 0 && !built.back().gap && built.back().power == 0;
     auto place = [&](json& panel) {
-      if (!last_floats) panel["gap"] = Uniform(0.005, 0.15);
-      else if (lens_at && Coin()) panel["distance"] = placed_at - *lens_at + Uniform(0.005, 0.15);
-      else panel["virtual_depth"] = std::to_string(Uniform(0.2, 3.0)) + " D";
+      if (!last_floats)
+        panel["gap"] = Uniform(0.005, 0.15);
+      else if (lens_at && Coin())
+        panel["distance"] = placed_at - *lens_at + Uniform(0.005, 0.15);
+      else
+        panel["virtual_depth"] = std::to_string(Uniform(0.2, 3.0)) + " D";
     };
     json front = Panel("front", Coin() ? "rear" : "bl");
     place(front);
@@ -300,8 +310,10 @@ TEST_F(RandomChains, RaysTracedThroughTheFoldedPathLandOnThePredictedPixel) {
     for (int i = 0; i < count; ++i)
       if (built[i].type == "half_mirror") {
         json side = Panel("side" + std::to_string(i), "bl_side" + std::to_string(i));
-        if (built[i].gap) side["gap"] = Uniform(0.005, 0.15);
-        else place(side);
+        if (built[i].gap)
+          side["gap"] = Uniform(0.005, 0.15);
+        else
+          place(side);
         elements.push_back(side);
         elements.push_back(Backlight("bl_side" + std::to_string(i)));
       }
@@ -311,9 +323,10 @@ TEST_F(RandomChains, RaysTracedThroughTheFoldedPathLandOnThePredictedPixel) {
     } catch (const Error& e) {
       // Only an image no eye can see may be refused; check it by Gaussian imaging of the scene as written.
       const std::string what = e.what();
-      EXPECT_TRUE(what.find("behind the eye") != std::string::npos || what.find("real, inverted image") != std::string::npos ||
-                  what.find("into the pupil plane") != std::string::npos || what.find("cannot be formed") != std::string::npos ||
-                  what.find("would not lie behind") != std::string::npos)
+      EXPECT_TRUE(
+          what.find("behind the eye") != std::string::npos || what.find("real, inverted image") != std::string::npos ||
+          what.find("into the pupil plane") != std::string::npos ||
+          what.find("cannot be formed") != std::string::npos || what.find("would not lie behind") != std::string::npos)
           << what;
       ++refused;
       continue;
@@ -360,9 +373,9 @@ TEST_F(RandomChains, RaysTracedThroughTheFoldedPathLandOnThePredictedPixel) {
 
 TEST(OpticalPath, EveryExampleLandsOnThePredictedPixel) {
   SplitMix64 random(7);
-  for (const char* name : {"paper_prototype.json", "hybrid_pbs_hwp.json", "additive_2layer.json",
-                           "multiplicative_2layer.json", "tensor_display_3layer.json", "per_branch_magnifiers.json",
-                           "relay_magnifier.json"}) {
+  for (const char* name :
+       {"paper_prototype.json", "hybrid_pbs_hwp.json", "additive_2layer.json", "multiplicative_2layer.json",
+        "tensor_display_3layer.json", "per_branch_magnifiers.json", "relay_magnifier.json"}) {
     DisplaySystem s = CompileJson(ReadExample(name));
     for (const VirtualLayer& l : s.layers) {
       std::vector<Built> on_path;
@@ -389,7 +402,10 @@ TEST(OpticalPath, PlacementErrorsNameTheKeyAndTheOptics) {
   auto error = [](json scene) { return testing::CompileError(scene); };
   json base = Scene({Eye("bs"),
                      {{"type", "half_mirror"}, {"name", "bs"}, {"transmitted", "front"}, {"reflected", "side"}},
-                     Panel("front", "bl"), Backlight("bl"), Panel("side", "bl2"), Backlight("bl2")});
+                     Panel("front", "bl"),
+                     Backlight("bl"),
+                     Panel("side", "bl2"),
+                     Backlight("bl2")});
   ElementNamed(base, "side")["virtual_depth"] = "1 D";
 
   json gap_after_unplaced = base;
@@ -400,20 +416,23 @@ TEST(OpticalPath, PlacementErrorsNameTheKeyAndTheOptics) {
 
   json distance_without_lens = base;
   ElementNamed(distance_without_lens, "front")["distance"] = "5 cm";
-  EXPECT_EQ(error(distance_without_lens),
-            "scene.json: /elements/2/distance: \"distance\" is measured from the nearest lens or curved mirror in front "
-            "of the panel, and none lies between the eye and \"front\"; give \"gap\" (from \"bs\") or "
-            "\"virtual_depth\" (from the eye)");
+  EXPECT_EQ(
+      error(distance_without_lens),
+      "scene.json: /elements/2/distance: \"distance\" is measured from the nearest lens or curved mirror in front "
+      "of the panel, and none lies between the eye and \"front\"; give \"gap\" (from \"bs\") or "
+      "\"virtual_depth\" (from the eye)");
 
   // A 50 mm lens 20 mm from the eye with the panel 200 mm behind it: a real image 47 mm behind the lens,
   // 27 mm behind the eye.
-  json converging = Scene({Eye("lens", 0.02),
-                           {{"type", "thin_lens"}, {"name", "lens"}, {"focal_length", "50 mm"}, {"next", "relay"}},
-                           {{"type", "thin_lens"}, {"name", "relay"}, {"focal_length", "-500 mm"}, {"gap", "1 mm"},
-                            {"next", "p"}},
-                           Panel("p", "bl"), Backlight("bl")});
+  json converging =
+      Scene({Eye("lens", 0.02),
+             {{"type", "thin_lens"}, {"name", "lens"}, {"focal_length", "50 mm"}, {"next", "relay"}},
+             {{"type", "thin_lens"}, {"name", "relay"}, {"focal_length", "-500 mm"}, {"gap", "1 mm"}, {"next", "p"}},
+             Panel("p", "bl"),
+             Backlight("bl")});
   ElementNamed(converging, "p")["gap"] = "200 mm";
-  EXPECT_NE(error(converging).find("/elements/3/gap: panel \"p\" would be imaged"), std::string::npos) << error(converging);
+  EXPECT_NE(error(converging).find("/elements/3/gap: panel \"p\" would be imaged"), std::string::npos)
+      << error(converging);
   EXPECT_NE(error(converging).find("behind the eye"), std::string::npos);
 
   json second_lens_unplaced = converging;
@@ -424,26 +443,31 @@ TEST(OpticalPath, PlacementErrorsNameTheKeyAndTheOptics) {
 
   json zero_gap = converging;
   ElementNamed(zero_gap, "relay")["gap"] = "0 mm";
-  EXPECT_EQ(error(zero_gap), "scene.json: /elements/2/gap: the path length from the element before must be positive, "
-                             "got 0.000 mm");
+  EXPECT_EQ(error(zero_gap),
+            "scene.json: /elements/2/gap: the path length from the element before must be positive, "
+            "got 0.000 mm");
 
   json pupil_image = Scene({Eye("lens", 0.05),
                             {{"type", "thin_lens"}, {"name", "lens"}, {"focal_length", "25 mm"}, {"next", "p"}},
-                            Panel("p", "bl"), Backlight("bl")});
+                            Panel("p", "bl"),
+                            Backlight("bl")});
   ElementNamed(pupil_image, "p")["gap"] = "50 mm";  // 2f - 2f: the panel is conjugate to the pupil
-  EXPECT_EQ(error(pupil_image), "scene.json: /elements/2/gap: panel \"p\" is imaged into the pupil plane, where no eye "
-                                "can focus; move it or the optics in front of it");
+  EXPECT_EQ(error(pupil_image),
+            "scene.json: /elements/2/gap: panel \"p\" is imaged into the pupil plane, where no eye "
+            "can focus; move it or the optics in front of it");
 
   json unreachable = Scene({Eye("lens", 0.01),
                             {{"type", "thin_lens"}, {"name", "lens"}, {"focal_length", "75 mm"}, {"next", "m"}},
                             {{"type", "mirror"}, {"name", "m"}, {"gap", "30 mm"}, {"next", "p"}},
-                            Panel("p", "bl"), Backlight("bl")});
+                            Panel("p", "bl"),
+                            Backlight("bl")});
   ElementNamed(unreachable, "p")["virtual_depth"] = "20 D";
   // At the mirror: a = 1 - 30/75 = 0.6, b = 10 + 30 (1 - 10/75) = 36 mm; a panel there is seen at a/b = 16.667 D,
   // one far behind it at c/d = -(1/75 mm) / (1 - 10/75) = -15.385 D.
-  EXPECT_EQ(error(unreachable), "scene.json: /elements/3/virtual_depth: a virtual image at 20.000 D (50.00 mm from the "
-                                "eye) cannot be formed behind \"m\" (40.00 mm from the pupil): panels behind it are "
-                                "imaged between -15.385 and 16.667 D");
+  EXPECT_EQ(error(unreachable),
+            "scene.json: /elements/3/virtual_depth: a virtual image at 20.000 D (50.00 mm from the "
+            "eye) cannot be formed behind \"m\" (40.00 mm from the pupil): panels behind it are "
+            "imaged between -15.385 and 16.667 D");
 }
 
 TEST(OpticalPath, ScenesBeyondTheLimitsAreRefusedUpFront) {
@@ -451,7 +475,8 @@ TEST(OpticalPath, ScenesBeyondTheLimitsAreRefusedUpFront) {
   // memory would grow with the square of the chain.
   json chain = json::array({Eye("bs0")});
   for (int i = 0; i < 300; ++i) {
-    chain.push_back({{"type", "half_mirror"}, {"name", "bs" + std::to_string(i)},
+    chain.push_back({{"type", "half_mirror"},
+                     {"name", "bs" + std::to_string(i)},
                      {"transmitted", i + 1 < 300 ? "bs" + std::to_string(i + 1) : "last"},
                      {"reflected", "p" + std::to_string(i)}});
     json panel = Panel("p" + std::to_string(i), "bl" + std::to_string(i));
@@ -471,8 +496,10 @@ TEST(OpticalPath, ScenesBeyondTheLimitsAreRefusedUpFront) {
   json stack = json::array({Eye("p0")});
   for (int i = 0; i < 40; ++i) {
     json panel = Panel("p" + std::to_string(i), i + 1 < 40 ? "p" + std::to_string(i + 1) : "bl");
-    if (i == 0) panel["virtual_depth"] = "2 D";
-    else panel["gap"] = "0.1 mm";
+    if (i == 0)
+      panel["virtual_depth"] = "2 D";
+    else
+      panel["gap"] = "0.1 mm";
     stack.push_back(panel);
   }
   stack.push_back(Backlight("bl"));

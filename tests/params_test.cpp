@@ -32,7 +32,8 @@ TEST(Params, UnreadKeysAreErrorsWithASuggestion) {
     p.check_all_read();
     FAIL();
   } catch (const Error& e) {
-    EXPECT_STREQ(e.what(), "s.json: /elements/1/focal_lenght: unknown key \"focal_lenght\"; did you mean \"focal_length\"?");
+    EXPECT_STREQ(e.what(),
+                 "s.json: /elements/1/focal_lenght: unknown key \"focal_lenght\"; did you mean \"focal_length\"?");
   }
 }
 
@@ -42,7 +43,8 @@ TEST(Params, ChoicesSuggestTheClosest) {
     p.choice("pupil_shape", {"square", "round"}, "square");
     FAIL();
   } catch (const Error& e) {
-    EXPECT_STREQ(e.what(), "s.json: /elements/0/pupil_shape: \"sqare\" is not one of square or round; did you mean \"square\"?");
+    EXPECT_STREQ(e.what(),
+                 "s.json: /elements/0/pupil_shape: \"sqare\" is not one of square or round; did you mean \"square\"?");
   }
 }
 

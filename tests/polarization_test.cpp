@@ -70,7 +70,7 @@ TEST(Polarization, ReflectedBranchThroughAZeroOrderHalfWavePlate) {
 TEST(Polarization, SpectralTablesAreInterpolatedAtTheChannels) {
   nlohmann::json scene = FlatPbsScene(0);
   ElementNamed(scene, "pbs")["transmittance_p"] = {{"wavelengths", {"400 nm", "500 nm", "700 nm"}},
-                                                    {"values", {0.5, 0.7, 0.9}}};
+                                                   {"values", {0.5, 0.7, 0.9}}};
   DisplaySystem s = CompileJson(scene);
   EXPECT_TRUE(Close(s.branches[0].optics_efficiency[0], 0.7 + 0.2 * (612 - 500) / 200.0, 1e-12));
   EXPECT_TRUE(Close(s.branches[0].optics_efficiency[1], 0.7 + 0.2 * (549 - 500) / 200.0, 1e-12));

@@ -77,7 +77,8 @@ std::vector<std::pair<int, double>> AxisTaps(double from_edge, int size, bool fl
 }
 
 // The explicit L x N matrix of one layer, built from the ray equation in meters.
-Eigen::SparseMatrix<double, Eigen::RowMajor> ExplicitMatrix(const VirtualLayer& l, const LightFieldGeometry& g, Sampling s) {
+Eigen::SparseMatrix<double, Eigen::RowMajor> ExplicitMatrix(const VirtualLayer& l, const LightFieldGeometry& g,
+                                                            Sampling s) {
   std::vector<Eigen::Triplet<double>> entries;
   const double z = l.depth;
   for (int vr = 0; vr < g.views_y; ++vr)
@@ -109,14 +110,10 @@ std::vector<float> RandomValues(size_t n, unsigned seed) {
 }
 
 const LayerCase kLayers[] = {
-    {"BehindTheOriginPlane", 0.4},
-    {"InFrontOfTheOriginPlane", 2.2},
-    {"OnTheOriginPlane", 1 / 0.77},
-    {"FlippedX", 1.6, 0, true, false},
-    {"FlippedY", 1.0, 0, false, true},
-    {"Offset", 1.0, 0, false, false, 0.0213, -0.0117},
-    {"Rotated", 1.6, 0.0731, false, false},
-    {"RotatedFlippedOffset", 0.7, -0.0412, true, true, -0.013, 0.007},
+    {"BehindTheOriginPlane", 0.4},          {"InFrontOfTheOriginPlane", 2.2},
+    {"OnTheOriginPlane", 1 / 0.77},         {"FlippedX", 1.6, 0, true, false},
+    {"FlippedY", 1.0, 0, false, true},      {"Offset", 1.0, 0, false, false, 0.0213, -0.0117},
+    {"Rotated", 1.6, 0.0731, false, false}, {"RotatedFlippedOffset", 0.7, -0.0412, true, true, -0.013, 0.007},
 };
 
 class ProjectionTest : public ::testing::TestWithParam<std::tuple<LayerCase, Sampling>> {};
@@ -209,8 +206,8 @@ TEST(Projection, LayerAtInfinityIsFinite) {
 // Synthesis of a two-branch, two-layer-per-branch display against the explicit matrices.
 TEST(Synthesis, SumOfProductsMatchesExplicitMatrices) {
   DisplaySystem system;
-  for (const LayerCase& c : {LayerCase{"a0", 1.6, 0, true}, LayerCase{"a1", 0.4}, LayerCase{"b0", 2.2},
-                             LayerCase{"b1", 1.0, 0, true}})
+  for (const LayerCase& c :
+       {LayerCase{"a0", 1.6, 0, true}, LayerCase{"a1", 0.4}, LayerCase{"b0", 2.2}, LayerCase{"b1", 1.0, 0, true}})
     system.layers.push_back(MakeLayer(c));
   system.branches.resize(2);
   system.branches[0].layers = {0, 1};

@@ -16,8 +16,8 @@ inline std::string ScratchDir() {
   std::string name = std::string(info->test_suite_name()) + "_" + info->name();
   for (char& c : name)
     if (c == '/') c = '_';
-  std::filesystem::path dir = std::filesystem::temp_directory_path() /
-                              ("layerlab_" + name + "_" + std::to_string(getpid()));
+  std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("layerlab_" + name + "_" + std::to_string(getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir.string();

@@ -106,7 +106,8 @@ OneLayer OneLayerDisplay(const std::string& depth) {
   d.t = d.model->UniformPatterns(0);
   for (int i = 0; i < 48; ++i)
     for (int j = 0; j < 64; ++j)
-      for (int c = 0; c < 3; ++c) d.t[0].rgb[(size_t(i) * 64 + j) * 3 + c] = ((i / 2 + j / 3) % 2) ? 0.9f : 0.1f + 0.2f * c;
+      for (int c = 0; c < 3; ++c)
+        d.t[0].rgb[(size_t(i) * 64 + j) * 3 + c] = ((i / 2 + j / 3) % 2) ? 0.9f : 0.1f + 0.2f * c;
   return d;
 }
 
@@ -213,7 +214,8 @@ TEST(Retina, FastAndGeneralPathsAgree) {
     Image one = RetinaOfDisplay(fast, t, retina, pupil, {a, a, a});
     Image two = RetinaOfDisplay(general, t, retina, pupil, {a, a, a});
     double worst = 0;
-    for (size_t k = 0; k < one.pixels.size(); ++k) worst = std::max(worst, double(std::abs(one.pixels[k] - two.pixels[k])));
+    for (size_t k = 0; k < one.pixels.size(); ++k)
+      worst = std::max(worst, double(std::abs(one.pixels[k] - two.pixels[k])));
     EXPECT_LT(worst, 1e-5) << "accommodation " << a;
   }
 }
@@ -224,7 +226,8 @@ TEST(Retina, MeanLuminanceDoesNotChangeWithAccommodation) {
   DisplayModel model(system, DisplayLightFieldGeometry(system));
   Patterns t = model.UniformPatterns(0);
   for (size_t k = 0; k < t.size(); ++k)
-    for (size_t p = 0; p < t[k].rgb.size(); ++p) t[k].rgb[p] = 0.3f + 0.6f * float(((p / 3) * (k + 3) * 2654435761u) % 1000) / 1000;
+    for (size_t p = 0; p < t[k].rgb.size(); ++p)
+      t[k].rgb[p] = 0.3f + 0.6f * float(((p / 3) * (k + 3) * 2654435761u) % 1000) / 1000;
   // The central 8 x 4 degrees, well inside every layer's field at every focus.
   RetinaGrid retina = MakeRetinaGrid(8 * kDeg, 4 * kDeg, 0.05 * kDeg);
   std::vector<PupilPoint> pupil = PupilSamples(system.eye);

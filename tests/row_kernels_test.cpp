@@ -89,7 +89,8 @@ TEST_F(RowKernels, UpdateSumsAddTargetTimesProductAndProductSquared) {
   std::mt19937 rng(2);
   for (bool unit_q : {false, true})
     for (int cols = 1; cols <= 41; ++cols) {
-      const Row r = RandomRow(cols, rng), q = RandomRow(cols, rng), n0 = RandomRow(cols, rng), d0 = RandomRow(cols, rng);
+      const Row r = RandomRow(cols, rng), q = RandomRow(cols, rng), n0 = RandomRow(cols, rng),
+                d0 = RandomRow(cols, rng);
       auto run = [&] {
         std::vector<Rgb4> num = n0.padded, den = d0.padded;
         num.push_back(Rgb4{kGuard, kGuard, kGuard, kGuard}), den.push_back(num.back());
@@ -236,8 +237,7 @@ TEST_F(RowKernels, RemainderIsTheNonNegativePartAndWritesExactlyTheRow) {
     };
     const std::vector<float> out = run();
     for (int j = 0; j < cols; ++j)
-      for (int c = 0; c < 3; ++c)
-        ASSERT_EQ(out[j * 3 + c], std::max(t.packed[j * 3 + c] - l.padded[j][c], 0.0f)) << j;
+      for (int c = 0; c < 3; ++c) ASSERT_EQ(out[j * 3 + c], std::max(t.packed[j * 3 + c] - l.padded[j][c], 0.0f)) << j;
     for (int k = cols * 3; k < cols * 3 + 4; ++k) ASSERT_EQ(out[k], kGuard);
     ExpectSameInBothBuilds([&] { return Bytes(run()); }, "remainder", cols);
   }

@@ -72,12 +72,13 @@ TEST(RunConfig, FocalStackMergesWithTheStates) {
 }
 
 TEST(RunConfig, ContrastAndCompareReadUnitsAndResolvePaths) {
-  Loaded l = Load({{"contrast",
-                    {{"depths", {"0.7 D"}},
-                     {"frequencies", {"2 cpd", 4}},
-                     {"accommodation", {{"from", "0 D"}, {"to", "2.6 D"}, {"step", "0.1 D"}}},
-                     {"retina_resolution", "0.02 deg"}}},
-                   {"compare", {{"scenes", {"hybrid_pbs_hwp.json"}}, {"solvers", {"hybrid", "joint"}}, {"iterations", 5}}}});
+  Loaded l =
+      Load({{"contrast",
+             {{"depths", {"0.7 D"}},
+              {"frequencies", {"2 cpd", 4}},
+              {"accommodation", {{"from", "0 D"}, {"to", "2.6 D"}, {"step", "0.1 D"}}},
+              {"retina_resolution", "0.02 deg"}}},
+            {"compare", {{"scenes", {"hybrid_pbs_hwp.json"}}, {"solvers", {"hybrid", "joint"}}, {"iterations", 5}}}});
   RunConfig c = ReadRunConfig(l.scene, l.system);
   ASSERT_EQ(c.contrast.options.frequencies.size(), 2u);
   EXPECT_EQ(c.contrast.options.frequencies[1], 4.0);
@@ -89,8 +90,9 @@ TEST(RunConfig, ContrastAndCompareReadUnitsAndResolvePaths) {
 }
 
 TEST(RunConfig, BadInputIsRefusedWithItsLocation) {
-  EXPECT_EQ(RunError({{"retina", {{"accomodation", {"1 D"}}}}}),
-            "examples/scene.json: /run/retina/accomodation: unknown key \"accomodation\"; did you mean \"accommodation\"?");
+  EXPECT_EQ(
+      RunError({{"retina", {{"accomodation", {"1 D"}}}}}),
+      "examples/scene.json: /run/retina/accomodation: unknown key \"accomodation\"; did you mean \"accommodation\"?");
   EXPECT_EQ(RunError({{"retna", json::object()}}),
             "examples/scene.json: /run/retna: unknown key \"retna\"; did you mean \"retina\"?");
   EXPECT_EQ(RunError({{"retina", {{"accommodation", {"1 D", 1.5}}}}}),
@@ -101,9 +103,10 @@ TEST(RunConfig, BadInputIsRefusedWithItsLocation) {
   EXPECT_EQ(RunError({{"retina", {{"focal_stack", {{"from", "0 D"}, {"to", "1 D"}, {"step", "0 D"}}}}}}),
             "examples/scene.json: /run/retina/focal_stack/step: 0.000 D: give a step above 0 and at most to - from "
             "(1.00 D)");
-  EXPECT_EQ(RunError({{"contrast", {{"frequencies", {"2 cpd", "4 deg"}}}}}),
-            "examples/scene.json: /run/contrast/frequencies/1: 'deg' is an angle unit; expected an angular frequency in "
-            "cpd");
+  EXPECT_EQ(
+      RunError({{"contrast", {{"frequencies", {"2 cpd", "4 deg"}}}}}),
+      "examples/scene.json: /run/contrast/frequencies/1: 'deg' is an angle unit; expected an angular frequency in "
+      "cpd");
   EXPECT_EQ(RunError({{"compare", {{"solvers", {"hybird"}}}}}),
             "examples/scene.json: /run/compare/solvers/0: unknown solver \"hybird\"; did you mean \"hybrid\"? Known "
             "solvers: additive-trust-region, hybrid, joint, multiplicative, quasi-newton");

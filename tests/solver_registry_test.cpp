@@ -51,9 +51,10 @@ TEST(SolverRegistry, UnsuitableSolversSayWhy) {
     UnsuitableSolver("hybird", paper);
     FAIL() << "an unknown solver was accepted";
   } catch (const Error& e) {
-    EXPECT_EQ(std::string(e.what()),
-              "unknown solver \"hybird\"; did you mean \"hybrid\"? Known solvers: additive-trust-region, hybrid, joint, "
-              "multiplicative, quasi-newton");
+    EXPECT_EQ(
+        std::string(e.what()),
+        "unknown solver \"hybird\"; did you mean \"hybrid\"? Known solvers: additive-trust-region, hybrid, joint, "
+        "multiplicative, quasi-newton");
   }
 }
 

@@ -149,7 +149,8 @@ TEST_P(EveryLayerAtOnceTest, RecoversAKnownTargetWithoutRaisingTheObjective) {
   RecordProperty("psnr_db", std::to_string(r.final_psnr_db));
   EXPECT_GT(r.final_psnr_db, solver == "joint" ? 50.0 : 100.0) << r.FullReport();
   ExpectInBounds(t);
-  for (size_t k = 1; k < r.trace.size(); ++k) EXPECT_LE(r.trace[k].objective, r.trace[k - 1].objective) << "iteration " << k;
+  for (size_t k = 1; k < r.trace.size(); ++k)
+    EXPECT_LE(r.trace[k].objective, r.trace[k - 1].objective) << "iteration " << k;
   EXPECT_NEAR(Objective(*f.model, f.target, t), r.final_objective, 1e-4 * r.final_objective + 1e-9);
 }
 
@@ -376,7 +377,8 @@ TEST(Solvers, ResumedFromACheckpointMatchesAnUninterruptedSolve) {
       // Its checkpoint holds patterns, not curvature pairs: it goes on from
       // the checkpoint's patterns with a fresh memory, still descending.
       for (size_t k = 0; k <= 3; ++k) EXPECT_EQ(rest.trace[k].objective, whole.trace[k].objective) << k;
-      for (size_t k = 4; k < rest.trace.size(); ++k) EXPECT_LT(rest.trace[k].objective, rest.trace[k - 1].objective) << k;
+      for (size_t k = 4; k < rest.trace.size(); ++k)
+        EXPECT_LT(rest.trace[k].objective, rest.trace[k - 1].objective) << k;
       EXPECT_NEAR(Objective(*g.model, g.target, resumed), rest.final_objective, 1e-4 * rest.final_objective);
       continue;
     }
@@ -450,7 +452,9 @@ TEST(Solvers, AdditiveRefusesStacks) {
   Fixture f = MakeFixture("paper_prototype.json", 8, 4, 2);
   Patterns t;
   SolverReport r = RunSolver("additive-trust-region", f, SolverOptions{}, &t);
-  EXPECT_EQ(r.message, "additive-trust-region needs one layer per branch; branch \"half_mirror.transmitted\" stacks 2 (use hybrid)");
+  EXPECT_EQ(
+      r.message,
+      "additive-trust-region needs one layer per branch; branch \"half_mirror.transmitted\" stacks 2 (use hybrid)");
 }
 
 TEST(SolverOptions, InvalidOptionsNameFieldValueAndConstraint) {
@@ -578,8 +582,9 @@ TEST(SolverRegistry, UnknownSolverListsTheKnownOnes) {
     SolverRegistry::Builtins().create("hybird");
     FAIL();
   } catch (const Error& e) {
-    EXPECT_STREQ(e.what(), "unknown solver \"hybird\"; did you mean \"hybrid\"? Known solvers: additive-trust-region, "
-                           "hybrid, joint, multiplicative, quasi-newton");
+    EXPECT_STREQ(e.what(),
+                 "unknown solver \"hybird\"; did you mean \"hybrid\"? Known solvers: additive-trust-region, "
+                 "hybrid, joint, multiplicative, quasi-newton");
   }
 }
 

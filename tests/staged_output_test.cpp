@@ -30,9 +30,12 @@ std::map<std::string, std::string> Snapshot(const fs::path& root) {
   std::map<std::string, std::string> out;
   for (auto it = fs::recursive_directory_iterator(root); it != fs::recursive_directory_iterator(); ++it) {
     const std::string rel = it->path().lexically_relative(root).string();
-    if (it->is_symlink()) out[rel] = "link -> " + fs::read_symlink(it->path()).string();
-    else if (it->is_directory()) out[rel] = "folder";
-    else out[rel] = Read(it->path());
+    if (it->is_symlink())
+      out[rel] = "link -> " + fs::read_symlink(it->path()).string();
+    else if (it->is_directory())
+      out[rel] = "folder";
+    else
+      out[rel] = Read(it->path());
   }
   return out;
 }
@@ -126,8 +129,9 @@ TEST_F(StagedOutputTest, AnOutputThatIsContainsOrLiesInsideAnInputIsRefusedByRea
             std::string::npos);
   EXPECT_EQ(message((root_ / "x" / "other").string(), lf), "");
   // The command's roots are checked, the folder itself may hold inputs that no root touches.
-  EXPECT_THROW(StagedOutput((root_ / "x").string(), "solve", {"lightfield"}, {{(root_ / "link").string(), "the target"}}),
-               Error);
+  EXPECT_THROW(
+      StagedOutput((root_ / "x").string(), "solve", {"lightfield"}, {{(root_ / "link").string(), "the target"}}),
+      Error);
   EXPECT_NO_THROW(StagedOutput((root_ / "x").string(), "solve", {"patterns"}, {{lf, "the target"}}));
   EXPECT_THROW(StagedOutput((root_ / "x" / "lightfield" / "out").string(), "solve", {"patterns"}, {{lf, "the target"}}),
                Error);
@@ -165,7 +169,8 @@ TEST_F(StagedOutputTest, SpecialFilesWhereOutputsGoAreRefusedBeforeAnythingIsWri
     StagedOutput s((root_ / "out").string(), "run", {"solve", "system.txt"}, {});
     FAIL() << "a FIFO was accepted";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("system.txt: is a FIFO where layerlab writes its output"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("system.txt: is a FIFO where layerlab writes its output"), std::string::npos)
+        << e.what();
   }
   fs::remove(root_ / "out" / "system.txt");
   fs::create_directories(root_ / "out" / "solve" / "a.txt");  // a folder where a file belongs
@@ -190,7 +195,8 @@ TEST_F(StagedOutputTest, WhatAKilledRunLeftIsClearedAndAnInterruptedSwitchOverFi
   // Killed during a switch-over: solve/a.txt moved already, system.txt not yet, solve/old.txt not yet removed.
   const std::string staging = ".layerlab-staging-run-" + std::to_string(dead);
   Write(out / staging / "system.txt", "new system");
-  Write(out / staging / ".layerlab-run-files.json", R"({"format":"layerlab-files/1","command":"run","files":["solve/a.txt","system.txt"]})");
+  Write(out / staging / ".layerlab-run-files.json",
+        R"({"format":"layerlab-files/1","command":"run","files":["solve/a.txt","system.txt"]})");
   Write(out / "solve" / "a.txt", "new a");
   Write(out / ".layerlab-run-switch.json",
         R"({"format":"layerlab-switch/1","staging":")" + staging +

@@ -23,8 +23,12 @@ using testing::Close;
 
 constexpr double kPi = std::numbers::pi;
 
-double ViewX(const LightFieldGeometry& g, int c) { return -g.eyebox_width / 2 + (c + 0.5) * g.eyebox_width / g.views_x; }
-double ViewY(const LightFieldGeometry& g, int r) { return g.eyebox_height / 2 - (r + 0.5) * g.eyebox_height / g.views_y; }
+double ViewX(const LightFieldGeometry& g, int c) {
+  return -g.eyebox_width / 2 + (c + 0.5) * g.eyebox_width / g.views_x;
+}
+double ViewY(const LightFieldGeometry& g, int r) {
+  return g.eyebox_height / 2 - (r + 0.5) * g.eyebox_height / g.views_y;
+}
 double PixelX(const LightFieldGeometry& g, int j) { return g.window_left + (j + 0.5) * g.window_width / g.cols; }
 double PixelY(const LightFieldGeometry& g, int i) { return g.window_top - (i + 0.5) * g.window_height / g.rows; }
 
@@ -39,21 +43,25 @@ float DepthAt(const LightField& lf, int view_row, int view_col, int i, int j) {
 }
 
 json LightFieldJson(const std::string& origin, json fov, json resolution, json views) {
-  return {{"origin_plane", origin}, {"field_of_view", fov}, {"resolution", resolution}, {"views", views},
+  return {{"origin_plane", origin},
+          {"field_of_view", fov},
+          {"resolution", resolution},
+          {"views", views},
           {"eyebox", {"6 mm", "6 mm"}}};
 }
 
 // A vector, not a json: `json objects = {one}` is an array of one under GCC
 // but a copy of `one` under Clang (which follows CWG 2137 for one-element lists).
 json Target(json light_field, std::vector<json> objects, int spp = 1) {
-  return {{"format", "layerlab-target/1"}, {"light_field", light_field}, {"samples_per_pixel", spp},
-          {"objects", objects}};
+  return {
+      {"format", "layerlab-target/1"}, {"light_field", light_field}, {"samples_per_pixel", spp}, {"objects", objects}};
 }
 
 json GratingPlane(const std::string& depth, const std::string& orientation, const std::string& frequency = "2 cpd") {
-  return {{"type", "plane"},
-          {"depth", depth},
-          {"texture", {{"type", "grating"}, {"frequency", frequency}, {"orientation", orientation}, {"phase", "30 deg"}}}};
+  return {
+      {"type", "plane"},
+      {"depth", depth},
+      {"texture", {{"type", "grating"}, {"frequency", frequency}, {"orientation", orientation}, {"phase", "30 deg"}}}};
 }
 
 // Least squares a cos(w u) + b sin(w u) + c; returns (phase, amplitude) of cos(w u + phase).
@@ -111,8 +119,7 @@ TEST_P(ParallaxTest, GratingMovesAsTheRayEquationPredicts) {
   std::vector<double> phases;
   for (int view = 0; view < 5; ++view) {
     std::vector<double> values(n);
-    for (int k = 0; k < n; ++k)
-      values[k] = c.vertical ? Red(rendered, view, 0, k, 0) : Red(rendered, 0, view, 0, k);
+    for (int k = 0; k < n; ++k) values[k] = c.vertical ? Red(rendered, view, 0, k, 0) : Red(rendered, 0, view, 0, k);
     auto [phase, amplitude] = FitSinusoid(u, values, w);
     EXPECT_TRUE(Close(amplitude, 0.5, 1e-5)) << "view " << view;
     phases.push_back(phase);
@@ -169,7 +176,8 @@ double MeasuredCyclesPerDegree(const LightField& lf, double mean) {
   int i = g.rows / 2;
   for (int j = 0; j + 1 < g.cols; ++j) {
     double a = Red(lf, 0, 0, i, j) - mean, b = Red(lf, 0, 0, i, j + 1) - mean;
-    double ta = std::atan(PixelX(g, j) / g.origin_z) * 180 / kPi, tb = std::atan(PixelX(g, j + 1) / g.origin_z) * 180 / kPi;
+    double ta = std::atan(PixelX(g, j) / g.origin_z) * 180 / kPi,
+           tb = std::atan(PixelX(g, j + 1) / g.origin_z) * 180 / kPi;
     if (std::abs(ta) > 3 || std::abs(tb) > 3 || (a > 0) == (b > 0)) continue;
     crossings.push_back(ta + (tb - ta) * a / (a - b));
   }
@@ -233,7 +241,8 @@ TEST(TargetRendererTest, TiltedQuadDepthMatchesRayPlaneIntersection) {
         for (int j = 0; j < g.cols; ++j) {
           double vx = ViewX(g, c), dx = (PixelX(g, j) - vx) / g.origin_z;
           double z = (1 + 0.3 * vx) / (1 - 0.3 * dx);
-          ASSERT_NEAR(DepthAt(rendered, r, c, i, j), z, 1e-6 * z) << "view " << r << "," << c << " pixel " << i << "," << j;
+          ASSERT_NEAR(DepthAt(rendered, r, c, i, j), z, 1e-6 * z)
+              << "view " << r << "," << c << " pixel " << i << "," << j;
         }
   // Four jittered samples and one center ray for depth per pixel.
   EXPECT_EQ(stats.rays, g.ray_count() * 5);
@@ -339,7 +348,8 @@ TEST(TargetRendererTest, EmbreeAndDirectPlaneLightFieldsAgree) {
   LightField direct = RenderPlaneLightField(target.geometry, plane.depth, *plane.texture, {4, 3}, plane.center);
   ASSERT_EQ(traced.rgb.size(), direct.rgb.size());
   double worst = 0;
-  for (size_t k = 0; k < traced.rgb.size(); ++k) worst = std::max(worst, std::abs(double(traced.rgb[k]) - direct.rgb[k]));
+  for (size_t k = 0; k < traced.rgb.size(); ++k)
+    worst = std::max(worst, std::abs(double(traced.rgb[k]) - direct.rgb[k]));
   EXPECT_LT(worst, 1e-5);
   EXPECT_EQ(traced.depth, direct.depth);
   // A different seed moves the samples.

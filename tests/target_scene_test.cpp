@@ -53,11 +53,18 @@ TEST(TargetSceneTest, DiceExamplePlacesItsMeshesInEyeSpace) {
 TEST(TargetSceneTest, MeshPlacementIsScaleThenRotationXYZThenTranslation) {
   std::string dir = testing::ScratchDir();
   testing::WriteTextFile(dir + "/point.obj", "v 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n");
-  json target = {
-      {"format", "layerlab-target/1"},
-      {"light_field", {{"origin_plane", "1 D"}, {"field_of_view", {"10 deg", "10 deg"}}, {"resolution", {8, 8}},
-                       {"views", {1, 1}}, {"eyebox", {"1 mm", "1 mm"}}}},
-      {"objects", {{{"type", "mesh"}, {"file", "point.obj"}, {"scale", "1 cm"}, {"position", {0, 0, "2 D"}},
+  json target = {{"format", "layerlab-target/1"},
+                 {"light_field",
+                  {{"origin_plane", "1 D"},
+                   {"field_of_view", {"10 deg", "10 deg"}},
+                   {"resolution", {8, 8}},
+                   {"views", {1, 1}},
+                   {"eyebox", {"1 mm", "1 mm"}}}},
+                 {"objects",
+                  {{{"type", "mesh"},
+                    {"file", "point.obj"},
+                    {"scale", "1 cm"},
+                    {"position", {0, 0, "2 D"}},
                     {"rotation", {"90 deg", "0 deg", "90 deg"}}}}}};
   TargetScene t = ParseTarget(target, dir + "/target.json");
   const auto& p = t.meshes[0].mesh.positions;
@@ -67,16 +74,19 @@ TEST(TargetSceneTest, MeshPlacementIsScaleThenRotationXYZThenTranslation) {
     EXPECT_TRUE(Close(p[i][1], y, 0, 1e-15)) << i;
     EXPECT_TRUE(Close(p[i][2], z, 0, 1e-15)) << i;
   };
-  expect(0, 0, 0.01, 0.5);   // x -> x -> y
-  expect(1, 0, 0, 0.51);     // y -> z -> z
-  expect(2, 0.01, 0, 0.5);   // z -> -y -> x
+  expect(0, 0, 0.01, 0.5);  // x -> x -> y
+  expect(1, 0, 0, 0.51);    // y -> z -> z
+  expect(2, 0.01, 0, 0.5);  // z -> -y -> x
 }
 
 json BaseTarget() {
   return {{"format", "layerlab-target/1"},
           {"light_field",
-           {{"origin_plane", "1.3 D"}, {"field_of_view", {"10 deg", "5 deg"}}, {"resolution", {40, 20}},
-            {"views", {3, 3}}, {"eyebox", {"6 mm", "6 mm"}}}},
+           {{"origin_plane", "1.3 D"},
+            {"field_of_view", {"10 deg", "5 deg"}},
+            {"resolution", {40, 20}},
+            {"views", {3, 3}},
+            {"eyebox", {"6 mm", "6 mm"}}}},
           {"objects",
            {{{"type", "plane"}, {"depth", "1.3 D"}, {"texture", {{"type", "grating"}, {"frequency", "2 cpd"}}}}}}};
 }
@@ -112,7 +122,9 @@ const BadTarget kBadTargets[] = {
     {"NoWindow", [](json& t) { t["light_field"].erase("field_of_view"); },
      "/light_field: the light field needs its window: give \"field_of_view\", \"window\" or \"display\""},
     {"TwoWindows",
-     [](json& t) { t["light_field"]["window"] = {{"left", 0}, {"top", 0}, {"width", 1}, {"height", 1}}; },
+     [](json& t) {
+       t["light_field"]["window"] = {{"left", 0}, {"top", 0}, {"width", 1}, {"height", 1}};
+     },
      "/light_field/window: \"field_of_view\" already sets the window; give only one of \"field_of_view\", "
      "\"window\" and \"display\""},
     {"WindowOfNoWidth",  // the same reader and bounds as lightfield.json's window (framework/lightfield_io.h)
@@ -139,7 +151,10 @@ const BadTarget kBadTargets[] = {
      "/light_field/field_of_view/0: must be in (0, 3.141593) (SI units), got 3.316126"},
     {"MisspelledLightFieldKey", [](json& t) { t["light_field"]["eye_box"] = t["light_field"]["eyebox"]; },
      "/light_field/eye_box: unknown key \"eye_box\"; did you mean \"eyebox\"?"},
-    {"TooManyRays", [](json& t) { t["light_field"]["resolution"] = {16384, 16384}; },
+    {"TooManyRays",
+     [](json& t) {
+       t["light_field"]["resolution"] = {16384, 16384};
+     },
      "/light_field: 2415919104 rays (views x pixels) is beyond the 2^31 this layerlab handles"},
     {"NoObjects", [](json& t) { t["objects"] = json::array(); },
      "/objects: no objects: the light field would show only the background"},
@@ -147,26 +162,39 @@ const BadTarget kBadTargets[] = {
      "/objects/0/type: \"plain\" is not one of plane or mesh; did you mean \"plane\"?"},
     {"BareDepth", [](json& t) { t["objects"][0]["depth"] = 0.77; },
      "/objects/0/depth: expected a depth with its unit, such as \"0.4 D\" or \"2.5 m\", got a number"},
-    {"PlaneKeyTypo", [](json& t) { t["objects"][0]["centre"] = {0, 0}; },
+    {"PlaneKeyTypo",
+     [](json& t) {
+       t["objects"][0]["centre"] = {0, 0};
+     },
      "/objects/0/centre: unknown key \"centre\"; did you mean \"center\"?"},
     {"TextureKeyTypo", [](json& t) { t["objects"][0]["texture"]["frequncy"] = "1 cpd"; },
      "/objects/0/texture/frequncy: unknown key \"frequncy\"; did you mean \"frequency\"?"},
-    {"BadBackground", [](json& t) { t["background"] = {0, 0}; },
+    {"BadBackground",
+     [](json& t) {
+       t["background"] = {0, 0};
+     },
      "/background: expected one fraction or three [r, g, b], got 2 values"},
-    {"ZeroLightDirection", [](json& t) { t["light"] = {{"direction_to_light", {0, 0, 0}}}; },
+    {"ZeroLightDirection",
+     [](json& t) {
+       t["light"] = {{"direction_to_light", {0, 0, 0}}};
+     },
      "/light/direction_to_light: must be a non-zero, finite direction"},
     {"MeshColorAndTexture",
      [](json& t) {
-       t["objects"][0] = {{"type", "mesh"}, {"file", "die.obj"}, {"position", {0, 0, "1 D"}}, {"scale", "1 cm"}, {"color", 0.5},
-                          {"texture", {{"type", "constant"}, {"color", 1}}}};
+       t["objects"][0] = {{"type", "mesh"},  {"file", "die.obj"}, {"position", {0, 0, "1 D"}},
+                          {"scale", "1 cm"}, {"color", 0.5},      {"texture", {{"type", "constant"}, {"color", 1}}}};
      },
      "/objects/0/texture: give \"color\" or \"texture\", not both"},
     {"MeshBehindTheEye",
-     [](json& t) { t["objects"][0] = {{"type", "mesh"}, {"file", "die.obj"}, {"position", {0, 0, "5 cm"}}, {"scale", "10 cm"}}; },
+     [](json& t) {
+       t["objects"][0] = {{"type", "mesh"}, {"file", "die.obj"}, {"position", {0, 0, "5 cm"}}, {"scale", "10 cm"}};
+     },
      "/objects/0/position: " + testing::ExamplePath("targets/die.obj") +
          ": vertex 0 lands at z = -0.0500 m, not in front of the pupil plane (z > 0)"},
     {"MeshPositionNotThree",
-     [](json& t) { t["objects"][0] = {{"type", "mesh"}, {"file", "die.obj"}, {"position", {0, "1 D"}}}; },
+     [](json& t) {
+       t["objects"][0] = {{"type", "mesh"}, {"file", "die.obj"}, {"position", {0, "1 D"}}};
+     },
      "/objects/0/position: expected [x, y, z]: lengths, z also as a depth such as \"1 D\", got [0,\"1 D\"]"},
 };
 
@@ -177,7 +205,9 @@ TEST(TargetSceneTest, TextureOnAMeshWithoutTextureCoordinatesIsRefused) {
   std::string dir = testing::ScratchDir();
   testing::WriteTextFile(dir + "/plain.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   json target = BaseTarget();
-  target["objects"][0] = {{"type", "mesh"}, {"file", "plain.obj"}, {"position", {0, 0, "1 m"}},
+  target["objects"][0] = {{"type", "mesh"},
+                          {"file", "plain.obj"},
+                          {"position", {0, 0, "1 m"}},
                           {"texture", {{"type", "checkerboard"}, {"period", "1 cm"}}}};
   try {
     ParseTarget(target, dir + "/target.json");

@@ -53,8 +53,8 @@ TEST(TextureTest, GratingFrequencyIsCyclesPerDegreeAtTheReferenceDepth) {
 TEST(TextureTest, GratingPhaseAndOrientation) {
   TextureFrame frame;
   frame.reference_depth = 1;
-  auto grating = Parse({{"type", "grating"}, {"frequency", "1 cpd"}, {"phase", "90 deg"}, {"orientation", "90 deg"}},
-                       frame);
+  auto grating =
+      Parse({{"type", "grating"}, {"frequency", "1 cpd"}, {"phase", "90 deg"}, {"orientation", "90 deg"}}, frame);
   double period = kDeg;
   // Horizontal bars: constant along s; cos(2 pi t / period + 90 deg) = -sin(2 pi t / period).
   EXPECT_TRUE(Close(grating->Evaluate(0.123, 0)[0], 0.5, 0, 1e-12));
@@ -67,8 +67,8 @@ TEST(TextureTest, GratingUniformInVisualAngleIsTheFrequencyAtEveryAngle) {
   // angle a from the center (w = z tan a) has phase 2 pi f a, a in degrees.
   TextureFrame frame;
   frame.reference_depth = 0.8;
-  auto grating = Parse({{"type", "grating"}, {"frequency", "2 cpd"}, {"orientation", "30 deg"}, {"uniform", "angle"}},
-                       frame);
+  auto grating =
+      Parse({{"type", "grating"}, {"frequency", "2 cpd"}, {"orientation", "30 deg"}, {"uniform", "angle"}}, frame);
   auto plane = Parse({{"type", "grating"}, {"frequency", "2 cpd"}, {"orientation", "30 deg"}}, frame);
   const double o = 30 * kDeg;
   for (double a_deg : {-14.3, -3.1, 0.0, 0.2, 6.55, 12.0}) {
@@ -77,7 +77,8 @@ TEST(TextureTest, GratingUniformInVisualAngleIsTheFrequencyAtEveryAngle) {
     EXPECT_TRUE(Close(grating->Evaluate(s, t)[0], 0.5 * (1 + std::cos(2 * std::numbers::pi * 2 * a_deg)), 0, 1e-12))
         << a_deg << " deg";
     // Uniform on the plane: the small-angle 2 pi f w / (z pi / 180) instead.
-    EXPECT_TRUE(Close(plane->Evaluate(s, t)[0], 0.5 * (1 + std::cos(2 * std::numbers::pi * 2 * w / (0.8 * kDeg))), 0, 1e-12));
+    EXPECT_TRUE(
+        Close(plane->Evaluate(s, t)[0], 0.5 * (1 + std::cos(2 * std::numbers::pi * 2 * w / (0.8 * kDeg))), 0, 1e-12));
   }
   EXPECT_EQ(grating->Describe(), "grating 2 cpd in visual angle");
   EXPECT_EQ(ParseError({{"type", "grating"}, {"frequency", "2 cpd"}, {"uniform", "angles"}}, frame).substr(0, 45),
@@ -87,8 +88,8 @@ TEST(TextureTest, GratingUniformInVisualAngleIsTheFrequencyAtEveryAngle) {
 TEST(TextureTest, CheckerboardPeriodAsAngleOrLength) {
   TextureFrame frame;
   frame.reference_depth = 2;
-  auto by_angle = Parse({{"type", "checkerboard"}, {"period", "1 deg"}, {"low", 0.1}, {"high", json::array({1, 0.5, 0})}},
-                        frame);
+  auto by_angle =
+      Parse({{"type", "checkerboard"}, {"period", "1 deg"}, {"low", 0.1}, {"high", json::array({1, 0.5, 0})}}, frame);
   double half = 2 * kDeg / 2;  // one square
   EXPECT_EQ(by_angle->Evaluate(0.1 * half, 0.1 * half), (Rgb{0.1, 0.1, 0.1}));
   EXPECT_EQ(by_angle->Evaluate(1.1 * half, 0.1 * half), (Rgb{1, 0.5, 0}));
@@ -102,8 +103,8 @@ TEST(TextureTest, CheckerboardPeriodAsAngleOrLength) {
 TEST(TextureTest, NoiseIsSeededAndHasTheRequestedMeanAndRmsContrast) {
   TextureFrame frame;
   frame.reference_depth = 1;
-  json spec = {{"type", "noise"}, {"band", {"1 cpd", "4 cpd"}}, {"components", 64}, {"seed", 5},
-               {"contrast", 0.2}, {"mean", 0.5}};
+  json spec = {{"type", "noise"}, {"band", {"1 cpd", "4 cpd"}}, {"components", 64}, {"seed", 5}, {"contrast", 0.2},
+               {"mean", 0.5}};
   auto a = Parse(spec, frame), b = Parse(spec, frame);
   spec["seed"] = 6;
   auto c = Parse(spec, frame);

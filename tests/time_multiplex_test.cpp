@@ -166,7 +166,9 @@ TEST(TimeMultiplex, MalformedSubframesAreRefused) {
   json behind = scene;
   behind["elements"][1]["powers"][2] = "30 D";  // the panel 70 mm behind a 33 mm lens: a real image behind the eye
   EXPECT_NE(testing::CompileError(behind).find("beyond the focal length 33.33 mm: the lens would form a real, inverted "
-                                               "image"), std::string::npos) << testing::CompileError(behind);
+                                               "image"),
+            std::string::npos)
+      << testing::CompileError(behind);
   EXPECT_NE(testing::CompileError(behind).find("(in subframe 3 of 4)"), std::string::npos);
 
   json moving = scene;

@@ -42,8 +42,7 @@ TEST(Units, DepthsAreDiopters) {
 TEST(Units, RefusesBadUnitsWithTheAcceptedOnes) {
   EXPECT_EQ(UnitError("75 mg", Dimension::kLength),
             "unknown unit 'mg' in \"75 mg\"; expected a length in m, cm, mm, um, nm");
-  EXPECT_EQ(UnitError("75 deg", Dimension::kLength),
-            "'deg' is an angle unit; expected a length in m, cm, mm, um, nm");
+  EXPECT_EQ(UnitError("75 deg", Dimension::kLength), "'deg' is an angle unit; expected a length in m, cm, mm, um, nm");
   EXPECT_EQ(UnitError("75", Dimension::kLength), "\"75\" has no unit; expected a length in m, cm, mm, um, nm");
   EXPECT_EQ(UnitError("mm", Dimension::kLength), "\"mm\" does not start with a number");
   EXPECT_EQ(UnitError("1e400 mm", Dimension::kLength), "the number in \"1e400 mm\" is out of range");

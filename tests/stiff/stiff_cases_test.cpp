@@ -47,8 +47,15 @@ const StiffCase kCases[] = {
     {"AllOnesHybrid", Hybrid, [](LightField& l) { std::fill(l.rgb.begin(), l.rgb.end(), 1.0f); }},
     {"AllOnesMultiplicative", Multiplicative, [](LightField& l) { std::fill(l.rgb.begin(), l.rgb.end(), 1.0f); }},
     {"AllOnesAdditive", Additive, [](LightField& l) { std::fill(l.rgb.begin(), l.rgb.end(), 1.0f); }},
-    {"OverBrightClipped", Hybrid, [](LightField& l) { for (float& v : l.rgb) v *= 40.0f; }},
-    {"OverBrightScaled", Hybrid, [](LightField& l) { for (float& v : l.rgb) v *= 40.0f; }, TargetRange::kScale},
+    {"OverBrightClipped", Hybrid,
+     [](LightField& l) {
+       for (float& v : l.rgb) v *= 40.0f;
+     }},
+    {"OverBrightScaled", Hybrid,
+     [](LightField& l) {
+       for (float& v : l.rgb) v *= 40.0f;
+     },
+     TargetRange::kScale},
     {"HdrAdditiveScaled", Additive, [](LightField& l) { l.rgb[17] = 1e4f; }, TargetRange::kScale},
     {"NearlyCoincidentLayers",
      [] {
@@ -143,12 +150,11 @@ std::vector<std::tuple<StiffCase, std::string>> Applicable() {
   return out;
 }
 
-INSTANTIATE_TEST_SUITE_P(Stiff, StiffCaseTest, ::testing::ValuesIn(Applicable()),
-                         [](const auto& test_info) {
-                           std::string solver = std::get<1>(test_info.param);
-                           std::replace(solver.begin(), solver.end(), '-', '_');
-                           return std::get<0>(test_info.param).name + "_" + solver;
-                         });
+INSTANTIATE_TEST_SUITE_P(Stiff, StiffCaseTest, ::testing::ValuesIn(Applicable()), [](const auto& test_info) {
+  std::string solver = std::get<1>(test_info.param);
+  std::replace(solver.begin(), solver.end(), '-', '_');
+  return std::get<0>(test_info.param).name + "_" + solver;
+});
 
 }  // namespace
 }  // namespace layerlab

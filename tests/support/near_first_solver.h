@@ -41,8 +41,9 @@ class NearFirstSolver final : public Solver {
 inline SolverType NearFirstSolverType() {
   SolverOptions defaults;
   defaults.iterations = 40;
-  SolverType type("near-first", "multiplicative updates of one stack, nearest layer first",
-                  [] { return std::make_unique<NearFirstSolver>(); }, defaults);
+  SolverType type(
+      "near-first", "multiplicative updates of one stack, nearest layer first",
+      [] { return std::make_unique<NearFirstSolver>(); }, defaults);
   type.unsuitable = NearFirstUnsuitable;
   type.default_rank = 0;  // never a display's default
   return type;
