@@ -37,7 +37,13 @@ std::vector<CompareResult> RunComparison(const std::vector<CompareRun>& runs, co
         progress(line);
       };
     Patterns t;
-    CompareResult r{run.display, run.solver, {}, run.system.brightness_efficiency, run.system.luminance_efficiency};
+    CompareResult r{run.display,
+                    run.solver,
+                    {},
+                    run.system.brightness_efficiency,
+                    run.system.luminance_efficiency,
+                    run.system.subframes,
+                    run.system.subframes * run.system.frame_rate};
     r.report = registry.create(run.solver)->Solve(model, target, options, &t);
     results.push_back(std::move(r));
   }
@@ -46,14 +52,15 @@ std::vector<CompareResult> RunComparison(const std::vector<CompareRun>& runs, co
 
 std::string CompareTable(const std::vector<CompareResult>& results) {
   std::string out =
-      "display                      solver                  PSNR (dB)   seconds  iterations  brightness (lum.)  "
-      "brightness R G B          termination\n";
+      "display                      solver                  PSNR (dB)   seconds  iterations  subframes  panel (Hz)  "
+      "brightness (lum.)  brightness R G B          termination\n";
   for (const CompareResult& r : results) {
     char line[400];
-    std::snprintf(line, sizeof line, "%-28s %-22s %10s %9.2f %11d %18.4f  %.4f %.4f %.4f   %s\n", r.display.c_str(),
-                  r.solver.c_str(), Psnr(r.report.final_psnr_db).c_str(), r.report.seconds, r.report.iterations,
-                  r.luminance_efficiency, r.brightness_efficiency[0], r.brightness_efficiency[1],
-                  r.brightness_efficiency[2], ToString(r.report.termination).c_str());
+    std::snprintf(line, sizeof line, "%-28s %-22s %10s %9.2f %11d %10d %11.0f %18.4f  %.4f %.4f %.4f   %s\n",
+                  r.display.c_str(), r.solver.c_str(), Psnr(r.report.final_psnr_db).c_str(), r.report.seconds,
+                  r.report.iterations, r.subframes, r.panel_refresh_hz, r.luminance_efficiency,
+                  r.brightness_efficiency[0], r.brightness_efficiency[1], r.brightness_efficiency[2],
+                  ToString(r.report.termination).c_str());
     out += line;
   }
   return out;
@@ -61,14 +68,14 @@ std::string CompareTable(const std::vector<CompareResult>& results) {
 
 std::string CompareCsv(const std::vector<CompareResult>& results) {
   std::string out =
-      "display,solver,final_psnr_db,seconds,iterations,luminance_efficiency,efficiency_r,efficiency_g,efficiency_b,"
-      "termination\n";
+      "display,solver,final_psnr_db,seconds,iterations,subframes,panel_refresh_hz,luminance_efficiency,efficiency_r,"
+      "efficiency_g,efficiency_b,termination\n";
   for (const CompareResult& r : results) {
     char line[400];
-    std::snprintf(line, sizeof line, "%s,%s,%s,%.6f,%d,%.6f,%.6f,%.6f,%.6f,%s\n", r.display.c_str(), r.solver.c_str(),
-                  Psnr(r.report.final_psnr_db).c_str(), r.report.seconds, r.report.iterations, r.luminance_efficiency,
-                  r.brightness_efficiency[0], r.brightness_efficiency[1], r.brightness_efficiency[2],
-                  ToString(r.report.termination).c_str());
+    std::snprintf(line, sizeof line, "%s,%s,%s,%.6f,%d,%d,%.3f,%.6f,%.6f,%.6f,%.6f,%s\n", r.display.c_str(),
+                  r.solver.c_str(), Psnr(r.report.final_psnr_db).c_str(), r.report.seconds, r.report.iterations,
+                  r.subframes, r.panel_refresh_hz, r.luminance_efficiency, r.brightness_efficiency[0],
+                  r.brightness_efficiency[1], r.brightness_efficiency[2], ToString(r.report.termination).c_str());
     out += line;
   }
   return out;
@@ -87,7 +94,8 @@ std::string TracesCsv(const std::vector<CompareResult>& results) {
 }
 
 std::string PsnrAgainstTimeSvg(const std::vector<CompareResult>& results) {
-  static const char* kColors[] = {"#d62728", "#1f77b4", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf"};
+  static const char* kColors[] = {"#d62728", "#1f77b4", "#2ca02c", "#ff7f0e",
+                                  "#9467bd", "#8c564b", "#e377c2", "#17becf"};
   PlotPanel panel;
   panel.title = "PSNR against wall time";
   panel.x_label = "wall time (s)";

@@ -24,6 +24,8 @@ struct CompareResult {
   SolverReport report;
   Rgb brightness_efficiency{};  // light at the eye per light emitted, per channel
   double luminance_efficiency = 0;
+  int subframes = 1;             // patterns per panel and frame (time multiplexing)
+  double panel_refresh_hz = 60;  // what the panels must show: subframes x frame rate
 };
 
 // Every solver of `registry` that suits `system` (SolverType::unsuitable), by name.
