@@ -471,13 +471,14 @@ TEST(OpticalPath, PlacementErrorsNameTheKeyAndTheOptics) {
 }
 
 TEST(OpticalPath, ScenesBeyondTheLimitsAreRefusedUpFront) {
-  // A chain of 300 half mirrors (each reflected port a panel): each layer keeps its path, so the compile's
-  // memory would grow with the square of the chain.
+  // A chain of 20,000 half mirrors (each reflected port a panel): every layer keeps its path, so the compile's
+  // memory grew with the square of the chain (std::bad_alloc before the limit); now refused at element 256.
+  const int n = 20000;
   json chain = json::array({Eye("bs0")});
-  for (int i = 0; i < 300; ++i) {
+  for (int i = 0; i < n; ++i) {
     chain.push_back({{"type", "half_mirror"},
                      {"name", "bs" + std::to_string(i)},
-                     {"transmitted", i + 1 < 300 ? "bs" + std::to_string(i + 1) : "last"},
+                     {"transmitted", i + 1 < n ? "bs" + std::to_string(i + 1) : "last"},
                      {"reflected", "p" + std::to_string(i)}});
     json panel = Panel("p" + std::to_string(i), "bl" + std::to_string(i));
     panel["virtual_depth"] = "1 D";
