@@ -28,6 +28,7 @@ struct PathState {
   std::optional<double> previous_position;  // of the element just before; none when it is flat and unplaced
   std::string previous_name;
   std::optional<size_t> last_power;  // index into steps of the nearest lens or curved mirror
+  int powered = 0;                   // lenses and curved mirrors passed
   std::string tunable;               // a focus-tunable element passed, if any
   bool flip_x = false, flip_y = false;
   std::string label;
@@ -167,14 +168,12 @@ class Walker {
     const Element& e = *node.element;
     if (e.powers_given() > 0 && e.powers_given() != scene_.subframes)
       Fail(node.where, Quoted(e.name()) + " gives " + std::to_string(e.powers_given()) +
-                           " powers, one per subframe, "
-                           "but the scene shows " +
-                           std::to_string(scene_.subframes) + " (\"subframes\": " + std::to_string(scene_.subframes) +
-                           " at the top of the scene)");
+                           " powers, one per subframe, but the scene shows " + std::to_string(scene_.subframes) +
+                           " (\"subframes\": " + std::to_string(scene_.subframes) + " at the top of the scene)");
     const double power = e.power_in_subframe(subframe_);
     const bool powered = e.kind() == ElementKind::kLens || power != 0;
     if (e.powers_given() > 0) state.tunable = e.name();
-    PathStep step{e.name(), e.type(), e.kind(), "", std::nullopt, power, false, false, std::nullopt};
+    PathStep step{e.name(), e.type(), e.kind(), "", std::nullopt, power, false, false, std::nullopt, {}};
     const bool first_power = !state.last_power;
     if (e.gap()) {
       step.position = AfterPrevious(node, state, *e.gap());
@@ -187,16 +186,19 @@ class Walker {
                                           Quoted(state.previous_name));
     } else if (powered) {
       Fail(node.where.child("gap"), "missing placement: " + Quoted(e.name()) +
-                                        " is not the first lens or curved "
-                                        "mirror on its path, so the eye's eye_relief does not place it; give \"gap\" "
-                                        "(the path length from " +
+                                        " is not the first lens or curved mirror on its path, so the eye's "
+                                        "eye_relief does not place it; give \"gap\" (the path length from " +
                                         Quoted(state.previous_name) + ")");
     }
     if (step.position) {
       Advance(state, *step.position, e.name());
+      step.arrival = state.transfer;
       state.transfer = state.transfer.then_power(power);
     }
-    if (powered) state.last_power = state.steps.size();
+    if (powered) {
+      state.last_power = state.steps.size();
+      ++state.powered;
+    }
     if (e.kind() == ElementKind::kLens) step.clear_aperture = static_cast<const LensElement&>(e).clear_aperture();
     if (e.kind() == ElementKind::kMirror) {
       const auto& mirror = static_cast<const MirrorElement&>(e);
@@ -280,8 +282,8 @@ class Walker {
       Advance(state, layer.position, layer.name);
       state.previous_position = layer.position;
       state.previous_name = layer.name;
-      state.steps.push_back(
-          {layer.name, node->element->type(), ElementKind::kPanel, "", layer.position, 0, false, false, std::nullopt});
+      state.steps.push_back({layer.name, node->element->type(), ElementKind::kPanel, "", layer.position, 0, false,
+                             false, std::nullopt, state.transfer});
       stack_.push_back(node);
       node = &Follow(*node, 0, {ElementKind::kPanel, ElementKind::kBacklight});
     }
@@ -342,14 +344,11 @@ class Walker {
                                       Mm(state.placed_at) + "), which comes before it on the path");
 
     RayTransfer<double> m = state.transfer.then_gap(layer.position - state.placed_at);
-    // a + t c is zero to within its rounding at the focal plane: the image is at infinity.
-    const double a_rounding =
-        8 * std::numeric_limits<double>::epsilon() *
-        (std::abs(state.transfer.a) + std::abs((layer.position - state.placed_at) * state.transfer.c));
     if (spec.virtual_depth)
       m.a = spec.virtual_depth->diopters * m.b;
-    else if (std::abs(m.a) <= a_rounding)
-      m.a = 0;
+    else if (ZeroWithinRounding(
+                 m.a, std::abs(state.transfer.a) + std::abs((layer.position - state.placed_at) * state.transfer.c)))
+      m.a = 0;  // a + t c at the focal plane: the image is at infinity
     if (m.b == 0)
       Fail(node.where.child(key), "panel " + Quoted(layer.name) +
                                       " is imaged into the pupil plane, where no eye "
@@ -387,10 +386,8 @@ class Walker {
   [[noreturn]] void FailUnreachableDepth(const SceneNode& node, const PathState& state, double D) const {
     const Location at = node.where.child("virtual_depth");
     const std::string wanted = "a virtual image at " + FormatFixed(D, 3) + " D (" + Mm(1.0 / D) + " from the eye)";
-    int powers = 0;
-    for (const PathStep& s : state.steps) powers += s.power != 0;
     // One lens and free space before it: panels behind it are imaged nearer than the lens itself.
-    const bool magnifier_only = powers == 1 && state.steps[*state.last_power].kind == ElementKind::kLens &&
+    const bool magnifier_only = state.powered == 1 && state.steps[*state.last_power].kind == ElementKind::kLens &&
                                 state.placed_name == state.steps[*state.last_power].element;
     if (magnifier_only)
       Fail(at, wanted + " would not lie behind the lens, which is " + Mm(state.placed_at) + " from the eye (below " +
@@ -405,9 +402,7 @@ class Walker {
   [[noreturn]] void FailBehindTheEye(const SceneNode& node, const char* key, const PathState& state,
                                      const VirtualLayer& layer, double D) const {
     const Location at = node.where.child(key);
-    int powers = 0;
-    for (const PathStep& s : state.steps) powers += s.power != 0;
-    if (powers == 1 && state.steps[*state.last_power].kind == ElementKind::kLens) {
+    if (state.powered == 1 && state.steps[*state.last_power].kind == ElementKind::kLens) {
       const double f = 1.0 / state.steps[*state.last_power].power;
       if (layer.panel_distance > f)
         Fail(at, "the panel is " + Mm(layer.panel_distance) + " from the lens, beyond the focal length " + Mm(f) +
@@ -495,13 +490,9 @@ void Walker::CheckApertures() {
   const EyeModel& eye = system_.eye;
   std::vector<std::pair<std::string, std::vector<std::string>>> cut;  // lens -> layers
   for (const VirtualLayer& l : system_.layers) {
-    RayTransfer<double> m;
-    double at = 0;
     for (const PathStep& s : l.path) {
-      if (!s.position) continue;
-      m = m.then_gap(*s.position - at);
-      at = *s.position;
       if (s.clear_aperture) {
+        const RayTransfer<double>& m = s.arrival;
         // The ray from pupil point x toward tan-angle t of the layer has slope t - x D;
         // its height here is a x + b (t - x D). The largest over the eyebox and field corners:
         const double tx = 0.5 * l.cols * l.tan_pitch_x + std::abs(l.offset_x);
@@ -520,7 +511,6 @@ void Walker::CheckApertures() {
           it->second.push_back(Quoted(l.name) + " (rays up to " + Mm(largest) + " from its axis)");
         }
       }
-      m = m.then_power(s.power);
     }
   }
   for (const auto& [lens, layers] : cut)

@@ -29,6 +29,7 @@ struct PathStep {
   double power = 0;                // 1/m: lenses and curved mirrors
   bool flips_x = false, flips_y = false;  // mirror reversal (fold mirrors, reflected combiner ports)
   std::optional<double> clear_aperture;   // m, diameter
+  RayTransfer<double> arrival;            // pupil -> this element, before its own power (placed elements)
 };
 
 struct VirtualLayer {

@@ -23,8 +23,7 @@ std::vector<IntermediateImage> IntermediateImages(const VirtualLayer& layer) {
     IntermediateImage image;
     image.after = s->element;
     const double inf = std::numeric_limits<double>::infinity();
-    const double scale = std::abs(to_panel.a) + std::abs(to_panel.b) * std::abs(s->power);
-    if (std::abs(to_panel.a) <= 8 * std::numeric_limits<double>::epsilon() * scale) {
+    if (ZeroWithinRounding(to_panel.a, std::abs(to_panel.a) + std::abs(to_panel.b * s->power))) {
       image.position = to_panel.b > 0 ? inf : -inf;
       image.magnification = to_panel.b > 0 ? inf : -inf;
     } else {

@@ -16,7 +16,7 @@ RayTransfer<double> Magnifier(double f, double e) { return RayTransfer<double>()
 FloatedImage FloatPanel(double s, double f, double e) {
   const double inf = std::numeric_limits<double>::infinity();
   RayTransfer<double> m = Magnifier(f, e).then_gap(s);
-  if (s == f) m.a = 0;  // exactly at the focal plane: a = 1 - s/f rounds to +-1e-16 for some f
+  if (ZeroWithinRounding(m.a, 1.0 + s / f)) m.a = 0;  // at the focal plane: a = 1 - s/f rounds to +-1e-16 for some f
   FloatedImage image;
   image.diopters = m.diopters();
   image.tan_per_meter = m.tan_per_meter();

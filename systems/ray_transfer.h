@@ -21,7 +21,17 @@
 // Ceres cost functions (ceres::Jet) share the same composition.
 #pragma once
 
+#include <cmath>
+#include <limits>
+
 namespace layerlab {
+
+// True when `value`, a sum of terms no larger than `scale`, is zero to within
+// its rounding: a transfer's `a` there means the image is at infinity (0 D),
+// which rounding would otherwise turn into +-1e-16 D.
+inline bool ZeroWithinRounding(double value, double scale) {
+  return std::abs(value) <= 8 * std::numeric_limits<double>::epsilon() * scale;
+}
 
 template <typename T>
 struct RayTransfer {
