@@ -1,0 +1,31 @@
+# The installed package: `cmake --install build --prefix P` puts the headers
+# under P/include/layerlab/ (the repository's layout: framework/..., systems/...,
+# layerlab.h), the static libraries under P/lib, the command under P/bin and
+# the CMake package under P/lib/cmake/layerlab, so that a downstream project
+#   find_package(layerlab 0.2 CONFIG REQUIRED [COMPONENTS Embree Ceres])
+#   target_link_libraries(app PRIVATE layerlab::layerlab)
+# builds against it (docs/cpp-package.md, examples/cpp_consumer/).
+include(CMakePackageConfigHelpers)
+
+# layerlab::layerlab: the library's whole core (every library but the optional
+# calibration), and include/ so that <layerlab/layerlab.h> is found.
+add_library(layerlab_all INTERFACE)
+add_library(layerlab::layerlab ALIAS layerlab_all)
+set_target_properties(layerlab_all PROPERTIES EXPORT_NAME layerlab)
+target_link_libraries(layerlab_all INTERFACE layerlab::analysis)
+target_include_directories(layerlab_all INTERFACE $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
+install(TARGETS layerlab_all EXPORT layerlabTargets)
+install(FILES ${PROJECT_SOURCE_DIR}/layerlab.h DESTINATION ${LAYERLAB_INSTALL_INCLUDEDIR})
+install(TARGETS layerlab RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+
+set(LAYERLAB_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/layerlab)
+install(EXPORT layerlabTargets NAMESPACE layerlab:: DESTINATION ${LAYERLAB_CMAKEDIR})
+if(LAYERLAB_WITH_CERES)
+  install(EXPORT layerlabCeresTargets NAMESPACE layerlab:: DESTINATION ${LAYERLAB_CMAKEDIR})
+endif()
+# Before 1.0 a minor version may change the interface: 0.2 accepts 0.2.x only.
+write_basic_package_version_file(${PROJECT_BINARY_DIR}/layerlabConfigVersion.cmake COMPATIBILITY SameMinorVersion)
+configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/layerlabConfig.cmake.in
+                              ${PROJECT_BINARY_DIR}/layerlabConfig.cmake INSTALL_DESTINATION ${LAYERLAB_CMAKEDIR})
+install(FILES ${PROJECT_BINARY_DIR}/layerlabConfig.cmake ${PROJECT_BINARY_DIR}/layerlabConfigVersion.cmake
+        DESTINATION ${LAYERLAB_CMAKEDIR})

@@ -1,0 +1,14 @@
+// The parts of the Python module (_layerlab), one file each; module.cpp calls them in order.
+#pragma once
+
+#include <pybind11/pybind11.h>
+
+namespace layerlab::python {
+
+void BindErrors(pybind11::module_& m);      // errors.cpp
+void BindScene(pybind11::module_& m);       // scene.cpp: load_scene, compile, the display system
+void BindLightField(pybind11::module_& m);  // lightfield.cpp: geometry, light fields, NumPy views
+void BindSolve(pybind11::module_& m);       // solve.cpp: solve, its solution and report
+void BindAnalysis(pybind11::module_& m);    // analysis.cpp: run
+
+}  // namespace layerlab::python

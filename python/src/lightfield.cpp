@@ -1,0 +1,154 @@
+// Light fields: the geometry, a light field whose .rgb is a NumPy view of its
+// own buffer (views, rows, cols, 3), reading and writing the folder format
+// (docs/lightfield-format.md), rendering a target scene, wrapping an array.
+#include <cstring>
+#include <memory>
+#include <string>
+
+#include <pybind11/stl.h>
+
+#include "framework/lightfield_io.h"
+#include "python/src/bindings.h"
+#include "python/src/numpy_view.h"
+#include "systems/display_model.h"
+#if LAYERLAB_WITH_EMBREE
+#include "targets/target_renderer.h"
+#include "targets/target_scene.h"
+#endif
+
+namespace py = pybind11;
+
+namespace layerlab::python {
+namespace {
+
+std::vector<py::ssize_t> RgbShape(const LightFieldGeometry& g) {
+  return {static_cast<py::ssize_t>(g.view_count()), g.rows, g.cols, 3};
+}
+const char* kRgbAxes = "(views, rows, cols, RGB; views = views_y * views_x, row-major)";
+
+// The one copy of wrapping an array: a LightField owns its buffer (huge pages, framework/lightfield.h).
+std::shared_ptr<LightField> FromArray(const py::handle& array, const LightFieldGeometry& geometry) {
+  auto a = FloatArrayOfShape(array, RgbShape(geometry), "LightField", kRgbAxes);
+  auto lf = std::make_shared<LightField>(geometry);
+  std::memcpy(lf->rgb.data(), a.data(), lf->rgb.size() * sizeof(float));
+  return lf;
+}
+
+std::string FolderOf(const py::object& path) { return py::module_::import("os").attr("fspath")(path).cast<std::string>(); }
+
+}  // namespace
+
+void BindLightField(py::module_& m) {
+  py::class_<LightFieldGeometry>(m, "LightFieldGeometry",
+                                 "Two-plane parameterization: views on the pupil plane, pixels on the origin plane (m)")
+      .def(py::init([](double origin_z, double window_left, double window_top, double window_width,
+                       double window_height, int cols, int rows, int views_x, int views_y, double eyebox_width,
+                       double eyebox_height) {
+             LightFieldGeometry g;
+             g.origin_z = origin_z, g.window_left = window_left, g.window_top = window_top;
+             g.window_width = window_width, g.window_height = window_height, g.cols = cols, g.rows = rows;
+             g.views_x = views_x, g.views_y = views_y, g.eyebox_width = eyebox_width, g.eyebox_height = eyebox_height;
+             return g;
+           }),
+           py::kw_only(), py::arg("origin_z") = 1.0, py::arg("window_left") = -0.5, py::arg("window_top") = 0.5,
+           py::arg("window_width") = 1.0, py::arg("window_height") = 1.0, py::arg("cols") = 1, py::arg("rows") = 1,
+           py::arg("views_x") = 1, py::arg("views_y") = 1, py::arg("eyebox_width") = 6e-3,
+           py::arg("eyebox_height") = 6e-3)
+      .def_readwrite("origin_z", &LightFieldGeometry::origin_z)
+      .def_readwrite("window_left", &LightFieldGeometry::window_left)
+      .def_readwrite("window_top", &LightFieldGeometry::window_top)
+      .def_readwrite("window_width", &LightFieldGeometry::window_width)
+      .def_readwrite("window_height", &LightFieldGeometry::window_height)
+      .def_readwrite("cols", &LightFieldGeometry::cols)
+      .def_readwrite("rows", &LightFieldGeometry::rows)
+      .def_readwrite("views_x", &LightFieldGeometry::views_x)
+      .def_readwrite("views_y", &LightFieldGeometry::views_y)
+      .def_readwrite("eyebox_width", &LightFieldGeometry::eyebox_width)
+      .def_readwrite("eyebox_height", &LightFieldGeometry::eyebox_height)
+      .def_property_readonly("shape", [](const LightFieldGeometry& g) { return py::tuple(py::cast(RgbShape(g))); },
+                             "(views, rows, cols, 3): the shape of LightField.rgb")
+      .def("__repr__", [](const LightFieldGeometry& g) {
+        return "<layerlab.LightFieldGeometry " + std::to_string(g.views_y) + " x " + std::to_string(g.views_x) +
+               " views of " + std::to_string(g.cols) + " x " + std::to_string(g.rows) + ">";
+      });
+
+  py::class_<LightField, std::shared_ptr<LightField>>(m, "LightField", "Linear RGB radiance per ray, float32")
+      .def(py::init([](const LightFieldGeometry& g) { return std::make_shared<LightField>(g); }), py::arg("geometry"),
+           "A black light field")
+      .def(py::init(&FromArray), py::arg("rgb"), py::arg("geometry"),
+           "A light field holding a copy of `rgb`, shape geometry.shape = (views, rows, cols, 3)")
+      .def_property_readonly("geometry", [](const LightField& lf) { return lf.geometry; }, "(a copy)")
+      .def_readwrite("scene", &LightField::scene, "free text of the manifest")
+      .def_property_readonly(
+          "rgb",
+          [](py::object self) {
+            const LightField& lf = self.cast<const LightField&>();
+            return FloatView(RgbShape(lf.geometry), lf.rgb.data(), self);
+          },
+          "(views, rows, cols, 3) float32, a writable view of the light field's own buffer")
+      .def_property_readonly(
+          "depth",
+          [](py::object self) -> py::object {
+            const LightField& lf = self.cast<const LightField&>();
+            if (lf.depth.empty()) return py::none();
+            std::vector<py::ssize_t> shape = RgbShape(lf.geometry);
+            shape.pop_back();
+            return FloatView(shape, lf.depth.data(), self);
+          },
+          "(views, rows, cols) eye-space z in m of the first surface, or None")
+      .def(
+          "view",
+          [](py::object self, int r, int c) {
+            const LightField& lf = self.cast<const LightField&>();
+            const LightFieldGeometry& g = lf.geometry;
+            if (r < 0 || r >= g.views_y || c < 0 || c >= g.views_x)
+              throw py::index_error("view (" + std::to_string(r) + ", " + std::to_string(c) + ") outside " +
+                                    std::to_string(g.views_y) + " x " + std::to_string(g.views_x) + " views");
+            return FloatView({g.rows, g.cols, 3}, lf.view(g.view_index(r, c)), self);
+          },
+          py::arg("row"), py::arg("col"), "(rows, cols, 3) view of one view, row r and column c of the eyebox")
+      .def(
+          "save",
+          [](const LightField& lf, const py::object& folder) {
+            const std::string path = FolderOf(folder);
+            py::gil_scoped_release release;
+            return WriteLightField(lf, path);
+          },
+          py::arg("folder"), "Writes the folder (docs/lightfield-format.md); returns the files written")
+      .def("__repr__", [](const LightField& lf) {
+        const LightFieldGeometry& g = lf.geometry;
+        return "<layerlab.LightField " + std::to_string(g.views_y) + " x " + std::to_string(g.views_x) + " views of " +
+               std::to_string(g.cols) + " x " + std::to_string(g.rows) + ">";
+      });
+
+  m.def(
+      "read_lightfield",
+      [](const py::object& folder, bool load_depth) {
+        const std::string path = FolderOf(folder);
+        py::gil_scoped_release release;
+        return std::make_shared<LightField>(ReadLightField(path, {.load_depth = load_depth}));
+      },
+      py::arg("folder"), py::arg("load_depth") = true, "Reads a light-field folder (lightfield.json and views/)");
+  m.def(
+      "render_target",
+      [](const py::object& target_scene) -> std::shared_ptr<LightField> {
+        const std::string path = FolderOf(target_scene);
+#if LAYERLAB_WITH_EMBREE
+        py::gil_scoped_release release;
+        const TargetScene scene = LoadTarget(path);
+        return std::make_shared<LightField>(RenderTarget(scene));
+#else
+        throw Error(path + ": rendering a target scene needs Embree (this build has LAYERLAB_WITH_EMBREE=OFF)");
+#endif
+      },
+      py::arg("target_scene"), "Renders a target scene (docs/target-format.md) with Embree");
+  m.def(
+      "display_geometry",
+      [](const DisplaySystem& system, double origin_diopters) {
+        return DisplayLightFieldGeometry(system, origin_diopters);
+      },
+      py::arg("system"), py::arg("origin_diopters") = -1.0,
+      "The light-field geometry the display suggests (its field of view, farthest layer's pixels, the eye's views)");
+}
+
+}  // namespace layerlab::python

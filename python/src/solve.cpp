@@ -1,0 +1,238 @@
+// solve(system_or_scene, target, solver=..., callback=..., **options): the
+// patterns as NumPy views of the solution's own buffers and the report with
+// its trace. The GIL is released while the solver works; the callback and
+// Ctrl-C are looked at between iterations (the solve loop's `progress` and
+// `interrupted` hooks), so a stop keeps the last complete iteration.
+#include <cmath>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include "analysis/target_source.h"
+#include "python/src/bindings.h"
+#include "python/src/json_convert.h"
+#include "python/src/numpy_view.h"
+#include "solvers/solution_writer.h"
+#include "solvers/solve_config.h"
+#include "systems/compile.h"
+#include "systems/layer_sampler.h"
+
+namespace py = pybind11;
+
+namespace layerlab::python {
+namespace {
+
+struct Solution {
+  std::shared_ptr<DisplaySystem> system;
+  std::shared_ptr<const DisplayModel> model;
+  std::shared_ptr<LightField> target;
+  std::string solver;
+  Patterns patterns;
+  SolverReport report;
+};
+
+py::dict ReportDict(const SolverReport& r) {
+  py::dict d = FromJson(ReportToJson(r));
+  d["final_psnr_db"] = r.final_psnr_db;  // +inf for a perfect fit (JSON has no infinity)
+  py::array_t<int> iteration(static_cast<py::ssize_t>(r.trace.size()));
+  py::array_t<double> seconds(iteration.size()), objective(iteration.size()), psnr(iteration.size());
+  for (size_t i = 0; i < r.trace.size(); ++i) {
+    iteration.mutable_at(i) = r.trace[i].iteration;
+    seconds.mutable_at(i) = r.trace[i].seconds;
+    objective.mutable_at(i) = r.trace[i].objective;
+    psnr.mutable_at(i) = r.trace[i].psnr_db;
+  }
+  py::dict trace;
+  trace["iteration"] = iteration, trace["seconds"] = seconds, trace["objective"] = objective, trace["psnr_db"] = psnr;
+  d["trace"] = trace;
+  return d;
+}
+
+// The options a keyword may set, by the scene's "solve" keys (solvers/solve_config.h).
+void SetOption(SolverOptions& o, const std::string& key, const py::handle& value) {
+  if (key == "iterations") o.iterations = value.cast<int>();
+  else if (key == "sub_iterations") o.sub_iterations = value.cast<int>();
+  else if (key == "warm_start_iterations") o.warm_start_iterations = value.cast<int>();
+  else if (key == "time_budget") o.time_budget = value.cast<double>();
+  else if (key == "tolerance") o.tolerance = value.cast<double>();
+  else if (key == "seed") o.seed = value.cast<uint64_t>();
+  else if (key == "initial_value") o.initial_value = value.cast<double>();
+  else if (key == "threads") o.threads = value.cast<int>();
+  else if (key == "epsilon") o.epsilon = value.cast<double>();
+  else if (key == "floor") o.floor = value.cast<double>();
+  else if (key == "target_range") {
+    const std::string v = value.cast<std::string>();
+    if (v != "clip" && v != "scale") throw py::value_error("target_range: \"" + v + "\" is not one of clip or scale");
+    o.target_range = v == "clip" ? TargetRange::kClip : TargetRange::kScale;
+  } else {
+    throw py::type_error("solve() got an unexpected option '" + key +
+                         "'; options: iterations, sub_iterations, warm_start_iterations, time_budget, tolerance, "
+                         "seed, initial_value, threads, epsilon, floor, target_range");
+  }
+}
+
+std::shared_ptr<LightField> TargetOf(const py::handle& target, const DisplaySystem& system) {
+  if (py::isinstance<LightField>(target)) return target.cast<std::shared_ptr<LightField>>();
+  // An array: the display's own geometry (display_geometry), copied once into a light field.
+  return py::module_::import("layerlab._layerlab").attr("LightField")(target, DisplayLightFieldGeometry(system))
+      .cast<std::shared_ptr<LightField>>();
+}
+
+py::object Solve(const py::object& display, const py::object& target, std::optional<std::string> solver,
+                 std::optional<std::string> sampling, const py::object& callback, const py::kwargs& options) {
+  const SolverRegistry& registry = SolverRegistry::Builtins();
+  auto solution = std::make_shared<Solution>();
+  SolveConfig config;
+  if (py::isinstance<Scene>(display)) {
+    const Scene& scene = display.cast<const Scene&>();
+    py::gil_scoped_release release;
+    solution->system = std::make_shared<DisplaySystem>(Compile(scene));
+    config = ReadSolveConfig(scene, *solution->system);
+  } else {
+    solution->system = display.cast<std::shared_ptr<DisplaySystem>>();
+    config.solver = DefaultSolverFor(*solution->system);
+    config.options = registry.get(config.solver).defaults;
+  }
+  if (solver && *solver != config.solver) {
+    config.solver = *solver;
+    config.options = registry.get(*solver).defaults;  // names the known solvers for an unknown one
+  }
+  if (const std::string why = UnsuitableSolver(config.solver, *solution->system); !why.empty())
+    throw py::value_error(config.solver + " " + why);
+  if (sampling) config.sampling = SamplingFromString(*sampling);
+  for (const auto& [key, value] : options) SetOption(config.options, key.cast<std::string>(), value);
+  if (std::string why; !config.options.IsValid(&why)) throw py::value_error(why);
+
+  if (!target.is_none()) {
+    solution->target = TargetOf(target, *solution->system);
+  } else if (!config.target.empty() || !config.target_scene.empty()) {
+    py::gil_scoped_release release;
+    solution->target = std::make_shared<LightField>(std::move(LoadOrRenderTarget(config, "target")->light_field));
+  } else {
+    throw py::value_error("solve: no target: pass one, or give the scene a \"solve\" section with a target");
+  }
+  solution->solver = config.solver;
+
+  // Between iterations: the callback (with the GIL), then pending signals (Ctrl-C).
+  SolverOptions& opt = config.options;
+  bool stop = false;
+  std::optional<py::error_already_set> raised;
+  if (!callback.is_none()) {
+    opt.progress = [&](int iteration, double seconds, double psnr_db) {
+      py::gil_scoped_acquire acquire;
+      try {
+        py::dict info;
+        info["iteration"] = iteration, info["seconds"] = seconds, info["psnr_db"] = psnr_db;
+        if (py::bool_(callback(info))) stop = true;
+      } catch (py::error_already_set& e) {
+        raised = std::move(e);
+        stop = true;
+      }
+    };
+  }
+  opt.interrupted = [&] {
+    if (stop) return true;
+    py::gil_scoped_acquire acquire;
+    if (PyErr_CheckSignals() != 0) {
+      raised = py::error_already_set();
+      stop = true;
+    }
+    return stop;
+  };
+  {
+    py::gil_scoped_release release;
+    solution->model = std::make_shared<DisplayModel>(*solution->system, solution->target->geometry, config.sampling);
+    solution->report = registry.create(config.solver)->Solve(*solution->model, *solution->target, opt,
+                                                             &solution->patterns);
+  }
+  if (raised) {
+    if (raised->matches(PyExc_KeyboardInterrupt) && solution->report.IsSolutionUsable()) {
+      py::object interrupted = py::module_::import("layerlab.errors").attr("Interrupted");
+      py::object value = interrupted("solve interrupted: " + solution->report.message, py::cast(solution));
+      PyErr_SetObject(interrupted.ptr(), value.ptr());
+      throw py::error_already_set();
+    }
+    throw std::move(*raised);
+  }
+  if (!solution->report.IsSolutionUsable()) throw Error("the solve failed: " + solution->report.message);
+  return py::cast(solution);
+}
+
+// Patterns from arrays, one (rows, cols, 3) per layer (a copy each: a pattern owns its buffer).
+Patterns PatternsOf(const DisplaySystem& system, const py::sequence& arrays) {
+  if (arrays.size() != system.layers.size())
+    throw py::value_error("synthesize: expected " + std::to_string(system.layers.size()) + " patterns (one per layer), got " +
+                          std::to_string(arrays.size()));
+  Patterns patterns;
+  for (size_t k = 0; k < system.layers.size(); ++k) {
+    const VirtualLayer& layer = system.layers[k];
+    auto a = FloatArrayOfShape(arrays[k], {layer.rows, layer.cols, 3}, "pattern " + std::to_string(k) + " (" + layer.name + ")",
+                               "(rows, cols, RGB)");
+    LayerPattern& p = patterns.emplace_back(layer.cols, layer.rows, 0.0f);
+    std::copy(a.data(), a.data() + p.rgb.size(), p.rgb.begin());
+  }
+  return patterns;
+}
+
+std::shared_ptr<LightField> Synthesize(const std::shared_ptr<DisplaySystem>& system, const py::sequence& arrays,
+                                       std::optional<LightFieldGeometry> geometry, const std::string& sampling) {
+  const Patterns patterns = PatternsOf(*system, arrays);
+  const LightFieldGeometry g = geometry ? *geometry : DisplayLightFieldGeometry(*system);
+  py::gil_scoped_release release;
+  const DisplayModel model(*system, g, SamplingFromString(sampling));
+  return std::make_shared<LightField>(model.Synthesize(patterns));
+}
+
+}  // namespace
+
+void BindSolve(py::module_& m) {
+  py::class_<Solution, std::shared_ptr<Solution>>(m, "Solution", "Patterns and the report of a solve")
+      .def_readonly("solver", &Solution::solver)
+      .def_readonly("system", &Solution::system)
+      .def_readonly("target", &Solution::target)
+      .def_property_readonly(
+          "patterns",
+          [](py::object self) {
+            const Solution& s = self.cast<const Solution&>();
+            py::list list;
+            for (const LayerPattern& p : s.patterns) list.append(FloatView({p.rows, p.cols, 3}, p.rgb.data(), self));
+            return list;
+          },
+          "one (rows, cols, 3) float32 array per layer (System.layers order): transmittance in [0, 1], the panel's "
+          "own pixel order; views of the solution's buffers")
+      .def_property_readonly("report", [](const Solution& s) { return ReportDict(s.report); },
+                             "dict: solver, termination, message, iterations, seconds, final_psnr_db, ..., and "
+                             "trace: a dict of arrays iteration, seconds, objective, psnr_db (row 0: the initial guess)")
+      .def_property_readonly("brief_report", [](const Solution& s) { return s.report.BriefReport(); })
+      .def_property_readonly("full_report", [](const Solution& s) { return s.report.FullReport(); })
+      .def(
+          "synthesize",
+          [](const Solution& s) {
+            py::gil_scoped_release release;
+            return std::make_shared<LightField>(s.model->Synthesize(s.patterns));
+          },
+          "The light field the display shows with these patterns (the target's geometry)")
+      .def(
+          "save",
+          [](const Solution& s, const py::object& folder, bool write_lightfield) {
+            const std::string path = py::module_::import("os").attr("fspath")(folder).cast<std::string>();
+            py::gil_scoped_release release;
+            return WriteSolution(*s.model, s.patterns, s.report, path, {.write_lightfield = write_lightfield});
+          },
+          py::arg("folder"), py::arg("write_lightfield") = false,
+          "Writes what `layerlab solve` writes: patterns, panels, trace.csv, report.txt, report.json")
+      .def("__repr__", [](const Solution& s) { return "<layerlab.Solution " + s.report.BriefReport() + ">"; });
+
+  m.def("solve", &Solve, py::arg("display"), py::arg("target") = py::none(), py::kw_only(),
+        py::arg("solver") = py::none(), py::arg("sampling") = py::none(), py::arg("callback") = py::none(),
+        "Factorizes a target light field into layer patterns (docs/python.md)");
+  m.def("synthesize", &Synthesize, py::arg("system"), py::arg("patterns"), py::arg("geometry") = py::none(),
+        py::arg("sampling") = "nearest",
+        "The light field the display shows with these patterns (default geometry: display_geometry(system))");
+  m.def("solvers", [] { return SolverRegistry::Builtins().names(); }, "The solvers' names");
+}
+
+}  // namespace layerlab::python
