@@ -1,6 +1,7 @@
 """Shared fixtures. Without the compiled module (LAYERLAB_WITH_PYTHON=OFF, or
-PYTHONPATH not pointing at build/python) every test is skipped with a reason,
-unless LAYERLAB_PYTHON_REQUIRED is set (ctest sets it)."""
+PYTHONPATH not pointing at build/python) every test file is skipped with a
+reason (pytest.importorskip), unless LAYERLAB_PYTHON_REQUIRED is set (ctest
+sets it): then a module that does not import is an error."""
 
 import os
 import pathlib
@@ -8,24 +9,17 @@ import pathlib
 import pytest
 
 try:
-    import layerlab  # noqa: F401
-
-    _missing = None
-except ImportError as e:  # the module is not built, or not on PYTHONPATH
+    import layerlab
+except ImportError:
     if os.environ.get("LAYERLAB_PYTHON_REQUIRED"):
         raise
-    _missing = str(e)
+    layerlab = None
+
+SKIP_REASON = ("layerlab module not importable: build with LAYERLAB_WITH_PYTHON and set "
+               "PYTHONPATH=build/python (docs/python.md)")
 
 SOURCE_DIR = pathlib.Path(os.environ.get("LAYERLAB_SOURCE_DIR", pathlib.Path(__file__).resolve().parents[2]))
 EXAMPLES = SOURCE_DIR / "examples"
-
-
-def pytest_collection_modifyitems(config, items):
-    if _missing:
-        skip = pytest.mark.skip(reason=f"layerlab module not importable ({_missing}); build with "
-                                       "LAYERLAB_WITH_PYTHON and set PYTHONPATH=build/python")
-        for item in items:
-            item.add_marker(skip)
 
 
 @pytest.fixture(scope="session")

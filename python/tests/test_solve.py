@@ -1,0 +1,189 @@
+"""solve(): patterns and report, the callback, Ctrl-C, the GIL, no copy of the target."""
+
+import gc
+import os
+import signal
+import threading
+import time
+
+import numpy as np
+import pytest
+
+from conftest import SKIP_REASON, has_embree
+
+layerlab = pytest.importorskip("layerlab", reason=SKIP_REASON)
+
+
+def ramps(system):
+    """One pattern per layer the display can show: a horizontal ramp, a different slope per layer."""
+    patterns = []
+    for k, layer in enumerate(system.layers):
+        ramp = np.linspace(0.2, 0.9, layer.cols, dtype=np.float32) ** (1 + k)
+        patterns.append(np.repeat(np.repeat(ramp[None, :, None], layer.rows, 0), 3, 2))
+    return patterns
+
+
+@pytest.fixture(scope="module")
+def target(small_system):
+    return layerlab.synthesize(small_system, ramps(small_system))
+
+
+def test_report_and_patterns_against_numpy(small_system, target):
+    solution = layerlab.solve(small_system, target, solver="hybrid", iterations=4, threads=1)
+    report = solution.report
+    assert report["solver"] == "hybrid" and report["termination"] == "iteration limit"
+    assert report["iterations"] == 4
+    trace = report["trace"]
+    np.testing.assert_array_equal(trace["iteration"], np.arange(5))
+    assert np.all(np.diff(trace["seconds"]) >= 0)
+    # The objective and PSNR, recomputed here from the patterns and the target.
+    patterns = solution.patterns
+    assert [p.shape for p in patterns] == [(l.rows, l.cols, 3) for l in small_system.layers]
+    assert all(p.dtype == np.float32 and p.min() >= 0 and p.max() <= 1 for p in patterns)
+    shown = layerlab.synthesize(small_system, patterns).rgb.astype(np.float64)
+    np.testing.assert_array_equal(shown, solution.synthesize().rgb)
+    objective = ((shown - target.rgb) ** 2).sum()
+    assert report["final_objective"] == pytest.approx(objective, rel=1e-5)
+    assert trace["objective"][-1] == report["final_objective"]
+    assert report["final_psnr_db"] == pytest.approx(10 * np.log10(target.rgb.size / objective), abs=1e-4)
+    assert trace["psnr_db"][-1] == report["final_psnr_db"]
+    assert trace["objective"][-1] < trace["objective"][0]
+
+
+def test_the_target_light_field_is_read_where_it_lies(small_system, target):
+    solution = layerlab.solve(small_system, target, iterations=1)
+    # The solver read the very light field passed (no copy on the way in).
+    assert solution.target is target
+    assert solution.target.rgb.ctypes.data == target.rgb.ctypes.data
+
+
+def test_a_numpy_target_of_the_display_geometry(small_system, target):
+    array = np.array(target.rgb)
+    solution = layerlab.solve(small_system, array, iterations=2)
+    np.testing.assert_array_equal(solution.target.rgb, array)  # wrapped: one copy
+    with pytest.raises(ValueError, match=r"expected shape \(25, 40, 80, 3\)"):
+        layerlab.solve(small_system, array[:, :, :40])
+
+
+def test_patterns_are_views_that_keep_the_solution_alive(small_system, target):
+    solution = layerlab.solve(small_system, target, iterations=1)
+    first = solution.patterns[0]
+    assert np.shares_memory(first, solution.patterns[0])
+    copy = first.copy()
+    del solution
+    gc.collect()
+    np.testing.assert_array_equal(first, copy)
+
+
+def test_the_callback_sees_every_iteration(small_system, target):
+    seen = []
+    solution = layerlab.solve(small_system, target, iterations=5, callback=lambda it: seen.append(it))
+    trace = solution.report["trace"]
+    assert [it["iteration"] for it in seen] == list(range(6))
+    assert [it["psnr_db"] for it in seen] == list(trace["psnr_db"])
+    assert [it["seconds"] for it in seen] == pytest.approx(list(trace["seconds"]))
+
+
+def test_the_callback_stops_the_solve(small_system, target):
+    solution = layerlab.solve(small_system, target, iterations=50, callback=lambda it: it["iteration"] == 3)
+    assert solution.report["iterations"] == 3
+    assert solution.report["termination"] == "interrupted"
+    assert len(solution.report["trace"]["iteration"]) == 4
+
+
+def test_an_error_in_the_callback_stops_the_solve_and_propagates(small_system, target):
+    calls = []
+
+    def callback(it):
+        calls.append(it)
+        if it["iteration"] == 2:
+            raise ZeroDivisionError("from the callback")
+
+    with pytest.raises(ZeroDivisionError, match="from the callback"):
+        layerlab.solve(small_system, target, iterations=50, callback=callback)
+    assert len(calls) == 3
+
+
+def test_ctrl_c_interrupts_the_solve_and_keeps_the_last_iteration(small_system, target):
+    started = threading.Event()
+
+    def callback(it):
+        if it["iteration"] == 2:
+            started.set()
+
+    def press_ctrl_c():
+        started.wait(60)
+        os.kill(os.getpid(), signal.SIGINT)
+
+    presser = threading.Thread(target=press_ctrl_c)
+    presser.start()
+    try:
+        with pytest.raises(KeyboardInterrupt) as info:
+            layerlab.solve(small_system, target, iterations=1_000_000, time_budget=60, callback=callback)
+    finally:
+        presser.join()
+    assert isinstance(info.value, layerlab.Interrupted)
+    report = info.value.solution.report
+    assert report["termination"] == "interrupted" and 2 <= report["iterations"] < 1_000_000
+    assert len(info.value.solution.patterns) == len(small_system.layers)
+
+
+def test_the_gil_is_released_while_solving(small_system, target):
+    count = 0
+    done = threading.Event()
+
+    def count_while_solving():
+        nonlocal count
+        while not done.is_set():
+            count += 1
+            time.sleep(0.001)
+
+    counter = threading.Thread(target=count_while_solving)
+    counter.start()
+    time.sleep(0.05)
+    before = count
+    layerlab.solve(small_system, target, iterations=1_000_000, time_budget=0.5)
+    during = count - before
+    done.set()
+    counter.join()
+    # Holding the GIL for 0.5 s, the counter would move once or not at all.
+    assert during > 20
+
+
+def test_options_are_checked(small_system, target):
+    with pytest.raises(TypeError, match="unexpected option 'iteratons'"):
+        layerlab.solve(small_system, target, iteratons=3)
+    with pytest.raises(ValueError, match="iterations"):
+        layerlab.solve(small_system, target, iterations=-1)
+    with pytest.raises(layerlab.Error, match="quasi-newton"):
+        layerlab.solve(small_system, target, solver="no-such-solver")
+    with pytest.raises(ValueError, match="multiplicative"):
+        layerlab.solve(small_system, target, solver="multiplicative")
+    assert "hybrid" in layerlab.solvers()
+
+
+def test_save_writes_what_the_command_writes(small_system, target, tmp_path):
+    solution = layerlab.solve(small_system, target, iterations=2)
+    written = solution.save(tmp_path / "out")
+    assert {"trace.csv", "report.txt", "report.json"} <= set(written)
+    assert any(f.startswith("patterns/") for f in written)
+
+
+@pytest.mark.skipif(not has_embree(), reason="this build has no Embree")
+def test_the_scene_solve_section(small_scene_path):
+    solution = layerlab.solve(layerlab.load_scene(small_scene_path), iterations=2)
+    assert solution.solver == "hybrid" and solution.report["iterations"] == 2
+    assert solution.target.rgb.shape == (25, 40, 80, 3)
+
+
+def test_ctrl_c_without_a_callback(small_system, target):
+    # No Python code runs during this solve: the signal is seen by the solve loop's check between iterations.
+    presser = threading.Timer(0.5, os.kill, (os.getpid(), signal.SIGINT))
+    presser.start()
+    try:
+        with pytest.raises(layerlab.Interrupted) as info:
+            layerlab.solve(small_system, target, iterations=1_000_000, time_budget=60)
+    finally:
+        presser.join()
+    assert info.value.solution.report["iterations"] > 0
+    assert info.value.solution.report["seconds"] < 30
