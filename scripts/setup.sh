@@ -11,6 +11,8 @@ packages=(cmake ninja-build g++ pkg-config
 
 packages+=(clang-14 libclang-rt-14-dev libomp-14-dev)  # the sanitizer and fuzz build in .ci/run (docs/robustness.md)
 packages+=(clang-format-14)  # the layout check in .ci/run (scripts/check_format.sh)
+# The Python module and its tests, for Debian's /usr/bin/python3 (docs/python.md)
+packages+=(pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib)
 
 missing=()
 for p in "${packages[@]}"; do

@@ -37,8 +37,7 @@ int main(int argc, char** argv) {
       return 1;
     }
     std::printf("%s: %zu layers, %zu branches; %s, %d iterations: PSNR %.2f dB\n", system.name.c_str(),
-                system.layers.size(), system.branches.size(), solver.c_str(), report.iterations,
-                report.final_psnr_db);
+                system.layers.size(), system.branches.size(), solver.c_str(), report.iterations, report.final_psnr_db);
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "consumer: %s\n", e.what());

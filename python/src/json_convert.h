@@ -2,13 +2,14 @@
 // the types JSON has; NaN and infinity are refused as JSON refuses them).
 #pragma once
 
-#include <nlohmann/json.hpp>
 #include <pybind11/pybind11.h>
+#include <nlohmann/json.hpp>
 
 namespace layerlab::python {
 
 inline nlohmann::json ToJson(const pybind11::handle& value) {
-  const std::string text = pybind11::module_::import("json").attr("dumps")(value, pybind11::arg("allow_nan") = false).cast<std::string>();
+  const std::string text =
+      pybind11::module_::import("json").attr("dumps")(value, pybind11::arg("allow_nan") = false).cast<std::string>();
   return nlohmann::json::parse(text);
 }
 

@@ -34,26 +34,28 @@ std::shared_ptr<LightField> FromArray(const py::handle& array, const LightFieldG
   return lf;
 }
 
-std::string FolderOf(const py::object& path) { return py::module_::import("os").attr("fspath")(path).cast<std::string>(); }
+std::string FolderOf(const py::object& path) {
+  return py::module_::import("os").attr("fspath")(path).cast<std::string>();
+}
 
 }  // namespace
 
 void BindLightField(py::module_& m) {
   py::class_<LightFieldGeometry>(m, "LightFieldGeometry",
                                  "Two-plane parameterization: views on the pupil plane, pixels on the origin plane (m)")
-      .def(py::init([](double origin_z, double window_left, double window_top, double window_width,
-                       double window_height, int cols, int rows, int views_x, int views_y, double eyebox_width,
-                       double eyebox_height) {
-             LightFieldGeometry g;
-             g.origin_z = origin_z, g.window_left = window_left, g.window_top = window_top;
-             g.window_width = window_width, g.window_height = window_height, g.cols = cols, g.rows = rows;
-             g.views_x = views_x, g.views_y = views_y, g.eyebox_width = eyebox_width, g.eyebox_height = eyebox_height;
-             return g;
-           }),
-           py::kw_only(), py::arg("origin_z") = 1.0, py::arg("window_left") = -0.5, py::arg("window_top") = 0.5,
-           py::arg("window_width") = 1.0, py::arg("window_height") = 1.0, py::arg("cols") = 1, py::arg("rows") = 1,
-           py::arg("views_x") = 1, py::arg("views_y") = 1, py::arg("eyebox_width") = 6e-3,
-           py::arg("eyebox_height") = 6e-3)
+      .def(
+          py::init([](double origin_z, double window_left, double window_top, double window_width, double window_height,
+                      int cols, int rows, int views_x, int views_y, double eyebox_width, double eyebox_height) {
+            LightFieldGeometry g;
+            g.origin_z = origin_z, g.window_left = window_left, g.window_top = window_top;
+            g.window_width = window_width, g.window_height = window_height, g.cols = cols, g.rows = rows;
+            g.views_x = views_x, g.views_y = views_y, g.eyebox_width = eyebox_width, g.eyebox_height = eyebox_height;
+            return g;
+          }),
+          py::kw_only(), py::arg("origin_z") = 1.0, py::arg("window_left") = -0.5, py::arg("window_top") = 0.5,
+          py::arg("window_width") = 1.0, py::arg("window_height") = 1.0, py::arg("cols") = 1, py::arg("rows") = 1,
+          py::arg("views_x") = 1, py::arg("views_y") = 1, py::arg("eyebox_width") = 6e-3,
+          py::arg("eyebox_height") = 6e-3)
       .def_readwrite("origin_z", &LightFieldGeometry::origin_z)
       .def_readwrite("window_left", &LightFieldGeometry::window_left)
       .def_readwrite("window_top", &LightFieldGeometry::window_top)
@@ -65,8 +67,9 @@ void BindLightField(py::module_& m) {
       .def_readwrite("views_y", &LightFieldGeometry::views_y)
       .def_readwrite("eyebox_width", &LightFieldGeometry::eyebox_width)
       .def_readwrite("eyebox_height", &LightFieldGeometry::eyebox_height)
-      .def_property_readonly("shape", [](const LightFieldGeometry& g) { return py::tuple(py::cast(RgbShape(g))); },
-                             "(views, rows, cols, 3): the shape of LightField.rgb")
+      .def_property_readonly(
+          "shape", [](const LightFieldGeometry& g) { return py::tuple(py::cast(RgbShape(g))); },
+          "(views, rows, cols, 3): the shape of LightField.rgb")
       .def("__repr__", [](const LightFieldGeometry& g) {
         return "<layerlab.LightFieldGeometry " + std::to_string(g.views_y) + " x " + std::to_string(g.views_x) +
                " views of " + std::to_string(g.cols) + " x " + std::to_string(g.rows) + ">";
@@ -77,7 +80,8 @@ void BindLightField(py::module_& m) {
            "A black light field")
       .def(py::init(&FromArray), py::arg("rgb"), py::arg("geometry"),
            "A light field holding a copy of `rgb`, shape geometry.shape = (views, rows, cols, 3)")
-      .def_property_readonly("geometry", [](const LightField& lf) { return lf.geometry; }, "(a copy)")
+      .def_property_readonly(
+          "geometry", [](const LightField& lf) { return lf.geometry; }, "(a copy)")
       .def_readwrite("scene", &LightField::scene, "free text of the manifest")
       .def_property_readonly(
           "rgb",

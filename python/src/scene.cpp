@@ -21,8 +21,8 @@ std::shared_ptr<Scene> LoadSceneFrom(const py::object& source, const std::string
   if (py::isinstance<py::dict>(source)) {
     nlohmann::json document = ToJson(source);
     py::gil_scoped_release release;
-    return std::make_shared<Scene>(ParseScene(std::move(document), file.empty() ? "<dict>" : file,
-                                              ElementRegistry::WithBuiltins()));
+    return std::make_shared<Scene>(
+        ParseScene(std::move(document), file.empty() ? "<dict>" : file, ElementRegistry::WithBuiltins()));
   }
   if (!py::isinstance<py::str>(source) && !py::hasattr(source, "__fspath__"))
     throw py::type_error("load_scene: expected a path (str or os.PathLike) or a dict, got " +
@@ -54,13 +54,14 @@ void BindScene(py::module_& m) {
       .def_readonly("description", &Scene::description)
       .def_readonly("subframes", &Scene::subframes)
       .def_readonly("frame_rate", &Scene::frame_rate, "Hz")
-      .def_property_readonly("document", [](const Scene& s) { return FromJson(s.document); },
-                             "The whole scene as a dict (a copy)")
-      .def_property_readonly("elements", [](const Scene& s) {
-        py::list names;
-        for (const SceneNode& node : s.nodes) names.append(node.element->name());
-        return names;
-      })
+      .def_property_readonly(
+          "document", [](const Scene& s) { return FromJson(s.document); }, "The whole scene as a dict (a copy)")
+      .def_property_readonly("elements",
+                             [](const Scene& s) {
+                               py::list names;
+                               for (const SceneNode& node : s.nodes) names.append(node.element->name());
+                               return names;
+                             })
       .def("compile", &CompileScene, "The optically equivalent display system (layers, branches)")
       .def("__repr__", [](const Scene& s) { return "<layerlab.Scene " + s.file + ": " + s.name + ">"; });
 
@@ -99,7 +100,8 @@ void BindScene(py::module_& m) {
       .def_readonly("fov_x", &VirtualLayer::fov_x, "rad")
       .def_readonly("fov_y", &VirtualLayer::fov_y, "rad")
       .def_readonly("max_cpd", &VirtualLayer::max_cpd)
-      .def_property_readonly("path", [](py::object self) { return ListOf(self.cast<const VirtualLayer&>().path, self); })
+      .def_property_readonly("path",
+                             [](py::object self) { return ListOf(self.cast<const VirtualLayer&>().path, self); })
       .def("__repr__", [](const VirtualLayer& l) {
         return "<layerlab.Layer " + l.name + " at " + std::to_string(l.diopters) + " D, M " +
                std::to_string(l.magnification) + ">";
@@ -129,30 +131,39 @@ void BindScene(py::module_& m) {
       .def_readonly("luminance_efficiency", &DisplaySystem::luminance_efficiency)
       .def_readonly("components", &DisplaySystem::components)
       .def_readonly("warnings", &DisplaySystem::warnings)
-      .def_property_readonly("layers", [](py::object self) { return ListOf(self.cast<const DisplaySystem&>().layers, self); },
-                             "farthest first")
+      .def_property_readonly(
+          "layers", [](py::object self) { return ListOf(self.cast<const DisplaySystem&>().layers, self); },
+          "farthest first")
       .def_property_readonly("branches",
                              [](py::object self) { return ListOf(self.cast<const DisplaySystem&>().branches, self); })
-      .def_property_readonly("depths", [](const DisplaySystem& s) {
-        std::vector<double> v;
-        for (const VirtualLayer& l : s.layers) v.push_back(l.depth);
-        return v;
-      }, "m, one per layer")
-      .def_property_readonly("diopters", [](const DisplaySystem& s) {
-        std::vector<double> v;
-        for (const VirtualLayer& l : s.layers) v.push_back(l.diopters);
-        return v;
-      })
-      .def_property_readonly("magnifications", [](const DisplaySystem& s) {
-        std::vector<double> v;
-        for (const VirtualLayer& l : s.layers) v.push_back(l.magnification);
-        return v;
-      })
-      .def_property_readonly("efficiencies", [](const DisplaySystem& s) {
-        std::vector<Rgb> v;
-        for (const Branch& b : s.branches) v.push_back(b.efficiency);
-        return v;
-      }, "per branch, (R, G, B)")
+      .def_property_readonly(
+          "depths",
+          [](const DisplaySystem& s) {
+            std::vector<double> v;
+            for (const VirtualLayer& l : s.layers) v.push_back(l.depth);
+            return v;
+          },
+          "m, one per layer")
+      .def_property_readonly("diopters",
+                             [](const DisplaySystem& s) {
+                               std::vector<double> v;
+                               for (const VirtualLayer& l : s.layers) v.push_back(l.diopters);
+                               return v;
+                             })
+      .def_property_readonly("magnifications",
+                             [](const DisplaySystem& s) {
+                               std::vector<double> v;
+                               for (const VirtualLayer& l : s.layers) v.push_back(l.magnification);
+                               return v;
+                             })
+      .def_property_readonly(
+          "efficiencies",
+          [](const DisplaySystem& s) {
+            std::vector<Rgb> v;
+            for (const Branch& b : s.branches) v.push_back(b.efficiency);
+            return v;
+          },
+          "per branch, (R, G, B)")
       .def("__repr__", [](const DisplaySystem& s) {
         return "<layerlab.System " + s.name + ": " + std::to_string(s.layers.size()) + " layers, " +
                std::to_string(s.branches.size()) + " branches>";

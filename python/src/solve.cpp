@@ -53,16 +53,26 @@ py::dict ReportDict(const SolverReport& r) {
 
 // The options a keyword may set, by the scene's "solve" keys (solvers/solve_config.h).
 void SetOption(SolverOptions& o, const std::string& key, const py::handle& value) {
-  if (key == "iterations") o.iterations = value.cast<int>();
-  else if (key == "sub_iterations") o.sub_iterations = value.cast<int>();
-  else if (key == "warm_start_iterations") o.warm_start_iterations = value.cast<int>();
-  else if (key == "time_budget") o.time_budget = value.cast<double>();
-  else if (key == "tolerance") o.tolerance = value.cast<double>();
-  else if (key == "seed") o.seed = value.cast<uint64_t>();
-  else if (key == "initial_value") o.initial_value = value.cast<double>();
-  else if (key == "threads") o.threads = value.cast<int>();
-  else if (key == "epsilon") o.epsilon = value.cast<double>();
-  else if (key == "floor") o.floor = value.cast<double>();
+  if (key == "iterations")
+    o.iterations = value.cast<int>();
+  else if (key == "sub_iterations")
+    o.sub_iterations = value.cast<int>();
+  else if (key == "warm_start_iterations")
+    o.warm_start_iterations = value.cast<int>();
+  else if (key == "time_budget")
+    o.time_budget = value.cast<double>();
+  else if (key == "tolerance")
+    o.tolerance = value.cast<double>();
+  else if (key == "seed")
+    o.seed = value.cast<uint64_t>();
+  else if (key == "initial_value")
+    o.initial_value = value.cast<double>();
+  else if (key == "threads")
+    o.threads = value.cast<int>();
+  else if (key == "epsilon")
+    o.epsilon = value.cast<double>();
+  else if (key == "floor")
+    o.floor = value.cast<double>();
   else if (key == "target_range") {
     const std::string v = value.cast<std::string>();
     if (v != "clip" && v != "scale") throw py::value_error("target_range: \"" + v + "\" is not one of clip or scale");
@@ -77,7 +87,8 @@ void SetOption(SolverOptions& o, const std::string& key, const py::handle& value
 std::shared_ptr<LightField> TargetOf(const py::handle& target, const DisplaySystem& system) {
   if (py::isinstance<LightField>(target)) return target.cast<std::shared_ptr<LightField>>();
   // An array: the display's own geometry (display_geometry), copied once into a light field.
-  return py::module_::import("layerlab._layerlab").attr("LightField")(target, DisplayLightFieldGeometry(system))
+  return py::module_::import("layerlab._layerlab")
+      .attr("LightField")(target, DisplayLightFieldGeometry(system))
       .cast<std::shared_ptr<LightField>>();
 }
 
@@ -145,8 +156,8 @@ py::object Solve(const py::object& display, const py::object& target, std::optio
   {
     py::gil_scoped_release release;
     solution->model = std::make_shared<DisplayModel>(*solution->system, solution->target->geometry, config.sampling);
-    solution->report = registry.create(config.solver)->Solve(*solution->model, *solution->target, opt,
-                                                             &solution->patterns);
+    solution->report =
+        registry.create(config.solver)->Solve(*solution->model, *solution->target, opt, &solution->patterns);
   }
   if (raised) {
     if (raised->matches(PyExc_KeyboardInterrupt) && solution->report.IsSolutionUsable()) {
@@ -164,13 +175,13 @@ py::object Solve(const py::object& display, const py::object& target, std::optio
 // Patterns from arrays, one (rows, cols, 3) per layer (a copy each: a pattern owns its buffer).
 Patterns PatternsOf(const DisplaySystem& system, const py::sequence& arrays) {
   if (arrays.size() != system.layers.size())
-    throw py::value_error("synthesize: expected " + std::to_string(system.layers.size()) + " patterns (one per layer), got " +
-                          std::to_string(arrays.size()));
+    throw py::value_error("synthesize: expected " + std::to_string(system.layers.size()) +
+                          " patterns (one per layer), got " + std::to_string(arrays.size()));
   Patterns patterns;
   for (size_t k = 0; k < system.layers.size(); ++k) {
     const VirtualLayer& layer = system.layers[k];
-    auto a = FloatArrayOfShape(arrays[k], {layer.rows, layer.cols, 3}, "pattern " + std::to_string(k) + " (" + layer.name + ")",
-                               "(rows, cols, RGB)");
+    auto a = FloatArrayOfShape(arrays[k], {layer.rows, layer.cols, 3},
+                               "pattern " + std::to_string(k) + " (" + layer.name + ")", "(rows, cols, RGB)");
     LayerPattern& p = patterns.emplace_back(layer.cols, layer.rows, 0.0f);
     std::copy(a.data(), a.data() + p.rgb.size(), p.rgb.begin());
   }
@@ -203,9 +214,10 @@ void BindSolve(py::module_& m) {
           },
           "one (rows, cols, 3) float32 array per layer (System.layers order): transmittance in [0, 1], the panel's "
           "own pixel order; views of the solution's buffers")
-      .def_property_readonly("report", [](const Solution& s) { return ReportDict(s.report); },
-                             "dict: solver, termination, message, iterations, seconds, final_psnr_db, ..., and "
-                             "trace: a dict of arrays iteration, seconds, objective, psnr_db (row 0: the initial guess)")
+      .def_property_readonly(
+          "report", [](const Solution& s) { return ReportDict(s.report); },
+          "dict: solver, termination, message, iterations, seconds, final_psnr_db, ..., and "
+          "trace: a dict of arrays iteration, seconds, objective, psnr_db (row 0: the initial guess)")
       .def_property_readonly("brief_report", [](const Solution& s) { return s.report.BriefReport(); })
       .def_property_readonly("full_report", [](const Solution& s) { return s.report.FullReport(); })
       .def(
@@ -232,7 +244,8 @@ void BindSolve(py::module_& m) {
   m.def("synthesize", &Synthesize, py::arg("system"), py::arg("patterns"), py::arg("geometry") = py::none(),
         py::arg("sampling") = "nearest",
         "The light field the display shows with these patterns (default geometry: display_geometry(system))");
-  m.def("solvers", [] { return SolverRegistry::Builtins().names(); }, "The solvers' names");
+  m.def(
+      "solvers", [] { return SolverRegistry::Builtins().names(); }, "The solvers' names");
 }
 
 }  // namespace layerlab::python
