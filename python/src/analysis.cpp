@@ -7,6 +7,7 @@
 
 #include "analysis/run_pipeline.h"
 #include "python/src/bindings.h"
+#include "python/src/path_arg.h"
 
 namespace py = pybind11;
 
@@ -16,11 +17,7 @@ void BindAnalysis(py::module_& m) {
   m.def(
       "run",
       [](const py::object& scene, const py::object& out, std::optional<int> iterations, std::optional<int> threads) {
-        py::module_ os = py::module_::import("os");
-        RunRequest request{.scene = os.attr("fspath")(scene).cast<std::string>(),
-                           .out = os.attr("fspath")(out).cast<std::string>(),
-                           .iterations = iterations,
-                           .threads = threads};
+        RunRequest request{.scene = PathArg(scene), .out = PathArg(out), .iterations = iterations, .threads = threads};
         RunOutcome outcome;
         {
           py::gil_scoped_release release;

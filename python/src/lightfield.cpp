@@ -10,6 +10,7 @@
 #include "framework/lightfield_io.h"
 #include "python/src/bindings.h"
 #include "python/src/numpy_view.h"
+#include "python/src/path_arg.h"
 #include "systems/display_model.h"
 #if LAYERLAB_WITH_EMBREE
 #include "targets/target_renderer.h"
@@ -32,10 +33,6 @@ std::shared_ptr<LightField> FromArray(const py::handle& array, const LightFieldG
   auto lf = std::make_shared<LightField>(geometry);
   std::memcpy(lf->rgb.data(), a.data(), lf->rgb.size() * sizeof(float));
   return lf;
-}
-
-std::string FolderOf(const py::object& path) {
-  return py::module_::import("os").attr("fspath")(path).cast<std::string>();
 }
 
 }  // namespace
@@ -114,7 +111,7 @@ void BindLightField(py::module_& m) {
       .def(
           "save",
           [](const LightField& lf, const py::object& folder) {
-            const std::string path = FolderOf(folder);
+            const std::string path = PathArg(folder);
             py::gil_scoped_release release;
             return WriteLightField(lf, path);
           },
@@ -128,7 +125,7 @@ void BindLightField(py::module_& m) {
   m.def(
       "read_lightfield",
       [](const py::object& folder, bool load_depth) {
-        const std::string path = FolderOf(folder);
+        const std::string path = PathArg(folder);
         py::gil_scoped_release release;
         return std::make_shared<LightField>(ReadLightField(path, {.load_depth = load_depth}));
       },
@@ -136,7 +133,7 @@ void BindLightField(py::module_& m) {
   m.def(
       "render_target",
       [](const py::object& target_scene) -> std::shared_ptr<LightField> {
-        const std::string path = FolderOf(target_scene);
+        const std::string path = PathArg(target_scene);
 #if LAYERLAB_WITH_EMBREE
         py::gil_scoped_release release;
         const TargetScene scene = LoadTarget(path);

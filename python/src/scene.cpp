@@ -9,6 +9,7 @@
 
 #include "python/src/bindings.h"
 #include "python/src/json_convert.h"
+#include "python/src/path_arg.h"
 #include "systems/compile.h"
 #include "systems/scene.h"
 
@@ -27,7 +28,7 @@ std::shared_ptr<Scene> LoadSceneFrom(const py::object& source, const std::string
   if (!py::isinstance<py::str>(source) && !py::hasattr(source, "__fspath__"))
     throw py::type_error("load_scene: expected a path (str or os.PathLike) or a dict, got " +
                          py::str(py::type::of(source).attr("__name__")).cast<std::string>());
-  const std::string path = py::module_::import("os").attr("fspath")(source).cast<std::string>();
+  const std::string path = PathArg(source);
   py::gil_scoped_release release;
   return std::make_shared<Scene>(LoadScene(path));
 }
@@ -43,6 +44,16 @@ py::list ListOf(const std::vector<T>& items, py::handle owner) {
   py::list list;
   for (const T& item : items) list.append(py::cast(&item, py::return_value_policy::reference_internal, owner));
   return list;
+}
+
+// A property: one field of every layer (or branch), as a list.
+template <typename Item, typename Field>
+auto Each(std::vector<Item> DisplaySystem::*items, Field Item::*field) {
+  return [items, field](const DisplaySystem& s) {
+    std::vector<Field> values;
+    for (const Item& item : s.*items) values.push_back(item.*field);
+    return values;
+  };
 }
 
 }  // namespace
@@ -136,34 +147,11 @@ void BindScene(py::module_& m) {
           "farthest first")
       .def_property_readonly("branches",
                              [](py::object self) { return ListOf(self.cast<const DisplaySystem&>().branches, self); })
-      .def_property_readonly(
-          "depths",
-          [](const DisplaySystem& s) {
-            std::vector<double> v;
-            for (const VirtualLayer& l : s.layers) v.push_back(l.depth);
-            return v;
-          },
-          "m, one per layer")
-      .def_property_readonly("diopters",
-                             [](const DisplaySystem& s) {
-                               std::vector<double> v;
-                               for (const VirtualLayer& l : s.layers) v.push_back(l.diopters);
-                               return v;
-                             })
-      .def_property_readonly("magnifications",
-                             [](const DisplaySystem& s) {
-                               std::vector<double> v;
-                               for (const VirtualLayer& l : s.layers) v.push_back(l.magnification);
-                               return v;
-                             })
-      .def_property_readonly(
-          "efficiencies",
-          [](const DisplaySystem& s) {
-            std::vector<Rgb> v;
-            for (const Branch& b : s.branches) v.push_back(b.efficiency);
-            return v;
-          },
-          "per branch, (R, G, B)")
+      .def_property_readonly("depths", Each(&DisplaySystem::layers, &VirtualLayer::depth), "m, one per layer")
+      .def_property_readonly("diopters", Each(&DisplaySystem::layers, &VirtualLayer::diopters))
+      .def_property_readonly("magnifications", Each(&DisplaySystem::layers, &VirtualLayer::magnification))
+      .def_property_readonly("efficiencies", Each(&DisplaySystem::branches, &Branch::efficiency),
+                             "per branch, (R, G, B)")
       .def("__repr__", [](const DisplaySystem& s) {
         return "<layerlab.System " + s.name + ": " + std::to_string(s.layers.size()) + " layers, " +
                std::to_string(s.branches.size()) + " branches>";

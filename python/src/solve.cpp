@@ -15,6 +15,7 @@
 #include "python/src/bindings.h"
 #include "python/src/json_convert.h"
 #include "python/src/numpy_view.h"
+#include "python/src/path_arg.h"
 #include "solvers/solution_writer.h"
 #include "solvers/solve_config.h"
 #include "systems/compile.h"
@@ -230,7 +231,7 @@ void BindSolve(py::module_& m) {
       .def(
           "save",
           [](const Solution& s, const py::object& folder, bool write_lightfield) {
-            const std::string path = py::module_::import("os").attr("fspath")(folder).cast<std::string>();
+            const std::string path = PathArg(folder);
             py::gil_scoped_release release;
             return WriteSolution(*s.model, s.patterns, s.report, path, {.write_lightfield = write_lightfield});
           },
