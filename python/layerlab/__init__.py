@@ -23,6 +23,7 @@ from ._layerlab import (
     System,
     __version__,
     compile,
+    contrast,
     display_geometry,
     load_scene,
     read_lightfield,
@@ -35,7 +36,7 @@ from ._layerlab import (
 
 __all__ = [
     "Branch", "Error", "Interrupted", "Layer", "LightField", "LightFieldGeometry", "PathStep", "Scene",
-    "SceneError", "Solution", "System", "__version__", "compile", "display_geometry", "load_scene",
+    "SceneError", "Solution", "System", "__version__", "compile", "contrast", "display_geometry", "load_scene",
     "read_lightfield", "render_target", "run", "solve", "solvers",
     "synthesize",
 ]
