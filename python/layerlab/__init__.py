@@ -34,9 +34,22 @@ from ._layerlab import (
     synthesize,
 )
 
+
+
+def focal_stack(solution, start, stop, step, resolution=0.05, field=None):
+    """Retinal images from `start` to `stop` D (inclusive) by `step`: (diopters, images), images
+    (states, rows, cols, 3) as Solution.retina gives them."""
+    if not step > 0 or stop < start:
+        raise ValueError(f"focal_stack: needs step > 0 and stop >= start, got {start}, {stop}, {step}")
+    import numpy
+
+    diopters = start + step * numpy.arange(int(numpy.floor((stop - start) / step + 1e-9)) + 1)
+    return diopters, solution.retina(list(diopters), resolution=resolution, field=field)
+
+
 __all__ = [
     "Branch", "Error", "Interrupted", "Layer", "LightField", "LightFieldGeometry", "PathStep", "Scene",
-    "SceneError", "Solution", "System", "__version__", "compile", "contrast", "display_geometry", "load_scene",
+    "SceneError", "Solution", "System", "__version__", "compile", "contrast", "display_geometry", "focal_stack", "load_scene",
     "read_lightfield", "render_target", "run", "solve", "solvers",
     "synthesize",
 ]

@@ -5,6 +5,7 @@
 // `interrupted` hooks), so a stop keeps the last complete iteration.
 #include <cmath>
 #include <memory>
+#include <numbers>
 #include <optional>
 #include <string>
 
@@ -20,6 +21,7 @@
 #include "solvers/solve_config.h"
 #include "systems/compile.h"
 #include "systems/layer_sampler.h"
+#include "systems/retina.h"
 
 namespace py = pybind11;
 
@@ -198,6 +200,29 @@ std::shared_ptr<LightField> Synthesize(const std::shared_ptr<DisplaySystem>& sys
   return std::make_shared<LightField>(model.Synthesize(patterns));
 }
 
+// What the eye sees of the solution, focused at each of `accommodation` (D):
+// (states, rows, cols, 3), display-relative linear RGB (systems/retina.h).
+py::array_t<float> Retina(const Solution& s, const std::vector<double>& accommodation, double resolution_deg,
+                          std::optional<std::pair<double, double>> field_deg) {
+  if (!(resolution_deg > 0)) throw py::value_error("retina: resolution must be above 0 deg");
+  const DisplaySystem& system = *s.system;
+  const double deg = std::numbers::pi / 180;
+  const RetinaGrid grid = field_deg
+                              ? MakeRetinaGrid(field_deg->first * deg, field_deg->second * deg, resolution_deg * deg)
+                              : MakeRetinaGrid(system.fov_x, system.fov_y, resolution_deg * deg);
+  py::array_t<float> images({static_cast<py::ssize_t>(accommodation.size()), static_cast<py::ssize_t>(grid.rows),
+                             static_cast<py::ssize_t>(grid.cols), py::ssize_t{3}});
+  float* out = images.mutable_data();
+  const std::vector<PupilPoint> pupil = PupilSamples(system.eye);
+  py::gil_scoped_release release;
+  for (size_t k = 0; k < accommodation.size(); ++k) {
+    const Image image =
+        RetinaOfDisplay(*s.model, s.patterns, grid, pupil, ChannelAccommodation(system.eye, accommodation[k]));
+    std::copy(image.pixels.begin(), image.pixels.end(), out + k * image.pixels.size());
+  }
+  return images;
+}
+
 }  // namespace
 
 void BindSolve(py::module_& m) {
@@ -237,6 +262,9 @@ void BindSolve(py::module_& m) {
           },
           py::arg("folder"), py::arg("write_lightfield") = false,
           "Writes what `layerlab solve` writes: patterns, panels, trace.csv, report.txt, report.json")
+      .def("retina", &Retina, py::arg("accommodation"), py::arg("resolution") = 0.05, py::arg("field") = py::none(),
+           "Retinal images (states, rows, cols, 3) at each accommodation (D); resolution in deg per sample, field "
+           "(x, y) in deg (default: the display's field of view)")
       .def("__repr__", [](const Solution& s) { return "<layerlab.Solution " + s.report.BriefReport() + ">"; });
 
   m.def("solve", &Solve, py::arg("display"), py::arg("target") = py::none(), py::kw_only(),

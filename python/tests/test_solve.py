@@ -187,3 +187,21 @@ def test_ctrl_c_without_a_callback(small_system, target):
         presser.join()
     assert info.value.solution.report["iterations"] > 0
     assert info.value.solution.report["seconds"] < 30
+
+
+def test_retina_of_uniform_patterns(small_system):
+    # Every pattern at 0.5 on the half-mirror hybrid: each branch (weight 1) shows 0.5 * 0.5, so the eye sees
+    # 0.5 wherever both branches cover its view, at any focus.
+    half = [np.full((l.rows, l.cols, 3), 0.5, np.float32) for l in small_system.layers]
+    solution = layerlab.solve(small_system, layerlab.synthesize(small_system, half), iterations=1, initial_value=0.5)
+    assert all((p == 0.5).all() for p in solution.patterns)
+    images = solution.retina([0.4, 1.3], resolution=0.2)
+    assert images.dtype == np.float32 and images.shape[0] == 2 and images.shape[3] == 3
+    rows, cols = images.shape[1:3]
+    np.testing.assert_allclose(images[:, rows // 4:3 * rows // 4, cols // 4:3 * cols // 4], 0.5, rtol=1e-5)
+    assert images.shape[2] == pytest.approx(np.degrees(small_system.fov_x) / 0.2, abs=1)
+    diopters, stack = layerlab.focal_stack(solution, 0.0, 1.0, 0.5, resolution=0.2, field=(4, 2))
+    np.testing.assert_allclose(diopters, [0, 0.5, 1.0])
+    assert stack.shape == (3, 10, 20, 3)
+    with pytest.raises(ValueError, match="resolution"):
+        solution.retina([1.0], resolution=0)
