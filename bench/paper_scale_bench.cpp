@@ -23,6 +23,7 @@
 #include "solvers/multiplicative_update.h"
 #include "solvers/objective.h"
 #include "solvers/solver.h"
+#include "systems/lightfield_radiance.h"
 #include "systems/retina.h"
 
 namespace layerlab::bench {
@@ -240,6 +241,50 @@ void BM_RetinaImage(benchmark::State& state) {
   Report(state, 0.020, last);
 }
 
+// The grid of `layerlab retina` and the main job: the display's field at 0.05 deg (710 x 364 for the prototype).
+RetinaGrid RetinaSweepGrid(const Workload& w) {
+  return Settings().smoke ? MakeRetinaGrid(4 * kDeg, 2 * kDeg, 0.1 * kDeg)
+                          : MakeRetinaGrid(w.system.fov_x, w.system.fov_y, 0.05 * kDeg);
+}
+
+// One accommodation state of the focal stack: the display's retinal image.
+void BM_RetinaImageOfDisplay(benchmark::State& state) {
+  const Workload& w = GetWorkload("paper_prototype");
+  Patterns t = w.model->UniformPatterns(0.5f);
+  const RetinaGrid grid = RetinaSweepGrid(w);
+  const std::vector<PupilPoint> pupil = PupilSamples(w.system.eye);
+  double last = 0;
+  for (auto _ : state)
+    last = Timed(state, [&] {
+      benchmark::DoNotOptimize(RetinaOfDisplay(*w.model, t, grid, pupil, {1.0, 1.0, 1.0}).pixels.data());
+    });
+  state.counters["retina_samples"] = double(grid.cols) * grid.rows;
+  state.counters["pupil_samples"] = double(pupil.size());
+  Report(state, 0.010, last);
+}
+
+// The same state of natural viewing of the target: image-wise (RetinaOfScene
+// of a light field) and, for the ratio, the radiance called per ray.
+void NaturalRetinaImage(benchmark::State& state, bool ray_by_ray) {
+  const Workload& w = GetWorkload("paper_prototype");
+  const RetinaGrid grid = RetinaSweepGrid(w);
+  const std::vector<PupilPoint> pupil = PupilSamples(w.system.eye);
+  const SceneRadiance natural = LightFieldRadiance(w.target);
+  double last = 0;
+  for (auto _ : state)
+    last = Timed(state, [&] {
+      Image image = ray_by_ray ? RetinaOfSceneRayByRay(natural, grid, pupil, {1.0, 1.0, 1.0})
+                               : RetinaOfScene(natural, grid, pupil, {1.0, 1.0, 1.0});
+      benchmark::DoNotOptimize(image.pixels.data());
+    });
+  state.counters["retina_samples"] = double(grid.cols) * grid.rows;
+  state.counters["pupil_samples"] = double(pupil.size());
+  Report(state, ray_by_ray ? 1.5 : 0.020, last);
+  state.SetLabel(w.target_name);
+}
+void BM_NaturalRetinaImage(benchmark::State& state) { NaturalRetinaImage(state, false); }
+void BM_NaturalRetinaImageRayByRay(benchmark::State& state) { NaturalRetinaImage(state, true); }
+
 // ---- The paper's formulation: P_k as explicit sparse matrices (rays x pixels). ----
 
 using SparseP = Eigen::SparseMatrix<float, Eigen::RowMajor, int>;
@@ -331,6 +376,9 @@ BENCHMARK(BM_JointPass)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_HybridIteration)->Unit(benchmark::kMillisecond)->UseManualTime();
 BENCHMARK(BM_MultiplicativeIteration)->Unit(benchmark::kMillisecond)->UseManualTime();
 BENCHMARK(BM_RetinaImage)->Unit(benchmark::kMillisecond)->UseManualTime();
+BENCHMARK(BM_RetinaImageOfDisplay)->Unit(benchmark::kMillisecond)->UseManualTime();
+BENCHMARK(BM_NaturalRetinaImage)->Unit(benchmark::kMillisecond)->UseManualTime();
+BENCHMARK(BM_NaturalRetinaImageRayByRay)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(2);
 BENCHMARK(BM_HybridSchedule)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(1);
 BENCHMARK(BM_QuasiNewtonToHybridSchedulePsnr)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(1);
 BENCHMARK(BM_AdditiveToConvergence)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(1);

@@ -1,5 +1,6 @@
 #include "systems/retina.h"
 
+#include "systems/lightfield_radiance.h"
 #include "systems/one_tap_view.h"
 
 #include <algorithm>
@@ -203,6 +204,13 @@ Image RetinaOfDisplay(const DisplayModel& model, const Patterns& t, const Retina
 
 Image RetinaOfScene(const SceneRadiance& scene, const RetinaGrid& retina, const std::vector<PupilPoint>& pupil,
                     const std::array<double, 3>& accommodation) {
+  if (const LightFieldRays* rays = scene.target<LightFieldRays>())
+    return RetinaOfLightField(rays->light_field(), rays->sampling(), retina, pupil, accommodation);
+  return RetinaOfSceneRayByRay(scene, retina, pupil, accommodation);
+}
+
+Image RetinaOfSceneRayByRay(const SceneRadiance& scene, const RetinaGrid& retina, const std::vector<PupilPoint>& pupil,
+                            const std::array<double, 3>& accommodation) {
   Image image{
       retina.cols, retina.rows, {"R", "G", "B"}, std::vector<float>(size_t(retina.cols) * retina.rows * 3, 0.0f)};
   const bool same_focus = accommodation[0] == accommodation[1] && accommodation[1] == accommodation[2];

@@ -50,7 +50,12 @@ Image RetinaOfDisplay(const DisplayModel& model, const Patterns& t, const Retina
 // Natural viewing: the radiance along the ray from a pupil point with tan-direction
 // (dx, dy) (the ray passes (x + dx z, y + dy z, z) at depth z).
 using SceneRadiance = std::function<Rgb(const PupilPoint& origin, double dx, double dy)>;
+// The radiance of a light field (LightFieldRadiance) is read image-wise
+// (RetinaOfLightField); any other (a traced target, the continuous plane) ray by ray.
 Image RetinaOfScene(const SceneRadiance& scene, const RetinaGrid& retina, const std::vector<PupilPoint>& pupil,
                     const std::array<double, 3>& accommodation);
+// The general path: the mean over pupil points of `scene` called for every ray, summed in double.
+Image RetinaOfSceneRayByRay(const SceneRadiance& scene, const RetinaGrid& retina, const std::vector<PupilPoint>& pupil,
+                            const std::array<double, 3>& accommodation);
 
 }  // namespace layerlab

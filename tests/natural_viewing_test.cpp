@@ -123,5 +123,49 @@ TEST(LightFieldRadiance, RetinaMatchesTheAnalyticPlaneAtEveryFocus) {
   }
 }
 
+// The image-wise path (RetinaOfLightField, what RetinaOfScene takes for a
+// light field) against the radiance called per ray and summed in double:
+// a texture varying along both axes, a plane off the origin plane
+// (parallax), a retina wider than the window (rays that miss it), pupil
+// points between views and off the grid (jittered), both sampling rules,
+// foci on and off the plane, and a chromatic focus per channel.
+TEST(LightFieldRadiance, ImageWiseRetinaIsTheRayByRayRetina) {
+  const LightFieldGeometry g = Geometry(160, 90);
+  auto texture = MakeNoiseTexture(20, 400, 24, 7, 0.6, 0.5);  // values in [0.2, 0.8]
+  LightField lf = RenderPlaneLightField(g, 1 / 1.9, *texture);
+  EyeModel eye;
+  eye.pupil_samples_x = eye.pupil_samples_y = 9;
+  for (PupilSampling sampling : {PupilSampling::kGrid, PupilSampling::kJittered}) {
+    eye.pupil_sampling = sampling;
+    const std::vector<PupilPoint> pupil = PupilSamples(eye);
+    RetinaGrid grid = MakeRetinaGrid(12 * kDeg, 7 * kDeg, 0.07 * kDeg);  // the window is 10 x 6 deg
+    grid.center_x = 0.013 * kDeg;
+    for (Sampling pixels : {Sampling::kNearest, Sampling::kBilinear})
+      for (std::array<double, 3> focus : {std::array<double, 3>{1.3, 1.3, 1.3}, std::array<double, 3>{0.4, 0.4, 0.4},
+                                          std::array<double, 3>{1.9, 1.9, 1.9}, std::array<double, 3>{1.1, 1.2, 1.35}}) {
+        const SceneRadiance rays = LightFieldRadiance(lf, pixels);
+        const Image fast = RetinaOfLightField(lf, pixels, grid, pupil, focus);
+        const Image slow = RetinaOfSceneRayByRay(rays, grid, pupil, focus);
+        const Image dispatched = RetinaOfScene(rays, grid, pupil, focus);
+        ASSERT_EQ(fast.pixels.size(), slow.pixels.size());
+        EXPECT_EQ(fast.pixels, dispatched.pixels);
+        double worst = 0;
+        size_t zeros = 0, partial = 0;
+        for (size_t k = 0; k < fast.pixels.size(); ++k) {
+          const double a = fast.pixels[k], b = slow.pixels[k];
+          zeros += b == 0;
+          partial += b > 0 && b < 0.15;  // rays of some pupil points miss the window
+          if (b == 0)
+            EXPECT_EQ(a, 0.0) << k;
+          else
+            worst = std::max(worst, std::abs(a - b) / b);
+        }
+        EXPECT_LT(worst, 1e-5) << "focus " << focus[0] << " D, " << (pixels == Sampling::kNearest ? "nearest" : "bilinear");
+        EXPECT_GT(zeros, 0u);
+        EXPECT_GT(partial, 0u);
+      }
+  }
+}
+
 }  // namespace
 }  // namespace layerlab
