@@ -31,7 +31,7 @@ struct RetinaStateResult {
   double display_mean_cd_m2 = 0;
   double natural_mean_cd_m2 = 0;  // NaN without natural viewing
   size_t display_clipped_in_png = 0;
-  double seconds = 0;
+  double seconds = 0;  // spent on its images and files (the files of a few states are written at once)
 };
 
 std::string RetinaStateName(double diopters);

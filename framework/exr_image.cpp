@@ -222,7 +222,7 @@ Image ReadExr(const std::string& path, const std::vector<std::string>& channels,
   return image;
 }
 
-void WriteExr(const std::string& path, const Image& image) {
+void WriteExr(const std::string& path, const Image& image, ExrCompression compression) {
   size_t n = image.channels.size();
   if (image.width <= 0 || image.height <= 0 || n == 0 ||
       image.pixels.size() != static_cast<size_t>(image.width) * image.height * n)
@@ -230,7 +230,7 @@ void WriteExr(const std::string& path, const Image& image) {
   AtomicFile out(path);
   try {
     Imf::Header header(image.width, image.height);
-    header.compression() = Imf::ZIP_COMPRESSION;
+    header.compression() = compression == ExrCompression::kZip ? Imf::ZIP_COMPRESSION : Imf::NO_COMPRESSION;
     Imf::FrameBuffer frame;
     char* base = const_cast<char*>(reinterpret_cast<const char*>(image.pixels.data()));
     for (size_t c = 0; c < n; ++c) {

@@ -25,8 +25,13 @@ struct ExrLimits {
 // Reads the named channels (all must exist; half or float). Throws layerlab::Error.
 Image ReadExr(const std::string& path, const std::vector<std::string>& channels, const ExrLimits& limits = {});
 
-// Writes float channels, ZIP-compressed, atomically.
-void WriteExr(const std::string& path, const Image& image);
+// How WriteExr stores the pixels. ZIP takes a 710 x 364 RGB float image
+// (a retinal image) from 3.11 to 2.94 MB in about 80 ms; stored as they are
+// it takes about 5 ms.
+enum class ExrCompression { kZip, kNone };
+
+// Writes float channels, atomically.
+void WriteExr(const std::string& path, const Image& image, ExrCompression compression = ExrCompression::kZip);
 
 // The data window size of an EXR file without reading its pixels.
 struct ExrSize {

@@ -12,7 +12,8 @@
 
 namespace layerlab {
 
-void WritePng8(const std::string& path, int width, int height, int channels, const std::vector<uint8_t>& pixels) {
+void WritePng8(const std::string& path, int width, int height, int channels, const std::vector<uint8_t>& pixels,
+               PngCompression compression) {
   if (width <= 0 || height <= 0 || (channels != 1 && channels != 3 && channels != 4) ||
       pixels.size() != static_cast<size_t>(width) * height * channels)
     throw Error(path + ": internal error: PNG buffer does not match its size");
@@ -24,6 +25,7 @@ void WritePng8(const std::string& path, int width, int height, int channels, con
   volatile bool ok = png && info;  // survives longjmp
   if (ok && setjmp(png_jmpbuf(png)) == 0) {
     png_init_io(png, file);
+    if (compression == PngCompression::kFast) png_set_compression_level(png, 1);
     int type = channels == 1 ? PNG_COLOR_TYPE_GRAY : channels == 3 ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_RGBA;
     png_set_IHDR(png, info, width, height, 8, type, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
                  PNG_FILTER_TYPE_DEFAULT);
@@ -40,7 +42,8 @@ void WritePng8(const std::string& path, int width, int height, int channels, con
   out.Commit();
 }
 
-size_t WriteSrgbPng(const std::string& path, int width, int height, const std::vector<float>& rgb, double white) {
+size_t WriteSrgbPng(const std::string& path, int width, int height, const std::vector<float>& rgb, double white,
+                    PngCompression compression) {
   if (!(white > 0)) throw Error(path + ": internal error: white must be positive");
   std::vector<uint8_t> pixels(rgb.size());
   size_t clipped = 0;
@@ -51,7 +54,7 @@ size_t WriteSrgbPng(const std::string& path, int width, int height, const std::v
     double encoded = v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1 / 2.4) - 0.055;
     pixels[k] = static_cast<uint8_t>(std::lround(255 * encoded));
   }
-  WritePng8(path, width, height, 3, pixels);
+  WritePng8(path, width, height, 3, pixels, compression);
   return clipped;
 }
 
