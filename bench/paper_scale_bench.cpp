@@ -225,20 +225,19 @@ void BM_AdditiveToConvergence(benchmark::State& state) {
   state.SetLabel(w.target_name + ", " + ToString(r.termination));
 }
 
-void BM_RetinaImage(benchmark::State& state) {
+// The display's retinal image on `grid` at one focus (uniform patterns of 0.5).
+void DisplayRetinaImage(benchmark::State& state, const RetinaGrid& grid, double focus, double target_seconds) {
   const Workload& w = GetWorkload("paper_prototype");
   Patterns t = w.model->UniformPatterns(0.5f);
-  const RetinaGrid grid = Settings().smoke ? MakeRetinaGrid(4 * kDeg, 2 * kDeg, 0.1 * kDeg)
-                                           : MakeRetinaGrid(w.system.fov_x, w.system.fov_y, w.system.fov_x / 400);
   const std::vector<PupilPoint> pupil = PupilSamples(w.system.eye);
   double last = 0;
   for (auto _ : state)
     last = Timed(state, [&] {
-      benchmark::DoNotOptimize(RetinaOfDisplay(*w.model, t, grid, pupil, {1.3, 1.3, 1.3}).pixels.data());
+      benchmark::DoNotOptimize(RetinaOfDisplay(*w.model, t, grid, pupil, {focus, focus, focus}).pixels.data());
     });
   state.counters["retina_samples"] = double(grid.cols) * grid.rows;
   state.counters["pupil_samples"] = double(pupil.size());
-  Report(state, 0.020, last);
+  Report(state, target_seconds, last);
 }
 
 // The grid of `layerlab retina` and the main job: the display's field at 0.05 deg (710 x 364 for the prototype).
@@ -247,20 +246,17 @@ RetinaGrid RetinaSweepGrid(const Workload& w) {
                           : MakeRetinaGrid(w.system.fov_x, w.system.fov_y, 0.05 * kDeg);
 }
 
+void BM_RetinaImage(benchmark::State& state) {
+  const Workload& w = GetWorkload("paper_prototype");
+  DisplayRetinaImage(state,
+                     Settings().smoke ? MakeRetinaGrid(4 * kDeg, 2 * kDeg, 0.1 * kDeg)
+                                      : MakeRetinaGrid(w.system.fov_x, w.system.fov_y, w.system.fov_x / 400),
+                     1.3, 0.020);
+}
+
 // One accommodation state of the focal stack: the display's retinal image.
 void BM_RetinaImageOfDisplay(benchmark::State& state) {
-  const Workload& w = GetWorkload("paper_prototype");
-  Patterns t = w.model->UniformPatterns(0.5f);
-  const RetinaGrid grid = RetinaSweepGrid(w);
-  const std::vector<PupilPoint> pupil = PupilSamples(w.system.eye);
-  double last = 0;
-  for (auto _ : state)
-    last = Timed(state, [&] {
-      benchmark::DoNotOptimize(RetinaOfDisplay(*w.model, t, grid, pupil, {1.0, 1.0, 1.0}).pixels.data());
-    });
-  state.counters["retina_samples"] = double(grid.cols) * grid.rows;
-  state.counters["pupil_samples"] = double(pupil.size());
-  Report(state, 0.010, last);
+  DisplayRetinaImage(state, RetinaSweepGrid(GetWorkload("paper_prototype")), 1.0, 0.010);
 }
 
 // The same state of natural viewing of the target: image-wise (RetinaOfScene
