@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include "analysis/svg_plot.h"
+#include "framework/progress.h"
 #include "solvers/objective.h"
 
 namespace layerlab {
@@ -22,20 +24,19 @@ std::vector<std::string> SuitableSolvers(const DisplaySystem& system, const Solv
 }
 
 std::vector<CompareResult> RunComparison(const std::vector<CompareRun>& runs, const LightField& target,
-                                         const std::function<void(const std::string&)>& progress,
-                                         const SolverRegistry& registry) {
+                                         bool show_progress, const SolverRegistry& registry) {
   std::vector<CompareResult> results;
   for (const CompareRun& run : runs) {
     DisplayModel model(run.system, target.geometry, run.sampling);
     SolverOptions options = run.options;
     const std::string label = run.display + " / " + run.solver;
-    if (progress)
-      options.progress = [&](int iteration, double seconds, double psnr) {
-        char line[160];
-        std::snprintf(line, sizeof line, "%s: iteration %d  %.2f s  PSNR %s dB", label.c_str(), iteration, seconds,
-                      Psnr(psnr).c_str());
-        progress(line);
+    std::optional<Progress> progress;
+    if (show_progress) {
+      progress.emplace("compare " + label, options.iterations);
+      options.progress = [&](int iteration, double, double psnr) {
+        progress->Update(iteration, "iterations  PSNR " + Psnr(psnr) + " dB");
       };
+    }
     Patterns t;
     CompareResult r{run.display,
                     run.solver,
@@ -45,6 +46,7 @@ std::vector<CompareResult> RunComparison(const std::vector<CompareRun>& runs, co
                     run.system.subframes,
                     run.system.subframes * run.system.frame_rate};
     r.report = registry.create(run.solver)->Solve(model, target, options, &t);
+    if (progress) progress->Finish(r.report.BriefReport());
     results.push_back(std::move(r));
   }
   return results;

@@ -33,9 +33,10 @@ std::vector<std::string> SuitableSolvers(const DisplaySystem& system,
                                          const SolverRegistry& registry = SolverRegistry::Builtins());
 
 // Runs each in turn on `target` (each display bound to the target's rays),
-// the solvers taken from `registry`. `progress` gets a line per iteration.
+// the solvers taken from `registry`. With `show_progress`, one progress line
+// per run on stderr (framework/progress.h; each iteration with --verbose).
 std::vector<CompareResult> RunComparison(const std::vector<CompareRun>& runs, const LightField& target,
-                                         const std::function<void(const std::string&)>& progress = {},
+                                         bool show_progress = false,
                                          const SolverRegistry& registry = SolverRegistry::Builtins());
 
 std::string CompareTable(const std::vector<CompareResult>& results);  // fixed-width text

@@ -7,9 +7,11 @@
 #include <filesystem>
 #include <map>
 #include <numbers>
+#include <optional>
 
 #include "analysis/svg_plot.h"
 #include "framework/error.h"
+#include "framework/progress.h"
 #include "solvers/solve_config.h"
 #include "systems/compile.h"
 #include "systems/display_model.h"
@@ -135,6 +137,9 @@ std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displ
   };
 
   std::vector<ContrastCurve> curves;
+  std::optional<Progress> progress;
+  size_t solved = 0;
+  if (o.show_progress) progress.emplace("contrast", displays.size() * o.frequencies.size() * o.target_diopters.size());
   for (double f : o.frequencies)
     for (double dt : o.target_diopters) {
       std::shared_ptr<const Texture> texture = texture_of(1 / dt, f);
@@ -174,6 +179,7 @@ std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displ
 
       for (const ContrastDisplay& d : displays) {
         if (o.progress) o.progress(d.name + ": " + label);
+        if (progress) progress->Update(solved++, "solves; now " + d.name + ": " + label);
         LightFieldGeometry g = DisplayLightFieldGeometry(d.system, dt);
         double row_height = g.window_height / g.rows;
         g.rows = std::min(g.rows, o.strip_rows);
@@ -223,6 +229,7 @@ std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displ
     c.estimate = EstimatePeak(c.accommodation, c.contrast, c.contrast_shifted, o.flat_limit);
     c.at_target = Interpolate(c.accommodation, c.contrast, c.target_diopters);
   }
+  if (progress) progress->Finish(std::to_string(curves.size()) + " curves");
   return curves;
 }
 

@@ -74,6 +74,7 @@ struct ContrastOptions {
   bool peak_uncertainty = true;
   double flat_limit = 0.05;  // D
   std::function<void(const std::string&)> progress;
+  bool show_progress = false;  // a progress line on stderr (framework/progress.h)
 };
 
 struct ContrastCurve {

@@ -127,7 +127,7 @@ RunOutcome RunPipeline(const RunRequest& request) {
   StagedOutput stage(request.out, "run", RunOutputRoots(), inputs);
   RunOutcome outcome;
   outcome.recovered = stage.recovered();
-  for (const std::string& line : outcome.recovered) std::fprintf(stderr, "run: %s\n", line.c_str());
+  for (const std::string& line : outcome.recovered) Note("run: " + line);
   const fs::path out = stage.staging();  // everything is written here, then switched into place
 
   RunReportPage page;
@@ -241,11 +241,8 @@ RunOutcome RunPipeline(const RunRequest& request) {
       auto start = Clock::now();
       ContrastOptions options = in.run.contrast.options;
       const size_t total = in.contrast.size() * options.frequencies.size() * options.target_diopters.size();
-      Progress progress("contrast", total);
-      size_t started = 0;
-      options.progress = [&](const std::string& what) { progress.Update(started++, "curves; now " + what); };
+      options.show_progress = true;
       page.contrast = RunContrast(in.contrast, options);
-      progress.Finish(std::to_string(page.contrast.size()) + " curves");
       fs::create_directories(out / "contrast");
       WriteFileAtomically((out / "contrast" / "contrast.csv").string(), ContrastCsv(page.contrast));
       WriteFileAtomically((out / "contrast" / "peaks.txt").string(), PeakTable(page.contrast));
@@ -281,12 +278,7 @@ RunOutcome RunPipeline(const RunRequest& request) {
               configs[k]->sampling};
           run.options.iterations = c.iterations.value_or(run.options.iterations);
           run.options.time_budget = c.time_budget.value_or(run.options.time_budget);
-          Progress progress("compare " + name + " / " + solver, run.options.iterations);
-          run.options.progress = [&](int iteration, double, double psnr) {
-            progress.Update(iteration, "iterations  PSNR " + Psnr(psnr));
-          };
-          CompareResult result = RunComparison({run}, target->light_field).front();
-          progress.Finish(result.report.BriefReport());
+          CompareResult result = RunComparison({run}, target->light_field, true).front();
           if (!result.report.IsSolutionUsable())
             throw Error("compare: " + name + " / " + solver + " failed: " + result.report.message);
           page.compare.push_back(std::move(result));

@@ -28,7 +28,7 @@ std::unique_ptr<Target> LoadOrRenderTarget(const SolveConfig& config, const std:
   auto target = std::make_unique<Target>();
   if (!config.target.empty()) {
     target->source = config.target;
-    std::fprintf(stderr, "%s: loading the light field %s\n", label.c_str(), config.target.c_str());
+    Note(label + ": loading the light field " + config.target);
     target->light_field = ReadLightField(config.target, {.load_depth = false});
     return target;
   }

@@ -10,9 +10,11 @@
 
 #include "analysis/compare.h"
 #include "app/commands.h"
+#include "app/number_list.h"
 #include "framework/atomic_file.h"
 #include "framework/error.h"
 #include "framework/lightfield_io.h"
+#include "framework/progress.h"
 #include "framework/staged_output.h"
 #include "solvers/solve_config.h"
 #include "systems/compile.h"
@@ -36,7 +38,7 @@ void AddCompareCommand(CLI::App& app) {
     std::vector<std::string> scenes;
     std::string target, out, solvers;
     std::optional<int> iterations;
-    std::optional<double> time_budget;
+    std::string time_budget;
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("compare", "Several displays and solvers on one target: PSNR against time");
@@ -47,13 +49,14 @@ void AddCompareCommand(CLI::App& app) {
                   "Solvers to run on each display, comma-separated, or \"all\" for every solver that suits it "
                   "(default: each scene's own)");
   cmd->add_option("--iterations", o->iterations, "Iterations of every run (default: each solver's)");
-  cmd->add_option("--time-budget", o->time_budget, "Seconds each run may take");
+  cmd->add_option("--time-budget", o->time_budget, "How long each run may take: seconds, or with units (\"5 s\")");
   cmd->callback([o] {
     const bool all = o->solvers == "all";
     if (!all)
       for (const std::string& name : SplitNames(o->solvers)) SolverRegistry::Builtins().get(name);  // names known ones
     if (o->iterations && *o->iterations <= 0) throw Error("--iterations: must be positive");
-    if (o->time_budget && !(*o->time_budget >= 0)) throw Error("--time-budget: must be 0 (none) or more seconds");
+    std::optional<double> time_budget;
+    if (!o->time_budget.empty()) time_budget = ParseOptionValue(o->time_budget, "--time-budget", kSeconds);
     std::vector<CompareRun> runs;
     for (const std::string& file : o->scenes) {
       Scene scene = LoadScene(file);
@@ -70,7 +73,7 @@ void AddCompareCommand(CLI::App& app) {
         SolverOptions options =
             solver == config.solver ? config.options : SolverRegistry::Builtins().find(solver)->defaults;
         options.iterations = o->iterations.value_or(options.iterations);
-        options.time_budget = o->time_budget.value_or(options.time_budget);
+        options.time_budget = time_budget.value_or(options.time_budget);
         runs.push_back({name, system, solver, options, config.sampling});
       }
     }
@@ -78,10 +81,9 @@ void AddCompareCommand(CLI::App& app) {
     std::vector<NamedInput> inputs = {{o->target, "the target"}};
     for (const std::string& file : o->scenes) inputs.push_back({file, "a scene"});
     StagedOutput stage(o->out, "compare", {"compare.txt", "compare.csv", "traces.csv", "psnr_vs_time.svg"}, inputs);
-    std::fprintf(stderr, "loading %s\n", o->target.c_str());
+    Note("compare: loading " + o->target);
     LightField target = ReadLightField(o->target, {.load_depth = false});
-    std::vector<CompareResult> results = RunComparison(
-        runs, target, [](const std::string& line) { std::fprintf(stderr, "compare: %s\n", line.c_str()); });
+    std::vector<CompareResult> results = RunComparison(runs, target, true);
     for (const CompareResult& r : results)
       if (!r.report.IsSolutionUsable())
         throw Error("compare: " + r.display + " / " + r.solver + " failed: " + r.report.message +

@@ -21,8 +21,7 @@ void AddContrastCommand(CLI::App& app) {
   struct Options {
     std::vector<std::string> scenes;
     std::string out, depths = "0.7,1.3,1.9", frequencies = "2,4", accommodation = "0,2.6,0.05";
-    std::string reference = "sampled", grating = "angle";
-    double resolution = 0.01, field = 20;
+    std::string reference = "sampled", grating = "angle", resolution = "0.01", field = "20";
     int strip_rows = 24;
     bool no_peak_uncertainty = false;
   };
@@ -30,11 +29,13 @@ void AddContrastCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("contrast", "Normalized contrast against accommodation (Fig. 5)");
   cmd->add_option("scenes", o->scenes, "Display scene files (JSON)")->required();
   cmd->add_option("--out", o->out, "Output folder")->required();
-  cmd->add_option("--depths", o->depths, "Target depths in D, comma-separated (default 0.7,1.3,1.9)");
-  cmd->add_option("--frequencies", o->frequencies, "Frequencies in cpd, comma-separated (default 2,4)");
-  cmd->add_option("--accommodation", o->accommodation, "first,last,step in D (default 0,2.6,0.05)");
-  cmd->add_option("--retina-resolution", o->resolution, "Retinal sample size in degrees (default 0.01)");
-  cmd->add_option("--retina-field", o->field, "Retinal field width in degrees (default 20)");
+  cmd->add_option("--depths", o->depths,
+                  "Target depths, comma-separated: D, or with units (\"0.7 D,1.3 D\", \"2 m\"; default 0.7,1.3,1.9)");
+  cmd->add_option("--frequencies", o->frequencies, "Frequencies, comma-separated: cpd (default 2,4)");
+  cmd->add_option("--accommodation", o->accommodation,
+                  "first,last,step: D, or with units (\"0 D,2.6 D,0.05 D\"; default 0,2.6,0.05)");
+  cmd->add_option("--retina-resolution", o->resolution, "Retinal sample size: degrees or \"0.6 arcmin\" (default 0.01)");
+  cmd->add_option("--retina-field", o->field, "Retinal field width: degrees (default 20)");
   cmd->add_option("--strip-rows", o->strip_rows, "Light-field rows around the axis (default 24)");
   cmd->add_option("--reference", o->reference,
                   "Normalize by natural viewing of the sampled target light field (sampled, default) or of the "
@@ -47,26 +48,25 @@ void AddContrastCommand(CLI::App& app) {
                 "Skip the second sweep on a retina moved by half a sample (the peaks' uncertainty)");
   cmd->callback([o] {
     ContrastOptions options;
-    options.target_diopters = ParseNumberList(o->depths, "--depths");
-    options.frequencies = ParseNumberList(o->frequencies, "--frequencies");
-    std::vector<double> range = ParseNumberList(o->accommodation, "--accommodation");
-    if (range.size() != 3) throw Error("--accommodation: give first,last,step");
+    options.target_diopters = ParseNumberList(o->depths, "--depths", kDiopters, true);
+    options.frequencies = ParseNumberList(o->frequencies, "--frequencies", kCyclesPerDegree);
+    const std::vector<double> range = ParseRangeBounds(o->accommodation, "--accommodation", kDiopters);
     options.accommodation_min = range[0];
     options.accommodation_max = range[1];
     options.accommodation_step = range[2];
-    options.retina_resolution = o->resolution;
-    options.retina_field = o->field;
+    options.retina_resolution = ParseOptionValue(o->resolution, "--retina-resolution", kDegrees);
+    options.retina_field = ParseOptionValue(o->field, "--retina-field", kDegrees);
     options.strip_rows = o->strip_rows;
     options.reference = o->reference == "sampled" ? ContrastReference::kSampledTarget : ContrastReference::kContinuous;
     options.grating = o->grating == "angle" ? GratingSpacing::kVisualAngle : GratingSpacing::kPlane;
     options.peak_uncertainty = !o->no_peak_uncertainty;
-    if (!(o->resolution > 0) || !(o->field > 0) || o->strip_rows < 1)
+    if (!(options.retina_resolution > 0) || !(options.retina_field > 0) || o->strip_rows < 1)
       throw Error("--retina-resolution, --retina-field and --strip-rows must be positive");
     for (double f : options.frequencies)
       if (!(f > 0)) throw Error("--frequencies: a frequency must be above 0 cpd");
     for (double d : options.target_diopters)
       if (!(d > 0)) throw Error("--depths: a target depth must be above 0 D");
-    options.progress = [](const std::string& what) { std::fprintf(stderr, "contrast: %s\n", what.c_str()); };
+    options.show_progress = true;
 
     std::vector<ContrastDisplay> displays;
     for (const std::string& file : o->scenes) displays.push_back(LoadContrastDisplay(file));

@@ -1,14 +1,15 @@
 // layerlab render-target TARGET.json OUT_DIR: renders a target scene
 // (docs/target-format.md) into a light-field folder (docs/lightfield-format.md),
-// color and depth. Progress goes to stderr, one line per tenth of the views.
+// color and depth. Progress goes to stderr (framework/progress.h).
 #include <cstdio>
 #include <memory>
-#include <mutex>
+#include <algorithm>
 #include <string>
 
 #include "app/commands.h"
 #include "framework/error.h"
 #include "framework/lightfield_io.h"
+#include "framework/progress.h"
 #include "framework/staged_output.h"
 #include "targets/target_renderer.h"
 #include "targets/target_scene.h"
@@ -29,27 +30,22 @@ void AddRenderTargetCommand(CLI::App& app) {
     StagedOutput stage(options->out_dir, "render-target", {"views", "depth", "lightfield.json"},
                        {{options->target, "the target scene"}});
     const LightFieldGeometry& g = target.geometry;
-    std::fprintf(stderr, "render-target: %d x %d views of %d x %d pixels, %d samples per pixel; %s\n", g.views_x,
-                 g.views_y, g.cols, g.rows, target.samples_per_pixel, target.description.c_str());
-    std::mutex print_mutex;
-    size_t printed_tenths = 0;
+    char what[200];
+    std::snprintf(what, sizeof what, "%d x %d pixels, %d samples per pixel; %s", g.cols, g.rows,
+                  target.samples_per_pixel, target.description.c_str());
     RenderStats stats;
-    LightField lf = RenderTarget(target, &stats, [&](size_t done, size_t total) {
-      std::lock_guard<std::mutex> lock(print_mutex);
-      size_t tenths = done * 10 / total;
-      if (tenths <= printed_tenths && done != total) return;
-      printed_tenths = tenths;
-      std::fprintf(stderr, "render-target: %zu / %zu views rendered\n", done, total);
-    });
+    Progress progress("render-target", g.view_count());
+    LightField lf = RenderTarget(target, &stats, [&](size_t done, size_t) { progress.Update(done, "views, " + std::string(what)); });
+    std::snprintf(what, sizeof what, "%llu rays (%.1f Mrays/s)", static_cast<unsigned long long>(stats.rays),
+                  stats.rays / std::max(stats.seconds, 1e-9) / 1e6);
+    progress.Finish(what);
     try {
       WriteLightField(lf, stage.staging());
     } catch (const Error& e) {
       throw stage.Explain(e);
     }
     stage.Commit();
-    std::fprintf(stderr, "render-target: %.2f s, %llu rays (%.1f Mrays/s); wrote %s\n", stats.seconds,
-                 static_cast<unsigned long long>(stats.rays), stats.rays / stats.seconds / 1e6,
-                 options->out_dir.c_str());
+    Note("render-target: wrote " + options->out_dir);
   });
 }
 

@@ -14,6 +14,7 @@
 #include "app/number_list.h"
 #include "framework/error.h"
 #include "framework/lightfield_io.h"
+#include "framework/progress.h"
 #include "framework/staged_output.h"
 #include "solvers/solution_writer.h"
 #include "solvers/solve_config.h"
@@ -30,21 +31,21 @@ namespace layerlab::app {
 void AddRetinaCommand(CLI::App& app) {
   struct Options {
     std::string scene, patterns, target, target_scene, out, sampling;
-    std::string accommodation = "0.4,1.0,1.6,2.2", focal_stack, field;
-    double resolution = 0.05;
+    std::string accommodation = "0.4,1.0,1.6,2.2", focal_stack, field, resolution = "0.05";
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("retina", "Retinal images of the display (and of the target) over accommodation");
   cmd->add_option("scene", o->scene, "Display scene file (JSON)")->required();
   cmd->add_option("--patterns", o->patterns, "Output folder of `layerlab solve` (its patterns/)")->required();
-  cmd->add_option("--accommodation", o->accommodation, "States in D, comma-separated (default 0.4,1.0,1.6,2.2)");
-  cmd->add_option("--focal-stack", o->focal_stack, "Also first,last,step in D, e.g. 0,2.6,0.1");
+  cmd->add_option("--accommodation", o->accommodation,
+                  "States, comma-separated: D, or with units (\"1.0 D\", \"0.5 m\"; default 0.4,1.0,1.6,2.2)");
+  cmd->add_option("--focal-stack", o->focal_stack, "Also first,last,step: D, e.g. 0,2.6,0.1 or \"0 D,2.6 D,0.1 D\"");
   cmd->add_option("--target", o->target, "Light-field folder: natural viewing of it");
 #if LAYERLAB_WITH_EMBREE
   cmd->add_option("--target-scene", o->target_scene, "Target scene (JSON): natural viewing traced with Embree");
 #endif
-  cmd->add_option("--resolution", o->resolution, "Retinal sample size in degrees (default 0.05)");
-  cmd->add_option("--field", o->field, "Retinal field W,H in degrees (default: the display's field of view)");
+  cmd->add_option("--resolution", o->resolution, "Retinal sample size: degrees or \"3 arcmin\" (default 0.05)");
+  cmd->add_option("--field", o->field, "Retinal field W,H: degrees (default: the display's field of view)");
   cmd->add_option("--sampling", o->sampling,
                   "Layer sampling: nearest or bilinear (default: the scene's solve section)");
   cmd->add_option("--out", o->out, "Output folder")->required();
@@ -56,17 +57,18 @@ void AddRetinaCommand(CLI::App& app) {
     if (!o->sampling.empty()) config.sampling = SamplingFromString(o->sampling);
     if (!o->target.empty() && !o->target_scene.empty()) throw Error("give --target or --target-scene, not both");
 
-    std::vector<double> states = ParseNumberList(o->accommodation, "--accommodation");
+    std::vector<double> states = ParseNumberList(o->accommodation, "--accommodation", kDiopters, true);
     if (!o->focal_stack.empty())
-      for (double d : ParseRange(o->focal_stack, "--focal-stack")) states.push_back(d);
+      for (double d : ParseRange(o->focal_stack, "--focal-stack", kDiopters)) states.push_back(d);
     std::sort(states.begin(), states.end());
     states.erase(std::unique(states.begin(), states.end(), [](double a, double b) { return std::abs(a - b) < 1e-9; }),
                  states.end());
 
-    if (!(o->resolution > 0) || !(o->resolution < 10)) throw Error("--resolution: give degrees in (0, 10)");
+    const double resolution = ParseOptionValue(o->resolution, "--resolution", kDegrees);
+    if (!(resolution > 0) || !(resolution < 10)) throw Error("--resolution: give degrees in (0, 10)");
     double field_x = 0, field_y = 0;  // deg; 0: the display's field of view
     if (!o->field.empty()) {
-      std::vector<double> f = ParseNumberList(o->field, "--field");
+      std::vector<double> f = ParseNumberList(o->field, "--field", kDegrees);
       if (f.size() != 2 || !(f[0] > 0) || !(f[1] > 0) || f[0] >= 170 || f[1] >= 170)
         throw Error("--field: give W,H in degrees, each in (0, 170)");
       field_x = f[0], field_y = f[1];
@@ -96,13 +98,13 @@ void AddRetinaCommand(CLI::App& app) {
     }
 #endif
 
-    RetinaSweepOptions sweep{states, o->resolution, field_x, field_y};
-    std::fprintf(stderr, "retina: %zu accommodation states of %.3f deg samples\n", states.size(), o->resolution);
+    RetinaSweepOptions sweep{states, resolution, field_x, field_y};
+    Progress progress("retina", states.size());
     try {
-      WriteRetinaSweep(model, t, natural, sweep, stage.staging(),
-                       [](size_t done, size_t total, const RetinaStateResult& r) {
-                         std::fprintf(stderr, "retina: %zu/%zu  %s  %.2f s\n", done, total, r.name.c_str(), r.seconds);
-                       });
+      WriteRetinaSweep(model, t, natural, sweep, stage.staging(), [&](size_t done, size_t, const RetinaStateResult& r) {
+        progress.Update(done, "accommodation states traced (" + r.name + ")");
+      });
+      progress.Finish(std::to_string(states.size()) + " states of " + FormatFixed(resolution, 3) + " deg samples");
     } catch (const Error& e) {
       throw stage.Explain(e);
     }

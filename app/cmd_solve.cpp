@@ -12,6 +12,7 @@
 
 #include "analysis/target_source.h"
 #include "app/commands.h"
+#include "app/number_list.h"
 #include "framework/interrupt.h"
 #include "framework/lightfield_io.h"
 #include "framework/progress.h"
@@ -28,7 +29,8 @@ void AddSolveCommand(CLI::App& app) {
   struct Options {
     std::string scene, target, solver, out, sampling, target_range;
     std::optional<int> iterations, sub_iterations, warm_start_iterations, threads;
-    std::optional<double> time_budget, tolerance, initial_value;
+    std::optional<double> tolerance, initial_value;
+    std::string time_budget;
     bool write_lightfield = false, resume = false;
     int checkpoint_every = 0;
     std::string max_memory;
@@ -43,7 +45,7 @@ void AddSolveCommand(CLI::App& app) {
   cmd->add_option("--sub-iterations", o->sub_iterations, "Updates per set and outer iteration (hybrid)");
   cmd->add_option("--warm-start-iterations", o->warm_start_iterations,
                   "Iterations made by the hybrid solver before quasi-Newton steps (quasi-newton)");
-  cmd->add_option("--time-budget", o->time_budget, "Stop after this many seconds");
+  cmd->add_option("--time-budget", o->time_budget, "Stop after this long: seconds, or with units (\"5 s\", \"2 min\")");
   cmd->add_option("--tolerance", o->tolerance, "Stop when the objective changes by less than this, relative");
   cmd->add_option("--initial", o->initial_value, "Initial transmittance (negative: random)");
   cmd->add_option("--threads", o->threads, "Worker threads (0: all cores)");
@@ -74,7 +76,7 @@ void AddSolveCommand(CLI::App& app) {
     opt.iterations = o->iterations.value_or(opt.iterations);
     opt.sub_iterations = o->sub_iterations.value_or(opt.sub_iterations);
     opt.warm_start_iterations = o->warm_start_iterations.value_or(opt.warm_start_iterations);
-    opt.time_budget = o->time_budget.value_or(opt.time_budget);
+    if (!o->time_budget.empty()) opt.time_budget = ParseOptionValue(o->time_budget, "--time-budget", kSeconds);
     opt.tolerance = o->tolerance.value_or(opt.tolerance);
     opt.initial_value = o->initial_value.value_or(opt.initial_value);
     opt.threads = o->threads.value_or(opt.threads);
@@ -89,12 +91,12 @@ void AddSolveCommand(CLI::App& app) {
     const size_t limit = o->max_memory.empty() ? 0 : ParseByteSize(o->max_memory, "--max-memory");
     const size_t need =
         RefuseSolveBeyondMemory(system, config, opt.threads, limit, "--max-memory " + FormatBytes(double(limit)));
-    std::fprintf(stderr, "the solve needs about %s\n", FormatBytes(double(need)).c_str());
+    Note("the solve needs about " + FormatBytes(double(need)));
     // The results are built beside the earlier ones and switched into place when complete.
     StagedOutput stage(
         o->out, "solve", {"patterns", "panels", "lightfield", "trace.csv", "report.txt", "report.json", "checkpoint"},
         {{o->scene, "the scene"}, {config.target, "the target"}, {config.target_scene, "the target scene"}});
-    for (const std::string& line : stage.recovered()) std::fprintf(stderr, "solve: %s\n", line.c_str());
+    for (const std::string& line : stage.recovered()) Note("solve: " + line);
     std::unique_ptr<Target> target = LoadOrRenderTarget(config, "target");
     DisplayModel model(system, target->light_field.geometry, config.sampling);
     InstallInterruptHandler();
@@ -114,7 +116,7 @@ void AddSolveCommand(CLI::App& app) {
       RefuseMismatchedCheckpoint(checkpoint_folder, digest);
       resume = ReadCheckpoint(model, checkpoint_folder);
       opt.resume = &*resume;
-      std::fprintf(stderr, "resuming %s from iteration %d\n", resume->solver.c_str(), resume->iteration);
+      Note("resuming " + resume->solver + " from iteration " + std::to_string(resume->iteration));
     }
     Patterns patterns;
     SolverReport report;

@@ -1,6 +1,7 @@
 // layerlab: the command-line front end. Every failure is one message on
 // stderr, location first, and a non-zero exit.
 #include <csignal>
+#include <cstdint>
 #include <cstdio>
 #include <exception>
 
@@ -9,11 +10,14 @@
 #include "app/commands.h"
 #include "framework/error.h"
 #include "framework/interrupt.h"
+#include "framework/progress.h"
+#include "framework/version.h"
 #include "systems/row_kernels.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"layerlab: model, factorize and analyse layered light-field near-eye displays"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", layerlab::VersionLine(), "Print the version (and the git commit) and exit");
   layerlab::app::AddInfoCommand(app);
   layerlab::app::AddRunCommand(app);
   layerlab::app::AddSolveCommand(app);
@@ -26,6 +30,17 @@ int main(int argc, char** argv) {
 #if LAYERLAB_WITH_EMBREE
   layerlab::app::AddRenderTargetCommand(app);
 #endif
+  // How much every command says on stderr: one pair of flags, read here for all of them.
+  // Set as the flag is read, before the command's callback runs.
+  for (CLI::App* cmd : app.get_subcommands({})) {
+    CLI::Option* q = cmd->add_flag_function(
+        "--quiet,-q", [](std::int64_t) { layerlab::SetVerbosity(layerlab::Verbosity::kQuiet); },
+        "No progress or notes on stderr (errors and warnings remain)");
+    cmd->add_flag_function(
+           "--verbose,-v", [](std::int64_t) { layerlab::SetVerbosity(layerlab::Verbosity::kVerbose); },
+           "Every step on stderr: each iteration of each run, one line each")
+        ->excludes(q);
+  }
   // Past a file-size limit, write() should fail with EFBIG (and the atomic
   // writers clean up) instead of the process dying half-way.
   std::signal(SIGXFSZ, SIG_IGN);

@@ -7,30 +7,63 @@
 #include "framework/error.h"
 
 namespace layerlab::app {
+namespace {
 
-std::vector<double> ParseNumberList(const std::string& text, const std::string& option) {
+std::string Trimmed(const std::string& text) {
+  const size_t first = text.find_first_not_of(" \t");
+  if (first == std::string::npos) return "";
+  return text.substr(first, text.find_last_not_of(" \t") - first + 1);
+}
+
+}  // namespace
+
+double ParseOptionValue(const std::string& text, const std::string& option, const OptionUnit& unit, bool depth) {
+  const std::string item = Trimmed(text);
+  double value = 0;
+  size_t used = 0;
+  try {
+    value = std::stod(item, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != item.size()) {
+    // Not a bare number: a quantity with its unit, in SI, then in the option's unit.
+    try {
+      value = depth && unit.dimension == Dimension::kOpticalPower
+                  ? ParseDepth(item).diopters
+                  : ParseQuantity(item, unit.dimension) / ParseQuantity("1 " + unit.unit, unit.dimension);
+    } catch (const Error& e) {
+      throw Error(option + ": \"" + item + "\" is not a number or " + DimensionName(unit.dimension) + " (" +
+                  e.message() + "; give e.g. 1.5 or \"1.5 " + unit.unit + "\")");
+    }
+  }
+  if (!std::isfinite(value) || value < 0)
+    throw Error(option + ": \"" + item + "\": values must be finite and >= 0");
+  return value;
+}
+
+std::vector<double> ParseNumberList(const std::string& text, const std::string& option, const OptionUnit& unit,
+                                    bool depth) {
   std::vector<double> values;
   std::stringstream in(text);
   std::string item;
-  while (std::getline(in, item, ',')) {
-    try {
-      size_t used = 0;
-      values.push_back(std::stod(item, &used));
-      if (used != item.size()) throw std::invalid_argument(item);
-    } catch (const std::exception&) {
-      throw Error(option + ": \"" + item + "\" is not a number (give a comma-separated list such as 0.7,1.3,1.9)");
-    }
-    if (!std::isfinite(values.back()) || values.back() < 0) throw Error(option + ": values must be finite and >= 0");
-  }
+  while (std::getline(in, item, ',')) values.push_back(ParseOptionValue(item, option, unit, depth));
   if (values.empty()) throw Error(option + ": give at least one value");
   return values;
 }
 
-std::vector<double> ParseRange(const std::string& text, const std::string& option) {
-  std::vector<double> r = ParseNumberList(text, option);
-  if (r.size() != 3) throw Error(option + ": give first,last,step");
-  if (!(r[1] > r[0]) || !(r[2] > 0)) throw Error(option + ": last must exceed first and step must be above 0");
-  if ((r[1] - r[0]) / r[2] > 1e5) throw Error(option + ": more than 100000 steps");
+std::vector<double> ParseRangeBounds(const std::string& text, const std::string& option, const OptionUnit& unit) {
+  std::vector<double> r = ParseNumberList(text, option, unit);
+  if (r.size() != 3) throw Error(option + ": give first,last,step (\"" + text + "\" has " + std::to_string(r.size()) +
+                                 " value" + (r.size() == 1 ? "" : "s") + ")");
+  if (!(r[1] > r[0]) || !(r[2] > 0))
+    throw Error(option + ": \"" + text + "\": last must exceed first and step must be above 0");
+  if ((r[1] - r[0]) / r[2] > 1e5) throw Error(option + ": \"" + text + "\": more than 100000 steps");
+  return r;
+}
+
+std::vector<double> ParseRange(const std::string& text, const std::string& option, const OptionUnit& unit) {
+  const std::vector<double> r = ParseRangeBounds(text, option, unit);
   std::vector<double> values;
   for (int k = 0;; ++k) {
     double v = r[0] + k * r[2];

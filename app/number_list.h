@@ -1,16 +1,40 @@
-// Comma-separated numbers on the command line ("0.4,1.0,1.6,2.2"), refused
-// with the option's name when an item is not a finite number >= 0.
+// Numbers on the command line, read as the scene files read them: each value
+// is a quantity with a unit ("1.0 D", "5 s", "0.05 deg", "2 cpd"; see
+// framework/units.h) or a bare number in the option's own unit, as before
+// ("1.0" for --accommodation is 1.0 D). Lists are comma-separated
+// ("0.7 D,1.3 D"). A bad value is refused with the option's name and the value.
 #pragma once
 
 #include <string>
 #include <vector>
 
+#include "framework/units.h"
+
 namespace layerlab::app {
 
-std::vector<double> ParseNumberList(const std::string& text, const std::string& option);
+// What a bare number means for an option: its dimension and unit ("D", "s", "deg", "cpd").
+struct OptionUnit {
+  Dimension dimension;
+  std::string unit;
+};
+inline const OptionUnit kDiopters{Dimension::kOpticalPower, "D"};
+inline const OptionUnit kSeconds{Dimension::kTime, "s"};
+inline const OptionUnit kDegrees{Dimension::kAngle, "deg"};
+inline const OptionUnit kCyclesPerDegree{Dimension::kAngularFrequency, "cpd"};
+
+// One finite value >= 0, in the option's unit. A depth in diopters also
+// accepts a distance ("0.5 m" is 2 D) when `depth` is set.
+double ParseOptionValue(const std::string& text, const std::string& option, const OptionUnit& unit,
+                        bool depth = false);
+
+// Comma-separated values, each as ParseOptionValue reads it.
+std::vector<double> ParseNumberList(const std::string& text, const std::string& option, const OptionUnit& unit,
+                                    bool depth = false);
 
 // "first,last,step" (all >= 0, last > first, step > 0) as the values
 // first, first + step, ... up to last (inclusive within rounding).
-std::vector<double> ParseRange(const std::string& text, const std::string& option);
+std::vector<double> ParseRange(const std::string& text, const std::string& option, const OptionUnit& unit);
+// The three numbers of a range, checked as ParseRange checks them.
+std::vector<double> ParseRangeBounds(const std::string& text, const std::string& option, const OptionUnit& unit);
 
 }  // namespace layerlab::app
