@@ -44,7 +44,8 @@ std::vector<CompareResult> RunComparison(const std::vector<CompareRun>& runs, co
                     run.system.brightness_efficiency,
                     run.system.luminance_efficiency,
                     run.system.subframes,
-                    run.system.subframes * run.system.frame_rate};
+                    run.system.subframes * run.system.frame_rate,
+                    run.options_from};
     r.report = registry.create(run.solver)->Solve(model, target, options, &t);
     if (progress) progress->Finish(r.report.BriefReport());
     results.push_back(std::move(r));
@@ -55,14 +56,14 @@ std::vector<CompareResult> RunComparison(const std::vector<CompareRun>& runs, co
 std::string CompareTable(const std::vector<CompareResult>& results) {
   std::string out =
       "display                      solver                  PSNR (dB)   seconds  iterations  subframes  panel (Hz)  "
-      "brightness (lum.)  brightness R G B          termination\n";
+      "brightness (lum.)  brightness R G B       options  termination\n";
   for (const CompareResult& r : results) {
     char line[400];
-    std::snprintf(line, sizeof line, "%-28s %-22s %10s %9.2f %11d %10d %11.0f %18.4f  %.4f %.4f %.4f   %s\n",
+    std::snprintf(line, sizeof line, "%-28s %-22s %10s %9.2f %11d %10d %11.0f %18.4f  %.4f %.4f %.4f   %-7s  %s\n",
                   r.display.c_str(), r.solver.c_str(), Psnr(r.report.final_psnr_db).c_str(), r.report.seconds,
                   r.report.iterations, r.subframes, r.panel_refresh_hz, r.luminance_efficiency,
                   r.brightness_efficiency[0], r.brightness_efficiency[1], r.brightness_efficiency[2],
-                  ToString(r.report.termination).c_str());
+                  r.options_from.c_str(), ToString(r.report.termination).c_str());
     out += line;
   }
   return out;
@@ -71,13 +72,14 @@ std::string CompareTable(const std::vector<CompareResult>& results) {
 std::string CompareCsv(const std::vector<CompareResult>& results) {
   std::string out =
       "display,solver,final_psnr_db,seconds,iterations,subframes,panel_refresh_hz,luminance_efficiency,efficiency_r,"
-      "efficiency_g,efficiency_b,termination\n";
+      "efficiency_g,efficiency_b,termination,solver_options\n";
   for (const CompareResult& r : results) {
     char line[400];
-    std::snprintf(line, sizeof line, "%s,%s,%s,%.6f,%d,%d,%.3f,%.6f,%.6f,%.6f,%.6f,%s\n", r.display.c_str(),
+    std::snprintf(line, sizeof line, "%s,%s,%s,%.6f,%d,%d,%.3f,%.6f,%.6f,%.6f,%.6f,%s,%s\n", r.display.c_str(),
                   r.solver.c_str(), Psnr(r.report.final_psnr_db).c_str(), r.report.seconds, r.report.iterations,
                   r.subframes, r.panel_refresh_hz, r.luminance_efficiency, r.brightness_efficiency[0],
-                  r.brightness_efficiency[1], r.brightness_efficiency[2], ToString(r.report.termination).c_str());
+                  r.brightness_efficiency[1], r.brightness_efficiency[2], ToString(r.report.termination).c_str(),
+                  r.options_from.c_str());
     out += line;
   }
   return out;

@@ -17,6 +17,10 @@ struct CompareRun {
   std::string solver;
   SolverOptions options;
   Sampling sampling = Sampling::kNearest;
+  // Where the options come from, for the table: "shared" (the same for every
+  // row: the solver's defaults and the command's overrides) or "scene" (the
+  // scene's own "solve" section).
+  std::string options_from = "shared";
 };
 
 struct CompareResult {
@@ -26,6 +30,7 @@ struct CompareResult {
   double luminance_efficiency = 0;
   int subframes = 1;             // patterns per panel and frame (time multiplexing)
   double panel_refresh_hz = 60;  // what the panels must show: subframes x frame rate
+  std::string options_from = "shared";  // CompareRun::options_from
 };
 
 // Every solver of `registry` that suits `system` (SolverType::unsuitable), by name.

@@ -12,6 +12,7 @@
 #include "analysis/svg_plot.h"
 #include "framework/error.h"
 #include "framework/progress.h"
+#include "framework/version.h"
 #include "solvers/solve_config.h"
 #include "systems/compile.h"
 #include "systems/display_model.h"
@@ -253,6 +254,7 @@ std::string ContrastCsv(const std::vector<ContrastCurve>& curves) {
 
 std::string PeakTable(const std::vector<ContrastCurve>& curves) {
   std::string out;
+  out += "# " + VersionLine() + "\n";
   if (!curves.empty()) out += "# " + curves.front().convention + "\n";
   out +=
       "display                  target (D)  f (cpd)  peak (D)  parabola (D)  +- (D)  placed  peak contrast  at target  "

@@ -34,7 +34,7 @@ std::string Links(const std::vector<std::pair<std::string, std::string>>& links)
 std::string Figure(const ReportImage& image, const std::string& id = "", const std::string& extra_class = "") {
   std::string id_attr = id.empty() ? "" : " id=\"" + id + "\"";
   return "<figure class=\"" + extra_class + "\"><a" + (id.empty() ? "" : " id=\"" + id + "-link\"") + " href=\"" +
-         Escape(image.src) + "\"><img" + id_attr + " src=\"" + Escape(image.src) + "\" alt=\"" + Escape(image.caption) +
+         Escape(image.href.empty() ? image.src : image.href) + "\"><img" + id_attr + " src=\"" + Escape(image.src) + "\" alt=\"" + Escape(image.caption) +
          "\"></a><figcaption" + (id.empty() ? "" : " id=\"" + id + "-caption\"") + ">" + Escape(image.caption) +
          Links(image.links) + "</figcaption></figure>\n";
 }
@@ -144,7 +144,8 @@ constexpr const char* kScript = R"JS(
       });
       var detail = images.length + ' images';
       var layout = document.querySelector('#layout svg');
-      if (!layout) problems.push('no optical layout diagram');
+      if (!document.getElementById('system')) detail += ', no display section';
+      else if (!layout) problems.push('no optical layout diagram');
       else if (!(layout.getBoundingClientRect().width > 100) || layout.querySelectorAll('rect').length < 2)
         problems.push('the optical layout diagram is not drawn');
       else detail += ', the layout diagram';
@@ -296,28 +297,36 @@ std::string CompareSection(const RunReportPage& page) {
   std::string h = "<section id=\"compare\"><h2>Displays side by side on the same target</h2>\n";
   h +=
       "<p class=\"muted\">Brightness efficiency: light at the eye per light the backlights emit. Balance: the channels "
-      "relative to the strongest (1 : 1 : 1 keeps white white; the factorization compensates the rest).</p>\n";
+      "relative to the strongest (1 : 1 : 1 keeps white white; the factorization compensates the rest). Solver options: "
+      "<i>shared</i>, the same for every row (the solver's defaults and the command's overrides); <i>scene</i>, the "
+      "scene's own \"solve\" section.</p>\n";
   h += "<table><tr><th class=\"l\">display</th><th class=\"l\">solver</th><th>PSNR (dB)</th><th>seconds</th>"
        "<th>iterations</th><th>brightness (luminance)</th><th>brightness R / G / B</th><th>balance R : G : B</th>"
-       "<th class=\"l\">termination</th></tr>\n";
+       "<th class=\"l\">termination</th><th class=\"l\">solver options</th></tr>\n";
   for (const CompareResult& r : page.compare)
     h += "<tr><td class=\"l\">" + Escape(r.display) + "</td><td class=\"l\">" + Escape(r.solver) + "</td><td>" +
          F(r.report.final_psnr_db, 2) + "</td><td>" + F(r.report.seconds, 2) + "</td><td>" +
          std::to_string(r.report.iterations) + "</td><td>" + F(r.luminance_efficiency, 4) + "</td><td>" +
          Rgb3(r.brightness_efficiency, 4) + "</td><td>" + Balance(r.brightness_efficiency) + "</td><td class=\"l\">" +
-         Escape(ToString(r.report.termination)) + "</td></tr>\n";
+         Escape(ToString(r.report.termination)) + "</td><td class=\"l\">" + Escape(r.options_from) + "</td></tr>\n";
   h += "</table>\n<div class=\"grid\">" + Figure(page.compare_plot, "", "plot") + "</div>\n";
   return h + "</section>\n";
 }
 
 }  // namespace
 
+ReportImage Picture(std::string caption, std::string src, std::vector<std::pair<std::string, std::string>> links,
+                    std::string href) {
+  return {std::move(caption), std::move(src), std::move(links), std::move(href)};
+}
+
 std::string RenderRunReport(const RunReportPage& page) {
   std::string h = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>" + Escape(page.title) +
                   "</title>\n<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<style>" +
                   kStyle + "</style>\n<script>" + kErrorCatcher + "</script>\n</head><body>\n";
   h += "<header><h1>" + Escape(page.title) + "</h1><p>" + Escape(page.description) + "</p><p>scene <code>" +
-       Escape(page.scene_file) + "</code> &middot; <code>" + Escape(page.command) + "</code></p>\n<nav>";
+       Escape(page.scene_file) + "</code> &middot; <code>" + Escape(page.command) + "</code></p>\n<p id=\"version\">" +
+       Escape(page.version) + "</p>\n<nav>";
   const std::pair<bool, std::string> sections[] = {{true, "steps|Steps"},
                                                    {page.system != nullptr, "system|Display system"},
                                                    {!page.target_source.empty(), "target|Target"},
@@ -348,7 +357,7 @@ std::string RenderRunReport(const RunReportPage& page) {
     h += "<div class=\"grid\">" + Figure(page.psnr_plot, "", "plot") + "</div>\n";
     h += "<h3>Layer patterns (linear transmittance, panel pixel order)</h3><div class=\"grid\">\n";
     for (const ReportImage& p : page.patterns) h += Figure(p, "", "small");
-    h += "</div>\n<h3>Panel-ready images (gamma- and black-level-encoded, full panel)</h3><div class=\"grid\">\n";
+    h += "</div>\n<h3>Panel-ready images (gamma- and black-level-encoded; the active region, a click shows the full panel)</h3><div class=\"grid\">\n";
     for (const ReportImage& p : page.panels) h += Figure(p, "", "panel");
     h += "</div></section>\n";
   }

@@ -23,7 +23,11 @@ struct ReportImage {
   std::string caption;
   std::string src;                                         // the PNG or SVG shown
   std::vector<std::pair<std::string, std::string>> links;  // label, path: "EXR", "retina/display/0.40D.exr"
+  std::string href;                                        // where a click on it goes; empty: src
 };
+
+ReportImage Picture(std::string caption, std::string src, std::vector<std::pair<std::string, std::string>> links = {},
+                    std::string href = "");
 
 struct ReportRetinaState {
   double diopters = 0;
@@ -34,6 +38,7 @@ struct ReportRetinaState {
 
 struct RunReportPage {
   std::string title, scene_file, description, command;
+  std::string version;  // framework/version.h VersionLine()
   const DisplaySystem* system = nullptr;
   std::vector<std::pair<std::string, std::string>> system_links;  // system.txt, system.json
 

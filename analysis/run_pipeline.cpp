@@ -10,6 +10,7 @@
 #include "analysis/compare.h"
 #include "analysis/contrast.h"
 #include "analysis/html_report.h"
+#include "analysis/report_parts.h"
 #include "analysis/retina_sweep.h"
 #include "analysis/run_config.h"
 #include "analysis/target_source.h"
@@ -43,6 +44,7 @@ struct OtherDisplay {
   std::string name;
   DisplaySystem system;
   SolveConfig config;
+  bool own_options = true;  // its own "solve" section; false: runs as the main scene does
 };
 
 struct RunInputs {
@@ -91,6 +93,7 @@ RunInputs ReadInputs(const std::string& file, std::optional<int> iterations, std
       if (!other.document.contains("solve") && d.config.solver == in.solve.solver) {
         d.config.options = in.solve.options;
         d.config.sampling = in.solve.sampling;
+        d.own_options = false;
       }
       in.compare.push_back(std::move(d));
     }
@@ -103,10 +106,6 @@ RunInputs ReadInputs(const std::string& file, std::optional<int> iterations, std
   return in;
 }
 
-ReportImage Picture(const std::string& caption, const std::string& src,
-                    std::vector<std::pair<std::string, std::string>> links = {}) {
-  return {caption, src, std::move(links)};
-}
 
 }  // namespace
 
@@ -133,11 +132,9 @@ RunOutcome RunPipeline(const RunRequest& request) {
   RunReportPage page;
   SolverReport report;
   try {
-    page.title = "layerlab run: " + (in.scene.name.empty() ? in.name : in.scene.name);
-    page.scene_file = request.scene;
-    page.description = in.scene.description;
-    page.command = "layerlab run " + request.scene + " --out " + request.out +
-                   (request.iterations ? " --iterations " + std::to_string(*request.iterations) : "");
+    page = CommandPage("run", request.scene, in.scene.name.empty() ? in.name : in.scene.name, in.scene.description,
+                       "layerlab run " + request.scene + " --out " + request.out +
+                           (request.iterations ? " --iterations " + std::to_string(*request.iterations) : ""));
     page.system = &in.system;
     WriteFileAtomically((out / "system.txt").string(), FormatSystemTable(in.system));
     WriteFileAtomically((out / "system.json").string(), SystemToJson(in.system).dump(2) + "\n");
@@ -180,29 +177,7 @@ RunOutcome RunPipeline(const RunRequest& request) {
         throw Error("the solve failed: " + report.message + "; the report was not written");
       const std::string solve_dir = (out / "solve").string();
       WriteSolution(*model, patterns, report, solve_dir, {.write_lightfield = in.run.write_lightfield});
-      fs::create_directories(out / "solve" / "pattern_previews");
-      for (size_t k = 0; k < in.system.layers.size(); ++k) {
-        const VirtualLayer& layer = in.system.layers[k];
-        const std::string preview = "solve/pattern_previews/" + layer.name + ".png";
-        WriteSrgbPng((out / preview).string(), patterns[k].cols, patterns[k].rows, patterns[k].rgb);
-        page.patterns.push_back(Picture(layer.name + " (" + FormatFixed(layer.diopters, 2) + " D)", preview,
-                                        {{"EXR", "solve/patterns/" + layer.name + ".exr"}}));
-        const std::string panel = "solve/panels/" + layer.name + ".png";
-        page.panels.push_back(Picture(layer.name + ": " + std::to_string(layer.panel.resolution_cols) + " x " +
-                                          std::to_string(layer.panel.resolution_rows) + " panel",
-                                      panel, {{"PNG", panel}}));
-      }
-      CompareResult self{in.name, in.solve.solver, report, in.system.brightness_efficiency,
-                         in.system.luminance_efficiency};
-      WriteFileAtomically((out / "solve" / "psnr_vs_time.svg").string(), PsnrAgainstTimeSvg({self}));
-      page.solved = true;
-      page.solve_brief = report.BriefReport();
-      page.psnr_plot = Picture("PSNR against wall time", "solve/psnr_vs_time.svg",
-                               {{"SVG", "solve/psnr_vs_time.svg"}, {"CSV", "solve/trace.csv"}});
-      page.solve_links = {
-          {"report.txt", "solve/report.txt"}, {"report.json", "solve/report.json"}, {"trace.csv", "solve/trace.csv"}};
-      if (in.run.write_lightfield)
-        page.solve_links.push_back({"synthesized light field", "solve/lightfield/lightfield.json"});
+      AddSolveToPage(in.system, patterns, report, solve_dir, "solve/", in.run.write_lightfield, &page);
       step("solve (" + in.solve.solver + ", " + std::to_string(report.iterations) + " iterations)", start);
     }
 
@@ -218,22 +193,7 @@ RunOutcome RunPipeline(const RunRequest& request) {
                              progress.Update(done, "accommodation states traced (" + s.name + ")");
                            });
       progress.Finish(std::to_string(states.size()) + " states");
-      for (const RetinaStateResult& s : states) {
-        ReportRetinaState rs;
-        rs.diopters = s.diopters;
-        for (double d : r.accommodation) rs.declared |= std::abs(d - s.diopters) < 1e-9;
-        const std::string d = "retina/display/" + s.name, n = "retina/natural/" + s.name;
-        const std::string at = FormatFixed(s.diopters, 2) + " D";
-        rs.display = Picture("the display, focused at " + at, d + ".png", {{"PNG", d + ".png"}, {"EXR", d + ".exr"}});
-        if (natural)
-          rs.natural = Picture("natural viewing of the target, focused at " + at, n + ".png",
-                               {{"PNG", n + ".png"}, {"EXR", n + ".exr"}});
-        rs.display_mean_cd_m2 = s.display_mean_cd_m2;
-        rs.natural_mean_cd_m2 = s.natural_mean_cd_m2;
-        page.retina.push_back(rs);
-      }
-      page.retina_links = {{"retina.csv", "retina/retina.csv"}};
-      page.white_cd_m2 = model->white_luminance();
+      AddRetinaToPage(states, r.accommodation, bool(natural), model->white_luminance(), "retina/", &page);
       step("retina (" + std::to_string(states.size()) + " accommodation states)", start);
     }
 
@@ -242,14 +202,7 @@ RunOutcome RunPipeline(const RunRequest& request) {
       ContrastOptions options = in.run.contrast.options;
       const size_t total = in.contrast.size() * options.frequencies.size() * options.target_diopters.size();
       options.show_progress = true;
-      page.contrast = RunContrast(in.contrast, options);
-      fs::create_directories(out / "contrast");
-      WriteFileAtomically((out / "contrast" / "contrast.csv").string(), ContrastCsv(page.contrast));
-      WriteFileAtomically((out / "contrast" / "peaks.txt").string(), PeakTable(page.contrast));
-      WriteFileAtomically((out / "contrast" / "contrast.svg").string(), ContrastSvg(page.contrast));
-      page.contrast_plot = Picture(
-          "normalized contrast against accommodation", "contrast/contrast.svg",
-          {{"SVG", "contrast/contrast.svg"}, {"CSV", "contrast/contrast.csv"}, {"peaks", "contrast/peaks.txt"}});
+      AddContrastToPage(RunContrast(in.contrast, options), (out / "contrast").string(), "contrast/", &page);
       step("contrast sweep (" + std::to_string(total) + " solves)", start);
     }
 
@@ -269,13 +222,16 @@ RunOutcome RunPipeline(const RunRequest& request) {
             continue;
           }
           if (k == 0 && solver == in.solve.solver && !overridden) {  // the main solve already ran this
-            page.compare.push_back({name, solver, report, system->brightness_efficiency, system->luminance_efficiency});
+            page.compare.push_back({name, solver, report, system->brightness_efficiency, system->luminance_efficiency,
+                                    system->subframes, system->subframes * system->frame_rate, "scene"});
             continue;
           }
+          // A display runs with its scene's own options when it has a "solve" section of its own (ReadInputs).
+          const bool own = solver == configs[k]->solver && (k == 0 || in.compare[k - 1].own_options);
           CompareRun run{
               name, *system, solver,
               solver == configs[k]->solver ? configs[k]->options : SolverRegistry::Builtins().find(solver)->defaults,
-              configs[k]->sampling};
+              configs[k]->sampling, own ? "scene" : "shared"};
           run.options.iterations = c.iterations.value_or(run.options.iterations);
           run.options.time_budget = c.time_budget.value_or(run.options.time_budget);
           CompareResult result = RunComparison({run}, target->light_field, true).front();
@@ -284,21 +240,14 @@ RunOutcome RunPipeline(const RunRequest& request) {
           page.compare.push_back(std::move(result));
         }
       }
-      fs::create_directories(out / "compare");
-      WriteFileAtomically((out / "compare" / "compare.txt").string(), CompareTable(page.compare));
-      WriteFileAtomically((out / "compare" / "compare.csv").string(), CompareCsv(page.compare));
-      WriteFileAtomically((out / "compare" / "traces.csv").string(), TracesCsv(page.compare));
-      WriteFileAtomically((out / "compare" / "psnr_vs_time.svg").string(), PsnrAgainstTimeSvg(page.compare));
-      page.compare_plot = Picture(
-          "PSNR against wall time, every display and solver", "compare/psnr_vs_time.svg",
-          {{"SVG", "compare/psnr_vs_time.svg"}, {"CSV", "compare/compare.csv"}, {"traces", "compare/traces.csv"}});
+      AddCompareToPage(page.compare, (out / "compare").string(), "compare/", &page);
       step("compare (" + std::to_string(page.compare.size()) + " runs)", start);
       outcome.compare_table = CompareTable(page.compare);
     }
 
     page.steps.emplace_back("total", Since(run_start));
     outcome.warnings = page.warnings;
-    WriteFileAtomically((out / "index.html").string(), RenderRunReport(page));
+    WriteReportPage(page, out.string());
   } catch (const Error& e) {
     throw stage.Explain(e);
   }

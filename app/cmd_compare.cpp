@@ -1,6 +1,9 @@
 // layerlab compare SCENES... --target LF_DIR --out DIR: several displays and
 // solvers on one target; a table (PSNR, seconds, iterations, brightness) and
-// one plot of PSNR against wall time with every run on it.
+// one plot of PSNR against wall time with every run on it, and OUT/index.html.
+// Like for like: every row runs with the same solver options (each solver's
+// defaults, --iterations, --time-budget) unless --scene-options asks for
+// each scene's own "solve" section.
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -9,6 +12,8 @@
 #include <sstream>
 
 #include "analysis/compare.h"
+#include "analysis/report_parts.h"
+#include "app/command_line.h"
 #include "app/commands.h"
 #include "app/number_list.h"
 #include "framework/atomic_file.h"
@@ -39,6 +44,7 @@ void AddCompareCommand(CLI::App& app) {
     std::string target, out, solvers;
     std::optional<int> iterations;
     std::string time_budget;
+    bool scene_options = false;
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("compare", "Several displays and solvers on one target: PSNR against time");
@@ -49,6 +55,9 @@ void AddCompareCommand(CLI::App& app) {
                   "Solvers to run on each display, comma-separated, or \"all\" for every solver that suits it "
                   "(default: each scene's own)");
   cmd->add_option("--iterations", o->iterations, "Iterations of every run (default: each solver's)");
+  cmd->add_flag("--scene-options", o->scene_options,
+                "Run each scene with its own \"solve\" section (options, sampling) instead of the same options for "
+                "every row (each solver's defaults; the table's options column says which)");
   cmd->add_option("--time-budget", o->time_budget, "How long each run may take: seconds, or with units (\"5 s\")");
   cmd->callback([o] {
     const bool all = o->solvers == "all";
@@ -70,17 +79,20 @@ void AddCompareCommand(CLI::App& app) {
           std::fprintf(stderr, "compare: skipped %s / %s: the solver %s\n", name.c_str(), solver.c_str(), why.c_str());
           continue;
         }
-        SolverOptions options =
-            solver == config.solver ? config.options : SolverRegistry::Builtins().find(solver)->defaults;
+        // Like for like unless asked: every row runs its solver with the same options.
+        const bool own = o->scene_options && solver == config.solver;
+        SolverOptions options = own ? config.options : SolverRegistry::Builtins().find(solver)->defaults;
         options.iterations = o->iterations.value_or(options.iterations);
         options.time_budget = time_budget.value_or(options.time_budget);
-        runs.push_back({name, system, solver, options, config.sampling});
+        runs.push_back({name, system, solver, options, own ? config.sampling : Sampling::kNearest,
+                        own ? "scene" : "shared"});
       }
     }
     if (runs.empty()) throw Error("compare: no display and solver fit together; nothing to run");
     std::vector<NamedInput> inputs = {{o->target, "the target"}};
     for (const std::string& file : o->scenes) inputs.push_back({file, "a scene"});
-    StagedOutput stage(o->out, "compare", {"compare.txt", "compare.csv", "traces.csv", "psnr_vs_time.svg"}, inputs);
+    StagedOutput stage(o->out, "compare", {"compare.txt", "compare.csv", "traces.csv", "psnr_vs_time.svg", "index.html"},
+                       inputs);
     Note("compare: loading " + o->target);
     LightField target = ReadLightField(o->target, {.load_depth = false});
     std::vector<CompareResult> results = RunComparison(runs, target, true);
@@ -91,15 +103,15 @@ void AddCompareCommand(CLI::App& app) {
 
     const std::string table = CompareTable(results);
     try {
-      WriteFileAtomically(stage.staging() + "/compare.txt", table);
-      WriteFileAtomically(stage.staging() + "/compare.csv", CompareCsv(results));
-      WriteFileAtomically(stage.staging() + "/traces.csv", TracesCsv(results));
-      WriteFileAtomically(stage.staging() + "/psnr_vs_time.svg", PsnrAgainstTimeSvg(results));
+      RunReportPage page = CommandPage("compare", "", "", "", CommandLine());
+      for (const CompareResult& r : results) page.steps.push_back({r.display + " / " + r.solver, r.report.seconds});
+      AddCompareToPage(results, stage.staging(), "", &page);
+      WriteReportPage(page, stage.staging());
     } catch (const Error& e) {
       throw stage.Explain(e);
     }
     stage.Commit();
-    std::cout << table << "wrote " << o->out << "/{compare.txt,compare.csv,traces.csv,psnr_vs_time.svg}\n";
+    std::cout << table << "wrote " << o->out << "/{index.html,compare.txt,compare.csv,traces.csv,psnr_vs_time.svg}\n";
   });
 }
 

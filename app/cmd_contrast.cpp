@@ -7,6 +7,8 @@
 #include <memory>
 
 #include "analysis/contrast.h"
+#include "analysis/report_parts.h"
+#include "app/command_line.h"
 #include "app/commands.h"
 #include "app/number_list.h"
 #include "framework/atomic_file.h"
@@ -72,22 +74,23 @@ void AddContrastCommand(CLI::App& app) {
     for (const std::string& file : o->scenes) displays.push_back(LoadContrastDisplay(file));
     std::vector<NamedInput> inputs;
     for (const std::string& file : o->scenes) inputs.push_back({file, "a scene"});
-    StagedOutput stage(o->out, "contrast", {"contrast.csv", "peaks.txt", "contrast.svg"}, inputs);
+    StagedOutput stage(o->out, "contrast", {"contrast.csv", "peaks.txt", "contrast.svg", "index.html"}, inputs);
     auto start = std::chrono::steady_clock::now();
     std::vector<ContrastCurve> curves = RunContrast(displays, options);
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
     std::string peaks = PeakTable(curves);
     try {
-      WriteFileAtomically(stage.staging() + "/contrast.csv", ContrastCsv(curves));
-      WriteFileAtomically(stage.staging() + "/peaks.txt", peaks);
-      WriteFileAtomically(stage.staging() + "/contrast.svg", ContrastSvg(curves));
+      RunReportPage page = CommandPage("contrast", "", "", "", CommandLine());
+      page.steps = {{"contrast sweep (" + std::to_string(curves.size()) + " curves)", seconds}};
+      AddContrastToPage(curves, stage.staging(), "", &page);
+      WriteReportPage(page, stage.staging());
     } catch (const Error& e) {
       throw stage.Explain(e);
     }
     stage.Commit();
     std::cout << peaks;
-    std::printf("sweep of %zu curves in %.2f s; wrote %s/{contrast.csv,peaks.txt,contrast.svg}\n", curves.size(),
+    std::printf("sweep of %zu curves in %.2f s; wrote %s/{index.html,contrast.csv,peaks.txt,contrast.svg}\n", curves.size(),
                 seconds, o->out.c_str());
   });
 }

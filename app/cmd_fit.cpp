@@ -13,6 +13,7 @@
 #include "calibration/calibration.h"
 #include "framework/atomic_file.h"
 #include "framework/staged_output.h"
+#include "framework/version.h"
 #include "systems/compile.h"
 
 namespace layerlab::app {
@@ -62,7 +63,11 @@ void AddFitCommand(CLI::App& app) {
     CalibratedDisplay display;
     CalibrationReport report = Calibrate(system, measurements, options, &display);
     std::cout << report.FullReport();
-    if (!o->report.empty()) WriteFileAtomically(o->report, report.ToJson().dump(2) + "\n");
+    if (!o->report.empty()) {
+      nlohmann::json j = report.ToJson();
+      j["layerlab"] = VersionLine();
+      WriteFileAtomically(o->report, j.dump(2) + "\n");
+    }
     if (!report.IsSolutionUsable()) throw Error("the calibration failed: " + report.message + "; nothing was written");
 
     nlohmann::ordered_json calibrated = CalibratedSceneDocument(ReadDocumentInOrder(o->scene), o->scene, display);

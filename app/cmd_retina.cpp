@@ -5,11 +5,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
 
+#include "analysis/report_parts.h"
 #include "analysis/retina_sweep.h"
+#include "app/command_line.h"
 #include "app/commands.h"
 #include "app/number_list.h"
 #include "framework/error.h"
@@ -73,7 +76,7 @@ void AddRetinaCommand(CLI::App& app) {
         throw Error("--field: give W,H in degrees, each in (0, 170)");
       field_x = f[0], field_y = f[1];
     }
-    StagedOutput stage(o->out, "retina", {"display", "natural", "retina.csv"},
+    StagedOutput stage(o->out, "retina", {"display", "natural", "retina.csv", "index.html"},
                        {{o->scene, "the scene"},
                         {o->patterns, "the patterns"},
                         {o->target, "the target"},
@@ -101,15 +104,25 @@ void AddRetinaCommand(CLI::App& app) {
     RetinaSweepOptions sweep{states, resolution, field_x, field_y};
     Progress progress("retina", states.size());
     try {
-      WriteRetinaSweep(model, t, natural, sweep, stage.staging(), [&](size_t done, size_t, const RetinaStateResult& r) {
-        progress.Update(done, "accommodation states traced (" + r.name + ")");
-      });
+      const std::vector<RetinaStateResult> results = WriteRetinaSweep(
+          model, t, natural, sweep, stage.staging(), [&](size_t done, size_t, const RetinaStateResult& r) {
+            progress.Update(done, "accommodation states traced (" + r.name + ")");
+          });
       progress.Finish(std::to_string(states.size()) + " states of " + FormatFixed(resolution, 3) + " deg samples");
+      RunReportPage page = CommandPage("retina", o->scene, scene.name.empty() ? std::filesystem::path(o->scene).stem().string() : scene.name,
+                                       scene.description, CommandLine());
+      page.system = &system;
+      double seconds = 0;
+      for (const RetinaStateResult& r : results) seconds += r.seconds;
+      page.steps = {{"retina (" + std::to_string(results.size()) + " accommodation states)", seconds}};
+      AddRetinaToPage(results, ParseNumberList(o->accommodation, "--accommodation", kDiopters, true), bool(natural),
+                      model.white_luminance(), "", &page);
+      WriteReportPage(page, stage.staging());
     } catch (const Error& e) {
       throw stage.Explain(e);
     }
     stage.Commit();
-    std::printf("wrote %s/{display%s,retina.csv}: %zu states; values are display-relative (1 = %.4g cd/m2)\n",
+    std::printf("wrote %s/{index.html,display%s,retina.csv}: %zu states; values are display-relative (1 = %.4g cd/m2)\n",
                 o->out.c_str(), natural ? ",natural" : "", states.size(), model.white_luminance());
   });
 }

@@ -10,7 +10,9 @@
 #include <optional>
 #include <string>
 
+#include "analysis/report_parts.h"
 #include "analysis/target_source.h"
+#include "app/command_line.h"
 #include "app/commands.h"
 #include "app/number_list.h"
 #include "framework/interrupt.h"
@@ -94,7 +96,9 @@ void AddSolveCommand(CLI::App& app) {
     Note("the solve needs about " + FormatBytes(double(need)));
     // The results are built beside the earlier ones and switched into place when complete.
     StagedOutput stage(
-        o->out, "solve", {"patterns", "panels", "lightfield", "trace.csv", "report.txt", "report.json", "checkpoint"},
+        o->out, "solve",
+        {"patterns", "panels", "lightfield", "trace.csv", "report.txt", "report.json", "checkpoint", "index.html",
+         "pattern_previews", "panel_previews", "psnr_vs_time.svg"},
         {{o->scene, "the scene"}, {config.target, "the target"}, {config.target_scene, "the target scene"}});
     for (const std::string& line : stage.recovered()) Note("solve: " + line);
     std::unique_ptr<Target> target = LoadOrRenderTarget(config, "target");
@@ -135,6 +139,14 @@ void AddSolveCommand(CLI::App& app) {
     if (!report.IsSolutionUsable()) throw Error("the solve failed: " + report.message + "; nothing was written");
     try {
       WriteSolution(model, patterns, report, stage.staging(), {.write_lightfield = o->write_lightfield});
+      RunReportPage page = CommandPage("solve", o->scene, scene.name.empty() ? std::filesystem::path(o->scene).stem().string() : scene.name,
+                                       scene.description, CommandLine());
+      page.system = &system;
+      page.steps = {{"solve (" + config.solver + ", " + std::to_string(report.iterations) + " iterations)",
+                     report.seconds}};
+      page.warnings = report.warnings;
+      AddSolveToPage(system, patterns, report, stage.staging(), "", o->write_lightfield, &page);
+      WriteReportPage(page, stage.staging());
     } catch (const Error& e) {
       throw stage.Explain(e);
     }
@@ -142,7 +154,7 @@ void AddSolveCommand(CLI::App& app) {
     if (!switched.removed.empty())
       std::fprintf(stderr, "solve: removed %zu file%s an earlier solve wrote into %s\n", switched.removed.size(),
                    switched.removed.size() == 1 ? "" : "s", o->out.c_str());
-    std::cout << "wrote " << o->out << "/{patterns,panels,trace.csv,report.txt,report.json"
+    std::cout << "wrote " << o->out << "/{index.html,patterns,panels,trace.csv,report.txt,report.json"
               << (o->write_lightfield ? ",lightfield" : "") << "}\n";
     if (report.termination == Termination::kInterrupted)
       throw InterruptedError("interrupted: " + o->out + " holds the patterns of iteration " +

@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/command_line.h"
 #include "app/commands.h"
 #include "framework/error.h"
 #include "framework/interrupt.h"
@@ -15,6 +16,7 @@
 #include "systems/row_kernels.h"
 
 int main(int argc, char** argv) {
+  layerlab::app::SetCommandLine(argc, argv);
   CLI::App app{"layerlab: model, factorize and analyse layered light-field near-eye displays"};
   app.require_subcommand(1);
   app.set_version_flag("--version", layerlab::VersionLine(), "Print the version (and the git commit) and exit");

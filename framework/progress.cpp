@@ -16,7 +16,9 @@ constexpr std::chrono::seconds kPlainLineEvery{10};
 
 std::string Seconds(double s) {
   char text[32];
-  if (s < 60)
+  if (s < 10)
+    std::snprintf(text, sizeof text, "%.1f s", s);
+  else if (s < 60)
     std::snprintf(text, sizeof text, "%.0f s", s);
   else if (s < 3600)
     std::snprintf(text, sizeof text, "%.1f min", s / 60);

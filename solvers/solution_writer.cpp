@@ -9,6 +9,7 @@
 #include "framework/exr_image.h"
 #include "framework/lightfield_io.h"
 #include "framework/png_writer.h"
+#include "framework/version.h"
 #include "systems/system_report.h"
 
 namespace layerlab {
@@ -49,7 +50,8 @@ nlohmann::json ReportToJson(const SolverReport& r) {
                       {"target_out_of_range", r.out_of_range},
                       {"target_scale", r.target_scale},
                       {"warnings", r.warnings},
-                      {"brief", r.BriefReport()}};
+                      {"brief", r.BriefReport()},
+                      {"layerlab", VersionLine()}};
   for (const IterationRecord& t : r.trace)
     j["trace"].push_back({{"iteration", t.iteration},
                           {"seconds", t.seconds},
@@ -120,7 +122,8 @@ std::vector<std::string> WriteSolution(const DisplayModel& model, const Patterns
     written.push_back("panels/" + layer.name + ".png");
   }
   WriteFileAtomically((fs::path(folder) / "trace.csv").string(), TraceCsv(annotated));
-  WriteFileAtomically((fs::path(folder) / "report.txt").string(), annotated.FullReport());
+  WriteFileAtomically((fs::path(folder) / "report.txt").string(),
+                      annotated.FullReport() + "written by " + VersionLine() + "\n");
   WriteFileAtomically((fs::path(folder) / "report.json").string(), ReportToJson(annotated).dump(2) + "\n");
   written.insert(written.end(), {"trace.csv", "report.txt", "report.json"});
   if (what.write_lightfield) {

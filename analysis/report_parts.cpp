@@ -1,0 +1,133 @@
+#include "analysis/report_parts.h"
+
+#include <cmath>
+#include <filesystem>
+
+#include "framework/atomic_file.h"
+#include "framework/error.h"
+#include "framework/png_writer.h"
+#include "framework/units.h"
+#include "framework/version.h"
+#include "solvers/solution_writer.h"
+
+namespace layerlab {
+namespace {
+
+namespace fs = std::filesystem;
+
+using Links = std::vector<std::pair<std::string, std::string>>;
+
+void MakeFolder(const fs::path& folder) {
+  std::error_code ec;
+  fs::create_directories(folder, ec);
+  if (ec) throw Error(folder.string() + ": cannot create the folder: " + ec.message());
+}
+
+}  // namespace
+
+RunReportPage CommandPage(const std::string& command, const std::string& scene_file, const std::string& name,
+                          const std::string& description, const std::string& command_line) {
+  RunReportPage page;
+  page.title = "layerlab " + command + (name.empty() ? "" : ": " + name);
+  page.scene_file = scene_file;
+  page.description = description;
+  page.command = command_line;
+  page.version = VersionLine();
+  return page;
+}
+
+void AddSolveToPage(const DisplaySystem& system, const Patterns& patterns, const SolverReport& report,
+                    const std::string& folder, const std::string& prefix, bool with_lightfield, RunReportPage* page) {
+  const fs::path out(folder);
+  MakeFolder(out / "pattern_previews");
+  MakeFolder(out / "panel_previews");
+  for (size_t k = 0; k < system.layers.size(); ++k) {
+    const VirtualLayer& layer = system.layers[k];
+    const std::string preview = "pattern_previews/" + layer.name + ".png";
+    WriteSrgbPng((out / preview).string(), patterns[k].cols, patterns[k].rows, patterns[k].rgb);
+    page->patterns.push_back(Picture(layer.name + " (" + FormatFixed(layer.diopters, 2) + " D)", prefix + preview,
+                                     {{"EXR", prefix + "patterns/" + layer.name + ".exr"}}));
+    // The panel-ready image cropped to the pixels the layer drives; the full panel is a click away.
+    const PanelEncoding encoded = EncodeForPanel(layer, patterns[k]);
+    const PanelSpec& panel = layer.panel;
+    std::vector<uint8_t> active(static_cast<size_t>(patterns[k].cols) * patterns[k].rows * 3);
+    for (int row = 0; row < patterns[k].rows; ++row)
+      for (int col = 0; col < patterns[k].cols * 3; ++col)
+        active[static_cast<size_t>(row) * patterns[k].cols * 3 + col] =
+            encoded.pixels[((static_cast<size_t>(row) + panel.active_top) * panel.resolution_cols + panel.active_left) *
+                               3 +
+                           col];
+    const std::string cropped = "panel_previews/" + layer.name + ".png";
+    WritePng8((out / cropped).string(), patterns[k].cols, patterns[k].rows, 3, active);
+    const std::string full = prefix + "panels/" + layer.name + ".png";
+    page->panels.push_back(Picture(layer.name + ": active " + std::to_string(patterns[k].cols) + " x " +
+                                       std::to_string(patterns[k].rows) + " of the " +
+                                       std::to_string(panel.resolution_cols) + " x " +
+                                       std::to_string(panel.resolution_rows) + " panel",
+                                   prefix + cropped, {{"full panel PNG", full}}, full));
+  }
+  CompareResult self{fs::path(system.file).stem().string(), report.solver, report, system.brightness_efficiency,
+                     system.luminance_efficiency};
+  WriteFileAtomically((out / "psnr_vs_time.svg").string(), PsnrAgainstTimeSvg({self}));
+  page->solved = true;
+  page->solve_brief = report.BriefReport();
+  page->psnr_plot = Picture("PSNR against wall time", prefix + "psnr_vs_time.svg",
+                            {{"SVG", prefix + "psnr_vs_time.svg"}, {"CSV", prefix + "trace.csv"}});
+  page->solve_links = {{"report.txt", prefix + "report.txt"},
+                       {"report.json", prefix + "report.json"},
+                       {"trace.csv", prefix + "trace.csv"}};
+  if (with_lightfield) page->solve_links.push_back({"synthesized light field", prefix + "lightfield/lightfield.json"});
+}
+
+void AddRetinaToPage(const std::vector<RetinaStateResult>& states, const std::vector<double>& declared,
+                     bool natural, double white_cd_m2, const std::string& prefix, RunReportPage* page) {
+  for (const RetinaStateResult& s : states) {
+    ReportRetinaState rs;
+    rs.diopters = s.diopters;
+    for (double d : declared) rs.declared |= std::abs(d - s.diopters) < 1e-9;
+    const std::string d = prefix + "display/" + s.name, n = prefix + "natural/" + s.name;
+    const std::string at = FormatFixed(s.diopters, 2) + " D";
+    rs.display = Picture("the display, focused at " + at, d + ".png", {{"PNG", d + ".png"}, {"EXR", d + ".exr"}});
+    if (natural)
+      rs.natural = Picture("natural viewing of the target, focused at " + at, n + ".png",
+                           {{"PNG", n + ".png"}, {"EXR", n + ".exr"}});
+    rs.display_mean_cd_m2 = s.display_mean_cd_m2;
+    rs.natural_mean_cd_m2 = s.natural_mean_cd_m2;
+    page->retina.push_back(rs);
+  }
+  page->retina_links = {{"retina.csv", prefix + "retina.csv"}};
+  page->white_cd_m2 = white_cd_m2;
+}
+
+void AddContrastToPage(const std::vector<ContrastCurve>& curves, const std::string& folder, const std::string& prefix,
+                       RunReportPage* page) {
+  const fs::path out(folder);
+  MakeFolder(out);
+  WriteFileAtomically((out / "contrast.csv").string(), ContrastCsv(curves));
+  WriteFileAtomically((out / "peaks.txt").string(), PeakTable(curves));
+  WriteFileAtomically((out / "contrast.svg").string(), ContrastSvg(curves));
+  page->contrast = curves;
+  page->contrast_plot = Picture(
+      "normalized contrast against accommodation", prefix + "contrast.svg",
+      {{"SVG", prefix + "contrast.svg"}, {"CSV", prefix + "contrast.csv"}, {"peaks", prefix + "peaks.txt"}});
+}
+
+void AddCompareToPage(const std::vector<CompareResult>& results, const std::string& folder, const std::string& prefix,
+                      RunReportPage* page) {
+  const fs::path out(folder);
+  MakeFolder(out);
+  WriteFileAtomically((out / "compare.txt").string(), CompareTable(results));
+  WriteFileAtomically((out / "compare.csv").string(), CompareCsv(results));
+  WriteFileAtomically((out / "traces.csv").string(), TracesCsv(results));
+  WriteFileAtomically((out / "psnr_vs_time.svg").string(), PsnrAgainstTimeSvg(results));
+  page->compare = results;
+  page->compare_plot = Picture(
+      "PSNR against wall time, every display and solver", prefix + "psnr_vs_time.svg",
+      {{"SVG", prefix + "psnr_vs_time.svg"}, {"CSV", prefix + "compare.csv"}, {"traces", prefix + "traces.csv"}});
+}
+
+void WriteReportPage(const RunReportPage& page, const std::string& folder) {
+  WriteFileAtomically((fs::path(folder) / "index.html").string(), RenderRunReport(page));
+}
+
+}  // namespace layerlab
