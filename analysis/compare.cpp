@@ -106,7 +106,7 @@ std::string PsnrAgainstTimeSvg(const std::vector<CompareResult>& results) {
   panel.y_label = "PSNR (dB)";
   double t_max = 0, y_min = INFINITY, y_max = -INFINITY;
   for (size_t k = 0; k < results.size(); ++k) {
-    PlotLine line{results[k].display + " / " + results[k].solver, kColors[k % 8], false, {}, {}};
+    PlotLine line{results[k].display + " / " + results[k].solver, kColors[k % 8], k >= 8, {}, {}};
     for (const IterationRecord& row : results[k].report.trace) {
       if (!std::isfinite(row.psnr_db)) continue;
       line.x.push_back(row.seconds);
@@ -122,7 +122,7 @@ std::string PsnrAgainstTimeSvg(const std::vector<CompareResult>& results) {
   panel.x_max = t_max > 0 ? t_max * 1.02 : 1;
   panel.y_min = std::floor(y_min - 0.5);
   panel.y_max = std::ceil(y_max + 0.5);
-  return RenderSvg({panel}, 1, "Error against run time");
+  return RenderSvg({panel}, 1, "");
 }
 
 }  // namespace layerlab

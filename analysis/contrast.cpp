@@ -272,7 +272,7 @@ std::string PeakTable(const std::vector<ContrastCurve>& curves) {
 }
 
 std::string ContrastSvg(const std::vector<ContrastCurve>& curves) {
-  static const char* kColors[] = {"#d62728", "#2ca02c", "#1f77b4", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2"};
+  static const char* kColors[] = {"#d62728", "#1f77b4", "#ff7f0e", "#9467bd", "#2ca02c", "#8c564b", "#e377c2"};
   std::vector<double> frequencies, depths;
   std::vector<std::string> displays;
   for (const ContrastCurve& c : curves) {

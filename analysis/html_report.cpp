@@ -35,8 +35,9 @@ std::string Figure(const ReportImage& image, const std::string& id = "", const s
   std::string id_attr = id.empty() ? "" : " id=\"" + id + "\"";
   return "<figure class=\"" + extra_class + "\"><a" + (id.empty() ? "" : " id=\"" + id + "-link\"") + " href=\"" +
          Escape(image.href.empty() ? image.src : image.href) + "\"><img" + id_attr + " src=\"" + Escape(image.src) + "\" alt=\"" + Escape(image.caption) +
-         "\"></a><figcaption" + (id.empty() ? "" : " id=\"" + id + "-caption\"") + ">" + Escape(image.caption) +
-         Links(image.links) + "</figcaption></figure>\n";
+         "\"></a><figcaption" + (id.empty() ? "" : " id=\"" + id + "-caption\"") + ">" +
+         // A plot carries its own title: the caption only links its files.
+         (extra_class == "plot" ? std::string() : Escape(image.caption)) + Links(image.links) + "</figcaption></figure>\n";
 }
 
 std::string Rgb3(const Rgb& v, int decimals) {
@@ -63,8 +64,8 @@ section{background:#fff;border:1px solid #ddd;border-radius:6px;margin:18px 0;pa
 h2{font-size:18px;margin:12px 0 8px;border-bottom:1px solid #eee;padding-bottom:4px}
 h3{font-size:15px;margin:14px 0 6px}
 table{border-collapse:collapse;margin:6px 0 10px;font-variant-numeric:tabular-nums;display:block;overflow-x:auto;max-width:100%}
-th,td{border:1px solid #ddd;padding:3px 8px;text-align:right;white-space:nowrap}
-th{background:#f0f2f4;font-weight:600}
+th,td{border:1px solid #ddd;padding:3px 7px;text-align:right;white-space:nowrap}
+th{background:#f0f2f4;font-weight:600;white-space:normal;vertical-align:bottom;max-width:9em}
 td.l,th.l{text-align:left}
 .grid{display:flex;flex-wrap:wrap;gap:14px;align-items:flex-start}
 figure{margin:0;max-width:100%}
@@ -72,13 +73,16 @@ figure img{display:block;max-width:100%;border:1px solid #ccc;background:#000;im
 figure.plot img{background:#fff;image-rendering:auto}
 figure.layout svg{display:block;max-width:100%;height:auto;border:1px solid #ccc}
 figure.small img{width:300px}
-figure.panel img{width:420px}
+figure.panel img{width:320px}
 figure.retina{flex:1 1 420px}
 figure.retina img{width:100%}
 figcaption{font-size:12px;color:#444;margin-top:3px}
 a.file{font-size:12px;margin-left:4px;padding:0 4px;border:1px solid #b8c4ce;border-radius:3px;text-decoration:none;color:#20507a}
 .slider{display:flex;align-items:center;gap:12px;margin:8px 0 12px;flex-wrap:wrap}
-.slider input{flex:1 1 420px}
+.slider .track{flex:1 1 420px;position:relative;padding-bottom:20px}
+.slider input{width:100%;margin:0}
+.ticks span{position:absolute;top:22px;transform:translateX(-50%);font-size:12px;color:#333;white-space:nowrap}
+.ticks span:before{content:"";position:absolute;left:50%;top:-6px;height:5px;border-left:1px solid #777}
 #state{font-size:18px;font-weight:600;min-width:190px}
 .warn{color:#8a4b00}
 pre{background:#f4f4f4;padding:8px;overflow:auto;font-size:12px}
@@ -237,10 +241,17 @@ std::string RetinaSection(const RunReportPage& page) {
       start = k;
       break;
     }
-  h += "<div class=\"slider\"><label for=\"accommodation\">accommodation</label><input type=\"range\" "
-       "id=\"accommodation\" min=\"0\" max=\"" +
+  h += "<div class=\"slider\"><label for=\"accommodation\">accommodation</label><div class=\"track\"><input "
+       "type=\"range\" id=\"accommodation\" min=\"0\" max=\"" +
        std::to_string(page.retina.size() - 1) + "\" step=\"1\" value=\"" + std::to_string(start) +
-       "\" list=\"declared-states\"><span id=\"state\"></span></div>\n<datalist id=\"declared-states\">";
+       "\" list=\"declared-states\"><div class=\"ticks\">";
+  // A label under each declared state, where the thumb's center (16 px wide in Chromium) stands.
+  const double last = std::max<double>(1, double(page.retina.size() - 1));
+  for (size_t k = 0; k < page.retina.size(); ++k)
+    if (page.retina[k].declared)
+      h += "<span style=\"left:calc(" + F(100 * k / last, 3) + "% + " + F(8 - 16 * k / last, 2) + "px)\">" +
+           F(page.retina[k].diopters, 2) + " D</span>";
+  h += "</div></div><span id=\"state\"></span></div>\n<datalist id=\"declared-states\">";
   for (size_t k = 0; k < page.retina.size(); ++k)
     if (page.retina[k].declared) h += "<option value=\"" + std::to_string(k) + "\"></option>";
   h += "</datalist>\n<div class=\"grid\">\n";
@@ -279,7 +290,7 @@ std::string ContrastSection(const RunReportPage& page) {
   h +=
       "<p class=\"muted\">A cosine grating on a plane at each target depth; each display is factorized for it and the "
       "eye "
-      "sweeps its focus. A display supports accommodation when its peak follows the target depth (dashed green).</p>\n";
+      "sweeps its focus. A display supports accommodation when its peak follows the target depth (the grey band).</p>\n";
   h += "<div class=\"grid\">" + Figure(page.contrast_plot, "", "plot") + "</div>\n";
   if (!page.contrast.empty()) h += "<p class=\"muted\">" + Escape(page.contrast.front().convention) + ".</p>\n";
   h += "<h3>Peaks</h3>\n<table><tr><th class=\"l\">display</th><th>target (D)</th><th>f (cpd)</th><th>peak (D)</th>"

@@ -55,7 +55,12 @@ std::vector<double> NiceTicks(double lo, double hi, int target_count) {
 }
 
 std::string RenderSvg(const std::vector<PlotPanel>& panels, int columns, const std::string& title) {
-  const double w = 360, h = 260, left = 58, right = 12, top = 30, bottom = 44, legend_row = 18;
+  const bool alone = panels.size() == 1;
+  const double w = alone ? 640 : 460, h = alone ? 380 : 330, left = 62, right = 14, top = alone ? 12 : 30,
+               bottom = 46, legend_row = 20;
+  const std::string heading = alone && title.empty() ? panels.front().title : title;
+  bool markers = false;
+  for (const PlotPanel& panel : panels) markers |= !panel.markers.empty();
   int rows = static_cast<int>((panels.size() + columns - 1) / columns);
   const double page_w = w * columns;
   // One legend for all panels, from the first panel's lines, wrapped into rows that fit the page.
@@ -68,8 +73,11 @@ std::string RenderSvg(const std::vector<PlotPanel>& panels, int columns, const s
   if (!panels.empty()) {
     double x = 20;
     legend_rows = 1;
-    for (const PlotLine& line : panels.front().lines) {
-      double width = 40 + 6.5 * line.label.size();
+    std::vector<std::string> labels;
+    for (const PlotLine& line : panels.front().lines) labels.push_back(line.label);
+    if (markers) labels.push_back(panels.front().markers.empty() ? "target depth" : panels.front().markers[0].label);
+    for (const std::string& label : labels) {
+      double width = 44 + 7 * label.size();
       if (x > 20 && x + width > page_w - 8) x = 20, ++legend_rows;
       legend.push_back({x, legend_rows - 1});
       x += width;
@@ -78,9 +86,9 @@ std::string RenderSvg(const std::vector<PlotPanel>& panels, int columns, const s
   const double page_h = 36 + h * rows + 6 + legend_row * legend_rows;
   std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + Num(page_w) + "\" height=\"" + Num(page_h) +
                     "\" viewBox=\"0 0 " + Num(page_w) + " " + Num(page_h) +
-                    "\" font-family=\"Helvetica, Arial, sans-serif\" font-size=\"11\">\n";
+                    "\" font-family=\"Helvetica, Arial, sans-serif\" font-size=\"12\">\n";
   svg += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  svg += "<text x=\"" + Num(page_w / 2) + "\" y=\"20\" text-anchor=\"middle\" font-size=\"14\">" + Escape(title) +
+  svg += "<text x=\"" + Num(page_w / 2) + "\" y=\"22\" text-anchor=\"middle\" font-size=\"15\">" + Escape(heading) +
          "</text>\n";
   for (size_t p = 0; p < panels.size(); ++p) {
     const PlotPanel& panel = panels[p];
@@ -88,8 +96,10 @@ std::string RenderSvg(const std::vector<PlotPanel>& panels, int columns, const s
     double x0 = ox + left, x1 = ox + w - right, y0 = oy + h - bottom, y1 = oy + top;
     auto X = [&](double x) { return x0 + (x - panel.x_min) / (panel.x_max - panel.x_min) * (x1 - x0); };
     auto Y = [&](double y) { return y0 - (y - panel.y_min) / (panel.y_max - panel.y_min) * (y0 - y1); };
-    svg += "<g>\n<text x=\"" + Num((x0 + x1) / 2) + "\" y=\"" + Num(oy + 18) +
-           "\" text-anchor=\"middle\" font-size=\"12\">" + Escape(panel.title) + "</text>\n";
+    svg += "<g>\n";
+    if (!alone)
+      svg += "<text x=\"" + Num((x0 + x1) / 2) + "\" y=\"" + Num(oy + 18) +
+             "\" text-anchor=\"middle\" font-size=\"13\">" + Escape(panel.title) + "</text>\n";
     for (double t : NiceTicks(panel.x_min, panel.x_max, 6)) {
       svg += "<line x1=\"" + Num(X(t)) + "\" y1=\"" + Num(y0) + "\" x2=\"" + Num(X(t)) + "\" y2=\"" + Num(y1) +
              "\" stroke=\"#eee\"/>\n";
@@ -108,9 +118,12 @@ std::string RenderSvg(const std::vector<PlotPanel>& panels, int columns, const s
            Escape(panel.x_label) + "</text>\n";
     svg += "<text transform=\"translate(" + Num(ox + 16) + "," + Num((y0 + y1) / 2) +
            ") rotate(-90)\" text-anchor=\"middle\">" + Escape(panel.y_label) + "</text>\n";
-    for (const PlotMarker& m : panel.markers)
-      svg += "<line x1=\"" + Num(X(m.x)) + "\" y1=\"" + Num(y0) + "\" x2=\"" + Num(X(m.x)) + "\" y2=\"" + Num(y1) +
-             "\" stroke=\"" + m.color + "\"" + (m.dashed ? " stroke-dasharray=\"5,4\"" : "") + "/>\n";
+    for (const PlotMarker& m : panel.markers) {
+      svg += "<rect x=\"" + Num(X(m.x) - 5) + "\" y=\"" + Num(y1) + "\" width=\"10\" height=\"" + Num(y0 - y1) +
+             "\" fill=\"#888\" fill-opacity=\"0.22\"><title>" + Escape(m.label) + "</title></rect>\n";
+      svg += "<text x=\"" + Num(X(m.x) + 8) + "\" y=\"" + Num(y0 - 6) + "\" fill=\"#555\" font-size=\"11\">" +
+             Escape(m.label) + "</text>\n";
+    }
     for (const PlotLine& line : panel.lines) {
       std::string points;
       for (size_t k = 0; k < line.x.size(); ++k) {
@@ -118,15 +131,21 @@ std::string RenderSvg(const std::vector<PlotPanel>& panels, int columns, const s
         double y = std::clamp(line.y[k], panel.y_min, panel.y_max);
         points += Num(X(line.x[k])) + "," + Num(Y(y)) + " ";
       }
-      svg += "<polyline fill=\"none\" stroke=\"" + line.color + "\" stroke-width=\"1.6\"" +
+      svg += "<polyline fill=\"none\" stroke=\"" + line.color + "\" stroke-width=\"2.2\"" +
              (line.dashed ? " stroke-dasharray=\"6,3\"" : "") + " points=\"" + points + "\"><title>" +
              Escape(line.label) + "</title></polyline>\n";
     }
     svg += "</g>\n";
   }
   for (size_t k = 0; k < legend.size(); ++k) {
-    const PlotLine& line = panels.front().lines[k];
     double x = legend[k].x, y = 36 + h * rows + legend_row * (legend[k].row + 1) - 4;
+    if (k == panels.front().lines.size()) {  // the marker's entry: a block, as it is drawn
+      svg += "<rect x=\"" + Num(x + 7) + "\" y=\"" + Num(y - 12) + "\" width=\"10\" height=\"14\" fill=\"#888\" "
+             "fill-opacity=\"0.35\"/>\n<text x=\"" + Num(x + 30) + "\" y=\"" + Num(y) + "\">" +
+             Escape(panels.front().markers.empty() ? "target depth" : panels.front().markers[0].label) + "</text>\n";
+      continue;
+    }
+    const PlotLine& line = panels.front().lines[k];
     svg += "<line x1=\"" + Num(x) + "\" y1=\"" + Num(y - 4) + "\" x2=\"" + Num(x + 24) + "\" y2=\"" + Num(y - 4) +
            "\" stroke=\"" + line.color + "\" stroke-width=\"2\"" + (line.dashed ? " stroke-dasharray=\"6,3\"" : "") +
            "/>\n";

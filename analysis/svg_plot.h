@@ -14,10 +14,11 @@ struct PlotLine {
   std::vector<double> x, y;
 };
 
-struct PlotMarker {  // a vertical line, e.g. the target depth
+// A place on the x axis, e.g. the target depth: drawn as a grey band with
+// its label, in the legend as a block, so that it cannot be taken for a curve.
+struct PlotMarker {
   double x = 0;
-  std::string color = "#2a2";
-  bool dashed = true;
+  std::string label = "target depth";
 };
 
 struct PlotPanel {
@@ -28,7 +29,10 @@ struct PlotPanel {
   std::vector<PlotMarker> markers;
 };
 
-// Panels laid out in `columns` columns; each panel about 360 x 260 px.
+// Panels laid out in `columns` columns; each panel 640 x 380 px alone, 460 x
+// 330 px beside others. One title: `title` over all; each panel's own only
+// when there are several (a lone panel's title is `title`, or its own when
+// `title` is empty).
 std::string RenderSvg(const std::vector<PlotPanel>& panels, int columns, const std::string& title);
 
 // Text for XML and HTML: < > & " escaped.

@@ -93,6 +93,20 @@ check_page "$work/solve" solve
 check_page "$work/retina" retina
 check_page "$work/contrast" contrast
 check_page "$work/compare" compare
+# The panel-ready previews are the active region (the layer's pixels), linked to the full panel.
+png_size() { od -An -tu1 -j16 -N8 "$1" | awk '{print $1*16777216+$2*65536+$3*256+$4 "x" $5*16777216+$6*65536+$7*256+$8}'; }
+for preview in "$work"/solve/panel_previews/*.png; do
+  name=$(basename "$preview")
+  pattern=$work/solve/pattern_previews/$name full=$work/solve/panels/$name
+  [ "$(png_size "$preview")" = "$(png_size "$pattern")" ] ||
+    fail "$name: the panel preview is $(png_size "$preview"), the layer $(png_size "$pattern")"
+  [ "$(png_size "$preview")" != "$(png_size "$full")" ] || fail "$name: the preview is the full panel"
+  grep -q "href=\"panels/$name\"><img src=\"panel_previews/$name\"" "$work/solve/index.html" ||
+    fail "$name: the preview does not link to the full panel"
+done
+# The slider's declared states are labelled under it.
+grep -q '<div class="ticks"><span style="left:calc(0.000% + 8.00px)">0.40 D</span>' "$work/retina/index.html" ||
+  fail "the retina slider's ticks are not labelled"
 grep -q "\"layerlab\": \"$version\"" "$work/solve/report.json" || fail "report.json does not name the version"
 tail -n 1 "$work/solve/report.txt" | grep -qF "written by $version" || fail "report.txt does not name the version"
 echo "PASS"

@@ -66,7 +66,7 @@ browse)
     *) fail "the page's self-test did not pass: ${verdict:-no verdict (did the script run?)}" ;;
   esac
   rm -f "$out/screenshot.png"
-  timeout 120 "$chromium" "${flags[@]}" --hide-scrollbars --window-size=1280,4800 \
+  timeout 120 "$chromium" "${flags[@]}" --hide-scrollbars --window-size=1400,4800 \
     --screenshot="$out/screenshot.png" "file://$out/index.html" 2>>"$out/chromium.log" >/dev/null ||
     fail "chromium could not take a screenshot (see $out/chromium.log)"
   [ -s "$out/screenshot.png" ] || fail "no screenshot written"

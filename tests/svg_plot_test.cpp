@@ -1,0 +1,46 @@
+// analysis/svg_plot.h: one title per plot, and a marker that cannot be taken for a curve.
+#include <gtest/gtest.h>
+
+#include "analysis/svg_plot.h"
+
+namespace layerlab {
+namespace {
+
+size_t Count(const std::string& text, const std::string& what) {
+  size_t n = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+PlotPanel Panel(const std::string& title) {
+  PlotPanel p;
+  p.title = title;
+  p.lines = {{"a", "#d62728", false, {0, 1}, {0, 1}}, {"b", "#1f77b4", false, {0, 1}, {1, 0}}};
+  return p;
+}
+
+TEST(SvgPlot, ALonePanelHasOneTitle) {
+  const std::string svg = RenderSvg({Panel("PSNR against wall time")}, 1, "");
+  EXPECT_EQ(Count(svg, "PSNR against wall time"), 1u) << svg;
+  const std::string titled = RenderSvg({Panel("panel title")}, 1, "Plot title");
+  EXPECT_EQ(Count(titled, "Plot title"), 1u);
+  EXPECT_EQ(Count(titled, "panel title"), 0u);
+  // Several panels: the plot's title once, and each panel's own.
+  const std::string two = RenderSvg({Panel("left"), Panel("right")}, 2, "Both");
+  EXPECT_EQ(Count(two, ">Both<"), 1u);
+  EXPECT_EQ(Count(two, ">left<"), 1u);
+  EXPECT_EQ(Count(two, ">right<"), 1u);
+}
+
+TEST(SvgPlot, AMarkerIsABandWithItsLabelNotALine) {
+  PlotPanel p = Panel("contrast");
+  p.markers.push_back({0.5, "target depth"});
+  const std::string svg = RenderSvg({p}, 1, "");
+  EXPECT_EQ(Count(svg, "<polyline"), 2u) << "only the two curves are lines";
+  EXPECT_EQ(Count(svg, "fill=\"#888\""), 2u) << "the band, and its block in the legend";
+  EXPECT_EQ(Count(svg, ">target depth<"), 3u) << "labelled on the plot (text and tooltip) and in the legend";
+  EXPECT_EQ(Count(svg, "stroke-dasharray"), 0u) << "no dashed line that could pass for a curve";
+}
+
+}  // namespace
+}  // namespace layerlab
