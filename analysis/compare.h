@@ -28,8 +28,8 @@ struct CompareResult {
   SolverReport report;
   Rgb brightness_efficiency{};  // light at the eye per light emitted, per channel
   double luminance_efficiency = 0;
-  int subframes = 1;             // patterns per panel and frame (time multiplexing)
-  double panel_refresh_hz = 60;  // what the panels must show: subframes x frame rate
+  int subframes = 1;                    // patterns per panel and frame (time multiplexing)
+  double panel_refresh_hz = 60;         // what the panels must show: subframes x frame rate
   std::string options_from = "shared";  // CompareRun::options_from
 };
 

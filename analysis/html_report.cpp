@@ -34,10 +34,12 @@ std::string Links(const std::vector<std::pair<std::string, std::string>>& links)
 std::string Figure(const ReportImage& image, const std::string& id = "", const std::string& extra_class = "") {
   std::string id_attr = id.empty() ? "" : " id=\"" + id + "\"";
   return "<figure class=\"" + extra_class + "\"><a" + (id.empty() ? "" : " id=\"" + id + "-link\"") + " href=\"" +
-         Escape(image.href.empty() ? image.src : image.href) + "\"><img" + id_attr + " src=\"" + Escape(image.src) + "\" alt=\"" + Escape(image.caption) +
-         "\"></a><figcaption" + (id.empty() ? "" : " id=\"" + id + "-caption\"") + ">" +
+         Escape(image.href.empty() ? image.src : image.href) + "\"><img" + id_attr + " src=\"" + Escape(image.src) +
+         "\" alt=\"" + Escape(image.caption) + "\"></a><figcaption" + (id.empty() ? "" : " id=\"" + id + "-caption\"") +
+         ">" +
          // A plot carries its own title: the caption only links its files.
-         (extra_class == "plot" ? std::string() : Escape(image.caption)) + Links(image.links) + "</figcaption></figure>\n";
+         (extra_class == "plot" ? std::string() : Escape(image.caption)) + Links(image.links) +
+         "</figcaption></figure>\n";
 }
 
 std::string Rgb3(const Rgb& v, int decimals) {
@@ -287,10 +289,10 @@ std::string RetinaSection(const RunReportPage& page) {
 
 std::string ContrastSection(const RunReportPage& page) {
   std::string h = "<section id=\"contrast\"><h2>Accommodation support: normalized contrast (Fig. 5)</h2>\n";
-  h +=
-      "<p class=\"muted\">A cosine grating on a plane at each target depth; each display is factorized for it and the "
-      "eye "
-      "sweeps its focus. A display supports accommodation when its peak follows the target depth (the grey band).</p>\n";
+  h += "<p class=\"muted\">A cosine grating on a plane at each target depth; each display is factorized for it and the "
+       "eye "
+       "sweeps its focus. A display supports accommodation when its peak follows the target depth (the grey "
+       "band).</p>\n";
   h += "<div class=\"grid\">" + Figure(page.contrast_plot, "", "plot") + "</div>\n";
   if (!page.contrast.empty()) h += "<p class=\"muted\">" + Escape(page.contrast.front().convention) + ".</p>\n";
   h += "<h3>Peaks</h3>\n<table><tr><th class=\"l\">display</th><th>target (D)</th><th>f (cpd)</th><th>peak (D)</th>"
@@ -308,7 +310,8 @@ std::string CompareSection(const RunReportPage& page) {
   std::string h = "<section id=\"compare\"><h2>Displays side by side on the same target</h2>\n";
   h +=
       "<p class=\"muted\">Brightness efficiency: light at the eye per light the backlights emit. Balance: the channels "
-      "relative to the strongest (1 : 1 : 1 keeps white white; the factorization compensates the rest). Solver options: "
+      "relative to the strongest (1 : 1 : 1 keeps white white; the factorization compensates the rest). Solver "
+      "options: "
       "<i>shared</i>, the same for every row (the solver's defaults and the command's overrides); <i>scene</i>, the "
       "scene's own \"solve\" section.</p>\n";
   h += "<table><tr><th class=\"l\">display</th><th class=\"l\">solver</th><th>PSNR (dB)</th><th>seconds</th>"
@@ -368,7 +371,8 @@ std::string RenderRunReport(const RunReportPage& page) {
     h += "<div class=\"grid\">" + Figure(page.psnr_plot, "", "plot") + "</div>\n";
     h += "<h3>Layer patterns (linear transmittance, panel pixel order)</h3><div class=\"grid\">\n";
     for (const ReportImage& p : page.patterns) h += Figure(p, "", "small");
-    h += "</div>\n<h3>Panel-ready images (gamma- and black-level-encoded; the active region, a click shows the full panel)</h3><div class=\"grid\">\n";
+    h += "</div>\n<h3>Panel-ready images (gamma- and black-level-encoded; the active region, a click shows the full "
+         "panel)</h3><div class=\"grid\">\n";
     for (const ReportImage& p : page.panels) h += Figure(p, "", "panel");
     h += "</div></section>\n";
   }

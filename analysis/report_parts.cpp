@@ -79,8 +79,8 @@ void AddSolveToPage(const DisplaySystem& system, const Patterns& patterns, const
   if (with_lightfield) page->solve_links.push_back({"synthesized light field", prefix + "lightfield/lightfield.json"});
 }
 
-void AddRetinaToPage(const std::vector<RetinaStateResult>& states, const std::vector<double>& declared,
-                     bool natural, double white_cd_m2, const std::string& prefix, RunReportPage* page) {
+void AddRetinaToPage(const std::vector<RetinaStateResult>& states, const std::vector<double>& declared, bool natural,
+                     double white_cd_m2, const std::string& prefix, RunReportPage* page) {
   for (const RetinaStateResult& s : states) {
     ReportRetinaState rs;
     rs.diopters = s.diopters;
@@ -107,9 +107,9 @@ void AddContrastToPage(const std::vector<ContrastCurve>& curves, const std::stri
   WriteFileAtomically((out / "peaks.txt").string(), PeakTable(curves));
   WriteFileAtomically((out / "contrast.svg").string(), ContrastSvg(curves));
   page->contrast = curves;
-  page->contrast_plot = Picture(
-      "normalized contrast against accommodation", prefix + "contrast.svg",
-      {{"SVG", prefix + "contrast.svg"}, {"CSV", prefix + "contrast.csv"}, {"peaks", prefix + "peaks.txt"}});
+  page->contrast_plot =
+      Picture("normalized contrast against accommodation", prefix + "contrast.svg",
+              {{"SVG", prefix + "contrast.svg"}, {"CSV", prefix + "contrast.csv"}, {"peaks", prefix + "peaks.txt"}});
 }
 
 void AddCompareToPage(const std::vector<CompareResult>& results, const std::string& folder, const std::string& prefix,

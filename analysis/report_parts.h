@@ -28,8 +28,8 @@ void AddSolveToPage(const DisplaySystem& system, const Patterns& patterns, const
                     const std::string& folder, const std::string& prefix, bool with_lightfield, RunReportPage* page);
 
 // The retinal images WriteRetinaSweep wrote; `declared` are the states the slider marks.
-void AddRetinaToPage(const std::vector<RetinaStateResult>& states, const std::vector<double>& declared,
-                     bool natural, double white_cd_m2, const std::string& prefix, RunReportPage* page);
+void AddRetinaToPage(const std::vector<RetinaStateResult>& states, const std::vector<double>& declared, bool natural,
+                     double white_cd_m2, const std::string& prefix, RunReportPage* page);
 
 // Writes contrast.csv, peaks.txt and contrast.svg into `folder`.
 void AddContrastToPage(const std::vector<ContrastCurve>& curves, const std::string& folder, const std::string& prefix,

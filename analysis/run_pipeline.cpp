@@ -106,7 +106,6 @@ RunInputs ReadInputs(const std::string& file, std::optional<int> iterations, std
   return in;
 }
 
-
 }  // namespace
 
 const std::vector<std::string>& RunOutputRoots() {
@@ -229,9 +228,12 @@ RunOutcome RunPipeline(const RunRequest& request) {
           // A display runs with its scene's own options when it has a "solve" section of its own (ReadInputs).
           const bool own = solver == configs[k]->solver && (k == 0 || in.compare[k - 1].own_options);
           CompareRun run{
-              name, *system, solver,
+              name,
+              *system,
+              solver,
               solver == configs[k]->solver ? configs[k]->options : SolverRegistry::Builtins().find(solver)->defaults,
-              configs[k]->sampling, own ? "scene" : "shared"};
+              configs[k]->sampling,
+              own ? "scene" : "shared"};
           run.options.iterations = c.iterations.value_or(run.options.iterations);
           run.options.time_budget = c.time_budget.value_or(run.options.time_budget);
           CompareResult result = RunComparison({run}, target->light_field, true).front();

@@ -56,8 +56,8 @@ std::vector<double> NiceTicks(double lo, double hi, int target_count) {
 
 std::string RenderSvg(const std::vector<PlotPanel>& panels, int columns, const std::string& title) {
   const bool alone = panels.size() == 1;
-  const double w = alone ? 640 : 460, h = alone ? 380 : 330, left = 62, right = 14, top = alone ? 12 : 30,
-               bottom = 46, legend_row = 20;
+  const double w = alone ? 640 : 460, h = alone ? 380 : 330, left = 62, right = 14, top = alone ? 12 : 30, bottom = 46,
+               legend_row = 20;
   const std::string heading = alone && title.empty() ? panels.front().title : title;
   bool markers = false;
   for (const PlotPanel& panel : panels) markers |= !panel.markers.empty();
@@ -140,8 +140,10 @@ std::string RenderSvg(const std::vector<PlotPanel>& panels, int columns, const s
   for (size_t k = 0; k < legend.size(); ++k) {
     double x = legend[k].x, y = 36 + h * rows + legend_row * (legend[k].row + 1) - 4;
     if (k == panels.front().lines.size()) {  // the marker's entry: a block, as it is drawn
-      svg += "<rect x=\"" + Num(x + 7) + "\" y=\"" + Num(y - 12) + "\" width=\"10\" height=\"14\" fill=\"#888\" "
-             "fill-opacity=\"0.35\"/>\n<text x=\"" + Num(x + 30) + "\" y=\"" + Num(y) + "\">" +
+      svg += "<rect x=\"" + Num(x + 7) + "\" y=\"" + Num(y - 12) +
+             "\" width=\"10\" height=\"14\" fill=\"#888\" "
+             "fill-opacity=\"0.35\"/>\n<text x=\"" +
+             Num(x + 30) + "\" y=\"" + Num(y) + "\">" +
              Escape(panels.front().markers.empty() ? "target depth" : panels.front().markers[0].label) + "</text>\n";
       continue;
     }

@@ -84,15 +84,15 @@ void AddCompareCommand(CLI::App& app) {
         SolverOptions options = own ? config.options : SolverRegistry::Builtins().find(solver)->defaults;
         options.iterations = o->iterations.value_or(options.iterations);
         options.time_budget = time_budget.value_or(options.time_budget);
-        runs.push_back({name, system, solver, options, own ? config.sampling : Sampling::kNearest,
-                        own ? "scene" : "shared"});
+        runs.push_back(
+            {name, system, solver, options, own ? config.sampling : Sampling::kNearest, own ? "scene" : "shared"});
       }
     }
     if (runs.empty()) throw Error("compare: no display and solver fit together; nothing to run");
     std::vector<NamedInput> inputs = {{o->target, "the target"}};
     for (const std::string& file : o->scenes) inputs.push_back({file, "a scene"});
-    StagedOutput stage(o->out, "compare", {"compare.txt", "compare.csv", "traces.csv", "psnr_vs_time.svg", "index.html"},
-                       inputs);
+    StagedOutput stage(o->out, "compare",
+                       {"compare.txt", "compare.csv", "traces.csv", "psnr_vs_time.svg", "index.html"}, inputs);
     Note("compare: loading " + o->target);
     LightField target = ReadLightField(o->target, {.load_depth = false});
     std::vector<CompareResult> results = RunComparison(runs, target, true);

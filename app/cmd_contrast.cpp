@@ -36,7 +36,8 @@ void AddContrastCommand(CLI::App& app) {
   cmd->add_option("--frequencies", o->frequencies, "Frequencies, comma-separated: cpd (default 2,4)");
   cmd->add_option("--accommodation", o->accommodation,
                   "first,last,step: D, or with units (\"0 D,2.6 D,0.05 D\"; default 0,2.6,0.05)");
-  cmd->add_option("--retina-resolution", o->resolution, "Retinal sample size: degrees or \"0.6 arcmin\" (default 0.01)");
+  cmd->add_option("--retina-resolution", o->resolution,
+                  "Retinal sample size: degrees or \"0.6 arcmin\" (default 0.01)");
   cmd->add_option("--retina-field", o->field, "Retinal field width: degrees (default 20)");
   cmd->add_option("--strip-rows", o->strip_rows, "Light-field rows around the axis (default 24)");
   cmd->add_option("--reference", o->reference,
@@ -90,8 +91,8 @@ void AddContrastCommand(CLI::App& app) {
     }
     stage.Commit();
     std::cout << peaks;
-    std::printf("sweep of %zu curves in %.2f s; wrote %s/{index.html,contrast.csv,peaks.txt,contrast.svg}\n", curves.size(),
-                seconds, o->out.c_str());
+    std::printf("sweep of %zu curves in %.2f s; wrote %s/{index.html,contrast.csv,peaks.txt,contrast.svg}\n",
+                curves.size(), seconds, o->out.c_str());
   });
 }
 

@@ -1,9 +1,9 @@
 // layerlab render-target TARGET.json OUT_DIR: renders a target scene
 // (docs/target-format.md) into a light-field folder (docs/lightfield-format.md),
 // color and depth. Progress goes to stderr (framework/progress.h).
+#include <algorithm>
 #include <cstdio>
 #include <memory>
-#include <algorithm>
 #include <string>
 
 #include "app/commands.h"
@@ -35,7 +35,8 @@ void AddRenderTargetCommand(CLI::App& app) {
                   target.samples_per_pixel, target.description.c_str());
     RenderStats stats;
     Progress progress("render-target", g.view_count());
-    LightField lf = RenderTarget(target, &stats, [&](size_t done, size_t) { progress.Update(done, "views, " + std::string(what)); });
+    LightField lf = RenderTarget(target, &stats,
+                                 [&](size_t done, size_t) { progress.Update(done, "views, " + std::string(what)); });
     std::snprintf(what, sizeof what, "%llu rays (%.1f Mrays/s)", static_cast<unsigned long long>(stats.rays),
                   stats.rays / std::max(stats.seconds, 1e-9) / 1e6);
     progress.Finish(what);

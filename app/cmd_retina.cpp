@@ -109,8 +109,9 @@ void AddRetinaCommand(CLI::App& app) {
             progress.Update(done, "accommodation states traced (" + r.name + ")");
           });
       progress.Finish(std::to_string(states.size()) + " states of " + FormatFixed(resolution, 3) + " deg samples");
-      RunReportPage page = CommandPage("retina", o->scene, scene.name.empty() ? std::filesystem::path(o->scene).stem().string() : scene.name,
-                                       scene.description, CommandLine());
+      RunReportPage page = CommandPage(
+          "retina", o->scene, scene.name.empty() ? std::filesystem::path(o->scene).stem().string() : scene.name,
+          scene.description, CommandLine());
       page.system = &system;
       double seconds = 0;
       for (const RetinaStateResult& r : results) seconds += r.seconds;
@@ -122,8 +123,9 @@ void AddRetinaCommand(CLI::App& app) {
       throw stage.Explain(e);
     }
     stage.Commit();
-    std::printf("wrote %s/{index.html,display%s,retina.csv}: %zu states; values are display-relative (1 = %.4g cd/m2)\n",
-                o->out.c_str(), natural ? ",natural" : "", states.size(), model.white_luminance());
+    std::printf(
+        "wrote %s/{index.html,display%s,retina.csv}: %zu states; values are display-relative (1 = %.4g cd/m2)\n",
+        o->out.c_str(), natural ? ",natural" : "", states.size(), model.white_luminance());
   });
 }
 

@@ -139,11 +139,12 @@ void AddSolveCommand(CLI::App& app) {
     if (!report.IsSolutionUsable()) throw Error("the solve failed: " + report.message + "; nothing was written");
     try {
       WriteSolution(model, patterns, report, stage.staging(), {.write_lightfield = o->write_lightfield});
-      RunReportPage page = CommandPage("solve", o->scene, scene.name.empty() ? std::filesystem::path(o->scene).stem().string() : scene.name,
-                                       scene.description, CommandLine());
+      RunReportPage page = CommandPage(
+          "solve", o->scene, scene.name.empty() ? std::filesystem::path(o->scene).stem().string() : scene.name,
+          scene.description, CommandLine());
       page.system = &system;
-      page.steps = {{"solve (" + config.solver + ", " + std::to_string(report.iterations) + " iterations)",
-                     report.seconds}};
+      page.steps = {
+          {"solve (" + config.solver + ", " + std::to_string(report.iterations) + " iterations)", report.seconds}};
       page.warnings = report.warnings;
       AddSolveToPage(system, patterns, report, stage.staging(), "", o->write_lightfield, &page);
       WriteReportPage(page, stage.staging());

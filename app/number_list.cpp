@@ -37,8 +37,7 @@ double ParseOptionValue(const std::string& text, const std::string& option, cons
                   e.message() + "; give e.g. 1.5 or \"1.5 " + unit.unit + "\")");
     }
   }
-  if (!std::isfinite(value) || value < 0)
-    throw Error(option + ": \"" + item + "\": values must be finite and >= 0");
+  if (!std::isfinite(value) || value < 0) throw Error(option + ": \"" + item + "\": values must be finite and >= 0");
   return value;
 }
 
@@ -54,8 +53,9 @@ std::vector<double> ParseNumberList(const std::string& text, const std::string& 
 
 std::vector<double> ParseRangeBounds(const std::string& text, const std::string& option, const OptionUnit& unit) {
   std::vector<double> r = ParseNumberList(text, option, unit);
-  if (r.size() != 3) throw Error(option + ": give first,last,step (\"" + text + "\" has " + std::to_string(r.size()) +
-                                 " value" + (r.size() == 1 ? "" : "s") + ")");
+  if (r.size() != 3)
+    throw Error(option + ": give first,last,step (\"" + text + "\" has " + std::to_string(r.size()) + " value" +
+                (r.size() == 1 ? "" : "s") + ")");
   if (!(r[1] > r[0]) || !(r[2] > 0))
     throw Error(option + ": \"" + text + "\": last must exceed first and step must be above 0");
   if ((r[1] - r[0]) / r[2] > 1e5) throw Error(option + ": \"" + text + "\": more than 100000 steps");

@@ -24,8 +24,7 @@ inline const OptionUnit kCyclesPerDegree{Dimension::kAngularFrequency, "cpd"};
 
 // One finite value >= 0, in the option's unit. A depth in diopters also
 // accepts a distance ("0.5 m" is 2 D) when `depth` is set.
-double ParseOptionValue(const std::string& text, const std::string& option, const OptionUnit& unit,
-                        bool depth = false);
+double ParseOptionValue(const std::string& text, const std::string& option, const OptionUnit& unit, bool depth = false);
 
 // Comma-separated values, each as ParseOptionValue reads it.
 std::vector<double> ParseNumberList(const std::string& text, const std::string& option, const OptionUnit& unit,

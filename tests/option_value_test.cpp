@@ -44,16 +44,18 @@ TEST(OptionValue, ListsMixBareNumbersAndQuantities) {
 }
 
 TEST(OptionValue, ErrorsNameTheOptionAndTheValue) {
-  EXPECT_EQ(ErrorOf([] { ParseNumberList("1.3,near", "--accommodation", kDiopters); }).rfind(
-                "--accommodation: \"near\" is not a number or an optical power", 0),
+  EXPECT_EQ(ErrorOf([] {
+              ParseNumberList("1.3,near", "--accommodation", kDiopters);
+            }).rfind("--accommodation: \"near\" is not a number or an optical power", 0),
             0u);
   const std::string wrong_unit = ErrorOf([] { ParseOptionValue("5 mm", "--time-budget", kSeconds); });
   EXPECT_NE(wrong_unit.find("--time-budget: \"5 mm\""), std::string::npos) << wrong_unit;
   EXPECT_NE(wrong_unit.find("a duration"), std::string::npos) << wrong_unit;
   EXPECT_NE(ErrorOf([] { ParseOptionValue("-1 s", "--time-budget", kSeconds); }).find("--time-budget: \"-1 s\""),
             std::string::npos);
-  EXPECT_NE(ErrorOf([] { ParseRange("0 D,2.6 D", "--focal-stack", kDiopters); }).find("--focal-stack: give first,last,step"),
-            std::string::npos);
+  EXPECT_NE(
+      ErrorOf([] { ParseRange("0 D,2.6 D", "--focal-stack", kDiopters); }).find("--focal-stack: give first,last,step"),
+      std::string::npos);
   EXPECT_NE(ErrorOf([] { ParseNumberList("", "--depths", kDiopters); }).find("--depths: give at least one value"),
             std::string::npos);
 }

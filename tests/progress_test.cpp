@@ -7,12 +7,12 @@ namespace layerlab {
 namespace {
 
 TEST(Progress, EtaIsTheTimeSoFarScaledByTheWorkLeft) {
-  EXPECT_EQ(Progress::Eta(0, 10, 5), "");  // nothing done: no estimate
-  EXPECT_EQ(Progress::Eta(10, 10, 5), "");  // all done
-  EXPECT_EQ(Progress::Eta(5, 10, 5), "5.0 s");        // 5 s for half: 5 s more
-  EXPECT_EQ(Progress::Eta(1, 4, 10), "30 s");         // 10 s a unit, 3 units left
-  EXPECT_EQ(Progress::Eta(1, 50, 60), "49.0 min");    // 60 s x 49 = 2940 s
-  EXPECT_EQ(Progress::Eta(1, 1000, 10), "2.8 h");     // 9990 s
+  EXPECT_EQ(Progress::Eta(0, 10, 5), "");           // nothing done: no estimate
+  EXPECT_EQ(Progress::Eta(10, 10, 5), "");          // all done
+  EXPECT_EQ(Progress::Eta(5, 10, 5), "5.0 s");      // 5 s for half: 5 s more
+  EXPECT_EQ(Progress::Eta(1, 4, 10), "30 s");       // 10 s a unit, 3 units left
+  EXPECT_EQ(Progress::Eta(1, 50, 60), "49.0 min");  // 60 s x 49 = 2940 s
+  EXPECT_EQ(Progress::Eta(1, 1000, 10), "2.8 h");   // 9990 s
 }
 
 TEST(Progress, QuietSilencesProgressAndNotesVerboseShowsEveryUpdate) {
