@@ -15,29 +15,26 @@ TEST(Progress, EtaIsTheTimeSoFarScaledByTheWorkLeft) {
   EXPECT_EQ(Progress::Eta(1, 1000, 10), "2.8 h");   // 9990 s
 }
 
+// A note, a detail and three units of work; what reached stderr.
+std::string Exercise() {
+  testing::internal::CaptureStderr();
+  {
+    Note("a note");
+    Detail("a detail");
+    Progress p("work", 3);
+    for (size_t k = 1; k <= 3; ++k) p.Update(k, "units");
+    p.Finish("summary");
+  }
+  return testing::internal::GetCapturedStderr();
+}
+
 TEST(Progress, QuietSilencesProgressAndNotesVerboseShowsEveryUpdate) {
   const Verbosity before = CurrentVerbosity();
   SetVerbosity(Verbosity::kQuiet);
-  testing::internal::CaptureStderr();
-  {
-    Note("a note");
-    Detail("a detail");
-    Progress p("work", 3);
-    for (size_t k = 1; k <= 3; ++k) p.Update(k, "units");
-    p.Finish("summary");
-  }
-  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+  EXPECT_EQ(Exercise(), "");
 
   SetVerbosity(Verbosity::kVerbose);
-  testing::internal::CaptureStderr();
-  {
-    Note("a note");
-    Detail("a detail");
-    Progress p("work", 3);
-    for (size_t k = 1; k <= 3; ++k) p.Update(k, "units");
-    p.Finish("summary");
-  }
-  const std::string verbose = testing::internal::GetCapturedStderr();
+  const std::string verbose = Exercise();
   EXPECT_NE(verbose.find("a note\na detail\nwork: 1/3  "), std::string::npos) << verbose;
   EXPECT_NE(verbose.find("work: 2/3  "), std::string::npos) << verbose;
   EXPECT_NE(verbose.find("work: 3/3  "), std::string::npos) << verbose;
@@ -45,15 +42,7 @@ TEST(Progress, QuietSilencesProgressAndNotesVerboseShowsEveryUpdate) {
 
   // Normal, without a terminal (as under ctest): short work says only its summary; no detail lines.
   SetVerbosity(Verbosity::kNormal);
-  testing::internal::CaptureStderr();
-  {
-    Note("a note");
-    Detail("a detail");
-    Progress p("work", 3);
-    for (size_t k = 1; k <= 3; ++k) p.Update(k, "units");
-    p.Finish("summary");
-  }
-  const std::string normal = testing::internal::GetCapturedStderr();
+  const std::string normal = Exercise();
   if (!Progress::Terminal()) {
     EXPECT_EQ(normal.rfind("a note\nwork: done in ", 0), 0u) << normal;
     EXPECT_NE(normal.find(": summary\n"), std::string::npos) << normal;
