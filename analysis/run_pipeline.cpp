@@ -146,20 +146,19 @@ RunOutcome RunPipeline(const RunRequest& request) {
     Patterns patterns;
     if (in.has_target()) {
       auto start = Clock::now();
-      target = LoadOrRenderTarget(in.solve, "target");
+      // A rendered target is kept in OUT/target and reused by the next run while its scene is unchanged.
+      const RenderCache cache{(fs::path(request.out) / "target").string(), (out / "target").string()};
+      target = LoadOrRenderTarget(in.solve, "target", &cache);
       fs::create_directories(out / "target");
       WriteCenterView(target->light_field, (out / "target" / "center_view.png").string());
       std::vector<std::pair<std::string, std::string>> links;
-      if (target->rendered) {
-        WriteLightField(target->light_field, (out / "target" / "lightfield").string());
-        links.push_back({"light field", "target/lightfield/lightfield.json"});
-      }
+      if (target->rendered)
+        links = {{"light field", "target/lightfield/lightfield.json"}, {"render record", "target/render.json"}};
       const LightFieldGeometry& g = target->light_field.geometry;
-      page.target_source = (target->rendered ? "rendered from " : "light field ") + target->source + ": " +
-                           std::to_string(g.views_x) + " x " + std::to_string(g.views_y) + " views of " +
-                           std::to_string(g.cols) + " x " + std::to_string(g.rows) + " pixels";
+      page.target_source = DescribeTarget(*target);
       page.target = Picture("center view (sRGB, 1 = white)", "target/center_view.png", links);
-      step(target->rendered ? "render the target" : "load the target", start);
+      step(target->reused ? "read the target's earlier render" : target->rendered ? "render the target" : "load the target",
+           start);
 
       start = Clock::now();
       model = std::make_unique<DisplayModel>(in.system, g, in.solve.sampling);

@@ -3,7 +3,9 @@
 #include <omp.h>
 
 #include <cstdio>
+#include <optional>
 
+#include "analysis/target_cache.h"
 #include "framework/error.h"
 #include "framework/lightfield_io.h"
 #include "framework/png_writer.h"
@@ -24,7 +26,8 @@ SceneRadiance Target::Natural() const {
   return LightFieldRadiance(light_field);
 }
 
-std::unique_ptr<Target> LoadOrRenderTarget(const SolveConfig& config, const std::string& label) {
+std::unique_ptr<Target> LoadOrRenderTarget(const SolveConfig& config, const std::string& label,
+                                           const RenderCache* cache) {
   auto target = std::make_unique<Target>();
   if (!config.target.empty()) {
     target->source = config.target;
@@ -38,24 +41,50 @@ std::unique_ptr<Target> LoadOrRenderTarget(const SolveConfig& config, const std:
 #if LAYERLAB_WITH_EMBREE
   target->scene = std::make_unique<TargetScene>(LoadTarget(config.target_scene));
   const LightFieldGeometry& g = target->scene->geometry;
-  Progress progress(label, g.view_count());
-  char what[160];
-  std::snprintf(what, sizeof what, "%d x %d pixels", g.cols, g.rows);
-  RenderStats stats;
-  target->light_field = RenderTarget(*target->scene, &stats, [&](size_t done, size_t total) {
-    progress.Update(done, std::string("views rendered, ") + what);
-  });
-  std::snprintf(what, sizeof what, "%zu views of %d x %d pixels, %.1f Mrays/s", g.view_count(), g.cols, g.rows,
-                stats.rays / std::max(stats.seconds, 1e-9) / 1e6);
-  progress.Finish(what);
-  target->tracer = std::make_unique<TargetTracer>(*target->scene);
   target->rendered = true;
+  target->digest = TargetSceneDigest(*target->scene);
+  std::string why_not;
+  if (cache) {
+    if (std::optional<LightField> cached = ReadCachedRender(cache->previous, target->digest, &why_not)) {
+      target->light_field = std::move(*cached);
+      target->reused = true;
+      std::fprintf(stderr, "%s: reusing the render of %s in %s (key %s: the scene, its files and geometry unchanged)\n",
+                   label.c_str(), config.target_scene.c_str(), cache->previous.c_str(), target->digest.c_str());
+    }
+  }
+  if (!target->reused) {
+    if (cache) std::fprintf(stderr, "%s: rendering %s: %s\n", label.c_str(), config.target_scene.c_str(), why_not.c_str());
+    Progress progress(label, g.view_count());
+    char what[160];
+    std::snprintf(what, sizeof what, "%d x %d pixels", g.cols, g.rows);
+    RenderStats stats;
+    target->light_field = RenderTarget(*target->scene, &stats, [&](size_t done, size_t total) {
+      progress.Update(done, std::string("views rendered, ") + what);
+    });
+    std::snprintf(what, sizeof what, "%zu views of %d x %d pixels, %.1f Mrays/s", g.view_count(), g.cols, g.rows,
+                  stats.rays / std::max(stats.seconds, 1e-9) / 1e6);
+    progress.Finish(what);
+  }
+  if (cache)
+    KeepRender(target->light_field, *target->scene, target->digest, cache->next,
+               target->reused ? cache->previous : std::string());
+  target->tracer = std::make_unique<TargetTracer>(*target->scene);
   return target;
 #else
+  (void)cache;
   throw Error(config.target_scene +
               ": rendering a target scene needs Embree (this build has LAYERLAB_WITH_EMBREE=OFF); "
               "render it elsewhere with `layerlab render-target` and give the folder as \"target\"");
 #endif
+}
+
+std::string DescribeTarget(const Target& target) {
+  const LightFieldGeometry& g = target.light_field.geometry;
+  std::string what = target.rendered ? "rendered from " + target.source + " (key " + target.digest +
+                                           (target.reused ? ", the render of an earlier run reused" : "") + ")"
+                                     : "light field " + target.source;
+  return what + ": " + std::to_string(g.views_x) + " x " + std::to_string(g.views_y) + " views of " +
+         std::to_string(g.cols) + " x " + std::to_string(g.rows) + " pixels";
 }
 
 LightFieldGeometry TargetGeometry(const SolveConfig& config) {

@@ -22,6 +22,8 @@ struct Target {
   LightField light_field;
   std::string source;  // the folder or the target scene file
   bool rendered = false;
+  std::string digest;  // a target scene's: TargetSceneDigest (analysis/target_cache.h)
+  bool reused = false;  // its render was read from the cache
 #if LAYERLAB_WITH_EMBREE
   std::unique_ptr<TargetScene> scene;  // stable address: the tracer refers to it
   std::unique_ptr<TargetTracer> tracer;
@@ -31,10 +33,23 @@ struct Target {
   SceneRadiance Natural() const;
 };
 
+// Where a run keeps the render of its target scene (analysis/target_cache.h).
+struct RenderCache {
+  std::string previous;  // may hold an earlier render (a run's committed OUT/target)
+  std::string next;      // this run's render goes here (the staging folder's target/)
+};
+
 // Reads config.target, or renders config.target_scene with a progress bar of
-// views. Throws layerlab::Error when neither is given or the scene needs
-// Embree and this build has none.
-std::unique_ptr<Target> LoadOrRenderTarget(const SolveConfig& config, const std::string& label);
+// views; with `cache`, a render of the same scene in cache->previous is read
+// instead, and the render is kept in cache->next. Says on stderr which.
+// Throws layerlab::Error when neither is given or the scene needs Embree and
+// this build has none.
+std::unique_ptr<Target> LoadOrRenderTarget(const SolveConfig& config, const std::string& label,
+                                           const RenderCache* cache = nullptr);
+
+// What the target is, for reports: "rendered from T.json (key ..., reused
+// from the cache): 13 x 13 views of 400 x 200 pixels" or "light field DIR: ...".
+std::string DescribeTarget(const Target& target);
 
 // The target's geometry without reading its views or rendering it: the
 // light field's manifest, or the target scene's declared geometry.

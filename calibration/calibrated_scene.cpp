@@ -101,14 +101,24 @@ ordered_json CalibratedSceneDocument(const ordered_json& scene, const std::strin
 
 void RebaseRelativePaths(ordered_json& scene, const std::string& from_file, const std::string& to_file) {
   namespace fs = std::filesystem;
-  if (!scene.contains("solve") || !scene["solve"].is_object()) return;
-  ordered_json& solve = scene["solve"];
-  if (!solve.contains("target") || !solve["target"].is_string()) return;
-  const fs::path target = solve["target"].get<std::string>();
-  if (target.is_absolute()) return;
-  const fs::path from = fs::absolute(fs::path(from_file).parent_path()),
-                 to = fs::absolute(fs::path(to_file).parent_path());
-  solve["target"] = (from / target).lexically_normal().lexically_relative(to.lexically_normal()).generic_string();
+  // The folders, absolute: a bare file name has an empty parent, which fs::absolute refuses.
+  const fs::path from = fs::absolute(from_file).parent_path(), to = fs::absolute(to_file).parent_path();
+  auto rebase = [&](ordered_json& value) {
+    if (!value.is_string()) return;
+    const fs::path path = value.get<std::string>();
+    if (path.is_absolute()) return;
+    value = (from / path).lexically_normal().lexically_relative(to.lexically_normal()).generic_string();
+  };
+  auto object = [](ordered_json& parent, const char* key) -> ordered_json* {
+    return parent.is_object() && parent.contains(key) && parent[key].is_object() ? &parent[key] : nullptr;
+  };
+  if (ordered_json* solve = object(scene, "solve"))
+    for (const char* key : {"target", "target_scene"})
+      if (solve->contains(key)) rebase((*solve)[key]);
+  if (ordered_json* run = object(scene, "run"))
+    for (const char* section : {"compare", "contrast"})
+      if (ordered_json* s = object(*run, section); s && s->contains("scenes") && (*s)["scenes"].is_array())
+        for (ordered_json& file : (*s)["scenes"]) rebase(file);
 }
 
 ordered_json ReadDocumentInOrder(const std::string& path) {

@@ -286,4 +286,16 @@ std::vector<std::string> WriteLightField(const LightField& lf, const std::string
   return written;
 }
 
+ContentDigest& AddGeometry(ContentDigest& digest, const LightFieldGeometry& g) {
+  const double numbers[] = {g.origin_z,      g.window_left,     g.window_top,     g.window_width,
+                            g.window_height, g.eyebox_width,    g.eyebox_height,  double(g.cols),
+                            double(g.rows),  double(g.views_x), double(g.views_y)};
+  return digest.add(numbers, sizeof numbers);
+}
+
+std::string LightFieldDigest(const LightField& lf) {
+  ContentDigest digest;
+  return AddGeometry(digest, lf.geometry).add(lf.rgb.data(), lf.rgb.size() * sizeof(float)).hex();
+}
+
 }  // namespace layerlab

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "framework/content_digest.h"
 #include "framework/lightfield.h"
 #include "framework/params.h"
 
@@ -31,5 +32,12 @@ void ReadLightFieldWindow(Params window, LightFieldGeometry* geometry);
 // Writes the folder (creating it), every file atomically, the manifest last;
 // returns the files written, relative to `folder`.
 std::vector<std::string> WriteLightField(const LightField& lf, const std::string& folder);
+
+// Adds the geometry's numbers to `digest`, to key what was made for one geometry.
+ContentDigest& AddGeometry(ContentDigest& digest, const LightFieldGeometry& g);
+
+// The geometry and every value (not the depth or the scene text): tells two
+// light fields apart.
+std::string LightFieldDigest(const LightField& lf);
 
 }  // namespace layerlab

@@ -9,6 +9,7 @@
 #include "framework/error.h"
 #include "framework/exr_image.h"
 #include "framework/json_file.h"
+#include "framework/lightfield_io.h"
 #include "systems/system_report.h"
 
 namespace layerlab {
@@ -103,19 +104,13 @@ SolverCheckpoint ReadCheckpoint(const DisplayModel& model, const std::string& fo
 
 CheckpointInputs CheckpointDigest(const DisplayModel& model, Sampling sampling, const LightField& target,
                                   const std::string& solver, const SolverOptions& o) {
-  const LightFieldGeometry& g = target.geometry;
-  const double geometry[] = {g.origin_z,      g.window_left,     g.window_top,     g.window_width,
-                             g.window_height, g.eyebox_width,    g.eyebox_height,  double(g.cols),
-                             double(g.rows),  double(g.views_x), double(g.views_y)};
-  ContentDigest target_digest;
-  target_digest.add(geometry, sizeof geometry).add(target.rgb.data(), target.rgb.size() * sizeof(float));
   char options[256];
   std::snprintf(options, sizeof options,
                 "sub_iterations=%d warm_start=%d seed=%llu initial=%.17g epsilon=%.17g floor=%.17g range=%d",
                 o.sub_iterations, o.warm_start_iterations, static_cast<unsigned long long>(o.seed), o.initial_value,
                 o.epsilon, o.floor, static_cast<int>(o.target_range));
   return {{"display", ContentDigest().add(SystemToJson(model.system()).dump()).add(&sampling, sizeof sampling).hex()},
-          {"target", target_digest.hex()},
+          {"target", LightFieldDigest(target)},
           {"solver", solver},
           {"options", options}};
 }

@@ -141,14 +141,15 @@ std::array<Vec3, 3> RotationMatrix(double ax, double ay, double az) {
            {-sy, cy * sx, cy * cx}}};
 }
 
-TargetPlane ParsePlane(Params& o, const LightFieldGeometry& g, const std::string& base_dir, std::string& description) {
+TargetPlane ParsePlane(Params& o, const LightFieldGeometry& g, const std::string& base_dir, std::string& description,
+                       std::vector<std::string>& files_read) {
   TargetPlane plane;
   plane.depth = RequiredDepth(o, "depth");
   plane.center = o.quantity_pair("center", Dimension::kLength, {0, 0});
   plane.size = o.has("size") ? LengthOrAnglePair(o, "size", plane.depth) : CoveringSize(g, plane.depth, plane.center);
   o.mark_read("size");
   double scale = plane.depth / g.origin_z;
-  TextureFrame frame{plane.depth, {g.window_width * scale, g.window_height * scale}, base_dir};
+  TextureFrame frame{plane.depth, {g.window_width * scale, g.window_height * scale}, base_dir, &files_read};
   Params texture = o.object("texture");
   plane.texture = ParseTexture(texture, frame);
   o.check_all_read();
@@ -156,11 +157,13 @@ TargetPlane ParsePlane(Params& o, const LightFieldGeometry& g, const std::string
   return plane;
 }
 
-TargetMesh ParseMesh(Params& o, const std::string& base_dir, std::string& description) {
+TargetMesh ParseMesh(Params& o, const std::string& base_dir, std::string& description,
+                     std::vector<std::string>& files_read) {
   TargetMesh target;
   target.file = o.string("file");
   std::string path = (std::filesystem::path(base_dir) / target.file).string();
   target.mesh = ReadMesh(path);
+  files_read.push_back(path);
 
   double scale = o.quantity("scale", Dimension::kLength, 1.0);
   o.require_range("scale", scale, 0.0, 1e3, true, false);
@@ -195,7 +198,7 @@ TargetMesh ParseMesh(Params& o, const std::string& base_dir, std::string& descri
   if (o.has("texture")) {
     if (!target.mesh.has_uvs())
       o.fail("texture", path + " has no texture coordinates (OBJ vt, PLY u v); give it a \"color\" instead");
-    TextureFrame frame{position[2], {target.uv_size, target.uv_size}, base_dir};
+    TextureFrame frame{position[2], {target.uv_size, target.uv_size}, base_dir, &files_read};
     Params texture = o.object("texture");
     target.texture = ParseTexture(texture, frame);
   } else {
@@ -274,9 +277,9 @@ TargetScene ParseTarget(const json& document, const std::string& file) {
     std::string type = o.choice("type", {"plane", "mesh"}, "");
     std::string what;
     if (type == "plane")
-      target.planes.push_back(ParsePlane(o, target.geometry, base_dir, what));
+      target.planes.push_back(ParsePlane(o, target.geometry, base_dir, what, target.files_read));
     else
-      target.meshes.push_back(ParseMesh(o, base_dir, what));
+      target.meshes.push_back(ParseMesh(o, base_dir, what, target.files_read));
     parts.push_back(what);
   }
   p.check_all_read();

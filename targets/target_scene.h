@@ -57,6 +57,9 @@ struct TargetScene {
   std::vector<TargetPlane> planes;
   std::vector<TargetMesh> meshes;
   std::string description;  // for the light field's "scene" text
+  // Every file the scene reads besides itself (meshes, images), as resolved;
+  // the display named by "display" is not listed: its part is `geometry`.
+  std::vector<std::string> files_read;
 };
 
 // `file` names the document in messages; relative paths inside it resolve

@@ -230,6 +230,7 @@ std::unique_ptr<Texture> ParseTexture(Params& p, const TextureFrame& frame) {
     TextureWrap wrap =
         p.choice("wrap", {"clamp", "repeat"}, "clamp") == "clamp" ? TextureWrap::kClamp : TextureWrap::kRepeat;
     Image image = LoadImage(p, path);
+    if (frame.files_read) frame.files_read->push_back(path);
     texture = MakeImageTexture(std::move(image), size, wrap, "image " + file);
   }
   p.check_all_read();

@@ -269,5 +269,20 @@ TEST(CalibratedSceneTest, RelativeTargetFollowsTheOutputFolder) {
   EXPECT_EQ(scene["solve"]["target"], "../targets/lf");
 }
 
+// Every path key follows, and bare file names (no parent folder) work: the
+// cause of "cannot make absolute path" when fit ran inside examples/.
+TEST(CalibratedSceneTest, EveryRelativePathFollowsFromBareFileNames) {
+  nlohmann::ordered_json scene = {
+      {"solve", {{"target_scene", "targets/dice.json"}}},
+      {"run", {{"compare", {{"scenes", {"hybrid_pbs_hwp.json", "/abs/x.json"}}}}, {"contrast", {{"scenes", {"a.json"}}}}}}};
+  RebaseRelativePaths(scene, "scene.json", "out/calibrated.json");
+  EXPECT_EQ(scene["solve"]["target_scene"], "../targets/dice.json");
+  EXPECT_EQ(scene["run"]["compare"]["scenes"][0], "../hybrid_pbs_hwp.json");
+  EXPECT_EQ(scene["run"]["compare"]["scenes"][1], "/abs/x.json");
+  EXPECT_EQ(scene["run"]["contrast"]["scenes"][0], "../a.json");
+  RebaseRelativePaths(scene, "out/calibrated.json", "calibrated.json");
+  EXPECT_EQ(scene["solve"]["target_scene"], "targets/dice.json");
+}
+
 }  // namespace
 }  // namespace layerlab

@@ -1,0 +1,116 @@
+#include "analysis/target_cache.h"
+
+#include <filesystem>
+#include <fstream>
+#include <vector>
+
+#include "framework/atomic_file.h"
+#include "framework/content_digest.h"
+#include "framework/error.h"
+#include "framework/json_file.h"
+#include "framework/lightfield_io.h"
+
+namespace layerlab {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The file's size, then its bytes: two files cannot run into each other.
+void AddFile(ContentDigest& digest, const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path + ": cannot open for reading (to key the target's render)");
+  std::vector<char> buffer(1 << 16);
+  ContentDigest bytes;
+  uint64_t size = 0;
+  while (in.read(buffer.data(), static_cast<std::streamsize>(buffer.size())) || in.gcount() > 0) {
+    bytes.add(buffer.data(), static_cast<size_t>(in.gcount()));
+    size += static_cast<uint64_t>(in.gcount());
+  }
+  const uint64_t value = bytes.value();
+  digest.add(&size, sizeof size).add(&value, sizeof value);
+}
+
+// Every file under `from`, hard-linked (or copied) to the same place under `to`.
+void LinkTree(const fs::path& from, const fs::path& to) {
+  std::error_code ec;
+  for (auto it = fs::recursive_directory_iterator(from, ec); !ec && it != fs::recursive_directory_iterator();
+       it.increment(ec)) {
+    const fs::path at = to / it->path().lexically_relative(from);
+    if (it->is_directory()) {
+      fs::create_directories(at, ec);
+    } else {
+      fs::create_directories(at.parent_path(), ec);
+      std::error_code link_ec;
+      fs::create_hard_link(it->path(), at, link_ec);
+      if (link_ec) fs::copy_file(it->path(), at, fs::copy_options::overwrite_existing, ec);
+    }
+    if (ec) break;
+  }
+  if (ec) throw Error(to.string() + ": cannot keep the earlier render (" + ec.message() + ")");
+}
+
+}  // namespace
+
+std::string TargetSceneDigest(const TargetScene& scene) {
+  ContentDigest digest;
+  const int version = kTargetRenderVersion;
+  digest.add(&version, sizeof version);
+  AddGeometry(digest, scene.geometry);
+  AddFile(digest, scene.file);
+  for (const std::string& file : scene.files_read) AddFile(digest, file);
+  return digest.hex();
+}
+
+std::optional<LightField> ReadCachedRender(const std::string& folder, const std::string& digest,
+                                           std::string* why_not) {
+  const fs::path record_file = fs::path(folder) / "render.json";
+  std::error_code ec;
+  if (!fs::exists(record_file, ec)) {
+    *why_not = "no earlier render in " + folder;
+    return std::nullopt;
+  }
+  try {
+    const nlohmann::json record = ReadJsonFile(record_file.string());
+    if (!record.is_object() || record.value("format", "") != kRenderRecordFormat)
+      throw Error(record_file.string() + ": not a " + kRenderRecordFormat + " record");
+    const std::string recorded = record.value("digest", "");
+    if (recorded != digest) {
+      *why_not = "the target scene, a file it reads or its geometry changed since the render in " + folder +
+                 " (key " + recorded + ", now " + digest + ")";
+      return std::nullopt;
+    }
+    LightField lf = ReadLightField((fs::path(folder) / "lightfield").string(), {.load_depth = false});
+    if (LightFieldDigest(lf) != record.value("light_field_digest", "")) {
+      *why_not = "the render in " + folder + " was changed after it was written";
+      return std::nullopt;
+    }
+    return lf;
+  } catch (const Error& e) {
+    *why_not = "the render in " + folder + " cannot be used (" + e.message() + ")";
+  } catch (const nlohmann::json::exception& e) {
+    *why_not = "the render in " + folder + " cannot be used (" + e.what() + ")";
+  }
+  return std::nullopt;
+}
+
+void KeepRender(const LightField& lf, const TargetScene& scene, const std::string& digest, const std::string& folder,
+                const std::string& reuse_from) {
+  const fs::path dir(folder);
+  if (reuse_from.empty())
+    WriteLightField(lf, (dir / "lightfield").string());
+  else
+    LinkTree(fs::path(reuse_from) / "lightfield", dir / "lightfield");
+  const LightFieldGeometry& g = lf.geometry;
+  const nlohmann::json record = {
+      {"format", kRenderRecordFormat},
+      {"digest", digest},
+      {"renderer_version", kTargetRenderVersion},
+      {"target_scene", scene.file},
+      {"files_read", scene.files_read},
+      {"geometry", std::to_string(g.views_x) + " x " + std::to_string(g.views_y) + " views of " +
+                       std::to_string(g.cols) + " x " + std::to_string(g.rows) + " pixels"},
+      {"light_field_digest", LightFieldDigest(lf)}};
+  WriteFileAtomically((dir / "render.json").string(), record.dump(2) + "\n");
+}
+
+}  // namespace layerlab
