@@ -13,9 +13,11 @@
 
 #include "analysis/compare.h"
 #include "analysis/report_parts.h"
+#include "analysis/target_source.h"
 #include "app/command_line.h"
 #include "app/commands.h"
 #include "app/number_list.h"
+#include "app/target_option.h"
 #include "framework/atomic_file.h"
 #include "framework/error.h"
 #include "framework/lightfield_io.h"
@@ -41,7 +43,8 @@ std::vector<std::string> SplitNames(const std::string& text) {
 void AddCompareCommand(CLI::App& app) {
   struct Options {
     std::vector<std::string> scenes;
-    std::string target, out, solvers;
+    std::string out, solvers;
+    TargetOption target;
     std::optional<int> iterations;
     std::string time_budget;
     bool scene_options = false;
@@ -49,7 +52,7 @@ void AddCompareCommand(CLI::App& app) {
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("compare", "Several displays and solvers on one target: PSNR against time");
   cmd->add_option("scenes", o->scenes, "Display scene files (JSON)")->required();
-  cmd->add_option("--target", o->target, "Target light-field folder")->required();
+  AddTargetOptions(cmd, o->target, " (one of the two is required)");
   cmd->add_option("--out", o->out, "Output folder")->required();
   cmd->add_option("--solvers", o->solvers,
                   "Solvers to run on each display, comma-separated, or \"all\" for every solver that suits it "
@@ -89,13 +92,16 @@ void AddCompareCommand(CLI::App& app) {
       }
     }
     if (runs.empty()) throw Error("compare: no display and solver fit together; nothing to run");
-    std::vector<NamedInput> inputs = {{o->target, "the target"}};
+    SolveConfig target_config;
+    ApplyTargetOption(o->target, target_config);
+    if (!o->target.given()) throw Error("compare: give the target: --target LF_DIR or --target-scene TARGET.json");
+    std::vector<NamedInput> inputs = {{target_config.target, "the target"},
+                                      {target_config.target_scene, "the target scene"}};
     for (const std::string& file : o->scenes) inputs.push_back({file, "a scene"});
     StagedOutput stage(o->out, "compare",
                        {"compare.txt", "compare.csv", "traces.csv", "psnr_vs_time.svg", "index.html"}, inputs);
-    Note("compare: loading " + o->target);
-    LightField target = ReadLightField(o->target, {.load_depth = false});
-    std::vector<CompareResult> results = RunComparison(runs, target, true);
+    const std::unique_ptr<Target> target = LoadOrRenderTarget(target_config, "target");
+    std::vector<CompareResult> results = RunComparison(runs, target->light_field, true);
     for (const CompareResult& r : results)
       if (!r.report.IsSolutionUsable())
         throw Error("compare: " + r.display + " / " + r.solver + " failed: " + r.report.message +

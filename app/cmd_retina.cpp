@@ -14,6 +14,7 @@
 #include "analysis/retina_sweep.h"
 #include "app/command_line.h"
 #include "app/commands.h"
+#include "app/target_option.h"
 #include "app/number_list.h"
 #include "framework/error.h"
 #include "framework/lightfield_io.h"
@@ -33,7 +34,8 @@ namespace layerlab::app {
 
 void AddRetinaCommand(CLI::App& app) {
   struct Options {
-    std::string scene, patterns, target, target_scene, out, sampling;
+    std::string scene, patterns, out, sampling;
+    TargetOption target;
     std::string accommodation = "0.4,1.0,1.6,2.2", focal_stack, field, resolution = "0.05";
   };
   auto o = std::make_shared<Options>();
@@ -43,10 +45,7 @@ void AddRetinaCommand(CLI::App& app) {
   cmd->add_option("--accommodation", o->accommodation,
                   "States, comma-separated: D, or with units (\"1.0 D\", \"0.5 m\"; default 0.4,1.0,1.6,2.2)");
   cmd->add_option("--focal-stack", o->focal_stack, "Also first,last,step: D, e.g. 0,2.6,0.1 or \"0 D,2.6 D,0.1 D\"");
-  cmd->add_option("--target", o->target, "Light-field folder: natural viewing of it");
-#if LAYERLAB_WITH_EMBREE
-  cmd->add_option("--target-scene", o->target_scene, "Target scene (JSON): natural viewing traced with Embree");
-#endif
+  AddTargetOptions(cmd, o->target, ": natural viewing of it (a scene's traced, not rendered)");
   cmd->add_option("--resolution", o->resolution, "Retinal sample size: degrees or \"3 arcmin\" (default 0.05)");
   cmd->add_option("--field", o->field, "Retinal field W,H: degrees (default: the display's field of view)");
   cmd->add_option("--sampling", o->sampling,
@@ -58,7 +57,8 @@ void AddRetinaCommand(CLI::App& app) {
     DisplaySystem system = Compile(scene);
     SolveConfig config = ReadSolveConfig(scene, system);
     if (!o->sampling.empty()) config.sampling = SamplingFromString(o->sampling);
-    if (!o->target.empty() && !o->target_scene.empty()) throw Error("give --target or --target-scene, not both");
+    SolveConfig given;  // natural viewing of this target only, never of the scene's own
+    ApplyTargetOption(o->target, given);
 
     std::vector<double> states = ParseNumberList(o->accommodation, "--accommodation", kDiopters, true);
     if (!o->focal_stack.empty())
@@ -79,10 +79,10 @@ void AddRetinaCommand(CLI::App& app) {
     StagedOutput stage(o->out, "retina", {"display", "natural", "retina.csv", "index.html"},
                        {{o->scene, "the scene"},
                         {o->patterns, "the patterns"},
-                        {o->target, "the target"},
-                        {o->target_scene, "the target scene"}});
+                        {given.target, "the target"},
+                        {given.target_scene, "the target scene"}});
     std::optional<LightField> target_lf;
-    if (!o->target.empty()) target_lf = ReadLightField(o->target, {.load_depth = false});
+    if (!given.target.empty()) target_lf = ReadLightField(given.target, {.load_depth = false});
     const LightFieldGeometry g = target_lf ? target_lf->geometry : DisplayLightFieldGeometry(system);
     DisplayModel model(system, g, config.sampling);
     const Patterns t = ReadPatterns(model, o->patterns);
@@ -92,8 +92,8 @@ void AddRetinaCommand(CLI::App& app) {
 #if LAYERLAB_WITH_EMBREE
     std::optional<TargetScene> target_scene;
     std::unique_ptr<TargetTracer> tracer;
-    if (!o->target_scene.empty()) {
-      target_scene = LoadTarget(o->target_scene);
+    if (!given.target_scene.empty()) {
+      target_scene = LoadTarget(given.target_scene);
       tracer = std::make_unique<TargetTracer>(*target_scene);
       natural = [&tracer](const PupilPoint& u, double dx, double dy) {
         return tracer->TraceDirection(u.x, u.y, dx, dy).color;

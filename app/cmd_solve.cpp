@@ -15,6 +15,7 @@
 #include "app/command_line.h"
 #include "app/commands.h"
 #include "app/number_list.h"
+#include "app/target_option.h"
 #include "framework/interrupt.h"
 #include "framework/lightfield_io.h"
 #include "framework/progress.h"
@@ -29,7 +30,8 @@ namespace layerlab::app {
 
 void AddSolveCommand(CLI::App& app) {
   struct Options {
-    std::string scene, target, solver, out, sampling, target_range;
+    std::string scene, solver, out, sampling, target_range;
+    TargetOption target;
     std::optional<int> iterations, sub_iterations, warm_start_iterations, threads;
     std::optional<double> tolerance, initial_value;
     std::string time_budget;
@@ -40,7 +42,7 @@ void AddSolveCommand(CLI::App& app) {
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("solve", "Factorize a target light field into layer patterns");
   cmd->add_option("scene", o->scene, "Scene file (JSON); its \"solve\" section gives the defaults")->required();
-  cmd->add_option("--target", o->target, "Target light-field folder (default: the scene's solve section)");
+  AddTargetOptions(cmd, o->target, " (default: the scene's solve section)");
   cmd->add_option("--solver", o->solver, "Solver: " + JoinWords(SolverRegistry::Builtins().names(), ", "));
   cmd->add_option("--out", o->out, "Output folder")->required();
   cmd->add_option("--iterations", o->iterations, "Outer iterations");
@@ -69,11 +71,8 @@ void AddSolveCommand(CLI::App& app) {
       config.options = SolverRegistry::Builtins().find(o->solver)->defaults;
     }
     SolverOptions& opt = config.options;
-    if (!o->target.empty()) config.target = o->target;
-    if (!o->target.empty()) config.target_scene.clear();
-    if (config.target.empty() && config.target_scene.empty())
-      throw Error("no target: give --target LF_DIR or \"solve\": {\"target\": ...} or {\"target_scene\": ...} in " +
-                  o->scene);
+    ApplyTargetOption(o->target, config);
+    RequireTarget(config, o->scene);
     // Any value given is checked by SolverOptions.
     opt.iterations = o->iterations.value_or(opt.iterations);
     opt.sub_iterations = o->sub_iterations.value_or(opt.sub_iterations);

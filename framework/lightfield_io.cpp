@@ -123,16 +123,23 @@ struct Manifest {
   std::string views_pattern, depth_pattern, scene;
 };
 
+// Where a light field comes from, for a path that is not one.
+constexpr const char* kMakeOne =
+    "Render one from a target scene with `layerlab render-target TARGET.json LF_DIR`, or give the target scene "
+    "itself (--target-scene TARGET.json, or \"target_scene\" in the scene's \"solve\" section); the folder format: "
+    "docs/lightfield-format.md";
+
 Manifest ReadManifest(const std::string& folder) {
   std::string manifest_path = (fs::path(folder) / "lightfield.json").string();
   std::error_code ec;
   if (!fs::is_directory(folder, ec)) {
     if (ec && ec != std::errc::no_such_file_or_directory)
       RequireFolder(folder, "light-field folder");  // a loop, an overlong name
-    throw Error(folder + ": not a light-field folder (no such directory)");
+    throw Error(folder + ": not a light-field folder (" +
+                (fs::is_regular_file(folder, ec) ? "a file" : "no such directory") + "). " + kMakeOne);
   }
   if (!fs::exists(fs::symlink_status(manifest_path, ec)))
-    throw Error(folder + ": not a light-field folder (no lightfield.json)");
+    throw Error(folder + ": not a light-field folder (no lightfield.json). " + kMakeOne);
   RequireRegularFile(manifest_path, "manifest");
   RequireInsideFolder(manifest_path, folder, "manifest");
   nlohmann::json doc = ReadJsonFile(manifest_path);

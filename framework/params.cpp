@@ -25,7 +25,15 @@ void Params::mark_read(const std::string& key) { read_.insert(key); }
 const json& Params::at(const std::string& key) {
   read_.insert(key);
   auto it = object_->find(key);
-  if (it == object_->end()) fail(key, "missing required key \"" + key + "\"");
+  if (it == object_->end()) {
+    // A key not read yet that is a near miss is the likelier mistake: a typo, named where it is.
+    std::vector<std::string> unread;
+    for (auto k = object_->begin(); k != object_->end(); ++k)
+      if (!read_.count(k.key())) unread.push_back(k.key());
+    if (auto near = ClosestWord(key, unread))
+      throw Error(where_.child(*near), "unknown key \"" + *near + "\"; did you mean \"" + key + "\"?");
+    fail(key, "missing required key \"" + key + "\"");
+  }
   return *it;
 }
 

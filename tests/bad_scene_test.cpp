@@ -45,6 +45,14 @@ const BadScene kCases[] = {
        lens["focal_length"] = "75 mm";
      },
      "scene.json: /elements/1/focal_lenght: unknown key \"focal_lenght\"; did you mean \"focal_length\"?"},
+    // A required key misspelled (README.md's example): the typo is named, not the missing key.
+    {"MisspelledRequiredKey", kMul,
+     [](json& s) {
+       json& lens = ElementNamed(s, "lens");
+       lens["focal_lenght"] = lens["focal_length"];
+       lens.erase("focal_length");
+     },
+     "scene.json: /elements/1/focal_lenght: unknown key \"focal_lenght\"; did you mean \"focal_length\"?"},
     {"MissingRequiredKey", kMul, [](json& s) { ElementNamed(s, "lens").erase("focal_length"); },
      "scene.json: /elements/1/focal_length: missing required key \"focal_length\""},
     {"WrongKindOfUnit", kMul, [](json& s) { ElementNamed(s, "lens")["focal_length"] = "75 deg"; },
