@@ -12,6 +12,7 @@
 #include "calibration/calibrated_scene.h"
 #include "calibration/calibration.h"
 #include "framework/atomic_file.h"
+#include "framework/params.h"
 #include "framework/staged_output.h"
 #include "framework/version.h"
 #include "systems/compile.h"
@@ -22,7 +23,7 @@ void AddFitCommand(CLI::App& app) {
   struct Options {
     std::string scene, measurements, out, report, loss = "none", reference = "camera";
     double marker_loss_arcmin = -1, luminance_loss = -1;
-    bool fit_focal_length = false, fit_lens_gaps = false;
+    bool fit_focal_length = false, fit_lens_gaps = false, force = false;
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("fit", "Calibrate a scene from measurements of the built display (Ceres)");
@@ -42,6 +43,9 @@ void AddFitCommand(CLI::App& app) {
   cmd->add_flag("--fit-lens-gaps", o->fit_lens_gaps,
                 "Also fit the gap of every lens and curved mirror (needs two or more camera positions and two panels "
                 "at different depths behind it)");
+  cmd->add_flag("--force", o->force,
+                "Write the calibrated scene even when the fit leaves a parameter undetermined (at a bound of the "
+                "model, or a standard deviation above 10 % of its value)");
   cmd->callback([o] {
     const std::vector<NamedInput> inputs = {{o->scene, "the scene"}, {o->measurements, "the measurements"}};
     RefuseOutputOverlappingInputs(o->out, inputs);
@@ -69,6 +73,17 @@ void AddFitCommand(CLI::App& app) {
       WriteFileAtomically(o->report, j.dump(2) + "\n");
     }
     if (!report.IsSolutionUsable()) throw Error("the calibration failed: " + report.message + "; nothing was written");
+    if (!report.unresolved.empty()) {
+      const std::string what = "the data do not determine " + JoinWords(report.unresolved, "; and ") +
+                               " (undetermined: a parameter at a bound of the model, or with a standard deviation "
+                               "above " +
+                               FormatFixed(100 * kUndeterminedStdDevFraction, 0) +
+                               " % of its value; docs/measurements-format.md)";
+      if (!o->force)
+        throw Error(what + ". The calibrated scene was not written: add markers, captures or camera positions, or "
+                           "write it anyway with --force");
+      std::cerr << "warning: " << what << "; --force: writing the calibrated scene anyway\n";
+    }
 
     nlohmann::ordered_json calibrated = CalibratedSceneDocument(ReadDocumentInOrder(o->scene), o->scene, display);
     // Absolute: a bare file name has no parent folder to rebase from.

@@ -72,11 +72,18 @@ struct CalibrationOptions {
   bool IsValid(std::string* error) const;
 };
 
+// A fitted distance, focal length or gap whose standard deviation exceeds
+// this fraction of its value is not determined by the data; neither is a
+// parameter that ends at a bound of the model (a panel at the focal length).
+// Both are reported "undetermined by the fit" (docs/measurements-format.md).
+inline constexpr double kUndeterminedStdDevFraction = 0.1;
+
 enum class ParameterStatus {
   kFitted,
   kUndetermined,  // the data cannot determine it: held at its scene value
   kReference,     // fixed by the axis reference
   kNotFitted,     // not asked for (a focal length without fit_focal_length, a gap without fit_lens_gaps)
+  kUnresolved,    // fitted, but at a bound of the model or with a standard deviation beyond kUndeterminedStdDevFraction
 };
 std::string ToString(ParameterStatus status);
 
@@ -113,6 +120,8 @@ struct CalibrationReport {
   std::vector<PanelResiduals> panels;
   std::vector<ParameterEstimate> parameters;
   std::vector<std::string> warnings;
+  // Parameters with ParameterStatus::kUnresolved, and why: `fit` writes no calibrated scene then unless --force.
+  std::vector<std::string> unresolved;
 
   bool IsSolutionUsable() const { return usable; }
   const ParameterEstimate* find(const std::string& element, const std::string& quantity) const;

@@ -59,6 +59,8 @@ std::string ToString(ParameterStatus status) {
       return "reference";
     case ParameterStatus::kNotFitted:
       return "not fitted";
+    case ParameterStatus::kUnresolved:
+      return "undetermined by the fit";
   }
   return "?";
 }

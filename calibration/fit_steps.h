@@ -21,6 +21,13 @@ std::string ShowValue(const std::string& quantity, double si_value);
 std::string ShowUnit(const std::string& quantity);
 double ArcminFromRadians(double radians);
 
+struct ScalarParameter;
+// Why the fit does not determine the fitted value `p` of `parameter`
+// (completing "it ..."), or "": it ends at a bound of the model, or, for a
+// length that must be positive (a distance, focal length or gap), its standard
+// deviation exceeds kUndeterminedStdDevFraction of its value.
+std::string Unresolved(const ScalarParameter& parameter, const ParameterEstimate& p);
+
 }  // namespace layerlab
 
 namespace ceres {

@@ -207,6 +207,24 @@ void PlaceAsFitted(const DisplaySystem& system, const std::vector<Optic>& optics
 
 }  // namespace
 
+std::string Unresolved(const ScalarParameter& parameter, const ParameterEstimate& p) {
+  auto at = [&](const std::optional<double>& bound) {
+    return bound && std::abs(p.value - *bound) <= 1e-6 * std::max(std::abs(*bound), 1e-9);
+  };
+  if (at(parameter.upper) || at(parameter.lower)) {
+    const bool focus = p.quantity == "distance" && at(parameter.upper);
+    return "ends at a bound of the model (" + ShowValue(p.quantity, p.value) +
+           (focus ? ": the focal length, where its image is at infinity, 0 D" : "") + ")";
+  }
+  const bool length = p.quantity == "distance" || p.quantity == "focal_length" || p.quantity == "gap";
+  if (length && p.std_dev && *p.std_dev > kUndeterminedStdDevFraction * std::abs(p.value))
+    return "has a standard deviation of " + ShowValue(p.quantity, *p.std_dev) + ", more than " +
+           FormatFixed(100 * kUndeterminedStdDevFraction, 0) + " % of its value (" + ShowValue(p.quantity, p.value) +
+           ")";
+  return "";
+}
+
+
 bool FitGeometry(const DisplaySystem& system, const Measurements& measurements, const CalibrationOptions& options,
                  CalibratedDisplay* display, CalibrationReport* report) {
   const int layer_count = static_cast<int>(system.layers.size());
@@ -485,6 +503,13 @@ bool FitGeometry(const DisplaySystem& system, const Measurements& measurements, 
     p.status = status[i];
     if (p.status == ParameterStatus::kFitted && result.covariance.size())
       p.std_dev = std::sqrt(result.covariance(i, i));
+    if (p.status != ParameterStatus::kFitted) return p;
+    if (const std::string why = Unresolved(fit.parameter(i), p); !why.empty()) {
+      p.status = ParameterStatus::kUnresolved;
+      report->unresolved.push_back(fit.parameter(i).name + ": it " + why);
+      report->warnings.push_back("the data do not determine " + fit.parameter(i).name + ": it " + why +
+                                 "; it is reported undetermined, and `fit` writes no calibrated scene unless --force");
+    }
     return p;
   };
   auto fitted = [&](int i) { return status[i] == ParameterStatus::kFitted; };

@@ -8,6 +8,7 @@
 
 #include "calibration/calibrated_scene.h"
 #include "calibration/calibration.h"
+#include "calibration/fit_steps.h"
 #include "calibration/scalar_fit.h"
 #include "framework/json_file.h"
 #include "tests/calibration_test_util.h"
@@ -401,6 +402,74 @@ TEST(ScalarFitTest, InfeasibleHeldValueIsAFailedSolveNotACrash) {
   EXPECT_FALSE(result.usable);
   EXPECT_NE(result.summary.message.find("infeasible"), std::string::npos) << result.summary.message;
   EXPECT_EQ(result.covariance.size(), 0);
+}
+
+// Issue 18: a value the data do not pin down is not reported as fitted.
+// By hand: the bound of the model, and the stated fraction of the value.
+TEST(UnresolvedTest, AtABoundOrBeyondTheStatedFractionByHand) {
+  ScalarParameter distance{"the distance of panel \"p\"", 0.0728, 2, 7.5e-5, 0.075};
+  ParameterEstimate p;
+  p.quantity = "distance";
+  p.value = 0.075;
+  p.std_dev = 8.88e-5;
+  EXPECT_EQ(Unresolved(distance, p),
+            "ends at a bound of the model (75.0000 mm: the focal length, where its image is at infinity, 0 D)");
+  p.value = 7.5e-5;
+  EXPECT_EQ(Unresolved(distance, p), "ends at a bound of the model (0.0750 mm)");
+  p.value = 0.0728;
+  p.std_dev = 0.0766;  // the 76.6 mm of the issue
+  EXPECT_EQ(Unresolved(distance, p),
+            "has a standard deviation of 76.6000 mm, more than 10 % of its value (72.8000 mm)");
+  p.std_dev = 0.1 * 0.0728 * 1.001;
+  EXPECT_NE(Unresolved(distance, p), "");
+  p.std_dev = 0.1 * 0.0728 * 0.999;
+  EXPECT_EQ(Unresolved(distance, p), "");
+  p.std_dev.reset();  // no uncertainty estimable: only the bound can tell
+  EXPECT_EQ(Unresolved(distance, p), "");
+  // An offset may well be zero: the fraction does not apply to it.
+  ScalarParameter offset{"the offset x of panel \"p\"", 0, 4, {}, {}};
+  p.quantity = "offset_x";
+  p.value = 1e-6;
+  p.std_dev = 1e-5;
+  EXPECT_EQ(Unresolved(offset, p), "");
+}
+
+TEST(UnresolvedTest, TheExampleMeasurementsLeaveNothingUndetermined) {
+  const Measurements m = ReadMeasurementsFile(testing::ExamplePath("paper_prototype_measurements.json"));
+  CalibratedDisplay display;
+  const CalibrationReport report = Calibrate(Designed(), m, CalibrationOptions{}, &display);
+  ASSERT_TRUE(report.IsSolutionUsable()) << report.message;
+  EXPECT_TRUE(report.unresolved.empty()) << report.FullReport();
+  for (const ParameterEstimate& p : report.parameters) EXPECT_NE(p.status, ParameterStatus::kUnresolved);
+}
+
+// A panel whose markers span a smaller angle than any distance inside the
+// focal length can show (its image at infinity subtends the least): the fit
+// runs into the bound, the panel at the focal length (0 D), which was reported
+// "fitted" before.
+TEST(UnresolvedTest, APanelSeenTooSmallEndsAtTheFocalLengthAndIsUndetermined) {
+  nlohmann::json doc = ReadJsonFile(testing::ExamplePath("paper_prototype_measurements.json"));
+  const double cx = doc["camera"]["cx"], cy = doc["camera"]["cy"];
+  for (auto& capture : doc["captures"])
+    for (auto& marker : capture["markers"]["rear_a"]) {
+      const double x = marker["camera_pixel"][0], y = marker["camera_pixel"][1];
+      marker["camera_pixel"] = {cx + (x - cx) * 0.95, cy + (y - cy) * 0.95};
+    }
+  const Measurements m = ParseMeasurements(doc, "shrunk.json");
+  CalibratedDisplay display;
+  const CalibrationReport report = Calibrate(Designed(), m, CalibrationOptions{}, &display);
+  ASSERT_TRUE(report.IsSolutionUsable()) << report.message;
+  const ParameterEstimate* distance = report.find("rear_a", "distance");
+  ASSERT_NE(distance, nullptr);
+  EXPECT_TRUE(testing::Close(distance->value, Designed().focal_length, 1e-6));
+  EXPECT_EQ(distance->status, ParameterStatus::kUnresolved);
+  EXPECT_EQ(report.find("rear_a", "virtual_depth")->status, ParameterStatus::kUnresolved);
+  ASSERT_EQ(report.unresolved.size(), 1u) << report.FullReport();
+  EXPECT_EQ(report.unresolved[0],
+            "the distance of panel \"rear_a\": it ends at a bound of the model (75.0000 mm: the focal length, where "
+            "its image is at infinity, 0 D)");
+  EXPECT_TRUE(HasWarning(report, "it is reported undetermined, and `fit` writes no calibrated scene unless --force"));
+  EXPECT_EQ(report.find("rear_b", "distance")->status, ParameterStatus::kFitted);
 }
 
 }  // namespace
