@@ -101,12 +101,14 @@ void KeepRender(const LightField& lf, const TargetScene& scene, const std::strin
   else
     LinkTree(fs::path(reuse_from) / "lightfield", dir / "lightfield");
   const LightFieldGeometry& g = lf.geometry;
+  std::vector<std::string> files;
+  for (const std::string& f : scene.files_read) files.push_back(fs::path(f).lexically_normal().string());
   const nlohmann::json record = {
       {"format", kRenderRecordFormat},
       {"digest", digest},
       {"renderer_version", kTargetRenderVersion},
       {"target_scene", scene.file},
-      {"files_read", scene.files_read},
+      {"files_read", files},
       {"geometry", std::to_string(g.views_x) + " x " + std::to_string(g.views_y) + " views of " +
                        std::to_string(g.cols) + " x " + std::to_string(g.rows) + " pixels"},
       {"light_field_digest", LightFieldDigest(lf)}};

@@ -7,9 +7,7 @@
 # scene's target follows it). Then the target options' errors are asserted by
 # their text. On the reduced example (seconds a command).
 # Usage: any_working_directory.sh LAYERLAB EXAMPLES_DIR WORK_DIR
-set -u
-layerlab=$1 examples=$2 work=$3
-fail() { echo "FAIL: $*"; [ -f "$work/log" ] && tail -n 8 "$work/log"; exit 1; }
+source "$(dirname "$0")/common.sh"
 rm -rf "$work"
 mkdir -p "$work/elsewhere"
 cp -r "$examples" "$work/examples"
@@ -28,9 +26,6 @@ refused() {  # $1: the message the refusal must contain; runs the rest
 }
 quick_retina=(--accommodation 1.0 --resolution 0.5)
 quick_contrast=(--depths 1.3 --frequencies 1 --accommodation 0.5,2.0,0.25 --no-peak-uncertainty)
-solve_only() {  # the reduced main job without its analyses
-  awk '/^  "run": \{/{print "  \"run\": {}"; print "}"; exit} {print}' "$1" >"$2"
-}
 
 # Bare file names, inside examples/small.
 cd "$work/examples/small" || fail "no examples/small"

@@ -5,9 +5,7 @@
 # length, so its distance ends at the bound, the focal length) and exits 1;
 # --force writes it, with a warning.
 # Usage: fit_undetermined.sh LAYERLAB EXAMPLES_DIR WORK_DIR
-set -u
-layerlab=$1 examples=$2 work=$3
-fail() { echo "FAIL: $*"; [ -f "$work/log" ] && tail -n 5 "$work/log"; exit 1; }
+source "$(dirname "$0")/common.sh"
 rm -rf "$work" && mkdir -p "$work"
 # The example's markers are one per line; scale rear_a's camera pixels (cx 2000, cy 1500 in its "camera").
 grep -q '"cx": 2000, "cy": 1500' "$examples/paper_prototype_measurements.json" || fail "the example's camera changed; update this test"
