@@ -4,7 +4,7 @@ clock in both) and the ratio of the medians (Python / command).
 
     PYTHONPATH=build/python /usr/bin/python3 python/examples/solve_ratio.py [ROUNDS]
 
-Needs ../shared/data/dice (the scene's "solve" section names it).
+Needs ../shared/data/dice (given to both; the scene's own "solve" section renders examples/targets/dice.json).
 """
 
 import json
@@ -23,14 +23,15 @@ rounds = int(sys.argv[1]) if len(sys.argv) > 1 else 5
 
 scene = layerlab.load_scene(scene_path)
 system = scene.compile()
-target = layerlab.read_lightfield(root.parent / "shared" / "data" / "dice")
+dice = root.parent / "shared" / "data" / "dice"
+target = layerlab.read_lightfield(dice)
 python_s, command_s = [], []
 with tempfile.TemporaryDirectory() as out:
     for r in range(rounds):
         report = layerlab.solve(system, target, solver="hybrid", iterations=30, sub_iterations=3).report
         python_s.append(report["seconds"])
-        subprocess.run([str(command), "solve", str(scene_path), "--solver", "hybrid", "--iterations", "30",
-                        "--sub-iterations", "3", "--out", out], check=True, capture_output=True)
+        subprocess.run([str(command), "solve", str(scene_path), "--target", str(dice), "--solver", "hybrid",
+                        "--iterations", "30", "--sub-iterations", "3", "--out", out], check=True, capture_output=True)
         command_report = json.loads((pathlib.Path(out) / "report.json").read_text())
         command_s.append(command_report["seconds"])
         assert command_report["final_psnr_db"] == report["final_psnr_db"], "not the same solve"
