@@ -95,6 +95,11 @@ RetinaRunConfig ReadRetina(Params& run, const DisplaySystem& system) {
       p.fail("field", "each angle must lie in (0, 170) deg");
   }
   r.natural = p.boolean("natural", r.natural);
+  const std::string viewing = p.string("natural_viewing", "light field");
+  if (viewing == "traced")
+    r.natural_traced = true;
+  else if (viewing != "light field")
+    p.fail("natural_viewing", "must be \"light field\" or \"traced\", got \"" + viewing + "\"");
   p.check_all_read();
   if (r.states().size() > kMaxStates) p.fail("focal_stack", "more than " + std::to_string(kMaxStates) + " states");
   return r;

@@ -26,6 +26,7 @@ struct RetinaRunConfig {
   double resolution = 0.05;           // deg per retinal sample
   double field_x = 0, field_y = 0;    // deg; 0: the display's field of view
   bool natural = true;                // natural viewing of the target too
+  bool natural_traced = false;        // traced in the target scene rather than read from its light field
   // Every state, sorted, duplicates removed: the slider's positions.
   std::vector<double> states() const;
 };

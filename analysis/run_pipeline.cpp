@@ -182,7 +182,9 @@ RunOutcome RunPipeline(const RunRequest& request) {
     if (in.run.retina.enabled) {
       auto start = Clock::now();
       const RetinaRunConfig& r = in.run.retina;
-      const SceneRadiance natural = r.natural ? target->Natural() : SceneRadiance{};
+      const SceneRadiance natural =
+          r.natural ? target->Natural(r.natural_traced ? Target::Viewing::kTraced : Target::Viewing::kLightField)
+                    : SceneRadiance{};
       RetinaSweepOptions sweep{r.states(), r.resolution, r.field_x, r.field_y};
       Progress progress("retina", sweep.states.size());
       std::vector<RetinaStateResult> states =

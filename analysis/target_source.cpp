@@ -16,12 +16,14 @@
 
 namespace layerlab {
 
-SceneRadiance Target::Natural() const {
+SceneRadiance Target::Natural(Viewing how) const {
 #if LAYERLAB_WITH_EMBREE
-  if (tracer) {
+  if (how == Viewing::kTraced && tracer) {
     const TargetTracer* t = tracer.get();
     return [t](const PupilPoint& u, double dx, double dy) { return t->TraceDirection(u.x, u.y, dx, dy).color; };
   }
+#else
+  (void)how;
 #endif
   return LightFieldRadiance(light_field);
 }

@@ -28,9 +28,14 @@ struct Target {
   std::unique_ptr<TargetScene> scene;  // stable address: the tracer refers to it
   std::unique_ptr<TargetTracer> tracer;
 #endif
-  // Radiance along any ray from the pupil: traced when rendered, else read
-  // from the light field (which must then outlive the returned function).
-  SceneRadiance Natural() const;
+  // Radiance along any ray from the pupil, for natural viewing. kLightField
+  // reads the target light field: the very rays the display is asked to
+  // reproduce, so display and natural viewing are compared like for like,
+  // image-wise in milliseconds per retinal image. kTraced traces a rendered
+  // target's scene exactly (detail finer than the views), ray by ray, seconds
+  // per image; a target read from a folder has only its light field.
+  enum class Viewing { kLightField, kTraced };
+  SceneRadiance Natural(Viewing how = Viewing::kLightField) const;
 };
 
 // Where a run keeps the render of its target scene (analysis/target_cache.h).

@@ -56,7 +56,16 @@ TEST(RunConfig, RetinaDefaultsToTheLayerDepths) {
   EXPECT_TRUE(testing::Close(c.retina.accommodation[3], 2.2, 1e-9));
   EXPECT_EQ(c.retina.resolution, 0.05);
   EXPECT_TRUE(c.retina.natural);
+  EXPECT_FALSE(c.retina.natural_traced);
   EXPECT_FALSE(c.contrast.enabled);
+}
+
+TEST(RunConfig, NaturalViewingReadsTheLightFieldUnlessTraced) {
+  Loaded l = Load({{"retina", {{"natural_viewing", "traced"}}}});
+  EXPECT_TRUE(ReadRunConfig(l.scene, l.system).retina.natural_traced);
+  EXPECT_EQ(RunError({{"retina", {{"natural_viewing", "ray traced"}}}}),
+            "examples/scene.json: /run/retina/natural_viewing: must be \"light field\" or \"traced\", got \"ray "
+            "traced\"");
 }
 
 TEST(RunConfig, FocalStackMergesWithTheStates) {
