@@ -92,6 +92,17 @@ ContrastDisplay LoadContrastDisplay(const std::string& scene_file) {
   return d;
 }
 
+std::vector<std::string> ContrastWarnings(const std::vector<ContrastDisplay>& displays, const ContrastOptions& o) {
+  std::vector<std::string> warnings;
+  for (const ContrastDisplay& d : displays)
+    for (double f : o.frequencies)
+      if (f > d.system.max_cpd)
+        warnings.push_back(d.name + ": " + FormatFixed(f, 2) + " cpd is above the " + FormatFixed(d.system.max_cpd, 2) +
+                           " cpd the display can show (its finest layer's Nyquist frequency); the curve at " +
+                           FormatFixed(f, 2) + " cpd measures aliasing, not the display's contrast");
+  return warnings;
+}
+
 std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displays, const ContrastOptions& o) {
   if (displays.empty()) throw Error("contrast: no display given");
   if (!(o.accommodation_step > 0) || !(o.accommodation_max > o.accommodation_min))

@@ -92,6 +92,11 @@ struct ContrastCurve {
 
 std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displays, const ContrastOptions& options);
 
+// A frequency of the sweep above what a display can show (its finest layer's
+// Nyquist frequency, DisplaySystem::max_cpd): one warning per display and
+// frequency, since that curve measures aliasing, not the display's contrast.
+std::vector<std::string> ContrastWarnings(const std::vector<ContrastDisplay>& displays, const ContrastOptions& options);
+
 // CSV (one row per display, depth, frequency and accommodation), the peak
 // table as text, and the Fig. 5 style SVG.
 std::string ContrastCsv(const std::vector<ContrastCurve>& curves);

@@ -1,3 +1,53 @@
+// run: the scene's "run" section, what `layerlab run` does beyond the solve
+// (docs/run-section.md). Nothing that is not declared is computed.
+//
+// | key              | type    | default | meaning                                          |
+// |------------------|---------|---------|--------------------------------------------------|
+// | retina           | object  | none    | retinal images over accommodation (run.retina)   |
+// | contrast         | object  | none    | contrast against accommodation, Fig. 5 (run.contrast) |
+// | compare          | object  | none    | other displays on the same target (run.compare)  |
+// | write_lightfield | boolean | false   | the solve also writes the synthesized light field |
+//
+// run.retina: retinal images over accommodation (needs a target).
+//
+// | key           | type                      | default                   | meaning                            |
+// |---------------|---------------------------|---------------------------|------------------------------------|
+// | accommodation | array of depths           | the display's layer depths| states shown as the slider's marks |
+// | focal_stack   | {from, to, step}: depth_range | none                      | more states, so that the slider scrubs a focal stack |
+// | resolution    | angle                     | 0.05 deg                  | retinal sample size                |
+// | field         | [angle, angle] or angle   | the display's field of view | retinal field, centered          |
+// | natural       | boolean                   | true                      | also natural viewing of the target, side by side |
+//
+// run.contrast: normalized contrast against accommodation (the paper's Fig. 5);
+// needs no target: each display is factorized for a cosine grating at each depth.
+//
+// | key               | type                       | default                  | meaning                                 |
+// |-------------------|----------------------------|--------------------------|-----------------------------------------|
+// | depths            | array of depths, above 0 D | ["0.7 D", "1.3 D", "1.9 D"] | grating planes                       |
+// | frequencies       | array of angular frequencies | ["2 cpd", "4 cpd"]     | grating frequencies                     |
+// | accommodation     | {from, to, step}: depth_range | 0 D to 2.6 D by 0.05 D   | the sweep (at least 3 states)           |
+// | retina_resolution | angle                      | 0.01 deg                 | retinal sample size                     |
+// | retina_field      | angle                      | 20 deg                   | horizontal, centered                    |
+// | strip_rows        | integer                    | 24                       | light-field rows around the axis (the grating is vertical) |
+// | scenes            | array of paths             | none                     | more displays in the same sweep         |
+//
+// run.compare: other displays on the same target (needs a target).
+//
+// | key         | type                  | default          | meaning                                      |
+// |-------------|-----------------------|------------------|----------------------------------------------|
+// | scenes      | array of paths        | none             | displays beside this one                     |
+// | solvers     | array of solver names | each scene's own | every display runs every solver it suits     |
+// | iterations  | integer               | each run's own   | outer iterations of every run                |
+// | time_budget | time                  | each run's own   | wall-clock budget of every run               |
+//
+// depth_range: a range of depths, {"from": ..., "to": ..., "step": ...}, as
+// run.retina's focal_stack and run.contrast's accommodation take it.
+//
+// | key  | type          | default  | meaning                                |
+// |------|---------------|----------|----------------------------------------|
+// | from | depth         | required | the first state                        |
+// | to   | depth         | required | the last state, beyond from            |
+// | step | optical power | required | above 0 D and at most to - from        |
 #include "analysis/run_config.h"
 
 #include <algorithm>

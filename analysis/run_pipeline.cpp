@@ -170,6 +170,7 @@ RunOutcome RunPipeline(const RunRequest& request) {
       report =
           SolverRegistry::Builtins().create(in.solve.solver)->Solve(*model, target->light_field, options, &patterns);
       progress.Finish(report.BriefReport());
+      for (const std::string& w : TargetGeometryWarnings(in.system, g)) page.warnings.push_back("target: " + w);
       for (const std::string& w : report.warnings) page.warnings.push_back("solve: " + w);
       if (!report.IsSolutionUsable())
         throw Error("the solve failed: " + report.message + "; the report was not written");
@@ -202,6 +203,7 @@ RunOutcome RunPipeline(const RunRequest& request) {
       ContrastOptions options = in.run.contrast.options;
       const size_t total = in.contrast.size() * options.frequencies.size() * options.target_diopters.size();
       options.show_progress = true;
+      for (const std::string& w : ContrastWarnings(in.contrast, options)) page.warnings.push_back("contrast: " + w);
       AddContrastToPage(RunContrast(in.contrast, options), (out / "contrast").string(), "contrast/", &page);
       step("contrast sweep (" + std::to_string(total) + " solves)", start);
     }
@@ -249,7 +251,9 @@ RunOutcome RunPipeline(const RunRequest& request) {
     }
 
     page.steps.emplace_back("total", Since(run_start));
-    outcome.warnings = page.warnings;
+    for (const std::string& w : in.system.warnings)
+      outcome.warnings.push_back("compile: " + w);  // shown by the page's system table
+    outcome.warnings.insert(outcome.warnings.end(), page.warnings.begin(), page.warnings.end());
     WriteReportPage(page, out.string());
   } catch (const Error& e) {
     throw stage.Explain(e);

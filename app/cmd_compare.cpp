@@ -9,6 +9,7 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <set>
 #include <sstream>
 
 #include "analysis/compare.h"
@@ -23,8 +24,10 @@
 #include "framework/lightfield_io.h"
 #include "framework/progress.h"
 #include "framework/staged_output.h"
+#include "framework/warnings.h"
 #include "solvers/solve_config.h"
 #include "systems/compile.h"
+#include "systems/display_model.h"
 
 namespace layerlab::app {
 namespace {
@@ -107,12 +110,27 @@ void AddCompareCommand(CLI::App& app) {
         throw Error("compare: " + r.display + " / " + r.solver + " failed: " + r.report.message +
                     "; nothing was written");
 
+    std::vector<std::string> warnings;  // each display's compile and target warnings once, then every run's
+    std::set<std::string> seen;
+    for (const CompareRun& r : runs)
+      if (seen.insert(r.display).second) {
+        std::vector<std::string> found = r.system.warnings;
+        for (const std::string& w : TargetGeometryWarnings(r.system, target.geometry)) found.push_back(w);
+        for (const std::string& w : found) warnings.push_back(r.display + ": " + w);
+      }
+    for (const CompareResult& r : results)
+      for (const std::string& w : r.report.warnings) warnings.push_back(r.display + " / " + r.solver + ": " + w);
+    SayWarnings(warnings);
+
     const std::string table = CompareTable(results);
     try {
       RunReportPage page = CommandPage("compare", "", "", "", CommandLine());
       for (const CompareResult& r : results) page.steps.push_back({r.display + " / " + r.solver, r.report.seconds});
       AddCompareToPage(results, stage.staging(), "", &page);
+      page.warnings = warnings;
       WriteReportPage(page, stage.staging());
+      WriteFileAtomically(stage.staging() + "/compare.txt",
+                          table + WarningLines(warnings));  // the table, then the warnings
     } catch (const Error& e) {
       throw stage.Explain(e);
     }

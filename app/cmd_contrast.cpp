@@ -14,6 +14,7 @@
 #include "framework/atomic_file.h"
 #include "framework/error.h"
 #include "framework/staged_output.h"
+#include "framework/warnings.h"
 #include "solvers/solve_config.h"
 #include "systems/compile.h"
 #include "systems/system_report.h"
@@ -73,26 +74,36 @@ void AddContrastCommand(CLI::App& app) {
 
     std::vector<ContrastDisplay> displays;
     for (const std::string& file : o->scenes) displays.push_back(LoadContrastDisplay(file));
+    std::vector<std::string> warnings;
+    for (const ContrastDisplay& d : displays)
+      for (const std::string& w : d.system.warnings) warnings.push_back(d.name + ": " + w);
+    for (const std::string& w : ContrastWarnings(displays, options)) warnings.push_back(w);
+    SayWarnings(warnings);
     std::vector<NamedInput> inputs;
     for (const std::string& file : o->scenes) inputs.push_back({file, "a scene"});
-    StagedOutput stage(o->out, "contrast", {"contrast.csv", "peaks.txt", "contrast.svg", "index.html"}, inputs);
+    StagedOutput stage(o->out, "contrast", {"contrast.csv", "peaks.txt", "contrast.svg", "index.html", "report.json"},
+                       inputs);
     auto start = std::chrono::steady_clock::now();
     std::vector<ContrastCurve> curves = RunContrast(displays, options);
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    std::string peaks = PeakTable(curves);
+    const std::string peaks = PeakTable(curves);
     try {
       RunReportPage page = CommandPage("contrast", "", "", "", CommandLine());
       page.steps = {{"contrast sweep (" + std::to_string(curves.size()) + " curves)", seconds}};
       AddContrastToPage(curves, stage.staging(), "", &page);
+      page.warnings = warnings;
       WriteReportPage(page, stage.staging());
+      WriteFileAtomically(stage.staging() + "/report.json",
+                          nlohmann::json{{"command", "contrast"}, {"warnings", warnings}}.dump(2) + "\n");
     } catch (const Error& e) {
       throw stage.Explain(e);
     }
     stage.Commit();
     std::cout << peaks;
-    std::printf("sweep of %zu curves in %.2f s; wrote %s/{index.html,contrast.csv,peaks.txt,contrast.svg}\n",
-                curves.size(), seconds, o->out.c_str());
+    std::printf(
+        "sweep of %zu curves in %.2f s; wrote %s/{index.html,contrast.csv,peaks.txt,contrast.svg,report.json}\n",
+        curves.size(), seconds, o->out.c_str());
   });
 }
 

@@ -18,6 +18,7 @@
 
 #include "analysis/run_pipeline.h"
 #include "app/commands.h"
+#include "framework/warnings.h"
 
 namespace layerlab::app {
 
@@ -35,7 +36,7 @@ void AddRunCommand(CLI::App& app) {
   cmd->callback([request] {
     const auto start = std::chrono::steady_clock::now();
     const RunOutcome outcome = RunPipeline(*request);
-    for (const std::string& w : outcome.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    SayWarnings(outcome.warnings);
     std::cout << outcome.compare_table;
     if (!outcome.removed.empty())
       std::printf("run: removed %zu file%s an earlier run wrote into %s\n", outcome.removed.size(),

@@ -20,6 +20,7 @@
 #include "framework/lightfield_io.h"
 #include "framework/progress.h"
 #include "framework/staged_output.h"
+#include "framework/warnings.h"
 #include "solvers/memory_estimate.h"
 #include "solvers/solution_writer.h"
 #include "solvers/solve_config.h"
@@ -133,7 +134,10 @@ void AddSolveCommand(CLI::App& app) {
       report = SolverRegistry::Builtins().create(config.solver)->Solve(model, target->light_field, opt, &patterns);
       progress.Finish(ToString(report.termination));
     }
-    for (const std::string& w : report.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    std::vector<std::string> found = system.warnings;  // the compile's and the target's first
+    for (const std::string& w : TargetGeometryWarnings(system, target->light_field.geometry)) found.push_back(w);
+    report.warnings.insert(report.warnings.begin(), found.begin(), found.end());
+    SayWarnings(report.warnings);
     std::cout << report.BriefReport() << "\n";
     if (!report.IsSolutionUsable()) throw Error("the solve failed: " + report.message + "; nothing was written");
     try {

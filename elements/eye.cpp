@@ -8,8 +8,8 @@
 // | pupil_sampling      | grid, jittered, poisson | grid        | how those points are placed              |
 // | pupil_seed          | integer            | 1                | for jittered and poisson sampling        |
 // | eye_relief          | length             | 1 cm             | pupil plane to main lens                 |
-// | accommodation_range | [depth, depth]     | ["0 D", "2.6 D"] | range swept by focal stacks and contrast curves |
-// | chromatic_defocus   | [D, D, D]          | [0, 0, 0]        | defocus added per channel (longitudinal chromatic aberration) |
+// | accommodation_range | [depth, depth]     | ["0 D", "2.6 D"] | far and near point: a layer outside gets a warning; swept by focal stacks and contrast curves |
+// | chromatic_defocus   | [r, g, b] optical powers | [0, 0, 0]  | defocus added per channel (longitudinal chromatic aberration) |
 // | eyebox              | [length, length]   | [6 mm, 6 mm]     | width, height the views cover            |
 // | views               | [x, y] integers    | [13, 13]         | views of target light fields             |
 // | next                | element name       | required         | the main lens                            |

@@ -5,6 +5,7 @@
 // | reflectance   | fraction or [r,g,b] | 0.5        | toward the eye from the reflected branch    |
 // | transmittance | fraction or [r,g,b] | 0.5        | toward the eye from the transmitted branch  |
 // | fold          | horizontal, vertical| horizontal | plane of the fold; a horizontal fold mirrors the reflected branch left-right |
+// | gap           | length              | see thin_lens | path length from the element before it   |
 // | transmitted   | name                | required   | the branch straight behind the mirror       |
 // | reflected     | name                | required   | the branch off to the side                  |
 #include "elements/element.h"

@@ -10,6 +10,7 @@
 // | order             | integer                    | 0         | multi-order plates are more chromatic |
 // | achromatic        | boolean                    | false     | retardance pi at every wavelength |
 // | transmittance     | fraction, [r,g,b] or table | 1         | intensity transmittance      |
+// | gap               | length                     | see thin_lens | path length from the element before it |
 // | next              | name                       | required  | toward the panels            |
 #include <numbers>
 

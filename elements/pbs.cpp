@@ -9,6 +9,7 @@
 // | reflectance_p   | fraction, [r,g,b] or table | 0          | Rp (leakage)                     |
 // | p_axis          | angle                      | 0 deg      | p direction, from eye-space x    |
 // | fold            | horizontal, vertical       | horizontal | as for half_mirror               |
+// | gap             | length                     | see thin_lens | path length from the element before it |
 // | transmitted     | name                       | required   | branch straight behind           |
 // | reflected       | name                       | required   | branch off to the side           |
 #include <cmath>

@@ -1,3 +1,10 @@
+// element: the keys every element object has, whatever its type; the
+// registry reads them before the type's factory reads the rest.
+//
+// | key  | type         | default  | meaning                                                        |
+// |------|--------------|----------|----------------------------------------------------------------|
+// | type | element type | required | one of the types below                                         |
+// | name | string       | required | unique in the scene; letters, digits, '_', '-', '.'; names output files |
 #include "elements/registry.h"
 
 #include <cctype>

@@ -5,7 +5,7 @@
 // |----------------|--------|-----------|------------------------------------------------------|
 // | focal_length   | length | required  | nonzero; negative for a diverging lens               |
 // | clear_aperture | length | unlimited | diameter; a warning names the layers it vignettes    |
-// | gap            | length | see below | path length from the element before it; the first lens on a path may omit it and sit at the eye's eye_relief |
+// | gap            | length | see meaning | path length from the element before it; the first lens on a path may omit it and sit at the eye's eye_relief |
 // | next           | name   | required  | the next element away from the eye                   |
 #include <cmath>
 

@@ -18,12 +18,29 @@ Params::Params(json&& object, Location where)
   if (!object_->is_object()) throw Error(where_, "expected an object, got " + JsonKindName(*object_));
 }
 
-bool Params::has(const std::string& key) const { return object_->contains(key); }
+namespace {
+thread_local ParamsKeyRecorder* active_recorder = nullptr;
+}  // namespace
 
-void Params::mark_read(const std::string& key) { read_.insert(key); }
+ParamsKeyRecorder::ParamsKeyRecorder() : previous_(active_recorder) { active_recorder = this; }
+ParamsKeyRecorder::~ParamsKeyRecorder() { active_recorder = previous_; }
+
+void Params::record(const std::string& key) const {
+  if (active_recorder) active_recorder->keys_[where_.pointer].insert(key);
+}
+
+bool Params::has(const std::string& key) const {
+  record(key);
+  return object_->contains(key);
+}
+
+void Params::mark_read(const std::string& key) {
+  record(key);
+  read_.insert(key);
+}
 
 const json& Params::at(const std::string& key) {
-  read_.insert(key);
+  mark_read(key);
   auto it = object_->find(key);
   if (it == object_->end()) {
     // A key not read yet that is a near miss is the likelier mistake: a typo, named where it is.
@@ -67,13 +84,13 @@ double Params::quantity(const std::string& key, Dimension d, double fallback) {
 }
 
 std::optional<double> Params::optional_quantity(const std::string& key, Dimension d) {
-  read_.insert(key);
+  mark_read(key);
   if (!has(key)) return std::nullopt;
   return quantity(key, d);
 }
 
 std::optional<Depth> Params::optional_depth(const std::string& key) {
-  read_.insert(key);
+  mark_read(key);
   if (!has(key)) return std::nullopt;
   const json& v = at(key);
   if (!v.is_string())
@@ -108,12 +125,12 @@ int64_t Params::integer(const std::string& key, int64_t min, int64_t max) {
 }
 
 int64_t Params::integer(const std::string& key, int64_t min, int64_t max, int64_t fallback) {
-  read_.insert(key);
+  mark_read(key);
   return has(key) ? integer(key, min, max) : fallback;
 }
 
 bool Params::boolean(const std::string& key, bool fallback) {
-  read_.insert(key);
+  mark_read(key);
   if (!has(key)) return fallback;
   const json& v = at(key);
   if (!v.is_boolean()) fail(key, "expected true or false, got " + JsonKindName(v) + " " + v.dump());
@@ -127,7 +144,7 @@ std::string Params::string(const std::string& key) {
 }
 
 std::string Params::string(const std::string& key, const std::string& fallback) {
-  read_.insert(key);
+  mark_read(key);
   return has(key) ? string(key) : fallback;
 }
 
@@ -161,12 +178,12 @@ Rgb Params::fraction_rgb(const std::string& key) {
 }
 
 Rgb Params::fraction_rgb(const std::string& key, double fallback) {
-  read_.insert(key);
+  mark_read(key);
   return has(key) ? fraction_rgb(key) : Rgb{fallback, fallback, fallback};
 }
 
 std::array<double, 2> Params::quantity_pair(const std::string& key, Dimension d, std::array<double, 2> fallback) {
-  read_.insert(key);
+  mark_read(key);
   if (!has(key)) return fallback;
   const json& v = at(key);
   Location loc = where_.child(key);

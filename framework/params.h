@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 #include <set>
@@ -20,6 +21,25 @@
 namespace layerlab {
 
 using Rgb = std::array<double, 3>;
+
+// While one lives, every key that any Params on this thread is asked for
+// (read, defaulted or tested with has()) is recorded under the JSON pointer of
+// its object: the scene reference's test compares them with the key tables
+// of the element files and section readers (docs/scene-reference.md).
+class ParamsKeyRecorder {
+ public:
+  ParamsKeyRecorder();
+  ~ParamsKeyRecorder();
+  ParamsKeyRecorder(const ParamsKeyRecorder&) = delete;
+  ParamsKeyRecorder& operator=(const ParamsKeyRecorder&) = delete;
+  // JSON pointer of an object -> the keys asked of it.
+  const std::map<std::string, std::set<std::string>>& keys() const { return keys_; }
+
+ private:
+  friend class Params;
+  std::map<std::string, std::set<std::string>> keys_;
+  ParamsKeyRecorder* previous_;
+};
 
 class Params {
  public:
@@ -78,6 +98,7 @@ class Params {
   const nlohmann::json& at(const std::string& key);
   double quantity_value(const nlohmann::json& v, const Location& at, Dimension d) const;
   double fraction_value(const nlohmann::json& v, const Location& at) const;
+  void record(const std::string& key) const;  // for a live ParamsKeyRecorder
 
   std::shared_ptr<const nlohmann::json> owned_;  // set when this Params owns its object
   const nlohmann::json* object_;

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "framework/error.h"
+#include "framework/polarization.h"
 #include "framework/random.h"
 #include "systems/view_synthesizer.h"
 
@@ -51,6 +52,36 @@ std::optional<LightField> PrepareTarget(const DisplayModel& model, const LightFi
                                std::to_string(scale) + " (target_range: scale)");
   }
   return out;
+}
+
+std::optional<std::string> FarBelowWarning(const DisplayModel& model, const SolverReport& report) {
+  if (report.trace.empty() || !(report.final_psnr_db < kFarBelowPsnrDb)) return std::nullopt;
+  std::vector<std::string> causes;
+  const double share = report.rays ? double(report.out_of_range) / (3.0 * report.rays) : 0.0;
+  if (share > kOutOfRangeCause)
+    causes.push_back(FormatFixed(100 * share, 1) + " % of the target's values are above what the display can show " +
+                     (report.target_scale < 1 ? "(the target was scaled down)" : "(they were clipped)"));
+  size_t brightest = 0;
+  std::vector<double> luminance(model.branch_count());
+  for (size_t b = 0; b < luminance.size(); ++b) {
+    for (int c = 0; c < 3; ++c) luminance[b] += kLuminanceWeights[c] * model.weight(b)[c];
+    if (luminance[b] > luminance[brightest]) brightest = b;
+  }
+  const std::vector<Branch>& branches = model.system().branches;
+  for (size_t b = 0; b < luminance.size(); ++b)
+    if (luminance[b] < kDimBranchCause * luminance[brightest])
+      causes.push_back("unequal branch brightness: branch \"" + branches[b].name + "\" gives " +
+                       FormatFixed(100 * luminance[b] / luminance[brightest], 1) + " % of the light of \"" +
+                       branches[brightest].name + "\"");
+  std::string text = "the solve ended at " + FormatPsnr(report.final_psnr_db, 2) +
+                     " dB, far below what the display can reach (under " + FormatFixed(kFarBelowPsnrDb, 0) +
+                     " dB: 10 dB below the lowest shipped display on the dice); ";
+  if (causes.empty())
+    return text + "no cause found in the target's range or the branches' brightness (" +
+           std::to_string(report.iterations) + (report.iterations == 1 ? " iteration" : " iterations") +
+           ": more may help)";
+  for (size_t k = 0; k < causes.size(); ++k) text += (k ? "; " : "") + causes[k];
+  return text;
 }
 
 double Objective(const DisplayModel& model, const LightField& target, const Patterns& t) {

@@ -21,6 +21,20 @@ std::array<float, 3> DisplayMaximum(const DisplayModel& model);
 std::optional<LightField> PrepareTarget(const DisplayModel& model, const LightField& target, TargetRange range,
                                         SolverReport* report);
 
+// "Far below": the shipped displays end at 27.9 to 35.7 dB on the dice
+// (docs/performance.md, docs/time-multiplexing.md); a solve that ends more
+// than 10 dB under the lowest of them, under kFarBelowPsnrDb, is far below
+// what a display reaches.
+inline constexpr double kFarBelowPsnrDb = 18.0;
+// A share of target values above the display's maximum, or a branch giving
+// less than this fraction of the brightest branch's luminance, is named as a cause.
+inline constexpr double kOutOfRangeCause = 0.01, kDimBranchCause = 0.5;
+
+// The warning for a usable solve that ended under kFarBelowPsnrDb, with its
+// causes when they are found (the out-of-range target share, unequal branch
+// brightness); nothing for a solve at or above it.
+std::optional<std::string> FarBelowWarning(const DisplayModel& model, const SolverReport& report);
+
 // Sum over rays and channels of (target - synthesized)^2, in double.
 double Objective(const DisplayModel& model, const LightField& target, const Patterns& t);
 

@@ -1,3 +1,22 @@
+// solve: the scene's "solve" section, the solver and its target; the command
+// line overrides any of it. Paths are relative to the scene file's folder.
+// A key of an option that the chosen solver does not read is refused.
+//
+// | key                   | type               | default                   | meaning                                  |
+// |-----------------------|--------------------|---------------------------|------------------------------------------|
+// | solver                | solver name        | the display's default     | multiplicative for one branch, additive-trust-region for one layer per branch, else hybrid |
+// | target                | path               | none                      | a light-field folder (lightfield/1); not with target_scene |
+// | target_scene          | path               | none                      | a target scene (layerlab-target/1) rendered with Embree |
+// | iterations            | integer            | the solver's              | outer iterations                         |
+// | sub_iterations        | integer            | the solver's              | hybrid and quasi-newton: updates of one multiplicative set before the next |
+// | warm_start_iterations | integer            | the solver's              | quasi-newton: hybrid iterations before the quasi-Newton steps |
+// | time_budget           | time               | 0 s (none)                | wall-clock budget                        |
+// | tolerance             | fraction           | 0 (never)                 | stop when the objective changes by less than this, relative |
+// | initial_value         | fraction           | the solver's              | initial transmittance; negative: random in [0.25, 0.75] |
+// | seed                  | integer            | 1                         | for random initial patterns              |
+// | threads               | integer            | 0 (every core)            | worker threads                           |
+// | sampling              | nearest, bilinear  | nearest                   | how the light field samples the layers   |
+// | target_range          | clip, scale        | clip                      | target values beyond what the display shows: clipped, or the target scaled |
 #include "solvers/solve_config.h"
 
 #include <algorithm>

@@ -154,6 +154,8 @@ SolverReport SolveLoop::Finish() {
     report_.termination = Termination::kIterationLimit;
     report_.message = "";
   }
+  if (report_.IsSolutionUsable())
+    if (std::optional<std::string> w = FarBelowWarning(model_, report_)) report_.warnings.push_back(*w);
   return report_;
 }
 

@@ -1,6 +1,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "framework/warnings.h"
 #include "solvers/objective.h"
 #include "solvers/solver.h"
 
@@ -40,7 +41,7 @@ std::string SolverReport::FullReport() const {
          " (peak 1 = display white)\n";
   std::snprintf(buf, sizeof buf, "target out of range  %zu values; scale %.6g\n", out_of_range, target_scale);
   out += buf;
-  for (const std::string& w : warnings) out += "warning: " + w + "\n";
+  out += WarningLines(warnings);
   out += "\niteration  seconds     objective        PSNR (dB)\n";
   for (const IterationRecord& r : trace) {
     std::snprintf(buf, sizeof buf, "%9d  %8.3f  %14.6f  %s\n", r.iteration, r.seconds, r.objective,

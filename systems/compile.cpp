@@ -382,6 +382,17 @@ class Walker {
     return layer;
   }
 
+  // A layer the eye cannot focus on is only ever seen blurred.
+  void WarnOutsideAccommodation() {
+    const EyeModel& eye = system_.eye;
+    for (const VirtualLayer& l : system_.layers)
+      if (l.diopters < eye.accommodation_min - 1e-9 || l.diopters > eye.accommodation_max + 1e-9)
+        system_.warnings.push_back(
+            "layer \"" + l.name + "\" at " + FormatFixed(l.diopters, 2) +
+            " D lies outside the eye's accommodation range (" + FormatFixed(eye.accommodation_min, 2) + " to " +
+            FormatFixed(eye.accommodation_max, 2) + " D, the eye's accommodation_range): the eye cannot focus on it");
+  }
+
   // A virtual_depth that no place behind the last placed element reaches.
   [[noreturn]] void FailUnreachableDepth(const SceneNode& node, const PathState& state, double D) const {
     const Location at = node.where.child("virtual_depth");
@@ -538,6 +549,7 @@ void Walker::Finish() {
     system_.fov_y = std::min(system_.fov_y, l.fov_y);
     system_.max_cpd = std::max(system_.max_cpd, l.max_cpd);
   }
+  WarnOutsideAccommodation();
 
   double emitted = 0;
   std::set<std::string> backlights;  // each once, whatever the subframes

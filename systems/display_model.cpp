@@ -80,3 +80,37 @@ LightFieldGeometry DisplayLightFieldGeometry(const DisplaySystem& system, double
 }
 
 }  // namespace layerlab
+
+namespace layerlab {
+
+std::vector<std::string> TargetGeometryWarnings(const DisplaySystem& system, const LightFieldGeometry& target) {
+  const LightFieldGeometry own = DisplayLightFieldGeometry(system);
+  auto pair = [](double a, double b, int decimals, const char* unit) {
+    return FormatFixed(a, decimals) + " x " + FormatFixed(b, decimals) + unit;
+  };
+  auto field = [](double left, double width, double z) {  // degrees between the window's edges seen from the pupil
+    return (std::atan((left + width) / z) - std::atan(left / z)) * 180 / std::acos(-1.0);
+  };
+  const double fx = field(target.window_left, target.window_width, target.origin_z);
+  const double fy = field(target.window_top - target.window_height, target.window_height, target.origin_z);
+  const double dx = system.fov_x * 180 / std::acos(-1.0), dy = system.fov_y * 180 / std::acos(-1.0);
+  auto differs = [](double a, double b, double tolerance) { return std::abs(a - b) > tolerance * std::abs(b); };
+  std::vector<std::string> parts;
+  if (target.views_x != own.views_x || target.views_y != own.views_y)
+    parts.push_back(pair(target.views_x, target.views_y, 0, " views (the eye's: ") +
+                    pair(own.views_x, own.views_y, 0, ")"));
+  if (differs(target.eyebox_width, own.eyebox_width, 1e-6) || differs(target.eyebox_height, own.eyebox_height, 1e-6))
+    parts.push_back("an eyebox of " + pair(target.eyebox_width * 1e3, target.eyebox_height * 1e3, 2, " mm") +
+                    " (the eye's: " + pair(own.eyebox_width * 1e3, own.eyebox_height * 1e3, 2, " mm)"));
+  if (target.cols != own.cols || target.rows != own.rows)
+    parts.push_back(pair(target.cols, target.rows, 0, " pixels per view (the farthest layer's: ") +
+                    pair(own.cols, own.rows, 0, ")"));
+  if (differs(fx, dx, 0.01) || differs(fy, dy, 0.01))
+    parts.push_back("a field of " + pair(fx, fy, 2, " deg") + " (the display's: " + pair(dx, dy, 2, " deg)"));
+  if (parts.empty()) return {};
+  std::string text = "the target light field's geometry differs from the display's: ";
+  for (size_t k = 0; k < parts.size(); ++k) text += (k ? ", " : "") + parts[k];
+  return {text + "; the layers are sampled at the target's rays (resampled)"};
+}
+
+}  // namespace layerlab

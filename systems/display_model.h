@@ -15,6 +15,7 @@
 #pragma once
 
 #include <array>
+#include <string>
 #include <vector>
 
 #include "framework/lightfield.h"
@@ -70,5 +71,11 @@ class DisplayModel {
 // middle of the layers' dioptric range), the farthest layer's pixel count,
 // and the eye's views and eyebox.
 LightFieldGeometry DisplayLightFieldGeometry(const DisplaySystem& system, double origin_diopters = -1);
+
+// A target light field whose views, eyebox, pixels per view or field (within
+// 1 %) differ from DisplayLightFieldGeometry's: one warning naming each
+// difference, the display's value beside the target's, since the layers are
+// then sampled at the target's rays (none when they agree).
+std::vector<std::string> TargetGeometryWarnings(const DisplaySystem& system, const LightFieldGeometry& target);
 
 }  // namespace layerlab

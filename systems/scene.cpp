@@ -1,3 +1,15 @@
+// scene: the top level of a scene file (layerlab-scene/1, systems/scene.h).
+//
+// | key         | type                | default            | meaning                                        |
+// |-------------|---------------------|--------------------|------------------------------------------------|
+// | format      | string              | "layerlab-scene/1" | the only format this layerlab reads            |
+// | name        | string              | ""                 | shown in reports                               |
+// | description | string              | ""                 | shown in reports                               |
+// | subframes   | integer             | 1                  | patterns shown per frame (time multiplexing, 1 to 64); the eye sees their mean |
+// | frame_rate  | frequency           | 60 Hz              | frames (not subframes) per second              |
+// | elements    | array of elements   | required           | the optical path, each an object with "type" and "name" |
+// | solve       | object              | none               | the solver and its target (see solve below)    |
+// | run         | object              | none               | what `layerlab run` does (see run below)       |
 #include "systems/scene.h"
 
 #include <climits>

@@ -7,6 +7,7 @@
 #include <numbers>
 #include <optional>
 
+#include "framework/warnings.h"
 #include "systems/intermediate_images.h"
 
 namespace layerlab {
@@ -168,7 +169,7 @@ std::string FormatSystemTable(const DisplaySystem& s) {
   out += "  components             ";
   for (size_t i = 0; i < s.components.size(); ++i) out += (i ? "\n                         " : "") + s.components[i];
   out += "\n";
-  for (const std::string& w : s.warnings) out += "warning: " + w + "\n";
+  out += WarningLines(s.warnings);
   return out;
 }
 

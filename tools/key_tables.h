@@ -1,0 +1,33 @@
+// The key tables at the top of the element files and section readers: a
+// markdown table (key, type, default, meaning) in the file's leading comment,
+// under a heading line "section: what it is" that starts the comment or
+// follows an empty comment line. docs/scene-reference.md is made from them.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace layerlab {
+
+struct KeyRow {
+  std::string key, type, default_value, meaning;
+};
+
+struct KeyTable {
+  std::string section;  // "thin_lens", "solve", "run.retina", ...
+  std::string prose;    // the heading's text after "section: " and the lines after it, paragraphs split by "\n\n"
+  std::string file;     // as given, for messages
+  std::vector<KeyRow> rows;
+  std::vector<std::string> keys() const;
+};
+
+// Every table in the leading comment of `file`; throws layerlab::Error naming
+// the file and line for a malformed table.
+std::vector<KeyTable> ReadKeyTables(const std::string& file);
+
+// The units a value of `type` (a table's type cell) is written in, from the
+// dimension it names ("length", "angle", "depth", ...): "m, cm, mm, um, nm;
+// a bare number is m". Empty when the type has no unit.
+std::string UnitsOfType(const std::string& type);
+
+}  // namespace layerlab

@@ -1,0 +1,20 @@
+// docs/scene-reference.md, made from the key tables (tools/key_tables.h) of
+// the scene reader, the element registry, each built-in element type, and the
+// solve and run section readers.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "tools/key_tables.h"
+
+namespace layerlab {
+
+// In the document's order: scene, element, the element types (by name), solve,
+// run, run.retina, run.contrast, run.compare, depth_range. Throws
+// layerlab::Error when a source file lacks its table.
+std::vector<KeyTable> SceneReferenceTables(const std::string& source_dir);
+
+std::string SceneReferenceMarkdown(const std::string& source_dir);
+
+}  // namespace layerlab
