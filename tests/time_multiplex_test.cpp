@@ -7,6 +7,7 @@
 #include <map>
 
 #include "framework/random.h"
+#include "solvers/objective.h"
 #include "solvers/solver.h"
 #include "tests/test_util.h"
 
@@ -130,6 +131,110 @@ TEST(TimeMultiplex, KnownRankThreeTargetIsApproached) {
     ASSERT_TRUE(r.IsSolutionUsable()) << r.FullReport();
     EXPECT_GT(r.final_psnr_db, 50.0) << solver << "\n" << r.BriefReport();
   }
+}
+
+// One rank-K iteration of the multiplicative solver worked with explicit
+// matrices: each layer's projection as a list of (ray, pixel, weight)
+// entries, everything in double, the layers at one depth of both subframes
+// updated at once against the time average, then the next depth.
+Patterns RankKIterationByHand(const DisplayModel& model, const LightField& l, Patterns t, const SolverOptions& o) {
+  struct Entry {
+    size_t ray;
+    int32_t pixel;
+    float weight;
+  };
+  const size_t layers = model.layer_count(), n = l.rgb.size() / 3;
+  std::vector<std::vector<Entry>> P(layers);  // [layer]: the nonzeros of P_k
+  const size_t rays_per_view = model.geometry().pixels_per_view();
+  for (size_t k = 0; k < layers; ++k)
+    for (size_t v = 0; v < model.geometry().view_count(); ++v)
+      model.projection(k).ForEachTap(v, [&](size_t ray, int32_t pixel, float weight) {
+        P[k].push_back({v * rays_per_view + ray, pixel, weight});
+      });
+  std::vector<int> branch_of(layers);
+  for (size_t b = 0; b < model.branch_count(); ++b)
+    for (int k : model.branch_layers(b)) branch_of[k] = static_cast<int>(b);
+  // Layers are numbered farthest first within each subframe: depth = index within its branch.
+  const size_t depths = model.branch_layers(0).size();
+  for (size_t depth = 0; depth < depths; ++depth) {
+    std::vector<std::vector<double>> s(layers, std::vector<double>(n * 3, 0.0));  // P_k t_k
+    for (size_t k = 0; k < layers; ++k)
+      for (const Entry& e : P[k])
+        for (int c = 0; c < 3; ++c) s[k][e.ray * 3 + c] += e.weight * double(t[k].rgb[size_t(e.pixel) * 3 + c]);
+    std::vector<double> mean(n * 3, 0.0);  // the time average, sum_b w_b prod_k P_k t_k
+    for (size_t b = 0; b < model.branch_count(); ++b)
+      for (size_t i = 0; i < n * 3; ++i) {
+        double product = model.weight(b)[i % 3];
+        for (int k : model.branch_layers(b)) product *= s[k][i];
+        mean[i] += product;
+      }
+    for (size_t b = 0; b < model.branch_count(); ++b) {
+      std::vector<int> order = model.branch_layers(b);
+      std::sort(order.begin(), order.end());
+      const int a = order[depth];
+      std::vector<double> num(t[a].rgb.size(), 0.0), den(t[a].rgb.size(), 0.0);
+      for (const Entry& e : P[a])
+        for (int c = 0; c < 3; ++c) {
+          const size_t i = e.ray * 3 + c;
+          double q = model.weight(b)[c];
+          for (int k : model.branch_layers(b))
+            if (k != a) q *= s[k][i];
+          num[size_t(e.pixel) * 3 + c] += e.weight * double(l.rgb[i]) * q;
+          den[size_t(e.pixel) * 3 + c] += e.weight * mean[i] * q;
+        }
+      for (size_t i = 0; i < num.size(); ++i)
+        if (den[i] > o.epsilon)
+          t[a].rgb[i] = float(std::clamp(t[a].rgb[i] * num[i] / den[i], o.floor, 1.0));
+    }
+  }
+  return t;
+}
+
+TEST(TimeMultiplex, RankKMultiplicativeIterationMatchesExplicitMatrices) {
+  json scene = ShrunkExample("tensor_display_rank3.json", 10, 6, 3);
+  scene["subframes"] = 2;
+  const DisplaySystem system = CompileJson(scene);
+  ASSERT_EQ(system.branches.size(), 2u);
+  ASSERT_EQ(system.layers.size(), 4u);
+  // Nearest sampling takes the one-tap column pass, bilinear the general one.
+  for (Sampling sampling : {Sampling::kNearest, Sampling::kBilinear}) {
+    const DisplayModel model(system, DisplayLightFieldGeometry(system), sampling);
+    const LightField target = model.Synthesize(RandomPatterns(model, 11));
+    SolverOptions o = SolverRegistry::Builtins().find("multiplicative")->defaults;
+    o.tolerance = 0;
+    Patterns expected = InitialPatterns(model, o);
+    for (int iterations = 1; iterations <= 3; ++iterations) {
+      o.iterations = iterations;
+      expected = RankKIterationByHand(model, target, expected, o);
+      Patterns t;
+      const SolverReport r = SolverRegistry::Builtins().create("multiplicative")->Solve(model, target, o, &t);
+      ASSERT_TRUE(r.IsSolutionUsable()) << r.FullReport();
+      ASSERT_EQ(r.iterations, iterations);
+      double worst = 0, moved = 0;
+      for (size_t k = 0; k < t.size(); ++k)
+        for (size_t i = 0; i < t[k].rgb.size(); ++i) {
+          worst = std::max(worst, double(std::abs(t[k].rgb[i] - expected[k].rgb[i])));
+          moved = std::max(moved, double(std::abs(t[k].rgb[i] - InitialPatterns(model, o)[k].rgb[i])));
+        }
+      EXPECT_LT(worst, 2e-5) << ToString(sampling) << " after " << iterations;
+      EXPECT_GT(moved, 1e-2) << "the update must move the patterns";
+      // The reported objective is that of the patterns returned.
+      EXPECT_TRUE(Close(r.trace.back().objective, Objective(model, target, t), 1e-5));
+    }
+  }
+}
+
+TEST(TimeMultiplex, MultiplicativeRefusesWhatIsNotOneStackPerSubframe) {
+  const SolverType& m = *SolverRegistry::Builtins().find("multiplicative");
+  EXPECT_EQ(m.Unsuitable(CompileJson(ShrunkExample("tensor_display_rank3.json", 8, 6, 3))), "");
+  EXPECT_EQ(m.Unsuitable(CompileJson(ShrunkExample("multifocal_tunable_4plane.json", 8, 6, 3))),
+            "needs a stack of layers in each subframe; this display shows one layer per subframe, additive over time "
+            "(use additive-trust-region)");
+  json hybrid = ShrunkExample("paper_prototype.json", 8, 6, 3);
+  hybrid["subframes"] = 2;
+  EXPECT_EQ(m.Unsuitable(CompileJson(hybrid)),
+            "needs one branch per subframe (a stack shown K times); this one has 4 branches in 2 subframes (use "
+            "hybrid)");
 }
 
 TEST(TimeMultiplex, OneSubframeIsTodaysDisplay) {
