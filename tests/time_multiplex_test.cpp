@@ -100,8 +100,8 @@ TEST(TimeMultiplex, MultifocalIsTheMeanOfSinglePlaneDisplays) {
   EXPECT_LT(MaxDifference(mixed, mean), 2e-6);
 }
 
-// Smooth patterns in [0.2, 0.9]: sums of low-frequency cosines, different in each layer.
-Patterns SmoothPatterns(const DisplayModel& model, uint64_t seed) {
+// Smooth patterns in [mid - amp, mid + amp]: sums of low-frequency cosines, different in each layer.
+Patterns SmoothPatterns(const DisplayModel& model, uint64_t seed, double mid, double amp) {
   Patterns t = model.UniformPatterns(0.5f);
   SplitMix64 random(seed);
   for (LayerPattern& p : t)
@@ -110,26 +110,44 @@ Patterns SmoothPatterns(const DisplayModel& model, uint64_t seed) {
       for (int i = 0; i < p.rows; ++i)
         for (int j = 0; j < p.cols; ++j)
           p.rgb[(size_t(i) * p.cols + j) * 3 + c] =
-              float(0.55 + 0.35 * std::cos(6.283 * (fx * j / p.cols + fy * i / p.rows) + ph));
+              float(mid + amp * std::cos(6.283 * (fx * j / p.cols + fy * i / p.rows) + ph));
     }
   return t;
 }
 
-// The subframes of one stack trade patterns among themselves without changing
-// the mean (a continuous family of exact solutions), which slows the last
-// digits: 800 iterations reach about 53 dB (docs/time-multiplexing.md).
-TEST(TimeMultiplex, KnownRankThreeTargetIsApproached) {
-  const DisplaySystem system = CompileJson(ShrunkExample("tensor_display_rank3.json", 32, 16, 7));
+// A rank-2 target made by the display itself from patterns in [0.3, 0.7] is
+// recovered to far beyond 100 dB (float allows about 150 dB: a rank-1
+// target reaches 150 dB). Why so small a target and so much room to the
+// bounds (docs/time-multiplexing.md, "Recovering a known rank-K target"):
+// - conditioning: beyond the K^2 exact gauge directions (f_k -> A f_k,
+//   b_k -> A^-T b_k), the Gauss-Newton matrix at the truth has condition
+//   30 at K = 1, 2.0e3 at K = 2, 7.3e3 at K = 3 (16 x 8 pixels, 13 x 13
+//   views); the multiplicative rule, a diagonally scaled gradient step,
+//   gains a fixed share of the error per ~condition iterations, so the
+//   target has 8 x 4 pixels (condition 560 at K = 2);
+// - the bounds: from patterns in [0.2, 0.9] both solvers end at ~45-60 dB
+//   at a point where values sit at 1 or the floor with the gradient pushing
+//   outward (a local minimum of the bounded problem, different for every
+//   start; with no value at a bound quasi-newton reaches 138 dB).
+TEST(TimeMultiplex, KnownRankTwoTargetIsRecoveredAbove100Db) {
+  json scene = ShrunkExample("tensor_display_rank3.json", 8, 4, 13);
+  scene["subframes"] = 2;
+  const DisplaySystem system = CompileJson(scene);
   const DisplayModel model(system, DisplayLightFieldGeometry(system));
-  const LightField target = model.Synthesize(SmoothPatterns(model, 9));
-  for (const char* solver : {"quasi-newton"}) {
+  const LightField target = model.Synthesize(SmoothPatterns(model, 9, 0.5, 0.2));
+  for (const auto& [solver, iterations] : std::map<std::string, int>{{"multiplicative", 3000}, {"quasi-newton", 800}}) {
     SolverOptions o = SolverRegistry::Builtins().find(solver)->defaults;
-    o.iterations = 800;
+    o.iterations = iterations;
     o.tolerance = 0;
     Patterns t;
     SolverReport r = SolverRegistry::Builtins().create(solver)->Solve(model, target, o, &t);
     ASSERT_TRUE(r.IsSolutionUsable()) << r.FullReport();
-    EXPECT_GT(r.final_psnr_db, 50.0) << solver << "\n" << r.BriefReport();
+    EXPECT_GT(r.final_psnr_db, 100.0) << solver << "\n" << r.BriefReport();
+    // A Lee-Seung step of the whole objective never raises it, until the
+    // float light field's rounding decides (below ~120 dB).
+    if (solver == "multiplicative")
+      for (size_t i = 1; i < r.trace.size() && r.trace[i - 1].psnr_db < 110; ++i)
+        EXPECT_LE(r.trace[i].objective, r.trace[i - 1].objective) << "iteration " << r.trace[i].iteration;
   }
 }
 
