@@ -109,7 +109,8 @@ SolverType MultiplicativeSolverType() {
   SolverOptions defaults;
   defaults.iterations = 90;  // as many updates of each layer as the hybrid's 30 x 3
   SolverType type(
-      "multiplicative", "non-negative multiplicative update rules for one stack of any number of layers, shown in K subframes "
+      "multiplicative",
+      "non-negative multiplicative update rules for one stack of any number of layers, shown in K subframes "
       "as a rank-K factorization",
       [] { return std::make_unique<MultiplicativeSolver>(); }, defaults);
   type.unsuitable = Unsuitable;

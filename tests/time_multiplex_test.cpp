@@ -201,8 +201,7 @@ Patterns RankKIterationByHand(const DisplayModel& model, const LightField& l, Pa
           den[size_t(e.pixel) * 3 + c] += e.weight * mean[i] * q;
         }
       for (size_t i = 0; i < num.size(); ++i)
-        if (den[i] > o.epsilon)
-          t[a].rgb[i] = float(std::clamp(t[a].rgb[i] * num[i] / den[i], o.floor, 1.0));
+        if (den[i] > o.epsilon) t[a].rgb[i] = float(std::clamp(t[a].rgb[i] * num[i] / den[i], o.floor, 1.0));
     }
   }
   return t;
