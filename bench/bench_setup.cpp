@@ -6,8 +6,10 @@
 #include <map>
 #include <random>
 
+#include "framework/json_file.h"
 #include "framework/lightfield_io.h"
 #include "systems/compile.h"
+#include "systems/scene.h"
 
 namespace layerlab::bench {
 
@@ -31,13 +33,20 @@ LightField SyntheticTarget(const DisplayModel& model) {
 
 }  // namespace
 
-const Workload& GetWorkload(const std::string& example) {
-  static std::map<std::string, std::unique_ptr<Workload>> cache;
-  auto& slot = cache[example];
+const Workload& GetWorkload(const std::string& example, int subframes) {
+  static std::map<std::pair<std::string, int>, std::unique_ptr<Workload>> cache;
+  auto& slot = cache[{example, subframes}];
   if (slot) return *slot;
   slot = std::make_unique<Workload>();
   Workload& w = *slot;
-  w.system = Compile(LoadScene(std::string(LAYERLAB_SOURCE_DIR) + "/examples/" + example + ".json"));
+  const std::string path = std::string(LAYERLAB_SOURCE_DIR) + "/examples/" + example + ".json";
+  if (subframes == 1) {
+    w.system = Compile(LoadScene(path));
+  } else {
+    nlohmann::json scene = ReadJsonFile(path);
+    scene["subframes"] = subframes;
+    w.system = Compile(ParseScene(scene, path, ElementRegistry::WithBuiltins()));
+  }
   const std::string dice = std::string(LAYERLAB_DATA_DIR) + "/dice";
   if (!Settings().smoke && std::filesystem::exists(dice + "/lightfield.json")) {
     w.target = ReadLightField(dice, {.load_depth = false});

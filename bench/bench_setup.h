@@ -25,7 +25,8 @@ struct Workload {
 };
 
 // "paper_prototype", "multiplicative_2layer" or "additive_2layer" from examples/; cached.
-const Workload& GetWorkload(const std::string& example);
+// With `subframes` > 1 the same scene shows that many subframes ("subframes": K).
+const Workload& GetWorkload(const std::string& example, int subframes = 1);
 
 // Peak resident memory of this process so far, MB.
 double PeakRssMb();

@@ -1,10 +1,21 @@
 // multiplicative: the non-negative update rules for a display of one branch
 // (a stack of any number of layers), each iteration updating every layer once,
 // from the farthest to the nearest.
+//
+// A time-multiplexed stack (one branch per subframe, K subframes) is the
+// rank-K factorization of tensor displays (Wetzstein et al. 2012): the
+// layers at one depth of every subframe are updated at once, against the
+// time average l~ = sum_k w_k prod_{j in k} P_j t_j of all subframes,
+//   t_a <- clamp(t_a * P_a^T(l o Q_a) / P_a^T(l~ o Q_a), floor, 1),   Q_a = w_k prod_{j in k, j != a} P_j t_j,
+// a Lee-Seung step of the whole objective (l~ is linear in those K layers
+// together, no subframe holding two of them), then the next depth from a
+// new pass. One pass (joint_pass.h) gives the sums and the objective of the
+// patterns it reads, so an iteration costs one pass per layer of the stack.
 #include <algorithm>
 #include <optional>
 
 #include "framework/error.h"
+#include "solvers/joint_pass.h"
 #include "solvers/multiplicative_update.h"
 #include "solvers/solve_loop.h"
 
@@ -12,8 +23,52 @@ namespace layerlab {
 namespace {
 
 std::string Unsuitable(const DisplaySystem& system) {
-  if (system.branches.size() == 1) return "";
-  return "needs a display of one branch; this one has " + std::to_string(system.branches.size()) + " (use hybrid)";
+  const size_t branches = system.branches.size();
+  if (branches == 1) return "";
+  if (system.subframes == 1)
+    return "needs a display of one branch; this one has " + std::to_string(branches) + " (use hybrid)";
+  if (branches != static_cast<size_t>(system.subframes))
+    return "needs one branch per subframe (a stack shown K times); this one has " + std::to_string(branches) +
+           " branches in " + std::to_string(system.subframes) + " subframes (use hybrid)";
+  if (system.branches[0].layers.size() < 2)
+    return "needs a stack of layers in each subframe; this display shows one layer per subframe, additive over "
+           "time (use additive-trust-region)";
+  return "";
+}
+
+// [depth][subframe]: each subframe's layers from the farthest to the nearest.
+std::vector<std::vector<int>> LayersByDepth(const DisplayModel& model) {
+  std::vector<std::vector<int>> by_depth;
+  for (size_t b = 0; b < model.branch_count(); ++b) {
+    std::vector<int> order = model.branch_layers(b);
+    std::sort(order.begin(), order.end());
+    by_depth.resize(order.size());
+    for (size_t p = 0; p < order.size(); ++p) by_depth[p].push_back(order[p]);
+  }
+  return by_depth;
+}
+
+// The rank-K iterations (K > 1 subframes).
+void SolveRankK(const DisplayModel& model, const SolverOptions& options, SolveLoop* loop, Patterns* t) {
+  const LightField& l = loop->target();
+  const std::vector<std::vector<int>> by_depth = LayersByDepth(model);
+  JointPass pass(model);
+  auto step = [&](const std::vector<int>& layers) {
+    for (int a : layers)
+      ApplyMultiplicativeStep(pass.numerator()[a].data(), pass.denominator()[a].data(), options, &(*t)[a].rgb);
+  };
+  // The pass that gives an iteration's objective also gives the sums of
+  // the next iteration's first step, applied only if there is one.
+  pass.Run(l, *t);
+  double objective = 0;
+  do {
+    step(by_depth[0]);
+    for (size_t p = 1; p < by_depth.size(); ++p) {
+      pass.Run(l, *t);
+      step(by_depth[p]);
+    }
+    objective = pass.Run(l, *t);
+  } while (loop->EndIteration(objective));
 }
 
 class MultiplicativeSolver final : public Solver {
@@ -23,6 +78,10 @@ class MultiplicativeSolver final : public Solver {
     SolveLoop loop("multiplicative", model, target, options, t);
     const std::string why = Unsuitable(model.system());
     if (!loop.Start(why.empty() ? why : "the multiplicative solver " + why)) return loop.Finish();
+    if (model.branch_count() > 1) {
+      SolveRankK(model, options, &loop, t);
+      return loop.Finish();
+    }
     const LightField& l = loop.target();
     BranchTarget whole = [&](size_t view, float*) { return l.view(view); };
     std::vector<int> order = model.branch_layers(0);
@@ -50,7 +109,9 @@ SolverType MultiplicativeSolverType() {
   SolverOptions defaults;
   defaults.iterations = 90;  // as many updates of each layer as the hybrid's 30 x 3
   SolverType type(
-      "multiplicative", "non-negative multiplicative update rules for one stack of any number of layers",
+      "multiplicative",
+      "non-negative multiplicative update rules for one stack of any number of layers, shown in K subframes "
+      "as a rank-K factorization",
       [] { return std::make_unique<MultiplicativeSolver>(); }, defaults);
   type.unsuitable = Unsuitable;
   type.default_rank = 3;

@@ -99,15 +99,19 @@ bool ComputeLayerUpdate(const DisplayModel& model, size_t branch, int layer, con
   return false;
 }
 
-void ApplyLayerUpdate(const LayerUpdate& update, const SolverOptions& options, Patterns* t) {
-  std::vector<float>& pattern = (*t)[update.layer].rgb;
+void ApplyMultiplicativeStep(const double* num, const double* den, const SolverOptions& options,
+                             std::vector<float>* pattern) {
   const float floor = static_cast<float>(options.floor);
-  for (size_t k = 0; k < pattern.size(); ++k) {
-    if (!(update.den[k] > options.epsilon)) continue;
-    double updated = pattern[k] * (update.num[k] / update.den[k]);
+  for (size_t k = 0; k < pattern->size(); ++k) {
+    if (!(den[k] > options.epsilon)) continue;
+    double updated = (*pattern)[k] * (num[k] / den[k]);
     // NaN fails both comparisons and lands on the floor rather than passing through.
-    pattern[k] = updated >= 1.0 ? 1.0f : updated > floor ? static_cast<float>(updated) : floor;
+    (*pattern)[k] = updated >= 1.0 ? 1.0f : updated > floor ? static_cast<float>(updated) : floor;
   }
+}
+
+void ApplyLayerUpdate(const LayerUpdate& update, const SolverOptions& options, Patterns* t) {
+  ApplyMultiplicativeStep(update.num.data(), update.den.data(), options, &(*t)[update.layer].rgb);
 }
 
 void UpdateLayerMultiplicative(const DisplayModel& model, size_t branch, int layer, const BranchTarget& branch_target,

@@ -42,4 +42,9 @@ bool ComputeLayerUpdate(const DisplayModel& model, size_t branch, int layer, con
 // Applies it to patterns in which nothing has changed since it was computed.
 void ApplyLayerUpdate(const LayerUpdate& update, const SolverOptions& options, Patterns* t);
 
+// The step itself: pattern[k] <- clamp(pattern[k] num[k] / den[k], floor, 1)
+// where den[k] > epsilon (else it keeps its value); num and den as long as the pattern.
+void ApplyMultiplicativeStep(const double* num, const double* den, const SolverOptions& options,
+                             std::vector<float>* pattern);
+
 }  // namespace layerlab
