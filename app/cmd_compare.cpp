@@ -115,7 +115,7 @@ void AddCompareCommand(CLI::App& app) {
     for (const CompareRun& r : runs)
       if (seen.insert(r.display).second) {
         std::vector<std::string> found = r.system.warnings;
-        for (const std::string& w : TargetGeometryWarnings(r.system, target.geometry)) found.push_back(w);
+        for (const std::string& w : TargetGeometryWarnings(r.system, target->light_field.geometry)) found.push_back(w);
         for (const std::string& w : found) warnings.push_back(r.display + ": " + w);
       }
     for (const CompareResult& r : results)
