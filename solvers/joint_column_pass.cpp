@@ -33,8 +33,11 @@ void ViewRun(const DisplayModel& model, const LightField& l, const PaddedLayers&
   const LightFieldGeometry& g = model.geometry();
   const int cols = g.cols;
   const size_t layers = model.layer_count();
-  for (size_t k = 0; k < layers; ++k)
-    ResampleToRayColumns(model.projection(k), padded.pixels(static_cast<int>(k)), vc, cols, &w->resampled[k]);
+  for (size_t k = 0; k < layers; ++k) {
+    const LayerProjection& P = model.projection(k);
+    ResampleToRayColumns(P, padded.pixels(static_cast<int>(k)), vc, cols, RowsRead(P, g, vr_begin, vr_end),
+                         &w->resampled[k]);
+  }
 
   std::vector<const Rgb4*> row(layers);  // each layer's resampled row for the current ray row, or null
   std::vector<int32_t> layer_row(layers);

@@ -29,9 +29,12 @@ void Accumulate(const DisplayModel& model, const std::vector<int>& layers, const
   const int cols = g.cols;
   const LayerProjection& Pa = model.projection(layers[0]);
 
-  for (int k = 1; k < L; ++k)
-    ResampleToRayColumns(model.projection(layers[k]), padded.pixels(layers[k]), vc, cols, &w->resampled[k - 1]);
-  if (view_errors) ResampleToRayColumns(Pa, padded.pixels(layers[0]), vc, cols, &w->own);
+  for (int k = 1; k < L; ++k) {
+    const LayerProjection& P = model.projection(layers[k]);
+    ResampleToRayColumns(P, padded.pixels(layers[k]), vc, cols, RowsRead(P, g, vr_begin, vr_end), &w->resampled[k - 1]);
+  }
+  if (view_errors)
+    ResampleToRayColumns(Pa, padded.pixels(layers[0]), vc, cols, RowsRead(Pa, g, vr_begin, vr_end), &w->own);
 
   for (int vr = vr_begin; vr < vr_end; ++vr) {
     const size_t view = g.view_index(vr, vc);

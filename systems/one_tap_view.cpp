@@ -68,11 +68,22 @@ void OneTapBranchView::AddRow(const PaddedLayers& padded, int i, Rgb4* row) cons
   std::visit([&](const auto& v) { AddRowOf(v, padded, i, weight_, row); }, view_);
 }
 
-void ResampleToRayColumns(const LayerProjection& P, const Rgb4* pixels, int vc, int ray_cols, std::vector<Rgb4>* out) {
+RowSpan RowsRead(const LayerProjection& P, const LightFieldGeometry& g, int vr_begin, int vr_end) {
+  int lo = P.rows(), hi = 0;
+  for (int vr = vr_begin; vr < vr_end; ++vr) {
+    const AxisTap* row = P.row_taps(static_cast<size_t>(vr) * g.views_x);  // view row vr, column 0
+    for (int i = 0; i < g.rows; ++i)
+      if (const int32_t r = row[i].i0; r >= 0) lo = std::min(lo, r), hi = std::max(hi, r + 1);
+  }
+  return lo < hi ? RowSpan{lo, hi} : RowSpan{};
+}
+
+void ResampleToRayColumns(const LayerProjection& P, const Rgb4* pixels, int vc, int ray_cols, RowSpan rows,
+                          std::vector<Rgb4>* out) {
   const AxisTap* col = P.col_taps(static_cast<size_t>(vc));  // view vc: row 0, column vc
   out->resize(static_cast<size_t>(P.rows()) * ray_cols);
   Rgb4* o = out->data();
-  for (int r = 0; r < P.rows(); ++r)
+  for (int r = rows.begin; r < rows.end; ++r)
     for (int j = 0; j < ray_cols; ++j)
       o[static_cast<size_t>(r) * ray_cols + j] =
           col[j].i0 < 0 ? Rgb4{} : pixels[static_cast<size_t>(r) * P.cols() + col[j].i0];

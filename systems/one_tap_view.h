@@ -101,10 +101,22 @@ class OneTapBranchView {
   Rgb4 weight_;
 };
 
+// Layer rows [begin, end): the rows of a layer some rays read.
+struct RowSpan {
+  int begin = 0, end = 0;
+};
+
+// The rows of layer P that the rays of view rows [vr_begin, vr_end) read
+// (a view's row taps depend on its view row alone); empty if none.
+RowSpan RowsRead(const LayerProjection& P, const LightFieldGeometry& g, int vr_begin, int vr_end);
+
 // Layer P's padded pattern at the rays' columns of view column vc,
 // [its row][ray column], 0 where a ray misses the layer: within a view
-// column a layer's column tap depends on the ray's column alone.
-void ResampleToRayColumns(const LayerProjection& P, const Rgb4* pixels, int vc, int ray_cols, std::vector<Rgb4>* out);
+// column a layer's column tap depends on the ray's column alone. Only the
+// layer rows in `rows` are written (a strip of rays reads a few); out has
+// room for all of them, the others are left as they were and must not be read.
+void ResampleToRayColumns(const LayerProjection& P, const Rgb4* pixels, int vc, int ray_cols, RowSpan rows,
+                          std::vector<Rgb4>* out);
 
 // Thread `me` of `threads`' equal share of the views in view-column order,
 // as runs within one view column: f(vc, vr_begin, vr_end) for each. Whole

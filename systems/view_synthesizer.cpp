@@ -42,8 +42,10 @@ void ViewSynthesizer::OneTapRow(const std::vector<size_t>& branches, size_t view
     cache.owner = id_, cache.vc = vc;
     cache.layers.resize(model_.layer_count());
     for (size_t b : one_tap_)
-      for (int k : model_.branch_layers(b))
-        ResampleToRayColumns(model_.projection(k), padded_.pixels(k), vc, g.cols, &cache.layers[k]);
+      for (int k : model_.branch_layers(b)) {
+        const LayerProjection& P = model_.projection(k);  // any view of the column may ask next
+        ResampleToRayColumns(P, padded_.pixels(k), vc, g.cols, RowsRead(P, g, 0, g.views_y), &cache.layers[k]);
+      }
   }
   std::fill(row, row + g.cols, Rgb4{});
   for (size_t b : branches) {

@@ -1,11 +1,13 @@
 // P_k against an explicit sparse matrix built ray by ray from the ray
 // equation in meters, p(z) = v + (x - v) z / z_lf, and the adjoint identity.
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include <Eigen/Sparse>
 
 #include "systems/display_model.h"
+#include "systems/one_tap_view.h"
 #include "systems/projection.h"
 #include "tests/test_util.h"
 
@@ -160,6 +162,50 @@ INSTANTIATE_TEST_SUITE_P(Layers, ProjectionTest,
                          [](const auto& test_info) {
                            return std::get<0>(test_info.param).name + "_" + ToString(std::get<1>(test_info.param));
                          });
+
+// The one-tap resampling writes only the layer rows a run of views reads
+// (RowsRead); every ray of the run must find there the pixel the explicit
+// matrix gives it. On a strip of 3 ray rows that is a few of the layer's 13.
+TEST(Projection, ResampledRowsHoldEveryPixelARunReads) {
+  LightFieldGeometry g = SmallGeometry();
+  g.rows = 3;
+  g.window_height = g.window_height * 3 / 17;
+  g.window_top = g.window_height / 2;
+  g.views_y = 3;
+  VirtualLayer layer = MakeLayer({"near", 2.1, 0, false, false, 0.0013, -0.0007});
+  LayerProjection P(layer, g, Sampling::kNearest);
+  ASSERT_TRUE(P.one_tap());
+  auto M = ExplicitMatrix(layer, g, Sampling::kNearest);
+  std::vector<float> t = RandomValues(P.pixel_count() * 3, 3);
+  std::vector<Rgb4> padded;
+  PadRgb(t, &padded);
+  const float poison = std::numeric_limits<float>::quiet_NaN();
+  int widest = 0, checked = 0;
+  for (int vr_begin = 0; vr_begin < g.views_y; ++vr_begin)
+    for (int vr_end = vr_begin + 1; vr_end <= g.views_y; ++vr_end)
+      for (int vc = 0; vc < g.views_x; ++vc) {
+        const RowSpan span = RowsRead(P, g, vr_begin, vr_end);
+        ASSERT_LE(0, span.begin);
+        ASSERT_LE(span.end, P.rows());
+        widest = std::max(widest, span.end - span.begin);
+        std::vector<Rgb4> out(P.pixel_count() * g.cols, Rgb4{poison, poison, poison, poison});
+        ResampleToRayColumns(P, padded.data(), vc, g.cols, span, &out);
+        for (int vr = vr_begin; vr < vr_end; ++vr)
+          for (int i = 0; i < g.rows; ++i)
+            for (int j = 0; j < g.cols; ++j) {
+              const int ray = static_cast<int>(g.view_index(vr, vc) * g.pixels_per_view()) + i * g.cols + j;
+              for (decltype(M)::InnerIterator it(M, ray); it; ++it) {
+                const int pixel = static_cast<int>(it.col()), row = pixel / P.cols();
+                ASSERT_TRUE(row >= span.begin && row < span.end) << "ray " << ray << " reads row " << row;
+                const Rgb4 v = out[static_cast<size_t>(row) * g.cols + j];
+                for (int c = 0; c < 3; ++c) ASSERT_EQ(v[c], t[static_cast<size_t>(pixel) * 3 + c]) << "ray " << ray;
+                ++checked;
+              }
+            }
+      }
+  EXPECT_GT(checked, 0);
+  EXPECT_LT(widest, P.rows());
+}
 
 TEST(Projection, OriginPlaneLayerHasNoParallax) {
   LightFieldGeometry g = SmallGeometry();
