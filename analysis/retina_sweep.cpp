@@ -90,7 +90,8 @@ std::vector<RetinaStateResult> WriteRetinaSweep(
         if (exr)
           WriteExr(stem.string() + ".exr", image, ExrCompression::kNone);
         else {
-          const size_t clipped = WriteSrgbPng(stem.string() + ".png", grid.cols, grid.rows, image.pixels, 1.0, PngCompression::kFast);
+          const size_t clipped =
+              WriteSrgbPng(stem.string() + ".png", grid.cols, grid.rows, image.pixels, 1.0, PngCompression::kFast);
           if (of_display) r[s].display_clipped_in_png = clipped;
         }
       } catch (...) {

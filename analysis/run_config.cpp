@@ -17,6 +17,7 @@
 // | resolution    | angle                     | 0.05 deg                  | retinal sample size                |
 // | field         | [angle, angle] or angle   | the display's field of view | retinal field, centered          |
 // | natural       | boolean                   | true                      | also natural viewing of the target, side by side |
+// | natural_viewing | string                  | "light field"             | "light field": the eye looks at the target light field, the rays the display is asked to reproduce; "traced": at a target scene itself, traced ray by ray with Embree (finer than the views, seconds per state) |
 //
 // run.contrast: normalized contrast against accommodation (the paper's Fig. 5);
 // needs no target: each display is factorized for a cosine grating at each depth.

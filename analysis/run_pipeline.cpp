@@ -157,7 +157,9 @@ RunOutcome RunPipeline(const RunRequest& request) {
       const LightFieldGeometry& g = target->light_field.geometry;
       page.target_source = DescribeTarget(*target);
       page.target = Picture("center view (sRGB, 1 = white)", "target/center_view.png", links);
-      step(target->reused ? "read the target's earlier render" : target->rendered ? "render the target" : "load the target",
+      step(target->reused     ? "read the target's earlier render"
+           : target->rendered ? "render the target"
+                              : "load the target",
            start);
 
       start = Clock::now();

@@ -61,8 +61,7 @@ std::string TargetSceneDigest(const TargetScene& scene) {
   return digest.hex();
 }
 
-std::optional<LightField> ReadCachedRender(const std::string& folder, const std::string& digest,
-                                           std::string* why_not) {
+std::optional<LightField> ReadCachedRender(const std::string& folder, const std::string& digest, std::string* why_not) {
   const fs::path record_file = fs::path(folder) / "render.json";
   std::error_code ec;
   if (!fs::exists(record_file, ec)) {
@@ -75,8 +74,8 @@ std::optional<LightField> ReadCachedRender(const std::string& folder, const std:
       throw Error(record_file.string() + ": not a " + kRenderRecordFormat + " record");
     const std::string recorded = record.value("digest", "");
     if (recorded != digest) {
-      *why_not = "the target scene, a file it reads or its geometry changed since the render in " + folder +
-                 " (key " + recorded + ", now " + digest + ")";
+      *why_not = "the target scene, a file it reads or its geometry changed since the render in " + folder + " (key " +
+                 recorded + ", now " + digest + ")";
       return std::nullopt;
     }
     LightField lf = ReadLightField((fs::path(folder) / "lightfield").string(), {.load_depth = false});

@@ -31,8 +31,7 @@ std::string TargetSceneDigest(const TargetScene& scene);
 // The light field rendered for `digest` in `folder` (a run's target/), or
 // nothing, with why not in *why_not (no earlier render, another scene or
 // geometry, unreadable, values changed since written).
-std::optional<LightField> ReadCachedRender(const std::string& folder, const std::string& digest,
-                                           std::string* why_not);
+std::optional<LightField> ReadCachedRender(const std::string& folder, const std::string& digest, std::string* why_not);
 
 // Keeps `lf`, the render of `scene` for `digest`, in `folder`: the light field
 // in folder/lightfield and its record in folder/render.json (written last).

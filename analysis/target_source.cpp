@@ -55,7 +55,8 @@ std::unique_ptr<Target> LoadOrRenderTarget(const SolveConfig& config, const std:
     }
   }
   if (!target->reused) {
-    if (cache) std::fprintf(stderr, "%s: rendering %s: %s\n", label.c_str(), config.target_scene.c_str(), why_not.c_str());
+    if (cache)
+      std::fprintf(stderr, "%s: rendering %s: %s\n", label.c_str(), config.target_scene.c_str(), why_not.c_str());
     Progress progress(label, g.view_count());
     char what[160];
     std::snprintf(what, sizeof what, "%d x %d pixels", g.cols, g.rows);

@@ -22,7 +22,7 @@ struct Target {
   LightField light_field;
   std::string source;  // the folder or the target scene file
   bool rendered = false;
-  std::string digest;  // a target scene's: TargetSceneDigest (analysis/target_cache.h)
+  std::string digest;   // a target scene's: TargetSceneDigest (analysis/target_cache.h)
   bool reused = false;  // its render was read from the cache
 #if LAYERLAB_WITH_EMBREE
   std::unique_ptr<TargetScene> scene;  // stable address: the tracer refers to it

@@ -80,8 +80,9 @@ void AddFitCommand(CLI::App& app) {
                                FormatFixed(100 * kUndeterminedStdDevFraction, 0) +
                                " % of its value; docs/measurements-format.md)";
       if (!o->force)
-        throw Error(what + ". The calibrated scene was not written: add markers, captures or camera positions, or "
-                           "write it anyway with --force");
+        throw Error(what +
+                    ". The calibrated scene was not written: add markers, captures or camera positions, or "
+                    "write it anyway with --force");
       std::cerr << "warning: " << what << "; --force: writing the calibrated scene anyway\n";
     }
 

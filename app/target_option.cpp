@@ -13,8 +13,7 @@ void AddTargetOptions(CLI::App* cmd, TargetOption& option, const std::string& wh
 }
 
 void ApplyTargetOption(const TargetOption& option, SolveConfig& config) {
-  if (!option.target.empty() && !option.target_scene.empty())
-    throw Error("give --target or --target-scene, not both");
+  if (!option.target.empty() && !option.target_scene.empty()) throw Error("give --target or --target-scene, not both");
   if (!option.given()) return;
   config.target = option.target;
   config.target_scene = option.target_scene;
@@ -22,9 +21,10 @@ void ApplyTargetOption(const TargetOption& option, SolveConfig& config) {
 
 void RequireTarget(const SolveConfig& config, const std::string& scene_file) {
   if (config.target.empty() && config.target_scene.empty())
-    throw Error("no target: give --target LF_DIR or --target-scene TARGET.json, or \"solve\": {\"target\": ...} or "
-                "{\"target_scene\": ...} in " +
-                scene_file);
+    throw Error(
+        "no target: give --target LF_DIR or --target-scene TARGET.json, or \"solve\": {\"target\": ...} or "
+        "{\"target_scene\": ...} in " +
+        scene_file);
 }
 
 }  // namespace layerlab::app

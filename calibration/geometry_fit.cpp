@@ -224,7 +224,6 @@ std::string Unresolved(const ScalarParameter& parameter, const ParameterEstimate
   return "";
 }
 
-
 bool FitGeometry(const DisplaySystem& system, const Measurements& measurements, const CalibrationOptions& options,
                  CalibratedDisplay* display, CalibrationReport* report) {
   const int layer_count = static_cast<int>(system.layers.size());

@@ -49,9 +49,9 @@ class Texture {
 
 // What a texture on one surface needs to know.
 struct TextureFrame {
-  double reference_depth = 1.0;              // m; angles become lengths here
-  std::array<double, 2> default_size{1, 1};  // m: what an image covers unless "size" is given
-  std::string base_dir;                      // image files are relative to this
+  double reference_depth = 1.0;                    // m; angles become lengths here
+  std::array<double, 2> default_size{1, 1};        // m: what an image covers unless "size" is given
+  std::string base_dir;                            // image files are relative to this
   std::vector<std::string>* files_read = nullptr;  // when given, each image file read is appended
 };
 

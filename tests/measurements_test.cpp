@@ -274,7 +274,8 @@ TEST(CalibratedSceneTest, RelativeTargetFollowsTheOutputFolder) {
 TEST(CalibratedSceneTest, EveryRelativePathFollowsFromBareFileNames) {
   nlohmann::ordered_json scene = {
       {"solve", {{"target_scene", "targets/dice.json"}}},
-      {"run", {{"compare", {{"scenes", {"hybrid_pbs_hwp.json", "/abs/x.json"}}}}, {"contrast", {{"scenes", {"a.json"}}}}}}};
+      {"run",
+       {{"compare", {{"scenes", {"hybrid_pbs_hwp.json", "/abs/x.json"}}}}, {"contrast", {{"scenes", {"a.json"}}}}}}};
   RebaseRelativePaths(scene, "scene.json", "out/calibrated.json");
   EXPECT_EQ(scene["solve"]["target_scene"], "../targets/dice.json");
   EXPECT_EQ(scene["run"]["compare"]["scenes"][0], "../hybrid_pbs_hwp.json");

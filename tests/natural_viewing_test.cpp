@@ -141,8 +141,9 @@ TEST(LightFieldRadiance, ImageWiseRetinaIsTheRayByRayRetina) {
     RetinaGrid grid = MakeRetinaGrid(12 * kDeg, 7 * kDeg, 0.07 * kDeg);  // the window is 10 x 6 deg
     grid.center_x = 0.013 * kDeg;
     for (Sampling pixels : {Sampling::kNearest, Sampling::kBilinear})
-      for (std::array<double, 3> focus : {std::array<double, 3>{1.3, 1.3, 1.3}, std::array<double, 3>{0.4, 0.4, 0.4},
-                                          std::array<double, 3>{1.9, 1.9, 1.9}, std::array<double, 3>{1.1, 1.2, 1.35}}) {
+      for (std::array<double, 3> focus :
+           {std::array<double, 3>{1.3, 1.3, 1.3}, std::array<double, 3>{0.4, 0.4, 0.4},
+            std::array<double, 3>{1.9, 1.9, 1.9}, std::array<double, 3>{1.1, 1.2, 1.35}}) {
         const SceneRadiance rays = LightFieldRadiance(lf, pixels);
         const Image fast = RetinaOfLightField(lf, pixels, grid, pupil, focus);
         const Image slow = RetinaOfSceneRayByRay(rays, grid, pupil, focus);
@@ -160,7 +161,8 @@ TEST(LightFieldRadiance, ImageWiseRetinaIsTheRayByRayRetina) {
           else
             worst = std::max(worst, std::abs(a - b) / b);
         }
-        EXPECT_LT(worst, 1e-5) << "focus " << focus[0] << " D, " << (pixels == Sampling::kNearest ? "nearest" : "bilinear");
+        EXPECT_LT(worst, 1e-5) << "focus " << focus[0] << " D, "
+                               << (pixels == Sampling::kNearest ? "nearest" : "bilinear");
         EXPECT_GT(zeros, 0u);
         EXPECT_GT(partial, 0u);
       }
