@@ -145,9 +145,11 @@ TEST(TimeMultiplex, KnownRankTwoTargetIsRecoveredAbove100Db) {
     EXPECT_GT(r.final_psnr_db, 100.0) << solver << "\n" << r.BriefReport();
     // A Lee-Seung step of the whole objective never raises it, until the
     // float light field's rounding decides (below ~120 dB).
-    if (solver == "multiplicative")
-      for (size_t i = 1; i < r.trace.size() && r.trace[i - 1].psnr_db < 110; ++i)
+    if (solver == "multiplicative") {
+      for (size_t i = 1; i < r.trace.size() && r.trace[i - 1].psnr_db < 110; ++i) {
         EXPECT_LE(r.trace[i].objective, r.trace[i - 1].objective) << "iteration " << r.trace[i].iteration;
+      }
+    }
   }
 }
 
