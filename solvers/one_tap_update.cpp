@@ -21,67 +21,71 @@ struct Workspace {
   std::vector<Rgb4> zeros;                   // one ray row of no light
 };
 
+// One view run's sums (and errors) for a branch of L layers.
 template <int L>
-void Accumulate(const DisplayModel& model, const std::vector<int>& layers, const PaddedLayers& padded,
-                const BranchTarget& branch_target, Rgb4 weight, int vc, int vr_begin, int vr_end, double* view_errors,
-                Workspace* w) {
-  const LightFieldGeometry& g = model.geometry();
-  const int cols = g.cols;
-  const LayerProjection& Pa = model.projection(layers[0]);
+struct Accumulate {
+  static void Run(const DisplayModel& model, const std::vector<int>& layers, const PaddedLayers& padded,
+                  const BranchTarget& branch_target, Rgb4 weight, int vc, int vr_begin, int vr_end, double* view_errors,
+                  Workspace* w) {
+    const LightFieldGeometry& g = model.geometry();
+    const int cols = g.cols;
+    const LayerProjection& Pa = model.projection(layers[0]);
 
-  for (int k = 1; k < L; ++k) {
-    const LayerProjection& P = model.projection(layers[k]);
-    ResampleToRayColumns(P, padded.pixels(layers[k]), vc, cols, RowsRead(P, g, vr_begin, vr_end), &w->resampled[k - 1]);
-  }
-  if (view_errors)
-    ResampleToRayColumns(Pa, padded.pixels(layers[0]), vc, cols, RowsRead(Pa, g, vr_begin, vr_end), &w->own);
-
-  for (int vr = vr_begin; vr < vr_end; ++vr) {
-    const size_t view = g.view_index(vr, vc);
-    const float* target = branch_target(view, w->scratch.data());
-    const AxisTap* row_taps[L];
-    for (int k = 0; k < L; ++k) row_taps[k] = model.projection(layers[k]).row_taps(view);
-    double error = 0;  // this view's, in row order
-    // A ray that misses a layer gets no light from the branch: its error is r^2.
-    auto unlit_row = [&](int i) {
-      if (view_errors)
-        error += SquaredErrorRow(target + static_cast<size_t>(i) * cols * 3, w->zeros.data(), cols, i == g.rows - 1);
-    };
-    for (int i = 0; i < g.rows; ++i) {
-      const int32_t ra = row_taps[0][i].i0;
-      if (ra < 0) {
-        unlit_row(i);
-        continue;
-      }
-      const Rgb4* q_rows[L > 1 ? L - 1 : 1] = {};
-      bool reached = true;
-      for (int k = 1; k < L && reached; ++k) {
-        const int32_t r = row_taps[k][i].i0;
-        reached = r >= 0;
-        if (reached) q_rows[k - 1] = w->resampled[k - 1].data() + static_cast<size_t>(r) * cols;
-      }
-      if (!reached) {
-        unlit_row(i);
-        continue;
-      }
-      const float* l = target + static_cast<size_t>(i) * cols * 3;
-      const Rgb4* q = L == 1 ? nullptr : q_rows[0];
-      if constexpr (L > 2) {  // the product of the other layers, then the sums
-        std::fill(w->product.begin(), w->product.end(), Rgb4{});
-        AddBranchLightRow(q_rows, L - 1, Rgb4{1, 1, 1, 0}, cols, w->product.data());
-        q = w->product.data();
-      }
-      if (view_errors)
-        error += UpdateSumsAndErrorRow(l, q, w->own.data() + static_cast<size_t>(ra) * cols, weight, w->sums.num(ra),
-                                       w->sums.den(ra), cols);
-      else
-        UpdateSumsRow(l, q, w->sums.num(ra), w->sums.den(ra), cols);
+    for (int k = 1; k < L; ++k) {
+      const LayerProjection& P = model.projection(layers[k]);
+      ResampleToRayColumns(P, padded.pixels(layers[k]), vc, cols, RowsRead(P, g, vr_begin, vr_end),
+                           &w->resampled[k - 1]);
     }
-    if (view_errors) view_errors[view] = error;
-  }
+    if (view_errors)
+      ResampleToRayColumns(Pa, padded.pixels(layers[0]), vc, cols, RowsRead(Pa, g, vr_begin, vr_end), &w->own);
 
-  w->sums.Scatter(Pa, vc);
-}
+    for (int vr = vr_begin; vr < vr_end; ++vr) {
+      const size_t view = g.view_index(vr, vc);
+      const float* target = branch_target(view, w->scratch.data());
+      const AxisTap* row_taps[L];
+      for (int k = 0; k < L; ++k) row_taps[k] = model.projection(layers[k]).row_taps(view);
+      double error = 0;  // this view's, in row order
+      // A ray that misses a layer gets no light from the branch: its error is r^2.
+      auto unlit_row = [&](int i) {
+        if (view_errors)
+          error += SquaredErrorRow(target + static_cast<size_t>(i) * cols * 3, w->zeros.data(), cols, i == g.rows - 1);
+      };
+      for (int i = 0; i < g.rows; ++i) {
+        const int32_t ra = row_taps[0][i].i0;
+        if (ra < 0) {
+          unlit_row(i);
+          continue;
+        }
+        const Rgb4* q_rows[L > 1 ? L - 1 : 1] = {};
+        bool reached = true;
+        for (int k = 1; k < L && reached; ++k) {
+          const int32_t r = row_taps[k][i].i0;
+          reached = r >= 0;
+          if (reached) q_rows[k - 1] = w->resampled[k - 1].data() + static_cast<size_t>(r) * cols;
+        }
+        if (!reached) {
+          unlit_row(i);
+          continue;
+        }
+        const float* l = target + static_cast<size_t>(i) * cols * 3;
+        const Rgb4* q = L == 1 ? nullptr : q_rows[0];
+        if constexpr (L > 2) {  // the product of the other layers, then the sums
+          std::fill(w->product.begin(), w->product.end(), Rgb4{});
+          AddBranchLightRow(q_rows, L - 1, Rgb4{1, 1, 1, 0}, cols, w->product.data());
+          q = w->product.data();
+        }
+        if (view_errors)
+          error += UpdateSumsAndErrorRow(l, q, w->own.data() + static_cast<size_t>(ra) * cols, weight, w->sums.num(ra),
+                                         w->sums.den(ra), cols);
+        else
+          UpdateSumsRow(l, q, w->sums.num(ra), w->sums.den(ra), cols);
+      }
+      if (view_errors) view_errors[view] = error;
+    }
+
+    w->sums.Scatter(Pa, vc);
+  }
+};
 
 }  // namespace
 
@@ -112,20 +116,8 @@ void OneTapUpdateSums(const DisplayModel& model, const std::vector<int>& layers,
     thread_sums.resize(threads);
     thread_sums[me] = &w.sums;
     ForEachViewRunOfThread(g, me, threads, [&](int vc, int vr_begin, int vr_end) {
-      switch (layers.size()) {
-        case 1:
-          Accumulate<1>(model, layers, padded, branch_target, w4, vc, vr_begin, vr_end, view_errors, &w);
-          break;
-        case 2:
-          Accumulate<2>(model, layers, padded, branch_target, w4, vc, vr_begin, vr_end, view_errors, &w);
-          break;
-        case 3:
-          Accumulate<3>(model, layers, padded, branch_target, w4, vc, vr_begin, vr_end, view_errors, &w);
-          break;
-        case 4:
-          Accumulate<4>(model, layers, padded, branch_target, w4, vc, vr_begin, vr_end, view_errors, &w);
-          break;
-      }
+      ForLayerCount<Accumulate>(static_cast<int>(layers.size()), model, layers, padded, branch_target, w4, vc, vr_begin,
+                                vr_end, view_errors, &w);
     });
 #pragma omp barrier
     ColumnSums::Merge(thread_sums, me, threads, num, den);

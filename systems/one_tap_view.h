@@ -20,11 +20,9 @@
 #include "framework/rgb4.h"
 #include "systems/display_model.h"
 #include "systems/row_kernels.h"
+#include "systems/unrolled_layers.h"
 
 namespace layerlab {
-
-// Branches of up to this many layers take the fast path.
-constexpr int kMaxOneTapLayers = 4;
 
 // True if branch b takes the fast path.
 bool OneTapBranch(const DisplayModel& model, size_t b);

@@ -11,35 +11,29 @@
 
 #include "framework/error.h"
 #include "systems/row_kernels_isa.h"
+#include "systems/unrolled_layers.h"
 
 namespace layerlab {
 namespace baseline {
 namespace {
 
 template <int L>
-void AddBranchLightRowOf(const Rgb4* const* rows, Rgb4 w, int cols, Rgb4* row) {
-  const Rgb4* r[L];
-  for (int k = 0; k < L; ++k) r[k] = rows[k];
-  for (int j = 0; j < cols; ++j) {
-    Rgb4 p = w;
-    for (int k = 0; k < L; ++k) p *= r[k][j];
-    row[j] += p;
+struct AddBranchLightRowOf {
+  static void Run(const Rgb4* const* rows, Rgb4 w, int cols, Rgb4* row) {
+    const Rgb4* r[L];
+    for (int k = 0; k < L; ++k) r[k] = rows[k];
+    for (int j = 0; j < cols; ++j) {
+      Rgb4 p = w;
+      for (int k = 0; k < L; ++k) p *= r[k][j];
+      row[j] += p;
+    }
   }
-}
+};
 
 }  // namespace
 
 void AddBranchLightRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, Rgb4* row) {
-  switch (layers) {
-    case 1:
-      return AddBranchLightRowOf<1>(rows, w, cols, row);
-    case 2:
-      return AddBranchLightRowOf<2>(rows, w, cols, row);
-    case 3:
-      return AddBranchLightRowOf<3>(rows, w, cols, row);
-    case 4:
-      return AddBranchLightRowOf<4>(rows, w, cols, row);
-  }
+  ForLayerCount<AddBranchLightRowOf>(layers, rows, w, cols, row);
 }
 
 void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int cols) {
@@ -154,31 +148,24 @@ inline void JointSumsRay(const Rgb4* const* r, Rgb4 w, int j, Rgb4 lj, const Rgb
 }
 
 template <int L>
-void JointSumsRowOf(const Rgb4* const* rows, Rgb4 w, int cols, const float* l, bool exact_last, const Rgb4* light,
-                    Rgb4* const* num, Rgb4* const* den) {
-  const Rgb4* r[L];
-  Rgb4* n[L];
-  Rgb4* d[L];
-  for (int k = 0; k < L; ++k) r[k] = rows[k], n[k] = num[k], d[k] = den[k];
-  const int safe = exact_last ? cols - 1 : cols;
-  for (int j = 0; j < cols; ++j)
-    JointSumsRay<L>(r, w, j, j < safe ? LoadRgbOver(l + j * 3) : LoadRgb(l + j * 3), light, n, d);
-}
+struct JointSumsRowOf {
+  static void Run(const Rgb4* const* rows, Rgb4 w, int cols, const float* l, bool exact_last, const Rgb4* light,
+                  Rgb4* const* num, Rgb4* const* den) {
+    const Rgb4* r[L];
+    Rgb4* n[L];
+    Rgb4* d[L];
+    for (int k = 0; k < L; ++k) r[k] = rows[k], n[k] = num[k], d[k] = den[k];
+    const int safe = exact_last ? cols - 1 : cols;
+    for (int j = 0; j < cols; ++j)
+      JointSumsRay<L>(r, w, j, j < safe ? LoadRgbOver(l + j * 3) : LoadRgb(l + j * 3), light, n, d);
+  }
+};
 
 }  // namespace
 
 void JointSumsRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, const float* l, bool exact_last,
                   const Rgb4* light, Rgb4* const* num, Rgb4* const* den) {
-  switch (layers) {
-    case 1:
-      return JointSumsRowOf<1>(rows, w, cols, l, exact_last, light, num, den);
-    case 2:
-      return JointSumsRowOf<2>(rows, w, cols, l, exact_last, light, num, den);
-    case 3:
-      return JointSumsRowOf<3>(rows, w, cols, l, exact_last, light, num, den);
-    case 4:
-      return JointSumsRowOf<4>(rows, w, cols, l, exact_last, light, num, den);
-  }
+  ForLayerCount<JointSumsRowOf>(layers, rows, w, cols, l, exact_last, light, num, den);
 }
 
 }  // namespace baseline

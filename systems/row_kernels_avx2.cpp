@@ -11,6 +11,8 @@
 
 #include <immintrin.h>
 
+#include "systems/unrolled_layers.h"
+
 #define LAYERLAB_AVX2 __attribute__((target("avx2")))
 
 namespace layerlab::avx2 {
@@ -36,85 +38,71 @@ LAYERLAB_AVX2 inline __m256d Squared(Rgb4 t, Rgb4 l) {
 }
 
 template <int L>
-LAYERLAB_AVX2 void AddBranchLightRowOf(const Rgb4* const* rows, Rgb4 w, int cols, Rgb4* row) {
-  const float* r[L];
-  for (int k = 0; k < L; ++k) r[k] = reinterpret_cast<const float*>(rows[k]);
-  float* out = reinterpret_cast<float*>(row);
-  const __m256 w2 = Twice(w);
-  int j = 0;
-  for (; j + 1 < cols; j += 2) {
-    __m256 p = w2;
-    for (int k = 0; k < L; ++k) p = _mm256_mul_ps(p, _mm256_loadu_ps(r[k] + j * 4));
-    _mm256_storeu_ps(out + j * 4, _mm256_add_ps(_mm256_loadu_ps(out + j * 4), p));
+struct AddBranchLightRowOf {
+  LAYERLAB_AVX2 static void Run(const Rgb4* const* rows, Rgb4 w, int cols, Rgb4* row) {
+    const float* r[L];
+    for (int k = 0; k < L; ++k) r[k] = reinterpret_cast<const float*>(rows[k]);
+    float* out = reinterpret_cast<float*>(row);
+    const __m256 w2 = Twice(w);
+    int j = 0;
+    for (; j + 1 < cols; j += 2) {
+      __m256 p = w2;
+      for (int k = 0; k < L; ++k) p = _mm256_mul_ps(p, _mm256_loadu_ps(r[k] + j * 4));
+      _mm256_storeu_ps(out + j * 4, _mm256_add_ps(_mm256_loadu_ps(out + j * 4), p));
+    }
+    const Rgb4* rest[L];
+    for (int k = 0; k < L; ++k) rest[k] = rows[k] + j;
+    baseline::AddBranchLightRow(rest, L, w, cols - j, row + j);
   }
-  const Rgb4* rest[L];
-  for (int k = 0; k < L; ++k) rest[k] = rows[k] + j;
-  baseline::AddBranchLightRow(rest, L, w, cols - j, row + j);
-}
+};
 
 template <int L>
-LAYERLAB_AVX2 void JointSumsRowOf(const Rgb4* const* rows, Rgb4 w, int cols, const float* l, bool exact_last,
-                                  const Rgb4* light, Rgb4* const* num, Rgb4* const* den) {
-  const float* r[L];
-  float* n[L];
-  float* d[L];
-  for (int k = 0; k < L; ++k) {
-    r[k] = reinterpret_cast<const float*>(rows[k]);
-    n[k] = reinterpret_cast<float*>(num[k]), d[k] = reinterpret_cast<float*>(den[k]);
-  }
-  const float* li = reinterpret_cast<const float*>(light);
-  const __m256 w2 = Twice(w), ones = _mm256_set1_ps(1.0f);
-  int j = 0;
-  for (; j + 3 <= cols; j += 2) {  // rays j, j + 1 read up to ray j + 2's green
-    __m256 rk[L], prefix[L];
-    __m256 p = w2;
+struct JointSumsRowOf {
+  LAYERLAB_AVX2 static void Run(const Rgb4* const* rows, Rgb4 w, int cols, const float* l, bool exact_last,
+                                const Rgb4* light, Rgb4* const* num, Rgb4* const* den) {
+    const float* r[L];
+    float* n[L];
+    float* d[L];
     for (int k = 0; k < L; ++k) {
-      rk[k] = _mm256_loadu_ps(r[k] + j * 4);
-      prefix[k] = p;
-      p = _mm256_mul_ps(p, rk[k]);
+      r[k] = reinterpret_cast<const float*>(rows[k]);
+      n[k] = reinterpret_cast<float*>(num[k]), d[k] = reinterpret_cast<float*>(den[k]);
     }
-    const __m256 lj = LoadTwoRaysOver(l + j * 3), lightj = _mm256_loadu_ps(li + j * 4);
-    __m256 suffix = ones;
-    for (int a = L - 1; a >= 0; --a) {
-      const __m256 q = _mm256_mul_ps(prefix[a], suffix);
-      _mm256_storeu_ps(n[a] + j * 4, _mm256_add_ps(_mm256_loadu_ps(n[a] + j * 4), _mm256_mul_ps(lj, q)));
-      _mm256_storeu_ps(d[a] + j * 4, _mm256_add_ps(_mm256_loadu_ps(d[a] + j * 4), _mm256_mul_ps(lightj, q)));
-      suffix = _mm256_mul_ps(suffix, rk[a]);
+    const float* li = reinterpret_cast<const float*>(light);
+    const __m256 w2 = Twice(w), ones = _mm256_set1_ps(1.0f);
+    int j = 0;
+    for (; j + 3 <= cols; j += 2) {  // rays j, j + 1 read up to ray j + 2's green
+      __m256 rk[L], prefix[L];
+      __m256 p = w2;
+      for (int k = 0; k < L; ++k) {
+        rk[k] = _mm256_loadu_ps(r[k] + j * 4);
+        prefix[k] = p;
+        p = _mm256_mul_ps(p, rk[k]);
+      }
+      const __m256 lj = LoadTwoRaysOver(l + j * 3), lightj = _mm256_loadu_ps(li + j * 4);
+      __m256 suffix = ones;
+      for (int a = L - 1; a >= 0; --a) {
+        const __m256 q = _mm256_mul_ps(prefix[a], suffix);
+        _mm256_storeu_ps(n[a] + j * 4, _mm256_add_ps(_mm256_loadu_ps(n[a] + j * 4), _mm256_mul_ps(lj, q)));
+        _mm256_storeu_ps(d[a] + j * 4, _mm256_add_ps(_mm256_loadu_ps(d[a] + j * 4), _mm256_mul_ps(lightj, q)));
+        suffix = _mm256_mul_ps(suffix, rk[a]);
+      }
     }
+    const Rgb4* rest[L];
+    Rgb4 *rest_num[L], *rest_den[L];
+    for (int k = 0; k < L; ++k) rest[k] = rows[k] + j, rest_num[k] = num[k] + j, rest_den[k] = den[k] + j;
+    baseline::JointSumsRow(rest, L, w, cols - j, l + j * 3, exact_last, light + j, rest_num, rest_den);
   }
-  const Rgb4* rest[L];
-  Rgb4 *rest_num[L], *rest_den[L];
-  for (int k = 0; k < L; ++k) rest[k] = rows[k] + j, rest_num[k] = num[k] + j, rest_den[k] = den[k] + j;
-  baseline::JointSumsRow(rest, L, w, cols - j, l + j * 3, exact_last, light + j, rest_num, rest_den);
-}
+};
 
 }  // namespace
 
 LAYERLAB_AVX2 void JointSumsRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, const float* l, bool exact_last,
                                 const Rgb4* light, Rgb4* const* num, Rgb4* const* den) {
-  switch (layers) {
-    case 1:
-      return JointSumsRowOf<1>(rows, w, cols, l, exact_last, light, num, den);
-    case 2:
-      return JointSumsRowOf<2>(rows, w, cols, l, exact_last, light, num, den);
-    case 3:
-      return JointSumsRowOf<3>(rows, w, cols, l, exact_last, light, num, den);
-    case 4:
-      return JointSumsRowOf<4>(rows, w, cols, l, exact_last, light, num, den);
-  }
+  ForLayerCount<JointSumsRowOf>(layers, rows, w, cols, l, exact_last, light, num, den);
 }
 
 LAYERLAB_AVX2 void AddBranchLightRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, Rgb4* row) {
-  switch (layers) {
-    case 1:
-      return AddBranchLightRowOf<1>(rows, w, cols, row);
-    case 2:
-      return AddBranchLightRowOf<2>(rows, w, cols, row);
-    case 3:
-      return AddBranchLightRowOf<3>(rows, w, cols, row);
-    case 4:
-      return AddBranchLightRowOf<4>(rows, w, cols, row);
-  }
+  ForLayerCount<AddBranchLightRowOf>(layers, rows, w, cols, row);
 }
 
 LAYERLAB_AVX2 void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int cols) {
