@@ -62,8 +62,8 @@ CalibrationReport Calibrate(const DisplaySystem& system, const Measurements& mea
         std::any_of(layer.path.begin(), layer.path.end(), [](const PathStep& s) { return s.power != 0; });
     panel.distance = layer.panel_distance;
     panel.gap = layer.position - (layer.path.empty() ? 0.0 : layer.path.back().position.value_or(0.0));
-    panel.offset_x = layer.panel.offset[0];
-    panel.offset_y = layer.panel.offset[1];
+    panel.eye_from_panel_x_m = layer.panel.eye_from_panel_m[0];
+    panel.eye_from_panel_y_m = layer.panel.eye_from_panel_m[1];
     panel.rotation = layer.panel.rotation;
     panel.gamma = layer.panel.gamma;
     panel.black_level = layer.panel.black_level;

@@ -81,7 +81,8 @@ ordered_json CalibratedSceneDocument(const ordered_json& scene, const std::strin
     if (panel.geometry_measured || panel.optics_fitted)
       values.push_back({key, WithUnit(key == "gap" ? panel.gap : panel.distance, 1e3, "mm")});
     if (panel.geometry_measured) {
-      values.push_back({"offset", {WithUnit(panel.offset_x, 1e3, "mm"), WithUnit(panel.offset_y, 1e3, "mm")}});
+      values.push_back(
+          {"offset", {WithUnit(panel.eye_from_panel_x_m, 1e3, "mm"), WithUnit(panel.eye_from_panel_y_m, 1e3, "mm")}});
       values.push_back({"rotation", WithUnit(panel.rotation, 180.0 / std::numbers::pi, "deg")});
     }
     if (panel.luminance_measured) {

@@ -137,11 +137,11 @@ struct CalibratedPanel {
   // Some element with power in front of it had its focal length or gap fitted:
   // its physical place is what stays, so it is written even without markers.
   bool optics_fitted = false;
-  bool behind_optics = false;         // some lens or curved mirror lies in front of it
-  double distance = 0;                // m, from the nearest of them (from the pupil without one)
-  double gap = 0;                     // m, from the element before it on its path
-  double offset_x = 0, offset_y = 0;  // m, in the panel plane, eye-space x right, y up
-  double rotation = 0;                // rad, counterclockwise as the eye sees it
+  bool behind_optics = false;                             // some lens or curved mirror lies in front of it
+  double distance = 0;                                    // m, from the nearest of them (from the pupil without one)
+  double gap = 0;                                         // m, from the element before it on its path
+  double eye_from_panel_x_m = 0, eye_from_panel_y_m = 0;  // PanelSpec::eye_from_panel_m (the scene's "offset")
+  double rotation = 0;                                    // rad, counterclockwise as the eye sees it
   double gamma = 0, black_level = 0;
   double max_luminance = 0;  // in the measurements' unit; 0 when not measured
 };

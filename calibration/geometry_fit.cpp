@@ -35,7 +35,7 @@ struct Optic {
   int focal = -1, gap_index = -1;  // into the ScalarFit
 };
 
-// The residual of one marker. Parameter blocks: distance, offset_x, offset_y,
+// The residual of one marker. Parameter blocks: distance, eye_from_panel_x_m, eye_from_panel_y_m,
 // rotation, pan, tilt, roll, then a gap and a focal length per element of `optics`.
 struct MarkerCost {
   MarkerPlacement placement;
@@ -61,7 +61,7 @@ using MarkerCostFunction = ceres::DynamicAutoDiffCostFunction<MarkerCost, 4>;
 
 // Indices into the ScalarFit of one panel's parameters.
 struct PanelIndices {
-  int distance = -1, offset_x = -1, offset_y = -1, rotation = -1;
+  int distance = -1, eye_from_panel_x_m = -1, eye_from_panel_y_m = -1, rotation = -1;
 };
 
 std::string Quoted(const std::string& name) { return "\"" + name + "\""; }
@@ -112,8 +112,8 @@ template <typename T, typename Value>
 MarkerParameters<T> LayerParameters(const PanelIndices& p, int pan, int tilt, int roll, const LayerOptics& layer_optics,
                                     const std::vector<Optic>& optics, Value value) {
   MarkerParameters<T> q{value(p.distance),
-                        value(p.offset_x),
-                        value(p.offset_y),
+                        value(p.eye_from_panel_x_m),
+                        value(p.eye_from_panel_y_m),
                         value(p.rotation),
                         value(pan),
                         value(tilt),
@@ -319,12 +319,13 @@ bool FitGeometry(const DisplaySystem& system, const Measurements& measurements, 
     index[k].distance = add({"the distance of " + panel, layer.panel_distance, 2, closest, beyond_focus}, "distance");
     index[k].rotation =
         add({"the rotation of " + panel, reference ? 0.0 : layer.panel.rotation, 3, {}, {}}, "rotation");
-    index[k].offset_x =
-        add({"the offset x of " + panel, reference ? 0.0 : layer.panel.offset[0], 4, {}, {}}, "offset_x");
-    index[k].offset_y =
-        add({"the offset y of " + panel, reference ? 0.0 : layer.panel.offset[1], 4, {}, {}}, "offset_y");
+    index[k].eye_from_panel_x_m =
+        add({"the offset x of " + panel, reference ? 0.0 : layer.panel.eye_from_panel_m[0], 4, {}, {}}, "offset_x");
+    index[k].eye_from_panel_y_m =
+        add({"the offset y of " + panel, reference ? 0.0 : layer.panel.eye_from_panel_m[1], 4, {}, {}}, "offset_y");
     if (reference)
-      for (int i : {index[k].rotation, index[k].offset_x, index[k].offset_y}) hold(i, ParameterStatus::kReference);
+      for (int i : {index[k].rotation, index[k].eye_from_panel_x_m, index[k].eye_from_panel_y_m})
+        hold(i, ParameterStatus::kReference);
     if (spread[k].distinct == 1) {
       // One pixel fixes where the panel is, not how it is turned; its size
       // only through parallax, when it is seen from two camera positions.
@@ -386,7 +387,7 @@ bool FitGeometry(const DisplaySystem& system, const Measurements& measurements, 
     const PanelIndices& p = index[d.layer];
     const LayerOptics& path = layer_optics[d.layer];
     auto* cost = new MarkerCostFunction(new MarkerCost{d.placement, path, d.angle_x, d.angle_y});
-    std::vector<int> blocks = {p.distance, p.offset_x, p.offset_y, p.rotation, pan, tilt, roll};
+    std::vector<int> blocks = {p.distance, p.eye_from_panel_x_m, p.eye_from_panel_y_m, p.rotation, pan, tilt, roll};
     for (int o : path.element) blocks.push_back(optics[o].gap_index), blocks.push_back(optics[o].focal);
     for (size_t i = 0; i < blocks.size(); ++i) cost->AddParameterBlock(1);
     cost->SetNumResiduals(2);
@@ -421,7 +422,8 @@ bool FitGeometry(const DisplaySystem& system, const Measurements& measurements, 
     MarkerParameters<double> q = LayerParameters<double>(index[k], pan, tilt, roll, layer_optics[k], optics,
                                                          [&](int i) { return fit.parameter(i).start; });
     q.distance = layer.panel_distance;
-    q.offset_x = layer.panel.offset[0], q.offset_y = layer.panel.offset[1], q.rotation = layer.panel.rotation;
+    q.eye_from_panel_x_m = layer.panel.eye_from_panel_m[0], q.eye_from_panel_y_m = layer.panel.eye_from_panel_m[1],
+    q.rotation = layer.panel.rotation;
     q.pan = q.tilt = q.roll = 0;
     return q;
   };
@@ -551,13 +553,14 @@ bool FitGeometry(const DisplaySystem& system, const Measurements& measurements, 
     }
     report->parameters.push_back(distance);
     report->parameters.push_back(depth);
-    for (int i : {p.offset_x, p.offset_y, p.rotation}) report->parameters.push_back(estimate(layer.name, i));
+    for (int i : {p.eye_from_panel_x_m, p.eye_from_panel_y_m, p.rotation})
+      report->parameters.push_back(estimate(layer.name, i));
 
     CalibratedPanel& out = display->panels[k];
     out.geometry_measured = true;
     out.distance = distance.value;
-    out.offset_x = fit.value(p.offset_x);
-    out.offset_y = fit.value(p.offset_y);
+    out.eye_from_panel_x_m = fit.value(p.eye_from_panel_x_m);
+    out.eye_from_panel_y_m = fit.value(p.eye_from_panel_y_m);
     out.rotation = fit.value(p.rotation);
   }
   PlaceAsFitted(system, optics, display);

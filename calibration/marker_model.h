@@ -62,7 +62,7 @@ struct LayerOptics {
 // The fitted parameters of the model for one layer, by role.
 template <typename T>
 struct MarkerParameters {
-  T distance, offset_x, offset_y, rotation;
+  T distance, eye_from_panel_x_m, eye_from_panel_y_m, rotation;
   T pan, tilt, roll;
   std::vector<T> gaps, focal_lengths;  // of LayerOptics' elements, in its order
 };
@@ -86,8 +86,8 @@ void PredictVisualAngle(const MarkerParameters<T>& q, const LayerOptics& optics,
   const T tan_per_meter = T(1) / abs(transfer.b);
   const T diopters = transfer.diopters();
   const T c = cos(q.rotation), s = sin(q.rotation);
-  const T x = q.offset_x + c * m.local_x - s * m.local_y;
-  const T y = q.offset_y + s * m.local_x + c * m.local_y;
+  const T x = q.eye_from_panel_x_m + c * m.local_x - s * m.local_y;
+  const T y = q.eye_from_panel_y_m + s * m.local_x + c * m.local_y;
   const T eye_direction[3] = {tan_per_meter * x - m.camera_x * diopters, tan_per_meter * y - m.camera_y * diopters,
                               T(1)};
   const T camera_from_eye[3] = {q.tilt, -q.pan, -q.roll};  // the inverse of R_cam

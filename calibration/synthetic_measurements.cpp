@@ -41,7 +41,8 @@ std::array<double, 2> ImagedMarker(const DisplaySystem& truth, const VirtualLaye
   if (layer.flip_y) i = static_cast<double>(p.active_rows) - 1 - i;
   const Eigen::Vector2d local((j + 0.5 - 0.5 * static_cast<double>(p.active_cols)) * p.pitch_x,
                               (0.5 * static_cast<double>(p.active_rows) - i - 0.5) * p.pitch_y);
-  const Eigen::Vector2d on_panel = Eigen::Vector2d(p.offset[0], p.offset[1]) + Eigen::Rotation2Dd(p.rotation) * local;
+  const Eigen::Vector2d on_panel =
+      Eigen::Vector2d(p.eye_from_panel_m[0], p.eye_from_panel_m[1]) + Eigen::Rotation2Dd(p.rotation) * local;
   // The ray the camera at `position` sees it along: the ray leaving pupil point c with slope u meets the
   // unfolded panel plane at A c + B u (ray_transfer.h), where the point lies at on_panel turned by 180
   // degrees when the image is inverted (B < 0; the flips above include that turn).

@@ -144,11 +144,14 @@ struct PanelSpec {
   bool reversed = false;     // mounted back to front: mirrored about its vertical axis
   // At most one of the placements is given (the element's "gap" is the third);
   // compile derives the rest.
-  std::optional<double> distance;         // m from the nearest lens or curved mirror before it
-  std::optional<Depth> virtual_depth;     // of the panel's final image, from the eye
-  std::array<double, 2> offset = {0, 0};  // m, in the panel plane, eye-space x right, y up
-  double rotation = 0.0;                  // rad, in-plane, counterclockwise as the eye sees it
-  double polarization_angle = 0.0;        // rad, axis of the exit polarizer
+  std::optional<double> distance;      // m from the nearest lens or curved mirror before it
+  std::optional<Depth> virtual_depth;  // of the panel's final image, from the eye
+  // The active region's center in the panel plane, m from the optical axis,
+  // eye-space x right, y up (the scene's "offset"): a point p of the panel's
+  // own frame lies at eye_from_panel_m + R(rotation) p.
+  std::array<double, 2> eye_from_panel_m = {0, 0};
+  double rotation = 0.0;            // rad, in-plane, counterclockwise as the eye sees it
+  double polarization_angle = 0.0;  // rad, axis of the exit polarizer
 };
 
 class PanelElement : public Element {

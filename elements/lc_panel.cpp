@@ -82,8 +82,8 @@ std::unique_ptr<Element> MakeLcPanel(Params& p) {
   s.black_level = black[0];
   if (s.black_level >= 1.0) p.fail("black_level", "must be below 1 (the panel's maximum)");
   s.reversed = p.boolean("reversed", false);
-  s.offset = p.quantity_pair("offset", Dimension::kLength, {0.0, 0.0});
-  p.require_range("offset", std::abs(s.offset[0]) + std::abs(s.offset[1]), 0.0, 1.0, false, false);
+  s.eye_from_panel_m = p.quantity_pair("offset", Dimension::kLength, {0.0, 0.0});
+  p.require_range("offset", std::abs(s.eye_from_panel_m[0]) + std::abs(s.eye_from_panel_m[1]), 0.0, 1.0, false, false);
   s.rotation = p.quantity("rotation", Dimension::kAngle, 0.0);
   p.require_range("rotation", s.rotation, -3.2, 3.2, false, false);
   s.polarization_angle = p.quantity("polarization", Dimension::kAngle, 0.0);

@@ -368,8 +368,8 @@ class Walker {
     layer.tan_pitch_y = tan_per_meter * spec.pitch_y;
     layer.cols = static_cast<int>(spec.active_cols);
     layer.rows = static_cast<int>(spec.active_rows);
-    layer.offset_x = tan_per_meter * spec.offset[0];
-    layer.offset_y = tan_per_meter * spec.offset[1];
+    layer.eye_from_layer_tan_x = tan_per_meter * spec.eye_from_panel_m[0];
+    layer.eye_from_layer_tan_y = tan_per_meter * spec.eye_from_panel_m[1];
     layer.rotation = spec.rotation;
     layer.flip_x = (state.flip_x != layer.inverted) != spec.reversed;
     layer.flip_y = state.flip_y != layer.inverted;
@@ -506,8 +506,8 @@ void Walker::CheckApertures() {
         const RayTransfer<double>& m = s.arrival;
         // The ray from pupil point x toward tan-angle t of the layer has slope t - x D;
         // its height here is a x + b (t - x D). The largest over the eyebox and field corners:
-        const double tx = 0.5 * l.cols * l.tan_pitch_x + std::abs(l.offset_x);
-        const double ty = 0.5 * l.rows * l.tan_pitch_y + std::abs(l.offset_y);
+        const double tx = 0.5 * l.cols * l.tan_pitch_x + std::abs(l.eye_from_layer_tan_x);
+        const double ty = 0.5 * l.rows * l.tan_pitch_y + std::abs(l.eye_from_layer_tan_y);
         double largest = 0;
         for (double x : {-0.5 * eye.eyebox_width, 0.5 * eye.eyebox_width})
           for (double y : {-0.5 * eye.eyebox_height, 0.5 * eye.eyebox_height})

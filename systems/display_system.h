@@ -7,8 +7,12 @@
 // that a layer at infinity (0 D) stays finite. A layer's pixel grid is
 // described in tan-angle units as seen from the pupil center: the pixel
 // (row i, col j) of a layer covers tan-angles around
-//   offset + R(rotation) * ((j + 0.5 - cols/2) * tan_pitch_x, (rows/2 - i - 0.5) * tan_pitch_y),
+//   eye_from_layer_tan + R(rotation) * ((j + 0.5 - cols/2) * tan_pitch_x, (rows/2 - i - 0.5) * tan_pitch_y),
 // with columns counted in the panel's own order after applying flip_x/flip_y.
+// Names of placements read destination_from_source and end in their unit (as
+// pbrt's renderFromCamera): eye_from_layer_tan_x is the layer grid's center in
+// the eye's tan-angle frame; PanelSpec::eye_from_panel_m is the panel's center
+// in meters in its own plane, measured from the optical axis.
 #pragma once
 
 #include <optional>
@@ -48,14 +52,14 @@ struct VirtualLayer {
   RayTransfer<double> transfer;     // pupil -> panel, unfolded (mirror reversals kept in flip_x/flip_y)
   std::vector<PathStep> path;       // the elements from the eye to this panel, nearest the eye first
   double pitch_x = 0, pitch_y = 0;  // virtual pixel pitch at depth z, m (+inf at 0 D)
-  double tan_pitch_x = 0, tan_pitch_y = 0;  // tan-angle per pixel, seen from the pupil center
-  int cols = 0, rows = 0;                   // the active region
-  double offset_x = 0, offset_y = 0;        // tan-angle of the grid center
-  double rotation = 0;                      // rad
-  bool flip_x = false, flip_y = false;      // panel order against eye-space order
-  double fov_x = 0, fov_y = 0;              // rad, Eq. 2
-  double max_cpd = 0;                       // Nyquist at the grid center
-  PanelSpec panel;                          // as mounted, for panel-ready output
+  double tan_pitch_x = 0, tan_pitch_y = 0;                    // tan-angle per pixel, seen from the pupil center
+  int cols = 0, rows = 0;                                     // the active region
+  double eye_from_layer_tan_x = 0, eye_from_layer_tan_y = 0;  // the grid center, tan-angle seen from the pupil
+  double rotation = 0;                                        // rad
+  bool flip_x = false, flip_y = false;                        // panel order against eye-space order
+  double fov_x = 0, fov_y = 0;                                // rad, Eq. 2
+  double max_cpd = 0;                                         // Nyquist at the grid center
+  PanelSpec panel;                                            // as mounted, for panel-ready output
 };
 
 struct Branch {

@@ -20,8 +20,8 @@ LayerSampler::LayerSampler(const VirtualLayer& layer, Sampling sampling)
       rows_(layer.rows),
       separable_(layer.rotation == 0.0),
       diopters_(layer.diopters),
-      offset_x_(layer.offset_x),
-      offset_y_(layer.offset_y),
+      eye_from_layer_tan_x_(layer.eye_from_layer_tan_x),
+      eye_from_layer_tan_y_(layer.eye_from_layer_tan_y),
       cos_(std::cos(layer.rotation)),
       sin_(std::sin(layer.rotation)),
       tan_pitch_x_(layer.tan_pitch_x),
@@ -45,11 +45,11 @@ AxisTap LayerSampler::Tap(double coordinate, int size, bool flip) const {
 }
 
 AxisTap LayerSampler::Column(double tan_x) const {
-  return Tap((tan_x - offset_x_) / tan_pitch_x_ + 0.5 * cols_ - 0.5, cols_, flip_x_);
+  return Tap((tan_x - eye_from_layer_tan_x_) / tan_pitch_x_ + 0.5 * cols_ - 0.5, cols_, flip_x_);
 }
 
 AxisTap LayerSampler::Row(double tan_y) const {
-  return Tap(-(tan_y - offset_y_) / tan_pitch_y_ + 0.5 * rows_ - 0.5, rows_, flip_y_);
+  return Tap(-(tan_y - eye_from_layer_tan_y_) / tan_pitch_y_ + 0.5 * rows_ - 0.5, rows_, flip_y_);
 }
 
 RayTaps LayerSampler::Combine(const AxisTap& row, const AxisTap& col, int cols) {
@@ -68,7 +68,7 @@ RayTaps LayerSampler::Combine(const AxisTap& row, const AxisTap& col, int cols) 
 
 RayTaps LayerSampler::At(double tan_x, double tan_y) const {
   if (separable_) return Combine(Row(tan_y), Column(tan_x), cols_);
-  double ux = tan_x - offset_x_, uy = tan_y - offset_y_;
+  double ux = tan_x - eye_from_layer_tan_x_, uy = tan_y - eye_from_layer_tan_y_;
   double a = cos_ * ux + sin_ * uy, b = -sin_ * ux + cos_ * uy;  // R(-rotation) u
   AxisTap col = Tap(a / tan_pitch_x_ + 0.5 * cols_ - 0.5, cols_, flip_x_);
   AxisTap row = Tap(-b / tan_pitch_y_ + 0.5 * rows_ - 0.5, rows_, flip_y_);

@@ -58,7 +58,7 @@ class LayerSampler {
   Sampling sampling_;
   int cols_, rows_;
   bool separable_;
-  double diopters_, offset_x_, offset_y_, cos_, sin_, tan_pitch_x_, tan_pitch_y_;
+  double diopters_, eye_from_layer_tan_x_, eye_from_layer_tan_y_, cos_, sin_, tan_pitch_x_, tan_pitch_y_;
   bool flip_x_, flip_y_;
 };
 

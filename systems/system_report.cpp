@@ -202,7 +202,7 @@ nlohmann::json SystemToJson(const DisplaySystem& s) {
                            {"pixel_pitch_m", {JsonNumber(l.pitch_x), JsonNumber(l.pitch_y)}},
                            {"tan_pitch", {l.tan_pitch_x, l.tan_pitch_y}},
                            {"pixels", {l.cols, l.rows}},
-                           {"offset_tan", {l.offset_x, l.offset_y}},
+                           {"offset_tan", {l.eye_from_layer_tan_x, l.eye_from_layer_tan_y}},
                            {"rotation_rad", l.rotation},
                            {"flip", {l.flip_x, l.flip_y}},
                            {"fov_deg", {Deg(l.fov_x), Deg(l.fov_y)}},

@@ -67,8 +67,8 @@ double WorstGeometryError(const DisplaySystem& built, const Measurements& m, con
     EXPECT_NE(p, nullptr);
     if (!p) return INFINITY;
     const double errors[] = {std::abs(p->distance - layer.panel_distance) / expected.distance,
-                             std::abs(p->offset_x - layer.panel.offset[0]) / expected.offset,
-                             std::abs(p->offset_y - layer.panel.offset[1]) / expected.offset,
+                             std::abs(p->eye_from_panel_x_m - layer.panel.eye_from_panel_m[0]) / expected.offset,
+                             std::abs(p->eye_from_panel_y_m - layer.panel.eye_from_panel_m[1]) / expected.offset,
                              std::abs(p->rotation - layer.panel.rotation) / expected.rotation};
     for (double e : errors) worst = std::max(worst, e);
     if (!check_std_dev) continue;
@@ -259,7 +259,7 @@ TEST(CalibrationTest, MirroredPanelIsReported) {
 TEST(CalibrationTest, FarthestPanelReferenceCentersItAndFitsTheCamera) {
   // The farthest panel defines the axis: built centered and level, seen by a turned camera.
   std::vector<PanelTruth> truth = ExampleTruth();
-  truth[0].offset_x = truth[0].offset_y = truth[0].rotation = 0;
+  truth[0].eye_from_panel_x_m = truth[0].eye_from_panel_y_m = truth[0].rotation = 0;
   const DisplaySystem built = BuiltSystem(Designed(), truth);
   SyntheticSetup setup = GeometrySetup(0.0);
   setup.camera.pan = 10 * kArcmin, setup.camera.tilt = -5 * kArcmin, setup.camera.roll = 0.3 * std::numbers::pi / 180;
@@ -270,7 +270,7 @@ TEST(CalibrationTest, FarthestPanelReferenceCentersItAndFitsTheCamera) {
   const CalibrationReport report = Calibrate(Designed(), m, options, &display);
   ASSERT_TRUE(report.IsSolutionUsable()) << report.message;
   const CalibratedPanel* farthest = display.find("rear_a");
-  EXPECT_EQ(farthest->offset_x, 0.0);
+  EXPECT_EQ(farthest->eye_from_panel_x_m, 0.0);
   EXPECT_EQ(farthest->rotation, 0.0);
   EXPECT_EQ(report.find("rear_a", "offset_x")->status, ParameterStatus::kReference);
   testing::ExpectPlacementsOf(built, display, 1e-9);

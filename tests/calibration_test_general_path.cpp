@@ -77,8 +77,8 @@ TEST(GeneralPathCalibrationTest, SyntheticMarkersMatchARayTracedThroughTheElemen
             const double c = std::cos(p.rotation), s = std::sin(p.rotation);
             // Eye-space orientation; an inverted image turns it by 180 degrees in the unfolded path.
             const double turn = layer.inverted ? -1.0 : 1.0;
-            const double x = turn * (p.offset[0] + c * m.local_x - s * m.local_y);
-            const double y = turn * (p.offset[1] + s * m.local_x + c * m.local_y);
+            const double x = turn * (p.eye_from_panel_m[0] + c * m.local_x - s * m.local_y);
+            const double y = turn * (p.eye_from_panel_m[1] + s * m.local_x + c * m.local_y);
             const auto angle = ImagedMarker(built, layer, col, row, SyntheticCamera{}, camera);
             EXPECT_NEAR(angle[0], std::atan(TracedSlope(layer, camera[0], x)), 1e-12)
                 << built.file << " " << layer.name;
@@ -158,7 +158,7 @@ TEST(GeneralPathCalibrationTest, RecoversEachBranchsLensGapWithinTheNoise) {
   }
   for (const VirtualLayer& layer : built.layers) {
     const std::string name = layer.name;
-    const double s0 = layer.panel_distance, x0 = layer.panel.offset[0], y0 = layer.panel.offset[1],
+    const double s0 = layer.panel_distance, x0 = layer.panel.eye_from_panel_m[0], y0 = layer.panel.eye_from_panel_m[1],
                  r0 = layer.panel.rotation;
     parameters.push_back({name + " distance", 1e-6, [=](json& s, double d) {
                             testing::ElementNamed(s, name)["distance"] = testing::Exact(s0 + d, "m");
@@ -202,8 +202,8 @@ TEST(GeneralPathCalibrationTest, RecoversEachBranchsLensGapWithinTheNoise) {
     }
     for (const VirtualLayer& layer : built.layers) {
       const CalibratedPanel* p = display.find(layer.name);
-      const double values[] = {p->distance, p->offset_x, p->offset_y, p->rotation};
-      const double truths[] = {layer.panel_distance, layer.panel.offset[0], layer.panel.offset[1],
+      const double values[] = {p->distance, p->eye_from_panel_x_m, p->eye_from_panel_y_m, p->rotation};
+      const double truths[] = {layer.panel_distance, layer.panel.eye_from_panel_m[0], layer.panel.eye_from_panel_m[1],
                                layer.panel.rotation};
       const char* quantities[] = {"distance", "offset_x", "offset_y", "rotation"};
       for (int q = 0; q < 4; ++q, ++i) {

@@ -41,7 +41,7 @@ nlohmann::json BuiltScene(const DisplaySystem& designed, const std::vector<Panel
     for (const PanelTruth& t : truth)
       if (t.name == layer.name) {
         change = t.distance_change;
-        panel["offset"] = {Exact(t.offset_x, "m"), Exact(t.offset_y, "m")};
+        panel["offset"] = {Exact(t.eye_from_panel_x_m, "m"), Exact(t.eye_from_panel_y_m, "m")};
         panel["rotation"] = Exact(t.rotation, "rad");
       }
     const bool behind_optics =
@@ -80,8 +80,8 @@ void ExpectPlacementsOf(const DisplaySystem& built, const CalibratedDisplay& dis
     const CalibratedPanel* p = display.find(layer.name);
     ASSERT_NE(p, nullptr) << layer.name;
     EXPECT_NEAR(p->distance, layer.panel_distance, tolerance) << layer.name;
-    EXPECT_NEAR(p->offset_x, layer.panel.offset[0], tolerance) << layer.name;
-    EXPECT_NEAR(p->offset_y, layer.panel.offset[1], tolerance) << layer.name;
+    EXPECT_NEAR(p->eye_from_panel_x_m, layer.panel.eye_from_panel_m[0], tolerance) << layer.name;
+    EXPECT_NEAR(p->eye_from_panel_y_m, layer.panel.eye_from_panel_m[1], tolerance) << layer.name;
     EXPECT_NEAR(p->rotation, layer.panel.rotation, tolerance) << layer.name;
   }
 }

@@ -24,9 +24,9 @@ inline constexpr double kSigmas = 4.0;
 // How one panel is really built, against the scene as designed.
 struct PanelTruth {
   std::string name;
-  double distance_change = 0;         // m, added to the designed distance from the lens
-  double offset_x = 0, offset_y = 0;  // m
-  double rotation = 0;                // rad
+  double distance_change = 0;                             // m, added to the designed distance from the lens
+  double eye_from_panel_x_m = 0, eye_from_panel_y_m = 0;  // m
+  double rotation = 0;                                    // rad
   double max_luminance = 0, black_level = 0, gamma = 0;
 };
 

@@ -53,8 +53,8 @@ VirtualLayer MakeLayer(const LayerCase& c) {
   l.pitch_y = 0.0231 * l.depth;
   l.tan_pitch_x = l.pitch_x / l.depth;
   l.tan_pitch_y = l.pitch_y / l.depth;
-  l.offset_x = c.offset_x_m / l.depth;
-  l.offset_y = c.offset_y_m / l.depth;
+  l.eye_from_layer_tan_x = c.offset_x_m / l.depth;
+  l.eye_from_layer_tan_y = c.offset_y_m / l.depth;
   l.rotation = c.rotation;
   l.flip_x = c.flip_x;
   l.flip_y = c.flip_y;
@@ -88,8 +88,8 @@ Eigen::SparseMatrix<double, Eigen::RowMajor> ExplicitMatrix(const VirtualLayer& 
       for (int i = 0; i < g.rows; ++i)
         for (int j = 0; j < g.cols; ++j) {
           double vx = g.view_x(vc), vy = g.view_y(vr), xx = g.pixel_x(j), xy = g.pixel_y(i);
-          double px = vx + (xx - vx) * z / g.origin_z - l.offset_x * z;
-          double py = vy + (xy - vy) * z / g.origin_z - l.offset_y * z;
+          double px = vx + (xx - vx) * z / g.origin_z - l.eye_from_layer_tan_x * z;
+          double py = vy + (xy - vy) * z / g.origin_z - l.eye_from_layer_tan_y * z;
           double a = std::cos(l.rotation) * px + std::sin(l.rotation) * py;
           double b = -std::sin(l.rotation) * px + std::cos(l.rotation) * py;
           auto cols = AxisTaps(a / l.pitch_x + l.cols / 2.0, l.cols, l.flip_x, s);
