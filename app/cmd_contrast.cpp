@@ -32,15 +32,21 @@ void AddContrastCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("contrast", "Normalized contrast against accommodation (Fig. 5)");
   cmd->add_option("scenes", o->scenes, "Display scene files (JSON)")->required();
   cmd->add_option("--out", o->out, "Output folder")->required();
-  cmd->add_option("--depths", o->depths,
-                  "Target depths, comma-separated: D, or with units (\"0.7 D,1.3 D\", \"2 m\"; default 0.7,1.3,1.9)");
-  cmd->add_option("--frequencies", o->frequencies, "Frequencies, comma-separated: cpd (default 2,4)");
+  // The defaults are Options' own, quoted in the help from there.
+  const auto with_default = [](const std::string& help, const std::string& value) {
+    return help + " (default " + value + ")";
+  };
+  cmd->add_option(
+      "--depths", o->depths,
+      with_default("Target depths, comma-separated: D, or with units: \"0.7 D,1.3 D\", \"2 m\"", o->depths));
+  cmd->add_option("--frequencies", o->frequencies, with_default("Frequencies, comma-separated: cpd", o->frequencies));
   cmd->add_option("--accommodation", o->accommodation,
-                  "first,last,step: D, or with units (\"0 D,2.6 D,0.05 D\"; default 0,2.6,0.05)");
+                  with_default("first,last,step: D, or with units: \"0 D,2.6 D,0.05 D\"", o->accommodation));
   cmd->add_option("--retina-resolution", o->resolution,
-                  "Retinal sample size: degrees or \"0.6 arcmin\" (default 0.01)");
-  cmd->add_option("--retina-field", o->field, "Retinal field width: degrees (default 20)");
-  cmd->add_option("--strip-rows", o->strip_rows, "Light-field rows around the axis (default 24)");
+                  with_default("Retinal sample size: degrees or \"0.6 arcmin\"", o->resolution));
+  cmd->add_option("--retina-field", o->field, with_default("Retinal field width: degrees", o->field));
+  cmd->add_option("--strip-rows", o->strip_rows,
+                  with_default("Light-field rows around the axis", std::to_string(o->strip_rows)));
   cmd->add_option("--reference", o->reference,
                   "Normalize by natural viewing of the sampled target light field (sampled, default) or of the "
                   "continuous plane (continuous, the convention before issue 19)")

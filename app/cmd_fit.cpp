@@ -2,18 +2,22 @@
 // as built, fitted with Ceres to what a camera at the eye measured
 // (docs/measurements-format.md). Writes a scene file every other command
 // reads unchanged, and prints the calibration report.
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <string>
 
 #include "app/commands.h"
 #include "calibration/calibrated_scene.h"
 #include "calibration/calibration.h"
+#include "calibration/fit_steps.h"
 #include "framework/atomic_file.h"
 #include "framework/params.h"
 #include "framework/staged_output.h"
+#include "framework/units.h"
 #include "framework/version.h"
 #include "systems/compile.h"
 
@@ -22,7 +26,7 @@ namespace layerlab::app {
 void AddFitCommand(CLI::App& app) {
   struct Options {
     std::string scene, measurements, out, report, loss = "none", reference = "camera";
-    double marker_loss_arcmin = -1, luminance_loss = -1;
+    std::optional<double> marker_loss_arcmin, luminance_loss;  // unset: CalibrationOptions' own
     bool fit_focal_length = false, fit_lens_gaps = false, force = false;
   };
   auto o = std::make_shared<Options>();
@@ -32,10 +36,13 @@ void AddFitCommand(CLI::App& app) {
   cmd->add_option("--out", o->out, "Calibrated scene file to write")->required();
   cmd->add_option("--report", o->report, "Also write the report as JSON to this file");
   cmd->add_option("--loss", o->loss, "Robust loss against outliers: none, huber or cauchy");
+  const CalibrationOptions defaults;  // the one home of the loss scales' defaults
   cmd->add_option("--marker-loss-scale", o->marker_loss_arcmin,
-                  "Marker error (arcmin) where the robust loss starts to discount (default 1)");
+                  "Marker error (arcmin) where the robust loss starts to discount (default " +
+                      FormatFixed(ArcminFromRadians(defaults.marker_loss_scale), 0) + ")");
   cmd->add_option("--luminance-loss-scale", o->luminance_loss,
-                  "Luminance error, relative to the brightest reading, where the robust loss starts (default 0.02)");
+                  "Luminance error, relative to the brightest reading, where the robust loss starts (default " +
+                      FormatFixed(defaults.luminance_loss_scale, 2) + ")");
   cmd->add_option("--reference", o->reference, "Eye axis: camera, or farthest-panel (centers the farthest panel)");
   cmd->add_flag("--fit-focal-length", o->fit_focal_length,
                 "Also fit the focal length of every lens and curved mirror (needs captures from two or more camera "
@@ -61,8 +68,12 @@ void AddFitCommand(CLI::App& app) {
     }
     options.fit_focal_length = o->fit_focal_length;
     options.fit_lens_gaps = o->fit_lens_gaps;
-    if (o->marker_loss_arcmin >= 0) options.marker_loss_scale = o->marker_loss_arcmin / 60.0 * std::numbers::pi / 180.0;
-    if (o->luminance_loss >= 0) options.luminance_loss_scale = o->luminance_loss;
+    // A value given must be positive (a negative one was ignored before).
+    for (const auto& [value, option] : {std::pair{o->marker_loss_arcmin, "--marker-loss-scale"},
+                                        std::pair{o->luminance_loss, "--luminance-loss-scale"}})
+      if (value && !(*value > 0 && std::isfinite(*value))) throw Error(std::string(option) + ": must be positive");
+    if (o->marker_loss_arcmin) options.marker_loss_scale = *o->marker_loss_arcmin / 60.0 * std::numbers::pi / 180.0;
+    options.luminance_loss_scale = o->luminance_loss.value_or(options.luminance_loss_scale);
 
     CalibratedDisplay display;
     CalibrationReport report = Calibrate(system, measurements, options, &display);
