@@ -28,6 +28,16 @@ struct ScalarParameter;
 // deviation exceeds kUndeterminedStdDevFraction of its value.
 std::string Unresolved(const ScalarParameter& parameter, const ParameterEstimate& p);
 
+class ScalarFit;
+struct ScalarFitOptions;
+struct UndeterminedParameter;
+// How both fits solve: the options' iteration limit, tolerances and robust noise.
+ScalarFitOptions ScalarFitOptionsOf(const CalibrationOptions& options);
+// The report's warning for a parameter of `fit` that the data do not determine
+// (it trades off against its partners without changing any residual, so it
+// keeps its scene value, shown as a `quantity`).
+std::string UndeterminedWarning(const ScalarFit& fit, const UndeterminedParameter& u, const std::string& quantity);
+
 }  // namespace layerlab
 
 namespace ceres {

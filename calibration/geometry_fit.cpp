@@ -224,6 +224,23 @@ std::string Unresolved(const ScalarParameter& parameter, const ParameterEstimate
   return "";
 }
 
+ScalarFitOptions ScalarFitOptionsOf(const CalibrationOptions& options) {
+  ScalarFitOptions o;
+  o.max_iterations = options.max_iterations;
+  o.function_tolerance = options.function_tolerance;
+  o.parameter_tolerance = options.parameter_tolerance;
+  o.robust_noise = options.loss != RobustLoss::kNone;
+  return o;
+}
+
+std::string UndeterminedWarning(const ScalarFit& fit, const UndeterminedParameter& u, const std::string& quantity) {
+  std::vector<std::string> partners;
+  for (int i : u.partners) partners.push_back(fit.parameter(i).name);
+  return "the data do not determine " + fit.parameter(u.index).name + " (it trades off against " +
+         JoinWords(partners, " and ") + " without changing any residual): it keeps its scene value (" +
+         ShowValue(quantity, fit.parameter(u.index).start) + ")";
+}
+
 bool FitGeometry(const DisplaySystem& system, const Measurements& measurements, const CalibrationOptions& options,
                  CalibratedDisplay* display, CalibrationReport* report) {
   const int layer_count = static_cast<int>(system.layers.size());
@@ -394,12 +411,7 @@ bool FitGeometry(const DisplaySystem& system, const Measurements& measurements, 
     fit.AddResidual(cost, MakeLoss(options.loss, options.marker_loss_scale), blocks);
   }
 
-  ScalarFitOptions fit_options;
-  fit_options.max_iterations = options.max_iterations;
-  fit_options.function_tolerance = options.function_tolerance;
-  fit_options.parameter_tolerance = options.parameter_tolerance;
-  fit_options.robust_noise = options.loss != RobustLoss::kNone;
-  ScalarFitResult result = fit.Solve(fit_options);
+  ScalarFitResult result = fit.Solve(ScalarFitOptionsOf(options));
   report->geometry_solver = result.summary.BriefReport();
   if (!result.usable) {
     report->message = "the geometry fit failed: " + result.summary.message;
@@ -407,13 +419,7 @@ bool FitGeometry(const DisplaySystem& system, const Measurements& measurements, 
   }
   for (const UndeterminedParameter& u : result.undetermined) {
     status[u.index] = ParameterStatus::kUndetermined;
-    std::vector<std::string> partners;
-    for (int i : u.partners) partners.push_back(fit.parameter(i).name);
-    report->warnings.push_back("the data do not determine " + fit.parameter(u.index).name + " (it trades off against " +
-                               JoinWords(partners, " and ") +
-                               " without changing any residual): it keeps its scene "
-                               "value (" +
-                               ShowValue(quantity[u.index], fit.parameter(u.index).start) + ")");
+    report->warnings.push_back(UndeterminedWarning(fit, u, quantity[u.index]));
   }
 
   // The layer's parameters as designed (seen by an unturned camera) and as fitted.

@@ -76,12 +76,7 @@ bool FitCurve(const VirtualLayer& layer, const PanelLuminance& curve, const Cali
     fit.AddResidual(new LuminanceCostFunction(new LuminanceCost{s.level, s.luminance / scale}),
                     MakeLoss(options.loss, options.luminance_loss_scale), {max_luminance, black, gamma});
 
-  ScalarFitOptions fit_options;
-  fit_options.max_iterations = options.max_iterations;
-  fit_options.function_tolerance = options.function_tolerance;
-  fit_options.parameter_tolerance = options.parameter_tolerance;
-  fit_options.robust_noise = options.loss != RobustLoss::kNone;
-  ScalarFitResult result = fit.Solve(fit_options);
+  ScalarFitResult result = fit.Solve(ScalarFitOptionsOf(options));
   if (!report->luminance_solver.empty()) report->luminance_solver += "\n";
   report->luminance_solver += layer.name + ": " + result.summary.BriefReport();
   if (!result.usable) {
@@ -91,13 +86,7 @@ bool FitCurve(const VirtualLayer& layer, const PanelLuminance& curve, const Cali
   const std::string names[3] = {"max_luminance", "black_level", "gamma"};
   for (const UndeterminedParameter& u : result.undetermined) {
     status[u.index] = ParameterStatus::kUndetermined;
-    std::vector<std::string> partners;
-    for (int i : u.partners) partners.push_back(fit.parameter(i).name);
-    report->warnings.push_back("the data do not determine " + fit.parameter(u.index).name + " (it trades off against " +
-                               JoinWords(partners, " and ") +
-                               " without changing any residual): it keeps its scene "
-                               "value (" +
-                               ShowValue(names[u.index], fit.parameter(u.index).start) + ")");
+    report->warnings.push_back(UndeterminedWarning(fit, u, names[u.index]));
   }
   if (result.covariance.size() == 0)
     report->warnings.push_back("no uncertainties for the luminance of " + panel + ": " + result.covariance_message);
