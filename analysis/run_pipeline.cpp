@@ -197,6 +197,7 @@ RunOutcome RunPipeline(const RunRequest& request) {
                            });
       progress.Finish(std::to_string(states.size()) + " states");
       AddRetinaToPage(states, r.accommodation, bool(natural), model->white_luminance(), "retina/", &page);
+      outcome.retina = states;
       step("retina (" + std::to_string(states.size()) + " accommodation states)", start);
     }
 
@@ -206,7 +207,8 @@ RunOutcome RunPipeline(const RunRequest& request) {
       const size_t total = in.contrast.size() * options.frequencies.size() * options.target_diopters.size();
       options.show_progress = true;
       for (const std::string& w : ContrastWarnings(in.contrast, options)) page.warnings.push_back("contrast: " + w);
-      AddContrastToPage(RunContrast(in.contrast, options), (out / "contrast").string(), "contrast/", &page);
+      outcome.contrast = RunContrast(in.contrast, options);
+      AddContrastToPage(outcome.contrast, (out / "contrast").string(), "contrast/", &page);
       step("contrast sweep (" + std::to_string(total) + " solves)", start);
     }
 

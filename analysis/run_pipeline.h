@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "analysis/contrast.h"
+#include "analysis/retina_sweep.h"
 #include "solvers/solver.h"
 
 namespace layerlab {
@@ -32,6 +34,8 @@ struct RunOutcome {
   SolverReport report;        // of the main solve, when solved
   std::string compare_table;  // empty without a comparison
   std::string index_html;     // the report's absolute path
+  std::vector<RetinaStateResult> retina;  // with run.retina
+  std::vector<ContrastCurve> contrast;    // with run.contrast
 };
 
 // Throws layerlab::Error (the output folder then as it was).

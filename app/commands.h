@@ -12,6 +12,7 @@ void AddContrastCommand(CLI::App& app);
 void AddCompareCommand(CLI::App& app);  // compare SCENES... --target LF_DIR --out DIR
 void AddRetinaCommand(CLI::App& app);   // retina SCENE.json --patterns DIR --out DIR
 void AddRunCommand(CLI::App& app);      // run SCENE.json --out DIR: the main job and its report
+void AddSweepCommand(CLI::App& app);    // sweep SWEEP.json --out DIR: a grid of jobs, one table
 #if LAYERLAB_WITH_CERES
 void AddFitCommand(CLI::App& app);  // fit SCENE.json MEASUREMENTS.json --out CALIBRATED.json
 #endif

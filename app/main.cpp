@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", layerlab::VersionLine(), "Print the version (and the git commit) and exit");
   layerlab::app::AddInfoCommand(app);
   layerlab::app::AddRunCommand(app);
+  layerlab::app::AddSweepCommand(app);
   layerlab::app::AddSolveCommand(app);
   layerlab::app::AddContrastCommand(app);
   layerlab::app::AddRetinaCommand(app);

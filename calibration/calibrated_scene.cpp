@@ -1,12 +1,9 @@
 #include "calibration/calibrated_scene.h"
 
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <map>
 #include <numbers>
 #include <set>
-#include <sstream>
 
 #include "framework/error.h"
 
@@ -98,40 +95,6 @@ ordered_json CalibratedSceneDocument(const ordered_json& scene, const std::strin
     if (!values.empty()) Update(ElementNamed(out, file, optic.name), values);
   }
   return out;
-}
-
-void RebaseRelativePaths(ordered_json& scene, const std::string& from_file, const std::string& to_file) {
-  namespace fs = std::filesystem;
-  // The folders, absolute: a bare file name has an empty parent, which fs::absolute refuses.
-  const fs::path from = fs::absolute(from_file).parent_path(), to = fs::absolute(to_file).parent_path();
-  auto rebase = [&](ordered_json& value) {
-    if (!value.is_string()) return;
-    const fs::path path = value.get<std::string>();
-    if (path.is_absolute()) return;
-    value = (from / path).lexically_normal().lexically_relative(to.lexically_normal()).generic_string();
-  };
-  auto object = [](ordered_json& parent, const char* key) -> ordered_json* {
-    return parent.is_object() && parent.contains(key) && parent[key].is_object() ? &parent[key] : nullptr;
-  };
-  if (ordered_json* solve = object(scene, "solve"))
-    for (const char* key : {"target", "target_scene"})
-      if (solve->contains(key)) rebase((*solve)[key]);
-  if (ordered_json* run = object(scene, "run"))
-    for (const char* section : {"compare", "contrast"})
-      if (ordered_json* s = object(*run, section); s && s->contains("scenes") && (*s)["scenes"].is_array())
-        for (ordered_json& file : (*s)["scenes"]) rebase(file);
-}
-
-ordered_json ReadDocumentInOrder(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot open for reading");
-  std::ostringstream text;
-  text << in.rdbuf();
-  try {
-    return ordered_json::parse(text.str());
-  } catch (const ordered_json::exception& e) {
-    throw Error(path + ": malformed JSON: " + e.what());
-  }
 }
 
 }  // namespace layerlab

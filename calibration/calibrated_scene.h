@@ -21,6 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "calibration/calibration.h"
+#include "systems/scene_document.h"  // RebaseRelativePaths, ReadDocumentInOrder
 
 namespace layerlab {
 
@@ -28,14 +29,5 @@ namespace layerlab {
 nlohmann::ordered_json CalibratedSceneDocument(const nlohmann::ordered_json& scene, const std::string& file,
                                                const CalibratedDisplay& display);
 
-// Every relative path of a scene ("solve": "target", "target_scene"; "run":
-// "compare" and "contrast" "scenes") re-expressed from the folder of
-// `from_file` (the input scene) to that of `to_file` (the calibrated one), so
-// that the calibrated scene finds the same files wherever it is written.
-// Either file may be a bare name (relative to the working directory).
-void RebaseRelativePaths(nlohmann::ordered_json& scene, const std::string& from_file, const std::string& to_file);
-
-// A scene file's document with its keys in file order (LoadScene has checked it).
-nlohmann::ordered_json ReadDocumentInOrder(const std::string& path);
 
 }  // namespace layerlab

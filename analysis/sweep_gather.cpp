@@ -1,0 +1,198 @@
+#include "analysis/sweep_gather.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <sstream>
+
+#include "analysis/svg_plot.h"
+#include "framework/atomic_file.h"
+#include "framework/staged_output.h"
+
+namespace layerlab {
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* const kColors[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf"};
+
+std::string Csv(const std::string& cell) {
+  if (cell.find_first_of(",\"\n") == std::string::npos) return cell;
+  std::string q = "\"";
+  for (char c : cell) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+std::string Cell(const nlohmann::json& v) {
+  if (v.is_null()) return "";
+  if (v.is_string()) return v.get<std::string>();
+  if (v.is_number_float()) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.6g", v.get<double>());
+    return buf;
+  }
+  return v.dump();
+}
+
+std::string Slug(const std::string& text) {
+  std::string s;
+  for (char c : text) {
+    if (std::isalnum(static_cast<unsigned char>(c)))
+      s += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    else if (!s.empty() && s.back() != '_')
+      s += '_';
+  }
+  while (!s.empty() && s.back() == '_') s.pop_back();
+  return s.empty() ? "result" : s;
+}
+
+struct Row {
+  const SweepJob* job;
+  SweepJobState state;
+};
+
+// One panel: `column` against the first numeric parameter (or the job index), a line per other combination.
+PlotPanel Panel(const SweepSpec& spec, const std::vector<Row>& rows, const std::string& column) {
+  PlotPanel panel;
+  panel.title = column;
+  panel.y_label = column;
+  int x_param = -1;
+  for (size_t k = 0; k < spec.parameters.size(); ++k)
+    if (!spec.parameters[k].numbers.empty() && spec.parameters[k].values.size() > 1) {
+      x_param = static_cast<int>(k);
+      break;
+    }
+  panel.x_label = x_param >= 0 ? spec.parameters[x_param].column() : "job";
+  std::map<std::string, PlotLine> lines;  // by the other parameters' labels
+  std::vector<std::string> order;
+  double x_lo = INFINITY, x_hi = -INFINITY, y_lo = INFINITY, y_hi = -INFINITY;
+  for (const Row& row : rows) {
+    if (!row.state.complete) continue;
+    auto it = std::find_if(row.state.results.begin(), row.state.results.end(),
+                           [&](const SweepResult& r) { return r.column == column; });
+    if (it == row.state.results.end() || !it->value.is_number()) continue;
+    std::string key;
+    for (size_t k = 0; k < spec.parameters.size(); ++k) {
+      if (static_cast<int>(k) == x_param || spec.parameters[k].values.size() < 2) continue;
+      key += (key.empty() ? "" : ", ") + spec.parameters[k].name + " " + spec.parameters[k].labels[row.job->choice[k]];
+    }
+    if (!lines.count(key)) order.push_back(key);
+    PlotLine& line = lines[key];
+    const double x = x_param >= 0 ? spec.parameters[x_param].numbers[row.job->choice[x_param]]
+                                  : static_cast<double>(row.job->index);
+    const double y = it->value.get<double>();
+    line.x.push_back(x);
+    line.y.push_back(y);
+    x_lo = std::min(x_lo, x), x_hi = std::max(x_hi, x), y_lo = std::min(y_lo, y), y_hi = std::max(y_hi, y);
+  }
+  for (size_t i = 0; i < order.size(); ++i) {
+    PlotLine line = lines[order[i]];
+    line.label = order[i].empty() ? column : order[i];
+    line.color = kColors[i % std::size(kColors)];
+    line.dashed = (i / std::size(kColors)) % 2 == 1;
+    panel.lines.push_back(line);
+  }
+  if (!std::isfinite(x_lo)) x_lo = 0, x_hi = 1, y_lo = 0, y_hi = 1;
+  if (x_hi <= x_lo) x_lo -= 0.5, x_hi += 0.5;
+  const double pad = y_hi > y_lo ? 0.08 * (y_hi - y_lo) : std::max(1e-3, 0.05 * std::fabs(y_hi));
+  panel.x_min = x_lo, panel.x_max = x_hi, panel.y_min = y_lo - pad, panel.y_max = y_hi + pad;
+  return panel;
+}
+
+}  // namespace
+
+SweepSummary GatherSweep(const SweepSpec& spec, const std::vector<SweepJob>& jobs, const std::string& out) {
+  SweepSummary summary;
+  std::vector<Row> rows;
+  std::vector<std::string> columns;  // the results', in first-seen order
+  for (const SweepJob& job : jobs) {
+    rows.push_back({&job, ReadJobState(out, job)});
+    const SweepJobState& s = rows.back().state;
+    (s.complete ? summary.complete : s.failed ? summary.failed : summary.pending)++;
+    for (const SweepResult& r : s.results)
+      if (std::find(columns.begin(), columns.end(), r.column) == columns.end()) columns.push_back(r.column);
+  }
+
+  std::vector<std::string> header = {"job"};
+  for (const SweepParameter& p : spec.parameters) header.push_back(p.column());
+  header.insert(header.end(), {"state", "runner", "job time (s)"});
+  header.insert(header.end(), columns.begin(), columns.end());
+  std::vector<std::vector<std::string>> cells;
+  for (const Row& row : rows) {
+    std::vector<std::string> line = {row.job->id};
+    for (size_t k = 0; k < spec.parameters.size(); ++k) {
+      const SweepParameter& p = spec.parameters[k];
+      line.push_back(p.numbers.empty() ? p.labels[row.job->choice[k]] : Cell(p.numbers[row.job->choice[k]]));
+    }
+    const SweepJobState& s = row.state;
+    line.push_back(s.complete ? "complete" : s.failed ? "failed" : "not run");
+    line.push_back(s.runner);
+    line.push_back(s.complete || s.failed ? Cell(s.seconds) : "");
+    for (const std::string& c : columns) {
+      auto it = std::find_if(s.results.begin(), s.results.end(), [&](const SweepResult& r) { return r.column == c; });
+      line.push_back(it == s.results.end() ? "" : Cell(it->value));
+    }
+    cells.push_back(line);
+  }
+
+  StagedOutput stage(out, "sweep", {"table.csv", "table.html", "plots"},
+                     {{spec.file, "the sweep file"}, {spec.scene, "the base scene"}});
+  const fs::path staging = stage.staging();
+  try {
+    std::ostringstream csv;
+    for (size_t i = 0; i < header.size(); ++i) csv << (i ? "," : "") << Csv(header[i]);
+    csv << "\n";
+    for (const auto& line : cells) {
+      for (size_t i = 0; i < line.size(); ++i) csv << (i ? "," : "") << Csv(line[i]);
+      csv << "\n";
+    }
+    WriteFileAtomically((staging / "table.csv").string(), csv.str());
+
+    std::vector<std::string> plots;
+    fs::create_directories(staging / "plots");
+    for (const std::string& c : columns) {
+      const std::string file = "plots/" + Slug(c) + ".svg";
+      WriteFileAtomically((staging / file).string(), RenderSvg({Panel(spec, rows, c)}, 1, spec.name + ": " + c));
+      plots.push_back(file);
+    }
+
+    std::ostringstream html;
+    html << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" << Escape(spec.name)
+         << "</title>\n<style>body{font-family:sans-serif;margin:2em}table{border-collapse:collapse}"
+            "td,th{border:1px solid #ccc;padding:3px 8px;text-align:right}th{background:#eee}"
+            "tr.failed td{background:#fdd}img{max-width:48%;margin:4px}</style></head><body>\n";
+    html << "<h1>" << Escape(spec.name) << "</h1>\n";
+    if (!spec.description.empty()) html << "<p>" << Escape(spec.description) << "</p>\n";
+    html << "<p>" << jobs.size() << " jobs: " << summary.complete << " complete, " << summary.failed << " failed, "
+         << summary.pending << " not run. Base scene <code>" << Escape(spec.scene) << "</code>; work: ";
+    for (size_t i = 0; i < spec.work().size(); ++i) html << (i ? ", " : "") << spec.work()[i];
+    html << ". <a href=\"table.csv\">table.csv</a></p>\n<table>\n<tr>";
+    for (const std::string& h : header) html << "<th>" << Escape(h) << "</th>";
+    html << "</tr>\n";
+    for (size_t r = 0; r < cells.size(); ++r) {
+      html << "<tr" << (rows[r].state.failed ? " class=\"failed\"" : "") << ">";
+      for (size_t i = 0; i < cells[r].size(); ++i) {
+        if (i == 0 && rows[r].state.complete)
+          html << "<td><a href=\"jobs/" << cells[r][0] << "/out/index.html\">" << cells[r][0] << "</a></td>";
+        else
+          html << "<td>" << Escape(cells[r][i]) << "</td>";
+      }
+      html << "</tr>\n";
+    }
+    html << "</table>\n";
+    for (const Row& row : rows)
+      if (row.state.failed)
+        html << "<p>job " << row.job->id << " failed: <code>" << Escape(row.state.error) << "</code></p>\n";
+    for (const std::string& p : plots) html << "<img src=\"" << p << "\" alt=\"" << Escape(p) << "\">\n";
+    html << "</body></html>\n";
+    WriteFileAtomically((staging / "table.html").string(), html.str());
+  } catch (const Error& e) {
+    throw stage.Explain(e);
+  }
+  summary.written = stage.Commit().written;
+  return summary;
+}
+
+}  // namespace layerlab

@@ -1,0 +1,252 @@
+#include "analysis/sweep_jobs.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "analysis/run_pipeline.h"
+#include "framework/atomic_file.h"
+#include "framework/content_digest.h"
+#include "framework/error.h"
+#include "framework/interrupt.h"
+#include "framework/staged_output.h"
+#include "systems/scene_document.h"
+
+namespace layerlab {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::ordered_json;
+
+std::string ReadText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return "";
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::string Digest(const std::string& text) { return ContentDigest().add(text).hex(); }
+
+std::string JobStatePath(const std::string& out, const SweepJob& job) {
+  return (fs::path(JobFolder(out, job)) / "job.json").string();
+}
+
+std::string Number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+// The job's row of the table, from what the pipeline returned.
+std::vector<SweepResult> Results(const RunOutcome& outcome) {
+  std::vector<SweepResult> r;
+  if (outcome.solved) {
+    r.push_back({"PSNR (dB)", outcome.report.final_psnr_db});
+    r.push_back({"solve time (s)", outcome.report.seconds});
+    r.push_back({"iterations", outcome.report.iterations});
+  }
+  for (const RetinaStateResult& s : outcome.retina)
+    r.push_back({"retinal mean at " + Number(s.diopters) + " D (cd/m2)", s.display_mean_cd_m2});
+  std::string own;  // the swept display's curves, not natural viewing's or a listed scene's
+  for (const ContrastCurve& c : outcome.contrast) {
+    if (c.display == "natural") continue;
+    if (own.empty()) own = c.display;
+    if (c.display != own) continue;
+    const std::string at = Number(c.target_diopters) + " D, " + Number(c.frequency) + " cpd";
+    r.push_back({"peak contrast, " + at + " (1)", c.peak.value});
+    r.push_back({"peak accommodation, " + at + " (D)", c.peak.at_parabola});
+  }
+  return r;
+}
+
+void WriteState(const std::string& path, const SweepJob& job, const std::string& state, const std::string& error,
+                const std::string& runner, double seconds, const std::vector<std::string>& outputs,
+                const std::vector<SweepResult>& results) {
+  ordered_json doc = {{"format", kSweepJobFormat}, {"id", job.id}, {"state", state}};
+  if (!error.empty()) doc["error"] = error;
+  doc["scene_digest"] = Digest(job.scene_text);
+  doc["runner"] = runner;
+  doc["seconds"] = seconds;
+  doc["outputs"] = outputs;
+  ordered_json rows = ordered_json::array();
+  for (const SweepResult& r : results) rows.push_back({{"column", r.column}, {"value", r.value}});
+  doc["results"] = rows;
+  WriteFileAtomically(path, doc.dump(2) + "\n");
+}
+
+void WriteSceneIfChanged(const std::string& out, const SweepJob& job, size_t* written) {
+  const fs::path folder = JobFolder(out, job);
+  const std::string scene = (folder / "scene.json").string();
+  if (ReadText(scene) == job.scene_text) return;
+  std::error_code ec;
+  fs::create_directories(folder, ec);
+  if (ec) throw Error(folder.string() + ": cannot create the job folder: " + ec.message());
+  fs::remove(folder / "job.json", ec);  // its entry was for another scene
+  WriteFileAtomically(scene, job.scene_text);
+  if (written) ++*written;
+}
+
+}  // namespace
+
+std::string JobFolder(const std::string& out, const SweepJob& job) {
+  return (fs::path(out) / "jobs" / job.id).string();
+}
+
+std::vector<SweepJob> ExpandSweep(const SweepSpec& spec, const std::string& out) {
+  const size_t n = spec.job_count();
+  const size_t digits = std::max<size_t>(3, std::to_string(n - 1).size());
+  // The job's run section: only the declared work, with the base scene's settings for it.
+  ordered_json base = spec.base;
+  ordered_json run = ordered_json::object();
+  for (const char* step : {"retina", "contrast"}) {
+    if ((std::string(step) == "retina" && !spec.retina) || (std::string(step) == "contrast" && !spec.contrast)) continue;
+    const bool given = base.contains("run") && base["run"].is_object() && base["run"].contains(step);
+    run[step] = given ? base["run"][step] : ordered_json::object();
+  }
+  if (run.empty())
+    base.erase("run");
+  else
+    base["run"] = run;
+  if (!spec.solve && base.contains("solve")) {
+    base["solve"].erase("target");
+    base["solve"].erase("target_scene");
+  }
+
+  std::vector<SweepJob> jobs(n);
+  for (size_t index = 0; index < n; ++index) {
+    SweepJob& job = jobs[index];
+    job.index = index;
+    job.id = std::to_string(index);
+    job.id.insert(0, static_cast<size_t>(digits) - std::min<size_t>(job.id.size(), digits), '0');
+    job.choice.resize(spec.parameters.size());
+    size_t rest = index;
+    for (size_t k = spec.parameters.size(); k-- > 0;) {
+      job.choice[k] = rest % spec.parameters[k].values.size();
+      rest /= spec.parameters[k].values.size();
+    }
+    job.scene = base;
+    for (size_t k = 0; k < spec.parameters.size(); ++k) {
+      const SweepParameter& p = spec.parameters[k];
+      const ordered_json& value = p.values[job.choice[k]];
+      for (size_t i = 0; i < p.pointers.size(); ++i) {
+        const ordered_json::json_pointer at(p.pointers[i]);
+        if (!job.scene.contains(at))
+          throw Error(Location{spec.file, "/parameters/" + std::to_string(k)},
+                      "\"" + p.pointers[i] + "\" is in a part of the scene the sweep's work does not run");
+        job.scene[at] = p.pointers.size() > 1 ? value[i] : value;
+      }
+    }
+    job.scene["description"] = "Job " + job.id + " of the sweep " + spec.file + ": the scene " + spec.scene + " with " +
+                               [&] {
+                                 std::string s;
+                                 for (size_t k = 0; k < spec.parameters.size(); ++k)
+                                   s += (k ? ", " : "") + spec.parameters[k].name + " = " +
+                                        spec.parameters[k].labels[job.choice[k]];
+                                 return s;
+                               }();
+    RebaseRelativePaths(job.scene, spec.scene, (fs::path(JobFolder(out, job)) / "scene.json").string());
+    job.scene_text = job.scene.dump(2) + "\n";
+  }
+  return jobs;
+}
+
+size_t WriteSweepFolders(const SweepSpec& spec, const std::vector<SweepJob>& jobs, const std::string& out) {
+  RefuseOutputOverlappingInputs(out, {{spec.file, "the sweep file"}, {spec.scene, "the base scene"}});
+  std::error_code ec;
+  fs::create_directories(out, ec);
+  if (ec) throw Error(out + ": cannot create the output folder: " + ec.message());
+  size_t written = 0;
+  for (const SweepJob& job : jobs) WriteSceneIfChanged(out, job, &written);
+  ordered_json params = ordered_json::array();
+  for (const SweepParameter& p : spec.parameters)
+    params.push_back({{"name", p.name}, {"column", p.column()}, {"pointers", p.pointers}, {"labels", p.labels}});
+  ordered_json list = ordered_json::array();
+  for (const SweepJob& job : jobs) {
+    ordered_json values = ordered_json::object();
+    for (size_t k = 0; k < spec.parameters.size(); ++k)
+      values[spec.parameters[k].name] = spec.parameters[k].labels[job.choice[k]];
+    list.push_back({{"id", job.id}, {"folder", "jobs/" + job.id}, {"values", values}});
+  }
+  const ordered_json manifest = {{"format", kSweepManifestFormat},
+                                 {"sweep", fs::absolute(spec.file).lexically_normal().string()},
+                                 {"scene", fs::absolute(spec.scene).lexically_normal().string()},
+                                 {"work", spec.work()},
+                                 {"parameters", params},
+                                 {"jobs", list}};
+  WriteFileAtomically((fs::path(out) / "manifest.json").string(), manifest.dump(2) + "\n");
+  return written;
+}
+
+SweepJobState ReadJobState(const std::string& out, const SweepJob& job) {
+  SweepJobState state;
+  const std::string text = ReadText(JobStatePath(out, job));
+  if (text.empty()) return state;
+  nlohmann::json doc;
+  try {
+    doc = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception&) {
+    return state;  // written atomically, so only a hand edit gets here: run the job again
+  }
+  if (!doc.is_object() || doc.value("format", "") != kSweepJobFormat ||
+      doc.value("scene_digest", "") != Digest(job.scene_text))
+    return state;
+  state.runner = doc.value("runner", "");
+  state.seconds = doc.value("seconds", 0.0);
+  if (doc.value("state", "") == "failed") {
+    state.failed = true;
+    state.error = doc.value("error", "");
+    return state;
+  }
+  if (doc.value("state", "") != "complete") return state;
+  for (const auto& file : doc.value("outputs", nlohmann::json::array()))
+    if (!file.is_string() || !fs::exists(fs::path(JobFolder(out, job)) / "out" / file.get<std::string>()))
+      return state;
+  for (const auto& r : doc.value("results", nlohmann::json::array()))
+    state.results.push_back({r.value("column", ""), r.value("value", nlohmann::json())});
+  state.complete = true;
+  return state;
+}
+
+SweepJobState RunSweepJob(const SweepSpec& spec, const SweepJob& job, const std::string& out,
+                          const std::string& runner, bool* ran) {
+  if (ran) *ran = false;
+  WriteSceneIfChanged(out, job, nullptr);
+  SweepJobState state = ReadJobState(out, job);
+  if (state.complete) return state;
+  if (ran) *ran = true;
+  const fs::path folder = JobFolder(out, job);
+  RunRequest request{(folder / "scene.json").string(), (folder / "out").string(), spec.iterations, spec.threads};
+  const auto start = std::chrono::steady_clock::now();
+  auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  state = SweepJobState{};
+  state.runner = runner;
+  try {
+    const RunOutcome outcome = RunPipeline(request);
+    state.results = Results(outcome);
+    state.seconds = seconds();
+    WriteState(JobStatePath(out, job), job, "complete", "", runner, state.seconds, outcome.written, state.results);
+    state.complete = true;
+  } catch (const InterruptedError&) {
+    throw;  // Ctrl-C stops the sweep; the job is not marked failed and runs again on resume
+  } catch (const std::exception& e) {
+    state.failed = true;
+    state.error = e.what();
+    state.seconds = seconds();
+    WriteState(JobStatePath(out, job), job, "failed", state.error, runner, state.seconds, {}, {});
+  }
+  return state;
+}
+
+const SweepJob& FindSweepJob(const std::vector<SweepJob>& jobs, const std::string& id) {
+  char* end = nullptr;
+  const unsigned long long n = std::strtoull(id.c_str(), &end, 10);
+  if (id.empty() || *end != '\0' || n >= jobs.size())
+    throw Error("--job " + id + ": the sweep has jobs 0 to " + std::to_string(jobs.size() - 1));
+  return jobs[n];
+}
+
+}  // namespace layerlab

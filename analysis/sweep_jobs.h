@@ -1,0 +1,82 @@
+// The jobs of a sweep (analysis/sweep_spec.h): the grid expanded into job
+// folders, each job run with the main job's pipeline (analysis/run_pipeline.h),
+// and its state kept beside it so that a sweep resumes where it stopped.
+//
+//   DIR/manifest.json        the grid: every job's folder and parameter labels
+//   DIR/jobs/<id>/scene.json the base scene with the job's values written in
+//   DIR/jobs/<id>/out/       what `layerlab run` writes for that scene
+//   DIR/jobs/<id>/job.json   the job's manifest entry: complete or failed (with
+//                            the error), the scene's digest, its outputs, its results
+//
+// job.json: layerlab-sweep-job/1
+//
+// | key | type | default | meaning |
+// | --- | --- | --- | --- |
+// | `format` | string | required | `"layerlab-sweep-job/1"` |
+// | `id` | string | required | the job's folder name under `jobs/` |
+// | `state` | `"complete"` or `"failed"` | required | |
+// | `error` | string | none | why a failed job failed |
+// | `scene_digest` | string | required | of the scene.json it ran; another digest marks the entry stale |
+// | `runner` | string | required | `"local"`, `"mpi rank R of N"`, `"slurm task T"` |
+// | `seconds` | number | required | wall time of the job (s) |
+// | `outputs` | array of paths | required | what it wrote, relative to `out/`; all must exist for the job to count as complete |
+// | `results` | array of `{column, value}` | required | the job's row of the table |
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "analysis/sweep_spec.h"
+
+namespace layerlab {
+
+inline constexpr const char* kSweepManifestFormat = "layerlab-sweep-manifest/1";
+inline constexpr const char* kSweepJobFormat = "layerlab-sweep-job/1";
+
+struct SweepJob {
+  size_t index = 0;
+  std::string id;                   // "007": the folder under DIR/jobs
+  std::vector<size_t> choice;       // the value index of each parameter
+  nlohmann::ordered_json scene;     // the job's scene document, paths rebased to its folder
+  std::string scene_text;           // as written to scene.json
+};
+
+struct SweepResult {
+  std::string column;  // with its unit: "PSNR (dB)"
+  nlohmann::json value;
+};
+
+struct SweepJobState {
+  bool complete = false, failed = false;  // neither: not run, or stale
+  std::string error, runner;
+  double seconds = 0;
+  std::vector<SweepResult> results;
+};
+
+// Every point of the grid, in order (the last parameter fastest), in memory.
+std::vector<SweepJob> ExpandSweep(const SweepSpec& spec, const std::string& out);
+
+std::string JobFolder(const std::string& out, const SweepJob& job);
+
+// Writes DIR/manifest.json and every job's scene.json that is missing or
+// differs (removing that job's stale job.json); returns how many scenes were
+// written. Refuses an output folder that overlaps an input.
+size_t WriteSweepFolders(const SweepSpec& spec, const std::vector<SweepJob>& jobs, const std::string& out);
+
+// The job's state as its job.json says; complete only while the scene it ran
+// is the one in `job` and every output it listed is present.
+SweepJobState ReadJobState(const std::string& out, const SweepJob& job);
+
+// Runs one job unless it is complete (then returns its state): writes its
+// scene if needed, runs the pipeline into jobs/<id>/out and records the
+// outcome in job.json. A failure is recorded and returned, not thrown.
+// `ran` (optional) says whether it ran.
+SweepJobState RunSweepJob(const SweepSpec& spec, const SweepJob& job, const std::string& out,
+                          const std::string& runner, bool* ran = nullptr);
+
+// The job with this id or index ("7", "007"); throws layerlab::Error listing the range.
+const SweepJob& FindSweepJob(const std::vector<SweepJob>& jobs, const std::string& id);
+
+}  // namespace layerlab

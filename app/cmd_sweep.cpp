@@ -1,0 +1,108 @@
+// layerlab sweep SWEEP.json --out DIR: a design study over a grid of scene
+// parameters (analysis/sweep_spec.h, docs/sweeps.md). Expands the grid into
+// job folders, runs the jobs (--local -j N, --mpi under mpirun, or --slurm to
+// write a job array), and gathers one table and plots. Exits non-zero when a
+// job failed; the others still run, and a run again skips what is complete.
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <string>
+
+#include "analysis/sweep_gather.h"
+#include "app/commands.h"
+#include "app/sweep_runners.h"
+#include "framework/error.h"
+#include "framework/progress.h"
+
+namespace layerlab::app {
+
+void SayJob(const SweepSpec& spec, const SweepJob& job, const SweepJobState& s, const std::string& prefix) {
+  std::string values;
+  for (size_t k = 0; k < spec.parameters.size(); ++k)
+    values += (k ? ", " : "") + spec.parameters[k].name + " " + spec.parameters[k].labels[job.choice[k]];
+  if (s.complete)
+    std::printf("%ssweep: job %s (%s) complete in %.1f s\n", prefix.c_str(), job.id.c_str(), values.c_str(),
+                s.seconds);
+  else
+    std::printf("%ssweep: job %s (%s) failed: %s\n", prefix.c_str(), job.id.c_str(), values.c_str(),
+                s.error.empty() ? "the job process ended without a record" : s.error.c_str());
+  std::fflush(stdout);
+}
+
+namespace {
+
+struct SweepOptions {
+  std::string sweep, out, job;
+  bool local = false, mpi = false, slurm = false, gather = false;
+  int processes = 1;
+};
+
+// The table, and the exit: non-zero when a job failed or did not run.
+void GatherAndReport(const SweepSpec& spec, const std::vector<SweepJob>& jobs, const std::string& out) {
+  const SweepSummary s = GatherSweep(spec, jobs, out);
+  std::printf("sweep: %zu jobs: %zu complete, %zu failed, %zu not run; table %s/table.html\n", jobs.size(), s.complete,
+              s.failed, s.pending, out.c_str());
+  if (s.failed || s.pending) throw CLI::RuntimeError(1);
+}
+
+void RunSweepCommand(const SweepOptions& o) {
+  const SweepSpec spec = ReadSweepSpec(o.sweep);
+  const std::vector<SweepJob> jobs = ExpandSweep(spec, o.out);
+  if (!o.job.empty()) {  // one job: what a pool process and a Slurm task run
+    const char* task = std::getenv("SLURM_ARRAY_TASK_ID");
+    const SweepJob& job = FindSweepJob(jobs, o.job);
+    bool ran = false;
+    const SweepJobState s = RunSweepJob(spec, job, o.out, task ? "slurm task " + std::string(task) : "local", &ran);
+    if (CurrentVerbosity() != Verbosity::kQuiet) SayJob(spec, job, s, ran ? "" : "(already complete) ");
+    if (s.failed) throw CLI::RuntimeError(1);
+    return;
+  }
+  if (o.gather) return GatherAndReport(spec, jobs, o.out);
+  if (o.mpi) {
+#if LAYERLAB_WITH_MPI
+    bool root = false;
+    const size_t failed = RunSweepMpi(spec, jobs, o.out, &root);
+    if (root) std::printf("sweep: %zu jobs, %zu failed; table %s/table.html\n", jobs.size(), failed, o.out.c_str());
+    if (failed) throw CLI::RuntimeError(1);
+    return;
+#else
+    throw Error("--mpi: this layerlab was built without MPI (configure with -DLAYERLAB_WITH_MPI=ON; it needs "
+                "OpenMPI: apt-get install libopenmpi-dev openmpi-bin)");
+#endif
+  }
+  const size_t written = WriteSweepFolders(spec, jobs, o.out);
+  std::printf("sweep: %zu jobs in %s/jobs (%zu scenes written)\n", jobs.size(), o.out.c_str(), written);
+  if (o.slurm) {
+    for (const std::string& script : WriteSlurmScripts(spec, jobs, o.out)) std::printf("sweep: wrote %s\n", script.c_str());
+    std::printf("sweep: submit with sh %s/slurm/submit.sh\n", o.out.c_str());
+    return;
+  }
+  RunSweepLocally(spec, jobs, o.out, o.processes);
+  GatherAndReport(spec, jobs, o.out);
+}
+
+}  // namespace
+
+void AddSweepCommand(CLI::App& app) {
+  auto o = std::make_shared<SweepOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "sweep", "A design study: a base scene's parameters over a grid of values, one job per point (solve, retina, "
+               "contrast), gathered into one table and plots (docs/sweeps.md)");
+  cmd->add_option("sweep", o->sweep, "Sweep file (JSON, layerlab-sweep/1)")->required();
+  cmd->add_option("--out", o->out, "Output folder: manifest.json, jobs/, table.csv, table.html, plots/")->required();
+  CLI::Option* local = cmd->add_flag("--local", o->local, "Run the jobs on this machine, a process pool (the default)");
+  cmd->add_option("-j,--jobs", o->processes, "With --local: jobs at a time")->check(CLI::Range(1, 1024));
+  CLI::Option* mpi =
+      cmd->add_flag("--mpi", o->mpi, "Run as MPI ranks (mpirun -np N layerlab sweep ...): job i on rank i mod N");
+  CLI::Option* slurm = cmd->add_flag(
+      "--slurm", o->slurm, "Write a Slurm job array (DIR/slurm/array.sbatch), a gather step and submit.sh; run nothing");
+  CLI::Option* job = cmd->add_option("--job", o->job, "Run only this job (its index), e.g. from a Slurm array task");
+  CLI::Option* gather = cmd->add_flag("--gather", o->gather, "Only gather the table and plots from the job records");
+  local->excludes(mpi)->excludes(slurm)->excludes(job)->excludes(gather);
+  mpi->excludes(slurm)->excludes(job)->excludes(gather);
+  slurm->excludes(job)->excludes(gather);
+  job->excludes(gather);
+  cmd->callback([o] { RunSweepCommand(*o); });
+}
+
+}  // namespace layerlab::app

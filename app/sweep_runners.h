@@ -1,0 +1,35 @@
+// The ways `layerlab sweep` runs its jobs (docs/sweeps.md): a process pool on
+// this machine, MPI ranks, or a Slurm job array whose scripts it writes.
+// Each returns how many jobs failed; a job already complete is skipped.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "analysis/sweep_jobs.h"
+
+namespace layerlab::app {
+
+// One line on stdout: the job, its values, and how it ended.
+void SayJob(const SweepSpec& spec, const SweepJob& job, const SweepJobState& state, const std::string& prefix = "");
+
+// This executable, for the pool's children and the Slurm scripts.
+std::string SelfExecutable();
+
+// Runs each unfinished job as `layerlab sweep SWEEP --out DIR --job ID`, at
+// most `processes` at a time (posix_spawn); prints a line per job.
+size_t RunSweepLocally(const SweepSpec& spec, const std::vector<SweepJob>& jobs, const std::string& out,
+                       int processes);
+
+// Writes DIR/slurm/array.sbatch (the array task id selects the job),
+// DIR/slurm/gather.sbatch and DIR/slurm/submit.sh; returns their paths.
+std::vector<std::string> WriteSlurmScripts(const SweepSpec& spec, const std::vector<SweepJob>& jobs,
+                                           const std::string& out);
+
+// Under mpirun: rank 0 writes the job folders, job i runs on rank i mod N,
+// rank 0 gathers. Returns the number of failed jobs on every rank; a rank that
+// throws ends all ranks (MPI_Abort). Without MPI built in, refuses naming --mpi.
+size_t RunSweepMpi(const SweepSpec& spec, const std::vector<SweepJob>& jobs, const std::string& out,
+                   bool* is_root);
+
+}  // namespace layerlab::app

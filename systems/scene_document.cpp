@@ -1,0 +1,54 @@
+#include "systems/scene_document.h"
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "framework/error.h"
+
+namespace layerlab {
+
+using nlohmann::ordered_json;
+
+std::vector<std::string> ScenePathPointers(const ordered_json& scene) {
+  std::vector<std::string> pointers;
+  auto object = [](const ordered_json& parent, const char* key) -> const ordered_json* {
+    return parent.is_object() && parent.contains(key) && parent[key].is_object() ? &parent[key] : nullptr;
+  };
+  if (const ordered_json* solve = object(scene, "solve"))
+    for (const char* key : {"target", "target_scene"})
+      if (solve->contains(key) && (*solve)[key].is_string()) pointers.push_back(std::string("/solve/") + key);
+  if (const ordered_json* run = object(scene, "run"))
+    for (const char* section : {"compare", "contrast"})
+      if (const ordered_json* s = object(*run, section); s && s->contains("scenes") && (*s)["scenes"].is_array())
+        for (size_t i = 0; i < (*s)["scenes"].size(); ++i)
+          if ((*s)["scenes"][i].is_string())
+            pointers.push_back(std::string("/run/") + section + "/scenes/" + std::to_string(i));
+  return pointers;
+}
+
+void RebaseRelativePaths(ordered_json& scene, const std::string& from_file, const std::string& to_file) {
+  namespace fs = std::filesystem;
+  // The folders, absolute: a bare file name has an empty parent, which fs::absolute refuses.
+  const fs::path from = fs::absolute(from_file).parent_path(), to = fs::absolute(to_file).parent_path();
+  for (const std::string& pointer : ScenePathPointers(scene)) {
+    ordered_json& value = scene[ordered_json::json_pointer(pointer)];
+    const fs::path path = value.get<std::string>();
+    if (path.is_absolute()) continue;
+    value = (from / path).lexically_normal().lexically_relative(to.lexically_normal()).generic_string();
+  }
+}
+
+ordered_json ReadDocumentInOrder(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path + ": cannot open for reading");
+  std::ostringstream text;
+  text << in.rdbuf();
+  try {
+    return ordered_json::parse(text.str());
+  } catch (const ordered_json::exception& e) {
+    throw Error(path + ": malformed JSON: " + e.what());
+  }
+}
+
+}  // namespace layerlab
