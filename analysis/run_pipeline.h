@@ -31,9 +31,9 @@ struct RunOutcome {
   std::vector<std::string> recovered;  // what was cleared of interrupted or killed runs first
   std::vector<std::string> warnings;
   bool solved = false;
-  SolverReport report;        // of the main solve, when solved
-  std::string compare_table;  // empty without a comparison
-  std::string index_html;     // the report's absolute path
+  SolverReport report;                    // of the main solve, when solved
+  std::string compare_table;              // empty without a comparison
+  std::string index_html;                 // the report's absolute path
   std::vector<RetinaStateResult> retina;  // with run.retina
   std::vector<ContrastCurve> contrast;    // with run.contrast
 };

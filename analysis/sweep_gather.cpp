@@ -80,8 +80,8 @@ PlotPanel Panel(const SweepSpec& spec, const std::vector<Row>& rows, const std::
     }
     if (!lines.count(key)) order.push_back(key);
     PlotLine& line = lines[key];
-    const double x = x_param >= 0 ? spec.parameters[x_param].numbers[row.job->choice[x_param]]
-                                  : static_cast<double>(row.job->index);
+    const double x =
+        x_param >= 0 ? spec.parameters[x_param].numbers[row.job->choice[x_param]] : static_cast<double>(row.job->index);
     const double y = it->value.get<double>();
     line.x.push_back(x);
     line.y.push_back(y);

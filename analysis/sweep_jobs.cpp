@@ -103,7 +103,8 @@ std::vector<SweepJob> ExpandSweep(const SweepSpec& spec, const std::string& out)
   ordered_json base = spec.base;
   ordered_json run = ordered_json::object();
   for (const char* step : {"retina", "contrast"}) {
-    if ((std::string(step) == "retina" && !spec.retina) || (std::string(step) == "contrast" && !spec.contrast)) continue;
+    if ((std::string(step) == "retina" && !spec.retina) || (std::string(step) == "contrast" && !spec.contrast))
+      continue;
     const bool given = base.contains("run") && base["run"].is_object() && base["run"].contains(step);
     run[step] = given ? base["run"][step] : ordered_json::object();
   }
@@ -140,14 +141,13 @@ std::vector<SweepJob> ExpandSweep(const SweepSpec& spec, const std::string& out)
         job.scene[at] = p.pointers.size() > 1 ? value[i] : value;
       }
     }
-    job.scene["description"] = "Job " + job.id + " of the sweep " + spec.file + ": the scene " + spec.scene + " with " +
-                               [&] {
-                                 std::string s;
-                                 for (size_t k = 0; k < spec.parameters.size(); ++k)
-                                   s += (k ? ", " : "") + spec.parameters[k].name + " = " +
-                                        spec.parameters[k].labels[job.choice[k]];
-                                 return s;
-                               }();
+    job.scene["description"] =
+        "Job " + job.id + " of the sweep " + spec.file + ": the scene " + spec.scene + " with " + [&] {
+          std::string s;
+          for (size_t k = 0; k < spec.parameters.size(); ++k)
+            s += (k ? ", " : "") + spec.parameters[k].name + " = " + spec.parameters[k].labels[job.choice[k]];
+          return s;
+        }();
     RebaseRelativePaths(job.scene, spec.scene, (fs::path(JobFolder(out, job)) / "scene.json").string());
     job.scene_text = job.scene.dump(2) + "\n";
   }
@@ -203,16 +203,15 @@ SweepJobState ReadJobState(const std::string& out, const SweepJob& job) {
   }
   if (doc.value("state", "") != "complete") return state;
   for (const auto& file : doc.value("outputs", nlohmann::json::array()))
-    if (!file.is_string() || !fs::exists(fs::path(JobFolder(out, job)) / "out" / file.get<std::string>()))
-      return state;
+    if (!file.is_string() || !fs::exists(fs::path(JobFolder(out, job)) / "out" / file.get<std::string>())) return state;
   for (const auto& r : doc.value("results", nlohmann::json::array()))
     state.results.push_back({r.value("column", ""), r.value("value", nlohmann::json())});
   state.complete = true;
   return state;
 }
 
-SweepJobState RunSweepJob(const SweepSpec& spec, const SweepJob& job, const std::string& out,
-                          const std::string& runner, bool* ran) {
+SweepJobState RunSweepJob(const SweepSpec& spec, const SweepJob& job, const std::string& out, const std::string& runner,
+                          bool* ran) {
   if (ran) *ran = false;
   WriteSceneIfChanged(out, job, nullptr);
   SweepJobState state = ReadJobState(out, job);

@@ -37,10 +37,10 @@ inline constexpr const char* kSweepJobFormat = "layerlab-sweep-job/1";
 
 struct SweepJob {
   size_t index = 0;
-  std::string id;                   // "007": the folder under DIR/jobs
-  std::vector<size_t> choice;       // the value index of each parameter
-  nlohmann::ordered_json scene;     // the job's scene document, paths rebased to its folder
-  std::string scene_text;           // as written to scene.json
+  std::string id;                // "007": the folder under DIR/jobs
+  std::vector<size_t> choice;    // the value index of each parameter
+  nlohmann::ordered_json scene;  // the job's scene document, paths rebased to its folder
+  std::string scene_text;        // as written to scene.json
 };
 
 struct SweepResult {
@@ -73,8 +73,8 @@ SweepJobState ReadJobState(const std::string& out, const SweepJob& job);
 // scene if needed, runs the pipeline into jobs/<id>/out and records the
 // outcome in job.json. A failure is recorded and returned, not thrown.
 // `ran` (optional) says whether it ran.
-SweepJobState RunSweepJob(const SweepSpec& spec, const SweepJob& job, const std::string& out,
-                          const std::string& runner, bool* ran = nullptr);
+SweepJobState RunSweepJob(const SweepSpec& spec, const SweepJob& job, const std::string& out, const std::string& runner,
+                          bool* ran = nullptr);
 
 // The job with this id or index ("7", "007"); throws layerlab::Error listing the range.
 const SweepJob& FindSweepJob(const std::vector<SweepJob>& jobs, const std::string& id);

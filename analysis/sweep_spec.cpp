@@ -120,9 +120,7 @@ SweepParameter ReadParameter(Params& p, const SweepSpec& spec) {
 
 }  // namespace
 
-std::string SweepParameter::column() const {
-  return unit.empty() || unit == "1" ? name : name + " (" + unit + ")";
-}
+std::string SweepParameter::column() const { return unit.empty() || unit == "1" ? name : name + " (" + unit + ")"; }
 
 size_t SweepSpec::job_count() const {
   size_t n = 1;
@@ -159,7 +157,8 @@ SweepSpec ReadSweepSpec(const std::string& path) {
   spec.base = ReadDocumentInOrder(spec.scene);
 
   const nlohmann::json& work = p.raw("work");
-  if (!work.is_array() || work.empty()) p.fail("work", "must be a non-empty array of \"solve\", \"retina\", \"contrast\"");
+  if (!work.is_array() || work.empty())
+    p.fail("work", "must be a non-empty array of \"solve\", \"retina\", \"contrast\"");
   for (size_t i = 0; i < work.size(); ++i) {
     const std::string w = work[i].is_string() ? work[i].get<std::string>() : work[i].dump();
     bool* flag = w == "solve" ? &spec.solve : w == "retina" ? &spec.retina : w == "contrast" ? &spec.contrast : nullptr;
@@ -174,8 +173,8 @@ SweepSpec ReadSweepSpec(const std::string& path) {
   if (spec.retina && !spec.solve) p.fail("work", "\"retina\" looks at the solved patterns: it needs \"solve\" too");
   const ordered_json* solve_section = spec.base.contains("solve") ? &spec.base["solve"] : nullptr;
   if (spec.solve && !(solve_section && (solve_section->contains("target") || solve_section->contains("target_scene"))))
-    p.fail("work", "\"solve\" needs a target: the base scene " + spec.scene +
-                       " has no /solve/target or /solve/target_scene");
+    p.fail("work",
+           "\"solve\" needs a target: the base scene " + spec.scene + " has no /solve/target or /solve/target_scene");
   if (p.has("iterations")) spec.iterations = static_cast<int>(p.integer("iterations", 1, 1000000));
   spec.threads = static_cast<int>(p.integer("threads", 0, 1024, 1));
 
@@ -193,8 +192,9 @@ SweepSpec ReadSweepSpec(const std::string& path) {
       throw Error(at.child("name"), "\"" + spec.parameters.back().name + "\" names two parameters");
   }
   p.check_all_read();
-  if (spec.job_count() > 100000) p.fail("parameters", "the grid has " + std::to_string(spec.job_count()) +
-                                                         " points; more than 100000 is surely a mistake");
+  if (spec.job_count() > 100000)
+    p.fail("parameters",
+           "the grid has " + std::to_string(spec.job_count()) + " points; more than 100000 is surely a mistake");
   return spec;
 }
 

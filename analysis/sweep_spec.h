@@ -43,9 +43,9 @@ inline constexpr const char* kSweepFormat = "layerlab-sweep/1";
 
 struct SweepParameter {
   std::string name;
-  std::vector<std::string> pointers;         // one, or several set together
+  std::vector<std::string> pointers;           // one, or several set together
   std::vector<nlohmann::ordered_json> values;  // with `pointers.size() > 1`: arrays of that size
-  std::vector<std::string> labels;           // one per value
+  std::vector<std::string> labels;             // one per value
   // From the labels: the unit when every label is "<number> <unit>" in one unit, else empty.
   std::string unit;
   std::vector<double> numbers;  // the labels' numbers when `unit` is set
@@ -53,7 +53,7 @@ struct SweepParameter {
 };
 
 struct SweepSpec {
-  std::string file;   // as given
+  std::string file;  // as given
   std::string name;
   std::string description;
   std::string scene;  // resolved against the sweep file's folder

@@ -21,8 +21,7 @@ void SayJob(const SweepSpec& spec, const SweepJob& job, const SweepJobState& s, 
   for (size_t k = 0; k < spec.parameters.size(); ++k)
     values += (k ? ", " : "") + spec.parameters[k].name + " " + spec.parameters[k].labels[job.choice[k]];
   if (s.complete)
-    std::printf("%ssweep: job %s (%s) complete in %.1f s\n", prefix.c_str(), job.id.c_str(), values.c_str(),
-                s.seconds);
+    std::printf("%ssweep: job %s (%s) complete in %.1f s\n", prefix.c_str(), job.id.c_str(), values.c_str(), s.seconds);
   else
     std::printf("%ssweep: job %s (%s) failed: %s\n", prefix.c_str(), job.id.c_str(), values.c_str(),
                 s.error.empty() ? "the job process ended without a record" : s.error.c_str());
@@ -66,14 +65,16 @@ void RunSweepCommand(const SweepOptions& o) {
     if (failed) throw CLI::RuntimeError(1);
     return;
 #else
-    throw Error("--mpi: this layerlab was built without MPI (configure with -DLAYERLAB_WITH_MPI=ON; it needs "
-                "OpenMPI: apt-get install libopenmpi-dev openmpi-bin)");
+    throw Error(
+        "--mpi: this layerlab was built without MPI (configure with -DLAYERLAB_WITH_MPI=ON; it needs "
+        "OpenMPI: apt-get install libopenmpi-dev openmpi-bin)");
 #endif
   }
   const size_t written = WriteSweepFolders(spec, jobs, o.out);
   std::printf("sweep: %zu jobs in %s/jobs (%zu scenes written)\n", jobs.size(), o.out.c_str(), written);
   if (o.slurm) {
-    for (const std::string& script : WriteSlurmScripts(spec, jobs, o.out)) std::printf("sweep: wrote %s\n", script.c_str());
+    for (const std::string& script : WriteSlurmScripts(spec, jobs, o.out))
+      std::printf("sweep: wrote %s\n", script.c_str());
     std::printf("sweep: submit with sh %s/slurm/submit.sh\n", o.out.c_str());
     return;
   }
@@ -86,16 +87,18 @@ void RunSweepCommand(const SweepOptions& o) {
 void AddSweepCommand(CLI::App& app) {
   auto o = std::make_shared<SweepOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "sweep", "A design study: a base scene's parameters over a grid of values, one job per point (solve, retina, "
-               "contrast), gathered into one table and plots (docs/sweeps.md)");
+      "sweep",
+      "A design study: a base scene's parameters over a grid of values, one job per point (solve, retina, "
+      "contrast), gathered into one table and plots (docs/sweeps.md)");
   cmd->add_option("sweep", o->sweep, "Sweep file (JSON, layerlab-sweep/1)")->required();
   cmd->add_option("--out", o->out, "Output folder: manifest.json, jobs/, table.csv, table.html, plots/")->required();
   CLI::Option* local = cmd->add_flag("--local", o->local, "Run the jobs on this machine, a process pool (the default)");
   cmd->add_option("-j,--jobs", o->processes, "With --local: jobs at a time")->check(CLI::Range(1, 1024));
   CLI::Option* mpi =
       cmd->add_flag("--mpi", o->mpi, "Run as MPI ranks (mpirun -np N layerlab sweep ...): job i on rank i mod N");
-  CLI::Option* slurm = cmd->add_flag(
-      "--slurm", o->slurm, "Write a Slurm job array (DIR/slurm/array.sbatch), a gather step and submit.sh; run nothing");
+  CLI::Option* slurm =
+      cmd->add_flag("--slurm", o->slurm,
+                    "Write a Slurm job array (DIR/slurm/array.sbatch), a gather step and submit.sh; run nothing");
   CLI::Option* job = cmd->add_option("--job", o->job, "Run only this job (its index), e.g. from a Slurm array task");
   CLI::Option* gather = cmd->add_flag("--gather", o->gather, "Only gather the table and plots from the job records");
   local->excludes(mpi)->excludes(slurm)->excludes(job)->excludes(gather);

@@ -13,8 +13,7 @@
 
 namespace layerlab::app {
 
-size_t RunSweepMpi(const SweepSpec& spec, const std::vector<SweepJob>& jobs, const std::string& out,
-                   bool* is_root) {
+size_t RunSweepMpi(const SweepSpec& spec, const std::vector<SweepJob>& jobs, const std::string& out, bool* is_root) {
   int initialized = 0;
   MPI_Initialized(&initialized);
   if (!initialized) MPI_Init(nullptr, nullptr);

@@ -18,8 +18,7 @@ std::string SelfExecutable();
 
 // Runs each unfinished job as `layerlab sweep SWEEP --out DIR --job ID`, at
 // most `processes` at a time (posix_spawn); prints a line per job.
-size_t RunSweepLocally(const SweepSpec& spec, const std::vector<SweepJob>& jobs, const std::string& out,
-                       int processes);
+size_t RunSweepLocally(const SweepSpec& spec, const std::vector<SweepJob>& jobs, const std::string& out, int processes);
 
 // Writes DIR/slurm/array.sbatch (the array task id selects the job),
 // DIR/slurm/gather.sbatch and DIR/slurm/submit.sh; returns their paths.
@@ -29,7 +28,6 @@ std::vector<std::string> WriteSlurmScripts(const SweepSpec& spec, const std::vec
 // Under mpirun: rank 0 writes the job folders, job i runs on rank i mod N,
 // rank 0 gathers. Returns the number of failed jobs on every rank; a rank that
 // throws ends all ranks (MPI_Abort). Without MPI built in, refuses naming --mpi.
-size_t RunSweepMpi(const SweepSpec& spec, const std::vector<SweepJob>& jobs, const std::string& out,
-                   bool* is_root);
+size_t RunSweepMpi(const SweepSpec& spec, const std::vector<SweepJob>& jobs, const std::string& out, bool* is_root);
 
 }  // namespace layerlab::app

@@ -25,8 +25,8 @@ std::string Absolute(const std::string& path) { return fs::absolute(path).lexica
 void WriteScript(const std::string& path, const std::string& text) {
   WriteFileAtomically(path, text);
   std::error_code ec;
-  fs::permissions(path, fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec,
-                  fs::perm_options::add, ec);
+  fs::permissions(path, fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec, fs::perm_options::add,
+                  ec);
   if (ec) throw Error(path + ": cannot make it executable: " + ec.message());
 }
 
@@ -43,33 +43,58 @@ std::vector<std::string> WriteSlurmScripts(const SweepSpec& spec, const std::vec
   const int cpus = spec.threads > 0 ? spec.threads : 1;
 
   const std::string array = (dir / "array.sbatch").string();
-  WriteScript(array, "#!/bin/bash\n"
-                     "# One task per job of the sweep " + spec.file + " (" + std::to_string(jobs.size()) +
-                         " jobs); written by layerlab sweep --slurm.\n"
-                         "# Submit with submit.sh; to run one task here: SLURM_ARRAY_TASK_ID=3 " + array + "\n"
-                         "#SBATCH --job-name=" + name + "\n"
-                         "#SBATCH --array=0-" + std::to_string(jobs.size() - 1) + "\n"
-                         "#SBATCH --ntasks=1\n"
-                         "#SBATCH --cpus-per-task=" + std::to_string(cpus) + "\n"
-                         "#SBATCH --output=" + (dir / "logs").string() + "/job-%a.out\n"
-                         "set -euo pipefail\n"
-                         ": \"${SLURM_ARRAY_TASK_ID:?runs as a task of the Slurm array (sbatch), or with "
-                         "SLURM_ARRAY_TASK_ID set}\"\n"
-                         "exec " + exe + " sweep " + sweep + " --out " + to + " --job \"$SLURM_ARRAY_TASK_ID\"\n");
+  WriteScript(array,
+              "#!/bin/bash\n"
+              "# One task per job of the sweep " +
+                  spec.file + " (" + std::to_string(jobs.size()) +
+                  " jobs); written by layerlab sweep --slurm.\n"
+                  "# Submit with submit.sh; to run one task here: SLURM_ARRAY_TASK_ID=3 " +
+                  array +
+                  "\n"
+                  "#SBATCH --job-name=" +
+                  name +
+                  "\n"
+                  "#SBATCH --array=0-" +
+                  std::to_string(jobs.size() - 1) +
+                  "\n"
+                  "#SBATCH --ntasks=1\n"
+                  "#SBATCH --cpus-per-task=" +
+                  std::to_string(cpus) +
+                  "\n"
+                  "#SBATCH --output=" +
+                  (dir / "logs").string() +
+                  "/job-%a.out\n"
+                  "set -euo pipefail\n"
+                  ": \"${SLURM_ARRAY_TASK_ID:?runs as a task of the Slurm array (sbatch), or with "
+                  "SLURM_ARRAY_TASK_ID set}\"\n"
+                  "exec " +
+                  exe + " sweep " + sweep + " --out " + to + " --job \"$SLURM_ARRAY_TASK_ID\"\n");
   const std::string gather = (dir / "gather.sbatch").string();
-  WriteScript(gather, "#!/bin/bash\n"
-                      "# The gather step of the sweep " + spec.file + ": the table and plots from every job's record.\n"
-                      "#SBATCH --job-name=" + name + "-gather\n"
-                      "#SBATCH --ntasks=1\n"
-                      "#SBATCH --output=" + (dir / "logs").string() + "/gather.out\n"
-                      "set -euo pipefail\n"
-                      "exec " + exe + " sweep " + sweep + " --out " + to + " --gather\n");
+  WriteScript(gather,
+              "#!/bin/bash\n"
+              "# The gather step of the sweep " +
+                  spec.file +
+                  ": the table and plots from every job's record.\n"
+                  "#SBATCH --job-name=" +
+                  name +
+                  "-gather\n"
+                  "#SBATCH --ntasks=1\n"
+                  "#SBATCH --output=" +
+                  (dir / "logs").string() +
+                  "/gather.out\n"
+                  "set -euo pipefail\n"
+                  "exec " +
+                  exe + " sweep " + sweep + " --out " + to + " --gather\n");
   const std::string submit = (dir / "submit.sh").string();
-  WriteScript(submit, "#!/bin/sh\n"
-                      "# Submits the array and, once every task has ended, the gather step.\n"
-                      "set -eu\n"
-                      "array=$(sbatch --parsable " + Quoted(array) + ")\n"
-                      "sbatch --dependency=afterany:\"${array%%;*}\" " + Quoted(gather) + "\n");
+  WriteScript(submit,
+              "#!/bin/sh\n"
+              "# Submits the array and, once every task has ended, the gather step.\n"
+              "set -eu\n"
+              "array=$(sbatch --parsable " +
+                  Quoted(array) +
+                  ")\n"
+                  "sbatch --dependency=afterany:\"${array%%;*}\" " +
+                  Quoted(gather) + "\n");
   return {array, gather, submit};
 }
 

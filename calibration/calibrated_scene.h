@@ -29,5 +29,4 @@ namespace layerlab {
 nlohmann::ordered_json CalibratedSceneDocument(const nlohmann::ordered_json& scene, const std::string& file,
                                                const CalibratedDisplay& display);
 
-
 }  // namespace layerlab
