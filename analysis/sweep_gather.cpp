@@ -54,7 +54,7 @@ struct Row {
 };
 
 // One panel: `column` against the first numeric parameter (or the job index), a line per other combination.
-PlotPanel Panel(const SweepSpec& spec, const std::vector<Row>& rows, const std::string& column) {
+PlotPanel Panel(const SweepSpec& spec, const std::vector<Row>& rows, const std::string& column, bool* varies) {
   PlotPanel panel;
   panel.title = column;
   panel.y_label = column;
@@ -94,6 +94,7 @@ PlotPanel Panel(const SweepSpec& spec, const std::vector<Row>& rows, const std::
     line.dashed = (i / std::size(kColors)) % 2 == 1;
     panel.lines.push_back(line);
   }
+  *varies = std::isfinite(y_lo) && y_hi > y_lo;
   if (!std::isfinite(x_lo)) x_lo = 0, x_hi = 1, y_lo = 0, y_hi = 1;
   if (x_hi <= x_lo) x_lo -= 0.5, x_hi += 0.5;
   const double pad = y_hi > y_lo ? 0.08 * (y_hi - y_lo) : std::max(1e-3, 0.05 * std::fabs(y_hi));
@@ -153,8 +154,11 @@ SweepSummary GatherSweep(const SweepSpec& spec, const std::vector<SweepJob>& job
     std::vector<std::string> plots;
     fs::create_directories(staging / "plots");
     for (const std::string& c : columns) {
+      bool varies = false;
+      const PlotPanel panel = Panel(spec, rows, c, &varies);
+      if (!varies) continue;  // the same in every job (the iteration count): a column, not a plot
       const std::string file = "plots/" + Slug(c) + ".svg";
-      WriteFileAtomically((staging / file).string(), RenderSvg({Panel(spec, rows, c)}, 1, spec.name + ": " + c));
+      WriteFileAtomically((staging / file).string(), RenderSvg({panel}, 1, spec.name + ": " + c));
       plots.push_back(file);
     }
 

@@ -1,6 +1,6 @@
 // The gather step of a sweep: every job's row (its job.json) in one table,
 // DIR/table.csv and DIR/table.html (units in the headers), and one plot per
-// result over the swept parameters, DIR/plots/<result>.svg: the x axis is the
+// result that varies over the swept parameters, DIR/plots/<result>.svg: the x axis is the
 // first numeric parameter, one line per combination of the others. Written
 // in a staging folder and switched into place whole (framework/staged_output.h).
 #pragma once

@@ -8,24 +8,24 @@
 //
 // | key | type | default | meaning |
 // | --- | --- | --- | --- |
-// | `format` | string | required | `"layerlab-sweep/1"` |
-// | `name` | string | the file's stem | title of the table and plots |
-// | `description` | string | `""` | |
-// | `scene` | path | required | the base scene (relative to this file); never modified |
-// | `parameters` | array of parameters | required | the grid's axes in order, the last varying fastest |
-// | `work` | array of `"solve"`, `"retina"`, `"contrast"` | required | what runs at each point, with the base scene's `run.retina` / `run.contrast` settings (their defaults when absent); `retina` needs `solve` |
-// | `iterations` | integer | the scene's | outer iterations of each solve |
-// | `threads` | integer | 1 | worker threads of each job (jobs run side by side) |
+// | format | string | required | `"layerlab-sweep/1"` |
+// | name | string | the file's stem | title of the table and plots |
+// | description | string | `""` | |
+// | scene | path | required | the base scene (relative to this file); never modified |
+// | parameters | array of parameters | required | the grid's axes in order, the last varying fastest |
+// | work | array of `"solve"`, `"retina"`, `"contrast"` | required | what runs at each point, with the base scene's `run.retina` / `run.contrast` settings (their defaults when absent); `retina` needs `solve` |
+// | iterations | integer | the scene's | outer iterations of each solve |
+// | threads | integer | 1 | worker threads of each job (jobs run side by side) |
 //
 // sweep.parameter: one axis of the grid
 //
 // | key | type | default | meaning |
 // | --- | --- | --- | --- |
-// | `name` | string | required | the table's column (unique) |
-// | `pointer` | JSON pointer | required unless `pointers` | the scene value each value replaces; it must exist in the base scene |
-// | `pointers` | array of JSON pointers | none | values set together: each value is then an array with one item per pointer |
-// | `values` | array, not empty | required | any JSON: a quantity (`"1.2 D"`), a number, a name, a whole element object |
-// | `labels` | array of strings | the values as written | what the table and plots show; labels that are all `"<number> <unit>"` in one unit become a numeric column `name (unit)` and a plot axis |
+// | name | string | required | the table's column (unique) |
+// | pointer | JSON pointer | required unless `pointers` | the scene value each value replaces; it must exist in the base scene |
+// | pointers | array of JSON pointers | none | values set together: each value is then an array with one item per pointer |
+// | values | array, not empty | required | any JSON: a quantity (`"1.2 D"`), a number, a name, a whole element object |
+// | labels | array of strings | the values as written | what the table and plots show; labels that are all `"<number> <unit>"` in one unit become a numeric column `name (unit)` and a plot axis |
 //
 // A value at a path pointer (`/solve/target`, `/solve/target_scene`, a
 // compared or contrast scene) is relative to the sweep file.

@@ -6,11 +6,15 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <set>
 
 #include "analysis/sweep_jobs.h"
 #include "framework/error.h"
+#include "framework/params.h"
 #include "systems/scene.h"
 #include "tests/test_util.h"
+#include "tools/key_tables.h"
 
 namespace layerlab {
 namespace {
@@ -135,6 +139,27 @@ TEST_F(SweepTest, BadFilesNameTheFileAndThePointer) {
   s = Base();
   s["format"] = "layerlab-scene/1";
   EXPECT_NE(ErrorOf(s).find("sweep.json: /format"), std::string::npos) << ErrorOf(s);
+}
+
+// The key tables of analysis/sweep_spec.h (and so docs/sweeps.md) against the keys the reader asks for,
+// over the shipped example and this test's sweep: no key undocumented, none documented and not read.
+TEST_F(SweepTest, KeyTablesListWhatTheReaderReads) {
+  std::map<std::string, std::set<std::string>> documented;
+  for (const KeyTable& table : ReadKeyTables(std::string(LAYERLAB_SOURCE_DIR) + "/analysis/sweep_spec.h"))
+    for (const std::string& key : table.keys()) documented[table.section].insert(key);
+  ASSERT_EQ(documented.size(), 2u);
+  std::map<std::string, std::set<std::string>> read;
+  for (const std::string& file : {testing::ExamplePath("sweeps/hybrid_small_24.json"), Write(Base())}) {
+    ParamsKeyRecorder recorder;
+    ReadSweepSpec(file);
+    for (const auto& [pointer, keys] : recorder.keys()) {
+      const std::string section = pointer.empty()                         ? "sweep"
+                                  : pointer.rfind("/parameters/", 0) == 0 ? "sweep.parameter"
+                                                                          : pointer;
+      read[section].insert(keys.begin(), keys.end());
+    }
+  }
+  EXPECT_EQ(read, documented);
 }
 
 TEST_F(SweepTest, AnOutputFolderOverlappingAnInputIsRefused) {
