@@ -8,19 +8,30 @@
 //   DIR/jobs/<id>/job.json   the job's manifest entry: complete or failed (with
 //                            the error), the scene's digest, its outputs, its results
 //
+// manifest.json: layerlab-sweep-manifest/1, written by the runner that expands the grid
+//
+// | key | type | default | meaning |
+// | --- | --- | --- | --- |
+// | format | string | required | `"layerlab-sweep-manifest/1"` |
+// | sweep | path | required | the sweep file, absolute |
+// | scene | path | required | the base scene, absolute |
+// | work | array of strings | required | `"solve"`, `"retina"`, `"contrast"` as declared |
+// | parameters | array of `{name, column, pointers, labels}` | required | each axis: its name, its table column (with the unit), the pointers it sets, a label per value |
+// | jobs | array of `{id, folder, values}` | required | each job: its id, its folder relative to DIR, its parameter labels by name |
+//
 // job.json: layerlab-sweep-job/1
 //
 // | key | type | default | meaning |
 // | --- | --- | --- | --- |
-// | `format` | string | required | `"layerlab-sweep-job/1"` |
-// | `id` | string | required | the job's folder name under `jobs/` |
-// | `state` | `"complete"` or `"failed"` | required | |
-// | `error` | string | none | why a failed job failed |
-// | `scene_digest` | string | required | of the scene.json it ran; another digest marks the entry stale |
-// | `runner` | string | required | `"local"`, `"mpi rank R of N"`, `"slurm task T"` |
-// | `seconds` | number | required | wall time of the job (s) |
-// | `outputs` | array of paths | required | what it wrote, relative to `out/`; all must exist for the job to count as complete |
-// | `results` | array of `{column, value}` | required | the job's row of the table |
+// | format | string | required | `"layerlab-sweep-job/1"` |
+// | id | string | required | the job's folder name under `jobs/` |
+// | state | `"complete"` or `"failed"` | required | |
+// | error | string | none | why a failed job failed |
+// | scene_digest | string | required | of the scene.json it ran; another digest marks the entry stale |
+// | runner | string | required | `"local"`, `"mpi rank R of N"`, `"slurm task T"` |
+// | seconds | number | required | wall time of the job (s) |
+// | outputs | array of paths | required | what it wrote, relative to `out/`; all must exist for the job to count as complete |
+// | results | array of `{column, value}` | required | the job's row of the table |
 #pragma once
 
 #include <string>

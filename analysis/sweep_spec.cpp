@@ -150,6 +150,9 @@ SweepSpec ReadSweepSpec(const std::string& path) {
   spec.scene = (fs::path(path).parent_path() / scene).lexically_normal().string();
   if (fs::path(scene).is_absolute()) spec.scene = scene;
   try {
+    // The base scene's keys are its own tables' (tests/scene_reference_test.cpp), not the sweep's: a
+    // recorder of this scope keeps them out of one a caller has, which records JSON pointers, not files.
+    ParamsKeyRecorder scene_keys;
     LoadScene(spec.scene);  // checked whole before anything is expanded
   } catch (const Error& e) {
     throw Error(p.where("scene"), "the base scene is not usable: " + std::string(e.what()));

@@ -11,6 +11,7 @@
 
 #include "analysis/sweep_jobs.h"
 #include "framework/error.h"
+#include "framework/json_file.h"
 #include "framework/params.h"
 #include "systems/scene.h"
 #include "tests/test_util.h"
@@ -160,6 +161,36 @@ TEST_F(SweepTest, KeyTablesListWhatTheReaderReads) {
     }
   }
   EXPECT_EQ(read, documented);
+}
+
+// manifest.json and job.json hold exactly the keys of their tables in analysis/sweep_jobs.h. A job with
+// an unknown solver fails as it reads its inputs: recorded, not thrown.
+TEST_F(SweepTest, RecordsHoldTheKeysTheirTablesList) {
+  std::map<std::string, std::set<std::string>> documented;
+  for (const KeyTable& table : ReadKeyTables(std::string(LAYERLAB_SOURCE_DIR) + "/analysis/sweep_jobs.h"))
+    for (const std::string& key : table.keys()) documented[table.section].insert(key);
+  nlohmann::json sweep = Base();
+  sweep["parameters"][1] = {{"name", "solver"}, {"pointer", "/solve/solver"}, {"values", {"no-such-solver"}}};
+  const SweepSpec spec = ReadSweepSpec(Write(sweep));
+  const std::string out = (dir_ / "out").string();
+  const std::vector<SweepJob> jobs = ExpandSweep(spec, out);
+  WriteSweepFolders(spec, jobs, out);
+  bool ran = false;
+  const SweepJobState state = RunSweepJob(spec, jobs[0], out, "local", &ran);
+  EXPECT_TRUE(ran);
+  EXPECT_TRUE(state.failed);
+  EXPECT_NE(state.error.find("no-such-solver"), std::string::npos) << state.error;
+  auto keys = [](const std::string& path) {
+    std::set<std::string> k;
+    const nlohmann::json doc = ReadJsonFile(path);
+    for (const auto& [key, value] : doc.items()) k.insert(key);
+    return k;
+  };
+  EXPECT_EQ(keys(out + "/manifest.json"), documented["manifest.json"]);
+  EXPECT_EQ(keys(JobFolder(out, jobs[0]) + "/job.json"), documented["job.json"]);
+  // The failed job is not complete: the next run tries it again.
+  EXPECT_FALSE(ReadJobState(out, jobs[0]).complete);
+  EXPECT_TRUE(ReadJobState(out, jobs[0]).failed);
 }
 
 TEST_F(SweepTest, AnOutputFolderOverlappingAnInputIsRefused) {

@@ -14,6 +14,12 @@ until [ "$(state "$out" 000)" = complete ]; do
   sleep 0.02
 done
 kill -KILL -$pid 2>/dev/null; wait $pid 2>/dev/null
+# The job process is gone only once reaped: until then it counts as alive and its staging folder as in use.
+i=0
+while ps -o pid= -s $pid >/dev/null 2>&1; do
+  i=$((i + 1)); [ $i -lt 500 ] || fail "the killed job processes are still there after 10 s"
+  sleep 0.02
+done
 done_before=0
 for id in 000 001 002 003 004 005; do
   if [ "$(state "$out" $id)" = complete ]; then
