@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <deque>
@@ -73,6 +74,11 @@ size_t RunSweepLocally(const SweepSpec& spec, const std::vector<SweepJob>& jobs,
     const SweepJob* job = it->second;
     running.erase(it);
     SweepJobState s = ReadJobState(out, *job);
+    if (!s.complete && Interrupted() && WIFSIGNALED(status) && WTERMSIG(status) == SIGINT) {
+      std::printf("sweep: job %s interrupted; it runs again on resume\n", job->id.c_str());  // not a failure
+      std::fflush(stdout);
+      continue;
+    }
     if (!s.complete && !s.failed) {
       s.failed = true;
       s.error = WIFSIGNALED(status) ? "the job process was killed by signal " + std::to_string(WTERMSIG(status))

@@ -41,4 +41,24 @@ ls -a "$out/jobs"/*/out | grep -q layerlab-staging && fail "a killed job's stagi
 grep -q "^job,pupil (mm),combiner,state,runner,job time (s),PSNR (dB),solve time (s),iterations$" "$out/table.csv" ||
   fail "the table's header: $(head -1 "$out/table.csv")"
 [ -f "$out/plots/psnr_db.svg" ] && [ -f "$out/table.html" ] || fail "no plot or HTML table"
+# Ctrl-C (SIGINT to the process group, as a terminal sends it): exit 130, the running job is
+# interrupted, not failed, and nothing of it is recorded; the finished ones stay complete.
+out2=$work/out2
+setsid "$layerlab" sweep "$sweep" --out "$out2" --local -j 1 >"$work/log" 2>&1 &
+pid=$!
+i=0
+until [ "$(state "$out2" 000)" = complete ]; do
+  i=$((i + 1)); [ $i -lt 3000 ] || { kill -KILL -$pid; fail "job 000 did not finish in 60 s"; }
+  sleep 0.02
+done
+kill -INT -$pid
+wait $pid
+status=$?
+[ $status -eq 130 ] || fail "an interrupted sweep exited $status, not 130"
+grep -q "sweep: interrupted; the finished jobs are kept" "$work/log" || fail "no word of the interruption"
+grep -q "failed" "$work/log" && fail "an interrupted job was reported as failed: $(grep failed "$work/log")"
+for id in 001 002 003 004 005; do
+  s=$(state "$out2" $id)
+  [ "$s" = none ] || [ "$s" = complete ] || fail "job $id after Ctrl-C: $s"
+done
 echo "PASS"
