@@ -50,13 +50,12 @@ std::unique_ptr<Target> LoadOrRenderTarget(const SolveConfig& config, const std:
     if (std::optional<LightField> cached = ReadCachedRender(cache->previous, target->digest, &why_not)) {
       target->light_field = std::move(*cached);
       target->reused = true;
-      std::fprintf(stderr, "%s: reusing the render of %s in %s (key %s: the scene, its files and geometry unchanged)\n",
-                   label.c_str(), config.target_scene.c_str(), cache->previous.c_str(), target->digest.c_str());
+      Note(label + ": reusing the render of " + config.target_scene + " in " + cache->previous + " (key " +
+           target->digest + ": the scene, its files and geometry unchanged)");
     }
   }
   if (!target->reused) {
-    if (cache)
-      std::fprintf(stderr, "%s: rendering %s: %s\n", label.c_str(), config.target_scene.c_str(), why_not.c_str());
+    if (cache) Note(label + ": rendering " + config.target_scene + ": " + why_not);
     Progress progress(label, g.view_count());
     char what[160];
     std::snprintf(what, sizeof what, "%d x %d pixels", g.cols, g.rows);

@@ -32,6 +32,11 @@ grep -q "(key $key, the render of an earlier run reused)" "$out/index.html" || f
 [ -f "$out/target/lightfield/views/r00_c00.exr" ] || fail "the reused render is not in the output folder"
 echo "unchanged: reused"
 
+# --quiet keeps the results (stdout) and silences the notes about the render.
+"$layerlab" run "$scene" --iterations 2 --out "$out" --quiet >/dev/null 2>"$work/log" || fail "the quiet run failed"
+[ ! -s "$work/log" ] || fail "--quiet still printed on stderr: $(head -3 "$work/log")"
+echo "quiet: no notes"
+
 # A mesh the target scene reads changes (a comment line: the geometry is the same, the bytes are not).
 echo "# changed" >>"$work/targets/die.obj"
 run
