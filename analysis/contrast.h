@@ -80,6 +80,7 @@ struct ContrastOptions {
 struct ContrastCurve {
   std::string convention;  // ConventionLabel(reference, grating)
   std::string display;     // "natural" for natural viewing
+  std::string eye;         // EyeModelLine of the eye that saw it
   double target_diopters = 0, frequency = 0;
   std::vector<double> accommodation, contrast;
   std::vector<double> contrast_shifted;  // the retina moved half a sample; empty without peak_uncertainty

@@ -9,6 +9,7 @@
 
 #include "analysis/layout_svg.h"
 #include "analysis/svg_plot.h"
+#include "systems/retina.h"
 #include "systems/system_report.h"
 
 namespace layerlab {
@@ -196,6 +197,7 @@ std::string SystemSection(const RunReportPage& page) {
   h += "<tr><th class=\"l\">eye</th><td>pupil " + F(s.eye.pupil_diameter * 1e3, 1) + " mm, eyebox " +
        F(s.eye.eyebox_width * 1e3, 1) + " &times; " + F(s.eye.eyebox_height * 1e3, 1) + " mm, " +
        std::to_string(s.eye.views_x) + " &times; " + std::to_string(s.eye.views_y) + " views</td></tr>\n";
+  h += "<tr><th class=\"l\">eye model</th><td>" + Escape(EyeModelLine(s.eye)) + "</td></tr>\n";
   if (!s.lens.empty())
     h += "<tr><th class=\"l\">lens</th><td>" + Escape(s.lens) + ", f = " + F(s.focal_length * 1e3, 2) +
          " mm</td></tr>\n";

@@ -15,6 +15,7 @@
 #include "analysis/target_source.h"
 #include "python/src/bindings.h"
 #include "python/src/json_convert.h"
+#include "systems/diffraction.h"
 #include "python/src/numpy_view.h"
 #include "python/src/path_arg.h"
 #include "solvers/solution_writer.h"
@@ -216,8 +217,9 @@ py::array_t<float> Retina(const Solution& s, const std::vector<double>& accommod
   const std::vector<PupilPoint> pupil = PupilSamples(system.eye);
   py::gil_scoped_release release;
   for (size_t k = 0; k < accommodation.size(); ++k) {
-    const Image image =
+    Image image =
         RetinaOfDisplay(*s.model, s.patterns, grid, pupil, ChannelAccommodation(system.eye, accommodation[k]));
+    ApplyEyeOptics(system.eye, grid, &image);
     std::copy(image.pixels.begin(), image.pixels.end(), out + k * image.pixels.size());
   }
   return images;
