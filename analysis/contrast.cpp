@@ -44,8 +44,9 @@ std::vector<double> CentralRow(const Image& image) {
 bool SameEye(const EyeModel& a, const EyeModel& b) {
   return EyeModelLine(a) == EyeModelLine(b) && a.pupil_diameter == b.pupil_diameter &&
          a.pupil_samples_x == b.pupil_samples_x && a.pupil_samples_y == b.pupil_samples_y &&
-         a.pupil_sampling == b.pupil_sampling && a.pupil_seed == b.pupil_seed && a.wavefront.coefficients == b.wavefront.coefficients &&
-         a.chromatic_defocus == b.chromatic_defocus && a.channel_wavelengths == b.channel_wavelengths;
+         a.pupil_sampling == b.pupil_sampling && a.pupil_seed == b.pupil_seed &&
+         a.wavefront.coefficients == b.wavefront.coefficients && a.chromatic_defocus == b.chromatic_defocus &&
+         a.channel_wavelengths == b.channel_wavelengths;
 }
 
 bool IsNatural(const ContrastCurve& c) { return c.display.rfind("natural", 0) == 0; }
@@ -153,6 +154,7 @@ std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displ
   // thread, the same values as made alone.
   auto sweep = [&](const EyeModel& eye, const RetinalImage& image, double f, double reference, ContrastCurve* curve) {
     const int states = static_cast<int>(accommodation.size());
+    curve->reference_amplitude = reference;
     curve->contrast.assign(states, 0.0);
     if (o.peak_uncertainty) curve->contrast_shifted.assign(states, 0.0);
     std::exception_ptr error;
@@ -321,6 +323,15 @@ std::string PeakTable(const std::vector<ContrastCurve>& curves) {
           seen_by += " " + c.display + ",";
     out += "# eye" + (seen_by.empty() ? "" : " of" + seen_by.substr(0, seen_by.size() - 1)) + ": " + eye + "\n";
   }
+  // What the normalization divides by: natural viewing focused at the target.
+  for (const ContrastCurve& c : curves)
+    if (IsNatural(c)) {
+      char line[200];
+      std::snprintf(line, sizeof line,
+                    "# %s at %.2f D, %.1f cpd: amplitude in focus %.4f (the default grating's: 0.5)\n",
+                    c.display.c_str(), c.target_diopters, c.frequency, c.reference_amplitude);
+      out += line;
+    }
   out +=
       "display                  target (D)  f (cpd)  peak (D)  parabola (D)  +- (D)  placed  peak contrast  at target  "
       "solver                 PSNR (dB)  solve (s)  sweep (s)\n";

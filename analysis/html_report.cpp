@@ -297,6 +297,10 @@ std::string ContrastSection(const RunReportPage& page) {
        "band).</p>\n";
   h += "<div class=\"grid\">" + Figure(page.contrast_plot, "", "plot") + "</div>\n";
   if (!page.contrast.empty()) h += "<p class=\"muted\">" + Escape(page.contrast.front().convention) + ".</p>\n";
+  std::vector<std::string> eyes;  // the eye model of the curves, each once
+  for (const ContrastCurve& c : page.contrast)
+    if (std::find(eyes.begin(), eyes.end(), c.eye) == eyes.end()) eyes.push_back(c.eye);
+  for (const std::string& eye : eyes) h += "<p class=\"muted\">Eye: " + Escape(eye) + ".</p>\n";
   h += "<h3>Peaks</h3>\n<table><tr><th class=\"l\">display</th><th>target (D)</th><th>f (cpd)</th><th>peak (D)</th>"
        "<th>peak contrast</th><th>at target</th><th class=\"l\">solver</th><th>PSNR (dB)</th><th>solve (s)</th></tr>\n";
   for (const ContrastCurve& c : page.contrast)

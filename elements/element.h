@@ -19,10 +19,10 @@
 #include <string>
 #include <vector>
 
+#include "elements/wavefront.h"
 #include "framework/error.h"
 #include "framework/params.h"
 #include "framework/polarization.h"
-#include "elements/wavefront.h"
 
 namespace layerlab {
 
@@ -112,9 +112,9 @@ enum class ChromaticAberration { kNone, kThibos };
 // What sets pupil_diameter when the eye asks for "auto" (systems/pupil_size.h):
 // luminance and field default to the display's (compile fills them in).
 struct PupilFromLuminance {
-  std::optional<double> luminance;               // cd/m2; default half the display's peak white luminance
-  std::optional<std::array<double, 2>> field;    // rad, width x height; default the display's field of view
-  double age = 28.58;                            // years
+  std::optional<double> luminance;             // cd/m2; default half the display's peak white luminance
+  std::optional<std::array<double, 2>> field;  // rad, width x height; default the display's field of view
+  double age = 28.58;                          // years
   int eyes = 1;
 };
 

@@ -24,6 +24,9 @@
 // | diffraction         | boolean            | false            | convolve each channel's retinal image with the pupil's diffraction PSF (round: Airy; square: sinc squared) at its wavelength |
 // | next                | element name       | required         | the main lens                            |
 #include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <functional>
 #include <numbers>
 #include <string>
 
@@ -32,6 +35,27 @@
 
 namespace layerlab {
 namespace {
+
+// Thibos's formula and the channels' spectra hold over the visible.
+void RequireVisible(const Params& p, const std::string& key, double wavelength) {
+  if (!(wavelength >= 380e-9 && wavelength <= 780e-9))
+    p.fail(key, "a wavelength must lie in 380 to 780 nm, got " + FormatFixed(wavelength * 1e9, 1) + " nm");
+}
+
+// An optional [R, G, B] of quantities, each passed to `check`; `values` keeps its defaults without the key.
+void ReadPerChannel(Params& p, const std::string& key, Dimension d, const std::string& expected,
+                    const std::function<void(const Params&, const std::string&, double)>& check,
+                    std::array<double, 3>* values) {
+  p.mark_read(key);
+  if (!p.has(key)) return;
+  const nlohmann::json& v = p.raw(key);
+  if (!v.is_array() || v.size() != 3) p.fail(key, expected);
+  Params rgb(nlohmann::json{{"0", v[0]}, {"1", v[1]}, {"2", v[2]}}, p.where(key));
+  for (int c = 0; c < 3; ++c) {
+    (*values)[c] = rgb.quantity(std::to_string(c), d);
+    check(rgb, std::to_string(c), (*values)[c]);
+  }
+}
 
 PupilFromLuminance ReadPupilFromLuminance(Params& p) {
   PupilFromLuminance a;
@@ -56,17 +80,9 @@ void ReadPhysiologicalOptics(Params& p, EyeModel& m) {
                                ? ChromaticAberration::kThibos
                                : ChromaticAberration::kNone;
   m.reference_wavelength = p.quantity("reference_wavelength", Dimension::kLength, m.reference_wavelength);
-  p.require_range("reference_wavelength", m.reference_wavelength, 380e-9, 780e-9, false, false);
-  p.mark_read("channel_wavelengths");
-  if (p.has("channel_wavelengths")) {
-    const nlohmann::json& v = p.raw("channel_wavelengths");
-    if (!v.is_array() || v.size() != 3) p.fail("channel_wavelengths", "expected three wavelengths [R, G, B]");
-    Params rgb(nlohmann::json{{"0", v[0]}, {"1", v[1]}, {"2", v[2]}}, p.where("channel_wavelengths"));
-    for (int c = 0; c < 3; ++c) {
-      m.channel_wavelengths[c] = rgb.quantity(std::to_string(c), Dimension::kLength);
-      rgb.require_range(std::to_string(c), m.channel_wavelengths[c], 380e-9, 780e-9, false, false);
-    }
-  }
+  RequireVisible(p, "reference_wavelength", m.reference_wavelength);
+  ReadPerChannel(p, "channel_wavelengths", Dimension::kLength, "expected three wavelengths [R, G, B]", RequireVisible,
+                 &m.channel_wavelengths);
   p.mark_read("zernike");
   const double measured = p.quantity("zernike_pupil", Dimension::kLength, 0.0);
   if (p.has("zernike")) {
@@ -97,7 +113,9 @@ void ReadPhysiologicalOptics(Params& p, EyeModel& m) {
         if (used != key.size() || j < 0 || j > kMaxZernikeIndex)
           terms.fail(key, "not an OSA/ANSI Zernike index: give j from 0 to " + std::to_string(kMaxZernikeIndex));
         const double c = terms.quantity(key, Dimension::kLength);
-        terms.require_range(key, c, -50e-6, 50e-6, false, false);
+        if (!(std::abs(c) <= 50e-6))
+          terms.fail(key, "a coefficient must lie within 50 um of 0, got " + FormatFixed(c * 1e6, 3) +
+                              " um (a bare number is meters: give \"0.1 um\")");
         if (m.wavefront.coefficients.size() <= size_t(j)) m.wavefront.coefficients.resize(j + 1, 0.0);
         m.wavefront.coefficients[j] = c;
       }
@@ -112,7 +130,11 @@ void ReadPhysiologicalOptics(Params& p, EyeModel& m) {
 
 std::unique_ptr<Element> MakeEye(Params& p) {
   EyeModel m;
-  if (p.has("pupil_diameter") && p.raw("pupil_diameter") == "auto") {
+  const bool word = p.has("pupil_diameter") && p.raw("pupil_diameter").is_string() &&
+                    std::isalpha(static_cast<unsigned char>(p.raw("pupil_diameter").get<std::string>().c_str()[0]));
+  if (word && p.raw("pupil_diameter") != "auto")
+    p.fail("pupil_diameter", "expected a length (\"4 mm\") or \"auto\", got " + p.raw("pupil_diameter").dump());
+  if (word) {
     m.pupil_auto = ReadPupilFromLuminance(p);
   } else {
     m.pupil_diameter = p.quantity("pupil_diameter", Dimension::kLength, m.pupil_diameter);
@@ -149,16 +171,10 @@ std::unique_ptr<Element> MakeEye(Params& p) {
                                         " D is not below " + FormatFixed(m.accommodation_max, 3) +
                                         " D (give [far, near] in diopters, far first)");
   }
-  p.mark_read("chromatic_defocus");
-  if (p.has("chromatic_defocus")) {
-    const nlohmann::json& v = p.raw("chromatic_defocus");
-    if (!v.is_array() || v.size() != 3) p.fail("chromatic_defocus", "expected three powers [R, G, B] in D");
-    Params rgb(nlohmann::json{{"0", v[0]}, {"1", v[1]}, {"2", v[2]}}, p.where("chromatic_defocus"));
-    for (int c = 0; c < 3; ++c) {
-      m.chromatic_defocus[c] = rgb.quantity(std::to_string(c), Dimension::kOpticalPower);
-      rgb.require_range(std::to_string(c), m.chromatic_defocus[c], -5.0, 5.0, false, false);
-    }
-  }
+  ReadPerChannel(
+      p, "chromatic_defocus", Dimension::kOpticalPower, "expected three powers [R, G, B] in D",
+      [](const Params& rgb, const std::string& key, double v) { rgb.require_range(key, v, -5.0, 5.0, false, false); },
+      &m.chromatic_defocus);
   ReadPhysiologicalOptics(p, m);
   auto eyebox = p.quantity_pair("eyebox", Dimension::kLength, {m.eyebox_width, m.eyebox_height});
   m.eyebox_width = eyebox[0];

@@ -67,7 +67,8 @@ class Walker {
     adaptation.eyes = a.eyes;
     const Location where = FindEye().where.child("pupil_diameter");
     if (!(adaptation.luminance > 0))
-      throw Error(where, "\"auto\" needs a luminance at the eye, and the display's peak white is 0: give pupil_luminance");
+      throw Error(where,
+                  "\"auto\" needs a luminance at the eye, and the display's peak white is 0: give pupil_luminance");
     if (!(adaptation.field_area > 0) || !std::isfinite(adaptation.field_area))
       throw Error(where, "\"auto\" needs an adapting field: give pupil_field");
     eye.pupil_diameter = WatsonYellottPupilDiameter(adaptation);
@@ -82,8 +83,8 @@ class Walker {
     const EyeModel& eye = system_.eye;
     const double reach = eye.pupil_diameter * (eye.pupil_shape == PupilShape::kSquare ? std::sqrt(2.0) : 1.0);
     if (!eye.wavefront.empty() && reach > eye.wavefront.pupil_diameter * (1 + 1e-9))
-      system_.warnings.push_back("the eye's pupil reaches " + FormatFixed(reach * 1e3, 2) +
-                                 " mm across, beyond the " + FormatFixed(eye.wavefront.pupil_diameter * 1e3, 2) +
+      system_.warnings.push_back("the eye's pupil reaches " + FormatFixed(reach * 1e3, 2) + " mm across, beyond the " +
+                                 FormatFixed(eye.wavefront.pupil_diameter * 1e3, 2) +
                                  " mm its Zernike coefficients were measured at: the wavefront is extrapolated there");
   }
 

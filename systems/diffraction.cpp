@@ -74,14 +74,16 @@ void ApplyDiffraction(PupilShape shape, double pupil_diameter, const std::array<
       const double fy = ki / (ny * grid.resolution);
       for (int j = 0; j < nx; ++j) {
         const int kj = j <= nx / 2 ? j : j - nx;
-        field[size_t(i) * nx + j] *= DiffractionOtf(shape, pupil_diameter, wavelengths[c], kj / (nx * grid.resolution), fy);
+        field[size_t(i) * nx + j] *=
+            DiffractionOtf(shape, pupil_diameter, wavelengths[c], kj / (nx * grid.resolution), fy);
       }
     }
     for (int j = 0; j < nx; ++j) Transform(fft, &field[j], ny, nx, true, in, out);
     for (int i = 0; i < grid.rows; ++i) {
       Transform(fft, &field[size_t(i + pad) * nx], nx, 1, true, in, out);
       for (int j = 0; j < grid.cols; ++j)
-        image->pixels[(size_t(i) * grid.cols + j) * 3 + c] = static_cast<float>(field[size_t(i + pad) * nx + j + pad].real());
+        image->pixels[(size_t(i) * grid.cols + j) * 3 + c] =
+            static_cast<float>(field[size_t(i + pad) * nx + j + pad].real());
     }
   }
 }

@@ -190,6 +190,18 @@ Image RetinaOfDisplay(const DisplayModel& model, const Patterns& t, const Retina
   for (int j = 0; j < retina.cols; ++j) tan_x[j] = std::tan(retina.angle_x(j));
   for (int i = 0; i < retina.rows; ++i) tan_y[i] = std::tan(retina.angle_y(i));
   const bool same_focus = accommodation[0] == accommodation[1] && accommodation[1] == accommodation[2];
+  bool one_tap = true;
+  for (size_t b = 0; b < model.branch_count(); ++b) one_tap = one_tap && OneTapBranch(model, b);
+  if (one_tap && !same_focus) {
+    // A focus per channel (chromatic aberration): each channel from the fast
+    // path at its own focus, three float passes instead of the general path.
+    for (int c = 0; c < 3; ++c) {
+      const Image at_focus =
+          RetinaOfDisplay(model, t, retina, pupil, {accommodation[c], accommodation[c], accommodation[c]});
+      for (size_t k = c; k < image.pixels.size(); k += 3) image.pixels[k] = at_focus.pixels[k];
+    }
+    return image;
+  }
   const int foci = same_focus ? 1 : 3;
   const size_t layers = model.layer_count();
   const double inverse_count = 1.0 / pupil.size();
@@ -211,9 +223,7 @@ Image RetinaOfDisplay(const DisplayModel& model, const Patterns& t, const Retina
           table.rows[i] = s.Row(tan_y[i] + pupil[p].y * table.blur - pupil[p].slope_y);
       }
 
-  bool one_tap = same_focus;
-  for (size_t b = 0; b < model.branch_count(); ++b) one_tap = one_tap && OneTapBranch(model, b);
-  if (one_tap) {
+  if (one_tap && same_focus) {
     NearestRetina(model, t, retina, pupil, tables, &image);
     return image;
   }
@@ -235,12 +245,10 @@ Image RetinaOfDisplay(const DisplayModel& model, const Patterns& t, const Retina
                 value[k * 3 + c] = Read(table.rows[i], table.cols[j], t[k], c);
                 continue;
               }
-              value[k * 3 + c] =
-                  s.separable()
-                      ? Read(table.rows[i], table.cols[j], t[k], c)
-                      : Read(s.At(tan_x[j] + pupil[p].x * table.blur - pupil[p].slope_x,
-                                   tan_y[i] + pupil[p].y * table.blur - pupil[p].slope_y),
-                              t[k], c);
+              value[k * 3 + c] = s.separable() ? Read(table.rows[i], table.cols[j], t[k], c)
+                                               : Read(s.At(tan_x[j] + pupil[p].x * table.blur - pupil[p].slope_x,
+                                                           tan_y[i] + pupil[p].y * table.blur - pupil[p].slope_y),
+                                                      t[k], c);
             }
           }
           for (size_t b = 0; b < model.branch_count(); ++b) {

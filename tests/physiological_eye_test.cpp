@@ -76,7 +76,7 @@ TEST(PupilSize, WatsonYellottAgainstTheEquationByHand) {
     double mm;
   };
   const Row rows[] = {{100, 400, 28.58, 1, 4.955766}, {100, 400, 28.58, 2, 3.676422}, {1, 900, 45, 2, 5.240087},
-                      {10, 100, 60, 1, 5.397962},     {1000, 1000, 20, 2, 2.597547}, {50, 200, 30, 1, 5.697015}};
+                      {10, 100, 60, 1, 5.397962},     {1000, 1000, 20, 2, 2.597547},  {50, 200, 30, 1, 5.697015}};
   for (const Row& r : rows) {
     PupilAdaptation a{r.luminance, r.area, r.age, r.eyes};
     EXPECT_NEAR(WatsonYellottPupilDiameter(a) * 1e3, r.mm, 2e-6) << r.luminance << " cd/m2, " << r.area << " deg2";
@@ -119,8 +119,8 @@ TEST(Zernike, OsaIndicesAndPolynomialsByHand) {
   EXPECT_THROW(ZernikeOrderOf(28), Error);
   const double x = 0.3, y = -0.5, r2 = x * x + y * y, t = std::atan2(y, x);
   EXPECT_NEAR(Zernike(4, x, y), std::sqrt(3.0) * (2 * r2 - 1), 1e-12);
-  EXPECT_NEAR(Zernike(3, x, y), std::sqrt(6.0) * 2 * x * y, 1e-12);      // rho^2 sin 2 theta
-  EXPECT_NEAR(Zernike(5, x, y), std::sqrt(6.0) * (x * x - y * y), 1e-12);  // rho^2 cos 2 theta
+  EXPECT_NEAR(Zernike(3, x, y), std::sqrt(6.0) * 2 * x * y, 1e-12);         // rho^2 sin 2 theta
+  EXPECT_NEAR(Zernike(5, x, y), std::sqrt(6.0) * (x * x - y * y), 1e-12);   // rho^2 cos 2 theta
   EXPECT_NEAR(Zernike(7, x, y), std::sqrt(8.0) * (3 * r2 - 2) * y, 1e-12);  // vertical coma
   EXPECT_NEAR(Zernike(8, x, y), std::sqrt(8.0) * (3 * r2 - 2) * x, 1e-12);  // horizontal coma
   EXPECT_NEAR(Zernike(12, x, y), std::sqrt(5.0) * (6 * r2 * r2 - 6 * r2 + 1), 1e-12);
@@ -191,8 +191,8 @@ TEST(Zernike, PureDefocusIsTheBlurLawAtTheConvertedPower) {
 std::vector<double> GratingCurve(const EyeModel& eye, double dt, double cpd, bool vertical_bars,
                                  const std::vector<double>& accommodation) {
   const double field = 8 * kDeg, resolution = 0.01 * kDeg;
-  RetinaGrid retina = vertical_bars ? MakeRetinaGrid(field, resolution, resolution)
-                                    : MakeRetinaGrid(resolution, field, resolution);
+  RetinaGrid retina =
+      vertical_bars ? MakeRetinaGrid(field, resolution, resolution) : MakeRetinaGrid(resolution, field, resolution);
   const double z = 1 / dt;
   SceneRadiance grating = [&](const PupilPoint& u, double dx, double dy) {
     const double s = vertical_bars ? u.x + dx * z : u.y + dy * z;

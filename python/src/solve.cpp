@@ -15,12 +15,12 @@
 #include "analysis/target_source.h"
 #include "python/src/bindings.h"
 #include "python/src/json_convert.h"
-#include "systems/diffraction.h"
 #include "python/src/numpy_view.h"
 #include "python/src/path_arg.h"
 #include "solvers/solution_writer.h"
 #include "solvers/solve_config.h"
 #include "systems/compile.h"
+#include "systems/diffraction.h"
 #include "systems/layer_sampler.h"
 #include "systems/retina.h"
 
