@@ -104,13 +104,10 @@ void ReadPhysiologicalOptics(Params& p, EyeModel& m) {
       Params terms(z, p.where("zernike"));
       m.wavefront.pupil_diameter = measured;
       for (const auto& [key, value] : z.items()) {
-        size_t used = 0;
-        int j = -1;
-        try {
-          j = std::stoi(key, &used);
-        } catch (const std::exception&) {
-        }
-        if (used != key.size() || j < 0 || j > kMaxZernikeIndex)
+        const bool digits = !key.empty() && key.size() <= 2 &&
+                            std::all_of(key.begin(), key.end(), [](char ch) { return ch >= '0' && ch <= '9'; });
+        const int j = digits ? std::stoi(key) : -1;
+        if (j < 0 || j > kMaxZernikeIndex)
           terms.fail(key, "not an OSA/ANSI Zernike index: give j from 0 to " + std::to_string(kMaxZernikeIndex));
         const double c = terms.quantity(key, Dimension::kLength);
         if (!(std::abs(c) <= 50e-6))
@@ -126,6 +123,8 @@ void ReadPhysiologicalOptics(Params& p, EyeModel& m) {
     p.fail("zernike_pupil", "only with zernike coefficients");
   }
   m.diffraction = p.boolean("diffraction", false);
+  if (m.diffraction && !m.pupil_auto && m.pupil_diameter == 0)
+    p.fail("diffraction", "a pinhole pupil (pupil_diameter 0) has no diffraction-limited image");
 }
 
 std::unique_ptr<Element> MakeEye(Params& p) {

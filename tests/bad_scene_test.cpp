@@ -236,6 +236,12 @@ const BadScene kCases[] = {
      "scene.json: /elements/0/channel_wavelengths/2: a wavelength must lie in 380 to 780 nm, got 46.5 nm"},
     {"DiffractionNotABoolean", kMul, [](json& s) { ElementNamed(s, "eye")["diffraction"] = "airy"; },
      "scene.json: /elements/0/diffraction: expected true or false, got a string \"airy\""},
+    {"DiffractionThroughAPinhole", kMul,
+     [](json& s) {
+       ElementNamed(s, "eye")["pupil_diameter"] = "0 mm";
+       ElementNamed(s, "eye")["diffraction"] = true;
+     },
+     "scene.json: /elements/0/diffraction: a pinhole pupil (pupil_diameter 0) has no diffraction-limited image"},
     {"SpectralTableMissesAChannel", "hybrid_pbs_hwp.json",
      [](json& s) {
        ElementNamed(s, "pbs")["transmittance_p"] = {{"wavelengths", {"500 nm", "700 nm"}}, {"values", {0.9, 0.9}}};

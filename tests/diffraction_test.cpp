@@ -2,6 +2,7 @@
 // first zero and profile (Bessel J1, computed here, not from the OTF the code
 // multiplies by), the square pupil's sinc^2, and the MTF of a grating.
 #include <cmath>
+#include <functional>
 #include <numbers>
 
 #include "analysis/fourier.h"
@@ -30,41 +31,38 @@ double FirstZero(const Image& image, const RetinaGrid& g, int c) {
   return NAN;
 }
 
-TEST(Diffraction, RoundPupilIsTheAiryPatternWithItsFirstZeroAt1Point22LambdaOverD) {
-  const double d = 2e-3;
-  const std::array<double, 3> lambda = {650e-9, 550e-9, 450e-9};
-  RetinaGrid g = MakeRetinaGrid(0.3 * kDeg, 0.3 * kDeg, 0.0005 * kDeg);
+// The image of a point through `shape` of diameter d at three wavelengths:
+// its first zero along the central row at zero_at x lambda / d (within
+// `tolerance` samples), and its profile relative to the peak at `offsets`
+// samples out against profile(x), x = pi d theta / lambda.
+void CheckPointSpread(PupilShape shape, double d, const std::array<double, 3>& lambda, const RetinaGrid& g,
+                      double zero_at, double tolerance, const std::function<double(double)>& profile,
+                      const std::vector<int>& offsets) {
   Image image = PointImage(g);
-  ApplyDiffraction(PupilShape::kRound, d, lambda, g, &image);
+  ApplyDiffraction(shape, d, lambda, g, &image);
+  const int i = g.rows / 2, j0 = g.cols / 2;
   for (int c = 0; c < 3; ++c) {
-    // j1's first zero 3.831706 / pi = 1.219670.
-    EXPECT_NEAR(FirstZero(image, g, c), 1.219670 * lambda[c] / d, 0.02 * g.resolution) << "channel " << c;
-    // The profile [2 J1(x) / x]^2, x = pi D theta / lambda, relative to the peak.
-    const int i = g.rows / 2, j0 = g.cols / 2;
-    const double peak = image.at(i, j0, c);
-    for (int k : {5, 12, 20, 31}) {
+    EXPECT_NEAR(FirstZero(image, g, c), zero_at * lambda[c] / d, tolerance * g.resolution) << "channel " << c;
+    for (int k : offsets) {
       const double x = std::numbers::pi * d * (k * g.resolution) / lambda[c];
-      const double airy = std::pow(2 * std::cyl_bessel_j(1.0, x) / x, 2);
-      EXPECT_NEAR(image.at(i, j0 + k, c) / peak, airy, 2e-3) << "channel " << c << ", " << k << " samples out";
+      EXPECT_NEAR(image.at(i, j0 + k, c) / image.at(i, j0, c), profile(x), 2e-3)
+          << "channel " << c << ", " << k << " samples out";
     }
   }
 }
 
+TEST(Diffraction, RoundPupilIsTheAiryPatternWithItsFirstZeroAt1Point22LambdaOverD) {
+  // j1's first zero 3.831706 / pi = 1.219670; the profile [2 J1(x) / x]^2.
+  CheckPointSpread(PupilShape::kRound, 2e-3, {650e-9, 550e-9, 450e-9},
+                   MakeRetinaGrid(0.3 * kDeg, 0.3 * kDeg, 0.0005 * kDeg), 1.219670, 0.02,
+                   [](double x) { return std::pow(2 * std::cyl_bessel_j(1.0, x) / x, 2); }, {5, 12, 20, 31});
+}
+
 TEST(Diffraction, SquarePupilIsSincSquaredWithZerosAtLambdaOverD) {
-  const double d = 3e-3;
-  const std::array<double, 3> lambda = {612e-9, 549e-9, 465e-9};
-  RetinaGrid g = MakeRetinaGrid(0.2 * kDeg, 0.2 * kDeg, 0.0004 * kDeg);
-  Image image = PointImage(g);
-  ApplyDiffraction(PupilShape::kSquare, d, lambda, g, &image);
-  for (int c = 0; c < 3; ++c) {
-    // sinc^2's tails (1 / x^2) wrap around the padded image and lift its zeros a little.
-    EXPECT_NEAR(FirstZero(image, g, c), lambda[c] / d, 0.05 * g.resolution) << "channel " << c;
-    const int i = g.rows / 2, j0 = g.cols / 2;
-    for (int k : {7, 15}) {
-      const double x = std::numbers::pi * d * (k * g.resolution) / lambda[c];
-      EXPECT_NEAR(image.at(i, j0 + k, c) / image.at(i, j0, c), std::pow(std::sin(x) / x, 2), 2e-3);
-    }
-  }
+  // sinc^2's tails (1 / x^2) wrap around the padded image and lift its zeros a little: 0.05 samples.
+  CheckPointSpread(PupilShape::kSquare, 3e-3, {612e-9, 549e-9, 465e-9},
+                   MakeRetinaGrid(0.2 * kDeg, 0.2 * kDeg, 0.0004 * kDeg), 1.0, 0.05,
+                   [](double x) { return std::pow(std::sin(x) / x, 2); }, {7, 15});
 }
 
 TEST(Diffraction, GratingModulationIsTheDiffractionLimitedMtf) {
