@@ -16,6 +16,7 @@
 #include "framework/version.h"
 #include "solvers/solve_config.h"
 #include "systems/compile.h"
+#include "systems/diffraction.h"
 #include "systems/display_model.h"
 #include "systems/lightfield_radiance.h"
 #include "systems/retina.h"
@@ -37,6 +38,15 @@ std::vector<double> CentralRow(const Image& image) {
   for (int j = 0; j < image.width; ++j)
     for (int c = 0; c < 3; ++c) row[j] += kLuminanceWeights[c] * image.at(i, j, c);
   return row;
+}
+
+// Two eyes that see alike (the parts the retinal images read).
+bool SameEye(const EyeModel& a, const EyeModel& b) {
+  return EyeModelLine(a) == EyeModelLine(b) && a.pupil_diameter == b.pupil_diameter &&
+         a.pupil_samples_x == b.pupil_samples_x && a.pupil_samples_y == b.pupil_samples_y &&
+         a.pupil_sampling == b.pupil_sampling && a.pupil_seed == b.pupil_seed &&
+         a.wavefront.coefficients == b.wavefront.coefficients && a.chromatic_defocus == b.chromatic_defocus &&
+         a.channel_wavelengths == b.channel_wavelengths;
 }
 
 bool IsNatural(const ContrastCurve& c) { return c.display.rfind("natural", 0) == 0; }
@@ -114,8 +124,12 @@ std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displ
     if (a > o.accommodation_max + 1e-9) break;
     accommodation.push_back(a);
   }
-  const EyeModel& eye = displays.front().system.eye;
-  std::vector<PupilPoint> pupil = PupilSamples(eye);
+  // Each display is seen by its own scene's eye (an "auto" pupil follows its luminance);
+  // the continuous plane by the first display's.
+  const EyeModel& first_eye = displays.front().system.eye;
+  std::vector<std::vector<PupilPoint>> pupils;
+  for (const ContrastDisplay& d : displays) pupils.push_back(PupilSamples(d.system.eye));
+  const std::vector<PupilPoint>& first_pupil = pupils.front();
   const RetinaGrid retina =
       MakeRetinaGrid(o.retina_field * kDeg, 3 * o.retina_resolution * kDeg, o.retina_resolution * kDeg);
   RetinaGrid shifted = retina;  // for the peaks' sampling uncertainty
@@ -138,8 +152,9 @@ std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displ
   // thread little of its own to do, and serial set-up (its tables and
   // views) keeps it waiting. Inside the loop an image is made on one
   // thread, the same values as made alone.
-  auto sweep = [&](const RetinalImage& image, double f, double reference, ContrastCurve* curve) {
+  auto sweep = [&](const EyeModel& eye, const RetinalImage& image, double f, double reference, ContrastCurve* curve) {
     const int states = static_cast<int>(accommodation.size());
+    curve->reference_amplitude = reference;
     curve->contrast.assign(states, 0.0);
     if (o.peak_uncertainty) curve->contrast_shifted.assign(states, 0.0);
     std::exception_ptr error;
@@ -176,12 +191,15 @@ std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displ
       SceneRadiance plane = [&](const PupilPoint& u, double dx, double dy) {
         return texture->Evaluate(u.x + dx / dt, u.y + dy / dt);
       };
-      auto natural_image = [&](const SceneRadiance& scene) -> RetinalImage {
-        return [scene, &pupil](const RetinaGrid& grid, const std::array<double, 3>& focus) {
-          return RetinaOfScene(scene, grid, pupil, focus);
+      auto natural_image = [&](const SceneRadiance& scene, const EyeModel& eye,
+                               const std::vector<PupilPoint>& pupil) -> RetinalImage {
+        return [scene, &pupil, &eye](const RetinaGrid& grid, const std::array<double, 3>& focus) {
+          Image image = RetinaOfScene(scene, grid, pupil, focus);
+          ApplyEyeOptics(eye, grid, &image);
+          return image;
         };
       };
-      auto reference_of = [&](const RetinalImage& natural) {
+      auto reference_of = [&](const EyeModel& eye, const RetinalImage& natural) {
         double r = amplitude(natural(retina, ChannelAccommodation(eye, dt)), retina, f);
         if (!(r > 0)) throw Error(std::string("contrast: the target has no component at ") + label);
         return r;
@@ -190,21 +208,26 @@ std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displ
       struct Drawn {
         LightFieldGeometry geometry;
         Sampling sampling;
+        const EyeModel* eye;
       };
       std::vector<Drawn> drawn;
       double continuous_reference = 0;
       if (o.reference == ContrastReference::kContinuous) {
         auto start = std::chrono::steady_clock::now();
-        RetinalImage natural = natural_image(plane);
-        continuous_reference = reference_of(natural);
+        RetinalImage natural = natural_image(plane, first_eye, first_pupil);
+        continuous_reference = reference_of(first_eye, natural);
         ContrastCurve c = blank("natural", dt, f);
         c.solver = "-";
-        sweep(natural, f, continuous_reference, &c);
+        c.eye = EyeModelLine(first_eye);
+        sweep(first_eye, natural, f, continuous_reference, &c);
         c.sweep_seconds = Seconds(start);
         curves.push_back(std::move(c));
       }
 
-      for (const ContrastDisplay& d : displays) {
+      for (size_t di = 0; di < displays.size(); ++di) {
+        const ContrastDisplay& d = displays[di];
+        const EyeModel& eye = d.system.eye;
+        const std::vector<PupilPoint>& pupil = pupils[di];
         if (o.progress) o.progress(d.name + ": " + label);
         if (progress) progress->Update(solved++, "solves; now " + d.name + ": " + label);
         LightFieldGeometry g = DisplayLightFieldGeometry(d.system, dt);
@@ -218,23 +241,25 @@ std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displ
         double reference = continuous_reference;
         if (o.reference == ContrastReference::kSampledTarget) {
           auto start = std::chrono::steady_clock::now();
-          RetinalImage natural = natural_image(LightFieldRadiance(target, d.sampling));
-          reference = reference_of(natural);
+          RetinalImage natural = natural_image(LightFieldRadiance(target, d.sampling), eye, pupil);
+          reference = reference_of(eye, natural);
           bool seen = std::any_of(drawn.begin(), drawn.end(), [&](const Drawn& k) {
-            return k.sampling == d.sampling && SameGeometry(k.geometry, g);
+            return k.sampling == d.sampling && SameGeometry(k.geometry, g) && SameEye(*k.eye, eye);
           });
           if (!seen) {
             // One natural curve per distinct target; named after the display when it is not the first.
             ContrastCurve c = blank(drawn.empty() ? "natural" : "natural (" + d.name + ")", dt, f);
             c.solver = "-";
-            sweep(natural, f, reference, &c);
+            c.eye = EyeModelLine(eye);
+            sweep(eye, natural, f, reference, &c);
             c.sweep_seconds = Seconds(start);
             curves.push_back(std::move(c));
-            drawn.push_back({g, d.sampling});
+            drawn.push_back({g, d.sampling, &eye});
           }
         }
 
         ContrastCurve curve = blank(d.name, dt, f);
+        curve.eye = EyeModelLine(eye);
         curve.solver = d.solver.empty() ? DefaultSolverFor(d.system) : d.solver;
         SolverOptions options = d.options_given ? d.options : SolverRegistry::Builtins().find(curve.solver)->defaults;
         Patterns t;
@@ -244,9 +269,14 @@ std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displ
         curve.solve_seconds = Seconds(start);
         curve.psnr_db = report.final_psnr_db;
         start = std::chrono::steady_clock::now();
-        sweep([&](const RetinaGrid& grid,
-                  const std::array<double, 3>& focus) { return RetinaOfDisplay(model, t, grid, pupil, focus); },
-              f, reference, &curve);
+        sweep(
+            eye,
+            [&](const RetinaGrid& grid, const std::array<double, 3>& focus) {
+              Image image = RetinaOfDisplay(model, t, grid, pupil, focus);
+              ApplyEyeOptics(eye, grid, &image);
+              return image;
+            },
+            f, reference, &curve);
         curve.sweep_seconds = Seconds(start);
         curves.push_back(std::move(curve));
       }
@@ -282,6 +312,26 @@ std::string PeakTable(const std::vector<ContrastCurve>& curves) {
   std::string out;
   out += "# " + VersionLine() + "\n";
   if (!curves.empty()) out += "# " + curves.front().convention + "\n";
+  std::vector<std::string> eyes;  // each eye once, in order
+  for (const ContrastCurve& c : curves)
+    if (std::find(eyes.begin(), eyes.end(), c.eye) == eyes.end()) eyes.push_back(c.eye);
+  for (const std::string& eye : eyes) {
+    std::string seen_by;
+    if (eyes.size() > 1)
+      for (const ContrastCurve& c : curves)
+        if (c.eye == eye && !IsNatural(c) && seen_by.find(" " + c.display + ",") == std::string::npos)
+          seen_by += " " + c.display + ",";
+    out += "# eye" + (seen_by.empty() ? "" : " of" + seen_by.substr(0, seen_by.size() - 1)) + ": " + eye + "\n";
+  }
+  // What the normalization divides by: natural viewing focused at the target.
+  for (const ContrastCurve& c : curves)
+    if (IsNatural(c)) {
+      char line[200];
+      std::snprintf(line, sizeof line,
+                    "# %s at %.2f D, %.1f cpd: amplitude in focus %.4f (the default grating's: 0.5)\n",
+                    c.display.c_str(), c.target_diopters, c.frequency, c.reference_amplitude);
+      out += line;
+    }
   out +=
       "display                  target (D)  f (cpd)  peak (D)  parabola (D)  +- (D)  placed  peak contrast  at target  "
       "solver                 PSNR (dB)  solve (s)  sweep (s)\n";

@@ -80,12 +80,14 @@ struct ContrastOptions {
 struct ContrastCurve {
   std::string convention;  // ConventionLabel(reference, grating)
   std::string display;     // "natural" for natural viewing
+  std::string eye;         // EyeModelLine of the eye that saw it
   double target_diopters = 0, frequency = 0;
   std::vector<double> accommodation, contrast;
   std::vector<double> contrast_shifted;  // the retina moved half a sample; empty without peak_uncertainty
   Peak peak;
   PeakEstimate estimate;
-  double at_target = 0;  // contrast with the eye focused at D_t (interpolated)
+  double at_target = 0;            // contrast with the eye focused at D_t (interpolated)
+  double reference_amplitude = 0;  // what contrast divides by: natural viewing's amplitude at D_t
   double solve_seconds = 0, sweep_seconds = 0, psnr_db = 0;
   std::string solver;
 };

@@ -9,6 +9,7 @@
 
 #include "analysis/layout_svg.h"
 #include "analysis/svg_plot.h"
+#include "systems/retina.h"
 #include "systems/system_report.h"
 
 namespace layerlab {
@@ -196,6 +197,7 @@ std::string SystemSection(const RunReportPage& page) {
   h += "<tr><th class=\"l\">eye</th><td>pupil " + F(s.eye.pupil_diameter * 1e3, 1) + " mm, eyebox " +
        F(s.eye.eyebox_width * 1e3, 1) + " &times; " + F(s.eye.eyebox_height * 1e3, 1) + " mm, " +
        std::to_string(s.eye.views_x) + " &times; " + std::to_string(s.eye.views_y) + " views</td></tr>\n";
+  h += "<tr><th class=\"l\">eye model</th><td>" + Escape(EyeModelLine(s.eye)) + "</td></tr>\n";
   if (!s.lens.empty())
     h += "<tr><th class=\"l\">lens</th><td>" + Escape(s.lens) + ", f = " + F(s.focal_length * 1e3, 2) +
          " mm</td></tr>\n";
@@ -295,6 +297,10 @@ std::string ContrastSection(const RunReportPage& page) {
        "band).</p>\n";
   h += "<div class=\"grid\">" + Figure(page.contrast_plot, "", "plot") + "</div>\n";
   if (!page.contrast.empty()) h += "<p class=\"muted\">" + Escape(page.contrast.front().convention) + ".</p>\n";
+  std::vector<std::string> eyes;  // the eye model of the curves, each once
+  for (const ContrastCurve& c : page.contrast)
+    if (std::find(eyes.begin(), eyes.end(), c.eye) == eyes.end()) eyes.push_back(c.eye);
+  for (const std::string& eye : eyes) h += "<p class=\"muted\">Eye: " + Escape(eye) + ".</p>\n";
   h += "<h3>Peaks</h3>\n<table><tr><th class=\"l\">display</th><th>target (D)</th><th>f (cpd)</th><th>peak (D)</th>"
        "<th>peak contrast</th><th>at target</th><th class=\"l\">solver</th><th>PSNR (dB)</th><th>solve (s)</th></tr>\n";
   for (const ContrastCurve& c : page.contrast)

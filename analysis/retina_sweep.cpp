@@ -13,6 +13,7 @@
 #include "framework/exr_image.h"
 #include "framework/png_writer.h"
 #include "framework/polarization.h"
+#include "systems/diffraction.h"
 
 namespace layerlab {
 namespace {
@@ -66,10 +67,12 @@ std::vector<RetinaStateResult> WriteRetinaSweep(
       r[s].name = RetinaStateName(r[s].diopters);
       const auto focus = ChannelAccommodation(system.eye, r[s].diopters);
       display[s] = RetinaOfDisplay(model, t, grid, pupil, focus);
+      ApplyEyeOptics(system.eye, grid, &display[s]);
       r[s].display_mean_cd_m2 = MeanLuminance(display[s]) * white;
       r[s].natural_mean_cd_m2 = NAN;
       if (natural) {
         seen[s] = RetinaOfScene(natural, grid, pupil, focus);
+        ApplyEyeOptics(system.eye, grid, &seen[s]);
         r[s].natural_mean_cd_m2 = MeanLuminance(seen[s]) * white;
       }
       r[s].seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "elements/wavefront.h"
 #include "framework/error.h"
 #include "framework/params.h"
 #include "framework/polarization.h"
@@ -106,6 +107,16 @@ class InlineOpticElement : public Element {
 
 enum class PupilShape { kSquare, kRound };
 enum class PupilSampling { kGrid, kJittered, kPoisson };
+enum class ChromaticAberration { kNone, kThibos };
+
+// What sets pupil_diameter when the eye asks for "auto" (systems/pupil_size.h):
+// luminance and field default to the display's (compile fills them in).
+struct PupilFromLuminance {
+  std::optional<double> luminance;             // cd/m2; default half the display's peak white luminance
+  std::optional<std::array<double, 2>> field;  // rad, width x height; default the display's field of view
+  double age = 28.58;                          // years
+  int eyes = 1;
+};
 
 // The viewer: pupil, its sampling for retinal images, where it sits, and the
 // eyebox and views the target light field is sampled over.
@@ -120,6 +131,14 @@ struct EyeModel {
   std::array<double, 3> chromatic_defocus = {0, 0, 0};      // D added per channel
   double eyebox_width = 6e-3, eyebox_height = 6e-3;         // m
   int views_x = 13, views_y = 13;
+  // The physiological options; their defaults are the ideal eye.
+  ChromaticAberration chromatic_aberration = ChromaticAberration::kNone;
+  double reference_wavelength = 555e-9;                             // m, in focus at the accommodation
+  std::array<double, 3> channel_wavelengths = kChannelWavelengths;  // m, the channels' dominant wavelengths
+  std::optional<PupilFromLuminance> pupil_auto;                     // pupil_diameter "auto"
+  double pupil_luminance_used = 0, pupil_field_area_used = 0;       // cd/m2, deg2: what compile gave "auto"
+  Wavefront wavefront;
+  bool diffraction = false;
 };
 
 class EyeElement : public Element {

@@ -2,7 +2,7 @@
 //
 // | key                 | type               | default          | meaning                                  |
 // |---------------------|--------------------|------------------|------------------------------------------|
-// | pupil_diameter      | length             | 4 mm             | side of a square / diameter of a round pupil; 0 = pinhole |
+// | pupil_diameter      | length, or auto    | 4 mm             | side of a square / diameter of a round pupil; 0 = pinhole; auto: from the luminance at the eye and the field size by the unified formula of Watson and Yellott (2012, J. Vision 12(10):12) |
 // | pupil_shape         | square, round      | square           | the paper uses a square pupil            |
 // | pupil_samples       | [x, y] integers    | [9, 9]           | pupil points for retinal images          |
 // | pupil_sampling      | grid, jittered, poisson | grid        | how those points are placed              |
@@ -12,8 +12,23 @@
 // | chromatic_defocus   | [r, g, b] optical powers | [0, 0, 0]  | defocus added per channel (longitudinal chromatic aberration) |
 // | eyebox              | [length, length]   | [6 mm, 6 mm]     | width, height the views cover            |
 // | views               | [x, y] integers    | [13, 13]         | views of target light fields             |
+// | chromatic_aberration | none, thibos      | none             | thibos: each channel's defocus from its wavelength by the chromatic eye of Thibos et al. (1992, Appl. Opt. 31:3594), Rx = 1.68524 - 0.63346 / (lambda_um - 0.21410) D, relative to reference_wavelength; added to chromatic_defocus |
+// | reference_wavelength | length            | 555 nm           | the wavelength in focus at the accommodation (thibos) |
+// | channel_wavelengths | [r, g, b] lengths  | [612, 549, 465] nm | the channels' dominant wavelengths, for thibos and diffraction (the spectral tables are read at the defaults) |
+// | pupil_luminance     | luminance          | half the display's peak white | pupil_diameter "auto": the luminance at the eye |
+// | pupil_field         | [angle, angle]     | the display's field of view | pupil_diameter "auto": width, height of the adapting field (its area counts) |
+// | pupil_age           | number, years      | 28.58            | pupil_diameter "auto": the observer's age, 20 to 83 (28.58, the formula's reference age, has no age term) |
+// | pupil_eyes          | 1 or 2             | 1                | pupil_diameter "auto": eyes that see the field (1 attenuates the flux ten times) |
+// | zernike             | {"j": length}, or a population name | none | wavefront aberration, OSA/ANSI single index j 0 to 27 to coefficient ("0.1 um"); or salmon_van_de_pol_2006: the mean spherical aberration Z12 = 0.13 um at 6 mm of 2560 normal eyes (Salmon and van de Pol 2006, J. Cataract Refract. Surg. 32:2064); each pupil ray deviated by the wavefront's slope |
+// | zernike_pupil       | length             | required with coefficients | the pupil diameter the coefficients were measured at (the wavefront is evaluated at r over its radius) |
+// | diffraction         | boolean            | false            | convolve each channel's retinal image with the pupil's diffraction PSF (round: Airy; square: sinc squared) at its wavelength |
 // | next                | element name       | required         | the main lens                            |
 #include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <functional>
+#include <numbers>
+#include <string>
 
 #include "elements/element.h"
 #include "elements/registry.h"
@@ -21,10 +36,112 @@
 namespace layerlab {
 namespace {
 
+// Thibos's formula and the channels' spectra hold over the visible.
+void RequireVisible(const Params& p, const std::string& key, double wavelength) {
+  if (!(wavelength >= 380e-9 && wavelength <= 780e-9))
+    p.fail(key, "a wavelength must lie in 380 to 780 nm, got " + FormatFixed(wavelength * 1e9, 1) + " nm");
+}
+
+// An optional [R, G, B] of quantities, each passed to `check`; `values` keeps its defaults without the key.
+void ReadPerChannel(Params& p, const std::string& key, Dimension d, const std::string& expected,
+                    const std::function<void(const Params&, const std::string&, double)>& check,
+                    std::array<double, 3>* values) {
+  p.mark_read(key);
+  if (!p.has(key)) return;
+  const nlohmann::json& v = p.raw(key);
+  if (!v.is_array() || v.size() != 3) p.fail(key, expected);
+  Params rgb(nlohmann::json{{"0", v[0]}, {"1", v[1]}, {"2", v[2]}}, p.where(key));
+  for (int c = 0; c < 3; ++c) {
+    (*values)[c] = rgb.quantity(std::to_string(c), d);
+    check(rgb, std::to_string(c), (*values)[c]);
+  }
+}
+
+PupilFromLuminance ReadPupilFromLuminance(Params& p) {
+  PupilFromLuminance a;
+  if (double l = p.quantity("pupil_luminance", Dimension::kLuminance, 0.0); p.has("pupil_luminance")) {
+    p.require_range("pupil_luminance", l, 0.0, 1e7, true, false);
+    a.luminance = l;
+  }
+  auto field = p.quantity_pair("pupil_field", Dimension::kAngle, {0.0, 0.0});
+  if (p.has("pupil_field")) {
+    p.require_range("pupil_field", std::min(field[0], field[1]), 0.0, std::numbers::pi, true, false);
+    p.require_range("pupil_field", std::max(field[0], field[1]), 0.0, std::numbers::pi, true, false);
+    a.field = field;
+  }
+  a.age = p.quantity("pupil_age", Dimension::kFraction, a.age);
+  p.require_range("pupil_age", a.age, 20.0, 83.0, false, false);
+  a.eyes = static_cast<int>(p.integer("pupil_eyes", 1, 2, a.eyes));
+  return a;
+}
+
+void ReadPhysiologicalOptics(Params& p, EyeModel& m) {
+  m.chromatic_aberration = p.choice("chromatic_aberration", {"none", "thibos"}, "none") == "thibos"
+                               ? ChromaticAberration::kThibos
+                               : ChromaticAberration::kNone;
+  m.reference_wavelength = p.quantity("reference_wavelength", Dimension::kLength, m.reference_wavelength);
+  RequireVisible(p, "reference_wavelength", m.reference_wavelength);
+  ReadPerChannel(p, "channel_wavelengths", Dimension::kLength, "expected three wavelengths [R, G, B]", RequireVisible,
+                 &m.channel_wavelengths);
+  p.mark_read("zernike");
+  const double measured = p.quantity("zernike_pupil", Dimension::kLength, 0.0);
+  if (p.has("zernike")) {
+    const nlohmann::json& z = p.raw("zernike");
+    if (z.is_string()) {
+      const Wavefront* population = PopulationWavefront(z.get<std::string>());
+      if (!population) {
+        std::string names;
+        for (const std::string& n : PopulationWavefrontNames()) names += (names.empty() ? "" : ", ") + n;
+        p.fail("zernike", "unknown population \"" + z.get<std::string>() + "\"; known: " + names +
+                              " (or give {\"j\": coefficient} with zernike_pupil)");
+      }
+      if (p.has("zernike_pupil")) p.fail("zernike_pupil", "a population's coefficients carry their own pupil");
+      m.wavefront = *population;
+    } else if (z.is_object()) {
+      if (!p.has("zernike_pupil"))
+        p.fail("zernike", "coefficients need zernike_pupil, the pupil diameter they were measured at");
+      p.require_range("zernike_pupil", measured, 0.0, 0.02, true, false);
+      Params terms(z, p.where("zernike"));
+      m.wavefront.pupil_diameter = measured;
+      for (const auto& [key, value] : z.items()) {
+        const bool digits = !key.empty() && key.size() <= 2 &&
+                            std::all_of(key.begin(), key.end(), [](char ch) { return ch >= '0' && ch <= '9'; });
+        const int j = digits ? std::stoi(key) : -1;
+        if (j < 0 || j > kMaxZernikeIndex)
+          terms.fail(key, "not an OSA/ANSI Zernike index: give j from 0 to " + std::to_string(kMaxZernikeIndex));
+        const double c = terms.quantity(key, Dimension::kLength);
+        if (!(std::abs(c) <= 50e-6))
+          terms.fail(key, "a coefficient must lie within 50 um of 0, got " + FormatFixed(c * 1e6, 3) +
+                              " um (a bare number is meters: give \"0.1 um\")");
+        if (m.wavefront.coefficients.size() <= size_t(j)) m.wavefront.coefficients.resize(j + 1, 0.0);
+        m.wavefront.coefficients[j] = c;
+      }
+    } else {
+      p.fail("zernike", "expected {\"j\": coefficient} or a population name, got " + z.dump());
+    }
+  } else if (p.has("zernike_pupil")) {
+    p.fail("zernike_pupil", "only with zernike coefficients");
+  }
+  m.diffraction = p.boolean("diffraction", false);
+  if (m.diffraction && !m.pupil_auto && m.pupil_diameter == 0)
+    p.fail("diffraction", "a pinhole pupil (pupil_diameter 0) has no diffraction-limited image");
+}
+
 std::unique_ptr<Element> MakeEye(Params& p) {
   EyeModel m;
-  m.pupil_diameter = p.quantity("pupil_diameter", Dimension::kLength, m.pupil_diameter);
-  p.require_range("pupil_diameter", m.pupil_diameter, 0.0, 0.02, false, false);
+  const bool word = p.has("pupil_diameter") && p.raw("pupil_diameter").is_string() &&
+                    std::isalpha(static_cast<unsigned char>(p.raw("pupil_diameter").get<std::string>().c_str()[0]));
+  if (word && p.raw("pupil_diameter") != "auto")
+    p.fail("pupil_diameter", "expected a length (\"4 mm\") or \"auto\", got " + p.raw("pupil_diameter").dump());
+  if (word) {
+    m.pupil_auto = ReadPupilFromLuminance(p);
+  } else {
+    m.pupil_diameter = p.quantity("pupil_diameter", Dimension::kLength, m.pupil_diameter);
+    p.require_range("pupil_diameter", m.pupil_diameter, 0.0, 0.02, false, false);
+    for (const char* key : {"pupil_luminance", "pupil_field", "pupil_age", "pupil_eyes"})
+      if (p.has(key)) p.fail(key, "only with \"pupil_diameter\": \"auto\"");
+    ReadPupilFromLuminance(p);  // the keys' defaults, for the key recorder
+  }
   m.pupil_shape =
       p.choice("pupil_shape", {"square", "round"}, "square") == "square" ? PupilShape::kSquare : PupilShape::kRound;
   if (p.has("pupil_samples")) {
@@ -53,16 +170,11 @@ std::unique_ptr<Element> MakeEye(Params& p) {
                                         " D is not below " + FormatFixed(m.accommodation_max, 3) +
                                         " D (give [far, near] in diopters, far first)");
   }
-  p.mark_read("chromatic_defocus");
-  if (p.has("chromatic_defocus")) {
-    const nlohmann::json& v = p.raw("chromatic_defocus");
-    if (!v.is_array() || v.size() != 3) p.fail("chromatic_defocus", "expected three powers [R, G, B] in D");
-    Params rgb(nlohmann::json{{"0", v[0]}, {"1", v[1]}, {"2", v[2]}}, p.where("chromatic_defocus"));
-    for (int c = 0; c < 3; ++c) {
-      m.chromatic_defocus[c] = rgb.quantity(std::to_string(c), Dimension::kOpticalPower);
-      rgb.require_range(std::to_string(c), m.chromatic_defocus[c], -5.0, 5.0, false, false);
-    }
-  }
+  ReadPerChannel(
+      p, "chromatic_defocus", Dimension::kOpticalPower, "expected three powers [R, G, B] in D",
+      [](const Params& rgb, const std::string& key, double v) { rgb.require_range(key, v, -5.0, 5.0, false, false); },
+      &m.chromatic_defocus);
+  ReadPhysiologicalOptics(p, m);
   auto eyebox = p.quantity_pair("eyebox", Dimension::kLength, {m.eyebox_width, m.eyebox_height});
   m.eyebox_width = eyebox[0];
   m.eyebox_height = eyebox[1];

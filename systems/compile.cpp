@@ -8,6 +8,7 @@
 #include <set>
 
 #include "systems/optics.h"
+#include "systems/pupil_size.h"
 
 namespace layerlab {
 namespace {
@@ -45,6 +46,47 @@ std::string Quoted(const std::string& name) { return "\"" + name + "\""; }
 class Walker {
  public:
   explicit Walker(const Scene& scene) : scene_(scene) {}
+
+  // pupil_diameter "auto": Watson and Yellott's pupil for the luminance at
+  // the eye (default: half the display's peak white, the contrast gratings'
+  // mean) over the adapting field (default: the display's field of view).
+  void ResolvePupil() {
+    EyeModel& eye = system_.eye;
+    if (!eye.pupil_auto) {
+      WarnWavefrontExtrapolated();
+      return;
+    }
+    const PupilFromLuminance& a = *eye.pupil_auto;
+    double white = 0;
+    for (int c = 0; c < 3; ++c) white += kLuminanceWeights[c] * system_.peak_luminance[c];
+    PupilAdaptation adaptation;
+    adaptation.luminance = a.luminance ? *a.luminance : 0.5 * white;
+    const std::array<double, 2> field = a.field ? *a.field : std::array<double, 2>{system_.fov_x, system_.fov_y};
+    adaptation.field_area = field[0] * field[1] * (180 / std::numbers::pi) * (180 / std::numbers::pi);
+    adaptation.age = a.age;
+    adaptation.eyes = a.eyes;
+    const Location where = FindEye().where.child("pupil_diameter");
+    if (!(adaptation.luminance > 0))
+      throw Error(where,
+                  "\"auto\" needs a luminance at the eye, and the display's peak white is 0: give pupil_luminance");
+    if (!(adaptation.field_area > 0) || !std::isfinite(adaptation.field_area))
+      throw Error(where, "\"auto\" needs an adapting field: give pupil_field");
+    eye.pupil_diameter = WatsonYellottPupilDiameter(adaptation);
+    eye.pupil_luminance_used = adaptation.luminance;
+    eye.pupil_field_area_used = adaptation.field_area;
+    if (eye.pupil_diameter > std::min(eye.eyebox_width, eye.eyebox_height))
+      system_.warnings.push_back("the eye's pupil from luminance, " + FormatFixed(eye.pupil_diameter * 1e3, 2) +
+                                 " mm, is wider than the eyebox: natural viewing reads the edge views beyond it");
+    WarnWavefrontExtrapolated();
+  }
+  void WarnWavefrontExtrapolated() {
+    const EyeModel& eye = system_.eye;
+    const double reach = eye.pupil_diameter * (eye.pupil_shape == PupilShape::kSquare ? std::sqrt(2.0) : 1.0);
+    if (!eye.wavefront.empty() && reach > eye.wavefront.pupil_diameter * (1 + 1e-9))
+      system_.warnings.push_back("the eye's pupil reaches " + FormatFixed(reach * 1e3, 2) + " mm across, beyond the " +
+                                 FormatFixed(eye.wavefront.pupil_diameter * 1e3, 2) +
+                                 " mm its Zernike coefficients were measured at: the wavefront is extrapolated there");
+  }
 
   DisplaySystem Run() {
     const SceneNode& eye_node = FindEye();
@@ -562,6 +604,7 @@ void Walker::Finish() {
     system_.luminance_efficiency += kLuminanceWeights[c] * system_.brightness_efficiency[c];
   }
 
+  ResolvePupil();
   FindMagnifier();
   const EyeModel& eye = system_.eye;
   if (!system_.lens.empty() && system_.clear_aperture) {

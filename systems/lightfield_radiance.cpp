@@ -89,7 +89,7 @@ PupilTables TablesOf(const LightField& lf, bool nearest, const PupilPoint& u, do
   // The ray's direction and crossing exactly as RetinaOfSceneRayByRay and LightFieldRays compute them.
   t.c_lo = g.cols;
   for (size_t j = 0; j < tan_x.size(); ++j) {
-    const double dx = tan_x[j] - u.x * focus;
+    const double dx = tan_x[j] - u.x * focus - u.slope_x;
     Bracket col;
     if (!ColumnAt(g, u.x + dx * g.origin_z, nearest, &col)) continue;
     t.columns.push_back({int32_t(j), col.k0, col.k1, float(1 - col.w1), float(col.w1)});
@@ -97,7 +97,7 @@ PupilTables TablesOf(const LightField& lf, bool nearest, const PupilPoint& u, do
   }
   t.rows.resize(tan_y.size());
   for (size_t i = 0; i < tan_y.size(); ++i) {
-    const double dy = tan_y[i] - u.y * focus;
+    const double dy = tan_y[i] - u.y * focus - u.slope_y;
     if (!RowAt(g, u.y + dy * g.origin_z, nearest, &t.rows[i])) t.rows[i] = {-1, -1, 0.0};
   }
   return t;

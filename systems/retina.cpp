@@ -8,6 +8,8 @@
 
 #include "framework/error.h"
 #include "framework/random.h"
+#include "framework/units.h"
+#include "systems/chromatic_eye.h"
 
 namespace layerlab {
 
@@ -23,7 +25,9 @@ RetinaGrid MakeRetinaGrid(double field_x, double field_y, double resolution) {
   return g;
 }
 
-std::vector<PupilPoint> PupilSamples(const EyeModel& eye) {
+namespace {
+
+std::vector<PupilPoint> PupilPositions(const EyeModel& eye) {
   const double a = eye.pupil_diameter;
   if (a == 0) return {PupilPoint{}};
   const int nx = eye.pupil_samples_x, ny = eye.pupil_samples_y;
@@ -58,9 +62,58 @@ std::vector<PupilPoint> PupilSamples(const EyeModel& eye) {
   return points;
 }
 
+}  // namespace
+
+std::vector<PupilPoint> PupilSamples(const EyeModel& eye) {
+  std::vector<PupilPoint> points = PupilPositions(eye);
+  if (!eye.wavefront.empty())
+    for (PupilPoint& u : points) {
+      const WavefrontSlope g = WavefrontSlopeAt(eye.wavefront, u.x, u.y);
+      u.slope_x = g.x, u.slope_y = g.y;
+    }
+  return points;
+}
+
 std::array<double, 3> ChannelAccommodation(const EyeModel& eye, double diopters) {
-  return {diopters + eye.chromatic_defocus[0], diopters + eye.chromatic_defocus[1],
-          diopters + eye.chromatic_defocus[2]};
+  std::array<double, 3> focus = {diopters + eye.chromatic_defocus[0], diopters + eye.chromatic_defocus[1],
+                                 diopters + eye.chromatic_defocus[2]};
+  if (eye.chromatic_aberration == ChromaticAberration::kThibos)
+    for (int c = 0; c < 3; ++c) focus[c] += ThibosDefocus(eye.channel_wavelengths[c], eye.reference_wavelength);
+  return focus;
+}
+
+std::string EyeModelLine(const EyeModel& eye) {
+  const bool ideal = eye.chromatic_aberration == ChromaticAberration::kNone && !eye.pupil_auto &&
+                     eye.wavefront.empty() && !eye.diffraction;
+  std::string line = ideal ? "ideal eye (geometric optics): " : "physiological eye: ";
+  line += FormatFixed(eye.pupil_diameter * 1e3, 2) + " mm " +
+          (eye.pupil_shape == PupilShape::kSquare ? "square" : "round") + " pupil";
+  if (eye.pupil_auto)
+    line += " (auto: Watson & Yellott 2012 at " + FormatFixed(eye.pupil_luminance_used, 1) + " cd/m2 over " +
+            FormatFixed(eye.pupil_field_area_used, 0) + " deg2, age " + FormatFixed(eye.pupil_auto->age, 2) + ", " +
+            std::to_string(eye.pupil_auto->eyes) + (eye.pupil_auto->eyes == 1 ? " eye)" : " eyes)");
+  if (eye.chromatic_aberration == ChromaticAberration::kThibos) {
+    line += "; chromatic aberration Thibos 1992 re " + FormatFixed(eye.reference_wavelength * 1e9, 0) + " nm (R/G/B";
+    for (int c = 0; c < 3; ++c)
+      line += (c ? " / " : " ") + FormatFixed(ThibosDefocus(eye.channel_wavelengths[c], eye.reference_wavelength), 3);
+    line += " D)";
+  }
+  if (eye.chromatic_defocus != std::array<double, 3>{0, 0, 0})
+    line += "; chromatic defocus " + FormatFixed(eye.chromatic_defocus[0], 3) + " / " +
+            FormatFixed(eye.chromatic_defocus[1], 3) + " / " + FormatFixed(eye.chromatic_defocus[2], 3) + " D";
+  if (!eye.wavefront.empty()) {
+    line += "; wavefront " + (eye.wavefront.source.empty() ? std::string("Zernike") : eye.wavefront.source) + " (";
+    bool first = true;
+    for (size_t j = 0; j < eye.wavefront.coefficients.size(); ++j)
+      if (eye.wavefront.coefficients[j] != 0) {
+        line += (first ? "Z" : ", Z") + std::to_string(j) + " " + FormatFixed(eye.wavefront.coefficients[j] * 1e6, 3) +
+                " um";
+        first = false;
+      }
+    line += " at " + FormatFixed(eye.wavefront.pupil_diameter * 1e3, 1) + " mm)";
+  }
+  line += eye.diffraction ? "; diffraction" : "; no diffraction";
+  return line;
 }
 
 namespace {
@@ -137,6 +190,18 @@ Image RetinaOfDisplay(const DisplayModel& model, const Patterns& t, const Retina
   for (int j = 0; j < retina.cols; ++j) tan_x[j] = std::tan(retina.angle_x(j));
   for (int i = 0; i < retina.rows; ++i) tan_y[i] = std::tan(retina.angle_y(i));
   const bool same_focus = accommodation[0] == accommodation[1] && accommodation[1] == accommodation[2];
+  bool one_tap = true;
+  for (size_t b = 0; b < model.branch_count(); ++b) one_tap = one_tap && OneTapBranch(model, b);
+  if (one_tap && !same_focus) {
+    // A focus per channel (chromatic aberration): each channel from the fast
+    // path at its own focus, three float passes instead of the general path.
+    for (int c = 0; c < 3; ++c) {
+      const Image at_focus =
+          RetinaOfDisplay(model, t, retina, pupil, {accommodation[c], accommodation[c], accommodation[c]});
+      for (size_t k = c; k < image.pixels.size(); k += 3) image.pixels[k] = at_focus.pixels[k];
+    }
+    return image;
+  }
   const int foci = same_focus ? 1 : 3;
   const size_t layers = model.layer_count();
   const double inverse_count = 1.0 / pupil.size();
@@ -152,13 +217,13 @@ Image RetinaOfDisplay(const DisplayModel& model, const Patterns& t, const Retina
         table.blur = s.diopters() - accommodation[f];
         if (!s.separable()) continue;
         table.cols.resize(retina.cols), table.rows.resize(retina.rows);
-        for (int j = 0; j < retina.cols; ++j) table.cols[j] = s.Column(tan_x[j] + pupil[p].x * table.blur);
-        for (int i = 0; i < retina.rows; ++i) table.rows[i] = s.Row(tan_y[i] + pupil[p].y * table.blur);
+        for (int j = 0; j < retina.cols; ++j)
+          table.cols[j] = s.Column(tan_x[j] + pupil[p].x * table.blur - pupil[p].slope_x);
+        for (int i = 0; i < retina.rows; ++i)
+          table.rows[i] = s.Row(tan_y[i] + pupil[p].y * table.blur - pupil[p].slope_y);
       }
 
-  bool one_tap = same_focus;
-  for (size_t b = 0; b < model.branch_count(); ++b) one_tap = one_tap && OneTapBranch(model, b);
-  if (one_tap) {
+  if (one_tap && same_focus) {
     NearestRetina(model, t, retina, pupil, tables, &image);
     return image;
   }
@@ -180,10 +245,10 @@ Image RetinaOfDisplay(const DisplayModel& model, const Patterns& t, const Retina
                 value[k * 3 + c] = Read(table.rows[i], table.cols[j], t[k], c);
                 continue;
               }
-              value[k * 3 + c] =
-                  s.separable()
-                      ? Read(table.rows[i], table.cols[j], t[k], c)
-                      : Read(s.At(tan_x[j] + pupil[p].x * table.blur, tan_y[i] + pupil[p].y * table.blur), t[k], c);
+              value[k * 3 + c] = s.separable() ? Read(table.rows[i], table.cols[j], t[k], c)
+                                               : Read(s.At(tan_x[j] + pupil[p].x * table.blur - pupil[p].slope_x,
+                                                           tan_y[i] + pupil[p].y * table.blur - pupil[p].slope_y),
+                                                      t[k], c);
             }
           }
           for (size_t b = 0; b < model.branch_count(); ++b) {
@@ -222,8 +287,8 @@ Image RetinaOfSceneRayByRay(const SceneRadiance& scene, const RetinaGrid& retina
       double sum[3] = {0, 0, 0};
       for (const PupilPoint& u : pupil)
         for (int c = 0; c < (same_focus ? 1 : 3); ++c) {
-          // Direction through the in-focus point: tan(a) - u D_a per unit depth.
-          Rgb radiance = scene(u, tx - u.x * accommodation[c], ty - u.y * accommodation[c]);
+          // Direction through the in-focus point: tan(a) - u D_a per unit depth, less the wavefront slope.
+          Rgb radiance = scene(u, tx - u.x * accommodation[c] - u.slope_x, ty - u.y * accommodation[c] - u.slope_y);
           if (same_focus)
             for (int k = 0; k < 3; ++k) sum[k] += radiance[k];
           else

@@ -7,11 +7,13 @@
 // point u through it meets depth z at tan-angle tan(a) + u (1/z - D_a): at a
 // layer of D_k diopters it reads the layer at tan(a) + u (D_k - D_a). So a
 // point at depth z blurs over pupil * |1/z - D_a| (tan units): geometric
-// optics, finite at D_a = 0 and D_k = 0.
+// optics, finite at D_a = 0 and D_k = 0. A wavefront aberration deviates the
+// ray by its slope g(u): it reads the layer at tan(a) + u (D_k - D_a) - g(u).
 #pragma once
 
 #include <array>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "framework/exr_image.h"
@@ -32,15 +34,22 @@ struct RetinaGrid {
 RetinaGrid MakeRetinaGrid(double field_x, double field_y, double resolution);
 
 struct PupilPoint {
-  double x = 0, y = 0;  // m, on the pupil plane
+  double x = 0, y = 0;              // m, on the pupil plane
+  double slope_x = 0, slope_y = 0;  // the eye's wavefront slope there (elements/wavefront.h): every
+                                    // ray from this point leaves along the ideal direction minus it
 };
 // The eye's pupil samples: a cell-centered grid over the pupil's square (a
 // round pupil keeps the points inside its circle), jittered within the
 // cells, or a Poisson-disk set; a zero pupil is one point at the center.
+// Each carries the slope of the eye's wavefront aberration at it.
 std::vector<PupilPoint> PupilSamples(const EyeModel& eye);
 
-// Accommodation per color channel: D_a plus the eye's chromatic defocus.
+// Accommodation per color channel: D_a plus the eye's chromatic defocus, and
+// with chromatic_aberration "thibos" plus ThibosDefocus(channel wavelength, reference).
 std::array<double, 3> ChannelAccommodation(const EyeModel& eye, double diopters);
+
+// The eye model in one line, for info and the reports: "ideal eye: ..." or "physiological eye: ...".
+std::string EyeModelLine(const EyeModel& eye);
 
 // The display: mean over pupil points of sum_b w_b prod_k t_k(tan(a) + u (D_k - D_a)),
 // with each layer sampled by its projection's rule. RGB, display-relative units.

@@ -9,6 +9,7 @@
 
 #include "framework/warnings.h"
 #include "systems/intermediate_images.h"
+#include "systems/retina.h"
 
 namespace layerlab {
 namespace {
@@ -114,6 +115,7 @@ std::string FormatSystemTable(const DisplaySystem& s) {
           eye.pupil_samples_x, eye.pupil_samples_y, relief.c_str(), F(eye.eyebox_width * 1e3, 2).c_str(),
           F(eye.eyebox_height * 1e3, 2).c_str(), eye.views_x, eye.views_y, F(eye.accommodation_min, 2).c_str(),
           F(eye.accommodation_max, 2).c_str());
+  out += Row("         %s", EyeModelLine(eye).c_str());
   if (s.subframes > 1)
     out += Row("time     %d subframes per frame at %s Hz: the panels refresh at %s Hz; the eye sees the mean",
                s.subframes, F(s.frame_rate, 1).c_str(), F(s.subframes * s.frame_rate, 1).c_str());
@@ -185,7 +187,8 @@ nlohmann::json SystemToJson(const DisplaySystem& s) {
               {"eye_relief_m", eye.eye_relief},
               {"eyebox_m", {eye.eyebox_width, eye.eyebox_height}},
               {"views", {eye.views_x, eye.views_y}},
-              {"accommodation_range_D", {eye.accommodation_min, eye.accommodation_max}}};
+              {"accommodation_range_D", {eye.accommodation_min, eye.accommodation_max}},
+              {"model", EyeModelLine(eye)}};
   j["lens"] = {{"name", s.lens},
                {"focal_length_m", s.focal_length},
                {"clear_aperture_m", s.clear_aperture ? json(*s.clear_aperture) : json(nullptr)}};

@@ -188,6 +188,60 @@ const BadScene kCases[] = {
      "scene.json: /elements: expected an array of elements, got an object"},
     {"BadPupilShape", kMul, [](json& s) { ElementNamed(s, "eye")["pupil_shape"] = "roun"; },
      "scene.json: /elements/0/pupil_shape: \"roun\" is not one of square or round; did you mean \"round\"?"},
+    {"UnknownChromaticModel", kMul, [](json& s) { ElementNamed(s, "eye")["chromatic_aberration"] = "thibo"; },
+     "scene.json: /elements/0/chromatic_aberration: \"thibo\" is not one of none or thibos; did you mean \"thibos\"?"},
+    {"NegativePupil", kMul, [](json& s) { ElementNamed(s, "eye")["pupil_diameter"] = "-4 mm"; },
+     "scene.json: /elements/0/pupil_diameter: must be in [0, 0.02] (SI units), got -0.004"},
+    {"PupilWordNotAuto", kMul, [](json& s) { ElementNamed(s, "eye")["pupil_diameter"] = "automatic"; },
+     "scene.json: /elements/0/pupil_diameter: expected a length (\"4 mm\") or \"auto\", got \"automatic\""},
+    {"PupilLuminanceWithoutAuto", kMul, [](json& s) { ElementNamed(s, "eye")["pupil_luminance"] = "100 cd/m2"; },
+     "scene.json: /elements/0/pupil_luminance: only with \"pupil_diameter\": \"auto\""},
+    {"PupilAgeOutsideTheFormula", kMul,
+     [](json& s) {
+       ElementNamed(s, "eye")["pupil_diameter"] = "auto";
+       ElementNamed(s, "eye")["pupil_age"] = 12;
+     },
+     "scene.json: /elements/0/pupil_age: must be in [20, 83] (SI units), got 12"},
+    {"ZernikeIndexOutOfRange", kMul,
+     [](json& s) {
+       ElementNamed(s, "eye")["zernike"] = {{"40", "0.1 um"}};
+       ElementNamed(s, "eye")["zernike_pupil"] = "6 mm";
+     },
+     "scene.json: /elements/0/zernike/40: not an OSA/ANSI Zernike index: give j from 0 to 27"},
+    {"ZernikeIndexNotANumber", kMul,
+     [](json& s) {
+       ElementNamed(s, "eye")["zernike"] = {{"Z4", "0.1 um"}};
+       ElementNamed(s, "eye")["zernike_pupil"] = "6 mm";
+     },
+     "scene.json: /elements/0/zernike/Z4: not an OSA/ANSI Zernike index: give j from 0 to 27"},
+    {"ZernikeBareNumberIsMeters", kMul,
+     [](json& s) {
+       ElementNamed(s, "eye")["zernike"] = {{"4", 0.1}};
+       ElementNamed(s, "eye")["zernike_pupil"] = "6 mm";
+     },
+     "scene.json: /elements/0/zernike/4: a coefficient must lie within 50 um of 0, got 100000.000 um (a bare number is "
+     "meters: give \"0.1 um\")"},
+    {"ZernikeWithoutPupil", kMul,
+     [](json& s) {
+       ElementNamed(s, "eye")["zernike"] = {{"4", "0.1 um"}};
+     },
+     "scene.json: /elements/0/zernike: coefficients need zernike_pupil, the pupil diameter they were measured at"},
+    {"UnknownPopulation", kMul, [](json& s) { ElementNamed(s, "eye")["zernike"] = "thibos_2002"; },
+     "scene.json: /elements/0/zernike: unknown population \"thibos_2002\"; known: salmon_van_de_pol_2006 (or give "
+     "{\"j\": coefficient} with zernike_pupil)"},
+    {"ChannelWavelengthOutsideTheVisible", kMul,
+     [](json& s) {
+       ElementNamed(s, "eye")["channel_wavelengths"] = {"612 nm", "549 nm", "46.5 nm"};
+     },
+     "scene.json: /elements/0/channel_wavelengths/2: a wavelength must lie in 380 to 780 nm, got 46.5 nm"},
+    {"DiffractionNotABoolean", kMul, [](json& s) { ElementNamed(s, "eye")["diffraction"] = "airy"; },
+     "scene.json: /elements/0/diffraction: expected true or false, got a string \"airy\""},
+    {"DiffractionThroughAPinhole", kMul,
+     [](json& s) {
+       ElementNamed(s, "eye")["pupil_diameter"] = "0 mm";
+       ElementNamed(s, "eye")["diffraction"] = true;
+     },
+     "scene.json: /elements/0/diffraction: a pinhole pupil (pupil_diameter 0) has no diffraction-limited image"},
     {"SpectralTableMissesAChannel", "hybrid_pbs_hwp.json",
      [](json& s) {
        ElementNamed(s, "pbs")["transmittance_p"] = {{"wavelengths", {"500 nm", "700 nm"}}, {"values", {0.9, 0.9}}};

@@ -128,15 +128,17 @@ TEST(LightFieldRadiance, RetinaMatchesTheAnalyticPlaneAtEveryFocus) {
 // a texture varying along both axes, a plane off the origin plane
 // (parallax), a retina wider than the window (rays that miss it), pupil
 // points between views and off the grid (jittered), both sampling rules,
-// foci on and off the plane, and a chromatic focus per channel.
+// foci on and off the plane, a chromatic focus per channel, and an eye with
+// a wavefront aberration (coma and astigmatism: each pupil ray deviated by its slope).
 TEST(LightFieldRadiance, ImageWiseRetinaIsTheRayByRayRetina) {
   const LightFieldGeometry g = Geometry(160, 90);
   auto texture = MakeNoiseTexture(20, 400, 24, 7, 0.6, 0.5);  // values in [0.2, 0.8]
   LightField lf = RenderPlaneLightField(g, 1 / 1.9, *texture);
   EyeModel eye;
   eye.pupil_samples_x = eye.pupil_samples_y = 9;
-  for (PupilSampling sampling : {PupilSampling::kGrid, PupilSampling::kJittered}) {
-    eye.pupil_sampling = sampling;
+  for (int variant = 0; variant < 3; ++variant) {
+    eye.pupil_sampling = variant == 1 ? PupilSampling::kJittered : PupilSampling::kGrid;
+    if (variant == 2) eye.wavefront = {{0, 0, 0, 0.3e-6, 0, 0, 0, 0.4e-6, -0.5e-6}, 5e-3, ""};
     const std::vector<PupilPoint> pupil = PupilSamples(eye);
     RetinaGrid grid = MakeRetinaGrid(12 * kDeg, 7 * kDeg, 0.07 * kDeg);  // the window is 10 x 6 deg
     grid.center_x = 0.013 * kDeg;

@@ -210,13 +210,15 @@ TEST(Retina, FastAndGeneralPathsAgree) {
   // a rotation of 1e-12 rad may pick the neighbour.
   retina.center_x = 0.3183 * retina.resolution, retina.center_y = 0.2718 * retina.resolution;
   std::vector<PupilPoint> pupil = PupilSamples(system.eye);
-  for (double a : {0.3, 1.3, 2.4}) {
-    Image one = RetinaOfDisplay(fast, t, retina, pupil, {a, a, a});
-    Image two = RetinaOfDisplay(general, t, retina, pupil, {a, a, a});
+  // One focus, and a focus per channel (the fast path once per channel, the general path at once).
+  for (std::array<double, 3> a : {std::array<double, 3>{0.3, 0.3, 0.3}, std::array<double, 3>{1.3, 1.3, 1.3},
+                                  std::array<double, 3>{2.4, 2.4, 2.4}, std::array<double, 3>{1.0, 1.3, 1.9}}) {
+    Image one = RetinaOfDisplay(fast, t, retina, pupil, a);
+    Image two = RetinaOfDisplay(general, t, retina, pupil, a);
     double worst = 0;
     for (size_t k = 0; k < one.pixels.size(); ++k)
       worst = std::max(worst, double(std::abs(one.pixels[k] - two.pixels[k])));
-    EXPECT_LT(worst, 1e-5) << "accommodation " << a;
+    EXPECT_LT(worst, 1e-5) << "accommodation " << a[0] << " / " << a[1] << " / " << a[2];
   }
 }
 
@@ -257,6 +259,30 @@ TEST(Retina, ChromaticDefocusShiftsEachChannelsFocus) {
     ASSERT_NEAR(mixed.pixels[p * 3], red.pixels[p * 3], 5e-6);
     ASSERT_NEAR(mixed.pixels[p * 3 + 1], green.pixels[p * 3 + 1], 5e-6);
   }
+}
+
+// The display's paths read each layer where the aberrated ray meets it: pure
+// defocus c4 on the pupil rays is the ideal eye at D_a + 16 sqrt(3) c4 / p^2,
+// on the fast path (one focus) and on the per-channel path.
+TEST(Retina, WavefrontDefocusOnADisplayIsTheIdealEyeAtTheConvertedPower) {
+  OneLayer d = OneLayerDisplay("1.0 D");
+  EyeModel aberrated = d.system.eye;
+  aberrated.wavefront = {{0, 0, 0, 0, 0.25e-6}, 4e-3, ""};
+  const double power = 16 * std::sqrt(3.0) * 0.25 / 16;  // 0.43301 D
+  RetinaGrid retina = MakeRetinaGrid(6 * kDeg, 4 * kDeg, 0.05 * kDeg);
+  const std::vector<PupilPoint> ideal = PupilSamples(d.system.eye), pupil = PupilSamples(aberrated);
+  for (std::array<double, 3> focus : {std::array<double, 3>{0.6, 0.6, 0.6}, std::array<double, 3>{0.6, 0.8, 1.0}}) {
+    Image seen = RetinaOfDisplay(*d.model, d.t, retina, pupil, focus);
+    Image expected =
+        RetinaOfDisplay(*d.model, d.t, retina, ideal, {focus[0] + power, focus[1] + power, focus[2] + power});
+    size_t differ = 0;
+    for (size_t k = 0; k < seen.pixels.size(); ++k) differ += std::abs(seen.pixels[k] - expected.pixels[k]) > 1e-5;
+    // A ray a rounding error from a pixel edge may read its neighbour.
+    EXPECT_LE(differ, seen.pixels.size() / 1000) << focus[0] << " D";
+  }
+  Image blurred = RetinaOfDisplay(*d.model, d.t, retina, pupil, {1.0, 1.0, 1.0});
+  Image sharp = RetinaOfDisplay(*d.model, d.t, retina, ideal, {1.0, 1.0, 1.0});
+  EXPECT_NE(blurred.pixels, sharp.pixels);
 }
 
 }  // namespace

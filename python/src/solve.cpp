@@ -20,6 +20,7 @@
 #include "solvers/solution_writer.h"
 #include "solvers/solve_config.h"
 #include "systems/compile.h"
+#include "systems/diffraction.h"
 #include "systems/layer_sampler.h"
 #include "systems/retina.h"
 
@@ -216,8 +217,9 @@ py::array_t<float> Retina(const Solution& s, const std::vector<double>& accommod
   const std::vector<PupilPoint> pupil = PupilSamples(system.eye);
   py::gil_scoped_release release;
   for (size_t k = 0; k < accommodation.size(); ++k) {
-    const Image image =
+    Image image =
         RetinaOfDisplay(*s.model, s.patterns, grid, pupil, ChannelAccommodation(system.eye, accommodation[k]));
+    ApplyEyeOptics(system.eye, grid, &image);
     std::copy(image.pixels.begin(), image.pixels.end(), out + k * image.pixels.size());
   }
   return images;
