@@ -166,8 +166,8 @@ RunOutcome RunPipeline(const RunRequest& request) {
       model = std::make_unique<DisplayModel>(in.system, g, in.solve.sampling);
       SolverOptions options = in.solve.options;
       Progress progress("solve " + in.solve.solver, options.iterations);
-      options.progress = [&](int iteration, double, double psnr) {
-        progress.Update(iteration, "iterations  PSNR " + Psnr(psnr));
+      options.progress = [&](const IterationRecord& row) {
+        progress.Update(row.iteration, "iterations  PSNR " + Psnr(row.psnr_db));
       };
       report =
           SolverRegistry::Builtins().create(in.solve.solver)->Solve(*model, target->light_field, options, &patterns);

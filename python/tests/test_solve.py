@@ -81,7 +81,12 @@ def test_the_callback_sees_every_iteration(small_system, target):
     trace = solution.report["trace"]
     assert [it["iteration"] for it in seen] == list(range(6))
     assert [it["psnr_db"] for it in seen] == list(trace["psnr_db"])
+    assert [it["objective"] for it in seen] == list(trace["objective"])  # the very numbers the trace holds
     assert [it["seconds"] for it in seen] == pytest.approx(list(trace["seconds"]))
+    # The objective the callback saw last, recomputed here from the patterns: sum of squared errors.
+    shown = layerlab.synthesize(small_system, solution.patterns).rgb.astype(np.float64)
+    assert seen[-1]["objective"] == pytest.approx(((shown - target.rgb) ** 2).sum(), rel=1e-5)
+    assert seen[-1]["psnr_db"] == pytest.approx(10 * np.log10(target.rgb.size / seen[-1]["objective"]), abs=1e-9)
 
 
 def test_the_callback_stops_the_solve(small_system, target):

@@ -1,0 +1,123 @@
+// compare(scenes, target, solvers=...): `layerlab compare` (analysis/compare.h,
+// the same runs and the same solves) returning its table as columns, one row
+// per display and solver, each with its trace.
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include "analysis/compare.h"
+#include "framework/error.h"
+#include "framework/lightfield_io.h"
+#include "python/src/bindings.h"
+#include "python/src/path_arg.h"
+#include "python/src/solve_hooks.h"
+#include "python/src/trace_table.h"
+
+namespace py = pybind11;
+
+namespace layerlab::python {
+namespace {
+
+std::vector<std::string> PathList(const py::object& paths) {
+  std::vector<std::string> files;
+  if (py::isinstance<py::str>(paths) || py::hasattr(paths, "__fspath__")) return {PathArg(paths)};
+  for (const py::handle& f : paths) files.push_back(PathArg(f));
+  return files;
+}
+
+// None: each scene's own solver; "all"; a name; a list of names.
+std::vector<std::string> SolverList(const py::object& solvers) {
+  if (solvers.is_none()) return {};
+  if (py::isinstance<py::str>(solvers)) return {solvers.cast<std::string>()};
+  return solvers.cast<std::vector<std::string>>();
+}
+
+py::dict Table(const std::vector<CompareRun>& runs, const std::vector<CompareResult>& results,
+               const std::vector<std::string>& skipped) {
+  const auto n = static_cast<py::ssize_t>(results.size());
+  py::list scene, display, solver, termination, message, traces;
+  py::array_t<double> psnr(n), seconds(n), refresh(n), luminance(n), efficiency({n, py::ssize_t{3}});
+  py::array_t<int> iterations(n), subframes(n);
+  for (py::ssize_t i = 0; i < n; ++i) {
+    const CompareResult& r = results[i];
+    scene.append(runs[i].scene_file), display.append(r.display), solver.append(r.solver);
+    termination.append(ToString(r.report.termination)), message.append(r.report.message);
+    psnr.mutable_at(i) = r.report.final_psnr_db, seconds.mutable_at(i) = r.report.seconds;
+    iterations.mutable_at(i) = r.report.iterations, subframes.mutable_at(i) = r.subframes;
+    refresh.mutable_at(i) = r.panel_refresh_hz, luminance.mutable_at(i) = r.luminance_efficiency;
+    for (int c = 0; c < 3; ++c) efficiency.mutable_at(i, c) = r.brightness_efficiency[c];
+    traces.append(TraceTable(r.report.trace));
+  }
+  py::dict d;
+  d["scene"] = scene, d["display"] = display, d["solver"] = solver;
+  d["final_psnr_db"] = psnr, d["seconds"] = seconds, d["iterations"] = iterations, d["subframes"] = subframes;
+  d["panel_refresh_hz"] = refresh, d["luminance_efficiency"] = luminance, d["efficiency"] = efficiency;
+  d["termination"] = termination, d["message"] = message, d["trace"] = traces;
+  d["skipped"] = skipped;
+  d["table"] = CompareTable(results);
+  return d;
+}
+
+py::dict Compare(const py::object& scenes, const py::object& target, const py::object& solvers,
+                 std::optional<int> iterations, std::optional<double> time_budget, const py::object& callback) {
+  if (iterations && *iterations <= 0) throw py::value_error("compare: iterations must be positive");
+  if (time_budget && !(*time_budget >= 0)) throw py::value_error("compare: time_budget must be 0 (none) or more seconds");
+  const std::vector<std::string> files = PathList(scenes);
+  if (files.empty()) throw py::value_error("compare: no scene");
+  const CompareSelection selection{SolverList(solvers), iterations, time_budget};
+  std::shared_ptr<LightField> given;
+  std::string target_folder;
+  if (py::isinstance<LightField>(target))
+    given = target.cast<std::shared_ptr<LightField>>();
+  else
+    target_folder = PathArg(target);
+
+  std::vector<std::string> skipped;
+  std::vector<CompareRun> runs;
+  std::optional<LightField> loaded;
+  {
+    py::gil_scoped_release release;
+    runs = CompareRunsOf(files, selection, &skipped);
+    if (!given) loaded = ReadLightField(target_folder, {.load_depth = false});
+  }
+  const LightField& lf = given ? *given : *loaded;
+
+  // One run at a time, so that a stop from the callback or Ctrl-C ends the comparison there.
+  std::vector<CompareResult> results;
+  SolveHooks hooks;
+  for (CompareRun& run : runs) {
+    const std::string display = run.display, solver = run.solver;
+    hooks.Install(run.options, callback, [display, solver](const IterationRecord& r) {
+      py::dict d = TraceRow(r);
+      d["display"] = display, d["solver"] = solver;
+      return d;
+    });
+    {
+      py::gil_scoped_release release;
+      results.push_back(RunComparison({run}, lf).front());
+    }
+    if (hooks.raised) throw std::move(*hooks.raised);
+    const SolverReport& report = results.back().report;
+    if (!report.IsSolutionUsable())
+      throw Error("compare: " + display + " / " + solver + " failed: " + report.message);
+    if (hooks.stop) break;
+  }
+  runs.resize(results.size());
+  return Table(runs, results, skipped);
+}
+
+}  // namespace
+
+void BindCompare(py::module_& m) {
+  m.def("compare", &Compare, py::arg("scenes"), py::arg("target"), py::kw_only(), py::arg("solvers") = py::none(),
+        py::arg("iterations") = py::none(), py::arg("time_budget") = py::none(), py::arg("callback") = py::none(),
+        "Several displays and solvers on one target, as `layerlab compare`: a dict of columns, one row per display "
+        "and solver (scene, display, solver, final_psnr_db, seconds, iterations, subframes, panel_refresh_hz, "
+        "luminance_efficiency, efficiency, termination, message, trace), with skipped and table");
+}
+
+}  // namespace layerlab::python
