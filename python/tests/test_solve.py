@@ -210,3 +210,28 @@ def test_retina_of_uniform_patterns(small_system):
     assert stack.shape == (3, 10, 20, 3)
     with pytest.raises(ValueError, match="resolution"):
         solution.retina([1.0], resolution=0)
+
+
+def test_natural_viewing_of_the_target(small_system):
+    # Every view the same picture, a function of the column alone, on a light field whose origin plane lies at
+    # 1 m: focused there, every pupil point's ray through a retinal sample at angle a meets that plane at
+    # x = tan(a) (m), so the eye sees the pixel column holding x, sharp, whatever the pupil.
+    g = layerlab.display_geometry(small_system, 1.0)
+    assert g.origin_z == pytest.approx(1.0)
+    picture = np.random.default_rng(3).uniform(0.1, 0.9, (g.cols, 3)).astype(np.float32)
+    lf = layerlab.LightField(g)
+    lf.rgb[:] = picture[None, None, :, :]
+    solution = layerlab.solve(small_system, lf, iterations=1)
+    resolution, field = 0.1, (2.0, 1.0)
+    display, natural = solution.retina([1.0, 0.0], resolution=resolution, field=field, natural=True)
+    assert natural.shape == display.shape == (2, 10, 20, 3) and natural.dtype == np.float32
+    np.testing.assert_array_equal(display, solution.retina([1.0, 0.0], resolution=resolution, field=field))
+    angles = np.radians((np.arange(20) + 0.5 - 10) * resolution)
+    columns = np.floor((g.origin_z * np.tan(angles) - g.window_left) / (g.window_width / g.cols)).astype(int)
+    np.testing.assert_allclose(natural[0], np.broadcast_to(picture[columns], (10, 20, 3)), rtol=1e-6)
+    # Focused at infinity the same plane blurs: the columns mix.
+    assert np.abs(natural[1] - natural[0]).max() > 0.05
+    diopters, images, seen = layerlab.focal_stack(solution, 0.0, 1.0, 1.0, resolution=resolution, field=field,
+                                                  natural=True)
+    np.testing.assert_array_equal(seen[::-1], natural)
+    np.testing.assert_array_equal(images[::-1], display)
