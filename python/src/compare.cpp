@@ -44,7 +44,7 @@ py::dict Table(const std::vector<CompareRun>& runs, const std::vector<CompareRes
   py::array_t<int> iterations(n), subframes(n);
   for (py::ssize_t i = 0; i < n; ++i) {
     const CompareResult& r = results[i];
-    scene.append(runs[i].scene_file), display.append(r.display), solver.append(r.solver);
+    scene.append(runs[i].system.file), display.append(r.display), solver.append(r.solver);
     termination.append(ToString(r.report.termination)), message.append(r.report.message);
     psnr.mutable_at(i) = r.report.final_psnr_db, seconds.mutable_at(i) = r.report.seconds;
     iterations.mutable_at(i) = r.report.iterations, subframes.mutable_at(i) = r.subframes;

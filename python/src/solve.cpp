@@ -205,7 +205,7 @@ py::object Retina(const Solution& s, const std::vector<double>& accommodation, d
     }
   }
   if (natural) return py::make_tuple(images, seen);
-  return std::move(images);
+  return images;
 }
 
 }  // namespace
