@@ -1,6 +1,8 @@
 // compare(scenes, target, solvers=...): `layerlab compare` (analysis/compare.h,
-// the same runs and the same solves) returning its table as columns, one row
-// per display and solver, each with its trace.
+// the same runs, like for like unless scene_options, the same solves and
+// warnings) returning its table as columns, one row per display and solver,
+// each with its trace.
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -11,7 +13,7 @@
 
 #include "analysis/compare.h"
 #include "framework/error.h"
-#include "framework/lightfield_io.h"
+#include "analysis/target_source.h"
 #include "python/src/bindings.h"
 #include "python/src/path_arg.h"
 #include "python/src/solve_hooks.h"
@@ -37,14 +39,15 @@ std::vector<std::string> SolverList(const py::object& solvers) {
 }
 
 py::dict Table(const std::vector<CompareRun>& runs, const std::vector<CompareResult>& results,
-               const std::vector<std::string>& skipped) {
+               const std::vector<std::string>& skipped, const std::vector<std::string>& warnings) {
   const auto n = static_cast<py::ssize_t>(results.size());
-  py::list scene, display, solver, termination, message, traces;
+  py::list scene, display, solver, options_from, termination, message, traces;
   py::array_t<double> psnr(n), seconds(n), refresh(n), luminance(n), efficiency({n, py::ssize_t{3}});
   py::array_t<int> iterations(n), subframes(n);
   for (py::ssize_t i = 0; i < n; ++i) {
     const CompareResult& r = results[i];
     scene.append(runs[i].system.file), display.append(r.display), solver.append(r.solver);
+    options_from.append(r.options_from);
     termination.append(ToString(r.report.termination)), message.append(r.report.message);
     psnr.mutable_at(i) = r.report.final_psnr_db, seconds.mutable_at(i) = r.report.seconds;
     iterations.mutable_at(i) = r.report.iterations, subframes.mutable_at(i) = r.subframes;
@@ -56,35 +59,38 @@ py::dict Table(const std::vector<CompareRun>& runs, const std::vector<CompareRes
   d["scene"] = scene, d["display"] = display, d["solver"] = solver;
   d["final_psnr_db"] = psnr, d["seconds"] = seconds, d["iterations"] = iterations, d["subframes"] = subframes;
   d["panel_refresh_hz"] = refresh, d["luminance_efficiency"] = luminance, d["efficiency"] = efficiency;
-  d["termination"] = termination, d["message"] = message, d["trace"] = traces;
-  d["skipped"] = skipped;
+  d["termination"] = termination, d["solver_options"] = options_from, d["message"] = message, d["trace"] = traces;
+  d["skipped"] = skipped, d["warnings"] = warnings;
   d["table"] = CompareTable(results);
   return d;
 }
 
 py::dict Compare(const py::object& scenes, const py::object& target, const py::object& solvers,
-                 std::optional<int> iterations, std::optional<double> time_budget, const py::object& callback) {
+                 std::optional<int> iterations, std::optional<double> time_budget, bool scene_options,
+                 const py::object& callback) {
   if (iterations && *iterations <= 0) throw py::value_error("compare: iterations must be positive");
   if (time_budget && !(*time_budget >= 0)) throw py::value_error("compare: time_budget must be 0 (none) or more seconds");
   const std::vector<std::string> files = PathList(scenes);
   if (files.empty()) throw py::value_error("compare: no scene");
-  const CompareSelection selection{SolverList(solvers), iterations, time_budget};
+  const CompareSelection selection{SolverList(solvers), iterations, time_budget, scene_options};
   std::shared_ptr<LightField> given;
-  std::string target_folder;
-  if (py::isinstance<LightField>(target))
+  SolveConfig target_config;  // a light-field folder, or a target scene file rendered as --target-scene does
+  if (py::isinstance<LightField>(target)) {
     given = target.cast<std::shared_ptr<LightField>>();
-  else
-    target_folder = PathArg(target);
+  } else {
+    const std::string path = PathArg(target);
+    (std::filesystem::is_regular_file(path) ? target_config.target_scene : target_config.target) = path;
+  }
 
   std::vector<std::string> skipped;
   std::vector<CompareRun> runs;
-  std::optional<LightField> loaded;
+  std::unique_ptr<Target> loaded;
   {
     py::gil_scoped_release release;
     runs = CompareRunsOf(files, selection, &skipped);
-    if (!given) loaded = ReadLightField(target_folder, {.load_depth = false});
+    if (!given) loaded = LoadOrRenderTarget(target_config, "target");
   }
-  const LightField& lf = given ? *given : *loaded;
+  const LightField& lf = given ? *given : loaded->light_field;
 
   // One run at a time, so that a stop from the callback or Ctrl-C ends the comparison there.
   std::vector<CompareResult> results;
@@ -107,17 +113,20 @@ py::dict Compare(const py::object& scenes, const py::object& target, const py::o
     if (hooks.stop) break;
   }
   runs.resize(results.size());
-  return Table(runs, results, skipped);
+  return Table(runs, results, skipped, CompareWarnings(runs, results, lf.geometry));
 }
 
 }  // namespace
 
 void BindCompare(py::module_& m) {
   m.def("compare", &Compare, py::arg("scenes"), py::arg("target"), py::kw_only(), py::arg("solvers") = py::none(),
-        py::arg("iterations") = py::none(), py::arg("time_budget") = py::none(), py::arg("callback") = py::none(),
-        "Several displays and solvers on one target, as `layerlab compare`: a dict of columns, one row per display "
-        "and solver (scene, display, solver, final_psnr_db, seconds, iterations, subframes, panel_refresh_hz, "
-        "luminance_efficiency, efficiency, termination, message, trace), with skipped and table");
+        py::arg("iterations") = py::none(), py::arg("time_budget") = py::none(), py::arg("scene_options") = false,
+        py::arg("callback") = py::none(),
+        "Several displays and solvers on one target (a LightField, a light-field folder or a target scene file), as "
+        "`layerlab compare`: like for like (each solver's defaults) unless scene_options. A dict of columns, one row "
+        "per display and solver (scene, display, solver, solver_options, final_psnr_db, seconds, iterations, "
+        "subframes, panel_refresh_hz, luminance_efficiency, efficiency, termination, message, trace), with skipped, "
+        "warnings and table");
 }
 
 }  // namespace layerlab::python

@@ -7,7 +7,7 @@ import subprocess
 import numpy as np
 import pytest
 
-from conftest import EXAMPLES, SKIP_REASON
+from conftest import EXAMPLES, SKIP_REASON, has_embree
 
 layerlab = pytest.importorskip("layerlab", reason=SKIP_REASON)
 
@@ -43,6 +43,10 @@ def test_the_table_is_the_commands(target_folder, tmp_path):
     np.testing.assert_allclose(table["efficiency"],
                                [[float(r[f"efficiency_{c}"]) for c in "rgb"] for r in rows], atol=1e-6)
     assert table["termination"] == [r["termination"] for r in rows]
+    assert table["solver_options"] == [r["solver_options"] for r in rows] == ["shared", "shared"]  # like for like
+    # The same warnings, in the same order, as the command wrote after its table.
+    written = (out / "compare.txt").read_text().splitlines()
+    assert table["warnings"] == [line[len("warning: "):] for line in written if line.startswith("warning: ")]
     # The multiplicative solver does not suit these displays: left out, as the command leaves it out.
     assert len(table["skipped"]) == 2 and all("multiplicative" in s for s in table["skipped"])
     traces = list(csv.DictReader(open(out / "traces.csv")))
@@ -51,6 +55,40 @@ def test_the_table_is_the_commands(target_folder, tmp_path):
         np.testing.assert_array_equal(trace["iteration"], [int(t["iteration"]) for t in mine])
         np.testing.assert_allclose(trace["objective"], [float(t["objective"]) for t in mine], rtol=1e-7)
     assert table["table"].splitlines()[0].startswith("display")
+
+
+def command_csv(tmp_path, scenes, target_args, *extra):
+    out = tmp_path / "command"
+    subprocess.run([os.environ["LAYERLAB_COMMAND"], "compare", *map(str, scenes), *target_args, *extra,
+                    "--out", str(out)], check=True, capture_output=True)
+    return list(csv.DictReader(open(out / "compare.csv")))
+
+
+def test_like_for_like_unless_scene_options(target_folder, tmp_path):
+    # hybrid_small's "solve" section asks for 8 iterations; like for like, every row runs the solver's defaults.
+    defaults = layerlab.solve(layerlab.load_scene(SCENES[0]).compile(), layerlab.read_lightfield(target_folder),
+                              solver="hybrid").report["iterations"]
+    assert defaults != 8
+    shared = layerlab.compare(SCENES[0], target_folder)
+    own = layerlab.compare(SCENES[0], target_folder, scene_options=True)
+    assert shared["solver_options"] == ["shared"] and list(shared["iterations"]) == [defaults]
+    assert own["solver_options"] == ["scene"] and list(own["iterations"]) == [8]
+    # The same rows as the command's, with and without --scene-options.
+    for table, extra in ((shared, ()), (own, ("--scene-options",))):
+        rows = command_csv(tmp_path / str(len(extra)), [SCENES[0]], ["--target", str(target_folder)], *extra)
+        assert [r["solver_options"] for r in rows] == table["solver_options"]
+        assert [int(r["iterations"]) for r in rows] == list(table["iterations"])
+        np.testing.assert_allclose([float(r["final_psnr_db"]) for r in rows], table["final_psnr_db"], atol=1e-3)
+
+
+@pytest.mark.skipif(not has_embree(), reason="this build has no Embree (a target scene is rendered)")
+def test_a_target_scene_is_rendered_as_the_command_renders_it(tmp_path):
+    target_scene = EXAMPLES / "small" / "small_dice_target.json"
+    table = layerlab.compare(SCENES[0], target_scene, iterations=2)
+    rendered = layerlab.compare(SCENES[0], layerlab.render_target(target_scene), iterations=2)
+    np.testing.assert_array_equal(table["final_psnr_db"], rendered["final_psnr_db"])
+    rows = command_csv(tmp_path, [SCENES[0]], ["--target-scene", str(target_scene)], "--iterations", "2")
+    np.testing.assert_allclose([float(r["final_psnr_db"]) for r in rows], table["final_psnr_db"], atol=1e-3)
 
 
 def test_each_row_against_its_display(target_folder):
