@@ -61,8 +61,8 @@ std::vector<CompareRun> CompareRunsOf(const std::vector<std::string>& scene_file
   return runs;
 }
 
-std::vector<std::string> CompareWarnings(const std::vector<CompareRun>& runs,
-                                         const std::vector<CompareResult>& results, const LightFieldGeometry& target) {
+std::vector<std::string> CompareWarnings(const std::vector<CompareRun>& runs, const std::vector<CompareResult>& results,
+                                         const LightFieldGeometry& target) {
   std::vector<std::string> warnings;
   std::set<std::string> seen;
   for (const CompareRun& r : runs)

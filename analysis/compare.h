@@ -61,8 +61,8 @@ std::vector<CompareRun> CompareRunsOf(const std::vector<std::string>& scene_file
 // What the comparison should say: each display's compile warnings and its
 // target-geometry warnings once ("NAME: ..."), then each run's solver
 // warnings ("NAME / SOLVER: ...").
-std::vector<std::string> CompareWarnings(const std::vector<CompareRun>& runs,
-                                         const std::vector<CompareResult>& results, const LightFieldGeometry& target);
+std::vector<std::string> CompareWarnings(const std::vector<CompareRun>& runs, const std::vector<CompareResult>& results,
+                                         const LightFieldGeometry& target);
 
 // Runs each in turn on `target` (each display bound to the target's rays),
 // the solvers taken from `registry`. With `show_progress`, one progress line

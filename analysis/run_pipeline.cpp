@@ -188,7 +188,7 @@ RunOutcome RunPipeline(const RunRequest& request) {
       const SceneRadiance natural =
           r.natural ? target->Natural(r.natural_traced ? Target::Viewing::kTraced : Target::Viewing::kLightField)
                     : SceneRadiance{};
-      RetinaSweepOptions sweep{r.states(), r.resolution, r.field_x, r.field_y};
+      RetinaSweepOptions sweep{r.states(), r.resolution, r.field_x, r.field_y, request.keep_images};
       Progress progress("retina", sweep.states.size());
       std::vector<RetinaStateResult> states =
           WriteRetinaSweep(*model, patterns, natural, sweep, (out / "retina").string(),
@@ -228,6 +228,7 @@ RunOutcome RunPipeline(const RunRequest& request) {
             continue;
           }
           if (k == 0 && solver == in.solve.solver && !overridden) {  // the main solve already ran this
+            outcome.compare_scenes.push_back(system->file);
             page.compare.push_back({name, solver, report, system->brightness_efficiency, system->luminance_efficiency,
                                     system->subframes, system->subframes * system->frame_rate, "scene"});
             continue;
@@ -246,12 +247,14 @@ RunOutcome RunPipeline(const RunRequest& request) {
           CompareResult result = RunComparison({run}, target->light_field, true).front();
           if (!result.report.IsSolutionUsable())
             throw Error("compare: " + name + " / " + solver + " failed: " + result.report.message);
+          outcome.compare_scenes.push_back(system->file);
           page.compare.push_back(std::move(result));
         }
       }
       AddCompareToPage(page.compare, (out / "compare").string(), "compare/", &page);
       step("compare (" + std::to_string(page.compare.size()) + " runs)", start);
       outcome.compare_table = CompareTable(page.compare);
+      outcome.compare = page.compare;
     }
 
     page.steps.emplace_back("total", Since(run_start));
@@ -259,6 +262,7 @@ RunOutcome RunPipeline(const RunRequest& request) {
       outcome.warnings.push_back("compile: " + w);  // shown by the page's system table
     outcome.warnings.insert(outcome.warnings.end(), page.warnings.begin(), page.warnings.end());
     WriteReportPage(page, out.string());
+    outcome.patterns = std::move(patterns);
   } catch (const Error& e) {
     throw stage.Explain(e);
   }

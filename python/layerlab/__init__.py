@@ -38,6 +38,12 @@ from ._layerlab import (
 
 
 
+def retina(solution, accommodation, resolution=0.05, field=None, natural=False):
+    """What the eye sees of a solution focused at each of `accommodation` (D): (states, rows, cols, 3) float32,
+    display-relative linear RGB; natural=True: (display, natural). The same as Solution.retina."""
+    return solution.retina(accommodation, resolution=resolution, field=field, natural=natural)
+
+
 def focal_stack(solution, start, stop, step, resolution=0.05, field=None, natural=False):
     """Retinal images from `start` to `stop` D (inclusive) by `step`: (diopters, images), images
     (states, rows, cols, 3) as Solution.retina gives them; natural=True: (diopters, images, natural),
@@ -54,6 +60,6 @@ def focal_stack(solution, start, stop, step, resolution=0.05, field=None, natura
 __all__ = [
     "Branch", "Error", "Interrupted", "Layer", "LightField", "LightFieldGeometry", "PathStep", "Scene",
     "SceneError", "Solution", "System", "__version__", "compare", "compile", "contrast", "display_geometry", "fit", "focal_stack", "load_scene",
-    "read_lightfield", "render_target", "run", "solve", "solvers",
+    "read_lightfield", "render_target", "retina", "run", "solve", "solvers",
     "synthesize",
 ]

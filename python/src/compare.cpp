@@ -12,10 +12,11 @@
 #include <pybind11/stl.h>
 
 #include "analysis/compare.h"
-#include "framework/error.h"
 #include "analysis/target_source.h"
+#include "framework/error.h"
 #include "python/src/bindings.h"
 #include "python/src/path_arg.h"
+#include "python/src/result_dicts.h"
 #include "python/src/solve_hooks.h"
 #include "python/src/trace_table.h"
 
@@ -38,38 +39,12 @@ std::vector<std::string> SolverList(const py::object& solvers) {
   return solvers.cast<std::vector<std::string>>();
 }
 
-py::dict Table(const std::vector<CompareRun>& runs, const std::vector<CompareResult>& results,
-               const std::vector<std::string>& skipped, const std::vector<std::string>& warnings) {
-  const auto n = static_cast<py::ssize_t>(results.size());
-  py::list scene, display, solver, options_from, termination, message, traces;
-  py::array_t<double> psnr(n), seconds(n), refresh(n), luminance(n), efficiency({n, py::ssize_t{3}});
-  py::array_t<int> iterations(n), subframes(n);
-  for (py::ssize_t i = 0; i < n; ++i) {
-    const CompareResult& r = results[i];
-    scene.append(runs[i].system.file), display.append(r.display), solver.append(r.solver);
-    options_from.append(r.options_from);
-    termination.append(ToString(r.report.termination)), message.append(r.report.message);
-    psnr.mutable_at(i) = r.report.final_psnr_db, seconds.mutable_at(i) = r.report.seconds;
-    iterations.mutable_at(i) = r.report.iterations, subframes.mutable_at(i) = r.subframes;
-    refresh.mutable_at(i) = r.panel_refresh_hz, luminance.mutable_at(i) = r.luminance_efficiency;
-    for (int c = 0; c < 3; ++c) efficiency.mutable_at(i, c) = r.brightness_efficiency[c];
-    traces.append(TraceTable(r.report.trace));
-  }
-  py::dict d;
-  d["scene"] = scene, d["display"] = display, d["solver"] = solver;
-  d["final_psnr_db"] = psnr, d["seconds"] = seconds, d["iterations"] = iterations, d["subframes"] = subframes;
-  d["panel_refresh_hz"] = refresh, d["luminance_efficiency"] = luminance, d["efficiency"] = efficiency;
-  d["termination"] = termination, d["solver_options"] = options_from, d["message"] = message, d["trace"] = traces;
-  d["skipped"] = skipped, d["warnings"] = warnings;
-  d["table"] = CompareTable(results);
-  return d;
-}
-
 py::dict Compare(const py::object& scenes, const py::object& target, const py::object& solvers,
                  std::optional<int> iterations, std::optional<double> time_budget, bool scene_options,
                  const py::object& callback) {
   if (iterations && *iterations <= 0) throw py::value_error("compare: iterations must be positive");
-  if (time_budget && !(*time_budget >= 0)) throw py::value_error("compare: time_budget must be 0 (none) or more seconds");
+  if (time_budget && !(*time_budget >= 0))
+    throw py::value_error("compare: time_budget must be 0 (none) or more seconds");
   const std::vector<std::string> files = PathList(scenes);
   if (files.empty()) throw py::value_error("compare: no scene");
   const CompareSelection selection{SolverList(solvers), iterations, time_budget, scene_options};
@@ -108,12 +83,13 @@ py::dict Compare(const py::object& scenes, const py::object& target, const py::o
     }
     if (hooks.raised) throw std::move(*hooks.raised);
     const SolverReport& report = results.back().report;
-    if (!report.IsSolutionUsable())
-      throw Error("compare: " + display + " / " + solver + " failed: " + report.message);
+    if (!report.IsSolutionUsable()) throw Error("compare: " + display + " / " + solver + " failed: " + report.message);
     if (hooks.stop) break;
   }
   runs.resize(results.size());
-  return Table(runs, results, skipped, CompareWarnings(runs, results, lf.geometry));
+  std::vector<std::string> scene_of_row;
+  for (const CompareRun& run : runs) scene_of_row.push_back(run.system.file);
+  return CompareColumns(scene_of_row, results, skipped, CompareWarnings(runs, results, lf.geometry));
 }
 
 }  // namespace

@@ -81,18 +81,17 @@ py::dict Fit(const py::object& scene, const py::object& measurements, const std:
   nlohmann::ordered_json calibrated;
   {
     py::gil_scoped_release release;
-    const DisplaySystem system =
-        Compile(scene_is_path ? LoadScene(scene_file)
-                              : ParseScene(nlohmann::json::parse(scene_document->dump()), scene_file,
-                                           ElementRegistry::WithBuiltins()));
+    const DisplaySystem system = Compile(scene_is_path ? LoadScene(scene_file)
+                                                       : ParseScene(nlohmann::json::parse(scene_document->dump()),
+                                                                    scene_file, ElementRegistry::WithBuiltins()));
     const Measurements m = measurements_are_path ? ReadMeasurementsFile(measurements_file)
                                                  : ParseMeasurements(*measurements_document, measurements_file);
     CheckMeasurements(m, system);  // a panel or pixel that is not the scene's, with its place
     CalibratedDisplay display;
     report = Calibrate(system, m, options, &display);
     if (!report.IsSolutionUsable()) throw Error("the calibration failed: " + report.message);
-    calibrated = CalibratedSceneDocument(scene_is_path ? ReadDocumentInOrder(scene_file) : *scene_document,
-                                         scene_file, display);
+    calibrated =
+        CalibratedSceneDocument(scene_is_path ? ReadDocumentInOrder(scene_file) : *scene_document, scene_file, display);
     if (scene_is_path)
       RebaseRelativePaths(calibrated, std::filesystem::absolute(scene_file).string(),
                           (std::filesystem::current_path() / "calibrated.json").string());

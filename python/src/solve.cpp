@@ -17,6 +17,7 @@
 #include "python/src/json_convert.h"
 #include "python/src/numpy_view.h"
 #include "python/src/path_arg.h"
+#include "python/src/result_dicts.h"
 #include "python/src/solve_hooks.h"
 #include "python/src/trace_table.h"
 #include "solvers/solution_writer.h"
@@ -40,13 +41,6 @@ struct Solution {
   Patterns patterns;
   SolverReport report;
 };
-
-py::dict ReportDict(const SolverReport& r) {
-  py::dict d = FromJson(ReportToJson(r));
-  d["final_psnr_db"] = r.final_psnr_db;  // +inf for a perfect fit (JSON has no infinity)
-  d["trace"] = TraceTable(r.trace);
-  return d;
-}
 
 // The options a keyword may set, by the scene's "solve" keys (solvers/solve_config.h).
 void SetOption(SolverOptions& o, const std::string& key, const py::handle& value) {
@@ -186,7 +180,7 @@ py::object Retina(const Solution& s, const std::vector<double>& accommodation, d
                               ? MakeRetinaGrid(field_deg->first * deg, field_deg->second * deg, resolution_deg * deg)
                               : MakeRetinaGrid(system.fov_x, system.fov_y, resolution_deg * deg);
   const std::vector<py::ssize_t> shape = {static_cast<py::ssize_t>(accommodation.size()),
-                                         static_cast<py::ssize_t>(grid.rows), static_cast<py::ssize_t>(grid.cols), 3};
+                                          static_cast<py::ssize_t>(grid.rows), static_cast<py::ssize_t>(grid.cols), 3};
   py::array_t<float> images(shape), seen(natural ? shape : std::vector<py::ssize_t>{0});
   float* out = images.mutable_data();
   float* out_natural = seen.mutable_data();

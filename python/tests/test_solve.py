@@ -57,6 +57,28 @@ def test_the_target_light_field_is_read_where_it_lies(small_system, target):
     assert solution.target.rgb.ctypes.data == target.rgb.ctypes.data
 
 
+def test_the_solver_reads_the_arrays_memory(small_system, target):
+    # A change written through the NumPy view between two iterations is what the next iteration measures: the
+    # solver reads the array's own memory (one copy is made only when target values exceed what the display
+    # shows: target_range clip or scale, solvers/objective.h).
+    lf = layerlab.LightField(np.array(target.rgb), target.geometry)
+    address = lf.rgb.ctypes.data
+
+    def callback(it):
+        if it["iteration"] == 0:
+            lf.rgb[:] = 0.25
+        return it["iteration"] == 1
+
+    solution = layerlab.solve(small_system, lf, iterations=5, callback=callback)
+    assert solution.target.rgb.ctypes.data == address
+    trace = solution.report["trace"]
+    shown = layerlab.synthesize(small_system, solution.patterns).rgb.astype(np.float64)
+    assert trace["objective"][1] == pytest.approx(((shown - 0.25) ** 2).sum(), rel=1e-5)
+    assert trace["objective"][0] == pytest.approx(
+        ((layerlab.synthesize(small_system, [np.full_like(p, 0.5) for p in solution.patterns]).rgb.astype(
+            np.float64) - target.rgb) ** 2).sum(), rel=1e-5)
+
+
 def test_a_numpy_target_of_the_display_geometry(small_system, target):
     array = np.array(target.rgb)
     solution = layerlab.solve(small_system, array, iterations=2)
@@ -205,6 +227,7 @@ def test_retina_of_uniform_patterns(small_system):
     rows, cols = images.shape[1:3]
     np.testing.assert_allclose(images[:, rows // 4:3 * rows // 4, cols // 4:3 * cols // 4], 0.5, rtol=1e-5)
     assert images.shape[2] == pytest.approx(np.degrees(small_system.fov_x) / 0.2, abs=1)
+    np.testing.assert_array_equal(layerlab.retina(solution, [0.4, 1.3], resolution=0.2), images)
     diopters, stack = layerlab.focal_stack(solution, 0.0, 1.0, 0.5, resolution=0.2, field=(4, 2))
     np.testing.assert_allclose(diopters, [0, 0.5, 1.0])
     assert stack.shape == (3, 10, 20, 3)
