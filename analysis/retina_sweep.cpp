@@ -109,7 +109,7 @@ std::vector<RetinaStateResult> WriteRetinaSweep(
       csv += row;
       if (o.keep_images) r[s].display = std::move(display[s]), r[s].natural = std::move(seen[s]);
       results.push_back(std::move(r[s]));
-      if (progress) progress(results.size(), o.states.size(), r[s]);
+      if (progress) progress(results.size(), o.states.size(), results.back());
     }
   }
   WriteFileAtomically((out / "retina.csv").string(), csv);

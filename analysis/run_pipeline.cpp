@@ -197,8 +197,8 @@ RunOutcome RunPipeline(const RunRequest& request) {
                            });
       progress.Finish(std::to_string(states.size()) + " states");
       AddRetinaToPage(states, r.accommodation, bool(natural), model->white_luminance(), "retina/", &page);
-      outcome.retina = states;
       step("retina (" + std::to_string(states.size()) + " accommodation states)", start);
+      outcome.retina = std::move(states);
     }
 
     if (in.run.contrast.enabled) {

@@ -61,6 +61,7 @@ def check_the_arrays_and_tables(outcome, out, scene_path):
         white = means / luminance
         np.testing.assert_allclose(white, white[0], rtol=1e-6)
     assert (out / "retina" / "display" / (retina["names"][0] + ".exr")).is_file()
+    assert f"retina ({states} accommodation states)" in (out / "index.html").read_text()  # the report's steps
     # Contrast: the curves of contrast.csv.
     curves = rows(out / "contrast" / "contrast.csv")
     assert len(outcome["contrast"]) == len({(r["display"], r["target_D"], r["frequency_cpd"]) for r in curves})
