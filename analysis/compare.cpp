@@ -3,11 +3,17 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <optional>
+#include <set>
 
 #include "analysis/svg_plot.h"
+#include "framework/error.h"
 #include "framework/progress.h"
 #include "solvers/objective.h"
+#include "solvers/solve_config.h"
+#include "systems/compile.h"
+#include "systems/display_model.h"
 
 namespace layerlab {
 namespace {
@@ -23,6 +29,53 @@ std::vector<std::string> SuitableSolvers(const DisplaySystem& system, const Solv
   return out;
 }
 
+std::vector<CompareRun> CompareRunsOf(const std::vector<std::string>& scene_files, const CompareSelection& selection,
+                                      std::vector<std::string>* skipped) {
+  const SolverRegistry& registry = SolverRegistry::Builtins();
+  const bool all = selection.solvers.size() == 1 && selection.solvers.front() == "all";
+  if (!all)
+    for (const std::string& name : selection.solvers) registry.get(name);  // names the known ones
+  std::vector<CompareRun> runs;
+  for (const std::string& file : scene_files) {
+    Scene scene = LoadScene(file);
+    DisplaySystem system = Compile(scene);
+    SolveConfig config = ReadSolveConfig(scene, system);
+    std::vector<std::string> solvers = all ? SuitableSolvers(system) : selection.solvers;
+    if (solvers.empty()) solvers.push_back(config.solver);
+    const std::string name = std::filesystem::path(file).stem().string();
+    for (const std::string& solver : solvers) {
+      if (std::string why = UnsuitableSolver(solver, system); !why.empty()) {
+        if (skipped) skipped->push_back(name + " / " + solver + ": the solver " + why);
+        continue;
+      }
+      // Like for like unless asked: every row runs its solver with the same options.
+      const bool own = selection.scene_options && solver == config.solver;
+      SolverOptions options = own ? config.options : registry.find(solver)->defaults;
+      options.iterations = selection.iterations.value_or(options.iterations);
+      options.time_budget = selection.time_budget.value_or(options.time_budget);
+      runs.push_back(
+          {name, system, solver, options, own ? config.sampling : Sampling::kNearest, own ? "scene" : "shared"});
+    }
+  }
+  if (runs.empty()) throw Error("compare: no display and solver fit together; nothing to run");
+  return runs;
+}
+
+std::vector<std::string> CompareWarnings(const std::vector<CompareRun>& runs, const std::vector<CompareResult>& results,
+                                         const LightFieldGeometry& target) {
+  std::vector<std::string> warnings;
+  std::set<std::string> seen;
+  for (const CompareRun& r : runs)
+    if (seen.insert(r.display).second) {
+      std::vector<std::string> found = r.system.warnings;
+      for (const std::string& w : TargetGeometryWarnings(r.system, target)) found.push_back(w);
+      for (const std::string& w : found) warnings.push_back(r.display + ": " + w);
+    }
+  for (const CompareResult& r : results)
+    for (const std::string& w : r.report.warnings) warnings.push_back(r.display + " / " + r.solver + ": " + w);
+  return warnings;
+}
+
 std::vector<CompareResult> RunComparison(const std::vector<CompareRun>& runs, const LightField& target,
                                          bool show_progress, const SolverRegistry& registry) {
   std::vector<CompareResult> results;
@@ -33,8 +86,8 @@ std::vector<CompareResult> RunComparison(const std::vector<CompareRun>& runs, co
     std::optional<Progress> progress;
     if (show_progress) {
       progress.emplace("compare " + label, options.iterations);
-      options.progress = [&](int iteration, double, double psnr) {
-        progress->Update(iteration, "iterations  PSNR " + Psnr(psnr) + " dB");
+      options.progress = [&](const IterationRecord& row) {
+        progress->Update(row.iteration, "iterations  PSNR " + Psnr(row.psnr_db) + " dB");
       };
     }
     Patterns t;

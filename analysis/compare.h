@@ -3,6 +3,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,32 @@ struct CompareResult {
 // Every solver of `registry` that suits `system` (SolverType::unsuitable), by name.
 std::vector<std::string> SuitableSolvers(const DisplaySystem& system,
                                          const SolverRegistry& registry = SolverRegistry::Builtins());
+
+// What to run of each scene: `solvers` by name, {"all"} for every one that
+// suits the display, none for the scene's own; `iterations` and
+// `time_budget` (s, 0: none) replace every run's. Like for like unless
+// `scene_options`: every row runs its solver with that solver's defaults
+// (nearest sampling); with it, a scene's own solver runs with its "solve"
+// section's options and sampling (options_from "scene").
+struct CompareSelection {
+  std::vector<std::string> solvers;
+  std::optional<int> iterations;
+  std::optional<double> time_budget;
+  bool scene_options = false;
+};
+
+// The runs of `layerlab compare SCENES` (and of Python's compare()): each
+// scene file compiled, named by its stem. A named solver that does not suit a
+// display is left out with a line in *skipped ("NAME / SOLVER: the solver ...").
+// Throws layerlab::Error for an unknown solver, a bad scene, or nothing to run.
+std::vector<CompareRun> CompareRunsOf(const std::vector<std::string>& scene_files, const CompareSelection& selection,
+                                      std::vector<std::string>* skipped);
+
+// What the comparison should say: each display's compile warnings and its
+// target-geometry warnings once ("NAME: ..."), then each run's solver
+// warnings ("NAME / SOLVER: ...").
+std::vector<std::string> CompareWarnings(const std::vector<CompareRun>& runs, const std::vector<CompareResult>& results,
+                                         const LightFieldGeometry& target);
 
 // Runs each in turn on `target` (each display bound to the target's rays),
 // the solvers taken from `registry`. With `show_progress`, one progress line

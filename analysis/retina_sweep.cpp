@@ -110,8 +110,9 @@ std::vector<RetinaStateResult> WriteRetinaSweep(
       std::snprintf(row, sizeof row, "%.4f,%.6g,%.6g,%zu,%.3f\n", r[s].diopters, r[s].display_mean_cd_m2,
                     r[s].natural_mean_cd_m2, r[s].display_clipped_in_png, r[s].seconds);
       csv += row;
-      results.push_back(r[s]);
-      if (progress) progress(results.size(), o.states.size(), r[s]);
+      if (o.keep_images) r[s].display = std::move(display[s]), r[s].natural = std::move(seen[s]);
+      results.push_back(std::move(r[s]));
+      if (progress) progress(results.size(), o.states.size(), results.back());
     }
   }
   WriteFileAtomically((out / "retina.csv").string(), csv);

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "framework/exr_image.h"
 #include "systems/display_model.h"
 #include "systems/retina.h"
 
@@ -23,6 +24,7 @@ struct RetinaSweepOptions {
   std::vector<double> states;       // D, in the order written
   double resolution = 0.05;         // deg per sample
   double field_x = 0, field_y = 0;  // deg; 0: the display's field of view
+  bool keep_images = false;         // also return each state's images (RetinaStateResult::display, natural)
 };
 
 struct RetinaStateResult {
@@ -31,7 +33,8 @@ struct RetinaStateResult {
   double display_mean_cd_m2 = 0;
   double natural_mean_cd_m2 = 0;  // NaN without natural viewing
   size_t display_clipped_in_png = 0;
-  double seconds = 0;  // spent on its images and files (the files of a few states are written at once)
+  double seconds = 0;      // spent on its images and files (the files of a few states are written at once)
+  Image display, natural;  // with RetinaSweepOptions::keep_images (natural: with natural viewing), else empty
 };
 
 std::string RetinaStateName(double diopters);

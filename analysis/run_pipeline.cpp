@@ -166,8 +166,8 @@ RunOutcome RunPipeline(const RunRequest& request) {
       model = std::make_unique<DisplayModel>(in.system, g, in.solve.sampling);
       SolverOptions options = in.solve.options;
       Progress progress("solve " + in.solve.solver, options.iterations);
-      options.progress = [&](int iteration, double, double psnr) {
-        progress.Update(iteration, "iterations  PSNR " + Psnr(psnr));
+      options.progress = [&](const IterationRecord& row) {
+        progress.Update(row.iteration, "iterations  PSNR " + Psnr(row.psnr_db));
       };
       report =
           SolverRegistry::Builtins().create(in.solve.solver)->Solve(*model, target->light_field, options, &patterns);
@@ -188,7 +188,7 @@ RunOutcome RunPipeline(const RunRequest& request) {
       const SceneRadiance natural =
           r.natural ? target->Natural(r.natural_traced ? Target::Viewing::kTraced : Target::Viewing::kLightField)
                     : SceneRadiance{};
-      RetinaSweepOptions sweep{r.states(), r.resolution, r.field_x, r.field_y};
+      RetinaSweepOptions sweep{r.states(), r.resolution, r.field_x, r.field_y, request.keep_images};
       Progress progress("retina", sweep.states.size());
       std::vector<RetinaStateResult> states =
           WriteRetinaSweep(*model, patterns, natural, sweep, (out / "retina").string(),
@@ -197,8 +197,8 @@ RunOutcome RunPipeline(const RunRequest& request) {
                            });
       progress.Finish(std::to_string(states.size()) + " states");
       AddRetinaToPage(states, r.accommodation, bool(natural), model->white_luminance(), "retina/", &page);
-      outcome.retina = states;
       step("retina (" + std::to_string(states.size()) + " accommodation states)", start);
+      outcome.retina = std::move(states);
     }
 
     if (in.run.contrast.enabled) {
@@ -228,6 +228,7 @@ RunOutcome RunPipeline(const RunRequest& request) {
             continue;
           }
           if (k == 0 && solver == in.solve.solver && !overridden) {  // the main solve already ran this
+            outcome.compare_scenes.push_back(system->file);
             page.compare.push_back({name, solver, report, system->brightness_efficiency, system->luminance_efficiency,
                                     system->subframes, system->subframes * system->frame_rate, "scene"});
             continue;
@@ -246,12 +247,14 @@ RunOutcome RunPipeline(const RunRequest& request) {
           CompareResult result = RunComparison({run}, target->light_field, true).front();
           if (!result.report.IsSolutionUsable())
             throw Error("compare: " + name + " / " + solver + " failed: " + result.report.message);
+          outcome.compare_scenes.push_back(system->file);
           page.compare.push_back(std::move(result));
         }
       }
       AddCompareToPage(page.compare, (out / "compare").string(), "compare/", &page);
       step("compare (" + std::to_string(page.compare.size()) + " runs)", start);
       outcome.compare_table = CompareTable(page.compare);
+      outcome.compare = page.compare;
     }
 
     page.steps.emplace_back("total", Since(run_start));
@@ -259,6 +262,7 @@ RunOutcome RunPipeline(const RunRequest& request) {
       outcome.warnings.push_back("compile: " + w);  // shown by the page's system table
     outcome.warnings.insert(outcome.warnings.end(), page.warnings.begin(), page.warnings.end());
     WriteReportPage(page, out.string());
+    outcome.patterns = std::move(patterns);
   } catch (const Error& e) {
     throw stage.Explain(e);
   }

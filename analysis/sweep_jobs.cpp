@@ -218,7 +218,7 @@ SweepJobState RunSweepJob(const SweepSpec& spec, const SweepJob& job, const std:
   if (state.complete) return state;
   if (ran) *ran = true;
   const fs::path folder = JobFolder(out, job);
-  RunRequest request{(folder / "scene.json").string(), (folder / "out").string(), spec.iterations, spec.threads};
+  RunRequest request{(folder / "scene.json").string(), (folder / "out").string(), spec.iterations, spec.threads, false};
   const auto start = std::chrono::steady_clock::now();
   auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   state = SweepJobState{};

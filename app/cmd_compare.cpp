@@ -5,11 +5,9 @@
 // defaults, --iterations, --time-budget) unless --scene-options asks for
 // each scene's own "solve" section.
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
-#include <set>
 #include <sstream>
 
 #include "analysis/compare.h"
@@ -21,13 +19,9 @@
 #include "app/target_option.h"
 #include "framework/atomic_file.h"
 #include "framework/error.h"
-#include "framework/lightfield_io.h"
-#include "framework/progress.h"
 #include "framework/staged_output.h"
 #include "framework/warnings.h"
 #include "solvers/solve_config.h"
-#include "systems/compile.h"
-#include "systems/display_model.h"
 
 namespace layerlab::app {
 namespace {
@@ -66,35 +60,13 @@ void AddCompareCommand(CLI::App& app) {
                 "every row (each solver's defaults; the table's options column says which)");
   cmd->add_option("--time-budget", o->time_budget, "How long each run may take: seconds, or with units (\"5 s\")");
   cmd->callback([o] {
-    const bool all = o->solvers == "all";
-    if (!all)
-      for (const std::string& name : SplitNames(o->solvers)) SolverRegistry::Builtins().get(name);  // names known ones
     if (o->iterations && *o->iterations <= 0) throw Error("--iterations: must be positive");
     std::optional<double> time_budget;
     if (!o->time_budget.empty()) time_budget = ParseOptionValue(o->time_budget, "--time-budget", kSeconds);
-    std::vector<CompareRun> runs;
-    for (const std::string& file : o->scenes) {
-      Scene scene = LoadScene(file);
-      DisplaySystem system = Compile(scene);
-      SolveConfig config = ReadSolveConfig(scene, system);
-      std::vector<std::string> solvers = all ? SuitableSolvers(system) : SplitNames(o->solvers);
-      if (solvers.empty()) solvers.push_back(config.solver);
-      for (const std::string& solver : solvers) {
-        const std::string name = std::filesystem::path(file).stem().string();
-        if (std::string why = UnsuitableSolver(solver, system); !why.empty()) {
-          std::fprintf(stderr, "compare: skipped %s / %s: the solver %s\n", name.c_str(), solver.c_str(), why.c_str());
-          continue;
-        }
-        // Like for like unless asked: every row runs its solver with the same options.
-        const bool own = o->scene_options && solver == config.solver;
-        SolverOptions options = own ? config.options : SolverRegistry::Builtins().find(solver)->defaults;
-        options.iterations = o->iterations.value_or(options.iterations);
-        options.time_budget = time_budget.value_or(options.time_budget);
-        runs.push_back(
-            {name, system, solver, options, own ? config.sampling : Sampling::kNearest, own ? "scene" : "shared"});
-      }
-    }
-    if (runs.empty()) throw Error("compare: no display and solver fit together; nothing to run");
+    std::vector<std::string> skipped;
+    const std::vector<CompareRun> runs =
+        CompareRunsOf(o->scenes, {SplitNames(o->solvers), o->iterations, time_budget, o->scene_options}, &skipped);
+    for (const std::string& line : skipped) std::fprintf(stderr, "compare: skipped %s\n", line.c_str());
     SolveConfig target_config;
     ApplyTargetOption(o->target, target_config);
     if (!o->target.given()) throw Error("compare: give the target: --target LF_DIR or --target-scene TARGET.json");
@@ -110,16 +82,7 @@ void AddCompareCommand(CLI::App& app) {
         throw Error("compare: " + r.display + " / " + r.solver + " failed: " + r.report.message +
                     "; nothing was written");
 
-    std::vector<std::string> warnings;  // each display's compile and target warnings once, then every run's
-    std::set<std::string> seen;
-    for (const CompareRun& r : runs)
-      if (seen.insert(r.display).second) {
-        std::vector<std::string> found = r.system.warnings;
-        for (const std::string& w : TargetGeometryWarnings(r.system, target->light_field.geometry)) found.push_back(w);
-        for (const std::string& w : found) warnings.push_back(r.display + ": " + w);
-      }
-    for (const CompareResult& r : results)
-      for (const std::string& w : r.report.warnings) warnings.push_back(r.display + " / " + r.solver + ": " + w);
+    const std::vector<std::string> warnings = CompareWarnings(runs, results, target->light_field.geometry);
     SayWarnings(warnings);
 
     const std::string table = CompareTable(results);

@@ -101,7 +101,7 @@ void AddRetinaCommand(CLI::App& app) {
     }
 #endif
 
-    RetinaSweepOptions sweep{states, resolution, field_x, field_y};
+    RetinaSweepOptions sweep{states, resolution, field_x, field_y, false};
     Progress progress("retina", states.size());
     try {
       const std::vector<RetinaStateResult> results = WriteRetinaSweep(

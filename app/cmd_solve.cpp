@@ -126,10 +126,10 @@ void AddSolveCommand(CLI::App& app) {
     SolverReport report;
     {
       Progress progress(config.solver, opt.iterations);
-      opt.progress = [&](int iteration, double, double psnr) {
+      opt.progress = [&](const IterationRecord& row) {
         char detail[64];
-        std::snprintf(detail, sizeof detail, "iterations  PSNR %.2f dB", psnr);
-        progress.Update(iteration, detail);
+        std::snprintf(detail, sizeof detail, "iterations  PSNR %.2f dB", row.psnr_db);
+        progress.Update(row.iteration, detail);
       };
       report = SolverRegistry::Builtins().create(config.solver)->Solve(model, target->light_field, opt, &patterns);
       progress.Finish(ToString(report.termination));

@@ -96,7 +96,7 @@ bool SolveLoop::Record(double objective) {
   report_.iterations = iteration_;
   report_.final_objective = objective;
   report_.final_psnr_db = r.psnr_db;
-  if (options_.progress) options_.progress(iteration_, r.seconds, r.psnr_db);
+  if (options_.progress) options_.progress(r);
   if (!std::isfinite(objective)) {
     Fail("the objective became " + std::to_string(objective) + " at iteration " + std::to_string(iteration_));
     return false;

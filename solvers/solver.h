@@ -48,8 +48,8 @@ struct SolverOptions {
   double epsilon = 1e-12;
   double floor = 1e-6;
   TargetRange target_range = TargetRange::kClip;
-  // Called after every iteration (progress display); may be empty.
-  std::function<void(int iteration, double seconds, double psnr_db)> progress;
+  // Called after every iteration with its trace row (progress display); may be empty.
+  std::function<void(const struct IterationRecord& row)> progress;
   // Asked after every iteration; true stops the solve with the patterns of
   // that iteration, usable (Ctrl-C: framework/interrupt.h). May be empty.
   std::function<bool()> interrupted;

@@ -22,9 +22,11 @@ from ._layerlab import (
     Solution,
     System,
     __version__,
+    compare,
     compile,
     contrast,
     display_geometry,
+    fit,
     load_scene,
     read_lightfield,
     render_target,
@@ -36,20 +38,28 @@ from ._layerlab import (
 
 
 
-def focal_stack(solution, start, stop, step, resolution=0.05, field=None):
+def retina(solution, accommodation, resolution=0.05, field=None, natural=False):
+    """What the eye sees of a solution focused at each of `accommodation` (D): (states, rows, cols, 3) float32,
+    display-relative linear RGB; natural=True: (display, natural). The same as Solution.retina."""
+    return solution.retina(accommodation, resolution=resolution, field=field, natural=natural)
+
+
+def focal_stack(solution, start, stop, step, resolution=0.05, field=None, natural=False):
     """Retinal images from `start` to `stop` D (inclusive) by `step`: (diopters, images), images
-    (states, rows, cols, 3) as Solution.retina gives them."""
+    (states, rows, cols, 3) as Solution.retina gives them; natural=True: (diopters, images, natural),
+    the last what the eye sees of the target itself."""
     if not step > 0 or stop < start:
         raise ValueError(f"focal_stack: needs step > 0 and stop >= start, got {start}, {stop}, {step}")
     import numpy
 
     diopters = start + step * numpy.arange(int(numpy.floor((stop - start) / step + 1e-9)) + 1)
-    return diopters, solution.retina(list(diopters), resolution=resolution, field=field)
+    seen = solution.retina(list(diopters), resolution=resolution, field=field, natural=natural)
+    return (diopters, *seen) if natural else (diopters, seen)
 
 
 __all__ = [
     "Branch", "Error", "Interrupted", "Layer", "LightField", "LightFieldGeometry", "PathStep", "Scene",
-    "SceneError", "Solution", "System", "__version__", "compile", "contrast", "display_geometry", "focal_stack", "load_scene",
-    "read_lightfield", "render_target", "run", "solve", "solvers",
+    "SceneError", "Solution", "System", "__version__", "compare", "compile", "contrast", "display_geometry", "fit", "focal_stack", "load_scene",
+    "read_lightfield", "render_target", "retina", "run", "solve", "solvers",
     "synthesize",
 ]

@@ -1,6 +1,9 @@
 // run(scene, out): the main job of `layerlab run` (analysis/run_pipeline.h),
-// the same library call the command makes; contrast(scenes, section): the
+// the same library call the command makes, returning what it computed as
+// arrays and tables beside the files; contrast(scenes, section): the
 // accommodation sweep of Fig. 5 (analysis/contrast.h) as arrays.
+#include <algorithm>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -12,7 +15,9 @@
 #include "analysis/run_pipeline.h"
 #include "python/src/bindings.h"
 #include "python/src/json_convert.h"
+#include "python/src/numpy_view.h"
 #include "python/src/path_arg.h"
+#include "python/src/result_dicts.h"
 #include "systems/compile.h"
 
 namespace py = pybind11;
@@ -21,6 +26,77 @@ namespace layerlab::python {
 namespace {
 
 py::array_t<double> Array(const std::vector<double>& v) { return py::array_t<double>(v.size(), v.data()); }
+
+// The retinal states as arrays: diopters, the images stacked (states, rows,
+// cols, 3) as Solution.retina gives them (one copy: each state has its own
+// buffer), natural (None without natural viewing) and the mean luminances.
+py::dict RetinaDict(std::vector<RetinaStateResult>& states) {
+  py::dict d;
+  std::vector<double> diopters, display_mean, natural_mean;
+  for (const RetinaStateResult& s : states) {
+    diopters.push_back(s.diopters);
+    display_mean.push_back(s.display_mean_cd_m2);
+    natural_mean.push_back(s.natural_mean_cd_m2);
+  }
+  d["diopters"] = Array(diopters);
+  d["display_mean_cd_m2"] = Array(display_mean);
+  d["natural_mean_cd_m2"] = Array(natural_mean);
+  d["names"] = [&] {
+    py::list names;
+    for (const RetinaStateResult& s : states) names.append(s.name);
+    return names;
+  }();
+  auto stack = [&](Image RetinaStateResult::*which) -> py::object {
+    if (states.empty() || (states.front().*which).pixels.empty()) return py::none();
+    const Image& first = states.front().*which;
+    const size_t size = first.pixels.size();  // every state's: one retina grid
+    py::array_t<float> a({static_cast<py::ssize_t>(states.size()), static_cast<py::ssize_t>(first.height),
+                          static_cast<py::ssize_t>(first.width), py::ssize_t{3}});
+    for (size_t k = 0; k < states.size(); ++k) {
+      Image& image = states[k].*which;
+      std::copy(image.pixels.begin(), image.pixels.end(), a.mutable_data() + k * size);
+      image = Image{};  // its memory back: the array holds it now
+    }
+    return a;
+  };
+  d["display"] = stack(&RetinaStateResult::display);
+  d["natural"] = stack(&RetinaStateResult::natural);
+  return d;
+}
+
+py::dict RunDict(RunOutcome&& done) {
+  auto outcome = std::make_shared<RunOutcome>(std::move(done));
+  py::dict d;
+  d["written"] = outcome->written;
+  d["removed"] = outcome->removed;
+  d["recovered"] = outcome->recovered;
+  d["warnings"] = outcome->warnings;
+  d["solved"] = outcome->solved;
+  d["compare_table"] = outcome->compare_table;
+  d["index_html"] = outcome->index_html;
+  d["report"] = py::none();
+  if (outcome->solved) {
+    d["psnr_db"] = outcome->report.final_psnr_db;
+    d["solver"] = outcome->report.solver;
+    d["iterations"] = outcome->report.iterations;
+    d["seconds"] = outcome->report.seconds;
+    d["report"] = ReportDict(outcome->report);
+  }
+  // The patterns: views of the outcome's own buffers, which they keep alive (no copy).
+  py::capsule owner(new std::shared_ptr<RunOutcome>(outcome),
+                    [](void* p) { delete static_cast<std::shared_ptr<RunOutcome>*>(p); });
+  py::list patterns;
+  for (const LayerPattern& p : outcome->patterns) patterns.append(FloatView({p.rows, p.cols, 3}, p.rgb.data(), owner));
+  d["patterns"] = patterns;
+  d["retina"] = outcome->retina.empty() ? py::object(py::none()) : py::object(RetinaDict(outcome->retina));
+  py::list curves;
+  for (const ContrastCurve& c : outcome->contrast) curves.append(CurveDict(c));
+  d["contrast"] = curves;
+  d["compare"] = outcome->compare.empty()
+                     ? py::object(py::none())
+                     : py::object(CompareColumns(outcome->compare_scenes, outcome->compare, {}, {}));
+  return d;
+}
 
 // The displays of the first scene file and the others; the options are those
 // of a run section's "contrast" object (docs/run-section.md), read by the same
@@ -54,17 +130,7 @@ py::list Contrast(const py::object& scenes, const py::object& section) {
     curves = RunContrast(displays, config.options);
   }
   py::list list;
-  for (const ContrastCurve& c : curves) {
-    py::dict d;
-    d["display"] = c.display, d["convention"] = c.convention, d["solver"] = c.solver;
-    d["target_diopters"] = c.target_diopters, d["frequency"] = c.frequency;
-    d["accommodation"] = Array(c.accommodation), d["contrast"] = Array(c.contrast);
-    d["contrast_shifted"] = Array(c.contrast_shifted);
-    d["peak"] = c.estimate.at, d["peak_uncertainty"] = c.estimate.uncertainty, d["flat"] = c.estimate.flat;
-    d["at_target"] = c.at_target, d["psnr_db"] = c.psnr_db;
-    d["solve_seconds"] = c.solve_seconds, d["sweep_seconds"] = c.sweep_seconds;
-    list.append(d);
-  }
+  for (const ContrastCurve& c : curves) list.append(CurveDict(c));
   return list;
 }
 
@@ -74,31 +140,22 @@ void BindAnalysis(py::module_& m) {
   m.def(
       "run",
       [](const py::object& scene, const py::object& out, std::optional<int> iterations, std::optional<int> threads) {
-        RunRequest request{.scene = PathArg(scene), .out = PathArg(out), .iterations = iterations, .threads = threads};
+        RunRequest request{.scene = PathArg(scene),
+                           .out = PathArg(out),
+                           .iterations = iterations,
+                           .threads = threads,
+                           .keep_images = true};
         RunOutcome outcome;
         {
           py::gil_scoped_release release;
           outcome = RunPipeline(request);
         }
-        py::dict d;
-        d["written"] = outcome.written;
-        d["removed"] = outcome.removed;
-        d["recovered"] = outcome.recovered;
-        d["warnings"] = outcome.warnings;
-        d["solved"] = outcome.solved;
-        d["compare_table"] = outcome.compare_table;
-        d["index_html"] = outcome.index_html;
-        if (outcome.solved) {
-          d["psnr_db"] = outcome.report.final_psnr_db;
-          d["solver"] = outcome.report.solver;
-          d["iterations"] = outcome.report.iterations;
-          d["seconds"] = outcome.report.seconds;
-        }
-        return d;
+        return RunDict(std::move(outcome));
       },
       py::arg("scene"), py::arg("out"), py::kw_only(), py::arg("iterations") = py::none(),
       py::arg("threads") = py::none(),
-      "Runs the scene's \"solve\" and \"run\" sections like `layerlab run SCENE --out OUT`; returns what was written");
+      "Runs the scene's \"solve\" and \"run\" sections like `layerlab run SCENE --out OUT`; returns what was written "
+      "and what was computed: report, patterns (arrays), retina (arrays), contrast (curves), compare (columns)");
   m.def("contrast", &Contrast, py::arg("scenes"), py::arg("section") = py::none(),
         "Normalized contrast against accommodation (Fig. 5): one dict per display, depth and frequency, with "
         "\"natural\" for natural viewing; `section` is a run section's \"contrast\" object (default: the first "

@@ -9,6 +9,8 @@ void BindErrors(pybind11::module_& m);      // errors.cpp
 void BindScene(pybind11::module_& m);       // scene.cpp: load_scene, compile, the display system
 void BindLightField(pybind11::module_& m);  // lightfield.cpp: geometry, light fields, NumPy views
 void BindSolve(pybind11::module_& m);       // solve.cpp: solve, its solution and report
-void BindAnalysis(pybind11::module_& m);    // analysis.cpp: run
+void BindAnalysis(pybind11::module_& m);    // analysis.cpp: run, contrast
+void BindCompare(pybind11::module_& m);     // compare.cpp: compare
+void BindFit(pybind11::module_& m);         // fit.cpp (Ceres builds) or fit_missing.cpp: fit
 
 }  // namespace layerlab::python

@@ -10,4 +10,6 @@ PYBIND11_MODULE(_layerlab, m) {
   layerlab::python::BindLightField(m);
   layerlab::python::BindSolve(m);
   layerlab::python::BindAnalysis(m);
+  layerlab::python::BindCompare(m);
+  layerlab::python::BindFit(m);
 }

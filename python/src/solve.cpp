@@ -17,11 +17,15 @@
 #include "python/src/json_convert.h"
 #include "python/src/numpy_view.h"
 #include "python/src/path_arg.h"
+#include "python/src/result_dicts.h"
+#include "python/src/solve_hooks.h"
+#include "python/src/trace_table.h"
 #include "solvers/solution_writer.h"
 #include "solvers/solve_config.h"
 #include "systems/compile.h"
 #include "systems/diffraction.h"
 #include "systems/layer_sampler.h"
+#include "systems/lightfield_radiance.h"
 #include "systems/retina.h"
 
 namespace py = pybind11;
@@ -34,26 +38,10 @@ struct Solution {
   std::shared_ptr<const DisplayModel> model;
   std::shared_ptr<LightField> target;
   std::string solver;
+  Sampling sampling = Sampling::kNearest;  // how the layers (and the target, seen naturally) are read
   Patterns patterns;
   SolverReport report;
 };
-
-py::dict ReportDict(const SolverReport& r) {
-  py::dict d = FromJson(ReportToJson(r));
-  d["final_psnr_db"] = r.final_psnr_db;  // +inf for a perfect fit (JSON has no infinity)
-  py::array_t<int> iteration(static_cast<py::ssize_t>(r.trace.size()));
-  py::array_t<double> seconds(iteration.size()), objective(iteration.size()), psnr(iteration.size());
-  for (size_t i = 0; i < r.trace.size(); ++i) {
-    iteration.mutable_at(i) = r.trace[i].iteration;
-    seconds.mutable_at(i) = r.trace[i].seconds;
-    objective.mutable_at(i) = r.trace[i].objective;
-    psnr.mutable_at(i) = r.trace[i].psnr_db;
-  }
-  py::dict trace;
-  trace["iteration"] = iteration, trace["seconds"] = seconds, trace["objective"] = objective, trace["psnr_db"] = psnr;
-  d["trace"] = trace;
-  return d;
-}
 
 // The options a keyword may set, by the scene's "solve" keys (solvers/solve_config.h).
 void SetOption(SolverOptions& o, const std::string& key, const py::handle& value) {
@@ -130,33 +118,12 @@ py::object Solve(const py::object& display, const py::object& target, std::optio
     throw py::value_error("solve: no target: pass one, or give the scene a \"solve\" section with a target");
   }
   solution->solver = config.solver;
+  solution->sampling = config.sampling;
 
-  // Between iterations: the callback (with the GIL), then pending signals (Ctrl-C).
   SolverOptions& opt = config.options;
-  bool stop = false;
-  std::optional<py::error_already_set> raised;
-  if (!callback.is_none()) {
-    opt.progress = [&](int iteration, double seconds, double psnr_db) {
-      py::gil_scoped_acquire acquire;
-      try {
-        py::dict info;
-        info["iteration"] = iteration, info["seconds"] = seconds, info["psnr_db"] = psnr_db;
-        if (py::bool_(callback(info))) stop = true;
-      } catch (py::error_already_set& e) {
-        raised = std::move(e);
-        stop = true;
-      }
-    };
-  }
-  opt.interrupted = [&] {
-    if (stop) return true;
-    py::gil_scoped_acquire acquire;
-    if (PyErr_CheckSignals() != 0) {
-      raised = py::error_already_set();
-      stop = true;
-    }
-    return stop;
-  };
+  SolveHooks hooks;
+  hooks.Install(opt, callback, TraceRow);
+  std::optional<py::error_already_set>& raised = hooks.raised;
   {
     py::gil_scoped_release release;
     solution->model = std::make_shared<DisplayModel>(*solution->system, solution->target->geometry, config.sampling);
@@ -202,26 +169,39 @@ std::shared_ptr<LightField> Synthesize(const std::shared_ptr<DisplaySystem>& sys
 }
 
 // What the eye sees of the solution, focused at each of `accommodation` (D):
-// (states, rows, cols, 3), display-relative linear RGB (systems/retina.h).
-py::array_t<float> Retina(const Solution& s, const std::vector<double>& accommodation, double resolution_deg,
-                          std::optional<std::pair<double, double>> field_deg) {
+// (states, rows, cols, 3), display-relative linear RGB (systems/retina.h);
+// with `natural`, also what it sees of the target light field itself, read as
+// the layers are (systems/lightfield_radiance.h), as `layerlab retina --target`.
+py::object Retina(const Solution& s, const std::vector<double>& accommodation, double resolution_deg,
+                  std::optional<std::pair<double, double>> field_deg, bool natural) {
   if (!(resolution_deg > 0)) throw py::value_error("retina: resolution must be above 0 deg");
   const DisplaySystem& system = *s.system;
   const double deg = std::numbers::pi / 180;
   const RetinaGrid grid = field_deg
                               ? MakeRetinaGrid(field_deg->first * deg, field_deg->second * deg, resolution_deg * deg)
                               : MakeRetinaGrid(system.fov_x, system.fov_y, resolution_deg * deg);
-  py::array_t<float> images({static_cast<py::ssize_t>(accommodation.size()), static_cast<py::ssize_t>(grid.rows),
-                             static_cast<py::ssize_t>(grid.cols), py::ssize_t{3}});
+  const std::vector<py::ssize_t> shape = {static_cast<py::ssize_t>(accommodation.size()),
+                                          static_cast<py::ssize_t>(grid.rows), static_cast<py::ssize_t>(grid.cols), 3};
+  py::array_t<float> images(shape), seen(natural ? shape : std::vector<py::ssize_t>{0});
   float* out = images.mutable_data();
+  float* out_natural = seen.mutable_data();
   const std::vector<PupilPoint> pupil = PupilSamples(system.eye);
-  py::gil_scoped_release release;
-  for (size_t k = 0; k < accommodation.size(); ++k) {
-    Image image =
-        RetinaOfDisplay(*s.model, s.patterns, grid, pupil, ChannelAccommodation(system.eye, accommodation[k]));
-    ApplyEyeOptics(system.eye, grid, &image);
-    std::copy(image.pixels.begin(), image.pixels.end(), out + k * image.pixels.size());
+  {
+    py::gil_scoped_release release;
+    const SceneRadiance scene = natural ? LightFieldRadiance(*s.target, s.sampling) : SceneRadiance{};
+    for (size_t k = 0; k < accommodation.size(); ++k) {
+      const std::array<double, 3> focus = ChannelAccommodation(system.eye, accommodation[k]);
+      Image image = RetinaOfDisplay(*s.model, s.patterns, grid, pupil, focus);
+      ApplyEyeOptics(system.eye, grid, &image);
+      std::copy(image.pixels.begin(), image.pixels.end(), out + k * image.pixels.size());
+      if (natural) {
+        Image target = RetinaOfScene(scene, grid, pupil, focus);
+        ApplyEyeOptics(system.eye, grid, &target);
+        std::copy(target.pixels.begin(), target.pixels.end(), out_natural + k * target.pixels.size());
+      }
+    }
   }
+  if (natural) return py::make_tuple(images, seen);
   return images;
 }
 
@@ -265,8 +245,10 @@ void BindSolve(py::module_& m) {
           py::arg("folder"), py::arg("write_lightfield") = false,
           "Writes what `layerlab solve` writes: patterns, panels, trace.csv, report.txt, report.json")
       .def("retina", &Retina, py::arg("accommodation"), py::arg("resolution") = 0.05, py::arg("field") = py::none(),
+           py::arg("natural") = false,
            "Retinal images (states, rows, cols, 3) at each accommodation (D); resolution in deg per sample, field "
-           "(x, y) in deg (default: the display's field of view)")
+           "(x, y) in deg (default: the display's field of view); natural=True: (display, natural), the second "
+           "what the eye sees of the target light field itself")
       .def("__repr__", [](const Solution& s) { return "<layerlab.Solution " + s.report.BriefReport() + ">"; });
 
   m.def("solve", &Solve, py::arg("display"), py::arg("target") = py::none(), py::kw_only(),

@@ -1,7 +1,10 @@
 """run(): the main job of `layerlab run`, the same library call."""
 
+import csv
+import gc
 import json
 
+import numpy as np
 import pytest
 
 from conftest import SKIP_REASON, has_embree
@@ -20,6 +23,67 @@ def test_run_the_reduced_example(small_scene_path, tmp_path):
     assert set(outcome["written"]) <= on_disk  # beside them the run's own manifest
     report = json.loads((out / "solve" / "report.json").read_text())
     assert report["final_psnr_db"] == pytest.approx(outcome["psnr_db"], abs=1e-9)
+    check_the_arrays_and_tables(outcome, out, small_scene_path)
+
+
+def rows(path):
+    return list(csv.DictReader(open(path)))
+
+
+def check_the_arrays_and_tables(outcome, out, scene_path):
+    """What run() returns beside the files, against the files and against numbers recomputed here."""
+    system = layerlab.load_scene(scene_path).compile()
+    # The report, with the trace the run wrote.
+    trace = rows(out / "solve" / "trace.csv")
+    np.testing.assert_array_equal(outcome["report"]["trace"]["iteration"], [int(r["iteration"]) for r in trace])
+    np.testing.assert_allclose(outcome["report"]["trace"]["objective"], [float(r["objective"]) for r in trace],
+                               rtol=1e-5)
+    # The patterns: one float32 (rows, cols, 3) array per layer; shown on the display against the target the
+    # run rendered, their squared error is the report's objective.
+    patterns = outcome["patterns"]
+    assert [p.shape for p in patterns] == [(l.rows, l.cols, 3) for l in system.layers]
+    assert all(p.dtype == np.float32 for p in patterns)
+    target = layerlab.read_lightfield(out / "target" / "lightfield")
+    shown = layerlab.synthesize(system, patterns, target.geometry).rgb.astype(np.float64)
+    assert ((shown - target.rgb) ** 2).sum() == pytest.approx(outcome["report"]["final_objective"], rel=1e-5)
+    # Retina: the states of retina.csv, the images stacked; their mean luminance (Rec. 709 weights) is the
+    # csv's cd/m2 up to the one white level of the display.
+    retina = outcome["retina"]
+    written = rows(out / "retina" / "retina.csv")
+    np.testing.assert_allclose(retina["diopters"], [float(r["accommodation_D"]) for r in written], atol=1e-4)
+    np.testing.assert_allclose(retina["display_mean_cd_m2"], [float(r["display_mean_cd_m2"]) for r in written],
+                               rtol=1e-5)
+    states = len(written)
+    for images, means in ((retina["display"], retina["display_mean_cd_m2"]),
+                          (retina["natural"], retina["natural_mean_cd_m2"])):
+        assert images.dtype == np.float32 and images.shape[0] == states and images.shape[3] == 3
+        luminance = (images.astype(np.float64) @ [0.2126, 0.7152, 0.0722]).mean(axis=(1, 2))
+        white = means / luminance
+        np.testing.assert_allclose(white, white[0], rtol=1e-6)
+    assert (out / "retina" / "display" / (retina["names"][0] + ".exr")).is_file()
+    assert f"retina ({states} accommodation states)" in (out / "index.html").read_text()  # the report's steps
+    # Contrast: the curves of contrast.csv.
+    curves = rows(out / "contrast" / "contrast.csv")
+    assert len(outcome["contrast"]) == len({(r["display"], r["target_D"], r["frequency_cpd"]) for r in curves})
+    for c in outcome["contrast"]:
+        mine = [r for r in curves if r["display"] == c["display"] and float(r["target_D"]) == pytest.approx(
+            c["target_diopters"]) and float(r["frequency_cpd"]) == pytest.approx(c["frequency"])]
+        np.testing.assert_allclose(c["accommodation"], [float(r["accommodation_D"]) for r in mine], atol=1e-4)
+        np.testing.assert_allclose(c["contrast"], [float(r["normalized_contrast"]) for r in mine], atol=1e-6)
+    # Compare: the columns of compare.csv.
+    compared = rows(out / "compare" / "compare.csv")
+    assert outcome["compare"]["display"] == [r["display"] for r in compared]
+    assert outcome["compare"]["solver_options"] == [r["solver_options"] for r in compared]
+    np.testing.assert_allclose(outcome["compare"]["final_psnr_db"], [float(r["final_psnr_db"]) for r in compared],
+                               atol=1e-3)
+    assert outcome["compare"]["final_psnr_db"][0] == outcome["psnr_db"]  # the main solve is the first row
+    # The patterns are views of the outcome's buffers: they outlive the dict.
+    first = patterns[0]
+    copy = first.copy()
+    assert first.base is not None and not first.flags.owndata
+    del outcome, patterns
+    gc.collect()
+    np.testing.assert_array_equal(first, copy)
 
 
 def test_run_a_bad_scene_is_an_error(tmp_path):

@@ -57,6 +57,28 @@ def test_the_target_light_field_is_read_where_it_lies(small_system, target):
     assert solution.target.rgb.ctypes.data == target.rgb.ctypes.data
 
 
+def test_the_solver_reads_the_arrays_memory(small_system, target):
+    # A change written through the NumPy view between two iterations is what the next iteration measures: the
+    # solver reads the array's own memory (one copy is made only when target values exceed what the display
+    # shows: target_range clip or scale, solvers/objective.h).
+    lf = layerlab.LightField(np.array(target.rgb), target.geometry)
+    address = lf.rgb.ctypes.data
+
+    def callback(it):
+        if it["iteration"] == 0:
+            lf.rgb[:] = 0.25
+        return it["iteration"] == 1
+
+    solution = layerlab.solve(small_system, lf, iterations=5, callback=callback)
+    assert solution.target.rgb.ctypes.data == address
+    trace = solution.report["trace"]
+    shown = layerlab.synthesize(small_system, solution.patterns).rgb.astype(np.float64)
+    assert trace["objective"][1] == pytest.approx(((shown - 0.25) ** 2).sum(), rel=1e-5)
+    assert trace["objective"][0] == pytest.approx(
+        ((layerlab.synthesize(small_system, [np.full_like(p, 0.5) for p in solution.patterns]).rgb.astype(
+            np.float64) - target.rgb) ** 2).sum(), rel=1e-5)
+
+
 def test_a_numpy_target_of_the_display_geometry(small_system, target):
     array = np.array(target.rgb)
     solution = layerlab.solve(small_system, array, iterations=2)
@@ -81,7 +103,12 @@ def test_the_callback_sees_every_iteration(small_system, target):
     trace = solution.report["trace"]
     assert [it["iteration"] for it in seen] == list(range(6))
     assert [it["psnr_db"] for it in seen] == list(trace["psnr_db"])
+    assert [it["objective"] for it in seen] == list(trace["objective"])  # the very numbers the trace holds
     assert [it["seconds"] for it in seen] == pytest.approx(list(trace["seconds"]))
+    # The objective the callback saw last, recomputed here from the patterns: sum of squared errors.
+    shown = layerlab.synthesize(small_system, solution.patterns).rgb.astype(np.float64)
+    assert seen[-1]["objective"] == pytest.approx(((shown - target.rgb) ** 2).sum(), rel=1e-5)
+    assert seen[-1]["psnr_db"] == pytest.approx(10 * np.log10(target.rgb.size / seen[-1]["objective"]), abs=1e-9)
 
 
 def test_the_callback_stops_the_solve(small_system, target):
@@ -200,8 +227,34 @@ def test_retina_of_uniform_patterns(small_system):
     rows, cols = images.shape[1:3]
     np.testing.assert_allclose(images[:, rows // 4:3 * rows // 4, cols // 4:3 * cols // 4], 0.5, rtol=1e-5)
     assert images.shape[2] == pytest.approx(np.degrees(small_system.fov_x) / 0.2, abs=1)
+    np.testing.assert_array_equal(layerlab.retina(solution, [0.4, 1.3], resolution=0.2), images)
     diopters, stack = layerlab.focal_stack(solution, 0.0, 1.0, 0.5, resolution=0.2, field=(4, 2))
     np.testing.assert_allclose(diopters, [0, 0.5, 1.0])
     assert stack.shape == (3, 10, 20, 3)
     with pytest.raises(ValueError, match="resolution"):
         solution.retina([1.0], resolution=0)
+
+
+def test_natural_viewing_of_the_target(small_system):
+    # Every view the same picture, a function of the column alone, on a light field whose origin plane lies at
+    # 1 m: focused there, every pupil point's ray through a retinal sample at angle a meets that plane at
+    # x = tan(a) (m), so the eye sees the pixel column holding x, sharp, whatever the pupil.
+    g = layerlab.display_geometry(small_system, 1.0)
+    assert g.origin_z == pytest.approx(1.0)
+    picture = np.random.default_rng(3).uniform(0.1, 0.9, (g.cols, 3)).astype(np.float32)
+    lf = layerlab.LightField(g)
+    lf.rgb[:] = picture[None, None, :, :]
+    solution = layerlab.solve(small_system, lf, iterations=1)
+    resolution, field = 0.1, (2.0, 1.0)
+    display, natural = solution.retina([1.0, 0.0], resolution=resolution, field=field, natural=True)
+    assert natural.shape == display.shape == (2, 10, 20, 3) and natural.dtype == np.float32
+    np.testing.assert_array_equal(display, solution.retina([1.0, 0.0], resolution=resolution, field=field))
+    angles = np.radians((np.arange(20) + 0.5 - 10) * resolution)
+    columns = np.floor((g.origin_z * np.tan(angles) - g.window_left) / (g.window_width / g.cols)).astype(int)
+    np.testing.assert_allclose(natural[0], np.broadcast_to(picture[columns], (10, 20, 3)), rtol=2e-5)
+    # Focused at infinity the same plane blurs: the columns mix.
+    assert np.abs(natural[1] - natural[0]).max() > 0.05
+    diopters, images, seen = layerlab.focal_stack(solution, 0.0, 1.0, 1.0, resolution=resolution, field=field,
+                                                  natural=True)
+    np.testing.assert_array_equal(seen[::-1], natural)
+    np.testing.assert_array_equal(images[::-1], display)

@@ -1,0 +1,108 @@
+// compare(scenes, target, solvers=...): `layerlab compare` (analysis/compare.h,
+// the same runs, like for like unless scene_options, the same solves and
+// warnings) returning its table as columns, one row per display and solver,
+// each with its trace.
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include "analysis/compare.h"
+#include "analysis/target_source.h"
+#include "framework/error.h"
+#include "python/src/bindings.h"
+#include "python/src/path_arg.h"
+#include "python/src/result_dicts.h"
+#include "python/src/solve_hooks.h"
+#include "python/src/trace_table.h"
+
+namespace py = pybind11;
+
+namespace layerlab::python {
+namespace {
+
+std::vector<std::string> PathList(const py::object& paths) {
+  std::vector<std::string> files;
+  if (py::isinstance<py::str>(paths) || py::hasattr(paths, "__fspath__")) return {PathArg(paths)};
+  for (const py::handle& f : paths) files.push_back(PathArg(f));
+  return files;
+}
+
+// None: each scene's own solver; "all"; a name; a list of names.
+std::vector<std::string> SolverList(const py::object& solvers) {
+  if (solvers.is_none()) return {};
+  if (py::isinstance<py::str>(solvers)) return {solvers.cast<std::string>()};
+  return solvers.cast<std::vector<std::string>>();
+}
+
+py::dict Compare(const py::object& scenes, const py::object& target, const py::object& solvers,
+                 std::optional<int> iterations, std::optional<double> time_budget, bool scene_options,
+                 const py::object& callback) {
+  if (iterations && *iterations <= 0) throw py::value_error("compare: iterations must be positive");
+  if (time_budget && !(*time_budget >= 0))
+    throw py::value_error("compare: time_budget must be 0 (none) or more seconds");
+  const std::vector<std::string> files = PathList(scenes);
+  if (files.empty()) throw py::value_error("compare: no scene");
+  const CompareSelection selection{SolverList(solvers), iterations, time_budget, scene_options};
+  std::shared_ptr<LightField> given;
+  SolveConfig target_config;  // a light-field folder, or a target scene file rendered as --target-scene does
+  if (py::isinstance<LightField>(target)) {
+    given = target.cast<std::shared_ptr<LightField>>();
+  } else {
+    const std::string path = PathArg(target);
+    (std::filesystem::is_regular_file(path) ? target_config.target_scene : target_config.target) = path;
+  }
+
+  std::vector<std::string> skipped;
+  std::vector<CompareRun> runs;
+  std::unique_ptr<Target> loaded;
+  {
+    py::gil_scoped_release release;
+    runs = CompareRunsOf(files, selection, &skipped);
+    if (!given) loaded = LoadOrRenderTarget(target_config, "target");
+  }
+  const LightField& lf = given ? *given : loaded->light_field;
+
+  // One run at a time, so that a stop from the callback or Ctrl-C ends the comparison there.
+  std::vector<CompareResult> results;
+  SolveHooks hooks;
+  for (CompareRun& run : runs) {
+    const std::string display = run.display, solver = run.solver;
+    hooks.Install(run.options, callback, [display, solver](const IterationRecord& r) {
+      py::dict d = TraceRow(r);
+      d["display"] = display, d["solver"] = solver;
+      return d;
+    });
+    {
+      py::gil_scoped_release release;
+      results.push_back(RunComparison({run}, lf).front());
+    }
+    if (hooks.raised) throw std::move(*hooks.raised);
+    const SolverReport& report = results.back().report;
+    if (!report.IsSolutionUsable()) throw Error("compare: " + display + " / " + solver + " failed: " + report.message);
+    if (hooks.stop) break;
+  }
+  runs.resize(results.size());
+  std::vector<std::string> scene_of_row;
+  for (const CompareRun& run : runs) scene_of_row.push_back(run.system.file);
+  return CompareColumns(scene_of_row, results, skipped, CompareWarnings(runs, results, lf.geometry));
+}
+
+}  // namespace
+
+void BindCompare(py::module_& m) {
+  m.def("compare", &Compare, py::arg("scenes"), py::arg("target"), py::kw_only(), py::arg("solvers") = py::none(),
+        py::arg("iterations") = py::none(), py::arg("time_budget") = py::none(), py::arg("scene_options") = false,
+        py::arg("callback") = py::none(),
+        "Several displays and solvers on one target (a LightField, a light-field folder or a target scene file), as "
+        "`layerlab compare`: like for like (each solver's defaults) unless scene_options. A dict of columns, one row "
+        "per display and solver (scene, display, solver, solver_options, final_psnr_db, seconds, iterations, "
+        "subframes, panel_refresh_hz, luminance_efficiency, efficiency, termination, message, trace), with skipped, "
+        "warnings and table");
+}
+
+}  // namespace layerlab::python

@@ -1,0 +1,125 @@
+// fit(scene, measurements, ...): `layerlab fit` (calibration/, Ceres) returning
+// the fitted parameters as columns with their standard deviations, the report,
+// and the calibrated scene as a dict, as the command would write it into the
+// working directory (relative paths rebased to it, as dict scenes are read).
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+#include <optional>
+#include <string>
+
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include "calibration/calibrated_scene.h"
+#include "calibration/calibration.h"
+#include "framework/error.h"
+#include "python/src/bindings.h"
+#include "python/src/json_convert.h"
+#include "python/src/path_arg.h"
+#include "systems/compile.h"
+
+namespace py = pybind11;
+
+namespace layerlab::python {
+namespace {
+
+bool IsPath(const py::handle& value) { return py::isinstance<py::str>(value) || py::hasattr(value, "__fspath__"); }
+
+py::dict ParameterTable(const std::vector<ParameterEstimate>& parameters) {
+  const auto n = static_cast<py::ssize_t>(parameters.size());
+  py::list element, quantity, status;
+  py::array_t<double> scene_value(n), value(n), std_dev(n);
+  py::array_t<bool> derived(n);
+  for (py::ssize_t i = 0; i < n; ++i) {
+    const ParameterEstimate& p = parameters[i];
+    element.append(p.element), quantity.append(p.quantity), status.append(ToString(p.status));
+    scene_value.mutable_at(i) = p.scene_value, value.mutable_at(i) = p.value;
+    std_dev.mutable_at(i) = p.std_dev.value_or(NAN), derived.mutable_at(i) = p.derived;
+  }
+  py::dict d;
+  d["element"] = element, d["quantity"] = quantity, d["scene_value"] = scene_value, d["value"] = value;
+  d["std_dev"] = std_dev, d["status"] = status, d["derived"] = derived;
+  return d;
+}
+
+py::dict Fit(const py::object& scene, const py::object& measurements, const std::string& loss,
+             const std::string& reference, bool fit_focal_length, bool fit_lens_gaps,
+             std::optional<double> marker_loss_arcmin, std::optional<double> luminance_loss_scale) {
+  CalibrationOptions options;
+  try {
+    options.loss = RobustLossFromString(loss);
+    options.reference = AxisReferenceFromString(reference);
+  } catch (const Error& e) {
+    throw py::value_error(std::string(loss == ToString(options.loss) ? "fit: reference: " : "fit: loss: ") +
+                          e.message());
+  }
+  options.fit_focal_length = fit_focal_length;
+  options.fit_lens_gaps = fit_lens_gaps;
+  if (marker_loss_arcmin) options.marker_loss_scale = *marker_loss_arcmin / 60.0 * std::numbers::pi / 180.0;
+  if (luminance_loss_scale) options.luminance_loss_scale = *luminance_loss_scale;
+  if (std::string why; !options.IsValid(&why)) throw py::value_error("fit: " + why);
+
+  // The scene in file order (the calibrated one keeps it) and where relative paths start from.
+  const bool scene_is_path = IsPath(scene);
+  const std::string scene_file = scene_is_path ? PathArg(scene) : "<dict>";
+  std::optional<nlohmann::ordered_json> scene_document;
+  if (!scene_is_path) {
+    if (!py::isinstance<py::dict>(scene)) throw py::type_error("fit: the scene is a path or a dict");
+    scene_document = nlohmann::ordered_json::parse(
+        py::module_::import("json").attr("dumps")(scene, py::arg("allow_nan") = false).cast<std::string>());
+  }
+  std::optional<nlohmann::json> measurements_document;
+  const bool measurements_are_path = IsPath(measurements);
+  if (!measurements_are_path) {
+    if (!py::isinstance<py::dict>(measurements)) throw py::type_error("fit: the measurements are a path or a dict");
+    measurements_document = ToJson(measurements);
+  }
+  const std::string measurements_file = measurements_are_path ? PathArg(measurements) : "<dict>";
+
+  CalibrationReport report;
+  nlohmann::ordered_json calibrated;
+  {
+    py::gil_scoped_release release;
+    const DisplaySystem system = Compile(scene_is_path ? LoadScene(scene_file)
+                                                       : ParseScene(nlohmann::json::parse(scene_document->dump()),
+                                                                    scene_file, ElementRegistry::WithBuiltins()));
+    const Measurements m = measurements_are_path ? ReadMeasurementsFile(measurements_file)
+                                                 : ParseMeasurements(*measurements_document, measurements_file);
+    CheckMeasurements(m, system);  // a panel or pixel that is not the scene's, with its place
+    CalibratedDisplay display;
+    report = Calibrate(system, m, options, &display);
+    if (!report.IsSolutionUsable()) throw Error("the calibration failed: " + report.message);
+    calibrated =
+        CalibratedSceneDocument(scene_is_path ? ReadDocumentInOrder(scene_file) : *scene_document, scene_file, display);
+    if (scene_is_path)
+      RebaseRelativePaths(calibrated, std::filesystem::absolute(scene_file).string(),
+                          (std::filesystem::current_path() / "calibrated.json").string());
+    try {
+      Compile(ParseScene(nlohmann::json::parse(calibrated.dump()), "<calibrated>", ElementRegistry::WithBuiltins()));
+    } catch (const Error& e) {
+      throw Error("fit: the calibrated scene does not compile (" + e.message() + ")");
+    }
+  }
+  py::dict d;
+  d["parameters"] = ParameterTable(report.parameters);
+  d["scene"] = py::module_::import("json").attr("loads")(calibrated.dump());  // key order kept
+  d["report"] = FromJson(report.ToJson());
+  d["brief"] = report.BriefReport();
+  d["full"] = report.FullReport();
+  d["warnings"] = report.warnings;
+  return d;
+}
+
+}  // namespace
+
+void BindFit(py::module_& m) {
+  m.def("fit", &Fit, py::arg("scene"), py::arg("measurements"), py::kw_only(), py::arg("loss") = "none",
+        py::arg("reference") = "camera", py::arg("fit_focal_length") = false, py::arg("fit_lens_gaps") = false,
+        py::arg("marker_loss_arcmin") = py::none(), py::arg("luminance_loss_scale") = py::none(),
+        "Calibrates a scene from measurements of the built display, as `layerlab fit` (Ceres): a dict with "
+        "parameters (columns element, quantity, scene_value, value, std_dev, status, derived), scene (the "
+        "calibrated scene, paths relative to the working directory), report, brief, full, warnings");
+}
+
+}  // namespace layerlab::python
