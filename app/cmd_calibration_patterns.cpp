@@ -40,14 +40,17 @@ void AddCalibrationPatternsCommand(CLI::App& app) {
     std::vector<int> squares = {10, 6}, levels;
   };
   auto o = std::make_shared<Options>();
-  CLI::App* cmd = app.add_subcommand(
-      "calibration-patterns", "Panel images (chessboards, luminance ramp) and the capture plan for calibrating a display");
+  CLI::App* cmd =
+      app.add_subcommand("calibration-patterns",
+                         "Panel images (chessboards, luminance ramp) and the capture plan for calibrating a display");
   cmd->add_option("scene", o->scene, "Scene file as designed (JSON)")->required();
   cmd->add_option("--out", o->out, "Folder for patterns/ and captures.json")->required();
   cmd->add_option("--squares", o->squares, "Chessboard squares across and down (default 10 6)")->expected(2);
-  cmd->add_option("--positions", o->positions, "Camera positions in the eyebox, mm: \"x,y;x,y;...\" (default 0,0;2,0;0,2)");
+  cmd->add_option("--positions", o->positions,
+                  "Camera positions in the eyebox, mm: \"x,y;x,y;...\" (default 0,0;2,0;0,2)");
   cmd->add_option("--levels", o->levels, "8-bit levels of the luminance ramp (default 0 16 ... 240 255)");
-  cmd->add_option("--camera", o->camera, "The camera's intrinsics (a measurements-format \"camera\" object, JSON), kept in the plan");
+  cmd->add_option("--camera", o->camera,
+                  "The camera's intrinsics (a measurements-format \"camera\" object, JSON), kept in the plan");
   cmd->callback([o] {
     const DisplaySystem system = Compile(LoadScene(o->scene));
     PlanOptions options;

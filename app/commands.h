@@ -13,7 +13,7 @@ void AddCompareCommand(CLI::App& app);  // compare SCENES... --target LF_DIR --o
 void AddRetinaCommand(CLI::App& app);   // retina SCENE.json --patterns DIR --out DIR
 void AddRunCommand(CLI::App& app);      // run SCENE.json --out DIR: the main job and its report
 #if LAYERLAB_WITH_CERES
-void AddFitCommand(CLI::App& app);  // fit SCENE.json MEASUREMENTS.json --out CALIBRATED.json
+void AddFitCommand(CLI::App& app);                  // fit SCENE.json MEASUREMENTS.json --out CALIBRATED.json
 void AddCalibrationPatternsCommand(CLI::App& app);  // calibration-patterns SCENE.json --out DIR
 void AddPhotographCommand(CLI::App& app);           // photograph CAPTURES_DIR --scene BUILT.json --out DIR
 void AddDetectCommand(CLI::App& app);  // detect CAPTURES_DIR --scene SCENE.json --out MEASUREMENTS.json (OpenCV)

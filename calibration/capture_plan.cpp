@@ -43,7 +43,7 @@ std::vector<std::pair<std::string, std::string>> Shown(const DisplaySystem& syst
                                                        const std::string& pattern) {
   std::vector<std::pair<std::string, std::string>> show;
   for (const VirtualLayer& layer : system.layers) {
-    const std::string file = layer.name == measured.name  ? pattern
+    const std::string file = layer.name == measured.name       ? pattern
                              : layer.branch == measured.branch ? WhiteFile(layer.name)
                                                                : BlackFile(layer.name);
     show.emplace_back(layer.name, std::string(kPatternFolder) + "/" + file);
@@ -92,12 +92,12 @@ CapturePlan PlanCaptures(const DisplaySystem& system, const PlanOptions& options
     board.squares_x = options.squares_x;
     board.squares_y = options.squares_y;
     // One square of white margin on every side, which the corner finder needs.
-    board.square_pixels = static_cast<int>(
-        std::min(p.active_cols / (options.squares_x + 2), p.active_rows / (options.squares_y + 2)));
+    board.square_pixels =
+        static_cast<int>(std::min(p.active_cols / (options.squares_x + 2), p.active_rows / (options.squares_y + 2)));
     if (board.square_pixels < 4)
       throw Error(system.file + ": panel \"" + layer.name + "\": its active region (" + std::to_string(p.active_cols) +
-                  " x " + std::to_string(p.active_rows) + " pixels) cannot hold a " + std::to_string(options.squares_x) +
-                  " x " + std::to_string(options.squares_y) +
+                  " x " + std::to_string(p.active_rows) + " pixels) cannot hold a " +
+                  std::to_string(options.squares_x) + " x " + std::to_string(options.squares_y) +
                   " chessboard with a square of margin and squares of at least 4 pixels; use fewer squares");
     board.left = p.active_left + (p.active_cols - board.squares_x * board.square_pixels) / 2;
     board.top = p.active_top + (p.active_rows - board.squares_y * board.square_pixels) / 2;
@@ -203,13 +203,15 @@ CapturePlan ParseCapturePlan(const json& document, const std::string& file) {
   Params top(document, {file, ""});
   const std::string format = top.string("format");
   if (format != kCapturesFormat)
-    top.fail("format", "unknown capture plan format \"" + format + "\"; this layerlab reads \"" + kCapturesFormat + "\"");
+    top.fail("format",
+             "unknown capture plan format \"" + format + "\"; this layerlab reads \"" + kCapturesFormat + "\"");
   plan.description = top.string("description", "");
   plan.response = top.string("response", "linear");
   if (plan.response != "linear") {
     double g = 0;
     if (plan.response.rfind("gamma ", 0) != 0 || !(std::sscanf(plan.response.c_str() + 6, "%lf", &g) == 1 && g > 0))
-      top.fail("response", "expected \"linear\" or \"gamma G\" (value^G is linear light), got \"" + plan.response + "\"");
+      top.fail("response",
+               "expected \"linear\" or \"gamma G\" (value^G is linear light), got \"" + plan.response + "\"");
   }
   top.mark_read("camera");
   if (top.has("camera")) plan.camera = ReadCameraIntrinsics(top.object("camera"));

@@ -69,7 +69,7 @@ struct CapturePlan {
 struct PlanOptions {
   int squares_x = 10, squares_y = 6;  // per chessboard; one square of white margin is kept around it
   std::vector<std::array<double, 2>> positions = {{0, 0}, {2e-3, 0}, {0, 2e-3}};  // m
-  std::vector<int> levels;  // 8-bit; empty: 0, 16, ..., 240, 255
+  std::vector<int> levels;                                                        // 8-bit; empty: 0, 16, ..., 240, 255
   std::string photo_extension = "exr";
 };
 

@@ -103,7 +103,8 @@ Photo ReadPhoto(const std::string& path, const std::string& response) {
     if (m.empty()) throw Error(path + ": cannot read it as a PNG");
     const double full = m.depth() == CV_16U ? 65535.0 : m.depth() == CV_8U ? 255.0 : 0.0;
     if (full == 0) throw Error(path + ": expected an 8- or 16-bit PNG");
-    if (m.channels() == 3 || m.channels() == 4) cv::cvtColor(m, m, m.channels() == 3 ? cv::COLOR_BGR2GRAY : cv::COLOR_BGRA2GRAY);
+    if (m.channels() == 3 || m.channels() == 4)
+      cv::cvtColor(m, m, m.channels() == 3 ? cv::COLOR_BGR2GRAY : cv::COLOR_BGRA2GRAY);
     cv::Mat f;
     m.convertTo(f, CV_32F, 1.0 / full);
     photo.width = f.cols, photo.height = f.rows;
@@ -278,9 +279,8 @@ Detection DetectCaptures(const std::string& folder, const CapturePlan& plan, con
         for (int u = 0; u < photo.width; ++u) {
           const auto angle = AngleFromCameraPixel(*camera, u, v);
           if (!angle) continue;
-          const auto pixel =
-              PanelPixelAt(layer, PanelPointOfRay(layer, c.camera_position,
-                                                  {std::tan((*angle)[0]), std::tan((*angle)[1])}));
+          const auto pixel = PanelPixelAt(
+              layer, PanelPointOfRay(layer, c.camera_position, {std::tan((*angle)[0]), std::tan((*angle)[1])}));
           const double x = (pixel[0] - static_cast<double>(p.active_left)) / static_cast<double>(p.active_cols);
           const double y = (pixel[1] - static_cast<double>(p.active_top)) / static_cast<double>(p.active_rows);
           if (x > 0.25 && x < 0.75 && y > 0.25 && y < 0.75) {

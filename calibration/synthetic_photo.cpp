@@ -62,8 +62,8 @@ void Blur(std::vector<double>& image, int width, int height, double sigma) {
         double sum = 0;
         for (int i = -radius; i <= radius; ++i) {
           const int at = std::clamp((pass == 0 ? c : r) + i, 0, n - 1);
-          sum += kernel[i + radius] * image[pass == 0 ? static_cast<size_t>(r) * width + at
-                                                      : static_cast<size_t>(at) * width + c];
+          sum += kernel[i + radius] *
+                 image[pass == 0 ? static_cast<size_t>(r) * width + at : static_cast<size_t>(at) * width + c];
         }
         out[static_cast<size_t>(r) * width + c] = sum;
       }

@@ -28,8 +28,8 @@ DisplaySystem Example(const std::string& name) {
 }
 
 std::string FreshFolder(const std::string& name) {
-  const std::filesystem::path folder = std::filesystem::temp_directory_path() /
-                                       ("layerlab_" + name + "_" + std::to_string(::getpid()));
+  const std::filesystem::path folder =
+      std::filesystem::temp_directory_path() / ("layerlab_" + name + "_" + std::to_string(::getpid()));
   std::filesystem::remove_all(folder);
   std::filesystem::create_directories(folder);
   return folder.string();
@@ -173,7 +173,8 @@ TEST(PhotoDetectionTest, ChessboardCornersAreFoundToSubPixelAccuracy) {
       const auto truth = TrueCorners(built, plan, c, quiet.intrinsics);
       const auto predicted = TrueCorners(designed, plan, c, quiet.intrinsics);
       for (const PhotoRenderer* r : {&clean, &noisy}) {
-        const CornerSearch found = FindChessboardCorners(AsPhoto(r->Render(built, plan, c, 1)), *plan.chessboard(panel), predicted);
+        const CornerSearch found =
+            FindChessboardCorners(AsPhoto(r->Render(built, plan, c, 1)), *plan.chessboard(panel), predicted);
         ASSERT_TRUE(found.corners) << panel << ": " << found.reason;
         const double rms = RmsPixels(*found.corners, truth);
         (r == &clean ? worst_clean : worst_noisy) = std::max(r == &clean ? worst_clean : worst_noisy, rms);
@@ -191,8 +192,8 @@ TEST(PhotoDetectionTest, EachKindOfBadPhotographIsReportedWithItsReason) {
   const PlannedCapture& c = ChessboardCapture(plan, "rear_a");
   const auto predicted = TrueCorners(designed, plan, c, TestCamera().intrinsics);
   auto reason = [&](const PhotoCamera& camera, const PlannedCapture& capture) {
-    const CornerSearch s =
-        FindChessboardCorners(AsPhoto(PhotoRenderer(camera).Render(designed, plan, capture, 2)), *plan.chessboard("rear_a"), predicted);
+    const CornerSearch s = FindChessboardCorners(AsPhoto(PhotoRenderer(camera).Render(designed, plan, capture, 2)),
+                                                 *plan.chessboard("rear_a"), predicted);
     EXPECT_FALSE(s.corners);
     return s.reason;
   };
@@ -273,11 +274,12 @@ void ExpectLoopRecovers(const DisplaySystem& designed, const DisplaySystem& buil
   CalibratedDisplay display;
   const CalibrationReport report = Calibrate(designed, d.measurements, fit, &display);
   ASSERT_TRUE(report.IsSolutionUsable()) << report.message;
-  std::printf("%s: %zu corners, residual %.4f arcmin per marker (%.4f px); the corners' error against the truth "
-              "%.4f arcmin (%.4f px); their scatter over the sensor's noise alone %.4f px per axis\n",
-              designed.file.c_str(), d.corners, report.marker_rms_after / testing::kArcmin,
-              report.marker_rms_after * camera.intrinsics.fx, floor / testing::kArcmin, floor * camera.intrinsics.fx,
-              std::sqrt(variance));
+  std::printf(
+      "%s: %zu corners, residual %.4f arcmin per marker (%.4f px); the corners' error against the truth "
+      "%.4f arcmin (%.4f px); their scatter over the sensor's noise alone %.4f px per axis\n",
+      designed.file.c_str(), d.corners, report.marker_rms_after / testing::kArcmin,
+      report.marker_rms_after * camera.intrinsics.fx, floor / testing::kArcmin, floor * camera.intrinsics.fx,
+      std::sqrt(variance));
   // The fit leaves what the measurements' errors leave (less the few degrees of freedom it fits), no more.
   EXPECT_GT(report.marker_rms_after, 0.8 * floor);
   EXPECT_LT(report.marker_rms_after, 1.05 * floor);
