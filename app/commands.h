@@ -14,7 +14,10 @@ void AddRetinaCommand(CLI::App& app);   // retina SCENE.json --patterns DIR --ou
 void AddRunCommand(CLI::App& app);      // run SCENE.json --out DIR: the main job and its report
 void AddSweepCommand(CLI::App& app);    // sweep SWEEP.json --out DIR: a grid of jobs, one table
 #if LAYERLAB_WITH_CERES
-void AddFitCommand(CLI::App& app);  // fit SCENE.json MEASUREMENTS.json --out CALIBRATED.json
+void AddFitCommand(CLI::App& app);                  // fit SCENE.json MEASUREMENTS.json --out CALIBRATED.json
+void AddCalibrationPatternsCommand(CLI::App& app);  // calibration-patterns SCENE.json --out DIR
+void AddPhotographCommand(CLI::App& app);           // photograph CAPTURES_DIR --scene BUILT.json --out DIR
+void AddDetectCommand(CLI::App& app);  // detect CAPTURES_DIR --scene SCENE.json --out MEASUREMENTS.json (OpenCV)
 #endif
 #if LAYERLAB_WITH_EMBREE
 void AddRenderTargetCommand(CLI::App& app);  // render-target TARGET.json OUT_DIR

@@ -29,6 +29,9 @@ int main(int argc, char** argv) {
   layerlab::app::AddCompareCommand(app);
 #if LAYERLAB_WITH_CERES
   layerlab::app::AddFitCommand(app);
+  layerlab::app::AddCalibrationPatternsCommand(app);
+  layerlab::app::AddPhotographCommand(app);
+  layerlab::app::AddDetectCommand(app);
 #endif
 #if LAYERLAB_WITH_EMBREE
   layerlab::app::AddRenderTargetCommand(app);

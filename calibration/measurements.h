@@ -17,6 +17,7 @@
 
 #include "calibration/camera_model.h"
 #include "framework/error.h"
+#include "framework/params.h"
 #include "systems/display_system.h"
 
 namespace layerlab {
@@ -75,6 +76,12 @@ struct Measurements {
   size_t marker_count() const;
   size_t luminance_sample_count() const;
 };
+
+// The "camera" object (strict) and its file form.
+CameraIntrinsics ReadCameraIntrinsics(Params p);
+nlohmann::ordered_json CameraIntrinsicsToJson(const CameraIntrinsics& camera);
+// A file holding that object alone, or a measurements file's or capture plan's "camera".
+CameraIntrinsics ReadCameraIntrinsicsFile(const std::string& path);
 
 Measurements ParseMeasurements(const nlohmann::json& document, const std::string& file);
 Measurements ReadMeasurementsFile(const std::string& path);

@@ -30,22 +30,6 @@ std::array<double, 2> NumberPair(Params& p, const std::string& key, const std::s
   return {Number(v[0], p.where(key).child(0)), Number(v[1], p.where(key).child(1))};
 }
 
-CameraIntrinsics ReadCamera(Params p) {
-  CameraIntrinsics c;
-  c.fx = Number(p, "fx");
-  if (!(c.fx > 0)) p.fail("fx", "the focal length in pixels must be positive");
-  c.fy = Number(p, "fy");
-  if (!(c.fy > 0)) p.fail("fy", "the focal length in pixels must be positive");
-  c.cx = Number(p, "cx");
-  c.cy = Number(p, "cy");
-  if (p.has("k1")) c.k1 = Number(p, "k1");
-  if (p.has("k2")) c.k2 = Number(p, "k2");
-  p.mark_read("k1");
-  p.mark_read("k2");
-  p.check_all_read();
-  return c;
-}
-
 MarkerObservation ReadMarker(Params p, const std::optional<CameraIntrinsics>& camera) {
   MarkerObservation m;
   m.where = p.where();
@@ -150,6 +134,22 @@ PanelLuminance ReadLuminance(Params p, const std::string& panel) {
 
 }  // namespace
 
+CameraIntrinsics ReadCameraIntrinsics(Params p) {
+  CameraIntrinsics c;
+  c.fx = Number(p, "fx");
+  if (!(c.fx > 0)) p.fail("fx", "the focal length in pixels must be positive");
+  c.fy = Number(p, "fy");
+  if (!(c.fy > 0)) p.fail("fy", "the focal length in pixels must be positive");
+  c.cx = Number(p, "cx");
+  c.cy = Number(p, "cy");
+  if (p.has("k1")) c.k1 = Number(p, "k1");
+  if (p.has("k2")) c.k2 = Number(p, "k2");
+  p.mark_read("k1");
+  p.mark_read("k2");
+  p.check_all_read();
+  return c;
+}
+
 size_t Measurements::marker_count() const {
   size_t n = 0;
   for (const Capture& c : captures)
@@ -173,7 +173,7 @@ Measurements ParseMeasurements(const json& document, const std::string& file) {
              "unknown measurements format \"" + format + "\"; this layerlab reads \"" + kMeasurementsFormat + "\"");
   m.description = top.string("description", "");
   top.mark_read("camera");
-  if (top.has("camera")) m.camera = ReadCamera(top.object("camera"));
+  if (top.has("camera")) m.camera = ReadCameraIntrinsics(top.object("camera"));
 
   top.mark_read("captures");
   if (top.has("captures")) {
@@ -194,6 +194,15 @@ Measurements ParseMeasurements(const json& document, const std::string& file) {
   if (m.marker_count() == 0 && m.luminance.empty())
     throw Error(Location{file, ""}, "nothing to fit: the file has neither \"captures\" with markers nor \"luminance\"");
   return m;
+}
+
+CameraIntrinsics ReadCameraIntrinsicsFile(const std::string& path) {
+  const json document = ReadJsonFile(path);
+  if (document.is_object() && document.contains("camera") && document.contains("format")) {
+    Params top(document, {path, ""});
+    return ReadCameraIntrinsics(top.object("camera"));
+  }
+  return ReadCameraIntrinsics(Params(document, {path, ""}));
 }
 
 Measurements ReadMeasurementsFile(const std::string& path) { return ParseMeasurements(ReadJsonFile(path), path); }

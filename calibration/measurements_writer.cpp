@@ -71,15 +71,19 @@ void Print(const ordered_json& j, int indent, std::string& out) {
 
 }  // namespace
 
+ordered_json CameraIntrinsicsToJson(const CameraIntrinsics& c) {
+  ordered_json j = {{"fx", Value(c.fx)}, {"fy", Value(c.fy)}, {"cx", Value(c.cx)}, {"cy", Value(c.cy)}};
+  if (c.k1 != 0) j["k1"] = c.k1;
+  if (c.k2 != 0) j["k2"] = c.k2;
+  return j;
+}
+
 ordered_json MeasurementsToJson(const Measurements& m) {
   ordered_json doc;
   doc["format"] = kMeasurementsFormat;
   if (!m.description.empty()) doc["description"] = m.description;
   if (m.camera) {
-    const CameraIntrinsics& c = *m.camera;
-    doc["camera"] = {{"fx", Value(c.fx)}, {"fy", Value(c.fy)}, {"cx", Value(c.cx)}, {"cy", Value(c.cy)}};
-    if (c.k1 != 0) doc["camera"]["k1"] = c.k1;
-    if (c.k2 != 0) doc["camera"]["k2"] = c.k2;
+    doc["camera"] = CameraIntrinsicsToJson(*m.camera);
   }
   if (!m.captures.empty()) {
     ordered_json captures = ordered_json::array();

@@ -10,19 +10,6 @@
 namespace layerlab {
 namespace {
 
-class Gaussian {
- public:
-  explicit Gaussian(uint64_t seed) : random_(seed) {}
-  double uniform() { return random_.uniform(); }
-  double operator()() {  // Box-Muller
-    const double u = 1.0 - random_.uniform(), v = random_.uniform();
-    return std::sqrt(-2.0 * std::log(u)) * std::cos(2.0 * std::numbers::pi * v);
-  }
-
- private:
-  SplitMix64 random_;
-};
-
 std::vector<double> Spaced(int count, double first, double last) {
   std::vector<double> out;
   for (int i = 0; i < count; ++i)
@@ -32,8 +19,7 @@ std::vector<double> Spaced(int count, double first, double last) {
 
 }  // namespace
 
-std::array<double, 2> ImagedMarker(const DisplaySystem& truth, const VirtualLayer& layer, double col, double row,
-                                   const SyntheticCamera& camera, const std::array<double, 2>& position) {
+std::array<double, 2> PanelPoint(const VirtualLayer& layer, double col, double row) {
   const PanelSpec& p = layer.panel;
   // The pixel in eye-space order: a flipped axis counts from the other end (display_system.h).
   double j = col - static_cast<double>(p.active_left), i = row - static_cast<double>(p.active_top);
@@ -43,13 +29,42 @@ std::array<double, 2> ImagedMarker(const DisplaySystem& truth, const VirtualLaye
                               (0.5 * static_cast<double>(p.active_rows) - i - 0.5) * p.pitch_y);
   const Eigen::Vector2d on_panel =
       Eigen::Vector2d(p.eye_from_panel_m[0], p.eye_from_panel_m[1]) + Eigen::Rotation2Dd(p.rotation) * local;
-  // The ray the camera at `position` sees it along: the ray leaving pupil point c with slope u meets the
-  // unfolded panel plane at A c + B u (ray_transfer.h), where the point lies at on_panel turned by 180
-  // degrees when the image is inverted (B < 0; the flips above include that turn).
+  return {on_panel.x(), on_panel.y()};
+}
+
+std::array<double, 2> PanelPixelAt(const VirtualLayer& layer, const std::array<double, 2>& point) {
+  const PanelSpec& p = layer.panel;
+  const Eigen::Vector2d local =
+      Eigen::Rotation2Dd(-p.rotation) *
+      (Eigen::Vector2d(point[0], point[1]) - Eigen::Vector2d(p.eye_from_panel_m[0], p.eye_from_panel_m[1]));
+  double j = local.x() / p.pitch_x - 0.5 + 0.5 * static_cast<double>(p.active_cols);
+  double i = 0.5 * static_cast<double>(p.active_rows) - 0.5 - local.y() / p.pitch_y;
+  if (layer.flip_x) j = static_cast<double>(p.active_cols) - 1 - j;
+  if (layer.flip_y) i = static_cast<double>(p.active_rows) - 1 - i;
+  return {j + static_cast<double>(p.active_left), i + static_cast<double>(p.active_top)};
+}
+
+// The ray leaving pupil point c with slope u meets the unfolded panel plane at A c + B u
+// (ray_transfer.h), where the panel point lies turned by 180 degrees when the image is
+// inverted (B < 0; the flips of PanelPoint include that turn).
+std::array<double, 2> PanelPointOfRay(const VirtualLayer& layer, const std::array<double, 2>& position,
+                                      const std::array<double, 2>& slope) {
   const RayTransfer<double>& m = layer.transfer;
   const double sign = m.b < 0 ? -1.0 : 1.0;
-  const Eigen::Vector3d ray((sign * on_panel.x() - m.a * position[0]) / m.b,
-                            (sign * on_panel.y() - m.a * position[1]) / m.b, 1.0);
+  return {sign * (m.a * position[0] + m.b * slope[0]), sign * (m.a * position[1] + m.b * slope[1])};
+}
+
+std::array<double, 2> RaySlopeTo(const VirtualLayer& layer, const std::array<double, 2>& point,
+                                 const std::array<double, 2>& position) {
+  const RayTransfer<double>& m = layer.transfer;
+  const double sign = m.b < 0 ? -1.0 : 1.0;
+  return {(sign * point[0] - m.a * position[0]) / m.b, (sign * point[1] - m.a * position[1]) / m.b};
+}
+
+std::array<double, 2> ImagedMarker(const DisplaySystem& truth, const VirtualLayer& layer, double col, double row,
+                                   const SyntheticCamera& camera, const std::array<double, 2>& position) {
+  const std::array<double, 2> slope = RaySlopeTo(layer, PanelPoint(layer, col, row), position);
+  const Eigen::Vector3d ray(slope[0], slope[1], 1.0);
   const Eigen::Vector3d turn(-camera.tilt, camera.pan, camera.roll);
   const Eigen::Matrix3d eye_from_camera = turn.norm() > 0
                                               ? Eigen::AngleAxisd(turn.norm(), turn.normalized()).toRotationMatrix()

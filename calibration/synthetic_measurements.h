@@ -39,6 +39,19 @@ struct SyntheticNoise {
   uint64_t seed = 1;
 };
 
+// Panel pixel (col, row) of `layer` (full grid, the panel's own order, integers at pixel
+// centers) as a point in its plane, m from the active region's center turned and offset as
+// the panel is mounted, in eye-space order; PanelPixelAt is its inverse.
+std::array<double, 2> PanelPoint(const VirtualLayer& layer, double col, double row);
+std::array<double, 2> PanelPixelAt(const VirtualLayer& layer, const std::array<double, 2>& point);
+
+// The panel point the ray from pupil point `position` (m) with tan-angle slope `slope`
+// (x right, y up) meets, through the layer's compiled ray transfer; RaySlopeTo is its inverse.
+std::array<double, 2> PanelPointOfRay(const VirtualLayer& layer, const std::array<double, 2>& position,
+                                      const std::array<double, 2>& slope);
+std::array<double, 2> RaySlopeTo(const VirtualLayer& layer, const std::array<double, 2>& point,
+                                 const std::array<double, 2>& position);
+
 // The visual angles (rad) at which `camera` sees panel pixel (col, row) of `layer`.
 std::array<double, 2> ImagedMarker(const DisplaySystem& truth, const VirtualLayer& layer, double col, double row,
                                    const SyntheticCamera& camera, const std::array<double, 2>& position);

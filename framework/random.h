@@ -3,7 +3,9 @@
 // uniform doubles (the standard distributions differ between libraries).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
+#include <numbers>
 
 namespace layerlab {
 
@@ -21,6 +23,20 @@ class SplitMix64 {
 
  private:
   uint64_t state_;
+};
+
+// Standard normal numbers (Box-Muller) from SplitMix64.
+class Gaussian {
+ public:
+  explicit Gaussian(uint64_t seed) : random_(seed) {}
+  double uniform() { return random_.uniform(); }
+  double operator()() {
+    const double u = 1.0 - random_.uniform(), v = random_.uniform();
+    return std::sqrt(-2.0 * std::log(u)) * std::cos(2.0 * std::numbers::pi * v);
+  }
+
+ private:
+  SplitMix64 random_;
 };
 
 // A seed for one item of a keyed family (view, row, ...): hashes key into seed.

@@ -9,6 +9,8 @@ packages=(cmake ninja-build g++ pkg-config
           libcli11-dev libtbb-dev libgtest-dev libgmock-dev libbenchmark-dev libpng-dev
           chromium fonts-liberation)  # headless Chromium for the report's end-to-end test
 
+# Calibration from photographs, layerlab detect (docs/calibration.md)
+packages+=(libopencv-calib3d-dev libopencv-imgproc-dev libopencv-imgcodecs-dev)
 packages+=(clang-14 libclang-rt-14-dev libomp-14-dev)  # the sanitizer and fuzz build in .ci/run (docs/robustness.md)
 packages+=(clang-format-14)  # the layout check in .ci/run (scripts/check_format.sh)
 # The Python module and its tests, for Debian's /usr/bin/python3 (docs/python.md)

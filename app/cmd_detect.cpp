@@ -1,0 +1,53 @@
+// layerlab detect CAPTURES_DIR --scene SCENE.json --out MEASUREMENTS.json:
+// the photographs of a capture plan turned into the measurements `layerlab
+// fit` reads (calibration/photo_detection.h; needs OpenCV). Each photograph
+// that fails is reported with its reason, and the rest go on.
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+#include "app/commands.h"
+#include "calibration/capture_plan.h"
+#include "calibration/measurements.h"
+#include "calibration/photo_detection.h"
+#include "framework/atomic_file.h"
+#include "framework/staged_output.h"
+#include "systems/compile.h"
+#include "systems/scene.h"
+
+namespace layerlab::app {
+
+void AddDetectCommand(CLI::App& app) {
+  struct Options {
+    std::string captures, scene, out, camera;
+  };
+  auto o = std::make_shared<Options>();
+  CLI::App* cmd = app.add_subcommand(
+      "detect", "Find the calibration patterns in photographs and write the measurements fit reads (OpenCV)");
+  cmd->add_option("captures", o->captures, "Folder with captures.json and the photographs")->required();
+  cmd->add_option("--scene", o->scene, "Scene file as designed (JSON)")->required();
+  cmd->add_option("--out", o->out, "Measurements file to write (layerlab-measurements/1)")->required();
+  cmd->add_option("--camera", o->camera, "The camera's intrinsics (JSON; default: the plan's \"camera\")");
+  cmd->callback([o] {
+    const std::string plan_file = (std::filesystem::path(o->captures) / "captures.json").string();
+    std::vector<NamedInput> inputs = {{o->captures, "the captures folder"}, {o->scene, "the scene"}};
+    if (!o->camera.empty()) inputs.push_back({o->camera, "the camera file"});
+    RefuseOutputOverlappingInputs(o->out, inputs);
+    const CapturePlan plan = ReadCapturePlanFile(plan_file);
+    const DisplaySystem designed = Compile(LoadScene(o->scene));
+    std::optional<CameraIntrinsics> camera;
+    if (!o->camera.empty()) camera = ReadCameraIntrinsicsFile(o->camera);
+    const Detection d = DetectCaptures(o->captures, plan, designed, camera);
+    for (const PhotoFailure& f : d.failures) std::cerr << "warning: " << f.photo << ": " << f.reason << "\n";
+    if (d.corners == 0 && d.luminance_steps == 0)
+      throw Error(o->captures + ": no photograph could be used (" + std::to_string(d.failures.size()) +
+                  " failed, each named above); nothing was written");
+    WriteFileAtomically(o->out, FormatMeasurements(d.measurements));
+    std::cout << "detected " << d.corners << " corners and " << d.luminance_steps << " luminance steps in "
+              << plan.captures.size() - d.failures.size() << " of " << plan.captures.size() << " photographs";
+    if (!d.failures.empty()) std::cout << " (" << d.failures.size() << " failed, named above)";
+    std::cout << "; wrote " << o->out << "\n";
+  });
+}
+
+}  // namespace layerlab::app

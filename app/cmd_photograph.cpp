@@ -1,0 +1,82 @@
+// layerlab photograph CAPTURES_DIR --scene BUILT.json --out DIR: synthetic
+// photographs of a capture plan on a display as built (calibration/synthetic_photo.h),
+// to try the calibration loop without a prototype (docs/calibration.md).
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+#include "app/commands.h"
+#include "calibration/capture_plan.h"
+#include "calibration/measurements.h"
+#include "calibration/synthetic_photo.h"
+#include "framework/atomic_file.h"
+#include "framework/staged_output.h"
+#include "systems/compile.h"
+#include "systems/scene.h"
+
+namespace layerlab::app {
+
+void AddPhotographCommand(CLI::App& app) {
+  struct Options {
+    std::string captures, scene, out, camera;
+    std::vector<int> size = {720, 400};
+    double aperture_mm = 1, focus = 1, white = 0.5, full_well = 20000, read_noise = 0.001;
+    int bits = 0;
+    uint64_t seed = 1;
+  };
+  auto o = std::make_shared<Options>();
+  CLI::App* cmd = app.add_subcommand("photograph", "Synthetic photographs of a capture plan on a display as built");
+  cmd->add_option("captures", o->captures, "Folder written by calibration-patterns (captures.json)")->required();
+  cmd->add_option("--scene", o->scene, "The display as built (scene JSON with its true placements)")->required();
+  cmd->add_option("--out", o->out, "Folder for captures.json and the photographs")->required();
+  cmd->add_option("--camera", o->camera, "The camera's intrinsics (JSON; default: the plan's)");
+  cmd->add_option("--size", o->size, "Image width and height, pixels (default 720 400)")->expected(2);
+  cmd->add_option("--aperture", o->aperture_mm, "Entrance pupil diameter, mm (default 1)");
+  cmd->add_option("--focus", o->focus, "Focus, diopters (default 1)");
+  cmd->add_option("--white", o->white, "Signal of full white at exposure 1, fraction of full scale (default 0.5)");
+  cmd->add_option("--full-well", o->full_well, "Electrons at full scale, for photon noise (default 20000; 0: none)");
+  cmd->add_option("--read-noise", o->read_noise, "Read noise, fraction of full scale (default 0.001)");
+  cmd->add_option("--bits", o->bits, "Round to this many bits (default 0: float)");
+  cmd->add_option("--seed", o->seed, "Noise seed (default 1)");
+  cmd->callback([o] {
+    const std::string plan_file = (std::filesystem::path(o->captures) / "captures.json").string();
+    CapturePlan plan = ReadCapturePlanFile(plan_file);
+    const DisplaySystem built = Compile(LoadScene(o->scene));
+    PhotoCamera camera;
+    if (!o->camera.empty())
+      camera.intrinsics = ReadCameraIntrinsicsFile(o->camera);
+    else if (plan.camera)
+      camera.intrinsics = *plan.camera;
+    else
+      throw Error(plan_file + ": the plan has no \"camera\"; give the camera's intrinsics with --camera FILE");
+    camera.width = o->size[0];
+    camera.height = o->size[1];
+    camera.aperture = o->aperture_mm * 1e-3;
+    camera.focus = o->focus;
+    camera.white = o->white;
+    camera.full_well = o->full_well;
+    camera.read_noise = o->read_noise;
+    camera.bits = o->bits;
+    camera.seed = o->seed;
+    plan.camera = camera.intrinsics;
+    std::vector<std::string> roots = {"captures.json"};
+    for (const PlannedCapture& c : plan.captures) roots.push_back(c.photo);
+    StagedOutput stage(o->out, "photograph", roots, {{o->captures, "the captures folder"}, {o->scene, "the scene"}});
+    const PhotoRenderer renderer(camera);
+    try {
+      for (size_t k = 0; k < plan.captures.size(); ++k) {
+        const PlannedCapture& c = plan.captures[k];
+        const std::filesystem::path photo = std::filesystem::path(stage.staging()) / c.photo;
+        std::filesystem::create_directories(photo.parent_path());
+        WriteExr(photo.string(), renderer.Render(built, plan, c, k), ExrCompression::kZip);
+      }
+      WriteFileAtomically(stage.staging() + "/captures.json", CapturePlanToJson(plan).dump(2) + "\n");
+    } catch (const Error& e) {
+      throw stage.Explain(e);
+    }
+    stage.Commit();
+    std::cout << "wrote " << plan.captures.size() << " photographs and captures.json to " << o->out << "\n";
+  });
+}
+
+}  // namespace layerlab::app

@@ -1,0 +1,309 @@
+#include "calibration/photo_detection.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+
+#include <opencv2/calib3d.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "calibration/synthetic_measurements.h"
+#include "framework/error.h"
+#include "framework/exr_image.h"
+#include "framework/units.h"
+
+namespace layerlab {
+namespace {
+
+double ResponseGamma(const std::string& response) {
+  if (response == "linear") return 1.0;
+  double g = 0;
+  if (response.rfind("gamma ", 0) == 0 && std::sscanf(response.c_str() + 6, "%lf", &g) == 1 && g > 0) return g;
+  throw Error("unknown response \"" + response + "\": expected \"linear\" or \"gamma G\"");
+}
+
+bool EndsWith(const std::string& s, const std::string& tail) {
+  return s.size() >= tail.size() && std::equal(tail.rbegin(), tail.rend(), s.rbegin(), [](char a, char b) {
+           return std::tolower(static_cast<unsigned char>(a)) == b;
+         });
+}
+
+double Quantile(std::vector<float> values, double q) {
+  if (values.empty()) return 0;
+  const size_t k = std::min(values.size() - 1, static_cast<size_t>(q * static_cast<double>(values.size())));
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
+  return values[k];
+}
+
+// What a photograph without a found board shows where the board should be
+// (`area`, from the prediction): its contrast, its noise (from the
+// differences of neighboring pixels, robust to the few edges) and its edges'
+// width (contrast over the steepest gradients of the image smoothed against
+// the noise), against the squares' size.
+std::string WhatItShows(const Photo& photo, double square_px, cv::Rect area) {
+  area &= cv::Rect(0, 0, photo.width, photo.height);
+  if (area.width < 4 || area.height < 4)
+    return "the board should lie outside the photograph: is the camera pointed at the panel?";
+  cv::Mat image(photo.height, photo.width, CV_32F, const_cast<float*>(photo.pixels.data()));
+  cv::Mat roi = image(area).clone(), smooth;
+  cv::GaussianBlur(roi, smooth, cv::Size(0, 0), 1.5);
+  std::vector<float> values(roi.begin<float>(), roi.end<float>()), differences, gradients;
+  for (int r = 0; r + 1 < roi.rows; ++r)
+    for (int c = 0; c + 1 < roi.cols; ++c) {
+      differences.push_back(std::abs(roi.at<float>(r, c + 1) - roi.at<float>(r, c)));
+      gradients.push_back(std::hypot(smooth.at<float>(r, c + 1) - smooth.at<float>(r, c),
+                                     smooth.at<float>(r + 1, c) - smooth.at<float>(r, c)));
+    }
+  const double noise = Quantile(differences, 0.5) / (0.6745 * std::sqrt(2.0));
+  // The 2 % to 98 % spread less the 4.1 sigma that noise alone spreads.
+  const double contrast = Quantile(values, 0.98) - Quantile(values, 0.02) - 4.1 * noise;
+  if (!(contrast > 0.02) || !(contrast > 2 * noise))
+    return "the photograph shows no pattern where the board should be (contrast " + FormatFixed(100 * contrast, 1) +
+           " % of full scale, noise " + FormatFixed(100 * noise, 2) +
+           " %): is the panel showing it, and the camera pointed at it?";
+  if (noise > 0.1 * contrast)
+    return "the photograph is too noisy (noise " + FormatFixed(100 * noise / contrast, 0) +
+           " % of the pattern's contrast): expose longer or lower the gain";
+  const double steepest = Quantile(gradients, 0.995);
+  const double edge_px = steepest > 0 ? contrast / steepest : INFINITY;
+  if (edge_px > 0.25 * square_px)
+    return "the photograph is out of focus (edges " + FormatFixed(edge_px, 1) + " px wide against squares of " +
+           FormatFixed(square_px, 0) + " px): focus the camera on the panel or stop it down";
+  return "the board is not in view whole, or something covers it (contrast " + FormatFixed(100 * contrast, 0) +
+         " % of full scale, edges " + FormatFixed(edge_px, 1) + " px wide)";
+}
+
+std::vector<cv::Point2f> TryBoard(const cv::Mat& image8, int cols, int rows) {
+  std::vector<cv::Point2f> corners;
+  if (!cv::findChessboardCorners(image8, cv::Size(cols, rows), corners,
+                                 cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE))
+    corners.clear();
+  return corners;
+}
+
+}  // namespace
+
+Photo ReadPhoto(const std::string& path, const std::string& response) {
+  const double gamma = ResponseGamma(response);
+  Photo photo;
+  if (EndsWith(path, ".exr")) {
+    std::string channel = "Y";
+    try {
+      Image image = ReadExr(path, {"Y"});
+      photo.width = image.width, photo.height = image.height, photo.pixels = std::move(image.pixels);
+    } catch (const Error&) {
+      Image image = ReadExr(path, {"G"});
+      photo.width = image.width, photo.height = image.height, photo.pixels = std::move(image.pixels);
+    }
+  } else if (EndsWith(path, ".png")) {
+    if (!std::filesystem::exists(path)) throw Error(path + ": no such file");
+    cv::Mat m = cv::imread(path, cv::IMREAD_UNCHANGED);
+    if (m.empty()) throw Error(path + ": cannot read it as a PNG");
+    const double full = m.depth() == CV_16U ? 65535.0 : m.depth() == CV_8U ? 255.0 : 0.0;
+    if (full == 0) throw Error(path + ": expected an 8- or 16-bit PNG");
+    if (m.channels() == 3 || m.channels() == 4)
+      cv::cvtColor(m, m, m.channels() == 3 ? cv::COLOR_BGR2GRAY : cv::COLOR_BGRA2GRAY);
+    cv::Mat f;
+    m.convertTo(f, CV_32F, 1.0 / full);
+    photo.width = f.cols, photo.height = f.rows;
+    photo.pixels.assign(f.begin<float>(), f.end<float>());
+  } else {
+    throw Error(path + ": photographs are read from linear EXR (.exr) or 8/16-bit PNG (.png)");
+  }
+  if (gamma != 1)
+    for (float& v : photo.pixels) v = static_cast<float>(std::pow(std::max(v, 0.0f), gamma));
+  return photo;
+}
+
+std::string OverexposureReason(const Photo& photo, const PhotoCheck& check) {
+  size_t clipped = 0;
+  for (float v : photo.pixels) clipped += v >= 0.999f;
+  const double fraction = static_cast<double>(clipped) / static_cast<double>(std::max<size_t>(1, photo.pixels.size()));
+  if (fraction <= check.overexposed_fraction) return "";
+  return "overexposed: " + FormatFixed(100 * fraction, 1) +
+         " % of the pixels are at full scale; shorten the exposure (or lower the backlight) and photograph it again";
+}
+
+CornerSearch FindChessboardCorners(const Photo& photo, const Chessboard& board,
+                                   const std::vector<std::array<double, 2>>& predicted, const PhotoCheck& check) {
+  CornerSearch out;
+  const int cols = board.corners_x(), rows = board.corners_y();
+  if (predicted.size() != static_cast<size_t>(cols * rows))
+    throw Error("internal error: " + std::to_string(predicted.size()) + " predicted corners for a " +
+                std::to_string(cols) + " x " + std::to_string(rows) + " board");
+  if (std::string why = OverexposureReason(photo, check); !why.empty()) {
+    out.reason = why;
+    return out;
+  }
+  double square_px = 0;  // predicted spacing of neighboring corners
+  for (int b = 0; b < rows; ++b)
+    for (int a = 0; a + 1 < cols; ++a) {
+      const auto& p = predicted[b * cols + a];
+      const auto& q = predicted[b * cols + a + 1];
+      square_px += std::hypot(q[0] - p[0], q[1] - p[1]) / ((cols - 1) * rows);
+    }
+  cv::Mat image(photo.height, photo.width, CV_32F, const_cast<float*>(photo.pixels.data()));
+  const double white = std::max(1e-6, Quantile(photo.pixels, 0.995));
+  cv::Mat image8;
+  image.convertTo(image8, CV_8U, 255.0 / white);
+  std::vector<cv::Point2f> corners = TryBoard(image8, cols, rows);
+  if (corners.empty()) {
+    double u0 = INFINITY, v0 = INFINITY, u1 = -INFINITY, v1 = -INFINITY;
+    for (const auto& p : predicted)
+      u0 = std::min(u0, p[0]), v0 = std::min(v0, p[1]), u1 = std::max(u1, p[0]), v1 = std::max(v1, p[1]);
+    const cv::Rect area(static_cast<int>(u0 - square_px), static_cast<int>(v0 - square_px),
+                        static_cast<int>(u1 - u0 + 2 * square_px), static_cast<int>(v1 - v0 + 2 * square_px));
+    const std::string shows = WhatItShows(photo, square_px, area);
+    // A part of the board found tells "too few features" from "not found".
+    for (const auto& [c, r] : std::vector<std::pair<int, int>>{{cols - 2, rows}, {cols, rows - 2}})
+      if (c >= 2 && r >= 2 && shows.rfind("the board is not in view", 0) == 0)
+        if (std::vector<cv::Point2f> part = TryBoard(image8, c, r); !part.empty()) {
+          out.reason = "too few features: " + std::to_string(part.size()) + " of the board's " +
+                       std::to_string(cols * rows) + " inner corners found (" + shows + ")";
+          return out;
+        }
+    out.reason = "pattern not found: no " + std::to_string(cols) + " x " + std::to_string(rows) +
+                 " chessboard corners (" + shows + ")";
+    return out;
+  }
+  const int window = std::clamp(static_cast<int>(0.4 * square_px), 2, 15);
+  cv::cornerSubPix(image, corners, cv::Size(window, window), cv::Size(-1, -1),
+                   cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 100, 1e-4));
+  // The board reads the same turned by 180 degrees, and the optics may mirror it: the
+  // ordering nearest the prediction is the one.
+  double best = INFINITY;
+  std::vector<int> order;
+  for (int flip = 0; flip < 4; ++flip) {
+    std::vector<int> candidate(predicted.size());
+    double sum = 0;
+    for (int b = 0; b < rows; ++b)
+      for (int a = 0; a < cols; ++a) {
+        const int fa = flip & 1 ? cols - 1 - a : a, fb = flip & 2 ? rows - 1 - b : b;
+        const int k = b * cols + a;
+        candidate[k] = fb * cols + fa;
+        const cv::Point2f& c = corners[candidate[k]];
+        sum += std::pow(c.x - predicted[k][0], 2) + std::pow(c.y - predicted[k][1], 2);
+      }
+    if (sum < best) best = sum, order = candidate;
+  }
+  FoundCorners found;
+  for (int b = 0; b < rows; ++b)
+    for (int a = 0; a < cols; ++a) {
+      found.panel_pixels.push_back(board.corner(a, b));
+      const cv::Point2f& c = corners[order[b * cols + a]];
+      found.camera_pixels.push_back({c.x, c.y});
+    }
+  out.corners = std::move(found);
+  return out;
+}
+
+Detection DetectCaptures(const std::string& folder, const CapturePlan& plan, const DisplaySystem& designed,
+                         const std::optional<CameraIntrinsics>& camera_option, const PhotoCheck& check) {
+  const std::optional<CameraIntrinsics> camera = camera_option ? camera_option : plan.camera;
+  if (!camera)
+    throw Error("the camera's intrinsics are needed: give them in the capture plan's \"camera\" or with --camera FILE");
+  auto layer_named = [&](const std::string& panel) -> const VirtualLayer& {
+    for (const VirtualLayer& layer : designed.layers)
+      if (layer.name == panel) return layer;
+    throw Error(designed.file + ": the capture plan names panel \"" + panel + "\", which the scene does not have");
+  };
+  Detection d;
+  d.measurements.file = (std::filesystem::path(folder) / "captures.json").string();
+  d.measurements.description = "detected from the photographs in " + folder;
+  d.measurements.camera = camera;
+  std::map<std::pair<double, double>, size_t> capture_at;  // camera position -> index in captures
+  std::map<std::string, PanelLuminance> luminance;
+  for (const PlannedCapture& c : plan.captures) {
+    const std::string path = (std::filesystem::path(folder) / c.photo).string();
+    const VirtualLayer& layer = layer_named(c.panel);
+    Photo photo;
+    try {
+      photo = ReadPhoto(path, plan.response);
+    } catch (const Error& e) {
+      d.failures.push_back({c.photo, e.what()});
+      continue;
+    }
+    if (c.kind == CaptureKind::kChessboard) {
+      const Chessboard& board = *plan.chessboard(c.panel);
+      std::vector<std::array<double, 2>> predicted;
+      for (int b = 0; b < board.corners_y(); ++b)
+        for (int a = 0; a < board.corners_x(); ++a) {
+          const auto pixel = board.corner(a, b);
+          const auto angle = ImagedMarker(designed, layer, pixel[0], pixel[1], {}, c.camera_position);
+          predicted.push_back(CameraPixelFromAngle(*camera, angle[0], angle[1]));
+        }
+      CornerSearch search = FindChessboardCorners(photo, board, predicted, check);
+      if (!search.corners) {
+        d.failures.push_back({c.photo, search.reason});
+        continue;
+      }
+      const auto key = std::make_pair(c.camera_position[0], c.camera_position[1]);
+      if (!capture_at.count(key)) {
+        capture_at[key] = d.measurements.captures.size();
+        Capture capture;
+        capture.camera_position = c.camera_position;
+        capture.where = {path, ""};
+        d.measurements.captures.push_back(capture);
+      }
+      Capture& capture = d.measurements.captures[capture_at[key]];
+      PanelMarkers markers;
+      markers.panel = c.panel;
+      markers.where = {path, ""};
+      for (size_t k = 0; k < search.corners->panel_pixels.size(); ++k) {
+        MarkerObservation m;
+        m.col = search.corners->panel_pixels[k][0];
+        m.row = search.corners->panel_pixels[k][1];
+        const auto& uv = search.corners->camera_pixels[k];
+        const auto angle = AngleFromCameraPixel(*camera, uv[0], uv[1]);
+        if (!angle) continue;  // beyond the radius where the distortion folds back
+        m.angle_x = (*angle)[0];
+        m.angle_y = (*angle)[1];
+        m.camera_pixel = uv;
+        m.where = {path, ""};
+        markers.markers.push_back(m);
+      }
+      d.corners += markers.markers.size();
+      capture.panels.push_back(std::move(markers));
+    } else {
+      if (std::string why = OverexposureReason(photo, check); !why.empty()) {
+        d.failures.push_back({c.photo, why});
+        continue;
+      }
+      // The mean over the camera pixels that see the middle half of the active region (by the design).
+      const PanelSpec& p = layer.panel;
+      double sum = 0;
+      size_t n = 0;
+      for (int v = 0; v < photo.height; ++v)
+        for (int u = 0; u < photo.width; ++u) {
+          const auto angle = AngleFromCameraPixel(*camera, u, v);
+          if (!angle) continue;
+          const auto pixel = PanelPixelAt(
+              layer, PanelPointOfRay(layer, c.camera_position, {std::tan((*angle)[0]), std::tan((*angle)[1])}));
+          const double x = (pixel[0] - static_cast<double>(p.active_left)) / static_cast<double>(p.active_cols);
+          const double y = (pixel[1] - static_cast<double>(p.active_top)) / static_cast<double>(p.active_rows);
+          if (x > 0.25 && x < 0.75 && y > 0.25 && y < 0.75) {
+            sum += photo.pixels[static_cast<size_t>(v) * photo.width + u];
+            ++n;
+          }
+        }
+      if (n < 16) {
+        d.failures.push_back({c.photo, "the middle of the panel is not in the photograph (" + std::to_string(n) +
+                                           " pixels see it): point the camera at the panel"});
+        continue;
+      }
+      PanelLuminance& curve = luminance[c.panel];
+      curve.panel = c.panel;
+      curve.levels = InputLevels::k8Bit;
+      curve.where = {path, ""};
+      curve.samples.push_back({c.level / 255.0, sum / static_cast<double>(n) / c.exposure, {path, ""}});
+      ++d.luminance_steps;
+    }
+  }
+  for (const VirtualLayer& layer : designed.layers)
+    if (auto it = luminance.find(layer.name); it != luminance.end()) d.measurements.luminance.push_back(it->second);
+  return d;
+}
+
+}  // namespace layerlab

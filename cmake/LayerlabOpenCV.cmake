@@ -1,0 +1,43 @@
+# OpenCV for calibration from photographs (`layerlab detect`, docs/calibration.md):
+# Debian's libopencv-calib3d-dev, libopencv-imgproc-dev and libopencv-imgcodecs-dev,
+# which ship the headers and libraries but not OpenCVConfig.cmake (that comes with
+# libopencv-dev), so the parts are found one by one when the config is absent.
+# LAYERLAB_WITH_OPENCV: ON (fail when missing), OFF, or AUTO (built when found).
+# Defines the target layerlab_opencv and sets LAYERLAB_HAVE_OPENCV.
+set(LAYERLAB_HAVE_OPENCV OFF)
+if(LAYERLAB_WITH_OPENCV STREQUAL "OFF")
+  list(APPEND LAYERLAB_LEFT_OUT "OpenCV: layerlab detect (LAYERLAB_WITH_OPENCV=OFF)")
+  return()
+endif()
+find_package(OpenCV 4 QUIET COMPONENTS core imgproc calib3d imgcodecs)
+if(OpenCV_FOUND)
+  add_library(layerlab_opencv INTERFACE)
+  target_link_libraries(layerlab_opencv INTERFACE opencv_core opencv_imgproc opencv_calib3d opencv_imgcodecs)
+  target_include_directories(layerlab_opencv SYSTEM INTERFACE ${OpenCV_INCLUDE_DIRS})
+  set(LAYERLAB_HAVE_OPENCV ON)
+else()
+  find_path(LAYERLAB_OPENCV_INCLUDE_DIR opencv2/calib3d.hpp PATH_SUFFIXES opencv4)
+  set(layerlab_opencv_libraries "")
+  set(layerlab_opencv_missing "")
+  foreach(part core imgproc calib3d imgcodecs)
+    find_library(LAYERLAB_OPENCV_${part} opencv_${part})
+    if(LAYERLAB_OPENCV_${part})
+      list(APPEND layerlab_opencv_libraries ${LAYERLAB_OPENCV_${part}})
+    else()
+      list(APPEND layerlab_opencv_missing opencv_${part})
+    endif()
+  endforeach()
+  if(LAYERLAB_OPENCV_INCLUDE_DIR AND NOT layerlab_opencv_missing)
+    add_library(layerlab_opencv INTERFACE)
+    target_link_libraries(layerlab_opencv INTERFACE ${layerlab_opencv_libraries})
+    target_include_directories(layerlab_opencv SYSTEM INTERFACE ${LAYERLAB_OPENCV_INCLUDE_DIR})
+    set(LAYERLAB_HAVE_OPENCV ON)
+  endif()
+endif()
+if(NOT LAYERLAB_HAVE_OPENCV)
+  if(LAYERLAB_WITH_OPENCV STREQUAL "ON")
+    message(FATAL_ERROR "LAYERLAB_WITH_OPENCV=ON but OpenCV 4 (calib3d, imgproc, imgcodecs) was not found: "
+                        "apt-get install libopencv-calib3d-dev libopencv-imgproc-dev libopencv-imgcodecs-dev")
+  endif()
+  list(APPEND LAYERLAB_LEFT_OUT "OpenCV: layerlab detect (not found: libopencv-calib3d-dev, libopencv-imgproc-dev, libopencv-imgcodecs-dev)")
+endif()
