@@ -49,6 +49,9 @@ WavefrontSlope WavefrontSlopeAt(const Wavefront& w, double x, double y);
 // is the mean Z_12 (spherical aberration, Z(4,0)) of 2560 normal adult eyes,
 // 0.13 um at a 6.0 mm pupil and 550 nm (Salmon and van de Pol 2006, J. Cataract
 // Refract. Surg. 32:2064); the other modes' population means are taken as zero.
+// The abstract gives 0.13 um as Z(4,0)'s mean absolute value; it is used as the
+// signed mean (Z(4,0) is positive in most normal adult eyes), which overstates
+// the mean by the share of eyes with negative spherical aberration.
 const Wavefront* PopulationWavefront(const std::string& name);
 std::vector<std::string> PopulationWavefrontNames();
 
