@@ -1,5 +1,17 @@
 # One helper per kind of target.
 
+# layerlab_leave_out(OPTION PART REASON ERROR), in an optional part's cmake/
+# file: leaves PART out (listed with REASON at the end of the configuration)
+# and returns from that file, or stops with "OPTION=ON ERROR" when OPTION asked
+# for the part. A macro, so that return() leaves the including file.
+macro(layerlab_leave_out option part reason error)
+  if(${option} STREQUAL "ON")
+    message(FATAL_ERROR "${option}=ON ${error}")
+  endif()
+  list(APPEND LAYERLAB_LEFT_OUT "${part} (${reason})")
+  return()
+endmacro()
+
 # layerlab_add_library(NAME SOURCES ... DEPS ... [EXPORT SET]): a static library
 # under the namespaced alias layerlab::NAME, with the repository root on its
 # include path. It is installed (cmake/LayerlabInstall.cmake) with its folder's
