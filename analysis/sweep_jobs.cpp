@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "analysis/run_pipeline.h"
@@ -154,11 +155,29 @@ std::vector<SweepJob> ExpandSweep(const SweepSpec& spec, const std::string& out)
   return jobs;
 }
 
-size_t WriteSweepFolders(const SweepSpec& spec, const std::vector<SweepJob>& jobs, const std::string& out) {
+namespace {
+
+void CreateSweepFolder(const SweepSpec& spec, const std::string& out) {
   RefuseOutputOverlappingInputs(out, {{spec.file, "the sweep file"}, {spec.scene, "the base scene"}});
   std::error_code ec;
   fs::create_directories(out, ec);
   if (ec) throw Error(out + ": cannot create the output folder: " + ec.message());
+}
+
+}  // namespace
+
+FileLock LockSweepFolder(const SweepSpec& spec, const std::string& out) {
+  CreateSweepFolder(spec, out);
+  std::string holder;
+  std::optional<FileLock> lock = FileLock::TryLock((fs::path(out) / "sweep.lock").string(), &holder);
+  if (!lock)
+    throw Error(out + ": another layerlab sweep" + (holder.empty() ? "" : " (process " + holder + ")") +
+                " is running into this folder; wait for it to end or give another --out");
+  return std::move(*lock);
+}
+
+size_t WriteSweepFolders(const SweepSpec& spec, const std::vector<SweepJob>& jobs, const std::string& out) {
+  CreateSweepFolder(spec, out);
   size_t written = 0;
   for (const SweepJob& job : jobs) WriteSceneIfChanged(out, job, &written);
   ordered_json params = ordered_json::array();
@@ -213,11 +232,22 @@ SweepJobState ReadJobState(const std::string& out, const SweepJob& job) {
 SweepJobState RunSweepJob(const SweepSpec& spec, const SweepJob& job, const std::string& out, const std::string& runner,
                           bool* ran) {
   if (ran) *ran = false;
+  const fs::path folder = JobFolder(out, job);
+  std::error_code ec;
+  fs::create_directories(folder, ec);
+  if (ec) throw Error(folder.string() + ": cannot create the job folder: " + ec.message());
+  std::string holder;
+  const std::optional<FileLock> lock = FileLock::TryLock((folder / "job.lock").string(), &holder);
+  if (!lock) {
+    SweepJobState busy;
+    busy.busy = true;
+    busy.error = "running in another process" + (holder.empty() ? "" : " (" + holder + ")") + "; left to it";
+    return busy;
+  }
   WriteSceneIfChanged(out, job, nullptr);
   SweepJobState state = ReadJobState(out, job);
   if (state.complete) return state;
   if (ran) *ran = true;
-  const fs::path folder = JobFolder(out, job);
   RunRequest request{(folder / "scene.json").string(), (folder / "out").string(), spec.iterations, spec.threads, false};
   const auto start = std::chrono::steady_clock::now();
   auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };

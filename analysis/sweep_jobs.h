@@ -7,6 +7,8 @@
 //   DIR/jobs/<id>/out/       what `layerlab run` writes for that scene
 //   DIR/jobs/<id>/job.json   the job's manifest entry: complete or failed (with
 //                            the error), the scene's digest, its outputs, its results
+//   DIR/sweep.lock           held by the runner that writes the job folders
+//   DIR/jobs/<id>/job.lock   held by the process running that job
 //
 // manifest.json: layerlab-sweep-manifest/1, written by the runner that expands the grid
 //
@@ -40,6 +42,7 @@
 #include <nlohmann/json.hpp>
 
 #include "analysis/sweep_spec.h"
+#include "framework/file_lock.h"
 
 namespace layerlab {
 
@@ -61,6 +64,7 @@ struct SweepResult {
 
 struct SweepJobState {
   bool complete = false, failed = false;  // neither: not run, or stale
+  bool busy = false;                      // another process is running it (error says which)
   std::string error, runner;
   double seconds = 0;
   std::vector<SweepResult> results;
@@ -70,6 +74,10 @@ struct SweepJobState {
 std::vector<SweepJob> ExpandSweep(const SweepSpec& spec, const std::string& out);
 
 std::string JobFolder(const std::string& out, const SweepJob& job);
+
+// Locks DIR for one runner: a second sweep into the same folder is refused,
+// naming the process that holds it. Creates DIR; refuses one that overlaps an input.
+FileLock LockSweepFolder(const SweepSpec& spec, const std::string& out);
 
 // Writes DIR/manifest.json and every job's scene.json that is missing or
 // differs (removing that job's stale job.json); returns how many scenes were
@@ -82,7 +90,8 @@ SweepJobState ReadJobState(const std::string& out, const SweepJob& job);
 
 // Runs one job unless it is complete (then returns its state): writes its
 // scene if needed, runs the pipeline into jobs/<id>/out and records the
-// outcome in job.json. A failure is recorded and returned, not thrown.
+// outcome in job.json. A failure is recorded and returned, not thrown. A job
+// that another process is running is left to it (busy, not run).
 // `ran` (optional) says whether it ran.
 SweepJobState RunSweepJob(const SweepSpec& spec, const SweepJob& job, const std::string& out, const std::string& runner,
                           bool* ran = nullptr);

@@ -22,6 +22,8 @@ void SayJob(const SweepSpec& spec, const SweepJob& job, const SweepJobState& s, 
     values += (k ? ", " : "") + spec.parameters[k].name + " " + spec.parameters[k].labels[job.choice[k]];
   if (s.complete)
     std::printf("%ssweep: job %s (%s) complete in %.1f s\n", prefix.c_str(), job.id.c_str(), values.c_str(), s.seconds);
+  else if (s.busy)
+    std::printf("%ssweep: job %s (%s) not run: %s\n", prefix.c_str(), job.id.c_str(), values.c_str(), s.error.c_str());
   else
     std::printf("%ssweep: job %s (%s) failed: %s\n", prefix.c_str(), job.id.c_str(), values.c_str(),
                 s.error.empty() ? "the job process ended without a record" : s.error.c_str());
@@ -52,7 +54,8 @@ void RunSweepCommand(const SweepOptions& o) {
     const SweepJob& job = FindSweepJob(jobs, o.job);
     bool ran = false;
     const SweepJobState s = RunSweepJob(spec, job, o.out, task ? "slurm task " + std::string(task) : "local", &ran);
-    if (CurrentVerbosity() != Verbosity::kQuiet) SayJob(spec, job, s, ran ? "" : "(already complete) ");
+    if (CurrentVerbosity() != Verbosity::kQuiet) SayJob(spec, job, s, ran || s.busy ? "" : "(already complete) ");
+    if (s.busy) throw CLI::RuntimeError(kJobBusyExit);
     if (s.failed) throw CLI::RuntimeError(1);
     return;
   }
@@ -70,6 +73,7 @@ void RunSweepCommand(const SweepOptions& o) {
         "OpenMPI: apt-get install libopenmpi-dev openmpi-bin)");
 #endif
   }
+  const FileLock lock = LockSweepFolder(spec, o.out);
   const size_t written = WriteSweepFolders(spec, jobs, o.out);
   std::printf("sweep: %zu jobs in %s/jobs (%zu scenes written)\n", jobs.size(), o.out.c_str(), written);
   if (o.slurm) {

@@ -79,7 +79,10 @@ size_t RunSweepLocally(const SweepSpec& spec, const std::vector<SweepJob>& jobs,
       std::fflush(stdout);
       continue;
     }
-    if (!s.complete && !s.failed) {
+    if (!s.complete && !s.failed && WIFEXITED(status) && WEXITSTATUS(status) == kJobBusyExit) {
+      s.busy = true;  // its child said which process holds it
+      s.error = "running in another process; left to it";
+    } else if (!s.complete && !s.failed) {
       s.failed = true;
       s.error = WIFSIGNALED(status) ? "the job process was killed by signal " + std::to_string(WTERMSIG(status))
                                     : "the job process exited with status " + std::to_string(WEXITSTATUS(status)) +

@@ -6,6 +6,7 @@
 
 #include <cstdio>
 #include <exception>
+#include <optional>
 
 #include "analysis/sweep_gather.h"
 #include "app/sweep_runners.h"
@@ -27,7 +28,9 @@ size_t RunSweepMpi(const SweepSpec& spec, const std::vector<SweepJob>& jobs, con
     std::fflush(stderr);
     MPI_Abort(MPI_COMM_WORLD, 1);
   };
+  std::optional<FileLock> lock;  // rank 0's, held to the end
   try {
+    if (rank == 0) lock.emplace(LockSweepFolder(spec, out));
     if (rank == 0) WriteSweepFolders(spec, jobs, out);
   } catch (const std::exception& e) {
     abort_all(e.what());

@@ -13,6 +13,9 @@ namespace layerlab::app {
 // One line on stdout: the job, its values, and how it ended.
 void SayJob(const SweepSpec& spec, const SweepJob& job, const SweepJobState& state, const std::string& prefix = "");
 
+// The exit status of `sweep --job ID` when another process holds that job.
+inline constexpr int kJobBusyExit = 75;  // EX_TEMPFAIL: try again later
+
 // This executable, for the pool's children and the Slurm scripts.
 std::string SelfExecutable();
 

@@ -1,0 +1,66 @@
+#include "framework/file_lock.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "framework/error.h"
+
+namespace layerlab {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path TempLockPath(const char* name) {
+  const fs::path dir = fs::temp_directory_path() / ("layerlab_file_lock_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir / name;
+}
+
+// flock conflicts between open file descriptions, so a second TryLock in the
+// same process stands for a second process.
+TEST(FileLock, ASecondTakerIsRefusedAndToldTheHoldersPid) {
+  const std::string path = TempLockPath("held.lock").string();
+  std::optional<FileLock> first = FileLock::TryLock(path);
+  ASSERT_TRUE(first.has_value());
+  std::string holder = "unset";
+  EXPECT_FALSE(FileLock::TryLock(path, &holder).has_value());
+  EXPECT_EQ(holder, std::to_string(::getpid()));
+  first.reset();
+  EXPECT_TRUE(FileLock::TryLock(path).has_value()) << "the lock is released with its holder";
+}
+
+TEST(FileLock, AHolderThatWroteNoPidIsNotNamed) {
+  const std::string path = TempLockPath("nopid.lock").string();
+  std::optional<FileLock> first = FileLock::TryLock(path);
+  ASSERT_TRUE(first.has_value());
+  std::ofstream(path, std::ios::trunc) << "not a pid";
+  std::string holder = "unset";
+  EXPECT_FALSE(FileLock::TryLock(path, &holder).has_value());
+  EXPECT_EQ(holder, "");
+}
+
+TEST(FileLock, AMovedLockIsStillHeld) {
+  const std::string path = TempLockPath("moved.lock").string();
+  std::optional<FileLock> first = FileLock::TryLock(path);
+  ASSERT_TRUE(first.has_value());
+  FileLock moved = std::move(*first);
+  first.reset();  // the moved-from object must not release it
+  EXPECT_FALSE(FileLock::TryLock(path).has_value());
+}
+
+TEST(FileLock, AnUnopenableFileIsAnErrorNamingIt) {
+  try {
+    FileLock::TryLock("/nonexistent_folder_for_layerlab/x.lock");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent_folder_for_layerlab/x.lock: cannot open the lock file"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace layerlab
