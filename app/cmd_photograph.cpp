@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "app/commands.h"
+#include "app/number_list.h"
 #include "calibration/capture_plan.h"
 #include "calibration/measurements.h"
 #include "calibration/synthetic_photo.h"
@@ -18,9 +19,9 @@ namespace layerlab::app {
 
 void AddPhotographCommand(CLI::App& app) {
   struct Options {
-    std::string captures, scene, out, camera;
+    std::string captures, scene, out, camera, aperture = "1", focus = "1";
     std::vector<int> size = {720, 400};
-    double aperture_mm = 1, focus = 1, white = 0.5, full_well = 20000, read_noise = 0.001;
+    double white = 0.5, full_well = 20000, read_noise = 0.001;
     int bits = 0;
     uint64_t seed = 1;
   };
@@ -31,14 +32,16 @@ void AddPhotographCommand(CLI::App& app) {
   cmd->add_option("--out", o->out, "Folder for captures.json and the photographs")->required();
   cmd->add_option("--camera", o->camera, "The camera's intrinsics (JSON; default: the plan's)");
   cmd->add_option("--size", o->size, "Image width and height, pixels (default 720 400)")->expected(2);
-  cmd->add_option("--aperture", o->aperture_mm, "Entrance pupil diameter, mm (default 1)");
-  cmd->add_option("--focus", o->focus, "Focus, diopters (default 1)");
+  cmd->add_option("--aperture", o->aperture, "Entrance pupil diameter: mm, or with a unit (\"1 mm\"; default 1)");
+  cmd->add_option("--focus", o->focus, "Focus: D, or a distance (\"1 m\"; default 1)");
   cmd->add_option("--white", o->white, "Signal of full white at exposure 1, fraction of full scale (default 0.5)");
   cmd->add_option("--full-well", o->full_well, "Electrons at full scale, for photon noise (default 20000; 0: none)");
   cmd->add_option("--read-noise", o->read_noise, "Read noise, fraction of full scale (default 0.001)");
   cmd->add_option("--bits", o->bits, "Round to this many bits (default 0: float)");
   cmd->add_option("--seed", o->seed, "Noise seed (default 1)");
   cmd->callback([o] {
+    const double aperture_mm = ParseOptionValue(o->aperture, "--aperture", kMillimeters);
+    const double focus_diopters = ParseOptionValue(o->focus, "--focus", kDiopters, true);
     const std::string plan_file = (std::filesystem::path(o->captures) / "captures.json").string();
     CapturePlan plan = ReadCapturePlanFile(plan_file);
     const DisplaySystem built = Compile(LoadScene(o->scene));
@@ -51,8 +54,8 @@ void AddPhotographCommand(CLI::App& app) {
       throw Error(plan_file + ": the plan has no \"camera\"; give the camera's intrinsics with --camera FILE");
     camera.width = o->size[0];
     camera.height = o->size[1];
-    camera.aperture = o->aperture_mm * 1e-3;
-    camera.focus = o->focus;
+    camera.aperture = aperture_mm * 1e-3;
+    camera.focus = focus_diopters;
     camera.white = o->white;
     camera.full_well = o->full_well;
     camera.read_noise = o->read_noise;

@@ -21,6 +21,7 @@ inline const OptionUnit kDiopters{Dimension::kOpticalPower, "D"};
 inline const OptionUnit kSeconds{Dimension::kTime, "s"};
 inline const OptionUnit kDegrees{Dimension::kAngle, "deg"};
 inline const OptionUnit kCyclesPerDegree{Dimension::kAngularFrequency, "cpd"};
+inline const OptionUnit kMillimeters{Dimension::kLength, "mm"};
 
 // One finite value >= 0, in the option's unit. A depth in diopters also
 // accepts a distance ("0.5 m" is 2 D) when `depth` is set.

@@ -42,4 +42,22 @@ rm "$work/photos/front_b_chessboard_1.exr"
   >"$work/log" 2>&1 || { cat "$work/log"; fail "detect stopped at a missing photograph"; }
 grep -q "warning: front_b_chessboard_1.exr: .*front_b_chessboard_1.exr" "$work/log" || { cat "$work/log"; fail "the missing photograph is not named"; }
 grep -q "in 31 of 32 photographs (1 failed, named above)" "$work/log" || { cat "$work/log"; fail "no summary"; }
+# The camera's aperture and focus with units, as every command takes them: the same photograph as bare mm and D.
+python3 - "$work/plan/captures.json" "$work/one/captures.json" <<'PY' || fail "could not write a one-capture plan"
+import json, os, sys
+plan = json.load(open(sys.argv[1]))
+plan["captures"] = plan["captures"][:1]
+os.makedirs(os.path.dirname(sys.argv[2]), exist_ok=True)
+json.dump(plan, open(sys.argv[2], "w"), indent=2)
+PY
+photo=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["captures"][0]["photo"])' "$work/one/captures.json")
+"$layerlab" photograph "$work/one" --scene "$work/built.json" --out "$work/bare" --size 72 42 --aperture 2 --focus 2 \
+  >"$work/log" 2>&1 || { cat "$work/log"; fail "photograph with bare numbers failed"; }
+"$layerlab" photograph "$work/one" --scene "$work/built.json" --out "$work/units" --size 72 42 --aperture "2 mm" \
+  --focus "0.5 m" >"$work/log" 2>&1 || { cat "$work/log"; fail "photograph with units failed"; }
+cmp -s "$work/bare/$photo" "$work/units/$photo" || fail "2 mm at 0.5 m is not the photograph of 2 at 2"
+if "$layerlab" photograph "$work/one" --scene "$work/built.json" --out "$work/bad" --aperture "2 D" >"$work/log" 2>&1; then
+  fail "an aperture in diopters was taken"
+fi
+grep -q -- '--aperture: "2 D" is not a number or a length' "$work/log" || { cat "$work/log"; fail "the refusal does not say why"; }
 echo PASS
