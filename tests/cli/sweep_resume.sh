@@ -4,15 +4,19 @@
 # them, untouched, and runs only the rest.
 . "$(dirname "$0")/sweep_common.sh"
 sweep=$work/sweep.json out=$work/out
+# wait_for_first_job DIR: until job 000 of the sweep started as $pid is complete.
+wait_for_first_job() {
+  i=0
+  until [ "$(state "$1" 000)" = complete ]; do
+    i=$((i + 1)); [ $i -lt 3000 ] || { kill -KILL -$pid; fail "job 000 did not finish in 60 s"; }
+    sleep 0.02
+  done
+}
 # Six jobs of 60 iterations (about half a second each), one at a time: the kill comes after the first.
 write_sweep "$sweep" '["solve"]' '[{ "name": "pupil", "pointer": "/elements/0/pupil_diameter", "values": ["3 mm", "4 mm", "5 mm"] }, '"$COMBINERS]" 60
 setsid "$layerlab" sweep "$sweep" --out "$out" --local -j 1 >"$work/log" 2>&1 &
 pid=$!
-i=0
-until [ "$(state "$out" 000)" = complete ]; do
-  i=$((i + 1)); [ $i -lt 3000 ] || { kill -KILL -$pid; fail "job 000 did not finish in 60 s"; }
-  sleep 0.02
-done
+wait_for_first_job "$out"
 kill -KILL -$pid 2>/dev/null; wait $pid 2>/dev/null
 # The job process is gone only once reaped: until then it counts as alive and its staging folder as in use.
 i=0
@@ -46,11 +50,7 @@ grep -q "^job,pupil (mm),combiner,state,runner,job time (s),PSNR (dB),solve time
 out2=$work/out2
 setsid "$layerlab" sweep "$sweep" --out "$out2" --local -j 1 >"$work/log" 2>&1 &
 pid=$!
-i=0
-until [ "$(state "$out2" 000)" = complete ]; do
-  i=$((i + 1)); [ $i -lt 3000 ] || { kill -KILL -$pid; fail "job 000 did not finish in 60 s"; }
-  sleep 0.02
-done
+wait_for_first_job "$out2"
 kill -INT -$pid
 wait $pid
 status=$?
