@@ -324,7 +324,8 @@ TEST(TimeMultiplex, KnownRankThreeTargetInsideTheBoundsIsRecoveredAbove100Db) {
   for (uint64_t seed : {9, 10, 11}) {
     const Patterns truth = SmoothPatterns(model, seed, 0.5, 0.3);
     const LightField target = model.Synthesize(truth);
-    for (const auto& [solver, iterations] : std::map<std::string, int>{{"multiplicative", 3000}, {"quasi-newton", 1500}}) {
+    for (const auto& [solver, iterations] :
+         std::map<std::string, int>{{"multiplicative", 3000}, {"quasi-newton", 1500}}) {
       SolverOptions o = SolverRegistry::Builtins().find(solver)->defaults;
       o.iterations = iterations;
       o.tolerance = 0;
