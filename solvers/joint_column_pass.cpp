@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "solvers/one_member_sums_row.h"
 #include "systems/one_tap_view.h"
 #include "systems/row_kernels.h"
 
@@ -17,7 +18,6 @@ struct Workspace {
   std::vector<std::vector<Rgb4>> resampled;  // [layer][its row][ray column]
   std::vector<ColumnSums> sums;              // [layer]
   std::vector<Rgb4> light;                   // one ray row of the whole display
-  std::vector<Rgb4> unused_num, unused_den;  // one ray row: the sums of the layers not summed, never read
 };
 
 bool Summed(const std::vector<char>* summed, size_t k) { return !summed || (*summed)[k]; }
@@ -28,7 +28,6 @@ void Resize(const DisplayModel& model, const std::vector<char>* summed, Workspac
   for (size_t k = 0; k < layers; ++k)
     if (Summed(summed, k)) w->sums[k].Reset(model.projection(k), model.geometry().cols);
   w->light.resize(model.geometry().cols);
-  if (summed) w->unused_num.assign(model.geometry().cols, Rgb4{}), w->unused_den.assign(model.geometry().cols, Rgb4{});
 }
 
 // The sums over views [vr_begin, vr_end) of view column vc into w, and each
@@ -88,13 +87,19 @@ void ViewRun(const DisplayModel& model, const LightField& l, const PaddedLayers&
         for (size_t b = 0; b < model.branch_count(); ++b) {
           if (!branch_rows(b)) continue;
           const std::vector<int>& members = model.branch_layers(b);
+          if (summed) {  // the same sums, member by member
+            for (size_t m = 0; m < members.size(); ++m)
+              if (const int a = members[m]; (*summed)[a])
+                OneMemberSumsRow(rows, static_cast<int>(members.size()), static_cast<int>(m), weight(b), cols, lr,
+                                 exact_last, light, w->sums[a].num(layer_row[a]), w->sums[a].den(layer_row[a]));
+            continue;
+          }
           Rgb4* num[kMaxOneTapLayers];
           Rgb4* den[kMaxOneTapLayers];
           for (size_t m = 0; m < members.size(); ++m) {
             const int a = members[m];
-            const bool sum = Summed(summed, a);
-            num[m] = sum ? w->sums[a].num(layer_row[a]) : w->unused_num.data();
-            den[m] = sum ? w->sums[a].den(layer_row[a]) : w->unused_den.data();
+            num[m] = w->sums[a].num(layer_row[a]);
+            den[m] = w->sums[a].den(layer_row[a]);
           }
           JointSumsRow(rows, static_cast<int>(members.size()), weight(b), cols, lr, exact_last, light, num, den);
         }

@@ -7,9 +7,12 @@
 #include <map>
 
 #include "framework/random.h"
+#include "solvers/joint_column_pass.h"
 #include "solvers/objective.h"
 #include "solvers/solver.h"
 #include "solvers/solver_checkpoint.h"
+#include "systems/one_tap_view.h"
+#include "systems/row_kernels.h"
 #include "tests/test_util.h"
 
 namespace layerlab {
@@ -347,6 +350,41 @@ TEST(TimeMultiplex, KnownRankThreeTargetInsideTheBoundsIsRecoveredAbove100Db) {
                                         << r.BriefReport();
     }
   }
+}
+
+// The rank-K multiplicative solver's pass sums one depth (one layer of each
+// subframe): those sums, and the objective, are the bits of the full joint
+// pass, in both builds of the row kernels.
+TEST(TimeMultiplex, OneDepthPassGivesTheJointPassSumsOfThatDepth) {
+  const DisplaySystem system = CompileJson(ShrunkExample("tensor_display_rank3.json", 24, 12, 5));
+  const DisplayModel model(system, DisplayLightFieldGeometry(system));
+  for (size_t b = 0; b < model.branch_count(); ++b) ASSERT_TRUE(OneTapBranch(model, b));
+  const LightField target = model.Synthesize(RandomPatterns(model, 21));
+  const Patterns t = RandomPatterns(model, 22);
+  const RowKernelIsa active = ActiveRowKernels();
+  for (RowKernelIsa isa : {RowKernelIsa::kBaseline, RowKernelIsa::kAvx2}) {
+    if (!ForceRowKernels(isa)) continue;  // no AVX2 here
+    std::vector<std::vector<double>> num(t.size()), den(t.size());
+    for (size_t k = 0; k < t.size(); ++k) num[k].resize(t[k].rgb.size()), den[k].resize(t[k].rgb.size());
+    const double objective = JointColumnPass(model, target, t, &num, &den);
+    for (int depth = 0; depth < 2; ++depth) {
+      std::vector<char> summed(t.size(), 0);
+      for (size_t b = 0; b < model.branch_count(); ++b) {
+        std::vector<int> order = model.branch_layers(b);
+        std::sort(order.begin(), order.end());
+        summed[order[depth]] = 1;
+      }
+      std::vector<std::vector<double>> n(t.size()), d(t.size());
+      for (size_t k = 0; k < t.size(); ++k) n[k].resize(t[k].rgb.size()), d[k].resize(t[k].rgb.size());
+      EXPECT_EQ(JointColumnPass(model, target, t, &n, &d, &summed), objective);
+      for (size_t k = 0; k < t.size(); ++k) {
+        if (!summed[k]) continue;
+        EXPECT_EQ(n[k], num[k]) << "layer " << k;
+        EXPECT_EQ(d[k], den[k]) << "layer " << k;
+      }
+    }
+  }
+  ForceRowKernels(active);
 }
 
 }  // namespace
