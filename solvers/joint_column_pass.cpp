@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "solvers/one_member_sums_row.h"
 #include "systems/one_tap_view.h"
 #include "systems/row_kernels.h"
 
@@ -19,17 +20,20 @@ struct Workspace {
   std::vector<Rgb4> light;                   // one ray row of the whole display
 };
 
-void Resize(const DisplayModel& model, Workspace* w) {
+bool Summed(const std::vector<char>* summed, size_t k) { return !summed || (*summed)[k]; }
+
+void Resize(const DisplayModel& model, const std::vector<char>* summed, Workspace* w) {
   const size_t layers = model.layer_count();
   w->resampled.resize(layers), w->sums.resize(layers);
-  for (size_t k = 0; k < layers; ++k) w->sums[k].Reset(model.projection(k), model.geometry().cols);
+  for (size_t k = 0; k < layers; ++k)
+    if (Summed(summed, k)) w->sums[k].Reset(model.projection(k), model.geometry().cols);
   w->light.resize(model.geometry().cols);
 }
 
 // The sums over views [vr_begin, vr_end) of view column vc into w, and each
 // view's ||l - l~||^2 into view_errors.
 void ViewRun(const DisplayModel& model, const LightField& l, const PaddedLayers& padded, int vc, int vr_begin,
-             int vr_end, double* view_errors, Workspace* w) {
+             int vr_end, const std::vector<char>* summed, double* view_errors, Workspace* w) {
   const LightFieldGeometry& g = model.geometry();
   const int cols = g.cols;
   const size_t layers = model.layer_count();
@@ -83,6 +87,13 @@ void ViewRun(const DisplayModel& model, const LightField& l, const PaddedLayers&
         for (size_t b = 0; b < model.branch_count(); ++b) {
           if (!branch_rows(b)) continue;
           const std::vector<int>& members = model.branch_layers(b);
+          if (summed) {  // the same sums, member by member
+            for (size_t m = 0; m < members.size(); ++m)
+              if (const int a = members[m]; (*summed)[a])
+                OneMemberSumsRow(rows, static_cast<int>(members.size()), static_cast<int>(m), weight(b), cols, lr,
+                                 exact_last, light, w->sums[a].num(layer_row[a]), w->sums[a].den(layer_row[a]));
+            continue;
+          }
           Rgb4* num[kMaxOneTapLayers];
           Rgb4* den[kMaxOneTapLayers];
           for (size_t m = 0; m < members.size(); ++m) {
@@ -95,13 +106,15 @@ void ViewRun(const DisplayModel& model, const LightField& l, const PaddedLayers&
       }
     }
 
-  for (size_t k = 0; k < layers; ++k) w->sums[k].Scatter(model.projection(k), vc);
+  for (size_t k = 0; k < layers; ++k)
+    if (Summed(summed, k)) w->sums[k].Scatter(model.projection(k), vc);
 }
 
 }  // namespace
 
 double JointColumnPass(const DisplayModel& model, const LightField& l, const Patterns& t,
-                       std::vector<std::vector<double>>* num, std::vector<std::vector<double>>* den) {
+                       std::vector<std::vector<double>>* num, std::vector<std::vector<double>>* den,
+                       const std::vector<char>* summed) {
   thread_local PaddedLayers padded_memory;
   PaddedLayers& padded = padded_memory;  // the calling thread's, shared with the workers
   padded.PadAll(t);
@@ -111,18 +124,18 @@ double JointColumnPass(const DisplayModel& model, const LightField& l, const Pat
 #pragma omp parallel
   {
     thread_local Workspace w;
-    Resize(model, &w);
+    Resize(model, summed, &w);
     const int threads = omp_get_num_threads(), me = omp_get_thread_num();
 #pragma omp single
     for (auto& s : thread_sums) s.resize(threads);
     for (size_t k = 0; k < model.layer_count(); ++k) thread_sums[k][me] = &w.sums[k];
     ForEachViewRunOfThread(g, me, threads, [&](int vc, int vr_begin, int vr_end) {
-      ViewRun(model, l, padded, vc, vr_begin, vr_end, error.data(), &w);
+      ViewRun(model, l, padded, vc, vr_begin, vr_end, summed, error.data(), &w);
     });
 #pragma omp barrier
     // Merged in thread order, each thread a share of each layer's pixels.
     for (size_t k = 0; k < model.layer_count(); ++k)
-      ColumnSums::Merge(thread_sums[k], me, threads, (*num)[k].data(), (*den)[k].data());
+      if (Summed(summed, k)) ColumnSums::Merge(thread_sums[k], me, threads, (*num)[k].data(), (*den)[k].data());
   }
   double total = 0;
   for (double e : error) total += e;

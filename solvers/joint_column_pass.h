@@ -4,7 +4,9 @@
 // the per-ray work in contiguous rows, and the sums scattered to each layer's
 // pixels once per view column. For every layer a of branch b it adds
 //   num_a += P_a^T(l o Q_a),  den_a += P_a^T(l~ o Q_a),   Q_a = w_b prod_{k in b, k != a} P_k t_k,
-// with l~ the whole display's light, and returns ||l - l~||^2.
+// with l~ the whole display's light, and returns ||l - l~||^2. With `summed`
+// ([layer], nonzero: sum it) only those layers' sums are made (the rank-K
+// multiplicative solver updates one depth per pass); the others' are not written.
 #pragma once
 
 #include <vector>
@@ -14,8 +16,9 @@
 
 namespace layerlab {
 
-// num[k], den[k]: layer k's pixels x 3, written.
+// num[k], den[k]: layer k's pixels x 3, written (for the summed layers).
 double JointColumnPass(const DisplayModel& model, const LightField& l, const Patterns& t,
-                       std::vector<std::vector<double>>* num, std::vector<std::vector<double>>* den);
+                       std::vector<std::vector<double>>* num, std::vector<std::vector<double>>* den,
+                       const std::vector<char>* summed = nullptr);
 
 }  // namespace layerlab

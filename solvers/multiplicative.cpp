@@ -10,14 +10,17 @@
 // a Lee-Seung step of the whole objective (l~ is linear in those K layers
 // together, no subframe holding two of them), then the next depth from a
 // new pass. One pass (joint_pass.h) gives the sums and the objective of the
-// patterns it reads, so an iteration costs one pass per layer of the stack.
+// patterns it reads, so an iteration costs one pass per layer of the stack;
+// on the one-tap path it sums only the depth updated next.
 #include <algorithm>
 #include <optional>
 
 #include "framework/error.h"
+#include "solvers/joint_column_pass.h"
 #include "solvers/joint_pass.h"
 #include "solvers/multiplicative_update.h"
 #include "solvers/solve_loop.h"
+#include "systems/one_tap_view.h"
 
 namespace layerlab {
 namespace {
@@ -48,26 +51,58 @@ std::vector<std::vector<int>> LayersByDepth(const DisplayModel& model) {
   return by_depth;
 }
 
+// One pass over the rays: the objective of `t` and the sums of the layers
+// at one depth. On the one-tap path only those layers are summed (a rank-1
+// iteration sums one layer per pass, so a rank-K one should sum K, not 2K);
+// otherwise JointPass sums every layer.
+class DepthPass {
+ public:
+  DepthPass(const DisplayModel& model, const std::vector<std::vector<int>>& by_depth)
+      : model_(model), pass_(model), num_(model.layer_count()), den_(model.layer_count()) {
+    one_tap_ = true;
+    for (size_t b = 0; b < model.branch_count(); ++b) one_tap_ = one_tap_ && OneTapBranch(model, b);
+    for (const std::vector<int>& layers : by_depth) {
+      summed_.emplace_back(model.layer_count(), 0);
+      for (int a : layers) summed_.back()[a] = 1;
+    }
+  }
+  double Run(const LightField& l, const Patterns& t, size_t depth) {
+    if (!one_tap_) return pass_.Run(l, t);
+    for (size_t k = 0; k < t.size(); ++k)
+      if (summed_[depth][k]) num_[k].resize(t[k].rgb.size()), den_[k].resize(t[k].rgb.size());
+    return JointColumnPass(model_, l, t, &num_, &den_, &summed_[depth]);
+  }
+  const double* numerator(int layer) const { return (one_tap_ ? num_ : pass_.numerator())[layer].data(); }
+  const double* denominator(int layer) const { return (one_tap_ ? den_ : pass_.denominator())[layer].data(); }
+
+ private:
+  const DisplayModel& model_;
+  JointPass pass_;
+  bool one_tap_ = true;
+  std::vector<std::vector<char>> summed_;  // [depth][layer]
+  std::vector<std::vector<double>> num_, den_;
+};
+
 // The rank-K iterations (K > 1 subframes).
 void SolveRankK(const DisplayModel& model, const SolverOptions& options, SolveLoop* loop, Patterns* t) {
   const LightField& l = loop->target();
   const std::vector<std::vector<int>> by_depth = LayersByDepth(model);
-  JointPass pass(model);
-  auto step = [&](const std::vector<int>& layers) {
-    for (int a : layers)
-      ApplyMultiplicativeStep(pass.numerator()[a].data(), pass.denominator()[a].data(), options, &(*t)[a].rgb);
+  DepthPass pass(model, by_depth);
+  auto step = [&](size_t depth) {
+    for (int a : by_depth[depth])
+      ApplyMultiplicativeStep(pass.numerator(a), pass.denominator(a), options, &(*t)[a].rgb);
   };
   // The pass that gives an iteration's objective also gives the sums of
   // the next iteration's first step, applied only if there is one.
-  pass.Run(l, *t);
+  pass.Run(l, *t, 0);
   double objective = 0;
   do {
-    step(by_depth[0]);
+    step(0);
     for (size_t p = 1; p < by_depth.size(); ++p) {
-      pass.Run(l, *t);
-      step(by_depth[p]);
+      pass.Run(l, *t, p);
+      step(p);
     }
-    objective = pass.Run(l, *t);
+    objective = pass.Run(l, *t, 0);
   } while (loop->EndIteration(objective));
 }
 
