@@ -11,11 +11,13 @@
 
 #include "framework/lightfield.h"
 #include "systems/display_model.h"
+#include "systems/solve_workspace.h"
 
 namespace layerlab {
 
-// num[k], den[k]: layer k's pixels x 3, written.
+// num[k], den[k]: layer k's pixels x 3, written. In `workspace`, sized with kJointPass.
 double JointColumnPass(const DisplayModel& model, const LightField& l, const Patterns& t,
-                       std::vector<std::vector<double>>* num, std::vector<std::vector<double>>* den);
+                       std::vector<std::vector<double>>* num, std::vector<std::vector<double>>* den,
+                       SolveWorkspace* workspace);
 
 }  // namespace layerlab

@@ -52,7 +52,7 @@ std::vector<std::vector<int>> LayersByDepth(const DisplayModel& model) {
 void SolveRankK(const DisplayModel& model, const SolverOptions& options, SolveLoop* loop, Patterns* t) {
   const LightField& l = loop->target();
   const std::vector<std::vector<int>> by_depth = LayersByDepth(model);
-  JointPass pass(model);
+  JointPass pass(model, &loop->workspace());
   auto step = [&](const std::vector<int>& layers) {
     for (int a : layers)
       ApplyMultiplicativeStep(pass.numerator()[a].data(), pass.denominator()[a].data(), options, &(*t)[a].rgb);
@@ -89,14 +89,15 @@ class MultiplicativeSolver final : public Solver {
     // The pass that gives an iteration's objective also gives the sums of the
     // next iteration's first update (both read the same patterns), which is
     // applied only if there is a next iteration.
-    LayerUpdate first;
-    ComputeLayerUpdate(model, 0, order[0], whole, *t, &first);
+    SolveWorkspace* workspace = &loop.workspace();
+    LayerUpdate first = KeptLayerUpdate(workspace);
+    ComputeLayerUpdate(model, 0, order[0], whole, *t, workspace, &first);
     std::optional<double> objective;
     do {
       ApplyLayerUpdate(first, options, t);
-      for (size_t k = 1; k < order.size(); ++k) UpdateLayerMultiplicative(model, 0, order[k], whole, options, t);
+      for (size_t k = 1; k < order.size(); ++k) UpdateLayerMultiplicative(model, 0, order[k], whole, options, t, workspace);
       double error = 0;
-      const bool fused = ComputeLayerUpdate(model, 0, order[0], whole, *t, &first, &error);
+      const bool fused = ComputeLayerUpdate(model, 0, order[0], whole, *t, workspace, &first, &error);
       objective = fused ? std::optional<double>(error) : std::nullopt;
     } while (loop.EndIteration(objective));
     return loop.Finish();
@@ -115,6 +116,7 @@ SolverType MultiplicativeSolverType() {
       [] { return std::make_unique<MultiplicativeSolver>(); }, defaults);
   type.unsuitable = Unsuitable;
   type.default_rank = 3;
+  type.memory.passes = kSynthesisPass | kLayerUpdatePass | kJointPassIfBranches;  // the joint pass for rank K
   return type;
 }
 
