@@ -122,8 +122,7 @@ void BM_UpdatePass(benchmark::State& state) {
   BranchTarget whole = [&](size_t view, float*) { return l.view(view); };
   SolverOptions o;
   SolveWorkspace workspace(*w.model, omp_get_max_threads(), kLayerUpdatePass);  // as a solve holds it
-  for (auto _ : state)
-    UpdateLayerMultiplicative(*w.model, 0, w.model->branch_layers(0)[0], whole, o, &t, &workspace);
+  for (auto _ : state) UpdateLayerMultiplicative(*w.model, 0, w.model->branch_layers(0)[0], whole, o, &t, &workspace);
   state.counters["ns_per_ray"] =
       benchmark::Counter(double(l.geometry.ray_count()) * 1e-9,
                          benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);

@@ -64,8 +64,7 @@ class HybridSolver final : public Solver {
       if (branches >= 2 && chase.AllOneTap()) {
         // Summed in view order: the same for any thread count.
         std::vector<double> per_view(model.geometry().view_count());
-        ComputeLayerUpdate(model, 0, LayersOf(model, 0)[0], chase.Following(0, &per_view), *t, workspace,
-                           &next_first);
+        ComputeLayerUpdate(model, 0, LayersOf(model, 0)[0], chase.Following(0, &per_view), *t, workspace, &next_first);
         double total_error = 0;
         for (double e : per_view) total_error += e;
         objective = total_error;

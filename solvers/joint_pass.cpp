@@ -76,7 +76,7 @@ void JointPass::ViewOneTap(const float* target, const Patterns& t, size_t view, 
   const int layers = static_cast<int>(model_.layer_count()), branches = static_cast<int>(model_.branch_count());
   // A few values per layer, per view (this path is for branches of more layers than the column pass takes).
   std::vector<const AxisTap*> cols(layers);
-  std::vector<int32_t> row_offset(layers);    // pattern offset of the layer row a ray row reads, -1: none
+  std::vector<int32_t> row_offset(layers);          // pattern offset of the layer row a ray row reads, -1: none
   std::vector<float> s(layers * 3), q(layers * 3);  // per layer and channel: its sample, the rest of its branch
   std::vector<float*> num(layers), den(layers);
   for (int k = 0; k < layers; ++k) {

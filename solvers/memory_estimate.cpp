@@ -48,6 +48,8 @@ MemoryEstimate EstimateSolveMemory(const DisplayModel& model, const std::string&
   const double program = resident ? double(resident) : 64e6;
 
   MemoryEstimate e;
+  e.workspace = layout.bytes();
+  e.program = static_cast<size_t>(program);
   e.clipped_copy = static_cast<size_t>(light_field);
   if (target) {
     const std::array<float, 3> max = DisplayMaximum(model);
@@ -60,7 +62,8 @@ MemoryEstimate EstimateSolveMemory(const DisplayModel& model, const std::string&
   e.breakdown = "target " + FormatBytes(light_field);
   if (e.clipped_copy_counted) e.breakdown += " + its clipped copy " + FormatBytes(light_field);
   if (own.light_fields > 0)
-    e.breakdown += " + the solver's light fields " + FormatBytes(light_field) + " x " + std::to_string(own.light_fields);
+    e.breakdown +=
+        " + the solver's light fields " + FormatBytes(light_field) + " x " + std::to_string(own.light_fields);
   if (own.layer_doubles > 0) e.breakdown += " + the solver's layer vectors " + FormatBytes(solver_layers);
   e.breakdown += " + patterns " + FormatBytes(patterns) + " + workspace " + FormatBytes(double(layout.bytes())) + " (" +
                  layout.Describe() + ") + program " + FormatBytes(program);

@@ -20,6 +20,8 @@ struct MemoryEstimate {
   // target was not read yet.
   size_t clipped_copy = 0;
   bool clipped_copy_counted = false;
+  size_t workspace = 0;  // SolveWorkspace::Layout's bytes
+  size_t program = 0;    // what the process held when estimated
   // "target 162.2 MB + the solver's light fields 162.2 MB x 1 + patterns 3.8 MB + workspace 38.9 MB (per thread
   // ...) + program 14.2 MB (+ 162.2 MB for a clipped copy if the target exceeds the display's range)"
   std::string breakdown;

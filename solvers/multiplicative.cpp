@@ -95,7 +95,8 @@ class MultiplicativeSolver final : public Solver {
     std::optional<double> objective;
     do {
       ApplyLayerUpdate(first, options, t);
-      for (size_t k = 1; k < order.size(); ++k) UpdateLayerMultiplicative(model, 0, order[k], whole, options, t, workspace);
+      for (size_t k = 1; k < order.size(); ++k)
+        UpdateLayerMultiplicative(model, 0, order[k], whole, options, t, workspace);
       double error = 0;
       const bool fused = ComputeLayerUpdate(model, 0, order[0], whole, *t, workspace, &first, &error);
       objective = fused ? std::optional<double>(error) : std::nullopt;

@@ -32,8 +32,8 @@ std::string WorkspaceLayout::Describe() const {
     (p.per_thread ? thread_bytes : shared_bytes) += double(p.bytes);
     list += (list.empty() ? "" : ", ") + p.name + " " + Megabytes(double(p.bytes));
   }
-  return "per thread " + Megabytes(thread_bytes) + " x " + std::to_string(threads) + " (" + per_thread +
-         ") + shared " + Megabytes(shared_bytes) + " (" + shared + ")";
+  return "per thread " + Megabytes(thread_bytes) + " x " + std::to_string(threads) + " (" + per_thread + ") + shared " +
+         Megabytes(shared_bytes) + " (" + shared + ")";
 }
 
 // Sizes every buffer of a workspace and records it in the layout: one
@@ -84,9 +84,9 @@ struct WorkspaceSizer {
       max_rows = std::max(max_rows, P.rows());
       max_pixels = std::max(max_pixels, P.pixel_count());
     }
-    const bool column_pass = joint && all_fast;  // JointColumnPass
-    const bool joint_general = joint && !all_fast;      // JointPass's float sums
-    const bool joint_views = joint && !all_one_tap;     // JointPass::ViewGeneral
+    const bool column_pass = joint && all_fast;      // JointColumnPass
+    const bool joint_general = joint && !all_fast;   // JointPass's float sums
+    const bool joint_views = joint && !all_one_tap;  // JointPass::ViewGeneral
 
     threads = std::max(threads, 1);
     layout->threads = threads;
@@ -186,8 +186,8 @@ size_t Held(const std::vector<T>& v) {
 }  // namespace
 
 size_t SolveWorkspace::Bytes() const {
-  size_t bytes = padded.Bytes() + Held(view_errors) + Held(update_num) + Held(update_den) + Held(kept_num) +
-                 Held(kept_den);
+  size_t bytes =
+      padded.Bytes() + Held(view_errors) + Held(update_num) + Held(update_den) + Held(kept_num) + Held(kept_den);
   for (size_t k = 0; k < joint_num.size(); ++k) bytes += Held(joint_num[k]) + Held(joint_den[k]);
   for (const ThreadWorkspace& t : threads_) {
     for (size_t k = 0; k < t.cache.size(); ++k)

@@ -25,9 +25,9 @@ namespace layerlab {
 
 // The kinds of pass a solve makes (a solver states its own: SolverMemory::passes).
 enum WorkspacePass : unsigned {
-  kSynthesisPass = 1,    // the objective, the hybrid's chase (ViewSynthesizer)
-  kLayerUpdatePass = 2,  // one layer's multiplicative-update sums (multiplicative_update.h)
-  kJointPass = 4,        // every layer's sums at once (joint_pass.h)
+  kSynthesisPass = 1,        // the objective, the hybrid's chase (ViewSynthesizer)
+  kLayerUpdatePass = 2,      // one layer's multiplicative-update sums (multiplicative_update.h)
+  kJointPass = 4,            // every layer's sums at once (joint_pass.h)
   kJointPassIfBranches = 8,  // the joint pass, on displays of more than one branch only
   kAllPasses = 15,
 };
@@ -61,8 +61,8 @@ struct ThreadWorkspace {
 
   // The sums' passes: layers resampled to the rays' columns of one view run, [layer][its row][ray column].
   std::vector<std::vector<Rgb4>> resampled;
-  ColumnSums update_sums;                  // the layer being updated (one-tap path)
-  std::vector<ColumnSums> layer_sums;      // [layer] (the joint pass, one-tap path)
+  ColumnSums update_sums;                   // the layer being updated (one-tap path)
+  std::vector<ColumnSums> layer_sums;       // [layer] (the joint pass, one-tap path)
   std::vector<Rgb4> product, zeros, light;  // ray rows
   std::vector<float> target;                // a view of what a branch should emit, when it is computed
   // The general path: per-layer float sums, [layer][pixel * 3 + c], and view buffers.

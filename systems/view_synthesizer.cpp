@@ -37,8 +37,7 @@ void ViewSynthesizer::OneTapRow(const std::vector<size_t>& branches, size_t view
     for (size_t b : one_tap_)
       for (int k : model_.branch_layers(b)) {
         const LayerProjection& P = model_.projection(k);  // any view of the column may ask next
-        ResampleToRayColumns(P, workspace_.padded.pixels(k), vc, g.cols, RowsRead(P, g, 0, g.views_y),
-                             &cache.cache[k]);
+        ResampleToRayColumns(P, workspace_.padded.pixels(k), vc, g.cols, RowsRead(P, g, 0, g.views_y), &cache.cache[k]);
       }
   }
   std::fill(row, row + g.cols, Rgb4{});
