@@ -14,6 +14,7 @@ namespace {
 // rays' columns (layer a's too, for the error); update_sums, layer a's sums;
 // target, one view of the branch target if it needs one; product, one ray
 // row of the other layers' product; zeros, one ray row of no light.
+
 // One view run's sums (and errors) for a branch of L layers.
 template <int L>
 struct Accumulate {
