@@ -26,15 +26,17 @@
 //     branch weights, l~ = sum_b w_b prod_k P_k t_k (paper Eq. 3-5). The
 //     fast path of the common case and its per-view row runs:
 //     systems/one_tap_view.h; a whole view of a set of patterns:
-//     systems/view_synthesizer.h.
+//     systems/view_synthesizer.h. The passes' working memory, one per
+//     solve, per thread and shared: systems/solve_workspace.h.
 //
 //  5. Solver                          solvers/solve_config.h      ReadSolveConfig
 //     The "solve" section picks a solver of the registry (solvers/solver.h,
 //     builtin_solvers.def: one file and one line per solver; each states the
 //     displays it suits, its memory and its keys) and its options; the
-//     memory a solve needs is checked first (solvers/memory_estimate.h).
-//     Solve() runs the shared loop (solvers/solve_loop.h: target prepared,
-//     trace, stop) and returns a report; the objective: solvers/objective.h.
+//     memory a solve needs is checked first (solvers/memory_estimate.h,
+//     from the workspace's layout). Solve() runs the shared loop
+//     (solvers/solve_loop.h: target prepared, workspace made, trace, stop)
+//     and returns a report; the objective: solvers/objective.h.
 //
 //  6. Outputs                         solvers/solution_writer.h   WriteSolution
 //     Patterns, panel-ready images, report and trace, each file switched into

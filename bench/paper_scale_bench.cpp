@@ -9,6 +9,7 @@
 // measured time over it (below 1 meets it), peak_rss_MB the process's peak
 // so far (benchmarks run in the order below, the sparse ones last).
 #include <benchmark/benchmark.h>
+#include <omp.h>
 
 #include <Eigen/Sparse>
 #include <algorithm>
@@ -25,6 +26,7 @@
 #include "solvers/solver.h"
 #include "systems/lightfield_radiance.h"
 #include "systems/retina.h"
+#include "systems/solve_workspace.h"
 
 namespace layerlab::bench {
 namespace {
@@ -58,8 +60,9 @@ void BM_Synthesis(benchmark::State& state) {
   const Workload& w = GetWorkload("paper_prototype");
   Patterns t = w.model->UniformPatterns(0.5f);
   LightField out(w.target.geometry);
+  SolveWorkspace workspace(*w.model, omp_get_max_threads(), kSynthesisPass);
   for (auto _ : state) {
-    w.model->Synthesize(t, &out);
+    w.model->Synthesize(t, &out, &workspace);
     benchmark::DoNotOptimize(out.rgb.data());
   }
   state.counters["rays_per_s"] =
@@ -118,7 +121,8 @@ void BM_UpdatePass(benchmark::State& state) {
   const LightField& l = w.target;
   BranchTarget whole = [&](size_t view, float*) { return l.view(view); };
   SolverOptions o;
-  for (auto _ : state) UpdateLayerMultiplicative(*w.model, 0, w.model->branch_layers(0)[0], whole, o, &t);
+  SolveWorkspace workspace(*w.model, omp_get_max_threads(), kLayerUpdatePass);  // as a solve holds it
+  for (auto _ : state) UpdateLayerMultiplicative(*w.model, 0, w.model->branch_layers(0)[0], whole, o, &t, &workspace);
   state.counters["ns_per_ray"] =
       benchmark::Counter(double(l.geometry.ray_count()) * 1e-9,
                          benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
@@ -128,7 +132,8 @@ void BM_UpdatePass(benchmark::State& state) {
 void BM_ObjectivePass(benchmark::State& state) {
   const Workload& w = GetWorkload("paper_prototype");
   Patterns t = w.model->UniformPatterns(0.5f);
-  for (auto _ : state) benchmark::DoNotOptimize(Objective(*w.model, w.target, t));
+  SolveWorkspace workspace(*w.model, omp_get_max_threads(), kSynthesisPass);
+  for (auto _ : state) benchmark::DoNotOptimize(Objective(*w.model, w.target, t, &workspace));
   state.counters["ns_per_ray"] =
       benchmark::Counter(double(w.target.geometry.ray_count()) * 1e-9,
                          benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);

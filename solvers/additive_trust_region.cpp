@@ -298,6 +298,7 @@ SolverType AdditiveTrustRegionSolverType() {
       [] { return std::make_unique<AdditiveTrustRegionSolver>(); }, defaults);
   type.unsuitable = Unsuitable;
   type.default_rank = 2;
+  type.memory.passes = kSynthesisPass;  // the objective; its own Gram system otherwise
   return type;
 }
 

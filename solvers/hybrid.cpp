@@ -27,12 +27,13 @@ class HybridSolver final : public Solver {
     HybridChase chase(model, *t);  // allocated in the set-up
     if (!loop.Start()) return loop.Finish();
     // After one iteration every set has emitted light of its own.
-    chase.Begin(loop.target(), loop.resumed() && loop.iteration() > 0);
+    SolveWorkspace* workspace = &loop.workspace();
+    chase.Begin(loop.target(), loop.resumed() && loop.iteration() > 0, workspace);
     const size_t branches = model.branch_count();
     // The pass that gives an iteration's objective also gives set 0's next
     // chase and the sums of its next first update, applied only if there is
     // a next iteration.
-    LayerUpdate next_first;
+    LayerUpdate next_first = KeptLayerUpdate(workspace);
     bool next_first_ready = false;
     std::optional<double> objective;
     do {
@@ -44,7 +45,7 @@ class HybridSolver final : public Solver {
           ApplyLayerUpdate(next_first, options, t);
           first_done = true;
         } else if (chase.CanFollow(m)) {
-          UpdateLayerMultiplicative(model, m, order[0], chase.Following(m), options, t);
+          UpdateLayerMultiplicative(model, m, order[0], chase.Following(m), options, t, workspace);
           first_done = true;
         } else {
           chase.Compute(m);
@@ -53,7 +54,8 @@ class HybridSolver final : public Solver {
         const BranchTarget stored = chase.Stored();
         for (int s = 0; s < options.sub_iterations; ++s)
           for (size_t k = 0; k < order.size(); ++k)
-            if (!(s == 0 && k == 0 && first_done)) UpdateLayerMultiplicative(model, m, order[k], stored, options, t);
+            if (!(s == 0 && k == 0 && first_done))
+              UpdateLayerMultiplicative(model, m, order[k], stored, options, t, workspace);
         chase.MarkStarted(m);
       }
       // 3. The objective, from the pass that also makes set 0's next chase and first update.
@@ -62,7 +64,7 @@ class HybridSolver final : public Solver {
       if (branches >= 2 && chase.AllOneTap()) {
         // Summed in view order: the same for any thread count.
         std::vector<double> per_view(model.geometry().view_count());
-        ComputeLayerUpdate(model, 0, LayersOf(model, 0)[0], chase.Following(0, &per_view), *t, &next_first);
+        ComputeLayerUpdate(model, 0, LayersOf(model, 0)[0], chase.Following(0, &per_view), *t, workspace, &next_first);
         double total_error = 0;
         for (double e : per_view) total_error += e;
         objective = total_error;
@@ -81,6 +83,7 @@ SolverType HybridSolverType() {
       [] { return std::make_unique<HybridSolver>(); }, SolverOptions{});
   type.default_rank = 1;
   type.memory.light_fields = 1;  // the chase: what the set being updated should emit
+  type.memory.passes = kSynthesisPass | kLayerUpdatePass;
   type.options = {SubIterationsKey()};
   return type;
 }

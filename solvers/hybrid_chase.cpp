@@ -12,8 +12,9 @@ HybridChase::HybridChase(const DisplayModel& model, const Patterns& t)
   }
 }
 
-void HybridChase::Begin(const LightField& target, bool started) {
+void HybridChase::Begin(const LightField& target, bool started, SolveWorkspace* workspace) {
   target_ = &target;
+  workspace_ = workspace;
   std::fill(started_.begin(), started_.end(), started);
 }
 
@@ -35,7 +36,7 @@ void HybridChase::Compute(size_t m) {
   const size_t branches = model_.branch_count();
   const size_t n = model_.geometry().pixels_per_view() * 3;
   const size_t views = model_.geometry().view_count();
-  const ViewSynthesizer synthesizer(model_, t_, &padded_);
+  const ViewSynthesizer synthesizer(model_, t_, workspace_);
   std::vector<size_t> others = OthersOf(m);  // the other sets, if all have emitted light of their own
   if (!OthersStarted(m)) others.clear();
   std::array<float, 3> unstarted_share_left{1, 1, 1};  // 1 - the unstarted sets' shares
@@ -44,7 +45,7 @@ void HybridChase::Compute(size_t m) {
       for (int c = 0; c < 3; ++c) unstarted_share_left[c] -= model_.weight(b)[c] / total_weight_[c];
 #pragma omp parallel
   {
-    thread_local std::vector<float> other;
+    std::vector<float>& other = workspace_->thread().branch;
     other.resize(n);
 #pragma omp for schedule(static)
     for (size_t order = 0; order < views; ++order) {
@@ -68,7 +69,7 @@ void HybridChase::Compute(size_t m) {
 bool HybridChase::CanFollow(size_t m) const { return all_one_tap_ && model_.branch_count() > 1 && OthersStarted(m); }
 
 BranchTarget HybridChase::Following(size_t m, std::vector<double>* per_view) {
-  following_.emplace(model_, t_, &padded_);
+  following_.emplace(model_, t_, workspace_);
   const std::vector<size_t> others = OthersOf(m);
   if (per_view)
     return [this, others, per_view](size_t view, float*) {

@@ -29,9 +29,10 @@ class HybridChase {
   // `t` is read, never written, and may change between the calls below.
   HybridChase(const DisplayModel& model, const Patterns& t);
 
-  // Before the first call below: the target the sets chase, and whether
-  // every set has emitted light of its own already (a resumed solve).
-  void Begin(const LightField& target, bool started);
+  // Before the first call below: the target the sets chase, whether every
+  // set has emitted light of its own already (a resumed solve), and the
+  // solve's workspace (sized with kSynthesisPass) the synthesizers use.
+  void Begin(const LightField& target, bool started, SolveWorkspace* workspace);
 
   // The chase of set m over every view, from the patterns as they are now.
   void Compute(size_t m);
@@ -60,7 +61,7 @@ class HybridChase {
   std::vector<bool> started_;
   std::array<float, 3> total_weight_{0, 0, 0};
   bool all_one_tap_ = true;
-  PaddedLayers padded_;                       // the synthesizers' padded patterns
+  SolveWorkspace* workspace_ = nullptr;
   std::optional<ViewSynthesizer> following_;  // of the pass in progress
 };
 

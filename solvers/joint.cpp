@@ -68,7 +68,7 @@ class JointSolver final : public Solver {
     if (!loop.Start()) return loop.Finish();
     const LightField& l = loop.target();
     const float floor = static_cast<float>(options.floor);
-    JointPass pass(model);
+    JointPass pass(model, &loop.workspace());
 
     std::vector<std::vector<double>> ratio, accepted_ratio;
     double accepted_objective = pass.Run(l, *t);

@@ -12,28 +12,20 @@
 namespace layerlab {
 namespace {
 
-// One thread's work space, kept across passes (fresh megabytes would be
-// page-faulted in on every pass).
-struct Workspace {
-  std::vector<std::vector<Rgb4>> resampled;  // [layer][its row][ray column]
-  std::vector<ColumnSums> sums;              // [layer]
-  std::vector<Rgb4> light;                   // one ray row of the whole display
-};
-
+// One thread's buffers (ThreadWorkspace): resampled[k], layer k at the
+// rays' columns; layer_sums[k], its sums; light, one ray row of the whole display.
 bool Summed(const std::vector<char>* summed, size_t k) { return !summed || (*summed)[k]; }
 
-void Resize(const DisplayModel& model, const std::vector<char>* summed, Workspace* w) {
-  const size_t layers = model.layer_count();
-  w->resampled.resize(layers), w->sums.resize(layers);
-  for (size_t k = 0; k < layers; ++k)
-    if (Summed(summed, k)) w->sums[k].Reset(model.projection(k), model.geometry().cols);
+void Reset(const DisplayModel& model, const std::vector<char>* summed, ThreadWorkspace* w) {
+  for (size_t k = 0; k < model.layer_count(); ++k)
+    if (Summed(summed, k)) w->layer_sums[k].Reset(model.projection(k), model.geometry().cols);
   w->light.resize(model.geometry().cols);
 }
 
 // The sums over views [vr_begin, vr_end) of view column vc into w, and each
 // view's ||l - l~||^2 into view_errors.
 void ViewRun(const DisplayModel& model, const LightField& l, const PaddedLayers& padded, int vc, int vr_begin,
-             int vr_end, const std::vector<char>* summed, double* view_errors, Workspace* w) {
+             int vr_end, const std::vector<char>* summed, double* view_errors, ThreadWorkspace* w) {
   const LightFieldGeometry& g = model.geometry();
   const int cols = g.cols;
   const size_t layers = model.layer_count();
@@ -91,15 +83,16 @@ void ViewRun(const DisplayModel& model, const LightField& l, const PaddedLayers&
             for (size_t m = 0; m < members.size(); ++m)
               if (const int a = members[m]; (*summed)[a])
                 OneMemberSumsRow(rows, static_cast<int>(members.size()), static_cast<int>(m), weight(b), cols, lr,
-                                 exact_last, light, w->sums[a].num(layer_row[a]), w->sums[a].den(layer_row[a]));
+                                 exact_last, light, w->layer_sums[a].num(layer_row[a]),
+                                 w->layer_sums[a].den(layer_row[a]));
             continue;
           }
           Rgb4* num[kMaxOneTapLayers];
           Rgb4* den[kMaxOneTapLayers];
           for (size_t m = 0; m < members.size(); ++m) {
             const int a = members[m];
-            num[m] = w->sums[a].num(layer_row[a]);
-            den[m] = w->sums[a].den(layer_row[a]);
+            num[m] = w->layer_sums[a].num(layer_row[a]);
+            den[m] = w->layer_sums[a].den(layer_row[a]);
           }
           JointSumsRow(rows, static_cast<int>(members.size()), weight(b), cols, lr, exact_last, light, num, den);
         }
@@ -107,28 +100,27 @@ void ViewRun(const DisplayModel& model, const LightField& l, const PaddedLayers&
     }
 
   for (size_t k = 0; k < layers; ++k)
-    if (Summed(summed, k)) w->sums[k].Scatter(model.projection(k), vc);
+    if (Summed(summed, k)) w->layer_sums[k].Scatter(model.projection(k), vc);
 }
 
 }  // namespace
 
 double JointColumnPass(const DisplayModel& model, const LightField& l, const Patterns& t,
                        std::vector<std::vector<double>>* num, std::vector<std::vector<double>>* den,
-                       const std::vector<char>* summed) {
-  thread_local PaddedLayers padded_memory;
-  PaddedLayers& padded = padded_memory;  // the calling thread's, shared with the workers
+                       SolveWorkspace* workspace, const std::vector<char>* summed) {
+  PaddedLayers& padded = workspace->padded;
   padded.PadAll(t);
   const LightFieldGeometry& g = model.geometry();
   std::vector<double> error(g.view_count());  // summed in view order: the same for any thread count
   std::vector<std::vector<const ColumnSums*>> thread_sums(model.layer_count());  // [layer][thread]
 #pragma omp parallel
   {
-    thread_local Workspace w;
-    Resize(model, summed, &w);
+    ThreadWorkspace& w = workspace->thread();
+    Reset(model, summed, &w);
     const int threads = omp_get_num_threads(), me = omp_get_thread_num();
 #pragma omp single
     for (auto& s : thread_sums) s.resize(threads);
-    for (size_t k = 0; k < model.layer_count(); ++k) thread_sums[k][me] = &w.sums[k];
+    for (size_t k = 0; k < model.layer_count(); ++k) thread_sums[k][me] = &w.layer_sums[k];
     ForEachViewRunOfThread(g, me, threads, [&](int vc, int vr_begin, int vr_end) {
       ViewRun(model, l, padded, vc, vr_begin, vr_end, summed, error.data(), &w);
     });

@@ -13,12 +13,14 @@
 
 #include "framework/lightfield.h"
 #include "systems/display_model.h"
+#include "systems/solve_workspace.h"
 
 namespace layerlab {
 
-// num[k], den[k]: layer k's pixels x 3, written (for the summed layers).
+// num[k], den[k]: layer k's pixels x 3, written (for the summed layers). In
+// `workspace`, sized with kJointPass.
 double JointColumnPass(const DisplayModel& model, const LightField& l, const Patterns& t,
                        std::vector<std::vector<double>>* num, std::vector<std::vector<double>>* den,
-                       const std::vector<char>* summed = nullptr);
+                       SolveWorkspace* workspace, const std::vector<char>* summed = nullptr);
 
 }  // namespace layerlab

@@ -8,13 +8,11 @@
 
 namespace layerlab {
 
-// What one pass sums, per thread: per layer numerator and denominator, and the objective.
-struct JointPass::PassSums {
-  std::vector<std::vector<float>> num, den;
-  double objective = 0;
-};
-
-JointPass::JointPass(const DisplayModel& model) : model_(model) {
+JointPass::JointPass(const DisplayModel& model, SolveWorkspace* workspace) : model_(model), workspace_(workspace) {
+  if (!workspace_) {
+    own_ = std::make_unique<SolveWorkspace>(model, omp_get_max_threads(), kJointPass);
+    workspace_ = own_.get();
+  }
   const size_t layers = model.layer_count();
   branch_of_.assign(layers, 0);
   for (size_t b = 0; b < model.branch_count(); ++b) {
@@ -26,16 +24,16 @@ JointPass::JointPass(const DisplayModel& model) : model_(model) {
   branch_start_.push_back(static_cast<int>(members_.size()));
   one_tap_ = true;
   for (size_t k = 0; k < layers; ++k) one_tap_ = one_tap_ && model.projection(k).one_tap();
-  num_.resize(layers), den_.resize(layers);
   column_pass_ = true;
   for (size_t b = 0; b < model.branch_count(); ++b) column_pass_ = column_pass_ && OneTapBranch(model, b);
 }
 
-double JointPass::Run(const LightField& l, const Patterns& t) {
+double JointPass::Run(const LightField& l, const Patterns& t, const std::vector<char>* summed) {
   const size_t layers = model_.layer_count();
+  std::vector<std::vector<double>>&num_ = workspace_->joint_num, &den_ = workspace_->joint_den;
   for (size_t k = 0; k < layers; ++k)
     num_[k].resize(t[k].rgb.size()), den_[k].resize(t[k].rgb.size());  // written whole
-  if (column_pass_) return JointColumnPass(model_, l, t, &num_, &den_);
+  if (column_pass_) return JointColumnPass(model_, l, t, &num_, &den_, workspace_, summed);
   // Views split evenly and statically, each view's error kept apart and
   // summed in view order, thread sums merged in thread order: the same
   // bits for a given thread count.
@@ -43,8 +41,7 @@ double JointPass::Run(const LightField& l, const Patterns& t) {
   std::vector<std::vector<const float*>> nums(layers), dens(layers);  // [layer][thread]
 #pragma omp parallel
   {
-    thread_local PassSums sums;
-    sums.num.resize(layers), sums.den.resize(layers);
+    ThreadWorkspace& sums = workspace_->thread();
     for (size_t k = 0; k < layers; ++k) {
       sums.num[k].assign(t[k].rgb.size(), 0.0f);
       sums.den[k].assign(t[k].rgb.size(), 0.0f);
@@ -55,12 +52,12 @@ double JointPass::Run(const LightField& l, const Patterns& t) {
     for (size_t k = 0; k < layers; ++k) nums[k][me] = sums.num[k].data(), dens[k][me] = sums.den[k].data();
 #pragma omp for schedule(static)
     for (size_t v = 0; v < view_error.size(); ++v) {
-      sums.objective = 0;
+      double objective = 0;
       if (one_tap_)
-        ViewOneTap(l.view(v), t, v, &sums);
+        ViewOneTap(l.view(v), t, v, &sums, &objective);
       else
-        ViewGeneral(l.view(v), t, v, &sums);
-      view_error[v] = sums.objective;
+        ViewGeneral(l.view(v), t, v, &sums, &objective);
+      view_error[v] = objective;
     }
     for (size_t k = 0; k < layers; ++k) {  // after the loop's barrier
       MergeInThreadOrder(nums[k], num_[k].size() / 3, 3, me, threads, num_[k].data());
@@ -73,15 +70,15 @@ double JointPass::Run(const LightField& l, const Patterns& t) {
 }
 
 // Nearest sampling, no rotation: row by row, nothing of view size stored.
-void JointPass::ViewOneTap(const float* target, const Patterns& t, size_t view, PassSums* sums) const {
+void JointPass::ViewOneTap(const float* target, const Patterns& t, size_t view, ThreadWorkspace* sums,
+                           double* error) const {
   const LightFieldGeometry& g = model_.geometry();
   const int layers = static_cast<int>(model_.layer_count()), branches = static_cast<int>(model_.branch_count());
-  thread_local std::vector<const AxisTap*> cols;
-  thread_local std::vector<int32_t> row_offset;  // pattern offset of the layer row a ray row reads, -1: none
-  thread_local std::vector<float> s, q;          // per layer and channel: its sample, the rest of its branch
-  thread_local std::vector<float*> num, den;
-  cols.resize(layers), row_offset.resize(layers), s.resize(layers * 3), q.resize(layers * 3);
-  num.resize(layers), den.resize(layers);
+  // A few values per layer, per view (this path is for branches of more layers than the column pass takes).
+  std::vector<const AxisTap*> cols(layers);
+  std::vector<int32_t> row_offset(layers);          // pattern offset of the layer row a ray row reads, -1: none
+  std::vector<float> s(layers * 3), q(layers * 3);  // per layer and channel: its sample, the rest of its branch
+  std::vector<float*> num(layers), den(layers);
   for (int k = 0; k < layers; ++k) {
     cols[k] = model_.projection(k).col_taps(view);
     num[k] = sums->num[k].data(), den[k] = sums->den[k].data();
@@ -138,15 +135,17 @@ void JointPass::ViewOneTap(const float* target, const Patterns& t, size_t view, 
         }
       }
     }
-    sums->objective += row_error;
+    *error += row_error;
   }
 }
 
 // Any sampling: samples per layer into view buffers, then each layer's taps.
-void JointPass::ViewGeneral(const float* target, const Patterns& t, size_t view, PassSums* sums) const {
+void JointPass::ViewGeneral(const float* target, const Patterns& t, size_t view, ThreadWorkspace* sums,
+                            double* error) const {
   const size_t n = model_.geometry().pixels_per_view() * 3;
   const size_t layers = model_.layer_count();
-  thread_local std::vector<float> samples, synthesized, numerator_terms, denominator_terms;
+  std::vector<float>&samples = sums->samples, &synthesized = sums->synthesized;
+  std::vector<float>&numerator_terms = sums->numerator_terms, &denominator_terms = sums->denominator_terms;
   samples.resize(layers * n), synthesized.assign(n, 0.0f), numerator_terms.resize(n), denominator_terms.resize(n);
   for (size_t k = 0; k < layers; ++k) model_.projection(k).Gather(view, t[k].rgb.data(), &samples[k * n]);
   for (size_t b = 0; b < model_.branch_count(); ++b)
@@ -157,7 +156,7 @@ void JointPass::ViewGeneral(const float* target, const Patterns& t, size_t view,
     }
   for (size_t i = 0; i < n; ++i) {
     const double e = double(target[i]) - synthesized[i];
-    sums->objective += e * e;
+    *error += e * e;
   }
   for (size_t a = 0; a < layers; ++a) {
     const int b = branch_of_[a];

@@ -6,27 +6,33 @@
 // patterns it reads.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "framework/lightfield.h"
 #include "systems/display_model.h"
+#include "systems/solve_workspace.h"
 
 namespace layerlab {
 
 class JointPass {
  public:
-  explicit JointPass(const DisplayModel& model);
+  // In the solve's `workspace` (sized with kJointPass), or without one in a
+  // workspace of its own for the thread count of now.
+  explicit JointPass(const DisplayModel& model, SolveWorkspace* workspace = nullptr);
 
-  // Returns ||l - l~||^2 of `t`; numerator() and denominator() then hold its sums.
-  double Run(const LightField& l, const Patterns& t);
+  // Returns ||l - l~||^2 of `t`; numerator() and denominator() then hold its
+  // sums. With `summed` ([layer], nonzero: needed) the one-tap path makes only
+  // those layers' sums and leaves the others unwritten; the general path makes all.
+  double Run(const LightField& l, const Patterns& t, const std::vector<char>* summed = nullptr);
   // [layer][pixel * 3 + channel]
-  const std::vector<std::vector<double>>& numerator() const { return num_; }
-  const std::vector<std::vector<double>>& denominator() const { return den_; }
+  const std::vector<std::vector<double>>& numerator() const { return workspace_->joint_num; }
+  const std::vector<std::vector<double>>& denominator() const { return workspace_->joint_den; }
 
  private:
-  struct PassSums;
-  void ViewOneTap(const float* target, const Patterns& t, size_t view, PassSums* sums) const;
-  void ViewGeneral(const float* target, const Patterns& t, size_t view, PassSums* sums) const;
+  // Per thread: the float sums of every layer (ThreadWorkspace::num, den), and the view's objective.
+  void ViewOneTap(const float* target, const Patterns& t, size_t view, ThreadWorkspace* sums, double* error) const;
+  void ViewGeneral(const float* target, const Patterns& t, size_t view, ThreadWorkspace* sums, double* error) const;
 
   const DisplayModel& model_;
   std::vector<int> branch_of_;
@@ -34,8 +40,8 @@ class JointPass {
   std::vector<float> weights_;               // [branch][channel]
   bool one_tap_ = true;
   bool column_pass_ = false;  // every branch on the one-tap path: JointColumnPass
-  // Kept between passes (fresh megabytes would be faulted in each time).
-  std::vector<std::vector<double>> num_, den_;
+  std::unique_ptr<SolveWorkspace> own_;
+  SolveWorkspace* workspace_;
 };
 
 }  // namespace layerlab

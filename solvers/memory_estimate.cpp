@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "framework/error.h"
+#include "solvers/objective.h"
 
 namespace layerlab {
 
@@ -19,26 +20,61 @@ std::string FormatBytes(double bytes) {
   return text;
 }
 
-MemoryEstimate EstimateSolveMemory(const DisplaySystem& system, const LightFieldGeometry& g, const std::string& solver,
-                                   int threads, const SolverRegistry& registry) {
+size_t ResidentBytes() {
+  std::FILE* status = std::fopen("/proc/self/status", "r");
+  if (!status) return 0;
+  char line[256];
+  size_t kb = 0;
+  while (std::fgets(line, sizeof line, status))
+    if (std::sscanf(line, "VmRSS: %zu kB", &kb) == 1) break;
+  std::fclose(status);
+  return kb * 1024;
+}
+
+MemoryEstimate EstimateSolveMemory(const DisplayModel& model, const std::string& solver, int threads,
+                                   const LightField* target, const SolverRegistry& registry) {
   const SolverMemory& own = registry.get(solver).memory;
   threads = std::max(threads, 1);
+  const LightFieldGeometry& g = model.geometry();
   const double light_field = double(g.ray_count()) * 3 * sizeof(float);
-  // The target as read and, if values exceed the display, its clipped or
-  // scaled copy, then the solver's own light fields.
-  const int copies = 2 + own.light_fields;
-  double layer_pixels = 0;
-  for (const VirtualLayer& layer : system.layers) layer_pixels += double(layer.cols) * layer.rows * 3;
-  // Patterns (float), merged sums (2 double), per-thread sums (2 float), kept ratios (double), the solver's own.
-  double layers = layer_pixels * (4 + 16 + 8.0 * threads + 8);
-  if (own.layer_doubles > 0) layers += layer_pixels * 8 * own.layer_doubles;
-  const double views = double(g.pixels_per_view()) * 3 * sizeof(float) * 4 * threads;  // per-thread view buffers
-  const double program = 64e6;  // code, libraries, the thread pool
+  double layer_values = 0;
+  for (size_t k = 0; k < model.layer_count(); ++k) layer_values += double(model.projection(k).pixel_count()) * 3;
+  const double patterns = layer_values * sizeof(float);
+  const double solver_fields = light_field * own.light_fields;
+  const double solver_layers = layer_values * sizeof(double) * own.layer_doubles;
+  const WorkspaceLayout layout = SolveWorkspace::Layout(model, threads, own.passes);
+  // Code, libraries and what the process holds before the solve; 64 MB where it cannot be read.
+  const size_t resident = ResidentBytes();
+  const double program = resident ? double(resident) : 64e6;
+
   MemoryEstimate e;
-  e.bytes = static_cast<size_t>(copies * light_field + layers + views + program);
-  e.breakdown = "target " + FormatBytes(light_field) + " x " + std::to_string(copies) + " + layers " +
-                FormatBytes(layers) + " + view buffers " + FormatBytes(views) + " + program " + FormatBytes(program);
+  e.workspace = layout.bytes();
+  e.program = static_cast<size_t>(program);
+  e.clipped_copy = static_cast<size_t>(light_field);
+  if (target) {
+    const std::array<float, 3> max = DisplayMaximum(model);
+    for (size_t k = 0; k < target->rgb.size() && !e.clipped_copy_counted; ++k)
+      e.clipped_copy_counted = target->rgb[k] > max[k % 3];
+  }
+  double total = light_field + solver_fields + solver_layers + patterns + double(layout.bytes()) + program;
+  if (e.clipped_copy_counted) total += double(e.clipped_copy);
+  e.bytes = static_cast<size_t>(total);
+  e.breakdown = "target " + FormatBytes(light_field);
+  if (e.clipped_copy_counted) e.breakdown += " + its clipped copy " + FormatBytes(light_field);
+  if (own.light_fields > 0)
+    e.breakdown +=
+        " + the solver's light fields " + FormatBytes(light_field) + " x " + std::to_string(own.light_fields);
+  if (own.layer_doubles > 0) e.breakdown += " + the solver's layer vectors " + FormatBytes(solver_layers);
+  e.breakdown += " + patterns " + FormatBytes(patterns) + " + workspace " + FormatBytes(double(layout.bytes())) + " (" +
+                 layout.Describe() + ") + program " + FormatBytes(program);
+  if (!target)
+    e.breakdown += " (+ " + FormatBytes(light_field) + " for a clipped copy if the target exceeds the display's range)";
   return e;
+}
+
+MemoryEstimate EstimateSolveMemory(const DisplaySystem& system, const LightFieldGeometry& g, const std::string& solver,
+                                   int threads, const SolverRegistry& registry) {
+  return EstimateSolveMemory(DisplayModel(system, g), solver, threads, nullptr, registry);
 }
 
 size_t ParseByteSize(const std::string& text, const std::string& option) {

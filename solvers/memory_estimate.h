@@ -14,13 +14,36 @@ namespace layerlab {
 
 struct MemoryEstimate {
   size_t bytes = 0;
-  std::string breakdown;  // "target 162.2 MB x 3 (...) + layers ... + program 64 MB"
+  // A copy of the target with the values the display cannot show clipped or
+  // scaled (SolveLoop makes it only then). Counted in `bytes` when the
+  // target is known to need it; stated apart (and not counted) when the
+  // target was not read yet.
+  size_t clipped_copy = 0;
+  bool clipped_copy_counted = false;
+  size_t workspace = 0;  // SolveWorkspace::Layout's bytes
+  size_t program = 0;    // what the process held when estimated
+  // "target 162.2 MB + the solver's light fields 162.2 MB x 1 + patterns 3.8 MB + workspace 38.9 MB (per thread
+  // ...) + program 14.2 MB (+ 162.2 MB for a clipped copy if the target exceeds the display's range)"
+  std::string breakdown;
 };
 
-// The common part plus what the solver's type states (SolverType::memory).
+// What a solve of `solver` holds at its peak: the target as read, the
+// solver's own light fields and layer vectors (SolverType::memory), the
+// patterns, the solve's workspace as SolveWorkspace::Layout lays it out for
+// the solver's passes and `threads` (the very sizes SolveLoop allocates),
+// and the program (what this process holds now, VmRSS: call it before the
+// target is read). With `target` the clipped copy is counted when a pass
+// over the target's values finds one above the display's maximum.
+MemoryEstimate EstimateSolveMemory(const DisplayModel& model, const std::string& solver, int threads,
+                                   const LightField* target = nullptr,
+                                   const SolverRegistry& registry = SolverRegistry::Builtins());
+// The same from the display and the target's geometry alone (the target not read yet).
 MemoryEstimate EstimateSolveMemory(const DisplaySystem& system, const LightFieldGeometry& geometry,
                                    const std::string& solver, int threads,
                                    const SolverRegistry& registry = SolverRegistry::Builtins());
+
+// What this process holds now (VmRSS of /proc/self/status), or 0 when unknown.
+size_t ResidentBytes();
 
 // "512 MB", "2 GB", "1.5 GiB", or a bare number of bytes; throws layerlab::Error naming `option`.
 size_t ParseByteSize(const std::string& text, const std::string& option);

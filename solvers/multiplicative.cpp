@@ -16,11 +16,9 @@
 #include <optional>
 
 #include "framework/error.h"
-#include "solvers/joint_column_pass.h"
 #include "solvers/joint_pass.h"
 #include "solvers/multiplicative_update.h"
 #include "solvers/solve_loop.h"
-#include "systems/one_tap_view.h"
 
 namespace layerlab {
 namespace {
@@ -53,41 +51,30 @@ std::vector<std::vector<int>> LayersByDepth(const DisplayModel& model) {
 
 // One pass over the rays: the objective of `t` and the sums of the layers
 // at one depth. On the one-tap path only those layers are summed (a rank-1
-// iteration sums one layer per pass, so a rank-K one should sum K, not 2K);
-// otherwise JointPass sums every layer.
+// iteration sums one layer per pass, so a rank-K one should sum K, not 2K).
 class DepthPass {
  public:
-  DepthPass(const DisplayModel& model, const std::vector<std::vector<int>>& by_depth)
-      : model_(model), pass_(model), num_(model.layer_count()), den_(model.layer_count()) {
-    one_tap_ = true;
-    for (size_t b = 0; b < model.branch_count(); ++b) one_tap_ = one_tap_ && OneTapBranch(model, b);
+  DepthPass(const DisplayModel& model, const std::vector<std::vector<int>>& by_depth, SolveWorkspace* workspace)
+      : pass_(model, workspace) {
     for (const std::vector<int>& layers : by_depth) {
       summed_.emplace_back(model.layer_count(), 0);
       for (int a : layers) summed_.back()[a] = 1;
     }
   }
-  double Run(const LightField& l, const Patterns& t, size_t depth) {
-    if (!one_tap_) return pass_.Run(l, t);
-    for (size_t k = 0; k < t.size(); ++k)
-      if (summed_[depth][k]) num_[k].resize(t[k].rgb.size()), den_[k].resize(t[k].rgb.size());
-    return JointColumnPass(model_, l, t, &num_, &den_, &summed_[depth]);
-  }
-  const double* numerator(int layer) const { return (one_tap_ ? num_ : pass_.numerator())[layer].data(); }
-  const double* denominator(int layer) const { return (one_tap_ ? den_ : pass_.denominator())[layer].data(); }
+  double Run(const LightField& l, const Patterns& t, size_t depth) { return pass_.Run(l, t, &summed_[depth]); }
+  const double* numerator(int layer) const { return pass_.numerator()[layer].data(); }
+  const double* denominator(int layer) const { return pass_.denominator()[layer].data(); }
 
  private:
-  const DisplayModel& model_;
   JointPass pass_;
-  bool one_tap_ = true;
   std::vector<std::vector<char>> summed_;  // [depth][layer]
-  std::vector<std::vector<double>> num_, den_;
 };
 
 // The rank-K iterations (K > 1 subframes).
 void SolveRankK(const DisplayModel& model, const SolverOptions& options, SolveLoop* loop, Patterns* t) {
   const LightField& l = loop->target();
   const std::vector<std::vector<int>> by_depth = LayersByDepth(model);
-  DepthPass pass(model, by_depth);
+  DepthPass pass(model, by_depth, &loop->workspace());
   auto step = [&](size_t depth) {
     for (int a : by_depth[depth])
       ApplyMultiplicativeStep(pass.numerator(a), pass.denominator(a), options, &(*t)[a].rgb);
@@ -124,14 +111,16 @@ class MultiplicativeSolver final : public Solver {
     // The pass that gives an iteration's objective also gives the sums of the
     // next iteration's first update (both read the same patterns), which is
     // applied only if there is a next iteration.
-    LayerUpdate first;
-    ComputeLayerUpdate(model, 0, order[0], whole, *t, &first);
+    SolveWorkspace* workspace = &loop.workspace();
+    LayerUpdate first = KeptLayerUpdate(workspace);
+    ComputeLayerUpdate(model, 0, order[0], whole, *t, workspace, &first);
     std::optional<double> objective;
     do {
       ApplyLayerUpdate(first, options, t);
-      for (size_t k = 1; k < order.size(); ++k) UpdateLayerMultiplicative(model, 0, order[k], whole, options, t);
+      for (size_t k = 1; k < order.size(); ++k)
+        UpdateLayerMultiplicative(model, 0, order[k], whole, options, t, workspace);
       double error = 0;
-      const bool fused = ComputeLayerUpdate(model, 0, order[0], whole, *t, &first, &error);
+      const bool fused = ComputeLayerUpdate(model, 0, order[0], whole, *t, workspace, &first, &error);
       objective = fused ? std::optional<double>(error) : std::nullopt;
     } while (loop.EndIteration(objective));
     return loop.Finish();
@@ -150,6 +139,7 @@ SolverType MultiplicativeSolverType() {
       [] { return std::make_unique<MultiplicativeSolver>(); }, defaults);
   type.unsuitable = Unsuitable;
   type.default_rank = 3;
+  type.memory.passes = kSynthesisPass | kLayerUpdatePass | kJointPassIfBranches;  // the joint pass for rank K
   return type;
 }
 

@@ -15,6 +15,7 @@
 
 #include "solvers/solver.h"
 #include "systems/display_model.h"
+#include "systems/solve_workspace.h"
 
 namespace layerlab {
 
@@ -22,8 +23,9 @@ namespace layerlab {
 // stored values, or to `scratch` after filling it.
 using BranchTarget = std::function<const float*(size_t view, float* scratch)>;
 
+// In `workspace`, sized with kLayerUpdatePass.
 void UpdateLayerMultiplicative(const DisplayModel& model, size_t branch, int layer, const BranchTarget& branch_target,
-                               const SolverOptions& options, Patterns* t);
+                               const SolverOptions& options, Patterns* t, SolveWorkspace* workspace);
 
 // The same update in two steps, so that its pass over the rays can be made
 // early: the multiplicative solver makes the next iteration's first one in
@@ -31,14 +33,17 @@ void UpdateLayerMultiplicative(const DisplayModel& model, size_t branch, int lay
 struct LayerUpdate {
   size_t branch = 0;
   int layer = -1;
-  std::vector<double> num, den;  // layer pixels x 3, the ratio's two sides
+  std::vector<double>*num, *den;  // layer pixels x 3, the ratio's two sides (in a workspace)
 };
+// The workspace's update kept for the next iteration, and the one of a single update.
+inline LayerUpdate KeptLayerUpdate(SolveWorkspace* w) { return {0, -1, &w->kept_num, &w->kept_den}; }
+inline LayerUpdate OneLayerUpdate(SolveWorkspace* w) { return {0, -1, &w->update_num, &w->update_den}; }
 // The sums from the patterns `t` as they are now. With `error`, and if the
 // branch is on the one-tap path, the same pass also gives the branch's
 // squared error against `branch_target` (summed per view, then in view
 // order); returns whether it did.
 bool ComputeLayerUpdate(const DisplayModel& model, size_t branch, int layer, const BranchTarget& branch_target,
-                        const Patterns& t, LayerUpdate* update, double* error = nullptr);
+                        const Patterns& t, SolveWorkspace* workspace, LayerUpdate* update, double* error = nullptr);
 // Applies it to patterns in which nothing has changed since it was computed.
 void ApplyLayerUpdate(const LayerUpdate& update, const SolverOptions& options, Patterns* t);
 

@@ -1,5 +1,7 @@
 #include "solvers/objective.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -85,8 +87,12 @@ std::optional<std::string> FarBelowWarning(const DisplayModel& model, const Solv
 }
 
 double Objective(const DisplayModel& model, const LightField& target, const Patterns& t) {
-  thread_local PaddedLayers workspace;
-  const ViewSynthesizer synthesizer(model, t, &workspace);
+  SolveWorkspace workspace(model, omp_get_max_threads(), kSynthesisPass);
+  return Objective(model, target, t, &workspace);
+}
+
+double Objective(const DisplayModel& model, const LightField& target, const Patterns& t, SolveWorkspace* workspace) {
+  const ViewSynthesizer synthesizer(model, t, workspace);
   // Per view, then summed in view order: the same value for any thread count.
   std::vector<double> per_view(model.geometry().view_count());
 #pragma omp parallel for schedule(static)

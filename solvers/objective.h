@@ -35,7 +35,10 @@ inline constexpr double kOutOfRangeCause = 0.01, kDimBranchCause = 0.5;
 // brightness); nothing for a solve at or above it.
 std::optional<std::string> FarBelowWarning(const DisplayModel& model, const SolverReport& report);
 
-// Sum over rays and channels of (target - synthesized)^2, in double.
+// Sum over rays and channels of (target - synthesized)^2, in double: in the
+// solve's workspace (sized with kSynthesisPass), or without one in a
+// workspace of its own (for a call outside a solve: tests, compare).
+double Objective(const DisplayModel& model, const LightField& target, const Patterns& t, SolveWorkspace* workspace);
 double Objective(const DisplayModel& model, const LightField& target, const Patterns& t);
 
 // 10 log10(1 / MSE) with MSE = objective / samples; +inf for a perfect fit.

@@ -10,23 +10,17 @@
 namespace layerlab {
 namespace {
 
-// One thread's work space, kept across calls (fresh megabytes would be
-// page-faulted in on every update).
-struct Workspace {
-  std::vector<std::vector<Rgb4>> resampled;  // other layer k: [its row][ray column]
-  std::vector<Rgb4> own;                     // layer a likewise, for the error
-  ColumnSums sums;                           // layer a's
-  std::vector<float> scratch;                // one view of the branch target, if it needs one
-  std::vector<Rgb4> product;                 // one ray row of the other layers' product
-  std::vector<Rgb4> zeros;                   // one ray row of no light
-};
+// One thread's buffers (ThreadWorkspace): resampled[k], layer k at the
+// rays' columns (layer a's too, for the error); update_sums, layer a's sums;
+// target, one view of the branch target if it needs one; product, one ray
+// row of the other layers' product; zeros, one ray row of no light.
 
 // One view run's sums (and errors) for a branch of L layers.
 template <int L>
 struct Accumulate {
   static void Run(const DisplayModel& model, const std::vector<int>& layers, const PaddedLayers& padded,
                   const BranchTarget& branch_target, Rgb4 weight, int vc, int vr_begin, int vr_end, double* view_errors,
-                  Workspace* w) {
+                  ThreadWorkspace* w) {
     const LightFieldGeometry& g = model.geometry();
     const int cols = g.cols;
     const LayerProjection& Pa = model.projection(layers[0]);
@@ -34,14 +28,15 @@ struct Accumulate {
     for (int k = 1; k < L; ++k) {
       const LayerProjection& P = model.projection(layers[k]);
       ResampleToRayColumns(P, padded.pixels(layers[k]), vc, cols, RowsRead(P, g, vr_begin, vr_end),
-                           &w->resampled[k - 1]);
+                           &w->resampled[layers[k]]);
     }
+    std::vector<Rgb4>& own = w->resampled[layers[0]];
     if (view_errors)
-      ResampleToRayColumns(Pa, padded.pixels(layers[0]), vc, cols, RowsRead(Pa, g, vr_begin, vr_end), &w->own);
+      ResampleToRayColumns(Pa, padded.pixels(layers[0]), vc, cols, RowsRead(Pa, g, vr_begin, vr_end), &own);
 
     for (int vr = vr_begin; vr < vr_end; ++vr) {
       const size_t view = g.view_index(vr, vc);
-      const float* target = branch_target(view, w->scratch.data());
+      const float* target = branch_target(view, w->target.data());
       const AxisTap* row_taps[L];
       for (int k = 0; k < L; ++k) row_taps[k] = model.projection(layers[k]).row_taps(view);
       double error = 0;  // this view's, in row order
@@ -61,7 +56,7 @@ struct Accumulate {
         for (int k = 1; k < L && reached; ++k) {
           const int32_t r = row_taps[k][i].i0;
           reached = r >= 0;
-          if (reached) q_rows[k - 1] = w->resampled[k - 1].data() + static_cast<size_t>(r) * cols;
+          if (reached) q_rows[k - 1] = w->resampled[layers[k]].data() + static_cast<size_t>(r) * cols;
         }
         if (!reached) {
           unlit_row(i);
@@ -75,15 +70,15 @@ struct Accumulate {
           q = w->product.data();
         }
         if (view_errors)
-          error += UpdateSumsAndErrorRow(l, q, w->own.data() + static_cast<size_t>(ra) * cols, weight, w->sums.num(ra),
-                                         w->sums.den(ra), cols);
+          error += UpdateSumsAndErrorRow(l, q, own.data() + static_cast<size_t>(ra) * cols, weight,
+                                         w->update_sums.num(ra), w->update_sums.den(ra), cols);
         else
-          UpdateSumsRow(l, q, w->sums.num(ra), w->sums.den(ra), cols);
+          UpdateSumsRow(l, q, w->update_sums.num(ra), w->update_sums.den(ra), cols);
       }
       if (view_errors) view_errors[view] = error;
     }
 
-    w->sums.Scatter(Pa, vc);
+    w->update_sums.Scatter(Pa, vc);
   }
 };
 
@@ -91,11 +86,10 @@ struct Accumulate {
 
 void OneTapUpdateSums(const DisplayModel& model, const std::vector<int>& layers, const Patterns& t,
                       const BranchTarget& branch_target, const std::array<float, 3>& weight, double* num, double* den,
-                      double* view_errors) {
+                      double* view_errors, SolveWorkspace* workspace) {
   const LightFieldGeometry& g = model.geometry();
   const LayerProjection& Pa = model.projection(layers[0]);
-  thread_local PaddedLayers padded_memory;
-  PaddedLayers& padded = padded_memory;  // the calling thread's, shared with the workers
+  PaddedLayers& padded = workspace->padded;
   padded.Pad(t, view_errors ? layers : std::vector<int>(layers.begin() + 1, layers.end()));
   const Rgb4 w4{weight[0], weight[1], weight[2], 0.0f};
 
@@ -105,16 +99,15 @@ void OneTapUpdateSums(const DisplayModel& model, const std::vector<int>& layers,
   std::vector<const ColumnSums*> thread_sums;
 #pragma omp parallel
   {
-    thread_local Workspace w;
-    w.resampled.resize(layers.size() - 1);
-    w.sums.Reset(Pa, g.cols);
-    w.scratch.resize(g.pixels_per_view() * 3);
+    ThreadWorkspace& w = workspace->thread();
+    w.update_sums.Reset(Pa, g.cols);
+    w.target.resize(g.pixels_per_view() * 3);
     w.product.resize(g.cols);
     w.zeros.assign(g.cols, Rgb4{});
     const int threads = omp_get_num_threads(), me = omp_get_thread_num();
 #pragma omp single
     thread_sums.resize(threads);
-    thread_sums[me] = &w.sums;
+    thread_sums[me] = &w.update_sums;
     ForEachViewRunOfThread(g, me, threads, [&](int vc, int vr_begin, int vr_end) {
       ForLayerCount<Accumulate>(static_cast<int>(layers.size()), model, layers, padded, branch_target, w4, vc, vr_begin,
                                 vr_end, view_errors, &w);

@@ -22,8 +22,9 @@ namespace layerlab {
 // pixels x 3 and are written. With `view_errors` (one per view), the same
 // pass also gives each view's sum of (r - w_b prod_k P_k t_k)^2 over its
 // rays and channels, the branch's own error against what it should emit.
+// In `workspace`, sized with kLayerUpdatePass.
 void OneTapUpdateSums(const DisplayModel& model, const std::vector<int>& layers, const Patterns& t,
                       const BranchTarget& branch_target, const std::array<float, 3>& weight, double* num, double* den,
-                      double* view_errors = nullptr);
+                      double* view_errors, SolveWorkspace* workspace);
 
 }  // namespace layerlab

@@ -210,7 +210,7 @@ class QuasiNewtonSolver final : public Solver {
     size_t longest = 1;
     for (size_t b = 0; b < model.branch_count(); ++b) longest = std::max(longest, model.branch_layers(b).size());
     const double plain = 1.0 / static_cast<double>(longest);
-    JointPass pass(model);
+    JointPass pass(model, &loop.workspace());
 
     layout.Gather(*t, &x);
     double f = pass.Run(l, *t);

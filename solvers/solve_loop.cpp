@@ -42,6 +42,9 @@ bool SolveLoop::Start(const std::string& refusal) {
   try {
     RequireSameRays(model_, source_);
     prepared_ = PrepareTarget(model_, source_, options_.target_range, &report_);
+    const SolverType* type = SolverRegistry::Builtins().find(report_.solver);
+    workspace_ = std::make_unique<SolveWorkspace>(model_, omp_get_max_threads(),
+                                                  type ? type->memory.passes : unsigned(kAllPasses));
   } catch (const Error& e) {
     Fail(e.what());
     return false;
@@ -74,7 +77,7 @@ bool SolveLoop::Start(const std::string& refusal) {
   const auto now = std::chrono::steady_clock::now();
   report_.setup_seconds = std::chrono::duration<double>(now - start_).count();
   start_ = now;
-  double objective = Objective(model_, target(), *patterns_);
+  double objective = Objective(model_, target(), *patterns_, workspace_.get());
   report_.initial_objective = objective;
   return Record(objective);
 }
@@ -108,7 +111,7 @@ bool SolveLoop::EndIteration(std::optional<double> objective) {
   if (stopped_) return false;
   ++iteration_;
   double previous = report_.final_objective;
-  double value = objective ? *objective : Objective(model_, target(), *patterns_);
+  double value = objective ? *objective : Objective(model_, target(), *patterns_, workspace_.get());
   if (!Record(value)) return false;
   if (options_.tolerance > 0 && std::abs(previous - value) <= options_.tolerance * std::max(previous, 1e-300)) {
     report_.termination = Termination::kConverged;
@@ -150,6 +153,7 @@ void SolveLoop::Converge(const std::string& message) {
 
 SolverReport SolveLoop::Finish() {
   report_.seconds = Seconds();
+  workspace_.reset();
   if (report_.termination == Termination::kNotRun && !report_.trace.empty()) {
     report_.termination = Termination::kIterationLimit;
     report_.message = "";

@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -26,6 +27,10 @@ class SolveLoop {
   // suit the solver, SolverType::unsuitable in the solver's words) fails first.
   bool Start(const std::string& refusal = "");
   const LightField& target() const { return prepared_ ? *prepared_ : source_; }
+  // The working memory of the solve's passes, made in Start for the model,
+  // the solver's passes (SolverMemory::passes) and the thread count, and
+  // released in Finish.
+  SolveWorkspace& workspace() { return *workspace_; }
   int iteration() const { return iteration_; }  // iterations completed
   double Seconds() const;
 
@@ -54,6 +59,7 @@ class SolveLoop {
   SolverOptions options_;
   Patterns* patterns_;
   std::optional<LightField> prepared_;  // the target clipped or scaled, if it had to be
+  std::unique_ptr<SolveWorkspace> workspace_;
   SolverReport report_;
   std::chrono::steady_clock::time_point start_;
   int iteration_ = 0;

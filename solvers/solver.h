@@ -16,6 +16,7 @@
 
 #include "framework/lightfield.h"
 #include "systems/display_model.h"
+#include "systems/solve_workspace.h"
 
 namespace layerlab {
 
@@ -121,11 +122,12 @@ const std::vector<SolverOptionKey>& CommonSolverOptionKeys();
 SolverOptionKey SubIterationsKey();
 
 // What a solver holds beyond what every solve holds (solvers/memory_estimate.h
-// adds the target, its prepared copy, the patterns, the layer sums and the
-// per-thread buffers).
+// adds the target, its prepared copy, the patterns and the solve's workspace).
 struct SolverMemory {
   int light_fields = 0;      // light-field-sized float buffers of its own (hybrid: the chase)
   double layer_doubles = 0;  // doubles per layer value of its own (quasi-newton: work vectors and pairs)
+  // The passes it makes (WorkspacePass): what the solve loop sizes its workspace for.
+  unsigned passes = kAllPasses;
 };
 
 // Everything the rest of the program knows about a solver: adding one is its

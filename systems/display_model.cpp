@@ -3,7 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include <omp.h>
+
+#include <optional>
+
 #include "framework/error.h"
+#include "systems/solve_workspace.h"
 #include "systems/view_synthesizer.h"
 
 namespace layerlab {
@@ -27,10 +32,14 @@ Patterns DisplayModel::UniformPatterns(float value) const {
   return t;
 }
 
-void DisplayModel::SynthesizeBranchView(size_t b, size_t view, const Patterns& t, float* out) const {
+void DisplayModel::SynthesizeBranchView(size_t b, size_t view, const Patterns& t, float* out,
+                                        std::vector<float>* scratch) const {
   const std::vector<int>& layers = branch_layers(b);
+  std::vector<float> own;
+  if (!scratch) scratch = &own;
   projections_[layers[0]].Gather(view, t[layers[0]].rgb.data(), out);
-  for (size_t k = 1; k < layers.size(); ++k) projections_[layers[k]].GatherMultiply(view, t[layers[k]].rgb.data(), out);
+  for (size_t k = 1; k < layers.size(); ++k)
+    projections_[layers[k]].GatherMultiply(view, t[layers[k]].rgb.data(), out, scratch);
   const std::array<float, 3>& w = weights_[b];
   const size_t n = lf_.pixels_per_view();
   for (size_t ray = 0; ray < n; ++ray)
@@ -43,13 +52,14 @@ LightField DisplayModel::Synthesize(const Patterns& t) const {
   return lf;
 }
 
-void DisplayModel::Synthesize(const Patterns& t, LightField* out) const {
+void DisplayModel::Synthesize(const Patterns& t, LightField* out, SolveWorkspace* workspace) const {
   if (out->rgb.size() != lf_.ray_count() * 3)
     throw Error("Synthesize: the output light field has other rays than the model");
   out->geometry = lf_;
   const size_t views = lf_.view_count();
-  thread_local PaddedLayers workspace;
-  const ViewSynthesizer synthesizer(*this, t, &workspace);
+  std::optional<SolveWorkspace> own;
+  if (!workspace) workspace = &own.emplace(*this, omp_get_max_threads(), kSynthesisPass);
+  const ViewSynthesizer synthesizer(*this, t, workspace);
 #pragma omp parallel for schedule(static)
   for (size_t k = 0; k < views; ++k) {
     const size_t v = synthesizer.ViewInColumnOrder(k);

@@ -24,6 +24,8 @@
 
 namespace layerlab {
 
+class SolveWorkspace;  // systems/solve_workspace.h
+
 // A layer's transmittance pattern in [0, 1], [row][col][rgb], in the panel's
 // own pixel order (flips already applied by the projection).
 struct LayerPattern {
@@ -53,10 +55,14 @@ class DisplayModel {
 
   // The light of branch b alone for one view, w_b prod_k P_k t_k, through
   // the projections (ViewSynthesizer takes the fast path where it can).
-  void SynthesizeBranchView(size_t b, size_t view, const Patterns& t, float* out) const;
+  // `scratch`: a view of samples for layers of several taps per ray (LayerProjection::GatherMultiply).
+  void SynthesizeBranchView(size_t b, size_t view, const Patterns& t, float* out,
+                            std::vector<float>* scratch = nullptr) const;
+  // With a workspace of its own, for a call outside a solve (retina, compare, the solution's light field).
   LightField Synthesize(const Patterns& t) const;
-  // Into a light field of this model's geometry, reusing its memory.
-  void Synthesize(const Patterns& t, LightField* out) const;
+  // Into a light field of this model's geometry, reusing its memory; in
+  // `workspace` (with the synthesis pass) when given, else in one of its own.
+  void Synthesize(const Patterns& t, LightField* out, SolveWorkspace* workspace = nullptr) const;
 
  private:
   DisplaySystem system_;

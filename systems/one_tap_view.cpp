@@ -21,6 +21,17 @@ void PaddedLayers::PadAll(const Patterns& t) {
   for (size_t k = 0; k < t.size(); ++k) PadRgb(t[k].rgb, &layers_[k]);
 }
 
+void PaddedLayers::Allocate(const std::vector<size_t>& pixels) {
+  layers_.resize(pixels.size());
+  for (size_t k = 0; k < pixels.size(); ++k) layers_[k].assign(pixels[k], Rgb4{});
+}
+
+size_t PaddedLayers::Bytes() const {
+  size_t bytes = 0;
+  for (const std::vector<Rgb4>& l : layers_) bytes += l.capacity() * sizeof(Rgb4);
+  return bytes;
+}
+
 namespace {
 
 template <int L>
@@ -99,6 +110,26 @@ void ColumnSums::Reset(const LayerProjection& P, int ray_cols) {
   touched_.assign(P.rows(), 0);
   pixel_num_.assign(P.pixel_count(), Rgb4{});
   pixel_den_.assign(P.pixel_count(), Rgb4{});
+}
+
+void ColumnSums::Allocate(int rows, int ray_cols, size_t pixels) {
+  const size_t cells = static_cast<size_t>(rows) * ray_cols;
+  column_num_.assign(cells, Rgb4{});
+  column_den_.assign(cells, Rgb4{});
+  touched_.assign(rows, 0);
+  pixel_num_.assign(pixels, Rgb4{});
+  pixel_den_.assign(pixels, Rgb4{});
+  ray_cols_ = ray_cols;
+}
+
+size_t ColumnSums::BytesFor(int rows, int ray_cols, size_t pixels) {
+  return (static_cast<size_t>(rows) * ray_cols * 2 + pixels * 2) * sizeof(Rgb4) + static_cast<size_t>(rows);
+}
+
+size_t ColumnSums::Bytes() const {
+  return (column_num_.capacity() + column_den_.capacity() + pixel_num_.capacity() + pixel_den_.capacity()) *
+             sizeof(Rgb4) +
+         touched_.capacity();
 }
 
 void ColumnSums::Scatter(const LayerProjection& P, int vc) {

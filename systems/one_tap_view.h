@@ -33,6 +33,9 @@ class PaddedLayers {
   void Pad(const Patterns& t, const std::vector<int>& layers);
   void PadAll(const Patterns& t);
   const Rgb4* pixels(int layer) const { return layers_[layer].data(); }
+  // Room for `pixels[k]` pixels of layer k, touched (solve_workspace.h sizes it); the bytes held.
+  void Allocate(const std::vector<size_t>& pixels);
+  size_t Bytes() const;
 
  private:
   std::vector<std::vector<Rgb4>> layers_;
@@ -154,6 +157,13 @@ class ColumnSums {
   // den likewise (merging threads, in double; systems/thread_merge.h), for
   // share `part` of `parts` of the pixels: each thread of a team merges its own share.
   static void Merge(const std::vector<const ColumnSums*>& sums, int part, int parts, double* num, double* den);
+
+  // Room for the sums of any layer of at most `rows` rows and `pixels`
+  // pixels, touched, so that Reset never allocates (solve_workspace.h sizes
+  // it); what that takes, and what is held.
+  void Allocate(int rows, int ray_cols, size_t pixels);
+  static size_t BytesFor(int rows, int ray_cols, size_t pixels);
+  size_t Bytes() const;
 
  private:
   int ray_cols_ = 0;

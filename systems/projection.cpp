@@ -39,6 +39,11 @@ void LayerProjection::Gather(size_t view, const float* pattern, float* out) cons
 }
 
 void LayerProjection::GatherMultiply(size_t view, const float* pattern, float* out) const {
+  std::vector<float> scratch;
+  GatherMultiply(view, pattern, out, &scratch);
+}
+
+void LayerProjection::GatherMultiply(size_t view, const float* pattern, float* out, std::vector<float>* scratch) const {
   const int vr = static_cast<int>(view / lf_.views_x), vc = static_cast<int>(view % lf_.views_x);
   if (separable() && sampling() == Sampling::kNearest) {
     // One tap per ray: multiply in place; rays that miss the layer go dark.
@@ -64,7 +69,7 @@ void LayerProjection::GatherMultiply(size_t view, const float* pattern, float* o
     return;
   }
   // Multiplying by a sum of taps needs the sum first.
-  thread_local std::vector<float> sampled;
+  std::vector<float>& sampled = *scratch;
   sampled.resize(lf_.pixels_per_view() * 3);
   Gather(view, pattern, sampled.data());
   for (size_t k = 0; k < sampled.size(); ++k) out[k] *= sampled[k];

@@ -45,7 +45,10 @@ class LayerProjection {
   // out[ray][c] = (P t)[ray][c] for the rays of one view; `pattern` is
   // [row][col][rgb] of this layer, `out` [row][col][rgb] of the view.
   void Gather(size_t view, const float* pattern, float* out) const;
-  // out[ray][c] *= (P t)[ray][c].
+  // out[ray][c] *= (P t)[ray][c]. A layer of several taps per ray needs a
+  // view of samples first: `scratch` (resized to a view, [ray][rgb]), or a
+  // buffer of its own without it.
+  void GatherMultiply(size_t view, const float* pattern, float* out, std::vector<float>* scratch) const;
   void GatherMultiply(size_t view, const float* pattern, float* out) const;
   // accum[pixel][c] += (P^T values)[pixel][c] over the rays of one view.
   void ScatterAdd(size_t view, const float* values, double* accum) const;

@@ -6,26 +6,16 @@
 namespace layerlab {
 namespace {
 
-// One thread's one-tap layers resampled to the rays' columns of one view
-// column ([layer][its row][ray column]): within a view column a layer's
-// column depends on the ray's column alone. Rebuilt when a thread moves to
-// another view column or another synthesizer.
-struct ColumnCache {
-  uint64_t owner = 0;
-  int vc = -1;
-  std::vector<std::vector<Rgb4>> layers;
-};
-
 std::atomic<uint64_t> next_id{1};
 
 }  // namespace
 
-ViewSynthesizer::ViewSynthesizer(const DisplayModel& model, const Patterns& t, PaddedLayers* workspace)
-    : model_(model), t_(t), padded_(*workspace), id_(next_id++) {
+ViewSynthesizer::ViewSynthesizer(const DisplayModel& model, const Patterns& t, SolveWorkspace* workspace)
+    : model_(model), t_(t), workspace_(*workspace), id_(next_id++) {
   for (size_t b = 0; b < model.branch_count(); ++b) {
     const bool fast = OneTapBranch(model, b);
     (fast ? one_tap_ : general_).push_back(b);
-    if (fast) workspace->Pad(t, model.branch_layers(b));
+    if (fast) workspace->padded.Pad(t, model.branch_layers(b));
   }
 }
 
@@ -36,15 +26,18 @@ size_t ViewSynthesizer::ViewInColumnOrder(size_t k) const {
 
 void ViewSynthesizer::OneTapRow(const std::vector<size_t>& branches, size_t view, int i, Rgb4* row) const {
   const LightFieldGeometry& g = model_.geometry();
-  thread_local ColumnCache cache;
+  // This thread's one-tap layers resampled to the rays' columns of one view
+  // column: within a view column a layer's column depends on the ray's
+  // column alone. Rebuilt when the thread moves to another view column or
+  // another synthesizer.
+  ThreadWorkspace& cache = workspace_.thread();
   const int vc = static_cast<int>(view % g.views_x);
-  if (cache.owner != id_ || cache.vc != vc) {
-    cache.owner = id_, cache.vc = vc;
-    cache.layers.resize(model_.layer_count());
+  if (cache.cache_owner != id_ || cache.cache_vc != vc) {
+    cache.cache_owner = id_, cache.cache_vc = vc;
     for (size_t b : one_tap_)
       for (int k : model_.branch_layers(b)) {
         const LayerProjection& P = model_.projection(k);  // any view of the column may ask next
-        ResampleToRayColumns(P, padded_.pixels(k), vc, g.cols, RowsRead(P, g, 0, g.views_y), &cache.layers[k]);
+        ResampleToRayColumns(P, workspace_.padded.pixels(k), vc, g.cols, RowsRead(P, g, 0, g.views_y), &cache.cache[k]);
       }
   }
   std::fill(row, row + g.cols, Rgb4{});
@@ -55,7 +48,7 @@ void ViewSynthesizer::OneTapRow(const std::vector<size_t>& branches, size_t view
     for (size_t k = 0; k < layers.size() && reached; ++k) {
       const int32_t r = model_.projection(layers[k]).row_taps(view)[i].i0;
       reached = r >= 0;
-      if (reached) rows[k] = cache.layers[layers[k]].data() + static_cast<size_t>(r) * g.cols;
+      if (reached) rows[k] = cache.cache[layers[k]].data() + static_cast<size_t>(r) * g.cols;
     }
     if (!reached) continue;
     const std::array<float, 3>& w = model_.weight(b);
@@ -66,7 +59,7 @@ void ViewSynthesizer::OneTapRow(const std::vector<size_t>& branches, size_t view
 
 void ViewSynthesizer::OneTapBranches(const std::vector<size_t>& branches, size_t view, float* out) const {
   const LightFieldGeometry& g = model_.geometry();
-  thread_local std::vector<Rgb4> row;
+  std::vector<Rgb4>& row = workspace_.thread().row;
   row.resize(g.cols);
   for (int i = 0; i < g.rows; ++i) {
     OneTapRow(branches, view, i, row.data());
@@ -81,10 +74,11 @@ void ViewSynthesizer::View(size_t view, float* out) const {
   else
     OneTapBranches(one_tap_, view, out);
   if (general_.empty()) return;
-  thread_local std::vector<float> scratch;
+  ThreadWorkspace& w = workspace_.thread();
+  std::vector<float>& scratch = w.branch;
   scratch.resize(n);
   for (size_t b : general_) {
-    model_.SynthesizeBranchView(b, view, t_, scratch.data());
+    model_.SynthesizeBranchView(b, view, t_, scratch.data(), &w.gathered);
     for (size_t k = 0; k < n; ++k) out[k] += scratch[k];
   }
 }
@@ -93,7 +87,7 @@ void ViewSynthesizer::Branch(size_t b, size_t view, float* out) const {
   if (std::find(one_tap_.begin(), one_tap_.end(), b) != one_tap_.end())
     OneTapBranches({b}, view, out);
   else
-    model_.SynthesizeBranchView(b, view, t_, out);
+    model_.SynthesizeBranchView(b, view, t_, out, &workspace_.thread().gathered);
 }
 
 bool ViewSynthesizer::Remainder(const std::vector<size_t>& branches, size_t view, const float* target,
@@ -101,7 +95,7 @@ bool ViewSynthesizer::Remainder(const std::vector<size_t>& branches, size_t view
   for (size_t b : branches)
     if (std::find(one_tap_.begin(), one_tap_.end(), b) == one_tap_.end()) return false;
   const LightFieldGeometry& g = model_.geometry();
-  thread_local std::vector<Rgb4> row;
+  std::vector<Rgb4>& row = workspace_.thread().row;
   row.resize(g.cols);
   for (int i = 0; i < g.rows; ++i) {
     OneTapRow(branches, view, i, row.data());
@@ -118,7 +112,8 @@ bool ViewSynthesizer::RemainderAndError(const std::vector<size_t>& branches, siz
   for (size_t b : one_tap_)
     if (std::find(branches.begin(), branches.end(), b) == branches.end()) rest.push_back(b);
   const LightFieldGeometry& g = model_.geometry();
-  thread_local std::vector<Rgb4> light, rest_light;
+  ThreadWorkspace& w = workspace_.thread();
+  std::vector<Rgb4>&light = w.row, &rest_light = w.rest_row;
   light.resize(g.cols), rest_light.resize(g.cols);
   double sum = 0;
   for (int i = 0; i < g.rows; ++i) {
@@ -137,7 +132,7 @@ double ViewSynthesizer::SquaredError(size_t view, const float* target) const {
   const LightFieldGeometry& g = model_.geometry();
   const size_t n = g.pixels_per_view() * 3;
   if (!general_.empty()) {
-    thread_local std::vector<float> light;
+    std::vector<float>& light = workspace_.thread().synthesized;
     light.resize(n);
     View(view, light.data());
     double sum = 0;
@@ -148,7 +143,7 @@ double ViewSynthesizer::SquaredError(size_t view, const float* target) const {
     return sum;
   }
   // Row by row: nothing of view size is written.
-  thread_local std::vector<Rgb4> row;
+  std::vector<Rgb4>& row = workspace_.thread().row;
   row.resize(g.cols);
   double sum = 0;
   for (int i = 0; i < g.rows; ++i) {

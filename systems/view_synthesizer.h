@@ -7,16 +7,16 @@
 
 #include "systems/display_model.h"
 #include "systems/one_tap_view.h"
+#include "systems/solve_workspace.h"
 
 namespace layerlab {
 
 class ViewSynthesizer {
  public:
   // Keeps references to all three; `t` must not change while this is in use.
-  // `workspace` holds the padded patterns: a caller that synthesizes often
-  // passes the same one every time (a thread_local of its own) so that its
-  // megabytes are not page-faulted in again on every call.
-  ViewSynthesizer(const DisplayModel& model, const Patterns& t, PaddedLayers* workspace);
+  // `workspace` (sized with kSynthesisPass for at least the team that calls
+  // this) holds the padded patterns and each thread's rows and caches.
+  ViewSynthesizer(const DisplayModel& model, const Patterns& t, SolveWorkspace* workspace);
 
   // out = the whole display's light in one view.
   void View(size_t view, float* out) const;
@@ -51,7 +51,7 @@ class ViewSynthesizer {
   const DisplayModel& model_;
   const Patterns& t_;
   std::vector<size_t> one_tap_, general_;  // branches by path
-  const PaddedLayers& padded_;
+  SolveWorkspace& workspace_;
   uint64_t id_;  // tells this synthesizer's per-thread caches from an earlier one's
 };
 

@@ -3,6 +3,8 @@
 // their own; a multifocal display (one panel behind a tunable lens) is the
 // mean of K single-plane displays at the depths worked out from the powers;
 // a known rank-K target is recovered; "subframes": 1 is today's display.
+#include <omp.h>
+
 #include <cmath>
 #include <map>
 
@@ -13,6 +15,7 @@
 #include "solvers/solver_checkpoint.h"
 #include "systems/one_tap_view.h"
 #include "systems/row_kernels.h"
+#include "systems/solve_workspace.h"
 #include "tests/test_util.h"
 
 namespace layerlab {
@@ -366,7 +369,8 @@ TEST(TimeMultiplex, OneDepthPassGivesTheJointPassSumsOfThatDepth) {
     if (!ForceRowKernels(isa)) continue;  // no AVX2 here
     std::vector<std::vector<double>> num(t.size()), den(t.size());
     for (size_t k = 0; k < t.size(); ++k) num[k].resize(t[k].rgb.size()), den[k].resize(t[k].rgb.size());
-    const double objective = JointColumnPass(model, target, t, &num, &den);
+    SolveWorkspace workspace(model, omp_get_max_threads(), kJointPass);
+    const double objective = JointColumnPass(model, target, t, &num, &den, &workspace);
     for (int depth = 0; depth < 2; ++depth) {
       std::vector<char> summed(t.size(), 0);
       for (size_t b = 0; b < model.branch_count(); ++b) {
@@ -376,7 +380,7 @@ TEST(TimeMultiplex, OneDepthPassGivesTheJointPassSumsOfThatDepth) {
       }
       std::vector<std::vector<double>> n(t.size()), d(t.size());
       for (size_t k = 0; k < t.size(); ++k) n[k].resize(t[k].rgb.size()), d[k].resize(t[k].rgb.size());
-      EXPECT_EQ(JointColumnPass(model, target, t, &n, &d, &summed), objective);
+      EXPECT_EQ(JointColumnPass(model, target, t, &n, &d, &workspace, &summed), objective);
       for (size_t k = 0; k < t.size(); ++k) {
         if (!summed[k]) continue;
         EXPECT_EQ(n[k], num[k]) << "layer " << k;

@@ -32,7 +32,7 @@ class NearFirstSolver final : public Solver {
     std::vector<int> order = model.branch_layers(0);
     std::sort(order.begin(), order.end(), std::greater<int>());
     do {
-      for (int layer : order) UpdateLayerMultiplicative(model, 0, layer, whole, options, t);
+      for (int layer : order) UpdateLayerMultiplicative(model, 0, layer, whole, options, t, &loop.workspace());
     } while (loop.EndIteration());
     return loop.Finish();
   }
