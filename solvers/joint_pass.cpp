@@ -2,6 +2,7 @@
 
 #include <omp.h>
 
+#include "framework/mpi_ranks.h"
 #include "solvers/joint_column_pass.h"
 #include "systems/one_tap_view.h"
 #include "systems/thread_merge.h"
@@ -35,7 +36,7 @@ double JointPass::Run(const LightField& l, const Patterns& t) {
   const size_t layers = model_.layer_count();
   for (size_t k = 0; k < layers; ++k)
     num_[k].resize(t[k].rgb.size()), den_[k].resize(t[k].rgb.size());  // written whole
-  if (column_pass_) return JointColumnPass(model_, l, t, &num_, &den_);
+  if (column_pass_) return SumAcrossRanks(&num_, &den_, JointColumnPass(model_, l, t, &num_, &den_));
   // Views split evenly and statically, each view's error kept apart and
   // summed in view order, thread sums merged in thread order: the same
   // bits for a given thread count.
@@ -69,7 +70,7 @@ double JointPass::Run(const LightField& l, const Patterns& t) {
   }
   double objective = 0;
   for (double e : view_error) objective += e;
-  return objective;
+  return SumAcrossRanks(&num_, &den_, objective);
 }
 
 // Nearest sampling, no rotation: row by row, nothing of view size stored.
