@@ -49,7 +49,6 @@ struct Options {
   std::string max_memory;
 };
 
-
 // The ranks of this solve: rank 0 of 1 unless mpirun started it.
 struct Ranks {
 #if LAYERLAB_WITH_MPI
@@ -171,8 +170,7 @@ void Solve(const Options& o, Ranks& ranks) {
     stage.emplace(
         o.out, "solve",
         std::vector<std::string>{"patterns", "panels", "lightfield", "trace.csv", "report.txt", "report.json",
-                                 "checkpoint", "index.html", "pattern_previews", "panel_previews",
-                                 "psnr_vs_time.svg"},
+                                 "checkpoint", "index.html", "pattern_previews", "panel_previews", "psnr_vs_time.svg"},
         std::vector<NamedInput>{
             {o.scene, "the scene"}, {config.target, "the target"}, {config.target_scene, "the target scene"}});
     for (const std::string& line : stage->recovered()) Note("solve: " + line);
@@ -240,9 +238,9 @@ void Solve(const Options& o, Ranks& ranks) {
   if (!report.IsSolutionUsable()) throw Error("the solve failed: " + report.message + "; nothing was written");
   try {
     WriteSolution(written, patterns, report, stage->staging(), {.write_lightfield = o.write_lightfield});
-    RunReportPage page = CommandPage(
-        "solve", o.scene, scene.name.empty() ? std::filesystem::path(o.scene).stem().string() : scene.name,
-        scene.description, CommandLine());
+    RunReportPage page =
+        CommandPage("solve", o.scene, scene.name.empty() ? std::filesystem::path(o.scene).stem().string() : scene.name,
+                    scene.description, CommandLine());
     page.system = &system;
     page.steps = {
         {"solve (" + config.solver + ", " + std::to_string(report.iterations) + " iterations)", report.seconds}};

@@ -16,7 +16,7 @@ class MpiWorld final : public RankGroup {
  public:
   // Whether an MPI launcher started this process (its environment says so).
   static bool Launched();
-  MpiWorld();  // MPI_Init unless done
+  MpiWorld();            // MPI_Init unless done
   ~MpiWorld() override;  // MPI_Finalize
   int rank() const override { return rank_; }
   int size() const override { return size_; }

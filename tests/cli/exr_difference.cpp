@@ -15,7 +15,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    const layerlab::Image a = layerlab::ReadExr(argv[1], {"R", "G", "B"}), b = layerlab::ReadExr(argv[2], {"R", "G", "B"});
+    const layerlab::Image a = layerlab::ReadExr(argv[1], {"R", "G", "B"}),
+                          b = layerlab::ReadExr(argv[2], {"R", "G", "B"});
     if (a.width != b.width || a.height != b.height) {
       std::fprintf(stderr, "exr_difference: %s and %s differ in size\n", argv[1], argv[2]);
       return 2;
