@@ -44,6 +44,13 @@ double SumAcrossRanks(std::vector<std::vector<double>>* a, std::vector<std::vect
   return value;
 }
 
+double SumAcrossRanks(std::vector<std::span<double>> parts, double value) {
+  if (!g_ranks) return value;
+  parts.emplace_back(&value, 1);
+  SumParts(parts);
+  return value;
+}
+
 double SumAcrossRanks(double value) {
   if (g_ranks) g_ranks->Sum(&value, 1);
   return value;

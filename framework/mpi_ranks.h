@@ -42,6 +42,8 @@ void SumAcrossRanks(std::initializer_list<std::span<double>> parts);
 // Every layer-sized block of `a` and of `b` (either may be null) and `value`,
 // in one message; returns the sum of `value`.
 double SumAcrossRanks(std::vector<std::vector<double>>* a, std::vector<std::vector<double>>* b, double value);
+// `parts` and `value` likewise.
+double SumAcrossRanks(std::vector<std::span<double>> parts, double value);
 double SumAcrossRanks(double value);
 double MaxAcrossRanks(double value);
 // True on every rank when it is true on any (a stop that all must make together).

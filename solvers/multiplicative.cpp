@@ -16,6 +16,7 @@
 #include <optional>
 
 #include "framework/error.h"
+#include "framework/mpi_ranks.h"
 #include "solvers/joint_column_pass.h"
 #include "solvers/joint_pass.h"
 #include "solvers/multiplicative_update.h"
@@ -70,7 +71,11 @@ class DepthPass {
     if (!one_tap_) return pass_.Run(l, t);
     for (size_t k = 0; k < t.size(); ++k)
       if (summed_[depth][k]) num_[k].resize(t[k].rgb.size()), den_[k].resize(t[k].rgb.size());
-    return JointColumnPass(model_, l, t, &num_, &den_, &summed_[depth]);
+    const double objective = JointColumnPass(model_, l, t, &num_, &den_, &summed_[depth]);
+    std::vector<std::span<double>> sums;  // of the layers summed: every rank's rays
+    for (size_t k = 0; k < t.size(); ++k)
+      if (summed_[depth][k]) sums.emplace_back(num_[k]), sums.emplace_back(den_[k]);
+    return SumAcrossRanks(std::move(sums), objective);
   }
   const double* numerator(int layer) const { return (one_tap_ ? num_ : pass_.numerator())[layer].data(); }
   const double* denominator(int layer) const { return (one_tap_ ? den_ : pass_.denominator())[layer].data(); }
