@@ -98,8 +98,13 @@ LightFieldGeometry TargetGeometry(const SolveConfig& config) {
 
 size_t RefuseSolveBeyondMemory(const DisplaySystem& system, const SolveConfig& config, int threads, size_t limit,
                                const std::string& limit_name) {
+  return RefuseSolveBeyondMemory(system, TargetGeometry(config), config.solver, threads, limit, limit_name);
+}
+
+size_t RefuseSolveBeyondMemory(const DisplaySystem& system, const LightFieldGeometry& geometry,
+                               const std::string& solver, int threads, size_t limit, const std::string& limit_name) {
   const MemoryEstimate need =
-      EstimateSolveMemory(system, TargetGeometry(config), config.solver, threads > 0 ? threads : omp_get_max_threads());
+      EstimateSolveMemory(system, geometry, solver, threads > 0 ? threads : omp_get_max_threads());
   const bool machine = limit == 0;
   if (machine) limit = PhysicalMemory();
   if (limit > 0 && need.bytes > limit)

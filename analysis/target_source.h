@@ -66,6 +66,9 @@ LightFieldGeometry TargetGeometry(const SolveConfig& config);
 // machine's memory. Returns the estimate. Reads no views, renders nothing.
 size_t RefuseSolveBeyondMemory(const DisplaySystem& system, const SolveConfig& config, int threads, size_t limit = 0,
                                const std::string& limit_name = "");
+// The same for the rays of `geometry` (one MPI rank's block of views).
+size_t RefuseSolveBeyondMemory(const DisplaySystem& system, const LightFieldGeometry& geometry,
+                               const std::string& solver, int threads, size_t limit, const std::string& limit_name);
 
 // The center view as an sRGB PNG (1 = white), to show what the target looks like.
 void WriteCenterView(const LightField& lf, const std::string& path);

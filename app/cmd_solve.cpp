@@ -1,8 +1,12 @@
 // layerlab solve SCENE.json --target LF_DIR --solver NAME --out DIR: factorize
 // a target light field (or a target scene, rendered first) into panel images,
-// with progress on the terminal.
+// with progress on the terminal. Under mpirun the views are partitioned
+// across the ranks in blocks of whole view rows (docs/mpi.md): each rank
+// reads (or renders) only its block, the solvers sum over the ranks
+// (framework/mpi_ranks.h), and rank 0 alone reports and writes.
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <map>
@@ -18,6 +22,10 @@
 #include "app/target_option.h"
 #include "framework/interrupt.h"
 #include "framework/lightfield_io.h"
+#include "framework/mpi_ranks.h"
+#if LAYERLAB_WITH_MPI
+#include "framework/mpi_world.h"
+#endif
 #include "framework/progress.h"
 #include "framework/staged_output.h"
 #include "framework/warnings.h"
@@ -28,18 +36,237 @@
 #include "systems/compile.h"
 
 namespace layerlab::app {
+namespace {
+
+struct Options {
+  std::string scene, solver, out, sampling, target_range;
+  TargetOption target;
+  std::optional<int> iterations, sub_iterations, warm_start_iterations, threads;
+  std::optional<double> tolerance, initial_value;
+  std::string time_budget;
+  bool write_lightfield = false, resume = false;
+  int checkpoint_every = 0;
+  std::string max_memory;
+};
+
+// The ranks of this solve: rank 0 of 1 unless mpirun started it.
+struct Ranks {
+#if LAYERLAB_WITH_MPI
+  std::unique_ptr<MpiWorld> world;
+#endif
+  int rank = 0, size = 1;
+  mutable bool agreed = false;  // a failure ThrowIfAnyFailed reported: every rank knows
+  bool root() const { return rank == 0; }
+  // Collective under MPI: any rank's failure (`error` non-empty) ends every rank, rank 0 naming it.
+  void ThrowIfAnyFailed(const std::string& error) const {
+#if LAYERLAB_WITH_MPI
+    if (world) {
+      try {
+        world->ThrowIfAnyFailed(error);
+      } catch (const Error&) {
+        agreed = true;
+        throw;
+      }
+      return;
+    }
+#endif
+    if (!error.empty()) throw Error(error);
+  }
+  const RankGroup* group() const {
+#if LAYERLAB_WITH_MPI
+    return world.get();
+#else
+    return nullptr;
+#endif
+  }
+};
+
+// This rank's views of the target: its block of view rows read from the
+// folder, or rendered from the target scene; the whole target for one process.
+std::unique_ptr<Target> LoadRankTarget(const SolveConfig& config, const Ranks& ranks, const LightFieldGeometry& block) {
+  if (!ranks.group()) return LoadOrRenderTarget(config, "target");
+  auto target = std::make_unique<Target>();
+  if (!config.target.empty()) {
+    target->source = config.target;
+    if (ranks.root()) Note("target: loading the light field " + config.target + ", view rows by rank");
+    target->light_field = ReadLightField(
+        config.target, {.load_depth = false, .first_view_row = block.first_view_row, .view_rows = block.views_y});
+    return target;
+  }
+#if LAYERLAB_WITH_EMBREE
+  if (!config.target_scene.empty()) {
+    target->source = config.target_scene;
+    target->rendered = true;
+    target->scene = std::make_unique<TargetScene>(LoadTarget(config.target_scene));
+    target->scene->geometry = block;
+    if (ranks.root()) Note("target: rendering " + config.target_scene + ", view rows by rank");
+    target->light_field = RenderTarget(*target->scene);
+    return target;
+  }
+#endif
+  return LoadOrRenderTarget(config, "target");  // says why there is none
+}
+
+// The solve of one process, or of this rank.
+void Solve(const Options& o, Ranks& ranks) {
+  Scene scene = LoadScene(o.scene);
+  DisplaySystem system = Compile(scene);
+  SolveConfig config = ReadSolveConfig(scene, system);
+  if (!o.solver.empty() && o.solver != config.solver) {
+    config.solver = o.solver;
+    SolverRegistry::Builtins().create(o.solver);  // names the known ones if unknown
+    config.options = SolverRegistry::Builtins().find(o.solver)->defaults;
+  }
+  SolverOptions& opt = config.options;
+  ApplyTargetOption(o.target, config);
+  RequireTarget(config, o.scene);
+  // Any value given is checked by SolverOptions.
+  opt.iterations = o.iterations.value_or(opt.iterations);
+  opt.sub_iterations = o.sub_iterations.value_or(opt.sub_iterations);
+  opt.warm_start_iterations = o.warm_start_iterations.value_or(opt.warm_start_iterations);
+  if (!o.time_budget.empty()) opt.time_budget = ParseOptionValue(o.time_budget, "--time-budget", kSeconds);
+  opt.tolerance = o.tolerance.value_or(opt.tolerance);
+  opt.initial_value = o.initial_value.value_or(opt.initial_value);
+  opt.threads = o.threads.value_or(opt.threads);
+  if (!o.sampling.empty()) config.sampling = SamplingFromString(o.sampling);
+  if (!o.target_range.empty()) {
+    if (o.target_range != "clip" && o.target_range != "scale")
+      throw Error("--target-range: \"" + o.target_range + "\" is not one of clip or scale");
+    opt.target_range = o.target_range == "clip" ? TargetRange::kClip : TargetRange::kScale;
+  }
+
+  if (ranks.size > 1 && (o.checkpoint_every > 0 || o.resume))
+    throw Error("--checkpoint-every and --resume: not with MPI ranks (" + std::to_string(ranks.size) +
+                "); run the solve in one process to checkpoint it");
+  // This rank's block of whole view rows (all of them for one process).
+  const LightFieldGeometry whole = TargetGeometry(config);
+  if (ranks.size > whole.views_y)
+    throw Error(std::to_string(ranks.size) + " MPI ranks for " + std::to_string(whole.views_y) +
+                " view rows: each rank holds whole view rows; run at most " + std::to_string(whole.views_y));
+  const ViewRowBlock rows = ViewRowsOfRank(whole.views_y, ranks.rank, ranks.size);
+  const LightFieldGeometry block = ranks.group() ? whole.ViewRows(rows.first, rows.count) : whole;
+
+  // Refuse what cannot fit before reading the views or rendering the target (per rank: its block's rays).
+  const size_t limit = o.max_memory.empty() ? 0 : ParseByteSize(o.max_memory, "--max-memory");
+  const std::string limit_name = "--max-memory " + FormatBytes(double(limit));
+  std::string refused;
+  size_t need = 0;
+  try {
+    need = RefuseSolveBeyondMemory(system, block, config.solver, opt.threads, limit,
+                                   ranks.size > 1 ? limit_name + " per rank" : limit_name);
+  } catch (const Error& e) {
+    refused = e.what();
+  }
+  ranks.ThrowIfAnyFailed(refused);
+  if (ranks.size > 1)
+    Note("rank 0 of " + std::to_string(ranks.size) + " needs about " + FormatBytes(double(need)) + " for view rows " +
+         std::to_string(rows.first) + "-" + std::to_string(rows.first + rows.count - 1) + " of " +
+         std::to_string(whole.views_y) + " (each rank its own block's share)");
+  else
+    Note("the solve needs about " + FormatBytes(double(need)));
+  // The results are built beside the earlier ones and switched into place when complete; by rank 0 alone.
+  std::optional<StagedOutput> stage;
+  if (ranks.root()) {
+    stage.emplace(
+        o.out, "solve",
+        std::vector<std::string>{"patterns", "panels", "lightfield", "trace.csv", "report.txt", "report.json",
+                                 "checkpoint", "index.html", "pattern_previews", "panel_previews", "psnr_vs_time.svg"},
+        std::vector<NamedInput>{
+            {o.scene, "the scene"}, {config.target, "the target"}, {config.target_scene, "the target scene"}});
+    for (const std::string& line : stage->recovered()) Note("solve: " + line);
+  }
+  std::unique_ptr<Target> target;
+  std::string unread;
+  try {
+    target = LoadRankTarget(config, ranks, block);
+  } catch (const Error& e) {
+    unread = e.what();
+  }
+  ranks.ThrowIfAnyFailed(unread);
+  DisplayModel model(system, target->light_field.geometry, config.sampling);
+  InstallInterruptHandler();
+  opt.interrupted = Interrupted;
+  const std::string checkpoint_folder = (std::filesystem::path(o.out) / "checkpoint").string();
+  if (o.checkpoint_every < 0) throw Error("--checkpoint-every: must be 0 (none) or positive");
+  opt.checkpoint_every = o.checkpoint_every;
+  // Hashing the target costs a pass over it: only when a checkpoint is written or read.
+  const CheckpointInputs digest =
+      o.checkpoint_every > 0 || o.resume
+          ? CheckpointDigest(model, config.sampling, target->light_field, config.solver, opt)
+          : CheckpointInputs{};
+  if (o.checkpoint_every > 0)
+    opt.checkpoint = [&](const SolverCheckpoint& c) { WriteCheckpoint(model, c, checkpoint_folder, digest); };
+  std::optional<SolverCheckpoint> resume;
+  if (o.resume) {
+    RefuseMismatchedCheckpoint(checkpoint_folder, digest);
+    resume = ReadCheckpoint(model, checkpoint_folder);
+    opt.resume = &*resume;
+    Note("resuming " + resume->solver + " from iteration " + std::to_string(resume->iteration));
+  }
+  Patterns patterns;
+  SolverReport report;
+  {
+    Progress progress(config.solver, opt.iterations);
+    opt.progress = [&](const IterationRecord& row) {
+      char detail[64];
+      std::snprintf(detail, sizeof detail, "iterations  PSNR %.2f dB", row.psnr_db);
+      progress.Update(row.iteration, detail);
+    };
+    const ScopedSolveRanks partitioned(ranks.group());
+    report = SolverRegistry::Builtins().create(config.solver)->Solve(model, target->light_field, opt, &patterns);
+    progress.Finish(ToString(report.termination));
+  }
+#if LAYERLAB_WITH_MPI
+  if (!ranks.root()) {  // every rank holds the same patterns and report: rank 0 writes them
+    target.reset();
+    ranks.world->Barrier();  // rank 0 has written (or ended every rank)
+    return;
+  }
+  // The solution is written for the whole light field.
+  std::optional<DisplayModel> whole_model;
+  if (ranks.group()) whole_model.emplace(system, whole, config.sampling);
+  if (whole_model) target.reset();
+  const DisplayModel& written = whole_model ? *whole_model : model;
+#else
+  const DisplayModel& written = model;
+#endif
+  std::vector<std::string> found = system.warnings;  // the compile's and the target's first
+  for (const std::string& w : TargetGeometryWarnings(system, whole)) found.push_back(w);
+  report.warnings.insert(report.warnings.begin(), found.begin(), found.end());
+  SayWarnings(report.warnings);
+  std::cout << report.BriefReport() << "\n";
+  if (!report.IsSolutionUsable()) throw Error("the solve failed: " + report.message + "; nothing was written");
+  try {
+    WriteSolution(written, patterns, report, stage->staging(), {.write_lightfield = o.write_lightfield});
+    RunReportPage page =
+        CommandPage("solve", o.scene, scene.name.empty() ? std::filesystem::path(o.scene).stem().string() : scene.name,
+                    scene.description, CommandLine());
+    page.system = &system;
+    page.steps = {
+        {"solve (" + config.solver + ", " + std::to_string(report.iterations) + " iterations)", report.seconds}};
+    page.warnings = report.warnings;
+    AddSolveToPage(system, patterns, report, stage->staging(), "", o.write_lightfield, &page);
+    WriteReportPage(page, stage->staging());
+  } catch (const Error& e) {
+    throw stage->Explain(e);
+  }
+  const StagedOutput::Switched switched = stage->Commit();
+  if (!switched.removed.empty())
+    std::fprintf(stderr, "solve: removed %zu file%s an earlier solve wrote into %s\n", switched.removed.size(),
+                 switched.removed.size() == 1 ? "" : "s", o.out.c_str());
+  std::cout << "wrote " << o.out << "/{index.html,patterns,panels,trace.csv,report.txt,report.json"
+            << (o.write_lightfield ? ",lightfield" : "") << "}\n";
+#if LAYERLAB_WITH_MPI
+  if (ranks.world) ranks.world->Barrier();  // the others wait for the results to be in place
+#endif
+  if (report.termination == Termination::kInterrupted)
+    throw InterruptedError("interrupted: " + o.out + " holds the patterns of iteration " +
+                           std::to_string(report.iterations) + ", the last complete one");
+}
+
+}  // namespace
 
 void AddSolveCommand(CLI::App& app) {
-  struct Options {
-    std::string scene, solver, out, sampling, target_range;
-    TargetOption target;
-    std::optional<int> iterations, sub_iterations, warm_start_iterations, threads;
-    std::optional<double> tolerance, initial_value;
-    std::string time_budget;
-    bool write_lightfield = false, resume = false;
-    int checkpoint_every = 0;
-    std::string max_memory;
-  };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("solve", "Factorize a target light field into layer patterns");
   cmd->add_option("scene", o->scene, "Scene file (JSON); its \"solve\" section gives the defaults")->required();
@@ -63,106 +290,26 @@ void AddSolveCommand(CLI::App& app) {
   cmd->add_option("--max-memory", o->max_memory,
                   "Refuse a run estimated to need more (e.g. 2 GB; default: the machine's memory)");
   cmd->callback([o] {
-    Scene scene = LoadScene(o->scene);
-    DisplaySystem system = Compile(scene);
-    SolveConfig config = ReadSolveConfig(scene, system);
-    if (!o->solver.empty() && o->solver != config.solver) {
-      config.solver = o->solver;
-      SolverRegistry::Builtins().create(o->solver);  // names the known ones if unknown
-      config.options = SolverRegistry::Builtins().find(o->solver)->defaults;
+    Ranks ranks;
+#if LAYERLAB_WITH_MPI
+    if (MpiWorld::Launched()) {
+      ranks.world = std::make_unique<MpiWorld>();
+      ranks.rank = ranks.world->rank(), ranks.size = ranks.world->size();
+      if (!ranks.root()) SetVerbosity(Verbosity::kQuiet);  // rank 0 speaks for all
     }
-    SolverOptions& opt = config.options;
-    ApplyTargetOption(o->target, config);
-    RequireTarget(config, o->scene);
-    // Any value given is checked by SolverOptions.
-    opt.iterations = o->iterations.value_or(opt.iterations);
-    opt.sub_iterations = o->sub_iterations.value_or(opt.sub_iterations);
-    opt.warm_start_iterations = o->warm_start_iterations.value_or(opt.warm_start_iterations);
-    if (!o->time_budget.empty()) opt.time_budget = ParseOptionValue(o->time_budget, "--time-budget", kSeconds);
-    opt.tolerance = o->tolerance.value_or(opt.tolerance);
-    opt.initial_value = o->initial_value.value_or(opt.initial_value);
-    opt.threads = o->threads.value_or(opt.threads);
-    if (!o->sampling.empty()) config.sampling = SamplingFromString(o->sampling);
-    if (!o->target_range.empty()) {
-      if (o->target_range != "clip" && o->target_range != "scale")
-        throw Error("--target-range: \"" + o->target_range + "\" is not one of clip or scale");
-      opt.target_range = o->target_range == "clip" ? TargetRange::kClip : TargetRange::kScale;
-    }
-
-    // Refuse what cannot fit before reading the views or rendering the target.
-    const size_t limit = o->max_memory.empty() ? 0 : ParseByteSize(o->max_memory, "--max-memory");
-    const size_t need =
-        RefuseSolveBeyondMemory(system, config, opt.threads, limit, "--max-memory " + FormatBytes(double(limit)));
-    Note("the solve needs about " + FormatBytes(double(need)));
-    // The results are built beside the earlier ones and switched into place when complete.
-    StagedOutput stage(
-        o->out, "solve",
-        {"patterns", "panels", "lightfield", "trace.csv", "report.txt", "report.json", "checkpoint", "index.html",
-         "pattern_previews", "panel_previews", "psnr_vs_time.svg"},
-        {{o->scene, "the scene"}, {config.target, "the target"}, {config.target_scene, "the target scene"}});
-    for (const std::string& line : stage.recovered()) Note("solve: " + line);
-    std::unique_ptr<Target> target = LoadOrRenderTarget(config, "target");
-    DisplayModel model(system, target->light_field.geometry, config.sampling);
-    InstallInterruptHandler();
-    opt.interrupted = Interrupted;
-    const std::string checkpoint_folder = (std::filesystem::path(o->out) / "checkpoint").string();
-    if (o->checkpoint_every < 0) throw Error("--checkpoint-every: must be 0 (none) or positive");
-    opt.checkpoint_every = o->checkpoint_every;
-    // Hashing the target costs a pass over it: only when a checkpoint is written or read.
-    const CheckpointInputs digest =
-        o->checkpoint_every > 0 || o->resume
-            ? CheckpointDigest(model, config.sampling, target->light_field, config.solver, opt)
-            : CheckpointInputs{};
-    if (o->checkpoint_every > 0)
-      opt.checkpoint = [&](const SolverCheckpoint& c) { WriteCheckpoint(model, c, checkpoint_folder, digest); };
-    std::optional<SolverCheckpoint> resume;
-    if (o->resume) {
-      RefuseMismatchedCheckpoint(checkpoint_folder, digest);
-      resume = ReadCheckpoint(model, checkpoint_folder);
-      opt.resume = &*resume;
-      Note("resuming " + resume->solver + " from iteration " + std::to_string(resume->iteration));
-    }
-    Patterns patterns;
-    SolverReport report;
-    {
-      Progress progress(config.solver, opt.iterations);
-      opt.progress = [&](const IterationRecord& row) {
-        char detail[64];
-        std::snprintf(detail, sizeof detail, "iterations  PSNR %.2f dB", row.psnr_db);
-        progress.Update(row.iteration, detail);
-      };
-      report = SolverRegistry::Builtins().create(config.solver)->Solve(model, target->light_field, opt, &patterns);
-      progress.Finish(ToString(report.termination));
-    }
-    std::vector<std::string> found = system.warnings;  // the compile's and the target's first
-    for (const std::string& w : TargetGeometryWarnings(system, target->light_field.geometry)) found.push_back(w);
-    report.warnings.insert(report.warnings.begin(), found.begin(), found.end());
-    SayWarnings(report.warnings);
-    std::cout << report.BriefReport() << "\n";
-    if (!report.IsSolutionUsable()) throw Error("the solve failed: " + report.message + "; nothing was written");
     try {
-      WriteSolution(model, patterns, report, stage.staging(), {.write_lightfield = o->write_lightfield});
-      RunReportPage page = CommandPage(
-          "solve", o->scene, scene.name.empty() ? std::filesystem::path(o->scene).stem().string() : scene.name,
-          scene.description, CommandLine());
-      page.system = &system;
-      page.steps = {
-          {"solve (" + config.solver + ", " + std::to_string(report.iterations) + " iterations)", report.seconds}};
-      page.warnings = report.warnings;
-      AddSolveToPage(system, patterns, report, stage.staging(), "", o->write_lightfield, &page);
-      WriteReportPage(page, stage.staging());
+      Solve(*o, ranks);
+    } catch (const RankStopped&) {
+      ranks.world.reset();  // rank 0 said why
+      std::exit(1);
     } catch (const Error& e) {
-      throw stage.Explain(e);
+      // Ranks 0 reports a failure every rank knows of; any other ends every rank, naming its own.
+      if (!ranks.world || ranks.size == 1 || ranks.agreed) throw;
+      ranks.world->Abort(e.what());
     }
-    const StagedOutput::Switched switched = stage.Commit();
-    if (!switched.removed.empty())
-      std::fprintf(stderr, "solve: removed %zu file%s an earlier solve wrote into %s\n", switched.removed.size(),
-                   switched.removed.size() == 1 ? "" : "s", o->out.c_str());
-    std::cout << "wrote " << o->out << "/{index.html,patterns,panels,trace.csv,report.txt,report.json"
-              << (o->write_lightfield ? ",lightfield" : "") << "}\n";
-    if (report.termination == Termination::kInterrupted)
-      throw InterruptedError("interrupted: " + o->out + " holds the patterns of iteration " +
-                             std::to_string(report.iterations) + ", the last complete one");
+#else
+    Solve(*o, ranks);
+#endif
   });
 }
 

@@ -1,4 +1,4 @@
-# MPI for `layerlab sweep --mpi` (docs/sweeps.md): OpenMPI from Debian
+# MPI for `layerlab sweep --mpi` (docs/sweeps.md) and `mpirun -np N layerlab solve` (docs/mpi.md): OpenMPI from Debian
 # (libopenmpi-dev, openmpi-bin). LAYERLAB_WITH_MPI: ON (fail when missing),
 # OFF, or AUTO (built when found). Sets LAYERLAB_MPI_FOUND and, for the tests,
 # LAYERLAB_MPIEXEC (mpirun). Without it `--mpi` refuses, naming the option.

@@ -19,10 +19,23 @@ struct LightFieldGeometry {
   int cols = 1, rows = 1;                                                                // pixels per view
   int views_x = 1, views_y = 1;                                                          // views per row, per column
   double eyebox_width = 6e-3, eyebox_height = 6e-3;                                      // m
+  // A block of whole view rows of a larger light field (one MPI rank's share):
+  // its views_y rows are rows first_view_row.. of all_view_rows rows over the
+  // whole eyebox_height. all_view_rows 0: the light field is whole.
+  int first_view_row = 0, all_view_rows = 0;
 
-  // Pupil position of view column c / view row r.
+  // Pupil position of view column c / view row r (the same bits in a block as in the whole).
   double view_x(int c) const { return -eyebox_width / 2 + (c + 0.5) * eyebox_width / views_x; }
-  double view_y(int r) const { return eyebox_height / 2 - (r + 0.5) * eyebox_height / views_y; }
+  double view_y(int r) const {
+    return eyebox_height / 2 - (first_view_row + r + 0.5) * eyebox_height / (all_view_rows ? all_view_rows : views_y);
+  }
+  bool is_view_block() const { return all_view_rows != 0; }
+  // View rows [first, first + count) of this (whole) light field.
+  LightFieldGeometry ViewRows(int first, int count) const {
+    LightFieldGeometry block = *this;
+    block.first_view_row = first, block.views_y = count, block.all_view_rows = views_y;
+    return block;
+  }
   // Origin-plane position of pixel column j / pixel row i.
   double pixel_x(int j) const { return window_left + (j + 0.5) * window_width / cols; }
   double pixel_y(int i) const { return window_top - (i + 0.5) * window_height / rows; }

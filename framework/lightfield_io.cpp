@@ -203,10 +203,16 @@ LightField ReadLightField(const std::string& folder, const LightFieldReadOptions
   const size_t ray_count = g.ray_count();
   if (ray_count > (size_t{1} << 31))
     throw Error(manifest_path + ": " + std::to_string(ray_count) + " rays is beyond the 2^31 this layerlab handles");
-  LightField lf(g);
+  const int first_row = options.view_rows > 0 ? options.first_view_row : 0;
+  const int rows = options.view_rows > 0 ? options.view_rows : g.views_y;
+  if (first_row < 0 || first_row + rows > g.views_y)
+    throw Error(manifest_path + ": view rows " + std::to_string(first_row) + " to " +
+                std::to_string(first_row + rows - 1) + " were asked for; the light field has " +
+                std::to_string(g.views_y));
+  LightField lf(options.view_rows > 0 ? g.ViewRows(first_row, rows) : g);
   lf.scene = manifest.scene;
 
-  for (int r = 0; r < g.views_y; ++r)
+  for (int r = first_row; r < first_row + rows; ++r)
     for (int c = 0; c < g.views_x; ++c) {
       std::string file = (fs::path(folder) / FillPattern(views_pattern, r, c)).string();
       std::error_code ec;
@@ -219,10 +225,10 @@ LightField ReadLightField(const std::string& folder, const LightFieldReadOptions
   RefuseExtraFiles(folder, views_pattern, g);
 
   bool with_depth = options.load_depth && !depth_pattern.empty();
-  if (with_depth) lf.depth.assign(ray_count, 0.0f);
+  if (with_depth) lf.depth.assign(lf.geometry.ray_count(), 0.0f);
   const size_t pixels = g.pixels_per_view();
-  ParallelFor(g.view_count(), [&](size_t v) {
-    int r = static_cast<int>(v / g.views_x), c = static_cast<int>(v % g.views_x);
+  ParallelFor(lf.geometry.view_count(), [&](size_t v) {
+    int r = first_row + static_cast<int>(v / g.views_x), c = static_cast<int>(v % g.views_x);
     std::string file = (fs::path(folder) / FillPattern(views_pattern, r, c)).string();
     Image image = ReadExr(file, {"R", "G", "B"});
     if (image.width != g.cols || image.height != g.rows)
@@ -249,6 +255,7 @@ std::vector<std::string> WriteLightField(const LightField& lf, const std::string
   const LightFieldGeometry& g = lf.geometry;
   if (lf.rgb.size() != g.ray_count() * 3 || (!lf.depth.empty() && lf.depth.size() != g.ray_count()))
     throw Error(folder + ": internal error: light-field buffers do not match the geometry");
+  if (g.is_view_block()) throw Error(folder + ": internal error: a block of view rows is not a light field to write");
   const std::string views_pattern = "views/r{row:02}_c{col:02}.exr";
   const std::string depth_pattern = "depth/r{row:02}_c{col:02}.exr";
   std::error_code ec;
@@ -297,7 +304,12 @@ ContentDigest& AddGeometry(ContentDigest& digest, const LightFieldGeometry& g) {
   const double numbers[] = {g.origin_z,      g.window_left,     g.window_top,     g.window_width,
                             g.window_height, g.eyebox_width,    g.eyebox_height,  double(g.cols),
                             double(g.rows),  double(g.views_x), double(g.views_y)};
-  return digest.add(numbers, sizeof numbers);
+  digest.add(numbers, sizeof numbers);
+  if (g.is_view_block()) {  // a whole light field keys as it always did
+    const double block[] = {double(g.first_view_row), double(g.all_view_rows)};
+    digest.add(block, sizeof block);
+  }
+  return digest;
 }
 
 std::string LightFieldDigest(const LightField& lf) {

@@ -15,10 +15,14 @@ inline constexpr const char* kLightFieldFormat = "lightfield/1";
 
 struct LightFieldReadOptions {
   bool load_depth = true;
+  // Only view rows [first_view_row, first_view_row + view_rows) (one MPI
+  // rank's block, LightFieldGeometry::ViewRows); 0 rows: every view.
+  int first_view_row = 0, view_rows = 0;
 };
 
 // Validates the manifest (format version, sizes, patterns that stay inside
-// the folder), then every view file (present, right size, finite, non-negative).
+// the folder), then every view file read (present, right size, finite,
+// non-negative); no view file beyond the manifest's.
 LightField ReadLightField(const std::string& folder, const LightFieldReadOptions& options = {});
 
 // The manifest alone, validated as above.

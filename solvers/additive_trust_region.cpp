@@ -20,6 +20,7 @@
 #include <cmath>
 #include <vector>
 
+#include "framework/mpi_ranks.h"
 #include "solvers/additive_gram.h"
 #include "solvers/solve_loop.h"
 
@@ -96,7 +97,7 @@ class AdditiveOperator {
         Axpy(1.0, local, gradient);
       }
     }
-    return total;
+    return SumAcrossRanks(gradient, nullptr, total);
   }
 
   // H p = 2 A^T A p, restricted to `free` entries; returns p^T H p.
@@ -119,6 +120,7 @@ class AdditiveOperator {
 #pragma omp critical
       Axpy(1.0, local, hp);
     }
+    SumAcrossRanks(hp, nullptr, 0.0);
     for (size_t k = 0; k < hp->size(); ++k)
       for (size_t i = 0; i < (*hp)[k].size(); ++i) (*hp)[k][i] *= free[k][i];
     return Dot(p, *hp);
@@ -148,6 +150,7 @@ class GramOperator {
     for (size_t k = 0; k < x.size(); ++k)
       for (size_t i = 0; i < x[k].rgb.size(); ++i) xv[k][i] = x[k].rgb[i];
     gram_.Apply(xv, &gx);
+    SumAcrossRanks(&gx, nullptr, 0.0);  // the Gram of every rank's views
     // Cancellation leaves round-off of about 1e-16 ||l||^2: clamp it at a perfect fit.
     const double f = std::max(0.0, Dot(xv, gx) - 2 * Dot(target_, xv) + squared_target_);
     if (gradient) {
@@ -161,6 +164,7 @@ class GramOperator {
 
   double Hessian(const Vec& p, const Vec& free, Vec* hp, const Patterns&) const {
     gram_.Apply(p, hp);
+    SumAcrossRanks(hp, nullptr, 0.0);
     for (size_t k = 0; k < hp->size(); ++k)
       for (size_t i = 0; i < (*hp)[k].size(); ++i) (*hp)[k][i] *= 2.0 * free[k][i];
     return Dot(p, *hp);

@@ -6,6 +6,7 @@
 #include <optional>
 #include <vector>
 
+#include "framework/mpi_ranks.h"
 #include "solvers/hybrid_chase.h"
 #include "solvers/multiplicative_update.h"
 #include "solvers/solve_loop.h"
@@ -67,7 +68,7 @@ class HybridSolver final : public Solver {
         ComputeLayerUpdate(model, 0, LayersOf(model, 0)[0], chase.Following(0, &per_view), *t, workspace, &next_first);
         double total_error = 0;
         for (double e : per_view) total_error += e;
-        objective = total_error;
+        objective = SumAcrossRanks(total_error);
         next_first_ready = true;
       }
     } while (loop.EndIteration(objective));

@@ -2,6 +2,7 @@
 
 #include <omp.h>
 
+#include "framework/mpi_ranks.h"
 #include "solvers/joint_column_pass.h"
 #include "systems/one_tap_view.h"
 #include "systems/thread_merge.h"
@@ -33,7 +34,14 @@ double JointPass::Run(const LightField& l, const Patterns& t, const std::vector<
   std::vector<std::vector<double>>&num_ = workspace_->joint_num, &den_ = workspace_->joint_den;
   for (size_t k = 0; k < layers; ++k)
     num_[k].resize(t[k].rgb.size()), den_[k].resize(t[k].rgb.size());  // written whole
-  if (column_pass_) return JointColumnPass(model_, l, t, &num_, &den_, workspace_, summed);
+  if (column_pass_) {
+    const double objective = JointColumnPass(model_, l, t, &num_, &den_, workspace_, summed);
+    if (!summed) return SumAcrossRanks(&num_, &den_, objective);
+    std::vector<std::span<double>> sums;  // of the layers summed: every rank's rays
+    for (size_t k = 0; k < layers; ++k)
+      if ((*summed)[k]) sums.emplace_back(num_[k]), sums.emplace_back(den_[k]);
+    return SumAcrossRanks(std::move(sums), objective);
+  }
   // Views split evenly and statically, each view's error kept apart and
   // summed in view order, thread sums merged in thread order: the same
   // bits for a given thread count.
@@ -66,7 +74,7 @@ double JointPass::Run(const LightField& l, const Patterns& t, const std::vector<
   }
   double objective = 0;
   for (double e : view_error) objective += e;
-  return objective;
+  return SumAcrossRanks(&num_, &den_, objective);
 }
 
 // Nearest sampling, no rotation: row by row, nothing of view size stored.

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "framework/error.h"
+#include "framework/mpi_ranks.h"
 #include "framework/polarization.h"
 #include "framework/random.h"
 #include "systems/view_synthesizer.h"
@@ -33,12 +34,16 @@ std::optional<LightField> PrepareTarget(const DisplayModel& model, const LightFi
       worst = std::max(worst, double(v) / m);
     }
   }
+  // Over every rank's views: one scale for the whole target.
+  beyond = static_cast<size_t>(SumAcrossRanks(double(beyond)));
+  worst = MaxAcrossRanks(worst);
+  const double values = SumAcrossRanks(double(target.rgb.size()));
   report->out_of_range = beyond;
   report->target_scale = 1.0;
   if (beyond == 0) return std::nullopt;
   LightField out = target;
   char share[64];
-  std::snprintf(share, sizeof share, "%.4f%%", 100.0 * beyond / out.rgb.size());
+  std::snprintf(share, sizeof share, "%.4f%%", 100.0 * beyond / values);
   if (range == TargetRange::kClip) {
     for (size_t k = 0; k < out.rgb.size(); ++k) out.rgb[k] = std::min(out.rgb[k], max[k % 3]);
     report->warnings.push_back(std::to_string(beyond) + " target values (" + share +
@@ -102,7 +107,7 @@ double Objective(const DisplayModel& model, const LightField& target, const Patt
   }
   double total = 0;
   for (double e : per_view) total += e;
-  return total;
+  return SumAcrossRanks(total);
 }
 
 double PsnrDb(double objective, size_t samples) {
@@ -142,7 +147,8 @@ void RequireSameRays(const DisplayModel& model, const LightField& target) {
   bool same = a.cols == b.cols && a.rows == b.rows && a.views_x == b.views_x && a.views_y == b.views_y &&
               a.origin_z == b.origin_z && a.window_left == b.window_left && a.window_top == b.window_top &&
               a.window_width == b.window_width && a.window_height == b.window_height &&
-              a.eyebox_width == b.eyebox_width && a.eyebox_height == b.eyebox_height;
+              a.eyebox_width == b.eyebox_width && a.eyebox_height == b.eyebox_height &&
+              a.first_view_row == b.first_view_row && a.all_view_rows == b.all_view_rows;
   if (!same || target.rgb.size() != b.ray_count() * 3)
     throw Error("the display model is bound to other rays than the target's light field");
 }

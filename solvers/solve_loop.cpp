@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "framework/error.h"
+#include "framework/mpi_ranks.h"
 #include "solvers/solver_checkpoint.h"
 
 namespace layerlab {
@@ -49,7 +50,7 @@ bool SolveLoop::Start(const std::string& refusal) {
     Fail(e.what());
     return false;
   }
-  report_.rays = model_.geometry().ray_count();
+  report_.rays = static_cast<size_t>(SumAcrossRanks(double(model_.geometry().ray_count())));  // every rank's
   if (const SolverCheckpoint* c = options_.resume) {
     if (c->solver != report_.solver) {
       Fail("the checkpoint is of solver \"" + c->solver + "\", not \"" + report_.solver + "\"");
@@ -121,11 +122,11 @@ bool SolveLoop::EndIteration(std::optional<double> objective) {
     report_.termination = Termination::kIterationLimit;
     report_.message = "";
     stopped_ = true;
-  } else if (options_.interrupted && options_.interrupted()) {
+  } else if (AnyRank(options_.interrupted && options_.interrupted())) {  // all ranks stop together
     report_.termination = Termination::kInterrupted;
     report_.message = "interrupted after iteration " + std::to_string(iteration_);
     stopped_ = true;
-  } else if (options_.time_budget > 0 && Seconds() >= options_.time_budget) {
+  } else if (AnyRank(options_.time_budget > 0 && Seconds() >= options_.time_budget)) {
     report_.termination = Termination::kTimeBudget;
     report_.message = "stopped after " + std::to_string(Seconds()) + " s";
     stopped_ = true;
