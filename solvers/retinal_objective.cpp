@@ -56,34 +56,32 @@ RetinalObjective::RetinalObjective(const DisplayModel& model, const LightField& 
   for (double w : weights_)
     if (!(w >= 0) || !std::isfinite(w)) throw Error("a state weight of the retinal objective must be >= 0");
   const RetinaGrid grid = GridOf(model.geometry(), options.resolution);
-  const std::vector<PupilPoint> pupil = PupilSamples(eye);
-  for (double d : states_)
-    operators_.emplace_back(model.geometry(), model.projection(0).sampling(), grid, pupil,
-                            ChannelAccommodation(eye, d));
-  target_images_.resize(states_.size());
-  for (size_t a = 0; a < states_.size(); ++a) operators_[a].Apply(target, &target_images_[a]);
+  std::vector<std::array<double, 3>> foci;
+  for (double d : states_) foci.push_back(ChannelAccommodation(eye, d));
+  operator_ = std::make_unique<RetinalOperator>(model.geometry(), model.projection(0).sampling(), grid,
+                                                PupilSamples(eye), foci);
+  operator_->Apply(target, &target_images_);
 
   // Bound(): the largest entry of M 1.
   LightField ones(model.geometry());
   std::fill(ones.rgb.begin(), ones.rgb.end(), 1.0f);
+  std::vector<std::vector<float>> images;
+  operator_->Apply(ones, &images);
+  for (size_t a = 0; a < states_.size(); ++a)
+    for (float& v : images[a]) v = static_cast<float>(v * weights_[a]);
   LightField m1(model.geometry());
-  std::vector<float> image;
-  for (size_t a = 0; a < states_.size(); ++a) {
-    operators_[a].Apply(ones, &image);
-    for (float& v : image) v = static_cast<float>(v * weights_[a]);
-    operators_[a].ApplyTranspose(image, &m1, a > 0);
-  }
+  operator_->ApplyTranspose(images, &m1);
   const float largest = *std::max_element(m1.rgb.begin(), m1.rgb.end());
   bound_ = largest > 0 ? largest : 1.0;
 }
 
 double RetinalObjective::Evaluate(const LightField& x, std::vector<double>* per_state) const {
+  std::vector<std::vector<float>> images;
+  operator_->Apply(x, &images);
   std::vector<double> errors(states_.size());
-  std::vector<float> image;
   double f = 0;
   for (size_t a = 0; a < states_.size(); ++a) {
-    operators_[a].Apply(x, &image);
-    errors[a] = SquaredDifference(image, target_images_[a]);
+    errors[a] = SquaredDifference(images[a], target_images_[a]);
     f += weights_[a] * errors[a];
   }
   if (per_state) *per_state = std::move(errors);
@@ -92,19 +90,21 @@ double RetinalObjective::Evaluate(const LightField& x, std::vector<double>* per_
 
 double RetinalObjective::EvaluateWithAdjoint(const LightField& x, std::vector<double>* per_state,
                                              LightField* m_r) const {
+  std::vector<std::vector<float>> images;
+  operator_->Apply(x, &images);
   std::vector<double> errors(states_.size());
-  std::vector<float> image;
   double f = 0;
-  if (m_r->geometry.ray_count() != x.geometry.ray_count()) *m_r = LightField(x.geometry);
   for (size_t a = 0; a < states_.size(); ++a) {
-    operators_[a].Apply(x, &image);
+    std::vector<float>& image = images[a];
     errors[a] = SquaredDifference(image, target_images_[a]);
     f += weights_[a] * errors[a];
     const float w = static_cast<float>(weights_[a]);
+    const std::vector<float>& target = target_images_[a];
 #pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < image.size(); ++i) image[i] = w * (image[i] - target_images_[a][i]);
-    operators_[a].ApplyTranspose(image, m_r, a > 0);
+    for (size_t i = 0; i < image.size(); ++i) image[i] = w * (image[i] - target[i]);
   }
+  if (m_r->geometry.ray_count() != x.geometry.ray_count()) *m_r = LightField(x.geometry);
+  operator_->ApplyTranspose(images, m_r);
   if (per_state) *per_state = std::move(errors);
   return f;
 }
@@ -116,9 +116,9 @@ double RetinalObjective::FocalStackPsnr(const std::vector<double>& per_state) co
 }
 
 std::vector<float> RetinalObjective::RetinalImage(size_t a, const LightField& x) const {
-  std::vector<float> image;
-  operators_.at(a).Apply(x, &image);
-  return image;
+  std::vector<std::vector<float>> images;
+  operator_->Apply(x, &images);
+  return std::move(images.at(a));
 }
 
 }  // namespace layerlab

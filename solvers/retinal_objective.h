@@ -40,8 +40,8 @@ class RetinalObjective {
 
   const std::vector<double>& states() const { return states_; }
   const std::vector<double>& weights() const { return weights_; }
-  const RetinaGrid& retina() const { return operators_.front().retina(); }
-  size_t samples_per_state() const { return operators_.front().retinal_values(); }
+  const RetinaGrid& retina() const { return operator_->retina(); }
+  size_t samples_per_state() const { return operator_->retinal_values(); }
   double Bound() const { return bound_; }
 
   // f(x); *per_state (if given) gets || A_a (x - l) ||^2 of each state, unweighted.
@@ -56,7 +56,7 @@ class RetinalObjective {
 
  private:
   std::vector<double> states_, weights_;
-  std::vector<RetinalOperator> operators_;
+  std::unique_ptr<RetinalOperator> operator_;      // every state's A_a
   std::vector<std::vector<float>> target_images_;  // A_a l
   double bound_ = 1;
 };

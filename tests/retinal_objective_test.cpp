@@ -90,6 +90,20 @@ TEST(RetinalOperator, IsTheRetinaRayByRayThroughThePupil) {
     const size_t lit = size_t(std::count_if(image.begin(), image.end(), [](float v) { return v > 0; }));
     EXPECT_GT(lit, image.size() / 2) << c.name;
   }
+  // Several states in one operator (the pupil's view blends shared): each state as alone.
+  for (Sampling sampling : {Sampling::kNearest, Sampling::kBilinear}) {
+    std::vector<std::array<double, 3>> states;
+    for (const Case& c : kCases) states.push_back(c.focus);
+    const RetinalOperator all(g, sampling, grid, pupil, states);
+    std::vector<std::vector<float>> images;
+    all.Apply(lf, &images);
+    ASSERT_EQ(images.size(), states.size());
+    for (size_t a = 0; a < states.size(); ++a) {
+      std::vector<float> alone;
+      RetinalOperator(g, sampling, grid, pupil, states[a]).Apply(lf, &alone);
+      EXPECT_EQ(images[a], alone) << "state " << a;
+    }
+  }
 }
 
 template <class A, class B>
@@ -120,6 +134,20 @@ TEST(RetinalOperator, TransposeIsTheAdjoint) {
     a.ApplyTranspose(y, &aty, true);
     EXPECT_NEAR(Dot(x.rgb, aty.rgb), 2 * right, 1e-6 * std::abs(left)) << c.name;
   }
+  // Several states: sum_a <A_a x, y_a> = <x, sum_a A_a^T y_a>.
+  std::vector<std::array<double, 3>> states;
+  for (const Case& c : kCases) states.push_back(c.focus);
+  const RetinalOperator all(g, Sampling::kBilinear, grid, pupil, states);
+  const LightField x = RandomLightField(g, 23);
+  std::vector<std::vector<float>> y(states.size(), std::vector<float>(all.retinal_values())), ax;
+  for (auto& image : y)
+    for (float& v : image) v = u(rng);
+  all.Apply(x, &ax);
+  double left = 0;
+  for (size_t a = 0; a < states.size(); ++a) left += Dot(ax[a], y[a]);
+  LightField aty(g);
+  all.ApplyTranspose(y, &aty);
+  EXPECT_NEAR(left, Dot(x.rgb, aty.rgb), 1e-6 * left);
 }
 
 // The displays of the solver tests, each layer kind and flip: the paper's
