@@ -41,7 +41,6 @@ class RetinalPass {
   const RetinalMeasures& last() const { return last_; }
 
  private:
-
   const DisplayModel& model_;
   const LightField& target_;
   const RetinalObjective& objective_;

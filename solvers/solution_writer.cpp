@@ -54,9 +54,8 @@ nlohmann::json ReportToJson(const SolverReport& r) {
                       {"brief", r.BriefReport()},
                       {"layerlab", VersionLine()}};
   j["objective"] = r.objective;
-  const bool focal_stack = std::any_of(r.trace.begin(), r.trace.end(), [](const IterationRecord& t) {
-    return !std::isnan(t.focal_stack_psnr_db);
-  });
+  const bool focal_stack = std::any_of(r.trace.begin(), r.trace.end(),
+                                       [](const IterationRecord& t) { return !std::isnan(t.focal_stack_psnr_db); });
   for (const IterationRecord& t : r.trace) {
     j["trace"].push_back({{"iteration", t.iteration},
                           {"seconds", t.seconds},
@@ -69,11 +68,10 @@ nlohmann::json ReportToJson(const SolverReport& r) {
 
 std::string TraceCsv(const SolverReport& report) {
   // A trace that measured the focal stack (the retinal objective's, or measure_focal_stack) also has its PSNR.
-  const bool retinal = std::any_of(report.trace.begin(), report.trace.end(), [](const IterationRecord& t) {
-    return !std::isnan(t.focal_stack_psnr_db);
-  });
-  std::string csv = retinal ? "iteration,seconds,objective,psnr_db,focal_stack_psnr_db\n"
-                            : "iteration,seconds,objective,psnr_db\n";
+  const bool retinal = std::any_of(report.trace.begin(), report.trace.end(),
+                                   [](const IterationRecord& t) { return !std::isnan(t.focal_stack_psnr_db); });
+  std::string csv =
+      retinal ? "iteration,seconds,objective,psnr_db,focal_stack_psnr_db\n" : "iteration,seconds,objective,psnr_db\n";
   char line[160];
   auto db = [&](double value, const char* end) {
     if (std::isinf(value)) {

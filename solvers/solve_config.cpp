@@ -92,8 +92,9 @@ SolveConfig ReadSolveConfig(const Scene& scene, const DisplaySystem& system, con
       p.choice("sampling", {"nearest", "bilinear"}, "nearest") == "nearest" ? Sampling::kNearest : Sampling::kBilinear;
   o.target_range =
       p.choice("target_range", {"clip", "scale"}, "clip") == "clip" ? TargetRange::kClip : TargetRange::kScale;
-  o.objective = p.choice("objective", {"lightfield", "retinal"}, "lightfield") == "retinal" ? ObjectiveKind::kRetinal
-                                                                                           : ObjectiveKind::kLightField;
+  o.objective = p.choice("objective", {"lightfield", "retinal"}, "lightfield") == "retinal"
+                    ? ObjectiveKind::kRetinal
+                    : ObjectiveKind::kLightField;
   if (const std::string why = ObjectiveRefusal(config.solver, o.objective, registry); !why.empty())
     p.fail("objective", why);
   p.check_all_read();

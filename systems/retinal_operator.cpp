@@ -9,8 +9,7 @@
 namespace layerlab {
 
 RetinalOperator::RetinalOperator(const LightFieldGeometry& g, Sampling pixels, const RetinaGrid& retina,
-                                 const std::vector<PupilPoint>& pupil,
-                                 const std::vector<std::array<double, 3>>& states)
+                                 const std::vector<PupilPoint>& pupil, const std::vector<std::array<double, 3>>& states)
     : state_count_(states.size()), nearest_(pixels == Sampling::kNearest), geometry_(g), retina_(retina) {
   using namespace lightfield_taps;
   if (pupil.empty()) throw Error("a retinal operator needs at least one pupil point");
@@ -131,8 +130,7 @@ void RetinalOperator::Apply(const LightField& x, std::vector<std::vector<float>>
   }
 }
 
-void RetinalOperator::ApplyTranspose(const std::vector<std::vector<float>>& y, LightField* out,
-                                     bool accumulate) const {
+void RetinalOperator::ApplyTranspose(const std::vector<std::vector<float>>& y, LightField* out, bool accumulate) const {
   const LightFieldGeometry& g = geometry_;
   RequireGeometry(out->geometry, g);
   if (y.size() != state_count_) throw Error("the retinal operator has another number of states");
