@@ -39,12 +39,12 @@ namespace layerlab::app {
 namespace {
 
 struct Options {
-  std::string scene, solver, out, sampling, target_range;
+  std::string scene, solver, out, sampling, target_range, objective;
   TargetOption target;
   std::optional<int> iterations, sub_iterations, warm_start_iterations, threads;
   std::optional<double> tolerance, initial_value;
   std::string time_budget;
-  bool write_lightfield = false, resume = false;
+  bool write_lightfield = false, resume = false, measure_focal_stack = false;
   int checkpoint_every = 0;
   std::string max_memory;
 };
@@ -134,6 +134,18 @@ void Solve(const Options& o, Ranks& ranks) {
       throw Error("--target-range: \"" + o.target_range + "\" is not one of clip or scale");
     opt.target_range = o.target_range == "clip" ? TargetRange::kClip : TargetRange::kScale;
   }
+  if (!o.objective.empty()) {
+    if (o.objective != "lightfield" && o.objective != "retinal")
+      throw Error("--objective: \"" + o.objective + "\" is not one of lightfield or retinal");
+    opt.objective = o.objective == "retinal" ? ObjectiveKind::kRetinal : ObjectiveKind::kLightField;
+  }
+  if (const std::string why = ObjectiveRefusal(config.solver, opt.objective); !why.empty())
+    throw Error("--objective " + ToString(opt.objective) + ": " + why);
+  opt.measure_focal_stack = o.measure_focal_stack;
+  // The retinal operator blends views across the whole eyebox, so it needs every view on one rank.
+  if (ranks.size > 1 && (opt.objective == ObjectiveKind::kRetinal || opt.measure_focal_stack))
+    throw Error("the retinal objective and --measure-focal-stack: not with MPI ranks (" + std::to_string(ranks.size) +
+                "); run the solve in one process");
 
   if (ranks.size > 1 && (o.checkpoint_every > 0 || o.resume))
     throw Error("--checkpoint-every and --resume: not with MPI ranks (" + std::to_string(ranks.size) +
@@ -283,6 +295,10 @@ void AddSolveCommand(CLI::App& app) {
   cmd->add_option("--threads", o->threads, "Worker threads (0: all cores)");
   cmd->add_option("--sampling", o->sampling, "Layer sampling: nearest or bilinear");
   cmd->add_option("--target-range", o->target_range, "Target values beyond the display: clip or scale");
+  cmd->add_option("--objective", o->objective,
+                  "What is minimized: lightfield, or retinal (the focal stack; quasi-newton, joint)");
+  cmd->add_flag("--measure-focal-stack", o->measure_focal_stack,
+                "Also record the focal stack's PSNR in the trace, off the clock (the retinal objective records it)");
   cmd->add_flag("--write-lightfield", o->write_lightfield, "Also write the synthesized light field");
   cmd->add_option("--checkpoint-every", o->checkpoint_every,
                   "Write OUT/checkpoint every N iterations (and when stopped early)");

@@ -19,11 +19,18 @@
 // `kMaxRelaxation` times the plain one; an iterate that raised it is
 // rejected: the previous iterate takes a plain step instead, from the ratios
 // kept from its own pass, and alpha starts over.
+//
+// With the retinal objective (SolverOptions::objective) the pass is
+// RetinalPass: the same step on the effective target L - M (L - l) / Bound(),
+// whose sums are those of f / Bound() (retinal_pass.h). A negative numerator
+// (the retinal residual outweighing the light) lands the value on the floor.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "solvers/joint_pass.h"
+#include "solvers/retinal_pass.h"
 #include "solvers/solve_loop.h"
 
 namespace layerlab {
@@ -69,10 +76,15 @@ class JointSolver final : public Solver {
     const LightField& l = loop.target();
     const float floor = static_cast<float>(options.floor);
     JointPass pass(model, &loop.workspace());
+    // The retinal objective's pass (retinal_pass.h) gives the same sums for f / Bound().
+    std::optional<RetinalPass> retinal;
+    if (loop.retinal()) retinal.emplace(model, l, *loop.retinal());
+    auto run = [&](const Patterns& p) { return retinal ? retinal->Run(p) : pass.Run(l, p); };
+    const JointPass& sums = retinal ? retinal->sums() : pass;
 
     std::vector<std::vector<double>> ratio, accepted_ratio;
-    double accepted_objective = pass.Run(l, *t);
-    Ratios(pass, options.epsilon, &accepted_ratio);
+    double accepted_objective = run(*t);
+    Ratios(sums, options.epsilon, &accepted_ratio);
     Patterns accepted = *t;
     size_t longest = 1;
     for (size_t b = 0; b < model.branch_count(); ++b) longest = std::max(longest, model.branch_layers(b).size());
@@ -85,8 +97,8 @@ class JointSolver final : public Solver {
     }
     Step(accepted_ratio, alpha, floor, t);
     while (true) {
-      const double objective = pass.Run(l, *t);
-      Ratios(pass, options.epsilon, &ratio);
+      const double objective = run(*t);
+      Ratios(sums, options.epsilon, &ratio);
       if (!(objective <= accepted_objective)) {
         *t = accepted;
         if (plain) {  // even a plain step does not descend: round-off decides from here
@@ -100,6 +112,7 @@ class JointSolver final : public Solver {
         continue;
       }
       loop.SetState("alpha", alpha);
+      if (retinal) loop.SetMeasures(retinal->last());
       if (!loop.EndIteration(objective)) break;
       accepted = *t;
       accepted_objective = objective;
@@ -118,9 +131,11 @@ class JointSolver final : public Solver {
 SolverType JointSolverType() {
   SolverOptions defaults;
   defaults.iterations = 200;
-  return SolverType(
+  SolverType type(
       "joint", "every layer of every branch at once, one pass per iteration, over-relaxed multiplicative steps",
       [] { return std::make_unique<JointSolver>(); }, defaults);
+  type.retinal_objective = true;
+  return type;
 }
 
 }  // namespace layerlab

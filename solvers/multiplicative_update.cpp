@@ -77,7 +77,7 @@ bool ComputeLayerUpdate(const DisplayModel& model, size_t branch, int layer, con
       *error = 0;
       for (double e : view_errors) *error += e;  // in view order: the same for any thread count
     }
-    SumAcrossRanks({update->num, update->den, {error, error ? 1u : 0u}});
+    SumAcrossRanks({*update->num, *update->den, {error, error ? 1u : 0u}});
     return error != nullptr;
   }
   std::vector<const float*> nums, dens;  // [thread]
@@ -96,7 +96,7 @@ bool ComputeLayerUpdate(const DisplayModel& model, size_t branch, int layer, con
     MergeInThreadOrder(nums, m / 3, 3, me, threads, numerator);
     MergeInThreadOrder(dens, m / 3, 3, me, threads, denominator);
   }
-  SumAcrossRanks({update->num, update->den});
+  SumAcrossRanks({*update->num, *update->den});
   return false;
 }
 

@@ -20,13 +20,20 @@
 // second (each layer solved exactly against the others), so the first
 // `warm_start_iterations` (default 2) are its; the quasi-Newton steps then
 // go on from its patterns as from a checkpoint, with one trace and clock.
+//
+// With the retinal objective (SolverOptions::objective) the pass is
+// RetinalPass, whose sums are those of f / Bound() (retinal_pass.h); the
+// warm start is still the hybrid's light-field steps, its trace rows
+// measured in the retinal objective.
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <optional>
 #include <vector>
 
 #include "framework/huge_page_allocator.h"
 #include "solvers/joint_pass.h"
+#include "solvers/retinal_pass.h"
 #include "solvers/solve_loop.h"
 #include "solvers/solver_checkpoint.h"
 
@@ -211,10 +218,15 @@ class QuasiNewtonSolver final : public Solver {
     for (size_t b = 0; b < model.branch_count(); ++b) longest = std::max(longest, model.branch_layers(b).size());
     const double plain = 1.0 / static_cast<double>(longest);
     JointPass pass(model, &loop.workspace());
+    // The retinal objective's pass (retinal_pass.h) gives the same sums for f / Bound().
+    std::optional<RetinalPass> retinal;
+    if (loop.retinal()) retinal.emplace(model, l, *loop.retinal());
+    auto run = [&](const Patterns& p) { return retinal ? retinal->Run(p) : pass.Run(l, p); };
+    const JointPass& sums = retinal ? retinal->sums() : pass;
 
     layout.Gather(*t, &x);
-    double f = pass.Run(l, *t);
-    layout.GradientAndScale(pass, x, plain, options.epsilon, &g, &h);
+    double f = run(*t);
+    layout.GradientAndScale(sums, x, plain, options.epsilon, &g, &h);
     // Halves the projected step along d until it lowers the objective
     // enough; x_new, change and *f_new are then the step's. A step whose
     // slope clamping (or rounding) leaves non-negative is not evaluated.
@@ -224,7 +236,7 @@ class QuasiNewtonSolver final : public Solver {
         const double slope = Dot(g, change);
         if (!(slope < 0)) continue;
         layout.Scatter(x_new, t);
-        *f_new = pass.Run(l, *t);
+        *f_new = run(*t);
         if (*f_new <= f + kArmijo * slope) return true;  // NaN fails: halved
       }
       return false;
@@ -257,7 +269,7 @@ class QuasiNewtonSolver final : public Solver {
         loop.Converge("no projected step lowers the objective any more");
         break;
       }
-      layout.GradientAndScale(pass, x_new, plain, options.epsilon, &g_new, &h_new);
+      layout.GradientAndScale(sums, x_new, plain, options.epsilon, &g_new, &h_new);
 
       Pair p = std::move(spare.empty() ? pairs.front() : spare.back());
       if (spare.empty())
@@ -276,6 +288,7 @@ class QuasiNewtonSolver final : public Solver {
       }
       std::swap(x, x_new), std::swap(g, g_new), std::swap(h, h_new);
       f = f_new;
+      if (retinal) loop.SetMeasures(retinal->last());  // of x_new, the last patterns run
       if (!loop.EndIteration(f)) break;
     }
     return loop.Finish();
@@ -294,6 +307,7 @@ SolverType QuasiNewtonSolverType() {
       [] { return std::make_unique<QuasiNewtonSolver>(); }, defaults);
   // The warm start's chase; 9 work vectors and kMemory pairs of 2, in double.
   type.memory.light_fields = 1;
+  type.retinal_objective = true;
   type.memory.layer_doubles = 9 + kMemory * 2;
   type.options = {{"warm_start_iterations", "iterations of hybrid before the quasi-Newton steps"}, SubIterationsKey()};
   return type;

@@ -1,5 +1,6 @@
 #include "solvers/solution_writer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -52,26 +53,39 @@ nlohmann::json ReportToJson(const SolverReport& r) {
                       {"warnings", r.warnings},
                       {"brief", r.BriefReport()},
                       {"layerlab", VersionLine()}};
-  for (const IterationRecord& t : r.trace)
+  j["objective"] = r.objective;
+  const bool focal_stack = std::any_of(r.trace.begin(), r.trace.end(),
+                                       [](const IterationRecord& t) { return !std::isnan(t.focal_stack_psnr_db); });
+  for (const IterationRecord& t : r.trace) {
     j["trace"].push_back({{"iteration", t.iteration},
                           {"seconds", t.seconds},
                           {"objective", t.objective},
                           {"psnr_db", JsonNumber(t.psnr_db)}});
+    if (focal_stack) j["trace"].back()["focal_stack_psnr_db"] = JsonNumber(t.focal_stack_psnr_db);
+  }
   return j;
 }
 
 std::string TraceCsv(const SolverReport& report) {
-  std::string csv = "iteration,seconds,objective,psnr_db\n";
+  // A trace that measured the focal stack (the retinal objective's, or measure_focal_stack) also has its PSNR.
+  const bool retinal = std::any_of(report.trace.begin(), report.trace.end(),
+                                   [](const IterationRecord& t) { return !std::isnan(t.focal_stack_psnr_db); });
+  std::string csv =
+      retinal ? "iteration,seconds,objective,psnr_db,focal_stack_psnr_db\n" : "iteration,seconds,objective,psnr_db\n";
   char line[160];
+  auto db = [&](double value, const char* end) {
+    if (std::isinf(value)) {
+      csv += std::string("inf") + end;
+    } else {
+      std::snprintf(line, sizeof line, "%.6f%s", value, end);
+      csv += line;
+    }
+  };
   for (const IterationRecord& r : report.trace) {
     std::snprintf(line, sizeof line, "%d,%.6f,%.9g,", r.iteration, r.seconds, r.objective);
     csv += line;
-    if (std::isinf(r.psnr_db)) {
-      csv += "inf\n";
-    } else {
-      std::snprintf(line, sizeof line, "%.6f\n", r.psnr_db);
-      csv += line;
-    }
+    db(r.psnr_db, retinal ? "," : "\n");
+    if (retinal) db(r.focal_stack_psnr_db, "\n");
   }
   return csv;
 }

@@ -4,7 +4,7 @@
 //   panels/<panel>.png       panel-ready 8-bit images: gamma- and
 //                            black-level-encoded for the panel, placed at the
 //                            active region of the panel's full pixel grid
-//   trace.csv                iteration, seconds, objective, psnr_db
+//   trace.csv                iteration, seconds, objective, psnr_db (and focal_stack_psnr_db with the retinal objective)
 //   report.txt, report.json  the solver's report
 //   lightfield/              the synthesized light field (on request)
 #pragma once

@@ -17,6 +17,7 @@
 // | threads               | integer            | 0 (every core)            | worker threads                           |
 // | sampling              | nearest, bilinear  | nearest                   | how the light field samples the layers   |
 // | target_range          | clip, scale        | clip                      | target values beyond what the display shows: clipped, or the target scaled |
+// | objective             | lightfield, retinal | lightfield               | what is minimized: the light-field error, or the retinal error over the eye's accommodation_range in 0.2 D steps (quasi-newton, joint; docs/retinal-objective.md) |
 #include "solvers/solve_config.h"
 
 #include <algorithm>
@@ -33,6 +34,15 @@ std::string ResolveAgainstScene(const Scene& scene, const std::string& path) {
 }
 
 std::string DefaultSolverFor(const DisplaySystem& system) { return SolverRegistry::Builtins().DefaultFor(system); }
+
+std::string ObjectiveRefusal(const std::string& solver, ObjectiveKind objective, const SolverRegistry& registry) {
+  if (objective == ObjectiveKind::kLightField || registry.get(solver).retinal_objective) return "";
+  std::vector<std::string> able;
+  for (const std::string& name : registry.names())
+    if (registry.get(name).retinal_objective) able.push_back(name);
+  return "the solver \"" + solver + "\" minimizes the light-field objective only; the retinal objective needs " +
+         JoinWords(able, " or ");
+}
 
 SolveConfig ReadSolveConfig(const Scene& scene, const DisplaySystem& system, const SolverRegistry& registry) {
   SolveConfig config;
@@ -82,6 +92,11 @@ SolveConfig ReadSolveConfig(const Scene& scene, const DisplaySystem& system, con
       p.choice("sampling", {"nearest", "bilinear"}, "nearest") == "nearest" ? Sampling::kNearest : Sampling::kBilinear;
   o.target_range =
       p.choice("target_range", {"clip", "scale"}, "clip") == "clip" ? TargetRange::kClip : TargetRange::kScale;
+  o.objective = p.choice("objective", {"lightfield", "retinal"}, "lightfield") == "retinal"
+                    ? ObjectiveKind::kRetinal
+                    : ObjectiveKind::kLightField;
+  if (const std::string why = ObjectiveRefusal(config.solver, o.objective, registry); !why.empty())
+    p.fail("objective", why);
   p.check_all_read();
   return config;
 }

@@ -8,7 +8,7 @@
 //   "solve": { "solver": "hybrid", "target": "../data/dice", "iterations": 30,
 //              "sub_iterations": 3, "warm_start_iterations": 2, "time_budget": "60 s"?, "tolerance": 0,
 //              "initial_value": 0.5, "seed": 1, "threads": 0,
-//              "sampling": "nearest", "target_range": "clip" }
+//              "sampling": "nearest", "target_range": "clip", "objective": "lightfield" }
 #pragma once
 
 #include <string>
@@ -32,6 +32,11 @@ struct SolveConfig {
 // the built-ins: one branch -> multiplicative, one layer per branch ->
 // additive-trust-region, else hybrid).
 std::string DefaultSolverFor(const DisplaySystem& system);
+
+// Why `solver` cannot minimize `objective` ("the solver \"hybrid\" minimizes
+// the light-field objective only; ..."), or "" when it can.
+std::string ObjectiveRefusal(const std::string& solver, ObjectiveKind objective,
+                             const SolverRegistry& registry = SolverRegistry::Builtins());
 
 // A path written in the scene file, relative to the scene file's folder.
 std::string ResolveAgainstScene(const Scene& scene, const std::string& path);

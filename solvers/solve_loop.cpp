@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <cmath>
+#include <limits>
 
 #include "framework/error.h"
 #include "framework/mpi_ranks.h"
@@ -14,6 +15,7 @@ SolveLoop::SolveLoop(std::string solver, const DisplayModel& model, const LightF
                      const SolverOptions& options, Patterns* patterns)
     : model_(model), source_(target), options_(options), patterns_(patterns) {
   report_.solver = std::move(solver);
+  report_.objective = ToString(options.objective);
   start_ = std::chrono::steady_clock::now();
 }
 
@@ -46,6 +48,8 @@ bool SolveLoop::Start(const std::string& refusal) {
     const SolverType* type = SolverRegistry::Builtins().find(report_.solver);
     workspace_ = std::make_unique<SolveWorkspace>(model_, omp_get_max_threads(),
                                                   type ? type->memory.passes : unsigned(kAllPasses));
+    if (options_.objective == ObjectiveKind::kRetinal || options_.measure_focal_stack)
+      retinal_ = std::make_unique<RetinalObjective>(model_, target(), options_.retinal);
   } catch (const Error& e) {
     Fail(e.what());
     return false;
@@ -78,9 +82,22 @@ bool SolveLoop::Start(const std::string& refusal) {
   const auto now = std::chrono::steady_clock::now();
   report_.setup_seconds = std::chrono::duration<double>(now - start_).count();
   start_ = now;
+  if (retinal()) {
+    const RetinalMeasures m = MeasureRetinal();
+    report_.initial_objective = m.objective;
+    return Record(m.objective, m.light_field_objective, m.focal_stack_psnr_db);
+  }
   double objective = Objective(model_, target(), *patterns_, workspace_.get());
   report_.initial_objective = objective;
-  return Record(objective);
+  return Record(objective, objective,
+                retinal_ ? MeasureRetinal().focal_stack_psnr_db : std::numeric_limits<double>::quiet_NaN());
+}
+
+RetinalMeasures SolveLoop::MeasureRetinal() {
+  const auto begin = std::chrono::steady_clock::now();
+  const RetinalMeasures m = MeasureRetinalObjective(model_, target(), *retinal_, *patterns_);
+  start_ += std::chrono::steady_clock::now() - begin;
+  return m;
 }
 
 double SolveLoop::ResumedState(const std::string& key, double fresh) const {
@@ -94,8 +111,9 @@ void SolveLoop::WriteCheckpoint() {
   options_.checkpoint(c);
 }
 
-bool SolveLoop::Record(double objective) {
-  IterationRecord r{iteration_, Seconds(), objective, PsnrDb(objective, report_.rays * 3)};
+bool SolveLoop::Record(double objective, double light_field_objective, double focal_stack_psnr_db) {
+  IterationRecord r{iteration_, Seconds(), objective, PsnrDb(light_field_objective, report_.rays * 3),
+                    focal_stack_psnr_db};
   report_.trace.push_back(r);
   report_.iterations = iteration_;
   report_.final_objective = objective;
@@ -112,8 +130,18 @@ bool SolveLoop::EndIteration(std::optional<double> objective) {
   if (stopped_) return false;
   ++iteration_;
   double previous = report_.final_objective;
-  double value = objective ? *objective : Objective(model_, target(), *patterns_, workspace_.get());
-  if (!Record(value)) return false;
+  double value = 0;
+  if (retinal()) {
+    const RetinalMeasures m = measured_ ? *measured_ : MeasureRetinal();
+    measured_.reset();
+    value = m.objective;
+    if (!Record(value, m.light_field_objective, m.focal_stack_psnr_db)) return false;
+  } else {
+    value = objective ? *objective : Objective(model_, target(), *patterns_, workspace_.get());
+    const double focal_stack =
+        retinal_ ? MeasureRetinal().focal_stack_psnr_db : std::numeric_limits<double>::quiet_NaN();
+    if (!Record(value, value, focal_stack)) return false;
+  }
   if (options_.tolerance > 0 && std::abs(previous - value) <= options_.tolerance * std::max(previous, 1e-300)) {
     report_.termination = Termination::kConverged;
     report_.message = "relative objective change below " + std::to_string(options_.tolerance);

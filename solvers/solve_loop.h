@@ -10,6 +10,7 @@
 #include <string>
 
 #include "solvers/objective.h"
+#include "solvers/retinal_pass.h"
 #include "solvers/solver.h"
 
 namespace layerlab {
@@ -35,8 +36,16 @@ class SolveLoop {
   double Seconds() const;
 
   // Records the objective after an iteration; false when it is time to stop.
-  // `objective` may be passed when the solver computed it anyway.
+  // `objective` may be passed when the solver computed it anyway. With the
+  // retinal objective the trace row is the retinal measures: those passed
+  // to SetMeasures for this iterate, or measured here.
   bool EndIteration(std::optional<double> objective = std::nullopt);
+  // With the retinal objective (options.objective): the objective of the
+  // prepared target, made in Start(); nullptr otherwise.
+  const RetinalObjective* retinal() const {
+    return options_.objective == ObjectiveKind::kRetinal ? retinal_.get() : nullptr;
+  }
+  void SetMeasures(const RetinalMeasures& m) { measured_ = m; }
   // Stops with a failure (for example a non-finite objective).
   void Fail(const std::string& message);
   // Stops because no further step can lower the objective.
@@ -51,7 +60,9 @@ class SolveLoop {
   SolverReport Finish();
 
  private:
-  bool Record(double objective);
+  bool Record(double objective, double light_field_objective, double focal_stack_psnr_db);
+  // Measured here, off the clock (the solver did not spend it).
+  RetinalMeasures MeasureRetinal();
   void WriteCheckpoint();
 
   const DisplayModel& model_;
@@ -66,6 +77,8 @@ class SolveLoop {
   int saved_threads_ = 0;
   bool stopped_ = false;
   std::map<std::string, double> state_;
+  std::unique_ptr<RetinalObjective> retinal_;
+  std::optional<RetinalMeasures> measured_;
 };
 
 }  // namespace layerlab

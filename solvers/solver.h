@@ -9,12 +9,14 @@
 
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "framework/lightfield.h"
+#include "solvers/retinal_objective.h"
 #include "systems/display_model.h"
 #include "systems/solve_workspace.h"
 
@@ -24,6 +26,12 @@ namespace layerlab {
 // its branch weights in a channel).
 enum class TargetRange { kClip, kScale };
 std::string ToString(TargetRange r);
+
+// What the solver minimizes: the light-field error (paper Eq. 6), or the
+// retinal-space error over the eye's focal stack (solvers/retinal_objective.h;
+// quasi-newton and joint minimize it, SolverType::retinal_objective).
+enum class ObjectiveKind { kLightField, kRetinal };
+std::string ToString(ObjectiveKind k);
 
 struct SolverOptions {
   // Outer iterations (hybrid: passes over all multiplicative sets). Change it
@@ -49,6 +57,12 @@ struct SolverOptions {
   double epsilon = 1e-12;
   double floor = 1e-6;
   TargetRange target_range = TargetRange::kClip;
+  ObjectiveKind objective = ObjectiveKind::kLightField;
+  RetinalObjectiveOptions retinal;  // the states and their weights, with ObjectiveKind::kRetinal
+  // With the light-field objective: also measure the focal-stack PSNR of
+  // every trace row, off the clock (the trace's seconds leave it out), so
+  // that both objectives' solutions compare at equal solver time.
+  bool measure_focal_stack = false;
   // Called after every iteration with its trace row (progress display); may be empty.
   std::function<void(const struct IterationRecord& row)> progress;
   // Asked after every iteration; true stops the solve with the patterns of
@@ -78,10 +92,15 @@ struct IterationRecord {
   double seconds = 0;    // wall time since the solve started
   double objective = 0;  // sum of squared errors over rays and channels
   double psnr_db = 0;    // peak 1 (display-relative units); +inf for a perfect fit
+  // With the retinal objective `objective` is the retinal one, psnr_db stays
+  // the light field's, and this is the mean over states of the retinal PSNR;
+  // NaN with the light-field objective.
+  double focal_stack_psnr_db = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct SolverReport {
   std::string solver;
+  std::string objective = "lightfield";  // ToString(SolverOptions::objective): what `trace` and final_objective are
   Termination termination = Termination::kNotRun;
   std::string message = "not run";
   int iterations = 0;
@@ -149,6 +168,8 @@ struct SolverType {
   // default (the most specific fit); 0: never chosen by default.
   int default_rank = 0;
   SolverMemory memory;
+  // It minimizes the retinal objective when SolverOptions::objective asks (else only the light-field one).
+  bool retinal_objective = false;
   // The keys it reads beyond CommonSolverOptionKeys().
   std::vector<SolverOptionKey> options;
 

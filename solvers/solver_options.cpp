@@ -6,6 +6,7 @@
 namespace layerlab {
 
 std::string ToString(TargetRange r) { return r == TargetRange::kClip ? "clip" : "scale"; }
+std::string ToString(ObjectiveKind k) { return k == ObjectiveKind::kLightField ? "lightfield" : "retinal"; }
 
 const std::vector<SolverOptionKey>& CommonSolverOptionKeys() {
   static const std::vector<SolverOptionKey> keys = {
@@ -43,6 +44,9 @@ bool SolverOptions::IsValid(std::string* error) const {
   if (!(epsilon > 0) || !(epsilon < 1e-3)) return fail("epsilon", epsilon, "must be in (0, 1e-3)");
   if (!(floor > 0) || !(floor < 0.1))
     return fail("floor", floor, "must be in (0, 0.1): a zero transmittance never recovers");
+  if (objective == ObjectiveKind::kRetinal && !retinal.weights.empty() &&
+      retinal.weights.size() != retinal.states.size())
+    return fail("retinal.weights", double(retinal.weights.size()), "must be one per state (retinal.states)");
   return true;
 }
 

@@ -34,11 +34,14 @@ std::string SolverReport::FullReport() const {
       "iterations           %d\nwall time            %.3f s (after %.3f s of set-up)\nrays x channels      %zu\n",
       iterations, seconds, setup_seconds, rays * 3);
   out += buf;
-  std::snprintf(buf, sizeof buf, "objective            %.9g -> %.9g (sum of squared errors)\n", initial_objective,
-                final_objective);
+  std::snprintf(buf, sizeof buf, "objective            %.9g -> %.9g (sum of squared errors%s)\n", initial_objective,
+                final_objective, objective == "retinal" ? " over the focal stack's retinal samples" : "");
   out += buf;
   out += "PSNR                 " + Db(trace.empty() ? 0 : trace.front().psnr_db) + " -> " + Db(final_psnr_db) +
-         " (peak 1 = display white)\n";
+         " (light field; peak 1 = display white)\n";
+  if (!trace.empty() && !std::isnan(trace.back().focal_stack_psnr_db))
+    out += "focal-stack PSNR     " + Db(trace.front().focal_stack_psnr_db) + " -> " +
+           Db(trace.back().focal_stack_psnr_db) + " (mean over accommodation states)\n";
   std::snprintf(buf, sizeof buf, "target out of range  %zu values; scale %.6g\n", out_of_range, target_scale);
   out += buf;
   out += WarningLines(warnings);

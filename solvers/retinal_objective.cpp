@@ -1,0 +1,124 @@
+#include "solvers/retinal_objective.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "framework/error.h"
+#include "solvers/objective.h"
+
+namespace layerlab {
+
+std::vector<double> RetinalStates(const EyeModel& eye, const RetinalObjectiveOptions& options) {
+  if (!options.states.empty()) return options.states;
+  return AccommodationStates(eye.accommodation_min, eye.accommodation_max, kDefaultStateStep);
+}
+
+namespace {
+
+// One retinal sample per light-field pixel over the light field's window, as seen from the eyebox center.
+RetinaGrid GridOf(const LightFieldGeometry& g, double resolution) {
+  const double pixel = std::atan(g.window_width / g.cols / g.origin_z);
+  RetinaGrid grid;
+  grid.resolution = resolution > 0 ? resolution : pixel;
+  const double field_x = 2 * std::atan(g.window_width / 2 / g.origin_z);
+  const double field_y = 2 * std::atan(g.window_height / 2 / g.origin_z);
+  if (resolution > 0) {
+    grid = MakeRetinaGrid(field_x, field_y, resolution);
+  } else {
+    grid.cols = g.cols, grid.rows = g.rows;
+  }
+  grid.center_x = std::atan((g.window_left + g.window_width / 2) / g.origin_z);
+  grid.center_y = std::atan((g.window_top - g.window_height / 2) / g.origin_z);
+  return grid;
+}
+
+double SquaredDifference(const std::vector<float>& a, const std::vector<float>& b) {
+  double sum = 0;
+#pragma omp parallel for reduction(+ : sum) schedule(static)
+  for (size_t i = 0; i < a.size(); ++i) {
+    const double e = double(a[i]) - b[i];
+    sum += e * e;
+  }
+  return sum;
+}
+
+}  // namespace
+
+RetinalObjective::RetinalObjective(const DisplayModel& model, const LightField& target,
+                                   const RetinalObjectiveOptions& options) {
+  const EyeModel& eye = model.system().eye;
+  states_ = RetinalStates(eye, options);
+  if (states_.empty()) throw Error("the retinal objective needs at least one accommodation state");
+  weights_ = options.weights.empty() ? std::vector<double>(states_.size(), 1.0) : options.weights;
+  if (weights_.size() != states_.size())
+    throw Error("the retinal objective has " + std::to_string(states_.size()) + " states but " +
+                std::to_string(weights_.size()) + " weights");
+  for (double w : weights_)
+    if (!(w >= 0) || !std::isfinite(w)) throw Error("a state weight of the retinal objective must be >= 0");
+  const RetinaGrid grid = GridOf(model.geometry(), options.resolution);
+  std::vector<std::array<double, 3>> foci;
+  for (double d : states_) foci.push_back(ChannelAccommodation(eye, d));
+  operator_ = std::make_unique<RetinalOperator>(model.geometry(), model.projection(0).sampling(), grid,
+                                                PupilSamples(eye), foci);
+  operator_->Apply(target, &target_images_);
+
+  // Bound(): the largest entry of M 1.
+  LightField ones(model.geometry());
+  std::fill(ones.rgb.begin(), ones.rgb.end(), 1.0f);
+  std::vector<std::vector<float>> images;
+  operator_->Apply(ones, &images);
+  for (size_t a = 0; a < states_.size(); ++a)
+    for (float& v : images[a]) v = static_cast<float>(v * weights_[a]);
+  LightField m1(model.geometry());
+  operator_->ApplyTranspose(images, &m1);
+  const float largest = *std::max_element(m1.rgb.begin(), m1.rgb.end());
+  bound_ = largest > 0 ? largest : 1.0;
+}
+
+double RetinalObjective::Evaluate(const LightField& x, std::vector<double>* per_state) const {
+  std::vector<std::vector<float>> images;
+  operator_->Apply(x, &images);
+  std::vector<double> errors(states_.size());
+  double f = 0;
+  for (size_t a = 0; a < states_.size(); ++a) {
+    errors[a] = SquaredDifference(images[a], target_images_[a]);
+    f += weights_[a] * errors[a];
+  }
+  if (per_state) *per_state = std::move(errors);
+  return f;
+}
+
+double RetinalObjective::EvaluateWithAdjoint(const LightField& x, std::vector<double>* per_state,
+                                             LightField* m_r) const {
+  std::vector<std::vector<float>> images;
+  operator_->Apply(x, &images);
+  std::vector<double> errors(states_.size());
+  double f = 0;
+  for (size_t a = 0; a < states_.size(); ++a) {
+    std::vector<float>& image = images[a];
+    errors[a] = SquaredDifference(image, target_images_[a]);
+    f += weights_[a] * errors[a];
+    const float w = static_cast<float>(weights_[a]);
+    const std::vector<float>& target = target_images_[a];
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < image.size(); ++i) image[i] = w * (image[i] - target[i]);
+  }
+  if (m_r->geometry.ray_count() != x.geometry.ray_count()) *m_r = LightField(x.geometry);
+  operator_->ApplyTranspose(images, m_r);
+  if (per_state) *per_state = std::move(errors);
+  return f;
+}
+
+double RetinalObjective::FocalStackPsnr(const std::vector<double>& per_state) const {
+  double sum = 0;
+  for (double e : per_state) sum += PsnrDb(e, samples_per_state());
+  return sum / static_cast<double>(per_state.size());
+}
+
+std::vector<float> RetinalObjective::RetinalImage(size_t a, const LightField& x) const {
+  std::vector<std::vector<float>> images;
+  operator_->Apply(x, &images);
+  return std::move(images.at(a));
+}
+
+}  // namespace layerlab

@@ -1,0 +1,67 @@
+// The retinal-space (focal-stack) objective: what the eye sees of the
+// display, against what it sees of the target, over its accommodation range.
+//
+//   f(L) = sum_a w_a || A_a (L - l) ||^2
+//
+// summed over accommodation states a, retinal samples and channels, with
+// A_a the retinal operator of state a (systems/retinal_operator.h: natural
+// viewing of a light field through the eye's pupil samples, the eye's
+// per-channel focus included), L the display's light field, l the target's.
+// Its gradient in L is 2 M (L - l) with M = sum_a w_a A_a^T A_a; through the
+// display's Jacobian J (solvers/joint_pass.h) the gradient in the patterns
+// is 2 J^T M (L - l) (solvers/retinal_pass.h).
+//
+// M is symmetric with non-negative entries, so its largest eigenvalue is at
+// most the largest entry of M 1 (Gershgorin); Bound() returns that entry,
+// which the solvers divide by so that the light-field objective's step
+// sizes stay safe (M / Bound() <= I).
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "framework/lightfield.h"
+#include "systems/display_model.h"
+#include "systems/retinal_operator.h"
+
+namespace layerlab {
+
+struct RetinalObjectiveOptions {
+  std::vector<double> states;   // D; empty: the eye's accommodation_range in kDefaultStateStep steps
+  std::vector<double> weights;  // one per state; empty: every state 1
+  double resolution = 0;        // rad per retinal sample; 0: one sample per light-field pixel
+};
+inline constexpr double kDefaultStateStep = 0.2;  // D
+
+class RetinalObjective {
+ public:
+  // `target` must outlive this object only during construction (its retinal images are kept).
+  RetinalObjective(const DisplayModel& model, const LightField& target, const RetinalObjectiveOptions& options);
+
+  const std::vector<double>& states() const { return states_; }
+  const std::vector<double>& weights() const { return weights_; }
+  const RetinaGrid& retina() const { return operator_->retina(); }
+  size_t samples_per_state() const { return operator_->retinal_values(); }
+  double Bound() const { return bound_; }
+
+  // f(x); *per_state (if given) gets || A_a (x - l) ||^2 of each state, unweighted.
+  double Evaluate(const LightField& x, std::vector<double>* per_state = nullptr) const;
+  // f(x), and *m_r = M (x - l) (half the gradient in the light field).
+  double EvaluateWithAdjoint(const LightField& x, std::vector<double>* per_state, LightField* m_r) const;
+
+  // The focal-stack PSNR: the mean over states of each state's PSNR (peak 1).
+  double FocalStackPsnr(const std::vector<double>& per_state) const;
+  // The retinal image of state a of `x` ([row][col][channel]).
+  std::vector<float> RetinalImage(size_t a, const LightField& x) const;
+
+ private:
+  std::vector<double> states_, weights_;
+  std::unique_ptr<RetinalOperator> operator_;      // every state's A_a
+  std::vector<std::vector<float>> target_images_;  // A_a l
+  double bound_ = 1;
+};
+
+// The states a RetinalObjectiveOptions names for this eye (its own, or the accommodation range in 0.2 D steps).
+std::vector<double> RetinalStates(const EyeModel& eye, const RetinalObjectiveOptions& options);
+
+}  // namespace layerlab

@@ -1,0 +1,59 @@
+#include "solvers/retinal_pass.h"
+
+#include "solvers/objective.h"
+
+namespace layerlab {
+
+RetinalPass::RetinalPass(const DisplayModel& model, const LightField& target, const RetinalObjective& objective)
+    : model_(model),
+      target_(target),
+      objective_(objective),
+      pass_(model),
+      light_(model.geometry()),
+      effective_(model.geometry()) {}
+
+namespace {
+
+RetinalMeasures Measures(const RetinalObjective& objective, const LightField& light, const LightField& target,
+                         const std::vector<double>& per_state, double f) {
+  double light_field = 0;
+#pragma omp parallel for reduction(+ : light_field) schedule(static)
+  for (size_t i = 0; i < light.rgb.size(); ++i) {
+    const double e = double(light.rgb[i]) - target.rgb[i];
+    light_field += e * e;
+  }
+  return {f, light_field, objective.FocalStackPsnr(per_state)};
+}
+
+}  // namespace
+
+RetinalMeasures MeasureRetinalObjective(const DisplayModel& model, const LightField& target,
+                                        const RetinalObjective& objective, const Patterns& t) {
+  const LightField light = model.Synthesize(t);
+  std::vector<double> per_state;
+  const double f = objective.Evaluate(light, &per_state);
+  return Measures(objective, light, target, per_state, f);
+}
+
+double RetinalPass::Run(const Patterns& t) {
+  model_.Synthesize(t, &light_);
+  std::vector<double> per_state;
+  const double f = objective_.EvaluateWithAdjoint(light_, &per_state, &effective_);
+  last_ = Measures(objective_, light_, target_, per_state, f);
+  const float inverse_scale = static_cast<float>(1.0 / scale());
+#pragma omp parallel for schedule(static)
+  for (size_t i = 0; i < effective_.rgb.size(); ++i)
+    effective_.rgb[i] = light_.rgb[i] - inverse_scale * effective_.rgb[i];
+  pass_.Run(effective_, t);
+  return f / scale();
+}
+
+double RetinalPass::Evaluate(const Patterns& t) {
+  model_.Synthesize(t, &light_);
+  std::vector<double> per_state;
+  const double f = objective_.Evaluate(light_, &per_state);
+  last_ = Measures(objective_, light_, target_, per_state, f);
+  return f / scale();
+}
+
+}  // namespace layerlab

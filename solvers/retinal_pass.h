@@ -1,0 +1,52 @@
+// The pass of the every-layer solvers (joint, quasi-newton) under the
+// retinal objective (solvers/retinal_objective.h). With L = L(t) the
+// display's light field and m = M (L - l) / s, s = RetinalObjective::Bound(),
+// a JointPass against the effective target L - m sums
+//   num_a = P_a^T((L - m) o Q_a),  den_a = P_a^T(L o Q_a),
+// so 2 (den_a - num_a) = 2 P_a^T(m o Q_a) is the gradient of f / s, f the
+// retinal objective; the solvers read those sums as they read the
+// light-field pass's. Since M / s <= I, a step safe for the light-field
+// objective (the joint solver's multiplicative step, quasi-newton's initial
+// scaling) is safe for f / s.
+#pragma once
+
+#include <vector>
+
+#include "solvers/joint_pass.h"
+#include "solvers/retinal_objective.h"
+
+namespace layerlab {
+
+// What the last evaluation measured.
+struct RetinalMeasures {
+  double objective = 0;              // f, the retinal objective
+  double light_field_objective = 0;  // ||L - l||^2
+  double focal_stack_psnr_db = 0;    // mean over states
+};
+
+// The measures of patterns `t` against `target`, from one synthesis.
+RetinalMeasures MeasureRetinalObjective(const DisplayModel& model, const LightField& target,
+                                        const RetinalObjective& objective, const Patterns& t);
+
+class RetinalPass {
+ public:
+  RetinalPass(const DisplayModel& model, const LightField& target, const RetinalObjective& objective);
+
+  // f(t) / s; numerator() and denominator() then hold the sums above.
+  double Run(const Patterns& t);
+  // f(t) / s alone (no gradient).
+  double Evaluate(const Patterns& t);
+  const JointPass& sums() const { return pass_; }
+  double scale() const { return objective_.Bound(); }
+  const RetinalMeasures& last() const { return last_; }
+
+ private:
+  const DisplayModel& model_;
+  const LightField& target_;
+  const RetinalObjective& objective_;
+  JointPass pass_;
+  LightField light_, effective_;  // L(t); M (L - l), then L - m in place
+  RetinalMeasures last_;
+};
+
+}  // namespace layerlab

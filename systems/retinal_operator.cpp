@@ -1,0 +1,209 @@
+#include "systems/retinal_operator.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "framework/error.h"
+#include "systems/lightfield_taps.h"
+
+namespace layerlab {
+
+RetinalOperator::RetinalOperator(const LightFieldGeometry& g, Sampling pixels, const RetinaGrid& retina,
+                                 const std::vector<PupilPoint>& pupil, const std::vector<std::array<double, 3>>& states)
+    : state_count_(states.size()), nearest_(pixels == Sampling::kNearest), geometry_(g), retina_(retina) {
+  using namespace lightfield_taps;
+  if (pupil.empty()) throw Error("a retinal operator needs at least one pupil point");
+  const double inverse_count = 1.0 / pupil.size();
+  views_.resize(pupil.size());
+  for (size_t p = 0; p < pupil.size(); ++p) {
+    const ViewWeights v = ViewsAround(g, pupil[p]);
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b)
+        if (v.weight[a][b] != 0) {
+          PupilViews& pv = views_[p];
+          pv.view[pv.count] = v.view[a][b];
+          pv.weight[pv.count++] = static_cast<float>(v.weight[a][b] * inverse_count);
+        }
+  }
+  std::vector<double> tan_x(retina.cols), tan_y(retina.rows);
+  for (int j = 0; j < retina.cols; ++j) tan_x[j] = std::tan(retina.angle_x(j));
+  for (int i = 0; i < retina.rows; ++i) tan_y[i] = std::tan(retina.angle_y(i));
+  for (size_t a = 0; a < states.size(); ++a)
+    for (int c = 0; c < 3; ++c) {
+      bool seen = false;  // an earlier channel of this state at the same focus
+      for (int d = 0; d < c; ++d) seen = seen || states[a][d] == states[a][c];
+      if (seen) continue;
+      Entry e;
+      e.state = a;
+      for (int d = c; d < 3; ++d)
+        if (states[a][d] == states[a][c]) e.channels[e.channel_count++] = d;
+      const double focus = states[a][c];
+      e.tables.resize(pupil.size());
+#pragma omp parallel for schedule(dynamic)
+      for (size_t p = 0; p < pupil.size(); ++p) {
+        const PupilPoint& u = pupil[p];
+        FocusTable& t = e.tables[p];
+        // The ray's direction and crossing exactly as RetinaOfSceneRayByRay and LightFieldRays compute them.
+        for (int j = 0; j < retina.cols; ++j) {
+          const double dx = tan_x[j] - u.x * focus - u.slope_x;
+          Bracket col;
+          if (!ColumnAt(g, u.x + dx * g.origin_z, nearest_, &col)) continue;
+          t.columns.push_back({j, col.k0, col.k1, float(1 - col.w1), float(col.w1)});
+        }
+        t.rows.resize(retina.rows);
+        t.sources.resize(g.rows);
+        for (int i = 0; i < retina.rows; ++i) {
+          const double dy = tan_y[i] - u.y * focus - u.slope_y;
+          Bracket row;
+          if (!RowAt(g, u.y + dy * g.origin_z, nearest_, &row)) continue;
+          t.rows[i] = {row.k0, row.k1, float(1 - row.w1), float(row.w1)};
+          t.sources[row.k0].push_back({i, float(1 - row.w1)});
+          if (row.w1 != 0) t.sources[row.k1].push_back({i, float(row.w1)});
+        }
+      }
+      entries_.push_back(std::move(e));
+    }
+}
+
+namespace {
+
+void RequireGeometry(const LightFieldGeometry& a, const LightFieldGeometry& b) {
+  if (a.ray_count() != b.ray_count() || a.cols != b.cols || a.views_x != b.views_x)
+    throw Error("the retinal operator was made for another light-field geometry");
+}
+
+}  // namespace
+
+void RetinalOperator::Apply(const LightField& x, std::vector<std::vector<float>>* out) const {
+  const LightFieldGeometry& g = geometry_;
+  RequireGeometry(x.geometry, g);
+  out->resize(state_count_);
+  for (std::vector<float>& image : *out) image.assign(retinal_values(), 0.0f);
+  const size_t row_stride = size_t(g.cols) * 3, retina_stride = size_t(retina_.cols) * 3;
+  // The pupil point's blend of its views: at most a few hundred terms of at most 1 each per sample, float holds them.
+  std::vector<float> blend(g.pixels_per_view() * 3);
+#pragma omp parallel
+  for (size_t p = 0; p < views_.size(); ++p) {
+    const PupilViews& pv = views_[p];
+#pragma omp for schedule(static)
+    for (int k = 0; k < g.rows; ++k) {
+      float* dst = blend.data() + size_t(k) * row_stride;
+      for (int s = 0; s < pv.count; ++s) {
+        const float* src = x.view(pv.view[s]) + size_t(k) * row_stride;
+        const float w = pv.weight[s];
+        if (s == 0)
+          for (size_t q = 0; q < row_stride; ++q) dst[q] = w * src[q];
+        else
+          for (size_t q = 0; q < row_stride; ++q) dst[q] += w * src[q];
+      }
+    }
+    for (const Entry& e : entries_) {
+      const FocusTable& t = e.tables[p];
+      float* image = (*out)[e.state].data();
+      // Static rows: the same thread writes a retinal row at every entry, so entries need no barrier.
+#pragma omp for schedule(static) nowait
+      for (int i = 0; i < retina_.rows; ++i) {
+        const Row& r = t.rows[i];
+        if (r.k0 < 0) continue;
+        float* dst = image + size_t(i) * retina_stride;
+        const float* row0 = blend.data() + size_t(r.k0) * row_stride;
+        const float* row1 = blend.data() + size_t(r.k1) * row_stride;
+        if (nearest_ && e.channel_count == 3) {
+          for (const Column& col : t.columns) {
+            const float* v = row0 + size_t(col.c0) * 3;
+            float* o = dst + size_t(col.ray) * 3;
+            o[0] += v[0], o[1] += v[1], o[2] += v[2];
+          }
+          continue;
+        }
+        for (const Column& col : t.columns) {
+          float* o = dst + size_t(col.ray) * 3;
+          for (int q = 0; q < e.channel_count; ++q) {
+            const int c = e.channels[q];
+            const size_t c0 = size_t(col.c0) * 3 + c, c1 = size_t(col.c1) * 3 + c;
+            o[c] += r.w0 * (col.w0 * row0[c0] + col.w1 * row0[c1]) + r.w1 * (col.w0 * row1[c0] + col.w1 * row1[c1]);
+          }
+        }
+      }
+    }
+#pragma omp barrier
+  }
+}
+
+void RetinalOperator::ApplyTranspose(const std::vector<std::vector<float>>& y, LightField* out, bool accumulate) const {
+  const LightFieldGeometry& g = geometry_;
+  RequireGeometry(out->geometry, g);
+  if (y.size() != state_count_) throw Error("the retinal operator has another number of states");
+  for (const std::vector<float>& image : y)
+    if (image.size() != retinal_values()) throw Error("a retinal image does not match the retinal operator's grid");
+  if (!accumulate) std::fill(out->rgb.begin(), out->rgb.end(), 0.0f);
+  const size_t row_stride = size_t(g.cols) * 3, retina_stride = size_t(retina_.cols) * 3;
+  std::vector<float> gathered(g.pixels_per_view() * 3);  // every state's rays of one pupil point, per view pixel
+#pragma omp parallel
+  for (size_t p = 0; p < views_.size(); ++p) {
+    // Each light-field row by one thread: the retinal rows that read it scattered into it.
+#pragma omp for schedule(static)
+    for (int k = 0; k < g.rows; ++k) {
+      float* dst = gathered.data() + size_t(k) * row_stride;
+      std::fill(dst, dst + row_stride, 0.0f);
+      for (const Entry& e : entries_) {
+        const FocusTable& t = e.tables[p];
+        const float* image = y[e.state].data();
+        for (const Source& source : t.sources[k]) {
+          const float* src = image + size_t(source.ray_row) * retina_stride;
+          const float w = source.weight;
+          if (nearest_ && e.channel_count == 3) {
+            for (const Column& col : t.columns) {
+              const float* v = src + size_t(col.ray) * 3;
+              float* o = dst + size_t(col.c0) * 3;
+              o[0] += w * v[0], o[1] += w * v[1], o[2] += w * v[2];
+            }
+            continue;
+          }
+          for (const Column& col : t.columns)
+            for (int q = 0; q < e.channel_count; ++q) {
+              const int c = e.channels[q];
+              const float v = w * src[size_t(col.ray) * 3 + c];
+              dst[size_t(col.c0) * 3 + c] += col.w0 * v;
+              dst[size_t(col.c1) * 3 + c] += col.w1 * v;
+            }
+        }
+      }
+    }
+    const PupilViews& pv = views_[p];
+#pragma omp for schedule(static)
+    for (int k = 0; k < g.rows; ++k) {
+      const float* src = gathered.data() + size_t(k) * row_stride;
+      for (int s = 0; s < pv.count; ++s) {
+        float* dst = out->view(pv.view[s]) + size_t(k) * row_stride;
+        const float w = pv.weight[s];
+        for (size_t q = 0; q < row_stride; ++q) dst[q] += w * src[q];
+      }
+    }
+  }
+}
+
+void RetinalOperator::Apply(const LightField& x, std::vector<float>* out) const {
+  if (state_count_ != 1) throw Error("this retinal operator has " + std::to_string(state_count_) + " states");
+  std::vector<std::vector<float>> images;
+  Apply(x, &images);
+  *out = std::move(images.front());
+}
+
+void RetinalOperator::ApplyTranspose(const std::vector<float>& y, LightField* out, bool accumulate) const {
+  if (state_count_ != 1) throw Error("this retinal operator has " + std::to_string(state_count_) + " states");
+  ApplyTranspose(std::vector<std::vector<float>>{y}, out, accumulate);
+}
+
+std::vector<double> AccommodationStates(double from, double to, double step) {
+  if (!(step > 0) || !(to >= from)) throw Error("accommodation states need from <= to and a positive step");
+  std::vector<double> states;
+  for (int k = 0;; ++k) {
+    const double d = from + k * step;
+    if (d > to + 1e-9 * std::max(1.0, std::abs(to))) break;
+    states.push_back(d);
+  }
+  return states;
+}
+
+}  // namespace layerlab

@@ -1,0 +1,329 @@
+// The retinal operator A_a (systems/retinal_operator.h) against the retina
+// command's general path (ray by ray through the pupil), its transpose
+// against <A x, y> = <x, A^T y>, and the retinal objective
+// (solvers/retinal_objective.h, retinal_pass.h): its gradient against
+// central differences, its pinhole one-state case against the light-field
+// objective of the centre view, and a recovered known focal stack.
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "solvers/joint_pass.h"
+#include "solvers/objective.h"
+#include "solvers/retinal_objective.h"
+#include "solvers/retinal_pass.h"
+#include "solvers/solver.h"
+#include "systems/lightfield_radiance.h"
+#include "systems/retinal_operator.h"
+#include "tests/test_util.h"
+
+namespace layerlab {
+namespace {
+
+using testing::CompileJson;
+using testing::ShrunkExample;
+
+constexpr double kDeg = std::numbers::pi / 180;
+
+// `views` x `views` views over 6 mm, a 10 x 6 deg window on the origin plane at 1.3 D.
+LightFieldGeometry Geometry(int cols, int rows, int views) {
+  LightFieldGeometry g;
+  g.origin_z = 1 / 1.3;
+  g.window_width = 2 * g.origin_z * std::tan(5 * kDeg);
+  g.window_height = 2 * g.origin_z * std::tan(3 * kDeg);
+  g.window_left = -g.window_width / 2;
+  g.window_top = g.window_height / 2;
+  g.cols = cols, g.rows = rows;
+  g.views_x = g.views_y = views;
+  return g;
+}
+
+LightField RandomLightField(const LightFieldGeometry& g, unsigned seed) {
+  LightField lf(g);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(0, 1);
+  for (float& v : lf.rgb) v = u(rng);
+  return lf;
+}
+
+// A 4 mm pupil of 5 x 5 points, some with a wavefront slope.
+std::vector<PupilPoint> Pupil() {
+  EyeModel eye;
+  eye.pupil_samples_x = eye.pupil_samples_y = 5;
+  std::vector<PupilPoint> pupil = PupilSamples(eye);
+  for (size_t p = 0; p < pupil.size(); p += 3) pupil[p].slope_x = 2e-4 * double(p % 5), pupil[p].slope_y = -1e-4;
+  return pupil;
+}
+
+struct Case {
+  Sampling sampling;
+  std::array<double, 3> focus;
+  const char* name;
+};
+const Case kCases[] = {{Sampling::kNearest, {1.0, 1.0, 1.0}, "nearest"},
+                       {Sampling::kBilinear, {0.4, 0.4, 0.4}, "bilinear"},
+                       {Sampling::kNearest, {2.1, 2.5, 2.9}, "nearest, a focus per channel"},
+                       {Sampling::kBilinear, {0.0, 0.3, 0.6}, "bilinear, a focus per channel"}};
+
+RetinaGrid Grid() {
+  RetinaGrid grid = MakeRetinaGrid(11 * kDeg, 7 * kDeg, 0.23 * kDeg);  // a little past the window
+  grid.center_x = 0.2 * kDeg;
+  return grid;
+}
+
+TEST(RetinalOperator, IsTheRetinaRayByRayThroughThePupil) {
+  const LightFieldGeometry g = Geometry(60, 36, 7);
+  const LightField lf = RandomLightField(g, 3);
+  const RetinaGrid grid = Grid();
+  const std::vector<PupilPoint> pupil = Pupil();
+  for (const Case& c : kCases) {
+    const RetinalOperator a(g, c.sampling, grid, pupil, c.focus);
+    std::vector<float> image;
+    a.Apply(lf, &image);
+    const Image brute = RetinaOfSceneRayByRay(LightFieldRadiance(lf, c.sampling), grid, pupil, c.focus);
+    ASSERT_EQ(image.size(), brute.pixels.size());
+    double largest = 0;
+    for (size_t k = 0; k < image.size(); ++k) largest = std::max(largest, std::abs(double(image[k]) - brute.pixels[k]));
+    EXPECT_LT(largest, 2e-6) << c.name;
+    // Not all dark: most retinal samples see the window.
+    const size_t lit = size_t(std::count_if(image.begin(), image.end(), [](float v) { return v > 0; }));
+    EXPECT_GT(lit, image.size() / 2) << c.name;
+  }
+  // Several states in one operator (the pupil's view blends shared): each state as alone.
+  for (Sampling sampling : {Sampling::kNearest, Sampling::kBilinear}) {
+    std::vector<std::array<double, 3>> states;
+    for (const Case& c : kCases) states.push_back(c.focus);
+    const RetinalOperator all(g, sampling, grid, pupil, states);
+    std::vector<std::vector<float>> images;
+    all.Apply(lf, &images);
+    ASSERT_EQ(images.size(), states.size());
+    for (size_t a = 0; a < states.size(); ++a) {
+      std::vector<float> alone;
+      RetinalOperator(g, sampling, grid, pupil, states[a]).Apply(lf, &alone);
+      EXPECT_EQ(images[a], alone) << "state " << a;
+    }
+  }
+}
+
+template <class A, class B>
+double Dot(const A& a, const B& b) {
+  double sum = 0;
+  for (size_t k = 0; k < a.size(); ++k) sum += double(a[k]) * b[k];
+  return sum;
+}
+
+TEST(RetinalOperator, TransposeIsTheAdjoint) {
+  const LightFieldGeometry g = Geometry(60, 36, 7);
+  const RetinaGrid grid = Grid();
+  const std::vector<PupilPoint> pupil = Pupil();
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<float> u(0, 1);
+  for (const Case& c : kCases) {
+    const RetinalOperator a(g, c.sampling, grid, pupil, c.focus);
+    const LightField x = RandomLightField(g, 17);
+    std::vector<float> y(a.retinal_values()), ax;
+    for (float& v : y) v = u(rng);
+    a.Apply(x, &ax);
+    LightField aty(g);
+    std::fill(aty.rgb.begin(), aty.rgb.end(), 7.0f);  // overwritten
+    a.ApplyTranspose(y, &aty);
+    const double left = Dot(ax, y), right = Dot(x.rgb, aty.rgb);
+    EXPECT_NEAR(left, right, 1e-6 * std::abs(left)) << c.name;
+    // Accumulating adds A^T y once more.
+    a.ApplyTranspose(y, &aty, true);
+    EXPECT_NEAR(Dot(x.rgb, aty.rgb), 2 * right, 1e-6 * std::abs(left)) << c.name;
+  }
+  // Several states: sum_a <A_a x, y_a> = <x, sum_a A_a^T y_a>.
+  std::vector<std::array<double, 3>> states;
+  for (const Case& c : kCases) states.push_back(c.focus);
+  const RetinalOperator all(g, Sampling::kBilinear, grid, pupil, states);
+  const LightField x = RandomLightField(g, 23);
+  std::vector<std::vector<float>> y(states.size(), std::vector<float>(all.retinal_values())), ax;
+  for (auto& image : y)
+    for (float& v : image) v = u(rng);
+  all.Apply(x, &ax);
+  double left = 0;
+  for (size_t a = 0; a < states.size(); ++a) left += Dot(ax[a], y[a]);
+  LightField aty(g);
+  all.ApplyTranspose(y, &aty);
+  EXPECT_NEAR(left, Dot(x.rgb, aty.rgb), 1e-6 * left);
+}
+
+// The displays of the solver tests, each layer kind and flip: the paper's
+// hybrid (its reflected branch flipped by the beam splitter) as compiled,
+// with every flip toggled, bilinear, and rotated (the general path); the two
+// 2-layer displays; a time-multiplexed 3-layer display (its subframes are branches).
+struct Display {
+  std::string name;
+  DisplaySystem system;
+  Sampling sampling = Sampling::kNearest;
+};
+std::vector<Display> Displays() {
+  std::vector<Display> d;
+  const DisplaySystem hybrid = CompileJson(ShrunkExample("paper_prototype.json", 24, 12, 5));
+  d.push_back({"hybrid", hybrid});
+  DisplaySystem flipped = hybrid;
+  for (VirtualLayer& layer : flipped.layers) layer.flip_x = !layer.flip_x, layer.flip_y = !layer.flip_y;
+  d.push_back({"hybrid, flips toggled", flipped});
+  d.push_back({"hybrid, bilinear", hybrid, Sampling::kBilinear});
+  DisplaySystem rotated = hybrid;
+  for (VirtualLayer& layer : rotated.layers) layer.rotation = 1e-12;
+  d.push_back({"hybrid, rotated", rotated});
+  d.push_back({"multiplicative", CompileJson(ShrunkExample("multiplicative_2layer.json", 24, 12, 5))});
+  d.push_back({"additive", CompileJson(ShrunkExample("additive_2layer.json", 24, 12, 5))});
+  nlohmann::json subframes = ShrunkExample("tensor_display_rank3.json", 24, 12, 5);
+  subframes["subframes"] = 2;
+  d.push_back({"3-layer tensor, 2 subframes", CompileJson(subframes)});
+  return d;
+}
+
+Patterns RandomPatterns(const DisplayModel& model, unsigned seed, float lo, float hi) {
+  Patterns t = model.UniformPatterns(0.5f);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(lo, hi);
+  for (LayerPattern& p : t)
+    for (float& v : p.rgb) v = u(rng);
+  return t;
+}
+
+RetinalObjectiveOptions FewStates() {
+  RetinalObjectiveOptions o;
+  o.states = {0.3, 1.1, 2.2};
+  o.weights = {1.0, 0.5, 2.0};
+  return o;
+}
+
+// Through the display: the linearization J of L(t) (exact, L is affine in
+// each layer: J d = sum_k L(t with t_k + d_k) - L(t)) and J^T from the
+// joint pass (against the target L - v its sums give den - num = J^T v), so
+// <A_a J d, y> = <d, J^T A_a^T y> for each layer kind and flip.
+TEST(RetinalOperator, AdjointThroughEveryLayerKindAndFlip) {
+  for (const Display& d : Displays()) {
+    const DisplayModel model(d.system, DisplayLightFieldGeometry(d.system), d.sampling);
+    const LightFieldGeometry& g = model.geometry();
+    const RetinalObjective objective(model, LightField(g), FewStates());
+    const EyeModel& eye = d.system.eye;
+    const RetinalOperator a(g, d.sampling, objective.retina(), PupilSamples(eye), ChannelAccommodation(eye, 1.1));
+    const Patterns t = RandomPatterns(model, 4, 0.2f, 0.9f);
+    const Patterns delta = RandomPatterns(model, 5, 0.0f, 1.0f);
+    const LightField base = model.Synthesize(t);
+    LightField jd(g);
+    for (size_t k = 0; k < t.size(); ++k) {
+      Patterns moved = t;
+      for (size_t i = 0; i < moved[k].rgb.size(); ++i) moved[k].rgb[i] += delta[k].rgb[i];
+      const LightField l = model.Synthesize(moved);
+      for (size_t i = 0; i < jd.rgb.size(); ++i) jd.rgb[i] += l.rgb[i] - base.rgb[i];
+    }
+    std::vector<float> y(a.retinal_values()), ajd;
+    std::mt19937 rng(6);
+    std::uniform_real_distribution<float> u(0, 1);
+    for (float& v : y) v = u(rng);
+    a.Apply(jd, &ajd);
+    LightField v(g);
+    a.ApplyTranspose(y, &v);
+    LightField effective = base;
+    for (size_t i = 0; i < v.rgb.size(); ++i) effective.rgb[i] -= v.rgb[i];
+    JointPass pass(model);
+    pass.Run(effective, t);
+    double right = 0;
+    for (size_t k = 0; k < t.size(); ++k)
+      for (size_t i = 0; i < t[k].rgb.size(); ++i)
+        right += double(delta[k].rgb[i]) * (pass.denominator()[k][i] - pass.numerator()[k][i]);
+    const double left = Dot(ajd, y);
+    EXPECT_GT(left, 0) << d.name;
+    // J d and J^T v in float: a few float roundings per value.
+    EXPECT_NEAR(left, right, 1e-5 * std::abs(left)) << d.name;
+  }
+}
+
+TEST(RetinalObjective, GradientMatchesCentralDifferences) {
+  for (const Display& d : Displays()) {
+    const DisplayModel model(d.system, DisplayLightFieldGeometry(d.system), d.sampling);
+    const LightField target = model.Synthesize(RandomPatterns(model, 8, 0.1f, 1.0f));
+    const RetinalObjective objective(model, target, FewStates());
+    RetinalPass pass(model, target, objective);
+    Patterns t = RandomPatterns(model, 11, 0.2f, 0.9f);
+    const double scaled = pass.Run(t);
+    const double f = objective.Evaluate(model.Synthesize(t));
+    EXPECT_NEAR(scaled * pass.scale(), f, 1e-9 * f);
+    const std::vector<std::vector<double>> num = pass.sums().numerator(), den = pass.sums().denominator();
+    std::mt19937 rng(5);
+    for (size_t k = 0; k < t.size(); ++k)
+      for (int trial = 0; trial < 5; ++trial) {
+        const size_t i = std::uniform_int_distribution<size_t>(0, t[k].rgb.size() - 1)(rng);
+        const double gradient = 2.0 * (den[k][i] - num[k][i]) * pass.scale();
+        const float h = 1e-2f;
+        Patterns plus = t, minus = t;
+        plus[k].rgb[i] += h;
+        minus[k].rgb[i] -= h;
+        // f is quadratic in one value (L is affine in it): central differences are exact up to round-off.
+        const double difference =
+            (objective.Evaluate(model.Synthesize(plus)) - objective.Evaluate(model.Synthesize(minus))) / (2 * h);
+        // Float images: f to about 1e-6 relative, the difference to 1e-6 f / h.
+        EXPECT_NEAR(gradient, difference, 2e-3 * std::abs(difference) + 1e-6 * f / h)
+            << d.name << ", layer " << k << ", value " << i;
+      }
+  }
+}
+
+// A pinhole pupil is one point at the eyebox centre, which with an odd view
+// count is the centre view's position: its rays read that view alone. One
+// state: the ray of retinal sample j crosses the origin plane at
+// z tan(angle_j), angle_j = (j + 0.5 - cols / 2) atan(pixel / z); over a
+// 10 deg window of 40 pixels that lies within 0.05 pixel of pixel j's centre
+// (tan(20 atan(p)) - 20 p = 0.0002 m/m against p = 0.0044), so with nearest
+// sampling sample j reads pixel j, whatever the focus: f = the centre view's
+// ||L - l||^2.
+TEST(RetinalObjective, PinholeOneStateIsTheCentreViewsLightFieldObjective) {
+  DisplaySystem system = CompileJson(ShrunkExample("paper_prototype.json", 24, 12, 5));
+  system.eye.pupil_diameter = 0;
+  const LightFieldGeometry g = Geometry(40, 24, 5);
+  const DisplayModel model(system, g);
+  const LightField target = model.Synthesize(RandomPatterns(model, 8, 0.1f, 1.0f));
+  for (double state : {0.0, 1.7}) {
+    RetinalObjectiveOptions o;
+    o.states = {state};
+    const RetinalObjective objective(model, target, o);
+    ASSERT_EQ(objective.retina().cols, g.cols);
+    const LightField l = model.Synthesize(RandomPatterns(model, 12, 0.0f, 1.0f));
+    const size_t centre = g.view_index(g.views_y / 2, g.views_x / 2);
+    double centre_view = 0;
+    for (size_t k = 0; k < g.pixels_per_view() * 3; ++k) {
+      const double e = double(l.view(centre)[k]) - target.view(centre)[k];
+      centre_view += e * e;
+    }
+    EXPECT_NEAR(objective.Evaluate(l), centre_view, 1e-6 * centre_view) << state << " D";
+  }
+}
+
+// The target is a display's own light field: its patterns make the target's
+// focal stack exactly, and the retinal objective finds patterns that do.
+TEST(RetinalObjective, SolversRecoverAKnownFocalStack) {
+  for (const char* solver : {"quasi-newton", "joint"}) {
+    const DisplaySystem system = CompileJson(ShrunkExample("multiplicative_2layer.json", 24, 12, 5));
+    const DisplayModel model(system, DisplayLightFieldGeometry(system));
+    const LightField target = model.Synthesize(RandomPatterns(model, 8, 0.3f, 0.9f));
+    SolverOptions o = SolverRegistry::Builtins().find(solver)->defaults;
+    o.objective = ObjectiveKind::kRetinal;
+    o.retinal = FewStates();
+    o.iterations = 400;
+    Patterns t;
+    const SolverReport r = SolverRegistry::Builtins().create(solver)->Solve(model, target, o, &t);
+    ASSERT_TRUE(r.IsSolutionUsable()) << r.FullReport();
+    const IterationRecord& last = r.trace.back();
+    RecordProperty(std::string(solver) + "_focal_stack_psnr_db", std::to_string(last.focal_stack_psnr_db));
+    RecordProperty(std::string(solver) + "_iterations", std::to_string(r.iterations));
+    EXPECT_GT(last.focal_stack_psnr_db, 60.0) << solver << "\n" << r.FullReport();
+    // The trace's objective is the retinal one of the patterns returned, and it never rose.
+    const RetinalObjective objective(model, target, o.retinal);
+    EXPECT_NEAR(objective.Evaluate(model.Synthesize(t)), last.objective, 1e-3 * last.objective + 1e-12);
+    // (From the quasi-Newton steps on: the warm start's hybrid steps lower the light-field objective.)
+    for (size_t k = size_t(o.warm_start_iterations) + 1; k < r.trace.size(); ++k)
+      EXPECT_LE(r.trace[k].objective, r.trace[k - 1].objective * (1 + 1e-9)) << solver << ", iteration " << k;
+    EXPECT_NEAR(last.psnr_db, PsnrDb(Objective(model, target, t), model.geometry().ray_count() * 3), 1e-3);
+  }
+}
+
+}  // namespace
+}  // namespace layerlab
