@@ -4,63 +4,13 @@
 #include <cmath>
 
 #include "framework/rgb4.h"
+#include "systems/lightfield_taps.h"
 #include "systems/row_kernels.h"
 
 namespace layerlab {
 namespace {
 
-// Cell-centered samples at lo + (k + 0.5) step: the two around `at` and the
-// weight of the second, clamped to the edge samples.
-struct Bracket {
-  int k0, k1;
-  double w1;
-};
-Bracket Around(double at, double lo, double step, int count) {
-  double f = (at - lo) / step - 0.5;
-  if (!(f > 0)) return {0, 0, 0.0};
-  if (f >= count - 1) return {count - 1, count - 1, 0.0};
-  int k = static_cast<int>(f);
-  return {k, k + 1, f - k};
-}
-
-// The cell of `count` cells of `step` from `lo` that contains `at`, as a bracket of one.
-Bracket Containing(double at, double lo, double step, int count) {
-  int k = std::clamp(static_cast<int>(std::floor((at - lo) / step)), 0, count - 1);
-  return {k, k, 0.0};
-}
-
-// The pixel columns a ray crossing the origin plane at x reads; false outside
-// the window (there is no light field there: dark, not the edge pixel).
-bool ColumnAt(const LightFieldGeometry& g, double x, bool nearest, Bracket* col) {
-  if (x < g.window_left || x > g.window_left + g.window_width) return false;
-  const double pixel_w = g.window_width / g.cols;
-  *col = nearest ? Containing(x, g.window_left, pixel_w, g.cols) : Around(x, g.window_left, pixel_w, g.cols);
-  return true;
-}
-// The pixel rows at height y (rows run down from the window's top).
-bool RowAt(const LightFieldGeometry& g, double y, bool nearest, Bracket* row) {
-  if (y > g.window_top || y < g.window_top - g.window_height) return false;
-  const double pixel_h = g.window_height / g.rows;
-  *row = nearest ? Containing(g.window_top - y, 0.0, pixel_h, g.rows) : Around(g.window_top - y, 0.0, pixel_h, g.rows);
-  return true;
-}
-
-// The views around pupil point u and their weights, (view row a, view column b) for a, b in {0, 1}.
-struct ViewWeights {
-  size_t view[2][2];
-  double weight[2][2];
-};
-ViewWeights ViewsAround(const LightFieldGeometry& g, const PupilPoint& u) {
-  const Bracket vcol = Around(u.x, -g.eyebox_width / 2, g.eyebox_width / g.views_x, g.views_x);
-  const Bracket vrow = Around(g.eyebox_height / 2 - u.y, 0.0, g.eyebox_height / g.views_y, g.views_y);
-  ViewWeights v;
-  for (int a = 0; a < 2; ++a)
-    for (int b = 0; b < 2; ++b) {
-      v.weight[a][b] = (a ? vrow.w1 : 1 - vrow.w1) * (b ? vcol.w1 : 1 - vcol.w1);
-      v.view[a][b] = g.view_index(a ? vrow.k1 : vrow.k0, b ? vcol.k1 : vcol.k0);
-    }
-  return v;
-}
+using namespace lightfield_taps;  // the lookup rules, shared with the retinal operator
 
 // What the rays of one pupil point read, for one focus.
 struct PupilTables {

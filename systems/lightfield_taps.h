@@ -1,8 +1,8 @@
 // Where a ray crossing the eyebox reads a light field (docs/lightfield-format.md):
 // the views around its pupil point, blended bilinearly, and in each view the
 // pixel columns and rows around its crossing of the origin plane, by the
-// layers' sampling rule. The same rule as systems/lightfield_radiance.cpp
-// (natural viewing), for the retinal operator's tables and their transpose.
+// layers' sampling rule. Natural viewing (systems/lightfield_radiance.cpp)
+// and the retinal operator's tables and their transpose read by these rules.
 #pragma once
 
 #include <algorithm>

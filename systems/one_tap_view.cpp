@@ -32,53 +32,6 @@ size_t PaddedLayers::Bytes() const {
   return bytes;
 }
 
-namespace {
-
-template <int L>
-void AddRowOf(const OneTapView<L>& v, const PaddedLayers& padded, int i, Rgb4 w, Rgb4* row) {
-  const Rgb4* rows[L];
-  if (!v.Rows(padded, i, rows)) return;
-  for (const auto& c : v.columns()) {
-    Rgb4 p = w;
-    for (int k = 0; k < L; ++k) p *= rows[k][c.pixel[k]];
-    row[c.ray] += p;
-  }
-}
-
-using AnyOneTapView = std::variant<OneTapView<1>, OneTapView<2>, OneTapView<3>, OneTapView<4>>;
-
-template <class... Args>
-AnyOneTapView ViewOf(const DisplayModel& model, size_t b, Args... args) {
-  static_assert(kMaxOneTapLayers == 4);
-  const int* layers = model.branch_layers(b).data();
-  switch (model.branch_layers(b).size()) {
-    case 1:
-      return OneTapView<1>(model, layers, args...);
-    case 2:
-      return OneTapView<2>(model, layers, args...);
-    case 3:
-      return OneTapView<3>(model, layers, args...);
-    case 4:
-      return OneTapView<4>(model, layers, args...);
-  }
-  throw Error("branch " + std::to_string(b) + " does not take the one-tap path");
-}
-
-Rgb4 WeightOf(const DisplayModel& model, size_t b) {
-  const std::array<float, 3>& w = model.weight(b);
-  return Rgb4{w[0], w[1], w[2], 0.0f};
-}
-
-}  // namespace
-
-OneTapBranchView::OneTapBranchView(const DisplayModel& model, size_t b, const AxisTap* const* row_taps,
-                                   const AxisTap* const* col_taps, int ray_cols)
-    : view_(ViewOf(model, b, row_taps, col_taps, ray_cols)), weight_(WeightOf(model, b)) {}
-
-void OneTapBranchView::AddRow(const PaddedLayers& padded, int i, Rgb4* row) const {
-  std::visit([&](const auto& v) { AddRowOf(v, padded, i, weight_, row); }, view_);
-}
-
 RowSpan RowsRead(const LayerProjection& P, const LightFieldGeometry& g, int vr_begin, int vr_end) {
   int lo = P.rows(), hi = 0;
   for (int vr = vr_begin; vr < vr_end; ++vr) {

@@ -3,18 +3,15 @@
 // kMaxOneTapLayers per branch. Patterns are read padded to [pixel][rgb, 0]
 // (PaddedLayers) so that a pixel is one vector load.
 //
-// For a grid of rays whose column taps depend on the ray's column only and
-// row taps on its row only (a retina for one pupil point), OneTapView lists
-// once the columns of the rays that reach every layer; each ray row is then
-// one pass over that list with every layer's pattern row fixed. The
-// light-field passes go further, view column by view column
-// (view_synthesizer.h, solvers/one_tap_update.h, solvers/joint_column_pass.h).
+// The light-field passes run view column by view column, each layer resampled
+// once to the rays' columns (view_synthesizer.h, solvers/one_tap_update.h,
+// solvers/joint_column_pass.h); the retina resamples each layer row once per
+// column table (retina.cpp).
 #pragma once
 
 #include <algorithm>
 #include <array>
 #include <cstdint>
-#include <variant>
 #include <vector>
 
 #include "framework/rgb4.h"
@@ -39,67 +36,6 @@ class PaddedLayers {
 
  private:
   std::vector<std::vector<Rgb4>> layers_;
-};
-
-template <int L>
-class OneTapView {
- public:
-  struct Column {
-    int32_t ray;       // column in the view
-    int32_t pixel[L];  // column read in each layer
-  };
-
-  // Rays on a grid of rows x ray_cols (a light-field view, or the retina
-  // for one pupil point): ray column j reads column col_taps[k][j].i0 of layer
-  // layers[k] and ray row i its row row_taps[k][i].i0 (-1: misses it).
-  OneTapView(const DisplayModel& model, const int* layers, const AxisTap* const* row_taps,
-             const AxisTap* const* col_taps, int ray_cols) {
-    for (int k = 0; k < L; ++k) {
-      layers_[k] = layers[k];
-      row_taps_[k] = row_taps[k];
-      cols_[k] = model.projection(layers[k]).cols();
-    }
-    columns_.reserve(ray_cols);
-    for (int j = 0; j < ray_cols; ++j) {
-      Column c{j, {}};
-      bool reached = true;
-      for (int k = 0; k < L; ++k) reached = reached && (c.pixel[k] = col_taps[k][j].i0) >= 0;
-      if (reached) columns_.push_back(c);
-    }
-  }
-
-  // The columns of the rays that reach every layer, left to right.
-  const std::vector<Column>& columns() const { return columns_; }
-
-  // rows[k] = the pattern row of layer k that ray row i reads; false if some layer misses it.
-  bool Rows(const PaddedLayers& padded, int i, const Rgb4* rows[L]) const {
-    for (int k = 0; k < L; ++k) {
-      const int32_t r = row_taps_[k][i].i0;
-      if (r < 0) return false;
-      rows[k] = padded.pixels(layers_[k]) + static_cast<size_t>(r) * cols_[k];
-    }
-    return true;
-  }
-
- private:
-  int layers_[L];
-  const AxisTap* row_taps_[L];
-  int cols_[L];
-  std::vector<Column> columns_;
-};
-
-// One view of a fast-path branch, whatever its number of layers.
-class OneTapBranchView {
- public:
-  // The tables are per layer of the branch, in its order (OneTapView).
-  OneTapBranchView(const DisplayModel& model, size_t b, const AxisTap* const* row_taps, const AxisTap* const* col_taps,
-                   int ray_cols);
-  // row[j] += the light of the branch in ray (i, j) of the view, w_b prod_k P_k t_k.
-  void AddRow(const PaddedLayers& padded, int i, Rgb4* row) const;
-
- private:
-  std::variant<OneTapView<1>, OneTapView<2>, OneTapView<3>, OneTapView<4>> view_;
-  Rgb4 weight_;
 };
 
 // Layer rows [begin, end): the rows of a layer some rays read.

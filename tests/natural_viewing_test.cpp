@@ -13,18 +13,8 @@ namespace {
 
 constexpr double kDeg = std::numbers::pi / 180;
 
-// 13 x 13 views over 6 mm, a 10 x 6 deg window on the origin plane at 1.3 D.
-LightFieldGeometry Geometry(int cols = 200, int rows = 120) {
-  LightFieldGeometry g;
-  g.origin_z = 1 / 1.3;
-  g.window_width = 2 * g.origin_z * std::tan(5 * kDeg);
-  g.window_height = 2 * g.origin_z * std::tan(3 * kDeg);
-  g.window_left = -g.window_width / 2;
-  g.window_top = g.window_height / 2;
-  g.cols = cols, g.rows = rows;
-  g.views_x = g.views_y = 13;
-  return g;
-}
+// 13 x 13 views.
+LightFieldGeometry Geometry(int cols = 200, int rows = 120) { return testing::WindowGeometry(cols, rows, 13); }
 
 std::unique_ptr<Texture> Grating(double cycles_per_meter) {
   GratingSpec spec;

@@ -26,18 +26,7 @@ using testing::ShrunkExample;
 
 constexpr double kDeg = std::numbers::pi / 180;
 
-// `views` x `views` views over 6 mm, a 10 x 6 deg window on the origin plane at 1.3 D.
-LightFieldGeometry Geometry(int cols, int rows, int views) {
-  LightFieldGeometry g;
-  g.origin_z = 1 / 1.3;
-  g.window_width = 2 * g.origin_z * std::tan(5 * kDeg);
-  g.window_height = 2 * g.origin_z * std::tan(3 * kDeg);
-  g.window_left = -g.window_width / 2;
-  g.window_top = g.window_height / 2;
-  g.cols = cols, g.rows = rows;
-  g.views_x = g.views_y = views;
-  return g;
-}
+LightFieldGeometry Geometry(int cols, int rows, int views) { return testing::WindowGeometry(cols, rows, views); }
 
 LightField RandomLightField(const LightFieldGeometry& g, unsigned seed) {
   LightField lf(g);

@@ -1,6 +1,7 @@
 #include "tests/test_util.h"
 
 #include <cmath>
+#include <numbers>
 
 #include "framework/json_file.h"
 
@@ -48,6 +49,19 @@ nlohmann::json& ElementNamed(nlohmann::json& scene, const std::string& name) {
   for (auto& e : scene["elements"])
     if (e.value("name", "") == name) return e;
   throw std::runtime_error("no element named " + name);
+}
+
+LightFieldGeometry WindowGeometry(int cols, int rows, int views) {
+  constexpr double kDeg = std::numbers::pi / 180;
+  LightFieldGeometry g;
+  g.origin_z = 1 / 1.3;
+  g.window_width = 2 * g.origin_z * std::tan(5 * kDeg);
+  g.window_height = 2 * g.origin_z * std::tan(3 * kDeg);
+  g.window_left = -g.window_width / 2;
+  g.window_top = g.window_height / 2;
+  g.cols = cols, g.rows = rows;
+  g.views_x = g.views_y = views;
+  return g;
 }
 
 }  // namespace layerlab::testing

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "framework/lightfield.h"
 #include "systems/compile.h"
 
 namespace layerlab::testing {
@@ -27,6 +28,10 @@ std::string CompileError(const nlohmann::json& scene);
 // An example display shrunk for fast tests: every panel's active region
 // `cols` x `rows`, the eye's views `views` x `views`.
 nlohmann::json ShrunkExample(const std::string& name, int cols, int rows, int views);
+
+// A light field of `views` x `views` views over a 6 mm eyebox and a 10 x 6 deg
+// window on its origin plane at 1.3 D, of `cols` x `rows` pixels.
+LightFieldGeometry WindowGeometry(int cols, int rows, int views);
 
 // Finds the element named `name` in a scene document.
 nlohmann::json& ElementNamed(nlohmann::json& scene, const std::string& name);
