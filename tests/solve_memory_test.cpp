@@ -137,7 +137,22 @@ TEST(SolveMemory, DISABLED_ChildSolve) {
   std::ofstream(out) << estimate.bytes << " " << peak_kb * 1024 << "\n" << estimate.breakdown << "\n";
 }
 
+// AddressSanitizer's shadow memory and quarantine are part of the peak (the
+// sanitizer build's 110 MB against 84 MB estimated on the synthetic target).
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kAddressSanitizer = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+constexpr bool kAddressSanitizer = true;
+#else
+constexpr bool kAddressSanitizer = false;
+#endif
+#else
+constexpr bool kAddressSanitizer = false;
+#endif
+
 void ExpectEstimateNearPeak(const std::string& dice) {
+  if (kAddressSanitizer) GTEST_SKIP() << "the peak under AddressSanitizer includes its shadow memory";
   char self[4096];
   const ssize_t length = ::readlink("/proc/self/exe", self, sizeof self - 1);
   ASSERT_GT(length, 0);
