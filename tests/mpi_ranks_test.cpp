@@ -15,6 +15,7 @@ namespace layerlab {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::ErrorOf;
 
 TEST(ViewRowsOfRank, CoverEveryRowOnceInBlocksOneApart) {
   for (int rows : {1, 2, 5, 13, 26})
@@ -96,16 +97,6 @@ TEST(SumAcrossRanks, PacksEveryPartIntoOneMessageInOrder) {
   EXPECT_EQ(den, (std::vector<std::vector<double>>{{15}}));
   EXPECT_EQ(SumAcrossRanks(nullptr, nullptr, 2.0), 6.0);
   EXPECT_EQ(MaxAcrossRanks(1.0), 101.0);
-}
-
-template <class Call>
-std::string ErrorOf(Call call) {
-  try {
-    call();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
 }
 
 TEST(ReadLightField, ViewRowsReadsOnlyTheBlock) {

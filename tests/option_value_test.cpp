@@ -4,18 +4,12 @@
 
 #include "app/number_list.h"
 #include "framework/error.h"
+#include "tests/test_util.h"
 
 namespace layerlab::app {
 namespace {
 
-std::string ErrorOf(auto&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::ErrorOf;
 
 TEST(OptionValue, BareNumbersKeepTheOptionsUnit) {
   EXPECT_DOUBLE_EQ(ParseOptionValue("1.0", "--accommodation", kDiopters), 1.0);

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "framework/error.h"
 #include "framework/lightfield.h"
 #include "systems/compile.h"
 
@@ -32,6 +33,17 @@ nlohmann::json ShrunkExample(const std::string& name, int cols, int rows, int vi
 // A light field of `views` x `views` views over a 6 mm eyebox and a 10 x 6 deg
 // window on its origin plane at 1.3 D, of `cols` x `rows` pixels.
 LightFieldGeometry WindowGeometry(int cols, int rows, int views);
+
+// The layerlab::Error's what() from `call`, or "no error" when it returns.
+template <class Call>
+std::string ErrorOf(Call&& call) {
+  try {
+    call();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
 
 // Finds the element named `name` in a scene document.
 nlohmann::json& ElementNamed(nlohmann::json& scene, const std::string& name);
