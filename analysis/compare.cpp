@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <set>
 
@@ -19,8 +20,38 @@ namespace layerlab {
 namespace {
 
 std::string Psnr(double db) { return FormatPsnr(db, 3); }
+// A CSV field: empty where a run did not measure it.
+std::string PsnrField(double db) { return std::isnan(db) ? "" : Psnr(db); }
+
+ObjectiveKind ObjectiveOf(const SolverReport& report) {
+  return ObjectiveKindNamed(report.objective).value_or(ObjectiveKind::kLightField);
+}
+
+bool Contains(const std::vector<ObjectiveKind>& objectives, ObjectiveKind k) {
+  return std::find(objectives.begin(), objectives.end(), k) != objectives.end();
+}
 
 }  // namespace
+
+std::string RunLabel(const std::string& display, const std::string& solver, ObjectiveKind objective) {
+  return display + " / " + solver + (objective == ObjectiveKind::kRetinal ? " / retinal" : "");
+}
+
+std::string RunLabel(const CompareResult& result) {
+  return RunLabel(result.display, result.solver, ObjectiveOf(result.report));
+}
+
+double FinalFocalStackPsnr(const SolverReport& report) {
+  return report.trace.empty() ? std::numeric_limits<double>::quiet_NaN() : report.trace.back().focal_stack_psnr_db;
+}
+
+SolverOptions WithObjective(SolverOptions options, ObjectiveKind objective,
+                            const std::vector<ObjectiveKind>& objectives) {
+  options.objective = objective;
+  if (objective == ObjectiveKind::kLightField && Contains(objectives, ObjectiveKind::kRetinal))
+    options.measure_focal_stack = true;
+  return options;
+}
 
 std::vector<std::string> SuitableSolvers(const DisplaySystem& system, const SolverRegistry& registry) {
   std::vector<std::string> out;
@@ -53,8 +84,16 @@ std::vector<CompareRun> CompareRunsOf(const std::vector<std::string>& scene_file
       SolverOptions options = own ? config.options : registry.find(solver)->defaults;
       options.iterations = selection.iterations.value_or(options.iterations);
       options.time_budget = selection.time_budget.value_or(options.time_budget);
-      runs.push_back(
-          {name, system, solver, options, own ? config.sampling : Sampling::kNearest, own ? "scene" : "shared"});
+      const std::vector<ObjectiveKind> objectives =
+          selection.objectives.empty() ? std::vector<ObjectiveKind>{options.objective} : selection.objectives;
+      for (ObjectiveKind objective : objectives) {
+        if (std::string why = ObjectiveRefusal(solver, objective, registry); !why.empty()) {
+          if (skipped) skipped->push_back(RunLabel(name, solver, objective) + ": " + why);
+          continue;
+        }
+        runs.push_back({name, system, solver, WithObjective(options, objective, selection.objectives),
+                        own ? config.sampling : Sampling::kNearest, own ? "scene" : "shared"});
+      }
     }
   }
   if (runs.empty()) throw Error("compare: no display and solver fit together; nothing to run");
@@ -72,7 +111,7 @@ std::vector<std::string> CompareWarnings(const std::vector<CompareRun>& runs, co
       for (const std::string& w : found) warnings.push_back(r.display + ": " + w);
     }
   for (const CompareResult& r : results)
-    for (const std::string& w : r.report.warnings) warnings.push_back(r.display + " / " + r.solver + ": " + w);
+    for (const std::string& w : r.report.warnings) warnings.push_back(RunLabel(r) + ": " + w);
   return warnings;
 }
 
@@ -82,7 +121,7 @@ std::vector<CompareResult> RunComparison(const std::vector<CompareRun>& runs, co
   for (const CompareRun& run : runs) {
     DisplayModel model(run.system, target.geometry, run.sampling);
     SolverOptions options = run.options;
-    const std::string label = run.display + " / " + run.solver;
+    const std::string label = RunLabel(run.display, run.solver, options.objective);
     std::optional<Progress> progress;
     if (show_progress) {
       progress.emplace("compare " + label, options.iterations);
@@ -108,15 +147,17 @@ std::vector<CompareResult> RunComparison(const std::vector<CompareRun>& runs, co
 
 std::string CompareTable(const std::vector<CompareResult>& results) {
   std::string out =
-      "display                      solver                  PSNR (dB)   seconds  iterations  subframes  panel (Hz)  "
-      "brightness (lum.)  brightness R G B       options  termination\n";
+      "display                      solver                 objective   PSNR (dB)  focal stack (dB)   seconds  "
+      "iterations  subframes  panel (Hz)  brightness (lum.)  brightness R G B       options  termination\n";
   for (const CompareResult& r : results) {
+    const double focal_stack = FinalFocalStackPsnr(r.report);
     char line[400];
-    std::snprintf(line, sizeof line, "%-28s %-22s %10s %9.2f %11d %10d %11.0f %18.4f  %.4f %.4f %.4f   %-7s  %s\n",
-                  r.display.c_str(), r.solver.c_str(), Psnr(r.report.final_psnr_db).c_str(), r.report.seconds,
-                  r.report.iterations, r.subframes, r.panel_refresh_hz, r.luminance_efficiency,
-                  r.brightness_efficiency[0], r.brightness_efficiency[1], r.brightness_efficiency[2],
-                  r.options_from.c_str(), ToString(r.report.termination).c_str());
+    std::snprintf(
+        line, sizeof line, "%-28s %-22s %-10s %10s %17s %9.2f %11d %10d %11.0f %18.4f  %.4f %.4f %.4f   %-7s  %s\n",
+        r.display.c_str(), r.solver.c_str(), r.report.objective.c_str(), Psnr(r.report.final_psnr_db).c_str(),
+        std::isnan(focal_stack) ? "-" : Psnr(focal_stack).c_str(), r.report.seconds, r.report.iterations, r.subframes,
+        r.panel_refresh_hz, r.luminance_efficiency, r.brightness_efficiency[0], r.brightness_efficiency[1],
+        r.brightness_efficiency[2], r.options_from.c_str(), ToString(r.report.termination).c_str());
     out += line;
   }
   return out;
@@ -124,58 +165,75 @@ std::string CompareTable(const std::vector<CompareResult>& results) {
 
 std::string CompareCsv(const std::vector<CompareResult>& results) {
   std::string out =
-      "display,solver,final_psnr_db,seconds,iterations,subframes,panel_refresh_hz,luminance_efficiency,efficiency_r,"
-      "efficiency_g,efficiency_b,termination,solver_options\n";
+      "display,solver,objective,final_psnr_db,final_focal_stack_psnr_db,seconds,iterations,subframes,panel_refresh_hz,"
+      "luminance_efficiency,efficiency_r,efficiency_g,efficiency_b,termination,solver_options\n";
   for (const CompareResult& r : results) {
     char line[400];
-    std::snprintf(line, sizeof line, "%s,%s,%s,%.6f,%d,%d,%.3f,%.6f,%.6f,%.6f,%.6f,%s,%s\n", r.display.c_str(),
-                  r.solver.c_str(), Psnr(r.report.final_psnr_db).c_str(), r.report.seconds, r.report.iterations,
-                  r.subframes, r.panel_refresh_hz, r.luminance_efficiency, r.brightness_efficiency[0],
-                  r.brightness_efficiency[1], r.brightness_efficiency[2], ToString(r.report.termination).c_str(),
-                  r.options_from.c_str());
+    std::snprintf(line, sizeof line, "%s,%s,%s,%s,%s,%.6f,%d,%d,%.3f,%.6f,%.6f,%.6f,%.6f,%s,%s\n", r.display.c_str(),
+                  r.solver.c_str(), r.report.objective.c_str(), Psnr(r.report.final_psnr_db).c_str(),
+                  PsnrField(FinalFocalStackPsnr(r.report)).c_str(), r.report.seconds, r.report.iterations, r.subframes,
+                  r.panel_refresh_hz, r.luminance_efficiency, r.brightness_efficiency[0], r.brightness_efficiency[1],
+                  r.brightness_efficiency[2], ToString(r.report.termination).c_str(), r.options_from.c_str());
     out += line;
   }
   return out;
 }
 
 std::string TracesCsv(const std::vector<CompareResult>& results) {
-  std::string out = "display,solver,iteration,seconds,objective,psnr_db\n";
+  // `objective` is the value the run minimized, of the objective named in `objective_kind`.
+  std::string out = "display,solver,objective_kind,iteration,seconds,objective,psnr_db,focal_stack_psnr_db\n";
   for (const CompareResult& r : results)
     for (const IterationRecord& row : r.report.trace) {
       char line[300];
-      std::snprintf(line, sizeof line, "%s,%s,%d,%.6f,%.9g,%s\n", r.display.c_str(), r.solver.c_str(), row.iteration,
-                    row.seconds, row.objective, Psnr(row.psnr_db).c_str());
+      std::snprintf(line, sizeof line, "%s,%s,%s,%d,%.6f,%.9g,%s,%s\n", r.display.c_str(), r.solver.c_str(),
+                    r.report.objective.c_str(), row.iteration, row.seconds, row.objective, Psnr(row.psnr_db).c_str(),
+                    PsnrField(row.focal_stack_psnr_db).c_str());
       out += line;
     }
   return out;
 }
 
-std::string PsnrAgainstTimeSvg(const std::vector<CompareResult>& results) {
+namespace {
+
+// One panel of PSNR against wall time, the PSNR read by `db`; no line for a run without a finite value.
+PlotPanel PsnrPanel(const std::vector<CompareResult>& results, const std::string& title,
+                    double (*db)(const IterationRecord&)) {
   static const char* kColors[] = {"#d62728", "#1f77b4", "#2ca02c", "#ff7f0e",
                                   "#9467bd", "#8c564b", "#e377c2", "#17becf"};
   PlotPanel panel;
-  panel.title = "PSNR against wall time";
+  panel.title = title;
   panel.x_label = "wall time (s)";
   panel.y_label = "PSNR (dB)";
   double t_max = 0, y_min = INFINITY, y_max = -INFINITY;
   for (size_t k = 0; k < results.size(); ++k) {
-    PlotLine line{results[k].display + " / " + results[k].solver, kColors[k % 8], k >= 8, {}, {}};
+    PlotLine line{RunLabel(results[k]), kColors[k % 8], k >= 8, {}, {}};
     for (const IterationRecord& row : results[k].report.trace) {
-      if (!std::isfinite(row.psnr_db)) continue;
+      if (!std::isfinite(db(row))) continue;
       line.x.push_back(row.seconds);
-      line.y.push_back(row.psnr_db);
+      line.y.push_back(db(row));
       t_max = std::max(t_max, row.seconds);
       // The first iterate (often the flat initial guess) would squash the interesting range.
-      if (row.iteration > 0) y_min = std::min(y_min, row.psnr_db);
-      y_max = std::max(y_max, row.psnr_db);
+      if (row.iteration > 0) y_min = std::min(y_min, db(row));
+      y_max = std::max(y_max, db(row));
     }
-    panel.lines.push_back(std::move(line));
+    if (!line.x.empty()) panel.lines.push_back(std::move(line));
   }
   if (!std::isfinite(y_min)) y_min = 0, y_max = 1;
   panel.x_max = t_max > 0 ? t_max * 1.02 : 1;
   panel.y_min = std::floor(y_min - 0.5);
   panel.y_max = std::ceil(y_max + 0.5);
-  return RenderSvg({panel}, 1, "");
+  return panel;
+}
+
+}  // namespace
+
+std::string PsnrAgainstTimeSvg(const std::vector<CompareResult>& results) {
+  std::vector<PlotPanel> panels = {
+      PsnrPanel(results, "light-field PSNR against wall time", [](const IterationRecord& r) { return r.psnr_db; })};
+  PlotPanel focal = PsnrPanel(results, "focal-stack PSNR against wall time (mean over accommodation states)",
+                              [](const IterationRecord& r) { return r.focal_stack_psnr_db; });
+  if (!focal.lines.empty()) panels.push_back(std::move(focal));
+  return RenderSvg(panels, static_cast<int>(panels.size()), "");
 }
 
 }  // namespace layerlab

@@ -34,13 +34,25 @@ struct CompareResult {
   std::string options_from = "shared";  // CompareRun::options_from
 };
 
+// "DISPLAY / SOLVER", and " / retinal" for a solve of the retinal objective.
+std::string RunLabel(const std::string& display, const std::string& solver, ObjectiveKind objective);
+std::string RunLabel(const CompareResult& result);
+
+// The focal-stack PSNR of a run's last trace row (mean over states, dB), or
+// NaN when the run did not measure it.
+double FinalFocalStackPsnr(const SolverReport& report);
+
 // Every solver of `registry` that suits `system` (SolverType::unsuitable), by name.
 std::vector<std::string> SuitableSolvers(const DisplaySystem& system,
                                          const SolverRegistry& registry = SolverRegistry::Builtins());
 
 // What to run of each scene: `solvers` by name, {"all"} for every one that
 // suits the display, none for the scene's own; `iterations` and
-// `time_budget` (s, 0: none) replace every run's. Like for like unless
+// `time_budget` (s, 0: none) replace every run's. `objectives`: each
+// display and solver runs once per objective the solver minimizes (none:
+// the light-field objective, or the scene's own with scene_options); when
+// one of them is the retinal objective, the light-field runs measure the
+// focal stack too (off the clock), so that every row has both PSNRs. Like for like unless
 // `scene_options`: every row runs its solver with that solver's defaults
 // (nearest sampling); with it, a scene's own solver runs with its "solve"
 // section's options and sampling (options_from "scene").
@@ -49,11 +61,18 @@ struct CompareSelection {
   std::optional<int> iterations;
   std::optional<double> time_budget;
   bool scene_options = false;
+  std::vector<ObjectiveKind> objectives;
 };
+
+// The options of one run of `objectives` (CompareSelection::objectives): the
+// objective set, and the focal stack measured when another run minimizes it.
+SolverOptions WithObjective(SolverOptions options, ObjectiveKind objective,
+                            const std::vector<ObjectiveKind>& objectives);
 
 // The runs of `layerlab compare SCENES` (and of Python's compare()): each
 // scene file compiled, named by its stem. A named solver that does not suit a
-// display is left out with a line in *skipped ("NAME / SOLVER: the solver ...").
+// display, or an objective it does not minimize, is left out with a line in
+// *skipped ("NAME / SOLVER: the solver ...").
 // Throws layerlab::Error for an unknown solver, a bad scene, or nothing to run.
 std::vector<CompareRun> CompareRunsOf(const std::vector<std::string>& scene_files, const CompareSelection& selection,
                                       std::vector<std::string>* skipped);
@@ -74,6 +93,8 @@ std::vector<CompareResult> RunComparison(const std::vector<CompareRun>& runs, co
 std::string CompareTable(const std::vector<CompareResult>& results);  // fixed-width text
 std::string CompareCsv(const std::vector<CompareResult>& results);    // one row per run
 std::string TracesCsv(const std::vector<CompareResult>& results);     // one row per run and iteration
+// The light-field PSNR against wall time, and beside it the focal-stack PSNR
+// when some run measured it.
 std::string PsnrAgainstTimeSvg(const std::vector<CompareResult>& results);
 
 }  // namespace layerlab

@@ -320,15 +320,20 @@ std::string CompareSection(const RunReportPage& page) {
       "options: "
       "<i>shared</i>, the same for every row (the solver's defaults and the command's overrides); <i>scene</i>, the "
       "scene's own \"solve\" section.</p>\n";
-  h += "<table><tr><th class=\"l\">display</th><th class=\"l\">solver</th><th>PSNR (dB)</th><th>seconds</th>"
-       "<th>iterations</th><th>brightness (luminance)</th><th>brightness R / G / B</th><th>balance R : G : B</th>"
+  h += "<table><tr><th class=\"l\">display</th><th class=\"l\">solver</th><th class=\"l\">objective</th>"
+       "<th>PSNR (dB)</th><th>focal-stack PSNR (dB)</th><th>seconds</th><th>iterations</th><th>brightness "
+       "(luminance)</th><th>brightness R / G / B</th><th>balance R : G : B</th>"
        "<th class=\"l\">termination</th><th class=\"l\">solver options</th></tr>\n";
-  for (const CompareResult& r : page.compare)
-    h += "<tr><td class=\"l\">" + Escape(r.display) + "</td><td class=\"l\">" + Escape(r.solver) + "</td><td>" +
-         F(r.report.final_psnr_db, 2) + "</td><td>" + F(r.report.seconds, 2) + "</td><td>" +
-         std::to_string(r.report.iterations) + "</td><td>" + F(r.luminance_efficiency, 4) + "</td><td>" +
-         Rgb3(r.brightness_efficiency, 4) + "</td><td>" + Balance(r.brightness_efficiency) + "</td><td class=\"l\">" +
-         Escape(ToString(r.report.termination)) + "</td><td class=\"l\">" + Escape(r.options_from) + "</td></tr>\n";
+  for (const CompareResult& r : page.compare) {
+    const double focal_stack = FinalFocalStackPsnr(r.report);
+    h += "<tr><td class=\"l\">" + Escape(r.display) + "</td><td class=\"l\">" + Escape(r.solver) +
+         "</td><td class=\"l\">" + Escape(r.report.objective) + "</td><td>" + F(r.report.final_psnr_db, 2) +
+         "</td><td>" + (std::isnan(focal_stack) ? "&ndash;" : F(focal_stack, 2)) + "</td><td>" +
+         F(r.report.seconds, 2) + "</td><td>" + std::to_string(r.report.iterations) + "</td><td>" +
+         F(r.luminance_efficiency, 4) + "</td><td>" + Rgb3(r.brightness_efficiency, 4) + "</td><td>" +
+         Balance(r.brightness_efficiency) + "</td><td class=\"l\">" + Escape(ToString(r.report.termination)) +
+         "</td><td class=\"l\">" + Escape(r.options_from) + "</td></tr>\n";
+  }
   h += "</table>\n<div class=\"grid\">" + Figure(page.compare_plot, "", "plot") + "</div>\n";
   return h + "</section>\n";
 }

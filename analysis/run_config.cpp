@@ -40,6 +40,7 @@
 // | solvers     | array of solver names | each scene's own | every display runs every solver it suits     |
 // | iterations  | integer               | each run's own   | outer iterations of every run                |
 // | time_budget | time                  | each run's own   | wall-clock budget of every run               |
+// | objectives  | array of strings      | each run's own   | "lightfield", "retinal": each solver runs each objective it minimizes (the retinal one: joint, quasi-newton); with "retinal" every row also records the focal-stack PSNR |
 //
 // depth_range: a range of depths, {"from": ..., "to": ..., "step": ...}, as
 // run.retina's focal_stack and run.contrast's accommodation take it.
@@ -215,6 +216,16 @@ CompareRunConfig ReadCompare(Params& run, const Scene& scene) {
   if (p.has("time_budget")) {
     c.time_budget = p.quantity("time_budget", Dimension::kTime);
     p.require_range("time_budget", *c.time_budget, 0, 1e7, true, false);
+  }
+  if (p.has("objectives")) {
+    p.mark_read("objectives");
+    Params items = ArrayItems(p, "objectives");
+    for (size_t k = 0; items.has(std::to_string(k)); ++k) {
+      const std::string i = std::to_string(k);
+      const std::optional<ObjectiveKind> objective = ObjectiveKindNamed(items.string(i));
+      if (!objective) items.fail(i, "\"" + items.string(i) + "\" is not one of lightfield or retinal");
+      c.objectives.push_back(*objective);
+    }
   }
   p.check_all_read();
   return c;

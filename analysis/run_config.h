@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "analysis/contrast.h"
+#include "solvers/solver.h"
 #include "systems/display_system.h"
 #include "systems/scene.h"
 
@@ -39,10 +40,11 @@ struct ContrastRunConfig {
 
 struct CompareRunConfig {
   bool enabled = false;
-  std::vector<std::string> scenes;    // displays beside this one (resolved paths)
-  std::vector<std::string> solvers;   // empty: each scene's own solver
-  std::optional<int> iterations;      // unset: each run's own
-  std::optional<double> time_budget;  // s; unset: each run's own
+  std::vector<std::string> scenes;        // displays beside this one (resolved paths)
+  std::vector<std::string> solvers;       // empty: each scene's own solver
+  std::optional<int> iterations;          // unset: each run's own
+  std::optional<double> time_budget;      // s; unset: each run's own
+  std::vector<ObjectiveKind> objectives;  // empty: each run's own (CompareSelection::objectives)
 };
 
 struct RunConfig {

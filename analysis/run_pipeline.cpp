@@ -215,7 +215,6 @@ RunOutcome RunPipeline(const RunRequest& request) {
     if (in.run.compare.enabled) {
       auto start = Clock::now();
       const CompareRunConfig& c = in.run.compare;
-      const bool overridden = c.iterations || c.time_budget;
       std::vector<std::pair<std::string, const DisplaySystem*>> displays = {{in.name, &in.system}};
       std::vector<const SolveConfig*> configs = {&in.solve};
       for (const OtherDisplay& d : in.compare) displays.push_back({d.name, &d.system}), configs.push_back(&d.config);
@@ -227,28 +226,44 @@ RunOutcome RunPipeline(const RunRequest& request) {
             page.warnings.push_back("compare: skipped " + name + " / " + solver + ": the solver " + why);
             continue;
           }
-          if (k == 0 && solver == in.solve.solver && !overridden) {  // the main solve already ran this
-            outcome.compare_scenes.push_back(system->file);
-            page.compare.push_back({name, solver, report, system->brightness_efficiency, system->luminance_efficiency,
-                                    system->subframes, system->subframes * system->frame_rate, "scene"});
-            continue;
-          }
           // A display runs with its scene's own options when it has a "solve" section of its own (ReadInputs).
           const bool own = solver == configs[k]->solver && (k == 0 || in.compare[k - 1].own_options);
-          CompareRun run{
-              name,
-              *system,
-              solver,
-              solver == configs[k]->solver ? configs[k]->options : SolverRegistry::Builtins().find(solver)->defaults,
-              configs[k]->sampling,
-              own ? "scene" : "shared"};
-          run.options.iterations = c.iterations.value_or(run.options.iterations);
-          run.options.time_budget = c.time_budget.value_or(run.options.time_budget);
-          CompareResult result = RunComparison({run}, target->light_field, true).front();
-          if (!result.report.IsSolutionUsable())
-            throw Error("compare: " + name + " / " + solver + " failed: " + result.report.message);
-          outcome.compare_scenes.push_back(system->file);
-          page.compare.push_back(std::move(result));
+          SolverOptions base =
+              solver == configs[k]->solver ? configs[k]->options : SolverRegistry::Builtins().find(solver)->defaults;
+          base.iterations = c.iterations.value_or(base.iterations);
+          base.time_budget = c.time_budget.value_or(base.time_budget);
+          const std::vector<ObjectiveKind> objectives =
+              c.objectives.empty() ? std::vector<ObjectiveKind>{base.objective} : c.objectives;
+          for (ObjectiveKind objective : objectives) {
+            if (std::string why = ObjectiveRefusal(solver, objective); !why.empty()) {
+              page.warnings.push_back("compare: skipped " + RunLabel(name, solver, objective) + ": " + why);
+              continue;
+            }
+            CompareRun run{name,
+                           *system,
+                           solver,
+                           WithObjective(base, objective, c.objectives),
+                           configs[k]->sampling,
+                           own ? "scene" : "shared"};
+            // The main solve already ran this: its trace, cut at the budget, is the row.
+            const bool main_ran_it = k == 0 && solver == in.solve.solver && !c.iterations &&
+                                     objective == in.solve.options.objective &&
+                                     (!run.options.measure_focal_stack || in.solve.options.measure_focal_stack);
+            if (main_ran_it)
+              if (std::optional<SolverReport> main = c.time_budget ? ReportWithTimeBudget(report, *c.time_budget)
+                                                                   : std::optional<SolverReport>(report)) {
+                outcome.compare_scenes.push_back(system->file);
+                page.compare.push_back({name, solver, *main, system->brightness_efficiency,
+                                        system->luminance_efficiency, system->subframes,
+                                        system->subframes * system->frame_rate, "scene"});
+                continue;
+              }
+            CompareResult result = RunComparison({run}, target->light_field, true).front();
+            if (!result.report.IsSolutionUsable())
+              throw Error("compare: " + RunLabel(result) + " failed: " + result.report.message);
+            outcome.compare_scenes.push_back(system->file);
+            page.compare.push_back(std::move(result));
+          }
         }
       }
       AddCompareToPage(page.compare, (out / "compare").string(), "compare/", &page);

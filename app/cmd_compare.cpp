@@ -43,7 +43,7 @@ void AddCompareCommand(CLI::App& app) {
     std::string out, solvers;
     TargetOption target;
     std::optional<int> iterations;
-    std::string time_budget;
+    std::string time_budget, objectives;
     bool scene_options = false;
   };
   auto o = std::make_shared<Options>();
@@ -59,13 +59,22 @@ void AddCompareCommand(CLI::App& app) {
                 "Run each scene with its own \"solve\" section (options, sampling) instead of the same options for "
                 "every row (each solver's defaults; the table's options column says which)");
   cmd->add_option("--time-budget", o->time_budget, "How long each run may take: seconds, or with units (\"5 s\")");
+  cmd->add_option("--objectives", o->objectives,
+                  "Objectives each solver runs, comma-separated: lightfield, retinal (the solvers that minimize it); "
+                  "with retinal, every row also records the focal-stack PSNR (default: the light field's)");
   cmd->callback([o] {
     if (o->iterations && *o->iterations <= 0) throw Error("--iterations: must be positive");
     std::optional<double> time_budget;
     if (!o->time_budget.empty()) time_budget = ParseOptionValue(o->time_budget, "--time-budget", kSeconds);
+    std::vector<ObjectiveKind> objectives;
+    for (const std::string& name : SplitNames(o->objectives)) {
+      const std::optional<ObjectiveKind> k = ObjectiveKindNamed(name);
+      if (!k) throw Error("--objectives: \"" + name + "\" is not one of lightfield or retinal");
+      objectives.push_back(*k);
+    }
     std::vector<std::string> skipped;
-    const std::vector<CompareRun> runs =
-        CompareRunsOf(o->scenes, {SplitNames(o->solvers), o->iterations, time_budget, o->scene_options}, &skipped);
+    const std::vector<CompareRun> runs = CompareRunsOf(
+        o->scenes, {SplitNames(o->solvers), o->iterations, time_budget, o->scene_options, objectives}, &skipped);
     for (const std::string& line : skipped) std::fprintf(stderr, "compare: skipped %s\n", line.c_str());
     SolveConfig target_config;
     ApplyTargetOption(o->target, target_config);
@@ -79,8 +88,7 @@ void AddCompareCommand(CLI::App& app) {
     std::vector<CompareResult> results = RunComparison(runs, target->light_field, true);
     for (const CompareResult& r : results)
       if (!r.report.IsSolutionUsable())
-        throw Error("compare: " + r.display + " / " + r.solver + " failed: " + r.report.message +
-                    "; nothing was written");
+        throw Error("compare: " + RunLabel(r) + " failed: " + r.report.message + "; nothing was written");
 
     const std::vector<std::string> warnings = CompareWarnings(runs, results, target->light_field.geometry);
     SayWarnings(warnings);
@@ -88,7 +96,7 @@ void AddCompareCommand(CLI::App& app) {
     const std::string table = CompareTable(results);
     try {
       RunReportPage page = CommandPage("compare", "", "", "", CommandLine());
-      for (const CompareResult& r : results) page.steps.push_back({r.display + " / " + r.solver, r.report.seconds});
+      for (const CompareResult& r : results) page.steps.push_back({RunLabel(r), r.report.seconds});
       AddCompareToPage(results, stage.staging(), "", &page);
       page.warnings = warnings;
       WriteReportPage(page, stage.staging());

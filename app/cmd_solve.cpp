@@ -135,9 +135,9 @@ void Solve(const Options& o, Ranks& ranks) {
     opt.target_range = o.target_range == "clip" ? TargetRange::kClip : TargetRange::kScale;
   }
   if (!o.objective.empty()) {
-    if (o.objective != "lightfield" && o.objective != "retinal")
-      throw Error("--objective: \"" + o.objective + "\" is not one of lightfield or retinal");
-    opt.objective = o.objective == "retinal" ? ObjectiveKind::kRetinal : ObjectiveKind::kLightField;
+    const std::optional<ObjectiveKind> objective = ObjectiveKindNamed(o.objective);
+    if (!objective) throw Error("--objective: \"" + o.objective + "\" is not one of lightfield or retinal");
+    opt.objective = *objective;
   }
   if (const std::string why = ObjectiveRefusal(config.solver, opt.objective); !why.empty())
     throw Error("--objective " + ToString(opt.objective) + ": " + why);

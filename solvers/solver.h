@@ -12,6 +12,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,8 @@ std::string ToString(TargetRange r);
 // quasi-newton and joint minimize it, SolverType::retinal_objective).
 enum class ObjectiveKind { kLightField, kRetinal };
 std::string ToString(ObjectiveKind k);
+// The objective named "lightfield" or "retinal", or nullopt.
+std::optional<ObjectiveKind> ObjectiveKindNamed(const std::string& name);
 
 struct SolverOptions {
   // Outer iterations (hybrid: passes over all multiplicative sets). Change it
@@ -120,6 +123,13 @@ struct SolverReport {
   std::string BriefReport() const;
   std::string FullReport() const;
 };
+
+// What a solve of `time_budget` seconds would have reported, read off a
+// longer solve's trace: the trace up to the first iteration at or past the
+// budget, where the solve loop checks it (the report unchanged when the solve
+// ended sooner; a budget of 0 is none). nullopt when the trace cannot tell: an unusable or
+// interrupted solve, or one that stopped on a shorter budget of its own.
+std::optional<SolverReport> ReportWithTimeBudget(const SolverReport& report, double time_budget);
 
 class Solver {
  public:

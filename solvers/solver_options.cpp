@@ -7,6 +7,11 @@ namespace layerlab {
 
 std::string ToString(TargetRange r) { return r == TargetRange::kClip ? "clip" : "scale"; }
 std::string ToString(ObjectiveKind k) { return k == ObjectiveKind::kLightField ? "lightfield" : "retinal"; }
+std::optional<ObjectiveKind> ObjectiveKindNamed(const std::string& name) {
+  for (ObjectiveKind k : {ObjectiveKind::kLightField, ObjectiveKind::kRetinal})
+    if (name == ToString(k)) return k;
+  return std::nullopt;
+}
 
 const std::vector<SolverOptionKey>& CommonSolverOptionKeys() {
   static const std::vector<SolverOptionKey> keys = {

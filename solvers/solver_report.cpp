@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -52,6 +53,28 @@ std::string SolverReport::FullReport() const {
     out += buf;
   }
   return out;
+}
+
+std::optional<SolverReport> ReportWithTimeBudget(const SolverReport& report, double time_budget) {
+  if (!report.IsSolutionUsable() || report.termination == Termination::kInterrupted) return std::nullopt;
+  if (time_budget <= 0)  // no budget
+    return report.termination == Termination::kTimeBudget ? std::nullopt : std::optional<SolverReport>(report);
+  auto at = std::find_if(report.trace.begin(), report.trace.end(),
+                         [&](const IterationRecord& r) { return r.iteration > 0 && r.seconds >= time_budget; });
+  if (at == report.trace.end()) {
+    if (report.termination == Termination::kTimeBudget) return std::nullopt;  // its own budget was shorter
+    return report;
+  }
+  if (at + 1 == report.trace.end() && report.termination == Termination::kTimeBudget) return report;
+  SolverReport cut = report;
+  cut.trace.assign(report.trace.begin(), at + 1);
+  cut.termination = Termination::kTimeBudget;
+  cut.message = "stopped after " + std::to_string(at->seconds) + " s";
+  cut.iterations = at->iteration;
+  cut.seconds = at->seconds;
+  cut.final_objective = at->objective;
+  cut.final_psnr_db = at->psnr_db;
+  return cut;
 }
 
 }  // namespace layerlab

@@ -87,7 +87,11 @@ TEST(RunConfig, ContrastAndCompareReadUnitsAndResolvePaths) {
               {"frequencies", {"2 cpd", 4}},
               {"accommodation", {{"from", "0 D"}, {"to", "2.6 D"}, {"step", "0.1 D"}}},
               {"retina_resolution", "0.02 deg"}}},
-            {"compare", {{"scenes", {"hybrid_pbs_hwp.json"}}, {"solvers", {"hybrid", "joint"}}, {"iterations", 5}}}});
+            {"compare",
+             {{"scenes", {"hybrid_pbs_hwp.json"}},
+              {"solvers", {"hybrid", "joint"}},
+              {"iterations", 5},
+              {"objectives", {"retinal", "lightfield"}}}}});
   RunConfig c = ReadRunConfig(l.scene, l.system);
   ASSERT_EQ(c.contrast.options.frequencies.size(), 2u);
   EXPECT_EQ(c.contrast.options.frequencies[1], 4.0);
@@ -96,6 +100,7 @@ TEST(RunConfig, ContrastAndCompareReadUnitsAndResolvePaths) {
   ASSERT_EQ(c.compare.scenes.size(), 1u);
   EXPECT_EQ(c.compare.scenes[0], "examples/hybrid_pbs_hwp.json");
   EXPECT_EQ(c.compare.iterations.value_or(0), 5);
+  EXPECT_EQ(c.compare.objectives, (std::vector<ObjectiveKind>{ObjectiveKind::kRetinal, ObjectiveKind::kLightField}));
 }
 
 TEST(RunConfig, BadInputIsRefusedWithItsLocation) {
@@ -119,6 +124,10 @@ TEST(RunConfig, BadInputIsRefusedWithItsLocation) {
   EXPECT_EQ(RunError({{"compare", {{"solvers", {"hybird"}}}}}),
             "examples/scene.json: /run/compare/solvers/0: unknown solver \"hybird\"; did you mean \"hybrid\"? Known "
             "solvers: additive-trust-region, hybrid, joint, multiplicative, quasi-newton");
+  EXPECT_EQ(RunError({{"compare", {{"objectives", {"lightfield", "retina"}}}}}),
+            "examples/scene.json: /run/compare/objectives/1: \"retina\" is not one of lightfield or retinal");
+  EXPECT_EQ(RunError({{"compare", {{"objectives", json::array()}}}}),
+            "examples/scene.json: /run/compare/objectives: expected a non-empty array, got an array");
 }
 
 TEST(SolveConfig, TargetSceneIsResolvedAndExclusive) {

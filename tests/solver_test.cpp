@@ -3,6 +3,7 @@
 // hold exactly; options and reports behave as documented.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <random>
 
 #include "framework/random.h"
@@ -498,6 +499,66 @@ TEST(SolverReport, TraceAndBudget) {
   r = RunSolver("hybrid", f, o, &t);
   EXPECT_EQ(r.termination, Termination::kTimeBudget);
   EXPECT_LT(r.iterations, 100000);
+}
+
+// The compare step reads its row of the main solve this way: a solve of three
+// iterations gives the same bits as the trace of ten cut where a budget of the
+// third iteration's time stops it.
+TEST(SolverReport, WithTimeBudgetIsTheTraceCutWhereTheBudgetedSolveStops) {
+  Fixture f = MakeFixture("paper_prototype.json", 16, 8, 3);
+  SolverOptions o;
+  o.iterations = 10;
+  Patterns t;
+  const SolverReport ten = RunSolver("hybrid", f, o, &t);
+  ASSERT_EQ(ten.trace.size(), 11u);
+  std::optional<SolverReport> cut = ReportWithTimeBudget(ten, ten.trace[3].seconds);
+  ASSERT_TRUE(cut.has_value());
+  EXPECT_EQ(cut->termination, Termination::kTimeBudget);
+  EXPECT_EQ(cut->iterations, 3);
+  ASSERT_EQ(cut->trace.size(), 4u);
+  EXPECT_EQ(cut->seconds, ten.trace[3].seconds);
+  EXPECT_EQ(cut->message, "stopped after " + std::to_string(ten.trace[3].seconds) + " s");
+  o.iterations = 3;
+  const SolverReport three = RunSolver("hybrid", f, o, &t);
+  EXPECT_EQ(cut->final_objective, three.final_objective);
+  EXPECT_EQ(cut->final_psnr_db, three.final_psnr_db);
+  EXPECT_EQ(cut->trace.back().objective, three.trace.back().objective);
+  EXPECT_EQ(cut->initial_objective, three.initial_objective);
+
+  // A budget past the end: the solve ended sooner, its report stands.
+  cut = ReportWithTimeBudget(ten, ten.trace.back().seconds + 10);
+  ASSERT_TRUE(cut.has_value());
+  EXPECT_EQ(cut->termination, Termination::kIterationLimit);
+  EXPECT_EQ(cut->iterations, 10);
+  EXPECT_EQ(cut->final_objective, ten.final_objective);
+}
+
+TEST(SolverReport, WithTimeBudgetRefusesWhatTheTraceCannotTell) {
+  SolverReport r;
+  r.solver = "x";
+  for (int k = 0; k <= 4; ++k) r.trace.push_back({k, 0.5 * k, 10.0 - k, 20.0 + k});
+  r.iterations = 4;
+  r.seconds = 2;
+  r.final_objective = 6;
+  r.final_psnr_db = 24;
+
+  r.termination = Termination::kTimeBudget;  // stopped on its own budget, at 2 s
+  EXPECT_FALSE(ReportWithTimeBudget(r, 3).has_value()) << "a longer budget would have run on";
+  EXPECT_FALSE(ReportWithTimeBudget(r, 0).has_value()) << "so would no budget";
+  ASSERT_TRUE(ReportWithTimeBudget(r, 2).has_value());
+  EXPECT_EQ(ReportWithTimeBudget(r, 2)->iterations, 4);
+  ASSERT_TRUE(ReportWithTimeBudget(r, 0.7).has_value());
+  EXPECT_EQ(ReportWithTimeBudget(r, 0.7)->iterations, 2);
+  EXPECT_EQ(ReportWithTimeBudget(r, 0.7)->final_objective, 8);
+  EXPECT_EQ(ReportWithTimeBudget(r, 0.7)->final_psnr_db, 22);
+
+  r.termination = Termination::kInterrupted;
+  EXPECT_FALSE(ReportWithTimeBudget(r, 1).has_value());
+  r.termination = Termination::kFailed;
+  EXPECT_FALSE(ReportWithTimeBudget(r, 1).has_value());
+  r.termination = Termination::kConverged;
+  EXPECT_EQ(ReportWithTimeBudget(r, 0)->termination, Termination::kConverged);
+  EXPECT_EQ(ReportWithTimeBudget(r, 1.5)->iterations, 3);
 }
 
 TEST(SolverReport, PerfectFitIsInfinityNotNull) {

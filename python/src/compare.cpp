@@ -41,13 +41,19 @@ std::vector<std::string> SolverList(const py::object& solvers) {
 
 py::dict Compare(const py::object& scenes, const py::object& target, const py::object& solvers,
                  std::optional<int> iterations, std::optional<double> time_budget, bool scene_options,
-                 const py::object& callback) {
+                 const py::object& objectives, const py::object& callback) {
   if (iterations && *iterations <= 0) throw py::value_error("compare: iterations must be positive");
   if (time_budget && !(*time_budget >= 0))
     throw py::value_error("compare: time_budget must be 0 (none) or more seconds");
   const std::vector<std::string> files = PathList(scenes);
   if (files.empty()) throw py::value_error("compare: no scene");
-  const CompareSelection selection{SolverList(solvers), iterations, time_budget, scene_options};
+  std::vector<ObjectiveKind> objective_kinds;
+  for (const std::string& name : SolverList(objectives)) {  // None, a name or a list of names
+    const std::optional<ObjectiveKind> k = ObjectiveKindNamed(name);
+    if (!k) throw py::value_error("compare: objectives: \"" + name + "\" is not one of lightfield or retinal");
+    objective_kinds.push_back(*k);
+  }
+  const CompareSelection selection{SolverList(solvers), iterations, time_budget, scene_options, objective_kinds};
   std::shared_ptr<LightField> given;
   SolveConfig target_config;  // a light-field folder, or a target scene file rendered as --target-scene does
   if (py::isinstance<LightField>(target)) {
@@ -71,10 +77,10 @@ py::dict Compare(const py::object& scenes, const py::object& target, const py::o
   std::vector<CompareResult> results;
   SolveHooks hooks;
   for (CompareRun& run : runs) {
-    const std::string display = run.display, solver = run.solver;
-    hooks.Install(run.options, callback, [display, solver](const IterationRecord& r) {
+    const std::string display = run.display, solver = run.solver, objective = ToString(run.options.objective);
+    hooks.Install(run.options, callback, [display, solver, objective](const IterationRecord& r) {
       py::dict d = TraceRow(r);
-      d["display"] = display, d["solver"] = solver;
+      d["display"] = display, d["solver"] = solver, d["objective_kind"] = objective;
       return d;
     });
     {
@@ -83,7 +89,7 @@ py::dict Compare(const py::object& scenes, const py::object& target, const py::o
     }
     if (hooks.raised) throw std::move(*hooks.raised);
     const SolverReport& report = results.back().report;
-    if (!report.IsSolutionUsable()) throw Error("compare: " + display + " / " + solver + " failed: " + report.message);
+    if (!report.IsSolutionUsable()) throw Error("compare: " + RunLabel(results.back()) + " failed: " + report.message);
     if (hooks.stop) break;
   }
   runs.resize(results.size());
@@ -97,11 +103,13 @@ py::dict Compare(const py::object& scenes, const py::object& target, const py::o
 void BindCompare(py::module_& m) {
   m.def("compare", &Compare, py::arg("scenes"), py::arg("target"), py::kw_only(), py::arg("solvers") = py::none(),
         py::arg("iterations") = py::none(), py::arg("time_budget") = py::none(), py::arg("scene_options") = false,
-        py::arg("callback") = py::none(),
+        py::arg("objectives") = py::none(), py::arg("callback") = py::none(),
         "Several displays and solvers on one target (a LightField, a light-field folder or a target scene file), as "
-        "`layerlab compare`: like for like (each solver's defaults) unless scene_options. A dict of columns, one row "
-        "per display and solver (scene, display, solver, solver_options, final_psnr_db, seconds, iterations, "
-        "subframes, panel_refresh_hz, luminance_efficiency, efficiency, termination, message, trace), with skipped, "
+        "`layerlab compare`: like for like (each solver's defaults) unless scene_options; objectives (\"lightfield\", "
+        "\"retinal\" or a list) as --objectives. A dict of columns, one row per display, solver and objective "
+        "(scene, display, solver, objective, solver_options, final_psnr_db, final_focal_stack_psnr_db, seconds, "
+        "iterations, subframes, panel_refresh_hz, luminance_efficiency, efficiency, termination, message, trace), with "
+        "skipped, "
         "warnings and table");
 }
 

@@ -38,12 +38,14 @@ py::dict CurveDict(const ContrastCurve& c) {
 py::dict CompareColumns(const std::vector<std::string>& scenes, const std::vector<CompareResult>& results,
                         const std::vector<std::string>& skipped, const std::vector<std::string>& warnings) {
   const auto n = static_cast<py::ssize_t>(results.size());
-  py::list scene, display, solver, options_from, termination, message, traces;
-  py::array_t<double> psnr(n), seconds(n), refresh(n), luminance(n), efficiency({n, py::ssize_t{3}});
+  py::list scene, display, solver, objective, options_from, termination, message, traces;
+  py::array_t<double> psnr(n), focal_stack(n), seconds(n), refresh(n), luminance(n), efficiency({n, py::ssize_t{3}});
   py::array_t<int> iterations(n), subframes(n);
   for (py::ssize_t i = 0; i < n; ++i) {
     const CompareResult& r = results[i];
-    scene.append(scenes.at(i)), display.append(r.display), solver.append(r.solver);
+    scene.append(scenes.at(i)), display.append(r.display), solver.append(r.solver),
+        objective.append(r.report.objective);
+    focal_stack.mutable_at(i) = FinalFocalStackPsnr(r.report);
     options_from.append(r.options_from);
     termination.append(ToString(r.report.termination)), message.append(r.report.message);
     psnr.mutable_at(i) = r.report.final_psnr_db, seconds.mutable_at(i) = r.report.seconds;
@@ -53,8 +55,9 @@ py::dict CompareColumns(const std::vector<std::string>& scenes, const std::vecto
     traces.append(TraceTable(r.report.trace));
   }
   py::dict d;
-  d["scene"] = scene, d["display"] = display, d["solver"] = solver;
-  d["final_psnr_db"] = psnr, d["seconds"] = seconds, d["iterations"] = iterations, d["subframes"] = subframes;
+  d["scene"] = scene, d["display"] = display, d["solver"] = solver, d["objective"] = objective;
+  d["final_psnr_db"] = psnr, d["final_focal_stack_psnr_db"] = focal_stack, d["seconds"] = seconds,
+  d["iterations"] = iterations, d["subframes"] = subframes;
   d["panel_refresh_hz"] = refresh, d["luminance_efficiency"] = luminance, d["efficiency"] = efficiency;
   d["termination"] = termination, d["solver_options"] = options_from, d["message"] = message, d["trace"] = traces;
   d["skipped"] = skipped, d["warnings"] = warnings;

@@ -144,3 +144,24 @@ def test_errors(target_folder, tmp_path):
     with pytest.raises(layerlab.SceneError) as info:
         layerlab.compare([bad], target_folder)
     assert info.value.file == str(bad) and info.value.pointer.startswith("/elements/0")
+
+
+def test_objectives_each_row_with_both_psnrs(target_folder, tmp_path):
+    table = layerlab.compare(SCENES[0], target_folder, solvers=["hybrid", "quasi-newton"],
+                             objectives=["lightfield", "retinal"], iterations=1)
+    assert table["solver"] == ["hybrid", "quasi-newton", "quasi-newton"]
+    assert table["objective"] == ["lightfield", "lightfield", "retinal"]
+    assert len(table["skipped"]) == 1 and "hybrid / retinal" in table["skipped"][0]
+    # Every row measured the focal stack; its final value is the trace's last.
+    for k, trace in enumerate(table["trace"]):
+        assert np.all(np.isfinite(trace["focal_stack_psnr_db"]))
+        assert table["final_focal_stack_psnr_db"][k] == trace["focal_stack_psnr_db"][-1]
+    rows = command_csv(tmp_path, [SCENES[0]], ["--target", str(target_folder)], "--solvers", "hybrid,quasi-newton",
+                       "--objectives", "lightfield,retinal", "--iterations", "1")
+    assert [r["objective"] for r in rows] == table["objective"]
+    np.testing.assert_allclose([float(r["final_focal_stack_psnr_db"]) for r in rows],
+                               table["final_focal_stack_psnr_db"], atol=1e-3)
+    with pytest.raises(ValueError, match='"retina" is not one of lightfield or retinal'):
+        layerlab.compare(SCENES[0], target_folder, objectives="retina")
+    plain = layerlab.compare(SCENES[0], target_folder, iterations=1)
+    assert plain["objective"] == ["lightfield"] and np.isnan(plain["final_focal_stack_psnr_db"][0])

@@ -82,6 +82,11 @@ if "$layerlab" contrast "$scene" --depths "1.3 D,2 deg" --out "$work/never" 2>"$
   fail "--depths with an angle was accepted"
 fi
 grep -q -- "--depths: \"2 deg\"" "$work/bad_depth.err" || fail "the bad depth's error: $(cat "$work/bad_depth.err")"
+if "$layerlab" compare "$scene" --objectives "lightfield,retina" --target "$target" --out "$work/never" 2>"$work/bad_objective.err"; then
+  fail "--objectives retina was accepted"
+fi
+grep -q -- "--objectives: \"retina\" is not one of lightfield or retinal" "$work/bad_objective.err" ||
+  fail "the bad objective's error: $(cat "$work/bad_objective.err")"
 "$layerlab" contrast "$scene" --depths "1.3 D" --frequencies "1 cpd" --accommodation "0.5 D,2 D,0.5 D" --no-peak-uncertainty \
   --retina-resolution "3 arcmin" --strip-rows 4 --out "$work/contrast" >"$work/contrast.out" 2>"$work/contrast.err" ||
   fail "contrast with units failed"
