@@ -81,17 +81,16 @@ TEST(RunConfig, FocalStackMergesWithTheStates) {
 }
 
 TEST(RunConfig, ContrastAndCompareReadUnitsAndResolvePaths) {
-  Loaded l =
-      Load({{"contrast",
-             {{"depths", {"0.7 D"}},
-              {"frequencies", {"2 cpd", 4}},
-              {"accommodation", {{"from", "0 D"}, {"to", "2.6 D"}, {"step", "0.1 D"}}},
-              {"retina_resolution", "0.02 deg"}}},
-            {"compare",
-             {{"scenes", {"hybrid_pbs_hwp.json"}},
-              {"solvers", {"hybrid", "joint"}},
-              {"iterations", 5},
-              {"objectives", {"retinal", "lightfield"}}}}});
+  Loaded l = Load({{"contrast",
+                    {{"depths", {"0.7 D"}},
+                     {"frequencies", {"2 cpd", 4}},
+                     {"accommodation", {{"from", "0 D"}, {"to", "2.6 D"}, {"step", "0.1 D"}}},
+                     {"retina_resolution", "0.02 deg"}}},
+                   {"compare",
+                    {{"scenes", {"hybrid_pbs_hwp.json"}},
+                     {"solvers", {"hybrid", "joint"}},
+                     {"iterations", 5},
+                     {"objectives", {"retinal", "lightfield"}}}}});
   RunConfig c = ReadRunConfig(l.scene, l.system);
   ASSERT_EQ(c.contrast.options.frequencies.size(), 2u);
   EXPECT_EQ(c.contrast.options.frequencies[1], 4.0);
