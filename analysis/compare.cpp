@@ -53,6 +53,20 @@ SolverOptions WithObjective(SolverOptions options, ObjectiveKind objective,
   return options;
 }
 
+std::vector<CompareRun> ObjectiveRuns(const CompareRun& run, const std::vector<ObjectiveKind>& objectives,
+                                      std::vector<std::string>* skipped, const SolverRegistry& registry) {
+  std::vector<CompareRun> runs;
+  for (ObjectiveKind objective : objectives.empty() ? std::vector<ObjectiveKind>{run.options.objective} : objectives) {
+    if (std::string why = ObjectiveRefusal(run.solver, objective, registry); !why.empty()) {
+      if (skipped) skipped->push_back(RunLabel(run.display, run.solver, objective) + ": " + why);
+      continue;
+    }
+    runs.push_back(run);
+    runs.back().options = WithObjective(run.options, objective, objectives);
+  }
+  return runs;
+}
+
 std::vector<std::string> SuitableSolvers(const DisplaySystem& system, const SolverRegistry& registry) {
   std::vector<std::string> out;
   for (const std::string& name : registry.names())
@@ -84,16 +98,9 @@ std::vector<CompareRun> CompareRunsOf(const std::vector<std::string>& scene_file
       SolverOptions options = own ? config.options : registry.find(solver)->defaults;
       options.iterations = selection.iterations.value_or(options.iterations);
       options.time_budget = selection.time_budget.value_or(options.time_budget);
-      const std::vector<ObjectiveKind> objectives =
-          selection.objectives.empty() ? std::vector<ObjectiveKind>{options.objective} : selection.objectives;
-      for (ObjectiveKind objective : objectives) {
-        if (std::string why = ObjectiveRefusal(solver, objective, registry); !why.empty()) {
-          if (skipped) skipped->push_back(RunLabel(name, solver, objective) + ": " + why);
-          continue;
-        }
-        runs.push_back({name, system, solver, WithObjective(options, objective, selection.objectives),
-                        own ? config.sampling : Sampling::kNearest, own ? "scene" : "shared"});
-      }
+      const CompareRun run{
+          name, system, solver, options, own ? config.sampling : Sampling::kNearest, own ? "scene" : "shared"};
+      for (CompareRun& r : ObjectiveRuns(run, selection.objectives, skipped, registry)) runs.push_back(std::move(r));
     }
   }
   if (runs.empty()) throw Error("compare: no display and solver fit together; nothing to run");

@@ -69,6 +69,13 @@ struct CompareSelection {
 SolverOptions WithObjective(SolverOptions options, ObjectiveKind objective,
                             const std::vector<ObjectiveKind>& objectives);
 
+// `run` once per objective of `objectives` (none: its options' own) that its
+// solver minimizes, WithObjective; a line in *skipped for each it does not
+// ("NAME / SOLVER / retinal: the solver ...").
+std::vector<CompareRun> ObjectiveRuns(const CompareRun& run, const std::vector<ObjectiveKind>& objectives,
+                                      std::vector<std::string>* skipped,
+                                      const SolverRegistry& registry = SolverRegistry::Builtins());
+
 // The runs of `layerlab compare SCENES` (and of Python's compare()): each
 // scene file compiled, named by its stem. A named solver that does not suit a
 // display, or an objective it does not minimize, is left out with a line in

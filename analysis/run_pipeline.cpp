@@ -232,22 +232,14 @@ RunOutcome RunPipeline(const RunRequest& request) {
               solver == configs[k]->solver ? configs[k]->options : SolverRegistry::Builtins().find(solver)->defaults;
           base.iterations = c.iterations.value_or(base.iterations);
           base.time_budget = c.time_budget.value_or(base.time_budget);
-          const std::vector<ObjectiveKind> objectives =
-              c.objectives.empty() ? std::vector<ObjectiveKind>{base.objective} : c.objectives;
-          for (ObjectiveKind objective : objectives) {
-            if (std::string why = ObjectiveRefusal(solver, objective); !why.empty()) {
-              page.warnings.push_back("compare: skipped " + RunLabel(name, solver, objective) + ": " + why);
-              continue;
-            }
-            CompareRun run{name,
-                           *system,
-                           solver,
-                           WithObjective(base, objective, c.objectives),
-                           configs[k]->sampling,
-                           own ? "scene" : "shared"};
+          std::vector<std::string> skipped;
+          const std::vector<CompareRun> runs = ObjectiveRuns(
+              {name, *system, solver, base, configs[k]->sampling, own ? "scene" : "shared"}, c.objectives, &skipped);
+          for (const std::string& line : skipped) page.warnings.push_back("compare: skipped " + line);
+          for (const CompareRun& run : runs) {
             // The main solve already ran this: its trace, cut at the budget, is the row.
             const bool main_ran_it = k == 0 && solver == in.solve.solver && !c.iterations &&
-                                     objective == in.solve.options.objective &&
+                                     run.options.objective == in.solve.options.objective &&
                                      (!run.options.measure_focal_stack || in.solve.options.measure_focal_stack);
             if (main_ran_it)
               if (std::optional<SolverReport> main = c.time_budget ? ReportWithTimeBudget(report, *c.time_budget)

@@ -184,7 +184,7 @@ class QuasiNewtonSolver final : public Solver {
     // The budget is checked after the stop request: a warm start that used it up ends the solve too.
     if (warm_done && options.time_budget > 0 && warm.seconds >= options.time_budget) {
       warm.termination = Termination::kTimeBudget;
-      warm.message = "stopped after " + std::to_string(warm.seconds) + " s";
+      warm.message = TimeBudgetMessage(warm.seconds);
       warm_done = false;
     }
     if (!warm_done) {  // stopped where this solve stops: its limit, budget, interruption, or a failure

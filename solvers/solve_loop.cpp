@@ -156,7 +156,7 @@ bool SolveLoop::EndIteration(std::optional<double> objective) {
     stopped_ = true;
   } else if (AnyRank(options_.time_budget > 0 && Seconds() >= options_.time_budget)) {
     report_.termination = Termination::kTimeBudget;
-    report_.message = "stopped after " + std::to_string(Seconds()) + " s";
+    report_.message = TimeBudgetMessage(Seconds());
     stopped_ = true;
   }
   // A stop short of the goal also checkpoints, so that the run can go on.

@@ -130,6 +130,8 @@ struct SolverReport {
 // ended sooner; a budget of 0 is none). nullopt when the trace cannot tell: an unusable or
 // interrupted solve, or one that stopped on a shorter budget of its own.
 std::optional<SolverReport> ReportWithTimeBudget(const SolverReport& report, double time_budget);
+// The message of a solve stopped by its time budget after `seconds`.
+std::string TimeBudgetMessage(double seconds);
 
 class Solver {
  public:

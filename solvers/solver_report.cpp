@@ -55,6 +55,8 @@ std::string SolverReport::FullReport() const {
   return out;
 }
 
+std::string TimeBudgetMessage(double seconds) { return "stopped after " + std::to_string(seconds) + " s"; }
+
 std::optional<SolverReport> ReportWithTimeBudget(const SolverReport& report, double time_budget) {
   if (!report.IsSolutionUsable() || report.termination == Termination::kInterrupted) return std::nullopt;
   if (time_budget <= 0)  // no budget
@@ -69,7 +71,7 @@ std::optional<SolverReport> ReportWithTimeBudget(const SolverReport& report, dou
   SolverReport cut = report;
   cut.trace.assign(report.trace.begin(), at + 1);
   cut.termination = Termination::kTimeBudget;
-  cut.message = "stopped after " + std::to_string(at->seconds) + " s";
+  cut.message = TimeBudgetMessage(at->seconds);
   cut.iterations = at->iteration;
   cut.seconds = at->seconds;
   cut.final_objective = at->objective;

@@ -109,8 +109,7 @@ void BindCompare(py::module_& m) {
         "\"retinal\" or a list) as --objectives. A dict of columns, one row per display, solver and objective "
         "(scene, display, solver, objective, solver_options, final_psnr_db, final_focal_stack_psnr_db, seconds, "
         "iterations, subframes, panel_refresh_hz, luminance_efficiency, efficiency, termination, message, trace), with "
-        "skipped, "
-        "warnings and table");
+        "skipped, warnings and table");
 }
 
 }  // namespace layerlab::python

@@ -43,8 +43,8 @@ py::dict CompareColumns(const std::vector<std::string>& scenes, const std::vecto
   py::array_t<int> iterations(n), subframes(n);
   for (py::ssize_t i = 0; i < n; ++i) {
     const CompareResult& r = results[i];
-    scene.append(scenes.at(i)), display.append(r.display), solver.append(r.solver),
-        objective.append(r.report.objective);
+    scene.append(scenes.at(i)), display.append(r.display), solver.append(r.solver);
+    objective.append(r.report.objective);
     focal_stack.mutable_at(i) = FinalFocalStackPsnr(r.report);
     options_from.append(r.options_from);
     termination.append(ToString(r.report.termination)), message.append(r.report.message);
