@@ -27,6 +27,7 @@
 #include "solvers/solver.h"
 #include "systems/lightfield_radiance.h"
 #include "systems/retina.h"
+#include "systems/retinal_operator.h"
 #include "systems/solve_workspace.h"
 
 namespace layerlab::bench {
@@ -197,6 +198,37 @@ void BM_RetinalObjectiveIteration(benchmark::State& state) {
   state.counters["pupil_points"] = double(PupilSamples(w.model->system().eye).size());
   Report(state, 3 * light_field_s, retinal_s);
   state.SetLabel(w.target_name + ", quasi-newton");
+}
+
+// The retinal operator of that objective alone on the dice: A = every
+// state's A_a applied to the target, and A^T = their transposes applied to
+// those images (seconds per apply, the last of the run).
+void BM_RetinalOperator(benchmark::State& state) {
+  const Workload& w = GetWorkload("paper_prototype");
+  const EyeModel& eye = w.model->system().eye;
+  const RetinalObjective objective(*w.model, w.target, {});
+  std::vector<std::array<double, 3>> foci;
+  for (double d : objective.states()) foci.push_back(ChannelAccommodation(eye, d));
+  const RetinalOperator a(w.model->geometry(), w.model->projection(0).sampling(), objective.retina(), PupilSamples(eye),
+                          foci);
+  std::vector<std::vector<float>> images;
+  LightField back(w.target.geometry);
+  double apply_s = 0, transpose_s = 0;
+  for (auto _ : state) {
+    auto start = std::chrono::steady_clock::now();
+    a.Apply(w.target, &images);
+    auto middle = std::chrono::steady_clock::now();
+    a.ApplyTranspose(images, &back);
+    auto end = std::chrono::steady_clock::now();
+    apply_s = std::chrono::duration<double>(middle - start).count();
+    transpose_s = std::chrono::duration<double>(end - middle).count();
+    state.SetIterationTime(apply_s + transpose_s);
+  }
+  state.counters["apply_s"] = apply_s;
+  state.counters["transpose_s"] = transpose_s;
+  state.counters["states"] = double(foci.size());
+  state.counters["peak_rss_MB"] = PeakRssMb();
+  state.SetLabel(w.target_name);
 }
 
 void BM_HybridIteration(benchmark::State& state) {
@@ -447,6 +479,7 @@ BENCHMARK(BM_ObjectivePass)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_JointPass)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_HybridIteration)->Unit(benchmark::kMillisecond)->UseManualTime();
 BENCHMARK(BM_RetinalObjectiveIteration)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(2);
+BENCHMARK(BM_RetinalOperator)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(5);
 BENCHMARK(BM_MultiplicativeIteration)->Unit(benchmark::kMillisecond)->UseManualTime();
 BENCHMARK(BM_RankKIteration)
     ->ArgsProduct({{0, 1}, {1, 2, 4}})
