@@ -262,6 +262,7 @@ std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displ
         curve.eye = EyeModelLine(eye);
         curve.solver = d.solver.empty() ? DefaultSolverFor(d.system) : d.solver;
         SolverOptions options = d.options_given ? d.options : SolverRegistry::Builtins().find(curve.solver)->defaults;
+        options.retinal.target = RetinalTarget::kLightField;  // the grating's light field is its scene, exactly
         Patterns t;
         auto start = std::chrono::steady_clock::now();
         SolverReport report = SolverRegistry::Builtins().create(curve.solver)->Solve(model, target, options, &t);

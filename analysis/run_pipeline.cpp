@@ -165,6 +165,7 @@ RunOutcome RunPipeline(const RunRequest& request) {
       start = Clock::now();
       model = std::make_unique<DisplayModel>(in.system, g, in.solve.sampling);
       SolverOptions options = in.solve.options;
+      AttachRetinalTarget(*target, &options);
       Progress progress("solve " + in.solve.solver, options.iterations);
       options.progress = [&](const IterationRecord& row) {
         progress.Update(row.iteration, "iterations  PSNR " + Psnr(row.psnr_db));
@@ -250,7 +251,9 @@ RunOutcome RunPipeline(const RunRequest& request) {
                                         system->subframes * system->frame_rate, "scene"});
                 continue;
               }
-            CompareResult result = RunComparison({run}, target->light_field, true).front();
+            CompareRun attached = run;
+            AttachRetinalTarget(*target, &attached.options);
+            CompareResult result = RunComparison({attached}, target->light_field, true).front();
             if (!result.report.IsSolutionUsable())
               throw Error("compare: " + RunLabel(result) + " failed: " + result.report.message);
             outcome.compare_scenes.push_back(system->file);

@@ -28,6 +28,23 @@ SceneRadiance Target::Natural(Viewing how) const {
   return LightFieldRadiance(light_field);
 }
 
+bool Target::traceable() const {
+#if LAYERLAB_WITH_EMBREE
+  return tracer != nullptr;
+#else
+  return false;
+#endif
+}
+
+void AttachRetinalTarget(const Target& target, SolverOptions* options) {
+  if (options->retinal.target != RetinalTarget::kTraced) return;
+  if (!target.traceable())
+    throw Error("retinal_target \"traced\": the target " + target.source +
+                " is a light field, and tracing needs the target scene itself (target_scene, or --target-scene)");
+  options->retinal.target_radiance = target.Natural(Target::Viewing::kTraced);
+  Note("retinal objective: the target's retinal images traced from " + target.source + ", ray by ray");
+}
+
 std::unique_ptr<Target> LoadOrRenderTarget(const SolveConfig& config, const std::string& label,
                                            const RenderCache* cache) {
   auto target = std::make_unique<Target>();

@@ -36,7 +36,14 @@ struct Target {
   // per image; a target read from a folder has only its light field.
   enum class Viewing { kLightField, kTraced };
   SceneRadiance Natural(Viewing how = Viewing::kLightField) const;
+  bool traceable() const;  // rendered from a scene whose tracer it keeps
 };
+
+// With the solve's retinal_target "traced" (RetinalTarget::kTraced): the
+// retinal objective's target images traced from this target's scene, which
+// must then outlive the solve. Throws layerlab::Error naming the key when the
+// target is a light-field folder. Otherwise leaves `options` as they are.
+void AttachRetinalTarget(const Target& target, SolverOptions* options);
 
 // Where a run keeps the render of its target scene (analysis/target_cache.h).
 struct RenderCache {

@@ -73,7 +73,7 @@ void AddCompareCommand(CLI::App& app) {
       objectives.push_back(*k);
     }
     std::vector<std::string> skipped;
-    const std::vector<CompareRun> runs = CompareRunsOf(
+    std::vector<CompareRun> runs = CompareRunsOf(
         o->scenes, {SplitNames(o->solvers), o->iterations, time_budget, o->scene_options, objectives}, &skipped);
     for (const std::string& line : skipped) std::fprintf(stderr, "compare: skipped %s\n", line.c_str());
     SolveConfig target_config;
@@ -85,6 +85,7 @@ void AddCompareCommand(CLI::App& app) {
     StagedOutput stage(o->out, "compare",
                        {"compare.txt", "compare.csv", "traces.csv", "psnr_vs_time.svg", "index.html"}, inputs);
     const std::unique_ptr<Target> target = LoadOrRenderTarget(target_config, "target");
+    for (CompareRun& run : runs) AttachRetinalTarget(*target, &run.options);
     std::vector<CompareResult> results = RunComparison(runs, target->light_field, true);
     for (const CompareResult& r : results)
       if (!r.report.IsSolutionUsable())

@@ -39,7 +39,7 @@ namespace layerlab::app {
 namespace {
 
 struct Options {
-  std::string scene, solver, out, sampling, target_range, objective;
+  std::string scene, solver, out, sampling, target_range, objective, retinal_target;
   TargetOption target;
   std::optional<int> iterations, sub_iterations, warm_start_iterations, threads;
   std::optional<double> tolerance, initial_value;
@@ -142,6 +142,11 @@ void Solve(const Options& o, Ranks& ranks) {
   if (const std::string why = ObjectiveRefusal(config.solver, opt.objective); !why.empty())
     throw Error("--objective " + ToString(opt.objective) + ": " + why);
   opt.measure_focal_stack = o.measure_focal_stack;
+  if (!o.retinal_target.empty()) {
+    if (o.retinal_target != "lightfield" && o.retinal_target != "traced")
+      throw Error("--retinal-target: \"" + o.retinal_target + "\" is not one of lightfield or traced");
+    opt.retinal.target = o.retinal_target == "traced" ? RetinalTarget::kTraced : RetinalTarget::kLightField;
+  }
   // The retinal operator blends views across the whole eyebox, so it needs every view on one rank.
   if (ranks.size > 1 && (opt.objective == ObjectiveKind::kRetinal || opt.measure_focal_stack))
     throw Error("the retinal objective and --measure-focal-stack: not with MPI ranks (" + std::to_string(ranks.size) +
@@ -196,6 +201,7 @@ void Solve(const Options& o, Ranks& ranks) {
   }
   ranks.ThrowIfAnyFailed(unread);
   DisplayModel model(system, target->light_field.geometry, config.sampling);
+  AttachRetinalTarget(*target, &opt);
   InstallInterruptHandler();
   opt.interrupted = Interrupted;
   const std::string checkpoint_folder = (std::filesystem::path(o.out) / "checkpoint").string();
@@ -297,6 +303,9 @@ void AddSolveCommand(CLI::App& app) {
   cmd->add_option("--target-range", o->target_range, "Target values beyond the display: clip or scale");
   cmd->add_option("--objective", o->objective,
                   "What is minimized: lightfield, or retinal (the focal stack; quasi-newton, joint)");
+  cmd->add_option("--retinal-target", o->retinal_target,
+                  "The retinal objective's target images: lightfield (natural viewing of the target light field) or "
+                  "traced (from --target-scene, ray by ray)");
   cmd->add_flag("--measure-focal-stack", o->measure_focal_stack,
                 "Also record the focal stack's PSNR in the trace, off the clock (the retinal objective records it)");
   cmd->add_flag("--write-lightfield", o->write_lightfield, "Also write the synthesized light field");

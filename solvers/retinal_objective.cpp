@@ -58,9 +58,17 @@ RetinalObjective::RetinalObjective(const DisplayModel& model, const LightField& 
   const RetinaGrid grid = GridOf(model.geometry(), options.resolution);
   std::vector<std::array<double, 3>> foci;
   for (double d : states_) foci.push_back(ChannelAccommodation(eye, d));
-  operator_ = std::make_unique<RetinalOperator>(model.geometry(), model.projection(0).sampling(), grid,
-                                                PupilSamples(eye), foci);
-  operator_->Apply(target, &target_images_);
+  const std::vector<PupilPoint> pupil = PupilSamples(eye);
+  operator_ = std::make_unique<RetinalOperator>(model.geometry(), model.projection(0).sampling(), grid, pupil, foci);
+  if (options.target == RetinalTarget::kTraced) {
+    if (!options.target_radiance)
+      throw Error("the retinal objective's traced target needs a target scene (target_scene), not a light field");
+    target_images_.resize(states_.size());
+    for (size_t a = 0; a < states_.size(); ++a)
+      target_images_[a] = RetinaOfScene(options.target_radiance, grid, pupil, foci[a]).pixels;
+  } else {
+    operator_->Apply(target, &target_images_);
+  }
 
   // Bound(): the largest entry of M 1.
   LightField ones(model.geometry());
@@ -76,7 +84,7 @@ RetinalObjective::RetinalObjective(const DisplayModel& model, const LightField& 
 }
 
 double RetinalObjective::Evaluate(const LightField& x, std::vector<double>* per_state) const {
-  std::vector<std::vector<float>> images;
+  std::vector<std::vector<float>>& images = images_;
   operator_->Apply(x, &images);
   std::vector<double> errors(states_.size());
   double f = 0;
@@ -90,7 +98,7 @@ double RetinalObjective::Evaluate(const LightField& x, std::vector<double>* per_
 
 double RetinalObjective::EvaluateWithAdjoint(const LightField& x, std::vector<double>* per_state,
                                              LightField* m_r) const {
-  std::vector<std::vector<float>> images;
+  std::vector<std::vector<float>>& images = images_;
   operator_->Apply(x, &images);
   std::vector<double> errors(states_.size());
   double f = 0;

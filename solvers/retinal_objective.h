@@ -11,6 +11,12 @@
 // display's Jacobian J (solvers/joint_pass.h) the gradient in the patterns
 // is 2 J^T M (L - l) (solvers/retinal_pass.h).
 //
+// The target's retinal images are A_a l by default: natural viewing of the
+// very rays the display is asked to reproduce. With a traced target they are
+// traced from the target scene itself through the same pupil samples and
+// retinal grid (RetinaOfScene), so detail finer than the target's views and
+// its true defocus blur enter the objective: f(L) = sum_a w_a || A_a L - r_a ||^2.
+//
 // M is symmetric with non-negative entries, so its largest eigenvalue is at
 // most the largest entry of M 1 (Gershgorin); Bound() returns that entry,
 // which the solvers divide by so that the light-field objective's step
@@ -26,10 +32,17 @@
 
 namespace layerlab {
 
+// What the display's retinal images are compared with.
+enum class RetinalTarget { kLightField, kTraced };
+
 struct RetinalObjectiveOptions {
   std::vector<double> states;   // D; empty: the eye's accommodation_range in kDefaultStateStep steps
   std::vector<double> weights;  // one per state; empty: every state 1
   double resolution = 0;        // rad per retinal sample; 0: one sample per light-field pixel
+  // kLightField: A_a of the target light field. kTraced: RetinaOfScene of `target_radiance`, which whoever
+  // holds the target scene sets (Target::Natural, analysis/target_source.h); the objective refuses kTraced without it.
+  RetinalTarget target = RetinalTarget::kLightField;
+  SceneRadiance target_radiance;
 };
 inline constexpr double kDefaultStateStep = 0.2;  // D
 
@@ -57,7 +70,10 @@ class RetinalObjective {
  private:
   std::vector<double> states_, weights_;
   std::unique_ptr<RetinalOperator> operator_;      // every state's A_a
-  std::vector<std::vector<float>> target_images_;  // A_a l
+  std::vector<std::vector<float>> target_images_;  // A_a l, or r_a traced
+  // The display's retinal images, kept between calls so that each evaluation touches no fresh pages (14 states of
+  // 400 x 200 x 3 floats are 13 MB): one evaluation at a time per objective.
+  mutable std::vector<std::vector<float>> images_;
   double bound_ = 1;
 };
 

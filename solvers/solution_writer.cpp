@@ -56,6 +56,7 @@ nlohmann::json ReportToJson(const SolverReport& r) {
   j["objective"] = r.objective;
   const bool focal_stack = std::any_of(r.trace.begin(), r.trace.end(),
                                        [](const IterationRecord& t) { return !std::isnan(t.focal_stack_psnr_db); });
+  if (focal_stack) j["retinal_target"] = r.retinal_target;
   for (const IterationRecord& t : r.trace) {
     j["trace"].push_back({{"iteration", t.iteration},
                           {"seconds", t.seconds},

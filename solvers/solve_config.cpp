@@ -18,6 +18,7 @@
 // | sampling              | nearest, bilinear  | nearest                   | how the light field samples the layers   |
 // | target_range          | clip, scale        | clip                      | target values beyond what the display shows: clipped, or the target scaled |
 // | objective             | lightfield, retinal | lightfield               | what is minimized: the light-field error, or the retinal error over the eye's accommodation_range in 0.2 D steps (quasi-newton, joint; docs/retinal-objective.md) |
+// | retinal_target        | lightfield, traced | lightfield                | the retinal objective's target images (and the focal-stack PSNR's): natural viewing of the target light field, or traced from target_scene ray by ray (needs a target scene; seconds per state) |
 #include "solvers/solve_config.h"
 
 #include <algorithm>
@@ -97,6 +98,13 @@ SolveConfig ReadSolveConfig(const Scene& scene, const DisplaySystem& system, con
                     : ObjectiveKind::kLightField;
   if (const std::string why = ObjectiveRefusal(config.solver, o.objective, registry); !why.empty())
     p.fail("objective", why);
+  o.retinal.target = p.choice("retinal_target", {"lightfield", "traced"}, "lightfield") == "traced"
+                         ? RetinalTarget::kTraced
+                         : RetinalTarget::kLightField;
+  if (o.retinal.target == RetinalTarget::kTraced && p.has("target"))
+    p.fail("retinal_target",
+           "\"traced\" traces the target scene, and \"target\" is a light-field folder; give "
+           "\"target_scene\"");
   p.check_all_read();
   return config;
 }

@@ -16,6 +16,7 @@ SolveLoop::SolveLoop(std::string solver, const DisplayModel& model, const LightF
     : model_(model), source_(target), options_(options), patterns_(patterns) {
   report_.solver = std::move(solver);
   report_.objective = ToString(options.objective);
+  if (options.retinal.target == RetinalTarget::kTraced) report_.retinal_target = "traced";
   start_ = std::chrono::steady_clock::now();
 }
 

@@ -104,6 +104,8 @@ struct IterationRecord {
 struct SolverReport {
   std::string solver;
   std::string objective = "lightfield";  // ToString(SolverOptions::objective): what `trace` and final_objective are
+  // The focal stack's target images (RetinalObjectiveOptions::target), when a focal stack was measured.
+  std::string retinal_target = "lightfield";
   Termination termination = Termination::kNotRun;
   std::string message = "not run";
   int iterations = 0;

@@ -36,7 +36,11 @@ std::string SolverReport::FullReport() const {
       iterations, seconds, setup_seconds, rays * 3);
   out += buf;
   std::snprintf(buf, sizeof buf, "objective            %.9g -> %.9g (sum of squared errors%s)\n", initial_objective,
-                final_objective, objective == "retinal" ? " over the focal stack's retinal samples" : "");
+                final_objective,
+                objective != "retinal" ? ""
+                : retinal_target == "traced"
+                    ? " over the focal stack's retinal samples, against the traced target scene"
+                    : " over the focal stack's retinal samples");
   out += buf;
   out += "PSNR                 " + Db(trace.empty() ? 0 : trace.front().psnr_db) + " -> " + Db(final_psnr_db) +
          " (light field; peak 1 = display white)\n";

@@ -8,6 +8,28 @@
 
 namespace layerlab {
 
+namespace {
+
+// Consecutive retinal columns that read consecutive light-field columns, in the columns' order, so that the
+// nearest-sampling loops below add the same terms in the same order as a loop over the columns would.
+template <typename Run, typename Column>
+std::vector<Run> RunsOf(const std::vector<Column>& columns) {
+  std::vector<Run> runs;
+  for (const Column& col : columns) {
+    if (!runs.empty()) {
+      Run& last = runs.back();
+      if (col.ray == last.ray + last.length && col.c0 == last.c + last.length) {
+        ++last.length;
+        continue;
+      }
+    }
+    runs.push_back({col.ray, col.c0, 1});
+  }
+  return runs;
+}
+
+}  // namespace
+
 RetinalOperator::RetinalOperator(const LightFieldGeometry& g, Sampling pixels, const RetinaGrid& retina,
                                  const std::vector<PupilPoint>& pupil, const std::vector<std::array<double, 3>>& states)
     : state_count_(states.size()), nearest_(pixels == Sampling::kNearest), geometry_(g), retina_(retina) {
@@ -50,6 +72,7 @@ RetinalOperator::RetinalOperator(const LightFieldGeometry& g, Sampling pixels, c
           if (!ColumnAt(g, u.x + dx * g.origin_z, nearest_, &col)) continue;
           t.columns.push_back({j, col.k0, col.k1, float(1 - col.w1), float(col.w1)});
         }
+        if (nearest_) t.runs = RunsOf<Run>(t.columns);
         t.rows.resize(retina.rows);
         t.sources.resize(g.rows);
         for (int i = 0; i < retina.rows; ++i) {
@@ -81,7 +104,8 @@ void RetinalOperator::Apply(const LightField& x, std::vector<std::vector<float>>
   for (std::vector<float>& image : *out) image.assign(retinal_values(), 0.0f);
   const size_t row_stride = size_t(g.cols) * 3, retina_stride = size_t(retina_.cols) * 3;
   // The pupil point's blend of its views: at most a few hundred terms of at most 1 each per sample, float holds them.
-  std::vector<float> blend(g.pixels_per_view() * 3);
+  std::vector<float>& blend = work_;
+  blend.resize(g.pixels_per_view() * 3);
 #pragma omp parallel
   for (size_t p = 0; p < views_.size(); ++p) {
     const PupilViews& pv = views_[p];
@@ -109,10 +133,10 @@ void RetinalOperator::Apply(const LightField& x, std::vector<std::vector<float>>
         const float* row0 = blend.data() + size_t(r.k0) * row_stride;
         const float* row1 = blend.data() + size_t(r.k1) * row_stride;
         if (nearest_ && e.channel_count == 3) {
-          for (const Column& col : t.columns) {
-            const float* v = row0 + size_t(col.c0) * 3;
-            float* o = dst + size_t(col.ray) * 3;
-            o[0] += v[0], o[1] += v[1], o[2] += v[2];
+          for (const Run& run : t.runs) {
+            const float* v = row0 + size_t(run.c) * 3;
+            float* o = dst + size_t(run.ray) * 3;
+            for (size_t q = 0, n = size_t(run.length) * 3; q < n; ++q) o[q] += v[q];
           }
           continue;
         }
@@ -138,7 +162,8 @@ void RetinalOperator::ApplyTranspose(const std::vector<std::vector<float>>& y, L
     if (image.size() != retinal_values()) throw Error("a retinal image does not match the retinal operator's grid");
   if (!accumulate) std::fill(out->rgb.begin(), out->rgb.end(), 0.0f);
   const size_t row_stride = size_t(g.cols) * 3, retina_stride = size_t(retina_.cols) * 3;
-  std::vector<float> gathered(g.pixels_per_view() * 3);  // every state's rays of one pupil point, per view pixel
+  std::vector<float>& gathered = work_;  // every state's rays of one pupil point, per view pixel
+  gathered.resize(g.pixels_per_view() * 3);
 #pragma omp parallel
   for (size_t p = 0; p < views_.size(); ++p) {
     // Each light-field row by one thread: the retinal rows that read it scattered into it.
@@ -153,10 +178,10 @@ void RetinalOperator::ApplyTranspose(const std::vector<std::vector<float>>& y, L
           const float* src = image + size_t(source.ray_row) * retina_stride;
           const float w = source.weight;
           if (nearest_ && e.channel_count == 3) {
-            for (const Column& col : t.columns) {
-              const float* v = src + size_t(col.ray) * 3;
-              float* o = dst + size_t(col.c0) * 3;
-              o[0] += w * v[0], o[1] += w * v[1], o[2] += w * v[2];
+            for (const Run& run : t.runs) {
+              const float* v = src + size_t(run.ray) * 3;
+              float* o = dst + size_t(run.c) * 3;
+              for (size_t q = 0, n = size_t(run.length) * 3; q < n; ++q) o[q] += w * v[q];
             }
             continue;
           }

@@ -42,7 +42,10 @@ class RetinalOperator {
   size_t state_count() const { return state_count_; }
   size_t retinal_values() const { return size_t(retina_.cols) * retina_.rows * 3; }
 
-  // (*out)[a] = A_a x: [row][col][channel] of the retinal grid, written whole.
+  // Apply and ApplyTranspose keep one view-sized work buffer between calls, so
+  // that repeated calls touch no fresh pages: one call at a time per operator.
+  // (*out)[a] = A_a x: [row][col][channel] of the retinal grid, written whole
+  // (its images' memory reused when they have the size already).
   void Apply(const LightField& x, std::vector<std::vector<float>>* out) const;
   // out = sum_a A_a^T y[a] (y as Apply writes it), or out += it with `accumulate`; `out` has x's geometry.
   void ApplyTranspose(const std::vector<std::vector<float>>& y, LightField* out, bool accumulate = false) const;
@@ -55,6 +58,10 @@ class RetinalOperator {
     int32_t ray, c0, c1;  // retinal column, light-field columns
     float w0, w1;
   };
+  // Nearest sampling: `length` retinal columns from `ray` on read the light-field columns from `c` on, one each.
+  struct Run {
+    int32_t ray, c, length;
+  };
   struct Row {
     int32_t k0 = -1, k1 = -1;  // light-field rows; k0 = -1: outside the window
     float w0 = 0, w1 = 0;
@@ -66,6 +73,7 @@ class RetinalOperator {
   // What the rays of one pupil point read at one focus.
   struct FocusTable {
     std::vector<Column> columns;               // the retinal columns whose rays cross the window
+    std::vector<Run> runs;                     // with nearest sampling: `columns` as runs of consecutive columns
     std::vector<Row> rows;                     // per retinal row
     std::vector<std::vector<Source>> sources;  // per light-field row, the retinal rows reading it
   };
@@ -84,6 +92,7 @@ class RetinalOperator {
   std::vector<PupilViews> views_;  // per pupil point: the views it blends, the same at every focus
   size_t state_count_ = 0;
   bool nearest_ = true;
+  mutable std::vector<float> work_;  // a view's pixels: Apply's blend of a pupil point's views, ApplyTranspose's gather
   LightFieldGeometry geometry_;
   RetinaGrid retina_;
 };

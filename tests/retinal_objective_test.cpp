@@ -22,6 +22,7 @@ namespace layerlab {
 namespace {
 
 using testing::CompileJson;
+using testing::ErrorOf;
 using testing::ShrunkExample;
 
 constexpr double kDeg = std::numbers::pi / 180;
@@ -312,6 +313,54 @@ TEST(RetinalObjective, SolversRecoverAKnownFocalStack) {
       EXPECT_LE(r.trace[k].objective, r.trace[k - 1].objective * (1 + 1e-9)) << solver << ", iteration " << k;
     EXPECT_NEAR(last.psnr_db, PsnrDb(Objective(model, target, t), model.geometry().ray_count() * 3), 1e-3);
   }
+}
+
+// A traced target: the target images are the scene seen through the pupil.
+// A uniform radiance c is c on every retinal sample at every state, so with
+// x = 0 the objective is sum_a w_a c^2 (samples per state), by hand.
+TEST(RetinalObjective, TracedTargetOfAUniformSceneIsItsRadianceEverywhere) {
+  const DisplaySystem system = CompileJson(ShrunkExample("multiplicative_2layer.json", 24, 12, 5));
+  const DisplayModel model(system, DisplayLightFieldGeometry(system));
+  RetinalObjectiveOptions o = FewStates();
+  o.target = RetinalTarget::kTraced;
+  const float c = 0.37f;
+  o.target_radiance = [c](const PupilPoint&, double, double) { return Rgb{c, c, c}; };
+  const RetinalObjective objective(model, LightField(model.geometry()), o);
+  double expected = 0;
+  for (double w : o.weights) expected += w * double(c) * c * double(objective.samples_per_state());
+  std::vector<double> per_state;
+  EXPECT_NEAR(objective.Evaluate(LightField(model.geometry()), &per_state), expected, 1e-6 * expected);
+  for (double e : per_state) EXPECT_NEAR(e, double(c) * c * double(objective.samples_per_state()), 1e-6 * e);
+}
+
+// Traced from the target light field's own radiance, ray by ray (a plain
+// function, so not the image-wise path), the target images are A_a l: the
+// objective is the default one's, to float rounding.
+TEST(RetinalObjective, TracedTargetOfTheLightFieldsOwnRaysIsTheDefault) {
+  for (Sampling sampling : {Sampling::kNearest, Sampling::kBilinear}) {
+    const DisplaySystem system = CompileJson(ShrunkExample("paper_prototype.json", 24, 12, 5));
+    const DisplayModel model(system, DisplayLightFieldGeometry(system), sampling);
+    const LightField target = model.Synthesize(RandomPatterns(model, 8, 0.1f, 1.0f));
+    const RetinalObjective by_operator(model, target, FewStates());
+    RetinalObjectiveOptions o = FewStates();
+    o.target = RetinalTarget::kTraced;
+    const SceneRadiance rays = LightFieldRadiance(target, sampling);
+    o.target_radiance = [rays](const PupilPoint& u, double dx, double dy) { return rays(u, dx, dy); };
+    const RetinalObjective traced(model, LightField(model.geometry()), o);
+    const LightField x = model.Synthesize(RandomPatterns(model, 9, 0.0f, 1.0f));
+    const double f = by_operator.Evaluate(x);
+    EXPECT_GT(f, 0);
+    EXPECT_NEAR(traced.Evaluate(x), f, 1e-5 * f) << (sampling == Sampling::kNearest ? "nearest" : "bilinear");
+  }
+}
+
+TEST(RetinalObjective, TracedTargetWithoutASceneIsRefused) {
+  const DisplaySystem system = CompileJson(ShrunkExample("multiplicative_2layer.json", 24, 12, 5));
+  const DisplayModel model(system, DisplayLightFieldGeometry(system));
+  RetinalObjectiveOptions o = FewStates();
+  o.target = RetinalTarget::kTraced;
+  EXPECT_EQ(ErrorOf([&] { RetinalObjective(model, LightField(model.geometry()), o); }),
+            "the retinal objective's traced target needs a target scene (target_scene), not a light field");
 }
 
 }  // namespace

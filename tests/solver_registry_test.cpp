@@ -163,6 +163,18 @@ TEST(SolverRegistry, SceneKeysOfOtherSolversAreRefused) {
             "hybrid, joint, multiplicative, quasi-newton");
 }
 
+// retinal_target: "traced" traces a target scene, so it is refused beside a light-field folder.
+TEST(SolverRegistry, TracedRetinalTargetNeedsATargetScene) {
+  const Scene scene = SceneWithSolve(
+      {{"solver", "quasi-newton"}, {"objective", "retinal"}, {"retinal_target", "traced"}, {"target_scene", "t.json"}});
+  EXPECT_EQ(ReadSolveConfig(scene, Compile(scene)).options.retinal.target, RetinalTarget::kTraced);
+  EXPECT_EQ(SolveConfigError({{"solver", "quasi-newton"}, {"retinal_target", "traced"}, {"target", "dice"}}),
+            "examples/scene.json: /solve/retinal_target: \"traced\" traces the target scene, and \"target\" is a "
+            "light-field folder; give \"target_scene\"");
+  EXPECT_EQ(SolveConfigError({{"solver", "quasi-newton"}, {"retinal_target", "exact"}}),
+            "examples/scene.json: /solve/retinal_target: \"exact\" is not one of lightfield or traced");
+}
+
 // `compare` over every solver that suits each display: the registered one
 // runs on the one-branch display, and not on the two-branch one.
 TEST(SolverRegistry, CompareRunsARegisteredSolver) {

@@ -72,6 +72,8 @@ py::dict Compare(const py::object& scenes, const py::object& target, const py::o
     if (!given) loaded = LoadOrRenderTarget(target_config, "target");
   }
   const LightField& lf = given ? *given : loaded->light_field;
+  if (loaded)
+    for (CompareRun& run : runs) AttachRetinalTarget(*loaded, &run.options);
 
   // One run at a time, so that a stop from the callback or Ctrl-C ends the comparison there.
   std::vector<CompareResult> results;

@@ -109,11 +109,14 @@ py::object Solve(const py::object& display, const py::object& target, std::optio
   for (const auto& [key, value] : options) SetOption(config.options, key.cast<std::string>(), value);
   if (std::string why; !config.options.IsValid(&why)) throw py::value_error(why);
 
+  std::unique_ptr<Target> loaded;  // kept through the solve: a traced retinal target reads its scene
   if (!target.is_none()) {
     solution->target = TargetOf(target, *solution->system);
   } else if (!config.target.empty() || !config.target_scene.empty()) {
     py::gil_scoped_release release;
-    solution->target = std::make_shared<LightField>(std::move(LoadOrRenderTarget(config, "target")->light_field));
+    loaded = LoadOrRenderTarget(config, "target");
+    solution->target = std::make_shared<LightField>(std::move(loaded->light_field));
+    AttachRetinalTarget(*loaded, &config.options);
   } else {
     throw py::value_error("solve: no target: pass one, or give the scene a \"solve\" section with a target");
   }
