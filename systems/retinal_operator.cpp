@@ -103,49 +103,58 @@ void RetinalOperator::Apply(const LightField& x, std::vector<std::vector<float>>
   out->resize(state_count_);
   for (std::vector<float>& image : *out) image.assign(retinal_values(), 0.0f);
   const size_t row_stride = size_t(g.cols) * 3, retina_stride = size_t(retina_.cols) * 3;
-  // The pupil point's blend of its views: at most a few hundred terms of at most 1 each per sample, float holds them.
-  std::vector<float>& blend = work_;
-  blend.resize(g.pixels_per_view() * 3);
+  const size_t view_values = g.pixels_per_view() * 3;
+  // The blends of a group of pupil points (at most a few hundred terms of at most 1 each per sample, float
+  // holds them), so that each retinal row gathers the whole group while it is in cache: every state's image is
+  // read and written once per group, not once per pupil point. Each sample still adds its pupil points in order.
+  const size_t group = std::min(kPupilGroup, views_.size());
+  std::vector<float>& blends = work_;
+  blends.resize(group * view_values);
 #pragma omp parallel
-  for (size_t p = 0; p < views_.size(); ++p) {
-    const PupilViews& pv = views_[p];
+  for (size_t first = 0; first < views_.size(); first += group) {
+    const size_t count = std::min(group, views_.size() - first);
 #pragma omp for schedule(static)
-    for (int k = 0; k < g.rows; ++k) {
-      float* dst = blend.data() + size_t(k) * row_stride;
-      for (int s = 0; s < pv.count; ++s) {
-        const float* src = x.view(pv.view[s]) + size_t(k) * row_stride;
-        const float w = pv.weight[s];
-        if (s == 0)
-          for (size_t q = 0; q < row_stride; ++q) dst[q] = w * src[q];
-        else
-          for (size_t q = 0; q < row_stride; ++q) dst[q] += w * src[q];
+    for (int k = 0; k < g.rows; ++k)
+      for (size_t m = 0; m < count; ++m) {
+        const PupilViews& pv = views_[first + m];
+        float* dst = blends.data() + m * view_values + size_t(k) * row_stride;
+        for (int s = 0; s < pv.count; ++s) {
+          const float* src = x.view(pv.view[s]) + size_t(k) * row_stride;
+          const float w = pv.weight[s];
+          if (s == 0)
+            for (size_t q = 0; q < row_stride; ++q) dst[q] = w * src[q];
+          else
+            for (size_t q = 0; q < row_stride; ++q) dst[q] += w * src[q];
+        }
       }
-    }
     for (const Entry& e : entries_) {
-      const FocusTable& t = e.tables[p];
       float* image = (*out)[e.state].data();
       // Static rows: the same thread writes a retinal row at every entry, so entries need no barrier.
 #pragma omp for schedule(static) nowait
       for (int i = 0; i < retina_.rows; ++i) {
-        const Row& r = t.rows[i];
-        if (r.k0 < 0) continue;
         float* dst = image + size_t(i) * retina_stride;
-        const float* row0 = blend.data() + size_t(r.k0) * row_stride;
-        const float* row1 = blend.data() + size_t(r.k1) * row_stride;
-        if (nearest_ && e.channel_count == 3) {
-          for (const Run& run : t.runs) {
-            const float* v = row0 + size_t(run.c) * 3;
-            float* o = dst + size_t(run.ray) * 3;
-            for (size_t q = 0, n = size_t(run.length) * 3; q < n; ++q) o[q] += v[q];
+        for (size_t m = 0; m < count; ++m) {
+          const FocusTable& t = e.tables[first + m];
+          const Row& r = t.rows[i];
+          if (r.k0 < 0) continue;
+          const float* blend = blends.data() + m * view_values;
+          const float* row0 = blend + size_t(r.k0) * row_stride;
+          const float* row1 = blend + size_t(r.k1) * row_stride;
+          if (nearest_ && e.channel_count == 3) {
+            for (const Run& run : t.runs) {
+              const float* v = row0 + size_t(run.c) * 3;
+              float* o = dst + size_t(run.ray) * 3;
+              for (size_t q = 0, n = size_t(run.length) * 3; q < n; ++q) o[q] += v[q];
+            }
+            continue;
           }
-          continue;
-        }
-        for (const Column& col : t.columns) {
-          float* o = dst + size_t(col.ray) * 3;
-          for (int q = 0; q < e.channel_count; ++q) {
-            const int c = e.channels[q];
-            const size_t c0 = size_t(col.c0) * 3 + c, c1 = size_t(col.c1) * 3 + c;
-            o[c] += r.w0 * (col.w0 * row0[c0] + col.w1 * row0[c1]) + r.w1 * (col.w0 * row1[c0] + col.w1 * row1[c1]);
+          for (const Column& col : t.columns) {
+            float* o = dst + size_t(col.ray) * 3;
+            for (int q = 0; q < e.channel_count; ++q) {
+              const int c = e.channels[q];
+              const size_t c0 = size_t(col.c0) * 3 + c, c1 = size_t(col.c1) * 3 + c;
+              o[c] += r.w0 * (col.w0 * row0[c0] + col.w1 * row0[c1]) + r.w1 * (col.w0 * row1[c0] + col.w1 * row1[c1]);
+            }
           }
         }
       }
@@ -162,49 +171,47 @@ void RetinalOperator::ApplyTranspose(const std::vector<std::vector<float>>& y, L
     if (image.size() != retinal_values()) throw Error("a retinal image does not match the retinal operator's grid");
   if (!accumulate) std::fill(out->rgb.begin(), out->rgb.end(), 0.0f);
   const size_t row_stride = size_t(g.cols) * 3, retina_stride = size_t(retina_.cols) * 3;
-  std::vector<float>& gathered = work_;  // every state's rays of one pupil point, per view pixel
-  gathered.resize(g.pixels_per_view() * 3);
+  // Each light-field row by one thread, every pupil point in order: the retinal rows that read the row through
+  // that point scattered into one row, then added to the views the point blends. The retinal rows a light-field
+  // row reads through neighbouring pupil points are neighbours, so they are read from cache.
 #pragma omp parallel
-  for (size_t p = 0; p < views_.size(); ++p) {
-    // Each light-field row by one thread: the retinal rows that read it scattered into it.
+  {
+    std::vector<float> gathered(row_stride);
 #pragma omp for schedule(static)
-    for (int k = 0; k < g.rows; ++k) {
-      float* dst = gathered.data() + size_t(k) * row_stride;
-      std::fill(dst, dst + row_stride, 0.0f);
-      for (const Entry& e : entries_) {
-        const FocusTable& t = e.tables[p];
-        const float* image = y[e.state].data();
-        for (const Source& source : t.sources[k]) {
-          const float* src = image + size_t(source.ray_row) * retina_stride;
-          const float w = source.weight;
-          if (nearest_ && e.channel_count == 3) {
-            for (const Run& run : t.runs) {
-              const float* v = src + size_t(run.ray) * 3;
-              float* o = dst + size_t(run.c) * 3;
-              for (size_t q = 0, n = size_t(run.length) * 3; q < n; ++q) o[q] += w * v[q];
+    for (int k = 0; k < g.rows; ++k)
+      for (size_t p = 0; p < views_.size(); ++p) {
+        float* dst = gathered.data();
+        std::fill(dst, dst + row_stride, 0.0f);
+        for (const Entry& e : entries_) {
+          const FocusTable& t = e.tables[p];
+          const float* image = y[e.state].data();
+          for (const Source& source : t.sources[k]) {
+            const float* src = image + size_t(source.ray_row) * retina_stride;
+            const float w = source.weight;
+            if (nearest_ && e.channel_count == 3) {
+              for (const Run& run : t.runs) {
+                const float* v = src + size_t(run.ray) * 3;
+                float* o = dst + size_t(run.c) * 3;
+                for (size_t q = 0, n = size_t(run.length) * 3; q < n; ++q) o[q] += w * v[q];
+              }
+              continue;
             }
-            continue;
+            for (const Column& col : t.columns)
+              for (int q = 0; q < e.channel_count; ++q) {
+                const int c = e.channels[q];
+                const float v = w * src[size_t(col.ray) * 3 + c];
+                dst[size_t(col.c0) * 3 + c] += col.w0 * v;
+                dst[size_t(col.c1) * 3 + c] += col.w1 * v;
+              }
           }
-          for (const Column& col : t.columns)
-            for (int q = 0; q < e.channel_count; ++q) {
-              const int c = e.channels[q];
-              const float v = w * src[size_t(col.ray) * 3 + c];
-              dst[size_t(col.c0) * 3 + c] += col.w0 * v;
-              dst[size_t(col.c1) * 3 + c] += col.w1 * v;
-            }
+        }
+        const PupilViews& pv = views_[p];
+        for (int s = 0; s < pv.count; ++s) {
+          float* view = out->view(pv.view[s]) + size_t(k) * row_stride;
+          const float w = pv.weight[s];
+          for (size_t q = 0; q < row_stride; ++q) view[q] += w * dst[q];
         }
       }
-    }
-    const PupilViews& pv = views_[p];
-#pragma omp for schedule(static)
-    for (int k = 0; k < g.rows; ++k) {
-      const float* src = gathered.data() + size_t(k) * row_stride;
-      for (int s = 0; s < pv.count; ++s) {
-        float* dst = out->view(pv.view[s]) + size_t(k) * row_stride;
-        const float w = pv.weight[s];
-        for (size_t q = 0; q < row_stride; ++q) dst[q] += w * src[q];
-      }
-    }
   }
 }
 

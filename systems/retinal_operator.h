@@ -42,7 +42,7 @@ class RetinalOperator {
   size_t state_count() const { return state_count_; }
   size_t retinal_values() const { return size_t(retina_.cols) * retina_.rows * 3; }
 
-  // Apply and ApplyTranspose keep one view-sized work buffer between calls, so
+  // Apply keeps its work buffer (kPupilGroup views' pixels) between calls, so
   // that repeated calls touch no fresh pages: one call at a time per operator.
   // (*out)[a] = A_a x: [row][col][channel] of the retinal grid, written whole
   // (its images' memory reused when they have the size already).
@@ -92,7 +92,8 @@ class RetinalOperator {
   std::vector<PupilViews> views_;  // per pupil point: the views it blends, the same at every focus
   size_t state_count_ = 0;
   bool nearest_ = true;
-  mutable std::vector<float> work_;  // a view's pixels: Apply's blend of a pupil point's views, ApplyTranspose's gather
+  static constexpr size_t kPupilGroup = 8;  // pupil points whose blends Apply keeps at once (a view's pixels each)
+  mutable std::vector<float> work_;         // Apply's blends of a group of pupil points
   LightFieldGeometry geometry_;
   RetinaGrid retina_;
 };
