@@ -44,9 +44,9 @@ TEST(SrgbCode, EqualsTheExpressionAtTheTableEdgesAndOutsideTheRange) {
       const double v = Next(s / 65536.0, u);
       ASSERT_EQ(SrgbCode(v), SrgbCodeByFormula(v)) << v;
     }
-  for (double v : {-1.0, -0.0, 0.0, std::numeric_limits<double>::denorm_min(), 1e-300, 0.0031308, 1.0,
-                   std::nextafter(1.0, 2.0), 1e300, std::numeric_limits<double>::infinity(),
-                   -std::numeric_limits<double>::infinity(), std::nan("")})
+  for (double v :
+       {-1.0, -0.0, 0.0, std::numeric_limits<double>::denorm_min(), 1e-300, 0.0031308, 1.0, std::nextafter(1.0, 2.0),
+        1e300, std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(), std::nan("")})
     EXPECT_EQ(SrgbCode(v), SrgbCodeByFormula(v)) << v;
   EXPECT_EQ(SrgbCode(std::nan("")), 0);
   EXPECT_EQ(SrgbCode(2.0), 255);
