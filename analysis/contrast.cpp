@@ -146,30 +146,47 @@ std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displ
                             std::vector<double>(degrees.begin() + start, degrees.begin() + start + n), f);
   };
   // Amplitudes over the accommodation range, on the retina and (for the
-  // uncertainty) on the shifted retina.
+  // uncertainty) on the shifted retina, of several curves seen by one eye:
+  // images(focus) makes what a state shares (a display's retinal tables), and
+  // what it returns the image of curve n on grids[g] (0 the retina, 1 the shifted one).
   using RetinalImage = std::function<Image(const RetinaGrid&, const std::array<double, 3>&)>;
+  using CurveImage = std::function<Image(size_t curve, int grid)>;
+  const RetinaGrid grids[2] = {retina, shifted};
+  using StateImages = std::function<CurveImage(const std::array<double, 3>& focus)>;
   // The states one per thread: a retinal image of 3 rows leaves a second
   // thread little of its own to do, and serial set-up (its tables and
   // views) keeps it waiting. Inside the loop an image is made on one
   // thread, the same values as made alone.
-  auto sweep = [&](const EyeModel& eye, const RetinalImage& image, double f, double reference, ContrastCurve* curve) {
+  auto sweep = [&](const EyeModel& eye, const StateImages& images, const std::vector<ContrastCurve*>& of) {
     const int states = static_cast<int>(accommodation.size());
-    curve->reference_amplitude = reference;
-    curve->contrast.assign(states, 0.0);
-    if (o.peak_uncertainty) curve->contrast_shifted.assign(states, 0.0);
+    for (ContrastCurve* curve : of) {
+      curve->contrast.assign(states, 0.0);
+      if (o.peak_uncertainty) curve->contrast_shifted.assign(states, 0.0);
+    }
     std::exception_ptr error;
 #pragma omp parallel for schedule(dynamic)
     for (int k = 0; k < states; ++k) {
       try {
-        const std::array<double, 3> focus = ChannelAccommodation(eye, accommodation[k]);
-        curve->contrast[k] = amplitude(image(retina, focus), retina, f) / reference;
-        if (o.peak_uncertainty) curve->contrast_shifted[k] = amplitude(image(shifted, focus), shifted, f) / reference;
+        const CurveImage image = images(ChannelAccommodation(eye, accommodation[k]));
+        for (size_t n = 0; n < of.size(); ++n) {
+          ContrastCurve& c = *of[n];
+          c.contrast[k] = amplitude(image(n, 0), retina, c.frequency) / c.reference_amplitude;
+          if (o.peak_uncertainty)
+            c.contrast_shifted[k] = amplitude(image(n, 1), shifted, c.frequency) / c.reference_amplitude;
+        }
       } catch (...) {
 #pragma omp critical(contrast_sweep_error)
         if (!error) error = std::current_exception();
       }
     }
     if (error) std::rethrow_exception(error);
+  };
+  auto sweep_one = [&](const EyeModel& eye, const RetinalImage& natural, ContrastCurve* curve) {
+    sweep(eye,
+          [&](const std::array<double, 3>& focus) -> CurveImage {
+            return [&natural, &grids, focus](size_t, int grid) { return natural(grids[grid], focus); };
+          },
+          {curve});
   };
   auto blank = [&](const std::string& name, double dt, double f) {
     ContrastCurve c;
@@ -178,56 +195,72 @@ std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displ
     return c;
   };
 
-  std::vector<ContrastCurve> curves;
+  // The curves of each target (frequency, depth), in order: natural viewing
+  // where first seen, then each display's. Display by display, since a
+  // display's retinal tables at a state serve all of its curves: its curves
+  // are solved, then swept together.
+  const size_t depths = o.target_diopters.size();
+  std::vector<std::vector<ContrastCurve>> of_target(o.frequencies.size() * depths);
+  // Natural viewing curves already drawn, per target, by what they saw.
+  struct Drawn {
+    LightFieldGeometry geometry;
+    Sampling sampling;
+    const EyeModel* eye;
+  };
+  std::vector<std::vector<Drawn>> drawn(of_target.size());
+  std::vector<double> continuous_reference(of_target.size(), 0.0);
   std::optional<Progress> progress;
   size_t solved = 0;
   if (o.show_progress) progress.emplace("contrast", displays.size() * o.frequencies.size() * o.target_diopters.size());
-  for (double f : o.frequencies)
-    for (double dt : o.target_diopters) {
-      std::shared_ptr<const Texture> texture = texture_of(1 / dt, f);
-      char label[96];
-      std::snprintf(label, sizeof label, "target %.2f D, %.1f cpd", dt, f);
-      // The continuous plane at D_t as the eye sees it.
-      SceneRadiance plane = [&](const PupilPoint& u, double dx, double dy) {
-        return texture->Evaluate(u.x + dx / dt, u.y + dy / dt);
-      };
-      auto natural_image = [&](const SceneRadiance& scene, const EyeModel& eye,
-                               const std::vector<PupilPoint>& pupil) -> RetinalImage {
-        return [scene, &pupil, &eye](const RetinaGrid& grid, const std::array<double, 3>& focus) {
-          Image image = RetinaOfScene(scene, grid, pupil, focus);
-          ApplyEyeOptics(eye, grid, &image);
-          return image;
+  for (size_t di = 0; di < displays.size(); ++di) {
+    const ContrastDisplay& d = displays[di];
+    const EyeModel& eye = d.system.eye;
+    const std::vector<PupilPoint>& pupil = pupils[di];
+    // This display's curves, solved and waiting for the sweep.
+    struct Solved {
+      size_t target, index;  // of_target[target][index]
+      std::unique_ptr<DisplayModel> model;
+      Patterns t;
+    };
+    std::vector<Solved> solved_curves;
+    for (size_t fi = 0; fi < o.frequencies.size(); ++fi)
+      for (size_t ti = 0; ti < depths; ++ti) {
+        const double f = o.frequencies[fi], dt = o.target_diopters[ti];
+        const size_t target_index = fi * depths + ti;
+        std::vector<ContrastCurve>& curves = of_target[target_index];
+        std::shared_ptr<const Texture> texture = texture_of(1 / dt, f);
+        char label[96];
+        std::snprintf(label, sizeof label, "target %.2f D, %.1f cpd", dt, f);
+        // The continuous plane at D_t as the eye sees it.
+        SceneRadiance plane = [&](const PupilPoint& u, double dx, double dy) {
+          return texture->Evaluate(u.x + dx / dt, u.y + dy / dt);
         };
-      };
-      auto reference_of = [&](const EyeModel& eye, const RetinalImage& natural) {
-        double r = amplitude(natural(retina, ChannelAccommodation(eye, dt)), retina, f);
-        if (!(r > 0)) throw Error(std::string("contrast: the target has no component at ") + label);
-        return r;
-      };
-      // Natural viewing curves already drawn, by what they saw.
-      struct Drawn {
-        LightFieldGeometry geometry;
-        Sampling sampling;
-        const EyeModel* eye;
-      };
-      std::vector<Drawn> drawn;
-      double continuous_reference = 0;
-      if (o.reference == ContrastReference::kContinuous) {
-        auto start = std::chrono::steady_clock::now();
-        RetinalImage natural = natural_image(plane, first_eye, first_pupil);
-        continuous_reference = reference_of(first_eye, natural);
-        ContrastCurve c = blank("natural", dt, f);
-        c.solver = "-";
-        c.eye = EyeModelLine(first_eye);
-        sweep(first_eye, natural, f, continuous_reference, &c);
-        c.sweep_seconds = Seconds(start);
-        curves.push_back(std::move(c));
-      }
+        auto natural_image = [&](const SceneRadiance& scene, const EyeModel& seer,
+                                 const std::vector<PupilPoint>& its_pupil) -> RetinalImage {
+          return [scene, &its_pupil, &seer](const RetinaGrid& grid, const std::array<double, 3>& focus) {
+            Image image = RetinaOfScene(scene, grid, its_pupil, focus);
+            ApplyEyeOptics(seer, grid, &image);
+            return image;
+          };
+        };
+        auto reference_of = [&](const EyeModel& seer, const RetinalImage& natural) {
+          double r = amplitude(natural(retina, ChannelAccommodation(seer, dt)), retina, f);
+          if (!(r > 0)) throw Error(std::string("contrast: the target has no component at ") + label);
+          return r;
+        };
+        if (o.reference == ContrastReference::kContinuous && di == 0) {
+          auto start = std::chrono::steady_clock::now();
+          RetinalImage natural = natural_image(plane, first_eye, first_pupil);
+          continuous_reference[target_index] = reference_of(first_eye, natural);
+          ContrastCurve c = blank("natural", dt, f);
+          c.solver = "-";
+          c.eye = EyeModelLine(first_eye);
+          c.reference_amplitude = continuous_reference[target_index];
+          sweep_one(first_eye, natural, &c);
+          c.sweep_seconds = Seconds(start);
+          curves.push_back(std::move(c));
+        }
 
-      for (size_t di = 0; di < displays.size(); ++di) {
-        const ContrastDisplay& d = displays[di];
-        const EyeModel& eye = d.system.eye;
-        const std::vector<PupilPoint>& pupil = pupils[di];
         if (o.progress) o.progress(d.name + ": " + label);
         if (progress) progress->Update(solved++, "solves; now " + d.name + ": " + label);
         LightFieldGeometry g = DisplayLightFieldGeometry(d.system, dt);
@@ -235,53 +268,71 @@ std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displ
         g.rows = std::min(g.rows, o.strip_rows);
         g.window_height = g.rows * row_height;
         g.window_top = g.window_height / 2;
-        DisplayModel model(d.system, g, d.sampling);
+        auto model = std::make_unique<DisplayModel>(d.system, g, d.sampling);
         LightField target = RenderPlaneLightField(g, g.origin_z, *texture);  // the plane is the origin plane
 
-        double reference = continuous_reference;
+        double reference = continuous_reference[target_index];
         if (o.reference == ContrastReference::kSampledTarget) {
           auto start = std::chrono::steady_clock::now();
           RetinalImage natural = natural_image(LightFieldRadiance(target, d.sampling), eye, pupil);
           reference = reference_of(eye, natural);
-          bool seen = std::any_of(drawn.begin(), drawn.end(), [&](const Drawn& k) {
+          bool seen = std::any_of(drawn[target_index].begin(), drawn[target_index].end(), [&](const Drawn& k) {
             return k.sampling == d.sampling && SameGeometry(k.geometry, g) && SameEye(*k.eye, eye);
           });
           if (!seen) {
             // One natural curve per distinct target; named after the display when it is not the first.
-            ContrastCurve c = blank(drawn.empty() ? "natural" : "natural (" + d.name + ")", dt, f);
+            ContrastCurve c = blank(drawn[target_index].empty() ? "natural" : "natural (" + d.name + ")", dt, f);
             c.solver = "-";
             c.eye = EyeModelLine(eye);
-            sweep(eye, natural, f, reference, &c);
+            c.reference_amplitude = reference;
+            sweep_one(eye, natural, &c);
             c.sweep_seconds = Seconds(start);
             curves.push_back(std::move(c));
-            drawn.push_back({g, d.sampling, &eye});
+            drawn[target_index].push_back({g, d.sampling, &eye});
           }
         }
 
         ContrastCurve curve = blank(d.name, dt, f);
         curve.eye = EyeModelLine(eye);
         curve.solver = d.solver.empty() ? DefaultSolverFor(d.system) : d.solver;
+        curve.reference_amplitude = reference;
         SolverOptions options = d.options_given ? d.options : SolverRegistry::Builtins().find(curve.solver)->defaults;
         options.retinal.target = RetinalTarget::kLightField;  // the grating's light field is its scene, exactly
         Patterns t;
         auto start = std::chrono::steady_clock::now();
-        SolverReport report = SolverRegistry::Builtins().create(curve.solver)->Solve(model, target, options, &t);
+        SolverReport report = SolverRegistry::Builtins().create(curve.solver)->Solve(*model, target, options, &t);
         if (!report.IsSolutionUsable()) throw Error("contrast: " + d.name + ": " + report.message);
         curve.solve_seconds = Seconds(start);
         curve.psnr_db = report.final_psnr_db;
-        start = std::chrono::steady_clock::now();
-        sweep(
-            eye,
-            [&](const RetinaGrid& grid, const std::array<double, 3>& focus) {
-              Image image = RetinaOfDisplay(model, t, grid, pupil, focus);
-              ApplyEyeOptics(eye, grid, &image);
-              return image;
-            },
-            f, reference, &curve);
-        curve.sweep_seconds = Seconds(start);
         curves.push_back(std::move(curve));
+        solved_curves.push_back({target_index, curves.size() - 1, std::move(model), std::move(t)});
       }
-    }
+
+    if (solved_curves.empty()) continue;
+    // The display's curves swept together; each is given an equal share of the time.
+    std::vector<ContrastCurve*> of;
+    for (const Solved& s : solved_curves) of.push_back(&of_target[s.target][s.index]);
+    const auto start = std::chrono::steady_clock::now();
+    sweep(
+        eye,
+        [&](const std::array<double, 3>& focus) -> CurveImage {
+          const DisplayModel& model = *solved_curves.front().model;  // every model of the display reads the same layers
+          auto tables = std::make_shared<std::vector<DisplayRetinaTables>>();
+          for (int g = 0; g < (o.peak_uncertainty ? 2 : 1); ++g) tables->emplace_back(model, grids[g], pupil, focus);
+          return [&, tables](size_t n, int grid) {
+            const Solved& s = solved_curves[n];
+            Image image = RetinaOfDisplay(*s.model, s.t, (*tables)[grid]);
+            ApplyEyeOptics(eye, grids[grid], &image);
+            return image;
+          };
+        },
+        of);
+    const double seconds = Seconds(start) / std::max<size_t>(1, of.size());
+    for (ContrastCurve* c : of) c->sweep_seconds = seconds;
+  }
+  std::vector<ContrastCurve> curves;
+  for (std::vector<ContrastCurve>& of : of_target)
+    for (ContrastCurve& c : of) curves.push_back(std::move(c));
   for (ContrastCurve& c : curves) {
     c.peak = FindPeak(c.accommodation, c.contrast);
     c.estimate = EstimatePeak(c.accommodation, c.contrast, c.contrast_shifted, o.flat_limit);

@@ -11,20 +11,26 @@
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
+#include <unistd.h>
 #include <Eigen/Sparse>
 #include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <filesystem>
 #include <map>
 #include <string>
 #include <vector>
 
+#include "analysis/contrast.h"
+#include "analysis/retina_sweep.h"
 #include "bench/bench_setup.h"
+#include "framework/lightfield_io.h"
 #include "solvers/joint_pass.h"
 #include "solvers/multiplicative_update.h"
 #include "solvers/objective.h"
 #include "solvers/retinal_objective.h"
 #include "solvers/retinal_pass.h"
+#include "solvers/solve_config.h"
 #include "solvers/solver.h"
 #include "systems/lightfield_radiance.h"
 #include "systems/retina.h"
@@ -423,6 +429,82 @@ void NaturalRetinaImage(benchmark::State& state, bool ray_by_ray) {
 void BM_NaturalRetinaImage(benchmark::State& state) { NaturalRetinaImage(state, false); }
 void BM_NaturalRetinaImageRayByRay(benchmark::State& state) { NaturalRetinaImage(state, true); }
 
+// A folder of its own under the system's temporary directory, removed when done.
+struct ScratchFolder {
+  std::filesystem::path path;
+  explicit ScratchFolder(const std::string& name)
+      : path(std::filesystem::temp_directory_path() / (name + "_" + std::to_string(getpid()))) {
+    std::filesystem::remove_all(path);
+  }
+  ~ScratchFolder() {
+    std::error_code ec;
+    std::filesystem::remove_all(path, ec);
+  }
+};
+
+// The main job's focal stack as `layerlab retina --target dice --accommodation
+// 0.4,1.0,1.6,2.2 --focal-stack 0,2.6,0.1` runs it: the dice read, the model
+// made, 27 states of display and natural images written (EXR + PNG), here of
+// uniform patterns of 0.5. Smoke: the synthetic target, 2 coarse states.
+void BM_FocalStack(benchmark::State& state) {
+  const Workload& w = GetWorkload("paper_prototype");
+  const bool smoke = Settings().smoke;
+  const std::string dice = std::string(LAYERLAB_DATA_DIR) + "/dice";
+  const bool read_dice = w.target_name == "dice";
+  RetinaSweepOptions o;
+  if (smoke) {
+    o.states = {0.4, 1.6}, o.resolution = 0.1, o.field_x = 4, o.field_y = 2;
+  } else {
+    o.states = {0.4, 1.0, 1.6, 2.2};
+    for (int k = 0; k <= 26; ++k)
+      if (k != 4 && k != 10 && k != 16 && k != 22) o.states.push_back(0.1 * k);
+    std::sort(o.states.begin(), o.states.end());
+  }
+  ScratchFolder out("layerlab_bench_focal_stack");
+  double last = 0;
+  for (auto _ : state)
+    last = Timed(state, [&] {
+      const LightField target = read_dice ? ReadLightField(dice, {.load_depth = false}) : w.target;
+      const DisplayModel model(w.system, target.geometry);
+      const Patterns t = model.UniformPatterns(0.5f);
+      const std::vector<RetinaStateResult> r =
+          WriteRetinaSweep(model, t, LightFieldRadiance(target), o, out.path.string(), nullptr);
+      benchmark::DoNotOptimize(r.data());
+    });
+  state.counters["states"] = double(o.states.size());
+  Report(state, 2.0, last);
+  state.SetLabel(w.target_name);
+}
+
+// The Fig. 5 sweep as `layerlab contrast examples/additive_2layer.json
+// examples/multiplicative_2layer.json examples/paper_prototype.json` runs it:
+// 3 displays x 3 depths x 2 frequencies, each solved on a strip and swept
+// over accommodation. Smoke: one display, depth and frequency, a coarse sweep.
+void BM_Fig5Sweep(benchmark::State& state) {
+  const bool smoke = Settings().smoke;
+  std::vector<ContrastDisplay> displays;
+  for (const char* example : {"additive_2layer", "multiplicative_2layer", "paper_prototype"}) {
+    displays.push_back(LoadContrastDisplay(std::string(LAYERLAB_SOURCE_DIR) + "/examples/" + example + ".json"));
+    if (smoke) break;
+  }
+  ContrastOptions o;
+  if (smoke) {
+    o.target_diopters = {1.3}, o.frequencies = {2.0};
+    o.accommodation_step = 0.65, o.retina_field = 4, o.retina_resolution = 0.05, o.strip_rows = 4;
+    for (ContrastDisplay& d : displays) {
+      if (!d.options_given)
+        d.options = SolverRegistry::Builtins().find(d.solver.empty() ? DefaultSolverFor(d.system) : d.solver)->defaults;
+      d.options_given = true;
+      d.options.iterations = std::min(d.options.iterations, 3);
+    }
+  }
+  size_t curves = 0;
+  double last = 0;
+  for (auto _ : state) last = Timed(state, [&] { curves = RunContrast(displays, o).size(); });
+  state.counters["curves"] = double(curves);
+  Report(state, 8.0, last);
+}
+
 // ---- The paper's formulation: P_k as explicit sparse matrices (rays x pixels). ----
 
 using SparseP = Eigen::SparseMatrix<float, Eigen::RowMajor, int>;
@@ -525,6 +607,8 @@ BENCHMARK(BM_RetinaImage)->Unit(benchmark::kMillisecond)->UseManualTime();
 BENCHMARK(BM_RetinaImageOfDisplay)->Unit(benchmark::kMillisecond)->UseManualTime();
 BENCHMARK(BM_NaturalRetinaImage)->Unit(benchmark::kMillisecond)->UseManualTime();
 BENCHMARK(BM_NaturalRetinaImageRayByRay)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(2);
+BENCHMARK(BM_FocalStack)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(1);
+BENCHMARK(BM_Fig5Sweep)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(1);
 BENCHMARK(BM_HybridSchedule)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(1);
 BENCHMARK(BM_QuasiNewtonToHybridSchedulePsnr)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(1);
 BENCHMARK(BM_AdditiveToConvergence)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(1);

@@ -3,12 +3,12 @@
 #include <png.h>
 
 #include <cerrno>
-#include <cmath>
 #include <cstdio>
 #include <cstring>
 
 #include "framework/atomic_file.h"
 #include "framework/error.h"
+#include "framework/srgb_code.h"
 
 namespace layerlab {
 
@@ -50,9 +50,7 @@ size_t WriteSrgbPng(const std::string& path, int width, int height, const std::v
   for (size_t k = 0; k < rgb.size(); ++k) {
     double v = rgb[k] / white;
     if (v > 1) ++clipped;
-    v = v > 1 ? 1.0 : v > 0 ? v : 0.0;  // NaN lands on 0
-    double encoded = v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1 / 2.4) - 0.055;
-    pixels[k] = static_cast<uint8_t>(std::lround(255 * encoded));
+    pixels[k] = SrgbCode(v);
   }
   WritePng8(path, width, height, 3, pixels, compression);
   return clipped;

@@ -17,10 +17,11 @@ namespace {
 // value are the same for every ray a pixel sums, so OneTapUpdateSums leaves
 // them out:  num = w_b sum r q,  den = w_b^2 t_a sum q^2.  They go back here.
 void FinishOneTapSums(const std::array<float, 3>& w, const std::vector<float>& t_a, double* num, double* den) {
-  for (size_t k = 0; k < t_a.size(); ++k) {
-    num[k] *= w[k % 3];
-    den[k] *= double(w[k % 3]) * w[k % 3] * t_a[k];
-  }
+  for (size_t p = 0; p < t_a.size(); p += 3)
+    for (int c = 0; c < 3; ++c) {
+      num[p + c] *= w[c];
+      den[p + c] *= double(w[c]) * w[c] * t_a[p + c];
+    }
 }
 
 // Any layers: the rest of the branch per view into a buffer, then one pass

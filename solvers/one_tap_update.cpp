@@ -90,7 +90,7 @@ void OneTapUpdateSums(const DisplayModel& model, const std::vector<int>& layers,
   const LightFieldGeometry& g = model.geometry();
   const LayerProjection& Pa = model.projection(layers[0]);
   PaddedLayers& padded = workspace->padded;
-  padded.Pad(t, view_errors ? layers : std::vector<int>(layers.begin() + 1, layers.end()));
+  padded.PadRowsRead(model, t, view_errors ? layers : std::vector<int>(layers.begin() + 1, layers.end()));
   const Rgb4 w4{weight[0], weight[1], weight[2], 0.0f};
 
   // Each thread takes an equal run of views (ForEachViewRunOfThread), sums

@@ -21,6 +21,20 @@ void PaddedLayers::PadAll(const Patterns& t) {
   for (size_t k = 0; k < t.size(); ++k) PadRgb(t[k].rgb, &layers_[k]);
 }
 
+void PaddedLayers::PadRowsRead(const DisplayModel& model, const Patterns& t, const std::vector<int>& layers) {
+  layers_.resize(t.size());
+  const LightFieldGeometry& g = model.geometry();
+  for (int k : layers) {
+    const LayerProjection& P = model.projection(k);
+    const RowSpan rows = RowsRead(P, g, 0, g.views_y);
+    const std::vector<float>& rgb = t[k].rgb;
+    std::vector<Rgb4>& out = layers_[k];
+    out.resize(rgb.size() / 3);
+    const size_t end = static_cast<size_t>(rows.end) * P.cols();
+    for (size_t p = static_cast<size_t>(rows.begin) * P.cols(); p < end; ++p) out[p] = LoadRgb(&rgb[p * 3]);
+  }
+}
+
 void PaddedLayers::Allocate(const std::vector<size_t>& pixels) {
   layers_.resize(pixels.size());
   for (size_t k = 0; k < pixels.size(); ++k) layers_[k].assign(pixels[k], Rgb4{});
@@ -61,8 +75,16 @@ void ColumnSums::Reset(const LayerProjection& P, int ray_cols) {
   }
   ray_cols_ = ray_cols;
   touched_.assign(P.rows(), 0);
-  pixel_num_.assign(P.pixel_count(), Rgb4{});
-  pixel_den_.assign(P.pixel_count(), Rgb4{});
+  // Only the rows some ray reads get sums (Scatter writes touched rows only):
+  // on a strip of rays a few of the layer's rows. The others are never read.
+  const LightFieldGeometry& g = P.geometry();
+  reached_ = RowsRead(P, g, 0, g.views_y);
+  layer_cols_ = P.cols();
+  pixel_num_.resize(P.pixel_count()), pixel_den_.resize(P.pixel_count());
+  const size_t begin = static_cast<size_t>(reached_.begin) * layer_cols_,
+               end = static_cast<size_t>(reached_.end) * layer_cols_;
+  std::fill(pixel_num_.begin() + begin, pixel_num_.begin() + end, Rgb4{});
+  std::fill(pixel_den_.begin() + begin, pixel_den_.begin() + end, Rgb4{});
 }
 
 void ColumnSums::Allocate(int rows, int ray_cols, size_t pixels) {
@@ -105,14 +127,24 @@ void ColumnSums::Scatter(const LayerProjection& P, int vc) {
 }
 
 void ColumnSums::Merge(const std::vector<const ColumnSums*>& sums, int part, int parts, double* num, double* den) {
+  // The rows no ray reads sum to 0 (as merged from cleared sums); the others merged.
+  const ColumnSums& first = *sums.front();
+  const size_t pixels = first.pixel_num_.size();
+  const size_t begin = static_cast<size_t>(first.reached_.begin) * first.layer_cols_;
+  const size_t end = static_cast<size_t>(first.reached_.end) * first.layer_cols_;
+  auto zero = [&](size_t from, size_t to) {
+    const size_t n = to - from, a = from + n * part / parts, b = from + n * (part + 1) / parts;
+    std::fill(num + a * 3, num + b * 3, 0.0);
+    std::fill(den + a * 3, den + b * 3, 0.0);
+  };
+  zero(0, begin), zero(end, pixels);
   std::vector<const float*> nums, dens;
   for (const ColumnSums* s : sums) {
-    nums.push_back(reinterpret_cast<const float*>(s->pixel_num_.data()));
-    dens.push_back(reinterpret_cast<const float*>(s->pixel_den_.data()));
+    nums.push_back(reinterpret_cast<const float*>(s->pixel_num_.data() + begin));
+    dens.push_back(reinterpret_cast<const float*>(s->pixel_den_.data() + begin));
   }
-  const size_t pixels = sums.front()->pixel_num_.size();
-  MergeInThreadOrder(nums, pixels, 4, part, parts, num);
-  MergeInThreadOrder(dens, pixels, 4, part, parts, den);
+  MergeInThreadOrder(nums, end - begin, 4, part, parts, num + begin * 3);
+  MergeInThreadOrder(dens, end - begin, 4, part, parts, den + begin * 3);
 }
 
 }  // namespace layerlab

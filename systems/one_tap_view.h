@@ -29,6 +29,10 @@ class PaddedLayers {
  public:
   void Pad(const Patterns& t, const std::vector<int>& layers);
   void PadAll(const Patterns& t);
+  // The same, of each layer only the rows some ray of the model's light field
+  // reads (RowsRead; on a strip a few): room for all, the others left as they
+  // were and never read by the passes that resample through RowsRead.
+  void PadRowsRead(const DisplayModel& model, const Patterns& t, const std::vector<int>& layers);
   const Rgb4* pixels(int layer) const { return layers_[layer].data(); }
   // Room for `pixels[k]` pixels of layer k, touched (solve_workspace.h sizes it); the bytes held.
   void Allocate(const std::vector<size_t>& pixels);
@@ -76,7 +80,8 @@ void ForEachViewRunOfThread(const LightFieldGeometry& g, int me, int threads, F 
 // then scattered to the layer's pixels once per view column.
 class ColumnSums {
  public:
-  // For a pass: the pixel sums zeroed (the column sums are always clear between view columns).
+  // For a pass: the pixel sums zeroed, of the layer rows some ray reads (the
+  // column sums are always clear between view columns).
   void Reset(const LayerProjection& P, int ray_cols);
   // The column sums of layer row r, marked as holding sums.
   Rgb4* num(int r) {
@@ -105,7 +110,9 @@ class ColumnSums {
   int ray_cols_ = 0;
   std::vector<Rgb4> column_num_, column_den_;  // [layer row][ray column]
   std::vector<uint8_t> touched_;               // layer rows that hold column sums
-  std::vector<Rgb4> pixel_num_, pixel_den_;    // [pixel]
+  std::vector<Rgb4> pixel_num_, pixel_den_;    // [pixel], held for the rows in reached_ only
+  RowSpan reached_;                            // the layer rows some ray of the light field reads
+  int layer_cols_ = 0;
 };
 
 }  // namespace layerlab

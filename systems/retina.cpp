@@ -117,6 +117,25 @@ std::string EyeModelLine(const EyeModel& eye) {
   return line;
 }
 
+// The common case: one focus for all channels, every branch on the one-tap
+// path (one_tap_view.h), the pupil points in the role of views. For one
+// pupil point a layer's column tap depends on the retinal column alone and
+// its row tap on the retinal row alone, and on a pupil grid the points of a
+// pupil column share their column taps (those of a pupil row their row
+// taps). So each layer row is resampled to the retinal columns once per
+// distinct column table, kept while the next retinal rows read it, and every
+// retinal row sums contiguous rows of products (AddBranchLightRow) in the
+// order of the per-ray sums: pupil point, then branch.
+struct OneTapTables {
+  struct Table {
+    int layer = 0;
+    std::vector<AxisTap> taps;
+  };
+  std::vector<Table> cols, rows;    // distinct tables
+  std::vector<int> col_of, row_of;  // [pupil point * layers + layer] -> table
+  int ring = 1;                     // a power of two >= the layer rows one column table's rays read in a retinal row
+};
+
 namespace {
 
 // Where the rays of one pupil point read one layer, for one channel's focus:
@@ -145,25 +164,6 @@ inline double Read(const AxisTap& row, const AxisTap& col, const LayerPattern& t
   }
   return value;
 }
-
-// The common case: one focus for all channels, every branch on the one-tap
-// path (one_tap_view.h), the pupil points in the role of views. For one
-// pupil point a layer's column tap depends on the retinal column alone and
-// its row tap on the retinal row alone, and on a pupil grid the points of a
-// pupil column share their column taps (those of a pupil row their row
-// taps). So each layer row is resampled to the retinal columns once per
-// distinct column table, kept while the next retinal rows read it, and every
-// retinal row sums contiguous rows of products (AddBranchLightRow) in the
-// order of the per-ray sums: pupil point, then branch.
-struct OneTapTables {
-  struct Table {
-    int layer = 0;
-    std::vector<AxisTap> taps;
-  };
-  std::vector<Table> cols, rows;    // distinct tables
-  std::vector<int> col_of, row_of;  // [pupil point * layers + layer] -> table
-  int ring = 1;                     // a power of two >= the layer rows one column table's rays read in a retinal row
-};
 
 // A table per distinct offset of the layer's taps: (u blur, wavefront slope).
 OneTapTables MakeOneTapTables(const DisplayModel& model, const RetinaGrid& retina, const std::vector<PupilPoint>& pupil,
@@ -316,29 +316,56 @@ void NearestRetina(const DisplayModel& model, const Patterns& t, const RetinaGri
 
 }  // namespace
 
+DisplayRetinaTables::DisplayRetinaTables(const DisplayModel& model, const RetinaGrid& retina,
+                                         const std::vector<PupilPoint>& pupil,
+                                         const std::array<double, 3>& accommodation)
+    : retina_(retina),
+      pupil_(&pupil),
+      accommodation_(accommodation),
+      layers_(model.layer_count()),
+      branches_(model.branch_count()),
+      tan_x_(retina.cols),
+      tan_y_(retina.rows) {
+  for (int j = 0; j < retina.cols; ++j) tan_x_[j] = std::tan(retina.angle_x(j));
+  for (int i = 0; i < retina.rows; ++i) tan_y_[i] = std::tan(retina.angle_y(i));
+  same_focus_ = accommodation[0] == accommodation[1] && accommodation[1] == accommodation[2];
+  one_tap_ = true;
+  for (size_t b = 0; b < model.branch_count(); ++b) one_tap_ = one_tap_ && OneTapBranch(model, b);
+  // A focus per channel (chromatic aberration): each channel from the fast
+  // path at its own focus, three float passes instead of the general path.
+  if (one_tap_)
+    for (int c = 0; c < (same_focus_ ? 1 : 3); ++c)
+      foci_.push_back(MakeOneTapTables(model, retina, pupil, tan_x_, tan_y_, accommodation[c]));
+}
+
+DisplayRetinaTables::~DisplayRetinaTables() = default;
+DisplayRetinaTables::DisplayRetinaTables(DisplayRetinaTables&&) noexcept = default;
+
 Image RetinaOfDisplay(const DisplayModel& model, const Patterns& t, const RetinaGrid& retina,
                       const std::vector<PupilPoint>& pupil, const std::array<double, 3>& accommodation) {
+  return RetinaOfDisplay(model, t, DisplayRetinaTables(model, retina, pupil, accommodation));
+}
+
+Image RetinaOfDisplay(const DisplayModel& model, const Patterns& t, const DisplayRetinaTables& made) {
+  if (model.layer_count() != made.layers_ || model.branch_count() != made.branches_)
+    throw Error("internal error: retinal tables of another display");
+  const RetinaGrid& retina = made.retina_;
+  const std::vector<PupilPoint>& pupil = *made.pupil_;
+  const std::array<double, 3>& accommodation = made.accommodation_;
+  const std::vector<double>&tan_x = made.tan_x_, &tan_y = made.tan_y_;
+  const bool same_focus = made.same_focus_;
   Image image{
       retina.cols, retina.rows, {"R", "G", "B"}, std::vector<float>(size_t(retina.cols) * retina.rows * 3, 0.0f)};
-  std::vector<double> tan_x(retina.cols), tan_y(retina.rows);
-  for (int j = 0; j < retina.cols; ++j) tan_x[j] = std::tan(retina.angle_x(j));
-  for (int i = 0; i < retina.rows; ++i) tan_y[i] = std::tan(retina.angle_y(i));
-  const bool same_focus = accommodation[0] == accommodation[1] && accommodation[1] == accommodation[2];
-  bool one_tap = true;
-  for (size_t b = 0; b < model.branch_count(); ++b) one_tap = one_tap && OneTapBranch(model, b);
-  if (one_tap && !same_focus) {
-    // A focus per channel (chromatic aberration): each channel from the fast
-    // path at its own focus, three float passes instead of the general path.
+  if (made.one_tap_ && !same_focus) {
+    Image at_focus = image;
     for (int c = 0; c < 3; ++c) {
-      const Image at_focus =
-          RetinaOfDisplay(model, t, retina, pupil, {accommodation[c], accommodation[c], accommodation[c]});
+      NearestRetina(model, t, retina, pupil, made.foci_[c], &at_focus);
       for (size_t k = c; k < image.pixels.size(); k += 3) image.pixels[k] = at_focus.pixels[k];
     }
     return image;
   }
-  if (one_tap) {  // and so one focus
-    NearestRetina(model, t, retina, pupil, MakeOneTapTables(model, retina, pupil, tan_x, tan_y, accommodation[0]),
-                  &image);
+  if (made.one_tap_) {  // and so one focus
+    NearestRetina(model, t, retina, pupil, made.foci_[0], &image);
     return image;
   }
   const int foci = same_focus ? 1 : 3;

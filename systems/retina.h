@@ -56,6 +56,32 @@ std::string EyeModelLine(const EyeModel& eye);
 Image RetinaOfDisplay(const DisplayModel& model, const Patterns& t, const RetinaGrid& retina,
                       const std::vector<PupilPoint>& pupil, const std::array<double, 3>& accommodation);
 
+struct OneTapTables;
+// What the display's retinal image reads of the layers for one retina, pupil
+// and accommodation: the retinal directions and, on the one-tap path, each
+// layer's column and row taps. They depend on the display's layers, not on
+// the light field its model was made for, so one set serves every model of
+// the display and every set of patterns (a sweep's curves of one display).
+class DisplayRetinaTables {
+ public:
+  DisplayRetinaTables(const DisplayModel& model, const RetinaGrid& retina, const std::vector<PupilPoint>& pupil,
+                      const std::array<double, 3>& accommodation);
+  ~DisplayRetinaTables();
+  DisplayRetinaTables(DisplayRetinaTables&&) noexcept;
+
+ private:
+  friend Image RetinaOfDisplay(const DisplayModel&, const Patterns&, const DisplayRetinaTables&);
+  RetinaGrid retina_;
+  const std::vector<PupilPoint>* pupil_;
+  std::array<double, 3> accommodation_;
+  size_t layers_, branches_;
+  std::vector<double> tan_x_, tan_y_;
+  bool one_tap_ = false, same_focus_ = false;
+  std::vector<OneTapTables> foci_;  // one-tap path: one focus, or one per channel
+};
+// The same image from tables made before (for a model of the same display; `pupil` must outlive them).
+Image RetinaOfDisplay(const DisplayModel& model, const Patterns& t, const DisplayRetinaTables& tables);
+
 // Natural viewing: the radiance along the ray from a pupil point with tan-direction
 // (dx, dy) (the ray passes (x + dx z, y + dy z, z) at depth z).
 using SceneRadiance = std::function<Rgb(const PupilPoint& origin, double dx, double dy)>;
