@@ -44,7 +44,7 @@ struct Options {
   std::optional<int> iterations, sub_iterations, warm_start_iterations, threads;
   std::optional<double> tolerance, initial_value;
   std::string time_budget;
-  bool write_lightfield = false, resume = false, measure_focal_stack = false;
+  bool write_lightfield = false, resume = false, measure_focal_stack = false, contrast_sensitivity = false;
   int checkpoint_every = 0;
   std::string max_memory;
 };
@@ -142,6 +142,7 @@ void Solve(const Options& o, Ranks& ranks) {
   if (const std::string why = ObjectiveRefusal(config.solver, opt.objective); !why.empty())
     throw Error("--objective " + ToString(opt.objective) + ": " + why);
   opt.measure_focal_stack = o.measure_focal_stack;
+  if (o.contrast_sensitivity) opt.retinal.contrast_sensitivity = true;
   if (!o.retinal_target.empty()) {
     if (o.retinal_target != "lightfield" && o.retinal_target != "traced")
       throw Error("--retinal-target: \"" + o.retinal_target + "\" is not one of lightfield or traced");
@@ -306,6 +307,9 @@ void AddSolveCommand(CLI::App& app) {
   cmd->add_option("--retinal-target", o->retinal_target,
                   "The retinal objective's target images: lightfield (natural viewing of the target light field) or "
                   "traced (from --target-scene, ray by ray)");
+  cmd->add_flag(
+      "--contrast-sensitivity", o->contrast_sensitivity,
+      "Weight the retinal objective's residuals by the eye's contrast sensitivity (docs/retinal-objective.md)");
   cmd->add_flag("--measure-focal-stack", o->measure_focal_stack,
                 "Also record the focal stack's PSNR in the trace, off the clock (the retinal objective records it)");
   cmd->add_flag("--write-lightfield", o->write_lightfield, "Also write the synthesized light field");

@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 
 #include "framework/error.h"
 #include "solvers/objective.h"
+#include "systems/contrast_sensitivity.h"
+#include "systems/spectral_filter.h"
 
 namespace layerlab {
 
@@ -32,6 +35,24 @@ RetinaGrid GridOf(const LightFieldGeometry& g, double resolution) {
   return grid;
 }
 
+// <r, H r> for channel c of an interleaved RGB image r on `grid`, r replaced by H r (H: gain S(f)^2, periodic).
+double ContrastSensitivityChannel(float* r, const RetinaGrid& grid, int c) {
+  const size_t n = size_t(grid.cols) * grid.rows;
+  std::vector<std::complex<double>> field(n);
+  for (size_t k = 0; k < n; ++k) field[k] = r[k * 3 + c];
+  constexpr double kCyclesPerRadianInCpd = 3.14159265358979323846 / 180;
+  FilterPeriodic(&field, grid.cols, grid.rows, grid.resolution, [](double fx, double fy) {
+    const double s = ContrastSensitivityWeight(std::hypot(fx, fy) * kCyclesPerRadianInCpd);
+    return s * s;
+  });
+  double weighted = 0;
+  for (size_t k = 0; k < n; ++k) {
+    weighted += double(r[k * 3 + c]) * field[k].real();
+    r[k * 3 + c] = static_cast<float>(field[k].real());
+  }
+  return weighted;
+}
+
 double SquaredDifference(const std::vector<float>& a, const std::vector<float>& b) {
   double sum = 0;
 #pragma omp parallel for reduction(+ : sum) schedule(static)
@@ -56,6 +77,8 @@ RetinalObjective::RetinalObjective(const DisplayModel& model, const LightField& 
   for (double w : weights_)
     if (!(w >= 0) || !std::isfinite(w)) throw Error("a state weight of the retinal objective must be >= 0");
   const RetinaGrid grid = GridOf(model.geometry(), options.resolution);
+  grid_ = grid;
+  contrast_sensitivity_ = options.contrast_sensitivity;
   std::vector<std::array<double, 3>> foci;
   for (double d : states_) foci.push_back(ChannelAccommodation(eye, d));
   const std::vector<PupilPoint> pupil = PupilSamples(eye);
@@ -83,17 +106,20 @@ RetinalObjective::RetinalObjective(const DisplayModel& model, const LightField& 
   bound_ = largest > 0 ? largest : 1.0;
 }
 
+std::vector<double> RetinalObjective::WeightResiduals() const {
+  const size_t states = states_.size();
+  std::vector<double> weighted(states * 3);
+#pragma omp parallel for schedule(dynamic)
+  for (size_t k = 0; k < states * 3; ++k)
+    weighted[k] = ContrastSensitivityChannel(images_[k / 3].data(), grid_, int(k % 3));
+  std::vector<double> per_state(states);
+  for (size_t a = 0; a < states; ++a) per_state[a] = weighted[3 * a] + weighted[3 * a + 1] + weighted[3 * a + 2];
+  return per_state;
+}
+
 double RetinalObjective::Evaluate(const LightField& x, std::vector<double>* per_state) const {
-  std::vector<std::vector<float>>& images = images_;
-  operator_->Apply(x, &images);
-  std::vector<double> errors(states_.size());
-  double f = 0;
-  for (size_t a = 0; a < states_.size(); ++a) {
-    errors[a] = SquaredDifference(images[a], target_images_[a]);
-    f += weights_[a] * errors[a];
-  }
-  if (per_state) *per_state = std::move(errors);
-  return f;
+  LightField* no_adjoint = nullptr;
+  return EvaluateWithAdjoint(x, per_state, no_adjoint);
 }
 
 double RetinalObjective::EvaluateWithAdjoint(const LightField& x, std::vector<double>* per_state,
@@ -101,18 +127,29 @@ double RetinalObjective::EvaluateWithAdjoint(const LightField& x, std::vector<do
   std::vector<std::vector<float>>& images = images_;
   operator_->Apply(x, &images);
   std::vector<double> errors(states_.size());
-  double f = 0;
-  for (size_t a = 0; a < states_.size(); ++a) {
-    std::vector<float>& image = images[a];
-    errors[a] = SquaredDifference(image, target_images_[a]);
-    f += weights_[a] * errors[a];
-    const float w = static_cast<float>(weights_[a]);
-    const std::vector<float>& target = target_images_[a];
+  for (size_t a = 0; a < states_.size(); ++a) errors[a] = SquaredDifference(images[a], target_images_[a]);
+  std::vector<double> weighted = errors;
+  if (contrast_sensitivity_ || m_r) {
+    for (size_t a = 0; a < states_.size(); ++a) {
+      std::vector<float>& image = images[a];
+      const std::vector<float>& target = target_images_[a];
 #pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < image.size(); ++i) image[i] = w * (image[i] - target[i]);
+      for (size_t i = 0; i < image.size(); ++i) image[i] = image[i] - target[i];
+    }
+    if (contrast_sensitivity_) weighted = WeightResiduals();
   }
-  if (m_r->geometry.ray_count() != x.geometry.ray_count()) *m_r = LightField(x.geometry);
-  operator_->ApplyTranspose(images, m_r);
+  double f = 0;
+  for (size_t a = 0; a < states_.size(); ++a) f += weights_[a] * weighted[a];
+  if (m_r) {
+    for (size_t a = 0; a < states_.size(); ++a) {
+      std::vector<float>& image = images[a];
+      const float w = static_cast<float>(weights_[a]);
+#pragma omp parallel for schedule(static)
+      for (size_t i = 0; i < image.size(); ++i) image[i] = w * image[i];
+    }
+    if (m_r->geometry.ray_count() != x.geometry.ray_count()) *m_r = LightField(x.geometry);
+    operator_->ApplyTranspose(images, m_r);
+  }
   if (per_state) *per_state = std::move(errors);
   return f;
 }

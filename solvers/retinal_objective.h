@@ -17,6 +17,11 @@
 // retinal grid (RetinaOfScene), so detail finer than the target's views and
 // its true defocus blur enter the objective: f(L) = sum_a w_a || A_a L - r_a ||^2.
 //
+// With the contrast-sensitivity weighting each residual is filtered by the
+// eye's sensitivity S(f) <= 1 first: f = sum_a w_a || C (A_a L - r_a) ||^2,
+// gradient 2 sum_a w_a A_a^T C^T C (A_a L - r_a), C^T C the gain S(f)^2.
+// The focal-stack PSNR stays the unweighted one.
+//
 // M is symmetric with non-negative entries, so its largest eigenvalue is at
 // most the largest entry of M 1 (Gershgorin); Bound() returns that entry,
 // which the solvers divide by so that the light-field objective's step
@@ -43,6 +48,9 @@ struct RetinalObjectiveOptions {
   // holds the target scene sets (Target::Natural, analysis/target_source.h); the objective refuses kTraced without it.
   RetinalTarget target = RetinalTarget::kLightField;
   SceneRadiance target_radiance;
+  // Weight each state's residual by the eye's contrast sensitivity (systems/contrast_sensitivity.h):
+  // || C (A_a L - r_a) ||^2 with C the gain S(f) at spatial frequency f, the image taken as periodic.
+  bool contrast_sensitivity = false;
 };
 inline constexpr double kDefaultStateStep = 0.2;  // D
 
@@ -75,6 +83,10 @@ class RetinalObjective {
   // 400 x 200 x 3 floats are 13 MB): one evaluation at a time per objective.
   mutable std::vector<std::vector<float>> images_;
   double bound_ = 1;
+  RetinaGrid grid_;
+  bool contrast_sensitivity_ = false;
+  // The weighted errors of images_ (residuals on entry, C^T C residuals on return), per state.
+  std::vector<double> WeightResiduals() const;
 };
 
 // The states a RetinalObjectiveOptions names for this eye (its own, or the accommodation range in 0.2 D steps).

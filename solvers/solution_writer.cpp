@@ -57,6 +57,7 @@ nlohmann::json ReportToJson(const SolverReport& r) {
   const bool focal_stack = std::any_of(r.trace.begin(), r.trace.end(),
                                        [](const IterationRecord& t) { return !std::isnan(t.focal_stack_psnr_db); });
   if (focal_stack) j["retinal_target"] = r.retinal_target;
+  if (r.objective == "retinal") j["contrast_sensitivity"] = r.contrast_sensitivity;
   for (const IterationRecord& t : r.trace) {
     j["trace"].push_back({{"iteration", t.iteration},
                           {"seconds", t.seconds},

@@ -18,6 +18,7 @@
 // | sampling              | nearest, bilinear  | nearest                   | how the light field samples the layers   |
 // | target_range          | clip, scale        | clip                      | target values beyond what the display shows: clipped, or the target scaled |
 // | objective             | lightfield, retinal | lightfield               | what is minimized: the light-field error, or the retinal error over the eye's accommodation_range in 0.2 D steps (quasi-newton, joint; docs/retinal-objective.md) |
+// | contrast_sensitivity  | boolean            | false                     | the retinal objective's residuals weighted by the eye's contrast sensitivity (Mannos and Sakrison 1974, 1 up to its 7.9 cpd peak) |
 // | retinal_target        | lightfield, traced | lightfield                | the retinal objective's target images (and the focal-stack PSNR's): natural viewing of the target light field, or traced from target_scene ray by ray (needs a target scene; seconds per state) |
 #include "solvers/solve_config.h"
 
@@ -105,6 +106,7 @@ SolveConfig ReadSolveConfig(const Scene& scene, const DisplaySystem& system, con
     p.fail("retinal_target",
            "\"traced\" traces the target scene, and \"target\" is a light-field folder; give "
            "\"target_scene\"");
+  o.retinal.contrast_sensitivity = p.boolean("contrast_sensitivity", false);
   p.check_all_read();
   return config;
 }

@@ -17,6 +17,7 @@ SolveLoop::SolveLoop(std::string solver, const DisplayModel& model, const LightF
   report_.solver = std::move(solver);
   report_.objective = ToString(options.objective);
   if (options.retinal.target == RetinalTarget::kTraced) report_.retinal_target = "traced";
+  report_.contrast_sensitivity = options.objective == ObjectiveKind::kRetinal && options.retinal.contrast_sensitivity;
   start_ = std::chrono::steady_clock::now();
 }
 

@@ -106,6 +106,7 @@ struct SolverReport {
   std::string objective = "lightfield";  // ToString(SolverOptions::objective): what `trace` and final_objective are
   // The focal stack's target images (RetinalObjectiveOptions::target), when a focal stack was measured.
   std::string retinal_target = "lightfield";
+  bool contrast_sensitivity = false;  // the retinal objective's residuals weighted by it
   Termination termination = Termination::kNotRun;
   std::string message = "not run";
   int iterations = 0;

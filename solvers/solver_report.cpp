@@ -35,12 +35,14 @@ std::string SolverReport::FullReport() const {
       "iterations           %d\nwall time            %.3f s (after %.3f s of set-up)\nrays x channels      %zu\n",
       iterations, seconds, setup_seconds, rays * 3);
   out += buf;
+  std::string what;
+  if (objective == "retinal") {
+    what = contrast_sensitivity ? " over the focal stack's retinal samples, weighted by contrast sensitivity"
+                                : " over the focal stack's retinal samples";
+    if (retinal_target == "traced") what += ", against the traced target scene";
+  }
   std::snprintf(buf, sizeof buf, "objective            %.9g -> %.9g (sum of squared errors%s)\n", initial_objective,
-                final_objective,
-                objective != "retinal" ? ""
-                : retinal_target == "traced"
-                    ? " over the focal stack's retinal samples, against the traced target scene"
-                    : " over the focal stack's retinal samples");
+                final_objective, what.c_str());
   out += buf;
   out += "PSNR                 " + Db(trace.empty() ? 0 : trace.front().psnr_db) + " -> " + Db(final_psnr_db) +
          " (light field; peak 1 = display white)\n";

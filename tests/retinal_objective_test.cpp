@@ -6,6 +6,7 @@
 // objective of the centre view, and a recovered known focal stack.
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <numbers>
 #include <random>
 
@@ -14,8 +15,10 @@
 #include "solvers/retinal_objective.h"
 #include "solvers/retinal_pass.h"
 #include "solvers/solver.h"
+#include "systems/contrast_sensitivity.h"
 #include "systems/lightfield_radiance.h"
 #include "systems/retinal_operator.h"
+#include "systems/spectral_filter.h"
 #include "tests/test_util.h"
 
 namespace layerlab {
@@ -227,33 +230,40 @@ TEST(RetinalOperator, AdjointThroughEveryLayerKindAndFlip) {
   }
 }
 
+// The retinal pass's gradient (2 (den - num) times its scale) against
+// central differences of the objective at `trials` values of each layer.
+void ExpectGradientMatchesCentralDifferences(const DisplayModel& model, const LightField& target,
+                                             const RetinalObjective& objective, const Patterns& t, int trials,
+                                             const std::string& name) {
+  RetinalPass pass(model, target, objective);
+  const double scaled = pass.Run(t);
+  const double f = objective.Evaluate(model.Synthesize(t));
+  EXPECT_NEAR(scaled * pass.scale(), f, 1e-9 * f) << name;
+  const std::vector<std::vector<double>> num = pass.sums().numerator(), den = pass.sums().denominator();
+  std::mt19937 rng(5);
+  for (size_t k = 0; k < t.size(); ++k)
+    for (int trial = 0; trial < trials; ++trial) {
+      const size_t i = std::uniform_int_distribution<size_t>(0, t[k].rgb.size() - 1)(rng);
+      const double gradient = 2.0 * (den[k][i] - num[k][i]) * pass.scale();
+      const float h = 1e-2f;
+      Patterns plus = t, minus = t;
+      plus[k].rgb[i] += h;
+      minus[k].rgb[i] -= h;
+      // f is quadratic in one value (L is affine in it): central differences are exact up to round-off.
+      const double difference =
+          (objective.Evaluate(model.Synthesize(plus)) - objective.Evaluate(model.Synthesize(minus))) / (2 * h);
+      // Float images: f to about 1e-6 relative, the difference to 1e-6 f / h.
+      EXPECT_NEAR(gradient, difference, 2e-3 * std::abs(difference) + 1e-6 * f / h)
+          << name << ", layer " << k << ", value " << i;
+    }
+}
+
 TEST(RetinalObjective, GradientMatchesCentralDifferences) {
   for (const Display& d : Displays()) {
     const DisplayModel model(d.system, DisplayLightFieldGeometry(d.system), d.sampling);
     const LightField target = model.Synthesize(RandomPatterns(model, 8, 0.1f, 1.0f));
     const RetinalObjective objective(model, target, FewStates());
-    RetinalPass pass(model, target, objective);
-    Patterns t = RandomPatterns(model, 11, 0.2f, 0.9f);
-    const double scaled = pass.Run(t);
-    const double f = objective.Evaluate(model.Synthesize(t));
-    EXPECT_NEAR(scaled * pass.scale(), f, 1e-9 * f);
-    const std::vector<std::vector<double>> num = pass.sums().numerator(), den = pass.sums().denominator();
-    std::mt19937 rng(5);
-    for (size_t k = 0; k < t.size(); ++k)
-      for (int trial = 0; trial < 5; ++trial) {
-        const size_t i = std::uniform_int_distribution<size_t>(0, t[k].rgb.size() - 1)(rng);
-        const double gradient = 2.0 * (den[k][i] - num[k][i]) * pass.scale();
-        const float h = 1e-2f;
-        Patterns plus = t, minus = t;
-        plus[k].rgb[i] += h;
-        minus[k].rgb[i] -= h;
-        // f is quadratic in one value (L is affine in it): central differences are exact up to round-off.
-        const double difference =
-            (objective.Evaluate(model.Synthesize(plus)) - objective.Evaluate(model.Synthesize(minus))) / (2 * h);
-        // Float images: f to about 1e-6 relative, the difference to 1e-6 f / h.
-        EXPECT_NEAR(gradient, difference, 2e-3 * std::abs(difference) + 1e-6 * f / h)
-            << d.name << ", layer " << k << ", value " << i;
-      }
+    ExpectGradientMatchesCentralDifferences(model, target, objective, RandomPatterns(model, 11, 0.2f, 0.9f), 5, d.name);
   }
 }
 
@@ -361,6 +371,58 @@ TEST(RetinalObjective, TracedTargetWithoutASceneIsRefused) {
   o.target = RetinalTarget::kTraced;
   EXPECT_EQ(ErrorOf([&] { RetinalObjective(model, LightField(model.geometry()), o); }),
             "the retinal objective's traced target needs a target scene (target_scene), not a light field");
+}
+
+// Mannos and Sakrison's model, its values worked independently (SciPy's
+// bounded minimizer and Brent's root finder on the same formula).
+TEST(ContrastSensitivity, IsMannosSakrisonBeyondItsPeakAndOneBelow) {
+  EXPECT_NEAR(ContrastSensitivityPeak(), 7.890914518525334, 1e-6);
+  EXPECT_EQ(ContrastSensitivityWeight(0), 1);
+  EXPECT_EQ(ContrastSensitivityWeight(5), 1);
+  EXPECT_NEAR(ContrastSensitivityWeight(12), 0.8963369788962496, 1e-9);
+  EXPECT_NEAR(ContrastSensitivityWeight(30), 0.19062863677054534, 1e-9);
+  EXPECT_NEAR(ContrastSensitivityWeight(20.283280701757413), 0.5, 1e-9);
+  EXPECT_NEAR(ContrastSensitivityWeight(35.722651085531595), 0.1, 1e-9);
+}
+
+// A periodic cosine is an eigenvector of every even gain: filtered, it is
+// the cosine times the gain at its frequency.
+TEST(SpectralFilter, ACosineIsScaledByTheGainAtItsFrequency) {
+  const int nx = 40, ny = 24;
+  const double spacing = 0.5, fx = 3.0 / (nx * spacing), fy = 2.0 / (ny * spacing);
+  std::vector<std::complex<double>> field(size_t(nx) * ny);
+  auto cosine = [&](int i, int j) { return std::cos(2 * std::numbers::pi * (fx * j * spacing + fy * i * spacing)); };
+  for (int i = 0; i < ny; ++i)
+    for (int j = 0; j < nx; ++j) field[size_t(i) * nx + j] = 0.25 + cosine(i, j);
+  auto gain = [](double u, double v) { return 1 / (1 + u * u + 3 * v * v); };
+  FilterPeriodic(&field, nx, ny, spacing, gain);
+  double largest = 0;
+  for (int i = 0; i < ny; ++i)
+    for (int j = 0; j < nx; ++j)
+      largest = std::max(largest, std::abs(field[size_t(i) * nx + j] - (0.25 + gain(fx, fy) * cosine(i, j))));
+  EXPECT_LT(largest, 1e-12);
+}
+
+// With the weighting the objective's gradient is still its derivative
+// (central differences), and on a retinal grid fine enough to resolve
+// frequencies past the peak the weighting lowers the objective.
+TEST(RetinalObjective, ContrastSensitivityGradientMatchesCentralDifferences) {
+  const DisplaySystem system = CompileJson(ShrunkExample("paper_prototype.json", 24, 12, 5));
+  const DisplayModel model(system, DisplayLightFieldGeometry(system));
+  const LightField target = model.Synthesize(RandomPatterns(model, 8, 0.1f, 1.0f));
+  RetinalObjectiveOptions plain = FewStates();
+  plain.resolution = 0.02 * kDeg;  // 25 cpd at Nyquist
+  RetinalObjectiveOptions weighted = plain;
+  weighted.contrast_sensitivity = true;
+  const RetinalObjective objective(model, target, weighted), unweighted(model, target, plain);
+  Patterns t = RandomPatterns(model, 11, 0.2f, 0.9f);
+  const LightField l = model.Synthesize(t);
+  std::vector<double> per_state, per_state_plain;
+  const double f = objective.Evaluate(l, &per_state), f_plain = unweighted.Evaluate(l, &per_state_plain);
+  EXPECT_LT(f, 0.99 * f_plain);
+  EXPECT_GT(f, 0.1 * f_plain);
+  EXPECT_EQ(per_state, per_state_plain);  // the focal-stack PSNR stays the unweighted one
+  ExpectGradientMatchesCentralDifferences(model, target, objective, t, 4, "contrast sensitivity");
 }
 
 }  // namespace
