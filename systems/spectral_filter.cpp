@@ -34,8 +34,7 @@ int FastFftSize(int n) {
 
 void FilterPeriodic(std::vector<std::complex<double>>* field, int nx, int ny, double spacing,
                     const std::function<double(double fx, double fy)>& gain) {
-  if (nx <= 0 || ny <= 0 || field->size() != size_t(nx) * ny)
-    throw Error("a filtered field must hold nx x ny values");
+  if (nx <= 0 || ny <= 0 || field->size() != size_t(nx) * ny) throw Error("a filtered field must hold nx x ny values");
   Eigen::FFT<double> fft;
   std::vector<std::complex<double>> in, out;
   std::complex<double>* f = field->data();
