@@ -129,23 +129,31 @@ double RetinalObjective::EvaluateWithAdjoint(const LightField& x, std::vector<do
   std::vector<double> errors(states_.size());
   for (size_t a = 0; a < states_.size(); ++a) errors[a] = SquaredDifference(images[a], target_images_[a]);
   std::vector<double> weighted = errors;
-  if (contrast_sensitivity_ || m_r) {
+  // The adjoint's images w_a (A_a x - r_a), or w_a C^T C (A_a x - r_a): the residual and its weight in one pass
+  // when there is no filter between them.
+  if (contrast_sensitivity_) {
     for (size_t a = 0; a < states_.size(); ++a) {
       std::vector<float>& image = images[a];
       const std::vector<float>& target = target_images_[a];
 #pragma omp parallel for schedule(static)
       for (size_t i = 0; i < image.size(); ++i) image[i] = image[i] - target[i];
     }
-    if (contrast_sensitivity_) weighted = WeightResiduals();
+    weighted = WeightResiduals();
   }
   double f = 0;
   for (size_t a = 0; a < states_.size(); ++a) f += weights_[a] * weighted[a];
   if (m_r) {
     for (size_t a = 0; a < states_.size(); ++a) {
       std::vector<float>& image = images[a];
+      const std::vector<float>& target = target_images_[a];
       const float w = static_cast<float>(weights_[a]);
+      if (contrast_sensitivity_) {
 #pragma omp parallel for schedule(static)
-      for (size_t i = 0; i < image.size(); ++i) image[i] = w * image[i];
+        for (size_t i = 0; i < image.size(); ++i) image[i] = w * image[i];
+      } else {
+#pragma omp parallel for schedule(static)
+        for (size_t i = 0; i < image.size(); ++i) image[i] = w * (image[i] - target[i]);
+      }
     }
     if (m_r->geometry.ray_count() != x.geometry.ray_count()) *m_r = LightField(x.geometry);
     operator_->ApplyTranspose(images, m_r);
