@@ -1,5 +1,6 @@
 #include "analysis/contrast.h"
 
+#include <omp.h>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -65,6 +66,17 @@ double Interpolate(const std::vector<double>& x, const std::vector<double>& y, d
       return y[k - 1] + std::clamp(f, 0.0, 1.0) * (y[k] - y[k - 1]);
     }
   return y.back();
+}
+
+// A curve's light field: the display's at D_t, cut to `rows` rows around
+// the axis (the grating is vertical).
+LightFieldGeometry StripGeometry(const DisplaySystem& system, double dt, int rows) {
+  LightFieldGeometry g = DisplayLightFieldGeometry(system, dt);
+  double row_height = g.window_height / g.rows;
+  g.rows = std::min(g.rows, rows);
+  g.window_height = g.rows * row_height;
+  g.window_top = g.window_height / 2;
+  return g;
 }
 
 }  // namespace
@@ -210,19 +222,20 @@ std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displ
   std::vector<std::vector<Drawn>> drawn(of_target.size());
   std::vector<double> continuous_reference(of_target.size(), 0.0);
   std::optional<Progress> progress;
-  size_t solved = 0;
   if (o.show_progress) progress.emplace("contrast", displays.size() * o.frequencies.size() * o.target_diopters.size());
+  // A display curve to solve: its model, and what renders its target again.
+  struct Solve {
+    size_t display, target, index;  // of_target[target][index]
+    std::string label;
+    std::shared_ptr<const Texture> texture;
+    std::unique_ptr<DisplayModel> model;
+    Patterns t;
+  };
+  std::vector<Solve> solves;
   for (size_t di = 0; di < displays.size(); ++di) {
     const ContrastDisplay& d = displays[di];
     const EyeModel& eye = d.system.eye;
     const std::vector<PupilPoint>& pupil = pupils[di];
-    // This display's curves, solved and waiting for the sweep.
-    struct Solved {
-      size_t target, index;  // of_target[target][index]
-      std::unique_ptr<DisplayModel> model;
-      Patterns t;
-    };
-    std::vector<Solved> solved_curves;
     for (size_t fi = 0; fi < o.frequencies.size(); ++fi)
       for (size_t ti = 0; ti < depths; ++ti) {
         const double f = o.frequencies[fi], dt = o.target_diopters[ti];
@@ -261,19 +274,12 @@ std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displ
           curves.push_back(std::move(c));
         }
 
-        if (o.progress) o.progress(d.name + ": " + label);
-        if (progress) progress->Update(solved++, "solves; now " + d.name + ": " + label);
-        LightFieldGeometry g = DisplayLightFieldGeometry(d.system, dt);
-        double row_height = g.window_height / g.rows;
-        g.rows = std::min(g.rows, o.strip_rows);
-        g.window_height = g.rows * row_height;
-        g.window_top = g.window_height / 2;
-        auto model = std::make_unique<DisplayModel>(d.system, g, d.sampling);
-        LightField target = RenderPlaneLightField(g, g.origin_z, *texture);  // the plane is the origin plane
-
+        auto model = std::make_unique<DisplayModel>(d.system, StripGeometry(d.system, dt, o.strip_rows), d.sampling);
         double reference = continuous_reference[target_index];
         if (o.reference == ContrastReference::kSampledTarget) {
+          const LightFieldGeometry& g = model->geometry();
           auto start = std::chrono::steady_clock::now();
+          LightField target = RenderPlaneLightField(g, g.origin_z, *texture);  // the plane is the origin plane
           RetinalImage natural = natural_image(LightFieldRadiance(target, d.sampling), eye, pupil);
           reference = reference_of(eye, natural);
           bool seen = std::any_of(drawn[target_index].begin(), drawn[target_index].end(), [&](const Drawn& k) {
@@ -296,38 +302,72 @@ std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displ
         curve.eye = EyeModelLine(eye);
         curve.solver = d.solver.empty() ? DefaultSolverFor(d.system) : d.solver;
         curve.reference_amplitude = reference;
-        SolverOptions options = d.options_given ? d.options : SolverRegistry::Builtins().find(curve.solver)->defaults;
-        options.retinal.target = RetinalTarget::kLightField;  // the grating's light field is its scene, exactly
-        Patterns t;
-        auto start = std::chrono::steady_clock::now();
-        SolverReport report = SolverRegistry::Builtins().create(curve.solver)->Solve(*model, target, options, &t);
-        if (!report.IsSolutionUsable()) throw Error("contrast: " + d.name + ": " + report.message);
-        curve.solve_seconds = Seconds(start);
-        curve.psnr_db = report.final_psnr_db;
         curves.push_back(std::move(curve));
-        solved_curves.push_back({target_index, curves.size() - 1, std::move(model), std::move(t)});
+        solves.push_back({di, target_index, curves.size() - 1, label, texture, std::move(model), {}});
       }
+  }
 
-    if (solved_curves.empty()) continue;
-    // The display's curves swept together; each is given an equal share of the time.
+  // Every display curve's solve, one per thread: on a target of a few
+  // thousand rays per view a solve's passes leave a second thread waiting
+  // at each barrier (26.6 s on one thread, 17.8 s on two for the default
+  // sweep, 2026-12-03). Each solve runs alone on its thread, so a curve has
+  // the bits of a one-thread solve on any machine. Its target is rendered
+  // again there (a few ms) rather than kept from above for every curve.
+  std::exception_ptr error;
+  size_t error_at = solves.size(), started = 0;
+#pragma omp parallel for schedule(dynamic, 1)
+  for (size_t n = 0; n < solves.size(); ++n) {
+    Solve& s = solves[n];
+    const ContrastDisplay& d = displays[s.display];
+    ContrastCurve& curve = of_target[s.target][s.index];
+#pragma omp critical(contrast_solve_progress)
+    {
+      if (o.progress) o.progress(d.name + ": " + s.label);
+      if (progress) progress->Update(started++, "solves; now " + d.name + ": " + s.label);
+    }
+    try {
+      omp_set_num_threads(1);  // the solve's own parallel regions, on this thread only
+      const LightFieldGeometry& g = s.model->geometry();
+      LightField target = RenderPlaneLightField(g, g.origin_z, *s.texture);
+      SolverOptions options = d.options_given ? d.options : SolverRegistry::Builtins().find(curve.solver)->defaults;
+      options.retinal.target = RetinalTarget::kLightField;  // the grating's light field is its scene, exactly
+      auto start = std::chrono::steady_clock::now();
+      SolverReport report = SolverRegistry::Builtins().create(curve.solver)->Solve(*s.model, target, options, &s.t);
+      if (!report.IsSolutionUsable()) throw Error("contrast: " + d.name + ": " + report.message);
+      curve.solve_seconds = Seconds(start);
+      curve.psnr_db = report.final_psnr_db;
+    } catch (...) {
+#pragma omp critical(contrast_solve_error)
+      if (n < error_at) error = std::current_exception(), error_at = n;  // the first in curve order
+    }
+  }
+  if (error) std::rethrow_exception(error);
+
+  for (size_t di = 0; di < displays.size(); ++di) {
+    std::vector<const Solve*> of_display;
     std::vector<ContrastCurve*> of;
-    for (const Solved& s : solved_curves) of.push_back(&of_target[s.target][s.index]);
+    for (const Solve& s : solves)
+      if (s.display == di) of_display.push_back(&s), of.push_back(&of_target[s.target][s.index]);
+    if (of_display.empty()) continue;
+    const EyeModel& eye = displays[di].system.eye;
+    const std::vector<PupilPoint>& pupil = pupils[di];
+    // The display's curves swept together; each is given an equal share of the time.
     const auto start = std::chrono::steady_clock::now();
     sweep(
         eye,
         [&](const std::array<double, 3>& focus) -> CurveImage {
-          const DisplayModel& model = *solved_curves.front().model;  // every model of the display reads the same layers
+          const DisplayModel& model = *of_display.front()->model;  // every model of the display reads the same layers
           auto tables = std::make_shared<std::vector<DisplayRetinaTables>>();
           for (int g = 0; g < (o.peak_uncertainty ? 2 : 1); ++g) tables->emplace_back(model, grids[g], pupil, focus);
           return [&, tables](size_t n, int grid) {
-            const Solved& s = solved_curves[n];
+            const Solve& s = *of_display[n];
             Image image = RetinaOfDisplay(*s.model, s.t, (*tables)[grid]);
             ApplyEyeOptics(eye, grids[grid], &image);
             return image;
           };
         },
         of);
-    const double seconds = Seconds(start) / std::max<size_t>(1, of.size());
+    const double seconds = Seconds(start) / of.size();
     for (ContrastCurve* c : of) c->sweep_seconds = seconds;
   }
   std::vector<ContrastCurve> curves;

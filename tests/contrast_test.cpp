@@ -1,5 +1,6 @@
 // The accommodation analysis (analysis/contrast.h, analysis/fourier.h)
 // against what a perfect display, a pure grating and a hand-made curve must give.
+#include <omp.h>
 #include <cmath>
 #include <complex>
 #include <numbers>
@@ -62,6 +63,36 @@ TEST(Contrast, PerfectOneLayerDisplayScoresOneAtItsPeak) {
   for (double f : {2.0, 4.0}) {
     const double sinc = std::sin(std::numbers::pi * f * p) / (std::numbers::pi * f * p);
     EXPECT_TRUE(Close(Curve(curves, "one_layer", f).contrast[0], sinc, 0.01)) << f << " cpd, pixel " << p << " deg";
+  }
+}
+
+// Each curve is solved alone on one thread (analysis/contrast.cpp), so the
+// sweep gives the same bits with any number of threads; a two-thread solve
+// merges its threads' sums in another order than a one-thread solve.
+TEST(Contrast, CurvesAreTheSameBitsOnAnyThreadCount) {
+  ContrastDisplay d;
+  d.name = "multiplicative_2layer";
+  d.system = testing::CompileJson(testing::ReadExample("multiplicative_2layer.json"));
+  d.solver = "multiplicative";
+  d.options.iterations = 12;
+  d.options_given = true;
+  ContrastOptions o;
+  o.target_diopters = {0.7, 1.3, 1.9};
+  o.frequencies = {2.0};
+  o.accommodation_min = 0.5, o.accommodation_max = 2.1, o.accommodation_step = 0.4;
+  o.retina_field = 5, o.retina_resolution = 0.05;
+  o.strip_rows = 6;
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const std::vector<ContrastCurve> one = RunContrast({d}, o);
+  omp_set_num_threads(2);
+  const std::vector<ContrastCurve> two = RunContrast({d}, o);
+  omp_set_num_threads(threads);
+  ASSERT_EQ(one.size(), two.size());
+  for (size_t n = 0; n < one.size(); ++n) {
+    EXPECT_EQ(one[n].psnr_db, two[n].psnr_db) << one[n].display << " at " << one[n].target_diopters << " D";
+    EXPECT_EQ(one[n].contrast, two[n].contrast) << one[n].display << " at " << one[n].target_diopters << " D";
+    EXPECT_EQ(one[n].contrast_shifted, two[n].contrast_shifted) << one[n].display;
   }
 }
 
