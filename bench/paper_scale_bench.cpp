@@ -25,6 +25,7 @@
 #include "analysis/retina_sweep.h"
 #include "bench/bench_setup.h"
 #include "framework/lightfield_io.h"
+#include "solvers/additive_gram.h"
 #include "solvers/joint_pass.h"
 #include "solvers/multiplicative_update.h"
 #include "solvers/objective.h"
@@ -373,6 +374,24 @@ void BM_AdditiveToConvergence(benchmark::State& state) {
   state.SetLabel(w.target_name + ", " + ToString(r.termination));
 }
 
+// One product with the additive display's normal matrix (solvers/additive_gram.h),
+// the step the layer-space trust region repeats (a few per CG step).
+void BM_AdditiveGramApply(benchmark::State& state) {
+  const Workload& w = GetWorkload("additive_2layer");
+  const AdditiveGram gram(*w.model);
+  LayerVectors x, out;
+  for (size_t k = 0; k < w.model->layer_count(); ++k) {
+    x.emplace_back(w.model->projection(k).pixel_count() * 3);
+    for (size_t i = 0; i < x.back().size(); ++i) x.back()[i] = double((i * 2654435761u) % 1000) / 1000;
+  }
+  for (auto _ : state) {
+    gram.Apply(x, &out);
+    benchmark::DoNotOptimize(out.front().data());
+  }
+  state.counters["peak_rss_MB"] = PeakRssMb();
+  state.SetLabel(w.target_name + ", 2 layers");
+}
+
 // The display's retinal image on `grid` at one focus (uniform patterns of 0.5).
 void DisplayRetinaImage(benchmark::State& state, const RetinaGrid& grid, double focus, double target_seconds) {
   const Workload& w = GetWorkload("paper_prototype");
@@ -597,6 +616,7 @@ BENCHMARK(BM_HybridIteration)->Unit(benchmark::kMillisecond)->UseManualTime();
 BENCHMARK(BM_RetinalObjectiveIteration)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(1);
 BENCHMARK(BM_RetinalPass)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(5);
 BENCHMARK(BM_RetinalOperator)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(5);
+BENCHMARK(BM_AdditiveGramApply)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_MultiplicativeIteration)->Unit(benchmark::kMillisecond)->UseManualTime();
 BENCHMARK(BM_RankKIteration)
     ->ArgsProduct({{0, 1}, {1, 2, 4}})

@@ -59,8 +59,15 @@ AdditiveGram::AdditiveGram(const DisplayModel& model) : model_(model) {
       auto cols_of = [](const LayerProjection& P) {
         return [&P](int c) { return P.col_taps(static_cast<size_t>(c)); };
       };
-      blocks_.push_back({a, b, AxisGram(g.views_y, g.rows, Pa.rows(), Pb.rows(), rows_of(Pa), rows_of(Pb)),
-                         AxisGram(g.views_x, g.cols, Pa.cols(), Pb.cols(), cols_of(Pa), cols_of(Pb))});
+      Block block{a, b, AxisGram(g.views_y, g.rows, Pa.rows(), Pb.rows(), rows_of(Pa), rows_of(Pb)),
+                  AxisGram(g.views_x, g.cols, Pa.cols(), Pb.cols(), cols_of(Pa), cols_of(Pb))};
+      const int* begin = block.rows.outerIndexPtr();
+      for (int r = 0; r < block.rows.outerSize(); ++r)
+        if (begin[r + 1] > begin[r]) {
+          if (block.end_row == 0) block.first_row = r;
+          block.end_row = r + 1;
+        }
+      blocks_.push_back(std::move(block));
     }
 }
 
@@ -74,13 +81,16 @@ void AdditiveGram::Apply(const LayerVectors& x, LayerVectors* out) const {
       const LayerProjection& Pa = model_.projection(a);
       Dense sum = Dense::Zero(Pa.rows(), Pa.cols());
       for (const Block& block : blocks_) {
-        if (block.a != static_cast<int>(a)) continue;
+        // Only the rows of R_ab that hold a tap (a strip's rays reach a band
+        // of the layer's rows): the others' rows of rx are 0 and would add +0.
+        const int lo = block.first_row, rows = block.end_row - block.first_row;
+        if (block.a != static_cast<int>(a) || rows <= 0) continue;
         const LayerProjection& Pb = model_.projection(block.b);
         Eigen::Map<const Dense, 0, Eigen::Stride<Eigen::Dynamic, 3>> xb(
             x[block.b].data() + c, Pb.rows(), Pb.cols(), Eigen::Stride<Eigen::Dynamic, 3>(3 * Pb.cols(), 3));
         const double w = double(weight_[a][c]) * weight_[block.b][c];
-        Dense rx = block.rows * xb;                                      // rows_a x cols_b
-        sum.noalias() += w * (block.cols * rx.transpose()).transpose();  // (C rx^T)^T = rx C^T
+        Dense rx = block.rows.middleRows(lo, rows) * xb;                                      // rows x cols_b
+        sum.middleRows(lo, rows).noalias() += w * (block.cols * rx.transpose()).transpose();  // rx C^T
       }
       Eigen::Map<Dense, 0, Eigen::Stride<Eigen::Dynamic, 3>> oa((*out)[a].data() + c, Pa.rows(), Pa.cols(),
                                                                 Eigen::Stride<Eigen::Dynamic, 3>(3 * Pa.cols(), 3));

@@ -36,6 +36,7 @@ class AdditiveGram {
   struct Block {
     int a, b;                                                 // layers
     Eigen::SparseMatrix<double, Eigen::RowMajor> rows, cols;  // R_ab (rows_a x rows_b), C_ab (cols_a x cols_b)
+    int first_row = 0, end_row = 0;                           // the rows of R_ab that hold a tap lie in [first, end)
   };
   const DisplayModel& model_;
   std::vector<Block> blocks_;

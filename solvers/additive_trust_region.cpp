@@ -35,11 +35,21 @@ Vec Zeros(const Patterns& shape) {
   for (const LayerPattern& p : shape) v.emplace_back(p.rgb.size(), 0.0);
   return v;
 }
+// Four partial sums, by index mod 4, added at the end: a single running
+// sum waits on each add's latency, four proceed side by side (the layer-space
+// solve is mostly these sums). A fixed order: the same bits on any machine.
 double Dot(const Vec& a, const Vec& b) {
-  double s = 0;
-  for (size_t k = 0; k < a.size(); ++k)
-    for (size_t i = 0; i < a[k].size(); ++i) s += a[k][i] * b[k][i];
-  return s;
+  double s[4] = {};
+  for (size_t k = 0; k < a.size(); ++k) {
+    const double* x = a[k].data();
+    const double* y = b[k].data();
+    const size_t n = a[k].size();
+    size_t i = 0;
+    for (; i + 4 <= n; i += 4)
+      for (int q = 0; q < 4; ++q) s[q] += x[i + q] * y[i + q];
+    for (; i < n; ++i) s[i % 4] += x[i] * y[i];
+  }
+  return (s[0] + s[1]) + (s[2] + s[3]);
 }
 void Axpy(double alpha, const Vec& x, Vec* y) {
   for (size_t k = 0; k < x.size(); ++k)

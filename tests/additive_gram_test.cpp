@@ -76,6 +76,43 @@ TEST_P(AdditiveGramTest, MatchesTheRayByRayNormalProduct) {
 INSTANTIATE_TEST_SUITE_P(Sampling, AdditiveGramTest, ::testing::Values(Sampling::kNearest, Sampling::kBilinear),
                          [](const auto& p) { return p.param == Sampling::kNearest ? "Nearest" : "Bilinear"; });
 
+// A strip of light-field rows (as the contrast sweep solves) reaches a band
+// of each layer's rows; the product skips the rest, which must come out 0.
+TEST(AdditiveGram, OnAStripMatchesTheRayByRayProductAndLeavesUnreachedRowsZero) {
+  DisplaySystem system = CompileJson(ShrunkExample("additive_2layer.json", 24, 12, 5));
+  LightFieldGeometry g = DisplayLightFieldGeometry(system);
+  const double row_height = g.window_height / g.rows;
+  g.rows = 2, g.window_height = 2 * row_height, g.window_top = row_height;
+  DisplayModel model(system, g);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  LayerVectors x(model.layer_count());
+  for (size_t k = 0; k < x.size(); ++k) {
+    x[k].resize(model.projection(k).pixel_count() * 3);
+    for (double& v : x[k]) v = u(rng);
+  }
+  LayerVectors fast;
+  AdditiveGram(model).Apply(x, &fast);
+  const LayerVectors slow = RayByRay(model, x);
+  for (size_t k = 0; k < x.size(); ++k) {
+    const size_t row_values = size_t(model.projection(k).cols()) * 3;
+    int reached = 0;
+    for (int r = 0; r < model.projection(k).rows(); ++r) {
+      double largest = 0;
+      for (size_t i = r * row_values; i < (r + 1) * row_values; ++i) {
+        if (slow[k][i] == 0)
+          EXPECT_EQ(fast[k][i], 0.0) << "layer " << k << " row " << r;
+        else
+          EXPECT_NEAR(fast[k][i], slow[k][i], 1e-5 * std::max(1.0, std::abs(slow[k][i]))) << "layer " << k;
+        largest = std::max(largest, std::abs(slow[k][i]));
+      }
+      reached += largest > 0;
+    }
+    EXPECT_GT(reached, 0) << "layer " << k;
+    EXPECT_LT(reached, model.projection(k).rows()) << "layer " << k << ": the strip should leave rows unreached";
+  }
+}
+
 TEST(AdditiveGram, RotatedLayersAreNotApplicable) {
   DisplaySystem system = CompileJson(ShrunkExample("additive_2layer.json", 24, 12, 5));
   system.layers[0].rotation = 0.01;
