@@ -36,6 +36,15 @@ void AddBranchLightRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, Rg
   ForLayerCount<AddBranchLightRowOf>(layers, rows, w, cols, row);
 }
 
+void AddBranchLightTermsRow(const Rgb4* const* rows, int stride, int layers, const Rgb4* w, int terms, int begin,
+                            int end, Rgb4* row) {
+  for (int q = 0; q < terms; ++q) {
+    const Rgb4* at[kMaxOneTapLayers];
+    for (int k = 0; k < layers; ++k) at[k] = rows[q * stride + k] + begin;
+    AddBranchLightRow(at, layers, w[q], end - begin, row + begin);
+  }
+}
+
 void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int cols) {
   int j = 0;
   for (; j + 1 < cols; ++j) {  // all but the last ray read one float past their own
@@ -219,6 +228,10 @@ bool ForceRowKernels(RowKernelIsa isa) {
 
 void AddBranchLightRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, Rgb4* row) {
   LAYERLAB_DISPATCH(AddBranchLightRow(rows, layers, w, cols, row));
+}
+void AddBranchLightTermsRow(const Rgb4* const* rows, int stride, int layers, const Rgb4* w, int terms, int begin,
+                            int end, Rgb4* row) {
+  LAYERLAB_DISPATCH(AddBranchLightTermsRow(rows, stride, layers, w, terms, begin, end, row));
 }
 void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int cols) {
   LAYERLAB_DISPATCH(UpdateSumsRow(r, q, num, den, cols));

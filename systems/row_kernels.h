@@ -13,6 +13,13 @@ namespace layerlab {
 // row[j] += w prod_k rows[k][j], k < layers (1 to 4).
 void AddBranchLightRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, Rgb4* row);
 
+// row[j] += w[q] prod_k rows[q stride + k][j] for each term q < terms in
+// turn, j in [begin, end): the sums AddBranchLightRow makes term by term, in
+// the same order, with each pixel's running sum kept in a register over a
+// few terms (the retinal image adds a hundred terms per row).
+void AddBranchLightTermsRow(const Rgb4* const* rows, int stride, int layers, const Rgb4* w, int terms, int begin,
+                            int end, Rgb4* row);
+
 // The multiplicative update's column sums over one ray row:
 // num[j] += r_j q[j], den[j] += q[j]^2; r packed [ray][rgb], q = nullptr means 1.
 void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int cols);

@@ -56,6 +56,48 @@ struct AddBranchLightRowOf {
   }
 };
 
+// G terms of L layers each over two rays at a time, the running sum in a register.
+template <int L, int G>
+LAYERLAB_AVX2 void AddTermsGroup(const Rgb4* const* rows, int stride, const Rgb4* w, int begin, int end, Rgb4* row) {
+  const float* r[G][L];
+  __m256 w2[G];
+  for (int g = 0; g < G; ++g) {
+    w2[g] = Twice(w[g]);
+    for (int k = 0; k < L; ++k) r[g][k] = reinterpret_cast<const float*>(rows[g * stride + k]);
+  }
+  float* out = reinterpret_cast<float*>(row);
+  int j = begin;
+  for (; j + 1 < end; j += 2) {
+    __m256 sum = _mm256_loadu_ps(out + j * 4);
+    for (int g = 0; g < G; ++g) {
+      __m256 p = w2[g];
+      for (int k = 0; k < L; ++k) p = _mm256_mul_ps(p, _mm256_loadu_ps(r[g][k] + j * 4));
+      sum = _mm256_add_ps(sum, p);
+    }
+    _mm256_storeu_ps(out + j * 4, sum);
+  }
+  if (j < end) baseline::AddBranchLightTermsRow(rows, stride, L, w, G, j, end, row);
+}
+
+template <int L>
+struct AddBranchLightTermsRowOf {
+  LAYERLAB_AVX2 static void Run(const Rgb4* const* rows, int stride, const Rgb4* w, int terms, int begin, int end,
+                                Rgb4* row) {
+    constexpr int kGroup = 4;  // L x 4 row pointers and 4 weights stay in registers
+    int q = 0;
+    for (; q + kGroup <= terms; q += kGroup)
+      AddTermsGroup<L, kGroup>(rows + q * stride, stride, w + q, begin, end, row);
+    switch (terms - q) {
+      case 3:
+        return AddTermsGroup<L, 3>(rows + q * stride, stride, w + q, begin, end, row);
+      case 2:
+        return AddTermsGroup<L, 2>(rows + q * stride, stride, w + q, begin, end, row);
+      case 1:
+        return AddTermsGroup<L, 1>(rows + q * stride, stride, w + q, begin, end, row);
+    }
+  }
+};
+
 template <int L>
 struct JointSumsRowOf {
   LAYERLAB_AVX2 static void Run(const Rgb4* const* rows, Rgb4 w, int cols, const float* l, bool exact_last,
@@ -103,6 +145,11 @@ LAYERLAB_AVX2 void JointSumsRow(const Rgb4* const* rows, int layers, Rgb4 w, int
 
 LAYERLAB_AVX2 void AddBranchLightRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, Rgb4* row) {
   ForLayerCount<AddBranchLightRowOf>(layers, rows, w, cols, row);
+}
+
+LAYERLAB_AVX2 void AddBranchLightTermsRow(const Rgb4* const* rows, int stride, int layers, const Rgb4* w, int terms,
+                                          int begin, int end, Rgb4* row) {
+  ForLayerCount<AddBranchLightTermsRowOf>(layers, rows, stride, w, terms, begin, end, row);
 }
 
 LAYERLAB_AVX2 void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int cols) {

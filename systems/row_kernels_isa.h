@@ -12,15 +12,17 @@
 namespace layerlab {
 
 // The kernels of row_kernels.h, once for each build.
-#define LAYERLAB_ROW_KERNEL_SIGNATURES                                                                       \
-  void AddBranchLightRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, Rgb4* row);                  \
-  void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int cols);                         \
-  double UpdateSumsAndErrorRow(const float* r, const Rgb4* q, const Rgb4* own, Rgb4 w, Rgb4* num, Rgb4* den, \
-                               int cols);                                                                    \
-  double SquaredErrorRow(const float* target, const Rgb4* light, int cols, bool exact_last);                 \
-  void RemainderRow(const float* target, const Rgb4* light, int cols, float* out);                           \
-  void PackRow(const Rgb4* row, int cols, float* out);                                                       \
-  void JointSumsRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, const float* l, bool exact_last,  \
+#define LAYERLAB_ROW_KERNEL_SIGNATURES                                                                              \
+  void AddBranchLightRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, Rgb4* row);                         \
+  void AddBranchLightTermsRow(const Rgb4* const* rows, int stride, int layers, const Rgb4* w, int terms, int begin, \
+                              int end, Rgb4* row);                                                                  \
+  void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int cols);                                \
+  double UpdateSumsAndErrorRow(const float* r, const Rgb4* q, const Rgb4* own, Rgb4 w, Rgb4* num, Rgb4* den,        \
+                               int cols);                                                                           \
+  double SquaredErrorRow(const float* target, const Rgb4* light, int cols, bool exact_last);                        \
+  void RemainderRow(const float* target, const Rgb4* light, int cols, float* out);                                  \
+  void PackRow(const Rgb4* row, int cols, float* out);                                                              \
+  void JointSumsRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, const float* l, bool exact_last,         \
                     const Rgb4* light, Rgb4* const* num, Rgb4* const* den);
 
 namespace baseline {

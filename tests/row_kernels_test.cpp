@@ -85,6 +85,45 @@ TEST_F(RowKernels, BranchLightIsTheWeightedProductOfTheLayers) {
     }
 }
 
+// The terms at once are the terms one by one (AddBranchLightRow in turn, the
+// retinal image's order before), bit for bit, for every group remainder.
+TEST_F(RowKernels, BranchLightTermsAreTheTermsAddedOneByOne) {
+  std::mt19937 rng(7);
+  for (int layers = 1; layers <= 4; ++layers)
+    for (int terms : {1, 2, 3, 4, 5, 7, 9})
+      for (int cols : {1, 2, 5, 16, 41}) {
+        const int stride = 4;  // rows kept per term, as the retinal image keeps them
+        std::vector<Row> in;
+        for (int n = 0; n < terms * layers; ++n) in.push_back(RandomRow(cols + 2, rng));
+        std::vector<const Rgb4*> rows(size_t(terms) * stride, nullptr);
+        for (int q = 0; q < terms; ++q)
+          for (int k = 0; k < layers; ++k) rows[q * stride + k] = in[q * layers + k].padded.data();
+        std::vector<Rgb4> w;
+        for (int q = 0; q < terms; ++q) w.push_back(Rgb4{0.5f + 0.01f * q, 0.25f, 0.75f - 0.02f * q, 0.0f});
+        const Row start = RandomRow(cols + 2, rng);
+        const int begin = cols > 2 ? 1 : 0, end = cols + (cols > 2 ? 1 : 0);  // an offset range, guards around it
+        auto run = [&](bool one_by_one) {
+          std::vector<Rgb4> out = start.padded;
+          if (one_by_one) {
+            for (int q = 0; q < terms; ++q) {
+              const Rgb4* at[4];
+              for (int k = 0; k < layers; ++k) at[k] = rows[q * stride + k] + begin;
+              AddBranchLightRow(at, layers, w[q], end - begin, out.data() + begin);
+            }
+          } else {
+            AddBranchLightTermsRow(rows.data(), stride, layers, w.data(), terms, begin, end, out.data());
+          }
+          return out;
+        };
+        const std::vector<Rgb4> at_once = run(false), one_by_one = run(true);
+        ASSERT_TRUE(SameBits(at_once.data(), one_by_one.data(), at_once.size() * sizeof(Rgb4)))
+            << layers << " layers, " << terms << " terms, " << cols << " rays";
+        for (int j : {0, end})
+          if (j < begin || j >= end) ASSERT_TRUE(SameBits(&at_once[j], &start.padded[j], sizeof(Rgb4))) << j;
+        ExpectSameInBothBuilds([&] { return Bytes(run(false)); }, "branch light terms", cols);
+      }
+}
+
 TEST_F(RowKernels, UpdateSumsAddTargetTimesProductAndProductSquared) {
   std::mt19937 rng(2);
   for (bool unit_q : {false, true})
