@@ -3,6 +3,7 @@
 #include <omp.h>
 #include <algorithm>
 #include <cstdint>
+#include <vector>
 
 #include "systems/one_tap_view.h"
 #include "systems/row_kernels.h"
@@ -34,9 +35,39 @@ struct Accumulate {
     if (view_errors)
       ResampleToRayColumns(Pa, padded.pixels(layers[0]), vc, cols, RowsRead(Pa, g, vr_begin, vr_end), &own);
 
+    // Without the errors and with at most one other layer, the ray rows wait
+    // (stored targets only) and are summed grouped by the layer row they add
+    // to: each layer row's column sums get the same adds in the same order
+    // (view row, then ray row), kept in registers over a few ray rows, and
+    // are read and written once per group instead of once per ray row.
+    constexpr bool kGroupable = L <= 2;
+    std::vector<PendingSumRow>& pending = w->pending_rows;
+    auto flush = [&] {
+      std::stable_sort(pending.begin(), pending.end(),
+                       [](const PendingSumRow& x, const PendingSumRow& y) { return x.layer_row < y.layer_row; });
+      constexpr size_t kBatch = 16;
+      const float* r[kBatch];
+      const Rgb4* q[kBatch];
+      for (size_t b = 0, e = 0; b < pending.size(); b = e) {
+        const int ra = pending[b].layer_row;
+        for (e = b; e < pending.size() && pending[e].layer_row == ra;) ++e;
+        for (size_t c = b; c < e; c += kBatch) {
+          const size_t m = std::min(kBatch, e - c);
+          for (size_t k = 0; k < m; ++k) r[k] = pending[c + k].target, q[k] = pending[c + k].product;
+          UpdateSumsRows(r, L == 1 ? nullptr : q, static_cast<int>(m), w->update_sums.num(ra), w->update_sums.den(ra),
+                         cols);
+        }
+      }
+      pending.clear();
+    };
+    pending.clear();
+
     for (int vr = vr_begin; vr < vr_end; ++vr) {
       const size_t view = g.view_index(vr, vc);
       const float* target = branch_target(view, w->target.data());
+      // A computed target lives until the next view's: this view's rows are summed now, after the earlier ones.
+      const bool wait = kGroupable && !view_errors && target != w->target.data();
+      if (kGroupable && !view_errors && !wait) flush();
       const AxisTap* row_taps[L];
       for (int k = 0; k < L; ++k) row_taps[k] = model.projection(layers[k]).row_taps(view);
       double error = 0;  // this view's, in row order
@@ -72,11 +103,14 @@ struct Accumulate {
         if (view_errors)
           error += UpdateSumsAndErrorRow(l, q, own.data() + static_cast<size_t>(ra) * cols, weight,
                                          w->update_sums.num(ra), w->update_sums.den(ra), cols);
+        else if (wait)
+          pending.push_back({ra, l, q});
         else
           UpdateSumsRow(l, q, w->update_sums.num(ra), w->update_sums.den(ra), cols);
       }
       if (view_errors) view_errors[view] = error;
     }
+    if (kGroupable) flush();
 
     w->update_sums.Scatter(Pa, vc);
   }

@@ -59,6 +59,10 @@ void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int cols
   }
 }
 
+void UpdateSumsRows(const float* const* r, const Rgb4* const* q, int rows, Rgb4* num, Rgb4* den, int cols) {
+  for (int g = 0; g < rows; ++g) UpdateSumsRow(r[g], q ? q[g] : nullptr, num, den, cols);
+}
+
 // The squared errors are summed in two-double vectors, one SSE register each
 // (a four-double vector without AVX is emulated through the stack, and each
 // ray's add then waits on a store), even and odd rays on separate sums so
@@ -235,6 +239,9 @@ void AddBranchLightTermsRow(const Rgb4* const* rows, int stride, int layers, con
 }
 void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int cols) {
   LAYERLAB_DISPATCH(UpdateSumsRow(r, q, num, den, cols));
+}
+void UpdateSumsRows(const float* const* r, const Rgb4* const* q, int rows, Rgb4* num, Rgb4* den, int cols) {
+  LAYERLAB_DISPATCH(UpdateSumsRows(r, q, rows, num, den, cols));
 }
 double UpdateSumsAndErrorRow(const float* r, const Rgb4* q, const Rgb4* own, Rgb4 w, Rgb4* num, Rgb4* den, int cols) {
   LAYERLAB_DISPATCH(UpdateSumsAndErrorRow(r, q, own, w, num, den, cols));

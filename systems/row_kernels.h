@@ -24,6 +24,12 @@ void AddBranchLightTermsRow(const Rgb4* const* rows, int stride, int layers, con
 // num[j] += r_j q[j], den[j] += q[j]^2; r packed [ray][rgb], q = nullptr means 1.
 void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int cols);
 
+// UpdateSumsRow for `rows` ray rows that sum into the same num and den, in
+// turn: the same adds in the same order, each ray column's two sums kept in
+// registers over a few rows. q == nullptr means 1 for every row; else q[g]
+// is row g's.
+void UpdateSumsRows(const float* const* r, const Rgb4* const* q, int rows, Rgb4* num, Rgb4* den, int cols);
+
 // UpdateSumsRow, and in the same pass the squared error of the branch's
 // light w own[j] q[j] against r over the row (in double, as SquaredErrorRow
 // sums it), `own` being the updated layer's values at the rays.

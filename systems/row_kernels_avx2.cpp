@@ -166,6 +166,48 @@ LAYERLAB_AVX2 void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4*
   baseline::UpdateSumsRow(r + j * 3, q ? q + j : nullptr, num + j, den + j, cols - j);
 }
 
+namespace {
+
+// G rows of UpdateSumsRows, the sums of two rays at a time in registers.
+template <int G>
+LAYERLAB_AVX2 void UpdateSumsGroup(const float* const* r, const Rgb4* const* q, Rgb4* num, Rgb4* den, int cols) {
+  float* n = reinterpret_cast<float*>(num);
+  float* d = reinterpret_cast<float*>(den);
+  const float* rg[G];
+  const float* qg[G];
+  for (int g = 0; g < G; ++g) rg[g] = r[g], qg[g] = q ? reinterpret_cast<const float*>(q[g]) : nullptr;
+  const __m256 ones = _mm256_setr_ps(1, 1, 1, 0, 1, 1, 1, 0);
+  int j = 0;
+  for (; j + 3 <= cols; j += 2) {  // rays j, j + 1 read up to ray j + 2's green
+    __m256 nj = _mm256_loadu_ps(n + j * 4), dj = _mm256_loadu_ps(d + j * 4);
+    for (int g = 0; g < G; ++g) {
+      const __m256 qj = q ? _mm256_loadu_ps(qg[g] + j * 4) : ones;
+      nj = _mm256_add_ps(nj, _mm256_mul_ps(LoadTwoRaysOver(rg[g] + j * 3), qj));
+      dj = _mm256_add_ps(dj, _mm256_mul_ps(qj, qj));
+    }
+    _mm256_storeu_ps(n + j * 4, nj), _mm256_storeu_ps(d + j * 4, dj);
+  }
+  for (int g = 0; g < G; ++g)
+    baseline::UpdateSumsRow(rg[g] + j * 3, q ? q[g] + j : nullptr, num + j, den + j, cols - j);
+}
+
+}  // namespace
+
+LAYERLAB_AVX2 void UpdateSumsRows(const float* const* r, const Rgb4* const* q, int rows, Rgb4* num, Rgb4* den,
+                                  int cols) {
+  constexpr int kGroup = 4;  // 2 x 4 row pointers stay in registers
+  int g = 0;
+  for (; g + kGroup <= rows; g += kGroup) UpdateSumsGroup<kGroup>(r + g, q ? q + g : nullptr, num, den, cols);
+  switch (rows - g) {
+    case 3:
+      return UpdateSumsGroup<3>(r + g, q ? q + g : nullptr, num, den, cols);
+    case 2:
+      return UpdateSumsGroup<2>(r + g, q ? q + g : nullptr, num, den, cols);
+    case 1:
+      return UpdateSumsGroup<1>(r + g, q ? q + g : nullptr, num, den, cols);
+  }
+}
+
 LAYERLAB_AVX2 double UpdateSumsAndErrorRow(const float* r, const Rgb4* q, const Rgb4* own, Rgb4 w, Rgb4* num, Rgb4* den,
                                            int cols) {
   float* n = reinterpret_cast<float*>(num);

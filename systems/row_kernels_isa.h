@@ -17,6 +17,7 @@ namespace layerlab {
   void AddBranchLightTermsRow(const Rgb4* const* rows, int stride, int layers, const Rgb4* w, int terms, int begin, \
                               int end, Rgb4* row);                                                                  \
   void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int cols);                                \
+  void UpdateSumsRows(const float* const* r, const Rgb4* const* q, int rows, Rgb4* num, Rgb4* den, int cols);       \
   double UpdateSumsAndErrorRow(const float* r, const Rgb4* q, const Rgb4* own, Rgb4 w, Rgb4* num, Rgb4* den,        \
                                int cols);                                                                           \
   double SquaredErrorRow(const float* target, const Rgb4* light, int cols, bool exact_last);                        \

@@ -48,6 +48,14 @@ struct WorkspaceLayout {
 };
 
 // One thread's buffers. The ones of view size ([ray][rgb]) are named for their use.
+// A ray row of a multiplicative update's pass waiting to be summed into
+// row `layer_row` of the layer being updated (solvers/one_tap_update.cpp).
+struct PendingSumRow {
+  int layer_row;
+  const float* target;  // the ray row's target, packed
+  const Rgb4* product;  // the other layer at its rays, or nullptr for 1
+};
+
 struct ThreadWorkspace {
   // ViewSynthesizer: its one-tap layers resampled to the rays' columns of the
   // last view column this thread synthesized, [layer][its row][ray column].
@@ -65,6 +73,7 @@ struct ThreadWorkspace {
   std::vector<ColumnSums> layer_sums;       // [layer] (the joint pass, one-tap path)
   std::vector<Rgb4> product, zeros, light;  // ray rows
   std::vector<float> target;                // a view of what a branch should emit, when it is computed
+  std::vector<PendingSumRow> pending_rows;  // a view run's rows, summed grouped by layer row
   // The general path: per-layer float sums, [layer][pixel * 3 + c], and view buffers.
   std::vector<std::vector<float>> num, den;
   std::vector<float> rest, sampled, samples, numerator_terms, denominator_terms;

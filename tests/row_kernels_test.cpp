@@ -124,6 +124,37 @@ TEST_F(RowKernels, BranchLightTermsAreTheTermsAddedOneByOne) {
       }
 }
 
+// Several rows into the same sums are those rows one by one, bit for bit.
+TEST_F(RowKernels, UpdateSumsOfSeveralRowsAreTheRowsOneByOne) {
+  std::mt19937 rng(8);
+  for (bool unit_q : {false, true})
+    for (int rows : {1, 2, 3, 4, 5, 6, 9, 13})
+      for (int cols : {1, 2, 3, 4, 17, 40, 41}) {
+        std::vector<Row> r, q;
+        for (int g = 0; g < rows; ++g) r.push_back(RandomRow(cols, rng)), q.push_back(RandomRow(cols, rng));
+        const Row n0 = RandomRow(cols, rng), d0 = RandomRow(cols, rng);
+        std::vector<const float*> rp;
+        std::vector<const Rgb4*> qp;
+        for (int g = 0; g < rows; ++g) rp.push_back(r[g].packed.data()), qp.push_back(q[g].padded.data());
+        auto run = [&](bool one_by_one) {
+          std::vector<Rgb4> num = n0.padded, den = d0.padded;
+          num.push_back(Rgb4{kGuard, kGuard, kGuard, kGuard}), den.push_back(num.back());
+          if (one_by_one)
+            for (int g = 0; g < rows; ++g) UpdateSumsRow(rp[g], unit_q ? nullptr : qp[g], num.data(), den.data(), cols);
+          else
+            UpdateSumsRows(rp.data(), unit_q ? nullptr : qp.data(), rows, num.data(), den.data(), cols);
+          std::vector<Rgb4> both = num;
+          both.insert(both.end(), den.begin(), den.end());
+          return both;
+        };
+        const std::vector<Rgb4> together = run(false), one_by_one = run(true);
+        ASSERT_TRUE(SameBits(together.data(), one_by_one.data(), together.size() * sizeof(Rgb4)))
+            << rows << " rows, " << cols << " rays" << (unit_q ? ", q = 1" : "");
+        ASSERT_EQ(together[cols][0], kGuard);
+        ExpectSameInBothBuilds([&] { return Bytes(run(false)); }, "update sums of several rows", cols);
+      }
+}
+
 TEST_F(RowKernels, UpdateSumsAddTargetTimesProductAndProductSquared) {
   std::mt19937 rng(2);
   for (bool unit_q : {false, true})
