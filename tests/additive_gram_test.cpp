@@ -40,6 +40,18 @@ LayerVectors RayByRay(const DisplayModel& model, const LayerVectors& x) {
   return out;
 }
 
+// Every layer value uniform in [0, 1).
+LayerVectors RandomLayers(const DisplayModel& model, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  LayerVectors x(model.layer_count());
+  for (size_t k = 0; k < x.size(); ++k) {
+    x[k].resize(model.projection(k).pixel_count() * 3);
+    for (double& v : x[k]) v = u(rng);
+  }
+  return x;
+}
+
 class AdditiveGramTest : public ::testing::TestWithParam<Sampling> {};
 
 TEST_P(AdditiveGramTest, MatchesTheRayByRayNormalProduct) {
@@ -52,13 +64,7 @@ TEST_P(AdditiveGramTest, MatchesTheRayByRayNormalProduct) {
     }
     DisplayModel model(system, DisplayLightFieldGeometry(system), GetParam());
     ASSERT_TRUE(AdditiveGram::Applicable(model)) << example;
-    std::mt19937 rng(3);
-    std::uniform_real_distribution<double> u(0, 1);
-    LayerVectors x(model.layer_count());
-    for (size_t k = 0; k < x.size(); ++k) {
-      x[k].resize(model.projection(k).pixel_count() * 3);
-      for (double& v : x[k]) v = u(rng);
-    }
+    const LayerVectors x = RandomLayers(model, 3);
     LayerVectors fast;
     AdditiveGram(model).Apply(x, &fast);
     LayerVectors slow = RayByRay(model, x);
@@ -84,13 +90,7 @@ TEST(AdditiveGram, OnAStripMatchesTheRayByRayProductAndLeavesUnreachedRowsZero) 
   const double row_height = g.window_height / g.rows;
   g.rows = 2, g.window_height = 2 * row_height, g.window_top = row_height;
   DisplayModel model(system, g);
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<double> u(0, 1);
-  LayerVectors x(model.layer_count());
-  for (size_t k = 0; k < x.size(); ++k) {
-    x[k].resize(model.projection(k).pixel_count() * 3);
-    for (double& v : x[k]) v = u(rng);
-  }
+  const LayerVectors x = RandomLayers(model, 5);
   LayerVectors fast;
   AdditiveGram(model).Apply(x, &fast);
   const LayerVectors slow = RayByRay(model, x);
