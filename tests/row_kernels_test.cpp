@@ -118,8 +118,11 @@ TEST_F(RowKernels, BranchLightTermsAreTheTermsAddedOneByOne) {
         const std::vector<Rgb4> at_once = run(false), one_by_one = run(true);
         ASSERT_TRUE(SameBits(at_once.data(), one_by_one.data(), at_once.size() * sizeof(Rgb4)))
             << layers << " layers, " << terms << " terms, " << cols << " rays";
-        for (int j : {0, end})
-          if (j < begin || j >= end) ASSERT_TRUE(SameBits(&at_once[j], &start.padded[j], sizeof(Rgb4))) << j;
+        for (int j : {0, end}) {
+          if (j < begin || j >= end) {
+            ASSERT_TRUE(SameBits(&at_once[j], &start.padded[j], sizeof(Rgb4))) << j;
+          }
+        }
         ExpectSameInBothBuilds([&] { return Bytes(run(false)); }, "branch light terms", cols);
       }
 }
