@@ -11,6 +11,8 @@
 
 #include <immintrin.h>
 
+#include <type_traits>
+
 #include "systems/unrolled_layers.h"
 
 #define LAYERLAB_AVX2 __attribute__((target("avx2")))
@@ -79,22 +81,29 @@ LAYERLAB_AVX2 void AddTermsGroup(const Rgb4* const* rows, int stride, const Rgb4
   if (j < end) baseline::AddBranchLightTermsRow(rows, stride, L, w, G, j, end, row);
 }
 
+// group(std::integral_constant<int, G>, first) over [0, count) in order: groups
+// of four (their pointers and weights fit in registers), then one of the 1-3 left.
+template <class Group>
+inline void InGroupsOfFour(int count, Group group) {
+  int first = 0;
+  for (; first + 4 <= count; first += 4) group(std::integral_constant<int, 4>{}, first);
+  switch (count - first) {
+    case 3:
+      return group(std::integral_constant<int, 3>{}, first);
+    case 2:
+      return group(std::integral_constant<int, 2>{}, first);
+    case 1:
+      return group(std::integral_constant<int, 1>{}, first);
+  }
+}
+
 template <int L>
 struct AddBranchLightTermsRowOf {
   LAYERLAB_AVX2 static void Run(const Rgb4* const* rows, int stride, const Rgb4* w, int terms, int begin, int end,
                                 Rgb4* row) {
-    constexpr int kGroup = 4;  // L x 4 row pointers and 4 weights stay in registers
-    int q = 0;
-    for (; q + kGroup <= terms; q += kGroup)
-      AddTermsGroup<L, kGroup>(rows + q * stride, stride, w + q, begin, end, row);
-    switch (terms - q) {
-      case 3:
-        return AddTermsGroup<L, 3>(rows + q * stride, stride, w + q, begin, end, row);
-      case 2:
-        return AddTermsGroup<L, 2>(rows + q * stride, stride, w + q, begin, end, row);
-      case 1:
-        return AddTermsGroup<L, 1>(rows + q * stride, stride, w + q, begin, end, row);
-    }
+    InGroupsOfFour(terms, [&](auto g, int q) {
+      AddTermsGroup<L, decltype(g)::value>(rows + q * stride, stride, w + q, begin, end, row);
+    });
   }
 };
 
@@ -195,17 +204,9 @@ LAYERLAB_AVX2 void UpdateSumsGroup(const float* const* r, const Rgb4* const* q, 
 
 LAYERLAB_AVX2 void UpdateSumsRows(const float* const* r, const Rgb4* const* q, int rows, Rgb4* num, Rgb4* den,
                                   int cols) {
-  constexpr int kGroup = 4;  // 2 x 4 row pointers stay in registers
-  int g = 0;
-  for (; g + kGroup <= rows; g += kGroup) UpdateSumsGroup<kGroup>(r + g, q ? q + g : nullptr, num, den, cols);
-  switch (rows - g) {
-    case 3:
-      return UpdateSumsGroup<3>(r + g, q ? q + g : nullptr, num, den, cols);
-    case 2:
-      return UpdateSumsGroup<2>(r + g, q ? q + g : nullptr, num, den, cols);
-    case 1:
-      return UpdateSumsGroup<1>(r + g, q ? q + g : nullptr, num, den, cols);
-  }
+  InGroupsOfFour(rows, [&](auto g, int first) {
+    UpdateSumsGroup<decltype(g)::value>(r + first, q ? q + first : nullptr, num, den, cols);
+  });
 }
 
 LAYERLAB_AVX2 double UpdateSumsAndErrorRow(const float* r, const Rgb4* q, const Rgb4* own, Rgb4 w, Rgb4* num, Rgb4* den,

@@ -47,7 +47,6 @@ struct WorkspaceLayout {
   std::string Describe() const;
 };
 
-// One thread's buffers. The ones of view size ([ray][rgb]) are named for their use.
 // A ray row of a multiplicative update's pass waiting to be summed into
 // row `layer_row` of the layer being updated (solvers/one_tap_update.cpp).
 struct PendingSumRow {
@@ -56,6 +55,7 @@ struct PendingSumRow {
   const Rgb4* product;  // the other layer at its rays, or nullptr for 1
 };
 
+// One thread's buffers. The ones of view size ([ray][rgb]) are named for their use.
 struct ThreadWorkspace {
   // ViewSynthesizer: its one-tap layers resampled to the rays' columns of the
   // last view column this thread synthesized, [layer][its row][ray column].
