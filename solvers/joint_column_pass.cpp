@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <optional>
 
-#include "solvers/one_member_sums_row.h"
+#include "framework/error.h"
+#include "solvers/depth_sums_row.h"
 #include "systems/one_tap_view.h"
 #include "systems/row_kernels.h"
 
@@ -22,10 +24,78 @@ void Reset(const DisplayModel& model, const std::vector<char>* summed, ThreadWor
   w->light.resize(model.geometry().cols);
 }
 
+void PrefetchRow(const float* p, int floats) {
+  const char* c = reinterpret_cast<const char*>(p);
+  for (size_t o = 0; o < floats * sizeof(float); o += 64) __builtin_prefetch(c + o, 0, 3);
+}
+
+Rgb4 Weight(const DisplayModel& model, size_t b) {
+  const std::array<float, 3>& wb = model.weight(b);
+  return Rgb4{wb[0], wb[1], wb[2], 0.0f};
+}
+
+// A one-depth pass's arguments to DepthSumsRow: each branch's summed member,
+// and for each ray row the branches its rays reach.
+class DepthRows {
+ public:
+  DepthRows(const DisplayModel& model, const std::vector<char>& summed) : model_(model), summed_(summed) {
+    layers_ = static_cast<int>(model.branch_layers(0).size());
+    for (size_t b = 0; b < model.branch_count(); ++b) {
+      const std::vector<int>& members = model.branch_layers(b);
+      if (static_cast<int>(members.size()) != layers_)
+        throw Error("a one-depth pass needs branches of equal layer counts");
+      int a = -1;
+      for (size_t m = 0; m < members.size(); ++m)
+        if (summed[members[m]]) {
+          if (a >= 0) throw Error("a one-depth pass sums one layer of each branch");
+          a = static_cast<int>(m);
+        }
+      if (a < 0) throw Error("a one-depth pass sums one layer of each branch");
+      member_of_.push_back(a);
+    }
+    const size_t branches = model.branch_count();
+    rows_.resize(branches * layers_), member_.resize(branches), weight_.resize(branches);
+    num_.resize(branches), den_.resize(branches);
+  }
+
+  bool summed(size_t layer) const { return summed_[layer]; }
+
+  // The ray row whose layer rows are row[k] (null: missed) at layer rows layer_row[k]; then DepthSumsRow.
+  void Sums(const std::vector<const Rgb4*>& row, const std::vector<int32_t>& layer_row, const float* l, bool exact_last,
+            int cols, double* squared_error, std::vector<ColumnSums>* sums) {
+    int reached = 0;
+    for (size_t b = 0; b < model_.branch_count(); ++b) {
+      const std::vector<int>& members = model_.branch_layers(b);
+      bool all = true;
+      for (int m = 0; m < layers_ && all; ++m) all = (rows_[reached * layers_ + m] = row[members[m]]) != nullptr;
+      if (!all) continue;
+      const int a = members[member_of_[b]];
+      member_[reached] = member_of_[b];
+      weight_[reached] = Weight(model_, b);
+      num_[reached] = (*sums)[a].num(layer_row[a]);
+      den_[reached] = (*sums)[a].den(layer_row[a]);
+      ++reached;
+    }
+    DepthSumsRow(rows_.data(), reached, layers_, member_.data(), weight_.data(), cols, l, exact_last, squared_error,
+                 num_.data(), den_.data());
+  }
+
+ private:
+  const DisplayModel& model_;
+  const std::vector<char>& summed_;
+  int layers_ = 0;
+  std::vector<int> member_of_;  // [branch]
+  // The reached branches' arguments.
+  std::vector<const Rgb4*> rows_;
+  std::vector<int> member_;
+  std::vector<Rgb4> weight_;
+  std::vector<Rgb4*> num_, den_;
+};
+
 // The sums over views [vr_begin, vr_end) of view column vc into w, and each
-// view's ||l - l~||^2 into view_errors.
+// view's ||l - l~||^2 into view_errors if `objective`.
 void ViewRun(const DisplayModel& model, const LightField& l, const PaddedLayers& padded, int vc, int vr_begin,
-             int vr_end, const std::vector<char>* summed, double* view_errors, ThreadWorkspace* w) {
+             int vr_end, DepthRows* depth, bool objective, double* view_errors, ThreadWorkspace* w) {
   const LightFieldGeometry& g = model.geometry();
   const int cols = g.cols;
   const size_t layers = model.layer_count();
@@ -53,8 +123,27 @@ void ViewRun(const DisplayModel& model, const LightField& l, const PaddedLayers&
           layer_row[k] = model.projection(k).row_taps(view)[i].i0;
           row[k] = layer_row[k] < 0 ? nullptr : w->resampled[k].data() + static_cast<size_t>(layer_row[k]) * cols;
         }
-        // The whole display's light in this ray row.
-        Rgb4* light = w->light.data();
+        const float* lr = target + static_cast<size_t>(i) * cols * 3;
+        const bool exact_last = i == g.rows - 1;  // the view's last ray is read exactly
+        if (depth) {
+          // The target's next ray row in this order on its way while this
+          // one is summed: the band order jumps between views, and the
+          // hardware prefetcher starts each new stream late (the rank-2 pass
+          // 0.9x the time; the joint pass below gains nothing from it).
+          if (i + 1 < std::min(g.rows, band + kBandRows))
+            PrefetchRow(lr + cols * 3, cols * 3);
+          else if (vr + 1 < vr_end)
+            PrefetchRow(l.view(g.view_index(vr + 1, vc)) + static_cast<size_t>(band) * cols * 3, cols * 3);
+          else if (band + kBandRows < g.rows)
+            PrefetchRow(l.view(g.view_index(vr_begin, vc)) + static_cast<size_t>(band + kBandRows) * cols * 3,
+                        cols * 3);
+          double row_error = 0;
+          depth->Sums(row, layer_row, lr, exact_last, cols, objective ? &row_error : nullptr, &w->layer_sums);
+          error += row_error;
+          continue;
+        }
+
+        Rgb4* light = w->light.data();  // the whole display's light in this ray row
         std::fill(light, light + cols, Rgb4{});
         const Rgb4* rows[kMaxOneTapLayers];
         auto branch_rows = [&](size_t b) {
@@ -63,30 +152,16 @@ void ViewRun(const DisplayModel& model, const LightField& l, const PaddedLayers&
             if (!(rows[m] = row[members[m]])) return false;
           return true;
         };
-        auto weight = [&](size_t b) {
-          const std::array<float, 3>& wb = model.weight(b);
-          return Rgb4{wb[0], wb[1], wb[2], 0.0f};
-        };
         for (size_t b = 0; b < model.branch_count(); ++b) {
           if (!branch_rows(b)) continue;
-          AddBranchLightRow(rows, static_cast<int>(model.branch_layers(b).size()), weight(b), cols, light);
+          AddBranchLightRow(rows, static_cast<int>(model.branch_layers(b).size()), Weight(model, b), cols, light);
         }
-        const float* lr = target + static_cast<size_t>(i) * cols * 3;
-        const bool exact_last = i == g.rows - 1;  // the view's last ray is read exactly
         error += SquaredErrorRow(lr, light, cols, exact_last);
 
         // Each layer's sums in the rays' columns.
         for (size_t b = 0; b < model.branch_count(); ++b) {
           if (!branch_rows(b)) continue;
           const std::vector<int>& members = model.branch_layers(b);
-          if (summed) {  // the same sums, member by member
-            for (size_t m = 0; m < members.size(); ++m)
-              if (const int a = members[m]; (*summed)[a])
-                OneMemberSumsRow(rows, static_cast<int>(members.size()), static_cast<int>(m), weight(b), cols, lr,
-                                 exact_last, light, w->layer_sums[a].num(layer_row[a]),
-                                 w->layer_sums[a].den(layer_row[a]));
-            continue;
-          }
           Rgb4* num[kMaxOneTapLayers];
           Rgb4* den[kMaxOneTapLayers];
           for (size_t m = 0; m < members.size(); ++m) {
@@ -94,25 +169,27 @@ void ViewRun(const DisplayModel& model, const LightField& l, const PaddedLayers&
             num[m] = w->layer_sums[a].num(layer_row[a]);
             den[m] = w->layer_sums[a].den(layer_row[a]);
           }
-          JointSumsRow(rows, static_cast<int>(members.size()), weight(b), cols, lr, exact_last, light, num, den);
+          JointSumsRow(rows, static_cast<int>(members.size()), Weight(model, b), cols, lr, exact_last, light, num, den);
         }
       }
     }
 
   for (size_t k = 0; k < layers; ++k)
-    if (Summed(summed, k)) w->layer_sums[k].Scatter(model.projection(k), vc);
+    if (!depth || depth->summed(k)) w->layer_sums[k].Scatter(model.projection(k), vc);
 }
 
 }  // namespace
 
 double JointColumnPass(const DisplayModel& model, const LightField& l, const Patterns& t,
                        std::vector<std::vector<double>>* num, std::vector<std::vector<double>>* den,
-                       SolveWorkspace* workspace, const std::vector<char>* summed) {
+                       SolveWorkspace* workspace, const std::vector<char>* summed, bool objective) {
   PaddedLayers& padded = workspace->padded;
   padded.PadAll(t);
   const LightFieldGeometry& g = model.geometry();
   std::vector<double> error(g.view_count());  // summed in view order: the same for any thread count
   std::vector<std::vector<const ColumnSums*>> thread_sums(model.layer_count());  // [layer][thread]
+  std::optional<DepthRows> each_depth;                                           // checked here, copied by each thread
+  if (summed) each_depth.emplace(model, *summed);
 #pragma omp parallel
   {
     ThreadWorkspace& w = workspace->thread();
@@ -121,8 +198,9 @@ double JointColumnPass(const DisplayModel& model, const LightField& l, const Pat
 #pragma omp single
     for (auto& s : thread_sums) s.resize(threads);
     for (size_t k = 0; k < model.layer_count(); ++k) thread_sums[k][me] = &w.layer_sums[k];
+    std::optional<DepthRows> depth = each_depth;
     ForEachViewRunOfThread(g, me, threads, [&](int vc, int vr_begin, int vr_end) {
-      ViewRun(model, l, padded, vc, vr_begin, vr_end, summed, error.data(), &w);
+      ViewRun(model, l, padded, vc, vr_begin, vr_end, depth ? &*depth : nullptr, objective, error.data(), &w);
     });
 #pragma omp barrier
     // Merged in thread order, each thread a share of each layer's pixels.

@@ -7,6 +7,7 @@
 // with l~ the whole display's light, and returns ||l - l~||^2. With `summed`
 // ([layer], nonzero: sum it) only those layers' sums are made (the rank-K
 // multiplicative solver updates one depth per pass); the others' are not written.
+// Without `objective` the error is not computed and 0 is returned.
 #pragma once
 
 #include <vector>
@@ -21,6 +22,6 @@ namespace layerlab {
 // `workspace`, sized with kJointPass.
 double JointColumnPass(const DisplayModel& model, const LightField& l, const Patterns& t,
                        std::vector<std::vector<double>>* num, std::vector<std::vector<double>>* den,
-                       SolveWorkspace* workspace, const std::vector<char>* summed = nullptr);
+                       SolveWorkspace* workspace, const std::vector<char>* summed = nullptr, bool objective = true);
 
 }  // namespace layerlab

@@ -29,18 +29,18 @@ JointPass::JointPass(const DisplayModel& model, SolveWorkspace* workspace) : mod
   for (size_t b = 0; b < model.branch_count(); ++b) column_pass_ = column_pass_ && OneTapBranch(model, b);
 }
 
-double JointPass::Run(const LightField& l, const Patterns& t, const std::vector<char>* summed) {
+double JointPass::Run(const LightField& l, const Patterns& t, const std::vector<char>* summed, bool with_objective) {
   const size_t layers = model_.layer_count();
   std::vector<std::vector<double>>&num_ = workspace_->joint_num, &den_ = workspace_->joint_den;
   for (size_t k = 0; k < layers; ++k)
     num_[k].resize(t[k].rgb.size()), den_[k].resize(t[k].rgb.size());  // written whole
   if (column_pass_) {
-    const double objective = JointColumnPass(model_, l, t, &num_, &den_, workspace_, summed);
-    if (!summed) return SumAcrossRanks(&num_, &den_, objective);
+    const double error = JointColumnPass(model_, l, t, &num_, &den_, workspace_, summed, with_objective);
+    if (!summed) return SumAcrossRanks(&num_, &den_, error);
     std::vector<std::span<double>> sums;  // of the layers summed: every rank's rays
     for (size_t k = 0; k < layers; ++k)
       if ((*summed)[k]) sums.emplace_back(num_[k]), sums.emplace_back(den_[k]);
-    return SumAcrossRanks(std::move(sums), objective);
+    return SumAcrossRanks(std::move(sums), error);
   }
   // Views split evenly and statically, each view's error kept apart and
   // summed in view order, thread sums merged in thread order: the same

@@ -22,9 +22,12 @@ class JointPass {
   explicit JointPass(const DisplayModel& model, SolveWorkspace* workspace = nullptr);
 
   // Returns ||l - l~||^2 of `t`; numerator() and denominator() then hold its
-  // sums. With `summed` ([layer], nonzero: needed) the one-tap path makes only
-  // those layers' sums and leaves the others unwritten; the general path makes all.
-  double Run(const LightField& l, const Patterns& t, const std::vector<char>* summed = nullptr);
+  // sums. With `summed` ([layer], nonzero: needed; joint_column_pass.h) the
+  // one-tap path makes only those layers' sums and leaves the others
+  // unwritten; the general path makes all. Without `with_objective` the one-tap
+  // path does not compute it and returns 0.
+  double Run(const LightField& l, const Patterns& t, const std::vector<char>* summed = nullptr,
+             bool with_objective = true);
   // [layer][pixel * 3 + channel]
   const std::vector<std::vector<double>>& numerator() const { return workspace_->joint_num; }
   const std::vector<std::vector<double>>& denominator() const { return workspace_->joint_den; }

@@ -61,7 +61,10 @@ class DepthPass {
       for (int a : layers) summed_.back()[a] = 1;
     }
   }
-  double Run(const LightField& l, const Patterns& t, size_t depth) { return pass_.Run(l, t, &summed_[depth]); }
+  // Without `objective` the one-tap path leaves it out and returns 0.
+  double Run(const LightField& l, const Patterns& t, size_t depth, bool objective) {
+    return pass_.Run(l, t, &summed_[depth], objective);
+  }
   const double* numerator(int layer) const { return pass_.numerator()[layer].data(); }
   const double* denominator(int layer) const { return pass_.denominator()[layer].data(); }
 
@@ -81,15 +84,15 @@ void SolveRankK(const DisplayModel& model, const SolverOptions& options, SolveLo
   };
   // The pass that gives an iteration's objective also gives the sums of
   // the next iteration's first step, applied only if there is one.
-  pass.Run(l, *t, 0);
+  pass.Run(l, *t, 0, /*objective=*/false);
   double objective = 0;
   do {
     step(0);
     for (size_t p = 1; p < by_depth.size(); ++p) {
-      pass.Run(l, *t, p);
+      pass.Run(l, *t, p, /*objective=*/false);
       step(p);
     }
-    objective = pass.Run(l, *t, 0);
+    objective = pass.Run(l, *t, 0, /*objective=*/true);
   } while (loop->EndIteration(objective));
 }
 

@@ -386,6 +386,15 @@ TEST(TimeMultiplex, OneDepthPassGivesTheJointPassSumsOfThatDepth) {
         EXPECT_EQ(n[k], num[k]) << "layer " << k;
         EXPECT_EQ(d[k], den[k]) << "layer " << k;
       }
+      // Without the objective: 0, and the same sums.
+      for (size_t k = 0; k < t.size(); ++k)
+        std::fill(n[k].begin(), n[k].end(), -1.0), std::fill(d[k].begin(), d[k].end(), -1.0);
+      EXPECT_EQ(JointColumnPass(model, target, t, &n, &d, &workspace, &summed, /*objective=*/false), 0.0);
+      for (size_t k = 0; k < t.size(); ++k) {
+        if (!summed[k]) continue;
+        EXPECT_EQ(n[k], num[k]) << "layer " << k << ", no objective";
+        EXPECT_EQ(d[k], den[k]) << "layer " << k << ", no objective";
+      }
     }
   }
   ForceRowKernels(active);
