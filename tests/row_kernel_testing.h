@@ -48,7 +48,7 @@ void ExpectSameInBothBuilds(F f, const char* what, int cols) {
 template <typename T>
 std::vector<unsigned char> Bytes(const std::vector<T>& v) {
   std::vector<unsigned char> b(v.size() * sizeof(T));
-  std::memcpy(b.data(), v.data(), b.size());
+  if (!b.empty()) std::memcpy(b.data(), v.data(), b.size());
   return b;
 }
 
