@@ -5,9 +5,11 @@
 // pixels once per view column. For every layer a of branch b it adds
 //   num_a += P_a^T(l o Q_a),  den_a += P_a^T(l~ o Q_a),   Q_a = w_b prod_{k in b, k != a} P_k t_k,
 // with l~ the whole display's light, and returns ||l - l~||^2. With `summed`
-// ([layer], nonzero: sum it) only those layers' sums are made (the rank-K
-// multiplicative solver updates one depth per pass); the others' are not written.
-// Without `objective` the error is not computed and 0 is returned.
+// ([layer], nonzero: sum it; exactly one layer of each branch, the branches of
+// equal layer counts, else Error) only those layers' sums are made, in one
+// sweep with the light (depth_sums_row.h): the rank-K multiplicative solver
+// updates one depth per pass; the others' are not written. Without
+// `objective` the error is not computed and 0 is returned.
 #pragma once
 
 #include <vector>
