@@ -45,6 +45,7 @@ nlohmann::json ReportToJson(const SolverReport& r) {
                       {"seconds", r.seconds},
                       {"setup_seconds", r.setup_seconds},
                       {"rays", r.rays},
+                      {"threads", r.threads},
                       {"initial_objective", r.initial_objective},
                       {"final_objective", r.final_objective},
                       {"final_psnr_db", JsonNumber(r.final_psnr_db)},

@@ -14,7 +14,7 @@
 // | tolerance             | fraction           | 0 (never)                 | stop when the objective changes by less than this, relative |
 // | initial_value         | fraction           | the solver's              | initial transmittance; negative: random in [0.25, 0.75] |
 // | seed                  | integer            | 1                         | for random initial patterns              |
-// | threads               | integer            | 0 (every core)            | worker threads                           |
+// | threads               | integer            | 0 (every core; one per 16384 rays with the light-field objective) | worker threads (report.json `threads`: how many the solve ran on) |
 // | sampling              | nearest, bilinear  | nearest                   | how the light field samples the layers   |
 // | target_range          | clip, scale        | clip                      | target values beyond what the display shows: clipped, or the target scaled |
 // | objective             | lightfield, retinal | lightfield               | what is minimized: the light-field error, or the retinal error over the eye's accommodation_range in 0.2 D steps (quasi-newton, joint; docs/retinal-objective.md) |

@@ -2,6 +2,7 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -29,6 +30,14 @@ double SolveLoop::Seconds() const {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
 }
 
+int SolveLoop::AutomaticThreads() const {
+  const int cores = omp_get_max_threads();
+  // The retinal images' work does not scale with the rays.
+  if (options_.objective == ObjectiveKind::kRetinal || options_.measure_focal_stack) return cores;
+  const size_t rays = model_.geometry().ray_count();
+  return static_cast<int>(std::clamp<size_t>((rays + kRaysPerThread - 1) / kRaysPerThread, 1, cores));
+}
+
 bool SolveLoop::Start(const std::string& refusal) {
   if (!refusal.empty()) {
     Fail(refusal);
@@ -40,10 +49,12 @@ bool SolveLoop::Start(const std::string& refusal) {
     report_.message = error;
     return false;
   }
-  if (options_.threads > 0) {
+  const int threads = options_.threads > 0 ? options_.threads : AutomaticThreads();
+  if (threads != omp_get_max_threads()) {
     saved_threads_ = omp_get_max_threads();
-    omp_set_num_threads(options_.threads);
+    omp_set_num_threads(threads);
   }
+  report_.threads = threads;
   try {
     RequireSameRays(model_, source_);
     prepared_ = PrepareTarget(model_, source_, options_.target_range, &report_);

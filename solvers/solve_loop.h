@@ -60,6 +60,13 @@ class SolveLoop {
   SolverReport Finish();
 
  private:
+  // Below this many rays per thread (this process's share), an iteration's
+  // parallel regions cost more in starting and joining threads than they
+  // save (quasi-newton breaks even near 20000 rays on 2 cores), and on a
+  // loaded machine each join can wait a whole scheduler time slice.
+  static constexpr size_t kRaysPerThread = 16384;
+  // The thread count of options.threads = 0.
+  int AutomaticThreads() const;
   bool Record(double objective, double light_field_objective, double focal_stack_psnr_db);
   // Measured here, off the clock (the solver did not spend it).
   RetinalMeasures MeasureRetinal();

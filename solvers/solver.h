@@ -53,7 +53,9 @@ struct SolverOptions {
   uint64_t seed = 1;
   // Initial transmittance of every pixel, or "random" in [0.25, 0.75] when negative.
   double initial_value = 0.5;
-  // Worker threads; 0 uses every core.
+  // Worker threads; 0 lets the solve choose: every core, but one thread per
+  // 16384 rays (this process's share) with the light-field objective, where
+  // a smaller share costs more in starting and joining threads than it saves.
   int threads = 0;
   // Multiplicative updates: denominators below this keep the pixel as is,
   // and transmittance never drops below `floor`, so no pixel locks at zero.
@@ -116,6 +118,7 @@ struct SolverReport {
   double setup_seconds = 0;
   double initial_objective = 0, final_objective = 0, final_psnr_db = 0;
   size_t rays = 0;
+  int threads = 0;  // worker threads the solve ran on (per process)
   // Target preparation: how many values were beyond the display's range and what was done.
   size_t out_of_range = 0;
   double target_scale = 1;

@@ -20,7 +20,7 @@ const std::vector<SolverOptionKey>& CommonSolverOptionKeys() {
       {"tolerance", "stop when the objective changes by less than this, relative (0: never)"},
       {"initial_value", "initial transmittance, or negative for random in [0.25, 0.75]"},
       {"seed", "for random initial patterns"},
-      {"threads", "worker threads (0: every core)"},
+      {"threads", "worker threads (0: every core, one per 16384 rays on small problems)"},
       {"target_range", "what to do with target values beyond the display: clip or scale"},
   };
   return keys;

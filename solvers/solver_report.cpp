@@ -30,10 +30,10 @@ std::string SolverReport::FullReport() const {
   std::string out = "solver               " + solver + "\n";
   out += "termination          " + ToString(termination) + (message.empty() ? "" : " (" + message + ")") + "\n";
   char buf[256];
-  std::snprintf(
-      buf, sizeof buf,
-      "iterations           %d\nwall time            %.3f s (after %.3f s of set-up)\nrays x channels      %zu\n",
-      iterations, seconds, setup_seconds, rays * 3);
+  std::snprintf(buf, sizeof buf,
+                "iterations           %d\nwall time            %.3f s (after %.3f s of set-up) on %d thread%s\n"
+                "rays x channels      %zu\n",
+                iterations, seconds, setup_seconds, threads, threads == 1 ? "" : "s", rays * 3);
   out += buf;
   std::string what;
   if (objective == "retinal") {

@@ -658,6 +658,26 @@ TEST(SolverReport, PsnrIsFormattedInOnePlace) {
   EXPECT_NE(r.BriefReport().find("12.35 dB"), std::string::npos) << r.BriefReport();
 }
 
+// threads = 0: every core, but one thread per 16384 rays of a light-field
+// solve, so a small problem runs on one thread (and the same bits on any
+// machine); an explicit count is kept.
+TEST(Solvers, SmallProblemsRunOnOneThreadUnlessAsked) {
+  const int cores = omp_get_max_threads();
+  Patterns t;
+  const Fixture small = MakeFixture("multiplicative_2layer.json", 8, 4, 13);  // 32 x 169 = 5408 rays
+  ASSERT_EQ(small.target.geometry.ray_count(), 5408u);
+  SolverOptions o;
+  o.iterations = 2;
+  EXPECT_EQ(RunSolver("multiplicative", small, o, &t).threads, 1);
+  o.threads = 2;
+  EXPECT_EQ(RunSolver("multiplicative", small, o, &t).threads, 2);
+  o.threads = 0;
+  const Fixture larger = MakeFixture("multiplicative_2layer.json", 64, 32, 7);  // 2048 x 49 = 100352 rays: 6.1 x 16384
+  ASSERT_EQ(larger.target.geometry.ray_count(), 100352u);
+  EXPECT_EQ(RunSolver("multiplicative", larger, o, &t).threads, std::min(cores, 7));
+  EXPECT_EQ(omp_get_max_threads(), cores);  // restored after each solve
+}
+
 // Thread sums merge in thread order and objectives in view order, so two
 // runs with the same thread count give the same bits.
 TEST(Solvers, TwoRunsWithTwoThreadsGiveTheSameBits) {
