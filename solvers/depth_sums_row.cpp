@@ -36,7 +36,7 @@ struct ErrorSums {
 template <int L>
 struct Baseline {
   static void Run(const Rgb4* const* rows, int branches, const int* a, const Rgb4* w, int begin, int cols,
-                  const float* l, bool exact_last, ErrorSums* error, Rgb4* const* num, Rgb4* const* den) {
+                  const float* l, bool exact_last, ErrorSums* error, Rgb4* const* res, Rgb4* const* den) {
     const int safe = exact_last ? cols - 1 : cols;
     for (int j = begin; j < cols; ++j) {
       const Rgb4 lj = j < safe ? LoadRgbOver(l + j * 3) : LoadRgb(l + j * 3);
@@ -54,7 +54,7 @@ struct Baseline {
         Rgb4 suffix = Rgb4{1, 1, 1, 1};
         for (int k = L - 1; k > a[b]; --k) suffix *= r[k][j];
         const Rgb4 q = prefix * suffix;
-        num[b][j] += lj * q;
+        res[b][j] += (light - lj) * q;
         den[b][j] += light * q;
       }
     }
@@ -91,9 +91,9 @@ LAYERLAB_AVX2 inline __m256 MemberQ(__m256 w2, int ab, At at) {
   return q;
 }
 
-// num += l q, den += light q at rays j, j + 1.
-LAYERLAB_AVX2 inline void AddSums(__m256 lj, __m256 light, __m256 q, float* num, float* den) {
-  _mm256_storeu_ps(num, _mm256_add_ps(_mm256_loadu_ps(num), _mm256_mul_ps(lj, q)));
+// res += (light - l) q, den += light q at rays j, j + 1.
+LAYERLAB_AVX2 inline void AddSums(__m256 residual, __m256 light, __m256 q, float* res, float* den) {
+  _mm256_storeu_ps(res, _mm256_add_ps(_mm256_loadu_ps(res), _mm256_mul_ps(residual, q)));
   _mm256_storeu_ps(den, _mm256_add_ps(_mm256_loadu_ps(den), _mm256_mul_ps(light, q)));
 }
 
@@ -122,14 +122,14 @@ struct TwoRayErrors {
 // layer values stay in registers (2-3x the speed of the loop below).
 template <int L, int K, bool kError>
 LAYERLAB_AVX2 int FixedBranches(const Rgb4* const* rows, const int* a, const Rgb4* w, int cols, const float* l,
-                                ErrorSums* error, Rgb4* const* num, Rgb4* const* den) {
+                                ErrorSums* error, Rgb4* const* res, Rgb4* const* den) {
   const float* r[K * L];
   float *n[K], *d[K];
   __m256 w2[K];
   int member[K];
   for (int b = 0; b < K; ++b) {
     for (int k = 0; k < L; ++k) r[b * L + k] = reinterpret_cast<const float*>(rows[b * L + k]);
-    n[b] = reinterpret_cast<float*>(num[b]), d[b] = reinterpret_cast<float*>(den[b]);
+    n[b] = reinterpret_cast<float*>(res[b]), d[b] = reinterpret_cast<float*>(den[b]);
     w2[b] = Twice(w + b), member[b] = a[b];
   }
   TwoRayErrors errors{_mm256_setzero_pd(), _mm256_setzero_pd()};
@@ -144,9 +144,10 @@ LAYERLAB_AVX2 int FixedBranches(const Rgb4* const* rows, const int* a, const Rgb
     }
     const __m256 lj = TwoTargetRays(l, j);
     if constexpr (kError) errors.Add(lj, light);
+    const __m256 residual = _mm256_sub_ps(light, lj);
     for (int b = 0; b < K; ++b) {
       const __m256 q = MemberQ<L>(w2[b], member[b], [&](int k) LAYERLAB_AVX2 { return v[b][k]; });
-      AddSums(lj, light, q, n[b] + j * 4, d[b] + j * 4);
+      AddSums(residual, light, q, n[b] + j * 4, d[b] + j * 4);
     }
   }
   if constexpr (kError) errors.Into(error);
@@ -156,7 +157,7 @@ LAYERLAB_AVX2 int FixedBranches(const Rgb4* const* rows, const int* a, const Rgb
 // Any number of branches.
 template <int L, bool kError>
 LAYERLAB_AVX2 int AnyBranches(const Rgb4* const* rows, int branches, const int* a, const Rgb4* w, int cols,
-                              const float* l, ErrorSums* error, Rgb4* const* num, Rgb4* const* den) {
+                              const float* l, ErrorSums* error, Rgb4* const* res, Rgb4* const* den) {
   TwoRayErrors errors{_mm256_setzero_pd(), _mm256_setzero_pd()};
   int j = 0;
   for (; j + 3 <= cols; j += 2) {
@@ -168,9 +169,10 @@ LAYERLAB_AVX2 int AnyBranches(const Rgb4* const* rows, int branches, const int* 
     }
     const __m256 lj = TwoTargetRays(l, j);
     if constexpr (kError) errors.Add(lj, light);
+    const __m256 residual = _mm256_sub_ps(light, lj);
     for (int b = 0; b < branches; ++b) {
       const __m256 q = MemberQ<L>(Twice(w + b), a[b], [&](int k) LAYERLAB_AVX2 { return TwoRays(rows[b * L + k], j); });
-      AddSums(lj, light, q, reinterpret_cast<float*>(num[b] + j), reinterpret_cast<float*>(den[b] + j));
+      AddSums(residual, light, q, reinterpret_cast<float*>(res[b] + j), reinterpret_cast<float*>(den[b] + j));
     }
   }
   if constexpr (kError) errors.Into(error);
@@ -179,28 +181,28 @@ LAYERLAB_AVX2 int AnyBranches(const Rgb4* const* rows, int branches, const int* 
 
 template <int L, bool kError>
 LAYERLAB_AVX2 int TwoRaysAtATime(const Rgb4* const* rows, int branches, const int* a, const Rgb4* w, int cols,
-                                 const float* l, ErrorSums* error, Rgb4* const* num, Rgb4* const* den) {
+                                 const float* l, ErrorSums* error, Rgb4* const* res, Rgb4* const* den) {
   switch (branches) {
     case 1:
-      return FixedBranches<L, 1, kError>(rows, a, w, cols, l, error, num, den);
+      return FixedBranches<L, 1, kError>(rows, a, w, cols, l, error, res, den);
     case 2:
-      return FixedBranches<L, 2, kError>(rows, a, w, cols, l, error, num, den);
+      return FixedBranches<L, 2, kError>(rows, a, w, cols, l, error, res, den);
     case 3:
-      return FixedBranches<L, 3, kError>(rows, a, w, cols, l, error, num, den);
+      return FixedBranches<L, 3, kError>(rows, a, w, cols, l, error, res, den);
     case 4:
-      return FixedBranches<L, 4, kError>(rows, a, w, cols, l, error, num, den);
+      return FixedBranches<L, 4, kError>(rows, a, w, cols, l, error, res, den);
     default:
-      return AnyBranches<L, kError>(rows, branches, a, w, cols, l, error, num, den);
+      return AnyBranches<L, kError>(rows, branches, a, w, cols, l, error, res, den);
   }
 }
 
 template <int L>
 struct Avx2 {
   LAYERLAB_AVX2 static void Run(const Rgb4* const* rows, int branches, const int* a, const Rgb4* w, int cols,
-                                const float* l, bool exact_last, ErrorSums* error, Rgb4* const* num, Rgb4* const* den) {
-    const int j = error ? TwoRaysAtATime<L, true>(rows, branches, a, w, cols, l, error, num, den)
-                        : TwoRaysAtATime<L, false>(rows, branches, a, w, cols, l, error, num, den);
-    Baseline<L>::Run(rows, branches, a, w, j, cols, l, exact_last, error, num, den);
+                                const float* l, bool exact_last, ErrorSums* error, Rgb4* const* res, Rgb4* const* den) {
+    const int j = error ? TwoRaysAtATime<L, true>(rows, branches, a, w, cols, l, error, res, den)
+                        : TwoRaysAtATime<L, false>(rows, branches, a, w, cols, l, error, res, den);
+    Baseline<L>::Run(rows, branches, a, w, j, cols, l, exact_last, error, res, den);
   }
 };
 #endif
@@ -209,23 +211,23 @@ struct Avx2 {
 template <int L>
 struct WholeRow {
   static void Run(const Rgb4* const* rows, int branches, const int* a, const Rgb4* w, int cols, const float* l,
-                  bool exact_last, ErrorSums* error, Rgb4* const* num, Rgb4* const* den) {
-    Baseline<L>::Run(rows, branches, a, w, 0, cols, l, exact_last, error, num, den);
+                  bool exact_last, ErrorSums* error, Rgb4* const* res, Rgb4* const* den) {
+    Baseline<L>::Run(rows, branches, a, w, 0, cols, l, exact_last, error, res, den);
   }
 };
 
 }  // namespace
 
 void DepthSumsRow(const Rgb4* const* rows, int branches, int layers, const int* a, const Rgb4* w, int cols,
-                  const float* l, bool exact_last, double* squared_error, Rgb4* const* num, Rgb4* const* den) {
+                  const float* l, bool exact_last, double* squared_error, Rgb4* const* res, Rgb4* const* den) {
   ErrorSums sums(cols, exact_last);
   ErrorSums* error = squared_error ? &sums : nullptr;
 #if LAYERLAB_ROW_KERNELS_AVX2
   if (ActiveRowKernels() == RowKernelIsa::kAvx2)
-    ForLayerCount<Avx2>(layers, rows, branches, a, w, cols, l, exact_last, error, num, den);
+    ForLayerCount<Avx2>(layers, rows, branches, a, w, cols, l, exact_last, error, res, den);
   else
 #endif
-    ForLayerCount<WholeRow>(layers, rows, branches, a, w, cols, l, exact_last, error, num, den);
+    ForLayerCount<WholeRow>(layers, rows, branches, a, w, cols, l, exact_last, error, res, den);
   if (squared_error) *squared_error = sums.Total();
 }
 

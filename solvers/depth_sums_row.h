@@ -3,7 +3,7 @@
 // each, rows[b * L + k] the ray row of branch b's k-th member, every one
 // reached by the rays:
 //   light[j] = sum_b w_b prod_k rows[b][k][j]              (from 0, branch by branch)
-//   q = w_b prod_{k != a_b} rows[b][k][j],  num[b][j] += l_j q,  den[b][j] += light[j] q
+//   q = w_b prod_{k != a_b} rows[b][k][j],  res[b][j] += (light[j] - l_j) q,  den[b][j] += light[j] q
 // in one sweep, the display's light kept in a register, and if asked the
 // row's squared error sum_j ||l_j - light[j]||^2. The operations are
 // AddBranchLightRow's, branch by branch, then JointSumsRow's for member a_b
@@ -20,6 +20,6 @@ namespace layerlab {
 // ray read exactly if `exact_last`; `squared_error` written if not null (in
 // double, channels 0-2, as SquaredErrorRow sums it; no branch: the light is 0).
 void DepthSumsRow(const Rgb4* const* rows, int branches, int layers, const int* a, const Rgb4* w, int cols,
-                  const float* l, bool exact_last, double* squared_error, Rgb4* const* num, Rgb4* const* den);
+                  const float* l, bool exact_last, double* squared_error, Rgb4* const* res, Rgb4* const* den);
 
 }  // namespace layerlab

@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "solvers/joint_pass.h"
+#include "solvers/multiplicative_update.h"
 #include "solvers/retinal_pass.h"
 #include "solvers/solve_loop.h"
 
@@ -39,15 +40,16 @@ namespace {
 constexpr double kGrowth = 1.3;
 constexpr double kMaxRelaxation = 8.0;
 
-// ratio[k][i] = num / den, or 1 where the denominator is below epsilon.
+// ratio[k][i] = num / den = (den - res) / den, or 1 where the denominator is below epsilon.
 void Ratios(const JointPass& pass, double epsilon, std::vector<std::vector<double>>* ratio) {
-  const auto& num = pass.numerator();
+  const auto& res = pass.residual();
   const auto& den = pass.denominator();
-  ratio->resize(num.size());
-  for (size_t k = 0; k < num.size(); ++k) {
-    (*ratio)[k].resize(num[k].size());
+  ratio->resize(res.size());
+  for (size_t k = 0; k < res.size(); ++k) {
+    (*ratio)[k].resize(res[k].size());
 #pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < num[k].size(); ++i) (*ratio)[k][i] = den[k][i] > epsilon ? num[k][i] / den[k][i] : 1.0;
+    for (size_t i = 0; i < res[k].size(); ++i)
+      (*ratio)[k][i] = den[k][i] > epsilon ? MultiplicativeRatioFromResidual(res[k][i], den[k][i]) : 1.0;
   }
 }
 

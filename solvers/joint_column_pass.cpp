@@ -55,7 +55,7 @@ class DepthRows {
     }
     const size_t branches = model.branch_count();
     rows_.resize(branches * layers_), member_.resize(branches), weight_.resize(branches);
-    num_.resize(branches), den_.resize(branches);
+    res_.resize(branches), den_.resize(branches);
   }
 
   bool summed(size_t layer) const { return summed_[layer]; }
@@ -72,12 +72,12 @@ class DepthRows {
       const int a = members[member_of_[b]];
       member_[reached] = member_of_[b];
       weight_[reached] = Weight(model_, b);
-      num_[reached] = (*sums)[a].num(layer_row[a]);
+      res_[reached] = (*sums)[a].num(layer_row[a]);
       den_[reached] = (*sums)[a].den(layer_row[a]);
       ++reached;
     }
     DepthSumsRow(rows_.data(), reached, layers_, member_.data(), weight_.data(), cols, l, exact_last, squared_error,
-                 num_.data(), den_.data());
+                 res_.data(), den_.data());
   }
 
  private:
@@ -89,7 +89,7 @@ class DepthRows {
   std::vector<const Rgb4*> rows_;
   std::vector<int> member_;
   std::vector<Rgb4> weight_;
-  std::vector<Rgb4*> num_, den_;
+  std::vector<Rgb4*> res_, den_;
 };
 
 // The sums over views [vr_begin, vr_end) of view column vc into w, and each
@@ -162,14 +162,14 @@ void ViewRun(const DisplayModel& model, const LightField& l, const PaddedLayers&
         for (size_t b = 0; b < model.branch_count(); ++b) {
           if (!branch_rows(b)) continue;
           const std::vector<int>& members = model.branch_layers(b);
-          Rgb4* num[kMaxOneTapLayers];
+          Rgb4* res[kMaxOneTapLayers];
           Rgb4* den[kMaxOneTapLayers];
           for (size_t m = 0; m < members.size(); ++m) {
             const int a = members[m];
-            num[m] = w->layer_sums[a].num(layer_row[a]);
+            res[m] = w->layer_sums[a].num(layer_row[a]);
             den[m] = w->layer_sums[a].den(layer_row[a]);
           }
-          JointSumsRow(rows, static_cast<int>(members.size()), Weight(model, b), cols, lr, exact_last, light, num, den);
+          JointSumsRow(rows, static_cast<int>(members.size()), Weight(model, b), cols, lr, exact_last, light, res, den);
         }
       }
     }
@@ -181,7 +181,7 @@ void ViewRun(const DisplayModel& model, const LightField& l, const PaddedLayers&
 }  // namespace
 
 double JointColumnPass(const DisplayModel& model, const LightField& l, const Patterns& t,
-                       std::vector<std::vector<double>>* num, std::vector<std::vector<double>>* den,
+                       std::vector<std::vector<double>>* res, std::vector<std::vector<double>>* den,
                        SolveWorkspace* workspace, const std::vector<char>* summed, bool objective) {
   PaddedLayers& padded = workspace->padded;
   padded.PadAll(t);
@@ -205,7 +205,7 @@ double JointColumnPass(const DisplayModel& model, const LightField& l, const Pat
 #pragma omp barrier
     // Merged in thread order, each thread a share of each layer's pixels.
     for (size_t k = 0; k < model.layer_count(); ++k)
-      if (Summed(summed, k)) ColumnSums::Merge(thread_sums[k], me, threads, (*num)[k].data(), (*den)[k].data());
+      if (Summed(summed, k)) ColumnSums::Merge(thread_sums[k], me, threads, (*res)[k].data(), (*den)[k].data());
   }
   double total = 0;
   for (double e : error) total += e;

@@ -3,7 +3,7 @@
 // column by view column, every layer resampled once to the rays' columns,
 // the per-ray work in contiguous rows, and the sums scattered to each layer's
 // pixels once per view column. For every layer a of branch b it adds
-//   num_a += P_a^T(l o Q_a),  den_a += P_a^T(l~ o Q_a),   Q_a = w_b prod_{k in b, k != a} P_k t_k,
+//   res_a += P_a^T((l~ - l) o Q_a),  den_a += P_a^T(l~ o Q_a),   Q_a = w_b prod_{k in b, k != a} P_k t_k,
 // with l~ the whole display's light, and returns ||l - l~||^2. With `summed`
 // ([layer], nonzero: sum it; exactly one layer of each branch, the branches of
 // equal layer counts, else Error) only those layers' sums are made, in one
@@ -20,10 +20,10 @@
 
 namespace layerlab {
 
-// num[k], den[k]: layer k's pixels x 3, written (for the summed layers). In
-// `workspace`, sized with kJointPass.
+// res[k], den[k]: layer k's pixels x 3, written (for the summed layers). In
+// `workspace`, sized with kJointPass. (ColumnSums' num() holds res here.)
 double JointColumnPass(const DisplayModel& model, const LightField& l, const Patterns& t,
-                       std::vector<std::vector<double>>* num, std::vector<std::vector<double>>* den,
+                       std::vector<std::vector<double>>* res, std::vector<std::vector<double>>* den,
                        SolveWorkspace* workspace, const std::vector<char>* summed = nullptr, bool objective = true);
 
 }  // namespace layerlab

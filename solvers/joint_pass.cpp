@@ -31,15 +31,15 @@ JointPass::JointPass(const DisplayModel& model, SolveWorkspace* workspace) : mod
 
 double JointPass::Run(const LightField& l, const Patterns& t, const std::vector<char>* summed, bool with_objective) {
   const size_t layers = model_.layer_count();
-  std::vector<std::vector<double>>&num_ = workspace_->joint_num, &den_ = workspace_->joint_den;
+  std::vector<std::vector<double>>&res_ = workspace_->joint_residual, &den_ = workspace_->joint_den;
   for (size_t k = 0; k < layers; ++k)
-    num_[k].resize(t[k].rgb.size()), den_[k].resize(t[k].rgb.size());  // written whole
+    res_[k].resize(t[k].rgb.size()), den_[k].resize(t[k].rgb.size());  // written whole
   if (column_pass_) {
-    const double error = JointColumnPass(model_, l, t, &num_, &den_, workspace_, summed, with_objective);
-    if (!summed) return SumAcrossRanks(&num_, &den_, error);
+    const double error = JointColumnPass(model_, l, t, &res_, &den_, workspace_, summed, with_objective);
+    if (!summed) return SumAcrossRanks(&res_, &den_, error);
     std::vector<std::span<double>> sums;  // of the layers summed: every rank's rays
     for (size_t k = 0; k < layers; ++k)
-      if ((*summed)[k]) sums.emplace_back(num_[k]), sums.emplace_back(den_[k]);
+      if ((*summed)[k]) sums.emplace_back(res_[k]), sums.emplace_back(den_[k]);
     return SumAcrossRanks(std::move(sums), error);
   }
   // Views split evenly and statically, each view's error kept apart and
@@ -68,13 +68,13 @@ double JointPass::Run(const LightField& l, const Patterns& t, const std::vector<
       view_error[v] = objective;
     }
     for (size_t k = 0; k < layers; ++k) {  // after the loop's barrier
-      MergeInThreadOrder(nums[k], num_[k].size() / 3, 3, me, threads, num_[k].data());
+      MergeInThreadOrder(nums[k], res_[k].size() / 3, 3, me, threads, res_[k].data());
       MergeInThreadOrder(dens[k], den_[k].size() / 3, 3, me, threads, den_[k].data());
     }
   }
   double objective = 0;
   for (double e : view_error) objective += e;
-  return SumAcrossRanks(&num_, &den_, objective);
+  return SumAcrossRanks(&res_, &den_, objective);
 }
 
 // Nearest sampling, no rotation: row by row, nothing of view size stored.
@@ -138,7 +138,7 @@ void JointPass::ViewOneTap(const float* target, const Patterns& t, size_t view, 
         float* nu = num[a] + pixel;
         float* de = den[a] + pixel;
         for (int ch = 0; ch < 3; ++ch) {
-          nu[ch] += l[ch] * q[a * 3 + ch];
+          nu[ch] += (synthesized[ch] - l[ch]) * q[a * 3 + ch];
           de[ch] += synthesized[ch] * q[a * 3 + ch];
         }
       }
@@ -153,8 +153,8 @@ void JointPass::ViewGeneral(const float* target, const Patterns& t, size_t view,
   const size_t n = model_.geometry().pixels_per_view() * 3;
   const size_t layers = model_.layer_count();
   std::vector<float>&samples = sums->samples, &synthesized = sums->synthesized;
-  std::vector<float>&numerator_terms = sums->numerator_terms, &denominator_terms = sums->denominator_terms;
-  samples.resize(layers * n), synthesized.assign(n, 0.0f), numerator_terms.resize(n), denominator_terms.resize(n);
+  std::vector<float>&residual_terms = sums->residual_terms, &denominator_terms = sums->denominator_terms;
+  samples.resize(layers * n), synthesized.assign(n, 0.0f), residual_terms.resize(n), denominator_terms.resize(n);
   for (size_t k = 0; k < layers; ++k) model_.projection(k).Gather(view, t[k].rgb.data(), &samples[k * n]);
   for (size_t b = 0; b < model_.branch_count(); ++b)
     for (size_t i = 0; i < n; ++i) {
@@ -172,12 +172,12 @@ void JointPass::ViewGeneral(const float* target, const Patterns& t, size_t view,
       float q = model_.weight(b)[i % 3];
       for (int k : model_.branch_layers(b))
         if (k != static_cast<int>(a)) q *= samples[k * n + i];
-      numerator_terms[i] = target[i] * q;
+      residual_terms[i] = (synthesized[i] - target[i]) * q;
       denominator_terms[i] = synthesized[i] * q;
     }
     model_.projection(a).ForEachTap(view, [&](size_t ray, int32_t pixel, float weight) {
       for (int ch = 0; ch < 3; ++ch) {
-        sums->num[a][static_cast<size_t>(pixel) * 3 + ch] += weight * numerator_terms[ray * 3 + ch];
+        sums->num[a][static_cast<size_t>(pixel) * 3 + ch] += weight * residual_terms[ray * 3 + ch];
         sums->den[a][static_cast<size_t>(pixel) * 3 + ch] += weight * denominator_terms[ray * 3 + ch];
       }
     });

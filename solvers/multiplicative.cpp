@@ -65,7 +65,7 @@ class DepthPass {
   double Run(const LightField& l, const Patterns& t, size_t depth, bool objective) {
     return pass_.Run(l, t, &summed_[depth], objective);
   }
-  const double* numerator(int layer) const { return pass_.numerator()[layer].data(); }
+  const double* residual(int layer) const { return pass_.residual()[layer].data(); }
   const double* denominator(int layer) const { return pass_.denominator()[layer].data(); }
 
  private:
@@ -80,7 +80,7 @@ void SolveRankK(const DisplayModel& model, const SolverOptions& options, SolveLo
   DepthPass pass(model, by_depth, &loop->workspace());
   auto step = [&](size_t depth) {
     for (int a : by_depth[depth])
-      ApplyMultiplicativeStep(pass.numerator(a), pass.denominator(a), options, &(*t)[a].rgb);
+      ApplyMultiplicativeStepFromResidual(pass.residual(a), pass.denominator(a), options, &(*t)[a].rgb);
   };
   // The pass that gives an iteration's objective also gives the sums of
   // the next iteration's first step, applied only if there is one.

@@ -51,5 +51,10 @@ void ApplyLayerUpdate(const LayerUpdate& update, const SolverOptions& options, P
 // where den[k] > epsilon (else it keeps its value); num and den as long as the pattern.
 void ApplyMultiplicativeStep(const double* num, const double* den, const SolverOptions& options,
                              std::vector<float>* pattern);
+// The ratio num / den from the joint pass's sums (joint_pass.h): num = den - res.
+inline double MultiplicativeRatioFromResidual(double res, double den) { return (den - res) / den; }
+// The same step from those sums.
+void ApplyMultiplicativeStepFromResidual(const double* res, const double* den, const SolverOptions& options,
+                                         std::vector<float>* pattern);
 
 }  // namespace layerlab

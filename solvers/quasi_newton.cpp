@@ -1,6 +1,6 @@
 // quasi-newton: projected L-BFGS on every layer of every branch at once
 // (beyond the paper). One pass over the rays (joint_pass.h) gives the
-// objective and its gradient 2 (den - num) at the patterns it reads, so a
+// objective and its gradient 2 res at the patterns it reads, so a
 // step costs one pass, like a joint iteration; the curvature measured along
 // the last few steps turns those gradients into steps that also move the
 // layers of a branch against each other, which multiplicative steps (one
@@ -89,16 +89,16 @@ class Layout {
       for (size_t i = 0; i < (*t)[k].rgb.size(); ++i) out[i] = static_cast<float>(in[i]);
     }
   }
-  // g = 2 (den - num); h = scale * x / (2 den), 0 where den is below epsilon.
+  // g = 2 res; h = scale * x / (2 den), 0 where den is below epsilon.
   void GradientAndScale(const JointPass& pass, const Vector& x, double scale, double epsilon, Vector* g,
                         Vector* h) const {
     for (size_t k = 0; k < offset_.size(); ++k) {
-      const std::vector<double>& num = pass.numerator()[k];
+      const std::vector<double>& res = pass.residual()[k];
       const std::vector<double>& den = pass.denominator()[k];
 #pragma omp parallel for schedule(static)
-      for (size_t i = 0; i < num.size(); ++i) {
+      for (size_t i = 0; i < res.size(); ++i) {
         const size_t j = offset_[k] + i;
-        (*g)[j] = 2.0 * (den[i] - num[i]);
+        (*g)[j] = 2.0 * res[i];
         (*h)[j] = den[i] > epsilon ? scale * x[j] / (2.0 * den[i]) : 0.0;
       }
     }

@@ -2,8 +2,8 @@
 // retinal objective (solvers/retinal_objective.h). With L = L(t) the
 // display's light field and m = M (L - l) / s, s = RetinalObjective::Bound(),
 // a JointPass against the effective target L - m sums
-//   num_a = P_a^T((L - m) o Q_a),  den_a = P_a^T(L o Q_a),
-// so 2 (den_a - num_a) = 2 P_a^T(m o Q_a) is the gradient of f / s, f the
+//   res_a = P_a^T((L - (L - m)) o Q_a) = P_a^T(m o Q_a),  den_a = P_a^T(L o Q_a),
+// so 2 res_a is the gradient of f / s, f the
 // retinal objective; the solvers read those sums as they read the
 // light-field pass's. Since M / s <= I, a step safe for the light-field
 // objective (the joint solver's multiplicative step, quasi-newton's initial
@@ -32,7 +32,7 @@ class RetinalPass {
  public:
   RetinalPass(const DisplayModel& model, const LightField& target, const RetinalObjective& objective);
 
-  // f(t) / s; numerator() and denominator() then hold the sums above.
+  // f(t) / s; residual() and denominator() then hold the sums above.
   double Run(const Patterns& t);
   // f(t) / s alone (no gradient).
   double Evaluate(const Patterns& t);

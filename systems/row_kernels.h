@@ -35,12 +35,14 @@ void UpdateSumsRows(const float* const* r, const Rgb4* const* q, int rows, Rgb4*
 // sums it), `own` being the updated layer's values at the rays.
 double UpdateSumsAndErrorRow(const float* r, const Rgb4* q, const Rgb4* own, Rgb4 w, Rgb4* num, Rgb4* den, int cols);
 
-// The joint solver's sums for every layer a of one branch of `layers` (1 to
+// The joint pass's sums for every layer a of one branch of `layers` (1 to
 // 4) over one ray row, q_a = w prod_{k != a} rows[k][j]:
-// num[a][j] += l_j q_a, den[a][j] += light[j] q_a; l packed, its last ray
-// read exactly if `exact_last`.
+// res[a][j] += (light[j] - l_j) q_a, den[a][j] += light[j] q_a; l packed,
+// its last ray read exactly if `exact_last`. The residual is summed itself,
+// not as den minus a sum of l_j q_a: near a solution the two agree to many
+// digits, and their float difference would be mostly rounding.
 void JointSumsRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, const float* l, bool exact_last,
-                  const Rgb4* light, Rgb4* const* num, Rgb4* const* den);
+                  const Rgb4* light, Rgb4* const* res, Rgb4* const* den);
 
 // Sum over the row of (target - light)^2, channels 0-2, in double; `target`
 // packed. All rays but the last read one float past their own unless

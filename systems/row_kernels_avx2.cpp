@@ -129,11 +129,12 @@ struct JointSumsRowOf {
         prefix[k] = p;
         p = _mm256_mul_ps(p, rk[k]);
       }
-      const __m256 lj = LoadTwoRaysOver(l + j * 3), lightj = _mm256_loadu_ps(li + j * 4);
+      const __m256 lightj = _mm256_loadu_ps(li + j * 4);
+      const __m256 residual = _mm256_sub_ps(lightj, LoadTwoRaysOver(l + j * 3));
       __m256 suffix = ones;
       for (int a = L - 1; a >= 0; --a) {
         const __m256 q = _mm256_mul_ps(prefix[a], suffix);
-        _mm256_storeu_ps(n[a] + j * 4, _mm256_add_ps(_mm256_loadu_ps(n[a] + j * 4), _mm256_mul_ps(lj, q)));
+        _mm256_storeu_ps(n[a] + j * 4, _mm256_add_ps(_mm256_loadu_ps(n[a] + j * 4), _mm256_mul_ps(residual, q)));
         _mm256_storeu_ps(d[a] + j * 4, _mm256_add_ps(_mm256_loadu_ps(d[a] + j * 4), _mm256_mul_ps(lightj, q)));
         suffix = _mm256_mul_ps(suffix, rk[a]);
       }

@@ -117,7 +117,7 @@ struct WorkspaceSizer {
       buffer("view buffers", &t.rest, update && any_general ? n : 0);
       buffer("view buffers", &t.sampled, update && any_general ? n : 0);
       buffer("view buffers", &t.samples, joint_views ? n * layers : 0);
-      buffer("view buffers", &t.numerator_terms, joint_views ? n : 0);
+      buffer("view buffers", &t.residual_terms, joint_views ? n : 0);
       buffer("view buffers", &t.denominator_terms, joint_views ? n : 0);
       if (update && any_fast) {
         if (record) Record("column sums", ColumnSums::BytesFor(max_rows, cols, max_pixels), true);
@@ -145,9 +145,9 @@ struct WorkspaceSizer {
     Buffer("update sums", &w->update_den, update ? max_pixels * 3 : 0, false, true);
     Buffer("kept update sums", &w->kept_num, update ? max_pixels * 3 : 0, false, true);
     Buffer("kept update sums", &w->kept_den, update ? max_pixels * 3 : 0, false, true);
-    w->joint_num.resize(joint ? layers : 0), w->joint_den.resize(joint ? layers : 0);
-    for (size_t k = 0; k < w->joint_num.size(); ++k) {
-      Buffer("joint sums", &w->joint_num[k], model.projection(k).pixel_count() * 3, false, true);
+    w->joint_residual.resize(joint ? layers : 0), w->joint_den.resize(joint ? layers : 0);
+    for (size_t k = 0; k < w->joint_residual.size(); ++k) {
+      Buffer("joint sums", &w->joint_residual[k], model.projection(k).pixel_count() * 3, false, true);
       Buffer("joint sums", &w->joint_den[k], model.projection(k).pixel_count() * 3, false, true);
     }
   }
@@ -188,7 +188,7 @@ size_t Held(const std::vector<T>& v) {
 size_t SolveWorkspace::Bytes() const {
   size_t bytes =
       padded.Bytes() + Held(view_errors) + Held(update_num) + Held(update_den) + Held(kept_num) + Held(kept_den);
-  for (size_t k = 0; k < joint_num.size(); ++k) bytes += Held(joint_num[k]) + Held(joint_den[k]);
+  for (size_t k = 0; k < joint_residual.size(); ++k) bytes += Held(joint_residual[k]) + Held(joint_den[k]);
   for (const ThreadWorkspace& t : threads_) {
     for (size_t k = 0; k < t.cache.size(); ++k)
       bytes += Held(t.cache[k]) + Held(t.resampled[k]) + Held(t.num[k]) + Held(t.den[k]);
@@ -196,7 +196,7 @@ size_t SolveWorkspace::Bytes() const {
     bytes += t.update_sums.Bytes();
     for (const std::vector<Rgb4>* v : {&t.row, &t.rest_row, &t.product, &t.zeros, &t.light}) bytes += Held(*v);
     for (const std::vector<float>* v : {&t.synthesized, &t.branch, &t.gathered, &t.target, &t.rest, &t.sampled,
-                                        &t.samples, &t.numerator_terms, &t.denominator_terms})
+                                        &t.samples, &t.residual_terms, &t.denominator_terms})
       bytes += Held(*v);
   }
   return bytes;

@@ -74,9 +74,10 @@ struct ThreadWorkspace {
   std::vector<Rgb4> product, zeros, light;  // ray rows
   std::vector<float> target;                // a view of what a branch should emit, when it is computed
   std::vector<PendingSumRow> pending_rows;  // a view run's rows, summed grouped by layer row
-  // The general path: per-layer float sums, [layer][pixel * 3 + c], and view buffers.
+  // The general path: per-layer float sums, [layer][pixel * 3 + c] (num: the
+  // multiplicative update's numerator, or the joint pass's residual), and view buffers.
   std::vector<std::vector<float>> num, den;
-  std::vector<float> rest, sampled, samples, numerator_terms, denominator_terms;
+  std::vector<float> rest, sampled, samples, residual_terms, denominator_terms;
 };
 
 class SolveWorkspace {
@@ -100,7 +101,7 @@ class SolveWorkspace {
   // Shared: one update's sums kept for the next iteration (multiplicative, hybrid).
   std::vector<double> kept_num, kept_den;
   // Shared: the joint pass's merged sums, [layer][pixel * 3 + c].
-  std::vector<std::vector<double>> joint_num, joint_den;
+  std::vector<std::vector<double>> joint_residual, joint_den;  // JointPass::residual(), denominator()
 
   // What the buffers hold now (capacities): the layout's bytes unless a pass grew one.
   size_t Bytes() const;

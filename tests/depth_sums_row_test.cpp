@@ -40,7 +40,7 @@ Case RandomCase(int layers, int branches, int cols, bool exact_last, std::mt1993
 }
 
 struct Result {
-  std::vector<float> sums;  // each branch's num and den, channels 0-2
+  std::vector<float> sums;  // each branch's res and den, channels 0-2
   double error = -1;
 
   std::vector<unsigned char> Bytes() const {
@@ -119,7 +119,7 @@ TEST_F(DepthSums, AreTheJointSumsOfEachBranchsMemberAndTheSquaredError) {
                 for (int k = 0; k < layers; ++k)
                   if (k != c.a[b]) q *= c.in[b * layers + k].padded[j][ch];
                 const double start = c.start.padded[j][ch];
-                ASSERT_NEAR(got.sums[n * 2 * b + j * 3 + ch], start + r * q, 1e-5);
+                ASSERT_NEAR(got.sums[n * 2 * b + j * 3 + ch], start + (light - r) * q, 1e-5);
                 ASSERT_NEAR(got.sums[n * (2 * b + 1) + j * 3 + ch], start + light * q, 1e-5);
               }
             }

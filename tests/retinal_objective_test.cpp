@@ -221,8 +221,7 @@ TEST(RetinalOperator, AdjointThroughEveryLayerKindAndFlip) {
     pass.Run(effective, t);
     double right = 0;
     for (size_t k = 0; k < t.size(); ++k)
-      for (size_t i = 0; i < t[k].rgb.size(); ++i)
-        right += double(delta[k].rgb[i]) * (pass.denominator()[k][i] - pass.numerator()[k][i]);
+      for (size_t i = 0; i < t[k].rgb.size(); ++i) right += double(delta[k].rgb[i]) * pass.residual()[k][i];
     const double left = Dot(ajd, y);
     EXPECT_GT(left, 0) << d.name;
     // J d and J^T v in float: a few float roundings per value.
@@ -230,7 +229,7 @@ TEST(RetinalOperator, AdjointThroughEveryLayerKindAndFlip) {
   }
 }
 
-// The retinal pass's gradient (2 (den - num) times its scale) against
+// The retinal pass's gradient (2 res times its scale) against
 // central differences of the objective at `trials` values of each layer.
 void ExpectGradientMatchesCentralDifferences(const DisplayModel& model, const LightField& target,
                                              const RetinalObjective& objective, const Patterns& t, int trials,
@@ -239,12 +238,12 @@ void ExpectGradientMatchesCentralDifferences(const DisplayModel& model, const Li
   const double scaled = pass.Run(t);
   const double f = objective.Evaluate(model.Synthesize(t));
   EXPECT_NEAR(scaled * pass.scale(), f, 1e-9 * f) << name;
-  const std::vector<std::vector<double>> num = pass.sums().numerator(), den = pass.sums().denominator();
+  const std::vector<std::vector<double>> res = pass.sums().residual();
   std::mt19937 rng(5);
   for (size_t k = 0; k < t.size(); ++k)
     for (int trial = 0; trial < trials; ++trial) {
       const size_t i = std::uniform_int_distribution<size_t>(0, t[k].rgb.size() - 1)(rng);
-      const double gradient = 2.0 * (den[k][i] - num[k][i]) * pass.scale();
+      const double gradient = 2.0 * res[k][i] * pass.scale();
       const float h = 1e-2f;
       Patterns plus = t, minus = t;
       plus[k].rgb[i] += h;

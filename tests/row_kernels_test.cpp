@@ -216,7 +216,7 @@ TEST_F(RowKernels, JointSumsUseEachLayersProductOfTheOthers) {
           Rgb4 *n[4], *d[4];
           for (int k = 0; k < layers; ++k) rows[k] = in[k].padded.data(), n[k] = num[k].data(), d[k] = den[k].data();
           JointSumsRow(rows, layers, w, cols, l.packed.data(), exact_last, light.padded.data(), n, d);
-          std::vector<float> rgb;  // num then den, layer by layer, channels 0-2
+          std::vector<float> rgb;  // res then den, layer by layer, channels 0-2
           for (const auto* sums : {&num, &den})
             for (const std::vector<Rgb4>& layer : *sums)
               for (const Rgb4& v : layer) rgb.insert(rgb.end(), {v[0], v[1], v[2]});
@@ -231,7 +231,7 @@ TEST_F(RowKernels, JointSumsUseEachLayersProductOfTheOthers) {
               for (int k = 0; k < layers; ++k)
                 if (k != a) q *= in[k].padded[j][c];
               const size_t at = a * per_layer + j * 3 + c;
-              ASSERT_NEAR(got[at], start.padded[j][c] + l.packed[j * 3 + c] * q, 1e-6);
+              ASSERT_NEAR(got[at], start.padded[j][c] + (light.padded[j][c] - l.packed[j * 3 + c]) * q, 1e-6);
               ASSERT_NEAR(got[layers * per_layer + at], start.padded[j][c] + light.padded[j][c] * q, 1e-6);
             }
         ExpectSameInBothBuilds([&] { return Bytes(run()); }, "joint sums", cols);

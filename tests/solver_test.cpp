@@ -223,7 +223,29 @@ TEST(Solvers, QuasiNewtonStopsAtAStationaryPoint) {
   for (size_t k = 1; k < r.trace.size(); ++k) EXPECT_LE(r.trace[k].objective, r.trace[k - 1].objective) << k;
 }
 
-// The joint pass's gradient, 2 (den - num), against central differences of
+// At the patterns that made the target the gradient is zero: the pass sums
+// the residual l~ - l itself, and its light is the synthesis's bit for bit,
+// so every sum is exactly 0 (taken as the difference of two sums,
+// P^T(l~ o Q) - P^T(l o Q), it was their float rounding).
+TEST(Solvers, JointPassGradientIsZeroAtTheSolution) {
+  const int saved = omp_get_max_threads();
+  for (const char* example : {"paper_prototype.json", "tensor_display_rank3.json"}) {
+    Fixture f = MakeFixture(example, 24, 12, 5);
+    for (int threads : {1, 2, 3}) {
+      omp_set_num_threads(threads);
+      JointPass pass(*f.model);
+      EXPECT_EQ(pass.Run(f.target, f.truth), 0.0) << example;
+      for (size_t k = 0; k < f.truth.size(); ++k) {
+        EXPECT_TRUE(std::all_of(pass.residual()[k].begin(), pass.residual()[k].end(), [](double v) { return v == 0; }))
+            << example << ", layer " << k << ", " << threads << " threads";
+        EXPECT_GT(*std::max_element(pass.denominator()[k].begin(), pass.denominator()[k].end()), 1.0) << example;
+      }
+    }
+  }
+  omp_set_num_threads(saved);
+}
+
+// The joint pass's gradient, 2 res, against central differences of
 // the objective as objective.h computes it, on the fast path and the general one.
 TEST(Solvers, JointPassGradientMatchesFiniteDifferences) {
   Fixture f = MakeFixture("paper_prototype.json", 24, 12, 3);
@@ -240,7 +262,7 @@ TEST(Solvers, JointPassGradientMatchesFiniteDifferences) {
     for (size_t k = 0; k < t.size(); ++k)
       for (int trial = 0; trial < 6; ++trial) {
         const size_t i = std::uniform_int_distribution<size_t>(0, t[k].rgb.size() - 1)(rng);
-        const double gradient = 2.0 * (pass.denominator()[k][i] - pass.numerator()[k][i]);
+        const double gradient = 2.0 * pass.residual()[k][i];
         const float h = 1e-2f;
         Patterns plus = t, minus = t;
         plus[k].rgb[i] += h;
@@ -375,12 +397,12 @@ TEST(Solvers, StripSumsAreTheGeneralPathsWhateverTheWorkspaceHeld) {
 
   JointPass once(fast, &used), again(fast, &used), apart(general, &for_general);
   const double objective = once.Run(target, t);
-  const std::vector<std::vector<double>> num = once.numerator(), den = once.denominator();
+  const std::vector<std::vector<double>> res = once.residual(), den = once.denominator();
   EXPECT_EQ(again.Run(target, t), objective);
   EXPECT_NEAR(apart.Run(target, t), objective, 1e-6 * objective);
-  for (size_t k = 0; k < num.size(); ++k) {
-    EXPECT_TRUE(ArraysSameBits(num[k], again.numerator()[k])) << "layer " << k;
-    EXPECT_TRUE(ArraysNear(num[k], apart.numerator()[k], 1e-5, 1e-6)) << "layer " << k;
+  for (size_t k = 0; k < res.size(); ++k) {
+    EXPECT_TRUE(ArraysSameBits(res[k], again.residual()[k])) << "layer " << k;
+    EXPECT_TRUE(ArraysNear(res[k], apart.residual()[k], 1e-5, 1e-6)) << "layer " << k;
     EXPECT_TRUE(ArraysNear(den[k], apart.denominator()[k], 1e-5, 1e-6)) << "layer " << k;
   }
 }
