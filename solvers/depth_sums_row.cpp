@@ -47,6 +47,7 @@ struct Baseline {
         light += p;
       }
       if (error) error->Add(j, lj, light);
+      const Rgb4 residual = light - lj;
       for (int b = 0; b < branches; ++b) {
         const Rgb4* const* r = rows + b * L;
         Rgb4 prefix = w[b];
@@ -54,7 +55,7 @@ struct Baseline {
         Rgb4 suffix = Rgb4{1, 1, 1, 1};
         for (int k = L - 1; k > a[b]; --k) suffix *= r[k][j];
         const Rgb4 q = prefix * suffix;
-        res[b][j] += (light - lj) * q;
+        res[b][j] += residual * q;
         den[b][j] += light * q;
       }
     }

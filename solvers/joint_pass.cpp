@@ -86,10 +86,10 @@ void JointPass::ViewOneTap(const float* target, const Patterns& t, size_t view, 
   std::vector<const AxisTap*> cols(layers);
   std::vector<int32_t> row_offset(layers);          // pattern offset of the layer row a ray row reads, -1: none
   std::vector<float> s(layers * 3), q(layers * 3);  // per layer and channel: its sample, the rest of its branch
-  std::vector<float*> num(layers), den(layers);
+  std::vector<float*> res(layers), den(layers);
   for (int k = 0; k < layers; ++k) {
     cols[k] = model_.projection(k).col_taps(view);
-    num[k] = sums->num[k].data(), den[k] = sums->den[k].data();
+    res[k] = sums->num[k].data(), den[k] = sums->den[k].data();
   }
   const int* members = members_.data();
   const int* start = branch_start_.data();
@@ -127,18 +127,20 @@ void JointPass::ViewOneTap(const float* target, const Patterns& t, size_t view, 
             suffix *= s[members[m] * 3 + ch];
           }
         }
+      float residual[3];
       for (int ch = 0; ch < 3; ++ch) {
         const double e = double(l[ch]) - synthesized[ch];
         row_error += e * e;
+        residual[ch] = synthesized[ch] - l[ch];
       }
       for (int a = 0; a < layers; ++a) {
         const int32_t c = cols[a][j].i0;
         if (row_offset[a] < 0 || c < 0) continue;
         const size_t pixel = static_cast<size_t>(row_offset[a]) + c * 3;
-        float* nu = num[a] + pixel;
+        float* re = res[a] + pixel;
         float* de = den[a] + pixel;
         for (int ch = 0; ch < 3; ++ch) {
-          nu[ch] += (synthesized[ch] - l[ch]) * q[a * 3 + ch];
+          re[ch] += residual[ch] * q[a * 3 + ch];
           de[ch] += synthesized[ch] * q[a * 3 + ch];
         }
       }

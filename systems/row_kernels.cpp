@@ -151,10 +151,11 @@ inline void JointSumsRay(const Rgb4* const* r, Rgb4 w, int j, Rgb4 lj, const Rgb
     prefix[k] = p;
     p *= r[k][j];
   }
+  const Rgb4 residual = light[j] - lj;
   Rgb4 suffix = Rgb4{1, 1, 1, 1};  // the layers after a
   for (int a = L - 1; a >= 0; --a) {
     const Rgb4 q = prefix[a] * suffix;
-    n[a][j] += (light[j] - lj) * q;
+    n[a][j] += residual * q;
     d[a][j] += light[j] * q;
     suffix *= r[a][j];
   }
