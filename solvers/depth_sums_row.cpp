@@ -50,6 +50,19 @@ struct Baseline {
       const Rgb4 residual = light - lj;
       for (int b = 0; b < branches; ++b) {
         const Rgb4* const* r = rows + b * L;
+        if (!a) {  // every member, JointSumsRay's products
+          Rgb4 prefix[L];
+          Rgb4 p = w[b];
+          for (int k = 0; k < L; ++k) prefix[k] = p, p *= r[k][j];
+          Rgb4 suffix = Rgb4{1, 1, 1, 1};
+          for (int m = L - 1; m >= 0; --m) {
+            const Rgb4 q = prefix[m] * suffix;
+            res[b * L + m][j] += residual * q;
+            den[b * L + m][j] += light * q;
+            suffix *= r[m][j];
+          }
+          continue;
+        }
         Rgb4 prefix = w[b];
         for (int k = 0; k < a[b]; ++k) prefix *= r[k][j];
         Rgb4 suffix = Rgb4{1, 1, 1, 1};
@@ -119,19 +132,39 @@ struct TwoRayErrors {
 // FMA: the file is built with -ffp-contract=off), so both builds give the same
 // bits; each returns the first ray left, an even one below ErrorSums' pairs_end.
 
+// Every member's sums of one branch whose layer values at the two rays are
+// v[k]: JointSumsRow's products (the same bits as MemberQ's for each member).
+template <int L>
+LAYERLAB_AVX2 inline void AllMemberSums(__m256 w2, const __m256* v, __m256 residual, __m256 light, int j,
+                                        float* const* n, float* const* d) {
+  __m256 prefix[L];
+  __m256 p = w2;
+  for (int k = 0; k < L; ++k) prefix[k] = p, p = _mm256_mul_ps(p, v[k]);
+  AddSums(residual, light, prefix[L - 1], n[L - 1] + j * 4, d[L - 1] + j * 4);
+  if constexpr (L > 1) {
+    __m256 suffix = v[L - 1];
+    for (int m = L - 2; m >= 0; --m) {
+      AddSums(residual, light, _mm256_mul_ps(prefix[m], suffix), n[m] + j * 4, d[m] + j * 4);
+      if (m > 0) suffix = _mm256_mul_ps(suffix, v[m]);
+    }
+  }
+}
+
 // K branches known at compile time: the pointers, weights and each ray's
-// layer values stay in registers (2-3x the speed of the loop below).
-template <int L, int K, bool kError>
+// layer values stay in registers (2-3x the speed of the loop below). kAll:
+// every member's sums (a null), else member a[b]'s of branch b.
+template <int L, int K, bool kError, bool kAll>
 LAYERLAB_AVX2 int FixedBranches(const Rgb4* const* rows, const int* a, const Rgb4* w, int cols, const float* l,
                                 ErrorSums* error, Rgb4* const* res, Rgb4* const* den) {
+  constexpr int kSums = kAll ? K * L : K;
   const float* r[K * L];
-  float *n[K], *d[K];
+  float *n[kSums], *d[kSums];
   __m256 w2[K];
   int member[K];
+  for (int s = 0; s < kSums; ++s) n[s] = reinterpret_cast<float*>(res[s]), d[s] = reinterpret_cast<float*>(den[s]);
   for (int b = 0; b < K; ++b) {
     for (int k = 0; k < L; ++k) r[b * L + k] = reinterpret_cast<const float*>(rows[b * L + k]);
-    n[b] = reinterpret_cast<float*>(res[b]), d[b] = reinterpret_cast<float*>(den[b]);
-    w2[b] = Twice(w + b), member[b] = a[b];
+    w2[b] = Twice(w + b), member[b] = kAll ? 0 : a[b];
   }
   TwoRayErrors errors{_mm256_setzero_pd(), _mm256_setzero_pd()};
   int j = 0;
@@ -147,8 +180,12 @@ LAYERLAB_AVX2 int FixedBranches(const Rgb4* const* rows, const int* a, const Rgb
     if constexpr (kError) errors.Add(lj, light);
     const __m256 residual = _mm256_sub_ps(light, lj);
     for (int b = 0; b < K; ++b) {
-      const __m256 q = MemberQ<L>(w2[b], member[b], [&](int k) LAYERLAB_AVX2 { return v[b][k]; });
-      AddSums(residual, light, q, n[b] + j * 4, d[b] + j * 4);
+      if constexpr (kAll) {
+        AllMemberSums<L>(w2[b], v[b], residual, light, j, n + b * L, d + b * L);
+      } else {
+        const __m256 q = MemberQ<L>(w2[b], member[b], [&](int k) LAYERLAB_AVX2 { return v[b][k]; });
+        AddSums(residual, light, q, n[b] + j * 4, d[b] + j * 4);
+      }
     }
   }
   if constexpr (kError) errors.Into(error);
@@ -172,6 +209,16 @@ LAYERLAB_AVX2 int AnyBranches(const Rgb4* const* rows, int branches, const int* 
     if constexpr (kError) errors.Add(lj, light);
     const __m256 residual = _mm256_sub_ps(light, lj);
     for (int b = 0; b < branches; ++b) {
+      if (!a) {
+        __m256 v[L];
+        float *n[L], *d[L];
+        for (int k = 0; k < L; ++k) {
+          v[k] = TwoRays(rows[b * L + k], j);
+          n[k] = reinterpret_cast<float*>(res[b * L + k]), d[k] = reinterpret_cast<float*>(den[b * L + k]);
+        }
+        AllMemberSums<L>(Twice(w + b), v, residual, light, j, n, d);
+        continue;
+      }
       const __m256 q = MemberQ<L>(Twice(w + b), a[b], [&](int k) LAYERLAB_AVX2 { return TwoRays(rows[b * L + k], j); });
       AddSums(residual, light, q, reinterpret_cast<float*>(res[b] + j), reinterpret_cast<float*>(den[b] + j));
     }
@@ -180,18 +227,18 @@ LAYERLAB_AVX2 int AnyBranches(const Rgb4* const* rows, int branches, const int* 
   return j;
 }
 
-template <int L, bool kError>
+template <int L, bool kError, bool kAll>
 LAYERLAB_AVX2 int TwoRaysAtATime(const Rgb4* const* rows, int branches, const int* a, const Rgb4* w, int cols,
                                  const float* l, ErrorSums* error, Rgb4* const* res, Rgb4* const* den) {
   switch (branches) {
     case 1:
-      return FixedBranches<L, 1, kError>(rows, a, w, cols, l, error, res, den);
+      return FixedBranches<L, 1, kError, kAll>(rows, a, w, cols, l, error, res, den);
     case 2:
-      return FixedBranches<L, 2, kError>(rows, a, w, cols, l, error, res, den);
+      return FixedBranches<L, 2, kError, kAll>(rows, a, w, cols, l, error, res, den);
     case 3:
-      return FixedBranches<L, 3, kError>(rows, a, w, cols, l, error, res, den);
+      return FixedBranches<L, 3, kError, kAll>(rows, a, w, cols, l, error, res, den);
     case 4:
-      return FixedBranches<L, 4, kError>(rows, a, w, cols, l, error, res, den);
+      return FixedBranches<L, 4, kError, kAll>(rows, a, w, cols, l, error, res, den);
     default:
       return AnyBranches<L, kError>(rows, branches, a, w, cols, l, error, res, den);
   }
@@ -201,8 +248,10 @@ template <int L>
 struct Avx2 {
   LAYERLAB_AVX2 static void Run(const Rgb4* const* rows, int branches, const int* a, const Rgb4* w, int cols,
                                 const float* l, bool exact_last, ErrorSums* error, Rgb4* const* res, Rgb4* const* den) {
-    const int j = error ? TwoRaysAtATime<L, true>(rows, branches, a, w, cols, l, error, res, den)
-                        : TwoRaysAtATime<L, false>(rows, branches, a, w, cols, l, error, res, den);
+    const int j = error ? (a ? TwoRaysAtATime<L, true, false>(rows, branches, a, w, cols, l, error, res, den)
+                             : TwoRaysAtATime<L, true, true>(rows, branches, a, w, cols, l, error, res, den))
+                        : (a ? TwoRaysAtATime<L, false, false>(rows, branches, a, w, cols, l, error, res, den)
+                             : TwoRaysAtATime<L, false, true>(rows, branches, a, w, cols, l, error, res, den));
     Baseline<L>::Run(rows, branches, a, w, j, cols, l, exact_last, error, res, den);
   }
 };

@@ -34,31 +34,37 @@ Rgb4 Weight(const DisplayModel& model, size_t b) {
   return Rgb4{wb[0], wb[1], wb[2], 0.0f};
 }
 
-// A one-depth pass's arguments to DepthSumsRow: each branch's summed member,
+bool EqualLayerCounts(const DisplayModel& model) {
+  for (size_t b = 1; b < model.branch_count(); ++b)
+    if (model.branch_layers(b).size() != model.branch_layers(0).size()) return false;
+  return true;
+}
+
+// The fused pass's arguments to DepthSumsRow (branches of equal layer
+// counts): with `summed`, each branch's summed member, else every member;
 // and for each ray row the branches its rays reach.
-class DepthRows {
+class FusedRows {
  public:
-  DepthRows(const DisplayModel& model, const std::vector<char>& summed) : model_(model), summed_(summed) {
+  FusedRows(const DisplayModel& model, const std::vector<char>* summed) : model_(model), summed_(summed) {
     layers_ = static_cast<int>(model.branch_layers(0).size());
-    for (size_t b = 0; b < model.branch_count(); ++b) {
+    if (!EqualLayerCounts(model)) throw Error("a one-depth pass needs branches of equal layer counts");
+    for (size_t b = 0; b < model.branch_count() && summed; ++b) {
       const std::vector<int>& members = model.branch_layers(b);
-      if (static_cast<int>(members.size()) != layers_)
-        throw Error("a one-depth pass needs branches of equal layer counts");
       int a = -1;
       for (size_t m = 0; m < members.size(); ++m)
-        if (summed[members[m]]) {
+        if ((*summed)[members[m]]) {
           if (a >= 0) throw Error("a one-depth pass sums one layer of each branch");
           a = static_cast<int>(m);
         }
       if (a < 0) throw Error("a one-depth pass sums one layer of each branch");
       member_of_.push_back(a);
     }
-    const size_t branches = model.branch_count();
+    const size_t branches = model.branch_count(), sums = summed ? branches : branches * layers_;
     rows_.resize(branches * layers_), member_.resize(branches), weight_.resize(branches);
-    res_.resize(branches), den_.resize(branches);
+    res_.resize(sums), den_.resize(sums);
   }
 
-  bool summed(size_t layer) const { return summed_[layer]; }
+  bool summed(size_t layer) const { return Summed(summed_, layer); }
 
   // The ray row whose layer rows are row[k] (null: missed) at layer rows layer_row[k]; then DepthSumsRow.
   void Sums(const std::vector<const Rgb4*>& row, const std::vector<int32_t>& layer_row, const float* l, bool exact_last,
@@ -69,22 +75,30 @@ class DepthRows {
       bool all = true;
       for (int m = 0; m < layers_ && all; ++m) all = (rows_[reached * layers_ + m] = row[members[m]]) != nullptr;
       if (!all) continue;
-      const int a = members[member_of_[b]];
-      member_[reached] = member_of_[b];
       weight_[reached] = Weight(model_, b);
-      res_[reached] = (*sums)[a].num(layer_row[a]);
-      den_[reached] = (*sums)[a].den(layer_row[a]);
+      if (summed_) {
+        const int a = members[member_of_[b]];
+        member_[reached] = member_of_[b];
+        res_[reached] = (*sums)[a].num(layer_row[a]);
+        den_[reached] = (*sums)[a].den(layer_row[a]);
+      } else {
+        for (int m = 0; m < layers_; ++m) {
+          const int a = members[m];
+          res_[reached * layers_ + m] = (*sums)[a].num(layer_row[a]);
+          den_[reached * layers_ + m] = (*sums)[a].den(layer_row[a]);
+        }
+      }
       ++reached;
     }
-    DepthSumsRow(rows_.data(), reached, layers_, member_.data(), weight_.data(), cols, l, exact_last, squared_error,
-                 res_.data(), den_.data());
+    DepthSumsRow(rows_.data(), reached, layers_, summed_ ? member_.data() : nullptr, weight_.data(), cols, l,
+                 exact_last, squared_error, res_.data(), den_.data());
   }
 
  private:
   const DisplayModel& model_;
-  const std::vector<char>& summed_;
+  const std::vector<char>* summed_;
   int layers_ = 0;
-  std::vector<int> member_of_;  // [branch]
+  std::vector<int> member_of_;  // [branch], with summed_
   // The reached branches' arguments.
   std::vector<const Rgb4*> rows_;
   std::vector<int> member_;
@@ -95,7 +109,7 @@ class DepthRows {
 // The sums over views [vr_begin, vr_end) of view column vc into w, and each
 // view's ||l - l~||^2 into view_errors if `objective`.
 void ViewRun(const DisplayModel& model, const LightField& l, const PaddedLayers& padded, int vc, int vr_begin,
-             int vr_end, DepthRows* depth, bool objective, double* view_errors, ThreadWorkspace* w) {
+             int vr_end, FusedRows* fused, bool objective, double* view_errors, ThreadWorkspace* w) {
   const LightFieldGeometry& g = model.geometry();
   const int cols = g.cols;
   const size_t layers = model.layer_count();
@@ -125,11 +139,11 @@ void ViewRun(const DisplayModel& model, const LightField& l, const PaddedLayers&
         }
         const float* lr = target + static_cast<size_t>(i) * cols * 3;
         const bool exact_last = i == g.rows - 1;  // the view's last ray is read exactly
-        if (depth) {
+        if (fused) {
           // The target's next ray row in this order on its way while this
           // one is summed: the band order jumps between views, and the
           // hardware prefetcher starts each new stream late (the rank-2 pass
-          // 0.9x the time; the joint pass below gains nothing from it).
+          // 0.9x the time).
           if (i + 1 < std::min(g.rows, band + kBandRows))
             PrefetchRow(lr + cols * 3, cols * 3);
           else if (vr + 1 < vr_end)
@@ -138,7 +152,7 @@ void ViewRun(const DisplayModel& model, const LightField& l, const PaddedLayers&
             PrefetchRow(l.view(g.view_index(vr_begin, vc)) + static_cast<size_t>(band + kBandRows) * cols * 3,
                         cols * 3);
           double row_error = 0;
-          depth->Sums(row, layer_row, lr, exact_last, cols, objective ? &row_error : nullptr, &w->layer_sums);
+          fused->Sums(row, layer_row, lr, exact_last, cols, objective ? &row_error : nullptr, &w->layer_sums);
           error += row_error;
           continue;
         }
@@ -175,7 +189,7 @@ void ViewRun(const DisplayModel& model, const LightField& l, const PaddedLayers&
     }
 
   for (size_t k = 0; k < layers; ++k)
-    if (!depth || depth->summed(k)) w->layer_sums[k].Scatter(model.projection(k), vc);
+    if (!fused || fused->summed(k)) w->layer_sums[k].Scatter(model.projection(k), vc);
 }
 
 }  // namespace
@@ -188,8 +202,9 @@ double JointColumnPass(const DisplayModel& model, const LightField& l, const Pat
   const LightFieldGeometry& g = model.geometry();
   std::vector<double> error(g.view_count());  // summed in view order: the same for any thread count
   std::vector<std::vector<const ColumnSums*>> thread_sums(model.layer_count());  // [layer][thread]
-  std::optional<DepthRows> each_depth;                                           // checked here, copied by each thread
-  if (summed) each_depth.emplace(model, *summed);
+  // Checked here, copied by each thread; branches of unequal layer counts take the general path.
+  std::optional<FusedRows> each_fused;
+  if (summed || EqualLayerCounts(model)) each_fused.emplace(model, summed);
 #pragma omp parallel
   {
     ThreadWorkspace& w = workspace->thread();
@@ -198,9 +213,9 @@ double JointColumnPass(const DisplayModel& model, const LightField& l, const Pat
 #pragma omp single
     for (auto& s : thread_sums) s.resize(threads);
     for (size_t k = 0; k < model.layer_count(); ++k) thread_sums[k][me] = &w.layer_sums[k];
-    std::optional<DepthRows> depth = each_depth;
+    std::optional<FusedRows> fused = each_fused;
     ForEachViewRunOfThread(g, me, threads, [&](int vc, int vr_begin, int vr_end) {
-      ViewRun(model, l, padded, vc, vr_begin, vr_end, depth ? &*depth : nullptr, objective, error.data(), &w);
+      ViewRun(model, l, padded, vc, vr_begin, vr_end, fused ? &*fused : nullptr, objective, error.data(), &w);
     });
 #pragma omp barrier
     // Merged in thread order, each thread a share of each layer's pixels.
