@@ -24,6 +24,7 @@ namespace layerlab {
 namespace {
 
 using testing::ArraysNear;
+using testing::ElementNamed;
 using testing::ArraysSameBits;
 using testing::CompileJson;
 using testing::ShrunkExample;
@@ -247,6 +248,40 @@ TEST(Solvers, JointPassGradientIsZeroAtTheSolution) {
 
 // The joint pass's gradient, 2 res, against central differences of
 // the objective as objective.h computes it, on the fast path and the general one.
+// Branches of unequal layer counts take the one-tap pass's general path (the
+// light of a ray row first, then each branch's sums); equal ones the fused
+// sweep. Both against the ray-by-ray pass of the same display made general.
+TEST(Solvers, JointPassOfUnequalBranchesIsTheRayByRayPass) {
+  nlohmann::json scene = ShrunkExample("paper_prototype.json", 24, 12, 3);
+  ElementNamed(scene, "front_b")["next"] = ElementNamed(scene, "rear_b")["next"];
+  nlohmann::json kept = nlohmann::json::array();
+  for (const nlohmann::json& e : scene["elements"])
+    if (e["name"] != "rear_b") kept.push_back(e);
+  scene["elements"] = kept;
+  for (bool unequal : {true, false}) {
+    const DisplaySystem system = CompileJson(unequal ? scene : ShrunkExample("paper_prototype.json", 24, 12, 3));
+    const DisplayModel fast(system, DisplayLightFieldGeometry(system));
+    ASSERT_EQ(fast.branch_count(), 2u);
+    ASSERT_EQ(fast.branch_layers(0).size() != fast.branch_layers(1).size(), unequal);
+    DisplaySystem rotated = system;
+    for (VirtualLayer& layer : rotated.layers) layer.rotation = 1e-12;
+    const DisplayModel general(rotated, fast.geometry());
+    ASSERT_TRUE(OneTapBranch(fast, 0) && OneTapBranch(fast, 1));
+    ASSERT_FALSE(OneTapBranch(general, 0));
+    LightField target = fast.Synthesize(KnownPatterns(fast, 3));
+    for (float& v : target.rgb) v = std::min(1.0f, 1.2f * v);
+    const Patterns t = KnownPatterns(fast, 4);
+    JointPass one_tap(fast), ray_by_ray(general);
+    const double objective = one_tap.Run(target, t);
+    EXPECT_NEAR(ray_by_ray.Run(target, t), objective, 1e-6 * objective) << (unequal ? "unequal" : "equal");
+    EXPECT_NEAR(objective, Objective(fast, target, t), 1e-6 * objective);
+    for (size_t k = 0; k < t.size(); ++k) {
+      EXPECT_TRUE(ArraysNear(one_tap.residual()[k], ray_by_ray.residual()[k], 1e-5, 1e-6)) << "layer " << k;
+      EXPECT_TRUE(ArraysNear(one_tap.denominator()[k], ray_by_ray.denominator()[k], 1e-5, 1e-6)) << "layer " << k;
+    }
+  }
+}
+
 TEST(Solvers, JointPassGradientMatchesFiniteDifferences) {
   Fixture f = MakeFixture("paper_prototype.json", 24, 12, 3);
   for (float& v : f.target.rgb) v = std::min(1.0f, 1.3f * v);
