@@ -51,6 +51,9 @@ class GratingTexture final : public Texture {
     return {value, value, value};
   }
   std::string Describe() const override { return spec_.description; }
+  // w = s cos + t sin is s + (+-0) = s for every finite t when sin is 0 (and
+  // where s is +-0, cos(k w + phase) is the same for either sign).
+  bool ConstantAlongT() const override { return sin_ == 0.0; }
 
  private:
   GratingSpec spec_;

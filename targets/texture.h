@@ -45,6 +45,9 @@ class Texture {
   virtual Rgb Evaluate(double s, double t) const = 0;
   // A few words for the light field's scene text: "grating 2 cpd".
   virtual std::string Describe() const = 0;
+  // True if Evaluate(s, t) gives the same bits for every finite t (a grating
+  // of vertical bars): a renderer may evaluate one row and copy it.
+  virtual bool ConstantAlongT() const { return false; }
 };
 
 // What a texture on one surface needs to know.

@@ -24,9 +24,9 @@ namespace layerlab {
 namespace {
 
 using testing::ArraysNear;
-using testing::ElementNamed;
 using testing::ArraysSameBits;
 using testing::CompileJson;
+using testing::ElementNamed;
 using testing::ShrunkExample;
 
 struct Fixture {

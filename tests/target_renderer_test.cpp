@@ -4,6 +4,7 @@
 //   v_x = -W_e/2 + (c + 0.5) W_e / N_c,  v_y = H_e/2 - (r + 0.5) H_e / N_r,
 //   x = x0 + (j + 0.5) W / cols,         y = y0 - (i + 0.5) H / rows.
 #include <cmath>
+#include <cstring>
 #include <numbers>
 #include <vector>
 
@@ -355,6 +356,54 @@ TEST(TargetRendererTest, EmbreeAndDirectPlaneLightFieldsAgree) {
   // A different seed moves the samples.
   LightField other = RenderPlaneLightField(target.geometry, plane.depth, *plane.texture, {4, 4}, plane.center);
   EXPECT_NE(other.rgb, direct.rgb);
+}
+
+// The same texture, without the claim that lets a renderer copy rows.
+class RowByRow final : public Texture {
+ public:
+  explicit RowByRow(const Texture& t) : t_(t) {}
+  Rgb Evaluate(double s, double t) const override { return t_.Evaluate(s, t); }
+  std::string Describe() const override { return t_.Describe(); }
+
+ private:
+  const Texture& t_;
+};
+
+TEST(TargetRendererTest, VerticalGratingRowsCopiedAreEveryPixelEvaluated) {
+  LightFieldGeometry g = testing::WindowGeometry(37, 9, 3);
+  g.views_y = 4;
+  g.eyebox_height = 0.004;
+  for (double phase : {0.0, 1.0, std::numbers::pi / 2})
+    for (double angle_depth : {0.0, 0.6}) {
+      GratingSpec spec;
+      spec.cycles_per_meter = 900, spec.phase = phase, spec.angle_depth = angle_depth;
+      const std::unique_ptr<Texture> grating = MakeGratingTexture(spec);
+      ASSERT_TRUE(grating->ConstantAlongT());
+      for (double depth : {g.origin_z, 0.5}) {
+        const std::array<double, 2> center{0.003, -0.02};
+        const LightField fast = RenderPlaneLightField(g, depth, *grating, {}, center);
+        const LightField general = RenderPlaneLightField(g, depth, RowByRow(*grating), {}, center);
+        EXPECT_EQ(0, std::memcmp(fast.rgb.data(), general.rgb.data(), fast.rgb.size() * sizeof(float)))
+            << "phase " << phase << ", angle depth " << angle_depth << ", depth " << depth;
+        EXPECT_EQ(fast.depth, general.depth);
+        // Each pixel from the plane equation, by hand.
+        const double s = depth / g.origin_z;
+        for (int vr = 0; vr < g.views_y; ++vr)
+          for (int vc = 0; vc < g.views_x; ++vc)
+            for (int i = 0; i < g.rows; i += 4)
+              for (int j = 0; j < g.cols; j += 5) {
+                const double vx = g.view_x(vc);
+                const double w = vx + (g.pixel_x(j) - vx) * s - center[0];
+                double phase_at = w;
+                if (angle_depth > 0) phase_at = angle_depth * std::atan(w / angle_depth);
+                const double value = 0.5 * (1 + std::cos(2 * std::numbers::pi * 900 * phase_at + phase));
+                ASSERT_NEAR(fast.view(g.view_index(vr, vc))[(i * g.cols + j) * 3 + 1], value, 1e-6);
+              }
+      }
+    }
+  GratingSpec tilted;
+  tilted.cycles_per_meter = 900, tilted.orientation = std::numbers::pi / 2;
+  EXPECT_FALSE(MakeGratingTexture(tilted)->ConstantAlongT());
 }
 
 TEST(TargetRendererTest, RenderingIsDeterministic) {
