@@ -1,5 +1,6 @@
 #include "solvers/depth_sums_row.h"
 
+#include "systems/joint_sums_ray.h"
 #include "systems/row_kernels.h"
 #include "systems/row_kernels_isa.h"
 #include "systems/unrolled_layers.h"
@@ -50,17 +51,10 @@ struct Baseline {
       const Rgb4 residual = light - lj;
       for (int b = 0; b < branches; ++b) {
         const Rgb4* const* r = rows + b * L;
-        if (!a) {  // every member, JointSumsRay's products
-          Rgb4 prefix[L];
-          Rgb4 p = w[b];
-          for (int k = 0; k < L; ++k) prefix[k] = p, p *= r[k][j];
-          Rgb4 suffix = Rgb4{1, 1, 1, 1};
-          for (int m = L - 1; m >= 0; --m) {
-            const Rgb4 q = prefix[m] * suffix;
-            res[b * L + m][j] += residual * q;
-            den[b * L + m][j] += light * q;
-            suffix *= r[m][j];
-          }
+        if (!a) {  // every member
+          Rgb4 v[L];
+          for (int k = 0; k < L; ++k) v[k] = r[k][j];
+          AddJointSumsOfRay<L>(v, w[b], residual, light, j, res + b * L, den + b * L);
           continue;
         }
         Rgb4 prefix = w[b];
@@ -132,24 +126,6 @@ struct TwoRayErrors {
 // FMA: the file is built with -ffp-contract=off), so both builds give the same
 // bits; each returns the first ray left, an even one below ErrorSums' pairs_end.
 
-// Every member's sums of one branch whose layer values at the two rays are
-// v[k]: JointSumsRow's products (the same bits as MemberQ's for each member).
-template <int L>
-LAYERLAB_AVX2 inline void AllMemberSums(__m256 w2, const __m256* v, __m256 residual, __m256 light, int j,
-                                        float* const* n, float* const* d) {
-  __m256 prefix[L];
-  __m256 p = w2;
-  for (int k = 0; k < L; ++k) prefix[k] = p, p = _mm256_mul_ps(p, v[k]);
-  AddSums(residual, light, prefix[L - 1], n[L - 1] + j * 4, d[L - 1] + j * 4);
-  if constexpr (L > 1) {
-    __m256 suffix = v[L - 1];
-    for (int m = L - 2; m >= 0; --m) {
-      AddSums(residual, light, _mm256_mul_ps(prefix[m], suffix), n[m] + j * 4, d[m] + j * 4);
-      if (m > 0) suffix = _mm256_mul_ps(suffix, v[m]);
-    }
-  }
-}
-
 // K branches known at compile time: the pointers, weights and each ray's
 // layer values stay in registers (2-3x the speed of the loop below). kAll:
 // every member's sums (a null), else member a[b]'s of branch b.
@@ -181,7 +157,7 @@ LAYERLAB_AVX2 int FixedBranches(const Rgb4* const* rows, const int* a, const Rgb
     const __m256 residual = _mm256_sub_ps(light, lj);
     for (int b = 0; b < K; ++b) {
       if constexpr (kAll) {
-        AllMemberSums<L>(w2[b], v[b], residual, light, j, n + b * L, d + b * L);
+        AddJointSumsOfTwoRays<L>(w2[b], v[b], residual, light, j, n + b * L, d + b * L);
       } else {
         const __m256 q = MemberQ<L>(w2[b], member[b], [&](int k) LAYERLAB_AVX2 { return v[b][k]; });
         AddSums(residual, light, q, n[b] + j * 4, d[b] + j * 4);
@@ -216,7 +192,7 @@ LAYERLAB_AVX2 int AnyBranches(const Rgb4* const* rows, int branches, const int* 
           v[k] = TwoRays(rows[b * L + k], j);
           n[k] = reinterpret_cast<float*>(res[b * L + k]), d[k] = reinterpret_cast<float*>(den[b * L + k]);
         }
-        AllMemberSums<L>(Twice(w + b), v, residual, light, j, n, d);
+        AddJointSumsOfTwoRays<L>(Twice(w + b), v, residual, light, j, n, d);
         continue;
       }
       const __m256 q = MemberQ<L>(Twice(w + b), a[b], [&](int k) LAYERLAB_AVX2 { return TwoRays(rows[b * L + k], j); });

@@ -10,6 +10,7 @@
 #endif
 
 #include "framework/error.h"
+#include "systems/joint_sums_ray.h"
 #include "systems/row_kernels_isa.h"
 #include "systems/unrolled_layers.h"
 
@@ -141,26 +142,6 @@ void PackRow(const Rgb4* row, int cols, float* out) {
 
 namespace {
 
-// One ray of JointSumsRow: prefix products from the front, suffix from the back.
-template <int L>
-inline void JointSumsRay(const Rgb4* const* r, Rgb4 w, int j, Rgb4 lj, const Rgb4* light, Rgb4* const* n,
-                         Rgb4* const* d) {
-  Rgb4 prefix[L];  // w times the layers before a
-  Rgb4 p = w;
-  for (int k = 0; k < L; ++k) {
-    prefix[k] = p;
-    p *= r[k][j];
-  }
-  const Rgb4 residual = light[j] - lj;
-  Rgb4 suffix = Rgb4{1, 1, 1, 1};  // the layers after a
-  for (int a = L - 1; a >= 0; --a) {
-    const Rgb4 q = prefix[a] * suffix;
-    n[a][j] += residual * q;
-    d[a][j] += light[j] * q;
-    suffix *= r[a][j];
-  }
-}
-
 template <int L>
 struct JointSumsRowOf {
   static void Run(const Rgb4* const* rows, Rgb4 w, int cols, const float* l, bool exact_last, const Rgb4* light,
@@ -170,8 +151,12 @@ struct JointSumsRowOf {
     Rgb4* d[L];
     for (int k = 0; k < L; ++k) r[k] = rows[k], n[k] = num[k], d[k] = den[k];
     const int safe = exact_last ? cols - 1 : cols;
-    for (int j = 0; j < cols; ++j)
-      JointSumsRay<L>(r, w, j, j < safe ? LoadRgbOver(l + j * 3) : LoadRgb(l + j * 3), light, n, d);
+    for (int j = 0; j < cols; ++j) {
+      Rgb4 v[L];
+      for (int k = 0; k < L; ++k) v[k] = r[k][j];
+      const Rgb4 lj = j < safe ? LoadRgbOver(l + j * 3) : LoadRgb(l + j * 3);
+      AddJointSumsOfRay<L>(v, w, light[j] - lj, light[j], j, n, d);
+    }
   }
 };
 

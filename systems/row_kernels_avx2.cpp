@@ -13,6 +13,7 @@
 
 #include <type_traits>
 
+#include "systems/joint_sums_ray.h"
 #include "systems/unrolled_layers.h"
 
 #define LAYERLAB_AVX2 __attribute__((target("avx2")))
@@ -119,25 +120,13 @@ struct JointSumsRowOf {
       n[k] = reinterpret_cast<float*>(num[k]), d[k] = reinterpret_cast<float*>(den[k]);
     }
     const float* li = reinterpret_cast<const float*>(light);
-    const __m256 w2 = Twice(w), ones = _mm256_set1_ps(1.0f);
+    const __m256 w2 = Twice(w);
     int j = 0;
     for (; j + 3 <= cols; j += 2) {  // rays j, j + 1 read up to ray j + 2's green
-      __m256 rk[L], prefix[L];
-      __m256 p = w2;
-      for (int k = 0; k < L; ++k) {
-        rk[k] = _mm256_loadu_ps(r[k] + j * 4);
-        prefix[k] = p;
-        p = _mm256_mul_ps(p, rk[k]);
-      }
+      __m256 v[L];
+      for (int k = 0; k < L; ++k) v[k] = _mm256_loadu_ps(r[k] + j * 4);
       const __m256 lightj = _mm256_loadu_ps(li + j * 4);
-      const __m256 residual = _mm256_sub_ps(lightj, LoadTwoRaysOver(l + j * 3));
-      __m256 suffix = ones;
-      for (int a = L - 1; a >= 0; --a) {
-        const __m256 q = _mm256_mul_ps(prefix[a], suffix);
-        _mm256_storeu_ps(n[a] + j * 4, _mm256_add_ps(_mm256_loadu_ps(n[a] + j * 4), _mm256_mul_ps(residual, q)));
-        _mm256_storeu_ps(d[a] + j * 4, _mm256_add_ps(_mm256_loadu_ps(d[a] + j * 4), _mm256_mul_ps(lightj, q)));
-        suffix = _mm256_mul_ps(suffix, rk[a]);
-      }
+      AddJointSumsOfTwoRays<L>(w2, v, _mm256_sub_ps(lightj, LoadTwoRaysOver(l + j * 3)), lightj, j, n, d);
     }
     const Rgb4* rest[L];
     Rgb4 *rest_num[L], *rest_den[L];
