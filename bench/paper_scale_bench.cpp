@@ -34,6 +34,7 @@
 #include "solvers/solve_config.h"
 #include "solvers/solver.h"
 #include "systems/lightfield_radiance.h"
+#include "systems/pair_lattice.h"
 #include "systems/retina.h"
 #include "systems/retinal_operator.h"
 #include "systems/solve_workspace.h"
@@ -135,6 +136,41 @@ void BM_UpdatePass(benchmark::State& state) {
   for (auto _ : state) UpdateLayerMultiplicative(*w.model, 0, w.model->branch_layers(0)[0], whole, o, &t, &workspace);
   state.counters["ns_per_ray"] =
       benchmark::Counter(double(l.geometry.ray_count()) * 1e-9,
+                         benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.SetLabel(w.target_name);
+}
+
+// The same update's sums from the target binned by pixel pair
+// (systems/pair_lattice.h; the hybrid's sets make their updates after the
+// first so), and the binning itself, made once per set and iteration.
+// Arg 0: the paper prototype's first set; 1: the 2-layer multiplicative display.
+const Workload& PairLatticeWorkload(const benchmark::State& state) {
+  return GetWorkload(state.range(0) == 0 ? "paper_prototype" : "multiplicative_2layer");
+}
+
+void BM_PairLatticeUpdate(benchmark::State& state) {
+  const Workload& w = PairLatticeWorkload(state);
+  Patterns t = w.model->UniformPatterns(0.5f);
+  const PairLattice lattice(*w.model, 0);
+  PairCells binned;
+  lattice.Bin(w.target, &binned);
+  std::vector<double> num(w.model->projection(lattice.layer_a()).pixel_count() * 3), den(num.size());
+  PaddedLayers padded;
+  padded.PadAll(t);
+  const Rgb4* other = padded.pixels(lattice.layer_b());
+  for (auto _ : state) lattice.UpdateSums(lattice.layer_a(), other, binned, num.data(), den.data());
+  state.counters["rays_per_cell"] = lattice.rays() / double(lattice.cells());
+  state.SetLabel(w.target_name);
+}
+
+void BM_PairLatticeBin(benchmark::State& state) {
+  const Workload& w = PairLatticeWorkload(state);
+  const PairLattice lattice(*w.model, 0);
+  PairCells binned;
+  for (auto _ : state) lattice.Bin(w.target, &binned);
+  state.counters["rays_per_cell"] = lattice.rays() / double(lattice.cells());
+  state.counters["ns_per_ray"] =
+      benchmark::Counter(double(w.target.geometry.ray_count()) * 1e-9,
                          benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
   state.SetLabel(w.target_name);
 }
@@ -610,6 +646,8 @@ BENCHMARK(BM_Synthesis)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_MemoryFloorRead)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_MemoryFloorCopy)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_UpdatePass)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_PairLatticeUpdate)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_PairLatticeBin)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_ObjectivePass)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_JointPass)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_HybridIteration)->Unit(benchmark::kMillisecond)->UseManualTime();

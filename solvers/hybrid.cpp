@@ -2,6 +2,10 @@
 // Each outer iteration visits the sets in turn: a set's chase (the target
 // minus the light of the other sets, solvers/hybrid_chase.h), then
 // `sub_iterations` multiplicative updates of each of its layers toward it.
+// A set of two layers whose rays are at least twice their pixel pairs
+// (systems/pair_lattice.h) bins its chase once and makes the updates after
+// the first from the pairs: the same sums, a few pairs per pixel instead of
+// every ray.
 #include <algorithm>
 #include <optional>
 #include <vector>
@@ -31,6 +35,9 @@ class HybridSolver final : public Solver {
     SolveWorkspace* workspace = &loop.workspace();
     chase.Begin(loop.target(), loop.resumed() && loop.iteration() > 0, workspace);
     const size_t branches = model.branch_count();
+    std::vector<std::optional<PairLattice>> lattices(branches);
+    for (size_t m = 0; m < branches; ++m)
+      if (PairLattice::Pays(model, m)) lattices[m].emplace(model, m);
     // The pass that gives an iteration's objective also gives set 0's next
     // chase and the sums of its next first update, applied only if there is
     // a next iteration.
@@ -53,10 +60,21 @@ class HybridSolver final : public Solver {
         }
         // 2. The set's layers updated in turn toward its chase, the other sets fixed.
         const BranchTarget stored = chase.Stored();
+        const int updates = options.sub_iterations * static_cast<int>(order.size()) - (first_done ? 1 : 0);
+        const bool from_pairs = lattices[m] && updates >= 2;  // binning costs about one pass over the rays
+        if (from_pairs) lattices[m]->Bin(chase.stored(), &workspace->pair_cells);
         for (int s = 0; s < options.sub_iterations; ++s)
-          for (size_t k = 0; k < order.size(); ++k)
-            if (!(s == 0 && k == 0 && first_done))
+          for (size_t k = 0; k < order.size(); ++k) {
+            if (s == 0 && k == 0 && first_done) continue;
+            if (from_pairs) {
+              LayerUpdate update = OneLayerUpdate(workspace);
+              ComputeLayerUpdateFromPairs(model, m, order[k], *lattices[m], workspace->pair_cells, *t, workspace,
+                                          &update);
+              ApplyLayerUpdate(update, options, t);
+            } else {
               UpdateLayerMultiplicative(model, m, order[k], stored, options, t, workspace);
+            }
+          }
         chase.MarkStarted(m);
       }
       // 3. The objective, from the pass that also makes set 0's next chase and first update.
@@ -84,7 +102,7 @@ SolverType HybridSolverType() {
       [] { return std::make_unique<HybridSolver>(); }, SolverOptions{});
   type.default_rank = 1;
   type.memory.light_fields = 1;  // the chase: what the set being updated should emit
-  type.memory.passes = kSynthesisPass | kLayerUpdatePass;
+  type.memory.passes = kSynthesisPass | kLayerUpdatePass | kPairLatticePass;
   type.options = {SubIterationsKey()};
   return type;
 }

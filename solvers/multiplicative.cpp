@@ -12,6 +12,11 @@
 // new pass. One pass (joint_pass.h) gives the sums and the objective of the
 // patterns it reads, so an iteration costs one pass per layer of the stack;
 // on the one-tap path it sums only the depth updated next.
+//
+// A stack of two one-tap layers whose rays are at least twice their pixel
+// pairs (systems/pair_lattice.h) bins the target once; the second layer's
+// updates are then made from the pairs, the first's (with the objective)
+// from a pass over the rays.
 #include <algorithm>
 #include <optional>
 
@@ -115,13 +120,27 @@ class MultiplicativeSolver final : public Solver {
     // next iteration's first update (both read the same patterns), which is
     // applied only if there is a next iteration.
     SolveWorkspace* workspace = &loop.workspace();
+    // A stack of two layers whose rays repeat pixel pairs bins the target
+    // once and makes the second layer's updates from the pairs (pair_lattice.h).
+    std::optional<PairLattice> lattice;
+    if (PairLattice::Pays(model, 0)) {
+      lattice.emplace(model, 0);
+      lattice->Bin(l, &workspace->pair_cells);
+    }
     LayerUpdate first = KeptLayerUpdate(workspace);
     ComputeLayerUpdate(model, 0, order[0], whole, *t, workspace, &first);
     std::optional<double> objective;
     do {
       ApplyLayerUpdate(first, options, t);
-      for (size_t k = 1; k < order.size(); ++k)
-        UpdateLayerMultiplicative(model, 0, order[k], whole, options, t, workspace);
+      for (size_t k = 1; k < order.size(); ++k) {
+        if (!lattice) {
+          UpdateLayerMultiplicative(model, 0, order[k], whole, options, t, workspace);
+          continue;
+        }
+        LayerUpdate update = OneLayerUpdate(workspace);
+        ComputeLayerUpdateFromPairs(model, 0, order[k], *lattice, workspace->pair_cells, *t, workspace, &update);
+        ApplyLayerUpdate(update, options, t);
+      }
       double error = 0;
       const bool fused = ComputeLayerUpdate(model, 0, order[0], whole, *t, workspace, &first, &error);
       objective = fused ? std::optional<double>(error) : std::nullopt;
@@ -142,7 +161,8 @@ SolverType MultiplicativeSolverType() {
       [] { return std::make_unique<MultiplicativeSolver>(); }, defaults);
   type.unsuitable = Unsuitable;
   type.default_rank = 3;
-  type.memory.passes = kSynthesisPass | kLayerUpdatePass | kJointPassIfBranches;  // the joint pass for rank K
+  // The joint pass for rank K; the pair lattice for a stack of two.
+  type.memory.passes = kSynthesisPass | kLayerUpdatePass | kJointPassIfBranches | kPairLatticeIfOneBranch;
   return type;
 }
 

@@ -101,6 +101,19 @@ bool ComputeLayerUpdate(const DisplayModel& model, size_t branch, int layer, con
   return false;
 }
 
+void ComputeLayerUpdateFromPairs(const DisplayModel& model, size_t branch, int layer, const PairLattice& lattice,
+                                 const PairCells& binned, const Patterns& t, SolveWorkspace* workspace,
+                                 LayerUpdate* update) {
+  const size_t m = model.projection(layer).pixel_count() * 3;
+  const int other = lattice.other_layer(layer);
+  workspace->padded.Pad(t, {other});
+  update->branch = branch, update->layer = layer;
+  update->num->resize(m), update->den->resize(m);
+  lattice.UpdateSums(layer, workspace->padded.pixels(other), binned, update->num->data(), update->den->data());
+  FinishOneTapSums(model.weight(branch), t[layer].rgb, update->num->data(), update->den->data());
+  SumAcrossRanks({*update->num, *update->den});
+}
+
 namespace {
 template <class Ratio>
 void StepByRatio(const double* den, const SolverOptions& options, std::vector<float>* pattern, Ratio ratio) {

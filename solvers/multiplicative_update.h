@@ -15,6 +15,7 @@
 
 #include "solvers/solver.h"
 #include "systems/display_model.h"
+#include "systems/pair_lattice.h"
 #include "systems/solve_workspace.h"
 
 namespace layerlab {
@@ -44,6 +45,11 @@ inline LayerUpdate OneLayerUpdate(SolveWorkspace* w) { return {0, -1, &w->update
 // order); returns whether it did.
 bool ComputeLayerUpdate(const DisplayModel& model, size_t branch, int layer, const BranchTarget& branch_target,
                         const Patterns& t, SolveWorkspace* workspace, LayerUpdate* update, double* error = nullptr);
+// The same sums from the branch's target binned by pixel pair (PairLattice::Bin
+// into `binned`); `layer` is one of the lattice's two. In `workspace`, sized with kLayerUpdatePass.
+void ComputeLayerUpdateFromPairs(const DisplayModel& model, size_t branch, int layer, const PairLattice& lattice,
+                                 const PairCells& binned, const Patterns& t, SolveWorkspace* workspace,
+                                 LayerUpdate* update);
 // Applies it to patterns in which nothing has changed since it was computed.
 void ApplyLayerUpdate(const LayerUpdate& update, const SolverOptions& options, Patterns* t);
 

@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "systems/pair_lattice.h"
+
 namespace layerlab {
 
 size_t WorkspaceLayout::bytes() const {
@@ -53,8 +55,8 @@ struct WorkspaceSizer {
   }
   // A buffer of n elements; a thread's part is recorded once (for thread 0)
   // and allocated for each.
-  template <class T>
-  void Buffer(const std::string& name, std::vector<T>* v, size_t n, bool per_thread, bool record) {
+  template <class T, class A>
+  void Buffer(const std::string& name, std::vector<T, A>* v, size_t n, bool per_thread, bool record) {
     if (record) Record(name, n * sizeof(T), per_thread);
     if (allocate) v->assign(n, T{});
   }
@@ -66,6 +68,7 @@ struct WorkspaceSizer {
     const int cols = g.cols;
     if ((passes & kJointPassIfBranches) && model.branch_count() > 1) passes |= kJointPass;
     const bool synthesis = passes & kSynthesisPass, update = passes & kLayerUpdatePass, joint = passes & kJointPass;
+    const bool pairs = (passes & kPairLatticePass) || ((passes & kPairLatticeIfOneBranch) && model.branch_count() == 1);
 
     // Which layers take which path.
     std::vector<bool> fast(layers, false), general(layers, false);
@@ -145,6 +148,10 @@ struct WorkspaceSizer {
     Buffer("update sums", &w->update_den, update ? max_pixels * 3 : 0, false, true);
     Buffer("kept update sums", &w->kept_num, update ? max_pixels * 3 : 0, false, true);
     Buffer("kept update sums", &w->kept_den, update ? max_pixels * 3 : 0, false, true);
+    size_t pair_cells = 0;
+    for (size_t b = 0; pairs && b < model.branch_count(); ++b)
+      if (PairLattice::Pays(model, b)) pair_cells = std::max(pair_cells, PairLattice::CellCount(model, b));
+    Buffer("pair lattice", &w->pair_cells, pair_cells, false, true);
     w->joint_residual.resize(joint ? layers : 0), w->joint_den.resize(joint ? layers : 0);
     for (size_t k = 0; k < w->joint_residual.size(); ++k) {
       Buffer("joint sums", &w->joint_residual[k], model.projection(k).pixel_count() * 3, false, true);
@@ -178,16 +185,16 @@ ThreadWorkspace& SolveWorkspace::thread() {
 
 namespace {
 
-template <class T>
-size_t Held(const std::vector<T>& v) {
+template <class T, class A>
+size_t Held(const std::vector<T, A>& v) {
   return v.capacity() * sizeof(T);
 }
 
 }  // namespace
 
 size_t SolveWorkspace::Bytes() const {
-  size_t bytes =
-      padded.Bytes() + Held(view_errors) + Held(update_num) + Held(update_den) + Held(kept_num) + Held(kept_den);
+  size_t bytes = padded.Bytes() + Held(pair_cells) + Held(view_errors) + Held(update_num) + Held(update_den) +
+                 Held(kept_num) + Held(kept_den);
   for (size_t k = 0; k < joint_residual.size(); ++k) bytes += Held(joint_residual[k]) + Held(joint_den[k]);
   for (const ThreadWorkspace& t : threads_) {
     for (size_t k = 0; k < t.cache.size(); ++k)

@@ -20,16 +20,19 @@
 #include "framework/rgb4.h"
 #include "systems/display_model.h"
 #include "systems/one_tap_view.h"
+#include "systems/pair_lattice.h"
 
 namespace layerlab {
 
 // The kinds of pass a solve makes (a solver states its own: SolverMemory::passes).
 enum WorkspacePass : unsigned {
-  kSynthesisPass = 1,        // the objective, the hybrid's chase (ViewSynthesizer)
-  kLayerUpdatePass = 2,      // one layer's multiplicative-update sums (multiplicative_update.h)
-  kJointPass = 4,            // every layer's sums at once (joint_pass.h)
-  kJointPassIfBranches = 8,  // the joint pass, on displays of more than one branch only
-  kAllPasses = 15,
+  kSynthesisPass = 1,            // the objective, the hybrid's chase (ViewSynthesizer)
+  kLayerUpdatePass = 2,          // one layer's multiplicative-update sums (multiplicative_update.h)
+  kJointPass = 4,                // every layer's sums at once (joint_pass.h)
+  kJointPassIfBranches = 8,      // the joint pass, on displays of more than one branch only
+  kPairLatticePass = 16,         // a branch's target binned by pixel pair (pair_lattice.h), where it pays
+  kPairLatticeIfOneBranch = 32,  // the same, on displays of one branch only
+  kAllPasses = 63,
 };
 
 // One part of the layout: `bytes` for each thread, or once for a shared part.
@@ -102,6 +105,8 @@ class SolveWorkspace {
   std::vector<double> kept_num, kept_den;
   // Shared: the joint pass's merged sums, [layer][pixel * 3 + c].
   std::vector<std::vector<double>> joint_residual, joint_den;  // JointPass::residual(), denominator()
+  // Shared: a branch's target binned by pixel pair (PairLattice::Bin), room for the largest branch where it pays.
+  PairCells pair_cells;
 
   // What the buffers hold now (capacities): the layout's bytes unless a pass grew one.
   size_t Bytes() const;

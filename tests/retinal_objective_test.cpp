@@ -26,19 +26,13 @@ namespace {
 
 using testing::CompileJson;
 using testing::ErrorOf;
+using testing::RandomLightField;
+using testing::RandomPatterns;
 using testing::ShrunkExample;
 
 constexpr double kDeg = std::numbers::pi / 180;
 
 LightFieldGeometry Geometry(int cols, int rows, int views) { return testing::WindowGeometry(cols, rows, views); }
-
-LightField RandomLightField(const LightFieldGeometry& g, unsigned seed) {
-  LightField lf(g);
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u(0, 1);
-  for (float& v : lf.rgb) v = u(rng);
-  return lf;
-}
 
 // A 4 mm pupil of 5 x 5 points, some with a wavefront slope.
 std::vector<PupilPoint> Pupil() {
@@ -169,15 +163,6 @@ std::vector<Display> Displays() {
   subframes["subframes"] = 2;
   d.push_back({"3-layer tensor, 2 subframes", CompileJson(subframes)});
   return d;
-}
-
-Patterns RandomPatterns(const DisplayModel& model, unsigned seed, float lo, float hi) {
-  Patterns t = model.UniformPatterns(0.5f);
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u(lo, hi);
-  for (LayerPattern& p : t)
-    for (float& v : p.rgb) v = u(rng);
-  return t;
 }
 
 RetinalObjectiveOptions FewStates() {

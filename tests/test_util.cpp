@@ -2,10 +2,28 @@
 
 #include <cmath>
 #include <numbers>
+#include <random>
 
 #include "framework/json_file.h"
 
 namespace layerlab::testing {
+
+Patterns RandomPatterns(const DisplayModel& model, unsigned seed, float lo, float hi) {
+  Patterns t = model.UniformPatterns(0.5f);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(lo, hi);
+  for (LayerPattern& p : t)
+    for (float& v : p.rgb) v = u(rng);
+  return t;
+}
+
+LightField RandomLightField(const LightFieldGeometry& g, unsigned seed) {
+  LightField lf(g);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(0, 1);
+  for (float& v : lf.rgb) v = u(rng);
+  return lf;
+}
 
 ::testing::AssertionResult Close(double actual, double expected, double rel_tol, double abs_tol) {
   double tolerance = std::max(abs_tol, rel_tol * std::abs(expected));

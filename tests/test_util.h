@@ -9,11 +9,16 @@
 #include "framework/error.h"
 #include "framework/lightfield.h"
 #include "systems/compile.h"
+#include "systems/display_model.h"
 
 namespace layerlab::testing {
 
 // |actual - expected| <= max(abs_tol, rel_tol * |expected|).
 ::testing::AssertionResult Close(double actual, double expected, double rel_tol, double abs_tol = 0.0);
+
+// Values uniform in [lo, hi] (std::mt19937 from `seed`): every layer's, or every ray's in [0, 1].
+Patterns RandomPatterns(const DisplayModel& model, unsigned seed, float lo, float hi);
+LightField RandomLightField(const LightFieldGeometry& g, unsigned seed);
 
 std::string ExamplePath(const std::string& name);  // examples/<name>
 nlohmann::json ReadExample(const std::string& name);

@@ -1,0 +1,184 @@
+#include "systems/pair_lattice.h"
+
+#include <algorithm>
+#include <numeric>
+#include <tuple>
+
+#include "systems/one_tap_view.h"
+
+namespace layerlab {
+namespace {
+
+// The distinct (tap of a, tap of b) pairs over `count` sources, sorted, and
+// each source's pair (-1 where either tap misses).
+template <class TapOf>
+void PairsOf(int count, TapOf tap_of, std::vector<std::tuple<int32_t, int32_t, int32_t>>* pairs,
+             std::vector<int32_t>* pair_of) {
+  std::vector<std::tuple<int32_t, int32_t, int32_t>> keyed;  // (a, b, source)
+  for (int s = 0; s < count; ++s) {
+    const auto [a, b] = tap_of(s);
+    if (a >= 0 && b >= 0) keyed.emplace_back(a, b, s);
+  }
+  std::sort(keyed.begin(), keyed.end());
+  pair_of->assign(count, -1);
+  pairs->clear();
+  for (size_t k = 0; k < keyed.size(); ++k) {
+    const auto [a, b, s] = keyed[k];
+    if (k == 0 || std::get<0>(keyed[k - 1]) != a || std::get<1>(keyed[k - 1]) != b) pairs->emplace_back(a, b, 0);
+    (*pair_of)[s] = static_cast<int32_t>(pairs->size() - 1);
+    ++std::get<2>(pairs->back());
+  }
+}
+
+}  // namespace
+
+bool PairLattice::Suits(const DisplayModel& model, size_t branch) {
+  return model.branch_layers(branch).size() == 2 && OneTapBranch(model, branch);
+}
+
+bool PairLattice::Pays(const DisplayModel& model, size_t branch) {
+  if (!Suits(model, branch)) return false;
+  const PairLattice lattice(model, branch);
+  return lattice.cells() > 0 && lattice.rays() >= 2.0 * double(lattice.cells());
+}
+
+size_t PairLattice::CellCount(const DisplayModel& model, size_t branch) { return PairLattice(model, branch).cells(); }
+
+PairLattice::PairLattice(const DisplayModel& model, size_t branch) : geometry_(model.geometry()) {
+  const LightFieldGeometry& g = geometry_;
+  std::vector<int> layers = model.branch_layers(branch);
+  std::sort(layers.begin(), layers.end());
+  const LayerProjection* P[2] = {&model.projection(layers[0]), &model.projection(layers[1])};
+  for (int s = 0; s < 2; ++s) layer_[s] = layers[s], layer_cols_[s] = P[s]->cols();
+
+  std::vector<std::tuple<int32_t, int32_t, int32_t>> pairs;
+  std::vector<int32_t> row_pair_of;  // [view row * rows + pixel row]
+  PairsOf(
+      g.views_y * g.rows,
+      [&](int s) {
+        const size_t view = g.view_index(s / g.rows, 0);
+        return std::pair{P[0]->row_taps(view)[s % g.rows].i0, P[1]->row_taps(view)[s % g.rows].i0};
+      },
+      &pairs, &row_pair_of);
+  for (const auto& [a, b, n] : pairs) row_pairs_.push_back({{a, b}, n});
+  PairsOf(
+      g.views_x * g.cols,
+      [&](int s) {
+        const size_t view = g.view_index(0, s / g.cols);
+        return std::pair{P[0]->col_taps(view)[s % g.cols].i0, P[1]->col_taps(view)[s % g.cols].i0};
+      },
+      &pairs, &col_pair_of_);
+  for (const auto& [a, b, n] : pairs) col_pairs_.push_back({{a, b}, n});
+
+  // The sources of each row pair, in source order.
+  source_first_.assign(row_pairs_.size() + 1, 0);
+  for (int32_t p : row_pair_of)
+    if (p >= 0) ++source_first_[p + 1];
+  std::partial_sum(source_first_.begin(), source_first_.end(), source_first_.begin());
+  sources_.resize(source_first_.back());
+  std::vector<int32_t> next(source_first_.begin(), source_first_.end() - 1);
+  for (size_t s = 0; s < row_pair_of.size(); ++s)
+    if (row_pair_of[s] >= 0) sources_[next[row_pair_of[s]]++] = static_cast<int32_t>(s);
+
+  double row_rays = 0, col_rays = 0;
+  for (const AxisPair& p : row_pairs_) row_rays += p.rays;
+  for (const AxisPair& p : col_pairs_) col_rays += p.rays;
+  rays_ = row_rays * col_rays;
+
+  for (int s = 0; s < 2; ++s) {
+    Side& side = side_[s];
+    side.order.resize(row_pairs_.size());
+    std::iota(side.order.begin(), side.order.end(), 0);
+    std::stable_sort(side.order.begin(), side.order.end(),
+                     [&](int32_t x, int32_t y) { return row_pairs_[x].own[s] < row_pairs_[y].own[s]; });
+    side.first.assign(P[s]->rows() + 1, 0);
+    for (const AxisPair& p : row_pairs_) ++side.first[p.own[s] + 1];
+    std::partial_sum(side.first.begin(), side.first.end(), side.first.begin());
+    for (const AxisPair& p : col_pairs_) side.own_col.push_back(p.own[s]), side.other_col.push_back(p.own[1 - s]);
+  }
+}
+
+void PairLattice::Bin(const LightField& r, PairCells* binned) const {
+  const LightFieldGeometry& g = geometry_;
+  const int cols = g.cols;
+  const size_t row_floats = static_cast<size_t>(cols) * 3;
+  const size_t width = col_pairs_.size();
+  binned->resize(cells());
+  Rgb4* out = binned->data();
+#pragma omp parallel
+  {
+    // One view column's rays of the row pair, its sources' rows summed (and room for LoadRgbOver at the end).
+    std::vector<float> summed(row_floats + 1);
+#pragma omp for schedule(static)
+    for (size_t i = 0; i < row_pairs_.size(); ++i) {
+      Rgb4* cell = out + i * width;
+      std::fill(cell, cell + width, Rgb4{});
+      const int32_t* source = &sources_[source_first_[i]];
+      const int32_t count = source_first_[i + 1] - source_first_[i];
+      auto ray_row = [&](int32_t k, int vc) {
+        return r.view(g.view_index(source[k] / g.rows, vc)) + static_cast<size_t>(source[k] % g.rows) * row_floats;
+      };
+      for (int vc = 0; vc < g.views_x; ++vc) {
+        // The rows are a few kB each, scattered over the views: the next view column's are fetched meanwhile.
+        if (vc + 1 < g.views_x)
+          for (int32_t k = 0; k < count; ++k) {
+            const char* next = reinterpret_cast<const char*>(ray_row(k, vc + 1));
+            for (size_t b = 0; b < row_floats * sizeof(float); b += 64) __builtin_prefetch(next + b);
+          }
+        const float* first = ray_row(0, vc);
+        std::copy(first, first + row_floats, summed.begin());
+        for (int32_t k = 1; k < count; ++k) {
+          const float* row = ray_row(k, vc);
+          for (size_t f = 0; f < row_floats; ++f) summed[f] += row[f];
+        }
+        const int32_t* to = &col_pair_of_[static_cast<size_t>(vc) * cols];
+        for (int j = 0; j < cols; ++j)
+          if (to[j] >= 0) cell[to[j]] += LoadRgbOver(&summed[3 * static_cast<size_t>(j)]);
+      }
+    }
+  }
+}
+
+void PairLattice::UpdateSums(int layer, const Rgb4* other, const PairCells& binned, double* num, double* den) const {
+  const int s = layer == layer_[0] ? 0 : 1, o = 1 - s;
+  const Side& side = side_[s];
+  const size_t other_cols = static_cast<size_t>(layer_cols_[o]), own_row = static_cast<size_t>(layer_cols_[s]) * 3;
+  const int rows = static_cast<int>(side.first.size()) - 1;
+  const size_t width = col_pairs_.size();
+  const int32_t* other_col = side.other_col.data();
+#pragma omp parallel
+  {
+    // This layer row's sums over its row pairs, per column pair; lane 3 unused.
+    std::vector<Rgb4> sum_rq(width), sum_qq(width);
+#pragma omp for schedule(static)
+    for (int r = 0; r < rows; ++r) {
+      double* num_row = num + static_cast<size_t>(r) * own_row;
+      double* den_row = den + static_cast<size_t>(r) * own_row;
+      std::fill(num_row, num_row + own_row, 0.0);
+      std::fill(den_row, den_row + own_row, 0.0);
+      if (side.first[r] == side.first[r + 1]) continue;
+      std::fill(sum_rq.begin(), sum_rq.end(), Rgb4{});
+      std::fill(sum_qq.begin(), sum_qq.end(), Rgb4{});
+      for (int32_t k = side.first[r]; k < side.first[r + 1]; ++k) {
+        const int32_t i = side.order[k];
+        const Rgb4* q_row = other + static_cast<size_t>(row_pairs_[i].own[o]) * other_cols;
+        const float rays = static_cast<float>(row_pairs_[i].rays);
+        const Rgb4* cell = binned.data() + static_cast<size_t>(i) * width;
+        for (size_t j = 0; j < width; ++j) {
+          const Rgb4 q = q_row[other_col[j]];
+          sum_rq[j] += cell[j] * q;
+          sum_qq[j] += rays * (q * q);
+        }
+      }
+      // Each column pair's rays per row pair: the column pair's count.
+      for (size_t j = 0; j < width; ++j) {
+        double* n = num_row + 3 * side.own_col[j];
+        double* d = den_row + 3 * side.own_col[j];
+        const double rays = col_pairs_[j].rays;
+        for (int c = 0; c < 3; ++c) n[c] += sum_rq[j][c], d[c] += rays * sum_qq[j][c];
+      }
+    }
+  }
+}
+
+}  // namespace layerlab
