@@ -17,6 +17,7 @@ namespace {
 // value are the same for every ray a pixel sums, so OneTapUpdateSums leaves
 // them out:  num = w_b sum r q,  den = w_b^2 t_a sum q^2.  They go back here.
 void FinishOneTapSums(const std::array<float, 3>& w, const std::vector<float>& t_a, double* num, double* den) {
+#pragma omp parallel for schedule(static)
   for (size_t p = 0; p < t_a.size(); p += 3)
     for (int c = 0; c < 3; ++c) {
       num[p + c] *= w[c];
@@ -118,6 +119,7 @@ namespace {
 template <class Ratio>
 void StepByRatio(const double* den, const SolverOptions& options, std::vector<float>* pattern, Ratio ratio) {
   const float floor = static_cast<float>(options.floor);
+#pragma omp parallel for schedule(static)
   for (size_t k = 0; k < pattern->size(); ++k) {
     if (!(den[k] > options.epsilon)) continue;
     double updated = (*pattern)[k] * ratio(k);

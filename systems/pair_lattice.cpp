@@ -5,6 +5,7 @@
 #include <tuple>
 
 #include "systems/one_tap_view.h"
+#include "systems/row_kernels.h"
 
 namespace layerlab {
 namespace {
@@ -80,6 +81,16 @@ PairLattice::PairLattice(const DisplayModel& model, size_t branch) : geometry_(m
   for (size_t s = 0; s < row_pair_of.size(); ++s)
     if (row_pair_of[s] >= 0) sources_[next[row_pair_of[s]]++] = static_cast<int32_t>(s);
 
+  // And of each column pair.
+  col_source_first_.assign(col_pairs_.size() + 1, 0);
+  for (int32_t p : col_pair_of_)
+    if (p >= 0) ++col_source_first_[p + 1];
+  std::partial_sum(col_source_first_.begin(), col_source_first_.end(), col_source_first_.begin());
+  col_sources_.resize(col_source_first_.back());
+  next.assign(col_source_first_.begin(), col_source_first_.end() - 1);
+  for (size_t s = 0; s < col_pair_of_.size(); ++s)
+    if (col_pair_of_[s] >= 0) col_sources_[next[col_pair_of_[s]]++] = static_cast<int32_t>(s);
+
   double row_rays = 0, col_rays = 0;
   for (const AxisPair& p : row_pairs_) row_rays += p.rays;
   for (const AxisPair& p : col_pairs_) col_rays += p.rays;
@@ -94,25 +105,30 @@ PairLattice::PairLattice(const DisplayModel& model, size_t branch) : geometry_(m
     side.first.assign(P[s]->rows() + 1, 0);
     for (const AxisPair& p : row_pairs_) ++side.first[p.own[s] + 1];
     std::partial_sum(side.first.begin(), side.first.end(), side.first.begin());
-    for (const AxisPair& p : col_pairs_) side.own_col.push_back(p.own[s]), side.other_col.push_back(p.own[1 - s]);
+    for (const AxisPair& p : col_pairs_) side.other_col.push_back(p.own[1 - s]);
+    side.col_order.resize(col_pairs_.size());
+    std::iota(side.col_order.begin(), side.col_order.end(), 0);
+    std::stable_sort(side.col_order.begin(), side.col_order.end(),
+                     [&](int32_t x, int32_t y) { return col_pairs_[x].own[s] < col_pairs_[y].own[s]; });
+    side.col_first.assign(P[s]->cols() + 1, 0);
+    for (const AxisPair& p : col_pairs_) ++side.col_first[p.own[s] + 1];
+    std::partial_sum(side.col_first.begin(), side.col_first.end(), side.col_first.begin());
   }
 }
 
 void PairLattice::Bin(const LightField& r, PairCells* binned) const {
   const LightFieldGeometry& g = geometry_;
-  const int cols = g.cols;
-  const size_t row_floats = static_cast<size_t>(cols) * 3;
+  const size_t row_floats = static_cast<size_t>(g.cols) * 3;
   const size_t width = col_pairs_.size();
   binned->resize(cells());
   Rgb4* out = binned->data();
 #pragma omp parallel
   {
-    // One view column's rays of the row pair, its sources' rows summed (and room for LoadRgbOver at the end).
-    std::vector<float> summed(row_floats + 1);
+    // The row pair's rays, its sources' rows summed, [view col][pixel col][rgb]
+    // (and room for LoadRgbOver at the end); each cell then gathers its columns.
+    std::vector<float> summed(g.views_x * row_floats + 1);
 #pragma omp for schedule(static)
     for (size_t i = 0; i < row_pairs_.size(); ++i) {
-      Rgb4* cell = out + i * width;
-      std::fill(cell, cell + width, Rgb4{});
       const int32_t* source = &sources_[source_first_[i]];
       const int32_t count = source_first_[i + 1] - source_first_[i];
       auto ray_row = [&](int32_t k, int vc) {
@@ -125,15 +141,20 @@ void PairLattice::Bin(const LightField& r, PairCells* binned) const {
             const char* next = reinterpret_cast<const char*>(ray_row(k, vc + 1));
             for (size_t b = 0; b < row_floats * sizeof(float); b += 64) __builtin_prefetch(next + b);
           }
+        float* sum = &summed[vc * row_floats];
         const float* first = ray_row(0, vc);
-        std::copy(first, first + row_floats, summed.begin());
+        std::copy(first, first + row_floats, sum);
         for (int32_t k = 1; k < count; ++k) {
           const float* row = ray_row(k, vc);
-          for (size_t f = 0; f < row_floats; ++f) summed[f] += row[f];
+          for (size_t f = 0; f < row_floats; ++f) sum[f] += row[f];
         }
-        const int32_t* to = &col_pair_of_[static_cast<size_t>(vc) * cols];
-        for (int j = 0; j < cols; ++j)
-          if (to[j] >= 0) cell[to[j]] += LoadRgbOver(&summed[3 * static_cast<size_t>(j)]);
+      }
+      Rgb4* cell = out + i * width;
+      for (size_t j = 0; j < width; ++j) {
+        Rgb4 total{};
+        for (int32_t k = col_source_first_[j]; k < col_source_first_[j + 1]; ++k)
+          total += LoadRgbOver(&summed[3 * static_cast<size_t>(col_sources_[k])]);
+        cell[j] = total;
       }
     }
   }
@@ -142,7 +163,9 @@ void PairLattice::Bin(const LightField& r, PairCells* binned) const {
 void PairLattice::UpdateSums(int layer, const Rgb4* other, const PairCells& binned, double* num, double* den) const {
   const int s = layer == layer_[0] ? 0 : 1, o = 1 - s;
   const Side& side = side_[s];
-  const size_t other_cols = static_cast<size_t>(layer_cols_[o]), own_row = static_cast<size_t>(layer_cols_[s]) * 3;
+  const size_t other_cols = static_cast<size_t>(layer_cols_[o]);
+  const int own_cols = layer_cols_[s];
+  const size_t own_row = static_cast<size_t>(own_cols) * 3;
   const int rows = static_cast<int>(side.first.size()) - 1;
   const size_t width = col_pairs_.size();
   const int32_t* other_col = side.other_col.data();
@@ -150,32 +173,32 @@ void PairLattice::UpdateSums(int layer, const Rgb4* other, const PairCells& binn
   {
     // This layer row's sums over its row pairs, per column pair; lane 3 unused.
     std::vector<Rgb4> sum_rq(width), sum_qq(width);
-#pragma omp for schedule(static)
+// Rows hold from none to a dozen row pairs: handed out a few at a time.
+#pragma omp for schedule(dynamic, 4)
     for (int r = 0; r < rows; ++r) {
       double* num_row = num + static_cast<size_t>(r) * own_row;
       double* den_row = den + static_cast<size_t>(r) * own_row;
-      std::fill(num_row, num_row + own_row, 0.0);
-      std::fill(den_row, den_row + own_row, 0.0);
-      if (side.first[r] == side.first[r + 1]) continue;
-      std::fill(sum_rq.begin(), sum_rq.end(), Rgb4{});
-      std::fill(sum_qq.begin(), sum_qq.end(), Rgb4{});
+      if (side.first[r] == side.first[r + 1]) {
+        std::fill(num_row, num_row + own_row, 0.0);
+        std::fill(den_row, den_row + own_row, 0.0);
+        continue;
+      }
       for (int32_t k = side.first[r]; k < side.first[r + 1]; ++k) {
         const int32_t i = side.order[k];
         const Rgb4* q_row = other + static_cast<size_t>(row_pairs_[i].own[o]) * other_cols;
         const float rays = static_cast<float>(row_pairs_[i].rays);
-        const Rgb4* cell = binned.data() + static_cast<size_t>(i) * width;
-        for (size_t j = 0; j < width; ++j) {
-          const Rgb4 q = q_row[other_col[j]];
-          sum_rq[j] += cell[j] * q;
-          sum_qq[j] += rays * (q * q);
-        }
+        PairSumsRow(binned.data() + static_cast<size_t>(i) * width, q_row, other_col, rays, static_cast<int>(width),
+                    k > side.first[r], sum_rq.data(), sum_qq.data());
       }
-      // Each column pair's rays per row pair: the column pair's count.
-      for (size_t j = 0; j < width; ++j) {
-        double* n = num_row + 3 * side.own_col[j];
-        double* d = den_row + 3 * side.own_col[j];
-        const double rays = col_pairs_[j].rays;
-        for (int c = 0; c < 3; ++c) n[c] += sum_rq[j][c], d[c] += rays * sum_qq[j][c];
+      // A pixel's column pairs, each of its count of rays per row pair.
+      for (int c = 0; c < own_cols; ++c) {
+        double n[3] = {0, 0, 0}, d[3] = {0, 0, 0};
+        for (int32_t k = side.col_first[c]; k < side.col_first[c + 1]; ++k) {
+          const int32_t j = side.col_order[k];
+          const double rays = col_pairs_[j].rays;
+          for (int ch = 0; ch < 3; ++ch) n[ch] += sum_rq[j][ch], d[ch] += rays * sum_qq[j][ch];
+        }
+        for (int ch = 0; ch < 3; ++ch) num_row[3 * c + ch] = n[ch], den_row[3 * c + ch] = d[ch];
       }
     }
   }

@@ -76,7 +76,8 @@ class PairLattice {
   struct Side {
     std::vector<int32_t> first;      // [layer row]: its row pairs are order[first[r] .. first[r + 1])
     std::vector<int32_t> order;      // row pairs grouped by this side's layer row
-    std::vector<int32_t> own_col;    // [column pair]: this side's layer column
+    std::vector<int32_t> col_first;  // [layer column]: its column pairs are col_order[col_first[c] ..)
+    std::vector<int32_t> col_order;  // column pairs grouped by this side's layer column
     std::vector<int32_t> other_col;  // [column pair]: the other layer's column
   };
 
@@ -85,6 +86,8 @@ class PairLattice {
   int layer_cols_[2];
   std::vector<AxisPair> row_pairs_, col_pairs_;  // sorted by (a, b)
   std::vector<int32_t> col_pair_of_;             // [view col][pixel col]: its column pair, or -1
+  std::vector<int32_t> col_source_first_;        // column pair j is read by (view col * cols + pixel col)
+  std::vector<int32_t> col_sources_;             //   col_sources_[col_source_first_[j] ..), in that order
   std::vector<int32_t> source_first_,
       sources_;  // row pair i is read by (view row * rows + pixel row) sources_[source_first_[i] ..)
   Side side_[2];

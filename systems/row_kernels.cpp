@@ -60,6 +60,16 @@ void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int cols
   }
 }
 
+void PairSumsRow(const Rgb4* cells, const Rgb4* q_row, const int32_t* q_col, float rays, int width, bool add,
+                 Rgb4* sum_rq, Rgb4* sum_qq) {
+  for (int j = 0; j < width; ++j) {
+    const Rgb4 q = q_row[q_col[j]];
+    const Rgb4 rq = cells[j] * q, qq = rays * (q * q);
+    sum_rq[j] = add ? sum_rq[j] + rq : rq;
+    sum_qq[j] = add ? sum_qq[j] + qq : qq;
+  }
+}
+
 void UpdateSumsRows(const float* const* r, const Rgb4* const* q, int rows, Rgb4* num, Rgb4* den, int cols) {
   for (int g = 0; g < rows; ++g) UpdateSumsRow(r[g], q ? q[g] : nullptr, num, den, cols);
 }
@@ -225,6 +235,10 @@ void AddBranchLightTermsRow(const Rgb4* const* rows, int stride, int layers, con
 }
 void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int cols) {
   LAYERLAB_DISPATCH(UpdateSumsRow(r, q, num, den, cols));
+}
+void PairSumsRow(const Rgb4* cells, const Rgb4* q_row, const int32_t* q_col, float rays, int width, bool add,
+                 Rgb4* sum_rq, Rgb4* sum_qq) {
+  LAYERLAB_DISPATCH(PairSumsRow(cells, q_row, q_col, rays, width, add, sum_rq, sum_qq));
 }
 void UpdateSumsRows(const float* const* r, const Rgb4* const* q, int rows, Rgb4* num, Rgb4* den, int cols) {
   LAYERLAB_DISPATCH(UpdateSumsRows(r, q, rows, num, den, cols));

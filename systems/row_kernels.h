@@ -6,6 +6,8 @@
 // on every lane, so their results are bit for bit the same; tests check it.
 #pragma once
 
+#include <cstdint>
+
 #include "framework/rgb4.h"
 
 namespace layerlab {
@@ -23,6 +25,13 @@ void AddBranchLightTermsRow(const Rgb4* const* rows, int stride, int layers, con
 // The multiplicative update's column sums over one ray row:
 // num[j] += r_j q[j], den[j] += q[j]^2; r packed [ray][rgb], q = nullptr means 1.
 void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int cols);
+
+// One row pair of a pixel-pair lattice (pair_lattice.h) into a layer row's
+// sums per column pair: sum_rq[j] += cells[j] q_j, sum_qq[j] += rays q_j^2,
+// q_j = q_row[q_col[j]] (the other layer's pixel of column pair j); without
+// `add` the sums are set to those terms instead.
+void PairSumsRow(const Rgb4* cells, const Rgb4* q_row, const int32_t* q_col, float rays, int width, bool add,
+                 Rgb4* sum_rq, Rgb4* sum_qq);
 
 // UpdateSumsRow for `rows` ray rows that sum into the same num and den, in
 // turn: the same adds in the same order, each ray column's two sums kept in

@@ -192,6 +192,22 @@ LAYERLAB_AVX2 void UpdateSumsGroup(const float* const* r, const Rgb4* const* q, 
 
 }  // namespace
 
+LAYERLAB_AVX2 void PairSumsRow(const Rgb4* cells, const Rgb4* q_row, const int32_t* q_col, float rays, int width,
+                               bool add, Rgb4* sum_rq, Rgb4* sum_qq) {
+  const __m256 r8 = _mm256_set1_ps(rays);
+  int j = 0;
+  for (; j + 2 <= width; j += 2) {
+    const __m256 q = _mm256_set_m128(__m128(q_row[q_col[j + 1]]), __m128(q_row[q_col[j]]));
+    float* rq = reinterpret_cast<float*>(sum_rq + j);
+    float* qq = reinterpret_cast<float*>(sum_qq + j);
+    const __m256 c = _mm256_loadu_ps(reinterpret_cast<const float*>(cells + j));
+    const __m256 cq = _mm256_mul_ps(c, q), rqq = _mm256_mul_ps(r8, _mm256_mul_ps(q, q));
+    _mm256_storeu_ps(rq, add ? _mm256_add_ps(_mm256_loadu_ps(rq), cq) : cq);
+    _mm256_storeu_ps(qq, add ? _mm256_add_ps(_mm256_loadu_ps(qq), rqq) : rqq);
+  }
+  if (j < width) baseline::PairSumsRow(cells + j, q_row, q_col + j, rays, width - j, add, sum_rq + j, sum_qq + j);
+}
+
 LAYERLAB_AVX2 void UpdateSumsRows(const float* const* r, const Rgb4* const* q, int rows, Rgb4* num, Rgb4* den,
                                   int cols) {
   InGroupsOfFour(rows, [&](auto g, int first) {

@@ -1,6 +1,8 @@
 // The two builds behind row_kernels.h, for its dispatch only.
 #pragma once
 
+#include <cstdint>
+
 #include "framework/rgb4.h"
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
@@ -17,6 +19,8 @@ namespace layerlab {
   void AddBranchLightTermsRow(const Rgb4* const* rows, int stride, int layers, const Rgb4* w, int terms, int begin, \
                               int end, Rgb4* row);                                                                  \
   void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int cols);                                \
+  void PairSumsRow(const Rgb4* cells, const Rgb4* q_row, const int32_t* q_col, float rays, int width, bool add,     \
+                   Rgb4* sum_rq, Rgb4* sum_qq);                                                                     \
   void UpdateSumsRows(const float* const* r, const Rgb4* const* q, int rows, Rgb4* num, Rgb4* den, int cols);       \
   double UpdateSumsAndErrorRow(const float* r, const Rgb4* q, const Rgb4* own, Rgb4 w, Rgb4* num, Rgb4* den,        \
                                int cols);                                                                           \

@@ -155,6 +155,38 @@ TEST_F(RowKernels, UpdateSumsAddTargetTimesProductAndProductSquared) {
     }
 }
 
+// A pixel-pair lattice's row (systems/pair_lattice.h): each cell times the
+// other layer's pixel its column pair names, added to (or setting) the sums.
+TEST_F(RowKernels, PairSumsAddCellTimesOtherPixelAndCountTimesItsSquare) {
+  std::mt19937 rng(11);
+  for (bool add : {true, false})
+    for (int width = 1; width <= 23; ++width) {
+      const Row cells = RandomRow(width, rng, 0.0f, 9.0f), other = RandomRow(7, rng), n0 = RandomRow(width, rng),
+                d0 = RandomRow(width, rng);
+      std::vector<int32_t> col(width);
+      for (int32_t& c : col) c = std::uniform_int_distribution<int32_t>(0, 6)(rng);
+      const float rays = float(1 + width % 4);
+      auto run = [&] {
+        std::vector<Rgb4> num = n0.padded, den = d0.padded;
+        num.push_back(Rgb4{kGuard, kGuard, kGuard, kGuard}), den.push_back(num.back());
+        PairSumsRow(cells.padded.data(), other.padded.data(), col.data(), rays, width, add, num.data(), den.data());
+        std::vector<Rgb4> both = num;
+        both.insert(both.end(), den.begin(), den.end());
+        return both;
+      };
+      const std::vector<Rgb4> both = run();
+      for (int j = 0; j < width; ++j)
+        for (int c = 0; c < 3; ++c) {
+          const double q = other.padded[col[j]][c];
+          ASSERT_NEAR(both[j][c], (add ? n0.padded[j][c] : 0.0) + double(cells.padded[j][c]) * q, 1e-5);
+          ASSERT_NEAR(both[width + 1 + j][c], (add ? d0.padded[j][c] : 0.0) + rays * q * q, 1e-5);
+        }
+      ASSERT_EQ(both[width][0], kGuard);
+      ASSERT_EQ(both[2 * width + 1][0], kGuard);
+      ExpectSameInBothBuilds([&] { return Bytes(run()); }, "pair sums", width);
+    }
+}
+
 TEST_F(RowKernels, FusedUpdateSumsAlsoGiveTheBranchError) {
   std::mt19937 rng(6);
   const Rgb4 w{0.5f, 0.25f, 0.75f, 0.0f};

@@ -7,12 +7,12 @@ set -u
 layerlab=$1 scene=$2 target=$3 out=$4
 fail() { echo "FAIL: $*"; cat "$out.log" 2>/dev/null; exit 1; }
 rm -rf "$out" "$out.log"
-# 30 iterations: the progress lines (every tenth of them, when not on a
-# terminal) say when the first three are done; the signal comes long before the last.
-"$layerlab" solve "$scene" --target "$target" --iterations 30 --out "$out" 2>"$out.log" &
+# 1000 iterations (a few minutes): off a terminal the first progress line
+# comes after ten seconds of work; the signal comes then, long before the last.
+"$layerlab" solve "$scene" --target "$target" --iterations 1000 --out "$out" 2>"$out.log" &
 pid=$!
 for _ in $(seq 1 2400); do
-  grep -qE "hybrid: [0-9]+/30" "$out.log" 2>/dev/null && break
+  grep -qE "hybrid: [0-9]+/1000" "$out.log" 2>/dev/null && break
   sleep 0.05
 done
 kill -INT "$pid"
