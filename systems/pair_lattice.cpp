@@ -31,6 +31,20 @@ void PairsOf(int count, TapOf tap_of, std::vector<std::tuple<int32_t, int32_t, i
   }
 }
 
+// Members k = 0, 1, ... of groups group_of[k] (-1: none): group g's are
+// members[first[g] .. first[g + 1]), in member order.
+void GroupBy(const std::vector<int32_t>& group_of, size_t groups, std::vector<int32_t>* first,
+             std::vector<int32_t>* members) {
+  first->assign(groups + 1, 0);
+  for (int32_t g : group_of)
+    if (g >= 0) ++(*first)[g + 1];
+  std::partial_sum(first->begin(), first->end(), first->begin());
+  members->resize(first->back());
+  std::vector<int32_t> next(first->begin(), first->end() - 1);
+  for (size_t k = 0; k < group_of.size(); ++k)
+    if (group_of[k] >= 0) (*members)[next[group_of[k]]++] = static_cast<int32_t>(k);
+}
+
 }  // namespace
 
 bool PairLattice::Suits(const DisplayModel& model, size_t branch) {
@@ -71,25 +85,8 @@ PairLattice::PairLattice(const DisplayModel& model, size_t branch) : geometry_(m
       &pairs, &col_pair_of_);
   for (const auto& [a, b, n] : pairs) col_pairs_.push_back({{a, b}, n});
 
-  // The sources of each row pair, in source order.
-  source_first_.assign(row_pairs_.size() + 1, 0);
-  for (int32_t p : row_pair_of)
-    if (p >= 0) ++source_first_[p + 1];
-  std::partial_sum(source_first_.begin(), source_first_.end(), source_first_.begin());
-  sources_.resize(source_first_.back());
-  std::vector<int32_t> next(source_first_.begin(), source_first_.end() - 1);
-  for (size_t s = 0; s < row_pair_of.size(); ++s)
-    if (row_pair_of[s] >= 0) sources_[next[row_pair_of[s]]++] = static_cast<int32_t>(s);
-
-  // And of each column pair.
-  col_source_first_.assign(col_pairs_.size() + 1, 0);
-  for (int32_t p : col_pair_of_)
-    if (p >= 0) ++col_source_first_[p + 1];
-  std::partial_sum(col_source_first_.begin(), col_source_first_.end(), col_source_first_.begin());
-  col_sources_.resize(col_source_first_.back());
-  next.assign(col_source_first_.begin(), col_source_first_.end() - 1);
-  for (size_t s = 0; s < col_pair_of_.size(); ++s)
-    if (col_pair_of_[s] >= 0) col_sources_[next[col_pair_of_[s]]++] = static_cast<int32_t>(s);
+  GroupBy(row_pair_of, row_pairs_.size(), &source_first_, &sources_);
+  GroupBy(col_pair_of_, col_pairs_.size(), &col_source_first_, &col_sources_);
 
   double row_rays = 0, col_rays = 0;
   for (const AxisPair& p : row_pairs_) row_rays += p.rays;
@@ -98,21 +95,11 @@ PairLattice::PairLattice(const DisplayModel& model, size_t branch) : geometry_(m
 
   for (int s = 0; s < 2; ++s) {
     Side& side = side_[s];
-    side.order.resize(row_pairs_.size());
-    std::iota(side.order.begin(), side.order.end(), 0);
-    std::stable_sort(side.order.begin(), side.order.end(),
-                     [&](int32_t x, int32_t y) { return row_pairs_[x].own[s] < row_pairs_[y].own[s]; });
-    side.first.assign(P[s]->rows() + 1, 0);
-    for (const AxisPair& p : row_pairs_) ++side.first[p.own[s] + 1];
-    std::partial_sum(side.first.begin(), side.first.end(), side.first.begin());
-    for (const AxisPair& p : col_pairs_) side.other_col.push_back(p.own[1 - s]);
-    side.col_order.resize(col_pairs_.size());
-    std::iota(side.col_order.begin(), side.col_order.end(), 0);
-    std::stable_sort(side.col_order.begin(), side.col_order.end(),
-                     [&](int32_t x, int32_t y) { return col_pairs_[x].own[s] < col_pairs_[y].own[s]; });
-    side.col_first.assign(P[s]->cols() + 1, 0);
-    for (const AxisPair& p : col_pairs_) ++side.col_first[p.own[s] + 1];
-    std::partial_sum(side.col_first.begin(), side.col_first.end(), side.col_first.begin());
+    std::vector<int32_t> row_of, col_of;
+    for (const AxisPair& p : row_pairs_) row_of.push_back(p.own[s]);
+    for (const AxisPair& p : col_pairs_) col_of.push_back(p.own[s]), side.other_col.push_back(p.own[1 - s]);
+    GroupBy(row_of, P[s]->rows(), &side.first, &side.order);
+    GroupBy(col_of, P[s]->cols(), &side.col_first, &side.col_order);
   }
 }
 
