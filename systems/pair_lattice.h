@@ -41,7 +41,7 @@ class PairLattice {
   // The branches that suit and whose rays are at least twice their cells:
   // where binning once and summing cells is faster than summing rays.
   static bool Pays(const DisplayModel& model, size_t branch);
-  // The cells of a suitable branch, without building the lattice.
+  // The cells of a suitable branch (its lattice made for the count; for the workspace's size).
   static size_t CellCount(const DisplayModel& model, size_t branch);
 
   size_t cells() const { return row_pairs_.size() * col_pairs_.size(); }
@@ -56,11 +56,12 @@ class PairLattice {
   void Bin(const LightField& r, PairCells* binned) const;
 
   // The sums of `layer` (a or b) from `binned` and the other layer's pattern
-  // `other` as [pixel][rgb, 0] (PaddedLayers), as OneTapUpdateSums gives them: num[p * 3 + c] = sum r q and
-  // den[p * 3 + c] = sum q^2 over the rays that read pixel p, q the other
-  // layer's value along the ray (w_b and the layer's own value left out).
-  // num and den hold the layer's pixels x 3 and are written whole; each
-  // pixel row is summed by one thread in a fixed order.
+  // `other` as [pixel][rgb, 0] (PaddedLayers), as OneTapUpdateSums gives
+  // them: num[p * 3 + c] = sum r q and den[p * 3 + c] = sum q^2 over the
+  // rays that read pixel p, q the other layer's value along the ray (w_b
+  // and the layer's own value left out). num and den hold the layer's
+  // pixels x 3 and are written whole; each pixel row is summed by one
+  // thread in a fixed order.
   void UpdateSums(int layer, const Rgb4* other, const PairCells& binned, double* num, double* den) const;
   int other_layer(int layer) const { return layer == layer_[0] ? layer_[1] : layer_[0]; }
 
