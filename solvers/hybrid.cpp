@@ -35,9 +35,8 @@ class HybridSolver final : public Solver {
     SolveWorkspace* workspace = &loop.workspace();
     chase.Begin(loop.target(), loop.resumed() && loop.iteration() > 0, workspace);
     const size_t branches = model.branch_count();
-    std::vector<std::optional<PairLattice>> lattices(branches);
-    for (size_t m = 0; m < branches; ++m)
-      if (PairLattice::Pays(model, m)) lattices[m].emplace(model, m);
+    std::vector<std::optional<PairLattice>> lattices;
+    for (size_t m = 0; m < branches; ++m) lattices.push_back(PairLattice::IfItPays(model, m));
     // The pass that gives an iteration's objective also gives set 0's next
     // chase and the sums of its next first update, applied only if there is
     // a next iteration.
@@ -62,18 +61,14 @@ class HybridSolver final : public Solver {
         const BranchTarget stored = chase.Stored();
         const int updates = options.sub_iterations * static_cast<int>(order.size()) - (first_done ? 1 : 0);
         const bool from_pairs = lattices[m] && updates >= 2;  // binning costs about one pass over the rays
-        if (from_pairs) lattices[m]->Bin(chase.stored(), &workspace->pair_cells);
+        if (from_pairs) lattices[m]->Bin(chase.chase(), &workspace->pair_cells);
         for (int s = 0; s < options.sub_iterations; ++s)
           for (size_t k = 0; k < order.size(); ++k) {
             if (s == 0 && k == 0 && first_done) continue;
-            if (from_pairs) {
-              LayerUpdate update = OneLayerUpdate(workspace);
-              ComputeLayerUpdateFromPairs(model, m, order[k], *lattices[m], workspace->pair_cells, *t, workspace,
-                                          &update);
-              ApplyLayerUpdate(update, options, t);
-            } else {
+            if (from_pairs)
+              UpdateLayerFromPairs(model, m, order[k], *lattices[m], workspace->pair_cells, options, t, workspace);
+            else
               UpdateLayerMultiplicative(model, m, order[k], stored, options, t, workspace);
-            }
           }
         chase.MarkStarted(m);
       }

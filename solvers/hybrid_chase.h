@@ -45,7 +45,7 @@ class HybridChase {
   BranchTarget Following(size_t m, std::vector<double>* per_view = nullptr);
   // The chase as last computed, for the set's further updates.
   BranchTarget Stored() const;
-  const LightField& stored() const { return chase_; }
+  const LightField& chase() const { return chase_; }
 
   // Set m has been updated: from now on it emits light of its own.
   void MarkStarted(size_t m) { started_[m] = true; }

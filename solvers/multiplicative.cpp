@@ -122,24 +122,18 @@ class MultiplicativeSolver final : public Solver {
     SolveWorkspace* workspace = &loop.workspace();
     // A stack of two layers whose rays repeat pixel pairs bins the target
     // once and makes the second layer's updates from the pairs (pair_lattice.h).
-    std::optional<PairLattice> lattice;
-    if (PairLattice::Pays(model, 0)) {
-      lattice.emplace(model, 0);
-      lattice->Bin(l, &workspace->pair_cells);
-    }
+    const std::optional<PairLattice> lattice = PairLattice::IfItPays(model, 0);
+    if (lattice) lattice->Bin(l, &workspace->pair_cells);
     LayerUpdate first = KeptLayerUpdate(workspace);
     ComputeLayerUpdate(model, 0, order[0], whole, *t, workspace, &first);
     std::optional<double> objective;
     do {
       ApplyLayerUpdate(first, options, t);
       for (size_t k = 1; k < order.size(); ++k) {
-        if (!lattice) {
+        if (lattice)
+          UpdateLayerFromPairs(model, 0, order[k], *lattice, workspace->pair_cells, options, t, workspace);
+        else
           UpdateLayerMultiplicative(model, 0, order[k], whole, options, t, workspace);
-          continue;
-        }
-        LayerUpdate update = OneLayerUpdate(workspace);
-        ComputeLayerUpdateFromPairs(model, 0, order[k], *lattice, workspace->pair_cells, *t, workspace, &update);
-        ApplyLayerUpdate(update, options, t);
       }
       double error = 0;
       const bool fused = ComputeLayerUpdate(model, 0, order[0], whole, *t, workspace, &first, &error);

@@ -150,4 +150,12 @@ void UpdateLayerMultiplicative(const DisplayModel& model, size_t branch, int lay
   ApplyLayerUpdate(update, options, t);
 }
 
+void UpdateLayerFromPairs(const DisplayModel& model, size_t branch, int layer, const PairLattice& lattice,
+                          const PairCells& binned, const SolverOptions& options, Patterns* t,
+                          SolveWorkspace* workspace) {
+  LayerUpdate update = OneLayerUpdate(workspace);
+  ComputeLayerUpdateFromPairs(model, branch, layer, lattice, binned, *t, workspace, &update);
+  ApplyLayerUpdate(update, options, t);
+}
+
 }  // namespace layerlab

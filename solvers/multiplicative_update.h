@@ -50,6 +50,10 @@ bool ComputeLayerUpdate(const DisplayModel& model, size_t branch, int layer, con
 void ComputeLayerUpdateFromPairs(const DisplayModel& model, size_t branch, int layer, const PairLattice& lattice,
                                  const PairCells& binned, const Patterns& t, SolveWorkspace* workspace,
                                  LayerUpdate* update);
+// UpdateLayerMultiplicative's update made so.
+void UpdateLayerFromPairs(const DisplayModel& model, size_t branch, int layer, const PairLattice& lattice,
+                          const PairCells& binned, const SolverOptions& options, Patterns* t,
+                          SolveWorkspace* workspace);
 // Applies it to patterns in which nothing has changed since it was computed.
 void ApplyLayerUpdate(const LayerUpdate& update, const SolverOptions& options, Patterns* t);
 

@@ -51,16 +51,15 @@ bool PairLattice::Suits(const DisplayModel& model, size_t branch) {
   return model.branch_layers(branch).size() == 2 && OneTapBranch(model, branch);
 }
 
-bool PairLattice::Pays(const DisplayModel& model, size_t branch) {
-  if (!Suits(model, branch)) return false;
-  const PairLattice lattice(model, branch);
-  return lattice.cells() > 0 && lattice.rays() >= 2.0 * double(lattice.cells());
+std::optional<PairLattice> PairLattice::IfItPays(const DisplayModel& model, size_t branch) {
+  if (!Suits(model, branch)) return std::nullopt;
+  PairLattice lattice(model, branch);
+  if (lattice.cells() == 0 || lattice.rays() < 2.0 * double(lattice.cells())) return std::nullopt;
+  return lattice;
 }
 
-size_t PairLattice::CellCount(const DisplayModel& model, size_t branch) { return PairLattice(model, branch).cells(); }
-
-PairLattice::PairLattice(const DisplayModel& model, size_t branch) : geometry_(model.geometry()) {
-  const LightFieldGeometry& g = geometry_;
+PairLattice::PairLattice(const DisplayModel& model, size_t branch) : geometry_(&model.geometry()) {
+  const LightFieldGeometry& g = *geometry_;
   std::vector<int> layers = model.branch_layers(branch);
   std::sort(layers.begin(), layers.end());
   const LayerProjection* P[2] = {&model.projection(layers[0]), &model.projection(layers[1])};
@@ -104,7 +103,7 @@ PairLattice::PairLattice(const DisplayModel& model, size_t branch) : geometry_(m
 }
 
 void PairLattice::Bin(const LightField& r, PairCells* binned) const {
-  const LightFieldGeometry& g = geometry_;
+  const LightFieldGeometry& g = *geometry_;
   const size_t row_floats = static_cast<size_t>(g.cols) * 3;
   const size_t width = col_pairs_.size();
   binned->resize(cells());

@@ -19,6 +19,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "framework/huge_page_allocator.h"
@@ -38,11 +39,10 @@ class PairLattice {
   PairLattice(const DisplayModel& model, size_t branch);
   // Two layers, both read with one tap (one_tap_view.h).
   static bool Suits(const DisplayModel& model, size_t branch);
-  // The branches that suit and whose rays are at least twice their cells:
-  // where binning once and summing cells is faster than summing rays.
-  static bool Pays(const DisplayModel& model, size_t branch);
-  // The cells of a suitable branch (its lattice made for the count; for the workspace's size).
-  static size_t CellCount(const DisplayModel& model, size_t branch);
+  // The lattice of a branch that suits and whose rays are at least twice
+  // its cells (where binning once and summing cells is faster than summing
+  // rays), or none.
+  static std::optional<PairLattice> IfItPays(const DisplayModel& model, size_t branch);
 
   size_t cells() const { return row_pairs_.size() * col_pairs_.size(); }
   // The rays that read both layers (the others add nothing to either's sums).
@@ -82,7 +82,7 @@ class PairLattice {
     std::vector<int32_t> other_col;  // [column pair]: the other layer's column
   };
 
-  const LightFieldGeometry& geometry_;
+  const LightFieldGeometry* geometry_;
   int layer_[2];
   int layer_cols_[2];
   std::vector<AxisPair> row_pairs_, col_pairs_;  // sorted by (a, b)

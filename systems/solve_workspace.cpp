@@ -150,7 +150,8 @@ struct WorkspaceSizer {
     Buffer("kept update sums", &w->kept_den, update ? max_pixels * 3 : 0, false, true);
     size_t pair_cells = 0;
     for (size_t b = 0; pairs && b < model.branch_count(); ++b)
-      if (PairLattice::Pays(model, b)) pair_cells = std::max(pair_cells, PairLattice::CellCount(model, b));
+      if (const std::optional<PairLattice> lattice = PairLattice::IfItPays(model, b))
+        pair_cells = std::max(pair_cells, lattice->cells());
     Buffer("pair lattice", &w->pair_cells, pair_cells, false, true);
     w->joint_residual.resize(joint ? layers : 0), w->joint_den.resize(joint ? layers : 0);
     for (size_t k = 0; k < w->joint_residual.size(); ++k) {
