@@ -3,6 +3,7 @@
 #include "systems/joint_sums_ray.h"
 #include "systems/row_kernels.h"
 #include "systems/row_kernels_isa.h"
+#include "systems/two_rays_avx2.h"
 #include "systems/unrolled_layers.h"
 #if LAYERLAB_ROW_KERNELS_AVX2
 #include <immintrin.h>
@@ -77,13 +78,6 @@ LAYERLAB_AVX2 inline __m256 TwoRays(const Rgb4* row, int j) {
   return _mm256_loadu_ps(reinterpret_cast<const float*>(row + j));
 }
 
-LAYERLAB_AVX2 inline __m256 Twice(const Rgb4* w) { return _mm256_broadcast_ps(reinterpret_cast<const __m128*>(w)); }
-
-// Rays j and j + 1 of the packed l, each with the next float in lane 3 as LoadRgbOver reads it.
-LAYERLAB_AVX2 inline __m256 TwoTargetRays(const float* l, int j) {
-  return _mm256_permutevar8x32_ps(_mm256_loadu_ps(l + j * 3), _mm256_setr_epi32(0, 1, 2, 3, 3, 4, 5, 6));
-}
-
 // Member ab's q of a branch whose layer values at the two rays are at(k).
 // A product that starts from 1 starts from its first factor instead (1 x is x).
 template <int L, class At>
@@ -109,13 +103,9 @@ LAYERLAB_AVX2 inline void AddSums(__m256 residual, __m256 light, __m256 q, float
 struct TwoRayErrors {
   __m256d even, odd;
 
-  LAYERLAB_AVX2 static __m256d Squared(__m128 t, __m128 l) {
-    const __m256d d = _mm256_sub_pd(_mm256_cvtps_pd(t), _mm256_cvtps_pd(l));
-    return _mm256_mul_pd(d, d);
-  }
   LAYERLAB_AVX2 void Add(__m256 lj, __m256 light) {
-    even = _mm256_add_pd(even, Squared(_mm256_castps256_ps128(lj), _mm256_castps256_ps128(light)));
-    odd = _mm256_add_pd(odd, Squared(_mm256_extractf128_ps(lj, 1), _mm256_extractf128_ps(light, 1)));
+    even = _mm256_add_pd(even, Squared(Rgb4(_mm256_castps256_ps128(lj)), Rgb4(_mm256_castps256_ps128(light))));
+    odd = _mm256_add_pd(odd, Squared(Rgb4(_mm256_extractf128_ps(lj, 1)), Rgb4(_mm256_extractf128_ps(light, 1))));
   }
   LAYERLAB_AVX2 void Into(ErrorSums* sums) const {
     _mm256_storeu_pd(sums->even, even), _mm256_storeu_pd(sums->odd, odd);
@@ -140,7 +130,7 @@ LAYERLAB_AVX2 int FixedBranches(const Rgb4* const* rows, const int* a, const Rgb
   for (int s = 0; s < kSums; ++s) n[s] = reinterpret_cast<float*>(res[s]), d[s] = reinterpret_cast<float*>(den[s]);
   for (int b = 0; b < K; ++b) {
     for (int k = 0; k < L; ++k) r[b * L + k] = reinterpret_cast<const float*>(rows[b * L + k]);
-    w2[b] = Twice(w + b), member[b] = kAll ? 0 : a[b];
+    w2[b] = Twice(w[b]), member[b] = kAll ? 0 : a[b];
   }
   TwoRayErrors errors{_mm256_setzero_pd(), _mm256_setzero_pd()};
   int j = 0;
@@ -152,7 +142,7 @@ LAYERLAB_AVX2 int FixedBranches(const Rgb4* const* rows, const int* a, const Rgb
       for (int k = 0; k < L; ++k) p = _mm256_mul_ps(p, v[b][k] = _mm256_loadu_ps(r[b * L + k] + j * 4));
       light = _mm256_add_ps(light, p);
     }
-    const __m256 lj = TwoTargetRays(l, j);
+    const __m256 lj = LoadTwoRaysOver(l + j * 3);
     if constexpr (kError) errors.Add(lj, light);
     const __m256 residual = _mm256_sub_ps(light, lj);
     for (int b = 0; b < K; ++b) {
@@ -177,11 +167,11 @@ LAYERLAB_AVX2 int AnyBranches(const Rgb4* const* rows, int branches, const int* 
   for (; j + 3 <= cols; j += 2) {
     __m256 light = _mm256_setzero_ps();
     for (int b = 0; b < branches; ++b) {
-      __m256 p = Twice(w + b);
+      __m256 p = Twice(w[b]);
       for (int k = 0; k < L; ++k) p = _mm256_mul_ps(p, TwoRays(rows[b * L + k], j));
       light = _mm256_add_ps(light, p);
     }
-    const __m256 lj = TwoTargetRays(l, j);
+    const __m256 lj = LoadTwoRaysOver(l + j * 3);
     if constexpr (kError) errors.Add(lj, light);
     const __m256 residual = _mm256_sub_ps(light, lj);
     for (int b = 0; b < branches; ++b) {
@@ -192,10 +182,10 @@ LAYERLAB_AVX2 int AnyBranches(const Rgb4* const* rows, int branches, const int* 
           v[k] = TwoRays(rows[b * L + k], j);
           n[k] = reinterpret_cast<float*>(res[b * L + k]), d[k] = reinterpret_cast<float*>(den[b * L + k]);
         }
-        AddJointSumsOfTwoRays<L>(Twice(w + b), v, residual, light, j, n, d);
+        AddJointSumsOfTwoRays<L>(Twice(w[b]), v, residual, light, j, n, d);
         continue;
       }
-      const __m256 q = MemberQ<L>(Twice(w + b), a[b], [&](int k) LAYERLAB_AVX2 { return TwoRays(rows[b * L + k], j); });
+      const __m256 q = MemberQ<L>(Twice(w[b]), a[b], [&](int k) LAYERLAB_AVX2 { return TwoRays(rows[b * L + k], j); });
       AddSums(residual, light, q, reinterpret_cast<float*>(res[b] + j), reinterpret_cast<float*>(den[b] + j));
     }
   }
