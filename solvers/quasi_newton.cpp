@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "framework/huge_page_allocator.h"
+#include "solvers/chunked_sweep.h"
 #include "solvers/joint_pass.h"
 #include "solvers/retinal_pass.h"
 #include "solvers/solve_loop.h"
@@ -46,27 +47,6 @@ constexpr int kMaxHalvings = 30;
 
 using Vector = std::vector<double, HugePageAllocator<double>>;
 
-// Sums in fixed chunks added in order: the same bits for any thread count.
-constexpr size_t kChunks = 64;
-
-template <class Term>
-double ChunkedSum(size_t n, Term term) {
-  double part[kChunks] = {};
-#pragma omp parallel for schedule(static)
-  for (size_t c = 0; c < kChunks; ++c) {
-    double s = 0;
-    for (size_t i = n * c / kChunks; i < n * (c + 1) / kChunks; ++i) s += term(i);
-    part[c] = s;
-  }
-  double total = 0;
-  for (double p : part) total += p;
-  return total;
-}
-
-double Dot(const Vector& a, const Vector& b) {
-  return ChunkedSum(a.size(), [&](size_t i) { return a[i] * b[i]; });
-}
-
 // Every layer's values one after another.
 class Layout {
  public:
@@ -75,37 +55,40 @@ class Layout {
       offset_.push_back(size_);
       size_ += model.projection(k).pixel_count() * 3;
     }
+    offset_.push_back(size_);
   }
   size_t size() const { return size_; }
 
   void Gather(const Patterns& t, Vector* x) const {
     for (size_t k = 0; k < t.size(); ++k) std::copy(t[k].rgb.begin(), t[k].rgb.end(), x->begin() + offset_[k]);
   }
-  void Scatter(const Vector& x, Patterns* t) const {
-    for (size_t k = 0; k < t->size(); ++k) {
-      float* out = (*t)[k].rgb.data();
-      const double* in = x.data() + offset_[k];
-#pragma omp parallel for schedule(static)
-      for (size_t i = 0; i < (*t)[k].rgb.size(); ++i) out[i] = static_cast<float>(in[i]);
+  // Each layer's part of [begin, end): at(layer, index in the layer, index in x).
+  template <class At>
+  void ForRange(size_t begin, size_t end, At at) const {
+    for (size_t k = 0; k + 1 < offset_.size(); ++k) {
+      const size_t from = std::max(begin, offset_[k]), to = std::min(end, offset_[k + 1]);
+      for (size_t j = from; j < to; ++j) at(k, j - offset_[k], j);
     }
   }
-  // g = 2 res; h = scale * x / (2 den), 0 where den is below epsilon.
-  void GradientAndScale(const JointPass& pass, const Vector& x, double scale, double epsilon, Vector* g,
-                        Vector* h) const {
-    for (size_t k = 0; k < offset_.size(); ++k) {
-      const std::vector<double>& res = pass.residual()[k];
-      const std::vector<double>& den = pass.denominator()[k];
-#pragma omp parallel for schedule(static)
-      for (size_t i = 0; i < res.size(); ++i) {
-        const size_t j = offset_[k] + i;
-        (*g)[j] = 2.0 * res[i];
-        (*h)[j] = den[i] > epsilon ? scale * x[j] / (2.0 * den[i]) : 0.0;
-      }
-    }
+  // The patterns' values [begin, end) from x.
+  void Scatter(const Vector& x, size_t begin, size_t end, Patterns* t) const {
+    ForRange(begin, end, [&](size_t k, size_t i, size_t j) { (*t)[k].rgb[i] = static_cast<float>(x[j]); });
+  }
+  void Scatter(const Vector& x, Patterns* t) const {
+    Sweep(x.size(), [&](size_t begin, size_t end) { Scatter(x, begin, end, t); });
+  }
+  // g = 2 res; h = scale * x / (2 den), 0 where den is below epsilon; over [begin, end).
+  void GradientAndScale(const JointPass& pass, const Vector& x, double scale, double epsilon, size_t begin, size_t end,
+                        Vector* g, Vector* h) const {
+    ForRange(begin, end, [&](size_t k, size_t i, size_t j) {
+      const double res = pass.residual()[k][i], den = pass.denominator()[k][i];
+      (*g)[j] = 2.0 * res;
+      (*h)[j] = den > epsilon ? scale * x[j] / (2.0 * den) : 0.0;
+    });
   }
 
  private:
-  std::vector<size_t> offset_;
+  std::vector<size_t> offset_;  // [layer], and the size last
   size_t size_ = 0;
 };
 
@@ -115,52 +98,85 @@ struct Pair {
   double rho = 0;
 };
 
-// d = -H g over the free values (free[i] = 1, else 0), H the L-BFGS inverse
-// Hessian from `pairs` started at gamma diag(h), gamma from the newest pair.
-void Direction(const std::deque<Pair>& pairs, const Vector& g, const Vector& h, const Vector& free, Vector* d) {
-  const size_t n = g.size();
+// free[i] = 1 where value i may move (h > 0 and not held at a bound its
+// gradient pushes it past), else 0; then d = -H g over the free values, H
+// the L-BFGS inverse Hessian from `pairs` started at gamma diag(h), gamma
+// from the newest pair. Returns g . d. Each sweep ends with the dot product
+// the next one needs.
+double Direction(const std::deque<Pair>& pairs, const Vector& g, const Vector& h, const Vector& x, double lo, double hi,
+                 Vector* free_values, Vector* d) {
+  const size_t n = g.size(), m = pairs.size();
   Vector& q = *d;
-#pragma omp parallel for schedule(static)
-  for (size_t i = 0; i < n; ++i) q[i] = g[i] * free[i];
+  Vector& free = *free_values;
+  auto start = Each([&](size_t i) {
+    free[i] = h[i] > 0 && !(x[i] <= lo && g[i] > 0) && !(x[i] >= hi && g[i] < 0) ? 1.0 : 0.0;
+    q[i] = g[i] * free[i];
+  });
+  if (m == 0) {
+    auto plain = [&](size_t begin, size_t end) {
+      start(begin, end);
+      for (size_t i = begin; i < end; ++i) q[i] *= 1.0 * h[i], q[i] = -q[i] * free[i];
+    };
+    return Sweep(n, plain, [&](size_t i) { return g[i] * q[i]; })[0];
+  }
+  // The first loop, newest pair first: a_j = rho_j s_j . q, q -= a_j y_j.
+  const Pair& newest = pairs.back();
+  const auto [newest_sq, yhy] = Sweep(
+      n, start, [&](size_t i) { return newest.s[i] * q[i]; },
+      [&](size_t i) { return newest.y[i] * h[i] * newest.y[i] * free[i]; });
+  const double gamma = yhy > 0 ? 1.0 / (newest.rho * yhy) : 1.0;  // s.y / y.H0.y of the newest pair
   double a[kMemory + 1];
-  for (size_t j = pairs.size(); j-- > 0;) {
+  double sq = newest_sq;
+  for (size_t j = m; j-- > 0;) {
     const Pair& p = pairs[j];
-    a[j] = p.rho * Dot(p.s, q);
-#pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < n; ++i) q[i] -= a[j] * p.y[i] * free[i];
+    const double aj = a[j] = p.rho * sq;
+    auto update = Each([&](size_t i) { q[i] -= aj * p.y[i] * free[i]; });
+    if (j > 0) {
+      const Pair& next = pairs[j - 1];
+      sq = Sweep(n, update, [&](size_t i) { return next.s[i] * q[i]; })[0];
+    } else {  // then q = gamma H0 q, and the second loop's first y . q
+      auto scale = [&](size_t begin, size_t end) {
+        update(begin, end);
+        for (size_t i = begin; i < end; ++i) q[i] *= gamma * h[i];
+      };
+      sq = Sweep(n, scale, [&](size_t i) { return pairs[0].y[i] * q[i]; })[0];
+    }
   }
-  double gamma = 1.0;
-  if (!pairs.empty()) {  // s.y / y.H0.y of the newest pair
-    const Pair& p = pairs.back();
-    const double yhy = ChunkedSum(n, [&](size_t i) { return p.y[i] * h[i] * p.y[i] * free[i]; });
-    if (yhy > 0) gamma = 1.0 / (p.rho * yhy);
-  }
-#pragma omp parallel for schedule(static)
-  for (size_t i = 0; i < n; ++i) q[i] *= gamma * h[i];
-  for (size_t j = 0; j < pairs.size(); ++j) {
+  // The second loop, oldest pair first: b = rho_j y_j . q, q += (a_j - b) s_j; then d = -q.
+  for (size_t j = 0; j + 1 < m; ++j) {
     const Pair& p = pairs[j];
-    const double b = p.rho * Dot(p.y, q);
-#pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < n; ++i) q[i] += (a[j] - b) * p.s[i] * free[i];
+    const double coefficient = a[j] - p.rho * sq;
+    const Pair& next = pairs[j + 1];
+    sq = Sweep(n, Each([&](size_t i) { q[i] += coefficient * p.s[i] * free[i]; }),
+               [&](size_t i) { return next.y[i] * q[i]; })[0];
   }
-#pragma omp parallel for schedule(static)
-  for (size_t i = 0; i < n; ++i) q[i] = -q[i] * free[i];
+  const double coefficient = a[m - 1] - newest.rho * sq;
+  auto last = Each([&](size_t i) {
+    q[i] += coefficient * newest.s[i] * free[i];
+    q[i] = -q[i] * free[i];
+  });
+  return Sweep(n, last, [&](size_t i) { return g[i] * q[i]; })[0];
+}
+
+// d = -h g over the free values: the plain multiplicative step's direction. Returns g . d.
+double PlainDirection(const Vector& g, const Vector& h, const Vector& free, Vector* d) {
+  return Sweep(g.size(), Each([&](size_t i) { (*d)[i] = -h[i] * g[i] * free[i]; }),
+               [&](size_t i) { return g[i] * (*d)[i]; })[0];
 }
 
 // x_new = clamp(x + step d, lo, hi), rounded to float as the patterns are
-// (so that the pairs see the step the patterns took); change = x_new - x.
-void ProjectedStep(const Vector& x, const Vector& d, double step, double lo, double hi, Vector* x_new, Vector* change) {
-#pragma omp parallel for schedule(static)
-  for (size_t i = 0; i < x.size(); ++i) {
-    (*x_new)[i] = static_cast<float>(std::clamp(x[i] + step * d[i], lo, hi));
-    (*change)[i] = (*x_new)[i] - x[i];
-  }
-}
-
-// d = -h g over the free values: the plain multiplicative step's direction.
-void PlainDirection(const Vector& g, const Vector& h, const Vector& free, Vector* d) {
-#pragma omp parallel for schedule(static)
-  for (size_t i = 0; i < g.size(); ++i) (*d)[i] = -h[i] * g[i] * free[i];
+// (so that the pairs see the step the patterns took), and written into the
+// patterns; change = x_new - x. Returns g . change.
+double ProjectedStep(const Layout& layout, const Vector& x, const Vector& d, const Vector& g, double step, double lo,
+                     double hi, Vector* x_new, Vector* change, Patterns* t) {
+  auto body = [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      (*x_new)[i] = static_cast<float>(std::clamp(x[i] + step * d[i], lo, hi));
+      (*change)[i] = (*x_new)[i] - x[i];
+    }
+    layout.Scatter(*x_new, begin, end, t);
+  };
+  return Sweep(x.size(), body, [&](size_t i) { return g[i] * (*change)[i]; })[0];
 }
 
 class QuasiNewtonSolver final : public Solver {
@@ -226,16 +242,16 @@ class QuasiNewtonSolver final : public Solver {
 
     layout.Gather(*t, &x);
     double f = run(*t);
-    layout.GradientAndScale(sums, x, plain, options.epsilon, &g, &h);
+    Sweep(n, [&](size_t begin, size_t end) {
+      layout.GradientAndScale(sums, x, plain, options.epsilon, begin, end, &g, &h);
+    });
     // Halves the projected step along d until it lowers the objective
     // enough; x_new, change and *f_new are then the step's. A step whose
     // slope clamping (or rounding) leaves non-negative is not evaluated.
     auto line_search = [&](double* f_new) {
       for (int halving = 0; halving <= kMaxHalvings; ++halving) {
-        ProjectedStep(x, d, std::ldexp(1.0, -halving), lo, hi, &x_new, &change);
-        const double slope = Dot(g, change);
+        const double slope = ProjectedStep(layout, x, d, g, std::ldexp(1.0, -halving), lo, hi, &x_new, &change, t);
         if (!(slope < 0)) continue;
-        layout.Scatter(x_new, t);
         *f_new = run(*t);
         if (*f_new <= f + kArmijo * slope) return true;  // NaN fails: halved
       }
@@ -244,17 +260,14 @@ class QuasiNewtonSolver final : public Solver {
     // The plain step's direction, the pairs forgotten.
     auto plain_direction = [&] {
       while (!pairs.empty()) spare.push_back(std::move(pairs.front())), pairs.pop_front();
-      PlainDirection(g, h, free, &d);
+      return PlainDirection(g, h, free, &d);
     };
 
     while (true) {
-#pragma omp parallel for schedule(static)
-      for (size_t i = 0; i < n; ++i)
-        free[i] = h[i] > 0 && !(x[i] <= lo && g[i] > 0) && !(x[i] >= hi && g[i] < 0) ? 1.0 : 0.0;
-      Direction(pairs, g, h, free, &d);
+      double slope = Direction(pairs, g, h, x, lo, hi, &free, &d);
       bool from_pairs = !pairs.empty();
-      if (!(Dot(g, d) < 0)) plain_direction(), from_pairs = false;
-      if (!(Dot(g, d) < 0)) {
+      if (!(slope < 0)) slope = plain_direction(), from_pairs = false;
+      if (!(slope < 0)) {
         loop.Converge("the projected gradient is zero: a stationary point of the bounded problem");
         break;
       }
@@ -269,18 +282,21 @@ class QuasiNewtonSolver final : public Solver {
         loop.Converge("no projected step lowers the objective any more");
         break;
       }
-      layout.GradientAndScale(sums, x_new, plain, options.epsilon, &g_new, &h_new);
-
       Pair p = std::move(spare.empty() ? pairs.front() : spare.back());
       if (spare.empty())
         pairs.pop_front();
       else
         spare.pop_back();
-#pragma omp parallel for schedule(static)
-      for (size_t i = 0; i < n; ++i) p.s[i] = change[i], p.y[i] = g_new[i] - g[i];
-      const double sy = Dot(p.s, p.y);
+      // The new gradient and scale, and the pair of this step.
+      auto gradient_and_pair = [&](size_t begin, size_t end) {
+        layout.GradientAndScale(sums, x_new, plain, options.epsilon, begin, end, &g_new, &h_new);
+        for (size_t i = begin; i < end; ++i) p.s[i] = change[i], p.y[i] = g_new[i] - g[i];
+      };
+      const auto [sy, ss, yy] = Sweep(
+          n, gradient_and_pair, [&](size_t i) { return p.s[i] * p.y[i]; }, [&](size_t i) { return p.s[i] * p.s[i]; },
+          [&](size_t i) { return p.y[i] * p.y[i]; });
       // Only pairs of positive curvature keep H positive definite.
-      if (sy > 1e-12 * std::sqrt(Dot(p.s, p.s) * Dot(p.y, p.y))) {
+      if (sy > 1e-12 * std::sqrt(ss * yy)) {
         p.rho = 1.0 / sy;
         pairs.push_back(std::move(p));
       } else {
