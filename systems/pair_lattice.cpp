@@ -159,6 +159,8 @@ void PairLattice::UpdateSums(int layer, const Rgb4* other, const PairCells& binn
   {
     // This layer row's sums over its row pairs, per column pair; lane 3 unused.
     std::vector<Rgb4> sum_rq(width), sum_qq(width);
+    std::vector<const Rgb4*> cells, q_rows;  // of the row's row pairs
+    std::vector<float> row_rays;
 // Rows hold from none to a dozen row pairs: handed out a few at a time.
 #pragma omp for schedule(dynamic, 4)
     for (int r = 0; r < rows; ++r) {
@@ -169,13 +171,15 @@ void PairLattice::UpdateSums(int layer, const Rgb4* other, const PairCells& binn
         std::fill(den_row, den_row + own_row, 0.0);
         continue;
       }
+      cells.clear(), q_rows.clear(), row_rays.clear();
       for (int32_t k = side.first[r]; k < side.first[r + 1]; ++k) {
         const int32_t i = side.order[k];
-        const Rgb4* q_row = other + static_cast<size_t>(row_pairs_[i].own[o]) * other_cols;
-        const float rays = static_cast<float>(row_pairs_[i].rays);
-        PairSumsRow(binned.data() + static_cast<size_t>(i) * width, q_row, other_col, rays, static_cast<int>(width),
-                    k > side.first[r], sum_rq.data(), sum_qq.data());
+        cells.push_back(binned.data() + static_cast<size_t>(i) * width);
+        q_rows.push_back(other + static_cast<size_t>(row_pairs_[i].own[o]) * other_cols);
+        row_rays.push_back(static_cast<float>(row_pairs_[i].rays));
       }
+      PairSumsRows(cells.data(), q_rows.data(), row_rays.data(), static_cast<int>(cells.size()), other_col,
+                   static_cast<int>(width), sum_rq.data(), sum_qq.data());
       // A pixel's column pairs, each of its count of rays per row pair.
       for (int c = 0; c < own_cols; ++c) {
         double n[3] = {0, 0, 0}, d[3] = {0, 0, 0};

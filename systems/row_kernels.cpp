@@ -70,6 +70,11 @@ void PairSumsRow(const Rgb4* cells, const Rgb4* q_row, const int32_t* q_col, flo
   }
 }
 
+void PairSumsRows(const Rgb4* const* cells, const Rgb4* const* q_rows, const float* rays, int pairs,
+                  const int32_t* q_col, int width, Rgb4* sum_rq, Rgb4* sum_qq) {
+  for (int k = 0; k < pairs; ++k) PairSumsRow(cells[k], q_rows[k], q_col, rays[k], width, k > 0, sum_rq, sum_qq);
+}
+
 void UpdateSumsRows(const float* const* r, const Rgb4* const* q, int rows, Rgb4* num, Rgb4* den, int cols) {
   for (int g = 0; g < rows; ++g) UpdateSumsRow(r[g], q ? q[g] : nullptr, num, den, cols);
 }
@@ -239,6 +244,10 @@ void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int cols
 void PairSumsRow(const Rgb4* cells, const Rgb4* q_row, const int32_t* q_col, float rays, int width, bool add,
                  Rgb4* sum_rq, Rgb4* sum_qq) {
   LAYERLAB_DISPATCH(PairSumsRow(cells, q_row, q_col, rays, width, add, sum_rq, sum_qq));
+}
+void PairSumsRows(const Rgb4* const* cells, const Rgb4* const* q_rows, const float* rays, int pairs,
+                  const int32_t* q_col, int width, Rgb4* sum_rq, Rgb4* sum_qq) {
+  LAYERLAB_DISPATCH(PairSumsRows(cells, q_rows, rays, pairs, q_col, width, sum_rq, sum_qq));
 }
 void UpdateSumsRows(const float* const* r, const Rgb4* const* q, int rows, Rgb4* num, Rgb4* den, int cols) {
   LAYERLAB_DISPATCH(UpdateSumsRows(r, q, rows, num, den, cols));

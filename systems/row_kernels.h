@@ -33,6 +33,13 @@ void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int cols
 void PairSumsRow(const Rgb4* cells, const Rgb4* q_row, const int32_t* q_col, float rays, int width, bool add,
                  Rgb4* sum_rq, Rgb4* sum_qq);
 
+// PairSumsRow for the `pairs` row pairs of one layer row in turn, the first
+// setting the sums and the others adding: the same adds in the same order,
+// each column pair's two sums kept in registers over a few row pairs.
+// Row pair k has cells[k], q_rows[k] and rays[k]; q_col is the same for all.
+void PairSumsRows(const Rgb4* const* cells, const Rgb4* const* q_rows, const float* rays, int pairs,
+                  const int32_t* q_col, int width, Rgb4* sum_rq, Rgb4* sum_qq);
+
 // UpdateSumsRow for `rows` ray rows that sum into the same num and den, in
 // turn: the same adds in the same order, each ray column's two sums kept in
 // registers over a few rows. q == nullptr means 1 for every row; else q[g]

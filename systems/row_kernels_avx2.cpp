@@ -172,7 +172,45 @@ LAYERLAB_AVX2 void UpdateSumsGroup(const float* const* r, const Rgb4* const* q, 
     baseline::UpdateSumsRow(rg[g] + j * 3, q ? q[g] + j : nullptr, num + j, den + j, cols - j);
 }
 
+// PairSumsRows' row pairs [0, G): the first sets the sums unless `add`.
+template <int G>
+LAYERLAB_AVX2 void PairSumsGroup(const Rgb4* const* cells, const Rgb4* const* q_rows, const float* rays,
+                                 const int32_t* q_col, int width, bool add, Rgb4* sum_rq, Rgb4* sum_qq) {
+  __m256 r8[G];
+  for (int g = 0; g < G; ++g) r8[g] = _mm256_set1_ps(rays[g]);
+  int j = 0;
+  for (; j + 2 <= width; j += 2) {
+    const int32_t c0 = q_col[j], c1 = q_col[j + 1];
+    float* rq = reinterpret_cast<float*>(sum_rq + j);
+    float* qq = reinterpret_cast<float*>(sum_qq + j);
+    __m256 rqj = _mm256_setzero_ps(), qqj = _mm256_setzero_ps();
+    for (int g = 0; g < G; ++g) {
+      const __m256 q = _mm256_set_m128(__m128(q_rows[g][c1]), __m128(q_rows[g][c0]));
+      const __m256 c = _mm256_loadu_ps(reinterpret_cast<const float*>(cells[g] + j));
+      const __m256 cq = _mm256_mul_ps(c, q), rqq = _mm256_mul_ps(r8[g], _mm256_mul_ps(q, q));
+      if (g > 0) {
+        rqj = _mm256_add_ps(rqj, cq), qqj = _mm256_add_ps(qqj, rqq);
+      } else if (add) {
+        rqj = _mm256_add_ps(_mm256_loadu_ps(rq), cq), qqj = _mm256_add_ps(_mm256_loadu_ps(qq), rqq);
+      } else {
+        rqj = cq, qqj = rqq;
+      }
+    }
+    _mm256_storeu_ps(rq, rqj), _mm256_storeu_ps(qq, qqj);
+  }
+  for (int g = 0; g < G && j < width; ++g)
+    baseline::PairSumsRow(cells[g] + j, q_rows[g], q_col + j, rays[g], width - j, add || g > 0, sum_rq + j, sum_qq + j);
+}
+
 }  // namespace
+
+LAYERLAB_AVX2 void PairSumsRows(const Rgb4* const* cells, const Rgb4* const* q_rows, const float* rays, int pairs,
+                                const int32_t* q_col, int width, Rgb4* sum_rq, Rgb4* sum_qq) {
+  InGroupsOfFour(pairs, [&](auto g, int first) {
+    PairSumsGroup<decltype(g)::value>(cells + first, q_rows + first, rays + first, q_col, width, first > 0, sum_rq,
+                                      sum_qq);
+  });
+}
 
 LAYERLAB_AVX2 void PairSumsRow(const Rgb4* cells, const Rgb4* q_row, const int32_t* q_col, float rays, int width,
                                bool add, Rgb4* sum_rq, Rgb4* sum_qq) {

@@ -21,6 +21,8 @@ namespace layerlab {
   void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int cols);                                \
   void PairSumsRow(const Rgb4* cells, const Rgb4* q_row, const int32_t* q_col, float rays, int width, bool add,     \
                    Rgb4* sum_rq, Rgb4* sum_qq);                                                                     \
+  void PairSumsRows(const Rgb4* const* cells, const Rgb4* const* q_rows, const float* rays, int pairs,              \
+                    const int32_t* q_col, int width, Rgb4* sum_rq, Rgb4* sum_qq);                                   \
   void UpdateSumsRows(const float* const* r, const Rgb4* const* q, int rows, Rgb4* num, Rgb4* den, int cols);       \
   double UpdateSumsAndErrorRow(const float* r, const Rgb4* q, const Rgb4* own, Rgb4 w, Rgb4* num, Rgb4* den,        \
                                int cols);                                                                           \

@@ -187,6 +187,52 @@ TEST_F(RowKernels, PairSumsAddCellTimesOtherPixelAndCountTimesItsSquare) {
     }
 }
 
+TEST_F(RowKernels, PairSumsOfSeveralRowPairsAreTheRowPairsOneByOne) {
+  std::mt19937 rng(12);
+  for (int pairs : {1, 2, 3, 4, 5, 6, 9, 13})
+    for (int width : {1, 2, 3, 4, 17, 40, 41}) {
+      std::vector<Row> cells, other;
+      std::vector<float> rays;
+      for (int k = 0; k < pairs; ++k) {
+        cells.push_back(RandomRow(width, rng, 0.0f, 9.0f)), other.push_back(RandomRow(7, rng));
+        rays.push_back(float(1 + (k + width) % 5));
+      }
+      std::vector<int32_t> col(width);
+      for (int32_t& c : col) c = std::uniform_int_distribution<int32_t>(0, 6)(rng);
+      std::vector<const Rgb4*> cp, qp;
+      for (int k = 0; k < pairs; ++k) cp.push_back(cells[k].padded.data()), qp.push_back(other[k].padded.data());
+      const Row n0 = RandomRow(width, rng), d0 = RandomRow(width, rng);  // overwritten: the first pair sets the sums
+      auto run = [&](bool one_by_one) {
+        std::vector<Rgb4> num = n0.padded, den = d0.padded;
+        num.push_back(Rgb4{kGuard, kGuard, kGuard, kGuard}), den.push_back(num.back());
+        if (one_by_one)
+          for (int k = 0; k < pairs; ++k)
+            PairSumsRow(cp[k], qp[k], col.data(), rays[k], width, k > 0, num.data(), den.data());
+        else
+          PairSumsRows(cp.data(), qp.data(), rays.data(), pairs, col.data(), width, num.data(), den.data());
+        std::vector<Rgb4> both = num;
+        both.insert(both.end(), den.begin(), den.end());
+        return both;
+      };
+      const std::vector<Rgb4> together = run(false), one_by_one = run(true);
+      ASSERT_TRUE(SameBits(together.data(), one_by_one.data(), together.size() * sizeof(Rgb4)))
+          << pairs << " row pairs, " << width << " column pairs";
+      ASSERT_EQ(together[width][0], kGuard);
+      // And the sums themselves, in double: sum_k cells_k q_k and sum_k rays_k q_k^2.
+      for (int j = 0; j < width; ++j)
+        for (int c = 0; c < 3; ++c) {
+          double rq = 0, qq = 0;
+          for (int k = 0; k < pairs; ++k) {
+            const double q = other[k].padded[col[j]][c];
+            rq += double(cells[k].padded[j][c]) * q, qq += rays[k] * q * q;
+          }
+          ASSERT_NEAR(together[j][c], rq, 1e-5 * (1 + std::abs(rq)));
+          ASSERT_NEAR(together[width + 1 + j][c], qq, 1e-5 * (1 + std::abs(qq)));
+        }
+      ExpectSameInBothBuilds([&] { return Bytes(run(false)); }, "pair sums of several row pairs", width);
+    }
+}
+
 TEST_F(RowKernels, FusedUpdateSumsAlsoGiveTheBranchError) {
   std::mt19937 rng(6);
   const Rgb4 w{0.5f, 0.25f, 0.75f, 0.0f};
