@@ -112,10 +112,11 @@ double Direction(const std::deque<Pair>& pairs, const Vector& g, const Vector& h
     free[i] = h[i] > 0 && !(x[i] <= lo && g[i] > 0) && !(x[i] >= hi && g[i] < 0) ? 1.0 : 0.0;
     q[i] = g[i] * free[i];
   });
-  if (m == 0) {
+  if (m == 0) {  // H = diag(h): gamma 1
+    constexpr double kGamma = 1.0;
     auto plain = [&](size_t begin, size_t end) {
       start(begin, end);
-      for (size_t i = begin; i < end; ++i) q[i] *= 1.0 * h[i], q[i] = -q[i] * free[i];
+      for (size_t i = begin; i < end; ++i) q[i] *= kGamma * h[i], q[i] = -q[i] * free[i];
     };
     return Sweep(n, plain, [&](size_t i) { return g[i] * q[i]; })[0];
   }
