@@ -18,8 +18,10 @@
 //
 // From a flat start the hybrid solver's first iterations gain more per
 // second (each layer solved exactly against the others), so the first
-// `warm_start_iterations` (default 2) are its; the quasi-Newton steps then
-// go on from its patterns as from a checkpoint, with one trace and clock.
+// `warm_start_iterations` (default 2) are its (solvers/hybrid_iterations.h),
+// in this solve's loop, trace and workspace. The last of them skips the
+// hybrid's objective pass: the joint pass the first step needs gives its
+// row. A resumed solve goes on with quasi-Newton steps.
 //
 // With the retinal objective (SolverOptions::objective) the pass is
 // RetinalPass, whose sums are those of f / Bound() (retinal_pass.h); the
@@ -33,10 +35,10 @@
 
 #include "framework/huge_page_allocator.h"
 #include "solvers/chunked_sweep.h"
+#include "solvers/hybrid_iterations.h"
 #include "solvers/joint_pass.h"
 #include "solvers/retinal_pass.h"
 #include "solvers/solve_loop.h"
-#include "solvers/solver_checkpoint.h"
 
 namespace layerlab {
 namespace {
@@ -184,50 +186,10 @@ class QuasiNewtonSolver final : public Solver {
  public:
   SolverReport Solve(const DisplayModel& model, const LightField& target, const SolverOptions& options,
                      Patterns* t) const override {
-    if (options.warm_start_iterations == 0 || options.resume) return QuasiNewton(model, target, options, t);
-    // The hybrid runs under this solve's options, asked to stop after its share.
-    SolverOptions first = options;
-    first.checkpoint = nullptr;  // written below, as this solver's
-    first.checkpoint_every = 0;
-    int asked = 0;
-    bool warm_done = false;
-    first.interrupted = [&] {
-      if (options.interrupted && options.interrupted()) return true;
-      return warm_done = ++asked >= options.warm_start_iterations;
-    };
-    SolverReport warm = SolverRegistry::Builtins().create("hybrid")->Solve(model, target, first, t);
-    warm.solver = "quasi-newton";
-    SolverCheckpoint start{"quasi-newton", warm.iterations, warm.seconds, *t, {}, warm.trace};
-    // The budget is checked after the stop request: a warm start that used it up ends the solve too.
-    if (warm_done && options.time_budget > 0 && warm.seconds >= options.time_budget) {
-      warm.termination = Termination::kTimeBudget;
-      warm.message = TimeBudgetMessage(warm.seconds);
-      warm_done = false;
-    }
-    if (!warm_done) {  // stopped where this solve stops: its limit, budget, interruption, or a failure
-      const bool short_stop =
-          warm.termination == Termination::kInterrupted || warm.termination == Termination::kTimeBudget;
-      if (short_stop && options.checkpoint && options.checkpoint_every > 0) options.checkpoint(start);
-      return warm;
-    }
-    SolverOptions rest = options;
-    rest.resume = &start;
-    SolverReport report = QuasiNewton(model, target, rest, t);
-    report.setup_seconds += warm.setup_seconds;
-    return report;
-  }
-
- private:
-  SolverReport QuasiNewton(const DisplayModel& model, const LightField& target, const SolverOptions& options,
-                           Patterns* t) const {
     SolveLoop loop("quasi-newton", model, target, options, t);
-    // Work vectors allocated and touched in the set-up.
-    const Layout layout(model);
-    const size_t n = layout.size();
-    Vector x(n), g(n), h(n), d(n), x_new(n), g_new(n), h_new(n), free(n), change(n);
-    std::deque<Pair> pairs;
-    std::vector<Pair> spare(kMemory);
-    for (Pair& p : spare) p.s.resize(n), p.y.resize(n);
+    const int warm_iterations = options.resume ? 0 : options.warm_start_iterations;
+    std::optional<HybridIterations> warm;
+    if (warm_iterations > 0) warm.emplace(model, options, t);  // the chase, allocated in the set-up
     if (!loop.Start()) return loop.Finish();
     const LightField& l = loop.target();
     const double lo = options.floor, hi = 1.0;
@@ -241,8 +203,36 @@ class QuasiNewtonSolver final : public Solver {
     auto run = [&](const Patterns& p) { return retinal ? retinal->Run(p) : pass.Run(l, p); };
     const JointPass& sums = retinal ? retinal->sums() : pass;
 
+    // The warm start, in this loop; its last iteration's patterns are
+    // evaluated by the pass the first step needs, which also gives their row.
+    // The work vectors replace the chase (made off the clock, as set-up).
+    const Layout layout(model);
+    const size_t n = layout.size();
+    Vector x, g, h, d, x_new, g_new, h_new, free, change;
+    std::deque<Pair> pairs;
+    std::vector<Pair> spare(kMemory);
+    auto allocate = [&] {
+      warm.reset();
+      for (Vector* v : {&x, &g, &h, &d, &x_new, &g_new, &h_new, &free, &change}) v->resize(n);
+      for (Pair& p : spare) p.s.resize(n), p.y.resize(n);
+    };
+    double f = 0;
+    if (warm) warm->Begin(&loop);
+    for (int k = 1; k <= warm_iterations; ++k) {
+      const bool last = k == warm_iterations;
+      std::optional<double> objective = warm->Iterate(!last);
+      if (last) {
+        loop.SetUpMidway(allocate);
+        objective = f = run(*t);
+        if (retinal) loop.SetMeasures(retinal->last());
+      }
+      if (!loop.EndIteration(objective)) return loop.Finish();
+    }
+    if (warm_iterations == 0) {
+      loop.SetUpMidway(allocate);
+      f = run(*t);
+    }
     layout.Gather(*t, &x);
-    double f = run(*t);
     Sweep(n, [&](size_t begin, size_t end) {
       layout.GradientAndScale(sums, x, plain, options.epsilon, begin, end, &g, &h);
     });

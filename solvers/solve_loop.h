@@ -35,6 +35,18 @@ class SolveLoop {
   int iteration() const { return iteration_; }  // iterations completed
   double Seconds() const;
 
+  // Runs `work` off the trace's clock, its time counted in setup_seconds:
+  // set-up a solver can only do after it has started (memory an earlier
+  // phase of the solve frees first, so that the two are not held at once).
+  template <class Work>
+  void SetUpMidway(Work work) {
+    const auto begin = std::chrono::steady_clock::now();
+    work();
+    const auto spent = std::chrono::steady_clock::now() - begin;
+    start_ += spent;
+    report_.setup_seconds += std::chrono::duration<double>(spent).count();
+  }
+
   // Records the objective after an iteration; false when it is time to stop.
   // `objective` may be passed when the solver computed it anyway. With the
   // retinal objective the trace row is the retinal measures: those passed
