@@ -12,6 +12,9 @@
 namespace layerlab {
 
 void* AllocateLarge(size_t bytes);
+// The bytes AllocateLarge takes for `bytes`: blocks of 2 MB and more are
+// rounded up to whole 2 MB pages (what the memory estimates count).
+size_t LargeAllocationBytes(size_t bytes);
 void FreeLarge(void* p, size_t bytes);
 
 template <class T>

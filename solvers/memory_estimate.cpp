@@ -2,11 +2,13 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
 #include "framework/error.h"
+#include "framework/huge_page_allocator.h"
 #include "solvers/objective.h"
 
 namespace layerlab {
@@ -41,7 +43,9 @@ MemoryEstimate EstimateSolveMemory(const DisplayModel& model, const std::string&
   for (size_t k = 0; k < model.layer_count(); ++k) layer_values += double(model.projection(k).pixel_count()) * 3;
   const double patterns = layer_values * sizeof(float);
   const double solver_fields = light_field * own.light_fields;
-  const double solver_layers = layer_values * sizeof(double) * own.layer_doubles;
+  // Each of the layer vectors is one huge-page block (quasi-newton's Vector).
+  const double solver_layers =
+      double(LargeAllocationBytes(static_cast<size_t>(layer_values * sizeof(double)))) * own.layer_doubles;
   const WorkspaceLayout layout = SolveWorkspace::Layout(model, threads, own.passes);
   // Code, libraries and what the process holds before the solve; 64 MB where it cannot be read.
   const size_t resident = ResidentBytes();
@@ -56,15 +60,22 @@ MemoryEstimate EstimateSolveMemory(const DisplayModel& model, const std::string&
     for (size_t k = 0; k < target->rgb.size() && !e.clipped_copy_counted; ++k)
       e.clipped_copy_counted = target->rgb[k] > max[k % 3];
   }
-  double total = light_field + solver_fields + solver_layers + patterns + double(layout.bytes()) + program;
+  const double solver_own =
+      own.fields_then_layers ? std::max(solver_fields, solver_layers) : solver_fields + solver_layers;
+  double total = light_field + solver_own + patterns + double(layout.bytes()) + program;
   if (e.clipped_copy_counted) total += double(e.clipped_copy);
   e.bytes = static_cast<size_t>(total);
   e.breakdown = "target " + FormatBytes(light_field);
   if (e.clipped_copy_counted) e.breakdown += " + its clipped copy " + FormatBytes(light_field);
-  if (own.light_fields > 0)
-    e.breakdown +=
-        " + the solver's light fields " + FormatBytes(light_field) + " x " + std::to_string(own.light_fields);
-  if (own.layer_doubles > 0) e.breakdown += " + the solver's layer vectors " + FormatBytes(solver_layers);
+  const std::string fields =
+      "the solver's light fields " + FormatBytes(light_field) + " x " + std::to_string(own.light_fields);
+  const std::string layers = "the solver's layer vectors " + FormatBytes(solver_layers);
+  if (own.fields_then_layers && own.light_fields > 0 && own.layer_doubles > 0)
+    e.breakdown += " + the larger of " + fields + " and " + layers + " (held in turn)";
+  else {
+    if (own.light_fields > 0) e.breakdown += " + " + fields;
+    if (own.layer_doubles > 0) e.breakdown += " + " + layers;
+  }
   e.breakdown += " + patterns " + FormatBytes(patterns) + " + workspace " + FormatBytes(double(layout.bytes())) + " (" +
                  layout.Describe() + ") + program " + FormatBytes(program);
   if (!target)

@@ -312,8 +312,9 @@ SolverType QuasiNewtonSolverType() {
       "quasi-newton",
       "projected L-BFGS on every layer at once after warm_start_iterations of hybrid, one pass per step",
       [] { return std::make_unique<QuasiNewtonSolver>(); }, defaults);
-  // The warm start's chase; 9 work vectors and kMemory pairs of 2, in double.
+  // The warm start's chase, then 9 work vectors and kMemory pairs of 2, in double.
   type.memory.light_fields = 1;
+  type.memory.fields_then_layers = true;
   type.retinal_objective = true;
   type.memory.layer_doubles = 9 + kMemory * 2;
   type.options = {{"warm_start_iterations", "iterations of hybrid before the quasi-Newton steps"}, SubIterationsKey()};

@@ -163,6 +163,10 @@ SolverOptionKey SubIterationsKey();
 struct SolverMemory {
   int light_fields = 0;      // light-field-sized float buffers of its own (hybrid: the chase)
   double layer_doubles = 0;  // doubles per layer value of its own (quasi-newton: work vectors and pairs)
+  // The light fields are freed before the layer vectors are made
+  // (quasi-newton: the warm start's chase, then the steps' vectors), so
+  // only the larger of the two is held at once.
+  bool fields_then_layers = false;
   // The passes it makes (WorkspacePass): what the solve loop sizes its workspace for.
   unsigned passes = kAllPasses;
 };

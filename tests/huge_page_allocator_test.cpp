@@ -24,6 +24,18 @@ TEST(HugePageAllocator, LargeBlocksAreAlignedToHugePagesAndSmallOnesWork) {
   }
 }
 
+// What the memory estimates count: small blocks as they are, large ones in whole 2 MB pages.
+TEST(HugePageAllocator, LargeBlocksTakeWholeHugePages) {
+  const size_t page = size_t(2) << 20;
+  EXPECT_EQ(LargeAllocationBytes(1), 1u);
+  EXPECT_EQ(LargeAllocationBytes(page - 1), page - 1);
+#if defined(__linux__)
+  EXPECT_EQ(LargeAllocationBytes(page), page);
+  EXPECT_EQ(LargeAllocationBytes(page + 1), 2 * page);
+  EXPECT_EQ(LargeAllocationBytes(7680000), 4 * page);  // one of quasi-newton's vectors at paper scale
+#endif
+}
+
 TEST(HugePageAllocator, AnImpossibleSizeIsRefused) {
   HugePageAllocator<float> a;
   EXPECT_THROW(a.allocate(static_cast<size_t>(-1) / 2), std::bad_array_new_length);
