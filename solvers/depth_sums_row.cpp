@@ -73,6 +73,10 @@ struct Baseline {
 #if LAYERLAB_ROW_KERNELS_AVX2
 #define LAYERLAB_AVX2 __attribute__((target("avx2")))
 
+using avx2::LoadTwoRaysOver;
+using avx2::Squared;
+using avx2::Twice;
+
 // Rays j and j + 1 of a padded row.
 LAYERLAB_AVX2 inline __m256 TwoRays(const Rgb4* row, int j) {
   return _mm256_loadu_ps(reinterpret_cast<const float*>(row + j));

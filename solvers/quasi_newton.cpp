@@ -199,20 +199,23 @@ class QuasiNewtonSolver final : public Solver {
     JointPass pass(model, &loop.workspace());
     // The retinal objective's pass (retinal_pass.h) gives the same sums for f / Bound().
     std::optional<RetinalPass> retinal;
-    if (loop.retinal()) retinal.emplace(model, l, *loop.retinal());
     auto run = [&](const Patterns& p) { return retinal ? retinal->Run(p) : pass.Run(l, p); };
-    const JointPass& sums = retinal ? retinal->sums() : pass;
 
     // The warm start, in this loop; its last iteration's patterns are
-    // evaluated by the pass the first step needs, which also gives their row.
-    // The work vectors replace the chase (made off the clock, as set-up).
+    // evaluated by the pass the first step needs, which also gives their
+    // row. What the steps hold replaces the chase, made off the clock as
+    // set-up: the retinal pass's light fields before that pass, the work
+    // vectors after it, once the solve goes on.
     const Layout layout(model);
     const size_t n = layout.size();
     Vector x, g, h, d, x_new, g_new, h_new, free, change;
     std::deque<Pair> pairs;
     std::vector<Pair> spare(kMemory);
-    auto allocate = [&] {
+    auto make_pass = [&] {
       warm.reset();
+      if (loop.retinal()) retinal.emplace(model, l, *loop.retinal());
+    };
+    auto make_vectors = [&] {
       for (Vector* v : {&x, &g, &h, &d, &x_new, &g_new, &h_new, &free, &change}) v->resize(n);
       for (Pair& p : spare) p.s.resize(n), p.y.resize(n);
     };
@@ -222,16 +225,18 @@ class QuasiNewtonSolver final : public Solver {
       const bool last = k == warm_iterations;
       std::optional<double> objective = warm->Iterate(!last);
       if (last) {
-        loop.SetUpMidway(allocate);
+        loop.SetUpMidway(make_pass);
         objective = f = run(*t);
         if (retinal) loop.SetMeasures(retinal->last());
       }
       if (!loop.EndIteration(objective)) return loop.Finish();
     }
     if (warm_iterations == 0) {
-      loop.SetUpMidway(allocate);
+      loop.SetUpMidway(make_pass);
       f = run(*t);
     }
+    loop.SetUpMidway(make_vectors);
+    const JointPass& sums = retinal ? retinal->sums() : pass;
     layout.Gather(*t, &x);
     Sweep(n, [&](size_t begin, size_t end) {
       layout.GradientAndScale(sums, x, plain, options.epsilon, begin, end, &g, &h);

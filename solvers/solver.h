@@ -161,8 +161,10 @@ SolverOptionKey SubIterationsKey();
 // What a solver holds beyond what every solve holds (solvers/memory_estimate.h
 // adds the target, its prepared copy, the patterns and the solve's workspace).
 struct SolverMemory {
-  int light_fields = 0;      // light-field-sized float buffers of its own (hybrid: the chase)
-  double layer_doubles = 0;  // doubles per layer value of its own (quasi-newton: work vectors and pairs)
+  int light_fields = 0;  // light-field-sized float buffers of its own (hybrid: the chase)
+  // Vectors of one double per layer value of its own, each in huge pages
+  // (HugePageAllocator; quasi-newton: work vectors and pairs).
+  double layer_doubles = 0;
   // The light fields are freed before the layer vectors are made
   // (quasi-newton: the warm start's chase, then the steps' vectors), so
   // only the larger of the two is held at once.

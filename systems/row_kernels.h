@@ -37,6 +37,7 @@ void PairSumsRow(const Rgb4* cells, const Rgb4* q_row, const int32_t* q_col, flo
 // setting the sums and the others adding: the same adds in the same order,
 // each column pair's two sums kept in registers over a few row pairs.
 // Row pair k has cells[k], q_rows[k] and rays[k]; q_col is the same for all.
+// pairs >= 1 (with none the sums are left as they were, not zeroed).
 void PairSumsRows(const Rgb4* const* cells, const Rgb4* const* q_rows, const float* rays, int pairs,
                   const int32_t* q_col, int width, Rgb4* sum_rq, Rgb4* sum_qq);
 

@@ -1,7 +1,7 @@
 // Two rays per 256-bit register, one Rgb4 lane each: the loads and stores
 // every AVX2 row kernel shares (row_kernels_avx2.cpp, solvers/depth_sums_row.cpp).
 // Each function carries the avx2 target itself: call them only from code
-// built for AVX2 (CpuHasAvx2()).
+// built for AVX2 (CpuHasAvx2()), hence the avx2 namespace.
 #pragma once
 
 #include "systems/row_kernels_isa.h"
@@ -11,7 +11,7 @@
 
 #include "framework/rgb4.h"
 
-namespace layerlab {
+namespace layerlab::avx2 {
 
 // Rays j and j + 1 of a packed row as two Rgb4 lanes, each with the next
 // float in lane 3 as LoadRgbOver reads it: p[0..7] must be readable.
@@ -33,5 +33,5 @@ __attribute__((target("avx2"))) inline __m256d Squared(Rgb4 t, Rgb4 l) {
   return _mm256_mul_pd(diff, diff);
 }
 
-}  // namespace layerlab
+}  // namespace layerlab::avx2
 #endif

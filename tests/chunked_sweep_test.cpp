@@ -63,7 +63,7 @@ TEST(ChunkedSweep, SumsAreTheChunkedSumsBitForBitOnAnyThreadCount) {
   for (size_t n : kSizes) {
     const std::vector<double> a = Scattered(n, 1), b = Scattered(n, 2);
     const double expected = ChunkedReference(a, b);
-    for (int threads : {1, 2, 3}) {
+    for (int threads : {1, 2, 3, 8, 16, 40}) {  // four, two and one chunks side by side
       ThreadCount scope(threads);
       const double got = Sweep(
           n, [](size_t, size_t) {}, [&](size_t i) { return a[i] * b[i]; })[0];
@@ -96,6 +96,9 @@ TEST(ChunkedSweep, BodyRunsOncePerValueBeforeTheTermsReadIt) {
                              [&](size_t i) { return q[i] * b[i]; })[0];
     EXPECT_EQ(got, ChunkedReference(a, b)) << "n = " << n;
     for (size_t i = 0; i < n; ++i) ASSERT_EQ(visits[i], 1) << "value " << i << " of " << n;
+    // A sweep of no sums: the body alone, once per value.
+    Sweep(n, Each([&](size_t i) { ++visits[i]; }));
+    for (size_t i = 0; i < n; ++i) ASSERT_EQ(visits[i], 2) << "value " << i << " of " << n;
   }
 }
 

@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
 #include <vector>
 
 namespace layerlab {
@@ -29,7 +32,7 @@ TEST(HugePageAllocator, LargeBlocksTakeWholeHugePages) {
   const size_t page = size_t(2) << 20;
   EXPECT_EQ(LargeAllocationBytes(1), 1u);
   EXPECT_EQ(LargeAllocationBytes(page - 1), page - 1);
-#if defined(__linux__)
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
   EXPECT_EQ(LargeAllocationBytes(page), page);
   EXPECT_EQ(LargeAllocationBytes(page + 1), 2 * page);
   EXPECT_EQ(LargeAllocationBytes(7680000), 4 * page);  // one of quasi-newton's vectors at paper scale

@@ -218,6 +218,7 @@ TEST_F(RowKernels, PairSumsOfSeveralRowPairsAreTheRowPairsOneByOne) {
       ASSERT_TRUE(SameBits(together.data(), one_by_one.data(), together.size() * sizeof(Rgb4)))
           << pairs << " row pairs, " << width << " column pairs";
       ASSERT_EQ(together[width][0], kGuard);
+      ASSERT_EQ(together[2 * width + 1][0], kGuard);
       // And the sums themselves, in double: sum_k cells_k q_k and sum_k rays_k q_k^2.
       for (int j = 0; j < width; ++j)
         for (int c = 0; c < 3; ++c) {
