@@ -24,6 +24,9 @@ std::string LabelOf(const ordered_json& value) { return value.is_string() ? valu
 
 // "1.2 D" -> (1.2, "D"); "0.5" -> (0.5, ""); anything else: nothing.
 std::optional<std::pair<double, std::string>> NumberWithUnit(const std::string& label) {
+  // std::regex recurses per character: a label of 200000 digits overflowed the stack. No number
+  // with a unit is this long.
+  if (label.size() > 64) return std::nullopt;
   static const std::regex form(R"(\s*([-+]?[0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?)\s*([^\s0-9][^\s]*)?\s*)");
   std::smatch m;
   if (!std::regex_match(label, m, form)) return std::nullopt;

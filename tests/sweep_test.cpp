@@ -268,6 +268,16 @@ TEST_F(SweepTest, SlurmResourcesAreReadInSlurmsFormsOnly) {
   EXPECT_NE(ErrorOf(s).find("sweep.json: /slurm: must be an object"), std::string::npos) << ErrorOf(s);
 }
 
+// A label of 200000 digits (or spaces) is a label, not a number: it ended in a stack overflow (signal 11)
+// in the regular expression that recognizes "<number> <unit>".
+TEST_F(SweepTest, ALongLabelIsATextColumnNotAStackOverflow) {
+  nlohmann::json s = Base();
+  s["parameters"][0]["labels"] = {std::string(200000, '1'), " " + std::string(200000, ' ') + "1"};
+  const SweepSpec spec = ReadSweepSpec(Write(s));
+  EXPECT_EQ(spec.parameters[0].unit, "");
+  EXPECT_EQ(spec.parameters[0].column(), "pupil");
+}
+
 // The base scene's target light field is an input too: an output folder inside it is refused before
 // anything is written (the jobs would each have refused it after the folders were written into it).
 TEST_F(SweepTest, AnOutputFolderInsideTheBaseScenesTargetIsRefusedUpFront) {
