@@ -66,6 +66,54 @@ TEST(Contrast, PerfectOneLayerDisplayScoresOneAtItsPeak) {
   }
 }
 
+// Natural viewing is its own reference: its curve is 1 where the eye focuses at the target, by construction,
+// for every eye model (a chromatic eye focuses each channel elsewhere; a wrong reference shows there) and either
+// reference. And a display that can show its target exactly peaks at the target's depth (near 1 against the
+// sampled target), where no aberration moves the eye's best focus.
+TEST(Contrast, NaturalViewingIsOneAtTheTargetThroughEveryEyeModel) {
+  const double dt = 1.3;
+  const std::vector<std::pair<std::string, nlohmann::json>> eyes = {
+      {"ideal", nlohmann::json::object()},
+      {"chromatic", {{"chromatic_aberration", "thibos"}, {"reference_wavelength", "555 nm"}}},
+      {"chromatic, aberrated, diffracting, round 6 mm pupil",
+       {{"chromatic_aberration", "thibos"},
+        {"zernike", "salmon_van_de_pol_2006"},
+        {"diffraction", true},
+        {"pupil_shape", "round"},
+        {"pupil_diameter", "6 mm"}}},
+      {"auto pupil", {{"pupil_diameter", "auto"}, {"pupil_shape", "round"}, {"chromatic_aberration", "thibos"}}},
+  };
+  for (const auto& [name, keys] : eyes)
+    for (const ContrastReference reference : {ContrastReference::kSampledTarget, ContrastReference::kContinuous}) {
+      SCOPED_TRACE(name + (reference == ContrastReference::kContinuous ? ", continuous" : ", sampled") + " reference");
+      nlohmann::json scene = testing::ReadExample("multiplicative_2layer.json");
+      testing::ElementNamed(scene, "lens")["next"] = "rear";
+      scene["elements"].erase(2);
+      testing::ElementNamed(scene, "rear")["virtual_depth"] = std::to_string(dt) + " D";
+      nlohmann::json& eye = testing::ElementNamed(scene, "eye");
+      eye["pupil_samples"] = {7, 7};
+      for (const auto& [key, value] : keys.items()) eye[key] = value;
+      ContrastDisplay d;
+      d.name = "one_layer";
+      d.system = testing::CompileJson(scene);
+      d.solver = "multiplicative";
+      ContrastOptions o;
+      o.target_diopters = {dt};
+      o.frequencies = {3.0};
+      o.accommodation_min = dt - 0.3, o.accommodation_max = dt + 0.3, o.accommodation_step = 0.1;
+      o.reference = reference;
+      o.peak_uncertainty = false;
+      const std::vector<ContrastCurve> curves = RunContrast({d}, o);
+      const ContrastCurve& natural = Curve(curves, "natural", 3.0);
+      EXPECT_NEAR(natural.at_target, 1.0, 1e-6);
+      // Spherical aberration moves best focus off the target (Zernike.SphericalAberrationMovesBestFocus...).
+      if (keys.contains("zernike")) continue;
+      const ContrastCurve& display = Curve(curves, "one_layer", 3.0);
+      EXPECT_NEAR(display.peak.at_grid, dt, 1e-9);
+      if (reference == ContrastReference::kSampledTarget) EXPECT_NEAR(display.at_target, 1.0, 0.01);
+    }
+}
+
 // Each curve is solved alone on one thread (analysis/contrast.cpp), so the
 // sweep gives the same bits with any number of threads; a two-thread solve
 // merges its threads' sums in another order than a one-thread solve.
