@@ -68,14 +68,15 @@ void AddRetinaCommand(CLI::App& app) {
                  states.end());
 
     const double resolution = ParseOptionValue(o->resolution, "--resolution", kDegrees);
-    if (!(resolution > 0) || !(resolution < 10)) throw Error("--resolution: give degrees in (0, 10)");
     double field_x = 0, field_y = 0;  // deg; 0: the display's field of view
     if (!o->field.empty()) {
       std::vector<double> f = ParseNumberList(o->field, "--field", kDegrees);
-      if (f.size() != 2 || !(f[0] > 0) || !(f[1] > 0) || f[0] >= 170 || f[1] >= 170)
-        throw Error("--field: give W,H in degrees, each in (0, 170)");
+      if (f.size() != 2) throw Error("--field: give W,H in degrees, each in (0, 170)");
       field_x = f[0], field_y = f[1];
+      if (field_x == 0 && field_y == 0) throw Error("--field: give W,H in degrees, each in (0, 170), got 0, 0");
     }
+    RetinaSweepOptions sweep{states, resolution, field_x, field_y, false};
+    CheckRetinaSweepOptions(sweep);  // the Python module's Solution.retina makes the same checks
     StagedOutput stage(o->out, "retina", {"display", "natural", "retina.csv", "index.html"},
                        {{o->scene, "the scene"},
                         {o->patterns, "the patterns"},
@@ -101,7 +102,6 @@ void AddRetinaCommand(CLI::App& app) {
     }
 #endif
 
-    RetinaSweepOptions sweep{states, resolution, field_x, field_y, false};
     Progress progress("retina", states.size());
     try {
       const std::vector<RetinaStateResult> results = WriteRetinaSweep(

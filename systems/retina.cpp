@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "framework/error.h"
@@ -19,10 +20,17 @@ RetinaGrid MakeRetinaGrid(double field_x, double field_y, double resolution) {
     throw Error("a retina needs a positive field and resolution");
   RetinaGrid g;
   g.resolution = resolution;
-  g.cols = std::max(1, static_cast<int>(std::lround(field_x / resolution)));
-  g.rows = std::max(1, static_cast<int>(std::lround(field_y / resolution)));
-  if (double(g.cols) * g.rows > 1e8)
-    throw Error("a retina of " + std::to_string(g.cols) + " x " + std::to_string(g.rows) + " samples is too large");
+  // Counted in doubles: a tiny resolution over a wide field is beyond int, and a cast would wrap.
+  const double cols = std::max(1.0, std::round(field_x / resolution));
+  const double rows = std::max(1.0, std::round(field_y / resolution));
+  if (!(cols * rows <= 1e8)) {
+    char size[64];
+    std::snprintf(size, sizeof size, "%.4g x %.4g", cols, rows);
+    throw Error("a retina of " + std::string(size) +
+                " samples is too large (the limit is 1e8 samples: a coarser resolution or a smaller field)");
+  }
+  g.cols = static_cast<int>(cols);
+  g.rows = static_cast<int>(rows);
   return g;
 }
 
