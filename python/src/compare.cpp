@@ -35,11 +35,22 @@ std::vector<std::string> PathList(const py::object& paths) {
   return files;
 }
 
-// None: each scene's own solver; "all"; a name; a list of names.
-std::vector<std::string> SolverList(const py::object& solvers) {
+// None: each scene's own solver; "all"; a name; a list of names (`what` names the argument in a TypeError).
+std::vector<std::string> SolverList(const py::object& solvers, const std::string& what) {
   if (solvers.is_none()) return {};
   if (py::isinstance<py::str>(solvers)) return {solvers.cast<std::string>()};
-  return solvers.cast<std::vector<std::string>>();
+  if (!py::isinstance<py::sequence>(solvers))
+    throw py::type_error(what + ": expected None, a str or a list of str, got " + TypeName(solvers));
+  std::vector<std::string> names;
+  size_t k = 0;
+  for (const py::handle& name : solvers) {
+    if (!py::isinstance<py::str>(name))
+      throw py::type_error(what + "[" + std::to_string(k) + "]: expected a str, got " + TypeName(name) + " " +
+                           Repr(name));
+    names.push_back(name.cast<std::string>());
+    ++k;
+  }
+  return names;
 }
 
 py::dict Compare(const py::object& scenes, const py::object& target, const py::object& solvers,
@@ -55,12 +66,13 @@ py::dict Compare(const py::object& scenes, const py::object& target, const py::o
   const std::vector<std::string> files = PathList(scenes);
   if (files.empty()) throw py::value_error("compare: no scene");
   std::vector<ObjectiveKind> objective_kinds;
-  for (const std::string& name : SolverList(objectives)) {  // None, a name or a list of names
+  for (const std::string& name : SolverList(objectives, "compare: objectives")) {  // None, a name or a list of names
     const std::optional<ObjectiveKind> k = ObjectiveKindNamed(name);
     if (!k) throw py::value_error("compare: objectives: \"" + name + "\" is not one of lightfield or retinal");
     objective_kinds.push_back(*k);
   }
-  const CompareSelection selection{SolverList(solvers), iterations, time_budget, scene_options, objective_kinds};
+  const CompareSelection selection{SolverList(solvers, "compare: solvers"), iterations, time_budget, scene_options,
+                                   objective_kinds};
   std::shared_ptr<LightField> given;
   SolveConfig target_config;  // a light-field folder, or a target scene file rendered as --target-scene does
   if (py::isinstance<LightField>(target)) {

@@ -128,7 +128,7 @@ py::object Solve(const py::object& display, const py::object& target, std::optio
   }
   if (const std::string why = UnsuitableSolver(config.solver, *solution->system); !why.empty())
     RaiseArgumentError(config.solver + " " + why);
-  if (sampling) config.sampling = SamplingFromString(*sampling);
+  if (sampling) CheckArgument([&] { config.sampling = SamplingFromString(*sampling); });
   for (const auto& [key, value] : options) SetOption(config.options, key.cast<std::string>(), value);
   if (std::string why; !config.options.IsValid(&why)) RaiseArgumentError(why);
 
@@ -192,8 +192,10 @@ std::shared_ptr<LightField> Synthesize(const std::shared_ptr<DisplaySystem>& sys
   const Patterns patterns = PatternsOf(*system, arrays);
   const LightFieldGeometry g = geometry ? *geometry : DisplayLightFieldGeometry(*system);
   if (geometry) CheckGeometryArgument(g, "synthesize: geometry");
+  Sampling how = Sampling::kNearest;
+  CheckArgument([&] { how = SamplingFromString(sampling); });
   py::gil_scoped_release release;
-  const DisplayModel model(*system, g, SamplingFromString(sampling));
+  const DisplayModel model(*system, g, how);
   return std::make_shared<LightField>(model.Synthesize(patterns));
 }
 

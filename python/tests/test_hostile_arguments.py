@@ -188,3 +188,14 @@ def test_compare_and_run_name_an_iteration_count_out_of_range(small_scene_path, 
     with pytest.raises(ValueError, match=r"run: iterations: 1099511627776: must be in \[1, 1000000\]"):
         layerlab.run(small_scene_path, tmp_path / "out", iterations=2**40)
     assert not (tmp_path / "out").exists()
+
+
+def test_names_of_the_wrong_type_or_unknown_are_named(small_scene_path, small_system, target):
+    with pytest.raises(TypeError, match=r"compare: solvers\[1\]: expected a str, got int 3"):
+        layerlab.compare(small_scene_path, target, solvers=["hybrid", 3], iterations=1)
+    with pytest.raises(TypeError, match=r"compare: objectives: expected None, a str or a list of str, got float"):
+        layerlab.compare(small_scene_path, target, objectives=1.0, iterations=1)
+    with pytest.raises(ValueError, match=r"unknown sampling \"cubic\"; expected nearest or bilinear"):
+        layerlab.solve(small_system, target, sampling="cubic", iterations=1)
+    with pytest.raises(ValueError, match=r"unknown sampling \"cubic\""):
+        layerlab.synthesize(small_system, patterns_of(small_system), sampling="cubic")
