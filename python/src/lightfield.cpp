@@ -130,10 +130,14 @@ void BindLightField(py::module_& m) {
           "save",
           [](const LightField& lf, const py::object& folder) {
             const std::string path = PathArg(folder);
+            // Never a folder that read_lightfield (and the command) would refuse.
+            CheckArgument([&] { CheckLightFieldValues(lf, "LightField.save: rgb"); });
             py::gil_scoped_release release;
             return WriteLightField(lf, path);
           },
-          py::arg("folder"), "Writes the folder (docs/lightfield-format.md); returns the files written")
+          py::arg("folder"),
+          "Writes the folder (docs/lightfield-format.md); returns the files written. Values that are not light "
+          "(NaN, infinite, negative) are refused, as read_lightfield would refuse them")
       .def("__repr__", [](const LightField& lf) {
         const LightFieldGeometry& g = lf.geometry;
         return "<layerlab.LightField " + std::to_string(g.views_y) + " x " + std::to_string(g.views_x) + " views of " +

@@ -199,3 +199,11 @@ def test_names_of_the_wrong_type_or_unknown_are_named(small_scene_path, small_sy
         layerlab.solve(small_system, target, sampling="cubic", iterations=1)
     with pytest.raises(ValueError, match=r"unknown sampling \"cubic\""):
         layerlab.synthesize(small_system, patterns_of(small_system), sampling="cubic")
+
+
+def test_a_light_field_that_is_not_light_is_not_saved(target, tmp_path):
+    lf = layerlab.LightField(np.array(target.rgb), target.geometry)
+    lf.rgb[3, 0, 5, 2] = np.nan
+    with pytest.raises(layerlab.ArgumentError, match=r"LightField.save: rgb: view 3 .*pixel \(row 0, col 5\) channel B"):
+        lf.save(tmp_path / "lf")
+    assert not (tmp_path / "lf").exists()  # nothing written that read_lightfield would refuse
