@@ -167,8 +167,13 @@ void BindLightField(py::module_& m) {
       py::arg("target_scene"), "Renders a target scene (docs/target-format.md) with Embree");
   m.def(
       "display_geometry",
-      [](const DisplaySystem& system, double origin_diopters) {
-        return DisplayLightFieldGeometry(system, origin_diopters);
+      [](const DisplaySystem& system, const py::handle& origin_diopters) {
+        const double d = RealArg(origin_diopters, "display_geometry: origin_diopters");
+        LightFieldGeometry g;
+        CheckArgument([&] { g = DisplayLightFieldGeometry(system, d); });
+        CheckGeometryArgument(g, "display_geometry: origin_diopters " + py::repr(origin_diopters).cast<std::string>() +
+                                     " gives a geometry");
+        return g;
       },
       py::arg("system"), py::arg("origin_diopters") = -1.0,
       "The light-field geometry the display suggests (its field of view, farthest layer's pixels, the eye's views)");

@@ -207,3 +207,13 @@ def test_a_light_field_that_is_not_light_is_not_saved(target, tmp_path):
     with pytest.raises(layerlab.ArgumentError, match=r"LightField.save: rgb: view 3 .*pixel \(row 0, col 5\) channel B"):
         lf.save(tmp_path / "lf")
     assert not (tmp_path / "lf").exists()  # nothing written that read_lightfield would refuse
+
+
+def test_display_geometry_names_an_origin_that_makes_no_light_field(small_system):
+    with pytest.raises(layerlab.ArgumentError, match=r"origin plane must be at a finite depth"):
+        layerlab.display_geometry(small_system, math.nan)
+    with pytest.raises(layerlab.ArgumentError,
+                       match=r"display_geometry: origin_diopters 1e-300 gives a geometry: origin_z: must be in"):
+        layerlab.display_geometry(small_system, 1e-300)
+    with pytest.raises(TypeError, match=r"display_geometry: origin_diopters: expected a number, got str"):
+        layerlab.display_geometry(small_system, "1 D")
