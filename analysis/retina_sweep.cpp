@@ -34,18 +34,12 @@ std::string Number(double x) {
 
 }  // namespace
 
-void CheckRetinaSweepOptions(const RetinaSweepOptions& o, const RetinaOptionNames& names) {
-  if (o.states.empty()) throw Error(names.states + ": no accommodation state given");
-  for (size_t k = 0; k < o.states.size(); ++k)
-    if (!std::isfinite(o.states[k]) || !(o.states[k] >= 0))
-      throw Error(names.states + "[" + std::to_string(k) + "]: " + Number(o.states[k]) +
+void CheckAccommodationStates(const std::vector<double>& states, const std::string& name) {
+  if (states.empty()) throw Error(name + ": no accommodation state given");
+  for (size_t k = 0; k < states.size(); ++k)
+    if (!std::isfinite(states[k]) || !(states[k] >= 0))
+      throw Error(name + "[" + std::to_string(k) + "]: " + Number(states[k]) +
                   " is not a finite number of diopters >= 0");
-  if (!(o.resolution > 0) || !(o.resolution < 10))
-    throw Error(names.resolution + ": give degrees in (0, 10), got " + Number(o.resolution));
-  const bool display_field = o.field_x == 0 && o.field_y == 0;
-  if (!display_field && !(o.field_x > 0 && o.field_x < 170 && o.field_y > 0 && o.field_y < 170))
-    throw Error(names.field + ": give W,H in degrees, each in (0, 170), got " + Number(o.field_x) + ", " +
-                Number(o.field_y));
 }
 
 std::string RetinaStateName(double diopters) {
@@ -58,7 +52,8 @@ std::vector<RetinaStateResult> WriteRetinaSweep(
     const DisplayModel& model, const Patterns& t, const SceneRadiance& natural, const RetinaSweepOptions& o,
     const std::string& folder, const std::function<void(size_t, size_t, const RetinaStateResult&)>& progress) {
   const DisplaySystem& system = model.system();
-  CheckRetinaSweepOptions(o);
+  CheckAccommodationStates(o.states, "retina: accommodation");
+  if (!(o.resolution > 0) || !(o.resolution < 10)) throw Error("retina: the resolution must lie in (0, 10) deg");
   const double field_x = o.field_x > 0 ? o.field_x * kDeg : system.fov_x;
   const double field_y = o.field_y > 0 ? o.field_y * kDeg : system.fov_y;
   const RetinaGrid grid = MakeRetinaGrid(field_x, field_y, o.resolution * kDeg);

@@ -27,17 +27,12 @@ struct RetinaSweepOptions {
   bool keep_images = false;         // also return each state's images (RetinaStateResult::display, natural)
 };
 
-// How the options are named in errors: the command's options, or the Python module's arguments.
-struct RetinaOptionNames {
-  std::string states = "--accommodation", resolution = "--resolution", field = "--field";
-};
-
-// The checks `layerlab retina`, WriteRetinaSweep and the Python module
-// (Solution.retina) make of the options: at least one state, each a finite
-// number of diopters >= 0; the resolution in (0, 10) deg; the field 0, 0 (the
-// display's) or each in (0, 170) deg. Throws Error naming the option (and a
-// state by its index) as `names` spells it.
-void CheckRetinaSweepOptions(const RetinaSweepOptions& options, const RetinaOptionNames& names = {});
+// Accommodation states as `layerlab retina` takes them (ParseOptionValue:
+// finite, >= 0 D): at least one, each a finite number of diopters >= 0.
+// Throws Error naming `name` and the state's index ("accommodation[1]: nan
+// ..."). The field and sample size have their own check, CheckRetinaSampling
+// (systems/retina.h); WriteRetinaSweep and the Python module make both.
+void CheckAccommodationStates(const std::vector<double>& states, const std::string& name);
 
 struct RetinaStateResult {
   double diopters = 0;

@@ -59,6 +59,7 @@
 #include "framework/json_file.h"
 #include "framework/params.h"
 #include "solvers/solve_config.h"
+#include "systems/retina.h"
 
 namespace layerlab {
 namespace {
@@ -184,6 +185,8 @@ ContrastRunConfig ReadContrast(Params& run, const Scene& scene) {
   p.require_range("retina_resolution", o.retina_resolution, 0, 1, true, false);
   o.retina_field = p.quantity("retina_field", Dimension::kAngle, o.retina_field * kDeg) / kDeg;
   p.require_range("retina_field", o.retina_field, 0, 170, true, true);
+  CheckRetinaSampling(o.retina_field, 3 * o.retina_resolution, o.retina_resolution,
+                      p.where().child("retina_field").str(), p.where().child("retina_resolution").str());
   o.strip_rows = static_cast<int>(p.integer("strip_rows", 1, 100000, o.strip_rows));
   if (p.has("scenes"))
     for (const std::string& file : StringList(p, "scenes")) c.scenes.push_back(ResolveAgainstScene(scene, file));

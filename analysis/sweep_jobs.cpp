@@ -171,7 +171,7 @@ FileLock LockSweepFolder(const SweepSpec& spec, const std::string& out) {
   std::string holder;
   std::optional<FileLock> lock = FileLock::TryLock((fs::path(out) / "sweep.lock").string(), &holder);
   if (!lock)
-    throw Error(out + ": another layerlab sweep" + (holder.empty() ? "" : " (process " + holder + ")") +
+    throw Error(out + ": another layerlab sweep" + (holder.empty() ? "" : " (" + holder + ")") +
                 " is running into this folder; wait for it to end or give another --out");
   return std::move(*lock);
 }

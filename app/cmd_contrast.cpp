@@ -17,6 +17,7 @@
 #include "framework/warnings.h"
 #include "solvers/solve_config.h"
 #include "systems/compile.h"
+#include "systems/retina.h"
 #include "systems/system_report.h"
 
 namespace layerlab::app {
@@ -70,8 +71,9 @@ void AddContrastCommand(CLI::App& app) {
     options.reference = o->reference == "sampled" ? ContrastReference::kSampledTarget : ContrastReference::kContinuous;
     options.grating = o->grating == "angle" ? GratingSpacing::kVisualAngle : GratingSpacing::kPlane;
     options.peak_uncertainty = !o->no_peak_uncertainty;
-    if (!(options.retina_resolution > 0) || !(options.retina_field > 0) || o->strip_rows < 1)
-      throw Error("--retina-resolution, --retina-field and --strip-rows must be positive");
+    CheckRetinaSampling(options.retina_field, 3 * options.retina_resolution, options.retina_resolution,
+                        "--retina-field", "--retina-resolution");
+    if (o->strip_rows < 1) throw Error("--strip-rows must be positive");
     for (double f : options.frequencies)
       if (!(f > 0)) throw Error("--frequencies: a frequency must be above 0 cpd");
     for (double d : options.target_diopters)

@@ -71,12 +71,13 @@ void AddRetinaCommand(CLI::App& app) {
     double field_x = 0, field_y = 0;  // deg; 0: the display's field of view
     if (!o->field.empty()) {
       std::vector<double> f = ParseNumberList(o->field, "--field", kDegrees);
-      if (f.size() != 2) throw Error("--field: give W,H in degrees, each in (0, 170)");
+      if (f.size() != 2) throw Error("--field: give W,H in degrees");
       field_x = f[0], field_y = f[1];
-      if (field_x == 0 && field_y == 0) throw Error("--field: give W,H in degrees, each in (0, 170), got 0, 0");
     }
-    RetinaSweepOptions sweep{states, resolution, field_x, field_y, false};
-    CheckRetinaSweepOptions(sweep);  // the Python module's Solution.retina makes the same checks
+    const bool display_field = o->field.empty();
+    CheckRetinaSampling(display_field ? system.fov_x / kRadiansPerDegree : field_x,
+                        display_field ? system.fov_y / kRadiansPerDegree : field_y, resolution, "--field",
+                        "--resolution");
     StagedOutput stage(o->out, "retina", {"display", "natural", "retina.csv", "index.html"},
                        {{o->scene, "the scene"},
                         {o->patterns, "the patterns"},
@@ -102,6 +103,7 @@ void AddRetinaCommand(CLI::App& app) {
     }
 #endif
 
+    RetinaSweepOptions sweep{states, resolution, field_x, field_y, false};
     Progress progress("retina", states.size());
     try {
       const std::vector<RetinaStateResult> results = WriteRetinaSweep(

@@ -1,5 +1,7 @@
 // Nothing half-written: every output goes to a temporary file in the same
-// folder and is renamed into place only once it is complete.
+// folder and is renamed into place only once it is complete. Durable: the
+// file's data reach the disk (fsync) before the rename, and its folder after,
+// so a write reported as done survives a power loss, not just a kill.
 #pragma once
 
 #include <set>
@@ -30,5 +32,10 @@ std::set<std::string> CommittedPaths();
 
 // Writes `contents` to `path` atomically; throws layerlab::Error naming the file.
 void WriteFileAtomically(const std::string& path, const std::string& contents);
+
+// fsync of a file's data, and of a folder's entries (what renames and
+// creations in it did); throws layerlab::Error naming the path.
+void SyncFile(const std::string& path);
+void SyncFolder(const std::string& path);
 
 }  // namespace layerlab

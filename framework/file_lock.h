@@ -13,10 +13,15 @@ namespace layerlab {
 class FileLock {
  public:
   // Takes the lock on `path` (created if missing) without waiting. Returns
-  // nothing when another process holds it; then *holder (optional) is its pid
-  // ("1234") when it wrote it there (a layerlab process does), else "".
+  // nothing when another process holds it; then *holder (optional) names it
+  // ("process 1234 on host node7") when it wrote itself there (a layerlab
+  // process does), else "". The host matters on a shared file system, where
+  // the holder's pid means nothing on this node.
   // Throws layerlab::Error naming the file when it cannot be opened.
   static std::optional<FileLock> TryLock(const std::string& path, std::string* holder = nullptr);
+  // Whether some process holds the lock on `path` now; false when the file is
+  // missing. Never creates the file, never waits. *holder as above.
+  static bool HeldElsewhere(const std::string& path, std::string* holder = nullptr);
 
   FileLock(FileLock&& other) noexcept : fd_(other.fd_) { other.fd_ = -1; }
   FileLock& operator=(FileLock&& other) noexcept;

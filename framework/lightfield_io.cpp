@@ -17,6 +17,8 @@
 #include "framework/lightfield_checks.h"
 #include "framework/parallel.h"
 #include "framework/params.h"
+#include "framework/progress.h"
+#include "framework/staged_output.h"
 
 namespace layerlab {
 namespace {
@@ -128,6 +130,7 @@ constexpr const char* kMakeOne =
     "docs/lightfield-format.md";
 
 Manifest ReadManifest(const std::string& folder) {
+  for (const std::string& line : FinishPendingSwitchOvers(folder)) Note(line);
   std::string manifest_path = (fs::path(folder) / "lightfield.json").string();
   std::error_code ec;
   if (!fs::is_directory(folder, ec)) {

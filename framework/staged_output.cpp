@@ -15,7 +15,9 @@
 
 #include "framework/atomic_file.h"
 #include "framework/error.h"
+#include "framework/file_lock.h"
 #include "framework/json_file.h"
+#include "framework/progress.h"
 
 namespace layerlab {
 namespace {
@@ -24,6 +26,11 @@ namespace fs = std::filesystem;
 
 constexpr const char* kManifestFormat = "layerlab-files/1";
 constexpr const char* kJournalFormat = "layerlab-switch/1";
+constexpr const char* kLockName = ".layerlab-lock";
+
+// Every command that stages its output: a reader looks for their journals by name.
+constexpr const char* kStagedCommands[] = {
+    "run", "solve", "retina", "compare", "contrast", "render-target", "photograph", "calibration-patterns", "sweep"};
 
 // Links and ".." resolved as far as the path exists; what does not exist yet is appended as spelled.
 fs::path RealPath(const std::string& path) {
@@ -56,6 +63,8 @@ std::string KindAt(const fs::path& p, bool* is_dir = nullptr, bool* is_file = nu
   if (S_ISSOCK(st.st_mode)) return "a socket";
   return "a device";
 }
+
+int end_after_moves = 0;  // EndProcessAfterSwitchOverMovesForTesting
 
 bool ProcessAlive(long pid) { return pid > 0 && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM); }
 
@@ -99,6 +108,7 @@ void PruneEmptyParents(const fs::path& folder, const std::string& rel) {
 void RunJournal(const fs::path& folder, const fs::path& journal, const nlohmann::json& doc) {
   const fs::path staging = folder / doc.at("staging").get<std::string>();
   std::error_code ec;
+  std::set<std::string> changed_folders = {folder.string()};
   for (const auto& item : doc.at("move")) {
     const std::string rel = item.get<std::string>();
     if (!SafeRelative(rel)) throw Error(journal.string() + ": /move: \"" + rel + "\" is not a path inside the folder");
@@ -108,7 +118,11 @@ void RunJournal(const fs::path& folder, const fs::path& journal, const nlohmann:
     if (ec) throw Error(to.parent_path().string() + ": cannot create the folder: " + ec.message());
     if (std::rename(from.c_str(), to.c_str()) != 0)
       throw Error(to.string() + ": cannot move the finished file into place: " + std::strerror(errno));
+    for (fs::path at = to.parent_path(); at != folder && Under(at, folder); at = at.parent_path())
+      changed_folders.insert(at.string());
+    if (end_after_moves > 0 && --end_after_moves == 0) ::_exit(86);
   }
+  for (const std::string& changed : changed_folders) SyncFolder(changed);  // the renames reach the disk first
   for (const auto& item : doc.at("remove")) {
     const std::string rel = item.get<std::string>();
     if (!SafeRelative(rel) || !ParentsAreFolders(folder, rel)) continue;
@@ -119,6 +133,31 @@ void RunJournal(const fs::path& folder, const fs::path& journal, const nlohmann:
   }
   fs::remove_all(staging, ec);
   fs::remove(journal, ec);
+  SyncFolder(folder.string());
+}
+
+// Every file and folder in `staging`, flushed to disk: what the journal will move must be there whole.
+void SyncTree(const fs::path& staging) {
+  std::error_code ec;
+  for (auto it = fs::recursive_directory_iterator(staging, ec); !ec && it != fs::recursive_directory_iterator();
+       it.increment(ec)) {
+    if (it->is_directory())
+      SyncFolder(it->path().string());
+    else
+      SyncFile(it->path().string());
+  }
+  if (ec) throw Error(staging.string() + ": cannot list the staging folder: " + ec.message());
+  SyncFolder(staging.string());
+}
+
+// Whether what a layerlab process left in `owner` (its staging folder, a
+// temporary file) belongs to a process still at work there: the folder's
+// lock says so, whatever the pid; without a lock file (a temporary file of a
+// writer that takes none) the pid decides.
+bool OwnerAtWork(const fs::path& owner, long pid) {
+  const fs::path lock = owner / kLockName;
+  if (!KindAt(lock).empty()) return FileLock::HeldElsewhere(lock.string());
+  return ProcessAlive(pid);
 }
 
 std::vector<std::string> ReadManifestFiles(const fs::path& manifest) {
@@ -162,12 +201,14 @@ void RefuseOutputOverlappingInputs(const std::string& output, const std::vector<
 StagedOutput::StagedOutput(std::string folder, std::string command, std::vector<std::string> roots,
                            std::vector<NamedInput> inputs)
     : folder_(std::move(folder)), command_(std::move(command)), roots_(std::move(roots)), inputs_(std::move(inputs)) {
+  if (std::none_of(std::begin(kStagedCommands), std::end(kStagedCommands),
+                   [&](const char* c) { return command_ == c; }))
+    throw Error("internal error: the command " + command_ + " stages output but is not in kStagedCommands");
   const fs::path dir(folder_);
-  // The folder may contain inputs (a scene beside its results), but not lie inside one.
-  const fs::path real_dir = RealPath(folder_);
-  for (const NamedInput& in : inputs_)
-    if (!in.path.empty() && Under(real_dir, RealPath(in.path))) RefuseOutputOverlappingInputs(folder_, {in});
   for (const std::string& root : roots_) RefuseOutputOverlappingInputs((dir / root).string(), inputs_);
+  // Nor may the folder contain an input (a scene beside its results would share their fate: the
+  // stale-file sweep, a user's `rm -r` of the results) or lie inside one.
+  RefuseOutputOverlappingInputs(folder_, inputs_);
 
   struct stat st;
   if (::stat(folder_.c_str(), &st) == 0) {
@@ -190,7 +231,32 @@ StagedOutput::StagedOutput(std::string folder, std::string command, std::vector<
                   "move it away. Nothing was written");
   }
 
-  // What interrupted or killed runs left: finish their switch-overs, then clear their staging and temporary files.
+  // One writer at a time, for the life of the staging folder.
+  std::string holder;
+  lock_ = FileLock::TryLock((dir / kLockName).string(), &holder);
+  if (!lock_) {
+    if (created_folder_) RemoveCreatedFolder();
+    throw Error(folder_ + ": another layerlab " + (holder.empty() ? "process" : holder) +
+                " is writing into this folder; wait for it to end or give another output folder. Nothing was written");
+  }
+
+  try {
+    ClearWhatKilledRunsLeft();
+    std::error_code ec;
+    staging_ = (dir / (".layerlab-staging-" + command_ + "-" + std::to_string(::getpid()))).string();
+    fs::remove_all(staging_, ec);
+    fs::create_directory(staging_, ec);
+    if (ec) throw Error(staging_ + ": cannot create the staging folder: " + ec.message());
+  } catch (...) {
+    ReleaseLock();
+    if (created_folder_) RemoveCreatedFolder();
+    throw;
+  }
+}
+
+// What interrupted or killed runs left: finish their switch-overs, then clear their staging and temporary files.
+void StagedOutput::ClearWhatKilledRunsLeft() {
+  const fs::path dir(folder_);
   std::error_code ec;
   static const std::regex journal_name(R"(\.layerlab-(.+)-switch\.json)");
   static const std::regex staging_name(R"(\.layerlab-staging-(.+)-([0-9]{1,9}))");
@@ -216,7 +282,9 @@ StagedOutput::StagedOutput(std::string folder, std::string command, std::vector<
     std::smatch m;
     const bool staging = std::regex_match(name, m, staging_name);
     if (staging || std::regex_match(name, m, temp_name)) {
-      if (!ProcessAlive(std::stol(m[staging ? 2 : 1]))) dead.push_back(it->path());
+      // In this folder, whose lock this object holds, nothing is another process's work.
+      if (it.depth() == 0 || !OwnerAtWork(it->path().parent_path(), std::stol(m[staging ? 2 : 1])))
+        dead.push_back(it->path());
       if (staging && it->is_directory()) it.disable_recursion_pending();
     } else if (it.depth() == 0 && it->is_directory() && std::find(roots_.begin(), roots_.end(), name) == roots_.end()) {
       it.disable_recursion_pending();  // the user's folders beside the outputs are not searched
@@ -224,20 +292,28 @@ StagedOutput::StagedOutput(std::string folder, std::string command, std::vector<
   }
   for (const fs::path& p : dead) {
     fs::remove_all(p, ec);
-    recovered_.push_back("removed " + p.string() + ", left by a layerlab process that no longer runs");
+    recovered_.push_back("removed " + p.string() + ", left by a layerlab process that no longer works there");
   }
-
-  staging_ = (dir / (".layerlab-staging-" + command_ + "-" + std::to_string(::getpid()))).string();
-  fs::remove_all(staging_, ec);
-  fs::create_directory(staging_, ec);
-  if (ec) throw Error(staging_ + ": cannot create the staging folder: " + ec.message());
 }
 
 StagedOutput::~StagedOutput() {
   std::error_code ec;
   const bool journaled = fs::exists(fs::path(folder_) / JournalName(command_), ec);
   if (!committed_ && !journaled) fs::remove_all(staging_, ec);  // a journaled switch-over is finished by the next run
-  if (created_folder_ && fs::is_empty(folder_, ec) && !ec) fs::remove(folder_, ec);
+  ReleaseLock();
+  if (created_folder_) RemoveCreatedFolder();
+}
+
+void StagedOutput::ReleaseLock() {
+  // The lock file goes while still held: a process that opened it meanwhile finds it unlinked and tries again.
+  std::error_code ec;
+  if (lock_) fs::remove(fs::path(folder_) / kLockName, ec);
+  lock_.reset();
+}
+
+void StagedOutput::RemoveCreatedFolder() {
+  std::error_code ec;
+  if (fs::is_empty(folder_, ec) && !ec) fs::remove(folder_, ec);
 }
 
 Error StagedOutput::Explain(const Error& e) const {
@@ -259,6 +335,7 @@ StagedOutput::Switched StagedOutput::Commit() {
   }
   if (ec) throw Error(staging_ + ": cannot list the staging folder: " + ec.message());
   std::sort(result.written.begin(), result.written.end());
+  SyncTree(staging);
 
   // Nothing is moved unless every file can be.
   for (const std::string& rel : result.written) {
@@ -315,6 +392,45 @@ StagedOutput::Switched StagedOutput::Commit() {
   RunJournal(dir, journal_path, journal);
   committed_ = true;
   return result;
+}
+
+void EndProcessAfterSwitchOverMovesForTesting(int moves) { end_after_moves = moves; }
+
+std::vector<std::string> FinishPendingSwitchOvers(const std::string& path) {
+  std::vector<std::string> done;
+  std::error_code ec;
+  fs::path at = fs::weakly_canonical(fs::absolute(path, ec), ec);
+  if (ec) return done;  // the reader names what it cannot reach
+  for (;; at = at.parent_path()) {
+    for (const char* command : kStagedCommands) {
+      const fs::path journal = at / JournalName(command);
+      bool is_file = false;
+      if (KindAt(journal, nullptr, &is_file).empty() || !is_file) continue;
+      const std::string unfinished =
+          at.string() + ": a layerlab " + command + " was killed while switching its results into place";
+      std::string holder;
+      std::optional<FileLock> lock;
+      try {
+        lock = FileLock::TryLock((at / kLockName).string(), &holder);
+      } catch (const Error& e) {
+        throw Error(unfinished + ", and the switch-over cannot be finished from here (" + e.message() +
+                    "); run layerlab " + command + " into that folder again");
+      }
+      if (!lock)
+        throw Error(at.string() + ": layerlab " + (holder.empty() ? "process" : holder) +
+                    " is switching its results into place; read them once it has ended");
+      if (KindAt(journal).empty()) continue;  // its writer finished it meanwhile
+      try {
+        RunJournal(at, journal, ReadJsonFile(journal.string()));
+      } catch (const nlohmann::json::exception& e) {
+        throw Error(journal.string() + ": not a valid switch-over journal (" + e.what() + "); " + unfinished);
+      }
+      fs::remove(at / kLockName, ec);  // while held, as the writer does
+      done.push_back(unfinished + "; the switch-over is now finished (" + journal.filename().string() + ")");
+    }
+    if (!at.has_relative_path()) break;  // the root
+  }
+  return done;
 }
 
 }  // namespace layerlab

@@ -5,18 +5,26 @@
 // leaves them so.
 //
 // The switch-over is journaled: the list of renames and removals is written
-// (atomically) before the first rename, and the next command into the folder
-// finishes a switch-over that a kill interrupted. Each folder keeps a
+// (atomically) before the first rename, and the next command into the folder,
+// or the next reader of anything in it (FinishPendingSwitchOvers), finishes a
+// switch-over that a kill interrupted. A writer holds the folder's lock
+// (.layerlab-lock, flock, with its pid and host) for the life of its staging
+// folder: a second writer is refused naming it, and what a dead writer left
+// is told from a live one's work by the lock, not by a pid. Durable: the
+// staged files, the journal and every folder the renames change are flushed
+// (fsync) before the step that trusts them. Each folder keeps a
 // manifest of the files each command wrote there (.layerlab-<command>-files.json);
 // files an earlier run recorded and this one did not write are removed at
 // the switch-over, never a file the manifest does not list, never an input,
 // never through a symbolic link.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "framework/error.h"
+#include "framework/file_lock.h"
 
 namespace layerlab {
 
@@ -35,11 +43,11 @@ class StagedOutput {
  public:
   // `roots`: the files and folders (relative to `folder`) the command writes;
   // each must not overlap an input, nor be a symbolic link or special file.
-  // `folder` itself must not lie inside an input. Before the staging folder
+  // `folder` itself must neither contain an input nor lie inside one. Before the staging folder
   // is made, an interrupted switch-over is finished and what killed layerlab
   // processes left (their staging folders, temporary files) is removed;
   // recovered() says what was done. Throws layerlab::Error before anything
-  // is written when a check fails.
+  // is written when a check fails or another process writes into `folder`.
   StagedOutput(std::string folder, std::string command, std::vector<std::string> roots, std::vector<NamedInput> inputs);
   // Without Commit(): removes the staging folder, and the output folder if
   // this object created it and it is empty again.
@@ -70,8 +78,24 @@ class StagedOutput {
   std::vector<std::string> roots_;
   std::vector<NamedInput> inputs_;
   std::vector<std::string> recovered_;
+  std::optional<FileLock> lock_;
   bool created_folder_ = false, committed_ = false;
+
+  void ClearWhatKilledRunsLeft();
+  void ReleaseLock();
+  void RemoveCreatedFolder();
 };
+
+// Before reading anything under `path`: a switch-over that a killed layerlab
+// run left half done in `path` or a folder above it is finished (the folder
+// then holds the new results whole), and what was done is returned. Throws
+// layerlab::Error naming the folder and the process when a live process is
+// switching it over, or when the switch-over cannot be finished.
+std::vector<std::string> FinishPendingSwitchOvers(const std::string& path);
+
+// Fault injection for tests: this process ends (_exit(86)) once `moves` files
+// of a later switch-over are in place, as a kill there would end it; 0 never.
+void EndProcessAfterSwitchOverMovesForTesting(int moves);
 
 // The name of the manifest `command` keeps in an output folder.
 std::string OutputManifestName(const std::string& command);

@@ -2,10 +2,14 @@
 // Inside layerlab everything is SI: meters, diopters (1/m), radians, cd/m^2.
 #pragma once
 
+#include <numbers>
 #include <string>
 #include <string_view>
 
 namespace layerlab {
+
+// The one home of the angle conversion: radians = degrees * kRadiansPerDegree.
+inline constexpr double kRadiansPerDegree = std::numbers::pi / 180;
 
 enum class Dimension {
   kLength,            // m, cm, mm, um, nm

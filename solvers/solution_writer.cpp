@@ -10,6 +10,8 @@
 #include "framework/exr_image.h"
 #include "framework/lightfield_io.h"
 #include "framework/png_writer.h"
+#include "framework/progress.h"
+#include "framework/staged_output.h"
 #include "framework/version.h"
 #include "systems/system_report.h"
 
@@ -114,6 +116,7 @@ void CheckTransmittance(const LayerPattern& p, const std::string& what) {
 }
 
 Patterns ReadPatterns(const DisplayModel& model, const std::string& folder) {
+  for (const std::string& line : FinishPendingSwitchOvers(folder)) Note(line);
   Patterns t;
   for (size_t k = 0; k < model.layer_count(); ++k) {
     const VirtualLayer& layer = model.system().layers[k];

@@ -49,6 +49,12 @@ bool SolverOptions::IsValid(std::string* error) const {
   if (!(epsilon > 0) || !(epsilon < 1e-3)) return fail("epsilon", epsilon, "must be in (0, 1e-3)");
   if (!(floor > 0) || !(floor < 0.1))
     return fail("floor", floor, "must be in (0, 0.1): a zero transmittance never recovers");
+  if (retinal.contrast_sensitivity && objective != ObjectiveKind::kRetinal) {
+    *error =
+        "contrast_sensitivity: true: weights the retinal objective's residuals, and this solve's objective is "
+        "\"lightfield\"; set the objective to \"retinal\" or leave contrast_sensitivity out";
+    return false;
+  }
   if (objective == ObjectiveKind::kRetinal && !retinal.weights.empty() &&
       retinal.weights.size() != retinal.states.size())
     return fail("retinal.weights", double(retinal.weights.size()), "must be one per state (retinal.states)");

@@ -391,7 +391,8 @@ class Walker {
     else if (ZeroWithinRounding(
                  m.a, std::abs(state.transfer.a) + std::abs((layer.position - state.placed_at) * state.transfer.c)))
       m.a = 0;  // a + t c at the focal plane: the image is at infinity
-    if (m.b == 0)
+    if (ZeroWithinRounding(
+            m.b, std::abs(state.transfer.b) + std::abs((layer.position - state.placed_at) * state.transfer.d)))
       Fail(node.where.child(key), "panel " + Quoted(layer.name) +
                                       " is imaged into the pupil plane, where no eye "
                                       "can focus; move it or the optics in front of it");

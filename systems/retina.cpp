@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <numbers>
 
 #include "framework/error.h"
 #include "framework/random.h"
@@ -15,22 +16,38 @@
 
 namespace layerlab {
 
+namespace {
+
+std::string Shortest(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", value);
+  return text;
+}
+
+}  // namespace
+
+void CheckRetinaSampling(double field_x_deg, double field_y_deg, double resolution_deg, const std::string& field_name,
+                         const std::string& resolution_name) {
+  if (!(resolution_deg > 0) || !(resolution_deg < 10))
+    throw Error(resolution_name + ": " + Shortest(resolution_deg) + " deg is not a retinal sample size in (0, 10) deg");
+  for (double side : {field_x_deg, field_y_deg})
+    if (!(side > 0) || !(side <= 170))
+      throw Error(field_name + ": " + Shortest(side) + " deg is not a retinal field side in (0, 170] deg");
+  const double cols = std::max(1.0, std::round(field_x_deg / resolution_deg));
+  const double rows = std::max(1.0, std::round(field_y_deg / resolution_deg));
+  if (cols * rows > 1e8)
+    throw Error(resolution_name + ": " + Shortest(resolution_deg) + " deg over a field of " + Shortest(field_x_deg) +
+                " x " + Shortest(field_y_deg) + " deg is " + Shortest(cols) + " x " + Shortest(rows) +
+                " retinal samples, beyond the 1e8 a retina may have; give a larger sample size or a smaller field");
+}
+
 RetinaGrid MakeRetinaGrid(double field_x, double field_y, double resolution) {
-  if (!(resolution > 0) || !(field_x > 0) || !(field_y > 0))
-    throw Error("a retina needs a positive field and resolution");
+  CheckRetinaSampling(field_x / kRadiansPerDegree, field_y / kRadiansPerDegree, resolution / kRadiansPerDegree,
+                      "the retinal field", "the retinal sample size");
   RetinaGrid g;
   g.resolution = resolution;
-  // Counted in doubles: a tiny resolution over a wide field is beyond int, and a cast would wrap.
-  const double cols = std::max(1.0, std::round(field_x / resolution));
-  const double rows = std::max(1.0, std::round(field_y / resolution));
-  if (!(cols * rows <= 1e8)) {
-    char size[64];
-    std::snprintf(size, sizeof size, "%.4g x %.4g", cols, rows);
-    throw Error("a retina of " + std::string(size) +
-                " samples is too large (the limit is 1e8 samples: a coarser resolution or a smaller field)");
-  }
-  g.cols = static_cast<int>(cols);
-  g.rows = static_cast<int>(rows);
+  g.cols = std::max(1, static_cast<int>(std::lround(field_x / resolution)));
+  g.rows = std::max(1, static_cast<int>(std::lround(field_y / resolution)));
   return g;
 }
 

@@ -30,7 +30,15 @@ struct RetinaGrid {
   double angle_y(int i) const { return center_y + (0.5 * rows - i - 0.5) * resolution; }
 };
 
-// A grid covering `field_x` x `field_y` radians at `resolution` radians per sample.
+// The one check of a retina's sampling, for every caller (retina, contrast,
+// the run section, Python): each field side in (0, 170] deg, the sample size
+// in (0, 10) deg, at most 1e8 samples. Throws layerlab::Error naming
+// `field_name` or `resolution_name` (an option, a keyword, a JSON pointer).
+void CheckRetinaSampling(double field_x_deg, double field_y_deg, double resolution_deg, const std::string& field_name,
+                         const std::string& resolution_name);
+
+// A grid covering `field_x` x `field_y` radians at `resolution` radians per
+// sample; the sampling must pass CheckRetinaSampling.
 RetinaGrid MakeRetinaGrid(double field_x, double field_y, double resolution);
 
 struct PupilPoint {

@@ -6,7 +6,7 @@
 // | name        | string              | ""                 | shown in reports                               |
 // | description | string              | ""                 | shown in reports                               |
 // | subframes   | integer             | 1                  | patterns shown per frame (time multiplexing, 1 to 64); the eye sees their mean |
-// | frame_rate  | frequency           | 60 Hz              | frames (not subframes) per second              |
+// | frame_rate  | frequency           | 60 Hz              | frames (not subframes) per second, 1-10000 Hz  |
 // | elements    | array of elements   | required           | the optical path, each an object with "type" and "name" |
 // | solve       | object              | none               | the solver and its target (see solve below)    |
 // | run         | object              | none               | what `layerlab run` does (see run below)       |
@@ -43,7 +43,7 @@ Scene ParseScene(nlohmann::json document, const std::string& file, const Element
   scene.description = top.string("description", "");
   scene.subframes = static_cast<int>(top.integer("subframes", 1, 64, 1));
   scene.frame_rate = top.quantity("frame_rate", Dimension::kFrequency, 60.0);
-  top.require_range("frame_rate", scene.frame_rate, 0.0, 1e4, true, false);
+  top.require_range("frame_rate", scene.frame_rate, 1.0, 1e4, false, false);  // below 1 Hz: a slide show
   for (const std::string& key : SceneTaskKeys()) top.mark_read(key);
 
   const nlohmann::json& elements = top.raw("elements");

@@ -21,15 +21,31 @@ fs::path TempLockPath(const char* name) {
 
 // flock conflicts between open file descriptions, so a second TryLock in the
 // same process stands for a second process.
-TEST(FileLock, ASecondTakerIsRefusedAndToldTheHoldersPid) {
+std::string ThisHost() {
+  char host[256] = {};
+  ::gethostname(host, sizeof host - 1);
+  return host;
+}
+
+TEST(FileLock, ASecondTakerIsRefusedAndToldTheHoldersPidAndHost) {
   const std::string path = TempLockPath("held.lock").string();
   std::optional<FileLock> first = FileLock::TryLock(path);
   ASSERT_TRUE(first.has_value());
   std::string holder = "unset";
   EXPECT_FALSE(FileLock::TryLock(path, &holder).has_value());
-  EXPECT_EQ(holder, std::to_string(::getpid()));
+  EXPECT_EQ(holder, "process " + std::to_string(::getpid()) + " on host " + ThisHost());
+  holder = "unset";
+  EXPECT_TRUE(FileLock::HeldElsewhere(path, &holder));
+  EXPECT_EQ(holder, "process " + std::to_string(::getpid()) + " on host " + ThisHost());
   first.reset();
+  EXPECT_FALSE(FileLock::HeldElsewhere(path)) << "the lock is released with its holder";
   EXPECT_TRUE(FileLock::TryLock(path).has_value()) << "the lock is released with its holder";
+}
+
+TEST(FileLock, AMissingLockFileIsNotHeldAndNotCreatedByLooking) {
+  const std::string path = TempLockPath("missing.lock").string();
+  EXPECT_FALSE(FileLock::HeldElsewhere(path));
+  EXPECT_FALSE(fs::exists(path));
 }
 
 TEST(FileLock, AHolderThatWroteNoPidIsNotNamed) {

@@ -456,6 +456,19 @@ TEST(OpticalPath, PlacementErrorsNameTheKeyAndTheOptics) {
             "scene.json: /elements/2/gap: panel \"p\" is imaged into the pupil plane, where no eye "
             "can focus; move it or the optics in front of it");
 
+  // Two lenses that image the pupil onto the panel: b = b' + t d is zero only to rounding (-1e-17 m in double,
+  // an image at 1.4e17 D if taken at its word).
+  json relayed_pupil =
+      Scene({Eye("lens1", 0.02),
+             {{"type", "thin_lens"}, {"name", "lens1"}, {"focal_length", "20 mm"}, {"next", "lens2"}},
+             {{"type", "thin_lens"}, {"name", "lens2"}, {"focal_length", "30 mm"}, {"gap", "100 mm"}, {"next", "p"}},
+             Panel("p", "bl"),
+             Backlight("bl")});
+  ElementNamed(relayed_pupil, "p")["gap"] = "30 mm";  // lens1 images the pupil 60 mm behind it, lens2 that 30 mm on
+  EXPECT_EQ(error(relayed_pupil),
+            "scene.json: /elements/3/gap: panel \"p\" is imaged into the pupil plane, where no eye "
+            "can focus; move it or the optics in front of it");
+
   json unreachable = Scene({Eye("lens", 0.01),
                             {{"type", "thin_lens"}, {"name", "lens"}, {"focal_length", "75 mm"}, {"next", "m"}},
                             {{"type", "mirror"}, {"name", "m"}, {"gap", "30 mm"}, {"next", "p"}},

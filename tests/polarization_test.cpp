@@ -41,6 +41,44 @@ nlohmann::json FlatPbsScene(double panel_angle_deg) {
   return scene;
 }
 
+// By hand: R(t) diag(1, -1) R(-t) = [[cos 2t, sin 2t], [sin 2t, -cos 2t]] takes (cos p, sin p) to
+// (cos(2t - p), sin(2t - p)): linear light mirrored about the fast axis, nothing lost. At 45 deg and p = 0
+// a wrong axis sign or a swapped sine and cosine give the same intensities; at the other angles they do not.
+TEST(Polarization, HalfWavePlateAtAnyAngleMirrorsLinearPolarizationAboutItsFastAxis) {
+  for (double axis_deg : {0.0, 22.5, 30.0, 45.0, 67.5, 100.0})
+    for (double in_deg : {0.0, 30.0, 90.0}) {
+      const double axis = axis_deg * kPi / 180, in = in_deg * kPi / 180, out = 2 * axis - in;
+      const Jones j = Retarder(kPi, axis) * LinearPolarization(in);
+      EXPECT_NEAR(j.x.real(), std::cos(out), 1e-15) << axis_deg << " deg, light at " << in_deg << " deg";
+      EXPECT_NEAR(j.y.real(), std::sin(out), 1e-15) << axis_deg << " deg, light at " << in_deg << " deg";
+      EXPECT_NEAR(j.x.imag(), 0, 1e-15);
+      EXPECT_NEAR(j.y.imag(), 0, 1e-15);
+      EXPECT_NEAR(j.intensity(), 1, 1e-15);
+    }
+}
+
+// The compiled reflected branch of the PBS/HWP hybrid at other plate angles and panel polarizations: the
+// plate turns the panel's light at p to 2t - p, and the PBS (p axis 0 deg) reflects its y part.
+TEST(Polarization, ReflectedBranchFollowsTheHalfWavePlatesAngle) {
+  const double rs[] = {0.99, 0.98, 0.97}, rp = 0.02, hwp_t = 0.99;
+  for (double axis_deg : {0.0, 22.5, 30.0, 45.0, 60.0})
+    for (double panel_deg : {0.0, 30.0}) {
+      nlohmann::json scene = FlatPbsScene(panel_deg);
+      nlohmann::json& hwp = ElementNamed(scene, "hwp");
+      hwp["fast_axis"] = std::to_string(axis_deg) + " deg";
+      hwp["achromatic"] = true;
+      hwp["transmittance"] = hwp_t;
+      const DisplaySystem s = CompileJson(scene);
+      const double out = (2 * axis_deg - panel_deg) * kPi / 180;
+      for (int c = 0; c < 3; ++c) {
+        const double expected = hwp_t * (rs[c] * std::pow(std::sin(out), 2) + rp * std::pow(std::cos(out), 2));
+        EXPECT_TRUE(Close(s.branches[1].optics_efficiency[c], expected, 1e-12))
+            << "plate at " << axis_deg << " deg, panel at " << panel_deg << " deg, channel " << c << ": "
+            << s.branches[1].optics_efficiency[c] << " against " << expected;
+      }
+    }
+}
+
 TEST(Polarization, PbsTransmittedBranchFollowsMalus) {
   const double tp[] = {0.9, 0.95, 0.8}, ts = 0.01;
   for (double angle : {0.0, 30.0, 90.0}) {

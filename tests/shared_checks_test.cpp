@@ -124,24 +124,20 @@ TEST(SharedChecks, ATransmittanceOutsideZeroToOneIsNamedWithItsPixel) {
   EXPECT_EQ(refusal(1.0f), "");
 }
 
-TEST(SharedChecks, RetinaOptionsAreNamedAsTheCallerSpellsThem) {
-  auto refusal = [](RetinaSweepOptions o, RetinaOptionNames names = {}) {
+TEST(SharedChecks, AccommodationStatesAreNamedByIndex) {
+  auto refusal = [](const std::vector<double>& states) {
     try {
-      CheckRetinaSweepOptions(o, names);
+      CheckAccommodationStates(states, "accommodation");
     } catch (const Error& e) {
       return std::string(e.what());
     }
     return std::string();
   };
-  EXPECT_EQ(refusal({{0.4, 1.0}, 0.05, 0, 0}), "");
-  EXPECT_EQ(refusal({{0.4, 1.0}, 0.05, 20, 10}), "");
-  EXPECT_EQ(refusal({{0.4, NAN}, 0.05, 0, 0}, {"accommodation", "resolution", "field"}),
-            "accommodation[1]: nan is not a finite number of diopters >= 0");
-  EXPECT_EQ(refusal({{-1.0}, 0.05, 0, 0}), "--accommodation[0]: -1 is not a finite number of diopters >= 0");
-  EXPECT_EQ(refusal({{}, 0.05, 0, 0}), "--accommodation: no accommodation state given");
-  EXPECT_EQ(refusal({{1.0}, 10, 0, 0}), "--resolution: give degrees in (0, 10), got 10");
-  EXPECT_EQ(refusal({{1.0}, 0.05, 1e9, 1e9}), "--field: give W,H in degrees, each in (0, 170), got 1e+09, 1e+09");
-  EXPECT_EQ(refusal({{1.0}, 0.05, 0, 5}), "--field: give W,H in degrees, each in (0, 170), got 0, 5");
+  EXPECT_EQ(refusal({0.4, 0.0, 2.6}), "");
+  EXPECT_EQ(refusal({0.4, NAN}), "accommodation[1]: nan is not a finite number of diopters >= 0");
+  EXPECT_EQ(refusal({-1.0}), "accommodation[0]: -1 is not a finite number of diopters >= 0");
+  EXPECT_EQ(refusal({1.0, INFINITY}), "accommodation[1]: inf is not a finite number of diopters >= 0");
+  EXPECT_EQ(refusal({}), "accommodation: no accommodation state given");
 }
 
 TEST(SharedChecks, ARetinaGridIsCountedBeforeItIsCast) {

@@ -93,6 +93,70 @@ TEST(Solvers, AdditiveTrustRegionRecoversAKnownTarget) {
   ExpectInBounds(t);
 }
 
+double SquaredError(const DisplayModel& model, const LightField& target, const Patterns& t) {
+  const LightField l = model.Synthesize(t);
+  double sum = 0;
+  for (size_t k = 0; k < l.rgb.size(); ++k)
+    sum += (double(l.rgb[k]) - target.rgb[k]) * (double(l.rgb[k]) - target.rgb[k]);
+  return sum;
+}
+
+// First-order optimality of min ||l - A t||^2 over 0 <= t <= 1, checked by moving single values (every 7th, each
+// channel) by h and synthesizing again, independently of the solver's own gradient: no feasible move may lower the
+// error by more than `slack` of h times the error's scale. A value at 1 must not gain by moving down (gradient <= 0
+// there), one at 0 not by moving up (gradient >= 0), one between by neither.
+void ExpectFirstOrderOptimal(const DisplayModel& model, const LightField& target, const Patterns& t, double slack) {
+  const double e0 = SquaredError(model, target, t), h = 1.0 / 64;
+  const double scale = e0 / model.layer_count() + 1;
+  int checked = 0, at_upper = 0, at_lower = 0;
+  for (size_t k = 0; k < t.size(); ++k)
+    for (size_t i = 0; i < t[k].rgb.size(); i += 7) {
+      const float v = t[k].rgb[i];
+      for (const double step : {h, -h}) {
+        if (v + step > 1 || v + step < 0) continue;
+        Patterns moved = t;
+        moved[k].rgb[i] = float(v + step);
+        const double gain = e0 - SquaredError(model, target, moved);
+        EXPECT_LT(gain, slack * h * scale) << "layer " << k << " value " << i << " at " << v << " moved by " << step;
+      }
+      ++checked;
+      at_upper += v == 1.0f;
+      at_lower += v == 0.0f;
+    }
+  ::testing::Test::RecordProperty("checked", checked);
+  ::testing::Test::RecordProperty("at_bounds",
+                                  std::to_string(at_lower) + " at 0, " + std::to_string(at_upper) + " at 1");
+}
+
+// Started at either bound, on a target it can reach and on one it cannot (brighter than the display in one
+// half, darker than it can be in the other), the solver moves and ends first-order optimal.
+TEST(Solvers, AdditiveTrustRegionFromEitherBoundEndsOptimal) {
+  Fixture f = MakeFixture("additive_2layer.json", 16, 8, 3);
+  LightField unreachable = f.target;
+  const std::array<float, 3> max = DisplayMaximum(*f.model);
+  for (size_t k = 0; k < unreachable.rgb.size(); ++k)
+    unreachable.rgb[k] = (k / 3) % 2 ? max[k % 3] : 0.0f;  // every other ray full, the rest black
+  for (const LightField* target : {&f.target, &unreachable})
+    for (const double initial : {1.0, 1e-4}) {
+      SCOPED_TRACE(std::string(target == &f.target ? "reachable" : "unreachable") + " target, started at " +
+                   std::to_string(initial));
+      SolverOptions o = SolverRegistry::Builtins().find("additive-trust-region")->defaults;
+      o.initial_value = initial;
+      o.floor = 1e-4;
+      o.iterations = 500;
+      o.tolerance = 1e-14;
+      o.threads = 1;
+      Patterns t;
+      const SolverReport r =
+          SolverRegistry::Builtins().create("additive-trust-region")->Solve(*f.model, *target, o, &t);
+      ASSERT_TRUE(r.IsSolutionUsable()) << r.FullReport();
+      EXPECT_GT(r.iterations, 0) << r.FullReport();
+      ExpectInBounds(t);
+      if (target == &f.target) EXPECT_GT(r.final_psnr_db, 60.0) << r.FullReport();
+      ExpectFirstOrderOptimal(*f.model, *target, t, 1e-3);
+    }
+}
+
 // The solve in layer space (normal matrix) and the one over the rays (a
 // rotation of 1e-12 rad sends every layer to the general path) take the same steps.
 TEST(Solvers, AdditiveTrustRegionInLayerSpaceMatchesTheRayPath) {

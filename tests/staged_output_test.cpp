@@ -8,10 +8,12 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include "framework/atomic_file.h"
 #include "framework/error.h"
+#include "framework/file_lock.h"
 
 namespace layerlab {
 namespace {
@@ -128,11 +130,18 @@ TEST_F(StagedOutputTest, AnOutputThatIsContainsOrLiesInsideAnInputIsRefusedByRea
   EXPECT_NE(message((root_ / "x" / "y" / ".." / "lightfield").string(), (root_ / "link").string()).find("real paths"),
             std::string::npos);
   EXPECT_EQ(message((root_ / "x" / "other").string(), lf), "");
-  // The command's roots are checked, the folder itself may hold inputs that no root touches.
+  // The command's roots are checked, and the folder itself: it may not hold an input, even one no root touches.
   EXPECT_THROW(
       StagedOutput((root_ / "x").string(), "solve", {"lightfield"}, {{(root_ / "link").string(), "the target"}}),
       Error);
-  EXPECT_NO_THROW(StagedOutput((root_ / "x").string(), "solve", {"patterns"}, {{lf, "the target"}}));
+  EXPECT_NE(message((root_ / "x").string(), lf).find("contains the target"), std::string::npos);
+  try {
+    StagedOutput((root_ / "x").string(), "contrast", {"contrast.csv"}, {{lf, "a scene"}});
+    FAIL() << "an output folder that holds an input was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("the output contains a scene " + lf), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(root_ / "x" / ".layerlab-lock"));
   EXPECT_THROW(StagedOutput((root_ / "x" / "lightfield" / "out").string(), "solve", {"patterns"}, {{lf, "the target"}}),
                Error);
 }
@@ -211,6 +220,116 @@ TEST_F(StagedOutputTest, WhatAKilledRunLeftIsClearedAndAnInterruptedSwitchOverFi
   EXPECT_FALSE(fs::exists(out / (".layerlab-staging-solve-" + std::to_string(dead))));
   EXPECT_FALSE(fs::exists(out / "solve" / (".a.txt.tmp-" + std::to_string(dead) + "-3")));
   EXPECT_TRUE(fs::exists(out / "solve" / (".a.txt.tmp-" + std::to_string(::getpid()) + "-999")));
+}
+
+std::string ThisHost() {
+  char host[256] = {};
+  ::gethostname(host, sizeof host - 1);
+  return host;
+}
+
+TEST_F(StagedOutputTest, ASecondWriterIsRefusedNamingTheFirstsPidAndHostAndTheLockGoesWithTheWriter) {
+  const fs::path out = root_ / "out";
+  std::optional<StagedOutput> first(std::in_place, out.string(), "solve", std::vector<std::string>{"patterns"},
+                                    std::vector<NamedInput>{});
+  Write(fs::path(first->staging()) / "patterns" / "a.txt", "first");
+  // flock conflicts between open file descriptions: a second object in this process stands for a second process.
+  try {
+    StagedOutput second(out.string(), "retina", {"display"}, {});
+    FAIL() << "a second writer into the same folder was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), out.string() + ": another layerlab process " + std::to_string(::getpid()) +
+                                         " on host " + ThisHost() +
+                                         " is writing into this folder; wait for it to end or give another "
+                                         "output folder. Nothing was written");
+  }
+  EXPECT_TRUE(fs::exists(first->staging())) << "the refused writer touched the first one's work";
+  first->Commit();
+  first.reset();
+  EXPECT_FALSE(fs::exists(out / ".layerlab-lock")) << "the lock file outlived its writer";
+  StagedOutput third(out.string(), "retina", {"display"}, {});  // the folder is free again
+  EXPECT_EQ(Read(out / "patterns" / "a.txt"), "first");
+}
+
+TEST_F(StagedOutputTest, WhatAProcessLeftIsClearedByTheLockNotByAPidThatLooksAlive) {
+  const fs::path out = root_ / "out";
+  // A staging folder and a temporary file named for pids that run now (init, this process: a reused pid, a
+  // zombie, a process on another node of a shared file system all look alive), in a folder nobody holds.
+  Write(out / ".layerlab-staging-solve-1" / "patterns" / "a.exr", "half");
+  Write(out / (".layerlab-staging-run-" + std::to_string(::getpid())) / "system.txt", "half");
+  Write(out / (".system.txt.tmp-" + std::to_string(::getpid()) + "-7"), "half");
+  // A folder below with its own live writer (held lock): what is there is its work, left alone.
+  Write(out / "solve" / ".layerlab-staging-solve-1" / "x.txt", "at work");
+  const std::optional<FileLock> other = FileLock::TryLock((out / "solve" / ".layerlab-lock").string());
+  ASSERT_TRUE(other.has_value());
+  StagedOutput s(out.string(), "run", {"solve", "system.txt"}, {});
+  EXPECT_FALSE(fs::exists(out / ".layerlab-staging-solve-1"));
+  EXPECT_FALSE(fs::exists(out / (".layerlab-staging-run-" + std::to_string(::getpid())) / "system.txt"));
+  EXPECT_FALSE(fs::exists(out / (".system.txt.tmp-" + std::to_string(::getpid()) + "-7")));
+  EXPECT_TRUE(fs::exists(out / "solve" / ".layerlab-staging-solve-1" / "x.txt"));
+}
+
+// The child is killed inside its commit, after `moves` renames; returns its exit status.
+int CommitAndDieAfterMoves(const fs::path& out, int moves) {
+  const pid_t child = fork();
+  if (child == 0) {
+    try {
+      StagedOutput s(out.string(), "run", {"solve", "system.txt"}, {});
+      Write(fs::path(s.staging()) / "solve" / "a.txt", "new a");
+      Write(fs::path(s.staging()) / "solve" / "b.txt", "new b");
+      Write(fs::path(s.staging()) / "system.txt", "new system");
+      EndProcessAfterSwitchOverMovesForTesting(moves);
+      s.Commit();
+    } catch (...) {
+      _exit(1);
+    }
+    _exit(0);
+  }
+  int status = 0;
+  waitpid(child, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST_F(StagedOutputTest, AKillInsideTheCommitLeavesAJournalThatTheNextReaderFinishes) {
+  const fs::path out = root_ / "out";
+  for (int moves = 1; moves <= 3; ++moves) {
+    SCOPED_TRACE("killed after " + std::to_string(moves) + " moves");
+    fs::remove_all(out);
+    FirstRun();
+    ASSERT_EQ(CommitAndDieAfterMoves(out, moves), 86);
+    // The commit itself wrote the journal before its first rename: the mix is marked.
+    ASSERT_TRUE(fs::exists(out / ".layerlab-run-switch.json"));
+    EXPECT_EQ(Read(out / "solve" / "a.txt"), "new a");  // the first move was made
+    // A reader of anything below finishes the switch-over: the folder is the new result, whole.
+    const std::vector<std::string> done = FinishPendingSwitchOvers((out / "solve").string());
+    ASSERT_EQ(done.size(), 1u);
+    EXPECT_NE(done[0].find("a layerlab run was killed while switching its results into place"), std::string::npos);
+    EXPECT_EQ(Read(out / "solve" / "b.txt"), "new b");
+    EXPECT_EQ(Read(out / "system.txt"), "new system");
+    EXPECT_FALSE(fs::exists(out / "solve" / "old.txt"));
+    EXPECT_FALSE(fs::exists(out / ".layerlab-run-switch.json"));
+    EXPECT_FALSE(fs::exists(out / ".layerlab-lock"));
+    for (const auto& e : fs::directory_iterator(out))
+      EXPECT_EQ(e.path().filename().string().rfind(".layerlab-staging-", 0), std::string::npos) << e.path();
+    EXPECT_TRUE(FinishPendingSwitchOvers((out / "solve").string()).empty());
+  }
+}
+
+TEST_F(StagedOutputTest, AReaderRefusesAFolderALiveProcessIsSwitchingOver) {
+  FirstRun();
+  const fs::path out = root_ / "out";
+  ASSERT_EQ(CommitAndDieAfterMoves(out, 1), 86);
+  const std::optional<FileLock> live = FileLock::TryLock((out / ".layerlab-lock").string());
+  ASSERT_TRUE(live.has_value());
+  try {
+    FinishPendingSwitchOvers((out / "solve" / "a.txt").string());
+    FAIL() << "a reader went on while a live process was switching the folder over";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), out.string() + ": layerlab process " + std::to_string(::getpid()) + " on host " +
+                                         ThisHost() +
+                                         " is switching its results into place; read them once it has ended");
+  }
+  EXPECT_TRUE(fs::exists(out / ".layerlab-run-switch.json")) << "the live process's journal was touched";
 }
 
 }  // namespace

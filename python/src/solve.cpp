@@ -17,6 +17,7 @@
 #include "analysis/retina_sweep.h"
 #include "analysis/target_source.h"
 #include "framework/lightfield_checks.h"
+#include "framework/units.h"
 #include "python/src/arguments.h"
 #include "python/src/bindings.h"
 #include "python/src/json_convert.h"
@@ -205,25 +206,18 @@ std::shared_ptr<LightField> Synthesize(const std::shared_ptr<DisplaySystem>& sys
 // the layers are (systems/lightfield_radiance.h), as `layerlab retina --target`.
 py::object Retina(const Solution& s, const std::vector<double>& accommodation, double resolution_deg,
                   std::optional<std::pair<double, double>> field_deg, bool natural) {
-  // The checks `layerlab retina` makes of its options (CheckRetinaSweepOptions).
-  RetinaSweepOptions options{accommodation, resolution_deg, field_deg ? field_deg->first : 0,
-                             field_deg ? field_deg->second : 0};
-  if (field_deg && options.field_x == 0 && options.field_y == 0)
-    RaiseArgumentError("retina: field: give W,H in degrees, each in (0, 170), got 0, 0");
-  CheckArgument([&] {
-    CheckRetinaSweepOptions(options, {"retina: accommodation", "retina: resolution", "retina: field"});
-  });
+  // The checks `layerlab retina` makes: its states (ParseOptionValue's, as
+  // CheckAccommodationStates), its field and sample size (CheckRetinaSampling).
   const DisplaySystem& system = *s.system;
-  const double deg = std::numbers::pi / 180;
-  RetinaGrid grid;
+  const double field_x = field_deg ? field_deg->first : system.fov_x / kRadiansPerDegree;
+  const double field_y = field_deg ? field_deg->second : system.fov_y / kRadiansPerDegree;
   CheckArgument([&] {
-    try {
-      grid = field_deg ? MakeRetinaGrid(options.field_x * deg, options.field_y * deg, resolution_deg * deg)
-                       : MakeRetinaGrid(system.fov_x, system.fov_y, resolution_deg * deg);
-    } catch (const Error& e) {
-      throw Error("retina: resolution and field: " + e.message());
-    }
+    CheckAccommodationStates(accommodation, "retina: accommodation");
+    CheckRetinaSampling(field_x, field_y, resolution_deg, "retina: field", "retina: resolution");
   });
+  const RetinaGrid grid = field_deg ? MakeRetinaGrid(field_x * kRadiansPerDegree, field_y * kRadiansPerDegree,
+                                                     resolution_deg * kRadiansPerDegree)
+                                    : MakeRetinaGrid(system.fov_x, system.fov_y, resolution_deg * kRadiansPerDegree);
   const std::vector<py::ssize_t> shape = {static_cast<py::ssize_t>(accommodation.size()),
                                           static_cast<py::ssize_t>(grid.rows), static_cast<py::ssize_t>(grid.cols), 3};
   py::array_t<float> images(shape), seen(natural ? shape : std::vector<py::ssize_t>{0});

@@ -19,7 +19,7 @@ try() {  # try LABEL COMMAND...: any outcome but a clear one is a failure
   shift
   runs=$((runs + 1))
   timeout 30 "$@" >log.out 2>log.err </dev/null
-  local code=$?
+  code=$?
   local why=""
   [ "$code" -eq 124 ] && why="hung (30 s)"
   [ "$code" -gt 128 ] && why="killed by signal $((code - 128))"
@@ -120,6 +120,48 @@ for o in out/fifo out/file out/loop out/fifo_root out/link_root "out/$long" "out
   try "run --out $o" "$layerlab" run "$small" --iterations 1 --out "$o"
   try "render-target --out $o" "$layerlab" render-target "$source/examples/small/small_dice_target.json" "$o"
 done
+# Silent nonsense: values that used to give a result without a word are refused, naming the option or key.
+refuse() {  # refuse LABEL PATTERN COMMAND...: a non-zero exit whose message matches PATTERN
+  local label=$1 pattern=$2
+  shift 2
+  try "$label" "$@"
+  if [ "$code" -eq 0 ] || ! grep -q -- "$pattern" log.err; then
+    echo "FAIL: $label: not refused with \"$pattern\" (exit $code): $(head -c 300 log.err)"
+    failures=$((failures + 1))
+  fi
+}
+edit_scene() {  # edit_scene OUT PYTHON: a copy of the small scene, edited by a Python statement on `s`
+  /usr/bin/python3 -c "import json,sys; s=json.load(open(sys.argv[1])); $2; json.dump(s, open(sys.argv[2], 'w'))" "$small" "$1"
+}
+mkdir -p nonsense/holds_scene
+edit_scene nonsense/slow_frames.json 's["frame_rate"] = "0.5 Hz"'
+edit_scene nonsense/tiny_frames.json 's["frame_rate"] = "1e-300 Hz"'
+edit_scene nonsense/weighted_lightfield.json 's.setdefault("solve", {})["contrast_sensitivity"] = True'
+# Two lenses that image the pupil onto the panel: b is zero to rounding only.
+cat >nonsense/relayed_pupil.json <<'EOF2'
+{"format": "layerlab-scene/1", "elements": [
+  {"type": "eye", "name": "eye", "eye_relief": "20 mm", "views": [3, 3], "next": "lens1"},
+  {"type": "thin_lens", "name": "lens1", "focal_length": "20 mm", "next": "lens2"},
+  {"type": "thin_lens", "name": "lens2", "focal_length": "30 mm", "gap": "100 mm", "next": "p"},
+  {"type": "lc_panel", "name": "p", "pixel_pitch": "0.1 mm", "resolution": [64, 40], "gap": "30 mm", "next": "bl"},
+  {"type": "backlight", "name": "bl", "luminance": 100}]}
+EOF2
+cp "$small" nonsense/holds_scene/scene.json
+refuse "frame_rate 0.5 Hz" "/frame_rate: " "$layerlab" info nonsense/slow_frames.json
+refuse "frame_rate 1e-300 Hz" "/frame_rate: " "$layerlab" info nonsense/tiny_frames.json
+refuse "a panel relayed into the pupil" "is imaged into the pupil plane" "$layerlab" info nonsense/relayed_pupil.json
+refuse "contrast_sensitivity with the light-field objective" "contrast_sensitivity: true: weights the retinal objective" \
+  "$layerlab" solve nonsense/weighted_lightfield.json --target lf/good --iterations 1 --out o
+refuse "contrast --retina-resolution 1e-9" "^layerlab: error: --retina-resolution: " \
+  "$layerlab" contrast "$small" --retina-resolution 1e-9 --out o
+refuse "contrast --retina-field 1e9" "^layerlab: error: --retina-field: 1e+09 deg is not a retinal field side" \
+  "$layerlab" contrast "$small" --retina-field 1e9 --out o
+refuse "retina --resolution 1e-9" "^layerlab: error: --resolution: " \
+  "$layerlab" retina "$small" --patterns good_solution --resolution 1e-9 --out o
+refuse "contrast --out the scene's folder" "the output contains a scene" \
+  "$layerlab" contrast nonsense/holds_scene/scene.json --out nonsense/holds_scene
+[ "$(ls -A nonsense/holds_scene)" = scene.json ] || { echo "FAIL: the refused contrast wrote beside its scene"; failures=$((failures + 1)); }
+
 # Python arguments: each hostile call of hostile_python_calls.py (a target that is not light, patterns outside
 # [0, 1], geometries beyond a manifest's limits, retina options, NaN in dicts, options of the wrong type or
 # range) and read_lightfield on every hostile folder must be refused with ValueError or TypeError naming the

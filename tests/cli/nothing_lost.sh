@@ -9,8 +9,10 @@
 #   3. the stale-file sweep removes what an earlier run recorded and no longer
 #      writes, never a file of the user's;
 #   4. `kill -9` during `solve --write-lightfield` leaves the earlier result or
-#      the new one, never a mix, and the next run clears what the killed one left;
-#   5. `--resume` refuses a checkpoint made for another target of the same geometry.
+#      the new one, never a mix (a kill inside the switch-over is finished by
+#      the next reader), and the next run clears what the killed one left;
+#   5. `--resume` refuses a checkpoint made for another target of the same geometry;
+#   6. a second process writing into a folder in use is refused, naming the first.
 # Usage: nothing_lost.sh LAYERLAB EXAMPLES_DIR WORK_DIR
 set -u
 layerlab=$1 examples=$2 work=$3
@@ -73,7 +75,7 @@ target=$work/a/target/lightfield
 "$layerlab" solve "$scene" --target "$target" --iterations 4 --write-lightfield --out "$work/new" >"$work/log" 2>&1 || fail "the reference solve failed"
 results() { (cd "$1" && find lightfield patterns panels -type f -print0 2>/dev/null | sort -z | xargs -0 -r sha256sum); }
 new=$(results "$work/new")
-kills=0
+kills=0 switched=0
 # Killed at fixed delays, and (the "poll" runs) as soon as the new views are being written.
 for delay in 0.01 0.02 0.03 0.05 0.08 0.1 0.15 0.2 poll poll poll poll poll; do
   rm -rf "$work/k"
@@ -89,7 +91,14 @@ for delay in 0.01 0.02 0.03 0.05 0.08 0.1 0.15 0.2 poll poll poll poll poll; do
   fi
   kill -9 "$pid" 2>/dev/null && kills=$((kills + 1))
   wait "$pid" 2>/dev/null
-  if ! ls -a "$work/k" | grep -q '^\.layerlab-solve-switch.json$'; then  # no switch-over under way: old or new, whole
+  if ls -a "$work/k" | grep -q '^\.layerlab-solve-switch.json$'; then
+    # Killed inside the switch-over: the first reader of anything in the folder finishes it.
+    switched=$((switched + 1))
+    "$layerlab" info "$scene" --target "$work/k/lightfield" >"$work/log" 2>&1 || fail "reading the half-switched light field failed: $(cat "$work/log")"
+    grep -q "a layerlab solve was killed while switching its results into place; the switch-over is now finished" "$work/log" ||
+      fail "the reader did not finish the switch-over: $(cat "$work/log")"
+    [ "$(results "$work/k")" = "$new" ] || fail "after the reader finished the switch-over the folder is not the new result"
+  else  # no switch-over under way: old or new, whole
     now=$(results "$work/k")
     [ "$now" = "$old" ] || [ "$now" = "$new" ] || fail "after kill -9 at $delay the folder is neither the old result nor the new one"
   fi
@@ -99,7 +108,19 @@ for delay in 0.01 0.02 0.03 0.05 0.08 0.1 0.15 0.2 poll poll poll poll poll; do
   [ -z "$left" ] || fail "left behind after the next solve: $left"
 done
 [ "$kills" -ge 3 ] || fail "only $kills of 13 solves were killed before they ended: the test did not test"
-echo "kill -9: $kills of 13 solves killed (0.01 to 0.2 s, or while writing views); each folder was the old or the new result, and the next solve cleared the rest"
+echo "kill -9: $kills of 13 solves killed (0.01 to 0.2 s, or while writing views), $switched inside the switch-over (finished by the next reader); each folder was the old or the new result, and the next solve cleared the rest"
+
+# 6. One writer at a time: a second process into a folder in use is refused, naming the first and its host.
+"$layerlab" solve "$scene" --target "$target" --iterations 100000 --out "$work/w" >"$work/log1" 2>&1 &
+pid=$!
+for _ in $(seq 1 20000); do ls -a "$work/w" 2>/dev/null | grep -q '^\.layerlab-lock$' && break; kill -0 "$pid" 2>/dev/null || break; done
+"$layerlab" retina "$scene" --patterns "$work/new" --out "$work/w" >"$work/log" 2>&1 && fail "a second writer into a folder in use was accepted"
+kill -9 "$pid" 2>/dev/null
+wait "$pid" 2>/dev/null
+grep -q "$work/w: another layerlab process $pid on host $(hostname) is writing into this folder" "$work/log" ||
+  fail "the second writer was not refused naming the first: $(cat "$work/log")"
+"$layerlab" solve "$scene" --target "$target" --iterations 1 --out "$work/w" >"$work/log" 2>&1 || fail "the folder stayed locked after its writer was killed"
+echo "one writer at a time: the second refused naming process $pid on $(hostname); free again once it was killed"
 
 # 5. A checkpoint is for its own inputs.
 "$layerlab" solve "$scene" --solver joint --target "$lf" --iterations 1 --checkpoint-every 1 --out "$work/c" >"$work/log" 2>&1 &&
