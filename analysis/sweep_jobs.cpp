@@ -99,6 +99,9 @@ std::string JobFolder(const std::string& out, const SweepJob& job) {
 
 std::vector<SweepJob> ExpandSweep(const SweepSpec& spec, const std::string& out) {
   const size_t n = spec.job_count();
+  if (n == 0 || n > kMaxSweepPoints)
+    throw Error(Location{spec.file, "/parameters"},
+                "the grid has " + std::to_string(n) + " points; a sweep has 1 to " + std::to_string(kMaxSweepPoints));
   const size_t digits = std::max<size_t>(3, std::to_string(n - 1).size());
   // The job's run section: only the declared work, with the base scene's settings for it.
   ordered_json base = spec.base;
@@ -157,8 +160,31 @@ std::vector<SweepJob> ExpandSweep(const SweepSpec& spec, const std::string& out)
 
 namespace {
 
+// What the jobs read: the sweep file, the base scene, the files and folders
+// it names (its target light field, target scene, compared scenes) and the
+// paths among the parameters' values.
+std::vector<NamedInput> SweepInputs(const SweepSpec& spec) {
+  std::vector<NamedInput> inputs = {{spec.file, "the sweep file"}, {spec.scene, "the base scene"}};
+  const fs::path scene_folder = fs::absolute(spec.scene).parent_path();
+  const std::vector<std::string> path_pointers = ScenePathPointers(spec.base);
+  for (const std::string& pointer : path_pointers) {
+    const fs::path path = spec.base[ordered_json::json_pointer(pointer)].get<std::string>();
+    inputs.push_back({(scene_folder / path).lexically_normal().string(), "the base scene's " + pointer});
+  }
+  for (const SweepParameter& p : spec.parameters)
+    for (size_t k = 0; k < p.pointers.size(); ++k) {
+      if (std::find(path_pointers.begin(), path_pointers.end(), p.pointers[k]) == path_pointers.end()) continue;
+      for (size_t i = 0; i < p.values.size(); ++i) {
+        const ordered_json& v = p.pointers.size() > 1 ? p.values[i][k] : p.values[i];
+        if (v.is_string())
+          inputs.push_back({v.get<std::string>(), "the value \"" + p.labels[i] + "\" of the parameter " + p.name});
+      }
+    }
+  return inputs;
+}
+
 void CreateSweepFolder(const SweepSpec& spec, const std::string& out) {
-  RefuseOutputOverlappingInputs(out, {{spec.file, "the sweep file"}, {spec.scene, "the base scene"}});
+  RefuseOutputOverlappingInputs(out, SweepInputs(spec));
   std::error_code ec;
   fs::create_directories(out, ec);
   if (ec) throw Error(out + ": cannot create the output folder: " + ec.message());
@@ -273,6 +299,7 @@ SweepJobState RunSweepJob(const SweepSpec& spec, const SweepJob& job, const std:
 const SweepJob& FindSweepJob(const std::vector<SweepJob>& jobs, const std::string& id) {
   char* end = nullptr;
   const unsigned long long n = std::strtoull(id.c_str(), &end, 10);
+  if (jobs.empty()) throw Error("--job " + id + ": the sweep has no jobs");
   if (id.empty() || *end != '\0' || n >= jobs.size())
     throw Error("--job " + id + ": the sweep has jobs 0 to " + std::to_string(jobs.size() - 1));
   return jobs[n];

@@ -5,6 +5,7 @@
 #include <regex>
 #include <set>
 
+#include "framework/checked_count.h"
 #include "framework/error.h"
 #include "framework/json_file.h"
 #include "framework/params.h"
@@ -23,6 +24,9 @@ std::string LabelOf(const ordered_json& value) { return value.is_string() ? valu
 
 // "1.2 D" -> (1.2, "D"); "0.5" -> (0.5, ""); anything else: nothing.
 std::optional<std::pair<double, std::string>> NumberWithUnit(const std::string& label) {
+  // std::regex recurses per character: a label of 200000 digits overflowed the stack. No number
+  // with a unit is this long.
+  if (label.size() > 64) return std::nullopt;
   static const std::regex form(R"(\s*([-+]?[0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?)\s*([^\s0-9][^\s]*)?\s*)");
   std::smatch m;
   if (!std::regex_match(label, m, form)) return std::nullopt;
@@ -124,7 +128,8 @@ std::string SweepParameter::column() const { return unit.empty() || unit == "1" 
 
 size_t SweepSpec::job_count() const {
   size_t n = 1;
-  for (const SweepParameter& p : parameters) n *= p.values.size();
+  for (const SweepParameter& p : parameters)
+    n = CheckedProduct({n, p.values.size()}, Location{file, "/parameters"}, "the grid's points");
   return n;
 }
 
@@ -144,6 +149,7 @@ SweepSpec ReadSweepSpec(const std::string& path) {
   Params p(document, Location{path, ""});
   if (const std::string format = p.string("format"); format != kSweepFormat)
     p.fail("format", "is \"" + format + "\"; a sweep file is \"" + kSweepFormat + "\"");
+  spec.named = p.has("name");
   spec.name = p.string("name", fs::path(path).stem().string());
   spec.description = p.string("description", "");
   const std::string scene = p.string("scene");
@@ -180,6 +186,12 @@ SweepSpec ReadSweepSpec(const std::string& path) {
            "\"solve\" needs a target: the base scene " + spec.scene + " has no /solve/target or /solve/target_scene");
   if (p.has("iterations")) spec.iterations = static_cast<int>(p.integer("iterations", 1, 1000000));
   spec.threads = static_cast<int>(p.integer("threads", 0, 1024, 1));
+  if (p.has("slurm")) {
+    if (!p.raw("slurm").is_object())
+      p.fail("slurm", "must be an object (time, mem, partition, account, cpus-per-task)");
+    Params slurm = p.object("slurm");
+    spec.slurm = ReadSlurmResources(slurm);
+  }
 
   const nlohmann::json& parameters = p.raw("parameters");
   if (!parameters.is_array()) p.fail("parameters", "must be an array of parameters");
@@ -195,9 +207,9 @@ SweepSpec ReadSweepSpec(const std::string& path) {
       throw Error(at.child("name"), "\"" + spec.parameters.back().name + "\" names two parameters");
   }
   p.check_all_read();
-  if (spec.job_count() > 100000)
-    p.fail("parameters",
-           "the grid has " + std::to_string(spec.job_count()) + " points; more than 100000 is surely a mistake");
+  if (const size_t points = spec.job_count(); points > kMaxSweepPoints)
+    p.fail("parameters", "the grid has " + std::to_string(points) + " points; more than " +
+                             std::to_string(kMaxSweepPoints) + " is surely a mistake");
   return spec;
 }
 

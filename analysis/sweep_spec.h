@@ -16,6 +16,7 @@
 // | work | array of `"solve"`, `"retina"`, `"contrast"` | required | what runs at each point, with the base scene's `run.retina` / `run.contrast` settings (their defaults when absent); `retina` needs `solve` |
 // | iterations | integer | the scene's | outer iterations of each solve |
 // | threads | integer | 1 | worker threads of each job (jobs run side by side) |
+// | slurm | object | none | what `--slurm`'s scripts ask of Slurm (analysis/slurm_resources.h) |
 //
 // sweep.parameter: one axis of the grid
 //
@@ -37,9 +38,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "analysis/slurm_resources.h"
+
 namespace layerlab {
 
 inline constexpr const char* kSweepFormat = "layerlab-sweep/1";
+inline constexpr size_t kMaxSweepPoints = 100000;  // a larger grid is refused as a mistake
 
 struct SweepParameter {
   std::string name;
@@ -55,13 +59,17 @@ struct SweepParameter {
 struct SweepSpec {
   std::string file;  // as given
   std::string name;
+  bool named = false;  // the file gives "name" (else the name is its stem)
   std::string description;
   std::string scene;  // resolved against the sweep file's folder
   std::vector<SweepParameter> parameters;
   bool solve = false, retina = false, contrast = false;
   std::optional<int> iterations;
   int threads = 1;
+  SlurmResources slurm;
   nlohmann::ordered_json base;  // the base scene's document, in file order
+  // The product of the parameters' value counts; throws layerlab::Error at
+  // /parameters when it does not fit in 64 bits.
   size_t job_count() const;
   std::vector<std::string> work() const;  // "solve", "retina", "contrast" as declared
 };

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "analysis/sweep_gather.h"
@@ -13,6 +14,9 @@
 #include "app/sweep_runners.h"
 #include "framework/error.h"
 #include "framework/progress.h"
+#if LAYERLAB_WITH_MPI
+#include "framework/mpi_world.h"
+#endif
 
 namespace layerlab::app {
 
@@ -36,7 +40,16 @@ struct SweepOptions {
   std::string sweep, out, job;
   bool local = false, mpi = false, slurm = false, gather = false;
   int processes = 1;
+  SlurmResources slurm_resources;  // --slurm-time ...: over the sweep file's "slurm"
 };
+
+void CheckSlurmOptions(const SlurmResources& r) {
+  for (const auto& [key, value] : {std::pair{"time", &r.time}, std::pair{"mem", &r.mem},
+                                   std::pair{"partition", &r.partition}, std::pair{"account", &r.account}})
+    if (!value->empty())
+      if (const std::string problem = SlurmValueProblem(key, *value); !problem.empty())
+        throw Error(std::string("--slurm-") + key + ": " + problem);
+}
 
 // The table, and the exit: non-zero when a job failed or did not run.
 void GatherAndReport(const SweepSpec& spec, const std::vector<SweepJob>& jobs, const std::string& out) {
@@ -47,6 +60,14 @@ void GatherAndReport(const SweepSpec& spec, const std::vector<SweepJob>& jobs, c
 }
 
 void RunSweepCommand(const SweepOptions& o) {
+  CheckSlurmOptions(o.slurm_resources);
+#if LAYERLAB_WITH_MPI
+  // Without a launcher MPI_Init would start a singleton, or fail with a page of Open MPI's text.
+  if (o.mpi && !MpiWorld::Launched())
+    throw Error("--mpi: this process was not started by an MPI launcher; run it as `mpirun -np N layerlab sweep " +
+                o.sweep + " --out " + o.out +
+                " --mpi` (or under srun), or leave out --mpi to run the jobs here (--local -j N)");
+#endif
   const SweepSpec spec = ReadSweepSpec(o.sweep);
   const std::vector<SweepJob> jobs = ExpandSweep(spec, o.out);
   if (!o.job.empty()) {  // one job: what a pool process and a Slurm task run
@@ -73,12 +94,17 @@ void RunSweepCommand(const SweepOptions& o) {
         "OpenMPI: apt-get install libopenmpi-dev openmpi-bin)");
 #endif
   }
+  std::optional<SlurmScripts> scripts;  // made, and so checked, before anything is written
+  if (o.slurm) {
+    SlurmResources resources = spec.slurm;
+    resources.Override(o.slurm_resources);
+    scripts = MakeSlurmScripts(spec, jobs.size(), o.out, resources);
+  }
   const FileLock lock = LockSweepFolder(spec, o.out);
   const size_t written = WriteSweepFolders(spec, jobs, o.out);
   std::printf("sweep: %zu jobs in %s/jobs (%zu scenes written)\n", jobs.size(), o.out.c_str(), written);
-  if (o.slurm) {
-    for (const std::string& script : WriteSlurmScripts(spec, jobs, o.out))
-      std::printf("sweep: wrote %s\n", script.c_str());
+  if (scripts) {
+    for (const std::string& script : WriteSlurmScripts(*scripts)) std::printf("sweep: wrote %s\n", script.c_str());
     std::printf("sweep: submit with sh %s/slurm/submit.sh\n", o.out.c_str());
     return;
   }
@@ -103,13 +129,28 @@ void AddSweepCommand(CLI::App& app) {
   CLI::Option* slurm =
       cmd->add_flag("--slurm", o->slurm,
                     "Write a Slurm job array (DIR/slurm/array.sbatch), a gather step and submit.sh; run nothing");
+  const std::vector<CLI::Option*> resources = {
+      cmd->add_option("--slurm-time", o->slurm_resources.time,
+                      "With --slurm: each task's wall time (minutes, hours:minutes:seconds, days-hours, ...)"),
+      cmd->add_option("--slurm-mem", o->slurm_resources.mem,
+                      "With --slurm: each task's memory (an integer, unit K, M (default), G or T: 4G)"),
+      cmd->add_option("--slurm-partition", o->slurm_resources.partition, "With --slurm: the partition(s)"),
+      cmd->add_option("--slurm-account", o->slurm_resources.account, "With --slurm: the account charged"),
+      cmd->add_option("--slurm-cpus-per-task", o->slurm_resources.cpus_per_task,
+                      "With --slurm: each task's CPUs (default: the sweep's threads)")
+          ->check(CLI::Range(1, kMaxSlurmCpusPerTask))};
+  for (CLI::Option* r : resources) r->needs(slurm);
   CLI::Option* job = cmd->add_option("--job", o->job, "Run only this job (its index), e.g. from a Slurm array task");
   CLI::Option* gather = cmd->add_flag("--gather", o->gather, "Only gather the table and plots from the job records");
   local->excludes(mpi)->excludes(slurm)->excludes(job)->excludes(gather);
   mpi->excludes(slurm)->excludes(job)->excludes(gather);
   slurm->excludes(job)->excludes(gather);
   job->excludes(gather);
-  cmd->callback([o] { RunSweepCommand(*o); });
+  cmd->callback([o, resources] {
+    for (const CLI::Option* r : resources)  // an empty value would read as not given
+      if (r->count() && r->as<std::string>().empty()) throw Error(r->get_name() + ": is empty");
+    RunSweepCommand(*o);
+  });
 }
 
 }  // namespace layerlab::app

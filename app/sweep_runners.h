@@ -23,10 +23,20 @@ std::string SelfExecutable();
 // most `processes` at a time (posix_spawn); prints a line per job.
 size_t RunSweepLocally(const SweepSpec& spec, const std::vector<SweepJob>& jobs, const std::string& out, int processes);
 
-// Writes DIR/slurm/array.sbatch (the array task id selects the job),
-// DIR/slurm/gather.sbatch and DIR/slurm/submit.sh; returns their paths.
-std::vector<std::string> WriteSlurmScripts(const SweepSpec& spec, const std::vector<SweepJob>& jobs,
-                                           const std::string& out);
+// DIR/slurm/array.sbatch (the array task id selects the job),
+// DIR/slurm/gather.sbatch and DIR/slurm/submit.sh, as text.
+struct SlurmScripts {
+  std::string folder, logs, array, gather, submit;  // absolute paths
+  std::string array_text, gather_text, submit_text;
+};
+// The scripts of the sweep's `job_count` jobs into `out`, with `resources`.
+// Writes nothing; throws layerlab::Error naming the field (the sweep file's
+// /name, --out, a resource) when a text cannot be carried safely into a
+// script (app/sweep_slurm.cpp says which).
+SlurmScripts MakeSlurmScripts(const SweepSpec& spec, size_t job_count, const std::string& out,
+                              const SlurmResources& resources);
+// Writes them (and creates the logs folder); returns their paths.
+std::vector<std::string> WriteSlurmScripts(const SlurmScripts& scripts);
 
 // Under mpirun: rank 0 writes the job folders, job i runs on rank i mod N,
 // rank 0 gathers. Returns the number of failed jobs on every rank; a rank that

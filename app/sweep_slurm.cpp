@@ -2,8 +2,20 @@
 // id selects the job (`--job $SLURM_ARRAY_TASK_ID`), so a task that is
 // requeued or run again finds its job complete and skips it; the gather step
 // runs after the whole array (afterany: also when some tasks failed).
+//
+// No text of the user's is ever run as a command. In the scripts' bodies the
+// paths are single-quoted for the shell. The `#SBATCH` lines are parsed by
+// sbatch itself (a line each, double quotes group, a backslash escapes, an
+// unquoted `#` ends the line, "hetjob" anywhere starts another job): there
+// the job name is of a safe character set, the resources of Slurm's forms
+// (analysis/slurm_resources.h), and the log path is double-quoted with `"`
+// escaped and `%` doubled. What cannot be carried is refused, naming where it
+// came from: a control character (a newline) in a path, a backslash or
+// "hetjob" in the output folder. The comments hold no text of the user's.
 #include <filesystem>
 #include <string>
+
+#include <nlohmann/json.hpp>
 
 #include "app/sweep_runners.h"
 #include "framework/atomic_file.h"
@@ -14,10 +26,41 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string Quoted(const std::string& s) {
+// For the shell: '...' with each ' as '\''.
+std::string ShellQuoted(const std::string& s) {
   std::string q = "'";
   for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
   return q + "'";
+}
+
+// For an #SBATCH line: "..." with each " escaped.
+std::string SbatchQuoted(const std::string& s) {
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\\\"") : std::string(1, c);
+  return q + "\"";
+}
+
+// A folder in a Slurm file name pattern, where `%` starts a field and `%%` is a `%`.
+std::string PatternLiteral(const std::string& s) {
+  std::string p;
+  for (char c : s) p += c == '%' ? std::string("%%") : std::string(1, c);
+  return p;
+}
+
+// JSON-quoted for a message: a newline shows as \n.
+std::string Shown(const std::string& text) {
+  return nlohmann::json(text).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
+// A path for a script's body: single quotes carry anything but a control
+// character, which would split the line (a newline) or make sbatch refuse
+// the script (a carriage return before a newline).
+void CheckScriptPath(const std::string& path, const std::string& field) {
+  for (unsigned char c : path)
+    if (c < 0x20 || c == 0x7f)
+      throw Error(field + ": " + Shown(path) +
+                  " holds a control character (a newline, a tab, a carriage return), which a Slurm script cannot "
+                  "carry; rename it");
 }
 
 std::string Absolute(const std::string& path) { return fs::absolute(path).lexically_normal().string(); }
@@ -32,70 +75,88 @@ void WriteScript(const std::string& path, const std::string& text) {
 
 }  // namespace
 
-std::vector<std::string> WriteSlurmScripts(const SweepSpec& spec, const std::vector<SweepJob>& jobs,
-                                           const std::string& out) {
-  const fs::path dir = fs::path(Absolute(out)) / "slurm";
-  std::error_code ec;
-  fs::create_directories(dir / "logs", ec);  // sbatch does not create the folder of --output
-  if (ec) throw Error((dir / "logs").string() + ": cannot create the folder: " + ec.message());
-  const std::string exe = Quoted(SelfExecutable()), sweep = Quoted(Absolute(spec.file)), to = Quoted(Absolute(out));
-  const std::string name = spec.name.empty() ? "layerlab-sweep" : spec.name;
-  const int cpus = spec.threads > 0 ? spec.threads : 1;
+SlurmScripts MakeSlurmScripts(const SweepSpec& spec, size_t job_count, const std::string& out,
+                              const SlurmResources& resources) {
+  if (job_count == 0) throw Error(Location{spec.file, "/parameters"}, "the sweep has no jobs: nothing to submit");
+  if (const std::string problem = SlurmJobNameProblem(spec.name); !problem.empty())
+    throw Error(Location{spec.file, "/name"},
+                Shown(spec.name) + " " + problem +
+                    (spec.named ? "" : " (without \"name\", the name is the sweep file's stem: give one)"));
+  for (const auto& [key, value] :
+       {std::pair{"time", &resources.time}, std::pair{"mem", &resources.mem},
+        std::pair{"partition", &resources.partition}, std::pair{"account", &resources.account}})
+    if (!value->empty())
+      if (const std::string problem = SlurmValueProblem(key, *value); !problem.empty())
+        throw Error(std::string("slurm ") + key + ": " + problem);
+  const std::string exe = SelfExecutable(), sweep = Absolute(spec.file), to = Absolute(out);
+  CheckScriptPath(exe, "the layerlab executable's path");
+  CheckScriptPath(sweep, "SWEEP (the sweep file's path)");
+  CheckScriptPath(to, "--out");
+  const fs::path dir = fs::path(to) / "slurm";
+  const std::string logs = (dir / "logs").string();
+  if (logs.find('\\') != std::string::npos)
+    throw Error("--out: " + Shown(to) +
+                " holds a backslash, which turns off the %a in Slurm's log file names (#SBATCH --output); rename it");
+  if (SbatchSeesHetJob(logs))
+    throw Error("--out: " + Shown(to) +
+                " holds \"hetjob\" or \"packjob\", which sbatch reads in an #SBATCH line as the start of another job; "
+                "rename it");
 
-  const std::string array = (dir / "array.sbatch").string();
-  WriteScript(array,
-              "#!/bin/bash\n"
-              "# One task per job of the sweep " +
-                  spec.file + " (" + std::to_string(jobs.size()) +
-                  " jobs); written by layerlab sweep --slurm.\n"
-                  "# Submit with submit.sh; to run one task here: SLURM_ARRAY_TASK_ID=3 " +
-                  array +
+  const int cpus = resources.cpus_per_task > 0 ? resources.cpus_per_task : spec.threads > 0 ? spec.threads : 1;
+  std::string asked;  // what both scripts ask; the array's tasks also their CPUs
+  if (!resources.time.empty()) asked += "#SBATCH --time=" + resources.time + "\n";
+  if (!resources.mem.empty()) asked += "#SBATCH --mem=" + resources.mem + "\n";
+  if (!resources.partition.empty()) asked += "#SBATCH --partition=" + resources.partition + "\n";
+  if (!resources.account.empty()) asked += "#SBATCH --account=" + resources.account + "\n";
+  const std::string run = "exec " + ShellQuoted(exe) + " sweep " + ShellQuoted(sweep) + " --out " + ShellQuoted(to);
+  const std::string last = std::to_string(job_count - 1);
+
+  SlurmScripts s;
+  s.folder = dir.string();
+  s.logs = logs;
+  s.array = (dir / "array.sbatch").string();
+  s.gather = (dir / "gather.sbatch").string();
+  s.submit = (dir / "submit.sh").string();
+  s.array_text = "#!/bin/bash\n#SBATCH --job-name=" + SbatchQuoted(spec.name) + "\n#SBATCH --array=0-" + last +
+                 "\n#SBATCH --ntasks=1\n#SBATCH --cpus-per-task=" + std::to_string(cpus) + "\n" + asked +
+                 "#SBATCH --output=" + SbatchQuoted(PatternLiteral(logs) + "/job-%a.out") +
+                 "\n"
+                 "# One task per job of the sweep (" +
+                 std::to_string(job_count) +
+                 " jobs), written by layerlab sweep --slurm and submitted by submit.sh.\n"
+                 "# To run one task here: set SLURM_ARRAY_TASK_ID (0 to " +
+                 last +
+                 ") and run this script.\n"
+                 "set -euo pipefail\n"
+                 ": \"${SLURM_ARRAY_TASK_ID:?runs as a task of the Slurm array (sbatch), or with "
+                 "SLURM_ARRAY_TASK_ID set}\"\n" +
+                 run + " --job \"$SLURM_ARRAY_TASK_ID\"\n";
+  s.gather_text = "#!/bin/bash\n#SBATCH --job-name=" + SbatchQuoted(spec.name + "-gather") + "\n#SBATCH --ntasks=1\n" +
+                  asked + "#SBATCH --output=" + SbatchQuoted(PatternLiteral(logs) + "/gather.out") +
                   "\n"
-                  "#SBATCH --job-name=" +
-                  name +
-                  "\n"
-                  "#SBATCH --array=0-" +
-                  std::to_string(jobs.size() - 1) +
-                  "\n"
-                  "#SBATCH --ntasks=1\n"
-                  "#SBATCH --cpus-per-task=" +
-                  std::to_string(cpus) +
-                  "\n"
-                  "#SBATCH --output=" +
-                  (dir / "logs").string() +
-                  "/job-%a.out\n"
-                  "set -euo pipefail\n"
-                  ": \"${SLURM_ARRAY_TASK_ID:?runs as a task of the Slurm array (sbatch), or with "
-                  "SLURM_ARRAY_TASK_ID set}\"\n"
-                  "exec " +
-                  exe + " sweep " + sweep + " --out " + to + " --job \"$SLURM_ARRAY_TASK_ID\"\n");
-  const std::string gather = (dir / "gather.sbatch").string();
-  WriteScript(gather,
-              "#!/bin/bash\n"
-              "# The gather step of the sweep " +
-                  spec.file +
-                  ": the table and plots from every job's record.\n"
-                  "#SBATCH --job-name=" +
-                  name +
-                  "-gather\n"
-                  "#SBATCH --ntasks=1\n"
-                  "#SBATCH --output=" +
-                  (dir / "logs").string() +
-                  "/gather.out\n"
-                  "set -euo pipefail\n"
-                  "exec " +
-                  exe + " sweep " + sweep + " --out " + to + " --gather\n");
-  const std::string submit = (dir / "submit.sh").string();
-  WriteScript(submit,
-              "#!/bin/sh\n"
-              "# Submits the array and, once every task has ended, the gather step.\n"
-              "set -eu\n"
-              "array=$(sbatch --parsable " +
-                  Quoted(array) +
-                  ")\n"
-                  "sbatch --dependency=afterany:\"${array%%;*}\" " +
-                  Quoted(gather) + "\n");
-  return {array, gather, submit};
+                  "# The gather step of the sweep: the table and plots from every job's record.\n"
+                  "set -euo pipefail\n" +
+                  run + " --gather\n";
+  s.submit_text =
+      "#!/bin/sh\n"
+      "# Submits the array and, once every task has ended, the gather step.\n"
+      "set -eu\n"
+      "array=$(sbatch --parsable " +
+      ShellQuoted(s.array) +
+      ")\n"
+      "sbatch --dependency=afterany:\"${array%%;*}\" " +
+      ShellQuoted(s.gather) + "\n";
+  return s;
+}
+
+std::vector<std::string> WriteSlurmScripts(const SlurmScripts& s) {
+  std::error_code ec;
+  fs::create_directories(s.logs, ec);  // sbatch does not create the folder of --output
+  if (ec) throw Error(s.logs + ": cannot create the folder: " + ec.message());
+  WriteScript(s.array, s.array_text);
+  WriteScript(s.gather, s.gather_text);
+  WriteScript(s.submit, s.submit_text);
+  return {s.array, s.gather, s.submit};
 }
 
 }  // namespace layerlab::app

@@ -104,11 +104,26 @@ SolverCheckpoint ReadCheckpoint(const DisplayModel& model, const std::string& fo
 
 CheckpointInputs CheckpointDigest(const DisplayModel& model, Sampling sampling, const LightField& target,
                                   const std::string& solver, const SolverOptions& o) {
-  char options[256];
-  std::snprintf(options, sizeof options,
+  char text[256];
+  std::snprintf(text, sizeof text,
                 "sub_iterations=%d warm_start=%d seed=%llu initial=%.17g epsilon=%.17g floor=%.17g range=%d",
                 o.sub_iterations, o.warm_start_iterations, static_cast<unsigned long long>(o.seed), o.initial_value,
                 o.epsilon, o.floor, static_cast<int>(o.target_range));
+  std::string options = std::string(text) + " objective=" + ToString(o.objective);
+  if (o.objective == ObjectiveKind::kRetinal) {  // what the retinal objective minimizes
+    auto list = [](const std::vector<double>& values) {
+      std::string s;
+      for (double v : values) {
+        char number[32];
+        std::snprintf(number, sizeof number, "%.17g", v);
+        s += (s.empty() ? "" : ",") + std::string(number);
+      }
+      return s;
+    };
+    std::snprintf(text, sizeof text, " resolution=%.17g target=%d contrast_sensitivity=%d", o.retinal.resolution,
+                  static_cast<int>(o.retinal.target), o.retinal.contrast_sensitivity ? 1 : 0);
+    options += " states=" + list(o.retinal.states) + " weights=" + list(o.retinal.weights) + text;
+  }
   return {{"display", ContentDigest().add(SystemToJson(model.system()).dump()).add(&sampling, sizeof sampling).hex()},
           {"target", LightFieldDigest(target)},
           {"solver", solver},

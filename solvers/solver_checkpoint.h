@@ -27,7 +27,9 @@ using CheckpointInputs = std::map<std::string, std::string>;
 
 // The digest of a solve's inputs: the compiled display and its sampling, the
 // target's geometry and every value of its views, the solver, and the options
-// that change the result (not iterations, time budget, tolerance or threads).
+// that change the result (not iterations, time budget, tolerance or threads):
+// with the retinal objective its states, weights, sample size, target and
+// contrast weighting too.
 CheckpointInputs CheckpointDigest(const DisplayModel& model, Sampling sampling, const LightField& target,
                                   const std::string& solver, const SolverOptions& options);
 // Throws layerlab::Error naming what differs between the digest recorded in

@@ -2,9 +2,13 @@
 // same model; the multiplicative rules never increase the objective; bounds
 // hold exactly; options and reports behave as documented.
 #include <omp.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
 #include <optional>
 #include <random>
 
@@ -644,6 +648,78 @@ TEST(Solvers, MultiplicativeRefusesSeveralBranches) {
   SolverReport r = RunSolver("multiplicative", f, SolverOptions{}, &t);
   EXPECT_FALSE(r.IsSolutionUsable());
   EXPECT_EQ(r.message, "the multiplicative solver needs a display of one branch; this one has 2 (use hybrid)");
+}
+
+// Every input the checkpoint digest covers, changed alone, changes its part of the digest and only that part,
+// and a resume is refused naming it.
+TEST(SolverCheckpoint, EachFieldOfTheDigestChangedInTurnIsRefusedByName) {
+  const Fixture f = MakeFixture("multiplicative_2layer.json", 16, 8, 3);
+  SolverOptions base;
+  base.objective = ObjectiveKind::kRetinal;
+  base.retinal.states = {0.5, 1.5};
+  base.retinal.weights = {1, 2};
+  const CheckpointInputs recorded = CheckpointDigest(*f.model, Sampling::kNearest, f.target, "hybrid", base);
+  const std::string folder =
+      (std::filesystem::temp_directory_path() / ("layerlab_digest_" + std::to_string(::getpid()))).string();
+  std::filesystem::create_directories(folder);
+  std::ofstream(folder + "/checkpoint.json") << nlohmann::json{{"digest", recorded}}.dump();
+  EXPECT_NO_THROW(RefuseMismatchedCheckpoint(folder, recorded));
+
+  struct Change {
+    std::string name, part;
+    std::function<void(DisplaySystem*, Sampling*, LightField*, std::string*, SolverOptions*)> apply;
+  };
+  const std::vector<Change> changes = {
+      {"sampling", "display", [](auto*, Sampling* s, auto*, auto*, auto*) { *s = Sampling::kBilinear; }},
+      {"a layer's depth", "display",
+       [](DisplaySystem* d, auto*, auto*, auto*, auto*) { d->layers[0].diopters += 1e-9; }},
+      {"one target value", "target", [](auto*, auto*, LightField* t, auto*, auto*) { t->rgb[5] += 1e-6f; }},
+      {"the solver", "solver", [](auto*, auto*, auto*, std::string* s, auto*) { *s = "joint"; }},
+      {"sub_iterations", "options", [](auto*, auto*, auto*, auto*, SolverOptions* o) { o->sub_iterations += 1; }},
+      {"warm_start", "options", [](auto*, auto*, auto*, auto*, SolverOptions* o) { o->warm_start_iterations += 1; }},
+      {"seed", "options", [](auto*, auto*, auto*, auto*, SolverOptions* o) { o->seed += 1; }},
+      {"initial_value", "options", [](auto*, auto*, auto*, auto*, SolverOptions* o) { o->initial_value = 0.25; }},
+      {"epsilon", "options", [](auto*, auto*, auto*, auto*, SolverOptions* o) { o->epsilon *= 2; }},
+      {"floor", "options", [](auto*, auto*, auto*, auto*, SolverOptions* o) { o->floor *= 2; }},
+      {"target_range", "options",
+       [](auto*, auto*, auto*, auto*, SolverOptions* o) { o->target_range = TargetRange::kScale; }},
+      {"objective", "options",
+       [](auto*, auto*, auto*, auto*, SolverOptions* o) { o->objective = ObjectiveKind::kLightField; }},
+      {"retinal states", "options", [](auto*, auto*, auto*, auto*, SolverOptions* o) { o->retinal.states[1] = 1.6; }},
+      {"retinal weights", "options", [](auto*, auto*, auto*, auto*, SolverOptions* o) { o->retinal.weights[0] = 3; }},
+      {"retinal resolution", "options",
+       [](auto*, auto*, auto*, auto*, SolverOptions* o) { o->retinal.resolution = 1e-3; }},
+      {"retinal target", "options",
+       [](auto*, auto*, auto*, auto*, SolverOptions* o) { o->retinal.target = RetinalTarget::kTraced; }},
+      {"contrast sensitivity", "options",
+       [](auto*, auto*, auto*, auto*, SolverOptions* o) { o->retinal.contrast_sensitivity = true; }},
+  };
+  for (const Change& change : changes) {
+    SCOPED_TRACE(change.name);
+    DisplaySystem system = f.system;
+    Sampling sampling = Sampling::kNearest;
+    LightField target = f.target;
+    std::string solver = "hybrid";
+    SolverOptions options = base;
+    change.apply(&system, &sampling, &target, &solver, &options);
+    const DisplayModel model(system, target.geometry, sampling);
+    const CheckpointInputs now = CheckpointDigest(model, sampling, target, solver, options);
+    for (const auto& [part, value] : recorded)
+      EXPECT_EQ(now.at(part) != value, part == change.part) << part << ": " << value << " -> " << now.at(part);
+    try {
+      RefuseMismatchedCheckpoint(folder, now);
+      ADD_FAILURE() << "a resume with another " << change.name << " was not refused";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("/digest/" + change.part + ": the checkpoint was made for another"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+  // What does not change the result does not change the digest.
+  SolverOptions same = base;
+  same.iterations = 7, same.time_budget = 3, same.tolerance = 0.1, same.threads = 2;
+  EXPECT_EQ(CheckpointDigest(*f.model, Sampling::kNearest, f.target, "hybrid", same), recorded);
+  std::filesystem::remove_all(folder);
 }
 
 TEST(Solvers, AdditiveRefusesStacks) {

@@ -14,6 +14,7 @@
 #include "framework/json_file.h"
 #include "framework/params.h"
 #include "systems/scene.h"
+#include "systems/scene_document.h"
 #include "tests/test_util.h"
 #include "tools/key_tables.h"
 
@@ -146,16 +147,21 @@ TEST_F(SweepTest, BadFilesNameTheFileAndThePointer) {
 // over the shipped example and this test's sweep: no key undocumented, none documented and not read.
 TEST_F(SweepTest, KeyTablesListWhatTheReaderReads) {
   std::map<std::string, std::set<std::string>> documented;
-  for (const KeyTable& table : ReadKeyTables(std::string(LAYERLAB_SOURCE_DIR) + "/analysis/sweep_spec.h"))
-    for (const std::string& key : table.keys()) documented[table.section].insert(key);
-  ASSERT_EQ(documented.size(), 2u);
+  for (const char* header : {"/analysis/sweep_spec.h", "/analysis/slurm_resources.h"})
+    for (const KeyTable& table : ReadKeyTables(std::string(LAYERLAB_SOURCE_DIR) + header))
+      for (const std::string& key : table.keys()) documented[table.section].insert(key);
+  ASSERT_EQ(documented.size(), 3u);
   std::map<std::string, std::set<std::string>> read;
-  for (const std::string& file : {testing::ExamplePath("sweeps/hybrid_small_24.json"), Write(Base())}) {
+  nlohmann::json with_slurm = Base();
+  with_slurm["slurm"] = {
+      {"time", "1:00:00"}, {"mem", "4G"}, {"partition", "gpu"}, {"account", "a"}, {"cpus-per-task", 2}};
+  for (const std::string& file : {testing::ExamplePath("sweeps/hybrid_small_24.json"), Write(with_slurm)}) {
     ParamsKeyRecorder recorder;
     ReadSweepSpec(file);
     for (const auto& [pointer, keys] : recorder.keys()) {
       const std::string section = pointer.empty()                         ? "sweep"
                                   : pointer.rfind("/parameters/", 0) == 0 ? "sweep.parameter"
+                                  : pointer == "/slurm"                   ? "sweep.slurm"
                                                                           : pointer;
       read[section].insert(keys.begin(), keys.end());
     }
@@ -197,6 +203,100 @@ TEST_F(SweepTest, AnOutputFolderOverlappingAnInputIsRefused) {
   const SweepSpec spec = ReadSweepSpec(Write(Base()));
   const std::vector<SweepJob> jobs = ExpandSweep(spec, dir_.string());
   EXPECT_THROW(WriteSweepFolders(spec, jobs, dir_.string()), Error);  // the folder holding the sweep file
+}
+
+// 64 parameters of 2 values: 2^64 points, which wrapped to 0 and slipped past the point limit.
+TEST_F(SweepTest, AGridBeyondSixtyFourBitsIsRefusedNotWrapped) {
+  nlohmann::json s = Base();
+  s["parameters"] = nlohmann::json::array();
+  for (int i = 0; i < 64; ++i)
+    s["parameters"].push_back(
+        {{"name", "p" + std::to_string(i)}, {"pointer", "/elements/0/pupil_diameter"}, {"values", {"3 mm", "5 mm"}}});
+  EXPECT_NE(
+      ErrorOf(s).find("sweep.json: /parameters: the grid's points: 9223372036854775808 x 2 does not fit in 64 bits"),
+      std::string::npos)
+      << ErrorOf(s);
+  s["parameters"] = nlohmann::json(std::vector<nlohmann::json>(s["parameters"].begin(), s["parameters"].begin() + 17));
+  EXPECT_NE(
+      ErrorOf(s).find("sweep.json: /parameters: the grid has 131072 points; more than 100000 is surely a mistake"),
+      std::string::npos)
+      << ErrorOf(s);
+}
+
+TEST_F(SweepTest, SlurmResourcesAreReadInSlurmsFormsOnly) {
+  nlohmann::json s = Base();
+  s["slurm"] = {
+      {"time", "1-12:30"}, {"mem", "4G"}, {"partition", "gpu,cpu"}, {"account", "proj_1"}, {"cpus-per-task", 8}};
+  const SweepSpec spec = ReadSweepSpec(Write(s));
+  EXPECT_EQ(spec.slurm.time, "1-12:30");
+  EXPECT_EQ(spec.slurm.mem, "4G");
+  EXPECT_EQ(spec.slurm.partition, "gpu,cpu");
+  EXPECT_EQ(spec.slurm.account, "proj_1");
+  EXPECT_EQ(spec.slurm.cpus_per_task, 8);
+  SlurmResources over;
+  over.time = "30";
+  SlurmResources merged = spec.slurm;
+  merged.Override(over);
+  EXPECT_EQ(merged.time, "30");
+  EXPECT_EQ(merged.mem, "4G");
+
+  for (const char* t : {"10", "10:30", "1:00:00", "2-12", "2-12:30", "2-12:30:15", "UNLIMITED"})
+    EXPECT_EQ(SlurmValueProblem("time", t), "") << t;
+  for (const char* t : {"", "1h", "1:00:00:00", "-1", "1:00 ", "1\n#SBATCH --wrap=x", "$(x)"})
+    EXPECT_NE(SlurmValueProblem("time", t), "") << t;
+  for (const char* m : {"4096", "4G", "512M", "1T", "64k"}) EXPECT_EQ(SlurmValueProblem("mem", m), "") << m;
+  for (const char* m : {"", "4 GB", "4GB", "-4G", "4G;x"}) EXPECT_NE(SlurmValueProblem("mem", m), "") << m;
+  for (const char* p : {"gpu", "gpu,cpu", "a_b.c-d"}) EXPECT_EQ(SlurmValueProblem("partition", p), "") << p;
+  for (const char* p : {"", "a b", "a,", "a\"b", "a#b", "HetJob", "x-packjob"})
+    EXPECT_NE(SlurmValueProblem("partition", p), "") << p;
+  EXPECT_NE(SlurmValueProblem("account", "a,b"), "");
+  EXPECT_EQ(SlurmValueProblem("time", "1h"),
+            "\"1h\" is not a Slurm time (minutes, minutes:seconds, hours:minutes:seconds, days-hours, "
+            "days-hours:minutes, days-hours:minutes:seconds; e.g. \"2:00:00\" or \"1-12\")");
+  for (const char* n : {"test sweep", "layer-spacing_2.0+pupil"}) EXPECT_EQ(SlurmJobNameProblem(n), "") << n;
+  for (const char* n : {"", "a\nb", "$(touch x)", "`x`", "a;b", "a#b", "it's", "a\"b", "hetjob"})
+    EXPECT_NE(SlurmJobNameProblem(n), "") << n;
+
+  s["slurm"] = {{"mem", "4G; touch x"}};
+  EXPECT_NE(ErrorOf(s).find("sweep.json: /slurm/mem: \"4G; touch x\" is not a Slurm memory size"), std::string::npos)
+      << ErrorOf(s);
+  s["slurm"] = {{"cpus-per-task", 0}};
+  EXPECT_NE(ErrorOf(s).find("sweep.json: /slurm/cpus-per-task:"), std::string::npos) << ErrorOf(s);
+  s["slurm"] = {{"nodes", 2}};
+  EXPECT_NE(ErrorOf(s).find("sweep.json: /slurm/nodes:"), std::string::npos) << ErrorOf(s);
+  s["slurm"] = "gpu";
+  EXPECT_NE(ErrorOf(s).find("sweep.json: /slurm: must be an object"), std::string::npos) << ErrorOf(s);
+}
+
+// A label of 200000 digits (or spaces) is a label, not a number: it ended in a stack overflow (signal 11)
+// in the regular expression that recognizes "<number> <unit>".
+TEST_F(SweepTest, ALongLabelIsATextColumnNotAStackOverflow) {
+  nlohmann::json s = Base();
+  s["parameters"][0]["labels"] = {std::string(200000, '1'), " " + std::string(200000, ' ') + "1"};
+  const SweepSpec spec = ReadSweepSpec(Write(s));
+  EXPECT_EQ(spec.parameters[0].unit, "");
+  EXPECT_EQ(spec.parameters[0].column(), "pupil");
+}
+
+// The base scene's target light field is an input too: an output folder inside it is refused before
+// anything is written (the jobs would each have refused it after the folders were written into it).
+TEST_F(SweepTest, AnOutputFolderInsideTheBaseScenesTargetIsRefusedUpFront) {
+  ordered_json scene = ReadDocumentInOrder(testing::ExamplePath("small/hybrid_small.json"));
+  scene["solve"] = {{"solver", "hybrid"}, {"target", "lf"}};
+  scene.erase("run");
+  std::ofstream(dir_ / "scene.json") << scene.dump(2);
+  fs::create_directories(dir_ / "lf");
+  nlohmann::json s = Base();
+  s["scene"] = (dir_ / "scene.json").string();
+  const SweepSpec spec = ReadSweepSpec(Write(s));
+  const std::string out = (dir_ / "lf" / "sweep").string();
+  try {
+    LockSweepFolder(spec, out);
+    ADD_FAILURE() << "an output folder inside the target light field was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("the base scene's /solve/target"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(out));
 }
 
 }  // namespace

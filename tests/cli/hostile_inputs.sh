@@ -3,8 +3,10 @@
 # (the fuzzers' seed corpora, and light-field folders, scenes, measurement
 # files, pattern folders, checkpoints and output folders with FIFOs, sockets,
 # devices, looping, dangling and outside links, folders where files belong,
-# overflowing numbers and overlong names) and must refuse each with a clear
-# error: never `internal error`, never a signal, never a hang (30 s each).
+# overflowing numbers and overlong names; sweep files, paths and Slurm values
+# meant to be run as commands by the generated Slurm scripts) and must refuse
+# each with a clear error: never `internal error`, never a signal, never a
+# hang (30 s each); no generated script may run a command of the input's.
 # Usage: hostile_inputs.sh LAYERLAB SOURCE_DIR WORK_DIR
 set -u
 layerlab=$(realpath "$1") source=$(realpath "$2") work=$3
@@ -161,6 +163,50 @@ refuse "retina --resolution 1e-9" "^layerlab: error: --resolution: " \
 refuse "contrast --out the scene's folder" "the output contains a scene" \
   "$layerlab" contrast nonsense/holds_scene/scene.json --out nonsense/holds_scene
 [ "$(ls -A nonsense/holds_scene)" = scene.json ] || { echo "FAIL: the refused contrast wrote beside its scene"; failures=$((failures + 1)); }
+
+# Generated scripts: sweep files (the sweep fuzzer's seeds beside its base scene), sweep file paths,
+# output folders and Slurm values holding newlines, $(...), backticks, quotes, ;, # and spaces. Each
+# is refused with a clear error, or writes Slurm scripts that, submitted with a stub sbatch on PATH
+# (tests/cli/sbatch_stub.py: runs the array's tasks and the gather step), run nothing but layerlab.
+mkdir -p sweeps/bin sweeps/run
+ln -sf "$source/tests/cli/sbatch_stub.py" sweeps/bin/sbatch
+export SBATCH_STUB_LOG=$work/sweeps/sbatch.log
+/usr/bin/python3 -c 'import re, sys; print(re.search(r"R\"json\((.*)\)json\"", open(sys.argv[1]).read(), re.S).group(1))' \
+  "$source/fuzz/sweep_fuzz.cpp" >sweeps/scene.json
+cp "$source"/fuzz/corpus/sweep/* sweeps/
+nl='
+'
+evil="\$(touch MARK1) \`touch MARK2\` 'q' \"dq\" ;x #y %a"
+cp sweeps/basic.json "sweeps/$evil.json"
+cp sweeps/basic.json "sweeps/new${nl}touch MARK8 #.json"
+sweep_out=0
+submit() {  # submit LABEL OUT: the scripts of a sweep that was accepted, through the stub
+  [ -f "$2/slurm/submit.sh" ] || return 0
+  try "submit.sh of $1" env PATH="$work/sweeps/bin:$PATH" sh "$2/slurm/submit.sh"
+}
+for s in sweeps/*.json; do
+  [ "$s" = sweeps/scene.json ] && continue
+  sweep_out=$((sweep_out + 1))
+  try "sweep --slurm $s" "$layerlab" sweep "$s" --out "sweeps/out$sweep_out" --slurm
+  submit "$s" "sweeps/out$sweep_out"
+done
+for o in "sweeps/$evil" "sweeps/o${nl}#SBATCH --wrap=touch MARK3" "sweeps/o\\b" "sweeps/HETJOB" "sweeps/o$(printf '\r')"; do
+  try "sweep --slurm --out $o" "$layerlab" sweep sweeps/basic.json --out "$o" --slurm
+  submit "--out $o" "$o"
+done
+for v in "1:00:00${nl}#SBATCH --wrap=touch MARK4" "\$(touch MARK5)" "a b" "" "$long"; do
+  for r in time mem partition account; do
+    try "sweep --slurm-$r $v" "$layerlab" sweep sweeps/basic.json --out sweeps/resources --slurm "--slurm-$r" "$v"
+  done
+done
+try "sweep --slurm-cpus-per-task 0" "$layerlab" sweep sweeps/basic.json --out sweeps/resources --slurm --slurm-cpus-per-task 0
+submit "the resources" sweeps/resources
+try "sweep --mpi without mpirun" env -u OMPI_COMM_WORLD_SIZE -u PMIX_RANK -u PMI_SIZE "$layerlab" sweep sweeps/basic.json --out sweeps/mpi --mpi
+markers=$(find "$work" -name 'MARK*')
+if [ -n "$markers" ]; then
+  echo "FAIL: generated scripts ran a command of the input's: $markers"
+  failures=$((failures + 1))
+fi
 
 # Python arguments: each hostile call of hostile_python_calls.py (a target that is not light, patterns outside
 # [0, 1], geometries beyond a manifest's limits, retina options, NaN in dicts, options of the wrong type or
