@@ -26,7 +26,21 @@ double MeanLuminance(const Image& image) {
   return sum / (double(image.width) * image.height);
 }
 
+std::string Number(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", x);
+  return text;
+}
+
 }  // namespace
+
+void CheckAccommodationStates(const std::vector<double>& states, const std::string& name) {
+  if (states.empty()) throw Error(name + ": no accommodation state given");
+  for (size_t k = 0; k < states.size(); ++k)
+    if (!std::isfinite(states[k]) || !(states[k] >= 0))
+      throw Error(name + "[" + std::to_string(k) + "]: " + Number(states[k]) +
+                  " is not a finite number of diopters >= 0");
+}
 
 std::string RetinaStateName(double diopters) {
   char name[32];
@@ -38,7 +52,7 @@ std::vector<RetinaStateResult> WriteRetinaSweep(
     const DisplayModel& model, const Patterns& t, const SceneRadiance& natural, const RetinaSweepOptions& o,
     const std::string& folder, const std::function<void(size_t, size_t, const RetinaStateResult&)>& progress) {
   const DisplaySystem& system = model.system();
-  if (o.states.empty()) throw Error("retina: no accommodation state given");
+  CheckAccommodationStates(o.states, "retina: accommodation");
   if (!(o.resolution > 0) || !(o.resolution < 10)) throw Error("retina: the resolution must lie in (0, 10) deg");
   const double field_x = o.field_x > 0 ? o.field_x * kDeg : system.fov_x;
   const double field_y = o.field_y > 0 ? o.field_y * kDeg : system.fov_y;

@@ -27,6 +27,13 @@ struct RetinaSweepOptions {
   bool keep_images = false;         // also return each state's images (RetinaStateResult::display, natural)
 };
 
+// Accommodation states as `layerlab retina` takes them (ParseOptionValue:
+// finite, >= 0 D): at least one, each a finite number of diopters >= 0.
+// Throws Error naming `name` and the state's index ("accommodation[1]: nan
+// ..."). The field and sample size have their own check, CheckRetinaSampling
+// (systems/retina.h); WriteRetinaSweep and the Python module make both.
+void CheckAccommodationStates(const std::vector<double>& states, const std::string& name);
+
 struct RetinaStateResult {
   double diopters = 0;
   std::string name;  // "0.40D": the file stem in display/ and natural/

@@ -208,18 +208,26 @@ Image ReadExr(const std::string& path, const std::vector<std::string>& channels,
   } catch (const std::exception& e) {
     throw Error(path + ": corrupt or truncated OpenEXR file: " + e.what());
   }
-  for (size_t k = 0; k < image.pixels.size(); ++k) {
-    float v = image.pixels[k];
-    if (std::isfinite(v) && v >= 0) continue;
-    size_t pixel = k / channels.size();
-    throw Error(path + ": pixel (row " + std::to_string(pixel / image.width) + ", col " +
-                std::to_string(pixel % image.width) + ") channel " + channels[k % channels.size()] + " is " +
-                (std::isnan(v)   ? "NaN"
-                 : std::isinf(v) ? (v > 0 ? "+inf" : "-inf")
-                                 : "negative (" + std::to_string(v) + ")") +
-                "; light must be finite and non-negative");
-  }
+  if (const std::string why = FindValueThatIsNotLight(image.pixels.data(), image.pixels.size(), image.width, channels);
+      !why.empty())
+    throw Error(path + ": " + why);
   return image;
+}
+
+std::string FindValueThatIsNotLight(const float* values, size_t count, int width,
+                                    const std::vector<std::string>& channels) {
+  for (size_t k = 0; k < count; ++k) {
+    const float v = values[k];
+    if (std::isfinite(v) && v >= 0) continue;
+    const size_t pixel = k / channels.size();
+    return "pixel (row " + std::to_string(pixel / width) + ", col " + std::to_string(pixel % width) + ") channel " +
+           channels[k % channels.size()] + " is " +
+           (std::isnan(v)   ? "NaN"
+            : std::isinf(v) ? (v > 0 ? "+inf" : "-inf")
+                            : "negative (" + std::to_string(v) + ")") +
+           "; light must be finite and non-negative";
+  }
+  return "";
 }
 
 void WriteExr(const std::string& path, const Image& image, ExrCompression compression) {

@@ -22,6 +22,13 @@ struct ExrLimits {
   long long max_pixels = 64ll << 20;  // 64 Mpixel
 };
 
+// Light is finite and non-negative. The first of `count` interleaved values
+// (`channels` per pixel, `width` pixels per row) that is not, as "pixel (row
+// 2, col 3) channel G is NaN; light must be finite and non-negative"; "" when
+// every value is light. ReadExr refuses a file with it, the Python module an array.
+std::string FindValueThatIsNotLight(const float* values, size_t count, int width,
+                                    const std::vector<std::string>& channels);
+
 // Reads the named channels (all must exist; half or float). Throws layerlab::Error.
 Image ReadExr(const std::string& path, const std::vector<std::string>& channels, const ExrLimits& limits = {});
 

@@ -14,6 +14,7 @@
 #include "framework/exr_image.h"
 #include "framework/file_kind.h"
 #include "framework/json_file.h"
+#include "framework/lightfield_checks.h"
 #include "framework/parallel.h"
 #include "framework/params.h"
 #include "framework/progress.h"
@@ -23,9 +24,6 @@ namespace layerlab {
 namespace {
 
 namespace fs = std::filesystem;
-
-constexpr int kMaxViewsPerAxis = 256;
-constexpr int kMaxPixelsPerAxis = 16384;
 
 // "views/r{row:02}_c{col:02}.exr" with row and col filled in.
 std::string FillPattern(const std::string& pattern, int row, int col) {
@@ -178,6 +176,21 @@ Manifest ReadManifest(const std::string& folder) {
   m.check_all_read();
   CheckViewNames(m, "views_pattern", views_pattern, g);
   if (!depth_pattern.empty()) CheckViewNames(m, "depth_pattern", depth_pattern, g);
+  // The limits every geometry is held to (a Python one too), the number of rays among them.
+  CheckLightFieldGeometry(g, [&](const std::string& field, const std::string& why) {
+    static const std::map<std::string, std::string> pointer = {{"origin_z", "/origin_plane_z"},
+                                                               {"window_left", "/window/left"},
+                                                               {"window_top", "/window/top"},
+                                                               {"window_width", "/window/width"},
+                                                               {"window_height", "/window/height"},
+                                                               {"cols", "/resolution/cols"},
+                                                               {"rows", "/resolution/rows"},
+                                                               {"views_x", "/views/cols"},
+                                                               {"views_y", "/views/rows"},
+                                                               {"eyebox_width", "/views/eyebox_width"},
+                                                               {"eyebox_height", "/views/eyebox_height"}};
+    throw Error(Location{manifest_path, pointer.count(field) ? pointer.at(field) : ""}, why);
+  });
   return {manifest_path, g, views_pattern, depth_pattern, scene};
 }
 
@@ -203,9 +216,6 @@ LightField ReadLightField(const std::string& folder, const LightFieldReadOptions
   const LightFieldGeometry& g = manifest.geometry;
   const std::string& views_pattern = manifest.views_pattern;
   const std::string& depth_pattern = manifest.depth_pattern;
-  const size_t ray_count = g.ray_count();
-  if (ray_count > (size_t{1} << 31))
-    throw Error(manifest_path + ": " + std::to_string(ray_count) + " rays is beyond the 2^31 this layerlab handles");
   const int first_row = options.view_rows > 0 ? options.first_view_row : 0;
   const int rows = options.view_rows > 0 ? options.view_rows : g.views_y;
   if (first_row < 0 || first_row + rows > g.views_y)

@@ -101,6 +101,20 @@ std::string PatternFile(const std::string& folder, const VirtualLayer& layer) {
 }
 }  // namespace
 
+void CheckTransmittance(const LayerPattern& p, const std::string& what) {
+  const std::vector<std::string> channels = {"R", "G", "B"};
+  const size_t values = p.pixel_count() * 3;
+  if (p.rgb.size() != values) throw Error(what + ": internal error: a pattern's buffer does not match its size");
+  std::string why = FindValueThatIsNotLight(p.rgb.data(), values, p.cols, channels);
+  for (size_t k = 0; why.empty() && k < values; ++k) {
+    if (p.rgb[k] <= 1.0f) continue;
+    const size_t pixel = k / 3;
+    why = "pixel (row " + std::to_string(pixel / p.cols) + ", col " + std::to_string(pixel % p.cols) + ") channel " +
+          channels[k % 3] + " is " + std::to_string(p.rgb[k]) + "; a transmittance is in [0, 1]";
+  }
+  if (!why.empty()) throw Error(what + ": " + why);
+}
+
 Patterns ReadPatterns(const DisplayModel& model, const std::string& folder) {
   for (const std::string& line : FinishPendingSwitchOvers(folder)) Note(line);
   Patterns t;
@@ -112,10 +126,9 @@ Patterns ReadPatterns(const DisplayModel& model, const std::string& folder) {
       throw Error(file + ": is " + std::to_string(image.width) + " x " + std::to_string(image.height) +
                   " pixels; layer \"" + layer.name + "\" has " + std::to_string(layer.cols) + " x " +
                   std::to_string(layer.rows));
-    for (float v : image.pixels)
-      if (v > 1.0f) throw Error(file + ": a transmittance above 1 (" + std::to_string(v) + ")");
     LayerPattern p(layer.cols, layer.rows, 0);
     p.rgb = std::move(image.pixels);
+    CheckTransmittance(p, file);
     t.push_back(std::move(p));
   }
   return t;

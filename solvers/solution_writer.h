@@ -30,7 +30,13 @@ PanelEncoding EncodeForPanel(const VirtualLayer& layer, const LayerPattern& patt
 nlohmann::json ReportToJson(const SolverReport& report);
 std::string TraceCsv(const SolverReport& report);
 
-// Loads patterns written by WriteSolution back (for retinal images and analysis).
+// A pattern is transmittance: every value finite and in [0, 1]. Throws
+// Error("<what>: pixel (row 2, col 3) channel G is NaN; ...") for the first
+// that is not. ReadPatterns holds each file to it, the Python module each array.
+void CheckTransmittance(const LayerPattern& pattern, const std::string& what);
+
+// Loads patterns written by WriteSolution back (for retinal images and
+// analysis), each checked with CheckTransmittance.
 Patterns ReadPatterns(const DisplayModel& model, const std::string& folder);
 
 struct SolutionFiles {

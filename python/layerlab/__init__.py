@@ -11,7 +11,7 @@ a pattern (rows, cols, 3); those a layerlab object owns are views of its
 buffers that keep it alive. Lengths in meters, angles in radians.
 """
 
-from .errors import Error, Interrupted, SceneError
+from .errors import ArgumentError, Error, Interrupted, SceneError
 from ._layerlab import (
     Branch,
     Layer,
@@ -58,7 +58,7 @@ def focal_stack(solution, start, stop, step, resolution=0.05, field=None, natura
 
 
 __all__ = [
-    "Branch", "Error", "Interrupted", "Layer", "LightField", "LightFieldGeometry", "PathStep", "Scene",
+    "ArgumentError", "Branch", "Error", "Interrupted", "Layer", "LightField", "LightFieldGeometry", "PathStep", "Scene",
     "SceneError", "Solution", "System", "__version__", "compare", "compile", "contrast", "display_geometry", "fit", "focal_stack", "load_scene",
     "read_lightfield", "render_target", "retina", "run", "solve", "solvers",
     "synthesize",

@@ -16,6 +16,14 @@ class SceneError(Error, ValueError):
     "<dict>"), a target scene, a light-field manifest, measurements."""
 
 
+class ArgumentError(Error, ValueError):
+    """An argument refused by the check the command line makes of the same
+    value (a target pixel that is not light, a pattern value outside [0, 1], a
+    light-field geometry beyond a manifest's limits, a retina option, a solver
+    option out of its range): str() names the argument and the offending index.
+    A ValueError, so that `except ValueError` catches every bad argument."""
+
+
 class Interrupted(KeyboardInterrupt):
     """Ctrl-C (SIGINT) stopped a solve between iterations; .solution holds the
     patterns of the last complete iteration (its report says "interrupted")."""

@@ -13,6 +13,7 @@
 #include "analysis/contrast.h"
 #include "analysis/run_config.h"
 #include "analysis/run_pipeline.h"
+#include "python/src/arguments.h"
 #include "python/src/bindings.h"
 #include "python/src/json_convert.h"
 #include "python/src/numpy_view.h"
@@ -110,7 +111,7 @@ py::list Contrast(const py::object& scenes, const py::object& section) {
   }
   if (files.empty()) throw py::value_error("contrast: no scene");
   nlohmann::json given;
-  if (!section.is_none()) given = {{"run", {{"contrast", ToJson(section)}}}};
+  if (!section.is_none()) given = {{"run", {{"contrast", ToJson(section, "contrast()", "/run/contrast")}}}};
   std::vector<ContrastCurve> curves;
   {
     py::gil_scoped_release release;
@@ -139,12 +140,12 @@ py::list Contrast(const py::object& scenes, const py::object& section) {
 void BindAnalysis(py::module_& m) {
   m.def(
       "run",
-      [](const py::object& scene, const py::object& out, std::optional<int> iterations, std::optional<int> threads) {
-        RunRequest request{.scene = PathArg(scene),
-                           .out = PathArg(out),
-                           .iterations = iterations,
-                           .threads = threads,
-                           .keep_images = true};
+      [](const py::object& scene, const py::object& out, const py::object& iterations, const py::object& threads) {
+        RunRequest request;
+        request.scene = PathArg(scene), request.out = PathArg(out), request.keep_images = true;
+        if (!iterations.is_none())
+          request.iterations = static_cast<int>(IntegerArg(iterations, "run: iterations", 1, 1000000));
+        if (!threads.is_none()) request.threads = static_cast<int>(IntegerArg(threads, "run: threads", 0, 1024));
         RunOutcome outcome;
         {
           py::gil_scoped_release release;

@@ -2,6 +2,7 @@
 // the same runs, like for like unless scene_options, the same solves and
 // warnings) returning its table as columns, one row per display and solver,
 // each with its trace.
+#include <cmath>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -14,6 +15,8 @@
 #include "analysis/compare.h"
 #include "analysis/target_source.h"
 #include "framework/error.h"
+#include "framework/lightfield_checks.h"
+#include "python/src/arguments.h"
 #include "python/src/bindings.h"
 #include "python/src/path_arg.h"
 #include "python/src/result_dicts.h"
@@ -32,32 +35,49 @@ std::vector<std::string> PathList(const py::object& paths) {
   return files;
 }
 
-// None: each scene's own solver; "all"; a name; a list of names.
-std::vector<std::string> SolverList(const py::object& solvers) {
+// None: each scene's own solver; "all"; a name; a list of names (`what` names the argument in a TypeError).
+std::vector<std::string> SolverList(const py::object& solvers, const std::string& what) {
   if (solvers.is_none()) return {};
   if (py::isinstance<py::str>(solvers)) return {solvers.cast<std::string>()};
-  return solvers.cast<std::vector<std::string>>();
+  if (!py::isinstance<py::sequence>(solvers))
+    throw py::type_error(what + ": expected None, a str or a list of str, got " + TypeName(solvers));
+  std::vector<std::string> names;
+  size_t k = 0;
+  for (const py::handle& name : solvers) {
+    if (!py::isinstance<py::str>(name))
+      throw py::type_error(what + "[" + std::to_string(k) + "]: expected a str, got " + TypeName(name) + " " +
+                           Repr(name));
+    names.push_back(name.cast<std::string>());
+    ++k;
+  }
+  return names;
 }
 
 py::dict Compare(const py::object& scenes, const py::object& target, const py::object& solvers,
-                 std::optional<int> iterations, std::optional<double> time_budget, bool scene_options,
+                 const py::object& iterations_arg, const py::object& time_budget_arg, bool scene_options,
                  const py::object& objectives, const py::object& callback) {
-  if (iterations && *iterations <= 0) throw py::value_error("compare: iterations must be positive");
-  if (time_budget && !(*time_budget >= 0))
-    throw py::value_error("compare: time_budget must be 0 (none) or more seconds");
+  std::optional<int> iterations;
+  std::optional<double> time_budget;
+  if (!iterations_arg.is_none())
+    iterations = static_cast<int>(IntegerArg(iterations_arg, "compare: iterations", 1, 1000000));
+  if (!time_budget_arg.is_none()) time_budget = RealArg(time_budget_arg, "compare: time_budget");
+  if (time_budget && !(*time_budget >= 0 && std::isfinite(*time_budget)))
+    RaiseArgumentError("compare: time_budget must be 0 (none) or more seconds");
   const std::vector<std::string> files = PathList(scenes);
   if (files.empty()) throw py::value_error("compare: no scene");
   std::vector<ObjectiveKind> objective_kinds;
-  for (const std::string& name : SolverList(objectives)) {  // None, a name or a list of names
+  for (const std::string& name : SolverList(objectives, "compare: objectives")) {  // None, a name or a list of names
     const std::optional<ObjectiveKind> k = ObjectiveKindNamed(name);
     if (!k) throw py::value_error("compare: objectives: \"" + name + "\" is not one of lightfield or retinal");
     objective_kinds.push_back(*k);
   }
-  const CompareSelection selection{SolverList(solvers), iterations, time_budget, scene_options, objective_kinds};
+  const CompareSelection selection{SolverList(solvers, "compare: solvers"), iterations, time_budget, scene_options,
+                                   objective_kinds};
   std::shared_ptr<LightField> given;
   SolveConfig target_config;  // a light-field folder, or a target scene file rendered as --target-scene does
   if (py::isinstance<LightField>(target)) {
     given = target.cast<std::shared_ptr<LightField>>();
+    CheckArgument([&] { CheckLightFieldValues(*given, "compare: target"); });  // as a folder's views are held to
   } else {
     const std::string path = PathArg(target);
     (std::filesystem::is_regular_file(path) ? target_config.target_scene : target_config.target) = path;

@@ -66,14 +66,13 @@ py::dict Fit(const py::object& scene, const py::object& measurements, const std:
   std::optional<nlohmann::ordered_json> scene_document;
   if (!scene_is_path) {
     if (!py::isinstance<py::dict>(scene)) throw py::type_error("fit: the scene is a path or a dict");
-    scene_document = nlohmann::ordered_json::parse(
-        py::module_::import("json").attr("dumps")(scene, py::arg("allow_nan") = false).cast<std::string>());
+    scene_document = nlohmann::ordered_json::parse(JsonText(scene, "<dict>"));
   }
   std::optional<nlohmann::json> measurements_document;
   const bool measurements_are_path = IsPath(measurements);
   if (!measurements_are_path) {
     if (!py::isinstance<py::dict>(measurements)) throw py::type_error("fit: the measurements are a path or a dict");
-    measurements_document = ToJson(measurements);
+    measurements_document = ToJson(measurements, "<dict>");
   }
   const std::string measurements_file = measurements_are_path ? PathArg(measurements) : "<dict>";
 

@@ -8,6 +8,7 @@
 #include <pybind11/stl.h>
 
 #include "framework/lightfield_io.h"
+#include "python/src/arguments.h"
 #include "python/src/bindings.h"
 #include "python/src/numpy_view.h"
 #include "python/src/path_arg.h"
@@ -29,6 +30,7 @@ const char* kRgbAxes = "(views, rows, cols, RGB; views = views_y * views_x, row-
 
 // The one copy of wrapping an array: a LightField owns its buffer (huge pages, framework/lightfield.h).
 std::shared_ptr<LightField> FromArray(const py::handle& array, const LightFieldGeometry& geometry) {
+  CheckGeometryArgument(geometry, "LightField: geometry");
   auto a = FloatArrayOfShape(array, RgbShape(geometry), "LightField", kRgbAxes);
   auto lf = std::make_shared<LightField>(geometry);
   std::memcpy(lf->rgb.data(), a.data(), lf->rgb.size() * sizeof(float));
@@ -40,19 +42,32 @@ std::shared_ptr<LightField> FromArray(const py::handle& array, const LightFieldG
 void BindLightField(py::module_& m) {
   py::class_<LightFieldGeometry>(m, "LightFieldGeometry",
                                  "Two-plane parameterization: views on the pupil plane, pixels on the origin plane (m)")
-      .def(
-          py::init([](double origin_z, double window_left, double window_top, double window_width, double window_height,
-                      int cols, int rows, int views_x, int views_y, double eyebox_width, double eyebox_height) {
-            LightFieldGeometry g;
-            g.origin_z = origin_z, g.window_left = window_left, g.window_top = window_top;
-            g.window_width = window_width, g.window_height = window_height, g.cols = cols, g.rows = rows;
-            g.views_x = views_x, g.views_y = views_y, g.eyebox_width = eyebox_width, g.eyebox_height = eyebox_height;
-            return g;
-          }),
-          py::kw_only(), py::arg("origin_z") = 1.0, py::arg("window_left") = -0.5, py::arg("window_top") = 0.5,
-          py::arg("window_width") = 1.0, py::arg("window_height") = 1.0, py::arg("cols") = 1, py::arg("rows") = 1,
-          py::arg("views_x") = 1, py::arg("views_y") = 1, py::arg("eyebox_width") = 6e-3,
-          py::arg("eyebox_height") = 6e-3)
+      .def(py::init([](const py::handle& origin_z, const py::handle& window_left, const py::handle& window_top,
+                       const py::handle& window_width, const py::handle& window_height, const py::handle& cols,
+                       const py::handle& rows, const py::handle& views_x, const py::handle& views_y,
+                       const py::handle& eyebox_width, const py::handle& eyebox_height) {
+             // Each number's type here, the limits by the check a light-field manifest goes through.
+             const std::string what = "LightFieldGeometry: ";
+             auto real = [&](const py::handle& v, const char* name) { return RealArg(v, what + name); };
+             auto count = [&](const py::handle& v, const char* name, int max) {
+               return static_cast<int>(IntegerArg(v, what + name, 1, max));
+             };
+             LightFieldGeometry g;
+             g.origin_z = real(origin_z, "origin_z"), g.window_left = real(window_left, "window_left");
+             g.window_top = real(window_top, "window_top"), g.window_width = real(window_width, "window_width");
+             g.window_height = real(window_height, "window_height");
+             g.cols = count(cols, "cols", kMaxPixelsPerAxis), g.rows = count(rows, "rows", kMaxPixelsPerAxis);
+             g.views_x = count(views_x, "views_x", kMaxViewsPerAxis);
+             g.views_y = count(views_y, "views_y", kMaxViewsPerAxis);
+             g.eyebox_width = real(eyebox_width, "eyebox_width"),
+             g.eyebox_height = real(eyebox_height, "eyebox_height");
+             CheckGeometryArgument(g, "LightFieldGeometry");
+             return g;
+           }),
+           py::kw_only(), py::arg("origin_z") = 1.0, py::arg("window_left") = -0.5, py::arg("window_top") = 0.5,
+           py::arg("window_width") = 1.0, py::arg("window_height") = 1.0, py::arg("cols") = 1, py::arg("rows") = 1,
+           py::arg("views_x") = 1, py::arg("views_y") = 1, py::arg("eyebox_width") = 6e-3,
+           py::arg("eyebox_height") = 6e-3)
       .def_readwrite("origin_z", &LightFieldGeometry::origin_z)
       .def_readwrite("window_left", &LightFieldGeometry::window_left)
       .def_readwrite("window_top", &LightFieldGeometry::window_top)
@@ -73,8 +88,11 @@ void BindLightField(py::module_& m) {
       });
 
   py::class_<LightField, std::shared_ptr<LightField>>(m, "LightField", "Linear RGB radiance per ray, float32")
-      .def(py::init([](const LightFieldGeometry& g) { return std::make_shared<LightField>(g); }), py::arg("geometry"),
-           "A black light field")
+      .def(py::init([](const LightFieldGeometry& g) {
+             CheckGeometryArgument(g, "LightField: geometry");
+             return std::make_shared<LightField>(g);
+           }),
+           py::arg("geometry"), "A black light field")
       .def(py::init(&FromArray), py::arg("rgb"), py::arg("geometry"),
            "A light field holding a copy of `rgb`, shape geometry.shape = (views, rows, cols, 3)")
       .def_property_readonly(
@@ -112,10 +130,14 @@ void BindLightField(py::module_& m) {
           "save",
           [](const LightField& lf, const py::object& folder) {
             const std::string path = PathArg(folder);
+            // Never a folder that read_lightfield (and the command) would refuse.
+            CheckArgument([&] { CheckLightFieldValues(lf, "LightField.save: rgb"); });
             py::gil_scoped_release release;
             return WriteLightField(lf, path);
           },
-          py::arg("folder"), "Writes the folder (docs/lightfield-format.md); returns the files written")
+          py::arg("folder"),
+          "Writes the folder (docs/lightfield-format.md); returns the files written. Values that are not light "
+          "(NaN, infinite, negative) are refused, as read_lightfield would refuse them")
       .def("__repr__", [](const LightField& lf) {
         const LightFieldGeometry& g = lf.geometry;
         return "<layerlab.LightField " + std::to_string(g.views_y) + " x " + std::to_string(g.views_x) + " views of " +
@@ -145,8 +167,13 @@ void BindLightField(py::module_& m) {
       py::arg("target_scene"), "Renders a target scene (docs/target-format.md) with Embree");
   m.def(
       "display_geometry",
-      [](const DisplaySystem& system, double origin_diopters) {
-        return DisplayLightFieldGeometry(system, origin_diopters);
+      [](const DisplaySystem& system, const py::handle& origin_diopters) {
+        const double d = RealArg(origin_diopters, "display_geometry: origin_diopters");
+        LightFieldGeometry g;
+        CheckArgument([&] { g = DisplayLightFieldGeometry(system, d); });
+        CheckGeometryArgument(g, "display_geometry: origin_diopters " + py::repr(origin_diopters).cast<std::string>() +
+                                     " gives a geometry");
+        return g;
       },
       py::arg("system"), py::arg("origin_diopters") = -1.0,
       "The light-field geometry the display suggests (its field of view, farthest layer's pixels, the eye's views)");

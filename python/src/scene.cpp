@@ -20,7 +20,7 @@ namespace {
 
 std::shared_ptr<Scene> LoadSceneFrom(const py::object& source, const std::string& file) {
   if (py::isinstance<py::dict>(source)) {
-    nlohmann::json document = ToJson(source);
+    nlohmann::json document = ToJson(source, file.empty() ? "<dict>" : file);
     py::gil_scoped_release release;
     return std::make_shared<Scene>(
         ParseScene(std::move(document), file.empty() ? "<dict>" : file, ElementRegistry::WithBuiltins()));

@@ -4,6 +4,8 @@
 // Ctrl-C are looked at between iterations (the solve loop's `progress` and
 // `interrupted` hooks), so a stop keeps the last complete iteration.
 #include <cmath>
+#include <limits>
+#include <map>
 #include <memory>
 #include <numbers>
 #include <optional>
@@ -12,7 +14,11 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include "analysis/retina_sweep.h"
 #include "analysis/target_source.h"
+#include "framework/lightfield_checks.h"
+#include "framework/units.h"
+#include "python/src/arguments.h"
 #include "python/src/bindings.h"
 #include "python/src/json_convert.h"
 #include "python/src/numpy_view.h"
@@ -43,31 +49,38 @@ struct Solution {
   SolverReport report;
 };
 
-// The options a keyword may set, by the scene's "solve" keys (solvers/solve_config.h).
+// The options a keyword may set, by the scene's "solve" keys (solvers/solve_config.h),
+// each checked for its type here and for its range by SolverOptions::IsValid.
 void SetOption(SolverOptions& o, const std::string& key, const py::handle& value) {
-  if (key == "iterations")
-    o.iterations = value.cast<int>();
-  else if (key == "sub_iterations")
-    o.sub_iterations = value.cast<int>();
-  else if (key == "warm_start_iterations")
-    o.warm_start_iterations = value.cast<int>();
-  else if (key == "time_budget")
-    o.time_budget = value.cast<double>();
-  else if (key == "tolerance")
-    o.tolerance = value.cast<double>();
-  else if (key == "seed")
-    o.seed = value.cast<uint64_t>();
-  else if (key == "initial_value")
-    o.initial_value = value.cast<double>();
-  else if (key == "threads")
-    o.threads = value.cast<int>();
-  else if (key == "epsilon")
-    o.epsilon = value.cast<double>();
-  else if (key == "floor")
-    o.floor = value.cast<double>();
-  else if (key == "target_range") {
+  static const std::map<std::string, int SolverOptions::*> integers = {
+      {"iterations", &SolverOptions::iterations},
+      {"sub_iterations", &SolverOptions::sub_iterations},
+      {"warm_start_iterations", &SolverOptions::warm_start_iterations},
+      {"threads", &SolverOptions::threads}};
+  static const std::map<std::string, double SolverOptions::*> reals = {{"time_budget", &SolverOptions::time_budget},
+                                                                       {"tolerance", &SolverOptions::tolerance},
+                                                                       {"initial_value", &SolverOptions::initial_value},
+                                                                       {"epsilon", &SolverOptions::epsilon},
+                                                                       {"floor", &SolverOptions::floor}};
+  if (auto it = integers.find(key); it != integers.end()) {
+    // The range IsValid states for the option, asked with a value beyond every option's range.
+    SolverOptions beyond;
+    beyond.*(it->second) = std::numeric_limits<int>::max();
+    std::string why;
+    beyond.IsValid(&why);
+    const size_t constraint = why.find(": ", why.find(": ") + 2);
+    o.*(it->second) =
+        static_cast<int>(IntegerArg(value, key, std::numeric_limits<int>::min(), std::numeric_limits<int>::max(),
+                                    constraint == std::string::npos ? "" : why.substr(constraint + 2)));
+  } else if (auto real = reals.find(key); real != reals.end()) {
+    o.*(real->second) = RealArg(value, key);
+  } else if (key == "seed") {
+    o.seed = Unsigned64Arg(value, key);
+  } else if (key == "target_range") {
+    if (!py::isinstance<py::str>(value))
+      throw py::type_error("target_range: expected a str (clip or scale), got " + TypeName(value));
     const std::string v = value.cast<std::string>();
-    if (v != "clip" && v != "scale") throw py::value_error("target_range: \"" + v + "\" is not one of clip or scale");
+    if (v != "clip" && v != "scale") RaiseArgumentError("target_range: \"" + v + "\" is not one of clip or scale");
     o.target_range = v == "clip" ? TargetRange::kClip : TargetRange::kScale;
   } else {
     throw py::type_error("solve() got an unexpected option '" + key +
@@ -76,12 +89,21 @@ void SetOption(SolverOptions& o, const std::string& key, const py::handle& value
   }
 }
 
+// The target, held to what a light-field folder's views are held to (finite,
+// non-negative light; ReadLightField): the pixel that is not is named.
 std::shared_ptr<LightField> TargetOf(const py::handle& target, const DisplaySystem& system) {
-  if (py::isinstance<LightField>(target)) return target.cast<std::shared_ptr<LightField>>();
-  // An array: the display's own geometry (display_geometry), copied once into a light field.
-  return py::module_::import("layerlab._layerlab")
-      .attr("LightField")(target, DisplayLightFieldGeometry(system))
-      .cast<std::shared_ptr<LightField>>();
+  std::shared_ptr<LightField> lf;
+  if (py::isinstance<LightField>(target)) {
+    lf = target.cast<std::shared_ptr<LightField>>();
+  } else {
+    // An array: the display's own geometry (display_geometry), copied once into a light field.
+    lf = py::module_::import("layerlab._layerlab")
+             .attr("LightField")(target, DisplayLightFieldGeometry(system))
+             .cast<std::shared_ptr<LightField>>();
+  }
+  CheckGeometryArgument(lf->geometry, "target: geometry");
+  CheckArgument([&] { CheckLightFieldValues(*lf, "target"); });
+  return lf;
 }
 
 py::object Solve(const py::object& display, const py::object& target, std::optional<std::string> solver,
@@ -95,6 +117,8 @@ py::object Solve(const py::object& display, const py::object& target, std::optio
     solution->system = std::make_shared<DisplaySystem>(Compile(scene));
     config = ReadSolveConfig(scene, *solution->system);
   } else {
+    if (!py::isinstance<DisplaySystem>(display))
+      throw py::type_error("solve: display: expected a layerlab.Scene or layerlab.System, got " + TypeName(display));
     solution->system = display.cast<std::shared_ptr<DisplaySystem>>();
     config.solver = DefaultSolverFor(*solution->system);
     config.options = registry.get(config.solver).defaults;
@@ -104,10 +128,10 @@ py::object Solve(const py::object& display, const py::object& target, std::optio
     config.options = registry.get(*solver).defaults;  // names the known solvers for an unknown one
   }
   if (const std::string why = UnsuitableSolver(config.solver, *solution->system); !why.empty())
-    throw py::value_error(config.solver + " " + why);
-  if (sampling) config.sampling = SamplingFromString(*sampling);
+    RaiseArgumentError(config.solver + " " + why);
+  if (sampling) CheckArgument([&] { config.sampling = SamplingFromString(*sampling); });
   for (const auto& [key, value] : options) SetOption(config.options, key.cast<std::string>(), value);
-  if (std::string why; !config.options.IsValid(&why)) throw py::value_error(why);
+  if (std::string why; !config.options.IsValid(&why)) RaiseArgumentError(why);
 
   std::unique_ptr<Target> loaded;  // kept through the solve: a traced retinal target reads its scene
   if (!target.is_none()) {
@@ -158,6 +182,8 @@ Patterns PatternsOf(const DisplaySystem& system, const py::sequence& arrays) {
                                "pattern " + std::to_string(k) + " (" + layer.name + ")", "(rows, cols, RGB)");
     LayerPattern& p = patterns.emplace_back(layer.cols, layer.rows, 0.0f);
     std::copy(a.data(), a.data() + p.rgb.size(), p.rgb.begin());
+    // Transmittance in [0, 1], as ReadPatterns holds a pattern file to.
+    CheckArgument([&] { CheckTransmittance(p, "pattern " + std::to_string(k) + " (" + layer.name + ")"); });
   }
   return patterns;
 }
@@ -166,8 +192,11 @@ std::shared_ptr<LightField> Synthesize(const std::shared_ptr<DisplaySystem>& sys
                                        std::optional<LightFieldGeometry> geometry, const std::string& sampling) {
   const Patterns patterns = PatternsOf(*system, arrays);
   const LightFieldGeometry g = geometry ? *geometry : DisplayLightFieldGeometry(*system);
+  if (geometry) CheckGeometryArgument(g, "synthesize: geometry");
+  Sampling how = Sampling::kNearest;
+  CheckArgument([&] { how = SamplingFromString(sampling); });
   py::gil_scoped_release release;
-  const DisplayModel model(*system, g, SamplingFromString(sampling));
+  const DisplayModel model(*system, g, how);
   return std::make_shared<LightField>(model.Synthesize(patterns));
 }
 
@@ -177,12 +206,18 @@ std::shared_ptr<LightField> Synthesize(const std::shared_ptr<DisplaySystem>& sys
 // the layers are (systems/lightfield_radiance.h), as `layerlab retina --target`.
 py::object Retina(const Solution& s, const std::vector<double>& accommodation, double resolution_deg,
                   std::optional<std::pair<double, double>> field_deg, bool natural) {
-  if (!(resolution_deg > 0)) throw py::value_error("retina: resolution must be above 0 deg");
+  // The checks `layerlab retina` makes: its states (ParseOptionValue's, as
+  // CheckAccommodationStates), its field and sample size (CheckRetinaSampling).
   const DisplaySystem& system = *s.system;
-  const double deg = std::numbers::pi / 180;
-  const RetinaGrid grid = field_deg
-                              ? MakeRetinaGrid(field_deg->first * deg, field_deg->second * deg, resolution_deg * deg)
-                              : MakeRetinaGrid(system.fov_x, system.fov_y, resolution_deg * deg);
+  const double field_x = field_deg ? field_deg->first : system.fov_x / kRadiansPerDegree;
+  const double field_y = field_deg ? field_deg->second : system.fov_y / kRadiansPerDegree;
+  CheckArgument([&] {
+    CheckAccommodationStates(accommodation, "retina: accommodation");
+    CheckRetinaSampling(field_x, field_y, resolution_deg, "retina: field", "retina: resolution");
+  });
+  const RetinaGrid grid = field_deg ? MakeRetinaGrid(field_x * kRadiansPerDegree, field_y * kRadiansPerDegree,
+                                                     resolution_deg * kRadiansPerDegree)
+                                    : MakeRetinaGrid(system.fov_x, system.fov_y, resolution_deg * kRadiansPerDegree);
   const std::vector<py::ssize_t> shape = {static_cast<py::ssize_t>(accommodation.size()),
                                           static_cast<py::ssize_t>(grid.rows), static_cast<py::ssize_t>(grid.cols), 3};
   py::array_t<float> images(shape), seen(natural ? shape : std::vector<py::ssize_t>{0});

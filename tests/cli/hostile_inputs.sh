@@ -208,6 +208,22 @@ if [ -n "$markers" ]; then
   failures=$((failures + 1))
 fi
 
+# Python arguments: each hostile call of hostile_python_calls.py (a target that is not light, patterns outside
+# [0, 1], geometries beyond a manifest's limits, retina options, NaN in dicts, options of the wrong type or
+# range) and read_lightfield on every hostile folder must be refused with ValueError or TypeError naming the
+# argument (its exit 1), never accepted, never pybind11's cast message (its exit 3, as an internal error).
+# Run where ctest gives the module (LAYERLAB_PYTHONPATH).
+if [ -n "${LAYERLAB_PYTHONPATH:-}" ]; then
+  calls=$source/tests/cli/hostile_python_calls.py
+  for call in $(/usr/bin/python3 "$calls" --list); do
+    try "python $call" env PYTHONPATH="$LAYERLAB_PYTHONPATH" /usr/bin/python3 "$calls" "$source" "$call"
+  done
+  for l in lf/*; do
+    [ "$l" = lf/good ] && continue
+    try "python read_lightfield $l" env PYTHONPATH="$LAYERLAB_PYTHONPATH" /usr/bin/python3 "$calls" "$source" \
+      read_lightfield "$l"
+  done
+fi
 echo "$runs commands on hostile inputs, $failures ended otherwise than in a clear error"
 [ "$failures" -eq 0 ] || exit 1
 echo PASS
