@@ -110,7 +110,10 @@ MemoryEstimate EstimateSolveMemory(const DisplayModel& model, const std::string&
   e.counted = static_cast<size_t>(counted);
   e.margin = static_cast<size_t>(kMemoryMarginFraction * counted + kMemoryMarginBytes +
                                  (rendered_target ? kRenderMarginBytes : 0));
-  e.bytes = static_cast<size_t>(std::ceil((counted + double(e.margin)) / 1e6) * 1e6);
+  // Rounded up to the last digit FormatBytes shows (0.1 MB below 1 GB, 0.01 GB from it: whole MB, whole 10 MB),
+  // so that the figure the note and the refusal print is the bound itself.
+  const double total = counted + double(e.margin), step = total >= 1e9 ? 1e7 : 1e6;
+  e.bytes = static_cast<size_t>(std::ceil(total / step) * step);
   e.breakdown = "target " + FormatBytes(light_field);
   if (depth_kept) e.breakdown += " + its depth map " + FormatBytes(depth);
   if (e.clipped_copy_counted) e.breakdown += " + its clipped copy " + FormatBytes(light_field);

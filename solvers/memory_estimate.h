@@ -25,7 +25,8 @@ inline constexpr double kMemoryMarginBytes = 5e6;
 inline constexpr double kRenderMarginBytes = 3e6;
 
 struct MemoryEstimate {
-  // counted + margin, rounded up to a whole MB: an upper bound of the solve's peak.
+  // counted + margin, rounded up to what FormatBytes shows (a whole MB; 10 MB from 1 GB on): an upper bound of
+  // the solve's peak.
   size_t bytes = 0;
   size_t counted = 0;  // the parts below, each from its allocation's size
   // kMemoryMarginFraction of `counted` + kMemoryMarginBytes (+ kRenderMarginBytes for a rendered target)

@@ -139,6 +139,21 @@ TEST(SolveMemory, RetinalObjectiveCountedWhenTheSolveMakesIt) {
   EXPECT_EQ(light_field.breakdown.find("retinal"), std::string::npos) << light_field.breakdown;
 }
 
+// The estimate is printed ("the solve needs about 1.33 GB") as the bound
+// itself: rounded up to the digits FormatBytes shows, not to the nearest.
+TEST(SolveMemory, EstimatePrintedWithoutRoundingDown) {
+  const DisplaySystem system = CompileJson(testing::ReadExample("paper_prototype.json"));
+  for (int cols : {400, 800}) {
+    LightFieldGeometry g = DisplayLightFieldGeometry(system);
+    g.views_x = g.views_y = 13, g.cols = cols, g.rows = cols / 2;
+    const MemoryEstimate e = EstimateSolveMemory(system, g, "hybrid", 2);
+    const std::string printed = FormatBytes(double(e.bytes));
+    const double value = std::stod(printed), scale = printed.find("GB") != std::string::npos ? 1e9 : 1e6;
+    EXPECT_NEAR(value * scale, double(e.bytes), 1.0) << printed;
+    EXPECT_GE(double(e.bytes), double(e.counted + e.margin)) << printed;
+  }
+}
+
 // The child's side of the test below: the estimate before anything of
 // light-field size exists, then the target (the dice, or one synthesized),
 // a short solve, and the process's peak (VmHWM). The retinal case solves a
