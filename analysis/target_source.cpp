@@ -115,13 +115,15 @@ LightFieldGeometry TargetGeometry(const SolveConfig& config) {
 
 size_t RefuseSolveBeyondMemory(const DisplaySystem& system, const SolveConfig& config, int threads, size_t limit,
                                const std::string& limit_name) {
-  return RefuseSolveBeyondMemory(system, TargetGeometry(config), config.solver, threads, limit, limit_name);
+  return RefuseSolveBeyondMemory(system, TargetGeometry(config), config, threads, limit, limit_name);
 }
 
 size_t RefuseSolveBeyondMemory(const DisplaySystem& system, const LightFieldGeometry& geometry,
-                               const std::string& solver, int threads, size_t limit, const std::string& limit_name) {
-  const MemoryEstimate need =
-      EstimateSolveMemory(system, geometry, solver, threads > 0 ? threads : omp_get_max_threads());
+                               const SolveConfig& config, int threads, size_t limit, const std::string& limit_name) {
+  // A rendered target keeps its depth map; one read from a folder is read without it (LoadOrRenderTarget).
+  const bool rendered = config.target.empty();
+  const MemoryEstimate need = EstimateSolveMemory(system, geometry, config.solver, config.options, config.sampling,
+                                                  threads > 0 ? threads : omp_get_max_threads(), rendered);
   const bool machine = limit == 0;
   if (machine) limit = PhysicalMemory();
   if (limit > 0 && need.bytes > limit)

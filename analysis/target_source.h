@@ -75,7 +75,7 @@ size_t RefuseSolveBeyondMemory(const DisplaySystem& system, const SolveConfig& c
                                const std::string& limit_name = "");
 // The same for the rays of `geometry` (one MPI rank's block of views).
 size_t RefuseSolveBeyondMemory(const DisplaySystem& system, const LightFieldGeometry& geometry,
-                               const std::string& solver, int threads, size_t limit, const std::string& limit_name);
+                               const SolveConfig& config, int threads, size_t limit, const std::string& limit_name);
 
 // The center view as an sRGB PNG (1 = white), to show what the target looks like.
 void WriteCenterView(const LightField& lf, const std::string& path);

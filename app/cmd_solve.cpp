@@ -170,7 +170,7 @@ void Solve(const Options& o, Ranks& ranks) {
   std::string refused;
   size_t need = 0;
   try {
-    need = RefuseSolveBeyondMemory(system, block, config.solver, opt.threads, limit,
+    need = RefuseSolveBeyondMemory(system, block, config, opt.threads, limit,
                                    ranks.size > 1 ? limit_name + " per rank" : limit_name);
   } catch (const Error& e) {
     refused = e.what();

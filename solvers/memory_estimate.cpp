@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "framework/error.h"
+#include "framework/heap_block.h"
 #include "framework/huge_page_allocator.h"
 #include "solvers/objective.h"
 
@@ -33,20 +34,59 @@ size_t ResidentBytes() {
   return kb * 1024;
 }
 
-MemoryEstimate EstimateSolveMemory(const DisplayModel& model, const std::string& solver, int threads,
-                                   const LightField* target, const SolverRegistry& registry) {
+namespace {
+
+// What the retinal objective adds (options.objective retinal, or the focal stack measured): what it keeps, and the
+// larger of what it holds for a while in the set-up (while it is made; a measure: a synthesized light field and
+// that synthesis's workspace) and in the iterations (the retinal pass's two light fields, joint pass and
+// synthesis workspace; the measure of each iteration with the light-field objective).
+struct RetinalParts {
+  double kept = 0, setup = 0, steps = 0;
+  std::string described;
+};
+
+RetinalParts RetinalPartsOf(const DisplayModel& model, const SolverOptions& options, int threads, double light_field) {
+  RetinalParts r;
+  const bool objective = options.objective == ObjectiveKind::kRetinal;
+  if (!objective && !options.measure_focal_stack) return r;
+  const RetinalObjectiveMemory m = RetinalObjectiveBytes(model, options.retinal, threads);
+  const double measure = light_field + double(SolveWorkspace::Layout(model, threads, kSynthesisPass).bytes());
+  // The pass's light fields and joint pass, and the workspace of each synthesis it makes (no workspace given).
+  const double pass = 2 * light_field + double(SolveWorkspace::Layout(model, threads, kJointPass).bytes()) +
+                      double(SolveWorkspace::Layout(model, threads, kSynthesisPass).bytes());
+  r.kept = double(m.kept());
+  r.setup = std::max(double(m.construction), measure) + double(m.filter);
+  r.steps = (objective ? pass : measure) + double(m.filter);
+  r.described = " + the retinal objective " + FormatBytes(r.kept) + " (operator tables " +
+                FormatBytes(double(m.tables)) + ", images " + FormatBytes(double(m.images)) + " x 2, apply buffer " +
+                FormatBytes(double(m.apply_buffer)) + "; in the set-up " + FormatBytes(r.setup) +
+                ", in the iterations " + FormatBytes(r.steps) + (objective ? " with its pass" : "") + ")";
+  return r;
+}
+
+}  // namespace
+
+MemoryEstimate EstimateSolveMemory(const DisplayModel& model, const std::string& solver, const SolverOptions& options,
+                                   int threads, const LightField* target, bool rendered_target,
+                                   const SolverRegistry& registry) {
   const SolverMemory& own = registry.get(solver).memory;
   threads = std::max(threads, 1);
   const LightFieldGeometry& g = model.geometry();
-  const double light_field = double(g.ray_count()) * 3 * sizeof(float);
-  double layer_values = 0;
-  for (size_t k = 0; k < model.layer_count(); ++k) layer_values += double(model.projection(k).pixel_count()) * 3;
-  const double patterns = layer_values * sizeof(float);
+  const double light_field = double(LargeAllocationBytes(g.ray_count() * 3 * sizeof(float)));
+  const bool depth_kept = target ? !target->depth.empty() : rendered_target;
+  const double depth = depth_kept ? double(HeapBlockBytes(g.ray_count() * sizeof(float))) : 0;
+  double layer_values = 0, patterns = 0;
+  for (size_t k = 0; k < model.layer_count(); ++k) {
+    const size_t values = model.projection(k).pixel_count() * 3;
+    layer_values += double(values);
+    patterns += double(HeapBlockBytes(values * sizeof(float)));
+  }
   const double solver_fields = light_field * own.light_fields;
   // Each of the layer vectors is one huge-page block (quasi-newton's Vector).
   const double solver_layers =
       double(LargeAllocationBytes(static_cast<size_t>(layer_values * sizeof(double)))) * own.layer_doubles;
   const WorkspaceLayout layout = SolveWorkspace::Layout(model, threads, own.passes);
+  const RetinalParts retinal = RetinalPartsOf(model, options, threads, light_field);
   // Code, libraries and what the process holds before the solve; 64 MB where it cannot be read.
   const size_t resident = ResidentBytes();
   const double program = resident ? double(resident) : 64e6;
@@ -60,12 +100,22 @@ MemoryEstimate EstimateSolveMemory(const DisplayModel& model, const std::string&
     for (size_t k = 0; k < target->rgb.size() && !e.clipped_copy_counted; ++k)
       e.clipped_copy_counted = target->rgb[k] > max[k % 3];
   }
-  const double solver_own =
-      own.fields_then_layers ? std::max(solver_fields, solver_layers) : solver_fields + solver_layers;
-  double total = light_field + solver_own + patterns + double(layout.bytes()) + program;
-  if (e.clipped_copy_counted) total += double(e.clipped_copy);
-  e.bytes = static_cast<size_t>(total);
+  // The set-up (the solver's light fields, the retinal objective made) and the iterations (its layer vectors,
+  // the retinal pass) in turn when the solver frees the one before the other; at once otherwise.
+  const double solver_own = own.fields_then_layers
+                                ? std::max(solver_fields + retinal.setup, solver_layers + retinal.steps)
+                                : solver_fields + solver_layers + std::max(retinal.setup, retinal.steps);
+  double counted = light_field + depth + solver_own + retinal.kept + patterns + double(layout.bytes()) + program;
+  if (e.clipped_copy_counted) counted += double(e.clipped_copy);
+  e.counted = static_cast<size_t>(counted);
+  e.margin = static_cast<size_t>(kMemoryMarginFraction * counted + kMemoryMarginBytes +
+                                 (rendered_target ? kRenderMarginBytes : 0));
+  // Rounded up to the last digit FormatBytes shows (0.1 MB below 1 GB, 0.01 GB from it: whole MB, whole 10 MB),
+  // so that the figure the note and the refusal print is the bound itself.
+  const double total = counted + double(e.margin), step = total >= 1e9 ? 1e7 : 1e6;
+  e.bytes = static_cast<size_t>(std::ceil(total / step) * step);
   e.breakdown = "target " + FormatBytes(light_field);
+  if (depth_kept) e.breakdown += " + its depth map " + FormatBytes(depth);
   if (e.clipped_copy_counted) e.breakdown += " + its clipped copy " + FormatBytes(light_field);
   const std::string fields =
       "the solver's light fields " + FormatBytes(light_field) + " x " + std::to_string(own.light_fields);
@@ -76,11 +126,24 @@ MemoryEstimate EstimateSolveMemory(const DisplayModel& model, const std::string&
     if (own.light_fields > 0) e.breakdown += " + " + fields;
     if (own.layer_doubles > 0) e.breakdown += " + " + layers;
   }
-  e.breakdown += " + patterns " + FormatBytes(patterns) + " + workspace " + FormatBytes(double(layout.bytes())) + " (" +
-                 layout.Describe() + ") + program " + FormatBytes(program);
+  e.breakdown += retinal.described + " + patterns " + FormatBytes(patterns) + " + workspace " +
+                 FormatBytes(double(layout.bytes())) + " (" + layout.Describe() + ") + program " +
+                 FormatBytes(program) + " + margin " + FormatBytes(double(e.margin));
   if (!target)
     e.breakdown += " (+ " + FormatBytes(light_field) + " for a clipped copy if the target exceeds the display's range)";
   return e;
+}
+
+MemoryEstimate EstimateSolveMemory(const DisplayModel& model, const std::string& solver, int threads,
+                                   const LightField* target, const SolverRegistry& registry) {
+  return EstimateSolveMemory(model, solver, registry.get(solver).defaults, threads, target, false, registry);
+}
+
+MemoryEstimate EstimateSolveMemory(const DisplaySystem& system, const LightFieldGeometry& g, const std::string& solver,
+                                   const SolverOptions& options, Sampling sampling, int threads, bool rendered_target,
+                                   const SolverRegistry& registry) {
+  return EstimateSolveMemory(DisplayModel(system, g, sampling), solver, options, threads, nullptr, rendered_target,
+                             registry);
 }
 
 MemoryEstimate EstimateSolveMemory(const DisplaySystem& system, const LightFieldGeometry& g, const std::string& solver,

@@ -12,8 +12,25 @@
 
 namespace layerlab {
 
+// What the estimate adds for what it cannot count from an allocation's size,
+// measured against the peak (VmHWM) of `solve` and of the test's child
+// processes (tests/solve_memory_test.cpp, tests/cli/solve_memory_examples.sh;
+// docs/performance.md, memory): the library code and the thread pools that
+// reading, writing and reporting bring in after the estimate (3.4-4.0 MB
+// measured), the allocator's slack (freed blocks glibc keeps, per-thread
+// arenas: the fraction); and for a target rendered in the process, Embree's
+// scene and build blocks and TBB's workers (2.4 MB more measured).
+inline constexpr double kMemoryMarginFraction = 0.01;
+inline constexpr double kMemoryMarginBytes = 5e6;
+inline constexpr double kRenderMarginBytes = 3e6;
+
 struct MemoryEstimate {
+  // counted + margin, rounded up to what FormatBytes shows (a whole MB; 10 MB from 1 GB on): an upper bound of
+  // the solve's peak.
   size_t bytes = 0;
+  size_t counted = 0;  // the parts below, each from its allocation's size
+  // kMemoryMarginFraction of `counted` + kMemoryMarginBytes (+ kRenderMarginBytes for a rendered target)
+  size_t margin = 0;
   // A copy of the target with the values the display cannot show clipped or
   // scaled (SolveLoop makes it only then). Counted in `bytes` when the
   // target is known to need it; stated apart (and not counted) when the
@@ -27,17 +44,32 @@ struct MemoryEstimate {
   std::string breakdown;
 };
 
-// What a solve of `solver` holds at its peak: the target as read, the
-// solver's own light fields and layer vectors (SolverType::memory), the
-// patterns, the solve's workspace as SolveWorkspace::Layout lays it out for
-// the solver's passes and `threads` (the very sizes SolveLoop allocates),
-// and the program (what this process holds now, VmRSS: call it before the
-// target is read). With `target` the clipped copy is counted when a pass
-// over the target's values finds one above the display's maximum.
+// What a solve of `solver` with `options` holds at its peak: the target as
+// read, the solver's own light fields and layer vectors (SolverType::memory),
+// the patterns, the solve's workspace as SolveWorkspace::Layout lays it out
+// for the solver's passes and `threads` (the very sizes SolveLoop
+// allocates), the retinal objective's tables, images and passes when
+// options.objective is retinal or the focal stack is measured
+// (RetinalObjectiveBytes), and the program (what this process holds now,
+// VmRSS: call it before the target is read), plus the margin above. With
+// `target` the clipped copy is counted when a pass over the target's values
+// finds one above the display's maximum. Not counted: a traced retinal
+// target's scene (held by whoever renders it).
+// `rendered_target`: the target is rendered in this process, and keeps its
+// depth map, one float per ray (a target read from a folder is read without
+// it); with `target` its depth map is counted when it has one.
+MemoryEstimate EstimateSolveMemory(const DisplayModel& model, const std::string& solver, const SolverOptions& options,
+                                   int threads, const LightField* target = nullptr, bool rendered_target = false,
+                                   const SolverRegistry& registry = SolverRegistry::Builtins());
+// The same with the solver's default options.
 MemoryEstimate EstimateSolveMemory(const DisplayModel& model, const std::string& solver, int threads,
                                    const LightField* target = nullptr,
                                    const SolverRegistry& registry = SolverRegistry::Builtins());
 // The same from the display and the target's geometry alone (the target not read yet).
+MemoryEstimate EstimateSolveMemory(const DisplaySystem& system, const LightFieldGeometry& geometry,
+                                   const std::string& solver, const SolverOptions& options, Sampling sampling,
+                                   int threads, bool rendered_target,
+                                   const SolverRegistry& registry = SolverRegistry::Builtins());
 MemoryEstimate EstimateSolveMemory(const DisplaySystem& system, const LightFieldGeometry& geometry,
                                    const std::string& solver, int threads,
                                    const SolverRegistry& registry = SolverRegistry::Builtins());

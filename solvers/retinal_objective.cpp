@@ -5,6 +5,8 @@
 #include <complex>
 
 #include "framework/error.h"
+#include "framework/heap_block.h"
+#include "framework/huge_page_allocator.h"
 #include "solvers/objective.h"
 #include "systems/contrast_sensitivity.h"
 #include "systems/spectral_filter.h"
@@ -160,6 +162,29 @@ double RetinalObjective::EvaluateWithAdjoint(const LightField& x, std::vector<do
   }
   if (per_state) *per_state = std::move(errors);
   return f;
+}
+
+RetinalObjectiveMemory RetinalObjectiveBytes(const DisplayModel& model, const RetinalObjectiveOptions& options,
+                                             int threads) {
+  const EyeModel& eye = model.system().eye;
+  const std::vector<double> states = RetinalStates(eye, options);
+  std::vector<std::array<double, 3>> foci;
+  for (double d : states) foci.push_back(ChannelAccommodation(eye, d));
+  const RetinaGrid grid = GridOf(model.geometry(), options.resolution);
+  const std::vector<PupilPoint> pupil = PupilSamples(eye);
+  const LightFieldGeometry& g = model.geometry();
+  const size_t samples = size_t(grid.cols) * grid.rows;
+  RetinalObjectiveMemory m;
+  m.tables = RetinalOperator::TableBytes(g, model.projection(0).sampling(), grid, pupil, foci);
+  m.images = HeapBlockBytes(states.size() * sizeof(std::vector<float>)) +
+             states.size() * HeapBlockBytes(samples * 3 * sizeof(float));
+  m.apply_buffer = HeapBlockBytes(RetinalOperator::ApplyBufferValues(g, pupil.size()) * sizeof(float));
+  m.construction = 2 * LargeAllocationBytes(g.ray_count() * 3 * sizeof(float)) + m.images;
+  if (options.contrast_sensitivity) {
+    const size_t line = HeapBlockBytes(size_t(std::max(grid.cols, grid.rows)) * sizeof(std::complex<double>));
+    m.filter = size_t(std::max(threads, 1)) * (HeapBlockBytes(samples * sizeof(std::complex<double>)) + 4 * line);
+  }
+  return m;
 }
 
 double RetinalObjective::FocalStackPsnr(const std::vector<double>& per_state) const {

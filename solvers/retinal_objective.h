@@ -64,6 +64,8 @@ class RetinalObjective {
   const RetinaGrid& retina() const { return operator_->retina(); }
   size_t samples_per_state() const { return operator_->retinal_values(); }
   double Bound() const { return bound_; }
+  // The heap bytes of its operator's tables (RetinalObjectiveBytes counts them before it is made).
+  size_t TableBytes() const { return operator_->TableBytes(); }
 
   // f(x); *per_state (if given) gets || A_a (x - l) ||^2 of each state, unweighted.
   double Evaluate(const LightField& x, std::vector<double>* per_state = nullptr) const;
@@ -88,6 +90,22 @@ class RetinalObjective {
   // The weighted errors of images_ (residuals on entry, C^T C residuals on return), per state.
   std::vector<double> WeightResiduals() const;
 };
+
+// What a RetinalObjective of `options` for `model` allocates, in heap bytes
+// (framework/heap_block.h, huge_page_allocator.h), known before it is made:
+// for the memory estimate (solvers/memory_estimate.h).
+struct RetinalObjectiveMemory {
+  size_t tables = 0;        // the retinal operator's (RetinalOperator::TableBytes)
+  size_t images = 0;        // one set of retinal images, every state's: the target's and the display's are kept
+  size_t apply_buffer = 0;  // the operator's Apply buffer, kept
+  // While it is made, on top of what it keeps: Bound()'s two light fields and a set of images.
+  size_t construction = 0;
+  // While it evaluates with the contrast-sensitivity weighting: each thread's filtered field.
+  size_t filter = 0;
+  size_t kept() const { return tables + 2 * images + apply_buffer; }
+};
+RetinalObjectiveMemory RetinalObjectiveBytes(const DisplayModel& model, const RetinalObjectiveOptions& options,
+                                             int threads);
 
 // The states a RetinalObjectiveOptions names for this eye (its own, or the accommodation range in 0.2 D steps).
 std::vector<double> RetinalStates(const EyeModel& eye, const RetinalObjectiveOptions& options);

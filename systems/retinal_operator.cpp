@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "framework/error.h"
+#include "framework/heap_block.h"
 #include "systems/lightfield_taps.h"
 
 namespace layerlab {
@@ -47,45 +48,100 @@ RetinalOperator::RetinalOperator(const LightFieldGeometry& g, Sampling pixels, c
           pv.weight[pv.count++] = static_cast<float>(v.weight[a][b] * inverse_count);
         }
   }
-  std::vector<double> tan_x(retina.cols), tan_y(retina.rows);
-  for (int j = 0; j < retina.cols; ++j) tan_x[j] = std::tan(retina.angle_x(j));
-  for (int i = 0; i < retina.rows; ++i) tan_y[i] = std::tan(retina.angle_y(i));
+  const Tangents tangents = TangentsOf(retina);
+  ForEachFocus(states, [&](size_t a, double focus, const int* channels, int channel_count) {
+    Entry e;
+    e.state = a;
+    e.channel_count = channel_count;
+    std::copy(channels, channels + channel_count, e.channels);
+    e.tables.resize(pupil.size());
+#pragma omp parallel for schedule(dynamic)
+    for (size_t p = 0; p < pupil.size(); ++p) e.tables[p] = MakeTable(g, nearest_, retina, tangents, pupil[p], focus);
+    entries_.push_back(std::move(e));
+  });
+}
+
+RetinalOperator::Tangents RetinalOperator::TangentsOf(const RetinaGrid& retina) {
+  Tangents t{std::vector<double>(retina.cols), std::vector<double>(retina.rows)};
+  for (int j = 0; j < retina.cols; ++j) t.x[j] = std::tan(retina.angle_x(j));
+  for (int i = 0; i < retina.rows; ++i) t.y[i] = std::tan(retina.angle_y(i));
+  return t;
+}
+
+template <class Visit>
+void RetinalOperator::ForEachFocus(const std::vector<std::array<double, 3>>& states, Visit visit) {
   for (size_t a = 0; a < states.size(); ++a)
     for (int c = 0; c < 3; ++c) {
       bool seen = false;  // an earlier channel of this state at the same focus
       for (int d = 0; d < c; ++d) seen = seen || states[a][d] == states[a][c];
       if (seen) continue;
-      Entry e;
-      e.state = a;
+      int channels[3], count = 0;
       for (int d = c; d < 3; ++d)
-        if (states[a][d] == states[a][c]) e.channels[e.channel_count++] = d;
-      const double focus = states[a][c];
-      e.tables.resize(pupil.size());
-#pragma omp parallel for schedule(dynamic)
-      for (size_t p = 0; p < pupil.size(); ++p) {
-        const PupilPoint& u = pupil[p];
-        FocusTable& t = e.tables[p];
-        // The ray's direction and crossing exactly as RetinaOfSceneRayByRay and LightFieldRays compute them.
-        for (int j = 0; j < retina.cols; ++j) {
-          const double dx = tan_x[j] - u.x * focus - u.slope_x;
-          Bracket col;
-          if (!ColumnAt(g, u.x + dx * g.origin_z, nearest_, &col)) continue;
-          t.columns.push_back({j, col.k0, col.k1, float(1 - col.w1), float(col.w1)});
-        }
-        if (nearest_) t.runs = RunsOf<Run>(t.columns);
-        t.rows.resize(retina.rows);
-        t.sources.resize(g.rows);
-        for (int i = 0; i < retina.rows; ++i) {
-          const double dy = tan_y[i] - u.y * focus - u.slope_y;
-          Bracket row;
-          if (!RowAt(g, u.y + dy * g.origin_z, nearest_, &row)) continue;
-          t.rows[i] = {row.k0, row.k1, float(1 - row.w1), float(row.w1)};
-          t.sources[row.k0].push_back({i, float(1 - row.w1)});
-          if (row.w1 != 0) t.sources[row.k1].push_back({i, float(row.w1)});
-        }
-      }
-      entries_.push_back(std::move(e));
+        if (states[a][d] == states[a][c]) channels[count++] = d;
+      visit(a, states[a][c], channels, count);
     }
+}
+
+RetinalOperator::FocusTable RetinalOperator::MakeTable(const LightFieldGeometry& g, bool nearest,
+                                                       const RetinaGrid& retina, const Tangents& tangents,
+                                                       const PupilPoint& u, double focus) {
+  using namespace lightfield_taps;
+  FocusTable t;
+  // The ray's direction and crossing exactly as RetinaOfSceneRayByRay and LightFieldRays compute them.
+  for (int j = 0; j < retina.cols; ++j) {
+    const double dx = tangents.x[j] - u.x * focus - u.slope_x;
+    Bracket col;
+    if (!ColumnAt(g, u.x + dx * g.origin_z, nearest, &col)) continue;
+    t.columns.push_back({j, col.k0, col.k1, float(1 - col.w1), float(col.w1)});
+  }
+  if (nearest) t.runs = RunsOf<Run>(t.columns);
+  t.rows.resize(retina.rows);
+  t.sources.resize(g.rows);
+  for (int i = 0; i < retina.rows; ++i) {
+    const double dy = tangents.y[i] - u.y * focus - u.slope_y;
+    Bracket row;
+    if (!RowAt(g, u.y + dy * g.origin_z, nearest, &row)) continue;
+    t.rows[i] = {row.k0, row.k1, float(1 - row.w1), float(row.w1)};
+    t.sources[row.k0].push_back({i, float(1 - row.w1)});
+    if (row.w1 != 0) t.sources[row.k1].push_back({i, float(row.w1)});
+  }
+  return t;
+}
+
+size_t RetinalOperator::HeapBytes(const FocusTable& t) {
+  size_t bytes = HeapBlockBytes(t.columns.capacity() * sizeof(Column)) +
+                 HeapBlockBytes(t.runs.capacity() * sizeof(Run)) + HeapBlockBytes(t.rows.capacity() * sizeof(Row)) +
+                 HeapBlockBytes(t.sources.capacity() * sizeof(std::vector<Source>));
+  for (const std::vector<Source>& s : t.sources) bytes += HeapBlockBytes(s.capacity() * sizeof(Source));
+  return bytes;
+}
+
+size_t RetinalOperator::TableBytes(const LightFieldGeometry& g, Sampling pixels, const RetinaGrid& retina,
+                                   const std::vector<PupilPoint>& pupil,
+                                   const std::vector<std::array<double, 3>>& states) {
+  const Tangents tangents = TangentsOf(retina);
+  const bool nearest = pixels == Sampling::kNearest;
+  size_t bytes = HeapBlockBytes(pupil.size() * sizeof(PupilViews)), entries = 0;
+  ForEachFocus(states, [&](size_t, double focus, const int*, int) {
+    ++entries;
+    bytes += HeapBlockBytes(pupil.size() * sizeof(FocusTable));
+#pragma omp parallel for schedule(dynamic) reduction(+ : bytes)
+    for (size_t p = 0; p < pupil.size(); ++p)
+      bytes += HeapBytes(MakeTable(g, nearest, retina, tangents, pupil[p], focus));
+  });
+  size_t capacity = 1;  // push_back's: doubling from 1
+  while (capacity < entries) capacity *= 2;
+  return bytes + HeapBlockBytes(capacity * sizeof(Entry));
+}
+
+size_t RetinalOperator::TableBytes() const {
+  size_t bytes =
+      HeapBlockBytes(views_.capacity() * sizeof(PupilViews)) + HeapBlockBytes(entries_.capacity() * sizeof(Entry));
+  for (const Entry& e : entries_) {
+    bytes += HeapBlockBytes(e.tables.capacity() * sizeof(FocusTable));
+    for (const FocusTable& t : e.tables) bytes += HeapBytes(t);
+  }
+  return bytes;
 }
 
 namespace {

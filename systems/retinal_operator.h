@@ -18,6 +18,7 @@
 // light-field row by one thread, and adds it to the views it blends.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <vector>
 
@@ -52,6 +53,18 @@ class RetinalOperator {
   // One state's.
   void Apply(const LightField& x, std::vector<float>* out) const;
   void ApplyTranspose(const std::vector<float>& y, LightField* out, bool accumulate = false) const;
+
+  // The heap bytes of the tables an operator of these arguments holds (each block as glibc's malloc lays it
+  // out), counted by making its tables one at a time: what the memory estimate counts before the operator exists.
+  static size_t TableBytes(const LightFieldGeometry& g, Sampling pixels, const RetinaGrid& retina,
+                           const std::vector<PupilPoint>& pupil, const std::vector<std::array<double, 3>>& states);
+  // The same of this operator's tables (not its Apply buffer).
+  size_t TableBytes() const;
+  // The floats Apply keeps between calls: a group of pupil points' blends, a view each.
+  size_t ApplyBufferValues() const { return ApplyBufferValues(geometry_, views_.size()); }
+  static size_t ApplyBufferValues(const LightFieldGeometry& g, size_t pupil_points) {
+    return std::min(kPupilGroup, pupil_points) * g.pixels_per_view() * 3;
+  }
 
  private:
   struct Column {
@@ -88,6 +101,17 @@ class RetinalOperator {
     float weight[4];  // 1 / pupil count folded in
     int count = 0;
   };
+  struct Tangents {
+    std::vector<double> x, y;  // tan of each retinal column's and row's angle
+  };
+  static Tangents TangentsOf(const RetinaGrid& retina);
+  // visit(state, focus, channels, channel_count) for each distinct focus of each state: one Entry each.
+  template <class Visit>
+  static void ForEachFocus(const std::vector<std::array<double, 3>>& states, Visit visit);
+  static FocusTable MakeTable(const LightFieldGeometry& g, bool nearest, const RetinaGrid& retina,
+                              const Tangents& tangents, const PupilPoint& u, double focus);
+  static size_t HeapBytes(const FocusTable& t);
+
   std::vector<Entry> entries_;
   std::vector<PupilViews> views_;  // per pupil point: the views it blends, the same at every focus
   size_t state_count_ = 0;

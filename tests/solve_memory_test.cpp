@@ -17,6 +17,7 @@
 #include "solvers/memory_estimate.h"
 #include "solvers/multiplicative_update.h"
 #include "solvers/objective.h"
+#include "solvers/retinal_objective.h"
 #include "solvers/solver.h"
 #include "systems/solve_workspace.h"
 #include "tests/test_util.h"
@@ -100,7 +101,7 @@ TEST(SolveMemory, ClippedCopyCountedWhenTheTargetNeedsIt) {
   const DisplaySystem system = CompileJson(ShrunkExample("paper_prototype.json", 24, 12, 3));
   const DisplayModel model(system, DisplayLightFieldGeometry(system));
   LightField target = model.Synthesize(RandomPatterns(model, 6));
-  auto without_program = [&](const MemoryEstimate& e) { return double(e.bytes) - double(e.program); };
+  auto without_program = [&](const MemoryEstimate& e) { return double(e.counted) - double(e.program); };
   const MemoryEstimate within = EstimateSolveMemory(model, "hybrid", 2, &target);
   EXPECT_FALSE(within.clipped_copy_counted);
   target.rgb[7] = 2.5f;  // above the two branches' sum in green
@@ -110,24 +111,72 @@ TEST(SolveMemory, ClippedCopyCountedWhenTheTargetNeedsIt) {
   EXPECT_NE(beyond.breakdown.find(" + its clipped copy "), std::string::npos) << beyond.breakdown;
 }
 
+// The retinal objective's tables, counted before it is made
+// (RetinalObjectiveBytes), are the bytes its operator holds once made.
+TEST(SolveMemory, RetinalTablesCountedBeforeTheObjectiveIsMade) {
+  const DisplaySystem system = CompileJson(ShrunkExample("paper_prototype.json", 40, 20, 5));
+  for (Sampling sampling : {Sampling::kNearest, Sampling::kBilinear}) {
+    const DisplayModel model(system, DisplayLightFieldGeometry(system), sampling);
+    const LightField target = model.Synthesize(RandomPatterns(model, 8));
+    const RetinalObjectiveOptions options;
+    const RetinalObjective objective(model, target, options);
+    EXPECT_EQ(RetinalObjectiveBytes(model, options, 2).tables, objective.TableBytes()) << ToString(sampling);
+  }
+}
+
+// The estimate counts the retinal objective only when the solve makes it.
+TEST(SolveMemory, RetinalObjectiveCountedWhenTheSolveMakesIt) {
+  const DisplaySystem system = CompileJson(ShrunkExample("paper_prototype.json", 40, 20, 5));
+  const DisplayModel model(system, DisplayLightFieldGeometry(system));
+  SolverOptions options = SolverRegistry::Builtins().get("quasi-newton").defaults;
+  const MemoryEstimate light_field = EstimateSolveMemory(model, "quasi-newton", options, 2);
+  options.objective = ObjectiveKind::kRetinal;
+  const MemoryEstimate retinal = EstimateSolveMemory(model, "quasi-newton", options, 2);
+  const RetinalObjectiveMemory parts = RetinalObjectiveBytes(model, options.retinal, 2);
+  auto without_program = [&](const MemoryEstimate& e) { return double(e.counted) - double(e.program); };
+  EXPECT_GE(without_program(retinal) - without_program(light_field), double(parts.kept()));
+  EXPECT_NE(retinal.breakdown.find(" + the retinal objective "), std::string::npos) << retinal.breakdown;
+  EXPECT_EQ(light_field.breakdown.find("retinal"), std::string::npos) << light_field.breakdown;
+}
+
+// The estimate is printed ("the solve needs about 1.33 GB") as the bound
+// itself: rounded up to the digits FormatBytes shows, not to the nearest.
+TEST(SolveMemory, EstimatePrintedWithoutRoundingDown) {
+  const DisplaySystem system = CompileJson(testing::ReadExample("paper_prototype.json"));
+  for (int cols : {400, 800}) {
+    LightFieldGeometry g = DisplayLightFieldGeometry(system);
+    g.views_x = g.views_y = 13, g.cols = cols, g.rows = cols / 2;
+    const MemoryEstimate e = EstimateSolveMemory(system, g, "hybrid", 2);
+    const std::string printed = FormatBytes(double(e.bytes));
+    const double value = std::stod(printed), scale = printed.find("GB") != std::string::npos ? 1e9 : 1e6;
+    EXPECT_NEAR(value * scale, double(e.bytes), 1.0) << printed;
+    EXPECT_GE(double(e.bytes), double(e.counted + e.margin)) << printed;
+  }
+}
+
 // The child's side of the test below: the estimate before anything of
 // light-field size exists, then the target (the dice, or one synthesized),
-// a hybrid solve of two iterations, and the process's peak (VmHWM).
+// a short solve, and the process's peak (VmHWM). The retinal case solves a
+// smaller geometry with the retinal objective.
 TEST(SolveMemory, DISABLED_ChildSolve) {
   const char* out = std::getenv("LAYERLAB_MEMORY_CHILD_OUT");
-  if (!out) GTEST_SKIP() << "run by SolveMemory.EstimateWithinFivePercentOfThePeak";
+  if (!out) GTEST_SKIP() << "run by SolveMemory.*Peak*";
   const char* dice = std::getenv("LAYERLAB_MEMORY_CHILD_DICE");
+  const char* solver_env = std::getenv("LAYERLAB_MEMORY_CHILD_SOLVER");
+  const std::string solver = solver_env ? solver_env : "hybrid";
+  SolverOptions options = SolverRegistry::Builtins().get(solver).defaults;
+  const bool retinal = std::getenv("LAYERLAB_MEMORY_CHILD_RETINAL") != nullptr;
+  if (retinal) options.objective = ObjectiveKind::kRetinal;
   const DisplaySystem system = CompileJson(testing::ReadExample("paper_prototype.json"));
   LightFieldGeometry g = dice ? ReadLightFieldGeometry(dice) : DisplayLightFieldGeometry(system);
   if (!dice) g.views_x = g.views_y = 7, g.cols = 200, g.rows = 100;
+  if (retinal) g.views_x = g.views_y = 5, g.cols = 120, g.rows = 60;
   const DisplayModel model(system, g);
-  const char* solver_env = std::getenv("LAYERLAB_MEMORY_CHILD_SOLVER");
-  const std::string solver = solver_env ? solver_env : "hybrid";
-  const MemoryEstimate estimate = EstimateSolveMemory(model, solver, omp_get_max_threads());
+  const MemoryEstimate estimate = EstimateSolveMemory(model, solver, options, omp_get_max_threads());
   const LightField target =
       dice ? ReadLightField(dice, {.load_depth = false}) : model.Synthesize(RandomPatterns(model, 5));
-  SolverOptions options = SolverRegistry::Builtins().get(solver).defaults;
-  options.iterations = solver == "hybrid" ? 2 : options.warm_start_iterations + 2;  // quasi-newton: steps too
+  // quasi-newton: the warm start's iterations, then steps.
+  options.iterations = solver == "hybrid" ? 2 : options.warm_start_iterations + 2;
   Patterns t;
   const SolverReport report = SolverRegistry::Builtins().create(solver)->Solve(model, target, options, &t);
   ASSERT_TRUE(report.IsSolutionUsable()) << report.FullReport();
@@ -153,7 +202,13 @@ constexpr bool kAddressSanitizer = false;
 constexpr bool kAddressSanitizer = false;
 #endif
 
-void ExpectEstimateNearPeak(const std::string& dice, const std::string& solver = "hybrid") {
+// How far above the peak the estimate may be and still be useful: its
+// margin (kMemoryMarginFraction and kMemoryMarginBytes) and the set-up's
+// transient parts counted at once (docs/performance.md, memory).
+constexpr double kEstimateAbovePeakAtMost = 0.10;
+
+// The estimate is an upper bound of the peak, and not far above it.
+void ExpectEstimateBoundsPeak(const std::string& dice, const std::string& solver, bool retinal = false) {
   if (kAddressSanitizer) GTEST_SKIP() << "the peak under AddressSanitizer includes its shadow memory";
   char self[4096];
   const ssize_t length = ::readlink("/proc/self/exe", self, sizeof self - 1);
@@ -163,6 +218,7 @@ void ExpectEstimateNearPeak(const std::string& dice, const std::string& solver =
       (std::filesystem::temp_directory_path() / ("solve_memory_" + std::to_string(::getpid()))).string();
   std::string command = "LAYERLAB_MEMORY_CHILD_OUT='" + out + "' ";
   if (!dice.empty()) command += "LAYERLAB_MEMORY_CHILD_DICE='" + dice + "' ";
+  if (retinal) command += "LAYERLAB_MEMORY_CHILD_RETINAL=1 ";
   command += "LAYERLAB_MEMORY_CHILD_SOLVER='" + solver + "' ";
   command += "'" + std::string(self) +
              "' --gtest_also_run_disabled_tests --gtest_filter=SolveMemory.DISABLED_ChildSolve > /dev/null";
@@ -174,22 +230,33 @@ void ExpectEstimateNearPeak(const std::string& dice, const std::string& solver =
   std::getline(in >> std::ws, breakdown);
   std::filesystem::remove(out);
   ASSERT_GT(peak, 0);
-  EXPECT_NEAR(estimate, peak, 0.05 * peak) << breakdown;
+  EXPECT_LE(peak, estimate) << "the peak exceeds the estimate: " << breakdown;
+  EXPECT_LE(estimate, (1 + kEstimateAbovePeakAtMost) * peak) << breakdown;
   std::printf("estimate %.1f MB, peak %.1f MB (%+.1f %%): %s\n", estimate / 1e6, peak / 1e6,
               100 * (estimate - peak) / peak, breakdown.c_str());
 }
 
-TEST(SolveMemory, EstimateWithinFivePercentOfThePeakOnASyntheticTarget) { ExpectEstimateNearPeak(""); }
-
-// Quasi-newton holds the warm start's chase, then its vectors in its place.
-TEST(SolveMemory, QuasiNewtonEstimateWithinFivePercentOfThePeakOnASyntheticTarget) {
-  ExpectEstimateNearPeak("", "quasi-newton");
+std::string Dice() {
+  const std::string folder = std::string(LAYERLAB_DATA_DIR) + "/dice";
+  return std::filesystem::exists(folder + "/lightfield.json") ? folder : "";
 }
 
-TEST(SolveMemory, EstimateWithinFivePercentOfThePeakOnTheDice) {
-  const std::string folder = std::string(LAYERLAB_DATA_DIR) + "/dice";
-  if (!std::filesystem::exists(folder + "/lightfield.json")) GTEST_SKIP() << "no " << folder;
-  ExpectEstimateNearPeak(folder);
+TEST(SolveMemory, EstimateBoundsThePeakOnASyntheticTarget) { ExpectEstimateBoundsPeak("", "hybrid"); }
+
+// Quasi-newton holds the warm start's chase, then its vectors in its place.
+TEST(SolveMemory, QuasiNewtonEstimateBoundsThePeakOnASyntheticTarget) { ExpectEstimateBoundsPeak("", "quasi-newton"); }
+
+// The retinal objective's operator tables, retinal images and pass.
+TEST(SolveMemory, RetinalObjectiveEstimateBoundsThePeak) { ExpectEstimateBoundsPeak("", "quasi-newton", true); }
+
+TEST(SolveMemory, EstimateBoundsThePeakOnTheDice) {
+  if (Dice().empty()) GTEST_SKIP() << "no " << LAYERLAB_DATA_DIR << "/dice";
+  ExpectEstimateBoundsPeak(Dice(), "hybrid");
+}
+
+TEST(SolveMemory, QuasiNewtonEstimateBoundsThePeakOnTheDice) {
+  if (Dice().empty()) GTEST_SKIP() << "no " << LAYERLAB_DATA_DIR << "/dice";
+  ExpectEstimateBoundsPeak(Dice(), "quasi-newton");
 }
 
 }  // namespace
