@@ -288,8 +288,8 @@ std::string PngHeaderOnly(uint32_t width, uint32_t height) {
   return std::string("\x89PNG\r\n\x1a\n", 8) + BigEndian(13) + ihdr + BigEndian(Crc32(ihdr));
 }
 
-// One unusable photograph of each kind is named with its reason, and the good one is used: a FIFO (which
-// would block OpenCV's open forever), a PNG declaring 30000 x 30000 pixels, a truncated PNG, an EXR with a
+// One unusable photograph of each kind is named with its reason, and the good one is used: a FIFO named .png
+// (which blocked OpenCV's open forever), a PNG declaring 30000 x 30000 pixels, a truncated PNG, an EXR with a
 // NaN pixel, a folder.
 TEST(PhotoDetectionTest, EachUnusablePhotographIsNamedAndTheOthersGoOn) {
   const DisplaySystem designed = Example("paper_prototype.json");
@@ -300,7 +300,7 @@ TEST(PhotoDetectionTest, EachUnusablePhotographIsNamedAndTheOthersGoOn) {
   WriteExr(folder + "/" + good.photo, PhotoRenderer(TestCamera()).Render(designed, plan, good, 1),
            ExrCompression::kNone);
   const std::map<std::string, std::string> expected = {
-      {"fifo.exr", "is a FIFO"},
+      {"fifo.png", "is a FIFO"},
       {"huge.png", "the PNG declares 30000 x 30000 pixels; the limit is"},
       {"truncated.png", "truncated PNG file"},
       {"nan.exr", "pixel (row 1, col 2) channel Y is NaN"},
@@ -311,7 +311,7 @@ TEST(PhotoDetectionTest, EachUnusablePhotographIsNamedAndTheOthersGoOn) {
     c.photo = name;
     plan.captures.push_back(c);
   }
-  ASSERT_EQ(::mkfifo((folder + "/fifo.exr").c_str(), 0600), 0);
+  ASSERT_EQ(::mkfifo((folder + "/fifo.png").c_str(), 0600), 0);
   std::filesystem::create_directory(folder + "/folder.png");
   WriteBytes(folder + "/huge.png", PngHeaderOnly(30000, 30000));
   WriteBytes(folder + "/truncated.png", PngHeaderOnly(300, 200).substr(0, 20));
