@@ -221,6 +221,15 @@ json.dump(plan, open(sys.argv[1], "w"), indent=2)
 PY
 photo_expect "detect, captures.json squares 4 3" refused "/chessboards/rear_a/squares" \
   "$layerlab" detect photos_squares_4x3 --scene "$prototype" --out m_squares.json
+# A plan whose capture shows a level pattern of letters (std::stoi threw std::invalid_argument).
+photo_variant show_letters && /usr/bin/python3 - photos_show_letters/captures.json <<'PY'
+import json, sys
+plan = json.load(open(sys.argv[1]))
+plan["captures"][1]["show"]["rear_a"] = "patterns/rear_a_level_abc.png"
+json.dump(plan, open(sys.argv[1], "w"), indent=2)
+PY
+photo_expect "photograph, a plan showing rear_a_level_abc.png" refused "is not a pattern of panel" \
+  "$layerlab" photograph photos_show_letters --scene "$prototype" --out o_photos --size 72 42
 # photograph's numbers: each refused naming the option and the value, nothing written.
 for bad in "--size 100000 100000" "--size 0 10" "--white nan" "--white 0" "--read-noise nan" "--read-noise -1" \
   "--full-well -1" "--full-well inf" "--bits -3" "--bits 99" "--seed -1"; do
