@@ -109,6 +109,18 @@ std::array<int, 2> SquaresSeen(const Photo& photo, cv::Rect area) {
   return seen;
 }
 
+// The mean distance from each point to its nearest neighbor: a found board's square size.
+double NeighborSpacing(const std::vector<cv::Point2f>& points) {
+  double sum = 0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    double nearest = INFINITY;
+    for (size_t j = 0; j < points.size(); ++j)
+      if (j != i) nearest = std::min(nearest, static_cast<double>(cv::norm(points[i] - points[j])));
+    sum += nearest;
+  }
+  return sum / static_cast<double>(std::max<size_t>(1, points.size()));
+}
+
 std::vector<cv::Point2f> TryBoard(const cv::Mat& image8, int cols, int rows) {
   std::vector<cv::Point2f> corners;
   if (!cv::findChessboardCorners(image8, cv::Size(cols, rows), corners,
@@ -200,13 +212,23 @@ CornerSearch FindChessboardCorners(const Photo& photo, const Chessboard& board,
       u0 = std::min(u0, p[0]), v0 = std::min(v0, p[1]), u1 = std::max(u1, p[0]), v1 = std::max(v1, p[1]);
     const cv::Rect area(static_cast<int>(u0 - square_px), static_cast<int>(v0 - square_px),
                         static_cast<int>(u1 - u0 + 2 * square_px), static_cast<int>(v1 - v0 + 2 * square_px));
-    // Another plan's board (other square counts) would read below as out of focus or partly covered.
-    const int margin = static_cast<int>(0.5 * square_px);
-    const std::array<int, 2> seen = SquaresSeen(
-        photo, cv::Rect(area.x - margin, area.y - margin, area.width + 2 * margin, area.height + 2 * margin));
-    if ((seen[0] != board.squares_x || seen[1] != board.squares_y) && seen[0] >= 4 && seen[1] >= 4 && seen[0] <= 1000 &&
-        seen[1] <= 1000)
-      if (std::vector<cv::Point2f> other = TryBoard(image8, seen[0] - 1, seen[1] - 1); !other.empty()) {
+    // Another plan's board (other square counts) would read below as out of focus or partly covered. Its
+    // squares are counted over the predicted board widened by half a square and by a whole one (the other
+    // board may be wider, and beyond its white margin lies the panel's black), and a count that differs from
+    // the plan's is confirmed by finding its corners.
+    std::vector<std::array<int, 2>> tried;
+    for (double widen : {0.5, 1.0}) {
+      const int margin = std::isfinite(square_px) ? static_cast<int>(std::clamp(widen * square_px, 0.0, 1e4)) : 0;
+      const std::array<int, 2> seen = SquaresSeen(
+          photo, cv::Rect(area.x - margin, area.y - margin, area.width + 2 * margin, area.height + 2 * margin));
+      if ((seen[0] == board.squares_x && seen[1] == board.squares_y) ||
+          !ChessboardSquaresProblem(seen[0], seen[1]).empty() ||
+          std::find(tried.begin(), tried.end(), seen) != tried.end())
+        continue;
+      tried.push_back(seen);
+      // Squares of the planned size are part of the planned board (too few features, below), not another board.
+      if (std::vector<cv::Point2f> other = TryBoard(image8, seen[0] - 1, seen[1] - 1);
+          !other.empty() && std::abs(NeighborSpacing(other) / square_px - 1) > 0.05) {
         out.reason = "wrong chessboard: the photograph shows one of " + std::to_string(seen[0]) + " x " +
                      std::to_string(seen[1]) + " squares (its " + std::to_string(seen[0] - 1) + " x " +
                      std::to_string(seen[1] - 1) + " inner corners found), the capture plan's has " +
@@ -214,6 +236,7 @@ CornerSearch FindChessboardCorners(const Photo& photo, const Chessboard& board,
                      ": was it taken with another plan's patterns?";
         return out;
       }
+    }
     const std::string shows = WhatItShows(photo, square_px, area);
     // A part of the board found tells "too few features" from "not found".
     for (const auto& [c, r] : std::vector<std::pair<int, int>>{{cols - 2, rows}, {cols, rows - 2}})

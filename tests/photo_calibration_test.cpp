@@ -220,25 +220,37 @@ TEST(PhotoDetectionTest, EachKindOfBadPhotographIsReportedWithItsReason) {
   }
 }
 
-// Another plan's board (8 x 5 squares where the plan has 10 x 6) is named as such, not "out of focus".
+// Another plan's board is named as such, not "out of focus" or "not in view whole": 8 x 5 squares where the plan
+// has 10 x 6, and 10 x 6 where it has 8 x 5 (a board wider than the predicted one).
 TEST(PhotoDetectionTest, AChessboardOfOtherSquareCountsIsNamedAsSuch) {
   const DisplaySystem designed = Example("paper_prototype.json");
-  const CapturePlan plan = PlanCaptures(designed, TestPlan());
-  PlanOptions other_options = TestPlan();
-  other_options.squares_x = 8;
-  other_options.squares_y = 5;
-  const CapturePlan other = PlanCaptures(designed, other_options);
-  const PlannedCapture& c = ChessboardCapture(plan, "rear_a");
-  const auto predicted = TrueCorners(designed, plan, c, TestCamera().intrinsics);
-  const Photo photo =
-      AsPhoto(PhotoRenderer(TestCamera()).Render(designed, other, ChessboardCapture(other, "rear_a"), 2));
-  const CornerSearch s = FindChessboardCorners(photo, *plan.chessboard("rear_a"), predicted);
-  ASSERT_FALSE(s.corners);
-  EXPECT_EQ(s.reason.rfind("wrong chessboard: the photograph shows one of 8 x 5 squares (its 7 x 4 inner corners "
+  auto plan_of = [&](int x, int y) {
+    PlanOptions o = TestPlan();
+    o.squares_x = x;
+    o.squares_y = y;
+    return PlanCaptures(designed, o);
+  };
+  const CapturePlan ten_by_six = plan_of(10, 6), eight_by_five = plan_of(8, 5);
+  auto reason = [&](const CapturePlan& planned, const CapturePlan& shown) {
+    const PlannedCapture& c = ChessboardCapture(planned, "rear_a");
+    const auto predicted = TrueCorners(designed, planned, c, TestCamera().intrinsics);
+    const Photo photo =
+        AsPhoto(PhotoRenderer(TestCamera()).Render(designed, shown, ChessboardCapture(shown, "rear_a"), 2));
+    const CornerSearch s = FindChessboardCorners(photo, *planned.chessboard("rear_a"), predicted);
+    EXPECT_FALSE(s.corners);
+    return s.reason;
+  };
+  const std::string narrower = reason(ten_by_six, eight_by_five), wider = reason(eight_by_five, ten_by_six);
+  EXPECT_EQ(narrower.rfind("wrong chessboard: the photograph shows one of 8 x 5 squares (its 7 x 4 inner corners "
                            "found), the capture plan's has 10 x 6",
                            0),
             0u)
-      << s.reason;
+      << narrower;
+  EXPECT_EQ(wider.rfind("wrong chessboard: the photograph shows one of 10 x 6 squares (its 9 x 5 inner corners "
+                        "found), the capture plan's has 8 x 5",
+                        0),
+            0u)
+      << wider;
 }
 
 // Boards OpenCV cannot take (fewer than 3 inner corners a side) or could find turned (square grids) are refused
