@@ -52,6 +52,8 @@ void AddCalibrationPatternsCommand(CLI::App& app) {
   cmd->add_option("--camera", o->camera,
                   "The camera's intrinsics (a measurements-format \"camera\" object, JSON), kept in the plan");
   cmd->callback([o] {
+    if (std::string why = ChessboardSquaresProblem(o->squares[0], o->squares[1]); !why.empty())
+      throw Error("--squares " + std::to_string(o->squares[0]) + " " + std::to_string(o->squares[1]) + ": " + why);
     const DisplaySystem system = Compile(LoadScene(o->scene));
     PlanOptions options;
     options.squares_x = o->squares[0];

@@ -1,9 +1,11 @@
 // layerlab photograph CAPTURES_DIR --scene BUILT.json --out DIR: synthetic
 // photographs of a capture plan on a display as built (calibration/synthetic_photo.h),
 // to try the calibration loop without a prototype (docs/calibration.md).
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <sstream>
 
 #include "app/commands.h"
 #include "app/number_list.h"
@@ -11,20 +13,54 @@
 #include "calibration/measurements.h"
 #include "calibration/synthetic_photo.h"
 #include "framework/atomic_file.h"
+#include "framework/checked_count.h"
 #include "framework/staged_output.h"
 #include "systems/compile.h"
 #include "systems/scene.h"
 
 namespace layerlab::app {
 
+namespace {
+
+struct PhotographOptions {
+  std::string captures, scene, out, camera, aperture = "1", focus = "1";
+  std::vector<int> size = {720, 400};
+  double white = 0.5, full_well = 20000, read_noise = 0.001;
+  int bits = 0;
+  uint64_t seed = 1;
+};
+
+std::string Shown(double value) {
+  std::ostringstream s;
+  s << value;
+  return s.str();
+}
+
+// Every number before anything is read: a NaN or negative one would otherwise make photographs of nothing.
+void RequirePhotographOptions(const PhotographOptions& o) {
+  const int width = o.size[0], height = o.size[1];
+  const std::string size = "--size " + std::to_string(width) + " " + std::to_string(height);
+  if (width <= 0 || height <= 0) throw Error(size + ": the width and height must be positive");
+  const size_t pixels = CheckedProduct({static_cast<size_t>(width), static_cast<size_t>(height)}, size);
+  if (pixels > kMaxPhotoPixels)
+    throw Error(size + ": " + std::to_string(pixels) + " pixels; the limit is " + std::to_string(kMaxPhotoPixels) +
+                " (what detect reads)");
+  if (!std::isfinite(o.white) || !(o.white > 0))
+    throw Error("--white " + Shown(o.white) + ": full white's signal must be a finite fraction of full scale above 0");
+  if (!std::isfinite(o.full_well) || o.full_well < 0)
+    throw Error("--full-well " + Shown(o.full_well) +
+                ": the electrons at full scale must be finite and >= 0 (0: no photon noise)");
+  if (!std::isfinite(o.read_noise) || o.read_noise < 0)
+    throw Error("--read-noise " + Shown(o.read_noise) +
+                ": the read noise must be a finite fraction of full scale, >= 0");
+  if (o.bits < 0 || o.bits > 24)
+    throw Error("--bits " + std::to_string(o.bits) + ": 0 (float) or 1 to 24 bits (a float holds 24)");
+}
+
+}  // namespace
+
 void AddPhotographCommand(CLI::App& app) {
-  struct Options {
-    std::string captures, scene, out, camera, aperture = "1", focus = "1";
-    std::vector<int> size = {720, 400};
-    double white = 0.5, full_well = 20000, read_noise = 0.001;
-    int bits = 0;
-    uint64_t seed = 1;
-  };
+  using Options = PhotographOptions;
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("photograph", "Synthetic photographs of a capture plan on a display as built");
   cmd->add_option("captures", o->captures, "Folder written by calibration-patterns (captures.json)")->required();
@@ -38,8 +74,12 @@ void AddPhotographCommand(CLI::App& app) {
   cmd->add_option("--full-well", o->full_well, "Electrons at full scale, for photon noise (default 20000; 0: none)");
   cmd->add_option("--read-noise", o->read_noise, "Read noise, fraction of full scale (default 0.001)");
   cmd->add_option("--bits", o->bits, "Round to this many bits (default 0: float)");
-  cmd->add_option("--seed", o->seed, "Noise seed (default 1)");
+  // CLI11 reads "-1" into a uint64_t as 2^64 - 1: refuse the sign before that.
+  cmd->add_option("--seed", o->seed, "Noise seed (default 1)")->check([](const std::string& text) {
+    return text.find('-') == std::string::npos ? std::string() : "\"" + text + "\": the seed is 0 or more";
+  });
   cmd->callback([o] {
+    RequirePhotographOptions(*o);
     const double aperture_mm = ParseOptionValue(o->aperture, "--aperture", kMillimeters);
     const double focus_diopters = ParseOptionValue(o->focus, "--focus", kDiopters, true);
     const std::string plan_file = (std::filesystem::path(o->captures) / "captures.json").string();

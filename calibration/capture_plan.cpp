@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <set>
 
 #include "calibration/measurements.h"
@@ -70,13 +71,33 @@ const Chessboard* CapturePlan::chessboard(const std::string& panel) const {
   return nullptr;
 }
 
+std::optional<double> ResponseExponent(const std::string& response) {
+  if (response == "linear") return 1.0;
+  double g = 0;
+  int used = 0;
+  if (response.rfind("gamma ", 0) != 0 || std::sscanf(response.c_str() + 6, "%lf%n", &g, &used) != 1 ||
+      static_cast<size_t>(used) + 6 != response.size() || !std::isfinite(g) || !(g > 0))
+    return std::nullopt;
+  return g;
+}
+
+std::string ChessboardSquaresProblem(int64_t squares_x, int64_t squares_y) {
+  const std::string board = std::to_string(squares_x) + " x " + std::to_string(squares_y) + " squares";
+  if (squares_x < 4 || squares_y < 4 || squares_x > 1000 || squares_y > 1000)
+    return "a chessboard of " + board +
+           ": each side needs 4 to 1000 squares (OpenCV's corner finder needs at least 3 inner corners each way)";
+  if (squares_x == squares_y)
+    return "a chessboard of " + board +
+           ": as many squares across as down would let its corners be found turned by 90 degrees; "
+           "use different counts (e.g. 10 6)";
+  return "";
+}
+
 CapturePlan PlanCaptures(const DisplaySystem& system, const PlanOptions& options) {
   if (system.subframes > 1)
     throw Error(system.file + ": calibration patterns for a time-multiplexed display (" +
                 std::to_string(system.subframes) + " subframes) are not supported; calibrate it with one subframe");
-  if (options.squares_x < 3 || options.squares_y < 3)
-    throw Error("a chessboard needs at least 3 x 3 squares, got " + std::to_string(options.squares_x) + " x " +
-                std::to_string(options.squares_y));
+  if (std::string why = ChessboardSquaresProblem(options.squares_x, options.squares_y); !why.empty()) throw Error(why);
   if (options.positions.empty()) throw Error("the capture plan needs at least one camera position");
   CapturePlan plan;
   plan.description = "calibration captures of " + system.name;
@@ -149,7 +170,11 @@ std::vector<uint8_t> PatternImage(const DisplaySystem& system, const CapturePlan
   } else if (name == BlackFile(panel)) {
   } else {
     const std::string prefix = panel + "_level_";
-    if (name.rfind(prefix, 0) != 0 || name.size() != prefix.size() + 7 || name.substr(prefix.size() + 3) != ".png")
+    const bool digits =
+        name.size() == prefix.size() + 7 && std::all_of(name.begin() + static_cast<std::ptrdiff_t>(prefix.size()),
+                                                        name.begin() + static_cast<std::ptrdiff_t>(prefix.size() + 3),
+                                                        [](char ch) { return ch >= '0' && ch <= '9'; });
+    if (name.rfind(prefix, 0) != 0 || !digits || name.substr(prefix.size() + 3) != ".png")
       throw Error("\"" + name + "\" is not a pattern of panel \"" + panel + "\"");
     const int level = std::stoi(name.substr(prefix.size(), 3));
     if (level > 255) throw Error("\"" + name + "\": levels are 8-bit, 0 to 255");
@@ -164,7 +189,8 @@ std::vector<std::pair<std::string, std::string>> PatternFiles(const CapturePlan&
   const std::string folder = std::string(kPatternFolder) + "/";
   for (const PlannedCapture& c : plan.captures)
     for (const auto& [panel, file] : c.show)
-      if (seen.insert(file).second) out.emplace_back(panel, file.substr(folder.size()));
+      if (seen.insert(file).second)
+        out.emplace_back(panel, file.rfind(folder, 0) == 0 ? file.substr(folder.size()) : file);
   return out;
 }
 
@@ -207,12 +233,9 @@ CapturePlan ParseCapturePlan(const json& document, const std::string& file) {
              "unknown capture plan format \"" + format + "\"; this layerlab reads \"" + kCapturesFormat + "\"");
   plan.description = top.string("description", "");
   plan.response = top.string("response", "linear");
-  if (plan.response != "linear") {
-    double g = 0;
-    if (plan.response.rfind("gamma ", 0) != 0 || !(std::sscanf(plan.response.c_str() + 6, "%lf", &g) == 1 && g > 0))
-      top.fail("response",
-               "expected \"linear\" or \"gamma G\" (value^G is linear light), got \"" + plan.response + "\"");
-  }
+  if (!ResponseExponent(plan.response))
+    top.fail("response", "expected \"linear\" or \"gamma G\" (value^G is linear light, G finite and above 0), got \"" +
+                             plan.response + "\"");
   top.mark_read("camera");
   if (top.has("camera")) plan.camera = ReadCameraIntrinsics(top.object("camera"));
   Params boards = top.object("chessboards");
@@ -222,7 +245,8 @@ CapturePlan ParseCapturePlan(const json& document, const std::string& file) {
     Params b = boards.object(it.key());
     Chessboard board;
     board.panel = it.key();
-    const auto squares = b.integer_pair("squares", 3, 1000);
+    const auto squares = b.integer_pair("squares", 1, 1000);
+    if (std::string why = ChessboardSquaresProblem(squares[0], squares[1]); !why.empty()) b.fail("squares", why);
     board.squares_x = static_cast<int>(squares[0]);
     board.squares_y = static_cast<int>(squares[1]);
     board.square_pixels = static_cast<int>(b.integer("square_pixels", 1, 100000));
@@ -239,6 +263,10 @@ CapturePlan ParseCapturePlan(const json& document, const std::string& file) {
     Params c(captures[i], top.where("captures").child(i));
     PlannedCapture p;
     p.photo = c.string("photo");
+    // Photographs lie in the captures folder itself: `photograph` writes them there.
+    if (p.photo.empty() || p.photo == "." || p.photo == ".." || p.photo.find('/') != std::string::npos ||
+        p.photo.find('\0') != std::string::npos)
+      c.fail("photo", "expected a file name in the captures folder (no folders, no \"..\"), got \"" + p.photo + "\"");
     const std::string pattern = c.choice("pattern", {"chessboard", "luminance"}, "chessboard");
     p.kind = pattern == "chessboard" ? CaptureKind::kChessboard : CaptureKind::kLuminance;
     p.panel = c.string("panel");

@@ -24,6 +24,10 @@ namespace layerlab {
 
 inline constexpr const char* kCapturesFormat = "layerlab-captures/1";
 
+// The largest photograph, in pixels, that `detect` decodes and `photograph`
+// renders (a 64 Mpixel float image is 256 MB; EXR's own limit is the same).
+inline constexpr size_t kMaxPhotoPixels = size_t{64} << 20;
+
 // A chessboard of squares_x x squares_y squares, each square_pixels wide, its
 // top-left square (dark) at panel pixel (left, top) of the full grid.
 struct Chessboard {
@@ -65,6 +69,15 @@ struct CapturePlan {
 
   const Chessboard* chessboard(const std::string& panel) const;
 };
+
+// Why a chessboard of squares_x x squares_y squares cannot be used, or empty:
+// OpenCV's corner finder needs at least 3 x 3 inner corners (4 x 4 squares),
+// and a board of as many corners across as down can be found turned by 90
+// degrees, which the ordering by the prediction does not undo.
+std::string ChessboardSquaresProblem(int64_t squares_x, int64_t squares_y);
+
+// The exponent G of a response "linear" (1) or "gamma G" (finite, > 0, nothing after it); nullopt for anything else.
+std::optional<double> ResponseExponent(const std::string& response);
 
 struct PlanOptions {
   int squares_x = 10, squares_y = 6;  // per chessboard; one square of white margin is kept around it

@@ -12,15 +12,15 @@
 #include "calibration/synthetic_measurements.h"
 #include "framework/error.h"
 #include "framework/exr_image.h"
+#include "framework/file_kind.h"
+#include "framework/png_header.h"
 #include "framework/units.h"
 
 namespace layerlab {
 namespace {
 
 double ResponseGamma(const std::string& response) {
-  if (response == "linear") return 1.0;
-  double g = 0;
-  if (response.rfind("gamma ", 0) == 0 && std::sscanf(response.c_str() + 6, "%lf", &g) == 1 && g > 0) return g;
+  if (const std::optional<double> g = ResponseExponent(response)) return *g;
   throw Error("unknown response \"" + response + "\": expected \"linear\" or \"gamma G\"");
 }
 
@@ -75,6 +75,52 @@ std::string WhatItShows(const Photo& photo, double square_px, cv::Rect area) {
          " % of full scale, edges " + FormatFixed(edge_px, 1) + " px wide)";
 }
 
+// How many squares across and down the photograph shows in `area` (the board as predicted, widened into its
+// white margin): a line across a row of N squares that starts dark crosses N or N + 1 edges, one that starts
+// light N or N - 1, and the rows alternate, so the mean over the lines that cross any edge is N. Edges are
+// counted with hysteresis about the middle of the area's range, on the image smoothed against the noise.
+std::array<int, 2> SquaresSeen(const Photo& photo, cv::Rect area) {
+  area &= cv::Rect(0, 0, photo.width, photo.height);
+  if (area.width < 8 || area.height < 8) return {0, 0};
+  cv::Mat image(photo.height, photo.width, CV_32F, const_cast<float*>(photo.pixels.data()));
+  cv::Mat smooth;
+  cv::GaussianBlur(image(area), smooth, cv::Size(0, 0), 1.0);
+  std::vector<float> values(smooth.begin<float>(), smooth.end<float>());
+  const double low = Quantile(values, 0.05), high = Quantile(values, 0.95);
+  const double middle = 0.5 * (low + high), band = 0.2 * (high - low);
+  if (!(band > 0)) return {0, 0};
+  std::array<int, 2> seen = {0, 0};
+  for (int axis = 0; axis < 2; ++axis) {  // 0: along rows (squares across), 1: along columns
+    const int lines = axis == 0 ? smooth.rows : smooth.cols, length = axis == 0 ? smooth.cols : smooth.rows;
+    double edges = 0;
+    int crossing = 0;
+    for (int line = 0; line < lines; ++line) {
+      int count = 0, state = 0;  // 0: not yet known, 1: light, -1: dark
+      for (int k = 0; k < length; ++k) {
+        const float v = axis == 0 ? smooth.at<float>(line, k) : smooth.at<float>(k, line);
+        const int now = v > middle + band ? 1 : v < middle - band ? -1 : state;
+        if (state != 0 && now != state) ++count;
+        state = now;
+      }
+      if (count > 0) edges += count, ++crossing;
+    }
+    if (crossing > 0) seen[axis] = static_cast<int>(std::lround(edges / crossing));
+  }
+  return seen;
+}
+
+// The mean distance from each point to its nearest neighbor: a found board's square size.
+double NeighborSpacing(const std::vector<cv::Point2f>& points) {
+  double sum = 0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    double nearest = INFINITY;
+    for (size_t j = 0; j < points.size(); ++j)
+      if (j != i) nearest = std::min(nearest, static_cast<double>(cv::norm(points[i] - points[j])));
+    sum += nearest;
+  }
+  return sum / static_cast<double>(std::max<size_t>(1, points.size()));
+}
+
 std::vector<cv::Point2f> TryBoard(const cv::Mat& image8, int cols, int rows) {
   std::vector<cv::Point2f> corners;
   if (!cv::findChessboardCorners(image8, cv::Size(cols, rows), corners,
@@ -89,26 +135,37 @@ Photo ReadPhoto(const std::string& path, const std::string& response) {
   const double gamma = ResponseGamma(response);
   Photo photo;
   if (EndsWith(path, ".exr")) {
-    std::string channel = "Y";
-    try {
-      Image image = ReadExr(path, {"Y"});
-      photo.width = image.width, photo.height = image.height, photo.pixels = std::move(image.pixels);
-    } catch (const Error&) {
-      Image image = ReadExr(path, {"G"});
-      photo.width = image.width, photo.height = image.height, photo.pixels = std::move(image.pixels);
-    }
+    RequireRegularFile(path, "photograph");
+    // Y when the file has it, else G: a file with Y is read as Y, so that a bad Y pixel is named as such.
+    const std::vector<std::string> present = ReadExrChannelNames(path);
+    const bool has_y = std::find(present.begin(), present.end(), "Y") != present.end();
+    ExrLimits limits;
+    limits.max_pixels = static_cast<long long>(kMaxPhotoPixels);
+    Image image = ReadExr(path, {has_y ? "Y" : "G"}, limits);
+    photo.width = image.width, photo.height = image.height, photo.pixels = std::move(image.pixels);
   } else if (EndsWith(path, ".png")) {
-    if (!std::filesystem::exists(path)) throw Error(path + ": no such file");
-    cv::Mat m = cv::imread(path, cv::IMREAD_UNCHANGED);
-    if (m.empty()) throw Error(path + ": cannot read it as a PNG");
-    const double full = m.depth() == CV_16U ? 65535.0 : m.depth() == CV_8U ? 255.0 : 0.0;
-    if (full == 0) throw Error(path + ": expected an 8- or 16-bit PNG");
-    if (m.channels() == 3 || m.channels() == 4)
-      cv::cvtColor(m, m, m.channels() == 3 ? cv::COLOR_BGR2GRAY : cv::COLOR_BGRA2GRAY);
-    cv::Mat f;
-    m.convertTo(f, CV_32F, 1.0 / full);
-    photo.width = f.cols, photo.height = f.rows;
-    photo.pixels.assign(f.begin<float>(), f.end<float>());
+    RequireRegularFile(path, "photograph");
+    RequirePngWithinLimit(path, ReadPngHeader(path), kMaxPhotoPixels);
+    cv::Mat m;
+    try {
+      m = cv::imread(path, cv::IMREAD_UNCHANGED);
+      if (m.empty()) throw Error(path + ": cannot read it as a PNG (truncated or corrupt)");
+      const double full = m.depth() == CV_16U ? 65535.0 : m.depth() == CV_8U ? 255.0 : 0.0;
+      if (full == 0) throw Error(path + ": expected an 8- or 16-bit PNG");
+      if (m.channels() == 2) {  // gray and alpha: the gray
+        cv::Mat gray;
+        cv::extractChannel(m, gray, 0);
+        m = gray;
+      }
+      if (m.channels() == 3 || m.channels() == 4)
+        cv::cvtColor(m, m, m.channels() == 3 ? cv::COLOR_BGR2GRAY : cv::COLOR_BGRA2GRAY);
+      cv::Mat f;
+      m.convertTo(f, CV_32F, 1.0 / full);
+      photo.width = f.cols, photo.height = f.rows;
+      photo.pixels.assign(f.begin<float>(), f.end<float>());
+    } catch (const cv::Exception& e) {
+      throw Error(path + ": OpenCV cannot decode it: " + e.err);
+    }
   } else {
     throw Error(path + ": photographs are read from linear EXR (.exr) or 8/16-bit PNG (.png)");
   }
@@ -155,10 +212,35 @@ CornerSearch FindChessboardCorners(const Photo& photo, const Chessboard& board,
       u0 = std::min(u0, p[0]), v0 = std::min(v0, p[1]), u1 = std::max(u1, p[0]), v1 = std::max(v1, p[1]);
     const cv::Rect area(static_cast<int>(u0 - square_px), static_cast<int>(v0 - square_px),
                         static_cast<int>(u1 - u0 + 2 * square_px), static_cast<int>(v1 - v0 + 2 * square_px));
+    // Another plan's board (other square counts) would read below as out of focus or partly covered. Its
+    // squares are counted over the predicted board widened by half a square and by a whole one (the other
+    // board may be wider, and beyond its white margin lies the panel's black), and a count that differs from
+    // the plan's is confirmed by finding its corners.
+    std::vector<std::array<int, 2>> tried;
+    for (double widen : {0.5, 1.0}) {
+      const int margin = std::isfinite(square_px) ? static_cast<int>(std::clamp(widen * square_px, 0.0, 1e4)) : 0;
+      const std::array<int, 2> seen = SquaresSeen(
+          photo, cv::Rect(area.x - margin, area.y - margin, area.width + 2 * margin, area.height + 2 * margin));
+      if ((seen[0] == board.squares_x && seen[1] == board.squares_y) ||
+          !ChessboardSquaresProblem(seen[0], seen[1]).empty() ||
+          std::find(tried.begin(), tried.end(), seen) != tried.end())
+        continue;
+      tried.push_back(seen);
+      // Squares of the planned size are part of the planned board (too few features, below), not another board.
+      if (std::vector<cv::Point2f> other = TryBoard(image8, seen[0] - 1, seen[1] - 1);
+          !other.empty() && std::abs(NeighborSpacing(other) / square_px - 1) > 0.05) {
+        out.reason = "wrong chessboard: the photograph shows one of " + std::to_string(seen[0]) + " x " +
+                     std::to_string(seen[1]) + " squares (its " + std::to_string(seen[0] - 1) + " x " +
+                     std::to_string(seen[1] - 1) + " inner corners found), the capture plan's has " +
+                     std::to_string(board.squares_x) + " x " + std::to_string(board.squares_y) +
+                     ": was it taken with another plan's patterns?";
+        return out;
+      }
+    }
     const std::string shows = WhatItShows(photo, square_px, area);
     // A part of the board found tells "too few features" from "not found".
     for (const auto& [c, r] : std::vector<std::pair<int, int>>{{cols - 2, rows}, {cols, rows - 2}})
-      if (c >= 2 && r >= 2 && shows.rfind("the board is not in view", 0) == 0)
+      if (c >= 3 && r >= 3 && shows.rfind("the board is not in view", 0) == 0)
         if (std::vector<cv::Point2f> part = TryBoard(image8, c, r); !part.empty()) {
           out.reason = "too few features: " + std::to_string(part.size()) + " of the board's " +
                        std::to_string(cols * rows) + " inner corners found (" + shows + ")";
@@ -218,87 +300,88 @@ Detection DetectCaptures(const std::string& folder, const CapturePlan& plan, con
   for (const PlannedCapture& c : plan.captures) {
     const std::string path = (std::filesystem::path(folder) / c.photo).string();
     const VirtualLayer& layer = layer_named(c.panel);
-    Photo photo;
+    // One unusable photograph is named and the others go on, whatever OpenCV makes of it.
     try {
-      photo = ReadPhoto(path, plan.response);
+      const Photo photo = ReadPhoto(path, plan.response);
+      if (c.kind == CaptureKind::kChessboard) {
+        const Chessboard& board = *plan.chessboard(c.panel);
+        std::vector<std::array<double, 2>> predicted;
+        for (int b = 0; b < board.corners_y(); ++b)
+          for (int a = 0; a < board.corners_x(); ++a) {
+            const auto pixel = board.corner(a, b);
+            const auto angle = ImagedMarker(designed, layer, pixel[0], pixel[1], {}, c.camera_position);
+            predicted.push_back(CameraPixelFromAngle(*camera, angle[0], angle[1]));
+          }
+        CornerSearch search = FindChessboardCorners(photo, board, predicted, check);
+        if (!search.corners) {
+          d.failures.push_back({c.photo, search.reason});
+          continue;
+        }
+        const auto key = std::make_pair(c.camera_position[0], c.camera_position[1]);
+        if (!capture_at.count(key)) {
+          capture_at[key] = d.measurements.captures.size();
+          Capture capture;
+          capture.camera_position = c.camera_position;
+          capture.where = {path, ""};
+          d.measurements.captures.push_back(capture);
+        }
+        Capture& capture = d.measurements.captures[capture_at[key]];
+        PanelMarkers markers;
+        markers.panel = c.panel;
+        markers.where = {path, ""};
+        for (size_t k = 0; k < search.corners->panel_pixels.size(); ++k) {
+          MarkerObservation m;
+          m.col = search.corners->panel_pixels[k][0];
+          m.row = search.corners->panel_pixels[k][1];
+          const auto& uv = search.corners->camera_pixels[k];
+          const auto angle = AngleFromCameraPixel(*camera, uv[0], uv[1]);
+          if (!angle) continue;  // beyond the radius where the distortion folds back
+          m.angle_x = (*angle)[0];
+          m.angle_y = (*angle)[1];
+          m.camera_pixel = uv;
+          m.where = {path, ""};
+          markers.markers.push_back(m);
+        }
+        d.corners += markers.markers.size();
+        capture.panels.push_back(std::move(markers));
+      } else {
+        if (std::string why = OverexposureReason(photo, check); !why.empty()) {
+          d.failures.push_back({c.photo, why});
+          continue;
+        }
+        // The mean over the camera pixels that see the middle half of the active region (by the design).
+        const PanelSpec& p = layer.panel;
+        double sum = 0;
+        size_t n = 0;
+        for (int v = 0; v < photo.height; ++v)
+          for (int u = 0; u < photo.width; ++u) {
+            const auto angle = AngleFromCameraPixel(*camera, u, v);
+            if (!angle) continue;
+            const auto pixel = PanelPixelAt(
+                layer, PanelPointOfRay(layer, c.camera_position, {std::tan((*angle)[0]), std::tan((*angle)[1])}));
+            const double x = (pixel[0] - static_cast<double>(p.active_left)) / static_cast<double>(p.active_cols);
+            const double y = (pixel[1] - static_cast<double>(p.active_top)) / static_cast<double>(p.active_rows);
+            if (x > 0.25 && x < 0.75 && y > 0.25 && y < 0.75) {
+              sum += photo.pixels[static_cast<size_t>(v) * photo.width + u];
+              ++n;
+            }
+          }
+        if (n < 16) {
+          d.failures.push_back({c.photo, "the middle of the panel is not in the photograph (" + std::to_string(n) +
+                                             " pixels see it): point the camera at the panel"});
+          continue;
+        }
+        PanelLuminance& curve = luminance[c.panel];
+        curve.panel = c.panel;
+        curve.levels = InputLevels::k8Bit;
+        curve.where = {path, ""};
+        curve.samples.push_back({c.level / 255.0, sum / static_cast<double>(n) / c.exposure, {path, ""}});
+        ++d.luminance_steps;
+      }
     } catch (const Error& e) {
       d.failures.push_back({c.photo, e.what()});
-      continue;
-    }
-    if (c.kind == CaptureKind::kChessboard) {
-      const Chessboard& board = *plan.chessboard(c.panel);
-      std::vector<std::array<double, 2>> predicted;
-      for (int b = 0; b < board.corners_y(); ++b)
-        for (int a = 0; a < board.corners_x(); ++a) {
-          const auto pixel = board.corner(a, b);
-          const auto angle = ImagedMarker(designed, layer, pixel[0], pixel[1], {}, c.camera_position);
-          predicted.push_back(CameraPixelFromAngle(*camera, angle[0], angle[1]));
-        }
-      CornerSearch search = FindChessboardCorners(photo, board, predicted, check);
-      if (!search.corners) {
-        d.failures.push_back({c.photo, search.reason});
-        continue;
-      }
-      const auto key = std::make_pair(c.camera_position[0], c.camera_position[1]);
-      if (!capture_at.count(key)) {
-        capture_at[key] = d.measurements.captures.size();
-        Capture capture;
-        capture.camera_position = c.camera_position;
-        capture.where = {path, ""};
-        d.measurements.captures.push_back(capture);
-      }
-      Capture& capture = d.measurements.captures[capture_at[key]];
-      PanelMarkers markers;
-      markers.panel = c.panel;
-      markers.where = {path, ""};
-      for (size_t k = 0; k < search.corners->panel_pixels.size(); ++k) {
-        MarkerObservation m;
-        m.col = search.corners->panel_pixels[k][0];
-        m.row = search.corners->panel_pixels[k][1];
-        const auto& uv = search.corners->camera_pixels[k];
-        const auto angle = AngleFromCameraPixel(*camera, uv[0], uv[1]);
-        if (!angle) continue;  // beyond the radius where the distortion folds back
-        m.angle_x = (*angle)[0];
-        m.angle_y = (*angle)[1];
-        m.camera_pixel = uv;
-        m.where = {path, ""};
-        markers.markers.push_back(m);
-      }
-      d.corners += markers.markers.size();
-      capture.panels.push_back(std::move(markers));
-    } else {
-      if (std::string why = OverexposureReason(photo, check); !why.empty()) {
-        d.failures.push_back({c.photo, why});
-        continue;
-      }
-      // The mean over the camera pixels that see the middle half of the active region (by the design).
-      const PanelSpec& p = layer.panel;
-      double sum = 0;
-      size_t n = 0;
-      for (int v = 0; v < photo.height; ++v)
-        for (int u = 0; u < photo.width; ++u) {
-          const auto angle = AngleFromCameraPixel(*camera, u, v);
-          if (!angle) continue;
-          const auto pixel = PanelPixelAt(
-              layer, PanelPointOfRay(layer, c.camera_position, {std::tan((*angle)[0]), std::tan((*angle)[1])}));
-          const double x = (pixel[0] - static_cast<double>(p.active_left)) / static_cast<double>(p.active_cols);
-          const double y = (pixel[1] - static_cast<double>(p.active_top)) / static_cast<double>(p.active_rows);
-          if (x > 0.25 && x < 0.75 && y > 0.25 && y < 0.75) {
-            sum += photo.pixels[static_cast<size_t>(v) * photo.width + u];
-            ++n;
-          }
-        }
-      if (n < 16) {
-        d.failures.push_back({c.photo, "the middle of the panel is not in the photograph (" + std::to_string(n) +
-                                           " pixels see it): point the camera at the panel"});
-        continue;
-      }
-      PanelLuminance& curve = luminance[c.panel];
-      curve.panel = c.panel;
-      curve.levels = InputLevels::k8Bit;
-      curve.where = {path, ""};
-      curve.samples.push_back({c.level / 255.0, sum / static_cast<double>(n) / c.exposure, {path, ""}});
-      ++d.luminance_steps;
+    } catch (const cv::Exception& e) {
+      d.failures.push_back({c.photo, path + ": OpenCV failed on it: " + e.err});
     }
   }
   for (const VirtualLayer& layer : designed.layers)

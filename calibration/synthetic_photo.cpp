@@ -76,6 +76,17 @@ void Blur(std::vector<double>& image, int width, int height, double sigma) {
 PhotoRenderer::PhotoRenderer(const PhotoCamera& camera) : camera_(camera) {
   if (camera.width <= 0 || camera.height <= 0 || camera.supersampling <= 0)
     throw Error("the synthetic camera needs a positive image size and supersampling");
+  if (static_cast<size_t>(camera.width) * static_cast<size_t>(camera.height) > kMaxPhotoPixels)
+    throw Error("the synthetic camera's " + std::to_string(camera.width) + " x " + std::to_string(camera.height) +
+                " pixels pass the limit of " + std::to_string(kMaxPhotoPixels));
+  for (double v : {camera.white, camera.full_well, camera.read_noise, camera.aperture, camera.focus,
+                   camera.response_gamma, camera.psf_sigma})
+    if (!std::isfinite(v)) throw Error("the synthetic camera's settings must be finite");
+  if (!(camera.white > 0) || camera.full_well < 0 || camera.read_noise < 0 || camera.aperture < 0 ||
+      !(camera.response_gamma > 0) || camera.psf_sigma < 0 || camera.bits < 0 || camera.bits > 24)
+    throw Error(
+        "the synthetic camera needs white > 0, full well, read noise, aperture and blur >= 0, a response "
+        "gamma > 0 and 0 to 24 bits");
   // The undistorted slope at every pixel corner; a sample's is interpolated between them (the
   // distortion is smooth: the error is far below a thousandth of a pixel).
   slopes_.resize(static_cast<size_t>(camera.width + 1) * (camera.height + 1) * 2);

@@ -169,6 +169,20 @@ ExrSize ReadExrSize(const std::string& path) {
   }
 }
 
+std::vector<std::string> ReadExrChannelNames(const std::string& path) {
+  LimitHeaderSizes();
+  RequireSaneExrHeaders(path);
+  try {
+    Imf::InputFile file(path.c_str());
+    std::vector<std::string> names;
+    const Imf::ChannelList& channels = file.header().channels();
+    for (auto it = channels.begin(); it != channels.end(); ++it) names.push_back(it.name());
+    return names;
+  } catch (const std::exception& e) {
+    throw Error(path + ": unreadable OpenEXR header: " + e.what());
+  }
+}
+
 Image ReadExr(const std::string& path, const std::vector<std::string>& channels, const ExrLimits& limits) {
   LimitHeaderSizes();
   RequireSaneExrHeaders(path);

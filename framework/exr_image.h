@@ -46,4 +46,7 @@ struct ExrSize {
 };
 ExrSize ReadExrSize(const std::string& path);
 
+// The names of an EXR file's channels, without reading its pixels.
+std::vector<std::string> ReadExrChannelNames(const std::string& path);
+
 }  // namespace layerlab

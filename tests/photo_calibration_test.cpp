@@ -5,8 +5,10 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <map>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "calibration/calibration.h"
@@ -215,6 +217,128 @@ TEST(PhotoDetectionTest, EachKindOfBadPhotographIsReportedWithItsReason) {
   for (const auto& [said, expected] : cases) {
     std::printf("%s\n", said.c_str());
     EXPECT_EQ(said.rfind(expected, 0), 0u) << said;
+  }
+}
+
+// Another plan's board is named as such, not "out of focus" or "not in view whole": 8 x 5 squares where the plan
+// has 10 x 6, and 10 x 6 where it has 8 x 5 (a board wider than the predicted one).
+TEST(PhotoDetectionTest, AChessboardOfOtherSquareCountsIsNamedAsSuch) {
+  const DisplaySystem designed = Example("paper_prototype.json");
+  auto plan_of = [&](int x, int y) {
+    PlanOptions o = TestPlan();
+    o.squares_x = x;
+    o.squares_y = y;
+    return PlanCaptures(designed, o);
+  };
+  const CapturePlan ten_by_six = plan_of(10, 6), eight_by_five = plan_of(8, 5);
+  auto reason = [&](const CapturePlan& planned, const CapturePlan& shown) {
+    const PlannedCapture& c = ChessboardCapture(planned, "rear_a");
+    const auto predicted = TrueCorners(designed, planned, c, TestCamera().intrinsics);
+    const Photo photo =
+        AsPhoto(PhotoRenderer(TestCamera()).Render(designed, shown, ChessboardCapture(shown, "rear_a"), 2));
+    const CornerSearch s = FindChessboardCorners(photo, *planned.chessboard("rear_a"), predicted);
+    EXPECT_FALSE(s.corners);
+    return s.reason;
+  };
+  const std::string narrower = reason(ten_by_six, eight_by_five), wider = reason(eight_by_five, ten_by_six);
+  EXPECT_EQ(narrower.rfind("wrong chessboard: the photograph shows one of 8 x 5 squares (its 7 x 4 inner corners "
+                           "found), the capture plan's has 10 x 6",
+                           0),
+            0u)
+      << narrower;
+  EXPECT_EQ(wider.rfind("wrong chessboard: the photograph shows one of 10 x 6 squares (its 9 x 5 inner corners "
+                        "found), the capture plan's has 8 x 5",
+                        0),
+            0u)
+      << wider;
+}
+
+// Boards OpenCV cannot take (fewer than 3 inner corners a side) or could find turned (square grids) are refused
+// when planned and when read from captures.json.
+TEST(CapturePlanTest, ChessboardsOpenCvCannotTakeAreRefused) {
+  const DisplaySystem designed = Example("paper_prototype.json");
+  for (const auto& [x, y] : std::vector<std::pair<int, int>>{{4, 3}, {3, 6}, {6, 6}, {2147483647, 6}}) {
+    PlanOptions o = TestPlan();
+    o.squares_x = x;
+    o.squares_y = y;
+    EXPECT_THROW(PlanCaptures(designed, o), Error) << x << " x " << y;
+    nlohmann::json doc = CapturePlanToJson(PlanCaptures(designed, TestPlan()));
+    doc["chessboards"]["rear_a"]["squares"] = {x, y};
+    try {
+      ParseCapturePlan(doc, "captures.json");
+      ADD_FAILURE() << x << " x " << y << " read";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("/chessboards/rear_a/squares"), std::string::npos) << e.what();
+    }
+  }
+  nlohmann::json doc = CapturePlanToJson(PlanCaptures(designed, TestPlan()));
+  for (const char* photo : {"../outside.exr", "/tmp/x.exr", "sub/x.exr", ""}) {
+    doc["captures"][0]["photo"] = photo;
+    EXPECT_THROW(ParseCapturePlan(doc, "captures.json"), Error) << photo;
+  }
+}
+
+void WriteBytes(const std::string& path, const std::string& bytes) { std::ofstream(path, std::ios::binary) << bytes; }
+
+uint32_t Crc32(const std::string& bytes) {
+  uint32_t crc = 0xffffffffu;
+  for (unsigned char b : bytes) {
+    crc ^= b;
+    for (int k = 0; k < 8; ++k) crc = crc & 1 ? (crc >> 1) ^ 0xedb88320u : crc >> 1;
+  }
+  return ~crc;
+}
+
+std::string BigEndian(uint32_t v) {
+  return {static_cast<char>(v >> 24), static_cast<char>(v >> 16), static_cast<char>(v >> 8), static_cast<char>(v)};
+}
+
+// A PNG of a valid signature and header (CRC included) that declares `width` x `height` 16-bit RGBA pixels, and
+// nothing after it.
+std::string PngHeaderOnly(uint32_t width, uint32_t height) {
+  const std::string ihdr = "IHDR" + BigEndian(width) + BigEndian(height) + std::string{16, 6, 0, 0, 0};
+  return std::string("\x89PNG\r\n\x1a\n", 8) + BigEndian(13) + ihdr + BigEndian(Crc32(ihdr));
+}
+
+// One unusable photograph of each kind is named with its reason, and the good one is used: a FIFO named .png
+// (which blocked OpenCV's open forever), a PNG declaring 30000 x 30000 pixels, a truncated PNG, an EXR with a
+// NaN pixel, a folder.
+TEST(PhotoDetectionTest, EachUnusablePhotographIsNamedAndTheOthersGoOn) {
+  const DisplaySystem designed = Example("paper_prototype.json");
+  CapturePlan plan = PlanCaptures(designed, TestPlan());
+  const PlannedCapture good = ChessboardCapture(plan, "rear_a");
+  plan.camera = TestCamera().intrinsics;
+  const std::string folder = FreshFolder("unusable_photos");
+  WriteExr(folder + "/" + good.photo, PhotoRenderer(TestCamera()).Render(designed, plan, good, 1),
+           ExrCompression::kNone);
+  const std::map<std::string, std::string> expected = {
+      {"fifo.png", "is a FIFO"},
+      {"huge.png", "the PNG declares 30000 x 30000 pixels; the limit is"},
+      {"truncated.png", "truncated PNG file"},
+      {"nan.exr", "pixel (row 1, col 2) channel Y is NaN"},
+      {"folder.png", "is a folder"}};
+  plan.captures = {good};
+  for (const auto& [name, reason] : expected) {
+    PlannedCapture c = good;
+    c.photo = name;
+    plan.captures.push_back(c);
+  }
+  ASSERT_EQ(::mkfifo((folder + "/fifo.png").c_str(), 0600), 0);
+  std::filesystem::create_directory(folder + "/folder.png");
+  WriteBytes(folder + "/huge.png", PngHeaderOnly(30000, 30000));
+  WriteBytes(folder + "/truncated.png", PngHeaderOnly(300, 200).substr(0, 20));
+  Image nan = PhotoRenderer(TestCamera()).Render(designed, plan, good, 1);
+  nan.pixels[1 * nan.width + 2] = NAN;
+  WriteExr(folder + "/nan.exr", nan, ExrCompression::kNone);
+
+  const Detection d = DetectCaptures(folder, plan, designed, std::nullopt);
+  std::filesystem::remove_all(folder);
+  EXPECT_EQ(d.corners, 45u);
+  ASSERT_EQ(d.failures.size(), expected.size());
+  for (const PhotoFailure& f : d.failures) {
+    ASSERT_TRUE(expected.count(f.photo)) << f.photo;
+    EXPECT_NE(f.reason.find(expected.at(f.photo)), std::string::npos) << f.photo << ": " << f.reason;
+    EXPECT_EQ(f.reason.find("internal error"), std::string::npos) << f.reason;
   }
 }
 

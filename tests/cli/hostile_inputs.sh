@@ -224,6 +224,127 @@ if [ -n "${LAYERLAB_PYTHONPATH:-}" ]; then
       read_lightfield "$l"
   done
 fi
+
+# --- photographs (issue 40): each unusable photograph named and the others used; bad numbers refused ---
+# photo_expect LABEL WANT TEXT COMMAND...: within 30 s, exits 0 (WANT "used") or with a refusal (WANT "refused":
+# 1, or CLI11's code for an option it checks) and says TEXT on stderr; anything else (a hang, a signal,
+# `internal error`, another message) is a failure.
+photo_expect() {
+  local label=$1 want=$2 text=$3
+  shift 3
+  runs=$((runs + 1))
+  timeout 30 "$@" >log.out 2>log.err </dev/null
+  local code=$? ok=1
+  case $want:$code in used:0 | refused:1 | refused:10[5-9]) ;; *) ok=0 ;; esac
+  if [ "$ok" -eq 0 ] || ! grep -qF -- "$text" log.err || grep -q "internal error" log.err; then
+    echo "FAIL: $label: exit $code (want $want), wanted \"$text\"; stderr: $(head -c 400 log.err)"
+    failures=$((failures + 1))
+  fi
+}
+prototype=$source/examples/paper_prototype.json
+echo '{ "fx": 760, "fy": 760, "cx": 359.5, "cy": 209.5, "k1": -0.05 }' >camera.json
+# One chessboard photograph of rear_a and one luminance photograph, of 10 x 6 and of 8 x 5 squares.
+for squares in "10 6" "8 5"; do
+  plan=plan_${squares/ /x}
+  # shellcheck disable=SC2086
+  "$layerlab" calibration-patterns "$prototype" --out "$plan" --squares $squares --levels 128 --camera camera.json \
+    >/dev/null 2>&1 || { echo "FAIL: cannot plan $squares"; exit 1; }
+  /usr/bin/python3 - "$plan/captures.json" <<'PY' || { echo "FAIL: cannot trim the plan"; exit 1; }
+import json, sys
+plan = json.load(open(sys.argv[1]))
+plan["captures"] = [c for c in plan["captures"] if c["panel"] == "rear_a"][:1] + \
+                   [c for c in plan["captures"] if c["panel"] == "rear_a" and c["pattern"] == "luminance"]
+json.dump(plan, open(sys.argv[1], "w"), indent=2)
+PY
+  "$layerlab" photograph "$plan" --scene "$prototype" --out "photos_${squares/ /x}" --size 720 420 >/dev/null 2>&1 ||
+    { echo "FAIL: cannot photograph $squares"; exit 1; }
+done
+board=rear_a_chessboard_0.exr
+photo_variant() {  # photo_variant NAME [NEW_PHOTO_NAME]: photos_10x6 copied, the chessboard photograph renamed
+  rm -rf "photos_$1" && cp -r photos_10x6 "photos_$1"
+  if [ $# -ge 2 ]; then
+    rm "photos_$1/$board"
+    sed -i "s#\"$board\"#\"$2\"#" "photos_$1/captures.json"
+  fi
+}
+photo_variant fifo_png board.png && mkfifo photos_fifo_png/board.png  # OpenCV's open blocked on it for good
+photo_variant folder && rm "photos_folder/$board" && mkdir "photos_folder/$board"
+photo_variant huge_png board.png && /usr/bin/python3 - photos_huge_png/board.png <<'PY'
+import struct, sys, zlib
+def chunk(kind, data):
+    return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+ihdr = struct.pack(">IIBBBBB", 30000, 30000, 16, 6, 0, 0, 0)  # 16-bit RGBA: 7.2 GB decoded
+png = b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + chunk(b"IDAT", zlib.compress(b"\0" * 4000)) + chunk(b"IEND", b"")
+open(sys.argv[1], "wb").write(png)
+PY
+photo_variant truncated_png board.png && head -c 20 "plan_10x6/patterns/rear_a_chessboard.png" >photos_truncated_png/board.png
+photo_variant nan_exr && /usr/bin/python3 - "photos_nan_exr/$board" <<'PY'
+import struct, sys
+# An 8 x 8 uncompressed float EXR, channel Y, one pixel NaN.
+def attr(name, kind, data):
+    return name.encode() + b"\0" + kind.encode() + b"\0" + struct.pack("<i", len(data)) + data
+w = h = 8
+header = b"\x76\x2f\x31\x01" + struct.pack("<I", 2)
+header += attr("channels", "chlist", b"Y\0" + struct.pack("<iB3xii", 2, 0, 1, 1) + b"\0")
+header += attr("compression", "compression", b"\0")
+box = struct.pack("<iiii", 0, 0, w - 1, h - 1)
+header += attr("dataWindow", "box2i", box) + attr("displayWindow", "box2i", box)
+header += attr("lineOrder", "lineOrder", b"\0") + attr("pixelAspectRatio", "float", struct.pack("<f", 1))
+header += attr("screenWindowCenter", "v2f", struct.pack("<ff", 0, 0)) + attr("screenWindowWidth", "float", struct.pack("<f", 1))
+header += b"\0"
+start = len(header) + 8 * h
+lines, offsets = b"", []
+for y in range(h):
+    offsets.append(start + len(lines))
+    values = [float("nan") if (y, x) == (3, 5) else 0.25 for x in range(w)]
+    data = struct.pack("<%df" % w, *values)
+    lines += struct.pack("<ii", y, len(data)) + data
+open(sys.argv[1], "wb").write(header + struct.pack("<%dQ" % h, *offsets) + lines)
+PY
+photo_variant wrong_board && cp "photos_8x5/$board" "photos_wrong_board/$board"
+for v in fifo_png:"is a FIFO" folder:"is a folder" huge_png:"declares 30000 x 30000 pixels; the limit is" \
+  truncated_png:"truncated PNG file" nan_exr:"(row 3, col 5) channel Y is NaN" \
+  wrong_board:"wrong chessboard: the photograph shows one of 8 x 5 squares"; do
+  name=${v%%:*} photo=$board
+  case $name in *_png) photo=board.png ;; esac
+  # In 4 GB of address space, as on a small machine: OpenCV allocated the huge PNG's 7.2 GB and failed.
+  photo_expect "detect, photograph $name" used "warning: $photo: " bash -c 'ulimit -v 4000000 && exec "$0" "$@"' \
+    "$layerlab" detect "photos_$name" --scene "$prototype" --out "m_$name.json"
+  grep -qF -- "${v#*:}" log.err || { echo "FAIL: detect, photograph $name: not \"${v#*:}\": $(head -c 400 log.err)"; failures=$((failures + 1)); }
+  grep -q "in 1 of 2 photographs (1 failed" log.out || { echo "FAIL: detect, photograph $name: the other photograph not used"; failures=$((failures + 1)); }
+done
+# Chessboards OpenCV cannot take, on the command line and in captures.json.
+photo_expect "calibration-patterns --squares 4 3" refused "--squares 4 3: a chessboard of 4 x 3 squares" \
+  "$layerlab" calibration-patterns "$prototype" --out o_patterns --squares 4 3
+photo_expect "calibration-patterns --squares 6 6" refused "turned by 90 degrees" \
+  "$layerlab" calibration-patterns "$prototype" --out o_patterns --squares 6 6
+photo_variant squares_4x3 && /usr/bin/python3 - photos_squares_4x3/captures.json <<'PY'
+import json, sys
+plan = json.load(open(sys.argv[1]))
+plan["chessboards"]["rear_a"]["squares"] = [4, 3]
+json.dump(plan, open(sys.argv[1], "w"), indent=2)
+PY
+photo_expect "detect, captures.json squares 4 3" refused "/chessboards/rear_a/squares" \
+  "$layerlab" detect photos_squares_4x3 --scene "$prototype" --out m_squares.json
+# A plan whose capture shows a level pattern of letters (std::stoi threw std::invalid_argument).
+photo_variant show_letters && /usr/bin/python3 - photos_show_letters/captures.json <<'PY'
+import json, sys
+plan = json.load(open(sys.argv[1]))
+plan["captures"][1]["show"]["rear_a"] = "patterns/rear_a_level_abc.png"
+json.dump(plan, open(sys.argv[1], "w"), indent=2)
+PY
+photo_expect "photograph, a plan showing rear_a_level_abc.png" refused "is not a pattern of panel" \
+  "$layerlab" photograph photos_show_letters --scene "$prototype" --out o_photos --size 72 42
+# photograph's numbers: each refused naming the option and the value, nothing written.
+for bad in "--size 100000 100000" "--size 0 10" "--white nan" "--white 0" "--read-noise nan" "--read-noise -1" \
+  "--full-well -1" "--full-well inf" "--bits -3" "--bits 99" "--seed -1"; do
+  rm -rf o_photos
+  # shellcheck disable=SC2086
+  photo_expect "photograph $bad" refused "${bad%% *}" "$layerlab" photograph plan_10x6 --scene "$prototype" --out o_photos $bad
+  grep -qF -- "${bad#* }" log.err || { echo "FAIL: photograph $bad: the value is not named"; failures=$((failures + 1)); }
+  [ -e o_photos ] && { echo "FAIL: photograph $bad wrote o_photos"; failures=$((failures + 1)); }
+done
+# --- end photographs ---
 echo "$runs commands on hostile inputs, $failures ended otherwise than in a clear error"
 [ "$failures" -eq 0 ] || exit 1
 echo PASS

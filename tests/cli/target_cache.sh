@@ -73,6 +73,6 @@ wait $pid 2>/dev/null
 [ -e "$out/target/render.json" ] && fail "a killed run left a render record in place"
 run
 expect "target: rendering .*: no earlier render in $out/target"
-expect "removed .*left by a layerlab process that no longer runs"
+expect "removed .*left by a layerlab process that no longer works there"
 echo "killed run: its render was not reused"
 echo "PASS"
