@@ -110,7 +110,9 @@ TEST(Contrast, NaturalViewingIsOneAtTheTargetThroughEveryEyeModel) {
       if (keys.contains("zernike")) continue;
       const ContrastCurve& display = Curve(curves, "one_layer", 3.0);
       EXPECT_NEAR(display.peak.at_grid, dt, 1e-9);
-      if (reference == ContrastReference::kSampledTarget) EXPECT_NEAR(display.at_target, 1.0, 0.01);
+      if (reference == ContrastReference::kSampledTarget) {
+        EXPECT_NEAR(display.at_target, 1.0, 0.01);
+      }
     }
 }
 
