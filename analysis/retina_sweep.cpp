@@ -13,6 +13,7 @@
 #include "framework/exr_image.h"
 #include "framework/png_writer.h"
 #include "framework/polarization.h"
+#include "framework/units.h"
 #include "systems/diffraction.h"
 
 namespace layerlab {
@@ -26,19 +27,13 @@ double MeanLuminance(const Image& image) {
   return sum / (double(image.width) * image.height);
 }
 
-std::string Number(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", x);
-  return text;
-}
-
 }  // namespace
 
 void CheckAccommodationStates(const std::vector<double>& states, const std::string& name) {
   if (states.empty()) throw Error(name + ": no accommodation state given");
   for (size_t k = 0; k < states.size(); ++k)
     if (!std::isfinite(states[k]) || !(states[k] >= 0))
-      throw Error(name + "[" + std::to_string(k) + "]: " + Number(states[k]) +
+      throw Error(name + "[" + std::to_string(k) + "]: " + FormatGeneral(states[k]) +
                   " is not a finite number of diopters >= 0");
 }
 

@@ -1,22 +1,13 @@
 #include "framework/lightfield_checks.h"
 
 #include <cmath>
-#include <cstdio>
 
 #include "framework/checked_count.h"
 #include "framework/error.h"
 #include "framework/exr_image.h"
+#include "framework/units.h"
 
 namespace layerlab {
-namespace {
-
-std::string Number(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", x);
-  return text;
-}
-
-}  // namespace
 
 void CheckLightFieldGeometry(const LightFieldGeometry& g, const GeometryFailure& fail) {
   auto fail_now = [&](const std::string& field, const std::string& why) {
@@ -25,15 +16,15 @@ void CheckLightFieldGeometry(const LightFieldGeometry& g, const GeometryFailure&
   };
   auto length = [&](const std::string& field, double x, bool zero_allowed, double max) {
     if (!std::isfinite(x) || (zero_allowed ? x < 0 : x <= 0) || x > max)
-      fail_now(field,
-               "must be in " + std::string(zero_allowed ? "[" : "(") + "0, " + Number(max) + "] m, got " + Number(x));
+      fail_now(field, "must be in " + std::string(zero_allowed ? "[" : "(") + "0, " + FormatGeneral(max) + "] m, got " +
+                          FormatGeneral(x));
   };
   auto count = [&](const std::string& field, int n, int max) {
     if (n < 1 || n > max) fail_now(field, "must be in [1, " + std::to_string(max) + "], got " + std::to_string(n));
   };
   length("origin_z", g.origin_z, false, 1e6);
-  if (!std::isfinite(g.window_left)) fail_now("window_left", "must be finite, got " + Number(g.window_left));
-  if (!std::isfinite(g.window_top)) fail_now("window_top", "must be finite, got " + Number(g.window_top));
+  if (!std::isfinite(g.window_left)) fail_now("window_left", "must be finite, got " + FormatGeneral(g.window_left));
+  if (!std::isfinite(g.window_top)) fail_now("window_top", "must be finite, got " + FormatGeneral(g.window_top));
   length("window_width", g.window_width, false, 1e6);
   length("window_height", g.window_height, false, 1e6);
   count("cols", g.cols, kMaxPixelsPerAxis);

@@ -144,6 +144,12 @@ Depth ParseDepth(std::string_view text) {
               AcceptedUnits(Dimension::kLength));
 }
 
+std::string FormatGeneral(double value) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", value);
+  return buf;
+}
+
 std::string FormatFixed(double value, int decimals) {
   if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
   char buf[64];

@@ -41,5 +41,7 @@ Depth ParseDepth(std::string_view text);
 
 // Formats a value in a chosen unit with fixed decimals: "72.81 mm".
 std::string FormatFixed(double value, int decimals);
+// A value in six significant digits, for messages: "1e-09", "170", "0.05" (printf's %g).
+std::string FormatGeneral(double value);
 
 }  // namespace layerlab

@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <numbers>
 
@@ -16,28 +15,20 @@
 
 namespace layerlab {
 
-namespace {
-
-std::string Shortest(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.6g", value);
-  return text;
-}
-
-}  // namespace
-
 void CheckRetinaSampling(double field_x_deg, double field_y_deg, double resolution_deg, const std::string& field_name,
                          const std::string& resolution_name) {
   if (!(resolution_deg > 0) || !(resolution_deg < 10))
-    throw Error(resolution_name + ": " + Shortest(resolution_deg) + " deg is not a retinal sample size in (0, 10) deg");
+    throw Error(resolution_name + ": " + FormatGeneral(resolution_deg) +
+                " deg is not a retinal sample size in (0, 10) deg");
   for (double side : {field_x_deg, field_y_deg})
     if (!(side > 0) || !(side <= 170))
-      throw Error(field_name + ": " + Shortest(side) + " deg is not a retinal field side in (0, 170] deg");
+      throw Error(field_name + ": " + FormatGeneral(side) + " deg is not a retinal field side in (0, 170] deg");
   const double cols = std::max(1.0, std::round(field_x_deg / resolution_deg));
   const double rows = std::max(1.0, std::round(field_y_deg / resolution_deg));
   if (cols * rows > 1e8)
-    throw Error(resolution_name + ": " + Shortest(resolution_deg) + " deg over a field of " + Shortest(field_x_deg) +
-                " x " + Shortest(field_y_deg) + " deg is " + Shortest(cols) + " x " + Shortest(rows) +
+    throw Error(resolution_name + ": " + FormatGeneral(resolution_deg) + " deg over a field of " +
+                FormatGeneral(field_x_deg) + " x " + FormatGeneral(field_y_deg) + " deg is " + FormatGeneral(cols) +
+                " x " + FormatGeneral(rows) +
                 " retinal samples, beyond the 1e8 a retina may have; give a larger sample size or a smaller field");
 }
 
