@@ -226,7 +226,7 @@ def table(rows, total_seconds):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--build", default=os.path.join(SOURCE, "build"), help="the build folder (default: build)")
-    parser.add_argument("--only", help="comma-separated mutant ids")
+    parser.add_argument("--only", help="comma-separated mutant ids, run in that order")
     parser.add_argument("--sample", choices=["ci"], help="the fixed subset CI runs")
     parser.add_argument("--table", help="also write the markdown table to this file")
     parser.add_argument("--lock", help="hold this flock file for each mutant's build and tests")
@@ -248,7 +248,8 @@ def main():
         unknown = [w for w in wanted if w not in {m["id"] for m in mutants}]
         if unknown:
             sys.exit(f"mutants: --only: no mutant {', '.join(unknown)}")
-        mutants = [m for m in mutants if m["id"] in wanted]
+        by_id = {m["id"]: m for m in mutants}
+        mutants = [by_id[w] for w in dict.fromkeys(wanted)]  # in the order given
     if args.sample:
         mutants = [m for m in mutants if args.sample in m.get("samples", [])]
     if not os.path.isfile(os.path.join(args.build, "CMakeCache.txt")):
