@@ -196,6 +196,7 @@ def try_mutant(args, m, log):
         return f"not applicable ({count} matches)", time.monotonic() - start
     log.write(f"\n===== {m['id']}: {m['file']}: {m['breaks']}\n")
     with build_lock(args.lock):
+        start = time.monotonic()  # the time of the mutant's own work, not of the wait for the lock
         with mutated(args.build, m["file"], original, original.replace(find, replace)):
             if not build(args.build, targets_of(m), log):
                 status = "build failed"
