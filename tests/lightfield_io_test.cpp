@@ -5,9 +5,11 @@
 #include <sys/un.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <utility>
 
 #include "framework/exr_image.h"
 #include "framework/json_file.h"
@@ -74,6 +76,25 @@ TEST_F(LightFieldFolder, RoundTripsExactly) {
     EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
 }
 
+TEST_F(LightFieldFolder, ABlockOfViewRowsIsReadWholeOrRefusedWhenItRunsPastTheLastRow) {
+  LightFieldReadOptions last;
+  last.first_view_row = 1, last.view_rows = 1;
+  const LightField row = ReadLightField(dir_.string(), last);
+  ASSERT_EQ(row.rgb.size(), lf_.rgb.size() / 2);
+  EXPECT_TRUE(std::equal(row.rgb.begin(), row.rgb.end(), lf_.rgb.begin() + lf_.rgb.size() / 2));
+  for (const auto& [first, rows] : {std::pair{1, 2}, std::pair{2, 1}, std::pair{-1, 1}}) {
+    LightFieldReadOptions o;
+    o.first_view_row = first, o.view_rows = rows;
+    try {
+      ReadLightField(dir_.string(), o);
+      ADD_FAILURE() << "view rows " << first << " to " << first + rows - 1 << " of 2 were read";
+    } catch (const Error& e) {
+      EXPECT_EQ(std::string(e.what()), Path("lightfield.json") + ": view rows " + std::to_string(first) + " to " +
+                                           std::to_string(first + rows - 1) + " were asked for; the light field has 2");
+    }
+  }
+}
+
 TEST_F(LightFieldFolder, WindowOfNoWidth) {
   EditManifest([](nlohmann::json& m) { m["window"]["width"] = "0 m"; });
   EXPECT_EQ(ReadError(), Path("lightfield.json") + ": /window/width: must be in (0, 1000000] (SI units), got 0");
@@ -94,6 +115,9 @@ TEST_F(LightFieldFolder, ViewOfTheWrongSize) {
   Image small{4, 5, {"R", "G", "B"}, std::vector<float>(4 * 5 * 3, 0.5f)};
   WriteExr(Path("views/r00_c01.exr"), small);
   EXPECT_EQ(ReadError(), Path("views/r00_c01.exr") + ": is 4 x 5 pixels; the manifest declares 8 x 5");
+  Image short_view{8, 4, {"R", "G", "B"}, std::vector<float>(8 * 4 * 3, 0.5f)};  // the right width, too few rows
+  WriteExr(Path("views/r00_c01.exr"), short_view);
+  EXPECT_EQ(ReadError(), Path("views/r00_c01.exr") + ": is 8 x 4 pixels; the manifest declares 8 x 5");
 }
 
 TEST_F(LightFieldFolder, NonFiniteAndNegativePixelsAreNamed) {

@@ -1,6 +1,9 @@
 // Retinal images against geometric optics.
 #include <cmath>
 #include <numbers>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "systems/lightfield_radiance.h"
 #include "systems/retina.h"
@@ -71,6 +74,41 @@ double BlurDiameter(double z, double accommodation, const RetinaGrid& retina, in
     for (int i = 0; i < retina.rows; ++i)
       if (image.at(i, j, 0) > 0) lo = std::min(lo, retina.angle_x(j)), hi = std::max(hi, retina.angle_x(j));
   return hi - lo;
+}
+
+// The pupil grid of any sides: the cell centers (grid) or a point in each cell
+// (jittered), row by row from the top, covering the square pupil evenly.
+TEST(Retina, PupilPointsOfUnequalSidesLieEachInItsOwnCell) {
+  for (const auto& [nx, ny] : {std::pair{4, 2}, std::pair{2, 5}, std::pair{3, 3}})
+    for (PupilSampling sampling : {PupilSampling::kGrid, PupilSampling::kJittered}) {
+      SCOPED_TRACE(std::to_string(nx) + " x " + std::to_string(ny) +
+                   (sampling == PupilSampling::kGrid ? " grid" : " jittered"));
+      EyeModel eye;
+      eye.pupil_diameter = 4e-3;
+      eye.pupil_samples_x = nx, eye.pupil_samples_y = ny;
+      eye.pupil_sampling = sampling;
+      const double a = eye.pupil_diameter;
+      const std::vector<PupilPoint> points = PupilSamples(eye);
+      ASSERT_EQ(points.size(), size_t(nx * ny));
+      double mean_x = 0, mean_y = 0;
+      for (int i = 0; i < ny; ++i)
+        for (int j = 0; j < nx; ++j) {
+          const PupilPoint& p = points[size_t(i * nx + j)];
+          const double left = -a / 2 + j * a / nx, top = a / 2 - i * a / ny;
+          if (sampling == PupilSampling::kGrid) {
+            EXPECT_NEAR(p.x, left + 0.5 * a / nx, 1e-15) << "row " << i << ", column " << j;
+            EXPECT_NEAR(p.y, top - 0.5 * a / ny, 1e-15) << "row " << i << ", column " << j;
+          } else {
+            EXPECT_TRUE(p.x >= left && p.x <= left + a / nx) << "row " << i << ", column " << j << ": x " << p.x;
+            EXPECT_TRUE(p.y <= top && p.y >= top - a / ny) << "row " << i << ", column " << j << ": y " << p.y;
+          }
+          mean_x += p.x / (nx * ny), mean_y += p.y / (nx * ny);
+        }
+      if (sampling == PupilSampling::kGrid) {
+        EXPECT_NEAR(mean_x, 0, 1e-15);
+        EXPECT_NEAR(mean_y, 0, 1e-15);
+      }
+    }
 }
 
 TEST(Retina, PointBlurMatchesGeometricOptics) {
