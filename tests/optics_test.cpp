@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "systems/optics.h"
+#include "systems/ray_transfer.h"
 #include "tests/test_util.h"
 
 namespace layerlab {
@@ -80,6 +81,24 @@ TEST(Optics, FocalPlaneIsInfinityWithoutNaN) {
   EXPECT_EQ(PanelDistanceForDiopters(0.0, f, e), f);
   // Continuity: just inside the focal plane the angular scale tends to 1/f.
   EXPECT_TRUE(Close(FloatPanel(f * (1 - 1e-9), f, e).tan_per_meter, 1 / f, 1e-6));
+}
+
+// `then` composes in path order: a ray meets this transfer first, then `next`. Checked against the ray traced
+// element by element by hand (y' = y + t u through a gap, u' = u - P y through a lens), where the order matters.
+TEST(Optics, ThenAppliesThisTransferFirstAsTheRayMeetsIt) {
+  const RayTransfer<double> first = RayTransfer<double>().then_gap(0.03).then_power(1 / 0.075);
+  const RayTransfer<double> second = RayTransfer<double>().then_gap(0.02).then_power(-5.0);
+  const RayTransfer<double> both = first.then(second);
+  double y = 0.002, u = 0.1;  // m, slope
+  const double y0 = y, u0 = u;
+  y += 0.03 * u;
+  u -= y / 0.075;
+  y += 0.02 * u;
+  u -= -5.0 * y;
+  EXPECT_NEAR(both.a * y0 + both.b * u0, y, 1e-15);
+  EXPECT_NEAR(both.c * y0 + both.d * u0, u, 1e-14);
+  const RayTransfer<double> reversed = second.then(first);
+  EXPECT_GT(std::abs(reversed.a * y0 + reversed.b * u0 - y), 1e-5) << "the example does not tell the orders apart";
 }
 
 }  // namespace

@@ -724,6 +724,12 @@ TEST(SolverCheckpoint, EachFieldOfTheDigestChangedInTurnIsRefusedByName) {
   std::filesystem::remove_all(folder);
 }
 
+// PSNR of a light field against its target, peak 1: 10 log10(samples / sum of squared errors), by hand.
+TEST(Objective, PsnrIsTenLogOfSamplesOverTheSquaredError) {
+  EXPECT_NEAR(PsnrDb(0.01, 100), 40.0, 1e-12);  // a mean squared error of 1e-4
+  EXPECT_NEAR(PsnrDb(2.5, 10), 6.020599913279624, 1e-12);
+}
+
 TEST(Solvers, AdditiveRefusesStacks) {
   Fixture f = MakeFixture("paper_prototype.json", 8, 4, 2);
   Patterns t;
