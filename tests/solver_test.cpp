@@ -717,6 +717,16 @@ TEST(SolverCheckpoint, EachFieldOfTheDigestChangedInTurnIsRefusedByName) {
           << e.what();
     }
   }
+  // A checkpoint of an older layerlab records no digest: refused as such, not as a mismatch of its first part.
+  std::ofstream(folder + "/checkpoint.json") << R"({"format": "layerlab-checkpoint/1"})";
+  try {
+    RefuseMismatchedCheckpoint(folder, recorded);
+    ADD_FAILURE() << "a checkpoint without a digest was resumed";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("/digest: the checkpoint does not record what it was made for"),
+              std::string::npos)
+        << e.what();
+  }
   // What does not change the result does not change the digest.
   SolverOptions same = base;
   same.iterations = 7, same.time_budget = 3, same.tolerance = 0.1, same.threads = 2;
