@@ -23,11 +23,14 @@
 //  4. Light-field operators           systems/display_model.h     DisplayModel
 //     The system bound to the target's rays: one projection P_k per layer
 //     (systems/projection.h, sampling in systems/layer_sampler.h) and the
-//     branch weights, l~ = sum_b w_b prod_k P_k t_k (paper Eq. 3-5). The
-//     fast path of the common case and its per-view row runs:
-//     systems/one_tap_view.h; a whole view of a set of patterns:
-//     systems/view_synthesizer.h. The passes' working memory, one per
-//     solve, per thread and shared: systems/solve_workspace.h.
+//     branch weights, l~ = sum_b w_b prod_k P_k t_k (paper Eq. 3-5).
+//     The fast path over the rays     kernels/view_synthesizer.h  Synthesize
+//     reads the model and nothing above it (kernels/): the one-tap views
+//     and their row kernels, the pixel-pair lattice, the multiplicative
+//     update's and the joint pass's sums, and the passes' working memory,
+//     one per solve, per thread and shared (kernels/solve_workspace.h).
+//     The eye's physiology (eye/) and what it sees (retina/retina.h) sit
+//     on top of the model and the kernels.
 //
 //  5. Solver                          solvers/solve_config.h      ReadSolveConfig
 //     The "solve" section picks a solver of the registry (solvers/solver.h,
@@ -44,7 +47,7 @@
 //
 //  7. Analysis                        analysis/
 //     What the eye sees over accommodation (analysis/retina_sweep.h over
-//     systems/retina.h), contrast against frequency (analysis/contrast.h),
+//     retina/retina.h), contrast against frequency (analysis/contrast.h),
 //     several displays and solvers on one target (analysis/compare.h), the
 //     "run" section and its report (analysis/run_config.h,
 //     analysis/html_report.h). The command line (app/) calls these phases.
@@ -55,6 +58,7 @@
 #include "analysis/run_config.h"
 #include "elements/registry.h"
 #include "framework/lightfield_io.h"
+#include "kernels/view_synthesizer.h"
 #include "solvers/memory_estimate.h"
 #include "solvers/solution_writer.h"
 #include "solvers/solve_config.h"

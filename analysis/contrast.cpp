@@ -12,15 +12,16 @@
 #include <optional>
 
 #include "analysis/svg_plot.h"
+#include "eye/eye_description.h"
 #include "framework/error.h"
 #include "framework/progress.h"
 #include "framework/version.h"
+#include "retina/diffraction.h"
+#include "retina/lightfield_radiance.h"
+#include "retina/retina.h"
 #include "solvers/solve_config.h"
 #include "systems/compile.h"
-#include "systems/diffraction.h"
 #include "systems/display_model.h"
-#include "systems/lightfield_radiance.h"
-#include "systems/retina.h"
 #include "targets/plane_lightfield.h"
 
 namespace layerlab {

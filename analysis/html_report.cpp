@@ -9,7 +9,8 @@
 
 #include "analysis/layout_svg.h"
 #include "analysis/svg_plot.h"
-#include "systems/retina.h"
+#include "eye/eye_description.h"
+#include "retina/retina.h"
 #include "systems/system_report.h"
 
 namespace layerlab {

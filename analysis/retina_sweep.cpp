@@ -14,7 +14,7 @@
 #include "framework/png_writer.h"
 #include "framework/polarization.h"
 #include "framework/units.h"
-#include "systems/diffraction.h"
+#include "retina/diffraction.h"
 
 namespace layerlab {
 namespace {

@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "framework/exr_image.h"
+#include "retina/retina.h"
 #include "systems/display_model.h"
-#include "systems/retina.h"
 
 namespace layerlab {
 
@@ -31,7 +31,7 @@ struct RetinaSweepOptions {
 // finite, >= 0 D): at least one, each a finite number of diopters >= 0.
 // Throws Error naming `name` and the state's index ("accommodation[1]: nan
 // ..."). The field and sample size have their own check, CheckRetinaSampling
-// (systems/retina.h); WriteRetinaSweep and the Python module make both.
+// (retina/retina.h); WriteRetinaSweep and the Python module make both.
 void CheckAccommodationStates(const std::vector<double>& states, const std::string& name);
 
 struct RetinaStateResult {

@@ -58,8 +58,8 @@
 
 #include "framework/json_file.h"
 #include "framework/params.h"
+#include "retina/retina.h"
 #include "solvers/solve_config.h"
-#include "systems/retina.h"
 
 namespace layerlab {
 namespace {

@@ -10,8 +10,8 @@
 #include "framework/lightfield_io.h"
 #include "framework/png_writer.h"
 #include "framework/progress.h"
+#include "retina/lightfield_radiance.h"
 #include "solvers/memory_estimate.h"
-#include "systems/lightfield_radiance.h"
 #include "targets/target_scene.h"
 
 namespace layerlab {

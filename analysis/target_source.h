@@ -8,8 +8,8 @@
 #include <string>
 
 #include "framework/lightfield.h"
+#include "retina/retina.h"
 #include "solvers/solve_config.h"
-#include "systems/retina.h"
 #if LAYERLAB_WITH_EMBREE
 #include "targets/target_renderer.h"
 #include "targets/target_scene.h"

@@ -15,9 +15,9 @@
 #include "framework/error.h"
 #include "framework/staged_output.h"
 #include "framework/warnings.h"
+#include "retina/retina.h"
 #include "solvers/solve_config.h"
 #include "systems/compile.h"
-#include "systems/retina.h"
 #include "systems/system_report.h"
 
 namespace layerlab::app {

@@ -20,11 +20,11 @@
 #include "framework/lightfield_io.h"
 #include "framework/progress.h"
 #include "framework/staged_output.h"
+#include "retina/lightfield_radiance.h"
+#include "retina/retina.h"
 #include "solvers/solution_writer.h"
 #include "solvers/solve_config.h"
 #include "systems/compile.h"
-#include "systems/lightfield_radiance.h"
-#include "systems/retina.h"
 #if LAYERLAB_WITH_EMBREE
 #include "targets/target_scene.h"
 #include "targets/target_tracer.h"

@@ -13,7 +13,7 @@
 #include "framework/interrupt.h"
 #include "framework/progress.h"
 #include "framework/version.h"
-#include "systems/row_kernels.h"
+#include "kernels/row_kernels.h"
 
 int main(int argc, char** argv) {
   layerlab::app::SetCommandLine(argc, argv);

@@ -8,6 +8,7 @@
 
 #include "framework/json_file.h"
 #include "framework/lightfield_io.h"
+#include "kernels/view_synthesizer.h"
 #include "systems/compile.h"
 #include "systems/scene.h"
 
@@ -28,7 +29,7 @@ LightField SyntheticTarget(const DisplayModel& model) {
   std::uniform_real_distribution<float> u(0.2f, 0.9f);
   for (LayerPattern& p : t)
     for (float& v : p.rgb) v = u(rng);
-  return model.Synthesize(t);
+  return Synthesize(model, t);
 }
 
 }  // namespace

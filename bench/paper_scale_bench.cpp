@@ -25,19 +25,20 @@
 #include "analysis/retina_sweep.h"
 #include "bench/bench_setup.h"
 #include "framework/lightfield_io.h"
+#include "kernels/joint_pass.h"
+#include "kernels/pair_lattice.h"
+#include "kernels/solve_workspace.h"
+#include "kernels/view_synthesizer.h"
+#include "retina/lightfield_radiance.h"
+#include "retina/retina.h"
+#include "retina/retinal_operator.h"
 #include "solvers/additive_gram.h"
-#include "solvers/joint_pass.h"
 #include "solvers/multiplicative_update.h"
 #include "solvers/objective.h"
 #include "solvers/retinal_objective.h"
 #include "solvers/retinal_pass.h"
 #include "solvers/solve_config.h"
 #include "solvers/solver.h"
-#include "systems/lightfield_radiance.h"
-#include "systems/pair_lattice.h"
-#include "systems/retina.h"
-#include "systems/retinal_operator.h"
-#include "systems/solve_workspace.h"
 
 namespace layerlab::bench {
 namespace {
@@ -73,7 +74,7 @@ void BM_Synthesis(benchmark::State& state) {
   LightField out(w.target.geometry);
   SolveWorkspace workspace(*w.model, omp_get_max_threads(), kSynthesisPass);
   for (auto _ : state) {
-    w.model->Synthesize(t, &out, &workspace);
+    Synthesize(*w.model, t, &out, &workspace);
     benchmark::DoNotOptimize(out.rgb.data());
   }
   state.counters["rays_per_s"] =
@@ -141,7 +142,7 @@ void BM_UpdatePass(benchmark::State& state) {
 }
 
 // The same update's sums from the target binned by pixel pair
-// (systems/pair_lattice.h; the hybrid's sets make their updates after the
+// (kernels/pair_lattice.h; the hybrid's sets make their updates after the
 // first so), and the binning itself, made once per set and iteration.
 // Arg 0: the paper prototype's first set; 1: the 2-layer multiplicative display.
 const Workload& PairLatticeWorkload(const benchmark::State& state) {

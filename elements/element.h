@@ -109,7 +109,7 @@ enum class PupilShape { kSquare, kRound };
 enum class PupilSampling { kGrid, kJittered, kPoisson };
 enum class ChromaticAberration { kNone, kThibos };
 
-// What sets pupil_diameter when the eye asks for "auto" (systems/pupil_size.h):
+// What sets pupil_diameter when the eye asks for "auto" (eye/pupil_size.h):
 // luminance and field default to the display's (compile fills them in).
 struct PupilFromLuminance {
   std::optional<double> luminance;             // cd/m2; default half the display's peak white luminance

@@ -17,9 +17,9 @@
 #include <vector>
 
 #include "framework/lightfield.h"
+#include "kernels/view_synthesizer.h"
 #include "solvers/multiplicative_update.h"
 #include "systems/display_model.h"
-#include "systems/view_synthesizer.h"
 
 namespace layerlab {
 

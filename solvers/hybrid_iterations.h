@@ -3,7 +3,7 @@
 // sets in turn: a set's chase (the target minus the light of the other sets,
 // solvers/hybrid_chase.h), then `sub_iterations` multiplicative updates of
 // each of its layers toward it. A set of two layers whose rays are at least
-// twice their pixel pairs (systems/pair_lattice.h) bins its chase once and
+// twice their pixel pairs (kernels/pair_lattice.h) bins its chase once and
 // makes the updates after the first from the pairs: the same sums, a few
 // pairs per pixel instead of every ray.
 #pragma once
@@ -11,9 +11,9 @@
 #include <optional>
 #include <vector>
 
+#include "kernels/pair_lattice.h"
 #include "solvers/hybrid_chase.h"
 #include "solvers/solve_loop.h"
-#include "systems/pair_lattice.h"
 
 namespace layerlab {
 

@@ -29,7 +29,7 @@
 #include <optional>
 #include <vector>
 
-#include "solvers/joint_pass.h"
+#include "kernels/joint_pass.h"
 #include "solvers/multiplicative_update.h"
 #include "solvers/retinal_pass.h"
 #include "solvers/solve_loop.h"

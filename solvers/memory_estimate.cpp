@@ -11,6 +11,7 @@
 #include "framework/heap_block.h"
 #include "framework/huge_page_allocator.h"
 #include "solvers/objective.h"
+#include "solvers/retinal_objective.h"
 
 namespace layerlab {
 

@@ -14,14 +14,14 @@
 // on the one-tap path it sums only the depth updated next.
 //
 // A stack of two one-tap layers whose rays are at least twice their pixel
-// pairs (systems/pair_lattice.h) bins the target once; the second layer's
+// pairs (kernels/pair_lattice.h) bins the target once; the second layer's
 // updates are then made from the pairs, the first's (with the objective)
 // from a pass over the rays.
 #include <algorithm>
 #include <optional>
 
 #include "framework/error.h"
-#include "solvers/joint_pass.h"
+#include "kernels/joint_pass.h"
 #include "solvers/multiplicative_update.h"
 #include "solvers/solve_loop.h"
 

@@ -10,47 +10,18 @@
 // keeps its value.
 #pragma once
 
-#include <functional>
 #include <vector>
 
-#include "solvers/solver.h"
-#include "systems/display_model.h"
-#include "systems/pair_lattice.h"
-#include "systems/solve_workspace.h"
+#include "kernels/layer_update_sums.h"
+#include "solvers/types.h"
 
 namespace layerlab {
-
-// What the branch should emit in one view ([row][col][rgb]): a pointer to
-// stored values, or to `scratch` after filling it.
-using BranchTarget = std::function<const float*(size_t view, float* scratch)>;
 
 // In `workspace`, sized with kLayerUpdatePass.
 void UpdateLayerMultiplicative(const DisplayModel& model, size_t branch, int layer, const BranchTarget& branch_target,
                                const SolverOptions& options, Patterns* t, SolveWorkspace* workspace);
 
-// The same update in two steps, so that its pass over the rays can be made
-// early: the multiplicative solver makes the next iteration's first one in
-// the pass that gives the objective.
-struct LayerUpdate {
-  size_t branch = 0;
-  int layer = -1;
-  std::vector<double>*num, *den;  // layer pixels x 3, the ratio's two sides (in a workspace)
-};
-// The workspace's update kept for the next iteration, and the one of a single update.
-inline LayerUpdate KeptLayerUpdate(SolveWorkspace* w) { return {0, -1, &w->kept_num, &w->kept_den}; }
-inline LayerUpdate OneLayerUpdate(SolveWorkspace* w) { return {0, -1, &w->update_num, &w->update_den}; }
-// The sums from the patterns `t` as they are now. With `error`, and if the
-// branch is on the one-tap path, the same pass also gives the branch's
-// squared error against `branch_target` (summed per view, then in view
-// order); returns whether it did.
-bool ComputeLayerUpdate(const DisplayModel& model, size_t branch, int layer, const BranchTarget& branch_target,
-                        const Patterns& t, SolveWorkspace* workspace, LayerUpdate* update, double* error = nullptr);
-// The same sums from the branch's target binned by pixel pair (PairLattice::Bin
-// into `binned`); `layer` is one of the lattice's two. In `workspace`, sized with kLayerUpdatePass.
-void ComputeLayerUpdateFromPairs(const DisplayModel& model, size_t branch, int layer, const PairLattice& lattice,
-                                 const PairCells& binned, const Patterns& t, SolveWorkspace* workspace,
-                                 LayerUpdate* update);
-// UpdateLayerMultiplicative's update made so.
+// The same update from the branch's target binned by pixel pair (ComputeLayerUpdateFromPairs).
 void UpdateLayerFromPairs(const DisplayModel& model, size_t branch, int layer, const PairLattice& lattice,
                           const PairCells& binned, const SolverOptions& options, Patterns* t,
                           SolveWorkspace* workspace);
@@ -61,7 +32,7 @@ void ApplyLayerUpdate(const LayerUpdate& update, const SolverOptions& options, P
 // where den[k] > epsilon (else it keeps its value); num and den as long as the pattern.
 void ApplyMultiplicativeStep(const double* num, const double* den, const SolverOptions& options,
                              std::vector<float>* pattern);
-// The ratio num / den from the joint pass's sums (joint_pass.h): num = den - res.
+// The ratio num / den from the joint pass's sums (kernels/joint_pass.h): num = den - res.
 inline double MultiplicativeRatioFromResidual(double res, double den) { return (den - res) / den; }
 // The same step from those sums.
 void ApplyMultiplicativeStepFromResidual(const double* res, const double* den, const SolverOptions& options,

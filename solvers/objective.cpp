@@ -11,7 +11,7 @@
 #include "framework/mpi_ranks.h"
 #include "framework/polarization.h"
 #include "framework/random.h"
-#include "systems/view_synthesizer.h"
+#include "kernels/view_synthesizer.h"
 
 namespace layerlab {
 

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "framework/lightfield.h"
+#include "kernels/solve_workspace.h"
 #include "solvers/solver.h"
 #include "systems/display_model.h"
 

@@ -34,9 +34,9 @@
 #include <vector>
 
 #include "framework/huge_page_allocator.h"
+#include "kernels/joint_pass.h"
 #include "solvers/chunked_sweep.h"
 #include "solvers/hybrid_iterations.h"
-#include "solvers/joint_pass.h"
 #include "solvers/retinal_pass.h"
 #include "solvers/solve_loop.h"
 

@@ -4,12 +4,12 @@
 #include <cmath>
 #include <complex>
 
+#include "eye/contrast_sensitivity.h"
+#include "eye/spectral_filter.h"
 #include "framework/error.h"
 #include "framework/heap_block.h"
 #include "framework/huge_page_allocator.h"
 #include "solvers/objective.h"
-#include "systems/contrast_sensitivity.h"
-#include "systems/spectral_filter.h"
 
 namespace layerlab {
 

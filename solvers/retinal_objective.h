@@ -4,11 +4,11 @@
 //   f(L) = sum_a w_a || A_a (L - l) ||^2
 //
 // summed over accommodation states a, retinal samples and channels, with
-// A_a the retinal operator of state a (systems/retinal_operator.h: natural
+// A_a the retinal operator of state a (retina/retinal_operator.h: natural
 // viewing of a light field through the eye's pupil samples, the eye's
 // per-channel focus included), L the display's light field, l the target's.
 // Its gradient in L is 2 M (L - l) with M = sum_a w_a A_a^T A_a; through the
-// display's Jacobian J (solvers/joint_pass.h) the gradient in the patterns
+// display's Jacobian J (kernels/joint_pass.h) the gradient in the patterns
 // is 2 J^T M (L - l) (solvers/retinal_pass.h).
 //
 // The target's retinal images are A_a l by default: natural viewing of the
@@ -32,27 +32,11 @@
 #include <vector>
 
 #include "framework/lightfield.h"
+#include "retina/retinal_operator.h"
+#include "solvers/types.h"
 #include "systems/display_model.h"
-#include "systems/retinal_operator.h"
 
 namespace layerlab {
-
-// What the display's retinal images are compared with.
-enum class RetinalTarget { kLightField, kTraced };
-
-struct RetinalObjectiveOptions {
-  std::vector<double> states;   // D; empty: the eye's accommodation_range in kDefaultStateStep steps
-  std::vector<double> weights;  // one per state; empty: every state 1
-  double resolution = 0;        // rad per retinal sample; 0: one sample per light-field pixel
-  // kLightField: A_a of the target light field. kTraced: RetinaOfScene of `target_radiance`, which whoever
-  // holds the target scene sets (Target::Natural, analysis/target_source.h); the objective refuses kTraced without it.
-  RetinalTarget target = RetinalTarget::kLightField;
-  SceneRadiance target_radiance;
-  // Weight each state's residual by the eye's contrast sensitivity (systems/contrast_sensitivity.h):
-  // || C (A_a L - r_a) ||^2 with C the gain S(f) at spatial frequency f, the image taken as periodic.
-  bool contrast_sensitivity = false;
-};
-inline constexpr double kDefaultStateStep = 0.2;  // D
 
 class RetinalObjective {
  public:

@@ -1,5 +1,6 @@
 #include "solvers/retinal_pass.h"
 
+#include "kernels/view_synthesizer.h"
 #include "solvers/objective.h"
 
 namespace layerlab {
@@ -29,14 +30,14 @@ RetinalMeasures Measures(const RetinalObjective& objective, const LightField& li
 
 RetinalMeasures MeasureRetinalObjective(const DisplayModel& model, const LightField& target,
                                         const RetinalObjective& objective, const Patterns& t) {
-  const LightField light = model.Synthesize(t);
+  const LightField light = Synthesize(model, t);
   std::vector<double> per_state;
   const double f = objective.Evaluate(light, &per_state);
   return Measures(objective, light, target, per_state, f);
 }
 
 double RetinalPass::Run(const Patterns& t) {
-  model_.Synthesize(t, &light_);
+  Synthesize(model_, t, &light_);
   std::vector<double> per_state;
   const double f = objective_.EvaluateWithAdjoint(light_, &per_state, &effective_);
   last_ = Measures(objective_, light_, target_, per_state, f);
@@ -49,7 +50,7 @@ double RetinalPass::Run(const Patterns& t) {
 }
 
 double RetinalPass::Evaluate(const Patterns& t) {
-  model_.Synthesize(t, &light_);
+  Synthesize(model_, t, &light_);
   std::vector<double> per_state;
   const double f = objective_.Evaluate(light_, &per_state);
   last_ = Measures(objective_, light_, target_, per_state, f);

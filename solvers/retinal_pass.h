@@ -12,7 +12,7 @@
 
 #include <vector>
 
-#include "solvers/joint_pass.h"
+#include "kernels/joint_pass.h"
 #include "solvers/retinal_objective.h"
 
 namespace layerlab {

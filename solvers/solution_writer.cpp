@@ -13,6 +13,7 @@
 #include "framework/progress.h"
 #include "framework/staged_output.h"
 #include "framework/version.h"
+#include "kernels/view_synthesizer.h"
 #include "systems/system_report.h"
 
 namespace layerlab {
@@ -160,7 +161,7 @@ std::vector<std::string> WriteSolution(const DisplayModel& model, const Patterns
   WriteFileAtomically((fs::path(folder) / "report.json").string(), ReportToJson(annotated).dump(2) + "\n");
   written.insert(written.end(), {"trace.csv", "report.txt", "report.json"});
   if (what.write_lightfield) {
-    LightField synthesized = model.Synthesize(t);
+    LightField synthesized = Synthesize(model, t);
     synthesized.scene = "synthesized by layerlab " + report.solver + " for " + model.system().file;
     for (const std::string& f : WriteLightField(synthesized, (fs::path(folder) / "lightfield").string()))
       written.push_back("lightfield/" + f);

@@ -7,8 +7,8 @@
 #include <optional>
 #include <set>
 
+#include "eye/pupil_size.h"
 #include "systems/optics.h"
-#include "systems/pupil_size.h"
 
 namespace layerlab {
 namespace {

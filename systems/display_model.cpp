@@ -3,13 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include <omp.h>
-
-#include <optional>
-
 #include "framework/error.h"
-#include "systems/solve_workspace.h"
-#include "systems/view_synthesizer.h"
 
 namespace layerlab {
 
@@ -44,27 +38,6 @@ void DisplayModel::SynthesizeBranchView(size_t b, size_t view, const Patterns& t
   const size_t n = lf_.pixels_per_view();
   for (size_t ray = 0; ray < n; ++ray)
     for (int c = 0; c < 3; ++c) out[ray * 3 + c] *= w[c];
-}
-
-LightField DisplayModel::Synthesize(const Patterns& t) const {
-  LightField lf(lf_);
-  Synthesize(t, &lf);
-  return lf;
-}
-
-void DisplayModel::Synthesize(const Patterns& t, LightField* out, SolveWorkspace* workspace) const {
-  if (out->rgb.size() != lf_.ray_count() * 3)
-    throw Error("Synthesize: the output light field has other rays than the model");
-  out->geometry = lf_;
-  const size_t views = lf_.view_count();
-  std::optional<SolveWorkspace> own;
-  if (!workspace) workspace = &own.emplace(*this, omp_get_max_threads(), kSynthesisPass);
-  const ViewSynthesizer synthesizer(*this, t, workspace);
-#pragma omp parallel for schedule(static)
-  for (size_t k = 0; k < views; ++k) {
-    const size_t v = synthesizer.ViewInColumnOrder(k);
-    synthesizer.View(v, out->view(v));
-  }
 }
 
 LightFieldGeometry DisplayLightFieldGeometry(const DisplaySystem& system, double origin_diopters) {

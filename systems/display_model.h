@@ -24,8 +24,6 @@
 
 namespace layerlab {
 
-class SolveWorkspace;  // systems/solve_workspace.h
-
 // A layer's transmittance pattern in [0, 1], [row][col][rgb], in the panel's
 // own pixel order (flips already applied by the projection).
 struct LayerPattern {
@@ -54,15 +52,10 @@ class DisplayModel {
   Patterns UniformPatterns(float value) const;
 
   // The light of branch b alone for one view, w_b prod_k P_k t_k, through
-  // the projections (ViewSynthesizer takes the fast path where it can).
+  // the projections (kernels/view_synthesizer.h's Synthesize takes the fast path where it can).
   // `scratch`: a view of samples for layers of several taps per ray (LayerProjection::GatherMultiply).
   void SynthesizeBranchView(size_t b, size_t view, const Patterns& t, float* out,
                             std::vector<float>* scratch = nullptr) const;
-  // With a workspace of its own, for a call outside a solve (retina, compare, the solution's light field).
-  LightField Synthesize(const Patterns& t) const;
-  // Into a light field of this model's geometry, reusing its memory; in
-  // `workspace` (with the synthesis pass) when given, else in one of its own.
-  void Synthesize(const Patterns& t, LightField* out, SolveWorkspace* workspace = nullptr) const;
 
  private:
   DisplaySystem system_;

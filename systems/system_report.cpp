@@ -7,9 +7,9 @@
 #include <numbers>
 #include <optional>
 
+#include "eye/eye_description.h"
 #include "framework/warnings.h"
 #include "systems/intermediate_images.h"
-#include "systems/retina.h"
 
 namespace layerlab {
 namespace {

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "analysis/compare.h"
+#include "kernels/view_synthesizer.h"
 #include "solvers/objective.h"
 #include "systems/display_model.h"
 #include "tests/test_util.h"
@@ -50,7 +51,7 @@ TEST(Compare, EveryRowCarriesBothPsnrsWhenOneMinimizesTheFocalStack) {
   for (LayerPattern& p : truth)
     for (size_t k = 0; k < p.rgb.size(); ++k) p.rgb[k] = 0.3f + 0.6f * float((k * 7919) % 101) / 100.0f;
   // Beyond the display's reach (a speckle on every ray), so that the two objectives lead to different patterns.
-  LightField target = model.Synthesize(truth);
+  LightField target = Synthesize(model, truth);
   for (size_t k = 0; k < target.rgb.size(); ++k) target.rgb[k] *= 0.8f + 0.4f * float((k * 2654435761u) % 97) / 96.0f;
   SolverOptions o;
   o.iterations = 40;

@@ -6,7 +6,7 @@
 #include <numbers>
 
 #include "analysis/contrast.h"
-#include "systems/retina.h"
+#include "retina/retina.h"
 #include "tests/test_util.h"
 
 namespace layerlab {

@@ -2,7 +2,7 @@
 // light by AddBranchLightRow, the sums by JointSumsRow, the error by
 // SquaredErrorRow, bit for bit), against the formulas in double, and its AVX2
 // build against the baseline.
-#include "solvers/depth_sums_row.h"
+#include "kernels/depth_sums_row.h"
 
 #include <gtest/gtest.h>
 

@@ -6,7 +6,7 @@
 #include <numbers>
 
 #include "analysis/fourier.h"
-#include "systems/diffraction.h"
+#include "retina/diffraction.h"
 #include "tests/test_util.h"
 
 namespace layerlab {

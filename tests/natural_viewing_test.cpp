@@ -1,9 +1,10 @@
-// Natural viewing of a light-field target (systems/lightfield_radiance.h)
+// Natural viewing of a light-field target (retina/lightfield_radiance.h)
 // against the plane it was made from, and against hand-derived interpolation.
 #include <cmath>
 #include <numbers>
 
-#include "systems/lightfield_radiance.h"
+#include "retina/lightfield_radiance.h"
+#include "retina/retina.h"
 #include "targets/plane_lightfield.h"
 #include "targets/texture.h"
 #include "tests/test_util.h"

@@ -1,4 +1,4 @@
-// The pixel-pair lattice (systems/pair_lattice.h) against the rays one by
+// The pixel-pair lattice (kernels/pair_lattice.h) against the rays one by
 // one: its binned targets and update sums are every ray's terms added by
 // pixel pair, the same bits on any thread count, and the hybrid that makes
 // its sub-iterations from it follows the general path's solve.
@@ -7,11 +7,12 @@
 #include <cmath>
 #include <cstring>
 
+#include "kernels/one_tap_view.h"
+#include "kernels/pair_lattice.h"
+#include "kernels/solve_workspace.h"
+#include "kernels/view_synthesizer.h"
 #include "solvers/multiplicative_update.h"
 #include "solvers/solver.h"
-#include "systems/one_tap_view.h"
-#include "systems/pair_lattice.h"
-#include "systems/solve_workspace.h"
 #include "tests/support/array_compare.h"
 #include "tests/test_util.h"
 
@@ -200,7 +201,7 @@ TEST(PairLattice, HybridFromPairsFollowsTheGeneralPath) {
   for (VirtualLayer& layer : rotated.layers) layer.rotation = 1e-12;
   const DisplayModel fast(c.system, c.geometry), general(rotated, c.geometry);
   for (size_t b = 0; b < fast.branch_count(); ++b) ASSERT_TRUE(PairLattice::IfItPays(fast, b));
-  const LightField target = fast.Synthesize(RandomPatterns(fast, 9, 0.05f, 1.0f));
+  const LightField target = Synthesize(fast, RandomPatterns(fast, 9, 0.05f, 1.0f));
   SolverOptions o;
   o.iterations = 3;
   o.initial_value = -1;

@@ -6,10 +6,11 @@
 
 #include "analysis/fourier.h"
 #include "elements/wavefront.h"
-#include "systems/chromatic_eye.h"
-#include "systems/lightfield_radiance.h"
-#include "systems/pupil_size.h"
-#include "systems/retina.h"
+#include "eye/chromatic_eye.h"
+#include "eye/eye_description.h"
+#include "eye/pupil_size.h"
+#include "retina/lightfield_radiance.h"
+#include "retina/retina.h"
 #include "tests/test_util.h"
 
 namespace layerlab {

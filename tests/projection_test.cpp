@@ -6,8 +6,9 @@
 
 #include <Eigen/Sparse>
 
+#include "kernels/one_tap_view.h"
+#include "kernels/view_synthesizer.h"
 #include "systems/display_model.h"
-#include "systems/one_tap_view.h"
 #include "systems/projection.h"
 #include "tests/test_util.h"
 
@@ -270,7 +271,7 @@ TEST(Synthesis, SumOfProductsMatchesExplicitMatrices) {
 
   Patterns t = model.UniformPatterns(0);
   for (size_t k = 0; k < t.size(); ++k) t[k].rgb = RandomValues(t[k].rgb.size(), 10 + unsigned(k));
-  LightField synthesized = model.Synthesize(t);
+  LightField synthesized = Synthesize(model, t);
 
   std::vector<Eigen::SparseMatrix<double, Eigen::RowMajor>> M;
   for (const VirtualLayer& l : system.layers) M.push_back(ExplicitMatrix(l, g, Sampling::kNearest));

@@ -5,8 +5,9 @@
 #include <utility>
 #include <vector>
 
-#include "systems/lightfield_radiance.h"
-#include "systems/retina.h"
+#include "kernels/view_synthesizer.h"
+#include "retina/lightfield_radiance.h"
+#include "retina/retina.h"
 #include "tests/test_util.h"
 
 namespace layerlab {
@@ -207,7 +208,7 @@ TEST(Retina, OneLayerDisplayEqualsNaturalViewingOfItsLightFieldOnARandomPattern)
   const LightFieldGeometry g = d.model->geometry();
   ASSERT_TRUE(Close(g.origin_z, d.system.layers[0].depth, 1e-12));
   DisplayModel bilinear(d.system, g, Sampling::kBilinear);
-  const LightField nearest_lf = d.model->Synthesize(d.t), bilinear_lf = bilinear.Synthesize(d.t);
+  const LightField nearest_lf = Synthesize(*d.model, d.t), bilinear_lf = Synthesize(bilinear, d.t);
   auto rms = [](const Image& a, const Image& b) {
     double s = 0;
     for (size_t k = 0; k < a.pixels.size(); ++k) s += double(a.pixels[k] - b.pixels[k]) * (a.pixels[k] - b.pixels[k]);

@@ -1,4 +1,4 @@
-// The retinal operator A_a (systems/retinal_operator.h) against the retina
+// The retinal operator A_a (retina/retinal_operator.h) against the retina
 // command's general path (ray by ray through the pupil), its transpose
 // against <A x, y> = <x, A^T y>, and the retinal objective
 // (solvers/retinal_objective.h, retinal_pass.h): its gradient against
@@ -10,15 +10,16 @@
 #include <numbers>
 #include <random>
 
-#include "solvers/joint_pass.h"
+#include "eye/contrast_sensitivity.h"
+#include "eye/spectral_filter.h"
+#include "kernels/joint_pass.h"
+#include "kernels/view_synthesizer.h"
+#include "retina/lightfield_radiance.h"
+#include "retina/retinal_operator.h"
 #include "solvers/objective.h"
 #include "solvers/retinal_objective.h"
 #include "solvers/retinal_pass.h"
 #include "solvers/solver.h"
-#include "systems/contrast_sensitivity.h"
-#include "systems/lightfield_radiance.h"
-#include "systems/retinal_operator.h"
-#include "systems/spectral_filter.h"
 #include "tests/test_util.h"
 
 namespace layerlab {
@@ -185,12 +186,12 @@ TEST(RetinalOperator, AdjointThroughEveryLayerKindAndFlip) {
     const RetinalOperator a(g, d.sampling, objective.retina(), PupilSamples(eye), ChannelAccommodation(eye, 1.1));
     const Patterns t = RandomPatterns(model, 4, 0.2f, 0.9f);
     const Patterns delta = RandomPatterns(model, 5, 0.0f, 1.0f);
-    const LightField base = model.Synthesize(t);
+    const LightField base = Synthesize(model, t);
     LightField jd(g);
     for (size_t k = 0; k < t.size(); ++k) {
       Patterns moved = t;
       for (size_t i = 0; i < moved[k].rgb.size(); ++i) moved[k].rgb[i] += delta[k].rgb[i];
-      const LightField l = model.Synthesize(moved);
+      const LightField l = Synthesize(model, moved);
       for (size_t i = 0; i < jd.rgb.size(); ++i) jd.rgb[i] += l.rgb[i] - base.rgb[i];
     }
     std::vector<float> y(a.retinal_values()), ajd;
@@ -221,7 +222,7 @@ void ExpectGradientMatchesCentralDifferences(const DisplayModel& model, const Li
                                              const std::string& name) {
   RetinalPass pass(model, target, objective);
   const double scaled = pass.Run(t);
-  const double f = objective.Evaluate(model.Synthesize(t));
+  const double f = objective.Evaluate(Synthesize(model, t));
   EXPECT_NEAR(scaled * pass.scale(), f, 1e-9 * f) << name;
   const std::vector<std::vector<double>> res = pass.sums().residual();
   std::mt19937 rng(5);
@@ -235,7 +236,7 @@ void ExpectGradientMatchesCentralDifferences(const DisplayModel& model, const Li
       minus[k].rgb[i] -= h;
       // f is quadratic in one value (L is affine in it): central differences are exact up to round-off.
       const double difference =
-          (objective.Evaluate(model.Synthesize(plus)) - objective.Evaluate(model.Synthesize(minus))) / (2 * h);
+          (objective.Evaluate(Synthesize(model, plus)) - objective.Evaluate(Synthesize(model, minus))) / (2 * h);
       // Float images: f to about 1e-6 relative, the difference to 1e-6 f / h.
       EXPECT_NEAR(gradient, difference, 2e-3 * std::abs(difference) + 1e-6 * f / h)
           << name << ", layer " << k << ", value " << i;
@@ -245,7 +246,7 @@ void ExpectGradientMatchesCentralDifferences(const DisplayModel& model, const Li
 TEST(RetinalObjective, GradientMatchesCentralDifferences) {
   for (const Display& d : Displays()) {
     const DisplayModel model(d.system, DisplayLightFieldGeometry(d.system), d.sampling);
-    const LightField target = model.Synthesize(RandomPatterns(model, 8, 0.1f, 1.0f));
+    const LightField target = Synthesize(model, RandomPatterns(model, 8, 0.1f, 1.0f));
     const RetinalObjective objective(model, target, FewStates());
     ExpectGradientMatchesCentralDifferences(model, target, objective, RandomPatterns(model, 11, 0.2f, 0.9f), 5, d.name);
   }
@@ -264,13 +265,13 @@ TEST(RetinalObjective, PinholeOneStateIsTheCentreViewsLightFieldObjective) {
   system.eye.pupil_diameter = 0;
   const LightFieldGeometry g = Geometry(40, 24, 5);
   const DisplayModel model(system, g);
-  const LightField target = model.Synthesize(RandomPatterns(model, 8, 0.1f, 1.0f));
+  const LightField target = Synthesize(model, RandomPatterns(model, 8, 0.1f, 1.0f));
   for (double state : {0.0, 1.7}) {
     RetinalObjectiveOptions o;
     o.states = {state};
     const RetinalObjective objective(model, target, o);
     ASSERT_EQ(objective.retina().cols, g.cols);
-    const LightField l = model.Synthesize(RandomPatterns(model, 12, 0.0f, 1.0f));
+    const LightField l = Synthesize(model, RandomPatterns(model, 12, 0.0f, 1.0f));
     const size_t centre = g.view_index(g.views_y / 2, g.views_x / 2);
     double centre_view = 0;
     for (size_t k = 0; k < g.pixels_per_view() * 3; ++k) {
@@ -287,7 +288,7 @@ TEST(RetinalObjective, SolversRecoverAKnownFocalStack) {
   for (const char* solver : {"quasi-newton", "joint"}) {
     const DisplaySystem system = CompileJson(ShrunkExample("multiplicative_2layer.json", 24, 12, 5));
     const DisplayModel model(system, DisplayLightFieldGeometry(system));
-    const LightField target = model.Synthesize(RandomPatterns(model, 8, 0.3f, 0.9f));
+    const LightField target = Synthesize(model, RandomPatterns(model, 8, 0.3f, 0.9f));
     SolverOptions o = SolverRegistry::Builtins().find(solver)->defaults;
     o.objective = ObjectiveKind::kRetinal;
     o.retinal = FewStates();
@@ -301,7 +302,7 @@ TEST(RetinalObjective, SolversRecoverAKnownFocalStack) {
     EXPECT_GT(last.focal_stack_psnr_db, 60.0) << solver << "\n" << r.FullReport();
     // The trace's objective is the retinal one of the patterns returned, and it never rose.
     const RetinalObjective objective(model, target, o.retinal);
-    EXPECT_NEAR(objective.Evaluate(model.Synthesize(t)), last.objective, 1e-3 * last.objective + 1e-12);
+    EXPECT_NEAR(objective.Evaluate(Synthesize(model, t)), last.objective, 1e-3 * last.objective + 1e-12);
     // (From the quasi-Newton steps on: the warm start's hybrid steps lower the light-field objective.)
     for (size_t k = size_t(o.warm_start_iterations) + 1; k < r.trace.size(); ++k)
       EXPECT_LE(r.trace[k].objective, r.trace[k - 1].objective * (1 + 1e-9)) << solver << ", iteration " << k;
@@ -334,14 +335,14 @@ TEST(RetinalObjective, TracedTargetOfTheLightFieldsOwnRaysIsTheDefault) {
   for (Sampling sampling : {Sampling::kNearest, Sampling::kBilinear}) {
     const DisplaySystem system = CompileJson(ShrunkExample("paper_prototype.json", 24, 12, 5));
     const DisplayModel model(system, DisplayLightFieldGeometry(system), sampling);
-    const LightField target = model.Synthesize(RandomPatterns(model, 8, 0.1f, 1.0f));
+    const LightField target = Synthesize(model, RandomPatterns(model, 8, 0.1f, 1.0f));
     const RetinalObjective by_operator(model, target, FewStates());
     RetinalObjectiveOptions o = FewStates();
     o.target = RetinalTarget::kTraced;
     const SceneRadiance rays = LightFieldRadiance(target, sampling);
     o.target_radiance = [rays](const PupilPoint& u, double dx, double dy) { return rays(u, dx, dy); };
     const RetinalObjective traced(model, LightField(model.geometry()), o);
-    const LightField x = model.Synthesize(RandomPatterns(model, 9, 0.0f, 1.0f));
+    const LightField x = Synthesize(model, RandomPatterns(model, 9, 0.0f, 1.0f));
     const double f = by_operator.Evaluate(x);
     EXPECT_GT(f, 0);
     EXPECT_NEAR(traced.Evaluate(x), f, 1e-5 * f) << (sampling == Sampling::kNearest ? "nearest" : "bilinear");
@@ -393,14 +394,14 @@ TEST(SpectralFilter, ACosineIsScaledByTheGainAtItsFrequency) {
 TEST(RetinalObjective, ContrastSensitivityGradientMatchesCentralDifferences) {
   const DisplaySystem system = CompileJson(ShrunkExample("paper_prototype.json", 24, 12, 5));
   const DisplayModel model(system, DisplayLightFieldGeometry(system));
-  const LightField target = model.Synthesize(RandomPatterns(model, 8, 0.1f, 1.0f));
+  const LightField target = Synthesize(model, RandomPatterns(model, 8, 0.1f, 1.0f));
   RetinalObjectiveOptions plain = FewStates();
   plain.resolution = 0.02 * kDeg;  // 25 cpd at Nyquist
   RetinalObjectiveOptions weighted = plain;
   weighted.contrast_sensitivity = true;
   const RetinalObjective objective(model, target, weighted), unweighted(model, target, plain);
   Patterns t = RandomPatterns(model, 11, 0.2f, 0.9f);
-  const LightField l = model.Synthesize(t);
+  const LightField l = Synthesize(model, t);
   std::vector<double> per_state, per_state_plain;
   const double f = objective.Evaluate(l, &per_state), f_plain = unweighted.Evaluate(l, &per_state_plain);
   EXPECT_LT(f, 0.99 * f_plain);

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "framework/rgb4.h"
-#include "systems/row_kernels.h"
+#include "kernels/row_kernels.h"
 
 namespace layerlab {
 

@@ -1,7 +1,7 @@
 // The per-row kernels against plain loops in double, and their AVX2 build
 // against the baseline bit for bit, on rows of every length up to 41 (both
 // parities, shorter than one AVX2 step, and tails of every kind).
-#include "systems/row_kernels.h"
+#include "kernels/row_kernels.h"
 
 #include <gtest/gtest.h>
 
@@ -155,7 +155,7 @@ TEST_F(RowKernels, UpdateSumsAddTargetTimesProductAndProductSquared) {
     }
 }
 
-// A pixel-pair lattice's row (systems/pair_lattice.h): each cell times the
+// A pixel-pair lattice's row (kernels/pair_lattice.h): each cell times the
 // other layer's pixel its column pair names, added to (or setting) the sums.
 TEST_F(RowKernels, PairSumsAddCellTimesOtherPixelAndCountTimesItsSquare) {
   std::mt19937 rng(11);

@@ -15,8 +15,8 @@
 #include "framework/error.h"
 #include "framework/lightfield_checks.h"
 #include "framework/lightfield_io.h"
+#include "retina/retina.h"
 #include "solvers/solution_writer.h"
-#include "systems/retina.h"
 
 namespace layerlab {
 namespace {

@@ -1,4 +1,4 @@
-// The solve's workspace (systems/solve_workspace.h) and the memory estimate
+// The solve's workspace (kernels/solve_workspace.h) and the memory estimate
 // built on its layout (solvers/memory_estimate.h): the layout against sizes
 // by hand, the passes holding exactly what the layout says, and the estimate
 // against the peak a solve reaches in a process of its own.
@@ -13,13 +13,14 @@
 #include <string>
 
 #include "framework/lightfield_io.h"
-#include "solvers/joint_pass.h"
+#include "kernels/joint_pass.h"
+#include "kernels/solve_workspace.h"
+#include "kernels/view_synthesizer.h"
 #include "solvers/memory_estimate.h"
 #include "solvers/multiplicative_update.h"
 #include "solvers/objective.h"
 #include "solvers/retinal_objective.h"
 #include "solvers/solver.h"
-#include "systems/solve_workspace.h"
 #include "tests/test_util.h"
 
 namespace layerlab {
@@ -71,7 +72,7 @@ TEST(SolveWorkspace, PassesHoldWhatTheLayoutSays) {
       g.cols = 20, g.rows = 14;
       const DisplayModel model(system, g, sampling);
       const Patterns truth = RandomPatterns(model, 3);
-      const LightField target = model.Synthesize(truth);
+      const LightField target = Synthesize(model, truth);
       Patterns t = RandomPatterns(model, 4);
       const int threads = omp_get_max_threads();
       SolveWorkspace workspace(model, threads, kAllPasses);
@@ -90,7 +91,7 @@ TEST(SolveWorkspace, PassesHoldWhatTheLayoutSays) {
       JointPass pass(model, &workspace);
       EXPECT_NEAR(pass.Run(target, t), objective, 1e-5 * objective);
       LightField out(g);
-      model.Synthesize(t, &out, &workspace);
+      Synthesize(model, t, &out, &workspace);
       EXPECT_EQ(workspace.Bytes(), laid_out) << example << " " << ToString(sampling);
     }
 }
@@ -100,7 +101,7 @@ TEST(SolveWorkspace, PassesHoldWhatTheLayoutSays) {
 TEST(SolveMemory, ClippedCopyCountedWhenTheTargetNeedsIt) {
   const DisplaySystem system = CompileJson(ShrunkExample("paper_prototype.json", 24, 12, 3));
   const DisplayModel model(system, DisplayLightFieldGeometry(system));
-  LightField target = model.Synthesize(RandomPatterns(model, 6));
+  LightField target = Synthesize(model, RandomPatterns(model, 6));
   auto without_program = [&](const MemoryEstimate& e) { return double(e.counted) - double(e.program); };
   const MemoryEstimate within = EstimateSolveMemory(model, "hybrid", 2, &target);
   EXPECT_FALSE(within.clipped_copy_counted);
@@ -117,7 +118,7 @@ TEST(SolveMemory, RetinalTablesCountedBeforeTheObjectiveIsMade) {
   const DisplaySystem system = CompileJson(ShrunkExample("paper_prototype.json", 40, 20, 5));
   for (Sampling sampling : {Sampling::kNearest, Sampling::kBilinear}) {
     const DisplayModel model(system, DisplayLightFieldGeometry(system), sampling);
-    const LightField target = model.Synthesize(RandomPatterns(model, 8));
+    const LightField target = Synthesize(model, RandomPatterns(model, 8));
     const RetinalObjectiveOptions options;
     const RetinalObjective objective(model, target, options);
     EXPECT_EQ(RetinalObjectiveBytes(model, options, 2).tables, objective.TableBytes()) << ToString(sampling);
@@ -174,7 +175,7 @@ TEST(SolveMemory, DISABLED_ChildSolve) {
   const DisplayModel model(system, g);
   const MemoryEstimate estimate = EstimateSolveMemory(model, solver, options, omp_get_max_threads());
   const LightField target =
-      dice ? ReadLightField(dice, {.load_depth = false}) : model.Synthesize(RandomPatterns(model, 5));
+      dice ? ReadLightField(dice, {.load_depth = false}) : Synthesize(model, RandomPatterns(model, 5));
   // quasi-newton: the warm start's iterations, then steps.
   options.iterations = solver == "hybrid" ? 2 : options.warm_start_iterations + 2;
   Patterns t;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "kernels/view_synthesizer.h"
 #include "layerlab.h"  // the data-flow header: the phases used here all come through it
 #include "tests/support/near_first_solver.h"
 #include "tests/test_util.h"
@@ -203,7 +204,7 @@ TEST(SolverRegistry, CompareRunsARegisteredSolver) {
   Patterns truth = model.UniformPatterns(0.5f);
   for (LayerPattern& p : truth)
     for (size_t k = 0; k < p.rgb.size(); ++k) p.rgb[k] = 0.3f + 0.6f * float((k * 7919) % 101) / 100.0f;
-  const LightField target = model.Synthesize(truth);
+  const LightField target = Synthesize(model, truth);
   std::vector<CompareRun> runs;
   for (const std::string& solver : for_stack) {
     SolverOptions o = registry.get(solver).defaults;

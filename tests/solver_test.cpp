@@ -13,14 +13,15 @@
 #include <random>
 
 #include "framework/random.h"
-#include "solvers/joint_pass.h"
+#include "kernels/joint_pass.h"
+#include "kernels/one_tap_view.h"
+#include "kernels/solve_workspace.h"
+#include "kernels/view_synthesizer.h"
 #include "solvers/multiplicative_update.h"
 #include "solvers/objective.h"
 #include "solvers/solution_writer.h"
 #include "solvers/solver.h"
 #include "solvers/solver_checkpoint.h"
-#include "systems/one_tap_view.h"
-#include "systems/solve_workspace.h"
 #include "tests/support/array_compare.h"
 #include "tests/test_util.h"
 
@@ -61,7 +62,7 @@ Fixture MakeFixture(const std::string& example, int cols = 32, int rows = 16, in
   f.system = CompileJson(ShrunkExample(example, cols, rows, views));
   f.model = std::make_unique<DisplayModel>(f.system, DisplayLightFieldGeometry(f.system));
   f.truth = KnownPatterns(*f.model, 7);
-  f.target = f.model->Synthesize(f.truth);
+  f.target = Synthesize(*f.model, f.truth);
   return f;
 }
 
@@ -98,7 +99,7 @@ TEST(Solvers, AdditiveTrustRegionRecoversAKnownTarget) {
 }
 
 double SquaredError(const DisplayModel& model, const LightField& target, const Patterns& t) {
-  const LightField l = model.Synthesize(t);
+  const LightField l = Synthesize(model, t);
   double sum = 0;
   for (size_t k = 0; k < l.rgb.size(); ++k)
     sum += (double(l.rgb[k]) - target.rgb[k]) * (double(l.rgb[k]) - target.rgb[k]);
@@ -338,7 +339,7 @@ TEST(Solvers, JointPassOfUnequalBranchesIsTheRayByRayPass) {
     const DisplayModel general(rotated, fast.geometry());
     ASSERT_TRUE(OneTapBranch(fast, 0) && OneTapBranch(fast, 1));
     ASSERT_FALSE(OneTapBranch(general, 0));
-    LightField target = fast.Synthesize(KnownPatterns(fast, 3));
+    LightField target = Synthesize(fast, KnownPatterns(fast, 3));
     for (float& v : target.rgb) v = std::min(1.0f, 1.2f * v);
     const Patterns t = KnownPatterns(fast, 4);
     JointPass one_tap(fast), ray_by_ray(general);
@@ -419,7 +420,7 @@ TEST(Solvers, OneTapFastPathMatchesTheGeneralPath) {
     const DisplayModel fast(system, f.target.geometry), general(rotated, f.target.geometry);
     const std::string name = std::to_string(shape.size()) + " branches, first of " + std::to_string(shape[0].size());
     Patterns truth = KnownPatterns(fast, 3);
-    LightField a = fast.Synthesize(truth), b = general.Synthesize(truth);
+    LightField a = Synthesize(fast, truth), b = Synthesize(general, truth);
     for (size_t k = 0; k < a.rgb.size(); ++k) ASSERT_NEAR(a.rgb[k], b.rgb[k], 1e-6) << name << ", value " << k;
 
     SolverOptions o;
@@ -459,9 +460,9 @@ TEST(Solvers, StripSumsAreTheGeneralPathsWhateverTheWorkspaceHeld) {
   for (VirtualLayer& layer : rotated.layers) layer.rotation = 1e-12;
   const DisplayModel fast(system, g), general(rotated, g);
   const Patterns t = KnownPatterns(fast, 5);
-  const LightField target = fast.Synthesize(KnownPatterns(fast, 6));
+  const LightField target = Synthesize(fast, KnownPatterns(fast, 6));
   const BranchTarget whole = [&](size_t view, float*) { return target.view(view); };
-  EXPECT_TRUE(ArraysNear(fast.Synthesize(t).rgb, general.Synthesize(t).rgb, 0, 1e-6));
+  EXPECT_TRUE(ArraysNear(Synthesize(fast, t).rgb, Synthesize(general, t).rgb, 0, 1e-6));
   const int threads = omp_get_max_threads();
   SolveWorkspace used(fast, threads, kAllPasses), for_general(general, threads, kAllPasses);
   int rows_unreached = 0;
@@ -937,7 +938,7 @@ TEST(Solvers, ObjectiveIsSummedInDouble) {
   // 13.5 M equal errors of 1e-3: float accumulation would drift by ~1e-4 relative.
   Fixture f = MakeFixture("multiplicative_2layer.json", 400, 200, 13);
   Patterns t = f.model->UniformPatterns(1.0f);
-  LightField synthesized = f.model->Synthesize(t);
+  LightField synthesized = Synthesize(*f.model, t);
   LightField target = synthesized;
   for (float& v : target.rgb) v += 1e-3f;
   double objective = Objective(*f.model, target, t);

@@ -9,13 +9,14 @@
 #include <map>
 
 #include "framework/random.h"
-#include "solvers/joint_column_pass.h"
+#include "kernels/joint_column_pass.h"
+#include "kernels/one_tap_view.h"
+#include "kernels/row_kernels.h"
+#include "kernels/solve_workspace.h"
+#include "kernels/view_synthesizer.h"
 #include "solvers/objective.h"
 #include "solvers/solver.h"
 #include "solvers/solver_checkpoint.h"
-#include "systems/one_tap_view.h"
-#include "systems/row_kernels.h"
-#include "systems/solve_workspace.h"
 #include "tests/test_util.h"
 
 namespace layerlab {
@@ -56,7 +57,7 @@ TEST(TimeMultiplex, SubframesAreSeenAsTheirMean) {
   const LightFieldGeometry geometry = DisplayLightFieldGeometry(system);
   const DisplayModel model(system, geometry);
   const Patterns t = RandomPatterns(model, 3);
-  const LightField mixed = model.Synthesize(t);
+  const LightField mixed = Synthesize(model, t);
 
   // Each subframe on its own: the same display without time multiplexing.
   json single = scene;
@@ -67,7 +68,7 @@ TEST(TimeMultiplex, SubframesAreSeenAsTheirMean) {
   for (int k = 0; k < 3; ++k) {
     Patterns tk;
     for (const VirtualLayer& l : one.layers) tk.push_back(PatternOf(system, t, l.element, k));
-    const LightField lk = one_model.Synthesize(tk);
+    const LightField lk = Synthesize(one_model, tk);
     for (size_t i = 0; i < mean.rgb.size(); ++i) mean.rgb[i] += lk.rgb[i] / 3.0f;
   }
   EXPECT_LT(MaxDifference(mixed, mean), 2e-6);
@@ -85,7 +86,7 @@ TEST(TimeMultiplex, MultifocalIsTheMeanOfSinglePlaneDisplays) {
   const LightFieldGeometry geometry = DisplayLightFieldGeometry(system);
   const DisplayModel model(system, geometry);
   const Patterns t = RandomPatterns(model, 5);
-  const LightField mixed = model.Synthesize(t);
+  const LightField mixed = Synthesize(model, t);
   LightField mean(geometry);
   for (int k = 0; k < 4; ++k) {
     // Eq. 1 with f = 1/P: the panel s behind the lens is imaged at D = (1 - s P) / (e + s (1 - e P)).
@@ -101,7 +102,7 @@ TEST(TimeMultiplex, MultifocalIsTheMeanOfSinglePlaneDisplays) {
     lens = {{"type", "thin_lens"}, {"name", "tunable"}, {"focal_length", 1.0 / P}, {"next", "panel"}};
     const DisplaySystem one = CompileJson(plane);
     EXPECT_TRUE(Close(one.layers[0].diopters, D, 1e-12));
-    const LightField lk = DisplayModel(one, geometry).Synthesize({PatternOf(system, t, "panel", k)});
+    const LightField lk = Synthesize(DisplayModel(one, geometry), {PatternOf(system, t, "panel", k)});
     for (size_t i = 0; i < mean.rgb.size(); ++i) mean.rgb[i] += lk.rgb[i] / 4.0f;
   }
   EXPECT_LT(MaxDifference(mixed, mean), 2e-6);
@@ -148,14 +149,14 @@ Patterns SmoothPatterns(const DisplayModel& model, uint64_t seed, double mid, do
 //   decided by rounding: after one hybrid iteration it stops at 49.3 dB on
 //   1-3 threads; after two it reached 150-154 dB, and 52.9 dB on 2 and 3
 //   threads once the hybrid's sub-iterations came from the pixel-pair
-//   lattice (systems/pair_lattice.h, other rounding); from the start it
+//   lattice (kernels/pair_lattice.h, other rounding); from the start it
 //   reaches 152-155 dB on 1-3 threads.
 TEST(TimeMultiplex, KnownRankTwoTargetIsRecoveredAbove100Db) {
   json scene = ShrunkExample("tensor_display_rank3.json", 8, 4, 13);
   scene["subframes"] = 2;
   const DisplaySystem system = CompileJson(scene);
   const DisplayModel model(system, DisplayLightFieldGeometry(system));
-  const LightField target = model.Synthesize(SmoothPatterns(model, 9, 0.5, 0.2));
+  const LightField target = Synthesize(model, SmoothPatterns(model, 9, 0.5, 0.2));
   for (const auto& [solver, iterations, threads] : std::vector<std::tuple<std::string, int, int>>{
            {"multiplicative", 3000, 1}, {"quasi-newton", 800, 1}, {"quasi-newton", 800, 2}, {"quasi-newton", 800, 3}}) {
     SolverOptions o = SolverRegistry::Builtins().find(solver)->defaults;
@@ -242,7 +243,7 @@ TEST(TimeMultiplex, RankKMultiplicativeIterationMatchesExplicitMatrices) {
   // Nearest sampling takes the one-tap column pass, bilinear the general one.
   for (Sampling sampling : {Sampling::kNearest, Sampling::kBilinear}) {
     const DisplayModel model(system, DisplayLightFieldGeometry(system), sampling);
-    const LightField target = model.Synthesize(RandomPatterns(model, 11));
+    const LightField target = Synthesize(model, RandomPatterns(model, 11));
     SolverOptions o = SolverRegistry::Builtins().find("multiplicative")->defaults;
     o.tolerance = 0;
     Patterns expected = InitialPatterns(model, o);
@@ -286,7 +287,7 @@ TEST(TimeMultiplex, OneSubframeIsTodaysDisplay) {
   scene["subframes"] = 1;
   const DisplaySystem one = CompileJson(scene);
   const DisplayModel a(today, DisplayLightFieldGeometry(today)), b(one, DisplayLightFieldGeometry(one));
-  const LightField target = a.Synthesize(RandomPatterns(a, 1));
+  const LightField target = Synthesize(a, RandomPatterns(a, 1));
   for (const char* solver : {"multiplicative", "joint", "quasi-newton", "hybrid"}) {
     SolverOptions o = SolverRegistry::Builtins().find(solver)->defaults;
     o.iterations = 5;
@@ -349,7 +350,7 @@ TEST(TimeMultiplex, KnownRankThreeTargetInsideTheBoundsIsRecoveredAbove100Db) {
   const DisplayModel model(system, DisplayLightFieldGeometry(system));
   for (uint64_t seed : {9, 10, 11}) {
     const Patterns truth = SmoothPatterns(model, seed, 0.5, 0.3);
-    const LightField target = model.Synthesize(truth);
+    const LightField target = Synthesize(model, truth);
     for (const auto& [solver, iterations] :
          std::map<std::string, int>{{"multiplicative", 3000}, {"quasi-newton", 1500}}) {
       SolverOptions o = SolverRegistry::Builtins().find(solver)->defaults;
@@ -383,7 +384,7 @@ TEST(TimeMultiplex, OneDepthPassGivesTheJointPassSumsOfThatDepth) {
   const DisplaySystem system = CompileJson(ShrunkExample("tensor_display_rank3.json", 24, 12, 5));
   const DisplayModel model(system, DisplayLightFieldGeometry(system));
   for (size_t b = 0; b < model.branch_count(); ++b) ASSERT_TRUE(OneTapBranch(model, b));
-  const LightField target = model.Synthesize(RandomPatterns(model, 21));
+  const LightField target = Synthesize(model, RandomPatterns(model, 21));
   const Patterns t = RandomPatterns(model, 22);
   const RowKernelIsa active = ActiveRowKernels();
   for (RowKernelIsa isa : {RowKernelIsa::kBaseline, RowKernelIsa::kAvx2}) {

@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
       for (int i = 0; i < p.rows; ++i)
         for (int j = 0; j < p.cols; ++j)
           for (int c = 0; c < 3; ++c) p.rgb[(static_cast<size_t>(i) * p.cols + j) * 3 + c] = 0.2f + 0.6f * j / p.cols;
-    const layerlab::LightField target = model.Synthesize(truth);
+    const layerlab::LightField target = Synthesize(model, truth);
 
     const std::string solver = layerlab::DefaultSolverFor(system);
     layerlab::SolverOptions options = layerlab::SolverRegistry::Builtins().get(solver).defaults;

@@ -18,6 +18,7 @@
 #include "analysis/target_source.h"
 #include "framework/lightfield_checks.h"
 #include "framework/units.h"
+#include "kernels/view_synthesizer.h"
 #include "python/src/arguments.h"
 #include "python/src/bindings.h"
 #include "python/src/json_convert.h"
@@ -26,13 +27,13 @@
 #include "python/src/result_dicts.h"
 #include "python/src/solve_hooks.h"
 #include "python/src/trace_table.h"
+#include "retina/diffraction.h"
+#include "retina/lightfield_radiance.h"
+#include "retina/retina.h"
 #include "solvers/solution_writer.h"
 #include "solvers/solve_config.h"
 #include "systems/compile.h"
-#include "systems/diffraction.h"
 #include "systems/layer_sampler.h"
-#include "systems/lightfield_radiance.h"
-#include "systems/retina.h"
 
 namespace py = pybind11;
 
@@ -197,13 +198,13 @@ std::shared_ptr<LightField> Synthesize(const std::shared_ptr<DisplaySystem>& sys
   CheckArgument([&] { how = SamplingFromString(sampling); });
   py::gil_scoped_release release;
   const DisplayModel model(*system, g, how);
-  return std::make_shared<LightField>(model.Synthesize(patterns));
+  return std::make_shared<LightField>(Synthesize(model, patterns));
 }
 
 // What the eye sees of the solution, focused at each of `accommodation` (D):
-// (states, rows, cols, 3), display-relative linear RGB (systems/retina.h);
+// (states, rows, cols, 3), display-relative linear RGB (retina/retina.h);
 // with `natural`, also what it sees of the target light field itself, read as
-// the layers are (systems/lightfield_radiance.h), as `layerlab retina --target`.
+// the layers are (retina/lightfield_radiance.h), as `layerlab retina --target`.
 py::object Retina(const Solution& s, const std::vector<double>& accommodation, double resolution_deg,
                   std::optional<std::pair<double, double>> field_deg, bool natural) {
   // The checks `layerlab retina` makes: its states (ParseOptionValue's, as
@@ -270,7 +271,7 @@ void BindSolve(py::module_& m) {
           "synthesize",
           [](const Solution& s) {
             py::gil_scoped_release release;
-            return std::make_shared<LightField>(s.model->Synthesize(s.patterns));
+            return std::make_shared<LightField>(Synthesize(*s.model, s.patterns));
           },
           "The light field the display shows with these patterns (the target's geometry)")
       .def(
