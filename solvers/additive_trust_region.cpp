@@ -16,6 +16,8 @@
 // and every objective, gradient and Hessian product after that comes from
 // the Kronecker-factored normal matrix. Rotated layers take a pass over the
 // rays for each.
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -56,6 +58,28 @@ void Axpy(double alpha, const Vec& x, Vec* y) {
     for (size_t i = 0; i < x[k].size(); ++i) (*y)[k][i] += alpha * x[k][i];
 }
 
+// Each thread's sums over its views (a static schedule), added in thread
+// order: the same bits run to run for a given thread count, where a critical
+// section or a reduction adds in the order the threads arrive.
+class ThreadSums {
+ public:
+  // This thread's sums, zero; called by every thread of the team.
+  Vec* Mine(const Patterns& shape) {
+#pragma omp single
+    parts_.resize(omp_get_num_threads());
+    Vec& mine = parts_[omp_get_thread_num()];
+    mine = Zeros(shape);
+    return &mine;
+  }
+  void SumInThreadOrder(const Patterns& shape, Vec* out) const {
+    *out = Zeros(shape);
+    for (const Vec& part : parts_) Axpy(1.0, part, out);
+  }
+
+ private:
+  std::vector<Vec> parts_;
+};
+
 class AdditiveOperator {
  public:
   explicit AdditiveOperator(const DisplayModel& model) : model_(model), n_(model.geometry().pixels_per_view() * 3) {}
@@ -82,14 +106,14 @@ class AdditiveOperator {
 
   // Returns ||A x - l||^2; if gradient is given, it becomes 2 A^T (A x - l).
   double Residual(const Patterns& x, const LightField& l, Vec* gradient) const {
-    double total = 0;
     const size_t views = model_.geometry().view_count();
-    if (gradient) *gradient = Zeros(x);
-#pragma omp parallel reduction(+ : total)
+    std::vector<double> view_sums(views);
+    ThreadSums locals;
+#pragma omp parallel
     {
       std::vector<float> r(n_), scratch(n_);
-      Vec local = gradient ? Zeros(x) : Vec();
-#pragma omp for schedule(dynamic)
+      Vec* local = gradient ? locals.Mine(x) : nullptr;
+#pragma omp for schedule(static)
       for (size_t v = 0; v < views; ++v) {
         Apply(v, x, r.data(), scratch.data());
         const float* lv = l.view(v);
@@ -99,14 +123,13 @@ class AdditiveOperator {
           sum += double(r[i]) * r[i];
           r[i] *= 2.0f;
         }
-        total += sum;
-        if (gradient) ApplyTranspose(v, r.data(), &local, scratch.data());
-      }
-      if (gradient) {
-#pragma omp critical
-        Axpy(1.0, local, gradient);
+        view_sums[v] = sum;
+        if (gradient) ApplyTranspose(v, r.data(), local, scratch.data());
       }
     }
+    double total = 0;
+    for (double s : view_sums) total += s;  // in view order
+    if (gradient) locals.SumInThreadOrder(x, gradient);
     return SumAcrossRanks(gradient, nullptr, total);
   }
 
@@ -115,21 +138,20 @@ class AdditiveOperator {
     Patterns pf = shape;
     for (size_t k = 0; k < p.size(); ++k)
       for (size_t i = 0; i < p[k].size(); ++i) pf[k].rgb[i] = static_cast<float>(p[k][i]);
-    *hp = Zeros(shape);
     const size_t views = model_.geometry().view_count();
+    ThreadSums locals;
 #pragma omp parallel
     {
       std::vector<float> ap(n_), scratch(n_);
-      Vec local = Zeros(shape);
-#pragma omp for schedule(dynamic)
+      Vec* local = locals.Mine(shape);
+#pragma omp for schedule(static)
       for (size_t v = 0; v < views; ++v) {
         Apply(v, pf, ap.data(), scratch.data());
         for (size_t i = 0; i < n_; ++i) ap[i] *= 2.0f;
-        ApplyTranspose(v, ap.data(), &local, scratch.data());
+        ApplyTranspose(v, ap.data(), local, scratch.data());
       }
-#pragma omp critical
-      Axpy(1.0, local, hp);
     }
+    locals.SumInThreadOrder(shape, hp);
     SumAcrossRanks(hp, nullptr, 0.0);
     for (size_t k = 0; k < hp->size(); ++k)
       for (size_t i = 0; i < (*hp)[k].size(); ++i) (*hp)[k][i] *= free[k][i];
