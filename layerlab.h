@@ -24,7 +24,7 @@
 //     The system bound to the target's rays: one projection P_k per layer
 //     (systems/projection.h, sampling in systems/layer_sampler.h) and the
 //     branch weights, l~ = sum_b w_b prod_k P_k t_k (paper Eq. 3-5).
-//     The fast path over the rays     kernels/view_synthesizer.h  Synthesize
+//     The fast path over the rays     kernels/synthesis.h         Synthesize
 //     reads the model and nothing above it (kernels/): the one-tap views
 //     and their row kernels, the pixel-pair lattice, the multiplicative
 //     update's and the joint pass's sums, and the passes' working memory,
@@ -58,7 +58,7 @@
 #include "analysis/run_config.h"
 #include "elements/registry.h"
 #include "framework/lightfield_io.h"
-#include "kernels/view_synthesizer.h"
+#include "kernels/synthesis.h"
 #include "solvers/memory_estimate.h"
 #include "solvers/solution_writer.h"
 #include "solvers/solve_config.h"

@@ -8,7 +8,7 @@
 
 #include "framework/json_file.h"
 #include "framework/lightfield_io.h"
-#include "kernels/view_synthesizer.h"
+#include "kernels/synthesis.h"
 #include "systems/compile.h"
 #include "systems/scene.h"
 

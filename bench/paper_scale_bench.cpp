@@ -28,7 +28,7 @@
 #include "kernels/joint_pass.h"
 #include "kernels/pair_lattice.h"
 #include "kernels/solve_workspace.h"
-#include "kernels/view_synthesizer.h"
+#include "kernels/synthesis.h"
 #include "retina/lightfield_radiance.h"
 #include "retina/retina.h"
 #include "retina/retinal_operator.h"

@@ -11,13 +11,6 @@
 
 namespace layerlab {
 
-// The display's light field of patterns `t`, with a workspace of its own: for
-// a call outside a solve (retina, compare, the solution's light field).
-LightField Synthesize(const DisplayModel& model, const Patterns& t);
-// Into a light field of the model's geometry, reusing its memory; in
-// `workspace` (with the synthesis pass) when given, else in one of its own.
-void Synthesize(const DisplayModel& model, const Patterns& t, LightField* out, SolveWorkspace* workspace = nullptr);
-
 class ViewSynthesizer {
  public:
   // Keeps references to all three; `t` must not change while this is in use.

@@ -1,6 +1,6 @@
 #include "solvers/retinal_pass.h"
 
-#include "kernels/view_synthesizer.h"
+#include "kernels/synthesis.h"
 #include "solvers/objective.h"
 
 namespace layerlab {

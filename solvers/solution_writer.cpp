@@ -13,7 +13,7 @@
 #include "framework/progress.h"
 #include "framework/staged_output.h"
 #include "framework/version.h"
-#include "kernels/view_synthesizer.h"
+#include "kernels/synthesis.h"
 #include "systems/system_report.h"
 
 namespace layerlab {

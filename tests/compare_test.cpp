@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "analysis/compare.h"
-#include "kernels/view_synthesizer.h"
+#include "kernels/synthesis.h"
 #include "solvers/objective.h"
 #include "systems/display_model.h"
 #include "tests/test_util.h"

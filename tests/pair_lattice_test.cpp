@@ -10,7 +10,7 @@
 #include "kernels/one_tap_view.h"
 #include "kernels/pair_lattice.h"
 #include "kernels/solve_workspace.h"
-#include "kernels/view_synthesizer.h"
+#include "kernels/synthesis.h"
 #include "solvers/multiplicative_update.h"
 #include "solvers/solver.h"
 #include "tests/support/array_compare.h"

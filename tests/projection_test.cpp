@@ -7,7 +7,7 @@
 #include <Eigen/Sparse>
 
 #include "kernels/one_tap_view.h"
-#include "kernels/view_synthesizer.h"
+#include "kernels/synthesis.h"
 #include "systems/display_model.h"
 #include "systems/projection.h"
 #include "tests/test_util.h"

@@ -5,7 +5,7 @@
 #include <utility>
 #include <vector>
 
-#include "kernels/view_synthesizer.h"
+#include "kernels/synthesis.h"
 #include "retina/lightfield_radiance.h"
 #include "retina/retina.h"
 #include "tests/test_util.h"

@@ -13,7 +13,7 @@
 #include "eye/contrast_sensitivity.h"
 #include "eye/spectral_filter.h"
 #include "kernels/joint_pass.h"
-#include "kernels/view_synthesizer.h"
+#include "kernels/synthesis.h"
 #include "retina/lightfield_radiance.h"
 #include "retina/retinal_operator.h"
 #include "solvers/objective.h"

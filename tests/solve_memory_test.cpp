@@ -15,7 +15,7 @@
 #include "framework/lightfield_io.h"
 #include "kernels/joint_pass.h"
 #include "kernels/solve_workspace.h"
-#include "kernels/view_synthesizer.h"
+#include "kernels/synthesis.h"
 #include "solvers/memory_estimate.h"
 #include "solvers/multiplicative_update.h"
 #include "solvers/objective.h"

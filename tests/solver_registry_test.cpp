@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "kernels/view_synthesizer.h"
+#include "kernels/synthesis.h"
 #include "layerlab.h"  // the data-flow header: the phases used here all come through it
 #include "tests/support/near_first_solver.h"
 #include "tests/test_util.h"

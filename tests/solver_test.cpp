@@ -16,7 +16,7 @@
 #include "kernels/joint_pass.h"
 #include "kernels/one_tap_view.h"
 #include "kernels/solve_workspace.h"
-#include "kernels/view_synthesizer.h"
+#include "kernels/synthesis.h"
 #include "solvers/multiplicative_update.h"
 #include "solvers/objective.h"
 #include "solvers/solution_writer.h"

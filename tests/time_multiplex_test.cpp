@@ -13,7 +13,7 @@
 #include "kernels/one_tap_view.h"
 #include "kernels/row_kernels.h"
 #include "kernels/solve_workspace.h"
-#include "kernels/view_synthesizer.h"
+#include "kernels/synthesis.h"
 #include "solvers/objective.h"
 #include "solvers/solver.h"
 #include "solvers/solver_checkpoint.h"

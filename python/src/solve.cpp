@@ -18,7 +18,7 @@
 #include "analysis/target_source.h"
 #include "framework/lightfield_checks.h"
 #include "framework/units.h"
-#include "kernels/view_synthesizer.h"
+#include "kernels/synthesis.h"
 #include "python/src/arguments.h"
 #include "python/src/bindings.h"
 #include "python/src/json_convert.h"
