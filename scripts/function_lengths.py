@@ -100,7 +100,7 @@ def tokens(text):
                     end = text.index(delimiter, open_paren) + len(delimiter)
                     line += text.count("\n", j, end)
                     i = end
-                    yield ("literal", "", line)
+                    yield ("literal", '""', line)
                 continue
             yield ("word", word, line)
             i = j
@@ -111,7 +111,7 @@ def tokens(text):
                 j += 2 if text[j] == "\\" else 1
             line += text.count("\n", i, j)
             i = j + 1
-            yield ("literal", "", line)
+            yield ("literal", '""', line)
             continue
         if text.startswith("::", i) or text.startswith("->", i):
             yield ("punct", text[i:i + 2], line)
@@ -141,11 +141,11 @@ def function_name(head):
     depth = 0
     angle = 0
     for k, (kind, value, _) in enumerate(head):
-        if value in "([":
+        if value in ("(", "["):
             if value == "(" and depth == 0 and angle == 0 and k > 0:
                 return declarator_before(head, k)
             depth += 1
-        elif value in ")]":
+        elif value in (")", "]"):
             depth -= 1
         elif depth == 0 and value == "<" and not is_operator_symbol(head, k):
             angle += 1
@@ -188,7 +188,7 @@ def functions(toks):
     k = 0
     while k < len(toks):
         kind, value, line = toks[k]
-        if value in ";}":
+        if value in (";", "}"):
             head = []
             k += 1
             continue
@@ -226,9 +226,9 @@ def in_member_initializers(head):
     depth = 0
     after_parameters = False
     for kind, value, _ in head:
-        if value in "([":
+        if value in ("(", "["):
             depth += 1
-        elif value in ")]":
+        elif value in (")", "]"):
             depth -= 1
             if depth == 0:
                 after_parameters = True
