@@ -80,6 +80,312 @@ LightFieldGeometry StripGeometry(const DisplaySystem& system, double dt, int row
   return g;
 }
 
+// Amplitudes over the accommodation range, on the retina and (for the
+// uncertainty) on the shifted retina, of several curves seen by one eye:
+// images(focus) makes what a state shares (a display's retinal tables), and
+// what it returns the image of curve n on grids[g] (0 the retina, 1 the shifted one).
+using RetinalImage = std::function<Image(const RetinaGrid&, const std::array<double, 3>&)>;
+using CurveImage = std::function<Image(size_t curve, int grid)>;
+using StateImages = std::function<CurveImage(const std::array<double, 3>& focus)>;
+
+// What natural viewing of `scene` puts on the retina of `seer`.
+RetinalImage NaturalImage(const SceneRadiance& scene, const EyeModel& seer, const std::vector<PupilPoint>& its_pupil) {
+  return [scene, &its_pupil, &seer](const RetinaGrid& grid, const std::array<double, 3>& focus) {
+    Image image = RetinaOfScene(scene, grid, its_pupil, focus);
+    ApplyEyeOptics(seer, grid, &image);
+    return image;
+  };
+}
+
+// Natural viewing curves already drawn, per target, by what they saw.
+struct DrawnNatural {
+  LightFieldGeometry geometry;
+  Sampling sampling;
+  const EyeModel* eye;
+};
+
+// A display curve to solve: its model, and what renders its target again.
+struct CurveSolve {
+  size_t display, target, index;  // of_target[target][index]
+  std::string label;
+  std::shared_ptr<const Texture> texture;
+  std::unique_ptr<DisplayModel> model;
+  Patterns t;
+};
+
+// One contrast run: the curves planned target by target (natural viewing
+// where first seen, then each display's), every display curve solved, each
+// display's curves swept together, then their peaks.
+class ContrastRun {
+ public:
+  ContrastRun(const std::vector<ContrastDisplay>& displays, const ContrastOptions& o)
+      : displays_(displays),
+        o_(o),
+        // Each display is seen by its own scene's eye (an "auto" pupil follows its luminance);
+        // the continuous plane by the first display's.
+        first_eye_(displays.front().system.eye) {
+    for (int k = 0;; ++k) {
+      double a = o.accommodation_min + k * o.accommodation_step;
+      if (a > o.accommodation_max + 1e-9) break;
+      accommodation_.push_back(a);
+    }
+    for (const ContrastDisplay& d : displays) pupils_.push_back(PupilSamples(d.system.eye));
+    retina_ = MakeRetinaGrid(o.retina_field * kDeg, 3 * o.retina_resolution * kDeg, o.retina_resolution * kDeg);
+    shifted_ = retina_;
+    shifted_.center_x += 0.5 * retina_.resolution;  // for the peaks' sampling uncertainty
+    grids_[0] = retina_, grids_[1] = shifted_;
+    texture_of_ = o.texture ? o.texture : CosineGrating(0.5, 1.0, o.grating);
+    convention_ = ConventionLabel(o.reference, o.grating);
+  }
+
+  std::vector<ContrastCurve> Run() {
+    PlanCurves();
+    SolveCurves();
+    for (size_t di = 0; di < displays_.size(); ++di) SweepDisplay(di);
+    std::vector<ContrastCurve> curves;
+    for (std::vector<ContrastCurve>& of : of_target_)
+      for (ContrastCurve& c : of) curves.push_back(std::move(c));
+    for (ContrastCurve& c : curves) {
+      c.peak = FindPeak(c.accommodation, c.contrast);
+      c.estimate = EstimatePeak(c.accommodation, c.contrast, c.contrast_shifted, o_.flat_limit);
+      c.at_target = Interpolate(c.accommodation, c.contrast, c.target_diopters);
+    }
+    if (progress_) progress_->Finish(std::to_string(curves.size()) + " curves");
+    return curves;
+  }
+
+ private:
+  double Amplitude(const Image& image, const RetinaGrid& grid, double f) const {
+    std::vector<double> row = CentralRow(image), degrees(grid.cols);
+    for (int j = 0; j < grid.cols; ++j) degrees[j] = grid.angle_x(j) / kDeg;
+    int n = WholeCycleSamples(grid.cols, o_.retina_resolution, f);
+    int start = (grid.cols - n) / 2;
+    return FourierAmplitude(std::vector<double>(row.begin() + start, row.begin() + start + n),
+                            std::vector<double>(degrees.begin() + start, degrees.begin() + start + n), f);
+  }
+
+  // The states one per thread: a retinal image of 3 rows leaves a second
+  // thread little of its own to do, and serial set-up (its tables and
+  // views) keeps it waiting. Inside the loop an image is made on one
+  // thread, the same values as made alone.
+  void Sweep(const EyeModel& eye, const StateImages& images, const std::vector<ContrastCurve*>& of) const {
+    const int states = static_cast<int>(accommodation_.size());
+    for (ContrastCurve* curve : of) {
+      curve->contrast.assign(states, 0.0);
+      if (o_.peak_uncertainty) curve->contrast_shifted.assign(states, 0.0);
+    }
+    std::exception_ptr error;
+#pragma omp parallel for schedule(dynamic)
+    for (int k = 0; k < states; ++k) {
+      try {
+        const CurveImage image = images(ChannelAccommodation(eye, accommodation_[k]));
+        for (size_t n = 0; n < of.size(); ++n) {
+          ContrastCurve& c = *of[n];
+          c.contrast[k] = Amplitude(image(n, 0), retina_, c.frequency) / c.reference_amplitude;
+          if (o_.peak_uncertainty)
+            c.contrast_shifted[k] = Amplitude(image(n, 1), shifted_, c.frequency) / c.reference_amplitude;
+        }
+      } catch (...) {
+#pragma omp critical(contrast_sweep_error)
+        if (!error) error = std::current_exception();
+      }
+    }
+    if (error) std::rethrow_exception(error);
+  }
+
+  void SweepOne(const EyeModel& eye, const RetinalImage& natural, ContrastCurve* curve) const {
+    const RetinaGrid(&grids)[2] = grids_;
+    Sweep(eye,
+          [&](const std::array<double, 3>& focus) -> CurveImage {
+            return [&natural, &grids, focus](size_t, int grid) { return natural(grids[grid], focus); };
+          },
+          {curve});
+  }
+
+  ContrastCurve Blank(const std::string& name, double dt, double f) const {
+    ContrastCurve c;
+    c.display = name, c.target_diopters = dt, c.frequency = f, c.accommodation = accommodation_,
+    c.convention = convention_;
+    return c;
+  }
+
+  double ReferenceAmplitude(const EyeModel& seer, const RetinalImage& natural, double dt, double f,
+                            const char* label) const {
+    double r = Amplitude(natural(retina_, ChannelAccommodation(seer, dt)), retina_, f);
+    if (!(r > 0)) throw Error(std::string("contrast: the target has no component at ") + label);
+    return r;
+  }
+
+  // The curves of each target (frequency, depth), in order: natural viewing
+  // where first seen, then each display's. Display by display, since a
+  // display's retinal tables at a state serve all of its curves: its curves
+  // are solved, then swept together.
+  void PlanCurves() {
+    const size_t depths = o_.target_diopters.size();
+    of_target_.resize(o_.frequencies.size() * depths);
+    drawn_.resize(of_target_.size());
+    continuous_reference_.assign(of_target_.size(), 0.0);
+    if (o_.show_progress)
+      progress_.emplace("contrast", displays_.size() * o_.frequencies.size() * o_.target_diopters.size());
+    for (size_t di = 0; di < displays_.size(); ++di)
+      for (size_t fi = 0; fi < o_.frequencies.size(); ++fi)
+        for (size_t ti = 0; ti < depths; ++ti)
+          PlanCurve(di, fi * depths + ti, o_.frequencies[fi], o_.target_diopters[ti]);
+  }
+
+  void PlanCurve(size_t di, size_t target_index, double f, double dt) {
+    const ContrastDisplay& d = displays_[di];
+    const EyeModel& eye = d.system.eye;
+    std::vector<ContrastCurve>& curves = of_target_[target_index];
+    std::shared_ptr<const Texture> texture = texture_of_(1 / dt, f);
+    char label[96];
+    std::snprintf(label, sizeof label, "target %.2f D, %.1f cpd", dt, f);
+    if (o_.reference == ContrastReference::kContinuous && di == 0) {
+      // The continuous plane at D_t as the eye sees it.
+      SceneRadiance plane = [&](const PupilPoint& u, double dx, double dy) {
+        return texture->Evaluate(u.x + dx / dt, u.y + dy / dt);
+      };
+      auto start = std::chrono::steady_clock::now();
+      RetinalImage natural = NaturalImage(plane, first_eye_, pupils_.front());
+      continuous_reference_[target_index] = ReferenceAmplitude(first_eye_, natural, dt, f, label);
+      ContrastCurve c = Blank("natural", dt, f);
+      c.solver = "-";
+      c.eye = EyeModelLine(first_eye_);
+      c.reference_amplitude = continuous_reference_[target_index];
+      SweepOne(first_eye_, natural, &c);
+      c.sweep_seconds = Seconds(start);
+      curves.push_back(std::move(c));
+    }
+
+    auto model = std::make_unique<DisplayModel>(d.system, StripGeometry(d.system, dt, o_.strip_rows), d.sampling);
+    double reference = continuous_reference_[target_index];
+    if (o_.reference == ContrastReference::kSampledTarget)
+      reference = DrawSampledNatural(di, target_index, model->geometry(), *texture, f, dt, label);
+
+    ContrastCurve curve = Blank(d.name, dt, f);
+    curve.eye = EyeModelLine(eye);
+    curve.solver = d.solver.empty() ? DefaultSolverFor(d.system) : d.solver;
+    curve.reference_amplitude = reference;
+    curves.push_back(std::move(curve));
+    solves_.push_back({di, target_index, curves.size() - 1, label, texture, std::move(model), {}});
+  }
+
+  // The reference amplitude of natural viewing of the display's sampled
+  // target; its curve is drawn once per distinct target, named after the
+  // display when it is not the first.
+  double DrawSampledNatural(size_t di, size_t target_index, const LightFieldGeometry& g, const Texture& texture,
+                            double f, double dt, const char* label) {
+    const ContrastDisplay& d = displays_[di];
+    const EyeModel& eye = d.system.eye;
+    std::vector<DrawnNatural>& drawn = drawn_[target_index];
+    auto start = std::chrono::steady_clock::now();
+    LightField target = RenderPlaneLightField(g, g.origin_z, texture);  // the plane is the origin plane
+    RetinalImage natural = NaturalImage(LightFieldRadiance(target, d.sampling), eye, pupils_[di]);
+    const double reference = ReferenceAmplitude(eye, natural, dt, f, label);
+    bool seen = std::any_of(drawn.begin(), drawn.end(), [&](const DrawnNatural& k) {
+      return k.sampling == d.sampling && SameGeometry(k.geometry, g) && SameEye(*k.eye, eye);
+    });
+    if (!seen) {
+      ContrastCurve c = Blank(drawn.empty() ? "natural" : "natural (" + d.name + ")", dt, f);
+      c.solver = "-";
+      c.eye = EyeModelLine(eye);
+      c.reference_amplitude = reference;
+      SweepOne(eye, natural, &c);
+      c.sweep_seconds = Seconds(start);
+      of_target_[target_index].push_back(std::move(c));
+      drawn.push_back({g, d.sampling, &eye});
+    }
+    return reference;
+  }
+
+  // Every display curve's solve, one per thread: on a target of a few
+  // thousand rays per view a solve's passes leave a second thread waiting
+  // at each barrier (26.6 s on one thread, 17.8 s on two for the default
+  // sweep, 2026-12-03). Each solve runs alone on its thread, so a curve has
+  // the bits of a one-thread solve on any machine. Its target is rendered
+  // again there (a few ms) rather than kept from above for every curve.
+  void SolveCurves() {
+    std::exception_ptr error;
+    size_t error_at = solves_.size(), started = 0;
+#pragma omp parallel for schedule(dynamic, 1)
+    for (size_t n = 0; n < solves_.size(); ++n) {
+      CurveSolve& s = solves_[n];
+      const ContrastDisplay& d = displays_[s.display];
+#pragma omp critical(contrast_solve_progress)
+      {
+        if (o_.progress) o_.progress(d.name + ": " + s.label);
+        if (progress_) progress_->Update(started++, "solves; now " + d.name + ": " + s.label);
+      }
+      try {
+        omp_set_num_threads(1);  // the solve's own parallel regions, on this thread only
+        SolveCurve(&s);
+      } catch (...) {
+#pragma omp critical(contrast_solve_error)
+        if (n < error_at) error = std::current_exception(), error_at = n;  // the first in curve order
+      }
+    }
+    if (error) std::rethrow_exception(error);
+  }
+
+  void SolveCurve(CurveSolve* s) {
+    const ContrastDisplay& d = displays_[s->display];
+    ContrastCurve& curve = of_target_[s->target][s->index];
+    const LightFieldGeometry& g = s->model->geometry();
+    LightField target = RenderPlaneLightField(g, g.origin_z, *s->texture);
+    SolverOptions options = d.options_given ? d.options : SolverRegistry::Builtins().find(curve.solver)->defaults;
+    options.retinal.target = RetinalTarget::kLightField;  // the grating's light field is its scene, exactly
+    auto start = std::chrono::steady_clock::now();
+    SolverReport report = SolverRegistry::Builtins().create(curve.solver)->Solve(*s->model, target, options, &s->t);
+    if (!report.IsSolutionUsable()) throw Error("contrast: " + d.name + ": " + report.message);
+    curve.solve_seconds = Seconds(start);
+    curve.psnr_db = report.final_psnr_db;
+  }
+
+  // The display's curves swept together; each is given an equal share of the time.
+  void SweepDisplay(size_t di) {
+    std::vector<const CurveSolve*> of_display;
+    std::vector<ContrastCurve*> of;
+    for (const CurveSolve& s : solves_)
+      if (s.display == di) of_display.push_back(&s), of.push_back(&of_target_[s.target][s.index]);
+    if (of_display.empty()) return;
+    const EyeModel& eye = displays_[di].system.eye;
+    const std::vector<PupilPoint>& pupil = pupils_[di];
+    const auto start = std::chrono::steady_clock::now();
+    Sweep(
+        eye,
+        [&](const std::array<double, 3>& focus) -> CurveImage {
+          const DisplayModel& model = *of_display.front()->model;  // every model of the display reads the same layers
+          auto tables = std::make_shared<std::vector<DisplayRetinaTables>>();
+          for (int g = 0; g < (o_.peak_uncertainty ? 2 : 1); ++g) tables->emplace_back(model, grids_[g], pupil, focus);
+          return [&, tables](size_t n, int grid) {
+            const CurveSolve& s = *of_display[n];
+            Image image = RetinaOfDisplay(*s.model, s.t, (*tables)[grid]);
+            ApplyEyeOptics(eye, grids_[grid], &image);
+            return image;
+          };
+        },
+        of);
+    const double seconds = Seconds(start) / of.size();
+    for (ContrastCurve* c : of) c->sweep_seconds = seconds;
+  }
+
+  const std::vector<ContrastDisplay>& displays_;
+  const ContrastOptions& o_;
+  const EyeModel& first_eye_;
+  std::vector<double> accommodation_;
+  std::vector<std::vector<PupilPoint>> pupils_;
+  RetinaGrid retina_, shifted_;
+  RetinaGrid grids_[2];
+  PlaneTextureFactory texture_of_;
+  std::string convention_;
+
+  std::vector<std::vector<ContrastCurve>> of_target_;
+  std::vector<std::vector<DrawnNatural>> drawn_;
+  std::vector<double> continuous_reference_;
+  std::optional<Progress> progress_;
+  std::vector<CurveSolve> solves_;
+};
+
 }  // namespace
 
 PlaneTextureFactory CosineGrating(double mean, double contrast, GratingSpacing spacing) {
@@ -131,256 +437,7 @@ std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displ
   if (displays.empty()) throw Error("contrast: no display given");
   if (!(o.accommodation_step > 0) || !(o.accommodation_max > o.accommodation_min))
     throw Error("contrast: the accommodation range must be increasing with a positive step");
-  std::vector<double> accommodation;
-  for (int k = 0;; ++k) {
-    double a = o.accommodation_min + k * o.accommodation_step;
-    if (a > o.accommodation_max + 1e-9) break;
-    accommodation.push_back(a);
-  }
-  // Each display is seen by its own scene's eye (an "auto" pupil follows its luminance);
-  // the continuous plane by the first display's.
-  const EyeModel& first_eye = displays.front().system.eye;
-  std::vector<std::vector<PupilPoint>> pupils;
-  for (const ContrastDisplay& d : displays) pupils.push_back(PupilSamples(d.system.eye));
-  const std::vector<PupilPoint>& first_pupil = pupils.front();
-  const RetinaGrid retina =
-      MakeRetinaGrid(o.retina_field * kDeg, 3 * o.retina_resolution * kDeg, o.retina_resolution * kDeg);
-  RetinaGrid shifted = retina;  // for the peaks' sampling uncertainty
-  shifted.center_x += 0.5 * retina.resolution;
-  const PlaneTextureFactory texture_of = o.texture ? o.texture : CosineGrating(0.5, 1.0, o.grating);
-  const std::string convention = ConventionLabel(o.reference, o.grating);
-
-  auto amplitude = [&](const Image& image, const RetinaGrid& grid, double f) {
-    std::vector<double> row = CentralRow(image), degrees(grid.cols);
-    for (int j = 0; j < grid.cols; ++j) degrees[j] = grid.angle_x(j) / kDeg;
-    int n = WholeCycleSamples(grid.cols, o.retina_resolution, f);
-    int start = (grid.cols - n) / 2;
-    return FourierAmplitude(std::vector<double>(row.begin() + start, row.begin() + start + n),
-                            std::vector<double>(degrees.begin() + start, degrees.begin() + start + n), f);
-  };
-  // Amplitudes over the accommodation range, on the retina and (for the
-  // uncertainty) on the shifted retina, of several curves seen by one eye:
-  // images(focus) makes what a state shares (a display's retinal tables), and
-  // what it returns the image of curve n on grids[g] (0 the retina, 1 the shifted one).
-  using RetinalImage = std::function<Image(const RetinaGrid&, const std::array<double, 3>&)>;
-  using CurveImage = std::function<Image(size_t curve, int grid)>;
-  const RetinaGrid grids[2] = {retina, shifted};
-  using StateImages = std::function<CurveImage(const std::array<double, 3>& focus)>;
-  // The states one per thread: a retinal image of 3 rows leaves a second
-  // thread little of its own to do, and serial set-up (its tables and
-  // views) keeps it waiting. Inside the loop an image is made on one
-  // thread, the same values as made alone.
-  auto sweep = [&](const EyeModel& eye, const StateImages& images, const std::vector<ContrastCurve*>& of) {
-    const int states = static_cast<int>(accommodation.size());
-    for (ContrastCurve* curve : of) {
-      curve->contrast.assign(states, 0.0);
-      if (o.peak_uncertainty) curve->contrast_shifted.assign(states, 0.0);
-    }
-    std::exception_ptr error;
-#pragma omp parallel for schedule(dynamic)
-    for (int k = 0; k < states; ++k) {
-      try {
-        const CurveImage image = images(ChannelAccommodation(eye, accommodation[k]));
-        for (size_t n = 0; n < of.size(); ++n) {
-          ContrastCurve& c = *of[n];
-          c.contrast[k] = amplitude(image(n, 0), retina, c.frequency) / c.reference_amplitude;
-          if (o.peak_uncertainty)
-            c.contrast_shifted[k] = amplitude(image(n, 1), shifted, c.frequency) / c.reference_amplitude;
-        }
-      } catch (...) {
-#pragma omp critical(contrast_sweep_error)
-        if (!error) error = std::current_exception();
-      }
-    }
-    if (error) std::rethrow_exception(error);
-  };
-  auto sweep_one = [&](const EyeModel& eye, const RetinalImage& natural, ContrastCurve* curve) {
-    sweep(eye,
-          [&](const std::array<double, 3>& focus) -> CurveImage {
-            return [&natural, &grids, focus](size_t, int grid) { return natural(grids[grid], focus); };
-          },
-          {curve});
-  };
-  auto blank = [&](const std::string& name, double dt, double f) {
-    ContrastCurve c;
-    c.display = name, c.target_diopters = dt, c.frequency = f, c.accommodation = accommodation,
-    c.convention = convention;
-    return c;
-  };
-
-  // The curves of each target (frequency, depth), in order: natural viewing
-  // where first seen, then each display's. Display by display, since a
-  // display's retinal tables at a state serve all of its curves: its curves
-  // are solved, then swept together.
-  const size_t depths = o.target_diopters.size();
-  std::vector<std::vector<ContrastCurve>> of_target(o.frequencies.size() * depths);
-  // Natural viewing curves already drawn, per target, by what they saw.
-  struct Drawn {
-    LightFieldGeometry geometry;
-    Sampling sampling;
-    const EyeModel* eye;
-  };
-  std::vector<std::vector<Drawn>> drawn(of_target.size());
-  std::vector<double> continuous_reference(of_target.size(), 0.0);
-  std::optional<Progress> progress;
-  if (o.show_progress) progress.emplace("contrast", displays.size() * o.frequencies.size() * o.target_diopters.size());
-  // A display curve to solve: its model, and what renders its target again.
-  struct Solve {
-    size_t display, target, index;  // of_target[target][index]
-    std::string label;
-    std::shared_ptr<const Texture> texture;
-    std::unique_ptr<DisplayModel> model;
-    Patterns t;
-  };
-  std::vector<Solve> solves;
-  for (size_t di = 0; di < displays.size(); ++di) {
-    const ContrastDisplay& d = displays[di];
-    const EyeModel& eye = d.system.eye;
-    const std::vector<PupilPoint>& pupil = pupils[di];
-    for (size_t fi = 0; fi < o.frequencies.size(); ++fi)
-      for (size_t ti = 0; ti < depths; ++ti) {
-        const double f = o.frequencies[fi], dt = o.target_diopters[ti];
-        const size_t target_index = fi * depths + ti;
-        std::vector<ContrastCurve>& curves = of_target[target_index];
-        std::shared_ptr<const Texture> texture = texture_of(1 / dt, f);
-        char label[96];
-        std::snprintf(label, sizeof label, "target %.2f D, %.1f cpd", dt, f);
-        // The continuous plane at D_t as the eye sees it.
-        SceneRadiance plane = [&](const PupilPoint& u, double dx, double dy) {
-          return texture->Evaluate(u.x + dx / dt, u.y + dy / dt);
-        };
-        auto natural_image = [&](const SceneRadiance& scene, const EyeModel& seer,
-                                 const std::vector<PupilPoint>& its_pupil) -> RetinalImage {
-          return [scene, &its_pupil, &seer](const RetinaGrid& grid, const std::array<double, 3>& focus) {
-            Image image = RetinaOfScene(scene, grid, its_pupil, focus);
-            ApplyEyeOptics(seer, grid, &image);
-            return image;
-          };
-        };
-        auto reference_of = [&](const EyeModel& seer, const RetinalImage& natural) {
-          double r = amplitude(natural(retina, ChannelAccommodation(seer, dt)), retina, f);
-          if (!(r > 0)) throw Error(std::string("contrast: the target has no component at ") + label);
-          return r;
-        };
-        if (o.reference == ContrastReference::kContinuous && di == 0) {
-          auto start = std::chrono::steady_clock::now();
-          RetinalImage natural = natural_image(plane, first_eye, first_pupil);
-          continuous_reference[target_index] = reference_of(first_eye, natural);
-          ContrastCurve c = blank("natural", dt, f);
-          c.solver = "-";
-          c.eye = EyeModelLine(first_eye);
-          c.reference_amplitude = continuous_reference[target_index];
-          sweep_one(first_eye, natural, &c);
-          c.sweep_seconds = Seconds(start);
-          curves.push_back(std::move(c));
-        }
-
-        auto model = std::make_unique<DisplayModel>(d.system, StripGeometry(d.system, dt, o.strip_rows), d.sampling);
-        double reference = continuous_reference[target_index];
-        if (o.reference == ContrastReference::kSampledTarget) {
-          const LightFieldGeometry& g = model->geometry();
-          auto start = std::chrono::steady_clock::now();
-          LightField target = RenderPlaneLightField(g, g.origin_z, *texture);  // the plane is the origin plane
-          RetinalImage natural = natural_image(LightFieldRadiance(target, d.sampling), eye, pupil);
-          reference = reference_of(eye, natural);
-          bool seen = std::any_of(drawn[target_index].begin(), drawn[target_index].end(), [&](const Drawn& k) {
-            return k.sampling == d.sampling && SameGeometry(k.geometry, g) && SameEye(*k.eye, eye);
-          });
-          if (!seen) {
-            // One natural curve per distinct target; named after the display when it is not the first.
-            ContrastCurve c = blank(drawn[target_index].empty() ? "natural" : "natural (" + d.name + ")", dt, f);
-            c.solver = "-";
-            c.eye = EyeModelLine(eye);
-            c.reference_amplitude = reference;
-            sweep_one(eye, natural, &c);
-            c.sweep_seconds = Seconds(start);
-            curves.push_back(std::move(c));
-            drawn[target_index].push_back({g, d.sampling, &eye});
-          }
-        }
-
-        ContrastCurve curve = blank(d.name, dt, f);
-        curve.eye = EyeModelLine(eye);
-        curve.solver = d.solver.empty() ? DefaultSolverFor(d.system) : d.solver;
-        curve.reference_amplitude = reference;
-        curves.push_back(std::move(curve));
-        solves.push_back({di, target_index, curves.size() - 1, label, texture, std::move(model), {}});
-      }
-  }
-
-  // Every display curve's solve, one per thread: on a target of a few
-  // thousand rays per view a solve's passes leave a second thread waiting
-  // at each barrier (26.6 s on one thread, 17.8 s on two for the default
-  // sweep, 2026-12-03). Each solve runs alone on its thread, so a curve has
-  // the bits of a one-thread solve on any machine. Its target is rendered
-  // again there (a few ms) rather than kept from above for every curve.
-  std::exception_ptr error;
-  size_t error_at = solves.size(), started = 0;
-#pragma omp parallel for schedule(dynamic, 1)
-  for (size_t n = 0; n < solves.size(); ++n) {
-    Solve& s = solves[n];
-    const ContrastDisplay& d = displays[s.display];
-    ContrastCurve& curve = of_target[s.target][s.index];
-#pragma omp critical(contrast_solve_progress)
-    {
-      if (o.progress) o.progress(d.name + ": " + s.label);
-      if (progress) progress->Update(started++, "solves; now " + d.name + ": " + s.label);
-    }
-    try {
-      omp_set_num_threads(1);  // the solve's own parallel regions, on this thread only
-      const LightFieldGeometry& g = s.model->geometry();
-      LightField target = RenderPlaneLightField(g, g.origin_z, *s.texture);
-      SolverOptions options = d.options_given ? d.options : SolverRegistry::Builtins().find(curve.solver)->defaults;
-      options.retinal.target = RetinalTarget::kLightField;  // the grating's light field is its scene, exactly
-      auto start = std::chrono::steady_clock::now();
-      SolverReport report = SolverRegistry::Builtins().create(curve.solver)->Solve(*s.model, target, options, &s.t);
-      if (!report.IsSolutionUsable()) throw Error("contrast: " + d.name + ": " + report.message);
-      curve.solve_seconds = Seconds(start);
-      curve.psnr_db = report.final_psnr_db;
-    } catch (...) {
-#pragma omp critical(contrast_solve_error)
-      if (n < error_at) error = std::current_exception(), error_at = n;  // the first in curve order
-    }
-  }
-  if (error) std::rethrow_exception(error);
-
-  for (size_t di = 0; di < displays.size(); ++di) {
-    std::vector<const Solve*> of_display;
-    std::vector<ContrastCurve*> of;
-    for (const Solve& s : solves)
-      if (s.display == di) of_display.push_back(&s), of.push_back(&of_target[s.target][s.index]);
-    if (of_display.empty()) continue;
-    const EyeModel& eye = displays[di].system.eye;
-    const std::vector<PupilPoint>& pupil = pupils[di];
-    // The display's curves swept together; each is given an equal share of the time.
-    const auto start = std::chrono::steady_clock::now();
-    sweep(
-        eye,
-        [&](const std::array<double, 3>& focus) -> CurveImage {
-          const DisplayModel& model = *of_display.front()->model;  // every model of the display reads the same layers
-          auto tables = std::make_shared<std::vector<DisplayRetinaTables>>();
-          for (int g = 0; g < (o.peak_uncertainty ? 2 : 1); ++g) tables->emplace_back(model, grids[g], pupil, focus);
-          return [&, tables](size_t n, int grid) {
-            const Solve& s = *of_display[n];
-            Image image = RetinaOfDisplay(*s.model, s.t, (*tables)[grid]);
-            ApplyEyeOptics(eye, grids[grid], &image);
-            return image;
-          };
-        },
-        of);
-    const double seconds = Seconds(start) / of.size();
-    for (ContrastCurve* c : of) c->sweep_seconds = seconds;
-  }
-  std::vector<ContrastCurve> curves;
-  for (std::vector<ContrastCurve>& of : of_target)
-    for (ContrastCurve& c : of) curves.push_back(std::move(c));
-  for (ContrastCurve& c : curves) {
-    c.peak = FindPeak(c.accommodation, c.contrast);
-    c.estimate = EstimatePeak(c.accommodation, c.contrast, c.contrast_shifted, o.flat_limit);
-    c.at_target = Interpolate(c.accommodation, c.contrast, c.target_diopters);
-  }
-  if (progress) progress->Finish(std::to_string(curves.size()) + " curves");
-  return curves;
+  return ContrastRun(displays, o).Run();
 }
 
 std::string ContrastCsv(const std::vector<ContrastCurve>& curves) {

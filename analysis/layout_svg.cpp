@@ -76,80 +76,67 @@ std::string Glyph(const PathStep& step, double x, double y) {
   }
 }
 
-}  // namespace
-
-std::string RenderLayoutSvg(const DisplaySystem& s, bool standalone) {
-  const size_t rows = s.branches.size();
+// Where path lengths (m, the physical rows) and diopters (the eye-space strip) lie on the page.
+struct LayoutScale {
   double farthest = 0, max_diopters = 0;
-  for (const VirtualLayer& l : s.layers) {
-    farthest = std::max(farthest, l.position);
-    max_diopters = std::max(max_diopters, l.diopters);
-  }
-  max_diopters = std::max({max_diopters * 1.1, s.eye.accommodation_max, 0.5});
-  const double plot_width = kWidth - kLeft - kRight;
-  auto x_of = [&](double position) { return kLeft + plot_width * position / (farthest * 1.06); };
-  const double strip_top = kTop + rows * kRowHeight + 48;
-  auto x_of_diopters = [&](double D) { return kLeft + plot_width * (1 - D / max_diopters); };
-  const double height = strip_top + kStripHeight;
+  double plot_width = kWidth - kLeft - kRight;
+  double x_of(double position) const { return kLeft + plot_width * position / (farthest * 1.06); }
+  double x_of_diopters(double D) const { return kLeft + plot_width * (1 - D / max_diopters); }
+};
 
-  std::string svg = std::string("<svg ") + (standalone ? "xmlns=\"http://www.w3.org/2000/svg\" " : "") + "width=\"" +
-                    Num(kWidth) + "\" height=\"" + Num(height) + "\" viewBox=\"0 0 " + Num(kWidth) + " " + Num(height) +
-                    "\" font-family=\"Liberation Sans, Arial, "
-                    "sans-serif\" role=\"img\" aria-label=\"optical layout\">\n";
-  svg += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  svg += Text(kLeft, 20, "Optical path unfolded from the eye, to scale (path length from the pupil, mm)",
-              "font-size=\"14\" font-weight=\"bold\"");
-
-  // The physical rows: one per branch.
-  std::vector<double> panel_x(s.layers.size()), panel_y(s.layers.size());
-  for (size_t b = 0; b < rows; ++b) {
-    const Branch& branch = s.branches[b];
-    const std::string color = kBranchColors[b % 6];
-    const double y = kTop + b * kRowHeight + kRowHeight / 2;
-    const VirtualLayer& back = s.layers[branch.layers.back()];
-    svg += Text(4, y - 40, branch.name, "font-size=\"11\" fill=\"" + color + "\"");
-    svg += Line(x_of(0), y, x_of(back.position), y, "stroke=\"" + color + "\" stroke-width=\"1\"");
-    svg += "<ellipse cx=\"" + Num(x_of(0) - 10) + "\" cy=\"" + Num(y) +
-           "\" rx=\"10\" ry=\"14\" fill=\"#fff\" stroke=\"#333\"/>\n";
-    svg += Text(x_of(0) - 10, y + 30, "eye", "text-anchor=\"middle\" font-size=\"11\"");
-    const std::vector<double> at = DrawnPositions(back);
-    for (size_t i = 0; i < back.path.size(); ++i)
-      if (back.path[i].kind != ElementKind::kPanel) svg += Glyph(back.path[i], x_of(at[i]), y);
-    for (int k : branch.layers) {
-      const VirtualLayer& l = s.layers[k];
-      const double x = x_of(l.position);
-      panel_x[k] = x, panel_y[k] = y;
-      svg += "<rect x=\"" + Num(x - 2.5) + "\" y=\"" + Num(y - 22) + "\" width=\"5\" height=\"44\" fill=\"" + color +
-             "\"/>\n";
-      svg += Text(x + 4, y + 34 + 10 * l.position_in_branch, l.name, "font-size=\"11\" fill=\"" + color + "\"");
-      // Real intermediate images (a relay's): where the light converges on its way to the eye.
-      for (const IntermediateImage& image : IntermediateImages(l)) {
-        if (!image.real || !(image.position > 0) || image.position > l.position) continue;
-        const double xi = x_of(image.position);
-        svg += Line(xi, y - 14, xi, y + 14, "stroke=\"" + color + "\" stroke-width=\"1.5\" stroke-dasharray=\"2,2\"");
-        svg += Text(xi, y - 18 - 10 * l.position_in_branch, "real image of " + l.name,
-                    "text-anchor=\"middle\" font-size=\"9\" fill=\"" + color + "\"");
-      }
+// A branch's physical row: the eye, the optics and the panels, with their real intermediate images;
+// where each of its panels is drawn into panel_x, panel_y.
+std::string BranchRowSvg(const DisplaySystem& s, size_t b, const LayoutScale& scale, std::vector<double>* panel_x,
+                         std::vector<double>* panel_y) {
+  auto x_of = [&](double position) { return scale.x_of(position); };
+  const Branch& branch = s.branches[b];
+  const std::string color = kBranchColors[b % 6];
+  const double y = kTop + b * kRowHeight + kRowHeight / 2;
+  const VirtualLayer& back = s.layers[branch.layers.back()];
+  std::string svg = Text(4, y - 40, branch.name, "font-size=\"11\" fill=\"" + color + "\"");
+  svg += Line(x_of(0), y, x_of(back.position), y, "stroke=\"" + color + "\" stroke-width=\"1\"");
+  svg += "<ellipse cx=\"" + Num(x_of(0) - 10) + "\" cy=\"" + Num(y) +
+         "\" rx=\"10\" ry=\"14\" fill=\"#fff\" stroke=\"#333\"/>\n";
+  svg += Text(x_of(0) - 10, y + 30, "eye", "text-anchor=\"middle\" font-size=\"11\"");
+  const std::vector<double> at = DrawnPositions(back);
+  for (size_t i = 0; i < back.path.size(); ++i)
+    if (back.path[i].kind != ElementKind::kPanel) svg += Glyph(back.path[i], x_of(at[i]), y);
+  for (int k : branch.layers) {
+    const VirtualLayer& l = s.layers[k];
+    const double x = x_of(l.position);
+    (*panel_x)[k] = x, (*panel_y)[k] = y;
+    svg += "<rect x=\"" + Num(x - 2.5) + "\" y=\"" + Num(y - 22) + "\" width=\"5\" height=\"44\" fill=\"" + color +
+           "\"/>\n";
+    svg += Text(x + 4, y + 34 + 10 * l.position_in_branch, l.name, "font-size=\"11\" fill=\"" + color + "\"");
+    // Real intermediate images (a relay's): where the light converges on its way to the eye.
+    for (const IntermediateImage& image : IntermediateImages(l)) {
+      if (!image.real || !(image.position > 0) || image.position > l.position) continue;
+      const double xi = x_of(image.position);
+      svg += Line(xi, y - 14, xi, y + 14, "stroke=\"" + color + "\" stroke-width=\"1.5\" stroke-dasharray=\"2,2\"");
+      svg += Text(xi, y - 18 - 10 * l.position_in_branch, "real image of " + l.name,
+                  "text-anchor=\"middle\" font-size=\"9\" fill=\"" + color + "\"");
     }
   }
-  for (double mm : NiceTicks(0, farthest * 1.06e3, 8)) {
-    const double x = x_of(mm * 1e-3), y = kTop + rows * kRowHeight;
-    svg += Line(x, y - 4, x, y + 2, "stroke=\"#999\"") +
-           Text(x, y + 14, Label(mm, 0), "text-anchor=\"middle\" font-size=\"10\" fill=\"#555\"");
-  }
+  return svg;
+}
 
-  // The eye-space strip: images on a diopter axis (near on the left, infinity on the right).
-  svg += Text(kLeft, strip_top - 8, "Images of the panels in eye space (diopters from the eye; 0 D is infinity)",
-              "font-size=\"13\" font-weight=\"bold\"");
+// The eye-space strip: images on a diopter axis (near on the left, infinity on the right),
+// each joined to its panel at panel_x, panel_y.
+std::string EyeSpaceStripSvg(const DisplaySystem& s, const LayoutScale& scale, double strip_top,
+                             const std::vector<double>& panel_x, const std::vector<double>& panel_y) {
+  auto x_of_diopters = [&](double D) { return scale.x_of_diopters(D); };
+  std::string svg =
+      Text(kLeft, strip_top - 8, "Images of the panels in eye space (diopters from the eye; 0 D is infinity)",
+           "font-size=\"13\" font-weight=\"bold\"");
   const double axis_y = strip_top + kStripHeight - 30;
   svg += "<rect x=\"" + Num(x_of_diopters(s.eye.accommodation_max)) + "\" y=\"" + Num(strip_top + 4) + "\" width=\"" +
          Num(x_of_diopters(s.eye.accommodation_min) - x_of_diopters(s.eye.accommodation_max)) + "\" height=\"" +
          Num(axis_y - strip_top - 4) + "\" fill=\"#f3f3f3\"/>\n";
   svg += Text(x_of_diopters(s.eye.accommodation_max) + 4, strip_top + 16, "accommodation range",
               "font-size=\"10\" fill=\"#888\"");
-  svg += Line(kLeft, axis_y, kLeft + plot_width, axis_y, "stroke=\"#333\"");
-  for (double D : NiceTicks(0, max_diopters, 8)) {
-    if (D > max_diopters) continue;
+  svg += Line(kLeft, axis_y, kLeft + scale.plot_width, axis_y, "stroke=\"#333\"");
+  for (double D : NiceTicks(0, scale.max_diopters, 8)) {
+    if (D > scale.max_diopters) continue;
     const double x = x_of_diopters(D);
     svg += Line(x, axis_y, x, axis_y + 5, "stroke=\"#333\"") +
            Text(x, axis_y + 17, Label(D, 1) + " D", "text-anchor=\"middle\" font-size=\"10\"");
@@ -165,6 +152,39 @@ std::string RenderLayoutSvg(const DisplaySystem& s, bool standalone) {
                 l.name + " " + FormatFixed(l.diopters, 2) + " D" + (l.inverted ? " (inverted)" : ""),
                 "text-anchor=\"middle\" font-size=\"10\" fill=\"" + color + "\"");
   }
+  return svg;
+}
+
+}  // namespace
+
+std::string RenderLayoutSvg(const DisplaySystem& s, bool standalone) {
+  const size_t rows = s.branches.size();
+  LayoutScale scale;
+  for (const VirtualLayer& l : s.layers) {
+    scale.farthest = std::max(scale.farthest, l.position);
+    scale.max_diopters = std::max(scale.max_diopters, l.diopters);
+  }
+  scale.max_diopters = std::max({scale.max_diopters * 1.1, s.eye.accommodation_max, 0.5});
+  const double strip_top = kTop + rows * kRowHeight + 48;
+  const double height = strip_top + kStripHeight;
+
+  std::string svg = std::string("<svg ") + (standalone ? "xmlns=\"http://www.w3.org/2000/svg\" " : "") + "width=\"" +
+                    Num(kWidth) + "\" height=\"" + Num(height) + "\" viewBox=\"0 0 " + Num(kWidth) + " " + Num(height) +
+                    "\" font-family=\"Liberation Sans, Arial, "
+                    "sans-serif\" role=\"img\" aria-label=\"optical layout\">\n";
+  svg += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  svg += Text(kLeft, 20, "Optical path unfolded from the eye, to scale (path length from the pupil, mm)",
+              "font-size=\"14\" font-weight=\"bold\"");
+
+  // The physical rows: one per branch.
+  std::vector<double> panel_x(s.layers.size()), panel_y(s.layers.size());
+  for (size_t b = 0; b < rows; ++b) svg += BranchRowSvg(s, b, scale, &panel_x, &panel_y);
+  for (double mm : NiceTicks(0, scale.farthest * 1.06e3, 8)) {
+    const double x = scale.x_of(mm * 1e-3), y = kTop + rows * kRowHeight;
+    svg += Line(x, y - 4, x, y + 2, "stroke=\"#999\"") +
+           Text(x, y + 14, Label(mm, 0), "text-anchor=\"middle\" font-size=\"10\" fill=\"#555\"");
+  }
+  svg += EyeSpaceStripSvg(s, scale, strip_top, panel_x, panel_y);
   return svg + "</svg>\n";
 }
 

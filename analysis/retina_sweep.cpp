@@ -27,6 +27,73 @@ double MeanLuminance(const Image& image) {
   return sum / (double(image.width) * image.height);
 }
 
+namespace fs = std::filesystem;
+
+// One batch of states: each state's results and its images of the display and, with `natural`, of the scene.
+struct RetinaBatch {
+  std::vector<RetinaStateResult> r;
+  std::vector<Image> display, seen;
+};
+
+// The images of states [first, first + count), each computed in parallel within.
+RetinaBatch TraceBatch(const DisplayModel& model, const Patterns& t, const SceneRadiance& natural,
+                       const RetinaGrid& grid, const std::vector<PupilPoint>& pupil, const std::vector<double>& states,
+                       size_t first, size_t count) {
+  const DisplaySystem& system = model.system();
+  const double white = model.white_luminance();
+  RetinaBatch b{std::vector<RetinaStateResult>(count), std::vector<Image>(count), std::vector<Image>(count)};
+  for (size_t s = 0; s < count; ++s) {
+    auto start = std::chrono::steady_clock::now();
+    RetinaStateResult& r = b.r[s];
+    r.diopters = states[first + s];
+    r.name = RetinaStateName(r.diopters);
+    const auto focus = ChannelAccommodation(system.eye, r.diopters);
+    b.display[s] = RetinaOfDisplay(model, t, grid, pupil, focus);
+    ApplyEyeOptics(system.eye, grid, &b.display[s]);
+    r.display_mean_cd_m2 = MeanLuminance(b.display[s]) * white;
+    r.natural_mean_cd_m2 = NAN;
+    if (natural) {
+      b.seen[s] = RetinaOfScene(natural, grid, pupil, focus);
+      ApplyEyeOptics(system.eye, grid, &b.seen[s]);
+      r.natural_mean_cd_m2 = MeanLuminance(b.seen[s]) * white;
+    }
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  return b;
+}
+
+// The batch's files, in parallel: file f of state s = f / 4 is the display's
+// EXR, its PNG, the natural EXR, its PNG. Each file's seconds into `seconds`.
+void WriteBatch(const fs::path& out, const RetinaGrid& grid, bool natural, RetinaBatch* b,
+                std::vector<double>* seconds) {
+  const int files = static_cast<int>(b->r.size() * 4);
+  std::vector<std::exception_ptr> failed(files);
+  seconds->assign(files, 0.0);
+#pragma omp parallel for schedule(dynamic)
+  for (int f = 0; f < files; ++f) {
+    const size_t s = f / 4;
+    const bool of_display = f % 4 < 2, exr = f % 2 == 0;
+    if (!of_display && !natural) continue;
+    auto start = std::chrono::steady_clock::now();
+    try {
+      const Image& image = of_display ? b->display[s] : b->seen[s];
+      const fs::path stem = out / (of_display ? "display" : "natural") / b->r[s].name;
+      if (exr)
+        WriteExr(stem.string() + ".exr", image, ExrCompression::kNone);
+      else {
+        const size_t clipped =
+            WriteSrgbPng(stem.string() + ".png", grid.cols, grid.rows, image.pixels, 1.0, PngCompression::kFast);
+        if (of_display) b->r[s].display_clipped_in_png = clipped;
+      }
+    } catch (...) {
+      failed[f] = std::current_exception();
+    }
+    (*seconds)[f] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  for (const std::exception_ptr& e : failed)
+    if (e) std::rethrow_exception(e);
+}
+
 }  // namespace
 
 void CheckAccommodationStates(const std::vector<double>& states, const std::string& name) {
@@ -54,12 +121,10 @@ std::vector<RetinaStateResult> WriteRetinaSweep(
   const RetinaGrid grid = MakeRetinaGrid(field_x, field_y, o.resolution * kDeg);
   const std::vector<PupilPoint> pupil = PupilSamples(system.eye);
 
-  namespace fs = std::filesystem;
   const fs::path out = folder;
   fs::create_directories(out / "display");
   if (natural) fs::create_directories(out / "natural");
   std::string csv = "accommodation_D,display_mean_cd_m2,natural_mean_cd_m2,display_clipped_in_png,seconds\n";
-  const double white = model.white_luminance();
   // States in batches: each state's images are computed (in parallel
   // within), then the batch's files are written in parallel. Writing, not
   // tracing, was most of a state's time (ZIP saves 5% of a float image at
@@ -68,59 +133,18 @@ std::vector<RetinaStateResult> WriteRetinaSweep(
   std::vector<RetinaStateResult> results;
   for (size_t first = 0; first < o.states.size(); first += batch) {
     const size_t count = std::min(batch, o.states.size() - first);
-    std::vector<RetinaStateResult> r(count);
-    std::vector<Image> display(count), seen(count);
+    RetinaBatch b = TraceBatch(model, t, natural, grid, pupil, o.states, first, count);
+    std::vector<double> seconds;
+    WriteBatch(out, grid, bool(natural), &b, &seconds);
     for (size_t s = 0; s < count; ++s) {
-      auto start = std::chrono::steady_clock::now();
-      r[s].diopters = o.states[first + s];
-      r[s].name = RetinaStateName(r[s].diopters);
-      const auto focus = ChannelAccommodation(system.eye, r[s].diopters);
-      display[s] = RetinaOfDisplay(model, t, grid, pupil, focus);
-      ApplyEyeOptics(system.eye, grid, &display[s]);
-      r[s].display_mean_cd_m2 = MeanLuminance(display[s]) * white;
-      r[s].natural_mean_cd_m2 = NAN;
-      if (natural) {
-        seen[s] = RetinaOfScene(natural, grid, pupil, focus);
-        ApplyEyeOptics(system.eye, grid, &seen[s]);
-        r[s].natural_mean_cd_m2 = MeanLuminance(seen[s]) * white;
-      }
-      r[s].seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    }
-    // File f of state s = f / 4: display EXR, display PNG, natural EXR, natural PNG.
-    const int files = static_cast<int>(count * 4);
-    std::vector<std::exception_ptr> failed(files);
-    std::vector<double> seconds(files, 0.0);
-#pragma omp parallel for schedule(dynamic)
-    for (int f = 0; f < files; ++f) {
-      const size_t s = f / 4;
-      const bool of_display = f % 4 < 2, exr = f % 2 == 0;
-      if (!of_display && !natural) continue;
-      auto start = std::chrono::steady_clock::now();
-      try {
-        const Image& image = of_display ? display[s] : seen[s];
-        const fs::path stem = out / (of_display ? "display" : "natural") / r[s].name;
-        if (exr)
-          WriteExr(stem.string() + ".exr", image, ExrCompression::kNone);
-        else {
-          const size_t clipped =
-              WriteSrgbPng(stem.string() + ".png", grid.cols, grid.rows, image.pixels, 1.0, PngCompression::kFast);
-          if (of_display) r[s].display_clipped_in_png = clipped;
-        }
-      } catch (...) {
-        failed[f] = std::current_exception();
-      }
-      seconds[f] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    }
-    for (const std::exception_ptr& e : failed)
-      if (e) std::rethrow_exception(e);
-    for (size_t s = 0; s < count; ++s) {
-      for (int f = 0; f < 4; ++f) r[s].seconds += seconds[s * 4 + f];
+      RetinaStateResult& r = b.r[s];
+      for (int f = 0; f < 4; ++f) r.seconds += seconds[s * 4 + f];
       char row[160];
-      std::snprintf(row, sizeof row, "%.4f,%.6g,%.6g,%zu,%.3f\n", r[s].diopters, r[s].display_mean_cd_m2,
-                    r[s].natural_mean_cd_m2, r[s].display_clipped_in_png, r[s].seconds);
+      std::snprintf(row, sizeof row, "%.4f,%.6g,%.6g,%zu,%.3f\n", r.diopters, r.display_mean_cd_m2,
+                    r.natural_mean_cd_m2, r.display_clipped_in_png, r.seconds);
       csv += row;
-      if (o.keep_images) r[s].display = std::move(display[s]), r[s].natural = std::move(seen[s]);
-      results.push_back(std::move(r[s]));
+      if (o.keep_images) r.display = std::move(b.display[s]), r.natural = std::move(b.seen[s]);
+      results.push_back(std::move(r));
       if (progress) progress(results.size(), o.states.size(), results.back());
     }
   }

@@ -54,91 +54,97 @@ std::vector<double> NiceTicks(double lo, double hi, int target_count) {
   return ticks;
 }
 
-std::string RenderSvg(const std::vector<PlotPanel>& panels, int columns, const std::string& title) {
-  const bool alone = panels.size() == 1;
-  const double w = alone ? 640 : 460, h = alone ? 380 : 330, left = 62, right = 14, top = alone ? 12 : 30, bottom = 46,
-               legend_row = 20;
-  const std::string heading = alone && title.empty() ? panels.front().title : title;
-  bool markers = false;
-  for (const PlotPanel& panel : panels) markers |= !panel.markers.empty();
-  int rows = static_cast<int>((panels.size() + columns - 1) / columns);
-  const double page_w = w * columns;
-  // One legend for all panels, from the first panel's lines, wrapped into rows that fit the page.
-  struct LegendEntry {
-    double x;
-    int row;
-  };
+namespace {
+
+// One legend for all panels, from the first panel's lines, wrapped into rows that fit the page.
+struct LegendEntry {
+  double x;
+  int row;
+};
+
+std::vector<LegendEntry> LayOutLegend(const std::vector<PlotPanel>& panels, bool markers, double page_w,
+                                      int* legend_rows) {
   std::vector<LegendEntry> legend;
-  int legend_rows = 0;
-  if (!panels.empty()) {
-    double x = 20;
-    legend_rows = 1;
-    std::vector<std::string> labels;
-    for (const PlotLine& line : panels.front().lines) labels.push_back(line.label);
-    if (markers) labels.push_back(panels.front().markers.empty() ? "target depth" : panels.front().markers[0].label);
-    for (const std::string& label : labels) {
-      double width = 44 + 7 * label.size();
-      if (x > 20 && x + width > page_w - 8) x = 20, ++legend_rows;
-      legend.push_back({x, legend_rows - 1});
-      x += width;
-    }
+  *legend_rows = 0;
+  if (panels.empty()) return legend;
+  double x = 20;
+  *legend_rows = 1;
+  std::vector<std::string> labels;
+  for (const PlotLine& line : panels.front().lines) labels.push_back(line.label);
+  if (markers) labels.push_back(panels.front().markers.empty() ? "target depth" : panels.front().markers[0].label);
+  for (const std::string& label : labels) {
+    double width = 44 + 7 * label.size();
+    if (x > 20 && x + width > page_w - 8) x = 20, ++*legend_rows;
+    legend.push_back({x, *legend_rows - 1});
+    x += width;
   }
-  const double page_h = 36 + h * rows + 6 + legend_row * legend_rows;
-  std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + Num(page_w) + "\" height=\"" + Num(page_h) +
-                    "\" viewBox=\"0 0 " + Num(page_w) + " " + Num(page_h) +
-                    "\" font-family=\"Helvetica, Arial, sans-serif\" font-size=\"12\">\n";
-  svg += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  svg += "<text x=\"" + Num(page_w / 2) + "\" y=\"22\" text-anchor=\"middle\" font-size=\"15\">" + Escape(heading) +
-         "</text>\n";
-  for (size_t p = 0; p < panels.size(); ++p) {
-    const PlotPanel& panel = panels[p];
-    double ox = w * (p % columns), oy = 36 + h * (p / columns);
-    double x0 = ox + left, x1 = ox + w - right, y0 = oy + h - bottom, y1 = oy + top;
-    auto X = [&](double x) { return x0 + (x - panel.x_min) / (panel.x_max - panel.x_min) * (x1 - x0); };
-    auto Y = [&](double y) { return y0 - (y - panel.y_min) / (panel.y_max - panel.y_min) * (y0 - y1); };
-    svg += "<g>\n";
-    if (!alone)
-      svg += "<text x=\"" + Num((x0 + x1) / 2) + "\" y=\"" + Num(oy + 18) +
-             "\" text-anchor=\"middle\" font-size=\"13\">" + Escape(panel.title) + "</text>\n";
-    for (double t : NiceTicks(panel.x_min, panel.x_max, 6)) {
-      svg += "<line x1=\"" + Num(X(t)) + "\" y1=\"" + Num(y0) + "\" x2=\"" + Num(X(t)) + "\" y2=\"" + Num(y1) +
-             "\" stroke=\"#eee\"/>\n";
-      svg += "<text x=\"" + Num(X(t)) + "\" y=\"" + Num(y0 + 14) + "\" text-anchor=\"middle\">" + TickLabel(t) +
-             "</text>\n";
-    }
-    for (double t : NiceTicks(panel.y_min, panel.y_max, 5)) {
-      svg += "<line x1=\"" + Num(x0) + "\" y1=\"" + Num(Y(t)) + "\" x2=\"" + Num(x1) + "\" y2=\"" + Num(Y(t)) +
-             "\" stroke=\"#eee\"/>\n";
-      svg += "<text x=\"" + Num(x0 - 5) + "\" y=\"" + Num(Y(t) + 4) + "\" text-anchor=\"end\">" + TickLabel(t) +
-             "</text>\n";
-    }
-    svg += "<rect x=\"" + Num(x0) + "\" y=\"" + Num(y1) + "\" width=\"" + Num(x1 - x0) + "\" height=\"" + Num(y0 - y1) +
-           "\" fill=\"none\" stroke=\"#333\"/>\n";
-    svg += "<text x=\"" + Num((x0 + x1) / 2) + "\" y=\"" + Num(y0 + 32) + "\" text-anchor=\"middle\">" +
-           Escape(panel.x_label) + "</text>\n";
-    svg += "<text transform=\"translate(" + Num(ox + 16) + "," + Num((y0 + y1) / 2) +
-           ") rotate(-90)\" text-anchor=\"middle\">" + Escape(panel.y_label) + "</text>\n";
-    for (const PlotMarker& m : panel.markers) {
-      svg += "<rect x=\"" + Num(X(m.x) - 5) + "\" y=\"" + Num(y1) + "\" width=\"10\" height=\"" + Num(y0 - y1) +
-             "\" fill=\"#888\" fill-opacity=\"0.22\"><title>" + Escape(m.label) + "</title></rect>\n";
-      svg += "<text x=\"" + Num(X(m.x) + 8) + "\" y=\"" + Num(y0 - 6) + "\" fill=\"#555\" font-size=\"11\">" +
-             Escape(m.label) + "</text>\n";
-    }
-    for (const PlotLine& line : panel.lines) {
-      std::string points;
-      for (size_t k = 0; k < line.x.size(); ++k) {
-        if (!std::isfinite(line.y[k])) continue;
-        double y = std::clamp(line.y[k], panel.y_min, panel.y_max);
-        points += Num(X(line.x[k])) + "," + Num(Y(y)) + " ";
-      }
-      svg += "<polyline fill=\"none\" stroke=\"" + line.color + "\" stroke-width=\"2.2\"" +
-             (line.dashed ? " stroke-dasharray=\"6,3\"" : "") + " points=\"" + points + "\"><title>" +
-             Escape(line.label) + "</title></polyline>\n";
-    }
-    svg += "</g>\n";
+  return legend;
+}
+
+// Where a panel's plot area lies on the page: x0..x1 left to right, y0 (bottom) to y1 (top).
+struct PlotArea {
+  double ox, oy, x0, x1, y0, y1;
+};
+
+// The grid, ticks, frame and axis labels of a panel.
+std::string AxesSvg(const PlotPanel& panel, const PlotArea& a) {
+  const double x0 = a.x0, x1 = a.x1, y0 = a.y0, y1 = a.y1;
+  auto X = [&](double x) { return x0 + (x - panel.x_min) / (panel.x_max - panel.x_min) * (x1 - x0); };
+  auto Y = [&](double y) { return y0 - (y - panel.y_min) / (panel.y_max - panel.y_min) * (y0 - y1); };
+  std::string svg;
+  for (double t : NiceTicks(panel.x_min, panel.x_max, 6)) {
+    svg += "<line x1=\"" + Num(X(t)) + "\" y1=\"" + Num(y0) + "\" x2=\"" + Num(X(t)) + "\" y2=\"" + Num(y1) +
+           "\" stroke=\"#eee\"/>\n";
+    svg +=
+        "<text x=\"" + Num(X(t)) + "\" y=\"" + Num(y0 + 14) + "\" text-anchor=\"middle\">" + TickLabel(t) + "</text>\n";
   }
+  for (double t : NiceTicks(panel.y_min, panel.y_max, 5)) {
+    svg += "<line x1=\"" + Num(x0) + "\" y1=\"" + Num(Y(t)) + "\" x2=\"" + Num(x1) + "\" y2=\"" + Num(Y(t)) +
+           "\" stroke=\"#eee\"/>\n";
+    svg +=
+        "<text x=\"" + Num(x0 - 5) + "\" y=\"" + Num(Y(t) + 4) + "\" text-anchor=\"end\">" + TickLabel(t) + "</text>\n";
+  }
+  svg += "<rect x=\"" + Num(x0) + "\" y=\"" + Num(y1) + "\" width=\"" + Num(x1 - x0) + "\" height=\"" + Num(y0 - y1) +
+         "\" fill=\"none\" stroke=\"#333\"/>\n";
+  svg += "<text x=\"" + Num((x0 + x1) / 2) + "\" y=\"" + Num(y0 + 32) + "\" text-anchor=\"middle\">" +
+         Escape(panel.x_label) + "</text>\n";
+  svg += "<text transform=\"translate(" + Num(a.ox + 16) + "," + Num((y0 + y1) / 2) +
+         ") rotate(-90)\" text-anchor=\"middle\">" + Escape(panel.y_label) + "</text>\n";
+  return svg;
+}
+
+// A panel's markers and lines.
+std::string DataSvg(const PlotPanel& panel, const PlotArea& a) {
+  const double x0 = a.x0, x1 = a.x1, y0 = a.y0, y1 = a.y1;
+  auto X = [&](double x) { return x0 + (x - panel.x_min) / (panel.x_max - panel.x_min) * (x1 - x0); };
+  auto Y = [&](double y) { return y0 - (y - panel.y_min) / (panel.y_max - panel.y_min) * (y0 - y1); };
+  std::string svg;
+  for (const PlotMarker& m : panel.markers) {
+    svg += "<rect x=\"" + Num(X(m.x) - 5) + "\" y=\"" + Num(y1) + "\" width=\"10\" height=\"" + Num(y0 - y1) +
+           "\" fill=\"#888\" fill-opacity=\"0.22\"><title>" + Escape(m.label) + "</title></rect>\n";
+    svg += "<text x=\"" + Num(X(m.x) + 8) + "\" y=\"" + Num(y0 - 6) + "\" fill=\"#555\" font-size=\"11\">" +
+           Escape(m.label) + "</text>\n";
+  }
+  for (const PlotLine& line : panel.lines) {
+    std::string points;
+    for (size_t k = 0; k < line.x.size(); ++k) {
+      if (!std::isfinite(line.y[k])) continue;
+      double y = std::clamp(line.y[k], panel.y_min, panel.y_max);
+      points += Num(X(line.x[k])) + "," + Num(Y(y)) + " ";
+    }
+    svg += "<polyline fill=\"none\" stroke=\"" + line.color + "\" stroke-width=\"2.2\"" +
+           (line.dashed ? " stroke-dasharray=\"6,3\"" : "") + " points=\"" + points + "\"><title>" +
+           Escape(line.label) + "</title></polyline>\n";
+  }
+  return svg;
+}
+
+// The legend's entries below the panels, the first `top` of the page above them.
+std::string LegendSvg(const std::vector<PlotPanel>& panels, const std::vector<LegendEntry>& legend, double top,
+                      double legend_row) {
+  std::string svg;
   for (size_t k = 0; k < legend.size(); ++k) {
-    double x = legend[k].x, y = 36 + h * rows + legend_row * (legend[k].row + 1) - 4;
+    double x = legend[k].x, y = top + legend_row * (legend[k].row + 1) - 4;
     if (k == panels.front().lines.size()) {  // the marker's entry: a block, as it is drawn
       svg += "<rect x=\"" + Num(x + 7) + "\" y=\"" + Num(y - 12) +
              "\" width=\"10\" height=\"14\" fill=\"#888\" "
@@ -153,6 +159,42 @@ std::string RenderSvg(const std::vector<PlotPanel>& panels, int columns, const s
            "/>\n";
     svg += "<text x=\"" + Num(x + 30) + "\" y=\"" + Num(y) + "\">" + Escape(line.label) + "</text>\n";
   }
+  return svg;
+}
+
+}  // namespace
+
+std::string RenderSvg(const std::vector<PlotPanel>& panels, int columns, const std::string& title) {
+  const bool alone = panels.size() == 1;
+  const double w = alone ? 640 : 460, h = alone ? 380 : 330, left = 62, right = 14, top = alone ? 12 : 30, bottom = 46,
+               legend_row = 20;
+  const std::string heading = alone && title.empty() ? panels.front().title : title;
+  bool markers = false;
+  for (const PlotPanel& panel : panels) markers |= !panel.markers.empty();
+  int rows = static_cast<int>((panels.size() + columns - 1) / columns);
+  const double page_w = w * columns;
+  int legend_rows = 0;
+  const std::vector<LegendEntry> legend = LayOutLegend(panels, markers, page_w, &legend_rows);
+  const double page_h = 36 + h * rows + 6 + legend_row * legend_rows;
+  std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + Num(page_w) + "\" height=\"" + Num(page_h) +
+                    "\" viewBox=\"0 0 " + Num(page_w) + " " + Num(page_h) +
+                    "\" font-family=\"Helvetica, Arial, sans-serif\" font-size=\"12\">\n";
+  svg += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  svg += "<text x=\"" + Num(page_w / 2) + "\" y=\"22\" text-anchor=\"middle\" font-size=\"15\">" + Escape(heading) +
+         "</text>\n";
+  for (size_t p = 0; p < panels.size(); ++p) {
+    const PlotPanel& panel = panels[p];
+    double ox = w * (p % columns), oy = 36 + h * (p / columns);
+    const PlotArea area{ox, oy, ox + left, ox + w - right, oy + h - bottom, oy + top};
+    svg += "<g>\n";
+    if (!alone)
+      svg += "<text x=\"" + Num((area.x0 + area.x1) / 2) + "\" y=\"" + Num(oy + 18) +
+             "\" text-anchor=\"middle\" font-size=\"13\">" + Escape(panel.title) + "</text>\n";
+    svg += AxesSvg(panel, area);
+    svg += DataSvg(panel, area);
+    svg += "</g>\n";
+  }
+  svg += LegendSvg(panels, legend, 36 + h * rows, legend_row);
   svg += "</svg>\n";
   return svg;
 }

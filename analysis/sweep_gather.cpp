@@ -102,25 +102,18 @@ PlotPanel Panel(const SweepSpec& spec, const std::vector<Row>& rows, const std::
   return panel;
 }
 
-}  // namespace
-
-SweepSummary GatherSweep(const SweepSpec& spec, const std::vector<SweepJob>& jobs, const std::string& out) {
-  SweepSummary summary;
-  std::vector<Row> rows;
-  std::vector<std::string> columns;  // the results', in first-seen order
-  for (const SweepJob& job : jobs) {
-    rows.push_back({&job, ReadJobState(out, job)});
-    const SweepJobState& s = rows.back().state;
-    (s.complete ? summary.complete : s.failed ? summary.failed : summary.pending)++;
-    for (const SweepResult& r : s.results)
-      if (std::find(columns.begin(), columns.end(), r.column) == columns.end()) columns.push_back(r.column);
-  }
-
-  std::vector<std::string> header = {"job"};
-  for (const SweepParameter& p : spec.parameters) header.push_back(p.column());
-  header.insert(header.end(), {"state", "runner", "job time (s)"});
-  header.insert(header.end(), columns.begin(), columns.end());
+// The table: a header and one line of cells per job.
+struct SweepTable {
+  std::vector<std::string> header;
   std::vector<std::vector<std::string>> cells;
+};
+
+SweepTable TableOf(const SweepSpec& spec, const std::vector<Row>& rows, const std::vector<std::string>& columns) {
+  SweepTable table;
+  table.header = {"job"};
+  for (const SweepParameter& p : spec.parameters) table.header.push_back(p.column());
+  table.header.insert(table.header.end(), {"state", "runner", "job time (s)"});
+  table.header.insert(table.header.end(), columns.begin(), columns.end());
   for (const Row& row : rows) {
     std::vector<std::string> line = {row.job->id};
     for (size_t k = 0; k < spec.parameters.size(); ++k) {
@@ -135,63 +128,94 @@ SweepSummary GatherSweep(const SweepSpec& spec, const std::vector<SweepJob>& job
       auto it = std::find_if(s.results.begin(), s.results.end(), [&](const SweepResult& r) { return r.column == c; });
       line.push_back(it == s.results.end() ? "" : Cell(it->value));
     }
-    cells.push_back(line);
+    table.cells.push_back(line);
   }
+  return table;
+}
+
+std::string TableCsv(const SweepTable& table) {
+  std::ostringstream csv;
+  for (size_t i = 0; i < table.header.size(); ++i) csv << (i ? "," : "") << Csv(table.header[i]);
+  csv << "\n";
+  for (const auto& line : table.cells) {
+    for (size_t i = 0; i < line.size(); ++i) csv << (i ? "," : "") << Csv(line[i]);
+    csv << "\n";
+  }
+  return csv.str();
+}
+
+// A plot per result column that varies across the jobs; the files written, under `staging`.
+std::vector<std::string> WritePlots(const SweepSpec& spec, const std::vector<Row>& rows,
+                                    const std::vector<std::string>& columns, const fs::path& staging) {
+  std::vector<std::string> plots;
+  fs::create_directories(staging / "plots");
+  for (const std::string& c : columns) {
+    bool varies = false;
+    const PlotPanel panel = Panel(spec, rows, c, &varies);
+    if (!varies) continue;  // the same in every job (the iteration count): a column, not a plot
+    const std::string file = "plots/" + Slug(c) + ".svg";
+    WriteFileAtomically((staging / file).string(), RenderSvg({panel}, 1, spec.name + ": " + c));
+    plots.push_back(file);
+  }
+  return plots;
+}
+
+std::string TableHtml(const SweepSpec& spec, size_t jobs, const SweepSummary& summary, const SweepTable& table,
+                      const std::vector<Row>& rows, const std::vector<std::string>& plots) {
+  std::ostringstream html;
+  html << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" << Escape(spec.name)
+       << "</title>\n<style>body{font-family:sans-serif;margin:2em}table{border-collapse:collapse}"
+          "td,th{border:1px solid #ccc;padding:3px 8px;text-align:right}th{background:#eee}"
+          "tr.failed td{background:#fdd}img{max-width:48%;margin:4px}</style></head><body>\n";
+  html << "<h1>" << Escape(spec.name) << "</h1>\n";
+  if (!spec.description.empty()) html << "<p>" << Escape(spec.description) << "</p>\n";
+  html << "<p>" << jobs << " jobs: " << summary.complete << " complete, " << summary.failed << " failed, "
+       << summary.pending << " not run. Base scene <code>" << Escape(spec.scene) << "</code>; work: ";
+  for (size_t i = 0; i < spec.work().size(); ++i) html << (i ? ", " : "") << spec.work()[i];
+  html << ". <a href=\"table.csv\">table.csv</a></p>\n<table>\n<tr>";
+  for (const std::string& h : table.header) html << "<th>" << Escape(h) << "</th>";
+  html << "</tr>\n";
+  for (size_t r = 0; r < table.cells.size(); ++r) {
+    html << "<tr" << (rows[r].state.failed ? " class=\"failed\"" : "") << ">";
+    for (size_t i = 0; i < table.cells[r].size(); ++i) {
+      if (i == 0 && rows[r].state.complete)
+        html << "<td><a href=\"jobs/" << table.cells[r][0] << "/out/index.html\">" << table.cells[r][0] << "</a></td>";
+      else
+        html << "<td>" << Escape(table.cells[r][i]) << "</td>";
+    }
+    html << "</tr>\n";
+  }
+  html << "</table>\n";
+  for (const Row& row : rows)
+    if (row.state.failed)
+      html << "<p>job " << row.job->id << " failed: <code>" << Escape(row.state.error) << "</code></p>\n";
+  for (const std::string& p : plots) html << "<img src=\"" << p << "\" alt=\"" << Escape(p) << "\">\n";
+  html << "</body></html>\n";
+  return html.str();
+}
+
+}  // namespace
+
+SweepSummary GatherSweep(const SweepSpec& spec, const std::vector<SweepJob>& jobs, const std::string& out) {
+  SweepSummary summary;
+  std::vector<Row> rows;
+  std::vector<std::string> columns;  // the results', in first-seen order
+  for (const SweepJob& job : jobs) {
+    rows.push_back({&job, ReadJobState(out, job)});
+    const SweepJobState& s = rows.back().state;
+    (s.complete ? summary.complete : s.failed ? summary.failed : summary.pending)++;
+    for (const SweepResult& r : s.results)
+      if (std::find(columns.begin(), columns.end(), r.column) == columns.end()) columns.push_back(r.column);
+  }
+  const SweepTable table = TableOf(spec, rows, columns);
 
   StagedOutput stage(out, "sweep", {"table.csv", "table.html", "plots"},
                      {{spec.file, "the sweep file"}, {spec.scene, "the base scene"}});
   const fs::path staging = stage.staging();
   try {
-    std::ostringstream csv;
-    for (size_t i = 0; i < header.size(); ++i) csv << (i ? "," : "") << Csv(header[i]);
-    csv << "\n";
-    for (const auto& line : cells) {
-      for (size_t i = 0; i < line.size(); ++i) csv << (i ? "," : "") << Csv(line[i]);
-      csv << "\n";
-    }
-    WriteFileAtomically((staging / "table.csv").string(), csv.str());
-
-    std::vector<std::string> plots;
-    fs::create_directories(staging / "plots");
-    for (const std::string& c : columns) {
-      bool varies = false;
-      const PlotPanel panel = Panel(spec, rows, c, &varies);
-      if (!varies) continue;  // the same in every job (the iteration count): a column, not a plot
-      const std::string file = "plots/" + Slug(c) + ".svg";
-      WriteFileAtomically((staging / file).string(), RenderSvg({panel}, 1, spec.name + ": " + c));
-      plots.push_back(file);
-    }
-
-    std::ostringstream html;
-    html << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" << Escape(spec.name)
-         << "</title>\n<style>body{font-family:sans-serif;margin:2em}table{border-collapse:collapse}"
-            "td,th{border:1px solid #ccc;padding:3px 8px;text-align:right}th{background:#eee}"
-            "tr.failed td{background:#fdd}img{max-width:48%;margin:4px}</style></head><body>\n";
-    html << "<h1>" << Escape(spec.name) << "</h1>\n";
-    if (!spec.description.empty()) html << "<p>" << Escape(spec.description) << "</p>\n";
-    html << "<p>" << jobs.size() << " jobs: " << summary.complete << " complete, " << summary.failed << " failed, "
-         << summary.pending << " not run. Base scene <code>" << Escape(spec.scene) << "</code>; work: ";
-    for (size_t i = 0; i < spec.work().size(); ++i) html << (i ? ", " : "") << spec.work()[i];
-    html << ". <a href=\"table.csv\">table.csv</a></p>\n<table>\n<tr>";
-    for (const std::string& h : header) html << "<th>" << Escape(h) << "</th>";
-    html << "</tr>\n";
-    for (size_t r = 0; r < cells.size(); ++r) {
-      html << "<tr" << (rows[r].state.failed ? " class=\"failed\"" : "") << ">";
-      for (size_t i = 0; i < cells[r].size(); ++i) {
-        if (i == 0 && rows[r].state.complete)
-          html << "<td><a href=\"jobs/" << cells[r][0] << "/out/index.html\">" << cells[r][0] << "</a></td>";
-        else
-          html << "<td>" << Escape(cells[r][i]) << "</td>";
-      }
-      html << "</tr>\n";
-    }
-    html << "</table>\n";
-    for (const Row& row : rows)
-      if (row.state.failed)
-        html << "<p>job " << row.job->id << " failed: <code>" << Escape(row.state.error) << "</code></p>\n";
-    for (const std::string& p : plots) html << "<img src=\"" << p << "\" alt=\"" << Escape(p) << "\">\n";
-    html << "</body></html>\n";
-    WriteFileAtomically((staging / "table.html").string(), html.str());
+    WriteFileAtomically((staging / "table.csv").string(), TableCsv(table));
+    const std::vector<std::string> plots = WritePlots(spec, rows, columns, staging);
+    WriteFileAtomically((staging / "table.html").string(), TableHtml(spec, jobs.size(), summary, table, rows, plots));
   } catch (const Error& e) {
     throw stage.Explain(e);
   }

@@ -21,19 +21,85 @@
 #include "systems/system_report.h"
 
 namespace layerlab::app {
+namespace {
+
+struct ContrastCommandOptions {
+  std::vector<std::string> scenes;
+  std::string out, depths = "0.7,1.3,1.9", frequencies = "2,4", accommodation = "0,2.6,0.05";
+  std::string reference = "sampled", grating = "angle", resolution = "0.01", field = "20";
+  int strip_rows = 24;
+  bool no_peak_uncertainty = false;
+};
+
+// The options read and checked, before anything is loaded.
+ContrastOptions ReadContrastOptions(const ContrastCommandOptions& o) {
+  ContrastOptions options;
+  options.target_diopters = ParseNumberList(o.depths, "--depths", kDiopters, true);
+  options.frequencies = ParseNumberList(o.frequencies, "--frequencies", kCyclesPerDegree);
+  const std::vector<double> range = ParseRangeBounds(o.accommodation, "--accommodation", kDiopters);
+  options.accommodation_min = range[0];
+  options.accommodation_max = range[1];
+  options.accommodation_step = range[2];
+  options.retina_resolution = ParseOptionValue(o.resolution, "--retina-resolution", kDegrees);
+  options.retina_field = ParseOptionValue(o.field, "--retina-field", kDegrees);
+  options.strip_rows = o.strip_rows;
+  options.reference = o.reference == "sampled" ? ContrastReference::kSampledTarget : ContrastReference::kContinuous;
+  options.grating = o.grating == "angle" ? GratingSpacing::kVisualAngle : GratingSpacing::kPlane;
+  options.peak_uncertainty = !o.no_peak_uncertainty;
+  CheckRetinaSampling(options.retina_field, 3 * options.retina_resolution, options.retina_resolution, "--retina-field",
+                      "--retina-resolution");
+  if (o.strip_rows < 1) throw Error("--strip-rows must be positive");
+  for (double f : options.frequencies)
+    if (!(f > 0)) throw Error("--frequencies: a frequency must be above 0 cpd");
+  for (double d : options.target_diopters)
+    if (!(d > 0)) throw Error("--depths: a target depth must be above 0 D");
+  options.show_progress = true;
+  return options;
+}
+
+void RunContrastCommand(const ContrastCommandOptions& o) {
+  const ContrastOptions options = ReadContrastOptions(o);
+  std::vector<ContrastDisplay> displays;
+  for (const std::string& file : o.scenes) displays.push_back(LoadContrastDisplay(file));
+  std::vector<std::string> warnings;
+  for (const ContrastDisplay& d : displays)
+    for (const std::string& w : d.system.warnings) warnings.push_back(d.name + ": " + w);
+  for (const std::string& w : ContrastWarnings(displays, options)) warnings.push_back(w);
+  SayWarnings(warnings);
+  std::vector<NamedInput> inputs;
+  for (const std::string& file : o.scenes) inputs.push_back({file, "a scene"});
+  StagedOutput stage(o.out, "contrast", {"contrast.csv", "peaks.txt", "contrast.svg", "index.html", "report.json"},
+                     inputs);
+  auto start = std::chrono::steady_clock::now();
+  std::vector<ContrastCurve> curves = RunContrast(displays, options);
+  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  const std::string peaks = PeakTable(curves);
+  try {
+    RunReportPage page = CommandPage("contrast", "", "", "", CommandLine());
+    page.steps = {{"contrast sweep (" + std::to_string(curves.size()) + " curves)", seconds}};
+    AddContrastToPage(curves, stage.staging(), "", &page);
+    page.warnings = warnings;
+    WriteReportPage(page, stage.staging());
+    WriteFileAtomically(stage.staging() + "/report.json",
+                        nlohmann::json{{"command", "contrast"}, {"warnings", warnings}}.dump(2) + "\n");
+  } catch (const Error& e) {
+    throw stage.Explain(e);
+  }
+  stage.Commit();
+  std::cout << peaks;
+  std::printf("sweep of %zu curves in %.2f s; wrote %s/{index.html,contrast.csv,peaks.txt,contrast.svg,report.json}\n",
+              curves.size(), seconds, o.out.c_str());
+}
+
+}  // namespace
+
 void AddContrastCommand(CLI::App& app) {
-  struct Options {
-    std::vector<std::string> scenes;
-    std::string out, depths = "0.7,1.3,1.9", frequencies = "2,4", accommodation = "0,2.6,0.05";
-    std::string reference = "sampled", grating = "angle", resolution = "0.01", field = "20";
-    int strip_rows = 24;
-    bool no_peak_uncertainty = false;
-  };
-  auto o = std::make_shared<Options>();
+  auto o = std::make_shared<ContrastCommandOptions>();
   CLI::App* cmd = app.add_subcommand("contrast", "Normalized contrast against accommodation (Fig. 5)");
   cmd->add_option("scenes", o->scenes, "Display scene files (JSON)")->required();
   cmd->add_option("--out", o->out, "Output folder")->required();
-  // The defaults are Options' own, quoted in the help from there.
+  // The defaults are ContrastCommandOptions' own, quoted in the help from there.
   const auto with_default = [](const std::string& help, const std::string& value) {
     return help + " (default " + value + ")";
   };
@@ -57,62 +123,7 @@ void AddContrastCommand(CLI::App& app) {
       ->check(CLI::IsMember({"angle", "plane"}));
   cmd->add_flag("--no-peak-uncertainty", o->no_peak_uncertainty,
                 "Skip the second sweep on a retina moved by half a sample (the peaks' uncertainty)");
-  cmd->callback([o] {
-    ContrastOptions options;
-    options.target_diopters = ParseNumberList(o->depths, "--depths", kDiopters, true);
-    options.frequencies = ParseNumberList(o->frequencies, "--frequencies", kCyclesPerDegree);
-    const std::vector<double> range = ParseRangeBounds(o->accommodation, "--accommodation", kDiopters);
-    options.accommodation_min = range[0];
-    options.accommodation_max = range[1];
-    options.accommodation_step = range[2];
-    options.retina_resolution = ParseOptionValue(o->resolution, "--retina-resolution", kDegrees);
-    options.retina_field = ParseOptionValue(o->field, "--retina-field", kDegrees);
-    options.strip_rows = o->strip_rows;
-    options.reference = o->reference == "sampled" ? ContrastReference::kSampledTarget : ContrastReference::kContinuous;
-    options.grating = o->grating == "angle" ? GratingSpacing::kVisualAngle : GratingSpacing::kPlane;
-    options.peak_uncertainty = !o->no_peak_uncertainty;
-    CheckRetinaSampling(options.retina_field, 3 * options.retina_resolution, options.retina_resolution,
-                        "--retina-field", "--retina-resolution");
-    if (o->strip_rows < 1) throw Error("--strip-rows must be positive");
-    for (double f : options.frequencies)
-      if (!(f > 0)) throw Error("--frequencies: a frequency must be above 0 cpd");
-    for (double d : options.target_diopters)
-      if (!(d > 0)) throw Error("--depths: a target depth must be above 0 D");
-    options.show_progress = true;
-
-    std::vector<ContrastDisplay> displays;
-    for (const std::string& file : o->scenes) displays.push_back(LoadContrastDisplay(file));
-    std::vector<std::string> warnings;
-    for (const ContrastDisplay& d : displays)
-      for (const std::string& w : d.system.warnings) warnings.push_back(d.name + ": " + w);
-    for (const std::string& w : ContrastWarnings(displays, options)) warnings.push_back(w);
-    SayWarnings(warnings);
-    std::vector<NamedInput> inputs;
-    for (const std::string& file : o->scenes) inputs.push_back({file, "a scene"});
-    StagedOutput stage(o->out, "contrast", {"contrast.csv", "peaks.txt", "contrast.svg", "index.html", "report.json"},
-                       inputs);
-    auto start = std::chrono::steady_clock::now();
-    std::vector<ContrastCurve> curves = RunContrast(displays, options);
-    double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-
-    const std::string peaks = PeakTable(curves);
-    try {
-      RunReportPage page = CommandPage("contrast", "", "", "", CommandLine());
-      page.steps = {{"contrast sweep (" + std::to_string(curves.size()) + " curves)", seconds}};
-      AddContrastToPage(curves, stage.staging(), "", &page);
-      page.warnings = warnings;
-      WriteReportPage(page, stage.staging());
-      WriteFileAtomically(stage.staging() + "/report.json",
-                          nlohmann::json{{"command", "contrast"}, {"warnings", warnings}}.dump(2) + "\n");
-    } catch (const Error& e) {
-      throw stage.Explain(e);
-    }
-    stage.Commit();
-    std::cout << peaks;
-    std::printf(
-        "sweep of %zu curves in %.2f s; wrote %s/{index.html,contrast.csv,peaks.txt,contrast.svg,report.json}\n",
-        curves.size(), seconds, o->out.c_str());
-  });
+  cmd->callback([o] { RunContrastCommand(*o); });
 }
 
 }  // namespace layerlab::app

@@ -23,13 +23,90 @@
 
 namespace layerlab::app {
 
+namespace {
+
+struct FitCommandOptions {
+  std::string scene, measurements, out, report, loss = "none", reference = "camera";
+  std::optional<double> marker_loss_arcmin, luminance_loss;  // unset: CalibrationOptions' own
+  bool fit_focal_length = false, fit_lens_gaps = false, force = false;
+};
+
+CalibrationOptions ReadCalibrationOptions(const FitCommandOptions& o) {
+  CalibrationOptions options;
+  try {
+    options.loss = RobustLossFromString(o.loss);
+    options.reference = AxisReferenceFromString(o.reference);
+  } catch (const Error& e) {
+    throw Error(std::string(o.loss == ToString(options.loss) ? "--reference: " : "--loss: ") + e.message());
+  }
+  options.fit_focal_length = o.fit_focal_length;
+  options.fit_lens_gaps = o.fit_lens_gaps;
+  // A value given must be positive (a negative one was ignored before).
+  for (const auto& [value, option] :
+       {std::pair{o.marker_loss_arcmin, "--marker-loss-scale"}, std::pair{o.luminance_loss, "--luminance-loss-scale"}})
+    if (value && !(*value > 0 && std::isfinite(*value))) throw Error(std::string(option) + ": must be positive");
+  if (o.marker_loss_arcmin) options.marker_loss_scale = *o.marker_loss_arcmin / 60.0 * std::numbers::pi / 180.0;
+  options.luminance_loss_scale = o.luminance_loss.value_or(options.luminance_loss_scale);
+  return options;
+}
+
+// A fit that leaves parameters undetermined writes nothing unless --force.
+void RefuseUnresolved(const FitCommandOptions& o, const CalibrationReport& report) {
+  if (report.unresolved.empty()) return;
+  const std::string what = "the data do not determine " + JoinWords(report.unresolved, "; and ") +
+                           " (undetermined: a parameter at a bound of the model, or with a standard deviation "
+                           "above " +
+                           FormatFixed(100 * kUndeterminedStdDevFraction, 0) +
+                           " % of its value; docs/measurements-format.md)";
+  if (!o.force)
+    throw Error(what +
+                ". The calibrated scene was not written: add markers, captures or camera positions, or "
+                "write it anyway with --force");
+  std::cerr << "warning: " << what << "; --force: writing the calibrated scene anyway\n";
+}
+
+// The calibrated scene, which must compile before it replaces anything.
+void WriteCalibratedScene(const FitCommandOptions& o, const CalibratedDisplay& display) {
+  nlohmann::ordered_json calibrated = CalibratedSceneDocument(ReadDocumentInOrder(o.scene), o.scene, display);
+  // Absolute: a bare file name has no parent folder to rebase from.
+  RebaseRelativePaths(calibrated, std::filesystem::absolute(o.scene).string(),
+                      std::filesystem::absolute(o.out).string());
+  AtomicFile file(o.out);
+  WriteFileAtomically(file.temp_path(), calibrated.dump(2) + "\n");
+  try {
+    Compile(LoadScene(file.temp_path()));
+  } catch (const Error& e) {
+    throw Error(o.out + ": the calibrated scene does not compile (" + e.message() + "); nothing was written");
+  }
+  file.Commit();
+}
+
+void RunFitCommand(const FitCommandOptions& o) {
+  const std::vector<NamedInput> inputs = {{o.scene, "the scene"}, {o.measurements, "the measurements"}};
+  RefuseOutputOverlappingInputs(o.out, inputs);
+  if (!o.report.empty()) RefuseOutputOverlappingInputs(o.report, inputs);
+  DisplaySystem system = Compile(LoadScene(o.scene));
+  Measurements measurements = ReadMeasurementsFile(o.measurements);
+  const CalibrationOptions options = ReadCalibrationOptions(o);
+
+  CalibratedDisplay display;
+  CalibrationReport report = Calibrate(system, measurements, options, &display);
+  std::cout << report.FullReport();
+  if (!o.report.empty()) {
+    nlohmann::json j = report.ToJson();
+    j["layerlab"] = VersionLine();
+    WriteFileAtomically(o.report, j.dump(2) + "\n");
+  }
+  if (!report.IsSolutionUsable()) throw Error("the calibration failed: " + report.message + "; nothing was written");
+  RefuseUnresolved(o, report);
+  WriteCalibratedScene(o, display);
+  std::cout << "wrote " << o.out << (o.report.empty() ? "" : " and " + o.report) << "\n";
+}
+
+}  // namespace
+
 void AddFitCommand(CLI::App& app) {
-  struct Options {
-    std::string scene, measurements, out, report, loss = "none", reference = "camera";
-    std::optional<double> marker_loss_arcmin, luminance_loss;  // unset: CalibrationOptions' own
-    bool fit_focal_length = false, fit_lens_gaps = false, force = false;
-  };
-  auto o = std::make_shared<Options>();
+  auto o = std::make_shared<FitCommandOptions>();
   CLI::App* cmd = app.add_subcommand("fit", "Calibrate a scene from measurements of the built display (Ceres)");
   cmd->add_option("scene", o->scene, "Scene file as designed (JSON)")->required();
   cmd->add_option("measurements", o->measurements, "Measurements file (layerlab-measurements/1)")->required();
@@ -53,65 +130,7 @@ void AddFitCommand(CLI::App& app) {
   cmd->add_flag("--force", o->force,
                 "Write the calibrated scene even when the fit leaves a parameter undetermined (at a bound of the "
                 "model, or a standard deviation above 10 % of its value)");
-  cmd->callback([o] {
-    const std::vector<NamedInput> inputs = {{o->scene, "the scene"}, {o->measurements, "the measurements"}};
-    RefuseOutputOverlappingInputs(o->out, inputs);
-    if (!o->report.empty()) RefuseOutputOverlappingInputs(o->report, inputs);
-    DisplaySystem system = Compile(LoadScene(o->scene));
-    Measurements measurements = ReadMeasurementsFile(o->measurements);
-    CalibrationOptions options;
-    try {
-      options.loss = RobustLossFromString(o->loss);
-      options.reference = AxisReferenceFromString(o->reference);
-    } catch (const Error& e) {
-      throw Error(std::string(o->loss == ToString(options.loss) ? "--reference: " : "--loss: ") + e.message());
-    }
-    options.fit_focal_length = o->fit_focal_length;
-    options.fit_lens_gaps = o->fit_lens_gaps;
-    // A value given must be positive (a negative one was ignored before).
-    for (const auto& [value, option] : {std::pair{o->marker_loss_arcmin, "--marker-loss-scale"},
-                                        std::pair{o->luminance_loss, "--luminance-loss-scale"}})
-      if (value && !(*value > 0 && std::isfinite(*value))) throw Error(std::string(option) + ": must be positive");
-    if (o->marker_loss_arcmin) options.marker_loss_scale = *o->marker_loss_arcmin / 60.0 * std::numbers::pi / 180.0;
-    options.luminance_loss_scale = o->luminance_loss.value_or(options.luminance_loss_scale);
-
-    CalibratedDisplay display;
-    CalibrationReport report = Calibrate(system, measurements, options, &display);
-    std::cout << report.FullReport();
-    if (!o->report.empty()) {
-      nlohmann::json j = report.ToJson();
-      j["layerlab"] = VersionLine();
-      WriteFileAtomically(o->report, j.dump(2) + "\n");
-    }
-    if (!report.IsSolutionUsable()) throw Error("the calibration failed: " + report.message + "; nothing was written");
-    if (!report.unresolved.empty()) {
-      const std::string what = "the data do not determine " + JoinWords(report.unresolved, "; and ") +
-                               " (undetermined: a parameter at a bound of the model, or with a standard deviation "
-                               "above " +
-                               FormatFixed(100 * kUndeterminedStdDevFraction, 0) +
-                               " % of its value; docs/measurements-format.md)";
-      if (!o->force)
-        throw Error(what +
-                    ". The calibrated scene was not written: add markers, captures or camera positions, or "
-                    "write it anyway with --force");
-      std::cerr << "warning: " << what << "; --force: writing the calibrated scene anyway\n";
-    }
-
-    nlohmann::ordered_json calibrated = CalibratedSceneDocument(ReadDocumentInOrder(o->scene), o->scene, display);
-    // Absolute: a bare file name has no parent folder to rebase from.
-    RebaseRelativePaths(calibrated, std::filesystem::absolute(o->scene).string(),
-                        std::filesystem::absolute(o->out).string());
-    // The calibrated scene must compile before it replaces anything.
-    AtomicFile file(o->out);
-    WriteFileAtomically(file.temp_path(), calibrated.dump(2) + "\n");
-    try {
-      Compile(LoadScene(file.temp_path()));
-    } catch (const Error& e) {
-      throw Error(o->out + ": the calibrated scene does not compile (" + e.message() + "); nothing was written");
-    }
-    file.Commit();
-    std::cout << "wrote " << o->out << (o->report.empty() ? "" : " and " + o->report) << "\n";
-  });
+  cmd->callback([o] { RunFitCommand(*o); });
 }
 
 }  // namespace layerlab::app

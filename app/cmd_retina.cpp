@@ -3,6 +3,7 @@
 // target itself (natural viewing) when one is given, as EXR (linear,
 // display-relative) and PNG (sRGB, 1 = the brightest branch's full white).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -32,13 +33,112 @@
 
 namespace layerlab::app {
 
+namespace {
+
+struct RetinaCommandOptions {
+  std::string scene, patterns, out, sampling;
+  TargetOption target;
+  std::string accommodation = "0.4,1.0,1.6,2.2", focal_stack, field, resolution = "0.05";
+};
+
+// --accommodation and --focal-stack's states, sorted, without repeats.
+std::vector<double> AccommodationStates(const RetinaCommandOptions& o) {
+  std::vector<double> states = ParseNumberList(o.accommodation, "--accommodation", kDiopters, true);
+  if (!o.focal_stack.empty())
+    for (double d : ParseRange(o.focal_stack, "--focal-stack", kDiopters)) states.push_back(d);
+  std::sort(states.begin(), states.end());
+  states.erase(std::unique(states.begin(), states.end(), [](double a, double b) { return std::abs(a - b) < 1e-9; }),
+               states.end());
+  return states;
+}
+
+// --field in degrees, checked with the resolution; 0 x 0: the display's field of view.
+std::array<double, 2> RetinaField(const RetinaCommandOptions& o, const DisplaySystem& system, double resolution) {
+  double field_x = 0, field_y = 0;
+  if (!o.field.empty()) {
+    std::vector<double> f = ParseNumberList(o.field, "--field", kDegrees);
+    if (f.size() != 2) throw Error("--field: give W,H in degrees");
+    field_x = f[0], field_y = f[1];
+  }
+  const bool display_field = o.field.empty();
+  CheckRetinaSampling(display_field ? system.fov_x / kRadiansPerDegree : field_x,
+                      display_field ? system.fov_y / kRadiansPerDegree : field_y, resolution, "--field",
+                      "--resolution");
+  return {field_x, field_y};
+}
+
+void WriteRetinaPage(const RetinaCommandOptions& o, const Scene& scene, const DisplaySystem& system,
+                     const DisplayModel& model, const std::vector<RetinaStateResult>& results, bool natural,
+                     const std::string& folder) {
+  RunReportPage page =
+      CommandPage("retina", o.scene, scene.name.empty() ? std::filesystem::path(o.scene).stem().string() : scene.name,
+                  scene.description, CommandLine());
+  page.system = &system;
+  double seconds = 0;
+  for (const RetinaStateResult& r : results) seconds += r.seconds;
+  page.steps = {{"retina (" + std::to_string(results.size()) + " accommodation states)", seconds}};
+  AddRetinaToPage(results, ParseNumberList(o.accommodation, "--accommodation", kDiopters, true), natural,
+                  model.white_luminance(), "", &page);
+  WriteReportPage(page, folder);
+}
+
+void RunRetinaCommand(const RetinaCommandOptions& o) {
+  // Everything is read and checked before anything is written.
+  Scene scene = LoadScene(o.scene);
+  DisplaySystem system = Compile(scene);
+  SolveConfig config = ReadSolveConfig(scene, system);
+  if (!o.sampling.empty()) config.sampling = SamplingFromString(o.sampling);
+  SolveConfig given;  // natural viewing of this target only, never of the scene's own
+  ApplyTargetOption(o.target, given);
+  const std::vector<double> states = AccommodationStates(o);
+  const double resolution = ParseOptionValue(o.resolution, "--resolution", kDegrees);
+  const std::array<double, 2> field = RetinaField(o, system, resolution);
+  StagedOutput stage(o.out, "retina", {"display", "natural", "retina.csv", "index.html"},
+                     {{o.scene, "the scene"},
+                      {o.patterns, "the patterns"},
+                      {given.target, "the target"},
+                      {given.target_scene, "the target scene"}});
+  std::optional<LightField> target_lf;
+  if (!given.target.empty()) target_lf = ReadLightField(given.target, {.load_depth = false});
+  const LightFieldGeometry g = target_lf ? target_lf->geometry : DisplayLightFieldGeometry(system);
+  DisplayModel model(system, g, config.sampling);
+  const Patterns t = ReadPatterns(model, o.patterns);
+
+  SceneRadiance natural;
+  if (target_lf) natural = LightFieldRadiance(*target_lf, config.sampling);  // read as the layers are
+#if LAYERLAB_WITH_EMBREE
+  std::optional<TargetScene> target_scene;
+  std::unique_ptr<TargetTracer> tracer;
+  if (!given.target_scene.empty()) {
+    target_scene = LoadTarget(given.target_scene);
+    tracer = std::make_unique<TargetTracer>(*target_scene);
+    natural = [&tracer](const PupilPoint& u, double dx, double dy) {
+      return tracer->TraceDirection(u.x, u.y, dx, dy).color;
+    };
+  }
+#endif
+
+  RetinaSweepOptions sweep{states, resolution, field[0], field[1], false};
+  Progress progress("retina", states.size());
+  try {
+    const std::vector<RetinaStateResult> results = WriteRetinaSweep(
+        model, t, natural, sweep, stage.staging(), [&](size_t done, size_t, const RetinaStateResult& r) {
+          progress.Update(done, "accommodation states traced (" + r.name + ")");
+        });
+    progress.Finish(std::to_string(states.size()) + " states of " + FormatFixed(resolution, 3) + " deg samples");
+    WriteRetinaPage(o, scene, system, model, results, bool(natural), stage.staging());
+  } catch (const Error& e) {
+    throw stage.Explain(e);
+  }
+  stage.Commit();
+  std::printf("wrote %s/{index.html,display%s,retina.csv}: %zu states; values are display-relative (1 = %.4g cd/m2)\n",
+              o.out.c_str(), natural ? ",natural" : "", states.size(), model.white_luminance());
+}
+
+}  // namespace
+
 void AddRetinaCommand(CLI::App& app) {
-  struct Options {
-    std::string scene, patterns, out, sampling;
-    TargetOption target;
-    std::string accommodation = "0.4,1.0,1.6,2.2", focal_stack, field, resolution = "0.05";
-  };
-  auto o = std::make_shared<Options>();
+  auto o = std::make_shared<RetinaCommandOptions>();
   CLI::App* cmd = app.add_subcommand("retina", "Retinal images of the display (and of the target) over accommodation");
   cmd->add_option("scene", o->scene, "Display scene file (JSON)")->required();
   cmd->add_option("--patterns", o->patterns, "Output folder of `layerlab solve` (its patterns/)")->required();
@@ -51,84 +151,7 @@ void AddRetinaCommand(CLI::App& app) {
   cmd->add_option("--sampling", o->sampling,
                   "Layer sampling: nearest or bilinear (default: the scene's solve section)");
   cmd->add_option("--out", o->out, "Output folder")->required();
-  cmd->callback([o] {
-    // Everything is read and checked before anything is written.
-    Scene scene = LoadScene(o->scene);
-    DisplaySystem system = Compile(scene);
-    SolveConfig config = ReadSolveConfig(scene, system);
-    if (!o->sampling.empty()) config.sampling = SamplingFromString(o->sampling);
-    SolveConfig given;  // natural viewing of this target only, never of the scene's own
-    ApplyTargetOption(o->target, given);
-
-    std::vector<double> states = ParseNumberList(o->accommodation, "--accommodation", kDiopters, true);
-    if (!o->focal_stack.empty())
-      for (double d : ParseRange(o->focal_stack, "--focal-stack", kDiopters)) states.push_back(d);
-    std::sort(states.begin(), states.end());
-    states.erase(std::unique(states.begin(), states.end(), [](double a, double b) { return std::abs(a - b) < 1e-9; }),
-                 states.end());
-
-    const double resolution = ParseOptionValue(o->resolution, "--resolution", kDegrees);
-    double field_x = 0, field_y = 0;  // deg; 0: the display's field of view
-    if (!o->field.empty()) {
-      std::vector<double> f = ParseNumberList(o->field, "--field", kDegrees);
-      if (f.size() != 2) throw Error("--field: give W,H in degrees");
-      field_x = f[0], field_y = f[1];
-    }
-    const bool display_field = o->field.empty();
-    CheckRetinaSampling(display_field ? system.fov_x / kRadiansPerDegree : field_x,
-                        display_field ? system.fov_y / kRadiansPerDegree : field_y, resolution, "--field",
-                        "--resolution");
-    StagedOutput stage(o->out, "retina", {"display", "natural", "retina.csv", "index.html"},
-                       {{o->scene, "the scene"},
-                        {o->patterns, "the patterns"},
-                        {given.target, "the target"},
-                        {given.target_scene, "the target scene"}});
-    std::optional<LightField> target_lf;
-    if (!given.target.empty()) target_lf = ReadLightField(given.target, {.load_depth = false});
-    const LightFieldGeometry g = target_lf ? target_lf->geometry : DisplayLightFieldGeometry(system);
-    DisplayModel model(system, g, config.sampling);
-    const Patterns t = ReadPatterns(model, o->patterns);
-
-    SceneRadiance natural;
-    if (target_lf) natural = LightFieldRadiance(*target_lf, config.sampling);  // read as the layers are
-#if LAYERLAB_WITH_EMBREE
-    std::optional<TargetScene> target_scene;
-    std::unique_ptr<TargetTracer> tracer;
-    if (!given.target_scene.empty()) {
-      target_scene = LoadTarget(given.target_scene);
-      tracer = std::make_unique<TargetTracer>(*target_scene);
-      natural = [&tracer](const PupilPoint& u, double dx, double dy) {
-        return tracer->TraceDirection(u.x, u.y, dx, dy).color;
-      };
-    }
-#endif
-
-    RetinaSweepOptions sweep{states, resolution, field_x, field_y, false};
-    Progress progress("retina", states.size());
-    try {
-      const std::vector<RetinaStateResult> results = WriteRetinaSweep(
-          model, t, natural, sweep, stage.staging(), [&](size_t done, size_t, const RetinaStateResult& r) {
-            progress.Update(done, "accommodation states traced (" + r.name + ")");
-          });
-      progress.Finish(std::to_string(states.size()) + " states of " + FormatFixed(resolution, 3) + " deg samples");
-      RunReportPage page = CommandPage(
-          "retina", o->scene, scene.name.empty() ? std::filesystem::path(o->scene).stem().string() : scene.name,
-          scene.description, CommandLine());
-      page.system = &system;
-      double seconds = 0;
-      for (const RetinaStateResult& r : results) seconds += r.seconds;
-      page.steps = {{"retina (" + std::to_string(results.size()) + " accommodation states)", seconds}};
-      AddRetinaToPage(results, ParseNumberList(o->accommodation, "--accommodation", kDiopters, true), bool(natural),
-                      model.white_luminance(), "", &page);
-      WriteReportPage(page, stage.staging());
-    } catch (const Error& e) {
-      throw stage.Explain(e);
-    }
-    stage.Commit();
-    std::printf(
-        "wrote %s/{index.html,display%s,retina.csv}: %zu states; values are display-relative (1 = %.4g cd/m2)\n",
-        o->out.c_str(), natural ? ",natural" : "", states.size(), model.white_luminance());
-  });
+  cmd->callback([o] { RunRetinaCommand(*o); });
 }
 
 }  // namespace layerlab::app

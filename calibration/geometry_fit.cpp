@@ -205,6 +205,427 @@ void PlaceAsFitted(const DisplaySystem& system, const std::vector<Optic>& optics
   }
 }
 
+// One geometry fit, step by step: the markers, the parameters (each held
+// where the data's shape cannot determine it), the residuals, the solve, and
+// the results by parameter.
+class GeometryFitter {
+ public:
+  GeometryFitter(const DisplaySystem& system, const Measurements& measurements, const CalibrationOptions& options,
+                 CalibrationReport* report)
+      : system_(system),
+        measurements_(measurements),
+        options_(options),
+        report_(report),
+        layer_count_(static_cast<int>(system.layers.size())),
+        magnifier_(!system.lens.empty()),  // the paper's layout: one lens, the same on every path
+        farthest_reference_(options.reference == AxisReference::kFarthestPanel) {}
+
+  bool Fit(CalibratedDisplay* display) {
+    ReadMarkers();
+    if (data_.empty()) return true;
+    SortByLayer();
+    if (!CheckReference()) return false;
+    CheckMirroring(system_, by_layer_, report_);
+    AddParameters();
+    HoldWhatParallaxAloneTells();
+    if (!farthest_reference_)
+      for (int i : {pan_, tilt_, roll_}) Hold(i, ParameterStatus::kReference);
+    AddResiduals();
+    if (!Solve() || !CheckFittedImages()) return false;
+    report_->marker_noise = result_.noise;
+    if (result_.covariance.size() == 0)
+      report_->warnings.push_back("no uncertainties for the geometry: " + result_.covariance_message);
+    ReportResiduals();
+    WriteResults(display);
+    return true;
+  }
+
+ private:
+  void ReadMarkers() {
+    std::set<std::pair<double, double>> positions;
+    for (size_t c = 0; c < measurements_.captures.size(); ++c) {
+      const Capture& capture = measurements_.captures[c];
+      positions.insert({capture.camera_position[0], capture.camera_position[1]});
+      for (const PanelMarkers& markers : capture.panels) {
+        const int k = LayerIndex(system_, markers.panel);
+        for (const MarkerObservation& o : markers.markers)
+          data_.push_back(
+              {k,
+               c,
+               PlaceMarker(system_.layers[k], o.col, o.row, capture.camera_position[0], capture.camera_position[1]),
+               {o.col, o.row},
+               o.angle_x,
+               o.angle_y,
+               o.where});
+      }
+    }
+    report_->markers = static_cast<int>(data_.size());
+    report_->captures = static_cast<int>(measurements_.captures.size());
+    report_->camera_positions = static_cast<int>(positions.size());
+  }
+
+  // Each layer's markers, the spread of their pixels, the camera positions
+  // they are seen from, and the optics on the paths of the layers with markers.
+  void SortByLayer() {
+    by_layer_.assign(layer_count_, {});
+    for (const MarkerDatum& d : data_) by_layer_[d.layer].push_back(&d);
+    spread_.assign(layer_count_, {});
+    positions_seen_.assign(layer_count_, 0);
+    std::vector<bool> measured(layer_count_);
+    for (int k = 0; k < layer_count_; ++k) {
+      std::vector<Point2> pixels;
+      std::set<std::pair<double, double>> seen_from;
+      for (const MarkerDatum* d : by_layer_[k]) {
+        pixels.push_back(d->pixel);
+        const auto& position = measurements_.captures[d->capture].camera_position;
+        seen_from.insert({position[0], position[1]});
+      }
+      spread_[k] = Spread(pixels);
+      positions_seen_[k] = static_cast<int>(seen_from.size());
+      measured[k] = !by_layer_[k].empty();
+    }
+    optics_ = FindOptics(system_, measured, &layer_optics_);
+  }
+
+  bool CheckReference() {
+    if (!farthest_reference_ || spread_[0].distinct >= 2) return true;
+    report_->message =
+        "the axis reference \"farthest-panel\" needs markers at two or more pixels of the farthest panel " +
+        Quoted(system_.layers[0].name) + (by_layer_[0].empty() ? ", which has none" : "");
+    return false;
+  }
+
+  int Add(ScalarParameter p, const std::string& q) {
+    quantity_.push_back(q);
+    status_.push_back(ParameterStatus::kFitted);
+    return fit_.Add(std::move(p));
+  }
+
+  void Hold(int index, ParameterStatus why) {
+    fit_.Hold(index);
+    status_[index] = why;
+  }
+
+  void AddParameters() {
+    for (Optic& o : optics_) {
+      std::optional<double> beyond_the_eye;  // the magnifier's focal point stays behind the eye
+      if (magnifier_) beyond_the_eye = system_.eye.eye_relief * (1 + 1e-6);
+      o.focal = Add({"the focal length of " + Quoted(o.name), o.focal_length, 0, beyond_the_eye, std::nullopt},
+                    "focal_length");
+      o.gap_index = Add({"the gap of " + Quoted(o.name), o.gap, 0, std::nullopt, std::nullopt}, "gap");
+    }
+    pan_ = Add({"the camera's pan", 0, 1, {}, {}}, "pan");
+    tilt_ = Add({"the camera's tilt", 0, 1, {}, {}}, "tilt");
+    roll_ = Add({"the camera's roll", 0, 1, {}, {}}, "roll");
+    index_.assign(layer_count_, {});
+    for (int k = 0; k < layer_count_; ++k) AddPanelParameters(k);
+  }
+
+  void AddPanelParameters(int k) {
+    const VirtualLayer& layer = system_.layers[k];
+    const std::string panel = "panel " + Quoted(layer.name);
+    if (by_layer_[k].empty()) {
+      report_->warnings.push_back(panel + " has no markers: its distance, offset and rotation keep their scene values");
+      return;
+    }
+    const bool reference = farthest_reference_ && k == 0;
+    std::optional<double> beyond_focus;
+    if (magnifier_ && !options_.fit_focal_length) beyond_focus = system_.focal_length;
+    const double closest = 1e-3 * (magnifier_ ? system_.focal_length : layer.panel_distance);
+    PanelIndices& index = index_[k];
+    index.distance = Add({"the distance of " + panel, layer.panel_distance, 2, closest, beyond_focus}, "distance");
+    index.rotation = Add({"the rotation of " + panel, reference ? 0.0 : layer.panel.rotation, 3, {}, {}}, "rotation");
+    index.eye_from_panel_x_m =
+        Add({"the offset x of " + panel, reference ? 0.0 : layer.panel.eye_from_panel_m[0], 4, {}, {}}, "offset_x");
+    index.eye_from_panel_y_m =
+        Add({"the offset y of " + panel, reference ? 0.0 : layer.panel.eye_from_panel_m[1], 4, {}, {}}, "offset_y");
+    if (reference)
+      for (int i : {index.rotation, index.eye_from_panel_x_m, index.eye_from_panel_y_m})
+        Hold(i, ParameterStatus::kReference);
+    if (spread_[k].distinct == 1) {
+      HoldWhatOnePixelCannotTell(k, reference);
+    } else if (spread_[k].collinear) {
+      report_->warnings.push_back(panel +
+                                  ": its markers lie on one line of the panel, so its magnification and rotation "
+                                  "rest on that line's length and tilt alone and nothing checks the other "
+                                  "direction; add markers off the line");
+    }
+  }
+
+  // One pixel fixes where the panel is, not how it is turned; its size only
+  // through parallax, when it is seen from two camera positions.
+  void HoldWhatOnePixelCannotTell(int k, bool reference) {
+    const VirtualLayer& layer = system_.layers[k];
+    const bool parallax = positions_seen_[k] >= 2;
+    if (!parallax) Hold(index_[k].distance, ParameterStatus::kUndetermined);
+    if (!reference) Hold(index_[k].rotation, ParameterStatus::kUndetermined);
+    const Point2 pixel = by_layer_[k].front()->pixel;
+    report_->warnings.push_back(
+        "panel " + Quoted(layer.name) + ": its markers show a single panel pixel (" + FormatFixed(pixel.real(), 1) +
+        ", " + FormatFixed(pixel.imag(), 1) + "), which fixes the offset but not the rotation" +
+        (parallax ? "" : " nor the magnification") + ": its " +
+        (parallax
+             ? "rotation keeps its scene value ("
+             : "distance and rotation keep their scene values (" + ShowValue("distance", layer.panel_distance) + ", ") +
+        ShowValue("rotation", layer.panel.rotation) + "); show markers at three or more pixels not on one line");
+  }
+
+  // Only parallax tells an element's focal length or gap from the distances of the panels behind it.
+  void HoldWhatParallaxAloneTells() {
+    for (const Optic& o : optics_) {
+      bool parallax = false;
+      for (int k : o.layers)
+        parallax = parallax || (index_[k].distance >= 0 && !fit_.held(index_[k].distance) && positions_seen_[k] >= 2);
+      const std::string named = magnifier_ ? "" : " of " + Quoted(o.name);
+      if (!options_.fit_focal_length)
+        Hold(o.focal, ParameterStatus::kNotFitted);
+      else if (!parallax)
+        HoldWithoutParallax(o.focal, "the focal length" + named);
+      if (!options_.fit_lens_gaps) {
+        Hold(o.gap_index, ParameterStatus::kNotFitted);
+      } else if (!o.placed_before) {
+        Hold(o.gap_index, ParameterStatus::kNotFitted);
+        report_->warnings.push_back("the gap of " + Quoted(o.name) + " is not fitted: " + Quoted(o.before) +
+                                    " before it has no place of its own (a flat element without \"gap\"), so no gap "
+                                    "could be written; give " +
+                                    Quoted(o.before) + " a \"gap\"");
+      } else if (!parallax) {
+        HoldWithoutParallax(o.gap_index, "the gap of " + Quoted(o.name));
+      }
+    }
+  }
+
+  void HoldWithoutParallax(int i, const std::string& what) {
+    Hold(i, ParameterStatus::kUndetermined);
+    report_->warnings.push_back(what + " cannot be told from the panel distances while each panel " +
+                                (magnifier_ ? "" : "behind it ") +
+                                "is seen from one camera position only: it keeps "
+                                "its scene value (" +
+                                ShowValue(quantity_[i], fit_.parameter(i).start) +
+                                "); add "
+                                "captures from other camera positions (\"camera_position\") to fit it");
+  }
+
+  void AddResiduals() {
+    for (const MarkerDatum& d : data_) {
+      const PanelIndices& p = index_[d.layer];
+      const LayerOptics& path = layer_optics_[d.layer];
+      auto* cost = new MarkerCostFunction(new MarkerCost{d.placement, path, d.angle_x, d.angle_y});
+      std::vector<int> blocks = {p.distance, p.eye_from_panel_x_m, p.eye_from_panel_y_m, p.rotation, pan_, tilt_,
+                                 roll_};
+      for (int o : path.element) blocks.push_back(optics_[o].gap_index), blocks.push_back(optics_[o].focal);
+      for (size_t i = 0; i < blocks.size(); ++i) cost->AddParameterBlock(1);
+      cost->SetNumResiduals(2);
+      fit_.AddResidual(cost, MakeLoss(options_.loss, options_.marker_loss_scale), blocks);
+    }
+  }
+
+  bool Solve() {
+    result_ = fit_.Solve(ScalarFitOptionsOf(options_));
+    report_->geometry_solver = result_.summary.BriefReport();
+    if (!result_.usable) {
+      report_->message = "the geometry fit failed: " + result_.summary.message;
+      return false;
+    }
+    for (const UndeterminedParameter& u : result_.undetermined) {
+      status_[u.index] = ParameterStatus::kUndetermined;
+      report_->warnings.push_back(UndeterminedWarning(fit_, u, quantity_[u.index]));
+    }
+    return true;
+  }
+
+  // A fit that puts a panel where this display cannot image it: beyond the
+  // magnifier's focal length, into the pupil plane or behind the eye.
+  bool CheckFittedImages() {
+    for (int k = 0; k < layer_count_; ++k) {
+      if (by_layer_[k].empty()) continue;
+      const MarkerParameters<double> q = ParametersAfter(k);
+      const RayTransfer<double> m = LayerTransfer(layer_optics_[k], q);
+      const std::vector<int>& on_path = layer_optics_[k].element;
+      if (magnifier_ && q.distance > q.focal_lengths[0]) {
+        report_->message = "the fit puts panel " + Quoted(system_.layers[k].name) + " " +
+                           ShowValue("distance", q.distance) + " from the lens, beyond the focal length " +
+                           ShowValue("focal_length", q.focal_lengths[0]) +
+                           ": the measurements do not match this display";
+        return false;
+      }
+      if (!magnifier_ && (m.b == 0 || m.diopters() < 0)) {
+        report_->message =
+            "the fit images panel " + Quoted(system_.layers[k].name) + " " +
+            (m.b == 0 ? "into the pupil plane" : "behind the eye (" + FormatFixed(m.diopters(), 3) + " D)") +
+            (on_path.empty() ? "" : ", through the optics in front of it as fitted") +
+            ": the measurements do not match this display";
+        return false;
+      }
+    }
+    return true;
+  }
+
+  // The layer's parameters as designed (seen by an unturned camera).
+  MarkerParameters<double> ParametersBefore(int k) const {
+    const VirtualLayer& layer = system_.layers[k];
+    MarkerParameters<double> q = LayerParameters<double>(index_[k], pan_, tilt_, roll_, layer_optics_[k], optics_,
+                                                         [&](int i) { return fit_.parameter(i).start; });
+    q.distance = layer.panel_distance;
+    q.eye_from_panel_x_m = layer.panel.eye_from_panel_m[0], q.eye_from_panel_y_m = layer.panel.eye_from_panel_m[1],
+    q.rotation = layer.panel.rotation;
+    q.pan = q.tilt = q.roll = 0;
+    return q;
+  }
+
+  MarkerParameters<double> ParametersAfter(int k) const {
+    return LayerParameters<double>(index_[k], pan_, tilt_, roll_, layer_optics_[k], optics_,
+                                   [&](int i) { return fit_.value(i); });
+  }
+
+  // The markers' RMS errors before and after the fit, in all and by panel.
+  void ReportResiduals() {
+    std::vector<double> before(layer_count_, 0.0), after(layer_count_, 0.0), components;
+    double sum_before = 0, sum_after = 0;
+    std::vector<std::pair<double, const MarkerDatum*>> errors;
+    for (const MarkerDatum& d : data_) {
+      double a[2], b[2];
+      PredictVisualAngle(ParametersBefore(d.layer), layer_optics_[d.layer], d.placement, a);
+      PredictVisualAngle(ParametersAfter(d.layer), layer_optics_[d.layer], d.placement, b);
+      const double error_before = std::pow(a[0] - d.angle_x, 2) + std::pow(a[1] - d.angle_y, 2);
+      const double error_after = std::pow(b[0] - d.angle_x, 2) + std::pow(b[1] - d.angle_y, 2);
+      before[d.layer] += error_before, after[d.layer] += error_after;
+      sum_before += error_before, sum_after += error_after;
+      components.push_back(std::abs(b[0] - d.angle_x));
+      components.push_back(std::abs(b[1] - d.angle_y));
+      errors.push_back({std::sqrt(error_after), &d});
+    }
+    report_->marker_rms_before = std::sqrt(sum_before / data_.size());
+    report_->marker_rms_after = std::sqrt(sum_after / data_.size());
+    for (int k = 0; k < layer_count_; ++k) {
+      if (by_layer_[k].empty()) continue;
+      PanelResiduals& r = report_->panels[k];
+      r.markers = static_cast<int>(by_layer_[k].size());
+      r.marker_rms_before = std::sqrt(before[k] / r.markers);
+      r.marker_rms_after = std::sqrt(after[k] / r.markers);
+    }
+    if (options_.loss == RobustLoss::kNone && components.size() > 8) WarnOutliers(&components, errors);
+  }
+
+  // Gross errors stand out against the median's noise, which they do not inflate.
+  void WarnOutliers(std::vector<double>* components, const std::vector<std::pair<double, const MarkerDatum*>>& errors) {
+    std::nth_element(components->begin(), components->begin() + components->size() / 2, components->end());
+    const double sigma = 1.4826 * (*components)[components->size() / 2];
+    auto worst = std::max_element(errors.begin(), errors.end());
+    const long beyond = std::count_if(errors.begin(), errors.end(), [&](const auto& x) { return x.first > 6 * sigma; });
+    if (sigma > 0 && beyond > 0)
+      report_->warnings.push_back(std::to_string(beyond) + " marker" + (beyond > 1 ? "s lie" : " lies") +
+                                  " beyond 6 sigma of the noise (the worst " +
+                                  FormatFixed(ArcminFromRadians(worst->first), 3) + " arcmin, at " +
+                                  worst->second->where.str() +
+                                  "): outliers bias a least-squares fit; a robust loss "
+                                  "(huber or cauchy) discounts them");
+  }
+
+  ParameterEstimate Estimate(const std::string& element, int i) {
+    ParameterEstimate p;
+    p.element = element;
+    p.quantity = quantity_[i];
+    p.scene_value = fit_.parameter(i).start;
+    p.value = fit_.value(i);
+    p.status = status_[i];
+    if (p.status == ParameterStatus::kFitted && result_.covariance.size())
+      p.std_dev = std::sqrt(result_.covariance(i, i));
+    if (p.status != ParameterStatus::kFitted) return p;
+    if (const std::string why = Unresolved(fit_.parameter(i), p); !why.empty()) {
+      p.status = ParameterStatus::kUnresolved;
+      report_->unresolved.push_back(fit_.parameter(i).name + ": it " + why);
+      report_->warnings.push_back("the data do not determine " + fit_.parameter(i).name + ": it " + why +
+                                  "; it is reported undetermined, and `fit` writes no calibrated scene unless --force");
+    }
+    return p;
+  }
+
+  bool Fitted(int i) const { return status_[i] == ParameterStatus::kFitted; }
+
+  // The results, by parameter.
+  void WriteResults(CalibratedDisplay* display) {
+    display->optics.clear();
+    for (const Optic& o : optics_) {
+      report_->parameters.push_back(Estimate(o.name, o.focal));
+      if (options_.fit_lens_gaps) report_->parameters.push_back(Estimate(o.name, o.gap_index));
+      display->optics.push_back(
+          {o.name, fit_.value(o.focal), fit_.value(o.gap_index), Fitted(o.focal), Fitted(o.gap_index)});
+    }
+    for (int k = 0; k < layer_count_; ++k)
+      if (!by_layer_[k].empty()) WritePanelResults(k, &display->panels[k]);
+    PlaceAsFitted(system_, optics_, display);
+    if (farthest_reference_)
+      for (int i : {pan_, tilt_, roll_}) report_->parameters.push_back(Estimate("camera", i));
+  }
+
+  void WritePanelResults(int k, CalibratedPanel* out) {
+    const VirtualLayer& layer = system_.layers[k];
+    const PanelIndices& p = index_[k];
+    ParameterEstimate distance = Estimate(layer.name, p.distance);
+    ParameterEstimate depth = distance;
+    depth.quantity = "virtual_depth";
+    depth.derived = true;
+    depth.scene_value = layer.diopters;
+    depth.value = LayerTransfer(layer_optics_[k], ParametersAfter(k)).diopters();
+    if (distance.std_dev) depth.std_dev = VirtualDepthStdDev(k);
+    report_->parameters.push_back(distance);
+    report_->parameters.push_back(depth);
+    for (int i : {p.eye_from_panel_x_m, p.eye_from_panel_y_m, p.rotation})
+      report_->parameters.push_back(Estimate(layer.name, i));
+
+    out->geometry_measured = true;
+    out->distance = distance.value;
+    out->eye_from_panel_x_m = fit_.value(p.eye_from_panel_x_m);
+    out->eye_from_panel_y_m = fit_.value(p.eye_from_panel_y_m);
+    out->rotation = fit_.value(p.rotation);
+  }
+
+  // Propagated through D(s, g, f) with the covariance of the path's parameters (derivatives by dual numbers).
+  double VirtualDepthStdDev(int k) const {
+    const PanelIndices& p = index_[k];
+    std::vector<int> on_path = {p.distance};
+    for (int o : layer_optics_[k].element) on_path.push_back(optics_[o].gap_index), on_path.push_back(optics_[o].focal);
+    std::vector<double> gradient;
+    for (int wrt : on_path) {
+      using Dual = ceres::Jet<double, 1>;
+      const auto q = LayerParameters<Dual>(p, pan_, tilt_, roll_, layer_optics_[k], optics_, [&](int i) {
+        Dual x(fit_.value(i));
+        if (i == wrt) x.v[0] = 1;
+        return x;
+      });
+      gradient.push_back(LayerTransfer(layer_optics_[k], q).diopters().v[0]);
+    }
+    double variance = 0;
+    for (size_t a = 0; a < on_path.size(); ++a)
+      for (size_t b = 0; b < on_path.size(); ++b)
+        variance += gradient[a] * gradient[b] * result_.covariance(on_path[a], on_path[b]);
+    return std::sqrt(std::max(0.0, variance));
+  }
+
+  const DisplaySystem& system_;
+  const Measurements& measurements_;
+  const CalibrationOptions& options_;
+  CalibrationReport* report_;
+  const int layer_count_;
+  const bool magnifier_;
+  const bool farthest_reference_;
+
+  std::vector<MarkerDatum> data_;
+  std::vector<std::vector<const MarkerDatum*>> by_layer_;
+  std::vector<PointSpread> spread_;
+  std::vector<int> positions_seen_;
+  std::vector<LayerOptics> layer_optics_;
+  std::vector<Optic> optics_;
+
+  ScalarFit fit_;
+  std::vector<std::string> quantity_;
+  std::vector<ParameterStatus> status_;
+  int pan_ = -1, tilt_ = -1, roll_ = -1;
+  std::vector<PanelIndices> index_;
+  ScalarFitResult result_;
+};
+
 }  // namespace
 
 std::string Unresolved(const ScalarParameter& parameter, const ParameterEstimate& p) {
@@ -243,336 +664,7 @@ std::string UndeterminedWarning(const ScalarFit& fit, const UndeterminedParamete
 
 bool FitGeometry(const DisplaySystem& system, const Measurements& measurements, const CalibrationOptions& options,
                  CalibratedDisplay* display, CalibrationReport* report) {
-  const int layer_count = static_cast<int>(system.layers.size());
-  const bool magnifier = !system.lens.empty();  // the paper's layout: one lens, the same on every path
-
-  std::vector<MarkerDatum> data;
-  std::set<std::pair<double, double>> positions;
-  for (size_t c = 0; c < measurements.captures.size(); ++c) {
-    const Capture& capture = measurements.captures[c];
-    positions.insert({capture.camera_position[0], capture.camera_position[1]});
-    for (const PanelMarkers& markers : capture.panels) {
-      const int k = LayerIndex(system, markers.panel);
-      for (const MarkerObservation& o : markers.markers)
-        data.push_back(
-            {k,
-             c,
-             PlaceMarker(system.layers[k], o.col, o.row, capture.camera_position[0], capture.camera_position[1]),
-             {o.col, o.row},
-             o.angle_x,
-             o.angle_y,
-             o.where});
-    }
-  }
-  report->markers = static_cast<int>(data.size());
-  report->captures = static_cast<int>(measurements.captures.size());
-  report->camera_positions = static_cast<int>(positions.size());
-  if (data.empty()) return true;
-
-  std::vector<std::vector<const MarkerDatum*>> by_layer(layer_count);
-  for (const MarkerDatum& d : data) by_layer[d.layer].push_back(&d);
-  std::vector<PointSpread> spread(layer_count);
-  std::vector<int> positions_seen(layer_count, 0);
-  std::vector<bool> measured(layer_count);
-  for (int k = 0; k < layer_count; ++k) {
-    std::vector<Point2> pixels;
-    std::set<std::pair<double, double>> seen_from;
-    for (const MarkerDatum* d : by_layer[k]) {
-      pixels.push_back(d->pixel);
-      const auto& position = measurements.captures[d->capture].camera_position;
-      seen_from.insert({position[0], position[1]});
-    }
-    spread[k] = Spread(pixels);
-    positions_seen[k] = static_cast<int>(seen_from.size());
-    measured[k] = !by_layer[k].empty();
-  }
-  std::vector<LayerOptics> layer_optics;
-  std::vector<Optic> optics = FindOptics(system, measured, &layer_optics);
-
-  const bool farthest_reference = options.reference == AxisReference::kFarthestPanel;
-  if (farthest_reference && spread[0].distinct < 2) {
-    report->message =
-        "the axis reference \"farthest-panel\" needs markers at two or more pixels of the farthest panel " +
-        Quoted(system.layers[0].name) + (by_layer[0].empty() ? ", which has none" : "");
-    return false;
-  }
-  CheckMirroring(system, by_layer, report);
-
-  // The parameters, each held where the data's shape cannot determine it.
-  ScalarFit fit;
-  std::vector<std::string> quantity;
-  std::vector<ParameterStatus> status;
-  auto add = [&](ScalarParameter p, const std::string& q) {
-    quantity.push_back(q);
-    status.push_back(ParameterStatus::kFitted);
-    return fit.Add(std::move(p));
-  };
-  auto hold = [&](int index, ParameterStatus why) {
-    fit.Hold(index);
-    status[index] = why;
-  };
-  for (Optic& o : optics) {
-    std::optional<double> beyond_the_eye;  // the magnifier's focal point stays behind the eye
-    if (magnifier) beyond_the_eye = system.eye.eye_relief * (1 + 1e-6);
-    o.focal =
-        add({"the focal length of " + Quoted(o.name), o.focal_length, 0, beyond_the_eye, std::nullopt}, "focal_length");
-    o.gap_index = add({"the gap of " + Quoted(o.name), o.gap, 0, std::nullopt, std::nullopt}, "gap");
-  }
-  const int pan = add({"the camera's pan", 0, 1, {}, {}}, "pan");
-  const int tilt = add({"the camera's tilt", 0, 1, {}, {}}, "tilt");
-  const int roll = add({"the camera's roll", 0, 1, {}, {}}, "roll");
-  std::vector<PanelIndices> index(layer_count);
-  for (int k = 0; k < layer_count; ++k) {
-    const VirtualLayer& layer = system.layers[k];
-    const std::string panel = "panel " + Quoted(layer.name);
-    if (by_layer[k].empty()) {
-      report->warnings.push_back(panel + " has no markers: its distance, offset and rotation keep their scene values");
-      continue;
-    }
-    const bool reference = farthest_reference && k == 0;
-    std::optional<double> beyond_focus;
-    if (magnifier && !options.fit_focal_length) beyond_focus = system.focal_length;
-    const double closest = 1e-3 * (magnifier ? system.focal_length : layer.panel_distance);
-    index[k].distance = add({"the distance of " + panel, layer.panel_distance, 2, closest, beyond_focus}, "distance");
-    index[k].rotation =
-        add({"the rotation of " + panel, reference ? 0.0 : layer.panel.rotation, 3, {}, {}}, "rotation");
-    index[k].eye_from_panel_x_m =
-        add({"the offset x of " + panel, reference ? 0.0 : layer.panel.eye_from_panel_m[0], 4, {}, {}}, "offset_x");
-    index[k].eye_from_panel_y_m =
-        add({"the offset y of " + panel, reference ? 0.0 : layer.panel.eye_from_panel_m[1], 4, {}, {}}, "offset_y");
-    if (reference)
-      for (int i : {index[k].rotation, index[k].eye_from_panel_x_m, index[k].eye_from_panel_y_m})
-        hold(i, ParameterStatus::kReference);
-    if (spread[k].distinct == 1) {
-      // One pixel fixes where the panel is, not how it is turned; its size
-      // only through parallax, when it is seen from two camera positions.
-      const bool parallax = positions_seen[k] >= 2;
-      if (!parallax) hold(index[k].distance, ParameterStatus::kUndetermined);
-      if (!reference) hold(index[k].rotation, ParameterStatus::kUndetermined);
-      const Point2 pixel = by_layer[k].front()->pixel;
-      report->warnings.push_back(
-          panel + ": its markers show a single panel pixel (" + FormatFixed(pixel.real(), 1) + ", " +
-          FormatFixed(pixel.imag(), 1) + "), which fixes the offset but not the rotation" +
-          (parallax ? "" : " nor the magnification") + ": its " +
-          (parallax ? "rotation keeps its scene value ("
-                    : "distance and rotation keep their scene values (" + ShowValue("distance", layer.panel_distance) +
-                          ", ") +
-          ShowValue("rotation", layer.panel.rotation) + "); show markers at three or more pixels not on one line");
-    } else if (spread[k].collinear) {
-      report->warnings.push_back(panel +
-                                 ": its markers lie on one line of the panel, so its magnification and rotation "
-                                 "rest on that line's length and tilt alone and nothing checks the other "
-                                 "direction; add markers off the line");
-    }
-  }
-  // Only parallax tells an element's focal length or gap from the distances of the panels behind it.
-  for (const Optic& o : optics) {
-    bool parallax = false;
-    for (int k : o.layers)
-      parallax = parallax || (index[k].distance >= 0 && !fit.held(index[k].distance) && positions_seen[k] >= 2);
-    const std::string named = magnifier ? "" : " of " + Quoted(o.name);
-    auto no_parallax = [&](int i, const std::string& what) {
-      hold(i, ParameterStatus::kUndetermined);
-      report->warnings.push_back(what + " cannot be told from the panel distances while each panel " +
-                                 (magnifier ? "" : "behind it ") +
-                                 "is seen from one camera position only: it keeps "
-                                 "its scene value (" +
-                                 ShowValue(quantity[i], fit.parameter(i).start) +
-                                 "); add "
-                                 "captures from other camera positions (\"camera_position\") to fit it");
-    };
-    if (!options.fit_focal_length)
-      hold(o.focal, ParameterStatus::kNotFitted);
-    else if (!parallax)
-      no_parallax(o.focal, "the focal length" + named);
-    if (!options.fit_lens_gaps) {
-      hold(o.gap_index, ParameterStatus::kNotFitted);
-    } else if (!o.placed_before) {
-      hold(o.gap_index, ParameterStatus::kNotFitted);
-      report->warnings.push_back("the gap of " + Quoted(o.name) + " is not fitted: " + Quoted(o.before) +
-                                 " before it has no place of its own (a flat element without \"gap\"), so no gap "
-                                 "could be written; give " +
-                                 Quoted(o.before) + " a \"gap\"");
-    } else if (!parallax) {
-      no_parallax(o.gap_index, "the gap of " + Quoted(o.name));
-    }
-  }
-  if (!farthest_reference)
-    for (int i : {pan, tilt, roll}) hold(i, ParameterStatus::kReference);
-
-  for (const MarkerDatum& d : data) {
-    const PanelIndices& p = index[d.layer];
-    const LayerOptics& path = layer_optics[d.layer];
-    auto* cost = new MarkerCostFunction(new MarkerCost{d.placement, path, d.angle_x, d.angle_y});
-    std::vector<int> blocks = {p.distance, p.eye_from_panel_x_m, p.eye_from_panel_y_m, p.rotation, pan, tilt, roll};
-    for (int o : path.element) blocks.push_back(optics[o].gap_index), blocks.push_back(optics[o].focal);
-    for (size_t i = 0; i < blocks.size(); ++i) cost->AddParameterBlock(1);
-    cost->SetNumResiduals(2);
-    fit.AddResidual(cost, MakeLoss(options.loss, options.marker_loss_scale), blocks);
-  }
-
-  ScalarFitResult result = fit.Solve(ScalarFitOptionsOf(options));
-  report->geometry_solver = result.summary.BriefReport();
-  if (!result.usable) {
-    report->message = "the geometry fit failed: " + result.summary.message;
-    return false;
-  }
-  for (const UndeterminedParameter& u : result.undetermined) {
-    status[u.index] = ParameterStatus::kUndetermined;
-    report->warnings.push_back(UndeterminedWarning(fit, u, quantity[u.index]));
-  }
-
-  // The layer's parameters as designed (seen by an unturned camera) and as fitted.
-  auto parameters_before = [&](int k) {
-    const VirtualLayer& layer = system.layers[k];
-    MarkerParameters<double> q = LayerParameters<double>(index[k], pan, tilt, roll, layer_optics[k], optics,
-                                                         [&](int i) { return fit.parameter(i).start; });
-    q.distance = layer.panel_distance;
-    q.eye_from_panel_x_m = layer.panel.eye_from_panel_m[0], q.eye_from_panel_y_m = layer.panel.eye_from_panel_m[1],
-    q.rotation = layer.panel.rotation;
-    q.pan = q.tilt = q.roll = 0;
-    return q;
-  };
-  auto parameters_after = [&](int k) {
-    return LayerParameters<double>(index[k], pan, tilt, roll, layer_optics[k], optics,
-                                   [&](int i) { return fit.value(i); });
-  };
-  for (int k = 0; k < layer_count; ++k) {
-    if (by_layer[k].empty()) continue;
-    const MarkerParameters<double> q = parameters_after(k);
-    const RayTransfer<double> m = LayerTransfer(layer_optics[k], q);
-    const std::vector<int>& on_path = layer_optics[k].element;
-    if (magnifier && q.distance > q.focal_lengths[0]) {
-      report->message = "the fit puts panel " + Quoted(system.layers[k].name) + " " +
-                        ShowValue("distance", q.distance) + " from the lens, beyond the focal length " +
-                        ShowValue("focal_length", q.focal_lengths[0]) + ": the measurements do not match this display";
-      return false;
-    }
-    if (!magnifier && (m.b == 0 || m.diopters() < 0)) {
-      report->message =
-          "the fit images panel " + Quoted(system.layers[k].name) + " " +
-          (m.b == 0 ? "into the pupil plane" : "behind the eye (" + FormatFixed(m.diopters(), 3) + " D)") +
-          (on_path.empty() ? "" : ", through the optics in front of it as fitted") +
-          ": the measurements do not match this display";
-      return false;
-    }
-  }
-  report->marker_noise = result.noise;
-  if (result.covariance.size() == 0)
-    report->warnings.push_back("no uncertainties for the geometry: " + result.covariance_message);
-
-  std::vector<double> before(layer_count, 0.0), after(layer_count, 0.0), components;
-  double sum_before = 0, sum_after = 0;
-  std::vector<std::pair<double, const MarkerDatum*>> errors;
-  for (const MarkerDatum& d : data) {
-    double a[2], b[2];
-    PredictVisualAngle(parameters_before(d.layer), layer_optics[d.layer], d.placement, a);
-    PredictVisualAngle(parameters_after(d.layer), layer_optics[d.layer], d.placement, b);
-    const double error_before = std::pow(a[0] - d.angle_x, 2) + std::pow(a[1] - d.angle_y, 2);
-    const double error_after = std::pow(b[0] - d.angle_x, 2) + std::pow(b[1] - d.angle_y, 2);
-    before[d.layer] += error_before, after[d.layer] += error_after;
-    sum_before += error_before, sum_after += error_after;
-    components.push_back(std::abs(b[0] - d.angle_x));
-    components.push_back(std::abs(b[1] - d.angle_y));
-    errors.push_back({std::sqrt(error_after), &d});
-  }
-  report->marker_rms_before = std::sqrt(sum_before / data.size());
-  report->marker_rms_after = std::sqrt(sum_after / data.size());
-  for (int k = 0; k < layer_count; ++k) {
-    if (by_layer[k].empty()) continue;
-    PanelResiduals& r = report->panels[k];
-    r.markers = static_cast<int>(by_layer[k].size());
-    r.marker_rms_before = std::sqrt(before[k] / r.markers);
-    r.marker_rms_after = std::sqrt(after[k] / r.markers);
-  }
-  if (options.loss == RobustLoss::kNone && components.size() > 8) {
-    // Gross errors stand out against the median's noise, which they do not inflate.
-    std::nth_element(components.begin(), components.begin() + components.size() / 2, components.end());
-    const double sigma = 1.4826 * components[components.size() / 2];
-    auto worst = std::max_element(errors.begin(), errors.end());
-    const long beyond = std::count_if(errors.begin(), errors.end(), [&](const auto& x) { return x.first > 6 * sigma; });
-    if (sigma > 0 && beyond > 0)
-      report->warnings.push_back(std::to_string(beyond) + " marker" + (beyond > 1 ? "s lie" : " lies") +
-                                 " beyond 6 sigma of the noise (the worst " +
-                                 FormatFixed(ArcminFromRadians(worst->first), 3) + " arcmin, at " +
-                                 worst->second->where.str() +
-                                 "): outliers bias a least-squares fit; a robust loss "
-                                 "(huber or cauchy) discounts them");
-  }
-
-  // The results, by parameter.
-  auto estimate = [&](const std::string& element, int i) {
-    ParameterEstimate p;
-    p.element = element;
-    p.quantity = quantity[i];
-    p.scene_value = fit.parameter(i).start;
-    p.value = fit.value(i);
-    p.status = status[i];
-    if (p.status == ParameterStatus::kFitted && result.covariance.size())
-      p.std_dev = std::sqrt(result.covariance(i, i));
-    if (p.status != ParameterStatus::kFitted) return p;
-    if (const std::string why = Unresolved(fit.parameter(i), p); !why.empty()) {
-      p.status = ParameterStatus::kUnresolved;
-      report->unresolved.push_back(fit.parameter(i).name + ": it " + why);
-      report->warnings.push_back("the data do not determine " + fit.parameter(i).name + ": it " + why +
-                                 "; it is reported undetermined, and `fit` writes no calibrated scene unless --force");
-    }
-    return p;
-  };
-  auto fitted = [&](int i) { return status[i] == ParameterStatus::kFitted; };
-  display->optics.clear();
-  for (const Optic& o : optics) {
-    report->parameters.push_back(estimate(o.name, o.focal));
-    if (options.fit_lens_gaps) report->parameters.push_back(estimate(o.name, o.gap_index));
-    display->optics.push_back(
-        {o.name, fit.value(o.focal), fit.value(o.gap_index), fitted(o.focal), fitted(o.gap_index)});
-  }
-  for (int k = 0; k < layer_count; ++k) {
-    if (by_layer[k].empty()) continue;
-    const VirtualLayer& layer = system.layers[k];
-    const PanelIndices& p = index[k];
-    ParameterEstimate distance = estimate(layer.name, p.distance);
-    ParameterEstimate depth = distance;
-    depth.quantity = "virtual_depth";
-    depth.derived = true;
-    depth.scene_value = layer.diopters;
-    depth.value = LayerTransfer(layer_optics[k], parameters_after(k)).diopters();
-    if (distance.std_dev) {
-      // Propagated through D(s, g, f) with the covariance of the path's parameters (derivatives by dual numbers).
-      std::vector<int> on_path = {p.distance};
-      for (int o : layer_optics[k].element) on_path.push_back(optics[o].gap_index), on_path.push_back(optics[o].focal);
-      std::vector<double> gradient;
-      for (int wrt : on_path) {
-        using Dual = ceres::Jet<double, 1>;
-        const auto q = LayerParameters<Dual>(p, pan, tilt, roll, layer_optics[k], optics, [&](int i) {
-          Dual x(fit.value(i));
-          if (i == wrt) x.v[0] = 1;
-          return x;
-        });
-        gradient.push_back(LayerTransfer(layer_optics[k], q).diopters().v[0]);
-      }
-      double variance = 0;
-      for (size_t a = 0; a < on_path.size(); ++a)
-        for (size_t b = 0; b < on_path.size(); ++b)
-          variance += gradient[a] * gradient[b] * result.covariance(on_path[a], on_path[b]);
-      depth.std_dev = std::sqrt(std::max(0.0, variance));
-    }
-    report->parameters.push_back(distance);
-    report->parameters.push_back(depth);
-    for (int i : {p.eye_from_panel_x_m, p.eye_from_panel_y_m, p.rotation})
-      report->parameters.push_back(estimate(layer.name, i));
-
-    CalibratedPanel& out = display->panels[k];
-    out.geometry_measured = true;
-    out.distance = distance.value;
-    out.eye_from_panel_x_m = fit.value(p.eye_from_panel_x_m);
-    out.eye_from_panel_y_m = fit.value(p.eye_from_panel_y_m);
-    out.rotation = fit.value(p.rotation);
-  }
-  PlaceAsFitted(system, optics, display);
-  if (farthest_reference)
-    for (int i : {pan, tilt, roll}) report->parameters.push_back(estimate("camera", i));
-  return true;
+  return GeometryFitter(system, measurements, options, report).Fit(display);
 }
 
 }  // namespace layerlab

@@ -183,78 +183,73 @@ std::string OverexposureReason(const Photo& photo, const PhotoCheck& check) {
          " % of the pixels are at full scale; shorten the exposure (or lower the backlight) and photograph it again";
 }
 
-CornerSearch FindChessboardCorners(const Photo& photo, const Chessboard& board,
-                                   const std::vector<std::array<double, 2>>& predicted, const PhotoCheck& check) {
-  CornerSearch out;
-  const int cols = board.corners_x(), rows = board.corners_y();
-  if (predicted.size() != static_cast<size_t>(cols * rows))
-    throw Error("internal error: " + std::to_string(predicted.size()) + " predicted corners for a " +
-                std::to_string(cols) + " x " + std::to_string(rows) + " board");
-  if (std::string why = OverexposureReason(photo, check); !why.empty()) {
-    out.reason = why;
-    return out;
-  }
-  double square_px = 0;  // predicted spacing of neighboring corners
+namespace {
+
+// The predicted spacing of neighboring corners, in camera pixels.
+double PredictedSquarePixels(const std::vector<std::array<double, 2>>& predicted, int cols, int rows) {
+  double square_px = 0;
   for (int b = 0; b < rows; ++b)
     for (int a = 0; a + 1 < cols; ++a) {
       const auto& p = predicted[b * cols + a];
       const auto& q = predicted[b * cols + a + 1];
       square_px += std::hypot(q[0] - p[0], q[1] - p[1]) / ((cols - 1) * rows);
     }
-  cv::Mat image(photo.height, photo.width, CV_32F, const_cast<float*>(photo.pixels.data()));
-  const double white = std::max(1e-6, Quantile(photo.pixels, 0.995));
-  cv::Mat image8;
-  image.convertTo(image8, CV_8U, 255.0 / white);
-  std::vector<cv::Point2f> corners = TryBoard(image8, cols, rows);
-  if (corners.empty()) {
-    double u0 = INFINITY, v0 = INFINITY, u1 = -INFINITY, v1 = -INFINITY;
-    for (const auto& p : predicted)
-      u0 = std::min(u0, p[0]), v0 = std::min(v0, p[1]), u1 = std::max(u1, p[0]), v1 = std::max(v1, p[1]);
-    const cv::Rect area(static_cast<int>(u0 - square_px), static_cast<int>(v0 - square_px),
-                        static_cast<int>(u1 - u0 + 2 * square_px), static_cast<int>(v1 - v0 + 2 * square_px));
-    // Another plan's board (other square counts) would read below as out of focus or partly covered. Its
-    // squares are counted over the predicted board widened by half a square and by a whole one (the other
-    // board may be wider, and beyond its white margin lies the panel's black), and a count that differs from
-    // the plan's is confirmed by finding its corners.
-    std::vector<std::array<int, 2>> tried;
-    for (double widen : {0.5, 1.0}) {
-      const int margin = std::isfinite(square_px) ? static_cast<int>(std::clamp(widen * square_px, 0.0, 1e4)) : 0;
-      const std::array<int, 2> seen = SquaresSeen(
-          photo, cv::Rect(area.x - margin, area.y - margin, area.width + 2 * margin, area.height + 2 * margin));
-      if ((seen[0] == board.squares_x && seen[1] == board.squares_y) ||
-          !ChessboardSquaresProblem(seen[0], seen[1]).empty() ||
-          std::find(tried.begin(), tried.end(), seen) != tried.end())
-        continue;
-      tried.push_back(seen);
-      // Squares of the planned size are part of the planned board (too few features, below), not another board.
-      if (std::vector<cv::Point2f> other = TryBoard(image8, seen[0] - 1, seen[1] - 1);
-          !other.empty() && std::abs(NeighborSpacing(other) / square_px - 1) > 0.05) {
-        out.reason = "wrong chessboard: the photograph shows one of " + std::to_string(seen[0]) + " x " +
-                     std::to_string(seen[1]) + " squares (its " + std::to_string(seen[0] - 1) + " x " +
-                     std::to_string(seen[1] - 1) + " inner corners found), the capture plan's has " +
-                     std::to_string(board.squares_x) + " x " + std::to_string(board.squares_y) +
-                     ": was it taken with another plan's patterns?";
-        return out;
-      }
-    }
-    const std::string shows = WhatItShows(photo, square_px, area);
-    // A part of the board found tells "too few features" from "not found".
-    for (const auto& [c, r] : std::vector<std::pair<int, int>>{{cols - 2, rows}, {cols, rows - 2}})
-      if (c >= 3 && r >= 3 && shows.rfind("the board is not in view", 0) == 0)
-        if (std::vector<cv::Point2f> part = TryBoard(image8, c, r); !part.empty()) {
-          out.reason = "too few features: " + std::to_string(part.size()) + " of the board's " +
-                       std::to_string(cols * rows) + " inner corners found (" + shows + ")";
-          return out;
-        }
-    out.reason = "pattern not found: no " + std::to_string(cols) + " x " + std::to_string(rows) +
-                 " chessboard corners (" + shows + ")";
-    return out;
+  return square_px;
+}
+
+// Another plan's board (other square counts) would read below as out of focus or partly covered. Its
+// squares are counted over the predicted board widened by half a square and by a whole one (the other
+// board may be wider, and beyond its white margin lies the panel's black), and a count that differs from
+// the plan's is confirmed by finding its corners. "" when no other board is found.
+std::string WrongBoardReason(const Photo& photo, const cv::Mat& image8, const Chessboard& board, double square_px,
+                             const cv::Rect& area) {
+  std::vector<std::array<int, 2>> tried;
+  for (double widen : {0.5, 1.0}) {
+    const int margin = std::isfinite(square_px) ? static_cast<int>(std::clamp(widen * square_px, 0.0, 1e4)) : 0;
+    const std::array<int, 2> seen = SquaresSeen(
+        photo, cv::Rect(area.x - margin, area.y - margin, area.width + 2 * margin, area.height + 2 * margin));
+    if ((seen[0] == board.squares_x && seen[1] == board.squares_y) ||
+        !ChessboardSquaresProblem(seen[0], seen[1]).empty() ||
+        std::find(tried.begin(), tried.end(), seen) != tried.end())
+      continue;
+    tried.push_back(seen);
+    // Squares of the planned size are part of the planned board (too few features, below), not another board.
+    if (std::vector<cv::Point2f> other = TryBoard(image8, seen[0] - 1, seen[1] - 1);
+        !other.empty() && std::abs(NeighborSpacing(other) / square_px - 1) > 0.05)
+      return "wrong chessboard: the photograph shows one of " + std::to_string(seen[0]) + " x " +
+             std::to_string(seen[1]) + " squares (its " + std::to_string(seen[0] - 1) + " x " +
+             std::to_string(seen[1] - 1) + " inner corners found), the capture plan's has " +
+             std::to_string(board.squares_x) + " x " + std::to_string(board.squares_y) +
+             ": was it taken with another plan's patterns?";
   }
-  const int window = std::clamp(static_cast<int>(0.4 * square_px), 2, 15);
-  cv::cornerSubPix(image, corners, cv::Size(window, window), cv::Size(-1, -1),
-                   cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 100, 1e-4));
-  // The board reads the same turned by 180 degrees, and the optics may mirror it: the
-  // ordering nearest the prediction is the one.
+  return "";
+}
+
+// Why the board's corners were not found: another board, too few features, or not found.
+std::string BoardNotFoundReason(const Photo& photo, const cv::Mat& image8, const Chessboard& board,
+                                const std::vector<std::array<double, 2>>& predicted, double square_px) {
+  const int cols = board.corners_x(), rows = board.corners_y();
+  double u0 = INFINITY, v0 = INFINITY, u1 = -INFINITY, v1 = -INFINITY;
+  for (const auto& p : predicted)
+    u0 = std::min(u0, p[0]), v0 = std::min(v0, p[1]), u1 = std::max(u1, p[0]), v1 = std::max(v1, p[1]);
+  const cv::Rect area(static_cast<int>(u0 - square_px), static_cast<int>(v0 - square_px),
+                      static_cast<int>(u1 - u0 + 2 * square_px), static_cast<int>(v1 - v0 + 2 * square_px));
+  if (std::string wrong = WrongBoardReason(photo, image8, board, square_px, area); !wrong.empty()) return wrong;
+  const std::string shows = WhatItShows(photo, square_px, area);
+  // A part of the board found tells "too few features" from "not found".
+  for (const auto& [c, r] : std::vector<std::pair<int, int>>{{cols - 2, rows}, {cols, rows - 2}})
+    if (c >= 3 && r >= 3 && shows.rfind("the board is not in view", 0) == 0)
+      if (std::vector<cv::Point2f> part = TryBoard(image8, c, r); !part.empty())
+        return "too few features: " + std::to_string(part.size()) + " of the board's " + std::to_string(cols * rows) +
+               " inner corners found (" + shows + ")";
+  return "pattern not found: no " + std::to_string(cols) + " x " + std::to_string(rows) + " chessboard corners (" +
+         shows + ")";
+}
+
+// The board reads the same turned by 180 degrees, and the optics may mirror it: the
+// ordering nearest the prediction is the one.
+std::vector<int> OrderNearestPrediction(const std::vector<cv::Point2f>& corners,
+                                        const std::vector<std::array<double, 2>>& predicted, int cols, int rows) {
   double best = INFINITY;
   std::vector<int> order;
   for (int flip = 0; flip < 4; ++flip) {
@@ -270,6 +265,36 @@ CornerSearch FindChessboardCorners(const Photo& photo, const Chessboard& board,
       }
     if (sum < best) best = sum, order = candidate;
   }
+  return order;
+}
+
+}  // namespace
+
+CornerSearch FindChessboardCorners(const Photo& photo, const Chessboard& board,
+                                   const std::vector<std::array<double, 2>>& predicted, const PhotoCheck& check) {
+  CornerSearch out;
+  const int cols = board.corners_x(), rows = board.corners_y();
+  if (predicted.size() != static_cast<size_t>(cols * rows))
+    throw Error("internal error: " + std::to_string(predicted.size()) + " predicted corners for a " +
+                std::to_string(cols) + " x " + std::to_string(rows) + " board");
+  if (std::string why = OverexposureReason(photo, check); !why.empty()) {
+    out.reason = why;
+    return out;
+  }
+  const double square_px = PredictedSquarePixels(predicted, cols, rows);
+  cv::Mat image(photo.height, photo.width, CV_32F, const_cast<float*>(photo.pixels.data()));
+  const double white = std::max(1e-6, Quantile(photo.pixels, 0.995));
+  cv::Mat image8;
+  image.convertTo(image8, CV_8U, 255.0 / white);
+  std::vector<cv::Point2f> corners = TryBoard(image8, cols, rows);
+  if (corners.empty()) {
+    out.reason = BoardNotFoundReason(photo, image8, board, predicted, square_px);
+    return out;
+  }
+  const int window = std::clamp(static_cast<int>(0.4 * square_px), 2, 15);
+  cv::cornerSubPix(image, corners, cv::Size(window, window), cv::Size(-1, -1),
+                   cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 100, 1e-4));
+  const std::vector<int> order = OrderNearestPrediction(corners, predicted, cols, rows);
   FoundCorners found;
   for (int b = 0; b < rows; ++b)
     for (int a = 0; a < cols; ++a) {
@@ -281,112 +306,144 @@ CornerSearch FindChessboardCorners(const Photo& photo, const Chessboard& board,
   return out;
 }
 
+namespace {
+
+// The photographs of a capture plan, one by one: a chessboard's corners
+// become markers, a luminance step's photograph the mean of the panel's middle.
+class CaptureDetector {
+ public:
+  CaptureDetector(const std::string& folder, const CapturePlan& plan, const DisplaySystem& designed,
+                  const CameraIntrinsics& camera, const PhotoCheck& check)
+      : folder_(folder), plan_(plan), designed_(designed), camera_(camera), check_(check) {
+    d_.measurements.file = (std::filesystem::path(folder) / "captures.json").string();
+    d_.measurements.description = "detected from the photographs in " + folder;
+    d_.measurements.camera = camera;
+  }
+
+  Detection Detect() {
+    for (const PlannedCapture& c : plan_.captures) {
+      const std::string path = (std::filesystem::path(folder_) / c.photo).string();
+      const VirtualLayer& layer = LayerNamed(c.panel);
+      // One unusable photograph is named and the others go on, whatever OpenCV makes of it.
+      try {
+        const Photo photo = ReadPhoto(path, plan_.response);
+        const std::optional<std::string> failure = c.kind == CaptureKind::kChessboard
+                                                       ? DetectChessboard(c, path, photo, layer)
+                                                       : DetectLuminance(c, path, photo, layer);
+        if (failure) d_.failures.push_back({c.photo, *failure});
+      } catch (const Error& e) {
+        d_.failures.push_back({c.photo, e.what()});
+      } catch (const cv::Exception& e) {
+        d_.failures.push_back({c.photo, path + ": OpenCV failed on it: " + e.err});
+      }
+    }
+    for (const VirtualLayer& layer : designed_.layers)
+      if (auto it = luminance_.find(layer.name); it != luminance_.end())
+        d_.measurements.luminance.push_back(it->second);
+    return std::move(d_);
+  }
+
+ private:
+  const VirtualLayer& LayerNamed(const std::string& panel) const {
+    for (const VirtualLayer& layer : designed_.layers)
+      if (layer.name == panel) return layer;
+    throw Error(designed_.file + ": the capture plan names panel \"" + panel + "\", which the scene does not have");
+  }
+
+  // The photograph's chessboard corners as markers of its capture; the failure, if any.
+  std::optional<std::string> DetectChessboard(const PlannedCapture& c, const std::string& path, const Photo& photo,
+                                              const VirtualLayer& layer) {
+    const Chessboard& board = *plan_.chessboard(c.panel);
+    std::vector<std::array<double, 2>> predicted;
+    for (int b = 0; b < board.corners_y(); ++b)
+      for (int a = 0; a < board.corners_x(); ++a) {
+        const auto pixel = board.corner(a, b);
+        const auto angle = ImagedMarker(designed_, layer, pixel[0], pixel[1], {}, c.camera_position);
+        predicted.push_back(CameraPixelFromAngle(camera_, angle[0], angle[1]));
+      }
+    CornerSearch search = FindChessboardCorners(photo, board, predicted, check_);
+    if (!search.corners) return search.reason;
+    const auto key = std::make_pair(c.camera_position[0], c.camera_position[1]);
+    if (!capture_at_.count(key)) {
+      capture_at_[key] = d_.measurements.captures.size();
+      Capture capture;
+      capture.camera_position = c.camera_position;
+      capture.where = {path, ""};
+      d_.measurements.captures.push_back(capture);
+    }
+    Capture& capture = d_.measurements.captures[capture_at_[key]];
+    PanelMarkers markers;
+    markers.panel = c.panel;
+    markers.where = {path, ""};
+    for (size_t k = 0; k < search.corners->panel_pixels.size(); ++k) {
+      MarkerObservation m;
+      m.col = search.corners->panel_pixels[k][0];
+      m.row = search.corners->panel_pixels[k][1];
+      const auto& uv = search.corners->camera_pixels[k];
+      const auto angle = AngleFromCameraPixel(camera_, uv[0], uv[1]);
+      if (!angle) continue;  // beyond the radius where the distortion folds back
+      m.angle_x = (*angle)[0];
+      m.angle_y = (*angle)[1];
+      m.camera_pixel = uv;
+      m.where = {path, ""};
+      markers.markers.push_back(m);
+    }
+    d_.corners += markers.markers.size();
+    capture.panels.push_back(std::move(markers));
+    return std::nullopt;
+  }
+
+  // The photograph's mean over the middle of the panel as a step of its luminance curve; the failure, if any.
+  std::optional<std::string> DetectLuminance(const PlannedCapture& c, const std::string& path, const Photo& photo,
+                                             const VirtualLayer& layer) {
+    if (std::string why = OverexposureReason(photo, check_); !why.empty()) return why;
+    // The mean over the camera pixels that see the middle half of the active region (by the design).
+    const PanelSpec& p = layer.panel;
+    double sum = 0;
+    size_t n = 0;
+    for (int v = 0; v < photo.height; ++v)
+      for (int u = 0; u < photo.width; ++u) {
+        const auto angle = AngleFromCameraPixel(camera_, u, v);
+        if (!angle) continue;
+        const auto pixel = PanelPixelAt(
+            layer, PanelPointOfRay(layer, c.camera_position, {std::tan((*angle)[0]), std::tan((*angle)[1])}));
+        const double x = (pixel[0] - static_cast<double>(p.active_left)) / static_cast<double>(p.active_cols);
+        const double y = (pixel[1] - static_cast<double>(p.active_top)) / static_cast<double>(p.active_rows);
+        if (x > 0.25 && x < 0.75 && y > 0.25 && y < 0.75) {
+          sum += photo.pixels[static_cast<size_t>(v) * photo.width + u];
+          ++n;
+        }
+      }
+    if (n < 16)
+      return "the middle of the panel is not in the photograph (" + std::to_string(n) +
+             " pixels see it): point the camera at the panel";
+    PanelLuminance& curve = luminance_[c.panel];
+    curve.panel = c.panel;
+    curve.levels = InputLevels::k8Bit;
+    curve.where = {path, ""};
+    curve.samples.push_back({c.level / 255.0, sum / static_cast<double>(n) / c.exposure, {path, ""}});
+    ++d_.luminance_steps;
+    return std::nullopt;
+  }
+
+  const std::string& folder_;
+  const CapturePlan& plan_;
+  const DisplaySystem& designed_;
+  const CameraIntrinsics& camera_;
+  const PhotoCheck& check_;
+  Detection d_;
+  std::map<std::pair<double, double>, size_t> capture_at_;  // camera position -> index in captures
+  std::map<std::string, PanelLuminance> luminance_;
+};
+
+}  // namespace
+
 Detection DetectCaptures(const std::string& folder, const CapturePlan& plan, const DisplaySystem& designed,
                          const std::optional<CameraIntrinsics>& camera_option, const PhotoCheck& check) {
   const std::optional<CameraIntrinsics> camera = camera_option ? camera_option : plan.camera;
   if (!camera)
     throw Error("the camera's intrinsics are needed: give them in the capture plan's \"camera\" or with --camera FILE");
-  auto layer_named = [&](const std::string& panel) -> const VirtualLayer& {
-    for (const VirtualLayer& layer : designed.layers)
-      if (layer.name == panel) return layer;
-    throw Error(designed.file + ": the capture plan names panel \"" + panel + "\", which the scene does not have");
-  };
-  Detection d;
-  d.measurements.file = (std::filesystem::path(folder) / "captures.json").string();
-  d.measurements.description = "detected from the photographs in " + folder;
-  d.measurements.camera = camera;
-  std::map<std::pair<double, double>, size_t> capture_at;  // camera position -> index in captures
-  std::map<std::string, PanelLuminance> luminance;
-  for (const PlannedCapture& c : plan.captures) {
-    const std::string path = (std::filesystem::path(folder) / c.photo).string();
-    const VirtualLayer& layer = layer_named(c.panel);
-    // One unusable photograph is named and the others go on, whatever OpenCV makes of it.
-    try {
-      const Photo photo = ReadPhoto(path, plan.response);
-      if (c.kind == CaptureKind::kChessboard) {
-        const Chessboard& board = *plan.chessboard(c.panel);
-        std::vector<std::array<double, 2>> predicted;
-        for (int b = 0; b < board.corners_y(); ++b)
-          for (int a = 0; a < board.corners_x(); ++a) {
-            const auto pixel = board.corner(a, b);
-            const auto angle = ImagedMarker(designed, layer, pixel[0], pixel[1], {}, c.camera_position);
-            predicted.push_back(CameraPixelFromAngle(*camera, angle[0], angle[1]));
-          }
-        CornerSearch search = FindChessboardCorners(photo, board, predicted, check);
-        if (!search.corners) {
-          d.failures.push_back({c.photo, search.reason});
-          continue;
-        }
-        const auto key = std::make_pair(c.camera_position[0], c.camera_position[1]);
-        if (!capture_at.count(key)) {
-          capture_at[key] = d.measurements.captures.size();
-          Capture capture;
-          capture.camera_position = c.camera_position;
-          capture.where = {path, ""};
-          d.measurements.captures.push_back(capture);
-        }
-        Capture& capture = d.measurements.captures[capture_at[key]];
-        PanelMarkers markers;
-        markers.panel = c.panel;
-        markers.where = {path, ""};
-        for (size_t k = 0; k < search.corners->panel_pixels.size(); ++k) {
-          MarkerObservation m;
-          m.col = search.corners->panel_pixels[k][0];
-          m.row = search.corners->panel_pixels[k][1];
-          const auto& uv = search.corners->camera_pixels[k];
-          const auto angle = AngleFromCameraPixel(*camera, uv[0], uv[1]);
-          if (!angle) continue;  // beyond the radius where the distortion folds back
-          m.angle_x = (*angle)[0];
-          m.angle_y = (*angle)[1];
-          m.camera_pixel = uv;
-          m.where = {path, ""};
-          markers.markers.push_back(m);
-        }
-        d.corners += markers.markers.size();
-        capture.panels.push_back(std::move(markers));
-      } else {
-        if (std::string why = OverexposureReason(photo, check); !why.empty()) {
-          d.failures.push_back({c.photo, why});
-          continue;
-        }
-        // The mean over the camera pixels that see the middle half of the active region (by the design).
-        const PanelSpec& p = layer.panel;
-        double sum = 0;
-        size_t n = 0;
-        for (int v = 0; v < photo.height; ++v)
-          for (int u = 0; u < photo.width; ++u) {
-            const auto angle = AngleFromCameraPixel(*camera, u, v);
-            if (!angle) continue;
-            const auto pixel = PanelPixelAt(
-                layer, PanelPointOfRay(layer, c.camera_position, {std::tan((*angle)[0]), std::tan((*angle)[1])}));
-            const double x = (pixel[0] - static_cast<double>(p.active_left)) / static_cast<double>(p.active_cols);
-            const double y = (pixel[1] - static_cast<double>(p.active_top)) / static_cast<double>(p.active_rows);
-            if (x > 0.25 && x < 0.75 && y > 0.25 && y < 0.75) {
-              sum += photo.pixels[static_cast<size_t>(v) * photo.width + u];
-              ++n;
-            }
-          }
-        if (n < 16) {
-          d.failures.push_back({c.photo, "the middle of the panel is not in the photograph (" + std::to_string(n) +
-                                             " pixels see it): point the camera at the panel"});
-          continue;
-        }
-        PanelLuminance& curve = luminance[c.panel];
-        curve.panel = c.panel;
-        curve.levels = InputLevels::k8Bit;
-        curve.where = {path, ""};
-        curve.samples.push_back({c.level / 255.0, sum / static_cast<double>(n) / c.exposure, {path, ""}});
-        ++d.luminance_steps;
-      }
-    } catch (const Error& e) {
-      d.failures.push_back({c.photo, e.what()});
-    } catch (const cv::Exception& e) {
-      d.failures.push_back({c.photo, path + ": OpenCV failed on it: " + e.err});
-    }
-  }
-  for (const VirtualLayer& layer : designed.layers)
-    if (auto it = luminance.find(layer.name); it != luminance.end()) d.measurements.luminance.push_back(it->second);
-  return d;
+  return CaptureDetector(folder, plan, designed, *camera, check).Detect();
 }
 
 }  // namespace layerlab

@@ -24,6 +24,69 @@ class QuietCeresLog {
 // Jacobian counts as unseen; ceres::Covariance refuses at 1e-7 unnormalized.
 constexpr double kUnseen = 1e-6;
 
+ceres::Solver::Options CeresOptionsOf(const ScalarFitOptions& options) {
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::DENSE_QR;
+  solver.max_num_iterations = options.max_iterations;
+  solver.function_tolerance = options.function_tolerance;
+  solver.gradient_tolerance = options.gradient_tolerance;
+  solver.parameter_tolerance = options.parameter_tolerance;
+  solver.logging_type = ceres::SILENT;
+  solver.num_threads = 1;
+  return solver;
+}
+
+// The covariance of the free parameters (`blocks`, indices `free` among
+// `size`), scaled by the noise's square, into result; or why there is none.
+// False when ceres::Covariance refuses it: the problem is rank deficient.
+bool ScaledCovariance(ceres::Problem* problem, const std::vector<const double*>& blocks, const std::vector<int>& free,
+                      int size, ScalarFitResult* result) {
+  ceres::Covariance::Options covariance_options;
+  covariance_options.algorithm_type = ceres::DENSE_SVD;
+  covariance_options.apply_loss_function = true;
+  ceres::Covariance covariance(covariance_options);
+  bool computed;
+  {
+    QuietCeresLog quiet;
+    computed = covariance.Compute(blocks, problem);
+  }
+  if (!computed) return false;
+  if (!std::isfinite(result->noise)) {
+    result->covariance_message = "no redundancy (" + std::to_string(result->residuals) + " residuals for " +
+                                 std::to_string(result->free_parameters) +
+                                 " parameters): the noise, and so the "
+                                 "uncertainties, cannot be estimated";
+    return true;
+  }
+  const int n = static_cast<int>(free.size());
+  Eigen::MatrixXd free_covariance(n, n);  // symmetric: row- or column-major alike
+  covariance.GetCovarianceMatrix(blocks, free_covariance.data());
+  result->covariance = Eigen::MatrixXd::Zero(size, size);
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b)
+      result->covariance(free[a], free[b]) = free_covariance(a, b) * result->noise * result->noise;
+  return true;
+}
+
+// The parameter to hold of the unseen direction v (coefficients over `free`):
+// of those it involves, the lowest hold rank, then the largest coefficient.
+UndeterminedParameter ParameterToHold(const Eigen::VectorXd& v, const std::vector<int>& free,
+                                      const std::vector<ScalarParameter>& parameters) {
+  const double largest = v.cwiseAbs().maxCoeff();
+  std::vector<int> involved;
+  for (int k = 0; k < v.size(); ++k)
+    if (std::abs(v(k)) >= 0.1 * largest) involved.push_back(k);
+  int pick = involved.front();
+  for (int k : involved) {
+    const int rank = parameters[free[k]].hold_rank, best = parameters[free[pick]].hold_rank;
+    if (rank < best || (rank == best && std::abs(v(k)) > std::abs(v(pick)))) pick = k;
+  }
+  UndeterminedParameter undetermined{free[pick], {}};
+  for (int k : involved)
+    if (k != pick) undetermined.partners.push_back(free[k]);
+  return undetermined;
+}
+
 }  // namespace
 
 ScalarFit::ScalarFit() = default;
@@ -105,15 +168,7 @@ ScalarFitResult ScalarFit::Solve(const ScalarFitOptions& options) {
     if (parameters_[i].lower) problem_.SetParameterLowerBound(&values_[i], 0, *parameters_[i].lower);
     if (parameters_[i].upper) problem_.SetParameterUpperBound(&values_[i], 0, *parameters_[i].upper);
   }
-  ceres::Solver::Options solver;
-  solver.linear_solver_type = ceres::DENSE_QR;
-  solver.max_num_iterations = options.max_iterations;
-  solver.function_tolerance = options.function_tolerance;
-  solver.gradient_tolerance = options.gradient_tolerance;
-  solver.parameter_tolerance = options.parameter_tolerance;
-  solver.logging_type = ceres::SILENT;
-  solver.num_threads = 1;
-
+  const ceres::Solver::Options solver = CeresOptionsOf(options);
   while (true) {
     for (int i = 0; i < size(); ++i) {
       if (!used_[i]) continue;
@@ -135,35 +190,9 @@ ScalarFitResult ScalarFit::Solve(const ScalarFitOptions& options) {
     result.usable = result.summary.IsSolutionUsable();
     if (!result.usable) return result;
     result.noise = EstimateNoise(options, result.free_parameters, &result.residuals);
-
-    ceres::Covariance::Options covariance_options;
-    covariance_options.algorithm_type = ceres::DENSE_SVD;
-    covariance_options.apply_loss_function = true;
-    ceres::Covariance covariance(covariance_options);
     std::vector<const double*> blocks;
     for (int i : free) blocks.push_back(&values_[i]);
-    bool computed;
-    {
-      QuietCeresLog quiet;
-      computed = covariance.Compute(blocks, &problem_);
-    }
-    if (computed) {
-      if (!std::isfinite(result.noise)) {
-        result.covariance_message = "no redundancy (" + std::to_string(result.residuals) + " residuals for " +
-                                    std::to_string(result.free_parameters) +
-                                    " parameters): the noise, and so the "
-                                    "uncertainties, cannot be estimated";
-        return result;
-      }
-      const int n = static_cast<int>(free.size());
-      Eigen::MatrixXd free_covariance(n, n);  // symmetric: row- or column-major alike
-      covariance.GetCovarianceMatrix(blocks, free_covariance.data());
-      result.covariance = Eigen::MatrixXd::Zero(size(), size());
-      for (int a = 0; a < n; ++a)
-        for (int b = 0; b < n; ++b)
-          result.covariance(free[a], free[b]) = free_covariance(a, b) * result.noise * result.noise;
-      return result;
-    }
+    if (ScaledCovariance(&problem_, blocks, free, size(), &result)) return result;
 
     // Rank deficient: hold one parameter of the first unseen direction and solve again.
     std::vector<Eigen::VectorXd> unseen = NullDirections(free);
@@ -173,21 +202,8 @@ ScalarFitResult ScalarFit::Solve(const ScalarFitOptions& options) {
           "no parameter direction is unseen by the data; no uncertainties are given";
       return result;
     }
-    const Eigen::VectorXd& v = unseen.front();
-    const double largest = v.cwiseAbs().maxCoeff();
-    std::vector<int> involved;
-    for (int k = 0; k < v.size(); ++k)
-      if (std::abs(v(k)) >= 0.1 * largest) involved.push_back(k);
-    int pick = involved.front();
-    for (int k : involved) {
-      const int rank = parameters_[free[k]].hold_rank, best = parameters_[free[pick]].hold_rank;
-      if (rank < best || (rank == best && std::abs(v(k)) > std::abs(v(pick)))) pick = k;
-    }
-    UndeterminedParameter undetermined{free[pick], {}};
-    for (int k : involved)
-      if (k != pick) undetermined.partners.push_back(free[k]);
-    result.undetermined.push_back(undetermined);
-    Hold(free[pick]);
+    result.undetermined.push_back(ParameterToHold(unseen.front(), free, parameters_));
+    Hold(result.undetermined.back().index);
   }
 }
 

@@ -71,6 +71,76 @@ void Blur(std::vector<double>& image, int width, int height, double sigma) {
   }
 }
 
+// Every panel's transmittance as shown; a panel the capture does not name shows white.
+std::vector<ShownPanel> ShownPanels(const DisplaySystem& truth, const CapturePlan& plan,
+                                    const PlannedCapture& capture) {
+  std::vector<ShownPanel> panels(truth.layers.size());
+  for (size_t i = 0; i < truth.layers.size(); ++i) {
+    const VirtualLayer& layer = truth.layers[i];
+    std::string name = layer.name + "_white.png";
+    for (const auto& [panel, file] : capture.show)
+      if (panel == layer.name) name = file.substr(file.find_last_of('/') + 1);
+    const std::vector<uint8_t> codes = PatternImage(truth, plan, layer.name, name);
+    const PanelSpec& p = layer.panel;
+    panels[i].layer = &layer;
+    panels[i].Linearize();
+    panels[i].transmittance.resize(codes.size());
+    for (size_t k = 0; k < codes.size(); ++k) {
+      const double x = codes[k] / 255.0;
+      panels[i].transmittance[k] =
+          static_cast<float>(Mean(p.max_transmittance) * (p.black_level + (1 - p.black_level) * std::pow(x, p.gamma)));
+    }
+  }
+  return panels;
+}
+
+// Each pixel's signal before blur and noise, `gain` times the mean over its
+// samples of the light of every branch. Stratified samples jittered anew in
+// every photograph: on a fixed grid an edge's rendered place would lock to the
+// grid's steps (1/s pixel), a bias no blur afterwards removes.
+std::vector<double> PixelSignals(const PhotoCamera& camera, const std::vector<double>& slopes,
+                                 const DisplaySystem& truth, const PlannedCapture& capture,
+                                 const std::vector<ShownPanel>& panels, const std::vector<double>& branch_scale,
+                                 double gain, uint64_t seed_key) {
+  const int s = camera.supersampling, samples = s * s;
+  const double radius = 0.5 * camera.aperture;
+  std::vector<double> signals(static_cast<size_t>(camera.width) * camera.height);
+  SplitMix64 jitter(MixSeed(camera.seed, seed_key ^ 0x5a3b1e0d7c9f2468ull));
+  const size_t row = static_cast<size_t>(camera.width) + 1;
+  for (size_t pixel = 0; pixel < signals.size(); ++pixel) {
+    const size_t u = pixel % static_cast<size_t>(camera.width), v = pixel / static_cast<size_t>(camera.width);
+    const double* c00 = &slopes[(v * row + u) * 2];
+    const double* c10 = c00 + 2;
+    const double* c01 = c00 + row * 2;
+    const double* c11 = c01 + 2;
+    if (std::isnan(c00[0]) || std::isnan(c10[0]) || std::isnan(c01[0]) || std::isnan(c11[0])) continue;
+    double sum = 0;
+    for (int k = 0; k < samples; ++k) {
+      const double fx = (k % s + jitter.uniform()) / s, fy = (k / s + jitter.uniform()) / s;
+      const double t[2] = {(1 - fy) * ((1 - fx) * c00[0] + fx * c10[0]) + fy * ((1 - fx) * c01[0] + fx * c11[0]),
+                           (1 - fy) * ((1 - fx) * c00[1] + fx * c10[1]) + fy * ((1 - fx) * c01[1] + fx * c11[1])};
+      // A point of the aperture, uniform on the disk, for each sample.
+      const double r = std::sqrt(jitter.uniform()), phi = 2 * std::numbers::pi * jitter.uniform();
+      const std::array<double, 2> p = {r * std::cos(phi), r * std::sin(phi)};
+      const std::array<double, 2> origin = {capture.camera_position[0] + radius * p[0],
+                                            capture.camera_position[1] + radius * p[1]};
+      const std::array<double, 2> slope = {t[0] - radius * p[0] * camera.focus, t[1] - radius * p[1] * camera.focus};
+      for (size_t b = 0; b < truth.branches.size(); ++b) {
+        double light = branch_scale[b];
+        for (int l : truth.branches[b].layers) {
+          const ShownPanel& panel = panels[l];
+          const auto pixel_at = panel.PixelOfRay(origin, slope);
+          light *= panel.at(pixel_at[0], pixel_at[1]);
+          if (light == 0) break;
+        }
+        sum += light;
+      }
+    }
+    signals[pixel] = gain * sum / samples;
+  }
+  return signals;
+}
+
 }  // namespace
 
 PhotoRenderer::PhotoRenderer(const PhotoCamera& camera) : camera_(camera) {
@@ -101,24 +171,7 @@ PhotoRenderer::PhotoRenderer(const PhotoCamera& camera) : camera_(camera) {
 
 Image PhotoRenderer::Render(const DisplaySystem& truth, const CapturePlan& plan, const PlannedCapture& capture,
                             uint64_t seed_key) const {
-  // Every panel's transmittance as shown; a panel the capture does not name shows white.
-  std::vector<ShownPanel> panels(truth.layers.size());
-  for (size_t i = 0; i < truth.layers.size(); ++i) {
-    const VirtualLayer& layer = truth.layers[i];
-    std::string name = layer.name + "_white.png";
-    for (const auto& [panel, file] : capture.show)
-      if (panel == layer.name) name = file.substr(file.find_last_of('/') + 1);
-    const std::vector<uint8_t> codes = PatternImage(truth, plan, layer.name, name);
-    const PanelSpec& p = layer.panel;
-    panels[i].layer = &layer;
-    panels[i].Linearize();
-    panels[i].transmittance.resize(codes.size());
-    for (size_t k = 0; k < codes.size(); ++k) {
-      const double x = codes[k] / 255.0;
-      panels[i].transmittance[k] =
-          static_cast<float>(Mean(p.max_transmittance) * (p.black_level + (1 - p.black_level) * std::pow(x, p.gamma)));
-    }
-  }
+  const std::vector<ShownPanel> panels = ShownPanels(truth, plan, capture);
   // The base exposure puts the brightest branch's full white at camera.white.
   std::vector<double> branch_scale(truth.branches.size());
   double brightest = 0;
@@ -131,8 +184,6 @@ Image PhotoRenderer::Render(const DisplaySystem& truth, const CapturePlan& plan,
   if (!(brightest > 0)) throw Error(truth.file + ": the display shows no light (no backlight or an opaque path)");
   const double gain = camera_.white * capture.exposure / brightest;
 
-  const int s = camera_.supersampling, samples = s * s;
-  const double radius = 0.5 * camera_.aperture;
   Image image;
   image.width = camera_.width;
   image.height = camera_.height;
@@ -140,42 +191,7 @@ Image PhotoRenderer::Render(const DisplaySystem& truth, const CapturePlan& plan,
   image.pixels.resize(static_cast<size_t>(camera_.width) * camera_.height);
   Gaussian noise(MixSeed(camera_.seed, seed_key));
   const double steps = camera_.bits > 0 ? std::ldexp(1.0, camera_.bits) - 1 : 0;
-  std::vector<double> signals(image.pixels.size());
-  // Stratified samples jittered anew in every photograph: on a fixed grid an edge's rendered place
-  // would lock to the grid's steps (1/s pixel), a bias no blur afterwards removes.
-  SplitMix64 jitter(MixSeed(camera_.seed, seed_key ^ 0x5a3b1e0d7c9f2468ull));
-  const size_t row = static_cast<size_t>(camera_.width) + 1;
-  for (size_t pixel = 0; pixel < image.pixels.size(); ++pixel) {
-    const size_t u = pixel % static_cast<size_t>(camera_.width), v = pixel / static_cast<size_t>(camera_.width);
-    const double* c00 = &slopes_[(v * row + u) * 2];
-    const double* c10 = c00 + 2;
-    const double* c01 = c00 + row * 2;
-    const double* c11 = c01 + 2;
-    if (std::isnan(c00[0]) || std::isnan(c10[0]) || std::isnan(c01[0]) || std::isnan(c11[0])) continue;
-    double sum = 0;
-    for (int k = 0; k < samples; ++k) {
-      const double fx = (k % s + jitter.uniform()) / s, fy = (k / s + jitter.uniform()) / s;
-      const double t[2] = {(1 - fy) * ((1 - fx) * c00[0] + fx * c10[0]) + fy * ((1 - fx) * c01[0] + fx * c11[0]),
-                           (1 - fy) * ((1 - fx) * c00[1] + fx * c10[1]) + fy * ((1 - fx) * c01[1] + fx * c11[1])};
-      // A point of the aperture, uniform on the disk, for each sample.
-      const double r = std::sqrt(jitter.uniform()), phi = 2 * std::numbers::pi * jitter.uniform();
-      const std::array<double, 2> p = {r * std::cos(phi), r * std::sin(phi)};
-      const std::array<double, 2> origin = {capture.camera_position[0] + radius * p[0],
-                                            capture.camera_position[1] + radius * p[1]};
-      const std::array<double, 2> slope = {t[0] - radius * p[0] * camera_.focus, t[1] - radius * p[1] * camera_.focus};
-      for (size_t b = 0; b < truth.branches.size(); ++b) {
-        double light = branch_scale[b];
-        for (int l : truth.branches[b].layers) {
-          const ShownPanel& panel = panels[l];
-          const auto pixel_at = panel.PixelOfRay(origin, slope);
-          light *= panel.at(pixel_at[0], pixel_at[1]);
-          if (light == 0) break;
-        }
-        sum += light;
-      }
-    }
-    signals[pixel] = gain * sum / samples;
-  }
+  std::vector<double> signals = PixelSignals(camera_, slopes_, truth, capture, panels, branch_scale, gain, seed_key);
   Blur(signals, camera_.width, camera_.height, camera_.psf_sigma);
   for (size_t pixel = 0; pixel < image.pixels.size(); ++pixel) {
     double signal = signals[pixel];

@@ -43,40 +43,8 @@ void RequireExrMagic(const std::string& path) {
     throw Error(path + ": not an OpenEXR file");
 }
 
-// Walks the headers the way OpenEXR's C++ reader does (Header::readFrom): known
-// fixed-size types are read at their own size whatever the declared one,
-// channel lists and previews by their content, everything else at the declared
-// size. Each read that allocates must fit in what is left of the file. The C
-// core's parse (below) alone does not suffice: it trusts declared sizes where
-// the C++ reader does not, and the two can part ways on a corrupt file.
-void RequireCppHeaderWithinFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
-  if (!in) throw Error(path + ": cannot open for reading: " + std::strerror(errno));
-  const long long file_size = static_cast<long long>(in.tellg());
-  in.seekg(0);
-  auto corrupt = [&](const std::string& why) { return Error(path + ": corrupt or truncated OpenEXR file: " + why); };
-  unsigned char start[8] = {0, 0, 0, 0, 0, 0, 0, 0};
-  in.read(reinterpret_cast<char*>(start), 8);
-  if (in.gcount() != 8) throw corrupt("no version field");
-  const bool multipart = start[5] & 0x10, long_names = start[5] & 0x04;  // version flags, bits 12 and 10
-  const size_t max_name = long_names ? 255 : 31;
-  auto remaining = [&] { return file_size - static_cast<long long>(in.tellg()); };
-  auto read_name = [&](std::string& out) {
-    out.clear();
-    for (char c; in.get(c);) {
-      if (c == '\0') return;
-      if (out.size() == max_name) throw corrupt("a header name longer than " + std::to_string(max_name) + " bytes");
-      out += c;
-    }
-    throw corrupt("the header ends inside a name");
-  };
-  auto read_u32 = [&]() {
-    unsigned char b[4];
-    in.read(reinterpret_cast<char*>(b), 4);
-    if (in.gcount() != 4) throw corrupt("the header ends early");
-    return static_cast<uint32_t>(b[0]) | static_cast<uint32_t>(b[1]) << 8 | static_cast<uint32_t>(b[2]) << 16 |
-           static_cast<uint32_t>(b[3]) << 24;
-  };
+// The attribute types OpenEXR's C++ reader reads at their own size, whatever the declared one.
+const std::map<std::string, int>& FixedAttributeSizes() {
   static const std::map<std::string, int> kFixedSizes = {{"box2i", 16},
                                                          {"box2f", 16},
                                                          {"chromaticities", 32},
@@ -101,31 +69,91 @@ void RequireCppHeaderWithinFile(const std::string& path) {
                                                          {"v3i", 12},
                                                          {"v3f", 12},
                                                          {"v3d", 24}};
+  return kFixedSizes;
+}
+
+// Reads an EXR file's headers field by field, each read checked against the file's end.
+class ExrHeaderReader {
+ public:
+  ExrHeaderReader(const std::string& path, std::ifstream& in, long long file_size, size_t max_name)
+      : path_(path), in_(in), file_size_(file_size), max_name_(max_name) {}
+
+  Error Corrupt(const std::string& why) const { return Error(path_ + ": corrupt or truncated OpenEXR file: " + why); }
+  long long Remaining() const { return file_size_ - static_cast<long long>(in_.tellg()); }
+
+  void ReadName(std::string& out) {
+    out.clear();
+    for (char c; in_.get(c);) {
+      if (c == '\0') return;
+      if (out.size() == max_name_) throw Corrupt("a header name longer than " + std::to_string(max_name_) + " bytes");
+      out += c;
+    }
+    throw Corrupt("the header ends inside a name");
+  }
+
+  uint32_t ReadU32() {
+    unsigned char b[4];
+    in_.read(reinterpret_cast<char*>(b), 4);
+    if (in_.gcount() != 4) throw Corrupt("the header ends early");
+    return static_cast<uint32_t>(b[0]) | static_cast<uint32_t>(b[1]) << 8 | static_cast<uint32_t>(b[2]) << 16 |
+           static_cast<uint32_t>(b[3]) << 24;
+  }
+
+  // Past an attribute's value: fixed-size types at their own size, channel
+  // lists and previews by their content, everything else at the declared size.
+  void SkipValue(const std::string& name, const std::string& type, int32_t size) {
+    if (auto fixed = FixedAttributeSizes().find(type); fixed != FixedAttributeSizes().end()) {
+      in_.seekg(fixed->second, std::ios::cur);
+    } else if (type == "chlist") {
+      std::string channel;
+      for (ReadName(channel); !channel.empty(); ReadName(channel)) in_.seekg(16, std::ios::cur);
+    } else if (type == "preview") {
+      // Two 32-bit sides: their product can pass 2^63, so divide instead.
+      const uint64_t width = ReadU32(), height = ReadU32();
+      const uint64_t left = static_cast<uint64_t>(std::max(Remaining(), 0LL));
+      if (width != 0 && height > left / 4 / width) throw Corrupt("the preview image runs past the end of the file");
+      in_.seekg(static_cast<std::streamoff>(width * height * 4), std::ios::cur);
+    } else {
+      if (size > Remaining())
+        throw Corrupt("attribute \"" + name + "\" declares " + std::to_string(size) + " bytes; the file has " +
+                      std::to_string(Remaining()) + " left");
+      in_.seekg(size, std::ios::cur);
+    }
+    if (!in_ || Remaining() < 0) throw Corrupt("the header ends inside attribute \"" + name + "\"");
+  }
+
+ private:
+  const std::string& path_;
+  std::ifstream& in_;
+  const long long file_size_;
+  const size_t max_name_;
+};
+
+// Walks the headers the way OpenEXR's C++ reader does (Header::readFrom): known
+// fixed-size types are read at their own size whatever the declared one,
+// channel lists and previews by their content, everything else at the declared
+// size. Each read that allocates must fit in what is left of the file. The C
+// core's parse (below) alone does not suffice: it trusts declared sizes where
+// the C++ reader does not, and the two can part ways on a corrupt file.
+void RequireCppHeaderWithinFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in) throw Error(path + ": cannot open for reading: " + std::strerror(errno));
+  const long long file_size = static_cast<long long>(in.tellg());
+  in.seekg(0);
+  unsigned char start[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+  in.read(reinterpret_cast<char*>(start), 8);
+  const bool multipart = start[5] & 0x10, long_names = start[5] & 0x04;  // version flags, bits 12 and 10
+  ExrHeaderReader reader(path, in, file_size, long_names ? 255 : 31);
+  if (in.gcount() != 8) throw reader.Corrupt("no version field");
   for (bool more = true; more;) {
     int attributes = 0;
-    for (std::string name, type, channel;; ++attributes) {
-      read_name(name);
+    for (std::string name, type;; ++attributes) {
+      reader.ReadName(name);
       if (name.empty()) break;
-      read_name(type);
-      const int32_t size = static_cast<int32_t>(read_u32());
-      if (size < 0) throw corrupt("attribute \"" + name + "\" has a negative size");
-      if (auto fixed = kFixedSizes.find(type); fixed != kFixedSizes.end()) {
-        in.seekg(fixed->second, std::ios::cur);
-      } else if (type == "chlist") {
-        for (read_name(channel); !channel.empty(); read_name(channel)) in.seekg(16, std::ios::cur);
-      } else if (type == "preview") {
-        // Two 32-bit sides: their product can pass 2^63, so divide instead.
-        const uint64_t width = read_u32(), height = read_u32();
-        const uint64_t left = static_cast<uint64_t>(std::max(remaining(), 0LL));
-        if (width != 0 && height > left / 4 / width) throw corrupt("the preview image runs past the end of the file");
-        in.seekg(static_cast<std::streamoff>(width * height * 4), std::ios::cur);
-      } else {
-        if (size > remaining())
-          throw corrupt("attribute \"" + name + "\" declares " + std::to_string(size) + " bytes; the file has " +
-                        std::to_string(remaining()) + " left");
-        in.seekg(size, std::ios::cur);
-      }
-      if (!in || remaining() < 0) throw corrupt("the header ends inside attribute \"" + name + "\"");
+      reader.ReadName(type);
+      const int32_t size = static_cast<int32_t>(reader.ReadU32());
+      if (size < 0) throw reader.Corrupt("attribute \"" + name + "\" has a negative size");
+      reader.SkipValue(name, type, size);
     }
     more = multipart && attributes > 0;
   }

@@ -298,6 +298,77 @@ void NearestRetina(const DisplayModel& model, const Patterns& t, const RetinaGri
   }
 }
 
+// The general path's tables, [pupil point][layer][focus]: each layer's blur
+// and, when its sampler is separable, the columns and rows each retinal
+// sample reads through that pupil point.
+std::vector<LayerTables> GeneralTables(const DisplayModel& model, const RetinaGrid& retina,
+                                       const std::vector<PupilPoint>& pupil, const std::array<double, 3>& accommodation,
+                                       const std::vector<double>& tan_x, const std::vector<double>& tan_y, int foci) {
+  const size_t layers = model.layer_count();
+  std::vector<LayerTables> tables(pupil.size() * layers * foci);
+#pragma omp parallel for schedule(dynamic)
+  for (size_t p = 0; p < pupil.size(); ++p)
+    for (size_t k = 0; k < layers; ++k)
+      for (int f = 0; f < foci; ++f) {
+        const LayerSampler& s = model.projection(k).sampler();
+        LayerTables& table = tables[(p * layers + k) * foci + f];
+        table.blur = s.diopters() - accommodation[f];
+        if (!s.separable()) continue;
+        table.cols.resize(retina.cols), table.rows.resize(retina.rows);
+        for (int j = 0; j < retina.cols; ++j)
+          table.cols[j] = s.Column(tan_x[j] + pupil[p].x * table.blur - pupil[p].slope_x);
+        for (int i = 0; i < retina.rows; ++i)
+          table.rows[i] = s.Row(tan_y[i] + pupil[p].y * table.blur - pupil[p].slope_y);
+      }
+  return tables;
+}
+
+// The general path: every layer read through every pupil point, each
+// branch's product of its layers summed, averaged over the pupil.
+void GeneralRetina(const DisplayModel& model, const Patterns& t, const RetinaGrid& retina,
+                   const std::vector<PupilPoint>& pupil, const std::vector<LayerTables>& tables,
+                   const std::vector<double>& tan_x, const std::vector<double>& tan_y, bool same_focus, Image* image) {
+  const int foci = same_focus ? 1 : 3;
+  const size_t layers = model.layer_count();
+  const double inverse_count = 1.0 / pupil.size();
+#pragma omp parallel
+  {
+    std::vector<double> sum(size_t(retina.cols) * 3);
+    std::vector<double> value(layers * 3);  // per layer and channel, for the current ray
+#pragma omp for schedule(dynamic)
+    for (int i = 0; i < retina.rows; ++i) {
+      std::fill(sum.begin(), sum.end(), 0.0);
+      for (size_t p = 0; p < pupil.size(); ++p)
+        for (int j = 0; j < retina.cols; ++j) {
+          for (size_t k = 0; k < layers; ++k) {
+            const LayerSampler& s = model.projection(k).sampler();
+            for (int c = 0; c < 3; ++c) {
+              const LayerTables& table = tables[(p * layers + k) * foci + (same_focus ? 0 : c)];
+              if (c > 0 && same_focus && s.separable()) {
+                value[k * 3 + c] = Read(table.rows[i], table.cols[j], t[k], c);
+                continue;
+              }
+              value[k * 3 + c] = s.separable() ? Read(table.rows[i], table.cols[j], t[k], c)
+                                               : Read(s.At(tan_x[j] + pupil[p].x * table.blur - pupil[p].slope_x,
+                                                           tan_y[i] + pupil[p].y * table.blur - pupil[p].slope_y),
+                                                      t[k], c);
+            }
+          }
+          for (size_t b = 0; b < model.branch_count(); ++b) {
+            const auto& w = model.weight(b);
+            for (int c = 0; c < 3; ++c) {
+              double product = w[c];
+              for (int k : model.branch_layers(b)) product *= value[k * 3 + c];
+              sum[size_t(j) * 3 + c] += product;
+            }
+          }
+        }
+      for (size_t k = 0; k < sum.size(); ++k)
+        image->pixels[size_t(i) * retina.cols * 3 + k] = static_cast<float>(sum[k] * inverse_count);
+    }
+  }
+}
+
 }  // namespace
 
 DisplayRetinaTables::DisplayRetinaTables(const DisplayModel& model, const RetinaGrid& retina,
@@ -353,62 +424,8 @@ Image RetinaOfDisplay(const DisplayModel& model, const Patterns& t, const Displa
     return image;
   }
   const int foci = same_focus ? 1 : 3;
-  const size_t layers = model.layer_count();
-  const double inverse_count = 1.0 / pupil.size();
-
-  // [pupil point][layer][focus]
-  std::vector<LayerTables> tables(pupil.size() * layers * foci);
-#pragma omp parallel for schedule(dynamic)
-  for (size_t p = 0; p < pupil.size(); ++p)
-    for (size_t k = 0; k < layers; ++k)
-      for (int f = 0; f < foci; ++f) {
-        const LayerSampler& s = model.projection(k).sampler();
-        LayerTables& table = tables[(p * layers + k) * foci + f];
-        table.blur = s.diopters() - accommodation[f];
-        if (!s.separable()) continue;
-        table.cols.resize(retina.cols), table.rows.resize(retina.rows);
-        for (int j = 0; j < retina.cols; ++j)
-          table.cols[j] = s.Column(tan_x[j] + pupil[p].x * table.blur - pupil[p].slope_x);
-        for (int i = 0; i < retina.rows; ++i)
-          table.rows[i] = s.Row(tan_y[i] + pupil[p].y * table.blur - pupil[p].slope_y);
-      }
-
-#pragma omp parallel
-  {
-    std::vector<double> sum(size_t(retina.cols) * 3);
-    std::vector<double> value(layers * 3);  // per layer and channel, for the current ray
-#pragma omp for schedule(dynamic)
-    for (int i = 0; i < retina.rows; ++i) {
-      std::fill(sum.begin(), sum.end(), 0.0);
-      for (size_t p = 0; p < pupil.size(); ++p)
-        for (int j = 0; j < retina.cols; ++j) {
-          for (size_t k = 0; k < layers; ++k) {
-            const LayerSampler& s = model.projection(k).sampler();
-            for (int c = 0; c < 3; ++c) {
-              const LayerTables& table = tables[(p * layers + k) * foci + (same_focus ? 0 : c)];
-              if (c > 0 && same_focus && s.separable()) {
-                value[k * 3 + c] = Read(table.rows[i], table.cols[j], t[k], c);
-                continue;
-              }
-              value[k * 3 + c] = s.separable() ? Read(table.rows[i], table.cols[j], t[k], c)
-                                               : Read(s.At(tan_x[j] + pupil[p].x * table.blur - pupil[p].slope_x,
-                                                           tan_y[i] + pupil[p].y * table.blur - pupil[p].slope_y),
-                                                      t[k], c);
-            }
-          }
-          for (size_t b = 0; b < model.branch_count(); ++b) {
-            const auto& w = model.weight(b);
-            for (int c = 0; c < 3; ++c) {
-              double product = w[c];
-              for (int k : model.branch_layers(b)) product *= value[k * 3 + c];
-              sum[size_t(j) * 3 + c] += product;
-            }
-          }
-        }
-      for (size_t k = 0; k < sum.size(); ++k)
-        image.pixels[size_t(i) * retina.cols * 3 + k] = static_cast<float>(sum[k] * inverse_count);
-    }
-  }
+  const std::vector<LayerTables> tables = GeneralTables(model, retina, pupil, accommodation, tan_x, tan_y, foci);
+  GeneralRetina(model, t, retina, pupil, tables, tan_x, tan_y, same_focus, &image);
   return image;
 }
 

@@ -216,6 +216,79 @@ std::string Unsuitable(const DisplaySystem& system) {
   return "";
 }
 
+// Variables pressed against a bound by the gradient stay there this step: 0 where held, else 1.
+Vec FreeVariables(const Patterns& t, const Vec& g) {
+  Vec free = Zeros(t);
+  for (size_t k = 0; k < t.size(); ++k)
+    for (size_t i = 0; i < free[k].size(); ++i) {
+      float x = t[k].rgb[i];
+      bool held = (x <= 0.0f && g[k][i] > 0) || (x >= 1.0f && g[k][i] < 0);
+      free[k][i] = held ? 0.0 : 1.0;
+    }
+  return free;
+}
+
+// Steihaug CG on the free variables from the projected gradient `residual`
+// (of norm gnorm), bounded by the trust radius: the step d.
+template <class Operator>
+Vec SteihaugStep(const Operator& A, const Patterns& t, const Vec& free, Vec residual, double gnorm, double radius) {
+  constexpr int kMaxCg = 25;
+  Vec d = Zeros(t), p = residual, hp;
+  double rr = gnorm * gnorm;
+  for (int j = 0; j < kMaxCg; ++j) {
+    double curvature = A.Hessian(p, free, &hp, t);
+    double dd = Dot(d, d), dp = Dot(d, p), pp = Dot(p, p);
+    auto to_boundary = [&] {
+      double tau = (-dp + std::sqrt(dp * dp + pp * (radius * radius - dd))) / pp;
+      Axpy(tau, p, &d);
+    };
+    if (curvature <= 0) {
+      to_boundary();
+      break;
+    }
+    double alpha = rr / curvature;
+    if (dd + 2 * alpha * dp + alpha * alpha * pp >= radius * radius) {
+      to_boundary();
+      break;
+    }
+    Axpy(alpha, p, &d);
+    Axpy(-alpha, hp, &residual);
+    double rr_next = Dot(residual, residual);
+    if (std::sqrt(rr_next) <= 1e-2 * gnorm) break;
+    for (size_t k = 0; k < p.size(); ++k)
+      for (size_t i = 0; i < p[k].size(); ++i) p[k][i] = residual[k][i] + (rr_next / rr) * p[k][i];
+    rr = rr_next;
+  }
+  return d;
+}
+
+// The projected backtracking search along d from t (objective f, gradient g).
+struct SearchResult {
+  Patterns trial;
+  double step = 1.0, predicted = 0;  // the step taken (halved on each try), the first try's decrease
+  bool accepted = false;
+};
+
+template <class Operator>
+SearchResult ProjectedSearch(const Operator& A, const LightField& l, const Patterns& t, const Vec& d, const Vec& g,
+                             double f) {
+  SearchResult r{t};
+  double f_trial = f, decrease = 0;
+  for (int tries = 0; tries < 20 && !r.accepted; ++tries, r.step *= 0.5) {
+    decrease = 0;
+    for (size_t k = 0; k < t.size(); ++k)
+      for (size_t i = 0; i < d[k].size(); ++i) {
+        double x = std::clamp(double(t[k].rgb[i]) + r.step * d[k][i], 0.0, 1.0);
+        r.trial[k].rgb[i] = static_cast<float>(x);
+        decrease += g[k][i] * (double(r.trial[k].rgb[i]) - t[k].rgb[i]);
+      }
+    f_trial = A.Residual(r.trial, l, nullptr);
+    r.accepted = f_trial <= f + 1e-4 * decrease;
+    if (tries == 0) r.predicted = decrease;
+  }
+  return r;
+}
+
 class AdditiveTrustRegionSolver final : public Solver {
  public:
   SolverReport Solve(const DisplayModel& model, const LightField& target, const SolverOptions& options,
@@ -238,83 +311,34 @@ class AdditiveTrustRegionSolver final : public Solver {
   template <class Operator>
   static void Run(const Operator& A, const LightField& l, SolveLoop* loop_pointer, Patterns* t) {
     SolveLoop& loop = *loop_pointer;
-
     Vec g;
     double f = A.Residual(*t, l, &g);
     const double start_objective = f;
     double radius = loop.ResumedState("radius", -1);
-    constexpr int kMaxCg = 25;
     do {
-      // Variables pressed against a bound by the gradient stay there this step.
-      Vec free = Zeros(*t);
-      for (size_t k = 0; k < t->size(); ++k)
-        for (size_t i = 0; i < free[k].size(); ++i) {
-          float x = (*t)[k].rgb[i];
-          bool held = (x <= 0.0f && g[k][i] > 0) || (x >= 1.0f && g[k][i] < 0);
-          free[k][i] = held ? 0.0 : 1.0;
-        }
-      Vec residual = Zeros(*t), d = Zeros(*t), p, hp;
+      const Vec free = FreeVariables(*t, g);
+      Vec residual = Zeros(*t);
       for (size_t k = 0; k < g.size(); ++k)
         for (size_t i = 0; i < g[k].size(); ++i) residual[k][i] = -g[k][i] * free[k][i];
       double gnorm = std::sqrt(Dot(residual, residual));
       if (gnorm == 0) break;  // stationary: the projected gradient vanishes
       if (radius < 0) radius = gnorm;
-      p = residual;
-      double rr = gnorm * gnorm;
-      // Steihaug CG on the free variables, bounded by the trust radius.
-      for (int j = 0; j < kMaxCg; ++j) {
-        double curvature = A.Hessian(p, free, &hp, *t);
-        double dd = Dot(d, d), dp = Dot(d, p), pp = Dot(p, p);
-        auto to_boundary = [&] {
-          double tau = (-dp + std::sqrt(dp * dp + pp * (radius * radius - dd))) / pp;
-          Axpy(tau, p, &d);
-        };
-        if (curvature <= 0) {
-          to_boundary();
-          break;
-        }
-        double alpha = rr / curvature;
-        if (dd + 2 * alpha * dp + alpha * alpha * pp >= radius * radius) {
-          to_boundary();
-          break;
-        }
-        Axpy(alpha, p, &d);
-        Axpy(-alpha, hp, &residual);
-        double rr_next = Dot(residual, residual);
-        if (std::sqrt(rr_next) <= 1e-2 * gnorm) break;
-        for (size_t k = 0; k < p.size(); ++k)
-          for (size_t i = 0; i < p[k].size(); ++i) p[k][i] = residual[k][i] + (rr_next / rr) * p[k][i];
-        rr = rr_next;
-      }
-      // Projected backtracking search along d.
-      Patterns trial = *t;
-      double step = 1.0, f_trial = f, decrease = 0, predicted = 0;
-      bool accepted = false;
-      for (int tries = 0; tries < 20 && !accepted; ++tries, step *= 0.5) {
-        decrease = 0;
-        for (size_t k = 0; k < t->size(); ++k)
-          for (size_t i = 0; i < d[k].size(); ++i) {
-            double x = std::clamp(double((*t)[k].rgb[i]) + step * d[k][i], 0.0, 1.0);
-            trial[k].rgb[i] = static_cast<float>(x);
-            decrease += g[k][i] * (double(trial[k].rgb[i]) - (*t)[k].rgb[i]);
-          }
-        f_trial = A.Residual(trial, l, nullptr);
-        accepted = f_trial <= f + 1e-4 * decrease;
-        if (tries == 0) predicted = decrease;
-      }
-      if (!accepted) {
+      const Vec d = SteihaugStep(A, *t, free, std::move(residual), gnorm, radius);
+      SearchResult search = ProjectedSearch(A, l, *t, d, g, f);
+      if (!search.accepted) {
         // At the optimum only round-off is left to decrease: the objective is a
         // float-gathered sum on the ray path (relative noise about 1e-7), and a
         // difference of terms of the size of ||l||^2 in layer space.
-        if (f <= 1e-12 * start_objective || -predicted <= 1e-6 * f)
+        if (f <= 1e-12 * start_objective || -search.predicted <= 1e-6 * f)
           loop.Converge("no decrease is left above round-off");
         else
           loop.Fail("the projected search found no decrease (objective " + std::to_string(f) + ")");
         break;
       }
       double dnorm = std::sqrt(Dot(d, d));
+      const double step = search.step;
       radius = step < 1.0 ? std::max(0.25 * radius, step * dnorm) : std::max(radius, 2.0 * dnorm);
-      *t = std::move(trial);
+      *t = std::move(search.trial);
       f = A.Residual(*t, l, &g);
       loop.SetState("radius", radius);
     } while (loop.EndIteration(f));

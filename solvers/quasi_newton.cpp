@@ -182,128 +182,174 @@ double ProjectedStep(const Layout& layout, const Vector& x, const Vector& d, con
   return Sweep(x.size(), body, [&](size_t i) { return g[i] * (*change)[i]; })[0];
 }
 
+// One quasi-Newton solve: the warm start, then projected L-BFGS steps.
+class QuasiNewtonRun {
+ public:
+  QuasiNewtonRun(const DisplayModel& model, const LightField& target, const SolverOptions& options, Patterns* t)
+      : model_(model),
+        options_(options),
+        t_(t),
+        loop_("quasi-newton", model, target, options, t),
+        warm_iterations_(options.resume ? 0 : options.warm_start_iterations),
+        lo_(options.floor) {
+    if (warm_iterations_ > 0) warm_.emplace(model, options, t);  // the chase, allocated in the set-up
+  }
+
+  SolverReport Solve() {
+    if (!loop_.Start()) return loop_.Finish();
+    l_ = &loop_.target();
+    size_t longest = 1;
+    for (size_t b = 0; b < model_.branch_count(); ++b) longest = std::max(longest, model_.branch_layers(b).size());
+    plain_ = 1.0 / static_cast<double>(longest);
+    pass_.emplace(model_, &loop_.workspace());
+    layout_.emplace(model_);
+    n_ = layout_->size();
+    spare_.resize(kMemory);
+    if (!WarmStart()) return loop_.Finish();
+    loop_.SetUpMidway([&] { MakeVectors(); });
+    sums_ = retinal_ ? &retinal_->sums() : &*pass_;
+    layout_->Gather(*t_, &x_);
+    Sweep(n_, [&](size_t begin, size_t end) {
+      layout_->GradientAndScale(*sums_, x_, plain_, options_.epsilon, begin, end, &g_, &h_);
+    });
+    while (Step()) {
+    }
+    return loop_.Finish();
+  }
+
+ private:
+  // The retinal objective's pass (retinal_pass.h) gives the same sums for f / Bound().
+  double Run(const Patterns& p) { return retinal_ ? retinal_->Run(p) : pass_->Run(*l_, p); }
+
+  // The warm start, in this loop; its last iteration's patterns are
+  // evaluated by the pass the first step needs, which also gives their
+  // row. What the steps hold replaces the chase, made off the clock as
+  // set-up: the retinal pass's light fields before that pass, the work
+  // vectors after it, once the solve goes on. False when the loop ends.
+  bool WarmStart() {
+    if (warm_) warm_->Begin(&loop_);
+    for (int k = 1; k <= warm_iterations_; ++k) {
+      const bool last = k == warm_iterations_;
+      std::optional<double> objective = warm_->Iterate(!last);
+      if (last) {
+        loop_.SetUpMidway([&] { MakePass(); });
+        objective = f_ = Run(*t_);
+        if (retinal_) loop_.SetMeasures(retinal_->last());
+      }
+      if (!loop_.EndIteration(objective)) return false;
+    }
+    if (warm_iterations_ == 0) {
+      loop_.SetUpMidway([&] { MakePass(); });
+      f_ = Run(*t_);
+    }
+    return true;
+  }
+
+  void MakePass() {
+    warm_.reset();
+    if (loop_.retinal()) retinal_.emplace(model_, *l_, *loop_.retinal());
+  }
+
+  void MakeVectors() {
+    for (Vector* v : {&x_, &g_, &h_, &d_, &x_new_, &g_new_, &h_new_, &free_, &change_}) v->resize(n_);
+    for (Pair& p : spare_) p.s.resize(n_), p.y.resize(n_);
+  }
+
+  // One step; false when the solve ends.
+  bool Step() {
+    double slope = Direction(pairs_, g_, h_, x_, lo_, hi_, &free_, &d_);
+    bool from_pairs = !pairs_.empty();
+    if (!(slope < 0)) slope = PlainDirectionWithoutPairs(), from_pairs = false;
+    if (!(slope < 0)) {
+      loop_.Converge("the projected gradient is zero: a stationary point of the bounded problem");
+      return false;
+    }
+    double f_new = f_;
+    bool lowered = LineSearch(&f_new);
+    if (!lowered && from_pairs) {  // the curvature pairs misled: the plain step before giving up
+      PlainDirectionWithoutPairs();
+      lowered = LineSearch(&f_new);
+    }
+    if (!lowered) {
+      layout_->Scatter(x_, t_);
+      loop_.Converge("no projected step lowers the objective any more");
+      return false;
+    }
+    KeepPair();
+    std::swap(x_, x_new_), std::swap(g_, g_new_), std::swap(h_, h_new_);
+    f_ = f_new;
+    if (retinal_) loop_.SetMeasures(retinal_->last());  // of x_new, the last patterns run
+    return loop_.EndIteration(f_);
+  }
+
+  // Halves the projected step along d until it lowers the objective
+  // enough; x_new, change and *f_new are then the step's. A step whose
+  // slope clamping (or rounding) leaves non-negative is not evaluated.
+  bool LineSearch(double* f_new) {
+    for (int halving = 0; halving <= kMaxHalvings; ++halving) {
+      const double slope =
+          ProjectedStep(*layout_, x_, d_, g_, std::ldexp(1.0, -halving), lo_, hi_, &x_new_, &change_, t_);
+      if (!(slope < 0)) continue;
+      *f_new = Run(*t_);
+      if (*f_new <= f_ + kArmijo * slope) return true;  // NaN fails: halved
+    }
+    return false;
+  }
+
+  // The plain step's direction, the pairs forgotten.
+  double PlainDirectionWithoutPairs() {
+    while (!pairs_.empty()) spare_.push_back(std::move(pairs_.front())), pairs_.pop_front();
+    return PlainDirection(g_, h_, free_, &d_);
+  }
+
+  // The new gradient and scale, and the pair of this step; only pairs of
+  // positive curvature keep H positive definite.
+  void KeepPair() {
+    Pair p = std::move(spare_.empty() ? pairs_.front() : spare_.back());
+    if (spare_.empty())
+      pairs_.pop_front();
+    else
+      spare_.pop_back();
+    auto gradient_and_pair = [&](size_t begin, size_t end) {
+      layout_->GradientAndScale(*sums_, x_new_, plain_, options_.epsilon, begin, end, &g_new_, &h_new_);
+      for (size_t i = begin; i < end; ++i) p.s[i] = change_[i], p.y[i] = g_new_[i] - g_[i];
+    };
+    const auto [sy, ss, yy] = Sweep(
+        n_, gradient_and_pair, [&](size_t i) { return p.s[i] * p.y[i]; }, [&](size_t i) { return p.s[i] * p.s[i]; },
+        [&](size_t i) { return p.y[i] * p.y[i]; });
+    if (sy > 1e-12 * std::sqrt(ss * yy)) {
+      p.rho = 1.0 / sy;
+      pairs_.push_back(std::move(p));
+    } else {
+      spare_.push_back(std::move(p));
+    }
+  }
+
+  const DisplayModel& model_;
+  const SolverOptions& options_;
+  Patterns* t_;
+  SolveLoop loop_;
+  const int warm_iterations_;
+  std::optional<HybridIterations> warm_;
+  const LightField* l_ = nullptr;
+  const double lo_, hi_ = 1.0;
+  double plain_ = 1;  // the plain step's scale, 1 / layers of the longest branch
+  std::optional<JointPass> pass_;
+  std::optional<RetinalPass> retinal_;
+  const JointPass* sums_ = nullptr;
+  std::optional<Layout> layout_;
+  size_t n_ = 0;
+  Vector x_, g_, h_, d_, x_new_, g_new_, h_new_, free_, change_;
+  std::deque<Pair> pairs_;
+  std::vector<Pair> spare_;
+  double f_ = 0;
+};
+
 class QuasiNewtonSolver final : public Solver {
  public:
   SolverReport Solve(const DisplayModel& model, const LightField& target, const SolverOptions& options,
                      Patterns* t) const override {
-    SolveLoop loop("quasi-newton", model, target, options, t);
-    const int warm_iterations = options.resume ? 0 : options.warm_start_iterations;
-    std::optional<HybridIterations> warm;
-    if (warm_iterations > 0) warm.emplace(model, options, t);  // the chase, allocated in the set-up
-    if (!loop.Start()) return loop.Finish();
-    const LightField& l = loop.target();
-    const double lo = options.floor, hi = 1.0;
-    size_t longest = 1;
-    for (size_t b = 0; b < model.branch_count(); ++b) longest = std::max(longest, model.branch_layers(b).size());
-    const double plain = 1.0 / static_cast<double>(longest);
-    JointPass pass(model, &loop.workspace());
-    // The retinal objective's pass (retinal_pass.h) gives the same sums for f / Bound().
-    std::optional<RetinalPass> retinal;
-    auto run = [&](const Patterns& p) { return retinal ? retinal->Run(p) : pass.Run(l, p); };
-
-    // The warm start, in this loop; its last iteration's patterns are
-    // evaluated by the pass the first step needs, which also gives their
-    // row. What the steps hold replaces the chase, made off the clock as
-    // set-up: the retinal pass's light fields before that pass, the work
-    // vectors after it, once the solve goes on.
-    const Layout layout(model);
-    const size_t n = layout.size();
-    Vector x, g, h, d, x_new, g_new, h_new, free, change;
-    std::deque<Pair> pairs;
-    std::vector<Pair> spare(kMemory);
-    auto make_pass = [&] {
-      warm.reset();
-      if (loop.retinal()) retinal.emplace(model, l, *loop.retinal());
-    };
-    auto make_vectors = [&] {
-      for (Vector* v : {&x, &g, &h, &d, &x_new, &g_new, &h_new, &free, &change}) v->resize(n);
-      for (Pair& p : spare) p.s.resize(n), p.y.resize(n);
-    };
-    double f = 0;
-    if (warm) warm->Begin(&loop);
-    for (int k = 1; k <= warm_iterations; ++k) {
-      const bool last = k == warm_iterations;
-      std::optional<double> objective = warm->Iterate(!last);
-      if (last) {
-        loop.SetUpMidway(make_pass);
-        objective = f = run(*t);
-        if (retinal) loop.SetMeasures(retinal->last());
-      }
-      if (!loop.EndIteration(objective)) return loop.Finish();
-    }
-    if (warm_iterations == 0) {
-      loop.SetUpMidway(make_pass);
-      f = run(*t);
-    }
-    loop.SetUpMidway(make_vectors);
-    const JointPass& sums = retinal ? retinal->sums() : pass;
-    layout.Gather(*t, &x);
-    Sweep(n, [&](size_t begin, size_t end) {
-      layout.GradientAndScale(sums, x, plain, options.epsilon, begin, end, &g, &h);
-    });
-    // Halves the projected step along d until it lowers the objective
-    // enough; x_new, change and *f_new are then the step's. A step whose
-    // slope clamping (or rounding) leaves non-negative is not evaluated.
-    auto line_search = [&](double* f_new) {
-      for (int halving = 0; halving <= kMaxHalvings; ++halving) {
-        const double slope = ProjectedStep(layout, x, d, g, std::ldexp(1.0, -halving), lo, hi, &x_new, &change, t);
-        if (!(slope < 0)) continue;
-        *f_new = run(*t);
-        if (*f_new <= f + kArmijo * slope) return true;  // NaN fails: halved
-      }
-      return false;
-    };
-    // The plain step's direction, the pairs forgotten.
-    auto plain_direction = [&] {
-      while (!pairs.empty()) spare.push_back(std::move(pairs.front())), pairs.pop_front();
-      return PlainDirection(g, h, free, &d);
-    };
-
-    while (true) {
-      double slope = Direction(pairs, g, h, x, lo, hi, &free, &d);
-      bool from_pairs = !pairs.empty();
-      if (!(slope < 0)) slope = plain_direction(), from_pairs = false;
-      if (!(slope < 0)) {
-        loop.Converge("the projected gradient is zero: a stationary point of the bounded problem");
-        break;
-      }
-      double f_new = f;
-      bool lowered = line_search(&f_new);
-      if (!lowered && from_pairs) {  // the curvature pairs misled: the plain step before giving up
-        plain_direction();
-        lowered = line_search(&f_new);
-      }
-      if (!lowered) {
-        layout.Scatter(x, t);
-        loop.Converge("no projected step lowers the objective any more");
-        break;
-      }
-      Pair p = std::move(spare.empty() ? pairs.front() : spare.back());
-      if (spare.empty())
-        pairs.pop_front();
-      else
-        spare.pop_back();
-      // The new gradient and scale, and the pair of this step.
-      auto gradient_and_pair = [&](size_t begin, size_t end) {
-        layout.GradientAndScale(sums, x_new, plain, options.epsilon, begin, end, &g_new, &h_new);
-        for (size_t i = begin; i < end; ++i) p.s[i] = change[i], p.y[i] = g_new[i] - g[i];
-      };
-      const auto [sy, ss, yy] = Sweep(
-          n, gradient_and_pair, [&](size_t i) { return p.s[i] * p.y[i]; }, [&](size_t i) { return p.s[i] * p.s[i]; },
-          [&](size_t i) { return p.y[i] * p.y[i]; });
-      // Only pairs of positive curvature keep H positive definite.
-      if (sy > 1e-12 * std::sqrt(ss * yy)) {
-        p.rho = 1.0 / sy;
-        pairs.push_back(std::move(p));
-      } else {
-        spare.push_back(std::move(p));
-      }
-      std::swap(x, x_new), std::swap(g, g_new), std::swap(h, h_new);
-      f = f_new;
-      if (retinal) loop.SetMeasures(retinal->last());  // of x_new, the last patterns run
-      if (!loop.EndIteration(f)) break;
-    }
-    return loop.Finish();
+    return QuasiNewtonRun(model, target, options, t).Solve();
   }
 };
 

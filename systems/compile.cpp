@@ -355,6 +355,26 @@ class Walker {
     layer.path = state.steps;
     const double lens_at = state.last_power ? *state.steps[*state.last_power].position : 0.0;
     const char* key = spec.virtual_depth ? "virtual_depth" : spec.distance ? "distance" : "gap";
+    layer.position = PlaceOnPath(node, spec, state, front, layer.name, key, lens_at);
+    layer.panel_distance = layer.position - lens_at;
+    if (front) CheckOrder(*front, layer, node, key, state.last_power.has_value());
+    if (!(layer.position > state.placed_at))
+      Fail(node.where.child(key), "panel " + Quoted(layer.name) + " would be " + Mm(layer.position) +
+                                      " from the pupil, not behind " + Quoted(state.placed_name) + " (" +
+                                      Mm(state.placed_at) + "), which comes before it on the path");
+    const RayTransfer<double> m = PanelTransfer(node, spec, state, layer, key);
+    const double D = m.a / m.b;
+    if (D < 0) FailBehindTheEye(node, key, state, layer, D);
+    SetImage(spec, state, m, &layer);
+    if (spec.virtual_depth == std::nullopt && D == 0)
+      system_.warnings.push_back("panel \"" + layer.name +
+                                 "\" sits at the focal plane: its image is at infinity (0 D)");
+    return layer;
+  }
+
+  // The panel's position on its path, by its "virtual_depth", "distance" or "gap" (`key`).
+  double PlaceOnPath(const SceneNode& node, const PanelSpec& spec, const PathState& state, const VirtualLayer* front,
+                     const std::string& name, const char* key, double lens_at) {
     if (spec.virtual_depth) {
       const double D = spec.virtual_depth->diopters;
       bool solvable = false;
@@ -365,26 +385,24 @@ class Walker {
                                         " D: the optics in front of it image every plane behind "
                                         "it at " +
                                         FormatFixed(state.transfer.c / state.transfer.d, 3) + " D");
-      layer.position = state.placed_at + t;
       if (!front && !(t > 0)) FailUnreachableDepth(node, state, D);
-    } else if (spec.distance) {
+      return state.placed_at + t;
+    }
+    if (spec.distance) {
       if (!state.last_power)
         Fail(node.where.child(key),
              "\"distance\" is measured from the nearest lens or curved mirror in front of the "
              "panel, and none lies between the eye and " +
-                 Quoted(layer.name) + "; give \"gap\" (from " + Quoted(state.previous_name) +
+                 Quoted(name) + "; give \"gap\" (from " + Quoted(state.previous_name) +
                  ") or \"virtual_depth\" (from the eye)");
-      layer.position = lens_at + *spec.distance;
-    } else {
-      layer.position = AfterPrevious(node, state, *node.element->gap());
+      return lens_at + *spec.distance;
     }
-    layer.panel_distance = layer.position - lens_at;
-    if (front) CheckOrder(*front, layer, node, key, state.last_power.has_value());
-    if (!(layer.position > state.placed_at))
-      Fail(node.where.child(key), "panel " + Quoted(layer.name) + " would be " + Mm(layer.position) +
-                                      " from the pupil, not behind " + Quoted(state.placed_name) + " (" +
-                                      Mm(state.placed_at) + "), which comes before it on the path");
+    return AfterPrevious(node, state, *node.element->gap());
+  }
 
+  // The transfer from the panel to the pupil; refused when it images the panel into the pupil plane.
+  RayTransfer<double> PanelTransfer(const SceneNode& node, const PanelSpec& spec, const PathState& state,
+                                    const VirtualLayer& layer, const char* key) {
     RayTransfer<double> m = state.transfer.then_gap(layer.position - state.placed_at);
     if (spec.virtual_depth)
       m.a = spec.virtual_depth->diopters * m.b;
@@ -396,33 +414,34 @@ class Walker {
       Fail(node.where.child(key), "panel " + Quoted(layer.name) +
                                       " is imaged into the pupil plane, where no eye "
                                       "can focus; move it or the optics in front of it");
+    return m;
+  }
+
+  // The panel's image through transfer m: its depth, magnification, pitch, offset, flips and field.
+  static void SetImage(const PanelSpec& spec, const PathState& state, const RayTransfer<double>& m,
+                       VirtualLayer* layer) {
     const double D = m.a / m.b;
-    if (D < 0) FailBehindTheEye(node, key, state, layer, D);
-    layer.transfer = m;
-    layer.diopters = D;
-    layer.depth = D == 0 ? std::numeric_limits<double>::infinity() : 1.0 / D;
-    layer.inverted = m.b < 0;
+    layer->transfer = m;
+    layer->diopters = D;
+    layer->depth = D == 0 ? std::numeric_limits<double>::infinity() : 1.0 / D;
+    layer->inverted = m.b < 0;
     const double inf = std::numeric_limits<double>::infinity();
-    layer.magnification = m.a == 0 ? (layer.inverted ? -inf : inf) : 1.0 / m.a;
+    layer->magnification = m.a == 0 ? (layer->inverted ? -inf : inf) : 1.0 / m.a;
     const double tan_per_meter = 1.0 / std::abs(m.b);
-    layer.pitch_x = std::abs(layer.magnification) * spec.pitch_x;
-    layer.pitch_y = std::abs(layer.magnification) * spec.pitch_y;
-    layer.tan_pitch_x = tan_per_meter * spec.pitch_x;
-    layer.tan_pitch_y = tan_per_meter * spec.pitch_y;
-    layer.cols = static_cast<int>(spec.active_cols);
-    layer.rows = static_cast<int>(spec.active_rows);
-    layer.eye_from_layer_tan_x = tan_per_meter * spec.eye_from_panel_m[0];
-    layer.eye_from_layer_tan_y = tan_per_meter * spec.eye_from_panel_m[1];
-    layer.rotation = spec.rotation;
-    layer.flip_x = (state.flip_x != layer.inverted) != spec.reversed;
-    layer.flip_y = state.flip_y != layer.inverted;
-    layer.fov_x = FieldOfView(layer.tan_pitch_x, layer.cols);
-    layer.fov_y = FieldOfView(layer.tan_pitch_y, layer.rows);
-    layer.max_cpd = std::max(NyquistCyclesPerDegree(layer.tan_pitch_x), NyquistCyclesPerDegree(layer.tan_pitch_y));
-    if (spec.virtual_depth == std::nullopt && D == 0)
-      system_.warnings.push_back("panel \"" + layer.name +
-                                 "\" sits at the focal plane: its image is at infinity (0 D)");
-    return layer;
+    layer->pitch_x = std::abs(layer->magnification) * spec.pitch_x;
+    layer->pitch_y = std::abs(layer->magnification) * spec.pitch_y;
+    layer->tan_pitch_x = tan_per_meter * spec.pitch_x;
+    layer->tan_pitch_y = tan_per_meter * spec.pitch_y;
+    layer->cols = static_cast<int>(spec.active_cols);
+    layer->rows = static_cast<int>(spec.active_rows);
+    layer->eye_from_layer_tan_x = tan_per_meter * spec.eye_from_panel_m[0];
+    layer->eye_from_layer_tan_y = tan_per_meter * spec.eye_from_panel_m[1];
+    layer->rotation = spec.rotation;
+    layer->flip_x = (state.flip_x != layer->inverted) != spec.reversed;
+    layer->flip_y = state.flip_y != layer->inverted;
+    layer->fov_x = FieldOfView(layer->tan_pitch_x, layer->cols);
+    layer->fov_y = FieldOfView(layer->tan_pitch_y, layer->rows);
+    layer->max_cpd = std::max(NyquistCyclesPerDegree(layer->tan_pitch_x), NyquistCyclesPerDegree(layer->tan_pitch_y));
   }
 
   // A layer the eye cannot focus on is only ever seen blurred.
@@ -510,6 +529,9 @@ class Walker {
   void FindMagnifier();
   void CheckApertures();
   void Finish();
+  void SortFarthestFirst();
+  void AddUpLight();
+  void DescribeComponents();
 
   const Scene& scene_;
   DisplaySystem system_;
@@ -573,38 +595,15 @@ void Walker::CheckApertures() {
 }
 
 void Walker::Finish() {
-  auto& layers = system_.layers;
-  // Farthest first, as the paper numbers its panels.
-  std::vector<int> order(layers.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return layers[a].diopters < layers[b].diopters; });
-  std::vector<int> new_index(layers.size());
-  std::vector<VirtualLayer> sorted;
-  for (size_t i = 0; i < order.size(); ++i)
-    new_index[order[i]] = static_cast<int>(i), sorted.push_back(layers[order[i]]);
-  layers = std::move(sorted);
-  for (Branch& b : system_.branches)
-    for (int& k : b.layers) k = new_index[k];
-
+  SortFarthestFirst();
   system_.fov_x = system_.fov_y = INFINITY;
-  for (const VirtualLayer& l : layers) {
+  for (const VirtualLayer& l : system_.layers) {
     system_.fov_x = std::min(system_.fov_x, l.fov_x);
     system_.fov_y = std::min(system_.fov_y, l.fov_y);
     system_.max_cpd = std::max(system_.max_cpd, l.max_cpd);
   }
   WarnOutsideAccommodation();
-
-  double emitted = 0;
-  std::set<std::string> backlights;  // each once, whatever the subframes
-  for (const Branch& b : system_.branches) {
-    if (backlights.insert(b.backlight).second) emitted += b.backlight_luminance;
-    for (int c = 0; c < 3; ++c) system_.peak_luminance[c] += b.backlight_luminance * b.efficiency[c];
-  }
-  for (int c = 0; c < 3; ++c) {
-    system_.brightness_efficiency[c] = system_.peak_luminance[c] / emitted;
-    system_.luminance_efficiency += kLuminanceWeights[c] * system_.brightness_efficiency[c];
-  }
-
+  AddUpLight();
   ResolvePupil();
   FindMagnifier();
   const EyeModel& eye = system_.eye;
@@ -615,7 +614,41 @@ void Walker::Finish() {
     system_.vignetting_free_fov_y = field(eye.eyebox_height);
   }
   CheckApertures();
+  DescribeComponents();
+}
 
+// Farthest first, as the paper numbers its panels.
+void Walker::SortFarthestFirst() {
+  auto& layers = system_.layers;
+  std::vector<int> order(layers.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return layers[a].diopters < layers[b].diopters; });
+  std::vector<int> new_index(layers.size());
+  std::vector<VirtualLayer> sorted;
+  for (size_t i = 0; i < order.size(); ++i)
+    new_index[order[i]] = static_cast<int>(i), sorted.push_back(layers[order[i]]);
+  layers = std::move(sorted);
+  for (Branch& b : system_.branches)
+    for (int& k : b.layers) k = new_index[k];
+}
+
+// The display's peak luminance and its efficiencies, each backlight counted once.
+void Walker::AddUpLight() {
+  double emitted = 0;
+  std::set<std::string> backlights;  // each once, whatever the subframes
+  for (const Branch& b : system_.branches) {
+    if (backlights.insert(b.backlight).second) emitted += b.backlight_luminance;
+    for (int c = 0; c < 3; ++c) system_.peak_luminance[c] += b.backlight_luminance * b.efficiency[c];
+  }
+  for (int c = 0; c < 3; ++c) {
+    system_.brightness_efficiency[c] = system_.peak_luminance[c] / emitted;
+    system_.luminance_efficiency += kLuminanceWeights[c] * system_.brightness_efficiency[c];
+  }
+}
+
+// What the display is made of, in words (`info` and the report).
+void Walker::DescribeComponents() {
+  const auto& layers = system_.layers;
   auto& parts = system_.components;
   if (!system_.lens.empty()) {
     parts.push_back("thin-lens floating (" + std::to_string(layers.size()) + " virtual layers)");

@@ -314,157 +314,212 @@ class PlyBody {
   std::string file_;
 };
 
+// The header: text lines up to "end_header", each checked as read.
+class PlyHeader {
+ public:
+  PlyHeader(const std::string& file, const MeshLimits& limits) : file_(file), limits_(limits) {}
+
+  std::vector<PlyElement> elements;
+  bool binary = false;
+  size_t body_start = 0;  // the byte after the "end_header" line
+
+  void Read(const std::string& bytes) {
+    bool have_format = false;
+    size_t pos = 0;
+    bool ended = false;
+    while (!ended) {
+      size_t end = bytes.find('\n', pos);
+      if (end == std::string::npos || line_no_ > 10000) throw Error(file_ + ": the PLY header has no end_header line");
+      ++line_no_;
+      std::string_view line(bytes.data() + pos, end - pos);
+      pos = end + 1;
+      std::vector<std::string_view> t = Tokens(line);
+      if (line_no_ == 1) {
+        if (t.size() != 1 || t[0] != "ply") throw Error(file_ + ": not a PLY file (the first line is not \"ply\")");
+        continue;
+      }
+      if (t.empty() || t[0] == "comment" || t[0] == "obj_info") continue;
+      if (t[0] == "format") {
+        ReadFormat(t);
+        have_format = true;
+      } else if (t[0] == "element") {
+        ReadElement(t);
+      } else if (t[0] == "property") {
+        if (elements.empty()) Fail("a property before any element");
+        elements.back().properties.push_back(ReadProperty(t));
+      } else if (t[0] == "end_header") {
+        ended = true;
+      } else {
+        Fail("unknown header keyword \"" + std::string(t[0]) + "\"");
+      }
+    }
+    if (!have_format) throw Error(file_ + ": the PLY header has no format line");
+    body_start = pos;
+  }
+
+ private:
+  [[noreturn]] void Fail(const std::string& message) const {
+    throw Error(file_ + ": header line " + std::to_string(line_no_) + ": " + message);
+  }
+
+  void ReadFormat(const std::vector<std::string_view>& t) {
+    if (t.size() != 3 || t[2] != "1.0") Fail("expected \"format ascii 1.0\" or \"format binary_little_endian 1.0\"");
+    if (t[1] == "binary_big_endian")
+      Fail("binary_big_endian PLY is not supported; convert it to binary_little_endian or ascii");
+    if (t[1] != "ascii" && t[1] != "binary_little_endian") Fail("unknown format \"" + std::string(t[1]) + "\"");
+    binary = t[1] == "binary_little_endian";
+  }
+
+  void ReadElement(const std::vector<std::string_view>& t) {
+    if (t.size() != 3) Fail("expected \"element NAME COUNT\"");
+    std::optional<long long> count = ParseInteger(t[2]);
+    if (!count || *count < 0) Fail("element count \"" + std::string(t[2]) + "\" is not a non-negative integer");
+    size_t limit = t[1] == "face" ? limits_.max_triangles : limits_.max_vertices;
+    if (static_cast<unsigned long long>(*count) > limit)
+      Fail(std::to_string(*count) + " " + std::string(t[1]) + " elements; the limit is " + std::to_string(limit));
+    elements.push_back({std::string(t[1]), static_cast<size_t>(*count), {}});
+  }
+
+  PlyProperty ReadProperty(const std::vector<std::string_view>& t) const {
+    if (t.size() == 5 && t[1] == "list") {
+      auto count_type = PlyTypeNamed(t[2]);
+      auto item_type = PlyTypeNamed(t[3]);
+      if (!count_type || !item_type || !PlyTypeIsInteger(*count_type))
+        Fail("expected \"property list COUNT_TYPE ITEM_TYPE NAME\" with an integer COUNT_TYPE");
+      return {std::string(t[4]), *item_type, true, *count_type};
+    }
+    if (t.size() == 3) {
+      auto type = PlyTypeNamed(t[1]);
+      if (!type) Fail("unknown property type \"" + std::string(t[1]) + "\"");
+      return {std::string(t[2]), *type, false, PlyType::kUint8};
+    }
+    Fail("expected \"property TYPE NAME\" or \"property list COUNT_TYPE ITEM_TYPE NAME\"");
+  }
+
+  const std::string& file_;
+  const MeshLimits& limits_;
+  size_t line_no_ = 0;
+};
+
+// Where the mesh sits among the header's elements and properties.
+struct PlyLayout {
+  const PlyElement* vertex = nullptr;
+  const PlyElement* face = nullptr;
+  int ix = -1, iy = -1, iz = -1, iu = -1, iv = -1;
+  bool with_uvs = false;
+  int ilist = -1;  // the face's vertex indices
+};
+
+PlyLayout FindPlyLayout(const std::vector<PlyElement>& elements, const std::string& file) {
+  PlyLayout l;
+  for (const PlyElement& e : elements) {
+    if (e.name == "vertex") l.vertex = &e;
+    if (e.name == "face") l.face = &e;
+  }
+  if (!l.vertex) throw Error(file + ": the PLY file has no vertex element");
+  if (!l.face || l.face->count == 0) throw Error(file + ": the PLY file has no faces");
+  l.ix = l.vertex->find({"x"}), l.iy = l.vertex->find({"y"}), l.iz = l.vertex->find({"z"});
+  for (auto [index, name] : {std::pair{l.ix, "x"}, std::pair{l.iy, "y"}, std::pair{l.iz, "z"}})
+    if (index < 0 || l.vertex->properties[index].is_list)
+      throw Error(file + ": the vertex element has no scalar property " + name);
+  l.iu = l.vertex->find({"u", "s", "texture_u"}), l.iv = l.vertex->find({"v", "t", "texture_v"});
+  l.with_uvs = l.iu >= 0 && l.iv >= 0 && !l.vertex->properties[l.iu].is_list && !l.vertex->properties[l.iv].is_list;
+  l.ilist = l.face->find({"vertex_indices", "vertex_index"});
+  if (l.ilist < 0 || !l.face->properties[l.ilist].is_list)
+    throw Error(file + ": the face element has no list property vertex_indices");
+  if (!PlyTypeIsInteger(l.face->properties[l.ilist].type))
+    throw Error(file + ": the face property vertex_indices must hold integers");
+  return l;
+}
+
+// One face's polygon, fanned into triangles.
+void ReadPlyFace(PlyBody& body, const PlyProperty& prop, double count, const std::string& where,
+                 const PlyLayout& layout, const MeshLimits& limits, TriangleMesh* mesh) {
+  if (count < 3) body.Fail(where, "a face needs at least 3 vertices, got " + FormatCount(count));
+  if (count > static_cast<double>(limits.max_polygon_vertices))
+    body.Fail(where, "a face of " + FormatCount(count) + " vertices; the limit is " +
+                         std::to_string(limits.max_polygon_vertices));
+  std::vector<uint32_t> polygon;
+  for (int c = 0; c < static_cast<int>(count); ++c) {
+    double index = body.Read(prop.type, where);
+    if (index < 0 || index >= static_cast<double>(layout.vertex->count))
+      body.Fail(where, "vertex index " + FormatCount(index) + " is out of range (" +
+                           std::to_string(layout.vertex->count) + " vertices)");
+    polygon.push_back(static_cast<uint32_t>(index));
+  }
+  if (mesh->triangles.size() + polygon.size() - 2 > limits.max_triangles)
+    body.Fail(where, "more than " + std::to_string(limits.max_triangles) + " triangles");
+  FanTriangulate(polygon, mesh->triangles);
+}
+
+// One instance of element `e`: a vertex's position and uv, a face's triangles,
+// and any other element's values read past.
+void ReadPlyInstance(PlyBody& body, const PlyElement& e, size_t n, const PlyLayout& layout, const MeshLimits& limits,
+                     TriangleMesh* mesh) {
+  const bool is_vertex = &e == layout.vertex, is_face = &e == layout.face;
+  std::string where = e.name + " " + std::to_string(n);
+  std::array<double, 3> p{};
+  std::array<double, 2> uv{};
+  for (size_t k = 0; k < e.properties.size(); ++k) {
+    const PlyProperty& prop = e.properties[k];
+    if (prop.is_list) {
+      double count = body.Read(prop.count_type, where);
+      if (is_face && static_cast<int>(k) == layout.ilist) {
+        ReadPlyFace(body, prop, count, where, layout, limits, mesh);
+      } else {
+        if (count < 0 || count > 1e6) body.Fail(where, "a list of " + FormatCount(count) + " items");
+        for (int c = 0; c < static_cast<int>(count); ++c) body.Read(prop.type, where);
+      }
+      continue;
+    }
+    double value = body.Read(prop.type, where);
+    if (!is_vertex) continue;
+    int ki = static_cast<int>(k);
+    if (ki == layout.ix || ki == layout.iy || ki == layout.iz ||
+        (layout.with_uvs && (ki == layout.iu || ki == layout.iv))) {
+      if (!std::isfinite(value))
+        body.Fail(where, "property " + prop.name + " is " + (std::isnan(value) ? "NaN" : "infinite") +
+                             "; coordinates must be finite");
+      if (ki == layout.ix) p[0] = value;
+      if (ki == layout.iy) p[1] = value;
+      if (ki == layout.iz) p[2] = value;
+      if (ki == layout.iu) uv[0] = value;
+      if (ki == layout.iv) uv[1] = value;
+    }
+  }
+  if (is_vertex) {
+    mesh->positions.push_back(p);
+    if (layout.with_uvs) mesh->uvs.push_back(uv);
+  }
+}
+
 TriangleMesh ParsePlyImpl(const std::string& bytes, const std::string& file, const MeshLimits& limits) {
   if (bytes.size() > limits.max_bytes)
     throw Error(file + ": file is " + std::to_string(bytes.size()) + " bytes; the limit is " +
                 std::to_string(limits.max_bytes));
-  // Header: text lines up to "end_header".
-  std::vector<PlyElement> elements;
-  bool binary = false, have_format = false;
-  size_t pos = 0, line_no = 0;
-  bool ended = false;
-  while (!ended) {
-    size_t end = bytes.find('\n', pos);
-    if (end == std::string::npos || line_no > 10000) throw Error(file + ": the PLY header has no end_header line");
-    ++line_no;
-    std::string_view line(bytes.data() + pos, end - pos);
-    pos = end + 1;
-    std::vector<std::string_view> t = Tokens(line);
-    auto fail = [&](const std::string& message) {
-      throw Error(file + ": header line " + std::to_string(line_no) + ": " + message);
-    };
-    if (line_no == 1) {
-      if (t.size() != 1 || t[0] != "ply") throw Error(file + ": not a PLY file (the first line is not \"ply\")");
-      continue;
-    }
-    if (t.empty() || t[0] == "comment" || t[0] == "obj_info") continue;
-    if (t[0] == "format") {
-      if (t.size() != 3 || t[2] != "1.0") fail("expected \"format ascii 1.0\" or \"format binary_little_endian 1.0\"");
-      if (t[1] == "binary_big_endian")
-        fail("binary_big_endian PLY is not supported; convert it to binary_little_endian or ascii");
-      if (t[1] != "ascii" && t[1] != "binary_little_endian") fail("unknown format \"" + std::string(t[1]) + "\"");
-      binary = t[1] == "binary_little_endian";
-      have_format = true;
-    } else if (t[0] == "element") {
-      if (t.size() != 3) fail("expected \"element NAME COUNT\"");
-      std::optional<long long> count = ParseInteger(t[2]);
-      if (!count || *count < 0) fail("element count \"" + std::string(t[2]) + "\" is not a non-negative integer");
-      size_t limit = t[1] == "face" ? limits.max_triangles : limits.max_vertices;
-      if (static_cast<unsigned long long>(*count) > limit)
-        fail(std::to_string(*count) + " " + std::string(t[1]) + " elements; the limit is " + std::to_string(limit));
-      elements.push_back({std::string(t[1]), static_cast<size_t>(*count), {}});
-    } else if (t[0] == "property") {
-      if (elements.empty()) fail("a property before any element");
-      PlyProperty p;
-      if (t.size() == 5 && t[1] == "list") {
-        auto count_type = PlyTypeNamed(t[2]);
-        auto item_type = PlyTypeNamed(t[3]);
-        if (!count_type || !item_type || !PlyTypeIsInteger(*count_type))
-          fail("expected \"property list COUNT_TYPE ITEM_TYPE NAME\" with an integer COUNT_TYPE");
-        p = {std::string(t[4]), *item_type, true, *count_type};
-      } else if (t.size() == 3) {
-        auto type = PlyTypeNamed(t[1]);
-        if (!type) fail("unknown property type \"" + std::string(t[1]) + "\"");
-        p = {std::string(t[2]), *type, false, PlyType::kUint8};
-      } else {
-        fail("expected \"property TYPE NAME\" or \"property list COUNT_TYPE ITEM_TYPE NAME\"");
-      }
-      elements.back().properties.push_back(p);
-    } else if (t[0] == "end_header") {
-      ended = true;
-    } else {
-      fail("unknown header keyword \"" + std::string(t[0]) + "\"");
-    }
-  }
-  if (!have_format) throw Error(file + ": the PLY header has no format line");
+  PlyHeader header(file, limits);
+  header.Read(bytes);
+  const PlyLayout layout = FindPlyLayout(header.elements, file);
 
-  const PlyElement* vertex_element = nullptr;
-  const PlyElement* face_element = nullptr;
-  for (const PlyElement& e : elements) {
-    if (e.name == "vertex") vertex_element = &e;
-    if (e.name == "face") face_element = &e;
-  }
-  if (!vertex_element) throw Error(file + ": the PLY file has no vertex element");
-  if (!face_element || face_element->count == 0) throw Error(file + ": the PLY file has no faces");
-  int ix = vertex_element->find({"x"}), iy = vertex_element->find({"y"}), iz = vertex_element->find({"z"});
-  for (auto [index, name] : {std::pair{ix, "x"}, std::pair{iy, "y"}, std::pair{iz, "z"}})
-    if (index < 0 || vertex_element->properties[index].is_list)
-      throw Error(file + ": the vertex element has no scalar property " + name);
-  int iu = vertex_element->find({"u", "s", "texture_u"}), iv = vertex_element->find({"v", "t", "texture_v"});
-  bool with_uvs =
-      iu >= 0 && iv >= 0 && !vertex_element->properties[iu].is_list && !vertex_element->properties[iv].is_list;
-  int ilist = face_element->find({"vertex_indices", "vertex_index"});
-  if (ilist < 0 || !face_element->properties[ilist].is_list)
-    throw Error(file + ": the face element has no list property vertex_indices");
-  if (!PlyTypeIsInteger(face_element->properties[ilist].type))
-    throw Error(file + ": the face property vertex_indices must hold integers");
-
-  PlyBody body(bytes, pos, binary, file);
+  PlyBody body(bytes, header.body_start, header.binary, file);
   // Refuse counts the file cannot hold before allocating for them.
   size_t needed = 0;
-  for (const PlyElement& e : elements) needed += e.count * (binary ? e.min_binary_size() : e.properties.size());
+  for (const PlyElement& e : header.elements)
+    needed += e.count * (header.binary ? e.min_binary_size() : e.properties.size());
   if (needed > body.remaining())
     throw Error(file + ": the header declares more data than the file holds (" + std::to_string(needed) +
-                (binary ? " bytes" : " values") + " at least, " + std::to_string(body.remaining()) + " bytes left)");
+                (header.binary ? " bytes" : " values") + " at least, " + std::to_string(body.remaining()) +
+                " bytes left)");
 
   TriangleMesh mesh;
-  for (const PlyElement& e : elements) {
-    bool is_vertex = &e == vertex_element, is_face = &e == face_element;
-    if (is_vertex) {
+  for (const PlyElement& e : header.elements) {
+    if (&e == layout.vertex) {
       mesh.positions.reserve(e.count);
-      if (with_uvs) mesh.uvs.reserve(e.count);
+      if (layout.with_uvs) mesh.uvs.reserve(e.count);
     }
-    for (size_t n = 0; n < e.count; ++n) {
-      std::string where = e.name + " " + std::to_string(n);
-      std::array<double, 3> p{};
-      std::array<double, 2> uv{};
-      for (size_t k = 0; k < e.properties.size(); ++k) {
-        const PlyProperty& prop = e.properties[k];
-        if (prop.is_list) {
-          double count = body.Read(prop.count_type, where);
-          if (is_face && static_cast<int>(k) == ilist) {
-            if (count < 3) body.Fail(where, "a face needs at least 3 vertices, got " + FormatCount(count));
-            if (count > static_cast<double>(limits.max_polygon_vertices))
-              body.Fail(where, "a face of " + FormatCount(count) + " vertices; the limit is " +
-                                   std::to_string(limits.max_polygon_vertices));
-            std::vector<uint32_t> polygon;
-            for (int c = 0; c < static_cast<int>(count); ++c) {
-              double index = body.Read(prop.type, where);
-              if (index < 0 || index >= static_cast<double>(vertex_element->count))
-                body.Fail(where, "vertex index " + FormatCount(index) + " is out of range (" +
-                                     std::to_string(vertex_element->count) + " vertices)");
-              polygon.push_back(static_cast<uint32_t>(index));
-            }
-            if (mesh.triangles.size() + polygon.size() - 2 > limits.max_triangles)
-              body.Fail(where, "more than " + std::to_string(limits.max_triangles) + " triangles");
-            FanTriangulate(polygon, mesh.triangles);
-          } else {
-            if (count < 0 || count > 1e6) body.Fail(where, "a list of " + FormatCount(count) + " items");
-            for (int c = 0; c < static_cast<int>(count); ++c) body.Read(prop.type, where);
-          }
-          continue;
-        }
-        double value = body.Read(prop.type, where);
-        if (!is_vertex) continue;
-        int ki = static_cast<int>(k);
-        if (ki == ix || ki == iy || ki == iz || (with_uvs && (ki == iu || ki == iv))) {
-          if (!std::isfinite(value))
-            body.Fail(where, "property " + prop.name + " is " + (std::isnan(value) ? "NaN" : "infinite") +
-                                 "; coordinates must be finite");
-          if (ki == ix) p[0] = value;
-          if (ki == iy) p[1] = value;
-          if (ki == iz) p[2] = value;
-          if (ki == iu) uv[0] = value;
-          if (ki == iv) uv[1] = value;
-        }
-      }
-      if (is_vertex) {
-        mesh.positions.push_back(p);
-        if (with_uvs) mesh.uvs.push_back(uv);
-      }
-    }
+    for (size_t n = 0; n < e.count; ++n) ReadPlyInstance(body, e, n, layout, limits, &mesh);
   }
-  if (with_uvs) mesh.triangle_uvs = mesh.triangles;
+  if (layout.with_uvs) mesh.triangle_uvs = mesh.triangles;
   return mesh;
 }
 

@@ -37,37 +37,36 @@ std::shared_ptr<LightField> FromArray(const py::handle& array, const LightFieldG
   return lf;
 }
 
-}  // namespace
+// Each number's type here, the limits by the check a light-field manifest goes through.
+LightFieldGeometry GeometryArguments(const py::handle& origin_z, const py::handle& window_left,
+                                     const py::handle& window_top, const py::handle& window_width,
+                                     const py::handle& window_height, const py::handle& cols, const py::handle& rows,
+                                     const py::handle& views_x, const py::handle& views_y,
+                                     const py::handle& eyebox_width, const py::handle& eyebox_height) {
+  const std::string what = "LightFieldGeometry: ";
+  auto real = [&](const py::handle& v, const char* name) { return RealArg(v, what + name); };
+  auto count = [&](const py::handle& v, const char* name, int max) {
+    return static_cast<int>(IntegerArg(v, what + name, 1, max));
+  };
+  LightFieldGeometry g;
+  g.origin_z = real(origin_z, "origin_z"), g.window_left = real(window_left, "window_left");
+  g.window_top = real(window_top, "window_top"), g.window_width = real(window_width, "window_width");
+  g.window_height = real(window_height, "window_height");
+  g.cols = count(cols, "cols", kMaxPixelsPerAxis), g.rows = count(rows, "rows", kMaxPixelsPerAxis);
+  g.views_x = count(views_x, "views_x", kMaxViewsPerAxis);
+  g.views_y = count(views_y, "views_y", kMaxViewsPerAxis);
+  g.eyebox_width = real(eyebox_width, "eyebox_width"), g.eyebox_height = real(eyebox_height, "eyebox_height");
+  CheckGeometryArgument(g, "LightFieldGeometry");
+  return g;
+}
 
-void BindLightField(py::module_& m) {
+void BindLightFieldGeometry(py::module_& m) {
   py::class_<LightFieldGeometry>(m, "LightFieldGeometry",
                                  "Two-plane parameterization: views on the pupil plane, pixels on the origin plane (m)")
-      .def(py::init([](const py::handle& origin_z, const py::handle& window_left, const py::handle& window_top,
-                       const py::handle& window_width, const py::handle& window_height, const py::handle& cols,
-                       const py::handle& rows, const py::handle& views_x, const py::handle& views_y,
-                       const py::handle& eyebox_width, const py::handle& eyebox_height) {
-             // Each number's type here, the limits by the check a light-field manifest goes through.
-             const std::string what = "LightFieldGeometry: ";
-             auto real = [&](const py::handle& v, const char* name) { return RealArg(v, what + name); };
-             auto count = [&](const py::handle& v, const char* name, int max) {
-               return static_cast<int>(IntegerArg(v, what + name, 1, max));
-             };
-             LightFieldGeometry g;
-             g.origin_z = real(origin_z, "origin_z"), g.window_left = real(window_left, "window_left");
-             g.window_top = real(window_top, "window_top"), g.window_width = real(window_width, "window_width");
-             g.window_height = real(window_height, "window_height");
-             g.cols = count(cols, "cols", kMaxPixelsPerAxis), g.rows = count(rows, "rows", kMaxPixelsPerAxis);
-             g.views_x = count(views_x, "views_x", kMaxViewsPerAxis);
-             g.views_y = count(views_y, "views_y", kMaxViewsPerAxis);
-             g.eyebox_width = real(eyebox_width, "eyebox_width"),
-             g.eyebox_height = real(eyebox_height, "eyebox_height");
-             CheckGeometryArgument(g, "LightFieldGeometry");
-             return g;
-           }),
-           py::kw_only(), py::arg("origin_z") = 1.0, py::arg("window_left") = -0.5, py::arg("window_top") = 0.5,
-           py::arg("window_width") = 1.0, py::arg("window_height") = 1.0, py::arg("cols") = 1, py::arg("rows") = 1,
-           py::arg("views_x") = 1, py::arg("views_y") = 1, py::arg("eyebox_width") = 6e-3,
-           py::arg("eyebox_height") = 6e-3)
+      .def(py::init(&GeometryArguments), py::kw_only(), py::arg("origin_z") = 1.0, py::arg("window_left") = -0.5,
+           py::arg("window_top") = 0.5, py::arg("window_width") = 1.0, py::arg("window_height") = 1.0,
+           py::arg("cols") = 1, py::arg("rows") = 1, py::arg("views_x") = 1, py::arg("views_y") = 1,
+           py::arg("eyebox_width") = 6e-3, py::arg("eyebox_height") = 6e-3)
       .def_readwrite("origin_z", &LightFieldGeometry::origin_z)
       .def_readwrite("window_left", &LightFieldGeometry::window_left)
       .def_readwrite("window_top", &LightFieldGeometry::window_top)
@@ -86,7 +85,9 @@ void BindLightField(py::module_& m) {
         return "<layerlab.LightFieldGeometry " + std::to_string(g.views_y) + " x " + std::to_string(g.views_x) +
                " views of " + std::to_string(g.cols) + " x " + std::to_string(g.rows) + ">";
       });
+}
 
+void BindLightFieldClass(py::module_& m) {
   py::class_<LightField, std::shared_ptr<LightField>>(m, "LightField", "Linear RGB radiance per ray, float32")
       .def(py::init([](const LightFieldGeometry& g) {
              CheckGeometryArgument(g, "LightField: geometry");
@@ -143,7 +144,10 @@ void BindLightField(py::module_& m) {
         return "<layerlab.LightField " + std::to_string(g.views_y) + " x " + std::to_string(g.views_x) + " views of " +
                std::to_string(g.cols) + " x " + std::to_string(g.rows) + ">";
       });
+}
 
+// Reading, rendering and suggesting light fields.
+void BindLightFieldFunctions(py::module_& m) {
   m.def(
       "read_lightfield",
       [](const py::object& folder, bool load_depth) {
@@ -177,6 +181,14 @@ void BindLightField(py::module_& m) {
       },
       py::arg("system"), py::arg("origin_diopters") = -1.0,
       "The light-field geometry the display suggests (its field of view, farthest layer's pixels, the eye's views)");
+}
+
+}  // namespace
+
+void BindLightField(py::module_& m) {
+  BindLightFieldGeometry(m);
+  BindLightFieldClass(m);
+  BindLightFieldFunctions(m);
 }
 
 }  // namespace layerlab::python

@@ -56,9 +56,7 @@ auto Each(std::vector<Item> DisplaySystem::*items, Field Item::*field) {
   };
 }
 
-}  // namespace
-
-void BindScene(py::module_& m) {
+void BindSceneClass(py::module_& m) {
   py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene", "A parsed scene file (layerlab-scene/1)")
       .def_readonly("file", &Scene::file)
       .def_readonly("name", &Scene::name)
@@ -75,7 +73,9 @@ void BindScene(py::module_& m) {
                              })
       .def("compile", &CompileScene, "The optically equivalent display system (layers, branches)")
       .def("__repr__", [](const Scene& s) { return "<layerlab.Scene " + s.file + ": " + s.name + ">"; });
+}
 
+void BindLayer(py::module_& m) {
   py::class_<PathStep>(m, "PathStep", "One element between the eye and a panel")
       .def_readonly("element", &PathStep::element)
       .def_readonly("type", &PathStep::type)
@@ -117,7 +117,9 @@ void BindScene(py::module_& m) {
         return "<layerlab.Layer " + l.name + " at " + std::to_string(l.diopters) + " D, M " +
                std::to_string(l.magnification) + ">";
       });
+}
 
+void BindSystem(py::module_& m) {
   py::class_<Branch>(m, "Branch", "Layers that multiply; branches add")
       .def_readonly("name", &Branch::name)
       .def_readonly("subframe", &Branch::subframe)
@@ -160,6 +162,14 @@ void BindScene(py::module_& m) {
   m.def("load_scene", &LoadSceneFrom, py::arg("source"), py::arg("file") = "",
         "A scene from a file path or a dict (then `file` names it in errors, default \"<dict>\")");
   m.def("compile", &CompileScene, py::arg("scene"), "The display system of a scene");
+}
+
+}  // namespace
+
+void BindScene(py::module_& m) {
+  BindSceneClass(m);
+  BindLayer(m);
+  BindSystem(m);
 }
 
 }  // namespace layerlab::python
