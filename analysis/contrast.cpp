@@ -408,7 +408,10 @@ std::string ConventionLabel(ContrastReference reference, GratingSpacing spacing)
 }
 
 ContrastDisplay LoadContrastDisplay(const std::string& scene_file) {
-  Scene scene = LoadScene(scene_file);
+  return ContrastDisplayOf(LoadScene(scene_file), scene_file);
+}
+
+ContrastDisplay ContrastDisplayOf(const Scene& scene, const std::string& scene_file) {
   ContrastDisplay d;
   d.system = Compile(scene);
   d.name = std::filesystem::path(scene_file).stem().string();

@@ -22,6 +22,7 @@
 #include "solvers/solver.h"
 #include "systems/display_system.h"
 #include "systems/layer_sampler.h"
+#include "systems/scene.h"
 #include "targets/texture.h"
 
 namespace layerlab {
@@ -51,6 +52,8 @@ struct ContrastDisplay {
 // A display for the sweep from its scene file: named after the file, with the
 // solver, options and sampling of its "solve" section when it has one.
 ContrastDisplay LoadContrastDisplay(const std::string& scene_file);
+// The same for a scene already read from `scene_file`.
+ContrastDisplay ContrastDisplayOf(const Scene& scene, const std::string& scene_file);
 
 enum class ContrastReference {
   kSampledTarget,  // natural viewing of the target light field the display is asked to show

@@ -18,42 +18,10 @@ namespace {
 
 constexpr double kDeg = std::numbers::pi / 180;
 
-std::string F(double v, int decimals) {
-  if (std::isnan(v)) return "&ndash;";
-  if (std::isinf(v)) return v > 0 ? "&infin;" : "&minus;&infin;";
-  char text[64];
-  std::snprintf(text, sizeof text, "%.*f", decimals, v);
-  return text;
-}
+std::string F(double v, int decimals) { return HtmlNumber(v, decimals); }
+std::string Links(const std::vector<std::pair<std::string, std::string>>& links) { return HtmlLinks(links); }
 
-std::string Links(const std::vector<std::pair<std::string, std::string>>& links) {
-  std::string out;
-  for (const auto& [label, path] : links)
-    out += " <a class=\"file\" href=\"" + Escape(path) + "\">" + Escape(label) + "</a>";
-  return out;
-}
-
-std::string Figure(const ReportImage& image, const std::string& id = "", const std::string& extra_class = "") {
-  std::string id_attr = id.empty() ? "" : " id=\"" + id + "\"";
-  return "<figure class=\"" + extra_class + "\"><a" + (id.empty() ? "" : " id=\"" + id + "-link\"") + " href=\"" +
-         Escape(image.href.empty() ? image.src : image.href) + "\"><img" + id_attr + " src=\"" + Escape(image.src) +
-         "\" alt=\"" + Escape(image.caption) + "\"></a><figcaption" + (id.empty() ? "" : " id=\"" + id + "-caption\"") +
-         ">" +
-         // A plot carries its own title: the caption only links its files.
-         (extra_class == "plot" ? std::string() : Escape(image.caption)) + Links(image.links) +
-         "</figcaption></figure>\n";
-}
-
-std::string Rgb3(const Rgb& v, int decimals) {
-  return F(v[0], decimals) + " / " + F(v[1], decimals) + " / " + F(v[2], decimals);
-}
-
-// Channels relative to the strongest: how far white drifts in color.
-std::string Balance(const Rgb& v) {
-  double m = std::max({v[0], v[1], v[2]});
-  if (!(m > 0)) return "&ndash;";
-  return F(v[0] / m, 3) + " : " + F(v[1] / m, 3) + " : " + F(v[2] / m, 3);
-}
+std::string Rgb3(const Rgb& v, int decimals) { return HtmlRgb(v, decimals); }
 
 constexpr const char* kStyle = R"CSS(
 body{font:14px/1.45 system-ui,-apple-system,"Segoe UI",Helvetica,Arial,sans-serif;margin:0;color:#1b1b1b;background:#f6f6f4}
@@ -235,111 +203,37 @@ std::string SystemSection(const RunReportPage& page) {
   return h + "</section>\n";
 }
 
-std::string RetinaSection(const RunReportPage& page) {
-  std::string h = "<section id=\"retina\"><h2>What the eye sees: retinal images over accommodation</h2>\n";
-  h += "<p class=\"muted\">Drag the slider to focus the eye (a focal stack). Linear values are display-relative (1 = " +
-       F(page.white_cd_m2, 1) + " cd/m&sup2;, the brightest branch at full white); the PNGs are sRGB with 1 as white." +
-       Links(page.retina_links) + "</p>\n";
-  size_t start = 0;
-  for (size_t k = 0; k < page.retina.size(); ++k)
-    if (page.retina[k].declared) {
-      start = k;
-      break;
-    }
-  h += "<div class=\"slider\"><label for=\"accommodation\">accommodation</label><div class=\"track\"><input "
-       "type=\"range\" id=\"accommodation\" min=\"0\" max=\"" +
-       std::to_string(page.retina.size() - 1) + "\" step=\"1\" value=\"" + std::to_string(start) +
-       "\" list=\"declared-states\"><div class=\"ticks\">";
-  // A label under each declared state, where the thumb's center (16 px wide in Chromium) stands.
-  const double last = std::max<double>(1, double(page.retina.size() - 1));
-  for (size_t k = 0; k < page.retina.size(); ++k)
-    if (page.retina[k].declared)
-      h += "<span style=\"left:calc(" + F(100 * k / last, 3) + "% + " + F(8 - 16 * k / last, 2) + "px)\">" +
-           F(page.retina[k].diopters, 2) + " D</span>";
-  h += "</div></div><span id=\"state\"></span></div>\n<datalist id=\"declared-states\">";
-  for (size_t k = 0; k < page.retina.size(); ++k)
-    if (page.retina[k].declared) h += "<option value=\"" + std::to_string(k) + "\"></option>";
-  h += "</datalist>\n<div class=\"grid\">\n";
-  const ReportRetinaState& first = page.retina[start];
-  h += Figure(first.display, "retina-display", "retina");
-  if (!first.natural.src.empty()) h += Figure(first.natural, "retina-natural", "retina");
-  h += "</div>\n<h3>Mean luminance at the retina</h3>\n<table><tr><th>accommodation (D)</th><th>display "
-       "(cd/m&sup2;)</th>"
-       "<th>natural viewing (cd/m&sup2;)</th><th class=\"l\">images</th></tr>\n";
-  nlohmann::json states = nlohmann::json::array();
-  for (const ReportRetinaState& s : page.retina) {
-    h += "<tr><td>" + F(s.diopters, 2) + (s.declared ? " &#9679;" : "") + "</td><td>" + F(s.display_mean_cd_m2, 2) +
-         "</td><td>" + F(s.natural_mean_cd_m2, 2) + "</td><td class=\"l\">display" + Links(s.display.links) +
-         (s.natural.links.empty() ? "" : " &middot; natural" + Links(s.natural.links)) + "</td></tr>\n";
-    nlohmann::json j = {{"diopters", s.diopters},
-                        {"display", s.display.src},
-                        {"display_caption", s.display.caption},
-                        {"display_links", s.display.links}};
-    if (!s.natural.src.empty()) {
-      j["natural"] = s.natural.src;
-      j["natural_caption"] = s.natural.caption;
-      j["natural_links"] = s.natural.links;
-    }
-    states.push_back(j);
-  }
-  h += "</table>\n<p class=\"muted\">&#9679; a declared accommodation state (the slider's tick marks); the others are "
-       "the focal stack.</p>\n";
-  std::string data = states.dump();
-  for (size_t at = data.find("</"); at != std::string::npos; at = data.find("</", at + 3)) data.replace(at, 2, "<\\/");
-  h += "<script>window.layerlabStates = " + data + ";</script>\n";
-  return h + "</section>\n";
-}
-
-std::string ContrastSection(const RunReportPage& page) {
-  std::string h = "<section id=\"contrast\"><h2>Accommodation support: normalized contrast (Fig. 5)</h2>\n";
-  h += "<p class=\"muted\">A cosine grating on a plane at each target depth; each display is factorized for it and the "
-       "eye "
-       "sweeps its focus. A display supports accommodation when its peak follows the target depth (the grey "
-       "band).</p>\n";
-  h += "<div class=\"grid\">" + Figure(page.contrast_plot, "", "plot") + "</div>\n";
-  if (!page.contrast.empty()) h += "<p class=\"muted\">" + Escape(page.contrast.front().convention) + ".</p>\n";
-  std::vector<std::string> eyes;  // the eye model of the curves, each once
-  for (const ContrastCurve& c : page.contrast)
-    if (std::find(eyes.begin(), eyes.end(), c.eye) == eyes.end()) eyes.push_back(c.eye);
-  for (const std::string& eye : eyes) h += "<p class=\"muted\">Eye: " + Escape(eye) + ".</p>\n";
-  h += "<h3>Peaks</h3>\n<table><tr><th class=\"l\">display</th><th>target (D)</th><th>f (cpd)</th><th>peak (D)</th>"
-       "<th>peak contrast</th><th>at target</th><th class=\"l\">solver</th><th>PSNR (dB)</th><th>solve (s)</th></tr>\n";
-  for (const ContrastCurve& c : page.contrast)
-    h += "<tr><td class=\"l\">" + Escape(c.display) + "</td><td>" + F(c.target_diopters, 2) + "</td><td>" +
-         F(c.frequency, 1) + "</td><td>" + F(c.estimate.at, 3) + " &plusmn; " + F(c.estimate.uncertainty, 3) +
-         (c.estimate.flat ? " (flat)" : "") + "</td><td>" + F(c.peak.value, 3) + "</td><td>" + F(c.at_target, 3) +
-         "</td><td class=\"l\">" + Escape(c.solver) + "</td><td>" + (c.solver == "-" ? "&ndash;" : F(c.psnr_db, 2)) +
-         "</td><td>" + F(c.solve_seconds, 2) + "</td></tr>\n";
-  return h + "</table>\n</section>\n";
-}
-
-std::string CompareSection(const RunReportPage& page) {
-  std::string h = "<section id=\"compare\"><h2>Displays side by side on the same target</h2>\n";
-  h +=
-      "<p class=\"muted\">Brightness efficiency: light at the eye per light the backlights emit. Balance: the channels "
-      "relative to the strongest (1 : 1 : 1 keeps white white; the factorization compensates the rest). Solver "
-      "options: "
-      "<i>shared</i>, the same for every row (the solver's defaults and the command's overrides); <i>scene</i>, the "
-      "scene's own \"solve\" section.</p>\n";
-  h += "<table><tr><th class=\"l\">display</th><th class=\"l\">solver</th><th class=\"l\">objective</th>"
-       "<th>PSNR (dB)</th><th>focal-stack PSNR (dB)</th><th>seconds</th><th>iterations</th><th>brightness "
-       "(luminance)</th><th>brightness R / G / B</th><th>balance R : G : B</th>"
-       "<th class=\"l\">termination</th><th class=\"l\">solver options</th></tr>\n";
-  for (const CompareResult& r : page.compare) {
-    const double focal_stack = FinalFocalStackPsnr(r.report);
-    h += "<tr><td class=\"l\">" + Escape(r.display) + "</td><td class=\"l\">" + Escape(r.solver) +
-         "</td><td class=\"l\">" + Escape(r.report.objective) + "</td><td>" + F(r.report.final_psnr_db, 2) +
-         "</td><td>" + (std::isnan(focal_stack) ? "&ndash;" : F(focal_stack, 2)) + "</td><td>" +
-         F(r.report.seconds, 2) + "</td><td>" + std::to_string(r.report.iterations) + "</td><td>" +
-         F(r.luminance_efficiency, 4) + "</td><td>" + Rgb3(r.brightness_efficiency, 4) + "</td><td>" +
-         Balance(r.brightness_efficiency) + "</td><td class=\"l\">" + Escape(ToString(r.report.termination)) +
-         "</td><td class=\"l\">" + Escape(r.options_from) + "</td></tr>\n";
-  }
-  h += "</table>\n<div class=\"grid\">" + Figure(page.compare_plot, "", "plot") + "</div>\n";
-  return h + "</section>\n";
-}
-
 }  // namespace
+
+std::string HtmlNumber(double v, int decimals) {
+  if (std::isnan(v)) return "&ndash;";
+  if (std::isinf(v)) return v > 0 ? "&infin;" : "&minus;&infin;";
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", decimals, v);
+  return text;
+}
+
+std::string HtmlLinks(const std::vector<std::pair<std::string, std::string>>& links) {
+  std::string out;
+  for (const auto& [label, path] : links)
+    out += " <a class=\"file\" href=\"" + Escape(path) + "\">" + Escape(label) + "</a>";
+  return out;
+}
+
+std::string HtmlFigure(const ReportImage& image, const std::string& id, const std::string& extra_class) {
+  std::string id_attr = id.empty() ? "" : " id=\"" + id + "\"";
+  return "<figure class=\"" + extra_class + "\"><a" + (id.empty() ? "" : " id=\"" + id + "-link\"") + " href=\"" +
+         Escape(image.href.empty() ? image.src : image.href) + "\"><img" + id_attr + " src=\"" + Escape(image.src) +
+         "\" alt=\"" + Escape(image.caption) + "\"></a><figcaption" + (id.empty() ? "" : " id=\"" + id + "-caption\"") +
+         ">" +
+         // A plot carries its own title: the caption only links its files.
+         (extra_class == "plot" ? std::string() : Escape(image.caption)) + HtmlLinks(image.links) +
+         "</figcaption></figure>\n";
+}
+
+std::string HtmlRgb(const Rgb& v, int decimals) {
+  return HtmlNumber(v[0], decimals) + " / " + HtmlNumber(v[1], decimals) + " / " + HtmlNumber(v[2], decimals);
+}
 
 ReportImage Picture(std::string caption, std::string src, std::vector<std::pair<std::string, std::string>> links,
                     std::string href) {
@@ -353,16 +247,9 @@ std::string RenderRunReport(const RunReportPage& page) {
   h += "<header><h1>" + Escape(page.title) + "</h1><p>" + Escape(page.description) + "</p><p>scene <code>" +
        Escape(page.scene_file) + "</code> &middot; <code>" + Escape(page.command) + "</code></p>\n<p id=\"version\">" +
        Escape(page.version) + "</p>\n<nav>";
-  const std::pair<bool, std::string> sections[] = {{true, "steps|Steps"},
-                                                   {page.system != nullptr, "system|Display system"},
-                                                   {!page.target_source.empty(), "target|Target"},
-                                                   {page.solved, "solve|Factorization"},
-                                                   {!page.retina.empty(), "retina|Retinal images"},
-                                                   {!page.contrast_plot.src.empty(), "contrast|Contrast"},
-                                                   {!page.compare_plot.src.empty(), "compare|Comparison"}};
-  for (const auto& [shown, anchor] : sections)
-    if (shown)
-      h += "<a href=\"#" + anchor.substr(0, anchor.find('|')) + "\">" + anchor.substr(anchor.find('|') + 1) + "</a>";
+  h += "<a href=\"#steps\">Steps</a>";
+  if (page.system) h += "<a href=\"#system\">Display system</a>";
+  for (const ReportSection& section : page.sections) h += "<a href=\"#" + section.id + "\">" + section.title + "</a>";
   h += "</nav></header>\n<main>\n";
   h += "<pre id=\"selftest\" hidden></pre>\n";
   h += "<section id=\"steps\"><h2>Steps</h2><table><tr><th class=\"l\">step</th><th>wall time (s)</th></tr>\n";
@@ -371,26 +258,8 @@ std::string RenderRunReport(const RunReportPage& page) {
   h += "</table>\n";
   for (const std::string& w : page.warnings) h += "<p class=\"warn\">warning: " + Escape(w) + "</p>\n";
   h += "</section>\n";
-
   if (page.system) h += SystemSection(page);
-  if (!page.target_source.empty()) {
-    h += "<section id=\"target\"><h2>Target</h2><p>" + Escape(page.target_source) + "</p><div class=\"grid\">" +
-         Figure(page.target, "", "panel") + "</div></section>\n";
-  }
-  if (page.solved) {
-    h += "<section id=\"solve\"><h2>Factorization</h2><p>" + Escape(page.solve_brief) + Links(page.solve_links) +
-         "</p>\n";
-    h += "<div class=\"grid\">" + Figure(page.psnr_plot, "", "plot") + "</div>\n";
-    h += "<h3>Layer patterns (linear transmittance, panel pixel order)</h3><div class=\"grid\">\n";
-    for (const ReportImage& p : page.patterns) h += Figure(p, "", "small");
-    h += "</div>\n<h3>Panel-ready images (gamma- and black-level-encoded; the active region, a click shows the full "
-         "panel)</h3><div class=\"grid\">\n";
-    for (const ReportImage& p : page.panels) h += Figure(p, "", "panel");
-    h += "</div></section>\n";
-  }
-  if (!page.retina.empty()) h += RetinaSection(page);
-  if (!page.contrast_plot.src.empty()) h += ContrastSection(page);
-  if (!page.compare_plot.src.empty()) h += CompareSection(page);
+  for (const ReportSection& section : page.sections) h += section.html;
   h += "</main>\n<script>" + std::string(kScript) + "</script>\n</body></html>\n";
   return h;
 }

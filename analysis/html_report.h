@@ -13,8 +13,6 @@
 #include <utility>
 #include <vector>
 
-#include "analysis/compare.h"
-#include "analysis/contrast.h"
 #include "systems/display_system.h"
 
 namespace layerlab {
@@ -36,6 +34,15 @@ struct ReportRetinaState {
   double display_mean_cd_m2 = 0, natural_mean_cd_m2 = 0;
 };
 
+// One section of a page: what one step showed (analysis/report_sections.h builds them).
+struct ReportSection {
+  std::string id;                  // the anchor: <section id="retina">, the navigation's #retina
+  std::string title;               // the navigation's link text
+  std::vector<std::string> files;  // what the section wrote for the page, relative to the page
+  std::string html;                // the <section> element
+};
+
+// The page's frame (header, steps, the display system) and its sections in order.
 struct RunReportPage {
   std::string title, scene_file, description, command;
   std::string version;  // framework/version.h VersionLine()
@@ -45,25 +52,14 @@ struct RunReportPage {
   std::vector<std::pair<std::string, double>> steps;  // what ran, wall seconds
   std::vector<std::string> warnings;
 
-  std::string target_source;  // "" when there is no target
-  ReportImage target;         // its center view
-
-  bool solved = false;
-  std::string solve_brief;
-  ReportImage psnr_plot;
-  std::vector<ReportImage> patterns, panels;
-  std::vector<std::pair<std::string, std::string>> solve_links;
-
-  std::vector<ReportRetinaState> retina;
-  std::vector<std::pair<std::string, std::string>> retina_links;
-  double white_cd_m2 = 0;  // what 1 means in the retinal images
-
-  ReportImage contrast_plot;  // src empty when not run
-  std::vector<ContrastCurve> contrast;
-
-  ReportImage compare_plot;  // src empty when not run
-  std::vector<CompareResult> compare;
+  std::vector<ReportSection> sections;
 };
+
+// The pieces of a section's HTML: a number ("&ndash;" for NaN), file links, a linked figure.
+std::string HtmlNumber(double v, int decimals);
+std::string HtmlRgb(const Rgb& v, int decimals);  // "R / G / B"
+std::string HtmlLinks(const std::vector<std::pair<std::string, std::string>>& links);
+std::string HtmlFigure(const ReportImage& image, const std::string& id = "", const std::string& extra_class = "");
 
 std::string RenderRunReport(const RunReportPage& page);
 

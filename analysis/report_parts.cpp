@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "analysis/report_sections.h"
 #include "framework/atomic_file.h"
 #include "framework/error.h"
 #include "framework/png_writer.h"
@@ -39,13 +40,16 @@ RunReportPage CommandPage(const std::string& command, const std::string& scene_f
 void AddSolveToPage(const DisplaySystem& system, const Patterns& patterns, const SolverReport& report,
                     const std::string& folder, const std::string& prefix, bool with_lightfield, RunReportPage* page) {
   const fs::path out(folder);
+  std::vector<ReportImage> patterns_shown, panels;
+  std::vector<std::string> files;
   MakeFolder(out / "pattern_previews");
   MakeFolder(out / "panel_previews");
   for (size_t k = 0; k < system.layers.size(); ++k) {
     const VirtualLayer& layer = system.layers[k];
     const std::string preview = "pattern_previews/" + layer.name + ".png";
     WriteSrgbPng((out / preview).string(), patterns[k].cols, patterns[k].rows, patterns[k].rgb);
-    page->patterns.push_back(Picture(layer.name + " (" + FormatFixed(layer.diopters, 2) + " D)", prefix + preview,
+    files.push_back(prefix + preview);
+    patterns_shown.push_back(Picture(layer.name + " (" + FormatFixed(layer.diopters, 2) + " D)", prefix + preview,
                                      {{"EXR", prefix + "patterns/" + layer.name + ".exr"}}));
     // The panel-ready image cropped to the pixels the layer drives; the full panel is a click away.
     const PanelEncoding encoded = EncodeForPanel(layer, patterns[k]);
@@ -60,27 +64,30 @@ void AddSolveToPage(const DisplaySystem& system, const Patterns& patterns, const
     const std::string cropped = "panel_previews/" + layer.name + ".png";
     WritePng8((out / cropped).string(), patterns[k].cols, patterns[k].rows, 3, active);
     const std::string full = prefix + "panels/" + layer.name + ".png";
-    page->panels.push_back(Picture(layer.name + ": active " + std::to_string(patterns[k].cols) + " x " +
-                                       std::to_string(patterns[k].rows) + " of the " +
-                                       std::to_string(panel.resolution_cols) + " x " +
-                                       std::to_string(panel.resolution_rows) + " panel",
-                                   prefix + cropped, {{"full panel PNG", full}}, full));
+    files.push_back(prefix + cropped);
+    panels.push_back(Picture(layer.name + ": active " + std::to_string(patterns[k].cols) + " x " +
+                                 std::to_string(patterns[k].rows) + " of the " + std::to_string(panel.resolution_cols) +
+                                 " x " + std::to_string(panel.resolution_rows) + " panel",
+                             prefix + cropped, {{"full panel PNG", full}}, full));
   }
   CompareResult self{fs::path(system.file).stem().string(), report.solver, report, system.brightness_efficiency,
                      system.luminance_efficiency};
   WriteFileAtomically((out / "psnr_vs_time.svg").string(), PsnrAgainstTimeSvg({self}));
-  page->solved = true;
-  page->solve_brief = report.BriefReport();
-  page->psnr_plot = Picture("PSNR against wall time", prefix + "psnr_vs_time.svg",
-                            {{"SVG", prefix + "psnr_vs_time.svg"}, {"CSV", prefix + "trace.csv"}});
-  page->solve_links = {{"report.txt", prefix + "report.txt"},
-                       {"report.json", prefix + "report.json"},
-                       {"trace.csv", prefix + "trace.csv"}};
-  if (with_lightfield) page->solve_links.push_back({"synthesized light field", prefix + "lightfield/lightfield.json"});
+  const ReportImage plot = Picture("PSNR against wall time", prefix + "psnr_vs_time.svg",
+                                   {{"SVG", prefix + "psnr_vs_time.svg"}, {"CSV", prefix + "trace.csv"}});
+  Links links = {{"report.txt", prefix + "report.txt"},
+                 {"report.json", prefix + "report.json"},
+                 {"trace.csv", prefix + "trace.csv"}};
+  if (with_lightfield) links.push_back({"synthesized light field", prefix + "lightfield/lightfield.json"});
+  files.push_back(prefix + "psnr_vs_time.svg");
+  page->sections.push_back(
+      {"solve", "Factorization", files, SolveHtml(report.BriefReport(), links, plot, patterns_shown, panels)});
 }
 
 void AddRetinaToPage(const std::vector<RetinaStateResult>& states, const std::vector<double>& declared, bool natural,
                      double white_cd_m2, const std::string& prefix, RunReportPage* page) {
+  std::vector<ReportRetinaState> shown;
+  std::vector<std::string> files = {prefix + "retina.csv"};
   for (const RetinaStateResult& s : states) {
     ReportRetinaState rs;
     rs.diopters = s.diopters;
@@ -91,12 +98,15 @@ void AddRetinaToPage(const std::vector<RetinaStateResult>& states, const std::ve
     if (natural)
       rs.natural = Picture("natural viewing of the target, focused at " + at, n + ".png",
                            {{"PNG", n + ".png"}, {"EXR", n + ".exr"}});
+    for (const ReportImage* image : {&rs.display, &rs.natural})
+      for (const auto& [label, path] : image->links) files.push_back(path);
     rs.display_mean_cd_m2 = s.display_mean_cd_m2;
     rs.natural_mean_cd_m2 = s.natural_mean_cd_m2;
-    page->retina.push_back(rs);
+    shown.push_back(rs);
   }
-  page->retina_links = {{"retina.csv", prefix + "retina.csv"}};
-  page->white_cd_m2 = white_cd_m2;
+  if (shown.empty()) return;
+  page->sections.push_back(
+      {"retina", "Retinal images", files, RetinaHtml(shown, {{"retina.csv", prefix + "retina.csv"}}, white_cd_m2)});
 }
 
 void AddContrastToPage(const std::vector<ContrastCurve>& curves, const std::string& folder, const std::string& prefix,
@@ -106,10 +116,13 @@ void AddContrastToPage(const std::vector<ContrastCurve>& curves, const std::stri
   WriteFileAtomically((out / "contrast.csv").string(), ContrastCsv(curves));
   WriteFileAtomically((out / "peaks.txt").string(), PeakTable(curves));
   WriteFileAtomically((out / "contrast.svg").string(), ContrastSvg(curves));
-  page->contrast = curves;
-  page->contrast_plot =
+  const ReportImage plot =
       Picture("normalized contrast against accommodation", prefix + "contrast.svg",
               {{"SVG", prefix + "contrast.svg"}, {"CSV", prefix + "contrast.csv"}, {"peaks", prefix + "peaks.txt"}});
+  page->sections.push_back({"contrast",
+                            "Contrast",
+                            {prefix + "contrast.csv", prefix + "peaks.txt", prefix + "contrast.svg"},
+                            ContrastHtml(plot, curves)});
 }
 
 void AddCompareToPage(const std::vector<CompareResult>& results, const std::string& folder, const std::string& prefix,
@@ -120,10 +133,14 @@ void AddCompareToPage(const std::vector<CompareResult>& results, const std::stri
   WriteFileAtomically((out / "compare.csv").string(), CompareCsv(results));
   WriteFileAtomically((out / "traces.csv").string(), TracesCsv(results));
   WriteFileAtomically((out / "psnr_vs_time.svg").string(), PsnrAgainstTimeSvg(results));
-  page->compare = results;
-  page->compare_plot = Picture(
+  const ReportImage plot = Picture(
       "PSNR against wall time, every display and solver", prefix + "psnr_vs_time.svg",
       {{"SVG", prefix + "psnr_vs_time.svg"}, {"CSV", prefix + "compare.csv"}, {"traces", prefix + "traces.csv"}});
+  page->sections.push_back(
+      {"compare",
+       "Comparison",
+       {prefix + "compare.txt", prefix + "compare.csv", prefix + "traces.csv", prefix + "psnr_vs_time.svg"},
+       CompareHtml(results, plot)});
 }
 
 void WriteReportPage(const RunReportPage& page, const std::string& folder) {

@@ -47,6 +47,13 @@ void AttachRetinalTarget(const Target& target, SolverOptions* options) {
 
 std::unique_ptr<Target> LoadOrRenderTarget(const SolveConfig& config, const std::string& label,
                                            const RenderCache* cache) {
+#if LAYERLAB_WITH_EMBREE
+  return LoadOrRenderTarget(config, label, cache, nullptr);
+}
+
+std::unique_ptr<Target> LoadOrRenderTarget(const SolveConfig& config, const std::string& label,
+                                           const RenderCache* cache, std::unique_ptr<TargetScene> scene) {
+#endif
   auto target = std::make_unique<Target>();
   if (!config.target.empty()) {
     target->source = config.target;
@@ -58,7 +65,7 @@ std::unique_ptr<Target> LoadOrRenderTarget(const SolveConfig& config, const std:
     throw Error("no target: give \"solve\": {\"target\": LF_DIR} or {\"target_scene\": TARGET.json}");
   target->source = config.target_scene;
 #if LAYERLAB_WITH_EMBREE
-  target->scene = std::make_unique<TargetScene>(LoadTarget(config.target_scene));
+  target->scene = scene ? std::move(scene) : std::make_unique<TargetScene>(LoadTarget(config.target_scene));
   const LightFieldGeometry& g = target->scene->geometry;
   target->rendered = true;
   target->digest = TargetSceneDigest(*target->scene);

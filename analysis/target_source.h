@@ -58,6 +58,11 @@ struct RenderCache {
 // this build has none.
 std::unique_ptr<Target> LoadOrRenderTarget(const SolveConfig& config, const std::string& label,
                                            const RenderCache* cache = nullptr);
+#if LAYERLAB_WITH_EMBREE
+// The same with config.target_scene already read into `scene` (null: read it here), so that a run reads it once.
+std::unique_ptr<Target> LoadOrRenderTarget(const SolveConfig& config, const std::string& label,
+                                           const RenderCache* cache, std::unique_ptr<TargetScene> scene);
+#endif
 
 // What the target is, for reports: "rendered from T.json (key ..., reused
 // from the cache): 13 x 13 views of 400 x 200 pixels" or "light field DIR: ...".

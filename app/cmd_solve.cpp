@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -15,6 +16,7 @@
 #include <string>
 
 #include "analysis/report_parts.h"
+#include "analysis/solve_job.h"
 #include "analysis/target_source.h"
 #include "app/command_line.h"
 #include "app/commands.h"
@@ -30,7 +32,6 @@
 #include "framework/staged_output.h"
 #include "framework/warnings.h"
 #include "solvers/memory_estimate.h"
-#include "solvers/solution_writer.h"
 #include "solvers/solve_config.h"
 #include "solvers/solver_checkpoint.h"
 #include "systems/compile.h"
@@ -107,20 +108,10 @@ std::unique_ptr<Target> LoadRankTarget(const SolveConfig& config, const Ranks& r
   return LoadOrRenderTarget(config, "target");  // says why there is none
 }
 
-// The solve of one process, or of this rank.
-void Solve(const Options& o, Ranks& ranks) {
-  Scene scene = LoadScene(o.scene);
-  DisplaySystem system = Compile(scene);
-  SolveConfig config = ReadSolveConfig(scene, system);
-  if (!o.solver.empty() && o.solver != config.solver) {
-    config.solver = o.solver;
-    SolverRegistry::Builtins().create(o.solver);  // names the known ones if unknown
-    config.options = SolverRegistry::Builtins().find(o.solver)->defaults;
-  }
-  SolverOptions& opt = config.options;
-  ApplyTargetOption(o.target, config);
-  RequireTarget(config, o.scene);
-  // Any value given is checked by SolverOptions.
+// The overrides step: the command line's values over the scene's "solve"
+// section; any value given is checked by SolverOptions.
+void ApplyOverrides(const Options& o, SolveConfig* config) {
+  SolverOptions& opt = config->options;
   opt.iterations = o.iterations.value_or(opt.iterations);
   opt.sub_iterations = o.sub_iterations.value_or(opt.sub_iterations);
   opt.warm_start_iterations = o.warm_start_iterations.value_or(opt.warm_start_iterations);
@@ -128,7 +119,7 @@ void Solve(const Options& o, Ranks& ranks) {
   opt.tolerance = o.tolerance.value_or(opt.tolerance);
   opt.initial_value = o.initial_value.value_or(opt.initial_value);
   opt.threads = o.threads.value_or(opt.threads);
-  if (!o.sampling.empty()) config.sampling = SamplingFromString(o.sampling);
+  if (!o.sampling.empty()) config->sampling = SamplingFromString(o.sampling);
   if (!o.target_range.empty()) {
     if (o.target_range != "clip" && o.target_range != "scale")
       throw Error("--target-range: \"" + o.target_range + "\" is not one of clip or scale");
@@ -139,7 +130,7 @@ void Solve(const Options& o, Ranks& ranks) {
     if (!objective) throw Error("--objective: \"" + o.objective + "\" is not one of lightfield or retinal");
     opt.objective = *objective;
   }
-  if (const std::string why = ObjectiveRefusal(config.solver, opt.objective); !why.empty())
+  if (const std::string why = ObjectiveRefusal(config->solver, opt.objective); !why.empty())
     throw Error("--objective " + ToString(opt.objective) + ": " + why);
   opt.measure_focal_stack = o.measure_focal_stack;
   if (o.contrast_sensitivity) opt.retinal.contrast_sensitivity = true;
@@ -148,29 +139,47 @@ void Solve(const Options& o, Ranks& ranks) {
       throw Error("--retinal-target: \"" + o.retinal_target + "\" is not one of lightfield or traced");
     opt.retinal.target = o.retinal_target == "traced" ? RetinalTarget::kTraced : RetinalTarget::kLightField;
   }
+}
+
+// What cannot be split across MPI ranks, refused before anything is read.
+void RefuseWithRanks(const Options& o, const SolverOptions& opt, const Ranks& ranks) {
+  if (ranks.size <= 1) return;
   // The retinal operator blends views across the whole eyebox, so it needs every view on one rank.
-  if (ranks.size > 1 && (opt.objective == ObjectiveKind::kRetinal || opt.measure_focal_stack))
+  if (opt.objective == ObjectiveKind::kRetinal || opt.measure_focal_stack)
     throw Error("the retinal objective and --measure-focal-stack: not with MPI ranks (" + std::to_string(ranks.size) +
                 "); run the solve in one process");
-
-  if (ranks.size > 1 && (o.checkpoint_every > 0 || o.resume))
+  if (o.checkpoint_every > 0 || o.resume)
     throw Error("--checkpoint-every and --resume: not with MPI ranks (" + std::to_string(ranks.size) +
                 "); run the solve in one process to checkpoint it");
-  // This rank's block of whole view rows (all of them for one process).
-  const LightFieldGeometry whole = TargetGeometry(config);
-  if (ranks.size > whole.views_y)
-    throw Error(std::to_string(ranks.size) + " MPI ranks for " + std::to_string(whole.views_y) +
-                " view rows: each rank holds whole view rows; run at most " + std::to_string(whole.views_y));
-  const ViewRowBlock rows = ViewRowsOfRank(whole.views_y, ranks.rank, ranks.size);
-  const LightFieldGeometry block = ranks.group() ? whole.ViewRows(rows.first, rows.count) : whole;
+}
 
-  // Refuse what cannot fit before reading the views or rendering the target (per rank: its block's rays).
+// The views of the target this process solves: its rank's block of whole view rows, or all of them.
+struct RankViews {
+  LightFieldGeometry whole, block;
+  ViewRowBlock rows;
+};
+
+RankViews ViewsOfRank(const SolveConfig& config, const Ranks& ranks) {
+  RankViews v;
+  v.whole = TargetGeometry(config);
+  if (ranks.size > v.whole.views_y)
+    throw Error(std::to_string(ranks.size) + " MPI ranks for " + std::to_string(v.whole.views_y) +
+                " view rows: each rank holds whole view rows; run at most " + std::to_string(v.whole.views_y));
+  v.rows = ViewRowsOfRank(v.whole.views_y, ranks.rank, ranks.size);
+  v.block = ranks.group() ? v.whole.ViewRows(v.rows.first, v.rows.count) : v.whole;
+  return v;
+}
+
+// The memory check: refuses what cannot fit before reading the views or
+// rendering the target (per rank: its block's rays).
+void CheckMemory(const Options& o, const DisplaySystem& system, const SolveConfig& config, const RankViews& views,
+                 const Ranks& ranks) {
   const size_t limit = o.max_memory.empty() ? 0 : ParseByteSize(o.max_memory, "--max-memory");
   const std::string limit_name = "--max-memory " + FormatBytes(double(limit));
   std::string refused;
   size_t need = 0;
   try {
-    need = RefuseSolveBeyondMemory(system, block, config, opt.threads, limit,
+    need = RefuseSolveBeyondMemory(system, views.block, config, config.options.threads, limit,
                                    ranks.size > 1 ? limit_name + " per rank" : limit_name);
   } catch (const Error& e) {
     refused = e.what();
@@ -178,63 +187,116 @@ void Solve(const Options& o, Ranks& ranks) {
   ranks.ThrowIfAnyFailed(refused);
   if (ranks.size > 1)
     Note("rank 0 of " + std::to_string(ranks.size) + " needs about " + FormatBytes(double(need)) + " for view rows " +
-         std::to_string(rows.first) + "-" + std::to_string(rows.first + rows.count - 1) + " of " +
-         std::to_string(whole.views_y) + " (each rank its own block's share)");
+         std::to_string(views.rows.first) + "-" + std::to_string(views.rows.first + views.rows.count - 1) + " of " +
+         std::to_string(views.whole.views_y) + " (each rank its own block's share)");
   else
     Note("the solve needs about " + FormatBytes(double(need)));
-  // The results are built beside the earlier ones and switched into place when complete; by rank 0 alone.
-  std::optional<StagedOutput> stage;
-  if (ranks.root()) {
-    stage.emplace(
-        o.out, "solve",
-        std::vector<std::string>{"patterns", "panels", "lightfield", "trace.csv", "report.txt", "report.json",
-                                 "checkpoint", "index.html", "pattern_previews", "panel_previews", "psnr_vs_time.svg"},
-        std::vector<NamedInput>{
-            {o.scene, "the scene"}, {config.target, "the target"}, {config.target_scene, "the target scene"}});
-    for (const std::string& line : stage->recovered()) Note("solve: " + line);
-  }
+}
+
+// The staging step: the results are built beside the earlier ones and
+// switched into place when complete; by rank 0 alone.
+void Stage(const Options& o, const SolveConfig& config, const Ranks& ranks, std::optional<StagedOutput>* stage) {
+  if (!ranks.root()) return;
+  stage->emplace(
+      o.out, "solve",
+      std::vector<std::string>{"patterns", "panels", "lightfield", "trace.csv", "report.txt", "report.json",
+                               "checkpoint", "index.html", "pattern_previews", "panel_previews", "psnr_vs_time.svg"},
+      std::vector<NamedInput>{
+          {o.scene, "the scene"}, {config.target, "the target"}, {config.target_scene, "the target scene"}});
+  for (const std::string& line : (*stage)->recovered()) Note("solve: " + line);
+}
+
+// This rank's views of the target; a rank that cannot read its own ends every rank.
+std::unique_ptr<Target> LoadTargetOfRank(const SolveConfig& config, const Ranks& ranks, const RankViews& views) {
   std::unique_ptr<Target> target;
   std::string unread;
   try {
-    target = LoadRankTarget(config, ranks, block);
+    target = LoadRankTarget(config, ranks, views.block);
   } catch (const Error& e) {
     unread = e.what();
   }
   ranks.ThrowIfAnyFailed(unread);
-  DisplayModel model(system, target->light_field.geometry, config.sampling);
-  AttachRetinalTarget(*target, &opt);
-  InstallInterruptHandler();
-  opt.interrupted = Interrupted;
-  const std::string checkpoint_folder = (std::filesystem::path(o.out) / "checkpoint").string();
-  if (o.checkpoint_every < 0) throw Error("--checkpoint-every: must be 0 (none) or positive");
-  opt.checkpoint_every = o.checkpoint_every;
-  // Hashing the target costs a pass over it: only when a checkpoint is written or read.
-  const CheckpointInputs digest =
-      o.checkpoint_every > 0 || o.resume
-          ? CheckpointDigest(model, config.sampling, target->light_field, config.solver, opt)
-          : CheckpointInputs{};
-  if (o.checkpoint_every > 0)
-    opt.checkpoint = [&](const SolverCheckpoint& c) { WriteCheckpoint(model, c, checkpoint_folder, digest); };
+  return target;
+}
+
+// Checkpoints written every N iterations, and a solve resumed from one: the
+// hook the solve job calls with the model before the solver starts.
+struct Checkpointing {
+  const Options& o;
+  const SolveConfig& config;
+  const LightField& views;
+  CheckpointInputs digest;
   std::optional<SolverCheckpoint> resume;
-  if (o.resume) {
-    RefuseMismatchedCheckpoint(checkpoint_folder, digest);
-    resume = ReadCheckpoint(model, checkpoint_folder);
-    opt.resume = &*resume;
+
+  void operator()(const DisplayModel& model, SolverOptions* opt) {
+    InstallInterruptHandler();
+    opt->interrupted = Interrupted;
+    const std::string folder = (std::filesystem::path(o.out) / "checkpoint").string();
+    if (o.checkpoint_every < 0) throw Error("--checkpoint-every: must be 0 (none) or positive");
+    opt->checkpoint_every = o.checkpoint_every;
+    // Hashing the target costs a pass over it: only when a checkpoint is written or read.
+    if (o.checkpoint_every > 0 || o.resume)
+      digest = CheckpointDigest(model, config.sampling, views, config.solver, *opt);
+    if (o.checkpoint_every > 0)
+      opt->checkpoint = [this, &model, folder](const SolverCheckpoint& c) {
+        WriteCheckpoint(model, c, folder, digest);
+      };
+    if (!o.resume) return;
+    RefuseMismatchedCheckpoint(folder, digest);
+    resume = ReadCheckpoint(model, folder);
+    opt->resume = &*resume;
     Note("resuming " + resume->solver + " from iteration " + std::to_string(resume->iteration));
   }
-  Patterns patterns;
-  SolverReport report;
-  {
-    Progress progress(config.solver, opt.iterations);
-    opt.progress = [&](const IterationRecord& row) {
-      char detail[64];
-      std::snprintf(detail, sizeof detail, "iterations  PSNR %.2f dB", row.psnr_db);
-      progress.Update(row.iteration, detail);
-    };
-    const ScopedSolveRanks partitioned(ranks.group());
-    report = SolverRegistry::Builtins().create(config.solver)->Solve(model, target->light_field, opt, &patterns);
-    progress.Finish(ToString(report.termination));
+};
+
+// The writing and page steps, by rank 0: the solution, the page, the switch into place.
+void WriteResults(const Options& o, const Scene& scene, const DisplaySystem& system, const SolveConfig& config,
+                  const DisplayModel& written, const SolvedJob& solved, StagedOutput& stage) {
+  try {
+    RunReportPage page =
+        CommandPage("solve", o.scene, scene.name.empty() ? std::filesystem::path(o.scene).stem().string() : scene.name,
+                    scene.description, CommandLine());
+    page.system = &system;
+    page.steps = {{"solve (" + config.solver + ", " + std::to_string(solved.report.iterations) + " iterations)",
+                   solved.report.seconds}};
+    page.warnings = solved.report.warnings;
+    WriteSolveJob(written, system, solved, stage.staging(), "", o.write_lightfield, &page);
+    WriteReportPage(page, stage.staging());
+  } catch (const Error& e) {
+    throw stage.Explain(e);
   }
+  const StagedOutput::Switched switched = stage.Commit();
+  if (!switched.removed.empty())
+    std::fprintf(stderr, "solve: removed %zu file%s an earlier solve wrote into %s\n", switched.removed.size(),
+                 switched.removed.size() == 1 ? "" : "s", o.out.c_str());
+  std::cout << "wrote " << o.out << "/{index.html,patterns,panels,trace.csv,report.txt,report.json"
+            << (o.write_lightfield ? ",lightfield" : "") << "}\n";
+}
+
+// The solve of one process, or of this rank: the solve job's steps
+// (analysis/solve_job.h) with the command line's values.
+void Solve(const Options& o, Ranks& ranks) {
+  const Scene scene = LoadScene(o.scene);
+  const DisplaySystem system = Compile(scene);
+  SolveJob job;
+  job.system = &system;
+  job.config = SolveJobConfig(scene, system, o.solver);
+  SolveConfig& config = job.config;
+  ApplyTargetOption(o.target, config);
+  RequireTarget(config, o.scene);
+  ApplyOverrides(o, &config);
+  RefuseWithRanks(o, config.options, ranks);
+  const RankViews views = ViewsOfRank(config, ranks);
+  CheckMemory(o, system, config, views, ranks);
+  std::optional<StagedOutput> stage;
+  Stage(o, config, ranks, &stage);
+  std::unique_ptr<Target> target = LoadTargetOfRank(config, ranks, views);
+  Checkpointing checkpointing{o, config, target->light_field, {}, {}};
+  job.progress_label = config.solver;
+  job.ranks = ranks.group();
+  job.before_solve = std::ref(checkpointing);
+  SolvedJob solved = RunSolveJob(job, target->light_field, target.get());
+  SolverReport& report = solved.report;
 #if LAYERLAB_WITH_MPI
   if (!ranks.root()) {  // every rank holds the same patterns and report: rank 0 writes them
     target.reset();
@@ -243,38 +305,19 @@ void Solve(const Options& o, Ranks& ranks) {
   }
   // The solution is written for the whole light field.
   std::optional<DisplayModel> whole_model;
-  if (ranks.group()) whole_model.emplace(system, whole, config.sampling);
+  if (ranks.group()) whole_model.emplace(system, views.whole, config.sampling);
   if (whole_model) target.reset();
-  const DisplayModel& written = whole_model ? *whole_model : model;
+  const DisplayModel& written = whole_model ? *whole_model : *solved.model;
 #else
-  const DisplayModel& written = model;
+  const DisplayModel& written = *solved.model;
 #endif
   std::vector<std::string> found = system.warnings;  // the compile's and the target's first
-  for (const std::string& w : TargetGeometryWarnings(system, whole)) found.push_back(w);
+  for (const std::string& w : TargetGeometryWarnings(system, views.whole)) found.push_back(w);
   report.warnings.insert(report.warnings.begin(), found.begin(), found.end());
   SayWarnings(report.warnings);
   std::cout << report.BriefReport() << "\n";
   if (!report.IsSolutionUsable()) throw Error("the solve failed: " + report.message + "; nothing was written");
-  try {
-    WriteSolution(written, patterns, report, stage->staging(), {.write_lightfield = o.write_lightfield});
-    RunReportPage page =
-        CommandPage("solve", o.scene, scene.name.empty() ? std::filesystem::path(o.scene).stem().string() : scene.name,
-                    scene.description, CommandLine());
-    page.system = &system;
-    page.steps = {
-        {"solve (" + config.solver + ", " + std::to_string(report.iterations) + " iterations)", report.seconds}};
-    page.warnings = report.warnings;
-    AddSolveToPage(system, patterns, report, stage->staging(), "", o.write_lightfield, &page);
-    WriteReportPage(page, stage->staging());
-  } catch (const Error& e) {
-    throw stage->Explain(e);
-  }
-  const StagedOutput::Switched switched = stage->Commit();
-  if (!switched.removed.empty())
-    std::fprintf(stderr, "solve: removed %zu file%s an earlier solve wrote into %s\n", switched.removed.size(),
-                 switched.removed.size() == 1 ? "" : "s", o.out.c_str());
-  std::cout << "wrote " << o.out << "/{index.html,patterns,panels,trace.csv,report.txt,report.json"
-            << (o.write_lightfield ? ",lightfield" : "") << "}\n";
+  WriteResults(o, scene, system, config, written, solved, *stage);
 #if LAYERLAB_WITH_MPI
   if (ranks.world) ranks.world->Barrier();  // the others wait for the results to be in place
 #endif

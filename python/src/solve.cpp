@@ -15,6 +15,7 @@
 #include <pybind11/stl.h>
 
 #include "analysis/retina_sweep.h"
+#include "analysis/solve_job.h"
 #include "analysis/target_source.h"
 #include "framework/lightfield_checks.h"
 #include "framework/units.h"
@@ -107,10 +108,9 @@ std::shared_ptr<LightField> TargetOf(const py::handle& target, const DisplaySyst
   return lf;
 }
 
-py::object Solve(const py::object& display, const py::object& target, std::optional<std::string> solver,
-                 std::optional<std::string> sampling, const py::object& callback, const py::kwargs& options) {
-  const SolverRegistry& registry = SolverRegistry::Builtins();
-  auto solution = std::make_shared<Solution>();
+// The config step of the solve job (analysis/solve_job.h) for a scene, or a
+// compiled system's default solver with its defaults.
+SolveConfig ConfigOf(const py::object& display, const std::optional<std::string>& solver, Solution* solution) {
   SolveConfig config;
   if (py::isinstance<Scene>(display)) {
     const Scene& scene = display.cast<const Scene&>();
@@ -122,12 +122,20 @@ py::object Solve(const py::object& display, const py::object& target, std::optio
       throw py::type_error("solve: display: expected a layerlab.Scene or layerlab.System, got " + TypeName(display));
     solution->system = display.cast<std::shared_ptr<DisplaySystem>>();
     config.solver = DefaultSolverFor(*solution->system);
-    config.options = registry.get(config.solver).defaults;
+    config.options = SolverRegistry::Builtins().get(config.solver).defaults;
   }
-  if (solver && *solver != config.solver) {
-    config.solver = *solver;
-    config.options = registry.get(*solver).defaults;  // names the known solvers for an unknown one
-  }
+  // names the known solvers for an unknown one
+  if (solver && *solver != config.solver) UseSolver(*solver, &config);
+  return config;
+}
+
+py::object Solve(const py::object& display, const py::object& target, std::optional<std::string> solver,
+                 std::optional<std::string> sampling, const py::object& callback, const py::kwargs& options) {
+  auto solution = std::make_shared<Solution>();
+  SolveJob job;
+  job.config = ConfigOf(display, solver, solution.get());
+  SolveConfig& config = job.config;
+  job.system = solution->system.get();
   if (const std::string why = UnsuitableSolver(config.solver, *solution->system); !why.empty())
     RaiseArgumentError(config.solver + " " + why);
   if (sampling) CheckArgument([&] { config.sampling = SamplingFromString(*sampling); });
@@ -148,15 +156,15 @@ py::object Solve(const py::object& display, const py::object& target, std::optio
   solution->solver = config.solver;
   solution->sampling = config.sampling;
 
-  SolverOptions& opt = config.options;
   SolveHooks hooks;
-  hooks.Install(opt, callback, TraceRow);
+  hooks.Install(config.options, callback, TraceRow);
   std::optional<py::error_already_set>& raised = hooks.raised;
   {
     py::gil_scoped_release release;
-    solution->model = std::make_shared<DisplayModel>(*solution->system, solution->target->geometry, config.sampling);
-    solution->report =
-        registry.create(config.solver)->Solve(*solution->model, *solution->target, opt, &solution->patterns);
+    SolvedJob solved = RunSolveJob(job, *solution->target, nullptr);
+    solution->model = std::move(solved.model);
+    solution->patterns = std::move(solved.patterns);
+    solution->report = std::move(solved.report);
   }
   if (raised) {
     if (raised->matches(PyExc_KeyboardInterrupt) && solution->report.IsSolutionUsable()) {

@@ -1,0 +1,147 @@
+#include "analysis/report_sections.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <nlohmann/json.hpp>
+
+#include "analysis/svg_plot.h"
+
+namespace layerlab {
+namespace {
+
+std::string F(double v, int decimals) { return HtmlNumber(v, decimals); }
+
+std::string Rgb3(const Rgb& v, int decimals) { return HtmlRgb(v, decimals); }
+
+// Channels relative to the strongest: how far white drifts in color.
+std::string Balance(const Rgb& v) {
+  double m = std::max({v[0], v[1], v[2]});
+  if (!(m > 0)) return "&ndash;";
+  return F(v[0] / m, 3) + " : " + F(v[1] / m, 3) + " : " + F(v[2] / m, 3);
+}
+
+}  // namespace
+
+std::string TargetHtml(const std::string& source, const ReportImage& center_view) {
+  return "<section id=\"target\"><h2>Target</h2><p>" + Escape(source) + "</p><div class=\"grid\">" +
+         HtmlFigure(center_view, "", "panel") + "</div></section>\n";
+}
+
+std::string SolveHtml(const std::string& brief, const ReportLinks& links, const ReportImage& psnr_plot,
+                      const std::vector<ReportImage>& patterns, const std::vector<ReportImage>& panels) {
+  std::string h = "<section id=\"solve\"><h2>Factorization</h2><p>" + Escape(brief) + HtmlLinks(links) + "</p>\n";
+  h += "<div class=\"grid\">" + HtmlFigure(psnr_plot, "", "plot") + "</div>\n";
+  h += "<h3>Layer patterns (linear transmittance, panel pixel order)</h3><div class=\"grid\">\n";
+  for (const ReportImage& p : patterns) h += HtmlFigure(p, "", "small");
+  h += "</div>\n<h3>Panel-ready images (gamma- and black-level-encoded; the active region, a click shows the full "
+       "panel)</h3><div class=\"grid\">\n";
+  for (const ReportImage& p : panels) h += HtmlFigure(p, "", "panel");
+  h += "</div></section>\n";
+  return h;
+}
+std::string RetinaHtml(const std::vector<ReportRetinaState>& states, const ReportLinks& links, double white_cd_m2) {
+  std::string h = "<section id=\"retina\"><h2>What the eye sees: retinal images over accommodation</h2>\n";
+  h += "<p class=\"muted\">Drag the slider to focus the eye (a focal stack). Linear values are display-relative (1 = " +
+       F(white_cd_m2, 1) + " cd/m&sup2;, the brightest branch at full white); the PNGs are sRGB with 1 as white." +
+       HtmlLinks(links) + "</p>\n";
+  size_t start = 0;
+  for (size_t k = 0; k < states.size(); ++k)
+    if (states[k].declared) {
+      start = k;
+      break;
+    }
+  h += "<div class=\"slider\"><label for=\"accommodation\">accommodation</label><div class=\"track\"><input "
+       "type=\"range\" id=\"accommodation\" min=\"0\" max=\"" +
+       std::to_string(states.size() - 1) + "\" step=\"1\" value=\"" + std::to_string(start) +
+       "\" list=\"declared-states\"><div class=\"ticks\">";
+  // A label under each declared state, where the thumb's center (16 px wide in Chromium) stands.
+  const double last = std::max<double>(1, double(states.size() - 1));
+  for (size_t k = 0; k < states.size(); ++k)
+    if (states[k].declared)
+      h += "<span style=\"left:calc(" + F(100 * k / last, 3) + "% + " + F(8 - 16 * k / last, 2) + "px)\">" +
+           F(states[k].diopters, 2) + " D</span>";
+  h += "</div></div><span id=\"state\"></span></div>\n<datalist id=\"declared-states\">";
+  for (size_t k = 0; k < states.size(); ++k)
+    if (states[k].declared) h += "<option value=\"" + std::to_string(k) + "\"></option>";
+  h += "</datalist>\n<div class=\"grid\">\n";
+  const ReportRetinaState& first = states[start];
+  h += HtmlFigure(first.display, "retina-display", "retina");
+  if (!first.natural.src.empty()) h += HtmlFigure(first.natural, "retina-natural", "retina");
+  h += "</div>\n<h3>Mean luminance at the retina</h3>\n<table><tr><th>accommodation (D)</th><th>display "
+       "(cd/m&sup2;)</th>"
+       "<th>natural viewing (cd/m&sup2;)</th><th class=\"l\">images</th></tr>\n";
+  nlohmann::json shown = nlohmann::json::array();
+  for (const ReportRetinaState& s : states) {
+    h += "<tr><td>" + F(s.diopters, 2) + (s.declared ? " &#9679;" : "") + "</td><td>" + F(s.display_mean_cd_m2, 2) +
+         "</td><td>" + F(s.natural_mean_cd_m2, 2) + "</td><td class=\"l\">display" + HtmlLinks(s.display.links) +
+         (s.natural.links.empty() ? "" : " &middot; natural" + HtmlLinks(s.natural.links)) + "</td></tr>\n";
+    nlohmann::json j = {{"diopters", s.diopters},
+                        {"display", s.display.src},
+                        {"display_caption", s.display.caption},
+                        {"display_links", s.display.links}};
+    if (!s.natural.src.empty()) {
+      j["natural"] = s.natural.src;
+      j["natural_caption"] = s.natural.caption;
+      j["natural_links"] = s.natural.links;
+    }
+    shown.push_back(j);
+  }
+  h += "</table>\n<p class=\"muted\">&#9679; a declared accommodation state (the slider's tick marks); the others are "
+       "the focal stack.</p>\n";
+  std::string data = shown.dump();
+  for (size_t at = data.find("</"); at != std::string::npos; at = data.find("</", at + 3)) data.replace(at, 2, "<\\/");
+  h += "<script>window.layerlabStates = " + data + ";</script>\n";
+  return h + "</section>\n";
+}
+
+std::string ContrastHtml(const ReportImage& plot, const std::vector<ContrastCurve>& curves) {
+  std::string h = "<section id=\"contrast\"><h2>Accommodation support: normalized contrast (Fig. 5)</h2>\n";
+  h += "<p class=\"muted\">A cosine grating on a plane at each target depth; each display is factorized for it and the "
+       "eye "
+       "sweeps its focus. A display supports accommodation when its peak follows the target depth (the grey "
+       "band).</p>\n";
+  h += "<div class=\"grid\">" + HtmlFigure(plot, "", "plot") + "</div>\n";
+  if (!curves.empty()) h += "<p class=\"muted\">" + Escape(curves.front().convention) + ".</p>\n";
+  std::vector<std::string> eyes;  // the eye model of the curves, each once
+  for (const ContrastCurve& c : curves)
+    if (std::find(eyes.begin(), eyes.end(), c.eye) == eyes.end()) eyes.push_back(c.eye);
+  for (const std::string& eye : eyes) h += "<p class=\"muted\">Eye: " + Escape(eye) + ".</p>\n";
+  h += "<h3>Peaks</h3>\n<table><tr><th class=\"l\">display</th><th>target (D)</th><th>f (cpd)</th><th>peak (D)</th>"
+       "<th>peak contrast</th><th>at target</th><th class=\"l\">solver</th><th>PSNR (dB)</th><th>solve (s)</th></tr>\n";
+  for (const ContrastCurve& c : curves)
+    h += "<tr><td class=\"l\">" + Escape(c.display) + "</td><td>" + F(c.target_diopters, 2) + "</td><td>" +
+         F(c.frequency, 1) + "</td><td>" + F(c.estimate.at, 3) + " &plusmn; " + F(c.estimate.uncertainty, 3) +
+         (c.estimate.flat ? " (flat)" : "") + "</td><td>" + F(c.peak.value, 3) + "</td><td>" + F(c.at_target, 3) +
+         "</td><td class=\"l\">" + Escape(c.solver) + "</td><td>" + (c.solver == "-" ? "&ndash;" : F(c.psnr_db, 2)) +
+         "</td><td>" + F(c.solve_seconds, 2) + "</td></tr>\n";
+  return h + "</table>\n</section>\n";
+}
+
+std::string CompareHtml(const std::vector<CompareResult>& results, const ReportImage& plot) {
+  std::string h = "<section id=\"compare\"><h2>Displays side by side on the same target</h2>\n";
+  h +=
+      "<p class=\"muted\">Brightness efficiency: light at the eye per light the backlights emit. Balance: the channels "
+      "relative to the strongest (1 : 1 : 1 keeps white white; the factorization compensates the rest). Solver "
+      "options: "
+      "<i>shared</i>, the same for every row (the solver's defaults and the command's overrides); <i>scene</i>, the "
+      "scene's own \"solve\" section.</p>\n";
+  h += "<table><tr><th class=\"l\">display</th><th class=\"l\">solver</th><th class=\"l\">objective</th>"
+       "<th>PSNR (dB)</th><th>focal-stack PSNR (dB)</th><th>seconds</th><th>iterations</th><th>brightness "
+       "(luminance)</th><th>brightness R / G / B</th><th>balance R : G : B</th>"
+       "<th class=\"l\">termination</th><th class=\"l\">solver options</th></tr>\n";
+  for (const CompareResult& r : results) {
+    const double focal_stack = FinalFocalStackPsnr(r.report);
+    h += "<tr><td class=\"l\">" + Escape(r.display) + "</td><td class=\"l\">" + Escape(r.solver) +
+         "</td><td class=\"l\">" + Escape(r.report.objective) + "</td><td>" + F(r.report.final_psnr_db, 2) +
+         "</td><td>" + (std::isnan(focal_stack) ? "&ndash;" : F(focal_stack, 2)) + "</td><td>" +
+         F(r.report.seconds, 2) + "</td><td>" + std::to_string(r.report.iterations) + "</td><td>" +
+         F(r.luminance_efficiency, 4) + "</td><td>" + Rgb3(r.brightness_efficiency, 4) + "</td><td>" +
+         Balance(r.brightness_efficiency) + "</td><td class=\"l\">" + Escape(ToString(r.report.termination)) +
+         "</td><td class=\"l\">" + Escape(r.options_from) + "</td></tr>\n";
+  }
+  h += "</table>\n<div class=\"grid\">" + HtmlFigure(plot, "", "plot") + "</div>\n";
+  return h + "</section>\n";
+}
+
+}  // namespace layerlab

@@ -1,0 +1,25 @@
+// The run's contrast sweep (run.contrast, the paper's Fig. 5) of this
+// display and the others it names, into OUT/contrast.
+#include "analysis/report_parts.h"
+#include "analysis/run_steps.h"
+
+namespace layerlab {
+namespace {
+
+std::string RunContrastSweep(RunState& s) {
+  ContrastOptions options = s.in.run.contrast.options;
+  const size_t total = s.in.contrast.size() * options.frequencies.size() * options.target_diopters.size();
+  options.show_progress = true;
+  for (const std::string& w : ContrastWarnings(s.in.contrast, options)) s.page.warnings.push_back("contrast: " + w);
+  s.outcome.contrast = RunContrast(s.in.contrast, options);
+  AddContrastToPage(s.outcome.contrast, (s.out / "contrast").string(), "contrast/", &s.page);
+  return "contrast sweep (" + std::to_string(total) + " solves)";
+}
+
+}  // namespace
+
+RunSection ContrastRunSection() {
+  return {"contrast", [](const RunInputs& in) { return in.run.contrast.enabled; }, RunContrastSweep};
+}
+
+}  // namespace layerlab

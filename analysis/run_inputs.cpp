@@ -1,0 +1,105 @@
+// The inputs of `layerlab run`, read and checked before anything runs; every
+// scene file (the scene, the compared and contrast scenes, the target scene)
+// is read once.
+#include <filesystem>
+#include <list>
+#include <map>
+
+#include "analysis/run_steps.h"
+#include "framework/error.h"
+#include "systems/compile.h"
+
+namespace layerlab {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The scene files of a run, each read once however many lists name it.
+class SceneFiles {
+ public:
+  explicit SceneFiles(const std::string& file, const Scene& scene) { read_[Key(file)] = &scene; }
+  const Scene& Read(const std::string& file) {
+    const Scene*& scene = read_[Key(file)];
+    if (!scene) scene = &owned_.emplace_back(LoadScene(file));
+    return *scene;
+  }
+
+ private:
+  static std::string Key(const std::string& file) { return fs::absolute(file).lexically_normal().string(); }
+  std::map<std::string, const Scene*> read_;
+  std::list<Scene> owned_;  // stable addresses
+};
+
+// What needs a target, refused without one; and a run with nothing to do.
+void RequireWork(const RunInputs& in, const std::string& file) {
+  if (in.has_target()) return;
+  const Location run_at{file, "/run"};
+  if (in.run.retina.enabled)
+    throw Error(
+        run_at.child("retina"),
+        "retinal images need a target to factorize: give \"solve\": {\"target\": ...} or {\"target_scene\": ...}");
+  if (in.run.compare.enabled)
+    throw Error(run_at.child("compare"),
+                "a comparison needs a target: give \"solve\": {\"target\": ...} or {\"target_scene\": ...}");
+  if (!in.run.contrast.enabled)
+    throw Error(file +
+                ": nothing to run: give a target in the \"solve\" section or analyses in a \"run\" section "
+                "(docs/run-section.md)");
+}
+
+// The displays compared with this one, each compiled with its "solve" section.
+void ReadCompared(SceneFiles& files, RunInputs* in) {
+  for (const std::string& file : in->run.compare.scenes) {
+    const Scene& other = files.Read(file);
+    OtherDisplay d{fs::path(file).stem().string(), Compile(other), {}};
+    d.config = ReadSolveConfig(other, d.system);
+    // Without a "solve" section of its own, a display runs as this one does, so that the runs compare.
+    if (!other.document.contains("solve") && d.config.solver == in->solve.solver) {
+      d.config.options = in->solve.options;
+      d.config.sampling = in->solve.sampling;
+      d.own_options = false;
+    }
+    in->compare.push_back(std::move(d));
+  }
+}
+
+// The target's geometry for the memory estimate; a target scene read here is rendered from later.
+void ReadTargetGeometry(RunInputs* in) {
+#if LAYERLAB_WITH_EMBREE
+  if (in->solve.target.empty() && !in->solve.target_scene.empty()) {
+    in->target_scene = std::make_unique<TargetScene>(LoadTarget(in->solve.target_scene));
+    in->target_geometry = in->target_scene->geometry;
+    return;
+  }
+#endif
+  in->target_geometry = TargetGeometry(in->solve);
+}
+
+}  // namespace
+
+RunInputs ReadRunInputs(const RunRequest& request) {
+  const std::string& file = request.scene;
+  RunInputs in;
+  in.scene = LoadScene(file);
+  in.name = fs::path(file).stem().string();
+  SceneFiles files(file, in.scene);
+  in.system = Compile(in.scene);
+  in.solve = SolveJobConfig(in.scene, in.system);
+  if (request.iterations && *request.iterations <= 0) throw Error("--iterations: must be positive");
+  in.solve.options.iterations = request.iterations.value_or(in.solve.options.iterations);
+  in.solve.options.threads = request.threads.value_or(in.solve.options.threads);
+  in.run = ReadRunConfig(in.scene, in.system);
+  RequireWork(in, file);
+  if (std::string why = UnsuitableSolver(in.solve.solver, in.system); !why.empty())
+    throw Error(Location{file, "/solve/solver"}, "the solver " + in.solve.solver + " " + why);
+  if (in.run.compare.enabled) ReadCompared(files, &in);
+  if (in.run.contrast.enabled) {
+    in.contrast.push_back({in.name, in.system, in.solve.solver, in.solve.options, true});
+    for (const std::string& other : in.run.contrast.scenes)
+      in.contrast.push_back(ContrastDisplayOf(files.Read(other), other));
+  }
+  if (in.has_target()) ReadTargetGeometry(&in);
+  return in;
+}
+
+}  // namespace layerlab

@@ -1,0 +1,34 @@
+// The run's main solve: the solve job (analysis/solve_job.h) on the target,
+// written into OUT/solve.
+#include "analysis/run_steps.h"
+#include "framework/error.h"
+
+namespace layerlab {
+namespace {
+
+std::string RunSolve(RunState& s) {
+  const RunInputs& in = s.in;
+  SolveJob job;
+  job.system = &in.system;
+  job.config = in.solve;
+  job.progress_label = "solve " + in.solve.solver;
+  job.progress_brief = true;
+  s.solved = RunSolveJob(job, s.target->light_field, s.target.get());
+  const SolverReport& report = s.solved.report;
+  for (const std::string& w : TargetGeometryWarnings(in.system, s.target->light_field.geometry))
+    s.page.warnings.push_back("target: " + w);
+  for (const std::string& w : report.warnings) s.page.warnings.push_back("solve: " + w);
+  if (!report.IsSolutionUsable()) throw Error("the solve failed: " + report.message + "; the report was not written");
+  WriteSolveJob(*s.solved.model, in.system, s.solved, (s.out / "solve").string(), "solve/", in.run.write_lightfield,
+                &s.page);
+  s.ran_solve = true;
+  return "solve (" + in.solve.solver + ", " + std::to_string(report.iterations) + " iterations)";
+}
+
+}  // namespace
+
+RunSection SolveRunSection() {
+  return {"solve", [](const RunInputs& in) { return in.has_target(); }, RunSolve};
+}
+
+}  // namespace layerlab

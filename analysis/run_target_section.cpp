@@ -1,0 +1,40 @@
+// The run's target: read from its folder, or rendered from its scene and kept
+// in OUT/target, where the next run reuses it while the scene is unchanged.
+#include <filesystem>
+#include <utility>
+
+#include "analysis/report_sections.h"
+#include "analysis/run_steps.h"
+
+namespace layerlab {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string RunTarget(RunState& s) {
+  const RenderCache cache{(fs::path(s.request.out) / "target").string(), (s.out / "target").string()};
+#if LAYERLAB_WITH_EMBREE
+  s.target = LoadOrRenderTarget(s.in.solve, "target", &cache, std::move(s.in.target_scene));
+#else
+  s.target = LoadOrRenderTarget(s.in.solve, "target", &cache);
+#endif
+  fs::create_directories(s.out / "target");
+  WriteCenterView(s.target->light_field, (s.out / "target" / "center_view.png").string());
+  std::vector<std::pair<std::string, std::string>> links;
+  if (s.target->rendered)
+    links = {{"light field", "target/lightfield/lightfield.json"}, {"render record", "target/render.json"}};
+  const ReportImage center = Picture("center view (sRGB, 1 = white)", "target/center_view.png", links);
+  s.page.sections.push_back(
+      {"target", "Target", {"target/center_view.png"}, TargetHtml(DescribeTarget(*s.target), center)});
+  return s.target->reused     ? "read the target's earlier render"
+         : s.target->rendered ? "render the target"
+                              : "load the target";
+}
+
+}  // namespace
+
+RunSection TargetRunSection() {
+  return {"target", [](const RunInputs& in) { return in.has_target(); }, RunTarget};
+}
+
+}  // namespace layerlab
