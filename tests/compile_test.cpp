@@ -48,6 +48,30 @@ TEST(Compile, PaperPrototypeMatchesTable1) {
   EXPECT_TRUE(Close(EveryLayerMaxCpd(s), 4.89, 0, 0.005));
 }
 
+// A panel of unequal pixel pitches, offset from the axis: each axis keeps its own pitch and offset. By hand
+// (the rear panel at 0.4 D behind the 75 mm lens 1 cm from the eye): M = 1 + (1 / 0.4 - 0.01) / 0.075, and a
+// panel length x is seen under the tan-angle x M D.
+TEST(Compile, UnequalPixelPitchesAndAVerticalOffsetKeepEachAxisApart) {
+  nlohmann::json scene = ReadExample("multiplicative_2layer.json");
+  nlohmann::json& rear = ElementNamed(scene, "rear");
+  rear["pixel_pitch"] = {"117 um", "90 um"};
+  rear["offset"] = {"1 mm", "-2.5 mm"};
+  const DisplaySystem s = CompileJson(scene);
+  const VirtualLayer* l = nullptr;
+  for (const VirtualLayer& layer : s.layers)
+    if (layer.name == "rear") l = &layer;
+  ASSERT_NE(l, nullptr);
+  const double D = 0.4, M = 1 + (1 / D - 0.01) / 0.075;
+  EXPECT_TRUE(Close(l->pitch_x, M * 117e-6, 1e-12));
+  EXPECT_TRUE(Close(l->pitch_y, M * 90e-6, 1e-12));
+  EXPECT_TRUE(Close(l->tan_pitch_x, M * D * 117e-6, 1e-12));
+  EXPECT_TRUE(Close(l->tan_pitch_y, M * D * 90e-6, 1e-12));
+  EXPECT_TRUE(Close(l->eye_from_layer_tan_x, M * D * 1e-3, 1e-12));
+  EXPECT_TRUE(Close(l->eye_from_layer_tan_y, M * D * -2.5e-3, 1e-12));
+  EXPECT_TRUE(Close(l->fov_x, 2 * std::atan(400 * M * D * 117e-6 / 2), 1e-12));
+  EXPECT_TRUE(Close(l->fov_y, 2 * std::atan(200 * M * D * 90e-6 / 2), 1e-12));
+}
+
 // An [r, g, b] black level of equal values is read whole, as the scalar is
 // (different values are refused: bad_scene_test BlackLevelPerChannel).
 TEST(Compile, BlackLevelIsReadAsOneValueForAllChannels) {

@@ -289,14 +289,16 @@ TEST(Retina, ChromaticDefocusShiftsEachChannelsFocus) {
   std::vector<PupilPoint> pupil = PupilSamples(d.system.eye);
   std::array<double, 3> focus = ChannelAccommodation(d.system.eye, 1.0);
   Image mixed = RetinaOfDisplay(*d.model, d.t, retina, pupil, focus);
-  // Channel R focused at 1.5 D equals an image focused there for all channels.
+  // Channel R focused at 1.5 D equals an image focused there for all channels; G at 1 D, B at 0.5 D likewise.
   Image red = RetinaOfDisplay(*d.model, d.t, retina, pupil, {1.5, 1.5, 1.5});
   Image green = RetinaOfDisplay(*d.model, d.t, retina, pupil, {1.0, 1.0, 1.0});
+  Image blue = RetinaOfDisplay(*d.model, d.t, retina, pupil, {0.5, 0.5, 0.5});
   // The per-channel path sums the 81 pupil points in double, the one-focus
   // fast path in float: they agree to float rounding of such a sum (81 x 2^-24).
   for (size_t p = 0; p < mixed.pixels.size() / 3; ++p) {
     ASSERT_NEAR(mixed.pixels[p * 3], red.pixels[p * 3], 5e-6);
     ASSERT_NEAR(mixed.pixels[p * 3 + 1], green.pixels[p * 3 + 1], 5e-6);
+    ASSERT_NEAR(mixed.pixels[p * 3 + 2], blue.pixels[p * 3 + 2], 5e-6);
   }
 }
 
