@@ -113,6 +113,36 @@ TEST(Compile, FlipsComeFromReversedPanelsAndTheMirror) {
   for (const VirtualLayer& l : s.layers) EXPECT_FALSE(l.flip_y);
 }
 
+// A horizontal fold mirrors the reflected branch left-right, a vertical one upside down; a reversed panel flips
+// left-right on top. Both folds, for the half mirror of the paper prototype and as a fold mirror in front of it.
+TEST(Compile, FlipsFollowTheFoldAxis) {
+  for (const char* fold : {"horizontal", "vertical"})
+    for (const bool as_mirror : {false, true}) {
+      SCOPED_TRACE(std::string(fold) + (as_mirror ? " fold mirror" : " half mirror"));
+      nlohmann::json scene = ReadExample("paper_prototype.json");
+      const bool horizontal = std::string(fold) == "horizontal";
+      if (as_mirror) {  // the half mirror keeps its horizontal fold; a fold mirror in front of it adds its own
+        scene["elements"].push_back({{"type", "mirror"}, {"name", "fold"}, {"fold", fold}, {"next", "half_mirror"}});
+        ElementNamed(scene, "lens")["next"] = "fold";
+      } else {
+        ElementNamed(scene, "half_mirror")["fold"] = fold;
+      }
+      const DisplaySystem s = CompileJson(scene);
+      for (const VirtualLayer& l : s.layers) {
+        const bool reflected = l.name == "rear_b" || l.name == "front_b", reversed = l.name[0] == 'f';
+        bool flip_x = reversed, flip_y = false;
+        if (as_mirror) {  // every layer through the fold mirror, the reflected ones through the half mirror too
+          (horizontal ? flip_x : flip_y) ^= true;
+          if (reflected) flip_x ^= true;
+        } else if (reflected) {
+          (horizontal ? flip_x : flip_y) ^= true;
+        }
+        EXPECT_EQ(l.flip_x, flip_x) << l.name;
+        EXPECT_EQ(l.flip_y, flip_y) << l.name;
+      }
+    }
+}
+
 TEST(Compile, BrightnessOfTheDisplayVariants) {
   // Per backlight: half mirror 0.5 times two panels at 0.3 each.
   DisplaySystem hybrid = CompileJson(ReadExample("paper_prototype.json"));
