@@ -8,11 +8,14 @@
 #include <cerrno>
 #include <climits>
 #include <cstring>
+#include <utility>
 
 #include "framework/error.h"
 
 namespace layerlab {
 namespace {
+
+std::function<void()> between_open_and_lock;  // BetweenOpenAndLockForTesting
 
 // "1234 node7": what the holder writes into its lock file.
 std::string HolderRecord() {
@@ -43,6 +46,7 @@ std::optional<FileLock> FileLock::TryLock(const std::string& path, std::string* 
   for (int attempt = 0;; ++attempt) {
     fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
     if (fd < 0) throw Error(path + ": cannot open the lock file: " + std::strerror(errno));
+    if (between_open_and_lock) std::exchange(between_open_and_lock, nullptr)();
     if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
       const int e = errno;
       if (e != EWOULDBLOCK) {
@@ -76,6 +80,8 @@ bool FileLock::HeldElsewhere(const std::string& path, std::string* holder) {
   ::close(fd);  // releases the shared lock taken to look
   return held;
 }
+
+void BetweenOpenAndLockForTesting(std::function<void()> meanwhile) { between_open_and_lock = std::move(meanwhile); }
 
 FileLock& FileLock::operator=(FileLock&& other) noexcept {
   if (this != &other) {

@@ -5,6 +5,7 @@
 // to POSIX locks (Linux NFSv4 does).
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -33,5 +34,10 @@ class FileLock {
   explicit FileLock(int fd) : fd_(fd) {}
   int fd_ = -1;
 };
+
+// Fault injection for tests: `meanwhile` runs once, inside the next TryLock,
+// between its opening the lock file and locking it, where another process may
+// remove that file and lock a new one at the path.
+void BetweenOpenAndLockForTesting(std::function<void()> meanwhile);
 
 }  // namespace layerlab

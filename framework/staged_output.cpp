@@ -64,7 +64,15 @@ std::string KindAt(const fs::path& p, bool* is_dir = nullptr, bool* is_file = nu
   return "a device";
 }
 
-int end_after_moves = 0;  // EndProcessAfterSwitchOverMovesForTesting
+int end_after_steps = 0;   // EndProcessAfterSwitchOverStepsForTesting
+int fail_after_steps = 0;  // FailSwitchOverAfterStepsForTesting
+
+// Fault injection: a step of a switch-over (`done`) is complete.
+void AfterSwitchOverStep(const fs::path& done) {
+  if (end_after_steps > 0 && --end_after_steps == 0) ::_exit(86);
+  if (fail_after_steps > 0 && --fail_after_steps == 0)
+    throw Error(done.string() + ": the switch-over fails here (FailSwitchOverAfterStepsForTesting)");
+}
 
 bool ProcessAlive(long pid) { return pid > 0 && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM); }
 
@@ -120,7 +128,7 @@ void RunJournal(const fs::path& folder, const fs::path& journal, const nlohmann:
       throw Error(to.string() + ": cannot move the finished file into place: " + std::strerror(errno));
     for (fs::path at = to.parent_path(); at != folder && Under(at, folder); at = at.parent_path())
       changed_folders.insert(at.string());
-    if (end_after_moves > 0 && --end_after_moves == 0) ::_exit(86);
+    AfterSwitchOverStep(to);
   }
   for (const std::string& changed : changed_folders) SyncFolder(changed);  // the renames reach the disk first
   for (const auto& item : doc.at("remove")) {
@@ -131,7 +139,8 @@ void RunJournal(const fs::path& folder, const fs::path& journal, const nlohmann:
     fs::remove(folder / rel, ec);
     PruneEmptyParents(folder, rel);
   }
-  fs::remove_all(staging, ec);
+  fs::remove_all(staging, ec);  // first: no staging folder is left without the journal that clears it
+  AfterSwitchOverStep(staging);
   fs::remove(journal, ec);
   SyncFolder(folder.string());
 }
@@ -394,7 +403,8 @@ StagedOutput::Switched StagedOutput::Commit() {
   return result;
 }
 
-void EndProcessAfterSwitchOverMovesForTesting(int moves) { end_after_moves = moves; }
+void EndProcessAfterSwitchOverStepsForTesting(int steps) { end_after_steps = steps; }
+void FailSwitchOverAfterStepsForTesting(int steps) { fail_after_steps = steps; }
 
 std::vector<std::string> FinishPendingSwitchOvers(const std::string& path) {
   std::vector<std::string> done;

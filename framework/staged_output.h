@@ -93,9 +93,13 @@ class StagedOutput {
 // switching it over, or when the switch-over cannot be finished.
 std::vector<std::string> FinishPendingSwitchOvers(const std::string& path);
 
-// Fault injection for tests: this process ends (_exit(86)) once `moves` files
-// of a later switch-over are in place, as a kill there would end it; 0 never.
-void EndProcessAfterSwitchOverMovesForTesting(int moves);
+// Fault injection for tests. The steps of a switch-over are its moves, one
+// per file, then the removal of its staging folder. This process ends
+// (_exit(86)) after `steps` steps of a later switch-over, as a kill there would
+// end it; or the switch-over throws layerlab::Error there, as a failed rename
+// would. 0: never.
+void EndProcessAfterSwitchOverStepsForTesting(int steps);
+void FailSwitchOverAfterStepsForTesting(int steps);
 
 // The name of the manifest `command` keeps in an output folder.
 std::string OutputManifestName(const std::string& command);

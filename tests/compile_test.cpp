@@ -48,6 +48,30 @@ TEST(Compile, PaperPrototypeMatchesTable1) {
   EXPECT_TRUE(Close(EveryLayerMaxCpd(s), 4.89, 0, 0.005));
 }
 
+// A panel of unequal pixel pitches, offset from the axis: each axis keeps its own pitch and offset. By hand
+// (the rear panel at 0.4 D behind the 75 mm lens 1 cm from the eye): M = 1 + (1 / 0.4 - 0.01) / 0.075, and a
+// panel length x is seen under the tan-angle x M D.
+TEST(Compile, UnequalPixelPitchesAndAVerticalOffsetKeepEachAxisApart) {
+  nlohmann::json scene = ReadExample("multiplicative_2layer.json");
+  nlohmann::json& rear = ElementNamed(scene, "rear");
+  rear["pixel_pitch"] = {"117 um", "90 um"};
+  rear["offset"] = {"1 mm", "-2.5 mm"};
+  const DisplaySystem s = CompileJson(scene);
+  const VirtualLayer* l = nullptr;
+  for (const VirtualLayer& layer : s.layers)
+    if (layer.name == "rear") l = &layer;
+  ASSERT_NE(l, nullptr);
+  const double D = 0.4, M = 1 + (1 / D - 0.01) / 0.075;
+  EXPECT_TRUE(Close(l->pitch_x, M * 117e-6, 1e-12));
+  EXPECT_TRUE(Close(l->pitch_y, M * 90e-6, 1e-12));
+  EXPECT_TRUE(Close(l->tan_pitch_x, M * D * 117e-6, 1e-12));
+  EXPECT_TRUE(Close(l->tan_pitch_y, M * D * 90e-6, 1e-12));
+  EXPECT_TRUE(Close(l->eye_from_layer_tan_x, M * D * 1e-3, 1e-12));
+  EXPECT_TRUE(Close(l->eye_from_layer_tan_y, M * D * -2.5e-3, 1e-12));
+  EXPECT_TRUE(Close(l->fov_x, 2 * std::atan(400 * M * D * 117e-6 / 2), 1e-12));
+  EXPECT_TRUE(Close(l->fov_y, 2 * std::atan(200 * M * D * 90e-6 / 2), 1e-12));
+}
+
 // An [r, g, b] black level of equal values is read whole, as the scalar is
 // (different values are refused: bad_scene_test BlackLevelPerChannel).
 TEST(Compile, BlackLevelIsReadAsOneValueForAllChannels) {
@@ -87,6 +111,36 @@ TEST(Compile, FlipsComeFromReversedPanelsAndTheMirror) {
   EXPECT_TRUE(layer("rear_b").flip_x);    // reflected by the horizontal fold
   EXPECT_FALSE(layer("front_b").flip_x);  // reflected and reversed: the two cancel
   for (const VirtualLayer& l : s.layers) EXPECT_FALSE(l.flip_y);
+}
+
+// A horizontal fold mirrors the reflected branch left-right, a vertical one upside down; a reversed panel flips
+// left-right on top. Both folds, for the half mirror of the paper prototype and as a fold mirror in front of it.
+TEST(Compile, FlipsFollowTheFoldAxis) {
+  for (const char* fold : {"horizontal", "vertical"})
+    for (const bool as_mirror : {false, true}) {
+      SCOPED_TRACE(std::string(fold) + (as_mirror ? " fold mirror" : " half mirror"));
+      nlohmann::json scene = ReadExample("paper_prototype.json");
+      const bool horizontal = std::string(fold) == "horizontal";
+      if (as_mirror) {  // the half mirror keeps its horizontal fold; a fold mirror in front of it adds its own
+        scene["elements"].push_back({{"type", "mirror"}, {"name", "fold"}, {"fold", fold}, {"next", "half_mirror"}});
+        ElementNamed(scene, "lens")["next"] = "fold";
+      } else {
+        ElementNamed(scene, "half_mirror")["fold"] = fold;
+      }
+      const DisplaySystem s = CompileJson(scene);
+      for (const VirtualLayer& l : s.layers) {
+        const bool reflected = l.name == "rear_b" || l.name == "front_b", reversed = l.name[0] == 'f';
+        bool flip_x = reversed, flip_y = false;
+        if (as_mirror) {  // every layer through the fold mirror, the reflected ones through the half mirror too
+          (horizontal ? flip_x : flip_y) ^= true;
+          if (reflected) flip_x ^= true;
+        } else if (reflected) {
+          (horizontal ? flip_x : flip_y) ^= true;
+        }
+        EXPECT_EQ(l.flip_x, flip_x) << l.name;
+        EXPECT_EQ(l.flip_y, flip_y) << l.name;
+      }
+    }
 }
 
 TEST(Compile, BrightnessOfTheDisplayVariants) {

@@ -116,6 +116,44 @@ TEST(Contrast, NaturalViewingIsOneAtTheTargetThroughEveryEyeModel) {
     }
 }
 
+// Contrast is of luminance, the channels weighted 0.2126, 0.7152, 0.0722 (Rec. 709). Through an eye whose channels
+// focus apart (typed defocus 0, +0.5, -0.5 D) the natural curve against the continuous plane is, by hand, the
+// weighted sum of each channel's blur over the same sum at the target: a square pupil of 9 x 9 points, side p,
+// defocused by delta turns a vertical grating of f cycles per radian into its mean over the 9 columns u_k, of
+// amplitude K(delta) = mean of cos(2 pi f u_k delta). Equal weights give other values off the target.
+TEST(Contrast, AChromaticEyesChannelsAreWeightedByTheirLuminance) {
+  const double dt = 1.3, f = 3.0, p = 4e-3;
+  const std::array<double, 3> weight = {0.2126, 0.7152, 0.0722}, typed = {0.0, 0.5, -0.5};
+  ContrastDisplay d = OneLayerAt(dt);
+  d.system.eye.chromatic_defocus = typed;
+  ASSERT_EQ(d.system.eye.pupil_shape, PupilShape::kSquare);
+  ASSERT_EQ(d.system.eye.pupil_samples_x, 9);
+  ContrastOptions o;
+  o.target_diopters = {dt};
+  o.frequencies = {f};
+  o.accommodation_min = 0.8, o.accommodation_max = 1.8, o.accommodation_step = 0.25;
+  o.retina_field = 4;  // near the axis, where a shift in tan-angle is one in angle (to 0.1 %)
+  o.reference = ContrastReference::kContinuous;
+  o.peak_uncertainty = false;
+  const std::vector<ContrastCurve> curves = RunContrast({d}, o);
+  const ContrastCurve& natural = Curve(curves, "natural", f);
+  auto blur = [&](double delta) {
+    double sum = 0;
+    for (int k = 0; k < 9; ++k) sum += std::cos(2 * std::numbers::pi * (f / kDeg) * ((k + 0.5) / 9 - 0.5) * p * delta);
+    return sum / 9;
+  };
+  auto luminance = [&](double accommodation) {
+    double sum = 0;
+    for (int c = 0; c < 3; ++c) sum += weight[c] * blur(dt - accommodation - typed[c]);
+    return sum;
+  };
+  ASSERT_EQ(natural.accommodation.size(), 5u);
+  for (size_t k = 0; k < natural.accommodation.size(); ++k) {
+    const double a = natural.accommodation[k];
+    EXPECT_NEAR(natural.contrast[k], luminance(a) / luminance(dt), 1e-3) << "eye focused at " << a << " D";
+  }
+}
+
 // Each curve is solved alone on one thread (analysis/contrast.cpp), so the
 // sweep gives the same bits with any number of threads; a two-thread solve
 // merges its threads' sums in another order than a one-thread solve.

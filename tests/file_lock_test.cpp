@@ -67,6 +67,21 @@ TEST(FileLock, AMovedLockIsStillHeld) {
   EXPECT_FALSE(FileLock::TryLock(path).has_value());
 }
 
+// Between a taker's open and its lock the holder may let go and remove the file, and another process lock a new
+// one at the path: a lock taken on the unlinked file locks nothing, so the taker looks again and finds the new holder.
+TEST(FileLock, ALockTakenOnAFileReplacedMeanwhileIsNotHeld) {
+  const std::string path = TempLockPath("replaced.lock").string();
+  std::optional<FileLock> other;
+  BetweenOpenAndLockForTesting([&] {
+    fs::remove(path);
+    other = FileLock::TryLock(path);
+  });
+  std::string holder = "unset";
+  EXPECT_FALSE(FileLock::TryLock(path, &holder).has_value()) << "two holders of the lock at " << path;
+  ASSERT_TRUE(other.has_value());
+  EXPECT_EQ(holder, "process " + std::to_string(::getpid()) + " on host " + ThisHost());
+}
+
 TEST(FileLock, AnUnopenableFileIsAnErrorNamingIt) {
   try {
     FileLock::TryLock("/nonexistent_folder_for_layerlab/x.lock");

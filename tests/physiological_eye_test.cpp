@@ -66,6 +66,34 @@ TEST(ChromaticEye, ThibosChannelsFocusAtTheirWavelengths) {
   EXPECT_EQ(EyeModelLine(ideal.eye), "ideal eye (geometric optics): 4.00 mm square pupil; no diffraction");
 }
 
+// Each channel focuses at the accommodation plus its own hand-typed defocus plus Rx(reference) - Rx(its wavelength),
+// for several wavelength sets and all three channels typed apart: no channel reads another's.
+TEST(ChromaticEye, EachChannelsFocusIsItsOwnHandTypedAndThibosDefocus) {
+  auto rx = [](double nm) { return 1.68524 - 0.63346 / (nm * 1e-3 - 0.21410); };
+  const std::array<double, 3> typed = {0.1, -0.2, 0.35};
+  struct Wavelengths {
+    double reference;
+    std::array<double, 3> channels;
+  };
+  for (const Wavelengths& w :
+       {Wavelengths{555, {612, 549, 465}}, Wavelengths{500, {640, 530, 440}}, Wavelengths{600, {700, 580, 410}}})
+    for (const bool thibos : {false, true}) {
+      json eye = {{"reference_wavelength", std::to_string(w.reference) + " nm"},
+                  {"chromatic_defocus", {"0.1 D", "-0.2 D", "0.35 D"}},
+                  {"channel_wavelengths", json::array()}};
+      for (double nm : w.channels) eye["channel_wavelengths"].push_back(std::to_string(nm) + " nm");
+      if (thibos) eye["chromatic_aberration"] = "thibos";
+      const DisplaySystem s = CompileJson(PhysiologicalScene(eye));
+      for (double accommodation : {0.0, 1.7}) {
+        const std::array<double, 3> focus = ChannelAccommodation(s.eye, accommodation);
+        for (int c = 0; c < 3; ++c)
+          EXPECT_NEAR(focus[c], accommodation + typed[c] + (thibos ? rx(w.reference) - rx(w.channels[c]) : 0), 1e-9)
+              << "channel " << c << " at " << w.channels[c] << " nm, reference " << w.reference << " nm"
+              << (thibos ? ", thibos" : "");
+      }
+    }
+}
+
 TEST(PupilSize, WatsonYellottAgainstTheEquationByHand) {
   // F = L a M(e); s = (F / 846)^0.41; D_SD = 7.75 - 5.75 s / (s + 2);
   // D = D_SD + (y - 28.58)(0.02132 - 0.009562 D_SD). First row by hand:

@@ -105,6 +105,29 @@ TEST(Polarization, ReflectedBranchThroughAZeroOrderHalfWavePlate) {
   EXPECT_LT(s.branches[1].optics_efficiency[0], s.branches[1].optics_efficiency[1] * rs[0] / rs[1]);
 }
 
+// A multi-order plate of order m has retardance (2m + 1) pi lambda0 / lambda: a half wave at its design wavelength
+// at every order, and more chromatic the higher the order. Order 0 cannot tell (2m + 1) from m + 1.
+TEST(Polarization, ReflectedBranchThroughAMultiOrderHalfWavePlate) {
+  const double rs[] = {0.99, 0.98, 0.97}, rp = 0.02, hwp_t = 0.99;
+  const double wavelength[] = {612e-9, 549e-9, 465e-9};
+  for (int order : {1, 2, 5})
+    for (double design_nm : {549.0, 600.0}) {
+      nlohmann::json scene = FlatPbsScene(0);
+      nlohmann::json& hwp = ElementNamed(scene, "hwp");
+      hwp["order"] = order;
+      hwp["design_wavelength"] = std::to_string(design_nm) + " nm";
+      const DisplaySystem s = CompileJson(scene);
+      for (int c = 0; c < 3; ++c) {
+        const double delta = (2 * order + 1) * kPi * design_nm * 1e-9 / wavelength[c];
+        const double to_s = std::pow(std::sin(delta / 2), 2);
+        const double expected = hwp_t * (rs[c] * to_s + rp * (1 - to_s));
+        EXPECT_TRUE(Close(s.branches[1].optics_efficiency[c], expected, 1e-12))
+            << "order " << order << " at " << design_nm << " nm, channel " << c << ": "
+            << s.branches[1].optics_efficiency[c] << " against " << expected;
+      }
+    }
+}
+
 TEST(Polarization, SpectralTablesAreInterpolatedAtTheChannels) {
   nlohmann::json scene = FlatPbsScene(0);
   ElementNamed(scene, "pbs")["transmittance_p"] = {{"wavelengths", {"400 nm", "500 nm", "700 nm"}},

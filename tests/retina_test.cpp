@@ -2,6 +2,7 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -34,6 +35,29 @@ TEST(Pupil, GridIsCellCenteredOverTheSquare) {
   EXPECT_TRUE(Close(p.back().x, 2e-3 - 2e-3 / 9, 1e-12));
 }
 
+// A round pupil's grid is the square grid's cell centers that lie in the circle: all but the corner cells, by hand
+// three at each corner of 9 x 9 (69 points), one at each corner of 6 x 6 (32) and of 7 x 4 (24).
+TEST(Pupil, RoundGridIsTheSquareGridsCellCentersInsideTheCircle) {
+  for (const auto& [nx, ny, count] : {std::tuple{9, 9, 69}, std::tuple{6, 6, 32}, std::tuple{7, 4, 24}}) {
+    SCOPED_TRACE(std::to_string(nx) + " x " + std::to_string(ny));
+    EyeModel eye = Eye(nx, 3e-3);
+    eye.pupil_samples_y = ny;
+    const std::vector<PupilPoint> square = PupilSamples(eye);
+    eye.pupil_shape = PupilShape::kRound;
+    const std::vector<PupilPoint> round = PupilSamples(eye);
+    ASSERT_EQ(round.size(), size_t(count));
+    size_t k = 0;
+    for (const PupilPoint& q : square) {
+      if (std::hypot(q.x, q.y) > 1.5e-3) continue;
+      ASSERT_LT(k, round.size());
+      EXPECT_EQ(round[k].x, q.x);
+      EXPECT_EQ(round[k].y, q.y);
+      ++k;
+    }
+    EXPECT_EQ(k, round.size());
+  }
+}
+
 TEST(Pupil, RoundJitteredPoissonAndPinhole) {
   EyeModel eye = Eye(9);
   eye.pupil_shape = PupilShape::kRound;
@@ -62,14 +86,17 @@ TEST(Pupil, RoundJitteredPoissonAndPinhole) {
 }
 
 // The extent of the retinal image of a bright point at depth z.
-double BlurDiameter(double z, double accommodation, const RetinaGrid& retina, int samples) {
+double BlurDiameter(double z, double accommodation, const RetinaGrid& retina, int samples,
+                    PupilShape shape = PupilShape::kSquare) {
   // A disk a little larger than one retinal sample, so every pupil ray lights one.
   double radius = 0.75 * retina.resolution * z;
   SceneRadiance point = [&](const PupilPoint& u, double dx, double dy) {
     double x = u.x + dx * z, y = u.y + dy * z;
     return x * x + y * y <= radius * radius ? Rgb{1, 1, 1} : Rgb{0, 0, 0};
   };
-  Image image = RetinaOfScene(point, retina, PupilSamples(Eye(samples)), {accommodation, accommodation, accommodation});
+  EyeModel eye = Eye(samples);
+  eye.pupil_shape = shape;
+  Image image = RetinaOfScene(point, retina, PupilSamples(eye), {accommodation, accommodation, accommodation});
   double lo = INFINITY, hi = -INFINITY;
   for (int j = 0; j < retina.cols; ++j)
     for (int i = 0; i < retina.rows; ++i)
@@ -114,18 +141,20 @@ TEST(Retina, PupilPointsOfUnequalSidesLieEachInItsOwnCell) {
 
 TEST(Retina, PointBlurMatchesGeometricOptics) {
   // Three rows through the center: the odd pupil grid has a row at u_y = 0,
-  // so the central row shows the blur's full width.
+  // so the central row shows the blur's full width, a round pupil's as a square one's.
   RetinaGrid retina = MakeRetinaGrid(1.2 * kDeg, 0.015 * kDeg, 0.005 * kDeg);
   const int n = 41;
   const double pupil = 4e-3;
-  for (double z : {0.4545, 1.0, 2.5})
-    for (double accommodation : {0.0, 0.4, 1.3, 2.2}) {
-      double expected = pupil * std::abs(1 / z - accommodation);  // rad, small angles
-      double measured = BlurDiameter(z, accommodation, retina, n);
-      // Pupil samples span (n - 1)/n of the pupil; the disk adds up to 1.5 samples.
-      EXPECT_NEAR(measured, expected * (n - 1) / n, 2 * retina.resolution)
-          << "z " << z << " m, accommodation " << accommodation << " D";
-    }
+  for (PupilShape shape : {PupilShape::kSquare, PupilShape::kRound})
+    for (double z : {0.4545, 1.0, 2.5})
+      for (double accommodation : {0.0, 0.4, 1.3, 2.2}) {
+        double expected = pupil * std::abs(1 / z - accommodation);  // rad, small angles
+        double measured = BlurDiameter(z, accommodation, retina, n, shape);
+        // Pupil samples span (n - 1)/n of the pupil; the disk adds up to 1.5 samples.
+        EXPECT_NEAR(measured, expected * (n - 1) / n, 2 * retina.resolution)
+            << "z " << z << " m, accommodation " << accommodation << " D"
+            << (shape == PupilShape::kRound ? ", round pupil" : ", square pupil");
+      }
 }
 
 // A one-panel display at 1 D with a checkerboard of one-pixel squares.
@@ -289,14 +318,16 @@ TEST(Retina, ChromaticDefocusShiftsEachChannelsFocus) {
   std::vector<PupilPoint> pupil = PupilSamples(d.system.eye);
   std::array<double, 3> focus = ChannelAccommodation(d.system.eye, 1.0);
   Image mixed = RetinaOfDisplay(*d.model, d.t, retina, pupil, focus);
-  // Channel R focused at 1.5 D equals an image focused there for all channels.
+  // Channel R focused at 1.5 D equals an image focused there for all channels; G at 1 D, B at 0.5 D likewise.
   Image red = RetinaOfDisplay(*d.model, d.t, retina, pupil, {1.5, 1.5, 1.5});
   Image green = RetinaOfDisplay(*d.model, d.t, retina, pupil, {1.0, 1.0, 1.0});
+  Image blue = RetinaOfDisplay(*d.model, d.t, retina, pupil, {0.5, 0.5, 0.5});
   // The per-channel path sums the 81 pupil points in double, the one-focus
   // fast path in float: they agree to float rounding of such a sum (81 x 2^-24).
   for (size_t p = 0; p < mixed.pixels.size() / 3; ++p) {
     ASSERT_NEAR(mixed.pixels[p * 3], red.pixels[p * 3], 5e-6);
     ASSERT_NEAR(mixed.pixels[p * 3 + 1], green.pixels[p * 3 + 1], 5e-6);
+    ASSERT_NEAR(mixed.pixels[p * 3 + 2], blue.pixels[p * 3 + 2], 5e-6);
   }
 }
 

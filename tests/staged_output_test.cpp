@@ -222,6 +222,44 @@ TEST_F(StagedOutputTest, WhatAKilledRunLeftIsClearedAndAnInterruptedSwitchOverFi
   EXPECT_TRUE(fs::exists(out / "solve" / (".a.txt.tmp-" + std::to_string(::getpid()) + "-999")));
 }
 
+// An input named through a recorded output that is now a link to it: the folder holds no input by real path, so
+// the run goes on, and the sweep keeps the link, the path by which the user named the input.
+TEST_F(StagedOutputTest, TheSweepKeepsAStaleOutputThroughWhichAnInputIsNamed) {
+  FirstRun();
+  const fs::path out = root_ / "out";
+  Write(root_ / "elsewhere" / "scene.json", "the scene");
+  fs::remove(out / "solve" / "old.txt");
+  fs::create_symlink(root_ / "elsewhere" / "scene.json", out / "solve" / "old.txt");
+  StagedOutput s(out.string(), "run", {"solve"}, {{(out / "solve" / "old.txt").string(), "the scene"}});
+  Write(fs::path(s.staging()) / "solve" / "a.txt", "new a");
+  EXPECT_EQ(s.Commit().removed, std::vector<std::string>{});
+  EXPECT_EQ(Read(out / "solve" / "old.txt"), "the scene");
+  EXPECT_EQ(Read(root_ / "elsewhere" / "scene.json"), "the scene");
+}
+
+// A journal is data on disk (a damaged or crafted one): it moves nothing from or to outside its folder.
+TEST_F(StagedOutputTest, AJournalThatWouldMoveAFileOutOfTheFolderIsRefused) {
+  const fs::path out = root_ / "out";
+  Write(out / "results.txt", "the user's");
+  const std::string staging = ".layerlab-staging-run-" + std::to_string(DeadPid());
+  fs::create_directories(out / staging);
+  // Read through the staging folder "../results.txt" is out/results.txt; its place would be out/../results.txt.
+  Write(out / ".layerlab-run-switch.json",
+        R"({"format":"layerlab-switch/1","staging":")" + staging + R"(","move":["../results.txt"],"remove":[]})");
+  try {
+    StagedOutput s(out.string(), "run", {"solve"}, {});
+    FAIL() << "a journal that moves a file out of its folder was carried out";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(".layerlab-run-switch.json: /move: \"../results.txt\" is not a path inside "
+                                         "the folder"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(FinishPendingSwitchOvers((out / "results.txt").string()), Error);
+  EXPECT_EQ(Read(out / "results.txt"), "the user's");
+  EXPECT_FALSE(fs::exists(root_ / "results.txt"));
+}
+
 std::string ThisHost() {
   char host[256] = {};
   ::gethostname(host, sizeof host - 1);
@@ -269,16 +307,21 @@ TEST_F(StagedOutputTest, WhatAProcessLeftIsClearedByTheLockNotByAPidThatLooksAli
   EXPECT_TRUE(fs::exists(out / "solve" / ".layerlab-staging-solve-1" / "x.txt"));
 }
 
-// The child is killed inside its commit, after `moves` renames; returns its exit status.
-int CommitAndDieAfterMoves(const fs::path& out, int moves) {
+// A second run: solve/a.txt, solve/b.txt, system.txt (4 moves with its manifest, then the staging folder's removal).
+void StageSecondRun(const StagedOutput& s) {
+  Write(fs::path(s.staging()) / "solve" / "a.txt", "new a");
+  Write(fs::path(s.staging()) / "solve" / "b.txt", "new b");
+  Write(fs::path(s.staging()) / "system.txt", "new system");
+}
+
+// The child is killed inside its commit, after `steps` steps of its switch-over; returns its exit status.
+int CommitAndDieAfterSteps(const fs::path& out, int steps) {
   const pid_t child = fork();
   if (child == 0) {
     try {
       StagedOutput s(out.string(), "run", {"solve", "system.txt"}, {});
-      Write(fs::path(s.staging()) / "solve" / "a.txt", "new a");
-      Write(fs::path(s.staging()) / "solve" / "b.txt", "new b");
-      Write(fs::path(s.staging()) / "system.txt", "new system");
-      EndProcessAfterSwitchOverMovesForTesting(moves);
+      StageSecondRun(s);
+      EndProcessAfterSwitchOverStepsForTesting(steps);
       s.Commit();
     } catch (...) {
       _exit(1);
@@ -292,12 +335,13 @@ int CommitAndDieAfterMoves(const fs::path& out, int moves) {
 
 TEST_F(StagedOutputTest, AKillInsideTheCommitLeavesAJournalThatTheNextReaderFinishes) {
   const fs::path out = root_ / "out";
-  for (int moves = 1; moves <= 3; ++moves) {
-    SCOPED_TRACE("killed after " + std::to_string(moves) + " moves");
+  for (int steps = 1; steps <= 5; ++steps) {  // 4 moves, then the staging folder's removal
+    SCOPED_TRACE("killed after " + std::to_string(steps) + " steps");
     fs::remove_all(out);
     FirstRun();
-    ASSERT_EQ(CommitAndDieAfterMoves(out, moves), 86);
-    // The commit itself wrote the journal before its first rename: the mix is marked.
+    ASSERT_EQ(CommitAndDieAfterSteps(out, steps), 86);
+    // The commit itself wrote the journal before its first rename, and removes it last: the mix is marked, and
+    // no staging folder is left without the journal that clears it.
     ASSERT_TRUE(fs::exists(out / ".layerlab-run-switch.json"));
     EXPECT_EQ(Read(out / "solve" / "a.txt"), "new a");  // the first move was made
     // A reader of anything below finishes the switch-over: the folder is the new result, whole.
@@ -315,10 +359,35 @@ TEST_F(StagedOutputTest, AKillInsideTheCommitLeavesAJournalThatTheNextReaderFini
   }
 }
 
+// A commit that fails inside its switch-over (a rename refused) leaves its journal; the staging folder holds
+// what the journal has still to move, so it stays when the object goes, and the next reader finishes the job.
+TEST_F(StagedOutputTest, ASwitchOverThatFailsMidwayKeepsItsStagedFilesForTheNextReaderToFinish) {
+  FirstRun();
+  const fs::path out = root_ / "out";
+  std::string staging;
+  {
+    StagedOutput s(out.string(), "run", {"solve", "system.txt"}, {});
+    staging = s.staging();
+    StageSecondRun(s);
+    FailSwitchOverAfterStepsForTesting(1);  // solve/a.txt is in place, solve/b.txt and system.txt are not
+    EXPECT_THROW(s.Commit(), Error);
+  }
+  ASSERT_TRUE(fs::exists(out / ".layerlab-run-switch.json"));
+  EXPECT_EQ(Read(fs::path(staging) / "solve" / "b.txt"), "new b") << "a file the journal has still to move is gone";
+  const std::vector<std::string> done = FinishPendingSwitchOvers(out.string());
+  ASSERT_EQ(done.size(), 1u);
+  EXPECT_EQ(Read(out / "solve" / "a.txt"), "new a");
+  EXPECT_EQ(Read(out / "solve" / "b.txt"), "new b");
+  EXPECT_EQ(Read(out / "system.txt"), "new system");
+  EXPECT_FALSE(fs::exists(out / "solve" / "old.txt"));
+  EXPECT_FALSE(fs::exists(staging));
+  EXPECT_FALSE(fs::exists(out / ".layerlab-run-switch.json"));
+}
+
 TEST_F(StagedOutputTest, AReaderRefusesAFolderALiveProcessIsSwitchingOver) {
   FirstRun();
   const fs::path out = root_ / "out";
-  ASSERT_EQ(CommitAndDieAfterMoves(out, 1), 86);
+  ASSERT_EQ(CommitAndDieAfterSteps(out, 1), 86);
   const std::optional<FileLock> live = FileLock::TryLock((out / ".layerlab-lock").string());
   ASSERT_TRUE(live.has_value());
   try {
