@@ -13,6 +13,7 @@
 #include <random>
 
 #include "framework/random.h"
+#include "solvers/hybrid_chase.h"
 #include "solvers/joint_pass.h"
 #include "solvers/multiplicative_update.h"
 #include "solvers/objective.h"
@@ -56,13 +57,27 @@ Patterns KnownPatterns(const DisplayModel& model, unsigned seed) {
   return t;
 }
 
-Fixture MakeFixture(const std::string& example, int cols = 32, int rows = 16, int views = 5) {
+Fixture FixtureOf(DisplaySystem system) {
   Fixture f;
-  f.system = CompileJson(ShrunkExample(example, cols, rows, views));
+  f.system = std::move(system);
   f.model = std::make_unique<DisplayModel>(f.system, DisplayLightFieldGeometry(f.system));
   f.truth = KnownPatterns(*f.model, 7);
   f.target = f.model->Synthesize(f.truth);
   return f;
+}
+
+Fixture MakeFixture(const std::string& example, int cols = 32, int rows = 16, int views = 5) {
+  return FixtureOf(CompileJson(ShrunkExample(example, cols, rows, views)));
+}
+
+// The shipped displays weigh their channels (nearly) alike, where a formula that takes one channel's or one
+// branch's weight for another's gives the same numbers. Here every branch has its own, strongly unequal, channel
+// efficiencies: branch b's channel c is scaled by 1, 0.6 or 0.3 in turn.
+DisplaySystem WithUnequalChannels(DisplaySystem system) {
+  constexpr double kScale[3] = {1.0, 0.6, 0.3};
+  for (size_t b = 0; b < system.branches.size(); ++b)
+    for (int c = 0; c < 3; ++c) system.branches[b].efficiency[c] *= kScale[(b + c) % 3];
+  return system;
 }
 
 SolverReport RunSolver(const std::string& solver, const Fixture& f, SolverOptions options, Patterns* t) {
@@ -524,6 +539,76 @@ TEST(Solvers, HybridCompensatesUnequalChannelEfficiencies) {
   EXPECT_GT(r.final_psnr_db, 50.0) << r.FullReport();
 }
 
+// Before any set has emitted light, each set chases its share of the target, channel by channel: its weight
+// over the sum of the sets' weights in that channel (paper Fig. 2, for two equal sets half the target). With
+// unequal channel weights the shares differ per channel.
+TEST(Solvers, HybridsFirstChaseIsEachSetsShareOfTheTargetPerChannel) {
+  const Fixture f = FixtureOf(WithUnequalChannels(CompileJson(ShrunkExample("paper_prototype.json", 8, 4, 2))));
+  const DisplayModel& model = *f.model;
+  ASSERT_EQ(model.branch_count(), 2u);
+  SolveWorkspace workspace(model, omp_get_max_threads(), kSynthesisPass);
+  const Patterns t = model.UniformPatterns(0.5f);
+  for (size_t m = 0; m < 2; ++m) {
+    HybridChase chase(model, t);
+    chase.Begin(f.target, false, &workspace);
+    chase.Compute(m);
+    for (int c = 0; c < 3; ++c) {
+      const double share = double(model.weight(m)[c]) / (double(model.weight(0)[c]) + model.weight(1)[c]);
+      for (size_t k = c; k < f.target.rgb.size(); k += 3)
+        ASSERT_NEAR(chase.chase().rgb[k], f.target.rgb[k] * share, 1e-6) << "set " << m << ", value " << k;
+    }
+  }
+}
+
+// A pixel no ray of the light field reaches has no light to compare (the multiplicative rules' denominator and
+// the least-squares gradient are zero there): every solver leaves it at its initial value rather than sending
+// it to a bound. The light field here covers the middle half of the display's field only.
+TEST(Solvers, PixelsNoRayReachesKeepTheirInitialValue) {
+  for (const std::string& solver : SolverRegistry::Builtins().names()) {
+    SCOPED_TRACE(solver);
+    const DisplaySystem system = CompileJson(ShrunkExample(ExampleFor(solver), 16, 8, 3));
+    LightFieldGeometry middle = DisplayLightFieldGeometry(system);
+    middle.window_left += middle.window_width / 4, middle.window_width /= 2, middle.cols /= 2;
+    const DisplayModel model(system, middle);
+    const LightField target = model.Synthesize(KnownPatterns(model, 7));
+    SolverOptions o = SolverRegistry::Builtins().find(solver)->defaults;
+    o.iterations = 20;
+    o.initial_value = 0.5;
+    Patterns t;
+    const SolverReport r = SolverRegistry::Builtins().create(solver)->Solve(model, target, o, &t);
+    ASSERT_TRUE(r.IsSolutionUsable()) << r.FullReport();
+    size_t unreached = 0, moved = 0;
+    const std::vector<float> ones(middle.pixels_per_view() * 3, 1.0f);
+    for (size_t k = 0; k < t.size(); ++k) {
+      std::vector<double> reached(t[k].rgb.size(), 0.0);
+      for (size_t v = 0; v < middle.view_count(); ++v) model.projection(k).ScatterAdd(v, ones.data(), reached.data());
+      for (size_t i = 0; i < reached.size(); ++i) {
+        if (reached[i] > 0) {
+          moved += t[k].rgb[i] != 0.5f;
+          continue;
+        }
+        ++unreached;
+        EXPECT_EQ(t[k].rgb[i], 0.5f) << "layer " << k << ", value " << i;
+      }
+    }
+    EXPECT_GT(unreached, 0u);
+    EXPECT_GT(moved, 0u);
+  }
+}
+
+// The multiplicative step leaves a value whose denominator is at or below `epsilon` as it is (too little light
+// on it to tell a ratio), however large the ratio, and multiplies the others by num / den within [floor, 1].
+TEST(Solvers, MultiplicativeStepLeavesValuesOfNegligibleDenominatorAlone) {
+  SolverOptions o;
+  o.epsilon = 1e-6;
+  o.floor = 1e-3;
+  const std::vector<double> num = {2e-7, 0.0, 1e-3, 0.3, 0.6, 0.0, 5.0};
+  const std::vector<double> den = {1e-7, 1e-6, 1e-6, 0.6, 0.3, 0.5, 0.5};
+  std::vector<float> t(num.size(), 0.4f);
+  ApplyMultiplicativeStep(num.data(), den.data(), o, &t);
+  EXPECT_EQ(t, (std::vector<float>{0.4f, 0.4f, 0.4f, 0.2f, 0.8f, 1e-3f, 1.0f}));
+}
+
 TEST(Solvers, InterruptionKeepsTheLastCompleteIterationUsable) {
   for (const std::string& solver : SolverRegistry::Builtins().names()) {
     Fixture g = MakeFixture(ExampleFor(solver));
@@ -738,6 +823,45 @@ TEST(SolverCheckpoint, EachFieldOfTheDigestChangedInTurnIsRefusedByName) {
 TEST(Objective, PsnrIsTenLogOfSamplesOverTheSquaredError) {
   EXPECT_NEAR(PsnrDb(0.01, 100), 40.0, 1e-12);  // a mean squared error of 1e-4
   EXPECT_NEAR(PsnrDb(2.5, 10), 6.020599913279624, 1e-12);
+}
+
+// A target above what the display can show, each channel against its own maximum (unequal here): rays in turn at
+// half the maximum, at it, 10 % and 30 % above. Clip takes each value above to its channel's maximum; scale
+// divides the whole target by the largest ratio, 1.3; both count every value above, however little above.
+TEST(Objective, TargetAboveTheMaximumIsClippedOrScaledByEachChannelsMaximum) {
+  const Fixture f = FixtureOf(WithUnequalChannels(CompileJson(ShrunkExample("additive_2layer.json", 8, 4, 2))));
+  const std::array<float, 3> max = DisplayMaximum(*f.model);
+  ASSERT_NE(max[0], max[1]);
+  ASSERT_NE(max[1], max[2]);
+  constexpr float kFactor[4] = {0.5f, 1.0f, 1.1f, 1.3f};
+  LightField target = f.target;
+  size_t above = 0;
+  for (size_t k = 0; k < target.rgb.size(); ++k) {
+    target.rgb[k] = max[k % 3] * kFactor[(k / 3) % 4];
+    above += target.rgb[k] > max[k % 3];
+  }
+  ASSERT_GT(above, 0u);
+  SolverReport clip_report;
+  const std::optional<LightField> clipped = PrepareTarget(*f.model, target, TargetRange::kClip, &clip_report);
+  ASSERT_TRUE(clipped.has_value());
+  EXPECT_EQ(clip_report.out_of_range, above);
+  EXPECT_EQ(clip_report.target_scale, 1.0);
+  SolverReport scale_report;
+  const std::optional<LightField> scaled = PrepareTarget(*f.model, target, TargetRange::kScale, &scale_report);
+  ASSERT_TRUE(scaled.has_value());
+  EXPECT_EQ(scale_report.out_of_range, above);
+  EXPECT_NEAR(scale_report.target_scale, 1 / 1.3, 1e-6);
+  for (size_t k = 0; k < target.rgb.size(); ++k) {
+    const float m = max[k % 3], v = target.rgb[k];
+    EXPECT_EQ(clipped->rgb[k], std::min(v, m)) << "value " << k;
+    EXPECT_NEAR(scaled->rgb[k], v / 1.3, 1e-6 * m) << "value " << k;
+    EXPECT_LE(scaled->rgb[k], m) << "value " << k;
+  }
+  // At the maximum nothing is out of range.
+  for (size_t k = 0; k < target.rgb.size(); ++k) target.rgb[k] = max[k % 3];
+  SolverReport at_maximum;
+  EXPECT_FALSE(PrepareTarget(*f.model, target, TargetRange::kClip, &at_maximum).has_value());
+  EXPECT_EQ(at_maximum.out_of_range, 0u);
 }
 
 TEST(Solvers, AdditiveRefusesStacks) {
