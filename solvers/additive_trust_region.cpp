@@ -268,7 +268,8 @@ class AdditiveTrustRegionSolver final : public Solver {
       Patterns trial = *t;
       double step = 1.0, f_trial = f, decrease = 0, predicted = 0;
       bool accepted = false;
-      for (int tries = 0; tries < 20 && !accepted; ++tries, step *= 0.5) {
+      // Leaves the loop by break when accepted, so that `step` is the accepted one (the increment would halve it).
+      for (int tries = 0; tries < 20; ++tries, step *= 0.5) {
         decrease = 0;
         for (size_t k = 0; k < t->size(); ++k)
           for (size_t i = 0; i < d[k].size(); ++i) {
@@ -279,6 +280,7 @@ class AdditiveTrustRegionSolver final : public Solver {
         f_trial = A.Residual(trial, l, nullptr);
         accepted = f_trial <= f + 1e-4 * decrease;
         if (tries == 0) predicted = decrease;
+        if (accepted) break;
       }
       if (!accepted) {
         // At the optimum only round-off is left to decrease: the objective is a

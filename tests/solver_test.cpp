@@ -120,16 +120,17 @@ double SquaredError(const DisplayModel& model, const LightField& target, const P
   return sum;
 }
 
-// First-order optimality of min ||l - A t||^2 over 0 <= t <= 1, checked by moving single values (every 7th, each
-// channel) by h and synthesizing again, independently of the solver's own gradient: no feasible move may lower the
+// First-order optimality of min ||l - A t||^2 over 0 <= t <= 1, checked by moving single values (every `stride`th,
+// each channel) by h and synthesizing again, independently of the solver's own gradient: no feasible move may lower the
 // error by more than `slack` of h times the error's scale. A value at 1 must not gain by moving down (gradient <= 0
 // there), one at 0 not by moving up (gradient >= 0), one between by neither.
-void ExpectFirstOrderOptimal(const DisplayModel& model, const LightField& target, const Patterns& t, double slack) {
+void ExpectFirstOrderOptimal(const DisplayModel& model, const LightField& target, const Patterns& t, double slack,
+                             size_t stride = 7) {
   const double e0 = SquaredError(model, target, t), h = 1.0 / 64;
   const double scale = e0 / model.layer_count() + 1;
   int checked = 0, at_upper = 0, at_lower = 0;
   for (size_t k = 0; k < t.size(); ++k)
-    for (size_t i = 0; i < t[k].rgb.size(); i += 7) {
+    for (size_t i = 0; i < t[k].rgb.size(); i += stride) {
       const float v = t[k].rgb[i];
       for (const double step : {h, -h}) {
         if (v + step > 1 || v + step < 0) continue;
@@ -176,6 +177,66 @@ TEST(Solvers, AdditiveTrustRegionFromEitherBoundEndsOptimal) {
       }
       ExpectFirstOrderOptimal(*f.model, *target, t, 1e-3);
     }
+}
+
+// The problem is convex: from every start, the minimum is the same. On targets it cannot reach (random light,
+// up to the display's maximum: values end at both bounds and between), with the shipped and with unequal channel
+// weights, started at 1, near 0 and between, the solver ends at one objective, every value first-order optimal,
+// and no accepted step raises the objective.
+TEST(Solvers, AdditiveTrustRegionEndsAtTheOneMinimumFromEveryStart) {
+  for (const bool unequal : {false, true})
+    for (const unsigned seed : {3u, 4u}) {
+      DisplaySystem system = CompileJson(ShrunkExample("additive_2layer.json", 16, 8, 1));
+      const Fixture f = FixtureOf(unequal ? WithUnequalChannels(system) : system);
+      const std::array<float, 3> max = DisplayMaximum(*f.model);
+      LightField target = testing::RandomLightField(f.model->geometry(), seed);
+      for (size_t k = 0; k < target.rgb.size(); ++k) target.rgb[k] *= max[k % 3];
+      std::optional<double> minimum;
+      for (const double initial : {1.0, 1e-4, 0.5}) {
+        SCOPED_TRACE(std::string(unequal ? "unequal" : "shipped") + " channels, seed " + std::to_string(seed) +
+                     ", started at " + std::to_string(initial));
+        SolverOptions o = SolverRegistry::Builtins().find("additive-trust-region")->defaults;
+        o.initial_value = initial;
+        o.floor = 1e-4;
+        o.iterations = 500;
+        o.tolerance = 1e-14;
+        o.threads = 1;
+        Patterns t;
+        const SolverReport r =
+            SolverRegistry::Builtins().create("additive-trust-region")->Solve(*f.model, target, o, &t);
+        ASSERT_TRUE(r.IsSolutionUsable()) << r.FullReport();
+        ExpectInBounds(t);
+        for (size_t k = 1; k < r.trace.size(); ++k)
+          EXPECT_LE(r.trace[k].objective, r.trace[k - 1].objective) << "iteration " << k;
+        ExpectFirstOrderOptimal(*f.model, target, t, 1e-3, 1);
+        if (!minimum) minimum = r.final_objective;
+        EXPECT_NEAR(r.final_objective, *minimum, 1e-6 * *minimum) << r.FullReport();
+      }
+    }
+}
+
+// The trust region starts as wide as the first gradient is long, which is short where the objective curves
+// little: here a dim blue (1/50 of red and green) in which alone the target differs from the start. The step
+// the solution needs is then many times the first radius, and the radius must grow from step to step (it
+// doubles after a full step) to get there within a few dozen iterations.
+TEST(Solvers, AdditiveTrustRegionReachesAFarSolutionWhereTheObjectiveCurvesLittle) {
+  DisplaySystem system = CompileJson(ShrunkExample("additive_2layer.json", 16, 8, 3));
+  for (Branch& b : system.branches) b.efficiency[2] *= 0.02;
+  const Fixture f = FixtureOf(system);
+  Patterns truth = f.model->UniformPatterns(0.5f);
+  for (size_t k = 0; k < truth.size(); ++k)
+    for (size_t i = 2; i < truth[k].rgb.size(); i += 3) truth[k].rgb[i] = f.truth[k].rgb[i];
+  const LightField target = f.model->Synthesize(truth);
+  SolverOptions o = SolverRegistry::Builtins().find("additive-trust-region")->defaults;
+  o.initial_value = 0.5;
+  o.iterations = 40;
+  o.tolerance = 0;
+  o.threads = 1;
+  Patterns t;
+  const SolverReport r = SolverRegistry::Builtins().create("additive-trust-region")->Solve(*f.model, target, o, &t);
+  ASSERT_TRUE(r.IsSolutionUsable()) << r.FullReport();
+  RecordProperty("iterations", r.iterations);
+  EXPECT_GT(r.final_psnr_db, 100.0) << r.FullReport();
 }
 
 // The solve in layer space (normal matrix) and the one over the rays (a
