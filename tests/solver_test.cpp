@@ -66,10 +66,6 @@ Fixture FixtureOf(DisplaySystem system) {
   return f;
 }
 
-Fixture MakeFixture(const std::string& example, int cols = 32, int rows = 16, int views = 5) {
-  return FixtureOf(CompileJson(ShrunkExample(example, cols, rows, views)));
-}
-
 // The shipped displays weigh their channels (nearly) alike, where a formula that takes one channel's or one
 // branch's weight for another's gives the same numbers. Here every branch has its own, strongly unequal, channel
 // efficiencies: branch b's channel c is scaled by 1, 0.6 or 0.3 in turn.
@@ -78,6 +74,12 @@ DisplaySystem WithUnequalChannels(DisplaySystem system) {
   for (size_t b = 0; b < system.branches.size(); ++b)
     for (int c = 0; c < 3; ++c) system.branches[b].efficiency[c] *= kScale[(b + c) % 3];
   return system;
+}
+
+Fixture MakeFixture(const std::string& example, int cols = 32, int rows = 16, int views = 5,
+                    bool unequal_channels = false) {
+  DisplaySystem system = CompileJson(ShrunkExample(example, cols, rows, views));
+  return FixtureOf(unequal_channels ? WithUnequalChannels(std::move(system)) : std::move(system));
 }
 
 SolverReport RunSolver(const std::string& solver, const Fixture& f, SolverOptions options, Patterns* t) {
@@ -101,15 +103,18 @@ void ExpectInBounds(const Patterns& t) {
 }
 
 TEST(Solvers, AdditiveTrustRegionRecoversAKnownTarget) {
-  Fixture f = MakeFixture("additive_2layer.json");
-  SolverOptions o = SolverRegistry::Builtins().find("additive-trust-region")->defaults;
-  o.tolerance = 1e-12;
-  Patterns t;
-  SolverReport r = RunSolver("additive-trust-region", f, o, &t);
-  ASSERT_TRUE(r.IsSolutionUsable()) << r.FullReport();
-  RecordProperty("psnr_db", std::to_string(r.final_psnr_db));
-  EXPECT_GT(r.final_psnr_db, 100.0) << r.FullReport();
-  ExpectInBounds(t);
+  for (const bool unequal : {false, true}) {
+    SCOPED_TRACE(unequal ? "unequal channel weights" : "the shipped channel weights");
+    const Fixture f = MakeFixture("additive_2layer.json", 32, 16, 5, unequal);
+    SolverOptions o = SolverRegistry::Builtins().find("additive-trust-region")->defaults;
+    o.tolerance = 1e-12;
+    Patterns t;
+    SolverReport r = RunSolver("additive-trust-region", f, o, &t);
+    ASSERT_TRUE(r.IsSolutionUsable()) << r.FullReport();
+    RecordProperty(unequal ? "psnr_db_unequal_channels" : "psnr_db", std::to_string(r.final_psnr_db));
+    EXPECT_GT(r.final_psnr_db, 100.0) << r.FullReport();
+    ExpectInBounds(t);
+  }
 }
 
 double SquaredError(const DisplayModel& model, const LightField& target, const Patterns& t) {
@@ -261,27 +266,33 @@ TEST(Solvers, AdditiveTrustRegionInLayerSpaceMatchesTheRayPath) {
 }
 
 TEST(Solvers, MultiplicativeRecoversAKnownTarget) {
-  Fixture f = MakeFixture("multiplicative_2layer.json");
-  SolverOptions o;
-  o.iterations = 300;
-  Patterns t;
-  SolverReport r = RunSolver("multiplicative", f, o, &t);
-  ASSERT_TRUE(r.IsSolutionUsable()) << r.FullReport();
-  RecordProperty("psnr_db", std::to_string(r.final_psnr_db));
-  EXPECT_GT(r.final_psnr_db, 80.0) << r.FullReport();
-  ExpectInBounds(t);
+  for (const bool unequal : {false, true}) {
+    SCOPED_TRACE(unequal ? "unequal channel weights" : "the shipped channel weights");
+    const Fixture f = MakeFixture("multiplicative_2layer.json", 32, 16, 5, unequal);
+    SolverOptions o;
+    o.iterations = 300;
+    Patterns t;
+    SolverReport r = RunSolver("multiplicative", f, o, &t);
+    ASSERT_TRUE(r.IsSolutionUsable()) << r.FullReport();
+    RecordProperty(unequal ? "psnr_db_unequal_channels" : "psnr_db", std::to_string(r.final_psnr_db));
+    EXPECT_GT(r.final_psnr_db, 80.0) << r.FullReport();
+    ExpectInBounds(t);
+  }
 }
 
 TEST(Solvers, HybridRecoversAKnownTarget) {
-  Fixture f = MakeFixture("paper_prototype.json");
-  SolverOptions o;
-  o.iterations = 60;
-  Patterns t;
-  SolverReport r = RunSolver("hybrid", f, o, &t);
-  ASSERT_TRUE(r.IsSolutionUsable()) << r.FullReport();
-  RecordProperty("psnr_db", std::to_string(r.final_psnr_db));
-  EXPECT_GT(r.final_psnr_db, 50.0) << r.FullReport();
-  ExpectInBounds(t);
+  for (const bool unequal : {false, true}) {
+    SCOPED_TRACE(unequal ? "unequal channel weights" : "the shipped channel weights");
+    const Fixture f = MakeFixture("paper_prototype.json", 32, 16, 5, unequal);
+    SolverOptions o;
+    o.iterations = 60;
+    Patterns t;
+    SolverReport r = RunSolver("hybrid", f, o, &t);
+    ASSERT_TRUE(r.IsSolutionUsable()) << r.FullReport();
+    RecordProperty(unequal ? "psnr_db_unequal_channels" : "psnr_db", std::to_string(r.final_psnr_db));
+    EXPECT_GT(r.final_psnr_db, 50.0) << r.FullReport();
+    ExpectInBounds(t);
+  }
 }
 
 // The solvers that move every layer at once recover a known target on every
@@ -289,11 +300,11 @@ TEST(Solvers, HybridRecoversAKnownTarget) {
 // a step that would raise it; quasi-newton halves it, after warm-up
 // iterations of hybrid, which never raise it either). joint reaches 62-138 dB
 // and quasi-newton 128-147 dB in 400 iterations (when written).
-class EveryLayerAtOnceTest : public ::testing::TestWithParam<std::tuple<std::string, std::string>> {};
+class EveryLayerAtOnceTest : public ::testing::TestWithParam<std::tuple<std::string, std::string, bool>> {};
 
 TEST_P(EveryLayerAtOnceTest, RecoversAKnownTargetWithoutRaisingTheObjective) {
-  const auto& [solver, display] = GetParam();
-  Fixture f = MakeFixture(display);
+  const auto& [solver, display, unequal_channels] = GetParam();
+  Fixture f = MakeFixture(display, 32, 16, 5, unequal_channels);
   SolverOptions o = SolverRegistry::Builtins().find(solver)->defaults;
   o.iterations = 400;
   Patterns t;
@@ -310,10 +321,11 @@ TEST_P(EveryLayerAtOnceTest, RecoversAKnownTargetWithoutRaisingTheObjective) {
 INSTANTIATE_TEST_SUITE_P(Displays, EveryLayerAtOnceTest,
                          ::testing::Combine(::testing::Values("joint", "quasi-newton"),
                                             ::testing::Values("paper_prototype.json", "multiplicative_2layer.json",
-                                                              "additive_2layer.json", "hybrid_pbs_hwp.json")),
+                                                              "additive_2layer.json", "hybrid_pbs_hwp.json"),
+                                            ::testing::Bool()),
                          [](const auto& p) {
                            std::string name = std::get<0>(p.param) + "_" + std::get<1>(p.param);
-                           name = name.substr(0, name.find('.'));
+                           name = name.substr(0, name.find('.')) + (std::get<2>(p.param) ? "_unequal_channels" : "");
                            std::replace(name.begin(), name.end(), '-', '_');
                            return name;
                          });
