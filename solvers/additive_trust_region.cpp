@@ -274,7 +274,8 @@ SearchResult ProjectedSearch(const Operator& A, const LightField& l, const Patte
                              double f) {
   SearchResult r{t};
   double f_trial = f, decrease = 0;
-  for (int tries = 0; tries < 20 && !r.accepted; ++tries, r.step *= 0.5) {
+  // Leaves the loop by break when accepted, so that `step` is the accepted one (the increment would halve it).
+  for (int tries = 0; tries < 20; ++tries, r.step *= 0.5) {
     decrease = 0;
     for (size_t k = 0; k < t.size(); ++k)
       for (size_t i = 0; i < d[k].size(); ++i) {
@@ -285,6 +286,7 @@ SearchResult ProjectedSearch(const Operator& A, const LightField& l, const Patte
     f_trial = A.Residual(r.trial, l, nullptr);
     r.accepted = f_trial <= f + 1e-4 * decrease;
     if (tries == 0) r.predicted = decrease;
+    if (r.accepted) break;
   }
   return r;
 }
