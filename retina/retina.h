@@ -18,6 +18,7 @@
 
 #include "framework/exr_image.h"
 #include "retina/retina_grid.h"
+#include "retina/retina_workspace.h"
 #include "retina/scene_radiance.h"
 #include "systems/display_model.h"
 
@@ -55,12 +56,18 @@ struct OneTapTables;
 // layer's column and row taps. They depend on the display's layers, not on
 // the light field its model was made for, so one set serves every model of
 // the display and every set of patterns (a sweep's curves of one display).
+// They hold the workspace their images are made in, sized once for a team of
+// RetinaWorkspace::TeamSize() threads: one image at a time per set of tables.
 class DisplayRetinaTables {
  public:
   DisplayRetinaTables(const DisplayModel& model, const RetinaGrid& retina, const std::vector<PupilPoint>& pupil,
                       const std::array<double, 3>& accommodation);
   ~DisplayRetinaTables();
   DisplayRetinaTables(DisplayRetinaTables&&) noexcept;
+
+  // The workspace (empty off the one-tap path) and the layout it was sized to.
+  const RetinaWorkspace& workspace() const { return workspace_; }
+  WorkspaceLayout workspace_layout() const { return RetinaWorkspace::Layout(sizes_, workspace_.threads()); }
 
  private:
   friend Image RetinaOfDisplay(const DisplayModel&, const Patterns&, const DisplayRetinaTables&);
@@ -71,6 +78,8 @@ class DisplayRetinaTables {
   std::vector<double> tan_x_, tan_y_;
   bool one_tap_ = false, same_focus_ = false;
   std::vector<OneTapTables> foci_;  // one-tap path: one focus, or one per channel
+  RetinaWorkspaceSizes sizes_;
+  mutable RetinaWorkspace workspace_;
 };
 // The same image from tables made before (for a model of the same display; `pupil` must outlive them).
 Image RetinaOfDisplay(const DisplayModel& model, const Patterns& t, const DisplayRetinaTables& tables);
