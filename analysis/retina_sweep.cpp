@@ -66,6 +66,7 @@ std::vector<RetinaStateResult> WriteRetinaSweep(
   // 15 times the time of storing it; zlib's level 6 a sixth of a PNG at five times level 1's).
   const size_t batch = 4;
   std::vector<RetinaStateResult> results;
+  RetinaWorkspace workspace;  // every state's display image, sized for the first (again only for one needing more)
   for (size_t first = 0; first < o.states.size(); first += batch) {
     const size_t count = std::min(batch, o.states.size() - first);
     std::vector<RetinaStateResult> r(count);
@@ -75,7 +76,7 @@ std::vector<RetinaStateResult> WriteRetinaSweep(
       r[s].diopters = o.states[first + s];
       r[s].name = RetinaStateName(r[s].diopters);
       const auto focus = ChannelAccommodation(system.eye, r[s].diopters);
-      display[s] = RetinaOfDisplay(model, t, grid, pupil, focus);
+      display[s] = RetinaOfDisplay(model, t, DisplayRetinaTables(model, grid, pupil, focus), &workspace);
       ApplyEyeOptics(system.eye, grid, &display[s]);
       r[s].display_mean_cd_m2 = MeanLuminance(display[s]) * white;
       r[s].natural_mean_cd_m2 = NAN;

@@ -154,6 +154,7 @@ Image RetinaOfLightField(const LightField& lf, Sampling pixels, const RetinaGrid
 Image RetinaOfLightField(const LightField& lf, Sampling pixels, const RetinaGrid& retina,
                          const std::vector<PupilPoint>& pupil, const std::array<double, 3>& accommodation,
                          RetinaWorkspace* workspace) {
+  workspace->Fit(LightFieldRetinaSizes(lf.geometry, retina, pupil), RetinaWorkspace::TeamSize());
   const size_t samples = size_t(retina.cols) * retina.rows;
   Image image{retina.cols, retina.rows, {"R", "G", "B"}, std::vector<float>(samples * 3, 0.0f)};
   const bool nearest = pixels == Sampling::kNearest;

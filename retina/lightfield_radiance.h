@@ -50,7 +50,7 @@ SceneRadiance LightFieldRadiance(const LightField& lf, Sampling pixels = Samplin
 // (within 1e-5 relative of the per-ray sums in double; tests/natural_viewing_test.cpp).
 Image RetinaOfLightField(const LightField& lf, Sampling pixels, const RetinaGrid& retina,
                          const std::vector<PupilPoint>& pupil, const std::array<double, 3>& accommodation);
-// The same in `workspace`, sized for LightFieldRetinaSizes(lf.geometry, retina, pupil) (or more).
+// The same in `workspace`, fitted to LightFieldRetinaSizes(lf.geometry, retina, pupil) first.
 Image RetinaOfLightField(const LightField& lf, Sampling pixels, const RetinaGrid& retina,
                          const std::vector<PupilPoint>& pupil, const std::array<double, 3>& accommodation,
                          RetinaWorkspace* workspace);

@@ -324,7 +324,6 @@ DisplayRetinaTables::DisplayRetinaTables(const DisplayModel& model, const Retina
     sizes_.ring = std::max(sizes_.ring, size_t(focus.ring));
   }
   sizes_.terms = pupil.size() * branches_;
-  workspace_ = RetinaWorkspace(sizes_, RetinaWorkspace::TeamSize());
 }
 
 DisplayRetinaTables::~DisplayRetinaTables() = default;
@@ -336,6 +335,11 @@ Image RetinaOfDisplay(const DisplayModel& model, const Patterns& t, const Retina
 }
 
 Image RetinaOfDisplay(const DisplayModel& model, const Patterns& t, const DisplayRetinaTables& made) {
+  return RetinaOfDisplay(model, t, made, &made.workspace_);
+}
+
+Image RetinaOfDisplay(const DisplayModel& model, const Patterns& t, const DisplayRetinaTables& made,
+                      RetinaWorkspace* workspace) {
   if (model.layer_count() != made.layers_ || model.branch_count() != made.branches_)
     throw Error("internal error: retinal tables of another display");
   const RetinaGrid& retina = made.retina_;
@@ -345,16 +349,17 @@ Image RetinaOfDisplay(const DisplayModel& model, const Patterns& t, const Displa
   const bool same_focus = made.same_focus_;
   Image image{
       retina.cols, retina.rows, {"R", "G", "B"}, std::vector<float>(size_t(retina.cols) * retina.rows * 3, 0.0f)};
+  if (made.one_tap_) workspace->Fit(made.sizes_, RetinaWorkspace::TeamSize());
   if (made.one_tap_ && !same_focus) {
     Image at_focus = image;
     for (int c = 0; c < 3; ++c) {
-      NearestRetina(model, t, retina, pupil, made.foci_[c], &made.workspace_, &at_focus);
+      NearestRetina(model, t, retina, pupil, made.foci_[c], workspace, &at_focus);
       for (size_t k = c; k < image.pixels.size(); k += 3) image.pixels[k] = at_focus.pixels[k];
     }
     return image;
   }
   if (made.one_tap_) {  // and so one focus
-    NearestRetina(model, t, retina, pupil, made.foci_[0], &made.workspace_, &image);
+    NearestRetina(model, t, retina, pupil, made.foci_[0], workspace, &image);
     return image;
   }
   const int foci = same_focus ? 1 : 3;

@@ -2,6 +2,7 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <string>
 
 #include "kernels/unrolled_layers.h"
@@ -64,9 +65,28 @@ struct RetinaWorkspaceSizer {
   }
 };
 
-RetinaWorkspace::RetinaWorkspace(const RetinaWorkspaceSizes& sizes, int threads) {
+RetinaWorkspace::RetinaWorkspace(const RetinaWorkspaceSizes& sizes, int threads) : sizes_(sizes) {
   WorkspaceLayout layout;
   RetinaWorkspaceSizer{true, &layout}.Size(sizes, threads, this);
+}
+
+void RetinaWorkspace::Fit(const RetinaWorkspaceSizes& needed, int threads) {
+  RetinaWorkspaceSizes s = sizes_;
+  s.retina_cols = std::max(s.retina_cols, needed.retina_cols);
+  s.layer_pixels.resize(std::max(s.layer_pixels.size(), needed.layer_pixels.size()), 0);
+  for (size_t k = 0; k < needed.layer_pixels.size(); ++k)
+    s.layer_pixels[k] = std::max(s.layer_pixels[k], needed.layer_pixels[k]);
+  s.column_tables = std::max(s.column_tables, needed.column_tables);
+  s.ring = std::max(s.ring, needed.ring);
+  s.terms = std::max(s.terms, needed.terms);
+  s.pupil_points = std::max(s.pupil_points, needed.pupil_points);
+  s.blended_row = std::max(s.blended_row, needed.blended_row);
+  if (threads == this->threads() && s.retina_cols == sizes_.retina_cols && s.layer_pixels == sizes_.layer_pixels &&
+      s.column_tables == sizes_.column_tables && s.ring == sizes_.ring && s.terms == sizes_.terms &&
+      s.pupil_points == sizes_.pupil_points && s.blended_row == sizes_.blended_row)
+    return;
+  *this = RetinaWorkspace();  // the old buffers freed before the new ones are made
+  *this = RetinaWorkspace(s, threads);
 }
 
 WorkspaceLayout RetinaWorkspace::Layout(const RetinaWorkspaceSizes& sizes, int threads) {

@@ -3,11 +3,12 @@
 // A part per thread of the team and the padded patterns the team shares;
 // nothing of it is a thread_local.
 //
-// Every buffer is sized once, by the one function that also gives the layout
-// without allocating (RetinaWorkspace::Layout), which is what the memory
-// estimate counts (RetinalObjectiveBytes), so the two cannot disagree. The
-// passes only resize buffers within the sizes given here; Bytes() gives what
-// is held, for the test that they did not grow.
+// Every buffer is sized before a pass, by the one function that also gives
+// the layout without allocating (RetinaWorkspace::Layout), which is what the
+// memory estimate counts (RetinalObjectiveBytes), so the two cannot disagree.
+// The passes only resize buffers within the sizes given here; Bytes() gives
+// what is held, for the test that they did not grow. One workspace serves a
+// sweep's states (Fit: sized again only for a state that needs more).
 #pragma once
 
 #include <cstddef>
@@ -60,6 +61,9 @@ class RetinaWorkspace {
   RetinaWorkspace() = default;
   // Allocates (and touches) every part of the layout.
   RetinaWorkspace(const RetinaWorkspaceSizes& sizes, int threads);
+  // Sized again, to the larger of each size held and needed, unless it holds them already for `threads`.
+  void Fit(const RetinaWorkspaceSizes& needed, int threads);
+  const RetinaWorkspaceSizes& sizes() const { return sizes_; }
   // The layout the constructor allocates, without allocating.
   static WorkspaceLayout Layout(const RetinaWorkspaceSizes& sizes, int threads);
   // The threads a parallel region started here would have: 1 inside a
@@ -78,6 +82,7 @@ class RetinaWorkspace {
 
  private:
   friend struct RetinaWorkspaceSizer;
+  RetinaWorkspaceSizes sizes_;
   std::vector<RetinaThreadWorkspace> threads_;
 };
 

@@ -145,25 +145,35 @@ TEST(SolveMemory, RetinalObjectiveCountedWhenTheSolveMakesIt) {
 
 // The retina's workspace (retina/retina_workspace.h), on the display's one-tap
 // path at one focus and at a focus per channel, and for a light field's
-// rays under both samplings: sized once, it holds what its layout says before
-// and after images of several patterns, so no image grew a buffer.
+// rays under both samplings: sized before the first image, it holds what its
+// layout says after images of several patterns, so no image grew a buffer;
+// shared by a sweep's states, what the layout of the largest sizes says.
 TEST(RetinaWorkspace, ImagesHoldWhatTheLayoutSays) {
   const DisplaySystem system = CompileJson(ShrunkExample("paper_prototype.json", 24, 12, 3));
   const DisplayModel model(system, DisplayLightFieldGeometry(system));
   const RetinaGrid retina = MakeRetinaGrid(0.2, 0.1, 0.004);
   const std::vector<PupilPoint> pupil = PupilSamples(system.eye);
+  const int threads = omp_get_max_threads();
+  RetinaWorkspace shared;
+  RetinaWorkspaceSizes largest;
   for (const std::array<double, 3>& focus :
        {std::array<double, 3>{1.0, 1.0, 1.0}, std::array<double, 3>{0.6, 1.0, 1.6}}) {
     const DisplayRetinaTables tables(model, retina, pupil, focus);
-    const size_t laid_out = tables.workspace_layout().bytes();
+    const size_t laid_out = RetinaWorkspace::Layout(tables.workspace_sizes(), threads).bytes();
     EXPECT_GT(laid_out, 0u);
-    EXPECT_EQ(tables.workspace().Bytes(), laid_out);
-    for (uint64_t seed : {1, 2}) RetinaOfDisplay(model, RandomPatterns(model, seed), tables);
-    EXPECT_EQ(tables.workspace().Bytes(), laid_out) << focus[0];
+    for (uint64_t seed : {1, 2}) {
+      RetinaOfDisplay(model, RandomPatterns(model, seed), tables);
+      EXPECT_EQ(tables.workspace().Bytes(), laid_out) << focus[0];
+      RetinaOfDisplay(model, RandomPatterns(model, seed), tables, &shared);
+    }
+    largest.column_tables = std::max(largest.column_tables, tables.workspace_sizes().column_tables);
+    largest.ring = std::max(largest.ring, tables.workspace_sizes().ring);
   }
+  EXPECT_EQ(shared.sizes().column_tables, largest.column_tables);
+  EXPECT_EQ(shared.sizes().ring, largest.ring);
+  EXPECT_EQ(shared.Bytes(), RetinaWorkspace::Layout(shared.sizes(), threads).bytes());
   const LightField lf = Synthesize(model, RandomPatterns(model, 3));
   const RetinaWorkspaceSizes sizes = LightFieldRetinaSizes(lf.geometry, retina, pupil);
-  const int threads = omp_get_max_threads();
   RetinaWorkspace workspace(sizes, threads);
   const size_t laid_out = RetinaWorkspace::Layout(sizes, threads).bytes();
   EXPECT_GT(laid_out, 0u);
