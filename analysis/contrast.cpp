@@ -15,6 +15,7 @@
 #include "eye/eye_description.h"
 #include "framework/error.h"
 #include "framework/progress.h"
+#include "framework/units.h"
 #include "framework/version.h"
 #include "retina/diffraction.h"
 #include "retina/lightfield_radiance.h"
@@ -26,8 +27,6 @@
 
 namespace layerlab {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180;
 
 double Seconds(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
@@ -85,7 +84,7 @@ LightFieldGeometry StripGeometry(const DisplaySystem& system, double dt, int row
 PlaneTextureFactory CosineGrating(double mean, double contrast, GratingSpacing spacing) {
   return [=](double depth, double cpd) -> std::shared_ptr<const Texture> {
     GratingSpec spec;
-    spec.cycles_per_meter = cpd / (depth * kDeg);  // at the line of sight
+    spec.cycles_per_meter = cpd / (depth * kRadiansPerDegree);  // at the line of sight
     spec.angle_depth = spacing == GratingSpacing::kVisualAngle ? depth : 0;
     spec.mean = mean;
     spec.contrast = contrast;
@@ -144,7 +143,8 @@ std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displ
   for (const ContrastDisplay& d : displays) pupils.push_back(PupilSamples(d.system.eye));
   const std::vector<PupilPoint>& first_pupil = pupils.front();
   const RetinaGrid retina =
-      MakeRetinaGrid(o.retina_field * kDeg, 3 * o.retina_resolution * kDeg, o.retina_resolution * kDeg);
+      MakeRetinaGrid(o.retina_field * kRadiansPerDegree, 3 * o.retina_resolution * kRadiansPerDegree,
+                     o.retina_resolution * kRadiansPerDegree);
   RetinaGrid shifted = retina;  // for the peaks' sampling uncertainty
   shifted.center_x += 0.5 * retina.resolution;
   const PlaneTextureFactory texture_of = o.texture ? o.texture : CosineGrating(0.5, 1.0, o.grating);
@@ -152,7 +152,7 @@ std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displ
 
   auto amplitude = [&](const Image& image, const RetinaGrid& grid, double f) {
     std::vector<double> row = CentralRow(image), degrees(grid.cols);
-    for (int j = 0; j < grid.cols; ++j) degrees[j] = grid.angle_x(j) / kDeg;
+    for (int j = 0; j < grid.cols; ++j) degrees[j] = grid.angle_x(j) / kRadiansPerDegree;
     int n = WholeCycleSamples(grid.cols, o.retina_resolution, f);
     int start = (grid.cols - n) / 2;
     return FourierAmplitude(std::vector<double>(row.begin() + start, row.begin() + start + n),

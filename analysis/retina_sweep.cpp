@@ -19,8 +19,6 @@
 namespace layerlab {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180;
-
 double MeanLuminance(const Image& image) {
   double sum = 0;
   for (size_t k = 0; k < image.pixels.size(); ++k) sum += kLuminanceWeights[k % 3] * image.pixels[k];
@@ -49,9 +47,9 @@ std::vector<RetinaStateResult> WriteRetinaSweep(
   const DisplaySystem& system = model.system();
   CheckAccommodationStates(o.states, "retina: accommodation");
   if (!(o.resolution > 0) || !(o.resolution < 10)) throw Error("retina: the resolution must lie in (0, 10) deg");
-  const double field_x = o.field_x > 0 ? o.field_x * kDeg : system.fov_x;
-  const double field_y = o.field_y > 0 ? o.field_y * kDeg : system.fov_y;
-  const RetinaGrid grid = MakeRetinaGrid(field_x, field_y, o.resolution * kDeg);
+  const double field_x = o.field_x > 0 ? o.field_x * kRadiansPerDegree : system.fov_x;
+  const double field_y = o.field_y > 0 ? o.field_y * kRadiansPerDegree : system.fov_y;
+  const RetinaGrid grid = MakeRetinaGrid(field_x, field_y, o.resolution * kRadiansPerDegree);
   const std::vector<PupilPoint> pupil = PupilSamples(system.eye);
 
   namespace fs = std::filesystem;
