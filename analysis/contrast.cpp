@@ -15,6 +15,7 @@
 #include "eye/eye_description.h"
 #include "framework/error.h"
 #include "framework/progress.h"
+#include "framework/units.h"
 #include "framework/version.h"
 #include "retina/diffraction.h"
 #include "retina/lightfield_radiance.h"
@@ -26,8 +27,6 @@
 
 namespace layerlab {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180;
 
 double Seconds(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
@@ -130,7 +129,8 @@ class ContrastRun {
       accommodation_.push_back(a);
     }
     for (const ContrastDisplay& d : displays) pupils_.push_back(PupilSamples(d.system.eye));
-    retina_ = MakeRetinaGrid(o.retina_field * kDeg, 3 * o.retina_resolution * kDeg, o.retina_resolution * kDeg);
+    retina_ = MakeRetinaGrid(o.retina_field * kRadiansPerDegree, 3 * o.retina_resolution * kRadiansPerDegree,
+                             o.retina_resolution * kRadiansPerDegree);
     shifted_ = retina_;
     shifted_.center_x += 0.5 * retina_.resolution;  // for the peaks' sampling uncertainty
     grids_[0] = retina_, grids_[1] = shifted_;
@@ -157,7 +157,7 @@ class ContrastRun {
  private:
   double Amplitude(const Image& image, const RetinaGrid& grid, double f) const {
     std::vector<double> row = CentralRow(image), degrees(grid.cols);
-    for (int j = 0; j < grid.cols; ++j) degrees[j] = grid.angle_x(j) / kDeg;
+    for (int j = 0; j < grid.cols; ++j) degrees[j] = grid.angle_x(j) / kRadiansPerDegree;
     int n = WholeCycleSamples(grid.cols, o_.retina_resolution, f);
     int start = (grid.cols - n) / 2;
     return FourierAmplitude(std::vector<double>(row.begin() + start, row.begin() + start + n),
@@ -391,7 +391,7 @@ class ContrastRun {
 PlaneTextureFactory CosineGrating(double mean, double contrast, GratingSpacing spacing) {
   return [=](double depth, double cpd) -> std::shared_ptr<const Texture> {
     GratingSpec spec;
-    spec.cycles_per_meter = cpd / (depth * kDeg);  // at the line of sight
+    spec.cycles_per_meter = cpd / (depth * kRadiansPerDegree);  // at the line of sight
     spec.angle_depth = spacing == GratingSpacing::kVisualAngle ? depth : 0;
     spec.mean = mean;
     spec.contrast = contrast;

@@ -10,13 +10,12 @@
 #include "analysis/layout_svg.h"
 #include "analysis/svg_plot.h"
 #include "eye/eye_description.h"
+#include "framework/units.h"
 #include "retina/retina.h"
 #include "systems/system_report.h"
 
 namespace layerlab {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180;
 
 std::string F(double v, int decimals) { return HtmlNumber(v, decimals); }
 std::string Links(const std::vector<std::pair<std::string, std::string>>& links) { return HtmlLinks(links); }
@@ -155,8 +154,8 @@ std::string SystemSection(const RunReportPage& page) {
   std::string h = "<section id=\"system\"><h2>Display system</h2>\n";
   h += "<p>" + Escape(s.name.empty() ? s.file : s.name) + Links(page.system_links) + "</p>\n";
   h += "<figure class=\"layout\" id=\"layout\">" + RenderLayoutSvg(s, false) + "</figure>\n";
-  h += "<table><tr><th class=\"l\">field of view</th><td>" + F(s.fov_x / kDeg, 2) + " &times; " + F(s.fov_y / kDeg, 2) +
-       " deg</td></tr>\n";
+  h += "<table><tr><th class=\"l\">field of view</th><td>" + F(s.fov_x / kRadiansPerDegree, 2) + " &times; " +
+       F(s.fov_y / kRadiansPerDegree, 2) + " deg</td></tr>\n";
   h += "<tr><th class=\"l\">highest frequency</th><td>" + F(EveryLayerMaxCpd(s), 2) + " cpd on every layer, " +
        F(s.max_cpd, 2) + " cpd on the finest</td></tr>\n";
   h +=
@@ -183,8 +182,8 @@ std::string SystemSection(const RunReportPage& page) {
          Escape(s.branches[l.branch].name) + "</td><td>" + F(l.diopters, 3) + "</td><td>" + F(l.depth, 4) +
          "</td><td>" + F(l.panel_distance * 1e3, 2) + "</td><td>" + F(l.magnification, 2) + "</td><td>" +
          F(l.pitch_x * 1e3, 3) + "</td><td>" + std::to_string(l.cols) + " &times; " + std::to_string(l.rows) +
-         "</td><td>" + F(l.fov_x / kDeg, 2) + " &times; " + F(l.fov_y / kDeg, 2) + "</td><td>" + F(l.max_cpd, 2) +
-         "</td></tr>\n";
+         "</td><td>" + F(l.fov_x / kRadiansPerDegree, 2) + " &times; " + F(l.fov_y / kRadiansPerDegree, 2) +
+         "</td><td>" + F(l.max_cpd, 2) + "</td></tr>\n";
   }
   h += "</table>\n<h3>Branches (added at the eye)</h3>\n<table><tr><th>#</th><th class=\"l\">name</th><th "
        "class=\"l\">layers</th>"

@@ -15,11 +15,10 @@
 #include "framework/polarization.h"
 #include "framework/units.h"
 #include "retina/diffraction.h"
+#include "retina/retina_workspace.h"
 
 namespace layerlab {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180;
 
 double MeanLuminance(const Image& image) {
   double sum = 0;
@@ -38,7 +37,7 @@ struct RetinaBatch {
 // The images of states [first, first + count), each computed in parallel within.
 RetinaBatch TraceBatch(const DisplayModel& model, const Patterns& t, const SceneRadiance& natural,
                        const RetinaGrid& grid, const std::vector<PupilPoint>& pupil, const std::vector<double>& states,
-                       size_t first, size_t count) {
+                       size_t first, size_t count, RetinaWorkspace* workspace) {
   const DisplaySystem& system = model.system();
   const double white = model.white_luminance();
   RetinaBatch b{std::vector<RetinaStateResult>(count), std::vector<Image>(count), std::vector<Image>(count)};
@@ -48,7 +47,7 @@ RetinaBatch TraceBatch(const DisplayModel& model, const Patterns& t, const Scene
     r.diopters = states[first + s];
     r.name = RetinaStateName(r.diopters);
     const auto focus = ChannelAccommodation(system.eye, r.diopters);
-    b.display[s] = RetinaOfDisplay(model, t, grid, pupil, focus);
+    b.display[s] = RetinaOfDisplay(model, t, DisplayRetinaTables(model, grid, pupil, focus), workspace);
     ApplyEyeOptics(system.eye, grid, &b.display[s]);
     r.display_mean_cd_m2 = MeanLuminance(b.display[s]) * white;
     r.natural_mean_cd_m2 = NAN;
@@ -116,9 +115,9 @@ std::vector<RetinaStateResult> WriteRetinaSweep(
   const DisplaySystem& system = model.system();
   CheckAccommodationStates(o.states, "retina: accommodation");
   if (!(o.resolution > 0) || !(o.resolution < 10)) throw Error("retina: the resolution must lie in (0, 10) deg");
-  const double field_x = o.field_x > 0 ? o.field_x * kDeg : system.fov_x;
-  const double field_y = o.field_y > 0 ? o.field_y * kDeg : system.fov_y;
-  const RetinaGrid grid = MakeRetinaGrid(field_x, field_y, o.resolution * kDeg);
+  const double field_x = o.field_x > 0 ? o.field_x * kRadiansPerDegree : system.fov_x;
+  const double field_y = o.field_y > 0 ? o.field_y * kRadiansPerDegree : system.fov_y;
+  const RetinaGrid grid = MakeRetinaGrid(field_x, field_y, o.resolution * kRadiansPerDegree);
   const std::vector<PupilPoint> pupil = PupilSamples(system.eye);
 
   const fs::path out = folder;
@@ -131,9 +130,10 @@ std::vector<RetinaStateResult> WriteRetinaSweep(
   // 15 times the time of storing it; zlib's level 6 a sixth of a PNG at five times level 1's).
   const size_t batch = 4;
   std::vector<RetinaStateResult> results;
+  RetinaWorkspace workspace;  // every state's display image, sized for the first (again only for one needing more)
   for (size_t first = 0; first < o.states.size(); first += batch) {
     const size_t count = std::min(batch, o.states.size() - first);
-    RetinaBatch b = TraceBatch(model, t, natural, grid, pupil, o.states, first, count);
+    RetinaBatch b = TraceBatch(model, t, natural, grid, pupil, o.states, first, count, &workspace);
     std::vector<double> seconds;
     WriteBatch(out, grid, bool(natural), &b, &seconds);
     for (size_t s = 0; s < count; ++s) {

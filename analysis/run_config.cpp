@@ -58,6 +58,7 @@
 
 #include "framework/json_file.h"
 #include "framework/params.h"
+#include "framework/units.h"
 #include "retina/retina.h"
 #include "solvers/solve_config.h"
 
@@ -66,7 +67,6 @@ namespace {
 
 using nlohmann::json;
 
-constexpr double kDeg = std::numbers::pi / 180;
 constexpr double kMaxDiopters = 20;
 constexpr size_t kMaxStates = 1000;
 
@@ -139,11 +139,11 @@ RetinaRunConfig ReadRetina(Params& run, const DisplaySystem& system) {
     for (const VirtualLayer& layer : system.layers) r.accommodation.push_back(layer.diopters);
   }
   if (p.has("focal_stack")) r.focal_stack = DepthRange(p, "focal_stack");
-  r.resolution = p.quantity("resolution", Dimension::kAngle, r.resolution * kDeg) / kDeg;
+  r.resolution = p.quantity("resolution", Dimension::kAngle, r.resolution * kRadiansPerDegree) / kRadiansPerDegree;
   p.require_range("resolution", r.resolution, 0, 10, true, true);
   if (p.has("field")) {
     std::array<double, 2> field = p.quantity_pair("field", Dimension::kAngle, {0, 0});
-    r.field_x = field[0] / kDeg, r.field_y = field[1] / kDeg;
+    r.field_x = field[0] / kRadiansPerDegree, r.field_y = field[1] / kRadiansPerDegree;
     if (!(r.field_x > 0 && r.field_x < 170 && r.field_y > 0 && r.field_y < 170))
       p.fail("field", "each angle must lie in (0, 170) deg");
   }
@@ -181,9 +181,11 @@ ContrastRunConfig ReadContrast(Params& run, const Scene& scene) {
     o.accommodation_max = a.back();
     o.accommodation_step = a[1] - a[0];
   }
-  o.retina_resolution = p.quantity("retina_resolution", Dimension::kAngle, o.retina_resolution * kDeg) / kDeg;
+  o.retina_resolution =
+      p.quantity("retina_resolution", Dimension::kAngle, o.retina_resolution * kRadiansPerDegree) / kRadiansPerDegree;
   p.require_range("retina_resolution", o.retina_resolution, 0, 1, true, false);
-  o.retina_field = p.quantity("retina_field", Dimension::kAngle, o.retina_field * kDeg) / kDeg;
+  o.retina_field =
+      p.quantity("retina_field", Dimension::kAngle, o.retina_field * kRadiansPerDegree) / kRadiansPerDegree;
   p.require_range("retina_field", o.retina_field, 0, 170, true, true);
   CheckRetinaSampling(o.retina_field, 3 * o.retina_resolution, o.retina_resolution,
                       p.where().child("retina_field").str(), p.where().child("retina_resolution").str());

@@ -25,6 +25,7 @@
 #include "analysis/retina_sweep.h"
 #include "bench/bench_setup.h"
 #include "framework/lightfield_io.h"
+#include "framework/units.h"
 #include "kernels/joint_pass.h"
 #include "kernels/pair_lattice.h"
 #include "kernels/solve_workspace.h"
@@ -42,8 +43,6 @@
 
 namespace layerlab::bench {
 namespace {
-
-constexpr double kDeg = 3.14159265358979323846 / 180;
 
 template <class F>
 double Timed(benchmark::State& state, F f) {
@@ -446,15 +445,16 @@ void DisplayRetinaImage(benchmark::State& state, const RetinaGrid& grid, double 
 
 // The grid of `layerlab retina` and the main job: the display's field at 0.05 deg (710 x 364 for the prototype).
 RetinaGrid RetinaSweepGrid(const Workload& w) {
-  return Settings().smoke ? MakeRetinaGrid(4 * kDeg, 2 * kDeg, 0.1 * kDeg)
-                          : MakeRetinaGrid(w.system.fov_x, w.system.fov_y, 0.05 * kDeg);
+  return Settings().smoke ? MakeRetinaGrid(4 * kRadiansPerDegree, 2 * kRadiansPerDegree, 0.1 * kRadiansPerDegree)
+                          : MakeRetinaGrid(w.system.fov_x, w.system.fov_y, 0.05 * kRadiansPerDegree);
 }
 
 void BM_RetinaImage(benchmark::State& state) {
   const Workload& w = GetWorkload("paper_prototype");
   DisplayRetinaImage(state,
-                     Settings().smoke ? MakeRetinaGrid(4 * kDeg, 2 * kDeg, 0.1 * kDeg)
-                                      : MakeRetinaGrid(w.system.fov_x, w.system.fov_y, w.system.fov_x / 400),
+                     Settings().smoke
+                         ? MakeRetinaGrid(4 * kRadiansPerDegree, 2 * kRadiansPerDegree, 0.1 * kRadiansPerDegree)
+                         : MakeRetinaGrid(w.system.fov_x, w.system.fov_y, w.system.fov_x / 400),
                      1.3, 0.020);
 }
 

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "framework/error.h"
+#include "framework/units.h"
 
 namespace layerlab {
 namespace {
@@ -80,7 +81,7 @@ ordered_json CalibratedSceneDocument(const ordered_json& scene, const std::strin
     if (panel.geometry_measured) {
       values.push_back(
           {"offset", {WithUnit(panel.eye_from_panel_x_m, 1e3, "mm"), WithUnit(panel.eye_from_panel_y_m, 1e3, "mm")}});
-      values.push_back({"rotation", WithUnit(panel.rotation, 180.0 / std::numbers::pi, "deg")});
+      values.push_back({"rotation", WithUnit(panel.rotation, kDegreesPerRadian, "deg")});
     }
     if (panel.luminance_measured) {
       values.push_back({"gamma", Rounded(panel.gamma)});

@@ -3,6 +3,7 @@
 #include <numbers>
 
 #include "calibration/fit_steps.h"
+#include "framework/units.h"
 
 namespace layerlab {
 namespace {
@@ -14,13 +15,12 @@ struct Shown {
 };
 
 Shown ShownAs(const std::string& quantity) {
-  constexpr double kDeg = 180.0 / std::numbers::pi;
   if (quantity == "distance" || quantity == "focal_length" || quantity == "gap" || quantity == "offset_x" ||
       quantity == "offset_y")
     return {"mm", 1e3, 4};
   if (quantity == "virtual_depth") return {"D", 1, 4};
-  if (quantity == "rotation") return {"deg", kDeg, 4};
-  if (quantity == "pan" || quantity == "tilt" || quantity == "roll") return {"arcmin", kDeg * 60, 3};
+  if (quantity == "rotation") return {"deg", kDegreesPerRadian, 4};
+  if (quantity == "pan" || quantity == "tilt" || quantity == "roll") return {"arcmin", kDegreesPerRadian * 60, 3};
   if (quantity == "black_level") return {"", 1, 5};
   if (quantity == "gamma") return {"", 1, 4};
   return {"", 1, -1};  // max_luminance: in the measurements' own unit, significant digits

@@ -8,10 +8,10 @@
 namespace layerlab {
 
 struct PupilAdaptation {
-  double luminance = 0;   // cd/m2 at the eye
-  double field_area = 0;  // deg2, the adapting field's area
-  double age = 28.58;     // years; the formula's reference age, where the age term vanishes
-  int eyes = 1;           // 1 (one eye sees the field) or 2
+  double luminance_cd_m2 = 0;  // at the eye
+  double field_area_deg2 = 0;  // the adapting field's area
+  double age_years = 28.58;    // the formula's reference age, where the age term vanishes
+  int eyes = 1;                // 1 (one eye sees the field) or 2
 };
 
 // D_U in meters. Throws layerlab::Error outside the formula's domain

@@ -18,8 +18,6 @@ struct Unit {
   double to_si;
 };
 
-constexpr double kDeg = std::numbers::pi / 180.0;
-
 constexpr std::array kUnits = {
     Unit{"m", Dimension::kLength, 1.0},
     Unit{"cm", Dimension::kLength, 1e-2},
@@ -32,9 +30,9 @@ constexpr std::array kUnits = {
     Unit{"dpt", Dimension::kOpticalPower, 1.0},
     Unit{"rad", Dimension::kAngle, 1.0},
     Unit{"mrad", Dimension::kAngle, 1e-3},
-    Unit{"deg", Dimension::kAngle, kDeg},
-    Unit{"\xC2\xB0", Dimension::kAngle, kDeg},  // degree sign
-    Unit{"arcmin", Dimension::kAngle, kDeg / 60.0},
+    Unit{"deg", Dimension::kAngle, kRadiansPerDegree},
+    Unit{"\xC2\xB0", Dimension::kAngle, kRadiansPerDegree},  // degree sign
+    Unit{"arcmin", Dimension::kAngle, kRadiansPerDegree / 60.0},
     Unit{"cd/m2", Dimension::kLuminance, 1.0},
     Unit{"cd/m^2", Dimension::kLuminance, 1.0},
     Unit{"nit", Dimension::kLuminance, 1.0},

@@ -8,8 +8,10 @@
 
 namespace layerlab {
 
-// The one home of the angle conversion: radians = degrees * kRadiansPerDegree.
+// The one home of the angle conversions: radians = degrees * kRadiansPerDegree,
+// degrees = radians * kDegreesPerRadian.
 inline constexpr double kRadiansPerDegree = std::numbers::pi / 180;
+inline constexpr double kDegreesPerRadian = 180 / std::numbers::pi;
 
 enum class Dimension {
   kLength,            // m, cm, mm, um, nm

@@ -55,7 +55,7 @@ PupilTables TablesOf(const LightField& lf, bool nearest, const PupilPoint& u, do
 
 // One focus for every channel.
 void RetinaAtFocus(const LightField& lf, bool nearest, const RetinaGrid& retina, const std::vector<PupilPoint>& pupil,
-                   double focus, Image* image) {
+                   double focus, RetinaWorkspace* workspace, Image* image) {
   const LightFieldGeometry& g = lf.geometry;
   std::vector<double> tan_x(retina.cols), tan_y(retina.rows);
   for (int j = 0; j < retina.cols; ++j) tan_x[j] = std::tan(retina.angle_x(j));
@@ -64,15 +64,16 @@ void RetinaAtFocus(const LightField& lf, bool nearest, const RetinaGrid& retina,
 #pragma omp parallel for schedule(dynamic)
   for (size_t p = 0; p < pupil.size(); ++p) tables[p] = TablesOf(lf, nearest, pupil[p], focus, tan_x, tan_y);
 
-  const size_t stride = size_t(g.cols) * 3 + 4;  // a blended row and LoadRgbOver's float past it
+  const size_t stride = LightFieldRetinaSizes(g, retina, pupil).blended_row;
   const float inverse_count = static_cast<float>(1.0 / pupil.size());
-#pragma omp parallel
+#pragma omp parallel num_threads(workspace->threads())
   {
     // Per pupil point the blended row of the last retinal row, kept while the
     // next row reads the same light-field rows (about two retinal rows a pixel row).
-    thread_local std::vector<float> blended;
-    thread_local std::vector<Bracket> blended_rows;
-    thread_local std::vector<Rgb4> sum;
+    RetinaThreadWorkspace& mine = workspace->thread();
+    std::vector<float>& blended = mine.blended;
+    std::vector<Bracket>& blended_rows = mine.blended_rows;
+    std::vector<Rgb4>& sum = mine.sum;
     blended.resize(pupil.size() * stride);
     blended_rows.assign(pupil.size(), Bracket{-1, -1, 0.0});
     sum.resize(retina.cols);
@@ -146,17 +147,25 @@ SceneRadiance LightFieldRadiance(const LightField& lf, Sampling pixels) { return
 
 Image RetinaOfLightField(const LightField& lf, Sampling pixels, const RetinaGrid& retina,
                          const std::vector<PupilPoint>& pupil, const std::array<double, 3>& accommodation) {
+  RetinaWorkspace workspace(LightFieldRetinaSizes(lf.geometry, retina, pupil), RetinaWorkspace::TeamSize());
+  return RetinaOfLightField(lf, pixels, retina, pupil, accommodation, &workspace);
+}
+
+Image RetinaOfLightField(const LightField& lf, Sampling pixels, const RetinaGrid& retina,
+                         const std::vector<PupilPoint>& pupil, const std::array<double, 3>& accommodation,
+                         RetinaWorkspace* workspace) {
+  workspace->Fit(LightFieldRetinaSizes(lf.geometry, retina, pupil), RetinaWorkspace::TeamSize());
   const size_t samples = size_t(retina.cols) * retina.rows;
   Image image{retina.cols, retina.rows, {"R", "G", "B"}, std::vector<float>(samples * 3, 0.0f)};
   const bool nearest = pixels == Sampling::kNearest;
   if (accommodation[0] == accommodation[1] && accommodation[1] == accommodation[2]) {
-    RetinaAtFocus(lf, nearest, retina, pupil, accommodation[0], &image);
+    RetinaAtFocus(lf, nearest, retina, pupil, accommodation[0], workspace, &image);
     return image;
   }
   // Chromatic defocus: each channel from the image at its own focus.
   Image at_focus = image;
   for (int c = 0; c < 3; ++c) {
-    RetinaAtFocus(lf, nearest, retina, pupil, accommodation[c], &at_focus);
+    RetinaAtFocus(lf, nearest, retina, pupil, accommodation[c], workspace, &at_focus);
     for (size_t k = 0; k < samples; ++k) image.pixels[k * 3 + c] = at_focus.pixels[k * 3 + c];
   }
   return image;

@@ -19,6 +19,7 @@
 #include "framework/exr_image.h"
 #include "framework/lightfield.h"
 #include "retina/retina_grid.h"
+#include "retina/retina_workspace.h"
 #include "retina/scene_radiance.h"
 #include "systems/layer_sampler.h"
 
@@ -49,5 +50,9 @@ SceneRadiance LightFieldRadiance(const LightField& lf, Sampling pixels = Samplin
 // (within 1e-5 relative of the per-ray sums in double; tests/natural_viewing_test.cpp).
 Image RetinaOfLightField(const LightField& lf, Sampling pixels, const RetinaGrid& retina,
                          const std::vector<PupilPoint>& pupil, const std::array<double, 3>& accommodation);
+// The same in `workspace`, fitted to LightFieldRetinaSizes(lf.geometry, retina, pupil) first.
+Image RetinaOfLightField(const LightField& lf, Sampling pixels, const RetinaGrid& retina,
+                         const std::vector<PupilPoint>& pupil, const std::array<double, 3>& accommodation,
+                         RetinaWorkspace* workspace);
 
 }  // namespace layerlab

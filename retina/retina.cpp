@@ -205,11 +205,12 @@ OneTapTables MakeOneTapTables(const DisplayModel& model, const RetinaGrid& retin
 }
 
 // A thread's layer rows resampled to the retinal columns, per column table a
-// ring of the last rows read (slot r mod ring), 0 where a ray misses the layer.
+// ring of the last rows read (slot r mod ring), 0 where a ray misses the layer;
+// in the thread's part of the workspace, sized for it.
 class ResampledRows {
  public:
-  void Reset(const OneTapTables& tables, int cols) {
-    cols_ = cols, ring_ = tables.ring;
+  ResampledRows(const OneTapTables& tables, int cols, RetinaThreadWorkspace& w)
+      : cols_(cols), ring_(tables.ring), tags_(w.resampled_tags), rows_(w.resampled) {
     tags_.assign(tables.cols.size() * ring_, -1);
     rows_.resize(tags_.size() * cols);
   }
@@ -226,16 +227,16 @@ class ResampledRows {
   }
 
  private:
-  int cols_ = 0, ring_ = 1;
-  std::vector<int> tags_;
-  std::vector<Rgb4> rows_;
+  int cols_, ring_;
+  std::vector<int>& tags_;
+  std::vector<Rgb4>& rows_;
 };
 
 void NearestRetina(const DisplayModel& model, const Patterns& t, const RetinaGrid& retina,
-                   const std::vector<PupilPoint>& pupil, const OneTapTables& tables, Image* image) {
+                   const std::vector<PupilPoint>& pupil, const OneTapTables& tables, RetinaWorkspace* workspace,
+                   Image* image) {
   const size_t layers = model.layer_count(), branches = model.branch_count();
-  thread_local PaddedLayers padded_memory;
-  PaddedLayers& padded = padded_memory;  // the calling thread's, shared with the workers
+  PaddedLayers& padded = workspace->padded;
   padded.PadAll(t);
   std::vector<Rgb4> weight(branches);
   for (size_t b = 0; b < branches; ++b) {
@@ -244,19 +245,15 @@ void NearestRetina(const DisplayModel& model, const Patterns& t, const RetinaGri
   }
   const int longest = kMaxOneTapLayers;  // rows kept per term (pupil point, branch)
   const float inverse_count = static_cast<float>(1.0 / pupil.size());
-#pragma omp parallel
+#pragma omp parallel num_threads(workspace->threads())
   {
-    thread_local std::vector<Rgb4> sum;
-    thread_local ResampledRows resampled_memory;
-    thread_local std::vector<const Rgb4*> row_memory;
-    thread_local std::vector<Rgb4> weight_memory;
-    thread_local std::vector<int> layers_memory;
-    ResampledRows& resampled = resampled_memory;
-    std::vector<const Rgb4*>& rows = row_memory;  // [term][layer of its branch]
-    std::vector<Rgb4>& term_weight = weight_memory;
-    std::vector<int>& term_layers = layers_memory;
+    RetinaThreadWorkspace& mine = workspace->thread();
+    std::vector<Rgb4>& sum = mine.sum;
+    ResampledRows resampled(tables, retina.cols, mine);
+    std::vector<const Rgb4*>& rows = mine.term_rows;  // [term][layer of its branch]
+    std::vector<Rgb4>& term_weight = mine.term_weight;
+    std::vector<int>& term_layers = mine.term_layers;
     sum.resize(retina.cols);
-    resampled.Reset(tables, retina.cols);
     // Runs of retinal rows per thread: the rows a run reads are resampled once.
 #pragma omp for schedule(dynamic, 16)
     for (int i = 0; i < retina.rows; ++i) {
@@ -388,9 +385,16 @@ DisplayRetinaTables::DisplayRetinaTables(const DisplayModel& model, const Retina
   for (size_t b = 0; b < model.branch_count(); ++b) one_tap_ = one_tap_ && OneTapBranch(model, b);
   // A focus per channel (chromatic aberration): each channel from the fast
   // path at its own focus, three float passes instead of the general path.
-  if (one_tap_)
-    for (int c = 0; c < (same_focus_ ? 1 : 3); ++c)
-      foci_.push_back(MakeOneTapTables(model, retina, pupil, tan_x_, tan_y_, accommodation[c]));
+  if (!one_tap_) return;
+  for (int c = 0; c < (same_focus_ ? 1 : 3); ++c)
+    foci_.push_back(MakeOneTapTables(model, retina, pupil, tan_x_, tan_y_, accommodation[c]));
+  sizes_.retina_cols = retina.cols;
+  for (size_t k = 0; k < layers_; ++k) sizes_.layer_pixels.push_back(model.projection(k).pixel_count());
+  for (const OneTapTables& focus : foci_) {
+    sizes_.column_tables = std::max(sizes_.column_tables, focus.cols.size());
+    sizes_.ring = std::max(sizes_.ring, size_t(focus.ring));
+  }
+  sizes_.terms = pupil.size() * branches_;
 }
 
 DisplayRetinaTables::~DisplayRetinaTables() = default;
@@ -402,6 +406,11 @@ Image RetinaOfDisplay(const DisplayModel& model, const Patterns& t, const Retina
 }
 
 Image RetinaOfDisplay(const DisplayModel& model, const Patterns& t, const DisplayRetinaTables& made) {
+  return RetinaOfDisplay(model, t, made, &made.workspace_);
+}
+
+Image RetinaOfDisplay(const DisplayModel& model, const Patterns& t, const DisplayRetinaTables& made,
+                      RetinaWorkspace* workspace) {
   if (model.layer_count() != made.layers_ || model.branch_count() != made.branches_)
     throw Error("internal error: retinal tables of another display");
   const RetinaGrid& retina = made.retina_;
@@ -411,16 +420,17 @@ Image RetinaOfDisplay(const DisplayModel& model, const Patterns& t, const Displa
   const bool same_focus = made.same_focus_;
   Image image{
       retina.cols, retina.rows, {"R", "G", "B"}, std::vector<float>(size_t(retina.cols) * retina.rows * 3, 0.0f)};
+  if (made.one_tap_) workspace->Fit(made.sizes_, RetinaWorkspace::TeamSize());
   if (made.one_tap_ && !same_focus) {
     Image at_focus = image;
     for (int c = 0; c < 3; ++c) {
-      NearestRetina(model, t, retina, pupil, made.foci_[c], &at_focus);
+      NearestRetina(model, t, retina, pupil, made.foci_[c], workspace, &at_focus);
       for (size_t k = c; k < image.pixels.size(); k += 3) image.pixels[k] = at_focus.pixels[k];
     }
     return image;
   }
   if (made.one_tap_) {  // and so one focus
-    NearestRetina(model, t, retina, pupil, made.foci_[0], &image);
+    NearestRetina(model, t, retina, pupil, made.foci_[0], workspace, &image);
     return image;
   }
   const int foci = same_focus ? 1 : 3;

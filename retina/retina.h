@@ -18,6 +18,7 @@
 
 #include "framework/exr_image.h"
 #include "retina/retina_grid.h"
+#include "retina/retina_workspace.h"
 #include "retina/scene_radiance.h"
 #include "systems/display_model.h"
 
@@ -55,6 +56,9 @@ struct OneTapTables;
 // layer's column and row taps. They depend on the display's layers, not on
 // the light field its model was made for, so one set serves every model of
 // the display and every set of patterns (a sweep's curves of one display).
+// Images made without a workspace are made in one the tables hold, sized at
+// the first for a team of RetinaWorkspace::TeamSize() threads: one such
+// image at a time per set of tables.
 class DisplayRetinaTables {
  public:
   DisplayRetinaTables(const DisplayModel& model, const RetinaGrid& retina, const std::vector<PupilPoint>& pupil,
@@ -62,8 +66,13 @@ class DisplayRetinaTables {
   ~DisplayRetinaTables();
   DisplayRetinaTables(DisplayRetinaTables&&) noexcept;
 
+  // What their images need of a workspace (nothing off the one-tap path), and the one they hold.
+  const RetinaWorkspaceSizes& workspace_sizes() const { return sizes_; }
+  const RetinaWorkspace& workspace() const { return workspace_; }
+
  private:
   friend Image RetinaOfDisplay(const DisplayModel&, const Patterns&, const DisplayRetinaTables&);
+  friend Image RetinaOfDisplay(const DisplayModel&, const Patterns&, const DisplayRetinaTables&, RetinaWorkspace*);
   RetinaGrid retina_;
   const std::vector<PupilPoint>* pupil_;
   std::array<double, 3> accommodation_;
@@ -71,9 +80,14 @@ class DisplayRetinaTables {
   std::vector<double> tan_x_, tan_y_;
   bool one_tap_ = false, same_focus_ = false;
   std::vector<OneTapTables> foci_;  // one-tap path: one focus, or one per channel
+  RetinaWorkspaceSizes sizes_;
+  mutable RetinaWorkspace workspace_;
 };
 // The same image from tables made before (for a model of the same display; `pupil` must outlive them).
 Image RetinaOfDisplay(const DisplayModel& model, const Patterns& t, const DisplayRetinaTables& tables);
+// The same in `workspace`, fitted to the tables first (a sweep's states share one).
+Image RetinaOfDisplay(const DisplayModel& model, const Patterns& t, const DisplayRetinaTables& tables,
+                      RetinaWorkspace* workspace);
 
 // The radiance of a light field (LightFieldRadiance) is read image-wise
 // (RetinaOfLightField); any other (a traced target, the continuous plane) ray by ray.

@@ -58,10 +58,13 @@ RetinalParts RetinalPartsOf(const DisplayModel& model, const SolverOptions& opti
   r.kept = double(m.kept());
   r.setup = std::max(double(m.construction), measure) + double(m.filter);
   r.steps = (objective ? pass : measure) + double(m.filter);
-  r.described = " + the retinal objective " + FormatBytes(r.kept) + " (operator tables " +
-                FormatBytes(double(m.tables)) + ", images " + FormatBytes(double(m.images)) + " x 2, apply buffer " +
-                FormatBytes(double(m.apply_buffer)) + "; in the set-up " + FormatBytes(r.setup) +
-                ", in the iterations " + FormatBytes(r.steps) + (objective ? " with its pass" : "") + ")";
+  r.described =
+      " + the retinal objective " + FormatBytes(r.kept) + " (operator tables " + FormatBytes(double(m.tables)) +
+      ", images " + FormatBytes(double(m.images)) + " x 2, apply buffer " + FormatBytes(double(m.apply_buffer)) +
+      (m.retina_workspace ? "; its target's images made in a workspace of " + FormatBytes(double(m.retina_workspace))
+                          : std::string()) +
+      "; in the set-up " + FormatBytes(r.setup) + ", in the iterations " + FormatBytes(r.steps) +
+      (objective ? " with its pass" : "") + ")";
   return r;
 }
 

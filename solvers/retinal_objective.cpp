@@ -9,6 +9,7 @@
 #include "framework/error.h"
 #include "framework/heap_block.h"
 #include "framework/huge_page_allocator.h"
+#include "retina/lightfield_radiance.h"
 #include "solvers/objective.h"
 
 namespace layerlab {
@@ -179,7 +180,11 @@ RetinalObjectiveMemory RetinalObjectiveBytes(const DisplayModel& model, const Re
   m.images = HeapBlockBytes(states.size() * sizeof(std::vector<float>)) +
              states.size() * HeapBlockBytes(samples * 3 * sizeof(float));
   m.apply_buffer = HeapBlockBytes(RetinalOperator::ApplyBufferValues(g, pupil.size()) * sizeof(float));
-  m.construction = 2 * LargeAllocationBytes(g.ray_count() * 3 * sizeof(float)) + m.images;
+  if (options.target == RetinalTarget::kTraced)
+    if (const LightFieldRays* rays = options.target_radiance.target<LightFieldRays>())
+      m.retina_workspace =
+          RetinaWorkspace::Layout(LightFieldRetinaSizes(rays->light_field().geometry, grid, pupil), threads).bytes();
+  m.construction = std::max(2 * LargeAllocationBytes(g.ray_count() * 3 * sizeof(float)) + m.images, m.retina_workspace);
   if (options.contrast_sensitivity) {
     const size_t line = HeapBlockBytes(size_t(std::max(grid.cols, grid.rows)) * sizeof(std::complex<double>));
     m.filter = size_t(std::max(threads, 1)) * (HeapBlockBytes(samples * sizeof(std::complex<double>)) + 4 * line);

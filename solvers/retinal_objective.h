@@ -82,7 +82,12 @@ struct RetinalObjectiveMemory {
   size_t tables = 0;        // the retinal operator's (RetinalOperator::TableBytes)
   size_t images = 0;        // one set of retinal images, every state's: the target's and the display's are kept
   size_t apply_buffer = 0;  // the operator's Apply buffer, kept
-  // While it is made, on top of what it keeps: Bound()'s two light fields and a set of images.
+  // While a traced target is the rays of a light field (LightFieldRays): the
+  // workspace its retinal images are made in (RetinaWorkspace::Layout of
+  // LightFieldRetinaSizes), freed before Bound() runs.
+  size_t retina_workspace = 0;
+  // While it is made, on top of what it keeps: the larger of retina_workspace
+  // and Bound()'s two light fields and a set of images.
   size_t construction = 0;
   // While it evaluates with the contrast-sensitivity weighting: each thread's filtered field.
   size_t filter = 0;

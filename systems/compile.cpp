@@ -8,6 +8,7 @@
 #include <set>
 
 #include "eye/pupil_size.h"
+#include "framework/units.h"
 #include "systems/optics.h"
 
 namespace layerlab {
@@ -60,20 +61,20 @@ class Walker {
     double white = 0;
     for (int c = 0; c < 3; ++c) white += kLuminanceWeights[c] * system_.peak_luminance[c];
     PupilAdaptation adaptation;
-    adaptation.luminance = a.luminance ? *a.luminance : 0.5 * white;
+    adaptation.luminance_cd_m2 = a.luminance ? *a.luminance : 0.5 * white;
     const std::array<double, 2> field = a.field ? *a.field : std::array<double, 2>{system_.fov_x, system_.fov_y};
-    adaptation.field_area = field[0] * field[1] * (180 / std::numbers::pi) * (180 / std::numbers::pi);
-    adaptation.age = a.age;
+    adaptation.field_area_deg2 = field[0] * field[1] * kDegreesPerRadian * kDegreesPerRadian;
+    adaptation.age_years = a.age;
     adaptation.eyes = a.eyes;
     const Location where = FindEye().where.child("pupil_diameter");
-    if (!(adaptation.luminance > 0))
+    if (!(adaptation.luminance_cd_m2 > 0))
       throw Error(where,
                   "\"auto\" needs a luminance at the eye, and the display's peak white is 0: give pupil_luminance");
-    if (!(adaptation.field_area > 0) || !std::isfinite(adaptation.field_area))
+    if (!(adaptation.field_area_deg2 > 0) || !std::isfinite(adaptation.field_area_deg2))
       throw Error(where, "\"auto\" needs an adapting field: give pupil_field");
     eye.pupil_diameter = WatsonYellottPupilDiameter(adaptation);
-    eye.pupil_luminance_used = adaptation.luminance;
-    eye.pupil_field_area_used = adaptation.field_area;
+    eye.pupil_luminance_used = adaptation.luminance_cd_m2;
+    eye.pupil_field_area_used = adaptation.field_area_deg2;
     if (eye.pupil_diameter > std::min(eye.eyebox_width, eye.eyebox_height))
       system_.warnings.push_back("the eye's pupil from luminance, " + FormatFixed(eye.pupil_diameter * 1e3, 2) +
                                  " mm, is wider than the eyebox: natural viewing reads the edge views beyond it");

@@ -8,21 +8,18 @@
 #include <Eigen/Dense>
 
 #include "framework/json_file.h"
+#include "framework/units.h"
 #include "tests/test_util.h"
 
 namespace layerlab::testing {
-namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
-
-}  // namespace
+namespace {}  // namespace
 
 std::vector<PanelTruth> ExampleTruth() {
   return {
-      {"rear_a", 0.35e-3, 0.30e-3, -0.20e-3, 0.25 * kDeg, 80.0, 0.004, 2.4},
-      {"rear_b", -0.25e-3, -0.45e-3, 0.15e-3, -0.40 * kDeg, 78.0, 0.006, 2.2},
-      {"front_a", 0.20e-3, 0.10e-3, 0.35e-3, 0.15 * kDeg, 82.0, 0.003, 2.5},
-      {"front_b", -0.15e-3, -0.25e-3, -0.30e-3, -0.20 * kDeg, 76.0, 0.005, 2.3},
+      {"rear_a", 0.35e-3, 0.30e-3, -0.20e-3, 0.25 * kRadiansPerDegree, 80.0, 0.004, 2.4},
+      {"rear_b", -0.25e-3, -0.45e-3, 0.15e-3, -0.40 * kRadiansPerDegree, 78.0, 0.006, 2.2},
+      {"front_a", 0.20e-3, 0.10e-3, 0.35e-3, 0.15 * kRadiansPerDegree, 82.0, 0.003, 2.5},
+      {"front_b", -0.15e-3, -0.25e-3, -0.30e-3, -0.20 * kRadiansPerDegree, 76.0, 0.005, 2.3},
   };
 }
 
@@ -101,10 +98,11 @@ SyntheticSetup ExampleSetup() {
 
 std::vector<PanelTruth> PerBranchTruth() {
   return {
-      {"front_a", 0.30e-3, 0.20e-3, -0.10e-3, 0.20 * kDeg, 0, 0, 0},
-      {"rear_a", -0.40e-3, -0.30e-3, 0.25e-3, -0.30 * kDeg, 0, 0, 0},
-      {"front_b", 0.25e-3, 0.15e-3, 0.30e-3, 0.10 * kDeg, 0, 0, 0},
-      {"rear_b", -0.30e-3, -0.20e-3, -0.15e-3, -0.25 * kDeg, 0, 0, 0},  // nearer: its image at 0 D moves forward
+      {"front_a", 0.30e-3, 0.20e-3, -0.10e-3, 0.20 * kRadiansPerDegree, 0, 0, 0},
+      {"rear_a", -0.40e-3, -0.30e-3, 0.25e-3, -0.30 * kRadiansPerDegree, 0, 0, 0},
+      {"front_b", 0.25e-3, 0.15e-3, 0.30e-3, 0.10 * kRadiansPerDegree, 0, 0, 0},
+      {"rear_b", -0.30e-3, -0.20e-3, -0.15e-3, -0.25 * kRadiansPerDegree, 0, 0,
+       0},  // nearer: its image at 0 D moves forward
   };
 }
 

@@ -2,6 +2,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "framework/units.h"
 #include "systems/system_report.h"
 #include "tests/test_util.h"
 
@@ -12,8 +13,6 @@ using testing::Close;
 using testing::CompileJson;
 using testing::ElementNamed;
 using testing::ReadExample;
-
-constexpr double kDeg = 180 / std::numbers::pi;
 
 TEST(Compile, PaperPrototypeMatchesTable1) {
   DisplaySystem s = CompileJson(ReadExample("paper_prototype.json"));
@@ -37,14 +36,14 @@ TEST(Compile, PaperPrototypeMatchesTable1) {
     EXPECT_EQ(l.rows, 200);
   }
   // The farthest layer sets the field: 2 atan(4.0014 mm x 400 / (2 x 2.5 m)).
-  EXPECT_TRUE(Close(s.fov_x * kDeg, 2 * std::atan(34.2 * p * 400 / 5.0) * kDeg, 1e-12));
-  EXPECT_TRUE(Close(s.fov_x * kDeg, 35.5, 0, 0.05));
-  EXPECT_TRUE(Close(s.fov_y * kDeg, 18.2, 0, 0.05));
-  EXPECT_TRUE(Close(s.max_cpd, 1 / (2 * std::atan(34.2 * p / 2.5) * kDeg), 1e-12));
+  EXPECT_TRUE(Close(s.fov_x * kDegreesPerRadian, 2 * std::atan(34.2 * p * 400 / 5.0) * kDegreesPerRadian, 1e-12));
+  EXPECT_TRUE(Close(s.fov_x * kDegreesPerRadian, 35.5, 0, 0.05));
+  EXPECT_TRUE(Close(s.fov_y * kDegreesPerRadian, 18.2, 0, 0.05));
+  EXPECT_TRUE(Close(s.max_cpd, 1 / (2 * std::atan(34.2 * p / 2.5) * kDegreesPerRadian), 1e-12));
   EXPECT_TRUE(Close(s.max_cpd, 5.4, 0, 0.06));
   // What every layer can show is the coarsest layer's Nyquist: the 2.2 D layer's.
   const double M = 1 + (1 / 2.2 - e) / f;
-  EXPECT_TRUE(Close(EveryLayerMaxCpd(s), 1 / (2 * std::atan(M * p * 2.2) * kDeg), 1e-12));
+  EXPECT_TRUE(Close(EveryLayerMaxCpd(s), 1 / (2 * std::atan(M * p * 2.2) * kDegreesPerRadian), 1e-12));
   EXPECT_TRUE(Close(EveryLayerMaxCpd(s), 4.89, 0, 0.005));
 }
 

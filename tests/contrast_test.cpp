@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "analysis/contrast.h"
+#include "framework/units.h"
 #include "retina/retina.h"
 #include "tests/test_util.h"
 
@@ -13,8 +14,6 @@ namespace layerlab {
 namespace {
 
 using testing::Close;
-
-constexpr double kDeg = std::numbers::pi / 180;
 
 // The multiplicative example's rear panel alone, at `diopters`: a display
 // that can show the sampled target exactly.
@@ -59,7 +58,7 @@ TEST(Contrast, PerfectOneLayerDisplayScoresOneAtItsPeak) {
   o.reference = ContrastReference::kContinuous;
   o.accommodation_min = dt, o.accommodation_max = dt + 0.05;
   curves = RunContrast({d}, o);
-  const double p = std::atan(d.system.layers[0].tan_pitch_x) / kDeg;
+  const double p = std::atan(d.system.layers[0].tan_pitch_x) / kRadiansPerDegree;
   for (double f : {2.0, 4.0}) {
     const double sinc = std::sin(std::numbers::pi * f * p) / (std::numbers::pi * f * p);
     EXPECT_TRUE(Close(Curve(curves, "one_layer", f).contrast[0], sinc, 0.01)) << f << " cpd, pixel " << p << " deg";
@@ -139,7 +138,8 @@ TEST(Contrast, AChromaticEyesChannelsAreWeightedByTheirLuminance) {
   const ContrastCurve& natural = Curve(curves, "natural", f);
   auto blur = [&](double delta) {
     double sum = 0;
-    for (int k = 0; k < 9; ++k) sum += std::cos(2 * std::numbers::pi * (f / kDeg) * ((k + 0.5) / 9 - 0.5) * p * delta);
+    for (int k = 0; k < 9; ++k)
+      sum += std::cos(2 * std::numbers::pi * (f / kRadiansPerDegree) * ((k + 0.5) / 9 - 0.5) * p * delta);
     return sum / 9;
   };
   auto luminance = [&](double accommodation) {
@@ -196,7 +196,7 @@ std::vector<Window> LocalFrequencies(GratingSpacing spacing, double dt, double f
     return texture->Evaluate(u.x + dx / dt, u.y + dy / dt);
   };
   EyeModel eye;
-  RetinaGrid retina = MakeRetinaGrid(20 * kDeg, 0.01 * kDeg, 0.01 * kDeg);
+  RetinaGrid retina = MakeRetinaGrid(20 * kRadiansPerDegree, 0.01 * kRadiansPerDegree, 0.01 * kRadiansPerDegree);
   Image image = RetinaOfScene(plane, retina, PupilSamples(eye), {dt, dt, dt});
   // Five windows of 4 degrees (8 cycles of 2 cpd) from edge to edge.
   std::vector<Window> windows;
@@ -204,7 +204,7 @@ std::vector<Window> LocalFrequencies(GratingSpacing spacing, double dt, double f
   for (int w = 0; w < 5; ++w) {
     std::vector<double> values, degrees;
     for (int j = w * n; j < (w + 1) * n; ++j)
-      values.push_back(image.at(0, j, 1)), degrees.push_back(retina.angle_x(j) / kDeg);
+      values.push_back(image.at(0, j, 1)), degrees.push_back(retina.angle_x(j) / kRadiansPerDegree);
     Window out;
     out.amplitude_at_f = FourierAmplitude(values, degrees, f);
     // Without the mean, whose kernel's side lobes would pull the scan's peak.

@@ -6,13 +6,12 @@
 #include <numbers>
 
 #include "analysis/fourier.h"
+#include "framework/units.h"
 #include "retina/diffraction.h"
 #include "tests/test_util.h"
 
 namespace layerlab {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180;
 
 // The image of one bright sample at the center of a retina of n x n samples.
 Image PointImage(const RetinaGrid& g) {
@@ -54,38 +53,39 @@ void CheckPointSpread(PupilShape shape, double d, const std::array<double, 3>& l
 TEST(Diffraction, RoundPupilIsTheAiryPatternWithItsFirstZeroAt1Point22LambdaOverD) {
   // j1's first zero 3.831706 / pi = 1.219670; the profile [2 J1(x) / x]^2.
   CheckPointSpread(PupilShape::kRound, 2e-3, {650e-9, 550e-9, 450e-9},
-                   MakeRetinaGrid(0.3 * kDeg, 0.3 * kDeg, 0.0005 * kDeg), 1.219670, 0.02,
-                   [](double x) { return std::pow(2 * std::cyl_bessel_j(1.0, x) / x, 2); }, {5, 12, 20, 31});
+                   MakeRetinaGrid(0.3 * kRadiansPerDegree, 0.3 * kRadiansPerDegree, 0.0005 * kRadiansPerDegree),
+                   1.219670, 0.02, [](double x) { return std::pow(2 * std::cyl_bessel_j(1.0, x) / x, 2); },
+                   {5, 12, 20, 31});
 }
 
 TEST(Diffraction, SquarePupilIsSincSquaredWithZerosAtLambdaOverD) {
   // sinc^2's tails (1 / x^2) wrap around the padded image and lift its zeros a little: 0.05 samples.
   CheckPointSpread(PupilShape::kSquare, 3e-3, {612e-9, 549e-9, 465e-9},
-                   MakeRetinaGrid(0.2 * kDeg, 0.2 * kDeg, 0.0004 * kDeg), 1.0, 0.05,
-                   [](double x) { return std::pow(std::sin(x) / x, 2); }, {7, 15});
+                   MakeRetinaGrid(0.2 * kRadiansPerDegree, 0.2 * kRadiansPerDegree, 0.0004 * kRadiansPerDegree), 1.0,
+                   0.05, [](double x) { return std::pow(std::sin(x) / x, 2); }, {7, 15});
 }
 
 TEST(Diffraction, GratingModulationIsTheDiffractionLimitedMtf) {
   // Round 3 mm pupil at 550 nm: cutoff D / lambda = 5454.5 cycles/rad = 95.20 cpd.
   // At 30 cpd nu = 0.31513 and MTF = (2/pi)(acos nu - nu sqrt(1 - nu^2)) = 0.60551.
-  const double cpd = 30, nu = cpd / (3e-3 / 550e-9 * kDeg);
+  const double cpd = 30, nu = cpd / (3e-3 / 550e-9 * kRadiansPerDegree);
   const double mtf = 2 / std::numbers::pi * (std::acos(nu) - nu * std::sqrt(1 - nu * nu));
   EXPECT_NEAR(nu, 0.31513, 1e-5);
   EXPECT_NEAR(mtf, 0.60551, 1e-5);
-  RetinaGrid g = MakeRetinaGrid(4 * kDeg, 0.05 * kDeg, 0.002 * kDeg);
+  RetinaGrid g = MakeRetinaGrid(4 * kRadiansPerDegree, 0.05 * kRadiansPerDegree, 0.002 * kRadiansPerDegree);
   Image image{g.cols, g.rows, {"R", "G", "B"}, std::vector<float>(size_t(g.cols) * g.rows * 3)};
   for (int i = 0; i < g.rows; ++i)
     for (int j = 0; j < g.cols; ++j)
       for (int c = 0; c < 3; ++c)
         image.pixels[(size_t(i) * g.cols + j) * 3 + c] =
-            float(0.5 + 0.5 * std::cos(2 * std::numbers::pi * cpd * g.angle_x(j) / kDeg));
+            float(0.5 + 0.5 * std::cos(2 * std::numbers::pi * cpd * g.angle_x(j) / kRadiansPerDegree));
   ApplyDiffraction(PupilShape::kRound, 3e-3, {550e-9, 550e-9, 550e-9}, g, &image);
   // The middle half of the row, a whole number of cycles.
   const int n = WholeCycleSamples(g.cols / 2, 0.002, cpd), start = (g.cols - n) / 2;
   std::vector<double> values, degrees;
   for (int j = start; j < start + n; ++j) {
     values.push_back(image.at(g.rows / 2, j, 1));
-    degrees.push_back(g.angle_x(j) / kDeg);
+    degrees.push_back(g.angle_x(j) / kRadiansPerDegree);
   }
   EXPECT_NEAR(FourierAmplitude(values, degrees, cpd) / 0.5, mtf, 0.003);
   // The square pupil's at the same frequency: 1 - nu.

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "framework/units.h"
 #include "retina/lightfield_radiance.h"
 #include "retina/retina.h"
 #include "targets/plane_lightfield.h"
@@ -11,8 +12,6 @@
 
 namespace layerlab {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180;
 
 // 13 x 13 views.
 LightFieldGeometry Geometry(int cols = 200, int rows = 120) { return testing::WindowGeometry(cols, rows, 13); }
@@ -82,8 +81,8 @@ TEST(LightFieldRadiance, OutsideTheWindowIsDark) {
   const LightFieldGeometry g = Geometry(20, 10);
   LightField lf = RenderPlaneLightField(g, g.origin_z, *MakeConstantTexture({1, 1, 1}));
   SceneRadiance radiance = LightFieldRadiance(lf);
-  Rgb outside = radiance({0, 0}, std::tan(5.5 * kDeg), 0);
-  Rgb inside = radiance({0, 0}, std::tan(4.5 * kDeg), 0);
+  Rgb outside = radiance({0, 0}, std::tan(5.5 * kRadiansPerDegree), 0);
+  Rgb inside = radiance({0, 0}, std::tan(4.5 * kRadiansPerDegree), 0);
   EXPECT_EQ(outside[0], 0.0);
   EXPECT_NEAR(inside[0], 1.0, 1e-6);
 }
@@ -93,7 +92,7 @@ TEST(LightFieldRadiance, OutsideTheWindowIsDark) {
 TEST(LightFieldRadiance, RetinaMatchesTheAnalyticPlaneAtEveryFocus) {
   const LightFieldGeometry g = Geometry(400, 60);
   const double z = 1 / 1.0;
-  auto texture = Grating(1.0 / (z * kDeg));  // 1 cpd at the line of sight
+  auto texture = Grating(1.0 / (z * kRadiansPerDegree));  // 1 cpd at the line of sight
   LightField lf = RenderPlaneLightField(g, z, *texture);
   SceneRadiance from_lf = LightFieldRadiance(lf, Sampling::kBilinear);
   SceneRadiance plane = [&](const PupilPoint& u, double dx, double dy) {
@@ -102,7 +101,7 @@ TEST(LightFieldRadiance, RetinaMatchesTheAnalyticPlaneAtEveryFocus) {
   EyeModel eye;
   eye.pupil_samples_x = eye.pupil_samples_y = 9;
   const std::vector<PupilPoint> pupil = PupilSamples(eye);
-  RetinaGrid grid = MakeRetinaGrid(6 * kDeg, 1 * kDeg, 0.02 * kDeg);
+  RetinaGrid grid = MakeRetinaGrid(6 * kRadiansPerDegree, 1 * kRadiansPerDegree, 0.02 * kRadiansPerDegree);
   for (double focus : {0.4, 1.0, 1.6}) {
     const std::array<double, 3> a{focus, focus, focus};
     Image seen = RetinaOfScene(from_lf, grid, pupil, a), expected = RetinaOfScene(plane, grid, pupil, a);
@@ -131,8 +130,9 @@ TEST(LightFieldRadiance, ImageWiseRetinaIsTheRayByRayRetina) {
     eye.pupil_sampling = variant == 1 ? PupilSampling::kJittered : PupilSampling::kGrid;
     if (variant == 2) eye.wavefront = {{0, 0, 0, 0.3e-6, 0, 0, 0, 0.4e-6, -0.5e-6}, 5e-3, ""};
     const std::vector<PupilPoint> pupil = PupilSamples(eye);
-    RetinaGrid grid = MakeRetinaGrid(12 * kDeg, 7 * kDeg, 0.07 * kDeg);  // the window is 10 x 6 deg
-    grid.center_x = 0.013 * kDeg;
+    RetinaGrid grid = MakeRetinaGrid(12 * kRadiansPerDegree, 7 * kRadiansPerDegree,
+                                     0.07 * kRadiansPerDegree);  // the window is 10 x 6 deg
+    grid.center_x = 0.013 * kRadiansPerDegree;
     for (Sampling pixels : {Sampling::kNearest, Sampling::kBilinear})
       for (std::array<double, 3> focus :
            {std::array<double, 3>{1.3, 1.3, 1.3}, std::array<double, 3>{0.4, 0.4, 0.4},

@@ -9,6 +9,7 @@
 #include "eye/chromatic_eye.h"
 #include "eye/eye_description.h"
 #include "eye/pupil_size.h"
+#include "framework/units.h"
 #include "retina/lightfield_radiance.h"
 #include "retina/retina.h"
 #include "tests/test_util.h"
@@ -20,8 +21,6 @@ using nlohmann::json;
 using testing::CompileJson;
 using testing::ElementNamed;
 using testing::ReadExample;
-
-constexpr double kDeg = std::numbers::pi / 180;
 
 TEST(ChromaticEye, ThibosSpreadsAbout1Point2DioptersFrom450To650Nm) {
   // Rx(0.45 um) = 1.68524 - 0.63346 / 0.23590 = -1.00005 D; Rx(0.65 um) =
@@ -119,7 +118,7 @@ TEST(PupilSize, AutoPupilFollowsTheDisplaysLuminanceAndField) {
   DisplaySystem s = CompileJson(PhysiologicalScene({{"pupil_diameter", "auto"}}));
   double white = 0;
   for (int c = 0; c < 3; ++c) white += kLuminanceWeights[c] * ideal.peak_luminance[c];
-  const double area = ideal.fov_x * ideal.fov_y / (kDeg * kDeg);
+  const double area = ideal.fov_x * ideal.fov_y / (kRadiansPerDegree * kRadiansPerDegree);
   EXPECT_NEAR(s.eye.pupil_luminance_used, 0.5 * white, 1e-9);
   EXPECT_NEAR(s.eye.pupil_field_area_used, area, 1e-9);
   EXPECT_NEAR(s.eye.pupil_diameter, WatsonYellottPupilDiameter({0.5 * white, area, 28.58, 1}), 1e-15);
@@ -187,7 +186,7 @@ TEST(Zernike, PureDefocusIsTheBlurLawAtTheConvertedPower) {
   eye.wavefront.coefficients = {0, 0, 0, 0, 0.3e-6};
   eye.wavefront.pupil_diameter = 5e-3;
   const double power = 16 * std::sqrt(3.0) * 0.3 / 25;
-  RetinaGrid retina = MakeRetinaGrid(2 * kDeg, 1 * kDeg, 0.02 * kDeg);
+  RetinaGrid retina = MakeRetinaGrid(2 * kRadiansPerDegree, 1 * kRadiansPerDegree, 0.02 * kRadiansPerDegree);
   EyeModel ideal = eye;
   ideal.wavefront = {};
   for (double da : {0.0, 0.8}) {
@@ -197,7 +196,7 @@ TEST(Zernike, PureDefocusIsTheBlurLawAtTheConvertedPower) {
   }
   // And so a bright point at z = 0.5 m blurs over pupil x |1/z - D_a - D|:
   // its image's extent on a row through the center.
-  const double z = 0.5, da = 1.0, radius = 0.6 * 0.005 * kDeg * z;
+  const double z = 0.5, da = 1.0, radius = 0.6 * 0.005 * kRadiansPerDegree * z;
   SceneRadiance point = [&](const PupilPoint& u, double dx, double dy) {
     double x = u.x + dx * z, y = u.y + dy * z;
     return x * x + y * y <= radius * radius ? Rgb{1, 1, 1} : Rgb{0, 0, 0};
@@ -205,27 +204,27 @@ TEST(Zernike, PureDefocusIsTheBlurLawAtTheConvertedPower) {
   EyeModel square = eye;
   square.pupil_shape = PupilShape::kSquare;
   square.pupil_samples_x = square.pupil_samples_y = 41;
-  RetinaGrid row = MakeRetinaGrid(1.5 * kDeg, 0.015 * kDeg, 0.005 * kDeg);
+  RetinaGrid row = MakeRetinaGrid(1.5 * kRadiansPerDegree, 0.015 * kRadiansPerDegree, 0.005 * kRadiansPerDegree);
   Image image = RetinaOfScene(point, row, PupilSamples(square), {da, da, da});
   double lo = INFINITY, hi = -INFINITY;
   for (int j = 0; j < row.cols; ++j)
     if (image.at(1, j, 0) > 0) lo = std::min(lo, row.angle_x(j)), hi = std::max(hi, row.angle_x(j));
   // The outermost pupil points lie half a cell inside the 4 mm square.
   const double expected = 4e-3 * (40.0 / 41.0) * std::abs(1 / z - da - power);
-  EXPECT_NEAR(hi - lo, expected, 0.006 * kDeg) << "blur " << (hi - lo) / kDeg << " deg";
+  EXPECT_NEAR(hi - lo, expected, 0.006 * kRadiansPerDegree) << "blur " << (hi - lo) / kRadiansPerDegree << " deg";
 }
 
 // The normalized amplitude at `cpd` of a grating at depth 1/dt over accommodation,
 // bars vertical (varying along x) or horizontal.
 std::vector<double> GratingCurve(const EyeModel& eye, double dt, double cpd, bool vertical_bars,
                                  const std::vector<double>& accommodation) {
-  const double field = 8 * kDeg, resolution = 0.01 * kDeg;
+  const double field = 8 * kRadiansPerDegree, resolution = 0.01 * kRadiansPerDegree;
   RetinaGrid retina =
       vertical_bars ? MakeRetinaGrid(field, resolution, resolution) : MakeRetinaGrid(resolution, field, resolution);
   const double z = 1 / dt;
   SceneRadiance grating = [&](const PupilPoint& u, double dx, double dy) {
     const double s = vertical_bars ? u.x + dx * z : u.y + dy * z;
-    double v = 0.5 + 0.5 * std::cos(2 * std::numbers::pi * cpd * std::atan(s / z) / kDeg);
+    double v = 0.5 + 0.5 * std::cos(2 * std::numbers::pi * cpd * std::atan(s / z) / kRadiansPerDegree);
     return Rgb{v, v, v};
   };
   const std::vector<PupilPoint> pupil = PupilSamples(eye);
@@ -237,7 +236,7 @@ std::vector<double> GratingCurve(const EyeModel& eye, double dt, double cpd, boo
     std::vector<double> values, degrees;
     for (int k = start; k < start + used; ++k) {
       values.push_back(vertical_bars ? image.at(0, k, 0) : image.at(k, 0, 0));
-      degrees.push_back((vertical_bars ? retina.angle_x(k) : retina.angle_y(k)) / kDeg);
+      degrees.push_back((vertical_bars ? retina.angle_x(k) : retina.angle_y(k)) / kRadiansPerDegree);
     }
     curve.push_back(FourierAmplitude(values, degrees, cpd) / 0.5);
   }
@@ -269,7 +268,7 @@ TEST(Zernike, AstigmatismFocusesVerticalAndHorizontalBarsAtTheTwoFocalLines) {
   // At the other focal line vertical bars are blurred by 2 x 0.245 D over the
   // square's 4 mm: a box of w = 1.96 mrad = 0.1123 deg, whose transfer at 2 cpd
   // is sinc(2 w) = 0.9195 (21 points across a box stand for it to 0.005).
-  const double w = 4e-3 * 2 * line / kDeg, x = std::numbers::pi * 2 * w;
+  const double w = 4e-3 * 2 * line / kRadiansPerDegree, x = std::numbers::pi * 2 * w;
   EXPECT_NEAR(GratingCurve(eye, dt, 2, true, {dt + line})[0], std::sin(x) / x, 0.005);
   EXPECT_NEAR(GratingCurve(eye, dt, 2, false, {dt - line})[0], std::sin(x) / x, 0.005);
 }

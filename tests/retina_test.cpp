@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "framework/units.h"
 #include "kernels/synthesis.h"
 #include "retina/lightfield_radiance.h"
 #include "retina/retina.h"
@@ -17,8 +18,6 @@ namespace {
 using testing::Close;
 using testing::CompileJson;
 using testing::ElementNamed;
-
-constexpr double kDeg = std::numbers::pi / 180;
 
 EyeModel Eye(int samples, double pupil = 4e-3) {
   EyeModel eye;
@@ -142,7 +141,7 @@ TEST(Retina, PupilPointsOfUnequalSidesLieEachInItsOwnCell) {
 TEST(Retina, PointBlurMatchesGeometricOptics) {
   // Three rows through the center: the odd pupil grid has a row at u_y = 0,
   // so the central row shows the blur's full width, a round pupil's as a square one's.
-  RetinaGrid retina = MakeRetinaGrid(1.2 * kDeg, 0.015 * kDeg, 0.005 * kDeg);
+  RetinaGrid retina = MakeRetinaGrid(1.2 * kRadiansPerDegree, 0.015 * kRadiansPerDegree, 0.005 * kRadiansPerDegree);
   const int n = 41;
   const double pupil = 4e-3;
   for (PupilShape shape : {PupilShape::kSquare, PupilShape::kRound})
@@ -182,7 +181,7 @@ OneLayer OneLayerDisplay(const std::string& depth) {
 TEST(Retina, LayerAtTheFocusDepthIsSharp) {
   OneLayer d = OneLayerDisplay("1.0 D");
   const VirtualLayer& layer = d.system.layers[0];
-  RetinaGrid retina = MakeRetinaGrid(10 * kDeg, 8 * kDeg, 0.03 * kDeg);
+  RetinaGrid retina = MakeRetinaGrid(10 * kRadiansPerDegree, 8 * kRadiansPerDegree, 0.03 * kRadiansPerDegree);
   Image image = RetinaOfDisplay(*d.model, d.t, retina, PupilSamples(d.system.eye), {1.0, 1.0, 1.0});
   const double w = d.model->weight(0)[0];
   for (int i = 0; i < retina.rows; i += 7)
@@ -210,7 +209,7 @@ TEST(Retina, OneLayerDisplayMatchesNaturalViewingOfThatPlane) {
     const float* p = &d.t[0].rgb[(size_t(row) * 64 + panel_col) * 3];
     return Rgb{w * p[0], w * p[1], w * p[2]};
   };
-  RetinaGrid retina = MakeRetinaGrid(6 * kDeg, 4 * kDeg, 0.05 * kDeg);
+  RetinaGrid retina = MakeRetinaGrid(6 * kRadiansPerDegree, 4 * kRadiansPerDegree, 0.05 * kRadiansPerDegree);
   std::vector<PupilPoint> pupil = PupilSamples(d.system.eye);
   for (double accommodation : {0.0, 0.6, 1.0, 1.9}) {
     std::array<double, 3> focus{accommodation, accommodation, accommodation};
@@ -228,10 +227,10 @@ TEST(Retina, OneLayerDisplayMatchesNaturalViewingOfThatPlane) {
 TEST(Retina, OneLayerDisplayEqualsNaturalViewingOfItsLightFieldOnARandomPattern) {
   OneLayer d = OneLayerDisplay("1.0 D");
   for (size_t i = 0; i < d.t[0].rgb.size(); ++i) d.t[0].rgb[i] = float((i * 2654435761u) % 1000) / 1000;
-  RetinaGrid retina = MakeRetinaGrid(6 * kDeg, 4 * kDeg, 0.05 * kDeg);
+  RetinaGrid retina = MakeRetinaGrid(6 * kRadiansPerDegree, 4 * kRadiansPerDegree, 0.05 * kRadiansPerDegree);
   // Off the symmetric grid, so that no ray crosses the plane exactly on a pixel edge.
   retina.center_x = 0.3183 * retina.resolution, retina.center_y = 0.2718 * retina.resolution;
-  RetinaGrid inner = MakeRetinaGrid(4 * kDeg, 3 * kDeg, 0.05 * kDeg);
+  RetinaGrid inner = MakeRetinaGrid(4 * kRadiansPerDegree, 3 * kRadiansPerDegree, 0.05 * kRadiansPerDegree);
   inner.center_x = retina.center_x, inner.center_y = retina.center_y;
   std::vector<PupilPoint> pupil = PupilSamples(d.system.eye);
   const LightFieldGeometry g = d.model->geometry();
@@ -299,7 +298,7 @@ TEST(Retina, MeanLuminanceDoesNotChangeWithAccommodation) {
     for (size_t p = 0; p < t[k].rgb.size(); ++p)
       t[k].rgb[p] = 0.3f + 0.6f * float(((p / 3) * (k + 3) * 2654435761u) % 1000) / 1000;
   // The central 8 x 4 degrees, well inside every layer's field at every focus.
-  RetinaGrid retina = MakeRetinaGrid(8 * kDeg, 4 * kDeg, 0.05 * kDeg);
+  RetinaGrid retina = MakeRetinaGrid(8 * kRadiansPerDegree, 4 * kRadiansPerDegree, 0.05 * kRadiansPerDegree);
   std::vector<PupilPoint> pupil = PupilSamples(system.eye);
   auto mean = [&](double accommodation) {
     Image image = RetinaOfDisplay(model, t, retina, pupil, {accommodation, accommodation, accommodation});
@@ -314,7 +313,7 @@ TEST(Retina, MeanLuminanceDoesNotChangeWithAccommodation) {
 TEST(Retina, ChromaticDefocusShiftsEachChannelsFocus) {
   OneLayer d = OneLayerDisplay("1.0 D");
   d.system.eye.chromatic_defocus = {0.5, 0.0, -0.5};
-  RetinaGrid retina = MakeRetinaGrid(6 * kDeg, 4 * kDeg, 0.05 * kDeg);
+  RetinaGrid retina = MakeRetinaGrid(6 * kRadiansPerDegree, 4 * kRadiansPerDegree, 0.05 * kRadiansPerDegree);
   std::vector<PupilPoint> pupil = PupilSamples(d.system.eye);
   std::array<double, 3> focus = ChannelAccommodation(d.system.eye, 1.0);
   Image mixed = RetinaOfDisplay(*d.model, d.t, retina, pupil, focus);
@@ -339,7 +338,7 @@ TEST(Retina, WavefrontDefocusOnADisplayIsTheIdealEyeAtTheConvertedPower) {
   EyeModel aberrated = d.system.eye;
   aberrated.wavefront = {{0, 0, 0, 0, 0.25e-6}, 4e-3, ""};
   const double power = 16 * std::sqrt(3.0) * 0.25 / 16;  // 0.43301 D
-  RetinaGrid retina = MakeRetinaGrid(6 * kDeg, 4 * kDeg, 0.05 * kDeg);
+  RetinaGrid retina = MakeRetinaGrid(6 * kRadiansPerDegree, 4 * kRadiansPerDegree, 0.05 * kRadiansPerDegree);
   const std::vector<PupilPoint> ideal = PupilSamples(d.system.eye), pupil = PupilSamples(aberrated);
   for (std::array<double, 3> focus : {std::array<double, 3>{0.6, 0.6, 0.6}, std::array<double, 3>{0.6, 0.8, 1.0}}) {
     Image seen = RetinaOfDisplay(*d.model, d.t, retina, pupil, focus);

@@ -12,6 +12,7 @@
 
 #include "eye/contrast_sensitivity.h"
 #include "eye/spectral_filter.h"
+#include "framework/units.h"
 #include "kernels/joint_pass.h"
 #include "kernels/synthesis.h"
 #include "retina/lightfield_radiance.h"
@@ -30,8 +31,6 @@ using testing::ErrorOf;
 using testing::RandomLightField;
 using testing::RandomPatterns;
 using testing::ShrunkExample;
-
-constexpr double kDeg = std::numbers::pi / 180;
 
 LightFieldGeometry Geometry(int cols, int rows, int views) { return testing::WindowGeometry(cols, rows, views); }
 
@@ -55,8 +54,9 @@ const Case kCases[] = {{Sampling::kNearest, {1.0, 1.0, 1.0}, "nearest"},
                        {Sampling::kBilinear, {0.0, 0.3, 0.6}, "bilinear, a focus per channel"}};
 
 RetinaGrid Grid() {
-  RetinaGrid grid = MakeRetinaGrid(11 * kDeg, 7 * kDeg, 0.23 * kDeg);  // a little past the window
-  grid.center_x = 0.2 * kDeg;
+  RetinaGrid grid = MakeRetinaGrid(11 * kRadiansPerDegree, 7 * kRadiansPerDegree,
+                                   0.23 * kRadiansPerDegree);  // a little past the window
+  grid.center_x = 0.2 * kRadiansPerDegree;
   return grid;
 }
 
@@ -396,7 +396,7 @@ TEST(RetinalObjective, ContrastSensitivityGradientMatchesCentralDifferences) {
   const DisplayModel model(system, DisplayLightFieldGeometry(system));
   const LightField target = Synthesize(model, RandomPatterns(model, 8, 0.1f, 1.0f));
   RetinalObjectiveOptions plain = FewStates();
-  plain.resolution = 0.02 * kDeg;  // 25 cpd at Nyquist
+  plain.resolution = 0.02 * kRadiansPerDegree;  // 25 cpd at Nyquist
   RetinalObjectiveOptions weighted = plain;
   weighted.contrast_sensitivity = true;
   const RetinalObjective objective(model, target, weighted), unweighted(model, target, plain);

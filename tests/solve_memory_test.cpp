@@ -16,6 +16,9 @@
 #include "kernels/joint_pass.h"
 #include "kernels/solve_workspace.h"
 #include "kernels/synthesis.h"
+#include "retina/lightfield_radiance.h"
+#include "retina/retina.h"
+#include "retina/retina_workspace.h"
 #include "solvers/memory_estimate.h"
 #include "solvers/multiplicative_update.h"
 #include "solvers/objective.h"
@@ -138,6 +141,73 @@ TEST(SolveMemory, RetinalObjectiveCountedWhenTheSolveMakesIt) {
   EXPECT_GE(without_program(retinal) - without_program(light_field), double(parts.kept()));
   EXPECT_NE(retinal.breakdown.find(" + the retinal objective "), std::string::npos) << retinal.breakdown;
   EXPECT_EQ(light_field.breakdown.find("retinal"), std::string::npos) << light_field.breakdown;
+}
+
+// The retina's workspace (retina/retina_workspace.h), on the display's one-tap
+// path at one focus and at a focus per channel, and for a light field's
+// rays under both samplings: sized before the first image, it holds what its
+// layout says after images of several patterns, so no image grew a buffer;
+// shared by a sweep's states, what the layout of the largest sizes says.
+TEST(RetinaWorkspace, ImagesHoldWhatTheLayoutSays) {
+  const DisplaySystem system = CompileJson(ShrunkExample("paper_prototype.json", 24, 12, 3));
+  const DisplayModel model(system, DisplayLightFieldGeometry(system));
+  const RetinaGrid retina = MakeRetinaGrid(0.2, 0.1, 0.004);
+  const std::vector<PupilPoint> pupil = PupilSamples(system.eye);
+  const int threads = omp_get_max_threads();
+  RetinaWorkspace shared;
+  RetinaWorkspaceSizes largest;
+  for (const std::array<double, 3>& focus :
+       {std::array<double, 3>{1.0, 1.0, 1.0}, std::array<double, 3>{0.6, 1.0, 1.6}}) {
+    const DisplayRetinaTables tables(model, retina, pupil, focus);
+    const size_t laid_out = RetinaWorkspace::Layout(tables.workspace_sizes(), threads).bytes();
+    EXPECT_GT(laid_out, 0u);
+    for (uint64_t seed : {1, 2}) {
+      RetinaOfDisplay(model, RandomPatterns(model, seed), tables);
+      EXPECT_EQ(tables.workspace().Bytes(), laid_out) << focus[0];
+      RetinaOfDisplay(model, RandomPatterns(model, seed), tables, &shared);
+    }
+    largest.column_tables = std::max(largest.column_tables, tables.workspace_sizes().column_tables);
+    largest.ring = std::max(largest.ring, tables.workspace_sizes().ring);
+  }
+  EXPECT_EQ(shared.sizes().column_tables, largest.column_tables);
+  EXPECT_EQ(shared.sizes().ring, largest.ring);
+  EXPECT_EQ(shared.Bytes(), RetinaWorkspace::Layout(shared.sizes(), threads).bytes());
+  const LightField lf = Synthesize(model, RandomPatterns(model, 3));
+  const RetinaWorkspaceSizes sizes = LightFieldRetinaSizes(lf.geometry, retina, pupil);
+  RetinaWorkspace workspace(sizes, threads);
+  const size_t laid_out = RetinaWorkspace::Layout(sizes, threads).bytes();
+  EXPECT_GT(laid_out, 0u);
+  EXPECT_EQ(workspace.Bytes(), laid_out);
+  for (Sampling sampling : {Sampling::kNearest, Sampling::kBilinear})
+    for (double red : {1.0, 0.6}) RetinaOfLightField(lf, sampling, retina, pupil, {red, 1.0, 1.6}, &workspace);
+  EXPECT_EQ(workspace.Bytes(), laid_out);
+}
+
+// A traced retinal target that is a light field's rays has its images made
+// image-wise, in a retina workspace: the estimate counts that workspace's
+// layout for the objective's grid and pupil, and one ray by ray holds none.
+TEST(SolveMemory, RetinaWorkspaceCountedForATracedLightFieldTarget) {
+  const DisplaySystem system = CompileJson(ShrunkExample("paper_prototype.json", 40, 20, 5));
+  const DisplayModel model(system, DisplayLightFieldGeometry(system));
+  const LightField target = Synthesize(model, RandomPatterns(model, 8));
+  SolverOptions options = SolverRegistry::Builtins().get("quasi-newton").defaults;
+  options.objective = ObjectiveKind::kRetinal;
+  options.retinal.target = RetinalTarget::kTraced;
+  const SceneRadiance rays = LightFieldRadiance(target);
+  options.retinal.target_radiance = [rays](const PupilPoint& u, double dx, double dy) { return rays(u, dx, dy); };
+  EXPECT_EQ(RetinalObjectiveBytes(model, options.retinal, 2).retina_workspace, 0u);
+  options.retinal.target_radiance = rays;
+  const RetinalObjective objective(model, target, options.retinal);
+  const size_t workspace =
+      RetinaWorkspace::Layout(LightFieldRetinaSizes(target.geometry, objective.retina(), PupilSamples(system.eye)), 2)
+          .bytes();
+  const RetinalObjectiveMemory parts = RetinalObjectiveBytes(model, options.retinal, 2);
+  EXPECT_GT(workspace, 0u);
+  EXPECT_EQ(parts.retina_workspace, workspace);
+  EXPECT_GE(parts.construction, workspace);
+  const MemoryEstimate e = EstimateSolveMemory(model, "quasi-newton", options, 2);
+  EXPECT_NE(e.breakdown.find("made in a workspace of " + FormatBytes(double(workspace))), std::string::npos)
+      << e.breakdown;
 }
 
 // The estimate is printed ("the solve needs about 1.33 GB") as the bound

@@ -5,6 +5,7 @@
 #include <random>
 
 #include "framework/json_file.h"
+#include "framework/units.h"
 
 namespace layerlab::testing {
 
@@ -70,11 +71,10 @@ nlohmann::json& ElementNamed(nlohmann::json& scene, const std::string& name) {
 }
 
 LightFieldGeometry WindowGeometry(int cols, int rows, int views) {
-  constexpr double kDeg = std::numbers::pi / 180;
   LightFieldGeometry g;
   g.origin_z = 1 / 1.3;
-  g.window_width = 2 * g.origin_z * std::tan(5 * kDeg);
-  g.window_height = 2 * g.origin_z * std::tan(3 * kDeg);
+  g.window_width = 2 * g.origin_z * std::tan(5 * kRadiansPerDegree);
+  g.window_height = 2 * g.origin_z * std::tan(3 * kRadiansPerDegree);
   g.window_left = -g.window_width / 2;
   g.window_top = g.window_height / 2;
   g.cols = cols, g.rows = rows;

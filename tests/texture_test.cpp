@@ -8,6 +8,7 @@
 
 #include "framework/error.h"
 #include "framework/exr_image.h"
+#include "framework/units.h"
 #include "targets/fast_cos.h"
 #include "targets/length_or_angle.h"
 #include "targets/texture.h"
@@ -19,8 +20,6 @@ namespace {
 
 using nlohmann::json;
 using testing::Close;
-
-constexpr double kDeg = std::numbers::pi / 180;
 
 std::unique_ptr<Texture> Parse(const json& j, const TextureFrame& frame = {}) {
   Params p(j, {"target.json", "/texture"});
@@ -41,12 +40,12 @@ TEST(TextureTest, GratingFrequencyIsCyclesPerDegreeAtTheReferenceDepth) {
   TextureFrame frame;
   frame.reference_depth = 0.5;
   auto grating = Parse({{"type", "grating"}, {"frequency", "2 cpd"}, {"contrast", 0.8}, {"mean", 0.25}}, frame);
-  double period = 0.5 * kDeg / 2;
+  double period = 0.5 * kRadiansPerDegree / 2;
   EXPECT_TRUE(Close(grating->Evaluate(0, 0)[0], 0.25 * 1.8, 0, 1e-12));
   EXPECT_TRUE(Close(grating->Evaluate(period / 2, 0.3)[0], 0.25 * 0.2, 0, 1e-12));
   EXPECT_TRUE(Close(grating->Evaluate(7 * period, -1)[1], 0.25 * 1.8, 0, 1e-9));
   EXPECT_TRUE(Close(grating->Evaluate(period / 4, 0)[2], 0.25, 0, 1e-12));
-  EXPECT_TRUE(Close(CyclesPerMeter(2, 0.5), 2 / (0.5 * kDeg), 1e-15));
+  EXPECT_TRUE(Close(CyclesPerMeter(2, 0.5), 2 / (0.5 * kRadiansPerDegree), 1e-15));
   EXPECT_EQ(grating->Describe(), "grating 2 cpd");
 }
 
@@ -55,7 +54,7 @@ TEST(TextureTest, GratingPhaseAndOrientation) {
   frame.reference_depth = 1;
   auto grating =
       Parse({{"type", "grating"}, {"frequency", "1 cpd"}, {"phase", "90 deg"}, {"orientation", "90 deg"}}, frame);
-  double period = kDeg;
+  double period = kRadiansPerDegree;
   // Horizontal bars: constant along s; cos(2 pi t / period + 90 deg) = -sin(2 pi t / period).
   EXPECT_TRUE(Close(grating->Evaluate(0.123, 0)[0], 0.5, 0, 1e-12));
   EXPECT_TRUE(Close(grating->Evaluate(0.456, period / 4)[0], 0.0, 0, 1e-12));
@@ -70,15 +69,16 @@ TEST(TextureTest, GratingUniformInVisualAngleIsTheFrequencyAtEveryAngle) {
   auto grating =
       Parse({{"type", "grating"}, {"frequency", "2 cpd"}, {"orientation", "30 deg"}, {"uniform", "angle"}}, frame);
   auto plane = Parse({{"type", "grating"}, {"frequency", "2 cpd"}, {"orientation", "30 deg"}}, frame);
-  const double o = 30 * kDeg;
+  const double o = 30 * kRadiansPerDegree;
   for (double a_deg : {-14.3, -3.1, 0.0, 0.2, 6.55, 12.0}) {
-    const double w = 0.8 * std::tan(a_deg * kDeg), along = 0.017;  // along: a shift along the bars changes nothing
+    const double w = 0.8 * std::tan(a_deg * kRadiansPerDegree),
+                 along = 0.017;  // along: a shift along the bars changes nothing
     const double s = w * std::cos(o) - along * std::sin(o), t = w * std::sin(o) + along * std::cos(o);
     EXPECT_TRUE(Close(grating->Evaluate(s, t)[0], 0.5 * (1 + std::cos(2 * std::numbers::pi * 2 * a_deg)), 0, 1e-12))
         << a_deg << " deg";
     // Uniform on the plane: the small-angle 2 pi f w / (z pi / 180) instead.
-    EXPECT_TRUE(
-        Close(plane->Evaluate(s, t)[0], 0.5 * (1 + std::cos(2 * std::numbers::pi * 2 * w / (0.8 * kDeg))), 0, 1e-12));
+    EXPECT_TRUE(Close(plane->Evaluate(s, t)[0],
+                      0.5 * (1 + std::cos(2 * std::numbers::pi * 2 * w / (0.8 * kRadiansPerDegree))), 0, 1e-12));
   }
   EXPECT_EQ(grating->Describe(), "grating 2 cpd in visual angle");
   EXPECT_EQ(ParseError({{"type", "grating"}, {"frequency", "2 cpd"}, {"uniform", "angles"}}, frame).substr(0, 45),
@@ -90,7 +90,7 @@ TEST(TextureTest, CheckerboardPeriodAsAngleOrLength) {
   frame.reference_depth = 2;
   auto by_angle =
       Parse({{"type", "checkerboard"}, {"period", "1 deg"}, {"low", 0.1}, {"high", json::array({1, 0.5, 0})}}, frame);
-  double half = 2 * kDeg / 2;  // one square
+  double half = 2 * kRadiansPerDegree / 2;  // one square
   EXPECT_EQ(by_angle->Evaluate(0.1 * half, 0.1 * half), (Rgb{0.1, 0.1, 0.1}));
   EXPECT_EQ(by_angle->Evaluate(1.1 * half, 0.1 * half), (Rgb{1, 0.5, 0}));
   EXPECT_EQ(by_angle->Evaluate(1.1 * half, 1.1 * half), (Rgb{0.1, 0.1, 0.1}));
