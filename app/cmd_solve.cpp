@@ -21,6 +21,7 @@
 #include "app/command_line.h"
 #include "app/commands.h"
 #include "app/number_list.h"
+#include "app/solver_flags.h"
 #include "app/target_option.h"
 #include "framework/interrupt.h"
 #include "framework/lightfield_io.h"
@@ -40,12 +41,10 @@ namespace layerlab::app {
 namespace {
 
 struct Options {
-  std::string scene, solver, out, sampling, target_range, objective, retinal_target;
+  std::string scene, out;
   TargetOption target;
-  std::optional<int> iterations, sub_iterations, warm_start_iterations, threads;
-  std::optional<double> tolerance, initial_value;
-  std::string time_budget;
-  bool write_lightfield = false, resume = false, measure_focal_stack = false, contrast_sensitivity = false;
+  SolverFlags solver;
+  bool write_lightfield = false, resume = false;
   int checkpoint_every = 0;
   std::string max_memory;
 };
@@ -111,34 +110,9 @@ std::unique_ptr<Target> LoadRankTarget(const SolveConfig& config, const Ranks& r
 // The overrides step: the command line's values over the scene's "solve"
 // section; any value given is checked by SolverOptions.
 void ApplyOverrides(const Options& o, SolveConfig* config) {
-  SolverOptions& opt = config->options;
-  opt.iterations = o.iterations.value_or(opt.iterations);
-  opt.sub_iterations = o.sub_iterations.value_or(opt.sub_iterations);
-  opt.warm_start_iterations = o.warm_start_iterations.value_or(opt.warm_start_iterations);
-  if (!o.time_budget.empty()) opt.time_budget = ParseOptionValue(o.time_budget, "--time-budget", kSeconds);
-  opt.tolerance = o.tolerance.value_or(opt.tolerance);
-  opt.initial_value = o.initial_value.value_or(opt.initial_value);
-  opt.threads = o.threads.value_or(opt.threads);
-  if (!o.sampling.empty()) config->sampling = SamplingFromString(o.sampling);
-  if (!o.target_range.empty()) {
-    if (o.target_range != "clip" && o.target_range != "scale")
-      throw Error("--target-range: \"" + o.target_range + "\" is not one of clip or scale");
-    opt.target_range = o.target_range == "clip" ? TargetRange::kClip : TargetRange::kScale;
-  }
-  if (!o.objective.empty()) {
-    const std::optional<ObjectiveKind> objective = ObjectiveKindNamed(o.objective);
-    if (!objective) throw Error("--objective: \"" + o.objective + "\" is not one of lightfield or retinal");
-    opt.objective = *objective;
-  }
-  if (const std::string why = ObjectiveRefusal(config->solver, opt.objective); !why.empty())
-    throw Error("--objective " + ToString(opt.objective) + ": " + why);
-  opt.measure_focal_stack = o.measure_focal_stack;
-  if (o.contrast_sensitivity) opt.retinal.contrast_sensitivity = true;
-  if (!o.retinal_target.empty()) {
-    if (o.retinal_target != "lightfield" && o.retinal_target != "traced")
-      throw Error("--retinal-target: \"" + o.retinal_target + "\" is not one of lightfield or traced");
-    opt.retinal.target = o.retinal_target == "traced" ? RetinalTarget::kTraced : RetinalTarget::kLightField;
-  }
+  ApplySolverFlags(o.solver, *config);  // any value given is checked by SolverOptions
+  if (const std::string why = ObjectiveRefusal(config->solver, config->options.objective); !why.empty())
+    throw Error("--objective " + ToString(config->options.objective) + ": " + why);
 }
 
 // What cannot be split across MPI ranks, refused before anything is read.
@@ -280,7 +254,7 @@ void Solve(const Options& o, Ranks& ranks) {
   const DisplaySystem system = Compile(scene);
   SolveJob job;
   job.system = &system;
-  job.config = SolveJobConfig(scene, system, o.solver);
+  job.config = SolveJobConfig(scene, system, o.solver.solver);
   SolveConfig& config = job.config;
   ApplyTargetOption(o.target, config);
   RequireTarget(config, o.scene);
@@ -333,28 +307,8 @@ void AddSolveCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("solve", "Factorize a target light field into layer patterns");
   cmd->add_option("scene", o->scene, "Scene file (JSON); its \"solve\" section gives the defaults")->required();
   AddTargetOptions(cmd, o->target, " (default: the scene's solve section)");
-  cmd->add_option("--solver", o->solver, "Solver: " + JoinWords(SolverRegistry::Builtins().names(), ", "));
   cmd->add_option("--out", o->out, "Output folder")->required();
-  cmd->add_option("--iterations", o->iterations, "Outer iterations");
-  cmd->add_option("--sub-iterations", o->sub_iterations, "Updates per set and outer iteration (hybrid)");
-  cmd->add_option("--warm-start-iterations", o->warm_start_iterations,
-                  "Iterations made by the hybrid solver before quasi-Newton steps (quasi-newton)");
-  cmd->add_option("--time-budget", o->time_budget, "Stop after this long: seconds, or with units (\"5 s\", \"2 min\")");
-  cmd->add_option("--tolerance", o->tolerance, "Stop when the objective changes by less than this, relative");
-  cmd->add_option("--initial", o->initial_value, "Initial transmittance (negative: random)");
-  cmd->add_option("--threads", o->threads, "Worker threads (0: all cores)");
-  cmd->add_option("--sampling", o->sampling, "Layer sampling: nearest or bilinear");
-  cmd->add_option("--target-range", o->target_range, "Target values beyond the display: clip or scale");
-  cmd->add_option("--objective", o->objective,
-                  "What is minimized: lightfield, or retinal (the focal stack; quasi-newton, joint)");
-  cmd->add_option("--retinal-target", o->retinal_target,
-                  "The retinal objective's target images: lightfield (natural viewing of the target light field) or "
-                  "traced (from --target-scene, ray by ray)");
-  cmd->add_flag(
-      "--contrast-sensitivity", o->contrast_sensitivity,
-      "Weight the retinal objective's residuals by the eye's contrast sensitivity (docs/retinal-objective.md)");
-  cmd->add_flag("--measure-focal-stack", o->measure_focal_stack,
-                "Also record the focal stack's PSNR in the trace, off the clock (the retinal objective records it)");
+  AddSolverFlags(cmd, o->solver);
   cmd->add_flag("--write-lightfield", o->write_lightfield, "Also write the synthesized light field");
   cmd->add_option("--checkpoint-every", o->checkpoint_every,
                   "Write OUT/checkpoint every N iterations (and when stopped early)");

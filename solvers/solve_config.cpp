@@ -2,32 +2,50 @@
 // line overrides any of it. Paths are relative to the scene file's folder.
 // A key of an option that the chosen solver does not read is refused.
 //
-// | key                   | type               | default                   | meaning                                  |
-// |-----------------------|--------------------|---------------------------|------------------------------------------|
-// | solver                | solver name        | the display's default     | multiplicative for one branch, additive-trust-region for one layer per branch, else hybrid |
-// | target                | path               | none                      | a light-field folder (lightfield/1); not with target_scene |
-// | target_scene          | path               | none                      | a target scene (layerlab-target/1) rendered with Embree |
-// | iterations            | integer            | the solver's              | outer iterations                         |
-// | sub_iterations        | integer            | the solver's              | hybrid and quasi-newton: updates of one multiplicative set before the next |
-// | warm_start_iterations | integer            | the solver's              | quasi-newton: hybrid iterations before the quasi-Newton steps |
-// | time_budget           | time               | 0 s (none)                | wall-clock budget                        |
-// | tolerance             | fraction           | 0 (never)                 | stop when the objective changes by less than this, relative |
-// | initial_value         | fraction           | the solver's              | initial transmittance; negative: random in [0.25, 0.75] |
-// | seed                  | integer            | 1                         | for random initial patterns              |
-// | threads               | integer            | 0 (every core; one per 16384 rays with the light-field objective) | worker threads (report.json `threads`: how many the solve ran on) |
-// | sampling              | nearest, bilinear  | nearest                   | how the light field samples the layers   |
-// | target_range          | clip, scale        | clip                      | target values beyond what the display shows: clipped, or the target scaled |
-// | objective             | lightfield, retinal | lightfield               | what is minimized: the light-field error, or the retinal error over the eye's accommodation_range in 0.2 D steps (quasi-newton, joint; docs/retinal-objective.md) |
-// | contrast_sensitivity  | boolean            | false                     | the retinal objective's residuals weighted by the eye's contrast sensitivity (Mannos and Sakrison 1974, 1 up to its 7.9 cpd peak) |
-// | retinal_target        | lightfield, traced | lightfield                | the retinal objective's target images (and the focal-stack PSNR's): natural viewing of the target light field, or traced from target_scene ray by ray (needs a target scene; seconds per state) |
+// Its keys, their ranges and defaults are the option table's
+// (solvers/solver_option_table.h, docs/scene-reference.md).
 #include "solvers/solve_config.h"
 
 #include <algorithm>
 #include <filesystem>
 
 #include "framework/params.h"
+#include "solvers/solver_option_table.h"
 
 namespace layerlab {
+
+namespace {
+
+// One option of the section, into its SolverOptions field (the section's own keys, kConfig, are read by hand).
+void ReadOption(Params& p, const SolverOptionEntry& e, SolverOptions* o) {
+  switch (e.kind) {
+    case SolverOptionKind::kInteger:
+      o->*e.integer = static_cast<int>(
+          p.integer(e.key, static_cast<int64_t>(e.range.min), static_cast<int64_t>(e.range.max), o->*e.integer));
+      break;
+    case SolverOptionKind::kSeed:
+      if (p.has(e.key)) {
+        const nlohmann::json& v = p.raw(e.key);
+        if (!v.is_number_unsigned()) p.fail(e.key, "must be an integer in [0, 2^64 - 1], got " + v.dump());
+        o->*e.seed = v.get<uint64_t>();
+      }
+      break;
+    case SolverOptionKind::kReal:
+      o->*e.real = p.quantity(e.key, e.dimension, o->*e.real);
+      p.require_range(e.key, o->*e.real, e.range.min, e.range.max, e.range.min_open, e.range.max_open);
+      break;
+    case SolverOptionKind::kChoice:
+      e.set(*o, e.ChoiceIndex(p.choice(e.key, e.choices, e.choices[e.get(*o)])));
+      break;
+    case SolverOptionKind::kBoolean:
+      e.set(*o, p.boolean(e.key, e.get(*o) != 0));
+      break;
+    case SolverOptionKind::kConfig:
+      break;
+  }
+}
+
+}  // namespace
 
 std::string ResolveAgainstScene(const Scene& scene, const std::string& path) {
   std::filesystem::path p = path;
@@ -79,34 +97,17 @@ SolveConfig ReadSolveConfig(const Scene& scene, const DisplaySystem& system, con
            "give \"target\" (a light-field folder) or \"target_scene\" (a target scene to render), not both");
   if (p.has("target")) config.target = ResolveAgainstScene(scene, p.string("target"));
   if (p.has("target_scene")) config.target_scene = ResolveAgainstScene(scene, p.string("target_scene"));
-  o.iterations = static_cast<int>(p.integer("iterations", 1, 1000000, o.iterations));
-  o.sub_iterations = static_cast<int>(p.integer("sub_iterations", 1, 1000, o.sub_iterations));
-  o.warm_start_iterations = static_cast<int>(p.integer("warm_start_iterations", 0, 1000000, o.warm_start_iterations));
-  o.time_budget = p.quantity("time_budget", Dimension::kTime, o.time_budget);
-  p.require_range("time_budget", o.time_budget, 0, 1e7, false, false);
-  o.tolerance = p.quantity("tolerance", Dimension::kFraction, o.tolerance);
-  p.require_range("tolerance", o.tolerance, 0, 1, false, true);
-  o.initial_value = p.quantity("initial_value", Dimension::kFraction, o.initial_value);
-  p.require_range("initial_value", o.initial_value, -1, 1, false, false);
-  o.seed = static_cast<uint64_t>(p.integer("seed", 0, INT64_MAX, static_cast<int64_t>(o.seed)));
-  o.threads = static_cast<int>(p.integer("threads", 0, 1024, o.threads));
-  config.sampling =
-      p.choice("sampling", {"nearest", "bilinear"}, "nearest") == "nearest" ? Sampling::kNearest : Sampling::kBilinear;
-  o.target_range =
-      p.choice("target_range", {"clip", "scale"}, "clip") == "clip" ? TargetRange::kClip : TargetRange::kScale;
-  o.objective = p.choice("objective", {"lightfield", "retinal"}, "lightfield") == "retinal"
-                    ? ObjectiveKind::kRetinal
-                    : ObjectiveKind::kLightField;
+  for (const SolverOptionEntry& e : SolverOptionTable())
+    if (e.in_scene) ReadOption(p, e, &o);
+  const SolverOptionEntry& sampling = *FindSolverOption("sampling");
+  config.sampling = p.choice("sampling", sampling.choices, sampling.default_text) == "nearest" ? Sampling::kNearest
+                                                                                               : Sampling::kBilinear;
   if (const std::string why = ObjectiveRefusal(config.solver, o.objective, registry); !why.empty())
     p.fail("objective", why);
-  o.retinal.target = p.choice("retinal_target", {"lightfield", "traced"}, "lightfield") == "traced"
-                         ? RetinalTarget::kTraced
-                         : RetinalTarget::kLightField;
   if (o.retinal.target == RetinalTarget::kTraced && p.has("target"))
     p.fail("retinal_target",
            "\"traced\" traces the target scene, and \"target\" is a light-field folder; give "
            "\"target_scene\"");
-  o.retinal.contrast_sensitivity = p.boolean("contrast_sensitivity", false);
   p.check_all_read();
   return config;
 }

@@ -1,7 +1,7 @@
-#include <cmath>
 #include <sstream>
 
 #include "solvers/solver.h"
+#include "solvers/solver_option_table.h"
 
 namespace layerlab {
 
@@ -13,21 +13,21 @@ std::optional<ObjectiveKind> ObjectiveKindNamed(const std::string& name) {
   return std::nullopt;
 }
 
+// Which keys every solver reads is the registry's; what they mean is the option table's.
 const std::vector<SolverOptionKey>& CommonSolverOptionKeys() {
-  static const std::vector<SolverOptionKey> keys = {
-      {"iterations", "outer iterations"},
-      {"time_budget", "wall-clock budget (0: none)"},
-      {"tolerance", "stop when the objective changes by less than this, relative (0: never)"},
-      {"initial_value", "initial transmittance, or negative for random in [0.25, 0.75]"},
-      {"seed", "for random initial patterns"},
-      {"threads", "worker threads (0: every core, one per 16384 rays on small problems)"},
-      {"target_range", "what to do with target values beyond the display: clip or scale"},
-  };
+  static const std::vector<SolverOptionKey> keys = [] {
+    std::vector<SolverOptionKey> out;
+    for (const char* key :
+         {"iterations", "time_budget", "tolerance", "initial_value", "seed", "threads", "target_range"})
+      out.push_back({key, FindSolverOption(key)->meaning});
+    return out;
+  }();
   return keys;
 }
 
-SolverOptionKey SubIterationsKey() { return {"sub_iterations", "updates of one multiplicative set before the next"}; }
+SolverOptionKey SubIterationsKey() { return {"sub_iterations", FindSolverOption("sub_iterations")->meaning}; }
 
+// The ranges are the option table's; what relates two options is checked here.
 bool SolverOptions::IsValid(std::string* error) const {
   auto fail = [&](const std::string& field, double value, const std::string& constraint) {
     std::ostringstream s;
@@ -35,20 +35,10 @@ bool SolverOptions::IsValid(std::string* error) const {
     *error = s.str();
     return false;
   };
-  if (iterations < 1 || iterations > 1000000) return fail("iterations", iterations, "must be in [1, 1000000]");
-  if (sub_iterations < 1 || sub_iterations > 1000)
-    return fail("sub_iterations", sub_iterations, "must be in [1, 1000]");
-  if (warm_start_iterations < 0 || warm_start_iterations > 1000000)
-    return fail("warm_start_iterations", warm_start_iterations, "must be in [0, 1000000]");
-  if (!(time_budget >= 0) || !std::isfinite(time_budget))
-    return fail("time_budget", time_budget, "must be >= 0 seconds (0 = none)");
-  if (!(tolerance >= 0) || !(tolerance < 1)) return fail("tolerance", tolerance, "must be in [0, 1)");
-  if (!(initial_value <= 1) || std::isnan(initial_value) || (initial_value >= 0 && initial_value < floor))
-    return fail("initial_value", initial_value, "must be in [floor, 1], or negative for random");
-  if (threads < 0 || threads > 1024) return fail("threads", threads, "must be in [0, 1024] (0 = all cores)");
-  if (!(epsilon > 0) || !(epsilon < 1e-3)) return fail("epsilon", epsilon, "must be in (0, 1e-3)");
-  if (!(floor > 0) || !(floor < 0.1))
-    return fail("floor", floor, "must be in (0, 0.1): a zero transmittance never recovers");
+  for (const SolverOptionEntry& e : SolverOptionTable())
+    if (e.has_range && !e.range.Contains(e.Number(*this))) return fail(e.key, e.Number(*this), e.Constraint());
+  if (initial_value >= 0 && initial_value < floor)
+    return fail("initial_value", initial_value, FindSolverOption("initial_value")->Constraint());
   if (retinal.contrast_sensitivity && objective != ObjectiveKind::kRetinal) {
     *error =
         "contrast_sensitivity: true: weights the retinal objective's residuals, and this solve's objective is "

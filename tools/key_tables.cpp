@@ -57,7 +57,7 @@ std::vector<KeyTable> ReadKeyTables(const std::string& file) {
         ++header_rows;
         continue;
       }
-      current.rows.push_back({cells[0], cells[1], cells[2], cells[3]});
+      current.rows.push_back({cells[0], cells[1], cells[2], cells[3], "", "", ""});
       continue;
     }
     if (in_table) {
@@ -73,7 +73,7 @@ std::vector<KeyTable> ReadKeyTables(const std::string& file) {
       continue;
     }
     if (after_blank && std::regex_match(text, m, heading)) {
-      current = KeyTable{m[1], m[2], file, {}};
+      current = KeyTable{m[1], m[2], file, {}, {}, false};
       in_prose = true;
     } else if (in_prose) {
       current.prose += (current.prose.back() == '\n' ? "" : " ") + text;

@@ -11,6 +11,9 @@ namespace layerlab {
 
 struct KeyRow {
   std::string key, type, default_value, meaning;
+  // Made from an option table (solvers/solver_option_table.h): the range, the
+  // command-line flag and the Python keyword; empty for a comment's table.
+  std::string range, cli_flag, python;
 };
 
 struct KeyTable {
@@ -18,6 +21,9 @@ struct KeyTable {
   std::string prose;    // the heading's text after "section: " and the lines after it, paragraphs split by "\n\n"
   std::string file;     // as given, for messages
   std::vector<KeyRow> rows;
+  // An option table's: its options that the scene file does not set, listed after the keys.
+  std::vector<KeyRow> other_options;
+  bool from_option_table = false;
   std::vector<std::string> keys() const;
 };
 

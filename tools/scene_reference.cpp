@@ -4,6 +4,7 @@
 
 #include "elements/registry.h"
 #include "framework/error.h"
+#include "solvers/solver_option_table.h"
 
 namespace layerlab {
 namespace {
@@ -17,7 +18,7 @@ std::vector<Source> Sources() {
   std::vector<Source> sources = {{"systems/scene.cpp", {"scene"}}, {"elements/registry.cpp", {"element"}}};
   for (const std::string& type : ElementRegistry::WithBuiltins().names())
     sources.push_back({"elements/" + type + ".cpp", {type}});
-  sources.push_back({"solvers/solve_config.cpp", {"solve"}});
+  sources.push_back({"", {"solve"}});  // the option table
   sources.push_back({"analysis/run_config.cpp", {"run", "run.retina", "run.contrast", "run.compare", "depth_range"}});
   return sources;
 }
@@ -28,13 +29,48 @@ std::string Row(const std::vector<std::string>& cells) {
   return out + "\n";
 }
 
-std::string Code(const std::string& s) { return "`" + s + "`"; }
+std::string Code(const std::string& s) { return s.empty() ? "" : "`" + s + "`"; }
+
+// The "solve" section, from the option table.
+KeyTable SolveTable() {
+  KeyTable t;
+  t.section = "solve";
+  t.file = "solvers/solver_option_table.cpp";
+  t.from_option_table = true;
+  t.prose =
+      "the scene's \"solve\" section, the solver and its target; the command line (`layerlab solve`) and Python's "
+      "`solve()` override any of it. Paths are relative to the scene file's folder. A key of an option that the "
+      "chosen solver does not read is refused. A value outside its range is refused, by the scene reader, the "
+      "command line and Python alike (SolverOptions::IsValid).";
+  for (const SolverOptionEntry& e : SolverOptionTable()) {
+    KeyRow r{e.key, e.type, e.default_text, e.meaning, "", "", ""};
+    if (e.has_range) r.range = e.range.Text(e.kind == SolverOptionKind::kInteger) + e.constraint_note;
+    if (e.kind == SolverOptionKind::kSeed) r.range = "[0, 2^64 - 1]";
+    r.cli_flag = e.cli_flag;
+    r.python = e.python;
+    (e.in_scene ? t.rows : t.other_options).push_back(r);
+  }
+  return t;
+}
+
+std::string OptionTableRows(const std::vector<KeyRow>& rows) {
+  std::string md = Row({"key", "type", "unit", "range", "default", "meaning", "command line", "Python"});
+  md += "| --- | --- | --- | --- | --- | --- | --- | --- |\n";
+  for (const KeyRow& r : rows)
+    md += Row({Code(r.key), r.type, UnitsOfType(r.type), r.range, r.default_value, r.meaning, Code(r.cli_flag),
+               Code(r.python)});
+  return md;
+}
 
 }  // namespace
 
 std::vector<KeyTable> SceneReferenceTables(const std::string& source_dir) {
   std::vector<KeyTable> out;
   for (const Source& source : Sources()) {
+    if (source.file.empty()) {
+      out.push_back(SolveTable());
+      continue;
+    }
     std::vector<KeyTable> tables = ReadKeyTables(source_dir + "/" + source.file);
     std::map<std::string, KeyTable> by_section;
     for (KeyTable& t : tables) {
@@ -73,6 +109,11 @@ std::string SceneReferenceMarkdown(const std::string& source_dir) {
     }
     md += std::string(element_type ? "### " : "## ") + Code(t.section) + "\n\n";
     md += t.prose + "\n\n";
+    if (t.from_option_table) {
+      md += "Described in " + Code(t.file) + ".\n\n" + OptionTableRows(t.rows) + "\n";
+      md += "Options the scene file does not set:\n\n" + OptionTableRows(t.other_options) + "\n";
+      continue;
+    }
     md += "Read in " + Code(t.file) + ".\n\n";
     md += Row({"key", "type", "unit", "default", "meaning"});
     md += "| --- | --- | --- | --- | --- |\n";

@@ -1,6 +1,7 @@
 // docs/scene-reference.md, made from the key tables (tools/key_tables.h) of
-// the scene reader, the element registry, each built-in element type, and the
-// solve and run section readers.
+// the scene reader, the element registry, each built-in element type and the
+// run section reader, and the solve section from the solver option table
+// (solvers/solver_option_table.h).
 #pragma once
 
 #include <string>

@@ -5,7 +5,6 @@
 // `interrupted` hooks), so a stop keeps the last complete iteration.
 #include <cmath>
 #include <limits>
-#include <map>
 #include <memory>
 #include <numbers>
 #include <optional>
@@ -18,6 +17,7 @@
 #include "analysis/solve_job.h"
 #include "analysis/target_source.h"
 #include "framework/lightfield_checks.h"
+#include "framework/params.h"
 #include "framework/units.h"
 #include "kernels/synthesis.h"
 #include "python/src/arguments.h"
@@ -33,6 +33,7 @@
 #include "retina/retina.h"
 #include "solvers/solution_writer.h"
 #include "solvers/solve_config.h"
+#include "solvers/solver_option_table.h"
 #include "systems/compile.h"
 #include "systems/layer_sampler.h"
 
@@ -51,44 +52,71 @@ struct Solution {
   SolverReport report;
 };
 
-// The options a keyword may set, by the scene's "solve" keys (solvers/solve_config.h),
-// each checked for its type here and for its range by SolverOptions::IsValid.
+// The keywords of solve() beyond its parameters: the option table's Python
+// names (solvers/solver_option_table.h), each checked for its type here and for
+// its range by SolverOptions::IsValid.
+std::vector<const SolverOptionEntry*> OptionKeywords() {
+  std::vector<const SolverOptionEntry*> out;
+  for (const SolverOptionEntry& e : SolverOptionTable())
+    if (!e.python.empty() && e.kind != SolverOptionKind::kConfig) out.push_back(&e);
+  return out;
+}
+
 void SetOption(SolverOptions& o, const std::string& key, const py::handle& value) {
-  static const std::map<std::string, int SolverOptions::*> integers = {
-      {"iterations", &SolverOptions::iterations},
-      {"sub_iterations", &SolverOptions::sub_iterations},
-      {"warm_start_iterations", &SolverOptions::warm_start_iterations},
-      {"threads", &SolverOptions::threads}};
-  static const std::map<std::string, double SolverOptions::*> reals = {{"time_budget", &SolverOptions::time_budget},
-                                                                       {"tolerance", &SolverOptions::tolerance},
-                                                                       {"initial_value", &SolverOptions::initial_value},
-                                                                       {"epsilon", &SolverOptions::epsilon},
-                                                                       {"floor", &SolverOptions::floor}};
-  if (auto it = integers.find(key); it != integers.end()) {
-    // The range IsValid states for the option, asked with a value beyond every option's range.
-    SolverOptions beyond;
-    beyond.*(it->second) = std::numeric_limits<int>::max();
-    std::string why;
-    beyond.IsValid(&why);
-    const size_t constraint = why.find(": ", why.find(": ") + 2);
-    o.*(it->second) =
-        static_cast<int>(IntegerArg(value, key, std::numeric_limits<int>::min(), std::numeric_limits<int>::max(),
-                                    constraint == std::string::npos ? "" : why.substr(constraint + 2)));
-  } else if (auto real = reals.find(key); real != reals.end()) {
-    o.*(real->second) = RealArg(value, key);
-  } else if (key == "seed") {
-    o.seed = Unsigned64Arg(value, key);
-  } else if (key == "target_range") {
-    if (!py::isinstance<py::str>(value))
-      throw py::type_error("target_range: expected a str (clip or scale), got " + TypeName(value));
-    const std::string v = value.cast<std::string>();
-    if (v != "clip" && v != "scale") RaiseArgumentError("target_range: \"" + v + "\" is not one of clip or scale");
-    o.target_range = v == "clip" ? TargetRange::kClip : TargetRange::kScale;
-  } else {
-    throw py::type_error("solve() got an unexpected option '" + key +
-                         "'; options: iterations, sub_iterations, warm_start_iterations, time_budget, tolerance, "
-                         "seed, initial_value, threads, epsilon, floor, target_range");
+  const SolverOptionEntry* entry = nullptr;
+  for (const SolverOptionEntry* e : OptionKeywords())
+    if (e->python == key) entry = e;
+  if (!entry) {
+    std::vector<std::string> names;
+    for (const SolverOptionEntry* e : OptionKeywords()) names.push_back(e->python);
+    throw py::type_error("solve() got an unexpected option '" + key + "'; options: " + JoinWords(names, ", "));
   }
+  const SolverOptionEntry& e = *entry;
+  switch (e.kind) {
+    case SolverOptionKind::kInteger:
+      o.*e.integer = static_cast<int>(
+          IntegerArg(value, key, std::numeric_limits<int>::min(), std::numeric_limits<int>::max(), e.Constraint()));
+      break;
+    case SolverOptionKind::kReal:
+      o.*e.real = RealArg(value, key);
+      break;
+    case SolverOptionKind::kSeed:
+      o.*e.seed = Unsigned64Arg(value, key);
+      break;
+    case SolverOptionKind::kChoice: {
+      if (!py::isinstance<py::str>(value))
+        throw py::type_error(key + ": expected a str (" + e.ChoiceList() + "), got " + TypeName(value));
+      const std::string v = value.cast<std::string>();
+      const int index = e.ChoiceIndex(v);
+      if (index < 0) RaiseArgumentError(key + ": \"" + v + "\" is not one of " + e.ChoiceList());
+      e.set(o, index);
+      break;
+    }
+    case SolverOptionKind::kBoolean:
+      if (!PyBool_Check(value.ptr())) throw py::type_error(key + ": expected a bool, got " + TypeName(value));
+      e.set(o, value.cast<bool>() ? 1 : 0);
+      break;
+    case SolverOptionKind::kConfig:
+      break;
+  }
+}
+
+// solve()'s docstring: what it does and every option keyword, from the table.
+const char* SolveDoc() {
+  static const std::string doc = [] {
+    std::string d =
+        "Factorizes a target light field into layer patterns (docs/python.md).\n\n"
+        "solver: a solver's name (default: the scene's, or the display's default); sampling: nearest or bilinear.\n"
+        "Options (keyword arguments; docs/scene-reference.md):\n";
+    for (const SolverOptionEntry* e : OptionKeywords()) {
+      d += "  " + e->python + ": " + e->meaning;
+      if (e->has_range) d += "; in " + e->range.Text(e->kind == SolverOptionKind::kInteger);
+      if (!e->choices.empty()) d += "; " + e->ChoiceList();
+      d += " (default: " + e->default_text + ")\n";
+    }
+    return d;
+  }();
+  return doc.c_str();
 }
 
 // The target, held to what a light-field folder's views are held to (finite,
@@ -299,8 +327,7 @@ void BindSolve(py::module_& m) {
       .def("__repr__", [](const Solution& s) { return "<layerlab.Solution " + s.report.BriefReport() + ">"; });
 
   m.def("solve", &Solve, py::arg("display"), py::arg("target") = py::none(), py::kw_only(),
-        py::arg("solver") = py::none(), py::arg("sampling") = py::none(), py::arg("callback") = py::none(),
-        "Factorizes a target light field into layer patterns (docs/python.md)");
+        py::arg("solver") = py::none(), py::arg("sampling") = py::none(), py::arg("callback") = py::none(), SolveDoc());
   m.def("synthesize", &Synthesize, py::arg("system"), py::arg("patterns"), py::arg("geometry") = py::none(),
         py::arg("sampling") = "nearest",
         "The light field the display shows with these patterns (default geometry: display_geometry(system))");

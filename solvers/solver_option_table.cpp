@@ -1,0 +1,193 @@
+#include "solvers/solver_option_table.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "framework/params.h"
+
+namespace layerlab {
+namespace {
+
+using Kind = SolverOptionKind;
+
+OptionRange Closed(double min, double max) { return {min, max, false, false}; }
+
+std::vector<SolverOptionEntry> MakeTable() {
+  std::vector<SolverOptionEntry> t;
+  SolverOptionEntry e;
+  auto add = [&] {
+    t.push_back(e);
+    e = SolverOptionEntry{};
+  };
+  // The solve's setting, not a SolverOptions field.
+  e.key = "solver", e.kind = Kind::kConfig, e.type = "solver name", e.default_text = "the display's default";
+  e.meaning = "multiplicative for one branch, additive-trust-region for one layer per branch, else hybrid";
+  e.cli_flag = "--solver", e.cli_help = "Solver", e.python = "solver";
+  add();
+  e.key = "target", e.kind = Kind::kConfig, e.type = "path", e.default_text = "none";
+  e.meaning = "a light-field folder (lightfield/1); not with target_scene";
+  e.cli_flag = "--target";
+  add();
+  e.key = "target_scene", e.kind = Kind::kConfig, e.type = "path", e.default_text = "none";
+  e.meaning = "a target scene (layerlab-target/1) rendered with Embree";
+  e.cli_flag = "--target-scene";
+  add();
+
+  e.key = "iterations", e.kind = Kind::kInteger, e.type = "integer", e.has_range = true;
+  e.range = Closed(1, 1000000), e.default_text = "the solver's", e.meaning = "outer iterations";
+  e.cli_flag = "--iterations", e.cli_help = "Outer iterations", e.python = "iterations";
+  e.integer = &SolverOptions::iterations;
+  add();
+  e.key = "sub_iterations", e.kind = Kind::kInteger, e.type = "integer", e.has_range = true;
+  e.range = Closed(1, 1000), e.default_text = "the solver's";
+  e.meaning = "hybrid and quasi-newton: updates of one multiplicative set before the next";
+  e.cli_flag = "--sub-iterations", e.cli_help = "Updates per set and outer iteration (hybrid)";
+  e.python = "sub_iterations", e.integer = &SolverOptions::sub_iterations;
+  add();
+  e.key = "warm_start_iterations", e.kind = Kind::kInteger, e.type = "integer", e.has_range = true;
+  e.range = Closed(0, 1000000), e.default_text = "the solver's";
+  e.meaning = "quasi-newton: hybrid iterations before the quasi-Newton steps";
+  e.cli_flag = "--warm-start-iterations";
+  e.cli_help = "Iterations made by the hybrid solver before quasi-Newton steps (quasi-newton)";
+  e.python = "warm_start_iterations", e.integer = &SolverOptions::warm_start_iterations;
+  add();
+  e.key = "time_budget", e.kind = Kind::kReal, e.type = "time", e.dimension = Dimension::kTime, e.has_range = true;
+  e.range = Closed(0, 1e7), e.constraint_note = " s (0 = none)", e.default_text = "0 s (none)";
+  e.meaning = "wall-clock budget";
+  e.cli_flag = "--time-budget", e.cli_help = "Stop after this long: seconds, or with units (\"5 s\", \"2 min\")";
+  e.python = "time_budget", e.real = &SolverOptions::time_budget;
+  add();
+  e.key = "tolerance", e.kind = Kind::kReal, e.type = "fraction", e.has_range = true;
+  e.range = {0, 1, false, true}, e.default_text = "0 (never)";
+  e.meaning = "stop when the objective changes by less than this, relative";
+  e.cli_flag = "--tolerance", e.cli_help = "Stop when the objective changes by less than this, relative";
+  e.python = "tolerance", e.real = &SolverOptions::tolerance;
+  add();
+  e.key = "initial_value", e.kind = Kind::kReal, e.type = "fraction", e.has_range = true;
+  e.range = Closed(-1, 1), e.constraint_note = ", at least floor unless negative (random)";
+  e.default_text = "the solver's", e.meaning = "initial transmittance; negative: random in [0.25, 0.75]";
+  e.cli_flag = "--initial", e.cli_help = "Initial transmittance (negative: random)";
+  e.python = "initial_value", e.real = &SolverOptions::initial_value;
+  add();
+  e.key = "seed", e.kind = Kind::kSeed, e.type = "integer", e.default_text = "1";
+  e.meaning = "for random initial patterns", e.python = "seed", e.seed = &SolverOptions::seed;
+  add();
+  e.key = "threads", e.kind = Kind::kInteger, e.type = "integer", e.has_range = true;
+  e.range = Closed(0, 1024), e.constraint_note = " (0 = all cores)";
+  e.default_text = "0 (every core; one per 16384 rays with the light-field objective)";
+  e.meaning = "worker threads (report.json `threads`: how many the solve ran on)";
+  e.cli_flag = "--threads", e.cli_help = "Worker threads (0: all cores)";
+  e.python = "threads", e.integer = &SolverOptions::threads;
+  add();
+  e.key = "sampling", e.kind = Kind::kConfig, e.type = "nearest, bilinear", e.default_text = "nearest";
+  e.meaning = "how the light field samples the layers", e.choices = {"nearest", "bilinear"};
+  e.cli_flag = "--sampling", e.cli_help = "Layer sampling: nearest or bilinear", e.python = "sampling";
+  add();
+  e.key = "target_range", e.kind = Kind::kChoice, e.type = "clip, scale", e.default_text = "clip";
+  e.meaning = "target values beyond what the display shows: clipped, or the target scaled";
+  e.cli_flag = "--target-range", e.cli_help = "Target values beyond the display: clip or scale";
+  e.python = "target_range", e.choices = {"clip", "scale"};
+  e.get = [](const SolverOptions& o) { return int(o.target_range); };
+  e.set = [](SolverOptions& o, int i) { o.target_range = TargetRange(i); };
+  add();
+  e.key = "objective", e.kind = Kind::kChoice, e.type = "lightfield, retinal", e.default_text = "lightfield";
+  e.meaning =
+      "what is minimized: the light-field error, or the retinal error over the eye's accommodation_range in 0.2 D "
+      "steps (quasi-newton, joint; docs/retinal-objective.md)";
+  e.cli_flag = "--objective";
+  e.cli_help = "What is minimized: lightfield, or retinal (the focal stack; quasi-newton, joint)";
+  e.choices = {"lightfield", "retinal"};
+  e.get = [](const SolverOptions& o) { return int(o.objective); };
+  e.set = [](SolverOptions& o, int i) { o.objective = ObjectiveKind(i); };
+  add();
+  e.key = "contrast_sensitivity", e.kind = Kind::kBoolean, e.type = "boolean", e.default_text = "false";
+  e.meaning =
+      "the retinal objective's residuals weighted by the eye's contrast sensitivity (Mannos and Sakrison 1974, 1 up "
+      "to its 7.9 cpd peak)";
+  e.cli_flag = "--contrast-sensitivity";
+  e.cli_help = "Weight the retinal objective's residuals by the eye's contrast sensitivity (docs/retinal-objective.md)";
+  e.get = [](const SolverOptions& o) { return int(o.retinal.contrast_sensitivity); };
+  e.set = [](SolverOptions& o, int i) { o.retinal.contrast_sensitivity = i != 0; };
+  add();
+  e.key = "retinal_target", e.kind = Kind::kChoice, e.type = "lightfield, traced", e.default_text = "lightfield";
+  e.meaning =
+      "the retinal objective's target images (and the focal-stack PSNR's): natural viewing of the target light "
+      "field, or traced from target_scene ray by ray (needs a target scene; seconds per state)";
+  e.cli_flag = "--retinal-target";
+  e.cli_help =
+      "The retinal objective's target images: lightfield (natural viewing of the target light field) or traced "
+      "(from --target-scene, ray by ray)";
+  e.choices = {"lightfield", "traced"};
+  e.get = [](const SolverOptions& o) { return int(o.retinal.target); };
+  e.set = [](SolverOptions& o, int i) { o.retinal.target = RetinalTarget(i); };
+  add();
+
+  // Not in the scene file.
+  e.key = "epsilon", e.kind = Kind::kReal, e.type = "number", e.in_scene = false, e.has_range = true;
+  e.range = {0, 1e-3, true, true}, e.default_text = "1e-12";
+  e.meaning = "multiplicative updates: denominators below this keep the pixel as is";
+  e.python = "epsilon", e.real = &SolverOptions::epsilon;
+  add();
+  e.key = "floor", e.kind = Kind::kReal, e.type = "number", e.in_scene = false, e.has_range = true;
+  e.range = {0, 0.1, true, true}, e.constraint_note = ": a zero transmittance never recovers";
+  e.default_text = "1e-6", e.meaning = "multiplicative updates: the lowest transmittance";
+  e.python = "floor", e.real = &SolverOptions::floor;
+  add();
+  e.key = "measure_focal_stack", e.kind = Kind::kBoolean, e.type = "boolean", e.in_scene = false;
+  e.default_text = "false";
+  e.meaning = "with the light-field objective: also the focal-stack PSNR of every trace row, off the clock";
+  e.cli_flag = "--measure-focal-stack";
+  e.cli_help = "Also record the focal stack's PSNR in the trace, off the clock (the retinal objective records it)";
+  e.get = [](const SolverOptions& o) { return int(o.measure_focal_stack); };
+  e.set = [](SolverOptions& o, int i) { o.measure_focal_stack = i != 0; };
+  add();
+  return t;
+}
+
+}  // namespace
+
+bool OptionRange::Contains(double v) const {
+  if (std::isnan(v)) return false;
+  return (min_open ? v > min : v >= min) && (max_open ? v < max : v <= max);
+}
+
+std::string OptionRange::Text(bool integer) const {
+  auto number = [&](double v) {
+    if (integer) return std::to_string(static_cast<long long>(v));
+    std::ostringstream s;
+    s << v;
+    return s.str();
+  };
+  return (min_open ? "(" : "[") + number(min) + ", " + number(max) + (max_open ? ")" : "]");
+}
+
+double SolverOptionEntry::Number(const SolverOptions& o) const {
+  if (integer) return o.*integer;
+  if (real) return o.*real;
+  return 0;
+}
+
+std::string SolverOptionEntry::Constraint() const {
+  return "must be in " + range.Text(kind == SolverOptionKind::kInteger) + constraint_note;
+}
+
+std::string SolverOptionEntry::ChoiceList() const { return JoinWords(choices); }
+
+int SolverOptionEntry::ChoiceIndex(const std::string& name) const {
+  for (size_t i = 0; i < choices.size(); ++i)
+    if (choices[i] == name) return static_cast<int>(i);
+  return -1;
+}
+
+const std::vector<SolverOptionEntry>& SolverOptionTable() {
+  static const std::vector<SolverOptionEntry> table = MakeTable();
+  return table;
+}
+
+const SolverOptionEntry* FindSolverOption(const std::string& key) {
+  for (const SolverOptionEntry& e : SolverOptionTable())
+    if (e.key == key) return &e;
+  return nullptr;
+}
+
+}  // namespace layerlab
