@@ -4,7 +4,7 @@
 
 namespace layerlab {
 
-Jones LinearPolarization(double angle) { return {Complex(std::sin(angle), 0.0), Complex(std::cos(angle), 0.0)}; }
+Jones LinearPolarization(double angle) { return {Complex(std::cos(angle), 0.0), Complex(std::sin(angle), 0.0)}; }
 
 JonesMatrix Retarder(double delta, double axis) {
   // R(axis) diag(1, e^{i delta}) R(-axis): the fast axis keeps its phase.
