@@ -38,29 +38,18 @@ std::string WorkspaceLayout::Describe() const {
          Megabytes(shared_bytes) + " (" + shared + ")";
 }
 
-// Sizes every buffer of a workspace and records it in the layout: one
-// function for both, so that the estimate is what is allocated.
-struct WorkspaceSizer {
-  bool allocate;
-  WorkspaceLayout* layout;
+void WorkspaceSizer::Record(const std::string& name, size_t bytes, bool per_thread) {
+  if (bytes == 0) return;
+  for (WorkspacePart& p : layout->parts)
+    if (p.name == name && p.per_thread == per_thread) {
+      p.bytes += bytes;
+      return;
+    }
+  layout->parts.push_back({name, bytes, per_thread});
+}
 
-  void Record(const std::string& name, size_t bytes, bool per_thread) {
-    if (bytes == 0) return;
-    for (WorkspacePart& p : layout->parts)
-      if (p.name == name && p.per_thread == per_thread) {
-        p.bytes += bytes;
-        return;
-      }
-    layout->parts.push_back({name, bytes, per_thread});
-  }
-  // A buffer of n elements; a thread's part is recorded once (for thread 0)
-  // and allocated for each.
-  template <class T, class A>
-  void Buffer(const std::string& name, std::vector<T, A>* v, size_t n, bool per_thread, bool record) {
-    if (record) Record(name, n * sizeof(T), per_thread);
-    if (allocate) v->assign(n, T{});
-  }
-
+// Sizes every buffer of a solve's workspace and records it in the layout.
+struct SolveWorkspaceSizer : WorkspaceSizer {
   void Size(const DisplayModel& model, int threads, unsigned passes, SolveWorkspace* w) {
     const LightFieldGeometry& g = model.geometry();
     const size_t layers = model.layer_count();
@@ -163,13 +152,13 @@ struct WorkspaceSizer {
 
 SolveWorkspace::SolveWorkspace(const DisplayModel& model, int threads, unsigned passes) {
   WorkspaceLayout ignored;
-  WorkspaceSizer{true, &ignored}.Size(model, threads, passes, this);
+  SolveWorkspaceSizer{{true, &ignored}}.Size(model, threads, passes, this);
 }
 
 WorkspaceLayout SolveWorkspace::Layout(const DisplayModel& model, int threads, unsigned passes) {
   WorkspaceLayout layout;
   SolveWorkspace skeleton;
-  WorkspaceSizer{false, &layout}.Size(model, threads, passes, &skeleton);
+  SolveWorkspaceSizer{{false, &layout}}.Size(model, threads, passes, &skeleton);
   return layout;
 }
 

@@ -40,6 +40,23 @@ struct WorkspaceLayout {
   std::string Describe() const;
 };
 
+// Sizes buffers and records them in a layout: one function for both, so that
+// an estimate is what is allocated (SolveWorkspace, retina/retina_workspace.h).
+struct WorkspaceSizer {
+  bool allocate;
+  WorkspaceLayout* layout;
+
+  // Adds `bytes` to the part of that name and kind (none for 0).
+  void Record(const std::string& name, size_t bytes, bool per_thread);
+  // A buffer of n elements; a thread's part is recorded once (for thread 0)
+  // and allocated for each.
+  template <class T, class A>
+  void Buffer(const std::string& name, std::vector<T, A>* v, size_t n, bool per_thread, bool record) {
+    if (record) Record(name, n * sizeof(T), per_thread);
+    if (allocate) v->assign(n, T{});
+  }
+};
+
 // A ray row of a multiplicative update's pass waiting to be summed into
 // row `layer_row` of the layer being updated (kernels/one_tap_update.cpp).
 struct PendingSumRow {
@@ -103,7 +120,7 @@ class SolveWorkspace {
 
  private:
   SolveWorkspace() = default;
-  friend struct WorkspaceSizer;
+  friend struct SolveWorkspaceSizer;
   std::vector<ThreadWorkspace> threads_;
 };
 

@@ -18,28 +18,8 @@ RetinaWorkspaceSizes LightFieldRetinaSizes(const LightFieldGeometry& g, const Re
   return s;
 }
 
-// Sizes every buffer of a workspace and records it in the layout: one
-// function for both, so that the estimate is what is allocated.
-struct RetinaWorkspaceSizer {
-  bool allocate;
-  WorkspaceLayout* layout;
-
-  void Record(const std::string& name, size_t bytes, bool per_thread) {
-    if (bytes == 0) return;
-    for (WorkspacePart& p : layout->parts)
-      if (p.name == name && p.per_thread == per_thread) {
-        p.bytes += bytes;
-        return;
-      }
-    layout->parts.push_back({name, bytes, per_thread});
-  }
-  // A thread's buffer is recorded once (for thread 0) and allocated for each.
-  template <class T>
-  void Buffer(const char* name, std::vector<T>* v, size_t n, bool record) {
-    if (record) Record(name, n * sizeof(T), true);
-    if (allocate) v->assign(n, T{});
-  }
-
+// Sizes every buffer of a retina's workspace and records it in the layout.
+struct RetinaWorkspaceSizer : WorkspaceSizer {
   void Size(const RetinaWorkspaceSizes& s, int threads, RetinaWorkspace* w) {
     layout->threads = threads;
     size_t padded = 0;
@@ -53,21 +33,21 @@ struct RetinaWorkspaceSizer {
       RetinaThreadWorkspace& part = allocate ? w->threads_[me] : unused;
       const bool record = me == 0;
       const bool display = s.column_tables > 0, light_field = s.pupil_points > 0;
-      Buffer("retinal row", &part.sum, display || light_field ? cols : 0, record);
-      Buffer("resampled layer rows", &part.resampled_tags, s.column_tables * s.ring, record);
-      Buffer("resampled layer rows", &part.resampled, s.column_tables * s.ring * cols, record);
-      Buffer("terms", &part.term_rows, s.terms * kMaxOneTapLayers, record);
-      Buffer("terms", &part.term_weight, s.terms, record);
-      Buffer("terms", &part.term_layers, s.terms, record);
-      Buffer("blended rows", &part.blended, s.pupil_points * s.blended_row, record);
-      Buffer("blended rows", &part.blended_rows, s.pupil_points, record);
+      Buffer("retinal row", &part.sum, display || light_field ? cols : 0, true, record);
+      Buffer("resampled layer rows", &part.resampled_tags, s.column_tables * s.ring, true, record);
+      Buffer("resampled layer rows", &part.resampled, s.column_tables * s.ring * cols, true, record);
+      Buffer("terms", &part.term_rows, s.terms * kMaxOneTapLayers, true, record);
+      Buffer("terms", &part.term_weight, s.terms, true, record);
+      Buffer("terms", &part.term_layers, s.terms, true, record);
+      Buffer("blended rows", &part.blended, s.pupil_points * s.blended_row, true, record);
+      Buffer("blended rows", &part.blended_rows, s.pupil_points, true, record);
     }
   }
 };
 
 RetinaWorkspace::RetinaWorkspace(const RetinaWorkspaceSizes& sizes, int threads) : sizes_(sizes) {
   WorkspaceLayout layout;
-  RetinaWorkspaceSizer{true, &layout}.Size(sizes, threads, this);
+  RetinaWorkspaceSizer{{true, &layout}}.Size(sizes, threads, this);
 }
 
 void RetinaWorkspace::Fit(const RetinaWorkspaceSizes& needed, int threads) {
@@ -91,7 +71,7 @@ void RetinaWorkspace::Fit(const RetinaWorkspaceSizes& needed, int threads) {
 
 WorkspaceLayout RetinaWorkspace::Layout(const RetinaWorkspaceSizes& sizes, int threads) {
   WorkspaceLayout layout;
-  RetinaWorkspaceSizer{false, &layout}.Size(sizes, threads, nullptr);
+  RetinaWorkspaceSizer{{false, &layout}}.Size(sizes, threads, nullptr);
   return layout;
 }
 
