@@ -1,4 +1,4 @@
-#include "analysis/compare.h"
+#include "layerlab/analysis/compare.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,13 +8,13 @@
 #include <optional>
 #include <set>
 
-#include "analysis/svg_plot.h"
-#include "framework/error.h"
-#include "framework/progress.h"
-#include "solvers/objective.h"
-#include "solvers/solve_config.h"
-#include "systems/compile.h"
-#include "systems/display_model.h"
+#include "layerlab/analysis/svg_plot.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/progress.h"
+#include "layerlab/solvers/objective.h"
+#include "layerlab/solvers/solve_config.h"
+#include "layerlab/systems/compile.h"
+#include "layerlab/systems/display_model.h"
 
 namespace layerlab {
 namespace {

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "solvers/solver.h"
-#include "systems/display_system.h"
+#include "layerlab/solvers/solver.h"
+#include "layerlab/systems/display_system.h"
 
 namespace layerlab {
 

@@ -1,4 +1,4 @@
-#include "analysis/contrast.h"
+#include "layerlab/analysis/contrast.h"
 
 #include <omp.h>
 #include <algorithm>
@@ -11,19 +11,19 @@
 #include <numbers>
 #include <optional>
 
-#include "analysis/svg_plot.h"
-#include "eye/eye_description.h"
-#include "framework/error.h"
-#include "framework/progress.h"
-#include "framework/units.h"
-#include "framework/version.h"
-#include "retina/diffraction.h"
-#include "retina/lightfield_radiance.h"
-#include "retina/retina.h"
-#include "solvers/solve_config.h"
-#include "systems/compile.h"
-#include "systems/display_model.h"
-#include "targets/plane_lightfield.h"
+#include "layerlab/analysis/svg_plot.h"
+#include "layerlab/eye/eye_description.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/progress.h"
+#include "layerlab/framework/units.h"
+#include "layerlab/framework/version.h"
+#include "layerlab/retina/diffraction.h"
+#include "layerlab/retina/lightfield_radiance.h"
+#include "layerlab/retina/retina.h"
+#include "layerlab/solvers/solve_config.h"
+#include "layerlab/systems/compile.h"
+#include "layerlab/systems/display_model.h"
+#include "layerlab/targets/plane_lightfield.h"
 
 namespace layerlab {
 namespace {

@@ -17,13 +17,13 @@
 #include <string>
 #include <vector>
 
-#include "analysis/fourier.h"
-#include "framework/params.h"
-#include "solvers/solver.h"
-#include "systems/display_system.h"
-#include "systems/layer_sampler.h"
-#include "systems/scene.h"
-#include "targets/texture.h"
+#include "layerlab/analysis/fourier.h"
+#include "layerlab/framework/params.h"
+#include "layerlab/solvers/solver.h"
+#include "layerlab/systems/display_system.h"
+#include "layerlab/systems/layer_sampler.h"
+#include "layerlab/systems/scene.h"
+#include "layerlab/targets/texture.h"
 
 namespace layerlab {
 

@@ -1,11 +1,11 @@
-#include "analysis/fourier.h"
+#include "layerlab/analysis/fourier.h"
 
 #include <algorithm>
 #include <cmath>
 #include <complex>
 #include <numbers>
 
-#include "framework/error.h"
+#include "layerlab/framework/error.h"
 
 namespace layerlab {
 

@@ -1,4 +1,4 @@
-#include "analysis/html_report.h"
+#include "layerlab/analysis/html_report.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,12 +7,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "analysis/layout_svg.h"
-#include "analysis/svg_plot.h"
-#include "eye/eye_description.h"
-#include "framework/units.h"
-#include "retina/retina.h"
-#include "systems/system_report.h"
+#include "layerlab/analysis/layout_svg.h"
+#include "layerlab/analysis/svg_plot.h"
+#include "layerlab/eye/eye_description.h"
+#include "layerlab/framework/units.h"
+#include "layerlab/retina/retina.h"
+#include "layerlab/systems/system_report.h"
 
 namespace layerlab {
 namespace {

@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-#include "systems/display_system.h"
+#include "layerlab/systems/display_system.h"
 
 namespace layerlab {
 

@@ -1,11 +1,11 @@
-#include "analysis/layout_svg.h"
+#include "layerlab/analysis/layout_svg.h"
 
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
-#include "analysis/svg_plot.h"
-#include "systems/intermediate_images.h"
+#include "layerlab/analysis/svg_plot.h"
+#include "layerlab/systems/intermediate_images.h"
 
 namespace layerlab {
 namespace {

@@ -1,15 +1,15 @@
-#include "analysis/report_parts.h"
+#include "layerlab/analysis/report_parts.h"
 
 #include <cmath>
 #include <filesystem>
 
-#include "analysis/report_sections.h"
-#include "framework/atomic_file.h"
-#include "framework/error.h"
-#include "framework/png_writer.h"
-#include "framework/units.h"
-#include "framework/version.h"
-#include "solvers/solution_writer.h"
+#include "layerlab/analysis/report_sections.h"
+#include "layerlab/framework/atomic_file.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/png_writer.h"
+#include "layerlab/framework/units.h"
+#include "layerlab/framework/version.h"
+#include "layerlab/solvers/solution_writer.h"
 
 namespace layerlab {
 namespace {

@@ -9,11 +9,11 @@
 #include <string>
 #include <vector>
 
-#include "analysis/compare.h"
-#include "analysis/contrast.h"
-#include "analysis/html_report.h"
-#include "analysis/retina_sweep.h"
-#include "solvers/solver.h"
+#include "layerlab/analysis/compare.h"
+#include "layerlab/analysis/contrast.h"
+#include "layerlab/analysis/html_report.h"
+#include "layerlab/analysis/retina_sweep.h"
+#include "layerlab/solvers/solver.h"
 
 namespace layerlab {
 

@@ -1,11 +1,11 @@
-#include "analysis/report_sections.h"
+#include "layerlab/analysis/report_sections.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include <nlohmann/json.hpp>
 
-#include "analysis/svg_plot.h"
+#include "layerlab/analysis/svg_plot.h"
 
 namespace layerlab {
 namespace {

@@ -7,9 +7,9 @@
 #include <utility>
 #include <vector>
 
-#include "analysis/compare.h"
-#include "analysis/contrast.h"
-#include "analysis/html_report.h"
+#include "layerlab/analysis/compare.h"
+#include "layerlab/analysis/contrast.h"
+#include "layerlab/analysis/html_report.h"
 
 namespace layerlab {
 

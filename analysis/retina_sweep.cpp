@@ -1,4 +1,4 @@
-#include "analysis/retina_sweep.h"
+#include "layerlab/analysis/retina_sweep.h"
 
 #include <algorithm>
 #include <chrono>
@@ -8,14 +8,14 @@
 #include <filesystem>
 #include <numbers>
 
-#include "framework/atomic_file.h"
-#include "framework/error.h"
-#include "framework/exr_image.h"
-#include "framework/png_writer.h"
-#include "framework/polarization.h"
-#include "framework/units.h"
-#include "retina/diffraction.h"
-#include "retina/retina_workspace.h"
+#include "layerlab/framework/atomic_file.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/exr_image.h"
+#include "layerlab/framework/png_writer.h"
+#include "layerlab/framework/polarization.h"
+#include "layerlab/framework/units.h"
+#include "layerlab/retina/diffraction.h"
+#include "layerlab/retina/retina_workspace.h"
 
 namespace layerlab {
 namespace {

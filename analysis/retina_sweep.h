@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "framework/exr_image.h"
-#include "retina/retina.h"
-#include "systems/display_model.h"
+#include "layerlab/framework/exr_image.h"
+#include "layerlab/retina/retina.h"
+#include "layerlab/systems/display_model.h"
 
 namespace layerlab {
 

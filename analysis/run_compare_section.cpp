@@ -1,9 +1,9 @@
 // The run's comparison (run.compare): this display and the others it names,
 // each with its solvers and objectives, on the same target, into OUT/compare.
-#include "analysis/compare.h"
-#include "analysis/report_parts.h"
-#include "analysis/run_steps.h"
-#include "framework/error.h"
+#include "layerlab/analysis/compare.h"
+#include "layerlab/analysis/report_parts.h"
+#include "layerlab/analysis/run_steps.h"
+#include "layerlab/framework/error.h"
 
 namespace layerlab {
 namespace {

@@ -50,17 +50,17 @@
 // | from | depth         | required | the first state                        |
 // | to   | depth         | required | the last state, beyond from            |
 // | step | optical power | required | above 0 D and at most to - from        |
-#include "analysis/run_config.h"
+#include "layerlab/analysis/run_config.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
-#include "framework/json_file.h"
-#include "framework/params.h"
-#include "framework/units.h"
-#include "retina/retina.h"
-#include "solvers/solve_config.h"
+#include "layerlab/framework/json_file.h"
+#include "layerlab/framework/params.h"
+#include "layerlab/framework/units.h"
+#include "layerlab/retina/retina.h"
+#include "layerlab/solvers/solve_config.h"
 
 namespace layerlab {
 namespace {

@@ -1,7 +1,7 @@
 // The run's contrast sweep (run.contrast, the paper's Fig. 5) of this
 // display and the others it names, into OUT/contrast.
-#include "analysis/report_parts.h"
-#include "analysis/run_steps.h"
+#include "layerlab/analysis/report_parts.h"
+#include "layerlab/analysis/run_steps.h"
 
 namespace layerlab {
 namespace {

@@ -5,9 +5,9 @@
 #include <list>
 #include <map>
 
-#include "analysis/run_steps.h"
-#include "framework/error.h"
-#include "systems/compile.h"
+#include "layerlab/analysis/run_steps.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/systems/compile.h"
 
 namespace layerlab {
 namespace {

@@ -1,17 +1,17 @@
-#include "analysis/run_pipeline.h"
+#include "layerlab/analysis/run_pipeline.h"
 
 #include <chrono>
 #include <filesystem>
 #include <memory>
 #include <string>
 
-#include "analysis/report_parts.h"
-#include "analysis/run_steps.h"
-#include "framework/atomic_file.h"
-#include "framework/error.h"
-#include "framework/progress.h"
-#include "framework/staged_output.h"
-#include "systems/system_report.h"
+#include "layerlab/analysis/report_parts.h"
+#include "layerlab/analysis/run_steps.h"
+#include "layerlab/framework/atomic_file.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/progress.h"
+#include "layerlab/framework/staged_output.h"
+#include "layerlab/systems/system_report.h"
 
 namespace layerlab {
 namespace {

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "analysis/run_request.h"
+#include "layerlab/analysis/run_request.h"
 
 namespace layerlab {
 

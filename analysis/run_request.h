@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
-#include "analysis/compare.h"
-#include "analysis/contrast.h"
-#include "analysis/retina_sweep.h"
-#include "solvers/solver.h"
+#include "layerlab/analysis/compare.h"
+#include "layerlab/analysis/contrast.h"
+#include "layerlab/analysis/retina_sweep.h"
+#include "layerlab/solvers/solver.h"
 
 namespace layerlab {
 

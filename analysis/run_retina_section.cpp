@@ -1,9 +1,9 @@
 // The run's retinal images over accommodation (run.retina), of the main
 // solve and of natural viewing of the target, into OUT/retina.
-#include "analysis/report_parts.h"
-#include "analysis/retina_sweep.h"
-#include "analysis/run_steps.h"
-#include "framework/progress.h"
+#include "layerlab/analysis/report_parts.h"
+#include "layerlab/analysis/retina_sweep.h"
+#include "layerlab/analysis/run_steps.h"
+#include "layerlab/framework/progress.h"
 
 namespace layerlab {
 namespace {

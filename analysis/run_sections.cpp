@@ -1,4 +1,4 @@
-#include "analysis/run_steps.h"
+#include "layerlab/analysis/run_steps.h"
 
 // Each section, in the order it runs and the page shows it: NameRunSection()
 // is defined in its own file (analysis/run_<name>_section.cpp).

@@ -1,7 +1,7 @@
 // The run's main solve: the solve job (analysis/solve_job.h) on the target,
 // written into OUT/solve.
-#include "analysis/run_steps.h"
-#include "framework/error.h"
+#include "layerlab/analysis/run_steps.h"
+#include "layerlab/framework/error.h"
 
 namespace layerlab {
 namespace {

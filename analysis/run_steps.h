@@ -13,13 +13,13 @@
 #include <string>
 #include <vector>
 
-#include "analysis/contrast.h"
-#include "analysis/html_report.h"
-#include "analysis/run_config.h"
-#include "analysis/run_request.h"
-#include "analysis/solve_job.h"
-#include "analysis/target_source.h"
-#include "systems/scene.h"
+#include "layerlab/analysis/contrast.h"
+#include "layerlab/analysis/html_report.h"
+#include "layerlab/analysis/run_config.h"
+#include "layerlab/analysis/run_request.h"
+#include "layerlab/analysis/solve_job.h"
+#include "layerlab/analysis/target_source.h"
+#include "layerlab/systems/scene.h"
 
 namespace layerlab {
 

@@ -3,8 +3,8 @@
 #include <filesystem>
 #include <utility>
 
-#include "analysis/report_sections.h"
-#include "analysis/run_steps.h"
+#include "layerlab/analysis/report_sections.h"
+#include "layerlab/analysis/run_steps.h"
 
 namespace layerlab {
 namespace {

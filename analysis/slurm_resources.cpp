@@ -1,4 +1,4 @@
-#include "analysis/slurm_resources.h"
+#include "layerlab/analysis/slurm_resources.h"
 
 #include <algorithm>
 #include <cctype>

@@ -1,12 +1,12 @@
-#include "analysis/solve_job.h"
+#include "layerlab/analysis/solve_job.h"
 
 #include <cmath>
 #include <cstdio>
 #include <optional>
 
-#include "analysis/report_parts.h"
-#include "framework/progress.h"
-#include "solvers/solution_writer.h"
+#include "layerlab/analysis/report_parts.h"
+#include "layerlab/framework/progress.h"
+#include "layerlab/solvers/solution_writer.h"
 
 namespace layerlab {
 namespace {

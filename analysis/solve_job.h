@@ -16,12 +16,12 @@
 #include <memory>
 #include <string>
 
-#include "analysis/html_report.h"
-#include "analysis/target_source.h"
-#include "framework/mpi_ranks.h"
-#include "solvers/solve_config.h"
-#include "solvers/solver.h"
-#include "systems/scene.h"
+#include "layerlab/analysis/html_report.h"
+#include "layerlab/analysis/target_source.h"
+#include "layerlab/framework/mpi_ranks.h"
+#include "layerlab/solvers/solve_config.h"
+#include "layerlab/solvers/solver.h"
+#include "layerlab/systems/scene.h"
 
 namespace layerlab {
 

@@ -1,4 +1,4 @@
-#include "analysis/svg_plot.h"
+#include "layerlab/analysis/svg_plot.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "analysis/sweep_gather.h"
+#include "layerlab/analysis/sweep_gather.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,9 +7,9 @@
 #include <map>
 #include <sstream>
 
-#include "analysis/svg_plot.h"
-#include "framework/atomic_file.h"
-#include "framework/staged_output.h"
+#include "layerlab/analysis/svg_plot.h"
+#include "layerlab/framework/atomic_file.h"
+#include "layerlab/framework/staged_output.h"
 
 namespace layerlab {
 namespace {

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "analysis/sweep_jobs.h"
+#include "layerlab/analysis/sweep_jobs.h"
 
 namespace layerlab {
 

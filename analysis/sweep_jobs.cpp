@@ -1,4 +1,4 @@
-#include "analysis/sweep_jobs.h"
+#include "layerlab/analysis/sweep_jobs.h"
 
 #include <algorithm>
 #include <chrono>
@@ -8,13 +8,13 @@
 #include <optional>
 #include <sstream>
 
-#include "analysis/run_pipeline.h"
-#include "framework/atomic_file.h"
-#include "framework/content_digest.h"
-#include "framework/error.h"
-#include "framework/interrupt.h"
-#include "framework/staged_output.h"
-#include "systems/scene_document.h"
+#include "layerlab/analysis/run_pipeline.h"
+#include "layerlab/framework/atomic_file.h"
+#include "layerlab/framework/content_digest.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/interrupt.h"
+#include "layerlab/framework/staged_output.h"
+#include "layerlab/systems/scene_document.h"
 
 namespace layerlab {
 namespace {

@@ -41,8 +41,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "analysis/sweep_spec.h"
-#include "framework/file_lock.h"
+#include "layerlab/analysis/sweep_spec.h"
+#include "layerlab/framework/file_lock.h"
 
 namespace layerlab {
 

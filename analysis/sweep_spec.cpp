@@ -1,16 +1,16 @@
-#include "analysis/sweep_spec.h"
+#include "layerlab/analysis/sweep_spec.h"
 
 #include <cstdlib>
 #include <filesystem>
 #include <regex>
 #include <set>
 
-#include "framework/checked_count.h"
-#include "framework/error.h"
-#include "framework/json_file.h"
-#include "framework/params.h"
-#include "systems/scene.h"
-#include "systems/scene_document.h"
+#include "layerlab/framework/checked_count.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/json_file.h"
+#include "layerlab/framework/params.h"
+#include "layerlab/systems/scene.h"
+#include "layerlab/systems/scene_document.h"
 
 namespace layerlab {
 namespace {

@@ -38,7 +38,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "analysis/slurm_resources.h"
+#include "layerlab/analysis/slurm_resources.h"
 
 namespace layerlab {
 

@@ -1,14 +1,14 @@
-#include "analysis/target_cache.h"
+#include "layerlab/analysis/target_cache.h"
 
 #include <filesystem>
 #include <fstream>
 #include <vector>
 
-#include "framework/atomic_file.h"
-#include "framework/content_digest.h"
-#include "framework/error.h"
-#include "framework/json_file.h"
-#include "framework/lightfield_io.h"
+#include "layerlab/framework/atomic_file.h"
+#include "layerlab/framework/content_digest.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/json_file.h"
+#include "layerlab/framework/lightfield_io.h"
 
 namespace layerlab {
 namespace {

@@ -15,8 +15,8 @@
 #include <optional>
 #include <string>
 
-#include "framework/lightfield.h"
-#include "targets/target_scene.h"
+#include "layerlab/framework/lightfield.h"
+#include "layerlab/targets/target_scene.h"
 
 namespace layerlab {
 

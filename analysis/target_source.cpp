@@ -1,18 +1,18 @@
-#include "analysis/target_source.h"
+#include "layerlab/analysis/target_source.h"
 
 #include <omp.h>
 
 #include <cstdio>
 #include <optional>
 
-#include "analysis/target_cache.h"
-#include "framework/error.h"
-#include "framework/lightfield_io.h"
-#include "framework/png_writer.h"
-#include "framework/progress.h"
-#include "retina/lightfield_radiance.h"
-#include "solvers/memory_estimate.h"
-#include "targets/target_scene.h"
+#include "layerlab/analysis/target_cache.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/lightfield_io.h"
+#include "layerlab/framework/png_writer.h"
+#include "layerlab/framework/progress.h"
+#include "layerlab/retina/lightfield_radiance.h"
+#include "layerlab/solvers/memory_estimate.h"
+#include "layerlab/targets/target_scene.h"
 
 namespace layerlab {
 

@@ -7,13 +7,13 @@
 #include <memory>
 #include <string>
 
-#include "framework/lightfield.h"
-#include "retina/retina.h"
-#include "solvers/solve_config.h"
+#include "layerlab/framework/lightfield.h"
+#include "layerlab/retina/retina.h"
+#include "layerlab/solvers/solve_config.h"
 #if LAYERLAB_WITH_EMBREE
-#include "targets/target_renderer.h"
-#include "targets/target_scene.h"
-#include "targets/target_tracer.h"
+#include "layerlab/targets/target_renderer.h"
+#include "layerlab/targets/target_scene.h"
+#include "layerlab/targets/target_tracer.h"
 #endif
 
 namespace layerlab {

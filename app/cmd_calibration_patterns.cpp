@@ -7,14 +7,14 @@
 #include <memory>
 #include <sstream>
 
-#include "app/commands.h"
-#include "calibration/capture_plan.h"
-#include "calibration/measurements.h"
-#include "framework/atomic_file.h"
-#include "framework/png_writer.h"
-#include "framework/staged_output.h"
-#include "systems/compile.h"
-#include "systems/scene.h"
+#include "layerlab/app/commands.h"
+#include "layerlab/calibration/capture_plan.h"
+#include "layerlab/calibration/measurements.h"
+#include "layerlab/framework/atomic_file.h"
+#include "layerlab/framework/png_writer.h"
+#include "layerlab/framework/staged_output.h"
+#include "layerlab/systems/compile.h"
+#include "layerlab/systems/scene.h"
 
 namespace layerlab::app {
 

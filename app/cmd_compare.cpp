@@ -10,18 +10,18 @@
 #include <optional>
 #include <sstream>
 
-#include "analysis/compare.h"
-#include "analysis/report_parts.h"
-#include "analysis/target_source.h"
-#include "app/command_line.h"
-#include "app/commands.h"
-#include "app/number_list.h"
-#include "app/target_option.h"
-#include "framework/atomic_file.h"
-#include "framework/error.h"
-#include "framework/staged_output.h"
-#include "framework/warnings.h"
-#include "solvers/solve_config.h"
+#include "layerlab/analysis/compare.h"
+#include "layerlab/analysis/report_parts.h"
+#include "layerlab/analysis/target_source.h"
+#include "layerlab/app/command_line.h"
+#include "layerlab/app/commands.h"
+#include "layerlab/app/number_list.h"
+#include "layerlab/app/target_option.h"
+#include "layerlab/framework/atomic_file.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/staged_output.h"
+#include "layerlab/framework/warnings.h"
+#include "layerlab/solvers/solve_config.h"
 
 namespace layerlab::app {
 namespace {

@@ -6,19 +6,19 @@
 #include <iostream>
 #include <memory>
 
-#include "analysis/contrast.h"
-#include "analysis/report_parts.h"
-#include "app/command_line.h"
-#include "app/commands.h"
-#include "app/number_list.h"
-#include "framework/atomic_file.h"
-#include "framework/error.h"
-#include "framework/staged_output.h"
-#include "framework/warnings.h"
-#include "retina/retina.h"
-#include "solvers/solve_config.h"
-#include "systems/compile.h"
-#include "systems/system_report.h"
+#include "layerlab/analysis/contrast.h"
+#include "layerlab/analysis/report_parts.h"
+#include "layerlab/app/command_line.h"
+#include "layerlab/app/commands.h"
+#include "layerlab/app/number_list.h"
+#include "layerlab/framework/atomic_file.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/staged_output.h"
+#include "layerlab/framework/warnings.h"
+#include "layerlab/retina/retina.h"
+#include "layerlab/solvers/solve_config.h"
+#include "layerlab/systems/compile.h"
+#include "layerlab/systems/system_report.h"
 
 namespace layerlab::app {
 namespace {

@@ -6,14 +6,14 @@
 #include <iostream>
 #include <memory>
 
-#include "app/commands.h"
-#include "calibration/capture_plan.h"
-#include "calibration/measurements.h"
-#include "calibration/photo_detection.h"
-#include "framework/atomic_file.h"
-#include "framework/staged_output.h"
-#include "systems/compile.h"
-#include "systems/scene.h"
+#include "layerlab/app/commands.h"
+#include "layerlab/calibration/capture_plan.h"
+#include "layerlab/calibration/measurements.h"
+#include "layerlab/calibration/photo_detection.h"
+#include "layerlab/framework/atomic_file.h"
+#include "layerlab/framework/staged_output.h"
+#include "layerlab/systems/compile.h"
+#include "layerlab/systems/scene.h"
 
 namespace layerlab::app {
 

@@ -10,16 +10,16 @@
 #include <optional>
 #include <string>
 
-#include "app/commands.h"
-#include "calibration/calibrated_scene.h"
-#include "calibration/calibration.h"
-#include "calibration/fit_steps.h"
-#include "framework/atomic_file.h"
-#include "framework/params.h"
-#include "framework/staged_output.h"
-#include "framework/units.h"
-#include "framework/version.h"
-#include "systems/compile.h"
+#include "layerlab/app/commands.h"
+#include "layerlab/calibration/calibrated_scene.h"
+#include "layerlab/calibration/calibration.h"
+#include "layerlab/calibration/fit_steps.h"
+#include "layerlab/framework/atomic_file.h"
+#include "layerlab/framework/params.h"
+#include "layerlab/framework/staged_output.h"
+#include "layerlab/framework/units.h"
+#include "layerlab/framework/version.h"
+#include "layerlab/systems/compile.h"
 
 namespace layerlab::app {
 

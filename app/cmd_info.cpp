@@ -5,12 +5,12 @@
 #include <memory>
 #include <string>
 
-#include "analysis/layout_svg.h"
-#include "app/commands.h"
-#include "framework/atomic_file.h"
-#include "framework/lightfield_io.h"
-#include "systems/compile.h"
-#include "systems/system_report.h"
+#include "layerlab/analysis/layout_svg.h"
+#include "layerlab/app/commands.h"
+#include "layerlab/framework/atomic_file.h"
+#include "layerlab/framework/lightfield_io.h"
+#include "layerlab/systems/compile.h"
+#include "layerlab/systems/system_report.h"
 
 namespace layerlab::app {
 

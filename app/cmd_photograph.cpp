@@ -7,16 +7,16 @@
 #include <memory>
 #include <sstream>
 
-#include "app/commands.h"
-#include "app/number_list.h"
-#include "calibration/capture_plan.h"
-#include "calibration/measurements.h"
-#include "calibration/synthetic_photo.h"
-#include "framework/atomic_file.h"
-#include "framework/checked_count.h"
-#include "framework/staged_output.h"
-#include "systems/compile.h"
-#include "systems/scene.h"
+#include "layerlab/app/commands.h"
+#include "layerlab/app/number_list.h"
+#include "layerlab/calibration/capture_plan.h"
+#include "layerlab/calibration/measurements.h"
+#include "layerlab/calibration/synthetic_photo.h"
+#include "layerlab/framework/atomic_file.h"
+#include "layerlab/framework/checked_count.h"
+#include "layerlab/framework/staged_output.h"
+#include "layerlab/systems/compile.h"
+#include "layerlab/systems/scene.h"
 
 namespace layerlab::app {
 

@@ -6,13 +6,13 @@
 #include <memory>
 #include <string>
 
-#include "app/commands.h"
-#include "framework/error.h"
-#include "framework/lightfield_io.h"
-#include "framework/progress.h"
-#include "framework/staged_output.h"
-#include "targets/target_renderer.h"
-#include "targets/target_scene.h"
+#include "layerlab/app/commands.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/lightfield_io.h"
+#include "layerlab/framework/progress.h"
+#include "layerlab/framework/staged_output.h"
+#include "layerlab/targets/target_renderer.h"
+#include "layerlab/targets/target_scene.h"
 
 namespace layerlab::app {
 

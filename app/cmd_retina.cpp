@@ -11,24 +11,24 @@
 #include <optional>
 #include <string>
 
-#include "analysis/report_parts.h"
-#include "analysis/retina_sweep.h"
-#include "app/command_line.h"
-#include "app/commands.h"
-#include "app/number_list.h"
-#include "app/target_option.h"
-#include "framework/error.h"
-#include "framework/lightfield_io.h"
-#include "framework/progress.h"
-#include "framework/staged_output.h"
-#include "retina/lightfield_radiance.h"
-#include "retina/retina.h"
-#include "solvers/solution_writer.h"
-#include "solvers/solve_config.h"
-#include "systems/compile.h"
+#include "layerlab/analysis/report_parts.h"
+#include "layerlab/analysis/retina_sweep.h"
+#include "layerlab/app/command_line.h"
+#include "layerlab/app/commands.h"
+#include "layerlab/app/number_list.h"
+#include "layerlab/app/target_option.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/lightfield_io.h"
+#include "layerlab/framework/progress.h"
+#include "layerlab/framework/staged_output.h"
+#include "layerlab/retina/lightfield_radiance.h"
+#include "layerlab/retina/retina.h"
+#include "layerlab/solvers/solution_writer.h"
+#include "layerlab/solvers/solve_config.h"
+#include "layerlab/systems/compile.h"
 #if LAYERLAB_WITH_EMBREE
-#include "targets/target_scene.h"
-#include "targets/target_tracer.h"
+#include "layerlab/targets/target_scene.h"
+#include "layerlab/targets/target_tracer.h"
 #endif
 
 namespace layerlab::app {

@@ -16,9 +16,9 @@
 #include <optional>
 #include <string>
 
-#include "analysis/run_pipeline.h"
-#include "app/commands.h"
-#include "framework/warnings.h"
+#include "layerlab/analysis/run_pipeline.h"
+#include "layerlab/app/commands.h"
+#include "layerlab/framework/warnings.h"
 
 namespace layerlab::app {
 

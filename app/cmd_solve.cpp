@@ -15,27 +15,27 @@
 #include <optional>
 #include <string>
 
-#include "analysis/report_parts.h"
-#include "analysis/solve_job.h"
-#include "analysis/target_source.h"
-#include "app/command_line.h"
-#include "app/commands.h"
-#include "app/number_list.h"
-#include "app/solver_flags.h"
-#include "app/target_option.h"
-#include "framework/interrupt.h"
-#include "framework/lightfield_io.h"
-#include "framework/mpi_ranks.h"
+#include "layerlab/analysis/report_parts.h"
+#include "layerlab/analysis/solve_job.h"
+#include "layerlab/analysis/target_source.h"
+#include "layerlab/app/command_line.h"
+#include "layerlab/app/commands.h"
+#include "layerlab/app/number_list.h"
+#include "layerlab/app/solver_flags.h"
+#include "layerlab/app/target_option.h"
+#include "layerlab/framework/interrupt.h"
+#include "layerlab/framework/lightfield_io.h"
+#include "layerlab/framework/mpi_ranks.h"
 #if LAYERLAB_WITH_MPI
-#include "framework/mpi_world.h"
+#include "layerlab/framework/mpi_world.h"
 #endif
-#include "framework/progress.h"
-#include "framework/staged_output.h"
-#include "framework/warnings.h"
-#include "solvers/memory_estimate.h"
-#include "solvers/solve_config.h"
-#include "solvers/solver_checkpoint.h"
-#include "systems/compile.h"
+#include "layerlab/framework/progress.h"
+#include "layerlab/framework/staged_output.h"
+#include "layerlab/framework/warnings.h"
+#include "layerlab/solvers/memory_estimate.h"
+#include "layerlab/solvers/solve_config.h"
+#include "layerlab/solvers/solver_checkpoint.h"
+#include "layerlab/systems/compile.h"
 
 namespace layerlab::app {
 namespace {

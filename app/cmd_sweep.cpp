@@ -9,13 +9,13 @@
 #include <optional>
 #include <string>
 
-#include "analysis/sweep_gather.h"
-#include "app/commands.h"
-#include "app/sweep_runners.h"
-#include "framework/error.h"
-#include "framework/progress.h"
+#include "layerlab/analysis/sweep_gather.h"
+#include "layerlab/app/commands.h"
+#include "layerlab/app/sweep_runners.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/progress.h"
 #if LAYERLAB_WITH_MPI
-#include "framework/mpi_world.h"
+#include "layerlab/framework/mpi_world.h"
 #endif
 
 namespace layerlab::app {

@@ -1,4 +1,4 @@
-#include "app/command_line.h"
+#include "layerlab/app/command_line.h"
 
 namespace layerlab::app {
 namespace {

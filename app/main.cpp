@@ -7,13 +7,13 @@
 
 #include <CLI/CLI.hpp>
 
-#include "app/command_line.h"
-#include "app/commands.h"
-#include "framework/error.h"
-#include "framework/interrupt.h"
-#include "framework/progress.h"
-#include "framework/version.h"
-#include "kernels/row_kernels.h"
+#include "layerlab/app/command_line.h"
+#include "layerlab/app/commands.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/interrupt.h"
+#include "layerlab/framework/progress.h"
+#include "layerlab/framework/version.h"
+#include "layerlab/kernels/row_kernels.h"
 
 int main(int argc, char** argv) {
   layerlab::app::SetCommandLine(argc, argv);

@@ -1,10 +1,10 @@
-#include "app/number_list.h"
+#include "layerlab/app/number_list.h"
 
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
 
-#include "framework/error.h"
+#include "layerlab/framework/error.h"
 
 namespace layerlab::app {
 namespace {

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "framework/units.h"
+#include "layerlab/framework/units.h"
 
 namespace layerlab::app {
 

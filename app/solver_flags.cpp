@@ -1,10 +1,10 @@
-#include "app/solver_flags.h"
+#include "layerlab/app/solver_flags.h"
 
-#include "app/number_list.h"
-#include "framework/error.h"
-#include "framework/params.h"
-#include "solvers/solver_option_table.h"
-#include "systems/layer_sampler.h"
+#include "layerlab/app/number_list.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/params.h"
+#include "layerlab/solvers/solver_option_table.h"
+#include "layerlab/systems/layer_sampler.h"
 
 namespace layerlab::app {
 

@@ -13,9 +13,9 @@
 #include <filesystem>
 #include <map>
 
-#include "app/sweep_runners.h"
-#include "framework/error.h"
-#include "framework/interrupt.h"
+#include "layerlab/app/sweep_runners.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/interrupt.h"
 
 extern char** environ;
 

@@ -8,9 +8,9 @@
 #include <exception>
 #include <optional>
 
-#include "analysis/sweep_gather.h"
-#include "app/sweep_runners.h"
-#include "framework/error.h"
+#include "layerlab/analysis/sweep_gather.h"
+#include "layerlab/app/sweep_runners.h"
+#include "layerlab/framework/error.h"
 
 namespace layerlab::app {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "analysis/sweep_jobs.h"
+#include "layerlab/analysis/sweep_jobs.h"
 
 namespace layerlab::app {
 

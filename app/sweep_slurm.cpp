@@ -17,9 +17,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/sweep_runners.h"
-#include "framework/atomic_file.h"
-#include "framework/error.h"
+#include "layerlab/app/sweep_runners.h"
+#include "layerlab/framework/atomic_file.h"
+#include "layerlab/framework/error.h"
 
 namespace layerlab::app {
 namespace {

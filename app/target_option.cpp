@@ -1,6 +1,6 @@
-#include "app/target_option.h"
+#include "layerlab/app/target_option.h"
 
-#include "framework/error.h"
+#include "layerlab/framework/error.h"
 
 namespace layerlab::app {
 

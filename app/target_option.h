@@ -8,7 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "solvers/solve_config.h"
+#include "layerlab/solvers/solve_config.h"
 
 namespace layerlab::app {
 

@@ -1,4 +1,4 @@
-#include "bench/bench_setup.h"
+#include "layerlab/bench/bench_setup.h"
 
 #include <sys/resource.h>
 
@@ -6,11 +6,11 @@
 #include <map>
 #include <random>
 
-#include "framework/json_file.h"
-#include "framework/lightfield_io.h"
-#include "kernels/synthesis.h"
-#include "systems/compile.h"
-#include "systems/scene.h"
+#include "layerlab/framework/json_file.h"
+#include "layerlab/framework/lightfield_io.h"
+#include "layerlab/kernels/synthesis.h"
+#include "layerlab/systems/compile.h"
+#include "layerlab/systems/scene.h"
 
 namespace layerlab::bench {
 

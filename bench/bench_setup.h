@@ -7,8 +7,8 @@
 #include <memory>
 #include <string>
 
-#include "framework/lightfield.h"
-#include "systems/display_model.h"
+#include "layerlab/framework/lightfield.h"
+#include "layerlab/systems/display_model.h"
 
 namespace layerlab::bench {
 

@@ -2,7 +2,7 @@
 
 #include <ceres/loss_function.h>
 
-#include "calibration/fit_steps.h"
+#include "layerlab/calibration/fit_steps.h"
 
 namespace layerlab {
 

@@ -1,12 +1,12 @@
-#include "calibration/calibrated_scene.h"
+#include "layerlab/calibration/calibrated_scene.h"
 
 #include <cstdio>
 #include <map>
 #include <numbers>
 #include <set>
 
-#include "framework/error.h"
-#include "framework/units.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/units.h"
 
 namespace layerlab {
 namespace {

@@ -20,8 +20,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "calibration/calibration.h"
-#include "systems/scene_document.h"  // RebaseRelativePaths, ReadDocumentInOrder
+#include "layerlab/calibration/calibration.h"
+#include "layerlab/systems/scene_document.h"  // RebaseRelativePaths, ReadDocumentInOrder
 
 namespace layerlab {
 

@@ -23,8 +23,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "calibration/measurements.h"
-#include "systems/display_system.h"
+#include "layerlab/calibration/measurements.h"
+#include "layerlab/systems/display_system.h"
 
 namespace layerlab {
 

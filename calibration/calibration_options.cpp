@@ -1,7 +1,7 @@
 #include <cmath>
 
-#include "calibration/calibration.h"
-#include "framework/params.h"
+#include "layerlab/calibration/calibration.h"
+#include "layerlab/framework/params.h"
 
 namespace layerlab {
 namespace {

@@ -2,8 +2,8 @@
 #include <cstdio>
 #include <numbers>
 
-#include "calibration/fit_steps.h"
-#include "framework/units.h"
+#include "layerlab/calibration/fit_steps.h"
+#include "layerlab/framework/units.h"
 
 namespace layerlab {
 namespace {

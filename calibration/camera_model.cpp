@@ -1,4 +1,4 @@
-#include "calibration/camera_model.h"
+#include "layerlab/calibration/camera_model.h"
 
 #include <cmath>
 

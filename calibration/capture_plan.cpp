@@ -1,14 +1,14 @@
-#include "calibration/capture_plan.h"
+#include "layerlab/calibration/capture_plan.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <set>
 
-#include "calibration/measurements.h"
-#include "framework/json_file.h"
-#include "framework/params.h"
-#include "framework/units.h"
+#include "layerlab/calibration/measurements.h"
+#include "layerlab/framework/json_file.h"
+#include "layerlab/framework/params.h"
+#include "layerlab/framework/units.h"
 
 namespace layerlab {
 namespace {

@@ -17,8 +17,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "calibration/camera_model.h"
-#include "systems/display_system.h"
+#include "layerlab/calibration/camera_model.h"
+#include "layerlab/systems/display_system.h"
 
 namespace layerlab {
 

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "calibration/calibration.h"
+#include "layerlab/calibration/calibration.h"
 
 namespace layerlab {
 

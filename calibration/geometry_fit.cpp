@@ -5,11 +5,11 @@
 
 #include <ceres/ceres.h>
 
-#include "calibration/fit_steps.h"
-#include "calibration/marker_model.h"
-#include "calibration/scalar_fit.h"
-#include "calibration/similarity_fit.h"
-#include "framework/params.h"
+#include "layerlab/calibration/fit_steps.h"
+#include "layerlab/calibration/marker_model.h"
+#include "layerlab/calibration/scalar_fit.h"
+#include "layerlab/calibration/similarity_fit.h"
+#include "layerlab/framework/params.h"
 
 namespace layerlab {
 namespace {

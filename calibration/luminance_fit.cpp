@@ -4,10 +4,10 @@
 
 #include <ceres/ceres.h>
 
-#include "calibration/fit_steps.h"
-#include "calibration/luminance_model.h"
-#include "calibration/scalar_fit.h"
-#include "framework/params.h"
+#include "layerlab/calibration/fit_steps.h"
+#include "layerlab/calibration/luminance_model.h"
+#include "layerlab/calibration/scalar_fit.h"
+#include "layerlab/framework/params.h"
 
 namespace layerlab {
 namespace {

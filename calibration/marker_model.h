@@ -31,7 +31,7 @@
 
 #include <ceres/rotation.h>
 
-#include "systems/display_system.h"
+#include "layerlab/systems/display_system.h"
 
 namespace layerlab {
 

@@ -15,10 +15,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "calibration/camera_model.h"
-#include "framework/error.h"
-#include "framework/params.h"
-#include "systems/display_system.h"
+#include "layerlab/calibration/camera_model.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/params.h"
+#include "layerlab/systems/display_system.h"
 
 namespace layerlab {
 

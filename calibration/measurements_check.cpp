@@ -1,7 +1,7 @@
 #include <algorithm>
 
-#include "calibration/measurements.h"
-#include "framework/params.h"
+#include "layerlab/calibration/measurements.h"
+#include "layerlab/framework/params.h"
 
 namespace layerlab {
 namespace {

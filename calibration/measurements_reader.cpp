@@ -1,8 +1,8 @@
 #include <cmath>
 
-#include "calibration/measurements.h"
-#include "framework/json_file.h"
-#include "framework/params.h"
+#include "layerlab/calibration/measurements.h"
+#include "layerlab/framework/json_file.h"
+#include "layerlab/framework/params.h"
 
 namespace layerlab {
 namespace {

@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "calibration/measurements.h"
+#include "layerlab/calibration/measurements.h"
 
 namespace layerlab {
 namespace {

@@ -1,4 +1,4 @@
-#include "calibration/photo_detection.h"
+#include "layerlab/calibration/photo_detection.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,12 +9,12 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "calibration/synthetic_measurements.h"
-#include "framework/error.h"
-#include "framework/exr_image.h"
-#include "framework/file_kind.h"
-#include "framework/png_header.h"
-#include "framework/units.h"
+#include "layerlab/calibration/synthetic_measurements.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/exr_image.h"
+#include "layerlab/framework/file_kind.h"
+#include "layerlab/framework/png_header.h"
+#include "layerlab/framework/units.h"
 
 namespace layerlab {
 namespace {

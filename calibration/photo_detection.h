@@ -15,9 +15,9 @@
 #include <string>
 #include <vector>
 
-#include "calibration/capture_plan.h"
-#include "calibration/measurements.h"
-#include "systems/display_system.h"
+#include "layerlab/calibration/capture_plan.h"
+#include "layerlab/calibration/measurements.h"
+#include "layerlab/systems/display_system.h"
 
 namespace layerlab {
 

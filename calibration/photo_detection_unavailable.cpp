@@ -1,5 +1,5 @@
 // photo_detection.h in a build without OpenCV: detection refuses, naming the build option.
-#include "calibration/photo_detection.h"
+#include "layerlab/calibration/photo_detection.h"
 
 namespace layerlab {
 namespace {

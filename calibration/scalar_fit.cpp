@@ -1,4 +1,4 @@
-#include "calibration/scalar_fit.h"
+#include "layerlab/calibration/scalar_fit.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "calibration/similarity_fit.h"
+#include "layerlab/calibration/similarity_fit.h"
 
 #include <cmath>
 

@@ -1,11 +1,11 @@
-#include "calibration/synthetic_measurements.h"
+#include "layerlab/calibration/synthetic_measurements.h"
 
 #include <cmath>
 #include <numbers>
 
 #include <Eigen/Geometry>
 
-#include "framework/random.h"
+#include "layerlab/framework/random.h"
 
 namespace layerlab {
 namespace {

@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "calibration/measurements.h"
-#include "systems/display_system.h"
+#include "layerlab/calibration/measurements.h"
+#include "layerlab/systems/display_system.h"
 
 namespace layerlab {
 

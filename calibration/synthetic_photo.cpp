@@ -1,12 +1,12 @@
-#include "calibration/synthetic_photo.h"
+#include "layerlab/calibration/synthetic_photo.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
-#include "calibration/synthetic_measurements.h"
-#include "framework/error.h"
-#include "framework/random.h"
+#include "layerlab/calibration/synthetic_measurements.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/random.h"
 
 namespace layerlab {
 namespace {

@@ -20,10 +20,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "calibration/camera_model.h"
-#include "calibration/capture_plan.h"
-#include "framework/exr_image.h"
-#include "systems/display_system.h"
+#include "layerlab/calibration/camera_model.h"
+#include "layerlab/calibration/capture_plan.h"
+#include "layerlab/framework/exr_image.h"
+#include "layerlab/systems/display_system.h"
 
 namespace layerlab {
 

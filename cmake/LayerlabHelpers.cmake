@@ -13,10 +13,11 @@ macro(layerlab_leave_out option part reason error)
 endmacro()
 
 # layerlab_add_library(NAME SOURCES ... DEPS ... [EXPORT SET]): a static library
-# under the namespaced alias layerlab::NAME, with the repository root on its
-# include path. It is installed (cmake/LayerlabInstall.cmake) with its folder's
-# headers under include/layerlab/<folder>/ and exported as layerlab::NAME in
-# the export set SET (default layerlabTargets; an optional part has its own).
+# under the namespaced alias layerlab::NAME, whose includes read
+# "layerlab/<folder>/<file>.h". It is installed (cmake/LayerlabInstall.cmake)
+# and exported as layerlab::NAME in the export set SET (default
+# layerlabTargets; an optional part has its own); its public headers are
+# installed with the others (cmake/public_headers.txt).
 function(layerlab_add_library name)
   cmake_parse_arguments(ARG "" "EXPORT" "SOURCES;DEPS" ${ARGN})
   if(NOT ARG_EXPORT)
@@ -25,13 +26,10 @@ function(layerlab_add_library name)
   add_library(layerlab_${name} STATIC ${ARG_SOURCES})
   add_library(layerlab::${name} ALIAS layerlab_${name})
   set_target_properties(layerlab_${name} PROPERTIES EXPORT_NAME ${name})
-  target_include_directories(layerlab_${name} PUBLIC $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>
-                                                     $<INSTALL_INTERFACE:${LAYERLAB_INSTALL_INCLUDEDIR}>)
+  target_include_directories(layerlab_${name} PUBLIC $<BUILD_INTERFACE:${LAYERLAB_BUILD_INCLUDEDIR}>
+                                                     $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
   target_link_libraries(layerlab_${name} PUBLIC ${ARG_DEPS} PRIVATE $<BUILD_INTERFACE:layerlab_warnings>)
-  file(RELATIVE_PATH folder ${PROJECT_SOURCE_DIR} ${CMAKE_CURRENT_SOURCE_DIR})
   install(TARGETS layerlab_${name} EXPORT ${ARG_EXPORT} ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
-  install(DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR}/ DESTINATION ${LAYERLAB_INSTALL_INCLUDEDIR}/${folder}
-          FILES_MATCHING PATTERN "*.h" PATTERN "*.def")
 endfunction()
 
 # layerlab_add_test(NAME SOURCES ... DEPS ...): a GoogleTest executable whose

@@ -1,6 +1,6 @@
 # The installed package: `cmake --install build --prefix P` puts the headers
-# under P/include/layerlab/ (the repository's layout: framework/..., systems/...,
-# layerlab.h), the static libraries under P/lib, the command under P/bin and
+# under P/include/layerlab/ (the public ones, cmake/public_headers.txt, in the
+# repository's layout: layerlab.h, framework/..., systems/...), the static libraries under P/lib, the command under P/bin and
 # the CMake package under P/lib/cmake/layerlab, so that a downstream project
 #   find_package(layerlab 0.2 CONFIG REQUIRED [COMPONENTS Embree Ceres])
 #   target_link_libraries(app PRIVATE layerlab::layerlab)
@@ -15,7 +15,11 @@ set_target_properties(layerlab_all PROPERTIES EXPORT_NAME layerlab)
 target_link_libraries(layerlab_all INTERFACE layerlab::analysis)
 target_include_directories(layerlab_all INTERFACE $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
 install(TARGETS layerlab_all EXPORT layerlabTargets)
-install(FILES ${PROJECT_SOURCE_DIR}/layerlab.h DESTINATION ${LAYERLAB_INSTALL_INCLUDEDIR})
+file(STRINGS ${PROJECT_SOURCE_DIR}/cmake/public_headers.txt public_headers REGEX "^[^# ]+$")
+foreach(header IN LISTS public_headers)
+  get_filename_component(folder ${header} DIRECTORY)
+  install(FILES ${PROJECT_SOURCE_DIR}/${header} DESTINATION ${LAYERLAB_INSTALL_INCLUDEDIR}/${folder})
+endforeach()
 install(TARGETS layerlab RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 
 set(LAYERLAB_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/layerlab)

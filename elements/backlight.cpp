@@ -3,8 +3,8 @@
 // | key       | type      | default  | meaning                          |
 // |-----------|-----------|----------|----------------------------------|
 // | luminance | luminance | required | "300 cd/m2"; a bare number is cd/m^2 |
-#include "elements/element.h"
-#include "elements/registry.h"
+#include "layerlab/elements/element.h"
+#include "layerlab/elements/registry.h"
 
 namespace layerlab {
 namespace {

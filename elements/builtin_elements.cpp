@@ -1,15 +1,15 @@
-#include "elements/registry.h"
+#include "layerlab/elements/registry.h"
 
 namespace layerlab {
 
 #define LAYERLAB_ELEMENT(Name) ElementType Name##Type();
-#include "elements/builtin_elements.def"
+#include "layerlab/elements/builtin_elements.def"
 #undef LAYERLAB_ELEMENT
 
 ElementRegistry ElementRegistry::WithBuiltins() {
   ElementRegistry registry;
 #define LAYERLAB_ELEMENT(Name) registry.add(Name##Type());
-#include "elements/builtin_elements.def"
+#include "layerlab/elements/builtin_elements.def"
 #undef LAYERLAB_ELEMENT
   return registry;
 }

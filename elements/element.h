@@ -19,10 +19,10 @@
 #include <string>
 #include <vector>
 
-#include "elements/wavefront.h"
-#include "framework/error.h"
-#include "framework/params.h"
-#include "framework/polarization.h"
+#include "layerlab/elements/wavefront.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/params.h"
+#include "layerlab/framework/polarization.h"
 
 namespace layerlab {
 

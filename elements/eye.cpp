@@ -30,8 +30,8 @@
 #include <numbers>
 #include <string>
 
-#include "elements/element.h"
-#include "elements/registry.h"
+#include "layerlab/elements/element.h"
+#include "layerlab/elements/registry.h"
 
 namespace layerlab {
 namespace {

@@ -8,9 +8,9 @@
 // | gap           | length              | see thin_lens | path length from the element before it   |
 // | transmitted   | name                | required   | the branch straight behind the mirror       |
 // | reflected     | name                | required   | the branch off to the side                  |
-#include "elements/element.h"
-#include "elements/registry.h"
-#include "elements/splitter_ports.h"
+#include "layerlab/elements/element.h"
+#include "layerlab/elements/registry.h"
+#include "layerlab/elements/splitter_ports.h"
 
 namespace layerlab {
 namespace {

@@ -14,9 +14,9 @@
 // | next              | name                       | required  | toward the panels            |
 #include <numbers>
 
-#include "elements/element.h"
-#include "elements/registry.h"
-#include "elements/spectral.h"
+#include "layerlab/elements/element.h"
+#include "layerlab/elements/registry.h"
+#include "layerlab/elements/spectral.h"
 
 namespace layerlab {
 namespace {

@@ -19,8 +19,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "elements/element.h"
-#include "elements/registry.h"
+#include "layerlab/elements/element.h"
+#include "layerlab/elements/registry.h"
 
 namespace layerlab {
 namespace {

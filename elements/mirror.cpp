@@ -12,9 +12,9 @@
 // | next         | name                | required   | the next element away from the eye                     |
 #include <cmath>
 
-#include "elements/element.h"
-#include "elements/registry.h"
-#include "elements/splitter_ports.h"
+#include "layerlab/elements/element.h"
+#include "layerlab/elements/registry.h"
+#include "layerlab/elements/splitter_ports.h"
 
 namespace layerlab {
 namespace {

@@ -14,10 +14,10 @@
 // | reflected       | name                       | required   | branch off to the side           |
 #include <cmath>
 
-#include "elements/element.h"
-#include "elements/registry.h"
-#include "elements/spectral.h"
-#include "elements/splitter_ports.h"
+#include "layerlab/elements/element.h"
+#include "layerlab/elements/registry.h"
+#include "layerlab/elements/spectral.h"
+#include "layerlab/elements/splitter_ports.h"
 
 namespace layerlab {
 namespace {

@@ -5,7 +5,7 @@
 // |------|--------------|----------|----------------------------------------------------------------|
 // | type | element type | required | one of the types below                                         |
 // | name | string       | required | unique in the scene; letters, digits, '_', '-', '.'; names output files |
-#include "elements/registry.h"
+#include "layerlab/elements/registry.h"
 
 #include <cctype>
 

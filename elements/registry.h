@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "elements/element.h"
+#include "layerlab/elements/element.h"
 
 namespace layerlab {
 

@@ -1,10 +1,10 @@
-#include "elements/spectral.h"
+#include "layerlab/elements/spectral.h"
 
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
-#include "framework/polarization.h"
+#include "layerlab/framework/polarization.h"
 
 namespace layerlab {
 

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "framework/params.h"
+#include "layerlab/framework/params.h"
 
 namespace layerlab {
 

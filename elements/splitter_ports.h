@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "framework/params.h"
+#include "layerlab/framework/params.h"
 
 namespace layerlab {
 

@@ -9,8 +9,8 @@
 // | next           | name   | required  | the next element away from the eye                   |
 #include <cmath>
 
-#include "elements/element.h"
-#include "elements/registry.h"
+#include "layerlab/elements/element.h"
+#include "layerlab/elements/registry.h"
 
 namespace layerlab {
 namespace {

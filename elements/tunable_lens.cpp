@@ -13,9 +13,9 @@
 // | next           | name                  | required     | the next element away from the eye            |
 #include <cmath>
 
-#include "elements/element.h"
-#include "elements/registry.h"
-#include "framework/json_file.h"
+#include "layerlab/elements/element.h"
+#include "layerlab/elements/registry.h"
+#include "layerlab/framework/json_file.h"
 
 namespace layerlab {
 namespace {

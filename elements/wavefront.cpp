@@ -1,9 +1,9 @@
-#include "elements/wavefront.h"
+#include "layerlab/elements/wavefront.h"
 
 #include <cmath>
 #include <cstdlib>
 
-#include "framework/error.h"
+#include "layerlab/framework/error.h"
 
 namespace layerlab {
 namespace {

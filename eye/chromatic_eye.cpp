@@ -1,4 +1,4 @@
-#include "eye/chromatic_eye.h"
+#include "layerlab/eye/chromatic_eye.h"
 
 namespace layerlab {
 

@@ -1,4 +1,4 @@
-#include "eye/contrast_sensitivity.h"
+#include "layerlab/eye/contrast_sensitivity.h"
 
 #include <cmath>
 

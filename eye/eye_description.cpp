@@ -1,7 +1,7 @@
-#include "eye/eye_description.h"
+#include "layerlab/eye/eye_description.h"
 
-#include "eye/chromatic_eye.h"
-#include "framework/units.h"
+#include "layerlab/eye/chromatic_eye.h"
+#include "layerlab/framework/units.h"
 
 namespace layerlab {
 

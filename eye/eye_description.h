@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "elements/element.h"
+#include "layerlab/elements/element.h"
 
 namespace layerlab {
 

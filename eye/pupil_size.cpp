@@ -1,9 +1,9 @@
-#include "eye/pupil_size.h"
+#include "layerlab/eye/pupil_size.h"
 
 #include <cmath>
 #include <string>
 
-#include "framework/error.h"
+#include "layerlab/framework/error.h"
 
 namespace layerlab {
 

@@ -1,10 +1,10 @@
-#include "eye/spectral_filter.h"
+#include "layerlab/eye/spectral_filter.h"
 
 #include <algorithm>
 
 #include <unsupported/Eigen/FFT>
 
-#include "framework/error.h"
+#include "layerlab/framework/error.h"
 
 namespace layerlab {
 namespace {

@@ -8,7 +8,7 @@
 #include <initializer_list>
 #include <string>
 
-#include "framework/error.h"
+#include "layerlab/framework/error.h"
 
 namespace layerlab {
 

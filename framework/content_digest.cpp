@@ -1,4 +1,4 @@
-#include "framework/content_digest.h"
+#include "layerlab/framework/content_digest.h"
 
 #include <cstdio>
 

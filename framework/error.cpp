@@ -1,4 +1,4 @@
-#include "framework/error.h"
+#include "layerlab/framework/error.h"
 
 namespace layerlab {
 

@@ -1,4 +1,4 @@
-#include "framework/exr_image.h"
+#include "layerlab/framework/exr_image.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,9 +15,9 @@
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/openexr.h>
 
-#include "framework/atomic_file.h"
-#include "framework/error.h"
-#include "framework/file_kind.h"
+#include "layerlab/framework/atomic_file.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/file_kind.h"
 
 namespace layerlab {
 namespace {

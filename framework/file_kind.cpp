@@ -1,4 +1,4 @@
-#include "framework/file_kind.h"
+#include "layerlab/framework/file_kind.h"
 
 #include <sys/stat.h>
 
@@ -6,7 +6,7 @@
 #include <cstring>
 #include <filesystem>
 
-#include "framework/error.h"
+#include "layerlab/framework/error.h"
 
 namespace layerlab {
 namespace {

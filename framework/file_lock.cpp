@@ -1,4 +1,4 @@
-#include "framework/file_lock.h"
+#include "layerlab/framework/file_lock.h"
 
 #include <fcntl.h>
 #include <sys/file.h>
@@ -10,7 +10,7 @@
 #include <cstring>
 #include <utility>
 
-#include "framework/error.h"
+#include "layerlab/framework/error.h"
 
 namespace layerlab {
 namespace {

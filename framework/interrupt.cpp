@@ -1,4 +1,4 @@
-#include "framework/interrupt.h"
+#include "layerlab/framework/interrupt.h"
 
 #include <csignal>
 

@@ -3,7 +3,7 @@
 // outputs can be written; a second one ends the process at once.
 #pragma once
 
-#include "framework/error.h"
+#include "layerlab/framework/error.h"
 
 namespace layerlab {
 

@@ -1,4 +1,4 @@
-#include "framework/json_file.h"
+#include "layerlab/framework/json_file.h"
 
 #include <filesystem>
 #include <fstream>
@@ -6,8 +6,8 @@
 #include <sstream>
 #include <vector>
 
-#include "framework/error.h"
-#include "framework/file_kind.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/file_kind.h"
 
 namespace layerlab {
 namespace {

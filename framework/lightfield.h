@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "framework/huge_page_allocator.h"
+#include "layerlab/framework/huge_page_allocator.h"
 
 namespace layerlab {
 

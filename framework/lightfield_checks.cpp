@@ -1,11 +1,11 @@
-#include "framework/lightfield_checks.h"
+#include "layerlab/framework/lightfield_checks.h"
 
 #include <cmath>
 
-#include "framework/checked_count.h"
-#include "framework/error.h"
-#include "framework/exr_image.h"
-#include "framework/units.h"
+#include "layerlab/framework/checked_count.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/exr_image.h"
+#include "layerlab/framework/units.h"
 
 namespace layerlab {
 

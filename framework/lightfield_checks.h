@@ -8,7 +8,7 @@
 #include <functional>
 #include <string>
 
-#include "framework/lightfield.h"
+#include "layerlab/framework/lightfield.h"
 
 namespace layerlab {
 

@@ -1,4 +1,4 @@
-#include "framework/lightfield_io.h"
+#include "layerlab/framework/lightfield_io.h"
 
 #include <algorithm>
 #include <charconv>
@@ -9,16 +9,16 @@
 #include <regex>
 #include <set>
 
-#include "framework/atomic_file.h"
-#include "framework/error.h"
-#include "framework/exr_image.h"
-#include "framework/file_kind.h"
-#include "framework/json_file.h"
-#include "framework/lightfield_checks.h"
-#include "framework/parallel.h"
-#include "framework/params.h"
-#include "framework/progress.h"
-#include "framework/staged_output.h"
+#include "layerlab/framework/atomic_file.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/exr_image.h"
+#include "layerlab/framework/file_kind.h"
+#include "layerlab/framework/json_file.h"
+#include "layerlab/framework/lightfield_checks.h"
+#include "layerlab/framework/parallel.h"
+#include "layerlab/framework/params.h"
+#include "layerlab/framework/progress.h"
+#include "layerlab/framework/staged_output.h"
 
 namespace layerlab {
 namespace {

@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "framework/content_digest.h"
-#include "framework/lightfield.h"
-#include "framework/params.h"
+#include "layerlab/framework/content_digest.h"
+#include "layerlab/framework/lightfield.h"
+#include "layerlab/framework/params.h"
 
 namespace layerlab {
 

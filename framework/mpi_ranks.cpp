@@ -1,4 +1,4 @@
-#include "framework/mpi_ranks.h"
+#include "layerlab/framework/mpi_ranks.h"
 
 #include <cassert>
 

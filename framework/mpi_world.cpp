@@ -1,4 +1,4 @@
-#include "framework/mpi_world.h"
+#include "layerlab/framework/mpi_world.h"
 
 #include <mpi.h>
 
@@ -6,7 +6,7 @@
 #include <cstdlib>
 #include <vector>
 
-#include "framework/error.h"
+#include "layerlab/framework/error.h"
 
 namespace layerlab {
 

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "framework/mpi_ranks.h"
+#include "layerlab/framework/mpi_ranks.h"
 
 namespace layerlab {
 

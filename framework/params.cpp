@@ -1,9 +1,9 @@
-#include "framework/params.h"
+#include "layerlab/framework/params.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "framework/json_file.h"
+#include "layerlab/framework/json_file.h"
 
 namespace layerlab {
 

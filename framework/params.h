@@ -15,8 +15,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "framework/error.h"
-#include "framework/units.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/units.h"
 
 namespace layerlab {
 

@@ -1,13 +1,13 @@
-#include "framework/png_header.h"
+#include "layerlab/framework/png_header.h"
 
 #include <array>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
 
-#include "framework/checked_count.h"
-#include "framework/error.h"
-#include "framework/file_kind.h"
+#include "layerlab/framework/checked_count.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/file_kind.h"
 
 namespace layerlab {
 namespace {

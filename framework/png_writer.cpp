@@ -1,4 +1,4 @@
-#include "framework/png_writer.h"
+#include "layerlab/framework/png_writer.h"
 
 #include <png.h>
 
@@ -6,9 +6,9 @@
 #include <cstdio>
 #include <cstring>
 
-#include "framework/atomic_file.h"
-#include "framework/error.h"
-#include "framework/srgb_code.h"
+#include "layerlab/framework/atomic_file.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/srgb_code.h"
 
 namespace layerlab {
 

@@ -1,4 +1,4 @@
-#include "framework/polarization.h"
+#include "layerlab/framework/polarization.h"
 
 #include <cmath>
 

@@ -1,4 +1,4 @@
-#include "framework/progress.h"
+#include "layerlab/framework/progress.h"
 
 #include <unistd.h>
 

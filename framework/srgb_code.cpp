@@ -1,4 +1,4 @@
-#include "framework/srgb_code.h"
+#include "layerlab/framework/srgb_code.h"
 
 #include <array>
 #include <cmath>

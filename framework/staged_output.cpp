@@ -1,4 +1,4 @@
-#include "framework/staged_output.h"
+#include "layerlab/framework/staged_output.h"
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -13,11 +13,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "framework/atomic_file.h"
-#include "framework/error.h"
-#include "framework/file_lock.h"
-#include "framework/json_file.h"
-#include "framework/progress.h"
+#include "layerlab/framework/atomic_file.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/file_lock.h"
+#include "layerlab/framework/json_file.h"
+#include "layerlab/framework/progress.h"
 
 namespace layerlab {
 namespace {

@@ -23,8 +23,8 @@
 #include <string>
 #include <vector>
 
-#include "framework/error.h"
-#include "framework/file_lock.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/file_lock.h"
 
 namespace layerlab {
 

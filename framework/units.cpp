@@ -1,4 +1,4 @@
-#include "framework/units.h"
+#include "layerlab/framework/units.h"
 
 #include <array>
 #include <charconv>
@@ -7,7 +7,7 @@
 #include <numbers>
 #include <optional>
 
-#include "framework/error.h"
+#include "layerlab/framework/error.h"
 
 namespace layerlab {
 namespace {

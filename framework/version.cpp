@@ -1,4 +1,4 @@
-#include "framework/version.h"
+#include "layerlab/framework/version.h"
 
 #include "layerlab/git_commit.h"  // generated at build time
 #include "layerlab/version.h"     // generated at configure time

@@ -1,4 +1,4 @@
-#include "framework/warnings.h"
+#include "layerlab/framework/warnings.h"
 
 #include <cstdio>
 

@@ -4,9 +4,9 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "framework/error.h"
-#include "framework/exr_image.h"
-#include "fuzz/fuzz_util.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/exr_image.h"
+#include "layerlab/fuzz/fuzz_util.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string path = (layerlab::fuzz::ScratchDir() / "input.exr").string();

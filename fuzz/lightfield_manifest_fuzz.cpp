@@ -3,9 +3,9 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "framework/error.h"
-#include "framework/lightfield_io.h"
-#include "fuzz/fuzz_util.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/lightfield_io.h"
+#include "layerlab/fuzz/fuzz_util.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const auto& folder = layerlab::fuzz::ScratchDir();

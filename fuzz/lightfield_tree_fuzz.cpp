@@ -17,10 +17,10 @@
 #include <filesystem>
 #include <string>
 
-#include "framework/error.h"
-#include "framework/exr_image.h"
-#include "framework/lightfield_io.h"
-#include "fuzz/fuzz_util.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/exr_image.h"
+#include "layerlab/framework/lightfield_io.h"
+#include "layerlab/fuzz/fuzz_util.h"
 
 namespace {
 

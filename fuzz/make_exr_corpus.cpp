@@ -16,7 +16,7 @@
 #include <OpenEXR/ImfTileDescriptionAttribute.h>
 #include <OpenEXR/ImfTiledOutputFile.h>
 
-#include "framework/exr_image.h"
+#include "layerlab/framework/exr_image.h"
 
 namespace fs = std::filesystem;
 using layerlab::Image;

@@ -3,10 +3,10 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "calibration/measurements.h"
-#include "framework/error.h"
-#include "framework/json_file.h"
-#include "fuzz/fuzz_util.h"
+#include "layerlab/calibration/measurements.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/json_file.h"
+#include "layerlab/fuzz/fuzz_util.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {

@@ -4,12 +4,12 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "framework/error.h"
-#include "framework/json_file.h"
-#include "fuzz/fuzz_util.h"
-#include "systems/compile.h"
-#include "systems/scene.h"
-#include "systems/system_report.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/json_file.h"
+#include "layerlab/fuzz/fuzz_util.h"
+#include "layerlab/systems/compile.h"
+#include "layerlab/systems/scene.h"
+#include "layerlab/systems/system_report.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static const layerlab::ElementRegistry registry = layerlab::ElementRegistry::WithBuiltins();

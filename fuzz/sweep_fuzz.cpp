@@ -9,10 +9,10 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "analysis/slurm_resources.h"
-#include "analysis/sweep_jobs.h"
-#include "framework/error.h"
-#include "fuzz/fuzz_util.h"
+#include "layerlab/analysis/slurm_resources.h"
+#include "layerlab/analysis/sweep_jobs.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/fuzz/fuzz_util.h"
 
 namespace {
 

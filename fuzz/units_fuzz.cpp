@@ -7,8 +7,8 @@
 #include <cstdlib>
 #include <string_view>
 
-#include "framework/error.h"
-#include "framework/units.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/units.h"
 
 namespace {
 

@@ -1,10 +1,10 @@
-#include "kernels/depth_sums_row.h"
+#include "layerlab/kernels/depth_sums_row.h"
 
-#include "kernels/joint_sums_ray.h"
-#include "kernels/row_kernels.h"
-#include "kernels/row_kernels_isa.h"
-#include "kernels/two_rays_avx2.h"
-#include "kernels/unrolled_layers.h"
+#include "layerlab/kernels/joint_sums_ray.h"
+#include "layerlab/kernels/row_kernels.h"
+#include "layerlab/kernels/row_kernels_isa.h"
+#include "layerlab/kernels/two_rays_avx2.h"
+#include "layerlab/kernels/unrolled_layers.h"
 #if LAYERLAB_ROW_KERNELS_AVX2
 #include <immintrin.h>
 #endif

@@ -14,7 +14,7 @@
 // those kernels run one after another.
 #pragma once
 
-#include "framework/rgb4.h"
+#include "layerlab/framework/rgb4.h"
 
 namespace layerlab {
 

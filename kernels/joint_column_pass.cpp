@@ -1,4 +1,4 @@
-#include "kernels/joint_column_pass.h"
+#include "layerlab/kernels/joint_column_pass.h"
 
 #include <omp.h>
 
@@ -6,10 +6,10 @@
 #include <cstdint>
 #include <optional>
 
-#include "framework/error.h"
-#include "kernels/depth_sums_row.h"
-#include "kernels/one_tap_view.h"
-#include "kernels/row_kernels.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/kernels/depth_sums_row.h"
+#include "layerlab/kernels/one_tap_view.h"
+#include "layerlab/kernels/row_kernels.h"
 
 namespace layerlab {
 namespace {

@@ -1,11 +1,11 @@
-#include "kernels/joint_pass.h"
+#include "layerlab/kernels/joint_pass.h"
 
 #include <omp.h>
 
-#include "framework/mpi_ranks.h"
-#include "kernels/joint_column_pass.h"
-#include "kernels/one_tap_view.h"
-#include "kernels/thread_merge.h"
+#include "layerlab/framework/mpi_ranks.h"
+#include "layerlab/kernels/joint_column_pass.h"
+#include "layerlab/kernels/one_tap_view.h"
+#include "layerlab/kernels/thread_merge.h"
 
 namespace layerlab {
 

@@ -12,9 +12,9 @@
 #include <memory>
 #include <vector>
 
-#include "framework/lightfield.h"
-#include "kernels/solve_workspace.h"
-#include "systems/display_model.h"
+#include "layerlab/framework/lightfield.h"
+#include "layerlab/kernels/solve_workspace.h"
+#include "layerlab/systems/display_model.h"
 
 namespace layerlab {
 

@@ -7,8 +7,8 @@
 // both, so their sums have the same bits.
 #pragma once
 
-#include "framework/rgb4.h"
-#include "kernels/row_kernels_isa.h"
+#include "layerlab/framework/rgb4.h"
+#include "layerlab/kernels/row_kernels_isa.h"
 #if LAYERLAB_ROW_KERNELS_AVX2
 #include <immintrin.h>
 #endif

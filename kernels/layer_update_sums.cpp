@@ -1,14 +1,14 @@
-#include "kernels/layer_update_sums.h"
+#include "layerlab/kernels/layer_update_sums.h"
 
 #include <omp.h>
 
 #include <algorithm>
 #include <vector>
 
-#include "framework/mpi_ranks.h"
-#include "kernels/one_tap_update.h"
-#include "kernels/one_tap_view.h"
-#include "kernels/thread_merge.h"
+#include "layerlab/framework/mpi_ranks.h"
+#include "layerlab/kernels/one_tap_update.h"
+#include "layerlab/kernels/one_tap_view.h"
+#include "layerlab/kernels/thread_merge.h"
 
 namespace layerlab {
 namespace {

@@ -7,10 +7,10 @@
 
 #include <vector>
 
-#include "kernels/branch_target.h"
-#include "kernels/pair_lattice.h"
-#include "kernels/solve_workspace.h"
-#include "systems/display_model.h"
+#include "layerlab/kernels/branch_target.h"
+#include "layerlab/kernels/pair_lattice.h"
+#include "layerlab/kernels/solve_workspace.h"
+#include "layerlab/systems/display_model.h"
 
 namespace layerlab {
 

@@ -1,12 +1,12 @@
-#include "kernels/one_tap_update.h"
+#include "layerlab/kernels/one_tap_update.h"
 
 #include <omp.h>
 #include <algorithm>
 #include <cstdint>
 #include <vector>
 
-#include "kernels/one_tap_view.h"
-#include "kernels/row_kernels.h"
+#include "layerlab/kernels/one_tap_view.h"
+#include "layerlab/kernels/row_kernels.h"
 
 namespace layerlab {
 namespace {

@@ -1,7 +1,7 @@
-#include "kernels/one_tap_view.h"
+#include "layerlab/kernels/one_tap_view.h"
 
-#include "framework/error.h"
-#include "kernels/thread_merge.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/kernels/thread_merge.h"
 
 namespace layerlab {
 

@@ -14,10 +14,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "framework/rgb4.h"
-#include "kernels/row_kernels.h"
-#include "kernels/unrolled_layers.h"
-#include "systems/display_model.h"
+#include "layerlab/framework/rgb4.h"
+#include "layerlab/kernels/row_kernels.h"
+#include "layerlab/kernels/unrolled_layers.h"
+#include "layerlab/systems/display_model.h"
 
 namespace layerlab {
 

@@ -1,11 +1,11 @@
-#include "kernels/pair_lattice.h"
+#include "layerlab/kernels/pair_lattice.h"
 
 #include <algorithm>
 #include <numeric>
 #include <tuple>
 
-#include "kernels/one_tap_view.h"
-#include "kernels/row_kernels.h"
+#include "layerlab/kernels/one_tap_view.h"
+#include "layerlab/kernels/row_kernels.h"
 
 namespace layerlab {
 namespace {

@@ -22,10 +22,10 @@
 #include <optional>
 #include <vector>
 
-#include "framework/huge_page_allocator.h"
-#include "framework/lightfield.h"
-#include "framework/rgb4.h"
-#include "systems/display_model.h"
+#include "layerlab/framework/huge_page_allocator.h"
+#include "layerlab/framework/lightfield.h"
+#include "layerlab/framework/rgb4.h"
+#include "layerlab/systems/display_model.h"
 
 namespace layerlab {
 

@@ -1,4 +1,4 @@
-#include "kernels/row_kernels.h"
+#include "layerlab/kernels/row_kernels.h"
 
 #include <algorithm>
 #include <atomic>
@@ -9,10 +9,10 @@
 #include <immintrin.h>
 #endif
 
-#include "framework/error.h"
-#include "kernels/joint_sums_ray.h"
-#include "kernels/row_kernels_isa.h"
-#include "kernels/unrolled_layers.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/kernels/joint_sums_ray.h"
+#include "layerlab/kernels/row_kernels_isa.h"
+#include "layerlab/kernels/unrolled_layers.h"
 
 namespace layerlab {
 namespace baseline {

@@ -8,7 +8,7 @@
 
 #include <cstdint>
 
-#include "framework/rgb4.h"
+#include "layerlab/framework/rgb4.h"
 
 namespace layerlab {
 

@@ -5,7 +5,7 @@
 // headers compiled here must not replace the baseline's copies at link time.
 // The rays a two-ray step leaves at a row's end go to the baseline itself,
 // except in the error sums, whose even/odd partial sums must carry on.
-#include "kernels/row_kernels_isa.h"
+#include "layerlab/kernels/row_kernels_isa.h"
 
 #if LAYERLAB_ROW_KERNELS_AVX2
 
@@ -13,9 +13,9 @@
 
 #include <type_traits>
 
-#include "kernels/joint_sums_ray.h"
-#include "kernels/two_rays_avx2.h"
-#include "kernels/unrolled_layers.h"
+#include "layerlab/kernels/joint_sums_ray.h"
+#include "layerlab/kernels/two_rays_avx2.h"
+#include "layerlab/kernels/unrolled_layers.h"
 
 #define LAYERLAB_AVX2 __attribute__((target("avx2")))
 

@@ -3,7 +3,7 @@
 
 #include <cstdint>
 
-#include "framework/rgb4.h"
+#include "layerlab/framework/rgb4.h"
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 #define LAYERLAB_ROW_KERNELS_AVX2 1

@@ -1,4 +1,4 @@
-#include "kernels/solve_workspace.h"
+#include "layerlab/kernels/solve_workspace.h"
 
 #include <omp.h>
 
@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "kernels/pair_lattice.h"
+#include "layerlab/kernels/pair_lattice.h"
 
 namespace layerlab {
 

@@ -17,11 +17,11 @@
 #include <string>
 #include <vector>
 
-#include "framework/rgb4.h"
-#include "kernels/one_tap_view.h"
-#include "kernels/pair_lattice.h"
-#include "kernels/workspace_pass.h"
-#include "systems/display_model.h"
+#include "layerlab/framework/rgb4.h"
+#include "layerlab/kernels/one_tap_view.h"
+#include "layerlab/kernels/pair_lattice.h"
+#include "layerlab/kernels/workspace_pass.h"
+#include "layerlab/systems/display_model.h"
 
 namespace layerlab {
 

@@ -1,12 +1,12 @@
-#include "kernels/synthesis.h"
+#include "layerlab/kernels/synthesis.h"
 
 #include <omp.h>
 
 #include <optional>
 
-#include "framework/error.h"
-#include "kernels/solve_workspace.h"
-#include "kernels/view_synthesizer.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/kernels/solve_workspace.h"
+#include "layerlab/kernels/view_synthesizer.h"
 
 namespace layerlab {
 

@@ -4,8 +4,8 @@
 // names the workspace but does not pull the kernels in.
 #pragma once
 
-#include "framework/lightfield.h"
-#include "systems/display_model.h"
+#include "layerlab/framework/lightfield.h"
+#include "layerlab/systems/display_model.h"
 
 namespace layerlab {
 

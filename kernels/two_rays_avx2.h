@@ -4,12 +4,12 @@
 // built for AVX2 (CpuHasAvx2()), hence the avx2 namespace.
 #pragma once
 
-#include "kernels/row_kernels_isa.h"
+#include "layerlab/kernels/row_kernels_isa.h"
 
 #if LAYERLAB_ROW_KERNELS_AVX2
 #include <immintrin.h>
 
-#include "framework/rgb4.h"
+#include "layerlab/framework/rgb4.h"
 
 namespace layerlab::avx2 {
 

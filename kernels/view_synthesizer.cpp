@@ -1,4 +1,4 @@
-#include "kernels/view_synthesizer.h"
+#include "layerlab/kernels/view_synthesizer.h"
 
 #include <algorithm>
 #include <atomic>

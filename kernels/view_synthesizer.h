@@ -5,9 +5,9 @@
 
 #include <cstdint>
 
-#include "kernels/one_tap_view.h"
-#include "kernels/solve_workspace.h"
-#include "systems/display_model.h"
+#include "layerlab/kernels/one_tap_view.h"
+#include "layerlab/kernels/solve_workspace.h"
+#include "layerlab/systems/display_model.h"
 
 namespace layerlab {
 

@@ -1,4 +1,4 @@
-#include "retina/diffraction.h"
+#include "layerlab/retina/diffraction.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,8 +6,8 @@
 #include <numbers>
 #include <vector>
 
-#include "eye/spectral_filter.h"
-#include "framework/error.h"
+#include "layerlab/eye/spectral_filter.h"
+#include "layerlab/framework/error.h"
 
 namespace layerlab {
 

@@ -10,9 +10,9 @@
 
 #include <array>
 
-#include "elements/element.h"
-#include "framework/exr_image.h"
-#include "retina/retina.h"
+#include "layerlab/elements/element.h"
+#include "layerlab/framework/exr_image.h"
+#include "layerlab/retina/retina.h"
 
 namespace layerlab {
 

@@ -1,11 +1,11 @@
-#include "retina/lightfield_radiance.h"
+#include "layerlab/retina/lightfield_radiance.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "framework/rgb4.h"
-#include "kernels/row_kernels.h"
-#include "retina/lightfield_taps.h"
+#include "layerlab/framework/rgb4.h"
+#include "layerlab/kernels/row_kernels.h"
+#include "layerlab/retina/lightfield_taps.h"
 
 namespace layerlab {
 namespace {

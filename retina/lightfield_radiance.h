@@ -16,12 +16,12 @@
 #include <array>
 #include <vector>
 
-#include "framework/exr_image.h"
-#include "framework/lightfield.h"
-#include "retina/retina_grid.h"
-#include "retina/retina_workspace.h"
-#include "retina/scene_radiance.h"
-#include "systems/layer_sampler.h"
+#include "layerlab/framework/exr_image.h"
+#include "layerlab/framework/lightfield.h"
+#include "layerlab/retina/retina_grid.h"
+#include "layerlab/retina/retina_workspace.h"
+#include "layerlab/retina/scene_radiance.h"
+#include "layerlab/systems/layer_sampler.h"
 
 namespace layerlab {
 

@@ -8,8 +8,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "framework/lightfield.h"
-#include "retina/scene_radiance.h"
+#include "layerlab/framework/lightfield.h"
+#include "layerlab/retina/scene_radiance.h"
 
 namespace layerlab::lightfield_taps {
 

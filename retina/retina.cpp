@@ -1,17 +1,17 @@
-#include "retina/retina.h"
+#include "layerlab/retina/retina.h"
 
-#include "kernels/one_tap_view.h"
-#include "retina/lightfield_radiance.h"
+#include "layerlab/kernels/one_tap_view.h"
+#include "layerlab/retina/lightfield_radiance.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
 
-#include "eye/chromatic_eye.h"
-#include "framework/error.h"
-#include "framework/random.h"
-#include "framework/units.h"
+#include "layerlab/eye/chromatic_eye.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/random.h"
+#include "layerlab/framework/units.h"
 
 namespace layerlab {
 

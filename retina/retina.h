@@ -16,11 +16,11 @@
 #include <string>
 #include <vector>
 
-#include "framework/exr_image.h"
-#include "retina/retina_grid.h"
-#include "retina/retina_workspace.h"
-#include "retina/scene_radiance.h"
-#include "systems/display_model.h"
+#include "layerlab/framework/exr_image.h"
+#include "layerlab/retina/retina_grid.h"
+#include "layerlab/retina/retina_workspace.h"
+#include "layerlab/retina/scene_radiance.h"
+#include "layerlab/systems/display_model.h"
 
 namespace layerlab {
 

@@ -1,11 +1,11 @@
-#include "retina/retina_workspace.h"
+#include "layerlab/retina/retina_workspace.h"
 
 #include <omp.h>
 
 #include <algorithm>
 #include <string>
 
-#include "kernels/unrolled_layers.h"
+#include "layerlab/kernels/unrolled_layers.h"
 
 namespace layerlab {
 

@@ -14,12 +14,12 @@
 #include <cstddef>
 #include <vector>
 
-#include "framework/lightfield.h"
-#include "framework/rgb4.h"
-#include "kernels/one_tap_view.h"
-#include "kernels/solve_workspace.h"
-#include "retina/lightfield_taps.h"
-#include "retina/retina_grid.h"
+#include "layerlab/framework/lightfield.h"
+#include "layerlab/framework/rgb4.h"
+#include "layerlab/kernels/one_tap_view.h"
+#include "layerlab/kernels/solve_workspace.h"
+#include "layerlab/retina/lightfield_taps.h"
+#include "layerlab/retina/retina_grid.h"
 
 namespace layerlab {
 

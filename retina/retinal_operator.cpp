@@ -1,11 +1,11 @@
-#include "retina/retinal_operator.h"
+#include "layerlab/retina/retinal_operator.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "framework/error.h"
-#include "framework/heap_block.h"
-#include "retina/lightfield_taps.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/heap_block.h"
+#include "layerlab/retina/lightfield_taps.h"
 
 namespace layerlab {
 

@@ -22,9 +22,9 @@
 #include <array>
 #include <vector>
 
-#include "framework/lightfield.h"
-#include "retina/retina.h"
-#include "systems/layer_sampler.h"
+#include "layerlab/framework/lightfield.h"
+#include "layerlab/retina/retina.h"
+#include "layerlab/systems/layer_sampler.h"
 
 namespace layerlab {
 

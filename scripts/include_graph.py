@@ -9,9 +9,13 @@ Tests, benchmarks, fuzz targets and examples are not the product.
     include_graph.py [--root DIR]           print the cycles; exit 1 if any
     include_graph.py --dot FILE             also write the file graph (Graphviz)
     include_graph.py --folders              print the folder graph's edges
+    include_graph.py --public FILE          check that FILE's header list is the
+                                            include closure of its roots
+    include_graph.py --public FILE --write  rewrite FILE's list from its roots
 
 Exit status 1 when two files (or two folders) include each other directly or
-through others.
+through others, or when an include of a product file is not written as the
+installed package's consumers write it, "layerlab/<path>".
 """
 import argparse
 import os
@@ -50,7 +54,9 @@ def resolve(root, including, written):
     return None
 
 
-def file_graph(root):
+def file_graph(root, unprefixed=None):
+    """Edges between nodes; each include of a product file not written
+    "layerlab/<path>" is appended to `unprefixed` as (file, written)."""
     files = list(product_files(root))
     known = set(files)
     edges = {}
@@ -63,6 +69,8 @@ def file_graph(root):
             target = resolve(root, path, written)
             if target is None or target not in known:
                 continue
+            if unprefixed is not None and written != "layerlab/" + target:
+                unprefixed.append((path, written))
             if node_of(target) != source:
                 edges[source].add(node_of(target))
     return edges
@@ -147,14 +155,59 @@ def a_cycle(edges, component):
     return component
 
 
+def header_closure(root, roots):
+    """The headers the roots include, directly or through other headers, roots included."""
+    seen, queue = set(), list(roots)
+    while queue:
+        path = queue.pop()
+        if path in seen:
+            continue
+        seen.add(path)
+        with open(os.path.join(root, path), encoding="utf-8", errors="replace") as f:
+            for written in INCLUDE.findall(f.read()):
+                target = resolve(root, path, written)
+                if target is not None and not target.endswith(".cpp"):
+                    queue.append(target)
+    return sorted(seen)
+
+
+def check_public(root, list_file, write):
+    """The installed headers (cmake/public_headers.txt): `root X` lines name the
+    public entry points, the other lines are their closure; 1 when they differ."""
+    with open(list_file, encoding="utf-8") as f:
+        lines = f.read().splitlines()
+    header = [line for line in lines if line.startswith("#") or line.startswith("root ")]
+    roots = [line.split(" ", 1)[1] for line in lines if line.startswith("root ")]
+    listed = sorted(line for line in lines if line and not line.startswith(("#", "root ")))
+    closure = header_closure(root, roots)
+    if write:
+        with open(list_file, "w", encoding="utf-8") as f:
+            f.write("\n".join(header + closure) + "\n")
+        print(f"{list_file}: {len(closure)} headers from {len(roots)} roots")
+        return 0
+    missing = sorted(set(closure) - set(listed))
+    extra = sorted(set(listed) - set(closure))
+    for path in missing:
+        print(f"{list_file}: {path} is included by a public header but not listed (run with --write)")
+    for path in extra:
+        print(f"{list_file}: {path} is listed but no public header includes it (run with --write)")
+    print(f"{len(closure)} public headers from {len(roots)} roots: {len(missing)} missing, {len(extra)} extra")
+    return 1 if missing or extra else 0
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--root", default=os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
     parser.add_argument("--dot")
     parser.add_argument("--folders", action="store_true")
+    parser.add_argument("--public")
+    parser.add_argument("--write", action="store_true")
     args = parser.parse_args()
     root = os.path.abspath(args.root)
-    edges = file_graph(root)
+    if args.public:
+        return check_public(root, args.public, args.write)
+    unprefixed = []
+    edges = file_graph(root, unprefixed)
     folders = folder_graph(edges)
     if args.folders:
         for folder in sorted(folders):
@@ -172,10 +225,13 @@ def main():
         print("file cycle: " + " -> ".join(a_cycle(edges, component)))
     for component in folder_cycles:
         print("folder cycle: " + " -> ".join(a_cycle(folders, component)))
+    for path, written in unprefixed:
+        print(f'{path}: #include "{written}" should read "layerlab/<path from the repository root>"')
     count = sum(len(t) for t in edges.values())
     print(f"{len(edges)} files (a header and its source as one), {count} includes between them, "
-          f"{len(folders)} folders: {len(file_cycles)} file cycles, {len(folder_cycles)} folder cycles")
-    return 1 if file_cycles or folder_cycles else 0
+          f"{len(folders)} folders: {len(file_cycles)} file cycles, {len(folder_cycles)} folder cycles, "
+          f"{len(unprefixed)} includes without the layerlab/ prefix")
+    return 1 if file_cycles or folder_cycles or unprefixed else 0
 
 
 if __name__ == "__main__":

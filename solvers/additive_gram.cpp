@@ -1,8 +1,8 @@
-#include "solvers/additive_gram.h"
+#include "layerlab/solvers/additive_gram.h"
 
 #include <map>
 
-#include "framework/error.h"
+#include "layerlab/framework/error.h"
 
 namespace layerlab {
 namespace {

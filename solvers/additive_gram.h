@@ -16,7 +16,7 @@
 
 #include <Eigen/Sparse>
 
-#include "systems/display_model.h"
+#include "layerlab/systems/display_model.h"
 
 namespace layerlab {
 

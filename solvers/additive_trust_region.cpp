@@ -22,9 +22,9 @@
 #include <cmath>
 #include <vector>
 
-#include "framework/mpi_ranks.h"
-#include "solvers/additive_gram.h"
-#include "solvers/solve_loop.h"
+#include "layerlab/framework/mpi_ranks.h"
+#include "layerlab/solvers/additive_gram.h"
+#include "layerlab/solvers/solve_loop.h"
 
 namespace layerlab {
 namespace {

@@ -2,8 +2,8 @@
 // sets), its outer iterations in solvers/hybrid_iterations.h.
 #include <optional>
 
-#include "solvers/hybrid_iterations.h"
-#include "solvers/solve_loop.h"
+#include "layerlab/solvers/hybrid_iterations.h"
+#include "layerlab/solvers/solve_loop.h"
 
 namespace layerlab {
 namespace {

@@ -1,4 +1,4 @@
-#include "solvers/hybrid_chase.h"
+#include "layerlab/solvers/hybrid_chase.h"
 
 #include <algorithm>
 

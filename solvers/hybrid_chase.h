@@ -16,10 +16,10 @@
 #include <optional>
 #include <vector>
 
-#include "framework/lightfield.h"
-#include "kernels/view_synthesizer.h"
-#include "solvers/multiplicative_update.h"
-#include "systems/display_model.h"
+#include "layerlab/framework/lightfield.h"
+#include "layerlab/kernels/view_synthesizer.h"
+#include "layerlab/solvers/multiplicative_update.h"
+#include "layerlab/systems/display_model.h"
 
 namespace layerlab {
 

@@ -1,9 +1,9 @@
-#include "solvers/hybrid_iterations.h"
+#include "layerlab/solvers/hybrid_iterations.h"
 
 #include <algorithm>
 
-#include "framework/mpi_ranks.h"
-#include "solvers/multiplicative_update.h"
+#include "layerlab/framework/mpi_ranks.h"
+#include "layerlab/solvers/multiplicative_update.h"
 
 namespace layerlab {
 namespace {

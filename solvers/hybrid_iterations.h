@@ -11,9 +11,9 @@
 #include <optional>
 #include <vector>
 
-#include "kernels/pair_lattice.h"
-#include "solvers/hybrid_chase.h"
-#include "solvers/solve_loop.h"
+#include "layerlab/kernels/pair_lattice.h"
+#include "layerlab/solvers/hybrid_chase.h"
+#include "layerlab/solvers/solve_loop.h"
 
 namespace layerlab {
 

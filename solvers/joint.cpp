@@ -29,10 +29,10 @@
 #include <optional>
 #include <vector>
 
-#include "kernels/joint_pass.h"
-#include "solvers/multiplicative_update.h"
-#include "solvers/retinal_pass.h"
-#include "solvers/solve_loop.h"
+#include "layerlab/kernels/joint_pass.h"
+#include "layerlab/solvers/multiplicative_update.h"
+#include "layerlab/solvers/retinal_pass.h"
+#include "layerlab/solvers/solve_loop.h"
 
 namespace layerlab {
 namespace {

@@ -1,4 +1,4 @@
-#include "solvers/memory_estimate.h"
+#include "layerlab/solvers/memory_estimate.h"
 
 #include <unistd.h>
 
@@ -7,11 +7,11 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "framework/error.h"
-#include "framework/heap_block.h"
-#include "framework/huge_page_allocator.h"
-#include "solvers/objective.h"
-#include "solvers/retinal_objective.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/heap_block.h"
+#include "layerlab/framework/huge_page_allocator.h"
+#include "layerlab/solvers/objective.h"
+#include "layerlab/solvers/retinal_objective.h"
 
 namespace layerlab {
 

@@ -6,9 +6,9 @@
 #include <cstddef>
 #include <string>
 
-#include "framework/lightfield.h"
-#include "solvers/solver.h"
-#include "systems/display_system.h"
+#include "layerlab/framework/lightfield.h"
+#include "layerlab/solvers/solver.h"
+#include "layerlab/systems/display_system.h"
 
 namespace layerlab {
 

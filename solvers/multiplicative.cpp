@@ -20,10 +20,10 @@
 #include <algorithm>
 #include <optional>
 
-#include "framework/error.h"
-#include "kernels/joint_pass.h"
-#include "solvers/multiplicative_update.h"
-#include "solvers/solve_loop.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/kernels/joint_pass.h"
+#include "layerlab/solvers/multiplicative_update.h"
+#include "layerlab/solvers/solve_loop.h"
 
 namespace layerlab {
 namespace {

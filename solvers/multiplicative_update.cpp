@@ -1,4 +1,4 @@
-#include "solvers/multiplicative_update.h"
+#include "layerlab/solvers/multiplicative_update.h"
 
 #include <vector>
 

@@ -12,8 +12,8 @@
 
 #include <vector>
 
-#include "kernels/layer_update_sums.h"
-#include "solvers/types.h"
+#include "layerlab/kernels/layer_update_sums.h"
+#include "layerlab/solvers/types.h"
 
 namespace layerlab {
 

@@ -1,4 +1,4 @@
-#include "solvers/objective.h"
+#include "layerlab/solvers/objective.h"
 
 #include <omp.h>
 
@@ -7,11 +7,11 @@
 #include <cstdio>
 #include <limits>
 
-#include "framework/error.h"
-#include "framework/mpi_ranks.h"
-#include "framework/polarization.h"
-#include "framework/random.h"
-#include "kernels/view_synthesizer.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/mpi_ranks.h"
+#include "layerlab/framework/polarization.h"
+#include "layerlab/framework/random.h"
+#include "layerlab/kernels/view_synthesizer.h"
 
 namespace layerlab {
 

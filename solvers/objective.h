@@ -5,10 +5,10 @@
 #include <optional>
 #include <string>
 
-#include "framework/lightfield.h"
-#include "kernels/solve_workspace.h"
-#include "solvers/solver.h"
-#include "systems/display_model.h"
+#include "layerlab/framework/lightfield.h"
+#include "layerlab/kernels/solve_workspace.h"
+#include "layerlab/solvers/solver.h"
+#include "layerlab/systems/display_model.h"
 
 namespace layerlab {
 

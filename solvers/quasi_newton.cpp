@@ -33,12 +33,12 @@
 #include <optional>
 #include <vector>
 
-#include "framework/huge_page_allocator.h"
-#include "kernels/joint_pass.h"
-#include "solvers/chunked_sweep.h"
-#include "solvers/hybrid_iterations.h"
-#include "solvers/retinal_pass.h"
-#include "solvers/solve_loop.h"
+#include "layerlab/framework/huge_page_allocator.h"
+#include "layerlab/kernels/joint_pass.h"
+#include "layerlab/solvers/chunked_sweep.h"
+#include "layerlab/solvers/hybrid_iterations.h"
+#include "layerlab/solvers/retinal_pass.h"
+#include "layerlab/solvers/solve_loop.h"
 
 namespace layerlab {
 namespace {

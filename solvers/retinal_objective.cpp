@@ -1,16 +1,16 @@
-#include "solvers/retinal_objective.h"
+#include "layerlab/solvers/retinal_objective.h"
 
 #include <algorithm>
 #include <cmath>
 #include <complex>
 
-#include "eye/contrast_sensitivity.h"
-#include "eye/spectral_filter.h"
-#include "framework/error.h"
-#include "framework/heap_block.h"
-#include "framework/huge_page_allocator.h"
-#include "retina/lightfield_radiance.h"
-#include "solvers/objective.h"
+#include "layerlab/eye/contrast_sensitivity.h"
+#include "layerlab/eye/spectral_filter.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/heap_block.h"
+#include "layerlab/framework/huge_page_allocator.h"
+#include "layerlab/retina/lightfield_radiance.h"
+#include "layerlab/solvers/objective.h"
 
 namespace layerlab {
 

@@ -31,10 +31,10 @@
 #include <memory>
 #include <vector>
 
-#include "framework/lightfield.h"
-#include "retina/retinal_operator.h"
-#include "solvers/types.h"
-#include "systems/display_model.h"
+#include "layerlab/framework/lightfield.h"
+#include "layerlab/retina/retinal_operator.h"
+#include "layerlab/solvers/types.h"
+#include "layerlab/systems/display_model.h"
 
 namespace layerlab {
 

@@ -1,7 +1,7 @@
-#include "solvers/retinal_pass.h"
+#include "layerlab/solvers/retinal_pass.h"
 
-#include "kernels/synthesis.h"
-#include "solvers/objective.h"
+#include "layerlab/kernels/synthesis.h"
+#include "layerlab/solvers/objective.h"
 
 namespace layerlab {
 

@@ -12,8 +12,8 @@
 
 #include <vector>
 
-#include "kernels/joint_pass.h"
-#include "solvers/retinal_objective.h"
+#include "layerlab/kernels/joint_pass.h"
+#include "layerlab/solvers/retinal_objective.h"
 
 namespace layerlab {
 

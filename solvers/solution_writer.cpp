@@ -1,20 +1,20 @@
-#include "solvers/solution_writer.h"
+#include "layerlab/solvers/solution_writer.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 
-#include "framework/atomic_file.h"
-#include "framework/error.h"
-#include "framework/exr_image.h"
-#include "framework/lightfield_io.h"
-#include "framework/png_writer.h"
-#include "framework/progress.h"
-#include "framework/staged_output.h"
-#include "framework/version.h"
-#include "kernels/synthesis.h"
-#include "systems/system_report.h"
+#include "layerlab/framework/atomic_file.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/exr_image.h"
+#include "layerlab/framework/lightfield_io.h"
+#include "layerlab/framework/png_writer.h"
+#include "layerlab/framework/progress.h"
+#include "layerlab/framework/staged_output.h"
+#include "layerlab/framework/version.h"
+#include "layerlab/kernels/synthesis.h"
+#include "layerlab/systems/system_report.h"
 
 namespace layerlab {
 

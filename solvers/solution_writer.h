@@ -14,8 +14,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "solvers/solver.h"
-#include "systems/display_model.h"
+#include "layerlab/solvers/solver.h"
+#include "layerlab/systems/display_model.h"
 
 namespace layerlab {
 

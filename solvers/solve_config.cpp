@@ -4,13 +4,13 @@
 //
 // Its keys, their ranges and defaults are the option table's
 // (solvers/solver_option_table.h, docs/scene-reference.md).
-#include "solvers/solve_config.h"
+#include "layerlab/solvers/solve_config.h"
 
 #include <algorithm>
 #include <filesystem>
 
-#include "framework/params.h"
-#include "solvers/solver_option_table.h"
+#include "layerlab/framework/params.h"
+#include "layerlab/solvers/solver_option_table.h"
 
 namespace layerlab {
 

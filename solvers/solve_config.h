@@ -13,10 +13,10 @@
 
 #include <string>
 
-#include "solvers/solver.h"
-#include "systems/display_system.h"
-#include "systems/projection.h"
-#include "systems/scene.h"
+#include "layerlab/solvers/solver.h"
+#include "layerlab/systems/display_system.h"
+#include "layerlab/systems/projection.h"
+#include "layerlab/systems/scene.h"
 
 namespace layerlab {
 

@@ -1,4 +1,4 @@
-#include "solvers/solve_loop.h"
+#include "layerlab/solvers/solve_loop.h"
 
 #include <omp.h>
 
@@ -6,9 +6,9 @@
 #include <cmath>
 #include <limits>
 
-#include "framework/error.h"
-#include "framework/mpi_ranks.h"
-#include "solvers/solver_checkpoint.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/mpi_ranks.h"
+#include "layerlab/solvers/solver_checkpoint.h"
 
 namespace layerlab {
 

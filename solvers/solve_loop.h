@@ -9,9 +9,9 @@
 #include <optional>
 #include <string>
 
-#include "solvers/objective.h"
-#include "solvers/retinal_pass.h"
-#include "solvers/solver.h"
+#include "layerlab/solvers/objective.h"
+#include "layerlab/solvers/retinal_pass.h"
+#include "layerlab/solvers/solver.h"
 
 namespace layerlab {
 

@@ -16,9 +16,9 @@
 #include <string>
 #include <vector>
 
-#include "framework/lightfield.h"
-#include "solvers/types.h"
-#include "systems/display_model.h"
+#include "layerlab/framework/lightfield.h"
+#include "layerlab/solvers/types.h"
+#include "layerlab/systems/display_model.h"
 
 namespace layerlab {
 

@@ -1,16 +1,16 @@
-#include "solvers/solver_checkpoint.h"
+#include "layerlab/solvers/solver_checkpoint.h"
 
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 
-#include "framework/atomic_file.h"
-#include "framework/content_digest.h"
-#include "framework/error.h"
-#include "framework/exr_image.h"
-#include "framework/json_file.h"
-#include "framework/lightfield_io.h"
-#include "systems/system_report.h"
+#include "layerlab/framework/atomic_file.h"
+#include "layerlab/framework/content_digest.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/exr_image.h"
+#include "layerlab/framework/json_file.h"
+#include "layerlab/framework/lightfield_io.h"
+#include "layerlab/systems/system_report.h"
 
 namespace layerlab {
 namespace fs = std::filesystem;

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "solvers/solver.h"
+#include "layerlab/solvers/solver.h"
 
 namespace layerlab {
 

@@ -1,9 +1,9 @@
-#include "solvers/solver_option_table.h"
+#include "layerlab/solvers/solver_option_table.h"
 
 #include <cmath>
 #include <sstream>
 
-#include "framework/params.h"
+#include "layerlab/framework/params.h"
 
 namespace layerlab {
 namespace {

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "framework/units.h"
-#include "solvers/types.h"
+#include "layerlab/framework/units.h"
+#include "layerlab/solvers/types.h"
 
 namespace layerlab {
 

@@ -1,7 +1,7 @@
 #include <sstream>
 
-#include "solvers/solver.h"
-#include "solvers/solver_option_table.h"
+#include "layerlab/solvers/solver.h"
+#include "layerlab/solvers/solver_option_table.h"
 
 namespace layerlab {
 

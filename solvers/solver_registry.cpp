@@ -1,13 +1,13 @@
 #include <algorithm>
 
-#include "framework/error.h"
-#include "framework/params.h"
-#include "solvers/solver.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/params.h"
+#include "layerlab/solvers/solver.h"
 
 namespace layerlab {
 
 #define LAYERLAB_SOLVER(Name, file) SolverType Name##SolverType();
-#include "solvers/builtin_solvers.def"
+#include "layerlab/solvers/builtin_solvers.def"
 #undef LAYERLAB_SOLVER
 
 bool SolverType::Reads(const std::string& key) const {
@@ -56,7 +56,7 @@ std::string UnsuitableSolver(const std::string& solver, const DisplaySystem& sys
 SolverRegistry SolverRegistry::WithBuiltins() {
   SolverRegistry r;
 #define LAYERLAB_SOLVER(Name, file) r.add(Name##SolverType());
-#include "solvers/builtin_solvers.def"
+#include "layerlab/solvers/builtin_solvers.def"
 #undef LAYERLAB_SOLVER
   return r;
 }

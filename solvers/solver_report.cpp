@@ -2,9 +2,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include "framework/warnings.h"
-#include "solvers/objective.h"
-#include "solvers/solver.h"
+#include "layerlab/framework/warnings.h"
+#include "layerlab/solvers/objective.h"
+#include "layerlab/solvers/solver.h"
 
 namespace layerlab {
 namespace {

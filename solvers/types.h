@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "kernels/workspace_pass.h"
-#include "retina/scene_radiance.h"
+#include "layerlab/kernels/workspace_pass.h"
+#include "layerlab/retina/scene_radiance.h"
 
 namespace layerlab {
 

@@ -1,4 +1,4 @@
-#include "systems/compile.h"
+#include "layerlab/systems/compile.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,9 +7,9 @@
 #include <optional>
 #include <set>
 
-#include "eye/pupil_size.h"
-#include "framework/units.h"
-#include "systems/optics.h"
+#include "layerlab/eye/pupil_size.h"
+#include "layerlab/framework/units.h"
+#include "layerlab/systems/optics.h"
 
 namespace layerlab {
 namespace {

@@ -1,7 +1,7 @@
 #pragma once
 
-#include "systems/display_system.h"
-#include "systems/scene.h"
+#include "layerlab/systems/display_system.h"
+#include "layerlab/systems/scene.h"
 
 namespace layerlab {
 

@@ -1,9 +1,9 @@
-#include "systems/display_model.h"
+#include "layerlab/systems/display_model.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "framework/error.h"
+#include "layerlab/framework/error.h"
 
 namespace layerlab {
 

@@ -18,9 +18,9 @@
 #include <string>
 #include <vector>
 
-#include "framework/lightfield.h"
-#include "systems/display_system.h"
-#include "systems/projection.h"
+#include "layerlab/framework/lightfield.h"
+#include "layerlab/systems/display_system.h"
+#include "layerlab/systems/projection.h"
 
 namespace layerlab {
 

@@ -19,8 +19,8 @@
 #include <string>
 #include <vector>
 
-#include "elements/element.h"
-#include "systems/ray_transfer.h"
+#include "layerlab/elements/element.h"
+#include "layerlab/systems/ray_transfer.h"
 
 namespace layerlab {
 

@@ -1,4 +1,4 @@
-#include "systems/intermediate_images.h"
+#include "layerlab/systems/intermediate_images.h"
 
 #include <cmath>
 #include <limits>

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "systems/display_system.h"
+#include "layerlab/systems/display_system.h"
 
 namespace layerlab {
 

@@ -1,8 +1,8 @@
-#include "systems/layer_sampler.h"
+#include "layerlab/systems/layer_sampler.h"
 
 #include <cmath>
 
-#include "framework/error.h"
+#include "layerlab/framework/error.h"
 
 namespace layerlab {
 

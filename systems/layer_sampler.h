@@ -15,7 +15,7 @@
 #include <cstdint>
 #include <string>
 
-#include "systems/display_system.h"
+#include "layerlab/systems/display_system.h"
 
 namespace layerlab {
 

@@ -1,10 +1,10 @@
-#include "systems/optics.h"
+#include "layerlab/systems/optics.h"
 
 #include <cmath>
 #include <limits>
 #include <numbers>
 
-#include "systems/ray_transfer.h"
+#include "layerlab/systems/ray_transfer.h"
 
 namespace layerlab {
 namespace {

@@ -1,4 +1,4 @@
-#include "systems/projection.h"
+#include "layerlab/systems/projection.h"
 
 #include <cmath>
 

@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "framework/lightfield.h"
-#include "systems/display_system.h"
-#include "systems/layer_sampler.h"
+#include "layerlab/framework/lightfield.h"
+#include "layerlab/systems/display_system.h"
+#include "layerlab/systems/layer_sampler.h"
 
 namespace layerlab {
 

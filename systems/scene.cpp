@@ -10,12 +10,12 @@
 // | elements    | array of elements   | required           | the optical path, each an object with "type" and "name" |
 // | solve       | object              | none               | the solver and its target (see solve below)    |
 // | run         | object              | none               | what `layerlab run` does (see run below)       |
-#include "systems/scene.h"
+#include "layerlab/systems/scene.h"
 
 #include <climits>
 #include <map>
 
-#include "framework/json_file.h"
+#include "layerlab/framework/json_file.h"
 
 namespace layerlab {
 

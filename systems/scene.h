@@ -18,7 +18,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "elements/registry.h"
+#include "layerlab/elements/registry.h"
 
 namespace layerlab {
 

@@ -1,10 +1,10 @@
-#include "systems/scene_document.h"
+#include "layerlab/systems/scene_document.h"
 
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
-#include "framework/error.h"
+#include "layerlab/framework/error.h"
 
 namespace layerlab {
 

@@ -1,4 +1,4 @@
-#include "systems/system_report.h"
+#include "layerlab/systems/system_report.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,9 +7,9 @@
 #include <numbers>
 #include <optional>
 
-#include "eye/eye_description.h"
-#include "framework/warnings.h"
-#include "systems/intermediate_images.h"
+#include "layerlab/eye/eye_description.h"
+#include "layerlab/framework/warnings.h"
+#include "layerlab/systems/intermediate_images.h"
 
 namespace layerlab {
 namespace {

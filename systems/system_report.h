@@ -6,8 +6,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "systems/display_model.h"
-#include "systems/display_system.h"
+#include "layerlab/systems/display_model.h"
+#include "layerlab/systems/display_system.h"
 
 namespace layerlab {
 

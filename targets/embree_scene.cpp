@@ -1,4 +1,4 @@
-#include "targets/embree_scene.h"
+#include "layerlab/targets/embree_scene.h"
 
 #include <cmath>
 #include <mutex>
@@ -7,7 +7,7 @@
 
 #include <embree3/rtcore.h>
 
-#include "framework/error.h"
+#include "layerlab/framework/error.h"
 
 namespace layerlab {
 namespace {

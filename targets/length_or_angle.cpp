@@ -1,8 +1,8 @@
-#include "targets/length_or_angle.h"
+#include "layerlab/targets/length_or_angle.h"
 
 #include <numbers>
 
-#include "framework/json_file.h"
+#include "layerlab/framework/json_file.h"
 
 namespace layerlab {
 

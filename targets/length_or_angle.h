@@ -8,7 +8,7 @@
 #include <array>
 #include <string>
 
-#include "framework/params.h"
+#include "layerlab/framework/params.h"
 
 namespace layerlab {
 

@@ -1,4 +1,4 @@
-#include "targets/mesh_io.h"
+#include "layerlab/targets/mesh_io.h"
 
 #include <algorithm>
 #include <charconv>
@@ -10,7 +10,7 @@
 #include <sstream>
 #include <string_view>
 
-#include "framework/error.h"
+#include "layerlab/framework/error.h"
 
 namespace layerlab {
 namespace {

@@ -9,8 +9,8 @@
 #include <array>
 #include <cstdint>
 
-#include "framework/lightfield.h"
-#include "framework/random.h"
+#include "layerlab/framework/lightfield.h"
+#include "layerlab/framework/random.h"
 
 namespace layerlab {
 

@@ -1,9 +1,9 @@
-#include "targets/plane_lightfield.h"
+#include "layerlab/targets/plane_lightfield.h"
 
 #include <algorithm>
 #include <vector>
 
-#include "targets/pixel_sampling.h"
+#include "layerlab/targets/pixel_sampling.h"
 
 namespace layerlab {
 

@@ -8,8 +8,8 @@
 #include <array>
 #include <cstdint>
 
-#include "framework/lightfield.h"
-#include "targets/texture.h"
+#include "layerlab/framework/lightfield.h"
+#include "layerlab/targets/texture.h"
 
 namespace layerlab {
 

@@ -1,4 +1,4 @@
-#include "targets/png_image.h"
+#include "layerlab/targets/png_image.h"
 
 #include <array>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include <png.h>
 
-#include "framework/error.h"
+#include "layerlab/framework/error.h"
 
 namespace layerlab {
 

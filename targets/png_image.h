@@ -7,7 +7,7 @@
 
 #include <string>
 
-#include "framework/exr_image.h"
+#include "layerlab/framework/exr_image.h"
 
 namespace layerlab {
 

@@ -1,4 +1,4 @@
-#include "targets/target_renderer.h"
+#include "layerlab/targets/target_renderer.h"
 
 #include <atomic>
 #include <chrono>
@@ -6,8 +6,8 @@
 
 #include <tbb/parallel_for.h>
 
-#include "targets/pixel_sampling.h"
-#include "targets/target_tracer.h"
+#include "layerlab/targets/pixel_sampling.h"
+#include "layerlab/targets/target_tracer.h"
 
 namespace layerlab {
 

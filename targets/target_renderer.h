@@ -10,8 +10,8 @@
 #include <functional>
 #include <limits>
 
-#include "framework/lightfield.h"
-#include "targets/target_scene.h"
+#include "layerlab/framework/lightfield.h"
+#include "layerlab/targets/target_scene.h"
 
 namespace layerlab {
 

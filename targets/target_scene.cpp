@@ -1,4 +1,4 @@
-#include "targets/target_scene.h"
+#include "layerlab/targets/target_scene.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,10 +6,10 @@
 #include <numbers>
 #include <optional>
 
-#include "framework/json_file.h"
-#include "framework/lightfield_io.h"
-#include "systems/compile.h"
-#include "targets/length_or_angle.h"
+#include "layerlab/framework/json_file.h"
+#include "layerlab/framework/lightfield_io.h"
+#include "layerlab/systems/compile.h"
+#include "layerlab/targets/length_or_angle.h"
 
 namespace layerlab {
 namespace {

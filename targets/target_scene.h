@@ -16,10 +16,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "framework/lightfield.h"
-#include "framework/params.h"
-#include "targets/mesh_io.h"
-#include "targets/texture.h"
+#include "layerlab/framework/lightfield.h"
+#include "layerlab/framework/params.h"
+#include "layerlab/targets/mesh_io.h"
+#include "layerlab/targets/texture.h"
 
 namespace layerlab {
 

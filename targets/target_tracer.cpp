@@ -1,4 +1,4 @@
-#include "targets/target_tracer.h"
+#include "layerlab/targets/target_tracer.h"
 
 #include <algorithm>
 #include <cmath>

@@ -11,8 +11,8 @@
 
 #include <vector>
 
-#include "targets/embree_scene.h"
-#include "targets/target_scene.h"
+#include "layerlab/targets/embree_scene.h"
+#include "layerlab/targets/target_scene.h"
 
 namespace layerlab {
 

@@ -1,4 +1,4 @@
-#include "targets/texture.h"
+#include "layerlab/targets/texture.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,11 +6,11 @@
 #include <numbers>
 #include <sstream>
 
-#include "framework/error.h"
-#include "framework/random.h"
-#include "targets/fast_cos.h"
-#include "targets/length_or_angle.h"
-#include "targets/png_image.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/random.h"
+#include "layerlab/targets/fast_cos.h"
+#include "layerlab/targets/length_or_angle.h"
+#include "layerlab/targets/png_image.h"
 
 namespace layerlab {
 namespace {

@@ -33,8 +33,8 @@
 #include <string>
 #include <vector>
 
-#include "framework/exr_image.h"
-#include "framework/params.h"
+#include "layerlab/framework/exr_image.h"
+#include "layerlab/framework/params.h"
 
 namespace layerlab {
 

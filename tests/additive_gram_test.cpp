@@ -2,8 +2,8 @@
 // computed ray by ray (gather through every branch, scatter back).
 #include <random>
 
-#include "solvers/additive_gram.h"
-#include "tests/test_util.h"
+#include "layerlab/solvers/additive_gram.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

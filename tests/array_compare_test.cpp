@@ -3,7 +3,7 @@
 #include <limits>
 #include <vector>
 
-#include "tests/support/array_compare.h"
+#include "layerlab/tests/support/array_compare.h"
 
 namespace layerlab {
 namespace {

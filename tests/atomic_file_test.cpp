@@ -1,5 +1,5 @@
 // AtomicFile: a file is replaced whole or not at all, and nothing of an abandoned write stays behind.
-#include "framework/atomic_file.h"
+#include "layerlab/framework/atomic_file.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>

@@ -2,8 +2,8 @@
 // pointer of the bad value and what was expected. Messages are asserted verbatim.
 #include <functional>
 
-#include "framework/json_file.h"
-#include "tests/test_util.h"
+#include "layerlab/framework/json_file.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

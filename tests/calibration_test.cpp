@@ -6,13 +6,13 @@
 #include <cstdlib>
 #include <numbers>
 
-#include "calibration/calibrated_scene.h"
-#include "calibration/calibration.h"
-#include "calibration/fit_steps.h"
-#include "calibration/scalar_fit.h"
-#include "framework/json_file.h"
-#include "tests/calibration_test_util.h"
-#include "tests/test_util.h"
+#include "layerlab/calibration/calibrated_scene.h"
+#include "layerlab/calibration/calibration.h"
+#include "layerlab/calibration/fit_steps.h"
+#include "layerlab/calibration/scalar_fit.h"
+#include "layerlab/framework/json_file.h"
+#include "layerlab/tests/calibration_test_util.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

@@ -7,12 +7,12 @@
 #include <cmath>
 #include <numbers>
 
-#include "calibration/calibrated_scene.h"
-#include "calibration/calibration.h"
-#include "calibration/marker_model.h"
-#include "framework/atomic_file.h"
-#include "tests/calibration_test_util.h"
-#include "tests/test_util.h"
+#include "layerlab/calibration/calibrated_scene.h"
+#include "layerlab/calibration/calibration.h"
+#include "layerlab/calibration/marker_model.h"
+#include "layerlab/framework/atomic_file.h"
+#include "layerlab/tests/calibration_test_util.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

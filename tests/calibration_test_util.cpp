@@ -1,4 +1,4 @@
-#include "tests/calibration_test_util.h"
+#include "layerlab/tests/calibration_test_util.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,9 +7,9 @@
 
 #include <Eigen/Dense>
 
-#include "framework/json_file.h"
-#include "framework/units.h"
-#include "tests/test_util.h"
+#include "layerlab/framework/json_file.h"
+#include "layerlab/framework/units.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab::testing {
 namespace {}  // namespace

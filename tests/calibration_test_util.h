@@ -12,8 +12,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "calibration/calibration.h"
-#include "calibration/synthetic_measurements.h"
+#include "layerlab/calibration/calibration.h"
+#include "layerlab/calibration/synthetic_measurements.h"
 
 namespace layerlab::testing {
 

@@ -1,4 +1,4 @@
-#include "framework/checked_count.h"
+#include "layerlab/framework/checked_count.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // solvers/chunked_sweep.h: a sweep's sums are the chunked sums added one
 // value at a time, bit for bit, on any thread count; its body runs once
 // per value, before the terms read it.
-#include "solvers/chunked_sweep.h"
+#include "layerlab/solvers/chunked_sweep.h"
 
 #include <gtest/gtest.h>
 #include <omp.h>

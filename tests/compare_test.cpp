@@ -3,11 +3,11 @@
 // retinal objective carries both PSNRs, in the table, the CSVs and the plot.
 #include <cmath>
 
-#include "analysis/compare.h"
-#include "kernels/synthesis.h"
-#include "solvers/objective.h"
-#include "systems/display_model.h"
-#include "tests/test_util.h"
+#include "layerlab/analysis/compare.h"
+#include "layerlab/kernels/synthesis.h"
+#include "layerlab/solvers/objective.h"
+#include "layerlab/systems/display_model.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

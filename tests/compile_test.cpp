@@ -2,9 +2,9 @@
 #include <cmath>
 #include <numbers>
 
-#include "framework/units.h"
-#include "systems/system_report.h"
-#include "tests/test_util.h"
+#include "layerlab/framework/units.h"
+#include "layerlab/systems/system_report.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

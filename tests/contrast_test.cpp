@@ -5,10 +5,10 @@
 #include <complex>
 #include <numbers>
 
-#include "analysis/contrast.h"
-#include "framework/units.h"
-#include "retina/retina.h"
-#include "tests/test_util.h"
+#include "layerlab/analysis/contrast.h"
+#include "layerlab/framework/units.h"
+#include "layerlab/retina/retina.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

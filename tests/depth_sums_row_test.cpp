@@ -2,14 +2,14 @@
 // light by AddBranchLightRow, the sums by JointSumsRow, the error by
 // SquaredErrorRow, bit for bit), against the formulas in double, and its AVX2
 // build against the baseline.
-#include "kernels/depth_sums_row.h"
+#include "layerlab/kernels/depth_sums_row.h"
 
 #include <gtest/gtest.h>
 
 #include <random>
 #include <vector>
 
-#include "tests/row_kernel_testing.h"
+#include "layerlab/tests/row_kernel_testing.h"
 
 namespace layerlab {
 namespace {

@@ -2,7 +2,7 @@
 // test links the version of photo_detection.h such a build has).
 #include <gtest/gtest.h>
 
-#include "calibration/photo_detection.h"
+#include "layerlab/calibration/photo_detection.h"
 
 namespace layerlab {
 namespace {

@@ -5,10 +5,10 @@
 #include <functional>
 #include <numbers>
 
-#include "analysis/fourier.h"
-#include "framework/units.h"
-#include "retina/diffraction.h"
-#include "tests/test_util.h"
+#include "layerlab/analysis/fourier.h"
+#include "layerlab/framework/units.h"
+#include "layerlab/retina/diffraction.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

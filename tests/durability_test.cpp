@@ -15,9 +15,9 @@
 #include <string>
 #include <vector>
 
-#include "framework/atomic_file.h"
-#include "framework/error.h"
-#include "framework/staged_output.h"
+#include "layerlab/framework/atomic_file.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/staged_output.h"
 
 namespace {
 

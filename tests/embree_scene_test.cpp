@@ -4,9 +4,9 @@
 #include <limits>
 #include <vector>
 
-#include "framework/error.h"
-#include "targets/embree_scene.h"
-#include "tests/test_util.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/targets/embree_scene.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

@@ -9,14 +9,14 @@
 #include <string>
 #include <vector>
 
-#include "analysis/run_config.h"
-#include "framework/json_file.h"
-#include "solvers/solve_config.h"
-#include "systems/compile.h"
-#include "systems/display_model.h"
-#include "systems/scene.h"
-#include "targets/target_scene.h"
-#include "tests/test_util.h"
+#include "layerlab/analysis/run_config.h"
+#include "layerlab/framework/json_file.h"
+#include "layerlab/solvers/solve_config.h"
+#include "layerlab/systems/compile.h"
+#include "layerlab/systems/display_model.h"
+#include "layerlab/systems/scene.h"
+#include "layerlab/targets/target_scene.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

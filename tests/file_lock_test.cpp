@@ -1,4 +1,4 @@
-#include "framework/file_lock.h"
+#include "layerlab/framework/file_lock.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "framework/error.h"
+#include "layerlab/framework/error.h"
 
 namespace layerlab {
 namespace {

@@ -1,4 +1,4 @@
-#include "framework/huge_page_allocator.h"
+#include "layerlab/framework/huge_page_allocator.h"
 
 #include <gtest/gtest.h>
 

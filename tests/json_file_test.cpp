@@ -1,6 +1,6 @@
-#include "framework/json_file.h"
-#include "framework/error.h"
-#include "tests/test_util.h"
+#include "layerlab/framework/json_file.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

@@ -11,10 +11,10 @@
 #include <fstream>
 #include <utility>
 
-#include "framework/exr_image.h"
-#include "framework/json_file.h"
-#include "framework/lightfield_io.h"
-#include "tests/test_util.h"
+#include "layerlab/framework/exr_image.h"
+#include "layerlab/framework/json_file.h"
+#include "layerlab/framework/lightfield_io.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

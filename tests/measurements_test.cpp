@@ -11,12 +11,12 @@
 #include <fstream>
 #include <functional>
 
-#include "calibration/calibrated_scene.h"
-#include "calibration/calibration.h"
-#include "framework/atomic_file.h"
-#include "framework/json_file.h"
-#include "tests/calibration_test_util.h"
-#include "tests/test_util.h"
+#include "layerlab/calibration/calibrated_scene.h"
+#include "layerlab/calibration/calibration.h"
+#include "layerlab/framework/atomic_file.h"
+#include "layerlab/framework/json_file.h"
+#include "layerlab/tests/calibration_test_util.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

@@ -1,9 +1,9 @@
 // OBJ and PLY parsing: what the files mean, and every refusal verbatim.
 #include <cstring>
 
-#include "framework/error.h"
-#include "targets/mesh_io.h"
-#include "tests/render_test_util.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/targets/mesh_io.h"
+#include "layerlab/tests/render_test_util.h"
 
 namespace layerlab {
 namespace {

@@ -6,10 +6,10 @@
 #include <filesystem>
 #include <fstream>
 
-#include "framework/error.h"
-#include "framework/lightfield_io.h"
-#include "framework/mpi_ranks.h"
-#include "tests/test_util.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/lightfield_io.h"
+#include "layerlab/framework/mpi_ranks.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

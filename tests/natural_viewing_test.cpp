@@ -3,12 +3,12 @@
 #include <cmath>
 #include <numbers>
 
-#include "framework/units.h"
-#include "retina/lightfield_radiance.h"
-#include "retina/retina.h"
-#include "targets/plane_lightfield.h"
-#include "targets/texture.h"
-#include "tests/test_util.h"
+#include "layerlab/framework/units.h"
+#include "layerlab/retina/lightfield_radiance.h"
+#include "layerlab/retina/retina.h"
+#include "layerlab/targets/plane_lightfield.h"
+#include "layerlab/targets/texture.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

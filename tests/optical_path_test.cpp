@@ -10,8 +10,8 @@
 
 #include <Eigen/Dense>
 
-#include "framework/random.h"
-#include "tests/test_util.h"
+#include "layerlab/framework/random.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

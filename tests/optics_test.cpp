@@ -3,9 +3,9 @@
 #include <cmath>
 #include <numbers>
 
-#include "systems/optics.h"
-#include "systems/ray_transfer.h"
-#include "tests/test_util.h"
+#include "layerlab/systems/optics.h"
+#include "layerlab/systems/ray_transfer.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

@@ -2,9 +2,9 @@
 // files, bare numbers in the option's unit, and errors naming the option.
 #include <gtest/gtest.h>
 
-#include "app/number_list.h"
-#include "framework/error.h"
-#include "tests/test_util.h"
+#include "layerlab/app/number_list.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab::app {
 namespace {

@@ -7,14 +7,14 @@
 #include <cmath>
 #include <cstring>
 
-#include "kernels/one_tap_view.h"
-#include "kernels/pair_lattice.h"
-#include "kernels/solve_workspace.h"
-#include "kernels/synthesis.h"
-#include "solvers/multiplicative_update.h"
-#include "solvers/solver.h"
-#include "tests/support/array_compare.h"
-#include "tests/test_util.h"
+#include "layerlab/kernels/one_tap_view.h"
+#include "layerlab/kernels/pair_lattice.h"
+#include "layerlab/kernels/solve_workspace.h"
+#include "layerlab/kernels/synthesis.h"
+#include "layerlab/solvers/multiplicative_update.h"
+#include "layerlab/solvers/solver.h"
+#include "layerlab/tests/support/array_compare.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

@@ -1,5 +1,5 @@
-#include "framework/params.h"
-#include "tests/test_util.h"
+#include "layerlab/framework/params.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

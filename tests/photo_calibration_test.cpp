@@ -11,14 +11,14 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "calibration/calibration.h"
-#include "calibration/capture_plan.h"
-#include "calibration/photo_detection.h"
-#include "calibration/synthetic_measurements.h"
-#include "calibration/synthetic_photo.h"
-#include "framework/exr_image.h"
-#include "tests/calibration_test_util.h"
-#include "tests/test_util.h"
+#include "layerlab/calibration/calibration.h"
+#include "layerlab/calibration/capture_plan.h"
+#include "layerlab/calibration/photo_detection.h"
+#include "layerlab/calibration/synthetic_measurements.h"
+#include "layerlab/calibration/synthetic_photo.h"
+#include "layerlab/framework/exr_image.h"
+#include "layerlab/tests/calibration_test_util.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

@@ -4,15 +4,15 @@
 #include <cmath>
 #include <numbers>
 
-#include "analysis/fourier.h"
-#include "elements/wavefront.h"
-#include "eye/chromatic_eye.h"
-#include "eye/eye_description.h"
-#include "eye/pupil_size.h"
-#include "framework/units.h"
-#include "retina/lightfield_radiance.h"
-#include "retina/retina.h"
-#include "tests/test_util.h"
+#include "layerlab/analysis/fourier.h"
+#include "layerlab/elements/wavefront.h"
+#include "layerlab/eye/chromatic_eye.h"
+#include "layerlab/eye/eye_description.h"
+#include "layerlab/eye/pupil_size.h"
+#include "layerlab/framework/units.h"
+#include "layerlab/retina/lightfield_radiance.h"
+#include "layerlab/retina/retina.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

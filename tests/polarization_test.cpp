@@ -2,8 +2,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "framework/polarization.h"
-#include "tests/test_util.h"
+#include "layerlab/framework/polarization.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

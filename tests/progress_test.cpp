@@ -1,7 +1,7 @@
 // framework/progress.h: the time left, and what each verbosity lets through.
 #include <gtest/gtest.h>
 
-#include "framework/progress.h"
+#include "layerlab/framework/progress.h"
 
 namespace layerlab {
 namespace {

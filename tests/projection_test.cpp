@@ -6,11 +6,11 @@
 
 #include <Eigen/Sparse>
 
-#include "kernels/one_tap_view.h"
-#include "kernels/synthesis.h"
-#include "systems/display_model.h"
-#include "systems/projection.h"
-#include "tests/test_util.h"
+#include "layerlab/kernels/one_tap_view.h"
+#include "layerlab/kernels/synthesis.h"
+#include "layerlab/systems/display_model.h"
+#include "layerlab/systems/projection.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

@@ -1,6 +1,6 @@
 // A new element type registered from inside a test, and a scene built with it.
-#include "elements/registry.h"
-#include "tests/test_util.h"
+#include "layerlab/elements/registry.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

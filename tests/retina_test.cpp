@@ -6,11 +6,11 @@
 #include <utility>
 #include <vector>
 
-#include "framework/units.h"
-#include "kernels/synthesis.h"
-#include "retina/lightfield_radiance.h"
-#include "retina/retina.h"
-#include "tests/test_util.h"
+#include "layerlab/framework/units.h"
+#include "layerlab/kernels/synthesis.h"
+#include "layerlab/retina/lightfield_radiance.h"
+#include "layerlab/retina/retina.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

@@ -10,18 +10,18 @@
 #include <numbers>
 #include <random>
 
-#include "eye/contrast_sensitivity.h"
-#include "eye/spectral_filter.h"
-#include "framework/units.h"
-#include "kernels/joint_pass.h"
-#include "kernels/synthesis.h"
-#include "retina/lightfield_radiance.h"
-#include "retina/retinal_operator.h"
-#include "solvers/objective.h"
-#include "solvers/retinal_objective.h"
-#include "solvers/retinal_pass.h"
-#include "solvers/solver.h"
-#include "tests/test_util.h"
+#include "layerlab/eye/contrast_sensitivity.h"
+#include "layerlab/eye/spectral_filter.h"
+#include "layerlab/framework/units.h"
+#include "layerlab/kernels/joint_pass.h"
+#include "layerlab/kernels/synthesis.h"
+#include "layerlab/retina/lightfield_radiance.h"
+#include "layerlab/retina/retinal_operator.h"
+#include "layerlab/solvers/objective.h"
+#include "layerlab/solvers/retinal_objective.h"
+#include "layerlab/solvers/retinal_pass.h"
+#include "layerlab/solvers/solver.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

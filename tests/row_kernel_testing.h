@@ -8,8 +8,8 @@
 #include <random>
 #include <vector>
 
-#include "framework/rgb4.h"
-#include "kernels/row_kernels.h"
+#include "layerlab/framework/rgb4.h"
+#include "layerlab/kernels/row_kernels.h"
 
 namespace layerlab {
 

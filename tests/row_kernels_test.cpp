@@ -1,11 +1,11 @@
 // The per-row kernels against plain loops in double, and their AVX2 build
 // against the baseline bit for bit, on rows of every length up to 41 (both
 // parities, shorter than one AVX2 step, and tails of every kind).
-#include "kernels/row_kernels.h"
+#include "layerlab/kernels/row_kernels.h"
 
 #include <gtest/gtest.h>
 
-#include "tests/row_kernel_testing.h"
+#include "layerlab/tests/row_kernel_testing.h"
 
 #include <cmath>
 #include <cstring>

@@ -2,10 +2,10 @@
 // values with units, and bad input refused with its location (verbatim).
 #include <cmath>
 
-#include "analysis/run_config.h"
-#include "solvers/solve_config.h"
-#include "systems/scene.h"
-#include "tests/test_util.h"
+#include "layerlab/analysis/run_config.h"
+#include "layerlab/solvers/solve_config.h"
+#include "layerlab/systems/scene.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

@@ -9,13 +9,13 @@
 #include <map>
 #include <set>
 
-#include "analysis/run_config.h"
-#include "framework/json_file.h"
-#include "solvers/solve_config.h"
-#include "systems/compile.h"
-#include "tests/test_util.h"
-#include "tools/key_tables.h"
-#include "tools/scene_reference.h"
+#include "layerlab/analysis/run_config.h"
+#include "layerlab/framework/json_file.h"
+#include "layerlab/solvers/solve_config.h"
+#include "layerlab/systems/compile.h"
+#include "layerlab/tests/test_util.h"
+#include "layerlab/tools/key_tables.h"
+#include "layerlab/tools/scene_reference.h"
 
 namespace layerlab {
 namespace {

@@ -11,12 +11,12 @@
 
 #include <gtest/gtest.h>
 
-#include "analysis/retina_sweep.h"
-#include "framework/error.h"
-#include "framework/lightfield_checks.h"
-#include "framework/lightfield_io.h"
-#include "retina/retina.h"
-#include "solvers/solution_writer.h"
+#include "layerlab/analysis/retina_sweep.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/lightfield_checks.h"
+#include "layerlab/framework/lightfield_io.h"
+#include "layerlab/retina/retina.h"
+#include "layerlab/solvers/solution_writer.h"
 
 namespace layerlab {
 namespace {

@@ -12,19 +12,19 @@
 #include <fstream>
 #include <string>
 
-#include "framework/lightfield_io.h"
-#include "kernels/joint_pass.h"
-#include "kernels/solve_workspace.h"
-#include "kernels/synthesis.h"
-#include "retina/lightfield_radiance.h"
-#include "retina/retina.h"
-#include "retina/retina_workspace.h"
-#include "solvers/memory_estimate.h"
-#include "solvers/multiplicative_update.h"
-#include "solvers/objective.h"
-#include "solvers/retinal_objective.h"
-#include "solvers/solver.h"
-#include "tests/test_util.h"
+#include "layerlab/framework/lightfield_io.h"
+#include "layerlab/kernels/joint_pass.h"
+#include "layerlab/kernels/solve_workspace.h"
+#include "layerlab/kernels/synthesis.h"
+#include "layerlab/retina/lightfield_radiance.h"
+#include "layerlab/retina/retina.h"
+#include "layerlab/retina/retina_workspace.h"
+#include "layerlab/solvers/memory_estimate.h"
+#include "layerlab/solvers/multiplicative_update.h"
+#include "layerlab/solvers/objective.h"
+#include "layerlab/solvers/retinal_objective.h"
+#include "layerlab/solvers/solver.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

@@ -11,11 +11,11 @@
 #include <limits>
 #include <set>
 
-#include "framework/params.h"
-#include "solvers/solve_config.h"
-#include "solvers/solver_option_table.h"
-#include "systems/compile.h"
-#include "tests/test_util.h"
+#include "layerlab/framework/params.h"
+#include "layerlab/solvers/solve_config.h"
+#include "layerlab/solvers/solver_option_table.h"
+#include "layerlab/systems/compile.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

@@ -5,10 +5,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "kernels/synthesis.h"
-#include "layerlab.h"  // the data-flow header: the phases used here all come through it
-#include "tests/support/near_first_solver.h"
-#include "tests/test_util.h"
+#include "layerlab/kernels/synthesis.h"
+#include "layerlab/layerlab.h"  // the data-flow header: the phases used here all come through it
+#include "layerlab/tests/support/near_first_solver.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

@@ -12,19 +12,19 @@
 #include <optional>
 #include <random>
 
-#include "framework/random.h"
-#include "kernels/joint_pass.h"
-#include "kernels/one_tap_view.h"
-#include "kernels/solve_workspace.h"
-#include "kernels/synthesis.h"
-#include "solvers/hybrid_chase.h"
-#include "solvers/multiplicative_update.h"
-#include "solvers/objective.h"
-#include "solvers/solution_writer.h"
-#include "solvers/solver.h"
-#include "solvers/solver_checkpoint.h"
-#include "tests/support/array_compare.h"
-#include "tests/test_util.h"
+#include "layerlab/framework/random.h"
+#include "layerlab/kernels/joint_pass.h"
+#include "layerlab/kernels/one_tap_view.h"
+#include "layerlab/kernels/solve_workspace.h"
+#include "layerlab/kernels/synthesis.h"
+#include "layerlab/solvers/hybrid_chase.h"
+#include "layerlab/solvers/multiplicative_update.h"
+#include "layerlab/solvers/objective.h"
+#include "layerlab/solvers/solution_writer.h"
+#include "layerlab/solvers/solver.h"
+#include "layerlab/solvers/solver_checkpoint.h"
+#include "layerlab/tests/support/array_compare.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

@@ -1,6 +1,6 @@
 // The sRGB codes by table equal those of the pow expression: at every code
 // step and its neighbours, at the table's own step edges, and at random values.
-#include "framework/srgb_code.h"
+#include "layerlab/framework/srgb_code.h"
 
 #include <gtest/gtest.h>
 

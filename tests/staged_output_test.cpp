@@ -1,4 +1,4 @@
-#include "framework/staged_output.h"
+#include "layerlab/framework/staged_output.h"
 
 #include <gtest/gtest.h>
 #include <sys/stat.h>
@@ -11,9 +11,9 @@
 #include <optional>
 #include <sstream>
 
-#include "framework/atomic_file.h"
-#include "framework/error.h"
-#include "framework/file_lock.h"
+#include "layerlab/framework/atomic_file.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/file_lock.h"
 
 namespace layerlab {
 namespace {

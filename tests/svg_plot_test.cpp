@@ -1,7 +1,7 @@
 // analysis/svg_plot.h: one title per plot, and a marker that cannot be taken for a curve.
 #include <gtest/gtest.h>
 
-#include "analysis/svg_plot.h"
+#include "layerlab/analysis/svg_plot.h"
 
 namespace layerlab {
 namespace {

@@ -9,14 +9,14 @@
 #include <map>
 #include <set>
 
-#include "analysis/sweep_jobs.h"
-#include "framework/error.h"
-#include "framework/json_file.h"
-#include "framework/params.h"
-#include "systems/scene.h"
-#include "systems/scene_document.h"
-#include "tests/test_util.h"
-#include "tools/key_tables.h"
+#include "layerlab/analysis/sweep_jobs.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/json_file.h"
+#include "layerlab/framework/params.h"
+#include "layerlab/systems/scene.h"
+#include "layerlab/systems/scene_document.h"
+#include "layerlab/tests/test_util.h"
+#include "layerlab/tools/key_tables.h"
 
 namespace layerlab {
 namespace {

@@ -8,13 +8,13 @@
 #include <numbers>
 #include <vector>
 
-#include "framework/json_file.h"
-#include "targets/plane_lightfield.h"
-#include "targets/target_renderer.h"
-#include "targets/target_scene.h"
-#include "targets/target_tracer.h"
-#include "tests/render_test_util.h"
-#include "tests/test_util.h"
+#include "layerlab/framework/json_file.h"
+#include "layerlab/targets/plane_lightfield.h"
+#include "layerlab/targets/target_renderer.h"
+#include "layerlab/targets/target_scene.h"
+#include "layerlab/targets/target_tracer.h"
+#include "layerlab/tests/render_test_util.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

@@ -3,10 +3,10 @@
 #include <cmath>
 #include <functional>
 
-#include "framework/json_file.h"
-#include "targets/target_scene.h"
-#include "tests/render_test_util.h"
-#include "tests/test_util.h"
+#include "layerlab/framework/json_file.h"
+#include "layerlab/targets/target_scene.h"
+#include "layerlab/tests/render_test_util.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

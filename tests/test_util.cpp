@@ -1,11 +1,11 @@
-#include "tests/test_util.h"
+#include "layerlab/tests/test_util.h"
 
 #include <cmath>
 #include <numbers>
 #include <random>
 
-#include "framework/json_file.h"
-#include "framework/units.h"
+#include "layerlab/framework/json_file.h"
+#include "layerlab/framework/units.h"
 
 namespace layerlab::testing {
 

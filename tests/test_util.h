@@ -6,10 +6,10 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "framework/error.h"
-#include "framework/lightfield.h"
-#include "systems/compile.h"
-#include "systems/display_model.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/lightfield.h"
+#include "layerlab/systems/compile.h"
+#include "layerlab/systems/display_model.h"
 
 namespace layerlab::testing {
 

@@ -6,14 +6,14 @@
 
 #include <png.h>
 
-#include "framework/error.h"
-#include "framework/exr_image.h"
-#include "framework/units.h"
-#include "targets/fast_cos.h"
-#include "targets/length_or_angle.h"
-#include "targets/texture.h"
-#include "tests/render_test_util.h"
-#include "tests/test_util.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/exr_image.h"
+#include "layerlab/framework/units.h"
+#include "layerlab/targets/fast_cos.h"
+#include "layerlab/targets/length_or_angle.h"
+#include "layerlab/targets/texture.h"
+#include "layerlab/tests/render_test_util.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

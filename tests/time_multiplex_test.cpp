@@ -8,16 +8,16 @@
 #include <cmath>
 #include <map>
 
-#include "framework/random.h"
-#include "kernels/joint_column_pass.h"
-#include "kernels/one_tap_view.h"
-#include "kernels/row_kernels.h"
-#include "kernels/solve_workspace.h"
-#include "kernels/synthesis.h"
-#include "solvers/objective.h"
-#include "solvers/solver.h"
-#include "solvers/solver_checkpoint.h"
-#include "tests/test_util.h"
+#include "layerlab/framework/random.h"
+#include "layerlab/kernels/joint_column_pass.h"
+#include "layerlab/kernels/one_tap_view.h"
+#include "layerlab/kernels/row_kernels.h"
+#include "layerlab/kernels/solve_workspace.h"
+#include "layerlab/kernels/synthesis.h"
+#include "layerlab/solvers/objective.h"
+#include "layerlab/solvers/solver.h"
+#include "layerlab/solvers/solver_checkpoint.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

@@ -1,8 +1,8 @@
 #include <numbers>
 
-#include "framework/error.h"
-#include "framework/units.h"
-#include "tests/test_util.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/units.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

@@ -6,10 +6,10 @@
 #include <cmath>
 #include <numbers>
 
-#include "analysis/contrast.h"
-#include "solvers/objective.h"
-#include "systems/display_model.h"
-#include "tests/test_util.h"
+#include "layerlab/analysis/contrast.h"
+#include "layerlab/solvers/objective.h"
+#include "layerlab/systems/display_model.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

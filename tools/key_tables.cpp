@@ -1,10 +1,10 @@
-#include "tools/key_tables.h"
+#include "layerlab/tools/key_tables.h"
 
 #include <fstream>
 #include <regex>
 
-#include "framework/error.h"
-#include "framework/units.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/units.h"
 
 namespace layerlab {
 namespace {

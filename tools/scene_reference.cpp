@@ -1,10 +1,10 @@
-#include "tools/scene_reference.h"
+#include "layerlab/tools/scene_reference.h"
 
 #include <map>
 
-#include "elements/registry.h"
-#include "framework/error.h"
-#include "solvers/solver_option_table.h"
+#include "layerlab/elements/registry.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/solvers/solver_option_table.h"
 
 namespace layerlab {
 namespace {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "tools/key_tables.h"
+#include "layerlab/tools/key_tables.h"
 
 namespace layerlab {
 

@@ -6,9 +6,9 @@
 #include <sstream>
 #include <string>
 
-#include "framework/atomic_file.h"
-#include "framework/error.h"
-#include "tools/scene_reference.h"
+#include "layerlab/framework/atomic_file.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/tools/scene_reference.h"
 
 int main(int argc, char** argv) {
   const std::string mode = argc == 4 ? argv[2] : "";

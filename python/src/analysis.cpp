@@ -10,16 +10,16 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
-#include "analysis/contrast.h"
-#include "analysis/run_config.h"
-#include "analysis/run_pipeline.h"
-#include "python/src/arguments.h"
-#include "python/src/bindings.h"
-#include "python/src/json_convert.h"
-#include "python/src/numpy_view.h"
-#include "python/src/path_arg.h"
-#include "python/src/result_dicts.h"
-#include "systems/compile.h"
+#include "layerlab/analysis/contrast.h"
+#include "layerlab/analysis/run_config.h"
+#include "layerlab/analysis/run_pipeline.h"
+#include "layerlab/python/src/arguments.h"
+#include "layerlab/python/src/bindings.h"
+#include "layerlab/python/src/json_convert.h"
+#include "layerlab/python/src/numpy_view.h"
+#include "layerlab/python/src/path_arg.h"
+#include "layerlab/python/src/result_dicts.h"
+#include "layerlab/systems/compile.h"
 
 namespace py = pybind11;
 

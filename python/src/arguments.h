@@ -9,8 +9,8 @@
 
 #include <pybind11/pybind11.h>
 
-#include "framework/error.h"
-#include "framework/lightfield_checks.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/lightfield_checks.h"
 
 namespace layerlab::python {
 

@@ -12,16 +12,16 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
-#include "analysis/compare.h"
-#include "analysis/target_source.h"
-#include "framework/error.h"
-#include "framework/lightfield_checks.h"
-#include "python/src/arguments.h"
-#include "python/src/bindings.h"
-#include "python/src/path_arg.h"
-#include "python/src/result_dicts.h"
-#include "python/src/solve_hooks.h"
-#include "python/src/trace_table.h"
+#include "layerlab/analysis/compare.h"
+#include "layerlab/analysis/target_source.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/lightfield_checks.h"
+#include "layerlab/python/src/arguments.h"
+#include "layerlab/python/src/bindings.h"
+#include "layerlab/python/src/path_arg.h"
+#include "layerlab/python/src/result_dicts.h"
+#include "layerlab/python/src/solve_hooks.h"
+#include "layerlab/python/src/trace_table.h"
 
 namespace py = pybind11;
 

@@ -3,8 +3,8 @@
 // python/layerlab/errors.py so that they are plain Python classes.
 #include <exception>
 
-#include "framework/error.h"
-#include "python/src/bindings.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/python/src/bindings.h"
 
 namespace py = pybind11;
 

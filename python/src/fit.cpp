@@ -11,13 +11,13 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
-#include "calibration/calibrated_scene.h"
-#include "calibration/calibration.h"
-#include "framework/error.h"
-#include "python/src/bindings.h"
-#include "python/src/json_convert.h"
-#include "python/src/path_arg.h"
-#include "systems/compile.h"
+#include "layerlab/calibration/calibrated_scene.h"
+#include "layerlab/calibration/calibration.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/python/src/bindings.h"
+#include "layerlab/python/src/json_convert.h"
+#include "layerlab/python/src/path_arg.h"
+#include "layerlab/systems/compile.h"
 
 namespace py = pybind11;
 

@@ -1,6 +1,6 @@
 // fit() in a build without Ceres (LAYERLAB_WITH_CERES=OFF): there, to say why it cannot.
-#include "framework/error.h"
-#include "python/src/bindings.h"
+#include "layerlab/framework/error.h"
+#include "layerlab/python/src/bindings.h"
 
 namespace py = pybind11;
 

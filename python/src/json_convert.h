@@ -13,7 +13,7 @@
 #include <pybind11/pybind11.h>
 #include <nlohmann/json.hpp>
 
-#include "framework/error.h"
+#include "layerlab/framework/error.h"
 
 namespace layerlab::python {
 

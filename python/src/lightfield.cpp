@@ -7,15 +7,15 @@
 
 #include <pybind11/stl.h>
 
-#include "framework/lightfield_io.h"
-#include "python/src/arguments.h"
-#include "python/src/bindings.h"
-#include "python/src/numpy_view.h"
-#include "python/src/path_arg.h"
-#include "systems/display_model.h"
+#include "layerlab/framework/lightfield_io.h"
+#include "layerlab/python/src/arguments.h"
+#include "layerlab/python/src/bindings.h"
+#include "layerlab/python/src/numpy_view.h"
+#include "layerlab/python/src/path_arg.h"
+#include "layerlab/systems/display_model.h"
 #if LAYERLAB_WITH_EMBREE
-#include "targets/target_renderer.h"
-#include "targets/target_scene.h"
+#include "layerlab/targets/target_renderer.h"
+#include "layerlab/targets/target_scene.h"
 #endif
 
 namespace py = pybind11;

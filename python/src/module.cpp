@@ -1,6 +1,6 @@
 // The C++ half of the `layerlab` Python package (python/layerlab/__init__.py
 // imports it); docs/python.md.
-#include "python/src/bindings.h"
+#include "layerlab/python/src/bindings.h"
 
 PYBIND11_MODULE(_layerlab, m) {
   m.doc() = "layerlab: layered light-field displays (C++ core; use the layerlab package)";

@@ -1,11 +1,11 @@
-#include "python/src/result_dicts.h"
+#include "layerlab/python/src/result_dicts.h"
 
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
-#include "python/src/json_convert.h"
-#include "python/src/trace_table.h"
-#include "solvers/solution_writer.h"
+#include "layerlab/python/src/json_convert.h"
+#include "layerlab/python/src/trace_table.h"
+#include "layerlab/solvers/solution_writer.h"
 
 namespace py = pybind11;
 

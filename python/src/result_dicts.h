@@ -7,9 +7,9 @@
 
 #include <pybind11/pybind11.h>
 
-#include "analysis/compare.h"
-#include "analysis/contrast.h"
-#include "solvers/solver.h"
+#include "layerlab/analysis/compare.h"
+#include "layerlab/analysis/contrast.h"
+#include "layerlab/solvers/solver.h"
 
 namespace layerlab::python {
 

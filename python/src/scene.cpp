@@ -7,11 +7,11 @@
 
 #include <pybind11/stl.h>
 
-#include "python/src/bindings.h"
-#include "python/src/json_convert.h"
-#include "python/src/path_arg.h"
-#include "systems/compile.h"
-#include "systems/scene.h"
+#include "layerlab/python/src/bindings.h"
+#include "layerlab/python/src/json_convert.h"
+#include "layerlab/python/src/path_arg.h"
+#include "layerlab/systems/compile.h"
+#include "layerlab/systems/scene.h"
 
 namespace py = pybind11;
 

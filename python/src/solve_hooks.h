@@ -11,7 +11,7 @@
 
 #include <pybind11/pybind11.h>
 
-#include "solvers/solver.h"
+#include "layerlab/solvers/solver.h"
 
 namespace layerlab::python {
 

@@ -8,7 +8,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
-#include "solvers/solver.h"
+#include "layerlab/solvers/solver.h"
 
 namespace layerlab::python {
 

@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <exception>
 
-#include "framework/exr_image.h"
+#include "layerlab/framework/exr_image.h"
 
 int main(int argc, char** argv) {
   if (argc != 3) {

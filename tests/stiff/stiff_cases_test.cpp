@@ -4,9 +4,9 @@
 #include <cmath>
 #include <functional>
 
-#include "solvers/solver.h"
-#include "tests/support/near_first_solver.h"
-#include "tests/test_util.h"
+#include "layerlab/solvers/solver.h"
+#include "layerlab/tests/support/near_first_solver.h"
+#include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {

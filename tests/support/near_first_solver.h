@@ -10,9 +10,9 @@
 #include <memory>
 #include <string>
 
-#include "solvers/multiplicative_update.h"
-#include "solvers/solve_loop.h"
-#include "solvers/solver.h"
+#include "layerlab/solvers/multiplicative_update.h"
+#include "layerlab/solvers/solve_loop.h"
+#include "layerlab/solvers/solver.h"
 
 namespace layerlab::testing {
 
