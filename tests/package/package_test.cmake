@@ -1,6 +1,6 @@
 # ctest package.*: the installed tree on its own, run as
 #   cmake -DSTEP=install|consumer|version -DBUILD_DIR=... -DSOURCE_DIR=... -DWORK=... -P package_test.cmake
-# install: `cmake --install` into WORK/prefix (fresh).
+# install: `cmake --install` into WORK/prefix (fresh); the public headers only.
 # consumer: examples/cpp_consumer configured, built (with every installed header
 #   in one file) and run on the reduced paper prototype against WORK/prefix;
 #   the installed command runs; no installed file names the source or build tree.
@@ -31,11 +31,18 @@ endif()
 if(STEP STREQUAL "install")
   file(REMOVE_RECURSE ${WORK})
   must(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
-  foreach(f include/layerlab/layerlab.h include/layerlab/framework/error.h include/layerlab/elements/builtin_elements.def
-            bin/layerlab lib/cmake/layerlab/layerlabConfig.cmake lib/cmake/layerlab/layerlabConfigVersion.cmake
+  foreach(f include/layerlab/layerlab.h include/layerlab/framework/error.h include/layerlab/systems/compile.h
+            include/layerlab/calibration/calibration.h bin/layerlab lib/cmake/layerlab/layerlabConfig.cmake lib/cmake/layerlab/layerlabConfigVersion.cmake
             lib/cmake/layerlab/layerlabTargets.cmake)
     if(NOT EXISTS ${prefix}/${f})
       message(FATAL_ERROR "not installed: ${prefix}/${f}")
+    endif()
+  endforeach()
+  # Only the public headers (cmake/public_headers.txt): a source's own header stays home.
+  foreach(f include/layerlab/elements/builtin_elements.def include/layerlab/kernels/joint_pass.h
+            include/layerlab/solvers/solver_option_table.h)
+    if(EXISTS ${prefix}/${f})
+      message(FATAL_ERROR "installed, but not a public header: ${prefix}/${f}")
     endif()
   endforeach()
 elseif(STEP STREQUAL "consumer")
