@@ -63,11 +63,13 @@ void ReadCompared(SceneFiles& files, RunInputs* in) {
   }
 }
 
-// The target's geometry for the memory estimate; a target scene read here is rendered from later.
-void ReadTargetGeometry(RunInputs* in) {
+// The target's geometry for the memory estimate; a target scene read here is
+// rendered from later (its light field's "display" among the run's scene files).
+void ReadTargetGeometry(SceneFiles& files, RunInputs* in) {
 #if LAYERLAB_WITH_EMBREE
   if (in->solve.target.empty() && !in->solve.target_scene.empty()) {
-    in->target_scene = std::make_unique<TargetScene>(LoadTarget(in->solve.target_scene));
+    const SceneReader read_scene = [&files](const std::string& path) -> const Scene& { return files.Read(path); };
+    in->target_scene = std::make_unique<TargetScene>(LoadTarget(in->solve.target_scene, read_scene));
     in->target_geometry = in->target_scene->geometry;
     return;
   }
@@ -98,7 +100,7 @@ RunInputs ReadRunInputs(const RunRequest& request) {
     for (const std::string& other : in.run.contrast.scenes)
       in.contrast.push_back(ContrastDisplayOf(files.Read(other), other));
   }
-  if (in.has_target()) ReadTargetGeometry(&in);
+  if (in.has_target()) ReadTargetGeometry(files, &in);
   return in;
 }
 

@@ -2,11 +2,13 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <vector>
 
 #include "layerlab/framework/atomic_file.h"
 #include "layerlab/framework/content_digest.h"
 #include "layerlab/framework/error.h"
+#include "layerlab/framework/file_read_observer.h"
 #include "layerlab/framework/json_file.h"
 #include "layerlab/framework/lightfield_io.h"
 
@@ -15,10 +17,15 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The file's size, then its bytes: two files cannot run into each other.
-void AddFile(ContentDigest& digest, const std::string& path) {
+// The file's size, then its bytes' digest: two files cannot run into each other.
+void AddBytes(ContentDigest& digest, const FileBytes& bytes) {
+  digest.add(&bytes.size, sizeof bytes.size).add(&bytes.digest, sizeof bytes.digest);
+}
+
+FileBytes BytesOfFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path + ": cannot open for reading (to key the target's render)");
+  AnnounceFileRead(path);
   std::vector<char> buffer(1 << 16);
   ContentDigest bytes;
   uint64_t size = 0;
@@ -26,8 +33,7 @@ void AddFile(ContentDigest& digest, const std::string& path) {
     bytes.add(buffer.data(), static_cast<size_t>(in.gcount()));
     size += static_cast<uint64_t>(in.gcount());
   }
-  const uint64_t value = bytes.value();
-  digest.add(&size, sizeof size).add(&value, sizeof value);
+  return {size, bytes.value()};
 }
 
 // Every file under `from`, hard-linked (or copied) to the same place under `to`.
@@ -56,8 +62,17 @@ std::string TargetSceneDigest(const TargetScene& scene) {
   const int version = kTargetRenderVersion;
   digest.add(&version, sizeof version);
   AddGeometry(digest, scene.geometry);
-  AddFile(digest, scene.file);
-  for (const std::string& file : scene.files_read) AddFile(digest, file);
+  if (scene.file_bytes)
+    AddBytes(digest, *scene.file_bytes);
+  else
+    AddBytes(digest, BytesOfFile(scene.file));
+  // A file the scene names twice (one mesh placed twice) is read once and added twice.
+  std::map<std::string, FileBytes> read;
+  for (const std::string& file : scene.files_read) {
+    auto [at, first] = read.try_emplace(file);
+    if (first) at->second = BytesOfFile(file);
+    AddBytes(digest, at->second);
+  }
   return digest.hex();
 }
 

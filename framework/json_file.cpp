@@ -6,8 +6,10 @@
 #include <sstream>
 #include <vector>
 
+#include "layerlab/framework/content_digest.h"
 #include "layerlab/framework/error.h"
 #include "layerlab/framework/file_kind.h"
+#include "layerlab/framework/file_read_observer.h"
 
 namespace layerlab {
 namespace {
@@ -115,7 +117,7 @@ json ParseJson(const std::string& text, const std::string& file, const JsonLimit
   }
 }
 
-json ReadJsonFile(const std::string& path, const JsonLimits& limits) {
+json ReadJsonFile(const std::string& path, const JsonLimits& limits, FileBytes* bytes) {
   std::error_code ec;
   auto size = std::filesystem::file_size(path, ec);
   if (ec) {
@@ -129,9 +131,12 @@ json ReadJsonFile(const std::string& path, const JsonLimits& limits) {
                 "file is " + std::to_string(size) + " bytes; the limit is " + std::to_string(limits.max_bytes));
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path + ": cannot open for reading");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return ParseJson(text.str(), path, limits);
+  AnnounceFileRead(path);
+  std::ostringstream read;
+  read << in.rdbuf();
+  const std::string text = read.str();
+  if (bytes) *bytes = {text.size(), ContentDigest().add(text).value()};
+  return ParseJson(text, path, limits);
 }
 
 std::string JsonKindName(const json& value) {

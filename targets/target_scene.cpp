@@ -58,7 +58,7 @@ double DepthOrLength(Params& p, const std::string& key) {
   return p.quantity(key, Dimension::kLength);
 }
 
-LightFieldGeometry ParseLightField(Params& lf, const std::string& base_dir) {
+LightFieldGeometry ParseLightField(Params& lf, const std::string& base_dir, const SceneReader& read_scene) {
   LightFieldGeometry g;
   g.origin_z = RequiredDepth(lf, "origin_plane");
 
@@ -77,7 +77,7 @@ LightFieldGeometry ParseLightField(Params& lf, const std::string& base_dir) {
     std::string display = lf.string("display");
     std::string path = (std::filesystem::path(base_dir) / display).string();
     if (!std::filesystem::exists(path)) lf.fail("display", "no such scene file: " + path);
-    DisplaySystem system = Compile(LoadScene(path));
+    DisplaySystem system = read_scene ? Compile(read_scene(path)) : Compile(LoadScene(path));
     for (const char* key : {"views", "eyebox"})
       if (lf.has(key))
         lf.fail(key, std::string("comes from the display (\"display\": \"") + display + "\"); remove it here");
@@ -243,7 +243,7 @@ std::array<double, 2> CoveringSize(const LightFieldGeometry& g, double z, std::a
   return {2 * half_w * margin, 2 * half_h * margin};
 }
 
-TargetScene ParseTarget(const json& document, const std::string& file) {
+TargetScene ParseTarget(const json& document, const std::string& file, const SceneReader& read_scene) {
   Params p(document, {file, ""});
   const std::string base_dir = std::filesystem::path(file).parent_path().string();
   TargetScene target;
@@ -254,7 +254,7 @@ TargetScene ParseTarget(const json& document, const std::string& file) {
   std::string description = p.string("description", "");
 
   Params lf = p.object("light_field");
-  target.geometry = ParseLightField(lf, base_dir);
+  target.geometry = ParseLightField(lf, base_dir, read_scene);
   target.samples_per_pixel = static_cast<int>(p.integer("samples_per_pixel", 1, 1024, 4));
   target.seed = static_cast<uint64_t>(p.integer("seed", 0, INT64_MAX, 1));
   target.background = p.fraction_rgb("background", 0.0);
@@ -287,6 +287,11 @@ TargetScene ParseTarget(const json& document, const std::string& file) {
   return target;
 }
 
-TargetScene LoadTarget(const std::string& path) { return ParseTarget(ReadJsonFile(path), path); }
+TargetScene LoadTarget(const std::string& path, const SceneReader& read_scene) {
+  FileBytes bytes;
+  TargetScene target = ParseTarget(ReadJsonFile(path, {}, &bytes), path, read_scene);
+  target.file_bytes = bytes;
+  return target;
+}
 
 }  // namespace layerlab

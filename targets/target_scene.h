@@ -10,18 +10,23 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "layerlab/framework/json_file.h"
 #include "layerlab/framework/lightfield.h"
 #include "layerlab/framework/params.h"
 #include "layerlab/targets/mesh_io.h"
 #include "layerlab/targets/texture.h"
 
 namespace layerlab {
+
+struct Scene;  // systems/scene.h
 
 inline constexpr const char* kTargetFormat = "layerlab-target/1";
 
@@ -60,12 +65,18 @@ struct TargetScene {
   // Every file the scene reads besides itself (meshes, images), as resolved;
   // the display named by "display" is not listed: its part is `geometry`.
   std::vector<std::string> files_read;
+  // The bytes of `file` that were parsed (LoadTarget), which key its render.
+  std::optional<FileBytes> file_bytes;
 };
+
+// How a target finds the display scene its light field names ("display"):
+// LoadScene when empty; a run passes the scene files it has read already.
+using SceneReader = std::function<const Scene&(const std::string& path)>;
 
 // `file` names the document in messages; relative paths inside it resolve
 // against the file's folder.
-TargetScene ParseTarget(const nlohmann::json& document, const std::string& file);
-TargetScene LoadTarget(const std::string& path);
+TargetScene ParseTarget(const nlohmann::json& document, const std::string& file, const SceneReader& read_scene = {});
+TargetScene LoadTarget(const std::string& path, const SceneReader& read_scene = {});
 
 // The smallest rectangle, centered on `center`, that every ray of `g` crosses
 // at depth z inside of (with a small margin): the default size of a plane.
