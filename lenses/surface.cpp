@@ -1,6 +1,5 @@
 #include "layerlab/lenses/surface.h"
 
-#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -178,20 +177,6 @@ SurfaceHit Surface::HitAt(const Eigen::Vector3d& origin, const Eigen::Vector3d& 
   return hit;
 }
 
-// True when the ray enters the z band that zone `zone`'s face spans (from 0
-// to the face's depth at the zone's outer edge) inside that zone: otherwise
-// it reaches the face from the side, through a groove wall.
-bool Surface::EntersBandInZone(const Eigen::Vector3d& origin, const Eigen::Vector3d& d, long zone) const {
-  const double pitch = shape_.fresnel_pitch_m;
-  const double inner = static_cast<double>(zone) * pitch;
-  const double depth = UnderlyingSag(inner + pitch) - UnderlyingSag(inner);
-  const double entry_z = d.z() > 0 ? std::min(0.0, depth) : std::max(0.0, depth);
-  const double t = (entry_z - origin.z()) / d.z();
-  if (t <= 0) return true;  // the ray starts inside the band
-  const Eigen::Vector3d p = origin + t * d;
-  return static_cast<long>(std::floor(std::hypot(p.x(), p.y()) / pitch)) == zone;
-}
-
 // Zone by zone: the face of zone j is the underlying profile lowered by its
 // sag at r = j p. Start in the zone where the ray crosses the substrate plane;
 // move to the zone the hit lands in until it lands in the zone whose face was
@@ -209,10 +194,7 @@ SurfaceHit Surface::IntersectFresnel(const Eigen::Vector3d& origin, const Eigen:
     if (hit.status == HitStatus::kMissed) break;  // it leaves the zone sideways, through a wall
     if (hit.status != HitStatus::kHit) return hit;
     const long hit_zone = static_cast<long>(std::floor(std::hypot(hit.point.x(), hit.point.y()) / pitch));
-    if (hit_zone == zone) {
-      if (!EntersBandInZone(origin, d, zone)) break;
-      return hit;
-    }
+    if (hit_zone == zone) return hit;
     if (hit_zone == previous_zone) break;
     previous_zone = zone;
     zone = hit_zone;

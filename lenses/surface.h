@@ -8,9 +8,11 @@
 // substrate in annular zones r in [j p, (j + 1) p): the surface there is
 // z(r) - z(j p), so every zone starts at z = 0 and keeps the slope, and so
 // the normal, of the underlying profile. The groove walls (the steps at
-// r = j p) are not modelled: a ray that would reach a zone's face from the
-// side, through a wall, is reported (HitStatus::kGrooveWall), never bent. The
-// check assumes each face's depth grows monotonically across its zone.
+// r = j p) are not modelled: the hit is sought zone by zone (the face of the
+// zone where the ray crosses the substrate plane, then of the zone that hit
+// lands in, ...); a ray whose search does not settle on a face inside its own
+// zone would reach it through a wall and is reported (HitStatus::kGrooveWall),
+// never bent. The search assumes faces whose depth changes monotonically.
 //
 // Intersections are exact in double: analytic for the conic, Newton's method
 // from the conic (or vertex-plane) point for an asphere, converged to 1e-15
@@ -86,7 +88,6 @@ class Surface {
   SurfaceHit HitAt(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double t) const;
   SurfaceHit IntersectFresnel(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction) const;
   double ZoneStartSag(double r) const;
-  bool EntersBandInZone(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, long zone) const;
 
   SurfaceShape shape_;
 };

@@ -125,6 +125,7 @@ TEST(LensSurface, FresnelHitsAreOnTheFoldedSagWithTheUnderlyingNormal) {
     const double r = h * kMm;
     const double zone_start = std::floor(r / pitch) * pitch;
     EXPECT_NEAR(hit.point.z(), c / 2 * (r * r - zone_start * zone_start), 1e-17) << h;
+    EXPECT_NEAR(fresnel.Sag(r), c / 2 * (r * r - zone_start * zone_start), 1e-17) << h;
     EXPECT_LE(hit.point.z(), 0);
     const double groove_depth = c / 2 * ((zone_start + pitch) * (zone_start + pitch) - zone_start * zone_start);
     EXPECT_GE(hit.point.z(), groove_depth);
