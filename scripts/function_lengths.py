@@ -21,7 +21,7 @@ import os
 import re
 import sys
 
-PRODUCT_FOLDERS = ["framework", "elements", "eye", "systems", "retina", "targets", "calibration", "solvers",
+PRODUCT_FOLDERS = ["framework", "lenses", "elements", "eye", "systems", "retina", "targets", "calibration", "solvers",
                    "analysis", "app", "tools", "python/src"]
 EXTENSIONS = (".h", ".cpp", ".inc")
 SCOPE_KEYWORDS = re.compile(r"\b(namespace|class|struct|union|enum)\b")
