@@ -53,10 +53,10 @@ bool SameEye(const EyeModel& a, const EyeModel& b) {
 bool IsNatural(const ContrastCurve& c) { return c.display.rfind("natural", 0) == 0; }
 
 bool SameGeometry(const LightFieldGeometry& a, const LightFieldGeometry& b) {
-  return a.origin_z == b.origin_z && a.window_left == b.window_left && a.window_top == b.window_top &&
-         a.window_width == b.window_width && a.window_height == b.window_height && a.cols == b.cols &&
-         a.rows == b.rows && a.views_x == b.views_x && a.views_y == b.views_y && a.eyebox_width == b.eyebox_width &&
-         a.eyebox_height == b.eyebox_height;
+  return a.origin_z_m == b.origin_z_m && a.window_left_m == b.window_left_m && a.window_top_m == b.window_top_m &&
+         a.window_width_m == b.window_width_m && a.window_height_m == b.window_height_m && a.cols == b.cols &&
+         a.rows == b.rows && a.views_x == b.views_x && a.views_y == b.views_y && a.eyebox_width_m == b.eyebox_width_m &&
+         a.eyebox_height_m == b.eyebox_height_m;
 }
 
 double Interpolate(const std::vector<double>& x, const std::vector<double>& y, double at) {
@@ -72,10 +72,10 @@ double Interpolate(const std::vector<double>& x, const std::vector<double>& y, d
 // the axis (the grating is vertical).
 LightFieldGeometry StripGeometry(const DisplaySystem& system, double dt, int rows) {
   LightFieldGeometry g = DisplayLightFieldGeometry(system, dt);
-  double row_height = g.window_height / g.rows;
+  double row_height = g.window_height_m / g.rows;
   g.rows = std::min(g.rows, rows);
-  g.window_height = g.rows * row_height;
-  g.window_top = g.window_height / 2;
+  g.window_height_m = g.rows * row_height;
+  g.window_top_m = g.window_height_m / 2;
   return g;
 }
 
@@ -279,7 +279,7 @@ class ContrastRun {
     const EyeModel& eye = d.system.eye;
     std::vector<DrawnNatural>& drawn = drawn_[target_index];
     auto start = std::chrono::steady_clock::now();
-    LightField target = RenderPlaneLightField(g, g.origin_z, texture);  // the plane is the origin plane
+    LightField target = RenderPlaneLightField(g, g.origin_z_m, texture);  // the plane is the origin plane
     RetinalImage natural = NaturalImage(LightFieldRadiance(target, d.sampling), eye, pupils_[di]);
     const double reference = ReferenceAmplitude(eye, natural, dt, f, label);
     bool seen = std::any_of(drawn.begin(), drawn.end(), [&](const DrawnNatural& k) {
@@ -331,7 +331,7 @@ class ContrastRun {
     const ContrastDisplay& d = displays_[s->display];
     ContrastCurve& curve = of_target_[s->target][s->index];
     const LightFieldGeometry& g = s->model->geometry();
-    LightField target = RenderPlaneLightField(g, g.origin_z, *s->texture);
+    LightField target = RenderPlaneLightField(g, g.origin_z_m, *s->texture);
     SolverOptions options = d.options_given ? d.options : SolverRegistry::Builtins().find(curve.solver)->defaults;
     options.retinal.target = RetinalTarget::kLightField;  // the grating's light field is its scene, exactly
     auto start = std::chrono::steady_clock::now();

@@ -23,18 +23,18 @@ namespace {
 
 // One retinal sample per light-field pixel over the light field's window, as seen from the eyebox center.
 RetinaGrid GridOf(const LightFieldGeometry& g, double resolution) {
-  const double pixel = std::atan(g.window_width / g.cols / g.origin_z);
+  const double pixel = std::atan(g.window_width_m / g.cols / g.origin_z_m);
   RetinaGrid grid;
   grid.resolution = resolution > 0 ? resolution : pixel;
-  const double field_x = 2 * std::atan(g.window_width / 2 / g.origin_z);
-  const double field_y = 2 * std::atan(g.window_height / 2 / g.origin_z);
+  const double field_x = 2 * std::atan(g.window_width_m / 2 / g.origin_z_m);
+  const double field_y = 2 * std::atan(g.window_height_m / 2 / g.origin_z_m);
   if (resolution > 0) {
     grid = MakeRetinaGrid(field_x, field_y, resolution);
   } else {
     grid.cols = g.cols, grid.rows = g.rows;
   }
-  grid.center_x = std::atan((g.window_left + g.window_width / 2) / g.origin_z);
-  grid.center_y = std::atan((g.window_top - g.window_height / 2) / g.origin_z);
+  grid.center_x = std::atan((g.window_left_m + g.window_width_m / 2) / g.origin_z_m);
+  grid.center_y = std::atan((g.window_top_m - g.window_height_m / 2) / g.origin_z_m);
   return grid;
 }
 

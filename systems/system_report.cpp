@@ -253,10 +253,11 @@ std::string FormatCoverage(const DisplayModel& model, const std::vector<LayerCov
   const LightFieldGeometry& g = model.geometry();
   std::string out = "\nlight field\n";
   out += Row("  %d x %d views over %s x %s mm, %d x %d pixels each, origin plane %s D (%s m): %s M rays", g.views_x,
-             g.views_y, F(g.eyebox_width * 1e3, 2).c_str(), F(g.eyebox_height * 1e3, 2).c_str(), g.cols, g.rows,
-             F(1 / g.origin_z, 3).c_str(), F(g.origin_z, 4).c_str(), F(g.ray_count() / 1e6, 2).c_str());
-  out += Row("  window on the origin plane %s x %s mm, top left (%s, %s) mm", F(g.window_width * 1e3, 2).c_str(),
-             F(g.window_height * 1e3, 2).c_str(), F(g.window_left * 1e3, 2).c_str(), F(g.window_top * 1e3, 2).c_str());
+             g.views_y, F(g.eyebox_width_m * 1e3, 2).c_str(), F(g.eyebox_height_m * 1e3, 2).c_str(), g.cols, g.rows,
+             F(1 / g.origin_z_m, 3).c_str(), F(g.origin_z_m, 4).c_str(), F(g.ray_count() / 1e6, 2).c_str());
+  out += Row("  window on the origin plane %s x %s mm, top left (%s, %s) mm", F(g.window_width_m * 1e3, 2).c_str(),
+             F(g.window_height_m * 1e3, 2).c_str(), F(g.window_left_m * 1e3, 2).c_str(),
+             F(g.window_top_m * 1e3, 2).c_str());
   out += "\nlayer pixels some ray reads (solvers touch only these)\n";
   out += Row("%-3s %-12s %10s %10s %8s", "#", "panel", "reached", "pixels", "share");
   for (size_t k = 0; k < coverage.size(); ++k)
@@ -268,14 +269,16 @@ std::string FormatCoverage(const DisplayModel& model, const std::vector<LayerCov
 nlohmann::json CoverageToJson(const DisplayModel& model, const std::vector<LayerCoverage>& coverage) {
   const LightFieldGeometry& g = model.geometry();
   nlohmann::json j;
-  j["light_field"] = {
-      {"origin_plane_z_m", g.origin_z},
-      {"window_m",
-       {{"left", g.window_left}, {"top", g.window_top}, {"width", g.window_width}, {"height", g.window_height}}},
-      {"pixels", {g.cols, g.rows}},
-      {"views", {g.views_x, g.views_y}},
-      {"eyebox_m", {g.eyebox_width, g.eyebox_height}},
-      {"rays", g.ray_count()}};
+  j["light_field"] = {{"origin_plane_z_m", g.origin_z_m},
+                      {"window_m",
+                       {{"left", g.window_left_m},
+                        {"top", g.window_top_m},
+                        {"width", g.window_width_m},
+                        {"height", g.window_height_m}}},
+                      {"pixels", {g.cols, g.rows}},
+                      {"views", {g.views_x, g.views_y}},
+                      {"eyebox_m", {g.eyebox_width_m, g.eyebox_height_m}},
+                      {"rays", g.ray_count()}};
   for (const LayerCoverage& c : coverage)
     j["layer_coverage"].push_back({{"name", c.name}, {"reached_pixels", c.reached}, {"pixels", c.total}});
   return j;

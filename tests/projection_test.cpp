@@ -19,17 +19,17 @@ using testing::Close;
 
 LightFieldGeometry SmallGeometry() {
   LightFieldGeometry g;
-  g.origin_z = 0.77;
-  g.window_left = -0.2113;
-  g.window_top = 0.1071;
-  g.window_width = 0.4137;
-  g.window_height = 0.2219;
+  g.origin_z_m = 0.77;
+  g.window_left_m = -0.2113;
+  g.window_top_m = 0.1071;
+  g.window_width_m = 0.4137;
+  g.window_height_m = 0.2219;
   g.cols = 23;
   g.rows = 17;
   g.views_x = 3;
   g.views_y = 2;
-  g.eyebox_width = 0.006;
-  g.eyebox_height = 0.005;
+  g.eyebox_width_m = 0.006;
+  g.eyebox_height_m = 0.005;
   return g;
 }
 
@@ -89,8 +89,8 @@ Eigen::SparseMatrix<double, Eigen::RowMajor> ExplicitMatrix(const VirtualLayer& 
       for (int i = 0; i < g.rows; ++i)
         for (int j = 0; j < g.cols; ++j) {
           double vx = g.view_x(vc), vy = g.view_y(vr), xx = g.pixel_x(j), xy = g.pixel_y(i);
-          double px = vx + (xx - vx) * z / g.origin_z - l.eye_from_layer_tan_x * z;
-          double py = vy + (xy - vy) * z / g.origin_z - l.eye_from_layer_tan_y * z;
+          double px = vx + (xx - vx) * z / g.origin_z_m - l.eye_from_layer_tan_x * z;
+          double py = vy + (xy - vy) * z / g.origin_z_m - l.eye_from_layer_tan_y * z;
           double a = std::cos(l.rotation) * px + std::sin(l.rotation) * py;
           double b = -std::sin(l.rotation) * px + std::cos(l.rotation) * py;
           auto cols = AxisTaps(a / l.pitch_x + l.cols / 2.0, l.cols, l.flip_x, s);
@@ -170,8 +170,8 @@ INSTANTIATE_TEST_SUITE_P(Layers, ProjectionTest,
 TEST(Projection, ResampledRowsHoldEveryPixelARunReads) {
   LightFieldGeometry g = SmallGeometry();
   g.rows = 3;
-  g.window_height = g.window_height * 3 / 17;
-  g.window_top = g.window_height / 2;
+  g.window_height_m = g.window_height_m * 3 / 17;
+  g.window_top_m = g.window_height_m / 2;
   g.views_y = 3;
   VirtualLayer layer = MakeLayer({"near", 2.1, 0, false, false, 0.0013, -0.0007});
   LayerProjection P(layer, g, Sampling::kNearest);
@@ -210,7 +210,7 @@ TEST(Projection, ResampledRowsHoldEveryPixelARunReads) {
 
 TEST(Projection, OriginPlaneLayerHasNoParallax) {
   LightFieldGeometry g = SmallGeometry();
-  VirtualLayer layer = MakeLayer({"origin", 1 / g.origin_z});
+  VirtualLayer layer = MakeLayer({"origin", 1 / g.origin_z_m});
   LayerProjection P(layer, g, Sampling::kNearest);
   for (int i = 0; i < g.rows; ++i)
     for (int j = 0; j < g.cols; ++j) {
@@ -242,7 +242,7 @@ TEST(Projection, LayerAtInfinityIsFinite) {
   // At infinity a ray's tan-angle is its direction (x - v) / z_lf alone.
   int i = 5, j = 11;
   size_t view = g.view_index(1, 2);
-  double ux = (g.pixel_x(j) - g.view_x(2)) / g.origin_z, uy = (g.pixel_y(i) - g.view_y(1)) / g.origin_z;
+  double ux = (g.pixel_x(j) - g.view_x(2)) / g.origin_z_m, uy = (g.pixel_y(i) - g.view_y(1)) / g.origin_z_m;
   int col = int(std::floor(ux / layer.tan_pitch_x + layer.cols / 2.0));
   int row = int(std::floor(layer.rows / 2.0 - uy / layer.tan_pitch_y));
   RayTaps taps = P.Taps(view, i, j);
@@ -294,13 +294,13 @@ TEST(Synthesis, PaperGeometryMatchesTheDiceManifest) {
   DisplaySystem system = testing::CompileJson(testing::ReadExample("paper_prototype.json"));
   LightFieldGeometry g = DisplayLightFieldGeometry(system);
   // lightfield-format.md: origin plane 1.3 D, window 0.49248 x 0.24624 m, 400 x 200, 13 x 13 views.
-  EXPECT_TRUE(Close(g.origin_z, 1 / 1.3, 1e-12));
-  EXPECT_TRUE(Close(g.window_width, 0.49248, 1e-4));
-  EXPECT_TRUE(Close(g.window_height, 0.24624, 1e-4));
+  EXPECT_TRUE(Close(g.origin_z_m, 1 / 1.3, 1e-12));
+  EXPECT_TRUE(Close(g.window_width_m, 0.49248, 1e-4));
+  EXPECT_TRUE(Close(g.window_height_m, 0.24624, 1e-4));
   EXPECT_EQ(g.cols, 400);
   EXPECT_EQ(g.rows, 200);
   EXPECT_EQ(g.views_x, 13);
-  EXPECT_TRUE(Close(g.eyebox_width, 0.006, 1e-12));
+  EXPECT_TRUE(Close(g.eyebox_width_m, 0.006, 1e-12));
 }
 
 }  // namespace

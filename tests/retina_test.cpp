@@ -234,7 +234,7 @@ TEST(Retina, OneLayerDisplayEqualsNaturalViewingOfItsLightFieldOnARandomPattern)
   inner.center_x = retina.center_x, inner.center_y = retina.center_y;
   std::vector<PupilPoint> pupil = PupilSamples(d.system.eye);
   const LightFieldGeometry g = d.model->geometry();
-  ASSERT_TRUE(Close(g.origin_z, d.system.layers[0].depth, 1e-12));
+  ASSERT_TRUE(Close(g.origin_z_m, d.system.layers[0].depth, 1e-12));
   DisplayModel bilinear(d.system, g, Sampling::kBilinear);
   const LightField nearest_lf = Synthesize(*d.model, d.t), bilinear_lf = Synthesize(bilinear, d.t);
   auto rms = [](const Image& a, const Image& b) {

@@ -571,12 +571,12 @@ TEST(Solvers, OneTapFastPathMatchesTheGeneralPath) {
 TEST(Solvers, StripSumsAreTheGeneralPathsWhateverTheWorkspaceHeld) {
   const DisplaySystem system = CompileJson(ShrunkExample("paper_prototype.json", 29, 14, 3));
   LightFieldGeometry g = DisplayLightFieldGeometry(system);
-  const double row_height = g.window_height / g.rows;
+  const double row_height = g.window_height_m / g.rows;
   g.rows = 3;
-  g.window_height = g.rows * row_height;
+  g.window_height_m = g.rows * row_height;
   // Off the centre by a part of a row, so that no ray falls on a pixel edge
   // (there nearest sampling ties, and the general path's rotation by 1e-12 breaks the tie).
-  g.window_top = g.window_height / 2 + 0.37 * row_height;
+  g.window_top_m = g.window_height_m / 2 + 0.37 * row_height;
   DisplaySystem rotated = system;
   for (VirtualLayer& layer : rotated.layers) layer.rotation = 1e-12;
   const DisplayModel fast(system, g), general(rotated, g);
@@ -675,7 +675,7 @@ TEST(Solvers, PixelsNoRayReachesKeepTheirInitialValue) {
     SCOPED_TRACE(solver);
     const DisplaySystem system = CompileJson(ShrunkExample(ExampleFor(solver), 16, 8, 3));
     LightFieldGeometry middle = DisplayLightFieldGeometry(system);
-    middle.window_left += middle.window_width / 4, middle.window_width /= 2, middle.cols /= 2;
+    middle.window_left_m += middle.window_width_m / 4, middle.window_width_m /= 2, middle.cols /= 2;
     const DisplayModel model(system, middle);
     const LightField target = Synthesize(model, KnownPatterns(model, 7));
     SolverOptions o = SolverRegistry::Builtins().find(solver)->defaults;
