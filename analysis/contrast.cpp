@@ -43,11 +43,12 @@ std::vector<double> CentralRow(const Image& image) {
 
 // Two eyes that see alike (the parts the retinal images read).
 bool SameEye(const EyeModel& a, const EyeModel& b) {
-  return EyeModelLine(a) == EyeModelLine(b) && a.pupil_diameter == b.pupil_diameter &&
+  return EyeModelLine(a) == EyeModelLine(b) && a.pupil_diameter_m == b.pupil_diameter_m &&
          a.pupil_samples_x == b.pupil_samples_x && a.pupil_samples_y == b.pupil_samples_y &&
          a.pupil_sampling == b.pupil_sampling && a.pupil_seed == b.pupil_seed &&
-         a.wavefront.coefficients == b.wavefront.coefficients && a.chromatic_defocus == b.chromatic_defocus &&
-         a.channel_wavelengths == b.channel_wavelengths;
+         a.wavefront.coefficients_m == b.wavefront.coefficients_m &&
+         a.chromatic_defocus_diopters == b.chromatic_defocus_diopters &&
+         a.channel_wavelengths_m == b.channel_wavelengths_m;
 }
 
 bool IsNatural(const ContrastCurve& c) { return c.display.rfind("natural", 0) == 0; }

@@ -162,8 +162,8 @@ std::string SystemSection(const RunReportPage& page) {
       "<tr><th class=\"l\">peak luminance (R / G / B)</th><td>" + Rgb3(s.peak_luminance, 1) + " cd/m&sup2;</td></tr>\n";
   h += "<tr><th class=\"l\">brightness efficiency</th><td>" + F(s.luminance_efficiency, 4) + " (R / G / B " +
        Rgb3(s.brightness_efficiency, 4) + ")</td></tr>\n";
-  h += "<tr><th class=\"l\">eye</th><td>pupil " + F(s.eye.pupil_diameter * 1e3, 1) + " mm, eyebox " +
-       F(s.eye.eyebox_width * 1e3, 1) + " &times; " + F(s.eye.eyebox_height * 1e3, 1) + " mm, " +
+  h += "<tr><th class=\"l\">eye</th><td>pupil " + F(s.eye.pupil_diameter_m * 1e3, 1) + " mm, eyebox " +
+       F(s.eye.eyebox_width_m * 1e3, 1) + " &times; " + F(s.eye.eyebox_height_m * 1e3, 1) + " mm, " +
        std::to_string(s.eye.views_x) + " &times; " + std::to_string(s.eye.views_y) + " views</td></tr>\n";
   h += "<tr><th class=\"l\">eye model</th><td>" + Escape(EyeModelLine(s.eye)) + "</td></tr>\n";
   if (!s.lens.empty())

@@ -129,10 +129,11 @@ std::string EyeSpaceStripSvg(const DisplaySystem& s, const LayoutScale& scale, d
       Text(kLeft, strip_top - 8, "Images of the panels in eye space (diopters from the eye; 0 D is infinity)",
            "font-size=\"13\" font-weight=\"bold\"");
   const double axis_y = strip_top + kStripHeight - 30;
-  svg += "<rect x=\"" + Num(x_of_diopters(s.eye.accommodation_max)) + "\" y=\"" + Num(strip_top + 4) + "\" width=\"" +
-         Num(x_of_diopters(s.eye.accommodation_min) - x_of_diopters(s.eye.accommodation_max)) + "\" height=\"" +
-         Num(axis_y - strip_top - 4) + "\" fill=\"#f3f3f3\"/>\n";
-  svg += Text(x_of_diopters(s.eye.accommodation_max) + 4, strip_top + 16, "accommodation range",
+  svg += "<rect x=\"" + Num(x_of_diopters(s.eye.accommodation_max_diopters)) + "\" y=\"" + Num(strip_top + 4) +
+         "\" width=\"" +
+         Num(x_of_diopters(s.eye.accommodation_min_diopters) - x_of_diopters(s.eye.accommodation_max_diopters)) +
+         "\" height=\"" + Num(axis_y - strip_top - 4) + "\" fill=\"#f3f3f3\"/>\n";
+  svg += Text(x_of_diopters(s.eye.accommodation_max_diopters) + 4, strip_top + 16, "accommodation range",
               "font-size=\"10\" fill=\"#888\"");
   svg += Line(kLeft, axis_y, kLeft + scale.plot_width, axis_y, "stroke=\"#333\"");
   for (double D : NiceTicks(0, scale.max_diopters, 8)) {
@@ -164,7 +165,7 @@ std::string RenderLayoutSvg(const DisplaySystem& s, bool standalone) {
     scale.farthest = std::max(scale.farthest, l.position);
     scale.max_diopters = std::max(scale.max_diopters, l.diopters);
   }
-  scale.max_diopters = std::max({scale.max_diopters * 1.1, s.eye.accommodation_max, 0.5});
+  scale.max_diopters = std::max({scale.max_diopters * 1.1, s.eye.accommodation_max_diopters, 0.5});
   const double strip_top = kTop + rows * kRowHeight + 48;
   const double height = strip_top + kStripHeight;
 

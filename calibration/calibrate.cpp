@@ -64,7 +64,7 @@ CalibrationReport Calibrate(const DisplaySystem& system, const Measurements& mea
     panel.gap = layer.position - (layer.path.empty() ? 0.0 : layer.path.back().position.value_or(0.0));
     panel.eye_from_panel_x_m = layer.panel.eye_from_panel_m[0];
     panel.eye_from_panel_y_m = layer.panel.eye_from_panel_m[1];
-    panel.rotation = layer.panel.rotation;
+    panel.rotation = layer.panel.rotation_rad;
     panel.gamma = layer.panel.gamma;
     panel.black_level = layer.panel.black_level;
     display->panels.push_back(panel);

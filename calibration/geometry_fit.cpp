@@ -309,7 +309,7 @@ class GeometryFitter {
   void AddParameters() {
     for (Optic& o : optics_) {
       std::optional<double> beyond_the_eye;  // the magnifier's focal point stays behind the eye
-      if (magnifier_) beyond_the_eye = system_.eye.eye_relief * (1 + 1e-6);
+      if (magnifier_) beyond_the_eye = system_.eye.eye_relief_m * (1 + 1e-6);
       o.focal = Add({"the focal length of " + Quoted(o.name), o.focal_length, 0, beyond_the_eye, std::nullopt},
                     "focal_length");
       o.gap_index = Add({"the gap of " + Quoted(o.name), o.gap, 0, std::nullopt, std::nullopt}, "gap");
@@ -334,7 +334,8 @@ class GeometryFitter {
     const double closest = 1e-3 * (magnifier_ ? system_.focal_length : layer.panel_distance);
     PanelIndices& index = index_[k];
     index.distance = Add({"the distance of " + panel, layer.panel_distance, 2, closest, beyond_focus}, "distance");
-    index.rotation = Add({"the rotation of " + panel, reference ? 0.0 : layer.panel.rotation, 3, {}, {}}, "rotation");
+    index.rotation =
+        Add({"the rotation of " + panel, reference ? 0.0 : layer.panel.rotation_rad, 3, {}, {}}, "rotation");
     index.eye_from_panel_x_m =
         Add({"the offset x of " + panel, reference ? 0.0 : layer.panel.eye_from_panel_m[0], 4, {}, {}}, "offset_x");
     index.eye_from_panel_y_m =
@@ -367,7 +368,7 @@ class GeometryFitter {
         (parallax
              ? "rotation keeps its scene value ("
              : "distance and rotation keep their scene values (" + ShowValue("distance", layer.panel_distance) + ", ") +
-        ShowValue("rotation", layer.panel.rotation) + "); show markers at three or more pixels not on one line");
+        ShowValue("rotation", layer.panel.rotation_rad) + "); show markers at three or more pixels not on one line");
   }
 
   // Only parallax tells an element's focal length or gap from the distances of the panels behind it.
@@ -468,7 +469,7 @@ class GeometryFitter {
                                                          [&](int i) { return fit_.parameter(i).start; });
     q.distance = layer.panel_distance;
     q.eye_from_panel_x_m = layer.panel.eye_from_panel_m[0], q.eye_from_panel_y_m = layer.panel.eye_from_panel_m[1],
-    q.rotation = layer.panel.rotation;
+    q.rotation = layer.panel.rotation_rad;
     q.pan = q.tilt = q.roll = 0;
     return q;
   }

@@ -45,9 +45,9 @@ inline MarkerPlacement PlaceMarker(const VirtualLayer& layer, double col, double
                                    double camera_y) {
   const PanelSpec& p = layer.panel;
   const double x =
-      (col - static_cast<double>(p.active_left) + 0.5 - 0.5 * static_cast<double>(p.active_cols)) * p.pitch_x;
+      (col - static_cast<double>(p.active_left) + 0.5 - 0.5 * static_cast<double>(p.active_cols)) * p.pitch_x_m;
   const double y =
-      (0.5 * static_cast<double>(p.active_rows) - (row - static_cast<double>(p.active_top)) - 0.5) * p.pitch_y;
+      (0.5 * static_cast<double>(p.active_rows) - (row - static_cast<double>(p.active_top)) - 0.5) * p.pitch_y_m;
   return {layer.flip_x ? -x : x, layer.flip_y ? -y : y, camera_x, camera_y};
 }
 

@@ -25,20 +25,20 @@ std::array<double, 2> PanelPoint(const VirtualLayer& layer, double col, double r
   double j = col - static_cast<double>(p.active_left), i = row - static_cast<double>(p.active_top);
   if (layer.flip_x) j = static_cast<double>(p.active_cols) - 1 - j;
   if (layer.flip_y) i = static_cast<double>(p.active_rows) - 1 - i;
-  const Eigen::Vector2d local((j + 0.5 - 0.5 * static_cast<double>(p.active_cols)) * p.pitch_x,
-                              (0.5 * static_cast<double>(p.active_rows) - i - 0.5) * p.pitch_y);
+  const Eigen::Vector2d local((j + 0.5 - 0.5 * static_cast<double>(p.active_cols)) * p.pitch_x_m,
+                              (0.5 * static_cast<double>(p.active_rows) - i - 0.5) * p.pitch_y_m);
   const Eigen::Vector2d on_panel =
-      Eigen::Vector2d(p.eye_from_panel_m[0], p.eye_from_panel_m[1]) + Eigen::Rotation2Dd(p.rotation) * local;
+      Eigen::Vector2d(p.eye_from_panel_m[0], p.eye_from_panel_m[1]) + Eigen::Rotation2Dd(p.rotation_rad) * local;
   return {on_panel.x(), on_panel.y()};
 }
 
 std::array<double, 2> PanelPixelAt(const VirtualLayer& layer, const std::array<double, 2>& point) {
   const PanelSpec& p = layer.panel;
   const Eigen::Vector2d local =
-      Eigen::Rotation2Dd(-p.rotation) *
+      Eigen::Rotation2Dd(-p.rotation_rad) *
       (Eigen::Vector2d(point[0], point[1]) - Eigen::Vector2d(p.eye_from_panel_m[0], p.eye_from_panel_m[1]));
-  double j = local.x() / p.pitch_x - 0.5 + 0.5 * static_cast<double>(p.active_cols);
-  double i = 0.5 * static_cast<double>(p.active_rows) - 0.5 - local.y() / p.pitch_y;
+  double j = local.x() / p.pitch_x_m - 0.5 + 0.5 * static_cast<double>(p.active_cols);
+  double i = 0.5 * static_cast<double>(p.active_rows) - 0.5 - local.y() / p.pitch_y_m;
   if (layer.flip_x) j = static_cast<double>(p.active_cols) - 1 - j;
   if (layer.flip_y) i = static_cast<double>(p.active_rows) - 1 - i;
   return {j + static_cast<double>(p.active_left), i + static_cast<double>(p.active_top)};

@@ -45,7 +45,7 @@ RetinaGrid MakeRetinaGrid(double field_x, double field_y, double resolution) {
 namespace {
 
 std::vector<PupilPoint> PupilPositions(const EyeModel& eye) {
-  const double a = eye.pupil_diameter;
+  const double a = eye.pupil_diameter_m;
   if (a == 0) return {PupilPoint{}};
   const int nx = eye.pupil_samples_x, ny = eye.pupil_samples_y;
   const bool round = eye.pupil_shape == PupilShape::kRound;
@@ -92,10 +92,11 @@ std::vector<PupilPoint> PupilSamples(const EyeModel& eye) {
 }
 
 std::array<double, 3> ChannelAccommodation(const EyeModel& eye, double diopters) {
-  std::array<double, 3> focus = {diopters + eye.chromatic_defocus[0], diopters + eye.chromatic_defocus[1],
-                                 diopters + eye.chromatic_defocus[2]};
+  std::array<double, 3> focus = {diopters + eye.chromatic_defocus_diopters[0],
+                                 diopters + eye.chromatic_defocus_diopters[1],
+                                 diopters + eye.chromatic_defocus_diopters[2]};
   if (eye.chromatic_aberration == ChromaticAberration::kThibos)
-    for (int c = 0; c < 3; ++c) focus[c] += ThibosDefocus(eye.channel_wavelengths[c], eye.reference_wavelength);
+    for (int c = 0; c < 3; ++c) focus[c] += ThibosDefocus(eye.channel_wavelengths_m[c], eye.reference_wavelength_m);
   return focus;
 }
 

@@ -16,7 +16,7 @@ namespace layerlab {
 
 std::vector<double> RetinalStates(const EyeModel& eye, const RetinalObjectiveOptions& options) {
   if (!options.states.empty()) return options.states;
-  return AccommodationStates(eye.accommodation_min, eye.accommodation_max, kDefaultStateStep);
+  return AccommodationStates(eye.accommodation_min_diopters, eye.accommodation_max_diopters, kDefaultStateStep);
 }
 
 namespace {

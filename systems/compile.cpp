@@ -61,10 +61,11 @@ class Walker {
     double white = 0;
     for (int c = 0; c < 3; ++c) white += kLuminanceWeights[c] * system_.peak_luminance[c];
     PupilAdaptation adaptation;
-    adaptation.luminance_cd_m2 = a.luminance ? *a.luminance : 0.5 * white;
-    const std::array<double, 2> field = a.field ? *a.field : std::array<double, 2>{system_.fov_x, system_.fov_y};
+    adaptation.luminance_cd_m2 = a.luminance_cd_m2 ? *a.luminance_cd_m2 : 0.5 * white;
+    const std::array<double, 2> field =
+        a.field_rad ? *a.field_rad : std::array<double, 2>{system_.fov_x, system_.fov_y};
     adaptation.field_area_deg2 = field[0] * field[1] * kDegreesPerRadian * kDegreesPerRadian;
-    adaptation.age_years = a.age;
+    adaptation.age_years = a.age_years;
     adaptation.eyes = a.eyes;
     const Location where = FindEye().where.child("pupil_diameter");
     if (!(adaptation.luminance_cd_m2 > 0))
@@ -72,20 +73,20 @@ class Walker {
                   "\"auto\" needs a luminance at the eye, and the display's peak white is 0: give pupil_luminance");
     if (!(adaptation.field_area_deg2 > 0) || !std::isfinite(adaptation.field_area_deg2))
       throw Error(where, "\"auto\" needs an adapting field: give pupil_field");
-    eye.pupil_diameter = WatsonYellottPupilDiameter(adaptation);
-    eye.pupil_luminance_used = adaptation.luminance_cd_m2;
-    eye.pupil_field_area_used = adaptation.field_area_deg2;
-    if (eye.pupil_diameter > std::min(eye.eyebox_width, eye.eyebox_height))
-      system_.warnings.push_back("the eye's pupil from luminance, " + FormatFixed(eye.pupil_diameter * 1e3, 2) +
+    eye.pupil_diameter_m = WatsonYellottPupilDiameter(adaptation);
+    eye.pupil_luminance_used_cd_m2 = adaptation.luminance_cd_m2;
+    eye.pupil_field_area_used_deg2 = adaptation.field_area_deg2;
+    if (eye.pupil_diameter_m > std::min(eye.eyebox_width_m, eye.eyebox_height_m))
+      system_.warnings.push_back("the eye's pupil from luminance, " + FormatFixed(eye.pupil_diameter_m * 1e3, 2) +
                                  " mm, is wider than the eyebox: natural viewing reads the edge views beyond it");
     WarnWavefrontExtrapolated();
   }
   void WarnWavefrontExtrapolated() {
     const EyeModel& eye = system_.eye;
-    const double reach = eye.pupil_diameter * (eye.pupil_shape == PupilShape::kSquare ? std::sqrt(2.0) : 1.0);
-    if (!eye.wavefront.empty() && reach > eye.wavefront.pupil_diameter * (1 + 1e-9))
+    const double reach = eye.pupil_diameter_m * (eye.pupil_shape == PupilShape::kSquare ? std::sqrt(2.0) : 1.0);
+    if (!eye.wavefront.empty() && reach > eye.wavefront.pupil_diameter_m * (1 + 1e-9))
       system_.warnings.push_back("the eye's pupil reaches " + FormatFixed(reach * 1e3, 2) + " mm across, beyond the " +
-                                 FormatFixed(eye.wavefront.pupil_diameter * 1e3, 2) +
+                                 FormatFixed(eye.wavefront.pupil_diameter_m * 1e3, 2) +
                                  " mm its Zernike coefficients were measured at: the wavefront is extrapolated there");
   }
 
@@ -221,7 +222,7 @@ class Walker {
     if (e.gap()) {
       step.position = AfterPrevious(node, state, *e.gap());
     } else if (powered && first_power) {
-      step.position = system_.eye.eye_relief;  // the magnifier, as the paper places it
+      step.position = system_.eye.eye_relief_m;  // the magnifier, as the paper places it
       if (!(*step.position > state.placed_at))
         Fail(node.where.child("gap"), Quoted(e.name()) + " would sit at the eye's eye_relief (" + Mm(*step.position) +
                                           " from the pupil), which is not behind " + Quoted(state.placed_name) + " (" +
@@ -316,7 +317,7 @@ class Walker {
       VirtualLayer layer = Float(*node, panel.spec(), state, previous ? &*previous : nullptr);
       layer.branch = branch_index;
       layer.position_in_branch = static_cast<int>(branch.layers.size());
-      if (branch.layers.empty()) polarization_angle = panel.spec().polarization_angle;
+      if (branch.layers.empty()) polarization_angle = panel.spec().polarization_angle_rad;
       for (int c = 0; c < 3; ++c) panels_transmittance[c] *= panel.spec().max_transmittance[c];
       branch.layers.push_back(static_cast<int>(system_.layers.size()));
       system_.layers.push_back(layer);
@@ -355,7 +356,7 @@ class Walker {
                Quoted(layer.name) + " by \"distance\" or \"gap\"");
     layer.path = state.steps;
     const double lens_at = state.last_power ? *state.steps[*state.last_power].position : 0.0;
-    const char* key = spec.virtual_depth ? "virtual_depth" : spec.distance ? "distance" : "gap";
+    const char* key = spec.virtual_depth ? "virtual_depth" : spec.distance_m ? "distance" : "gap";
     layer.position = PlaceOnPath(node, spec, state, front, layer.name, key, lens_at);
     layer.panel_distance = layer.position - lens_at;
     if (front) CheckOrder(*front, layer, node, key, state.last_power.has_value());
@@ -389,14 +390,14 @@ class Walker {
       if (!front && !(t > 0)) FailUnreachableDepth(node, state, D);
       return state.placed_at + t;
     }
-    if (spec.distance) {
+    if (spec.distance_m) {
       if (!state.last_power)
         Fail(node.where.child(key),
              "\"distance\" is measured from the nearest lens or curved mirror in front of the "
              "panel, and none lies between the eye and " +
                  Quoted(name) + "; give \"gap\" (from " + Quoted(state.previous_name) +
                  ") or \"virtual_depth\" (from the eye)");
-      return lens_at + *spec.distance;
+      return lens_at + *spec.distance_m;
     }
     return AfterPrevious(node, state, *node.element->gap());
   }
@@ -429,15 +430,15 @@ class Walker {
     const double inf = std::numeric_limits<double>::infinity();
     layer->magnification = m.a == 0 ? (layer->inverted ? -inf : inf) : 1.0 / m.a;
     const double tan_per_meter = 1.0 / std::abs(m.b);
-    layer->pitch_x = std::abs(layer->magnification) * spec.pitch_x;
-    layer->pitch_y = std::abs(layer->magnification) * spec.pitch_y;
-    layer->tan_pitch_x = tan_per_meter * spec.pitch_x;
-    layer->tan_pitch_y = tan_per_meter * spec.pitch_y;
+    layer->pitch_x = std::abs(layer->magnification) * spec.pitch_x_m;
+    layer->pitch_y = std::abs(layer->magnification) * spec.pitch_y_m;
+    layer->tan_pitch_x = tan_per_meter * spec.pitch_x_m;
+    layer->tan_pitch_y = tan_per_meter * spec.pitch_y_m;
     layer->cols = static_cast<int>(spec.active_cols);
     layer->rows = static_cast<int>(spec.active_rows);
     layer->eye_from_layer_tan_x = tan_per_meter * spec.eye_from_panel_m[0];
     layer->eye_from_layer_tan_y = tan_per_meter * spec.eye_from_panel_m[1];
-    layer->rotation = spec.rotation;
+    layer->rotation = spec.rotation_rad;
     layer->flip_x = (state.flip_x != layer->inverted) != spec.reversed;
     layer->flip_y = state.flip_y != layer->inverted;
     layer->fov_x = FieldOfView(layer->tan_pitch_x, layer->cols);
@@ -449,11 +450,12 @@ class Walker {
   void WarnOutsideAccommodation() {
     const EyeModel& eye = system_.eye;
     for (const VirtualLayer& l : system_.layers)
-      if (l.diopters < eye.accommodation_min - 1e-9 || l.diopters > eye.accommodation_max + 1e-9)
-        system_.warnings.push_back(
-            "layer \"" + l.name + "\" at " + FormatFixed(l.diopters, 2) +
-            " D lies outside the eye's accommodation range (" + FormatFixed(eye.accommodation_min, 2) + " to " +
-            FormatFixed(eye.accommodation_max, 2) + " D, the eye's accommodation_range): the eye cannot focus on it");
+      if (l.diopters < eye.accommodation_min_diopters - 1e-9 || l.diopters > eye.accommodation_max_diopters + 1e-9)
+        system_.warnings.push_back("layer \"" + l.name + "\" at " + FormatFixed(l.diopters, 2) +
+                                   " D lies outside the eye's accommodation range (" +
+                                   FormatFixed(eye.accommodation_min_diopters, 2) + " to " +
+                                   FormatFixed(eye.accommodation_max_diopters, 2) +
+                                   " D, the eye's accommodation_range): the eye cannot focus on it");
   }
 
   // A virtual_depth that no place behind the last placed element reaches.
@@ -559,7 +561,7 @@ void Walker::FindMagnifier() {
   system_.focal_length = element.focal_length();
   system_.clear_aperture = element.clear_aperture();
   for (const PathStep& s : system_.layers.front().path)
-    if (s.element == *lens) system_.eye.eye_relief = *s.position;  // pupil to magnifier, however it was placed
+    if (s.element == *lens) system_.eye.eye_relief_m = *s.position;  // pupil to magnifier, however it was placed
 }
 
 // Warns of every lens whose clear aperture cuts rays from the eyebox to a layer's field.
@@ -575,8 +577,8 @@ void Walker::CheckApertures() {
         const double tx = 0.5 * l.cols * l.tan_pitch_x + std::abs(l.eye_from_layer_tan_x);
         const double ty = 0.5 * l.rows * l.tan_pitch_y + std::abs(l.eye_from_layer_tan_y);
         double largest = 0;
-        for (double x : {-0.5 * eye.eyebox_width, 0.5 * eye.eyebox_width})
-          for (double y : {-0.5 * eye.eyebox_height, 0.5 * eye.eyebox_height})
+        for (double x : {-0.5 * eye.eyebox_width_m, 0.5 * eye.eyebox_width_m})
+          for (double y : {-0.5 * eye.eyebox_height_m, 0.5 * eye.eyebox_height_m})
             for (double u : {-tx, tx})
               for (double v : {-ty, ty}) {
                 const double hx = m.a * x + m.b * (u - x * l.diopters), hy = m.a * y + m.b * (v - y * l.diopters);
@@ -610,9 +612,9 @@ void Walker::Finish() {
   const EyeModel& eye = system_.eye;
   if (!system_.lens.empty() && system_.clear_aperture) {
     double radius = *system_.clear_aperture / 2;
-    auto field = [&](double eyebox) { return 2 * std::atan(std::max(0.0, radius - eyebox / 2) / eye.eye_relief); };
-    system_.vignetting_free_fov_x = field(eye.eyebox_width);
-    system_.vignetting_free_fov_y = field(eye.eyebox_height);
+    auto field = [&](double eyebox) { return 2 * std::atan(std::max(0.0, radius - eyebox / 2) / eye.eye_relief_m); };
+    system_.vignetting_free_fov_x = field(eye.eyebox_width_m);
+    system_.vignetting_free_fov_y = field(eye.eyebox_height_m);
   }
   CheckApertures();
   DescribeComponents();

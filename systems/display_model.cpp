@@ -57,8 +57,8 @@ LightFieldGeometry DisplayLightFieldGeometry(const DisplaySystem& system, double
   g.rows = farthest.rows;
   g.views_x = system.eye.views_x;
   g.views_y = system.eye.views_y;
-  g.eyebox_width_m = system.eye.eyebox_width;
-  g.eyebox_height_m = system.eye.eyebox_height;
+  g.eyebox_width_m = system.eye.eyebox_width_m;
+  g.eyebox_height_m = system.eye.eyebox_height_m;
   return g;
 }
 

@@ -107,14 +107,14 @@ std::string FormatSystemTable(const DisplaySystem& s) {
   const EyeModel& eye = s.eye;
   std::string out;
   out += s.file + (s.name.empty() ? "" : ": " + s.name) + "\n\n";
-  const std::string relief = s.lens.empty() ? "" : "; eye relief " + F(eye.eye_relief * 1e3, 2) + " mm";
+  const std::string relief = s.lens.empty() ? "" : "; eye relief " + F(eye.eye_relief_m * 1e3, 2) + " mm";
   out +=
       Row("eye      pupil %s mm %s, %d x %d samples%s; eyebox %s x %s mm, %d x %d views;\n"
           "         accommodation %s to %s D",
-          F(eye.pupil_diameter * 1e3, 2).c_str(), eye.pupil_shape == PupilShape::kSquare ? "square" : "round",
-          eye.pupil_samples_x, eye.pupil_samples_y, relief.c_str(), F(eye.eyebox_width * 1e3, 2).c_str(),
-          F(eye.eyebox_height * 1e3, 2).c_str(), eye.views_x, eye.views_y, F(eye.accommodation_min, 2).c_str(),
-          F(eye.accommodation_max, 2).c_str());
+          F(eye.pupil_diameter_m * 1e3, 2).c_str(), eye.pupil_shape == PupilShape::kSquare ? "square" : "round",
+          eye.pupil_samples_x, eye.pupil_samples_y, relief.c_str(), F(eye.eyebox_width_m * 1e3, 2).c_str(),
+          F(eye.eyebox_height_m * 1e3, 2).c_str(), eye.views_x, eye.views_y,
+          F(eye.accommodation_min_diopters, 2).c_str(), F(eye.accommodation_max_diopters, 2).c_str());
   out += Row("         %s", EyeModelLine(eye).c_str());
   if (s.subframes > 1)
     out += Row("time     %d subframes per frame at %s Hz: the panels refresh at %s Hz; the eye sees the mean",
@@ -181,13 +181,13 @@ nlohmann::json SystemToJson(const DisplaySystem& s) {
   json j;
   j["file"] = s.file;
   j["name"] = s.name;
-  j["eye"] = {{"pupil_diameter_m", eye.pupil_diameter},
+  j["eye"] = {{"pupil_diameter_m", eye.pupil_diameter_m},
               {"pupil_shape", eye.pupil_shape == PupilShape::kSquare ? "square" : "round"},
               {"pupil_samples", {eye.pupil_samples_x, eye.pupil_samples_y}},
-              {"eye_relief_m", eye.eye_relief},
-              {"eyebox_m", {eye.eyebox_width, eye.eyebox_height}},
+              {"eye_relief_m", eye.eye_relief_m},
+              {"eyebox_m", {eye.eyebox_width_m, eye.eyebox_height_m}},
               {"views", {eye.views_x, eye.views_y}},
-              {"accommodation_range_D", {eye.accommodation_min, eye.accommodation_max}},
+              {"accommodation_range_D", {eye.accommodation_min_diopters, eye.accommodation_max_diopters}},
               {"model", EyeModelLine(eye)}};
   j["lens"] = {{"name", s.lens},
                {"focal_length_m", s.focal_length},

@@ -83,8 +83,8 @@ LightFieldGeometry ParseLightField(Params& lf, const std::string& base_dir) {
         lf.fail(key, std::string("comes from the display (\"display\": \"") + display + "\"); remove it here");
     g.views_x = system.eye.views_x;
     g.views_y = system.eye.views_y;
-    g.eyebox_width_m = system.eye.eyebox_width;
-    g.eyebox_height_m = system.eye.eyebox_height;
+    g.eyebox_width_m = system.eye.eyebox_width_m;
+    g.eyebox_height_m = system.eye.eyebox_height_m;
     g.window_width_m = 2 * g.origin_z_m * std::tan(system.fov_x / 2);
     g.window_height_m = 2 * g.origin_z_m * std::tan(system.fov_y / 2);
     g.window_left_m = -g.window_width_m / 2;

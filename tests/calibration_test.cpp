@@ -69,7 +69,7 @@ double WorstGeometryError(const DisplaySystem& built, const Measurements& m, con
     const double errors[] = {std::abs(p->distance - layer.panel_distance) / expected.distance,
                              std::abs(p->eye_from_panel_x_m - layer.panel.eye_from_panel_m[0]) / expected.offset,
                              std::abs(p->eye_from_panel_y_m - layer.panel.eye_from_panel_m[1]) / expected.offset,
-                             std::abs(p->rotation - layer.panel.rotation) / expected.rotation};
+                             std::abs(p->rotation - layer.panel.rotation_rad) / expected.rotation};
     for (double e : errors) worst = std::max(worst, e);
     if (!check_std_dev) continue;
     // The reported uncertainties (ceres::Covariance, scaled by the residuals' noise) agree with these.

@@ -74,7 +74,7 @@ TEST(GeneralPathCalibrationTest, SyntheticMarkersMatchARayTracedThroughTheElemen
         for (double row : {p.active_top + 2.0, p.active_top + p.active_rows - 4.0})
           for (const std::array<double, 2>& camera : {std::array<double, 2>{0, 0}, {2.5e-3, -1.5e-3}}) {
             const MarkerPlacement m = PlaceMarker(layer, col, row, camera[0], camera[1]);
-            const double c = std::cos(p.rotation), s = std::sin(p.rotation);
+            const double c = std::cos(p.rotation_rad), s = std::sin(p.rotation_rad);
             // Eye-space orientation; an inverted image turns it by 180 degrees in the unfolded path.
             const double turn = layer.inverted ? -1.0 : 1.0;
             const double x = turn * (p.eye_from_panel_m[0] + c * m.local_x - s * m.local_y);
@@ -159,7 +159,7 @@ TEST(GeneralPathCalibrationTest, RecoversEachBranchsLensGapWithinTheNoise) {
   for (const VirtualLayer& layer : built.layers) {
     const std::string name = layer.name;
     const double s0 = layer.panel_distance, x0 = layer.panel.eye_from_panel_m[0], y0 = layer.panel.eye_from_panel_m[1],
-                 r0 = layer.panel.rotation;
+                 r0 = layer.panel.rotation_rad;
     parameters.push_back({name + " distance", 1e-6, [=](json& s, double d) {
                             testing::ElementNamed(s, name)["distance"] = testing::Exact(s0 + d, "m");
                           }});
@@ -204,7 +204,7 @@ TEST(GeneralPathCalibrationTest, RecoversEachBranchsLensGapWithinTheNoise) {
       const CalibratedPanel* p = display.find(layer.name);
       const double values[] = {p->distance, p->eye_from_panel_x_m, p->eye_from_panel_y_m, p->rotation};
       const double truths[] = {layer.panel_distance, layer.panel.eye_from_panel_m[0], layer.panel.eye_from_panel_m[1],
-                               layer.panel.rotation};
+                               layer.panel.rotation_rad};
       const char* quantities[] = {"distance", "offset_x", "offset_y", "rotation"};
       for (int q = 0; q < 4; ++q, ++i) {
         EXPECT_LT(std::abs(values[q] - truths[q]), kSigmas * expected[i]) << parameters[i].name << " seed " << seed;

@@ -79,7 +79,7 @@ void ExpectPlacementsOf(const DisplaySystem& built, const CalibratedDisplay& dis
     EXPECT_NEAR(p->distance, layer.panel_distance, tolerance) << layer.name;
     EXPECT_NEAR(p->eye_from_panel_x_m, layer.panel.eye_from_panel_m[0], tolerance) << layer.name;
     EXPECT_NEAR(p->eye_from_panel_y_m, layer.panel.eye_from_panel_m[1], tolerance) << layer.name;
-    EXPECT_NEAR(p->rotation, layer.panel.rotation, tolerance) << layer.name;
+    EXPECT_NEAR(p->rotation, layer.panel.rotation_rad, tolerance) << layer.name;
   }
 }
 
@@ -141,8 +141,8 @@ GeometrySigma ExpectedGeometrySigma(const VirtualLayer& layer, const PanelMarker
   const PanelSpec& p = layer.panel;
   double spread = 0;  // sum of |l|^2 over the markers, l from the active region's center
   for (const MarkerObservation& o : markers.markers) {
-    const double x = (o.col - p.active_left + 0.5 - 0.5 * p.active_cols) * p.pitch_x;
-    const double y = (0.5 * p.active_rows - (o.row - p.active_top) - 0.5) * p.pitch_y;
+    const double x = (o.col - p.active_left + 0.5 - 0.5 * p.active_cols) * p.pitch_x_m;
+    const double y = (0.5 * p.active_rows - (o.row - p.active_top) - 0.5) * p.pitch_y_m;
     spread += x * x + y * y;
   }
   spread *= positions;

@@ -124,7 +124,7 @@ TEST(Contrast, AChromaticEyesChannelsAreWeightedByTheirLuminance) {
   const double dt = 1.3, f = 3.0, p = 4e-3;
   const std::array<double, 3> weight = {0.2126, 0.7152, 0.0722}, typed = {0.0, 0.5, -0.5};
   ContrastDisplay d = OneLayerAt(dt);
-  d.system.eye.chromatic_defocus = typed;
+  d.system.eye.chromatic_defocus_diopters = typed;
   ASSERT_EQ(d.system.eye.pupil_shape, PupilShape::kSquare);
   ASSERT_EQ(d.system.eye.pupil_samples_x, 9);
   ContrastOptions o;

@@ -219,9 +219,9 @@ double WorstPixelError(const VirtualLayer& layer, const std::vector<Built>& elem
     f.origin += (layer.position - at) * f.e3;
     ToPlane(ray, f.origin, f.e3);
     const Eigen::Vector3d h = ray.p - f.origin;
-    double col = h.dot(f.e1) / layer.panel.pitch_x + 0.5 * layer.cols - 0.5;
+    double col = h.dot(f.e1) / layer.panel.pitch_x_m + 0.5 * layer.cols - 0.5;
     if (layer.panel.reversed) col = layer.cols - 1 - col;  // mounted back to front
-    const double row = 0.5 * layer.rows - 0.5 - h.dot(f.e2) / layer.panel.pitch_y;
+    const double row = 0.5 * layer.rows - 0.5 - h.dot(f.e2) / layer.panel.pitch_y_m;
     // The compiled layer: tan-angle t from the pupil center; pixel in eye order, then flips.
     const double je = tx / layer.tan_pitch_x + 0.5 * layer.cols - 0.5;
     const double ie = 0.5 * layer.rows - 0.5 - ty / layer.tan_pitch_y;

@@ -411,7 +411,7 @@ void ExpectLoopRecovers(const DisplaySystem& designed, const DisplaySystem& buil
     const std::map<std::string, double> truth = {{"distance", layer.panel_distance},
                                                  {"offset_x", layer.panel.eye_from_panel_m[0]},
                                                  {"offset_y", layer.panel.eye_from_panel_m[1]},
-                                                 {"rotation", layer.panel.rotation}};
+                                                 {"rotation", layer.panel.rotation_rad}};
     for (const auto& [quantity, value] : truth) {
       const ParameterEstimate* p = report.find(layer.name, quantity);
       ASSERT_NE(p, nullptr) << layer.name << " " << quantity;

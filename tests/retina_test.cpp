@@ -21,7 +21,7 @@ using testing::ElementNamed;
 
 EyeModel Eye(int samples, double pupil = 4e-3) {
   EyeModel eye;
-  eye.pupil_diameter = pupil;
+  eye.pupil_diameter_m = pupil;
   eye.pupil_samples_x = eye.pupil_samples_y = samples;
   return eye;
 }
@@ -111,10 +111,10 @@ TEST(Retina, PupilPointsOfUnequalSidesLieEachInItsOwnCell) {
       SCOPED_TRACE(std::to_string(nx) + " x " + std::to_string(ny) +
                    (sampling == PupilSampling::kGrid ? " grid" : " jittered"));
       EyeModel eye;
-      eye.pupil_diameter = 4e-3;
+      eye.pupil_diameter_m = 4e-3;
       eye.pupil_samples_x = nx, eye.pupil_samples_y = ny;
       eye.pupil_sampling = sampling;
-      const double a = eye.pupil_diameter;
+      const double a = eye.pupil_diameter_m;
       const std::vector<PupilPoint> points = PupilSamples(eye);
       ASSERT_EQ(points.size(), size_t(nx * ny));
       double mean_x = 0, mean_y = 0;
@@ -312,7 +312,7 @@ TEST(Retina, MeanLuminanceDoesNotChangeWithAccommodation) {
 
 TEST(Retina, ChromaticDefocusShiftsEachChannelsFocus) {
   OneLayer d = OneLayerDisplay("1.0 D");
-  d.system.eye.chromatic_defocus = {0.5, 0.0, -0.5};
+  d.system.eye.chromatic_defocus_diopters = {0.5, 0.0, -0.5};
   RetinaGrid retina = MakeRetinaGrid(6 * kRadiansPerDegree, 4 * kRadiansPerDegree, 0.05 * kRadiansPerDegree);
   std::vector<PupilPoint> pupil = PupilSamples(d.system.eye);
   std::array<double, 3> focus = ChannelAccommodation(d.system.eye, 1.0);

@@ -262,7 +262,7 @@ TEST(RetinalObjective, GradientMatchesCentralDifferences) {
 // ||L - l||^2.
 TEST(RetinalObjective, PinholeOneStateIsTheCentreViewsLightFieldObjective) {
   DisplaySystem system = CompileJson(ShrunkExample("paper_prototype.json", 24, 12, 5));
-  system.eye.pupil_diameter = 0;
+  system.eye.pupil_diameter_m = 0;
   const LightFieldGeometry g = Geometry(40, 24, 5);
   const DisplayModel model(system, g);
   const LightField target = Synthesize(model, RandomPatterns(model, 8, 0.1f, 1.0f));
