@@ -78,23 +78,23 @@ std::vector<Optic> FindOptics(const DisplaySystem& system, const std::vector<boo
     double previous_optic = 0;
     for (size_t j = 0; j < path.size(); ++j) {
       const PathStep& step = path[j];
-      if (step.power == 0) continue;
+      if (step.power_diopters == 0) continue;
       auto it = std::find_if(optics.begin(), optics.end(), [&](const Optic& o) { return o.name == step.element; });
       if (it == optics.end()) {
         Optic o;
         o.name = step.element;
-        o.focal_length = 1.0 / step.power;
-        o.position = *step.position;
+        o.focal_length = 1.0 / step.power_diopters;
+        o.position = *step.position_m;
         // The nearest element before it with a place (the magnifier placed by eye_relief may follow an unplaced one).
         double placed_at = 0;
         for (size_t i = j; i-- > 0;)
-          if (path[i].position) {
-            placed_at = *path[i].position;
+          if (path[i].position_m) {
+            placed_at = *path[i].position_m;
             break;
           }
         o.gap = o.position - placed_at;
         o.before = j > 0 ? path[j - 1].element : "";
-        o.placed_before = j == 0 || path[j - 1].position.has_value();
+        o.placed_before = j == 0 || path[j - 1].position_m.has_value();
         optics.push_back(o);
         it = optics.end() - 1;
       }
@@ -178,7 +178,7 @@ void PlaceAsFitted(const DisplaySystem& system, const std::vector<Optic>& optics
     CalibratedPanel& panel = display->panels[k];
     double shift = 0, optic_at = 0;
     for (const PathStep& step : layer.path) {
-      if (step.power != 0) {
+      if (step.power_diopters != 0) {
         const CalibratedOptic* fitted = display->find_optic(step.element);
         auto designed =
             std::find_if(optics.begin(), optics.end(), [&](const Optic& o) { return o.name == step.element; });
@@ -186,14 +186,14 @@ void PlaceAsFitted(const DisplaySystem& system, const std::vector<Optic>& optics
           shift += fitted->gap - designed->gap;
           panel.optics_fitted = panel.optics_fitted || fitted->gap_fitted || fitted->focal_length_fitted;
         }
-        optic_at = *step.position + shift;
+        optic_at = *step.position_m + shift;
       }
       if (step.kind == ElementKind::kPanel) {
         walked[k].before_is_panel = true;
         walked[k].before_name = step.element;
       } else {
         walked[k].before_is_panel = false;
-        walked[k].before = step.position.value_or(0.0) + shift;
+        walked[k].before = step.position_m.value_or(0.0) + shift;
       }
     }
     walked[k].position = optic_at + panel.distance;
@@ -330,10 +330,10 @@ class GeometryFitter {
     }
     const bool reference = farthest_reference_ && k == 0;
     std::optional<double> beyond_focus;
-    if (magnifier_ && !options_.fit_focal_length) beyond_focus = system_.focal_length;
-    const double closest = 1e-3 * (magnifier_ ? system_.focal_length : layer.panel_distance);
+    if (magnifier_ && !options_.fit_focal_length) beyond_focus = system_.focal_length_m;
+    const double closest = 1e-3 * (magnifier_ ? system_.focal_length_m : layer.panel_distance_m);
     PanelIndices& index = index_[k];
-    index.distance = Add({"the distance of " + panel, layer.panel_distance, 2, closest, beyond_focus}, "distance");
+    index.distance = Add({"the distance of " + panel, layer.panel_distance_m, 2, closest, beyond_focus}, "distance");
     index.rotation =
         Add({"the rotation of " + panel, reference ? 0.0 : layer.panel.rotation_rad, 3, {}, {}}, "rotation");
     index.eye_from_panel_x_m =
@@ -365,9 +365,9 @@ class GeometryFitter {
         "panel " + Quoted(layer.name) + ": its markers show a single panel pixel (" + FormatFixed(pixel.real(), 1) +
         ", " + FormatFixed(pixel.imag(), 1) + "), which fixes the offset but not the rotation" +
         (parallax ? "" : " nor the magnification") + ": its " +
-        (parallax
-             ? "rotation keeps its scene value ("
-             : "distance and rotation keep their scene values (" + ShowValue("distance", layer.panel_distance) + ", ") +
+        (parallax ? "rotation keeps its scene value ("
+                  : "distance and rotation keep their scene values (" + ShowValue("distance", layer.panel_distance_m) +
+                        ", ") +
         ShowValue("rotation", layer.panel.rotation_rad) + "); show markers at three or more pixels not on one line");
   }
 
@@ -467,7 +467,7 @@ class GeometryFitter {
     const VirtualLayer& layer = system_.layers[k];
     MarkerParameters<double> q = LayerParameters<double>(index_[k], pan_, tilt_, roll_, layer_optics_[k], optics_,
                                                          [&](int i) { return fit_.parameter(i).start; });
-    q.distance = layer.panel_distance;
+    q.distance = layer.panel_distance_m;
     q.eye_from_panel_x_m = layer.panel.eye_from_panel_m[0], q.eye_from_panel_y_m = layer.panel.eye_from_panel_m[1],
     q.rotation = layer.panel.rotation_rad;
     q.pan = q.tilt = q.roll = 0;

@@ -176,7 +176,7 @@ Image PhotoRenderer::Render(const DisplaySystem& truth, const CapturePlan& plan,
   std::vector<double> branch_scale(truth.branches.size());
   double brightest = 0;
   for (size_t b = 0; b < truth.branches.size(); ++b) {
-    branch_scale[b] = truth.branches[b].backlight_luminance * Mean(truth.branches[b].optics_efficiency);
+    branch_scale[b] = truth.branches[b].backlight_luminance_cd_m2 * Mean(truth.branches[b].optics_efficiency);
     double white = branch_scale[b];
     for (int l : truth.branches[b].layers) white *= Mean(truth.layers[l].panel.max_transmittance);
     brightest = std::max(brightest, white);

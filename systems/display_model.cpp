@@ -12,10 +12,11 @@ DisplayModel::DisplayModel(const DisplaySystem& system, const LightFieldGeometry
   for (const VirtualLayer& layer : system.layers) projections_.emplace_back(layer, lf, sampling);
   for (const Branch& b : system.branches)
     for (int c = 0; c < 3; ++c)  // a subframe's branch shown in every subframe of the frame
-      white_luminance_ = std::max(white_luminance_, b.backlight_luminance * b.efficiency[c] * system.subframes);
+      white_luminance_ = std::max(white_luminance_, b.backlight_luminance_cd_m2 * b.efficiency[c] * system.subframes);
   for (const Branch& b : system.branches) {
     std::array<float, 3> w{};
-    for (int c = 0; c < 3; ++c) w[c] = static_cast<float>(b.backlight_luminance * b.efficiency[c] / white_luminance_);
+    for (int c = 0; c < 3; ++c)
+      w[c] = static_cast<float>(b.backlight_luminance_cd_m2 * b.efficiency[c] / white_luminance_);
     weights_.push_back(w);
   }
 }
@@ -49,8 +50,8 @@ LightFieldGeometry DisplayLightFieldGeometry(const DisplaySystem& system, double
   const VirtualLayer& farthest = system.layers.front();
   LightFieldGeometry g;
   g.origin_z_m = 1.0 / origin_diopters;
-  g.window_width_m = 2 * g.origin_z_m * std::tan(system.fov_x / 2);
-  g.window_height_m = 2 * g.origin_z_m * std::tan(system.fov_y / 2);
+  g.window_width_m = 2 * g.origin_z_m * std::tan(system.fov_x_rad / 2);
+  g.window_height_m = 2 * g.origin_z_m * std::tan(system.fov_y_rad / 2);
   g.window_left_m = -g.window_width_m / 2;
   g.window_top_m = g.window_height_m / 2;
   g.cols = farthest.cols;
@@ -76,7 +77,7 @@ std::vector<std::string> TargetGeometryWarnings(const DisplaySystem& system, con
   };
   const double fx = field(target.window_left_m, target.window_width_m, target.origin_z_m);
   const double fy = field(target.window_top_m - target.window_height_m, target.window_height_m, target.origin_z_m);
-  const double dx = system.fov_x * 180 / std::acos(-1.0), dy = system.fov_y * 180 / std::acos(-1.0);
+  const double dx = system.fov_x_rad * 180 / std::acos(-1.0), dy = system.fov_y_rad * 180 / std::acos(-1.0);
   auto differs = [](double a, double b, double tolerance) { return std::abs(a - b) > tolerance * std::abs(b); };
   std::vector<std::string> parts;
   if (target.views_x != own.views_x || target.views_y != own.views_y)

@@ -85,13 +85,13 @@ LightFieldGeometry ParseLightField(Params& lf, const std::string& base_dir) {
     g.views_y = system.eye.views_y;
     g.eyebox_width_m = system.eye.eyebox_width_m;
     g.eyebox_height_m = system.eye.eyebox_height_m;
-    g.window_width_m = 2 * g.origin_z_m * std::tan(system.fov_x / 2);
-    g.window_height_m = 2 * g.origin_z_m * std::tan(system.fov_y / 2);
+    g.window_width_m = 2 * g.origin_z_m * std::tan(system.fov_x_rad / 2);
+    g.window_height_m = 2 * g.origin_z_m * std::tan(system.fov_y_rad / 2);
     g.window_left_m = -g.window_width_m / 2;
     g.window_top_m = g.window_height_m / 2;
     // The layer that sets the field of view (the farthest) sets the resolution.
     for (const VirtualLayer& layer : system.layers)
-      if (layer.fov_x == system.fov_x) {
+      if (layer.fov_x_rad == system.fov_x_rad) {
         default_resolution = std::array<int64_t, 2>{layer.cols, layer.rows};
         break;
       }

@@ -115,7 +115,7 @@ TEST(AdditiveGram, OnAStripMatchesTheRayByRayProductAndLeavesUnreachedRowsZero) 
 
 TEST(AdditiveGram, RotatedLayersAreNotApplicable) {
   DisplaySystem system = CompileJson(ShrunkExample("additive_2layer.json", 24, 12, 5));
-  system.layers[0].rotation = 0.01;
+  system.layers[0].rotation_rad = 0.01;
   DisplayModel model(system, DisplayLightFieldGeometry(system));
   EXPECT_FALSE(AdditiveGram::Applicable(model));
 }

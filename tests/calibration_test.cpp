@@ -66,7 +66,7 @@ double WorstGeometryError(const DisplaySystem& built, const Measurements& m, con
     const CalibratedPanel* p = display.find(layer.name);
     EXPECT_NE(p, nullptr);
     if (!p) return INFINITY;
-    const double errors[] = {std::abs(p->distance - layer.panel_distance) / expected.distance,
+    const double errors[] = {std::abs(p->distance - layer.panel_distance_m) / expected.distance,
                              std::abs(p->eye_from_panel_x_m - layer.panel.eye_from_panel_m[0]) / expected.offset,
                              std::abs(p->eye_from_panel_y_m - layer.panel.eye_from_panel_m[1]) / expected.offset,
                              std::abs(p->rotation - layer.panel.rotation_rad) / expected.rotation};
@@ -160,7 +160,7 @@ TEST(CalibrationTest, FocalLengthWithoutParallaxIsUndetermined) {
   ASSERT_NE(f, nullptr);
   EXPECT_EQ(f->status, ParameterStatus::kUndetermined);
   EXPECT_FALSE(f->std_dev.has_value());
-  EXPECT_EQ(f->value, Designed().focal_length);
+  EXPECT_EQ(f->value, Designed().focal_length_m);
   EXPECT_TRUE(HasWarning(report,
                          "the focal length cannot be told from the panel distances while each panel is seen "
                          "from one camera position only"))
@@ -461,7 +461,7 @@ TEST(UnresolvedTest, APanelSeenTooSmallEndsAtTheFocalLengthAndIsUndetermined) {
   ASSERT_TRUE(report.IsSolutionUsable()) << report.message;
   const ParameterEstimate* distance = report.find("rear_a", "distance");
   ASSERT_NE(distance, nullptr);
-  EXPECT_TRUE(testing::Close(distance->value, Designed().focal_length, 1e-6));
+  EXPECT_TRUE(testing::Close(distance->value, Designed().focal_length_m, 1e-6));
   EXPECT_EQ(distance->status, ParameterStatus::kUnresolved);
   EXPECT_EQ(report.find("rear_a", "virtual_depth")->status, ParameterStatus::kUnresolved);
   ASSERT_EQ(report.unresolved.size(), 1u) << report.FullReport();

@@ -52,12 +52,12 @@ double TracedSlope(const VirtualLayer& layer, double c, double target) {
   auto land = [&](double u) {
     double y = c, z = 0;
     for (const PathStep& s : layer.path) {
-      if (s.power == 0) continue;
-      y += (*s.position - z) * u;
-      z = *s.position;
-      u -= s.power * y;
+      if (s.power_diopters == 0) continue;
+      y += (*s.position_m - z) * u;
+      z = *s.position_m;
+      u -= s.power_diopters * y;
     }
-    return y + (layer.position - z) * u;
+    return y + (layer.position_m - z) * u;
   };
   const double h0 = land(0), h1 = land(1);
   return (target - h0) / (h1 - h0);
@@ -158,8 +158,8 @@ TEST(GeneralPathCalibrationTest, RecoversEachBranchsLensGapWithinTheNoise) {
   }
   for (const VirtualLayer& layer : built.layers) {
     const std::string name = layer.name;
-    const double s0 = layer.panel_distance, x0 = layer.panel.eye_from_panel_m[0], y0 = layer.panel.eye_from_panel_m[1],
-                 r0 = layer.panel.rotation_rad;
+    const double s0 = layer.panel_distance_m, x0 = layer.panel.eye_from_panel_m[0],
+                 y0 = layer.panel.eye_from_panel_m[1], r0 = layer.panel.rotation_rad;
     parameters.push_back({name + " distance", 1e-6, [=](json& s, double d) {
                             testing::ElementNamed(s, name)["distance"] = testing::Exact(s0 + d, "m");
                           }});
@@ -203,7 +203,7 @@ TEST(GeneralPathCalibrationTest, RecoversEachBranchsLensGapWithinTheNoise) {
     for (const VirtualLayer& layer : built.layers) {
       const CalibratedPanel* p = display.find(layer.name);
       const double values[] = {p->distance, p->eye_from_panel_x_m, p->eye_from_panel_y_m, p->rotation};
-      const double truths[] = {layer.panel_distance, layer.panel.eye_from_panel_m[0], layer.panel.eye_from_panel_m[1],
+      const double truths[] = {layer.panel_distance_m, layer.panel.eye_from_panel_m[0], layer.panel.eye_from_panel_m[1],
                                layer.panel.rotation_rad};
       const char* quantities[] = {"distance", "offset_x", "offset_y", "rotation"};
       for (int q = 0; q < 4; ++q, ++i) {
@@ -294,9 +294,9 @@ TEST(GeneralPathCalibrationTest, CalibratedSceneCompilesToTheDisplayAsBuilt) {
   ASSERT_EQ(calibrated.layers.size(), built.layers.size());
   for (size_t k = 0; k < built.layers.size(); ++k) {
     EXPECT_EQ(calibrated.layers[k].name, built.layers[k].name);
-    EXPECT_NEAR(calibrated.layers[k].position, built.layers[k].position, 1e-9) << built.layers[k].name;
+    EXPECT_NEAR(calibrated.layers[k].position_m, built.layers[k].position_m, 1e-9) << built.layers[k].name;
     EXPECT_NEAR(calibrated.layers[k].diopters, built.layers[k].diopters, 1e-6) << built.layers[k].name;
-    EXPECT_NEAR(calibrated.layers[k].rotation, built.layers[k].rotation, 1e-9) << built.layers[k].name;
+    EXPECT_NEAR(calibrated.layers[k].rotation_rad, built.layers[k].rotation_rad, 1e-9) << built.layers[k].name;
   }
 }
 
@@ -323,7 +323,7 @@ TEST(GeneralPathCalibrationTest, PanelsWithoutOpticsKeepTheirGaps) {
     }
   const DisplaySystem calibrated = testing::CompileJson(json::parse(document.dump()), "calibrated.json");
   for (size_t k = 0; k < built.layers.size(); ++k)
-    EXPECT_NEAR(calibrated.layers[k].position, built.layers[k].position, 1e-9) << built.layers[k].name;
+    EXPECT_NEAR(calibrated.layers[k].position_m, built.layers[k].position_m, 1e-9) << built.layers[k].name;
 }
 
 // A fold mirror between lens_a and front_a, front_a placed by "gap" from it:
@@ -351,7 +351,7 @@ TEST(GeneralPathCalibrationTest, PanelGapBehindAFoldFollowsTheFittedLens) {
   EXPECT_TRUE(testing::ElementNamed(written, "front_a").contains("gap"));
   const DisplaySystem calibrated = testing::CompileJson(written, "calibrated.json");
   for (size_t k = 0; k < built.layers.size(); ++k)
-    EXPECT_NEAR(calibrated.layers[k].position, built.layers[k].position, 1e-9) << built.layers[k].name;
+    EXPECT_NEAR(calibrated.layers[k].position_m, built.layers[k].position_m, 1e-9) << built.layers[k].name;
 }
 
 // Through a 4f relay the images are inverted (B < 0): the fit sees the panels

@@ -42,16 +42,16 @@ nlohmann::json BuiltScene(const DisplaySystem& designed, const std::vector<Panel
         panel["rotation"] = Exact(t.rotation, "rad");
       }
     const bool behind_optics =
-        std::any_of(layer.path.begin(), layer.path.end(), [](const PathStep& s) { return s.power != 0; });
+        std::any_of(layer.path.begin(), layer.path.end(), [](const PathStep& s) { return s.power_diopters != 0; });
     if (panel.contains("virtual_depth")) {
       panel.erase("virtual_depth");
       panel[behind_optics ? "distance" : "gap"] = 0;  // set below
     }
     if (panel.contains("distance"))
-      panel["distance"] = Exact(layer.panel_distance + change, "m");
+      panel["distance"] = Exact(layer.panel_distance_m + change, "m");
     else
-      panel["gap"] =
-          Exact(layer.position - (layer.path.empty() ? 0.0 : layer.path.back().position.value_or(0.0)) + change, "m");
+      panel["gap"] = Exact(
+          layer.position_m - (layer.path.empty() ? 0.0 : layer.path.back().position_m.value_or(0.0)) + change, "m");
   }
   for (const OpticTruth& t : optics) {
     nlohmann::json& optic = ElementNamed(scene, t.name);
@@ -59,8 +59,8 @@ nlohmann::json BuiltScene(const DisplaySystem& designed, const std::vector<Panel
       for (const VirtualLayer& layer : designed.layers)
         for (size_t j = 0; j < layer.path.size(); ++j)
           if (layer.path[j].element == t.name) {
-            const double before = j == 0 ? 0.0 : layer.path[j - 1].position.value_or(0.0);
-            optic["gap"] = Exact(*layer.path[j].position - before + t.gap_change, "m");
+            const double before = j == 0 ? 0.0 : layer.path[j - 1].position_m.value_or(0.0);
+            optic["gap"] = Exact(*layer.path[j].position_m - before + t.gap_change, "m");
           }
     if (t.focal_length) optic["focal_length"] = Exact(*t.focal_length, "m");
   }
@@ -76,7 +76,7 @@ void ExpectPlacementsOf(const DisplaySystem& built, const CalibratedDisplay& dis
   for (const VirtualLayer& layer : built.layers) {
     const CalibratedPanel* p = display.find(layer.name);
     ASSERT_NE(p, nullptr) << layer.name;
-    EXPECT_NEAR(p->distance, layer.panel_distance, tolerance) << layer.name;
+    EXPECT_NEAR(p->distance, layer.panel_distance_m, tolerance) << layer.name;
     EXPECT_NEAR(p->eye_from_panel_x_m, layer.panel.eye_from_panel_m[0], tolerance) << layer.name;
     EXPECT_NEAR(p->eye_from_panel_y_m, layer.panel.eye_from_panel_m[1], tolerance) << layer.name;
     EXPECT_NEAR(p->rotation, layer.panel.rotation_rad, tolerance) << layer.name;

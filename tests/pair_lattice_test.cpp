@@ -198,7 +198,7 @@ TEST(PairLattice, PaysWhereRaysRepeatPairs) {
 TEST(PairLattice, HybridFromPairsFollowsTheGeneralPath) {
   const Case c = Cases()[0];
   DisplaySystem rotated = c.system;
-  for (VirtualLayer& layer : rotated.layers) layer.rotation = 1e-12;
+  for (VirtualLayer& layer : rotated.layers) layer.rotation_rad = 1e-12;
   const DisplayModel fast(c.system, c.geometry), general(rotated, c.geometry);
   for (size_t b = 0; b < fast.branch_count(); ++b) ASSERT_TRUE(PairLattice::IfItPays(fast, b));
   const LightField target = Synthesize(fast, RandomPatterns(fast, 9, 0.05f, 1.0f));

@@ -408,7 +408,7 @@ void ExpectLoopRecovers(const DisplaySystem& designed, const DisplaySystem& buil
   EXPECT_GT(report.marker_rms_after, 0.8 * floor);
   EXPECT_LT(report.marker_rms_after, 1.05 * floor);
   for (const VirtualLayer& layer : built.layers) {
-    const std::map<std::string, double> truth = {{"distance", layer.panel_distance},
+    const std::map<std::string, double> truth = {{"distance", layer.panel_distance_m},
                                                  {"offset_x", layer.panel.eye_from_panel_m[0]},
                                                  {"offset_y", layer.panel.eye_from_panel_m[1]},
                                                  {"rotation", layer.panel.rotation_rad}};

@@ -117,8 +117,8 @@ TEST(PupilSize, AutoPupilFollowsTheDisplaysLuminanceAndField) {
   DisplaySystem ideal = CompileJson(ReadExample("multiplicative_2layer.json"));
   DisplaySystem s = CompileJson(PhysiologicalScene({{"pupil_diameter", "auto"}}));
   double white = 0;
-  for (int c = 0; c < 3; ++c) white += kLuminanceWeights[c] * ideal.peak_luminance[c];
-  const double area = ideal.fov_x * ideal.fov_y / (kRadiansPerDegree * kRadiansPerDegree);
+  for (int c = 0; c < 3; ++c) white += kLuminanceWeights[c] * ideal.peak_luminance_cd_m2[c];
+  const double area = ideal.fov_x_rad * ideal.fov_y_rad / (kRadiansPerDegree * kRadiansPerDegree);
   EXPECT_NEAR(s.eye.pupil_luminance_used_cd_m2, 0.5 * white, 1e-9);
   EXPECT_NEAR(s.eye.pupil_field_area_used_deg2, area, 1e-9);
   EXPECT_NEAR(s.eye.pupil_diameter_m, WatsonYellottPupilDiameter({0.5 * white, area, 28.58, 1}), 1e-15);

@@ -202,8 +202,8 @@ TEST(Retina, OneLayerDisplayMatchesNaturalViewingOfThatPlane) {
   const double w = d.model->weight(0)[0];
   // Natural viewing of the same pixels painted on a plane at 1 m, traced in meters.
   SceneRadiance plane = [&](const PupilPoint& u, double dx, double dy) {
-    double x = u.x + dx * layer.depth, y = u.y + dy * layer.depth;
-    int col = int(std::floor(x / layer.pitch_x + 32)), row = int(std::floor(24 - y / layer.pitch_y));
+    double x = u.x + dx * layer.depth_m, y = u.y + dy * layer.depth_m;
+    int col = int(std::floor(x / layer.pitch_x_m + 32)), row = int(std::floor(24 - y / layer.pitch_y_m));
     if (col < 0 || col >= 64 || row < 0 || row >= 48) return Rgb{0, 0, 0};
     int panel_col = layer.flip_x ? 63 - col : col;
     const float* p = &d.t[0].rgb[(size_t(row) * 64 + panel_col) * 3];
@@ -234,7 +234,7 @@ TEST(Retina, OneLayerDisplayEqualsNaturalViewingOfItsLightFieldOnARandomPattern)
   inner.center_x = retina.center_x, inner.center_y = retina.center_y;
   std::vector<PupilPoint> pupil = PupilSamples(d.system.eye);
   const LightFieldGeometry g = d.model->geometry();
-  ASSERT_TRUE(Close(g.origin_z_m, d.system.layers[0].depth, 1e-12));
+  ASSERT_TRUE(Close(g.origin_z_m, d.system.layers[0].depth_m, 1e-12));
   DisplayModel bilinear(d.system, g, Sampling::kBilinear);
   const LightField nearest_lf = Synthesize(*d.model, d.t), bilinear_lf = Synthesize(bilinear, d.t);
   auto rms = [](const Image& a, const Image& b) {
@@ -267,12 +267,12 @@ TEST(Retina, FastAndGeneralPathsAgree) {
   DisplaySystem system = CompileJson(testing::ShrunkExample("paper_prototype.json", 40, 24, 3));
   DisplayModel fast(system, DisplayLightFieldGeometry(system));
   DisplaySystem turned = system;
-  for (VirtualLayer& layer : turned.layers) layer.rotation = 1e-12;
+  for (VirtualLayer& layer : turned.layers) layer.rotation_rad = 1e-12;
   DisplayModel general(turned, DisplayLightFieldGeometry(turned));
   Patterns t = fast.UniformPatterns(0);
   for (size_t k = 0; k < t.size(); ++k)
     for (size_t i = 0; i < t[k].rgb.size(); ++i) t[k].rgb[i] = 0.1f + 0.8f * float((i * 2654435761u + k) % 1000) / 1000;
-  RetinaGrid retina = MakeRetinaGrid(system.fov_x * 0.9, system.fov_y * 0.9, system.fov_x / 120);
+  RetinaGrid retina = MakeRetinaGrid(system.fov_x_rad * 0.9, system.fov_y_rad * 0.9, system.fov_x_rad / 120);
   // Off the symmetric grid, so that no ray lands exactly on a pixel edge, where
   // a rotation of 1e-12 rad may pick the neighbour.
   retina.center_x = 0.3183 * retina.resolution, retina.center_y = 0.2718 * retina.resolution;

@@ -156,7 +156,7 @@ std::vector<Display> Displays() {
   d.push_back({"hybrid, flips toggled", flipped});
   d.push_back({"hybrid, bilinear", hybrid, Sampling::kBilinear});
   DisplaySystem rotated = hybrid;
-  for (VirtualLayer& layer : rotated.layers) layer.rotation = 1e-12;
+  for (VirtualLayer& layer : rotated.layers) layer.rotation_rad = 1e-12;
   d.push_back({"hybrid, rotated", rotated});
   d.push_back({"multiplicative", CompileJson(ShrunkExample("multiplicative_2layer.json", 24, 12, 5))});
   d.push_back({"additive", CompileJson(ShrunkExample("additive_2layer.json", 24, 12, 5))});

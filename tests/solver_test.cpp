@@ -282,7 +282,7 @@ TEST(Solvers, AdditiveTrustRegionInLayerSpaceMatchesTheRayPath) {
   Patterns a, b;
   SolverReport fast = RunSolver("additive-trust-region", f, o, &a);
   DisplaySystem rotated = f.system;
-  for (VirtualLayer& layer : rotated.layers) layer.rotation = 1e-12;
+  for (VirtualLayer& layer : rotated.layers) layer.rotation_rad = 1e-12;
   DisplayModel model(rotated, f.target.geometry);
   SolverReport slow = SolverRegistry::Builtins().create("additive-trust-region")->Solve(model, f.target, o, &b);
   ASSERT_TRUE(fast.IsSolutionUsable()) << fast.FullReport();
@@ -453,7 +453,7 @@ TEST(Solvers, JointPassOfUnequalBranchesIsTheRayByRayPass) {
     ASSERT_EQ(fast.branch_count(), 2u);
     ASSERT_EQ(fast.branch_layers(0).size() != fast.branch_layers(1).size(), unequal);
     DisplaySystem rotated = system;
-    for (VirtualLayer& layer : rotated.layers) layer.rotation = 1e-12;
+    for (VirtualLayer& layer : rotated.layers) layer.rotation_rad = 1e-12;
     const DisplayModel general(rotated, fast.geometry());
     ASSERT_TRUE(OneTapBranch(fast, 0) && OneTapBranch(fast, 1));
     ASSERT_FALSE(OneTapBranch(general, 0));
@@ -477,7 +477,7 @@ TEST(Solvers, JointPassGradientMatchesFiniteDifferences) {
     Fixture f = MakeFixture("paper_prototype.json", 24, 12, 3, unequal);
     for (float& v : f.target.rgb) v = std::min(1.0f, 1.3f * v);
     DisplaySystem rotated = f.system;
-    for (VirtualLayer& layer : rotated.layers) layer.rotation = 1e-12;
+    for (VirtualLayer& layer : rotated.layers) layer.rotation_rad = 1e-12;
     const DisplayModel general(rotated, f.target.geometry);
     Patterns t = KnownPatterns(*f.model, 11);
     for (const DisplayModel* model : {static_cast<const DisplayModel*>(f.model.get()), &general}) {
@@ -511,7 +511,7 @@ TEST(Solvers, JointKernelsAgree) {
   SolverReport a = RunSolver("joint", f, o, &fast);
   // A rotation of 0 that is not exactly 0 turns every layer to the general path.
   DisplaySystem rotated = f.system;
-  for (VirtualLayer& layer : rotated.layers) layer.rotation = 1e-12;
+  for (VirtualLayer& layer : rotated.layers) layer.rotation_rad = 1e-12;
   DisplayModel model(rotated, f.target.geometry);
   SolverReport b = SolverRegistry::Builtins().create("joint")->Solve(model, f.target, o, &general);
   ASSERT_EQ(a.trace.size(), b.trace.size());
@@ -537,7 +537,7 @@ TEST(Solvers, OneTapFastPathMatchesTheGeneralPath) {
     }
     system.branches = branches;
     DisplaySystem rotated = system;
-    for (VirtualLayer& layer : rotated.layers) layer.rotation = 1e-12;
+    for (VirtualLayer& layer : rotated.layers) layer.rotation_rad = 1e-12;
     const DisplayModel fast(system, f.target.geometry), general(rotated, f.target.geometry);
     const std::string name = std::to_string(shape.size()) + " branches, first of " + std::to_string(shape[0].size());
     Patterns truth = KnownPatterns(fast, 3);
@@ -578,7 +578,7 @@ TEST(Solvers, StripSumsAreTheGeneralPathsWhateverTheWorkspaceHeld) {
   // (there nearest sampling ties, and the general path's rotation by 1e-12 breaks the tie).
   g.window_top_m = g.window_height_m / 2 + 0.37 * row_height;
   DisplaySystem rotated = system;
-  for (VirtualLayer& layer : rotated.layers) layer.rotation = 1e-12;
+  for (VirtualLayer& layer : rotated.layers) layer.rotation_rad = 1e-12;
   const DisplayModel fast(system, g), general(rotated, g);
   const Patterns t = KnownPatterns(fast, 5);
   const LightField target = Synthesize(fast, KnownPatterns(fast, 6));
@@ -1147,7 +1147,7 @@ TEST(Solvers, TwoRunsWithTwoThreadsGiveTheSameBits) {
   // The general path (a rotation of 1e-12 selects it).
   const Fixture f = MakeFixture("paper_prototype.json", 64, 32, 7);
   DisplaySystem rotated = f.system;
-  for (VirtualLayer& layer : rotated.layers) layer.rotation = 1e-12;
+  for (VirtualLayer& layer : rotated.layers) layer.rotation_rad = 1e-12;
   const DisplayModel general(rotated, f.target.geometry);
   for (const std::string solver : {"hybrid", "joint", "quasi-newton"}) {
     SolverOptions o;

@@ -44,7 +44,7 @@ TEST(Warnings, ATargetOfAnotherGeometryIsNamedPartByPart) {
   const double z = g.origin_z_m, w = g.window_width_m;
   g.window_left_m /= 2, g.window_width_m /= 2;
   const double half_field = 2 * std::atan(w / 4 / z) * 180 / std::numbers::pi;
-  const double fov_x = s.fov_x * 180 / std::numbers::pi, fov_y = s.fov_y * 180 / std::numbers::pi;
+  const double fov_x = s.fov_x_rad * 180 / std::numbers::pi, fov_y = s.fov_y_rad * 180 / std::numbers::pi;
   const std::vector<std::string> warnings = TargetGeometryWarnings(s, g);
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_EQ(warnings[0],
