@@ -133,7 +133,7 @@ class ContrastRun {
     retina_ = MakeRetinaGrid(o.retina_field * kRadiansPerDegree, 3 * o.retina_resolution * kRadiansPerDegree,
                              o.retina_resolution * kRadiansPerDegree);
     shifted_ = retina_;
-    shifted_.center_x += 0.5 * retina_.resolution;  // for the peaks' sampling uncertainty
+    shifted_.center_x_rad += 0.5 * retina_.resolution_rad;  // for the peaks' sampling uncertainty
     grids_[0] = retina_, grids_[1] = shifted_;
     texture_of_ = o.texture ? o.texture : CosineGrating(0.5, 1.0, o.grating);
     convention_ = ConventionLabel(o.reference, o.grating);
@@ -244,7 +244,7 @@ class ContrastRun {
     if (o_.reference == ContrastReference::kContinuous && di == 0) {
       // The continuous plane at D_t as the eye sees it.
       SceneRadiance plane = [&](const PupilPoint& u, double dx, double dy) {
-        return texture->Evaluate(u.x + dx / dt, u.y + dy / dt);
+        return texture->Evaluate(u.x_m + dx / dt, u.y_m + dy / dt);
       };
       auto start = std::chrono::steady_clock::now();
       RetinalImage natural = NaturalImage(plane, first_eye_, pupils_.front());

@@ -113,7 +113,7 @@ void RunRetinaCommand(const RetinaCommandOptions& o) {
     target_scene = LoadTarget(given.target_scene);
     tracer = std::make_unique<TargetTracer>(*target_scene);
     natural = [&tracer](const PupilPoint& u, double dx, double dy) {
-      return tracer->TraceDirection(u.x, u.y, dx, dy).color;
+      return tracer->TraceDirection(u.x_m, u.y_m, dx, dy).color;
     };
   }
 #endif

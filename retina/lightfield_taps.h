@@ -55,8 +55,8 @@ struct ViewWeights {
   double weight[2][2];
 };
 inline ViewWeights ViewsAround(const LightFieldGeometry& g, const PupilPoint& u) {
-  const Bracket vcol = Around(u.x, -g.eyebox_width_m / 2, g.eyebox_width_m / g.views_x, g.views_x);
-  const Bracket vrow = Around(g.eyebox_height_m / 2 - u.y, 0.0, g.eyebox_height_m / g.views_y, g.views_y);
+  const Bracket vcol = Around(u.x_m, -g.eyebox_width_m / 2, g.eyebox_width_m / g.views_x, g.views_x);
+  const Bracket vrow = Around(g.eyebox_height_m / 2 - u.y_m, 0.0, g.eyebox_height_m / g.views_y, g.views_y);
   ViewWeights v;
   for (int a = 0; a < 2; ++a)
     for (int b = 0; b < 2; ++b) {

@@ -193,7 +193,7 @@ struct Window {
 std::vector<Window> LocalFrequencies(GratingSpacing spacing, double dt, double f) {
   auto texture = CosineGrating(0.5, 1.0, spacing)(1 / dt, f);
   SceneRadiance plane = [&](const PupilPoint& u, double dx, double dy) {
-    return texture->Evaluate(u.x + dx / dt, u.y + dy / dt);
+    return texture->Evaluate(u.x_m + dx / dt, u.y_m + dy / dt);
   };
   EyeModel eye;
   RetinaGrid retina = MakeRetinaGrid(20 * kRadiansPerDegree, 0.01 * kRadiansPerDegree, 0.01 * kRadiansPerDegree);

@@ -173,7 +173,7 @@ EyeModel RoundEye(double pupil, int samples) {
 // A scene of pseudo-random values on a plane at `depth` m.
 SceneRadiance Pattern(double depth) {
   return [depth](const PupilPoint& u, double dx, double dy) {
-    double x = u.x + dx * depth, y = u.y + dy * depth;
+    double x = u.x_m + dx * depth, y = u.y_m + dy * depth;
     double v = 0.5 + 0.25 * std::sin(3.1e3 * x + 1.3e3 * y) + 0.2 * std::cos(5.7e3 * y - 0.9e3 * x);
     return Rgb{v, 0.5 * v, 1 - v};
   };
@@ -198,7 +198,7 @@ TEST(Zernike, PureDefocusIsTheBlurLawAtTheConvertedPower) {
   // its image's extent on a row through the center.
   const double z = 0.5, da = 1.0, radius = 0.6 * 0.005 * kRadiansPerDegree * z;
   SceneRadiance point = [&](const PupilPoint& u, double dx, double dy) {
-    double x = u.x + dx * z, y = u.y + dy * z;
+    double x = u.x_m + dx * z, y = u.y_m + dy * z;
     return x * x + y * y <= radius * radius ? Rgb{1, 1, 1} : Rgb{0, 0, 0};
   };
   EyeModel square = eye;
@@ -223,7 +223,7 @@ std::vector<double> GratingCurve(const EyeModel& eye, double dt, double cpd, boo
       vertical_bars ? MakeRetinaGrid(field, resolution, resolution) : MakeRetinaGrid(resolution, field, resolution);
   const double z = 1 / dt;
   SceneRadiance grating = [&](const PupilPoint& u, double dx, double dy) {
-    const double s = vertical_bars ? u.x + dx * z : u.y + dy * z;
+    const double s = vertical_bars ? u.x_m + dx * z : u.y_m + dy * z;
     double v = 0.5 + 0.5 * std::cos(2 * std::numbers::pi * cpd * std::atan(s / z) / kRadiansPerDegree);
     return Rgb{v, v, v};
   };

@@ -56,7 +56,7 @@ const Case kCases[] = {{Sampling::kNearest, {1.0, 1.0, 1.0}, "nearest"},
 RetinaGrid Grid() {
   RetinaGrid grid = MakeRetinaGrid(11 * kRadiansPerDegree, 7 * kRadiansPerDegree,
                                    0.23 * kRadiansPerDegree);  // a little past the window
-  grid.center_x = 0.2 * kRadiansPerDegree;
+  grid.center_x_rad = 0.2 * kRadiansPerDegree;
   return grid;
 }
 
@@ -168,7 +168,7 @@ std::vector<Display> Displays() {
 
 RetinalObjectiveOptions FewStates() {
   RetinalObjectiveOptions o;
-  o.states = {0.3, 1.1, 2.2};
+  o.states_diopters = {0.3, 1.1, 2.2};
   o.weights = {1.0, 0.5, 2.0};
   return o;
 }
@@ -268,7 +268,7 @@ TEST(RetinalObjective, PinholeOneStateIsTheCentreViewsLightFieldObjective) {
   const LightField target = Synthesize(model, RandomPatterns(model, 8, 0.1f, 1.0f));
   for (double state : {0.0, 1.7}) {
     RetinalObjectiveOptions o;
-    o.states = {state};
+    o.states_diopters = {state};
     const RetinalObjective objective(model, target, o);
     ASSERT_EQ(objective.retina().cols, g.cols);
     const LightField l = Synthesize(model, RandomPatterns(model, 12, 0.0f, 1.0f));
@@ -396,7 +396,7 @@ TEST(RetinalObjective, ContrastSensitivityGradientMatchesCentralDifferences) {
   const DisplayModel model(system, DisplayLightFieldGeometry(system));
   const LightField target = Synthesize(model, RandomPatterns(model, 8, 0.1f, 1.0f));
   RetinalObjectiveOptions plain = FewStates();
-  plain.resolution = 0.02 * kRadiansPerDegree;  // 25 cpd at Nyquist
+  plain.resolution_rad = 0.02 * kRadiansPerDegree;  // 25 cpd at Nyquist
   RetinalObjectiveOptions weighted = plain;
   weighted.contrast_sensitivity = true;
   const RetinalObjective objective(model, target, weighted), unweighted(model, target, plain);

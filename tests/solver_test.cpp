@@ -850,7 +850,7 @@ TEST(SolverCheckpoint, EachFieldOfTheDigestChangedInTurnIsRefusedByName) {
   const Fixture f = MakeFixture("multiplicative_2layer.json", 16, 8, 3);
   SolverOptions base;
   base.objective = ObjectiveKind::kRetinal;
-  base.retinal.states = {0.5, 1.5};
+  base.retinal.states_diopters = {0.5, 1.5};
   base.retinal.weights = {1, 2};
   const CheckpointInputs recorded = CheckpointDigest(*f.model, Sampling::kNearest, f.target, "hybrid", base);
   const std::string folder =
@@ -879,10 +879,11 @@ TEST(SolverCheckpoint, EachFieldOfTheDigestChangedInTurnIsRefusedByName) {
        [](auto*, auto*, auto*, auto*, SolverOptions* o) { o->target_range = TargetRange::kScale; }},
       {"objective", "options",
        [](auto*, auto*, auto*, auto*, SolverOptions* o) { o->objective = ObjectiveKind::kLightField; }},
-      {"retinal states", "options", [](auto*, auto*, auto*, auto*, SolverOptions* o) { o->retinal.states[1] = 1.6; }},
+      {"retinal states", "options",
+       [](auto*, auto*, auto*, auto*, SolverOptions* o) { o->retinal.states_diopters[1] = 1.6; }},
       {"retinal weights", "options", [](auto*, auto*, auto*, auto*, SolverOptions* o) { o->retinal.weights[0] = 3; }},
       {"retinal resolution", "options",
-       [](auto*, auto*, auto*, auto*, SolverOptions* o) { o->retinal.resolution = 1e-3; }},
+       [](auto*, auto*, auto*, auto*, SolverOptions* o) { o->retinal.resolution_rad = 1e-3; }},
       {"retinal target", "options",
        [](auto*, auto*, auto*, auto*, SolverOptions* o) { o->retinal.target = RetinalTarget::kTraced; }},
       {"contrast sensitivity", "options",
