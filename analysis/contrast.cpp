@@ -393,7 +393,7 @@ PlaneTextureFactory CosineGrating(double mean, double contrast, GratingSpacing s
   return [=](double depth, double cpd) -> std::shared_ptr<const Texture> {
     GratingSpec spec;
     spec.cycles_per_meter = cpd / (depth * kRadiansPerDegree);  // at the line of sight
-    spec.angle_depth = spacing == GratingSpacing::kVisualAngle ? depth : 0;
+    spec.angle_depth_m = spacing == GratingSpacing::kVisualAngle ? depth : 0;
     spec.mean = mean;
     spec.contrast = contrast;
     return MakeGratingTexture(spec);

@@ -134,7 +134,7 @@ void CheckMirroring(const DisplaySystem& system, const std::vector<std::vector<c
   for (size_t k = 0; k < by_layer.size(); ++k) {
     std::map<size_t, std::pair<std::vector<Point2>, std::vector<Point2>>> by_capture;  // parallax differs per capture
     for (const MarkerDatum* d : by_layer[k]) {
-      by_capture[d->capture].first.push_back({d->placement.local_x, d->placement.local_y});
+      by_capture[d->capture].first.push_back({d->placement.local_x_m, d->placement.local_y_m});
       by_capture[d->capture].second.push_back({std::tan(d->angle_x), std::tan(d->angle_y)});
     }
     double as_given = 0, mirrored = 0;
@@ -183,7 +183,7 @@ void PlaceAsFitted(const DisplaySystem& system, const std::vector<Optic>& optics
         auto designed =
             std::find_if(optics.begin(), optics.end(), [&](const Optic& o) { return o.name == step.element; });
         if (fitted && designed != optics.end()) {
-          shift += fitted->gap - designed->gap;
+          shift += fitted->gap_m - designed->gap;
           panel.optics_fitted = panel.optics_fitted || fitted->gap_fitted || fitted->focal_length_fitted;
         }
         optic_at = *step.position_m + shift;
@@ -196,12 +196,12 @@ void PlaceAsFitted(const DisplaySystem& system, const std::vector<Optic>& optics
         walked[k].before = step.position_m.value_or(0.0) + shift;
       }
     }
-    walked[k].position = optic_at + panel.distance;
+    walked[k].position = optic_at + panel.distance_m;
     panel_at[layer.name] = walked[k].position;
   }
   for (size_t k = 0; k < system.layers.size(); ++k) {
     const Walked& w = walked[k];
-    display->panels[k].gap = w.position - (w.before_is_panel ? panel_at.at(w.before_name) : w.before);
+    display->panels[k].gap_m = w.position - (w.before_is_panel ? panel_at.at(w.before_name) : w.before);
   }
 }
 
@@ -232,7 +232,7 @@ class GeometryFitter {
       for (int i : {pan_, tilt_, roll_}) Hold(i, ParameterStatus::kReference);
     AddResiduals();
     if (!Solve() || !CheckFittedImages()) return false;
-    report_->marker_noise = result_.noise;
+    report_->marker_noise_rad = result_.noise;
     if (result_.covariance.size() == 0)
       report_->warnings.push_back("no uncertainties for the geometry: " + result_.covariance_message);
     ReportResiduals();
@@ -417,7 +417,7 @@ class GeometryFitter {
       for (int o : path.element) blocks.push_back(optics_[o].gap_index), blocks.push_back(optics_[o].focal);
       for (size_t i = 0; i < blocks.size(); ++i) cost->AddParameterBlock(1);
       cost->SetNumResiduals(2);
-      fit_.AddResidual(cost, MakeLoss(options_.loss, options_.marker_loss_scale), blocks);
+      fit_.AddResidual(cost, MakeLoss(options_.loss, options_.marker_loss_scale_rad), blocks);
     }
   }
 
@@ -496,14 +496,14 @@ class GeometryFitter {
       components.push_back(std::abs(b[1] - d.angle_y));
       errors.push_back({std::sqrt(error_after), &d});
     }
-    report_->marker_rms_before = std::sqrt(sum_before / data_.size());
-    report_->marker_rms_after = std::sqrt(sum_after / data_.size());
+    report_->marker_rms_before_rad = std::sqrt(sum_before / data_.size());
+    report_->marker_rms_after_rad = std::sqrt(sum_after / data_.size());
     for (int k = 0; k < layer_count_; ++k) {
       if (by_layer_[k].empty()) continue;
       PanelResiduals& r = report_->panels[k];
       r.markers = static_cast<int>(by_layer_[k].size());
-      r.marker_rms_before = std::sqrt(before[k] / r.markers);
-      r.marker_rms_after = std::sqrt(after[k] / r.markers);
+      r.marker_rms_before_rad = std::sqrt(before[k] / r.markers);
+      r.marker_rms_after_rad = std::sqrt(after[k] / r.markers);
     }
     if (options_.loss == RobustLoss::kNone && components.size() > 8) WarnOutliers(&components, errors);
   }
@@ -576,10 +576,10 @@ class GeometryFitter {
       report_->parameters.push_back(Estimate(layer.name, i));
 
     out->geometry_measured = true;
-    out->distance = distance.value;
+    out->distance_m = distance.value;
     out->eye_from_panel_x_m = fit_.value(p.eye_from_panel_x_m);
     out->eye_from_panel_y_m = fit_.value(p.eye_from_panel_y_m);
-    out->rotation = fit_.value(p.rotation);
+    out->rotation_rad = fit_.value(p.rotation);
   }
 
   // Propagated through D(s, g, f) with the covariance of the path's parameters (derivatives by dual numbers).

@@ -65,7 +65,7 @@ std::array<double, 2> ImagedMarker(const DisplaySystem& truth, const VirtualLaye
                                    const SyntheticCamera& camera, const std::array<double, 2>& position) {
   const std::array<double, 2> slope = RaySlopeTo(layer, PanelPoint(layer, col, row), position);
   const Eigen::Vector3d ray(slope[0], slope[1], 1.0);
-  const Eigen::Vector3d turn(-camera.tilt, camera.pan, camera.roll);
+  const Eigen::Vector3d turn(-camera.tilt_rad, camera.pan_rad, camera.roll_rad);
   const Eigen::Matrix3d eye_from_camera = turn.norm() > 0
                                               ? Eigen::AngleAxisd(turn.norm(), turn.normalized()).toRotationMatrix()
                                               : Eigen::Matrix3d::Identity();
@@ -77,9 +77,9 @@ std::vector<Capture> SyntheticCaptures(const DisplaySystem& truth, const MarkerG
                                        const SyntheticCamera& camera, const SyntheticNoise& noise) {
   Gaussian gaussian(noise.seed);
   std::vector<Capture> captures;
-  for (size_t c = 0; c < camera.positions.size(); ++c) {
+  for (size_t c = 0; c < camera.positions_m.size(); ++c) {
     Capture capture;
-    capture.camera_position = camera.positions[c];
+    capture.camera_position = camera.positions_m[c];
     capture.where = {"synthetic", "/captures/" + std::to_string(c)};
     for (const VirtualLayer& layer : truth.layers) {
       const PanelSpec& p = layer.panel;
@@ -95,12 +95,12 @@ std::vector<Capture> SyntheticCaptures(const DisplaySystem& truth, const MarkerG
           m.row = row;
           m.where = markers.where.child(markers.markers.size());
           auto angle = ImagedMarker(truth, layer, col, row, camera, capture.camera_position);
-          angle[0] += noise.marker_sigma * gaussian();
-          angle[1] += noise.marker_sigma * gaussian();
+          angle[0] += noise.marker_sigma_rad * gaussian();
+          angle[1] += noise.marker_sigma_rad * gaussian();
           if (noise.outlier_fraction > 0 && gaussian.uniform() < noise.outlier_fraction) {
             const double direction = 2 * std::numbers::pi * gaussian.uniform();
-            angle[0] += noise.outlier_size * std::cos(direction);
-            angle[1] += noise.outlier_size * std::sin(direction);
+            angle[0] += noise.outlier_size_rad * std::cos(direction);
+            angle[1] += noise.outlier_size_rad * std::sin(direction);
           }
           m.angle_x = angle[0];
           m.angle_y = angle[1];

@@ -144,16 +144,17 @@ std::array<Vec3, 3> RotationMatrix(double ax, double ay, double az) {
 TargetPlane ParsePlane(Params& o, const LightFieldGeometry& g, const std::string& base_dir, std::string& description,
                        std::vector<std::string>& files_read) {
   TargetPlane plane;
-  plane.depth = RequiredDepth(o, "depth");
-  plane.center = o.quantity_pair("center", Dimension::kLength, {0, 0});
-  plane.size = o.has("size") ? LengthOrAnglePair(o, "size", plane.depth) : CoveringSize(g, plane.depth, plane.center);
+  plane.depth_m = RequiredDepth(o, "depth");
+  plane.center_m = o.quantity_pair("center", Dimension::kLength, {0, 0});
+  plane.size_m =
+      o.has("size") ? LengthOrAnglePair(o, "size", plane.depth_m) : CoveringSize(g, plane.depth_m, plane.center_m);
   o.mark_read("size");
-  double scale = plane.depth / g.origin_z_m;
-  TextureFrame frame{plane.depth, {g.window_width_m * scale, g.window_height_m * scale}, base_dir, &files_read};
+  double scale = plane.depth_m / g.origin_z_m;
+  TextureFrame frame{plane.depth_m, {g.window_width_m * scale, g.window_height_m * scale}, base_dir, &files_read};
   Params texture = o.object("texture");
   plane.texture = ParseTexture(texture, frame);
   o.check_all_read();
-  description = "plane at " + Diopters(plane.depth) + " (" + plane.texture->Describe() + ")";
+  description = "plane at " + Diopters(plane.depth_m) + " (" + plane.texture->Describe() + ")";
   return plane;
 }
 
@@ -191,14 +192,14 @@ TargetMesh ParseMesh(Params& o, const std::string& base_dir, std::string& descri
   }
   // The mesh's own size (before rotation), so turning a mesh keeps its texture.
   double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
-  target.uv_size = o.quantity("uv_size", Dimension::kLength, extent > 0 ? extent : 1.0);
-  o.require_range("uv_size", target.uv_size, 0.0, 1e3, true, false);
+  target.uv_size_m = o.quantity("uv_size", Dimension::kLength, extent > 0 ? extent : 1.0);
+  o.require_range("uv_size", target.uv_size_m, 0.0, 1e3, true, false);
 
   if (o.has("color") && o.has("texture")) o.fail("texture", "give \"color\" or \"texture\", not both");
   if (o.has("texture")) {
     if (!target.mesh.has_uvs())
       o.fail("texture", path + " has no texture coordinates (OBJ vt, PLY u v); give it a \"color\" instead");
-    TextureFrame frame{position[2], {target.uv_size, target.uv_size}, base_dir, &files_read};
+    TextureFrame frame{position[2], {target.uv_size_m, target.uv_size_m}, base_dir, &files_read};
     Params texture = o.object("texture");
     target.texture = ParseTexture(texture, frame);
   } else {

@@ -35,7 +35,7 @@ const DisplaySystem& PerBranch() {
 SyntheticSetup AnglesOnly(double sigma_arcmin) {
   SyntheticSetup setup = testing::PerBranchSetup();
   setup.camera.intrinsics.reset();
-  setup.noise.marker_sigma = sigma_arcmin * kArcmin;
+  setup.noise.marker_sigma_rad = sigma_arcmin * kArcmin;
   return setup;
 }
 
@@ -77,8 +77,8 @@ TEST(GeneralPathCalibrationTest, SyntheticMarkersMatchARayTracedThroughTheElemen
             const double c = std::cos(p.rotation_rad), s = std::sin(p.rotation_rad);
             // Eye-space orientation; an inverted image turns it by 180 degrees in the unfolded path.
             const double turn = layer.inverted ? -1.0 : 1.0;
-            const double x = turn * (p.eye_from_panel_m[0] + c * m.local_x - s * m.local_y);
-            const double y = turn * (p.eye_from_panel_m[1] + s * m.local_x + c * m.local_y);
+            const double x = turn * (p.eye_from_panel_m[0] + c * m.local_x_m - s * m.local_y_m);
+            const double y = turn * (p.eye_from_panel_m[1] + s * m.local_x_m + c * m.local_y_m);
             const auto angle = ImagedMarker(built, layer, col, row, SyntheticCamera{}, camera);
             EXPECT_NEAR(angle[0], std::atan(TracedSlope(layer, camera[0], x)), 1e-12)
                 << built.file << " " << layer.name;
@@ -118,7 +118,7 @@ TEST(GeneralPathCalibrationTest, WithoutNoiseRecoversEachBranchsLensGapExactly) 
     CalibratedDisplay display;
     const CalibrationReport report = Calibrate(PerBranch(), m, options, &display);
     ASSERT_TRUE(report.IsSolutionUsable()) << report.message;
-    EXPECT_LT(report.marker_rms_after, 1e-10) << report.FullReport();
+    EXPECT_LT(report.marker_rms_after_rad, 1e-10) << report.FullReport();
     for (const char* lens : {"lens_a", "lens_b"}) {
       const ParameterEstimate* gap = report.find(lens, "gap");
       ASSERT_NE(gap, nullptr) << lens;
@@ -127,7 +127,7 @@ TEST(GeneralPathCalibrationTest, WithoutNoiseRecoversEachBranchsLensGapExactly) 
       EXPECT_NEAR(gap->scene_value, designed, 1e-15);
       const double change = std::string(lens) == "lens_a" ? 0.5e-3 : -0.4e-3;
       EXPECT_NEAR(gap->value, designed + change, 1e-9) << lens;
-      EXPECT_NEAR(display.find_optic(lens)->focal_length, std::string(lens) == "lens_a" ? 60e-3 : 80e-3, 1e-9);
+      EXPECT_NEAR(display.find_optic(lens)->focal_length_m, std::string(lens) == "lens_a" ? 60e-3 : 80e-3, 1e-9);
       EXPECT_EQ(report.find(lens, "focal_length")->status,
                 focal_lengths_too ? ParameterStatus::kFitted : ParameterStatus::kNotFitted);
     }
@@ -186,7 +186,7 @@ TEST(GeneralPathCalibrationTest, RecoversEachBranchsLensGapWithinTheNoise) {
     const CalibrationReport report = Calibrate(PerBranch(), m, LensGaps(), &display);
     ASSERT_TRUE(report.IsSolutionUsable()) << report.message;
     EXPECT_TRUE(report.warnings.empty()) << report.FullReport();
-    EXPECT_TRUE(testing::Close(report.marker_noise, sigma, 0.15)) << report.FullReport();
+    EXPECT_TRUE(testing::Close(report.marker_noise_rad, sigma, 0.15)) << report.FullReport();
     size_t i = 0;
     for (const OpticTruth& o : optics) {
       const ParameterEstimate* gap = report.find(o.name, "gap");
@@ -202,7 +202,7 @@ TEST(GeneralPathCalibrationTest, RecoversEachBranchsLensGapWithinTheNoise) {
     }
     for (const VirtualLayer& layer : built.layers) {
       const CalibratedPanel* p = display.find(layer.name);
-      const double values[] = {p->distance, p->eye_from_panel_x_m, p->eye_from_panel_y_m, p->rotation};
+      const double values[] = {p->distance_m, p->eye_from_panel_x_m, p->eye_from_panel_y_m, p->rotation_rad};
       const double truths[] = {layer.panel_distance_m, layer.panel.eye_from_panel_m[0], layer.panel.eye_from_panel_m[1],
                                layer.panel.rotation_rad};
       const char* quantities[] = {"distance", "offset_x", "offset_y", "rotation"};
@@ -221,7 +221,7 @@ TEST(GeneralPathCalibrationTest, LensGapsWithoutParallaxAreUndetermined) {
   const std::vector<PanelTruth> truth = testing::PerBranchTruth();
   const DisplaySystem built = testing::BuiltSystem(PerBranch(), truth, testing::PerBranchOptics());
   SyntheticSetup setup = AnglesOnly(0.3);
-  setup.camera.positions = {{0.0, 0.0}};
+  setup.camera.positions_m = {{0.0, 0.0}};
   const Measurements m = testing::SyntheticMeasurements(built, truth, setup);
   CalibrationOptions options = LensGaps();
   options.fit_focal_length = true;
@@ -313,7 +313,7 @@ TEST(GeneralPathCalibrationTest, PanelsWithoutOpticsKeepTheirGaps) {
   CalibratedDisplay display;
   const CalibrationReport report = Calibrate(designed, m, CalibrationOptions{}, &display);
   ASSERT_TRUE(report.IsSolutionUsable()) << report.message;
-  EXPECT_LT(report.marker_rms_after, 1e-10) << report.FullReport();
+  EXPECT_LT(report.marker_rms_after_rad, 1e-10) << report.FullReport();
   const std::string path = testing::ExamplePath("tensor_display_3layer.json");
   const nlohmann::ordered_json document = CalibratedSceneDocument(ReadDocumentInOrder(path), path, display);
   for (const auto& e : document["elements"])
@@ -345,7 +345,7 @@ TEST(GeneralPathCalibrationTest, PanelGapBehindAFoldFollowsTheFittedLens) {
   CalibratedDisplay display;
   const CalibrationReport report = Calibrate(designed, m, LensGaps(), &display);
   ASSERT_TRUE(report.IsSolutionUsable()) << report.message;
-  EXPECT_LT(report.marker_rms_after, 1e-10) << report.FullReport();
+  EXPECT_LT(report.marker_rms_after_rad, 1e-10) << report.FullReport();
   const nlohmann::ordered_json document = CalibratedSceneDocument(ReadDocumentInOrder(file), file, display);
   json written = json::parse(document.dump());
   EXPECT_TRUE(testing::ElementNamed(written, "front_a").contains("gap"));
@@ -366,8 +366,8 @@ TEST(GeneralPathCalibrationTest, RecoversPanelsSeenInvertedThroughARelay) {
   CalibratedDisplay display;
   const CalibrationReport report = Calibrate(designed, m, CalibrationOptions{}, &display);
   ASSERT_TRUE(report.IsSolutionUsable()) << report.message;
-  EXPECT_GT(report.marker_rms_before, 5 * kArcmin);
-  EXPECT_LT(report.marker_rms_after, 1e-10) << report.FullReport();
+  EXPECT_GT(report.marker_rms_before_rad, 5 * kArcmin);
+  EXPECT_LT(report.marker_rms_after_rad, 1e-10) << report.FullReport();
   testing::ExpectPlacementsOf(built, display, 1e-9);
   EXPECT_TRUE(report.warnings.empty()) << report.FullReport();
 }

@@ -76,10 +76,10 @@ void ExpectPlacementsOf(const DisplaySystem& built, const CalibratedDisplay& dis
   for (const VirtualLayer& layer : built.layers) {
     const CalibratedPanel* p = display.find(layer.name);
     ASSERT_NE(p, nullptr) << layer.name;
-    EXPECT_NEAR(p->distance, layer.panel_distance_m, tolerance) << layer.name;
+    EXPECT_NEAR(p->distance_m, layer.panel_distance_m, tolerance) << layer.name;
     EXPECT_NEAR(p->eye_from_panel_x_m, layer.panel.eye_from_panel_m[0], tolerance) << layer.name;
     EXPECT_NEAR(p->eye_from_panel_y_m, layer.panel.eye_from_panel_m[1], tolerance) << layer.name;
-    EXPECT_NEAR(p->rotation, layer.panel.rotation_rad, tolerance) << layer.name;
+    EXPECT_NEAR(p->rotation_rad, layer.panel.rotation_rad, tolerance) << layer.name;
   }
 }
 
@@ -87,8 +87,8 @@ SyntheticSetup ExampleSetup() {
   SyntheticSetup setup;
   setup.grid = {7, 5, 0.1};
   setup.camera.intrinsics = CameraIntrinsics{3000, 3000, 2000, 1500, -0.02, 0};
-  setup.camera.positions = {{0.0, 0.0}, {2e-3, 0.0}, {0.0, 2e-3}};
-  setup.noise.marker_sigma = 0.3 * kArcmin;
+  setup.camera.positions_m = {{0.0, 0.0}, {2e-3, 0.0}, {0.0, 2e-3}};
+  setup.noise.marker_sigma_rad = 0.3 * kArcmin;
   setup.noise.luminance_sigma = 0.003;
   setup.noise.seed = 20240601;
   for (int code = 0; code < 255; code += 16) setup.luminance_codes.push_back(code);
@@ -110,7 +110,7 @@ std::vector<OpticTruth> PerBranchOptics() { return {{"lens_a", 0.50e-3, {}}, {"l
 
 SyntheticSetup PerBranchSetup() {
   SyntheticSetup setup = ExampleSetup();
-  setup.camera.positions = {{0.0, 0.0}, {-3e-3, 0.0}, {3e-3, 0.0}, {0.0, -3e-3}, {0.0, 3e-3}};
+  setup.camera.positions_m = {{0.0, 0.0}, {-3e-3, 0.0}, {3e-3, 0.0}, {0.0, -3e-3}, {0.0, 3e-3}};
   setup.noise.seed = 20261201;
   setup.luminance_codes.clear();
   return setup;
@@ -153,7 +153,7 @@ GeometrySigma ExpectedGeometrySigma(const VirtualLayer& layer, const PanelMarker
 std::vector<double> BruteForceSigmas(const nlohmann::json& built_scene, const std::vector<SceneParameter>& parameters,
                                      const SyntheticSetup& setup, double sigma) {
   SyntheticNoise quiet = setup.noise;
-  quiet.marker_sigma = quiet.outlier_fraction = 0;
+  quiet.marker_sigma_rad = quiet.outlier_fraction = 0;
   auto angles = [&](const SceneParameter* p, double change) {
     nlohmann::json scene = built_scene;
     if (p) p->apply(scene, change);

@@ -19,7 +19,7 @@ LightFieldGeometry Geometry(int cols = 200, int rows = 120) { return testing::Wi
 std::unique_ptr<Texture> Grating(double cycles_per_meter) {
   GratingSpec spec;
   spec.cycles_per_meter = cycles_per_meter;
-  spec.phase = 0.3;
+  spec.phase_rad = 0.3;
   return MakeGratingTexture(spec);
 }
 

@@ -109,7 +109,7 @@ TEST_P(ParallaxTest, GratingMovesAsTheRayEquationPredicts) {
       ParseTarget(Target(lf, {GratingPlane(c.plane_depth, c.vertical ? "90 deg" : "0 deg")}), "target.json");
   LightField rendered = RenderTarget(target);
   const LightFieldGeometry& g = target.geometry;
-  const double z = target.planes[0].depth, s = z / g.origin_z_m;
+  const double z = target.planes[0].depth_m, s = z / g.origin_z_m;
   const double f = 2 / (z * kPi / 180);  // cycles per meter on the plane
   const double w = 2 * kPi * f * s;      // radians per meter on the origin plane
   const int n = c.vertical ? g.rows : g.cols;
@@ -213,7 +213,7 @@ TEST(TargetRendererTest, PixelSamplesCoverThePixelFootprint) {
     // Set the frequency so that one period is exactly four pixels on the origin plane.
     GratingSpec spec;
     spec.cycles_per_meter = 1 / (4 * pixel);
-    spec.phase = 0.3;
+    spec.phase_rad = 0.3;
     target.planes[0].texture = MakeGratingTexture(spec);
     LightField rendered = RenderTarget(target);
     std::vector<double> u, values;
@@ -347,7 +347,7 @@ TEST(TargetRendererTest, EmbreeAndDirectPlaneLightFieldsAgree) {
   TargetScene target = ParseTarget(t, "target.json");
   LightField traced = RenderTarget(target);
   const TargetPlane& plane = target.planes[0];
-  LightField direct = RenderPlaneLightField(target.geometry, plane.depth, *plane.texture, {4, 3}, plane.center);
+  LightField direct = RenderPlaneLightField(target.geometry, plane.depth_m, *plane.texture, {4, 3}, plane.center_m);
   ASSERT_EQ(traced.rgb.size(), direct.rgb.size());
   double worst = 0;
   for (size_t k = 0; k < traced.rgb.size(); ++k)
@@ -355,7 +355,7 @@ TEST(TargetRendererTest, EmbreeAndDirectPlaneLightFieldsAgree) {
   EXPECT_LT(worst, 1e-5);
   EXPECT_EQ(traced.depth, direct.depth);
   // A different seed moves the samples.
-  LightField other = RenderPlaneLightField(target.geometry, plane.depth, *plane.texture, {4, 4}, plane.center);
+  LightField other = RenderPlaneLightField(target.geometry, plane.depth_m, *plane.texture, {4, 4}, plane.center_m);
   EXPECT_NE(other.rgb, direct.rgb);
 }
 
@@ -377,7 +377,7 @@ TEST(TargetRendererTest, VerticalGratingRowsCopiedAreEveryPixelEvaluated) {
   for (double phase : {0.0, 1.0, std::numbers::pi / 2})
     for (double angle_depth : {0.0, 0.6}) {
       GratingSpec spec;
-      spec.cycles_per_meter = 900, spec.phase = phase, spec.angle_depth = angle_depth;
+      spec.cycles_per_meter = 900, spec.phase_rad = phase, spec.angle_depth_m = angle_depth;
       const std::unique_ptr<Texture> grating = MakeGratingTexture(spec);
       ASSERT_TRUE(grating->ConstantAlongT());
       for (double depth : {g.origin_z_m, 0.5}) {
@@ -403,7 +403,7 @@ TEST(TargetRendererTest, VerticalGratingRowsCopiedAreEveryPixelEvaluated) {
       }
     }
   GratingSpec tilted;
-  tilted.cycles_per_meter = 900, tilted.orientation = std::numbers::pi / 2;
+  tilted.cycles_per_meter = 900, tilted.orientation_rad = std::numbers::pi / 2;
   EXPECT_FALSE(MakeGratingTexture(tilted)->ConstantAlongT());
 }
 
@@ -429,9 +429,9 @@ TEST(TargetTracerTest, RayInAnyDirectionReadsThePlaneWhereItMeetsIt) {
   const TargetPlane& plane = target.planes[0];
   for (double vx : {-0.0017, 0.0, 0.0021})
     for (double dx : {-0.05, 0.013, 0.07}) {
-      const double vy = 0.6 * vx, dy = -0.4 * dx, z = plane.depth;
+      const double vy = 0.6 * vx, dy = -0.4 * dx, z = plane.depth_m;
       TracedSample s = tracer.TraceDirection(vx, vy, dx, dy);
-      Rgb expected = plane.texture->Evaluate(vx + dx * z - plane.center[0], vy + dy * z - plane.center[1]);
+      Rgb expected = plane.texture->Evaluate(vx + dx * z - plane.center_m[0], vy + dy * z - plane.center_m[1]);
       EXPECT_NEAR(s.z, z, 1e-12);
       EXPECT_NEAR(s.color[0], expected[0], 1e-12) << "from " << vx << " along " << dx;
     }

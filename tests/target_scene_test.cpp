@@ -29,7 +29,7 @@ TEST(TargetSceneTest, GratingExampleTakesItsFrustumFromThePaperPrototype) {
   EXPECT_EQ(g.views_y, 13);
   EXPECT_DOUBLE_EQ(g.eyebox_width_m, 6e-3);
   ASSERT_EQ(t.planes.size(), 1u);
-  EXPECT_TRUE(Close(t.planes[0].depth, 1 / 1.3, 1e-12));
+  EXPECT_TRUE(Close(t.planes[0].depth_m, 1 / 1.3, 1e-12));
   EXPECT_EQ(t.samples_per_pixel, 1);
   EXPECT_NE(t.description.find("plane at 1.30 D (grating 2 cpd)"), std::string::npos) << t.description;
 }
@@ -46,7 +46,7 @@ TEST(TargetSceneTest, DiceExamplePlacesItsMeshesInEyeSpace) {
   EXPECT_TRUE(Close(sum[0], 0.10, 0, 1e-12));
   EXPECT_TRUE(Close(sum[1], 0.02, 0, 1e-12));
   EXPECT_TRUE(Close(sum[2], 1.00, 0, 1e-12));
-  EXPECT_TRUE(Close(t.meshes[0].uv_size, 0.08, 1e-12));
+  EXPECT_TRUE(Close(t.meshes[0].uv_size_m, 0.08, 1e-12));
   EXPECT_EQ(t.samples_per_pixel, 4);
 }
 
