@@ -143,7 +143,7 @@ std::vector<CompareResult> RunComparison(const std::vector<CompareRun>& runs, co
                     run.system.brightness_efficiency,
                     run.system.luminance_efficiency,
                     run.system.subframes,
-                    run.system.subframes * run.system.frame_rate,
+                    run.system.subframes * run.system.frame_rate_hz,
                     run.options_from};
     r.report = registry.create(run.solver)->Solve(model, target, options, &t);
     if (progress) progress->Finish(r.report.BriefReport());

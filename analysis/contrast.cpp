@@ -43,20 +43,21 @@ std::vector<double> CentralRow(const Image& image) {
 
 // Two eyes that see alike (the parts the retinal images read).
 bool SameEye(const EyeModel& a, const EyeModel& b) {
-  return EyeModelLine(a) == EyeModelLine(b) && a.pupil_diameter == b.pupil_diameter &&
+  return EyeModelLine(a) == EyeModelLine(b) && a.pupil_diameter_m == b.pupil_diameter_m &&
          a.pupil_samples_x == b.pupil_samples_x && a.pupil_samples_y == b.pupil_samples_y &&
          a.pupil_sampling == b.pupil_sampling && a.pupil_seed == b.pupil_seed &&
-         a.wavefront.coefficients == b.wavefront.coefficients && a.chromatic_defocus == b.chromatic_defocus &&
-         a.channel_wavelengths == b.channel_wavelengths;
+         a.wavefront.coefficients_m == b.wavefront.coefficients_m &&
+         a.chromatic_defocus_diopters == b.chromatic_defocus_diopters &&
+         a.channel_wavelengths_m == b.channel_wavelengths_m;
 }
 
 bool IsNatural(const ContrastCurve& c) { return c.display.rfind("natural", 0) == 0; }
 
 bool SameGeometry(const LightFieldGeometry& a, const LightFieldGeometry& b) {
-  return a.origin_z == b.origin_z && a.window_left == b.window_left && a.window_top == b.window_top &&
-         a.window_width == b.window_width && a.window_height == b.window_height && a.cols == b.cols &&
-         a.rows == b.rows && a.views_x == b.views_x && a.views_y == b.views_y && a.eyebox_width == b.eyebox_width &&
-         a.eyebox_height == b.eyebox_height;
+  return a.origin_z_m == b.origin_z_m && a.window_left_m == b.window_left_m && a.window_top_m == b.window_top_m &&
+         a.window_width_m == b.window_width_m && a.window_height_m == b.window_height_m && a.cols == b.cols &&
+         a.rows == b.rows && a.views_x == b.views_x && a.views_y == b.views_y && a.eyebox_width_m == b.eyebox_width_m &&
+         a.eyebox_height_m == b.eyebox_height_m;
 }
 
 double Interpolate(const std::vector<double>& x, const std::vector<double>& y, double at) {
@@ -72,10 +73,10 @@ double Interpolate(const std::vector<double>& x, const std::vector<double>& y, d
 // the axis (the grating is vertical).
 LightFieldGeometry StripGeometry(const DisplaySystem& system, double dt, int rows) {
   LightFieldGeometry g = DisplayLightFieldGeometry(system, dt);
-  double row_height = g.window_height / g.rows;
+  double row_height = g.window_height_m / g.rows;
   g.rows = std::min(g.rows, rows);
-  g.window_height = g.rows * row_height;
-  g.window_top = g.window_height / 2;
+  g.window_height_m = g.rows * row_height;
+  g.window_top_m = g.window_height_m / 2;
   return g;
 }
 
@@ -132,7 +133,7 @@ class ContrastRun {
     retina_ = MakeRetinaGrid(o.retina_field * kRadiansPerDegree, 3 * o.retina_resolution * kRadiansPerDegree,
                              o.retina_resolution * kRadiansPerDegree);
     shifted_ = retina_;
-    shifted_.center_x += 0.5 * retina_.resolution;  // for the peaks' sampling uncertainty
+    shifted_.center_x_rad += 0.5 * retina_.resolution_rad;  // for the peaks' sampling uncertainty
     grids_[0] = retina_, grids_[1] = shifted_;
     texture_of_ = o.texture ? o.texture : CosineGrating(0.5, 1.0, o.grating);
     convention_ = ConventionLabel(o.reference, o.grating);
@@ -243,7 +244,7 @@ class ContrastRun {
     if (o_.reference == ContrastReference::kContinuous && di == 0) {
       // The continuous plane at D_t as the eye sees it.
       SceneRadiance plane = [&](const PupilPoint& u, double dx, double dy) {
-        return texture->Evaluate(u.x + dx / dt, u.y + dy / dt);
+        return texture->Evaluate(u.x_m + dx / dt, u.y_m + dy / dt);
       };
       auto start = std::chrono::steady_clock::now();
       RetinalImage natural = NaturalImage(plane, first_eye_, pupils_.front());
@@ -279,7 +280,7 @@ class ContrastRun {
     const EyeModel& eye = d.system.eye;
     std::vector<DrawnNatural>& drawn = drawn_[target_index];
     auto start = std::chrono::steady_clock::now();
-    LightField target = RenderPlaneLightField(g, g.origin_z, texture);  // the plane is the origin plane
+    LightField target = RenderPlaneLightField(g, g.origin_z_m, texture);  // the plane is the origin plane
     RetinalImage natural = NaturalImage(LightFieldRadiance(target, d.sampling), eye, pupils_[di]);
     const double reference = ReferenceAmplitude(eye, natural, dt, f, label);
     bool seen = std::any_of(drawn.begin(), drawn.end(), [&](const DrawnNatural& k) {
@@ -331,7 +332,7 @@ class ContrastRun {
     const ContrastDisplay& d = displays_[s->display];
     ContrastCurve& curve = of_target_[s->target][s->index];
     const LightFieldGeometry& g = s->model->geometry();
-    LightField target = RenderPlaneLightField(g, g.origin_z, *s->texture);
+    LightField target = RenderPlaneLightField(g, g.origin_z_m, *s->texture);
     SolverOptions options = d.options_given ? d.options : SolverRegistry::Builtins().find(curve.solver)->defaults;
     options.retinal.target = RetinalTarget::kLightField;  // the grating's light field is its scene, exactly
     auto start = std::chrono::steady_clock::now();
@@ -392,7 +393,7 @@ PlaneTextureFactory CosineGrating(double mean, double contrast, GratingSpacing s
   return [=](double depth, double cpd) -> std::shared_ptr<const Texture> {
     GratingSpec spec;
     spec.cycles_per_meter = cpd / (depth * kRadiansPerDegree);  // at the line of sight
-    spec.angle_depth = spacing == GratingSpacing::kVisualAngle ? depth : 0;
+    spec.angle_depth_m = spacing == GratingSpacing::kVisualAngle ? depth : 0;
     spec.mean = mean;
     spec.contrast = contrast;
     return MakeGratingTexture(spec);

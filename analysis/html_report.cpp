@@ -154,20 +154,20 @@ std::string SystemSection(const RunReportPage& page) {
   std::string h = "<section id=\"system\"><h2>Display system</h2>\n";
   h += "<p>" + Escape(s.name.empty() ? s.file : s.name) + Links(page.system_links) + "</p>\n";
   h += "<figure class=\"layout\" id=\"layout\">" + RenderLayoutSvg(s, false) + "</figure>\n";
-  h += "<table><tr><th class=\"l\">field of view</th><td>" + F(s.fov_x / kRadiansPerDegree, 2) + " &times; " +
-       F(s.fov_y / kRadiansPerDegree, 2) + " deg</td></tr>\n";
+  h += "<table><tr><th class=\"l\">field of view</th><td>" + F(s.fov_x_rad / kRadiansPerDegree, 2) + " &times; " +
+       F(s.fov_y_rad / kRadiansPerDegree, 2) + " deg</td></tr>\n";
   h += "<tr><th class=\"l\">highest frequency</th><td>" + F(EveryLayerMaxCpd(s), 2) + " cpd on every layer, " +
        F(s.max_cpd, 2) + " cpd on the finest</td></tr>\n";
-  h +=
-      "<tr><th class=\"l\">peak luminance (R / G / B)</th><td>" + Rgb3(s.peak_luminance, 1) + " cd/m&sup2;</td></tr>\n";
+  h += "<tr><th class=\"l\">peak luminance (R / G / B)</th><td>" + Rgb3(s.peak_luminance_cd_m2, 1) +
+       " cd/m&sup2;</td></tr>\n";
   h += "<tr><th class=\"l\">brightness efficiency</th><td>" + F(s.luminance_efficiency, 4) + " (R / G / B " +
        Rgb3(s.brightness_efficiency, 4) + ")</td></tr>\n";
-  h += "<tr><th class=\"l\">eye</th><td>pupil " + F(s.eye.pupil_diameter * 1e3, 1) + " mm, eyebox " +
-       F(s.eye.eyebox_width * 1e3, 1) + " &times; " + F(s.eye.eyebox_height * 1e3, 1) + " mm, " +
+  h += "<tr><th class=\"l\">eye</th><td>pupil " + F(s.eye.pupil_diameter_m * 1e3, 1) + " mm, eyebox " +
+       F(s.eye.eyebox_width_m * 1e3, 1) + " &times; " + F(s.eye.eyebox_height_m * 1e3, 1) + " mm, " +
        std::to_string(s.eye.views_x) + " &times; " + std::to_string(s.eye.views_y) + " views</td></tr>\n";
   h += "<tr><th class=\"l\">eye model</th><td>" + Escape(EyeModelLine(s.eye)) + "</td></tr>\n";
   if (!s.lens.empty())
-    h += "<tr><th class=\"l\">lens</th><td>" + Escape(s.lens) + ", f = " + F(s.focal_length * 1e3, 2) +
+    h += "<tr><th class=\"l\">lens</th><td>" + Escape(s.lens) + ", f = " + F(s.focal_length_m * 1e3, 2) +
          " mm</td></tr>\n";
   h += "</table>\n";
 
@@ -179,10 +179,10 @@ std::string SystemSection(const RunReportPage& page) {
   for (size_t k = 0; k < s.layers.size(); ++k) {
     const VirtualLayer& l = s.layers[k];
     h += "<tr><td>" + std::to_string(k) + "</td><td class=\"l\">" + Escape(l.name) + "</td><td class=\"l\">" +
-         Escape(s.branches[l.branch].name) + "</td><td>" + F(l.diopters, 3) + "</td><td>" + F(l.depth, 4) +
-         "</td><td>" + F(l.panel_distance * 1e3, 2) + "</td><td>" + F(l.magnification, 2) + "</td><td>" +
-         F(l.pitch_x * 1e3, 3) + "</td><td>" + std::to_string(l.cols) + " &times; " + std::to_string(l.rows) +
-         "</td><td>" + F(l.fov_x / kRadiansPerDegree, 2) + " &times; " + F(l.fov_y / kRadiansPerDegree, 2) +
+         Escape(s.branches[l.branch].name) + "</td><td>" + F(l.diopters, 3) + "</td><td>" + F(l.depth_m, 4) +
+         "</td><td>" + F(l.panel_distance_m * 1e3, 2) + "</td><td>" + F(l.magnification, 2) + "</td><td>" +
+         F(l.pitch_x_m * 1e3, 3) + "</td><td>" + std::to_string(l.cols) + " &times; " + std::to_string(l.rows) +
+         "</td><td>" + F(l.fov_x_rad / kRadiansPerDegree, 2) + " &times; " + F(l.fov_y_rad / kRadiansPerDegree, 2) +
          "</td><td>" + F(l.max_cpd, 2) + "</td></tr>\n";
   }
   h += "</table>\n<h3>Branches (added at the eye)</h3>\n<table><tr><th>#</th><th class=\"l\">name</th><th "
@@ -195,7 +195,8 @@ std::string SystemSection(const RunReportPage& page) {
     for (int k : br.layers) layers += (layers.empty() ? "" : ", ") + s.layers[k].name;
     h += "<tr><td>" + std::to_string(b) + "</td><td class=\"l\">" + Escape(br.name) + "</td><td class=\"l\">" +
          Escape(layers) + "</td><td>" + Rgb3(br.optics_efficiency, 4) + "</td><td>" + Rgb3(br.efficiency, 4) +
-         "</td><td class=\"l\">" + Escape(br.backlight) + "</td><td>" + F(br.backlight_luminance, 1) + "</td></tr>\n";
+         "</td><td class=\"l\">" + Escape(br.backlight) + "</td><td>" + F(br.backlight_luminance_cd_m2, 1) +
+         "</td></tr>\n";
   }
   h += "</table>\n";
   for (const std::string& w : s.warnings) h += "<p class=\"warn\">warning: " + Escape(w) + "</p>\n";

@@ -31,14 +31,14 @@ std::vector<double> DrawnPositions(const VirtualLayer& back) {
   std::vector<double> out;
   double last = 0;
   for (size_t i = 0; i < back.path.size(); ++i) {
-    if (back.path[i].position) {
-      out.push_back(last = *back.path[i].position);
+    if (back.path[i].position_m) {
+      out.push_back(last = *back.path[i].position_m);
       continue;
     }
-    double next = back.position;
+    double next = back.position_m;
     for (size_t j = i + 1; j < back.path.size(); ++j)
-      if (back.path[j].position) {
-        next = *back.path[j].position;
+      if (back.path[j].position_m) {
+        next = *back.path[j].position_m;
         break;
       }
     out.push_back(0.5 * (last + next));
@@ -50,7 +50,7 @@ std::string Glyph(const PathStep& step, double x, double y) {
   const std::string name = Text(x, y - 34, step.element, "text-anchor=\"middle\" font-size=\"11\"");
   switch (step.kind) {
     case ElementKind::kLens: {
-      const bool converging = step.power > 0;
+      const bool converging = step.power_diopters > 0;
       const double tip = converging ? -6 : 6;
       return name + Line(x, y - 26, x, y + 26, "stroke=\"#333\" stroke-width=\"2\"") + "<path d=\"M" + Num(x - 5) +
              " " + Num(y - 26 - tip) + " L" + Num(x) + " " + Num(y - 26) + " L" + Num(x + 5) + " " + Num(y - 26 - tip) +
@@ -58,9 +58,9 @@ std::string Glyph(const PathStep& step, double x, double y) {
              Num(y + 26 + tip) + "\" fill=\"none\" stroke=\"#333\" stroke-width=\"2\"/>\n";
     }
     case ElementKind::kMirror:
-      if (step.power != 0)
-        return name + "<path d=\"M" + Num(x - 8) + " " + Num(y - 24) + " Q" + Num(x + (step.power > 0 ? 10 : -10)) +
-               " " + Num(y) + " " + Num(x - 8) + " " + Num(y + 24) +
+      if (step.power_diopters != 0)
+        return name + "<path d=\"M" + Num(x - 8) + " " + Num(y - 24) + " Q" +
+               Num(x + (step.power_diopters > 0 ? 10 : -10)) + " " + Num(y) + " " + Num(x - 8) + " " + Num(y + 24) +
                "\" fill=\"none\" stroke=\"#555\" stroke-width=\"3\"/>\n";
       return name + Line(x - 14, y + 20, x + 14, y - 20, "stroke=\"#555\" stroke-width=\"3\"");
     case ElementKind::kCombiner:
@@ -94,7 +94,7 @@ std::string BranchRowSvg(const DisplaySystem& s, size_t b, const LayoutScale& sc
   const double y = kTop + b * kRowHeight + kRowHeight / 2;
   const VirtualLayer& back = s.layers[branch.layers.back()];
   std::string svg = Text(4, y - 40, branch.name, "font-size=\"11\" fill=\"" + color + "\"");
-  svg += Line(x_of(0), y, x_of(back.position), y, "stroke=\"" + color + "\" stroke-width=\"1\"");
+  svg += Line(x_of(0), y, x_of(back.position_m), y, "stroke=\"" + color + "\" stroke-width=\"1\"");
   svg += "<ellipse cx=\"" + Num(x_of(0) - 10) + "\" cy=\"" + Num(y) +
          "\" rx=\"10\" ry=\"14\" fill=\"#fff\" stroke=\"#333\"/>\n";
   svg += Text(x_of(0) - 10, y + 30, "eye", "text-anchor=\"middle\" font-size=\"11\"");
@@ -103,15 +103,15 @@ std::string BranchRowSvg(const DisplaySystem& s, size_t b, const LayoutScale& sc
     if (back.path[i].kind != ElementKind::kPanel) svg += Glyph(back.path[i], x_of(at[i]), y);
   for (int k : branch.layers) {
     const VirtualLayer& l = s.layers[k];
-    const double x = x_of(l.position);
+    const double x = x_of(l.position_m);
     (*panel_x)[k] = x, (*panel_y)[k] = y;
     svg += "<rect x=\"" + Num(x - 2.5) + "\" y=\"" + Num(y - 22) + "\" width=\"5\" height=\"44\" fill=\"" + color +
            "\"/>\n";
     svg += Text(x + 4, y + 34 + 10 * l.position_in_branch, l.name, "font-size=\"11\" fill=\"" + color + "\"");
     // Real intermediate images (a relay's): where the light converges on its way to the eye.
     for (const IntermediateImage& image : IntermediateImages(l)) {
-      if (!image.real || !(image.position > 0) || image.position > l.position) continue;
-      const double xi = x_of(image.position);
+      if (!image.real || !(image.position_m > 0) || image.position_m > l.position_m) continue;
+      const double xi = x_of(image.position_m);
       svg += Line(xi, y - 14, xi, y + 14, "stroke=\"" + color + "\" stroke-width=\"1.5\" stroke-dasharray=\"2,2\"");
       svg += Text(xi, y - 18 - 10 * l.position_in_branch, "real image of " + l.name,
                   "text-anchor=\"middle\" font-size=\"9\" fill=\"" + color + "\"");
@@ -129,10 +129,11 @@ std::string EyeSpaceStripSvg(const DisplaySystem& s, const LayoutScale& scale, d
       Text(kLeft, strip_top - 8, "Images of the panels in eye space (diopters from the eye; 0 D is infinity)",
            "font-size=\"13\" font-weight=\"bold\"");
   const double axis_y = strip_top + kStripHeight - 30;
-  svg += "<rect x=\"" + Num(x_of_diopters(s.eye.accommodation_max)) + "\" y=\"" + Num(strip_top + 4) + "\" width=\"" +
-         Num(x_of_diopters(s.eye.accommodation_min) - x_of_diopters(s.eye.accommodation_max)) + "\" height=\"" +
-         Num(axis_y - strip_top - 4) + "\" fill=\"#f3f3f3\"/>\n";
-  svg += Text(x_of_diopters(s.eye.accommodation_max) + 4, strip_top + 16, "accommodation range",
+  svg += "<rect x=\"" + Num(x_of_diopters(s.eye.accommodation_max_diopters)) + "\" y=\"" + Num(strip_top + 4) +
+         "\" width=\"" +
+         Num(x_of_diopters(s.eye.accommodation_min_diopters) - x_of_diopters(s.eye.accommodation_max_diopters)) +
+         "\" height=\"" + Num(axis_y - strip_top - 4) + "\" fill=\"#f3f3f3\"/>\n";
+  svg += Text(x_of_diopters(s.eye.accommodation_max_diopters) + 4, strip_top + 16, "accommodation range",
               "font-size=\"10\" fill=\"#888\"");
   svg += Line(kLeft, axis_y, kLeft + scale.plot_width, axis_y, "stroke=\"#333\"");
   for (double D : NiceTicks(0, scale.max_diopters, 8)) {
@@ -161,10 +162,10 @@ std::string RenderLayoutSvg(const DisplaySystem& s, bool standalone) {
   const size_t rows = s.branches.size();
   LayoutScale scale;
   for (const VirtualLayer& l : s.layers) {
-    scale.farthest = std::max(scale.farthest, l.position);
+    scale.farthest = std::max(scale.farthest, l.position_m);
     scale.max_diopters = std::max(scale.max_diopters, l.diopters);
   }
-  scale.max_diopters = std::max({scale.max_diopters * 1.1, s.eye.accommodation_max, 0.5});
+  scale.max_diopters = std::max({scale.max_diopters * 1.1, s.eye.accommodation_max_diopters, 0.5});
   const double strip_top = kTop + rows * kRowHeight + 48;
   const double height = strip_top + kStripHeight;
 

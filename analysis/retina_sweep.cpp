@@ -115,8 +115,8 @@ std::vector<RetinaStateResult> WriteRetinaSweep(
   const DisplaySystem& system = model.system();
   CheckAccommodationStates(o.states, "retina: accommodation");
   if (!(o.resolution > 0) || !(o.resolution < 10)) throw Error("retina: the resolution must lie in (0, 10) deg");
-  const double field_x = o.field_x > 0 ? o.field_x * kRadiansPerDegree : system.fov_x;
-  const double field_y = o.field_y > 0 ? o.field_y * kRadiansPerDegree : system.fov_y;
+  const double field_x = o.field_x > 0 ? o.field_x * kRadiansPerDegree : system.fov_x_rad;
+  const double field_y = o.field_y > 0 ? o.field_y * kRadiansPerDegree : system.fov_y_rad;
   const RetinaGrid grid = MakeRetinaGrid(field_x, field_y, o.resolution * kRadiansPerDegree);
   const std::vector<PupilPoint> pupil = PupilSamples(system.eye);
 

@@ -29,7 +29,7 @@ bool MainSolveRow(const RunState& s, const ComparedDisplay& d, const CompareRun&
                                                            : std::optional<SolverReport>(s.solved.report);
   if (!report) return false;
   rows->push_back({d.name, run.solver, *report, d.system.brightness_efficiency, d.system.luminance_efficiency,
-                   d.system.subframes, d.system.subframes * d.system.frame_rate, "scene"});
+                   d.system.subframes, d.system.subframes * d.system.frame_rate_hz, "scene"});
   return true;
 }
 

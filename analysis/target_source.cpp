@@ -20,7 +20,7 @@ SceneRadiance Target::Natural(Viewing how) const {
 #if LAYERLAB_WITH_EMBREE
   if (how == Viewing::kTraced && tracer) {
     const TargetTracer* t = tracer.get();
-    return [t](const PupilPoint& u, double dx, double dy) { return t->TraceDirection(u.x, u.y, dx, dy).color; };
+    return [t](const PupilPoint& u, double dx, double dy) { return t->TraceDirection(u.x_m, u.y_m, dx, dy).color; };
   }
 #else
   (void)how;

@@ -45,7 +45,7 @@ CalibrationOptions ReadCalibrationOptions(const FitCommandOptions& o) {
   for (const auto& [value, option] :
        {std::pair{o.marker_loss_arcmin, "--marker-loss-scale"}, std::pair{o.luminance_loss, "--luminance-loss-scale"}})
     if (value && !(*value > 0 && std::isfinite(*value))) throw Error(std::string(option) + ": must be positive");
-  if (o.marker_loss_arcmin) options.marker_loss_scale = *o.marker_loss_arcmin / 60.0 * std::numbers::pi / 180.0;
+  if (o.marker_loss_arcmin) options.marker_loss_scale_rad = *o.marker_loss_arcmin / 60.0 * std::numbers::pi / 180.0;
   options.luminance_loss_scale = o.luminance_loss.value_or(options.luminance_loss_scale);
   return options;
 }
@@ -116,7 +116,7 @@ void AddFitCommand(CLI::App& app) {
   const CalibrationOptions defaults;  // the one home of the loss scales' defaults
   cmd->add_option("--marker-loss-scale", o->marker_loss_arcmin,
                   "Marker error (arcmin) where the robust loss starts to discount (default " +
-                      FormatFixed(ArcminFromRadians(defaults.marker_loss_scale), 0) + ")");
+                      FormatFixed(ArcminFromRadians(defaults.marker_loss_scale_rad), 0) + ")");
   cmd->add_option("--luminance-loss-scale", o->luminance_loss,
                   "Luminance error, relative to the brightest reading, where the robust loss starts (default " +
                       FormatFixed(defaults.luminance_loss_scale, 2) + ")");

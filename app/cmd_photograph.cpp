@@ -94,8 +94,8 @@ void AddPhotographCommand(CLI::App& app) {
       throw Error(plan_file + ": the plan has no \"camera\"; give the camera's intrinsics with --camera FILE");
     camera.width = o->size[0];
     camera.height = o->size[1];
-    camera.aperture = aperture_mm * 1e-3;
-    camera.focus = focus_diopters;
+    camera.aperture_m = aperture_mm * 1e-3;
+    camera.focus_diopters = focus_diopters;
     camera.white = o->white;
     camera.full_well = o->full_well;
     camera.read_noise = o->read_noise;

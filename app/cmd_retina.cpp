@@ -61,8 +61,8 @@ std::array<double, 2> RetinaField(const RetinaCommandOptions& o, const DisplaySy
     field_x = f[0], field_y = f[1];
   }
   const bool display_field = o.field.empty();
-  CheckRetinaSampling(display_field ? system.fov_x / kRadiansPerDegree : field_x,
-                      display_field ? system.fov_y / kRadiansPerDegree : field_y, resolution, "--field",
+  CheckRetinaSampling(display_field ? system.fov_x_rad / kRadiansPerDegree : field_x,
+                      display_field ? system.fov_y_rad / kRadiansPerDegree : field_y, resolution, "--field",
                       "--resolution");
   return {field_x, field_y};
 }
@@ -113,7 +113,7 @@ void RunRetinaCommand(const RetinaCommandOptions& o) {
     target_scene = LoadTarget(given.target_scene);
     tracer = std::make_unique<TargetTracer>(*target_scene);
     natural = [&tracer](const PupilPoint& u, double dx, double dy) {
-      return tracer->TraceDirection(u.x, u.y, dx, dy).color;
+      return tracer->TraceDirection(u.x_m, u.y_m, dx, dy).color;
     };
   }
 #endif

@@ -446,7 +446,7 @@ void DisplayRetinaImage(benchmark::State& state, const RetinaGrid& grid, double 
 // The grid of `layerlab retina` and the main job: the display's field at 0.05 deg (710 x 364 for the prototype).
 RetinaGrid RetinaSweepGrid(const Workload& w) {
   return Settings().smoke ? MakeRetinaGrid(4 * kRadiansPerDegree, 2 * kRadiansPerDegree, 0.1 * kRadiansPerDegree)
-                          : MakeRetinaGrid(w.system.fov_x, w.system.fov_y, 0.05 * kRadiansPerDegree);
+                          : MakeRetinaGrid(w.system.fov_x_rad, w.system.fov_y_rad, 0.05 * kRadiansPerDegree);
 }
 
 void BM_RetinaImage(benchmark::State& state) {
@@ -454,7 +454,7 @@ void BM_RetinaImage(benchmark::State& state) {
   DisplayRetinaImage(state,
                      Settings().smoke
                          ? MakeRetinaGrid(4 * kRadiansPerDegree, 2 * kRadiansPerDegree, 0.1 * kRadiansPerDegree)
-                         : MakeRetinaGrid(w.system.fov_x, w.system.fov_y, w.system.fov_x / 400),
+                         : MakeRetinaGrid(w.system.fov_x_rad, w.system.fov_y_rad, w.system.fov_x_rad / 400),
                      1.3, 0.020);
 }
 

@@ -59,12 +59,12 @@ CalibrationReport Calibrate(const DisplaySystem& system, const Measurements& mea
     CalibratedPanel panel;
     panel.name = layer.name;
     panel.behind_optics =
-        std::any_of(layer.path.begin(), layer.path.end(), [](const PathStep& s) { return s.power != 0; });
-    panel.distance = layer.panel_distance;
-    panel.gap = layer.position - (layer.path.empty() ? 0.0 : layer.path.back().position.value_or(0.0));
+        std::any_of(layer.path.begin(), layer.path.end(), [](const PathStep& s) { return s.power_diopters != 0; });
+    panel.distance_m = layer.panel_distance_m;
+    panel.gap_m = layer.position_m - (layer.path.empty() ? 0.0 : layer.path.back().position_m.value_or(0.0));
     panel.eye_from_panel_x_m = layer.panel.eye_from_panel_m[0];
     panel.eye_from_panel_y_m = layer.panel.eye_from_panel_m[1];
-    panel.rotation = layer.panel.rotation;
+    panel.rotation_rad = layer.panel.rotation_rad;
     panel.gamma = layer.panel.gamma;
     panel.black_level = layer.panel.black_level;
     display->panels.push_back(panel);

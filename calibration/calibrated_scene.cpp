@@ -77,11 +77,11 @@ ordered_json CalibratedSceneDocument(const ordered_json& scene, const std::strin
     // "virtual_depth" become the distance from the optics in front (a gap without any).
     const std::string key = element.contains("gap") || !panel.behind_optics ? "gap" : "distance";
     if (panel.geometry_measured || panel.optics_fitted)
-      values.push_back({key, WithUnit(key == "gap" ? panel.gap : panel.distance, 1e3, "mm")});
+      values.push_back({key, WithUnit(key == "gap" ? panel.gap_m : panel.distance_m, 1e3, "mm")});
     if (panel.geometry_measured) {
       values.push_back(
           {"offset", {WithUnit(panel.eye_from_panel_x_m, 1e3, "mm"), WithUnit(panel.eye_from_panel_y_m, 1e3, "mm")}});
-      values.push_back({"rotation", WithUnit(panel.rotation, kDegreesPerRadian, "deg")});
+      values.push_back({"rotation", WithUnit(panel.rotation_rad, kDegreesPerRadian, "deg")});
     }
     if (panel.luminance_measured) {
       values.push_back({"gamma", Rounded(panel.gamma)});
@@ -91,8 +91,8 @@ ordered_json CalibratedSceneDocument(const ordered_json& scene, const std::strin
   }
   for (const CalibratedOptic& optic : display.optics) {
     std::vector<std::pair<std::string, ordered_json>> values;
-    if (optic.gap_fitted) values.push_back({"gap", WithUnit(optic.gap, 1e3, "mm")});
-    if (optic.focal_length_fitted) values.push_back({"focal_length", WithUnit(optic.focal_length, 1e3, "mm")});
+    if (optic.gap_fitted) values.push_back({"gap", WithUnit(optic.gap_m, 1e3, "mm")});
+    if (optic.focal_length_fitted) values.push_back({"focal_length", WithUnit(optic.focal_length_m, 1e3, "mm")});
     if (!values.empty()) Update(ElementNamed(out, file, optic.name), values);
   }
   return out;

@@ -60,7 +60,7 @@ struct CalibrationOptions {
   // Where the loss starts to discount: a marker's angular error (rad), and a
   // luminance residual relative to the panel's brightest reading. About three
   // times the noise is a good choice.
-  double marker_loss_scale = 2.908882086657216e-4;  // 1 arcmin
+  double marker_loss_scale_rad = 2.908882086657216e-4;  // 1 arcmin
   double luminance_loss_scale = 0.02;
   AxisReference reference = AxisReference::kCamera;
   // Levenberg-Marquardt; the problems are small, so the tolerances are tight.
@@ -101,7 +101,7 @@ struct ParameterEstimate {
 struct PanelResiduals {
   std::string panel;
   int markers = 0;
-  double marker_rms_before = 0, marker_rms_after = 0;  // rad, the angular error per marker
+  double marker_rms_before_rad = 0, marker_rms_after_rad = 0;  // rad, the angular error per marker
   int luminance_samples = 0;
   double luminance_rms_before = 0, luminance_rms_after = 0;  // relative to the panel's brightest reading
 };
@@ -113,8 +113,8 @@ struct CalibrationReport {
   std::string message = "not run";
 
   int markers = 0, captures = 0, camera_positions = 0, luminance_samples = 0;
-  double marker_rms_before = 0, marker_rms_after = 0;  // rad, over all markers
-  double marker_noise = 0;                             // rad per axis, estimated; NaN when not estimable
+  double marker_rms_before_rad = 0, marker_rms_after_rad = 0;  // rad, over all markers
+  double marker_noise_rad = 0;                                 // rad per axis, estimated; NaN when not estimable
   double luminance_rms_before = 0, luminance_rms_after = 0;
   std::string geometry_solver, luminance_solver;  // Ceres' brief reports
   std::vector<PanelResiduals> panels;
@@ -138,10 +138,10 @@ struct CalibratedPanel {
   // its physical place is what stays, so it is written even without markers.
   bool optics_fitted = false;
   bool behind_optics = false;                             // some lens or curved mirror lies in front of it
-  double distance = 0;                                    // m, from the nearest of them (from the pupil without one)
-  double gap = 0;                                         // m, from the element before it on its path
+  double distance_m = 0;                                  // m, from the nearest of them (from the pupil without one)
+  double gap_m = 0;                                       // m, from the element before it on its path
   double eye_from_panel_x_m = 0, eye_from_panel_y_m = 0;  // PanelSpec::eye_from_panel_m (the scene's "offset")
-  double rotation = 0;                                    // rad, counterclockwise as the eye sees it
+  double rotation_rad = 0;                                // rad, counterclockwise as the eye sees it
   double gamma = 0, black_level = 0;
   double max_luminance = 0;  // in the measurements' unit; 0 when not measured
 };
@@ -149,8 +149,8 @@ struct CalibratedPanel {
 // A lens or curved mirror on the paths.
 struct CalibratedOptic {
   std::string name;
-  double focal_length = 0;  // m
-  double gap = 0;           // m, from the element before it (the pupil for the magnifier placed by eye_relief)
+  double focal_length_m = 0;  // m
+  double gap_m = 0;           // m, from the element before it (the pupil for the magnifier placed by eye_relief)
   bool focal_length_fitted = false, gap_fitted = false;
 };
 

@@ -70,8 +70,8 @@ bool CalibrationOptions::IsValid(std::string* error) const {
     *error = field + ": " + Number(value) + ": " + constraint;
     return false;
   };
-  if (!(marker_loss_scale > 0) || !std::isfinite(marker_loss_scale))
-    return fail("marker_loss_scale", marker_loss_scale, "must be a positive angle (rad)");
+  if (!(marker_loss_scale_rad > 0) || !std::isfinite(marker_loss_scale_rad))
+    return fail("marker_loss_scale", marker_loss_scale_rad, "must be a positive angle (rad)");
   if (!(luminance_loss_scale > 0) || !std::isfinite(luminance_loss_scale))
     return fail("luminance_loss_scale", luminance_loss_scale, "must be positive (relative to the brightest reading)");
   if (max_iterations < 1) return fail("max_iterations", max_iterations, "must be at least 1");

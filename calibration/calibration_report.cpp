@@ -64,7 +64,7 @@ const ParameterEstimate* CalibrationReport::find(const std::string& element, con
 
 std::string CalibrationReport::BriefReport() const {
   std::string out = std::string("calibration: ") + (usable ? "usable" : "NOT usable") + " (" + message + ")";
-  if (markers) out += "; markers: RMS " + Arcmin(marker_rms_before) + " -> " + Arcmin(marker_rms_after);
+  if (markers) out += "; markers: RMS " + Arcmin(marker_rms_before_rad) + " -> " + Arcmin(marker_rms_after_rad);
   if (luminance_samples)
     out += "; luminance: RMS " + Percent(luminance_rms_before) + " -> " + Percent(luminance_rms_after);
   if (!warnings.empty()) out += "; " + std::to_string(warnings.size()) + " warning" + (warnings.size() > 1 ? "s" : "");
@@ -76,16 +76,16 @@ std::string CalibrationReport::FullReport() const {
   out += "result      " + std::string(usable ? "usable: " : "NOT usable: ") + message + "\n";
   out += "options     loss " + ToString(options.loss);
   if (options.loss != RobustLoss::kNone)
-    out += " (scales " + Arcmin(options.marker_loss_scale) + ", " + Percent(options.luminance_loss_scale) + ")";
+    out += " (scales " + Arcmin(options.marker_loss_scale_rad) + ", " + Percent(options.luminance_loss_scale) + ")";
   out += "; axis reference " + ToString(options.reference) + "; focal length " +
          (options.fit_focal_length ? "fitted" : "fixed") + (options.fit_lens_gaps ? "; lens gaps fitted" : "") + "\n";
   if (markers) {
     out += "geometry    " + std::to_string(markers) + " markers in " + std::to_string(captures) + " capture" +
            (captures > 1 ? "s" : "") + " from " + std::to_string(camera_positions) + " camera position" +
            (camera_positions > 1 ? "s" : "") + "\n";
-    out += "            residual RMS " + Arcmin(marker_rms_before) + " (scene) -> " + Arcmin(marker_rms_after) +
+    out += "            residual RMS " + Arcmin(marker_rms_before_rad) + " (scene) -> " + Arcmin(marker_rms_after_rad) +
            " (fitted), per marker";
-    if (std::isfinite(marker_noise)) out += "; noise " + Arcmin(marker_noise) + " per axis";
+    if (std::isfinite(marker_noise_rad)) out += "; noise " + Arcmin(marker_noise_rad) + " per axis";
     out += "\n            " + geometry_solver + "\n";
   } else {
     out += "geometry    no markers: not fitted\n";
@@ -109,7 +109,7 @@ std::string CalibrationReport::FullReport() const {
          Pad("samples", 8) + Pad("RMS scene", 10) + "RMS fitted\n";
   for (const PanelResiduals& p : panels) {
     out += Pad(p.panel, 12) + Pad(std::to_string(p.markers), 8);
-    out += p.markers ? Pad(Arcmin(p.marker_rms_before), 16) + Pad(Arcmin(p.marker_rms_after), 16)
+    out += p.markers ? Pad(Arcmin(p.marker_rms_before_rad), 16) + Pad(Arcmin(p.marker_rms_after_rad), 16)
                      : Pad("-", 16) + Pad("-", 16);
     out += Pad(std::to_string(p.luminance_samples), 8);
     out += p.luminance_samples ? Pad(Percent(p.luminance_rms_before), 10) + Percent(p.luminance_rms_after)
@@ -139,7 +139,7 @@ nlohmann::json CalibrationReport::ToJson() const {
   j["usable"] = usable;
   j["message"] = message;
   j["options"] = {{"loss", ToString(options.loss)},
-                  {"marker_loss_scale_arcmin", ArcminFromRadians(options.marker_loss_scale)},
+                  {"marker_loss_scale_arcmin", ArcminFromRadians(options.marker_loss_scale_rad)},
                   {"luminance_loss_scale", options.luminance_loss_scale},
                   {"axis_reference", ToString(options.reference)},
                   {"fit_focal_length", options.fit_focal_length},
@@ -147,9 +147,9 @@ nlohmann::json CalibrationReport::ToJson() const {
   j["geometry"] = {{"markers", markers},
                    {"captures", captures},
                    {"camera_positions", camera_positions},
-                   {"rms_before_arcmin", ArcminFromRadians(marker_rms_before)},
-                   {"rms_after_arcmin", ArcminFromRadians(marker_rms_after)},
-                   {"noise_arcmin", Finite(ArcminFromRadians(marker_noise))},
+                   {"rms_before_arcmin", ArcminFromRadians(marker_rms_before_rad)},
+                   {"rms_after_arcmin", ArcminFromRadians(marker_rms_after_rad)},
+                   {"noise_arcmin", Finite(ArcminFromRadians(marker_noise_rad))},
                    {"solver", geometry_solver}};
   j["luminance"] = {{"samples", luminance_samples},
                     {"rms_before_relative", luminance_rms_before},
@@ -159,8 +159,8 @@ nlohmann::json CalibrationReport::ToJson() const {
   for (const PanelResiduals& p : panels)
     panel_list.push_back({{"panel", p.panel},
                           {"markers", p.markers},
-                          {"rms_before_arcmin", ArcminFromRadians(p.marker_rms_before)},
-                          {"rms_after_arcmin", ArcminFromRadians(p.marker_rms_after)},
+                          {"rms_before_arcmin", ArcminFromRadians(p.marker_rms_before_rad)},
+                          {"rms_after_arcmin", ArcminFromRadians(p.marker_rms_after_rad)},
                           {"luminance_samples", p.luminance_samples},
                           {"luminance_rms_before_relative", p.luminance_rms_before},
                           {"luminance_rms_after_relative", p.luminance_rms_after}});

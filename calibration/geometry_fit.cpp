@@ -78,23 +78,23 @@ std::vector<Optic> FindOptics(const DisplaySystem& system, const std::vector<boo
     double previous_optic = 0;
     for (size_t j = 0; j < path.size(); ++j) {
       const PathStep& step = path[j];
-      if (step.power == 0) continue;
+      if (step.power_diopters == 0) continue;
       auto it = std::find_if(optics.begin(), optics.end(), [&](const Optic& o) { return o.name == step.element; });
       if (it == optics.end()) {
         Optic o;
         o.name = step.element;
-        o.focal_length = 1.0 / step.power;
-        o.position = *step.position;
+        o.focal_length = 1.0 / step.power_diopters;
+        o.position = *step.position_m;
         // The nearest element before it with a place (the magnifier placed by eye_relief may follow an unplaced one).
         double placed_at = 0;
         for (size_t i = j; i-- > 0;)
-          if (path[i].position) {
-            placed_at = *path[i].position;
+          if (path[i].position_m) {
+            placed_at = *path[i].position_m;
             break;
           }
         o.gap = o.position - placed_at;
         o.before = j > 0 ? path[j - 1].element : "";
-        o.placed_before = j == 0 || path[j - 1].position.has_value();
+        o.placed_before = j == 0 || path[j - 1].position_m.has_value();
         optics.push_back(o);
         it = optics.end() - 1;
       }
@@ -134,7 +134,7 @@ void CheckMirroring(const DisplaySystem& system, const std::vector<std::vector<c
   for (size_t k = 0; k < by_layer.size(); ++k) {
     std::map<size_t, std::pair<std::vector<Point2>, std::vector<Point2>>> by_capture;  // parallax differs per capture
     for (const MarkerDatum* d : by_layer[k]) {
-      by_capture[d->capture].first.push_back({d->placement.local_x, d->placement.local_y});
+      by_capture[d->capture].first.push_back({d->placement.local_x_m, d->placement.local_y_m});
       by_capture[d->capture].second.push_back({std::tan(d->angle_x), std::tan(d->angle_y)});
     }
     double as_given = 0, mirrored = 0;
@@ -178,30 +178,30 @@ void PlaceAsFitted(const DisplaySystem& system, const std::vector<Optic>& optics
     CalibratedPanel& panel = display->panels[k];
     double shift = 0, optic_at = 0;
     for (const PathStep& step : layer.path) {
-      if (step.power != 0) {
+      if (step.power_diopters != 0) {
         const CalibratedOptic* fitted = display->find_optic(step.element);
         auto designed =
             std::find_if(optics.begin(), optics.end(), [&](const Optic& o) { return o.name == step.element; });
         if (fitted && designed != optics.end()) {
-          shift += fitted->gap - designed->gap;
+          shift += fitted->gap_m - designed->gap;
           panel.optics_fitted = panel.optics_fitted || fitted->gap_fitted || fitted->focal_length_fitted;
         }
-        optic_at = *step.position + shift;
+        optic_at = *step.position_m + shift;
       }
       if (step.kind == ElementKind::kPanel) {
         walked[k].before_is_panel = true;
         walked[k].before_name = step.element;
       } else {
         walked[k].before_is_panel = false;
-        walked[k].before = step.position.value_or(0.0) + shift;
+        walked[k].before = step.position_m.value_or(0.0) + shift;
       }
     }
-    walked[k].position = optic_at + panel.distance;
+    walked[k].position = optic_at + panel.distance_m;
     panel_at[layer.name] = walked[k].position;
   }
   for (size_t k = 0; k < system.layers.size(); ++k) {
     const Walked& w = walked[k];
-    display->panels[k].gap = w.position - (w.before_is_panel ? panel_at.at(w.before_name) : w.before);
+    display->panels[k].gap_m = w.position - (w.before_is_panel ? panel_at.at(w.before_name) : w.before);
   }
 }
 
@@ -232,7 +232,7 @@ class GeometryFitter {
       for (int i : {pan_, tilt_, roll_}) Hold(i, ParameterStatus::kReference);
     AddResiduals();
     if (!Solve() || !CheckFittedImages()) return false;
-    report_->marker_noise = result_.noise;
+    report_->marker_noise_rad = result_.noise;
     if (result_.covariance.size() == 0)
       report_->warnings.push_back("no uncertainties for the geometry: " + result_.covariance_message);
     ReportResiduals();
@@ -309,7 +309,7 @@ class GeometryFitter {
   void AddParameters() {
     for (Optic& o : optics_) {
       std::optional<double> beyond_the_eye;  // the magnifier's focal point stays behind the eye
-      if (magnifier_) beyond_the_eye = system_.eye.eye_relief * (1 + 1e-6);
+      if (magnifier_) beyond_the_eye = system_.eye.eye_relief_m * (1 + 1e-6);
       o.focal = Add({"the focal length of " + Quoted(o.name), o.focal_length, 0, beyond_the_eye, std::nullopt},
                     "focal_length");
       o.gap_index = Add({"the gap of " + Quoted(o.name), o.gap, 0, std::nullopt, std::nullopt}, "gap");
@@ -330,11 +330,12 @@ class GeometryFitter {
     }
     const bool reference = farthest_reference_ && k == 0;
     std::optional<double> beyond_focus;
-    if (magnifier_ && !options_.fit_focal_length) beyond_focus = system_.focal_length;
-    const double closest = 1e-3 * (magnifier_ ? system_.focal_length : layer.panel_distance);
+    if (magnifier_ && !options_.fit_focal_length) beyond_focus = system_.focal_length_m;
+    const double closest = 1e-3 * (magnifier_ ? system_.focal_length_m : layer.panel_distance_m);
     PanelIndices& index = index_[k];
-    index.distance = Add({"the distance of " + panel, layer.panel_distance, 2, closest, beyond_focus}, "distance");
-    index.rotation = Add({"the rotation of " + panel, reference ? 0.0 : layer.panel.rotation, 3, {}, {}}, "rotation");
+    index.distance = Add({"the distance of " + panel, layer.panel_distance_m, 2, closest, beyond_focus}, "distance");
+    index.rotation =
+        Add({"the rotation of " + panel, reference ? 0.0 : layer.panel.rotation_rad, 3, {}, {}}, "rotation");
     index.eye_from_panel_x_m =
         Add({"the offset x of " + panel, reference ? 0.0 : layer.panel.eye_from_panel_m[0], 4, {}, {}}, "offset_x");
     index.eye_from_panel_y_m =
@@ -364,10 +365,10 @@ class GeometryFitter {
         "panel " + Quoted(layer.name) + ": its markers show a single panel pixel (" + FormatFixed(pixel.real(), 1) +
         ", " + FormatFixed(pixel.imag(), 1) + "), which fixes the offset but not the rotation" +
         (parallax ? "" : " nor the magnification") + ": its " +
-        (parallax
-             ? "rotation keeps its scene value ("
-             : "distance and rotation keep their scene values (" + ShowValue("distance", layer.panel_distance) + ", ") +
-        ShowValue("rotation", layer.panel.rotation) + "); show markers at three or more pixels not on one line");
+        (parallax ? "rotation keeps its scene value ("
+                  : "distance and rotation keep their scene values (" + ShowValue("distance", layer.panel_distance_m) +
+                        ", ") +
+        ShowValue("rotation", layer.panel.rotation_rad) + "); show markers at three or more pixels not on one line");
   }
 
   // Only parallax tells an element's focal length or gap from the distances of the panels behind it.
@@ -416,7 +417,7 @@ class GeometryFitter {
       for (int o : path.element) blocks.push_back(optics_[o].gap_index), blocks.push_back(optics_[o].focal);
       for (size_t i = 0; i < blocks.size(); ++i) cost->AddParameterBlock(1);
       cost->SetNumResiduals(2);
-      fit_.AddResidual(cost, MakeLoss(options_.loss, options_.marker_loss_scale), blocks);
+      fit_.AddResidual(cost, MakeLoss(options_.loss, options_.marker_loss_scale_rad), blocks);
     }
   }
 
@@ -466,9 +467,9 @@ class GeometryFitter {
     const VirtualLayer& layer = system_.layers[k];
     MarkerParameters<double> q = LayerParameters<double>(index_[k], pan_, tilt_, roll_, layer_optics_[k], optics_,
                                                          [&](int i) { return fit_.parameter(i).start; });
-    q.distance = layer.panel_distance;
+    q.distance = layer.panel_distance_m;
     q.eye_from_panel_x_m = layer.panel.eye_from_panel_m[0], q.eye_from_panel_y_m = layer.panel.eye_from_panel_m[1],
-    q.rotation = layer.panel.rotation;
+    q.rotation = layer.panel.rotation_rad;
     q.pan = q.tilt = q.roll = 0;
     return q;
   }
@@ -495,14 +496,14 @@ class GeometryFitter {
       components.push_back(std::abs(b[1] - d.angle_y));
       errors.push_back({std::sqrt(error_after), &d});
     }
-    report_->marker_rms_before = std::sqrt(sum_before / data_.size());
-    report_->marker_rms_after = std::sqrt(sum_after / data_.size());
+    report_->marker_rms_before_rad = std::sqrt(sum_before / data_.size());
+    report_->marker_rms_after_rad = std::sqrt(sum_after / data_.size());
     for (int k = 0; k < layer_count_; ++k) {
       if (by_layer_[k].empty()) continue;
       PanelResiduals& r = report_->panels[k];
       r.markers = static_cast<int>(by_layer_[k].size());
-      r.marker_rms_before = std::sqrt(before[k] / r.markers);
-      r.marker_rms_after = std::sqrt(after[k] / r.markers);
+      r.marker_rms_before_rad = std::sqrt(before[k] / r.markers);
+      r.marker_rms_after_rad = std::sqrt(after[k] / r.markers);
     }
     if (options_.loss == RobustLoss::kNone && components.size() > 8) WarnOutliers(&components, errors);
   }
@@ -575,10 +576,10 @@ class GeometryFitter {
       report_->parameters.push_back(Estimate(layer.name, i));
 
     out->geometry_measured = true;
-    out->distance = distance.value;
+    out->distance_m = distance.value;
     out->eye_from_panel_x_m = fit_.value(p.eye_from_panel_x_m);
     out->eye_from_panel_y_m = fit_.value(p.eye_from_panel_y_m);
-    out->rotation = fit_.value(p.rotation);
+    out->rotation_rad = fit_.value(p.rotation);
   }
 
   // Propagated through D(s, g, f) with the covariance of the path's parameters (derivatives by dual numbers).

@@ -37,17 +37,17 @@ namespace layerlab {
 
 // What the model needs to know of one marker besides the fitted parameters.
 struct MarkerPlacement {
-  double local_x = 0, local_y = 0;    // l, m
-  double camera_x = 0, camera_y = 0;  // c, m
+  double local_x_m = 0, local_y_m = 0;    // l, m
+  double camera_x_m = 0, camera_y_m = 0;  // c, m
 };
 
 inline MarkerPlacement PlaceMarker(const VirtualLayer& layer, double col, double row, double camera_x,
                                    double camera_y) {
   const PanelSpec& p = layer.panel;
   const double x =
-      (col - static_cast<double>(p.active_left) + 0.5 - 0.5 * static_cast<double>(p.active_cols)) * p.pitch_x;
+      (col - static_cast<double>(p.active_left) + 0.5 - 0.5 * static_cast<double>(p.active_cols)) * p.pitch_x_m;
   const double y =
-      (0.5 * static_cast<double>(p.active_rows) - (row - static_cast<double>(p.active_top)) - 0.5) * p.pitch_y;
+      (0.5 * static_cast<double>(p.active_rows) - (row - static_cast<double>(p.active_top)) - 0.5) * p.pitch_y_m;
   return {layer.flip_x ? -x : x, layer.flip_y ? -y : y, camera_x, camera_y};
 }
 
@@ -86,9 +86,9 @@ void PredictVisualAngle(const MarkerParameters<T>& q, const LayerOptics& optics,
   const T tan_per_meter = T(1) / abs(transfer.b);
   const T diopters = transfer.diopters();
   const T c = cos(q.rotation), s = sin(q.rotation);
-  const T x = q.eye_from_panel_x_m + c * m.local_x - s * m.local_y;
-  const T y = q.eye_from_panel_y_m + s * m.local_x + c * m.local_y;
-  const T eye_direction[3] = {tan_per_meter * x - m.camera_x * diopters, tan_per_meter * y - m.camera_y * diopters,
+  const T x = q.eye_from_panel_x_m + c * m.local_x_m - s * m.local_y_m;
+  const T y = q.eye_from_panel_y_m + s * m.local_x_m + c * m.local_y_m;
+  const T eye_direction[3] = {tan_per_meter * x - m.camera_x_m * diopters, tan_per_meter * y - m.camera_y_m * diopters,
                               T(1)};
   const T camera_from_eye[3] = {q.tilt, -q.pan, -q.roll};  // the inverse of R_cam
   T d[3];

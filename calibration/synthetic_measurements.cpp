@@ -25,20 +25,20 @@ std::array<double, 2> PanelPoint(const VirtualLayer& layer, double col, double r
   double j = col - static_cast<double>(p.active_left), i = row - static_cast<double>(p.active_top);
   if (layer.flip_x) j = static_cast<double>(p.active_cols) - 1 - j;
   if (layer.flip_y) i = static_cast<double>(p.active_rows) - 1 - i;
-  const Eigen::Vector2d local((j + 0.5 - 0.5 * static_cast<double>(p.active_cols)) * p.pitch_x,
-                              (0.5 * static_cast<double>(p.active_rows) - i - 0.5) * p.pitch_y);
+  const Eigen::Vector2d local((j + 0.5 - 0.5 * static_cast<double>(p.active_cols)) * p.pitch_x_m,
+                              (0.5 * static_cast<double>(p.active_rows) - i - 0.5) * p.pitch_y_m);
   const Eigen::Vector2d on_panel =
-      Eigen::Vector2d(p.eye_from_panel_m[0], p.eye_from_panel_m[1]) + Eigen::Rotation2Dd(p.rotation) * local;
+      Eigen::Vector2d(p.eye_from_panel_m[0], p.eye_from_panel_m[1]) + Eigen::Rotation2Dd(p.rotation_rad) * local;
   return {on_panel.x(), on_panel.y()};
 }
 
 std::array<double, 2> PanelPixelAt(const VirtualLayer& layer, const std::array<double, 2>& point) {
   const PanelSpec& p = layer.panel;
   const Eigen::Vector2d local =
-      Eigen::Rotation2Dd(-p.rotation) *
+      Eigen::Rotation2Dd(-p.rotation_rad) *
       (Eigen::Vector2d(point[0], point[1]) - Eigen::Vector2d(p.eye_from_panel_m[0], p.eye_from_panel_m[1]));
-  double j = local.x() / p.pitch_x - 0.5 + 0.5 * static_cast<double>(p.active_cols);
-  double i = 0.5 * static_cast<double>(p.active_rows) - 0.5 - local.y() / p.pitch_y;
+  double j = local.x() / p.pitch_x_m - 0.5 + 0.5 * static_cast<double>(p.active_cols);
+  double i = 0.5 * static_cast<double>(p.active_rows) - 0.5 - local.y() / p.pitch_y_m;
   if (layer.flip_x) j = static_cast<double>(p.active_cols) - 1 - j;
   if (layer.flip_y) i = static_cast<double>(p.active_rows) - 1 - i;
   return {j + static_cast<double>(p.active_left), i + static_cast<double>(p.active_top)};
@@ -65,7 +65,7 @@ std::array<double, 2> ImagedMarker(const DisplaySystem& truth, const VirtualLaye
                                    const SyntheticCamera& camera, const std::array<double, 2>& position) {
   const std::array<double, 2> slope = RaySlopeTo(layer, PanelPoint(layer, col, row), position);
   const Eigen::Vector3d ray(slope[0], slope[1], 1.0);
-  const Eigen::Vector3d turn(-camera.tilt, camera.pan, camera.roll);
+  const Eigen::Vector3d turn(-camera.tilt_rad, camera.pan_rad, camera.roll_rad);
   const Eigen::Matrix3d eye_from_camera = turn.norm() > 0
                                               ? Eigen::AngleAxisd(turn.norm(), turn.normalized()).toRotationMatrix()
                                               : Eigen::Matrix3d::Identity();
@@ -77,9 +77,9 @@ std::vector<Capture> SyntheticCaptures(const DisplaySystem& truth, const MarkerG
                                        const SyntheticCamera& camera, const SyntheticNoise& noise) {
   Gaussian gaussian(noise.seed);
   std::vector<Capture> captures;
-  for (size_t c = 0; c < camera.positions.size(); ++c) {
+  for (size_t c = 0; c < camera.positions_m.size(); ++c) {
     Capture capture;
-    capture.camera_position = camera.positions[c];
+    capture.camera_position = camera.positions_m[c];
     capture.where = {"synthetic", "/captures/" + std::to_string(c)};
     for (const VirtualLayer& layer : truth.layers) {
       const PanelSpec& p = layer.panel;
@@ -95,12 +95,12 @@ std::vector<Capture> SyntheticCaptures(const DisplaySystem& truth, const MarkerG
           m.row = row;
           m.where = markers.where.child(markers.markers.size());
           auto angle = ImagedMarker(truth, layer, col, row, camera, capture.camera_position);
-          angle[0] += noise.marker_sigma * gaussian();
-          angle[1] += noise.marker_sigma * gaussian();
+          angle[0] += noise.marker_sigma_rad * gaussian();
+          angle[1] += noise.marker_sigma_rad * gaussian();
           if (noise.outlier_fraction > 0 && gaussian.uniform() < noise.outlier_fraction) {
             const double direction = 2 * std::numbers::pi * gaussian.uniform();
-            angle[0] += noise.outlier_size * std::cos(direction);
-            angle[1] += noise.outlier_size * std::sin(direction);
+            angle[0] += noise.outlier_size_rad * std::cos(direction);
+            angle[1] += noise.outlier_size_rad * std::sin(direction);
           }
           m.angle_x = angle[0];
           m.angle_y = angle[1];

@@ -27,14 +27,14 @@ struct MarkerGrid {
 
 struct SyntheticCamera {
   std::optional<CameraIntrinsics> intrinsics;  // markers in camera pixels when set, as angles otherwise
-  std::vector<std::array<double, 2>> positions = {{0.0, 0.0}};  // m, one capture each
-  double pan = 0, tilt = 0, roll = 0;                           // rad, as marker_model.h turns the camera
+  std::vector<std::array<double, 2>> positions_m = {{0.0, 0.0}};  // m, one capture each
+  double pan_rad = 0, tilt_rad = 0, roll_rad = 0;                 // rad, as marker_model.h turns the camera
 };
 
 struct SyntheticNoise {
-  double marker_sigma = 0;      // rad per axis
-  double outlier_fraction = 0;  // markers moved by outlier_size, in a random direction
-  double outlier_size = 0;      // rad
+  double marker_sigma_rad = 0;  // rad per axis
+  double outlier_fraction = 0;  // markers moved by outlier_size_rad, in a random direction
+  double outlier_size_rad = 0;  // rad
   double luminance_sigma = 0;   // relative to the panel's maximum luminance
   uint64_t seed = 1;
 };

@@ -103,7 +103,7 @@ std::vector<double> PixelSignals(const PhotoCamera& camera, const std::vector<do
                                  const std::vector<ShownPanel>& panels, const std::vector<double>& branch_scale,
                                  double gain, uint64_t seed_key) {
   const int s = camera.supersampling, samples = s * s;
-  const double radius = 0.5 * camera.aperture;
+  const double radius = 0.5 * camera.aperture_m;
   std::vector<double> signals(static_cast<size_t>(camera.width) * camera.height);
   SplitMix64 jitter(MixSeed(camera.seed, seed_key ^ 0x5a3b1e0d7c9f2468ull));
   const size_t row = static_cast<size_t>(camera.width) + 1;
@@ -124,7 +124,8 @@ std::vector<double> PixelSignals(const PhotoCamera& camera, const std::vector<do
       const std::array<double, 2> p = {r * std::cos(phi), r * std::sin(phi)};
       const std::array<double, 2> origin = {capture.camera_position[0] + radius * p[0],
                                             capture.camera_position[1] + radius * p[1]};
-      const std::array<double, 2> slope = {t[0] - radius * p[0] * camera.focus, t[1] - radius * p[1] * camera.focus};
+      const std::array<double, 2> slope = {t[0] - radius * p[0] * camera.focus_diopters,
+                                           t[1] - radius * p[1] * camera.focus_diopters};
       for (size_t b = 0; b < truth.branches.size(); ++b) {
         double light = branch_scale[b];
         for (int l : truth.branches[b].layers) {
@@ -149,11 +150,11 @@ PhotoRenderer::PhotoRenderer(const PhotoCamera& camera) : camera_(camera) {
   if (static_cast<size_t>(camera.width) * static_cast<size_t>(camera.height) > kMaxPhotoPixels)
     throw Error("the synthetic camera's " + std::to_string(camera.width) + " x " + std::to_string(camera.height) +
                 " pixels pass the limit of " + std::to_string(kMaxPhotoPixels));
-  for (double v : {camera.white, camera.full_well, camera.read_noise, camera.aperture, camera.focus,
-                   camera.response_gamma, camera.psf_sigma})
+  for (double v : {camera.white, camera.full_well, camera.read_noise, camera.aperture_m, camera.focus_diopters,
+                   camera.response_gamma, camera.psf_sigma_px})
     if (!std::isfinite(v)) throw Error("the synthetic camera's settings must be finite");
-  if (!(camera.white > 0) || camera.full_well < 0 || camera.read_noise < 0 || camera.aperture < 0 ||
-      !(camera.response_gamma > 0) || camera.psf_sigma < 0 || camera.bits < 0 || camera.bits > 24)
+  if (!(camera.white > 0) || camera.full_well < 0 || camera.read_noise < 0 || camera.aperture_m < 0 ||
+      !(camera.response_gamma > 0) || camera.psf_sigma_px < 0 || camera.bits < 0 || camera.bits > 24)
     throw Error(
         "the synthetic camera needs white > 0, full well, read noise, aperture and blur >= 0, a response "
         "gamma > 0 and 0 to 24 bits");
@@ -176,7 +177,7 @@ Image PhotoRenderer::Render(const DisplaySystem& truth, const CapturePlan& plan,
   std::vector<double> branch_scale(truth.branches.size());
   double brightest = 0;
   for (size_t b = 0; b < truth.branches.size(); ++b) {
-    branch_scale[b] = truth.branches[b].backlight_luminance * Mean(truth.branches[b].optics_efficiency);
+    branch_scale[b] = truth.branches[b].backlight_luminance_cd_m2 * Mean(truth.branches[b].optics_efficiency);
     double white = branch_scale[b];
     for (int l : truth.branches[b].layers) white *= Mean(truth.layers[l].panel.max_transmittance);
     brightest = std::max(brightest, white);
@@ -192,7 +193,7 @@ Image PhotoRenderer::Render(const DisplaySystem& truth, const CapturePlan& plan,
   Gaussian noise(MixSeed(camera_.seed, seed_key));
   const double steps = camera_.bits > 0 ? std::ldexp(1.0, camera_.bits) - 1 : 0;
   std::vector<double> signals = PixelSignals(camera_, slopes_, truth, capture, panels, branch_scale, gain, seed_key);
-  Blur(signals, camera_.width, camera_.height, camera_.psf_sigma);
+  Blur(signals, camera_.width, camera_.height, camera_.psf_sigma_px);
   for (size_t pixel = 0; pixel < image.pixels.size(); ++pixel) {
     double signal = signals[pixel];
     if (camera_.full_well > 0) signal += std::sqrt(std::max(signal, 0.0) / camera_.full_well) * noise();

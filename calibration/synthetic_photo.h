@@ -30,8 +30,8 @@ namespace layerlab {
 struct PhotoCamera {
   CameraIntrinsics intrinsics;
   int width = 0, height = 0;
-  double aperture = 0;  // entrance pupil diameter, m; 0 is a pinhole
-  double focus = 0;     // diopters the camera is focused at
+  double aperture_m = 0;      // entrance pupil diameter, m; 0 is a pinhole
+  double focus_diopters = 0;  // diopters the camera is focused at
   // Signal (fraction of full scale) of the brightest branch at full white, at exposure 1.
   double white = 0.5;
   double full_well = 20000;   // electrons at full scale (photon noise); 0: none
@@ -41,7 +41,7 @@ struct PhotoCamera {
   int supersampling = 3;      // samples per axis of a pixel, each through its own point of the aperture
   // The lens's and sensor's own blur (diffraction, aberrations, the color filter's demosaicing), a Gaussian
   // of this standard deviation in pixels; a perfectly sharp image would lock sub-pixel positions to the grid.
-  double psf_sigma = 0.8;
+  double psf_sigma_px = 0.8;
   uint64_t seed = 1;
 };
 

@@ -112,31 +112,31 @@ enum class ChromaticAberration { kNone, kThibos };
 // What sets pupil_diameter when the eye asks for "auto" (eye/pupil_size.h):
 // luminance and field default to the display's (compile fills them in).
 struct PupilFromLuminance {
-  std::optional<double> luminance;             // cd/m2; default half the display's peak white luminance
-  std::optional<std::array<double, 2>> field;  // rad, width x height; default the display's field of view
-  double age = 28.58;                          // years
+  std::optional<double> luminance_cd_m2;           // cd/m2; default half the display's peak white luminance
+  std::optional<std::array<double, 2>> field_rad;  // rad, width x height; default the display's field of view
+  double age_years = 28.58;                        // years
   int eyes = 1;
 };
 
 // The viewer: pupil, its sampling for retinal images, where it sits, and the
 // eyebox and views the target light field is sampled over.
 struct EyeModel {
-  double pupil_diameter = 4e-3;  // m; the side of a square pupil; 0 is a pinhole
+  double pupil_diameter_m = 4e-3;  // m; the side of a square pupil; 0 is a pinhole
   PupilShape pupil_shape = PupilShape::kSquare;
   int pupil_samples_x = 9, pupil_samples_y = 9;
   PupilSampling pupil_sampling = PupilSampling::kGrid;
   uint64_t pupil_seed = 1;
-  double eye_relief = 0.01;  // m, pupil plane to the first lens or curved mirror placed without a "gap"
-  double accommodation_min = 0.0, accommodation_max = 2.6;  // D
-  std::array<double, 3> chromatic_defocus = {0, 0, 0};      // D added per channel
-  double eyebox_width = 6e-3, eyebox_height = 6e-3;         // m
+  double eye_relief_m = 0.01;  // m, pupil plane to the first lens or curved mirror placed without a "gap"
+  double accommodation_min_diopters = 0.0, accommodation_max_diopters = 2.6;  // D
+  std::array<double, 3> chromatic_defocus_diopters = {0, 0, 0};               // D added per channel
+  double eyebox_width_m = 6e-3, eyebox_height_m = 6e-3;                       // m
   int views_x = 13, views_y = 13;
   // The physiological options; their defaults are the ideal eye.
   ChromaticAberration chromatic_aberration = ChromaticAberration::kNone;
-  double reference_wavelength = 555e-9;                             // m, in focus at the accommodation
-  std::array<double, 3> channel_wavelengths = kChannelWavelengths;  // m, the channels' dominant wavelengths
-  std::optional<PupilFromLuminance> pupil_auto;                     // pupil_diameter "auto"
-  double pupil_luminance_used = 0, pupil_field_area_used = 0;       // cd/m2, deg2: what compile gave "auto"
+  double reference_wavelength_m = 555e-9;                                 // m, in focus at the accommodation
+  std::array<double, 3> channel_wavelengths_m = kChannelWavelengths;      // m, the channels' dominant wavelengths
+  std::optional<PupilFromLuminance> pupil_auto;                           // the scene's pupil_diameter "auto"
+  double pupil_luminance_used_cd_m2 = 0, pupil_field_area_used_deg2 = 0;  // cd/m2, deg2: what compile gave "auto"
   Wavefront wavefront;
   bool diffraction = false;
 };
@@ -154,7 +154,7 @@ class EyeElement : public Element {
 // A transmissive panel as mounted: its pixel grid, the region the images use,
 // its photometric response, and its placement on the optical path.
 struct PanelSpec {
-  double pitch_x = 0, pitch_y = 0;  // m
+  double pitch_x_m = 0, pitch_y_m = 0;  // m
   int64_t resolution_cols = 0, resolution_rows = 0;
   int64_t active_cols = 0, active_rows = 0, active_left = 0, active_top = 0;
   Rgb max_transmittance = {1, 1, 1};
@@ -163,14 +163,14 @@ struct PanelSpec {
   bool reversed = false;     // mounted back to front: mirrored about its vertical axis
   // At most one of the placements is given (the element's "gap" is the third);
   // compile derives the rest.
-  std::optional<double> distance;      // m from the nearest lens or curved mirror before it
+  std::optional<double> distance_m;    // m from the nearest lens or curved mirror before it
   std::optional<Depth> virtual_depth;  // of the panel's final image, from the eye
   // The active region's center in the panel plane, m from the optical axis,
   // eye-space x right, y up (the scene's "offset"): a point p of the panel's
-  // own frame lies at eye_from_panel_m + R(rotation) p.
+  // own frame lies at eye_from_panel_m + R(rotation_rad) p.
   std::array<double, 2> eye_from_panel_m = {0, 0};
-  double rotation = 0.0;            // rad, in-plane, counterclockwise as the eye sees it
-  double polarization_angle = 0.0;  // rad, axis of the exit polarizer
+  double rotation_rad = 0.0;            // rad, in-plane, counterclockwise as the eye sees it
+  double polarization_angle_rad = 0.0;  // rad, axis of the exit polarizer
 };
 
 class PanelElement : public Element {

@@ -61,16 +61,16 @@ PupilFromLuminance ReadPupilFromLuminance(Params& p) {
   PupilFromLuminance a;
   if (double l = p.quantity("pupil_luminance", Dimension::kLuminance, 0.0); p.has("pupil_luminance")) {
     p.require_range("pupil_luminance", l, 0.0, 1e7, true, false);
-    a.luminance = l;
+    a.luminance_cd_m2 = l;
   }
   auto field = p.quantity_pair("pupil_field", Dimension::kAngle, {0.0, 0.0});
   if (p.has("pupil_field")) {
     p.require_range("pupil_field", std::min(field[0], field[1]), 0.0, std::numbers::pi, true, false);
     p.require_range("pupil_field", std::max(field[0], field[1]), 0.0, std::numbers::pi, true, false);
-    a.field = field;
+    a.field_rad = field;
   }
-  a.age = p.quantity("pupil_age", Dimension::kFraction, a.age);
-  p.require_range("pupil_age", a.age, 20.0, 83.0, false, false);
+  a.age_years = p.quantity("pupil_age", Dimension::kFraction, a.age_years);
+  p.require_range("pupil_age", a.age_years, 20.0, 83.0, false, false);
   a.eyes = static_cast<int>(p.integer("pupil_eyes", 1, 2, a.eyes));
   return a;
 }
@@ -79,10 +79,10 @@ void ReadPhysiologicalOptics(Params& p, EyeModel& m) {
   m.chromatic_aberration = p.choice("chromatic_aberration", {"none", "thibos"}, "none") == "thibos"
                                ? ChromaticAberration::kThibos
                                : ChromaticAberration::kNone;
-  m.reference_wavelength = p.quantity("reference_wavelength", Dimension::kLength, m.reference_wavelength);
-  RequireVisible(p, "reference_wavelength", m.reference_wavelength);
+  m.reference_wavelength_m = p.quantity("reference_wavelength", Dimension::kLength, m.reference_wavelength_m);
+  RequireVisible(p, "reference_wavelength", m.reference_wavelength_m);
   ReadPerChannel(p, "channel_wavelengths", Dimension::kLength, "expected three wavelengths [R, G, B]", RequireVisible,
-                 &m.channel_wavelengths);
+                 &m.channel_wavelengths_m);
   p.mark_read("zernike");
   const double measured = p.quantity("zernike_pupil", Dimension::kLength, 0.0);
   if (p.has("zernike")) {
@@ -102,7 +102,7 @@ void ReadPhysiologicalOptics(Params& p, EyeModel& m) {
         p.fail("zernike", "coefficients need zernike_pupil, the pupil diameter they were measured at");
       p.require_range("zernike_pupil", measured, 0.0, 0.02, true, false);
       Params terms(z, p.where("zernike"));
-      m.wavefront.pupil_diameter = measured;
+      m.wavefront.pupil_diameter_m = measured;
       for (const auto& [key, value] : z.items()) {
         const bool digits = !key.empty() && key.size() <= 2 &&
                             std::all_of(key.begin(), key.end(), [](char ch) { return ch >= '0' && ch <= '9'; });
@@ -113,8 +113,8 @@ void ReadPhysiologicalOptics(Params& p, EyeModel& m) {
         if (!(std::abs(c) <= 50e-6))
           terms.fail(key, "a coefficient must lie within 50 um of 0, got " + FormatFixed(c * 1e6, 3) +
                               " um (a bare number is meters: give \"0.1 um\")");
-        if (m.wavefront.coefficients.size() <= size_t(j)) m.wavefront.coefficients.resize(j + 1, 0.0);
-        m.wavefront.coefficients[j] = c;
+        if (m.wavefront.coefficients_m.size() <= size_t(j)) m.wavefront.coefficients_m.resize(j + 1, 0.0);
+        m.wavefront.coefficients_m[j] = c;
       }
     } else {
       p.fail("zernike", "expected {\"j\": coefficient} or a population name, got " + z.dump());
@@ -123,7 +123,7 @@ void ReadPhysiologicalOptics(Params& p, EyeModel& m) {
     p.fail("zernike_pupil", "only with zernike coefficients");
   }
   m.diffraction = p.boolean("diffraction", false);
-  if (m.diffraction && !m.pupil_auto && m.pupil_diameter == 0)
+  if (m.diffraction && !m.pupil_auto && m.pupil_diameter_m == 0)
     p.fail("diffraction", "a pinhole pupil (pupil_diameter 0) has no diffraction-limited image");
 }
 
@@ -136,8 +136,8 @@ std::unique_ptr<Element> MakeEye(Params& p) {
   if (word) {
     m.pupil_auto = ReadPupilFromLuminance(p);
   } else {
-    m.pupil_diameter = p.quantity("pupil_diameter", Dimension::kLength, m.pupil_diameter);
-    p.require_range("pupil_diameter", m.pupil_diameter, 0.0, 0.02, false, false);
+    m.pupil_diameter_m = p.quantity("pupil_diameter", Dimension::kLength, m.pupil_diameter_m);
+    p.require_range("pupil_diameter", m.pupil_diameter_m, 0.0, 0.02, false, false);
     for (const char* key : {"pupil_luminance", "pupil_field", "pupil_age", "pupil_eyes"})
       if (p.has(key)) p.fail(key, "only with \"pupil_diameter\": \"auto\"");
     ReadPupilFromLuminance(p);  // the keys' defaults, for the key recorder
@@ -154,8 +154,8 @@ std::unique_ptr<Element> MakeEye(Params& p) {
                      : sampling == "jittered" ? PupilSampling::kJittered
                                               : PupilSampling::kPoisson;
   m.pupil_seed = static_cast<uint64_t>(p.integer("pupil_seed", 0, INT64_MAX, 1));
-  m.eye_relief = p.quantity("eye_relief", Dimension::kLength, m.eye_relief);
-  p.require_range("eye_relief", m.eye_relief, 0.0, 1.0, true, false);
+  m.eye_relief_m = p.quantity("eye_relief", Dimension::kLength, m.eye_relief_m);
+  p.require_range("eye_relief", m.eye_relief_m, 0.0, 1.0, true, false);
 
   p.mark_read("accommodation_range");
   if (p.has("accommodation_range")) {
@@ -163,21 +163,21 @@ std::unique_ptr<Element> MakeEye(Params& p) {
     if (!range.is_array() || range.size() != 2)
       p.fail("accommodation_range", "expected two depths [\"0 D\", \"2.6 D\"], got " + range.dump());
     Params ends(nlohmann::json{{"0", range[0]}, {"1", range[1]}}, p.where("accommodation_range"));
-    m.accommodation_min = ends.optional_depth("0")->diopters;
-    m.accommodation_max = ends.optional_depth("1")->diopters;
-    if (!(m.accommodation_min < m.accommodation_max))
-      p.fail("accommodation_range", "the range is inverted or empty: " + FormatFixed(m.accommodation_min, 3) +
-                                        " D is not below " + FormatFixed(m.accommodation_max, 3) +
+    m.accommodation_min_diopters = ends.optional_depth("0")->diopters;
+    m.accommodation_max_diopters = ends.optional_depth("1")->diopters;
+    if (!(m.accommodation_min_diopters < m.accommodation_max_diopters))
+      p.fail("accommodation_range", "the range is inverted or empty: " + FormatFixed(m.accommodation_min_diopters, 3) +
+                                        " D is not below " + FormatFixed(m.accommodation_max_diopters, 3) +
                                         " D (give [far, near] in diopters, far first)");
   }
   ReadPerChannel(
       p, "chromatic_defocus", Dimension::kOpticalPower, "expected three powers [R, G, B] in D",
       [](const Params& rgb, const std::string& key, double v) { rgb.require_range(key, v, -5.0, 5.0, false, false); },
-      &m.chromatic_defocus);
+      &m.chromatic_defocus_diopters);
   ReadPhysiologicalOptics(p, m);
-  auto eyebox = p.quantity_pair("eyebox", Dimension::kLength, {m.eyebox_width, m.eyebox_height});
-  m.eyebox_width = eyebox[0];
-  m.eyebox_height = eyebox[1];
+  auto eyebox = p.quantity_pair("eyebox", Dimension::kLength, {m.eyebox_width_m, m.eyebox_height_m});
+  m.eyebox_width_m = eyebox[0];
+  m.eyebox_height_m = eyebox[1];
   p.require_range("eyebox", std::min(eyebox[0], eyebox[1]), 0.0, 0.1, true, false);
   p.require_range("eyebox", std::max(eyebox[0], eyebox[1]), 0.0, 0.1, true, false);
   if (p.has("views")) {

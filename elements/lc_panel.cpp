@@ -33,8 +33,8 @@ std::unique_ptr<Element> MakeLcPanel(Params& p) {
   if (!p.has("pixel_pitch")) p.raw("pixel_pitch");  // reports the missing key
   p.require_range("pixel_pitch", std::min(pitch[0], pitch[1]), 0.0, 0.01, true, false);
   p.require_range("pixel_pitch", std::max(pitch[0], pitch[1]), 0.0, 0.01, true, false);
-  s.pitch_x = pitch[0];
-  s.pitch_y = pitch[1];
+  s.pitch_x_m = pitch[0];
+  s.pitch_y_m = pitch[1];
 
   auto resolution = p.integer_pair("resolution", 1, kMaxPixels);
   s.resolution_cols = resolution[0];
@@ -52,19 +52,19 @@ std::unique_ptr<Element> MakeLcPanel(Params& p) {
     region.check_all_read();
   }
 
-  s.distance = p.optional_quantity("distance", Dimension::kLength);
+  s.distance_m = p.optional_quantity("distance", Dimension::kLength);
   s.virtual_depth = p.optional_depth("virtual_depth");
-  if (s.distance && s.virtual_depth)
+  if (s.distance_m && s.virtual_depth)
     p.fail("virtual_depth", "give either \"distance\" (from the lens) or \"virtual_depth\" (from the eye), not both");
-  if (p.has("gap") && (s.distance || s.virtual_depth))
+  if (p.has("gap") && (s.distance_m || s.virtual_depth))
     p.fail("gap", std::string("give one placement: \"gap\" (from the element before) or \"") +
-                      (s.distance ? "distance\" (from the lens)" : "virtual_depth\" (from the eye)") + ", not both");
-  if (!s.distance && !s.virtual_depth && !p.has("gap"))
+                      (s.distance_m ? "distance\" (from the lens)" : "virtual_depth\" (from the eye)") + ", not both");
+  if (!s.distance_m && !s.virtual_depth && !p.has("gap"))
     p.fail("distance",
            "missing placement: give \"distance\" (from the lens, e.g. \"72.81 mm\") or "
            "\"virtual_depth\" (from the eye, e.g. \"0.4 D\")");
-  if (s.distance && !(*s.distance > 0))
-    p.fail("distance", "the panel must be behind the lens (distance > 0), got " + FormatFixed(*s.distance, 6) + " m");
+  if (s.distance_m && !(*s.distance_m > 0))
+    p.fail("distance", "the panel must be behind the lens (distance > 0), got " + FormatFixed(*s.distance_m, 6) + " m");
 
   s.max_transmittance = p.fraction_rgb("max_transmittance", 0.3);
   for (double t : s.max_transmittance)
@@ -84,9 +84,9 @@ std::unique_ptr<Element> MakeLcPanel(Params& p) {
   s.reversed = p.boolean("reversed", false);
   s.eye_from_panel_m = p.quantity_pair("offset", Dimension::kLength, {0.0, 0.0});
   p.require_range("offset", std::abs(s.eye_from_panel_m[0]) + std::abs(s.eye_from_panel_m[1]), 0.0, 1.0, false, false);
-  s.rotation = p.quantity("rotation", Dimension::kAngle, 0.0);
-  p.require_range("rotation", s.rotation, -3.2, 3.2, false, false);
-  s.polarization_angle = p.quantity("polarization", Dimension::kAngle, 0.0);
+  s.rotation_rad = p.quantity("rotation", Dimension::kAngle, 0.0);
+  p.require_range("rotation", s.rotation_rad, -3.2, 3.2, false, false);
+  s.polarization_angle_rad = p.quantity("polarization", Dimension::kAngle, 0.0);
   return std::make_unique<PanelElement>(s);
 }
 

@@ -41,23 +41,23 @@ double Zernike(int j, double x, double y) {
 }
 
 bool Wavefront::empty() const {
-  for (double c : coefficients)
+  for (double c : coefficients_m)
     if (c != 0) return false;
   return true;
 }
 
 double WavefrontAt(const Wavefront& w, double x, double y) {
-  const double radius = 0.5 * w.pupil_diameter;
+  const double radius = 0.5 * w.pupil_diameter_m;
   double sum = 0;
-  for (size_t j = 0; j < w.coefficients.size(); ++j)
-    if (w.coefficients[j] != 0) sum += w.coefficients[j] * Zernike(int(j), x / radius, y / radius);
+  for (size_t j = 0; j < w.coefficients_m.size(); ++j)
+    if (w.coefficients_m[j] != 0) sum += w.coefficients_m[j] * Zernike(int(j), x / radius, y / radius);
   return sum;
 }
 
 WavefrontSlope WavefrontSlopeAt(const Wavefront& w, double x, double y) {
   // Central differences of a polynomial of order at most 6: the error is
   // h^2 / 6 of its third derivative, below 1e-9 relative at h = 1e-5 R.
-  const double h = 1e-5 * 0.5 * w.pupil_diameter;
+  const double h = 1e-5 * 0.5 * w.pupil_diameter_m;
   return {(WavefrontAt(w, x + h, y) - WavefrontAt(w, x - h, y)) / (2 * h),
           (WavefrontAt(w, x, y + h) - WavefrontAt(w, x, y - h)) / (2 * h)};
 }
@@ -65,9 +65,9 @@ WavefrontSlope WavefrontSlopeAt(const Wavefront& w, double x, double y) {
 const Wavefront* PopulationWavefront(const std::string& name) {
   static const Wavefront kSalmonVanDePol = [] {
     Wavefront w;
-    w.coefficients.assign(13, 0.0);
-    w.coefficients[12] = 0.13e-6;
-    w.pupil_diameter = 6e-3;
+    w.coefficients_m.assign(13, 0.0);
+    w.coefficients_m[12] = 0.13e-6;
+    w.pupil_diameter_m = 6e-3;
     w.source = "salmon_van_de_pol_2006";
     return w;
   }();

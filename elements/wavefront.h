@@ -31,9 +31,9 @@ ZernikeOrder ZernikeOrderOf(int j);  // OSA j to (n, m)
 double Zernike(int j, double x, double y);
 
 struct Wavefront {
-  std::vector<double> coefficients;  // m, index j; empty: aberration free
-  double pupil_diameter = 0;         // m, the pupil they were measured (or scaled) at
-  std::string source;                // "" (given in the scene) or a population's name
+  std::vector<double> coefficients_m;  // m, index j; empty: aberration free
+  double pupil_diameter_m = 0;         // m, the pupil they were measured (or scaled) at
+  std::string source;                  // "" (given in the scene) or a population's name
   bool empty() const;
 };
 

@@ -9,31 +9,33 @@ std::string EyeModelLine(const EyeModel& eye) {
   const bool ideal = eye.chromatic_aberration == ChromaticAberration::kNone && !eye.pupil_auto &&
                      eye.wavefront.empty() && !eye.diffraction;
   std::string line = ideal ? "ideal eye (geometric optics): " : "physiological eye: ";
-  line += FormatFixed(eye.pupil_diameter * 1e3, 2) + " mm " +
+  line += FormatFixed(eye.pupil_diameter_m * 1e3, 2) + " mm " +
           (eye.pupil_shape == PupilShape::kSquare ? "square" : "round") + " pupil";
   if (eye.pupil_auto)
-    line += " (auto: Watson & Yellott 2012 at " + FormatFixed(eye.pupil_luminance_used, 1) + " cd/m2 over " +
-            FormatFixed(eye.pupil_field_area_used, 0) + " deg2, age " + FormatFixed(eye.pupil_auto->age, 2) + ", " +
-            std::to_string(eye.pupil_auto->eyes) + (eye.pupil_auto->eyes == 1 ? " eye)" : " eyes)");
+    line += " (auto: Watson & Yellott 2012 at " + FormatFixed(eye.pupil_luminance_used_cd_m2, 1) + " cd/m2 over " +
+            FormatFixed(eye.pupil_field_area_used_deg2, 0) + " deg2, age " + FormatFixed(eye.pupil_auto->age_years, 2) +
+            ", " + std::to_string(eye.pupil_auto->eyes) + (eye.pupil_auto->eyes == 1 ? " eye)" : " eyes)");
   if (eye.chromatic_aberration == ChromaticAberration::kThibos) {
-    line += "; chromatic aberration Thibos 1992 re " + FormatFixed(eye.reference_wavelength * 1e9, 0) + " nm (R/G/B";
+    line += "; chromatic aberration Thibos 1992 re " + FormatFixed(eye.reference_wavelength_m * 1e9, 0) + " nm (R/G/B";
     for (int c = 0; c < 3; ++c)
-      line += (c ? " / " : " ") + FormatFixed(ThibosDefocus(eye.channel_wavelengths[c], eye.reference_wavelength), 3);
+      line +=
+          (c ? " / " : " ") + FormatFixed(ThibosDefocus(eye.channel_wavelengths_m[c], eye.reference_wavelength_m), 3);
     line += " D)";
   }
-  if (eye.chromatic_defocus != std::array<double, 3>{0, 0, 0})
-    line += "; chromatic defocus " + FormatFixed(eye.chromatic_defocus[0], 3) + " / " +
-            FormatFixed(eye.chromatic_defocus[1], 3) + " / " + FormatFixed(eye.chromatic_defocus[2], 3) + " D";
+  if (eye.chromatic_defocus_diopters != std::array<double, 3>{0, 0, 0})
+    line += "; chromatic defocus " + FormatFixed(eye.chromatic_defocus_diopters[0], 3) + " / " +
+            FormatFixed(eye.chromatic_defocus_diopters[1], 3) + " / " +
+            FormatFixed(eye.chromatic_defocus_diopters[2], 3) + " D";
   if (!eye.wavefront.empty()) {
     line += "; wavefront " + (eye.wavefront.source.empty() ? std::string("Zernike") : eye.wavefront.source) + " (";
     bool first = true;
-    for (size_t j = 0; j < eye.wavefront.coefficients.size(); ++j)
-      if (eye.wavefront.coefficients[j] != 0) {
-        line += (first ? "Z" : ", Z") + std::to_string(j) + " " + FormatFixed(eye.wavefront.coefficients[j] * 1e6, 3) +
-                " um";
+    for (size_t j = 0; j < eye.wavefront.coefficients_m.size(); ++j)
+      if (eye.wavefront.coefficients_m[j] != 0) {
+        line += (first ? "Z" : ", Z") + std::to_string(j) + " " +
+                FormatFixed(eye.wavefront.coefficients_m[j] * 1e6, 3) + " um";
         first = false;
       }
-    line += " at " + FormatFixed(eye.wavefront.pupil_diameter * 1e3, 1) + " mm)";
+    line += " at " + FormatFixed(eye.wavefront.pupil_diameter_m * 1e3, 1) + " mm)";
   }
   line += eye.diffraction ? "; diffraction" : "; no diffraction";
   return line;

@@ -14,20 +14,22 @@
 namespace layerlab {
 
 struct LightFieldGeometry {
-  double origin_z = 1.0;                                                                 // z_lf, m
-  double window_left = -0.5, window_top = 0.5, window_width = 1.0, window_height = 1.0;  // m, on the origin plane
-  int cols = 1, rows = 1;                                                                // pixels per view
-  int views_x = 1, views_y = 1;                                                          // views per row, per column
-  double eyebox_width = 6e-3, eyebox_height = 6e-3;                                      // m
+  double origin_z_m = 1.0;  // z_lf, m
+  double window_left_m = -0.5, window_top_m = 0.5, window_width_m = 1.0,
+         window_height_m = 1.0;                          // m, on the origin plane
+  int cols = 1, rows = 1;                                // pixels per view
+  int views_x = 1, views_y = 1;                          // views per row, per column
+  double eyebox_width_m = 6e-3, eyebox_height_m = 6e-3;  // m
   // A block of whole view rows of a larger light field (one MPI rank's share):
   // its views_y rows are rows first_view_row.. of all_view_rows rows over the
-  // whole eyebox_height. all_view_rows 0: the light field is whole.
+  // whole eyebox_height_m. all_view_rows 0: the light field is whole.
   int first_view_row = 0, all_view_rows = 0;
 
   // Pupil position of view column c / view row r (the same bits in a block as in the whole).
-  double view_x(int c) const { return -eyebox_width / 2 + (c + 0.5) * eyebox_width / views_x; }
+  double view_x(int c) const { return -eyebox_width_m / 2 + (c + 0.5) * eyebox_width_m / views_x; }
   double view_y(int r) const {
-    return eyebox_height / 2 - (first_view_row + r + 0.5) * eyebox_height / (all_view_rows ? all_view_rows : views_y);
+    return eyebox_height_m / 2 -
+           (first_view_row + r + 0.5) * eyebox_height_m / (all_view_rows ? all_view_rows : views_y);
   }
   bool is_view_block() const { return all_view_rows != 0; }
   // View rows [first, first + count) of this (whole) light field.
@@ -37,8 +39,8 @@ struct LightFieldGeometry {
     return block;
   }
   // Origin-plane position of pixel column j / pixel row i.
-  double pixel_x(int j) const { return window_left + (j + 0.5) * window_width / cols; }
-  double pixel_y(int i) const { return window_top - (i + 0.5) * window_height / rows; }
+  double pixel_x(int j) const { return window_left_m + (j + 0.5) * window_width_m / cols; }
+  double pixel_y(int i) const { return window_top_m - (i + 0.5) * window_height_m / rows; }
 
   size_t view_count() const { return static_cast<size_t>(views_x) * views_y; }
   size_t pixels_per_view() const { return static_cast<size_t>(cols) * rows; }

@@ -22,17 +22,17 @@ void CheckLightFieldGeometry(const LightFieldGeometry& g, const GeometryFailure&
   auto count = [&](const std::string& field, int n, int max) {
     if (n < 1 || n > max) fail_now(field, "must be in [1, " + std::to_string(max) + "], got " + std::to_string(n));
   };
-  length("origin_z", g.origin_z, false, 1e6);
-  if (!std::isfinite(g.window_left)) fail_now("window_left", "must be finite, got " + FormatGeneral(g.window_left));
-  if (!std::isfinite(g.window_top)) fail_now("window_top", "must be finite, got " + FormatGeneral(g.window_top));
-  length("window_width", g.window_width, false, 1e6);
-  length("window_height", g.window_height, false, 1e6);
+  length("origin_z", g.origin_z_m, false, 1e6);
+  if (!std::isfinite(g.window_left_m)) fail_now("window_left", "must be finite, got " + FormatGeneral(g.window_left_m));
+  if (!std::isfinite(g.window_top_m)) fail_now("window_top", "must be finite, got " + FormatGeneral(g.window_top_m));
+  length("window_width", g.window_width_m, false, 1e6);
+  length("window_height", g.window_height_m, false, 1e6);
   count("cols", g.cols, kMaxPixelsPerAxis);
   count("rows", g.rows, kMaxPixelsPerAxis);
   count("views_x", g.views_x, kMaxViewsPerAxis);
   count("views_y", g.views_y, kMaxViewsPerAxis);
-  length("eyebox_width", g.eyebox_width, true, 1.0);
-  length("eyebox_height", g.eyebox_height, true, 1.0);
+  length("eyebox_width", g.eyebox_width_m, true, 1.0);
+  length("eyebox_height", g.eyebox_height_m, true, 1.0);
   const size_t rays = CheckedProduct({size_t(g.views_x), size_t(g.views_y), size_t(g.cols), size_t(g.rows)},
                                      "light-field rays (views x pixels)");
   if (rays > kMaxRays)

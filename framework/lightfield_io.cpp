@@ -151,8 +151,8 @@ Manifest ReadManifest(const std::string& folder) {
     m.fail("format",
            "unknown light-field format \"" + format + "\"; this layerlab reads \"" + kLightFieldFormat + "\"");
   LightFieldGeometry g;
-  g.origin_z = m.quantity("origin_plane_z", Dimension::kLength);
-  m.require_range("origin_plane_z", g.origin_z, 0.0, 1e6, true, false);
+  g.origin_z_m = m.quantity("origin_plane_z", Dimension::kLength);
+  m.require_range("origin_plane_z", g.origin_z_m, 0.0, 1e6, true, false);
   ReadLightFieldWindow(m.object("window"), &g);
   Params resolution = m.object("resolution");
   g.cols = static_cast<int>(resolution.integer("cols", 1, kMaxPixelsPerAxis));
@@ -161,10 +161,10 @@ Manifest ReadManifest(const std::string& folder) {
   Params views = m.object("views");
   g.views_y = static_cast<int>(views.integer("rows", 1, kMaxViewsPerAxis));
   g.views_x = static_cast<int>(views.integer("cols", 1, kMaxViewsPerAxis));
-  g.eyebox_width = views.quantity("eyebox_width", Dimension::kLength);
-  g.eyebox_height = views.quantity("eyebox_height", Dimension::kLength);
-  views.require_range("eyebox_width", g.eyebox_width, 0.0, 1.0, false, false);
-  views.require_range("eyebox_height", g.eyebox_height, 0.0, 1.0, false, false);
+  g.eyebox_width_m = views.quantity("eyebox_width", Dimension::kLength);
+  g.eyebox_height_m = views.quantity("eyebox_height", Dimension::kLength);
+  views.require_range("eyebox_width", g.eyebox_width_m, 0.0, 1.0, false, false);
+  views.require_range("eyebox_height", g.eyebox_height_m, 0.0, 1.0, false, false);
   views.check_all_read();
   std::string color = m.string("color", "linear-rec709");
   if (color != "linear-rec709") m.fail("color", "unknown color encoding \"" + color + "\"; expected \"linear-rec709\"");
@@ -197,12 +197,12 @@ Manifest ReadManifest(const std::string& folder) {
 }  // namespace
 
 void ReadLightFieldWindow(Params window, LightFieldGeometry* g) {
-  g->window_left = window.quantity("left", Dimension::kLength);
-  g->window_top = window.quantity("top", Dimension::kLength);
-  g->window_width = window.quantity("width", Dimension::kLength);
-  g->window_height = window.quantity("height", Dimension::kLength);
-  window.require_range("width", g->window_width, 0.0, 1e6, true, false);
-  window.require_range("height", g->window_height, 0.0, 1e6, true, false);
+  g->window_left_m = window.quantity("left", Dimension::kLength);
+  g->window_top_m = window.quantity("top", Dimension::kLength);
+  g->window_width_m = window.quantity("width", Dimension::kLength);
+  g->window_height_m = window.quantity("height", Dimension::kLength);
+  window.require_range("width", g->window_width_m, 0.0, 1e6, true, false);
+  window.require_range("height", g->window_height_m, 0.0, 1e6, true, false);
   window.check_all_read();
 }
 
@@ -287,20 +287,22 @@ std::vector<std::string> WriteLightField(const LightField& lf, const std::string
     WriteExr((fs::path(folder) / FillPattern(depth_pattern, r, c)).string(), depth);
   });
 
-  nlohmann::json manifest = {
-      {"format", kLightFieldFormat},
-      {"origin_plane_z", g.origin_z},
-      {"window",
-       {{"left", g.window_left}, {"top", g.window_top}, {"width", g.window_width}, {"height", g.window_height}}},
-      {"resolution", {{"cols", g.cols}, {"rows", g.rows}}},
-      {"views",
-       {{"rows", g.views_y},
-        {"cols", g.views_x},
-        {"eyebox_width", g.eyebox_width},
-        {"eyebox_height", g.eyebox_height}}},
-      {"color", "linear-rec709"},
-      {"views_pattern", views_pattern},
-      {"scene", lf.scene}};
+  nlohmann::json manifest = {{"format", kLightFieldFormat},
+                             {"origin_plane_z", g.origin_z_m},
+                             {"window",
+                              {{"left", g.window_left_m},
+                               {"top", g.window_top_m},
+                               {"width", g.window_width_m},
+                               {"height", g.window_height_m}}},
+                             {"resolution", {{"cols", g.cols}, {"rows", g.rows}}},
+                             {"views",
+                              {{"rows", g.views_y},
+                               {"cols", g.views_x},
+                               {"eyebox_width", g.eyebox_width_m},
+                               {"eyebox_height", g.eyebox_height_m}}},
+                             {"color", "linear-rec709"},
+                             {"views_pattern", views_pattern},
+                             {"scene", lf.scene}};
   if (!lf.depth.empty()) manifest["depth_pattern"] = depth_pattern;
   WriteFileAtomically((fs::path(folder) / "lightfield.json").string(), manifest.dump(2) + "\n");
   std::vector<std::string> written;
@@ -314,9 +316,9 @@ std::vector<std::string> WriteLightField(const LightField& lf, const std::string
 }
 
 ContentDigest& AddGeometry(ContentDigest& digest, const LightFieldGeometry& g) {
-  const double numbers[] = {g.origin_z,      g.window_left,     g.window_top,     g.window_width,
-                            g.window_height, g.eyebox_width,    g.eyebox_height,  double(g.cols),
-                            double(g.rows),  double(g.views_x), double(g.views_y)};
+  const double numbers[] = {g.origin_z_m,      g.window_left_m,   g.window_top_m,    g.window_width_m,
+                            g.window_height_m, g.eyebox_width_m,  g.eyebox_height_m, double(g.cols),
+                            double(g.rows),    double(g.views_x), double(g.views_y)};
   digest.add(numbers, sizeof numbers);
   if (g.is_view_block()) {  // a whole light field keys as it always did
     const double block[] = {double(g.first_view_row), double(g.all_view_rows)};

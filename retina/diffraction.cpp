@@ -28,7 +28,7 @@ void ApplyDiffraction(PupilShape shape, double pupil_diameter, const std::array<
   const double longest = *std::max_element(wavelengths.begin(), wavelengths.end());
   // 20 Airy radii of edge values on every side: the PSF's energy beyond
   // them (under 1 %) wraps onto edge values, not onto the image's far side.
-  const int pad = std::max(8, static_cast<int>(std::ceil(20 * 1.22 * longest / pupil_diameter / grid.resolution)));
+  const int pad = std::max(8, static_cast<int>(std::ceil(20 * 1.22 * longest / pupil_diameter / grid.resolution_rad)));
   const int nx = FastFftSize(grid.cols + 2 * pad), ny = FastFftSize(grid.rows + 2 * pad);
   std::vector<std::complex<double>> field(size_t(nx) * ny);
   for (int c = 0; c < 3; ++c) {
@@ -40,7 +40,7 @@ void ApplyDiffraction(PupilShape shape, double pupil_diameter, const std::array<
         if (j - pad >= grid.cols + pad) sj = 0;
         field[size_t(i) * nx + j] = image->at(si, sj, c);
       }
-    FilterPeriodic(&field, nx, ny, grid.resolution,
+    FilterPeriodic(&field, nx, ny, grid.resolution_rad,
                    [&](double fx, double fy) { return DiffractionOtf(shape, pupil_diameter, wavelengths[c], fx, fy); });
     for (int i = 0; i < grid.rows; ++i)
       for (int j = 0; j < grid.cols; ++j)
@@ -50,7 +50,7 @@ void ApplyDiffraction(PupilShape shape, double pupil_diameter, const std::array<
 }
 
 void ApplyEyeOptics(const EyeModel& eye, const RetinaGrid& grid, Image* image) {
-  if (eye.diffraction) ApplyDiffraction(eye.pupil_shape, eye.pupil_diameter, eye.channel_wavelengths, grid, image);
+  if (eye.diffraction) ApplyDiffraction(eye.pupil_shape, eye.pupil_diameter_m, eye.channel_wavelengths_m, grid, image);
 }
 
 }  // namespace layerlab

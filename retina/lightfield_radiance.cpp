@@ -39,16 +39,16 @@ PupilTables TablesOf(const LightField& lf, bool nearest, const PupilPoint& u, do
   // The ray's direction and crossing exactly as RetinaOfSceneRayByRay and LightFieldRays compute them.
   t.c_lo = g.cols;
   for (size_t j = 0; j < tan_x.size(); ++j) {
-    const double dx = tan_x[j] - u.x * focus - u.slope_x;
+    const double dx = tan_x[j] - u.x_m * focus - u.slope_x;
     Bracket col;
-    if (!ColumnAt(g, u.x + dx * g.origin_z, nearest, &col)) continue;
+    if (!ColumnAt(g, u.x_m + dx * g.origin_z_m, nearest, &col)) continue;
     t.columns.push_back({int32_t(j), col.k0, col.k1, float(1 - col.w1), float(col.w1)});
     t.c_lo = std::min(t.c_lo, col.k0), t.c_hi = std::max(t.c_hi, col.k1);
   }
   t.rows.resize(tan_y.size());
   for (size_t i = 0; i < tan_y.size(); ++i) {
-    const double dy = tan_y[i] - u.y * focus - u.slope_y;
-    if (!RowAt(g, u.y + dy * g.origin_z, nearest, &t.rows[i])) t.rows[i] = {-1, -1, 0.0};
+    const double dy = tan_y[i] - u.y_m * focus - u.slope_y;
+    if (!RowAt(g, u.y_m + dy * g.origin_z_m, nearest, &t.rows[i])) t.rows[i] = {-1, -1, 0.0};
   }
   return t;
 }
@@ -123,7 +123,7 @@ Rgb LightFieldRays::operator()(const PupilPoint& u, double dx, double dy) const 
   const LightFieldGeometry& g = lf_->geometry;
   const bool nearest = pixels_ == Sampling::kNearest;
   Bracket col, row;
-  if (!ColumnAt(g, u.x + dx * g.origin_z, nearest, &col) || !RowAt(g, u.y + dy * g.origin_z, nearest, &row))
+  if (!ColumnAt(g, u.x_m + dx * g.origin_z_m, nearest, &col) || !RowAt(g, u.y_m + dy * g.origin_z_m, nearest, &row))
     return {0, 0, 0};
   const ViewWeights v = ViewsAround(g, u);
   Rgb sum{0, 0, 0};

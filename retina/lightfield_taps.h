@@ -35,16 +35,17 @@ inline Bracket Containing(double at, double lo, double step, int count) {
 
 // The pixel columns a ray crossing the origin plane at x reads; false outside the window.
 inline bool ColumnAt(const LightFieldGeometry& g, double x, bool nearest, Bracket* col) {
-  if (x < g.window_left || x > g.window_left + g.window_width) return false;
-  const double pixel_w = g.window_width / g.cols;
-  *col = nearest ? Containing(x, g.window_left, pixel_w, g.cols) : Around(x, g.window_left, pixel_w, g.cols);
+  if (x < g.window_left_m || x > g.window_left_m + g.window_width_m) return false;
+  const double pixel_w = g.window_width_m / g.cols;
+  *col = nearest ? Containing(x, g.window_left_m, pixel_w, g.cols) : Around(x, g.window_left_m, pixel_w, g.cols);
   return true;
 }
 // The pixel rows at height y (rows run down from the window's top).
 inline bool RowAt(const LightFieldGeometry& g, double y, bool nearest, Bracket* row) {
-  if (y > g.window_top || y < g.window_top - g.window_height) return false;
-  const double pixel_h = g.window_height / g.rows;
-  *row = nearest ? Containing(g.window_top - y, 0.0, pixel_h, g.rows) : Around(g.window_top - y, 0.0, pixel_h, g.rows);
+  if (y > g.window_top_m || y < g.window_top_m - g.window_height_m) return false;
+  const double pixel_h = g.window_height_m / g.rows;
+  *row =
+      nearest ? Containing(g.window_top_m - y, 0.0, pixel_h, g.rows) : Around(g.window_top_m - y, 0.0, pixel_h, g.rows);
   return true;
 }
 
@@ -54,8 +55,8 @@ struct ViewWeights {
   double weight[2][2];
 };
 inline ViewWeights ViewsAround(const LightFieldGeometry& g, const PupilPoint& u) {
-  const Bracket vcol = Around(u.x, -g.eyebox_width / 2, g.eyebox_width / g.views_x, g.views_x);
-  const Bracket vrow = Around(g.eyebox_height / 2 - u.y, 0.0, g.eyebox_height / g.views_y, g.views_y);
+  const Bracket vcol = Around(u.x_m, -g.eyebox_width_m / 2, g.eyebox_width_m / g.views_x, g.views_x);
+  const Bracket vrow = Around(g.eyebox_height_m / 2 - u.y_m, 0.0, g.eyebox_height_m / g.views_y, g.views_y);
   ViewWeights v;
   for (int a = 0; a < 2; ++a)
     for (int b = 0; b < 2; ++b) {

@@ -36,7 +36,7 @@ RetinaGrid MakeRetinaGrid(double field_x, double field_y, double resolution) {
   CheckRetinaSampling(field_x / kRadiansPerDegree, field_y / kRadiansPerDegree, resolution / kRadiansPerDegree,
                       "the retinal field", "the retinal sample size");
   RetinaGrid g;
-  g.resolution = resolution;
+  g.resolution_rad = resolution;
   g.cols = std::max(1, static_cast<int>(std::lround(field_x / resolution)));
   g.rows = std::max(1, static_cast<int>(std::lround(field_y / resolution)));
   return g;
@@ -45,7 +45,7 @@ RetinaGrid MakeRetinaGrid(double field_x, double field_y, double resolution) {
 namespace {
 
 std::vector<PupilPoint> PupilPositions(const EyeModel& eye) {
-  const double a = eye.pupil_diameter;
+  const double a = eye.pupil_diameter_m;
   if (a == 0) return {PupilPoint{}};
   const int nx = eye.pupil_samples_x, ny = eye.pupil_samples_y;
   const bool round = eye.pupil_shape == PupilShape::kRound;
@@ -60,9 +60,9 @@ std::vector<PupilPoint> PupilPositions(const EyeModel& eye) {
     double min_distance = 0.75 * std::sqrt(area / wanted);
     for (int attempt = 0; attempt < 200000 && points.size() < wanted; ++attempt) {
       PupilPoint p{(unit(rng) - 0.5) * a, (unit(rng) - 0.5) * a};
-      if (!inside(p.x, p.y)) continue;
+      if (!inside(p.x_m, p.y_m)) continue;
       bool far = std::all_of(points.begin(), points.end(), [&](const PupilPoint& q) {
-        return (p.x - q.x) * (p.x - q.x) + (p.y - q.y) * (p.y - q.y) >= min_distance * min_distance;
+        return (p.x_m - q.x_m) * (p.x_m - q.x_m) + (p.y_m - q.y_m) * (p.y_m - q.y_m) >= min_distance * min_distance;
       });
       if (far) points.push_back(p);
     }
@@ -73,7 +73,7 @@ std::vector<PupilPoint> PupilPositions(const EyeModel& eye) {
     for (int j = 0; j < nx; ++j) {
       double fx = jitter ? unit(rng) : 0.5, fy = jitter ? unit(rng) : 0.5;
       PupilPoint p{-0.5 * a + (j + fx) * a / nx, 0.5 * a - (i + fy) * a / ny};
-      if (inside(p.x, p.y)) points.push_back(p);
+      if (inside(p.x_m, p.y_m)) points.push_back(p);
     }
   if (points.empty()) points.push_back(PupilPoint{});
   return points;
@@ -85,17 +85,18 @@ std::vector<PupilPoint> PupilSamples(const EyeModel& eye) {
   std::vector<PupilPoint> points = PupilPositions(eye);
   if (!eye.wavefront.empty())
     for (PupilPoint& u : points) {
-      const WavefrontSlope g = WavefrontSlopeAt(eye.wavefront, u.x, u.y);
+      const WavefrontSlope g = WavefrontSlopeAt(eye.wavefront, u.x_m, u.y_m);
       u.slope_x = g.x, u.slope_y = g.y;
     }
   return points;
 }
 
 std::array<double, 3> ChannelAccommodation(const EyeModel& eye, double diopters) {
-  std::array<double, 3> focus = {diopters + eye.chromatic_defocus[0], diopters + eye.chromatic_defocus[1],
-                                 diopters + eye.chromatic_defocus[2]};
+  std::array<double, 3> focus = {diopters + eye.chromatic_defocus_diopters[0],
+                                 diopters + eye.chromatic_defocus_diopters[1],
+                                 diopters + eye.chromatic_defocus_diopters[2]};
   if (eye.chromatic_aberration == ChromaticAberration::kThibos)
-    for (int c = 0; c < 3; ++c) focus[c] += ThibosDefocus(eye.channel_wavelengths[c], eye.reference_wavelength);
+    for (int c = 0; c < 3; ++c) focus[c] += ThibosDefocus(eye.channel_wavelengths_m[c], eye.reference_wavelength_m);
   return focus;
 }
 
@@ -168,8 +169,8 @@ OneTapTables MakeOneTapTables(const DisplayModel& model, const RetinaGrid& retin
   for (size_t p = 0; p < pupil.size(); ++p)
     for (size_t k = 0; k < layers; ++k) {
       const double blur = model.projection(k).sampler().diopters() - accommodation;
-      const int c = find(col_keys, {int(k), pupil[p].x * blur, pupil[p].slope_x});
-      const int r = find(row_keys, {int(k), pupil[p].y * blur, pupil[p].slope_y});
+      const int c = find(col_keys, {int(k), pupil[p].x_m * blur, pupil[p].slope_x});
+      const int r = find(row_keys, {int(k), pupil[p].y_m * blur, pupil[p].slope_y});
       tables.col_of[p * layers + k] = c, tables.row_of[p * layers + k] = r;
     }
   tables.cols.resize(col_keys.size()), tables.rows.resize(row_keys.size());
@@ -313,9 +314,9 @@ std::vector<LayerTables> GeneralTables(const DisplayModel& model, const RetinaGr
         if (!s.separable()) continue;
         table.cols.resize(retina.cols), table.rows.resize(retina.rows);
         for (int j = 0; j < retina.cols; ++j)
-          table.cols[j] = s.Column(tan_x[j] + pupil[p].x * table.blur - pupil[p].slope_x);
+          table.cols[j] = s.Column(tan_x[j] + pupil[p].x_m * table.blur - pupil[p].slope_x);
         for (int i = 0; i < retina.rows; ++i)
-          table.rows[i] = s.Row(tan_y[i] + pupil[p].y * table.blur - pupil[p].slope_y);
+          table.rows[i] = s.Row(tan_y[i] + pupil[p].y_m * table.blur - pupil[p].slope_y);
       }
   return tables;
 }
@@ -346,8 +347,8 @@ void GeneralRetina(const DisplayModel& model, const Patterns& t, const RetinaGri
                 continue;
               }
               value[k * 3 + c] = s.separable() ? Read(table.rows[i], table.cols[j], t[k], c)
-                                               : Read(s.At(tan_x[j] + pupil[p].x * table.blur - pupil[p].slope_x,
-                                                           tan_y[i] + pupil[p].y * table.blur - pupil[p].slope_y),
+                                               : Read(s.At(tan_x[j] + pupil[p].x_m * table.blur - pupil[p].slope_x,
+                                                           tan_y[i] + pupil[p].y_m * table.blur - pupil[p].slope_y),
                                                       t[k], c);
             }
           }
@@ -460,7 +461,7 @@ Image RetinaOfSceneRayByRay(const SceneRadiance& scene, const RetinaGrid& retina
       for (const PupilPoint& u : pupil)
         for (int c = 0; c < (same_focus ? 1 : 3); ++c) {
           // Direction through the in-focus point: tan(a) - u D_a per unit depth, less the wavefront slope.
-          Rgb radiance = scene(u, tx - u.x * accommodation[c] - u.slope_x, ty - u.y * accommodation[c] - u.slope_y);
+          Rgb radiance = scene(u, tx - u.x_m * accommodation[c] - u.slope_x, ty - u.y_m * accommodation[c] - u.slope_y);
           if (same_focus)
             for (int k = 0; k < 3; ++k) sum[k] += radiance[k];
           else

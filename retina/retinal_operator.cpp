@@ -89,18 +89,18 @@ RetinalOperator::FocusTable RetinalOperator::MakeTable(const LightFieldGeometry&
   FocusTable t;
   // The ray's direction and crossing exactly as RetinaOfSceneRayByRay and LightFieldRays compute them.
   for (int j = 0; j < retina.cols; ++j) {
-    const double dx = tangents.x[j] - u.x * focus - u.slope_x;
+    const double dx = tangents.x[j] - u.x_m * focus - u.slope_x;
     Bracket col;
-    if (!ColumnAt(g, u.x + dx * g.origin_z, nearest, &col)) continue;
+    if (!ColumnAt(g, u.x_m + dx * g.origin_z_m, nearest, &col)) continue;
     t.columns.push_back({j, col.k0, col.k1, float(1 - col.w1), float(col.w1)});
   }
   if (nearest) t.runs = RunsOf<Run>(t.columns);
   t.rows.resize(retina.rows);
   t.sources.resize(g.rows);
   for (int i = 0; i < retina.rows; ++i) {
-    const double dy = tangents.y[i] - u.y * focus - u.slope_y;
+    const double dy = tangents.y[i] - u.y_m * focus - u.slope_y;
     Bracket row;
-    if (!RowAt(g, u.y + dy * g.origin_z, nearest, &row)) continue;
+    if (!RowAt(g, u.y_m + dy * g.origin_z_m, nearest, &row)) continue;
     t.rows[i] = {row.k0, row.k1, float(1 - row.w1), float(row.w1)};
     t.sources[row.k0].push_back({i, float(1 - row.w1)});
     if (row.w1 != 0) t.sources[row.k1].push_back({i, float(row.w1)});

@@ -9,7 +9,7 @@
 namespace layerlab {
 
 struct PupilPoint {
-  double x = 0, y = 0;              // m, on the pupil plane
+  double x_m = 0, y_m = 0;          // m, on the pupil plane
   double slope_x = 0, slope_y = 0;  // the eye's wavefront slope there (elements/wavefront.h): every
                                     // ray from this point leaves along the ideal direction minus it
 };

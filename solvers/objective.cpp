@@ -145,9 +145,9 @@ Patterns InitialPatterns(const DisplayModel& model, const SolverOptions& options
 void RequireSameRays(const DisplayModel& model, const LightField& target) {
   const LightFieldGeometry &a = model.geometry(), &b = target.geometry;
   bool same = a.cols == b.cols && a.rows == b.rows && a.views_x == b.views_x && a.views_y == b.views_y &&
-              a.origin_z == b.origin_z && a.window_left == b.window_left && a.window_top == b.window_top &&
-              a.window_width == b.window_width && a.window_height == b.window_height &&
-              a.eyebox_width == b.eyebox_width && a.eyebox_height == b.eyebox_height &&
+              a.origin_z_m == b.origin_z_m && a.window_left_m == b.window_left_m && a.window_top_m == b.window_top_m &&
+              a.window_width_m == b.window_width_m && a.window_height_m == b.window_height_m &&
+              a.eyebox_width_m == b.eyebox_width_m && a.eyebox_height_m == b.eyebox_height_m &&
               a.first_view_row == b.first_view_row && a.all_view_rows == b.all_view_rows;
   if (!same || target.rgb.size() != b.ray_count() * 3)
     throw Error("the display model is bound to other rays than the target's light field");

@@ -15,26 +15,26 @@
 namespace layerlab {
 
 std::vector<double> RetinalStates(const EyeModel& eye, const RetinalObjectiveOptions& options) {
-  if (!options.states.empty()) return options.states;
-  return AccommodationStates(eye.accommodation_min, eye.accommodation_max, kDefaultStateStep);
+  if (!options.states_diopters.empty()) return options.states_diopters;
+  return AccommodationStates(eye.accommodation_min_diopters, eye.accommodation_max_diopters, kDefaultStateStep);
 }
 
 namespace {
 
 // One retinal sample per light-field pixel over the light field's window, as seen from the eyebox center.
 RetinaGrid GridOf(const LightFieldGeometry& g, double resolution) {
-  const double pixel = std::atan(g.window_width / g.cols / g.origin_z);
+  const double pixel = std::atan(g.window_width_m / g.cols / g.origin_z_m);
   RetinaGrid grid;
-  grid.resolution = resolution > 0 ? resolution : pixel;
-  const double field_x = 2 * std::atan(g.window_width / 2 / g.origin_z);
-  const double field_y = 2 * std::atan(g.window_height / 2 / g.origin_z);
+  grid.resolution_rad = resolution > 0 ? resolution : pixel;
+  const double field_x = 2 * std::atan(g.window_width_m / 2 / g.origin_z_m);
+  const double field_y = 2 * std::atan(g.window_height_m / 2 / g.origin_z_m);
   if (resolution > 0) {
     grid = MakeRetinaGrid(field_x, field_y, resolution);
   } else {
     grid.cols = g.cols, grid.rows = g.rows;
   }
-  grid.center_x = std::atan((g.window_left + g.window_width / 2) / g.origin_z);
-  grid.center_y = std::atan((g.window_top - g.window_height / 2) / g.origin_z);
+  grid.center_x_rad = std::atan((g.window_left_m + g.window_width_m / 2) / g.origin_z_m);
+  grid.center_y_rad = std::atan((g.window_top_m - g.window_height_m / 2) / g.origin_z_m);
   return grid;
 }
 
@@ -44,7 +44,7 @@ double ContrastSensitivityChannel(float* r, const RetinaGrid& grid, int c) {
   std::vector<std::complex<double>> field(n);
   for (size_t k = 0; k < n; ++k) field[k] = r[k * 3 + c];
   constexpr double kCyclesPerRadianInCpd = 3.14159265358979323846 / 180;
-  FilterPeriodic(&field, grid.cols, grid.rows, grid.resolution, [](double fx, double fy) {
+  FilterPeriodic(&field, grid.cols, grid.rows, grid.resolution_rad, [](double fx, double fy) {
     const double s = ContrastSensitivityWeight(std::hypot(fx, fy) * kCyclesPerRadianInCpd);
     return s * s;
   });
@@ -79,7 +79,7 @@ RetinalObjective::RetinalObjective(const DisplayModel& model, const LightField& 
                 std::to_string(weights_.size()) + " weights");
   for (double w : weights_)
     if (!(w >= 0) || !std::isfinite(w)) throw Error("a state weight of the retinal objective must be >= 0");
-  const RetinaGrid grid = GridOf(model.geometry(), options.resolution);
+  const RetinaGrid grid = GridOf(model.geometry(), options.resolution_rad);
   grid_ = grid;
   contrast_sensitivity_ = options.contrast_sensitivity;
   std::vector<std::array<double, 3>> foci;
@@ -171,7 +171,7 @@ RetinalObjectiveMemory RetinalObjectiveBytes(const DisplayModel& model, const Re
   const std::vector<double> states = RetinalStates(eye, options);
   std::vector<std::array<double, 3>> foci;
   for (double d : states) foci.push_back(ChannelAccommodation(eye, d));
-  const RetinaGrid grid = GridOf(model.geometry(), options.resolution);
+  const RetinaGrid grid = GridOf(model.geometry(), options.resolution_rad);
   const std::vector<PupilPoint> pupil = PupilSamples(eye);
   const LightFieldGeometry& g = model.geometry();
   const size_t samples = size_t(grid.cols) * grid.rows;

@@ -120,9 +120,9 @@ CheckpointInputs CheckpointDigest(const DisplayModel& model, Sampling sampling, 
       }
       return s;
     };
-    std::snprintf(text, sizeof text, " resolution=%.17g target=%d contrast_sensitivity=%d", o.retinal.resolution,
+    std::snprintf(text, sizeof text, " resolution=%.17g target=%d contrast_sensitivity=%d", o.retinal.resolution_rad,
                   static_cast<int>(o.retinal.target), o.retinal.contrast_sensitivity ? 1 : 0);
-    options += " states=" + list(o.retinal.states) + " weights=" + list(o.retinal.weights) + text;
+    options += " states=" + list(o.retinal.states_diopters) + " weights=" + list(o.retinal.weights) + text;
   }
   return {{"display", ContentDigest().add(SystemToJson(model.system()).dump()).add(&sampling, sizeof sampling).hex()},
           {"target", LightFieldDigest(target)},

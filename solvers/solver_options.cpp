@@ -46,7 +46,7 @@ bool SolverOptions::IsValid(std::string* error) const {
     return false;
   }
   if (objective == ObjectiveKind::kRetinal && !retinal.weights.empty() &&
-      retinal.weights.size() != retinal.states.size())
+      retinal.weights.size() != retinal.states_diopters.size())
     return fail("retinal.weights", double(retinal.weights.size()), "must be one per state (retinal.states)");
   return true;
 }

@@ -20,9 +20,9 @@ namespace layerlab {
 enum class RetinalTarget { kLightField, kTraced };
 
 struct RetinalObjectiveOptions {
-  std::vector<double> states;   // D; empty: the eye's accommodation_range in kDefaultStateStep steps
-  std::vector<double> weights;  // one per state; empty: every state 1
-  double resolution = 0;        // rad per retinal sample; 0: one sample per light-field pixel
+  std::vector<double> states_diopters;  // D; empty: the eye's accommodation_range in kDefaultStateStep steps
+  std::vector<double> weights;          // one per state; empty: every state 1
+  double resolution_rad = 0;            // rad per retinal sample; 0: one sample per light-field pixel
   // kLightField: A_a of the target light field. kTraced: RetinaOfScene of `target_radiance`, which whoever
   // holds the target scene sets (Target::Natural, analysis/target_source.h); the objective refuses kTraced without it.
   RetinalTarget target = RetinalTarget::kLightField;

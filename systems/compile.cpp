@@ -59,12 +59,13 @@ class Walker {
     }
     const PupilFromLuminance& a = *eye.pupil_auto;
     double white = 0;
-    for (int c = 0; c < 3; ++c) white += kLuminanceWeights[c] * system_.peak_luminance[c];
+    for (int c = 0; c < 3; ++c) white += kLuminanceWeights[c] * system_.peak_luminance_cd_m2[c];
     PupilAdaptation adaptation;
-    adaptation.luminance_cd_m2 = a.luminance ? *a.luminance : 0.5 * white;
-    const std::array<double, 2> field = a.field ? *a.field : std::array<double, 2>{system_.fov_x, system_.fov_y};
+    adaptation.luminance_cd_m2 = a.luminance_cd_m2 ? *a.luminance_cd_m2 : 0.5 * white;
+    const std::array<double, 2> field =
+        a.field_rad ? *a.field_rad : std::array<double, 2>{system_.fov_x_rad, system_.fov_y_rad};
     adaptation.field_area_deg2 = field[0] * field[1] * kDegreesPerRadian * kDegreesPerRadian;
-    adaptation.age_years = a.age;
+    adaptation.age_years = a.age_years;
     adaptation.eyes = a.eyes;
     const Location where = FindEye().where.child("pupil_diameter");
     if (!(adaptation.luminance_cd_m2 > 0))
@@ -72,20 +73,20 @@ class Walker {
                   "\"auto\" needs a luminance at the eye, and the display's peak white is 0: give pupil_luminance");
     if (!(adaptation.field_area_deg2 > 0) || !std::isfinite(adaptation.field_area_deg2))
       throw Error(where, "\"auto\" needs an adapting field: give pupil_field");
-    eye.pupil_diameter = WatsonYellottPupilDiameter(adaptation);
-    eye.pupil_luminance_used = adaptation.luminance_cd_m2;
-    eye.pupil_field_area_used = adaptation.field_area_deg2;
-    if (eye.pupil_diameter > std::min(eye.eyebox_width, eye.eyebox_height))
-      system_.warnings.push_back("the eye's pupil from luminance, " + FormatFixed(eye.pupil_diameter * 1e3, 2) +
+    eye.pupil_diameter_m = WatsonYellottPupilDiameter(adaptation);
+    eye.pupil_luminance_used_cd_m2 = adaptation.luminance_cd_m2;
+    eye.pupil_field_area_used_deg2 = adaptation.field_area_deg2;
+    if (eye.pupil_diameter_m > std::min(eye.eyebox_width_m, eye.eyebox_height_m))
+      system_.warnings.push_back("the eye's pupil from luminance, " + FormatFixed(eye.pupil_diameter_m * 1e3, 2) +
                                  " mm, is wider than the eyebox: natural viewing reads the edge views beyond it");
     WarnWavefrontExtrapolated();
   }
   void WarnWavefrontExtrapolated() {
     const EyeModel& eye = system_.eye;
-    const double reach = eye.pupil_diameter * (eye.pupil_shape == PupilShape::kSquare ? std::sqrt(2.0) : 1.0);
-    if (!eye.wavefront.empty() && reach > eye.wavefront.pupil_diameter * (1 + 1e-9))
+    const double reach = eye.pupil_diameter_m * (eye.pupil_shape == PupilShape::kSquare ? std::sqrt(2.0) : 1.0);
+    if (!eye.wavefront.empty() && reach > eye.wavefront.pupil_diameter_m * (1 + 1e-9))
       system_.warnings.push_back("the eye's pupil reaches " + FormatFixed(reach * 1e3, 2) + " mm across, beyond the " +
-                                 FormatFixed(eye.wavefront.pupil_diameter * 1e3, 2) +
+                                 FormatFixed(eye.wavefront.pupil_diameter_m * 1e3, 2) +
                                  " mm its Zernike coefficients were measured at: the wavefront is extrapolated there");
   }
 
@@ -96,7 +97,7 @@ class Walker {
     system_.eye = static_cast<const EyeElement&>(*eye_node.element).model();
     system_.eye_name = eye_node.element->name();
     system_.subframes = scene_.subframes;
-    system_.frame_rate = scene_.frame_rate;
+    system_.frame_rate_hz = scene_.frame_rate_hz;
     const int K = scene_.subframes;
     bool time_varying = false;
     for (const SceneNode& node : scene_.nodes) time_varying = time_varying || node.element->powers_given() > 0;
@@ -219,11 +220,11 @@ class Walker {
     PathStep step{e.name(), e.type(), e.kind(), "", std::nullopt, power, false, false, std::nullopt, {}};
     const bool first_power = !state.last_power;
     if (e.gap()) {
-      step.position = AfterPrevious(node, state, *e.gap());
+      step.position_m = AfterPrevious(node, state, *e.gap());
     } else if (powered && first_power) {
-      step.position = system_.eye.eye_relief;  // the magnifier, as the paper places it
-      if (!(*step.position > state.placed_at))
-        Fail(node.where.child("gap"), Quoted(e.name()) + " would sit at the eye's eye_relief (" + Mm(*step.position) +
+      step.position_m = system_.eye.eye_relief_m;  // the magnifier, as the paper places it
+      if (!(*step.position_m > state.placed_at))
+        Fail(node.where.child("gap"), Quoted(e.name()) + " would sit at the eye's eye_relief (" + Mm(*step.position_m) +
                                           " from the pupil), which is not behind " + Quoted(state.placed_name) + " (" +
                                           Mm(state.placed_at) + "); give it a \"gap\" from " +
                                           Quoted(state.previous_name));
@@ -233,8 +234,8 @@ class Walker {
                                         "eye_relief does not place it; give \"gap\" (the path length from " +
                                         Quoted(state.previous_name) + ")");
     }
-    if (step.position) {
-      Advance(state, *step.position, e.name());
+    if (step.position_m) {
+      Advance(state, *step.position_m, e.name());
       step.arrival = state.transfer;
       state.transfer = state.transfer.then_power(power);
     }
@@ -242,7 +243,7 @@ class Walker {
       state.last_power = state.steps.size();
       ++state.powered;
     }
-    if (e.kind() == ElementKind::kLens) step.clear_aperture = static_cast<const LensElement&>(e).clear_aperture();
+    if (e.kind() == ElementKind::kLens) step.clear_aperture_m = static_cast<const LensElement&>(e).clear_aperture();
     if (e.kind() == ElementKind::kMirror) {
       const auto& mirror = static_cast<const MirrorElement&>(e);
       step.flips_x = mirror.flips_x();
@@ -256,7 +257,7 @@ class Walker {
     }
     state.flip_x = state.flip_x != step.flips_x;
     state.flip_y = state.flip_y != step.flips_y;
-    state.previous_position = step.position;
+    state.previous_position = step.position_m;
     state.previous_name = e.name();
     state.light.push_back({&e, port});
     state.steps.push_back(step);
@@ -316,16 +317,16 @@ class Walker {
       VirtualLayer layer = Float(*node, panel.spec(), state, previous ? &*previous : nullptr);
       layer.branch = branch_index;
       layer.position_in_branch = static_cast<int>(branch.layers.size());
-      if (branch.layers.empty()) polarization_angle = panel.spec().polarization_angle;
+      if (branch.layers.empty()) polarization_angle = panel.spec().polarization_angle_rad;
       for (int c = 0; c < 3; ++c) panels_transmittance[c] *= panel.spec().max_transmittance[c];
       branch.layers.push_back(static_cast<int>(system_.layers.size()));
       system_.layers.push_back(layer);
       previous = layer;
 
-      Advance(state, layer.position, layer.name);
-      state.previous_position = layer.position;
+      Advance(state, layer.position_m, layer.name);
+      state.previous_position = layer.position_m;
       state.previous_name = layer.name;
-      state.steps.push_back({layer.name, node->element->type(), ElementKind::kPanel, "", layer.position, 0, false,
+      state.steps.push_back({layer.name, node->element->type(), ElementKind::kPanel, "", layer.position_m, 0, false,
                              false, std::nullopt, state.transfer});
       stack_.push_back(node);
       node = &Follow(*node, 0, {ElementKind::kPanel, ElementKind::kBacklight});
@@ -333,7 +334,7 @@ class Walker {
     stack_.resize(stack_.size() - branch.layers.size());
     const auto& backlight = static_cast<const BacklightElement&>(*node->element);
     branch.backlight = backlight.name();
-    branch.backlight_luminance = backlight.luminance();
+    branch.backlight_luminance_cd_m2 = backlight.luminance();
     branch.optics_efficiency = PathEfficiency(light, polarization_angle);
     for (int c = 0; c < 3; ++c) branch.efficiency[c] = branch.optics_efficiency[c] * panels_transmittance[c];
     system_.branches.push_back(branch);
@@ -354,13 +355,13 @@ class Walker {
                "to subframe; place " +
                Quoted(layer.name) + " by \"distance\" or \"gap\"");
     layer.path = state.steps;
-    const double lens_at = state.last_power ? *state.steps[*state.last_power].position : 0.0;
-    const char* key = spec.virtual_depth ? "virtual_depth" : spec.distance ? "distance" : "gap";
-    layer.position = PlaceOnPath(node, spec, state, front, layer.name, key, lens_at);
-    layer.panel_distance = layer.position - lens_at;
+    const double lens_at = state.last_power ? *state.steps[*state.last_power].position_m : 0.0;
+    const char* key = spec.virtual_depth ? "virtual_depth" : spec.distance_m ? "distance" : "gap";
+    layer.position_m = PlaceOnPath(node, spec, state, front, layer.name, key, lens_at);
+    layer.panel_distance_m = layer.position_m - lens_at;
     if (front) CheckOrder(*front, layer, node, key, state.last_power.has_value());
-    if (!(layer.position > state.placed_at))
-      Fail(node.where.child(key), "panel " + Quoted(layer.name) + " would be " + Mm(layer.position) +
+    if (!(layer.position_m > state.placed_at))
+      Fail(node.where.child(key), "panel " + Quoted(layer.name) + " would be " + Mm(layer.position_m) +
                                       " from the pupil, not behind " + Quoted(state.placed_name) + " (" +
                                       Mm(state.placed_at) + "), which comes before it on the path");
     const RayTransfer<double> m = PanelTransfer(node, spec, state, layer, key);
@@ -389,14 +390,14 @@ class Walker {
       if (!front && !(t > 0)) FailUnreachableDepth(node, state, D);
       return state.placed_at + t;
     }
-    if (spec.distance) {
+    if (spec.distance_m) {
       if (!state.last_power)
         Fail(node.where.child(key),
              "\"distance\" is measured from the nearest lens or curved mirror in front of the "
              "panel, and none lies between the eye and " +
                  Quoted(name) + "; give \"gap\" (from " + Quoted(state.previous_name) +
                  ") or \"virtual_depth\" (from the eye)");
-      return lens_at + *spec.distance;
+      return lens_at + *spec.distance_m;
     }
     return AfterPrevious(node, state, *node.element->gap());
   }
@@ -404,14 +405,14 @@ class Walker {
   // The transfer from the panel to the pupil; refused when it images the panel into the pupil plane.
   RayTransfer<double> PanelTransfer(const SceneNode& node, const PanelSpec& spec, const PathState& state,
                                     const VirtualLayer& layer, const char* key) {
-    RayTransfer<double> m = state.transfer.then_gap(layer.position - state.placed_at);
+    RayTransfer<double> m = state.transfer.then_gap(layer.position_m - state.placed_at);
     if (spec.virtual_depth)
       m.a = spec.virtual_depth->diopters * m.b;
     else if (ZeroWithinRounding(
-                 m.a, std::abs(state.transfer.a) + std::abs((layer.position - state.placed_at) * state.transfer.c)))
+                 m.a, std::abs(state.transfer.a) + std::abs((layer.position_m - state.placed_at) * state.transfer.c)))
       m.a = 0;  // a + t c at the focal plane: the image is at infinity
     if (ZeroWithinRounding(
-            m.b, std::abs(state.transfer.b) + std::abs((layer.position - state.placed_at) * state.transfer.d)))
+            m.b, std::abs(state.transfer.b) + std::abs((layer.position_m - state.placed_at) * state.transfer.d)))
       Fail(node.where.child(key), "panel " + Quoted(layer.name) +
                                       " is imaged into the pupil plane, where no eye "
                                       "can focus; move it or the optics in front of it");
@@ -424,24 +425,24 @@ class Walker {
     const double D = m.a / m.b;
     layer->transfer = m;
     layer->diopters = D;
-    layer->depth = D == 0 ? std::numeric_limits<double>::infinity() : 1.0 / D;
+    layer->depth_m = D == 0 ? std::numeric_limits<double>::infinity() : 1.0 / D;
     layer->inverted = m.b < 0;
     const double inf = std::numeric_limits<double>::infinity();
     layer->magnification = m.a == 0 ? (layer->inverted ? -inf : inf) : 1.0 / m.a;
     const double tan_per_meter = 1.0 / std::abs(m.b);
-    layer->pitch_x = std::abs(layer->magnification) * spec.pitch_x;
-    layer->pitch_y = std::abs(layer->magnification) * spec.pitch_y;
-    layer->tan_pitch_x = tan_per_meter * spec.pitch_x;
-    layer->tan_pitch_y = tan_per_meter * spec.pitch_y;
+    layer->pitch_x_m = std::abs(layer->magnification) * spec.pitch_x_m;
+    layer->pitch_y_m = std::abs(layer->magnification) * spec.pitch_y_m;
+    layer->tan_pitch_x = tan_per_meter * spec.pitch_x_m;
+    layer->tan_pitch_y = tan_per_meter * spec.pitch_y_m;
     layer->cols = static_cast<int>(spec.active_cols);
     layer->rows = static_cast<int>(spec.active_rows);
     layer->eye_from_layer_tan_x = tan_per_meter * spec.eye_from_panel_m[0];
     layer->eye_from_layer_tan_y = tan_per_meter * spec.eye_from_panel_m[1];
-    layer->rotation = spec.rotation;
+    layer->rotation_rad = spec.rotation_rad;
     layer->flip_x = (state.flip_x != layer->inverted) != spec.reversed;
     layer->flip_y = state.flip_y != layer->inverted;
-    layer->fov_x = FieldOfView(layer->tan_pitch_x, layer->cols);
-    layer->fov_y = FieldOfView(layer->tan_pitch_y, layer->rows);
+    layer->fov_x_rad = FieldOfView(layer->tan_pitch_x, layer->cols);
+    layer->fov_y_rad = FieldOfView(layer->tan_pitch_y, layer->rows);
     layer->max_cpd = std::max(NyquistCyclesPerDegree(layer->tan_pitch_x), NyquistCyclesPerDegree(layer->tan_pitch_y));
   }
 
@@ -449,11 +450,12 @@ class Walker {
   void WarnOutsideAccommodation() {
     const EyeModel& eye = system_.eye;
     for (const VirtualLayer& l : system_.layers)
-      if (l.diopters < eye.accommodation_min - 1e-9 || l.diopters > eye.accommodation_max + 1e-9)
-        system_.warnings.push_back(
-            "layer \"" + l.name + "\" at " + FormatFixed(l.diopters, 2) +
-            " D lies outside the eye's accommodation range (" + FormatFixed(eye.accommodation_min, 2) + " to " +
-            FormatFixed(eye.accommodation_max, 2) + " D, the eye's accommodation_range): the eye cannot focus on it");
+      if (l.diopters < eye.accommodation_min_diopters - 1e-9 || l.diopters > eye.accommodation_max_diopters + 1e-9)
+        system_.warnings.push_back("layer \"" + l.name + "\" at " + FormatFixed(l.diopters, 2) +
+                                   " D lies outside the eye's accommodation range (" +
+                                   FormatFixed(eye.accommodation_min_diopters, 2) + " to " +
+                                   FormatFixed(eye.accommodation_max_diopters, 2) +
+                                   " D, the eye's accommodation_range): the eye cannot focus on it");
   }
 
   // A virtual_depth that no place behind the last placed element reaches.
@@ -477,9 +479,9 @@ class Walker {
                                      const VirtualLayer& layer, double D) const {
     const Location at = node.where.child(key);
     if (state.powered == 1 && state.steps[*state.last_power].kind == ElementKind::kLens) {
-      const double f = 1.0 / state.steps[*state.last_power].power;
-      if (layer.panel_distance > f)
-        Fail(at, "the panel is " + Mm(layer.panel_distance) + " from the lens, beyond the focal length " + Mm(f) +
+      const double f = 1.0 / state.steps[*state.last_power].power_diopters;
+      if (layer.panel_distance_m > f)
+        Fail(at, "the panel is " + Mm(layer.panel_distance_m) + " from the lens, beyond the focal length " + Mm(f) +
                      ": the lens would form a real, inverted image, not a floating virtual one");
     }
     Fail(at, "panel " + Quoted(layer.name) + " would be imaged " + Mm(-1.0 / D) + " behind the eye (" +
@@ -490,14 +492,14 @@ class Walker {
 
   void CheckOrder(const VirtualLayer& front, const VirtualLayer& back, const SceneNode& node, const char* key,
                   bool has_lens) const {
-    if (back.position == front.position)
+    if (back.position_m == front.position_m)
       Fail(node.where.child(key), "panels \"" + front.name + "\" and \"" + back.name +
                                       "\" of one stack are at the same depth (" + FormatFixed(front.diopters, 4) +
                                       " D); a stack needs distinct planes");
-    if (back.position < front.position)
+    if (back.position_m < front.position_m)
       Fail(node.where.child(key), "panel \"" + back.name + "\" is behind \"" + front.name +
                                       "\" in the stack but nearer the " + (has_lens ? "lens (" : "eye (") +
-                                      Mm(back.panel_distance) + " < " + Mm(front.panel_distance) +
+                                      Mm(back.panel_distance_m) + " < " + Mm(front.panel_distance_m) +
                                       "); list each stack from the eye outward");
   }
 
@@ -548,7 +550,7 @@ void Walker::FindMagnifier() {
   for (const VirtualLayer& l : system_.layers) {
     std::vector<const PathStep*> powered;
     for (const PathStep& s : l.path)
-      if (s.power != 0) powered.push_back(&s);
+      if (s.power_diopters != 0) powered.push_back(&s);
     if (powered.size() != 1 || powered[0]->kind != ElementKind::kLens || (lens && *lens != powered[0]->element)) return;
     lens = powered[0]->element;
   }
@@ -556,10 +558,10 @@ void Walker::FindMagnifier() {
   const auto& element = static_cast<const LensElement&>(*scene_.find(*lens)->element);
   if (element.tunable()) return;
   system_.lens = *lens;
-  system_.focal_length = element.focal_length();
-  system_.clear_aperture = element.clear_aperture();
+  system_.focal_length_m = element.focal_length();
+  system_.clear_aperture_m = element.clear_aperture();
   for (const PathStep& s : system_.layers.front().path)
-    if (s.element == *lens) system_.eye.eye_relief = *s.position;  // pupil to magnifier, however it was placed
+    if (s.element == *lens) system_.eye.eye_relief_m = *s.position_m;  // pupil to magnifier, however it was placed
 }
 
 // Warns of every lens whose clear aperture cuts rays from the eyebox to a layer's field.
@@ -568,21 +570,21 @@ void Walker::CheckApertures() {
   std::vector<std::pair<std::string, std::vector<std::string>>> cut;  // lens -> layers
   for (const VirtualLayer& l : system_.layers) {
     for (const PathStep& s : l.path) {
-      if (s.clear_aperture) {
+      if (s.clear_aperture_m) {
         const RayTransfer<double>& m = s.arrival;
         // The ray from pupil point x toward tan-angle t of the layer has slope t - x D;
         // its height here is a x + b (t - x D). The largest over the eyebox and field corners:
         const double tx = 0.5 * l.cols * l.tan_pitch_x + std::abs(l.eye_from_layer_tan_x);
         const double ty = 0.5 * l.rows * l.tan_pitch_y + std::abs(l.eye_from_layer_tan_y);
         double largest = 0;
-        for (double x : {-0.5 * eye.eyebox_width, 0.5 * eye.eyebox_width})
-          for (double y : {-0.5 * eye.eyebox_height, 0.5 * eye.eyebox_height})
+        for (double x : {-0.5 * eye.eyebox_width_m, 0.5 * eye.eyebox_width_m})
+          for (double y : {-0.5 * eye.eyebox_height_m, 0.5 * eye.eyebox_height_m})
             for (double u : {-tx, tx})
               for (double v : {-ty, ty}) {
                 const double hx = m.a * x + m.b * (u - x * l.diopters), hy = m.a * y + m.b * (v - y * l.diopters);
                 largest = std::max(largest, std::hypot(hx, hy));
               }
-        if (largest > 0.5 * *s.clear_aperture) {
+        if (largest > 0.5 * *s.clear_aperture_m) {
           auto it = std::find_if(cut.begin(), cut.end(), [&](const auto& c) { return c.first == s.element; });
           if (it == cut.end()) cut.push_back({s.element, {}}), it = cut.end() - 1;
           it->second.push_back(Quoted(l.name) + " (rays up to " + Mm(largest) + " from its axis)");
@@ -597,10 +599,10 @@ void Walker::CheckApertures() {
 
 void Walker::Finish() {
   SortFarthestFirst();
-  system_.fov_x = system_.fov_y = INFINITY;
+  system_.fov_x_rad = system_.fov_y_rad = INFINITY;
   for (const VirtualLayer& l : system_.layers) {
-    system_.fov_x = std::min(system_.fov_x, l.fov_x);
-    system_.fov_y = std::min(system_.fov_y, l.fov_y);
+    system_.fov_x_rad = std::min(system_.fov_x_rad, l.fov_x_rad);
+    system_.fov_y_rad = std::min(system_.fov_y_rad, l.fov_y_rad);
     system_.max_cpd = std::max(system_.max_cpd, l.max_cpd);
   }
   WarnOutsideAccommodation();
@@ -608,11 +610,11 @@ void Walker::Finish() {
   ResolvePupil();
   FindMagnifier();
   const EyeModel& eye = system_.eye;
-  if (!system_.lens.empty() && system_.clear_aperture) {
-    double radius = *system_.clear_aperture / 2;
-    auto field = [&](double eyebox) { return 2 * std::atan(std::max(0.0, radius - eyebox / 2) / eye.eye_relief); };
-    system_.vignetting_free_fov_x = field(eye.eyebox_width);
-    system_.vignetting_free_fov_y = field(eye.eyebox_height);
+  if (!system_.lens.empty() && system_.clear_aperture_m) {
+    double radius = *system_.clear_aperture_m / 2;
+    auto field = [&](double eyebox) { return 2 * std::atan(std::max(0.0, radius - eyebox / 2) / eye.eye_relief_m); };
+    system_.vignetting_free_fov_x_rad = field(eye.eyebox_width_m);
+    system_.vignetting_free_fov_y_rad = field(eye.eyebox_height_m);
   }
   CheckApertures();
   DescribeComponents();
@@ -638,11 +640,11 @@ void Walker::AddUpLight() {
   double emitted = 0;
   std::set<std::string> backlights;  // each once, whatever the subframes
   for (const Branch& b : system_.branches) {
-    if (backlights.insert(b.backlight).second) emitted += b.backlight_luminance;
-    for (int c = 0; c < 3; ++c) system_.peak_luminance[c] += b.backlight_luminance * b.efficiency[c];
+    if (backlights.insert(b.backlight).second) emitted += b.backlight_luminance_cd_m2;
+    for (int c = 0; c < 3; ++c) system_.peak_luminance_cd_m2[c] += b.backlight_luminance_cd_m2 * b.efficiency[c];
   }
   for (int c = 0; c < 3; ++c) {
-    system_.brightness_efficiency[c] = system_.peak_luminance[c] / emitted;
+    system_.brightness_efficiency[c] = system_.peak_luminance_cd_m2[c] / emitted;
     system_.luminance_efficiency += kLuminanceWeights[c] * system_.brightness_efficiency[c];
   }
 }
@@ -670,8 +672,8 @@ void Walker::DescribeComponents() {
   const int K = system_.subframes;
   if (K > 1)
     parts.push_back("time multiplexing: " + std::to_string(K) + " subframes per frame at " +
-                    FormatFixed(system_.frame_rate, 0) + " Hz (panels refresh at " +
-                    FormatFixed(K * system_.frame_rate, 0) + " Hz), seen as their mean");
+                    FormatFixed(system_.frame_rate_hz, 0) + " Hz (panels refresh at " +
+                    FormatFixed(K * system_.frame_rate_hz, 0) + " Hz), seen as their mean");
   const size_t branches = system_.branches.size() / K;
   const int combiners = combiners_ / K;
   if (branches > 1)
@@ -687,7 +689,7 @@ void Walker::DescribeComponents() {
     parts.push_back("inverted layers (real intermediate images)");
   if (std::any_of(layers.begin(), layers.end(), [](const VirtualLayer& l) { return l.flip_x || l.flip_y; }))
     parts.push_back("mirrored layers (reversed panels or reflected branches)");
-  if (std::any_of(layers.begin(), layers.end(), [](const VirtualLayer& l) { return l.rotation != 0; }))
+  if (std::any_of(layers.begin(), layers.end(), [](const VirtualLayer& l) { return l.rotation_rad != 0; }))
     parts.push_back("rotated layers (general projection path)");
 }
 

@@ -12,10 +12,11 @@ DisplayModel::DisplayModel(const DisplaySystem& system, const LightFieldGeometry
   for (const VirtualLayer& layer : system.layers) projections_.emplace_back(layer, lf, sampling);
   for (const Branch& b : system.branches)
     for (int c = 0; c < 3; ++c)  // a subframe's branch shown in every subframe of the frame
-      white_luminance_ = std::max(white_luminance_, b.backlight_luminance * b.efficiency[c] * system.subframes);
+      white_luminance_ = std::max(white_luminance_, b.backlight_luminance_cd_m2 * b.efficiency[c] * system.subframes);
   for (const Branch& b : system.branches) {
     std::array<float, 3> w{};
-    for (int c = 0; c < 3; ++c) w[c] = static_cast<float>(b.backlight_luminance * b.efficiency[c] / white_luminance_);
+    for (int c = 0; c < 3; ++c)
+      w[c] = static_cast<float>(b.backlight_luminance_cd_m2 * b.efficiency[c] / white_luminance_);
     weights_.push_back(w);
   }
 }
@@ -48,17 +49,17 @@ LightFieldGeometry DisplayLightFieldGeometry(const DisplaySystem& system, double
   if (!(origin_diopters > 0)) throw Error("the light-field origin plane must be at a finite depth (above 0 D)");
   const VirtualLayer& farthest = system.layers.front();
   LightFieldGeometry g;
-  g.origin_z = 1.0 / origin_diopters;
-  g.window_width = 2 * g.origin_z * std::tan(system.fov_x / 2);
-  g.window_height = 2 * g.origin_z * std::tan(system.fov_y / 2);
-  g.window_left = -g.window_width / 2;
-  g.window_top = g.window_height / 2;
+  g.origin_z_m = 1.0 / origin_diopters;
+  g.window_width_m = 2 * g.origin_z_m * std::tan(system.fov_x_rad / 2);
+  g.window_height_m = 2 * g.origin_z_m * std::tan(system.fov_y_rad / 2);
+  g.window_left_m = -g.window_width_m / 2;
+  g.window_top_m = g.window_height_m / 2;
   g.cols = farthest.cols;
   g.rows = farthest.rows;
   g.views_x = system.eye.views_x;
   g.views_y = system.eye.views_y;
-  g.eyebox_width = system.eye.eyebox_width;
-  g.eyebox_height = system.eye.eyebox_height;
+  g.eyebox_width_m = system.eye.eyebox_width_m;
+  g.eyebox_height_m = system.eye.eyebox_height_m;
   return g;
 }
 
@@ -74,17 +75,18 @@ std::vector<std::string> TargetGeometryWarnings(const DisplaySystem& system, con
   auto field = [](double left, double width, double z) {  // degrees between the window's edges seen from the pupil
     return (std::atan((left + width) / z) - std::atan(left / z)) * 180 / std::acos(-1.0);
   };
-  const double fx = field(target.window_left, target.window_width, target.origin_z);
-  const double fy = field(target.window_top - target.window_height, target.window_height, target.origin_z);
-  const double dx = system.fov_x * 180 / std::acos(-1.0), dy = system.fov_y * 180 / std::acos(-1.0);
+  const double fx = field(target.window_left_m, target.window_width_m, target.origin_z_m);
+  const double fy = field(target.window_top_m - target.window_height_m, target.window_height_m, target.origin_z_m);
+  const double dx = system.fov_x_rad * 180 / std::acos(-1.0), dy = system.fov_y_rad * 180 / std::acos(-1.0);
   auto differs = [](double a, double b, double tolerance) { return std::abs(a - b) > tolerance * std::abs(b); };
   std::vector<std::string> parts;
   if (target.views_x != own.views_x || target.views_y != own.views_y)
     parts.push_back(pair(target.views_x, target.views_y, 0, " views (the eye's: ") +
                     pair(own.views_x, own.views_y, 0, ")"));
-  if (differs(target.eyebox_width, own.eyebox_width, 1e-6) || differs(target.eyebox_height, own.eyebox_height, 1e-6))
-    parts.push_back("an eyebox of " + pair(target.eyebox_width * 1e3, target.eyebox_height * 1e3, 2, " mm") +
-                    " (the eye's: " + pair(own.eyebox_width * 1e3, own.eyebox_height * 1e3, 2, " mm)"));
+  if (differs(target.eyebox_width_m, own.eyebox_width_m, 1e-6) ||
+      differs(target.eyebox_height_m, own.eyebox_height_m, 1e-6))
+    parts.push_back("an eyebox of " + pair(target.eyebox_width_m * 1e3, target.eyebox_height_m * 1e3, 2, " mm") +
+                    " (the eye's: " + pair(own.eyebox_width_m * 1e3, own.eyebox_height_m * 1e3, 2, " mm)"));
   if (target.cols != own.cols || target.rows != own.rows)
     parts.push_back(pair(target.cols, target.rows, 0, " pixels per view (the farthest layer's: ") +
                     pair(own.cols, own.rows, 0, ")"));

@@ -28,12 +28,12 @@ namespace layerlab {
 struct PathStep {
   std::string element, type;
   ElementKind kind = ElementKind::kLens;
-  std::string port;                // the combiner port this path takes
-  std::optional<double> position;  // m of unfolded path length from the pupil; none for a flat element without "gap"
-  double power = 0;                // 1/m: lenses and curved mirrors
-  bool flips_x = false, flips_y = false;  // mirror reversal (fold mirrors, reflected combiner ports)
-  std::optional<double> clear_aperture;   // m, diameter
-  RayTransfer<double> arrival;            // pupil -> this element, before its own power (placed elements)
+  std::string port;                  // the combiner port this path takes
+  std::optional<double> position_m;  // m of unfolded path length from the pupil; none for a flat element without "gap"
+  double power_diopters = 0;         // 1/m: lenses and curved mirrors
+  bool flips_x = false, flips_y = false;   // mirror reversal (fold mirrors, reflected combiner ports)
+  std::optional<double> clear_aperture_m;  // m, diameter
+  RayTransfer<double> arrival;             // pupil -> this element, before its own power (placed elements)
 };
 
 struct VirtualLayer {
@@ -43,21 +43,21 @@ struct VirtualLayer {
   int branch = 0;              // index into DisplaySystem::branches
   int position_in_branch = 0;  // 0 is nearest the eye
   double diopters = 0;         // eye-space depth, 1/z
-  double depth = 0;            // z in m (+inf at 0 D)
-  double panel_distance =
-      0;                // physical, m: from the nearest lens or curved mirror before it (from the pupil without one)
-  double position = 0;  // m of unfolded path length from the pupil to the panel
-  double magnification = 0;         // M, signed: negative when a real intermediate image inverts it (+-inf at 0 D)
-  bool inverted = false;            // M < 0: the image is turned by 180 degrees (both axes flip)
-  RayTransfer<double> transfer;     // pupil -> panel, unfolded (mirror reversals kept in flip_x/flip_y)
-  std::vector<PathStep> path;       // the elements from the eye to this panel, nearest the eye first
-  double pitch_x = 0, pitch_y = 0;  // virtual pixel pitch at depth z, m (+inf at 0 D)
+  double depth_m = 0;          // z in m (+inf at 0 D)
+  double panel_distance_m =
+      0;                  // physical, m: from the nearest lens or curved mirror before it (from the pupil without one)
+  double position_m = 0;  // m of unfolded path length from the pupil to the panel
+  double magnification = 0;             // M, signed: negative when a real intermediate image inverts it (+-inf at 0 D)
+  bool inverted = false;                // M < 0: the image is turned by 180 degrees (both axes flip)
+  RayTransfer<double> transfer;         // pupil -> panel, unfolded (mirror reversals kept in flip_x/flip_y)
+  std::vector<PathStep> path;           // the elements from the eye to this panel, nearest the eye first
+  double pitch_x_m = 0, pitch_y_m = 0;  // virtual pixel pitch at depth z, m (+inf at 0 D)
   double tan_pitch_x = 0, tan_pitch_y = 0;                    // tan-angle per pixel, seen from the pupil center
   int cols = 0, rows = 0;                                     // the active region
   double eye_from_layer_tan_x = 0, eye_from_layer_tan_y = 0;  // the grid center, tan-angle seen from the pupil
-  double rotation = 0;                                        // rad
+  double rotation_rad = 0;                                    // rad
   bool flip_x = false, flip_y = false;                        // panel order against eye-space order
-  double fov_x = 0, fov_y = 0;                                // rad, Eq. 2
+  double fov_x_rad = 0, fov_y_rad = 0;                        // rad, Eq. 2
   double max_cpd = 0;                                         // Nyquist at the grid center
   PanelSpec panel;                                            // as mounted, for panel-ready output
 };
@@ -69,7 +69,7 @@ struct Branch {
   Rgb optics_efficiency{};  // combiners, mirrors and in-line optics, per channel; over subframes, 1/K of it each
   Rgb efficiency{};         // also times every panel's maximum transmittance
   std::string backlight;
-  double backlight_luminance = 0;  // cd/m^2
+  double backlight_luminance_cd_m2 = 0;  // cd/m^2
 };
 
 struct DisplaySystem {
@@ -79,21 +79,22 @@ struct DisplaySystem {
   // The magnifier when every path holds one and the same lens and nothing
   // else with power (the paper's layout); `lens` is empty otherwise.
   std::string lens;
-  double focal_length = 0;
-  std::optional<double> clear_aperture;
+  double focal_length_m = 0;
+  std::optional<double> clear_aperture_m;
 
   std::vector<VirtualLayer> layers;  // farthest first (ascending diopters)
   std::vector<Branch> branches;
   // Time multiplexing: K subframes per frame, the eye sees their mean; each
   // subframe's layers and branches are their own (a panel holds K patterns).
   int subframes = 1;
-  double frame_rate = 60;  // Hz; the panels refresh at subframes x frame_rate
+  double frame_rate_hz = 60;  // Hz; the panels refresh at subframes x frame_rate_hz
 
-  double fov_x = 0, fov_y = 0;                                         // rad: the smallest layer field (Eq. 2)
-  double max_cpd = 0;                                                  // the finest layer's Nyquist frequency
-  std::optional<double> vignetting_free_fov_x, vignetting_free_fov_y;  // rad, from the magnifier's clear aperture
+  double fov_x_rad = 0, fov_y_rad = 0;  // rad: the smallest layer field (Eq. 2)
+  double max_cpd = 0;                   // the finest layer's Nyquist frequency
+  std::optional<double> vignetting_free_fov_x_rad,
+      vignetting_free_fov_y_rad;  // rad, from the magnifier's clear aperture
 
-  Rgb peak_luminance{};             // cd/m^2 at full white on every panel
+  Rgb peak_luminance_cd_m2{};       // cd/m^2 at full white on every panel
   Rgb brightness_efficiency{};      // luminance at the eye per luminance emitted by the backlights
   double luminance_efficiency = 0;  // the same, Rec.709-luminance weighted
 

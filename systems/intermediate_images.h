@@ -12,7 +12,7 @@ namespace layerlab {
 
 struct IntermediateImage {
   std::string after;         // the element whose power formed it
-  double position = 0;       // m of unfolded path length from the pupil (+-inf: at infinity)
+  double position_m = 0;     // m of unfolded path length from the pupil (+-inf: at infinity)
   double magnification = 0;  // of the panel, accumulated so far (negative: inverted)
   bool real = false;         // the light converges to it: it lies on the eye's side of `after`
 };

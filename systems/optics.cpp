@@ -21,10 +21,10 @@ FloatedImage FloatPanel(double s, double f, double e) {
   image.diopters = m.diopters();
   image.tan_per_meter = m.tan_per_meter();
   image.magnification = m.a > 0 ? m.magnification() : inf;
-  image.image_distance = image.depth = inf;
+  image.image_distance_m = image.depth_m = inf;
   if (m.a > 0) {
-    image.depth = 1.0 / image.diopters;
-    image.image_distance = image.depth - e;
+    image.depth_m = 1.0 / image.diopters;
+    image.image_distance_m = image.depth_m - e;
   }
   return image;
 }

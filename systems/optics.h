@@ -13,11 +13,11 @@
 namespace layerlab {
 
 struct FloatedImage {
-  double diopters;        // 1/z, eye space; 0 when s == f
-  double depth;           // z in m; +inf when s == f
-  double image_distance;  // d in m, from the lens; +inf when s == f
-  double magnification;   // M; +inf when s == f
-  double tan_per_meter;   // tan-angle per meter of panel: M / z = M D
+  double diopters;          // 1/z, eye space; 0 when s == f
+  double depth_m;           // z in m; +inf when s == f
+  double image_distance_m;  // d in m, from the lens; +inf when s == f
+  double magnification;     // M; +inf when s == f
+  double tan_per_meter;     // tan-angle per meter of panel: M / z = M D
 };
 
 // Requires 0 < s <= f and e >= 0 (the caller reports violations).

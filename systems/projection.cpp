@@ -7,8 +7,8 @@ namespace layerlab {
 LayerProjection::LayerProjection(const VirtualLayer& layer, const LightFieldGeometry& lf, Sampling sampling)
     : lf_(lf),
       sampler_(layer, sampling),
-      view_gain_(layer.diopters - 1.0 / lf.origin_z),
-      pixel_gain_(1.0 / lf.origin_z) {
+      view_gain_(layer.diopters - 1.0 / lf.origin_z_m),
+      pixel_gain_(1.0 / lf.origin_z_m) {
   if (!separable()) return;
   col_taps_.resize(static_cast<size_t>(lf.views_x) * lf.cols);
   for (int c = 0; c < lf.views_x; ++c)

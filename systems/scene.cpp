@@ -42,8 +42,8 @@ Scene ParseScene(nlohmann::json document, const std::string& file, const Element
   scene.name = top.string("name", "");
   scene.description = top.string("description", "");
   scene.subframes = static_cast<int>(top.integer("subframes", 1, 64, 1));
-  scene.frame_rate = top.quantity("frame_rate", Dimension::kFrequency, 60.0);
-  top.require_range("frame_rate", scene.frame_rate, 1.0, 1e4, false, false);  // below 1 Hz: a slide show
+  scene.frame_rate_hz = top.quantity("frame_rate", Dimension::kFrequency, 60.0);
+  top.require_range("frame_rate", scene.frame_rate_hz, 1.0, 1e4, false, false);  // below 1 Hz: a slide show
   for (const std::string& key : SceneTaskKeys()) top.mark_read(key);
 
   const nlohmann::json& elements = top.raw("elements");

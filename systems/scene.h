@@ -36,9 +36,9 @@ struct Scene {
   std::string name;
   std::string description;
   std::vector<SceneNode> nodes;
-  int subframes = 1;         // patterns shown per frame, time-multiplexed; the eye sees their mean
-  double frame_rate = 60.0;  // Hz, frames (not subframes) per second
-  nlohmann::json document;   // the whole parsed file, for later phases
+  int subframes = 1;            // patterns shown per frame, time-multiplexed; the eye sees their mean
+  double frame_rate_hz = 60.0;  // Hz, frames (not subframes) per second
+  nlohmann::json document;      // the whole parsed file, for later phases
 
   const SceneNode* find(const std::string& element_name) const;
 };

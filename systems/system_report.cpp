@@ -61,7 +61,7 @@ std::string FormatOpticalPaths(const DisplaySystem& s) {
     element_row("eye \"" + s.eye_name + "\"", 0.0, "pupil");
     previous = 0.0;
     auto panel_row = [&](const VirtualLayer& l) {
-      element_row("panel \"" + l.name + "\"", l.position, "image at " + F(l.diopters, 3) + " D");
+      element_row("panel \"" + l.name + "\"", l.position_m, "image at " + F(l.diopters, 3) + " D");
     };
     for (const PathStep& step : back.path) {
       if (step.kind == ElementKind::kPanel) {
@@ -70,11 +70,12 @@ std::string FormatOpticalPaths(const DisplaySystem& s) {
         continue;
       }
       std::string detail;
-      if (step.power != 0) detail = "f " + Length(1.0 / step.power) + " (" + F(step.power, 2) + " D)";
+      if (step.power_diopters != 0)
+        detail = "f " + Length(1.0 / step.power_diopters) + " (" + F(step.power_diopters, 2) + " D)";
       if (!step.port.empty()) detail += (detail.empty() ? "" : ", ") + std::string("port ") + step.port;
       if (step.flips_x || step.flips_y)
         detail += (detail.empty() ? "" : ", ") + std::string("mirrors ") + (step.flips_x ? "x" : "y");
-      element_row(step.type + " \"" + step.element + "\"", step.position, detail);
+      element_row(step.type + " \"" + step.element + "\"", step.position_m, detail);
     }
     panel_row(back);
     for (int k : b.layers) {
@@ -82,7 +83,7 @@ std::string FormatOpticalPaths(const DisplaySystem& s) {
       std::string chain;
       for (const IntermediateImage& image : IntermediateImages(l))
         chain += (chain.empty() ? "" : "; ") + std::string("after \"") + image.after + "\" " +
-                 (std::isinf(image.position) ? std::string("at infinity") : "at " + Length(image.position)) + " (" +
+                 (std::isinf(image.position_m) ? std::string("at infinity") : "at " + Length(image.position_m)) + " (" +
                  (image.real ? "real" : "virtual") + ", M " + F(image.magnification, 2) + ")";
       if (!chain.empty()) out += "    images of \"" + l.name + "\": " + chain + "\n";
     }
@@ -107,24 +108,24 @@ std::string FormatSystemTable(const DisplaySystem& s) {
   const EyeModel& eye = s.eye;
   std::string out;
   out += s.file + (s.name.empty() ? "" : ": " + s.name) + "\n\n";
-  const std::string relief = s.lens.empty() ? "" : "; eye relief " + F(eye.eye_relief * 1e3, 2) + " mm";
+  const std::string relief = s.lens.empty() ? "" : "; eye relief " + F(eye.eye_relief_m * 1e3, 2) + " mm";
   out +=
       Row("eye      pupil %s mm %s, %d x %d samples%s; eyebox %s x %s mm, %d x %d views;\n"
           "         accommodation %s to %s D",
-          F(eye.pupil_diameter * 1e3, 2).c_str(), eye.pupil_shape == PupilShape::kSquare ? "square" : "round",
-          eye.pupil_samples_x, eye.pupil_samples_y, relief.c_str(), F(eye.eyebox_width * 1e3, 2).c_str(),
-          F(eye.eyebox_height * 1e3, 2).c_str(), eye.views_x, eye.views_y, F(eye.accommodation_min, 2).c_str(),
-          F(eye.accommodation_max, 2).c_str());
+          F(eye.pupil_diameter_m * 1e3, 2).c_str(), eye.pupil_shape == PupilShape::kSquare ? "square" : "round",
+          eye.pupil_samples_x, eye.pupil_samples_y, relief.c_str(), F(eye.eyebox_width_m * 1e3, 2).c_str(),
+          F(eye.eyebox_height_m * 1e3, 2).c_str(), eye.views_x, eye.views_y,
+          F(eye.accommodation_min_diopters, 2).c_str(), F(eye.accommodation_max_diopters, 2).c_str());
   out += Row("         %s", EyeModelLine(eye).c_str());
   if (s.subframes > 1)
     out += Row("time     %d subframes per frame at %s Hz: the panels refresh at %s Hz; the eye sees the mean",
-               s.subframes, F(s.frame_rate, 1).c_str(), F(s.subframes * s.frame_rate, 1).c_str());
+               s.subframes, F(s.frame_rate_hz, 1).c_str(), F(s.subframes * s.frame_rate_hz, 1).c_str());
   if (!s.lens.empty()) {
     std::string aperture = "clear aperture unlimited";
-    if (s.clear_aperture)
-      aperture = "clear aperture " + F(*s.clear_aperture * 1e3, 2) + " mm (vignetting-free field " +
-                 F(Deg(*s.vignetting_free_fov_x), 1) + " x " + F(Deg(*s.vignetting_free_fov_y), 1) + " deg)";
-    out += Row("lens     \"%s\": focal length %s mm, %s", s.lens.c_str(), F(s.focal_length * 1e3, 2).c_str(),
+    if (s.clear_aperture_m)
+      aperture = "clear aperture " + F(*s.clear_aperture_m * 1e3, 2) + " mm (vignetting-free field " +
+                 F(Deg(*s.vignetting_free_fov_x_rad), 1) + " x " + F(Deg(*s.vignetting_free_fov_y_rad), 1) + " deg)";
+    out += Row("lens     \"%s\": focal length %s mm, %s", s.lens.c_str(), F(s.focal_length_m * 1e3, 2).c_str(),
                aperture.c_str());
   }
   out += FormatOpticalPaths(s);
@@ -136,10 +137,10 @@ std::string FormatSystemTable(const DisplaySystem& s) {
   for (size_t k = 0; k < s.layers.size(); ++k) {
     const VirtualLayer& l = s.layers[k];
     std::string pixels = std::to_string(l.cols) + " x " + std::to_string(l.rows);
-    std::string fov = F(Deg(l.fov_x), 2) + " x " + F(Deg(l.fov_y), 2);
+    std::string fov = F(Deg(l.fov_x_rad), 2) + " x " + F(Deg(l.fov_y_rad), 2);
     out += Row("%-3zu %-12s %-24s %8s %9s %10s %8s %10s %11s %15s %7s %5s", k, l.name.c_str(),
-               s.branches[l.branch].name.c_str(), F(l.diopters, 3).c_str(), F(l.depth, 4).c_str(),
-               F(l.panel_distance * 1e3, 2).c_str(), F(l.magnification, 2).c_str(), F(l.pitch_x * 1e3, 3).c_str(),
+               s.branches[l.branch].name.c_str(), F(l.diopters, 3).c_str(), F(l.depth_m, 4).c_str(),
+               F(l.panel_distance_m * 1e3, 2).c_str(), F(l.magnification, 2).c_str(), F(l.pitch_x_m * 1e3, 3).c_str(),
                pixels.c_str(), fov.c_str(), F(l.max_cpd, 2).c_str(), FlipName(l).c_str());
   }
 
@@ -155,17 +156,18 @@ std::string FormatSystemTable(const DisplaySystem& s) {
     }
     out += Row("%-3zu %-24s %-10s %-22s %-22s %-12s %10s", b, br.name.c_str(), layers.c_str(),
                Rgb3(br.optics_efficiency, 4).c_str(), Rgb3(br.efficiency, 4).c_str(), br.backlight.c_str(),
-               F(br.backlight_luminance, 1).c_str());
+               F(br.backlight_luminance_cd_m2, 1).c_str());
   }
 
   out += "\nsystem\n";
-  out += Row("  field of view          %s x %s deg (the smallest layer's, Eq. 2)", F(Deg(s.fov_x), 2).c_str(),
-             F(Deg(s.fov_y), 2).c_str());
+  out += Row("  field of view          %s x %s deg (the smallest layer's, Eq. 2)", F(Deg(s.fov_x_rad), 2).c_str(),
+             F(Deg(s.fov_y_rad), 2).c_str());
   out +=
       Row("  highest frequency      %s cpd on every layer (the coarsest layer's Nyquist); %s cpd on the finest layer "
           "(both at the layer's center)",
           F(EveryLayerMaxCpd(s), 2).c_str(), F(s.max_cpd, 2).c_str());
-  out += Row("  peak luminance         %s cd/m2 (R G B, full white on every panel)", Rgb3(s.peak_luminance, 2).c_str());
+  out += Row("  peak luminance         %s cd/m2 (R G B, full white on every panel)",
+             Rgb3(s.peak_luminance_cd_m2, 2).c_str());
   out += Row("  brightness efficiency  %s (luminance-weighted; R G B %s): light at the eye / light the backlights emit",
              F(s.luminance_efficiency, 4).c_str(), Rgb3(s.brightness_efficiency, 4).c_str());
   out += "  components             ";
@@ -181,17 +183,17 @@ nlohmann::json SystemToJson(const DisplaySystem& s) {
   json j;
   j["file"] = s.file;
   j["name"] = s.name;
-  j["eye"] = {{"pupil_diameter_m", eye.pupil_diameter},
+  j["eye"] = {{"pupil_diameter_m", eye.pupil_diameter_m},
               {"pupil_shape", eye.pupil_shape == PupilShape::kSquare ? "square" : "round"},
               {"pupil_samples", {eye.pupil_samples_x, eye.pupil_samples_y}},
-              {"eye_relief_m", eye.eye_relief},
-              {"eyebox_m", {eye.eyebox_width, eye.eyebox_height}},
+              {"eye_relief_m", eye.eye_relief_m},
+              {"eyebox_m", {eye.eyebox_width_m, eye.eyebox_height_m}},
               {"views", {eye.views_x, eye.views_y}},
-              {"accommodation_range_D", {eye.accommodation_min, eye.accommodation_max}},
+              {"accommodation_range_D", {eye.accommodation_min_diopters, eye.accommodation_max_diopters}},
               {"model", EyeModelLine(eye)}};
   j["lens"] = {{"name", s.lens},
-               {"focal_length_m", s.focal_length},
-               {"clear_aperture_m", s.clear_aperture ? json(*s.clear_aperture) : json(nullptr)}};
+               {"focal_length_m", s.focal_length_m},
+               {"clear_aperture_m", s.clear_aperture_m ? json(*s.clear_aperture_m) : json(nullptr)}};
   for (const VirtualLayer& l : s.layers) {
     j["layers"].push_back({{"name", l.name},
                            {"element", l.element},
@@ -199,16 +201,16 @@ nlohmann::json SystemToJson(const DisplaySystem& s) {
                            {"branch", l.branch},
                            {"position_in_branch", l.position_in_branch},
                            {"diopters", l.diopters},
-                           {"depth_m", JsonNumber(l.depth)},
-                           {"panel_distance_m", l.panel_distance},
+                           {"depth_m", JsonNumber(l.depth_m)},
+                           {"panel_distance_m", l.panel_distance_m},
                            {"magnification", JsonNumber(l.magnification)},
-                           {"pixel_pitch_m", {JsonNumber(l.pitch_x), JsonNumber(l.pitch_y)}},
+                           {"pixel_pitch_m", {JsonNumber(l.pitch_x_m), JsonNumber(l.pitch_y_m)}},
                            {"tan_pitch", {l.tan_pitch_x, l.tan_pitch_y}},
                            {"pixels", {l.cols, l.rows}},
                            {"offset_tan", {l.eye_from_layer_tan_x, l.eye_from_layer_tan_y}},
-                           {"rotation_rad", l.rotation},
+                           {"rotation_rad", l.rotation_rad},
                            {"flip", {l.flip_x, l.flip_y}},
-                           {"fov_deg", {Deg(l.fov_x), Deg(l.fov_y)}},
+                           {"fov_deg", {Deg(l.fov_x_rad), Deg(l.fov_y_rad)}},
                            {"max_cpd", l.max_cpd}});
   }
   for (const Branch& b : s.branches)
@@ -217,16 +219,16 @@ nlohmann::json SystemToJson(const DisplaySystem& s) {
                              {"optics_efficiency_rgb", b.optics_efficiency},
                              {"efficiency_rgb", b.efficiency},
                              {"backlight", b.backlight},
-                             {"backlight_luminance_cd_m2", b.backlight_luminance}});
+                             {"backlight_luminance_cd_m2", b.backlight_luminance_cd_m2}});
   j["subframes"] = s.subframes;
-  j["frame_rate_hz"] = s.frame_rate;
-  j["panel_refresh_rate_hz"] = s.subframes * s.frame_rate;
-  j["fov_deg"] = {Deg(s.fov_x), Deg(s.fov_y)};
+  j["frame_rate_hz"] = s.frame_rate_hz;
+  j["panel_refresh_rate_hz"] = s.subframes * s.frame_rate_hz;
+  j["fov_deg"] = {Deg(s.fov_x_rad), Deg(s.fov_y_rad)};
   j["max_cpd"] = s.max_cpd;  // the finest layer's
   j["max_cpd_every_layer"] = EveryLayerMaxCpd(s);
-  if (s.vignetting_free_fov_x)
-    j["vignetting_free_fov_deg"] = {Deg(*s.vignetting_free_fov_x), Deg(*s.vignetting_free_fov_y)};
-  j["peak_luminance_cd_m2_rgb"] = s.peak_luminance;
+  if (s.vignetting_free_fov_x_rad)
+    j["vignetting_free_fov_deg"] = {Deg(*s.vignetting_free_fov_x_rad), Deg(*s.vignetting_free_fov_y_rad)};
+  j["peak_luminance_cd_m2_rgb"] = s.peak_luminance_cd_m2;
   j["brightness_efficiency_rgb"] = s.brightness_efficiency;
   j["brightness_efficiency"] = s.luminance_efficiency;
   j["polarization_tracked"] = s.polarization_tracked;
@@ -253,10 +255,11 @@ std::string FormatCoverage(const DisplayModel& model, const std::vector<LayerCov
   const LightFieldGeometry& g = model.geometry();
   std::string out = "\nlight field\n";
   out += Row("  %d x %d views over %s x %s mm, %d x %d pixels each, origin plane %s D (%s m): %s M rays", g.views_x,
-             g.views_y, F(g.eyebox_width * 1e3, 2).c_str(), F(g.eyebox_height * 1e3, 2).c_str(), g.cols, g.rows,
-             F(1 / g.origin_z, 3).c_str(), F(g.origin_z, 4).c_str(), F(g.ray_count() / 1e6, 2).c_str());
-  out += Row("  window on the origin plane %s x %s mm, top left (%s, %s) mm", F(g.window_width * 1e3, 2).c_str(),
-             F(g.window_height * 1e3, 2).c_str(), F(g.window_left * 1e3, 2).c_str(), F(g.window_top * 1e3, 2).c_str());
+             g.views_y, F(g.eyebox_width_m * 1e3, 2).c_str(), F(g.eyebox_height_m * 1e3, 2).c_str(), g.cols, g.rows,
+             F(1 / g.origin_z_m, 3).c_str(), F(g.origin_z_m, 4).c_str(), F(g.ray_count() / 1e6, 2).c_str());
+  out += Row("  window on the origin plane %s x %s mm, top left (%s, %s) mm", F(g.window_width_m * 1e3, 2).c_str(),
+             F(g.window_height_m * 1e3, 2).c_str(), F(g.window_left_m * 1e3, 2).c_str(),
+             F(g.window_top_m * 1e3, 2).c_str());
   out += "\nlayer pixels some ray reads (solvers touch only these)\n";
   out += Row("%-3s %-12s %10s %10s %8s", "#", "panel", "reached", "pixels", "share");
   for (size_t k = 0; k < coverage.size(); ++k)
@@ -268,14 +271,16 @@ std::string FormatCoverage(const DisplayModel& model, const std::vector<LayerCov
 nlohmann::json CoverageToJson(const DisplayModel& model, const std::vector<LayerCoverage>& coverage) {
   const LightFieldGeometry& g = model.geometry();
   nlohmann::json j;
-  j["light_field"] = {
-      {"origin_plane_z_m", g.origin_z},
-      {"window_m",
-       {{"left", g.window_left}, {"top", g.window_top}, {"width", g.window_width}, {"height", g.window_height}}},
-      {"pixels", {g.cols, g.rows}},
-      {"views", {g.views_x, g.views_y}},
-      {"eyebox_m", {g.eyebox_width, g.eyebox_height}},
-      {"rays", g.ray_count()}};
+  j["light_field"] = {{"origin_plane_z_m", g.origin_z_m},
+                      {"window_m",
+                       {{"left", g.window_left_m},
+                        {"top", g.window_top_m},
+                        {"width", g.window_width_m},
+                        {"height", g.window_height_m}}},
+                      {"pixels", {g.cols, g.rows}},
+                      {"views", {g.views_x, g.views_y}},
+                      {"eyebox_m", {g.eyebox_width_m, g.eyebox_height_m}},
+                      {"rays", g.ray_count()}};
   for (const LayerCoverage& c : coverage)
     j["layer_coverage"].push_back({{"name", c.name}, {"reached_pixels", c.reached}, {"pixels", c.total}});
   return j;

@@ -33,8 +33,8 @@ class PixelSampler {
     SplitMix64 random(MixSeed(seed_, key * 4096 + k));
     double cell_x = (k % nx_ + random.uniform()) / nx_;  // in [0, 1) across the pixel, left to right
     double cell_y = (k / nx_ + random.uniform()) / ny_;  // top to bottom
-    return {g_.window_left + (j + cell_x) * g_.window_width / g_.cols,
-            g_.window_top - (i + cell_y) * g_.window_height / g_.rows};
+    return {g_.window_left_m + (j + cell_x) * g_.window_width_m / g_.cols,
+            g_.window_top_m - (i + cell_y) * g_.window_height_m / g_.rows};
   }
 
  private:

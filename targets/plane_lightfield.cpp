@@ -13,7 +13,7 @@ LightField RenderPlaneLightField(const LightFieldGeometry& g, double z, const Te
   lf.depth.assign(g.ray_count(), static_cast<float>(z));
   lf.scene = "plane at " + FormatFixed(1.0 / z, 2) + " D (" + texture.Describe() + ")";
   const PixelSampler sampler(g, sampling.samples_per_pixel, sampling.seed);
-  const double s = z / g.origin_z;
+  const double s = z / g.origin_z_m;
   // Pixel (i, j) of the view at (vx, vy) into out.
   auto pixel = [&](double vx, double vy, int i, int j, float* out) {
     double sum[3] = {0, 0, 0};

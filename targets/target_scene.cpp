@@ -60,7 +60,7 @@ double DepthOrLength(Params& p, const std::string& key) {
 
 LightFieldGeometry ParseLightField(Params& lf, const std::string& base_dir, const SceneReader& read_scene) {
   LightFieldGeometry g;
-  g.origin_z = RequiredDepth(lf, "origin_plane");
+  g.origin_z_m = RequiredDepth(lf, "origin_plane");
 
   std::vector<std::string> window_keys;
   for (const char* key : {"field_of_view", "window", "display"})
@@ -83,15 +83,15 @@ LightFieldGeometry ParseLightField(Params& lf, const std::string& base_dir, cons
         lf.fail(key, std::string("comes from the display (\"display\": \"") + display + "\"); remove it here");
     g.views_x = system.eye.views_x;
     g.views_y = system.eye.views_y;
-    g.eyebox_width = system.eye.eyebox_width;
-    g.eyebox_height = system.eye.eyebox_height;
-    g.window_width = 2 * g.origin_z * std::tan(system.fov_x / 2);
-    g.window_height = 2 * g.origin_z * std::tan(system.fov_y / 2);
-    g.window_left = -g.window_width / 2;
-    g.window_top = g.window_height / 2;
+    g.eyebox_width_m = system.eye.eyebox_width_m;
+    g.eyebox_height_m = system.eye.eyebox_height_m;
+    g.window_width_m = 2 * g.origin_z_m * std::tan(system.fov_x_rad / 2);
+    g.window_height_m = 2 * g.origin_z_m * std::tan(system.fov_y_rad / 2);
+    g.window_left_m = -g.window_width_m / 2;
+    g.window_top_m = g.window_height_m / 2;
     // The layer that sets the field of view (the farthest) sets the resolution.
     for (const VirtualLayer& layer : system.layers)
-      if (layer.fov_x == system.fov_x) {
+      if (layer.fov_x_rad == system.fov_x_rad) {
         default_resolution = std::array<int64_t, 2>{layer.cols, layer.rows};
         break;
       }
@@ -101,10 +101,10 @@ LightFieldGeometry ParseLightField(Params& lf, const std::string& base_dir, cons
       double fov_x = fov.quantity("0", Dimension::kAngle), fov_y = fov.quantity("1", Dimension::kAngle);
       fov.require_range("0", fov_x, 0.0, std::numbers::pi, true, true);
       fov.require_range("1", fov_y, 0.0, std::numbers::pi, true, true);
-      g.window_width = 2 * g.origin_z * std::tan(fov_x / 2);
-      g.window_height = 2 * g.origin_z * std::tan(fov_y / 2);
-      g.window_left = -g.window_width / 2;
-      g.window_top = g.window_height / 2;
+      g.window_width_m = 2 * g.origin_z_m * std::tan(fov_x / 2);
+      g.window_height_m = 2 * g.origin_z_m * std::tan(fov_y / 2);
+      g.window_left_m = -g.window_width_m / 2;
+      g.window_top_m = g.window_height_m / 2;
     } else {
       ReadLightFieldWindow(lf.object("window"), &g);
     }
@@ -115,8 +115,8 @@ LightFieldGeometry ParseLightField(Params& lf, const std::string& base_dir, cons
     std::array<double, 2> eyebox = lf.quantity_pair("eyebox", Dimension::kLength, {0, 0});
     lf.require_range("eyebox", eyebox[0], 0.0, 0.1, false, false);
     lf.require_range("eyebox", eyebox[1], 0.0, 0.1, false, false);
-    g.eyebox_width = eyebox[0];
-    g.eyebox_height = eyebox[1];
+    g.eyebox_width_m = eyebox[0];
+    g.eyebox_height_m = eyebox[1];
   }
 
   std::array<int64_t, 2> resolution = default_resolution && !lf.has("resolution")
@@ -144,16 +144,17 @@ std::array<Vec3, 3> RotationMatrix(double ax, double ay, double az) {
 TargetPlane ParsePlane(Params& o, const LightFieldGeometry& g, const std::string& base_dir, std::string& description,
                        std::vector<std::string>& files_read) {
   TargetPlane plane;
-  plane.depth = RequiredDepth(o, "depth");
-  plane.center = o.quantity_pair("center", Dimension::kLength, {0, 0});
-  plane.size = o.has("size") ? LengthOrAnglePair(o, "size", plane.depth) : CoveringSize(g, plane.depth, plane.center);
+  plane.depth_m = RequiredDepth(o, "depth");
+  plane.center_m = o.quantity_pair("center", Dimension::kLength, {0, 0});
+  plane.size_m =
+      o.has("size") ? LengthOrAnglePair(o, "size", plane.depth_m) : CoveringSize(g, plane.depth_m, plane.center_m);
   o.mark_read("size");
-  double scale = plane.depth / g.origin_z;
-  TextureFrame frame{plane.depth, {g.window_width * scale, g.window_height * scale}, base_dir, &files_read};
+  double scale = plane.depth_m / g.origin_z_m;
+  TextureFrame frame{plane.depth_m, {g.window_width_m * scale, g.window_height_m * scale}, base_dir, &files_read};
   Params texture = o.object("texture");
   plane.texture = ParseTexture(texture, frame);
   o.check_all_read();
-  description = "plane at " + Diopters(plane.depth) + " (" + plane.texture->Describe() + ")";
+  description = "plane at " + Diopters(plane.depth_m) + " (" + plane.texture->Describe() + ")";
   return plane;
 }
 
@@ -191,14 +192,14 @@ TargetMesh ParseMesh(Params& o, const std::string& base_dir, std::string& descri
   }
   // The mesh's own size (before rotation), so turning a mesh keeps its texture.
   double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
-  target.uv_size = o.quantity("uv_size", Dimension::kLength, extent > 0 ? extent : 1.0);
-  o.require_range("uv_size", target.uv_size, 0.0, 1e3, true, false);
+  target.uv_size_m = o.quantity("uv_size", Dimension::kLength, extent > 0 ? extent : 1.0);
+  o.require_range("uv_size", target.uv_size_m, 0.0, 1e3, true, false);
 
   if (o.has("color") && o.has("texture")) o.fail("texture", "give \"color\" or \"texture\", not both");
   if (o.has("texture")) {
     if (!target.mesh.has_uvs())
       o.fail("texture", path + " has no texture coordinates (OBJ vt, PLY u v); give it a \"color\" instead");
-    TextureFrame frame{position[2], {target.uv_size, target.uv_size}, base_dir, &files_read};
+    TextureFrame frame{position[2], {target.uv_size_m, target.uv_size_m}, base_dir, &files_read};
     Params texture = o.object("texture");
     target.texture = ParseTexture(texture, frame);
   } else {
@@ -230,15 +231,15 @@ TargetLight ParseLight(Params& l) {
 }  // namespace
 
 std::array<double, 2> CoveringSize(const LightFieldGeometry& g, double z, std::array<double, 2> center) {
-  double s = z / g.origin_z;
+  double s = z / g.origin_z_m;
   auto half_extent = [&](double x0, double x1, double eyebox, double c) {
     double half = 0;
     for (double x : {x0, x1})
       for (double v : {-eyebox / 2, eyebox / 2}) half = std::max(half, std::abs(v * (1 - s) + x * s - c));
     return half;
   };
-  double half_w = half_extent(g.window_left, g.window_left + g.window_width, g.eyebox_width, center[0]);
-  double half_h = half_extent(g.window_top - g.window_height, g.window_top, g.eyebox_height, center[1]);
+  double half_w = half_extent(g.window_left_m, g.window_left_m + g.window_width_m, g.eyebox_width_m, center[0]);
+  double half_h = half_extent(g.window_top_m - g.window_height_m, g.window_top_m, g.eyebox_height_m, center[1]);
   const double margin = 1.02;  // beyond every ray, float rounding included
   return {2 * half_w * margin, 2 * half_h * margin};
 }

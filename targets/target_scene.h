@@ -32,9 +32,9 @@ inline constexpr const char* kTargetFormat = "layerlab-target/1";
 
 // A fronto-parallel textured rectangle, unlit: its value is its texture.
 struct TargetPlane {
-  double depth = 1.0;              // z, m
-  std::array<double, 2> center{};  // m; also the texture's origin
-  std::array<double, 2> size{};    // m
+  double depth_m = 1.0;              // z, m
+  std::array<double, 2> center_m{};  // m; also the texture's origin
+  std::array<double, 2> size_m{};    // m
   std::shared_ptr<const Texture> texture;
 };
 
@@ -43,7 +43,7 @@ struct TargetMesh {
   std::string file;
   TriangleMesh mesh;                       // positions in eye space, m
   std::shared_ptr<const Texture> texture;  // a constant one for "color"
-  double uv_size = 1.0;                    // m per unit of texture coordinate
+  double uv_size_m = 1.0;                  // m per unit of texture coordinate
 };
 
 // shade = ambient + (1 - ambient) * max(0, n . to_light), n facing the viewer.

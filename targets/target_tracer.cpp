@@ -19,10 +19,10 @@ Vec3 Cross(const Vec3& a, const Vec3& b) {
 TargetTracer::TargetTracer(const TargetScene& target) : target_(target) {
   for (size_t i = 0; i < target.planes.size(); ++i) {
     const TargetPlane& p = target.planes[i];
-    double x0 = p.center[0] - p.size[0] / 2, x1 = p.center[0] + p.size[0] / 2;
-    double y0 = p.center[1] - p.size[1] / 2, y1 = p.center[1] + p.size[1] / 2;
+    double x0 = p.center_m[0] - p.size_m[0] / 2, x1 = p.center_m[0] + p.size_m[0] / 2;
+    double y0 = p.center_m[1] - p.size_m[1] / 2, y1 = p.center_m[1] + p.size_m[1] / 2;
     std::array<std::array<double, 3>, 4> corners{
-        {{x0, y0, p.depth}, {x1, y0, p.depth}, {x1, y1, p.depth}, {x0, y1, p.depth}}};
+        {{x0, y0, p.depth_m}, {x1, y0, p.depth_m}, {x1, y1, p.depth_m}, {x0, y1, p.depth_m}}};
     std::array<std::array<uint32_t, 3>, 2> triangles{{{0, 1, 2}, {0, 2, 3}}};
     Register(scene_.AddTriangles(target.file + ": plane " + std::to_string(i), corners, triangles), {true, i});
   }
@@ -42,9 +42,10 @@ TracedSample TargetTracer::TraceDirection(double vx, double vy, double dx, doubl
   const Surface& surface = surfaces_[hit.geom_id];
   if (surface.is_plane) {
     const TargetPlane& plane = target_.planes[surface.index];
-    double z = plane.depth;
-    return {plane.texture->Evaluate(vx + direction[0] * z - plane.center[0], vy + direction[1] * z - plane.center[1]),
-            z};
+    double z = plane.depth_m;
+    return {
+        plane.texture->Evaluate(vx + direction[0] * z - plane.center_m[0], vy + direction[1] * z - plane.center_m[1]),
+        z};
   }
   const TargetMesh& mesh = target_.meshes[surface.index];
   const auto& tri = mesh.mesh.triangles[hit.prim_id];
@@ -66,7 +67,7 @@ TracedSample TargetTracer::TraceDirection(double vx, double vy, double dx, doubl
     double w0 = 1.0 - hit.u - hit.v;
     for (int k = 0; k < 2; ++k) {
       double uv = w0 * mesh.mesh.uvs[tuv[0]][k] + hit.u * mesh.mesh.uvs[tuv[1]][k] + hit.v * mesh.mesh.uvs[tuv[2]][k];
-      (k == 0 ? s : t) = (uv - 0.5) * mesh.uv_size;
+      (k == 0 ? s : t) = (uv - 0.5) * mesh.uv_size_m;
     }
   }
   Rgb c = mesh.texture->Evaluate(s, t);

@@ -30,7 +30,7 @@ class TargetTracer {
   TracedSample TraceDirection(double vx, double vy, double dx, double dy) const;
   // The ray from (vx, vy, 0) through (x, y) on the target's origin plane.
   TracedSample Trace(double vx, double vy, double x, double y) const {
-    const double z_lf = target_.geometry.origin_z;
+    const double z_lf = target_.geometry.origin_z_m;
     return TraceDirection(vx, vy, (x - vx) / z_lf, (y - vy) / z_lf);
   }
 

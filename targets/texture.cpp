@@ -40,14 +40,14 @@ class GratingTexture final : public Texture {
   explicit GratingTexture(const GratingSpec& spec)
       : spec_(spec),
         k_(kTwoPi * spec.cycles_per_meter),
-        cos_(std::cos(spec.orientation)),
-        sin_(std::sin(spec.orientation)) {}
+        cos_(std::cos(spec.orientation_rad)),
+        sin_(std::sin(spec.orientation_rad)) {}
   Rgb Evaluate(double s, double t) const override {
     double w = s * cos_ + t * sin_;  // along the wave vector
     // Uniform in visual angle: z atan(w / z) is w at the line of sight and
     // grows as the angle, not as its tangent.
-    if (spec_.angle_depth > 0) w = spec_.angle_depth * std::atan(w / spec_.angle_depth);
-    double value = spec_.mean * (1.0 + spec_.contrast * std::cos(k_ * w + spec_.phase));
+    if (spec_.angle_depth_m > 0) w = spec_.angle_depth_m * std::atan(w / spec_.angle_depth_m);
+    double value = spec_.mean * (1.0 + spec_.contrast * std::cos(k_ * w + spec_.phase_rad));
     return {value, value, value};
   }
   std::string Describe() const override { return spec_.description; }
@@ -191,7 +191,7 @@ std::unique_ptr<Texture> MakeImageTexture(Image image, std::array<double, 2> siz
 std::unique_ptr<Texture> ParseTexture(Params& p, const TextureFrame& frame) {
   p.string("type");  // required
   std::string type = p.choice("type", {"constant", "grating", "checkerboard", "noise", "image"}, "");
-  const double z = frame.reference_depth;
+  const double z = frame.reference_depth_m;
   std::unique_ptr<Texture> texture;
   if (type == "constant") {
     texture = MakeConstantTexture(p.fraction_rgb("color"));
@@ -200,12 +200,12 @@ std::unique_ptr<Texture> ParseTexture(Params& p, const TextureFrame& frame) {
     double cpd = p.quantity("frequency", Dimension::kAngularFrequency);
     p.require_range("frequency", cpd, 0.0, 1000.0, false, false);
     g.cycles_per_meter = CyclesPerMeter(cpd, z);
-    g.phase = p.quantity("phase", Dimension::kAngle, 0.0);
-    g.orientation = p.quantity("orientation", Dimension::kAngle, 0.0);
+    g.phase_rad = p.quantity("phase", Dimension::kAngle, 0.0);
+    g.orientation_rad = p.quantity("orientation", Dimension::kAngle, 0.0);
     g.contrast = Fraction(p, "contrast", 1.0);
     g.mean = NonNegative(p, "mean", 0.5);
     bool in_angle = p.choice("uniform", {"plane", "angle"}, "plane") == "angle";
-    if (in_angle) g.angle_depth = z;
+    if (in_angle) g.angle_depth_m = z;
     g.description = "grating " + Number(cpd) + " cpd" + (in_angle ? " in visual angle" : "");
     texture = MakeGratingTexture(g);
   } else if (type == "checkerboard") {
@@ -228,7 +228,7 @@ std::unique_ptr<Texture> ParseTexture(Params& p, const TextureFrame& frame) {
   } else {
     std::string file = p.string("file");
     std::string path = (std::filesystem::path(frame.base_dir) / file).string();
-    std::array<double, 2> size = p.has("size") ? LengthOrAnglePair(p, "size", z) : frame.default_size;
+    std::array<double, 2> size = p.has("size") ? LengthOrAnglePair(p, "size", z) : frame.default_size_m;
     p.mark_read("size");
     TextureWrap wrap =
         p.choice("wrap", {"clamp", "repeat"}, "clamp") == "clamp" ? TextureWrap::kClamp : TextureWrap::kRepeat;

@@ -52,8 +52,8 @@ class Texture {
 
 // What a texture on one surface needs to know.
 struct TextureFrame {
-  double reference_depth = 1.0;                    // m; angles become lengths here
-  std::array<double, 2> default_size{1, 1};        // m: what an image covers unless "size" is given
+  double reference_depth_m = 1.0;                  // m; angles become lengths here
+  std::array<double, 2> default_size_m{1, 1};      // m: what an image covers unless "size" is given
   std::string base_dir;                            // image files are relative to this
   std::vector<std::string>* files_read = nullptr;  // when given, each image file read is appended
 };
@@ -63,14 +63,14 @@ std::unique_ptr<Texture> ParseTexture(Params& p, const TextureFrame& frame);
 // The same textures for in-process targets (frequencies already in cycles per meter).
 struct GratingSpec {
   double cycles_per_meter = 0;
-  double phase = 0;        // rad
-  double orientation = 0;  // rad
+  double phase_rad = 0;        // rad
+  double orientation_rad = 0;  // rad
   double contrast = 1;
   double mean = 0.5;
   // 0: uniform on the plane. z > 0: uniform in visual angle as seen from the
   // point z in front of the texture origin, cycles_per_meter there at the
   // line of sight (the phase along the wave vector is 2 pi k z atan(w / z)).
-  double angle_depth = 0;  // m
+  double angle_depth_m = 0;  // m
   std::string description = "grating";
 };
 std::unique_ptr<Texture> MakeConstantTexture(const Rgb& color);

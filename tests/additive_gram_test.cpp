@@ -87,8 +87,8 @@ INSTANTIATE_TEST_SUITE_P(Sampling, AdditiveGramTest, ::testing::Values(Sampling:
 TEST(AdditiveGram, OnAStripMatchesTheRayByRayProductAndLeavesUnreachedRowsZero) {
   DisplaySystem system = CompileJson(ShrunkExample("additive_2layer.json", 24, 12, 5));
   LightFieldGeometry g = DisplayLightFieldGeometry(system);
-  const double row_height = g.window_height / g.rows;
-  g.rows = 2, g.window_height = 2 * row_height, g.window_top = row_height;
+  const double row_height = g.window_height_m / g.rows;
+  g.rows = 2, g.window_height_m = 2 * row_height, g.window_top_m = row_height;
   DisplayModel model(system, g);
   const LayerVectors x = RandomLayers(model, 5);
   LayerVectors fast;
@@ -115,7 +115,7 @@ TEST(AdditiveGram, OnAStripMatchesTheRayByRayProductAndLeavesUnreachedRowsZero) 
 
 TEST(AdditiveGram, RotatedLayersAreNotApplicable) {
   DisplaySystem system = CompileJson(ShrunkExample("additive_2layer.json", 24, 12, 5));
-  system.layers[0].rotation = 0.01;
+  system.layers[0].rotation_rad = 0.01;
   DisplayModel model(system, DisplayLightFieldGeometry(system));
   EXPECT_FALSE(AdditiveGram::Applicable(model));
 }

@@ -48,8 +48,8 @@ int LayerIndexIn(const DisplaySystem& system, const std::string& name) {
 SyntheticSetup GeometrySetup(double sigma_arcmin) {
   SyntheticSetup setup = ExampleSetup();
   setup.camera.intrinsics.reset();
-  setup.camera.positions = {{0.0, 0.0}};
-  setup.noise.marker_sigma = sigma_arcmin * kArcmin;
+  setup.camera.positions_m = {{0.0, 0.0}};
+  setup.noise.marker_sigma_rad = sigma_arcmin * kArcmin;
   setup.luminance_codes.clear();
   return setup;
 }
@@ -66,10 +66,10 @@ double WorstGeometryError(const DisplaySystem& built, const Measurements& m, con
     const CalibratedPanel* p = display.find(layer.name);
     EXPECT_NE(p, nullptr);
     if (!p) return INFINITY;
-    const double errors[] = {std::abs(p->distance - layer.panel_distance) / expected.distance,
+    const double errors[] = {std::abs(p->distance_m - layer.panel_distance_m) / expected.distance,
                              std::abs(p->eye_from_panel_x_m - layer.panel.eye_from_panel_m[0]) / expected.offset,
                              std::abs(p->eye_from_panel_y_m - layer.panel.eye_from_panel_m[1]) / expected.offset,
-                             std::abs(p->rotation - layer.panel.rotation) / expected.rotation};
+                             std::abs(p->rotation_rad - layer.panel.rotation_rad) / expected.rotation};
     for (double e : errors) worst = std::max(worst, e);
     if (!check_std_dev) continue;
     // The reported uncertainties (ceres::Covariance, scaled by the residuals' noise) agree with these.
@@ -101,12 +101,13 @@ TEST(CalibrationTest, RecoversPlacementsWithinTheNoise) {
   const CalibrationReport report = Calibrate(Designed(), m, CalibrationOptions{}, &display);
   ASSERT_TRUE(report.IsSolutionUsable()) << report.message;
   EXPECT_TRUE(report.warnings.empty()) << report.FullReport();
-  EXPECT_LT(WorstGeometryError(built, m, report, display, setup.noise.marker_sigma), kSigmas) << report.FullReport();
+  EXPECT_LT(WorstGeometryError(built, m, report, display, setup.noise.marker_sigma_rad), kSigmas)
+      << report.FullReport();
   // The designed placement is off by arcminutes; the fit leaves only the noise
   // (per marker the RMS over two axes: sqrt(2) sigma).
-  EXPECT_GT(report.marker_rms_before, 20 * setup.noise.marker_sigma);
-  EXPECT_TRUE(testing::Close(report.marker_rms_after, std::sqrt(2.0) * setup.noise.marker_sigma, 0.15));
-  EXPECT_TRUE(testing::Close(report.marker_noise, setup.noise.marker_sigma, 0.15));
+  EXPECT_GT(report.marker_rms_before_rad, 20 * setup.noise.marker_sigma_rad);
+  EXPECT_TRUE(testing::Close(report.marker_rms_after_rad, std::sqrt(2.0) * setup.noise.marker_sigma_rad, 0.15));
+  EXPECT_TRUE(testing::Close(report.marker_noise_rad, setup.noise.marker_sigma_rad, 0.15));
 }
 
 TEST(CalibrationTest, WithoutNoiseRecoversPlacementsExactly) {
@@ -117,7 +118,7 @@ TEST(CalibrationTest, WithoutNoiseRecoversPlacementsExactly) {
   const CalibrationReport report = Calibrate(Designed(), m, CalibrationOptions{}, &display);
   ASSERT_TRUE(report.IsSolutionUsable()) << report.message;
   testing::ExpectPlacementsOf(built, display, 1e-9);
-  EXPECT_LT(report.marker_rms_after, 1e-10);
+  EXPECT_LT(report.marker_rms_after_rad, 1e-10);
 }
 
 TEST(CalibrationTest, FitsTheFocalLengthFromParallax) {
@@ -125,7 +126,7 @@ TEST(CalibrationTest, FitsTheFocalLengthFromParallax) {
   // The lens is not quite as specified; the panels stand at their distances from it.
   const DisplaySystem built = BuiltSystem(Designed(), truth, {{"lens", 0.0, 75.4e-3}});
   SyntheticSetup setup = GeometrySetup(0.3);
-  setup.camera.positions = {{-2e-3, 0.0}, {2e-3, 0.0}, {0.0, -2e-3}, {0.0, 2e-3}};
+  setup.camera.positions_m = {{-2e-3, 0.0}, {2e-3, 0.0}, {0.0, -2e-3}, {0.0, 2e-3}};
   const Measurements m = testing::SyntheticMeasurements(built, truth, setup);
   CalibrationOptions options;
   options.fit_focal_length = true;
@@ -138,13 +139,13 @@ TEST(CalibrationTest, FitsTheFocalLengthFromParallax) {
   ASSERT_TRUE(f->std_dev.has_value());
   EXPECT_LT(*f->std_dev, 0.1e-3) << "parallax of 4 mm should fix the focal length to a tenth of a millimeter";
   EXPECT_LT(std::abs(f->value - 75.4e-3), kSigmas * *f->std_dev) << report.FullReport();
-  EXPECT_TRUE(testing::Close(report.marker_rms_after, std::sqrt(2.0) * setup.noise.marker_sigma, 0.15));
+  EXPECT_TRUE(testing::Close(report.marker_rms_after_rad, std::sqrt(2.0) * setup.noise.marker_sigma_rad, 0.15));
 
   // Held at its scene value, the same data cannot be fitted down to the noise.
   CalibratedDisplay held;
   const CalibrationReport fixed = Calibrate(Designed(), m, CalibrationOptions{}, &held);
   ASSERT_TRUE(fixed.IsSolutionUsable());
-  EXPECT_GT(fixed.marker_rms_after, 1.4 * report.marker_rms_after);
+  EXPECT_GT(fixed.marker_rms_after_rad, 1.4 * report.marker_rms_after_rad);
 }
 
 TEST(CalibrationTest, FocalLengthWithoutParallaxIsUndetermined) {
@@ -160,7 +161,7 @@ TEST(CalibrationTest, FocalLengthWithoutParallaxIsUndetermined) {
   ASSERT_NE(f, nullptr);
   EXPECT_EQ(f->status, ParameterStatus::kUndetermined);
   EXPECT_FALSE(f->std_dev.has_value());
-  EXPECT_EQ(f->value, Designed().focal_length);
+  EXPECT_EQ(f->value, Designed().focal_length_m);
   EXPECT_TRUE(HasWarning(report,
                          "the focal length cannot be told from the panel distances while each panel is seen "
                          "from one camera position only"))
@@ -172,9 +173,9 @@ TEST(CalibrationTest, RobustLossDiscountsOutliersThatBiasLeastSquares) {
   const DisplaySystem built = BuiltSystem(Designed(), truth);
   SyntheticSetup setup = GeometrySetup(0.3);
   setup.noise.outlier_fraction = 0.1;
-  setup.noise.outlier_size = 30 * kArcmin;
+  setup.noise.outlier_size_rad = 30 * kArcmin;
   const Measurements m = testing::SyntheticMeasurements(built, truth, setup);
-  const double sigma = setup.noise.marker_sigma;
+  const double sigma = setup.noise.marker_sigma_rad;
 
   CalibratedDisplay plain_display;
   const CalibrationReport plain = Calibrate(Designed(), m, CalibrationOptions{}, &plain_display);
@@ -192,7 +193,7 @@ TEST(CalibrationTest, RobustLossDiscountsOutliersThatBiasLeastSquares) {
     EXPECT_LT(WorstGeometryError(built, m, robust, display, sigma / std::sqrt(0.9), false), kSigmas)
         << ToString(loss) << "\n"
         << robust.FullReport();
-    EXPECT_TRUE(testing::Close(robust.marker_noise, sigma, 0.25)) << ToString(loss);
+    EXPECT_TRUE(testing::Close(robust.marker_noise_rad, sigma, 0.25)) << ToString(loss);
   }
 }
 
@@ -238,7 +239,7 @@ TEST(CalibrationTest, CollinearMarkersAreReported) {
         << report.FullReport();
   // A row still fixes a similarity (its length, direction and place): the
   // placement is fitted, within the noise.
-  EXPECT_LT(WorstGeometryError(built, m, report, display, setup.noise.marker_sigma, false), kSigmas);
+  EXPECT_LT(WorstGeometryError(built, m, report, display, setup.noise.marker_sigma_rad, false), kSigmas);
 }
 
 // A panel built mirrored (its "reversed" wrong in the scene): its markers
@@ -262,7 +263,8 @@ TEST(CalibrationTest, FarthestPanelReferenceCentersItAndFitsTheCamera) {
   truth[0].eye_from_panel_x_m = truth[0].eye_from_panel_y_m = truth[0].rotation = 0;
   const DisplaySystem built = BuiltSystem(Designed(), truth);
   SyntheticSetup setup = GeometrySetup(0.0);
-  setup.camera.pan = 10 * kArcmin, setup.camera.tilt = -5 * kArcmin, setup.camera.roll = 0.3 * std::numbers::pi / 180;
+  setup.camera.pan_rad = 10 * kArcmin, setup.camera.tilt_rad = -5 * kArcmin,
+  setup.camera.roll_rad = 0.3 * std::numbers::pi / 180;
   const Measurements m = testing::SyntheticMeasurements(built, truth, setup);
   CalibrationOptions options;
   options.reference = AxisReference::kFarthestPanel;
@@ -271,13 +273,13 @@ TEST(CalibrationTest, FarthestPanelReferenceCentersItAndFitsTheCamera) {
   ASSERT_TRUE(report.IsSolutionUsable()) << report.message;
   const CalibratedPanel* farthest = display.find("rear_a");
   EXPECT_EQ(farthest->eye_from_panel_x_m, 0.0);
-  EXPECT_EQ(farthest->rotation, 0.0);
+  EXPECT_EQ(farthest->rotation_rad, 0.0);
   EXPECT_EQ(report.find("rear_a", "offset_x")->status, ParameterStatus::kReference);
   testing::ExpectPlacementsOf(built, display, 1e-9);
-  EXPECT_NEAR(report.find("camera", "pan")->value, setup.camera.pan, 1e-9);
-  EXPECT_NEAR(report.find("camera", "tilt")->value, setup.camera.tilt, 1e-9);
-  EXPECT_NEAR(report.find("camera", "roll")->value, setup.camera.roll, 1e-9);
-  EXPECT_LT(report.marker_rms_after, 1e-10);
+  EXPECT_NEAR(report.find("camera", "pan")->value, setup.camera.pan_rad, 1e-9);
+  EXPECT_NEAR(report.find("camera", "tilt")->value, setup.camera.tilt_rad, 1e-9);
+  EXPECT_NEAR(report.find("camera", "roll")->value, setup.camera.roll_rad, 1e-9);
+  EXPECT_LT(report.marker_rms_after_rad, 1e-10);
 }
 
 TEST(CalibrationTest, RecoversGammaFromNoisyLuminance) {
@@ -355,7 +357,7 @@ TEST(CalibrationTest, InvalidOptionsAreReportedNotThrown) {
   Measurements m;
   m.luminance.push_back(SyntheticLuminance("rear_a", {0, 128, 255}, 100.0, 0.0, 2.2, SyntheticNoise{}));
   CalibrationOptions options;
-  options.marker_loss_scale = -1;
+  options.marker_loss_scale_rad = -1;
   CalibratedDisplay display;
   const CalibrationReport report = Calibrate(Designed(), m, options, &display);
   EXPECT_FALSE(report.IsSolutionUsable());
@@ -461,7 +463,7 @@ TEST(UnresolvedTest, APanelSeenTooSmallEndsAtTheFocalLengthAndIsUndetermined) {
   ASSERT_TRUE(report.IsSolutionUsable()) << report.message;
   const ParameterEstimate* distance = report.find("rear_a", "distance");
   ASSERT_NE(distance, nullptr);
-  EXPECT_TRUE(testing::Close(distance->value, Designed().focal_length, 1e-6));
+  EXPECT_TRUE(testing::Close(distance->value, Designed().focal_length_m, 1e-6));
   EXPECT_EQ(distance->status, ParameterStatus::kUnresolved);
   EXPECT_EQ(report.find("rear_a", "virtual_depth")->status, ParameterStatus::kUnresolved);
   ASSERT_EQ(report.unresolved.size(), 1u) << report.FullReport();

@@ -35,7 +35,7 @@ const DisplaySystem& PerBranch() {
 SyntheticSetup AnglesOnly(double sigma_arcmin) {
   SyntheticSetup setup = testing::PerBranchSetup();
   setup.camera.intrinsics.reset();
-  setup.noise.marker_sigma = sigma_arcmin * kArcmin;
+  setup.noise.marker_sigma_rad = sigma_arcmin * kArcmin;
   return setup;
 }
 
@@ -52,12 +52,12 @@ double TracedSlope(const VirtualLayer& layer, double c, double target) {
   auto land = [&](double u) {
     double y = c, z = 0;
     for (const PathStep& s : layer.path) {
-      if (s.power == 0) continue;
-      y += (*s.position - z) * u;
-      z = *s.position;
-      u -= s.power * y;
+      if (s.power_diopters == 0) continue;
+      y += (*s.position_m - z) * u;
+      z = *s.position_m;
+      u -= s.power_diopters * y;
     }
-    return y + (layer.position - z) * u;
+    return y + (layer.position_m - z) * u;
   };
   const double h0 = land(0), h1 = land(1);
   return (target - h0) / (h1 - h0);
@@ -74,11 +74,11 @@ TEST(GeneralPathCalibrationTest, SyntheticMarkersMatchARayTracedThroughTheElemen
         for (double row : {p.active_top + 2.0, p.active_top + p.active_rows - 4.0})
           for (const std::array<double, 2>& camera : {std::array<double, 2>{0, 0}, {2.5e-3, -1.5e-3}}) {
             const MarkerPlacement m = PlaceMarker(layer, col, row, camera[0], camera[1]);
-            const double c = std::cos(p.rotation), s = std::sin(p.rotation);
+            const double c = std::cos(p.rotation_rad), s = std::sin(p.rotation_rad);
             // Eye-space orientation; an inverted image turns it by 180 degrees in the unfolded path.
             const double turn = layer.inverted ? -1.0 : 1.0;
-            const double x = turn * (p.eye_from_panel_m[0] + c * m.local_x - s * m.local_y);
-            const double y = turn * (p.eye_from_panel_m[1] + s * m.local_x + c * m.local_y);
+            const double x = turn * (p.eye_from_panel_m[0] + c * m.local_x_m - s * m.local_y_m);
+            const double y = turn * (p.eye_from_panel_m[1] + s * m.local_x_m + c * m.local_y_m);
             const auto angle = ImagedMarker(built, layer, col, row, SyntheticCamera{}, camera);
             EXPECT_NEAR(angle[0], std::atan(TracedSlope(layer, camera[0], x)), 1e-12)
                 << built.file << " " << layer.name;
@@ -118,7 +118,7 @@ TEST(GeneralPathCalibrationTest, WithoutNoiseRecoversEachBranchsLensGapExactly) 
     CalibratedDisplay display;
     const CalibrationReport report = Calibrate(PerBranch(), m, options, &display);
     ASSERT_TRUE(report.IsSolutionUsable()) << report.message;
-    EXPECT_LT(report.marker_rms_after, 1e-10) << report.FullReport();
+    EXPECT_LT(report.marker_rms_after_rad, 1e-10) << report.FullReport();
     for (const char* lens : {"lens_a", "lens_b"}) {
       const ParameterEstimate* gap = report.find(lens, "gap");
       ASSERT_NE(gap, nullptr) << lens;
@@ -127,7 +127,7 @@ TEST(GeneralPathCalibrationTest, WithoutNoiseRecoversEachBranchsLensGapExactly) 
       EXPECT_NEAR(gap->scene_value, designed, 1e-15);
       const double change = std::string(lens) == "lens_a" ? 0.5e-3 : -0.4e-3;
       EXPECT_NEAR(gap->value, designed + change, 1e-9) << lens;
-      EXPECT_NEAR(display.find_optic(lens)->focal_length, std::string(lens) == "lens_a" ? 60e-3 : 80e-3, 1e-9);
+      EXPECT_NEAR(display.find_optic(lens)->focal_length_m, std::string(lens) == "lens_a" ? 60e-3 : 80e-3, 1e-9);
       EXPECT_EQ(report.find(lens, "focal_length")->status,
                 focal_lengths_too ? ParameterStatus::kFitted : ParameterStatus::kNotFitted);
     }
@@ -158,8 +158,8 @@ TEST(GeneralPathCalibrationTest, RecoversEachBranchsLensGapWithinTheNoise) {
   }
   for (const VirtualLayer& layer : built.layers) {
     const std::string name = layer.name;
-    const double s0 = layer.panel_distance, x0 = layer.panel.eye_from_panel_m[0], y0 = layer.panel.eye_from_panel_m[1],
-                 r0 = layer.panel.rotation;
+    const double s0 = layer.panel_distance_m, x0 = layer.panel.eye_from_panel_m[0],
+                 y0 = layer.panel.eye_from_panel_m[1], r0 = layer.panel.rotation_rad;
     parameters.push_back({name + " distance", 1e-6, [=](json& s, double d) {
                             testing::ElementNamed(s, name)["distance"] = testing::Exact(s0 + d, "m");
                           }});
@@ -186,7 +186,7 @@ TEST(GeneralPathCalibrationTest, RecoversEachBranchsLensGapWithinTheNoise) {
     const CalibrationReport report = Calibrate(PerBranch(), m, LensGaps(), &display);
     ASSERT_TRUE(report.IsSolutionUsable()) << report.message;
     EXPECT_TRUE(report.warnings.empty()) << report.FullReport();
-    EXPECT_TRUE(testing::Close(report.marker_noise, sigma, 0.15)) << report.FullReport();
+    EXPECT_TRUE(testing::Close(report.marker_noise_rad, sigma, 0.15)) << report.FullReport();
     size_t i = 0;
     for (const OpticTruth& o : optics) {
       const ParameterEstimate* gap = report.find(o.name, "gap");
@@ -202,9 +202,9 @@ TEST(GeneralPathCalibrationTest, RecoversEachBranchsLensGapWithinTheNoise) {
     }
     for (const VirtualLayer& layer : built.layers) {
       const CalibratedPanel* p = display.find(layer.name);
-      const double values[] = {p->distance, p->eye_from_panel_x_m, p->eye_from_panel_y_m, p->rotation};
-      const double truths[] = {layer.panel_distance, layer.panel.eye_from_panel_m[0], layer.panel.eye_from_panel_m[1],
-                               layer.panel.rotation};
+      const double values[] = {p->distance_m, p->eye_from_panel_x_m, p->eye_from_panel_y_m, p->rotation_rad};
+      const double truths[] = {layer.panel_distance_m, layer.panel.eye_from_panel_m[0], layer.panel.eye_from_panel_m[1],
+                               layer.panel.rotation_rad};
       const char* quantities[] = {"distance", "offset_x", "offset_y", "rotation"};
       for (int q = 0; q < 4; ++q, ++i) {
         EXPECT_LT(std::abs(values[q] - truths[q]), kSigmas * expected[i]) << parameters[i].name << " seed " << seed;
@@ -221,7 +221,7 @@ TEST(GeneralPathCalibrationTest, LensGapsWithoutParallaxAreUndetermined) {
   const std::vector<PanelTruth> truth = testing::PerBranchTruth();
   const DisplaySystem built = testing::BuiltSystem(PerBranch(), truth, testing::PerBranchOptics());
   SyntheticSetup setup = AnglesOnly(0.3);
-  setup.camera.positions = {{0.0, 0.0}};
+  setup.camera.positions_m = {{0.0, 0.0}};
   const Measurements m = testing::SyntheticMeasurements(built, truth, setup);
   CalibrationOptions options = LensGaps();
   options.fit_focal_length = true;
@@ -294,9 +294,9 @@ TEST(GeneralPathCalibrationTest, CalibratedSceneCompilesToTheDisplayAsBuilt) {
   ASSERT_EQ(calibrated.layers.size(), built.layers.size());
   for (size_t k = 0; k < built.layers.size(); ++k) {
     EXPECT_EQ(calibrated.layers[k].name, built.layers[k].name);
-    EXPECT_NEAR(calibrated.layers[k].position, built.layers[k].position, 1e-9) << built.layers[k].name;
+    EXPECT_NEAR(calibrated.layers[k].position_m, built.layers[k].position_m, 1e-9) << built.layers[k].name;
     EXPECT_NEAR(calibrated.layers[k].diopters, built.layers[k].diopters, 1e-6) << built.layers[k].name;
-    EXPECT_NEAR(calibrated.layers[k].rotation, built.layers[k].rotation, 1e-9) << built.layers[k].name;
+    EXPECT_NEAR(calibrated.layers[k].rotation_rad, built.layers[k].rotation_rad, 1e-9) << built.layers[k].name;
   }
 }
 
@@ -313,7 +313,7 @@ TEST(GeneralPathCalibrationTest, PanelsWithoutOpticsKeepTheirGaps) {
   CalibratedDisplay display;
   const CalibrationReport report = Calibrate(designed, m, CalibrationOptions{}, &display);
   ASSERT_TRUE(report.IsSolutionUsable()) << report.message;
-  EXPECT_LT(report.marker_rms_after, 1e-10) << report.FullReport();
+  EXPECT_LT(report.marker_rms_after_rad, 1e-10) << report.FullReport();
   const std::string path = testing::ExamplePath("tensor_display_3layer.json");
   const nlohmann::ordered_json document = CalibratedSceneDocument(ReadDocumentInOrder(path), path, display);
   for (const auto& e : document["elements"])
@@ -323,7 +323,7 @@ TEST(GeneralPathCalibrationTest, PanelsWithoutOpticsKeepTheirGaps) {
     }
   const DisplaySystem calibrated = testing::CompileJson(json::parse(document.dump()), "calibrated.json");
   for (size_t k = 0; k < built.layers.size(); ++k)
-    EXPECT_NEAR(calibrated.layers[k].position, built.layers[k].position, 1e-9) << built.layers[k].name;
+    EXPECT_NEAR(calibrated.layers[k].position_m, built.layers[k].position_m, 1e-9) << built.layers[k].name;
 }
 
 // A fold mirror between lens_a and front_a, front_a placed by "gap" from it:
@@ -345,13 +345,13 @@ TEST(GeneralPathCalibrationTest, PanelGapBehindAFoldFollowsTheFittedLens) {
   CalibratedDisplay display;
   const CalibrationReport report = Calibrate(designed, m, LensGaps(), &display);
   ASSERT_TRUE(report.IsSolutionUsable()) << report.message;
-  EXPECT_LT(report.marker_rms_after, 1e-10) << report.FullReport();
+  EXPECT_LT(report.marker_rms_after_rad, 1e-10) << report.FullReport();
   const nlohmann::ordered_json document = CalibratedSceneDocument(ReadDocumentInOrder(file), file, display);
   json written = json::parse(document.dump());
   EXPECT_TRUE(testing::ElementNamed(written, "front_a").contains("gap"));
   const DisplaySystem calibrated = testing::CompileJson(written, "calibrated.json");
   for (size_t k = 0; k < built.layers.size(); ++k)
-    EXPECT_NEAR(calibrated.layers[k].position, built.layers[k].position, 1e-9) << built.layers[k].name;
+    EXPECT_NEAR(calibrated.layers[k].position_m, built.layers[k].position_m, 1e-9) << built.layers[k].name;
 }
 
 // Through a 4f relay the images are inverted (B < 0): the fit sees the panels
@@ -366,8 +366,8 @@ TEST(GeneralPathCalibrationTest, RecoversPanelsSeenInvertedThroughARelay) {
   CalibratedDisplay display;
   const CalibrationReport report = Calibrate(designed, m, CalibrationOptions{}, &display);
   ASSERT_TRUE(report.IsSolutionUsable()) << report.message;
-  EXPECT_GT(report.marker_rms_before, 5 * kArcmin);
-  EXPECT_LT(report.marker_rms_after, 1e-10) << report.FullReport();
+  EXPECT_GT(report.marker_rms_before_rad, 5 * kArcmin);
+  EXPECT_LT(report.marker_rms_after_rad, 1e-10) << report.FullReport();
   testing::ExpectPlacementsOf(built, display, 1e-9);
   EXPECT_TRUE(report.warnings.empty()) << report.FullReport();
 }

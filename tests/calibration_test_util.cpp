@@ -42,16 +42,16 @@ nlohmann::json BuiltScene(const DisplaySystem& designed, const std::vector<Panel
         panel["rotation"] = Exact(t.rotation, "rad");
       }
     const bool behind_optics =
-        std::any_of(layer.path.begin(), layer.path.end(), [](const PathStep& s) { return s.power != 0; });
+        std::any_of(layer.path.begin(), layer.path.end(), [](const PathStep& s) { return s.power_diopters != 0; });
     if (panel.contains("virtual_depth")) {
       panel.erase("virtual_depth");
       panel[behind_optics ? "distance" : "gap"] = 0;  // set below
     }
     if (panel.contains("distance"))
-      panel["distance"] = Exact(layer.panel_distance + change, "m");
+      panel["distance"] = Exact(layer.panel_distance_m + change, "m");
     else
-      panel["gap"] =
-          Exact(layer.position - (layer.path.empty() ? 0.0 : layer.path.back().position.value_or(0.0)) + change, "m");
+      panel["gap"] = Exact(
+          layer.position_m - (layer.path.empty() ? 0.0 : layer.path.back().position_m.value_or(0.0)) + change, "m");
   }
   for (const OpticTruth& t : optics) {
     nlohmann::json& optic = ElementNamed(scene, t.name);
@@ -59,8 +59,8 @@ nlohmann::json BuiltScene(const DisplaySystem& designed, const std::vector<Panel
       for (const VirtualLayer& layer : designed.layers)
         for (size_t j = 0; j < layer.path.size(); ++j)
           if (layer.path[j].element == t.name) {
-            const double before = j == 0 ? 0.0 : layer.path[j - 1].position.value_or(0.0);
-            optic["gap"] = Exact(*layer.path[j].position - before + t.gap_change, "m");
+            const double before = j == 0 ? 0.0 : layer.path[j - 1].position_m.value_or(0.0);
+            optic["gap"] = Exact(*layer.path[j].position_m - before + t.gap_change, "m");
           }
     if (t.focal_length) optic["focal_length"] = Exact(*t.focal_length, "m");
   }
@@ -76,10 +76,10 @@ void ExpectPlacementsOf(const DisplaySystem& built, const CalibratedDisplay& dis
   for (const VirtualLayer& layer : built.layers) {
     const CalibratedPanel* p = display.find(layer.name);
     ASSERT_NE(p, nullptr) << layer.name;
-    EXPECT_NEAR(p->distance, layer.panel_distance, tolerance) << layer.name;
+    EXPECT_NEAR(p->distance_m, layer.panel_distance_m, tolerance) << layer.name;
     EXPECT_NEAR(p->eye_from_panel_x_m, layer.panel.eye_from_panel_m[0], tolerance) << layer.name;
     EXPECT_NEAR(p->eye_from_panel_y_m, layer.panel.eye_from_panel_m[1], tolerance) << layer.name;
-    EXPECT_NEAR(p->rotation, layer.panel.rotation, tolerance) << layer.name;
+    EXPECT_NEAR(p->rotation_rad, layer.panel.rotation_rad, tolerance) << layer.name;
   }
 }
 
@@ -87,8 +87,8 @@ SyntheticSetup ExampleSetup() {
   SyntheticSetup setup;
   setup.grid = {7, 5, 0.1};
   setup.camera.intrinsics = CameraIntrinsics{3000, 3000, 2000, 1500, -0.02, 0};
-  setup.camera.positions = {{0.0, 0.0}, {2e-3, 0.0}, {0.0, 2e-3}};
-  setup.noise.marker_sigma = 0.3 * kArcmin;
+  setup.camera.positions_m = {{0.0, 0.0}, {2e-3, 0.0}, {0.0, 2e-3}};
+  setup.noise.marker_sigma_rad = 0.3 * kArcmin;
   setup.noise.luminance_sigma = 0.003;
   setup.noise.seed = 20240601;
   for (int code = 0; code < 255; code += 16) setup.luminance_codes.push_back(code);
@@ -110,7 +110,7 @@ std::vector<OpticTruth> PerBranchOptics() { return {{"lens_a", 0.50e-3, {}}, {"l
 
 SyntheticSetup PerBranchSetup() {
   SyntheticSetup setup = ExampleSetup();
-  setup.camera.positions = {{0.0, 0.0}, {-3e-3, 0.0}, {3e-3, 0.0}, {0.0, -3e-3}, {0.0, 3e-3}};
+  setup.camera.positions_m = {{0.0, 0.0}, {-3e-3, 0.0}, {3e-3, 0.0}, {0.0, -3e-3}, {0.0, 3e-3}};
   setup.noise.seed = 20261201;
   setup.luminance_codes.clear();
   return setup;
@@ -141,8 +141,8 @@ GeometrySigma ExpectedGeometrySigma(const VirtualLayer& layer, const PanelMarker
   const PanelSpec& p = layer.panel;
   double spread = 0;  // sum of |l|^2 over the markers, l from the active region's center
   for (const MarkerObservation& o : markers.markers) {
-    const double x = (o.col - p.active_left + 0.5 - 0.5 * p.active_cols) * p.pitch_x;
-    const double y = (0.5 * p.active_rows - (o.row - p.active_top) - 0.5) * p.pitch_y;
+    const double x = (o.col - p.active_left + 0.5 - 0.5 * p.active_cols) * p.pitch_x_m;
+    const double y = (0.5 * p.active_rows - (o.row - p.active_top) - 0.5) * p.pitch_y_m;
     spread += x * x + y * y;
   }
   spread *= positions;
@@ -153,7 +153,7 @@ GeometrySigma ExpectedGeometrySigma(const VirtualLayer& layer, const PanelMarker
 std::vector<double> BruteForceSigmas(const nlohmann::json& built_scene, const std::vector<SceneParameter>& parameters,
                                      const SyntheticSetup& setup, double sigma) {
   SyntheticNoise quiet = setup.noise;
-  quiet.marker_sigma = quiet.outlier_fraction = 0;
+  quiet.marker_sigma_rad = quiet.outlier_fraction = 0;
   auto angles = [&](const SceneParameter* p, double change) {
     nlohmann::json scene = built_scene;
     if (p) p->apply(scene, change);

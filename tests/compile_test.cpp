@@ -27,18 +27,18 @@ TEST(Compile, PaperPrototypeMatchesTable1) {
     double d = 1 / diopters[k] - e;  // image distance behind the lens
     double M = 1 + d / f;            // = d / s with 1/s = 1/f + 1/d
     EXPECT_TRUE(Close(l.diopters, diopters[k], 1e-12));
-    EXPECT_TRUE(Close(l.panel_distance * 1e3, distance_mm[k], 0, 0.005)) << l.name;
+    EXPECT_TRUE(Close(l.panel_distance_m * 1e3, distance_mm[k], 0, 0.005)) << l.name;
     EXPECT_TRUE(Close(l.magnification, M, 1e-12));
     EXPECT_TRUE(Close(l.magnification, magnification[k], 0, 0.01));
-    EXPECT_TRUE(Close(l.pitch_x, M * p, 1e-12));
+    EXPECT_TRUE(Close(l.pitch_x_m, M * p, 1e-12));
     EXPECT_TRUE(Close(l.tan_pitch_x, M * p * diopters[k], 1e-12));
     EXPECT_EQ(l.cols, 400);
     EXPECT_EQ(l.rows, 200);
   }
   // The farthest layer sets the field: 2 atan(4.0014 mm x 400 / (2 x 2.5 m)).
-  EXPECT_TRUE(Close(s.fov_x * kDegreesPerRadian, 2 * std::atan(34.2 * p * 400 / 5.0) * kDegreesPerRadian, 1e-12));
-  EXPECT_TRUE(Close(s.fov_x * kDegreesPerRadian, 35.5, 0, 0.05));
-  EXPECT_TRUE(Close(s.fov_y * kDegreesPerRadian, 18.2, 0, 0.05));
+  EXPECT_TRUE(Close(s.fov_x_rad * kDegreesPerRadian, 2 * std::atan(34.2 * p * 400 / 5.0) * kDegreesPerRadian, 1e-12));
+  EXPECT_TRUE(Close(s.fov_x_rad * kDegreesPerRadian, 35.5, 0, 0.05));
+  EXPECT_TRUE(Close(s.fov_y_rad * kDegreesPerRadian, 18.2, 0, 0.05));
   EXPECT_TRUE(Close(s.max_cpd, 1 / (2 * std::atan(34.2 * p / 2.5) * kDegreesPerRadian), 1e-12));
   EXPECT_TRUE(Close(s.max_cpd, 5.4, 0, 0.06));
   // What every layer can show is the coarsest layer's Nyquist: the 2.2 D layer's.
@@ -61,14 +61,14 @@ TEST(Compile, UnequalPixelPitchesAndAVerticalOffsetKeepEachAxisApart) {
     if (layer.name == "rear") l = &layer;
   ASSERT_NE(l, nullptr);
   const double D = 0.4, M = 1 + (1 / D - 0.01) / 0.075;
-  EXPECT_TRUE(Close(l->pitch_x, M * 117e-6, 1e-12));
-  EXPECT_TRUE(Close(l->pitch_y, M * 90e-6, 1e-12));
+  EXPECT_TRUE(Close(l->pitch_x_m, M * 117e-6, 1e-12));
+  EXPECT_TRUE(Close(l->pitch_y_m, M * 90e-6, 1e-12));
   EXPECT_TRUE(Close(l->tan_pitch_x, M * D * 117e-6, 1e-12));
   EXPECT_TRUE(Close(l->tan_pitch_y, M * D * 90e-6, 1e-12));
   EXPECT_TRUE(Close(l->eye_from_layer_tan_x, M * D * 1e-3, 1e-12));
   EXPECT_TRUE(Close(l->eye_from_layer_tan_y, M * D * -2.5e-3, 1e-12));
-  EXPECT_TRUE(Close(l->fov_x, 2 * std::atan(400 * M * D * 117e-6 / 2), 1e-12));
-  EXPECT_TRUE(Close(l->fov_y, 2 * std::atan(200 * M * D * 90e-6 / 2), 1e-12));
+  EXPECT_TRUE(Close(l->fov_x_rad, 2 * std::atan(400 * M * D * 117e-6 / 2), 1e-12));
+  EXPECT_TRUE(Close(l->fov_y_rad, 2 * std::atan(200 * M * D * 90e-6 / 2), 1e-12));
 }
 
 // An [r, g, b] black level of equal values is read whole, as the scalar is
@@ -152,7 +152,7 @@ TEST(Compile, BrightnessOfTheDisplayVariants) {
   EXPECT_TRUE(Close(additive.luminance_efficiency, 0.5 * 0.3, 1e-12));
   EXPECT_TRUE(Close(hybrid.luminance_efficiency / multiplicative.luminance_efficiency, 0.5, 1e-12));
   // Full white with both 250 cd/m2 backlights: 2 x 250 x 0.045.
-  EXPECT_TRUE(Close(hybrid.peak_luminance[1], 22.5, 1e-12));
+  EXPECT_TRUE(Close(hybrid.peak_luminance_cd_m2[1], 22.5, 1e-12));
   for (const Branch& b : hybrid.branches) EXPECT_TRUE(Close(b.efficiency[0], 0.045, 1e-12));
 }
 
@@ -164,10 +164,10 @@ TEST(Compile, PanelAtTheFocalPlaneIsALayerAtInfinity) {
   DisplaySystem s = CompileJson(scene);
   const VirtualLayer& l = s.layers[0];
   EXPECT_EQ(l.diopters, 0.0);
-  EXPECT_TRUE(std::isinf(l.depth));
+  EXPECT_TRUE(std::isinf(l.depth_m));
   EXPECT_TRUE(Close(l.tan_pitch_x, 117e-6 / 0.075, 1e-12));
-  EXPECT_TRUE(std::isfinite(s.fov_x));
-  EXPECT_TRUE(Close(s.fov_x, 2 * std::atan(400 * 117e-6 / 0.075 / 2), 1e-12));
+  EXPECT_TRUE(std::isfinite(s.fov_x_rad));
+  EXPECT_TRUE(Close(s.fov_x_rad, 2 * std::atan(400 * 117e-6 / 0.075 / 2), 1e-12));
   ASSERT_EQ(s.warnings.size(), 1u);
   EXPECT_EQ(s.warnings[0], "panel \"rear\" sits at the focal plane: its image is at infinity (0 D)");
 }

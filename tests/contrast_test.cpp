@@ -124,7 +124,7 @@ TEST(Contrast, AChromaticEyesChannelsAreWeightedByTheirLuminance) {
   const double dt = 1.3, f = 3.0, p = 4e-3;
   const std::array<double, 3> weight = {0.2126, 0.7152, 0.0722}, typed = {0.0, 0.5, -0.5};
   ContrastDisplay d = OneLayerAt(dt);
-  d.system.eye.chromatic_defocus = typed;
+  d.system.eye.chromatic_defocus_diopters = typed;
   ASSERT_EQ(d.system.eye.pupil_shape, PupilShape::kSquare);
   ASSERT_EQ(d.system.eye.pupil_samples_x, 9);
   ContrastOptions o;
@@ -193,7 +193,7 @@ struct Window {
 std::vector<Window> LocalFrequencies(GratingSpacing spacing, double dt, double f) {
   auto texture = CosineGrating(0.5, 1.0, spacing)(1 / dt, f);
   SceneRadiance plane = [&](const PupilPoint& u, double dx, double dy) {
-    return texture->Evaluate(u.x + dx / dt, u.y + dy / dt);
+    return texture->Evaluate(u.x_m + dx / dt, u.y_m + dy / dt);
   };
   EyeModel eye;
   RetinaGrid retina = MakeRetinaGrid(20 * kRadiansPerDegree, 0.01 * kRadiansPerDegree, 0.01 * kRadiansPerDegree);

@@ -25,7 +25,7 @@ double FirstZero(const Image& image, const RetinaGrid& g, int c) {
   const int i = g.rows / 2, j0 = g.cols / 2;
   for (int j = j0 + 1; j + 1 < g.cols; ++j) {
     double a = image.at(i, j - 1, c), b = image.at(i, j, c), d = image.at(i, j + 1, c);
-    if (b <= a && b < d) return (j - j0 + 0.5 * (a - d) / (a - 2 * b + d)) * g.resolution;
+    if (b <= a && b < d) return (j - j0 + 0.5 * (a - d) / (a - 2 * b + d)) * g.resolution_rad;
   }
   return NAN;
 }
@@ -41,9 +41,9 @@ void CheckPointSpread(PupilShape shape, double d, const std::array<double, 3>& l
   ApplyDiffraction(shape, d, lambda, g, &image);
   const int i = g.rows / 2, j0 = g.cols / 2;
   for (int c = 0; c < 3; ++c) {
-    EXPECT_NEAR(FirstZero(image, g, c), zero_at * lambda[c] / d, tolerance * g.resolution) << "channel " << c;
+    EXPECT_NEAR(FirstZero(image, g, c), zero_at * lambda[c] / d, tolerance * g.resolution_rad) << "channel " << c;
     for (int k : offsets) {
-      const double x = std::numbers::pi * d * (k * g.resolution) / lambda[c];
+      const double x = std::numbers::pi * d * (k * g.resolution_rad) / lambda[c];
       EXPECT_NEAR(image.at(i, j0 + k, c) / image.at(i, j0, c), profile(x), 2e-3)
           << "channel " << c << ", " << k << " samples out";
     }

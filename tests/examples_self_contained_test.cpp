@@ -106,9 +106,9 @@ TEST(ExamplesSelfContainedTest, TheMainJobRendersTheShippedDiceAtThePapersGeomet
   EXPECT_EQ(g.rows, 200);
   // The same field as the display's own light field (no resampling of the window).
   const LightFieldGeometry d = DisplayLightFieldGeometry(Compile(scene));
-  EXPECT_TRUE(testing::Close(g.window_width / g.origin_z, d.window_width / d.origin_z, 1e-9));
-  EXPECT_TRUE(testing::Close(g.window_height / g.origin_z, d.window_height / d.origin_z, 1e-9));
-  EXPECT_EQ(g.eyebox_width, d.eyebox_width);
+  EXPECT_TRUE(testing::Close(g.window_width_m / g.origin_z_m, d.window_width_m / d.origin_z_m, 1e-9));
+  EXPECT_TRUE(testing::Close(g.window_height_m / g.origin_z_m, d.window_height_m / d.origin_z_m, 1e-9));
+  EXPECT_EQ(g.eyebox_width_m, d.eyebox_width_m);
 }
 
 }  // namespace

@@ -28,11 +28,11 @@ class LightFieldFolder : public ::testing::Test {
                                         ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     LightFieldGeometry g;
-    g.origin_z = 0.7692;
-    g.window_left = -0.2;
-    g.window_top = 0.1;
-    g.window_width = 0.4;
-    g.window_height = 0.2;
+    g.origin_z_m = 0.7692;
+    g.window_left_m = -0.2;
+    g.window_top_m = 0.1;
+    g.window_width_m = 0.4;
+    g.window_height_m = 0.2;
     g.cols = 8;
     g.rows = 5;
     g.views_x = 3;
@@ -70,7 +70,7 @@ TEST_F(LightFieldFolder, RoundTripsExactly) {
   EXPECT_EQ(back.depth, lf_.depth);
   EXPECT_EQ(back.scene, "test");
   EXPECT_EQ(back.geometry.views_x, 3);
-  EXPECT_DOUBLE_EQ(back.geometry.window_width, 0.4);
+  EXPECT_DOUBLE_EQ(back.geometry.window_width_m, 0.4);
   // No temporary files are left behind.
   for (const auto& e : fs::recursive_directory_iterator(dir_))
     EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
@@ -301,7 +301,7 @@ TEST(DiceTarget, LoadsFromSharedData) {
   if (!fs::exists(folder + "/lightfield.json")) GTEST_SKIP() << "no " << folder;
   LightField lf = ReadLightField(folder);
   EXPECT_EQ(lf.geometry.ray_count(), 13u * 13 * 400 * 200);
-  EXPECT_DOUBLE_EQ(lf.geometry.origin_z, 0.7692);
+  EXPECT_DOUBLE_EQ(lf.geometry.origin_z_m, 0.7692);
   ASSERT_EQ(lf.depth.size(), lf.geometry.ray_count());
   // Depth maps hold the dice (0.43 to 2.5 m) and the back plane at 3 m.
   auto [lo, hi] = std::minmax_element(lf.depth.begin(), lf.depth.end());

@@ -245,10 +245,10 @@ TEST(CalibratedSceneTest, LoadsBackWithTheFittedValues) {
   for (const VirtualLayer& layer : calibrated.layers) {
     const CalibratedPanel* p = display.find(layer.name);
     ASSERT_NE(p, nullptr);
-    EXPECT_NEAR(layer.panel_distance, p->distance, 1e-12) << layer.name;
+    EXPECT_NEAR(layer.panel_distance_m, p->distance_m, 1e-12) << layer.name;
     EXPECT_NEAR(layer.panel.eye_from_panel_m[0], p->eye_from_panel_x_m, 1e-14) << layer.name;
     EXPECT_NEAR(layer.panel.eye_from_panel_m[1], p->eye_from_panel_y_m, 1e-14) << layer.name;
-    EXPECT_NEAR(layer.rotation, p->rotation, 1e-12) << layer.name;
+    EXPECT_NEAR(layer.rotation_rad, p->rotation_rad, 1e-12) << layer.name;
     EXPECT_NEAR(layer.panel.gamma, p->gamma, 1e-10) << layer.name;
     EXPECT_NEAR(layer.panel.black_level, p->black_level, 1e-10) << layer.name;
   }

@@ -39,7 +39,7 @@ TEST(ViewRowsOfRank, CoverEveryRowOnceInBlocksOneApart) {
 
 TEST(ViewRows, BlockViewsAreTheWholeLightFieldsBitForBit) {
   LightFieldGeometry g;
-  g.views_x = 13, g.views_y = 13, g.eyebox_width = 6e-3, g.eyebox_height = 6e-3;
+  g.views_x = 13, g.views_y = 13, g.eyebox_width_m = 6e-3, g.eyebox_height_m = 6e-3;
   for (int first : {0, 3, 7, 12}) {
     const LightFieldGeometry block = g.ViewRows(first, 13 - first);
     EXPECT_TRUE(block.is_view_block());

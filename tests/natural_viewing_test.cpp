@@ -19,21 +19,21 @@ LightFieldGeometry Geometry(int cols = 200, int rows = 120) { return testing::Wi
 std::unique_ptr<Texture> Grating(double cycles_per_meter) {
   GratingSpec spec;
   spec.cycles_per_meter = cycles_per_meter;
-  spec.phase = 0.3;
+  spec.phase_rad = 0.3;
   return MakeGratingTexture(spec);
 }
 
 TEST(LightFieldRadiance, PlaneOnTheOriginPlaneReadsItsPixelFromAnyPupilPoint) {
   const LightFieldGeometry g = Geometry();
   auto texture = Grating(40);
-  LightField lf = RenderPlaneLightField(g, g.origin_z, *texture);
+  LightField lf = RenderPlaneLightField(g, g.origin_z_m, *texture);
   SceneRadiance radiance = LightFieldRadiance(lf);
   // Pupil points between views and off the view grid's centers; rays through pixel centers.
   for (PupilPoint u : {PupilPoint{0.0011, -0.0007}, PupilPoint{-0.0019, 0.0016}, PupilPoint{0, 0}})
     for (int j : {3, 77, 150})
       for (int i : {5, 60}) {
         double x = g.pixel_x(j), y = g.pixel_y(i);
-        Rgb value = radiance(u, (x - u.x) / g.origin_z, (y - u.y) / g.origin_z);
+        Rgb value = radiance(u, (x - u.x_m) / g.origin_z_m, (y - u.y_m) / g.origin_z_m);
         Rgb expected = texture->Evaluate(x, y);
         for (int c = 0; c < 3; ++c) EXPECT_NEAR(value[c], expected[c], 2e-6) << "pixel " << i << "," << j;
       }
@@ -48,7 +48,7 @@ TEST(LightFieldRadiance, BetweenTwoViewsItAveragesThem) {
   const double x = g.pixel_x(j), y = g.pixel_y(i);
   // Halfway between view columns 4 and 5 of view row 6 (whose v_y is 0).
   PupilPoint u{0.5 * (g.view_x(4) + g.view_x(5)), g.view_y(r)};
-  Rgb value = radiance(u, (x - u.x) / g.origin_z, (y - u.y) / g.origin_z);
+  Rgb value = radiance(u, (x - u.x_m) / g.origin_z_m, (y - u.y_m) / g.origin_z_m);
   const size_t p = (static_cast<size_t>(i) * g.cols + j) * 3;
   double expected = 0.5 * (lf.view(g.view_index(r, 4))[p] + lf.view(g.view_index(r, 5))[p]);
   EXPECT_NEAR(value[0], expected, 1e-6);
@@ -60,16 +60,16 @@ TEST(LightFieldRadiance, BetweenTwoViewsItAveragesThem) {
 // are read) holds the pixel containing the crossing, bilinear blends the two.
 TEST(LightFieldRadiance, NearestHoldsThePixelBilinearBlends) {
   const LightFieldGeometry g = Geometry();
-  LightField lf = RenderPlaneLightField(g, g.origin_z, *Grating(60));
+  LightField lf = RenderPlaneLightField(g, g.origin_z_m, *Grating(60));
   const int i = 30, j = 120, r = 6, c = 6;  // the central view: v = (0, 0)
   const PupilPoint u{g.view_x(c), g.view_y(r)};
   const size_t here = (static_cast<size_t>(i) * g.cols + j) * 3, right = here + 3;
   const float* view = lf.view(g.view_index(r, c));
   ASSERT_GT(std::abs(view[here] - view[right]), 0.01) << "the test needs neighbours that differ";
-  const double pixel = g.window_width / g.cols, y = g.pixel_y(i);
+  const double pixel = g.window_width_m / g.cols, y = g.pixel_y(i);
   for (double fraction : {0.3, 0.7}) {
     const double x = g.pixel_x(j) + fraction * pixel;  // crossing the origin plane here
-    const double dx = (x - u.x) / g.origin_z, dy = (y - u.y) / g.origin_z;
+    const double dx = (x - u.x_m) / g.origin_z_m, dy = (y - u.y_m) / g.origin_z_m;
     // Pixel j spans [center - pitch/2, center + pitch/2): 0.3 is still in it, 0.7 in j + 1.
     EXPECT_NEAR(LightFieldRadiance(lf)(u, dx, dy)[0], fraction < 0.5 ? view[here] : view[right], 1e-7);
     EXPECT_NEAR(LightFieldRadiance(lf, Sampling::kBilinear)(u, dx, dy)[0],
@@ -79,7 +79,7 @@ TEST(LightFieldRadiance, NearestHoldsThePixelBilinearBlends) {
 
 TEST(LightFieldRadiance, OutsideTheWindowIsDark) {
   const LightFieldGeometry g = Geometry(20, 10);
-  LightField lf = RenderPlaneLightField(g, g.origin_z, *MakeConstantTexture({1, 1, 1}));
+  LightField lf = RenderPlaneLightField(g, g.origin_z_m, *MakeConstantTexture({1, 1, 1}));
   SceneRadiance radiance = LightFieldRadiance(lf);
   Rgb outside = radiance({0, 0}, std::tan(5.5 * kRadiansPerDegree), 0);
   Rgb inside = radiance({0, 0}, std::tan(4.5 * kRadiansPerDegree), 0);
@@ -96,7 +96,7 @@ TEST(LightFieldRadiance, RetinaMatchesTheAnalyticPlaneAtEveryFocus) {
   LightField lf = RenderPlaneLightField(g, z, *texture);
   SceneRadiance from_lf = LightFieldRadiance(lf, Sampling::kBilinear);
   SceneRadiance plane = [&](const PupilPoint& u, double dx, double dy) {
-    return texture->Evaluate(u.x + dx * z, u.y + dy * z);
+    return texture->Evaluate(u.x_m + dx * z, u.y_m + dy * z);
   };
   EyeModel eye;
   eye.pupil_samples_x = eye.pupil_samples_y = 9;
@@ -132,7 +132,7 @@ TEST(LightFieldRadiance, ImageWiseRetinaIsTheRayByRayRetina) {
     const std::vector<PupilPoint> pupil = PupilSamples(eye);
     RetinaGrid grid = MakeRetinaGrid(12 * kRadiansPerDegree, 7 * kRadiansPerDegree,
                                      0.07 * kRadiansPerDegree);  // the window is 10 x 6 deg
-    grid.center_x = 0.013 * kRadiansPerDegree;
+    grid.center_x_rad = 0.013 * kRadiansPerDegree;
     for (Sampling pixels : {Sampling::kNearest, Sampling::kBilinear})
       for (std::array<double, 3> focus :
            {std::array<double, 3>{1.3, 1.3, 1.3}, std::array<double, 3>{0.4, 0.4, 0.4},

@@ -50,13 +50,13 @@ struct GaussianImage {
 // Real-is-positive: object distance o > 0 on the incoming side, image distance v > 0
 // on the outgoing side; 1/o + 1/v = 1/f, m = -v/o.
 GaussianImage ImageLensByLens(const VirtualLayer& layer) {
-  double object = layer.position, magnification = 1;
+  double object = layer.position_m, magnification = 1;
   for (auto s = layer.path.rbegin(); s != layer.path.rend(); ++s) {
-    if (s->power == 0) continue;
-    const double o = object - *s->position;
-    const double v = 1.0 / (s->power - 1.0 / o);
+    if (s->power_diopters == 0) continue;
+    const double o = object - *s->position_m;
+    const double v = 1.0 / (s->power_diopters - 1.0 / o);
     magnification *= -v / o;
-    object = *s->position - v;
+    object = *s->position_m - v;
   }
   return {object, magnification};
 }
@@ -72,7 +72,7 @@ TEST(OpticalPath, RelayMagnifierMatchesGaussianImaging) {
     EXPECT_TRUE(Close(l.tan_pitch_x, std::abs(g.magnification) * 585e-6 / g.position, 1e-9));
   }
   // The relay alone: magnification -f2/f1 = -1 of the intermediate image.
-  EXPECT_TRUE(Close(Layer(s, "rear").magnification / Layer(s, "rear").panel_distance, 0, 0, 1e9));
+  EXPECT_TRUE(Close(Layer(s, "rear").magnification / Layer(s, "rear").panel_distance_m, 0, 0, 1e9));
 }
 
 TEST(OpticalPath, TwoLensEffectiveFocalLength) {
@@ -107,7 +107,7 @@ TEST(OpticalPath, EyeReliefBeyondTheFocalLengthStillFloatsThePanels) {
   DisplaySystem s = CompileJson(scene);
   for (const VirtualLayer& l : s.layers) {
     const double d = 1.0 / l.diopters - 0.08, f = 0.075;  // image behind the lens
-    EXPECT_TRUE(Close(l.panel_distance, d * f / (d + f), 1e-12)) << l.name;
+    EXPECT_TRUE(Close(l.panel_distance_m, d * f / (d + f), 1e-12)) << l.name;
     EXPECT_TRUE(Close(l.magnification, 1 + d / f, 1e-12));
   }
 }
@@ -137,7 +137,7 @@ TEST(OpticalPath, PerBranchMagnifiersPlaceFourPlanes) {
     EXPECT_TRUE(Close(l.diopters, D, 1e-12, 1e-12)) << name;
     // Gaussian: the lens 30 mm from the eye; a virtual image 1/D - 30 mm behind it.
     const double s_expected = D == 0 ? f : (1 / D - 0.03) * f / ((1 / D - 0.03) + f);
-    EXPECT_TRUE(Close(l.panel_distance, s_expected, 1e-12)) << name;
+    EXPECT_TRUE(Close(l.panel_distance_m, s_expected, 1e-12)) << name;
   }
   EXPECT_TRUE(Layer(s, "rear_b").flip_x) << "the reflected branch is mirrored";
 }
@@ -216,12 +216,12 @@ double WorstPixelError(const VirtualLayer& layer, const std::vector<Built>& elem
       if (e.type == "mirror" || e.reflect) Fold(ray, f, e.horizontal);
       if (e.power != 0) Deflect(ray, f, e.power);
     }
-    f.origin += (layer.position - at) * f.e3;
+    f.origin += (layer.position_m - at) * f.e3;
     ToPlane(ray, f.origin, f.e3);
     const Eigen::Vector3d h = ray.p - f.origin;
-    double col = h.dot(f.e1) / layer.panel.pitch_x + 0.5 * layer.cols - 0.5;
+    double col = h.dot(f.e1) / layer.panel.pitch_x_m + 0.5 * layer.cols - 0.5;
     if (layer.panel.reversed) col = layer.cols - 1 - col;  // mounted back to front
-    const double row = 0.5 * layer.rows - 0.5 - h.dot(f.e2) / layer.panel.pitch_y;
+    const double row = 0.5 * layer.rows - 0.5 - h.dot(f.e2) / layer.panel.pitch_y_m;
     // The compiled layer: tan-angle t from the pupil center; pixel in eye order, then flips.
     const double je = tx / layer.tan_pitch_x + 0.5 * layer.cols - 0.5;
     const double ie = 0.5 * layer.rows - 0.5 - ty / layer.tan_pitch_y;
@@ -341,17 +341,17 @@ TEST_F(RandomChains, RaysTracedThroughTheFoldedPathLandOnThePredictedPixel) {
         const PathStep& step = l.path[i];
         Built b;
         b.type = step.type;
-        b.power = step.power;
+        b.power = step.power_diopters;
         b.horizontal = step.flips_x;
         b.reflect = step.port == "reflected";
         if (step.kind == ElementKind::kPanel) b.type = "panel";
-        double next_placed = l.position;
+        double next_placed = l.position_m;
         for (size_t j = i + 1; j < l.path.size(); ++j)
-          if (l.path[j].position) {
-            next_placed = *l.path[j].position;
+          if (l.path[j].position_m) {
+            next_placed = *l.path[j].position_m;
             break;
           }
-        const double where = step.position ? *step.position : last + random_.uniform() * (next_placed - last);
+        const double where = step.position_m ? *step.position_m : last + random_.uniform() * (next_placed - last);
         positions.push_back(where);
         last = where;
         on_path.push_back(b);
@@ -384,10 +384,10 @@ TEST(OpticalPath, EveryExampleLandsOnThePredictedPixel) {
       for (const PathStep& step : l.path) {
         Built b;
         b.type = step.kind == ElementKind::kPanel ? "panel" : step.type;
-        b.power = step.power;
+        b.power = step.power_diopters;
         b.horizontal = step.flips_x;
         b.reflect = step.port == "reflected";
-        positions.push_back(step.position ? *step.position : last + 1e-3);
+        positions.push_back(step.position_m ? *step.position_m : last + 1e-3);
         last = positions.back();
         on_path.push_back(b);
       }

@@ -36,7 +36,7 @@ TEST(Optics, FloatPanelMatchesTracedRays) {
   for (double s : {0.02, 0.05, 0.06417, 0.07281, 0.0749}) {
     TracedImage traced = TraceVirtualImage(s, 1e-3);
     FloatedImage image = FloatPanel(s, f, e);
-    EXPECT_TRUE(Close(image.depth, traced.depth, 1e-9)) << "s = " << s;
+    EXPECT_TRUE(Close(image.depth_m, traced.depth, 1e-9)) << "s = " << s;
     EXPECT_TRUE(Close(image.diopters, 1.0 / traced.depth, 1e-9));
     EXPECT_TRUE(Close(image.magnification, traced.height / 1e-3, 1e-9));
     EXPECT_TRUE(Close(image.tan_per_meter, traced.height / 1e-3 / traced.depth, 1e-9));
@@ -75,7 +75,7 @@ TEST(Optics, FieldOfViewEq2) {
 TEST(Optics, FocalPlaneIsInfinityWithoutNaN) {
   FloatedImage image = FloatPanel(f, f, e);
   EXPECT_EQ(image.diopters, 0.0);
-  EXPECT_TRUE(std::isinf(image.depth));
+  EXPECT_TRUE(std::isinf(image.depth_m));
   EXPECT_TRUE(std::isinf(image.magnification));
   EXPECT_TRUE(Close(image.tan_per_meter, 1 / f, 1e-15));  // a pixel subtends p / f
   EXPECT_EQ(PanelDistanceForDiopters(0.0, f, e), f);

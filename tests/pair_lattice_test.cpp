@@ -41,13 +41,13 @@ std::vector<Case> Cases() {
   const DisplaySystem paper = CompileJson(ShrunkExample("paper_prototype.json", 31, 17, 9));
   cases.push_back({"paper prototype", paper, DisplayLightFieldGeometry(paper)});
   LightFieldGeometry strip = DisplayLightFieldGeometry(paper);
-  const double row_height = strip.window_height / strip.rows;
+  const double row_height = strip.window_height_m / strip.rows;
   strip.rows = 4;
-  strip.window_height = strip.rows * row_height;
-  strip.window_top = strip.window_height / 2 + 0.37 * row_height + 5 * row_height;
+  strip.window_height_m = strip.rows * row_height;
+  strip.window_top_m = strip.window_height_m / 2 + 0.37 * row_height + 5 * row_height;
   cases.push_back({"strip", paper, strip});
   LightFieldGeometry wide = DisplayLightFieldGeometry(paper);
-  wide.window_left -= 0.3 * wide.window_width, wide.window_width *= 1.6;  // rays past the layers' sides
+  wide.window_left_m -= 0.3 * wide.window_width_m, wide.window_width_m *= 1.6;  // rays past the layers' sides
   cases.push_back({"wider than the layers", paper, wide});
   return cases;
 }
@@ -198,7 +198,7 @@ TEST(PairLattice, PaysWhereRaysRepeatPairs) {
 TEST(PairLattice, HybridFromPairsFollowsTheGeneralPath) {
   const Case c = Cases()[0];
   DisplaySystem rotated = c.system;
-  for (VirtualLayer& layer : rotated.layers) layer.rotation = 1e-12;
+  for (VirtualLayer& layer : rotated.layers) layer.rotation_rad = 1e-12;
   const DisplayModel fast(c.system, c.geometry), general(rotated, c.geometry);
   for (size_t b = 0; b < fast.branch_count(); ++b) ASSERT_TRUE(PairLattice::IfItPays(fast, b));
   const LightField target = Synthesize(fast, RandomPatterns(fast, 9, 0.05f, 1.0f));

@@ -43,8 +43,8 @@ PhotoCamera TestCamera() {
   c.intrinsics = {760, 760, 359.5, 209.5, -0.05, 0};
   c.width = 720;
   c.height = 420;
-  c.aperture = 1e-3;
-  c.focus = 1.3;
+  c.aperture_m = 1e-3;
+  c.focus_diopters = 1.3;
   c.white = 0.5;
   c.full_well = 20000;
   c.read_noise = 0.001;
@@ -200,8 +200,8 @@ TEST(PhotoDetectionTest, EachKindOfBadPhotographIsReportedWithItsReason) {
     return s.reason;
   };
   PhotoCamera blurred = TestCamera();
-  blurred.aperture = 12e-3;
-  blurred.focus = 3.0;  // 2.6 D from rear_a: a blur of 24 px against squares of 30 px
+  blurred.aperture_m = 12e-3;
+  blurred.focus_diopters = 3.0;  // 2.6 D from rear_a: a blur of 24 px against squares of 30 px
   PhotoCamera noisy = TestCamera();
   noisy.read_noise = 0.15;
   PhotoCamera bright = TestCamera();
@@ -401,17 +401,17 @@ void ExpectLoopRecovers(const DisplaySystem& designed, const DisplaySystem& buil
   std::printf(
       "%s: %zu corners, residual %.4f arcmin per marker (%.4f px); the corners' error against the truth "
       "%.4f arcmin (%.4f px); their scatter over the sensor's noise alone %.4f px per axis\n",
-      designed.file.c_str(), d.corners, report.marker_rms_after / testing::kArcmin,
-      report.marker_rms_after * camera.intrinsics.fx, floor / testing::kArcmin, floor * camera.intrinsics.fx,
+      designed.file.c_str(), d.corners, report.marker_rms_after_rad / testing::kArcmin,
+      report.marker_rms_after_rad * camera.intrinsics.fx, floor / testing::kArcmin, floor * camera.intrinsics.fx,
       std::sqrt(variance));
   // The fit leaves what the measurements' errors leave (less the few degrees of freedom it fits), no more.
-  EXPECT_GT(report.marker_rms_after, 0.8 * floor);
-  EXPECT_LT(report.marker_rms_after, 1.05 * floor);
+  EXPECT_GT(report.marker_rms_after_rad, 0.8 * floor);
+  EXPECT_LT(report.marker_rms_after_rad, 1.05 * floor);
   for (const VirtualLayer& layer : built.layers) {
-    const std::map<std::string, double> truth = {{"distance", layer.panel_distance},
+    const std::map<std::string, double> truth = {{"distance", layer.panel_distance_m},
                                                  {"offset_x", layer.panel.eye_from_panel_m[0]},
                                                  {"offset_y", layer.panel.eye_from_panel_m[1]},
-                                                 {"rotation", layer.panel.rotation}};
+                                                 {"rotation", layer.panel.rotation_rad}};
     for (const auto& [quantity, value] : truth) {
       const ParameterEstimate* p = report.find(layer.name, quantity);
       ASSERT_NE(p, nullptr) << layer.name << " " << quantity;

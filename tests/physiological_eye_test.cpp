@@ -117,16 +117,16 @@ TEST(PupilSize, AutoPupilFollowsTheDisplaysLuminanceAndField) {
   DisplaySystem ideal = CompileJson(ReadExample("multiplicative_2layer.json"));
   DisplaySystem s = CompileJson(PhysiologicalScene({{"pupil_diameter", "auto"}}));
   double white = 0;
-  for (int c = 0; c < 3; ++c) white += kLuminanceWeights[c] * ideal.peak_luminance[c];
-  const double area = ideal.fov_x * ideal.fov_y / (kRadiansPerDegree * kRadiansPerDegree);
-  EXPECT_NEAR(s.eye.pupil_luminance_used, 0.5 * white, 1e-9);
-  EXPECT_NEAR(s.eye.pupil_field_area_used, area, 1e-9);
-  EXPECT_NEAR(s.eye.pupil_diameter, WatsonYellottPupilDiameter({0.5 * white, area, 28.58, 1}), 1e-15);
+  for (int c = 0; c < 3; ++c) white += kLuminanceWeights[c] * ideal.peak_luminance_cd_m2[c];
+  const double area = ideal.fov_x_rad * ideal.fov_y_rad / (kRadiansPerDegree * kRadiansPerDegree);
+  EXPECT_NEAR(s.eye.pupil_luminance_used_cd_m2, 0.5 * white, 1e-9);
+  EXPECT_NEAR(s.eye.pupil_field_area_used_deg2, area, 1e-9);
+  EXPECT_NEAR(s.eye.pupil_diameter_m, WatsonYellottPupilDiameter({0.5 * white, area, 28.58, 1}), 1e-15);
   s = CompileJson(PhysiologicalScene({{"pupil_diameter", "auto"},
                                       {"pupil_luminance", "100 cd/m2"},
                                       {"pupil_field", {"20 deg", "20 deg"}},
                                       {"pupil_eyes", 1}}));
-  EXPECT_NEAR(s.eye.pupil_diameter, 4.955766e-3, 2e-9);  // the table's first row
+  EXPECT_NEAR(s.eye.pupil_diameter_m, 4.955766e-3, 2e-9);  // the table's first row
   EXPECT_NE(EyeModelLine(s.eye).find("4.96 mm square pupil (auto: Watson & Yellott 2012 at 100.0 cd/m2 over 400 deg2"),
             std::string::npos)
       << EyeModelLine(s.eye);
@@ -155,8 +155,8 @@ TEST(Zernike, OsaIndicesAndPolynomialsByHand) {
   EXPECT_NEAR(Zernike(9, x, y), std::sqrt(8.0) * std::pow(r2, 1.5) * std::cos(3 * t), 1e-12);
   // Slopes: defocus c sqrt(3) (2 r^2 / R^2 - 1) has d/dx = 4 sqrt(3) c x / R^2.
   Wavefront w;
-  w.coefficients = {0, 0, 0, 0, 0.5e-6};
-  w.pupil_diameter = 6e-3;
+  w.coefficients_m = {0, 0, 0, 0, 0.5e-6};
+  w.pupil_diameter_m = 6e-3;
   WavefrontSlope g = WavefrontSlopeAt(w, 1e-3, -2e-3);
   EXPECT_NEAR(g.x, 4 * std::sqrt(3.0) * 0.5e-6 * 1e-3 / 9e-6, 1e-12);
   EXPECT_NEAR(g.y, 4 * std::sqrt(3.0) * 0.5e-6 * -2e-3 / 9e-6, 1e-12);
@@ -164,7 +164,7 @@ TEST(Zernike, OsaIndicesAndPolynomialsByHand) {
 
 EyeModel RoundEye(double pupil, int samples) {
   EyeModel eye;
-  eye.pupil_diameter = pupil;
+  eye.pupil_diameter_m = pupil;
   eye.pupil_shape = PupilShape::kRound;
   eye.pupil_samples_x = eye.pupil_samples_y = samples;
   return eye;
@@ -173,7 +173,7 @@ EyeModel RoundEye(double pupil, int samples) {
 // A scene of pseudo-random values on a plane at `depth` m.
 SceneRadiance Pattern(double depth) {
   return [depth](const PupilPoint& u, double dx, double dy) {
-    double x = u.x + dx * depth, y = u.y + dy * depth;
+    double x = u.x_m + dx * depth, y = u.y_m + dy * depth;
     double v = 0.5 + 0.25 * std::sin(3.1e3 * x + 1.3e3 * y) + 0.2 * std::cos(5.7e3 * y - 0.9e3 * x);
     return Rgb{v, 0.5 * v, 1 - v};
   };
@@ -183,8 +183,8 @@ TEST(Zernike, PureDefocusIsTheBlurLawAtTheConvertedPower) {
   // c4 = 0.3 um over a 5 mm pupil is D = 16 sqrt(3) 0.3 / 25 = 0.33255 D of
   // excess power: the eye focused at D_a sees as the ideal eye at D_a + D.
   EyeModel eye = RoundEye(4e-3, 15);
-  eye.wavefront.coefficients = {0, 0, 0, 0, 0.3e-6};
-  eye.wavefront.pupil_diameter = 5e-3;
+  eye.wavefront.coefficients_m = {0, 0, 0, 0, 0.3e-6};
+  eye.wavefront.pupil_diameter_m = 5e-3;
   const double power = 16 * std::sqrt(3.0) * 0.3 / 25;
   RetinaGrid retina = MakeRetinaGrid(2 * kRadiansPerDegree, 1 * kRadiansPerDegree, 0.02 * kRadiansPerDegree);
   EyeModel ideal = eye;
@@ -198,7 +198,7 @@ TEST(Zernike, PureDefocusIsTheBlurLawAtTheConvertedPower) {
   // its image's extent on a row through the center.
   const double z = 0.5, da = 1.0, radius = 0.6 * 0.005 * kRadiansPerDegree * z;
   SceneRadiance point = [&](const PupilPoint& u, double dx, double dy) {
-    double x = u.x + dx * z, y = u.y + dy * z;
+    double x = u.x_m + dx * z, y = u.y_m + dy * z;
     return x * x + y * y <= radius * radius ? Rgb{1, 1, 1} : Rgb{0, 0, 0};
   };
   EyeModel square = eye;
@@ -223,7 +223,7 @@ std::vector<double> GratingCurve(const EyeModel& eye, double dt, double cpd, boo
       vertical_bars ? MakeRetinaGrid(field, resolution, resolution) : MakeRetinaGrid(resolution, field, resolution);
   const double z = 1 / dt;
   SceneRadiance grating = [&](const PupilPoint& u, double dx, double dy) {
-    const double s = vertical_bars ? u.x + dx * z : u.y + dy * z;
+    const double s = vertical_bars ? u.x_m + dx * z : u.y_m + dy * z;
     double v = 0.5 + 0.5 * std::cos(2 * std::numbers::pi * cpd * std::atan(s / z) / kRadiansPerDegree);
     return Rgb{v, v, v};
   };
@@ -256,8 +256,8 @@ TEST(Zernike, AstigmatismFocusesVerticalAndHorizontalBarsAtTheTwoFocalLines) {
   // horizontal bars where D_a - 0.245 = D_t.
   EyeModel eye = RoundEye(4e-3, 21);
   eye.pupil_shape = PupilShape::kSquare;  // separable: each focal line is a pure defocus of its bars
-  eye.wavefront.coefficients = {0, 0, 0, 0, 0, 0.2e-6};
-  eye.wavefront.pupil_diameter = 4e-3;
+  eye.wavefront.coefficients_m = {0, 0, 0, 0, 0, 0.2e-6};
+  eye.wavefront.pupil_diameter_m = 4e-3;
   const double dt = 1.0, line = 8 * std::sqrt(6.0) * 0.2 / 16;
   const std::vector<double> a = Range(0.5, 1.5, 0.025);
   Peak vertical = FindPeak(a, GratingCurve(eye, dt, 2, true, a));
@@ -282,9 +282,9 @@ TEST(Zernike, SphericalAberrationMovesBestFocusAndLowersPeakContrast) {
   // D_t - 4 sqrt(5) c / R^2 = D_t - 16 sqrt(5) c / p^2, for c = 0.2 um and
   // p = 6 mm 0.19876 D nearer the far side.
   EyeModel eye = RoundEye(6e-3, 61);
-  eye.wavefront.coefficients.assign(13, 0.0);
-  eye.wavefront.coefficients[12] = 0.2e-6;
-  eye.wavefront.pupil_diameter = 6e-3;
+  eye.wavefront.coefficients_m.assign(13, 0.0);
+  eye.wavefront.coefficients_m[12] = 0.2e-6;
+  eye.wavefront.pupil_diameter_m = 6e-3;
   EyeModel ideal = RoundEye(6e-3, 61);
   const double dt = 1.2, shift = -16 * std::sqrt(5.0) * 0.2 / 36;
   const std::vector<double> a = Range(0.8, 1.4, 0.02);
@@ -300,8 +300,8 @@ TEST(Zernike, SphericalAberrationMovesBestFocusAndLowersPeakContrast) {
 
 TEST(Zernike, WavefrontBeyondItsMeasurementPupilIsWarnedAbout) {
   DisplaySystem s = CompileJson(PhysiologicalScene({{"zernike", "salmon_van_de_pol_2006"}}));
-  EXPECT_EQ(s.eye.wavefront.coefficients.at(12), 0.13e-6);
-  EXPECT_EQ(s.eye.wavefront.pupil_diameter, 6e-3);
+  EXPECT_EQ(s.eye.wavefront.coefficients_m.at(12), 0.13e-6);
+  EXPECT_EQ(s.eye.wavefront.pupil_diameter_m, 6e-3);
   bool warned = false;
   for (const std::string& w : s.warnings) warned = warned || w.find("extrapolated") != std::string::npos;
   EXPECT_FALSE(warned);  // a 4 mm square reaches 5.66 mm

@@ -19,17 +19,17 @@ using testing::Close;
 
 LightFieldGeometry SmallGeometry() {
   LightFieldGeometry g;
-  g.origin_z = 0.77;
-  g.window_left = -0.2113;
-  g.window_top = 0.1071;
-  g.window_width = 0.4137;
-  g.window_height = 0.2219;
+  g.origin_z_m = 0.77;
+  g.window_left_m = -0.2113;
+  g.window_top_m = 0.1071;
+  g.window_width_m = 0.4137;
+  g.window_height_m = 0.2219;
   g.cols = 23;
   g.rows = 17;
   g.views_x = 3;
   g.views_y = 2;
-  g.eyebox_width = 0.006;
-  g.eyebox_height = 0.005;
+  g.eyebox_width_m = 0.006;
+  g.eyebox_height_m = 0.005;
   return g;
 }
 
@@ -47,16 +47,16 @@ VirtualLayer MakeLayer(const LayerCase& c) {
   VirtualLayer l;
   l.name = c.name;
   l.diopters = c.diopters;
-  l.depth = 1 / c.diopters;
+  l.depth_m = 1 / c.diopters;
   l.cols = 19;
   l.rows = 13;
-  l.pitch_x = 0.0245 * l.depth;  // about 0.021 rad per pixel wide
-  l.pitch_y = 0.0231 * l.depth;
-  l.tan_pitch_x = l.pitch_x / l.depth;
-  l.tan_pitch_y = l.pitch_y / l.depth;
-  l.eye_from_layer_tan_x = c.offset_x_m / l.depth;
-  l.eye_from_layer_tan_y = c.offset_y_m / l.depth;
-  l.rotation = c.rotation;
+  l.pitch_x_m = 0.0245 * l.depth_m;  // about 0.021 rad per pixel wide
+  l.pitch_y_m = 0.0231 * l.depth_m;
+  l.tan_pitch_x = l.pitch_x_m / l.depth_m;
+  l.tan_pitch_y = l.pitch_y_m / l.depth_m;
+  l.eye_from_layer_tan_x = c.offset_x_m / l.depth_m;
+  l.eye_from_layer_tan_y = c.offset_y_m / l.depth_m;
+  l.rotation_rad = c.rotation;
   l.flip_x = c.flip_x;
   l.flip_y = c.flip_y;
   return l;
@@ -83,18 +83,18 @@ std::vector<std::pair<int, double>> AxisTaps(double from_edge, int size, bool fl
 Eigen::SparseMatrix<double, Eigen::RowMajor> ExplicitMatrix(const VirtualLayer& l, const LightFieldGeometry& g,
                                                             Sampling s) {
   std::vector<Eigen::Triplet<double>> entries;
-  const double z = l.depth;
+  const double z = l.depth_m;
   for (int vr = 0; vr < g.views_y; ++vr)
     for (int vc = 0; vc < g.views_x; ++vc)
       for (int i = 0; i < g.rows; ++i)
         for (int j = 0; j < g.cols; ++j) {
           double vx = g.view_x(vc), vy = g.view_y(vr), xx = g.pixel_x(j), xy = g.pixel_y(i);
-          double px = vx + (xx - vx) * z / g.origin_z - l.eye_from_layer_tan_x * z;
-          double py = vy + (xy - vy) * z / g.origin_z - l.eye_from_layer_tan_y * z;
-          double a = std::cos(l.rotation) * px + std::sin(l.rotation) * py;
-          double b = -std::sin(l.rotation) * px + std::cos(l.rotation) * py;
-          auto cols = AxisTaps(a / l.pitch_x + l.cols / 2.0, l.cols, l.flip_x, s);
-          auto rows = AxisTaps(l.rows / 2.0 - b / l.pitch_y, l.rows, l.flip_y, s);
+          double px = vx + (xx - vx) * z / g.origin_z_m - l.eye_from_layer_tan_x * z;
+          double py = vy + (xy - vy) * z / g.origin_z_m - l.eye_from_layer_tan_y * z;
+          double a = std::cos(l.rotation_rad) * px + std::sin(l.rotation_rad) * py;
+          double b = -std::sin(l.rotation_rad) * px + std::cos(l.rotation_rad) * py;
+          auto cols = AxisTaps(a / l.pitch_x_m + l.cols / 2.0, l.cols, l.flip_x, s);
+          auto rows = AxisTaps(l.rows / 2.0 - b / l.pitch_y_m, l.rows, l.flip_y, s);
           size_t ray = g.view_index(vr, vc) * g.pixels_per_view() + size_t(i) * g.cols + j;
           for (auto [row, wr] : rows)
             for (auto [col, wc] : cols) entries.emplace_back(int(ray), row * l.cols + col, wr * wc);
@@ -170,8 +170,8 @@ INSTANTIATE_TEST_SUITE_P(Layers, ProjectionTest,
 TEST(Projection, ResampledRowsHoldEveryPixelARunReads) {
   LightFieldGeometry g = SmallGeometry();
   g.rows = 3;
-  g.window_height = g.window_height * 3 / 17;
-  g.window_top = g.window_height / 2;
+  g.window_height_m = g.window_height_m * 3 / 17;
+  g.window_top_m = g.window_height_m / 2;
   g.views_y = 3;
   VirtualLayer layer = MakeLayer({"near", 2.1, 0, false, false, 0.0013, -0.0007});
   LayerProjection P(layer, g, Sampling::kNearest);
@@ -210,7 +210,7 @@ TEST(Projection, ResampledRowsHoldEveryPixelARunReads) {
 
 TEST(Projection, OriginPlaneLayerHasNoParallax) {
   LightFieldGeometry g = SmallGeometry();
-  VirtualLayer layer = MakeLayer({"origin", 1 / g.origin_z});
+  VirtualLayer layer = MakeLayer({"origin", 1 / g.origin_z_m});
   LayerProjection P(layer, g, Sampling::kNearest);
   for (int i = 0; i < g.rows; ++i)
     for (int j = 0; j < g.cols; ++j) {
@@ -237,12 +237,12 @@ TEST(Projection, LayerAtInfinityIsFinite) {
   LightFieldGeometry g = SmallGeometry();
   VirtualLayer layer = MakeLayer({"far", 0.5});
   layer.diopters = 0;
-  layer.depth = INFINITY;
+  layer.depth_m = INFINITY;
   LayerProjection P(layer, g, Sampling::kNearest);
   // At infinity a ray's tan-angle is its direction (x - v) / z_lf alone.
   int i = 5, j = 11;
   size_t view = g.view_index(1, 2);
-  double ux = (g.pixel_x(j) - g.view_x(2)) / g.origin_z, uy = (g.pixel_y(i) - g.view_y(1)) / g.origin_z;
+  double ux = (g.pixel_x(j) - g.view_x(2)) / g.origin_z_m, uy = (g.pixel_y(i) - g.view_y(1)) / g.origin_z_m;
   int col = int(std::floor(ux / layer.tan_pitch_x + layer.cols / 2.0));
   int row = int(std::floor(layer.rows / 2.0 - uy / layer.tan_pitch_y));
   RayTaps taps = P.Taps(view, i, j);
@@ -261,7 +261,7 @@ TEST(Synthesis, SumOfProductsMatchesExplicitMatrices) {
   system.branches[1].layers = {2, 3};
   system.branches[0].efficiency = {0.045, 0.04, 0.03};
   system.branches[1].efficiency = {0.02, 0.045, 0.045};
-  for (Branch& b : system.branches) b.backlight_luminance = 100;
+  for (Branch& b : system.branches) b.backlight_luminance_cd_m2 = 100;
   LightFieldGeometry g = SmallGeometry();
   DisplayModel model(system, g, Sampling::kNearest);
   // The brightest branch and channel (4.5 cd/m2) is 1; the rest relative to it.
@@ -284,7 +284,7 @@ TEST(Synthesis, SumOfProductsMatchesExplicitMatrices) {
         for (size_t p = 0; p < t[k].pixel_count(); ++p) tk[p] = t[k].rgb[p * 3 + c];
         product = product.cwiseProduct(M[k] * tk);
       }
-      total += system.branches[b].backlight_luminance * system.branches[b].efficiency[c] / 4.5 * product;
+      total += system.branches[b].backlight_luminance_cd_m2 * system.branches[b].efficiency[c] / 4.5 * product;
     }
     for (size_t r = 0; r < g.ray_count(); ++r) ASSERT_NEAR(synthesized.rgb[r * 3 + c], total[r], 1e-6) << r;
   }
@@ -294,13 +294,13 @@ TEST(Synthesis, PaperGeometryMatchesTheDiceManifest) {
   DisplaySystem system = testing::CompileJson(testing::ReadExample("paper_prototype.json"));
   LightFieldGeometry g = DisplayLightFieldGeometry(system);
   // lightfield-format.md: origin plane 1.3 D, window 0.49248 x 0.24624 m, 400 x 200, 13 x 13 views.
-  EXPECT_TRUE(Close(g.origin_z, 1 / 1.3, 1e-12));
-  EXPECT_TRUE(Close(g.window_width, 0.49248, 1e-4));
-  EXPECT_TRUE(Close(g.window_height, 0.24624, 1e-4));
+  EXPECT_TRUE(Close(g.origin_z_m, 1 / 1.3, 1e-12));
+  EXPECT_TRUE(Close(g.window_width_m, 0.49248, 1e-4));
+  EXPECT_TRUE(Close(g.window_height_m, 0.24624, 1e-4));
   EXPECT_EQ(g.cols, 400);
   EXPECT_EQ(g.rows, 200);
   EXPECT_EQ(g.views_x, 13);
-  EXPECT_TRUE(Close(g.eyebox_width, 0.006, 1e-12));
+  EXPECT_TRUE(Close(g.eyebox_width_m, 0.006, 1e-12));
 }
 
 }  // namespace

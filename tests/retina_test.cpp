@@ -21,7 +21,7 @@ using testing::ElementNamed;
 
 EyeModel Eye(int samples, double pupil = 4e-3) {
   EyeModel eye;
-  eye.pupil_diameter = pupil;
+  eye.pupil_diameter_m = pupil;
   eye.pupil_samples_x = eye.pupil_samples_y = samples;
   return eye;
 }
@@ -29,9 +29,9 @@ EyeModel Eye(int samples, double pupil = 4e-3) {
 TEST(Pupil, GridIsCellCenteredOverTheSquare) {
   std::vector<PupilPoint> p = PupilSamples(Eye(9));
   ASSERT_EQ(p.size(), 81u);
-  EXPECT_TRUE(Close(p.front().x, -2e-3 + 2e-3 / 9, 1e-12));
-  EXPECT_TRUE(Close(p.front().y, 2e-3 - 2e-3 / 9, 1e-12));
-  EXPECT_TRUE(Close(p.back().x, 2e-3 - 2e-3 / 9, 1e-12));
+  EXPECT_TRUE(Close(p.front().x_m, -2e-3 + 2e-3 / 9, 1e-12));
+  EXPECT_TRUE(Close(p.front().y_m, 2e-3 - 2e-3 / 9, 1e-12));
+  EXPECT_TRUE(Close(p.back().x_m, 2e-3 - 2e-3 / 9, 1e-12));
 }
 
 // A round pupil's grid is the square grid's cell centers that lie in the circle: all but the corner cells, by hand
@@ -47,10 +47,10 @@ TEST(Pupil, RoundGridIsTheSquareGridsCellCentersInsideTheCircle) {
     ASSERT_EQ(round.size(), size_t(count));
     size_t k = 0;
     for (const PupilPoint& q : square) {
-      if (std::hypot(q.x, q.y) > 1.5e-3) continue;
+      if (std::hypot(q.x_m, q.y_m) > 1.5e-3) continue;
       ASSERT_LT(k, round.size());
-      EXPECT_EQ(round[k].x, q.x);
-      EXPECT_EQ(round[k].y, q.y);
+      EXPECT_EQ(round[k].x_m, q.x_m);
+      EXPECT_EQ(round[k].y_m, q.y_m);
       ++k;
     }
     EXPECT_EQ(k, round.size());
@@ -63,20 +63,20 @@ TEST(Pupil, RoundJitteredPoissonAndPinhole) {
   std::vector<PupilPoint> round = PupilSamples(eye);
   EXPECT_LT(round.size(), 81u);
   EXPECT_GT(round.size(), 50u);  // about pi/4 of them
-  for (const PupilPoint& q : round) EXPECT_LE(std::hypot(q.x, q.y), 2e-3);
+  for (const PupilPoint& q : round) EXPECT_LE(std::hypot(q.x_m, q.y_m), 2e-3);
   eye.pupil_sampling = PupilSampling::kJittered;
   eye.pupil_shape = PupilShape::kSquare;
   std::vector<PupilPoint> jittered = PupilSamples(eye);
   ASSERT_EQ(jittered.size(), 81u);
   // The jitter is framework/random.h's from pupil_seed 1: its first two
   // uniforms (tests/solver_test.cpp RandomInitialPatternsComeFromTheProjectsGenerator).
-  EXPECT_DOUBLE_EQ(jittered[0].x, -2e-3 + 0.5665615751722809 * 4e-3 / 9);
-  EXPECT_DOUBLE_EQ(jittered[0].y, 2e-3 - 0.7457817572627011 * 4e-3 / 9);
+  EXPECT_DOUBLE_EQ(jittered[0].x_m, -2e-3 + 0.5665615751722809 * 4e-3 / 9);
+  EXPECT_DOUBLE_EQ(jittered[0].y_m, 2e-3 - 0.7457817572627011 * 4e-3 / 9);
   for (size_t k = 0; k < 81; ++k) {  // each point stays in its cell
     int j = int(k % 9), i = int(k / 9);
-    EXPECT_GE(jittered[k].x, -2e-3 + j * 4e-3 / 9 - 1e-15);
-    EXPECT_LE(jittered[k].x, -2e-3 + (j + 1) * 4e-3 / 9 + 1e-15);
-    EXPECT_LE(jittered[k].y, 2e-3 - i * 4e-3 / 9 + 1e-15);
+    EXPECT_GE(jittered[k].x_m, -2e-3 + j * 4e-3 / 9 - 1e-15);
+    EXPECT_LE(jittered[k].x_m, -2e-3 + (j + 1) * 4e-3 / 9 + 1e-15);
+    EXPECT_LE(jittered[k].y_m, 2e-3 - i * 4e-3 / 9 + 1e-15);
   }
   eye.pupil_sampling = PupilSampling::kPoisson;
   std::vector<PupilPoint> poisson = PupilSamples(eye);
@@ -88,9 +88,9 @@ TEST(Pupil, RoundJitteredPoissonAndPinhole) {
 double BlurDiameter(double z, double accommodation, const RetinaGrid& retina, int samples,
                     PupilShape shape = PupilShape::kSquare) {
   // A disk a little larger than one retinal sample, so every pupil ray lights one.
-  double radius = 0.75 * retina.resolution * z;
+  double radius = 0.75 * retina.resolution_rad * z;
   SceneRadiance point = [&](const PupilPoint& u, double dx, double dy) {
-    double x = u.x + dx * z, y = u.y + dy * z;
+    double x = u.x_m + dx * z, y = u.y_m + dy * z;
     return x * x + y * y <= radius * radius ? Rgb{1, 1, 1} : Rgb{0, 0, 0};
   };
   EyeModel eye = Eye(samples);
@@ -111,10 +111,10 @@ TEST(Retina, PupilPointsOfUnequalSidesLieEachInItsOwnCell) {
       SCOPED_TRACE(std::to_string(nx) + " x " + std::to_string(ny) +
                    (sampling == PupilSampling::kGrid ? " grid" : " jittered"));
       EyeModel eye;
-      eye.pupil_diameter = 4e-3;
+      eye.pupil_diameter_m = 4e-3;
       eye.pupil_samples_x = nx, eye.pupil_samples_y = ny;
       eye.pupil_sampling = sampling;
-      const double a = eye.pupil_diameter;
+      const double a = eye.pupil_diameter_m;
       const std::vector<PupilPoint> points = PupilSamples(eye);
       ASSERT_EQ(points.size(), size_t(nx * ny));
       double mean_x = 0, mean_y = 0;
@@ -123,13 +123,13 @@ TEST(Retina, PupilPointsOfUnequalSidesLieEachInItsOwnCell) {
           const PupilPoint& p = points[size_t(i * nx + j)];
           const double left = -a / 2 + j * a / nx, top = a / 2 - i * a / ny;
           if (sampling == PupilSampling::kGrid) {
-            EXPECT_NEAR(p.x, left + 0.5 * a / nx, 1e-15) << "row " << i << ", column " << j;
-            EXPECT_NEAR(p.y, top - 0.5 * a / ny, 1e-15) << "row " << i << ", column " << j;
+            EXPECT_NEAR(p.x_m, left + 0.5 * a / nx, 1e-15) << "row " << i << ", column " << j;
+            EXPECT_NEAR(p.y_m, top - 0.5 * a / ny, 1e-15) << "row " << i << ", column " << j;
           } else {
-            EXPECT_TRUE(p.x >= left && p.x <= left + a / nx) << "row " << i << ", column " << j << ": x " << p.x;
-            EXPECT_TRUE(p.y <= top && p.y >= top - a / ny) << "row " << i << ", column " << j << ": y " << p.y;
+            EXPECT_TRUE(p.x_m >= left && p.x_m <= left + a / nx) << "row " << i << ", column " << j << ": x " << p.x_m;
+            EXPECT_TRUE(p.y_m <= top && p.y_m >= top - a / ny) << "row " << i << ", column " << j << ": y " << p.y_m;
           }
-          mean_x += p.x / (nx * ny), mean_y += p.y / (nx * ny);
+          mean_x += p.x_m / (nx * ny), mean_y += p.y_m / (nx * ny);
         }
       if (sampling == PupilSampling::kGrid) {
         EXPECT_NEAR(mean_x, 0, 1e-15);
@@ -150,7 +150,7 @@ TEST(Retina, PointBlurMatchesGeometricOptics) {
         double expected = pupil * std::abs(1 / z - accommodation);  // rad, small angles
         double measured = BlurDiameter(z, accommodation, retina, n, shape);
         // Pupil samples span (n - 1)/n of the pupil; the disk adds up to 1.5 samples.
-        EXPECT_NEAR(measured, expected * (n - 1) / n, 2 * retina.resolution)
+        EXPECT_NEAR(measured, expected * (n - 1) / n, 2 * retina.resolution_rad)
             << "z " << z << " m, accommodation " << accommodation << " D"
             << (shape == PupilShape::kRound ? ", round pupil" : ", square pupil");
       }
@@ -202,8 +202,8 @@ TEST(Retina, OneLayerDisplayMatchesNaturalViewingOfThatPlane) {
   const double w = d.model->weight(0)[0];
   // Natural viewing of the same pixels painted on a plane at 1 m, traced in meters.
   SceneRadiance plane = [&](const PupilPoint& u, double dx, double dy) {
-    double x = u.x + dx * layer.depth, y = u.y + dy * layer.depth;
-    int col = int(std::floor(x / layer.pitch_x + 32)), row = int(std::floor(24 - y / layer.pitch_y));
+    double x = u.x_m + dx * layer.depth_m, y = u.y_m + dy * layer.depth_m;
+    int col = int(std::floor(x / layer.pitch_x_m + 32)), row = int(std::floor(24 - y / layer.pitch_y_m));
     if (col < 0 || col >= 64 || row < 0 || row >= 48) return Rgb{0, 0, 0};
     int panel_col = layer.flip_x ? 63 - col : col;
     const float* p = &d.t[0].rgb[(size_t(row) * 64 + panel_col) * 3];
@@ -229,12 +229,12 @@ TEST(Retina, OneLayerDisplayEqualsNaturalViewingOfItsLightFieldOnARandomPattern)
   for (size_t i = 0; i < d.t[0].rgb.size(); ++i) d.t[0].rgb[i] = float((i * 2654435761u) % 1000) / 1000;
   RetinaGrid retina = MakeRetinaGrid(6 * kRadiansPerDegree, 4 * kRadiansPerDegree, 0.05 * kRadiansPerDegree);
   // Off the symmetric grid, so that no ray crosses the plane exactly on a pixel edge.
-  retina.center_x = 0.3183 * retina.resolution, retina.center_y = 0.2718 * retina.resolution;
+  retina.center_x_rad = 0.3183 * retina.resolution_rad, retina.center_y_rad = 0.2718 * retina.resolution_rad;
   RetinaGrid inner = MakeRetinaGrid(4 * kRadiansPerDegree, 3 * kRadiansPerDegree, 0.05 * kRadiansPerDegree);
-  inner.center_x = retina.center_x, inner.center_y = retina.center_y;
+  inner.center_x_rad = retina.center_x_rad, inner.center_y_rad = retina.center_y_rad;
   std::vector<PupilPoint> pupil = PupilSamples(d.system.eye);
   const LightFieldGeometry g = d.model->geometry();
-  ASSERT_TRUE(Close(g.origin_z, d.system.layers[0].depth, 1e-12));
+  ASSERT_TRUE(Close(g.origin_z_m, d.system.layers[0].depth_m, 1e-12));
   DisplayModel bilinear(d.system, g, Sampling::kBilinear);
   const LightField nearest_lf = Synthesize(*d.model, d.t), bilinear_lf = Synthesize(bilinear, d.t);
   auto rms = [](const Image& a, const Image& b) {
@@ -267,15 +267,15 @@ TEST(Retina, FastAndGeneralPathsAgree) {
   DisplaySystem system = CompileJson(testing::ShrunkExample("paper_prototype.json", 40, 24, 3));
   DisplayModel fast(system, DisplayLightFieldGeometry(system));
   DisplaySystem turned = system;
-  for (VirtualLayer& layer : turned.layers) layer.rotation = 1e-12;
+  for (VirtualLayer& layer : turned.layers) layer.rotation_rad = 1e-12;
   DisplayModel general(turned, DisplayLightFieldGeometry(turned));
   Patterns t = fast.UniformPatterns(0);
   for (size_t k = 0; k < t.size(); ++k)
     for (size_t i = 0; i < t[k].rgb.size(); ++i) t[k].rgb[i] = 0.1f + 0.8f * float((i * 2654435761u + k) % 1000) / 1000;
-  RetinaGrid retina = MakeRetinaGrid(system.fov_x * 0.9, system.fov_y * 0.9, system.fov_x / 120);
+  RetinaGrid retina = MakeRetinaGrid(system.fov_x_rad * 0.9, system.fov_y_rad * 0.9, system.fov_x_rad / 120);
   // Off the symmetric grid, so that no ray lands exactly on a pixel edge, where
   // a rotation of 1e-12 rad may pick the neighbour.
-  retina.center_x = 0.3183 * retina.resolution, retina.center_y = 0.2718 * retina.resolution;
+  retina.center_x_rad = 0.3183 * retina.resolution_rad, retina.center_y_rad = 0.2718 * retina.resolution_rad;
   std::vector<PupilPoint> pupil = PupilSamples(system.eye);
   // One focus, and a focus per channel (the fast path once per channel, the general path at once).
   for (std::array<double, 3> a : {std::array<double, 3>{0.3, 0.3, 0.3}, std::array<double, 3>{1.3, 1.3, 1.3},
@@ -312,7 +312,7 @@ TEST(Retina, MeanLuminanceDoesNotChangeWithAccommodation) {
 
 TEST(Retina, ChromaticDefocusShiftsEachChannelsFocus) {
   OneLayer d = OneLayerDisplay("1.0 D");
-  d.system.eye.chromatic_defocus = {0.5, 0.0, -0.5};
+  d.system.eye.chromatic_defocus_diopters = {0.5, 0.0, -0.5};
   RetinaGrid retina = MakeRetinaGrid(6 * kRadiansPerDegree, 4 * kRadiansPerDegree, 0.05 * kRadiansPerDegree);
   std::vector<PupilPoint> pupil = PupilSamples(d.system.eye);
   std::array<double, 3> focus = ChannelAccommodation(d.system.eye, 1.0);

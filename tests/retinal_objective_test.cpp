@@ -56,7 +56,7 @@ const Case kCases[] = {{Sampling::kNearest, {1.0, 1.0, 1.0}, "nearest"},
 RetinaGrid Grid() {
   RetinaGrid grid = MakeRetinaGrid(11 * kRadiansPerDegree, 7 * kRadiansPerDegree,
                                    0.23 * kRadiansPerDegree);  // a little past the window
-  grid.center_x = 0.2 * kRadiansPerDegree;
+  grid.center_x_rad = 0.2 * kRadiansPerDegree;
   return grid;
 }
 
@@ -156,7 +156,7 @@ std::vector<Display> Displays() {
   d.push_back({"hybrid, flips toggled", flipped});
   d.push_back({"hybrid, bilinear", hybrid, Sampling::kBilinear});
   DisplaySystem rotated = hybrid;
-  for (VirtualLayer& layer : rotated.layers) layer.rotation = 1e-12;
+  for (VirtualLayer& layer : rotated.layers) layer.rotation_rad = 1e-12;
   d.push_back({"hybrid, rotated", rotated});
   d.push_back({"multiplicative", CompileJson(ShrunkExample("multiplicative_2layer.json", 24, 12, 5))});
   d.push_back({"additive", CompileJson(ShrunkExample("additive_2layer.json", 24, 12, 5))});
@@ -168,7 +168,7 @@ std::vector<Display> Displays() {
 
 RetinalObjectiveOptions FewStates() {
   RetinalObjectiveOptions o;
-  o.states = {0.3, 1.1, 2.2};
+  o.states_diopters = {0.3, 1.1, 2.2};
   o.weights = {1.0, 0.5, 2.0};
   return o;
 }
@@ -262,13 +262,13 @@ TEST(RetinalObjective, GradientMatchesCentralDifferences) {
 // ||L - l||^2.
 TEST(RetinalObjective, PinholeOneStateIsTheCentreViewsLightFieldObjective) {
   DisplaySystem system = CompileJson(ShrunkExample("paper_prototype.json", 24, 12, 5));
-  system.eye.pupil_diameter = 0;
+  system.eye.pupil_diameter_m = 0;
   const LightFieldGeometry g = Geometry(40, 24, 5);
   const DisplayModel model(system, g);
   const LightField target = Synthesize(model, RandomPatterns(model, 8, 0.1f, 1.0f));
   for (double state : {0.0, 1.7}) {
     RetinalObjectiveOptions o;
-    o.states = {state};
+    o.states_diopters = {state};
     const RetinalObjective objective(model, target, o);
     ASSERT_EQ(objective.retina().cols, g.cols);
     const LightField l = Synthesize(model, RandomPatterns(model, 12, 0.0f, 1.0f));
@@ -396,7 +396,7 @@ TEST(RetinalObjective, ContrastSensitivityGradientMatchesCentralDifferences) {
   const DisplayModel model(system, DisplayLightFieldGeometry(system));
   const LightField target = Synthesize(model, RandomPatterns(model, 8, 0.1f, 1.0f));
   RetinalObjectiveOptions plain = FewStates();
-  plain.resolution = 0.02 * kRadiansPerDegree;  // 25 cpd at Nyquist
+  plain.resolution_rad = 0.02 * kRadiansPerDegree;  // 25 cpd at Nyquist
   RetinalObjectiveOptions weighted = plain;
   weighted.contrast_sensitivity = true;
   const RetinalObjective objective(model, target, weighted), unweighted(model, target, plain);

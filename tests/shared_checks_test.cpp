@@ -45,14 +45,14 @@ TEST(SharedChecks, AGeometryBeyondAManifestsLimitsNamesTheField) {
   EXPECT_EQ(with([](auto& g) { g.rows = 16385; }), "rows: must be in [1, 16384], got 16385");
   EXPECT_EQ(with([](auto& g) { g.views_x = -3; }), "views_x: must be in [1, 256], got -3");
   EXPECT_EQ(with([](auto& g) { g.views_y = 0; }), "views_y: must be in [1, 256], got 0");
-  EXPECT_EQ(with([](auto& g) { g.origin_z = 0; }), "origin_z: must be in (0, 1e+06] m, got 0");
-  EXPECT_EQ(with([](auto& g) { g.window_width = NAN; }), "window_width: must be in (0, 1e+06] m, got nan");
-  EXPECT_EQ(with([](auto& g) { g.window_height = 2e6; }), "window_height: must be in (0, 1e+06] m, got 2e+06");
-  EXPECT_EQ(with([](auto& g) { g.window_left = -INFINITY; }), "window_left: must be finite, got -inf");
-  EXPECT_EQ(with([](auto& g) { g.window_top = NAN; }), "window_top: must be finite, got nan");
-  EXPECT_EQ(with([](auto& g) { g.eyebox_width = -1e-3; }), "eyebox_width: must be in [0, 1] m, got -0.001");
-  EXPECT_EQ(with([](auto& g) { g.eyebox_height = INFINITY; }), "eyebox_height: must be in [0, 1] m, got inf");
-  EXPECT_EQ(with([](auto& g) { g.eyebox_width = 0; }), "");  // a pinhole eyebox, as a manifest may have
+  EXPECT_EQ(with([](auto& g) { g.origin_z_m = 0; }), "origin_z: must be in (0, 1e+06] m, got 0");
+  EXPECT_EQ(with([](auto& g) { g.window_width_m = NAN; }), "window_width: must be in (0, 1e+06] m, got nan");
+  EXPECT_EQ(with([](auto& g) { g.window_height_m = 2e6; }), "window_height: must be in (0, 1e+06] m, got 2e+06");
+  EXPECT_EQ(with([](auto& g) { g.window_left_m = -INFINITY; }), "window_left: must be finite, got -inf");
+  EXPECT_EQ(with([](auto& g) { g.window_top_m = NAN; }), "window_top: must be finite, got nan");
+  EXPECT_EQ(with([](auto& g) { g.eyebox_width_m = -1e-3; }), "eyebox_width: must be in [0, 1] m, got -0.001");
+  EXPECT_EQ(with([](auto& g) { g.eyebox_height_m = INFINITY; }), "eyebox_height: must be in [0, 1] m, got inf");
+  EXPECT_EQ(with([](auto& g) { g.eyebox_width_m = 0; }), "");  // a pinhole eyebox, as a manifest may have
 }
 
 TEST(SharedChecks, RaysBeyondTwoToThe31AreRefused) {

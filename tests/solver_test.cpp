@@ -282,7 +282,7 @@ TEST(Solvers, AdditiveTrustRegionInLayerSpaceMatchesTheRayPath) {
   Patterns a, b;
   SolverReport fast = RunSolver("additive-trust-region", f, o, &a);
   DisplaySystem rotated = f.system;
-  for (VirtualLayer& layer : rotated.layers) layer.rotation = 1e-12;
+  for (VirtualLayer& layer : rotated.layers) layer.rotation_rad = 1e-12;
   DisplayModel model(rotated, f.target.geometry);
   SolverReport slow = SolverRegistry::Builtins().create("additive-trust-region")->Solve(model, f.target, o, &b);
   ASSERT_TRUE(fast.IsSolutionUsable()) << fast.FullReport();
@@ -453,7 +453,7 @@ TEST(Solvers, JointPassOfUnequalBranchesIsTheRayByRayPass) {
     ASSERT_EQ(fast.branch_count(), 2u);
     ASSERT_EQ(fast.branch_layers(0).size() != fast.branch_layers(1).size(), unequal);
     DisplaySystem rotated = system;
-    for (VirtualLayer& layer : rotated.layers) layer.rotation = 1e-12;
+    for (VirtualLayer& layer : rotated.layers) layer.rotation_rad = 1e-12;
     const DisplayModel general(rotated, fast.geometry());
     ASSERT_TRUE(OneTapBranch(fast, 0) && OneTapBranch(fast, 1));
     ASSERT_FALSE(OneTapBranch(general, 0));
@@ -477,7 +477,7 @@ TEST(Solvers, JointPassGradientMatchesFiniteDifferences) {
     Fixture f = MakeFixture("paper_prototype.json", 24, 12, 3, unequal);
     for (float& v : f.target.rgb) v = std::min(1.0f, 1.3f * v);
     DisplaySystem rotated = f.system;
-    for (VirtualLayer& layer : rotated.layers) layer.rotation = 1e-12;
+    for (VirtualLayer& layer : rotated.layers) layer.rotation_rad = 1e-12;
     const DisplayModel general(rotated, f.target.geometry);
     Patterns t = KnownPatterns(*f.model, 11);
     for (const DisplayModel* model : {static_cast<const DisplayModel*>(f.model.get()), &general}) {
@@ -511,7 +511,7 @@ TEST(Solvers, JointKernelsAgree) {
   SolverReport a = RunSolver("joint", f, o, &fast);
   // A rotation of 0 that is not exactly 0 turns every layer to the general path.
   DisplaySystem rotated = f.system;
-  for (VirtualLayer& layer : rotated.layers) layer.rotation = 1e-12;
+  for (VirtualLayer& layer : rotated.layers) layer.rotation_rad = 1e-12;
   DisplayModel model(rotated, f.target.geometry);
   SolverReport b = SolverRegistry::Builtins().create("joint")->Solve(model, f.target, o, &general);
   ASSERT_EQ(a.trace.size(), b.trace.size());
@@ -537,7 +537,7 @@ TEST(Solvers, OneTapFastPathMatchesTheGeneralPath) {
     }
     system.branches = branches;
     DisplaySystem rotated = system;
-    for (VirtualLayer& layer : rotated.layers) layer.rotation = 1e-12;
+    for (VirtualLayer& layer : rotated.layers) layer.rotation_rad = 1e-12;
     const DisplayModel fast(system, f.target.geometry), general(rotated, f.target.geometry);
     const std::string name = std::to_string(shape.size()) + " branches, first of " + std::to_string(shape[0].size());
     Patterns truth = KnownPatterns(fast, 3);
@@ -571,14 +571,14 @@ TEST(Solvers, OneTapFastPathMatchesTheGeneralPath) {
 TEST(Solvers, StripSumsAreTheGeneralPathsWhateverTheWorkspaceHeld) {
   const DisplaySystem system = CompileJson(ShrunkExample("paper_prototype.json", 29, 14, 3));
   LightFieldGeometry g = DisplayLightFieldGeometry(system);
-  const double row_height = g.window_height / g.rows;
+  const double row_height = g.window_height_m / g.rows;
   g.rows = 3;
-  g.window_height = g.rows * row_height;
+  g.window_height_m = g.rows * row_height;
   // Off the centre by a part of a row, so that no ray falls on a pixel edge
   // (there nearest sampling ties, and the general path's rotation by 1e-12 breaks the tie).
-  g.window_top = g.window_height / 2 + 0.37 * row_height;
+  g.window_top_m = g.window_height_m / 2 + 0.37 * row_height;
   DisplaySystem rotated = system;
-  for (VirtualLayer& layer : rotated.layers) layer.rotation = 1e-12;
+  for (VirtualLayer& layer : rotated.layers) layer.rotation_rad = 1e-12;
   const DisplayModel fast(system, g), general(rotated, g);
   const Patterns t = KnownPatterns(fast, 5);
   const LightField target = Synthesize(fast, KnownPatterns(fast, 6));
@@ -675,7 +675,7 @@ TEST(Solvers, PixelsNoRayReachesKeepTheirInitialValue) {
     SCOPED_TRACE(solver);
     const DisplaySystem system = CompileJson(ShrunkExample(ExampleFor(solver), 16, 8, 3));
     LightFieldGeometry middle = DisplayLightFieldGeometry(system);
-    middle.window_left += middle.window_width / 4, middle.window_width /= 2, middle.cols /= 2;
+    middle.window_left_m += middle.window_width_m / 4, middle.window_width_m /= 2, middle.cols /= 2;
     const DisplayModel model(system, middle);
     const LightField target = Synthesize(model, KnownPatterns(model, 7));
     SolverOptions o = SolverRegistry::Builtins().find(solver)->defaults;
@@ -850,7 +850,7 @@ TEST(SolverCheckpoint, EachFieldOfTheDigestChangedInTurnIsRefusedByName) {
   const Fixture f = MakeFixture("multiplicative_2layer.json", 16, 8, 3);
   SolverOptions base;
   base.objective = ObjectiveKind::kRetinal;
-  base.retinal.states = {0.5, 1.5};
+  base.retinal.states_diopters = {0.5, 1.5};
   base.retinal.weights = {1, 2};
   const CheckpointInputs recorded = CheckpointDigest(*f.model, Sampling::kNearest, f.target, "hybrid", base);
   const std::string folder =
@@ -879,10 +879,11 @@ TEST(SolverCheckpoint, EachFieldOfTheDigestChangedInTurnIsRefusedByName) {
        [](auto*, auto*, auto*, auto*, SolverOptions* o) { o->target_range = TargetRange::kScale; }},
       {"objective", "options",
        [](auto*, auto*, auto*, auto*, SolverOptions* o) { o->objective = ObjectiveKind::kLightField; }},
-      {"retinal states", "options", [](auto*, auto*, auto*, auto*, SolverOptions* o) { o->retinal.states[1] = 1.6; }},
+      {"retinal states", "options",
+       [](auto*, auto*, auto*, auto*, SolverOptions* o) { o->retinal.states_diopters[1] = 1.6; }},
       {"retinal weights", "options", [](auto*, auto*, auto*, auto*, SolverOptions* o) { o->retinal.weights[0] = 3; }},
       {"retinal resolution", "options",
-       [](auto*, auto*, auto*, auto*, SolverOptions* o) { o->retinal.resolution = 1e-3; }},
+       [](auto*, auto*, auto*, auto*, SolverOptions* o) { o->retinal.resolution_rad = 1e-3; }},
       {"retinal target", "options",
        [](auto*, auto*, auto*, auto*, SolverOptions* o) { o->retinal.target = RetinalTarget::kTraced; }},
       {"contrast sensitivity", "options",
@@ -1147,7 +1148,7 @@ TEST(Solvers, TwoRunsWithTwoThreadsGiveTheSameBits) {
   // The general path (a rotation of 1e-12 selects it).
   const Fixture f = MakeFixture("paper_prototype.json", 64, 32, 7);
   DisplaySystem rotated = f.system;
-  for (VirtualLayer& layer : rotated.layers) layer.rotation = 1e-12;
+  for (VirtualLayer& layer : rotated.layers) layer.rotation_rad = 1e-12;
   const DisplayModel general(rotated, f.target.geometry);
   for (const std::string solver : {"hybrid", "joint", "quasi-newton"}) {
     SolverOptions o;

@@ -25,13 +25,13 @@ using testing::Close;
 constexpr double kPi = std::numbers::pi;
 
 double ViewX(const LightFieldGeometry& g, int c) {
-  return -g.eyebox_width / 2 + (c + 0.5) * g.eyebox_width / g.views_x;
+  return -g.eyebox_width_m / 2 + (c + 0.5) * g.eyebox_width_m / g.views_x;
 }
 double ViewY(const LightFieldGeometry& g, int r) {
-  return g.eyebox_height / 2 - (r + 0.5) * g.eyebox_height / g.views_y;
+  return g.eyebox_height_m / 2 - (r + 0.5) * g.eyebox_height_m / g.views_y;
 }
-double PixelX(const LightFieldGeometry& g, int j) { return g.window_left + (j + 0.5) * g.window_width / g.cols; }
-double PixelY(const LightFieldGeometry& g, int i) { return g.window_top - (i + 0.5) * g.window_height / g.rows; }
+double PixelX(const LightFieldGeometry& g, int j) { return g.window_left_m + (j + 0.5) * g.window_width_m / g.cols; }
+double PixelY(const LightFieldGeometry& g, int i) { return g.window_top_m - (i + 0.5) * g.window_height_m / g.rows; }
 
 float Red(const LightField& lf, int view_row, int view_col, int i, int j) {
   const LightFieldGeometry& g = lf.geometry;
@@ -109,11 +109,11 @@ TEST_P(ParallaxTest, GratingMovesAsTheRayEquationPredicts) {
       ParseTarget(Target(lf, {GratingPlane(c.plane_depth, c.vertical ? "90 deg" : "0 deg")}), "target.json");
   LightField rendered = RenderTarget(target);
   const LightFieldGeometry& g = target.geometry;
-  const double z = target.planes[0].depth, s = z / g.origin_z;
+  const double z = target.planes[0].depth_m, s = z / g.origin_z_m;
   const double f = 2 / (z * kPi / 180);  // cycles per meter on the plane
   const double w = 2 * kPi * f * s;      // radians per meter on the origin plane
   const int n = c.vertical ? g.rows : g.cols;
-  const double pixel = c.vertical ? g.window_height / g.rows : g.window_width / g.cols;
+  const double pixel = c.vertical ? g.window_height_m / g.rows : g.window_width_m / g.cols;
 
   std::vector<double> u(n);
   for (int k = 0; k < n; ++k) u[k] = c.vertical ? PixelY(g, k) : PixelX(g, k);
@@ -127,7 +127,7 @@ TEST_P(ParallaxTest, GratingMovesAsTheRayEquationPredicts) {
   }
   for (int view = 1; view < 5; ++view) {
     double dv = c.vertical ? ViewY(g, view) - ViewY(g, 0) : ViewX(g, view) - ViewX(g, 0);
-    double expected_shift = dv * (1 - g.origin_z / z);  // m on the origin plane
+    double expected_shift = dv * (1 - g.origin_z_m / z);  // m on the origin plane
     double measured_shift = expected_shift - Wrap(phases[view] - phases[0] + w * expected_shift) / w;
     EXPECT_NEAR(measured_shift / pixel, expected_shift / pixel, 1e-3)
         << "view " << view << ": shift in pixels (" << pixel * 1e6 << " um each)";
@@ -177,8 +177,8 @@ double MeasuredCyclesPerDegree(const LightField& lf, double mean) {
   int i = g.rows / 2;
   for (int j = 0; j + 1 < g.cols; ++j) {
     double a = Red(lf, 0, 0, i, j) - mean, b = Red(lf, 0, 0, i, j + 1) - mean;
-    double ta = std::atan(PixelX(g, j) / g.origin_z) * 180 / kPi,
-           tb = std::atan(PixelX(g, j + 1) / g.origin_z) * 180 / kPi;
+    double ta = std::atan(PixelX(g, j) / g.origin_z_m) * 180 / kPi,
+           tb = std::atan(PixelX(g, j + 1) / g.origin_z_m) * 180 / kPi;
     if (std::abs(ta) > 3 || std::abs(tb) > 3 || (a > 0) == (b > 0)) continue;
     crossings.push_back(ta + (tb - ta) * a / (a - b));
   }
@@ -209,11 +209,11 @@ TEST(TargetRendererTest, PixelSamplesCoverThePixelFootprint) {
   for (auto [spp, attenuation] : {std::pair{1, 1.0}, std::pair{64, std::sin(kPi / 4) / (kPi / 4)}}) {
     TargetScene target = ParseTarget(Target(lf, {GratingPlane("1 D", "0 deg", "1 cpd")}, spp), "target.json");
     const LightFieldGeometry& g = target.geometry;
-    double pixel = g.window_width / g.cols;
+    double pixel = g.window_width_m / g.cols;
     // Set the frequency so that one period is exactly four pixels on the origin plane.
     GratingSpec spec;
     spec.cycles_per_meter = 1 / (4 * pixel);
-    spec.phase = 0.3;
+    spec.phase_rad = 0.3;
     target.planes[0].texture = MakeGratingTexture(spec);
     LightField rendered = RenderTarget(target);
     std::vector<double> u, values;
@@ -240,7 +240,7 @@ TEST(TargetRendererTest, TiltedQuadDepthMatchesRayPlaneIntersection) {
     for (int c = 0; c < 3; ++c)
       for (int i = 0; i < g.rows; ++i)
         for (int j = 0; j < g.cols; ++j) {
-          double vx = ViewX(g, c), dx = (PixelX(g, j) - vx) / g.origin_z;
+          double vx = ViewX(g, c), dx = (PixelX(g, j) - vx) / g.origin_z_m;
           double z = (1 + 0.3 * vx) / (1 - 0.3 * dx);
           ASSERT_NEAR(DepthAt(rendered, r, c, i, j), z, 1e-6 * z)
               << "view " << r << "," << c << " pixel " << i << "," << j;
@@ -286,7 +286,8 @@ TEST(TargetRendererTest, RotatedCubeDepthMatchesSlabIntersection) {
         for (int j = 0; j < g.cols; ++j) {
           double vx = ViewX(g, c), vy = ViewY(g, r);
           bool near_edge = false;
-          double z = CubeDepth(vx, vy, (PixelX(g, j) - vx) / g.origin_z, (PixelY(g, i) - vy) / g.origin_z, near_edge);
+          double z =
+              CubeDepth(vx, vy, (PixelX(g, j) - vx) / g.origin_z_m, (PixelY(g, i) - vy) / g.origin_z_m, near_edge);
           if (near_edge) continue;
           float depth = DepthAt(rendered, r, c, i, j);
           if (std::isinf(z)) {
@@ -346,7 +347,7 @@ TEST(TargetRendererTest, EmbreeAndDirectPlaneLightFieldsAgree) {
   TargetScene target = ParseTarget(t, "target.json");
   LightField traced = RenderTarget(target);
   const TargetPlane& plane = target.planes[0];
-  LightField direct = RenderPlaneLightField(target.geometry, plane.depth, *plane.texture, {4, 3}, plane.center);
+  LightField direct = RenderPlaneLightField(target.geometry, plane.depth_m, *plane.texture, {4, 3}, plane.center_m);
   ASSERT_EQ(traced.rgb.size(), direct.rgb.size());
   double worst = 0;
   for (size_t k = 0; k < traced.rgb.size(); ++k)
@@ -354,7 +355,7 @@ TEST(TargetRendererTest, EmbreeAndDirectPlaneLightFieldsAgree) {
   EXPECT_LT(worst, 1e-5);
   EXPECT_EQ(traced.depth, direct.depth);
   // A different seed moves the samples.
-  LightField other = RenderPlaneLightField(target.geometry, plane.depth, *plane.texture, {4, 4}, plane.center);
+  LightField other = RenderPlaneLightField(target.geometry, plane.depth_m, *plane.texture, {4, 4}, plane.center_m);
   EXPECT_NE(other.rgb, direct.rgb);
 }
 
@@ -372,14 +373,14 @@ class RowByRow final : public Texture {
 TEST(TargetRendererTest, VerticalGratingRowsCopiedAreEveryPixelEvaluated) {
   LightFieldGeometry g = testing::WindowGeometry(37, 9, 3);
   g.views_y = 4;
-  g.eyebox_height = 0.004;
+  g.eyebox_height_m = 0.004;
   for (double phase : {0.0, 1.0, std::numbers::pi / 2})
     for (double angle_depth : {0.0, 0.6}) {
       GratingSpec spec;
-      spec.cycles_per_meter = 900, spec.phase = phase, spec.angle_depth = angle_depth;
+      spec.cycles_per_meter = 900, spec.phase_rad = phase, spec.angle_depth_m = angle_depth;
       const std::unique_ptr<Texture> grating = MakeGratingTexture(spec);
       ASSERT_TRUE(grating->ConstantAlongT());
-      for (double depth : {g.origin_z, 0.5}) {
+      for (double depth : {g.origin_z_m, 0.5}) {
         const std::array<double, 2> center{0.003, -0.02};
         const LightField fast = RenderPlaneLightField(g, depth, *grating, {}, center);
         const LightField general = RenderPlaneLightField(g, depth, RowByRow(*grating), {}, center);
@@ -387,7 +388,7 @@ TEST(TargetRendererTest, VerticalGratingRowsCopiedAreEveryPixelEvaluated) {
             << "phase " << phase << ", angle depth " << angle_depth << ", depth " << depth;
         EXPECT_EQ(fast.depth, general.depth);
         // Each pixel from the plane equation, by hand.
-        const double s = depth / g.origin_z;
+        const double s = depth / g.origin_z_m;
         for (int vr = 0; vr < g.views_y; ++vr)
           for (int vc = 0; vc < g.views_x; ++vc)
             for (int i = 0; i < g.rows; i += 4)
@@ -402,7 +403,7 @@ TEST(TargetRendererTest, VerticalGratingRowsCopiedAreEveryPixelEvaluated) {
       }
     }
   GratingSpec tilted;
-  tilted.cycles_per_meter = 900, tilted.orientation = std::numbers::pi / 2;
+  tilted.cycles_per_meter = 900, tilted.orientation_rad = std::numbers::pi / 2;
   EXPECT_FALSE(MakeGratingTexture(tilted)->ConstantAlongT());
 }
 
@@ -428,9 +429,9 @@ TEST(TargetTracerTest, RayInAnyDirectionReadsThePlaneWhereItMeetsIt) {
   const TargetPlane& plane = target.planes[0];
   for (double vx : {-0.0017, 0.0, 0.0021})
     for (double dx : {-0.05, 0.013, 0.07}) {
-      const double vy = 0.6 * vx, dy = -0.4 * dx, z = plane.depth;
+      const double vy = 0.6 * vx, dy = -0.4 * dx, z = plane.depth_m;
       TracedSample s = tracer.TraceDirection(vx, vy, dx, dy);
-      Rgb expected = plane.texture->Evaluate(vx + dx * z - plane.center[0], vy + dy * z - plane.center[1]);
+      Rgb expected = plane.texture->Evaluate(vx + dx * z - plane.center_m[0], vy + dy * z - plane.center_m[1]);
       EXPECT_NEAR(s.z, z, 1e-12);
       EXPECT_NEAR(s.color[0], expected[0], 1e-12) << "from " << vx << " along " << dx;
     }

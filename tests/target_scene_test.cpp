@@ -18,18 +18,18 @@ TEST(TargetSceneTest, GratingExampleTakesItsFrustumFromThePaperPrototype) {
   TargetScene t = LoadTarget(testing::ExamplePath("targets/grating_1.3D.json"));
   const LightFieldGeometry& g = t.geometry;
   // The example window of docs/lightfield-format.md: the 35.5 x 18.2 deg frustum cut at 1.3 D.
-  EXPECT_TRUE(Close(g.origin_z, 1 / 1.3, 1e-12));
-  EXPECT_TRUE(Close(g.window_left, -0.24624, 0, 5e-6));
-  EXPECT_TRUE(Close(g.window_top, 0.12312, 0, 5e-6));
-  EXPECT_TRUE(Close(g.window_width, 0.49248, 0, 1e-5));
-  EXPECT_TRUE(Close(g.window_height, 0.24624, 0, 1e-5));
+  EXPECT_TRUE(Close(g.origin_z_m, 1 / 1.3, 1e-12));
+  EXPECT_TRUE(Close(g.window_left_m, -0.24624, 0, 5e-6));
+  EXPECT_TRUE(Close(g.window_top_m, 0.12312, 0, 5e-6));
+  EXPECT_TRUE(Close(g.window_width_m, 0.49248, 0, 1e-5));
+  EXPECT_TRUE(Close(g.window_height_m, 0.24624, 0, 1e-5));
   EXPECT_EQ(g.cols, 400);
   EXPECT_EQ(g.rows, 200);
   EXPECT_EQ(g.views_x, 13);
   EXPECT_EQ(g.views_y, 13);
-  EXPECT_DOUBLE_EQ(g.eyebox_width, 6e-3);
+  EXPECT_DOUBLE_EQ(g.eyebox_width_m, 6e-3);
   ASSERT_EQ(t.planes.size(), 1u);
-  EXPECT_TRUE(Close(t.planes[0].depth, 1 / 1.3, 1e-12));
+  EXPECT_TRUE(Close(t.planes[0].depth_m, 1 / 1.3, 1e-12));
   EXPECT_EQ(t.samples_per_pixel, 1);
   EXPECT_NE(t.description.find("plane at 1.30 D (grating 2 cpd)"), std::string::npos) << t.description;
 }
@@ -46,7 +46,7 @@ TEST(TargetSceneTest, DiceExamplePlacesItsMeshesInEyeSpace) {
   EXPECT_TRUE(Close(sum[0], 0.10, 0, 1e-12));
   EXPECT_TRUE(Close(sum[1], 0.02, 0, 1e-12));
   EXPECT_TRUE(Close(sum[2], 1.00, 0, 1e-12));
-  EXPECT_TRUE(Close(t.meshes[0].uv_size, 0.08, 1e-12));
+  EXPECT_TRUE(Close(t.meshes[0].uv_size_m, 0.08, 1e-12));
   EXPECT_EQ(t.samples_per_pixel, 4);
 }
 
@@ -234,9 +234,9 @@ TEST(TargetSceneTest, MeshErrorsNameTheMeshFileAndLine) {
 
 TEST(TargetSceneTest, DefaultPlaneCoversEveryRay) {
   LightFieldGeometry g;
-  g.origin_z = 1.0;
-  g.window_left = -0.1, g.window_top = 0.3, g.window_width = 0.4, g.window_height = 0.2;
-  g.eyebox_width = 0.01, g.eyebox_height = 0.02;
+  g.origin_z_m = 1.0;
+  g.window_left_m = -0.1, g.window_top_m = 0.3, g.window_width_m = 0.4, g.window_height_m = 0.2;
+  g.eyebox_width_m = 0.01, g.eyebox_height_m = 0.02;
   // At z = 2 rays reach x = v (1 - 2) + 2 x_lf: from -0.005 - 0.2 to 0.005 + 0.6.
   std::array<double, 2> size = CoveringSize(g, 2.0, {0, 0});
   EXPECT_TRUE(Close(size[0], 2 * 0.605 * 1.02, 1e-12));

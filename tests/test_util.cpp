@@ -72,11 +72,11 @@ nlohmann::json& ElementNamed(nlohmann::json& scene, const std::string& name) {
 
 LightFieldGeometry WindowGeometry(int cols, int rows, int views) {
   LightFieldGeometry g;
-  g.origin_z = 1 / 1.3;
-  g.window_width = 2 * g.origin_z * std::tan(5 * kRadiansPerDegree);
-  g.window_height = 2 * g.origin_z * std::tan(3 * kRadiansPerDegree);
-  g.window_left = -g.window_width / 2;
-  g.window_top = g.window_height / 2;
+  g.origin_z_m = 1 / 1.3;
+  g.window_width_m = 2 * g.origin_z_m * std::tan(5 * kRadiansPerDegree);
+  g.window_height_m = 2 * g.origin_z_m * std::tan(3 * kRadiansPerDegree);
+  g.window_left_m = -g.window_width_m / 2;
+  g.window_top_m = g.window_height_m / 2;
   g.cols = cols, g.rows = rows;
   g.views_x = g.views_y = views;
   return g;

@@ -38,7 +38,7 @@ std::string ParseError(const json& j, const TextureFrame& frame = {}) {
 TEST(TextureTest, GratingFrequencyIsCyclesPerDegreeAtTheReferenceDepth) {
   // 2 cpd at 0.5 m: one degree spans 0.5 * pi / 180 m, so the period is 0.5 * pi / 360 m.
   TextureFrame frame;
-  frame.reference_depth = 0.5;
+  frame.reference_depth_m = 0.5;
   auto grating = Parse({{"type", "grating"}, {"frequency", "2 cpd"}, {"contrast", 0.8}, {"mean", 0.25}}, frame);
   double period = 0.5 * kRadiansPerDegree / 2;
   EXPECT_TRUE(Close(grating->Evaluate(0, 0)[0], 0.25 * 1.8, 0, 1e-12));
@@ -51,7 +51,7 @@ TEST(TextureTest, GratingFrequencyIsCyclesPerDegreeAtTheReferenceDepth) {
 
 TEST(TextureTest, GratingPhaseAndOrientation) {
   TextureFrame frame;
-  frame.reference_depth = 1;
+  frame.reference_depth_m = 1;
   auto grating =
       Parse({{"type", "grating"}, {"frequency", "1 cpd"}, {"phase", "90 deg"}, {"orientation", "90 deg"}}, frame);
   double period = kRadiansPerDegree;
@@ -65,7 +65,7 @@ TEST(TextureTest, GratingUniformInVisualAngleIsTheFrequencyAtEveryAngle) {
   // 2 cpd at 0.8 m, orientation 30 deg: along the wave vector the point at
   // angle a from the center (w = z tan a) has phase 2 pi f a, a in degrees.
   TextureFrame frame;
-  frame.reference_depth = 0.8;
+  frame.reference_depth_m = 0.8;
   auto grating =
       Parse({{"type", "grating"}, {"frequency", "2 cpd"}, {"orientation", "30 deg"}, {"uniform", "angle"}}, frame);
   auto plane = Parse({{"type", "grating"}, {"frequency", "2 cpd"}, {"orientation", "30 deg"}}, frame);
@@ -87,7 +87,7 @@ TEST(TextureTest, GratingUniformInVisualAngleIsTheFrequencyAtEveryAngle) {
 
 TEST(TextureTest, CheckerboardPeriodAsAngleOrLength) {
   TextureFrame frame;
-  frame.reference_depth = 2;
+  frame.reference_depth_m = 2;
   auto by_angle =
       Parse({{"type", "checkerboard"}, {"period", "1 deg"}, {"low", 0.1}, {"high", json::array({1, 0.5, 0})}}, frame);
   double half = 2 * kRadiansPerDegree / 2;  // one square
@@ -102,7 +102,7 @@ TEST(TextureTest, CheckerboardPeriodAsAngleOrLength) {
 
 TEST(TextureTest, NoiseIsSeededAndHasTheRequestedMeanAndRmsContrast) {
   TextureFrame frame;
-  frame.reference_depth = 1;
+  frame.reference_depth_m = 1;
   json spec = {{"type", "noise"}, {"band", {"1 cpd", "4 cpd"}}, {"components", 64}, {"seed", 5}, {"contrast", 0.2},
                {"mean", 0.5}};
   auto a = Parse(spec, frame), b = Parse(spec, frame);
@@ -137,7 +137,7 @@ TEST(TextureTest, ExrImageIsSampledBilinearlyBetweenPixelCenters) {
   WriteExr(dir + "/four.exr", image);
   TextureFrame frame;
   frame.base_dir = dir;
-  frame.default_size = {2, 1};  // pixels 1 m wide, 0.5 m tall; centers at s = +-0.5, t = +-0.25
+  frame.default_size_m = {2, 1};  // pixels 1 m wide, 0.5 m tall; centers at s = +-0.5, t = +-0.25
   auto clamp = Parse({{"type", "image"}, {"file", "four.exr"}}, frame);
   EXPECT_EQ(clamp->Evaluate(-0.5, 0.25), (Rgb{0, 0, 1}));
   EXPECT_EQ(clamp->Evaluate(0.5, -0.25), (Rgb{3, 1.5, 1}));
@@ -161,7 +161,7 @@ TEST(TextureTest, PngImageIsDecodedToLinearLight) {
   ASSERT_TRUE(png_image_write_to_file(&png, (dir + "/ramp.png").c_str(), 0, pixels, 0, nullptr));
   TextureFrame frame;
   frame.base_dir = dir;
-  frame.default_size = {3, 1};
+  frame.default_size_m = {3, 1};
   auto texture = Parse({{"type", "image"}, {"file", "ramp.png"}}, frame);
   EXPECT_EQ(texture->Evaluate(-1, 0)[0], 0.0);
   // sRGB 188/255 is ((188/255 + 0.055) / 1.055)^2.4 = 0.502886 in linear light.

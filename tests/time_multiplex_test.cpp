@@ -73,7 +73,7 @@ TEST(TimeMultiplex, SubframesAreSeenAsTheirMean) {
   }
   EXPECT_LT(MaxDifference(mixed, mean), 2e-6);
   // Brightness: full white in every subframe is the single display's white.
-  EXPECT_TRUE(Close(system.peak_luminance[1], one.peak_luminance[1], 1e-12));
+  EXPECT_TRUE(Close(system.peak_luminance_cd_m2[1], one.peak_luminance_cd_m2[1], 1e-12));
   EXPECT_TRUE(Close(system.luminance_efficiency, one.luminance_efficiency, 1e-12));
 }
 

@@ -36,15 +36,15 @@ TEST(Warnings, ATargetOfAnotherGeometryIsNamedPartByPart) {
   const DisplaySystem s = CompileJson(ReadExample("multiplicative_2layer.json"));
   LightFieldGeometry g = DisplayLightFieldGeometry(s);
   EXPECT_TRUE(TargetGeometryWarnings(s, g).empty());
-  g.window_width *= 1.005;  // within 1 %: the same field
+  g.window_width_m *= 1.005;  // within 1 %: the same field
   EXPECT_TRUE(TargetGeometryWarnings(s, g).empty());
   g.views_x = g.views_y = 9;
   g.cols = 200;
   // Half the window at the origin plane: the field 2 atan(w / 4 z) instead of 2 atan(w / 2 z).
-  const double z = g.origin_z, w = g.window_width;
-  g.window_left /= 2, g.window_width /= 2;
+  const double z = g.origin_z_m, w = g.window_width_m;
+  g.window_left_m /= 2, g.window_width_m /= 2;
   const double half_field = 2 * std::atan(w / 4 / z) * 180 / std::numbers::pi;
-  const double fov_x = s.fov_x * 180 / std::numbers::pi, fov_y = s.fov_y * 180 / std::numbers::pi;
+  const double fov_x = s.fov_x_rad * 180 / std::numbers::pi, fov_y = s.fov_y_rad * 180 / std::numbers::pi;
   const std::vector<std::string> warnings = TargetGeometryWarnings(s, g);
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_EQ(warnings[0],

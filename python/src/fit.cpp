@@ -56,7 +56,7 @@ py::dict Fit(const py::object& scene, const py::object& measurements, const std:
   }
   options.fit_focal_length = fit_focal_length;
   options.fit_lens_gaps = fit_lens_gaps;
-  if (marker_loss_arcmin) options.marker_loss_scale = *marker_loss_arcmin / 60.0 * std::numbers::pi / 180.0;
+  if (marker_loss_arcmin) options.marker_loss_scale_rad = *marker_loss_arcmin / 60.0 * std::numbers::pi / 180.0;
   if (luminance_loss_scale) options.luminance_loss_scale = *luminance_loss_scale;
   if (std::string why; !options.IsValid(&why)) throw py::value_error("fit: " + why);
 

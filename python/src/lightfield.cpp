@@ -49,13 +49,13 @@ LightFieldGeometry GeometryArguments(const py::handle& origin_z, const py::handl
     return static_cast<int>(IntegerArg(v, what + name, 1, max));
   };
   LightFieldGeometry g;
-  g.origin_z = real(origin_z, "origin_z"), g.window_left = real(window_left, "window_left");
-  g.window_top = real(window_top, "window_top"), g.window_width = real(window_width, "window_width");
-  g.window_height = real(window_height, "window_height");
+  g.origin_z_m = real(origin_z, "origin_z"), g.window_left_m = real(window_left, "window_left");
+  g.window_top_m = real(window_top, "window_top"), g.window_width_m = real(window_width, "window_width");
+  g.window_height_m = real(window_height, "window_height");
   g.cols = count(cols, "cols", kMaxPixelsPerAxis), g.rows = count(rows, "rows", kMaxPixelsPerAxis);
   g.views_x = count(views_x, "views_x", kMaxViewsPerAxis);
   g.views_y = count(views_y, "views_y", kMaxViewsPerAxis);
-  g.eyebox_width = real(eyebox_width, "eyebox_width"), g.eyebox_height = real(eyebox_height, "eyebox_height");
+  g.eyebox_width_m = real(eyebox_width, "eyebox_width"), g.eyebox_height_m = real(eyebox_height, "eyebox_height");
   CheckGeometryArgument(g, "LightFieldGeometry");
   return g;
 }
@@ -67,17 +67,17 @@ void BindLightFieldGeometry(py::module_& m) {
            py::arg("window_top") = 0.5, py::arg("window_width") = 1.0, py::arg("window_height") = 1.0,
            py::arg("cols") = 1, py::arg("rows") = 1, py::arg("views_x") = 1, py::arg("views_y") = 1,
            py::arg("eyebox_width") = 6e-3, py::arg("eyebox_height") = 6e-3)
-      .def_readwrite("origin_z", &LightFieldGeometry::origin_z)
-      .def_readwrite("window_left", &LightFieldGeometry::window_left)
-      .def_readwrite("window_top", &LightFieldGeometry::window_top)
-      .def_readwrite("window_width", &LightFieldGeometry::window_width)
-      .def_readwrite("window_height", &LightFieldGeometry::window_height)
+      .def_readwrite("origin_z", &LightFieldGeometry::origin_z_m)
+      .def_readwrite("window_left", &LightFieldGeometry::window_left_m)
+      .def_readwrite("window_top", &LightFieldGeometry::window_top_m)
+      .def_readwrite("window_width", &LightFieldGeometry::window_width_m)
+      .def_readwrite("window_height", &LightFieldGeometry::window_height_m)
       .def_readwrite("cols", &LightFieldGeometry::cols)
       .def_readwrite("rows", &LightFieldGeometry::rows)
       .def_readwrite("views_x", &LightFieldGeometry::views_x)
       .def_readwrite("views_y", &LightFieldGeometry::views_y)
-      .def_readwrite("eyebox_width", &LightFieldGeometry::eyebox_width)
-      .def_readwrite("eyebox_height", &LightFieldGeometry::eyebox_height)
+      .def_readwrite("eyebox_width", &LightFieldGeometry::eyebox_width_m)
+      .def_readwrite("eyebox_height", &LightFieldGeometry::eyebox_height_m)
       .def_property_readonly(
           "shape", [](const LightFieldGeometry& g) { return py::tuple(py::cast(RgbShape(g))); },
           "(views, rows, cols, 3): the shape of LightField.rgb")

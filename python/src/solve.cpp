@@ -246,15 +246,16 @@ py::object Retina(const Solution& s, const std::vector<double>& accommodation, d
   // The checks `layerlab retina` makes: its states (ParseOptionValue's, as
   // CheckAccommodationStates), its field and sample size (CheckRetinaSampling).
   const DisplaySystem& system = *s.system;
-  const double field_x = field_deg ? field_deg->first : system.fov_x / kRadiansPerDegree;
-  const double field_y = field_deg ? field_deg->second : system.fov_y / kRadiansPerDegree;
+  const double field_x = field_deg ? field_deg->first : system.fov_x_rad / kRadiansPerDegree;
+  const double field_y = field_deg ? field_deg->second : system.fov_y_rad / kRadiansPerDegree;
   CheckArgument([&] {
     CheckAccommodationStates(accommodation, "retina: accommodation");
     CheckRetinaSampling(field_x, field_y, resolution_deg, "retina: field", "retina: resolution");
   });
-  const RetinaGrid grid = field_deg ? MakeRetinaGrid(field_x * kRadiansPerDegree, field_y * kRadiansPerDegree,
-                                                     resolution_deg * kRadiansPerDegree)
-                                    : MakeRetinaGrid(system.fov_x, system.fov_y, resolution_deg * kRadiansPerDegree);
+  const RetinaGrid grid =
+      field_deg
+          ? MakeRetinaGrid(field_x * kRadiansPerDegree, field_y * kRadiansPerDegree, resolution_deg * kRadiansPerDegree)
+          : MakeRetinaGrid(system.fov_x_rad, system.fov_y_rad, resolution_deg * kRadiansPerDegree);
   const std::vector<py::ssize_t> shape = {static_cast<py::ssize_t>(accommodation.size()),
                                           static_cast<py::ssize_t>(grid.rows), static_cast<py::ssize_t>(grid.cols), 3};
   py::array_t<float> images(shape), seen(natural ? shape : std::vector<py::ssize_t>{0});
