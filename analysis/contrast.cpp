@@ -125,13 +125,13 @@ class ContrastRun {
         // the continuous plane by the first display's.
         first_eye_(displays.front().system.eye) {
     for (int k = 0;; ++k) {
-      double a = o.accommodation_min + k * o.accommodation_step;
-      if (a > o.accommodation_max + 1e-9) break;
+      double a = o.accommodation_min_diopters + k * o.accommodation_step_diopters;
+      if (a > o.accommodation_max_diopters + 1e-9) break;
       accommodation_.push_back(a);
     }
     for (const ContrastDisplay& d : displays) pupils_.push_back(PupilSamples(d.system.eye));
-    retina_ = MakeRetinaGrid(o.retina_field * kRadiansPerDegree, 3 * o.retina_resolution * kRadiansPerDegree,
-                             o.retina_resolution * kRadiansPerDegree);
+    retina_ = MakeRetinaGrid(o.retina_field_deg * kRadiansPerDegree, 3 * o.retina_resolution_deg * kRadiansPerDegree,
+                             o.retina_resolution_deg * kRadiansPerDegree);
     shifted_ = retina_;
     shifted_.center_x_rad += 0.5 * retina_.resolution_rad;  // for the peaks' sampling uncertainty
     grids_[0] = retina_, grids_[1] = shifted_;
@@ -148,7 +148,7 @@ class ContrastRun {
       for (ContrastCurve& c : of) curves.push_back(std::move(c));
     for (ContrastCurve& c : curves) {
       c.peak = FindPeak(c.accommodation, c.contrast);
-      c.estimate = EstimatePeak(c.accommodation, c.contrast, c.contrast_shifted, o_.flat_limit);
+      c.estimate = EstimatePeak(c.accommodation, c.contrast, c.contrast_shifted, o_.flat_limit_diopters);
       c.at_target = Interpolate(c.accommodation, c.contrast, c.target_diopters);
     }
     if (progress_) progress_->Finish(std::to_string(curves.size()) + " curves");
@@ -159,7 +159,7 @@ class ContrastRun {
   double Amplitude(const Image& image, const RetinaGrid& grid, double f) const {
     std::vector<double> row = CentralRow(image), degrees(grid.cols);
     for (int j = 0; j < grid.cols; ++j) degrees[j] = grid.angle_x(j) / kRadiansPerDegree;
-    int n = WholeCycleSamples(grid.cols, o_.retina_resolution, f);
+    int n = WholeCycleSamples(grid.cols, o_.retina_resolution_deg, f);
     int start = (grid.cols - n) / 2;
     return FourierAmplitude(std::vector<double>(row.begin() + start, row.begin() + start + n),
                             std::vector<double>(degrees.begin() + start, degrees.begin() + start + n), f);
@@ -223,15 +223,15 @@ class ContrastRun {
   // are solved, then swept together.
   void PlanCurves() {
     const size_t depths = o_.target_diopters.size();
-    of_target_.resize(o_.frequencies.size() * depths);
+    of_target_.resize(o_.frequencies_cpd.size() * depths);
     drawn_.resize(of_target_.size());
     continuous_reference_.assign(of_target_.size(), 0.0);
     if (o_.show_progress)
-      progress_.emplace("contrast", displays_.size() * o_.frequencies.size() * o_.target_diopters.size());
+      progress_.emplace("contrast", displays_.size() * o_.frequencies_cpd.size() * o_.target_diopters.size());
     for (size_t di = 0; di < displays_.size(); ++di)
-      for (size_t fi = 0; fi < o_.frequencies.size(); ++fi)
+      for (size_t fi = 0; fi < o_.frequencies_cpd.size(); ++fi)
         for (size_t ti = 0; ti < depths; ++ti)
-          PlanCurve(di, fi * depths + ti, o_.frequencies[fi], o_.target_diopters[ti]);
+          PlanCurve(di, fi * depths + ti, o_.frequencies_cpd[fi], o_.target_diopters[ti]);
   }
 
   void PlanCurve(size_t di, size_t target_index, double f, double dt) {
@@ -429,7 +429,7 @@ ContrastDisplay ContrastDisplayOf(const Scene& scene, const std::string& scene_f
 std::vector<std::string> ContrastWarnings(const std::vector<ContrastDisplay>& displays, const ContrastOptions& o) {
   std::vector<std::string> warnings;
   for (const ContrastDisplay& d : displays)
-    for (double f : o.frequencies)
+    for (double f : o.frequencies_cpd)
       if (f > d.system.max_cpd)
         warnings.push_back(d.name + ": " + FormatFixed(f, 2) + " cpd is above the " + FormatFixed(d.system.max_cpd, 2) +
                            " cpd the display can show (its finest layer's Nyquist frequency); the curve at " +
@@ -439,8 +439,7 @@ std::vector<std::string> ContrastWarnings(const std::vector<ContrastDisplay>& di
 
 std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displays, const ContrastOptions& o) {
   if (displays.empty()) throw Error("contrast: no display given");
-  if (!(o.accommodation_step > 0) || !(o.accommodation_max > o.accommodation_min))
-    throw Error("contrast: the accommodation range must be increasing with a positive step");
+  if (std::string why; !o.IsValid(&why)) throw Error("contrast: " + why);
   return ContrastRun(displays, o).Run();
 }
 

@@ -61,23 +61,29 @@ enum class ContrastReference {
 };
 std::string ConventionLabel(ContrastReference reference, GratingSpacing spacing);
 
+// Its keys, flags, Python keywords, ranges and defaults are described once, in
+// analysis/contrast_option_table.h.
 struct ContrastOptions {
   std::vector<double> target_diopters = {0.7, 1.3, 1.9};
-  std::vector<double> frequencies = {2.0, 4.0};                                        // cpd
-  double accommodation_min = 0.0, accommodation_max = 2.6, accommodation_step = 0.05;  // D
-  double retina_resolution = 0.01;                                                     // deg
-  double retina_field = 20.0;                                                          // deg, horizontal, centered
-  int strip_rows = 24;  // light-field rows around the axis (the grating is vertical)
+  std::vector<double> frequencies_cpd = {2.0, 4.0};
+  double accommodation_min_diopters = 0.0, accommodation_max_diopters = 2.6, accommodation_step_diopters = 0.05;
+  double retina_resolution_deg = 0.01;
+  double retina_field_deg = 20.0;  // horizontal, centered
+  int strip_rows = 24;             // light-field rows around the axis (the grating is vertical)
   ContrastReference reference = ContrastReference::kSampledTarget;
   GratingSpacing grating = GratingSpacing::kVisualAngle;  // for the default texture
   PlaneTextureFactory texture;                            // empty: CosineGrating(0.5, 1, grating)
   // Sweep again with the retina moved by half a sample, for each peak's
-  // sampling uncertainty; a peak that moves more than flat_limit (one
+  // sampling uncertainty; a peak that moves more than flat_limit_diopters (one
   // accommodation step) is "flat": the curve is too flat to place one.
   bool peak_uncertainty = true;
-  double flat_limit = 0.05;  // D
+  double flat_limit_diopters = 0.05;
   std::function<void(const std::string&)> progress;
   bool show_progress = false;  // a progress line on stderr (framework/progress.h)
+
+  // False, with "field: value: constraint" in *error, when a value lies
+  // outside the table's range or the accommodation sweep is empty.
+  bool IsValid(std::string* error) const;
 };
 
 struct ContrastCurve {

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <numbers>
 
+#include "layerlab/analysis/run_option_table.h"
 #include "layerlab/framework/atomic_file.h"
 #include "layerlab/framework/error.h"
 #include "layerlab/framework/exr_image.h"
@@ -113,11 +114,13 @@ std::vector<RetinaStateResult> WriteRetinaSweep(
     const DisplayModel& model, const Patterns& t, const SceneRadiance& natural, const RetinaSweepOptions& o,
     const std::string& folder, const std::function<void(size_t, size_t, const RetinaStateResult&)>& progress) {
   const DisplaySystem& system = model.system();
-  CheckAccommodationStates(o.states, "retina: accommodation");
-  if (!(o.resolution > 0) || !(o.resolution < 10)) throw Error("retina: the resolution must lie in (0, 10) deg");
-  const double field_x = o.field_x > 0 ? o.field_x * kRadiansPerDegree : system.fov_x_rad;
-  const double field_y = o.field_y > 0 ? o.field_y * kRadiansPerDegree : system.fov_y_rad;
-  const RetinaGrid grid = MakeRetinaGrid(field_x, field_y, o.resolution * kRadiansPerDegree);
+  CheckAccommodationStates(o.states_diopters, "retina: accommodation");
+  const RetinaRunOptionEntry& resolution = RetinaRunOption("resolution");  // the run section's range
+  if (!resolution.range.Contains(o.resolution_deg))
+    throw Error("retina: " + OptionViolation("resolution", o.resolution_deg, resolution.Constraint()));
+  const double field_x = o.field_x_deg > 0 ? o.field_x_deg * kRadiansPerDegree : system.fov_x_rad;
+  const double field_y = o.field_y_deg > 0 ? o.field_y_deg * kRadiansPerDegree : system.fov_y_rad;
+  const RetinaGrid grid = MakeRetinaGrid(field_x, field_y, o.resolution_deg * kRadiansPerDegree);
   const std::vector<PupilPoint> pupil = PupilSamples(system.eye);
 
   const fs::path out = folder;
@@ -131,9 +134,9 @@ std::vector<RetinaStateResult> WriteRetinaSweep(
   const size_t batch = 4;
   std::vector<RetinaStateResult> results;
   RetinaWorkspace workspace;  // every state's display image, sized for the first (again only for one needing more)
-  for (size_t first = 0; first < o.states.size(); first += batch) {
-    const size_t count = std::min(batch, o.states.size() - first);
-    RetinaBatch b = TraceBatch(model, t, natural, grid, pupil, o.states, first, count, &workspace);
+  for (size_t first = 0; first < o.states_diopters.size(); first += batch) {
+    const size_t count = std::min(batch, o.states_diopters.size() - first);
+    RetinaBatch b = TraceBatch(model, t, natural, grid, pupil, o.states_diopters, first, count, &workspace);
     std::vector<double> seconds;
     WriteBatch(out, grid, bool(natural), &b, &seconds);
     for (size_t s = 0; s < count; ++s) {
@@ -145,7 +148,7 @@ std::vector<RetinaStateResult> WriteRetinaSweep(
       csv += row;
       if (o.keep_images) r.display = std::move(b.display[s]), r.natural = std::move(b.seen[s]);
       results.push_back(std::move(r));
-      if (progress) progress(results.size(), o.states.size(), results.back());
+      if (progress) progress(results.size(), o.states_diopters.size(), results.back());
     }
   }
   WriteFileAtomically((out / "retina.csv").string(), csv);

@@ -21,10 +21,10 @@
 namespace layerlab {
 
 struct RetinaSweepOptions {
-  std::vector<double> states;       // D, in the order written
-  double resolution = 0.05;         // deg per sample
-  double field_x = 0, field_y = 0;  // deg; 0: the display's field of view
-  bool keep_images = false;         // also return each state's images (RetinaStateResult::display, natural)
+  std::vector<double> states_diopters;      // in the order written
+  double resolution_deg = 0.05;             // per sample
+  double field_x_deg = 0, field_y_deg = 0;  // 0: the display's field of view
+  bool keep_images = false;                 // also return each state's images (RetinaStateResult::display, natural)
 };
 
 // Accommodation states as `layerlab retina` takes them (ParseOptionValue:

@@ -25,8 +25,8 @@ bool MainSolveRow(const RunState& s, const ComparedDisplay& d, const CompareRun&
   if (&d.system != &s.in.system || run.solver != s.in.solve.solver || c.iterations ||
       run.options.objective != main.objective || (run.options.measure_focal_stack && !main.measure_focal_stack))
     return false;
-  const std::optional<SolverReport> report = c.time_budget ? ReportWithTimeBudget(s.solved.report, *c.time_budget)
-                                                           : std::optional<SolverReport>(s.solved.report);
+  const std::optional<SolverReport> report = c.time_budget_s ? ReportWithTimeBudget(s.solved.report, *c.time_budget_s)
+                                                             : std::optional<SolverReport>(s.solved.report);
   if (!report) return false;
   rows->push_back({d.name, run.solver, *report, d.system.brightness_efficiency, d.system.luminance_efficiency,
                    d.system.subframes, d.system.subframes * d.system.frame_rate_hz, "scene"});
@@ -43,7 +43,7 @@ void RowsOf(RunState& s, const ComparedDisplay& d, const std::string& solver, st
   const bool own = solver == d.config.solver && d.own_options;
   SolverOptions base = solver == d.config.solver ? d.config.options : SolverRegistry::Builtins().find(solver)->defaults;
   base.iterations = c.iterations.value_or(base.iterations);
-  base.time_budget = c.time_budget.value_or(base.time_budget);
+  base.time_budget = c.time_budget_s.value_or(base.time_budget);
   std::vector<std::string> skipped;
   const std::vector<CompareRun> runs = ObjectiveRuns(
       {d.name, d.system, solver, base, d.config.sampling, own ? "scene" : "shared"}, c.objectives, &skipped);

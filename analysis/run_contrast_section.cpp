@@ -8,7 +8,7 @@ namespace {
 
 std::string RunContrastSweep(RunState& s) {
   ContrastOptions options = s.in.run.contrast.options;
-  const size_t total = s.in.contrast.size() * options.frequencies.size() * options.target_diopters.size();
+  const size_t total = s.in.contrast.size() * options.frequencies_cpd.size() * options.target_diopters.size();
   options.show_progress = true;
   for (const std::string& w : ContrastWarnings(s.in.contrast, options)) s.page.warnings.push_back("contrast: " + w);
   s.outcome.contrast = RunContrast(s.in.contrast, options);

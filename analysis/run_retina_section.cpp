@@ -13,15 +13,16 @@ std::string RunRetina(RunState& s) {
   const SceneRadiance natural =
       r.natural ? s.target->Natural(r.natural_traced ? Target::Viewing::kTraced : Target::Viewing::kLightField)
                 : SceneRadiance{};
-  RetinaSweepOptions sweep{r.states(), r.resolution, r.field_x, r.field_y, s.request.keep_images};
-  Progress progress("retina", sweep.states.size());
+  RetinaSweepOptions sweep{r.states(), r.resolution_deg, r.field_x_deg, r.field_y_deg, s.request.keep_images};
+  Progress progress("retina", sweep.states_diopters.size());
   std::vector<RetinaStateResult> states =
       WriteRetinaSweep(*s.solved.model, s.solved.patterns, natural, sweep, (s.out / "retina").string(),
                        [&](size_t done, size_t, const RetinaStateResult& state) {
                          progress.Update(done, "accommodation states traced (" + state.name + ")");
                        });
   progress.Finish(std::to_string(states.size()) + " states");
-  AddRetinaToPage(states, r.accommodation, bool(natural), s.solved.model->white_luminance(), "retina/", &s.page);
+  AddRetinaToPage(states, r.accommodation_diopters, bool(natural), s.solved.model->white_luminance(), "retina/",
+                  &s.page);
   s.outcome.retina = std::move(states);
   return "retina (" + std::to_string(s.outcome.retina.size()) + " accommodation states)";
 }

@@ -7,10 +7,12 @@
 #include <memory>
 
 #include "layerlab/analysis/contrast.h"
+#include "layerlab/analysis/contrast_option_table.h"
 #include "layerlab/analysis/report_parts.h"
 #include "layerlab/app/command_line.h"
 #include "layerlab/app/commands.h"
 #include "layerlab/app/number_list.h"
+#include "layerlab/app/option_flags.h"
 #include "layerlab/framework/atomic_file.h"
 #include "layerlab/framework/error.h"
 #include "layerlab/framework/staged_output.h"
@@ -23,36 +25,27 @@
 namespace layerlab::app {
 namespace {
 
+// The sweep's options are the contrast option table's (analysis/contrast_option_table.h).
 struct ContrastCommandOptions {
   std::vector<std::string> scenes;
-  std::string out, depths = "0.7,1.3,1.9", frequencies = "2,4", accommodation = "0,2.6,0.05";
-  std::string reference = "sampled", grating = "angle", resolution = "0.01", field = "20";
-  int strip_rows = 24;
-  bool no_peak_uncertainty = false;
+  std::string out, accommodation;
+  OptionFlags flags;
 };
 
 // The options read and checked, before anything is loaded.
 ContrastOptions ReadContrastOptions(const ContrastCommandOptions& o) {
   ContrastOptions options;
-  options.target_diopters = ParseNumberList(o.depths, "--depths", kDiopters, true);
-  options.frequencies = ParseNumberList(o.frequencies, "--frequencies", kCyclesPerDegree);
-  const std::vector<double> range = ParseRangeBounds(o.accommodation, "--accommodation", kDiopters);
-  options.accommodation_min = range[0];
-  options.accommodation_max = range[1];
-  options.accommodation_step = range[2];
-  options.retina_resolution = ParseOptionValue(o.resolution, "--retina-resolution", kDegrees);
-  options.retina_field = ParseOptionValue(o.field, "--retina-field", kDegrees);
-  options.strip_rows = o.strip_rows;
-  options.reference = o.reference == "sampled" ? ContrastReference::kSampledTarget : ContrastReference::kContinuous;
-  options.grating = o.grating == "angle" ? GratingSpacing::kVisualAngle : GratingSpacing::kPlane;
-  options.peak_uncertainty = !o.no_peak_uncertainty;
-  CheckRetinaSampling(options.retina_field, 3 * options.retina_resolution, options.retina_resolution, "--retina-field",
-                      "--retina-resolution");
-  if (o.strip_rows < 1) throw Error("--strip-rows must be positive");
-  for (double f : options.frequencies)
-    if (!(f > 0)) throw Error("--frequencies: a frequency must be above 0 cpd");
-  for (double d : options.target_diopters)
-    if (!(d > 0)) throw Error("--depths: a target depth must be above 0 D");
+  ApplyOptionFlags(o.flags, ContrastOptionTable(), options);
+  if (!o.accommodation.empty()) {
+    const std::vector<double> range =
+        ParseRangeBounds(o.accommodation, FindContrastOption("accommodation")->cli_flag, kDiopters);
+    options.accommodation_min_diopters = range[0];
+    options.accommodation_max_diopters = range[1];
+    options.accommodation_step_diopters = range[2];
+  }
+  CheckRetinaSampling(options.retina_field_deg, 3 * options.retina_resolution_deg, options.retina_resolution_deg,
+                      "--retina-field", "--retina-resolution");
+  if (std::string why; !options.IsValid(&why)) throw Error(NameTheFlag(ContrastOptionTable(), why));
   options.show_progress = true;
   return options;
 }
@@ -99,30 +92,10 @@ void AddContrastCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("contrast", "Normalized contrast against accommodation (Fig. 5)");
   cmd->add_option("scenes", o->scenes, "Display scene files (JSON)")->required();
   cmd->add_option("--out", o->out, "Output folder")->required();
-  // The defaults are ContrastCommandOptions' own, quoted in the help from there.
-  const auto with_default = [](const std::string& help, const std::string& value) {
-    return help + " (default " + value + ")";
-  };
-  cmd->add_option(
-      "--depths", o->depths,
-      with_default("Target depths, comma-separated: D, or with units: \"0.7 D,1.3 D\", \"2 m\"", o->depths));
-  cmd->add_option("--frequencies", o->frequencies, with_default("Frequencies, comma-separated: cpd", o->frequencies));
-  cmd->add_option("--accommodation", o->accommodation,
-                  with_default("first,last,step: D, or with units: \"0 D,2.6 D,0.05 D\"", o->accommodation));
-  cmd->add_option("--retina-resolution", o->resolution,
-                  with_default("Retinal sample size: degrees or \"0.6 arcmin\"", o->resolution));
-  cmd->add_option("--retina-field", o->field, with_default("Retinal field width: degrees", o->field));
-  cmd->add_option("--strip-rows", o->strip_rows,
-                  with_default("Light-field rows around the axis", std::to_string(o->strip_rows)));
-  cmd->add_option("--reference", o->reference,
-                  "Normalize by natural viewing of the sampled target light field (sampled, default) or of the "
-                  "continuous plane (continuous, the convention before issue 19)")
-      ->check(CLI::IsMember({"sampled", "continuous"}));
-  cmd->add_option("--grating", o->grating,
-                  "Grating uniform in visual angle (angle, default) or in meters on the plane (plane, before issue 19)")
-      ->check(CLI::IsMember({"angle", "plane"}));
-  cmd->add_flag("--no-peak-uncertainty", o->no_peak_uncertainty,
-                "Skip the second sweep on a retina moved by half a sample (the peaks' uncertainty)");
+  AddOptionFlags(cmd, ContrastOptionTable(), o->flags, /*with_default=*/true);
+  const ContrastOptionEntry& accommodation = *FindContrastOption("accommodation");
+  cmd->add_option(accommodation.cli_flag, o->accommodation,
+                  accommodation.cli_help + " (default " + accommodation.default_text + ")");
   cmd->callback([o] { RunContrastCommand(*o); });
 }
 

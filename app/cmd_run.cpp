@@ -19,6 +19,7 @@
 #include "layerlab/analysis/run_pipeline.h"
 #include "layerlab/app/commands.h"
 #include "layerlab/framework/warnings.h"
+#include "layerlab/solvers/solver_option_table.h"
 
 namespace layerlab::app {
 
@@ -31,8 +32,12 @@ void AddRunCommand(CLI::App& app) {
                   "Scene file (JSON) with \"solve\" and \"run\" sections (docs/run-section.md)")
       ->required();
   cmd->add_option("--out", request->out, "Output folder")->required();
-  cmd->add_option("--iterations", request->iterations, "Outer iterations of the main solve (default: the scene's)");
-  cmd->add_option("--threads", request->threads, "Worker threads of the main solve (0: all cores)");
+  // The main solve's, as `layerlab solve` takes them (the solver option table).
+  for (const char* key : {"iterations", "threads"}) {
+    const SolverOptionEntry& e = *FindSolverOption(key);
+    cmd->add_option(e.cli_flag, key == std::string("iterations") ? request->iterations : request->threads,
+                    e.cli_help + ", of the main solve (default: the scene's)");
+  }
   cmd->callback([request] {
     const auto start = std::chrono::steady_clock::now();
     const RunOutcome outcome = RunPipeline(*request);

@@ -509,12 +509,12 @@ void BM_FocalStack(benchmark::State& state) {
   const bool read_dice = w.target_name == "dice";
   RetinaSweepOptions o;
   if (smoke) {
-    o.states = {0.4, 1.6}, o.resolution = 0.1, o.field_x = 4, o.field_y = 2;
+    o.states_diopters = {0.4, 1.6}, o.resolution_deg = 0.1, o.field_x_deg = 4, o.field_y_deg = 2;
   } else {
-    o.states = {0.4, 1.0, 1.6, 2.2};
+    o.states_diopters = {0.4, 1.0, 1.6, 2.2};
     for (int k = 0; k <= 26; ++k)
-      if (k != 4 && k != 10 && k != 16 && k != 22) o.states.push_back(0.1 * k);
-    std::sort(o.states.begin(), o.states.end());
+      if (k != 4 && k != 10 && k != 16 && k != 22) o.states_diopters.push_back(0.1 * k);
+    std::sort(o.states_diopters.begin(), o.states_diopters.end());
   }
   ScratchFolder out("layerlab_bench_focal_stack");
   double last = 0;
@@ -527,7 +527,7 @@ void BM_FocalStack(benchmark::State& state) {
           WriteRetinaSweep(model, t, LightFieldRadiance(target), o, out.path.string(), nullptr);
       benchmark::DoNotOptimize(r.data());
     });
-  state.counters["states"] = double(o.states.size());
+  state.counters["states"] = double(o.states_diopters.size());
   Report(state, 2.0, last);
   state.SetLabel(w.target_name);
 }
@@ -545,8 +545,8 @@ void BM_Fig5Sweep(benchmark::State& state) {
   }
   ContrastOptions o;
   if (smoke) {
-    o.target_diopters = {1.3}, o.frequencies = {2.0};
-    o.accommodation_step = 0.65, o.retina_field = 4, o.retina_resolution = 0.05, o.strip_rows = 4;
+    o.target_diopters = {1.3}, o.frequencies_cpd = {2.0};
+    o.accommodation_step_diopters = 0.65, o.retina_field_deg = 4, o.retina_resolution_deg = 0.05, o.strip_rows = 4;
     for (ContrastDisplay& d : displays) {
       if (!d.options_given)
         d.options = SolverRegistry::Builtins().find(d.solver.empty() ? DefaultSolverFor(d.system) : d.solver)->defaults;

@@ -105,6 +105,12 @@ std::string AcceptedUnits(Dimension d) {
   return out;
 }
 
+std::string SIUnit(Dimension d) {
+  for (const Unit& u : kUnits)
+    if (u.dimension == d && u.to_si == 1.0) return std::string(u.symbol);
+  return "";
+}
+
 double ParseQuantity(std::string_view text, Dimension d) {
   Split s = SplitNumberAndUnit(text);
   if (s.unit.empty()) {

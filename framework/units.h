@@ -28,6 +28,9 @@ enum class Dimension {
 std::string DimensionName(Dimension d);
 // The units a dimension accepts, for messages: "m, cm, mm, um, nm".
 std::string AcceptedUnits(Dimension d);
+// The dimension's SI unit, the first it accepts at a factor of 1 ("m", "D",
+// "rad", "cpd", "s"); "" for a fraction.
+std::string SIUnit(Dimension d);
 
 // Parses "75 mm" into SI (0.075). A bare number (JSON number) is taken as
 // SI by the caller; this parses strings only. Throws layerlab::Error with

@@ -9,43 +9,11 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "layerlab/framework/option_reader.h"
 #include "layerlab/framework/params.h"
 #include "layerlab/solvers/solver_option_table.h"
 
 namespace layerlab {
-
-namespace {
-
-// One option of the section, into its SolverOptions field (the section's own keys, kConfig, are read by hand).
-void ReadOption(Params& p, const SolverOptionEntry& e, SolverOptions* o) {
-  switch (e.kind) {
-    case SolverOptionKind::kInteger:
-      o->*e.integer = static_cast<int>(
-          p.integer(e.key, static_cast<int64_t>(e.range.min), static_cast<int64_t>(e.range.max), o->*e.integer));
-      break;
-    case SolverOptionKind::kSeed:
-      if (p.has(e.key)) {
-        const nlohmann::json& v = p.raw(e.key);
-        if (!v.is_number_unsigned()) p.fail(e.key, "must be an integer in [0, 2^64 - 1], got " + v.dump());
-        o->*e.seed = v.get<uint64_t>();
-      }
-      break;
-    case SolverOptionKind::kReal:
-      o->*e.real = p.quantity(e.key, e.dimension, o->*e.real);
-      p.require_range(e.key, o->*e.real, e.range.min, e.range.max, e.range.min_open, e.range.max_open);
-      break;
-    case SolverOptionKind::kChoice:
-      e.set(*o, e.ChoiceIndex(p.choice(e.key, e.choices, e.choices[e.get(*o)])));
-      break;
-    case SolverOptionKind::kBoolean:
-      e.set(*o, p.boolean(e.key, e.get(*o) != 0));
-      break;
-    case SolverOptionKind::kConfig:
-      break;
-  }
-}
-
-}  // namespace
 
 std::string ResolveAgainstScene(const Scene& scene, const std::string& path) {
   std::filesystem::path p = path;
@@ -98,7 +66,7 @@ SolveConfig ReadSolveConfig(const Scene& scene, const DisplaySystem& system, con
   if (p.has("target")) config.target = ResolveAgainstScene(scene, p.string("target"));
   if (p.has("target_scene")) config.target_scene = ResolveAgainstScene(scene, p.string("target_scene"));
   for (const SolverOptionEntry& e : SolverOptionTable())
-    if (e.in_scene) ReadOption(p, e, &o);
+    if (e.in_scene) ReadOptionEntry(p, e, &o);
   const SolverOptionEntry& sampling = *FindSolverOption("sampling");
   config.sampling = p.choice("sampling", sampling.choices, sampling.default_text) == "nearest" ? Sampling::kNearest
                                                                                                : Sampling::kBilinear;

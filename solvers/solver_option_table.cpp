@@ -1,10 +1,5 @@
 #include "layerlab/solvers/solver_option_table.h"
 
-#include <cmath>
-#include <sstream>
-
-#include "layerlab/framework/params.h"
-
 namespace layerlab {
 namespace {
 
@@ -146,48 +141,11 @@ std::vector<SolverOptionEntry> MakeTable() {
 
 }  // namespace
 
-bool OptionRange::Contains(double v) const {
-  if (std::isnan(v)) return false;
-  return (min_open ? v > min : v >= min) && (max_open ? v < max : v <= max);
-}
-
-std::string OptionRange::Text(bool integer) const {
-  auto number = [&](double v) {
-    if (integer) return std::to_string(static_cast<long long>(v));
-    std::ostringstream s;
-    s << v;
-    return s.str();
-  };
-  return (min_open ? "(" : "[") + number(min) + ", " + number(max) + (max_open ? ")" : "]");
-}
-
-double SolverOptionEntry::Number(const SolverOptions& o) const {
-  if (integer) return o.*integer;
-  if (real) return o.*real;
-  return 0;
-}
-
-std::string SolverOptionEntry::Constraint() const {
-  return "must be in " + range.Text(kind == SolverOptionKind::kInteger) + constraint_note;
-}
-
-std::string SolverOptionEntry::ChoiceList() const { return JoinWords(choices); }
-
-int SolverOptionEntry::ChoiceIndex(const std::string& name) const {
-  for (size_t i = 0; i < choices.size(); ++i)
-    if (choices[i] == name) return static_cast<int>(i);
-  return -1;
-}
-
 const std::vector<SolverOptionEntry>& SolverOptionTable() {
   static const std::vector<SolverOptionEntry> table = MakeTable();
   return table;
 }
 
-const SolverOptionEntry* FindSolverOption(const std::string& key) {
-  for (const SolverOptionEntry& e : SolverOptionTable())
-    if (e.key == key) return &e;
-  return nullptr;
-}
+const SolverOptionEntry* FindSolverOption(const std::string& key) { return FindOption(SolverOptionTable(), key); }
 
 }  // namespace layerlab

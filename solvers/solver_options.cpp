@@ -1,5 +1,3 @@
-#include <sstream>
-
 #include "layerlab/solvers/solver.h"
 #include "layerlab/solvers/solver_option_table.h"
 
@@ -30,13 +28,10 @@ SolverOptionKey SubIterationsKey() { return {"sub_iterations", FindSolverOption(
 // The ranges are the option table's; what relates two options is checked here.
 bool SolverOptions::IsValid(std::string* error) const {
   auto fail = [&](const std::string& field, double value, const std::string& constraint) {
-    std::ostringstream s;
-    s << field << ": " << value << ": " << constraint;
-    *error = s.str();
+    *error = OptionViolation(field, value, constraint);
     return false;
   };
-  for (const SolverOptionEntry& e : SolverOptionTable())
-    if (e.has_range && !e.range.Contains(e.Number(*this))) return fail(e.key, e.Number(*this), e.Constraint());
+  if (!RangesHold(SolverOptionTable(), *this, error)) return false;
   if (initial_value >= 0 && initial_value < floor)
     return fail("initial_value", initial_value, FindSolverOption("initial_value")->Constraint());
   if (retinal.contrast_sensitivity && objective != ObjectiveKind::kRetinal) {

@@ -40,7 +40,7 @@ TEST(Contrast, PerfectOneLayerDisplayScoresOneAtItsPeak) {
   ContrastDisplay d = OneLayerAt(dt);
   ContrastOptions o;
   o.target_diopters = {dt};
-  o.accommodation_min = 1.0, o.accommodation_max = 1.6;
+  o.accommodation_min_diopters = 1.0, o.accommodation_max_diopters = 1.6;
   std::vector<ContrastCurve> curves = RunContrast({d}, o);
   for (double f : {2.0, 4.0}) {
     const ContrastCurve& c = Curve(curves, "one_layer", f);
@@ -56,7 +56,7 @@ TEST(Contrast, PerfectOneLayerDisplayScoresOneAtItsPeak) {
   // each pixel, whose component at f is sinc(f p) of the cosine's, p the
   // pixel's angle (uniform in tan, so 3 % finer at the field's edge).
   o.reference = ContrastReference::kContinuous;
-  o.accommodation_min = dt, o.accommodation_max = dt + 0.05;
+  o.accommodation_min_diopters = dt, o.accommodation_max_diopters = dt + 0.05;
   curves = RunContrast({d}, o);
   const double p = std::atan(d.system.layers[0].tan_pitch_x) / kRadiansPerDegree;
   for (double f : {2.0, 4.0}) {
@@ -98,8 +98,9 @@ TEST(Contrast, NaturalViewingIsOneAtTheTargetThroughEveryEyeModel) {
       d.solver = "multiplicative";
       ContrastOptions o;
       o.target_diopters = {dt};
-      o.frequencies = {3.0};
-      o.accommodation_min = dt - 0.3, o.accommodation_max = dt + 0.3, o.accommodation_step = 0.1;
+      o.frequencies_cpd = {3.0};
+      o.accommodation_min_diopters = dt - 0.3, o.accommodation_max_diopters = dt + 0.3,
+      o.accommodation_step_diopters = 0.1;
       o.reference = reference;
       o.peak_uncertainty = false;
       const std::vector<ContrastCurve> curves = RunContrast({d}, o);
@@ -129,9 +130,9 @@ TEST(Contrast, AChromaticEyesChannelsAreWeightedByTheirLuminance) {
   ASSERT_EQ(d.system.eye.pupil_samples_x, 9);
   ContrastOptions o;
   o.target_diopters = {dt};
-  o.frequencies = {f};
-  o.accommodation_min = 0.8, o.accommodation_max = 1.8, o.accommodation_step = 0.25;
-  o.retina_field = 4;  // near the axis, where a shift in tan-angle is one in angle (to 0.1 %)
+  o.frequencies_cpd = {f};
+  o.accommodation_min_diopters = 0.8, o.accommodation_max_diopters = 1.8, o.accommodation_step_diopters = 0.25;
+  o.retina_field_deg = 4;  // near the axis, where a shift in tan-angle is one in angle (to 0.1 %)
   o.reference = ContrastReference::kContinuous;
   o.peak_uncertainty = false;
   const std::vector<ContrastCurve> curves = RunContrast({d}, o);
@@ -166,9 +167,9 @@ TEST(Contrast, CurvesAreTheSameBitsOnAnyThreadCount) {
   d.options_given = true;
   ContrastOptions o;
   o.target_diopters = {0.7, 1.3, 1.9};
-  o.frequencies = {2.0};
-  o.accommodation_min = 0.5, o.accommodation_max = 2.1, o.accommodation_step = 0.4;
-  o.retina_field = 5, o.retina_resolution = 0.05;
+  o.frequencies_cpd = {2.0};
+  o.accommodation_min_diopters = 0.5, o.accommodation_max_diopters = 2.1, o.accommodation_step_diopters = 0.4;
+  o.retina_field_deg = 5, o.retina_resolution_deg = 0.05;
   o.strip_rows = 6;
   const int threads = omp_get_max_threads();
   omp_set_num_threads(1);

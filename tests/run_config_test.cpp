@@ -51,10 +51,10 @@ TEST(RunConfig, RetinaDefaultsToTheLayerDepths) {
   Loaded l = Load({{"retina", json::object()}});
   RunConfig c = ReadRunConfig(l.scene, l.system);
   ASSERT_TRUE(c.retina.enabled);
-  ASSERT_EQ(c.retina.accommodation.size(), 4u);
-  EXPECT_TRUE(testing::Close(c.retina.accommodation[0], 0.4, 1e-9));
-  EXPECT_TRUE(testing::Close(c.retina.accommodation[3], 2.2, 1e-9));
-  EXPECT_EQ(c.retina.resolution, 0.05);
+  ASSERT_EQ(c.retina.accommodation_diopters.size(), 4u);
+  EXPECT_TRUE(testing::Close(c.retina.accommodation_diopters[0], 0.4, 1e-9));
+  EXPECT_TRUE(testing::Close(c.retina.accommodation_diopters[3], 2.2, 1e-9));
+  EXPECT_EQ(c.retina.resolution_deg, 0.05);
   EXPECT_TRUE(c.retina.natural);
   EXPECT_FALSE(c.retina.natural_traced);
   EXPECT_FALSE(c.contrast.enabled);
@@ -64,8 +64,7 @@ TEST(RunConfig, NaturalViewingReadsTheLightFieldUnlessTraced) {
   Loaded l = Load({{"retina", {{"natural_viewing", "traced"}}}});
   EXPECT_TRUE(ReadRunConfig(l.scene, l.system).retina.natural_traced);
   EXPECT_EQ(RunError({{"retina", {{"natural_viewing", "ray traced"}}}}),
-            "examples/scene.json: /run/retina/natural_viewing: must be \"light field\" or \"traced\", got \"ray "
-            "traced\"");
+            "examples/scene.json: /run/retina/natural_viewing: \"ray traced\" is not one of light field or traced");
 }
 
 TEST(RunConfig, FocalStackMergesWithTheStates) {
@@ -77,7 +76,7 @@ TEST(RunConfig, FocalStackMergesWithTheStates) {
   std::vector<double> states = r.states();  // 0, 0.5, 1, 1.5, 2 (1 and 2 D once each)
   ASSERT_EQ(states.size(), 5u);
   EXPECT_TRUE(testing::Close(states[4], 2.0, 1e-12));
-  EXPECT_TRUE(testing::Close(r.resolution, 0.05, 1e-12));
+  EXPECT_TRUE(testing::Close(r.resolution_deg, 0.05, 1e-12));
 }
 
 TEST(RunConfig, ContrastAndCompareReadUnitsAndResolvePaths) {
@@ -92,10 +91,10 @@ TEST(RunConfig, ContrastAndCompareReadUnitsAndResolvePaths) {
                      {"iterations", 5},
                      {"objectives", {"retinal", "lightfield"}}}}});
   RunConfig c = ReadRunConfig(l.scene, l.system);
-  ASSERT_EQ(c.contrast.options.frequencies.size(), 2u);
-  EXPECT_EQ(c.contrast.options.frequencies[1], 4.0);
-  EXPECT_TRUE(testing::Close(c.contrast.options.accommodation_step, 0.1, 1e-9));
-  EXPECT_TRUE(testing::Close(c.contrast.options.retina_resolution, 0.02, 1e-12));
+  ASSERT_EQ(c.contrast.options.frequencies_cpd.size(), 2u);
+  EXPECT_EQ(c.contrast.options.frequencies_cpd[1], 4.0);
+  EXPECT_TRUE(testing::Close(c.contrast.options.accommodation_step_diopters, 0.1, 1e-9));
+  EXPECT_TRUE(testing::Close(c.contrast.options.retina_resolution_deg, 0.02, 1e-12));
   ASSERT_EQ(c.compare.scenes.size(), 1u);
   EXPECT_EQ(c.compare.scenes[0], "examples/hybrid_pbs_hwp.json");
   EXPECT_EQ(c.compare.iterations.value_or(0), 5);

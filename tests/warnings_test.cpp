@@ -65,7 +65,7 @@ TEST(Warnings, AContrastFrequencyAboveWhatTheDisplayCanShow) {
     finest = std::max(finest, 1 / (2 * std::atan(std::min(l.tan_pitch_x, l.tan_pitch_y)) * 180 / std::numbers::pi));
   EXPECT_NEAR(d.system.max_cpd, finest, 1e-9);
   ContrastOptions o;
-  o.frequencies = {2, d.system.max_cpd, 6};
+  o.frequencies_cpd = {2, d.system.max_cpd, 6};
   const std::vector<std::string> warnings = ContrastWarnings({d}, o);
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_EQ(warnings[0], "two_layers: 6.00 cpd is above the " + FormatFixed(d.system.max_cpd, 2) +

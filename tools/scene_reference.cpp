@@ -2,6 +2,8 @@
 
 #include <map>
 
+#include "layerlab/analysis/contrast_option_table.h"
+#include "layerlab/analysis/run_option_table.h"
 #include "layerlab/elements/registry.h"
 #include "layerlab/framework/error.h"
 #include "layerlab/solvers/solver_option_table.h"
@@ -18,7 +20,7 @@ std::vector<Source> Sources() {
   std::vector<Source> sources = {{"systems/scene.cpp", {"scene"}}, {"elements/registry.cpp", {"element"}}};
   for (const std::string& type : ElementRegistry::WithBuiltins().names())
     sources.push_back({"elements/" + type + ".cpp", {type}});
-  sources.push_back({"", {"solve"}});  // the option table
+  sources.push_back({"solvers/solver_option_table.cpp", {"solve"}});
   sources.push_back({"analysis/run_config.cpp", {"run", "run.retina", "run.contrast", "run.compare", "depth_range"}});
   return sources;
 }
@@ -31,26 +33,55 @@ std::string Row(const std::vector<std::string>& cells) {
 
 std::string Code(const std::string& s) { return s.empty() ? "" : "`" + s + "`"; }
 
-// The "solve" section, from the option table.
-KeyTable SolveTable() {
+// A section made from an option table (framework/option_table.h): the
+// scene's keys, then the options the scene file does not set.
+KeyTable OptionKeyTable(const std::string& section, const std::string& file, const std::string& prose,
+                        const std::vector<const OptionSpec*>& entries) {
   KeyTable t;
-  t.section = "solve";
-  t.file = "solvers/solver_option_table.cpp";
+  t.section = section;
+  t.file = file;
   t.from_option_table = true;
-  t.prose =
+  t.prose = prose;
+  for (const OptionSpec* e : entries) {
+    KeyRow r{e->key, e->type, e->default_text, e->meaning, "", "", ""};
+    if (e->has_range) r.range = e->range.Text(e->kind == OptionKind::kInteger) + e->constraint_note;
+    if (e->kind == OptionKind::kSeed) r.range = "[0, 2^64 - 1]";
+    r.cli_flag = e->cli_flag;
+    r.python = e->python;
+    (e->in_scene ? t.rows : t.other_options).push_back(r);
+  }
+  return t;
+}
+
+// The sections made from option tables, by name.
+std::map<std::string, KeyTable> OptionTables() {
+  std::map<std::string, KeyTable> out;
+  out["solve"] = OptionKeyTable(
+      "solve", "solvers/solver_option_table.cpp",
       "the scene's \"solve\" section, the solver and its target; the command line (`layerlab solve`) and Python's "
       "`solve()` override any of it. Paths are relative to the scene file's folder. A key of an option that the "
       "chosen solver does not read is refused. A value outside its range is refused, by the scene reader, the "
-      "command line and Python alike (SolverOptions::IsValid).";
-  for (const SolverOptionEntry& e : SolverOptionTable()) {
-    KeyRow r{e.key, e.type, e.default_text, e.meaning, "", "", ""};
-    if (e.has_range) r.range = e.range.Text(e.kind == SolverOptionKind::kInteger) + e.constraint_note;
-    if (e.kind == SolverOptionKind::kSeed) r.range = "[0, 2^64 - 1]";
-    r.cli_flag = e.cli_flag;
-    r.python = e.python;
-    (e.in_scene ? t.rows : t.other_options).push_back(r);
-  }
-  return t;
+      "command line and Python alike (SolverOptions::IsValid).",
+      OptionSpecs(SolverOptionTable()));
+  out["run"] = OptionKeyTable(
+      "run", "analysis/run_option_table.cpp",
+      "the scene's \"run\" section, what `layerlab run` does beyond the solve (docs/run-section.md). Nothing that "
+      "is not declared is computed.",
+      OptionSpecs(RunOptionTable()));
+  out["run.retina"] =
+      OptionKeyTable("run.retina", "analysis/run_option_table.cpp",
+                     "retinal images over accommodation (needs a target).", OptionSpecs(RetinaRunOptionTable()));
+  out["run.compare"] =
+      OptionKeyTable("run.compare", "analysis/run_option_table.cpp",
+                     "other displays on the same target (needs a target).", OptionSpecs(CompareRunOptionTable()));
+  out["run.contrast"] = OptionKeyTable(
+      "run.contrast", "analysis/contrast_option_table.cpp",
+      "normalized contrast against accommodation (the paper's Fig. 5); needs no target: each display is factorized "
+      "for a cosine grating at each depth. `layerlab contrast` and Python's `contrast()` take the same options. A "
+      "value outside its range is refused, by the scene reader, the command line and Python alike "
+      "(ContrastOptions::IsValid).",
+      OptionSpecs(ContrastOptionTable()));
+  return out;
 }
 
 std::string OptionTableRows(const std::vector<KeyRow>& rows) {
@@ -66,18 +97,21 @@ std::string OptionTableRows(const std::vector<KeyRow>& rows) {
 
 std::vector<KeyTable> SceneReferenceTables(const std::string& source_dir) {
   std::vector<KeyTable> out;
+  const std::map<std::string, KeyTable> option_tables = OptionTables();
   for (const Source& source : Sources()) {
-    if (source.file.empty()) {
-      out.push_back(SolveTable());
-      continue;
-    }
-    std::vector<KeyTable> tables = ReadKeyTables(source_dir + "/" + source.file);
     std::map<std::string, KeyTable> by_section;
-    for (KeyTable& t : tables) {
-      t.file = source.file;
-      by_section[t.section] = t;
-    }
+    bool commented = false;
+    for (const std::string& section : source.sections) commented = commented || !option_tables.count(section);
+    if (commented)
+      for (KeyTable& t : ReadKeyTables(source_dir + "/" + source.file)) {
+        t.file = source.file;
+        by_section[t.section] = t;
+      }
     for (const std::string& section : source.sections) {
+      if (auto made = option_tables.find(section); made != option_tables.end()) {
+        out.push_back(made->second);
+        continue;
+      }
       auto it = by_section.find(section);
       if (it == by_section.end())
         throw Error(source.file + ": no key table \"" + section + ": ...\" in the leading comment");
@@ -111,7 +145,8 @@ std::string SceneReferenceMarkdown(const std::string& source_dir) {
     md += t.prose + "\n\n";
     if (t.from_option_table) {
       md += "Described in " + Code(t.file) + ".\n\n" + OptionTableRows(t.rows) + "\n";
-      md += "Options the scene file does not set:\n\n" + OptionTableRows(t.other_options) + "\n";
+      if (!t.other_options.empty())
+        md += "Options the scene file does not set:\n\n" + OptionTableRows(t.other_options) + "\n";
       continue;
     }
     md += "Read in " + Code(t.file) + ".\n\n";

@@ -1,7 +1,9 @@
 // docs/scene-reference.md, made from the key tables (tools/key_tables.h) of
 // the scene reader, the element registry, each built-in element type and the
-// run section reader, and the solve section from the solver option table
-// (solvers/solver_option_table.h).
+// depth_range reader, and the sections made from option tables: solve
+// (solvers/solver_option_table.h), run, run.retina, run.compare
+// (analysis/run_option_table.h) and run.contrast
+// (analysis/contrast_option_table.h).
 #pragma once
 
 #include <string>

@@ -11,14 +11,17 @@
 #include <pybind11/stl.h>
 
 #include "layerlab/analysis/contrast.h"
+#include "layerlab/analysis/contrast_option_table.h"
 #include "layerlab/analysis/run_config.h"
 #include "layerlab/analysis/run_pipeline.h"
 #include "layerlab/python/src/arguments.h"
 #include "layerlab/python/src/bindings.h"
 #include "layerlab/python/src/json_convert.h"
 #include "layerlab/python/src/numpy_view.h"
+#include "layerlab/python/src/option_keywords.h"
 #include "layerlab/python/src/path_arg.h"
 #include "layerlab/python/src/result_dicts.h"
+#include "layerlab/solvers/solver_option_table.h"
 #include "layerlab/systems/compile.h"
 
 namespace py = pybind11;
@@ -99,10 +102,46 @@ py::dict RunDict(RunOutcome&& done) {
   return d;
 }
 
+// contrast()'s keywords: the contrast option table's Python names
+// (analysis/contrast_option_table.h). A key of the run section's "contrast"
+// object goes into `section` and is read by its reader with its checks; the
+// others are set here and checked by ContrastOptions::IsValid.
+const std::vector<const OptionSpec*>& ContrastKeywords() {
+  static const std::vector<const OptionSpec*> entries = KeywordEntries(ContrastOptionTable(), true);
+  return entries;
+}
+
+const char* ContrastDoc() {
+  static const std::string doc =
+      "Normalized contrast against accommodation (Fig. 5): one dict per display, depth and frequency, with "
+      "\"natural\" for natural viewing. `section` is a run section's \"contrast\" object (default: the first "
+      "scene's); a keyword sets one of its options over it (docs/scene-reference.md, run.contrast):\n" +
+      KeywordDoc(ContrastKeywords());
+  return doc.c_str();
+}
+
+// The section with the keywords of its keys put in; the others' entries in *rest.
+nlohmann::json ContrastSection(const py::object& section, const py::kwargs& keywords,
+                               std::vector<std::pair<const ContrastOptionEntry*, py::handle>>* rest) {
+  nlohmann::json given = section.is_none() ? nlohmann::json() : ToJson(section, "contrast()", "/run/contrast");
+  for (const auto& [name, value] : keywords) {
+    const ContrastOptionEntry& e =
+        *FindContrastOption(KeywordEntry(ContrastKeywords(), name.cast<std::string>(), "contrast").key);
+    if (!e.in_scene) {
+      rest->push_back({&e, value});
+      continue;
+    }
+    if (given.is_null()) given = nlohmann::json::object();
+    if (given.contains(e.key)) RaiseArgumentError("contrast: " + e.key + " is both in the section and a keyword");
+    given[e.key] = ToJson(value, "contrast()", "/run/contrast/" + e.key);
+  }
+  return given;
+}
+
 // The displays of the first scene file and the others; the options are those
 // of a run section's "contrast" object (docs/run-section.md), read by the same
-// reader with the same checks: `section`, or else the first scene's own.
-py::list Contrast(const py::object& scenes, const py::object& section) {
+// reader with the same checks: `section` and the keywords, or else the first scene's own.
+py::list Contrast(const py::object& scenes, const py::object& section, const py::kwargs& keywords) {
   std::vector<std::string> files;
   if (py::isinstance<py::str>(scenes) || py::hasattr(scenes, "__fspath__")) {
     files.push_back(PathArg(scenes));
@@ -110,8 +149,10 @@ py::list Contrast(const py::object& scenes, const py::object& section) {
     for (const py::handle& f : scenes) files.push_back(PathArg(f));
   }
   if (files.empty()) throw py::value_error("contrast: no scene");
-  nlohmann::json given;
-  if (!section.is_none()) given = {{"run", {{"contrast", ToJson(section, "contrast()", "/run/contrast")}}}};
+  std::vector<std::pair<const ContrastOptionEntry*, py::handle>> rest;
+  nlohmann::json given = ContrastSection(section, keywords, &rest);
+  ContrastOptions set_here;  // the keywords the scene does not hold, checked before anything is loaded
+  for (const auto& [entry, value] : rest) SetKeyword(set_here, *entry, value);
   std::vector<ContrastCurve> curves;
   {
     py::gil_scoped_release release;
@@ -124,9 +165,10 @@ py::list Contrast(const py::object& scenes, const py::object& section) {
         options.document["run"] = {{"contrast", nlohmann::json::object()}};
     } else {
       options.file = "contrast()";
-      options.document = given;
+      options.document = {{"run", {{"contrast", given}}}};
     }
-    const ContrastRunConfig config = ReadRunConfig(options, displays.front().system).contrast;
+    ContrastRunConfig config = ReadRunConfig(options, displays.front().system).contrast;
+    for (const auto& [entry, value] : rest) entry->set(config.options, entry->get(set_here));
     for (const std::string& f : config.scenes) displays.push_back(LoadContrastDisplay(f));
     curves = RunContrast(displays, config.options);
   }
@@ -143,9 +185,14 @@ void BindAnalysis(py::module_& m) {
       [](const py::object& scene, const py::object& out, const py::object& iterations, const py::object& threads) {
         RunRequest request;
         request.scene = PathArg(scene), request.out = PathArg(out), request.keep_images = true;
-        if (!iterations.is_none())
-          request.iterations = static_cast<int>(IntegerArg(iterations, "run: iterations", 1, 1000000));
-        if (!threads.is_none()) request.threads = static_cast<int>(IntegerArg(threads, "run: threads", 0, 1024));
+        // The main solve's, checked as solve() checks them (the solver option table's ranges).
+        auto solve_option = [](const py::object& value, const char* key) {
+          const SolverOptionEntry& e = *FindSolverOption(key);
+          return static_cast<int>(IntegerArg(value, std::string("run: ") + key, static_cast<long long>(e.range.min),
+                                             static_cast<long long>(e.range.max), e.Constraint()));
+        };
+        if (!iterations.is_none()) request.iterations = solve_option(iterations, "iterations");
+        if (!threads.is_none()) request.threads = solve_option(threads, "threads");
         RunOutcome outcome;
         {
           py::gil_scoped_release release;
@@ -157,10 +204,7 @@ void BindAnalysis(py::module_& m) {
       py::arg("threads") = py::none(),
       "Runs the scene's \"solve\" and \"run\" sections like `layerlab run SCENE --out OUT`; returns what was written "
       "and what was computed: report, patterns (arrays), retina (arrays), contrast (curves), compare (columns)");
-  m.def("contrast", &Contrast, py::arg("scenes"), py::arg("section") = py::none(),
-        "Normalized contrast against accommodation (Fig. 5): one dict per display, depth and frequency, with "
-        "\"natural\" for natural viewing; `section` is a run section's \"contrast\" object (default: the first "
-        "scene's)");
+  m.def("contrast", &Contrast, py::arg("scenes"), py::arg("section") = py::none(), ContrastDoc());
 }
 
 }  // namespace layerlab::python

@@ -24,6 +24,7 @@
 #include "layerlab/python/src/bindings.h"
 #include "layerlab/python/src/json_convert.h"
 #include "layerlab/python/src/numpy_view.h"
+#include "layerlab/python/src/option_keywords.h"
 #include "layerlab/python/src/path_arg.h"
 #include "layerlab/python/src/result_dicts.h"
 #include "layerlab/python/src/solve_hooks.h"
@@ -55,67 +56,22 @@ struct Solution {
 // The keywords of solve() beyond its parameters: the option table's Python
 // names (solvers/solver_option_table.h), each checked for its type here and for
 // its range by SolverOptions::IsValid.
-std::vector<const SolverOptionEntry*> OptionKeywords() {
-  std::vector<const SolverOptionEntry*> out;
-  for (const SolverOptionEntry& e : SolverOptionTable())
-    if (!e.python.empty() && e.kind != SolverOptionKind::kConfig) out.push_back(&e);
-  return out;
+const std::vector<const OptionSpec*>& OptionKeywords() {
+  static const std::vector<const OptionSpec*> entries = KeywordEntries(SolverOptionTable(), false);
+  return entries;
 }
 
 void SetOption(SolverOptions& o, const std::string& key, const py::handle& value) {
-  const SolverOptionEntry* entry = nullptr;
-  for (const SolverOptionEntry* e : OptionKeywords())
-    if (e->python == key) entry = e;
-  if (!entry) {
-    std::vector<std::string> names;
-    for (const SolverOptionEntry* e : OptionKeywords()) names.push_back(e->python);
-    throw py::type_error("solve() got an unexpected option '" + key + "'; options: " + JoinWords(names, ", "));
-  }
-  const SolverOptionEntry& e = *entry;
-  switch (e.kind) {
-    case SolverOptionKind::kInteger:
-      o.*e.integer = static_cast<int>(
-          IntegerArg(value, key, std::numeric_limits<int>::min(), std::numeric_limits<int>::max(), e.Constraint()));
-      break;
-    case SolverOptionKind::kReal:
-      o.*e.real = RealArg(value, key);
-      break;
-    case SolverOptionKind::kSeed:
-      o.*e.seed = Unsigned64Arg(value, key);
-      break;
-    case SolverOptionKind::kChoice: {
-      if (!py::isinstance<py::str>(value))
-        throw py::type_error(key + ": expected a str (" + e.ChoiceList() + "), got " + TypeName(value));
-      const std::string v = value.cast<std::string>();
-      const int index = e.ChoiceIndex(v);
-      if (index < 0) RaiseArgumentError(key + ": \"" + v + "\" is not one of " + e.ChoiceList());
-      e.set(o, index);
-      break;
-    }
-    case SolverOptionKind::kBoolean:
-      if (!PyBool_Check(value.ptr())) throw py::type_error(key + ": expected a bool, got " + TypeName(value));
-      e.set(o, value.cast<bool>() ? 1 : 0);
-      break;
-    case SolverOptionKind::kConfig:
-      break;
-  }
+  SetKeyword(o, *FindSolverOption(KeywordEntry(OptionKeywords(), key, "solve").key), value);
 }
 
 // solve()'s docstring: what it does and every option keyword, from the table.
 const char* SolveDoc() {
-  static const std::string doc = [] {
-    std::string d =
-        "Factorizes a target light field into layer patterns (docs/python.md).\n\n"
-        "solver: a solver's name (default: the scene's, or the display's default); sampling: nearest or bilinear.\n"
-        "Options (keyword arguments; docs/scene-reference.md):\n";
-    for (const SolverOptionEntry* e : OptionKeywords()) {
-      d += "  " + e->python + ": " + e->meaning;
-      if (e->has_range) d += "; in " + e->range.Text(e->kind == SolverOptionKind::kInteger);
-      if (!e->choices.empty()) d += "; " + e->ChoiceList();
-      d += " (default: " + e->default_text + ")\n";
-    }
-    return d;
-  }();
+  static const std::string doc =
+      "Factorizes a target light field into layer patterns (docs/python.md).\n\n"
+      "solver: a solver's name (default: the scene's, or the display's default); sampling: nearest or bilinear.\n"
+      "Options (keyword arguments; docs/scene-reference.md):\n" +
+      KeywordDoc(OptionKeywords());
   return doc.c_str();
 }
 
