@@ -48,13 +48,13 @@ def jobs(dice, quick):
 
 VERSION = re.compile(rb"git [0-9a-f]{7,40}(-dirty)?")
 SECONDS = re.compile(rb"\b\d+(\.\d+)? s\b")
-TRACE_ROW = re.compile(rb"^(\s+\d+\s+)[0-9.]+(\s)", re.MULTILINE)
+TRACE_ROW = re.compile(rb"^(\s+\d+)\s+[0-9.]+(\s)", re.MULTILINE)  # the seconds column, however wide
 
 
 def masked_text(name, data):
     data = SECONDS.sub(b"T s", VERSION.sub(b"git X", data))
     if name.endswith("report.txt"):  # the trace table: iteration, seconds, objective, PSNR
-        data = TRACE_ROW.sub(rb"\1T\2", data)
+        data = TRACE_ROW.sub(rb"\1 T\2", data)
     if name.endswith("peaks.txt"):  # the last two columns: solve (s), sweep (s)
         lines = data.split(b"\n")
         data = b"\n".join(b" ".join(l.split()[:-2]) if l and not l.startswith(b"#") else l for l in lines)
