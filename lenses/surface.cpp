@@ -98,12 +98,7 @@ SurfaceHit Surface::IntersectConic(const Eigen::Vector3d& origin, const Eigen::V
     best = t;
   }
   if (!std::isfinite(best)) return Missed();
-  SurfaceHit hit;
-  hit.status = HitStatus::kHit;
-  hit.t = best;
-  hit.point = origin + best * d;
-  hit.normal = Normal(hit.point.x(), hit.point.y());
-  return hit;
+  return HitAt(origin, d, best);
 }
 
 // Newton's method on f(t) = z(t) - z_shift - sag(r(t)). Converged when the step
