@@ -98,7 +98,9 @@ TEST(ContrastOptionTable, KeysFlagsAndPythonNamesAreEachOnceAndEveryFieldHasItsA
         break;
     }
     // Not in the scene: a keyword Python sets itself, which it can for choices and switches only.
-    if (!e.in_scene) EXPECT_TRUE(e.kind == OptionKind::kChoice || e.kind == OptionKind::kBoolean) << e.key;
+    if (!e.in_scene) {
+      EXPECT_TRUE(e.kind == OptionKind::kChoice || e.kind == OptionKind::kBoolean) << e.key;
+    }
   }
   std::string why;
   EXPECT_TRUE(ContrastOptions{}.IsValid(&why)) << why;
@@ -112,8 +114,12 @@ TEST(ContrastOptionTable, TheDefaultsAreTheOptionsOwn) {
       const std::vector<double> field = e.list ? defaults.*e.list : std::vector<double>{e.Number(defaults)};
       EXPECT_EQ(table, field) << e.key << ": the table says " << e.default_text;
     }
-    if (e.kind == OptionKind::kChoice) EXPECT_EQ(e.choices.at(e.get(defaults)), e.default_text) << e.key;
-    if (e.kind == OptionKind::kBoolean) EXPECT_EQ(e.get(defaults) ? "true" : "false", e.default_text) << e.key;
+    if (e.kind == OptionKind::kChoice) {
+      EXPECT_EQ(e.choices.at(e.get(defaults)), e.default_text) << e.key;
+    }
+    if (e.kind == OptionKind::kBoolean) {
+      EXPECT_EQ(e.get(defaults) ? "true" : "false", e.default_text) << e.key;
+    }
   }
   const ContrastOptionEntry& accommodation = *FindContrastOption("accommodation");
   std::ostringstream sweep;
@@ -178,9 +184,10 @@ TEST(ContrastOptionTable, TheSceneReaderReadsTheTablesKeysWithTheirRanges) {
       const double inside = InsideRange(e.range, integer, at_min, step);
       const double outside = OutsideRange(e.range, integer, at_min, step);
       EXPECT_EQ(ReadError({{e.key, SceneValue(e, inside)}}), "") << e.key << " at " << inside;
-      if (ReadError({{e.key, SceneValue(e, inside)}}).empty())
+      if (ReadError({{e.key, SceneValue(e, inside)}}).empty()) {
         EXPECT_NEAR(Read(e, ReadSection({{e.key, SceneValue(e, inside)}}).options), inside, 1e-12 * (1 + inside))
             << e.key;
+      }
       const std::string refused = ReadError({{e.key, SceneValue(e, outside)}});
       EXPECT_NE(refused.find(at), std::string::npos) << e.key << " at " << outside << ": " << refused;
     }

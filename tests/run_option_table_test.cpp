@@ -59,11 +59,21 @@ void ExpectWellFormed(const std::vector<OptionEntry<Options>>& table) {
     EXPECT_TRUE(e.in_scene) << e.key;
     // The run section has no flags or keywords of its own: one here would have no consumer.
     EXPECT_TRUE(e.cli_flag.empty() && e.python.empty()) << e.key;
-    if (e.kind == OptionKind::kReal) EXPECT_TRUE((e.real != nullptr) != (e.list != nullptr) && e.has_range) << e.key;
-    if (e.kind == OptionKind::kChoice || e.kind == OptionKind::kBoolean) EXPECT_TRUE(e.get && e.set) << e.key;
-    if (e.kind == OptionKind::kChoice) EXPECT_EQ(e.choices.at(e.get(Options{})), e.default_text) << e.key;
-    if (e.kind == OptionKind::kBoolean) EXPECT_EQ(e.get(Options{}) ? "true" : "false", e.default_text) << e.key;
-    if (e.kind == OptionKind::kConfig) EXPECT_FALSE(e.integer || e.real || e.list || e.get) << e.key;
+    if (e.kind == OptionKind::kReal) {
+      EXPECT_TRUE((e.real != nullptr) != (e.list != nullptr) && e.has_range) << e.key;
+    }
+    if (e.kind == OptionKind::kChoice || e.kind == OptionKind::kBoolean) {
+      EXPECT_TRUE(e.get && e.set) << e.key;
+    }
+    if (e.kind == OptionKind::kChoice) {
+      EXPECT_EQ(e.choices.at(e.get(Options{})), e.default_text) << e.key;
+    }
+    if (e.kind == OptionKind::kBoolean) {
+      EXPECT_EQ(e.get(Options{}) ? "true" : "false", e.default_text) << e.key;
+    }
+    if (e.kind == OptionKind::kConfig) {
+      EXPECT_FALSE(e.integer || e.real || e.list || e.get) << e.key;
+    }
   }
 }
 
@@ -130,7 +140,9 @@ TEST(RunOptionTable, IsValidRefusesExactlyWhatLiesOutsideEachRange) {
         if (e.key == "field") r.field_x_deg = v, r.field_y_deg = 10;
         std::string why;
         EXPECT_EQ(r.IsValid(&why), !outside) << e.key << " at " << v << ": " << why;
-        if (outside) EXPECT_EQ(why.find(e.Constraint()) != std::string::npos && why.rfind(e.key, 0) == 0, true) << why;
+        if (outside) {
+          EXPECT_EQ(why.find(e.Constraint()) != std::string::npos && why.rfind(e.key, 0) == 0, true) << why;
+        }
       }
     }
   }
@@ -145,7 +157,9 @@ TEST(RunOptionTable, IsValidRefusesExactlyWhatLiesOutsideEachRange) {
         if (e.key == "time_budget") c.time_budget_s = v;
         std::string why;
         EXPECT_EQ(c.IsValid(&why), !outside) << e.key << " at " << v << ": " << why;
-        if (outside) EXPECT_EQ(why, OptionViolation(e.key, v, e.Constraint()));
+        if (outside) {
+          EXPECT_EQ(why, OptionViolation(e.key, v, e.Constraint()));
+        }
       }
     }
   }
