@@ -25,6 +25,9 @@
 #include "layerlab/framework/polarization.h"
 
 namespace layerlab {
+namespace lenses {
+class LensSystem;
+}
 
 enum class ElementKind { kEye, kLens, kMirror, kCombiner, kInlineOptic, kPanel, kBacklight };
 
@@ -72,6 +75,9 @@ class LensElement : public Element {
   double power() const override { return 1.0 / focal_length(); }
   // A focus-tunable lens changes its power from subframe to subframe.
   virtual bool tunable() const { return false; }
+  // A lens of real surfaces and glass (elements/lens.cpp), its first vertex
+  // nearest the eye, traced exactly by lenses/; none for an ideal thin lens.
+  virtual std::shared_ptr<const lenses::LensSystem> lens_system() const { return nullptr; }
 };
 
 // A fold mirror: it reverses one eye-space axis of what lies behind it and,

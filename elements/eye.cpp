@@ -14,7 +14,7 @@
 // | views               | [x, y] integers    | [13, 13]         | views of target light fields             |
 // | chromatic_aberration | none, thibos      | none             | thibos: each channel's defocus from its wavelength by the chromatic eye of Thibos et al. (1992, Appl. Opt. 31:3594), Rx = 1.68524 - 0.63346 / (lambda_um - 0.21410) D, relative to reference_wavelength; added to chromatic_defocus |
 // | reference_wavelength | length            | 555 nm           | the wavelength in focus at the accommodation (thibos) |
-// | channel_wavelengths | [r, g, b] lengths  | [612, 549, 465] nm | the channels' dominant wavelengths, for thibos and diffraction (the spectral tables are read at the defaults) |
+// | channel_wavelengths | [r, g, b] lengths  | [612, 549, 465] nm | the channels' dominant wavelengths, for thibos, diffraction and real lenses (the spectral tables are read at the defaults) |
 // | pupil_luminance     | luminance          | half the display's peak white | pupil_diameter "auto": the luminance at the eye |
 // | pupil_field         | [angle, angle]     | the display's field of view | pupil_diameter "auto": width, height of the adapting field (its area counts) |
 // | pupil_age           | number, years      | 28.58            | pupil_diameter "auto": the observer's age, 20 to 83 (28.58, the formula's reference age, has no age term) |

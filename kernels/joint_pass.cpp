@@ -177,11 +177,9 @@ void JointPass::ViewGeneral(const float* target, const Patterns& t, size_t view,
       residual_terms[i] = (synthesized[i] - target[i]) * q;
       denominator_terms[i] = synthesized[i] * q;
     }
-    model_.projection(a).ForEachTap(view, [&](size_t ray, int32_t pixel, float weight) {
-      for (int ch = 0; ch < 3; ++ch) {
-        sums->num[a][static_cast<size_t>(pixel) * 3 + ch] += weight * residual_terms[ray * 3 + ch];
-        sums->den[a][static_cast<size_t>(pixel) * 3 + ch] += weight * denominator_terms[ray * 3 + ch];
-      }
+    model_.projection(a).ForEachChannelTap(view, [&](size_t ray, int ch, int32_t pixel, float weight) {
+      sums->num[a][static_cast<size_t>(pixel) * 3 + ch] += weight * residual_terms[ray * 3 + ch];
+      sums->den[a][static_cast<size_t>(pixel) * 3 + ch] += weight * denominator_terms[ray * 3 + ch];
     });
   }
 }

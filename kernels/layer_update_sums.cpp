@@ -42,12 +42,10 @@ void AccumulateGeneral(const DisplayModel& model, const std::vector<int>& layers
   for (int other : layers)
     if (other != layer) model.projection(other).GatherMultiply(view, t[other].rgb.data(), rest.data(), &ws->gathered);
   P.Gather(view, t[layer].rgb.data(), sampled.data());
-  P.ForEachTap(view, [&](size_t ray, int32_t pixel, float weight) {
-    for (int c = 0; c < 3; ++c) {
-      const float q = rest[ray * 3 + c];
-      num[static_cast<size_t>(pixel) * 3 + c] += weight * target[ray * 3 + c] * q;
-      den[static_cast<size_t>(pixel) * 3 + c] += weight * sampled[ray * 3 + c] * q * q;
-    }
+  P.ForEachChannelTap(view, [&](size_t ray, int c, int32_t pixel, float weight) {
+    const float q = rest[ray * 3 + c];
+    num[static_cast<size_t>(pixel) * 3 + c] += weight * target[ray * 3 + c] * q;
+    den[static_cast<size_t>(pixel) * 3 + c] += weight * sampled[ray * 3 + c] * q * q;
   });
 }
 

@@ -6,12 +6,14 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numbers>
 
 #include "layerlab/eye/chromatic_eye.h"
 #include "layerlab/framework/error.h"
 #include "layerlab/framework/random.h"
 #include "layerlab/framework/units.h"
+#include "layerlab/systems/layer_ray_map.h"
 
 namespace layerlab {
 
@@ -311,7 +313,7 @@ std::vector<LayerTables> GeneralTables(const DisplayModel& model, const RetinaGr
         const LayerSampler& s = model.projection(k).sampler();
         LayerTables& table = tables[(p * layers + k) * foci + f];
         table.blur = s.diopters() - accommodation[f];
-        if (!s.separable()) continue;
+        if (!s.separable() || model.projection(k).mapped()) continue;
         table.cols.resize(retina.cols), table.rows.resize(retina.rows);
         for (int j = 0; j < retina.cols; ++j)
           table.cols[j] = s.Column(tan_x[j] + pupil[p].x_m * table.blur - pupil[p].slope_x);
@@ -319,6 +321,16 @@ std::vector<LayerTables> GeneralTables(const DisplayModel& model, const RetinaGr
           table.rows[i] = s.Row(tan_y[i] + pupil[p].y_m * table.blur - pupil[p].slope_y);
       }
   return tables;
+}
+
+// Behind a real lens: the pupil point's ray toward retinal direction tan,
+// focused at the accommodation (D - blur), traced to the panel in channel c.
+double ReadThroughLens(const SampledRayMap& map, const RayMapView& view, const LayerSampler& s, double blur,
+                       const PupilPoint& p, double tan_x, double tan_y, const LayerPattern& t, int c) {
+  const double accommodation = s.diopters() - blur;
+  const auto U = view.Lookup(c, map.TanCell(0, tan_x - accommodation * p.x_m - p.slope_x),
+                             map.TanCell(1, tan_y - accommodation * p.y_m - p.slope_y));
+  return U ? Read(s.At((*U)[0], (*U)[1]), t, c) : 0.0;
 }
 
 // The general path: every layer read through every pupil point, each
@@ -329,6 +341,11 @@ void GeneralRetina(const DisplayModel& model, const Patterns& t, const RetinaGri
   const int foci = same_focus ? 1 : 3;
   const size_t layers = model.layer_count();
   const double inverse_count = 1.0 / pupil.size();
+  std::vector<std::unique_ptr<RayMapView>> lens_views(pupil.size() * layers);  // [pupil point][layer], mapped layers
+  for (size_t p = 0; p < pupil.size(); ++p)
+    for (size_t k = 0; k < layers; ++k)
+      if (const SampledRayMap* map = model.projection(k).ray_map())
+        lens_views[p * layers + k] = std::make_unique<RayMapView>(*map, pupil[p].x_m, pupil[p].y_m);
 #pragma omp parallel
   {
     std::vector<double> sum(size_t(retina.cols) * 3);
@@ -340,6 +357,14 @@ void GeneralRetina(const DisplayModel& model, const Patterns& t, const RetinaGri
         for (int j = 0; j < retina.cols; ++j) {
           for (size_t k = 0; k < layers; ++k) {
             const LayerSampler& s = model.projection(k).sampler();
+            if (const SampledRayMap* map = model.projection(k).ray_map()) {
+              for (int c = 0; c < 3; ++c) {
+                const LayerTables& table = tables[(p * layers + k) * foci + (same_focus ? 0 : c)];
+                value[k * 3 + c] = ReadThroughLens(*map, *lens_views[p * layers + k], s, table.blur, pupil[p], tan_x[j],
+                                                   tan_y[i], t[k], c);
+              }
+              continue;
+            }
             for (int c = 0; c < 3; ++c) {
               const LayerTables& table = tables[(p * layers + k) * foci + (same_focus ? 0 : c)];
               if (c > 0 && same_focus && s.separable()) {

@@ -9,6 +9,9 @@
 
 #include "layerlab/eye/pupil_size.h"
 #include "layerlab/framework/units.h"
+#include "layerlab/lenses/lens_system.h"
+#include "layerlab/lenses/paraxial.h"
+#include "layerlab/systems/layer_ray_map.h"
 #include "layerlab/systems/optics.h"
 
 namespace layerlab {
@@ -149,6 +152,10 @@ class Walker {
 
   [[noreturn]] static void Fail(const Location& at, const std::string& message) { throw Error(at, message); }
 
+  // Real lenses' paraxial quantities (the layers' depths and pitches) are the
+  // green channel's; each channel's own rays go through the layer's ray map.
+  double DesignWavelength() const { return system_.eye.channel_wavelengths_m[1]; }
+
   const SceneNode& FindEye() const {
     const SceneNode* eye = nullptr;
     for (const SceneNode& node : scene_.nodes) {
@@ -214,10 +221,18 @@ class Walker {
       Fail(node.where, Quoted(e.name()) + " gives " + std::to_string(e.powers_given()) +
                            " powers, one per subframe, but the scene shows " + std::to_string(scene_.subframes) +
                            " (\"subframes\": " + std::to_string(scene_.subframes) + " at the top of the scene)");
-    const double power = e.power_in_subframe(subframe_);
+    double power = e.power_in_subframe(subframe_);
+    std::shared_ptr<const lenses::LensSystem> lens;
+    lenses::VertexTransfer vertices;
+    if (e.kind() == ElementKind::kLens) lens = static_cast<const LensElement&>(e).lens_system();
+    if (lens) {
+      vertices = lenses::TransferFromMatrices(*lens, DesignWavelength());
+      power = -vertices.c;
+    }
     const bool powered = e.kind() == ElementKind::kLens || power != 0;
     if (e.powers_given() > 0) state.tunable = e.name();
-    PathStep step{e.name(), e.type(), e.kind(), "", std::nullopt, power, false, false, std::nullopt, {}};
+    PathStep step{e.name(), e.type(), e.kind(), "", std::nullopt, power, false, false, std::nullopt, {}, nullptr, 0};
+    if (lens) step.lens_system = lens, step.axial_length_m = lens->vertex_z_m(lens->size() - 1);
     const bool first_power = !state.last_power;
     if (e.gap()) {
       step.position_m = AfterPrevious(node, state, *e.gap());
@@ -237,7 +252,12 @@ class Walker {
     if (step.position_m) {
       Advance(state, *step.position_m, e.name());
       step.arrival = state.transfer;
-      state.transfer = state.transfer.then_power(power);
+      if (lens) {  // through the lens's vertex planes; the next gap counts from its last vertex
+        state.transfer = state.transfer.then({vertices.a, vertices.b, vertices.c, vertices.d});
+        state.placed_at += step.axial_length_m;
+      } else {
+        state.transfer = state.transfer.then_power(power);
+      }
     }
     if (powered) {
       state.last_power = state.steps.size();
@@ -258,6 +278,7 @@ class Walker {
     state.flip_x = state.flip_x != step.flips_x;
     state.flip_y = state.flip_y != step.flips_y;
     state.previous_position = step.position_m;
+    if (step.position_m) *state.previous_position += step.axial_length_m;
     state.previous_name = e.name();
     state.light.push_back({&e, port});
     state.steps.push_back(step);
@@ -327,7 +348,7 @@ class Walker {
       state.previous_position = layer.position_m;
       state.previous_name = layer.name;
       state.steps.push_back({layer.name, node->element->type(), ElementKind::kPanel, "", layer.position_m, 0, false,
-                             false, std::nullopt, state.transfer});
+                             false, std::nullopt, state.transfer, nullptr, 0});
       stack_.push_back(node);
       node = &Follow(*node, 0, {ElementKind::kPanel, ElementKind::kBacklight});
     }
@@ -355,7 +376,8 @@ class Walker {
                "to subframe; place " +
                Quoted(layer.name) + " by \"distance\" or \"gap\"");
     layer.path = state.steps;
-    const double lens_at = state.last_power ? *state.steps[*state.last_power].position_m : 0.0;
+    const PathStep* last_power = state.last_power ? &state.steps[*state.last_power] : nullptr;
+    const double lens_at = last_power ? *last_power->position_m + last_power->axial_length_m : 0.0;
     const char* key = spec.virtual_depth ? "virtual_depth" : spec.distance_m ? "distance" : "gap";
     layer.position_m = PlaceOnPath(node, spec, state, front, layer.name, key, lens_at);
     layer.panel_distance_m = layer.position_m - lens_at;
@@ -531,6 +553,7 @@ class Walker {
 
   void FindMagnifier();
   void CheckApertures();
+  void MapRealLenses();
   void Finish();
   void SortFarthestFirst();
   void AddUpLight();
@@ -617,7 +640,42 @@ void Walker::Finish() {
     system_.vignetting_free_fov_y_rad = field(eye.eyebox_height_m);
   }
   CheckApertures();
+  MapRealLenses();
   DescribeComponents();
+}
+
+// The exact ray map of every layer behind a real lens, sampled over the
+// pupils of the eyebox and the directions that reach any layer's field, a
+// quarter wider (a light field is normally the display's own field).
+void Walker::MapRealLenses() {
+  const EyeModel& eye = system_.eye;
+  const double pupil_reach =
+      0.5 * eye.pupil_diameter_m * (eye.pupil_shape == PupilShape::kSquare ? std::sqrt(2.0) : 1.0);
+  std::array<double, 2> field_min{INFINITY, INFINITY}, field_max{-INFINITY, -INFINITY};  // U over every layer
+  for (const VirtualLayer& l : system_.layers) {
+    const double half = 1.25 * 0.5 * std::hypot(l.cols * l.tan_pitch_x, l.rows * l.tan_pitch_y);
+    const std::array<double, 2> centre{l.eye_from_layer_tan_x, l.eye_from_layer_tan_y};
+    for (int a = 0; a < 2; ++a)
+      field_min[a] = std::min(field_min[a], centre[a] - half), field_max[a] = std::max(field_max[a], centre[a] + half);
+  }
+  for (VirtualLayer& l : system_.layers) {
+    if (std::none_of(l.path.begin(), l.path.end(), [](const PathStep& s) { return s.lens_system != nullptr; }))
+      continue;
+    RayMapDomain domain;
+    domain.pupil_max_m = {0.5 * eye.eyebox_width_m + pupil_reach, 0.5 * eye.eyebox_height_m + pupil_reach};
+    domain.pupil_min_m = {-domain.pupil_max_m[0], -domain.pupil_max_m[1]};
+    for (int a = 0; a < 2; ++a) {  // u = U - D p over the field and the pupils
+      const double sweep = std::abs(l.diopters) * domain.pupil_max_m[a];
+      domain.tan_min[a] = field_min[a] - sweep;
+      domain.tan_max[a] = field_max[a] + sweep;
+    }
+    auto exact = std::make_shared<const LayerRayMap>(l, eye.channel_wavelengths_m);
+    l.ray_map = std::make_shared<const SampledRayMap>(exact, domain, l.tan_pitch_x, l.tan_pitch_y);
+    if (l.ray_map->bound_pixels() > kMapTolerancePixels)
+      system_.warnings.push_back("the ray map of layer " + Quoted(l.name) + " reaches only " +
+                                 FormatFixed(l.ray_map->bound_pixels(), 4) + " px against the exact trace (" +
+                                 FormatFixed(kMapTolerancePixels, 4) + " px wanted) at its largest grid");
+  }
 }
 
 // Farthest first, as the paper numbers its panels.
@@ -653,8 +711,14 @@ void Walker::AddUpLight() {
 void Walker::DescribeComponents() {
   const auto& layers = system_.layers;
   auto& parts = system_.components;
-  if (!system_.lens.empty()) {
+  std::set<std::string> real;
+  for (const VirtualLayer& l : layers)
+    for (const PathStep& s : l.path)
+      if (s.lens_system) real.insert(Quoted(s.element) + " (" + std::to_string(s.lens_system->size()) + " surfaces)");
+  if (!system_.lens.empty() && real.empty()) {
     parts.push_back("thin-lens floating (" + std::to_string(layers.size()) + " virtual layers)");
+  } else if (!system_.lens.empty()) {
+    parts.push_back("real-lens floating (" + std::to_string(layers.size()) + " virtual layers)");
   } else {
     std::set<std::string> lenses, mirrors;
     for (const VirtualLayer& l : layers)
@@ -669,6 +733,9 @@ void Walker::DescribeComponents() {
                       (lenses.size() == 1 ? "" : "es") + ", " + std::to_string(mirrors.size()) + " mirror" +
                       (mirrors.size() == 1 ? "" : "s") + " (" + std::to_string(layers.size()) + " virtual layers)");
   }
+  if (!real.empty())
+    parts.push_back("real lenses traced exactly per channel: " + JoinWords({real.begin(), real.end()}, ", ") +
+                    " (general projection path)");
   const int K = system_.subframes;
   if (K > 1)
     parts.push_back("time multiplexing: " + std::to_string(K) + " subframes per frame at " +

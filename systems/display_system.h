@@ -15,6 +15,7 @@
 // in meters in its own plane, measured from the optical axis.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -23,6 +24,8 @@
 #include "layerlab/systems/ray_transfer.h"
 
 namespace layerlab {
+
+class SampledRayMap;  // systems/layer_ray_map.h
 
 // One element between the eye and a panel, in path order.
 struct PathStep {
@@ -34,6 +37,11 @@ struct PathStep {
   bool flips_x = false, flips_y = false;   // mirror reversal (fold mirrors, reflected combiner ports)
   std::optional<double> clear_aperture_m;  // m, diameter
   RayTransfer<double> arrival;             // pupil -> this element, before its own power (placed elements)
+  // A real lens: its surfaces (first vertex at position_m) and the axial
+  // length to its last vertex; power_diopters is then its paraxial power at
+  // the design wavelength (the eye's green channel).
+  std::shared_ptr<const lenses::LensSystem> lens_system;
+  double axial_length_m = 0;
 };
 
 struct VirtualLayer {
@@ -60,6 +68,10 @@ struct VirtualLayer {
   double fov_x_rad = 0, fov_y_rad = 0;                        // rad, Eq. 2
   double max_cpd = 0;                                         // Nyquist at the grid center
   PanelSpec panel;                                            // as mounted, for panel-ready output
+  // Behind a real lens: where each channel's eye ray meets the panel
+  // (systems/layer_ray_map.h); the paraxial fields above are the design
+  // wavelength's. None through ideal optics (the affine fast path).
+  std::shared_ptr<const SampledRayMap> ray_map;
 };
 
 struct Branch {

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <string>
 
@@ -61,5 +62,54 @@ class LayerSampler {
   double diopters_, eye_from_layer_tan_x_, eye_from_layer_tan_y_, cos_, sin_, tan_pitch_x_, tan_pitch_y_;
   bool flip_x_, flip_y_;
 };
+
+// Inline: the general and mapped projections call these once per ray and channel.
+inline AxisTap LayerSampler::Tap(double coordinate, int size, bool flip) const {
+  AxisTap tap;
+  auto mirror = [&](int32_t index) { return flip ? size - 1 - index : index; };
+  // floor() by truncation inside the grid (the same cells, without a libm call per ray); NaN lands outside.
+  if (sampling_ == Sampling::kNearest) {
+    const double shifted = coordinate + 0.5;
+    if (shifted >= 0 && shifted < size) tap.i0 = mirror(static_cast<int32_t>(shifted)), tap.w0 = 1.0f;
+    return tap;
+  }
+  if (!(coordinate >= -1 && coordinate < size)) return tap;
+  const double low = coordinate >= 0 ? static_cast<double>(static_cast<int32_t>(coordinate)) : -1.0;
+  double frac = coordinate - low;
+  if (low >= 0 && low < size) tap.i0 = mirror(static_cast<int32_t>(low)), tap.w0 = static_cast<float>(1.0 - frac);
+  if (low + 1 >= 0 && low + 1 < size) tap.i1 = mirror(static_cast<int32_t>(low + 1)), tap.w1 = static_cast<float>(frac);
+  return tap;
+}
+
+inline AxisTap LayerSampler::Column(double tan_x) const {
+  return Tap((tan_x - eye_from_layer_tan_x_) / tan_pitch_x_ + 0.5 * cols_ - 0.5, cols_, flip_x_);
+}
+
+inline AxisTap LayerSampler::Row(double tan_y) const {
+  return Tap(-(tan_y - eye_from_layer_tan_y_) / tan_pitch_y_ + 0.5 * rows_ - 0.5, rows_, flip_y_);
+}
+
+inline RayTaps LayerSampler::Combine(const AxisTap& row, const AxisTap& col, int cols) {
+  RayTaps taps;
+  const int32_t ri[2] = {row.i0, row.i1}, ci[2] = {col.i0, col.i1};
+  const float rw[2] = {row.w0, row.w1}, cw[2] = {col.w0, col.w1};
+  for (int a = 0; a < 2; ++a)
+    for (int b = 0; b < 2; ++b)
+      if (ri[a] >= 0 && ci[b] >= 0 && rw[a] * cw[b] > 0) {
+        taps.index[taps.count] = ri[a] * cols + ci[b];
+        taps.weight[taps.count] = rw[a] * cw[b];
+        ++taps.count;
+      }
+  return taps;
+}
+
+inline RayTaps LayerSampler::At(double tan_x, double tan_y) const {
+  if (separable_) return Combine(Row(tan_y), Column(tan_x), cols_);
+  double ux = tan_x - eye_from_layer_tan_x_, uy = tan_y - eye_from_layer_tan_y_;
+  double a = cos_ * ux + sin_ * uy, b = -sin_ * ux + cos_ * uy;  // R(-rotation) u
+  AxisTap col = Tap(a / tan_pitch_x_ + 0.5 * cols_ - 0.5, cols_, flip_x_);
+  AxisTap row = Tap(-b / tan_pitch_y_ + 0.5 * rows_ - 0.5, rows_, flip_y_);
+  return Combine(row, col, cols_);
+}
 
 }  // namespace layerlab

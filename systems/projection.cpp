@@ -1,6 +1,9 @@
 #include "layerlab/systems/projection.h"
 
 #include <cmath>
+#include <stdexcept>
+
+#include "layerlab/systems/layer_ray_map.h"
 
 namespace layerlab {
 
@@ -8,7 +11,8 @@ LayerProjection::LayerProjection(const VirtualLayer& layer, const LightFieldGeom
     : lf_(lf),
       sampler_(layer, sampling),
       view_gain_(layer.diopters - 1.0 / lf.origin_z_m),
-      pixel_gain_(1.0 / lf.origin_z_m) {
+      pixel_gain_(1.0 / lf.origin_z_m),
+      map_(layer.ray_map) {
   if (!separable()) return;
   col_taps_.resize(static_cast<size_t>(lf.views_x) * lf.cols);
   for (int c = 0; c < lf.views_x; ++c)
@@ -22,7 +26,42 @@ LayerProjection::LayerProjection(const VirtualLayer& layer, const LightFieldGeom
           sampler_.Row(view_gain_ * lf.view_y(r) + pixel_gain_ * lf.pixel_y(i));
 }
 
+LayerProjection::MappedRays LayerProjection::MapView(size_t view) const {
+  const int vr = static_cast<int>(view / lf_.views_x), vc = static_cast<int>(view % lf_.views_x);
+  const double p_x = lf_.view_x(vc), p_y = lf_.view_y(vr);
+  const RayMapView map(*map_, p_x, p_y);
+  std::vector<SampledRayMap::Cell> cols(lf_.cols), rows(lf_.rows);
+  for (int j = 0; j < lf_.cols; ++j) cols[j] = map_->TanCell(0, (lf_.pixel_x(j) - p_x) * pixel_gain_);
+  for (int i = 0; i < lf_.rows; ++i) rows[i] = map_->TanCell(1, (lf_.pixel_y(i) - p_y) * pixel_gain_);
+  const size_t rays = lf_.pixels_per_view();
+  const bool nearest = sampling() == Sampling::kNearest;
+  MappedRays out;
+  (nearest ? out.nearest.resize(rays * 3) : out.taps.resize(rays * 3));
+  std::vector<double> U(rays * 2);
+  for (int c = 0; c < 3; ++c) {
+    map.Grid(c, cols, rows, U.data());
+    for (size_t ray = 0; ray < rays; ++ray) {
+      const double x = U[ray * 2], y = U[ray * 2 + 1];
+      const RayTaps taps = std::isnan(x) || std::isnan(y) ? RayTaps{} : sampler_.At(x, y);
+      if (nearest)
+        out.nearest[ray * 3 + c] = taps.count ? taps.index[0] : -1;
+      else
+        out.taps[ray * 3 + c] = taps;
+    }
+  }
+  return out;
+}
+
+RayTaps LayerProjection::ChannelTaps(size_t view, int i, int j, int c) const {
+  if (!map_) return Taps(view, i, j);
+  const int vr = static_cast<int>(view / lf_.views_x), vc = static_cast<int>(view % lf_.views_x);
+  const double p_x = lf_.view_x(vc), p_y = lf_.view_y(vr);
+  const auto U = map_->Lookup(c, p_x, p_y, (lf_.pixel_x(j) - p_x) * pixel_gain_, (lf_.pixel_y(i) - p_y) * pixel_gain_);
+  return U ? sampler_.At((*U)[0], (*U)[1]) : RayTaps{};
+}
+
 RayTaps LayerProjection::Taps(size_t view, int i, int j) const {
+  if (map_) throw std::logic_error("LayerProjection::Taps on a mapped layer: its taps are per channel");
   int vr = static_cast<int>(view / lf_.views_x), vc = static_cast<int>(view % lf_.views_x);
   if (separable())
     return LayerSampler::Combine(row_taps_[static_cast<size_t>(vr) * lf_.rows + i],
@@ -33,8 +72,8 @@ RayTaps LayerProjection::Taps(size_t view, int i, int j) const {
 
 void LayerProjection::Gather(size_t view, const float* pattern, float* out) const {
   std::fill(out, out + lf_.pixels_per_view() * 3, 0.0f);
-  ForEachTap(view, [&](size_t ray, int32_t pixel, float w) {
-    for (int c = 0; c < 3; ++c) out[ray * 3 + c] += w * pattern[static_cast<size_t>(pixel) * 3 + c];
+  ForEachChannelTap(view, [&](size_t ray, int c, int32_t pixel, float w) {
+    out[ray * 3 + c] += w * pattern[static_cast<size_t>(pixel) * 3 + c];
   });
 }
 
@@ -76,15 +115,22 @@ void LayerProjection::GatherMultiply(size_t view, const float* pattern, float* o
 }
 
 void LayerProjection::ScatterAdd(size_t view, const float* values, double* accum) const {
-  ForEachTap(view, [&](size_t ray, int32_t pixel, float w) {
-    for (int c = 0; c < 3; ++c) accum[static_cast<size_t>(pixel) * 3 + c] += double(w) * values[ray * 3 + c];
+  ForEachChannelTap(view, [&](size_t ray, int c, int32_t pixel, float w) {
+    accum[static_cast<size_t>(pixel) * 3 + c] += double(w) * values[ray * 3 + c];
   });
 }
 
 std::vector<uint8_t> LayerProjection::ReachedPixels() const {
   std::vector<uint8_t> reached(pixel_count(), 0);
-  for (size_t v = 0; v < lf_.view_count(); ++v)
-    ForEachTap(v, [&](size_t, int32_t pixel, float) { reached[pixel] = 1; });
+#pragma omp parallel
+  {
+    std::vector<uint8_t> mine(pixel_count(), 0);
+#pragma omp for schedule(dynamic)
+    for (size_t v = 0; v < lf_.view_count(); ++v)
+      ForEachChannelTap(v, [&](size_t, int, int32_t pixel, float) { mine[pixel] = 1; });
+#pragma omp critical
+    for (size_t p = 0; p < mine.size(); ++p) reached[p] |= mine[p];
+  }
   return reached;
 }
 

@@ -5,12 +5,15 @@
 // as seen from the pupil center (finite at D_k = 0); the layer's sampling
 // rule (layer_sampler.h) turns u into pixels. Without rotation the column
 // depends only on (x_x, v_x) and the row only on (x_y, v_y): each view is two
-// small tap tables. With rotation every ray is computed on the fly. Nothing
+// small tap tables. With rotation every ray is computed on the fly. Behind a
+// real lens (VirtualLayer::ray_map) each channel's ray reads where the layer's
+// ray map puts it, so its taps differ per channel (ForEachChannelTap). Nothing
 // of light-field size is stored.
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -27,7 +30,10 @@ class LayerProjection {
   int cols() const { return sampler_.cols(); }
   int rows() const { return sampler_.rows(); }
   size_t pixel_count() const { return static_cast<size_t>(cols()) * rows(); }
-  bool separable() const { return sampler_.separable(); }
+  bool separable() const { return !map_ && sampler_.separable(); }
+  // Behind a real lens: each channel's taps of a ray are its own.
+  bool mapped() const { return map_ != nullptr; }
+  const SampledRayMap* ray_map() const { return map_.get(); }
   Sampling sampling() const { return sampler_.sampling(); }
   const LayerSampler& sampler() const { return sampler_; }
   const LightFieldGeometry& geometry() const { return lf_; }
@@ -39,8 +45,9 @@ class LayerProjection {
   const AxisTap* row_taps(size_t view) const { return &row_taps_[(view / lf_.views_x) * lf_.rows]; }
   const AxisTap* col_taps(size_t view) const { return &col_taps_[(view % lf_.views_x) * lf_.cols]; }
 
-  // The taps of ray (pixel row i, col j) of view v.
+  // The taps of ray (pixel row i, col j) of view v (in channel c of a mapped layer).
   RayTaps Taps(size_t view, int i, int j) const;
+  RayTaps ChannelTaps(size_t view, int i, int j, int c) const;
 
   // out[ray][c] = (P t)[ray][c] for the rays of one view; `pattern` is
   // [row][col][rgb] of this layer, `out` [row][col][rgb] of the view.
@@ -60,6 +67,11 @@ class LayerProjection {
   // reach the layer: the one loop that kernels fuse their work into.
   template <class Op>
   void ForEachTap(size_t view, Op op) const;
+  // Calls op(ray, channel, pixel, weight) for every tap of every channel:
+  // the loop for kernels that also run behind real lenses. Without a map it
+  // is ForEachTap's order, channel innermost.
+  template <class Op>
+  void ForEachChannelTap(size_t view, Op op) const;
 
  private:
   LightFieldGeometry lf_;
@@ -68,7 +80,39 @@ class LayerProjection {
   double view_gain_, pixel_gain_;  // D - 1/z_lf and 1/z_lf
   std::vector<AxisTap> col_taps_;  // [view col][pixel col], separable layers only
   std::vector<AxisTap> row_taps_;  // [view row][pixel row]
+  std::shared_ptr<const SampledRayMap> map_;
+
+  // A mapped layer's taps of one view, [ray][channel]: with nearest sampling
+  // a pixel (-1 where the ray misses or is lost), with bilinear its taps.
+  struct MappedRays {
+    std::vector<int32_t> nearest;
+    std::vector<RayTaps> taps;
+  };
+  MappedRays MapView(size_t view) const;
 };
+
+template <class Op>
+void LayerProjection::ForEachChannelTap(size_t view, Op op) const {
+  if (!map_) {
+    ForEachTap(view, [&](size_t ray, int32_t pixel, float weight) {
+      for (int c = 0; c < 3; ++c) op(ray, c, pixel, weight);
+    });
+    return;
+  }
+  const MappedRays mapped = MapView(view);
+  const size_t rays = lf_.pixels_per_view();
+  if (sampling() == Sampling::kNearest) {
+    for (size_t ray = 0; ray < rays; ++ray)
+      for (int c = 0; c < 3; ++c)
+        if (const int32_t pixel = mapped.nearest[ray * 3 + c]; pixel >= 0) op(ray, c, pixel, 1.0f);
+    return;
+  }
+  for (size_t ray = 0; ray < rays; ++ray)
+    for (int c = 0; c < 3; ++c) {
+      const RayTaps& taps = mapped.taps[ray * 3 + c];
+      for (int t = 0; t < taps.count; ++t) op(ray, c, taps.index[t], taps.weight[t]);
+    }
+}
 
 template <class Op>
 void LayerProjection::ForEachTap(size_t view, Op op) const {

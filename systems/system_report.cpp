@@ -10,6 +10,7 @@
 #include "layerlab/eye/eye_description.h"
 #include "layerlab/framework/warnings.h"
 #include "layerlab/systems/intermediate_images.h"
+#include "layerlab/systems/lens_aberrations.h"
 
 namespace layerlab {
 namespace {
@@ -104,6 +105,28 @@ double EveryLayerMaxCpd(const DisplaySystem& s) {
   return s.layers.empty() ? 0 : lowest;
 }
 
+// Behind real lenses: what each layer's lens does at its field edge (lens_aberrations.h).
+std::string FormatAberrations(const DisplaySystem& s) {
+  if (std::none_of(s.layers.begin(), s.layers.end(), [](const VirtualLayer& l) { return l.ray_map != nullptr; }))
+    return "";
+  std::string out =
+      "\nreal lenses, each layer at its field edge (the chief ray; the focus from rays through the pupil's edge)\n";
+  out += Row("%-3s %-12s %9s %11s %18s %22s %16s %10s", "#", "panel", "edge", "distortion", "lateral color R-B",
+             "focus tan. / sag.", "field curvature", "map bound");
+  out += Row("%-3s %-12s %9s %11s %18s %22s %16s %10s", "", "", "(deg)", "(%)", "(px / arcmin)", "(D)", "(D)", "(px)");
+  for (size_t k = 0; k < s.layers.size(); ++k) {
+    const VirtualLayer& l = s.layers[k];
+    if (!l.ray_map) continue;
+    const LayerAberrations a = MeasureAberrations(l, s.eye.pupil_diameter_m);
+    out += Row("%-3zu %-12s %9s %11s %18s %22s %16s %10s", k, l.name.c_str(), F(a.field_edge_deg, 2).c_str(),
+               F(a.distortion_percent, 2).c_str(),
+               (F(a.lateral_color_px, 2) + " / " + F(a.lateral_color_arcmin, 2)).c_str(),
+               (F(a.tangential_diopters, 3) + " / " + F(a.sagittal_diopters, 3)).c_str(),
+               F(a.field_curvature_diopters, 3).c_str(), F(a.map_bound_px, 4).c_str());
+  }
+  return out;
+}
+
 std::string FormatSystemTable(const DisplaySystem& s) {
   const EyeModel& eye = s.eye;
   std::string out;
@@ -143,6 +166,8 @@ std::string FormatSystemTable(const DisplaySystem& s) {
                F(l.panel_distance_m * 1e3, 2).c_str(), F(l.magnification, 2).c_str(), F(l.pitch_x_m * 1e3, 3).c_str(),
                pixels.c_str(), fov.c_str(), F(l.max_cpd, 2).c_str(), FlipName(l).c_str());
   }
+
+  out += FormatAberrations(s);
 
   out += "\nbranches (added at the eye; each the product of its layers, nearest the eye first)\n";
   out += Row("%-3s %-24s %-10s %-22s %-22s %-12s %10s", "#", "name", "layers", "optics eff. (R G B)",
@@ -212,6 +237,17 @@ nlohmann::json SystemToJson(const DisplaySystem& s) {
                            {"flip", {l.flip_x, l.flip_y}},
                            {"fov_deg", {Deg(l.fov_x_rad), Deg(l.fov_y_rad)}},
                            {"max_cpd", l.max_cpd}});
+    if (l.ray_map) {
+      const LayerAberrations a = MeasureAberrations(l, s.eye.pupil_diameter_m);
+      j["layers"].back()["real_lens"] = {{"field_edge_deg", a.field_edge_deg},
+                                         {"distortion_percent", a.distortion_percent},
+                                         {"lateral_color_px", a.lateral_color_px},
+                                         {"lateral_color_arcmin", a.lateral_color_arcmin},
+                                         {"focus_tangential_D", a.tangential_diopters},
+                                         {"focus_sagittal_D", a.sagittal_diopters},
+                                         {"field_curvature_D", a.field_curvature_diopters},
+                                         {"ray_map_bound_px", a.map_bound_px}};
+    }
   }
   for (const Branch& b : s.branches)
     j["branches"].push_back({{"name", b.name},

@@ -36,7 +36,7 @@ const std::string kHybrid = "paper_prototype.json";
 const BadScene kCases[] = {
     {"UnknownType", kMul, [](json& s) { ElementNamed(s, "lens")["type"] = "thin_lense"; },
      "scene.json: /elements/1/type: unknown element type \"thin_lense\"; did you mean \"thin_lens\"? Known types: "
-     "backlight, eye, half_mirror, hwp, lc_panel, mirror, pbs, thin_lens, tunable_lens"},
+     "backlight, eye, half_mirror, hwp, lc_panel, lens, mirror, pbs, thin_lens, tunable_lens"},
     {"MisspelledKey", kMul,
      [](json& s) {
        json& lens = ElementNamed(s, "lens");

@@ -49,7 +49,7 @@ TEST(Registry, UnknownTypesListTheRegisteredOnes) {
   } catch (const Error& e) {
     EXPECT_STREQ(e.what(),
                  "scene.json: /elements/1/type: unknown element type \"nd_filtr\"; did you mean "
-                 "\"nd_filter\"? Known types: backlight, eye, half_mirror, hwp, lc_panel, mirror, nd_filter, pbs, "
+                 "\"nd_filter\"? Known types: backlight, eye, half_mirror, hwp, lc_panel, lens, mirror, nd_filter, pbs, "
                  "thin_lens, tunable_lens");
   }
 }

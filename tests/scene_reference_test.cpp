@@ -47,8 +47,12 @@ std::string SectionOf(const std::string& pointer, const nlohmann::json& document
                                                            {"/run/contrast/accommodation", "depth_range"}};
   if (auto it = fixed.find(pointer); it != fixed.end()) return it->second;
   const std::string prefix = "/elements/";
-  if (pointer.rfind(prefix, 0) == 0 && pointer.find('/', prefix.size()) == std::string::npos)
-    return document["elements"][std::stoul(pointer.substr(prefix.size()))]["type"].get<std::string>();
+  if (pointer.rfind(prefix, 0) != 0) return "";
+  const size_t slash = pointer.find('/', prefix.size());
+  const std::string type = document["elements"][std::stoul(pointer.substr(prefix.size()))]["type"].get<std::string>();
+  if (slash == std::string::npos) return type;
+  const std::string inside = pointer.substr(slash);  // a lens's surfaces: "/surfaces/2"
+  if (inside.rfind("/surfaces/", 0) == 0 && inside.find('/', 10) == std::string::npos) return type + ".surface";
   return "";
 }
 

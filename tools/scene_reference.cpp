@@ -20,6 +20,8 @@ std::vector<Source> Sources() {
   std::vector<Source> sources = {{"systems/scene.cpp", {"scene"}}, {"elements/registry.cpp", {"element"}}};
   for (const std::string& type : ElementRegistry::WithBuiltins().names())
     sources.push_back({"elements/" + type + ".cpp", {type}});
+  for (Source& s : sources)
+    if (s.file == "elements/lens.cpp") s.sections.push_back("lens.surface");
   sources.push_back({"solvers/solver_option_table.cpp", {"solve"}});
   sources.push_back({"analysis/run_config.cpp", {"run", "run.retina", "run.contrast", "run.compare", "depth_range"}});
   return sources;
