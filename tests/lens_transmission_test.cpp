@@ -28,6 +28,15 @@ constexpr double kPi = std::numbers::pi;
 // Snell's law for the angle of refraction (radians).
 double Refracted(double n1, double n2, double theta_i) { return std::asin(n1 / n2 * std::sin(theta_i)); }
 
+// A flat slab of `material`, 10 mm thick.
+Prescription SlabOf(const std::string& material) {
+  Prescription p;
+  p.surfaces.resize(2);
+  p.surfaces[0].material = material;
+  p.surfaces[0].thickness_m = 10e-3;
+  return p;
+}
+
 TEST(LensTransmission, NormalIncidenceOnNBk7) {
   // Hand-derived: ((1.5168 - 1) / (1.5168 + 1))^2 = (0.5168 / 2.5168)^2 = 0.042165 (4.22 %).
   const Reflectance r = UncoatedReflectance(1.0, kNd, 1.0);
@@ -180,6 +189,18 @@ TEST(LensTransmission, MaterialsWithoutDataSaySo) {
   EXPECT_EQ(ErrorOf([] { AbsorptionPerMeter(FindMaterial("N-SF11"), 360e-9); }),
             "N-SF11: 360 nm lies outside its internal transmittance table, 370 nm to 2500 nm (SCHOTT Zemax "
             "catalogue 2017-01-20b, internal transmittance of 25 mm (via refractiveindex.info))");
+}
+
+// Each table spans its glass's dispersion formula range, so that a trace valid
+// for the indices never fails on the absorption (the trace evaluates both).
+TEST(LensTransmission, AbsorptionTablesCoverTheDispersionRanges) {
+  for (const std::string& name : MaterialNames()) {
+    const Material& m = FindMaterial(name);
+    if (!HasAbsorptionData(m)) continue;
+    EXPECT_EQ(ErrorOf([&] { AbsorptionPerMeter(m, m.min_wavelength_m); }), "no error") << name;
+    EXPECT_EQ(ErrorOf([&] { AbsorptionPerMeter(m, m.max_wavelength_m); }), "no error") << name;
+    EXPECT_EQ(ErrorOf([&] { SequentialTrace(LensSystem(SlabOf(name)), m.min_wavelength_m); }), "no error");
+  }
 }
 
 // Thorlabs LA1608 (N-BK7, R 38.6 mm, tc 4.1 mm), curved side first.
