@@ -1,6 +1,7 @@
 #include "layerlab/lenses/sequential_trace.h"
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "layerlab/framework/error.h"
@@ -138,7 +139,9 @@ double AxialTransmittance(const LensSystem& system, double wavelength_m) {
   // only the start's being ahead of every surface matters.
   const TraceResult r = trace.Trace({Eigen::Vector3d(0, 0, -1.0), Eigen::Vector3d::UnitZ()});
   if (!r.exited()) {
-    throw Error("the axial ray is lost at surface " + std::to_string(r.surface) + " (" + ToString(r.fate) + ")");
+    char text[64];
+    std::snprintf(text, sizeof text, "the axial ray at %g nm is lost at surface %d (", wavelength_m * 1e9, r.surface);
+    throw Error(text + std::string(ToString(r.fate)) + ")");
   }
   return r.transmittance;
 }

@@ -279,6 +279,19 @@ TEST(LensTransmission, LostRaysCarryNothing) {
   EXPECT_EQ(r.transmittance, 0.0);
 }
 
+TEST(LensTransmission, AxialRayLostIsAnError) {
+  Prescription p;
+  p.surfaces.resize(2);
+  p.surfaces[0].shape.curvature_per_m = 1 / (5 * kMm);  // a 5 mm ball's cap, decentred 10 mm off the axis
+  p.surfaces[0].shape.semi_diameter_m = 4 * kMm;
+  p.surfaces[0].material = "N-BK7";
+  p.surfaces[0].thickness_m = 2 * kMm;
+  p.placements = {{0, 1, 0, 0, 10 * kMm, 0}};
+  const LensSystem off_axis(p);
+  EXPECT_EQ(ErrorOf([&] { AxialTransmittance(off_axis, 550e-9); }),
+            "the axial ray at 550 nm is lost at surface 0 (missed the surface)");
+}
+
 TEST(LensTransmission, BadCoatingsAreRefused) {
   Prescription p = La1608({Coating::Kind::kQuarterWave, 0.9, 550e-9, 0});
   EXPECT_EQ(ErrorOf([&] {
