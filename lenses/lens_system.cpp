@@ -32,6 +32,26 @@ void CheckShape(const SurfaceShape& s, const Location& where) {
           "semi_diameter_m", "the clear aperture reaches beyond the conic's edge, where its sag is undefined");
 }
 
+void CheckCoating(const Coating& c, const Location& where) {
+  switch (c.kind) {
+    case Coating::Kind::kQuarterWave:
+      if (!(c.index >= 1.0 && std::isfinite(c.index))) {
+        throw Error(where.child("index"), "expected the film's refractive index, finite and >= 1 (MgF2: 1.38)");
+      }
+      if (!(c.design_wavelength_m > 0 && std::isfinite(c.design_wavelength_m))) {
+        throw Error(where.child("design_wavelength_m"), "expected a design wavelength > 0 (meters)");
+      }
+      break;
+    case Coating::Kind::kStatedReflectance:
+      if (!(c.reflectance >= 0 && c.reflectance < 1)) {
+        throw Error(where.child("reflectance"), "expected a reflectance in [0, 1) (0.005: 0.5 %)");
+      }
+      break;
+    case Coating::Kind::kUncoated:
+      break;
+  }
+}
+
 // Rotation of a group: about x by tilt_x, then about y by tilt_y.
 Eigen::Matrix3d GroupAxes(const GroupPlacement& g) {
   return (Eigen::AngleAxisd(g.tilt_y_rad, Eigen::Vector3d::UnitY()) *
@@ -63,6 +83,7 @@ LensSystem::LensSystem(Prescription prescription, const Location& where) : presc
     const Location at = where.child("surfaces").child(i);
     const PrescriptionSurface& s = p.surfaces[i];
     CheckShape(s.shape, at);
+    CheckCoating(s.coating, at.child("coating"));
     if (!std::isfinite(s.thickness_m)) throw Error(at.child("thickness_m"), "expected a finite thickness");
     materials_after_.push_back(&MaterialAt(s.material, at.child("material")));
     surfaces_.emplace_back(s.shape);

@@ -23,6 +23,7 @@
 #include "layerlab/framework/error.h"
 #include "layerlab/lenses/glass_catalog.h"
 #include "layerlab/lenses/surface.h"
+#include "layerlab/lenses/surface_transmission.h"
 
 namespace layerlab::lenses {
 
@@ -30,6 +31,7 @@ struct PrescriptionSurface {
   SurfaceShape shape;
   std::string material = "air";  // after the surface (catalogue name)
   double thickness_m = 0.0;      // axial gap from this vertex to the next (unused after the last)
+  Coating coating;               // uncoated by default (Fresnel reflection)
 };
 
 struct GroupPlacement {

@@ -7,6 +7,15 @@
 // is reflected totally is lost, with the surface and the reason, never bent
 // or NaN. Sequential only: no ghosts (reflected paths), no scattering.
 //
+// Transmittance: each exited ray carries the fraction of its power (unpolarized
+// light) that leaves the last surface, the product over the surfaces of
+// 1 - (Rs + Rp) / 2 (surface_transmission.h: Fresnel, or the surface's
+// coating) and over the media between the first and the last surface of the
+// internal transmittance exp(-alpha L) of its geometric path L in each
+// (glass_absorption.h; a material without published data absorbs nothing).
+// The media before the first and after the last surface belong to the
+// caller's gaps and are not counted. A lost ray carries 0.
+//
 // `SequentialTrace` evaluates the indices of one wavelength once; its
 // Trace() is const, allocation-free and safe to call from many threads. It
 // keeps a reference to the LensSystem, which must outlive it.
@@ -42,6 +51,7 @@ struct TraceResult {
   int surface = -1;             // where it was lost (-1 when it exited)
   Ray exit;                     // at the last surface, refracted (when it exited)
   double optical_path_m = 0.0;  // sum of n * length from the origin to the exit point
+  double transmittance = 0.0;   // power fraction through the system (see above); 0 when lost
 
   bool exited() const { return fate == RayFate::kExited; }
 };
@@ -56,16 +66,24 @@ class SequentialTrace {
   double wavelength_m() const { return wavelength_m_; }
   // The index before surface i (i = 0 .. size-1) and after the last (i = size).
   double index(int i) const { return indices_[i]; }
+  // The absorption coefficient (1/m) of the medium after surface i (0 .. size-1).
+  double absorption_per_m(int i) const { return absorption_per_m_[i]; }
 
  private:
   const LensSystem& system_;
   double wavelength_m_;
   std::vector<double> indices_;
+  std::vector<double> absorption_per_m_;
 };
 
 // One ray at one wavelength (evaluates the indices on the way; for many rays
 // build a SequentialTrace once).
 TraceResult TraceRay(const LensSystem& system, const Ray& ray, double wavelength_m);
+
+// The transmittance of the ray along the system's axis (x = y = 0, along +z)
+// at `wavelength_m`: what the compile uses as a branch's lens efficiency per
+// channel. Throws layerlab::Error when that ray is lost (the surface and why).
+double AxialTransmittance(const LensSystem& system, double wavelength_m);
 
 // The refracted unit direction, or false for total internal reflection.
 // `normal` is unit and on the side the ray travels toward (d . normal >= 0).
