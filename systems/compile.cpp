@@ -11,6 +11,7 @@
 #include "layerlab/framework/units.h"
 #include "layerlab/lenses/lens_system.h"
 #include "layerlab/lenses/paraxial.h"
+#include "layerlab/lenses/sequential_trace.h"
 #include "layerlab/systems/layer_ray_map.h"
 #include "layerlab/systems/optics.h"
 
@@ -544,8 +545,13 @@ class Walker {
         case ElementKind::kMirror:
           static_cast<const MirrorElement*>(step->element)->transfer(light);
           break;
+        case ElementKind::kLens:  // thin lenses are ideal; a real lens loses light at its surfaces and in its glass
+          if (auto lens = static_cast<const LensElement*>(step->element)->lens_system())
+            for (int c = 0; c < 3; ++c)
+              light[c].attenuate(lenses::AxialTransmittance(*lens, system_.eye.channel_wavelengths_m[c]));
+          break;
         default:
-          break;  // thin lenses are ideal
+          break;
       }
     }
     return {light[0].power(), light[1].power(), light[2].power()};

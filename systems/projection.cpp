@@ -1,5 +1,6 @@
 #include "layerlab/systems/projection.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -13,6 +14,15 @@ LayerProjection::LayerProjection(const VirtualLayer& layer, const LightFieldGeom
       view_gain_(layer.diopters - 1.0 / lf.origin_z_m),
       pixel_gain_(1.0 / lf.origin_z_m),
       map_(layer.ray_map) {
+  if (map_ && sampling == Sampling::kNearest) {
+    const size_t per_view = lf.pixels_per_view() * 3;
+    mapped_nearest_.resize(lf.view_count() * per_view);
+#pragma omp parallel for schedule(dynamic)
+    for (size_t v = 0; v < lf.view_count(); ++v) {
+      const MappedRays rays = MapView(v);
+      std::copy(rays.nearest.begin(), rays.nearest.end(), mapped_nearest_.begin() + v * per_view);
+    }
+  }
   if (!separable()) return;
   col_taps_.resize(static_cast<size_t>(lf.views_x) * lf.cols);
   for (int c = 0; c < lf.views_x; ++c)
@@ -50,6 +60,10 @@ LayerProjection::MappedRays LayerProjection::MapView(size_t view) const {
     }
   }
   return out;
+}
+
+size_t LayerProjection::MappedTableBytes(const VirtualLayer& layer, const LightFieldGeometry& lf, Sampling sampling) {
+  return layer.ray_map && sampling == Sampling::kNearest ? lf.ray_count() * 3 * sizeof(int32_t) : 0;
 }
 
 RayTaps LayerProjection::ChannelTaps(size_t view, int i, int j, int c) const {

@@ -33,6 +33,8 @@ class LayerProjection {
   bool separable() const { return !map_ && sampler_.separable(); }
   // Behind a real lens: each channel's taps of a ray are its own.
   bool mapped() const { return map_ != nullptr; }
+  // Bytes a mapped layer's tap table takes for a light field (0 otherwise): for memory estimates.
+  static size_t MappedTableBytes(const VirtualLayer& layer, const LightFieldGeometry& lf, Sampling sampling);
   const SampledRayMap* ray_map() const { return map_.get(); }
   Sampling sampling() const { return sampler_.sampling(); }
   const LayerSampler& sampler() const { return sampler_; }
@@ -81,6 +83,10 @@ class LayerProjection {
   std::vector<AxisTap> col_taps_;  // [view col][pixel col], separable layers only
   std::vector<AxisTap> row_taps_;  // [view row][pixel row]
   std::shared_ptr<const SampledRayMap> map_;
+  // A mapped layer with nearest sampling: every ray's pixel per channel,
+  // [view][ray][channel] (-1: misses), made once (the general kernels read
+  // each layer's taps several times per iteration). Bilinear taps are made per view.
+  std::vector<int32_t> mapped_nearest_;
 
   // A mapped layer's taps of one view, [ray][channel]: with nearest sampling
   // a pixel (-1 where the ray misses or is lost), with bilinear its taps.
@@ -99,14 +105,15 @@ void LayerProjection::ForEachChannelTap(size_t view, Op op) const {
     });
     return;
   }
-  const MappedRays mapped = MapView(view);
   const size_t rays = lf_.pixels_per_view();
   if (sampling() == Sampling::kNearest) {
+    const int32_t* pixels = &mapped_nearest_[view * rays * 3];
     for (size_t ray = 0; ray < rays; ++ray)
       for (int c = 0; c < 3; ++c)
-        if (const int32_t pixel = mapped.nearest[ray * 3 + c]; pixel >= 0) op(ray, c, pixel, 1.0f);
+        if (const int32_t pixel = pixels[ray * 3 + c]; pixel >= 0) op(ray, c, pixel, 1.0f);
     return;
   }
+  const MappedRays mapped = MapView(view);
   for (size_t ray = 0; ray < rays; ++ray)
     for (int c = 0; c < 3; ++c) {
       const RayTaps& taps = mapped.taps[ray * 3 + c];

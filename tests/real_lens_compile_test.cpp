@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "layerlab/framework/random.h"
+#include "layerlab/lenses/glass_absorption.h"
 #include "layerlab/lenses/glass_catalog.h"
 #include "layerlab/systems/compile.h"
 #include "layerlab/systems/display_model.h"
@@ -52,6 +53,21 @@ TEST(RealLensCompile, LayersSitWhereTheThickLensMatrixImagesThem) {
     ASSERT_TRUE(l.ray_map) << l.name;
   }
   EXPECT_NEAR(s.layers[0].diopters, 0.4, 1e-12);  // virtual_depth places them exactly
+}
+
+// Each branch loses, per channel, the lens's two uncoated surfaces (Fresnel at
+// normal incidence, ((n - 1) / (n + 1))^2 each) and 4.1 mm of N-BK7's absorption.
+TEST(RealLensCompile, BranchesLoseTheLensesSurfaceReflectionsAndAbsorption) {
+  const DisplaySystem& s = Singlet();
+  const lenses::Material& glass = lenses::FindMaterial("N-BK7");
+  for (const Branch& b : s.branches)
+    for (int c = 0; c < 3; ++c) {
+      const double n = glass.Index(s.eye.channel_wavelengths_m[c]);
+      const double surface = 1 - std::pow((n - 1) / (n + 1), 2);
+      const double bulk = lenses::InternalTransmittance(glass, s.eye.channel_wavelengths_m[c], kThickness);
+      EXPECT_GT(bulk, 0.99);
+      EXPECT_NEAR(b.optics_efficiency[c], 0.5 * surface * surface * bulk, 1e-12) << b.name << " channel " << c;
+    }
 }
 
 // The paraxial limit of the exact map is the compile's affine map U = D p + u.
