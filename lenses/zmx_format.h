@@ -68,11 +68,14 @@ namespace layerlab::lenses {
 // Throws layerlab::Error.
 Prescription ReadZmx(const std::string& text, const std::string& source_name);
 
-// A .zmx (UTF-8, CRLF line ends, UNIT MM) holding `prescription`, the object at
+// A .zmx (UTF-8, CRLF line ends) holding `prescription`, the object at
 // infinity, the image plane at the last surface's thickness; `title` is the
 // NAME line. Each number is written with the fewest significant digits that
-// ReadZmx reads back to the same double, so ReadZmx(WriteZmx(p)) == p for a
-// prescription read from a file, and writing what was read gives the same text.
+// ReadZmx reads back to the same double: in millimeters (UNIT MM) when every
+// number has such digits there, else in meters (UNIT METER, where every double
+// has them; a lens read from inches may need it). So ReadZmx(WriteZmx(p)) == p
+// field by field for a prescription read from a file (its aspheric terms have
+// no trailing zeros), and writing what was read gives the same text again.
 // Throws layerlab::Error for what the subset cannot hold (placements, Fresnel
 // surfaces, more than 7 aspheric terms) or what LensSystem refuses.
 std::string WriteZmx(const Prescription& prescription, const std::string& title);

@@ -352,6 +352,9 @@ TEST(LensZmx, LensUnitsGiveTheSameMeters) {
     EXPECT_TRUE(Close(p.surfaces[0].thickness_m, 5.08e-3, 1e-14));
     EXPECT_TRUE(Close(p.surfaces[0].shape.semi_diameter_m, 12.7e-3, 1e-14));
     EXPECT_TRUE(Close(p.surfaces[1].thickness_m, 50.8e-3, 1e-14));
+    const std::string written = WriteZmx(p, unit);
+    ExpectSame(ReadZmx(written, "written.zmx"), p);
+    EXPECT_EQ(WriteZmx(ReadZmx(written, "written.zmx"), unit), written);
   }
   // Short decimals in inches, by hand: 0.2 in = 5.08 mm, 0.5 in = 12.7 mm, CURV 0.5 /in = 1 / 50.8 mm.
   const Prescription in =
@@ -359,6 +362,21 @@ TEST(LensZmx, LensUnitsGiveTheSameMeters) {
   EXPECT_TRUE(Close(in.surfaces[0].thickness_m, 5.08e-3, 1e-15));
   EXPECT_TRUE(Close(in.surfaces[0].shape.semi_diameter_m, 12.7e-3, 1e-15));
   EXPECT_TRUE(Close(in.surfaces[0].shape.curvature_per_m, 1 / 50.8e-3, 1e-15));
+}
+
+// zmx_fuzz's first finding: an r^4 term of 1E-3 in^-3 has no millimeter
+// double that converts back to it (0.0254^3 spreads the doubles apart), so
+// the writer falls back to meters, where every double has its digits.
+TEST(LensZmx, AsphereInInchesRoundTripsThroughMeters) {
+  const Prescription p = ReadZmx(ReadBytes(std::string(LAYERLAB_SOURCE_DIR) + "/fuzz/corpus/zmx/asphere_inches.zmx"),
+                                 "asphere_inches.zmx");
+  EXPECT_TRUE(Close(p.surfaces[0].shape.even_asphere.at(0), 1e-3 / (0.0254 * 0.0254 * 0.0254), 1e-15));
+  const std::string written = WriteZmx(p, "inches");
+  EXPECT_NE(written.find("\r\nUNIT METER "), std::string::npos) << written;
+  ExpectSame(ReadZmx(written, "written.zmx"), p);
+  EXPECT_EQ(WriteZmx(ReadZmx(written, "written.zmx"), "inches"), written);
+  // The shipped files, read from millimeters, stay in millimeters.
+  EXPECT_NE(WriteZmx(ReadExampleLens("la1608.zmx"), "").find("\r\nUNIT MM "), std::string::npos);
 }
 
 std::string Utf16Le(const std::u16string& text) {
