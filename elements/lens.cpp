@@ -6,7 +6,8 @@
 //
 // | key            | type    | default   | meaning                                              |
 // |----------------|---------|-----------|------------------------------------------------------|
-// | surfaces       | array of surfaces | required | from the eye outward, 2 to 64 (see lens.surface) |
+// | surfaces       | array of surfaces | one of two | from the eye outward, 2 to 64 (see lens.surface) |
+// | prescription   | path    | one of two | a Zemax .zmx file (the subset in docs/optics.md), relative to the scene file; its first surface faces the eye |
 // | clear_aperture | length  | unlimited | diameter of every surface that gives none itself     |
 // | gap            | length  | see thin_lens | path length to the first vertex from the element before it |
 // | next           | name    | required  | the next element away from the eye                   |
@@ -23,17 +24,23 @@
 // | material        | name        | "air"   | after the surface, a catalogue glass (docs/optics.md); the last surface's is air |
 // | thickness       | length      | required | axial distance to the next surface's vertex; the last surface has none |
 #include <cmath>
+#include <filesystem>
 
 #include "layerlab/elements/element.h"
 #include "layerlab/elements/registry.h"
+#include "layerlab/framework/text_file.h"
 #include "layerlab/lenses/glass_catalog.h"
 #include "layerlab/lenses/lens_system.h"
 #include "layerlab/lenses/paraxial.h"
+#include "layerlab/lenses/zmx_format.h"
 
 namespace layerlab {
 namespace {
 
 constexpr size_t kMaxSurfaces = 64;
+constexpr size_t kMaxPrescriptionBytes = size_t(1) << 20;
+
+std::unique_ptr<Element> Finish(Params& p, lenses::Prescription prescription);
 
 class Lens final : public LensElement {
  public:
@@ -96,9 +103,34 @@ lenses::PrescriptionSurface ReadSurface(Params& s, bool last, std::optional<doub
   return out;
 }
 
+// A .zmx prescription named relative to the scene file.
+lenses::Prescription ReadPrescription(Params& p, std::optional<double> aperture) {
+  if (p.has("surfaces")) p.fail("prescription", "give the lens's \"surfaces\" or its \"prescription\", not both");
+  const std::string name = p.string("prescription");
+  const std::filesystem::path scene_folder = std::filesystem::path(p.where().file).parent_path();
+  const std::string path = (scene_folder / name).string();
+  lenses::Prescription prescription;
+  try {
+    prescription = lenses::ReadZmx(ReadFileText(path, kMaxPrescriptionBytes), path);
+  } catch (const Error& e) {
+    p.fail("prescription", e.what());
+  }
+  if (prescription.material_before != "air")
+    p.fail("prescription",
+           path + ": the lens starts in \"" + prescription.material_before + "\"; it must start in air");
+  if (prescription.surfaces.size() > kMaxSurfaces)
+    p.fail("prescription", path + ": more than " + std::to_string(kMaxSurfaces) + " surfaces");
+  if (prescription.surfaces.size() < 2 || prescription.surfaces.back().material != "air")
+    p.fail("prescription", path + ": the lens must hold at least two surfaces and end in air");
+  for (lenses::PrescriptionSurface& s : prescription.surfaces)
+    if (aperture && !std::isfinite(s.shape.semi_diameter_m)) s.shape.semi_diameter_m = *aperture / 2;
+  return prescription;
+}
+
 std::unique_ptr<Element> MakeLens(Params& p) {
   std::optional<double> aperture = p.optional_quantity("clear_aperture", Dimension::kLength);
   if (aperture) p.require_range("clear_aperture", *aperture, 0.0, 10.0, true, false);
+  if (p.has("prescription")) return Finish(p, ReadPrescription(p, aperture));
   const nlohmann::json& list = p.raw("surfaces");
   if (!list.is_array() || list.size() < 2 || list.size() > kMaxSurfaces)
     p.fail("surfaces", "expected a list of 2 to " + std::to_string(kMaxSurfaces) +
@@ -110,12 +142,18 @@ std::unique_ptr<Element> MakeLens(Params& p) {
     Params s(list[i], at);
     prescription.surfaces.push_back(ReadSurface(s, i + 1 == list.size(), aperture));
   }
-  auto system = std::make_shared<const lenses::LensSystem>(std::move(prescription), p.where("surfaces"));
+  return Finish(p, std::move(prescription));
+}
+
+// The validated lens and its catalogue focal length.
+std::unique_ptr<Element> Finish(Params& p, lenses::Prescription prescription) {
+  const std::string key = p.has("prescription") ? "prescription" : "surfaces";
+  auto system = std::make_shared<const lenses::LensSystem>(std::move(prescription), p.where(key));
   double efl = 0;
   try {
     efl = lenses::ParaxialAt(*system, lenses::kLineD_m).efl_m;
   } catch (const Error& e) {
-    p.fail("surfaces", e.message());
+    p.fail(key, e.message());
   }
   double smallest = INFINITY;
   for (int i = 0; i < system->size(); ++i)

@@ -10,6 +10,7 @@
 #include "layerlab/framework/error.h"
 #include "layerlab/framework/file_kind.h"
 #include "layerlab/framework/file_read_observer.h"
+#include "layerlab/framework/text_file.h"
 
 namespace layerlab {
 namespace {
@@ -118,23 +119,7 @@ json ParseJson(const std::string& text, const std::string& file, const JsonLimit
 }
 
 json ReadJsonFile(const std::string& path, const JsonLimits& limits, FileBytes* bytes) {
-  std::error_code ec;
-  auto size = std::filesystem::file_size(path, ec);
-  if (ec) {
-    const std::string why = ec.message();
-    std::error_code link_ec;  // something is there: a FIFO, a folder, a link loop is named as such
-    if (std::filesystem::exists(std::filesystem::symlink_status(path, link_ec))) RequireRegularFile(path);
-    throw Error(path + ": cannot read: " + why);
-  }
-  if (size > limits.max_bytes)
-    throw Error({path, ""},
-                "file is " + std::to_string(size) + " bytes; the limit is " + std::to_string(limits.max_bytes));
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot open for reading");
-  AnnounceFileRead(path);
-  std::ostringstream read;
-  read << in.rdbuf();
-  const std::string text = read.str();
+  const std::string text = ReadFileText(path, limits.max_bytes);
   if (bytes) *bytes = {text.size(), ContentDigest().add(text).value()};
   return ParseJson(text, path, limits);
 }

@@ -154,6 +154,7 @@ std::optional<std::array<double, 2>> SampledRayMap::Lookup(int channel, double p
   for (const Cell& c : cell)
     if (c.first < 0) return exact_->Trace(channel, p_x, p_y, u_x, u_y);
   double rx = 0, ry = 0;
+  int lost = 0;
   for (int b = 0; b < 4; ++b)
     for (int a = 0; a < 4; ++a)
       for (int i = 0; i < 4; ++i)
@@ -162,7 +163,9 @@ std::optional<std::array<double, 2>> SampledRayMap::Lookup(int channel, double p
           const std::array<float, 2>& r =
               residual_[Node(channel, cell[0].first + a, cell[1].first + b, cell[3].first + i, cell[2].first + j)];
           rx += w * r[0], ry += w * r[1];
+          lost += std::isnan(r[0]);
         }
+  if (lost == 256) return std::nullopt;  // deep inside what the lenses stop
   if (std::isnan(rx) || std::isnan(ry)) return exact_->Trace(channel, p_x, p_y, u_x, u_y);
   const double D = exact_->diopters();
   return std::array<double, 2>{D * p_x + u_x + rx, D * p_y + u_y + ry};
@@ -186,8 +189,18 @@ RayMapView::RayMapView(const SampledRayMap& map, double p_x, double p_y) : map_(
         const std::array<float, 2>* node = &map.residual_[map.Node(c, x.first + a, y.first + b, 0, 0)];
         for (size_t k = 0; k < plane; ++k) sum[2 * k] += w * node[k][0], sum[2 * k + 1] += w * node[k][1];
       }
-    for (size_t k = 0; k < plane; ++k)  // NaN (a lost node) carries through
+    const double D = map.exact().diopters();
+    for (size_t k = 0; k < plane; ++k) {
+      if (std::isnan(sum[2 * k]) || std::isnan(sum[2 * k + 1])) {
+        // A lost node in the pupil stencil (the lenses' apertures cut there): this pupil point's own ray.
+        const double u_x = map.domain_.tan_min[0] + double(k % n[2]) * map.step_[2];
+        const double u_y = map.domain_.tan_min[1] + double(k / n[2]) * map.step_[3];
+        const auto U = map.exact().Trace(c, p_x, p_y, u_x, u_y);
+        sum[2 * k] = U ? (*U)[0] - (D * p_x + u_x) : sum[2 * k];
+        sum[2 * k + 1] = U ? (*U)[1] - (D * p_y + u_y) : sum[2 * k + 1];
+      }
       slice_[c * plane + k] = {static_cast<float>(sum[2 * k]), static_cast<float>(sum[2 * k + 1])};
+    }
   }
 }
 
@@ -197,11 +210,16 @@ std::optional<std::array<double, 2>> RayMapView::Lookup(int channel, const Sampl
   const int cols = map_.nodes_[2];
   const std::array<float, 2>* r = &slice_[(size_t(channel) * map_.nodes_[3] + y.first) * cols + x.first];
   double rx = 0, ry = 0;
+  int lost = 0;
   for (int i = 0; i < 4; ++i, r += cols) {
     double row_x = 0, row_y = 0;
-    for (int j = 0; j < 4; ++j) row_x += x.weight[j] * r[j][0], row_y += x.weight[j] * r[j][1];
+    for (int j = 0; j < 4; ++j) {
+      row_x += x.weight[j] * r[j][0], row_y += x.weight[j] * r[j][1];
+      lost += std::isnan(r[j][0]);
+    }
     rx += y.weight[i] * row_x, ry += y.weight[i] * row_y;
   }
+  if (lost == 16) return std::nullopt;  // deep inside what the lenses stop
   if (std::isnan(rx) || std::isnan(ry)) return map_.exact().Trace(channel, p_x_, p_y_, x.u, y.u);
   const double D = map_.exact().diopters();
   return std::array<double, 2>{D * p_x_ + x.u + rx, D * p_y_ + y.u + ry};
@@ -222,14 +240,20 @@ void RayMapView::Grid(int channel, const std::vector<SampledRayMap::Cell>& cols,
   }
   const int nx = map_.nodes_[2], ny = map_.nodes_[3];
   std::vector<double> along_x(size_t(ny) * n_cols * 2, nan);  // [tan row][column][2]
+  std::vector<uint8_t> all_lost(size_t(ny) * n_cols, 0);      // that row's 4 stencil nodes all lost
   for (int y = 0; y < ny; ++y) {
     const std::array<float, 2>* r = &slice_[(size_t(channel) * ny + y) * nx];
     for (size_t j = 0; j < n_cols; ++j) {
       if (cols[j].first < 0) continue;
       double sx = 0, sy = 0;
-      for (int k = 0; k < 4; ++k)
-        sx += cols[j].weight[k] * r[cols[j].first + k][0], sy += cols[j].weight[k] * r[cols[j].first + k][1];
+      int lost = 0;
+      for (int k = 0; k < 4; ++k) {
+        const std::array<float, 2>& node = r[cols[j].first + k];
+        sx += cols[j].weight[k] * node[0], sy += cols[j].weight[k] * node[1];
+        lost += std::isnan(node[0]);
+      }
       along_x[(size_t(y) * n_cols + j) * 2] = sx, along_x[(size_t(y) * n_cols + j) * 2 + 1] = sy;
+      all_lost[size_t(y) * n_cols + j] = lost == 4;
     }
   }
   for (size_t i = 0; i < rows.size(); ++i) {
@@ -247,7 +271,9 @@ void RayMapView::Grid(int channel, const std::vector<SampledRayMap::Cell>& cols,
     for (size_t j = 0; j < n_cols; ++j) {
       double* U = row_out + j * 2;
       if (std::isnan(U[0]) || std::isnan(U[1])) {
-        exact(i, j, U);
+        const uint8_t* lost = &all_lost[size_t(rows[i].first) * n_cols + j];
+        if (cols[j].first >= 0 && lost[0] && lost[n_cols] && lost[2 * n_cols] && lost[3 * n_cols]) continue;
+        exact(i, j, U);  // near the edge of what the lenses pass
         continue;
       }
       U[0] += base_x + cols[j].u, U[1] += base_y;

@@ -20,7 +20,9 @@
 // lens's aberrations, odd powers of p and u that a linear read would need
 // ten times the nodes for), refined until 4096 random probe rays agree with
 // the exact trace to within kMapTolerancePixels; a ray outside the grid, or
-// whose stencil holds a lost node (vignetting), is traced exactly.
+// whose stencil holds a lost node (near the edge of what the lenses pass), is
+// traced exactly, and one whose stencil's nodes are all lost is lost (a ray
+// could pass there only through a gap narrower than a grid cell).
 #pragma once
 
 #include <array>
