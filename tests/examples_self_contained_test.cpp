@@ -26,7 +26,8 @@ namespace fs = std::filesystem;
 const fs::path kRepository = fs::canonical(LAYERLAB_SOURCE_DIR);
 
 // The keys whose string values (or arrays of strings) name files.
-const std::set<std::string> kPathKeys = {"target", "target_scene", "display", "file", "scenes", "scene", "prescription"};
+const std::set<std::string> kPathKeys = {"target", "target_scene", "display",     "file",
+                                         "scenes", "scene",        "prescription"};
 
 std::vector<fs::path> ExampleFiles() {
   std::vector<fs::path> files;

@@ -47,10 +47,11 @@ TEST(Registry, UnknownTypesListTheRegisteredOnes) {
     testing::CompileJson(scene, registry);
     FAIL();
   } catch (const Error& e) {
-    EXPECT_STREQ(e.what(),
-                 "scene.json: /elements/1/type: unknown element type \"nd_filtr\"; did you mean "
-                 "\"nd_filter\"? Known types: backlight, eye, half_mirror, hwp, lc_panel, lens, mirror, nd_filter, pbs, "
-                 "thin_lens, tunable_lens");
+    EXPECT_STREQ(
+        e.what(),
+        "scene.json: /elements/1/type: unknown element type \"nd_filtr\"; did you mean "
+        "\"nd_filter\"? Known types: backlight, eye, half_mirror, hwp, lc_panel, lens, mirror, nd_filter, pbs, "
+        "thin_lens, tunable_lens");
   }
 }
 
