@@ -80,6 +80,10 @@ class LensElement : public Element {
   virtual std::shared_ptr<const lenses::LensSystem> lens_system() const { return nullptr; }
 };
 
+// A real lens's prescription as designed, without its tilt and decentre: the
+// first-order optics (the layers' depths and fields) are the centred lens's.
+lenses::LensSystem Centred(const lenses::LensSystem& system);
+
 // A fold mirror: it reverses one eye-space axis of what lies behind it and,
 // when curved, acts as a lens of power 1/f in the unfolded path (f = R / 2).
 class MirrorElement : public Element {

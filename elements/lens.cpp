@@ -9,6 +9,8 @@
 // | surfaces       | array of surfaces | one of two | from the eye outward, 2 to 64 (see lens.surface) |
 // | prescription   | path    | one of two | a Zemax .zmx file (the subset in docs/optics.md), relative to the scene file; its first surface faces the eye |
 // | clear_aperture | length  | unlimited | diameter of every surface that gives none itself     |
+// | tilt           | [angle, angle] | [0, 0] | the whole lens turned about x, then about y, through its first vertex (as mounted off true) |
+// | decentre       | [length, length] | [0, 0] | the whole lens shifted across the axis, x right, y up |
 // | gap            | length  | see thin_lens | path length to the first vertex from the element before it |
 // | next           | name    | required  | the next element away from the eye                   |
 //
@@ -145,13 +147,25 @@ std::unique_ptr<Element> MakeLens(Params& p) {
   return Finish(p, std::move(prescription));
 }
 
-// The validated lens and its catalogue focal length.
+// The validated lens, as mounted, and its catalogue focal length.
 std::unique_ptr<Element> Finish(Params& p, lenses::Prescription prescription) {
   const std::string key = p.has("prescription") ? "prescription" : "surfaces";
+  const std::array<double, 2> tilt = p.quantity_pair("tilt", Dimension::kAngle, {0.0, 0.0});
+  const std::array<double, 2> decentre = p.quantity_pair("decentre", Dimension::kLength, {0.0, 0.0});
+  for (int a = 0; a < 2; ++a) {
+    if (!(std::abs(tilt[a]) < 0.5)) p.fail("tilt", "at most 0.5 rad (28.6 deg) either way, about each axis");
+    if (!(std::abs(decentre[a]) <= 0.1)) p.fail("decentre", "at most 0.1 m either way");
+  }
+  if (tilt != std::array<double, 2>{0, 0} || decentre != std::array<double, 2>{0, 0}) {
+    if (!prescription.placements.empty())
+      p.fail(key, "the prescription places its own surfaces; give tilt and decentre there");
+    prescription.placements.push_back(
+        {0, static_cast<int>(prescription.surfaces.size()) - 1, tilt[0], tilt[1], decentre[0], decentre[1]});
+  }
   auto system = std::make_shared<const lenses::LensSystem>(std::move(prescription), p.where(key));
   double efl = 0;
   try {
-    efl = lenses::ParaxialAt(*system, lenses::kLineD_m).efl_m;
+    efl = lenses::ParaxialAt(Centred(*system), lenses::kLineD_m).efl_m;
   } catch (const Error& e) {
     p.fail(key, e.message());
   }
@@ -163,6 +177,12 @@ std::unique_ptr<Element> Finish(Params& p, lenses::Prescription prescription) {
 }
 
 }  // namespace
+
+lenses::LensSystem Centred(const lenses::LensSystem& system) {
+  lenses::Prescription nominal = system.prescription();
+  nominal.placements.clear();
+  return lenses::LensSystem(std::move(nominal));
+}
 
 ElementType LensType() { return {"lens", ElementKind::kLens, "real lens of glass surfaces, traced exactly", MakeLens}; }
 

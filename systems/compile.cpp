@@ -227,8 +227,13 @@ class Walker {
     lenses::VertexTransfer vertices;
     if (e.kind() == ElementKind::kLens) lens = static_cast<const LensElement&>(e).lens_system();
     if (lens) {
-      vertices = lenses::TransferFromMatrices(*lens, DesignWavelength());
+      vertices = lenses::TransferFromMatrices(lens->IsCentred() ? *lens : Centred(*lens), DesignWavelength());
       power = -vertices.c;
+      if (!lens->IsCentred() && subframe_ == 0)
+        system_.warnings.push_back(Quoted(e.name()) +
+                                   " is tilted or decentred: the layers' depths, pitches and fields are the centred "
+                                   "lens's (first-order optics needs a centred one); the rays are traced through it as "
+                                   "mounted");
     }
     const bool powered = e.kind() == ElementKind::kLens || power != 0;
     if (e.powers_given() > 0) state.tunable = e.name();
