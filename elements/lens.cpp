@@ -42,7 +42,7 @@ namespace {
 constexpr size_t kMaxSurfaces = 64;
 constexpr size_t kMaxPrescriptionBytes = size_t(1) << 20;
 
-std::unique_ptr<Element> Finish(Params& p, lenses::Prescription prescription);
+std::unique_ptr<Element> Finish(Params& p, lenses::Prescription prescription, std::optional<double> aperture);
 
 class Lens final : public LensElement {
  public:
@@ -59,7 +59,7 @@ class Lens final : public LensElement {
   std::optional<double> aperture_m_;
 };
 
-lenses::PrescriptionSurface ReadSurface(Params& s, bool last, std::optional<double> lens_aperture_m) {
+lenses::PrescriptionSurface ReadSurface(Params& s, bool last) {
   lenses::PrescriptionSurface out;
   if (std::optional<double> r = s.optional_quantity("radius", Dimension::kLength)) {
     if (*r == 0) s.fail("radius", "a radius of 0 is no surface; leave \"radius\" out for a flat one");
@@ -88,7 +88,6 @@ lenses::PrescriptionSurface ReadSurface(Params& s, bool last, std::optional<doub
   }
   std::optional<double> aperture = s.optional_quantity("clear_aperture", Dimension::kLength);
   if (aperture) s.require_range("clear_aperture", *aperture, 0.0, 10.0, true, false);
-  if (!aperture) aperture = lens_aperture_m;
   if (aperture) out.shape.semi_diameter_m = *aperture / 2;
   out.material = s.string("material", "air");
   if (last) {
@@ -106,7 +105,7 @@ lenses::PrescriptionSurface ReadSurface(Params& s, bool last, std::optional<doub
 }
 
 // A .zmx prescription named relative to the scene file.
-lenses::Prescription ReadPrescription(Params& p, std::optional<double> aperture) {
+lenses::Prescription ReadPrescription(Params& p) {
   if (p.has("surfaces")) p.fail("prescription", "give the lens's \"surfaces\" or its \"prescription\", not both");
   const std::string name = p.string("prescription");
   const std::filesystem::path scene_folder = std::filesystem::path(p.where().file).parent_path();
@@ -124,15 +123,13 @@ lenses::Prescription ReadPrescription(Params& p, std::optional<double> aperture)
     p.fail("prescription", path + ": more than " + std::to_string(kMaxSurfaces) + " surfaces");
   if (prescription.surfaces.size() < 2 || prescription.surfaces.back().material != "air")
     p.fail("prescription", path + ": the lens must hold at least two surfaces and end in air");
-  for (lenses::PrescriptionSurface& s : prescription.surfaces)
-    if (aperture && !std::isfinite(s.shape.semi_diameter_m)) s.shape.semi_diameter_m = *aperture / 2;
   return prescription;
 }
 
 std::unique_ptr<Element> MakeLens(Params& p) {
   std::optional<double> aperture = p.optional_quantity("clear_aperture", Dimension::kLength);
   if (aperture) p.require_range("clear_aperture", *aperture, 0.0, 10.0, true, false);
-  if (p.has("prescription")) return Finish(p, ReadPrescription(p, aperture));
+  if (p.has("prescription")) return Finish(p, ReadPrescription(p), aperture);
   const nlohmann::json& list = p.raw("surfaces");
   if (!list.is_array() || list.size() < 2 || list.size() > kMaxSurfaces)
     p.fail("surfaces", "expected a list of 2 to " + std::to_string(kMaxSurfaces) +
@@ -142,14 +139,17 @@ std::unique_ptr<Element> MakeLens(Params& p) {
     const Location at = p.where("surfaces").child(i);
     if (!list[i].is_object()) throw Error(at, "expected a surface object, got " + list[i].dump().substr(0, 80));
     Params s(list[i], at);
-    prescription.surfaces.push_back(ReadSurface(s, i + 1 == list.size(), aperture));
+    prescription.surfaces.push_back(ReadSurface(s, i + 1 == list.size()));
   }
-  return Finish(p, std::move(prescription));
+  return Finish(p, std::move(prescription), aperture);
 }
 
-// The validated lens, as mounted, and its catalogue focal length.
-std::unique_ptr<Element> Finish(Params& p, lenses::Prescription prescription) {
+// The validated lens, as mounted, and its catalogue focal length; the lens's
+// clear aperture on every surface that gives none.
+std::unique_ptr<Element> Finish(Params& p, lenses::Prescription prescription, std::optional<double> aperture) {
   const std::string key = p.has("prescription") ? "prescription" : "surfaces";
+  for (lenses::PrescriptionSurface& s : prescription.surfaces)
+    if (aperture && !std::isfinite(s.shape.semi_diameter_m)) s.shape.semi_diameter_m = *aperture / 2;
   const std::array<double, 2> tilt = p.quantity_pair("tilt", Dimension::kAngle, {0.0, 0.0});
   const std::array<double, 2> decentre = p.quantity_pair("decentre", Dimension::kLength, {0.0, 0.0});
   for (int a = 0; a < 2; ++a) {

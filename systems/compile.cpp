@@ -40,6 +40,11 @@ struct PathState {
   std::string label;
 };
 
+// The farthest a pupil point lies from the pupil's centre (a square's corner).
+double PupilReach(const EyeModel& eye) {
+  return 0.5 * eye.pupil_diameter_m * (eye.pupil_shape == PupilShape::kSquare ? std::sqrt(2.0) : 1.0);
+}
+
 // Limits that keep the compile linear in the scene and the solvers' float products meaningful.
 constexpr size_t kMaxPathElements = 256;  // from the eye to a backlight (each layer keeps its path)
 constexpr size_t kMaxStackPanels = 32;    // 0.5^32 = 2.3e-10 of white at the solvers' start
@@ -87,7 +92,7 @@ class Walker {
   }
   void WarnWavefrontExtrapolated() {
     const EyeModel& eye = system_.eye;
-    const double reach = eye.pupil_diameter_m * (eye.pupil_shape == PupilShape::kSquare ? std::sqrt(2.0) : 1.0);
+    const double reach = 2 * PupilReach(eye);
     if (!eye.wavefront.empty() && reach > eye.wavefront.pupil_diameter_m * (1 + 1e-9))
       system_.warnings.push_back("the eye's pupil reaches " + FormatFixed(reach * 1e3, 2) + " mm across, beyond the " +
                                  FormatFixed(eye.wavefront.pupil_diameter_m * 1e3, 2) +
@@ -660,8 +665,7 @@ void Walker::Finish() {
 // quarter wider (a light field is normally the display's own field).
 void Walker::MapRealLenses() {
   const EyeModel& eye = system_.eye;
-  const double pupil_reach =
-      0.5 * eye.pupil_diameter_m * (eye.pupil_shape == PupilShape::kSquare ? std::sqrt(2.0) : 1.0);
+  const double pupil_reach = PupilReach(eye);
   std::array<double, 2> field_min{INFINITY, INFINITY}, field_max{-INFINITY, -INFINITY};  // U over every layer
   for (const VirtualLayer& l : system_.layers) {
     const double half = 1.25 * 0.5 * std::hypot(l.cols * l.tan_pitch_x, l.rows * l.tan_pitch_y);

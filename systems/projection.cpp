@@ -66,14 +66,6 @@ size_t LayerProjection::MappedTableBytes(const VirtualLayer& layer, const LightF
   return layer.ray_map && sampling == Sampling::kNearest ? lf.ray_count() * 3 * sizeof(int32_t) : 0;
 }
 
-RayTaps LayerProjection::ChannelTaps(size_t view, int i, int j, int c) const {
-  if (!map_) return Taps(view, i, j);
-  const int vr = static_cast<int>(view / lf_.views_x), vc = static_cast<int>(view % lf_.views_x);
-  const double p_x = lf_.view_x(vc), p_y = lf_.view_y(vr);
-  const auto U = map_->Lookup(c, p_x, p_y, (lf_.pixel_x(j) - p_x) * pixel_gain_, (lf_.pixel_y(i) - p_y) * pixel_gain_);
-  return U ? sampler_.At((*U)[0], (*U)[1]) : RayTaps{};
-}
-
 RayTaps LayerProjection::Taps(size_t view, int i, int j) const {
   if (map_) throw std::logic_error("LayerProjection::Taps on a mapped layer: its taps are per channel");
   int vr = static_cast<int>(view / lf_.views_x), vc = static_cast<int>(view % lf_.views_x);

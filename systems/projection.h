@@ -47,9 +47,8 @@ class LayerProjection {
   const AxisTap* row_taps(size_t view) const { return &row_taps_[(view / lf_.views_x) * lf_.rows]; }
   const AxisTap* col_taps(size_t view) const { return &col_taps_[(view % lf_.views_x) * lf_.cols]; }
 
-  // The taps of ray (pixel row i, col j) of view v (in channel c of a mapped layer).
+  // The taps of ray (pixel row i, col j) of view v; a mapped layer's are per channel (ForEachChannelTap).
   RayTaps Taps(size_t view, int i, int j) const;
-  RayTaps ChannelTaps(size_t view, int i, int j, int c) const;
 
   // out[ray][c] = (P t)[ray][c] for the rays of one view; `pattern` is
   // [row][col][rgb] of this layer, `out` [row][col][rgb] of the view.
