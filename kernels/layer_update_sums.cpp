@@ -113,4 +113,14 @@ void ComputeLayerUpdateFromPairs(const DisplayModel& model, size_t branch, int l
   SumAcrossRanks({*update->num, *update->den});
 }
 
+void ComputeLayerUpdateFromMappedPairs(const DisplayModel& model, size_t branch, int layer, const MappedPairs& pairs,
+                                       const std::vector<float>& binned, const Patterns& t, LayerUpdate* update) {
+  const size_t m = model.projection(layer).pixel_count() * 3;
+  update->branch = branch, update->layer = layer;
+  update->num->resize(m), update->den->resize(m);
+  pairs.UpdateSums(layer, t[pairs.other_layer(layer)].rgb.data(), binned, update->num->data(), update->den->data());
+  FinishOneTapSums(model.weight(branch), t[layer].rgb, update->num->data(), update->den->data());
+  SumAcrossRanks({*update->num, *update->den});
+}
+
 }  // namespace layerlab

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "layerlab/kernels/branch_target.h"
+#include "layerlab/systems/mapped_pairs.h"
 #include "layerlab/kernels/pair_lattice.h"
 #include "layerlab/kernels/solve_workspace.h"
 #include "layerlab/systems/display_model.h"
@@ -36,4 +37,7 @@ bool ComputeLayerUpdate(const DisplayModel& model, size_t branch, int layer, con
 void ComputeLayerUpdateFromPairs(const DisplayModel& model, size_t branch, int layer, const PairLattice& lattice,
                                  const PairCells& binned, const Patterns& t, SolveWorkspace* workspace,
                                  LayerUpdate* update);
+// The same behind real lenses, from MappedPairs::Bin's `binned`.
+void ComputeLayerUpdateFromMappedPairs(const DisplayModel& model, size_t branch, int layer, const MappedPairs& pairs,
+                                       const std::vector<float>& binned, const Patterns& t, LayerUpdate* update);
 }  // namespace layerlab

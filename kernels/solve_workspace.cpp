@@ -142,6 +142,13 @@ struct SolveWorkspaceSizer : WorkspaceSizer {
       if (const std::optional<PairLattice> lattice = PairLattice::IfItPays(model, b))
         pair_cells = std::max(pair_cells, lattice->cells());
     Buffer("pair lattice", &w->pair_cells, pair_cells, false, true);
+    size_t pair_list = 0;
+    for (size_t b = 0; pairs && b < model.branch_count(); ++b)
+      if (const MappedPairs* list = model.pair_list(b)) pair_list = std::max(pair_list, list->pairs());
+    Buffer("pair list sums", &w->pair_sums, pair_list, false, true);
+    Record("pair list sums", pair_list * sizeof(float), true);
+    w->pair_parts.resize(pair_list ? threads : 0);
+    for (std::vector<float>& part : w->pair_parts) Buffer("pair list sums", &part, pair_list, true, false);
     w->joint_residual.resize(joint ? layers : 0), w->joint_den.resize(joint ? layers : 0);
     for (size_t k = 0; k < w->joint_residual.size(); ++k) {
       Buffer("joint sums", &w->joint_residual[k], model.projection(k).pixel_count() * 3, false, true);
@@ -183,9 +190,10 @@ size_t Held(const std::vector<T, A>& v) {
 }  // namespace
 
 size_t SolveWorkspace::Bytes() const {
-  size_t bytes = padded.Bytes() + Held(pair_cells) + Held(view_errors) + Held(update_num) + Held(update_den) +
-                 Held(kept_num) + Held(kept_den);
+  size_t bytes = padded.Bytes() + Held(pair_cells) + Held(pair_sums) + Held(view_errors) + Held(update_num) +
+                 Held(update_den) + Held(kept_num) + Held(kept_den);
   for (size_t k = 0; k < joint_residual.size(); ++k) bytes += Held(joint_residual[k]) + Held(joint_den[k]);
+  for (const std::vector<float>& part : pair_parts) bytes += Held(part);
   for (const ThreadWorkspace& t : threads_) {
     for (size_t k = 0; k < t.cache.size(); ++k)
       bytes += Held(t.cache[k]) + Held(t.resampled[k]) + Held(t.num[k]) + Held(t.den[k]);

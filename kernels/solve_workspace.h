@@ -114,6 +114,9 @@ class SolveWorkspace {
   std::vector<std::vector<double>> joint_residual, joint_den;  // JointPass::residual(), denominator()
   // Shared: a branch's target binned by pixel pair (PairLattice::Bin), room for the largest branch where it pays.
   PairCells pair_cells;
+  // Shared: the same behind real lenses (MappedPairs::Bin), and its per-thread sums.
+  std::vector<float> pair_sums;
+  std::vector<std::vector<float>> pair_parts;
 
   // What the buffers hold now (capacities): the layout's bytes unless a pass grew one.
   size_t Bytes() const;

@@ -23,7 +23,7 @@ void HybridIterations::Begin(SolveLoop* loop) {
   workspace_ = &loop->workspace();
   // After one iteration every set has emitted light of its own.
   chase_.Begin(loop->target(), loop->resumed() && loop->iteration() > 0, workspace_);
-  for (size_t m = 0; m < model_.branch_count(); ++m) lattices_.push_back(PairLattice::IfItPays(model_, m));
+  for (size_t m = 0; m < model_.branch_count(); ++m) pairs_.push_back(BranchPairs::IfItPays(model_, m));
   next_first_ = KeptLayerUpdate(workspace_);
 }
 
@@ -45,13 +45,13 @@ std::optional<double> HybridIterations::Iterate(bool objective) {
     // 2. The set's layers updated in turn toward its chase, the other sets fixed.
     const BranchTarget stored = chase_.Stored();
     const int updates = options_.sub_iterations * static_cast<int>(order.size()) - (first_done ? 1 : 0);
-    const bool from_pairs = lattices_[m] && updates >= 2;  // binning costs about one pass over the rays
-    if (from_pairs) lattices_[m]->Bin(chase_.chase(), &workspace_->pair_cells);
+    const bool from_pairs = pairs_[m] && updates >= 2;  // binning costs about one pass over the rays
+    if (from_pairs) pairs_[m]->Bin(chase_.chase(), workspace_);
     for (int s = 0; s < options_.sub_iterations; ++s)
       for (size_t k = 0; k < order.size(); ++k) {
         if (s == 0 && k == 0 && first_done) continue;
         if (from_pairs)
-          UpdateLayerFromPairs(model_, m, order[k], *lattices_[m], workspace_->pair_cells, options_, t_, workspace_);
+          UpdateLayerFromPairs(model_, m, order[k], *pairs_[m], options_, t_, workspace_);
         else
           UpdateLayerMultiplicative(model_, m, order[k], stored, options_, t_, workspace_);
       }

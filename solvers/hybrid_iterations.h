@@ -11,7 +11,7 @@
 #include <optional>
 #include <vector>
 
-#include "layerlab/kernels/pair_lattice.h"
+#include "layerlab/kernels/branch_pairs.h"
 #include "layerlab/solvers/hybrid_chase.h"
 #include "layerlab/solvers/solve_loop.h"
 
@@ -39,7 +39,7 @@ class HybridIterations {
   Patterns* t_;
   HybridChase chase_;
   SolveWorkspace* workspace_ = nullptr;
-  std::vector<std::optional<PairLattice>> lattices_;
+  std::vector<std::optional<BranchPairs>> pairs_;
   LayerUpdate next_first_;
   bool next_first_ready_ = false;
 };

@@ -68,6 +68,21 @@ RetinalParts RetinalPartsOf(const DisplayModel& model, const SolverOptions& opti
   return r;
 }
 
+// Making a branch's pair list behind real lenses (DisplayModel::pair_list)
+// holds its set-up buffers beside what the solve has allocated by then; the
+// lists themselves are resident once the workspace's layout has asked for them.
+double PairListSetUpBytes(const DisplayModel& model, unsigned passes, int threads) {
+  const bool pairs = (passes & kPairLatticePass) || ((passes & kPairLatticeIfOneBranch) && model.branch_count() == 1);
+  double most = 0;
+  for (size_t b = 0; pairs && b < model.branch_count(); ++b)
+    if (model.pair_list(b)) {
+      const std::vector<int>& layers = model.branch_layers(b);
+      const int a = std::min(layers[0], layers[1]);
+      most = std::max(most, double(MappedPairs::SetUpBytes(model.projection(a), threads)));
+    }
+  return most;
+}
+
 }  // namespace
 
 MemoryEstimate EstimateSolveMemory(const DisplayModel& model, const std::string& solver, const SolverOptions& options,
@@ -91,6 +106,7 @@ MemoryEstimate EstimateSolveMemory(const DisplayModel& model, const std::string&
       double(LargeAllocationBytes(static_cast<size_t>(layer_values * sizeof(double)))) * own.layer_doubles;
   const WorkspaceLayout layout = SolveWorkspace::Layout(model, threads, own.passes);
   const RetinalParts retinal = RetinalPartsOf(model, options, threads, light_field);
+  const double pair_setup = PairListSetUpBytes(model, own.passes, threads);
   // Code, libraries and what the process holds before the solve; 64 MB where it cannot be read.
   const size_t resident = ResidentBytes();
   const double program = resident ? double(resident) : 64e6;
@@ -109,7 +125,8 @@ MemoryEstimate EstimateSolveMemory(const DisplayModel& model, const std::string&
   const double solver_own = own.fields_then_layers
                                 ? std::max(solver_fields + retinal.setup, solver_layers + retinal.steps)
                                 : solver_fields + solver_layers + std::max(retinal.setup, retinal.steps);
-  double counted = light_field + depth + solver_own + retinal.kept + patterns + double(layout.bytes()) + program;
+  double counted =
+      light_field + depth + solver_own + retinal.kept + patterns + double(layout.bytes()) + pair_setup + program;
   if (e.clipped_copy_counted) counted += double(e.clipped_copy);
   e.counted = static_cast<size_t>(counted);
   e.margin = static_cast<size_t>(kMemoryMarginFraction * counted + kMemoryMarginBytes +
@@ -131,7 +148,8 @@ MemoryEstimate EstimateSolveMemory(const DisplayModel& model, const std::string&
     if (own.layer_doubles > 0) e.breakdown += " + " + layers;
   }
   e.breakdown += retinal.described + " + patterns " + FormatBytes(patterns) + " + workspace " +
-                 FormatBytes(double(layout.bytes())) + " (" + layout.Describe() + ") + program " +
+                 FormatBytes(double(layout.bytes())) + " (" + layout.Describe() + ")" +
+                 (pair_setup > 0 ? " + making the pair lists " + FormatBytes(pair_setup) : "") + " + program " +
                  FormatBytes(program) + " + margin " + FormatBytes(double(e.margin));
   if (!target)
     e.breakdown += " (+ " + FormatBytes(light_field) + " for a clipped copy if the target exceeds the display's range)";

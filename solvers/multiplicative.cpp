@@ -122,16 +122,16 @@ class MultiplicativeSolver final : public Solver {
     SolveWorkspace* workspace = &loop.workspace();
     // A stack of two layers whose rays repeat pixel pairs bins the target
     // once and makes the second layer's updates from the pairs (pair_lattice.h).
-    const std::optional<PairLattice> lattice = PairLattice::IfItPays(model, 0);
-    if (lattice) lattice->Bin(l, &workspace->pair_cells);
+    const std::optional<BranchPairs> pairs = BranchPairs::IfItPays(model, 0);
+    if (pairs) pairs->Bin(l, workspace);
     LayerUpdate first = KeptLayerUpdate(workspace);
     ComputeLayerUpdate(model, 0, order[0], whole, *t, workspace, &first);
     std::optional<double> objective;
     do {
       ApplyLayerUpdate(first, options, t);
       for (size_t k = 1; k < order.size(); ++k) {
-        if (lattice)
-          UpdateLayerFromPairs(model, 0, order[k], *lattice, workspace->pair_cells, options, t, workspace);
+        if (pairs)
+          UpdateLayerFromPairs(model, 0, order[k], *pairs, options, t, workspace);
         else
           UpdateLayerMultiplicative(model, 0, order[k], whole, options, t, workspace);
       }

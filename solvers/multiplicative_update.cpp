@@ -39,11 +39,10 @@ void UpdateLayerMultiplicative(const DisplayModel& model, size_t branch, int lay
   ApplyLayerUpdate(update, options, t);
 }
 
-void UpdateLayerFromPairs(const DisplayModel& model, size_t branch, int layer, const PairLattice& lattice,
-                          const PairCells& binned, const SolverOptions& options, Patterns* t,
-                          SolveWorkspace* workspace) {
+void UpdateLayerFromPairs(const DisplayModel& model, size_t branch, int layer, const BranchPairs& pairs,
+                          const SolverOptions& options, Patterns* t, SolveWorkspace* workspace) {
   LayerUpdate update = OneLayerUpdate(workspace);
-  ComputeLayerUpdateFromPairs(model, branch, layer, lattice, binned, *t, workspace, &update);
+  pairs.ComputeUpdate(model, branch, layer, *t, workspace, &update);
   ApplyLayerUpdate(update, options, t);
 }
 

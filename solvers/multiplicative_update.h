@@ -12,6 +12,7 @@
 
 #include <vector>
 
+#include "layerlab/kernels/branch_pairs.h"
 #include "layerlab/kernels/layer_update_sums.h"
 #include "layerlab/solvers/types.h"
 
@@ -22,9 +23,8 @@ void UpdateLayerMultiplicative(const DisplayModel& model, size_t branch, int lay
                                const SolverOptions& options, Patterns* t, SolveWorkspace* workspace);
 
 // The same update from the branch's target binned by pixel pair (ComputeLayerUpdateFromPairs).
-void UpdateLayerFromPairs(const DisplayModel& model, size_t branch, int layer, const PairLattice& lattice,
-                          const PairCells& binned, const SolverOptions& options, Patterns* t,
-                          SolveWorkspace* workspace);
+void UpdateLayerFromPairs(const DisplayModel& model, size_t branch, int layer, const BranchPairs& pairs,
+                          const SolverOptions& options, Patterns* t, SolveWorkspace* workspace);
 // Applies it to patterns in which nothing has changed since it was computed.
 void ApplyLayerUpdate(const LayerUpdate& update, const SolverOptions& options, Patterns* t);
 

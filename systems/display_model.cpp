@@ -19,6 +19,22 @@ DisplayModel::DisplayModel(const DisplaySystem& system, const LightFieldGeometry
       w[c] = static_cast<float>(b.backlight_luminance_cd_m2 * b.efficiency[c] / white_luminance_);
     weights_.push_back(w);
   }
+  pair_lists_ = std::make_shared<PairLists>();
+  pair_lists_->made = std::vector<std::once_flag>(system.branches.size());
+  pair_lists_->lists.resize(system.branches.size());
+}
+
+const MappedPairs* DisplayModel::pair_list(size_t b) const {
+  std::call_once(pair_lists_->made[b], [&] {
+    std::vector<int> layers = branch_layers(b);
+    if (layers.size() != 2) return;
+    std::sort(layers.begin(), layers.end());
+    const LayerProjection &a = projections_[layers[0]], &p = projections_[layers[1]];
+    if (!MappedPairs::Suits(a, p)) return;
+    auto list = std::make_unique<const MappedPairs>(layers[0], a, layers[1], p);
+    if (list->Pays()) pair_lists_->lists[b] = std::move(list);
+  });
+  return pair_lists_->lists[b].get();
 }
 
 Patterns DisplayModel::UniformPatterns(float value) const {

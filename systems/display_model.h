@@ -15,11 +15,14 @@
 #pragma once
 
 #include <array>
+#include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
 #include "layerlab/framework/lightfield.h"
 #include "layerlab/systems/display_system.h"
+#include "layerlab/systems/mapped_pairs.h"
 #include "layerlab/systems/projection.h"
 
 namespace layerlab {
@@ -51,6 +54,12 @@ class DisplayModel {
 
   Patterns UniformPatterns(float value) const;
 
+  // Behind real lenses: branch b's rays binned by pixel pair (mapped_pairs.h),
+  // made on the first call and kept (so a solve's memory estimate, which asks
+  // first, reads them as resident); nullptr where the branch does not suit
+  // or binning would not pay. Safe to call from several threads.
+  const MappedPairs* pair_list(size_t b) const;
+
   // The light of branch b alone for one view, w_b prod_k P_k t_k, through
   // the projections (kernels/view_synthesizer.h's Synthesize takes the fast path where it can).
   // `scratch`: a view of samples for layers of several taps per ray (LayerProjection::GatherMultiply).
@@ -63,6 +72,11 @@ class DisplayModel {
   std::vector<LayerProjection> projections_;
   std::vector<std::array<float, 3>> weights_;
   double white_luminance_ = 0;
+  struct PairLists {
+    std::vector<std::once_flag> made;
+    std::vector<std::unique_ptr<const MappedPairs>> lists;
+  };
+  std::shared_ptr<PairLists> pair_lists_;  // shared by copies, whose projections are the same
 };
 
 // The geometry the display itself suggests: its field of view (the farthest

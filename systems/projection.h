@@ -36,6 +36,11 @@ class LayerProjection {
   // Bytes a mapped layer's tap table takes for a light field (0 otherwise): for memory estimates.
   static size_t MappedTableBytes(const VirtualLayer& layer, const LightFieldGeometry& lf, Sampling sampling);
   const SampledRayMap* ray_map() const { return map_.get(); }
+  // A mapped layer with nearest sampling: view v's pixel per ray and channel,
+  // [ray][rgb] (-1: misses); nullptr for any other layer.
+  const int32_t* mapped_nearest(size_t view) const {
+    return mapped_nearest_.empty() ? nullptr : &mapped_nearest_[view * lf_.pixels_per_view() * 3];
+  }
   Sampling sampling() const { return sampler_.sampling(); }
   const LayerSampler& sampler() const { return sampler_; }
   const LightFieldGeometry& geometry() const { return lf_; }
