@@ -47,8 +47,8 @@ void AddSceneKeys(std::vector<ContrastOptionEntry>& t) {
   e.default_text = "0 deg";
   e.meaning =
       "where the eye looks: the horizontal angle of the retinal window's centre (positive to the right); the window, "
-      "its Fourier analysis and natural viewing's reference move there, and the window must lie inside each "
-      "display's field (the target strip's)";
+      "its Fourier analysis and natural viewing's reference move there, and off the axis the window must lie inside "
+      "each display's field (the target strip's)";
   e.cli_flag = "--field-center", e.cli_help = "Horizontal angle of the retinal window's centre: degrees";
   e.python = "field_center", e.real = &ContrastOptions::field_center_deg;
   add();
