@@ -14,6 +14,7 @@
 #include "layerlab/analysis/svg_plot.h"
 #include "layerlab/eye/eye_description.h"
 #include "layerlab/framework/error.h"
+#include "layerlab/framework/option_table.h"
 #include "layerlab/framework/progress.h"
 #include "layerlab/framework/units.h"
 #include "layerlab/framework/version.h"
@@ -69,6 +70,38 @@ double Interpolate(const std::vector<double>& x, const std::vector<double>& y, d
   return y.back();
 }
 
+// The retinal window outside the display's horizontal field, which the target
+// strip covers: "field_center: value: why", else "". At the centre the window
+// is not checked, as before the option (a display narrower than the window shows its dark surround).
+std::string WindowOutsideField(const ContrastDisplay& d, const ContrastOptions& o) {
+  const double edge = 0.5 * d.system.fov_x_rad / kRadiansPerDegree;
+  const double left = o.field_center_deg - 0.5 * o.retina_field_deg,
+               right = o.field_center_deg + 0.5 * o.retina_field_deg;
+  if (o.field_center_deg == 0 || (left >= -edge && right <= edge)) return "";
+  return OptionViolation("field_center", o.field_center_deg,
+                         "the retinal window, " + FormatFixed(left, 2) + " to " + FormatFixed(right, 2) +
+                             " deg (field_center +- retina_field / 2), leaves the field of " + d.name + ", " +
+                             FormatFixed(-edge, 2) + " to " + FormatFixed(edge, 2) +
+                             " deg, which its target strip covers");
+}
+
+// Why `a`'s patterns cannot be shown on `b`'s layers, or "".
+std::string UnlikeLayers(const ContrastDisplay& a, const ContrastDisplay& b) {
+  const size_t layers = a.system.layers.size();
+  if (layers != b.system.layers.size())
+    return std::to_string(layers) + " layers against " + std::to_string(b.system.layers.size());
+  if (a.system.subframes != b.system.subframes)
+    return std::to_string(a.system.subframes) + " subframes against " + std::to_string(b.system.subframes);
+  for (size_t k = 0; k < a.system.layers.size(); ++k) {
+    const VirtualLayer &x = a.system.layers[k], &y = b.system.layers[k];
+    if (x.cols != y.cols || x.rows != y.rows)
+      return "layer " + std::to_string(k) + " (" + x.name + ") has " + std::to_string(x.cols) + " x " +
+             std::to_string(x.rows) + " pixels against " + std::to_string(y.cols) + " x " + std::to_string(y.rows) +
+             " (" + y.name + ")";
+  }
+  return "";
+}
+
 // A curve's light field: the display's at D_t, cut to `rows` rows around
 // the axis (the grating is vertical).
 LightFieldGeometry StripGeometry(const DisplaySystem& system, double dt, int rows) {
@@ -104,23 +137,42 @@ struct DrawnNatural {
   const EyeModel* eye;
 };
 
-// A display curve to solve: its model, and what renders its target again.
+// A factorization: the patterns solved on one display for one target (its
+// model, and what renders the target again).
 struct CurveSolve {
-  size_t display, target, index;  // of_target[target][index]
-  std::string label;
+  const ContrastDisplay* display;
+  std::string label, solver;
   std::shared_ptr<const Texture> texture;
   std::unique_ptr<DisplayModel> model;
   Patterns t;
+  double psnr_db = 0, seconds = 0;
 };
 
+// A display curve: the patterns of solves_[patterns] seen through display
+// `display`, whose layers solves_[model]'s model (its own solve's) reads;
+// the two are one solve but for a curve factorized for another display.
+struct CurveView {
+  size_t display, target, index;  // of_target[target][index]
+  size_t model, patterns;
+};
+
+std::string SolverOf(const ContrastDisplay& d) { return d.solver.empty() ? DefaultSolverFor(d.system) : d.solver; }
+
+std::string TargetLabel(double dt, double f) {
+  char label[96];
+  std::snprintf(label, sizeof label, "target %.2f D, %.1f cpd", dt, f);
+  return label;
+}
+
 // One contrast run: the curves planned target by target (natural viewing
-// where first seen, then each display's), every display curve solved, each
+// where first seen, then each display's), every factorization solved, each
 // display's curves swept together, then their peaks.
 class ContrastRun {
  public:
-  ContrastRun(const std::vector<ContrastDisplay>& displays, const ContrastOptions& o)
+  ContrastRun(const std::vector<ContrastDisplay>& displays, const ContrastOptions& o, const ContrastDisplay* foreign)
       : displays_(displays),
         o_(o),
+        foreign_(foreign),
         // Each display is seen by its own scene's eye (an "auto" pupil follows its luminance);
         // the continuous plane by the first display's.
         first_eye_(displays.front().system.eye) {
@@ -132,6 +184,7 @@ class ContrastRun {
     for (const ContrastDisplay& d : displays) pupils_.push_back(PupilSamples(d.system.eye));
     retina_ = MakeRetinaGrid(o.retina_field_deg * kRadiansPerDegree, 3 * o.retina_resolution_deg * kRadiansPerDegree,
                              o.retina_resolution_deg * kRadiansPerDegree);
+    retina_.center_x_rad = o.field_center_deg * kRadiansPerDegree;
     shifted_ = retina_;
     shifted_.center_x_rad += 0.5 * retina_.resolution_rad;  // for the peaks' sampling uncertainty
     grids_[0] = retina_, grids_[1] = shifted_;
@@ -211,9 +264,9 @@ class ContrastRun {
   }
 
   double ReferenceAmplitude(const EyeModel& seer, const RetinalImage& natural, double dt, double f,
-                            const char* label) const {
+                            const std::string& label) const {
     double r = Amplitude(natural(retina_, ChannelAccommodation(seer, dt)), retina_, f);
-    if (!(r > 0)) throw Error(std::string("contrast: the target has no component at ") + label);
+    if (!(r > 0)) throw Error("contrast: the target has no component at " + label);
     return r;
   }
 
@@ -226,8 +279,13 @@ class ContrastRun {
     of_target_.resize(o_.frequencies_cpd.size() * depths);
     drawn_.resize(of_target_.size());
     continuous_reference_.assign(of_target_.size(), 0.0);
-    if (o_.show_progress)
-      progress_.emplace("contrast", displays_.size() * o_.frequencies_cpd.size() * o_.target_diopters.size());
+    if (o_.show_progress) progress_.emplace("contrast", (displays_.size() + (foreign_ ? 1 : 0)) * of_target_.size());
+    if (foreign_)  // its patterns for each target, shown through every display
+      for (size_t fi = 0; fi < o_.frequencies_cpd.size(); ++fi)
+        for (size_t ti = 0; ti < depths; ++ti) {
+          const double f = o_.frequencies_cpd[fi], dt = o_.target_diopters[ti];
+          foreign_solves_.push_back(PlanSolve(*foreign_, texture_of_(1 / dt, f), TargetLabel(dt, f), dt));
+        }
     for (size_t di = 0; di < displays_.size(); ++di)
       for (size_t fi = 0; fi < o_.frequencies_cpd.size(); ++fi)
         for (size_t ti = 0; ti < depths; ++ti)
@@ -236,11 +294,9 @@ class ContrastRun {
 
   void PlanCurve(size_t di, size_t target_index, double f, double dt) {
     const ContrastDisplay& d = displays_[di];
-    const EyeModel& eye = d.system.eye;
     std::vector<ContrastCurve>& curves = of_target_[target_index];
     std::shared_ptr<const Texture> texture = texture_of_(1 / dt, f);
-    char label[96];
-    std::snprintf(label, sizeof label, "target %.2f D, %.1f cpd", dt, f);
+    const std::string label = TargetLabel(dt, f);
     if (o_.reference == ContrastReference::kContinuous && di == 0) {
       // The continuous plane at D_t as the eye sees it.
       SceneRadiance plane = [&](const PupilPoint& u, double dx, double dy) {
@@ -258,24 +314,43 @@ class ContrastRun {
       curves.push_back(std::move(c));
     }
 
-    auto model = std::make_unique<DisplayModel>(d.system, StripGeometry(d.system, dt, o_.strip_rows), d.sampling);
     double reference = continuous_reference_[target_index];
     if (o_.reference == ContrastReference::kSampledTarget)
-      reference = DrawSampledNatural(di, target_index, model->geometry(), *texture, f, dt, label);
-
+      reference =
+          DrawSampledNatural(di, target_index, StripGeometry(d.system, dt, o_.strip_rows), *texture, f, dt, label);
+    const size_t own = PlanSolve(d, texture, label, dt);
     ContrastCurve curve = Blank(d.name, dt, f);
-    curve.eye = EyeModelLine(eye);
-    curve.solver = d.solver.empty() ? DefaultSolverFor(d.system) : d.solver;
-    curve.reference_amplitude = reference;
-    curves.push_back(std::move(curve));
-    solves_.push_back({di, target_index, curves.size() - 1, label, texture, std::move(model), {}});
+    curve.reference_amplitude = reference;  // a curve factorized for another display is normalized as its own
+    AddCurve(di, target_index, curve, own, own);
+    if (foreign_) {
+      curve.display = FactorizedForName(d.name, foreign_->name);
+      AddCurve(di, target_index, curve, own, foreign_solves_[target_index]);
+    }
+  }
+
+  // The factorization of `d` for the target at dt; its index in solves_.
+  size_t PlanSolve(const ContrastDisplay& d, std::shared_ptr<const Texture> texture, const std::string& label,
+                   double dt) {
+    auto model = std::make_unique<DisplayModel>(d.system, StripGeometry(d.system, dt, o_.strip_rows), d.sampling);
+    solves_.push_back({&d, label, SolverOf(d), std::move(texture), std::move(model), {}});
+    return solves_.size() - 1;
+  }
+
+  // Display di's curve of solves_[patterns] seen through it (its layers read by solves_[model]'s model).
+  void AddCurve(size_t di, size_t target_index, ContrastCurve curve, size_t model, size_t patterns) {
+    const CurveSolve& s = solves_[patterns];
+    curve.eye = EyeModelLine(displays_[di].system.eye);
+    curve.solver = s.solver;
+    if (patterns != model) curve.factorized_for = s.display->name;
+    of_target_[target_index].push_back(std::move(curve));
+    views_.push_back({di, target_index, of_target_[target_index].size() - 1, model, patterns});
   }
 
   // The reference amplitude of natural viewing of the display's sampled
   // target; its curve is drawn once per distinct target, named after the
   // display when it is not the first.
   double DrawSampledNatural(size_t di, size_t target_index, const LightFieldGeometry& g, const Texture& texture,
-                            double f, double dt, const char* label) {
+                            double f, double dt, const std::string& label) {
     const ContrastDisplay& d = displays_[di];
     const EyeModel& eye = d.system.eye;
     std::vector<DrawnNatural>& drawn = drawn_[target_index];
@@ -299,7 +374,7 @@ class ContrastRun {
     return reference;
   }
 
-  // Every display curve's solve, one per thread: on a target of a few
+  // Every factorization, one per thread: on a target of a few
   // thousand rays per view a solve's passes leave a second thread waiting
   // at each barrier (26.6 s on one thread, 17.8 s on two for the default
   // sweep, 2026-12-03). Each solve runs alone on its thread, so a curve has
@@ -311,7 +386,7 @@ class ContrastRun {
 #pragma omp parallel for schedule(dynamic, 1)
     for (size_t n = 0; n < solves_.size(); ++n) {
       CurveSolve& s = solves_[n];
-      const ContrastDisplay& d = displays_[s.display];
+      const ContrastDisplay& d = *s.display;
 #pragma omp critical(contrast_solve_progress)
       {
         if (o_.progress) o_.progress(d.name + ": " + s.label);
@@ -322,32 +397,36 @@ class ContrastRun {
         SolveCurve(&s);
       } catch (...) {
 #pragma omp critical(contrast_solve_error)
-        if (n < error_at) error = std::current_exception(), error_at = n;  // the first in curve order
+        if (n < error_at) error = std::current_exception(), error_at = n;  // the first in solve order
       }
     }
     if (error) std::rethrow_exception(error);
+    for (const CurveView& v : views_) {
+      ContrastCurve& curve = of_target_[v.target][v.index];
+      curve.solve_seconds = solves_[v.patterns].seconds;
+      curve.psnr_db = solves_[v.patterns].psnr_db;  // on the display it was solved for
+    }
   }
 
   void SolveCurve(CurveSolve* s) {
-    const ContrastDisplay& d = displays_[s->display];
-    ContrastCurve& curve = of_target_[s->target][s->index];
+    const ContrastDisplay& d = *s->display;
     const LightFieldGeometry& g = s->model->geometry();
     LightField target = RenderPlaneLightField(g, g.origin_z_m, *s->texture);
-    SolverOptions options = d.options_given ? d.options : SolverRegistry::Builtins().find(curve.solver)->defaults;
+    SolverOptions options = d.options_given ? d.options : SolverRegistry::Builtins().find(s->solver)->defaults;
     options.retinal.target = RetinalTarget::kLightField;  // the grating's light field is its scene, exactly
     auto start = std::chrono::steady_clock::now();
-    SolverReport report = SolverRegistry::Builtins().create(curve.solver)->Solve(*s->model, target, options, &s->t);
+    SolverReport report = SolverRegistry::Builtins().create(s->solver)->Solve(*s->model, target, options, &s->t);
     if (!report.IsSolutionUsable()) throw Error("contrast: " + d.name + ": " + report.message);
-    curve.solve_seconds = Seconds(start);
-    curve.psnr_db = report.final_psnr_db;
+    s->seconds = Seconds(start);
+    s->psnr_db = report.final_psnr_db;
   }
 
   // The display's curves swept together; each is given an equal share of the time.
   void SweepDisplay(size_t di) {
-    std::vector<const CurveSolve*> of_display;
+    std::vector<const CurveView*> of_display;
     std::vector<ContrastCurve*> of;
-    for (const CurveSolve& s : solves_)
-      if (s.display == di) of_display.push_back(&s), of.push_back(&of_target_[s.target][s.index]);
+    for (const CurveView& v : views_)
+      if (v.display == di) of_display.push_back(&v), of.push_back(&of_target_[v.target][v.index]);
     if (of_display.empty()) return;
     const EyeModel& eye = displays_[di].system.eye;
     const std::vector<PupilPoint>& pupil = pupils_[di];
@@ -355,12 +434,13 @@ class ContrastRun {
     Sweep(
         eye,
         [&](const std::array<double, 3>& focus) -> CurveImage {
-          const DisplayModel& model = *of_display.front()->model;  // every model of the display reads the same layers
+          // Every model of the display reads the same layers.
+          const DisplayModel& model = *solves_[of_display.front()->model].model;
           auto tables = std::make_shared<std::vector<DisplayRetinaTables>>();
           for (int g = 0; g < (o_.peak_uncertainty ? 2 : 1); ++g) tables->emplace_back(model, grids_[g], pupil, focus);
           return [&, tables](size_t n, int grid) {
-            const CurveSolve& s = *of_display[n];
-            Image image = RetinaOfDisplay(*s.model, s.t, (*tables)[grid]);
+            const CurveView& v = *of_display[n];
+            Image image = RetinaOfDisplay(*solves_[v.model].model, solves_[v.patterns].t, (*tables)[grid]);
             ApplyEyeOptics(eye, grids_[grid], &image);
             return image;
           };
@@ -372,6 +452,7 @@ class ContrastRun {
 
   const std::vector<ContrastDisplay>& displays_;
   const ContrastOptions& o_;
+  const ContrastDisplay* foreign_;  // factorized_for, or nullptr
   const EyeModel& first_eye_;
   std::vector<double> accommodation_;
   std::vector<std::vector<PupilPoint>> pupils_;
@@ -385,6 +466,8 @@ class ContrastRun {
   std::vector<double> continuous_reference_;
   std::optional<Progress> progress_;
   std::vector<CurveSolve> solves_;
+  std::vector<size_t> foreign_solves_;  // per target: foreign_'s factorization in solves_
+  std::vector<CurveView> views_;
 };
 
 }  // namespace
@@ -437,10 +520,31 @@ std::vector<std::string> ContrastWarnings(const std::vector<ContrastDisplay>& di
   return warnings;
 }
 
-std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displays, const ContrastOptions& o) {
+std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displays, const ContrastOptions& o,
+                                       const ContrastDisplay* factorized_for) {
   if (displays.empty()) throw Error("contrast: no display given");
   if (std::string why; !o.IsValid(&why)) throw Error("contrast: " + why);
-  return ContrastRun(displays, o).Run();
+  if (std::string why = ContrastDisplayProblem(displays, o, factorized_for); !why.empty())
+    throw Error("contrast: " + why);
+  return ContrastRun(displays, o, factorized_for).Run();
+}
+
+std::string FactorizedForName(const std::string& display, const std::string& other) {
+  return display + " (factorized for " + other + ")";
+}
+
+std::string ContrastDisplayProblem(const std::vector<ContrastDisplay>& displays, const ContrastOptions& o,
+                                   const ContrastDisplay* factorized_for) {
+  std::vector<const ContrastDisplay*> all;
+  for (const ContrastDisplay& d : displays) all.push_back(&d);
+  if (factorized_for) all.push_back(factorized_for);
+  for (const ContrastDisplay* d : all)
+    if (std::string why = WindowOutsideField(*d, o); !why.empty()) return why;
+  if (factorized_for)
+    for (const ContrastDisplay& d : displays)
+      if (std::string why = UnlikeLayers(*factorized_for, d); !why.empty())
+        return "factorized_for: " + factorized_for->name + ": its patterns cannot be shown on " + d.name + ": " + why;
+  return "";
 }
 
 std::string ContrastCsv(const std::vector<ContrastCurve>& curves) {
@@ -485,17 +589,19 @@ std::string PeakTable(const std::vector<ContrastCurve>& curves) {
                     c.display.c_str(), c.target_diopters, c.frequency, c.reference_amplitude);
       out += line;
     }
-  out +=
-      "display                  target (D)  f (cpd)  peak (D)  parabola (D)  +- (D)  placed  peak contrast  at target  "
-      "solver                 PSNR (dB)  solve (s)  sweep (s)\n";
-  char line[320];
+  int width = 24;  // the display column: as wide as its longest name
+  for (const ContrastCurve& c : curves) width = std::max(width, static_cast<int>(c.display.size()));
+  out += "display" + std::string(width - 6, ' ') +
+         "target (D)  f (cpd)  peak (D)  parabola (D)  +- (D)  placed  peak contrast  at target  "
+         "solver                 PSNR (dB)  solve (s)  sweep (s)\n";
+  std::vector<char> line(width + 320);
   for (const ContrastCurve& c : curves) {
-    std::snprintf(line, sizeof line,
-                  "%-24s %10.2f %8.1f %9.2f %13.3f %7.3f  %-6s %14.3f %10.3f  %-22s %9.2f %10.3f %10.3f\n",
+    std::snprintf(line.data(), line.size(),
+                  "%-*s %10.2f %8.1f %9.2f %13.3f %7.3f  %-6s %14.3f %10.3f  %-22s %9.2f %10.3f %10.3f\n", width,
                   c.display.c_str(), c.target_diopters, c.frequency, c.peak.at_grid, c.estimate.at,
                   c.estimate.uncertainty, c.estimate.flat ? "flat" : "yes", c.peak.value, c.at_target, c.solver.c_str(),
                   c.psnr_db, c.solve_seconds, c.sweep_seconds);
-    out += line;
+    out += line.data();
   }
   return out;
 }

@@ -68,7 +68,8 @@ struct ContrastOptions {
   std::vector<double> frequencies_cpd = {2.0, 4.0};
   double accommodation_min_diopters = 0.0, accommodation_max_diopters = 2.6, accommodation_step_diopters = 0.05;
   double retina_resolution_deg = 0.01;
-  double retina_field_deg = 20.0;  // horizontal, centered
+  double retina_field_deg = 20.0;  // horizontal, centered on field_center_deg
+  double field_center_deg = 0.0;   // the window's centre, horizontal, right positive
   int strip_rows = 24;             // light-field rows around the axis (the grating is vertical)
   ContrastReference reference = ContrastReference::kSampledTarget;
   GratingSpacing grating = GratingSpacing::kVisualAngle;  // for the default texture
@@ -87,9 +88,10 @@ struct ContrastOptions {
 };
 
 struct ContrastCurve {
-  std::string convention;  // ConventionLabel(reference, grating)
-  std::string display;     // "natural" for natural viewing
-  std::string eye;         // EyeModelLine of the eye that saw it
+  std::string convention;      // ConventionLabel(reference, grating)
+  std::string display;         // "natural" for natural viewing; "D (factorized for S)" for S's patterns seen through D
+  std::string factorized_for;  // the display the patterns were solved on when not this one (S), else ""
+  std::string eye;             // EyeModelLine of the eye that saw it
   double target_diopters = 0, frequency = 0;
   std::vector<double> accommodation, contrast;
   std::vector<double> contrast_shifted;  // the retina moved half a sample; empty without peak_uncertainty
@@ -101,7 +103,23 @@ struct ContrastCurve {
   std::string solver;
 };
 
-std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displays, const ContrastOptions& options);
+// With `factorized_for`, each display has a second curve per target, named
+// FactorizedForName(display, factorized_for): the patterns solved on
+// factorized_for's display for the same grating (its solver, options and
+// target strip), seen through the display, normalized as its own curve.
+std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displays, const ContrastOptions& options,
+                                       const ContrastDisplay* factorized_for = nullptr);
+
+// "DISPLAY (factorized for OTHER)": no comma, so it is one CSV cell.
+std::string FactorizedForName(const std::string& display, const std::string& other);
+
+// "" when every display (and factorized_for's) can be swept with `options`;
+// else "key: value: why", the option named by its key: the retinal window
+// (field_center +- retina_field / 2) outside a display's horizontal field,
+// which its target strip covers; factorized_for's layers unlike a display's
+// (count, each one's pixels, subframes), so its patterns cannot be shown there.
+std::string ContrastDisplayProblem(const std::vector<ContrastDisplay>& displays, const ContrastOptions& options,
+                                   const ContrastDisplay* factorized_for = nullptr);
 
 // A frequency of the sweep above what a display can show (its finest layer's
 // Nyquist frequency, DisplaySystem::max_cpd): one warning per display and

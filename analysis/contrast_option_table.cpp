@@ -38,15 +38,34 @@ void AddSceneKeys(std::vector<ContrastOptionEntry>& t) {
   add();
   e.key = "retina_field", e.kind = Kind::kReal, e.type = "angle", e.dimension = Dimension::kAngle, e.unit = "deg";
   e.has_range = true, e.range = {0, 170, true, true}, e.constraint_note = " deg";
-  e.default_text = "20 deg", e.meaning = "horizontal, centered";
+  e.default_text = "20 deg", e.meaning = "horizontal, centered on field_center";
   e.cli_flag = "--retina-field", e.cli_help = "Retinal field width: degrees";
   e.python = "retina_field", e.real = &ContrastOptions::retina_field_deg;
+  add();
+  e.key = "field_center", e.kind = Kind::kReal, e.type = "angle", e.dimension = Dimension::kAngle, e.unit = "deg";
+  e.has_range = true, e.range = {-80, 80, false, false}, e.constraint_note = " deg";
+  e.default_text = "0 deg";
+  e.meaning =
+      "where the eye looks: the horizontal angle of the retinal window's centre (positive to the right); the window, "
+      "its Fourier analysis and natural viewing's reference move there, and off the axis the window must lie inside "
+      "each display's field (the target strip's)";
+  e.cli_flag = "--field-center", e.cli_help = "Horizontal angle of the retinal window's centre: degrees";
+  e.python = "field_center", e.real = &ContrastOptions::field_center_deg;
   add();
   e.key = "strip_rows", e.kind = Kind::kInteger, e.type = "integer", e.has_range = true;
   e.range = {1, 100000, false, false}, e.default_text = "24";
   e.meaning = "light-field rows around the axis (the grating is vertical)";
   e.cli_flag = "--strip-rows", e.cli_help = "Light-field rows around the axis";
   e.python = "strip_rows", e.integer = &ContrastOptions::strip_rows;
+  add();
+  e.key = "factorized_for", e.kind = Kind::kConfig, e.type = "path", e.default_text = "none";
+  e.meaning =
+      "a scene whose display the patterns are also solved on, for the same grating; each display then has a second "
+      "curve, \"DISPLAY (factorized for SCENE)\", of those patterns seen through it (the layers must match in "
+      "count and resolution)";
+  e.cli_flag = "--factorized-for",
+  e.cli_help = "Scene file: each display also shows the patterns solved on its display";
+  e.python = "factorized_for";
   add();
   e.key = "scenes", e.kind = Kind::kConfig, e.type = "array of paths", e.default_text = "none";
   e.meaning = "more displays in the same sweep (on the command line and in Python: the scenes given)";

@@ -95,7 +95,7 @@ ContrastRunConfig ReadContrast(Params& run, const Scene& scene) {
   c.enabled = true;
   ContrastOptions& o = c.options;
   Params p = run.object("contrast");
-  for (const char* key : {"accommodation", "scenes"}) p.mark_read(key);
+  for (const char* key : {"accommodation", "scenes", "factorized_for"}) p.mark_read(key);
   ReadOptionEntries(p, ContrastOptionTable(), &o);
   if (p.has("accommodation")) {
     std::vector<double> a = DepthRange(p, "accommodation");
@@ -108,6 +108,7 @@ ContrastRunConfig ReadContrast(Params& run, const Scene& scene) {
                       p.where().child("retina_field").str(), p.where().child("retina_resolution").str());
   if (p.has("scenes"))
     for (const std::string& file : StringList(p, "scenes")) c.scenes.push_back(ResolveAgainstScene(scene, file));
+  if (p.has("factorized_for")) c.factorized_for = ResolveAgainstScene(scene, p.string("factorized_for"));
   p.check_all_read();
   return c;
 }

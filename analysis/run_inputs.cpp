@@ -99,6 +99,13 @@ RunInputs ReadRunInputs(const RunRequest& request) {
     in.contrast.push_back({in.name, in.system, in.solve.solver, in.solve.options, true});
     for (const std::string& other : in.run.contrast.scenes)
       in.contrast.push_back(ContrastDisplayOf(files.Read(other), other));
+    const std::string& foreign = in.run.contrast.factorized_for;
+    if (!foreign.empty()) in.contrast_factorized_for = ContrastDisplayOf(files.Read(foreign), foreign);
+    const ContrastDisplay* other = in.contrast_factorized_for ? &*in.contrast_factorized_for : nullptr;
+    if (std::string why = ContrastDisplayProblem(in.contrast, in.run.contrast.options, other); !why.empty()) {
+      const std::string key = why.substr(0, why.find(':'));  // "key: ...": refused at its key, before any solve
+      throw Error(Location{file, "/run/contrast"}.child(key), why.substr(key.size() + 2));
+    }
   }
   if (in.has_target()) ReadTargetGeometry(files, &in);
   return in;

@@ -30,6 +30,7 @@ struct ContrastRunConfig {
   bool enabled = false;
   ContrastOptions options;          // accommodation sweep, depths, frequencies, retina
   std::vector<std::string> scenes;  // more displays in the sweep (resolved paths)
+  std::string factorized_for;       // the display whose patterns each display also shows (resolved path), or ""
 };
 
 struct CompareRunConfig {

@@ -39,7 +39,8 @@ struct RunInputs {
   std::string name;  // the scene file's stem
   std::vector<OtherDisplay> compare;
   std::vector<ContrastDisplay> contrast;
-  LightFieldGeometry target_geometry;  // read without the views, for the memory estimate
+  std::optional<ContrastDisplay> contrast_factorized_for;  // run.contrast.factorized_for's display
+  LightFieldGeometry target_geometry;                      // read without the views, for the memory estimate
 #if LAYERLAB_WITH_EMBREE
   std::unique_ptr<TargetScene> target_scene;  // read once: the estimate's geometry, then the render
 #endif

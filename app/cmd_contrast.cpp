@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "layerlab/analysis/contrast.h"
 #include "layerlab/analysis/contrast_option_table.h"
@@ -28,7 +29,7 @@ namespace {
 // The sweep's options are the contrast option table's (analysis/contrast_option_table.h).
 struct ContrastCommandOptions {
   std::vector<std::string> scenes;
-  std::string out, accommodation;
+  std::string out, accommodation, factorized_for;
   OptionFlags flags;
 };
 
@@ -54,6 +55,11 @@ void RunContrastCommand(const ContrastCommandOptions& o) {
   const ContrastOptions options = ReadContrastOptions(o);
   std::vector<ContrastDisplay> displays;
   for (const std::string& file : o.scenes) displays.push_back(LoadContrastDisplay(file));
+  std::optional<ContrastDisplay> foreign;
+  if (!o.factorized_for.empty()) foreign = LoadContrastDisplay(o.factorized_for);
+  const ContrastDisplay* factorized_for = foreign ? &*foreign : nullptr;
+  if (std::string why = ContrastDisplayProblem(displays, options, factorized_for); !why.empty())
+    throw Error(NameTheFlag(ContrastOptionTable(), why));
   std::vector<std::string> warnings;
   for (const ContrastDisplay& d : displays)
     for (const std::string& w : d.system.warnings) warnings.push_back(d.name + ": " + w);
@@ -61,10 +67,11 @@ void RunContrastCommand(const ContrastCommandOptions& o) {
   SayWarnings(warnings);
   std::vector<NamedInput> inputs;
   for (const std::string& file : o.scenes) inputs.push_back({file, "a scene"});
+  if (foreign) inputs.push_back({o.factorized_for, "a scene"});
   StagedOutput stage(o.out, "contrast", {"contrast.csv", "peaks.txt", "contrast.svg", "index.html", "report.json"},
                      inputs);
   auto start = std::chrono::steady_clock::now();
-  std::vector<ContrastCurve> curves = RunContrast(displays, options);
+  std::vector<ContrastCurve> curves = RunContrast(displays, options, factorized_for);
   double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   const std::string peaks = PeakTable(curves);
@@ -96,6 +103,8 @@ void AddContrastCommand(CLI::App& app) {
   const ContrastOptionEntry& accommodation = *FindContrastOption("accommodation");
   cmd->add_option(accommodation.cli_flag, o->accommodation,
                   accommodation.cli_help + " (default " + accommodation.default_text + ")");
+  const ContrastOptionEntry& factorized_for = *FindContrastOption("factorized_for");
+  cmd->add_option(factorized_for.cli_flag, o->factorized_for, factorized_for.cli_help);
   cmd->callback([o] { RunContrastCommand(*o); });
 }
 

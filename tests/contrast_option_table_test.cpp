@@ -185,7 +185,8 @@ TEST(ContrastOptionTable, TheSceneReaderReadsTheTablesKeysWithTheirRanges) {
       const double outside = OutsideRange(e.range, integer, at_min, step);
       EXPECT_EQ(ReadError({{e.key, SceneValue(e, inside)}}), "") << e.key << " at " << inside;
       if (ReadError({{e.key, SceneValue(e, inside)}}).empty()) {
-        EXPECT_NEAR(Read(e, ReadSection({{e.key, SceneValue(e, inside)}}).options), inside, 1e-12 * (1 + inside))
+        EXPECT_NEAR(Read(e, ReadSection({{e.key, SceneValue(e, inside)}}).options), inside,
+                    1e-12 * (1 + std::abs(inside)))
             << e.key;
       }
       const std::string refused = ReadError({{e.key, SceneValue(e, outside)}});

@@ -133,7 +133,9 @@ nlohmann::json ContrastSection(const py::object& section, const py::kwargs& keyw
     }
     if (given.is_null()) given = nlohmann::json::object();
     if (given.contains(e.key)) RaiseArgumentError("contrast: " + e.key + " is both in the section and a keyword");
-    given[e.key] = ToJson(value, "contrast()", "/run/contrast/" + e.key);
+    given[e.key] = e.key == "factorized_for" && py::hasattr(value, "__fspath__")
+                       ? nlohmann::json(PathArg(value))
+                       : ToJson(value, "contrast()", "/run/contrast/" + e.key);
   }
   return given;
 }
@@ -170,7 +172,9 @@ py::list Contrast(const py::object& scenes, const py::object& section, const py:
     ContrastRunConfig config = ReadRunConfig(options, displays.front().system).contrast;
     for (const auto& [entry, value] : rest) entry->set(config.options, entry->get(set_here));
     for (const std::string& f : config.scenes) displays.push_back(LoadContrastDisplay(f));
-    curves = RunContrast(displays, config.options);
+    std::optional<ContrastDisplay> foreign;
+    if (!config.factorized_for.empty()) foreign = LoadContrastDisplay(config.factorized_for);
+    curves = RunContrast(displays, config.options, foreign ? &*foreign : nullptr);
   }
   py::list list;
   for (const ContrastCurve& c : curves) list.append(CurveDict(c));

@@ -26,6 +26,7 @@ py::dict ReportDict(const SolverReport& r) {
 py::dict CurveDict(const ContrastCurve& c) {
   py::dict d;
   d["display"] = c.display, d["convention"] = c.convention, d["solver"] = c.solver;
+  d["factorized_for"] = c.factorized_for.empty() ? py::object(py::none()) : py::str(c.factorized_for);
   d["target_diopters"] = c.target_diopters, d["frequency"] = c.frequency;
   d["accommodation"] = Array(c.accommodation), d["contrast"] = Array(c.contrast);
   d["contrast_shifted"] = Array(c.contrast_shifted);

@@ -44,3 +44,19 @@ def test_contrast_options_are_checked_with_their_pointer(small_scene_path):
     assert info.value.file == "contrast()" and info.value.pointer == "/run/contrast/frequencies/0"
     with pytest.raises(layerlab.SceneError, match="frequncies"):
         layerlab.contrast(small_scene_path, {"frequncies": ["2 cpd"]})
+
+
+def test_factorized_for_and_field_center(small_scene_path):
+    """Factorized for itself, off the axis, a display's second curve is its own; other layers are refused."""
+    section = dict(SECTION, depths=["1.3 D"], retina_field="2 deg", field_center="3 deg")
+    curves = layerlab.contrast(small_scene_path, section, factorized_for=small_scene_path)
+    names = [c["display"] for c in curves]
+    assert names == ["natural", "hybrid_small", "hybrid_small (factorized for hybrid_small)"]
+    own, seen = curves[1], curves[2]
+    assert own["factorized_for"] is None and seen["factorized_for"] == "hybrid_small"
+    np.testing.assert_array_equal(seen["contrast"], own["contrast"])
+    other = small_scene_path.parent.parent / "multiplicative_2layer.json"
+    with pytest.raises(layerlab.Error, match="factorized_for: multiplicative_2layer: its patterns cannot be shown"):
+        layerlab.contrast(small_scene_path, section, factorized_for=str(other))
+    with pytest.raises(layerlab.Error, match="field_center: 80: the retinal window"):
+        layerlab.contrast(small_scene_path, dict(section, field_center="80 deg"))
