@@ -26,7 +26,7 @@ const SceneNode* Scene::find(const std::string& element_name) const {
 }
 
 const std::vector<std::string>& SceneTaskKeys() {
-  static const std::vector<std::string> keys = {"solve", "run"};
+  static const std::vector<std::string> keys = {"solve", "run", "tolerance"};
   return keys;
 }
 
