@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 #include "layerlab/solvers/objective.h"
 #include "layerlab/systems/layer_ray_map.h"
@@ -85,6 +86,10 @@ Misregistration MeasureMisregistration(const VirtualLayer& nominal, const Virtua
 
 LightField EveryNthView(const LightField& lf, int stride) {
   const LightFieldGeometry& g = lf.geometry;
+  if (stride == 0) {  // about 3 x 3: half the largest stride that divides both view counts less one
+    const int common = std::gcd(g.views_x - 1, g.views_y - 1);
+    stride = common == 0 ? 1 : common % 2 == 0 ? common / 2 : common;
+  }
   if (stride < 1) throw Error("a view stride of " + std::to_string(stride) + ": at least 1");
   for (int views : {g.views_x, g.views_y})
     if ((views - 1) % stride != 0)

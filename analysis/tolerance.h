@@ -51,8 +51,7 @@ Misregistration MeasureMisregistration(const VirtualLayer& nominal, const Virtua
 // subset of the target's views; PSNR of any display of the same panels.
 class ToleranceProbe {
  public:
-  // `patterns` of `nominal` bound to `full` (the solve's model); keeps every
-  // `stride`-th view row and column of `target` (and the last).
+  // `patterns` of `nominal`'s layers; keeps EveryNthView(target, stride).
   ToleranceProbe(const DisplaySystem& nominal, const Patterns& patterns, const LightField& target, int stride,
                  Sampling sampling);
   double PsnrDb(const DisplaySystem& system) const;
@@ -66,7 +65,9 @@ class ToleranceProbe {
 };
 
 // A view-subset light field: every `stride`-th view of `lf` (rows and columns
-// from 0), as a light field of its own over the eyebox those views span.
+// from 0), as a light field of its own over the eyebox those views span;
+// stride 0 picks about 3 x 3 (6 of 13 x 13 views, 2 of 5 x 5). Throws
+// layerlab::Error for a stride that would not keep the views symmetric.
 LightField EveryNthView(const LightField& lf, int stride);
 
 struct LayerResult {
