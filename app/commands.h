@@ -13,6 +13,8 @@ void AddCompareCommand(CLI::App& app);  // compare SCENES... --target LF_DIR --o
 void AddRetinaCommand(CLI::App& app);   // retina SCENE.json --patterns DIR --out DIR
 void AddRunCommand(CLI::App& app);      // run SCENE.json --out DIR: the main job and its report
 void AddSweepCommand(CLI::App& app);    // sweep SWEEP.json --out DIR: a grid of jobs, one table
+// tolerance SCENE.json --out DIR: Monte Carlo over assembly tolerances
+void AddToleranceCommand(CLI::App& app);
 #if LAYERLAB_WITH_CERES
 void AddFitCommand(CLI::App& app);                  // fit SCENE.json MEASUREMENTS.json --out CALIBRATED.json
 void AddCalibrationPatternsCommand(CLI::App& app);  // calibration-patterns SCENE.json --out DIR

@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
   layerlab::app::AddContrastCommand(app);
   layerlab::app::AddRetinaCommand(app);
   layerlab::app::AddCompareCommand(app);
+  layerlab::app::AddToleranceCommand(app);
 #if LAYERLAB_WITH_CERES
   layerlab::app::AddFitCommand(app);
   layerlab::app::AddCalibrationPatternsCommand(app);

@@ -92,6 +92,12 @@ Measurements ReadMeasurementsFile(const std::string& path);
 // non-zero reading. Throws layerlab::Error with the file and pointer.
 void CheckMeasurements(const Measurements& measurements, const DisplaySystem& system);
 
+// The marker model (marker_model.h) is first order: a panel square to the
+// axis, placed by its distance, offset and in-plane rotation. Throws
+// layerlab::Error naming the scene, the panel and its "tilt" when a panel is
+// tilted; `use` says what refuses it ("the calibration fit").
+void RefuseTiltedPanels(const DisplaySystem& system, const std::string& use);
+
 // The file form of `measurements`: camera pixels where a marker has them,
 // angles (rad) otherwise; one marker or sample per line.
 nlohmann::ordered_json MeasurementsToJson(const Measurements& measurements);

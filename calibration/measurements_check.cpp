@@ -2,6 +2,7 @@
 
 #include "layerlab/calibration/measurements.h"
 #include "layerlab/framework/params.h"
+#include "layerlab/framework/units.h"
 
 namespace layerlab {
 namespace {
@@ -22,7 +23,18 @@ const VirtualLayer& PanelNamed(const DisplaySystem& system, const std::string& n
 
 }  // namespace
 
+void RefuseTiltedPanels(const DisplaySystem& system, const std::string& use) {
+  for (const VirtualLayer& layer : system.layers)
+    if (layer.panel.tilted())
+      throw Error((system.file.empty() ? std::string("the scene") : system.file) + ": panel \"" + layer.element +
+                  "\" has \"tilt\" [" + FormatFixed(layer.panel.tilt_rad[0] * kDegreesPerRadian, 3) + ", " +
+                  FormatFixed(layer.panel.tilt_rad[1] * kDegreesPerRadian, 3) + "] deg, which " + use +
+                  " cannot represent: its marker model is first order (a panel square to the axis, placed by its "
+                  "distance, offset and in-plane rotation); leave \"tilt\" out of the scene for it");
+}
+
 void CheckMeasurements(const Measurements& measurements, const DisplaySystem& system) {
+  RefuseTiltedPanels(system, "the calibration fit");
   for (const Capture& capture : measurements.captures)
     for (const PanelMarkers& markers : capture.panels) {
       const PanelSpec& panel = PanelNamed(system, markers.panel, markers.where).panel;

@@ -75,6 +75,7 @@ std::array<double, 2> ImagedMarker(const DisplaySystem& truth, const VirtualLaye
 
 std::vector<Capture> SyntheticCaptures(const DisplaySystem& truth, const MarkerGrid& grid,
                                        const SyntheticCamera& camera, const SyntheticNoise& noise) {
+  RefuseTiltedPanels(truth, "synthetic measurements");
   Gaussian gaussian(noise.seed);
   std::vector<Capture> captures;
   for (size_t c = 0; c < camera.positions_m.size(); ++c) {

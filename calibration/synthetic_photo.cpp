@@ -172,6 +172,7 @@ PhotoRenderer::PhotoRenderer(const PhotoCamera& camera) : camera_(camera) {
 
 Image PhotoRenderer::Render(const DisplaySystem& truth, const CapturePlan& plan, const PlannedCapture& capture,
                             uint64_t seed_key) const {
+  RefuseTiltedPanels(truth, "a synthetic photograph");
   const std::vector<ShownPanel> panels = ShownPanels(truth, plan, capture);
   // The base exposure puts the brightest branch's full white at camera.white.
   std::vector<double> branch_scale(truth.branches.size());

@@ -179,7 +179,12 @@ struct PanelSpec {
   // eye-space x right, y up (the scene's "offset"): a point p of the panel's
   // own frame lies at eye_from_panel_m + R(rotation_rad) p.
   std::array<double, 2> eye_from_panel_m = {0, 0};
-  double rotation_rad = 0.0;            // rad, in-plane, counterclockwise as the eye sees it
+  double rotation_rad = 0.0;  // rad, in-plane, counterclockwise as the eye sees it
+  // rad: the panel turned about x, then about y, through its active region's
+  // centre, in the path unfolded from the eye (as a lens's "tilt"); its layer
+  // is then mapped (systems/layer_ray_map.h), its first-order optics the untilted panel's.
+  std::array<double, 2> tilt_rad = {0, 0};
+  bool tilted() const { return tilt_rad[0] != 0 || tilt_rad[1] != 0; }
   double polarization_angle_rad = 0.0;  // rad, axis of the exit polarizer
 };
 

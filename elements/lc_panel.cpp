@@ -14,6 +14,7 @@
 // | reversed          | boolean              | false          | mounted back to front (mirrored about its vertical axis) |
 // | offset            | [length, length]     | [0, 0]         | lateral shift in the panel plane (eye-space x right, y up) |
 // | rotation          | angle                | 0              | in-plane, counterclockwise as the eye sees it |
+// | tilt              | [angle, angle]       | [0, 0]         | turned about x, then about y, through the active region's centre (as mounted off true); its rays are traced to the tilted plane |
 // | polarization      | angle                | 0 deg          | axis of the exit polarizer, from eye-space x |
 // | next              | name                 | required       | the panel behind, or the backlight           |
 #include <algorithm>
@@ -86,6 +87,9 @@ std::unique_ptr<Element> MakeLcPanel(Params& p) {
   p.require_range("offset", std::abs(s.eye_from_panel_m[0]) + std::abs(s.eye_from_panel_m[1]), 0.0, 1.0, false, false);
   s.rotation_rad = p.quantity("rotation", Dimension::kAngle, 0.0);
   p.require_range("rotation", s.rotation_rad, -3.2, 3.2, false, false);
+  s.tilt_rad = p.quantity_pair("tilt", Dimension::kAngle, {0.0, 0.0});
+  for (double t : s.tilt_rad)
+    if (!(std::abs(t) < 0.5)) p.fail("tilt", "at most 0.5 rad (28.6 deg) either way, about each axis");
   s.polarization_angle_rad = p.quantity("polarization", Dimension::kAngle, 0.0);
   return std::make_unique<PanelElement>(s);
 }

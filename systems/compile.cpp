@@ -401,6 +401,10 @@ class Walker {
     const double D = m.a / m.b;
     if (D < 0) FailBehindTheEye(node, key, state, layer, D);
     SetImage(spec, state, m, &layer);
+    if (spec.tilted() && subframe_ == 0)
+      system_.warnings.push_back("panel " + Quoted(layer.name) +
+                                 " is tilted: its layer's depth, pitch and field are the untilted panel's "
+                                 "(first-order optics needs it square to the axis); the rays meet it as mounted");
     if (spec.virtual_depth == std::nullopt && D == 0)
       system_.warnings.push_back("panel \"" + layer.name +
                                  "\" sits at the focal plane: its image is at infinity (0 D)");
@@ -660,8 +664,8 @@ void Walker::Finish() {
   DescribeComponents();
 }
 
-// The exact ray map of every layer behind a real lens, sampled over the
-// pupils of the eyebox and the directions that reach any layer's field, a
+// The exact ray map of every layer behind a real lens or on a tilted panel,
+// sampled over the pupils of the eyebox and the directions that reach any layer's field, a
 // quarter wider (a light field is normally the display's own field).
 void Walker::MapRealLenses() {
   const EyeModel& eye = system_.eye;
@@ -674,7 +678,8 @@ void Walker::MapRealLenses() {
       field_min[a] = std::min(field_min[a], centre[a] - half), field_max[a] = std::max(field_max[a], centre[a] + half);
   }
   for (VirtualLayer& l : system_.layers) {
-    if (std::none_of(l.path.begin(), l.path.end(), [](const PathStep& s) { return s.lens_system != nullptr; }))
+    if (!l.panel.tilted() &&
+        std::none_of(l.path.begin(), l.path.end(), [](const PathStep& s) { return s.lens_system != nullptr; }))
       continue;
     RayMapDomain domain;
     domain.pupil_max_m = {0.5 * eye.eyebox_width_m + pupil_reach, 0.5 * eye.eyebox_height_m + pupil_reach};

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include <Eigen/Geometry>
+
 #include "layerlab/framework/random.h"
 #include "layerlab/lenses/lens_system.h"
 
@@ -21,6 +23,17 @@ LayerRayMap::LayerRayMap(const VirtualLayer& layer, const std::array<double, 3>&
       panel_position_m_(layer.position_m),
       b_(layer.transfer.b),
       diopters_(layer.diopters) {
+  if (layer.panel.tilted()) {
+    const double tx = layer.panel.tilt_rad[0], ty = layer.panel.tilt_rad[1];
+    const Eigen::Matrix3d eye_from_panel =
+        (Eigen::AngleAxisd(ty, Eigen::Vector3d::UnitY()) * Eigen::AngleAxisd(tx, Eigen::Vector3d::UnitX()))
+            .toRotationMatrix();
+    panel_tilted_ = true;
+    panel_from_eye_ = eye_from_panel.transpose();
+    const double side = b_ < 0 ? -1.0 : 1.0;  // an inverted image puts the offset's point across the axis
+    panel_centre_m_ = {side * layer.panel.eye_from_panel_m[0], side * layer.panel.eye_from_panel_m[1],
+                       panel_position_m_};
+  }
   for (const PathStep& s : layer.path) {
     if (!s.position_m || s.kind == ElementKind::kPanel) continue;
     Step step;
@@ -61,9 +74,21 @@ std::optional<std::array<double, 2>> LayerRayMap::Trace(int channel, double p_x,
     o = r.exit.origin + Eigen::Vector3d(0, 0, s.position_m);
     d = r.exit.direction / r.exit.direction.z();
   }
+  if (panel_tilted_) return AtTiltedPanel(o, d);
   if (panel_position_m_ < o.z()) return std::nullopt;
   advance_to(panel_position_m_);
   return std::array<double, 2>{o.x() / b_, o.y() / b_};
+}
+
+std::optional<std::array<double, 2>> LayerRayMap::AtTiltedPanel(const Eigen::Vector3d& o,
+                                                                const Eigen::Vector3d& d) const {
+  // In the panel's frame (origin C, its normal the local z) the ray crosses local z = 0.
+  const Eigen::Vector3d o_local = panel_from_eye_ * (o - panel_centre_m_), d_local = panel_from_eye_ * d;
+  if (!(d_local.z() > 0)) return std::nullopt;  // runs along the panel or away from it
+  const double t = -o_local.z() / d_local.z();
+  if (t < 0) return std::nullopt;  // the panel lies behind where the ray leaves the last element
+  const Eigen::Vector3d hit = o_local + t * d_local;
+  return std::array<double, 2>{(panel_centre_m_.x() + hit.x()) / b_, (panel_centre_m_.y() + hit.y()) / b_};
 }
 
 SampledRayMap::SampledRayMap(std::shared_ptr<const LayerRayMap> exact, const RayMapDomain& domain, double tan_pitch_x,

@@ -14,6 +14,12 @@
 // into pixels. Through ideal optics U = D p + u exactly, the affine map the
 // fast path uses.
 //
+// A tilted panel (PanelSpec::tilt_rad) is met where the ray crosses its
+// tilted plane, turned R = Ry(tilt_y) Rx(tilt_x) about its active region's
+// centre C (the offset, on the side of the axis where the layer's b puts it);
+// the point's coordinates along the panel's own in-plane axes, added to C, are
+// the X above. An untilted panel is met at its plane as before, bit for bit.
+//
 // The sampled map stores the residual U - (D p + u) on a regular grid over
 // the pupil and tan-angle domain the layer is seen through, read by 4-point
 // Lagrange cubics along each of (p_x, p_y, u_x, u_y) (the residual holds the
@@ -57,11 +63,16 @@ class LayerRayMap {
     double power_diopters = 0;  // an ideal element
     int lens = -1;              // index into tracers_, for a real lens
   };
+  std::optional<std::array<double, 2>> AtTiltedPanel(const Eigen::Vector3d& o, const Eigen::Vector3d& d) const;
+
   std::vector<Step> steps_;
   std::vector<std::shared_ptr<const lenses::LensSystem>> systems_;
   std::vector<std::array<std::unique_ptr<lenses::SequentialTrace>, 3>> tracers_;  // [lens][channel]
   std::array<double, 3> wavelengths_m_;
   double panel_position_m_, b_, diopters_;
+  bool panel_tilted_ = false;
+  Eigen::Matrix3d panel_from_eye_ = Eigen::Matrix3d::Identity();  // R^T of a tilted panel
+  Eigen::Vector3d panel_centre_m_ = Eigen::Vector3d::Zero();      // C, unfolded, m from the pupil
 };
 
 // The domain a sampled map covers: the pupil points and tan-angles of the

@@ -29,4 +29,11 @@ LayerSampler::LayerSampler(const VirtualLayer& layer, Sampling sampling)
       flip_x_(layer.flip_x),
       flip_y_(layer.flip_y) {}
 
+std::array<double, 2> LayerSampler::PanelCoordinates(double tan_x, double tan_y) const {
+  const double ux = tan_x - eye_from_layer_tan_x_, uy = tan_y - eye_from_layer_tan_y_;
+  const double a = cos_ * ux + sin_ * uy, b = -sin_ * ux + cos_ * uy;  // R(-rotation) u
+  const double col = a / tan_pitch_x_ + 0.5 * cols_ - 0.5, row = -b / tan_pitch_y_ + 0.5 * rows_ - 0.5;
+  return {flip_x_ ? cols_ - 1 - col : col, flip_y_ ? rows_ - 1 - row : row};
+}
+
 }  // namespace layerlab

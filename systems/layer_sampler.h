@@ -51,6 +51,9 @@ class LayerSampler {
   AxisTap Column(double tan_x) const;  // separable layers only
   AxisTap Row(double tan_y) const;     // separable layers only
   RayTaps At(double tan_x, double tan_y) const;
+  // The point's grid coordinates (col, row) in the panel's own order, pixel
+  // centres at integers: the rule above before it picks cells.
+  std::array<double, 2> PanelCoordinates(double tan_x, double tan_y) const;
   static RayTaps Combine(const AxisTap& row, const AxisTap& col, int cols);
 
  private:

@@ -54,7 +54,7 @@ std::array<double, 2> FocusAt(const LayerRayMap& map, double u, double r, const 
 }  // namespace
 
 LayerAberrations MeasureAberrations(const VirtualLayer& l, double pupil_diameter_m) {
-  if (!l.ray_map) throw Error("layer \"" + l.name + "\" has no real lens on its path");
+  if (!l.ray_map) throw Error("layer \"" + l.name + "\" has no ray map (no real lens on its path, no tilt)");
   const LayerRayMap& map = l.ray_map->exact();
   LayerAberrations out;
   const double u = l.eye_from_layer_tan_x + 0.5 * l.cols * l.tan_pitch_x;

@@ -10,6 +10,7 @@
 // | elements    | array of elements   | required           | the optical path, each an object with "type" and "name" |
 // | solve       | object              | none               | the solver and its target (see solve below)    |
 // | run         | object              | none               | what `layerlab run` does (see run below)       |
+// | tolerance   | object              | none               | assembly tolerances `layerlab tolerance` draws from (docs/optics.md, Tolerances) |
 #include "layerlab/systems/scene.h"
 
 #include <climits>
@@ -26,7 +27,7 @@ const SceneNode* Scene::find(const std::string& element_name) const {
 }
 
 const std::vector<std::string>& SceneTaskKeys() {
-  static const std::vector<std::string> keys = {"solve", "run"};
+  static const std::vector<std::string> keys = {"solve", "run", "tolerance"};
   return keys;
 }
 

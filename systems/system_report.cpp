@@ -110,7 +110,8 @@ std::string FormatAberrations(const DisplaySystem& s) {
   if (std::none_of(s.layers.begin(), s.layers.end(), [](const VirtualLayer& l) { return l.ray_map != nullptr; }))
     return "";
   std::string out =
-      "\nreal lenses, each layer at its field edge (the chief ray; the focus from rays through the pupil's edge)\n";
+      "\nmapped layers (real lenses, tilted panels), each at its field edge (the chief ray; the focus from rays "
+      "through the pupil's edge)\n";
   out += Row("%-3s %-12s %9s %11s %18s %22s %16s %10s", "#", "panel", "edge", "distortion", "lateral color R-B",
              "focus tan. / sag.", "field curvature", "map bound");
   out += Row("%-3s %-12s %9s %11s %18s %22s %16s %10s", "", "", "(deg)", "(%)", "(px / arcmin)", "(D)", "(D)", "(px)");

@@ -74,6 +74,23 @@ TEST(MeasurementsTest, ReadsPixelsAndAngles) {
   EXPECT_NO_THROW(CheckMeasurements(m, Designed()));
 }
 
+// The marker model is first order: a tilted panel is refused by the fit with
+// the panel, its "tilt" and the reason, not fitted as if square to the axis.
+TEST(MeasurementsTest, ATiltedPanelIsRefusedByTheCalibrationFit) {
+  json scene = ReadJsonFile(testing::ExamplePath("paper_prototype.json"));
+  scene["elements"][4]["tilt"] = {"0.5 deg", "0 deg"};
+  const DisplaySystem tilted = testing::CompileJson(scene, "tilted.json");
+  CalibratedDisplay display;
+  const CalibrationReport report =
+      Calibrate(tilted, ParseMeasurements(SmallValid(), "m.json"), CalibrationOptions{}, &display);
+  EXPECT_FALSE(report.IsSolutionUsable());
+  EXPECT_EQ(report.message, "tilted.json: panel \"" + scene["elements"][4]["name"].get<std::string>() +
+                                "\" has \"tilt\" [0.500, 0.000] deg, which the calibration fit cannot represent: its "
+                                "marker model is first order (a panel square to the axis, placed by its distance, "
+                                "offset and in-plane rotation); leave \"tilt\" out of the scene for it");
+  EXPECT_NO_THROW(CheckMeasurements(ParseMeasurements(SmallValid(), "m.json"), Designed()));
+}
+
 struct BadMeasurements {
   std::string name;
   std::function<void(json&)> mutate;
