@@ -146,7 +146,7 @@ void ToleranceModel::AddOpticDofs(const Scene& scene) {
 }
 
 ToleranceDraw ToleranceModel::Draw(uint64_t seed, uint64_t sample) const {
-  SplitMix64 random(MixSeed(seed, sample));
+  Gaussian random(MixSeed(seed, sample));
   ToleranceDraw draw(dofs_.size());
   for (size_t i = 0; i < dofs_.size(); ++i) draw[i] = DrawTruncatedNormal(random, dofs_[i].limit);
   return draw;

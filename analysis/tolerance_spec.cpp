@@ -73,11 +73,10 @@ ToleranceSpec ReadToleranceFile(const std::string& path) {
   return ReadToleranceSpec(document, Location{path, ""});
 }
 
-double DrawTruncatedNormal(SplitMix64& random, double limit) {
+double DrawTruncatedNormal(Gaussian& random, double limit) {
   if (limit == 0) return 0;
-  for (;;) {  // Box-Muller; the draws beyond the limit (4.6 % of them) are redrawn
-    const double u = 1.0 - random.uniform(), v = random.uniform();
-    const double x = 0.5 * limit * std::sqrt(-2.0 * std::log(u)) * std::cos(2.0 * std::numbers::pi * v);
+  for (;;) {  // the draws beyond the limit (4.6 % of them) are redrawn
+    const double x = 0.5 * limit * random();
     if (std::abs(x) <= limit) return x;
   }
 }

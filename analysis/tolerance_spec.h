@@ -49,6 +49,6 @@ ToleranceSpec ReadToleranceFile(const std::string& path);
 
 // One draw of a truncated normal of sigma = limit / 2 in [-limit, limit]
 // (a zero limit draws 0).
-double DrawTruncatedNormal(SplitMix64& random, double limit);
+double DrawTruncatedNormal(Gaussian& random, double limit);
 
 }  // namespace layerlab

@@ -57,7 +57,7 @@ TEST(ToleranceDraws, TruncatedNormalHasTheClosedFormsMoments) {
   const double inside = 2 * Phi(a) - 1;
   const double sd = std::sqrt(1 - 2 * a * phi / inside) / 2;  // in units of the limit
   const double beyond_sigma = 2 * (Phi(2) - Phi(1)) / inside;
-  SplitMix64 random(42);
+  Gaussian random(42);
   const int n = 200000;
   double sum = 0, square = 0, largest = 0;
   int beyond = 0;
@@ -71,7 +71,7 @@ TEST(ToleranceDraws, TruncatedNormalHasTheClosedFormsMoments) {
   EXPECT_NEAR(sum / n, 0.0, 0.005);
   EXPECT_NEAR(std::sqrt(square / n), sd, 0.01 * sd);
   EXPECT_NEAR(double(beyond) / n, beyond_sigma, 0.005);
-  SplitMix64 zero(1);
+  Gaussian zero(1);
   EXPECT_EQ(DrawTruncatedNormal(zero, 0.0), 0.0);
 }
 
