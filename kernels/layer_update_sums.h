@@ -8,10 +8,10 @@
 #include <vector>
 
 #include "layerlab/kernels/branch_target.h"
-#include "layerlab/systems/mapped_pairs.h"
 #include "layerlab/kernels/pair_lattice.h"
 #include "layerlab/kernels/solve_workspace.h"
 #include "layerlab/systems/display_model.h"
+#include "layerlab/systems/mapped_pairs.h"
 
 namespace layerlab {
 
