@@ -2,8 +2,10 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 
 #include "layerlab/calibration/measurements.h"
+#include "layerlab/framework/units.h"
 
 namespace layerlab {
 namespace {
@@ -15,6 +17,12 @@ double Significant(double value, int digits) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.*g", digits, value);
   return std::strtod(buf, nullptr);
+}
+
+std::string FormatSignificant(double value, int digits) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, value);
+  return buf;
 }
 
 // Whole numbers are written without a fraction ("440", not "440.0").
@@ -91,7 +99,7 @@ ordered_json MeasurementsToJson(const Measurements& m) {
       ordered_json c;
       c["camera_position"] = {Value(Significant(capture.camera_position[0], 12)),
                               Value(Significant(capture.camera_position[1], 12))};
-      ordered_json markers = ordered_json::object();
+      ordered_json markers = ordered_json::object(), detection_noise = ordered_json::object();
       for (const PanelMarkers& panel : capture.panels) {
         ordered_json list = ordered_json::array();
         for (const MarkerObservation& o : panel.markers) {
@@ -104,7 +112,15 @@ ordered_json MeasurementsToJson(const Measurements& m) {
           list.push_back(marker);
         }
         markers[panel.panel] = list;
+        if (panel.detection_noise) {
+          ordered_json noise = {
+              {"sigma", FormatSignificant(panel.detection_noise->sigma_rad * kDegreesPerRadian * 60, 4) + " arcmin"}};
+          if (panel.detection_noise->degrees_of_freedom > 0)
+            noise["degrees_of_freedom"] = panel.detection_noise->degrees_of_freedom;
+          detection_noise[panel.panel] = noise;
+        }
       }
+      if (!detection_noise.empty()) c["detection_noise"] = detection_noise;
       c["markers"] = markers;
       captures.push_back(c);
     }

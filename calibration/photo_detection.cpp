@@ -9,6 +9,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "layerlab/calibration/detection_noise.h"
 #include "layerlab/calibration/synthetic_measurements.h"
 #include "layerlab/framework/error.h"
 #include "layerlab/framework/exr_image.h"
@@ -388,6 +389,7 @@ class CaptureDetector {
       m.where = {path, ""};
       markers.markers.push_back(m);
     }
+    markers.detection_noise = EstimateBoardNoise(markers.markers);
     d_.corners += markers.markers.size();
     capture.panels.push_back(std::move(markers));
     return std::nullopt;
