@@ -18,9 +18,15 @@ double NormalUpperQuantile(double upper_tail) {
 }
 
 double CriticalVarianceRatio(int d1, int d2, double level) {
-  const double inverse_d1 = 1.0 / d1, inverse_d2 = d2 > 0 ? 1.0 / d2 : 0.0;
-  const double mean = 0.5 * (inverse_d2 - inverse_d1), variance = 0.5 * (inverse_d1 + inverse_d2);
-  return std::exp(2 * (mean + NormalUpperQuantile(level) * std::sqrt(variance)));
+  // Paulson: (A F^(1/3) - B) / sqrt(a + b F^(2/3)) is nearly a standard normal
+  // (Wilson and Hilferty's cube root of each chi-square); solved for F^(1/3)
+  // at z, the larger root of (A^2 - z^2 b) u^2 - 2 A B u + (B^2 - z^2 a) = 0.
+  const double z = NormalUpperQuantile(level);
+  const double a = 2.0 / (9.0 * d1), b = d2 > 0 ? 2.0 / (9.0 * d2) : 0.0;
+  const double A = 1 - b, B = 1 - a;
+  const double quadratic = A * A - z * z * b, half_linear = A * B, constant = B * B - z * z * a;
+  const double u = (half_linear + std::sqrt(half_linear * half_linear - quadratic * constant)) / quadratic;
+  return u * u * u;
 }
 
 }  // namespace layerlab

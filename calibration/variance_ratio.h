@@ -10,9 +10,10 @@ namespace layerlab {
 // z with P(Z > z) = upper_tail for a standard normal Z, upper_tail in (0, 1).
 double NormalUpperQuantile(double upper_tail);
 
-// The ratio F(d1, d2) exceeds with probability `level`, by Fisher's z:
-// z = ln(F) / 2 is nearly normal with mean (1/d2 - 1/d1) / 2 and variance
-// (1/d1 + 1/d2) / 2 (d1 >= 1; d2 = 0 for a noise known exactly).
+// The ratio F(d1, d2) exceeds with probability `level` (d1 >= 1; d2 = 0 for a
+// noise known exactly, a chi-square over d1), by Paulson's approximation from
+// Wilson and Hilferty's cube root, within a few percent of the tail down to
+// tens of degrees of freedom.
 double CriticalVarianceRatio(int d1, int d2, double level);
 
 }  // namespace layerlab
