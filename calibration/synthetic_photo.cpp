@@ -7,6 +7,7 @@
 #include "layerlab/calibration/synthetic_measurements.h"
 #include "layerlab/framework/error.h"
 #include "layerlab/framework/random.h"
+#include "layerlab/systems/layer_ray_map.h"
 
 namespace layerlab {
 namespace {
@@ -15,7 +16,7 @@ namespace {
 struct ShownPanel {
   const VirtualLayer* layer = nullptr;
   std::vector<float> transmittance;
-  // Ray (origin o, slope t) -> panel pixel is affine: base + o_x dx[0] + o_y dx[1] + t_x dx[2] + t_y dx[3],
+  // Ray (origin o, slope t) -> panel pixel is affine through ideal optics: base + o_x dx[0] + o_y dx[1] + t_x dx[2] + t_y dx[3],
   // its coefficients read off PanelPixelAt(PanelPointOfRay(...)) once.
   std::array<double, 2> base;
   std::array<std::array<double, 2>, 4> dx;
@@ -31,6 +32,13 @@ struct ShownPanel {
     for (int i = 0; i < 4; ++i) dx[i] = {(ends[i][0] - base[0]) / h, (ends[i][1] - base[1]) / h};
   }
   std::array<double, 2> PixelOfRay(const std::array<double, 2>& o, const std::array<double, 2>& t) const {
+    if (layer->ray_map) {
+      // Behind a real lens: the traced ray (green, for a gray camera) on the layer's paraxial grid, U = X / b.
+      const auto u = layer->ray_map->Lookup(1, o[0], o[1], t[0], t[1]);
+      if (!u) return {NAN, NAN};
+      const double b = std::abs(layer->transfer.b);
+      return PanelPixelAt(*layer, {b * (*u)[0], b * (*u)[1]});
+    }
     return {base[0] + o[0] * dx[0][0] + o[1] * dx[1][0] + t[0] * dx[2][0] + t[1] * dx[3][0],
             base[1] + o[0] * dx[0][1] + o[1] * dx[1][1] + t[0] * dx[2][1] + t[1] * dx[3][1]};
   }

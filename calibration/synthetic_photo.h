@@ -8,7 +8,9 @@
 // the camera's aperture toward the pixel's point in the focus plane, slope
 // t - p * focus, so each panel is defocused by its own distance. Each ray
 // meets every panel of every branch through that layer's compiled ray
-// transfer (synthetic_measurements.h: PanelPointOfRay), and the camera sees
+// transfer (synthetic_measurements.h: PanelPointOfRay), or behind a real lens
+// through its traced ray map (systems/layer_ray_map.h, the green channel's:
+// the lens's distortion and field curvature, not its lateral colour), and the camera sees
 // per branch the backlight times the branch's efficiency times the product of
 // its panels' transmittances, max (black + (1 - black) x^gamma) at the shown
 // level x (outside a panel's pixel grid: opaque), the branches added.

@@ -1,0 +1,149 @@
+// The documented calibration loop on a perturbed prototype (issue 43): the
+// paper prototype built with its magnifier 0.5, 2 and 5 % off its catalogue
+// focal length, every panel moved, offset, turned and of its own gamma; and
+// the same with a real plano-convex magnifier 2 % off, whose distortion the
+// fit's first-order model lacks. Photographs rendered by the project's own
+// renderer, detected, fitted with the default options: every parameter within
+// 3 reported standard deviations of the truth, or the result refused naming
+// the model error; never a usable result with a parameter beyond 5.
+// A CI end-to-end test (e2e.*): several seconds of rendering per case.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include <unistd.h>
+
+#include "layerlab/calibration/calibration.h"
+#include "layerlab/calibration/capture_plan.h"
+#include "layerlab/calibration/photo_detection.h"
+#include "layerlab/calibration/synthetic_photo.h"
+#include "layerlab/framework/exr_image.h"
+#include "layerlab/tests/calibration_test_util.h"
+#include "layerlab/tests/test_util.h"
+
+namespace layerlab {
+namespace {
+
+using testing::PanelTruth;
+
+struct Truth {
+  std::string element, quantity;
+  double value;
+};
+
+// Photographs of `built` for the plan of `designed` (luminance steps at 9 levels when asked), detected.
+Measurements Photographed(const DisplaySystem& designed, const DisplaySystem& built, bool luminance,
+                          int supersampling) {
+  PlanOptions o;
+  o.levels = {0, 32, 64, 96, 128, 160, 192, 224, 255};
+  CapturePlan plan = PlanCaptures(designed, o);
+  if (!luminance)
+    std::erase_if(plan.captures, [](const PlannedCapture& c) { return c.kind == CaptureKind::kLuminance; });
+  PhotoCamera camera = testing::SmallPhotoCamera();
+  camera.supersampling = supersampling;
+  plan.camera = camera.intrinsics;
+  const PhotoRenderer renderer(camera);
+  const std::filesystem::path folder =
+      std::filesystem::temp_directory_path() / ("layerlab_perturbed_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  for (size_t k = 0; k < plan.captures.size(); ++k)
+    WriteExr((folder / plan.captures[k].photo).string(), renderer.Render(built, plan, plan.captures[k], k),
+             ExrCompression::kNone);
+  const Detection d = DetectCaptures(folder.string(), plan, designed, std::nullopt);
+  std::filesystem::remove_all(folder);
+  for (const PhotoFailure& f : d.failures) ADD_FAILURE() << f.photo << ": " << f.reason;
+  return d.measurements;
+}
+
+std::vector<Truth> TruthOf(const DisplaySystem& built, const std::vector<PanelTruth>& panels, double focal_length,
+                           bool luminance) {
+  std::vector<Truth> truth = {{"lens", "focal_length", focal_length}};
+  for (const VirtualLayer& layer : built.layers) {
+    truth.push_back({layer.name, "distance", layer.panel_distance_m});
+    truth.push_back({layer.name, "virtual_depth", layer.diopters});
+    truth.push_back({layer.name, "offset_x", layer.panel.eye_from_panel_m[0]});
+    truth.push_back({layer.name, "offset_y", layer.panel.eye_from_panel_m[1]});
+    truth.push_back({layer.name, "rotation", layer.panel.rotation_rad});
+  }
+  if (luminance)
+    for (const PanelTruth& p : panels) {
+      truth.push_back({p.name, "gamma", p.gamma});
+      truth.push_back({p.name, "black_level", p.black_level});
+    }
+  return truth;
+}
+
+// Recovered within 3 sigma (gamma and black level 5), or refused naming the model error. Prints the table.
+void ExpectRecoveredOrRefused(const std::string& name, const CalibrationReport& report,
+                              const std::vector<Truth>& truth) {
+  std::printf("%s: %s\n  %-8s %-13s %14s %14s %12s %7s\n", name.c_str(), report.BriefReport().c_str(), "element",
+              "quantity", "truth", "recovered", "sigma", "z");
+  double worst = 0;
+  for (const Truth& t : truth) {
+    const ParameterEstimate* p = report.find(t.element, t.quantity);
+    ASSERT_NE(p, nullptr) << name << ": " << t.element << " " << t.quantity;
+    if (!p->std_dev) {
+      ADD_FAILURE() << name << ": " << t.element << " " << t.quantity << " has no standard deviation ("
+                    << ToString(p->status) << ")";
+      continue;
+    }
+    const double z = (p->value - t.value) / *p->std_dev;
+    std::printf("  %-8s %-13s %14.8g %14.8g %12.3g %+7.2f\n", t.element.c_str(), t.quantity.c_str(), t.value, p->value,
+                *p->std_dev, z);
+    // The black levels read high by the other branch's light through its black panels (black x black, some
+    // 3e-5 of full white, which the luminance model leaves out): up to 3.2 sigma; photometry is held to 5.
+    const bool photometry = t.quantity == "gamma" || t.quantity == "black_level";
+    worst = std::max(worst, std::abs(z) * (photometry ? 3.0 / 5.0 : 1.0));
+  }
+  if (report.IsSolutionUsable()) {
+    EXPECT_LE(worst, 3.0) << name << ": a usable calibration with a parameter off by more than 3 sigma (5 for "
+                          << "photometry)";
+  } else {
+    EXPECT_NE(report.message.find("model error"), std::string::npos)
+        << name << ": refused, but not for a model error: " << report.message;
+  }
+}
+
+const DisplaySystem& Designed(const std::string& example) {
+  static std::map<std::string, DisplaySystem> compiled;
+  if (!compiled.count(example))
+    compiled.emplace(example, testing::CompileJson(testing::ReadExample(example), testing::ExamplePath(example)));
+  return compiled.at(example);
+}
+
+TEST(PerturbedPrototype, TheDefaultFitRecoversAFocalLengthOffItsCatalogueValue) {
+  const DisplaySystem& designed = Designed("paper_prototype.json");
+  const std::vector<PanelTruth> panels = testing::ExampleTruth();
+  for (const double off : {0.005, 0.02, 0.05}) {
+    const double focal_length = 75e-3 * (1 + off);
+    const bool luminance = off == 0.02;
+    const DisplaySystem built = testing::BuiltWithPhotometry(designed, panels, {{"lens", 0.0, focal_length}});
+    CalibratedDisplay display;
+    const CalibrationReport report =
+        Calibrate(designed, Photographed(designed, built, luminance, 3), CalibrationOptions{}, &display);
+    EXPECT_TRUE(report.noise_from_detection);
+    ExpectRecoveredOrRefused("focal length " + FormatFixed(100 * off, 1) + " % off", report,
+                             TruthOf(built, panels, focal_length, luminance));
+  }
+}
+
+// A real magnifier (Thorlabs LA1608) with its radius 2 % long, so its focal
+// length too: its distortion, absent from the fit's model, is a model error.
+TEST(PerturbedPrototype, ARealMagnifiersDistortionIsNamedAsAModelError) {
+  const DisplaySystem& designed = Designed("paper_prototype_la1608.json");
+  const std::vector<PanelTruth> panels = testing::ExampleTruth();
+  nlohmann::json scene = testing::BuiltScene(designed, panels);
+  testing::ElementNamed(scene, "lens")["surfaces"][0]["radius"] = "39.372 mm";
+  const DisplaySystem built = testing::CompileJson(scene, designed.file);
+  CalibratedDisplay display;
+  const CalibrationReport report =
+      Calibrate(designed, Photographed(designed, built, false, 2), CalibrationOptions{}, &display);
+  std::printf("%s\n", report.message.c_str());
+  EXPECT_FALSE(report.IsSolutionUsable());
+  EXPECT_NE(report.message.find("model error"), std::string::npos) << report.message;
+}
+
+}  // namespace
+}  // namespace layerlab
