@@ -1,7 +1,9 @@
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <vector>
 
 #include "layerlab/calibration/measurements.h"
 
@@ -69,6 +71,41 @@ void Print(const ordered_json& j, int indent, std::string& out) {
   out += std::string(indent, ' ') + (j.is_object() ? "}" : "]");
 }
 
+ordered_json MarkersJson(const PanelMarkers& panel) {
+  ordered_json list = ordered_json::array();
+  for (const MarkerObservation& o : panel.markers) {
+    ordered_json marker;
+    marker["panel_pixel"] = {Value(Significant(o.col, 12)), Value(Significant(o.row, 12))};
+    if (o.camera_pixel)
+      marker["camera_pixel"] = {Decimals((*o.camera_pixel)[0], 4), Decimals((*o.camera_pixel)[1], 4)};
+    else
+      marker["angle"] = {Significant(o.angle_x, 12), Significant(o.angle_y, 12)};
+    list.push_back(marker);
+  }
+  return list;
+}
+
+// The file's captures for `capture`: "markers" is keyed by panel, so a panel that the capture holds twice (two
+// photographs from one position) goes, with its second list, into a second capture at the same position, and
+// so on; none is dropped.
+std::vector<ordered_json> CaptureJson(const Capture& capture) {
+  std::vector<ordered_json> out;
+  for (const PanelMarkers& panel : capture.panels) {
+    auto free = std::find_if(out.begin(), out.end(),
+                             [&](const ordered_json& c) { return !c.at("markers").contains(panel.panel); });
+    if (free == out.end()) {
+      ordered_json c;
+      c["camera_position"] = {Value(Significant(capture.camera_position[0], 12)),
+                              Value(Significant(capture.camera_position[1], 12))};
+      c["markers"] = ordered_json::object();
+      out.push_back(std::move(c));
+      free = out.end() - 1;
+    }
+    (*free)["markers"][panel.panel] = MarkersJson(panel);
+  }
+  return out;
+}
+
 }  // namespace
 
 ordered_json CameraIntrinsicsToJson(const CameraIntrinsics& c) {
@@ -87,27 +124,8 @@ ordered_json MeasurementsToJson(const Measurements& m) {
   }
   if (!m.captures.empty()) {
     ordered_json captures = ordered_json::array();
-    for (const Capture& capture : m.captures) {
-      ordered_json c;
-      c["camera_position"] = {Value(Significant(capture.camera_position[0], 12)),
-                              Value(Significant(capture.camera_position[1], 12))};
-      ordered_json markers = ordered_json::object();
-      for (const PanelMarkers& panel : capture.panels) {
-        ordered_json list = ordered_json::array();
-        for (const MarkerObservation& o : panel.markers) {
-          ordered_json marker;
-          marker["panel_pixel"] = {Value(Significant(o.col, 12)), Value(Significant(o.row, 12))};
-          if (o.camera_pixel)
-            marker["camera_pixel"] = {Decimals((*o.camera_pixel)[0], 4), Decimals((*o.camera_pixel)[1], 4)};
-          else
-            marker["angle"] = {Significant(o.angle_x, 12), Significant(o.angle_y, 12)};
-          list.push_back(marker);
-        }
-        markers[panel.panel] = list;
-      }
-      c["markers"] = markers;
-      captures.push_back(c);
-    }
+    for (const Capture& capture : m.captures)
+      for (ordered_json& c : CaptureJson(capture)) captures.push_back(std::move(c));
     doc["captures"] = captures;
   }
   if (!m.luminance.empty()) {
