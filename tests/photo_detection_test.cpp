@@ -99,6 +99,26 @@ TEST(PhotoDetectionTest, AMirroredOrTurnedBoardIsRefusedNamingIt) {
   }
 }
 
+// A photograph of another panel saved under rear_a's name: rear_b (the half mirror's reflected branch) and
+// front_a (mounted reversed) show the same board mirrored against rear_a's, 4 % and 8 % larger (their virtual
+// depths differ), centred in the same place; refused as mirrored. rear_a's own photograph is found.
+TEST(PhotoDetectionTest, APhotographOfAnotherPanelThatMirrorsItIsRefused) {
+  const DisplaySystem designed = Example("paper_prototype.json");
+  const CapturePlan plan = PlanOf(designed, 10, 6);
+  const PlannedCapture& rear_a = ChessboardCapture(plan, "rear_a");
+  const auto predicted = TrueCorners(designed, plan, rear_a, TestCamera().intrinsics);
+  for (const std::string shown : {"rear_a", "rear_b", "front_a"}) {
+    const Photo photo = AsPhoto(PhotoRenderer(TestCamera()).Render(designed, plan, ChessboardCapture(plan, shown), 5));
+    const CornerSearch s = FindChessboardCorners(photo, *plan.chessboard("rear_a"), predicted);
+    if (shown == "rear_a") {
+      EXPECT_TRUE(s.corners) << s.reason;
+    } else {
+      EXPECT_FALSE(s.corners) << shown;
+      EXPECT_TRUE(StartsWith(s.reason, "mirrored board: ")) << shown << ": " << s.reason;
+    }
+  }
+}
+
 // A board of odd counts both ways reads the same all four ways: detect warns once per such board.
 TEST(PhotoDetectionTest, ABoardWhoseColoursCannotShowItsOrientationIsWarnedOf) {
   const DisplaySystem designed = Example("paper_prototype.json");
