@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <utility>
 
 namespace layerlab {
 namespace {
@@ -12,13 +14,13 @@ using Pixel = std::array<double, 2>;
 // The camera pixel of the middle of square (i, j) of the board: square i lies between inner corners i - 1 and
 // i, so its middle is at corner coordinate i - 1/2, interpolated in the nearest cell of four found corners (and
 // extrapolated by half a square for the squares along the edge). Also the local square size, in pixels.
-std::pair<Pixel, double> SquareMiddle(const FoundCorners& found, int cols, int rows, int i, int j) {
+std::pair<Pixel, double> SquareMiddle(const std::vector<Pixel>& corners, int cols, int rows, int i, int j) {
   const int a0 = std::clamp(i - 1, 0, cols - 2), b0 = std::clamp(j - 1, 0, rows - 2);
   const double s = i - 0.5 - a0, t = j - 0.5 - b0;
-  const Pixel& p00 = found.camera_pixels[b0 * cols + a0];
-  const Pixel& p10 = found.camera_pixels[b0 * cols + a0 + 1];
-  const Pixel& p01 = found.camera_pixels[(b0 + 1) * cols + a0];
-  const Pixel& p11 = found.camera_pixels[(b0 + 1) * cols + a0 + 1];
+  const Pixel& p00 = corners[b0 * cols + a0];
+  const Pixel& p10 = corners[b0 * cols + a0 + 1];
+  const Pixel& p01 = corners[(b0 + 1) * cols + a0];
+  const Pixel& p11 = corners[(b0 + 1) * cols + a0 + 1];
   Pixel middle;
   for (int k = 0; k < 2; ++k)
     middle[k] = (1 - s) * (1 - t) * p00[k] + s * (1 - t) * p10[k] + (1 - s) * t * p01[k] + s * t * p11[k];
@@ -29,22 +31,23 @@ std::pair<Pixel, double> SquareMiddle(const FoundCorners& found, int cols, int r
 
 // The mean of the photograph over a box of a fifth of a square about `middle` (pixel centres at integers);
 // NaN when the box lies outside the photograph.
-double MeanAround(const Photo& photo, const Pixel& middle, double square_px) {
+double MeanAround(const std::vector<float>& pixels, int width, int height, const Pixel& middle, double square_px) {
   const double half = std::max(0.0, 0.2 * square_px);
   const long u0 = std::max(0L, std::lround(middle[0] - half)),
-             u1 = std::min<long>(photo.width - 1, std::lround(middle[0] + half));
+             u1 = std::min<long>(width - 1, std::lround(middle[0] + half));
   const long v0 = std::max(0L, std::lround(middle[1] - half)),
-             v1 = std::min<long>(photo.height - 1, std::lround(middle[1] + half));
+             v1 = std::min<long>(height - 1, std::lround(middle[1] + half));
   double sum = 0;
   long n = 0;
   for (long v = v0; v <= v1; ++v)
-    for (long u = u0; u <= u1; ++u, ++n) sum += photo.pixels[static_cast<size_t>(v) * photo.width + u];
+    for (long u = u0; u <= u1; ++u, ++n) sum += pixels[static_cast<size_t>(v) * width + u];
   return n > 0 ? sum / static_cast<double>(n) : NAN;
 }
 
 }  // namespace
 
-std::string BoardOrientationReason(const Photo& photo, const Chessboard& board, const FoundCorners& found) {
+std::string BoardOrientationReason(const std::vector<float>& pixels, int width, int height, const Chessboard& board,
+                                   const std::vector<Pixel>& corners) {
   const bool even_x = board.squares_x % 2 == 0, even_y = board.squares_y % 2 == 0;
   if (!even_x && !even_y) return "";
   const int cols = board.corners_x(), rows = board.corners_y();
@@ -53,8 +56,8 @@ std::string BoardOrientationReason(const Photo& photo, const Chessboard& board, 
   int dark_n = 0, light_n = 0;
   for (int j = 0; j < board.squares_y; ++j)
     for (int i = 0; i < board.squares_x; ++i) {
-      const auto [middle, size] = SquareMiddle(found, cols, rows, i, j);
-      const double mean = MeanAround(photo, middle, size);
+      const auto [middle, size] = SquareMiddle(corners, cols, rows, i, j);
+      const double mean = MeanAround(pixels, width, height, middle, size);
       if (!std::isfinite(mean)) continue;
       const int64_t half = board.square_pixels / 2;
       if (board.dark(board.left + i * board.square_pixels + half, board.top + j * board.square_pixels + half))

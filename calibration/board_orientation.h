@@ -21,16 +21,21 @@
 // Wrong parity refuses the photograph with a reason that names the change.
 #pragma once
 
+#include <array>
 #include <string>
+#include <vector>
 
 #include "layerlab/calibration/capture_plan.h"
-#include "layerlab/calibration/photo_detection.h"
 
 namespace layerlab {
 
-// "" when `found` (ordered as the design predicts) has the plan's dark squares
-// dark, or the square counts cannot show it; otherwise why the photograph is refused.
-std::string BoardOrientationReason(const Photo& photo, const Chessboard& board, const FoundCorners& found);
+// "" when the board whose inner corners are `corners` (camera pixels (u, v),
+// row-major from the top left, ordered as the design predicts them) has the
+// plan's dark squares dark in the photograph `pixels` (linear light,
+// [row][col], width x height), or the square counts cannot show it;
+// otherwise why the photograph is refused.
+std::string BoardOrientationReason(const std::vector<float>& pixels, int width, int height, const Chessboard& board,
+                                   const std::vector<std::array<double, 2>>& corners);
 
 // What `detect` says once of a board whose orientation its colours cannot show (both counts odd); "" otherwise.
 std::string UncheckedOrientationNote(const Chessboard& board);

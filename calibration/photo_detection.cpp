@@ -313,7 +313,8 @@ CornerSearch FindChessboardCorners(const Photo& photo, const Chessboard& board,
       const cv::Point2f& c = corners[order[b * cols + a]];
       found.camera_pixels.push_back({c.x, c.y});
     }
-  if (std::string why = BoardOrientationReason(photo, board, found); !why.empty()) {
+  if (std::string why = BoardOrientationReason(photo.pixels, photo.width, photo.height, board, found.camera_pixels);
+      !why.empty()) {
     out.reason = why;
     return out;
   }
