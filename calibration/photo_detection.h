@@ -6,8 +6,8 @@
 // "layerlab-measurements/1" that `layerlab fit` reads (docs/calibration.md).
 //
 // A photograph that fails is reported by name with the reason (overexposed,
-// pattern not found with what the image shows instead, too few features)
-// and the rest go on.
+// pattern not found with what the image shows instead, too few features,
+// another plan's board, a mirrored or turned board) and the rest go on.
 #pragma once
 
 #include <array>
