@@ -340,6 +340,9 @@ class CaptureDetector {
     for (const PlannedCapture& c : plan_.captures) {
       const PhotoFile file = LocatePhoto(folder_, c.photo, format_);
       const std::string& path = file.path;
+      // A failure names the file read, and the plan's name when it is another.
+      const std::string named =
+          file.other_name ? std::filesystem::path(path).filename().string() + " (for " + c.photo + ")" : c.photo;
       const VirtualLayer& layer = LayerNamed(c.panel);
       // One unusable photograph is named and the others go on, whatever OpenCV makes of it.
       try {
@@ -348,19 +351,23 @@ class CaptureDetector {
         const std::optional<std::string> failure = c.kind == CaptureKind::kChessboard
                                                        ? DetectChessboard(c, path, photo, layer)
                                                        : DetectLuminance(c, path, photo, layer);
-        if (failure) d_.failures.push_back({c.photo, *failure});
+        if (failure) d_.failures.push_back({named, *failure});
       } catch (const Error& e) {
-        d_.failures.push_back({c.photo, e.what()});
+        d_.failures.push_back({named, e.what()});
       } catch (const cv::Exception& e) {
-        d_.failures.push_back({c.photo, path + ": OpenCV failed on it: " + e.err});
+        d_.failures.push_back({named, path + ": OpenCV failed on it: " + e.err});
       }
     }
     for (const VirtualLayer& layer : designed_.layers)
       if (auto it = luminance_.find(layer.name); it != luminance_.end())
         d_.measurements.luminance.push_back(it->second);
     d_.notes = files_.Notes(format_, plan_.response);
+    // Once per board that a chessboard photograph is taken of.
     for (const Chessboard& board : plan_.chessboards)
-      if (std::string note = UncheckedOrientationNote(board); !note.empty()) d_.warnings.push_back(note);
+      if (std::any_of(plan_.captures.begin(), plan_.captures.end(), [&](const PlannedCapture& c) {
+            return c.kind == CaptureKind::kChessboard && c.panel == board.panel;
+          }))
+        if (std::string note = UncheckedOrientationNote(board); !note.empty()) d_.warnings.push_back(note);
     return std::move(d_);
   }
 

@@ -311,7 +311,7 @@ for v in fifo_png:"is a FIFO" folder:"is a folder" huge_png:"declares 30000 x 30
   huge_png_as_exr:"declares 30000 x 30000 pixels; the limit is" \
   fifo_png_for_exr:"rear_a_chessboard_0.png: the photograph is a FIFO"; do
   name=${v%%:*} photo=$board
-  case $name in *_png) photo=board.png ;; esac
+  case $name in *_png) photo=board.png ;; fifo_png_for_exr) photo="rear_a_chessboard_0.png (for $board)" ;; esac
   # In 4 GB of address space, as on a small machine: OpenCV allocated the huge PNG's 7.2 GB and failed.
   photo_expect "detect, photograph $name" used "warning: $photo: " bash -c 'ulimit -v 4000000 && exec "$0" "$@"' \
     "$layerlab" detect "photos_$name" --scene "$prototype" --out "m_$name.json"
