@@ -27,9 +27,9 @@ const KindInfo& Info(ToleranceKind kind) {
        "no: the fit has no lens decentre (a decentred lens shows as panel offsets it cannot tell apart)"},
       {"lens_tilt", Dimension::kAngle, 0.2, "0.2 rad (11.5 deg)", false, "no: the fit has no lens tilt"},
       {"gap", Dimension::kLength, 0.01, "10 mm", true,
-       "yes: the panel distances, and a lens's gap with fit_lens_gaps (parallax: two camera positions)"},
+       "yes: the panel distances, and a lens's gap (fitted when two camera positions see parallax)"},
       {"focal_length", Dimension::kFraction, 0.5, "50 %", true,
-       "yes, with fit_focal_length (parallax: markers seen from two camera positions)"},
+       "yes, when markers are seen from two camera positions (parallax)"},
   };
   return infos[static_cast<int>(kind)];
 }

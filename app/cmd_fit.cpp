@@ -9,6 +9,7 @@
 #include <numbers>
 #include <optional>
 #include <string>
+#include <tuple>
 
 #include "layerlab/app/commands.h"
 #include "layerlab/calibration/calibrated_scene.h"
@@ -27,8 +28,10 @@ namespace {
 
 struct FitCommandOptions {
   std::string scene, measurements, out, report, loss = "none", reference = "camera";
-  std::optional<double> marker_loss_arcmin, luminance_loss;  // unset: CalibrationOptions' own
-  bool fit_focal_length = false, fit_lens_gaps = false, force = false;
+  std::string focal_length = ToString(CalibrationOptions().focal_length),
+              lens_gaps = ToString(CalibrationOptions().lens_gaps);
+  std::optional<double> marker_loss_arcmin, luminance_loss, model_error_level;  // unset: CalibrationOptions' own
+  bool fit_focal_length = false, fit_lens_gaps = false, force = false, accept_model_error = false;
 };
 
 CalibrationOptions ReadCalibrationOptions(const FitCommandOptions& o) {
@@ -39,8 +42,21 @@ CalibrationOptions ReadCalibrationOptions(const FitCommandOptions& o) {
   } catch (const Error& e) {
     throw Error(std::string(o.loss == ToString(options.loss) ? "--reference: " : "--loss: ") + e.message());
   }
-  options.fit_focal_length = o.fit_focal_length;
-  options.fit_lens_gaps = o.fit_lens_gaps;
+  for (const auto& [choice, text, flag, option] :
+       {std::tuple{&options.focal_length, o.focal_length, o.fit_focal_length, "--focal-length"},
+        std::tuple{&options.lens_gaps, o.lens_gaps, o.fit_lens_gaps, "--lens-gaps"}}) {
+    try {
+      *choice = flag ? FitChoice::kFit : FitChoiceFromString(text);
+    } catch (const Error& e) {
+      throw Error(std::string(option) + ": " + e.message());
+    }
+  }
+  options.accept_model_error = o.accept_model_error;
+  if (o.model_error_level) {
+    if (!(*o.model_error_level > 0 && *o.model_error_level < 0.5))
+      throw Error("--model-error-level: must lie in (0, 0.5), the probability that a right model is called wrong");
+    options.model_error_level = *o.model_error_level;
+  }
   // A value given must be positive (a negative one was ignored before).
   for (const auto& [value, option] :
        {std::pair{o.marker_loss_arcmin, "--marker-loss-scale"}, std::pair{o.luminance_loss, "--luminance-loss-scale"}})
@@ -121,12 +137,20 @@ void AddFitCommand(CLI::App& app) {
                   "Luminance error, relative to the brightest reading, where the robust loss starts (default " +
                       FormatFixed(defaults.luminance_loss_scale, 2) + ")");
   cmd->add_option("--reference", o->reference, "Eye axis: camera, or farthest-panel (centers the farthest panel)");
-  cmd->add_flag("--fit-focal-length", o->fit_focal_length,
-                "Also fit the focal length of every lens and curved mirror (needs captures from two or more camera "
-                "positions)");
-  cmd->add_flag("--fit-lens-gaps", o->fit_lens_gaps,
-                "Also fit the gap of every lens and curved mirror (needs two or more camera positions and two panels "
-                "at different depths behind it)");
+  cmd->add_option("--focal-length", o->focal_length,
+                  "The focal length of every lens and curved mirror: auto (fitted when captures from two or more "
+                  "camera positions determine it, else held and said so), fit, or hold (default auto)");
+  cmd->add_option("--lens-gaps", o->lens_gaps,
+                  "The gap of every lens and curved mirror: auto, fit or hold, as --focal-length (it needs two or "
+                  "more camera positions and two panels at different depths behind it; default auto)");
+  cmd->add_flag("--fit-focal-length", o->fit_focal_length, "Same as --focal-length fit");
+  cmd->add_flag("--fit-lens-gaps", o->fit_lens_gaps, "Same as --lens-gaps fit");
+  cmd->add_flag("--accept-model-error", o->accept_model_error,
+                "Write the calibrated scene even when the markers' residual exceeds the noise measured in the "
+                "photographs (a model error)");
+  cmd->add_option(
+      "--model-error-level", o->model_error_level,
+      "Significance level of the model-error test (default " + FormatFixed(defaults.model_error_level, 3) + ")");
   cmd->add_flag("--force", o->force,
                 "Write the calibrated scene even when the fit leaves a parameter undetermined (at a bound of the "
                 "model, or a standard deviation above 10 % of its value)");

@@ -36,6 +36,35 @@ const CalibratedOptic* CalibratedDisplay::find_optic(const std::string& name) co
   return nullptr;
 }
 
+namespace {
+
+// With FitChoice::kAuto, a focal length or gap that the fit left undetermined
+// (unresolved: a standard deviation above kUndeterminedStdDevFraction of its
+// value, or at a bound) is held at its scene value instead, and the fit run
+// again: the options for that, and in *held what the report says of each.
+CalibrationOptions HoldWhatAutoLeftUnresolved(const CalibrationOptions& options, const CalibrationReport& report,
+                                              std::vector<std::string>* held) {
+  CalibrationOptions refit = options;
+  for (const ParameterEstimate& p : report.parameters) {
+    if (p.status != ParameterStatus::kUnresolved) continue;
+    FitChoice* choice = p.quantity == "focal_length" ? &refit.focal_length
+                        : p.quantity == "gap"        ? &refit.lens_gaps
+                                                     : nullptr;
+    if (!choice || *choice != FitChoice::kAuto) continue;
+    *choice = FitChoice::kHold;
+    held->push_back("the " + std::string(p.quantity == "gap" ? "gap" : "focal length") + " of \"" + p.element +
+                    "\" was fitted to " + ShowValue(p.quantity, p.value) +
+                    (p.std_dev ? " +- " + ShowValue(p.quantity, *p.std_dev) : "") +
+                    ", which the data do not determine: it is held at its scene value " +
+                    ShowValue(p.quantity, p.scene_value) + " (" +
+                    (p.quantity == "gap" ? "--lens-gaps" : "--focal-length") +
+                    " auto); add camera positions farther apart to fit it");
+  }
+  return refit;
+}
+
+}  // namespace
+
 CalibrationReport Calibrate(const DisplaySystem& system, const Measurements& measurements,
                             const CalibrationOptions& options, CalibratedDisplay* display) {
   CalibrationReport report;
@@ -70,7 +99,19 @@ CalibrationReport Calibrate(const DisplaySystem& system, const Measurements& mea
     display->panels.push_back(panel);
     report.panels.push_back(PanelResiduals{layer.name});
   }
-  if (!FitGeometry(system, measurements, options, display, &report)) return report;
+  const CalibratedDisplay designed = *display;
+  const CalibrationReport before = report;
+  bool geometry = FitGeometry(system, measurements, options, display, &report);
+  std::vector<std::string> held;
+  const CalibrationOptions refit = HoldWhatAutoLeftUnresolved(options, report, &held);
+  if (!held.empty()) {
+    *display = designed;
+    report = before;
+    report.options = refit;
+    geometry = FitGeometry(system, measurements, refit, display, &report);
+    report.notes.insert(report.notes.begin(), held.begin(), held.end());
+  }
+  if (!geometry) return report;
   if (!FitLuminance(system, measurements, options, display, &report)) return report;
   report.usable = true;
   report.message = "fitted " + std::to_string(report.markers) + " markers and " +

@@ -44,16 +44,38 @@ enum class AxisReference {
 std::string ToString(AxisReference reference);
 AxisReference AxisReferenceFromString(const std::string& name);  // throws layerlab::Error
 
+// Whether a parameter that only some captures determine is fitted.
+enum class FitChoice {
+  // Fitted when the captures determine it (markers from two or more camera
+  // positions), else held at its scene value and the report says so, with the
+  // value assumed; also held when fitting it leaves it undetermined.
+  kAuto,
+  kFit,   // fitted; a fit that cannot determine it says so and writes nothing without --force
+  kHold,  // held at its scene value
+};
+std::string ToString(FitChoice choice);
+FitChoice FitChoiceFromString(const std::string& name);  // throws layerlab::Error naming the known ones
+
 struct CalibrationOptions {
-  // Also fit the focal length of every lens and curved mirror on the paths
-  // (the magnifier's, on the paper's layout). Only parallax tells it from the
-  // panel distances: the markers must be seen from more than one camera
-  // position, or it keeps its scene value and the report says so.
-  bool fit_focal_length = false;
-  // Also fit the gap of every lens and curved mirror (from the element before
-  // it; the magnifier placed by the eye's eye_relief: from the pupil). Again
-  // only parallax sees it, and only with two panels at different depths behind it.
-  bool fit_lens_gaps = false;
+  // The focal length of every lens and curved mirror on the paths (the
+  // magnifier's, on the paper's layout). Only parallax tells it from the
+  // panel distances: the markers must be seen from more than one camera position.
+  FitChoice focal_length = FitChoice::kAuto;
+  // The gap of every lens and curved mirror (from the element before it; the
+  // magnifier placed by the eye's eye_relief: from the pupil). Again only
+  // parallax sees it, and only with two panels at different depths behind it.
+  FitChoice lens_gaps = FitChoice::kAuto;
+  // The model-error test (docs/calibration.md): when the markers carry the
+  // noise detect measured in the photographs, a residual above it at this
+  // significance level is a model error, and the result is not usable unless
+  // accepted.
+  double model_error_level = 1e-3;
+  // Nor is a residual within this factor of the noise (RMS) a model error:
+  // the noise measured on each board about a smooth map of it leaves out the
+  // part of the corners' error that varies slowly over the board (the
+  // sensor's sampling phase), some 10 % of it in the project's renderer.
+  double model_error_min_ratio = 1.25;
+  bool accept_model_error = false;
   // Discounts outliers (a misdetected marker, a reading of the wrong pattern).
   // Turn it on when the report counts markers far beyond the noise.
   RobustLoss loss = RobustLoss::kNone;
@@ -82,7 +104,7 @@ enum class ParameterStatus {
   kFitted,
   kUndetermined,  // the data cannot determine it: held at its scene value
   kReference,     // fixed by the axis reference
-  kNotFitted,     // not asked for (a focal length without fit_focal_length, a gap without fit_lens_gaps)
+  kNotFitted,     // not asked for (FitChoice::kHold)
   kUnresolved,    // fitted, but at a bound of the model or with a standard deviation beyond kUndeterminedStdDevFraction
 };
 std::string ToString(ParameterStatus status);
@@ -114,12 +136,24 @@ struct CalibrationReport {
 
   int markers = 0, captures = 0, camera_positions = 0, luminance_samples = 0;
   double marker_rms_before_rad = 0, marker_rms_after_rad = 0;  // rad, over all markers
-  double marker_noise_rad = 0;                                 // rad per axis, estimated; NaN when not estimable
+  // rad per axis: measured in the photographs when the markers carry their
+  // detection noise, else estimated from the residuals (NaN when not estimable).
+  double marker_noise_rad = 0;
+  bool noise_from_detection = false;
+  // The model-error test, with the detection noise: the residuals' mean square
+  // over their degrees of freedom against the detection noise's, and the ratio
+  // at which it becomes significant at options.model_error_level.
+  double variance_ratio = 0, critical_variance_ratio = 0;
+  int residual_degrees_of_freedom = 0, noise_degrees_of_freedom = 0;  // 0 noise degrees: taken as exact
+  std::string model_error;                                            // what the test found, or empty
   double luminance_rms_before = 0, luminance_rms_after = 0;
   std::string geometry_solver, luminance_solver;  // Ceres' brief reports
   std::vector<PanelResiduals> panels;
   std::vector<ParameterEstimate> parameters;
   std::vector<std::string> warnings;
+  // What the fit held as the options allow (FitChoice::kAuto: a focal length
+  // or gap the captures cannot determine), with the value it assumed.
+  std::vector<std::string> notes;
   // Parameters with ParameterStatus::kUnresolved, and why: `fit` writes no calibrated scene then unless --force.
   std::vector<std::string> unresolved;
 

@@ -23,6 +23,9 @@ constexpr std::pair<const char*, RobustLoss> kLosses[] = {
 constexpr std::pair<const char*, AxisReference> kReferences[] = {{"camera", AxisReference::kCamera},
                                                                  {"farthest-panel", AxisReference::kFarthestPanel}};
 
+constexpr std::pair<const char*, FitChoice> kFitChoices[] = {
+    {"auto", FitChoice::kAuto}, {"fit", FitChoice::kFit}, {"hold", FitChoice::kHold}};
+
 std::string Number(double x) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%g", x);
@@ -49,6 +52,14 @@ AxisReference AxisReferenceFromString(const std::string& name) {
   return FromString(name, "axis reference", kReferences);
 }
 
+std::string ToString(FitChoice choice) {
+  for (const auto& [text, value] : kFitChoices)
+    if (value == choice) return text;
+  return "?";
+}
+
+FitChoice FitChoiceFromString(const std::string& name) { return FromString(name, "fit choice", kFitChoices); }
+
 std::string ToString(ParameterStatus status) {
   switch (status) {
     case ParameterStatus::kFitted:
@@ -74,6 +85,10 @@ bool CalibrationOptions::IsValid(std::string* error) const {
     return fail("marker_loss_scale", marker_loss_scale_rad, "must be a positive angle (rad)");
   if (!(luminance_loss_scale > 0) || !std::isfinite(luminance_loss_scale))
     return fail("luminance_loss_scale", luminance_loss_scale, "must be positive (relative to the brightest reading)");
+  if (!(model_error_level > 0 && model_error_level < 0.5))
+    return fail("model_error_level", model_error_level, "must lie in (0, 0.5)");
+  if (!(model_error_min_ratio >= 1) || !std::isfinite(model_error_min_ratio))
+    return fail("model_error_min_ratio", model_error_min_ratio, "must be at least 1");
   if (max_iterations < 1) return fail("max_iterations", max_iterations, "must be at least 1");
   if (!(function_tolerance >= 0)) return fail("function_tolerance", function_tolerance, "must be non-negative");
   if (!(parameter_tolerance >= 0)) return fail("parameter_tolerance", parameter_tolerance, "must be non-negative");

@@ -52,6 +52,12 @@ std::string Pad(std::string text, size_t width) {
 
 double ArcminFromRadians(double radians) { return radians * 180.0 / std::numbers::pi * 60.0; }
 
+std::string JoinedBySemicolons(const std::vector<std::string>& parts) {
+  std::string out;
+  for (const std::string& part : parts) out += (out.empty() ? "" : "; ") + part;
+  return out;
+}
+
 std::string ShowValue(const std::string& quantity, double si_value) { return Show(quantity, si_value, true); }
 
 std::string ShowUnit(const std::string& quantity) { return ShownAs(quantity).unit; }
@@ -77,15 +83,21 @@ std::string CalibrationReport::FullReport() const {
   out += "options     loss " + ToString(options.loss);
   if (options.loss != RobustLoss::kNone)
     out += " (scales " + Arcmin(options.marker_loss_scale_rad) + ", " + Percent(options.luminance_loss_scale) + ")";
-  out += "; axis reference " + ToString(options.reference) + "; focal length " +
-         (options.fit_focal_length ? "fitted" : "fixed") + (options.fit_lens_gaps ? "; lens gaps fitted" : "") + "\n";
+  out += "; axis reference " + ToString(options.reference) + "; focal length " + ToString(options.focal_length) +
+         "; lens gaps " + ToString(options.lens_gaps) + "\n";
   if (markers) {
     out += "geometry    " + std::to_string(markers) + " markers in " + std::to_string(captures) + " capture" +
            (captures > 1 ? "s" : "") + " from " + std::to_string(camera_positions) + " camera position" +
            (camera_positions > 1 ? "s" : "") + "\n";
     out += "            residual RMS " + Arcmin(marker_rms_before_rad) + " (scene) -> " + Arcmin(marker_rms_after_rad) +
            " (fitted), per marker";
-    if (std::isfinite(marker_noise_rad)) out += "; noise " + Arcmin(marker_noise_rad) + " per axis";
+    if (std::isfinite(marker_noise_rad))
+      out += "; noise " + Arcmin(marker_noise_rad) + " per axis" +
+             (noise_from_detection ? " (measured in the photographs)" : " (estimated from the residuals)");
+    if (noise_from_detection && residual_degrees_of_freedom > 0)
+      out += "\n            model check: residual/noise variance " + FormatFixed(variance_ratio, 3) + " (" +
+             (model_error.empty() ? "within" : "ABOVE") + " " + FormatFixed(critical_variance_ratio, 3) + " at " +
+             FormatFixed(100 * options.model_error_level, 2) + " %)";
     out += "\n            " + geometry_solver + "\n";
   } else {
     out += "geometry    no markers: not fitted\n";
@@ -125,7 +137,8 @@ std::string CalibrationReport::FullReport() const {
            Pad(ShowUnit(p.quantity).empty() ? "-" : ShowUnit(p.quantity), 7) + ToString(p.status) +
            (p.derived ? " (derived)" : "") + "\n";
   }
-  if (!warnings.empty()) out += "\n";
+  if (!warnings.empty() || !notes.empty()) out += "\n";
+  for (const std::string& n : notes) out += "held: " + n + "\n";
   for (const std::string& w : warnings) out += "warning: " + w + "\n";
   return out;
 }
@@ -142,15 +155,23 @@ nlohmann::json CalibrationReport::ToJson() const {
                   {"marker_loss_scale_arcmin", ArcminFromRadians(options.marker_loss_scale_rad)},
                   {"luminance_loss_scale", options.luminance_loss_scale},
                   {"axis_reference", ToString(options.reference)},
-                  {"fit_focal_length", options.fit_focal_length},
-                  {"fit_lens_gaps", options.fit_lens_gaps}};
+                  {"focal_length", ToString(options.focal_length)},
+                  {"lens_gaps", ToString(options.lens_gaps)},
+                  {"model_error_level", options.model_error_level},
+                  {"accept_model_error", options.accept_model_error}};
   j["geometry"] = {{"markers", markers},
                    {"captures", captures},
                    {"camera_positions", camera_positions},
                    {"rms_before_arcmin", ArcminFromRadians(marker_rms_before_rad)},
                    {"rms_after_arcmin", ArcminFromRadians(marker_rms_after_rad)},
                    {"noise_arcmin", Finite(ArcminFromRadians(marker_noise_rad))},
+                   {"noise_from_detection", noise_from_detection},
                    {"solver", geometry_solver}};
+  j["model_check"] = {{"variance_ratio", variance_ratio},
+                      {"critical_variance_ratio", critical_variance_ratio},
+                      {"residual_degrees_of_freedom", residual_degrees_of_freedom},
+                      {"noise_degrees_of_freedom", noise_degrees_of_freedom},
+                      {"model_error", model_error}};
   j["luminance"] = {{"samples", luminance_samples},
                     {"rms_before_relative", luminance_rms_before},
                     {"rms_after_relative", luminance_rms_after},
@@ -184,6 +205,7 @@ nlohmann::json CalibrationReport::ToJson() const {
   }
   j["parameters"] = parameter_list;
   j["warnings"] = warnings;
+  j["notes"] = notes;
   return j;
 }
 

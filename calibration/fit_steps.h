@@ -2,7 +2,10 @@
 // report shows a value. Internal to calibration/.
 #pragma once
 
+#include <array>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "layerlab/calibration/calibration.h"
 
@@ -14,6 +17,29 @@ bool FitGeometry(const DisplaySystem& system, const Measurements& measurements, 
                  CalibratedDisplay* display, CalibrationReport* report);
 bool FitLuminance(const DisplaySystem& system, const Measurements& measurements, const CalibrationOptions& options,
                   CalibratedDisplay* display, CalibrationReport* report);
+
+// The markers of one photograph: one panel's board seen from one capture.
+struct MarkerBlock {
+  std::string panel;
+  std::array<double, 2> camera_position = {0, 0};  // m
+  Location where;                                  // the photograph (or the measurements' list)
+  std::optional<DetectionNoise> noise;
+  double squared_error_rad2 = 0;  // rad^2, the fitted residuals' sum over its markers, both axes
+  int markers = 0;
+};
+
+// The detection noise per axis over all markers (rad): the root of the markers' mean variance.
+double PooledDetectionNoise(const std::vector<MarkerBlock>& blocks);
+
+// The model-error test (calibration.h): the residuals against the detection
+// noise, into *report; where the excess concentrates, named by photograph.
+// False (with report->message) when a model error makes the result unusable
+// (not accepted by the options).
+bool CheckModelError(const std::vector<MarkerBlock>& blocks, int free_parameters, const CalibrationOptions& options,
+                     CalibrationReport* report);
+
+// "a; b; c".
+std::string JoinedBySemicolons(const std::vector<std::string>& parts);
 
 // A parameter's value in the unit the report shows it in: "72.8123 mm", "0.1500 deg", "2.4000".
 std::string ShowValue(const std::string& quantity, double si_value);

@@ -21,6 +21,7 @@ struct MarkerDatum {
   Point2 pixel;  // (col, row)
   double angle_x = 0, angle_y = 0;
   Location where;
+  int block = 0;  // the photograph (capture and panel) it was found in
 };
 
 // A lens or curved mirror on the path of some panel with markers.
@@ -41,6 +42,7 @@ struct MarkerCost {
   MarkerPlacement placement;
   LayerOptics optics;
   double angle_x, angle_y;
+  double weight;  // 1 / the detection noise (rad) when measured, else 1
 
   template <typename T>
   bool operator()(T const* const* p, T* residual) const {
@@ -51,8 +53,8 @@ struct MarkerCost {
     }
     T angle[2];
     PredictVisualAngle(q, optics, placement, angle);
-    residual[0] = angle[0] - angle_x;
-    residual[1] = angle[1] - angle_y;
+    residual[0] = (angle[0] - angle_x) * weight;
+    residual[1] = (angle[1] - angle_y) * weight;
     return true;
   }
 };
@@ -232,12 +234,11 @@ class GeometryFitter {
       for (int i : {pan_, tilt_, roll_}) Hold(i, ParameterStatus::kReference);
     AddResiduals();
     if (!Solve() || !CheckFittedImages()) return false;
-    report_->marker_noise_rad = result_.noise;
     if (result_.covariance.size() == 0)
       report_->warnings.push_back("no uncertainties for the geometry: " + result_.covariance_message);
     ReportResiduals();
     WriteResults(display);
-    return true;
+    return CheckModelError(blocks_, result_.free_parameters, options_, report_);
   }
 
  private:
@@ -248,6 +249,7 @@ class GeometryFitter {
       positions.insert({capture.camera_position[0], capture.camera_position[1]});
       for (const PanelMarkers& markers : capture.panels) {
         const int k = LayerIndex(system_, markers.panel);
+        blocks_.push_back({markers.panel, capture.camera_position, markers.where, markers.detection_noise});
         for (const MarkerObservation& o : markers.markers)
           data_.push_back(
               {k,
@@ -256,12 +258,49 @@ class GeometryFitter {
                {o.col, o.row},
                o.angle_x,
                o.angle_y,
-               o.where});
+               o.where,
+               static_cast<int>(blocks_.size()) - 1});
       }
     }
+    ReadDetectionNoise();
     report_->markers = static_cast<int>(data_.size());
     report_->captures = static_cast<int>(measurements_.captures.size());
     report_->camera_positions = static_cast<int>(positions.size());
+  }
+
+  // The residuals are whitened by the noise detect measured in each
+  // photograph when every photograph has it; else the fit estimates the noise
+  // from its own residuals, and cannot tell a model error from noise.
+  void ReadDetectionNoise() {
+    const long with_noise =
+        std::count_if(blocks_.begin(), blocks_.end(), [](const MarkerBlock& b) { return b.noise.has_value(); });
+    noise_known_ = !blocks_.empty() && with_noise == static_cast<long>(blocks_.size());
+    report_->noise_from_detection = noise_known_;
+    if (noise_known_) PoolNoise();
+    if (with_noise > 0 && !noise_known_)
+      report_->warnings.push_back(
+          "only " + std::to_string(with_noise) + " of the " + std::to_string(blocks_.size()) +
+          " photographs' marker sets carry their detection noise: it is not used; the noise is estimated from the "
+          "fit's residuals, which cannot tell a model error from noise");
+  }
+
+  // The photographs share one noise for the fit's weights (their variances
+  // weighted by their degrees of freedom): the corners' error has a part that
+  // does not grow with a photograph's noise (the sensor's sampling phase),
+  // which weights by each photograph's own noise would discount where it is
+  // largest against that noise. One panel's photographs differ in the
+  // camera's position only, so the model-error test pools them by panel.
+  void PoolNoise() {
+    std::map<std::string, double> variance_sum, dof_sum;
+    double all_variance = 0, all_dof = 0;
+    for (const MarkerBlock& b : blocks_) {
+      const double dof = std::max(1, b.noise->degrees_of_freedom), variance = b.noise->sigma_rad * b.noise->sigma_rad;
+      variance_sum[b.panel] += dof * variance, dof_sum[b.panel] += dof;
+      all_variance += dof * variance, all_dof += dof;
+    }
+    weight_noise_rad_ = std::sqrt(all_variance / all_dof);
+    // Each keeps its own degrees of freedom: the model-error test adds them up.
+    for (MarkerBlock& b : blocks_) b.noise->sigma_rad = std::sqrt(variance_sum[b.panel] / dof_sum[b.panel]);
   }
 
   // Each layer's markers, the spread of their pixels, the camera positions
@@ -312,13 +351,21 @@ class GeometryFitter {
       if (magnifier_) beyond_the_eye = system_.eye.eye_relief_m * (1 + 1e-6);
       o.focal = Add({"the focal length of " + Quoted(o.name), o.focal_length, 0, beyond_the_eye, std::nullopt},
                     "focal_length");
-      o.gap_index = Add({"the gap of " + Quoted(o.name), o.gap, 0, std::nullopt, std::nullopt}, "gap");
+      o.gap_index =
+          Add({"the gap of " + Quoted(o.name), o.gap, 0, 0.0, std::nullopt}, "gap");  // after the element before
     }
     pan_ = Add({"the camera's pan", 0, 1, {}, {}}, "pan");
     tilt_ = Add({"the camera's tilt", 0, 1, {}, {}}, "tilt");
     roll_ = Add({"the camera's roll", 0, 1, {}, {}}, "roll");
     index_.assign(layer_count_, {});
     for (int k = 0; k < layer_count_; ++k) AddPanelParameters(k);
+  }
+
+  // Whether the focal length may be fitted (before the parameters that decide it for sure exist).
+  bool MayFitFocalLength() const {
+    return options_.focal_length == FitChoice::kFit ||
+           (options_.focal_length == FitChoice::kAuto &&
+            std::any_of(positions_seen_.begin(), positions_seen_.end(), [](int n) { return n >= 2; }));
   }
 
   void AddPanelParameters(int k) {
@@ -330,7 +377,7 @@ class GeometryFitter {
     }
     const bool reference = farthest_reference_ && k == 0;
     std::optional<double> beyond_focus;
-    if (magnifier_ && !options_.fit_focal_length) beyond_focus = system_.focal_length_m;
+    if (magnifier_ && !MayFitFocalLength()) beyond_focus = system_.focal_length_m;
     const double closest = 1e-3 * (magnifier_ ? system_.focal_length_m : layer.panel_distance_m);
     PanelIndices& index = index_[k];
     index.distance = Add({"the distance of " + panel, layer.panel_distance_m, 2, closest, beyond_focus}, "distance");
@@ -378,11 +425,11 @@ class GeometryFitter {
       for (int k : o.layers)
         parallax = parallax || (index_[k].distance >= 0 && !fit_.held(index_[k].distance) && positions_seen_[k] >= 2);
       const std::string named = magnifier_ ? "" : " of " + Quoted(o.name);
-      if (!options_.fit_focal_length)
+      if (options_.focal_length == FitChoice::kHold)
         Hold(o.focal, ParameterStatus::kNotFitted);
       else if (!parallax)
         HoldWithoutParallax(o.focal, "the focal length" + named);
-      if (!options_.fit_lens_gaps) {
+      if (options_.lens_gaps == FitChoice::kHold) {
         Hold(o.gap_index, ParameterStatus::kNotFitted);
       } else if (!o.placed_before) {
         Hold(o.gap_index, ParameterStatus::kNotFitted);
@@ -396,33 +443,45 @@ class GeometryFitter {
     }
   }
 
+  // A focal length or gap left to FitChoice::kAuto that the data cannot
+  // determine is held as asked, which the report notes; one the options ask to
+  // fit is a warning.
+  bool Auto(int i) const {
+    return (quantity_[i] == "focal_length" && options_.focal_length == FitChoice::kAuto) ||
+           (quantity_[i] == "gap" && options_.lens_gaps == FitChoice::kAuto);
+  }
+  std::vector<std::string>& NotesOrWarnings(int i) { return Auto(i) ? report_->notes : report_->warnings; }
+
   void HoldWithoutParallax(int i, const std::string& what) {
     Hold(i, ParameterStatus::kUndetermined);
-    report_->warnings.push_back(what + " cannot be told from the panel distances while each panel " +
-                                (magnifier_ ? "" : "behind it ") +
-                                "is seen from one camera position only: it keeps "
-                                "its scene value (" +
-                                ShowValue(quantity_[i], fit_.parameter(i).start) +
-                                "); add "
-                                "captures from other camera positions (\"camera_position\") to fit it");
+    NotesOrWarnings(i).push_back(what + " cannot be told from the panel distances while each panel " +
+                                 (magnifier_ ? "" : "behind it ") +
+                                 "is seen from one camera position only: it keeps "
+                                 "its scene value (" +
+                                 ShowValue(quantity_[i], fit_.parameter(i).start) +
+                                 "); add "
+                                 "captures from other camera positions (\"camera_position\") to fit it");
   }
 
   void AddResiduals() {
     for (const MarkerDatum& d : data_) {
       const PanelIndices& p = index_[d.layer];
       const LayerOptics& path = layer_optics_[d.layer];
-      auto* cost = new MarkerCostFunction(new MarkerCost{d.placement, path, d.angle_x, d.angle_y});
+      const double weight = noise_known_ ? 1.0 / weight_noise_rad_ : 1.0;
+      auto* cost = new MarkerCostFunction(new MarkerCost{d.placement, path, d.angle_x, d.angle_y, weight});
       std::vector<int> blocks = {p.distance, p.eye_from_panel_x_m, p.eye_from_panel_y_m, p.rotation, pan_, tilt_,
                                  roll_};
       for (int o : path.element) blocks.push_back(optics_[o].gap_index), blocks.push_back(optics_[o].focal);
       for (size_t i = 0; i < blocks.size(); ++i) cost->AddParameterBlock(1);
       cost->SetNumResiduals(2);
-      fit_.AddResidual(cost, MakeLoss(options_.loss, options_.marker_loss_scale_rad), blocks);
+      fit_.AddResidual(cost, MakeLoss(options_.loss, options_.marker_loss_scale_rad * weight), blocks);
     }
   }
 
   bool Solve() {
-    result_ = fit_.Solve(ScalarFitOptionsOf(options_));
+    ScalarFitOptions solve = ScalarFitOptionsOf(options_);
+    solve.unit_noise = noise_known_;
+    result_ = fit_.Solve(solve);
     report_->geometry_solver = result_.summary.BriefReport();
     if (!result_.usable) {
       report_->message = "the geometry fit failed: " + result_.summary.message;
@@ -430,7 +489,7 @@ class GeometryFitter {
     }
     for (const UndeterminedParameter& u : result_.undetermined) {
       status_[u.index] = ParameterStatus::kUndetermined;
-      report_->warnings.push_back(UndeterminedWarning(fit_, u, quantity_[u.index]));
+      NotesOrWarnings(u.index).push_back(UndeterminedWarning(fit_, u, quantity_[u.index]));
     }
     return true;
   }
@@ -495,6 +554,8 @@ class GeometryFitter {
       components.push_back(std::abs(b[0] - d.angle_x));
       components.push_back(std::abs(b[1] - d.angle_y));
       errors.push_back({std::sqrt(error_after), &d});
+      blocks_[d.block].squared_error_rad2 += error_after;
+      blocks_[d.block].markers += 1;
     }
     report_->marker_rms_before_rad = std::sqrt(sum_before / data_.size());
     report_->marker_rms_after_rad = std::sqrt(sum_after / data_.size());
@@ -505,7 +566,9 @@ class GeometryFitter {
       r.marker_rms_before_rad = std::sqrt(before[k] / r.markers);
       r.marker_rms_after_rad = std::sqrt(after[k] / r.markers);
     }
+    report_->marker_noise_rad = noise_known_ ? PooledDetectionNoise(blocks_) : result_.noise;
     if (options_.loss == RobustLoss::kNone && components.size() > 8) WarnOutliers(&components, errors);
+    if (options_.loss != RobustLoss::kNone) ReportDownWeighted(errors);
   }
 
   // Gross errors stand out against the median's noise, which they do not inflate.
@@ -519,8 +582,33 @@ class GeometryFitter {
                                   " beyond 6 sigma of the noise (the worst " +
                                   FormatFixed(ArcminFromRadians(worst->first), 3) + " arcmin, at " +
                                   worst->second->where.str() +
-                                  "): outliers bias a least-squares fit; a robust loss "
-                                  "(huber or cauchy) discounts them");
+                                  "): outliers bias a least-squares fit; --loss cauchy discounts them (huber "
+                                  "keeps a constant pull from each, which can move the fit well beyond its "
+                                  "reported uncertainty)");
+  }
+
+  // How many markers the robust loss weighted by less than half (Huber beyond
+  // twice its scale, Cauchy beyond its scale: rho'(s^2) = 1 / (1 + s^2 / a^2)),
+  // and in which photographs.
+  void ReportDownWeighted(const std::vector<std::pair<double, const MarkerDatum*>>& errors) {
+    const double beyond = (options_.loss == RobustLoss::kHuber ? 2.0 : 1.0) * options_.marker_loss_scale_rad;
+    std::map<int, int> by_block;
+    int count = 0;
+    for (const auto& [error, d] : errors)
+      if (error > beyond) ++by_block[d->block], ++count;
+    if (count == 0) return;
+    std::vector<std::pair<int, int>> worst(by_block.begin(), by_block.end());
+    std::sort(worst.begin(), worst.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+    std::vector<std::string> where;
+    for (size_t k = 0; k < std::min<size_t>(3, worst.size()); ++k) {
+      const MarkerBlock& b = blocks_[worst[k].first];
+      where.push_back(std::to_string(worst[k].second) + " of panel " + Quoted(b.panel) +
+                      (b.where.file.empty() ? "" : " in " + b.where.file));
+    }
+    report_->warnings.push_back("the " + ToString(options_.loss) + " loss weighted " + std::to_string(count) + " of " +
+                                std::to_string(errors.size()) + " markers by less than half (errors above " +
+                                FormatFixed(ArcminFromRadians(beyond), 3) + " arcmin): " + JoinedBySemicolons(where) +
+                                (worst.size() > 3 ? "; and others" : ""));
   }
 
   ParameterEstimate Estimate(const std::string& element, int i) {
@@ -549,7 +637,7 @@ class GeometryFitter {
     display->optics.clear();
     for (const Optic& o : optics_) {
       report_->parameters.push_back(Estimate(o.name, o.focal));
-      if (options_.fit_lens_gaps) report_->parameters.push_back(Estimate(o.name, o.gap_index));
+      if (options_.lens_gaps != FitChoice::kHold) report_->parameters.push_back(Estimate(o.name, o.gap_index));
       display->optics.push_back(
           {o.name, fit_.value(o.focal), fit_.value(o.gap_index), Fitted(o.focal), Fitted(o.gap_index)});
     }
@@ -613,6 +701,9 @@ class GeometryFitter {
   const bool farthest_reference_;
 
   std::vector<MarkerDatum> data_;
+  std::vector<MarkerBlock> blocks_;
+  bool noise_known_ = false;
+  double weight_noise_rad_ = 1;  // rad: the pooled detection noise, when known
   std::vector<std::vector<const MarkerDatum*>> by_layer_;
   std::vector<PointSpread> spread_;
   std::vector<int> positions_seen_;

@@ -35,9 +35,19 @@ struct MarkerObservation {
   Location where;
 };
 
+// The scatter of one photograph's markers about a smooth map of its board,
+// per axis (calibration/detection_noise.h): what the fit's residual is tested
+// against, and what its uncertainties are scaled by.
+struct DetectionNoise {
+  double sigma_rad = 0;  // rad, one standard deviation per axis
+  // Of the estimate; 0 when it is taken as exact (given without them).
+  int degrees_of_freedom = 0;
+};
+
 struct PanelMarkers {
   std::string panel;
   std::vector<MarkerObservation> markers;
+  std::optional<DetectionNoise> detection_noise;  // none when not measured
   Location where;
 };
 

@@ -1,4 +1,5 @@
 #include <cmath>
+#include <map>
 
 #include "layerlab/calibration/measurements.h"
 #include "layerlab/framework/json_file.h"
@@ -66,6 +67,26 @@ MarkerObservation ReadMarker(Params p, const std::optional<CameraIntrinsics>& ca
   return m;
 }
 
+// "detection_noise": {"<panel>": {"sigma": angle, "degrees_of_freedom": integer}}, by panel.
+std::map<std::string, DetectionNoise> ReadDetectionNoise(Params& capture) {
+  const json& object = capture.raw("detection_noise");
+  const Location at = capture.where("detection_noise");
+  if (!object.is_object())
+    throw Error(at, "expected an object of detection noises by panel name, got " + JsonKindName(object));
+  std::map<std::string, DetectionNoise> noise;
+  for (auto it = object.begin(); it != object.end(); ++it) {
+    Params p(*it, at.child(it.key()));
+    DetectionNoise n;
+    n.sigma_rad = p.quantity("sigma", Dimension::kAngle);
+    if (!(n.sigma_rad > 0) || !std::isfinite(n.sigma_rad))
+      p.fail("sigma", "a detection noise must be positive and finite");
+    n.degrees_of_freedom = static_cast<int>(p.integer("degrees_of_freedom", 1, 1 << 30, 0));
+    p.check_all_read();
+    noise[it.key()] = n;
+  }
+  return noise;
+}
+
 Capture ReadCapture(Params p, const std::optional<CameraIntrinsics>& camera) {
   Capture c;
   c.where = p.where();
@@ -75,6 +96,9 @@ Capture ReadCapture(Params p, const std::optional<CameraIntrinsics>& camera) {
     c.camera_position = p.quantity_pair("camera_position", Dimension::kLength, {0, 0});
   }
   p.string("description", "");
+  std::map<std::string, DetectionNoise> noise;
+  p.mark_read("detection_noise");
+  if (p.has("detection_noise")) noise = ReadDetectionNoise(p);
   const json& markers = p.raw("markers");
   Location markers_at = p.where("markers");
   if (!markers.is_object())
@@ -88,8 +112,15 @@ Capture ReadCapture(Params p, const std::optional<CameraIntrinsics>& camera) {
     if (it->empty()) throw Error(panel.where, "an empty list of markers; leave the panel out instead");
     for (size_t i = 0; i < it->size(); ++i)
       panel.markers.push_back(ReadMarker(Params((*it)[i], panel.where.child(i)), camera));
+    if (auto found = noise.find(panel.panel); found != noise.end()) {
+      panel.detection_noise = found->second;
+      noise.erase(found);
+    }
     c.panels.push_back(std::move(panel));
   }
+  if (!noise.empty())
+    throw Error(p.where("detection_noise").child(noise.begin()->first),
+                "a detection noise for a panel without markers in this capture");
   p.check_all_read();
   return c;
 }

@@ -3,9 +3,11 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 #include <vector>
 
 #include "layerlab/calibration/measurements.h"
+#include "layerlab/framework/units.h"
 
 namespace layerlab {
 namespace {
@@ -17,6 +19,12 @@ double Significant(double value, int digits) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.*g", digits, value);
   return std::strtod(buf, nullptr);
+}
+
+std::string FormatSignificant(double value, int digits) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, value);
+  return buf;
 }
 
 // Whole numbers are written without a fraction ("440", not "440.0").
@@ -85,23 +93,35 @@ ordered_json MarkersJson(const PanelMarkers& panel) {
   return list;
 }
 
-// The file's captures for `capture`: "markers" is keyed by panel, so a panel that the capture holds twice (two
-// photographs from one position) goes, with its second list, into a second capture at the same position, and
-// so on; none is dropped.
+ordered_json DetectionNoiseJson(const DetectionNoise& detection_noise) {
+  ordered_json noise = {
+      {"sigma", FormatSignificant(detection_noise.sigma_rad * kDegreesPerRadian * 60, 4) + " arcmin"}};
+  if (detection_noise.degrees_of_freedom > 0) noise["degrees_of_freedom"] = detection_noise.degrees_of_freedom;
+  return noise;
+}
+
+// The file's captures for `capture`: "markers" (and "detection_noise") are keyed by panel, so a panel that the
+// capture holds twice (two photographs from one position) goes, with its second list, into a second capture at
+// the same position, and so on; none is dropped.
 std::vector<ordered_json> CaptureJson(const Capture& capture) {
-  std::vector<ordered_json> out;
+  std::vector<std::pair<ordered_json, ordered_json>> slots;  // markers, detection noise
   for (const PanelMarkers& panel : capture.panels) {
-    auto free = std::find_if(out.begin(), out.end(),
-                             [&](const ordered_json& c) { return !c.at("markers").contains(panel.panel); });
-    if (free == out.end()) {
-      ordered_json c;
-      c["camera_position"] = {Value(Significant(capture.camera_position[0], 12)),
-                              Value(Significant(capture.camera_position[1], 12))};
-      c["markers"] = ordered_json::object();
-      out.push_back(std::move(c));
-      free = out.end() - 1;
+    auto free = std::find_if(slots.begin(), slots.end(), [&](const auto& s) { return !s.first.contains(panel.panel); });
+    if (free == slots.end()) {
+      slots.emplace_back(ordered_json::object(), ordered_json::object());
+      free = slots.end() - 1;
     }
-    (*free)["markers"][panel.panel] = MarkersJson(panel);
+    free->first[panel.panel] = MarkersJson(panel);
+    if (panel.detection_noise) free->second[panel.panel] = DetectionNoiseJson(*panel.detection_noise);
+  }
+  std::vector<ordered_json> out;
+  for (auto& [markers, detection_noise] : slots) {
+    ordered_json c;
+    c["camera_position"] = {Value(Significant(capture.camera_position[0], 12)),
+                            Value(Significant(capture.camera_position[1], 12))};
+    if (!detection_noise.empty()) c["detection_noise"] = std::move(detection_noise);
+    c["markers"] = std::move(markers);
+    out.push_back(std::move(c));
   }
   return out;
 }

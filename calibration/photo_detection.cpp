@@ -10,6 +10,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "layerlab/calibration/board_orientation.h"
+#include "layerlab/calibration/detection_noise.h"
 #include "layerlab/calibration/photo_files.h"
 #include "layerlab/calibration/synthetic_measurements.h"
 #include "layerlab/framework/error.h"
@@ -422,6 +423,7 @@ class CaptureDetector {
       m.where = {path, ""};
       markers.markers.push_back(m);
     }
+    markers.detection_noise = EstimateBoardNoise(markers.markers);
     d_.corners += markers.markers.size();
     capture.panels.push_back(std::move(markers));
     return std::nullopt;

@@ -40,7 +40,7 @@ ceres::Solver::Options CeresOptionsOf(const ScalarFitOptions& options) {
 // `size`), scaled by the noise's square, into result; or why there is none.
 // False when ceres::Covariance refuses it: the problem is rank deficient.
 bool ScaledCovariance(ceres::Problem* problem, const std::vector<const double*>& blocks, const std::vector<int>& free,
-                      int size, ScalarFitResult* result) {
+                      int size, bool unit_noise, ScalarFitResult* result) {
   ceres::Covariance::Options covariance_options;
   covariance_options.algorithm_type = ceres::DENSE_SVD;
   covariance_options.apply_loss_function = true;
@@ -51,7 +51,10 @@ bool ScaledCovariance(ceres::Problem* problem, const std::vector<const double*>&
     computed = covariance.Compute(blocks, problem);
   }
   if (!computed) return false;
-  if (!std::isfinite(result->noise)) {
+  // Whitened residuals that scatter more than the noise measured apart from
+  // the fit (within what the caller tolerates) widen the uncertainties as much.
+  const double noise = unit_noise ? std::max(1.0, result->noise) : result->noise;
+  if (!std::isfinite(noise)) {
     result->covariance_message = "no redundancy (" + std::to_string(result->residuals) + " residuals for " +
                                  std::to_string(result->free_parameters) +
                                  " parameters): the noise, and so the "
@@ -63,8 +66,7 @@ bool ScaledCovariance(ceres::Problem* problem, const std::vector<const double*>&
   covariance.GetCovarianceMatrix(blocks, free_covariance.data());
   result->covariance = Eigen::MatrixXd::Zero(size, size);
   for (int a = 0; a < n; ++a)
-    for (int b = 0; b < n; ++b)
-      result->covariance(free[a], free[b]) = free_covariance(a, b) * result->noise * result->noise;
+    for (int b = 0; b < n; ++b) result->covariance(free[a], free[b]) = free_covariance(a, b) * noise * noise;
   return true;
 }
 
@@ -192,7 +194,7 @@ ScalarFitResult ScalarFit::Solve(const ScalarFitOptions& options) {
     result.noise = EstimateNoise(options, result.free_parameters, &result.residuals);
     std::vector<const double*> blocks;
     for (int i : free) blocks.push_back(&values_[i]);
-    if (ScaledCovariance(&problem_, blocks, free, size(), &result)) return result;
+    if (ScaledCovariance(&problem_, blocks, free, size(), options.unit_noise, &result)) return result;
 
     // Rank deficient: hold one parameter of the first unseen direction and solve again.
     std::vector<Eigen::VectorXd> unseen = NullDirections(free);

@@ -2,7 +2,8 @@
 // parameter block, so that a parameter can be held alone.
 //
 // After a usable solve the covariance comes from ceres::Covariance (DENSE_SVD),
-// scaled by the noise the residuals show (Ceres gives (J^T J)^-1, which is the
+// scaled by the noise the residuals show unless they are whitened by a noise
+// measured apart from the fit (ScalarFitOptions::unit_noise; Ceres gives (J^T J)^-1, which is the
 // covariance only for residuals of unit variance). When the data leave some
 // direction of the parameters unseen, Compute() returns false (it must never
 // be followed by GetCovariance*, which aborts): the fit then finds those
@@ -37,6 +38,10 @@ struct ScalarFitOptions {
   // The noise is estimated from the median absolute residual instead of the
   // mean square, so that the outliers a robust loss discounts do not inflate it.
   bool robust_noise = false;
+  // The residuals are whitened by a noise measured apart from the fit (one
+  // standard deviation is 1): the covariance is rescaled by the residuals'
+  // noise only where it exceeds 1.
+  bool unit_noise = false;
 };
 
 // A parameter held at its start because the data do not determine it.
@@ -52,7 +57,7 @@ struct ScalarFitResult {
   // Over all parameters, rows and columns of held ones zero; empty when unavailable.
   Eigen::MatrixXd covariance;
   std::string covariance_message;  // why there is none
-  double noise = 0;                // per residual component, estimated from the residuals
+  double noise = 0;                // per residual component, estimated from the residuals (whatever unit_noise says)
   int residuals = 0, free_parameters = 0;
 };
 

@@ -129,7 +129,7 @@ TEST(CalibrationTest, FitsTheFocalLengthFromParallax) {
   setup.camera.positions_m = {{-2e-3, 0.0}, {2e-3, 0.0}, {0.0, -2e-3}, {0.0, 2e-3}};
   const Measurements m = testing::SyntheticMeasurements(built, truth, setup);
   CalibrationOptions options;
-  options.fit_focal_length = true;
+  options.focal_length = FitChoice::kFit;
   CalibratedDisplay display;
   const CalibrationReport report = Calibrate(Designed(), m, options, &display);
   ASSERT_TRUE(report.IsSolutionUsable()) << report.message;
@@ -143,7 +143,10 @@ TEST(CalibrationTest, FitsTheFocalLengthFromParallax) {
 
   // Held at its scene value, the same data cannot be fitted down to the noise.
   CalibratedDisplay held;
-  const CalibrationReport fixed = Calibrate(Designed(), m, CalibrationOptions{}, &held);
+  CalibrationOptions hold;
+  hold.focal_length = FitChoice::kHold;
+  hold.lens_gaps = FitChoice::kHold;
+  const CalibrationReport fixed = Calibrate(Designed(), m, hold, &held);
   ASSERT_TRUE(fixed.IsSolutionUsable());
   EXPECT_GT(fixed.marker_rms_after_rad, 1.4 * report.marker_rms_after_rad);
 }
@@ -153,7 +156,7 @@ TEST(CalibrationTest, FocalLengthWithoutParallaxIsUndetermined) {
   const DisplaySystem built = BuiltSystem(Designed(), truth);
   const Measurements m = testing::SyntheticMeasurements(built, truth, GeometrySetup(0.3));
   CalibrationOptions options;
-  options.fit_focal_length = true;
+  options.focal_length = FitChoice::kFit;
   CalibratedDisplay display;
   const CalibrationReport report = Calibrate(Designed(), m, options, &display);
   ASSERT_TRUE(report.IsSolutionUsable()) << report.message;

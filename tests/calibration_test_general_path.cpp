@@ -41,7 +41,8 @@ SyntheticSetup AnglesOnly(double sigma_arcmin) {
 
 CalibrationOptions LensGaps() {
   CalibrationOptions options;
-  options.fit_lens_gaps = true;
+  options.lens_gaps = FitChoice::kFit;
+  options.focal_length = FitChoice::kHold;  // the uncertainties below are derived with the focal lengths known
   return options;
 }
 
@@ -114,7 +115,7 @@ TEST(GeneralPathCalibrationTest, WithoutNoiseRecoversEachBranchsLensGapExactly) 
   const Measurements m = testing::SyntheticMeasurements(built, truth, AnglesOnly(0));
   for (bool focal_lengths_too : {false, true}) {
     CalibrationOptions options = LensGaps();
-    options.fit_focal_length = focal_lengths_too;
+    options.focal_length = focal_lengths_too ? FitChoice::kFit : FitChoice::kHold;
     CalibratedDisplay display;
     const CalibrationReport report = Calibrate(PerBranch(), m, options, &display);
     ASSERT_TRUE(report.IsSolutionUsable()) << report.message;
@@ -224,7 +225,7 @@ TEST(GeneralPathCalibrationTest, LensGapsWithoutParallaxAreUndetermined) {
   setup.camera.positions_m = {{0.0, 0.0}};
   const Measurements m = testing::SyntheticMeasurements(built, truth, setup);
   CalibrationOptions options = LensGaps();
-  options.fit_focal_length = true;
+  options.focal_length = FitChoice::kFit;
   CalibratedDisplay display;
   const CalibrationReport report = Calibrate(PerBranch(), m, options, &display);
   ASSERT_TRUE(report.IsSolutionUsable()) << report.message;
@@ -254,7 +255,7 @@ TEST(GeneralPathCalibrationTest, OnePanelBehindALensCannotFixItsGapAndFocalLengt
   for (Capture& c : m.captures)
     std::erase_if(c.panels, [](const PanelMarkers& p) { return p.panel == "rear_a" || p.panel == "rear_b"; });
   CalibrationOptions options = LensGaps();
-  options.fit_focal_length = true;
+  options.focal_length = FitChoice::kFit;
   CalibratedDisplay display;
   const CalibrationReport report = Calibrate(PerBranch(), m, options, &display);
   ASSERT_TRUE(report.IsSolutionUsable()) << report.message;
@@ -276,7 +277,7 @@ TEST(GeneralPathCalibrationTest, CalibratedSceneCompilesToTheDisplayAsBuilt) {
   const DisplaySystem built = testing::BuiltSystem(PerBranch(), truth, testing::PerBranchOptics());
   const Measurements m = testing::SyntheticMeasurements(built, truth, AnglesOnly(0));
   CalibrationOptions options = LensGaps();
-  options.fit_focal_length = true;
+  options.focal_length = FitChoice::kFit;
   CalibratedDisplay display;
   const CalibrationReport report = Calibrate(PerBranch(), m, options, &display);
   ASSERT_TRUE(report.IsSolutionUsable()) << report.message;

@@ -203,8 +203,10 @@ TEST(MeasurementsTest, WrittenFileReadsBackTheSame) {
 TEST(MeasurementsTest, APanelTwiceInOneCaptureIsWrittenAsTwoCaptures) {
   Measurements m = ParseMeasurements(SmallValid(), "m.json");
   m.captures[0].camera_position = {2e-3, -1e-3};
+  m.captures[0].panels[0].detection_noise = DetectionNoise{0.1 * testing::kArcmin, 40};
   PanelMarkers again = m.captures[0].panels[0];
   again.markers[0].camera_pixel = {1501.75, 1399.5};
+  again.detection_noise = DetectionNoise{0.2 * testing::kArcmin, 40};
   PanelMarkers other = again;
   other.panel = "front_a";
   m.captures[0].panels = {m.captures[0].panels[0], other, again};
@@ -218,6 +220,11 @@ TEST(MeasurementsTest, APanelTwiceInOneCaptureIsWrittenAsTwoCaptures) {
   ASSERT_EQ(back.captures[0].panels.size(), 2u);  // rear_a and front_a, then the second rear_a
   EXPECT_EQ((*MarkersOf(back, 0, "rear_a").markers[0].camera_pixel)[0], 1500.25);
   EXPECT_EQ((*MarkersOf(back, 1, "rear_a").markers[0].camera_pixel)[0], 1501.75);
+  // Each list keeps its own photograph's detection noise.
+  ASSERT_TRUE(MarkersOf(back, 0, "rear_a").detection_noise);
+  ASSERT_TRUE(MarkersOf(back, 1, "rear_a").detection_noise);
+  EXPECT_NEAR(MarkersOf(back, 0, "rear_a").detection_noise->sigma_rad, 0.1 * testing::kArcmin, 1e-12);
+  EXPECT_NEAR(MarkersOf(back, 1, "rear_a").detection_noise->sigma_rad, 0.2 * testing::kArcmin, 1e-12);
 }
 
 // An example file is what its truth and setup produce, so that the true

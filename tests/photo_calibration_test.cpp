@@ -380,7 +380,7 @@ TEST(PhotoCalibrationLoopTest, PerBranchMagnifiersFromPhotographs) {
   plan.squares_y = 6;
   plan.positions = {{0.0, 0.0}, {-3e-3, 0.0}, {3e-3, 0.0}, {0.0, -3e-3}, {0.0, 3e-3}};
   CalibrationOptions fit;
-  fit.fit_lens_gaps = true;
+  fit.lens_gaps = FitChoice::kFit;
   ExpectLoopRecovers(designed, Built(designed, testing::PerBranchTruth(), testing::PerBranchOptics()), plan, fit,
                      "photo_loop_per_branch", false);
 }

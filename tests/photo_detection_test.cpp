@@ -171,6 +171,7 @@ TEST(PhotoDetectionTest, EveryPhotographOfARepeatedCaptureIsKept) {
     EXPECT_EQ(capture.camera_position, first.camera_position);
     for (const PanelMarkers& p : capture.panels) {
       panels.insert(p.panel);
+      EXPECT_TRUE(p.detection_noise) << p.panel;  // each photograph's own
       read_first.push_back(*p.markers.front().camera_pixel);
     }
   }

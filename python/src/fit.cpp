@@ -44,8 +44,9 @@ py::dict ParameterTable(const std::vector<ParameterEstimate>& parameters) {
 }
 
 py::dict Fit(const py::object& scene, const py::object& measurements, const std::string& loss,
-             const std::string& reference, bool fit_focal_length, bool fit_lens_gaps,
-             std::optional<double> marker_loss_arcmin, std::optional<double> luminance_loss_scale) {
+             const std::string& reference, const std::string& focal_length, const std::string& lens_gaps,
+             bool accept_model_error, std::optional<double> marker_loss_arcmin,
+             std::optional<double> luminance_loss_scale) {
   CalibrationOptions options;
   try {
     options.loss = RobustLossFromString(loss);
@@ -54,8 +55,13 @@ py::dict Fit(const py::object& scene, const py::object& measurements, const std:
     throw py::value_error(std::string(loss == ToString(options.loss) ? "fit: reference: " : "fit: loss: ") +
                           e.message());
   }
-  options.fit_focal_length = fit_focal_length;
-  options.fit_lens_gaps = fit_lens_gaps;
+  try {
+    options.focal_length = FitChoiceFromString(focal_length);
+    options.lens_gaps = FitChoiceFromString(lens_gaps);
+  } catch (const Error& e) {
+    throw py::value_error("fit: focal_length / lens_gaps: " + e.message());
+  }
+  options.accept_model_error = accept_model_error;
   if (marker_loss_arcmin) options.marker_loss_scale_rad = *marker_loss_arcmin / 60.0 * std::numbers::pi / 180.0;
   if (luminance_loss_scale) options.luminance_loss_scale = *luminance_loss_scale;
   if (std::string why; !options.IsValid(&why)) throw py::value_error("fit: " + why);
@@ -114,8 +120,9 @@ py::dict Fit(const py::object& scene, const py::object& measurements, const std:
 
 void BindFit(py::module_& m) {
   m.def("fit", &Fit, py::arg("scene"), py::arg("measurements"), py::kw_only(), py::arg("loss") = "none",
-        py::arg("reference") = "camera", py::arg("fit_focal_length") = false, py::arg("fit_lens_gaps") = false,
-        py::arg("marker_loss_arcmin") = py::none(), py::arg("luminance_loss_scale") = py::none(),
+        py::arg("reference") = "camera", py::arg("focal_length") = "auto", py::arg("lens_gaps") = "auto",
+        py::arg("accept_model_error") = false, py::arg("marker_loss_arcmin") = py::none(),
+        py::arg("luminance_loss_scale") = py::none(),
         "Calibrates a scene from measurements of the built display, as `layerlab fit` (Ceres): a dict with "
         "parameters (columns element, quantity, scene_value, value, std_dev, status, derived), scene (the "
         "calibrated scene, paths relative to the working directory), report, brief, full, warnings");
