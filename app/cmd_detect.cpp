@@ -10,7 +10,9 @@
 #include "layerlab/calibration/capture_plan.h"
 #include "layerlab/calibration/measurements.h"
 #include "layerlab/calibration/photo_detection.h"
+#include "layerlab/calibration/photo_files.h"
 #include "layerlab/framework/atomic_file.h"
+#include "layerlab/framework/progress.h"
 #include "layerlab/framework/staged_output.h"
 #include "layerlab/systems/compile.h"
 #include "layerlab/systems/scene.h"
@@ -19,7 +21,7 @@ namespace layerlab::app {
 
 void AddDetectCommand(CLI::App& app) {
   struct Options {
-    std::string captures, scene, out, camera;
+    std::string captures, scene, out, camera, photo_format = "auto";
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
@@ -28,7 +30,13 @@ void AddDetectCommand(CLI::App& app) {
   cmd->add_option("--scene", o->scene, "Scene file as designed (JSON)")->required();
   cmd->add_option("--out", o->out, "Measurements file to write (layerlab-measurements/1)")->required();
   cmd->add_option("--camera", o->camera, "The camera's intrinsics (JSON; default: the plan's \"camera\")");
+  cmd->add_option(
+      "--photo-format", o->photo_format,
+      "Which file a photograph is read from: exr or png (x.exr or x.png where the plan names x.*), or "
+      "auto (default: the plan's name, else the other of .exr and .png); each file is decoded by its content");
   cmd->callback([o] {
+    const std::optional<PhotoFormat> format = PhotoFormatFromString(o->photo_format);
+    if (!format) throw Error("--photo-format \"" + o->photo_format + "\": expected auto, exr or png");
     const std::string plan_file = (std::filesystem::path(o->captures) / "captures.json").string();
     std::vector<NamedInput> inputs = {{o->captures, "the captures folder"}, {o->scene, "the scene"}};
     if (!o->camera.empty()) inputs.push_back({o->camera, "the camera file"});
@@ -37,7 +45,9 @@ void AddDetectCommand(CLI::App& app) {
     const DisplaySystem designed = Compile(LoadScene(o->scene));
     std::optional<CameraIntrinsics> camera;
     if (!o->camera.empty()) camera = ReadCameraIntrinsicsFile(o->camera);
-    const Detection d = DetectCaptures(o->captures, plan, designed, camera);
+    const Detection d = DetectCaptures(o->captures, plan, designed, camera, {}, *format);
+    for (const std::string& note : d.notes) Note("note: " + note);
+    for (const std::string& warning : d.warnings) std::cerr << "warning: " << warning << "\n";
     for (const PhotoFailure& f : d.failures) std::cerr << "warning: " << f.photo << ": " << f.reason << "\n";
     if (d.corners == 0 && d.luminance_steps == 0)
       throw Error(o->captures + ": no photograph could be used (" + std::to_string(d.failures.size()) +

@@ -1,8 +1,10 @@
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 #include "layerlab/calibration/measurements.h"
 #include "layerlab/framework/units.h"
@@ -77,6 +79,53 @@ void Print(const ordered_json& j, int indent, std::string& out) {
   out += std::string(indent, ' ') + (j.is_object() ? "}" : "]");
 }
 
+ordered_json MarkersJson(const PanelMarkers& panel) {
+  ordered_json list = ordered_json::array();
+  for (const MarkerObservation& o : panel.markers) {
+    ordered_json marker;
+    marker["panel_pixel"] = {Value(Significant(o.col, 12)), Value(Significant(o.row, 12))};
+    if (o.camera_pixel)
+      marker["camera_pixel"] = {Decimals((*o.camera_pixel)[0], 4), Decimals((*o.camera_pixel)[1], 4)};
+    else
+      marker["angle"] = {Significant(o.angle_x, 12), Significant(o.angle_y, 12)};
+    list.push_back(marker);
+  }
+  return list;
+}
+
+ordered_json DetectionNoiseJson(const DetectionNoise& detection_noise) {
+  ordered_json noise = {
+      {"sigma", FormatSignificant(detection_noise.sigma_rad * kDegreesPerRadian * 60, 4) + " arcmin"}};
+  if (detection_noise.degrees_of_freedom > 0) noise["degrees_of_freedom"] = detection_noise.degrees_of_freedom;
+  return noise;
+}
+
+// The file's captures for `capture`: "markers" (and "detection_noise") are keyed by panel, so a panel that the
+// capture holds twice (two photographs from one position) goes, with its second list, into a second capture at
+// the same position, and so on; none is dropped.
+std::vector<ordered_json> CaptureJson(const Capture& capture) {
+  std::vector<std::pair<ordered_json, ordered_json>> slots;  // markers, detection noise
+  for (const PanelMarkers& panel : capture.panels) {
+    auto free = std::find_if(slots.begin(), slots.end(), [&](const auto& s) { return !s.first.contains(panel.panel); });
+    if (free == slots.end()) {
+      slots.emplace_back(ordered_json::object(), ordered_json::object());
+      free = slots.end() - 1;
+    }
+    free->first[panel.panel] = MarkersJson(panel);
+    if (panel.detection_noise) free->second[panel.panel] = DetectionNoiseJson(*panel.detection_noise);
+  }
+  std::vector<ordered_json> out;
+  for (auto& [markers, detection_noise] : slots) {
+    ordered_json c;
+    c["camera_position"] = {Value(Significant(capture.camera_position[0], 12)),
+                            Value(Significant(capture.camera_position[1], 12))};
+    if (!detection_noise.empty()) c["detection_noise"] = std::move(detection_noise);
+    c["markers"] = std::move(markers);
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
 }  // namespace
 
 ordered_json CameraIntrinsicsToJson(const CameraIntrinsics& c) {
@@ -95,35 +144,8 @@ ordered_json MeasurementsToJson(const Measurements& m) {
   }
   if (!m.captures.empty()) {
     ordered_json captures = ordered_json::array();
-    for (const Capture& capture : m.captures) {
-      ordered_json c;
-      c["camera_position"] = {Value(Significant(capture.camera_position[0], 12)),
-                              Value(Significant(capture.camera_position[1], 12))};
-      ordered_json markers = ordered_json::object(), detection_noise = ordered_json::object();
-      for (const PanelMarkers& panel : capture.panels) {
-        ordered_json list = ordered_json::array();
-        for (const MarkerObservation& o : panel.markers) {
-          ordered_json marker;
-          marker["panel_pixel"] = {Value(Significant(o.col, 12)), Value(Significant(o.row, 12))};
-          if (o.camera_pixel)
-            marker["camera_pixel"] = {Decimals((*o.camera_pixel)[0], 4), Decimals((*o.camera_pixel)[1], 4)};
-          else
-            marker["angle"] = {Significant(o.angle_x, 12), Significant(o.angle_y, 12)};
-          list.push_back(marker);
-        }
-        markers[panel.panel] = list;
-        if (panel.detection_noise) {
-          ordered_json noise = {
-              {"sigma", FormatSignificant(panel.detection_noise->sigma_rad * kDegreesPerRadian * 60, 4) + " arcmin"}};
-          if (panel.detection_noise->degrees_of_freedom > 0)
-            noise["degrees_of_freedom"] = panel.detection_noise->degrees_of_freedom;
-          detection_noise[panel.panel] = noise;
-        }
-      }
-      if (!detection_noise.empty()) c["detection_noise"] = detection_noise;
-      c["markers"] = markers;
-      captures.push_back(c);
-    }
+    for (const Capture& capture : m.captures)
+      for (ordered_json& c : CaptureJson(capture)) captures.push_back(std::move(c));
     doc["captures"] = captures;
   }
   if (!m.luminance.empty()) {

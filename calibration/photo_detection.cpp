@@ -9,11 +9,12 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "layerlab/calibration/board_orientation.h"
 #include "layerlab/calibration/detection_noise.h"
+#include "layerlab/calibration/photo_files.h"
 #include "layerlab/calibration/synthetic_measurements.h"
 #include "layerlab/framework/error.h"
 #include "layerlab/framework/exr_image.h"
-#include "layerlab/framework/file_kind.h"
 #include "layerlab/framework/png_header.h"
 #include "layerlab/framework/units.h"
 
@@ -23,12 +24,6 @@ namespace {
 double ResponseGamma(const std::string& response) {
   if (const std::optional<double> g = ResponseExponent(response)) return *g;
   throw Error("unknown response \"" + response + "\": expected \"linear\" or \"gamma G\"");
-}
-
-bool EndsWith(const std::string& s, const std::string& tail) {
-  return s.size() >= tail.size() && std::equal(tail.rbegin(), tail.rend(), s.rbegin(), [](char a, char b) {
-           return std::tolower(static_cast<unsigned char>(a)) == b;
-         });
 }
 
 double Quantile(std::vector<float> values, double q) {
@@ -50,7 +45,7 @@ std::string WhatItShows(const Photo& photo, double square_px, cv::Rect area) {
   cv::Mat image(photo.height, photo.width, CV_32F, const_cast<float*>(photo.pixels.data()));
   cv::Mat roi = image(area).clone(), smooth;
   cv::GaussianBlur(roi, smooth, cv::Size(0, 0), 1.5);
-  std::vector<float> values(roi.begin<float>(), roi.end<float>()), differences, gradients;
+  std::vector<float> differences, gradients;
   for (int r = 0; r + 1 < roi.rows; ++r)
     for (int c = 0; c + 1 < roi.cols; ++c) {
       differences.push_back(std::abs(roi.at<float>(r, c + 1) - roi.at<float>(r, c)));
@@ -58,9 +53,16 @@ std::string WhatItShows(const Photo& photo, double square_px, cv::Rect area) {
                                      smooth.at<float>(r + 1, c) - smooth.at<float>(r, c)));
     }
   const double noise = Quantile(differences, 0.5) / (0.6745 * std::sqrt(2.0));
-  // The 2 % to 98 % spread less the 4.1 sigma that noise alone spreads.
-  const double contrast = Quantile(values, 0.98) - Quantile(values, 0.02) - 4.1 * noise;
-  if (!(contrast > 0.02) || !(contrast > 2 * noise))
+  // The pattern's contrast at the scale of its squares: the 2 % to 98 % spread of the image averaged over boxes a
+  // third of a square wide, less the 4.1 sigma that the averaged noise alone spreads. The squares stay and the
+  // noise shrinks by the box's width, so a pattern lost in the noise pixel by pixel is "too noisy", not "no pattern".
+  const int box = std::isfinite(square_px) ? std::clamp(static_cast<int>(std::min(square_px, 1e4) / 3), 1, 64) : 1;
+  cv::Mat averaged;
+  cv::blur(roi, averaged, cv::Size(box, box));
+  const std::vector<float> means(averaged.begin<float>(), averaged.end<float>());
+  const double averaged_noise = noise / box;
+  const double contrast = Quantile(means, 0.98) - Quantile(means, 0.02) - 4.1 * averaged_noise;
+  if (!(contrast > 0.02) || !(contrast > 2 * averaged_noise))
     return "the photograph shows no pattern where the board should be (contrast " + FormatFixed(100 * contrast, 1) +
            " % of full scale, noise " + FormatFixed(100 * noise, 2) +
            " %): is the panel showing it, and the camera pointed at it?";
@@ -130,13 +132,40 @@ std::vector<cv::Point2f> TryBoard(const cv::Mat& image8, int cols, int rows) {
   return corners;
 }
 
+// An 8- or 16-bit PNG (gray, gray and alpha, RGB or RGBA) as fractions of full scale, gray or the mean of RGB.
+Photo DecodePng(const std::string& path) {
+  Photo photo;
+  cv::Mat m;
+  try {
+    m = cv::imread(path, cv::IMREAD_UNCHANGED);
+    if (m.empty()) throw Error(path + ": cannot read it as a PNG (truncated or corrupt)");
+    const double full = m.depth() == CV_16U ? 65535.0 : m.depth() == CV_8U ? 255.0 : 0.0;
+    if (full == 0) throw Error(path + ": expected an 8- or 16-bit PNG");
+    if (m.channels() == 2) {  // gray and alpha: the gray
+      cv::Mat gray;
+      cv::extractChannel(m, gray, 0);
+      m = gray;
+    }
+    if (m.channels() == 3 || m.channels() == 4)
+      cv::cvtColor(m, m, m.channels() == 3 ? cv::COLOR_BGR2GRAY : cv::COLOR_BGRA2GRAY);
+    cv::Mat f;
+    m.convertTo(f, CV_32F, 1.0 / full);
+    photo.width = f.cols, photo.height = f.rows;
+    photo.pixels.assign(f.begin<float>(), f.end<float>());
+  } catch (const cv::Exception& e) {
+    throw Error(path + ": OpenCV cannot decode it: " + e.err);
+  }
+  return photo;
+}
+
 }  // namespace
 
 Photo ReadPhoto(const std::string& path, const std::string& response) {
   const double gamma = ResponseGamma(response);
   Photo photo;
-  if (EndsWith(path, ".exr")) {
-    RequireRegularFile(path, "photograph");
+  // By the file's own signature, whatever its name says (a PNG saved as .exr is read as the PNG it is).
+  const ImageFileKind kind = ImageFileKindOf(path);
+  if (kind == ImageFileKind::kExr) {
     // Y when the file has it, else G: a file with Y is read as Y, so that a bad Y pixel is named as such.
     const std::vector<std::string> present = ReadExrChannelNames(path);
     const bool has_y = std::find(present.begin(), present.end(), "Y") != present.end();
@@ -144,31 +173,13 @@ Photo ReadPhoto(const std::string& path, const std::string& response) {
     limits.max_pixels = static_cast<long long>(kMaxPhotoPixels);
     Image image = ReadExr(path, {has_y ? "Y" : "G"}, limits);
     photo.width = image.width, photo.height = image.height, photo.pixels = std::move(image.pixels);
-  } else if (EndsWith(path, ".png")) {
-    RequireRegularFile(path, "photograph");
+  } else if (kind == ImageFileKind::kPng) {
     RequirePngWithinLimit(path, ReadPngHeader(path), kMaxPhotoPixels);
-    cv::Mat m;
-    try {
-      m = cv::imread(path, cv::IMREAD_UNCHANGED);
-      if (m.empty()) throw Error(path + ": cannot read it as a PNG (truncated or corrupt)");
-      const double full = m.depth() == CV_16U ? 65535.0 : m.depth() == CV_8U ? 255.0 : 0.0;
-      if (full == 0) throw Error(path + ": expected an 8- or 16-bit PNG");
-      if (m.channels() == 2) {  // gray and alpha: the gray
-        cv::Mat gray;
-        cv::extractChannel(m, gray, 0);
-        m = gray;
-      }
-      if (m.channels() == 3 || m.channels() == 4)
-        cv::cvtColor(m, m, m.channels() == 3 ? cv::COLOR_BGR2GRAY : cv::COLOR_BGRA2GRAY);
-      cv::Mat f;
-      m.convertTo(f, CV_32F, 1.0 / full);
-      photo.width = f.cols, photo.height = f.rows;
-      photo.pixels.assign(f.begin<float>(), f.end<float>());
-    } catch (const cv::Exception& e) {
-      throw Error(path + ": OpenCV cannot decode it: " + e.err);
-    }
+    photo = DecodePng(path);
   } else {
-    throw Error(path + ": photographs are read from linear EXR (.exr) or 8/16-bit PNG (.png)");
+    throw Error(path +
+                ": neither an EXR nor a PNG file (by its first bytes): photographs are read from linear EXR or "
+                "8/16-bit PNG");
   }
   if (gamma != 1)
     for (float& v : photo.pixels) v = static_cast<float>(std::pow(std::max(v, 0.0f), gamma));
@@ -303,6 +314,11 @@ CornerSearch FindChessboardCorners(const Photo& photo, const Chessboard& board,
       const cv::Point2f& c = corners[order[b * cols + a]];
       found.camera_pixels.push_back({c.x, c.y});
     }
+  if (std::string why = BoardOrientationReason(photo.pixels, photo.width, photo.height, board, found.camera_pixels);
+      !why.empty()) {
+    out.reason = why;
+    return out;
+  }
   out.corners = std::move(found);
   return out;
 }
@@ -314,8 +330,8 @@ namespace {
 class CaptureDetector {
  public:
   CaptureDetector(const std::string& folder, const CapturePlan& plan, const DisplaySystem& designed,
-                  const CameraIntrinsics& camera, const PhotoCheck& check)
-      : folder_(folder), plan_(plan), designed_(designed), camera_(camera), check_(check) {
+                  const CameraIntrinsics& camera, const PhotoCheck& check, PhotoFormat format)
+      : folder_(folder), plan_(plan), designed_(designed), camera_(camera), check_(check), format_(format) {
     d_.measurements.file = (std::filesystem::path(folder) / "captures.json").string();
     d_.measurements.description = "detected from the photographs in " + folder;
     d_.measurements.camera = camera;
@@ -323,24 +339,36 @@ class CaptureDetector {
 
   Detection Detect() {
     for (const PlannedCapture& c : plan_.captures) {
-      const std::string path = (std::filesystem::path(folder_) / c.photo).string();
+      const PhotoFile file = LocatePhoto(folder_, c.photo, format_);
+      const std::string& path = file.path;
+      // A failure names the file read, and the plan's name when it is another.
+      const std::string named =
+          file.other_name ? std::filesystem::path(path).filename().string() + " (for " + c.photo + ")" : c.photo;
       const VirtualLayer& layer = LayerNamed(c.panel);
       // One unusable photograph is named and the others go on, whatever OpenCV makes of it.
       try {
+        files_.Read(c.photo, file);
         const Photo photo = ReadPhoto(path, plan_.response);
         const std::optional<std::string> failure = c.kind == CaptureKind::kChessboard
                                                        ? DetectChessboard(c, path, photo, layer)
                                                        : DetectLuminance(c, path, photo, layer);
-        if (failure) d_.failures.push_back({c.photo, *failure});
+        if (failure) d_.failures.push_back({named, *failure});
       } catch (const Error& e) {
-        d_.failures.push_back({c.photo, e.what()});
+        d_.failures.push_back({named, e.what()});
       } catch (const cv::Exception& e) {
-        d_.failures.push_back({c.photo, path + ": OpenCV failed on it: " + e.err});
+        d_.failures.push_back({named, path + ": OpenCV failed on it: " + e.err});
       }
     }
     for (const VirtualLayer& layer : designed_.layers)
       if (auto it = luminance_.find(layer.name); it != luminance_.end())
         d_.measurements.luminance.push_back(it->second);
+    d_.notes = files_.Notes(format_, plan_.response);
+    // Once per board that a chessboard photograph is taken of.
+    for (const Chessboard& board : plan_.chessboards)
+      if (std::any_of(plan_.captures.begin(), plan_.captures.end(), [&](const PlannedCapture& c) {
+            return c.kind == CaptureKind::kChessboard && c.panel == board.panel;
+          }))
+        if (std::string note = UncheckedOrientationNote(board); !note.empty()) d_.warnings.push_back(note);
     return std::move(d_);
   }
 
@@ -349,6 +377,20 @@ class CaptureDetector {
     for (const VirtualLayer& layer : designed_.layers)
       if (layer.name == panel) return layer;
     throw Error(designed_.file + ": the capture plan names panel \"" + panel + "\", which the scene does not have");
+  }
+
+  // The capture at `position` that has no markers of `panel` yet, or a new one there: a capture holds each
+  // panel once (docs/measurements-format.md), so every photograph of a repeated capture is kept as one more.
+  Capture& CaptureFor(const std::array<double, 2>& position, const std::string& panel, const std::string& path) {
+    for (Capture& capture : d_.measurements.captures)
+      if (capture.camera_position == position && std::none_of(capture.panels.begin(), capture.panels.end(),
+                                                              [&](const PanelMarkers& p) { return p.panel == panel; }))
+        return capture;
+    Capture capture;
+    capture.camera_position = position;
+    capture.where = {path, ""};
+    d_.measurements.captures.push_back(capture);
+    return d_.measurements.captures.back();
   }
 
   // The photograph's chessboard corners as markers of its capture; the failure, if any.
@@ -364,15 +406,7 @@ class CaptureDetector {
       }
     CornerSearch search = FindChessboardCorners(photo, board, predicted, check_);
     if (!search.corners) return search.reason;
-    const auto key = std::make_pair(c.camera_position[0], c.camera_position[1]);
-    if (!capture_at_.count(key)) {
-      capture_at_[key] = d_.measurements.captures.size();
-      Capture capture;
-      capture.camera_position = c.camera_position;
-      capture.where = {path, ""};
-      d_.measurements.captures.push_back(capture);
-    }
-    Capture& capture = d_.measurements.captures[capture_at_[key]];
+    Capture& capture = CaptureFor(c.camera_position, c.panel, path);
     PanelMarkers markers;
     markers.panel = c.panel;
     markers.where = {path, ""};
@@ -433,19 +467,21 @@ class CaptureDetector {
   const DisplaySystem& designed_;
   const CameraIntrinsics& camera_;
   const PhotoCheck& check_;
+  const PhotoFormat format_;
+  PhotoFilesRead files_;
   Detection d_;
-  std::map<std::pair<double, double>, size_t> capture_at_;  // camera position -> index in captures
   std::map<std::string, PanelLuminance> luminance_;
 };
 
 }  // namespace
 
 Detection DetectCaptures(const std::string& folder, const CapturePlan& plan, const DisplaySystem& designed,
-                         const std::optional<CameraIntrinsics>& camera_option, const PhotoCheck& check) {
+                         const std::optional<CameraIntrinsics>& camera_option, const PhotoCheck& check,
+                         PhotoFormat format) {
   const std::optional<CameraIntrinsics> camera = camera_option ? camera_option : plan.camera;
   if (!camera)
     throw Error("the camera's intrinsics are needed: give them in the capture plan's \"camera\" or with --camera FILE");
-  return CaptureDetector(folder, plan, designed, *camera, check).Detect();
+  return CaptureDetector(folder, plan, designed, *camera, check, format).Detect();
 }
 
 }  // namespace layerlab

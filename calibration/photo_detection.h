@@ -6,8 +6,8 @@
 // "layerlab-measurements/1" that `layerlab fit` reads (docs/calibration.md).
 //
 // A photograph that fails is reported by name with the reason (overexposed,
-// pattern not found with what the image shows instead, too few features)
-// and the rest go on.
+// pattern not found with what the image shows instead, too few features,
+// another plan's board, a mirrored or turned board) and the rest go on.
 #pragma once
 
 #include <array>
@@ -17,6 +17,7 @@
 
 #include "layerlab/calibration/capture_plan.h"
 #include "layerlab/calibration/measurements.h"
+#include "layerlab/calibration/photo_files.h"
 #include "layerlab/systems/display_system.h"
 
 namespace layerlab {
@@ -28,8 +29,9 @@ struct Photo {
 };
 
 // Reads a linear EXR (channel Y, else G) or an 8- or 16-bit PNG (gray, or the
-// mean of RGB), applying the plan's response ("linear" or "gamma G"). Throws
-// layerlab::Error naming the file.
+// mean of RGB), by the file's own signature whatever its extension, applying
+// the plan's response ("linear" or "gamma G"). Throws layerlab::Error naming
+// the file.
 Photo ReadPhoto(const std::string& path, const std::string& response);
 
 struct PhotoCheck {
@@ -61,13 +63,20 @@ struct PhotoFailure {
 struct Detection {
   Measurements measurements;
   std::vector<PhotoFailure> failures;
+  // Said once: photographs read from another file or format than the plan names (notes), boards whose
+  // orientation their colours cannot show (warnings).
+  std::vector<std::string> notes, warnings;
   size_t corners = 0, luminance_steps = 0;
 };
 
 // Every capture of `plan` in `folder`, matched through `designed` (the scene
 // as designed: its optics predict where each corner appears, which orders the
 // board). `camera`: the intrinsics; the plan's when empty (one is needed).
+// `format`: which file each photograph is read from (photo_files.h). Each
+// photograph of a panel repeated at one camera position is kept, as one more
+// capture at that position.
 Detection DetectCaptures(const std::string& folder, const CapturePlan& plan, const DisplaySystem& designed,
-                         const std::optional<CameraIntrinsics>& camera, const PhotoCheck& check = {});
+                         const std::optional<CameraIntrinsics>& camera, const PhotoCheck& check = {},
+                         PhotoFormat format = PhotoFormat::kAuto);
 
 }  // namespace layerlab

@@ -16,7 +16,7 @@ namespace {
 Photo ReadPhoto(const std::string&, const std::string&) { Refuse(); }
 
 Detection DetectCaptures(const std::string&, const CapturePlan&, const DisplaySystem&,
-                         const std::optional<CameraIntrinsics>&, const PhotoCheck&) {
+                         const std::optional<CameraIntrinsics>&, const PhotoCheck&, PhotoFormat) {
   Refuse();
 }
 

@@ -198,6 +198,35 @@ TEST(MeasurementsTest, WrittenFileReadsBackTheSame) {
   ASSERT_EQ(back.luminance_sample_count(), m.luminance_sample_count());
 }
 
+// A capture holding a panel twice (two photographs from one position) is written as two captures at that
+// position, since "markers" is keyed by panel: both lists are read back, in order, none dropped.
+TEST(MeasurementsTest, APanelTwiceInOneCaptureIsWrittenAsTwoCaptures) {
+  Measurements m = ParseMeasurements(SmallValid(), "m.json");
+  m.captures[0].camera_position = {2e-3, -1e-3};
+  m.captures[0].panels[0].detection_noise = DetectionNoise{0.1 * testing::kArcmin, 40};
+  PanelMarkers again = m.captures[0].panels[0];
+  again.markers[0].camera_pixel = {1501.75, 1399.5};
+  again.detection_noise = DetectionNoise{0.2 * testing::kArcmin, 40};
+  PanelMarkers other = again;
+  other.panel = "front_a";
+  m.captures[0].panels = {m.captures[0].panels[0], other, again};
+  const Measurements back = ParseMeasurements(json::parse(FormatMeasurements(m)), "back.json");
+  ASSERT_EQ(back.captures.size(), 2u);
+  EXPECT_EQ(back.marker_count(), 6u);
+  for (const Capture& c : back.captures) {
+    EXPECT_EQ(c.camera_position[0], 2e-3);
+    EXPECT_EQ(c.camera_position[1], -1e-3);
+  }
+  ASSERT_EQ(back.captures[0].panels.size(), 2u);  // rear_a and front_a, then the second rear_a
+  EXPECT_EQ((*MarkersOf(back, 0, "rear_a").markers[0].camera_pixel)[0], 1500.25);
+  EXPECT_EQ((*MarkersOf(back, 1, "rear_a").markers[0].camera_pixel)[0], 1501.75);
+  // Each list keeps its own photograph's detection noise.
+  ASSERT_TRUE(MarkersOf(back, 0, "rear_a").detection_noise);
+  ASSERT_TRUE(MarkersOf(back, 1, "rear_a").detection_noise);
+  EXPECT_NEAR(MarkersOf(back, 0, "rear_a").detection_noise->sigma_rad, 0.1 * testing::kArcmin, 1e-12);
+  EXPECT_NEAR(MarkersOf(back, 1, "rear_a").detection_noise->sigma_rad, 0.2 * testing::kArcmin, 1e-12);
+}
+
 // An example file is what its truth and setup produce, so that the true
 // values its documentation states are the ones it was made from.
 void ExpectExampleFileIs(const Measurements& m, const std::string& name) {

@@ -18,94 +18,28 @@
 #include "layerlab/calibration/synthetic_photo.h"
 #include "layerlab/framework/exr_image.h"
 #include "layerlab/tests/calibration_test_util.h"
+#include "layerlab/tests/photo_test_util.h"
 #include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {
 
+using testing::AsPhoto;
+using testing::Built;
+using testing::ChessboardCapture;
+using testing::Example;
+using testing::FreshFolder;
+using testing::Layer;
 using testing::PanelTruth;
-
-DisplaySystem Example(const std::string& name) {
-  return testing::CompileJson(testing::ReadExample(name), testing::ExamplePath(name));
-}
-
-std::string FreshFolder(const std::string& name) {
-  const std::filesystem::path folder =
-      std::filesystem::temp_directory_path() / ("layerlab_" + name + "_" + std::to_string(::getpid()));
-  std::filesystem::remove_all(folder);
-  std::filesystem::create_directories(folder);
-  return folder.string();
-}
-
-// A camera that sees the whole of every panel of the examples at a reduced size (CI time).
-PhotoCamera TestCamera() {
-  PhotoCamera c;
-  c.intrinsics = {760, 760, 359.5, 209.5, -0.05, 0};
-  c.width = 720;
-  c.height = 420;
-  c.aperture_m = 1e-3;
-  c.focus_diopters = 1.3;
-  c.white = 0.5;
-  c.full_well = 20000;
-  c.read_noise = 0.001;
-  c.supersampling = 3;
-  c.seed = 26;
-  return c;
-}
-
-// The example scene as built: placements of `truth` (calibration_test_util.h), and its gamma and black level.
-DisplaySystem Built(const DisplaySystem& designed, const std::vector<PanelTruth>& truth,
-                    const std::vector<testing::OpticTruth>& optics = {}) {
-  nlohmann::json scene = testing::BuiltScene(designed, truth, optics);
-  for (const PanelTruth& t : truth)
-    if (t.gamma > 0) {
-      testing::ElementNamed(scene, t.name)["gamma"] = t.gamma;
-      testing::ElementNamed(scene, t.name)["black_level"] = t.black_level;
-    }
-  return testing::CompileJson(scene, designed.file);
-}
-
-const VirtualLayer& Layer(const DisplaySystem& s, const std::string& name) {
-  for (const VirtualLayer& l : s.layers)
-    if (l.name == name) return l;
-  throw Error("no layer " + name);
-}
-
-const PlannedCapture& ChessboardCapture(const CapturePlan& plan, const std::string& panel, size_t position = 0) {
-  size_t k = 0;
-  for (const PlannedCapture& c : plan.captures)
-    if (c.kind == CaptureKind::kChessboard && c.panel == panel && k++ == position) return c;
-  throw Error("no chessboard capture of " + panel);
-}
-
-Photo AsPhoto(const Image& image) { return {image.width, image.height, image.pixels}; }
-
-// Where the corners of `capture`'s board truly appear: the built display's optics, the camera's intrinsics.
-std::vector<std::array<double, 2>> TrueCorners(const DisplaySystem& built, const CapturePlan& plan,
-                                               const PlannedCapture& capture, const CameraIntrinsics& camera) {
-  const Chessboard& board = *plan.chessboard(capture.panel);
-  std::vector<std::array<double, 2>> out;
-  for (int b = 0; b < board.corners_y(); ++b)
-    for (int a = 0; a < board.corners_x(); ++a) {
-      const auto pixel = board.corner(a, b);
-      const auto angle =
-          ImagedMarker(built, Layer(built, capture.panel), pixel[0], pixel[1], {}, capture.camera_position);
-      out.push_back(CameraPixelFromAngle(camera, angle[0], angle[1]));
-    }
-  return out;
-}
+using testing::TestCamera;
+using testing::TestPlan;
+using testing::TrueCorners;
 
 double RmsPixels(const FoundCorners& found, const std::vector<std::array<double, 2>>& truth) {
   double sum = 0;
   for (size_t k = 0; k < truth.size(); ++k)
     sum += std::pow(found.camera_pixels[k][0] - truth[k][0], 2) + std::pow(found.camera_pixels[k][1] - truth[k][1], 2);
   return std::sqrt(sum / static_cast<double>(truth.size()));
-}
-
-PlanOptions TestPlan() {
-  PlanOptions o;
-  o.levels = {0, 32, 64, 96, 128, 160, 192, 224, 255};
-  return o;
 }
 
 TEST(CapturePlanTest, ChessboardsFitTheActiveRegionsAndTheFileRoundTrips) {

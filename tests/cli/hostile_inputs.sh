@@ -302,17 +302,24 @@ for y in range(h):
 open(sys.argv[1], "wb").write(header + struct.pack("<%dQ" % h, *offsets) + lines)
 PY
 photo_variant wrong_board && cp "photos_8x5/$board" "photos_wrong_board/$board"
+# Photographs read by content or from the .png beside a missing .exr (issue 43) get the same checks.
+photo_variant huge_png_as_exr && cp photos_huge_png/board.png "photos_huge_png_as_exr/$board"
+photo_variant fifo_png_for_exr && rm "photos_fifo_png_for_exr/$board" && mkfifo photos_fifo_png_for_exr/rear_a_chessboard_0.png
 for v in fifo_png:"is a FIFO" folder:"is a folder" huge_png:"declares 30000 x 30000 pixels; the limit is" \
   truncated_png:"truncated PNG file" nan_exr:"(row 3, col 5) channel Y is NaN" \
-  wrong_board:"wrong chessboard: the photograph shows one of 8 x 5 squares"; do
+  wrong_board:"wrong chessboard: the photograph shows one of 8 x 5 squares" \
+  huge_png_as_exr:"declares 30000 x 30000 pixels; the limit is" \
+  fifo_png_for_exr:"rear_a_chessboard_0.png: the photograph is a FIFO"; do
   name=${v%%:*} photo=$board
-  case $name in *_png) photo=board.png ;; esac
+  case $name in *_png) photo=board.png ;; fifo_png_for_exr) photo="rear_a_chessboard_0.png (for $board)" ;; esac
   # In 4 GB of address space, as on a small machine: OpenCV allocated the huge PNG's 7.2 GB and failed.
   photo_expect "detect, photograph $name" used "warning: $photo: " bash -c 'ulimit -v 4000000 && exec "$0" "$@"' \
     "$layerlab" detect "photos_$name" --scene "$prototype" --out "m_$name.json"
   grep -qF -- "${v#*:}" log.err || { echo "FAIL: detect, photograph $name: not \"${v#*:}\": $(head -c 400 log.err)"; failures=$((failures + 1)); }
   grep -q "in 1 of 2 photographs (1 failed" log.out || { echo "FAIL: detect, photograph $name: the other photograph not used"; failures=$((failures + 1)); }
 done
+photo_expect "detect --photo-format tif" refused "--photo-format \"tif\": expected auto, exr or png" \
+  "$layerlab" detect photos_10x6 --scene "$prototype" --out m_format.json --photo-format tif
 # Chessboards OpenCV cannot take, on the command line and in captures.json.
 photo_expect "calibration-patterns --squares 4 3" refused "--squares 4 3: a chessboard of 4 x 3 squares" \
   "$layerlab" calibration-patterns "$prototype" --out o_patterns --squares 4 3
