@@ -72,32 +72,6 @@ DisplaySystem BuiltSystem(const DisplaySystem& designed, const std::vector<Panel
   return CompileJson(BuiltScene(designed, truth, optics), designed.file);
 }
 
-DisplaySystem BuiltWithPhotometry(const DisplaySystem& designed, const std::vector<PanelTruth>& truth,
-                                  const std::vector<OpticTruth>& optics) {
-  nlohmann::json scene = BuiltScene(designed, truth, optics);
-  for (const PanelTruth& t : truth)
-    if (t.gamma > 0) {
-      ElementNamed(scene, t.name)["gamma"] = t.gamma;
-      ElementNamed(scene, t.name)["black_level"] = t.black_level;
-    }
-  return CompileJson(scene, designed.file);
-}
-
-PhotoCamera SmallPhotoCamera() {
-  PhotoCamera c;
-  c.intrinsics = {760, 760, 359.5, 209.5, -0.05, 0};
-  c.width = 720;
-  c.height = 420;
-  c.aperture_m = 1e-3;
-  c.focus_diopters = 1.3;
-  c.white = 0.5;
-  c.full_well = 20000;
-  c.read_noise = 0.001;
-  c.supersampling = 3;
-  c.seed = 26;
-  return c;
-}
-
 void ExpectPlacementsOf(const DisplaySystem& built, const CalibratedDisplay& display, double tolerance) {
   for (const VirtualLayer& layer : built.layers) {
     const CalibratedPanel* p = display.find(layer.name);

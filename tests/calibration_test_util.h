@@ -14,7 +14,6 @@
 
 #include "layerlab/calibration/calibration.h"
 #include "layerlab/calibration/synthetic_measurements.h"
-#include "layerlab/calibration/synthetic_photo.h"
 
 namespace layerlab::testing {
 
@@ -52,15 +51,6 @@ nlohmann::json BuiltScene(const DisplaySystem& designed, const std::vector<Panel
 // That scene compiled.
 DisplaySystem BuiltSystem(const DisplaySystem& designed, const std::vector<PanelTruth>& truth,
                           const std::vector<OpticTruth>& optics = {});
-
-// That scene with each panel's gamma and black level of `truth` (where its gamma is set).
-DisplaySystem BuiltWithPhotometry(const DisplaySystem& designed, const std::vector<PanelTruth>& truth,
-                                  const std::vector<OpticTruth>& optics = {});
-
-// A camera that sees the whole of every panel of the examples at a reduced
-// size (720 x 420, 760 px focal length, k1 = -0.05; CI time), 1 mm aperture
-// focused at 1.3 D, 20000 electrons full well, read noise 0.1 %.
-PhotoCamera SmallPhotoCamera();
 
 struct SyntheticSetup {
   MarkerGrid grid;

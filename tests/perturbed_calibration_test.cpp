@@ -12,14 +12,12 @@
 #include <cmath>
 #include <filesystem>
 
-#include <unistd.h>
-
 #include "layerlab/calibration/calibration.h"
 #include "layerlab/calibration/capture_plan.h"
 #include "layerlab/calibration/photo_detection.h"
 #include "layerlab/calibration/synthetic_photo.h"
 #include "layerlab/framework/exr_image.h"
-#include "layerlab/tests/calibration_test_util.h"
+#include "layerlab/tests/photo_test_util.h"
 #include "layerlab/tests/test_util.h"
 
 namespace layerlab {
@@ -35,19 +33,14 @@ struct Truth {
 // Photographs of `built` for the plan of `designed` (luminance steps at 9 levels when asked), detected.
 Measurements Photographed(const DisplaySystem& designed, const DisplaySystem& built, bool luminance,
                           int supersampling) {
-  PlanOptions o;
-  o.levels = {0, 32, 64, 96, 128, 160, 192, 224, 255};
-  CapturePlan plan = PlanCaptures(designed, o);
+  CapturePlan plan = PlanCaptures(designed, testing::TestPlan());
   if (!luminance)
     std::erase_if(plan.captures, [](const PlannedCapture& c) { return c.kind == CaptureKind::kLuminance; });
-  PhotoCamera camera = testing::SmallPhotoCamera();
+  PhotoCamera camera = testing::TestCamera();
   camera.supersampling = supersampling;
   plan.camera = camera.intrinsics;
   const PhotoRenderer renderer(camera);
-  const std::filesystem::path folder =
-      std::filesystem::temp_directory_path() / ("layerlab_perturbed_" + std::to_string(::getpid()));
-  std::filesystem::remove_all(folder);
-  std::filesystem::create_directories(folder);
+  const std::filesystem::path folder = testing::FreshFolder("perturbed");
   for (size_t k = 0; k < plan.captures.size(); ++k)
     WriteExr((folder / plan.captures[k].photo).string(), renderer.Render(built, plan, plan.captures[k], k),
              ExrCompression::kNone);
@@ -106,20 +99,13 @@ void ExpectRecoveredOrRefused(const std::string& name, const CalibrationReport& 
   }
 }
 
-const DisplaySystem& Designed(const std::string& example) {
-  static std::map<std::string, DisplaySystem> compiled;
-  if (!compiled.count(example))
-    compiled.emplace(example, testing::CompileJson(testing::ReadExample(example), testing::ExamplePath(example)));
-  return compiled.at(example);
-}
-
 TEST(PerturbedPrototype, TheDefaultFitRecoversAFocalLengthOffItsCatalogueValue) {
-  const DisplaySystem& designed = Designed("paper_prototype.json");
+  const DisplaySystem designed = testing::Example("paper_prototype.json");
   const std::vector<PanelTruth> panels = testing::ExampleTruth();
   for (const double off : {0.005, 0.02, 0.05}) {
     const double focal_length = 75e-3 * (1 + off);
     const bool luminance = off == 0.02;
-    const DisplaySystem built = testing::BuiltWithPhotometry(designed, panels, {{"lens", 0.0, focal_length}});
+    const DisplaySystem built = testing::Built(designed, panels, {{"lens", 0.0, focal_length}});
     CalibratedDisplay display;
     const CalibrationReport report =
         Calibrate(designed, Photographed(designed, built, luminance, 3), CalibrationOptions{}, &display);
@@ -132,7 +118,7 @@ TEST(PerturbedPrototype, TheDefaultFitRecoversAFocalLengthOffItsCatalogueValue) 
 // A real magnifier (Thorlabs LA1608) with its radius 2 % long, so its focal
 // length too: its distortion, absent from the fit's model, is a model error.
 TEST(PerturbedPrototype, ARealMagnifiersDistortionIsNamedAsAModelError) {
-  const DisplaySystem& designed = Designed("paper_prototype_la1608.json");
+  const DisplaySystem designed = testing::Example("paper_prototype_la1608.json");
   const std::vector<PanelTruth> panels = testing::ExampleTruth();
   nlohmann::json scene = testing::BuiltScene(designed, panels);
   testing::ElementNamed(scene, "lens")["surfaces"][0]["radius"] = "39.372 mm";
