@@ -89,9 +89,13 @@ bool CheckModelError(const std::vector<MarkerBlock>& blocks, int free_parameters
                                "and understate the error");
     return true;
   }
+  std::vector<std::string> free_more;
+  if (options.focal_length != FitChoice::kFit) free_more.push_back("--focal-length fit");
+  if (options.lens_gaps != FitChoice::kFit) free_more.push_back("--lens-gaps fit");
   report->message = "model error: " + report->model_error +
-                    ". The parameters below are what the wrong model fitted; hold fewer of them (--focal-length fit, "
-                    "--lens-gaps fit), or write the scene anyway with --accept-model-error";
+                    ". The parameters below are what the wrong model fitted; check the scene against the display" +
+                    (free_more.empty() ? "" : " (or fit what it holds: " + JoinWords(free_more, ", ") + ")") +
+                    ", or write the calibrated scene anyway with --accept-model-error";
   return false;
 }
 

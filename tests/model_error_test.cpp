@@ -181,6 +181,7 @@ TEST(ModelError, AFocalLengthHeldTwoPercentOffIsRefusedNamingTheModelError) {
   const Measurements m = WithDetectionNoise(76.5e-3, 1.0);
   CalibratedDisplay display;
   const CalibrationReport held = Calibrate(Designed(), m, FocalLength(FitChoice::kHold), &display);
+  std::printf("held: %s\n", held.message.substr(0, 120).c_str());
   EXPECT_FALSE(held.IsSolutionUsable());
   EXPECT_NE(held.message.find("model error: the markers' residual is"), std::string::npos) << held.message;
   EXPECT_NE(held.message.find("It is largest in panel \""), std::string::npos) << held.message;
@@ -201,6 +202,7 @@ TEST(ModelError, AFocalLengthHeldTwoPercentOffIsRefusedNamingTheModelError) {
   const ParameterEstimate* f = fitted.find("lens", "focal_length");
   ASSERT_TRUE(f && f->std_dev);
   EXPECT_EQ(f->status, ParameterStatus::kFitted);
+  std::printf("fitted: focal length %.4f +- %.4f mm\n", 1e3 * f->value, 1e3 * *f->std_dev);
   EXPECT_LT(std::abs(f->value - 76.5e-3), 3 * *f->std_dev) << fitted.FullReport();
 }
 
