@@ -29,7 +29,8 @@ namespace {
 struct FitCommandOptions {
   std::string scene, measurements, out, report, loss = "none", reference = "camera";
   std::string focal_length = ToString(CalibrationOptions().focal_length),
-              lens_gaps = ToString(CalibrationOptions().lens_gaps);
+              lens_gaps = ToString(CalibrationOptions().lens_gaps),
+              distortion = ToString(CalibrationOptions().distortion);
   std::optional<double> marker_loss_arcmin, luminance_loss, model_error_level;  // unset: CalibrationOptions' own
   bool fit_focal_length = false, fit_lens_gaps = false, force = false, accept_model_error = false;
 };
@@ -44,7 +45,8 @@ CalibrationOptions ReadCalibrationOptions(const FitCommandOptions& o) {
   }
   for (const auto& [choice, text, flag, option] :
        {std::tuple{&options.focal_length, o.focal_length, o.fit_focal_length, "--focal-length"},
-        std::tuple{&options.lens_gaps, o.lens_gaps, o.fit_lens_gaps, "--lens-gaps"}}) {
+        std::tuple{&options.lens_gaps, o.lens_gaps, o.fit_lens_gaps, "--lens-gaps"},
+        std::tuple{&options.distortion, o.distortion, false, "--distortion"}}) {
     try {
       *choice = flag ? FitChoice::kFit : FitChoiceFromString(text);
     } catch (const Error& e) {
@@ -143,6 +145,9 @@ void AddFitCommand(CLI::App& app) {
   cmd->add_option("--lens-gaps", o->lens_gaps,
                   "The gap of every lens and curved mirror: auto, fit or hold, as --focal-length (it needs two or "
                   "more camera positions and two panels at different depths behind it; default auto)");
+  cmd->add_option("--distortion", o->distortion,
+                  "The radial distortion of every lens and curved mirror (reported, not written into the calibrated "
+                  "scene): hold (at 0, default), fit, or auto (fitted wherever there are markers)");
   cmd->add_flag("--fit-focal-length", o->fit_focal_length, "Same as --focal-length fit");
   cmd->add_flag("--fit-lens-gaps", o->fit_lens_gaps, "Same as --lens-gaps fit");
   cmd->add_flag("--accept-model-error", o->accept_model_error,

@@ -65,6 +65,12 @@ struct CalibrationOptions {
   // magnifier placed by the eye's eye_relief: from the pupil). Again only
   // parallax sees it, and only with two panels at different depths behind it.
   FitChoice lens_gaps = FitChoice::kAuto;
+  // The radial distortion k of every lens and curved mirror (marker_model.h:
+  // a point at tan-angle t from the pupil's center seen at t (1 + k |t|^2)),
+  // which a real magnifier has and the paraxial model lacks. Reported, not
+  // carried into the calibrated scene. Held at 0 unless asked for (auto fits
+  // it wherever there are markers).
+  FitChoice distortion = FitChoice::kHold;
   // The model-error test (docs/calibration.md): when the markers carry the
   // noise detect measured in the photographs, a residual above it at this
   // significance level is a model error, and the result is not usable unless
@@ -110,11 +116,11 @@ enum class ParameterStatus {
 std::string ToString(ParameterStatus status);
 
 struct ParameterEstimate {
-  std::string element;            // a panel, a lens or curved mirror, or "camera"
-  std::string quantity;           // distance, virtual_depth, offset_x, offset_y, rotation, focal_length, gap,
-                                  // pan, tilt, roll, max_luminance, black_level, gamma
-  double scene_value = 0;         // SI (m, rad, D); max_luminance in the measurements' unit
-  double value = 0;               // after the fit
+  std::string element;     // a panel, a lens or curved mirror, or "camera"
+  std::string quantity;    // distance, virtual_depth, offset_x, offset_y, rotation, focal_length, gap, distortion,
+                           // pan, tilt, roll, max_luminance, black_level, gamma
+  double scene_value = 0;  // SI (m, rad, D); max_luminance in the measurements' unit
+  double value = 0;        // after the fit
   std::optional<double> std_dev;  // one standard deviation; empty when not fitted or not estimable
   ParameterStatus status = ParameterStatus::kFitted;
   bool derived = false;  // computed from fitted ones (virtual_depth)

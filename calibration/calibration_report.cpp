@@ -23,6 +23,7 @@ Shown ShownAs(const std::string& quantity) {
   if (quantity == "pan" || quantity == "tilt" || quantity == "roll") return {"arcmin", kDegreesPerRadian * 60, 3};
   if (quantity == "black_level") return {"", 1, 5};
   if (quantity == "gamma") return {"", 1, 4};
+  if (quantity == "distortion") return {"", 1, 5};
   return {"", 1, -1};  // max_luminance: in the measurements' own unit, significant digits
 }
 
@@ -84,7 +85,7 @@ std::string CalibrationReport::FullReport() const {
   if (options.loss != RobustLoss::kNone)
     out += " (scales " + Arcmin(options.marker_loss_scale_rad) + ", " + Percent(options.luminance_loss_scale) + ")";
   out += "; axis reference " + ToString(options.reference) + "; focal length " + ToString(options.focal_length) +
-         "; lens gaps " + ToString(options.lens_gaps) + "\n";
+         "; lens gaps " + ToString(options.lens_gaps) + "; distortion " + ToString(options.distortion) + "\n";
   if (markers) {
     out += "geometry    " + std::to_string(markers) + " markers in " + std::to_string(captures) + " capture" +
            (captures > 1 ? "s" : "") + " from " + std::to_string(camera_positions) + " camera position" +
@@ -138,7 +139,7 @@ std::string CalibrationReport::FullReport() const {
            (p.derived ? " (derived)" : "") + "\n";
   }
   if (!warnings.empty() || !notes.empty()) out += "\n";
-  for (const std::string& n : notes) out += "held: " + n + "\n";
+  for (const std::string& n : notes) out += "note: " + n + "\n";
   for (const std::string& w : warnings) out += "warning: " + w + "\n";
   return out;
 }
@@ -157,6 +158,7 @@ nlohmann::json CalibrationReport::ToJson() const {
                   {"axis_reference", ToString(options.reference)},
                   {"focal_length", ToString(options.focal_length)},
                   {"lens_gaps", ToString(options.lens_gaps)},
+                  {"distortion", ToString(options.distortion)},
                   {"model_error_level", options.model_error_level},
                   {"accept_model_error", options.accept_model_error}};
   j["geometry"] = {{"markers", markers},
@@ -188,9 +190,9 @@ nlohmann::json CalibrationReport::ToJson() const {
   j["panels"] = panel_list;
   json parameter_list = json::array();
   for (const ParameterEstimate& p : parameters) {
-    const char* si = p.quantity == "virtual_depth"                          ? "D"
-                     : p.quantity == "max_luminance"                        ? "as measured"
-                     : p.quantity == "gamma" || p.quantity == "black_level" ? ""
+    const char* si = p.quantity == "virtual_depth"   ? "D"
+                     : p.quantity == "max_luminance" ? "as measured"
+                     : p.quantity == "gamma" || p.quantity == "black_level" || p.quantity == "distortion" ? ""
                      : p.quantity == "rotation" || p.quantity == "pan" || p.quantity == "tilt" || p.quantity == "roll"
                          ? "rad"
                          : "m";

@@ -10,6 +10,7 @@
 #include "layerlab/calibration/scalar_fit.h"
 #include "layerlab/calibration/similarity_fit.h"
 #include "layerlab/framework/params.h"
+#include "layerlab/framework/units.h"
 
 namespace layerlab {
 namespace {
@@ -27,17 +28,17 @@ struct MarkerDatum {
 // A lens or curved mirror on the path of some panel with markers.
 struct Optic {
   std::string name;
-  double focal_length = 0;         // as designed, m
-  double position = 0;             // m of path length from the pupil
-  double gap = 0;                  // from the element before it (the pupil), m
-  std::string before;              // that element's name; "" for the pupil
-  bool placed_before = true;       // whether that element has a place of its own, so that "gap" can be written
-  std::vector<int> layers;         // whose path holds it
-  int focal = -1, gap_index = -1;  // into the ScalarFit
+  double focal_length = 0;    // as designed, m
+  double position = 0;        // m of path length from the pupil
+  double gap = 0;             // from the element before it (the pupil), m
+  std::string before;         // that element's name; "" for the pupil
+  bool placed_before = true;  // whether that element has a place of its own, so that "gap" can be written
+  std::vector<int> layers;    // whose path holds it
+  int focal = -1, gap_index = -1, distortion = -1;  // into the ScalarFit
 };
 
 // The residual of one marker. Parameter blocks: distance, eye_from_panel_x_m, eye_from_panel_y_m,
-// rotation, pan, tilt, roll, then a gap and a focal length per element of `optics`.
+// rotation, pan, tilt, roll, then a gap, a focal length and a distortion per element of `optics`.
 struct MarkerCost {
   MarkerPlacement placement;
   LayerOptics optics;
@@ -46,10 +47,11 @@ struct MarkerCost {
 
   template <typename T>
   bool operator()(T const* const* p, T* residual) const {
-    MarkerParameters<T> q{p[0][0], p[1][0], p[2][0], p[3][0], p[4][0], p[5][0], p[6][0], {}, {}};
+    MarkerParameters<T> q{p[0][0], p[1][0], p[2][0], p[3][0], p[4][0], p[5][0], p[6][0], {}, {}, {}};
     for (size_t i = 0; i < optics.element.size(); ++i) {
-      q.gaps.push_back(p[7 + 2 * i][0]);
-      q.focal_lengths.push_back(p[8 + 2 * i][0]);
+      q.gaps.push_back(p[7 + 3 * i][0]);
+      q.focal_lengths.push_back(p[8 + 3 * i][0]);
+      q.distortions.push_back(p[9 + 3 * i][0]);
     }
     T angle[2];
     PredictVisualAngle(q, optics, placement, angle);
@@ -121,10 +123,12 @@ MarkerParameters<T> LayerParameters(const PanelIndices& p, int pan, int tilt, in
                         value(tilt),
                         value(roll),
                         {},
+                        {},
                         {}};
   for (int o : layer_optics.element) {
     q.gaps.push_back(value(optics[o].gap_index));
     q.focal_lengths.push_back(value(optics[o].focal));
+    q.distortions.push_back(value(optics[o].distortion));
   }
   return q;
 }
@@ -353,6 +357,7 @@ class GeometryFitter {
                     "focal_length");
       o.gap_index =
           Add({"the gap of " + Quoted(o.name), o.gap, 0, 0.0, std::nullopt}, "gap");  // after the element before
+      o.distortion = Add({"the distortion of " + Quoted(o.name), 0.0, 0, std::nullopt, std::nullopt}, "distortion");
     }
     pan_ = Add({"the camera's pan", 0, 1, {}, {}}, "pan");
     tilt_ = Add({"the camera's tilt", 0, 1, {}, {}}, "tilt");
@@ -429,6 +434,7 @@ class GeometryFitter {
         Hold(o.focal, ParameterStatus::kNotFitted);
       else if (!parallax)
         HoldWithoutParallax(o.focal, "the focal length" + named);
+      if (options_.distortion == FitChoice::kHold) Hold(o.distortion, ParameterStatus::kNotFitted);
       if (options_.lens_gaps == FitChoice::kHold) {
         Hold(o.gap_index, ParameterStatus::kNotFitted);
       } else if (!o.placed_before) {
@@ -471,7 +477,8 @@ class GeometryFitter {
       auto* cost = new MarkerCostFunction(new MarkerCost{d.placement, path, d.angle_x, d.angle_y, weight});
       std::vector<int> blocks = {p.distance, p.eye_from_panel_x_m, p.eye_from_panel_y_m, p.rotation, pan_, tilt_,
                                  roll_};
-      for (int o : path.element) blocks.push_back(optics_[o].gap_index), blocks.push_back(optics_[o].focal);
+      for (int o : path.element)
+        blocks.insert(blocks.end(), {optics_[o].gap_index, optics_[o].focal, optics_[o].distortion});
       for (size_t i = 0; i < blocks.size(); ++i) cost->AddParameterBlock(1);
       cost->SetNumResiduals(2);
       fit_.AddResidual(cost, MakeLoss(options_.loss, options_.marker_loss_scale_rad * weight), blocks);
@@ -632,12 +639,31 @@ class GeometryFitter {
 
   bool Fitted(int i) const { return status_[i] == ParameterStatus::kFitted; }
 
+  // A lens's measured distortion: the calibrated scene cannot carry it (an
+  // ideal lens has none; a real lens's is that of its surfaces), so it is
+  // reported, with its size at the edge of what the markers span.
+  void ReportDistortion(const Optic& o) {
+    report_->parameters.push_back(Estimate(o.name, o.distortion));
+    const ParameterEstimate& k = report_->parameters.back();
+    if (k.status != ParameterStatus::kFitted) return;
+    double widest = 0;  // tan^2 of the farthest marker from the axis, seen from the pupil's center
+    for (const MarkerDatum& d : data_)
+      widest = std::max(widest, std::pow(std::tan(d.angle_x), 2) + std::pow(std::tan(d.angle_y), 2));
+    report_->notes.push_back("the distortion of " + Quoted(o.name) + " is measured, k = " + FormatFixed(k.value, 4) +
+                             (k.std_dev ? " +- " + FormatFixed(*k.std_dev, 4) : "") + " (" +
+                             FormatFixed(100 * k.value * widest, 2) + " % at the markers' widest " +
+                             FormatFixed(std::atan(std::sqrt(widest)) * kDegreesPerRadian, 1) +
+                             " deg): the calibrated scene does not carry it (an ideal lens has none; a lens described "
+                             "by its surfaces has its own)");
+  }
+
   // The results, by parameter.
   void WriteResults(CalibratedDisplay* display) {
     display->optics.clear();
     for (const Optic& o : optics_) {
       report_->parameters.push_back(Estimate(o.name, o.focal));
       if (options_.lens_gaps != FitChoice::kHold) report_->parameters.push_back(Estimate(o.name, o.gap_index));
+      if (options_.distortion != FitChoice::kHold) ReportDistortion(o);
       display->optics.push_back(
           {o.name, fit_.value(o.focal), fit_.value(o.gap_index), Fitted(o.focal), Fitted(o.gap_index)});
     }
@@ -674,7 +700,8 @@ class GeometryFitter {
   double VirtualDepthStdDev(int k) const {
     const PanelIndices& p = index_[k];
     std::vector<int> on_path = {p.distance};
-    for (int o : layer_optics_[k].element) on_path.push_back(optics_[o].gap_index), on_path.push_back(optics_[o].focal);
+    for (int o : layer_optics_[k].element)
+      on_path.insert(on_path.end(), {optics_[o].gap_index, optics_[o].focal, optics_[o].distortion});
     std::vector<double> gradient;
     for (int wrt : on_path) {
       using Dual = ceres::Jet<double, 1>;

@@ -16,9 +16,11 @@
 // where g_i is element i's gap and c_i the path length between it and the
 // element with power before it that no fitted gap covers (flat elements:
 // half mirrors, fold mirrors, combiners). The pupil center sees the panel point
-// at tan-angle t0 = (o + R(theta) l) / |B|, and a camera displaced by c in the
+// at tan-angle t0 = (o + R(theta) l) / |B|, moved radially by the elements'
+// distortion k_i (a real magnifier's, which the paraxial M lacks; 0 for an
+// ideal lens): t0 (1 + sum k_i |t0|^2); and a camera displaced by c in the
 // pupil plane sees the image plane (A / B diopters) with parallax:
-//   t = t0 - c A / B.
+//   t = t0 (1 + sum k_i |t0|^2) - c A / B.
 // The camera may be turned against the eye's axes (pan right, tilt up, roll
 // counterclockwise as the eye sees it): R_cam is the rotation by the vector
 // (-tilt, pan, roll), and the camera sees d = R_cam^T (t, 1) at the visual
@@ -64,7 +66,7 @@ template <typename T>
 struct MarkerParameters {
   T distance, eye_from_panel_x_m, eye_from_panel_y_m, rotation;
   T pan, tilt, roll;
-  std::vector<T> gaps, focal_lengths;  // of LayerOptics' elements, in its order
+  std::vector<T> gaps, focal_lengths, distortions;  // of LayerOptics' elements, in its order
 };
 
 // Pupil -> panel: the one composition every fitted layer goes through.
@@ -88,8 +90,11 @@ void PredictVisualAngle(const MarkerParameters<T>& q, const LayerOptics& optics,
   const T c = cos(q.rotation), s = sin(q.rotation);
   const T x = q.eye_from_panel_x_m + c * m.local_x_m - s * m.local_y_m;
   const T y = q.eye_from_panel_y_m + s * m.local_x_m + c * m.local_y_m;
-  const T eye_direction[3] = {tan_per_meter * x - m.camera_x_m * diopters, tan_per_meter * y - m.camera_y_m * diopters,
-                              T(1)};
+  T distortion(0);
+  for (const T& k : q.distortions) distortion += k;
+  const T radial = T(1) + distortion * tan_per_meter * tan_per_meter * (x * x + y * y);
+  const T eye_direction[3] = {tan_per_meter * x * radial - m.camera_x_m * diopters,
+                              tan_per_meter * y * radial - m.camera_y_m * diopters, T(1)};
   const T camera_from_eye[3] = {q.tilt, -q.pan, -q.roll};  // the inverse of R_cam
   T d[3];
   ceres::AngleAxisRotatePoint(camera_from_eye, eye_direction, d);

@@ -33,9 +33,10 @@ std::string WorstPhotographs(const std::vector<MarkerBlock>& blocks, size_t coun
   std::vector<std::string> named;
   for (size_t k = 0; k < std::min(count, ratio.size()); ++k) {
     const MarkerBlock& b = *ratio[k].second;
-    named.push_back("panel \"" + b.panel + "\" from " + Millimeters(b.camera_position) +
-                    (b.where.file.empty() ? "" : " (" + b.where.str() + ")") + ": " + FormatFixed(ratio[k].first, 1) +
-                    " x its noise");
+    named.push_back(
+        "panel \"" + b.panel + "\" from " + Millimeters(b.camera_position) +
+        (b.where.file.empty() ? "" : " (" + (b.where.pointer.empty() ? b.where.file : b.where.str()) + ")") + ": " +
+        FormatFixed(ratio[k].first, 1) + " x its noise");
   }
   return JoinedBySemicolons(named);
 }
@@ -92,6 +93,7 @@ bool CheckModelError(const std::vector<MarkerBlock>& blocks, int free_parameters
   std::vector<std::string> free_more;
   if (options.focal_length != FitChoice::kFit) free_more.push_back("--focal-length fit");
   if (options.lens_gaps != FitChoice::kFit) free_more.push_back("--lens-gaps fit");
+  if (options.distortion == FitChoice::kHold) free_more.push_back("--distortion fit");
   report->message = "model error: " + report->model_error +
                     ". The parameters below are what the wrong model fitted; check the scene against the display" +
                     (free_more.empty() ? "" : " (or fit what it holds: " + JoinWords(free_more, ", ") + ")") +

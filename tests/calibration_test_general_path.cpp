@@ -96,7 +96,7 @@ TEST(GeneralPathCalibrationTest, SyntheticMarkersMatchARayTracedThroughTheElemen
 // the lens 15 mm behind the half mirror, itself 15 mm from the pupil.
 TEST(GeneralPathCalibrationTest, MarkerModelComposesTheGapsAndFocalLengths) {
   const LayerOptics optics{{0}, {15e-3}};
-  MarkerParameters<double> q{52e-3, 0, 0, 0, 0, 0, 0, {15.4e-3}, {61e-3}};
+  MarkerParameters<double> q{52e-3, 0, 0, 0, 0, 0, 0, {15.4e-3}, {61e-3}, {0.0}};
   const RayTransfer<double> m = LayerTransfer(optics, q);
   // T(e) then L(1/f) then T(s): a = 1 - s/f, b = e + s (1 - e/f).
   const double e = 30.4e-3, f = 61e-3, s = 52e-3;

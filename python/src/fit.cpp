@@ -45,7 +45,7 @@ py::dict ParameterTable(const std::vector<ParameterEstimate>& parameters) {
 
 py::dict Fit(const py::object& scene, const py::object& measurements, const std::string& loss,
              const std::string& reference, const std::string& focal_length, const std::string& lens_gaps,
-             bool accept_model_error, std::optional<double> marker_loss_arcmin,
+             const std::string& distortion, bool accept_model_error, std::optional<double> marker_loss_arcmin,
              std::optional<double> luminance_loss_scale) {
   CalibrationOptions options;
   try {
@@ -58,8 +58,9 @@ py::dict Fit(const py::object& scene, const py::object& measurements, const std:
   try {
     options.focal_length = FitChoiceFromString(focal_length);
     options.lens_gaps = FitChoiceFromString(lens_gaps);
+    options.distortion = FitChoiceFromString(distortion);
   } catch (const Error& e) {
-    throw py::value_error("fit: focal_length / lens_gaps: " + e.message());
+    throw py::value_error("fit: focal_length / lens_gaps / distortion: " + e.message());
   }
   options.accept_model_error = accept_model_error;
   if (marker_loss_arcmin) options.marker_loss_scale_rad = *marker_loss_arcmin / 60.0 * std::numbers::pi / 180.0;
@@ -121,8 +122,8 @@ py::dict Fit(const py::object& scene, const py::object& measurements, const std:
 void BindFit(py::module_& m) {
   m.def("fit", &Fit, py::arg("scene"), py::arg("measurements"), py::kw_only(), py::arg("loss") = "none",
         py::arg("reference") = "camera", py::arg("focal_length") = "auto", py::arg("lens_gaps") = "auto",
-        py::arg("accept_model_error") = false, py::arg("marker_loss_arcmin") = py::none(),
-        py::arg("luminance_loss_scale") = py::none(),
+        py::arg("distortion") = "hold", py::arg("accept_model_error") = false,
+        py::arg("marker_loss_arcmin") = py::none(), py::arg("luminance_loss_scale") = py::none(),
         "Calibrates a scene from measurements of the built display, as `layerlab fit` (Ceres): a dict with "
         "parameters (columns element, quantity, scene_value, value, std_dev, status, derived), scene (the "
         "calibrated scene, paths relative to the working directory), report, brief, full, warnings");
