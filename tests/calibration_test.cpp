@@ -461,8 +461,15 @@ TEST(UnresolvedTest, APanelSeenTooSmallEndsAtTheFocalLengthAndIsUndetermined) {
       marker["camera_pixel"] = {cx + (x - cx) * 0.95, cy + (y - cy) * 0.95};
     }
   const Measurements m = ParseMeasurements(doc, "shrunk.json");
+  // With the focal length and eye relief held as the scene has them (fitted, they take up the shrink instead,
+  // and the fit puts rear_a beyond the focal length it finds: refused as not this display).
+  CalibrationOptions held;
+  held.focal_length = held.lens_gaps = FitChoice::kHold;
   CalibratedDisplay display;
-  const CalibrationReport report = Calibrate(Designed(), m, CalibrationOptions{}, &display);
+  const CalibrationReport refused = Calibrate(Designed(), m, CalibrationOptions{}, &display);
+  EXPECT_FALSE(refused.IsSolutionUsable());
+  EXPECT_NE(refused.message.find("the measurements do not match this display"), std::string::npos) << refused.message;
+  const CalibrationReport report = Calibrate(Designed(), m, held, &display);
   ASSERT_TRUE(report.IsSolutionUsable()) << report.message;
   const ParameterEstimate* distance = report.find("rear_a", "distance");
   ASSERT_NE(distance, nullptr);
