@@ -185,6 +185,16 @@ TEST(CalibrationTest, RobustLossDiscountsOutliersThatBiasLeastSquares) {
   ASSERT_TRUE(plain.IsSolutionUsable()) << plain.message;
   EXPECT_GT(WorstGeometryError(built, m, plain, plain_display, sigma, false), 3 * kSigmas) << plain.FullReport();
   EXPECT_TRUE(HasWarning(plain, "beyond 6 sigma of the noise")) << plain.FullReport();
+  EXPECT_TRUE(HasWarning(plain, "--loss cauchy discounts them")) << plain.FullReport();
+  int outliers = 0;  // 30 arcmin against a loss scale of 1 arcmin and 0.3 arcmin of noise: every one beyond it
+  for (const Capture& c : m.captures)
+    for (const PanelMarkers& p : c.panels)
+      for (const MarkerObservation& o : p.markers) {
+        const auto truth_angle =
+            ImagedMarker(built, built.layers[LayerIndexIn(built, p.panel)], o.col, o.row, {}, c.camera_position);
+        outliers += std::hypot(o.angle_x - truth_angle[0], o.angle_y - truth_angle[1]) > 10 * kArcmin;
+      }
+  ASSERT_GT(outliers, 0);
 
   for (RobustLoss loss : {RobustLoss::kCauchy, RobustLoss::kHuber}) {
     CalibrationOptions options;
@@ -197,6 +207,11 @@ TEST(CalibrationTest, RobustLossDiscountsOutliersThatBiasLeastSquares) {
         << ToString(loss) << "\n"
         << robust.FullReport();
     EXPECT_TRUE(testing::Close(robust.marker_noise_rad, sigma, 0.25)) << ToString(loss);
+    // It says how many it weighted down (the outliers, give or take a marker near the scale) and where.
+    const std::string counted = "the " + ToString(loss) + " loss weighted " + std::to_string(outliers) + " of " +
+                                std::to_string(m.marker_count()) + " markers by less than half";
+    EXPECT_TRUE(HasWarning(robust, counted)) << counted << "\n" << robust.FullReport();
+    EXPECT_TRUE(HasWarning(robust, " of panel \"")) << robust.FullReport();
   }
 }
 
