@@ -1,6 +1,7 @@
 #include "layerlab/calibration/synthetic_chessboard.h"
 
 #include <cmath>
+#include <cstdint>
 
 #include "layerlab/framework/error.h"
 
@@ -68,7 +69,7 @@ Image BoardPhotoRenderer::Render(const PrintedChessboard& board, const BoardPose
     const double j = std::floor((Dot(pose.down, rel) + half_y) / s);
     if (i < -1 || j < -1 || i > board.squares_x || j > board.squares_y) return gain * scene.surroundings;
     const bool inside = i >= 0 && j >= 0 && i < board.squares_x && j < board.squares_y;
-    const bool dark = inside && std::fmod(i + j, 2.0) == 0;
+    const bool dark = inside && (static_cast<int64_t>(i + j) & 1) == 0;
     return gain * (dark ? scene.ink : scene.paper);
   };
   return RecordOnSensor(camera_, PixelSignals(camera_, slopes_, seed_key, light), seed_key);
