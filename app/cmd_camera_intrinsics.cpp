@@ -29,11 +29,10 @@ void PrintEstimate(const IntrinsicsEstimate& e) {
             << "  fx " << PlusMinus(c.fx, u.fx_px, 2) << " px   fy " << PlusMinus(c.fy, u.fy_px, 2) << " px\n"
             << "  cx " << PlusMinus(c.cx, u.cx_px, 2) << " px   cy " << PlusMinus(c.cy, u.cy_px, 2) << " px\n"
             << "  k1 " << PlusMinus(c.k1, u.k1, 4) << "   k2 " << PlusMinus(c.k2, u.k2, 4) << "\n"
-            << "  reprojection error " << FormatFixed(u.rms_reprojection_px, 3) << " px RMS; per photograph:";
+            << "  reprojection error " << FormatFixed(u.rms_reprojection_px, 3) << " px RMS; per photograph:\n";
   for (const BoardView& v : e.views)
-    std::cout << " " << v.photo << " " << FormatFixed(v.rms_px, 3) << " px (tilt "
-              << FormatFixed(v.tilt_rad * kDegreesPerRadian, 0) << " deg)";
-  std::cout << "\n";
+    std::cout << "    " << v.photo << "  " << FormatFixed(v.rms_px, 3) << " px, the board tilted "
+              << FormatFixed(v.tilt_rad * kDegreesPerRadian, 0) << " deg from face-on\n";
 }
 
 }  // namespace
