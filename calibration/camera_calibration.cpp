@@ -17,7 +17,8 @@ namespace {
 // where the residuals are two per corner (opencv/opencv#22992): its variances come out about twice too large.
 double OpenCVVarianceScale(size_t corners, size_t parameters) {
 #if CV_VERSION_MAJOR < 4 || (CV_VERSION_MAJOR == 4 && CV_VERSION_MINOR < 7)
-  return static_cast<double>(corners - parameters) / static_cast<double>(2 * corners - parameters);
+  const double n = static_cast<double>(corners), p = static_cast<double>(parameters);
+  return (n - p) / (2 * n - p);
 #else
   (void)corners, (void)parameters;
   return 1.0;

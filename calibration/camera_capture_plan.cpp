@@ -1,6 +1,7 @@
 #include "layerlab/calibration/camera_capture_plan.h"
 
 #include <cmath>
+#include <cstddef>
 #include <set>
 
 #include "layerlab/calibration/capture_plan.h"
@@ -66,6 +67,15 @@ std::string Advice(const PlannedBoardPhoto& p) {
          "overexposed";
 }
 
+// Why the board's image to print would be too large (kMaxPhotoPixels, the largest image layerlab writes), or "".
+std::string ImageSizeProblem(const PrintedChessboard& board) {
+  const size_t pixels = static_cast<size_t>(board.image_width()) * static_cast<size_t>(board.image_height());
+  if (pixels <= kMaxPhotoPixels) return "";
+  return "the board's image would have " + std::to_string(board.image_width()) + " x " +
+         std::to_string(board.image_height()) + " pixels (" + std::to_string(board.pixels_per_square) +
+         " to a square), more than " + std::to_string(kMaxPhotoPixels) + "; use fewer squares";
+}
+
 std::string Number2(int k) { return (k < 10 ? "0" : "") + std::to_string(k); }
 
 bool PlainFileName(const std::string& name) {
@@ -122,6 +132,9 @@ CameraCapturePlan PlanCameraCaptures(const CameraPlanOptions& options) {
   plan.board.squares_x = options.squares_x;
   plan.board.squares_y = options.squares_y;
   plan.board.square_m = options.square_m;
+  if (std::string why = ImageSizeProblem(plan.board); !why.empty())
+    throw Error("--squares " + std::to_string(options.squares_x) + " " + std::to_string(options.squares_y) + ": " +
+                why);
   plan.description = "camera intrinsics from " + std::to_string(options.poses) + " photographs of a printed " +
                      std::to_string(options.squares_x) + " x " + std::to_string(options.squares_y) + " chessboard";
   for (int k = 0; k < options.poses; ++k) {
@@ -141,6 +154,7 @@ CameraCapturePlan PlanCameraCaptures(const CameraPlanOptions& options) {
 }
 
 std::vector<uint8_t> PrintedChessboardImage(const PrintedChessboard& board) {
+  if (std::string why = ImageSizeProblem(board); !why.empty()) throw Error(why);
   const int width = board.image_width(), height = board.image_height(), s = board.pixels_per_square;
   std::vector<uint8_t> image(static_cast<size_t>(width) * height, 255);
   for (int r = s; r < height - s; ++r)

@@ -364,6 +364,13 @@ TEST(CameraIntrinsicsTest, ThePlanReadsBackAndIsReadStrictly) {
   nlohmann::json twice = document;
   twice["photos"][1]["photo"] = twice["photos"][0]["photo"];
   EXPECT_NE(error(twice).find("/photos/1/photo: \"board_01.png\" is named twice"), std::string::npos) << error(twice);
+  CameraPlanOptions huge;
+  huge.squares_x = 1000;
+  huge.squares_y = 999;
+  const std::string too_large = ErrorOf([&] { PlanCameraCaptures(huge); });
+  EXPECT_NE(too_large.find("--squares 1000 999: the board's image would have 100200 x 100100 pixels"),
+            std::string::npos)
+      << too_large;
   nlohmann::json steep = document;
   steep["photos"][0]["tilt"] = {"70 deg", "0 deg"};
   EXPECT_NE(error(steep).find("/photos/0/tilt: tilts of up to 60 deg"), std::string::npos) << error(steep);
