@@ -42,10 +42,14 @@ PY
   >"$work/log" 2>&1 || fail "calibration-patterns does not take the estimated camera"
 grep -q '"fx_std_px"' "$work/display_plan/captures.json" || fail "the plan dropped the camera's uncertainty"
 # Too few photographs: two left, refused, naming the rest.
+# board_03 a FIFO (named, never opened: it would block), board_04 a folder, the rest missing.
 mkdir -p "$work/few" && cp "$work/photos/camera_captures.json" "$work/photos/board_01.exr" "$work/photos/board_02.exr" "$work/few/"
-if "$layerlab" camera-intrinsics "$work/few" --out "$work/few.json" >"$work/log" 2>&1; then fail "two photographs were taken"; fi
+mkfifo "$work/few/board_03.exr" && mkdir "$work/few/board_04.exr"
+if timeout 60 "$layerlab" camera-intrinsics "$work/few" --out "$work/few.json" >"$work/log" 2>&1; then fail "two photographs were taken"; fi
 grep -q "need the board in at least 3 photographs; 2 of 10 show it" "$work/log" || fail "the refusal does not say why"
-grep -q "  board_03.exr: " "$work/log" || fail "the missing photographs are not named"
+grep -q "  board_03.exr: .*a FIFO" "$work/log" || fail "the FIFO is not named as such"
+grep -q "  board_04.exr: .*folder" "$work/log" || fail "the folder is not named as such"
+grep -q "  board_05.exr: " "$work/log" || fail "the missing photographs are not named"
 [ -e "$work/few.json" ] && fail "a refused estimate wrote its file"
 if "$layerlab" photograph "$work/plan" --camera "$work/truth.json" --scene "$examples/paper_prototype.json" \
   --out "$work/o" >"$work/log" 2>&1; then fail "photograph took a scene for a camera plan"; fi
