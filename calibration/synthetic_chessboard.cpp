@@ -67,7 +67,8 @@ Image BoardPhotoRenderer::Render(const PrintedChessboard& board, const BoardPose
                       o[2] + t * d[2] - pose.center_m[2]};
     const double i = std::floor((Dot(pose.across, rel) + half_x) / s);
     const double j = std::floor((Dot(pose.down, rel) + half_y) / s);
-    if (i < -1 || j < -1 || i > board.squares_x || j > board.squares_y) return gain * scene.surroundings;
+    // Off the paper (a ray grazing the plane gives NaN here, off it too).
+    if (!(i >= -1 && j >= -1 && i <= board.squares_x && j <= board.squares_y)) return gain * scene.surroundings;
     const bool inside = i >= 0 && j >= 0 && i < board.squares_x && j < board.squares_y;
     const bool dark = inside && (static_cast<int64_t>(i + j) & 1) == 0;
     return gain * (dark ? scene.ink : scene.paper);
