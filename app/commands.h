@@ -20,6 +20,8 @@ void AddFitCommand(CLI::App& app);                  // fit SCENE.json MEASUREMEN
 void AddCalibrationPatternsCommand(CLI::App& app);  // calibration-patterns SCENE.json --out DIR
 void AddPhotographCommand(CLI::App& app);           // photograph CAPTURES_DIR --scene BUILT.json --out DIR
 void AddDetectCommand(CLI::App& app);  // detect CAPTURES_DIR --scene SCENE.json --out MEASUREMENTS.json (OpenCV)
+void AddCameraPatternsCommand(CLI::App& app);    // camera-patterns --out DIR: a chessboard to print, the photos to take
+void AddCameraIntrinsicsCommand(CLI::App& app);  // camera-intrinsics DIR --out CAMERA.json (OpenCV)
 #endif
 #if LAYERLAB_WITH_EMBREE
 void AddRenderTargetCommand(CLI::App& app);  // render-target TARGET.json OUT_DIR

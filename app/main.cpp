@@ -33,6 +33,8 @@ int main(int argc, char** argv) {
   layerlab::app::AddCalibrationPatternsCommand(app);
   layerlab::app::AddPhotographCommand(app);
   layerlab::app::AddDetectCommand(app);
+  layerlab::app::AddCameraPatternsCommand(app);
+  layerlab::app::AddCameraIntrinsicsCommand(app);
 #endif
 #if LAYERLAB_WITH_EMBREE
   layerlab::app::AddRenderTargetCommand(app);

@@ -14,10 +14,19 @@
 
 namespace layerlab {
 
+// One standard deviation of each intrinsic, as estimated from photographs of a chessboard
+// (`layerlab camera-intrinsics`), with the root-mean-square reprojection error of that estimate.
+struct CameraIntrinsicsUncertainty {
+  double fx_px = 0, fy_px = 0, cx_px = 0, cy_px = 0;
+  double k1 = 0, k2 = 0;
+  double rms_reprojection_px = 0;
+};
+
 struct CameraIntrinsics {
-  double fx = 0, fy = 0;  // focal length in pixels
-  double cx = 0, cy = 0;  // principal point, pixels
-  double k1 = 0, k2 = 0;  // radial distortion
+  double fx = 0, fy = 0;                                   // focal length in pixels
+  double cx = 0, cy = 0;                                   // principal point, pixels
+  double k1 = 0, k2 = 0;                                   // radial distortion
+  std::optional<CameraIntrinsicsUncertainty> uncertainty;  // when estimated by layerlab
 };
 
 // Visual angles (rad, x right, y up) of a camera pixel; empty where the

@@ -1,5 +1,8 @@
+#include <array>
 #include <cmath>
 #include <map>
+#include <optional>
+#include <string>
 
 #include "layerlab/calibration/measurements.h"
 #include "layerlab/framework/json_file.h"
@@ -163,6 +166,33 @@ PanelLuminance ReadLuminance(Params p, const std::string& panel) {
   return l;
 }
 
+// The standard deviations `layerlab camera-intrinsics` writes: all of them or none.
+std::optional<CameraIntrinsicsUncertainty> ReadCameraUncertainty(Params& p) {
+  CameraIntrinsicsUncertainty u;
+  const std::array<std::pair<const char*, double*>, 7> fields = {{{"fx_std_px", &u.fx_px},
+                                                                  {"fy_std_px", &u.fy_px},
+                                                                  {"cx_std_px", &u.cx_px},
+                                                                  {"cy_std_px", &u.cy_px},
+                                                                  {"k1_std", &u.k1},
+                                                                  {"k2_std", &u.k2},
+                                                                  {"rms_reprojection_px", &u.rms_reprojection_px}}};
+  const char* given = nullptr;
+  for (const auto& [key, value] : fields) {
+    p.mark_read(key);  // known, so that a misspelling is suggested the right name
+    if (p.has(key)) given = key;
+  }
+  if (!given) return std::nullopt;
+  for (const auto& [key, value] : fields) {
+    if (!p.has(key))
+      throw Error(p.where(), std::string("\"") + given + "\" is given without \"" + key +
+                                 "\": the uncertainty of an estimate comes whole (all of fx_std_px, fy_std_px, "
+                                 "cx_std_px, cy_std_px, k1_std, k2_std, rms_reprojection_px) or not at all");
+    *value = Number(p, key);
+    if (!(*value >= 0)) p.fail(key, "a standard deviation or an RMS error cannot be negative");
+  }
+  return u;
+}
+
 }  // namespace
 
 CameraIntrinsics ReadCameraIntrinsics(Params p) {
@@ -177,6 +207,7 @@ CameraIntrinsics ReadCameraIntrinsics(Params p) {
   if (p.has("k2")) c.k2 = Number(p, "k2");
   p.mark_read("k1");
   p.mark_read("k2");
+  c.uncertainty = ReadCameraUncertainty(p);
   p.check_all_read();
   return c;
 }

@@ -132,6 +132,15 @@ ordered_json CameraIntrinsicsToJson(const CameraIntrinsics& c) {
   ordered_json j = {{"fx", Value(c.fx)}, {"fy", Value(c.fy)}, {"cx", Value(c.cx)}, {"cy", Value(c.cy)}};
   if (c.k1 != 0) j["k1"] = c.k1;
   if (c.k2 != 0) j["k2"] = c.k2;
+  if (const auto& u = c.uncertainty) {
+    j["fx_std_px"] = Significant(u->fx_px, 3);
+    j["fy_std_px"] = Significant(u->fy_px, 3);
+    j["cx_std_px"] = Significant(u->cx_px, 3);
+    j["cy_std_px"] = Significant(u->cy_px, 3);
+    j["k1_std"] = Significant(u->k1, 3);
+    j["k2_std"] = Significant(u->k2, 3);
+    j["rms_reprojection_px"] = Significant(u->rms_reprojection_px, 3);
+  }
   return j;
 }
 

@@ -325,6 +325,69 @@ CornerSearch FindChessboardCorners(const Photo& photo, const Chessboard& board,
 
 namespace {
 
+// Where something with edges lies in the photograph: the bounding box of the pixels whose gradient (of the image
+// smoothed against the noise) passes a quarter of the steepest; the whole photograph when none does.
+cv::Rect EdgesArea(const Photo& photo) {
+  cv::Mat image(photo.height, photo.width, CV_32F, const_cast<float*>(photo.pixels.data()));
+  cv::Mat smooth, gx, gy, magnitude;
+  cv::GaussianBlur(image, smooth, cv::Size(0, 0), 1.5);
+  cv::Sobel(smooth, gx, CV_32F, 1, 0);
+  cv::Sobel(smooth, gy, CV_32F, 0, 1);
+  cv::magnitude(gx, gy, magnitude);
+  double steepest = 0;
+  cv::minMaxLoc(magnitude, nullptr, &steepest);
+  const cv::Rect box = steepest > 0 ? cv::boundingRect(magnitude > 0.25 * steepest) : cv::Rect();
+  return box.area() > 0 ? box : cv::Rect(0, 0, photo.width, photo.height);
+}
+
+// Why a printed board was not found: another board (the largest chessboard in view, found by OpenCV's
+// sector-based finder allowed any size above 3 x 3 inner corners), else what the photograph shows.
+std::string PrintedBoardNotFoundReason(const Photo& photo, const cv::Mat& image8, int squares_x, int squares_y) {
+  std::vector<cv::Point2f> corners;
+  cv::Mat meta;
+  if (cv::findChessboardCornersSB(image8, cv::Size(3, 3), corners, cv::CALIB_CB_LARGER, meta) && !meta.empty()) {
+    // Named the way the plan names its own: the longer side first if the plan's is.
+    int sx = meta.cols + 1, sy = meta.rows + 1;
+    if ((sx > sy) != (squares_x > squares_y)) std::swap(sx, sy);
+    if (!(sx == squares_x && sy == squares_y) && !(sx == squares_y && sy == squares_x))
+      return "wrong chessboard: the photograph shows one of " + std::to_string(sx) + " x " + std::to_string(sy) +
+             " squares (its " + std::to_string(sx - 1) + " x " + std::to_string(sy - 1) +
+             " inner corners found), the plan's has " + std::to_string(squares_x) + " x " + std::to_string(squares_y) +
+             ": another board, or part of this one out of view?";
+  }
+  const cv::Rect area = EdgesArea(photo);
+  const double square_px = std::min(area.width / (squares_x + 2.0), area.height / (squares_y + 2.0));
+  return "pattern not found: no " + std::to_string(squares_x - 1) + " x " + std::to_string(squares_y - 1) +
+         " chessboard corners (" + WhatItShows(photo, square_px, area) + ")";
+}
+
+}  // namespace
+
+BoardCorners FindPrintedChessboard(const Photo& photo, int squares_x, int squares_y, const PhotoCheck& check) {
+  if (std::string why = ChessboardSquaresProblem(squares_x, squares_y); !why.empty()) throw Error(why);
+  BoardCorners out;
+  if (std::string why = OverexposureReason(photo, check); !why.empty()) {
+    out.reason = why;
+    return out;
+  }
+  cv::Mat image(photo.height, photo.width, CV_32F, const_cast<float*>(photo.pixels.data()));
+  const double white = std::max(1e-6, Quantile(photo.pixels, 0.995));
+  cv::Mat image8;
+  image.convertTo(image8, CV_8U, 255.0 / white);
+  std::vector<cv::Point2f> corners = TryBoard(image8, squares_x - 1, squares_y - 1);
+  if (corners.empty()) {
+    out.reason = PrintedBoardNotFoundReason(photo, image8, squares_x, squares_y);
+    return out;
+  }
+  const int window = std::clamp(static_cast<int>(0.4 * NeighborSpacing(corners)), 2, 15);
+  cv::cornerSubPix(image, corners, cv::Size(window, window), cv::Size(-1, -1),
+                   cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 100, 1e-4));
+  for (const cv::Point2f& c : corners) out.camera_pixels.push_back({c.x, c.y});
+  return out;
+}
+
+namespace {
+
 // The photographs of a capture plan, one by one: a chessboard's corners
 // become markers, a luminance step's photograph the mean of the panel's middle.
 class CaptureDetector {

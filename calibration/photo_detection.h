@@ -53,6 +53,19 @@ struct CornerSearch {
 CornerSearch FindChessboardCorners(const Photo& photo, const Chessboard& board,
                                    const std::vector<std::array<double, 2>>& predicted, const PhotoCheck& check = {});
 
+// A printed chessboard of squares_x x squares_y squares anywhere in `photo`,
+// with no prediction of where (camera intrinsics, camera_calibration.h): its
+// inner corners to sub-pixel accuracy, row by row as OpenCV orders them (from
+// either end: the grid of corners reads the same turned by 180 degrees, which
+// only changes the pose it is fitted with); or, when it is not found, the
+// reason: overexposed, another board (its square counts), too noisy, out of
+// focus, or no board in view.
+struct BoardCorners {
+  std::vector<std::array<double, 2>> camera_pixels;  // (u, v); empty when not found
+  std::string reason;
+};
+BoardCorners FindPrintedChessboard(const Photo& photo, int squares_x, int squares_y, const PhotoCheck& check = {});
+
 // Why a photograph cannot be used as it is, or empty.
 std::string OverexposureReason(const Photo& photo, const PhotoCheck& check);
 

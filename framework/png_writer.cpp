@@ -3,6 +3,7 @@
 #include <png.h>
 
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 
@@ -13,7 +14,7 @@
 namespace layerlab {
 
 void WritePng8(const std::string& path, int width, int height, int channels, const std::vector<uint8_t>& pixels,
-               PngCompression compression) {
+               PngCompression compression, double pixels_per_meter) {
   if (width <= 0 || height <= 0 || (channels != 1 && channels != 3 && channels != 4) ||
       pixels.size() != static_cast<size_t>(width) * height * channels)
     throw Error(path + ": internal error: PNG buffer does not match its size");
@@ -29,6 +30,10 @@ void WritePng8(const std::string& path, int width, int height, int channels, con
     int type = channels == 1 ? PNG_COLOR_TYPE_GRAY : channels == 3 ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_RGBA;
     png_set_IHDR(png, info, width, height, 8, type, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
                  PNG_FILTER_TYPE_DEFAULT);
+    if (pixels_per_meter > 0 && pixels_per_meter < 4e9) {
+      const auto ppm = static_cast<png_uint_32>(std::lround(pixels_per_meter));
+      png_set_pHYs(png, info, ppm, ppm, PNG_RESOLUTION_METER);
+    }
     png_write_info(png, info);
     for (int row = 0; row < height; ++row)
       png_write_row(png, const_cast<png_bytep>(pixels.data() + static_cast<size_t>(row) * width * channels));

@@ -29,9 +29,17 @@ constexpr const char* kJournalFormat = "layerlab-switch/1";
 constexpr const char* kLockName = ".layerlab-lock";
 
 // Every command that stages its output: a reader looks for their journals by name.
-constexpr const char* kStagedCommands[] = {"run",      "solve",         "retina",     "compare",
-                                           "contrast", "render-target", "photograph", "calibration-patterns",
-                                           "sweep",    "tolerance"};
+constexpr const char* kStagedCommands[] = {"run",
+                                           "solve",
+                                           "retina",
+                                           "compare",
+                                           "contrast",
+                                           "render-target",
+                                           "photograph",
+                                           "calibration-patterns",
+                                           "camera-patterns",
+                                           "sweep",
+                                           "tolerance"};
 
 // Links and ".." resolved as far as the path exists; what does not exist yet is appended as spelled.
 fs::path RealPath(const std::string& path) {

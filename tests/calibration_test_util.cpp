@@ -86,7 +86,7 @@ void ExpectPlacementsOf(const DisplaySystem& built, const CalibratedDisplay& dis
 SyntheticSetup ExampleSetup() {
   SyntheticSetup setup;
   setup.grid = {7, 5, 0.1};
-  setup.camera.intrinsics = CameraIntrinsics{3000, 3000, 2000, 1500, -0.02, 0};
+  setup.camera.intrinsics = CameraIntrinsics{3000, 3000, 2000, 1500, -0.02, 0, std::nullopt};
   setup.camera.positions_m = {{0.0, 0.0}, {2e-3, 0.0}, {0.0, 2e-3}};
   setup.noise.marker_sigma_rad = 0.3 * kArcmin;
   setup.noise.luminance_sigma = 0.003;

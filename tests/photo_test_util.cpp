@@ -21,7 +21,7 @@ std::string FreshFolder(const std::string& name) {
 
 PhotoCamera TestCamera() {
   PhotoCamera c;
-  c.intrinsics = {760, 760, 359.5, 209.5, -0.05, 0};
+  c.intrinsics = {760, 760, 359.5, 209.5, -0.05, 0, std::nullopt};
   c.width = 720;
   c.height = 420;
   c.aperture_m = 1e-3;
