@@ -3,6 +3,7 @@
 #include <ceres/loss_function.h>
 
 #include "layerlab/calibration/fit_steps.h"
+#include "layerlab/calibration/intrinsics_propagation.h"
 
 namespace layerlab {
 
@@ -112,6 +113,7 @@ CalibrationReport Calibrate(const DisplaySystem& system, const Measurements& mea
     report.notes.insert(report.notes.begin(), held.begin(), held.end());
   }
   if (!geometry) return report;
+  PropagateIntrinsicsUncertainty(system, measurements, &report);
   if (!FitLuminance(system, measurements, options, display, &report)) return report;
   report.usable = true;
   report.message = "fitted " + std::to_string(report.markers) + " markers and " +
