@@ -37,6 +37,25 @@ const CalibratedOptic* CalibratedDisplay::find_optic(const std::string& name) co
   return nullptr;
 }
 
+void StartFromScene(const DisplaySystem& system, CalibratedDisplay* display, CalibrationReport* report) {
+  *display = CalibratedDisplay{};
+  for (const VirtualLayer& layer : system.layers) {
+    CalibratedPanel panel;
+    panel.name = layer.name;
+    panel.behind_optics =
+        std::any_of(layer.path.begin(), layer.path.end(), [](const PathStep& s) { return s.power_diopters != 0; });
+    panel.distance_m = layer.panel_distance_m;
+    panel.gap_m = layer.position_m - (layer.path.empty() ? 0.0 : layer.path.back().position_m.value_or(0.0));
+    panel.eye_from_panel_x_m = layer.panel.eye_from_panel_m[0];
+    panel.eye_from_panel_y_m = layer.panel.eye_from_panel_m[1];
+    panel.rotation_rad = layer.panel.rotation_rad;
+    panel.gamma = layer.panel.gamma;
+    panel.black_level = layer.panel.black_level;
+    display->panels.push_back(panel);
+    report->panels.push_back(PanelResiduals{layer.name});
+  }
+}
+
 namespace {
 
 // With FitChoice::kAuto, a focal length or gap that the fit left undetermined
@@ -84,22 +103,7 @@ CalibrationReport Calibrate(const DisplaySystem& system, const Measurements& mea
     return report;
   }
 
-  *display = CalibratedDisplay{};
-  for (const VirtualLayer& layer : system.layers) {
-    CalibratedPanel panel;
-    panel.name = layer.name;
-    panel.behind_optics =
-        std::any_of(layer.path.begin(), layer.path.end(), [](const PathStep& s) { return s.power_diopters != 0; });
-    panel.distance_m = layer.panel_distance_m;
-    panel.gap_m = layer.position_m - (layer.path.empty() ? 0.0 : layer.path.back().position_m.value_or(0.0));
-    panel.eye_from_panel_x_m = layer.panel.eye_from_panel_m[0];
-    panel.eye_from_panel_y_m = layer.panel.eye_from_panel_m[1];
-    panel.rotation_rad = layer.panel.rotation_rad;
-    panel.gamma = layer.panel.gamma;
-    panel.black_level = layer.panel.black_level;
-    display->panels.push_back(panel);
-    report.panels.push_back(PanelResiduals{layer.name});
-  }
+  StartFromScene(system, display, &report);
   const CalibratedDisplay designed = *display;
   const CalibrationReport before = report;
   bool geometry = FitGeometry(system, measurements, options, display, &report);

@@ -39,7 +39,6 @@ std::string Show(const std::string& quantity, double value, bool with_unit) {
   return with_unit && *s.unit ? text + " " + s.unit : text;
 }
 
-std::string Arcmin(double radians) { return FormatFixed(ArcminFromRadians(radians), 3) + " arcmin"; }
 std::string Percent(double relative) { return FormatFixed(100 * relative, 3) + " %"; }
 
 nlohmann::json Finite(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
@@ -52,6 +51,8 @@ std::string Pad(std::string text, size_t width) {
 }  // namespace
 
 double ArcminFromRadians(double radians) { return radians * 180.0 / std::numbers::pi * 60.0; }
+
+std::string Arcmin(double radians) { return FormatFixed(ArcminFromRadians(radians), 3) + " arcmin"; }
 
 std::string JoinedBySemicolons(const std::vector<std::string>& parts) {
   std::string out;

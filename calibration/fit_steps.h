@@ -11,6 +11,9 @@
 
 namespace layerlab {
 
+// The display as the scene has it, and a residual row per panel: where both fits start.
+void StartFromScene(const DisplaySystem& system, CalibratedDisplay* display, CalibrationReport* report);
+
 // Each fills its part of *display and *report; false (with report->message)
 // when no usable result came out.
 bool FitGeometry(const DisplaySystem& system, const Measurements& measurements, const CalibrationOptions& options,
@@ -28,9 +31,6 @@ struct MarkerBlock {
   int markers = 0;
 };
 
-// The detection noise per axis over all markers (rad): the root of the markers' mean variance.
-double PooledDetectionNoise(const std::vector<MarkerBlock>& blocks);
-
 // The model-error test (calibration.h): the residuals against the detection
 // noise, into *report; where the excess concentrates, named by photograph.
 // False (with report->message) when a model error makes the result unusable
@@ -46,6 +46,8 @@ std::string ShowValue(const std::string& quantity, double si_value);
 // The unit the report shows a quantity in ("mm", "deg", "D", "arcmin", "").
 std::string ShowUnit(const std::string& quantity);
 double ArcminFromRadians(double radians);
+// "0.321 arcmin".
+std::string Arcmin(double radians);
 
 struct ScalarParameter;
 // Why the fit does not determine the fitted value `p` of `parameter`

@@ -573,7 +573,7 @@ class GeometryFitter {
       r.marker_rms_before_rad = std::sqrt(before[k] / r.markers);
       r.marker_rms_after_rad = std::sqrt(after[k] / r.markers);
     }
-    report_->marker_noise_rad = noise_known_ ? PooledDetectionNoise(blocks_) : result_.noise;
+    report_->marker_noise_rad = noise_known_ ? weight_noise_rad_ : result_.noise;
     if (options_.loss == RobustLoss::kNone && components.size() > 8) WarnOutliers(&components, errors);
     if (options_.loss != RobustLoss::kNone) ReportDownWeighted(errors);
   }
@@ -614,7 +614,7 @@ class GeometryFitter {
     }
     report_->warnings.push_back("the " + ToString(options_.loss) + " loss weighted " + std::to_string(count) + " of " +
                                 std::to_string(errors.size()) + " markers by less than half (errors above " +
-                                FormatFixed(ArcminFromRadians(beyond), 3) + " arcmin): " + JoinedBySemicolons(where) +
+                                Arcmin(beyond) + "): " + JoinedBySemicolons(where) +
                                 (worst.size() > 3 ? "; and others" : ""));
   }
 

@@ -35,12 +35,7 @@ std::map<std::pair<std::string, std::string>, double> Refit(const DisplaySystem&
                                                             const CalibrationOptions& options) {
   CalibrationReport report;
   CalibratedDisplay display;
-  for (const VirtualLayer& layer : system.layers) {
-    CalibratedPanel panel;
-    panel.name = layer.name;
-    display.panels.push_back(panel);
-    report.panels.push_back(PanelResiduals{layer.name});
-  }
+  StartFromScene(system, &display, &report);
   CalibrationOptions refit = options;
   refit.accept_model_error = true;  // the change of the values is what counts here
   std::map<std::pair<std::string, std::string>, double> values;

@@ -15,17 +15,13 @@ namespace {
 using nlohmann::ordered_json;
 
 // Rounded to `digits` significant digits, so the file shows what is measured, not float noise.
-double Significant(double value, int digits) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*g", digits, value);
-  return std::strtod(buf, nullptr);
-}
-
 std::string FormatSignificant(double value, int digits) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.*g", digits, value);
   return buf;
 }
+
+double Significant(double value, int digits) { return std::strtod(FormatSignificant(value, digits).c_str(), nullptr); }
 
 // Whole numbers are written without a fraction ("440", not "440.0").
 ordered_json Value(double value) {

@@ -12,8 +12,6 @@
 namespace layerlab {
 namespace {
 
-std::string Arcmin(double radians) { return FormatFixed(ArcminFromRadians(radians), 3) + " arcmin"; }
-
 std::string PercentOf(double fraction) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%g %%", 100 * fraction);
@@ -42,14 +40,6 @@ std::string WorstPhotographs(const std::vector<MarkerBlock>& blocks, size_t coun
 }
 
 }  // namespace
-
-double PooledDetectionNoise(const std::vector<MarkerBlock>& blocks) {
-  double variance = 0;
-  long markers = 0;
-  for (const MarkerBlock& b : blocks)
-    if (b.noise) variance += b.markers * b.noise->sigma_rad * b.noise->sigma_rad, markers += b.markers;
-  return markers > 0 ? std::sqrt(variance / static_cast<double>(markers)) : NAN;
-}
 
 bool CheckModelError(const std::vector<MarkerBlock>& blocks, int free_parameters, const CalibrationOptions& options,
                      CalibrationReport* report) {

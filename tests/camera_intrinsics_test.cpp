@@ -2,7 +2,6 @@
 // the plan (camera_capture_plan.h), the synthetic photographs
 // (synthetic_chessboard.h), the estimate with its standard deviations
 // (camera_calibration.h) and the camera file's uncertainty fields.
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -18,20 +17,14 @@
 #include "layerlab/calibration/synthetic_chessboard.h"
 #include "layerlab/framework/exr_image.h"
 #include "layerlab/framework/units.h"
+#include "layerlab/tests/photo_test_util.h"
 #include "layerlab/tests/test_util.h"
 
 namespace layerlab {
 namespace {
 
 using testing::ErrorOf;
-
-std::string FreshFolder(const std::string& name) {
-  const std::filesystem::path folder =
-      std::filesystem::temp_directory_path() / ("layerlab_" + name + "_" + std::to_string(::getpid()));
-  std::filesystem::remove_all(folder);
-  std::filesystem::create_directories(folder);
-  return folder.string();
-}
+using testing::FreshFolder;
 
 // The true camera: fx and fy differ, the principal point off the middle, barrel distortion.
 PhotoCamera TrueCamera() {

@@ -25,8 +25,10 @@ namespace layerlab {
 namespace {
 
 using testing::AsPhoto;
+using testing::BigEndian;
 using testing::Built;
 using testing::ChessboardCapture;
+using testing::Crc32;
 using testing::Example;
 using testing::FreshFolder;
 using testing::Layer;
@@ -213,19 +215,6 @@ TEST(CapturePlanTest, ChessboardsOpenCvCannotTakeAreRefused) {
 }
 
 void WriteBytes(const std::string& path, const std::string& bytes) { std::ofstream(path, std::ios::binary) << bytes; }
-
-uint32_t Crc32(const std::string& bytes) {
-  uint32_t crc = 0xffffffffu;
-  for (unsigned char b : bytes) {
-    crc ^= b;
-    for (int k = 0; k < 8; ++k) crc = crc & 1 ? (crc >> 1) ^ 0xedb88320u : crc >> 1;
-  }
-  return ~crc;
-}
-
-std::string BigEndian(uint32_t v) {
-  return {static_cast<char>(v >> 24), static_cast<char>(v >> 16), static_cast<char>(v >> 8), static_cast<char>(v)};
-}
 
 // A PNG of a valid signature and header (CRC included) that declares `width` x `height` 16-bit RGBA pixels, and
 // nothing after it.

@@ -24,7 +24,9 @@ namespace layerlab {
 namespace {
 
 using testing::AsPhoto;
+using testing::BigEndian;
 using testing::ChessboardCapture;
+using testing::Crc32;
 using testing::Example;
 using testing::FreshFolder;
 using testing::TestCamera;
@@ -186,21 +188,6 @@ TEST(PhotoDetectionTest, EveryPhotographOfARepeatedCaptureIsKept) {
 }
 
 // --- PNG files, written here with an encoder of their own (stored deflate blocks), not OpenCV's ---
-
-uint32_t Crc32(const std::string& bytes) {
-  uint32_t crc = 0xffffffffu;
-  for (unsigned char b : bytes) {
-    crc ^= b;
-    for (int k = 0; k < 8; ++k) crc = crc & 1 ? (crc >> 1) ^ 0xedb88320u : crc >> 1;
-  }
-  return ~crc;
-}
-
-std::string BigEndian(uint32_t v, int bytes = 4) {
-  std::string s;
-  for (int k = bytes - 1; k >= 0; --k) s.push_back(static_cast<char>(v >> (8 * k)));
-  return s;
-}
 
 std::string Chunk(const std::string& type, const std::string& data) {
   return BigEndian(static_cast<uint32_t>(data.size())) + type + data + BigEndian(Crc32(type + data));

@@ -80,4 +80,19 @@ PlanOptions TestPlan() {
   return o;
 }
 
+uint32_t Crc32(const std::string& bytes) {
+  uint32_t crc = 0xffffffffu;
+  for (unsigned char b : bytes) {
+    crc ^= b;
+    for (int k = 0; k < 8; ++k) crc = crc & 1 ? (crc >> 1) ^ 0xedb88320u : crc >> 1;
+  }
+  return ~crc;
+}
+
+std::string BigEndian(uint32_t v, int bytes) {
+  std::string s;
+  for (int k = bytes - 1; k >= 0; --k) s.push_back(static_cast<char>(v >> (8 * k)));
+  return s;
+}
+
 }  // namespace layerlab::testing

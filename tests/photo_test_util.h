@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,10 @@ const VirtualLayer& Layer(const DisplaySystem& s, const std::string& name);
 // The plan's `position`-th chessboard capture of `panel`.
 const PlannedCapture& ChessboardCapture(const CapturePlan& plan, const std::string& panel, size_t position = 0);
 Photo AsPhoto(const Image& image);
+
+// PNG bytes written by hand: the chunk CRC (ISO 3309) and big-endian integers of `bytes` bytes.
+uint32_t Crc32(const std::string& bytes);
+std::string BigEndian(uint32_t v, int bytes = 4);
 
 // Where the corners of `capture`'s board truly appear: the built display's optics, the camera's intrinsics.
 std::vector<std::array<double, 2>> TrueCorners(const DisplaySystem& built, const CapturePlan& plan,
