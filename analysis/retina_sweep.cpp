@@ -19,13 +19,14 @@
 #include "layerlab/retina/retina_workspace.h"
 
 namespace layerlab {
-namespace {
 
 double MeanLuminance(const Image& image) {
   double sum = 0;
   for (size_t k = 0; k < image.pixels.size(); ++k) sum += kLuminanceWeights[k % 3] * image.pixels[k];
   return sum / (double(image.width) * image.height);
 }
+
+namespace {
 
 namespace fs = std::filesystem;
 
@@ -120,7 +121,8 @@ std::vector<RetinaStateResult> WriteRetinaSweep(
     throw Error("retina: " + OptionViolation("resolution", o.resolution_deg, resolution.Constraint()));
   const double field_x = o.field_x_deg > 0 ? o.field_x_deg * kRadiansPerDegree : system.fov_x_rad;
   const double field_y = o.field_y_deg > 0 ? o.field_y_deg * kRadiansPerDegree : system.fov_y_rad;
-  const RetinaGrid grid = MakeRetinaGrid(field_x, field_y, o.resolution_deg * kRadiansPerDegree);
+  const RetinaGrid grid =
+      CenteredOnGaze(MakeRetinaGrid(field_x, field_y, o.resolution_deg * kRadiansPerDegree), system.eye.pose);
   const std::vector<PupilPoint> pupil = PupilSamples(system.eye);
 
   const fs::path out = folder;

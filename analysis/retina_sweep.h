@@ -46,6 +46,9 @@ struct RetinaStateResult {
 
 std::string RetinaStateName(double diopters);
 
+// The mean luminance of a linear RGB image (kLuminanceWeights), in its units.
+double MeanLuminance(const Image& image);
+
 // Writes the folder (creating it); `progress` gets each state as it is done.
 // `natural` may be empty. Throws layerlab::Error for bad options.
 std::vector<RetinaStateResult> WriteRetinaSweep(

@@ -15,21 +15,20 @@
 #include "layerlab/analysis/retina_sweep.h"
 #include "layerlab/app/command_line.h"
 #include "layerlab/app/commands.h"
+#include "layerlab/app/natural_viewing.h"
 #include "layerlab/app/number_list.h"
+#include "layerlab/app/pose_option.h"
 #include "layerlab/app/target_option.h"
 #include "layerlab/framework/error.h"
 #include "layerlab/framework/lightfield_io.h"
 #include "layerlab/framework/progress.h"
 #include "layerlab/framework/staged_output.h"
+#include "layerlab/framework/warnings.h"
 #include "layerlab/retina/lightfield_radiance.h"
 #include "layerlab/retina/retina.h"
 #include "layerlab/solvers/solution_writer.h"
 #include "layerlab/solvers/solve_config.h"
 #include "layerlab/systems/compile.h"
-#if LAYERLAB_WITH_EMBREE
-#include "layerlab/targets/target_scene.h"
-#include "layerlab/targets/target_tracer.h"
-#endif
 
 namespace layerlab::app {
 
@@ -38,6 +37,7 @@ namespace {
 struct RetinaCommandOptions {
   std::string scene, patterns, out, sampling;
   TargetOption target;
+  PoseOption pose;
   std::string accommodation = "0.4,1.0,1.6,2.2", focal_stack, field, resolution = "0.05";
 };
 
@@ -86,6 +86,10 @@ void RunRetinaCommand(const RetinaCommandOptions& o) {
   // Everything is read and checked before anything is written.
   Scene scene = LoadScene(o.scene);
   DisplaySystem system = Compile(scene);
+  if (const std::string beyond = ApplyPoseOption(o.pose, &system); !beyond.empty()) {
+    system.warnings.push_back(beyond + ": natural viewing reads the edge views there");
+    SayWarnings({system.warnings.back()});
+  }
   SolveConfig config = ReadSolveConfig(scene, system);
   if (!o.sampling.empty()) config.sampling = SamplingFromString(o.sampling);
   SolveConfig given;  // natural viewing of this target only, never of the scene's own
@@ -98,25 +102,12 @@ void RunRetinaCommand(const RetinaCommandOptions& o) {
                       {o.patterns, "the patterns"},
                       {given.target, "the target"},
                       {given.target_scene, "the target scene"}});
-  std::optional<LightField> target_lf;
-  if (!given.target.empty()) target_lf = ReadLightField(given.target, {.load_depth = false});
+  const NaturalViewing seen(given, config.sampling);
+  const LightField* target_lf = seen.light_field();
   const LightFieldGeometry g = target_lf ? target_lf->geometry : DisplayLightFieldGeometry(system);
   DisplayModel model(system, g, config.sampling);
   const Patterns t = ReadPatterns(model, o.patterns);
-
-  SceneRadiance natural;
-  if (target_lf) natural = LightFieldRadiance(*target_lf, config.sampling);  // read as the layers are
-#if LAYERLAB_WITH_EMBREE
-  std::optional<TargetScene> target_scene;
-  std::unique_ptr<TargetTracer> tracer;
-  if (!given.target_scene.empty()) {
-    target_scene = LoadTarget(given.target_scene);
-    tracer = std::make_unique<TargetTracer>(*target_scene);
-    natural = [&tracer](const PupilPoint& u, double dx, double dy) {
-      return tracer->TraceDirection(u.x_m, u.y_m, dx, dy).color;
-    };
-  }
-#endif
+  const SceneRadiance& natural = seen.radiance();
 
   RetinaSweepOptions sweep{states, resolution, field[0], field[1], false};
   Progress progress("retina", states.size());
@@ -146,6 +137,7 @@ void AddRetinaCommand(CLI::App& app) {
                   "States, comma-separated: D, or with units (\"1.0 D\", \"0.5 m\"; default 0.4,1.0,1.6,2.2)");
   cmd->add_option("--focal-stack", o->focal_stack, "Also first,last,step: D, e.g. 0,2.6,0.1 or \"0 D,2.6 D,0.1 D\"");
   AddTargetOptions(cmd, o->target, ": natural viewing of it (a scene's traced, not rendered)");
+  AddPoseOptions(cmd, o->pose);
   cmd->add_option("--resolution", o->resolution, "Retinal sample size: degrees or \"3 arcmin\" (default 0.05)");
   cmd->add_option("--field", o->field, "Retinal field W,H: degrees (default: the display's field of view)");
   cmd->add_option("--sampling", o->sampling,

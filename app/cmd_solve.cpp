@@ -21,11 +21,13 @@
 #include "layerlab/app/command_line.h"
 #include "layerlab/app/commands.h"
 #include "layerlab/app/number_list.h"
+#include "layerlab/app/pose_option.h"
 #include "layerlab/app/solver_flags.h"
 #include "layerlab/app/target_option.h"
 #include "layerlab/framework/interrupt.h"
 #include "layerlab/framework/lightfield_io.h"
 #include "layerlab/framework/mpi_ranks.h"
+#include "layerlab/solvers/solution_writer.h"
 #if LAYERLAB_WITH_MPI
 #include "layerlab/framework/mpi_world.h"
 #endif
@@ -47,6 +49,8 @@ struct Options {
   bool write_lightfield = false, resume = false;
   int checkpoint_every = 0;
   std::string max_memory;
+  PoseOption pose;
+  std::string warm_start;
 };
 
 // The ranks of this solve: rank 0 of 1 unless mpirun started it.
@@ -175,8 +179,10 @@ void Stage(const Options& o, const SolveConfig& config, const Ranks& ranks, std:
       o.out, "solve",
       std::vector<std::string>{"patterns", "panels", "lightfield", "trace.csv", "report.txt", "report.json",
                                "checkpoint", "index.html", "pattern_previews", "panel_previews", "psnr_vs_time.svg"},
-      std::vector<NamedInput>{
-          {o.scene, "the scene"}, {config.target, "the target"}, {config.target_scene, "the target scene"}});
+      std::vector<NamedInput>{{o.scene, "the scene"},
+                              {config.target, "the target"},
+                              {config.target_scene, "the target scene"},
+                              {o.warm_start, "the warm start's solve"}});
   for (const std::string& line : (*stage)->recovered()) Note("solve: " + line);
 }
 
@@ -201,6 +207,7 @@ struct Checkpointing {
   const LightField& views;
   CheckpointInputs digest;
   std::optional<SolverCheckpoint> resume;
+  std::optional<Patterns> warm;
 
   void operator()(const DisplayModel& model, SolverOptions* opt) {
     InstallInterruptHandler();
@@ -215,6 +222,11 @@ struct Checkpointing {
       opt->checkpoint = [this, &model, folder](const SolverCheckpoint& c) {
         WriteCheckpoint(model, c, folder, digest);
       };
+    if (!o.warm_start.empty()) {
+      if (o.resume) throw Error("--warm-start: not with --resume (a checkpoint holds its own patterns)");
+      warm = ReadPatterns(model, o.warm_start);
+      opt->initial_patterns = &*warm;
+    }
     if (!o.resume) return;
     RefuseMismatchedCheckpoint(folder, digest);
     resume = ReadCheckpoint(model, folder);
@@ -251,7 +263,9 @@ void WriteResults(const Options& o, const Scene& scene, const DisplaySystem& sys
 // (analysis/solve_job.h) with the command line's values.
 void Solve(const Options& o, Ranks& ranks) {
   const Scene scene = LoadScene(o.scene);
-  const DisplaySystem system = Compile(scene);
+  DisplaySystem system = Compile(scene);
+  if (const std::string beyond = ApplyPoseOption(o.pose, &system); !beyond.empty())
+    system.warnings.push_back(beyond + ": natural viewing reads the edge views there");
   SolveJob job;
   job.system = &system;
   job.config = SolveJobConfig(scene, system, o.solver.solver);
@@ -259,13 +273,17 @@ void Solve(const Options& o, Ranks& ranks) {
   ApplyTargetOption(o.target, config);
   RequireTarget(config, o.scene);
   ApplyOverrides(o, &config);
+  if ((!o.pose.pupil_offset.empty() || !o.pose.gaze.empty()) && config.options.objective != ObjectiveKind::kRetinal)
+    throw Error(std::string(o.pose.gaze.empty() ? "--pupil-offset" : "--gaze") +
+                ": the light-field objective weighs every view of the eyebox alike; a solve for where the eye is "
+                "needs --objective retinal (with joint or quasi-newton)");
   RefuseWithRanks(o, config.options, ranks);
   const RankViews views = ViewsOfRank(config, ranks);
   CheckMemory(o, system, config, views, ranks);
   std::optional<StagedOutput> stage;
   Stage(o, config, ranks, &stage);
   std::unique_ptr<Target> target = LoadTargetOfRank(config, ranks, views);
-  Checkpointing checkpointing{o, config, target->light_field, {}, {}};
+  Checkpointing checkpointing{o, config, target->light_field, {}, {}, {}};
   job.progress_label = config.solver;
   job.ranks = ranks.group();
   job.before_solve = std::ref(checkpointing);
@@ -313,6 +331,9 @@ void AddSolveCommand(CLI::App& app) {
   cmd->add_option("--checkpoint-every", o->checkpoint_every,
                   "Write OUT/checkpoint every N iterations (and when stopped early)");
   cmd->add_flag("--resume", o->resume, "Continue from OUT/checkpoint (same scene, target and solver)");
+  AddPoseOptions(cmd, o->pose);
+  cmd->add_option("--warm-start", o->warm_start,
+                  "Begin from the patterns of an earlier solve (its output folder), e.g. for the eye's last position");
   cmd->add_option("--max-memory", o->max_memory,
                   "Refuse a run estimated to need more (e.g. 2 GB; default: the machine's memory)");
   cmd->callback([o] {

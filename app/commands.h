@@ -11,6 +11,7 @@ void AddSolveCommand(CLI::App& app);
 void AddContrastCommand(CLI::App& app);
 void AddCompareCommand(CLI::App& app);  // compare SCENES... --target LF_DIR --out DIR
 void AddRetinaCommand(CLI::App& app);   // retina SCENE.json --patterns DIR --out DIR
+void AddEyeboxCommand(CLI::App& app);   // eyebox SCENE.json --patterns DIR --target-scene T.json --out DIR
 void AddRunCommand(CLI::App& app);      // run SCENE.json --out DIR: the main job and its report
 void AddSweepCommand(CLI::App& app);    // sweep SWEEP.json --out DIR: a grid of jobs, one table
 // tolerance SCENE.json --out DIR: Monte Carlo over assembly tolerances

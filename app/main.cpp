@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   layerlab::app::AddSolveCommand(app);
   layerlab::app::AddContrastCommand(app);
   layerlab::app::AddRetinaCommand(app);
+  layerlab::app::AddEyeboxCommand(app);
   layerlab::app::AddCompareCommand(app);
   layerlab::app::AddToleranceCommand(app);
 #if LAYERLAB_WITH_CERES

@@ -15,9 +15,8 @@ std::string Trimmed(const std::string& text) {
   return text.substr(first, text.find_last_not_of(" \t") - first + 1);
 }
 
-}  // namespace
-
-double ParseOptionValue(const std::string& text, const std::string& option, const OptionUnit& unit, bool depth) {
+// A bare number or a quantity, of either sign; finite.
+double ParseSignedValue(const std::string& text, const std::string& option, const OptionUnit& unit, bool depth) {
   const std::string item = Trimmed(text);
   double value = 0;
   size_t used = 0;
@@ -37,8 +36,26 @@ double ParseOptionValue(const std::string& text, const std::string& option, cons
                   e.message() + "; give e.g. 1.5 or \"1.5 " + unit.unit + "\")");
     }
   }
-  if (!std::isfinite(value) || value < 0) throw Error(option + ": \"" + item + "\": values must be finite and >= 0");
+  if (!std::isfinite(value)) throw Error(option + ": \"" + item + "\": values must be finite");
   return value;
+}
+
+}  // namespace
+
+double ParseOptionValue(const std::string& text, const std::string& option, const OptionUnit& unit, bool depth) {
+  const double value = ParseSignedValue(text, option, unit, depth);
+  if (value < 0) throw Error(option + ": \"" + Trimmed(text) + "\": values must be finite and >= 0");
+  return value;
+}
+
+std::array<double, 2> ParseSignedPair(const std::string& text, const std::string& option, const OptionUnit& unit) {
+  std::vector<std::string> items;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) items.push_back(item);
+  if (items.size() != 2)
+    throw Error(option + ": give X,Y (\"" + text + "\" has " + std::to_string(items.size()) + " value" +
+                (items.size() == 1 ? "" : "s") + ")");
+  return {ParseSignedValue(items[0], option, unit, false), ParseSignedValue(items[1], option, unit, false)};
 }
 
 std::vector<double> ParseNumberList(const std::string& text, const std::string& option, const OptionUnit& unit,

@@ -5,6 +5,7 @@
 // ("0.7 D,1.3 D"). A bad value is refused with the option's name and the value.
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,9 @@ inline const OptionUnit kMillimeters{Dimension::kLength, "mm"};
 // One finite value >= 0, in the option's unit. A depth in diopters also
 // accepts a distance ("0.5 m" is 2 D) when `depth` is set.
 double ParseOptionValue(const std::string& text, const std::string& option, const OptionUnit& unit, bool depth = false);
+
+// "X,Y": two finite values of either sign ("1 mm,-0.5 mm"), as ParseOptionValue reads each.
+std::array<double, 2> ParseSignedPair(const std::string& text, const std::string& option, const OptionUnit& unit);
 
 // Comma-separated values, each as ParseOptionValue reads it.
 std::vector<double> ParseNumberList(const std::string& text, const std::string& option, const OptionUnit& unit,

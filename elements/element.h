@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "layerlab/elements/eye_pose.h"
 #include "layerlab/elements/wavefront.h"
 #include "layerlab/framework/error.h"
 #include "layerlab/framework/params.h"
@@ -149,6 +150,7 @@ struct EyeModel {
   double pupil_luminance_used_cd_m2 = 0, pupil_field_area_used_deg2 = 0;  // cd/m2, deg2: what compile gave "auto"
   Wavefront wavefront;
   bool diffraction = false;
+  EyePose pose;  // the scene's pupil_offset and gaze; retina, contrast and eyebox commands set their own
 };
 
 class EyeElement : public Element {

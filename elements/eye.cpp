@@ -22,6 +22,9 @@
 // | zernike             | {"j": length}, or a population name | none | wavefront aberration, OSA/ANSI single index j 0 to 27 to coefficient ("0.1 um"); or salmon_van_de_pol_2006: the mean spherical aberration Z12 = 0.13 um at 6 mm of 2560 normal eyes (Salmon and van de Pol 2006, J. Cataract Refract. Surg. 32:2064); each pupil ray deviated by the wavefront's slope |
 // | zernike_pupil       | length             | required with coefficients | the pupil diameter the coefficients were measured at (the wavefront is evaluated at r over its radius) |
 // | diffraction         | boolean            | false            | convolve each channel's retinal image with the pupil's diffraction PSF (round: Airy; square: sinc squared) at its wavelength |
+// | pupil_offset        | [length, length]   | [0 mm, 0 mm]     | the eye's move across the eye plane (x right, y up): the wearer's fit, a point of an eyebox map; within 5 cm |
+// | gaze                | [angle, angle]     | [0 deg, 0 deg]   | where the eye looks, Fick angles: right, then up, within 50 deg; the pupil turns with it about the centre of rotation (elements/eye_pose.h) |
+// | rotation_radius     | length             | 10 mm            | pupil centre to the eye's centre of rotation, 0 to 3 cm |
 // | next                | element name       | required         | the main lens                            |
 #include <algorithm>
 #include <cctype>
@@ -127,6 +130,18 @@ void ReadPhysiologicalOptics(Params& p, EyeModel& m) {
     p.fail("diffraction", "a pinhole pupil (pupil_diameter 0) has no diffraction-limited image");
 }
 
+// Where the eye sits and looks (elements/eye_pose.h); compile checks the
+// pose against the eyebox and the display's field (systems/eye_pose_limits.h).
+void ReadPose(Params& p, EyePose& pose) {
+  pose.pupil_offset_m = p.quantity_pair("pupil_offset", Dimension::kLength, pose.pupil_offset_m);
+  for (double v : pose.pupil_offset_m)
+    p.require_range("pupil_offset", v, -kMaxPupilOffset, kMaxPupilOffset, false, false);
+  pose.gaze_rad = p.quantity_pair("gaze", Dimension::kAngle, pose.gaze_rad);
+  for (double v : pose.gaze_rad) p.require_range("gaze", v, -kMaxGaze, kMaxGaze, false, false);
+  pose.rotation_radius_m = p.quantity("rotation_radius", Dimension::kLength, pose.rotation_radius_m);
+  p.require_range("rotation_radius", pose.rotation_radius_m, 0.0, kMaxRotationRadius, false, false);
+}
+
 std::unique_ptr<Element> MakeEye(Params& p) {
   EyeModel m;
   const bool word = p.has("pupil_diameter") && p.raw("pupil_diameter").is_string() &&
@@ -180,6 +195,7 @@ std::unique_ptr<Element> MakeEye(Params& p) {
   m.eyebox_height_m = eyebox[1];
   p.require_range("eyebox", std::min(eyebox[0], eyebox[1]), 0.0, 0.1, true, false);
   p.require_range("eyebox", std::max(eyebox[0], eyebox[1]), 0.0, 0.1, true, false);
+  ReadPose(p, m.pose);
   if (p.has("views")) {
     auto n = p.integer_pair("views", 1, 256);
     m.views_x = static_cast<int>(n[0]);

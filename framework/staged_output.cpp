@@ -32,6 +32,7 @@ constexpr const char* kLockName = ".layerlab-lock";
 constexpr const char* kStagedCommands[] = {"run",
                                            "solve",
                                            "retina",
+                                           "eyebox",
                                            "compare",
                                            "contrast",
                                            "render-target",

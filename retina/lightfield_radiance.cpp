@@ -39,7 +39,7 @@ PupilTables TablesOf(const LightField& lf, bool nearest, const PupilPoint& u, do
   // The ray's direction and crossing exactly as RetinaOfSceneRayByRay and LightFieldRays compute them.
   t.c_lo = g.cols;
   for (size_t j = 0; j < tan_x.size(); ++j) {
-    const double dx = tan_x[j] - u.x_m * focus - u.slope_x;
+    const double dx = tan_x[j] - u.x_m * focus - u.deviation_x(focus);
     Bracket col;
     if (!ColumnAt(g, u.x_m + dx * g.origin_z_m, nearest, &col)) continue;
     t.columns.push_back({int32_t(j), col.k0, col.k1, float(1 - col.w1), float(col.w1)});
@@ -47,7 +47,7 @@ PupilTables TablesOf(const LightField& lf, bool nearest, const PupilPoint& u, do
   }
   t.rows.resize(tan_y.size());
   for (size_t i = 0; i < tan_y.size(); ++i) {
-    const double dy = tan_y[i] - u.y_m * focus - u.slope_y;
+    const double dy = tan_y[i] - u.y_m * focus - u.deviation_y(focus);
     if (!RowAt(g, u.y_m + dy * g.origin_z_m, nearest, &t.rows[i])) t.rows[i] = {-1, -1, 0.0};
   }
   return t;

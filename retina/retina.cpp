@@ -13,6 +13,7 @@
 #include "layerlab/framework/error.h"
 #include "layerlab/framework/random.h"
 #include "layerlab/framework/units.h"
+#include "layerlab/systems/eye_pose_limits.h"
 #include "layerlab/systems/layer_ray_map.h"
 
 namespace layerlab {
@@ -42,6 +43,12 @@ RetinaGrid MakeRetinaGrid(double field_x, double field_y, double resolution) {
   g.cols = std::max(1, static_cast<int>(std::lround(field_x / resolution)));
   g.rows = std::max(1, static_cast<int>(std::lround(field_y / resolution)));
   return g;
+}
+
+RetinaGrid CenteredOnGaze(RetinaGrid grid, const EyePose& pose) {
+  const std::array<double, 2> gaze = GazeAngles(pose);
+  grid.center_x_rad = gaze[0], grid.center_y_rad = gaze[1];
+  return grid;
 }
 
 namespace {
@@ -90,6 +97,12 @@ std::vector<PupilPoint> PupilSamples(const EyeModel& eye) {
       const WavefrontSlope g = WavefrontSlopeAt(eye.wavefront, u.x_m, u.y_m);
       u.slope_x = g.x, u.slope_y = g.y;
     }
+  // Placed by the eye's pose: from the pupil's own plane to the eye plane.
+  const std::array<double, 2> center = OnEyePlane(eye.pose, 0, 0);
+  for (PupilPoint& u : points) {
+    const std::array<double, 2> at = OnEyePlane(eye.pose, u.x_m, u.y_m);
+    u.x_m = at[0], u.y_m = at[1], u.center_x_m = center[0], u.center_y_m = center[1];
+  }
   return points;
 }
 
@@ -130,6 +143,7 @@ namespace {
 struct LayerTables {
   std::vector<AxisTap> cols, rows;  // separable layers; empty otherwise
   double blur = 0;
+  double deviation_x = 0, deviation_y = 0;  // PupilPoint::deviation at this focus
 };
 
 // The value a ray reads from one channel of a pattern.
@@ -171,8 +185,8 @@ OneTapTables MakeOneTapTables(const DisplayModel& model, const RetinaGrid& retin
   for (size_t p = 0; p < pupil.size(); ++p)
     for (size_t k = 0; k < layers; ++k) {
       const double blur = model.projection(k).sampler().diopters() - accommodation;
-      const int c = find(col_keys, {int(k), pupil[p].x_m * blur, pupil[p].slope_x});
-      const int r = find(row_keys, {int(k), pupil[p].y_m * blur, pupil[p].slope_y});
+      const int c = find(col_keys, {int(k), pupil[p].x_m * blur, pupil[p].deviation_x(accommodation)});
+      const int r = find(row_keys, {int(k), pupil[p].y_m * blur, pupil[p].deviation_y(accommodation)});
       tables.col_of[p * layers + k] = c, tables.row_of[p * layers + k] = r;
     }
   tables.cols.resize(col_keys.size()), tables.rows.resize(row_keys.size());
@@ -313,12 +327,14 @@ std::vector<LayerTables> GeneralTables(const DisplayModel& model, const RetinaGr
         const LayerSampler& s = model.projection(k).sampler();
         LayerTables& table = tables[(p * layers + k) * foci + f];
         table.blur = s.diopters() - accommodation[f];
+        table.deviation_x = pupil[p].deviation_x(accommodation[f]);
+        table.deviation_y = pupil[p].deviation_y(accommodation[f]);
         if (!s.separable() || model.projection(k).mapped()) continue;
         table.cols.resize(retina.cols), table.rows.resize(retina.rows);
         for (int j = 0; j < retina.cols; ++j)
-          table.cols[j] = s.Column(tan_x[j] + pupil[p].x_m * table.blur - pupil[p].slope_x);
+          table.cols[j] = s.Column(tan_x[j] + pupil[p].x_m * table.blur - table.deviation_x);
         for (int i = 0; i < retina.rows; ++i)
-          table.rows[i] = s.Row(tan_y[i] + pupil[p].y_m * table.blur - pupil[p].slope_y);
+          table.rows[i] = s.Row(tan_y[i] + pupil[p].y_m * table.blur - table.deviation_y);
       }
   return tables;
 }
@@ -328,8 +344,8 @@ std::vector<LayerTables> GeneralTables(const DisplayModel& model, const RetinaGr
 double ReadThroughLens(const SampledRayMap& map, const RayMapView& view, const LayerSampler& s, double blur,
                        const PupilPoint& p, double tan_x, double tan_y, const LayerPattern& t, int c) {
   const double accommodation = s.diopters() - blur;
-  const auto U = view.Lookup(c, map.TanCell(0, tan_x - accommodation * p.x_m - p.slope_x),
-                             map.TanCell(1, tan_y - accommodation * p.y_m - p.slope_y));
+  const auto U = view.Lookup(c, map.TanCell(0, tan_x - accommodation * p.x_m - p.deviation_x(accommodation)),
+                             map.TanCell(1, tan_y - accommodation * p.y_m - p.deviation_y(accommodation)));
   return U ? Read(s.At((*U)[0], (*U)[1]), t, c) : 0.0;
 }
 
@@ -372,8 +388,8 @@ void GeneralRetina(const DisplayModel& model, const Patterns& t, const RetinaGri
                 continue;
               }
               value[k * 3 + c] = s.separable() ? Read(table.rows[i], table.cols[j], t[k], c)
-                                               : Read(s.At(tan_x[j] + pupil[p].x_m * table.blur - pupil[p].slope_x,
-                                                           tan_y[i] + pupil[p].y_m * table.blur - pupil[p].slope_y),
+                                               : Read(s.At(tan_x[j] + pupil[p].x_m * table.blur - table.deviation_x,
+                                                           tan_y[i] + pupil[p].y_m * table.blur - table.deviation_y),
                                                       t[k], c);
             }
           }
@@ -486,7 +502,8 @@ Image RetinaOfSceneRayByRay(const SceneRadiance& scene, const RetinaGrid& retina
       for (const PupilPoint& u : pupil)
         for (int c = 0; c < (same_focus ? 1 : 3); ++c) {
           // Direction through the in-focus point: tan(a) - u D_a per unit depth, less the wavefront slope.
-          Rgb radiance = scene(u, tx - u.x_m * accommodation[c] - u.slope_x, ty - u.y_m * accommodation[c] - u.slope_y);
+          Rgb radiance = scene(u, tx - u.x_m * accommodation[c] - u.deviation_x(accommodation[c]),
+                               ty - u.y_m * accommodation[c] - u.deviation_y(accommodation[c]));
           if (same_focus)
             for (int k = 0; k < 3; ++k) sum[k] += radiance[k];
           else

@@ -35,10 +35,15 @@ void CheckRetinaSampling(double field_x_deg, double field_y_deg, double resoluti
 // sample; the sampling must pass CheckRetinaSampling.
 RetinaGrid MakeRetinaGrid(double field_x, double field_y, double resolution);
 
+// The grid turned with the eye: centred on its gaze direction (GazeAngles,
+// systems/eye_pose_limits.h), in the display's visual angles.
+RetinaGrid CenteredOnGaze(RetinaGrid grid, const EyePose& pose);
+
 // The eye's pupil samples: a cell-centered grid over the pupil's square (a
 // round pupil keeps the points inside its circle), jittered within the
 // cells, or a Poisson-disk set; a zero pupil is one point at the center.
-// Each carries the slope of the eye's wavefront aberration at it.
+// Each carries the slope of the eye's wavefront aberration at it, and is
+// placed on the eye plane by the eye's pose (elements/eye_pose.h).
 std::vector<PupilPoint> PupilSamples(const EyeModel& eye);
 
 // Accommodation per color channel: D_a plus the eye's chromatic defocus, and

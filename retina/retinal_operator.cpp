@@ -89,7 +89,7 @@ RetinalOperator::FocusTable RetinalOperator::MakeTable(const LightFieldGeometry&
   FocusTable t;
   // The ray's direction and crossing exactly as RetinaOfSceneRayByRay and LightFieldRays compute them.
   for (int j = 0; j < retina.cols; ++j) {
-    const double dx = tangents.x[j] - u.x_m * focus - u.slope_x;
+    const double dx = tangents.x[j] - u.x_m * focus - u.deviation_x(focus);
     Bracket col;
     if (!ColumnAt(g, u.x_m + dx * g.origin_z_m, nearest, &col)) continue;
     t.columns.push_back({j, col.k0, col.k1, float(1 - col.w1), float(col.w1)});
@@ -98,7 +98,7 @@ RetinalOperator::FocusTable RetinalOperator::MakeTable(const LightFieldGeometry&
   t.rows.resize(retina.rows);
   t.sources.resize(g.rows);
   for (int i = 0; i < retina.rows; ++i) {
-    const double dy = tangents.y[i] - u.y_m * focus - u.slope_y;
+    const double dy = tangents.y[i] - u.y_m * focus - u.deviation_y(focus);
     Bracket row;
     if (!RowAt(g, u.y_m + dy * g.origin_z_m, nearest, &row)) continue;
     t.rows[i] = {row.k0, row.k1, float(1 - row.w1), float(row.w1)};

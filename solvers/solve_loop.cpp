@@ -91,7 +91,14 @@ bool SolveLoop::Start(const std::string& refusal) {
              std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(c->seconds));
     return true;
   }
-  *patterns_ = InitialPatterns(model_, options_);
+  if (const Patterns* warm = options_.initial_patterns) {
+    bool fits = warm->size() == model_.layer_count();
+    for (size_t k = 0; fits && k < warm->size(); ++k)
+      fits = (*warm)[k].pixel_count() == model_.projection(k).pixel_count() &&
+             (*warm)[k].rgb.size() == 3 * (*warm)[k].pixel_count();
+    if (!fits) throw Error("warm start: the patterns are not this display's layers");
+  }
+  *patterns_ = options_.initial_patterns ? *options_.initial_patterns : InitialPatterns(model_, options_);
   const auto now = std::chrono::steady_clock::now();
   report_.setup_seconds = std::chrono::duration<double>(now - start_).count();
   start_ = now;

@@ -63,6 +63,9 @@ struct SolverOptions {
   uint64_t seed = 1;
   // Initial transmittance of every pixel, or "random" in [0.25, 0.75] when negative.
   double initial_value = 0.5;
+  // A warm start: begin from these patterns (a previous solve's, e.g. for the
+  // eye's previous position) instead; they must fit the display's layers.
+  const std::vector<struct LayerPattern>* initial_patterns = nullptr;
   // Worker threads; 0 lets the solve choose: every core, but one thread per
   // 16384 rays (this process's share) with the light-field objective, where
   // a smaller share costs more in starting and joining threads than it saves.

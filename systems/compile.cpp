@@ -12,6 +12,7 @@
 #include "layerlab/lenses/lens_system.h"
 #include "layerlab/lenses/paraxial.h"
 #include "layerlab/lenses/sequential_trace.h"
+#include "layerlab/systems/eye_pose_limits.h"
 #include "layerlab/systems/layer_ray_map.h"
 #include "layerlab/systems/optics.h"
 
@@ -573,6 +574,7 @@ class Walker {
 
   void FindMagnifier();
   void CheckApertures();
+  void CheckEyePose();
   void MapRealLenses();
   void Finish();
   void SortFarthestFirst();
@@ -660,8 +662,19 @@ void Walker::Finish() {
     system_.vignetting_free_fov_y_rad = field(eye.eyebox_height_m);
   }
   CheckApertures();
+  CheckEyePose();
   MapRealLenses();
   DescribeComponents();
+}
+
+// The scene's pose: a gaze outside the display's field is refused, a pupil
+// beyond the eyebox warned of (natural viewing reads the edge views there).
+void Walker::CheckEyePose() {
+  const EyeModel& eye = system_.eye;
+  if (const std::string beyond = GazeBeyondField(system_, eye.pose); !beyond.empty())
+    throw Error(FindEye().where.child("gaze"), beyond);
+  if (const std::string beyond = PupilBeyondEyebox(eye); !beyond.empty())
+    system_.warnings.push_back(beyond + ": natural viewing reads the edge views there");
 }
 
 // The exact ray map of every layer behind a real lens or on a tilted panel,

@@ -156,21 +156,9 @@ TEST(Retina, PointBlurMatchesGeometricOptics) {
       }
 }
 
-// A one-panel display at 1 D with a checkerboard of one-pixel squares.
-struct OneLayer {
-  DisplaySystem system;
-  std::unique_ptr<DisplayModel> model;
-  Patterns t;
-};
-OneLayer OneLayerDisplay(const std::string& depth) {
-  nlohmann::json scene = testing::ShrunkExample("multiplicative_2layer.json", 64, 48, 3);
-  ElementNamed(scene, "lens")["next"] = "rear";
-  scene["elements"].erase(2);
-  ElementNamed(scene, "rear")["virtual_depth"] = depth;
-  OneLayer d;
-  d.system = CompileJson(scene);
-  d.model = std::make_unique<DisplayModel>(d.system, DisplayLightFieldGeometry(d.system, 1.0));
-  d.t = d.model->UniformPatterns(0);
+// A one-panel display with a checkerboard of one-pixel squares.
+testing::OneLayer OneLayerDisplay(const std::string& depth) {
+  testing::OneLayer d = testing::OneLayerDisplay(depth);
   for (int i = 0; i < 48; ++i)
     for (int j = 0; j < 64; ++j)
       for (int c = 0; c < 3; ++c)
@@ -179,7 +167,7 @@ OneLayer OneLayerDisplay(const std::string& depth) {
 }
 
 TEST(Retina, LayerAtTheFocusDepthIsSharp) {
-  OneLayer d = OneLayerDisplay("1.0 D");
+  testing::OneLayer d = OneLayerDisplay("1.0 D");
   const VirtualLayer& layer = d.system.layers[0];
   RetinaGrid retina = MakeRetinaGrid(10 * kRadiansPerDegree, 8 * kRadiansPerDegree, 0.03 * kRadiansPerDegree);
   Image image = RetinaOfDisplay(*d.model, d.t, retina, PupilSamples(d.system.eye), {1.0, 1.0, 1.0});
@@ -197,7 +185,7 @@ TEST(Retina, LayerAtTheFocusDepthIsSharp) {
 }
 
 TEST(Retina, OneLayerDisplayMatchesNaturalViewingOfThatPlane) {
-  OneLayer d = OneLayerDisplay("1.0 D");
+  testing::OneLayer d = OneLayerDisplay("1.0 D");
   const VirtualLayer& layer = d.system.layers[0];
   const double w = d.model->weight(0)[0];
   // Natural viewing of the same pixels painted on a plane at 1 m, traced in meters.
@@ -225,7 +213,7 @@ TEST(Retina, OneLayerDisplayMatchesNaturalViewingOfThatPlane) {
 // under the default sampling and under bilinear, where each side reads as
 // the other. Natural viewing read bilinearly against nearest layers does not.
 TEST(Retina, OneLayerDisplayEqualsNaturalViewingOfItsLightFieldOnARandomPattern) {
-  OneLayer d = OneLayerDisplay("1.0 D");
+  testing::OneLayer d = OneLayerDisplay("1.0 D");
   for (size_t i = 0; i < d.t[0].rgb.size(); ++i) d.t[0].rgb[i] = float((i * 2654435761u) % 1000) / 1000;
   RetinaGrid retina = MakeRetinaGrid(6 * kRadiansPerDegree, 4 * kRadiansPerDegree, 0.05 * kRadiansPerDegree);
   // Off the symmetric grid, so that no ray crosses the plane exactly on a pixel edge.
@@ -262,7 +250,8 @@ TEST(Retina, OneLayerDisplayEqualsNaturalViewingOfItsLightFieldOnARandomPattern)
 
 // The table-driven path (nearest, one focus, no rotation) and the general
 // one (a rotation of 1e-12 rad; bilinear sampling; per-channel focus) agree
-// where they should, on the four-layer hybrid with its mirrored layers.
+// where they should, on the four-layer hybrid with its mirrored layers, for
+// the eye on the axis and for an eye moved and turned (elements/eye_pose.h).
 TEST(Retina, FastAndGeneralPathsAgree) {
   DisplaySystem system = CompileJson(testing::ShrunkExample("paper_prototype.json", 40, 24, 3));
   DisplayModel fast(system, DisplayLightFieldGeometry(system));
@@ -276,16 +265,22 @@ TEST(Retina, FastAndGeneralPathsAgree) {
   // Off the symmetric grid, so that no ray lands exactly on a pixel edge, where
   // a rotation of 1e-12 rad may pick the neighbour.
   retina.center_x_rad = 0.3183 * retina.resolution_rad, retina.center_y_rad = 0.2718 * retina.resolution_rad;
-  std::vector<PupilPoint> pupil = PupilSamples(system.eye);
-  // One focus, and a focus per channel (the fast path once per channel, the general path at once).
-  for (std::array<double, 3> a : {std::array<double, 3>{0.3, 0.3, 0.3}, std::array<double, 3>{1.3, 1.3, 1.3},
-                                  std::array<double, 3>{2.4, 2.4, 2.4}, std::array<double, 3>{1.0, 1.3, 1.9}}) {
-    Image one = RetinaOfDisplay(fast, t, retina, pupil, a);
-    Image two = RetinaOfDisplay(general, t, retina, pupil, a);
-    double worst = 0;
-    for (size_t k = 0; k < one.pixels.size(); ++k)
-      worst = std::max(worst, double(std::abs(one.pixels[k] - two.pixels[k])));
-    EXPECT_LT(worst, 1e-5) << "accommodation " << a[0] << " / " << a[1] << " / " << a[2];
+  EyeModel moved = system.eye;
+  moved.pose.pupil_offset_m = {0.4e-3, -0.3e-3};
+  moved.pose.gaze_rad = {0.3 * kRadiansPerDegree, -0.2 * kRadiansPerDegree};
+  for (const EyeModel& eye : {system.eye, moved}) {
+    std::vector<PupilPoint> pupil = PupilSamples(eye);
+    // One focus, and a focus per channel (the fast path once per channel, the general path at once).
+    for (std::array<double, 3> a : {std::array<double, 3>{0.3, 0.3, 0.3}, std::array<double, 3>{1.3, 1.3, 1.3},
+                                    std::array<double, 3>{2.4, 2.4, 2.4}, std::array<double, 3>{1.0, 1.3, 1.9}}) {
+      Image one = RetinaOfDisplay(fast, t, retina, pupil, a);
+      Image two = RetinaOfDisplay(general, t, retina, pupil, a);
+      double worst = 0;
+      for (size_t k = 0; k < one.pixels.size(); ++k)
+        worst = std::max(worst, double(std::abs(one.pixels[k] - two.pixels[k])));
+      EXPECT_LT(worst, 1e-5) << "accommodation " << a[0] << " / " << a[1] << " / " << a[2]
+                             << (&eye == &moved ? ", moved eye" : "");
+    }
   }
 }
 
@@ -311,7 +306,7 @@ TEST(Retina, MeanLuminanceDoesNotChangeWithAccommodation) {
 }
 
 TEST(Retina, ChromaticDefocusShiftsEachChannelsFocus) {
-  OneLayer d = OneLayerDisplay("1.0 D");
+  testing::OneLayer d = OneLayerDisplay("1.0 D");
   d.system.eye.chromatic_defocus_diopters = {0.5, 0.0, -0.5};
   RetinaGrid retina = MakeRetinaGrid(6 * kRadiansPerDegree, 4 * kRadiansPerDegree, 0.05 * kRadiansPerDegree);
   std::vector<PupilPoint> pupil = PupilSamples(d.system.eye);
@@ -334,7 +329,7 @@ TEST(Retina, ChromaticDefocusShiftsEachChannelsFocus) {
 // defocus c4 on the pupil rays is the ideal eye at D_a + 16 sqrt(3) c4 / p^2,
 // on the fast path (one focus) and on the per-channel path.
 TEST(Retina, WavefrontDefocusOnADisplayIsTheIdealEyeAtTheConvertedPower) {
-  OneLayer d = OneLayerDisplay("1.0 D");
+  testing::OneLayer d = OneLayerDisplay("1.0 D");
   EyeModel aberrated = d.system.eye;
   aberrated.wavefront = {{0, 0, 0, 0, 0.25e-6}, 4e-3, ""};
   const double power = 16 * std::sqrt(3.0) * 0.25 / 16;  // 0.43301 D

@@ -82,4 +82,16 @@ LightFieldGeometry WindowGeometry(int cols, int rows, int views) {
   return g;
 }
 
+OneLayer OneLayerDisplay(const std::string& depth) {
+  nlohmann::json scene = ShrunkExample("multiplicative_2layer.json", 64, 48, 3);
+  ElementNamed(scene, "lens")["next"] = "rear";
+  scene["elements"].erase(2);
+  ElementNamed(scene, "rear")["virtual_depth"] = depth;
+  OneLayer d;
+  d.system = CompileJson(scene);
+  d.model = std::make_unique<DisplayModel>(d.system, DisplayLightFieldGeometry(d.system, 1.0));
+  d.t = d.model->UniformPatterns(0);
+  return d;
+}
+
 }  // namespace layerlab::testing

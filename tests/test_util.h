@@ -1,6 +1,7 @@
 // One home for test helpers: tolerances, scene fixtures, captured errors.
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -22,6 +23,16 @@ LightField RandomLightField(const LightFieldGeometry& g, unsigned seed);
 
 std::string ExamplePath(const std::string& name);  // examples/<name>
 nlohmann::json ReadExample(const std::string& name);
+
+// A one-panel display: the multiplicative two-layer example cut to its rear
+// panel of 64 x 48 pixels at `depth` ("1.0 D"), its model bound to the
+// display's light field at 1 D, and patterns all 0 for the test to fill.
+struct OneLayer {
+  DisplaySystem system;
+  std::unique_ptr<DisplayModel> model;
+  Patterns t;
+};
+OneLayer OneLayerDisplay(const std::string& depth);
 
 // Parses and compiles a scene given as JSON; throws layerlab::Error.
 DisplaySystem CompileJson(const nlohmann::json& scene, const std::string& file = "scene.json");

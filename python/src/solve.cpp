@@ -208,10 +208,11 @@ py::object Retina(const Solution& s, const std::vector<double>& accommodation, d
     CheckAccommodationStates(accommodation, "retina: accommodation");
     CheckRetinaSampling(field_x, field_y, resolution_deg, "retina: field", "retina: resolution");
   });
-  const RetinaGrid grid =
+  const RetinaGrid grid = CenteredOnGaze(
       field_deg
           ? MakeRetinaGrid(field_x * kRadiansPerDegree, field_y * kRadiansPerDegree, resolution_deg * kRadiansPerDegree)
-          : MakeRetinaGrid(system.fov_x_rad, system.fov_y_rad, resolution_deg * kRadiansPerDegree);
+          : MakeRetinaGrid(system.fov_x_rad, system.fov_y_rad, resolution_deg * kRadiansPerDegree),
+      system.eye.pose);
   const std::vector<py::ssize_t> shape = {static_cast<py::ssize_t>(accommodation.size()),
                                           static_cast<py::ssize_t>(grid.rows), static_cast<py::ssize_t>(grid.cols), 3};
   py::array_t<float> images(shape), seen(natural ? shape : std::vector<py::ssize_t>{0});

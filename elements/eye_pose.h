@@ -1,0 +1,49 @@
+// Where the eye is and where it looks: a pupil that moves with the wearer's
+// fit and turns with the gaze.
+//
+// Frame: the eye plane is the pupil plane of the eye looking straight ahead
+// at its eye relief; x right, y up, z toward the display. The eye turns about
+// its centre of rotation, `rotation_radius_m` behind the pupil centre, by Fick
+// angles: gaze[0] about the vertical axis (right positive), then gaze[1] about
+// the turned horizontal axis (up positive). Its pupil centre then lies at
+//   C = (offset_x, offset_y, -r) + r g,   g = (sin gx cos gy, sin gy, cos gx cos gy),
+// so it moves r sin(10 deg) = 1.74 mm for 10 deg of gaze at r = 10 mm, and back
+// from the display by r (1 - cos g).
+//
+// The retina (retina/retina.h) describes every ray by where it crosses the
+// eye plane and its tan-direction. A point of the turned pupil is carried
+// there along the gaze: exact for rays along the gaze, and for a ray psi off
+// it wrong by (its distance from the eye plane) x (tan(g + psi) - tan g) in
+// the eye plane (docs/eye-pose.md bounds it). The eye accommodates to a plane
+// parallel to the display, so a layer it accommodates to is sharp at any gaze.
+#pragma once
+
+#include <array>
+
+namespace layerlab {
+
+// The limits a scene's pose is read within: a fit, a physiological gaze, an eye.
+inline constexpr double kMaxPupilOffset = 0.05;         // m
+inline constexpr double kMaxGaze = 0.8726646259971648;  // rad, 50 deg
+inline constexpr double kMaxRotationRadius = 0.03;      // m
+
+struct EyePose {
+  std::array<double, 2> pupil_offset_m = {0, 0};  // m, the centre of rotation's move across the eye plane (x, y)
+  std::array<double, 2> gaze_rad = {0, 0};        // rad, Fick angles: right, then up
+  double rotation_radius_m = 0.010;               // m, pupil centre to the eye's centre of rotation
+  bool straight_ahead() const { return gaze_rad[0] == 0 && gaze_rad[1] == 0; }
+};
+
+using Vector3 = std::array<double, 3>;
+
+// The gaze's unit direction g.
+Vector3 GazeDirection(const EyePose& pose);
+// The pupil's centre C, m, in the frame above.
+Vector3 PupilCenter(const EyePose& pose);
+// The point (u_x, u_y) of the pupil's own plane (m from its centre, along
+// the turned x and y axes), in the frame above.
+Vector3 PupilPointAt(const EyePose& pose, double u_x, double u_y);
+// That point carried along the gaze onto the eye plane (z = 0), m.
+std::array<double, 2> OnEyePlane(const EyePose& pose, double u_x, double u_y);
+
+}  // namespace layerlab
