@@ -50,7 +50,7 @@ struct Options {
   int checkpoint_every = 0;
   std::string max_memory;
   PoseOption pose;
-  std::string warm_start;
+  std::string start_from;
 };
 
 // The ranks of this solve: rank 0 of 1 unless mpirun started it.
@@ -182,7 +182,7 @@ void Stage(const Options& o, const SolveConfig& config, const Ranks& ranks, std:
       std::vector<NamedInput>{{o.scene, "the scene"},
                               {config.target, "the target"},
                               {config.target_scene, "the target scene"},
-                              {o.warm_start, "the warm start's solve"}});
+                              {o.start_from, "the solve started from"}});
   for (const std::string& line : (*stage)->recovered()) Note("solve: " + line);
 }
 
@@ -222,9 +222,9 @@ struct Checkpointing {
       opt->checkpoint = [this, &model, folder](const SolverCheckpoint& c) {
         WriteCheckpoint(model, c, folder, digest);
       };
-    if (!o.warm_start.empty()) {
-      if (o.resume) throw Error("--warm-start: not with --resume (a checkpoint holds its own patterns)");
-      warm = ReadPatterns(model, o.warm_start);
+    if (!o.start_from.empty()) {
+      if (o.resume) throw Error("--start-from: not with --resume (a checkpoint holds its own patterns)");
+      warm = ReadPatterns(model, o.start_from);
       opt->initial_patterns = &*warm;
     }
     if (!o.resume) return;
@@ -332,7 +332,7 @@ void AddSolveCommand(CLI::App& app) {
                   "Write OUT/checkpoint every N iterations (and when stopped early)");
   cmd->add_flag("--resume", o->resume, "Continue from OUT/checkpoint (same scene, target and solver)");
   AddPoseOptions(cmd, o->pose);
-  cmd->add_option("--warm-start", o->warm_start,
+  cmd->add_option("--start-from", o->start_from,
                   "Begin from the patterns of an earlier solve (its output folder), e.g. for the eye's last position");
   cmd->add_option("--max-memory", o->max_memory,
                   "Refuse a run estimated to need more (e.g. 2 GB; default: the machine's memory)");
