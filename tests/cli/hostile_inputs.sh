@@ -160,6 +160,25 @@ refuse "contrast --retina-field 1e9" "^layerlab: error: --retina-field: 1e+09 de
   "$layerlab" contrast "$small" --retina-field 1e9 --out o
 refuse "retina --resolution 1e-9" "^layerlab: error: --resolution: " \
   "$layerlab" retina "$small" --patterns good_solution --resolution 1e-9 --out o
+# The eye's pose (docs/eye-pose.md): each refusal names its option and its limit.
+refuse "retina --gaze 60,0" "^layerlab: error: --gaze: \"60,0\" turns beyond 50 deg" \
+  "$layerlab" retina "$small" --patterns good_solution --gaze 60,0 --out o
+refuse "retina --gaze beyond the field" "^layerlab: error: --gaze: 20.00 deg right is beyond the display's field" \
+  "$layerlab" retina "$small" --patterns good_solution --gaze 20,0 --out o
+refuse "retina --pupil-offset nan,0" "^layerlab: error: --pupil-offset: \"nan\": values must be finite" \
+  "$layerlab" retina "$small" --patterns good_solution --pupil-offset nan,0 --out o
+refuse "retina --pupil-offset 1" "^layerlab: error: --pupil-offset: give X,Y" \
+  "$layerlab" retina "$small" --patterns good_solution --pupil-offset 1 --out o
+refuse "solve --pupil-offset with the light-field objective" "the light-field objective weighs every view" \
+  "$layerlab" solve "$small" --target lf/good --pupil-offset 1,0 --iterations 1 --out o
+refuse "eyebox beyond the light field's eyebox" "^layerlab: error: --range: at a pupil offset of" \
+  "$layerlab" eyebox "$small" --patterns good_solution --target lf/good --accommodation 1 --range 3 --out o
+refuse "eyebox --range -1" "^layerlab: error: --range: " \
+  "$layerlab" eyebox "$small" --patterns good_solution --target lf/good --accommodation 1 --range -1 --out o
+refuse "eyebox --gaze-range 1e9" "^layerlab: error: --gaze-range: " \
+  "$layerlab" eyebox "$small" --patterns good_solution --target lf/good --accommodation 1 --gaze-range 1e9 --out o
+refuse "eyebox --step 1e-9" "^layerlab: error: --range: more than 101 positions" \
+  "$layerlab" eyebox "$small" --patterns good_solution --target lf/good --accommodation 1 --step 1e-9 --out o
 refuse "contrast --out the scene's folder" "the output contains a scene" \
   "$layerlab" contrast nonsense/holds_scene/scene.json --out nonsense/holds_scene
 [ "$(ls -A nonsense/holds_scene)" = scene.json ] || { echo "FAIL: the refused contrast wrote beside its scene"; failures=$((failures + 1)); }
