@@ -14,6 +14,7 @@
 #include "layerlab/app/commands.h"
 #include "layerlab/app/number_list.h"
 #include "layerlab/app/option_flags.h"
+#include "layerlab/app/pose_option.h"
 #include "layerlab/framework/atomic_file.h"
 #include "layerlab/framework/error.h"
 #include "layerlab/framework/staged_output.h"
@@ -31,6 +32,7 @@ struct ContrastCommandOptions {
   std::vector<std::string> scenes;
   std::string out, accommodation, factorized_for;
   OptionFlags flags;
+  PoseOption pose;
 };
 
 // The options read and checked, before anything is loaded.
@@ -54,13 +56,18 @@ ContrastOptions ReadContrastOptions(const ContrastCommandOptions& o) {
 void RunContrastCommand(const ContrastCommandOptions& o) {
   const ContrastOptions options = ReadContrastOptions(o);
   std::vector<ContrastDisplay> displays;
-  for (const std::string& file : o.scenes) displays.push_back(LoadContrastDisplay(file));
+  std::vector<std::string> warnings;
+  for (const std::string& file : o.scenes) {
+    displays.push_back(LoadContrastDisplay(file));
+    // The eye moved and turned as the command line says: each display's retina is seen from there.
+    if (const std::string beyond = ApplyPoseOption(o.pose, &displays.back().system); !beyond.empty())
+      warnings.push_back(displays.back().name + ": " + beyond + ": natural viewing reads the edge views there");
+  }
   std::optional<ContrastDisplay> foreign;
   if (!o.factorized_for.empty()) foreign = LoadContrastDisplay(o.factorized_for);
   const ContrastDisplay* factorized_for = foreign ? &*foreign : nullptr;
   if (std::string why = ContrastDisplayProblem(displays, options, factorized_for); !why.empty())
     throw Error(NameTheFlag(ContrastOptionTable(), why));
-  std::vector<std::string> warnings;
   for (const ContrastDisplay& d : displays)
     for (const std::string& w : d.system.warnings) warnings.push_back(d.name + ": " + w);
   for (const std::string& w : ContrastWarnings(displays, options)) warnings.push_back(w);
@@ -99,6 +106,7 @@ void AddContrastCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("contrast", "Normalized contrast against accommodation (Fig. 5)");
   cmd->add_option("scenes", o->scenes, "Display scene files (JSON)")->required();
   cmd->add_option("--out", o->out, "Output folder")->required();
+  AddPoseOptions(cmd, o->pose);
   AddOptionFlags(cmd, ContrastOptionTable(), o->flags, /*with_default=*/true);
   const ContrastOptionEntry& accommodation = *FindContrastOption("accommodation");
   cmd->add_option(accommodation.cli_flag, o->accommodation,

@@ -63,6 +63,40 @@ TEST(EyePose, PupilTurnsAboutTheCentreOfRotation) {
     }
 }
 
+// The first-order placement of a turned pupil (elements/eye_pose.h), against
+// the exact ray from the pupil point in 3-D to the in-focus point: both aim
+// at it, so where they read a layer of D diopters differs by |D - D_a| times
+// the shift of their crossings of the eye plane, depth x |tan(ray) - tan(gaze)|
+// (docs/eye-pose.md's table): none along the gaze.
+TEST(EyePose, ATurnedPupilIsExactAlongTheGazeAndWithinTheBoundOffIt) {
+  EyePose pose;
+  const double accommodation = 1.3, z_a = 1 / accommodation;
+  for (const double gaze_deg : {5.0, 15.0}) {
+    pose.gaze_rad = {gaze_deg * kDeg, 0};
+    const Vector3 g = GazeDirection(pose);
+    const std::array<double, 2> c = OnEyePlane(pose, 0, 0);
+    for (const double psi_deg : {0.0, 10.0})
+      for (const double u_x : {-2e-3, 0.0, 2e-3})
+        for (const double D : {0.4, 2.6}) {
+          const double t = std::tan((gaze_deg + psi_deg) * kDeg);  // the retinal direction, in the display's tan
+          const Vector3 P = PupilPointAt(pose, u_x, 0);
+          const Eigen::Vector3d F(c[0] + z_a * t, 0, z_a), p(P[0], P[1], P[2]);
+          // Exact: the line P -> F at depth 1/D, in tan units.
+          const Eigen::Vector3d exact = p + (1 / D - p.z()) / (F.z() - p.z()) * (F - p);
+          // First order: from the carried point on the eye plane toward F.
+          const std::array<double, 2> x0 = OnEyePlane(pose, u_x, 0);
+          const double first = x0[0] + (1 / D) * (F.x() - x0[0]) / z_a;
+          const double slope = (F.x() - p.x()) / (F.z() - p.z());
+          const double bound = std::abs(D - accommodation) * std::abs(p.z()) * std::abs(slope - g[0] / g[2]);
+          const double error = std::abs(exact.x() - first) * D;
+          EXPECT_NEAR(error, bound, 1e-12 + 1e-9 * bound) << gaze_deg << " deg, " << psi_deg << " off, u " << u_x;
+          if (psi_deg == 0 && u_x == 0) {
+            EXPECT_LT(error, 1e-15);
+          }
+        }
+  }
+}
+
 TEST(EyePose, GazeCentresTheRetinaAndPlacesThePupilSamples) {
   EyeModel eye;
   eye.pose.gaze_rad = {12 * kDeg, -5 * kDeg};
