@@ -8,13 +8,17 @@
 #include <optional>
 #include <set>
 
+#include "layerlab/analysis/eyebox_map.h"
 #include "layerlab/analysis/svg_plot.h"
 #include "layerlab/framework/error.h"
 #include "layerlab/framework/progress.h"
+#include "layerlab/framework/units.h"
+#include "layerlab/retina/lightfield_radiance.h"
 #include "layerlab/solvers/objective.h"
 #include "layerlab/solvers/solve_config.h"
 #include "layerlab/systems/compile.h"
 #include "layerlab/systems/display_model.h"
+#include "layerlab/systems/eye_pose_limits.h"
 
 namespace layerlab {
 namespace {
@@ -122,8 +126,31 @@ std::vector<std::string> CompareWarnings(const std::vector<CompareRun>& runs, co
   return warnings;
 }
 
+namespace {
+
+// The solution's eyebox over the pupil positions inside the light field's eyebox.
+EyeboxExtent MeasureEyebox(const DisplayModel& model, const Patterns& t, const LightField& target, Sampling sampling,
+                           const CompareEyebox& eyebox) {
+  EyeModel centred = model.system().eye;
+  centred.pose = EyePose{};
+  const std::array<double, 2> reach = PupilReachOnEyePlane(centred);
+  EyeboxMapOptions o;
+  o.accommodation_diopters = *eyebox.accommodation_diopters;
+  o.pupil_step_m = eyebox.step_m;
+  o.quality_db = eyebox.quality_db;
+  const std::array<double, 2> half = {0.5 * target.geometry.eyebox_width_m, 0.5 * target.geometry.eyebox_height_m};
+  for (int a = 0; a < 2; ++a)
+    o.pupil_half_range_m[a] = std::floor(std::max(0.0, half[a] - reach[a]) / eyebox.step_m + 1e-9) * eyebox.step_m;
+  const EyeboxMap map = MapEyebox(model, t, LightFieldRadiance(target, sampling), o);
+  return {map.pupil.within(eyebox.quality_db), map.pupil.within_reaches_edge(eyebox.quality_db),
+          map.pupil.centre().psnr_db};
+}
+
+}  // namespace
+
 std::vector<CompareResult> RunComparison(const std::vector<CompareRun>& runs, const LightField& target,
-                                         bool show_progress, const SolverRegistry& registry) {
+                                         bool show_progress, const SolverRegistry& registry,
+                                         const CompareEyebox& eyebox) {
   std::vector<CompareResult> results;
   for (const CompareRun& run : runs) {
     DisplayModel model(run.system, target.geometry, run.sampling);
@@ -144,18 +171,40 @@ std::vector<CompareResult> RunComparison(const std::vector<CompareRun>& runs, co
                     run.system.luminance_efficiency,
                     run.system.subframes,
                     run.system.subframes * run.system.frame_rate_hz,
-                    run.options_from};
+                    run.options_from,
+                    std::nullopt};
     r.report = registry.create(run.solver)->Solve(model, target, options, &t);
     if (progress) progress->Finish(r.report.BriefReport());
+    if (eyebox.accommodation_diopters && r.report.IsSolutionUsable())
+      r.eyebox = MeasureEyebox(model, t, target, run.sampling, eyebox);
     results.push_back(std::move(r));
   }
   return results;
 }
 
+namespace {
+
+bool AnyEyebox(const std::vector<CompareResult>& results) {
+  return std::any_of(results.begin(), results.end(), [](const CompareResult& r) { return r.eyebox.has_value(); });
+}
+
+// "2.00 x >= 1.50 mm", or "-" for a run without one.
+std::string EyeboxText(const CompareResult& r) {
+  if (!r.eyebox) return "-";
+  auto side = [&](int a) {
+    return std::string(r.eyebox->reaches_edge[a] ? ">= " : "") + FormatFixed(r.eyebox->within_m[a] * 1e3, 2);
+  };
+  return side(0) + " x " + side(1) + " mm";
+}
+
+}  // namespace
+
 std::string CompareTable(const std::vector<CompareResult>& results) {
+  const bool with_eyebox = AnyEyebox(results);
   std::string out =
       "display                      solver                 objective   PSNR (dB)  focal stack (dB)   seconds  "
-      "iterations  subframes  panel (Hz)  brightness (lum.)  brightness R G B       options  termination\n";
+      "iterations  subframes  panel (Hz)  brightness (lum.)  brightness R G B       options  termination";
+  out += with_eyebox ? "  eyebox\n" : "\n";
   for (const CompareResult& r : results) {
     const double focal_stack = FinalFocalStackPsnr(r.report);
     char line[400];
@@ -166,6 +215,7 @@ std::string CompareTable(const std::vector<CompareResult>& results) {
         r.panel_refresh_hz, r.luminance_efficiency, r.brightness_efficiency[0], r.brightness_efficiency[1],
         r.brightness_efficiency[2], r.options_from.c_str(), ToString(r.report.termination).c_str());
     out += line;
+    if (with_eyebox) out.insert(out.size() - 1, "  " + EyeboxText(r));
   }
   return out;
 }
@@ -173,7 +223,9 @@ std::string CompareTable(const std::vector<CompareResult>& results) {
 std::string CompareCsv(const std::vector<CompareResult>& results) {
   std::string out =
       "display,solver,objective,final_psnr_db,final_focal_stack_psnr_db,seconds,iterations,subframes,panel_refresh_hz,"
-      "luminance_efficiency,efficiency_r,efficiency_g,efficiency_b,termination,solver_options\n";
+      "luminance_efficiency,efficiency_r,efficiency_g,efficiency_b,termination,solver_options";
+  const bool with_eyebox = AnyEyebox(results);
+  out += with_eyebox ? ",eyebox_x_mm,eyebox_y_mm,eyebox_x_reaches_edge,eyebox_y_reaches_edge\n" : "\n";
   for (const CompareResult& r : results) {
     char line[400];
     std::snprintf(line, sizeof line, "%s,%s,%s,%s,%s,%.6f,%d,%d,%.3f,%.6f,%.6f,%.6f,%.6f,%s,%s\n", r.display.c_str(),
@@ -182,6 +234,13 @@ std::string CompareCsv(const std::vector<CompareResult>& results) {
                   r.panel_refresh_hz, r.luminance_efficiency, r.brightness_efficiency[0], r.brightness_efficiency[1],
                   r.brightness_efficiency[2], ToString(r.report.termination).c_str(), r.options_from.c_str());
     out += line;
+    if (with_eyebox) {
+      char extra[120] = ",,,,";
+      if (r.eyebox)
+        std::snprintf(extra, sizeof extra, ",%.4f,%.4f,%d,%d", r.eyebox->within_m[0] * 1e3, r.eyebox->within_m[1] * 1e3,
+                      int(r.eyebox->reaches_edge[0]), int(r.eyebox->reaches_edge[1]));
+      out.insert(out.size() - 1, extra);
+    }
   }
   return out;
 }

@@ -2,6 +2,7 @@
 // each run, and what each display costs in brightness.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <optional>
 #include <string>
@@ -24,14 +25,34 @@ struct CompareRun {
   std::string options_from = "shared";
 };
 
+// A solution's eyebox (analysis/eyebox_map.h): the run of pupil positions
+// through the centre, along x and y, whose retinal PSNR stays within the
+// quality of the centre's.
+struct EyeboxExtent {
+  std::array<double, 2> within_m{};    // m
+  std::array<bool, 2> reaches_edge{};  // the run reaches the grid's edge: the eyebox is at least that
+  double centre_psnr_db = 0;
+};
+
+// What RunComparison measures of each solution's eyebox: with an
+// accommodation, the retinal PSNR against natural viewing of the target over
+// the pupil positions, `step_m` apart, at which the whole pupil stays inside
+// the light field's eyebox.
+struct CompareEyebox {
+  std::optional<double> accommodation_diopters;  // none: not measured
+  double step_m = 0.5e-3;
+  double quality_db = 1.0;
+};
+
 struct CompareResult {
   std::string display, solver;
   SolverReport report;
   Rgb brightness_efficiency{};  // light at the eye per light emitted, per channel
   double luminance_efficiency = 0;
-  int subframes = 1;                    // patterns per panel and frame (time multiplexing)
-  double panel_refresh_hz = 60;         // what the panels must show: subframes x frame rate
-  std::string options_from = "shared";  // CompareRun::options_from
+  int subframes = 1;                                  // patterns per panel and frame (time multiplexing)
+  double panel_refresh_hz = 60;                       // what the panels must show: subframes x frame rate
+  std::string options_from = "shared";                // CompareRun::options_from
+  std::optional<EyeboxExtent> eyebox = std::nullopt;  // with CompareEyebox::accommodation_diopters
 };
 
 // "DISPLAY / SOLVER", and " / retinal" for a solve of the retinal objective.
@@ -95,7 +116,8 @@ std::vector<std::string> CompareWarnings(const std::vector<CompareRun>& runs, co
 // per run on stderr (framework/progress.h; each iteration with --verbose).
 std::vector<CompareResult> RunComparison(const std::vector<CompareRun>& runs, const LightField& target,
                                          bool show_progress = false,
-                                         const SolverRegistry& registry = SolverRegistry::Builtins());
+                                         const SolverRegistry& registry = SolverRegistry::Builtins(),
+                                         const CompareEyebox& eyebox = {});
 
 std::string CompareTable(const std::vector<CompareResult>& results);  // fixed-width text
 std::string CompareCsv(const std::vector<CompareResult>& results);    // one row per run

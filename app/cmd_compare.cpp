@@ -45,6 +45,7 @@ void AddCompareCommand(CLI::App& app) {
     std::optional<int> iterations;
     std::string time_budget, objectives;
     bool scene_options = false;
+    std::string eyebox_at, eyebox_step = "0.5", quality = "1";
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("compare", "Several displays and solvers on one target: PSNR against time");
@@ -62,7 +63,20 @@ void AddCompareCommand(CLI::App& app) {
   cmd->add_option("--objectives", o->objectives,
                   "Objectives each solver runs, comma-separated: lightfield, retinal (the solvers that minimize it); "
                   "with retinal, every row also records the focal-stack PSNR (default: the light field's)");
+  cmd->add_option("--eyebox-at", o->eyebox_at,
+                  "Also each solution's eyebox, with the eye focused here (D): where its retinal PSNR stays within "
+                  "--quality dB of the centre's, over the pupil positions inside the light field's eyebox");
+  cmd->add_option("--eyebox-step", o->eyebox_step, "Their step: mm (default 0.5)");
+  cmd->add_option("--quality", o->quality, "The eyebox's PSNR drop from its centre: dB (default 1)");
   cmd->callback([o] {
+    CompareEyebox eyebox;
+    if (!o->eyebox_at.empty()) {
+      eyebox.accommodation_diopters = ParseOptionValue(o->eyebox_at, "--eyebox-at", kDiopters, true);
+      eyebox.step_m = ParseOptionValue(o->eyebox_step, "--eyebox-step", kMillimeters) * 1e-3;
+      if (!(eyebox.step_m > 0)) throw Error("--eyebox-step: must be above 0 mm");
+      eyebox.quality_db = ParseOptionValue(o->quality, "--quality", {Dimension::kFraction, ""});
+      if (!(eyebox.quality_db > 0)) throw Error("--quality: must be above 0 dB");
+    }
     if (o->iterations && *o->iterations <= 0) throw Error("--iterations: must be positive");
     std::optional<double> time_budget;
     if (!o->time_budget.empty()) time_budget = ParseOptionValue(o->time_budget, "--time-budget", kSeconds);
@@ -86,7 +100,8 @@ void AddCompareCommand(CLI::App& app) {
                        {"compare.txt", "compare.csv", "traces.csv", "psnr_vs_time.svg", "index.html"}, inputs);
     const std::unique_ptr<Target> target = LoadOrRenderTarget(target_config, "target");
     for (CompareRun& run : runs) AttachRetinalTarget(*target, &run.options);
-    std::vector<CompareResult> results = RunComparison(runs, target->light_field, true);
+    std::vector<CompareResult> results =
+        RunComparison(runs, target->light_field, true, SolverRegistry::Builtins(), eyebox);
     for (const CompareResult& r : results)
       if (!r.report.IsSolutionUsable())
         throw Error("compare: " + RunLabel(r) + " failed: " + r.report.message + "; nothing was written");

@@ -98,5 +98,31 @@ TEST(Compare, EveryRowCarriesBothPsnrsWhenOneMinimizesTheFocalStack) {
   EXPECT_EQ(PsnrAgainstTimeSvg(plain).find("focal-stack"), std::string::npos);
 }
 
+// A solution's eyebox in the comparison: the pupil positions are those that
+// keep the 4 mm pupil inside the light field's 6 mm eyebox (1 mm each way in
+// steps of 0.5 mm); a display that shows its target exactly is within any
+// quality across them, and the table and CSV gain its column.
+TEST(Compare, TheEyeboxColumnCoversThePupilPositionsInsideTheLightField) {
+  const DisplaySystem stack = testing::CompileJson(testing::ShrunkExample("multiplicative_2layer.json", 16, 8, 3));
+  const DisplayModel model(stack, DisplayLightFieldGeometry(stack));
+  const LightField target = Synthesize(model, model.UniformPatterns(0.5f));
+  SolverOptions o;
+  o.iterations = 3;
+  CompareEyebox eyebox;
+  eyebox.accommodation_diopters = 1.0;
+  const std::vector<CompareResult> results =
+      RunComparison({{"stack", stack, "multiplicative", o}}, target, false, SolverRegistry::Builtins(), eyebox);
+  ASSERT_TRUE(results[0].eyebox);
+  EXPECT_DOUBLE_EQ(results[0].eyebox->within_m[0], 2e-3);
+  EXPECT_DOUBLE_EQ(results[0].eyebox->within_m[1], 2e-3);
+  EXPECT_TRUE(results[0].eyebox->reaches_edge[0]);
+  EXPECT_NE(CompareTable(results).find(">= 2.00 x >= 2.00 mm"), std::string::npos) << CompareTable(results);
+  EXPECT_NE(CompareCsv(results).find(",2.0000,2.0000,1,1\n"), std::string::npos) << CompareCsv(results);
+  // Without the option nothing is measured and the table is as before.
+  const std::vector<CompareResult> plain = RunComparison({{"stack", stack, "multiplicative", o}}, target);
+  EXPECT_FALSE(plain[0].eyebox);
+  EXPECT_EQ(CompareTable(plain).find("eyebox"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace layerlab
