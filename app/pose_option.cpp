@@ -19,6 +19,9 @@ void AddPoseOptions(CLI::App* cmd, PoseOption& option) {
 
 std::string ApplyPoseOption(const PoseOption& option, DisplaySystem* system) {
   EyePose& pose = system->eye.pose;
+  if (system->eye.binocular && (!option.pupil_offset.empty() || !option.gaze.empty()))
+    throw Error(std::string(option.gaze.empty() ? "--pupil-offset" : "--gaze") +
+                ": the scene's eye is one of a binocular pair, placed and turned by its \"binocular\" fixation");
   if (!option.pupil_offset.empty()) {
     pose.pupil_offset_m = ParseSignedPair(option.pupil_offset, "--pupil-offset", kMillimeters);
     for (double& v : pose.pupil_offset_m) {

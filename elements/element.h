@@ -151,6 +151,7 @@ struct EyeModel {
   Wavefront wavefront;
   bool diffraction = false;
   EyePose pose;  // the scene's pupil_offset and gaze; retina, contrast and eyebox commands set their own
+  std::optional<Binocular> binocular;  // one of two eyes: its pose turns it to the fixation
 };
 
 class EyeElement : public Element {

@@ -25,12 +25,14 @@
 // | pupil_offset        | [length, length]   | [0 mm, 0 mm]     | the eye's move across the eye plane (x right, y up): the wearer's fit, a point of an eyebox map; within 5 cm |
 // | gaze                | [angle, angle]     | [0 deg, 0 deg]   | where the eye looks, Fick angles: right, then up, within 50 deg; the pupil turns with it about the centre of rotation (elements/eye_pose.h) |
 // | rotation_radius     | length             | 10 mm            | pupil centre to the eye's centre of rotation, 0 to 3 cm |
+// | binocular           | {"side", "ipd", "display", "fixation"} | none | this is one of two eyes: side left or right, ipd (63 mm), display shared (a direct-view display on the midline: the eye sits ipd/2 off its axis) or own (one display per eye, on its axis), fixation [x, y, z] lengths from the midpoint between the pupils; the eye turns to it (its pose follows; not with pupil_offset or gaze) |
 // | next                | element name       | required         | the main lens                            |
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <functional>
 #include <numbers>
+#include <optional>
 #include <string>
 
 #include "layerlab/elements/element.h"
@@ -142,6 +144,36 @@ void ReadPose(Params& p, EyePose& pose) {
   p.require_range("rotation_radius", pose.rotation_radius_m, 0.0, kMaxRotationRadius, false, false);
 }
 
+// One of two eyes turned to a fixated point (elements/eye_pose.h): its pose follows.
+std::optional<Binocular> ReadBinocular(Params& p, EyePose& pose) {
+  if (!p.has("binocular")) return std::nullopt;
+  for (const char* key : {"pupil_offset", "gaze"})
+    if (p.has(key)) p.fail(key, "not with \"binocular\": the pair's geometry places and turns the eye");
+  Params b = p.object("binocular");
+  Binocular pair;
+  if (!b.has("side")) b.fail("side", "say which eye this is: \"left\" or \"right\"");
+  pair.side = b.choice("side", {"left", "right"}, "left") == "left" ? -1 : 1;
+  pair.ipd_m = b.quantity("ipd", Dimension::kLength, pair.ipd_m);
+  b.require_range("ipd", pair.ipd_m, 0.0, 0.1, true, false);
+  pair.shared_display = b.choice("display", {"shared", "own"}, "shared") == "shared";
+  if (!b.has("fixation")) b.fail("fixation", "give the fixated point [x, y, z] (z toward the display)");
+  const nlohmann::json& f = b.raw("fixation");
+  if (!f.is_array() || f.size() != 3) b.fail("fixation", "expected a point [x, y, z] of lengths, got " + f.dump());
+  Params xyz(nlohmann::json{{"x", f[0]}, {"y", f[1]}, {"z", f[2]}}, b.where("fixation"));
+  pair.fixation_m = {xyz.quantity("x", Dimension::kLength), xyz.quantity("y", Dimension::kLength),
+                     xyz.quantity("z", Dimension::kLength)};
+  xyz.require_range("x", pair.fixation_m[0], -100.0, 100.0, false, false);
+  xyz.require_range("y", pair.fixation_m[1], -100.0, 100.0, false, false);
+  xyz.require_range("z", pair.fixation_m[2], 0.0, 1000.0, true, false);
+  b.check_all_read();
+  pose = FixatingPose(pair, pose.rotation_radius_m);
+  for (double v : pose.gaze_rad)
+    if (std::abs(v) > kMaxGaze)
+      b.fail("fixation", "the eye would turn " + FormatFixed(std::abs(v) * 180 / std::numbers::pi, 1) +
+                             " deg to it, beyond 50 deg");
+  return pair;
+}
+
 std::unique_ptr<Element> MakeEye(Params& p) {
   EyeModel m;
   const bool word = p.has("pupil_diameter") && p.raw("pupil_diameter").is_string() &&
@@ -196,6 +228,7 @@ std::unique_ptr<Element> MakeEye(Params& p) {
   p.require_range("eyebox", std::min(eyebox[0], eyebox[1]), 0.0, 0.1, true, false);
   p.require_range("eyebox", std::max(eyebox[0], eyebox[1]), 0.0, 0.1, true, false);
   ReadPose(p, m.pose);
+  m.binocular = ReadBinocular(p, m.pose);
   if (p.has("views")) {
     auto n = p.integer_pair("views", 1, 256);
     m.views_x = static_cast<int>(n[0]);

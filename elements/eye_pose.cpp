@@ -31,4 +31,34 @@ std::array<double, 2> OnEyePlane(const EyePose& pose, double u_x, double u_y) {
   return {p[0] - p[2] * g[0] / g[2], p[1] - p[2] * g[1] / g[2]};
 }
 
+namespace {
+
+// F - Q for the eye on `side`.
+Vector3 ToFixation(const Binocular& b, int side, double rotation_radius_m) {
+  const double x_eye = 0.5 * side * b.ipd_m;
+  return {b.fixation_m[0] - x_eye, b.fixation_m[1], b.fixation_m[2] + rotation_radius_m};
+}
+
+}  // namespace
+
+EyePose FixatingPose(const Binocular& b, double rotation_radius_m) {
+  const Vector3 v = ToFixation(b, b.side, rotation_radius_m);
+  EyePose pose;
+  pose.rotation_radius_m = rotation_radius_m;
+  if (b.shared_display) pose.pupil_offset_m = {0.5 * b.side * b.ipd_m, 0};
+  pose.gaze_rad = {std::atan2(v[0], v[2]), std::atan2(v[1], std::hypot(v[0], v[2]))};
+  return pose;
+}
+
+double VergenceAngle(const Binocular& b, double rotation_radius_m) {
+  const Vector3 l = ToFixation(b, -1, rotation_radius_m), r = ToFixation(b, 1, rotation_radius_m);
+  const double dot = l[0] * r[0] + l[1] * r[1] + l[2] * r[2];
+  const double cross = std::hypot(l[1] * r[2] - l[2] * r[1], l[2] * r[0] - l[0] * r[2], l[0] * r[1] - l[1] * r[0]);
+  return std::atan2(cross, dot);
+}
+
+double VergenceDiopters(const Binocular& b) {
+  return 1 / std::hypot(b.fixation_m[0], b.fixation_m[1], b.fixation_m[2]);
+}
+
 }  // namespace layerlab

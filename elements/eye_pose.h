@@ -27,6 +27,8 @@ inline constexpr double kMaxPupilOffset = 0.05;         // m
 inline constexpr double kMaxGaze = 0.8726646259971648;  // rad, 50 deg
 inline constexpr double kMaxRotationRadius = 0.03;      // m
 
+using Vector3 = std::array<double, 3>;
+
 struct EyePose {
   std::array<double, 2> pupil_offset_m = {0, 0};  // m, the centre of rotation's move across the eye plane (x, y)
   std::array<double, 2> gaze_rad = {0, 0};        // rad, Fick angles: right, then up
@@ -34,7 +36,28 @@ struct EyePose {
   bool straight_ahead() const { return gaze_rad[0] == 0 && gaze_rad[1] == 0; }
 };
 
-using Vector3 = std::array<double, 3>;
+// One of a pair of eyes `ipd_m` apart whose pupils lie on the eye plane, the
+// frame's origin midway between them, turned to look at a fixated point.
+// A direct-view display seen by both (`shared_display`) has its axis on the
+// midline, so the eye sits at x = -ipd/2 (left) or +ipd/2 (right); a
+// near-eye display has one display per eye on that eye's axis, so the eye
+// sits on it (no offset). Either way the eye turns about its centre of
+// rotation Q = (x_eye, 0, -r) toward the fixation F: g = (F - Q) / |F - Q|.
+struct Binocular {
+  double ipd_m = 0.063;
+  int side = -1;  // -1 left, +1 right
+  bool shared_display = true;
+  Vector3 fixation_m = {0, 0, 0.5};  // m, from the midpoint between the pupils
+};
+
+// The eye's pose: its offset, and the Fick angles of g.
+EyePose FixatingPose(const Binocular& b, double rotation_radius_m);
+// The angle between the two eyes' gaze directions, rad.
+double VergenceAngle(const Binocular& b, double rotation_radius_m);
+// The vergence demand in diopters (metre angles): 1 / |F|, the fixation's
+// distance from the midpoint between the pupils; the vergence-accommodation
+// conflict of an eye accommodated to D is this minus D.
+double VergenceDiopters(const Binocular& b);
 
 // The gaze's unit direction g.
 Vector3 GazeDirection(const EyePose& pose);

@@ -1,9 +1,37 @@
 #include "layerlab/eye/eye_description.h"
 
+#include <numbers>
+
 #include "layerlab/eye/chromatic_eye.h"
 #include "layerlab/framework/units.h"
 
 namespace layerlab {
+
+namespace {
+
+// "" for the eye on the axis looking ahead; else where it is and looks, and
+// of a binocular pair which eye, and the vergence.
+std::string PoseDescription(const EyeModel& eye) {
+  const EyePose& pose = eye.pose;
+  std::string text;
+  auto mm = [](double m) { return FormatFixed(m * 1e3, 2); };
+  auto deg = [](double rad) { return FormatFixed(rad * 180 / std::numbers::pi, 2); };
+  if (eye.binocular) {
+    const Binocular& b = *eye.binocular;
+    text += std::string("; ") + (b.side < 0 ? "left" : "right") + " eye of a pair " + mm(b.ipd_m) + " mm apart (" +
+            (b.shared_display ? "shared display" : "a display each") + ") fixating (" + mm(b.fixation_m[0]) + ", " +
+            mm(b.fixation_m[1]) + ", " + mm(b.fixation_m[2]) + ") mm: vergence " +
+            deg(VergenceAngle(b, pose.rotation_radius_m)) + " deg, " + FormatFixed(VergenceDiopters(b), 3) + " D";
+  }
+  if (pose.pupil_offset_m != std::array<double, 2>{0, 0})
+    text += "; pupil offset " + mm(pose.pupil_offset_m[0]) + ", " + mm(pose.pupil_offset_m[1]) + " mm";
+  if (!pose.straight_ahead())
+    text += "; gaze " + deg(pose.gaze_rad[0]) + " deg right, " + deg(pose.gaze_rad[1]) +
+            " deg up (centre of rotation " + mm(pose.rotation_radius_m) + " mm behind the pupil)";
+  return text;
+}
+
+}  // namespace
 
 std::string EyeModelLine(const EyeModel& eye) {
   const bool ideal = eye.chromatic_aberration == ChromaticAberration::kNone && !eye.pupil_auto &&
@@ -38,7 +66,7 @@ std::string EyeModelLine(const EyeModel& eye) {
     line += " at " + FormatFixed(eye.wavefront.pupil_diameter_m * 1e3, 1) + " mm)";
   }
   line += eye.diffraction ? "; diffraction" : "; no diffraction";
-  return line;
+  return line + PoseDescription(eye);
 }
 
 }  // namespace layerlab

@@ -141,6 +141,12 @@ std::string FormatSystemTable(const DisplaySystem& s) {
           F(eye.eyebox_height_m * 1e3, 2).c_str(), eye.views_x, eye.views_y,
           F(eye.accommodation_min_diopters, 2).c_str(), F(eye.accommodation_max_diopters, 2).c_str());
   out += Row("         %s", EyeModelLine(eye).c_str());
+  if (eye.binocular) {  // the vergence-accommodation conflict if the eye accommodated to each layer
+    std::string conflicts;
+    for (const VirtualLayer& l : s.layers)
+      conflicts += (conflicts.empty() ? "" : ", ") + l.name + " " + F(VergenceDiopters(*eye.binocular) - l.diopters, 3);
+    out += Row("         vergence-accommodation conflict (D) accommodated to each layer: %s", conflicts.c_str());
+  }
   if (s.subframes > 1)
     out += Row("time     %d subframes per frame at %s Hz: the panels refresh at %s Hz; the eye sees the mean",
                s.subframes, F(s.frame_rate_hz, 1).c_str(), F(s.subframes * s.frame_rate_hz, 1).c_str());

@@ -185,6 +185,56 @@ TEST(EyePose, APointOnAnIdealLayerDoesNotSwim) {
   }
 }
 
+// Two eyes 63 mm apart fixating a point 0.5 m ahead on the midline, by hand:
+// each centre of rotation 10 mm behind its pupil turns atan(31.5 / 510) =
+// 3.53437 deg inward; the vergence is twice that, the demand 1 / 0.5 m = 2 D.
+// Off the midline each gaze points from its centre of rotation at the point
+// (checked by cross products, apart from the Fick angles), and the scene's
+// binocular key places and turns the eye so.
+TEST(EyePose, TwoEyesVergeOnTheFixatedPoint) {
+  Binocular pair;
+  pair.ipd_m = 0.063, pair.fixation_m = {0, 0, 0.5};
+  const double inward = std::atan(0.0315 / 0.51);
+  EXPECT_NEAR(inward / kDeg, 3.53437, 5e-6);
+  pair.side = -1;
+  const EyePose left = FixatingPose(pair, 0.010);
+  pair.side = 1;
+  const EyePose right = FixatingPose(pair, 0.010);
+  EXPECT_NEAR(left.gaze_rad[0], inward, 1e-15);
+  EXPECT_NEAR(right.gaze_rad[0], -inward, 1e-15);
+  EXPECT_EQ(left.pupil_offset_m[0], -0.0315);
+  EXPECT_NEAR(VergenceAngle(pair, 0.010), 2 * inward, 1e-15);
+  EXPECT_NEAR(VergenceDiopters(pair), 2.0, 1e-15);
+  pair.fixation_m = {0.1, 0.05, 0.4};
+  for (const bool shared : {true, false})
+    for (const int side : {-1, 1}) {
+      pair.side = side, pair.shared_display = shared;
+      const EyePose pose = FixatingPose(pair, 0.012);
+      const Eigen::Vector3d q(0.5 * side * 0.063, 0, -0.012), f(0.1, 0.05, 0.4);
+      const Vector3 g = GazeDirection(pose);
+      const Eigen::Vector3d towards = (f - q).normalized();
+      EXPECT_NEAR(Eigen::Vector3d(g[0], g[1], g[2]).cross(towards).norm(), 0, 1e-15);
+      EXPECT_GT(towards.dot(Eigen::Vector3d(g[0], g[1], g[2])), 0);
+      EXPECT_EQ(pose.pupil_offset_m[0], shared ? 0.5 * side * 0.063 : 0.0);
+    }
+  const Eigen::Vector3d l = (Eigen::Vector3d(0.1, 0.05, 0.4) - Eigen::Vector3d(-0.0315, 0, -0.012)).normalized();
+  const Eigen::Vector3d r = (Eigen::Vector3d(0.1, 0.05, 0.4) - Eigen::Vector3d(0.0315, 0, -0.012)).normalized();
+  EXPECT_NEAR(VergenceAngle(pair, 0.012), std::acos(l.dot(r)), 1e-12);
+
+  nlohmann::json scene = testing::ShrunkExample("paper_prototype.json", 400, 240, 3);
+  ElementNamed(scene, "eye")["binocular"] = {
+      {"side", "right"}, {"ipd", "63 mm"}, {"fixation", {"0 mm", "0 mm", "0.5 m"}}};
+  const DisplaySystem system = CompileJson(scene);
+  ASSERT_TRUE(system.eye.binocular);
+  EXPECT_NEAR(system.eye.pose.gaze_rad[0], -inward, 1e-15);
+  EXPECT_EQ(system.eye.pose.pupil_offset_m[0], 0.0315);
+  ElementNamed(scene, "eye")["gaze"] = {"1 deg", "0 deg"};
+  EXPECT_NE(CompileError(scene).find("not with \"binocular\""), std::string::npos) << CompileError(scene);
+  ElementNamed(scene, "eye").erase("gaze");
+  ElementNamed(scene, "eye")["binocular"]["sid"] = "left";
+  EXPECT_NE(CompileError(scene).find("sid"), std::string::npos) << CompileError(scene);
+}
+
 TEST(EyePose, LimitsNameWhatTheyRefuse) {
   nlohmann::json scene = testing::ShrunkExample("paper_prototype.json", 400, 240, 3);  // a field of 36 x 22 deg
   ElementNamed(scene, "eye")["gaze"] = {"40 deg", "0 deg"};
