@@ -37,16 +37,34 @@ std::vector<std::string> SplitNames(const std::string& text) {
 
 }  // namespace
 
+namespace {
+
+struct CompareCommandOptions {
+  std::vector<std::string> scenes;
+  std::string out, solvers;
+  TargetOption target;
+  std::optional<int> iterations;
+  std::string time_budget, objectives;
+  bool scene_options = false;
+  std::string eyebox_at, eyebox_step = "0.5", quality = "1";
+};
+
+// --eyebox-at and its step and quality: nothing measured without it.
+CompareEyebox ReadCompareEyebox(const CompareCommandOptions& o) {
+  CompareEyebox eyebox;
+  if (o.eyebox_at.empty()) return eyebox;
+  eyebox.accommodation_diopters = ParseOptionValue(o.eyebox_at, "--eyebox-at", kDiopters, true);
+  eyebox.step_m = ParseOptionValue(o.eyebox_step, "--eyebox-step", kMillimeters) * 1e-3;
+  if (!(eyebox.step_m > 0)) throw Error("--eyebox-step: must be above 0 mm");
+  eyebox.quality_db = ParseOptionValue(o.quality, "--quality", {Dimension::kFraction, ""});
+  if (!(eyebox.quality_db > 0)) throw Error("--quality: must be above 0 dB");
+  return eyebox;
+}
+
+}  // namespace
+
 void AddCompareCommand(CLI::App& app) {
-  struct Options {
-    std::vector<std::string> scenes;
-    std::string out, solvers;
-    TargetOption target;
-    std::optional<int> iterations;
-    std::string time_budget, objectives;
-    bool scene_options = false;
-    std::string eyebox_at, eyebox_step = "0.5", quality = "1";
-  };
+  using Options = CompareCommandOptions;
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("compare", "Several displays and solvers on one target: PSNR against time");
   cmd->add_option("scenes", o->scenes, "Display scene files (JSON)")->required();
@@ -69,14 +87,7 @@ void AddCompareCommand(CLI::App& app) {
   cmd->add_option("--eyebox-step", o->eyebox_step, "Their step: mm (default 0.5)");
   cmd->add_option("--quality", o->quality, "The eyebox's PSNR drop from its centre: dB (default 1)");
   cmd->callback([o] {
-    CompareEyebox eyebox;
-    if (!o->eyebox_at.empty()) {
-      eyebox.accommodation_diopters = ParseOptionValue(o->eyebox_at, "--eyebox-at", kDiopters, true);
-      eyebox.step_m = ParseOptionValue(o->eyebox_step, "--eyebox-step", kMillimeters) * 1e-3;
-      if (!(eyebox.step_m > 0)) throw Error("--eyebox-step: must be above 0 mm");
-      eyebox.quality_db = ParseOptionValue(o->quality, "--quality", {Dimension::kFraction, ""});
-      if (!(eyebox.quality_db > 0)) throw Error("--quality: must be above 0 dB");
-    }
+    const CompareEyebox eyebox = ReadCompareEyebox(*o);
     if (o->iterations && *o->iterations <= 0) throw Error("--iterations: must be positive");
     std::optional<double> time_budget;
     if (!o->time_budget.empty()) time_budget = ParseOptionValue(o->time_budget, "--time-budget", kSeconds);
