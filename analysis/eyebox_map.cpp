@@ -171,7 +171,7 @@ EyeboxMap MapEyebox(const DisplayModel& model, const Patterns& t, const SceneRad
   size_t first = 0;
   for (EyeboxGrid* g : {&map.pupil, &map.gaze}) {
     if (g->poses.empty()) continue;
-    const size_t centre = size_t(g->rows / 2) * g->cols + g->cols / 2;
+    const size_t centre = g->centre_index();
     const double brightness = g->poses[centre].display_mean_cd_m2, lit = white_means[first + centre];
     for (size_t k = 0; k < g->poses.size(); ++k) {
       g->poses[k].brightness_ratio = g->poses[k].display_mean_cd_m2 / brightness;

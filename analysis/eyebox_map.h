@@ -48,7 +48,8 @@ struct EyeboxGrid {
   int cols = 0, rows = 0;
   double step = 0;  // m for the pupil grid, rad for the gaze grid
   std::vector<EyeboxPoseResult> poses;
-  const EyeboxPoseResult& centre() const { return poses[size_t(rows / 2) * cols + cols / 2]; }
+  size_t centre_index() const { return size_t(rows / 2) * cols + cols / 2; }
+  const EyeboxPoseResult& centre() const { return poses[centre_index()]; }
   // Through the centre along x and y: the extent of the run of poses whose
   // PSNR is within `quality_db` of the centre's (m or rad), and whether the
   // run reaches the grid's edge (so the eyebox is at least that).

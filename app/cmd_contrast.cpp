@@ -60,8 +60,8 @@ void RunContrastCommand(const ContrastCommandOptions& o) {
   for (const std::string& file : o.scenes) {
     displays.push_back(LoadContrastDisplay(file));
     // The eye moved and turned as the command line says: each display's retina is seen from there.
-    if (const std::string beyond = ApplyPoseOption(o.pose, &displays.back().system); !beyond.empty())
-      warnings.push_back(displays.back().name + ": " + beyond + ": natural viewing reads the edge views there");
+    if (const std::string warning = ApplyPoseOption(o.pose, &displays.back().system); !warning.empty())
+      warnings.push_back(displays.back().name + ": " + warning);
   }
   std::optional<ContrastDisplay> foreign;
   if (!o.factorized_for.empty()) foreign = LoadContrastDisplay(o.factorized_for);

@@ -86,9 +86,9 @@ void RunRetinaCommand(const RetinaCommandOptions& o) {
   // Everything is read and checked before anything is written.
   Scene scene = LoadScene(o.scene);
   DisplaySystem system = Compile(scene);
-  if (const std::string beyond = ApplyPoseOption(o.pose, &system); !beyond.empty()) {
-    system.warnings.push_back(beyond + ": natural viewing reads the edge views there");
-    SayWarnings({system.warnings.back()});
+  if (const std::string warning = ApplyPoseOption(o.pose, &system); !warning.empty()) {
+    system.warnings.push_back(warning);
+    SayWarnings({warning});
   }
   SolveConfig config = ReadSolveConfig(scene, system);
   if (!o.sampling.empty()) config.sampling = SamplingFromString(o.sampling);

@@ -264,8 +264,8 @@ void WriteResults(const Options& o, const Scene& scene, const DisplaySystem& sys
 void Solve(const Options& o, Ranks& ranks) {
   const Scene scene = LoadScene(o.scene);
   DisplaySystem system = Compile(scene);
-  if (const std::string beyond = ApplyPoseOption(o.pose, &system); !beyond.empty())
-    system.warnings.push_back(beyond + ": natural viewing reads the edge views there");
+  if (const std::string warning = ApplyPoseOption(o.pose, &system); !warning.empty())
+    system.warnings.push_back(warning);
   SolveJob job;
   job.system = &system;
   job.config = SolveJobConfig(scene, system, o.solver.solver);

@@ -41,7 +41,7 @@ std::string ApplyPoseOption(const PoseOption& option, DisplaySystem* system) {
     }
   }
   if (const std::string beyond = GazeBeyondField(*system, pose); !beyond.empty()) throw Error("--gaze: " + beyond);
-  return PupilBeyondEyebox(system->eye);
+  return PupilBeyondEyeboxWarning(system->eye);
 }
 
 }  // namespace layerlab::app

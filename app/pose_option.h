@@ -19,7 +19,8 @@ void AddPoseOptions(CLI::App* cmd, PoseOption& option);
 
 // Sets system->eye.pose from the options given. Refuses, naming the option,
 // an offset beyond the scene's limit and a gaze outside the display's field;
-// returns the warning for a pupil that leaves the eyebox ("" inside it).
+// returns the warning for a pupil that leaves the eyebox ("" inside it:
+// PupilBeyondEyeboxWarning, systems/eye_pose_limits.h).
 std::string ApplyPoseOption(const PoseOption& option, DisplaySystem* system);
 
 }  // namespace layerlab::app

@@ -37,6 +37,7 @@
 
 #include "layerlab/elements/element.h"
 #include "layerlab/elements/registry.h"
+#include "layerlab/framework/units.h"
 
 namespace layerlab {
 namespace {
@@ -169,8 +170,8 @@ std::optional<Binocular> ReadBinocular(Params& p, EyePose& pose) {
   pose = FixatingPose(pair, pose.rotation_radius_m);
   for (double v : pose.gaze_rad)
     if (std::abs(v) > kMaxGaze)
-      b.fail("fixation", "the eye would turn " + FormatFixed(std::abs(v) * 180 / std::numbers::pi, 1) +
-                             " deg to it, beyond 50 deg");
+      b.fail("fixation",
+             "the eye would turn " + FormatFixed(std::abs(v) * kDegreesPerRadian, 1) + " deg to it, beyond 50 deg");
   return pair;
 }
 

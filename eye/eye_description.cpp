@@ -1,7 +1,5 @@
 #include "layerlab/eye/eye_description.h"
 
-#include <numbers>
-
 #include "layerlab/eye/chromatic_eye.h"
 #include "layerlab/framework/units.h"
 
@@ -15,7 +13,7 @@ std::string PoseDescription(const EyeModel& eye) {
   const EyePose& pose = eye.pose;
   std::string text;
   auto mm = [](double m) { return FormatFixed(m * 1e3, 2); };
-  auto deg = [](double rad) { return FormatFixed(rad * 180 / std::numbers::pi, 2); };
+  auto deg = [](double rad) { return FormatFixed(rad * kDegreesPerRadian, 2); };
   if (eye.binocular) {
     const Binocular& b = *eye.binocular;
     text += std::string("; ") + (b.side < 0 ? "left" : "right") + " eye of a pair " + mm(b.ipd_m) + " mm apart (" +

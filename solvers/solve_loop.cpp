@@ -97,8 +97,10 @@ bool SolveLoop::Start(const std::string& refusal) {
       fits = (*warm)[k].pixel_count() == model_.projection(k).pixel_count() &&
              (*warm)[k].rgb.size() == 3 * (*warm)[k].pixel_count();
     if (!fits) throw Error("warm start: the patterns are not this display's layers");
+    *patterns_ = *warm;
+  } else {
+    *patterns_ = InitialPatterns(model_, options_);
   }
-  *patterns_ = options_.initial_patterns ? *options_.initial_patterns : InitialPatterns(model_, options_);
   const auto now = std::chrono::steady_clock::now();
   report_.setup_seconds = std::chrono::duration<double>(now - start_).count();
   start_ = now;

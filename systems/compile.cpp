@@ -673,8 +673,7 @@ void Walker::CheckEyePose() {
   const EyeModel& eye = system_.eye;
   if (const std::string beyond = GazeBeyondField(system_, eye.pose); !beyond.empty())
     throw Error(FindEye().where.child("gaze"), beyond);
-  if (const std::string beyond = PupilBeyondEyebox(eye); !beyond.empty())
-    system_.warnings.push_back(beyond + ": natural viewing reads the edge views there");
+  if (const std::string warning = PupilBeyondEyeboxWarning(eye); !warning.empty()) system_.warnings.push_back(warning);
 }
 
 // The exact ray map of every layer behind a real lens or on a tilted panel,

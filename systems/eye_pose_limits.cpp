@@ -60,4 +60,9 @@ std::string PupilBeyondEyebox(const EyeModel& eye) {
   return "";
 }
 
+std::string PupilBeyondEyeboxWarning(const EyeModel& eye) {
+  const std::string beyond = PupilBeyondEyebox(eye);
+  return beyond.empty() ? "" : beyond + ": natural viewing reads the edge views there";
+}
+
 }  // namespace layerlab

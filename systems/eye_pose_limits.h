@@ -26,5 +26,8 @@ std::array<double, 2> PupilReachOnEyePlane(const EyeModel& eye);
 // "" when the pupil lies inside the eyebox; otherwise a sentence with the
 // reach and the limit, and the largest offset that keeps this pupil inside.
 std::string PupilBeyondEyebox(const EyeModel& eye);
+// The same as a warning, with what it means: natural viewing of a light
+// field reads its edge views there. "" inside the eyebox.
+std::string PupilBeyondEyeboxWarning(const EyeModel& eye);
 
 }  // namespace layerlab
