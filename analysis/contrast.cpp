@@ -156,6 +156,15 @@ struct CurveView {
   size_t model, patterns;
 };
 
+// The eye that sees the curve; a binocular one verges on the target, on the midline at its depth.
+void SetEye(ContrastCurve* c, const EyeModel& eye) {
+  c->eye = EyeModelLine(eye);
+  if (!eye.binocular) return;
+  Binocular fixating = *eye.binocular;
+  fixating.fixation_m = {0, 0, 1 / c->target_diopters};
+  c->vergence_diopters = VergenceDiopters(fixating);
+}
+
 std::string SolverOf(const ContrastDisplay& d) { return d.solver.empty() ? DefaultSolverFor(d.system) : d.solver; }
 
 std::string TargetLabel(double dt, double f) {
@@ -307,7 +316,7 @@ class ContrastRun {
       continuous_reference_[target_index] = ReferenceAmplitude(first_eye_, natural, dt, f, label);
       ContrastCurve c = Blank("natural", dt, f);
       c.solver = "-";
-      c.eye = EyeModelLine(first_eye_);
+      SetEye(&c, first_eye_);
       c.reference_amplitude = continuous_reference_[target_index];
       SweepOne(first_eye_, natural, &c);
       c.sweep_seconds = Seconds(start);
@@ -339,7 +348,7 @@ class ContrastRun {
   // Display di's curve of solves_[patterns] seen through it (its layers read by solves_[model]'s model).
   void AddCurve(size_t di, size_t target_index, ContrastCurve curve, size_t model, size_t patterns) {
     const CurveSolve& s = solves_[patterns];
-    curve.eye = EyeModelLine(displays_[di].system.eye);
+    SetEye(&curve, displays_[di].system.eye);
     curve.solver = s.solver;
     if (patterns != model) curve.factorized_for = s.display->name;
     of_target_[target_index].push_back(std::move(curve));
@@ -364,7 +373,7 @@ class ContrastRun {
     if (!seen) {
       ContrastCurve c = Blank(drawn.empty() ? "natural" : "natural (" + d.name + ")", dt, f);
       c.solver = "-";
-      c.eye = EyeModelLine(eye);
+      SetEye(&c, eye);
       c.reference_amplitude = reference;
       SweepOne(eye, natural, &c);
       c.sweep_seconds = Seconds(start);
@@ -591,17 +600,36 @@ std::string PeakTable(const std::vector<ContrastCurve>& curves) {
     }
   int width = 24;  // the display column: as wide as its longest name
   for (const ContrastCurve& c : curves) width = std::max(width, static_cast<int>(c.display.size()));
+  // A binocular eye's conflict: its vergence on the target less its accommodation response (the curve's peak).
+  const bool binocular = std::any_of(curves.begin(), curves.end(),
+                                     [](const ContrastCurve& c) { return !std::isnan(c.vergence_diopters); });
+  if (binocular)
+    out +=
+        "# VAC (D): the vergence demand of the target (binocular eye, fixating it) less the accommodation "
+        "response, the parabola's peak; '-' where the curve is too flat to place one\n";
   out += "display" + std::string(width - 6, ' ') +
          "target (D)  f (cpd)  peak (D)  parabola (D)  +- (D)  placed  peak contrast  at target  "
-         "solver                 PSNR (dB)  solve (s)  sweep (s)\n";
+         "solver                 PSNR (dB)  solve (s)  sweep (s)" +
+         (binocular ? "  vergence (D)  VAC (D)" : "") + "\n";
   std::vector<char> line(width + 320);
   for (const ContrastCurve& c : curves) {
     std::snprintf(line.data(), line.size(),
-                  "%-*s %10.2f %8.1f %9.2f %13.3f %7.3f  %-6s %14.3f %10.3f  %-22s %9.2f %10.3f %10.3f\n", width,
+                  "%-*s %10.2f %8.1f %9.2f %13.3f %7.3f  %-6s %14.3f %10.3f  %-22s %9.2f %10.3f %10.3f", width,
                   c.display.c_str(), c.target_diopters, c.frequency, c.peak.at_grid, c.estimate.at,
                   c.estimate.uncertainty, c.estimate.flat ? "flat" : "yes", c.peak.value, c.at_target, c.solver.c_str(),
                   c.psnr_db, c.solve_seconds, c.sweep_seconds);
     out += line.data();
+    if (binocular && !std::isnan(c.vergence_diopters)) {
+      std::snprintf(line.data(), line.size(), " %13.3f", c.vergence_diopters);
+      out += line.data();
+      if (c.estimate.flat) {
+        out += "        -";
+      } else {
+        std::snprintf(line.data(), line.size(), " %8.3f", c.vergence_diopters - c.estimate.at);
+        out += line.data();
+      }
+    }
+    out += "\n";
   }
   return out;
 }

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -92,6 +93,8 @@ struct ContrastCurve {
   std::string display;         // "natural" for natural viewing; "D (factorized for S)" for S's patterns seen through D
   std::string factorized_for;  // the display the patterns were solved on when not this one (S), else ""
   std::string eye;             // EyeModelLine of the eye that saw it
+  // A binocular eye's vergence demand fixating the target on the midline (VergenceDiopters: D_t); NaN for one eye.
+  double vergence_diopters = std::numeric_limits<double>::quiet_NaN();
   double target_diopters = 0, frequency = 0;
   std::vector<double> accommodation, contrast;
   std::vector<double> contrast_shifted;  // the retina moved half a sample; empty without peak_uncertainty

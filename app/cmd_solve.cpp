@@ -277,6 +277,8 @@ void Solve(const Options& o, Ranks& ranks) {
     throw Error(std::string(o.pose.gaze.empty() ? "--pupil-offset" : "--gaze") +
                 ": the light-field objective weighs every view of the eyebox alike; a solve for where the eye is "
                 "needs --objective retinal (with joint or quasi-newton)");
+  if (const std::string beyond = EyeboxGridWarning(EyeboxPupils(config.options), system.eye); !beyond.empty())
+    system.warnings.push_back(beyond);
   RefuseWithRanks(o, config.options, ranks);
   const RankViews views = ViewsOfRank(config, ranks);
   CheckMemory(o, system, config, views, ranks);

@@ -44,4 +44,16 @@ std::string ApplyPoseOption(const PoseOption& option, DisplaySystem* system) {
   return PupilBeyondEyeboxWarning(system->eye);
 }
 
+std::string EyeboxGridWarning(const std::vector<PupilWeight>& pupils, const EyeModel& eye) {
+  for (const PupilWeight& p : pupils) {
+    EyeModel moved = eye;
+    moved.pose.pupil_offset_m[0] += p.offset_x_m;
+    moved.pose.pupil_offset_m[1] += p.offset_y_m;
+    if (const std::string beyond = PupilBeyondEyeboxWarning(moved); !beyond.empty())
+      return "the eyebox grid's pupil position (" + FormatFixed(moved.pose.pupil_offset_m[0] * 1e3, 2) + ", " +
+             FormatFixed(moved.pose.pupil_offset_m[1] * 1e3, 2) + ") mm: " + beyond;
+  }
+  return "";
+}
+
 }  // namespace layerlab::app

@@ -4,9 +4,11 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
+#include "layerlab/solvers/types.h"
 #include "layerlab/systems/display_system.h"
 
 namespace layerlab::app {
@@ -22,5 +24,9 @@ void AddPoseOptions(CLI::App* cmd, PoseOption& option);
 // returns the warning for a pupil that leaves the eyebox ("" inside it:
 // PupilBeyondEyeboxWarning, systems/eye_pose_limits.h).
 std::string ApplyPoseOption(const PoseOption& option, DisplaySystem* system);
+
+// The warning for the first of an eyebox grid's pupil positions (relative to `eye`'s) that leaves the eyebox,
+// naming it; "" when all stay inside.
+std::string EyeboxGridWarning(const std::vector<PupilWeight>& pupils, const EyeModel& eye);
 
 }  // namespace layerlab::app

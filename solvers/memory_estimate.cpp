@@ -50,7 +50,7 @@ RetinalParts RetinalPartsOf(const DisplayModel& model, const SolverOptions& opti
   RetinalParts r;
   const bool objective = options.objective == ObjectiveKind::kRetinal;
   if (!objective && !options.measure_focal_stack) return r;
-  const RetinalObjectiveMemory m = RetinalObjectiveBytes(model, options.retinal, threads);
+  const RetinalObjectiveMemory m = RetinalObjectiveBytes(model, RetinalOptionsOf(options), threads);
   const double measure = light_field + double(SolveWorkspace::Layout(model, threads, kSynthesisPass).bytes());
   // The pass's light fields and joint pass, and the workspace of each synthesis it makes (no workspace given).
   const double pass = 2 * light_field + double(SolveWorkspace::Layout(model, threads, kJointPass).bytes()) +
@@ -60,7 +60,9 @@ RetinalParts RetinalPartsOf(const DisplayModel& model, const SolverOptions& opti
   r.steps = (objective ? pass : measure) + double(m.filter);
   r.described =
       " + the retinal objective " + FormatBytes(r.kept) + " (operator tables " + FormatBytes(double(m.tables)) +
-      ", images " + FormatBytes(double(m.images)) + " x 2, apply buffer " + FormatBytes(double(m.apply_buffer)) +
+      (m.pupils > 1 ? " of " + std::to_string(m.pupils) + " pupil positions" : std::string()) + ", images " +
+      FormatBytes(double(m.images)) + " x " + std::to_string(m.pupils + 1) + ", apply buffer " +
+      FormatBytes(double(m.apply_buffer)) + (m.pupils > 1 ? " x " + std::to_string(m.pupils) : std::string()) +
       (m.retina_workspace ? "; its target's images made in a workspace of " + FormatBytes(double(m.retina_workspace))
                           : std::string()) +
       "; in the set-up " + FormatBytes(r.setup) + ", in the iterations " + FormatBytes(r.steps) +

@@ -19,6 +19,33 @@ std::vector<double> RetinalStates(const EyeModel& eye, const RetinalObjectiveOpt
   return AccommodationStates(eye.accommodation_min_diopters, eye.accommodation_max_diopters, kDefaultStateStep);
 }
 
+std::vector<std::vector<PupilPoint>> RetinalPupils(const EyeModel& eye, const RetinalObjectiveOptions& options,
+                                                   std::vector<double>* weights) {
+  std::vector<std::vector<PupilPoint>> samples;
+  std::vector<double> w;
+  if (options.pupils.empty()) {
+    samples.push_back(PupilSamples(eye));
+    w.push_back(1);
+  }
+  double sum = 0;
+  for (const PupilWeight& p : options.pupils) {
+    if (!(p.weight >= 0) || !std::isfinite(p.weight))
+      throw Error("a pupil position's weight in the retinal objective must be finite and >= 0");
+    EyeModel moved = eye;
+    moved.pose.pupil_offset_m[0] += p.offset_x_m;
+    moved.pose.pupil_offset_m[1] += p.offset_y_m;
+    samples.push_back(PupilSamples(moved));
+    w.push_back(p.weight);
+    sum += p.weight;
+  }
+  if (!options.pupils.empty()) {
+    if (!(sum > 0)) throw Error("the retinal objective's pupil positions all have weight 0");
+    for (double& v : w) v /= sum;
+  }
+  if (weights) *weights = std::move(w);
+  return samples;
+}
+
 namespace {
 
 // One retinal sample per light-field pixel over the light field's window, as seen from the eyebox center.
@@ -84,27 +111,36 @@ RetinalObjective::RetinalObjective(const DisplayModel& model, const LightField& 
   contrast_sensitivity_ = options.contrast_sensitivity;
   std::vector<std::array<double, 3>> foci;
   for (double d : states_) foci.push_back(ChannelAccommodation(eye, d));
-  const std::vector<PupilPoint> pupil = PupilSamples(eye);
-  operator_ = std::make_unique<RetinalOperator>(model.geometry(), model.projection(0).sampling(), grid, pupil, foci);
-  if (options.target == RetinalTarget::kTraced) {
-    if (!options.target_radiance)
-      throw Error("the retinal objective's traced target needs a target scene (target_scene), not a light field");
-    target_images_.resize(states_.size());
-    for (size_t a = 0; a < states_.size(); ++a)
-      target_images_[a] = RetinaOfScene(options.target_radiance, grid, pupil, foci[a]).pixels;
-  } else {
-    operator_->Apply(target, &target_images_);
+  if (options.target == RetinalTarget::kTraced && !options.target_radiance)
+    throw Error("the retinal objective's traced target needs a target scene (target_scene), not a light field");
+  std::vector<double> pupil_weights;
+  const std::vector<std::vector<PupilPoint>> samples = RetinalPupils(eye, options, &pupil_weights);
+  for (size_t p = 0; p < samples.size(); ++p) {
+    Pupil pupil;
+    pupil.weight = pupil_weights[p];
+    pupil.op =
+        std::make_unique<RetinalOperator>(model.geometry(), model.projection(0).sampling(), grid, samples[p], foci);
+    if (options.target == RetinalTarget::kTraced) {
+      pupil.target_images.resize(states_.size());
+      for (size_t a = 0; a < states_.size(); ++a)
+        pupil.target_images[a] = RetinaOfScene(options.target_radiance, grid, samples[p], foci[a]).pixels;
+    } else {
+      pupil.op->Apply(target, &pupil.target_images);
+    }
+    pupils_.push_back(std::move(pupil));
   }
 
-  // Bound(): the largest entry of M 1.
+  // Bound(): the largest entry of M 1, summed over the pupils.
   LightField ones(model.geometry());
   std::fill(ones.rgb.begin(), ones.rgb.end(), 1.0f);
-  std::vector<std::vector<float>> images;
-  operator_->Apply(ones, &images);
-  for (size_t a = 0; a < states_.size(); ++a)
-    for (float& v : images[a]) v = static_cast<float>(v * weights_[a]);
   LightField m1(model.geometry());
-  operator_->ApplyTranspose(images, &m1);
+  std::vector<std::vector<float>> images;
+  for (size_t p = 0; p < pupils_.size(); ++p) {
+    pupils_[p].op->Apply(ones, &images);
+    for (size_t a = 0; a < states_.size(); ++a)
+      for (float& v : images[a]) v = static_cast<float>(v * weights_[a] * pupils_[p].weight);
+    pupils_[p].op->ApplyTranspose(images, &m1, p > 0);
+  }
   const float largest = *std::max_element(m1.rgb.begin(), m1.rgb.end());
   bound_ = largest > 0 ? largest : 1.0;
 }
@@ -127,42 +163,55 @@ double RetinalObjective::Evaluate(const LightField& x, std::vector<double>* per_
 
 double RetinalObjective::EvaluateWithAdjoint(const LightField& x, std::vector<double>* per_state,
                                              LightField* m_r) const {
+  if (m_r && m_r->geometry.ray_count() != x.geometry.ray_count()) *m_r = LightField(x.geometry);
+  std::vector<double> errors(states_.size(), 0.0);
+  double f = 0;
+  for (size_t p = 0; p < pupils_.size(); ++p) AddPupil(pupils_[p], x, &errors, &f, m_r, p == 0);
+  if (per_state) *per_state = std::move(errors);
+  return f;
+}
+
+void RetinalObjective::AddPupil(const Pupil& p, const LightField& x, std::vector<double>* errors, double* f,
+                                LightField* m_r, bool first) const {
   std::vector<std::vector<float>>& images = images_;
-  operator_->Apply(x, &images);
-  std::vector<double> errors(states_.size());
-  for (size_t a = 0; a < states_.size(); ++a) errors[a] = SquaredDifference(images[a], target_images_[a]);
-  std::vector<double> weighted = errors;
-  // The adjoint's images w_a (A_a x - r_a), or w_a C^T C (A_a x - r_a): the residual and its weight in one pass
-  // when there is no filter between them.
+  p.op->Apply(x, &images);
+  std::vector<double> weighted(states_.size());
+  for (size_t a = 0; a < states_.size(); ++a) {
+    weighted[a] = SquaredDifference(images[a], p.target_images[a]);
+    (*errors)[a] += p.weight * weighted[a];
+  }
+  // The adjoint's images w_p w_a (A_ap x - r_ap), or w_p w_a C^T C (A_ap x - r_ap): the residual and its weight
+  // in one pass when there is no filter between them.
   if (contrast_sensitivity_) {
     for (size_t a = 0; a < states_.size(); ++a) {
       std::vector<float>& image = images[a];
-      const std::vector<float>& target = target_images_[a];
+      const std::vector<float>& target = p.target_images[a];
 #pragma omp parallel for schedule(static)
       for (size_t i = 0; i < image.size(); ++i) image[i] = image[i] - target[i];
     }
     weighted = WeightResiduals();
   }
-  double f = 0;
-  for (size_t a = 0; a < states_.size(); ++a) f += weights_[a] * weighted[a];
-  if (m_r) {
-    for (size_t a = 0; a < states_.size(); ++a) {
-      std::vector<float>& image = images[a];
-      const std::vector<float>& target = target_images_[a];
-      const float w = static_cast<float>(weights_[a]);
-      if (contrast_sensitivity_) {
+  for (size_t a = 0; a < states_.size(); ++a) *f += p.weight * weights_[a] * weighted[a];
+  if (!m_r) return;
+  for (size_t a = 0; a < states_.size(); ++a) {
+    std::vector<float>& image = images[a];
+    const std::vector<float>& target = p.target_images[a];
+    const float w = static_cast<float>(p.weight * weights_[a]);
+    if (contrast_sensitivity_) {
 #pragma omp parallel for schedule(static)
-        for (size_t i = 0; i < image.size(); ++i) image[i] = w * image[i];
-      } else {
+      for (size_t i = 0; i < image.size(); ++i) image[i] = w * image[i];
+    } else {
 #pragma omp parallel for schedule(static)
-        for (size_t i = 0; i < image.size(); ++i) image[i] = w * (image[i] - target[i]);
-      }
+      for (size_t i = 0; i < image.size(); ++i) image[i] = w * (image[i] - target[i]);
     }
-    if (m_r->geometry.ray_count() != x.geometry.ray_count()) *m_r = LightField(x.geometry);
-    operator_->ApplyTranspose(images, m_r);
   }
-  if (per_state) *per_state = std::move(errors);
-  return f;
+  p.op->ApplyTranspose(images, m_r, !first);
+}
+
+size_t RetinalObjective::TableBytes() const {
+  size_t bytes = 0;
+  for (const Pupil& p : pupils_) bytes += p.op->TableBytes();
+  return bytes;
 }
 
 RetinalObjectiveMemory RetinalObjectiveBytes(const DisplayModel& model, const RetinalObjectiveOptions& options,
@@ -172,11 +221,14 @@ RetinalObjectiveMemory RetinalObjectiveBytes(const DisplayModel& model, const Re
   std::vector<std::array<double, 3>> foci;
   for (double d : states) foci.push_back(ChannelAccommodation(eye, d));
   const RetinaGrid grid = GridOf(model.geometry(), options.resolution_rad);
-  const std::vector<PupilPoint> pupil = PupilSamples(eye);
+  const std::vector<std::vector<PupilPoint>> pupils = RetinalPupils(eye, options);
+  const std::vector<PupilPoint>& pupil = pupils.front();
   const LightFieldGeometry& g = model.geometry();
   const size_t samples = size_t(grid.cols) * grid.rows;
   RetinalObjectiveMemory m;
-  m.tables = RetinalOperator::TableBytes(g, model.projection(0).sampling(), grid, pupil, foci);
+  m.pupils = pupils.size();
+  for (const std::vector<PupilPoint>& p : pupils)
+    m.tables += RetinalOperator::TableBytes(g, model.projection(0).sampling(), grid, p, foci);
   m.images = HeapBlockBytes(states.size() * sizeof(std::vector<float>)) +
              states.size() * HeapBlockBytes(samples * 3 * sizeof(float));
   m.apply_buffer = HeapBlockBytes(RetinalOperator::ApplyBufferValues(g, pupil.size()) * sizeof(float));
@@ -196,12 +248,6 @@ double RetinalObjective::FocalStackPsnr(const std::vector<double>& per_state) co
   double sum = 0;
   for (double e : per_state) sum += PsnrDb(e, samples_per_state());
   return sum / static_cast<double>(per_state.size());
-}
-
-std::vector<float> RetinalObjective::RetinalImage(size_t a, const LightField& x) const {
-  std::vector<std::vector<float>> images;
-  operator_->Apply(x, &images);
-  return std::move(images.at(a));
 }
 
 }  // namespace layerlab

@@ -26,6 +26,11 @@
 // most the largest entry of M 1 (Gershgorin); Bound() returns that entry,
 // which the solvers divide by so that the light-field objective's step
 // sizes stay safe (M / Bound() <= I).
+//
+// Over an eyebox distribution of pupils (RetinalObjectiveOptions::pupils)
+// every state is seen from each pupil position p, with its own operator:
+// f = sum_p w_p sum_a w_a || A_ap (L - l) ||^2, sum_p w_p = 1, and M sums
+// the pupils' terms likewise.
 #pragma once
 
 #include <memory>
@@ -45,26 +50,30 @@ class RetinalObjective {
 
   const std::vector<double>& states() const { return states_; }
   const std::vector<double>& weights() const { return weights_; }
-  const RetinaGrid& retina() const { return operator_->retina(); }
-  size_t samples_per_state() const { return operator_->retinal_values(); }
+  const RetinaGrid& retina() const { return grid_; }
+  size_t samples_per_state() const { return pupils_.front().op->retinal_values(); }
+  size_t pupil_count() const { return pupils_.size(); }
   double Bound() const { return bound_; }
-  // The heap bytes of its operator's tables (RetinalObjectiveBytes counts them before it is made).
-  size_t TableBytes() const { return operator_->TableBytes(); }
+  // The heap bytes of its operators' tables (RetinalObjectiveBytes counts them before it is made).
+  size_t TableBytes() const;
 
-  // f(x); *per_state (if given) gets || A_a (x - l) ||^2 of each state, unweighted.
+  // f(x); *per_state (if given) gets || A_a (x - l) ||^2 of each state, unweighted by the states' weights (over
+  // an eyebox, the pupils' weighted mean sum_p w_p || A_ap (x - l) ||^2).
   double Evaluate(const LightField& x, std::vector<double>* per_state = nullptr) const;
   // f(x), and *m_r = M (x - l) (half the gradient in the light field).
   double EvaluateWithAdjoint(const LightField& x, std::vector<double>* per_state, LightField* m_r) const;
 
   // The focal-stack PSNR: the mean over states of each state's PSNR (peak 1).
   double FocalStackPsnr(const std::vector<double>& per_state) const;
-  // The retinal image of state a of `x` ([row][col][channel]).
-  std::vector<float> RetinalImage(size_t a, const LightField& x) const;
 
  private:
+  struct Pupil {
+    double weight = 1;                              // w_p
+    std::unique_ptr<RetinalOperator> op;            // every state's A_ap
+    std::vector<std::vector<float>> target_images;  // A_ap l, or r_ap traced
+  };
   std::vector<double> states_, weights_;
-  std::unique_ptr<RetinalOperator> operator_;      // every state's A_a
-  std::vector<std::vector<float>> target_images_;  // A_a l, or r_a traced
+  std::vector<Pupil> pupils_;
   // The display's retinal images, kept between calls so that each evaluation touches no fresh pages (14 states of
   // 400 x 200 x 3 floats are 13 MB): one evaluation at a time per objective.
   mutable std::vector<std::vector<float>> images_;
@@ -73,15 +82,19 @@ class RetinalObjective {
   bool contrast_sensitivity_ = false;
   // The weighted errors of images_ (residuals on entry, C^T C residuals on return), per state.
   std::vector<double> WeightResiduals() const;
+  // Adds pupil p's w_p-weighted errors to *errors and *f, and its adjoint to *m_r (`first`: written).
+  void AddPupil(const Pupil& p, const LightField& x, std::vector<double>* errors, double* f, LightField* m_r,
+                bool first) const;
 };
 
 // What a RetinalObjective of `options` for `model` allocates, in heap bytes
 // (framework/heap_block.h, huge_page_allocator.h), known before it is made:
 // for the memory estimate (solvers/memory_estimate.h).
 struct RetinalObjectiveMemory {
-  size_t tables = 0;        // the retinal operator's (RetinalOperator::TableBytes)
-  size_t images = 0;        // one set of retinal images, every state's: the target's and the display's are kept
-  size_t apply_buffer = 0;  // the operator's Apply buffer, kept
+  size_t pupils = 1;  // pupil positions, an operator each
+  size_t tables = 0;  // every pupil's retinal operator's (RetinalOperator::TableBytes)
+  size_t images = 0;  // one set of retinal images, every state's: each pupil's target's and the display's are kept
+  size_t apply_buffer = 0;  // one operator's Apply buffer, each kept
   // While a traced target is the rays of a light field (LightFieldRays): the
   // workspace its retinal images are made in (RetinaWorkspace::Layout of
   // LightFieldRetinaSizes), freed before Bound() runs.
@@ -91,12 +104,16 @@ struct RetinalObjectiveMemory {
   size_t construction = 0;
   // While it evaluates with the contrast-sensitivity weighting: each thread's filtered field.
   size_t filter = 0;
-  size_t kept() const { return tables + 2 * images + apply_buffer; }
+  size_t kept() const { return tables + (pupils + 1) * images + pupils * apply_buffer; }
 };
 RetinalObjectiveMemory RetinalObjectiveBytes(const DisplayModel& model, const RetinalObjectiveOptions& options,
                                              int threads);
 
 // The states a RetinalObjectiveOptions names for this eye (its own, or the accommodation range in 0.2 D steps).
 std::vector<double> RetinalStates(const EyeModel& eye, const RetinalObjectiveOptions& options);
+// The pupil samples of each pupil position the options name (the eye's alone when they name none) and the
+// positions' weights scaled to sum to 1; refuses a negative, non-finite or all-zero weight.
+std::vector<std::vector<PupilPoint>> RetinalPupils(const EyeModel& eye, const RetinalObjectiveOptions& options,
+                                                   std::vector<double>* weights = nullptr);
 
 }  // namespace layerlab

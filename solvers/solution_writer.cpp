@@ -62,6 +62,7 @@ nlohmann::json ReportToJson(const SolverReport& r) {
                                        [](const IterationRecord& t) { return !std::isnan(t.focal_stack_psnr_db); });
   if (focal_stack) j["retinal_target"] = r.retinal_target;
   if (r.objective == "retinal") j["contrast_sensitivity"] = r.contrast_sensitivity;
+  if (focal_stack) j["pupil_positions"] = r.pupil_positions;
   for (const IterationRecord& t : r.trace) {
     j["trace"].push_back({{"iteration", t.iteration},
                           {"seconds", t.seconds},

@@ -62,7 +62,8 @@ bool SolveLoop::Start(const std::string& refusal) {
     workspace_ = std::make_unique<SolveWorkspace>(model_, omp_get_max_threads(),
                                                   type ? type->memory.passes : unsigned(kAllPasses));
     if (options_.objective == ObjectiveKind::kRetinal || options_.measure_focal_stack)
-      retinal_ = std::make_unique<RetinalObjective>(model_, target(), options_.retinal);
+      retinal_ = std::make_unique<RetinalObjective>(model_, target(), RetinalOptionsOf(options_));
+    if (retinal_) report_.pupil_positions = retinal_->pupil_count();
   } catch (const Error& e) {
     Fail(e.what());
     return false;

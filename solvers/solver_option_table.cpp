@@ -116,6 +116,30 @@ std::vector<SolverOptionEntry> MakeTable() {
   e.get = [](const SolverOptions& o) { return int(o.retinal.target); };
   e.set = [](SolverOptions& o, int i) { o.retinal.target = RetinalTarget(i); };
   add();
+  e.key = "eyebox_range", e.kind = Kind::kReal, e.type = "length", e.dimension = Dimension::kLength;
+  e.has_range = true, e.range = Closed(0, kMaxEyeboxRange), e.constraint_note = " m (0 = the eye's pupil alone)";
+  e.default_text = "0 m (the eye's pupil alone)";
+  e.meaning =
+      "the retinal objective over an eyebox of pupils: a square grid of pupil positions within this of the eye's, "
+      "in x and y (docs/eye-pose.md)";
+  e.cli_flag = "--eyebox-range";
+  e.cli_help = "Weigh the pupil positions within this of the eye's (retinal objective): m, or with units (\"1 mm\")";
+  e.python = "eyebox_range", e.real = &SolverOptions::eyebox_range_m;
+  add();
+  e.key = "eyebox_step", e.kind = Kind::kReal, e.type = "length", e.dimension = Dimension::kLength;
+  e.has_range = true, e.range = Closed(0, kMaxEyeboxRange), e.constraint_note = " m (0 = eyebox_range)";
+  e.default_text = "eyebox_range (3 x 3 positions)";
+  e.meaning = "the eyebox grid's spacing";
+  e.cli_flag = "--eyebox-step", e.cli_help = "The eyebox grid's spacing: m, or with units (default: the range)";
+  e.python = "eyebox_step", e.real = &SolverOptions::eyebox_step_m;
+  add();
+  e.key = "eyebox_sigma", e.kind = Kind::kReal, e.type = "length", e.dimension = Dimension::kLength;
+  e.has_range = true, e.range = Closed(0, 1), e.constraint_note = " m (0 = uniform)";
+  e.default_text = "0 m (uniform)";
+  e.meaning = "the eyebox grid's weights: a Gaussian of this standard deviation about the eye's pupil";
+  e.cli_flag = "--eyebox-sigma", e.cli_help = "The eyebox grid's weights, a Gaussian of this width (default: uniform)";
+  e.python = "eyebox_sigma", e.real = &SolverOptions::eyebox_sigma_m;
+  add();
 
   // Not in the scene file.
   e.key = "epsilon", e.kind = Kind::kReal, e.type = "number", e.in_scene = false, e.has_range = true;

@@ -1,3 +1,7 @@
+#include <cmath>
+
+#include "layerlab/framework/error.h"
+#include "layerlab/framework/units.h"
 #include "layerlab/solvers/solver.h"
 #include "layerlab/solvers/solver_option_table.h"
 
@@ -25,6 +29,18 @@ const std::vector<SolverOptionKey>& CommonSolverOptionKeys() {
 
 SolverOptionKey SubIterationsKey() { return {"sub_iterations", FindSolverOption("sub_iterations")->meaning}; }
 
+namespace {
+
+double EyeboxStep(const SolverOptions& o) { return o.eyebox_step_m > 0 ? o.eyebox_step_m : o.eyebox_range_m; }
+
+// The eyebox grid's positions: (2 n + 1)^2, n the whole steps within the range.
+double EyeboxPupilCount(const SolverOptions& o) {
+  const double n = std::floor(o.eyebox_range_m / EyeboxStep(o) * (1 + 1e-12));
+  return (2 * n + 1) * (2 * n + 1);
+}
+
+}  // namespace
+
 // The ranges are the option table's; what relates two options is checked here.
 bool SolverOptions::IsValid(std::string* error) const {
   auto fail = [&](const std::string& field, double value, const std::string& constraint) {
@@ -40,10 +56,52 @@ bool SolverOptions::IsValid(std::string* error) const {
         "\"lightfield\"; set the objective to \"retinal\" or leave contrast_sensitivity out";
     return false;
   }
+  if (eyebox_range_m > 0) {
+    if (objective != ObjectiveKind::kRetinal && !measure_focal_stack) {
+      *error =
+          "eyebox_range: weighs pupil positions in the retinal objective, and this solve's objective is "
+          "\"lightfield\" (which weighs every view of the eyebox alike); set the objective to \"retinal\"";
+      return false;
+    }
+    if (eyebox_step_m > eyebox_range_m)
+      return fail("eyebox_step", eyebox_step_m, "must be at most eyebox_range (" + FormatGeneral(eyebox_range_m) + ")");
+    if (const double pupils = EyeboxPupilCount(*this); pupils > kMaxEyeboxPupils)
+      return fail("eyebox_step", eyebox_step_m,
+                  "makes a grid of " + FormatGeneral(pupils) + " pupil positions, more than " +
+                      std::to_string(kMaxEyeboxPupils) + " (each holds its own retinal tables)");
+  } else if (eyebox_step_m > 0 || eyebox_sigma_m > 0) {
+    *error = std::string(eyebox_step_m > 0 ? "eyebox_step" : "eyebox_sigma") +
+             ": describes the eyebox grid of eyebox_range, which is 0 (the eye's pupil alone)";
+    return false;
+  }
   if (objective == ObjectiveKind::kRetinal && !retinal.weights.empty() &&
       retinal.weights.size() != retinal.states_diopters.size())
     return fail("retinal.weights", double(retinal.weights.size()), "must be one per state (retinal.states)");
   return true;
+}
+
+std::vector<PupilWeight> EyeboxPupils(const SolverOptions& o) {
+  std::vector<PupilWeight> pupils;
+  if (!(o.eyebox_range_m > 0)) return pupils;
+  if (EyeboxPupilCount(o) > kMaxEyeboxPupils)
+    throw Error("eyebox_step: makes more than " + std::to_string(kMaxEyeboxPupils) + " pupil positions");
+  const double step = EyeboxStep(o);
+  const int half = int(std::floor(o.eyebox_range_m / step * (1 + 1e-12)));
+  for (int j = -half; j <= half; ++j)
+    for (int i = -half; i <= half; ++i) {
+      PupilWeight p{i * step, j * step, 1.0};
+      if (o.eyebox_sigma_m > 0)
+        p.weight = std::exp(-(p.offset_x_m * p.offset_x_m + p.offset_y_m * p.offset_y_m) /
+                            (2 * o.eyebox_sigma_m * o.eyebox_sigma_m));
+      pupils.push_back(p);
+    }
+  return pupils;
+}
+
+RetinalObjectiveOptions RetinalOptionsOf(const SolverOptions& o) {
+  RetinalObjectiveOptions r = o.retinal;
+  if (r.pupils.empty()) r.pupils = EyeboxPupils(o);
+  return r;
 }
 
 std::string ToString(Termination t) {

@@ -40,6 +40,7 @@ std::string SolverReport::FullReport() const {
     what = contrast_sensitivity ? " over the focal stack's retinal samples, weighted by contrast sensitivity"
                                 : " over the focal stack's retinal samples";
     if (retinal_target == "traced") what += ", against the traced target scene";
+    if (pupil_positions > 1) what += ", from " + std::to_string(pupil_positions) + " pupil positions";
   }
   std::snprintf(buf, sizeof buf, "objective            %.9g -> %.9g (sum of squared errors%s)\n", initial_objective,
                 final_objective, what.c_str());
@@ -48,7 +49,9 @@ std::string SolverReport::FullReport() const {
          " (light field; peak 1 = display white)\n";
   if (!trace.empty() && !std::isnan(trace.back().focal_stack_psnr_db))
     out += "focal-stack PSNR     " + Db(trace.front().focal_stack_psnr_db) + " -> " +
-           Db(trace.back().focal_stack_psnr_db) + " (mean over accommodation states)\n";
+           Db(trace.back().focal_stack_psnr_db) +
+           (pupil_positions > 1 ? " (mean over accommodation states of the pupil positions' weighted mean error)\n"
+                                : " (mean over accommodation states)\n");
   std::snprintf(buf, sizeof buf, "target out of range  %zu values; scale %.6g\n", out_of_range, target_scale);
   out += buf;
   out += WarningLines(warnings);

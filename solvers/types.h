@@ -19,6 +19,13 @@ namespace layerlab {
 // What the display's retinal images are compared with.
 enum class RetinalTarget { kLightField, kTraced };
 
+// One pupil position of an eyebox distribution: where the pupil's centre sits
+// relative to the scene eye's (its pupil_offset), and its weight.
+struct PupilWeight {
+  double offset_x_m = 0, offset_y_m = 0;
+  double weight = 1;
+};
+
 struct RetinalObjectiveOptions {
   std::vector<double> states_diopters;  // D; empty: the eye's accommodation_range in kDefaultStateStep steps
   std::vector<double> weights;          // one per state; empty: every state 1
@@ -30,8 +37,13 @@ struct RetinalObjectiveOptions {
   // Weight each state's residual by the eye's contrast sensitivity (eye/contrast_sensitivity.h):
   // || C (A_a L - r_a) ||^2 with C the gain S(f) at spatial frequency f, the image taken as periodic.
   bool contrast_sensitivity = false;
+  // The pupil positions the objective weighs (an eyebox distribution: EyeboxPupils), each seen at every state:
+  // f = sum_p w_p sum_a w_a || A_ap (L - l) ||^2, the w_p scaled to sum to 1. Empty: the scene eye's pupil alone.
+  std::vector<PupilWeight> pupils;
 };
 inline constexpr double kDefaultStateStep = 0.2;  // D
+inline constexpr double kMaxEyeboxRange = 0.01;   // m: SolverOptions::eyebox_range_m
+inline constexpr int kMaxEyeboxPupils = 81;       // pupil positions of an eyebox grid (each its own tables)
 
 // What to do with target values the display cannot reach (above the sum of
 // its branch weights in a channel).
@@ -77,6 +89,10 @@ struct SolverOptions {
   TargetRange target_range = TargetRange::kClip;
   ObjectiveKind objective = ObjectiveKind::kLightField;
   RetinalObjectiveOptions retinal;  // the states and their weights, with ObjectiveKind::kRetinal
+  // The retinal objective over an eyebox distribution of pupils (retinal.pupils, when that is empty):
+  // a square grid within eyebox_range of the eye's pupil in x and y, eyebox_step apart (0: the range, a
+  // 3 x 3 grid), weighted uniformly or by a Gaussian of eyebox_sigma (0: uniform). 0 range: the eye's pupil.
+  double eyebox_range_m = 0, eyebox_step_m = 0, eyebox_sigma_m = 0;
   // With the light-field objective: also measure the focal-stack PSNR of
   // every trace row, off the clock (the trace's seconds leave it out), so
   // that both objectives' solutions compare at equal solver time.
@@ -102,6 +118,12 @@ struct SolverOptions {
   bool IsValid(std::string* error) const;
 };
 
+// The grid of pupil positions eyebox_range, _step and _sigma name (row by row from the lowest y, x rising; the
+// objective scales the weights to sum to 1); empty when eyebox_range is 0.
+std::vector<PupilWeight> EyeboxPupils(const SolverOptions& o);
+// The retinal objective's options of a solve: `retinal`, its pupils the eyebox grid's when it names none.
+RetinalObjectiveOptions RetinalOptionsOf(const SolverOptions& o);
+
 enum class Termination { kNotRun, kIterationLimit, kTimeBudget, kConverged, kInterrupted, kInvalidOptions, kFailed };
 std::string ToString(Termination t);
 
@@ -122,6 +144,7 @@ struct SolverReport {
   // The focal stack's target images (RetinalObjectiveOptions::target), when a focal stack was measured.
   std::string retinal_target = "lightfield";
   bool contrast_sensitivity = false;  // the retinal objective's residuals weighted by it
+  size_t pupil_positions = 1;         // the focal stack's pupil positions (an eyebox distribution's, or 1)
   Termination termination = Termination::kNotRun;
   std::string message = "not run";
   int iterations = 0;

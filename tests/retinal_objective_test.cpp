@@ -3,7 +3,8 @@
 // against <A x, y> = <x, A^T y>, and the retinal objective
 // (solvers/retinal_objective.h, retinal_pass.h): its gradient against
 // central differences, its pinhole one-state case against the light-field
-// objective of the centre view, and a recovered known focal stack.
+// objective of the centre view, a recovered known focal stack, and the
+// objective over an eyebox of pupils against its single pupils' objectives.
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -241,6 +242,142 @@ void ExpectGradientMatchesCentralDifferences(const DisplayModel& model, const Li
       EXPECT_NEAR(gradient, difference, 2e-3 * std::abs(difference) + 1e-6 * f / h)
           << name << ", layer " << k << ", value " << i;
     }
+}
+
+// Over an eyebox of pupils the objective is the pupils' weighted sum of the
+// single-pupil objectives, each made separately from a scene whose eye sits
+// at that pupil position: its value, each state's error and its adjoint
+// (half the gradient in the light field).
+TEST(EyeboxObjective, IsThePupilsWeightedSumOfSingleEyeObjectives) {
+  const DisplaySystem system = CompileJson(ShrunkExample("paper_prototype.json", 24, 12, 5));
+  const DisplayModel model(system, DisplayLightFieldGeometry(system));
+  const LightField target = Synthesize(model, RandomPatterns(model, 8, 0.1f, 1.0f));
+  const LightField x = Synthesize(model, RandomPatterns(model, 9, 0.0f, 1.0f));
+  RetinalObjectiveOptions o = FewStates();
+  o.pupils = {{0, 0, 1.0}, {0.6e-3, 0, 3.0}, {0, -0.4e-3, 0.0}};
+  const RetinalObjective eyebox(model, target, o);
+  ASSERT_EQ(eyebox.pupil_count(), 3u);
+  std::vector<double> per_state;
+  LightField adjoint(model.geometry());
+  const double f = eyebox.EvaluateWithAdjoint(x, &per_state, &adjoint);
+
+  double expected = 0;
+  std::vector<double> expected_states(3, 0.0);
+  std::vector<double> expected_adjoint(adjoint.rgb.size(), 0.0);
+  const double share[] = {0.25, 0.75, 0.0};
+  for (size_t p = 0; p < 3; ++p) {
+    DisplaySystem moved = system;
+    moved.eye.pose.pupil_offset_m = {o.pupils[p].offset_x_m, o.pupils[p].offset_y_m};
+    const DisplayModel moved_model(moved, DisplayLightFieldGeometry(moved));
+    ASSERT_EQ(moved_model.geometry().ray_count(), model.geometry().ray_count());
+    const RetinalObjective single(moved_model, target, FewStates());
+    std::vector<double> states;
+    LightField m(model.geometry());
+    expected += share[p] * single.EvaluateWithAdjoint(x, &states, &m);
+    for (size_t a = 0; a < 3; ++a) expected_states[a] += share[p] * states[a];
+    for (size_t i = 0; i < m.rgb.size(); ++i) expected_adjoint[i] += share[p] * m.rgb[i];
+  }
+  EXPECT_GT(f, 0);
+  EXPECT_NEAR(f, expected, 1e-6 * expected);
+  for (size_t a = 0; a < 3; ++a) EXPECT_NEAR(per_state[a], expected_states[a], 1e-6 * expected_states[a]) << a;
+  double largest = 0, scale = 0;
+  for (size_t i = 0; i < adjoint.rgb.size(); ++i) {
+    largest = std::max(largest, std::abs(adjoint.rgb[i] - expected_adjoint[i]));
+    scale = std::max(scale, std::abs(expected_adjoint[i]));
+  }
+  EXPECT_GT(scale, 0);
+  EXPECT_LT(largest, 1e-5 * scale);
+}
+
+// The pupils' sum is still the objective's derivative (central differences),
+// with a Gaussian-weighted 3 x 3 grid.
+TEST(EyeboxObjective, GradientMatchesCentralDifferences) {
+  const DisplaySystem system = CompileJson(ShrunkExample("paper_prototype.json", 24, 12, 5));
+  const DisplayModel model(system, DisplayLightFieldGeometry(system));
+  const LightField target = Synthesize(model, RandomPatterns(model, 8, 0.1f, 1.0f));
+  SolverOptions solve;
+  solve.objective = ObjectiveKind::kRetinal;
+  solve.retinal = FewStates();
+  solve.eyebox_range_m = 0.5e-3, solve.eyebox_sigma_m = 0.5e-3;
+  const RetinalObjective objective(model, target, RetinalOptionsOf(solve));
+  ASSERT_EQ(objective.pupil_count(), 9u);
+  ExpectGradientMatchesCentralDifferences(model, target, objective, RandomPatterns(model, 11, 0.2f, 0.9f), 3, "eyebox");
+}
+
+// The grid by hand: (2 n + 1)^2 positions n = range / step apart, row by row
+// from the lowest y; Gaussian weights exp(-r^2 / 2 sigma^2), scaled to sum to
+// 1 by the objective, whose pupil samples sit at each position.
+TEST(EyeboxObjective, TheGridAndItsWeights) {
+  SolverOptions o;
+  o.objective = ObjectiveKind::kRetinal;
+  EXPECT_TRUE(EyeboxPupils(o).empty());
+  o.eyebox_range_m = 1e-3;
+  std::vector<PupilWeight> grid = EyeboxPupils(o);
+  ASSERT_EQ(grid.size(), 9u);
+  EXPECT_EQ(grid.front().offset_x_m, -1e-3);
+  EXPECT_EQ(grid.front().offset_y_m, -1e-3);
+  EXPECT_EQ(grid[5].offset_x_m, 1e-3);
+  EXPECT_EQ(grid[5].offset_y_m, 0);
+  for (const PupilWeight& p : grid) EXPECT_EQ(p.weight, 1);
+  o.eyebox_step_m = 0.5e-3, o.eyebox_sigma_m = 0.8e-3;
+  grid = EyeboxPupils(o);
+  ASSERT_EQ(grid.size(), 25u);
+  EXPECT_EQ(grid[12].offset_x_m, 0);
+  EXPECT_NEAR(grid[0].weight / grid[12].weight, std::exp(-2.0 / (2 * 0.64)), 1e-14);
+  EXPECT_NEAR(grid[13].weight / grid[12].weight, std::exp(-0.25 / (2 * 0.64)), 1e-14);
+
+  EyeModel eye;
+  eye.pose.pupil_offset_m = {0.2e-3, 0};
+  RetinalObjectiveOptions r = RetinalOptionsOf(o);
+  std::vector<double> weights;
+  const std::vector<std::vector<PupilPoint>> pupils = RetinalPupils(eye, r, &weights);
+  ASSERT_EQ(pupils.size(), 25u);
+  double sum = 0, centre_x = 0;
+  for (double w : weights) sum += w;
+  EXPECT_NEAR(sum, 1, 1e-15);
+  const std::vector<PupilPoint> own = PupilSamples(eye);
+  ASSERT_EQ(pupils[0].size(), own.size());
+  for (size_t i = 0; i < own.size(); ++i) {
+    EXPECT_NEAR(pupils[0][i].x_m, own[i].x_m - 1e-3, 1e-15);
+    EXPECT_NEAR(pupils[0][i].y_m, own[i].y_m - 1e-3, 1e-15);
+    centre_x += pupils[0][i].center_x_m;
+  }
+  EXPECT_NEAR(centre_x / double(own.size()), -0.8e-3, 1e-15);
+}
+
+TEST(EyeboxObjective, BadGridsAndWeightsAreRefused) {
+  SolverOptions o;
+  o.eyebox_range_m = 1e-3;
+  std::string error;
+  EXPECT_FALSE(o.IsValid(&error));
+  EXPECT_NE(error.find("eyebox_range: weighs pupil positions in the retinal objective"), std::string::npos) << error;
+  o.objective = ObjectiveKind::kRetinal;
+  EXPECT_TRUE(o.IsValid(&error)) << error;
+  o.eyebox_step_m = 2e-3;
+  EXPECT_FALSE(o.IsValid(&error));
+  EXPECT_EQ(error, "eyebox_step: 0.002: must be at most eyebox_range (0.001)");
+  o.eyebox_step_m = 0.2e-3;  // 11 x 11
+  EXPECT_FALSE(o.IsValid(&error));
+  EXPECT_EQ(error,
+            "eyebox_step: 0.0002: makes a grid of 121 pupil positions, more than 81 (each holds its own "
+            "retinal tables)");
+  EXPECT_EQ(ErrorOf([&] { EyeboxPupils(o); }), "eyebox_step: makes more than 81 pupil positions");
+  o.eyebox_step_m = 0.25e-3;  // 9 x 9
+  EXPECT_TRUE(o.IsValid(&error)) << error;
+  o.eyebox_range_m = 0;
+  EXPECT_FALSE(o.IsValid(&error));
+  EXPECT_EQ(error, "eyebox_step: describes the eyebox grid of eyebox_range, which is 0 (the eye's pupil alone)");
+  o.eyebox_range_m = 0.02;
+  EXPECT_FALSE(o.IsValid(&error));
+  EXPECT_NE(error.find("eyebox_range: 0.02: must be in [0, 0.01]"), std::string::npos) << error;
+
+  EyeModel eye;
+  RetinalObjectiveOptions r;
+  r.pupils = {{0, 0, 0.0}, {1e-3, 0, 0.0}};
+  EXPECT_EQ(ErrorOf([&] { RetinalPupils(eye, r); }), "the retinal objective's pupil positions all have weight 0");
+  r.pupils[1].weight = -1;
+  EXPECT_EQ(ErrorOf([&] { RetinalPupils(eye, r); }),
+            "a pupil position's weight in the retinal objective must be finite and >= 0");
 }
 
 TEST(RetinalObjective, GradientMatchesCentralDifferences) {

@@ -116,15 +116,19 @@ TEST(SolveMemory, ClippedCopyCountedWhenTheTargetNeedsIt) {
 }
 
 // The retinal objective's tables, counted before it is made
-// (RetinalObjectiveBytes), are the bytes its operator holds once made.
+// (RetinalObjectiveBytes), are the bytes its operators hold once made.
 TEST(SolveMemory, RetinalTablesCountedBeforeTheObjectiveIsMade) {
   const DisplaySystem system = CompileJson(ShrunkExample("paper_prototype.json", 40, 20, 5));
   for (Sampling sampling : {Sampling::kNearest, Sampling::kBilinear}) {
     const DisplayModel model(system, DisplayLightFieldGeometry(system), sampling);
     const LightField target = Synthesize(model, RandomPatterns(model, 8));
-    const RetinalObjectiveOptions options;
+    RetinalObjectiveOptions options;
     const RetinalObjective objective(model, target, options);
     EXPECT_EQ(RetinalObjectiveBytes(model, options, 2).tables, objective.TableBytes()) << ToString(sampling);
+    options.pupils = {{0, 0, 1.0}, {0.7e-3, -0.3e-3, 1.0}};  // an eyebox's pupils: a set of tables each
+    const RetinalObjective eyebox(model, target, options);
+    EXPECT_EQ(RetinalObjectiveBytes(model, options, 2).tables, eyebox.TableBytes()) << ToString(sampling);
+    EXPECT_GT(eyebox.TableBytes(), objective.TableBytes());
   }
 }
 

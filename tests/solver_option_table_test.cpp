@@ -96,12 +96,20 @@ TEST(SolverOptionTable, KeysFlagsAndPythonNamesAreEachOnceAndEveryFieldHasItsAcc
   }
 }
 
+// Options in which `e`'s relations to the others hold across its range: the eyebox grid's keys describe the
+// retinal objective's grid of the largest range.
+SolverOptions Base(const SolverOptionEntry& e) {
+  SolverOptions o;
+  if (e.key.rfind("eyebox_", 0) == 0) o.objective = ObjectiveKind::kRetinal, o.eyebox_range_m = kMaxEyeboxRange;
+  return o;
+}
+
 TEST(SolverOptionTable, IsValidRefusesExactlyWhatLiesOutsideEachRange) {
   for (const SolverOptionEntry& e : SolverOptionTable()) {
     if (!e.has_range) continue;
     const bool integer = e.kind == SolverOptionKind::kInteger;
     for (bool at_min : {true, false}) {
-      SolverOptions o;
+      SolverOptions o = Base(e);
       std::string why;
       Set(e, &o, Inside(e.range, integer, at_min));
       EXPECT_TRUE(o.IsValid(&why)) << e.key << " at " << Inside(e.range, integer, at_min) << ": " << why;
@@ -111,7 +119,7 @@ TEST(SolverOptionTable, IsValidRefusesExactlyWhatLiesOutsideEachRange) {
       EXPECT_NE(why.find(e.Constraint()), std::string::npos) << why;
     }
     if (!e.real) continue;
-    SolverOptions o;
+    SolverOptions o = Base(e);
     std::string why;
     Set(e, &o, std::numeric_limits<double>::quiet_NaN());
     EXPECT_FALSE(o.IsValid(&why)) << e.key << " at nan";
