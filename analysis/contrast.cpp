@@ -154,6 +154,16 @@ struct CurveSolve {
 struct CurveView {
   size_t display, target, index;  // of_target[target][index]
   size_t model, patterns;
+  size_t seer = kOwnEye;  // the display's eye, or moved_[seer]
+  static constexpr size_t kOwnEye = size_t(-1);
+};
+
+// A display's eye with its pupil moved across the eyebox (ContrastOptions::eyebox_range_m).
+struct MovedEye {
+  size_t display;
+  std::array<double, 2> moved_m;
+  EyeModel eye;
+  std::vector<PupilPoint> pupil;
 };
 
 // The eye that sees the curve; a binocular one verges on the target, on the midline at its depth.
@@ -191,6 +201,14 @@ class ContrastRun {
       accommodation_.push_back(a);
     }
     for (const ContrastDisplay& d : displays) pupils_.push_back(PupilSamples(d.system.eye));
+    for (size_t di = 0; di < displays.size(); ++di)
+      for (const std::array<double, 2>& m : EyeboxGridOffsets(o.eyebox_range_m, o.eyebox_step_m)) {
+        if (m[0] == 0 && m[1] == 0) continue;  // the eye's own curves
+        EyeModel eye = displays[di].system.eye;
+        eye.pose.pupil_offset_m[0] += m[0];
+        eye.pose.pupil_offset_m[1] += m[1];
+        moved_.push_back({di, m, eye, PupilSamples(eye)});
+      }
     retina_ = MakeRetinaGrid(o.retina_field_deg * kRadiansPerDegree, 3 * o.retina_resolution_deg * kRadiansPerDegree,
                              o.retina_resolution_deg * kRadiansPerDegree);
     retina_.center_x_rad = o.field_center_deg * kRadiansPerDegree;
@@ -204,7 +222,8 @@ class ContrastRun {
   std::vector<ContrastCurve> Run() {
     PlanCurves();
     SolveCurves();
-    for (size_t di = 0; di < displays_.size(); ++di) SweepDisplay(di);
+    for (size_t di = 0; di < displays_.size(); ++di) SweepDisplay(di, CurveView::kOwnEye);
+    for (size_t m = 0; m < moved_.size(); ++m) SweepDisplay(moved_[m].display, m);
     std::vector<ContrastCurve> curves;
     for (std::vector<ContrastCurve>& of : of_target_)
       for (ContrastCurve& c : of) curves.push_back(std::move(c));
@@ -331,6 +350,13 @@ class ContrastRun {
     ContrastCurve curve = Blank(d.name, dt, f);
     curve.reference_amplitude = reference;  // a curve factorized for another display is normalized as its own
     AddCurve(di, target_index, curve, own, own);
+    for (size_t m = 0; m < moved_.size(); ++m)
+      if (moved_[m].display == di) {
+        ContrastCurve seen = curve;
+        seen.display = MovedPupilName(d.name, moved_[m].moved_m);
+        seen.pupil_moved = true, seen.pupil_moved_m = moved_[m].moved_m;
+        AddCurve(di, target_index, seen, own, own, m);
+      }
     if (foreign_) {
       curve.display = FactorizedForName(d.name, foreign_->name);
       AddCurve(di, target_index, curve, own, foreign_solves_[target_index]);
@@ -345,14 +371,17 @@ class ContrastRun {
     return solves_.size() - 1;
   }
 
-  // Display di's curve of solves_[patterns] seen through it (its layers read by solves_[model]'s model).
-  void AddCurve(size_t di, size_t target_index, ContrastCurve curve, size_t model, size_t patterns) {
+  // Display di's curve of solves_[patterns] seen through it (its layers read by solves_[model]'s model), by its
+  // eye or moved_[seer].
+  void AddCurve(size_t di, size_t target_index, ContrastCurve curve, size_t model, size_t patterns,
+                size_t seer = CurveView::kOwnEye) {
     const CurveSolve& s = solves_[patterns];
-    SetEye(&curve, displays_[di].system.eye);
+    curve.scene = displays_[di].name;
+    SetEye(&curve, seer == CurveView::kOwnEye ? displays_[di].system.eye : moved_[seer].eye);
     curve.solver = s.solver;
     if (patterns != model) curve.factorized_for = s.display->name;
     of_target_[target_index].push_back(std::move(curve));
-    views_.push_back({di, target_index, of_target_[target_index].size() - 1, model, patterns});
+    views_.push_back({di, target_index, of_target_[target_index].size() - 1, model, patterns, seer});
   }
 
   // The reference amplitude of natural viewing of the display's sampled
@@ -430,15 +459,17 @@ class ContrastRun {
     s->psnr_db = report.final_psnr_db;
   }
 
-  // The display's curves swept together; each is given an equal share of the time.
-  void SweepDisplay(size_t di) {
+  // The display's curves seen by one eye (its own, or moved_[seer]) swept together; each is given an equal
+  // share of the time.
+  void SweepDisplay(size_t di, size_t seer) {
     std::vector<const CurveView*> of_display;
     std::vector<ContrastCurve*> of;
     for (const CurveView& v : views_)
-      if (v.display == di) of_display.push_back(&v), of.push_back(&of_target_[v.target][v.index]);
+      if (v.display == di && v.seer == seer) of_display.push_back(&v), of.push_back(&of_target_[v.target][v.index]);
     if (of_display.empty()) return;
-    const EyeModel& eye = displays_[di].system.eye;
-    const std::vector<PupilPoint>& pupil = pupils_[di];
+    const bool own = seer == CurveView::kOwnEye;
+    const EyeModel& eye = own ? displays_[di].system.eye : moved_[seer].eye;
+    const std::vector<PupilPoint>& pupil = own ? pupils_[di] : moved_[seer].pupil;
     const auto start = std::chrono::steady_clock::now();
     Sweep(
         eye,
@@ -465,6 +496,7 @@ class ContrastRun {
   const EyeModel& first_eye_;
   std::vector<double> accommodation_;
   std::vector<std::vector<PupilPoint>> pupils_;
+  std::vector<MovedEye> moved_;
   RetinaGrid retina_, shifted_;
   RetinaGrid grids_[2];
   PlaneTextureFactory texture_of_;
@@ -536,6 +568,12 @@ std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displ
   if (std::string why = ContrastDisplayProblem(displays, o, factorized_for); !why.empty())
     throw Error("contrast: " + why);
   return ContrastRun(displays, o, factorized_for).Run();
+}
+
+std::string MovedPupilName(const std::string& display, const std::array<double, 2>& moved_m) {
+  char text[64];
+  std::snprintf(text, sizeof text, " (pupil %+.2f %+.2f mm)", moved_m[0] * 1e3, moved_m[1] * 1e3);
+  return display + text;
 }
 
 std::string FactorizedForName(const std::string& display, const std::string& other) {

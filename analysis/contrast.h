@@ -12,6 +12,7 @@
 // whole field) or in meters on the plane (f cpd at the line of sight only).
 #pragma once
 
+#include <array>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -80,6 +81,9 @@ struct ContrastOptions {
   // accommodation step) is "flat": the curve is too flat to place one.
   bool peak_uncertainty = true;
   double flat_limit_diopters = 0.05;
+  // Each display's curves also seen from a grid of pupil positions (EyeboxGridOffsets) around its eye's, m:
+  // the same factorizations, swept again from each (ContrastCurve::pupil_moved_m). 0: none.
+  double eyebox_range_m = 0, eyebox_step_m = 0;
   std::function<void(const std::string&)> progress;
   bool show_progress = false;  // a progress line on stderr (framework/progress.h)
 
@@ -88,11 +92,18 @@ struct ContrastOptions {
   bool IsValid(std::string* error) const;
 };
 
+inline constexpr double kMaxContrastEyeboxRange = 0.01;  // m
+inline constexpr int kMaxContrastEyeboxPupils = 81;
+
 struct ContrastCurve {
   std::string convention;      // ConventionLabel(reference, grating)
   std::string display;         // "natural" for natural viewing; "D (factorized for S)" for S's patterns seen through D
   std::string factorized_for;  // the display the patterns were solved on when not this one (S), else ""
+  std::string scene;           // the display's own name (its scene's); "" for natural viewing
   std::string eye;             // EyeModelLine of the eye that saw it
+  // Seen from the display eye's pupil moved by this (m; ContrastOptions::eyebox_range_m), else {0, 0}.
+  std::array<double, 2> pupil_moved_m = {0, 0};
+  bool pupil_moved = false;
   // A binocular eye's vergence demand fixating the target on the midline (VergenceDiopters: D_t); NaN for one eye.
   double vergence_diopters = std::numeric_limits<double>::quiet_NaN();
   double target_diopters = 0, frequency = 0;
@@ -115,6 +126,8 @@ std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displ
 
 // "DISPLAY (factorized for OTHER)": no comma, so it is one CSV cell.
 std::string FactorizedForName(const std::string& display, const std::string& other);
+// "DISPLAY (pupil +1.00 +0.00 mm)": the display's curve seen from its eye's pupil moved so, one CSV cell.
+std::string MovedPupilName(const std::string& display, const std::array<double, 2>& moved_m);
 
 // "" when every display (and factorized_for's) can be swept with `options`;
 // else "key: value: why", the option named by its key: the retinal window

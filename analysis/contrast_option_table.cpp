@@ -1,5 +1,6 @@
 #include "layerlab/analysis/contrast_option_table.h"
 
+#include "layerlab/elements/eye_pose.h"
 #include "layerlab/framework/units.h"
 
 namespace layerlab {
@@ -72,6 +73,32 @@ void AddSceneKeys(std::vector<ContrastOptionEntry>& t) {
   add();
 }
 
+// Scene keys too: the curves across the eyebox.
+void AddEyeboxKeys(std::vector<ContrastOptionEntry>& t) {
+  ContrastOptionEntry e;
+  auto add = [&] {
+    t.push_back(e);
+    e = ContrastOptionEntry{};
+  };
+  e.key = "eyebox_range", e.kind = Kind::kReal, e.type = "length", e.dimension = Dimension::kLength;
+  e.has_range = true, e.range = {0, kMaxContrastEyeboxRange, false, false}, e.constraint_note = " m (0 = none)";
+  e.default_text = "0 m";
+  e.meaning =
+      "each display's curves also seen from a square grid of pupil positions within this of the eye's, in x and y "
+      "(the same factorizations; 0: the eye's pupil alone): the accommodation response across the eyebox "
+      "(docs/eye-pose.md)";
+  e.cli_flag = "--eyebox-range";
+  e.cli_help = "Also sweep from the pupil positions within this of the eye's: m, or with units (\"2 mm\")";
+  e.python = "eyebox_range", e.real = &ContrastOptions::eyebox_range_m;
+  add();
+  e.key = "eyebox_step", e.kind = Kind::kReal, e.type = "length", e.dimension = Dimension::kLength;
+  e.has_range = true, e.range = {0, kMaxContrastEyeboxRange, false, false}, e.constraint_note = " m (0 = the range)";
+  e.default_text = "0 m", e.meaning = "the eyebox grid's spacing (0: eyebox_range, 3 x 3 positions)";
+  e.cli_flag = "--eyebox-step", e.cli_help = "The eyebox grid's spacing: m, or with units (default: the range)";
+  e.python = "eyebox_step", e.real = &ContrastOptions::eyebox_step_m;
+  add();
+}
+
 void AddOtherOptions(std::vector<ContrastOptionEntry>& t) {
   ContrastOptionEntry e;
   auto add = [&] {
@@ -113,6 +140,7 @@ const std::vector<ContrastOptionEntry>& ContrastOptionTable() {
   static const std::vector<ContrastOptionEntry> table = [] {
     std::vector<ContrastOptionEntry> t;
     AddSceneKeys(t);
+    AddEyeboxKeys(t);
     AddOtherOptions(t);
     return t;
   }();
@@ -125,6 +153,22 @@ bool ContrastOptions::IsValid(std::string* error) const {
   if (!RangesHold(ContrastOptionTable(), *this, error)) return false;
   if (!(accommodation_step_diopters > 0)) {
     *error = OptionViolation("accommodation.step", accommodation_step_diopters, "must be above 0 D");
+    return false;
+  }
+  if (eyebox_range_m > 0) {
+    if (eyebox_step_m > eyebox_range_m) {
+      *error = OptionViolation("eyebox_step", eyebox_step_m,
+                               "must be at most eyebox_range (" + FormatGeneral(eyebox_range_m) + ")");
+      return false;
+    }
+    if (const double n = EyeboxGridSize(eyebox_range_m, eyebox_step_m); n > kMaxContrastEyeboxPupils) {
+      *error = OptionViolation("eyebox_step", eyebox_step_m,
+                               "makes a grid of " + FormatGeneral(n) + " pupil positions, more than " +
+                                   std::to_string(kMaxContrastEyeboxPupils));
+      return false;
+    }
+  } else if (eyebox_step_m > 0) {
+    *error = "eyebox_step: describes the eyebox grid of eyebox_range, which is 0 (the eye's pupil alone)";
     return false;
   }
   if (!(accommodation_max_diopters > accommodation_min_diopters)) {

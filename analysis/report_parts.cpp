@@ -1,8 +1,11 @@
 #include "layerlab/analysis/report_parts.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 
+#include "layerlab/analysis/contrast_eyebox.h"
 #include "layerlab/analysis/report_sections.h"
 #include "layerlab/framework/atomic_file.h"
 #include "layerlab/framework/error.h"
@@ -119,10 +122,17 @@ void AddContrastToPage(const std::vector<ContrastCurve>& curves, const std::stri
   const ReportImage plot =
       Picture("normalized contrast against accommodation", prefix + "contrast.svg",
               {{"SVG", prefix + "contrast.svg"}, {"CSV", prefix + "contrast.csv"}, {"peaks", prefix + "peaks.txt"}});
-  page->sections.push_back({"contrast",
-                            "Contrast",
-                            {prefix + "contrast.csv", prefix + "peaks.txt", prefix + "contrast.svg"},
-                            ContrastHtml(plot, curves)});
+  std::vector<std::string> files = {prefix + "contrast.csv", prefix + "peaks.txt", prefix + "contrast.svg"};
+  std::optional<ReportImage> eyebox;
+  if (std::any_of(curves.begin(), curves.end(), [](const ContrastCurve& c) { return c.pupil_moved; })) {
+    WriteFileAtomically((out / "eyebox_peaks.csv").string(), ContrastEyeboxCsv(curves));
+    WriteFileAtomically((out / "eyebox_peaks.svg").string(), ContrastEyeboxSvg(curves));
+    files.push_back(prefix + "eyebox_peaks.csv");
+    files.push_back(prefix + "eyebox_peaks.svg");
+    eyebox = Picture("the contrast peak's error across the eyebox", prefix + "eyebox_peaks.svg",
+                     {{"SVG", prefix + "eyebox_peaks.svg"}, {"CSV", prefix + "eyebox_peaks.csv"}});
+  }
+  page->sections.push_back({"contrast", "Contrast", files, ContrastHtml(plot, curves, eyebox ? &*eyebox : nullptr)});
 }
 
 void AddCompareToPage(const std::vector<CompareResult>& results, const std::string& folder, const std::string& prefix,

@@ -95,26 +95,39 @@ std::string RetinaHtml(const std::vector<ReportRetinaState>& states, const Repor
   return h + "</section>\n";
 }
 
-std::string ContrastHtml(const ReportImage& plot, const std::vector<ContrastCurve>& curves) {
+std::string ContrastHtml(const ReportImage& plot, const std::vector<ContrastCurve>& curves, const ReportImage* eyebox) {
   std::string h = "<section id=\"contrast\"><h2>Accommodation support: normalized contrast (Fig. 5)</h2>\n";
   h += "<p class=\"muted\">A cosine grating on a plane at each target depth; each display is factorized for it and the "
        "eye "
        "sweeps its focus. A display supports accommodation when its peak follows the target depth (the grey "
        "band).</p>\n";
   h += "<div class=\"grid\">" + HtmlFigure(plot, "", "plot") + "</div>\n";
+  if (eyebox)
+    h += "<p class=\"muted\">Each display's curves seen again from each pupil position of the eyebox grid, with the "
+         "same factorizations: the peak's error against where the pupil is.</p>\n<div class=\"grid\">" +
+         HtmlFigure(*eyebox, "", "plot") + "</div>\n";
   if (!curves.empty()) h += "<p class=\"muted\">" + Escape(curves.front().convention) + ".</p>\n";
   std::vector<std::string> eyes;  // the eye model of the curves, each once
   for (const ContrastCurve& c : curves)
     if (std::find(eyes.begin(), eyes.end(), c.eye) == eyes.end()) eyes.push_back(c.eye);
   for (const std::string& eye : eyes) h += "<p class=\"muted\">Eye: " + Escape(eye) + ".</p>\n";
+  // A binocular eye's vergence-accommodation conflict: the vergence on the target less the peak.
+  const bool binocular = std::any_of(curves.begin(), curves.end(),
+                                     [](const ContrastCurve& c) { return !std::isnan(c.vergence_diopters); });
   h += "<h3>Peaks</h3>\n<table><tr><th class=\"l\">display</th><th>target (D)</th><th>f (cpd)</th><th>peak (D)</th>"
-       "<th>peak contrast</th><th>at target</th><th class=\"l\">solver</th><th>PSNR (dB)</th><th>solve (s)</th></tr>\n";
-  for (const ContrastCurve& c : curves)
+       "<th>peak contrast</th><th>at target</th><th class=\"l\">solver</th><th>PSNR (dB)</th><th>solve (s)</th>" +
+       std::string(binocular ? "<th>vergence (D)</th><th>VAC (D)</th>" : "") + "</tr>\n";
+  for (const ContrastCurve& c : curves) {
     h += "<tr><td class=\"l\">" + Escape(c.display) + "</td><td>" + F(c.target_diopters, 2) + "</td><td>" +
          F(c.frequency, 1) + "</td><td>" + F(c.estimate.at, 3) + " &plusmn; " + F(c.estimate.uncertainty, 3) +
          (c.estimate.flat ? " (flat)" : "") + "</td><td>" + F(c.peak.value, 3) + "</td><td>" + F(c.at_target, 3) +
          "</td><td class=\"l\">" + Escape(c.solver) + "</td><td>" + (c.solver == "-" ? "&ndash;" : F(c.psnr_db, 2)) +
-         "</td><td>" + F(c.solve_seconds, 2) + "</td></tr>\n";
+         "</td><td>" + F(c.solve_seconds, 2) + "</td>";
+    if (binocular)
+      h += "<td>" + HtmlNumber(c.vergence_diopters, 3) + "</td><td>" +
+           (c.estimate.flat ? "&ndash;" : HtmlNumber(c.vergence_diopters - c.estimate.at, 3)) + "</td>";
+    h += "</tr>\n";
+  }
   return h + "</table>\n</section>\n";
 }
 

@@ -19,7 +19,9 @@ std::string TargetHtml(const std::string& source, const ReportImage& center_view
 std::string SolveHtml(const std::string& brief, const ReportLinks& links, const ReportImage& psnr_plot,
                       const std::vector<ReportImage>& patterns, const std::vector<ReportImage>& panels);
 std::string RetinaHtml(const std::vector<ReportRetinaState>& states, const ReportLinks& links, double white_cd_m2);
-std::string ContrastHtml(const ReportImage& plot, const std::vector<ContrastCurve>& curves);
+// `eyebox`: the peaks' error across the eyebox (analysis/contrast_eyebox.h), when the curves were seen from it.
+std::string ContrastHtml(const ReportImage& plot, const std::vector<ContrastCurve>& curves,
+                         const ReportImage* eyebox = nullptr);
 std::string CompareHtml(const std::vector<CompareResult>& results, const ReportImage& plot);
 
 }  // namespace layerlab

@@ -62,6 +62,11 @@ std::string TargetSceneDigest(const TargetScene& scene) {
   const int version = kTargetRenderVersion;
   digest.add(&version, sizeof version);
   AddGeometry(digest, scene.geometry);
+  if (scene.moved_m != std::array<double, 3>{0, 0, 0}) {  // unmoved scenes keep their keys
+    const char tag[] = "moved";
+    digest.add(tag, sizeof tag);
+    digest.add(scene.moved_m.data(), sizeof scene.moved_m);
+  }
   if (scene.file_bytes)
     AddBytes(digest, *scene.file_bytes);
   else

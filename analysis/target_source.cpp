@@ -66,6 +66,7 @@ std::unique_ptr<Target> LoadOrRenderTarget(const SolveConfig& config, const std:
   target->source = config.target_scene;
 #if LAYERLAB_WITH_EMBREE
   target->scene = scene ? std::move(scene) : std::make_unique<TargetScene>(LoadTarget(config.target_scene));
+  MoveTargetScene(target->scene.get(), config.target_moved_m);
   const LightFieldGeometry& g = target->scene->geometry;
   target->rendered = true;
   target->digest = TargetSceneDigest(*target->scene);

@@ -75,8 +75,9 @@ void RunContrastCommand(const ContrastCommandOptions& o) {
   std::vector<NamedInput> inputs;
   for (const std::string& file : o.scenes) inputs.push_back({file, "a scene"});
   if (foreign) inputs.push_back({o.factorized_for, "a scene"});
-  StagedOutput stage(o.out, "contrast", {"contrast.csv", "peaks.txt", "contrast.svg", "index.html", "report.json"},
-                     inputs);
+  std::vector<std::string> written = {"contrast.csv", "peaks.txt", "contrast.svg", "index.html", "report.json"};
+  if (options.eyebox_range_m > 0) written.insert(written.end(), {"eyebox_peaks.csv", "eyebox_peaks.svg"});
+  StagedOutput stage(o.out, "contrast", written, inputs);
   auto start = std::chrono::steady_clock::now();
   std::vector<ContrastCurve> curves = RunContrast(displays, options, factorized_for);
   double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -95,8 +96,9 @@ void RunContrastCommand(const ContrastCommandOptions& o) {
   }
   stage.Commit();
   std::cout << peaks;
-  std::printf("sweep of %zu curves in %.2f s; wrote %s/{index.html,contrast.csv,peaks.txt,contrast.svg,report.json}\n",
-              curves.size(), seconds, o.out.c_str());
+  std::printf(
+      "sweep of %zu curves in %.2f s; wrote %s/{index.html,contrast.csv,peaks.txt,contrast.svg,report.json%s}\n",
+      curves.size(), seconds, o.out.c_str(), options.eyebox_range_m > 0 ? ",eyebox_peaks.csv,eyebox_peaks.svg" : "");
 }
 
 }  // namespace

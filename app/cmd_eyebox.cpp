@@ -109,6 +109,7 @@ void RunEyeboxCommand(const EyeboxCommandOptions& o) {
   if (!o.sampling.empty()) config.sampling = SamplingFromString(o.sampling);
   SolveConfig given;
   ApplyTargetOption(o.target, given);
+  given.target_moved_m = config.target_moved_m;  // a binocular eye's own display: the target seen from its axis
   if (!o.target.given()) throw Error("eyebox: give the target: --target LF_DIR or --target-scene T.json");
   const EyeboxMapOptions options = ReadEyeboxOptions(o);
 

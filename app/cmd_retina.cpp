@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "layerlab/analysis/report_parts.h"
 #include "layerlab/analysis/retina_sweep.h"
@@ -29,6 +30,7 @@
 #include "layerlab/solvers/solution_writer.h"
 #include "layerlab/solvers/solve_config.h"
 #include "layerlab/systems/compile.h"
+#include "layerlab/systems/eye_pose_limits.h"
 
 namespace layerlab::app {
 
@@ -39,6 +41,7 @@ struct RetinaCommandOptions {
   TargetOption target;
   PoseOption pose;
   std::string accommodation = "0.4,1.0,1.6,2.2", focal_stack, field, resolution = "0.05";
+  std::string eyes = "scene", partner_patterns;
 };
 
 // --accommodation and --focal-stack's states, sorted, without repeats.
@@ -82,6 +85,83 @@ void WriteRetinaPage(const RetinaCommandOptions& o, const Scene& scene, const Di
   WriteReportPage(page, folder);
 }
 
+// One eye's retinal images and page into `folder`: the display of `system` (its eye the one that looks) showing
+// the patterns in `patterns`, and natural viewing of `given`'s target from the same eye. *white: the display's
+// white luminance, cd/m2 (what 1 is).
+std::vector<RetinaStateResult> RetinaOfEye(const RetinaCommandOptions& o, const Scene& scene,
+                                           const DisplaySystem& system, const SolveConfig& config,
+                                           const SolveConfig& given, const std::string& patterns,
+                                           const std::string& label, const std::string& folder, double* white) {
+  const std::vector<double> states = AccommodationStates(o);
+  const double resolution = ParseOptionValue(o.resolution, "--resolution", kDegrees);
+  const std::array<double, 2> field = RetinaField(o, system, resolution);
+  const NaturalViewing seen(given, config.sampling);
+  const LightField* target_lf = seen.light_field();
+  const LightFieldGeometry g = target_lf ? target_lf->geometry : DisplayLightFieldGeometry(system);
+  DisplayModel model(system, g, config.sampling);
+  const Patterns t = ReadPatterns(model, patterns);
+  const SceneRadiance& natural = seen.radiance();
+  RetinaSweepOptions sweep{states, resolution, field[0], field[1], false};
+  Progress progress(label, states.size());
+  const std::vector<RetinaStateResult> results =
+      WriteRetinaSweep(model, t, natural, sweep, folder, [&](size_t done, size_t, const RetinaStateResult& r) {
+        progress.Update(done, "accommodation states traced (" + r.name + ")");
+      });
+  progress.Finish(std::to_string(states.size()) + " states of " + FormatFixed(resolution, 3) + " deg samples");
+  WriteRetinaPage(o, scene, system, model, results, bool(natural), folder);
+  *white = model.white_luminance();
+  return results;
+}
+
+// --eyes both: the page of the pair, each eye's images beside the other's (their own pages in left/ and right/).
+void WriteBothEyesPage(const RetinaCommandOptions& o, const Scene& scene, const std::vector<DisplaySystem>& eyes,
+                       const std::vector<std::vector<RetinaStateResult>>& results, double white, bool natural,
+                       const std::string& folder) {
+  RunReportPage page =
+      CommandPage("retina", o.scene, scene.name.empty() ? std::filesystem::path(o.scene).stem().string() : scene.name,
+                  scene.description, CommandLine());
+  page.system = &eyes[0];
+  for (size_t k = 0; k < eyes.size(); ++k) {
+    const std::string side = eyes[k].eye.binocular->side < 0 ? "left" : "right";
+    double seconds = 0;
+    for (const RetinaStateResult& r : results[k]) seconds += r.seconds;
+    page.steps.push_back({"retina, " + side + " eye (" + std::to_string(results[k].size()) + " states)", seconds});
+    AddRetinaToPage(results[k], ParseNumberList(o.accommodation, "--accommodation", kDiopters, true), natural, white,
+                    side + "/", &page);
+    ReportSection& section = page.sections.back();
+    section.id = side;
+    section.title = side == "left" ? "Left eye" : "Right eye";
+    const std::string opening = "<section id=\"retina\"><h2>";
+    if (section.html.rfind(opening, 0) == 0)
+      section.html = "<section id=\"" + side + "\"><h2>" + section.title + " (<a href=\"" + side +
+                     "/index.html\">its page</a>): " + section.html.substr(opening.size());
+  }
+  WriteReportPage(page, folder);
+}
+
+// --eyes both: the scene's eye and its partner, left first, each looking as the pair's fixation turns it.
+std::vector<DisplaySystem> BothEyes(const RetinaCommandOptions& o, const DisplaySystem& system) {
+  if (!system.eye.binocular)
+    throw Error("--eyes both: the scene's eye is not one of a binocular pair (give the eye a \"binocular\" key)");
+  if (!o.target.target.empty())
+    throw Error(
+        "--eyes both: a light field (--target) holds the rays of one eyebox; give the target scene "
+        "(--target-scene), traced from each eye");
+  if (!system.eye.binocular->shared_display && o.partner_patterns.empty())
+    throw Error(
+        "--eyes both: each eye has a display of its own (\"display\": \"own\"): give the other eye's "
+        "patterns with --partner-patterns");
+  if (system.eye.binocular->shared_display && !o.partner_patterns.empty())
+    throw Error("--partner-patterns: the two eyes share one display, which shows --patterns");
+  DisplaySystem other = system;
+  other.eye = PartnerEye(system.eye);
+  if (const std::string beyond = GazeBeyondField(other, other.eye.pose); !beyond.empty())
+    throw Error("--eyes both: the other eye turns to the fixation: " + beyond);
+  std::vector<DisplaySystem> eyes = {system, other};
+  if (system.eye.binocular->side > 0) std::swap(eyes[0], eyes[1]);
+  return eyes;
+}
+
 void RunRetinaCommand(const RetinaCommandOptions& o) {
   // Everything is read and checked before anything is written.
   Scene scene = LoadScene(o.scene);
@@ -94,36 +174,46 @@ void RunRetinaCommand(const RetinaCommandOptions& o) {
   if (!o.sampling.empty()) config.sampling = SamplingFromString(o.sampling);
   SolveConfig given;  // natural viewing of this target only, never of the scene's own
   ApplyTargetOption(o.target, given);
-  const std::vector<double> states = AccommodationStates(o);
-  const double resolution = ParseOptionValue(o.resolution, "--resolution", kDegrees);
-  const std::array<double, 2> field = RetinaField(o, system, resolution);
-  StagedOutput stage(o.out, "retina", {"display", "natural", "retina.csv", "index.html"},
+  if (o.eyes != "scene" && o.eyes != "both") throw Error("--eyes: \"" + o.eyes + "\" is not scene or both");
+  if (o.eyes == "scene" && !o.partner_patterns.empty())
+    throw Error("--partner-patterns: the other eye's patterns, for --eyes both");
+  const bool both = o.eyes == "both";
+  const std::vector<DisplaySystem> eyes = both ? BothEyes(o, system) : std::vector<DisplaySystem>{system};
+  AccommodationStates(o);
+  for (const DisplaySystem& eye : eyes) RetinaField(o, eye, ParseOptionValue(o.resolution, "--resolution", kDegrees));
+  const std::vector<std::string> written =
+      both ? std::vector<std::string>{"left", "right", "index.html"}
+           : std::vector<std::string>{"display", "natural", "retina.csv", "index.html"};
+  StagedOutput stage(o.out, "retina", written,
                      {{o.scene, "the scene"},
                       {o.patterns, "the patterns"},
+                      {o.partner_patterns, "the other eye's patterns"},
                       {given.target, "the target"},
                       {given.target_scene, "the target scene"}});
-  const NaturalViewing seen(given, config.sampling);
-  const LightField* target_lf = seen.light_field();
-  const LightFieldGeometry g = target_lf ? target_lf->geometry : DisplayLightFieldGeometry(system);
-  DisplayModel model(system, g, config.sampling);
-  const Patterns t = ReadPatterns(model, o.patterns);
-  const SceneRadiance& natural = seen.radiance();
-
-  RetinaSweepOptions sweep{states, resolution, field[0], field[1], false};
-  Progress progress("retina", states.size());
+  double white = 0;
+  std::vector<std::vector<RetinaStateResult>> results;
   try {
-    const std::vector<RetinaStateResult> results = WriteRetinaSweep(
-        model, t, natural, sweep, stage.staging(), [&](size_t done, size_t, const RetinaStateResult& r) {
-          progress.Update(done, "accommodation states traced (" + r.name + ")");
-        });
-    progress.Finish(std::to_string(states.size()) + " states of " + FormatFixed(resolution, 3) + " deg samples");
-    WriteRetinaPage(o, scene, system, model, results, bool(natural), stage.staging());
+    for (const DisplaySystem& eye : eyes) {
+      given.target_moved_m = TargetSceneMove(eye.eye);  // targets rendered per eye
+      const bool own =
+          !both || eye.eye.binocular->side == system.eye.binocular->side || eye.eye.binocular->shared_display;
+      const std::string side = both ? (eye.eye.binocular->side < 0 ? "left" : "right") : "";
+      const std::string folder = both ? stage.staging() + "/" + side : stage.staging();
+      if (both) std::filesystem::create_directories(folder);
+      results.push_back(RetinaOfEye(o, scene, eye, config, given, own ? o.patterns : o.partner_patterns,
+                                    both ? "retina, " + side + " eye" : "retina", folder, &white));
+    }
+    if (both) WriteBothEyesPage(o, scene, eyes, results, white, !given.target_scene.empty(), stage.staging());
   } catch (const Error& e) {
     throw stage.Explain(e);
   }
   stage.Commit();
-  std::printf("wrote %s/{index.html,display%s,retina.csv}: %zu states; values are display-relative (1 = %.4g cd/m2)\n",
-              o.out.c_str(), natural ? ",natural" : "", states.size(), model.white_luminance());
+  const bool natural = !given.target.empty() || !given.target_scene.empty();
+  std::printf("wrote %s/{index.html,%s}: %zu states%s; values are display-relative (1 = %.4g cd/m2)\n", o.out.c_str(),
+              both      ? "left,right"
+              : natural ? "display,natural,retina.csv"
+                        : "display,retina.csv",
+              AccommodationStates(o).size(), both ? " per eye" : "", white);
 }
 
 }  // namespace
@@ -142,6 +232,11 @@ void AddRetinaCommand(CLI::App& app) {
   cmd->add_option("--field", o->field, "Retinal field W,H: degrees (default: the display's field of view)");
   cmd->add_option("--sampling", o->sampling,
                   "Layer sampling: nearest or bilinear (default: the scene's solve section)");
+  cmd->add_option("--eyes", o->eyes,
+                  "scene: the scene's eye; both: it and the other eye of its binocular pair, into OUT/left and "
+                  "OUT/right (default scene)");
+  cmd->add_option("--partner-patterns", o->partner_patterns,
+                  "With --eyes both and a display per eye: the other eye's display's solve folder");
   cmd->add_option("--out", o->out, "Output folder")->required();
   cmd->callback([o] { RunRetinaCommand(*o); });
 }

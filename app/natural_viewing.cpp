@@ -16,7 +16,9 @@ NaturalViewing::NaturalViewing(const SolveConfig& given, Sampling sampling) {
   }
 #if LAYERLAB_WITH_EMBREE
   if (!given.target_scene.empty()) {
-    scene_ = std::make_shared<const TargetScene>(LoadTarget(given.target_scene));
+    auto scene = std::make_shared<TargetScene>(LoadTarget(given.target_scene));
+    MoveTargetScene(scene.get(), given.target_moved_m);
+    scene_ = scene;
     tracer_ = std::make_shared<TargetTracer>(*scene_);
     TargetTracer* tracer = tracer_.get();
     radiance_ = [tracer](const PupilPoint& u, double dx, double dy) {

@@ -1,8 +1,41 @@
 #include "layerlab/elements/eye_pose.h"
 
 #include <cmath>
+#include <string>
+
+#include "layerlab/framework/error.h"
 
 namespace layerlab {
+
+namespace {
+
+// n, the whole steps within the range; -1 for a zero range.
+double EyeboxGridHalf(double range_m, double step_m) {
+  if (!(range_m > 0)) return -1;
+  return std::floor(range_m / (step_m > 0 ? step_m : range_m) * (1 + 1e-12));
+}
+
+}  // namespace
+
+double EyeboxGridSize(double range_m, double step_m) {
+  const double n = EyeboxGridHalf(range_m, step_m);
+  return n < 0 ? 0 : (2 * n + 1) * (2 * n + 1);
+}
+
+std::vector<std::array<double, 2>> EyeboxGridOffsets(double range_m, double step_m) {
+  if (EyeboxGridSize(range_m, step_m) > kMaxEyeboxGridSize)
+    throw Error("an eyebox grid of more than " + std::to_string(kMaxEyeboxGridSize) + " pupil positions");
+  std::vector<std::array<double, 2>> offsets;
+  const int half = int(EyeboxGridHalf(range_m, step_m));
+  const double step = step_m > 0 ? step_m : range_m;
+  for (int j = -half; j <= half; ++j)
+    for (int i = -half; i <= half; ++i) offsets.push_back({i * step, j * step});
+  return offsets;
+}
+
+Vector3 PairFrameInDisplayFrame(const Binocular& b) {
+  return {b.shared_display ? 0.0 : -b.side * b.ipd_m / 2, 0.0, 0.0};
+}
 
 Vector3 GazeDirection(const EyePose& pose) {
   const double cx = std::cos(pose.gaze_rad[0]), sx = std::sin(pose.gaze_rad[0]);

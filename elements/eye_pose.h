@@ -19,6 +19,7 @@
 #pragma once
 
 #include <array>
+#include <vector>
 
 namespace layerlab {
 
@@ -49,6 +50,22 @@ struct Binocular {
   bool shared_display = true;
   Vector3 fixation_m = {0, 0, 0.5};  // m, from the midpoint between the pupils
 };
+
+// A square grid of pupil offsets (m) within `range_m` of the centre in x and
+// y, `step_m` apart (0: the range, so 3 x 3), row by row from the lowest y,
+// x rising; empty for a zero range. EyeboxGridSize is its length, (2 n + 1)^2
+// with n the whole steps within the range, known before it is made.
+// EyeboxGridOffsets refuses a grid of more than kMaxEyeboxGridSize.
+inline constexpr int kMaxEyeboxGridSize = 10000;
+double EyeboxGridSize(double range_m, double step_m);
+std::vector<std::array<double, 2>> EyeboxGridOffsets(double range_m, double step_m);
+
+// Where a point given in the pair's frame (from the midpoint between the
+// pupils) lies in this eye's display frame is that point plus this, m: 0 for
+// a shared display (its axis is the midline), -side ipd / 2 in x for a
+// display of its own (its axis is the eye's). A target scene in the pair's
+// frame is moved by it to be seen by this eye (targets rendered per eye).
+Vector3 PairFrameInDisplayFrame(const Binocular& b);
 
 // The eye's pose: its offset, and the Fick angles of g.
 EyePose FixatingPose(const Binocular& b, double rotation_radius_m);

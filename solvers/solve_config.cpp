@@ -32,9 +32,14 @@ std::string ObjectiveRefusal(const std::string& solver, ObjectiveKind objective,
          JoinWords(able, " or ");
 }
 
+std::array<double, 3> TargetSceneMove(const EyeModel& eye) {
+  return eye.binocular ? PairFrameInDisplayFrame(*eye.binocular) : std::array<double, 3>{0, 0, 0};
+}
+
 SolveConfig ReadSolveConfig(const Scene& scene, const DisplaySystem& system, const SolverRegistry& registry) {
   SolveConfig config;
   config.solver = registry.DefaultFor(system);
+  config.target_moved_m = TargetSceneMove(system.eye);
   if (!scene.document.contains("solve")) {
     config.options = registry.get(config.solver).defaults;
     return config;

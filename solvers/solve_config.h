@@ -11,6 +11,7 @@
 //              "sampling": "nearest", "target_range": "clip", "objective": "lightfield" }
 #pragma once
 
+#include <array>
 #include <string>
 
 #include "layerlab/solvers/solver.h"
@@ -24,6 +25,9 @@ struct SolveConfig {
   std::string solver;        // default: DefaultSolverFor(system)
   std::string target;        // light-field folder, resolved against the scene file's folder
   std::string target_scene;  // or a target scene (layerlab-target/1) to render, resolved likewise
+  // Where the target scene is moved to (m, eye space; MoveTargetScene) before it is rendered or traced: a
+  // binocular eye's own display sees a scene given in the pair's frame from its own axis (TargetSceneMove).
+  std::array<double, 3> target_moved_m{};
   Sampling sampling = Sampling::kNearest;
   SolverOptions options;  // the solver's defaults, then the scene's values
 };
@@ -43,6 +47,10 @@ std::string ResolveAgainstScene(const Scene& scene, const std::string& path);
 
 // Reads scene.document["solve"] if present (strictly: unknown keys, and keys
 // of options the chosen solver does not read, are errors).
+// Where a target scene given in the pair's frame lies in the display frame of `eye` (PairFrameInDisplayFrame
+// for a binocular eye, else 0).
+std::array<double, 3> TargetSceneMove(const EyeModel& eye);
+
 SolveConfig ReadSolveConfig(const Scene& scene, const DisplaySystem& system,
                             const SolverRegistry& registry = SolverRegistry::Builtins());
 

@@ -1,5 +1,6 @@
 #include <cmath>
 
+#include "layerlab/elements/eye_pose.h"
 #include "layerlab/framework/error.h"
 #include "layerlab/framework/units.h"
 #include "layerlab/solvers/solver.h"
@@ -29,18 +30,6 @@ const std::vector<SolverOptionKey>& CommonSolverOptionKeys() {
 
 SolverOptionKey SubIterationsKey() { return {"sub_iterations", FindSolverOption("sub_iterations")->meaning}; }
 
-namespace {
-
-double EyeboxStep(const SolverOptions& o) { return o.eyebox_step_m > 0 ? o.eyebox_step_m : o.eyebox_range_m; }
-
-// The eyebox grid's positions: (2 n + 1)^2, n the whole steps within the range.
-double EyeboxPupilCount(const SolverOptions& o) {
-  const double n = std::floor(o.eyebox_range_m / EyeboxStep(o) * (1 + 1e-12));
-  return (2 * n + 1) * (2 * n + 1);
-}
-
-}  // namespace
-
 // The ranges are the option table's; what relates two options is checked here.
 bool SolverOptions::IsValid(std::string* error) const {
   auto fail = [&](const std::string& field, double value, const std::string& constraint) {
@@ -65,7 +54,7 @@ bool SolverOptions::IsValid(std::string* error) const {
     }
     if (eyebox_step_m > eyebox_range_m)
       return fail("eyebox_step", eyebox_step_m, "must be at most eyebox_range (" + FormatGeneral(eyebox_range_m) + ")");
-    if (const double pupils = EyeboxPupilCount(*this); pupils > kMaxEyeboxPupils)
+    if (const double pupils = EyeboxGridSize(eyebox_range_m, eyebox_step_m); pupils > kMaxEyeboxPupils)
       return fail("eyebox_step", eyebox_step_m,
                   "makes a grid of " + FormatGeneral(pupils) + " pupil positions, more than " +
                       std::to_string(kMaxEyeboxPupils) + " (each holds its own retinal tables)");
@@ -81,20 +70,16 @@ bool SolverOptions::IsValid(std::string* error) const {
 }
 
 std::vector<PupilWeight> EyeboxPupils(const SolverOptions& o) {
-  std::vector<PupilWeight> pupils;
-  if (!(o.eyebox_range_m > 0)) return pupils;
-  if (EyeboxPupilCount(o) > kMaxEyeboxPupils)
+  if (EyeboxGridSize(o.eyebox_range_m, o.eyebox_step_m) > kMaxEyeboxPupils)
     throw Error("eyebox_step: makes more than " + std::to_string(kMaxEyeboxPupils) + " pupil positions");
-  const double step = EyeboxStep(o);
-  const int half = int(std::floor(o.eyebox_range_m / step * (1 + 1e-12)));
-  for (int j = -half; j <= half; ++j)
-    for (int i = -half; i <= half; ++i) {
-      PupilWeight p{i * step, j * step, 1.0};
-      if (o.eyebox_sigma_m > 0)
-        p.weight = std::exp(-(p.offset_x_m * p.offset_x_m + p.offset_y_m * p.offset_y_m) /
-                            (2 * o.eyebox_sigma_m * o.eyebox_sigma_m));
-      pupils.push_back(p);
-    }
+  std::vector<PupilWeight> pupils;
+  for (const std::array<double, 2>& offset : EyeboxGridOffsets(o.eyebox_range_m, o.eyebox_step_m)) {
+    PupilWeight p{offset[0], offset[1], 1.0};
+    if (o.eyebox_sigma_m > 0)
+      p.weight = std::exp(-(p.offset_x_m * p.offset_x_m + p.offset_y_m * p.offset_y_m) /
+                          (2 * o.eyebox_sigma_m * o.eyebox_sigma_m));
+    pupils.push_back(p);
+  }
   return pupils;
 }
 

@@ -4,9 +4,18 @@
 #include <cmath>
 #include <numbers>
 
+#include "layerlab/framework/error.h"
 #include "layerlab/framework/units.h"
 
 namespace layerlab {
+
+EyeModel PartnerEye(const EyeModel& eye) {
+  if (!eye.binocular) throw Error("the scene's eye is not one of a binocular pair (its \"binocular\" key)");
+  EyeModel other = eye;
+  other.binocular->side = -eye.binocular->side;
+  other.pose = FixatingPose(*other.binocular, eye.pose.rotation_radius_m);
+  return other;
+}
 
 std::array<double, 2> GazeAngles(const EyePose& pose) {
   const Vector3 g = GazeDirection(pose);

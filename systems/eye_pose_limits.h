@@ -14,6 +14,10 @@ namespace layerlab {
 // is centred, retina/retina_grid.h), rad: atan(g_x / g_z), atan(g_y / g_z).
 std::array<double, 2> GazeAngles(const EyePose& pose);
 
+// The other eye of a binocular pair (EyeModel::binocular): the same eye and
+// pair, its side flipped, placed and turned toward the same fixation.
+EyeModel PartnerEye(const EyeModel& eye);
+
 // "" when the gaze points inside the display's field of view; otherwise a
 // sentence naming the limit ("20.00 deg right is beyond the display's field,
 // 17.75 deg either side of the axis").

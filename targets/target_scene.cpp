@@ -295,4 +295,17 @@ TargetScene LoadTarget(const std::string& path, const SceneReader& read_scene) {
   return target;
 }
 
+void MoveTargetScene(TargetScene* scene, const std::array<double, 3>& moved_m) {
+  const std::array<double, 3> by = {moved_m[0] - scene->moved_m[0], moved_m[1] - scene->moved_m[1],
+                                    moved_m[2] - scene->moved_m[2]};
+  for (TargetPlane& plane : scene->planes) {
+    plane.center_m[0] += by[0], plane.center_m[1] += by[1];
+    plane.depth_m += by[2];
+  }
+  for (TargetMesh& mesh : scene->meshes)
+    for (std::array<double, 3>& p : mesh.mesh.positions)
+      for (int k = 0; k < 3; ++k) p[k] += by[k];
+  scene->moved_m = moved_m;
+}
+
 }  // namespace layerlab

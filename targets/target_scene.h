@@ -67,7 +67,15 @@ struct TargetScene {
   std::vector<std::string> files_read;
   // The bytes of `file` that were parsed (LoadTarget), which key its render.
   std::optional<FileBytes> file_bytes;
+  // How far it lies from where its file places it (MoveTargetScene), m: a binocular eye's own display sees a
+  // scene given in the pair's frame from its own axis (elements/eye_pose.h PairFrameInDisplayFrame). Part of
+  // its render's key.
+  std::array<double, 3> moved_m{};
 };
+
+// Moves every plane (its centre, the texture's origin, and depth) and mesh of `scene` so that it lies `moved_m`
+// (m, eye space) from where its file places it; the light field's geometry stays.
+void MoveTargetScene(TargetScene* scene, const std::array<double, 3>& moved_m);
 
 // How a target finds the display scene its light field names ("display"):
 // LoadScene when empty; a run passes the scene files it has read already.

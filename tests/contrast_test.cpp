@@ -1,11 +1,14 @@
 // The accommodation analysis (analysis/contrast.h, analysis/fourier.h)
 // against what a perfect display, a pure grating and a hand-made curve must give.
 #include <omp.h>
+#include <algorithm>
 #include <cmath>
 #include <complex>
+#include <cstdio>
 #include <numbers>
 
 #include "layerlab/analysis/contrast.h"
+#include "layerlab/analysis/contrast_eyebox.h"
 #include "layerlab/framework/units.h"
 #include "layerlab/retina/retina.h"
 #include "layerlab/tests/test_util.h"
@@ -63,6 +66,101 @@ TEST(Contrast, PerfectOneLayerDisplayScoresOneAtItsPeak) {
     const double sinc = std::sin(std::numbers::pi * f * p) / (std::numbers::pi * f * p);
     EXPECT_TRUE(Close(Curve(curves, "one_layer", f).contrast[0], sinc, 0.01)) << f << " cpd, pixel " << p << " deg";
   }
+}
+
+// A single plane seen by one of a pair of eyes: the eyes verge on the target
+// (1 / |F|, F on the midline at its depth: D_t, metre angles) and accommodate
+// to the plane, so the conflict is D_t less the plane's depth, by hand; the
+// peak table gives it only when an eye is binocular.
+TEST(Contrast, ABinocularEyesConflictIsTheTargetLessTheAccommodationResponse) {
+  const double plane = 1.0, dt = 1.6;
+  ContrastDisplay d = OneLayerAt(plane);
+  ContrastOptions o;
+  o.target_diopters = {dt};
+  o.frequencies_cpd = {2.0};
+  o.accommodation_min_diopters = 0.7, o.accommodation_max_diopters = 1.9;
+  const std::string header = "vergence (D)  VAC (D)";
+  EXPECT_EQ(PeakTable(RunContrast({d}, o)).find(header), std::string::npos);
+
+  nlohmann::json scene = testing::ReadExample("multiplicative_2layer.json");
+  testing::ElementNamed(scene, "lens")["next"] = "rear";
+  scene["elements"].erase(2);
+  testing::ElementNamed(scene, "rear")["virtual_depth"] = "1.0 D";
+  testing::ElementNamed(scene, "eye")["binocular"] = {
+      {"side", "left"}, {"ipd", "63 mm"}, {"display", "own"}, {"fixation", {"0 mm", "0 mm", "0.5 m"}}};
+  d.system = testing::CompileJson(scene);
+  const std::vector<ContrastCurve> curves = RunContrast({d}, o);
+  const ContrastCurve& display = Curve(curves, "one_layer", 2.0);
+  EXPECT_NEAR(display.vergence_diopters, dt, 1e-12);
+  EXPECT_FALSE(display.estimate.flat);
+  EXPECT_NEAR(display.estimate.at, plane, 0.05);
+  const std::string table = PeakTable(curves);
+  ASSERT_NE(table.find(header), std::string::npos) << table;
+  char vac[32];
+  std::snprintf(vac, sizeof vac, "%13.3f %8.3f\n", dt, dt - display.estimate.at);
+  EXPECT_NE(table.find(vac), std::string::npos) << vac << "\n" << table;
+  const ContrastCurve& natural = Curve(curves, "natural", 2.0);
+  EXPECT_NEAR(natural.vergence_diopters - natural.estimate.at, 0, 0.02);  // natural viewing has none
+}
+
+// The curves seen across the eyebox are the display's own factorizations
+// swept from the moved pupil: each is the curve of a run whose scene eye sits
+// there (the light-field solve does not see the eye, so the patterns are the
+// same bits), normalized by the centred eye's natural viewing; and a two-layer display's parallax makes them differ from the
+// centred eye's. eyebox_peaks.csv has a row per pupil position.
+TEST(Contrast, TheEyeboxCurvesAreThoseOfTheEyeMovedThere) {
+  ContrastDisplay d;
+  d.name = "two_layer";
+  d.system = testing::CompileJson(testing::ReadExample("multiplicative_2layer.json"));
+  d.solver = "multiplicative";
+  ContrastOptions o;
+  o.target_diopters = {1.3};
+  o.frequencies_cpd = {4.0};
+  o.accommodation_min_diopters = 0.9, o.accommodation_max_diopters = 1.7, o.accommodation_step_diopters = 0.1;
+  o.eyebox_range_m = 1.5e-3;
+  const std::vector<ContrastCurve> curves = RunContrast({d}, o);
+  EXPECT_EQ(curves.size(), 1u + 9u);  // natural viewing, and the display from 9 pupil positions
+  const ContrastCurve& centred = Curve(curves, "two_layer", 4.0);
+  const ContrastCurve& moved = Curve(curves, MovedPupilName("two_layer", {1.5e-3, -1.5e-3}), 4.0);
+  EXPECT_TRUE(moved.pupil_moved);
+  EXPECT_EQ(moved.pupil_moved_m[0], 1.5e-3);
+
+  ContrastDisplay there = d;
+  there.system.eye.pose.pupil_offset_m = {1.5e-3, -1.5e-3};
+  o.eyebox_range_m = 0;
+  const std::vector<ContrastCurve> direct_curves = RunContrast({there}, o);
+  const ContrastCurve& direct = Curve(direct_curves, "two_layer", 4.0);
+  ASSERT_EQ(direct.contrast.size(), moved.contrast.size());
+  // Normalized by the centred eye's natural viewing, the direct run's by the moved eye's: the amplitudes agree.
+  EXPECT_EQ(moved.reference_amplitude, centred.reference_amplitude);
+  double difference = 0;
+  for (size_t k = 0; k < moved.contrast.size(); ++k) {
+    const double amplitude = moved.contrast[k] * moved.reference_amplitude;
+    EXPECT_NEAR(amplitude, direct.contrast[k] * direct.reference_amplitude, 1e-12 * amplitude) << k;
+    difference = std::max(difference, std::abs(moved.contrast[k] - centred.contrast[k]));
+  }
+  EXPECT_GT(difference, 1e-3) << "the moved pupil sees the two layers' parallax";
+
+  const std::string csv = ContrastEyeboxCsv(curves);
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 9);
+  char row[128];
+  std::snprintf(row, sizeof row, "two_layer,1.3000,4.0000,1.5000,-1.5000,%.4f,%s,%.4f\n", moved.estimate.at,
+                moved.estimate.flat ? "no" : "yes", moved.estimate.at - 1.3);
+  EXPECT_NE(csv.find(row), std::string::npos) << row << csv;
+}
+
+TEST(Contrast, ABadEyeboxGridIsRefused) {
+  ContrastOptions o;
+  std::string why;
+  o.eyebox_step_m = 1e-3;
+  EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_EQ(why, "eyebox_step: describes the eyebox grid of eyebox_range, which is 0 (the eye's pupil alone)");
+  o.eyebox_range_m = 0.5e-3;
+  EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_EQ(why, "eyebox_step: 0.001: must be at most eyebox_range (0.0005)");
+  o.eyebox_range_m = 5e-3, o.eyebox_step_m = 0.5e-3;
+  EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_EQ(why, "eyebox_step: 0.0005: makes a grid of 441 pupil positions, more than 81");
 }
 
 // Natural viewing is its own reference: its curve is 1 where the eye focuses at the target, by construction,

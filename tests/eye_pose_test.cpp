@@ -235,6 +235,33 @@ TEST(EyePose, TwoEyesVergeOnTheFixatedPoint) {
   EXPECT_NE(CompileError(scene).find("sid"), std::string::npos) << CompileError(scene);
 }
 
+// The other eye of a pair is its mirror image across the midline: its side,
+// offset and horizontal gaze flipped (a symmetric fixation), and where the
+// pair's frame lies in each eye's display frame: nowhere else for a shared
+// display, ipd / 2 toward the midline for a display of its own (a point on
+// the midline lies 31.5 mm right of the left eye's axis).
+TEST(EyePose, ThePartnerIsTheMirrorImageAndTheFrameFollowsTheDisplay) {
+  for (const char* display : {"shared", "own"}) {
+    nlohmann::json scene = testing::ShrunkExample("paper_prototype.json", 400, 240, 3);
+    ElementNamed(scene, "eye")["binocular"] = {
+        {"side", "left"}, {"ipd", "63 mm"}, {"display", display}, {"fixation", {"0 mm", "20 mm", "0.5 m"}}};
+    const EyeModel left = CompileJson(scene).eye;
+    const EyeModel right = PartnerEye(left);
+    ASSERT_TRUE(right.binocular);
+    EXPECT_EQ(right.binocular->side, 1);
+    EXPECT_EQ(right.pose.pupil_offset_m[0], -left.pose.pupil_offset_m[0]) << display;
+    EXPECT_NEAR(right.pose.gaze_rad[0], -left.pose.gaze_rad[0], 1e-15) << display;
+    EXPECT_NEAR(right.pose.gaze_rad[1], left.pose.gaze_rad[1], 1e-15) << display;
+    EXPECT_GT(left.pose.gaze_rad[1], 0);
+    EXPECT_EQ(PartnerEye(right).pose.gaze_rad, left.pose.gaze_rad);
+    const bool shared = std::string(display) == "shared";
+    EXPECT_EQ(PairFrameInDisplayFrame(*left.binocular), (Vector3{shared ? 0.0 : 0.0315, 0, 0})) << display;
+    EXPECT_EQ(PairFrameInDisplayFrame(*right.binocular), (Vector3{shared ? 0.0 : -0.0315, 0, 0})) << display;
+  }
+  EXPECT_EQ(testing::ErrorOf([] { PartnerEye(EyeModel{}); }),
+            "the scene's eye is not one of a binocular pair (its \"binocular\" key)");
+}
+
 TEST(EyePose, LimitsNameWhatTheyRefuse) {
   nlohmann::json scene = testing::ShrunkExample("paper_prototype.json", 400, 240, 3);  // a field of 36 x 22 deg
   ElementNamed(scene, "eye")["gaze"] = {"40 deg", "0 deg"};

@@ -8,6 +8,7 @@
 #include <numbers>
 #include <vector>
 
+#include "layerlab/analysis/target_cache.h"
 #include "layerlab/framework/json_file.h"
 #include "layerlab/targets/plane_lightfield.h"
 #include "layerlab/targets/target_renderer.h"
@@ -435,6 +436,51 @@ TEST(TargetTracerTest, RayInAnyDirectionReadsThePlaneWhereItMeetsIt) {
       EXPECT_NEAR(s.z, z, 1e-12);
       EXPECT_NEAR(s.color[0], expected[0], 1e-12) << "from " << vx << " along " << dx;
     }
+}
+
+// A scene moved across by v (a binocular eye's own display) is the scene
+// seen from -v: every ray from (vx, vy) reads what the unmoved scene shows
+// the ray from (vx - v_x, vy - v_y), planes and meshes alike; a move in depth
+// moves every plane and vertex by it. Its render's key changes, and moved
+// back it is the same key again.
+TEST(TargetTracerTest, AMovedSceneIsTheSceneSeenFromTheOtherWay) {
+  const json die = {{"type", "mesh"},
+                    {"file", "die.obj"},
+                    {"scale", "5 cm"},
+                    {"position", {"1 cm", 0, "1 D"}},
+                    {"rotation", {0, "30 deg", 0}},
+                    {"color", 0.5}};
+  const json t =
+      Target(LightFieldJson("1.3 D", {"10 deg", "6 deg"}, {20, 12}, {3, 3}), {GratingPlane("0.8 D", "20 deg"), die});
+  TargetScene still = ParseTarget(t, testing::ExamplePath("targets/target.json"));
+  still.file_bytes = FileBytes{123, 456};  // the key's bytes of the file it was read from (not on disk)
+  TargetScene moved = still;
+  const std::array<double, 3> v = {0.0315, -0.004, 0};
+  MoveTargetScene(&moved, v);
+  EXPECT_EQ(moved.moved_m, v);
+  const TargetTracer a(still), b(moved);
+  int mesh_hits = 0, plane_hits = 0;
+  for (double vx : {-0.0017, 0.0021})
+    for (double dx : {-0.03, -0.01, 0.013, 0.03}) {
+      const double vy = 0.6 * vx, dy = -0.4 * dx;
+      const TracedSample s = a.TraceDirection(vx - v[0], vy - v[1], dx, dy);
+      const TracedSample m = b.TraceDirection(vx, vy, dx, dy);
+      ASSERT_TRUE(std::isfinite(s.z)) << vx << ", " << dx;
+      EXPECT_NEAR(m.z, s.z, 1e-5 * s.z) << vx << ", " << dx;
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(m.color[c], s.color[c], 1e-5) << vx << ", " << dx;
+      (s.z < 1.2 ? mesh_hits : plane_hits) += 1;
+    }
+  EXPECT_GT(mesh_hits, 0) << "no ray met the die";
+  EXPECT_GT(plane_hits, 0) << "no ray met the plane";
+  EXPECT_NE(TargetSceneDigest(moved), TargetSceneDigest(still));
+
+  MoveTargetScene(&moved, {0.0315, -0.004, 0.02});
+  EXPECT_NEAR(moved.planes[0].depth_m, still.planes[0].depth_m + 0.02, 1e-15);
+  EXPECT_NEAR(moved.planes[0].center_m[0], still.planes[0].center_m[0] + 0.0315, 1e-15);
+  EXPECT_NEAR(moved.meshes[0].mesh.positions[3][2], still.meshes[0].mesh.positions[3][2] + 0.02, 1e-15);
+  EXPECT_NEAR(moved.meshes[0].mesh.positions[3][1], still.meshes[0].mesh.positions[3][1] - 0.004, 1e-15);
+  MoveTargetScene(&moved, {0, 0, 0});
+  EXPECT_EQ(TargetSceneDigest(moved), TargetSceneDigest(still));
 }
 
 }  // namespace
