@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <iterator>
 #include <map>
 #include <numbers>
 #include <optional>
@@ -672,8 +673,12 @@ std::string PeakTable(const std::vector<ContrastCurve>& curves) {
   return out;
 }
 
-std::string ContrastSvg(const std::vector<ContrastCurve>& curves) {
+std::string ContrastSvg(const std::vector<ContrastCurve>& all) {
   static const char* kColors[] = {"#d62728", "#1f77b4", "#ff7f0e", "#9467bd", "#2ca02c", "#8c564b", "#e377c2"};
+  // The curves from the eyebox's other pupil positions are drawn by ContrastEyeboxSvg, as their peaks.
+  std::vector<ContrastCurve> curves;
+  std::copy_if(all.begin(), all.end(), std::back_inserter(curves),
+               [](const ContrastCurve& c) { return !c.pupil_moved; });
   std::vector<double> frequencies, depths;
   std::vector<std::string> displays;
   for (const ContrastCurve& c : curves) {

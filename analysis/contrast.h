@@ -146,6 +146,7 @@ std::vector<std::string> ContrastWarnings(const std::vector<ContrastDisplay>& di
 // table as text, and the Fig. 5 style SVG.
 std::string ContrastCsv(const std::vector<ContrastCurve>& curves);
 std::string PeakTable(const std::vector<ContrastCurve>& curves);
+// ContrastSvg leaves out the curves seen from the eyebox's other pupil positions (analysis/contrast_eyebox.h).
 std::string ContrastSvg(const std::vector<ContrastCurve>& curves);
 
 }  // namespace layerlab
