@@ -7,6 +7,7 @@
 #include "layerlab/eye/contrast_sensitivity.h"
 #include "layerlab/eye/spectral_filter.h"
 #include "layerlab/framework/error.h"
+#include "layerlab/framework/fixed_order_sum.h"
 #include "layerlab/framework/heap_block.h"
 #include "layerlab/framework/huge_page_allocator.h"
 #include "layerlab/retina/lightfield_radiance.h"
@@ -84,13 +85,7 @@ double ContrastSensitivityChannel(float* r, const RetinaGrid& grid, int c) {
 }
 
 double SquaredDifference(const std::vector<float>& a, const std::vector<float>& b) {
-  double sum = 0;
-#pragma omp parallel for reduction(+ : sum) schedule(static)
-  for (size_t i = 0; i < a.size(); ++i) {
-    const double e = double(a[i]) - b[i];
-    sum += e * e;
-  }
-  return sum;
+  return FixedOrderSquaredDifference(a.data(), b.data(), a.size());
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "layerlab/solvers/retinal_pass.h"
 
+#include "layerlab/framework/fixed_order_sum.h"
 #include "layerlab/kernels/synthesis.h"
 #include "layerlab/solvers/objective.h"
 
@@ -17,12 +18,7 @@ namespace {
 
 RetinalMeasures Measures(const RetinalObjective& objective, const LightField& light, const LightField& target,
                          const std::vector<double>& per_state, double f) {
-  double light_field = 0;
-#pragma omp parallel for reduction(+ : light_field) schedule(static)
-  for (size_t i = 0; i < light.rgb.size(); ++i) {
-    const double e = double(light.rgb[i]) - target.rgb[i];
-    light_field += e * e;
-  }
+  const double light_field = FixedOrderSquaredDifference(light.rgb.data(), target.rgb.data(), light.rgb.size());
   return {f, light_field, objective.FocalStackPsnr(per_state)};
 }
 

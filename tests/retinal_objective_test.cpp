@@ -5,6 +5,7 @@
 // central differences, its pinhole one-state case against the light-field
 // objective of the centre view, a recovered known focal stack, and the
 // objective over an eyebox of pupils against its single pupils' objectives.
+#include <omp.h>
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -13,6 +14,7 @@
 
 #include "layerlab/eye/contrast_sensitivity.h"
 #include "layerlab/eye/spectral_filter.h"
+#include "layerlab/framework/fixed_order_sum.h"
 #include "layerlab/framework/units.h"
 #include "layerlab/kernels/joint_pass.h"
 #include "layerlab/kernels/synthesis.h"
@@ -378,6 +380,33 @@ TEST(EyeboxObjective, BadGridsAndWeightsAreRefused) {
   r.pupils[1].weight = -1;
   EXPECT_EQ(ErrorOf([&] { RetinalPupils(eye, r); }),
             "a pupil position's weight in the retinal objective must be finite and >= 0");
+}
+
+// The objective, each state's error and the light field's error have the
+// same bits on any thread count (their long sums run in a fixed order), so a
+// retinal solve does too.
+TEST(RetinalObjective, TheSameBitsOnAnyThreadCount) {
+  const DisplaySystem system = CompileJson(ShrunkExample("paper_prototype.json", 48, 24, 5));
+  const DisplayModel model(system, DisplayLightFieldGeometry(system));
+  const LightField target = Synthesize(model, RandomPatterns(model, 8, 0.1f, 1.0f));
+  const Patterns t = RandomPatterns(model, 9, 0.0f, 1.0f);
+  ASSERT_GT(target.rgb.size(), 2 * kFixedOrderSumChunk);
+  const int threads = omp_get_max_threads();
+  std::vector<RetinalMeasures> measures;
+  std::vector<std::vector<double>> states;
+  for (int n : {1, 2, 3, 4}) {
+    omp_set_num_threads(n);
+    const RetinalObjective objective(model, target, FewStates());
+    measures.push_back(MeasureRetinalObjective(model, target, objective, t));
+    states.emplace_back();
+    objective.Evaluate(Synthesize(model, t), &states.back());
+  }
+  omp_set_num_threads(threads);
+  for (size_t k = 1; k < measures.size(); ++k) {
+    EXPECT_EQ(measures[k].objective, measures[0].objective) << k + 1 << " threads";
+    EXPECT_EQ(measures[k].light_field_objective, measures[0].light_field_objective) << k + 1 << " threads";
+    EXPECT_EQ(states[k], states[0]) << k + 1 << " threads";
+  }
 }
 
 TEST(RetinalObjective, GradientMatchesCentralDifferences) {
