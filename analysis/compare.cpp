@@ -148,6 +148,21 @@ EyeboxExtent MeasureEyebox(const DisplayModel& model, const Patterns& t, const L
 
 }  // namespace
 
+std::array<double, 3> CommonTargetMove(const std::vector<CompareRun>& runs) {
+  std::array<double, 3> move{0, 0, 0};
+  for (size_t k = 0; k < runs.size(); ++k) {
+    const std::array<double, 3> m = TargetSceneMove(runs[k].system.eye);
+    if (k == 0) {
+      move = m;
+    } else if (m != move) {
+      throw Error("compare: " + runs[0].display + " and " + runs[k].display +
+                  " see the target scene from different places (an eye of a binocular pair with a display of its "
+                  "own sees it from its own axis): compare displays seen by the same eye");
+    }
+  }
+  return move;
+}
+
 std::vector<CompareResult> RunComparison(const std::vector<CompareRun>& runs, const LightField& target,
                                          bool show_progress, const SolverRegistry& registry,
                                          const CompareEyebox& eyebox) {

@@ -102,6 +102,10 @@ std::vector<CompareRun> ObjectiveRuns(const CompareRun& run, const std::vector<O
 // display, or an objective it does not minimize, is left out with a line in
 // *skipped ("NAME / SOLVER: the solver ...").
 // Throws layerlab::Error for an unknown solver, a bad scene, or nothing to run.
+// Where the runs' displays see a target scene given in a binocular pair's frame (TargetSceneMove, the same for
+// every run); throws layerlab::Error naming two runs that see it from different places.
+std::array<double, 3> CommonTargetMove(const std::vector<CompareRun>& runs);
+
 std::vector<CompareRun> CompareRunsOf(const std::vector<std::string>& scene_files, const CompareSelection& selection,
                                       std::vector<std::string>* skipped);
 

@@ -4,6 +4,7 @@
 #include "layerlab/analysis/report_parts.h"
 #include "layerlab/analysis/run_steps.h"
 #include "layerlab/framework/error.h"
+#include "layerlab/solvers/solve_config.h"
 
 namespace layerlab {
 namespace {
@@ -51,6 +52,10 @@ void RowsOf(RunState& s, const ComparedDisplay& d, const std::string& solver, st
   for (const CompareRun& run : runs) {
     s.outcome.compare_scenes.push_back(d.system.file);
     if (MainSolveRow(s, d, run, rows)) continue;
+    if (s.target->rendered && s.target->moved_m != TargetSceneMove(d.system.eye))
+      throw Error("compare: " + d.name +
+                  " sees the target scene from elsewhere than this display (an eye of a binocular pair with a "
+                  "display of its own sees it from its own axis): compare displays seen by the same eye");
     CompareRun attached = run;
     AttachRetinalTarget(*s.target, &attached.options);
     CompareResult result = RunComparison({attached}, s.target->light_field, true).front();

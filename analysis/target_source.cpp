@@ -10,6 +10,7 @@
 #include "layerlab/framework/lightfield_io.h"
 #include "layerlab/framework/png_writer.h"
 #include "layerlab/framework/progress.h"
+#include "layerlab/framework/warnings.h"
 #include "layerlab/retina/lightfield_radiance.h"
 #include "layerlab/solvers/memory_estimate.h"
 #include "layerlab/targets/target_scene.h"
@@ -58,6 +59,10 @@ std::unique_ptr<Target> LoadOrRenderTarget(const SolveConfig& config, const std:
   if (!config.target.empty()) {
     target->source = config.target;
     Note(label + ": loading the light field " + config.target);
+    if (config.target_moved_m != std::array<double, 3>{0, 0, 0})
+      SayWarnings({"the light field " + config.target +
+                   " is taken as it is, for an eye of a binocular pair with a display of its own: it must have been "
+                   "rendered from that eye (a target scene is moved to it: docs/eye-pose.md)"});
     target->light_field = ReadLightField(config.target, {.load_depth = false});
     return target;
   }
@@ -67,6 +72,7 @@ std::unique_ptr<Target> LoadOrRenderTarget(const SolveConfig& config, const std:
 #if LAYERLAB_WITH_EMBREE
   target->scene = scene ? std::move(scene) : std::make_unique<TargetScene>(LoadTarget(config.target_scene));
   MoveTargetScene(target->scene.get(), config.target_moved_m);
+  target->moved_m = config.target_moved_m;
   const LightFieldGeometry& g = target->scene->geometry;
   target->rendered = true;
   target->digest = TargetSceneDigest(*target->scene);

@@ -4,6 +4,7 @@
 // than interpolated from the views.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <string>
 
@@ -22,8 +23,9 @@ struct Target {
   LightField light_field;
   std::string source;  // the folder or the target scene file
   bool rendered = false;
-  std::string digest;   // a target scene's: TargetSceneDigest (analysis/target_cache.h)
-  bool reused = false;  // its render was read from the cache
+  std::string digest;               // a target scene's: TargetSceneDigest (analysis/target_cache.h)
+  bool reused = false;              // its render was read from the cache
+  std::array<double, 3> moved_m{};  // where its scene was moved to (SolveConfig::target_moved_m); 0 for a folder
 #if LAYERLAB_WITH_EMBREE
   std::unique_ptr<TargetScene> scene;  // stable address: the tracer refers to it
   std::unique_ptr<TargetTracer> tracer;

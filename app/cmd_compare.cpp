@@ -103,6 +103,7 @@ void AddCompareCommand(CLI::App& app) {
     for (const std::string& line : skipped) std::fprintf(stderr, "compare: skipped %s\n", line.c_str());
     SolveConfig target_config;
     ApplyTargetOption(o->target, target_config);
+    target_config.target_moved_m = CommonTargetMove(runs);
     if (!o->target.given()) throw Error("compare: give the target: --target LF_DIR or --target-scene TARGET.json");
     std::vector<NamedInput> inputs = {{target_config.target, "the target"},
                                       {target_config.target_scene, "the target scene"}};

@@ -199,7 +199,8 @@ void RunRetinaCommand(const RetinaCommandOptions& o) {
           !both || eye.eye.binocular->side == system.eye.binocular->side || eye.eye.binocular->shared_display;
       const std::string side = both ? (eye.eye.binocular->side < 0 ? "left" : "right") : "";
       const std::string folder = both ? stage.staging() + "/" + side : stage.staging();
-      if (both) std::filesystem::create_directories(folder);
+      if (std::error_code error; both && !std::filesystem::create_directories(folder, error) && error)
+        throw Error(folder + ": cannot make the folder: " + error.message());
       results.push_back(RetinaOfEye(o, scene, eye, config, given, own ? o.patterns : o.partner_patterns,
                                     both ? "retina, " + side + " eye" : "retina", folder, &white));
     }

@@ -102,6 +102,7 @@ std::unique_ptr<Target> LoadRankTarget(const SolveConfig& config, const Ranks& r
     target->source = config.target_scene;
     target->rendered = true;
     target->scene = std::make_unique<TargetScene>(LoadTarget(config.target_scene));
+    MoveTargetScene(target->scene.get(), config.target_moved_m);  // a binocular eye's own display: from its axis
     target->scene->geometry = block;
     if (ranks.root()) Note("target: rendering " + config.target_scene + ", view rows by rank");
     target->light_field = RenderTarget(*target->scene);

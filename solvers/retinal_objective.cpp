@@ -32,12 +32,13 @@ std::vector<std::vector<PupilPoint>> RetinalPupils(const EyeModel& eye, const Re
   for (const PupilWeight& p : options.pupils) {
     if (!(p.weight >= 0) || !std::isfinite(p.weight))
       throw Error("a pupil position's weight in the retinal objective must be finite and >= 0");
+    sum += p.weight;
+    if (p.weight == 0) continue;  // it adds nothing: no operator
     EyeModel moved = eye;
     moved.pose.pupil_offset_m[0] += p.offset_x_m;
     moved.pose.pupil_offset_m[1] += p.offset_y_m;
     samples.push_back(PupilSamples(moved));
     w.push_back(p.weight);
-    sum += p.weight;
   }
   if (!options.pupils.empty()) {
     if (!(sum > 0)) throw Error("the retinal objective's pupil positions all have weight 0");

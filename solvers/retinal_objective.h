@@ -111,8 +111,9 @@ RetinalObjectiveMemory RetinalObjectiveBytes(const DisplayModel& model, const Re
 
 // The states a RetinalObjectiveOptions names for this eye (its own, or the accommodation range in 0.2 D steps).
 std::vector<double> RetinalStates(const EyeModel& eye, const RetinalObjectiveOptions& options);
-// The pupil samples of each pupil position the options name (the eye's alone when they name none) and the
-// positions' weights scaled to sum to 1; refuses a negative, non-finite or all-zero weight.
+// The pupil samples of each pupil position the options name (the eye's alone when they name none; those of
+// weight 0 left out) and the positions' weights scaled to sum to 1; refuses a negative, non-finite or all-zero
+// weight.
 std::vector<std::vector<PupilPoint>> RetinalPupils(const EyeModel& eye, const RetinalObjectiveOptions& options,
                                                    std::vector<double>* weights = nullptr);
 

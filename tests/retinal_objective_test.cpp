@@ -256,9 +256,9 @@ TEST(EyeboxObjective, IsThePupilsWeightedSumOfSingleEyeObjectives) {
   const LightField target = Synthesize(model, RandomPatterns(model, 8, 0.1f, 1.0f));
   const LightField x = Synthesize(model, RandomPatterns(model, 9, 0.0f, 1.0f));
   RetinalObjectiveOptions o = FewStates();
-  o.pupils = {{0, 0, 1.0}, {0.6e-3, 0, 3.0}, {0, -0.4e-3, 0.0}};
+  o.pupils = {{0, 0, 1.0}, {0.6e-3, 0, 3.0}, {0, -0.4e-3, 2.0}, {0.3e-3, 0.3e-3, 0.0}};
   const RetinalObjective eyebox(model, target, o);
-  ASSERT_EQ(eyebox.pupil_count(), 3u);
+  ASSERT_EQ(eyebox.pupil_count(), 3u);  // the one of weight 0 adds nothing and has no operator
   std::vector<double> per_state;
   LightField adjoint(model.geometry());
   const double f = eyebox.EvaluateWithAdjoint(x, &per_state, &adjoint);
@@ -266,7 +266,7 @@ TEST(EyeboxObjective, IsThePupilsWeightedSumOfSingleEyeObjectives) {
   double expected = 0;
   std::vector<double> expected_states(3, 0.0);
   std::vector<double> expected_adjoint(adjoint.rgb.size(), 0.0);
-  const double share[] = {0.25, 0.75, 0.0};
+  const double share[] = {1.0 / 6, 3.0 / 6, 2.0 / 6};
   for (size_t p = 0; p < 3; ++p) {
     DisplaySystem moved = system;
     moved.eye.pose.pupil_offset_m = {o.pupils[p].offset_x_m, o.pupils[p].offset_y_m};

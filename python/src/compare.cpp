@@ -89,6 +89,7 @@ py::dict Compare(const py::object& scenes, const py::object& target, const py::o
   {
     py::gil_scoped_release release;
     runs = CompareRunsOf(files, selection, &skipped);
+    target_config.target_moved_m = CommonTargetMove(runs);
     if (!given) loaded = LoadOrRenderTarget(target_config, "target");
   }
   const LightField& lf = given ? *given : loaded->light_field;

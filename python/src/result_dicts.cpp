@@ -1,5 +1,7 @@
 #include "layerlab/python/src/result_dicts.h"
 
+#include <cmath>
+
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
@@ -33,6 +35,10 @@ py::dict CurveDict(const ContrastCurve& c) {
   d["peak"] = c.estimate.at, d["peak_uncertainty"] = c.estimate.uncertainty, d["flat"] = c.estimate.flat;
   d["at_target"] = c.at_target, d["psnr_db"] = c.psnr_db;
   d["solve_seconds"] = c.solve_seconds, d["sweep_seconds"] = c.sweep_seconds;
+  // Seen from the eye's pupil moved by this (m: contrast's eyebox_range), or None; a binocular eye's vergence.
+  d["pupil_moved_m"] =
+      c.pupil_moved ? py::object(py::make_tuple(c.pupil_moved_m[0], c.pupil_moved_m[1])) : py::object(py::none());
+  d["vergence_diopters"] = std::isnan(c.vergence_diopters) ? py::object(py::none()) : py::float_(c.vergence_diopters);
   return d;
 }
 

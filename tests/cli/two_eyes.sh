@@ -47,7 +47,6 @@ for side in left right; do
   for what in display natural; do
     [ -f "$work/both/$side/$what/1.00D.exr" ] || fail "no $side/$what/1.00D.exr"
   done
-  grep -q "$side eye" "$work/both/index.html" || true
 done
 grep -q 'id="left"' "$work/both/index.html" && grep -q 'id="right"' "$work/both/index.html" ||
   fail "the pair's page has no section per eye"
@@ -77,6 +76,24 @@ difference=$("$exr_difference" "$work/both/left/natural/1.00D.exr" "$work/shared
 /usr/bin/python3 -c "import sys; sys.exit(0 if float('$difference') < 1e-4 else 1)" ||
   fail "the own display's left eye does not see the scene from where the shared display's does ($difference)"
 echo "the near-eye left eye's target is the shared display's left view: difference $difference"
+
+# compare sees the target from the displays' eye, and refuses displays seen by different eyes; a light field
+# given for an eye with a display of its own is taken as it is, with a warning.
+"$layerlab" compare "$work/small/left.json" --target-scene "$target" --iterations 2 --out "$work/compare_left" \
+  >"$work/log" 2>&1 || fail "compare of the left eye's display failed"
+solved=$(sed -n 's/.*"final_psnr_db": \([0-9.]*\).*/\1/p' "$work/solve_left/report.json")
+compared=$(sed -n 's/^left,hybrid,lightfield,\([0-9.]*\),.*/\1/p' "$work/compare_left/compare.csv")
+/usr/bin/python3 -c "import sys; sys.exit(0 if abs(float('$solved') - float('$compared')) < 0.001 else 1)" ||
+  fail "compare solved the left eye's display for another target than solve did ($compared against $solved dB)"
+if "$layerlab" compare "$work/small/left.json" "$work/small/right.json" --target-scene "$target" --iterations 1 \
+  --out "$work/compare_both" >"$work/log" 2>&1; then fail "compare accepted displays seen by different eyes"; fi
+grep -q "see the target scene from different places" "$work/log" || fail "compare does not say why: $(tail -n 1 "$work/log")"
+"$layerlab" render-target "$target" "$work/lf" >"$work/log" 2>&1 || fail "render-target failed"
+"$layerlab" solve "$work/small/left.json" --target "$work/lf" --iterations 1 --out "$work/solve_lf" >"$work/log" 2>&1 ||
+  fail "the solve on a light field failed"
+grep -q "is taken as it is, for an eye of a binocular pair with a display of its own" "$work/log" ||
+  fail "no warning for a light field given to one eye of a pair"
+echo "compare and light fields: per eye"
 
 refused() {  # $1: what stderr must say; the rest: retina's arguments
   local says=$1
