@@ -206,8 +206,7 @@ class ContrastRun {
       for (const std::array<double, 2>& m : EyeboxGridOffsets(o.eyebox_range_m, o.eyebox_step_m)) {
         if (m[0] == 0 && m[1] == 0) continue;  // the eye's own curves
         EyeModel eye = displays[di].system.eye;
-        eye.pose.pupil_offset_m[0] += m[0];
-        eye.pose.pupil_offset_m[1] += m[1];
+        eye.pose = WithPupilMoved(eye.pose, m[0], m[1]);
         moved_.push_back({di, m, eye, PupilSamples(eye)});
       }
     retina_ = MakeRetinaGrid(o.retina_field_deg * kRadiansPerDegree, 3 * o.retina_resolution_deg * kRadiansPerDegree,

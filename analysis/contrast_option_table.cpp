@@ -155,20 +155,8 @@ bool ContrastOptions::IsValid(std::string* error) const {
     *error = OptionViolation("accommodation.step", accommodation_step_diopters, "must be above 0 D");
     return false;
   }
-  if (eyebox_range_m > 0) {
-    if (eyebox_step_m > eyebox_range_m) {
-      *error = OptionViolation("eyebox_step", eyebox_step_m,
-                               "must be at most eyebox_range (" + FormatGeneral(eyebox_range_m) + ")");
-      return false;
-    }
-    if (const double n = EyeboxGridSize(eyebox_range_m, eyebox_step_m); n > kMaxContrastEyeboxPupils) {
-      *error = OptionViolation("eyebox_step", eyebox_step_m,
-                               "makes a grid of " + FormatGeneral(n) + " pupil positions, more than " +
-                                   std::to_string(kMaxContrastEyeboxPupils));
-      return false;
-    }
-  } else if (eyebox_step_m > 0) {
-    *error = "eyebox_step: describes the eyebox grid of eyebox_range, which is 0 (the eye's pupil alone)";
+  if (std::string grid = EyeboxGridViolation(eyebox_range_m, eyebox_step_m, kMaxContrastEyeboxPupils); !grid.empty()) {
+    *error = std::move(grid);
     return false;
   }
   if (!(accommodation_max_diopters > accommodation_min_diopters)) {

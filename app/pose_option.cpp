@@ -47,8 +47,7 @@ std::string ApplyPoseOption(const PoseOption& option, DisplaySystem* system) {
 std::string EyeboxGridWarning(const std::vector<PupilWeight>& pupils, const EyeModel& eye) {
   for (const PupilWeight& p : pupils) {
     EyeModel moved = eye;
-    moved.pose.pupil_offset_m[0] += p.offset_x_m;
-    moved.pose.pupil_offset_m[1] += p.offset_y_m;
+    moved.pose = WithPupilMoved(eye.pose, p.offset_x_m, p.offset_y_m);
     if (const std::string beyond = PupilBeyondEyeboxWarning(moved); !beyond.empty())
       return "the eyebox grid's pupil position (" + FormatFixed(moved.pose.pupil_offset_m[0] * 1e3, 2) + ", " +
              FormatFixed(moved.pose.pupil_offset_m[1] * 1e3, 2) + ") mm: " + beyond;

@@ -4,6 +4,8 @@
 #include <string>
 
 #include "layerlab/framework/error.h"
+#include "layerlab/framework/option_table.h"
+#include "layerlab/framework/units.h"
 
 namespace layerlab {
 
@@ -31,6 +33,25 @@ std::vector<std::array<double, 2>> EyeboxGridOffsets(double range_m, double step
   for (int j = -half; j <= half; ++j)
     for (int i = -half; i <= half; ++i) offsets.push_back({i * step, j * step});
   return offsets;
+}
+
+std::string EyeboxGridViolation(double range_m, double step_m, int max_positions, const std::string& why_limited) {
+  if (!(range_m > 0))
+    return step_m > 0 ? "eyebox_step: describes the eyebox grid of eyebox_range, which is 0 (the eye's pupil alone)"
+                      : "";
+  if (step_m > range_m)
+    return OptionViolation("eyebox_step", step_m, "must be at most eyebox_range (" + FormatGeneral(range_m) + ")");
+  if (const double n = EyeboxGridSize(range_m, step_m); n > max_positions)
+    return OptionViolation("eyebox_step", step_m,
+                           "makes a grid of " + FormatGeneral(n) + " pupil positions, more than " +
+                               std::to_string(max_positions) + why_limited);
+  return "";
+}
+
+EyePose WithPupilMoved(EyePose pose, double dx_m, double dy_m) {
+  pose.pupil_offset_m[0] += dx_m;
+  pose.pupil_offset_m[1] += dy_m;
+  return pose;
 }
 
 Vector3 PairFrameInDisplayFrame(const Binocular& b) {

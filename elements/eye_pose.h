@@ -19,6 +19,7 @@
 #pragma once
 
 #include <array>
+#include <string>
 #include <vector>
 
 namespace layerlab {
@@ -59,6 +60,11 @@ struct Binocular {
 inline constexpr int kMaxEyeboxGridSize = 10000;
 double EyeboxGridSize(double range_m, double step_m);
 std::vector<std::array<double, 2>> EyeboxGridOffsets(double range_m, double step_m);
+// "" when the options eyebox_range and eyebox_step describe a grid of at most `max_positions`; otherwise
+// "eyebox_step: value: constraint" (framework/option_table.h OptionViolation), the count's with `why_limited`.
+std::string EyeboxGridViolation(double range_m, double step_m, int max_positions, const std::string& why_limited = "");
+// `pose` with its pupil moved across the eye plane by (dx, dy), m.
+EyePose WithPupilMoved(EyePose pose, double dx_m, double dy_m);
 
 // Where a point given in the pair's frame (from the midpoint between the
 // pupils) lies in this eye's display frame is that point plus this, m: 0 for

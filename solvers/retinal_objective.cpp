@@ -35,8 +35,7 @@ std::vector<std::vector<PupilPoint>> RetinalPupils(const EyeModel& eye, const Re
     sum += p.weight;
     if (p.weight == 0) continue;  // it adds nothing: no operator
     EyeModel moved = eye;
-    moved.pose.pupil_offset_m[0] += p.offset_x_m;
-    moved.pose.pupil_offset_m[1] += p.offset_y_m;
+    moved.pose = WithPupilMoved(eye.pose, p.offset_x_m, p.offset_y_m);
     samples.push_back(PupilSamples(moved));
     w.push_back(p.weight);
   }

@@ -45,12 +45,12 @@ std::string ObjectiveRefusal(const std::string& solver, ObjectiveKind objective,
 // A path written in the scene file, relative to the scene file's folder.
 std::string ResolveAgainstScene(const Scene& scene, const std::string& path);
 
-// Reads scene.document["solve"] if present (strictly: unknown keys, and keys
-// of options the chosen solver does not read, are errors).
 // Where a target scene given in the pair's frame lies in the display frame of `eye` (PairFrameInDisplayFrame
 // for a binocular eye, else 0).
 std::array<double, 3> TargetSceneMove(const EyeModel& eye);
 
+// Reads scene.document["solve"] if present (strictly: unknown keys, and keys
+// of options the chosen solver does not read, are errors).
 SolveConfig ReadSolveConfig(const Scene& scene, const DisplaySystem& system,
                             const SolverRegistry& registry = SolverRegistry::Builtins());
 

@@ -52,15 +52,14 @@ bool SolverOptions::IsValid(std::string* error) const {
           "\"lightfield\" (which weighs every view of the eyebox alike); set the objective to \"retinal\"";
       return false;
     }
-    if (eyebox_step_m > eyebox_range_m)
-      return fail("eyebox_step", eyebox_step_m, "must be at most eyebox_range (" + FormatGeneral(eyebox_range_m) + ")");
-    if (const double pupils = EyeboxGridSize(eyebox_range_m, eyebox_step_m); pupils > kMaxEyeboxPupils)
-      return fail("eyebox_step", eyebox_step_m,
-                  "makes a grid of " + FormatGeneral(pupils) + " pupil positions, more than " +
-                      std::to_string(kMaxEyeboxPupils) + " (each holds its own retinal tables)");
-  } else if (eyebox_step_m > 0 || eyebox_sigma_m > 0) {
-    *error = std::string(eyebox_step_m > 0 ? "eyebox_step" : "eyebox_sigma") +
-             ": describes the eyebox grid of eyebox_range, which is 0 (the eye's pupil alone)";
+  } else if (eyebox_sigma_m > 0 && !(eyebox_step_m > 0)) {
+    *error = "eyebox_sigma: describes the eyebox grid of eyebox_range, which is 0 (the eye's pupil alone)";
+    return false;
+  }
+  if (std::string grid =
+          EyeboxGridViolation(eyebox_range_m, eyebox_step_m, kMaxEyeboxPupils, " (each holds its own retinal tables)");
+      !grid.empty()) {
+    *error = std::move(grid);
     return false;
   }
   if (objective == ObjectiveKind::kRetinal && !retinal.weights.empty() &&

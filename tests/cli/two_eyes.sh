@@ -73,7 +73,7 @@ echo "shared display: both eyes"
 # eye of the shared display sees from ipd/2 left of that axis, turned alike (to float rounding of the positions).
 difference=$("$exr_difference" "$work/both/left/natural/1.00D.exr" "$work/shared/left/natural/1.00D.exr") ||
   fail "cannot compare the natural images"
-/usr/bin/python3 -c "import sys; sys.exit(0 if float('$difference') < 1e-4 else 1)" ||
+/usr/bin/python3 -c 'import sys; sys.exit(0 if float(sys.argv[1]) < 1e-4 else 1)' "$difference" ||
   fail "the own display's left eye does not see the scene from where the shared display's does ($difference)"
 echo "the near-eye left eye's target is the shared display's left view: difference $difference"
 
@@ -83,7 +83,8 @@ echo "the near-eye left eye's target is the shared display's left view: differen
   >"$work/log" 2>&1 || fail "compare of the left eye's display failed"
 solved=$(sed -n 's/.*"final_psnr_db": \([0-9.]*\).*/\1/p' "$work/solve_left/report.json")
 compared=$(sed -n 's/^left,hybrid,lightfield,\([0-9.]*\),.*/\1/p' "$work/compare_left/compare.csv")
-/usr/bin/python3 -c "import sys; sys.exit(0 if abs(float('$solved') - float('$compared')) < 0.001 else 1)" ||
+/usr/bin/python3 -c 'import sys; sys.exit(0 if abs(float(sys.argv[1]) - float(sys.argv[2])) < 0.001 else 1)' \
+  "$solved" "$compared" ||
   fail "compare solved the left eye's display for another target than solve did ($compared against $solved dB)"
 if "$layerlab" compare "$work/small/left.json" "$work/small/right.json" --target-scene "$target" --iterations 1 \
   --out "$work/compare_both" >"$work/log" 2>&1; then fail "compare accepted displays seen by different eyes"; fi
