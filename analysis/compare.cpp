@@ -16,6 +16,7 @@
 #include "layerlab/retina/lightfield_radiance.h"
 #include "layerlab/solvers/objective.h"
 #include "layerlab/solvers/solve_config.h"
+#include "layerlab/solvers/trace_columns.h"
 #include "layerlab/systems/compile.h"
 #include "layerlab/systems/display_model.h"
 #include "layerlab/systems/eye_pose_limits.h"
@@ -262,14 +263,15 @@ std::string CompareCsv(const std::vector<CompareResult>& results) {
 
 std::string TracesCsv(const std::vector<CompareResult>& results) {
   // `objective` is the value the run minimized, of the objective named in `objective_kind`.
-  std::string out = "display,solver,objective_kind,iteration,seconds,objective,psnr_db,focal_stack_psnr_db\n";
+  // Every column, each run's unmeasured ones empty, so that the runs share one header.
+  std::string out = "display,solver,objective_kind";
+  for (const TraceColumn& c : TraceColumns()) out += std::string(",") + c.name;
+  out += "\n";
   for (const CompareResult& r : results)
     for (const IterationRecord& row : r.report.trace) {
-      char line[300];
-      std::snprintf(line, sizeof line, "%s,%s,%s,%d,%.6f,%.9g,%s,%s\n", r.display.c_str(), r.solver.c_str(),
-                    r.report.objective.c_str(), row.iteration, row.seconds, row.objective, Psnr(row.psnr_db).c_str(),
-                    PsnrField(row.focal_stack_psnr_db).c_str());
-      out += line;
+      out += r.display + "," + r.solver + "," + r.report.objective;
+      for (const TraceColumn& c : TraceColumns()) out += "," + TraceField(c, c.value(row), 3, c.measured_only);
+      out += "\n";
     }
   return out;
 }

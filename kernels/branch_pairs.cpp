@@ -20,9 +20,9 @@ void BranchPairs::Bin(const LightField& r, SolveWorkspace* workspace) const {
 void BranchPairs::ComputeUpdate(const DisplayModel& model, size_t branch, int layer, const Patterns& t,
                                 SolveWorkspace* workspace, LayerUpdate* update) const {
   if (lattice_)
-    ComputeLayerUpdateFromPairs(model, branch, layer, *lattice_, workspace->pair_cells, t, workspace, update);
+    ComputeLayerUpdateFromPairs(model, {branch, layer}, *lattice_, workspace->pair_cells, t, workspace, update);
   else
-    ComputeLayerUpdateFromMappedPairs(model, branch, layer, *list_, workspace->pair_sums, t, update);
+    ComputeLayerUpdateFromMappedPairs(model, {branch, layer}, *list_, workspace->pair_sums, t, update);
 }
 
 }  // namespace layerlab

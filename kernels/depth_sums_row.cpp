@@ -1,5 +1,6 @@
 #include "layerlab/kernels/depth_sums_row.h"
 
+#include "layerlab/framework/error.h"
 #include "layerlab/kernels/joint_sums_ray.h"
 #include "layerlab/kernels/row_kernels.h"
 #include "layerlab/kernels/row_kernels_isa.h"
@@ -238,17 +239,21 @@ struct WholeRow {
 
 }  // namespace
 
-void DepthSumsRow(const Rgb4* const* rows, int branches, int layers, const int* a, const Rgb4* w, int cols,
-                  const float* l, bool exact_last, double* squared_error, Rgb4* const* res, Rgb4* const* den) {
-  ErrorSums sums(cols, exact_last);
-  ErrorSums* error = squared_error ? &sums : nullptr;
+void DepthSumsRow(BranchRows branches, int cols, const int* a, PackedRow l, double* squared_error, MemberRowSums sums) {
+  if (branches.stride != branches.layers) throw Error("DepthSumsRow: the branches' rows must follow one another");
+  ErrorSums error_sums(cols, l.exact_last);
+  ErrorSums* error = squared_error ? &error_sums : nullptr;
+  const Rgb4* const* rows = branches.rows;
+  const int count = branches.branches;
+  const Rgb4* w = branches.w;
 #if LAYERLAB_ROW_KERNELS_AVX2
   if (ActiveRowKernels() == RowKernelIsa::kAvx2)
-    ForLayerCount<Avx2>(layers, rows, branches, a, w, cols, l, exact_last, error, res, den);
+    ForLayerCount<Avx2>(branches.layers, rows, count, a, w, cols, l.values, l.exact_last, error, sums.res, sums.den);
   else
 #endif
-    ForLayerCount<WholeRow>(layers, rows, branches, a, w, cols, l, exact_last, error, res, den);
-  if (squared_error) *squared_error = sums.Total();
+    ForLayerCount<WholeRow>(branches.layers, rows, count, a, w, cols, l.values, l.exact_last, error, sums.res,
+                            sums.den);
+  if (squared_error) *squared_error = error_sums.Total();
 }
 
 }  // namespace layerlab

@@ -15,15 +15,16 @@
 #pragma once
 
 #include "layerlab/framework/rgb4.h"
+#include "layerlab/kernels/row_args.h"
 
 namespace layerlab {
 
-// `layers` 1 to 4 (kMaxOneTapLayers). With `a` (0 <= a[b] < layers), res[b]
-// and den[b] are branch b's member a[b]'s; with a == nullptr, res[b * layers
-// + k] and den[b * layers + k] are every member k's. l packed, its last ray
-// read exactly if `exact_last`; `squared_error` written if not null (in
-// double, channels 0-2, as SquaredErrorRow sums it; no branch: the light is 0).
-void DepthSumsRow(const Rgb4* const* rows, int branches, int layers, const int* a, const Rgb4* w, int cols,
-                  const float* l, bool exact_last, double* squared_error, Rgb4* const* res, Rgb4* const* den);
+// `branches` of 1 to 4 layers each (kMaxOneTapLayers), their rows one after
+// another (stride == layers), over the rays j < cols. With `a`
+// (0 <= a[b] < layers), sums.res[b] and sums.den[b] are branch b's member
+// a[b]'s; with a == nullptr, sums.res[b * layers + k] and sums.den[b * layers
+// + k] are every member k's. `squared_error` written if not null (in double,
+// channels 0-2, as SquaredErrorRow sums it; no branch: the light is 0).
+void DepthSumsRow(BranchRows branches, int cols, const int* a, PackedRow l, double* squared_error, MemberRowSums sums);
 
 }  // namespace layerlab

@@ -90,8 +90,8 @@ class FusedRows {
       }
       ++reached;
     }
-    DepthSumsRow(rows_.data(), reached, layers_, summed_ ? member_.data() : nullptr, weight_.data(), cols, l,
-                 exact_last, squared_error, res_.data(), den_.data());
+    DepthSumsRow({rows_.data(), layers_, layers_, weight_.data(), reached}, cols, summed_ ? member_.data() : nullptr,
+                 {l, exact_last}, squared_error, {res_.data(), den_.data()});
   }
 
  private:
@@ -168,7 +168,7 @@ void ViewRun(const DisplayModel& model, const LightField& l, const PaddedLayers&
         };
         for (size_t b = 0; b < model.branch_count(); ++b) {
           if (!branch_rows(b)) continue;
-          AddBranchLightRow(rows, static_cast<int>(model.branch_layers(b).size()), Weight(model, b), cols, light);
+          AddBranchLightRow({rows, static_cast<int>(model.branch_layers(b).size()), Weight(model, b), cols}, light);
         }
         error += SquaredErrorRow(lr, light, cols, exact_last);
 
@@ -183,7 +183,8 @@ void ViewRun(const DisplayModel& model, const LightField& l, const PaddedLayers&
             res[m] = w->layer_sums[a].num(layer_row[a]);
             den[m] = w->layer_sums[a].den(layer_row[a]);
           }
-          JointSumsRow(rows, static_cast<int>(members.size()), Weight(model, b), cols, lr, exact_last, light, res, den);
+          JointSumsRow({rows, static_cast<int>(members.size()), Weight(model, b), cols}, {lr, exact_last}, light,
+                       {res, den});
         }
       }
     }
@@ -194,8 +195,7 @@ void ViewRun(const DisplayModel& model, const LightField& l, const PaddedLayers&
 
 }  // namespace
 
-double JointColumnPass(const DisplayModel& model, const LightField& l, const Patterns& t,
-                       std::vector<std::vector<double>>* res, std::vector<std::vector<double>>* den,
+double JointColumnPass(const DisplayModel& model, const LightField& l, const Patterns& t, JointLayerSums sums,
                        SolveWorkspace* workspace, const std::vector<char>* summed, bool objective) {
   PaddedLayers& padded = workspace->padded;
   padded.PadAll(t);
@@ -220,7 +220,8 @@ double JointColumnPass(const DisplayModel& model, const LightField& l, const Pat
 #pragma omp barrier
     // Merged in thread order, each thread a share of each layer's pixels.
     for (size_t k = 0; k < model.layer_count(); ++k)
-      if (Summed(summed, k)) ColumnSums::Merge(thread_sums[k], me, threads, (*res)[k].data(), (*den)[k].data());
+      if (Summed(summed, k))
+        ColumnSums::Merge(thread_sums[k], me, threads, (*sums.res)[k].data(), (*sums.den)[k].data());
   }
   double total = 0;
   for (double e : error) total += e;

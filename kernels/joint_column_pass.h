@@ -22,10 +22,15 @@
 
 namespace layerlab {
 
-// res[k], den[k]: layer k's pixels x 3, written (for the summed layers). In
-// `workspace`, sized with kJointPass. (ColumnSums' num() holds res here.)
-double JointColumnPass(const DisplayModel& model, const LightField& l, const Patterns& t,
-                       std::vector<std::vector<double>>* res, std::vector<std::vector<double>>* den,
+// The pass's sums: res[k], den[k] layer k's pixels x 3, written (for the
+// summed layers). (ColumnSums' num() holds res here.)
+struct JointLayerSums {
+  std::vector<std::vector<double>>* res;
+  std::vector<std::vector<double>>* den;
+};
+
+// In `workspace`, sized with kJointPass.
+double JointColumnPass(const DisplayModel& model, const LightField& l, const Patterns& t, JointLayerSums sums,
                        SolveWorkspace* workspace, const std::vector<char>* summed = nullptr, bool objective = true);
 
 }  // namespace layerlab

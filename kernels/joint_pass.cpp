@@ -35,7 +35,7 @@ double JointPass::Run(const LightField& l, const Patterns& t, const std::vector<
   for (size_t k = 0; k < layers; ++k)
     res_[k].resize(t[k].rgb.size()), den_[k].resize(t[k].rgb.size());  // written whole
   if (column_pass_) {
-    const double error = JointColumnPass(model_, l, t, &res_, &den_, workspace_, summed, with_objective);
+    const double error = JointColumnPass(model_, l, t, {&res_, &den_}, workspace_, summed, with_objective);
     if (!summed) return SumAcrossRanks(&res_, &den_, error);
     std::vector<std::span<double>> sums;  // of the layers summed: every rank's rays
     for (size_t k = 0; k < layers; ++k)

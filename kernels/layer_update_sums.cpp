@@ -51,8 +51,9 @@ void AccumulateGeneral(const DisplayModel& model, const std::vector<int>& layers
 
 }  // namespace
 
-bool ComputeLayerUpdate(const DisplayModel& model, size_t branch, int layer, const BranchTarget& branch_target,
+bool ComputeLayerUpdate(const DisplayModel& model, BranchLayer which, const BranchTarget& branch_target,
                         const Patterns& t, SolveWorkspace* workspace, LayerUpdate* update, double* error) {
+  const auto [branch, layer] = which;
   const LightFieldGeometry& g = model.geometry();
   const std::vector<int>& layers = model.branch_layers(branch);
   const std::array<float, 3> w = model.weight(branch);
@@ -70,8 +71,8 @@ bool ComputeLayerUpdate(const DisplayModel& model, size_t branch, int layer, con
       if (k != layer) a_first.push_back(k);
     std::vector<double>& view_errors = workspace->view_errors;
     view_errors.assign(error ? g.view_count() : 0, 0.0);
-    OneTapUpdateSums(model, a_first, t, branch_target, w, numerator, denominator, error ? view_errors.data() : nullptr,
-                     workspace);
+    OneTapUpdateSums(model, {a_first, w}, t, branch_target,
+                     {numerator, denominator, error ? view_errors.data() : nullptr}, workspace);
     FinishOneTapSums(w, t[layer].rgb, numerator, denominator);
     if (error) {
       *error = 0;
@@ -100,9 +101,10 @@ bool ComputeLayerUpdate(const DisplayModel& model, size_t branch, int layer, con
   return false;
 }
 
-void ComputeLayerUpdateFromPairs(const DisplayModel& model, size_t branch, int layer, const PairLattice& lattice,
+void ComputeLayerUpdateFromPairs(const DisplayModel& model, BranchLayer which, const PairLattice& lattice,
                                  const PairCells& binned, const Patterns& t, SolveWorkspace* workspace,
                                  LayerUpdate* update) {
+  const auto [branch, layer] = which;
   const size_t m = model.projection(layer).pixel_count() * 3;
   const int other = lattice.other_layer(layer);
   workspace->padded.Pad(t, {other});
@@ -113,8 +115,9 @@ void ComputeLayerUpdateFromPairs(const DisplayModel& model, size_t branch, int l
   SumAcrossRanks({*update->num, *update->den});
 }
 
-void ComputeLayerUpdateFromMappedPairs(const DisplayModel& model, size_t branch, int layer, const MappedPairs& pairs,
+void ComputeLayerUpdateFromMappedPairs(const DisplayModel& model, BranchLayer which, const MappedPairs& pairs,
                                        const std::vector<float>& binned, const Patterns& t, LayerUpdate* update) {
+  const auto [branch, layer] = which;
   const size_t m = model.projection(layer).pixel_count() * 3;
   update->branch = branch, update->layer = layer;
   update->num->resize(m), update->den->resize(m);

@@ -18,6 +18,12 @@ namespace layerlab {
 // The sums of one update, apart from its step, so that the pass over the rays
 // can be made early: the multiplicative solver makes the next iteration's
 // first one in the pass that gives the objective.
+// Layer `layer` of branch `branch`.
+struct BranchLayer {
+  size_t branch = 0;
+  int layer = -1;
+};
+
 struct LayerUpdate {
   size_t branch = 0;
   int layer = -1;
@@ -30,14 +36,14 @@ inline LayerUpdate OneLayerUpdate(SolveWorkspace* w) { return {0, -1, &w->update
 // branch is on the one-tap path, the same pass also gives the branch's
 // squared error against `branch_target` (summed per view, then in view
 // order); returns whether it did.
-bool ComputeLayerUpdate(const DisplayModel& model, size_t branch, int layer, const BranchTarget& branch_target,
+bool ComputeLayerUpdate(const DisplayModel& model, BranchLayer which, const BranchTarget& branch_target,
                         const Patterns& t, SolveWorkspace* workspace, LayerUpdate* update, double* error = nullptr);
 // The same sums from the branch's target binned by pixel pair (PairLattice::Bin
-// into `binned`); `layer` is one of the lattice's two. In `workspace`, sized with kLayerUpdatePass.
-void ComputeLayerUpdateFromPairs(const DisplayModel& model, size_t branch, int layer, const PairLattice& lattice,
+// into `binned`); the layer is one of the lattice's two. In `workspace`, sized with kLayerUpdatePass.
+void ComputeLayerUpdateFromPairs(const DisplayModel& model, BranchLayer which, const PairLattice& lattice,
                                  const PairCells& binned, const Patterns& t, SolveWorkspace* workspace,
                                  LayerUpdate* update);
 // The same behind real lenses, from MappedPairs::Bin's `binned`.
-void ComputeLayerUpdateFromMappedPairs(const DisplayModel& model, size_t branch, int layer, const MappedPairs& pairs,
+void ComputeLayerUpdateFromMappedPairs(const DisplayModel& model, BranchLayer which, const MappedPairs& pairs,
                                        const std::vector<float>& binned, const Patterns& t, LayerUpdate* update);
 }  // namespace layerlab

@@ -54,7 +54,7 @@ struct Accumulate {
         for (size_t c = b; c < e; c += kBatch) {
           const size_t m = std::min(kBatch, e - c);
           for (size_t k = 0; k < m; ++k) r[k] = pending[c + k].target, q[k] = pending[c + k].product;
-          UpdateSumsRows(r, L == 1 ? nullptr : q, static_cast<int>(m), w->update_sums.num(ra), w->update_sums.den(ra),
+          UpdateSumsRows(r, L == 1 ? nullptr : q, static_cast<int>(m), {w->update_sums.num(ra), w->update_sums.den(ra)},
                          cols);
         }
       }
@@ -97,16 +97,16 @@ struct Accumulate {
         const Rgb4* q = L == 1 ? nullptr : q_rows[0];
         if constexpr (L > 2) {  // the product of the other layers, then the sums
           std::fill(w->product.begin(), w->product.end(), Rgb4{});
-          AddBranchLightRow(q_rows, L - 1, Rgb4{1, 1, 1, 0}, cols, w->product.data());
+          AddBranchLightRow({q_rows, L - 1, Rgb4{1, 1, 1, 0}, cols}, w->product.data());
           q = w->product.data();
         }
         if (view_errors)
           error += UpdateSumsAndErrorRow(l, q, own.data() + static_cast<size_t>(ra) * cols, weight,
-                                         w->update_sums.num(ra), w->update_sums.den(ra), cols);
+                                         {w->update_sums.num(ra), w->update_sums.den(ra)}, cols);
         else if (wait)
           pending.push_back({ra, l, q});
         else
-          UpdateSumsRow(l, q, w->update_sums.num(ra), w->update_sums.den(ra), cols);
+          UpdateSumsRow(l, q, {w->update_sums.num(ra), w->update_sums.den(ra)}, cols);
       }
       if (view_errors) view_errors[view] = error;
     }
@@ -118,9 +118,11 @@ struct Accumulate {
 
 }  // namespace
 
-void OneTapUpdateSums(const DisplayModel& model, const std::vector<int>& layers, const Patterns& t,
-                      const BranchTarget& branch_target, const std::array<float, 3>& weight, double* num, double* den,
-                      double* view_errors, SolveWorkspace* workspace) {
+void OneTapUpdateSums(const DisplayModel& model, const UpdatedBranch& branch, const Patterns& t,
+                      const BranchTarget& branch_target, OneTapSums sums, SolveWorkspace* workspace) {
+  const std::vector<int>& layers = branch.layers;
+  const std::array<float, 3>& weight = branch.weight;
+  double* view_errors = sums.view_errors;
   const LightFieldGeometry& g = model.geometry();
   const LayerProjection& Pa = model.projection(layers[0]);
   PaddedLayers& padded = workspace->padded;
@@ -147,7 +149,7 @@ void OneTapUpdateSums(const DisplayModel& model, const std::vector<int>& layers,
                                 vr_end, view_errors, &w);
     });
 #pragma omp barrier
-    ColumnSums::Merge(thread_sums, me, threads, num, den);
+    ColumnSums::Merge(thread_sums, me, threads, sums.num, sums.den);
   }
 }
 

@@ -20,13 +20,25 @@
 
 namespace layerlab {
 
-// `layers`: the branch's layers, layer a first. num and den hold layer a's
-// pixels x 3 and are written. With `view_errors` (one per view), the same
-// pass also gives each view's sum of (r - w_b prod_k P_k t_k)^2 over its
-// rays and channels, the branch's own error against what it should emit.
+// A branch as the update reads it: its layers, the updated layer a first,
+// and its weight w_b.
+struct UpdatedBranch {
+  const std::vector<int>& layers;
+  std::array<float, 3> weight;
+};
+
+// What the update's pass writes: num and den hold layer a's pixels x 3. With
+// `view_errors` (one per view), the same pass also gives each view's sum of
+// (r - w_b prod_k P_k t_k)^2 over its rays and channels, the branch's own
+// error against what it should emit.
+struct OneTapSums {
+  double* num;
+  double* den;
+  double* view_errors = nullptr;
+};
+
 // In `workspace`, sized with kLayerUpdatePass.
-void OneTapUpdateSums(const DisplayModel& model, const std::vector<int>& layers, const Patterns& t,
-                      const BranchTarget& branch_target, const std::array<float, 3>& weight, double* num, double* den,
-                      double* view_errors, SolveWorkspace* workspace);
+void OneTapUpdateSums(const DisplayModel& model, const UpdatedBranch& branch, const Patterns& t,
+                      const BranchTarget& branch_target, OneTapSums sums, SolveWorkspace* workspace);
 
 }  // namespace layerlab

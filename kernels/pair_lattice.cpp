@@ -178,8 +178,8 @@ void PairLattice::UpdateSums(int layer, const Rgb4* other, const PairCells& binn
         q_rows.push_back(other + static_cast<size_t>(row_pairs_[i].own[o]) * other_cols);
         row_rays.push_back(static_cast<float>(row_pairs_[i].rays));
       }
-      PairSumsRows(cells.data(), q_rows.data(), row_rays.data(), static_cast<int>(cells.size()), other_col,
-                   static_cast<int>(width), sum_rq.data(), sum_qq.data());
+      PairSumsRows({cells.data(), q_rows.data(), row_rays.data(), static_cast<int>(cells.size())},
+                   {other_col, static_cast<int>(width)}, {sum_rq.data(), sum_qq.data()});
       // A pixel's column pairs, each of its count of rays per row pair.
       for (int c = 0; c < own_cols; ++c) {
         double n[3] = {0, 0, 0}, d[3] = {0, 0, 0};

@@ -33,20 +33,20 @@ struct AddBranchLightRowOf {
 
 }  // namespace
 
-void AddBranchLightRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, Rgb4* row) {
-  ForLayerCount<AddBranchLightRowOf>(layers, rows, w, cols, row);
+void AddBranchLightRow(BranchRow branch, Rgb4* row) {
+  ForLayerCount<AddBranchLightRowOf>(branch.layers, branch.rows, branch.w, branch.cols, row);
 }
 
-void AddBranchLightTermsRow(const Rgb4* const* rows, int stride, int layers, const Rgb4* w, int terms, int begin,
-                            int end, Rgb4* row) {
-  for (int q = 0; q < terms; ++q) {
+void AddBranchLightTermsRow(BranchRows terms, int begin, int end, Rgb4* row) {
+  for (int q = 0; q < terms.branches; ++q) {
     const Rgb4* at[kMaxOneTapLayers];
-    for (int k = 0; k < layers; ++k) at[k] = rows[q * stride + k] + begin;
-    AddBranchLightRow(at, layers, w[q], end - begin, row + begin);
+    for (int k = 0; k < terms.layers; ++k) at[k] = terms.rows[q * terms.stride + k] + begin;
+    baseline::AddBranchLightRow({at, terms.layers, terms.w[q], end - begin}, row + begin);
   }
 }
 
-void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int cols) {
+void UpdateSumsRow(const float* r, const Rgb4* q, UpdateRowSums sums, int cols) {
+  Rgb4 *num = sums.num, *den = sums.den;
   int j = 0;
   for (; j + 1 < cols; ++j) {  // all but the last ray read one float past their own
     const Rgb4 qj = q ? q[j] : Rgb4{1, 1, 1, 0};
@@ -60,9 +60,10 @@ void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int cols
   }
 }
 
-void PairSumsRow(const Rgb4* cells, const Rgb4* q_row, const int32_t* q_col, float rays, int width, bool add,
-                 Rgb4* sum_rq, Rgb4* sum_qq) {
-  for (int j = 0; j < width; ++j) {
+void PairSumsRow(const Rgb4* cells, const Rgb4* q_row, float rays, PairColumns columns, bool add, UpdateRowSums sums) {
+  const int32_t* q_col = columns.q_col;
+  Rgb4 *sum_rq = sums.num, *sum_qq = sums.den;
+  for (int j = 0; j < columns.width; ++j) {
     const Rgb4 q = q_row[q_col[j]];
     const Rgb4 rq = cells[j] * q, qq = rays * (q * q);
     sum_rq[j] = add ? sum_rq[j] + rq : rq;
@@ -70,13 +71,13 @@ void PairSumsRow(const Rgb4* cells, const Rgb4* q_row, const int32_t* q_col, flo
   }
 }
 
-void PairSumsRows(const Rgb4* const* cells, const Rgb4* const* q_rows, const float* rays, int pairs,
-                  const int32_t* q_col, int width, Rgb4* sum_rq, Rgb4* sum_qq) {
-  for (int k = 0; k < pairs; ++k) PairSumsRow(cells[k], q_rows[k], q_col, rays[k], width, k > 0, sum_rq, sum_qq);
+void PairSumsRows(PairRows pairs, PairColumns columns, UpdateRowSums sums) {
+  for (int k = 0; k < pairs.pairs; ++k)
+    baseline::PairSumsRow(pairs.cells[k], pairs.q_rows[k], pairs.rays[k], columns, k > 0, sums);
 }
 
-void UpdateSumsRows(const float* const* r, const Rgb4* const* q, int rows, Rgb4* num, Rgb4* den, int cols) {
-  for (int g = 0; g < rows; ++g) UpdateSumsRow(r[g], q ? q[g] : nullptr, num, den, cols);
+void UpdateSumsRows(const float* const* r, const Rgb4* const* q, int rows, UpdateRowSums sums, int cols) {
+  for (int g = 0; g < rows; ++g) baseline::UpdateSumsRow(r[g], q ? q[g] : nullptr, sums, cols);
 }
 
 // The squared errors are summed in two-double vectors, one SSE register each
@@ -105,7 +106,8 @@ inline void AddSquared(Rgb4 t, Rgb4 l, Double2& rg, Double2& b) {
 
 }  // namespace
 
-double UpdateSumsAndErrorRow(const float* r, const Rgb4* q, const Rgb4* own, Rgb4 w, Rgb4* num, Rgb4* den, int cols) {
+double UpdateSumsAndErrorRow(const float* r, const Rgb4* q, const Rgb4* own, Rgb4 w, UpdateRowSums sums, int cols) {
+  Rgb4 *num = sums.num, *den = sums.den;
   Double2 rg0 = {}, b0 = {}, rg1 = {}, b1 = {};  // even rays, odd rays
   auto ray = [&](int j, Rgb4 rj, Double2& rg, Double2& b) {
     const Rgb4 qj = q ? q[j] : Rgb4{1, 1, 1, 0};
@@ -177,9 +179,9 @@ struct JointSumsRowOf {
 
 }  // namespace
 
-void JointSumsRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, const float* l, bool exact_last,
-                  const Rgb4* light, Rgb4* const* num, Rgb4* const* den) {
-  ForLayerCount<JointSumsRowOf>(layers, rows, w, cols, l, exact_last, light, num, den);
+void JointSumsRow(BranchRow branch, PackedRow l, const Rgb4* light, MemberRowSums sums) {
+  ForLayerCount<JointSumsRowOf>(branch.layers, branch.rows, branch.w, branch.cols, l.values, l.exact_last, light,
+                                sums.res, sums.den);
 }
 
 }  // namespace baseline
@@ -231,29 +233,24 @@ bool ForceRowKernels(RowKernelIsa isa) {
 #define LAYERLAB_DISPATCH(call) return baseline::call
 #endif
 
-void AddBranchLightRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, Rgb4* row) {
-  LAYERLAB_DISPATCH(AddBranchLightRow(rows, layers, w, cols, row));
+void AddBranchLightRow(BranchRow branch, Rgb4* row) { LAYERLAB_DISPATCH(AddBranchLightRow(branch, row)); }
+void AddBranchLightTermsRow(BranchRows terms, int begin, int end, Rgb4* row) {
+  LAYERLAB_DISPATCH(AddBranchLightTermsRow(terms, begin, end, row));
 }
-void AddBranchLightTermsRow(const Rgb4* const* rows, int stride, int layers, const Rgb4* w, int terms, int begin,
-                            int end, Rgb4* row) {
-  LAYERLAB_DISPATCH(AddBranchLightTermsRow(rows, stride, layers, w, terms, begin, end, row));
+void UpdateSumsRow(const float* r, const Rgb4* q, UpdateRowSums sums, int cols) {
+  LAYERLAB_DISPATCH(UpdateSumsRow(r, q, sums, cols));
 }
-void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int cols) {
-  LAYERLAB_DISPATCH(UpdateSumsRow(r, q, num, den, cols));
+void PairSumsRow(const Rgb4* cells, const Rgb4* q_row, float rays, PairColumns columns, bool add, UpdateRowSums sums) {
+  LAYERLAB_DISPATCH(PairSumsRow(cells, q_row, rays, columns, add, sums));
 }
-void PairSumsRow(const Rgb4* cells, const Rgb4* q_row, const int32_t* q_col, float rays, int width, bool add,
-                 Rgb4* sum_rq, Rgb4* sum_qq) {
-  LAYERLAB_DISPATCH(PairSumsRow(cells, q_row, q_col, rays, width, add, sum_rq, sum_qq));
+void PairSumsRows(PairRows pairs, PairColumns columns, UpdateRowSums sums) {
+  LAYERLAB_DISPATCH(PairSumsRows(pairs, columns, sums));
 }
-void PairSumsRows(const Rgb4* const* cells, const Rgb4* const* q_rows, const float* rays, int pairs,
-                  const int32_t* q_col, int width, Rgb4* sum_rq, Rgb4* sum_qq) {
-  LAYERLAB_DISPATCH(PairSumsRows(cells, q_rows, rays, pairs, q_col, width, sum_rq, sum_qq));
+void UpdateSumsRows(const float* const* r, const Rgb4* const* q, int rows, UpdateRowSums sums, int cols) {
+  LAYERLAB_DISPATCH(UpdateSumsRows(r, q, rows, sums, cols));
 }
-void UpdateSumsRows(const float* const* r, const Rgb4* const* q, int rows, Rgb4* num, Rgb4* den, int cols) {
-  LAYERLAB_DISPATCH(UpdateSumsRows(r, q, rows, num, den, cols));
-}
-double UpdateSumsAndErrorRow(const float* r, const Rgb4* q, const Rgb4* own, Rgb4 w, Rgb4* num, Rgb4* den, int cols) {
-  LAYERLAB_DISPATCH(UpdateSumsAndErrorRow(r, q, own, w, num, den, cols));
+double UpdateSumsAndErrorRow(const float* r, const Rgb4* q, const Rgb4* own, Rgb4 w, UpdateRowSums sums, int cols) {
+  LAYERLAB_DISPATCH(UpdateSumsAndErrorRow(r, q, own, w, sums, cols));
 }
 double SquaredErrorRow(const float* target, const Rgb4* light, int cols, bool exact_last) {
   LAYERLAB_DISPATCH(SquaredErrorRow(target, light, cols, exact_last));
@@ -262,9 +259,8 @@ void RemainderRow(const float* target, const Rgb4* light, int cols, float* out) 
   LAYERLAB_DISPATCH(RemainderRow(target, light, cols, out));
 }
 void PackRow(const Rgb4* row, int cols, float* out) { LAYERLAB_DISPATCH(PackRow(row, cols, out)); }
-void JointSumsRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, const float* l, bool exact_last,
-                  const Rgb4* light, Rgb4* const* num, Rgb4* const* den) {
-  LAYERLAB_DISPATCH(JointSumsRow(rows, layers, w, cols, l, exact_last, light, num, den));
+void JointSumsRow(BranchRow branch, PackedRow l, const Rgb4* light, MemberRowSums sums) {
+  LAYERLAB_DISPATCH(JointSumsRow(branch, l, light, sums));
 }
 
 #undef LAYERLAB_DISPATCH

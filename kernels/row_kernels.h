@@ -6,60 +6,54 @@
 // on every lane, so their results are bit for bit the same; tests check it.
 #pragma once
 
-#include <cstdint>
-
 #include "layerlab/framework/rgb4.h"
+#include "layerlab/kernels/row_args.h"
 
 namespace layerlab {
 
-// row[j] += w prod_k rows[k][j], k < layers (1 to 4).
-void AddBranchLightRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, Rgb4* row);
+// row[j] += w prod_k rows[k][j] over the branch row's layers and rays.
+void AddBranchLightRow(BranchRow branch, Rgb4* row);
 
-// row[j] += w[q] prod_k rows[q stride + k][j] for each term q < terms in
-// turn, j in [begin, end): the sums AddBranchLightRow makes term by term, in
-// the same order, with each pixel's running sum kept in a register over a
+// row[j] += w[q] prod_k rows[q stride + k][j] for each term q < terms.branches
+// in turn, j in [begin, end): the sums AddBranchLightRow makes term by term,
+// in the same order, with each pixel's running sum kept in a register over a
 // few terms (the retinal image adds a hundred terms per row).
-void AddBranchLightTermsRow(const Rgb4* const* rows, int stride, int layers, const Rgb4* w, int terms, int begin,
-                            int end, Rgb4* row);
+void AddBranchLightTermsRow(BranchRows terms, int begin, int end, Rgb4* row);
 
 // The multiplicative update's column sums over one ray row:
 // num[j] += r_j q[j], den[j] += q[j]^2; r packed [ray][rgb], q = nullptr means 1.
-void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int cols);
+void UpdateSumsRow(const float* r, const Rgb4* q, UpdateRowSums sums, int cols);
 
 // One row pair of a pixel-pair lattice (pair_lattice.h) into a layer row's
-// sums per column pair: sum_rq[j] += cells[j] q_j, sum_qq[j] += rays q_j^2,
+// sums per column pair: num[j] += cells[j] q_j, den[j] += rays q_j^2,
 // q_j = q_row[q_col[j]] (the other layer's pixel of column pair j); without
 // `add` the sums are set to those terms instead.
-void PairSumsRow(const Rgb4* cells, const Rgb4* q_row, const int32_t* q_col, float rays, int width, bool add,
-                 Rgb4* sum_rq, Rgb4* sum_qq);
+void PairSumsRow(const Rgb4* cells, const Rgb4* q_row, float rays, PairColumns columns, bool add, UpdateRowSums sums);
 
-// PairSumsRow for the `pairs` row pairs of one layer row in turn, the first
-// setting the sums and the others adding: the same adds in the same order,
-// each column pair's two sums kept in registers over a few row pairs.
-// Row pair k has cells[k], q_rows[k] and rays[k]; q_col is the same for all.
-// pairs >= 1 (with none the sums are left as they were, not zeroed).
-void PairSumsRows(const Rgb4* const* cells, const Rgb4* const* q_rows, const float* rays, int pairs,
-                  const int32_t* q_col, int width, Rgb4* sum_rq, Rgb4* sum_qq);
+// PairSumsRow for the row pairs of one layer row in turn, the first setting
+// the sums and the others adding: the same adds in the same order, each
+// column pair's two sums kept in registers over a few row pairs.
+// pairs.pairs >= 1 (with none the sums are left as they were, not zeroed).
+void PairSumsRows(PairRows pairs, PairColumns columns, UpdateRowSums sums);
 
 // UpdateSumsRow for `rows` ray rows that sum into the same num and den, in
 // turn: the same adds in the same order, each ray column's two sums kept in
 // registers over a few rows. q == nullptr means 1 for every row; else q[g]
 // is row g's.
-void UpdateSumsRows(const float* const* r, const Rgb4* const* q, int rows, Rgb4* num, Rgb4* den, int cols);
+void UpdateSumsRows(const float* const* r, const Rgb4* const* q, int rows, UpdateRowSums sums, int cols);
 
 // UpdateSumsRow, and in the same pass the squared error of the branch's
 // light w own[j] q[j] against r over the row (in double, as SquaredErrorRow
 // sums it), `own` being the updated layer's values at the rays.
-double UpdateSumsAndErrorRow(const float* r, const Rgb4* q, const Rgb4* own, Rgb4 w, Rgb4* num, Rgb4* den, int cols);
+double UpdateSumsAndErrorRow(const float* r, const Rgb4* q, const Rgb4* own, Rgb4 w, UpdateRowSums sums, int cols);
 
-// The joint pass's sums for every layer a of one branch of `layers` (1 to
-// 4) over one ray row, q_a = w prod_{k != a} rows[k][j]:
-// res[a][j] += (light[j] - l_j) q_a, den[a][j] += light[j] q_a; l packed,
-// its last ray read exactly if `exact_last`. The residual is summed itself,
-// not as den minus a sum of l_j q_a: near a solution the two agree to many
-// digits, and their float difference would be mostly rounding.
-void JointSumsRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, const float* l, bool exact_last,
-                  const Rgb4* light, Rgb4* const* res, Rgb4* const* den);
+// The joint pass's sums for every layer a of one branch row (1 to 4 layers),
+// q_a = w prod_{k != a} rows[k][j]:
+// res[a][j] += (light[j] - l_j) q_a, den[a][j] += light[j] q_a. The residual
+// is summed itself, not as den minus a sum of l_j q_a: near a solution the
+// two agree to many digits, and their float difference would be mostly
+// rounding.
+void JointSumsRow(BranchRow branch, PackedRow l, const Rgb4* light, MemberRowSums sums);
 
 // Sum over the row of (target - light)^2, channels 0-2, in double; `target`
 // packed. All rays but the last read one float past their own unless

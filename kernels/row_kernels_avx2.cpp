@@ -37,7 +37,7 @@ struct AddBranchLightRowOf {
     }
     const Rgb4* rest[L];
     for (int k = 0; k < L; ++k) rest[k] = rows[k] + j;
-    baseline::AddBranchLightRow(rest, L, w, cols - j, row + j);
+    baseline::AddBranchLightRow({rest, L, w, cols - j}, row + j);
   }
 };
 
@@ -61,7 +61,7 @@ LAYERLAB_AVX2 void AddTermsGroup(const Rgb4* const* rows, int stride, const Rgb4
     }
     _mm256_storeu_ps(out + j * 4, sum);
   }
-  if (j < end) baseline::AddBranchLightTermsRow(rows, stride, L, w, G, j, end, row);
+  if (j < end) baseline::AddBranchLightTermsRow({rows, stride, L, w, G}, j, end, row);
 }
 
 // group(std::integral_constant<int, G>, first) over [0, count) in order: groups
@@ -113,27 +113,28 @@ struct JointSumsRowOf {
     const Rgb4* rest[L];
     Rgb4 *rest_num[L], *rest_den[L];
     for (int k = 0; k < L; ++k) rest[k] = rows[k] + j, rest_num[k] = num[k] + j, rest_den[k] = den[k] + j;
-    baseline::JointSumsRow(rest, L, w, cols - j, l + j * 3, exact_last, light + j, rest_num, rest_den);
+    baseline::JointSumsRow({rest, L, w, cols - j}, {l + j * 3, exact_last}, light + j, {rest_num, rest_den});
   }
 };
 
 }  // namespace
 
-LAYERLAB_AVX2 void JointSumsRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, const float* l, bool exact_last,
-                                const Rgb4* light, Rgb4* const* num, Rgb4* const* den) {
-  ForLayerCount<JointSumsRowOf>(layers, rows, w, cols, l, exact_last, light, num, den);
+LAYERLAB_AVX2 void JointSumsRow(BranchRow branch, PackedRow l, const Rgb4* light, MemberRowSums sums) {
+  ForLayerCount<JointSumsRowOf>(branch.layers, branch.rows, branch.w, branch.cols, l.values, l.exact_last, light,
+                                sums.res, sums.den);
 }
 
-LAYERLAB_AVX2 void AddBranchLightRow(const Rgb4* const* rows, int layers, Rgb4 w, int cols, Rgb4* row) {
-  ForLayerCount<AddBranchLightRowOf>(layers, rows, w, cols, row);
+LAYERLAB_AVX2 void AddBranchLightRow(BranchRow branch, Rgb4* row) {
+  ForLayerCount<AddBranchLightRowOf>(branch.layers, branch.rows, branch.w, branch.cols, row);
 }
 
-LAYERLAB_AVX2 void AddBranchLightTermsRow(const Rgb4* const* rows, int stride, int layers, const Rgb4* w, int terms,
-                                          int begin, int end, Rgb4* row) {
-  ForLayerCount<AddBranchLightTermsRowOf>(layers, rows, stride, w, terms, begin, end, row);
+LAYERLAB_AVX2 void AddBranchLightTermsRow(BranchRows terms, int begin, int end, Rgb4* row) {
+  ForLayerCount<AddBranchLightTermsRowOf>(terms.layers, terms.rows, terms.stride, terms.w, terms.branches, begin, end,
+                                          row);
 }
 
-LAYERLAB_AVX2 void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4* den, int cols) {
+LAYERLAB_AVX2 void UpdateSumsRow(const float* r, const Rgb4* q, UpdateRowSums sums, int cols) {
+  Rgb4 *num = sums.num, *den = sums.den;
   float* n = reinterpret_cast<float*>(num);
   float* d = reinterpret_cast<float*>(den);
   const __m256 ones = _mm256_setr_ps(1, 1, 1, 0, 1, 1, 1, 0);
@@ -144,7 +145,7 @@ LAYERLAB_AVX2 void UpdateSumsRow(const float* r, const Rgb4* q, Rgb4* num, Rgb4*
                      _mm256_add_ps(_mm256_loadu_ps(n + j * 4), _mm256_mul_ps(LoadTwoRaysOver(r + j * 3), qj)));
     _mm256_storeu_ps(d + j * 4, _mm256_add_ps(_mm256_loadu_ps(d + j * 4), _mm256_mul_ps(qj, qj)));
   }
-  baseline::UpdateSumsRow(r + j * 3, q ? q + j : nullptr, num + j, den + j, cols - j);
+  baseline::UpdateSumsRow(r + j * 3, q ? q + j : nullptr, {num + j, den + j}, cols - j);
 }
 
 namespace {
@@ -169,13 +170,18 @@ LAYERLAB_AVX2 void UpdateSumsGroup(const float* const* r, const Rgb4* const* q, 
     _mm256_storeu_ps(n + j * 4, nj), _mm256_storeu_ps(d + j * 4, dj);
   }
   for (int g = 0; g < G; ++g)
-    baseline::UpdateSumsRow(rg[g] + j * 3, q ? q[g] + j : nullptr, num + j, den + j, cols - j);
+    baseline::UpdateSumsRow(rg[g] + j * 3, q ? q[g] + j : nullptr, {num + j, den + j}, cols - j);
 }
 
-// PairSumsRows' row pairs [0, G): the first sets the sums unless `add`.
+// PairSumsRows' row pairs [0, G) of `pairs` (its count not read): the first sets the sums unless `add`.
 template <int G>
-LAYERLAB_AVX2 void PairSumsGroup(const Rgb4* const* cells, const Rgb4* const* q_rows, const float* rays,
-                                 const int32_t* q_col, int width, bool add, Rgb4* sum_rq, Rgb4* sum_qq) {
+LAYERLAB_AVX2 void PairSumsGroup(PairRows pairs, PairColumns columns, bool add, UpdateRowSums sums) {
+  const Rgb4* const* cells = pairs.cells;
+  const Rgb4* const* q_rows = pairs.q_rows;
+  const float* rays = pairs.rays;
+  const int32_t* q_col = columns.q_col;
+  const int width = columns.width;
+  Rgb4 *sum_rq = sums.num, *sum_qq = sums.den;
   __m256 r8[G];
   for (int g = 0; g < G; ++g) r8[g] = _mm256_set1_ps(rays[g]);
   int j = 0;
@@ -199,21 +205,24 @@ LAYERLAB_AVX2 void PairSumsGroup(const Rgb4* const* cells, const Rgb4* const* q_
     _mm256_storeu_ps(rq, rqj), _mm256_storeu_ps(qq, qqj);
   }
   for (int g = 0; g < G && j < width; ++g)
-    baseline::PairSumsRow(cells[g] + j, q_rows[g], q_col + j, rays[g], width - j, add || g > 0, sum_rq + j, sum_qq + j);
+    baseline::PairSumsRow(cells[g] + j, q_rows[g], rays[g], {q_col + j, width - j}, add || g > 0,
+                          {sum_rq + j, sum_qq + j});
 }
 
 }  // namespace
 
-LAYERLAB_AVX2 void PairSumsRows(const Rgb4* const* cells, const Rgb4* const* q_rows, const float* rays, int pairs,
-                                const int32_t* q_col, int width, Rgb4* sum_rq, Rgb4* sum_qq) {
-  InGroupsOfFour(pairs, [&](auto g, int first) {
-    PairSumsGroup<decltype(g)::value>(cells + first, q_rows + first, rays + first, q_col, width, first > 0, sum_rq,
-                                      sum_qq);
+LAYERLAB_AVX2 void PairSumsRows(PairRows pairs, PairColumns columns, UpdateRowSums sums) {
+  InGroupsOfFour(pairs.pairs, [&](auto g, int first) {
+    const PairRows group{pairs.cells + first, pairs.q_rows + first, pairs.rays + first, decltype(g)::value};
+    PairSumsGroup<decltype(g)::value>(group, columns, first > 0, sums);
   });
 }
 
-LAYERLAB_AVX2 void PairSumsRow(const Rgb4* cells, const Rgb4* q_row, const int32_t* q_col, float rays, int width,
-                               bool add, Rgb4* sum_rq, Rgb4* sum_qq) {
+LAYERLAB_AVX2 void PairSumsRow(const Rgb4* cells, const Rgb4* q_row, float rays, PairColumns columns, bool add,
+                               UpdateRowSums sums) {
+  const int32_t* q_col = columns.q_col;
+  const int width = columns.width;
+  Rgb4 *sum_rq = sums.num, *sum_qq = sums.den;
   const __m256 r8 = _mm256_set1_ps(rays);
   int j = 0;
   for (; j + 2 <= width; j += 2) {
@@ -225,18 +234,18 @@ LAYERLAB_AVX2 void PairSumsRow(const Rgb4* cells, const Rgb4* q_row, const int32
     _mm256_storeu_ps(rq, add ? _mm256_add_ps(_mm256_loadu_ps(rq), cq) : cq);
     _mm256_storeu_ps(qq, add ? _mm256_add_ps(_mm256_loadu_ps(qq), rqq) : rqq);
   }
-  if (j < width) baseline::PairSumsRow(cells + j, q_row, q_col + j, rays, width - j, add, sum_rq + j, sum_qq + j);
+  if (j < width) baseline::PairSumsRow(cells + j, q_row, rays, {q_col + j, width - j}, add, {sum_rq + j, sum_qq + j});
 }
 
-LAYERLAB_AVX2 void UpdateSumsRows(const float* const* r, const Rgb4* const* q, int rows, Rgb4* num, Rgb4* den,
-                                  int cols) {
+LAYERLAB_AVX2 void UpdateSumsRows(const float* const* r, const Rgb4* const* q, int rows, UpdateRowSums sums, int cols) {
   InGroupsOfFour(rows, [&](auto g, int first) {
-    UpdateSumsGroup<decltype(g)::value>(r + first, q ? q + first : nullptr, num, den, cols);
+    UpdateSumsGroup<decltype(g)::value>(r + first, q ? q + first : nullptr, sums.num, sums.den, cols);
   });
 }
 
-LAYERLAB_AVX2 double UpdateSumsAndErrorRow(const float* r, const Rgb4* q, const Rgb4* own, Rgb4 w, Rgb4* num, Rgb4* den,
+LAYERLAB_AVX2 double UpdateSumsAndErrorRow(const float* r, const Rgb4* q, const Rgb4* own, Rgb4 w, UpdateRowSums sums,
                                            int cols) {
+  Rgb4 *num = sums.num, *den = sums.den;
   float* n = reinterpret_cast<float*>(num);
   float* d = reinterpret_cast<float*>(den);
   const float* o = reinterpret_cast<const float*>(own);

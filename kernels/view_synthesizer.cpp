@@ -53,7 +53,7 @@ void ViewSynthesizer::OneTapRow(const std::vector<size_t>& branches, size_t view
     if (!reached) continue;
     const std::array<float, 3>& w = model_.weight(b);
     const Rgb4 w4{w[0], w[1], w[2], 0.0f};
-    AddBranchLightRow(rows, static_cast<int>(layers.size()), w4, g.cols, row);
+    AddBranchLightRow({rows, static_cast<int>(layers.size()), w4, g.cols}, row);
   }
 }
 

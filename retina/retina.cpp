@@ -302,8 +302,9 @@ void NearestRetina(const DisplayModel& model, const Patterns& t, const RetinaGri
         const int end = std::min(retina.cols, j0 + kChunk);
         for (size_t q0 = 0, q1 = 0; q0 < terms; q0 = q1) {
           for (q1 = q0 + 1; q1 < terms && term_layers[q1] == term_layers[q0];) ++q1;
-          AddBranchLightTermsRow(rows.data() + q0 * longest, longest, term_layers[q0], term_weight.data() + q0,
-                                 static_cast<int>(q1 - q0), j0, end, sum.data());
+          const BranchRows group{rows.data() + q0 * longest, longest, term_layers[q0], term_weight.data() + q0,
+                                 static_cast<int>(q1 - q0)};
+          AddBranchLightTermsRow(group, j0, end, sum.data());
         }
       }
       for (Rgb4& value : sum) value *= inverse_count;

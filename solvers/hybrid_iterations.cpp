@@ -62,7 +62,8 @@ std::optional<double> HybridIterations::Iterate(bool objective) {
   if (!objective || branches < 2 || !chase_.AllOneTap()) return std::nullopt;
   // Summed in view order: the same for any thread count.
   std::vector<double> per_view(model_.geometry().view_count());
-  ComputeLayerUpdate(model_, 0, LayersOf(model_, 0)[0], chase_.Following(0, &per_view), *t_, workspace_, &next_first_);
+  ComputeLayerUpdate(model_, {0, LayersOf(model_, 0)[0]}, chase_.Following(0, &per_view), *t_, workspace_,
+                     &next_first_);
   double total_error = 0;
   for (double e : per_view) total_error += e;
   next_first_ready_ = true;

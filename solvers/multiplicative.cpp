@@ -125,7 +125,7 @@ class MultiplicativeSolver final : public Solver {
     const std::optional<BranchPairs> pairs = BranchPairs::IfItPays(model, 0);
     if (pairs) pairs->Bin(l, workspace);
     LayerUpdate first = KeptLayerUpdate(workspace);
-    ComputeLayerUpdate(model, 0, order[0], whole, *t, workspace, &first);
+    ComputeLayerUpdate(model, {0, order[0]}, whole, *t, workspace, &first);
     std::optional<double> objective;
     do {
       ApplyLayerUpdate(first, options, t);
@@ -136,7 +136,7 @@ class MultiplicativeSolver final : public Solver {
           UpdateLayerMultiplicative(model, 0, order[k], whole, options, t, workspace);
       }
       double error = 0;
-      const bool fused = ComputeLayerUpdate(model, 0, order[0], whole, *t, workspace, &first, &error);
+      const bool fused = ComputeLayerUpdate(model, {0, order[0]}, whole, *t, workspace, &first, &error);
       objective = fused ? std::optional<double>(error) : std::nullopt;
     } while (loop.EndIteration(objective));
     return loop.Finish();

@@ -35,7 +35,7 @@ void ApplyLayerUpdate(const LayerUpdate& update, const SolverOptions& options, P
 void UpdateLayerMultiplicative(const DisplayModel& model, size_t branch, int layer, const BranchTarget& branch_target,
                                const SolverOptions& options, Patterns* t, SolveWorkspace* workspace) {
   LayerUpdate update = OneLayerUpdate(workspace);
-  ComputeLayerUpdate(model, branch, layer, branch_target, *t, workspace, &update);
+  ComputeLayerUpdate(model, {branch, layer}, branch_target, *t, workspace, &update);
   ApplyLayerUpdate(update, options, t);
 }
 

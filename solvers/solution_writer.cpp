@@ -14,6 +14,7 @@
 #include "layerlab/framework/staged_output.h"
 #include "layerlab/framework/version.h"
 #include "layerlab/kernels/synthesis.h"
+#include "layerlab/solvers/trace_columns.h"
 #include "layerlab/systems/system_report.h"
 
 namespace layerlab {
@@ -63,37 +64,26 @@ nlohmann::json ReportToJson(const SolverReport& r) {
   if (focal_stack) j["retinal_target"] = r.retinal_target;
   if (r.objective == "retinal") j["contrast_sensitivity"] = r.contrast_sensitivity;
   if (focal_stack) j["pupil_positions"] = r.pupil_positions;
+  const std::vector<const TraceColumn*> columns = WrittenColumns(r.trace);
   for (const IterationRecord& t : r.trace) {
-    j["trace"].push_back({{"iteration", t.iteration},
-                          {"seconds", t.seconds},
-                          {"objective", t.objective},
-                          {"psnr_db", JsonNumber(t.psnr_db)}});
-    if (focal_stack) j["trace"].back()["focal_stack_psnr_db"] = JsonNumber(t.focal_stack_psnr_db);
+    nlohmann::json row;
+    for (const TraceColumn* c : columns)
+      row[c->name] =
+          c->kind == TraceValueKind::kCount ? nlohmann::json(static_cast<int>(c->value(t))) : JsonNumber(c->value(t));
+    j["trace"].push_back(std::move(row));
   }
   return j;
 }
 
 std::string TraceCsv(const SolverReport& report) {
   // A trace that measured the focal stack (the retinal objective's, or measure_focal_stack) also has its PSNR.
-  const bool retinal = std::any_of(report.trace.begin(), report.trace.end(),
-                                   [](const IterationRecord& t) { return !std::isnan(t.focal_stack_psnr_db); });
-  std::string csv =
-      retinal ? "iteration,seconds,objective,psnr_db,focal_stack_psnr_db\n" : "iteration,seconds,objective,psnr_db\n";
-  char line[160];
-  auto db = [&](double value, const char* end) {
-    if (std::isinf(value)) {
-      csv += std::string("inf") + end;
-    } else {
-      std::snprintf(line, sizeof line, "%.6f%s", value, end);
-      csv += line;
-    }
-  };
-  for (const IterationRecord& r : report.trace) {
-    std::snprintf(line, sizeof line, "%d,%.6f,%.9g,", r.iteration, r.seconds, r.objective);
-    csv += line;
-    db(r.psnr_db, retinal ? "," : "\n");
-    if (retinal) db(r.focal_stack_psnr_db, "\n");
-  }
+  const std::vector<const TraceColumn*> columns = WrittenColumns(report.trace);
+  std::string csv;
+  for (const TraceColumn* c : columns) csv += std::string(csv.empty() ? "" : ",") + c->name;
+  csv += "\n";
+  for (const IterationRecord& r : report.trace)
+    for (size_t k = 0; k < columns.size(); ++k)
+      csv += TraceField(*columns[k], columns[k]->value(r)) + (k + 1 < columns.size() ? "," : "\n");
   return csv;
 }
 

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 
 #include "layerlab/framework/atomic_file.h"
 #include "layerlab/framework/content_digest.h"
@@ -10,6 +11,7 @@
 #include "layerlab/framework/exr_image.h"
 #include "layerlab/framework/json_file.h"
 #include "layerlab/framework/lightfield_io.h"
+#include "layerlab/solvers/trace_columns.h"
 #include "layerlab/systems/system_report.h"
 
 namespace layerlab {
@@ -19,6 +21,40 @@ namespace {
 
 std::string PatternName(const VirtualLayer& layer, int iteration) {
   return layer.name + "-iteration" + std::to_string(iteration) + ".exr";
+}
+
+// A trace row as an array in the order of TraceColumns(): a count as an
+// integer, an infinite value as "inf" or "-inf", an unmeasured one as null.
+nlohmann::json CheckpointTraceRow(const IterationRecord& r) {
+  nlohmann::json row = nlohmann::json::array();
+  for (const TraceColumn& c : TraceColumns()) {
+    const double v = c.value(r);
+    row.push_back(c.kind == TraceValueKind::kCount ? nlohmann::json(static_cast<int>(v)) : JsonNumber(v));
+  }
+  return row;
+}
+
+// The row back. Checkpoints written before a column existed lack it: every
+// column after the first four may be missing, and is then NaN.
+IterationRecord TraceRecordOf(const nlohmann::json& row) {
+  IterationRecord r;
+  const std::vector<TraceColumn>& columns = TraceColumns();
+  for (size_t k = 0; k < columns.size(); ++k) {
+    if (k >= 4 && k >= row.size()) {
+      columns[k].set(&r, std::numeric_limits<double>::quiet_NaN());
+      continue;
+    }
+    const nlohmann::json& v = row.at(k);
+    if (v.is_string())
+      columns[k].set(&r, v.get<std::string>() == "-inf" ? -INFINITY : INFINITY);
+    else if (v.is_null())
+      columns[k].set(&r, std::numeric_limits<double>::quiet_NaN());
+    else if (columns[k].kind == TraceValueKind::kCount)
+      columns[k].set(&r, v.get<int>());
+    else
+      columns[k].set(&r, v.get<double>());
+  }
+  return r;
 }
 
 }  // namespace
@@ -37,9 +73,7 @@ void WriteCheckpoint(const DisplayModel& model, const SolverCheckpoint& c, const
     files[layer.name] = name;
   }
   nlohmann::json trace = nlohmann::json::array();
-  for (const IterationRecord& r : c.trace)
-    trace.push_back({r.iteration, r.seconds, r.objective,
-                     std::isinf(r.psnr_db) ? nlohmann::json("inf") : nlohmann::json(r.psnr_db)});
+  for (const IterationRecord& r : c.trace) trace.push_back(CheckpointTraceRow(r));
   nlohmann::json doc = {{"format", "layerlab-checkpoint/1"},
                         {"solver", c.solver},
                         {"iteration", c.iteration},
@@ -68,11 +102,7 @@ SolverCheckpoint ReadCheckpoint(const DisplayModel& model, const std::string& fo
     c.iteration = doc.at("iteration").get<int>();
     c.seconds = doc.at("seconds").get<double>();
     for (const auto& [key, value] : doc.at("state").items()) c.state[key] = value.get<double>();
-    for (const auto& row : doc.at("trace")) {
-      IterationRecord r{row.at(0).get<int>(), row.at(1).get<double>(), row.at(2).get<double>(), INFINITY};
-      if (!row.at(3).is_string()) r.psnr_db = row.at(3).get<double>();
-      c.trace.push_back(r);
-    }
+    for (const auto& row : doc.at("trace")) c.trace.push_back(TraceRecordOf(row));
     if (c.iteration < 0 || c.trace.empty() || c.trace.back().iteration != c.iteration)
       throw Error(file + ": /trace does not end at /iteration " + std::to_string(c.iteration));
     for (size_t k = 0; k < model.layer_count(); ++k) {

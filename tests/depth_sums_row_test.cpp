@@ -70,8 +70,8 @@ Result RunFused(const Case& c, bool with_error = true) {
   std::vector<Rgb4*> n, d;
   for (size_t s = 0; s < summed; ++s) n.push_back(num[s].data()), d.push_back(den[s].data());
   double error = -1;
-  DepthSumsRow(rows.data(), c.branches, c.layers, c.a.empty() ? nullptr : c.a.data(), c.w.data(), c.cols,
-               c.l.packed.data(), c.exact_last, with_error ? &error : nullptr, n.data(), d.data());
+  DepthSumsRow({rows.data(), c.layers, c.layers, c.w.data(), c.branches}, c.cols, c.a.empty() ? nullptr : c.a.data(),
+               {c.l.packed.data(), c.exact_last}, with_error ? &error : nullptr, {n.data(), d.data()});
   Result out;
   for (size_t s = 0; s < summed; ++s)
     for (const auto* sums : {&num[s], &den[s]})
@@ -86,7 +86,7 @@ Result RunUnfused(const Case& c) {
   for (int b = 0; b < c.branches; ++b) {
     const Rgb4* rows[4];
     for (int k = 0; k < c.layers; ++k) rows[k] = c.in[b * c.layers + k].padded.data();
-    AddBranchLightRow(rows, c.layers, c.w[b], c.cols, light.data());
+    AddBranchLightRow({rows, c.layers, c.w[b], c.cols}, light.data());
   }
   Result out;
   for (int b = 0; b < c.branches; ++b) {
@@ -95,7 +95,7 @@ Result RunUnfused(const Case& c) {
     Rgb4 *n[4], *d[4];
     for (int k = 0; k < c.layers; ++k)
       rows[k] = c.in[b * c.layers + k].padded.data(), n[k] = num[k].data(), d[k] = den[k].data();
-    JointSumsRow(rows, c.layers, c.w[b], c.cols, c.l.packed.data(), c.exact_last, light.data(), n, d);
+    JointSumsRow({rows, c.layers, c.w[b], c.cols}, {c.l.packed.data(), c.exact_last}, light.data(), {n, d});
     for (const auto& [branch, k] : SummedMembers(c))
       if (branch == b)
         for (const auto* sums : {&num[k], &den[k]})

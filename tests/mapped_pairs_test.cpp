@@ -127,7 +127,7 @@ TEST(MappedPairs, UpdateIsTheRayPassUpdate) {
       const std::string name = "branch " + std::to_string(b) + ", layer " + std::to_string(layer);
       std::vector<double> ray_num, ray_den, pair_num, pair_den;
       LayerUpdate by_rays{0, -1, &ray_num, &ray_den}, by_pairs{0, -1, &pair_num, &pair_den};
-      ComputeLayerUpdate(model, b, layer, whole, t, &workspace, &by_rays);
+      ComputeLayerUpdate(model, {b, layer}, whole, t, &workspace, &by_rays);
       pairs->ComputeUpdate(model, b, layer, t, &workspace, &by_pairs);
       EXPECT_EQ(by_pairs.layer, layer);
       EXPECT_TRUE(ArraysNear(pair_num, ray_num, 1e-5, 1e-9)) << name;

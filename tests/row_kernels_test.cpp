@@ -33,7 +33,7 @@ TEST_F(RowKernels, BranchLightIsTheWeightedProductOfTheLayers) {
         for (int k = 0; k < layers; ++k) rows[k] = in[k].padded.data();
         std::vector<Rgb4> out = start.padded;
         out.push_back(Rgb4{kGuard, kGuard, kGuard, kGuard});
-        AddBranchLightRow(rows, layers, w, cols, out.data());
+        AddBranchLightRow({rows, layers, w, cols}, out.data());
         return out;
       };
       const std::vector<Rgb4> out = run();
@@ -71,10 +71,10 @@ TEST_F(RowKernels, BranchLightTermsAreTheTermsAddedOneByOne) {
             for (int q = 0; q < terms; ++q) {
               const Rgb4* at[4];
               for (int k = 0; k < layers; ++k) at[k] = rows[q * stride + k] + begin;
-              AddBranchLightRow(at, layers, w[q], end - begin, out.data() + begin);
+              AddBranchLightRow({at, layers, w[q], end - begin}, out.data() + begin);
             }
           } else {
-            AddBranchLightTermsRow(rows.data(), stride, layers, w.data(), terms, begin, end, out.data());
+            AddBranchLightTermsRow({rows.data(), stride, layers, w.data(), terms}, begin, end, out.data());
           }
           return out;
         };
@@ -106,9 +106,10 @@ TEST_F(RowKernels, UpdateSumsOfSeveralRowsAreTheRowsOneByOne) {
           std::vector<Rgb4> num = n0.padded, den = d0.padded;
           num.push_back(Rgb4{kGuard, kGuard, kGuard, kGuard}), den.push_back(num.back());
           if (one_by_one)
-            for (int g = 0; g < rows; ++g) UpdateSumsRow(rp[g], unit_q ? nullptr : qp[g], num.data(), den.data(), cols);
+            for (int g = 0; g < rows; ++g)
+              UpdateSumsRow(rp[g], unit_q ? nullptr : qp[g], {num.data(), den.data()}, cols);
           else
-            UpdateSumsRows(rp.data(), unit_q ? nullptr : qp.data(), rows, num.data(), den.data(), cols);
+            UpdateSumsRows(rp.data(), unit_q ? nullptr : qp.data(), rows, {num.data(), den.data()}, cols);
           std::vector<Rgb4> both = num;
           both.insert(both.end(), den.begin(), den.end());
           return both;
@@ -130,7 +131,7 @@ TEST_F(RowKernels, UpdateSumsAddTargetTimesProductAndProductSquared) {
       auto run = [&] {
         std::vector<Rgb4> num = n0.padded, den = d0.padded;
         num.push_back(Rgb4{kGuard, kGuard, kGuard, kGuard}), den.push_back(num.back());
-        UpdateSumsRow(r.packed.data(), unit_q ? nullptr : q.padded.data(), num.data(), den.data(), cols);
+        UpdateSumsRow(r.packed.data(), unit_q ? nullptr : q.padded.data(), {num.data(), den.data()}, cols);
         std::vector<Rgb4> both = num;
         both.insert(both.end(), den.begin(), den.end());
         return both;
@@ -169,7 +170,7 @@ TEST_F(RowKernels, PairSumsAddCellTimesOtherPixelAndCountTimesItsSquare) {
       auto run = [&] {
         std::vector<Rgb4> num = n0.padded, den = d0.padded;
         num.push_back(Rgb4{kGuard, kGuard, kGuard, kGuard}), den.push_back(num.back());
-        PairSumsRow(cells.padded.data(), other.padded.data(), col.data(), rays, width, add, num.data(), den.data());
+        PairSumsRow(cells.padded.data(), other.padded.data(), rays, {col.data(), width}, add, {num.data(), den.data()});
         std::vector<Rgb4> both = num;
         both.insert(both.end(), den.begin(), den.end());
         return both;
@@ -207,9 +208,9 @@ TEST_F(RowKernels, PairSumsOfSeveralRowPairsAreTheRowPairsOneByOne) {
         num.push_back(Rgb4{kGuard, kGuard, kGuard, kGuard}), den.push_back(num.back());
         if (one_by_one)
           for (int k = 0; k < pairs; ++k)
-            PairSumsRow(cp[k], qp[k], col.data(), rays[k], width, k > 0, num.data(), den.data());
+            PairSumsRow(cp[k], qp[k], rays[k], {col.data(), width}, k > 0, {num.data(), den.data()});
         else
-          PairSumsRows(cp.data(), qp.data(), rays.data(), pairs, col.data(), width, num.data(), den.data());
+          PairSumsRows({cp.data(), qp.data(), rays.data(), pairs}, {col.data(), width}, {num.data(), den.data()});
         std::vector<Rgb4> both = num;
         both.insert(both.end(), den.begin(), den.end());
         return both;
@@ -244,7 +245,7 @@ TEST_F(RowKernels, FusedUpdateSumsAlsoGiveTheBranchError) {
       auto run = [&](double* error) {
         std::vector<Rgb4> num = n0.padded, den = d0.padded;
         *error = UpdateSumsAndErrorRow(r.packed.data(), unit_q ? nullptr : q.padded.data(), own.padded.data(), w,
-                                       num.data(), den.data(), cols);
+                                       {num.data(), den.data()}, cols);
         std::vector<float> rgb;
         for (const std::vector<Rgb4>* v : {&num, &den})
           for (const Rgb4& x : *v) rgb.insert(rgb.end(), {x[0], x[1], x[2]});
@@ -252,7 +253,7 @@ TEST_F(RowKernels, FusedUpdateSumsAlsoGiveTheBranchError) {
       };
       // The sums are UpdateSumsRow's, bit for bit.
       std::vector<Rgb4> num = n0.padded, den = d0.padded;
-      UpdateSumsRow(r.packed.data(), unit_q ? nullptr : q.padded.data(), num.data(), den.data(), cols);
+      UpdateSumsRow(r.packed.data(), unit_q ? nullptr : q.padded.data(), {num.data(), den.data()}, cols);
       double error = 0;
       const std::vector<float> fused = run(&error);
       for (int j = 0; j < cols; ++j)
@@ -294,7 +295,7 @@ TEST_F(RowKernels, JointSumsUseEachLayersProductOfTheOthers) {
           const Rgb4* rows[4];
           Rgb4 *n[4], *d[4];
           for (int k = 0; k < layers; ++k) rows[k] = in[k].padded.data(), n[k] = num[k].data(), d[k] = den[k].data();
-          JointSumsRow(rows, layers, w, cols, l.packed.data(), exact_last, light.padded.data(), n, d);
+          JointSumsRow({rows, layers, w, cols}, {l.packed.data(), exact_last}, light.padded.data(), {n, d});
           std::vector<float> rgb;  // res then den, layer by layer, channels 0-2
           for (const auto* sums : {&num, &den})
             for (const std::vector<Rgb4>& layer : *sums)

@@ -88,7 +88,7 @@ TEST(SolveWorkspace, PassesHoldWhatTheLayoutSays) {
           UpdateLayerMultiplicative(model, b, layer, whole, options, &t, &workspace);
       LayerUpdate kept = KeptLayerUpdate(&workspace);
       double error = 0;
-      ComputeLayerUpdate(model, 0, model.branch_layers(0)[0], whole, t, &workspace, &kept, &error);
+      ComputeLayerUpdate(model, {0, model.branch_layers(0)[0]}, whole, t, &workspace, &kept, &error);
       const double objective = Objective(model, target, t, &workspace);
       EXPECT_NEAR(objective, Objective(model, target, t), 1e-9 * objective);  // a workspace of its own: the same
       JointPass pass(model, &workspace);

@@ -12,6 +12,7 @@
 #include <optional>
 #include <random>
 
+#include "layerlab/framework/json_file.h"
 #include "layerlab/framework/random.h"
 #include "layerlab/kernels/joint_pass.h"
 #include "layerlab/kernels/one_tap_view.h"
@@ -595,20 +596,20 @@ TEST(Solvers, StripSumsAreTheGeneralPathsWhateverTheWorkspaceHeld) {
   const Patterns before = KnownPatterns(fast, 9);  // what the workspace held: other patterns' rows and sums
   for (const auto& [b, layer] : order) {
     LayerUpdate u = OneLayerUpdate(&used);
-    ComputeLayerUpdate(fast, b, layer, whole, before, &used, &u);
+    ComputeLayerUpdate(fast, {b, layer}, whole, before, &used, &u);
   }
   for (const auto& [b, layer] : order) {
     ASSERT_TRUE(OneTapBranch(fast, b));
     const std::string name = "branch " + std::to_string(b) + ", layer " + std::to_string(layer);
     LayerUpdate u = OneLayerUpdate(&used);
-    ComputeLayerUpdate(fast, b, layer, whole, t, &used, &u);
+    ComputeLayerUpdate(fast, {b, layer}, whole, t, &used, &u);
     SolveWorkspace fresh(fast, threads, kAllPasses);
     LayerUpdate f = OneLayerUpdate(&fresh);
-    ComputeLayerUpdate(fast, b, layer, whole, t, &fresh, &f);
+    ComputeLayerUpdate(fast, {b, layer}, whole, t, &fresh, &f);
     EXPECT_TRUE(ArraysSameBits(*u.num, *f.num)) << name;
     EXPECT_TRUE(ArraysSameBits(*u.den, *f.den)) << name;
     LayerUpdate e = OneLayerUpdate(&for_general);
-    ComputeLayerUpdate(general, b, layer, whole, t, &for_general, &e);
+    ComputeLayerUpdate(general, {b, layer}, whole, t, &for_general, &e);
     EXPECT_TRUE(ArraysNear(*u.num, *e.num, 1e-5, 1e-6)) << name;
     EXPECT_TRUE(ArraysNear(*u.den, *e.den, 1e-5, 1e-6)) << name;
     const LayerProjection& P = fast.projection(layer);
@@ -842,6 +843,43 @@ TEST(Solvers, MultiplicativeRefusesSeveralBranches) {
   SolverReport r = RunSolver("multiplicative", f, SolverOptions{}, &t);
   EXPECT_FALSE(r.IsSolutionUsable());
   EXPECT_EQ(r.message, "the multiplicative solver needs a display of one branch; this one has 2 (use hybrid)");
+}
+
+// A checkpoint keeps every column of the trace (solvers/trace_columns.h),
+// the focal stack's PSNR and infinities included, and reads one written
+// before the focal stack's column existed with that column unmeasured.
+TEST(SolverCheckpoint, KeepsEveryColumnOfTheTrace) {
+  const Fixture f = MakeFixture("multiplicative_2layer.json", 16, 8, 3);
+  SolverCheckpoint c;
+  c.solver = "hybrid", c.iteration = 2, c.seconds = 0.5, c.patterns = f.truth;
+  c.trace = {{0, 0.0, 12.5, 21.25, 18.5}, {1, 0.25, 3.75, INFINITY, -INFINITY}, {2, 0.5, 1.5, 30.5, NAN}};
+  const std::string folder =
+      (std::filesystem::temp_directory_path() / ("layerlab_trace_" + std::to_string(::getpid()))).string();
+  WriteCheckpoint(*f.model, c, folder, {});
+  const SolverCheckpoint back = ReadCheckpoint(*f.model, folder);
+  ASSERT_EQ(back.trace.size(), c.trace.size());
+  for (size_t k = 0; k < c.trace.size(); ++k) {
+    const IterationRecord &was = c.trace[k], &is = back.trace[k];
+    EXPECT_EQ(is.iteration, was.iteration);
+    EXPECT_EQ(is.seconds, was.seconds);
+    EXPECT_EQ(is.objective, was.objective);
+    EXPECT_EQ(is.psnr_db, was.psnr_db);
+    if (std::isnan(was.focal_stack_psnr_db))
+      EXPECT_TRUE(std::isnan(is.focal_stack_psnr_db)) << k;
+    else
+      EXPECT_EQ(is.focal_stack_psnr_db, was.focal_stack_psnr_db) << k;
+  }
+
+  // A row of four, as checkpoints were written before the focal stack's column.
+  nlohmann::json doc = ReadJsonFile(folder + "/checkpoint.json");
+  for (auto& row : doc["trace"]) row.erase(4);
+  std::ofstream(folder + "/checkpoint.json") << doc.dump();
+  const SolverCheckpoint old = ReadCheckpoint(*f.model, folder);
+  ASSERT_EQ(old.trace.size(), 3u);
+  EXPECT_EQ(old.trace[1].psnr_db, INFINITY);
+  EXPECT_EQ(old.trace[2].objective, 1.5);
+  for (const IterationRecord& r : old.trace) EXPECT_TRUE(std::isnan(r.focal_stack_psnr_db));
+  std::filesystem::remove_all(folder);
 }
 
 // Every input the checkpoint digest covers, changed alone, changes its part of the digest and only that part,

@@ -392,7 +392,7 @@ TEST(TimeMultiplex, OneDepthPassGivesTheJointPassSumsOfThatDepth) {
     std::vector<std::vector<double>> num(t.size()), den(t.size());
     for (size_t k = 0; k < t.size(); ++k) num[k].resize(t[k].rgb.size()), den[k].resize(t[k].rgb.size());
     SolveWorkspace workspace(model, omp_get_max_threads(), kJointPass);
-    const double objective = JointColumnPass(model, target, t, &num, &den, &workspace);
+    const double objective = JointColumnPass(model, target, t, {&num, &den}, &workspace);
     for (int depth = 0; depth < 2; ++depth) {
       std::vector<char> summed(t.size(), 0);
       for (size_t b = 0; b < model.branch_count(); ++b) {
@@ -402,7 +402,7 @@ TEST(TimeMultiplex, OneDepthPassGivesTheJointPassSumsOfThatDepth) {
       }
       std::vector<std::vector<double>> n(t.size()), d(t.size());
       for (size_t k = 0; k < t.size(); ++k) n[k].resize(t[k].rgb.size()), d[k].resize(t[k].rgb.size());
-      EXPECT_EQ(JointColumnPass(model, target, t, &n, &d, &workspace, &summed), objective);
+      EXPECT_EQ(JointColumnPass(model, target, t, {&n, &d}, &workspace, &summed), objective);
       for (size_t k = 0; k < t.size(); ++k) {
         if (!summed[k]) continue;
         EXPECT_EQ(n[k], num[k]) << "layer " << k;
@@ -411,7 +411,7 @@ TEST(TimeMultiplex, OneDepthPassGivesTheJointPassSumsOfThatDepth) {
       // Without the objective: 0, and the same sums.
       for (size_t k = 0; k < t.size(); ++k)
         std::fill(n[k].begin(), n[k].end(), -1.0), std::fill(d[k].begin(), d[k].end(), -1.0);
-      EXPECT_EQ(JointColumnPass(model, target, t, &n, &d, &workspace, &summed, /*objective=*/false), 0.0);
+      EXPECT_EQ(JointColumnPass(model, target, t, {&n, &d}, &workspace, &summed, /*objective=*/false), 0.0);
       for (size_t k = 0; k < t.size(); ++k) {
         if (!summed[k]) continue;
         EXPECT_EQ(n[k], num[k]) << "layer " << k << ", no objective";

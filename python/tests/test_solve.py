@@ -258,3 +258,20 @@ def test_natural_viewing_of_the_target(small_system):
                                                   natural=True)
     np.testing.assert_array_equal(seen[::-1], natural)
     np.testing.assert_array_equal(images[::-1], display)
+
+
+def test_the_trace_has_the_columns_of_trace_csv(small_system, target, tmp_path):
+    """The dict, the callback's rows and trace.csv name the same columns in one order, with the same values;
+    the dict also has the columns this solve did not measure (the focal stack's), NaN, which trace.csv leaves out."""
+    seen = []
+    solution = layerlab.solve(small_system, target, iterations=2, callback=seen.append)
+    solution.save(tmp_path / "out")
+    with open(tmp_path / "out" / "trace.csv") as f:
+        header = f.readline().strip().split(",")
+        rows = [line.strip().split(",") for line in f]
+    trace = solution.report["trace"]
+    assert list(trace.keys()) == header + ["focal_stack_psnr_db"]
+    assert np.all(np.isnan(trace["focal_stack_psnr_db"]))
+    assert [list(row.keys()) for row in seen] == [list(trace.keys())] * len(rows)
+    for k, name in enumerate(header):
+        np.testing.assert_allclose([float(r[k]) for r in rows], trace[name], rtol=1e-8, atol=1e-6, err_msg=name)
