@@ -34,9 +34,11 @@ struct MarkerBlock {
 // The model-error test (calibration.h): the residuals against the detection
 // noise, into *report; where the excess concentrates, named by photograph.
 // False (with report->message) when a model error makes the result unusable
-// (not accepted by the options).
+// (not accepted by the options). `traced_only`: every lens on the measured
+// paths is described by its surfaces, traced: no focal length or distortion
+// is there to fit, and the surfaces may be what is wrong.
 bool CheckModelError(const std::vector<MarkerBlock>& blocks, int free_parameters, const CalibrationOptions& options,
-                     CalibrationReport* report);
+                     CalibrationReport* report, bool traced_only = false);
 
 // "a; b; c".
 std::string JoinedBySemicolons(const std::vector<std::string>& parts);

@@ -1,6 +1,9 @@
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
+#include <memory>
+#include <optional>
 #include <set>
 
 #include <ceres/ceres.h>
@@ -9,6 +12,7 @@
 #include "layerlab/calibration/marker_model.h"
 #include "layerlab/calibration/scalar_fit.h"
 #include "layerlab/calibration/similarity_fit.h"
+#include "layerlab/calibration/traced_marker_model.h"
 #include "layerlab/framework/params.h"
 #include "layerlab/framework/units.h"
 
@@ -34,11 +38,24 @@ struct Optic {
   std::string before;         // that element's name; "" for the pupil
   bool placed_before = true;  // whether that element has a place of its own, so that "gap" can be written
   std::vector<int> layers;    // whose path holds it
+  bool surfaces = false;      // a real lens: its power and distortion are its surfaces', traced
   int focal = -1, gap_index = -1, distortion = -1;  // into the ScalarFit
 };
 
-// The residual of one marker. Parameter blocks: distance, eye_from_panel_x_m, eye_from_panel_y_m,
-// rotation, pan, tilt, roll, then a gap, a focal length and a distortion per element of `optics`.
+// A marker's parameter blocks: distance, eye_from_panel_x_m, eye_from_panel_y_m, rotation, pan, tilt,
+// roll, then a gap, a focal length and a distortion per element with power on its path (`optics` of them).
+template <typename T>
+MarkerParameters<T> ParametersOfBlocks(T const* const* p, size_t optics) {
+  MarkerParameters<T> q{p[0][0], p[1][0], p[2][0], p[3][0], p[4][0], p[5][0], p[6][0], {}, {}, {}};
+  for (size_t i = 0; i < optics; ++i) {
+    q.gaps.push_back(p[7 + 3 * i][0]);
+    q.focal_lengths.push_back(p[8 + 3 * i][0]);
+    q.distortions.push_back(p[9 + 3 * i][0]);
+  }
+  return q;
+}
+
+// The residual of one marker, over the blocks of ParametersOfBlocks.
 struct MarkerCost {
   MarkerPlacement placement;
   LayerOptics optics;
@@ -47,14 +64,8 @@ struct MarkerCost {
 
   template <typename T>
   bool operator()(T const* const* p, T* residual) const {
-    MarkerParameters<T> q{p[0][0], p[1][0], p[2][0], p[3][0], p[4][0], p[5][0], p[6][0], {}, {}, {}};
-    for (size_t i = 0; i < optics.element.size(); ++i) {
-      q.gaps.push_back(p[7 + 3 * i][0]);
-      q.focal_lengths.push_back(p[8 + 3 * i][0]);
-      q.distortions.push_back(p[9 + 3 * i][0]);
-    }
     T angle[2];
-    PredictVisualAngle(q, optics, placement, angle);
+    PredictVisualAngle(ParametersOfBlocks(p, optics.element.size()), optics, placement, angle);
     residual[0] = (angle[0] - angle_x) * weight;
     residual[1] = (angle[1] - angle_y) * weight;
     return true;
@@ -62,6 +73,23 @@ struct MarkerCost {
 };
 
 using MarkerCostFunction = ceres::DynamicAutoDiffCostFunction<MarkerCost, 4>;
+
+// The same parameter blocks for a marker seen through real lenses
+// (traced_marker_model.h), its derivatives by central differences.
+struct TracedMarkerCost {
+  const TracedLayerModel* model;
+  TracedMarker marker;
+  size_t optics;
+  double weight;
+
+  bool operator()(double const* const* p, double* residual) const {
+    if (!model->AngleError(ParametersOfBlocks(p, optics), marker, residual)) return false;
+    residual[0] *= weight, residual[1] *= weight;
+    return true;
+  }
+};
+
+using TracedMarkerCostFunction = ceres::DynamicNumericDiffCostFunction<TracedMarkerCost, ceres::CENTRAL>;
 
 // Indices into the ScalarFit of one panel's parameters.
 struct PanelIndices {
@@ -99,6 +127,7 @@ std::vector<Optic> FindOptics(const DisplaySystem& system, const std::vector<boo
         o.gap = o.position - placed_at;
         o.before = j > 0 ? path[j - 1].element : "";
         o.placed_before = j == 0 || path[j - 1].position_m.has_value();
+        o.surfaces = step.lens_system != nullptr;
         optics.push_back(o);
         it = optics.end() - 1;
       }
@@ -236,13 +265,16 @@ class GeometryFitter {
     HoldWhatParallaxAloneTells();
     if (!farthest_reference_)
       for (int i : {pan_, tilt_, roll_}) Hold(i, ParameterStatus::kReference);
+    PrepareTracedLayers();
     AddResiduals();
     if (!Solve() || !CheckFittedImages()) return false;
     if (result_.covariance.size() == 0)
       report_->warnings.push_back("no uncertainties for the geometry: " + result_.covariance_message);
     ReportResiduals();
     WriteResults(display);
-    return CheckModelError(blocks_, result_.free_parameters, options_, report_);
+    const bool traced_only =
+        !optics_.empty() && std::all_of(optics_.begin(), optics_.end(), [](const Optic& o) { return o.surfaces; });
+    return CheckModelError(blocks_, result_.free_parameters, options_, report_, traced_only);
   }
 
  private:
@@ -423,18 +455,70 @@ class GeometryFitter {
         ShowValue("rotation", layer.panel.rotation_rad) + "); show markers at three or more pixels not on one line");
   }
 
+  // Layers behind real lenses are seen through the exact trace: each marker
+  // with its Jacobian at the scene's values, or left out, and said so, where
+  // the scene's lens loses the ray the camera saw.
+  void PrepareTracedLayers() {
+    traced_.clear();
+    traced_.resize(layer_count_);
+    traced_markers_.assign(data_.size(), std::nullopt);
+    for (int k = 0; k < layer_count_; ++k)
+      if (!by_layer_[k].empty() && system_.layers[k].ray_map)
+        traced_[k] = std::make_unique<TracedLayerModel>(system_.layers[k], ParametersBefore(k));
+    int lost = 0;
+    const MarkerDatum* first_lost = nullptr;
+    for (size_t i = 0; i < data_.size(); ++i) {
+      const MarkerDatum& d = data_[i];
+      if (!traced_[d.layer]) continue;
+      traced_markers_[i] = traced_[d.layer]->Prepare(d.placement, d.angle_x, d.angle_y);
+      if (!traced_markers_[i]) ++lost, first_lost = first_lost ? first_lost : &d;
+    }
+    if (lost > 0)
+      report_->warnings.push_back(std::to_string(lost) + " marker" + (lost > 1 ? "s" : "") +
+                                  " seen by the camera would not reach its panel through the scene's lenses (the "
+                                  "first at " +
+                                  first_lost->where.str() + "): left out of the fit");
+  }
+
+  bool Traced(const MarkerDatum& d) const { return traced_[d.layer] != nullptr; }
+  bool LeftOut(size_t i) const { return Traced(data_[i]) && !traced_markers_[i]; }
+
+  // Model minus measurement of marker i under the layer's parameters `q` (rad).
+  std::array<double, 2> AngleError(size_t i, const MarkerParameters<double>& q) const {
+    const MarkerDatum& d = data_[i];
+    std::array<double, 2> e{NAN, NAN};
+    if (Traced(d)) {
+      traced_[d.layer]->AngleError(q, *traced_markers_[i], e.data());
+      return e;
+    }
+    PredictVisualAngle(q, layer_optics_[d.layer], d.placement, e.data());
+    return {e[0] - d.angle_x, e[1] - d.angle_y};
+  }
+
+  // The panel's virtual depth under `q`.
+  double Diopters(int k, const MarkerParameters<double>& q) const {
+    return traced_[k] ? traced_[k]->Diopters(q) : LayerTransfer(layer_optics_[k], q).diopters();
+  }
+
   // Only parallax tells an element's focal length or gap from the distances of the panels behind it.
   void HoldWhatParallaxAloneTells() {
     for (const Optic& o : optics_) {
+      if (o.surfaces) {
+        Hold(o.focal, ParameterStatus::kNotFitted);
+        Hold(o.distortion, ParameterStatus::kNotFitted);
+        report_->notes.push_back(Quoted(o.name) +
+                                 " is described by its surfaces: the fit traces them exactly, so its focal length "
+                                 "and distortion are not fitted (they are the surfaces')");
+      }
       bool parallax = false;
       for (int k : o.layers)
         parallax = parallax || (index_[k].distance >= 0 && !fit_.held(index_[k].distance) && positions_seen_[k] >= 2);
       const std::string named = magnifier_ ? "" : " of " + Quoted(o.name);
-      if (options_.focal_length == FitChoice::kHold)
+      if (!o.surfaces && options_.focal_length == FitChoice::kHold)
         Hold(o.focal, ParameterStatus::kNotFitted);
-      else if (!parallax)
+      else if (!o.surfaces && !parallax)
         HoldWithoutParallax(o.focal, "the focal length" + named);
-      if (options_.distortion == FitChoice::kHold) Hold(o.distortion, ParameterStatus::kNotFitted);
+      if (options_.distortion == FitChoice::kHold && !o.surfaces) Hold(o.distortion, ParameterStatus::kNotFitted);
       if (options_.lens_gaps == FitChoice::kHold) {
         Hold(o.gap_index, ParameterStatus::kNotFitted);
       } else if (!o.placed_before) {
@@ -470,16 +554,23 @@ class GeometryFitter {
   }
 
   void AddResiduals() {
-    for (const MarkerDatum& d : data_) {
+    for (size_t i = 0; i < data_.size(); ++i) {
+      if (LeftOut(i)) continue;
+      const MarkerDatum& d = data_[i];
       const PanelIndices& p = index_[d.layer];
       const LayerOptics& path = layer_optics_[d.layer];
       const double weight = noise_known_ ? 1.0 / weight_noise_rad_ : 1.0;
-      auto* cost = new MarkerCostFunction(new MarkerCost{d.placement, path, d.angle_x, d.angle_y, weight});
       std::vector<int> blocks = {p.distance, p.eye_from_panel_x_m, p.eye_from_panel_y_m, p.rotation, pan_, tilt_,
                                  roll_};
       for (int o : path.element)
         blocks.insert(blocks.end(), {optics_[o].gap_index, optics_[o].focal, optics_[o].distortion});
-      for (size_t i = 0; i < blocks.size(); ++i) cost->AddParameterBlock(1);
+      ceres::DynamicCostFunction* cost = nullptr;
+      if (Traced(d))
+        cost = new TracedMarkerCostFunction(
+            new TracedMarkerCost{traced_[d.layer].get(), *traced_markers_[i], path.element.size(), weight});
+      else
+        cost = new MarkerCostFunction(new MarkerCost{d.placement, path, d.angle_x, d.angle_y, weight});
+      for (size_t b = 0; b < blocks.size(); ++b) cost->AddParameterBlock(1);
       cost->SetNumResiduals(2);
       fit_.AddResidual(cost, MakeLoss(options_.loss, options_.marker_loss_scale_rad * weight), blocks);
     }
@@ -505,7 +596,7 @@ class GeometryFitter {
   // magnifier's focal length, into the pupil plane or behind the eye.
   bool CheckFittedImages() {
     for (int k = 0; k < layer_count_; ++k) {
-      if (by_layer_[k].empty()) continue;
+      if (by_layer_[k].empty() || traced_[k]) continue;  // a traced layer loses the rays it cannot image
       const MarkerParameters<double> q = ParametersAfter(k);
       const RayTransfer<double> m = LayerTransfer(layer_optics_[k], q);
       const std::vector<int>& on_path = layer_optics_[k].element;
@@ -550,26 +641,29 @@ class GeometryFitter {
     std::vector<double> before(layer_count_, 0.0), after(layer_count_, 0.0), components;
     double sum_before = 0, sum_after = 0;
     std::vector<std::pair<double, const MarkerDatum*>> errors;
-    for (const MarkerDatum& d : data_) {
-      double a[2], b[2];
-      PredictVisualAngle(ParametersBefore(d.layer), layer_optics_[d.layer], d.placement, a);
-      PredictVisualAngle(ParametersAfter(d.layer), layer_optics_[d.layer], d.placement, b);
-      const double error_before = std::pow(a[0] - d.angle_x, 2) + std::pow(a[1] - d.angle_y, 2);
-      const double error_after = std::pow(b[0] - d.angle_x, 2) + std::pow(b[1] - d.angle_y, 2);
+    size_t used = 0;
+    for (size_t i = 0; i < data_.size(); ++i) {
+      if (LeftOut(i)) continue;
+      const MarkerDatum& d = data_[i];
+      const std::array<double, 2> a = AngleError(i, ParametersBefore(d.layer)),
+                                  b = AngleError(i, ParametersAfter(d.layer));
+      const double error_before = a[0] * a[0] + a[1] * a[1], error_after = b[0] * b[0] + b[1] * b[1];
       before[d.layer] += error_before, after[d.layer] += error_after;
       sum_before += error_before, sum_after += error_after;
-      components.push_back(std::abs(b[0] - d.angle_x));
-      components.push_back(std::abs(b[1] - d.angle_y));
+      components.push_back(std::abs(b[0]));
+      components.push_back(std::abs(b[1]));
       errors.push_back({std::sqrt(error_after), &d});
       blocks_[d.block].squared_error_rad2 += error_after;
       blocks_[d.block].markers += 1;
+      ++used;
     }
-    report_->marker_rms_before_rad = std::sqrt(sum_before / data_.size());
-    report_->marker_rms_after_rad = std::sqrt(sum_after / data_.size());
+    report_->marker_rms_before_rad = std::sqrt(sum_before / used);
+    report_->marker_rms_after_rad = std::sqrt(sum_after / used);
     for (int k = 0; k < layer_count_; ++k) {
       if (by_layer_[k].empty()) continue;
       PanelResiduals& r = report_->panels[k];
-      r.markers = static_cast<int>(by_layer_[k].size());
+      r.markers = 0;
+      for (const MarkerDatum* d : by_layer_[k]) r.markers += LeftOut(static_cast<size_t>(d - data_.data())) ? 0 : 1;
       r.marker_rms_before_rad = std::sqrt(before[k] / r.markers);
       r.marker_rms_after_rad = std::sqrt(after[k] / r.markers);
     }
@@ -682,7 +776,7 @@ class GeometryFitter {
     depth.quantity = "virtual_depth";
     depth.derived = true;
     depth.scene_value = layer.diopters;
-    depth.value = LayerTransfer(layer_optics_[k], ParametersAfter(k)).diopters();
+    depth.value = Diopters(k, ParametersAfter(k));
     if (distance.std_dev) depth.std_dev = VirtualDepthStdDev(k);
     report_->parameters.push_back(distance);
     report_->parameters.push_back(depth);
@@ -704,6 +798,15 @@ class GeometryFitter {
       on_path.insert(on_path.end(), {optics_[o].gap_index, optics_[o].focal, optics_[o].distortion});
     std::vector<double> gradient;
     for (int wrt : on_path) {
+      if (traced_[k]) {  // by central differences of the trace's paraxial limit
+        const double h = 1e-7 * std::max(1.0, std::abs(fit_.value(wrt)));
+        auto at = [&](double step) {
+          return Diopters(k, LayerParameters<double>(p, pan_, tilt_, roll_, layer_optics_[k], optics_,
+                                                     [&](int i) { return fit_.value(i) + (i == wrt ? step : 0.0); }));
+        };
+        gradient.push_back((at(h) - at(-h)) / (2 * h));
+        continue;
+      }
       using Dual = ceres::Jet<double, 1>;
       const auto q = LayerParameters<Dual>(p, pan_, tilt_, roll_, layer_optics_[k], optics_, [&](int i) {
         Dual x(fit_.value(i));
@@ -743,6 +846,8 @@ class GeometryFitter {
   int pan_ = -1, tilt_ = -1, roll_ = -1;
   std::vector<PanelIndices> index_;
   ScalarFitResult result_;
+  std::vector<std::unique_ptr<TracedLayerModel>> traced_;    // per layer: set behind real lenses
+  std::vector<std::optional<TracedMarker>> traced_markers_;  // per datum of a traced layer
 };
 
 }  // namespace

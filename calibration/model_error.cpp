@@ -42,7 +42,7 @@ std::string WorstPhotographs(const std::vector<MarkerBlock>& blocks, size_t coun
 }  // namespace
 
 bool CheckModelError(const std::vector<MarkerBlock>& blocks, int free_parameters, const CalibrationOptions& options,
-                     CalibrationReport* report) {
+                     CalibrationReport* report, bool traced_only) {
   if (!report->noise_from_detection) return true;
   double chi_square = 0;
   int residuals = 0, noise_dof = 0;
@@ -63,17 +63,17 @@ bool CheckModelError(const std::vector<MarkerBlock>& blocks, int free_parameters
                options.model_error_min_ratio * options.model_error_min_ratio);
   if (report->variance_ratio <= report->critical_variance_ratio) return true;
 
-  report->model_error =
-      "the markers' residual is " + FormatFixed(std::sqrt(report->variance_ratio), 2) +
-      " times the noise measured in the photographs (" + Arcmin(report->marker_noise_rad) +
-      " per axis; the variance ratio " + FormatFixed(report->variance_ratio, 2) + " lies above " +
-      FormatFixed(report->critical_variance_ratio, 2) + " (the " + PercentOf(options.model_error_level) +
-      " significance level for " + std::to_string(dof) + " and " +
-      (noise_exact ? std::string("infinitely many") : std::to_string(noise_dof)) +
-      " degrees of freedom, and at least " + FormatFixed(options.model_error_min_ratio, 2) +
-      " squared)): the display model does not describe these photographs (a focal length held at a wrong "
-      "value, a lens's distortion, a tilted panel, the camera's intrinsics). It is largest in " +
-      WorstPhotographs(blocks, 3);
+  report->model_error = "the markers' residual is " + FormatFixed(std::sqrt(report->variance_ratio), 2) +
+                        " times the noise measured in the photographs (" + Arcmin(report->marker_noise_rad) +
+                        " per axis; the variance ratio " + FormatFixed(report->variance_ratio, 2) + " lies above " +
+                        FormatFixed(report->critical_variance_ratio, 2) + " (the " +
+                        PercentOf(options.model_error_level) + " significance level for " + std::to_string(dof) +
+                        " and " + (noise_exact ? std::string("infinitely many") : std::to_string(noise_dof)) +
+                        " degrees of freedom, and at least " + FormatFixed(options.model_error_min_ratio, 2) +
+                        " squared)): the display model does not describe these photographs (" +
+                        (traced_only ? "a lens other than its surfaces in the scene say, "
+                                     : "a focal length held at a wrong value, a lens's distortion, ") +
+                        "a tilted panel, the camera's intrinsics). It is largest in " + WorstPhotographs(blocks, 3);
   if (options.accept_model_error) {
     report->warnings.push_back("model error: " + report->model_error +
                                ". Accepted (--accept-model-error): the uncertainties are those of the noise alone "
@@ -81,9 +81,9 @@ bool CheckModelError(const std::vector<MarkerBlock>& blocks, int free_parameters
     return true;
   }
   std::vector<std::string> free_more;
-  if (options.focal_length != FitChoice::kFit) free_more.push_back("--focal-length fit");
+  if (options.focal_length != FitChoice::kFit && !traced_only) free_more.push_back("--focal-length fit");
   if (options.lens_gaps != FitChoice::kFit) free_more.push_back("--lens-gaps fit");
-  if (options.distortion == FitChoice::kHold) free_more.push_back("--distortion fit");
+  if (options.distortion == FitChoice::kHold && !traced_only) free_more.push_back("--distortion fit");
   report->message = "model error: " + report->model_error +
                     ". The parameters below are what the wrong model fitted; check the scene against the display" +
                     (free_more.empty() ? "" : " (or fit what it holds: " + JoinWords(free_more, ", ") + ")") +

@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 
 #include "layerlab/framework/random.h"
+#include "layerlab/systems/layer_ray_map.h"
 
 namespace layerlab {
 namespace {
@@ -61,9 +62,44 @@ std::array<double, 2> RaySlopeTo(const VirtualLayer& layer, const std::array<dou
   return {(sign * point[0] - m.a * position[0]) / m.b, (sign * point[1] - m.a * position[1]) / m.b};
 }
 
+namespace {
+
+// Behind real lenses: the slope whose exact trace (green, a gray camera's)
+// meets `point`, by Newton's method from the first-order slope; NaN where
+// the lenses lose the rays near it.
+std::array<double, 2> TracedSlopeTo(const VirtualLayer& layer, const std::array<double, 2>& point,
+                                    const std::array<double, 2>& position) {
+  const LayerRayMap& map = layer.ray_map->exact();
+  const double b = std::abs(layer.transfer.b);
+  auto point_of = [&](const Eigen::Vector2d& u) -> std::optional<Eigen::Vector2d> {
+    const auto traced = map.Trace(1, position[0], position[1], u.x(), u.y());
+    if (!traced) return std::nullopt;
+    return Eigen::Vector2d(b * (*traced)[0], b * (*traced)[1]);
+  };
+  const std::array<double, 2> start = RaySlopeTo(layer, point, position);
+  Eigen::Vector2d u(start[0], start[1]);
+  const Eigen::Vector2d wanted(point[0], point[1]);
+  for (int iteration = 0; iteration < 30; ++iteration) {
+    const auto at = point_of(u);
+    if (!at) break;
+    const Eigen::Vector2d miss = *at - wanted;
+    if (miss.norm() < 1e-13) return {u.x(), u.y()};
+    const double h = 1e-7;
+    const auto dx = point_of(u + Eigen::Vector2d(h, 0)), dy = point_of(u + Eigen::Vector2d(0, h));
+    if (!dx || !dy) break;
+    Eigen::Matrix2d jacobian;
+    jacobian.col(0) = (*dx - *at) / h, jacobian.col(1) = (*dy - *at) / h;
+    u -= jacobian.inverse() * miss;
+  }
+  return {NAN, NAN};
+}
+
+}  // namespace
+
 std::array<double, 2> ImagedMarker(const DisplaySystem& truth, const VirtualLayer& layer, double col, double row,
                                    const SyntheticCamera& camera, const std::array<double, 2>& position) {
-  const std::array<double, 2> slope = RaySlopeTo(layer, PanelPoint(layer, col, row), position);
+  const std::array<double, 2> slope = layer.ray_map ? TracedSlopeTo(layer, PanelPoint(layer, col, row), position)
+                                                    : RaySlopeTo(layer, PanelPoint(layer, col, row), position);
   const Eigen::Vector3d ray(slope[0], slope[1], 1.0);
   const Eigen::Vector3d turn(-camera.tilt_rad, camera.pan_rad, camera.roll_rad);
   const Eigen::Matrix3d eye_from_camera = turn.norm() > 0
@@ -96,6 +132,7 @@ std::vector<Capture> SyntheticCaptures(const DisplaySystem& truth, const MarkerG
           m.row = row;
           m.where = markers.where.child(markers.markers.size());
           auto angle = ImagedMarker(truth, layer, col, row, camera, capture.camera_position);
+          if (std::isnan(angle[0])) continue;  // lost in real lenses
           angle[0] += noise.marker_sigma_rad * gaussian();
           angle[1] += noise.marker_sigma_rad * gaussian();
           if (noise.outlier_fraction > 0 && gaussian.uniform() < noise.outlier_fraction) {

@@ -52,7 +52,8 @@ std::array<double, 2> PanelPointOfRay(const VirtualLayer& layer, const std::arra
 std::array<double, 2> RaySlopeTo(const VirtualLayer& layer, const std::array<double, 2>& point,
                                  const std::array<double, 2>& position);
 
-// The visual angles (rad) at which `camera` sees panel pixel (col, row) of `layer`.
+// The visual angles (rad) at which `camera` sees panel pixel (col, row) of `layer`: behind real lenses by the
+// exact trace (NaN where the lenses lose the rays to it), else by the ray transfer.
 std::array<double, 2> ImagedMarker(const DisplaySystem& truth, const VirtualLayer& layer, double col, double row,
                                    const SyntheticCamera& camera, const std::array<double, 2>& position);
 

@@ -6,6 +6,7 @@
 
 #include <Eigen/Geometry>
 
+#include "layerlab/framework/error.h"
 #include "layerlab/framework/random.h"
 #include "layerlab/lenses/lens_system.h"
 
@@ -53,31 +54,54 @@ LayerRayMap::LayerRayMap(const VirtualLayer& layer, const std::array<double, 3>&
   }
 }
 
-std::optional<std::array<double, 2>> LayerRayMap::Trace(int channel, double p_x, double p_y, double u_x,
-                                                        double u_y) const {
+bool LayerRayMap::Carry(int channel, double p_x, double p_y, double u_x, double u_y, const RayMapAdjustment* a,
+                        Eigen::Vector3d* o_out, Eigen::Vector3d* d_out) const {
   // The ray as a point and a slope direction (d_z = 1) in the unfolded frame, z from the pupil.
   Eigen::Vector3d o(p_x, p_y, 0.0), d(u_x, u_y, 1.0);
-  auto advance_to = [&](double z) { o += d * (z - o.z()); };
-  for (const Step& s : steps_) {
-    if (s.position_m < o.z()) return std::nullopt;  // a real lens's exit surface reaches past the next element
-    advance_to(s.position_m);
+  for (size_t i = 0; i < steps_.size(); ++i) {
+    const Step& s = steps_[i];
+    double position = s.position_m, power = s.power_diopters;
+    if (a && i < a->element_moved_m.size()) position += a->element_moved_m[i];
+    if (a && i < a->element_power_diopters.size() && !std::isnan(a->element_power_diopters[i]))
+      power = a->element_power_diopters[i];
+    if (position < o.z()) return false;  // a real lens's exit surface reaches past the next element
+    o += d * (position - o.z());
     if (s.lens < 0) {
-      d.x() -= s.power_diopters * o.x();
-      d.y() -= s.power_diopters * o.y();
+      d.x() -= power * o.x();
+      d.y() -= power * o.y();
       continue;
     }
     lenses::Ray ray;
     ray.origin = Eigen::Vector3d(o.x(), o.y(), 0.0);
     ray.direction = d.normalized();
     const lenses::TraceResult r = tracers_[s.lens][channel]->Trace(ray);
-    if (!r.exited() || !(r.exit.direction.z() > 0)) return std::nullopt;
-    o = r.exit.origin + Eigen::Vector3d(0, 0, s.position_m);
+    if (!r.exited() || !(r.exit.direction.z() > 0)) return false;
+    o = r.exit.origin + Eigen::Vector3d(0, 0, position);
     d = r.exit.direction / r.exit.direction.z();
   }
+  *o_out = o, *d_out = d;
+  return true;
+}
+
+std::optional<std::array<double, 2>> LayerRayMap::Trace(int channel, double p_x, double p_y, double u_x,
+                                                        double u_y) const {
+  Eigen::Vector3d o, d;
+  if (!Carry(channel, p_x, p_y, u_x, u_y, nullptr, &o, &d)) return std::nullopt;
   if (panel_tilted_) return AtTiltedPanel(o, d);
   if (panel_position_m_ < o.z()) return std::nullopt;
-  advance_to(panel_position_m_);
+  o += d * (panel_position_m_ - o.z());
   return std::array<double, 2>{o.x() / b_, o.y() / b_};
+}
+
+std::optional<std::array<double, 2>> LayerRayMap::PanelPoint(int channel, double p_x, double p_y, double u_x,
+                                                             double u_y, const RayMapAdjustment& a) const {
+  if (panel_tilted_) throw Error("LayerRayMap::PanelPoint: a tilted panel (calibration refuses it)");
+  Eigen::Vector3d o, d;
+  if (!Carry(channel, p_x, p_y, u_x, u_y, &a, &o, &d)) return std::nullopt;
+  const double panel = panel_position_m_ + a.panel_moved_m;
+  if (panel < o.z()) return std::nullopt;
+  o += d * (panel - o.z());
+  return std::array<double, 2>{o.x(), o.y()};
 }
 
 std::optional<std::array<double, 2>> LayerRayMap::AtTiltedPanel(const Eigen::Vector3d& o,

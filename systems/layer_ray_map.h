@@ -44,6 +44,16 @@ namespace layerlab {
 // The interpolation's bound against the exact trace, in panel pixels.
 inline constexpr double kMapTolerancePixels = 0.005;
 
+// What a calibration fit changes on a layer's path (calibration/geometry_fit.cpp):
+// each element with power (the map's elements, nearest the eye first) moved
+// along the path and, for an ideal one, its power replaced; the panel's plane
+// moved. Empty vectors change nothing.
+struct RayMapAdjustment {
+  std::vector<double> element_moved_m;
+  std::vector<double> element_power_diopters;  // NaN keeps the compiled power; a real lens keeps its surfaces
+  double panel_moved_m = 0;
+};
+
 class LayerRayMap {
  public:
   // `layer` compiled with its path (the map keeps what it needs, not the layer).
@@ -54,10 +64,24 @@ class LayerRayMap {
   // reflected) or turns back before the panel.
   std::optional<std::array<double, 2>> Trace(int channel, double p_x, double p_y, double u_x, double u_y) const;
 
+  // Where channel c's ray (p, u) meets the untilted panel's plane with the
+  // path changed as `a` says: the point X (m from the axis, in the unfolded
+  // frame; Trace's tan-angle is X / b). nullopt as for Trace.
+  std::optional<std::array<double, 2>> PanelPoint(int channel, double p_x, double p_y, double u_x, double u_y,
+                                                  const RayMapAdjustment& a) const;
+
   double diopters() const { return diopters_; }
   double wavelength_m(int channel) const { return wavelengths_m_[channel]; }
+  // The elements with power on the path (ideal or real), nearest the eye first.
+  int element_count() const { return static_cast<int>(steps_.size()); }
+  bool element_is_real_lens(int i) const { return steps_[i].lens >= 0; }
+  bool panel_tilted() const { return panel_tilted_; }
 
  private:
+  // The ray (p, u) carried through the path's elements (changed as `a` says,
+  // when given) to where it leaves the last: o, and d with d_z = 1. False when it is lost.
+  bool Carry(int channel, double p_x, double p_y, double u_x, double u_y, const RayMapAdjustment* a, Eigen::Vector3d* o,
+             Eigen::Vector3d* d) const;
   struct Step {
     double position_m = 0;
     double power_diopters = 0;  // an ideal element
