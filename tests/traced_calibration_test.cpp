@@ -9,6 +9,7 @@
 #include "layerlab/calibration/calibration.h"
 #include "layerlab/calibration/synthetic_measurements.h"
 #include "layerlab/calibration/traced_marker_model.h"
+#include "layerlab/framework/json_file.h"
 #include "layerlab/tests/calibration_test_util.h"
 #include "layerlab/tests/test_util.h"
 
@@ -52,9 +53,27 @@ TracedMarker Seen(const DisplaySystem& system, const VirtualLayer& layer, const 
   return t.value_or(TracedMarker{});
 }
 
-TEST(TracedCalibration, TheModelSeesEachMarkerWhereTheExactTraceShowsIt) {
-  const DisplaySystem& designed = Designed();
-  for (const VirtualLayer& layer : designed.layers) {
+// examples/relay_magnifier.json with its magnifier a real LA1608: behind the
+// relay's inverted image, every layer's b < 0.
+const DisplaySystem& InvertedBehindARealLens() {
+  static const DisplaySystem system = [] {
+    const std::string file = testing::ExamplePath("relay_magnifier.json");
+    nlohmann::json scene = ReadJsonFile(file);
+    nlohmann::json& magnifier = testing::ElementNamed(scene, "magnifier");
+    magnifier = {{"type", "lens"},
+                 {"name", "magnifier"},
+                 {"clear_aperture", "25.4 mm"},
+                 {"surfaces",
+                  {{{"radius", "38.6 mm"}, {"material", "N-BK7"}, {"thickness", "4.1 mm"}}, nlohmann::json::object()}},
+                 {"next", magnifier["next"]}};
+    return testing::CompileJson(scene, file);
+  }();
+  return system;
+}
+
+// The model, as designed, sees each marker of `layer` where the camera does, turned or not.
+void ExpectTheModelSeesItsMarkers(const DisplaySystem& designed, const VirtualLayer& layer) {
+  {
     ASSERT_TRUE(layer.ray_map) << layer.name;
     const TracedLayerModel model(layer, DesignedParameters(layer));
     // A camera turned (pan, tilt, roll) sees the markers elsewhere; the model turned alike sees them there.
@@ -73,6 +92,15 @@ TEST(TracedCalibration, TheModelSeesEachMarkerWhereTheExactTraceShowsIt) {
           EXPECT_LT(std::hypot(e[0], e[1]), 1e-9) << layer.name << " at (" << col << ", " << row << ")";
         }
   }
+}
+
+TEST(TracedCalibration, TheModelSeesEachMarkerWhereTheExactTraceShowsIt) {
+  for (const DisplaySystem* designed : {&Designed(), &InvertedBehindARealLens()})
+    for (const VirtualLayer& layer : designed->layers) {
+      const bool inverted = designed != &Designed();
+      EXPECT_EQ(layer.transfer.b < 0, inverted) << layer.name << ": inverted behind the relay, upright without it";
+      ExpectTheModelSeesItsMarkers(*designed, layer);
+    }
 }
 
 // Each parameter, changed in the built display, is what the model needs to
