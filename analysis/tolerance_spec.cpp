@@ -29,7 +29,8 @@ const KindInfo& Info(ToleranceKind kind) {
       {"gap", Dimension::kLength, 0.01, "10 mm", true,
        "yes: the panel distances, and a lens's gap (fitted when two camera positions see parallax)"},
       {"focal_length", Dimension::kFraction, 0.5, "50 %", true,
-       "yes, when markers are seen from two camera positions (parallax)"},
+       "yes, when markers are seen from two camera positions (parallax); for a lens described by its surfaces no: "
+       "the fit traces them, and a lens other than they say shows as a model error"},
   };
   return infos[static_cast<int>(kind)];
 }
