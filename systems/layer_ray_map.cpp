@@ -54,8 +54,8 @@ LayerRayMap::LayerRayMap(const VirtualLayer& layer, const std::array<double, 3>&
   }
 }
 
-bool LayerRayMap::Carry(int channel, double p_x, double p_y, double u_x, double u_y, const RayMapAdjustment* a,
-                        Eigen::Vector3d* o_out, Eigen::Vector3d* d_out) const {
+std::optional<LayerRayMap::ExitRay> LayerRayMap::Carry(int channel, double p_x, double p_y, double u_x, double u_y,
+                                                       const RayMapAdjustment* a) const {
   // The ray as a point and a slope direction (d_z = 1) in the unfolded frame, z from the pupil.
   Eigen::Vector3d o(p_x, p_y, 0.0), d(u_x, u_y, 1.0);
   for (size_t i = 0; i < steps_.size(); ++i) {
@@ -64,7 +64,7 @@ bool LayerRayMap::Carry(int channel, double p_x, double p_y, double u_x, double 
     if (a && i < a->element_moved_m.size()) position += a->element_moved_m[i];
     if (a && i < a->element_power_diopters.size() && !std::isnan(a->element_power_diopters[i]))
       power = a->element_power_diopters[i];
-    if (position < o.z()) return false;  // a real lens's exit surface reaches past the next element
+    if (position < o.z()) return std::nullopt;  // a real lens's exit surface reaches past the next element
     o += d * (position - o.z());
     if (s.lens < 0) {
       d.x() -= power * o.x();
@@ -75,18 +75,19 @@ bool LayerRayMap::Carry(int channel, double p_x, double p_y, double u_x, double 
     ray.origin = Eigen::Vector3d(o.x(), o.y(), 0.0);
     ray.direction = d.normalized();
     const lenses::TraceResult r = tracers_[s.lens][channel]->Trace(ray);
-    if (!r.exited() || !(r.exit.direction.z() > 0)) return false;
+    if (!r.exited() || !(r.exit.direction.z() > 0)) return std::nullopt;
     o = r.exit.origin + Eigen::Vector3d(0, 0, position);
     d = r.exit.direction / r.exit.direction.z();
   }
-  *o_out = o, *d_out = d;
-  return true;
+  return ExitRay{o, d};
 }
 
 std::optional<std::array<double, 2>> LayerRayMap::Trace(int channel, double p_x, double p_y, double u_x,
                                                         double u_y) const {
-  Eigen::Vector3d o, d;
-  if (!Carry(channel, p_x, p_y, u_x, u_y, nullptr, &o, &d)) return std::nullopt;
+  const std::optional<ExitRay> exit = Carry(channel, p_x, p_y, u_x, u_y, nullptr);
+  if (!exit) return std::nullopt;
+  Eigen::Vector3d o = exit->o;
+  const Eigen::Vector3d& d = exit->d;
   if (panel_tilted_) return AtTiltedPanel(o, d);
   if (panel_position_m_ < o.z()) return std::nullopt;
   o += d * (panel_position_m_ - o.z());
@@ -96,8 +97,10 @@ std::optional<std::array<double, 2>> LayerRayMap::Trace(int channel, double p_x,
 std::optional<std::array<double, 2>> LayerRayMap::PanelPoint(int channel, double p_x, double p_y, double u_x,
                                                              double u_y, const RayMapAdjustment& a) const {
   if (panel_tilted_) throw Error("LayerRayMap::PanelPoint: a tilted panel (calibration refuses it)");
-  Eigen::Vector3d o, d;
-  if (!Carry(channel, p_x, p_y, u_x, u_y, &a, &o, &d)) return std::nullopt;
+  const std::optional<ExitRay> exit = Carry(channel, p_x, p_y, u_x, u_y, &a);
+  if (!exit) return std::nullopt;
+  Eigen::Vector3d o = exit->o;
+  const Eigen::Vector3d& d = exit->d;
   const double panel = panel_position_m_ + a.panel_moved_m;
   if (panel < o.z()) return std::nullopt;
   o += d * (panel - o.z());

@@ -78,10 +78,15 @@ class LayerRayMap {
   bool panel_tilted() const { return panel_tilted_; }
 
  private:
+  // Where a ray leaves the path's last element: point o, direction d with d_z = 1.
+  struct ExitRay {
+    Eigen::Vector3d o, d;
+  };
   // The ray (p, u) carried through the path's elements (changed as `a` says,
-  // when given) to where it leaves the last: o, and d with d_z = 1. False when it is lost.
-  bool Carry(int channel, double p_x, double p_y, double u_x, double u_y, const RayMapAdjustment* a, Eigen::Vector3d* o,
-             Eigen::Vector3d* d) const;
+  // when given); nullopt when it is lost.
+  std::optional<ExitRay> Carry(int channel, double p_x, double p_y, double u_x, double u_y,
+                               const RayMapAdjustment* a) const;
+
   struct Step {
     double position_m = 0;
     double power_diopters = 0;  // an ideal element
