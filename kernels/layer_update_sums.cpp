@@ -53,7 +53,8 @@ void AccumulateGeneral(const DisplayModel& model, const std::vector<int>& layers
 
 bool ComputeLayerUpdate(const DisplayModel& model, BranchLayer which, const BranchTarget& branch_target,
                         const Patterns& t, SolveWorkspace* workspace, LayerUpdate* update, double* error) {
-  const auto [branch, layer] = which;
+  const size_t branch = which.branch;
+  const int layer = which.layer;
   const LightFieldGeometry& g = model.geometry();
   const std::vector<int>& layers = model.branch_layers(branch);
   const std::array<float, 3> w = model.weight(branch);
@@ -104,7 +105,8 @@ bool ComputeLayerUpdate(const DisplayModel& model, BranchLayer which, const Bran
 void ComputeLayerUpdateFromPairs(const DisplayModel& model, BranchLayer which, const PairLattice& lattice,
                                  const PairCells& binned, const Patterns& t, SolveWorkspace* workspace,
                                  LayerUpdate* update) {
-  const auto [branch, layer] = which;
+  const size_t branch = which.branch;
+  const int layer = which.layer;
   const size_t m = model.projection(layer).pixel_count() * 3;
   const int other = lattice.other_layer(layer);
   workspace->padded.Pad(t, {other});
@@ -117,7 +119,8 @@ void ComputeLayerUpdateFromPairs(const DisplayModel& model, BranchLayer which, c
 
 void ComputeLayerUpdateFromMappedPairs(const DisplayModel& model, BranchLayer which, const MappedPairs& pairs,
                                        const std::vector<float>& binned, const Patterns& t, LayerUpdate* update) {
-  const auto [branch, layer] = which;
+  const size_t branch = which.branch;
+  const int layer = which.layer;
   const size_t m = model.projection(layer).pixel_count() * 3;
   update->branch = branch, update->layer = layer;
   update->num->resize(m), update->den->resize(m);

@@ -22,7 +22,7 @@ import os
 import re
 import sys
 
-PRODUCT_FOLDERS = ["framework", "lenses", "elements", "systems", "eye", "kernels", "retina", "targets", "calibration", "solvers",
+PRODUCT_FOLDERS = ["framework", "metrics", "lenses", "elements", "systems", "eye", "kernels", "retina", "targets", "calibration", "solvers",
                    "analysis", "app", "tools", "python/src", "include"]
 EXTENSIONS = (".h", ".cpp", ".def", ".inc")
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.MULTILINE)

@@ -15,6 +15,7 @@ packages+=(clang-14 libclang-rt-14-dev libomp-14-dev)  # the sanitizer and fuzz 
 packages+=(clang-format-14)  # the layout check in .ci/run (scripts/check_format.sh)
 # The Python module and its tests, for Debian's /usr/bin/python3 (docs/python.md)
 packages+=(pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib)
+packages+=(python3-skimage)  # the perceptual metrics' reference in python/tests/test_metrics.py (docs/metrics.md)
 packages+=(libopenmpi-dev openmpi-bin)  # layerlab sweep --mpi and its tests (docs/sweeps.md)
 
 missing=()

@@ -28,11 +28,13 @@ from ._layerlab import (
     display_geometry,
     fit,
     load_scene,
+    ms_ssim,
     read_lightfield,
     render_target,
     run,
     solve,
     solvers,
+    ssim,
     synthesize,
 )
 
@@ -60,6 +62,6 @@ def focal_stack(solution, start, stop, step, resolution=0.05, field=None, natura
 __all__ = [
     "ArgumentError", "Branch", "Error", "Interrupted", "Layer", "LightField", "LightFieldGeometry", "PathStep", "Scene",
     "SceneError", "Solution", "System", "__version__", "compare", "compile", "contrast", "display_geometry", "fit", "focal_stack", "load_scene",
-    "read_lightfield", "render_target", "retina", "run", "solve", "solvers",
+    "ms_ssim", "read_lightfield", "render_target", "retina", "run", "solve", "solvers", "ssim",
     "synthesize",
 ]

@@ -12,4 +12,5 @@ PYBIND11_MODULE(_layerlab, m) {
   layerlab::python::BindAnalysis(m);
   layerlab::python::BindCompare(m);
   layerlab::python::BindFit(m);
+  layerlab::python::BindMetrics(m);
 }
