@@ -4,7 +4,9 @@
 
 #include <cmath>
 
+#include "layerlab/eye/barten_csf.h"
 #include "layerlab/framework/error.h"
+#include "layerlab/metrics/csf_jnd.h"
 #include "layerlab/metrics/ssim.h"
 
 namespace layerlab {
@@ -67,6 +69,78 @@ TEST(Ssim, BadInputsAreRefusedNamingWhat) {
   Plane nan = a;
   nan.values[7] = NAN;
   EXPECT_NE(message([&] { Ssim(a, nan, 1); }).find("not finite"), std::string::npos);
+}
+
+// Barten's CSF against the values colour-science's implementation of it
+// documents (colour.contrast, barten1999.py doctests): the pupil for 100
+// cd/m2 on a 60 x 60 deg field, the retinal illuminance of 100 cd/m2 through
+// 2.1 mm, S at 4 cpd for 20 cd/m2 through 2.1 mm on 60 deg, and the minimum
+// detectable contrast 2 / (1.27 S_max) of ITU-R BT.2246-4's Figure 31 at 0.01
+// and 100 cd/m2 (S_max over frequency, Barten's pupil on a 60 deg field).
+TEST(BartenCsf, TheValuesColourScienceDocuments) {
+  EXPECT_NEAR(BartenPupilDiameterMm({100, 60, 60, std::nullopt}), 2.0777571, 1e-7);
+  EXPECT_NEAR(RetinalIlluminanceTrolands(100, 2.1), 330.4115803, 1e-7);
+  EXPECT_NEAR(BartenContrastSensitivity(4, {20, 60, 60, 2.1}), 360.8691122, 1e-7);
+  auto minimum_detectable = [](double luminance) {
+    double best = 0;
+    for (double u = 0.01; u < 30; u += 0.0005)
+      best = std::max(best, BartenContrastSensitivity(u, {luminance, 60, 60, {}}));
+    return 2 / (1.27 * best);
+  };
+  EXPECT_NEAR(minimum_detectable(0.01), 0.0207396, 2e-7);
+  EXPECT_NEAR(minimum_detectable(100), 0.0022897, 2e-7);
+  EXPECT_EQ(BartenContrastSensitivity(0, {}), 0);
+  EXPECT_THROW(BartenContrastSensitivity(4, {-1, 60, 60, {}}), Error);
+}
+
+// A grating of contrast c = 1 / S(f) on a uniform field (its threshold) against the field: 1 JND, for any
+// Minkowski exponent, across 1-20 cpd and 1-100 cd/m2; at half its threshold 0.5; a uniform change 0.
+TEST(CsfJnd, AGratingAtItsThresholdIsOneJnd) {
+  const int cols = 240, rows = 64, cycles = 12;
+  for (const double luminance : {1.0, 10.0, 100.0})
+    for (const double cpd : {1.0, 2.0, 4.0, 8.0, 16.0, 20.0}) {
+      CsfJndOptions options;
+      options.pixel_deg = cycles / (cpd * cols);
+      const double threshold =
+          1 / BartenContrastSensitivity(cpd, {luminance, cols * options.pixel_deg, rows * options.pixel_deg, {}});
+      Plane field = Constant(cols, rows, luminance), grating = field, half = field;
+      for (int i = 0; i < rows; ++i)
+        for (int j = 0; j < cols; ++j) {
+          const double s = std::sin(2 * M_PI * cycles * j / cols);
+          grating.values[static_cast<size_t>(i) * cols + j] = luminance * (1 + threshold * s);
+          half.values[static_cast<size_t>(i) * cols + j] = luminance * (1 + 0.5 * threshold * s);
+        }
+      // The pooling's scale is the continuous sine's; a sampled sine's mean of |sin|^beta equals it for beta 2
+      // and 4 (20 samples a period), and for beta 1 is 0.1 cot(pi / 20) against 2 / pi.
+      for (const double beta : {1.0, 2.0, 4.0}) {
+        options.minkowski_exponent = beta;
+        const double sampled = beta == 1 ? 0.1 / std::tan(M_PI / 20) / (2 / M_PI) : 1.0;
+        EXPECT_NEAR(CsfJnd(field, grating, options), sampled, 1e-9) << cpd << " cpd, " << luminance << " cd/m2";
+        EXPECT_NEAR(CsfJnd(field, half, options), 0.5 * sampled, 1e-9) << cpd << " cpd, " << luminance << " cd/m2";
+      }
+      EXPECT_NEAR(CsfJnd(field, Constant(cols, rows, 1.1 * luminance), options), 0.0, 1e-12);
+    }
+}
+
+TEST(CsfJnd, BadValuesAreRefusedNamingTheField) {
+  const Plane a = Constant(32, 32, 10);
+  auto message = [&](const Plane& x, const Plane& y, CsfJndOptions o) {
+    try {
+      CsfJnd(x, y, o);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  CsfJndOptions o;
+  o.minkowski_exponent = 0.5;
+  EXPECT_NE(message(a, a, o).find("minkowski_exponent"), std::string::npos);
+  o = {};
+  o.pixel_deg = -1;
+  EXPECT_NE(message(a, a, o).find("pixel_deg"), std::string::npos);
+  EXPECT_NE(message(a, Constant(32, 31, 10), {}).find("differ in size"), std::string::npos);
+  EXPECT_NE(message(Constant(32, 32, 0), a, {}).find("mean luminance is 0"), std::string::npos);
+  EXPECT_NE(message(a, Constant(32, 32, -1), {}).find("negative"), std::string::npos);
 }
 
 }  // namespace
