@@ -25,6 +25,7 @@ from ._layerlab import (
     compare,
     compile,
     contrast,
+    csf_jnd,
     display_geometry,
     fit,
     load_scene,
@@ -61,7 +62,7 @@ def focal_stack(solution, start, stop, step, resolution=0.05, field=None, natura
 
 __all__ = [
     "ArgumentError", "Branch", "Error", "Interrupted", "Layer", "LightField", "LightFieldGeometry", "PathStep", "Scene",
-    "SceneError", "Solution", "System", "__version__", "compare", "compile", "contrast", "display_geometry", "fit", "focal_stack", "load_scene",
+    "SceneError", "Solution", "System", "__version__", "compare", "compile", "contrast", "csf_jnd", "display_geometry", "fit", "focal_stack", "load_scene",
     "ms_ssim", "read_lightfield", "render_target", "retina", "run", "solve", "solvers", "ssim",
     "synthesize",
 ]

@@ -12,6 +12,6 @@ void BindSolve(pybind11::module_& m);       // solve.cpp: solve, its solution an
 void BindAnalysis(pybind11::module_& m);    // analysis.cpp: run, contrast
 void BindCompare(pybind11::module_& m);     // compare.cpp: compare
 void BindFit(pybind11::module_& m);         // fit.cpp (Ceres builds) or fit_missing.cpp: fit
-void BindMetrics(pybind11::module_& m);     // metrics.cpp: ssim, ms_ssim
+void BindMetrics(pybind11::module_& m);     // metrics.cpp: ssim, ms_ssim, csf_jnd
 
 }  // namespace layerlab::python

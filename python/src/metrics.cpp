@@ -1,8 +1,9 @@
-// ssim, ms_ssim: the perceptual metrics of metrics/ on 2-D NumPy arrays (docs/metrics.md).
+// ssim, ms_ssim, csf_jnd: the perceptual metrics of metrics/ on 2-D NumPy arrays (docs/metrics.md).
 #include <string>
 
 #include <pybind11/numpy.h>
 
+#include "layerlab/metrics/csf_jnd.h"
 #include "layerlab/metrics/ssim.h"
 #include "layerlab/python/src/arguments.h"
 #include "layerlab/python/src/bindings.h"
@@ -33,6 +34,18 @@ double Metric(const py::array_t<double, py::array::c_style | py::array::forcecas
   return value;
 }
 
+double Jnd(const py::array_t<double, py::array::c_style | py::array::forcecast>& reference,
+           const py::array_t<double, py::array::c_style | py::array::forcecast>& test, double pixel_deg,
+           double minkowski_exponent) {
+  const Plane a = PlaneOf(reference, "reference"), b = PlaneOf(test, "test");
+  double value = 0;
+  CheckArgument([&] {
+    py::gil_scoped_release release;
+    value = CsfJnd(a, b, {pixel_deg, minkowski_exponent});
+  });
+  return value;
+}
+
 }  // namespace
 
 void BindMetrics(py::module_& m) {
@@ -43,6 +56,11 @@ void BindMetrics(py::module_& m) {
   m.def("ms_ssim", &Metric<&MsSsim>, py::arg("x"), py::arg("y"), py::arg("data_range") = 1.0,
         "MS-SSIM of two 2-D arrays of one channel (Wang et al. 2003): five scales, each the last averaged over 2 x 2 "
         "pixels and subsampled; at least 176 pixels on each side. docs/metrics.md");
+  m.def("csf_jnd", &Jnd, py::arg("reference"), py::arg("test"), py::arg("pixel_deg"),
+        py::arg("minkowski_exponent") = 4.0,
+        "The difference of two luminance images (2-D arrays, cd/m2, pixel_deg degrees a pixel) weighted by Barten's "
+        "contrast sensitivity and pooled by a Minkowski mean, in just-noticeable differences: a full-field grating "
+        "at its threshold scores 1. docs/metrics.md");
 }
 
 }  // namespace layerlab::python

@@ -1,6 +1,8 @@
 """ssim and ms_ssim against independent code: SSIM against scikit-image's structural_similarity, MS-SSIM against
 the same definition written here over SciPy's Gaussian filter, on random and natural images, to 1e-4."""
 
+import math
+
 import numpy as np
 import pytest
 
@@ -93,3 +95,34 @@ def test_bad_inputs_are_refused_naming_what():
         layerlab.ssim(x, y)
     with pytest.raises(layerlab.ArgumentError, match="2-D"):
         layerlab.ssim(np.zeros((20, 20, 3)), np.zeros((20, 20, 3)))
+
+
+def barten(u, luminance, field_x, field_y):
+    """Barten's CSF (1999, eq. 3.26) with the standard observer's constants and his pupil, written here apart."""
+    d = 5 - 3 * np.tanh(0.4 * np.log(luminance * field_x * field_y / 40 ** 2))
+    sigma = np.sqrt((0.5 / 60) ** 2 + (0.08 / 60 * d) ** 2)
+    e = np.pi * d ** 2 / 4 * luminance * (1 - (d / 9.7) ** 2 + (d / 12.4) ** 4)
+    size = lambda x0: (1 / x0 ** 2 + 1 / 12 ** 2 + u ** 2 / 15 ** 2) ** -0.5
+    with np.errstate(divide="ignore"):
+        s = (np.exp(-2 * np.pi ** 2 * sigma ** 2 * u ** 2) / 3) / np.sqrt(
+            2 / 0.1 / (size(field_x) * size(field_y)) * (1 / (0.03 * 1.2274e6 * e) + 3e-8 / (1 - np.exp(-(u / 7) ** 2))))
+    return np.where(u > 0, s, 0.0)
+
+
+def test_csf_jnd_is_the_definition_over_numpys_fft():
+    rng = np.random.default_rng(5)
+    rows, cols, pixel_deg, beta = 72, 90, 0.02, 4.0
+    reference = 40 * (1 + 0.3 * ndimage.gaussian_filter(rng.random((rows, cols)), 3))
+    test = reference * (1 + 0.01 * rng.standard_normal((rows, cols)))
+    fy = np.fft.fftfreq(rows, pixel_deg)[:, None]
+    fx = np.fft.fftfreq(cols, pixel_deg)[None, :]
+    mean = reference.mean()
+    weight = barten(np.hypot(fx, fy), mean, cols * pixel_deg, rows * pixel_deg)
+    j = np.fft.ifft2(weight * np.fft.fft2((test - reference) / mean)).real
+    scale = (math.gamma((beta + 1) / 2) / (np.sqrt(np.pi) * math.gamma(beta / 2 + 1))) ** (1 / beta)
+    expected = (np.abs(j) ** beta).mean() ** (1 / beta) / scale
+    assert expected > 1
+    assert layerlab.csf_jnd(reference, test, pixel_deg) == pytest.approx(expected, rel=1e-9)
+    assert layerlab.csf_jnd(reference, reference, pixel_deg) == 0
+    with pytest.raises(layerlab.ArgumentError, match="minkowski_exponent"):
+        layerlab.csf_jnd(reference, test, pixel_deg, minkowski_exponent=0.5)
