@@ -34,11 +34,16 @@ struct MarkerBlock {
 // The model-error test (calibration.h): the residuals against the detection
 // noise, into *report; where the excess concentrates, named by photograph.
 // False (with report->message) when a model error makes the result unusable
-// (not accepted by the options). `traced_only`: every lens on the measured
-// paths is described by its surfaces, traced: no focal length or distortion
-// is there to fit, and the surfaces may be what is wrong.
+// (not accepted by the options). `remedies`: what the message may offer to
+// fit, and whether lenses described by their surfaces (traced, not fitted)
+// are on the measured paths.
+struct ModelErrorRemedies {
+  bool focal_lengths = true;  // an ideal lens or curved mirror has one to fit
+  bool distortions = true;    // one of them has a panel behind it seen by the first-order model
+  bool surfaces = false;      // a lens described by its surfaces may be other than they say
+};
 bool CheckModelError(const std::vector<MarkerBlock>& blocks, int free_parameters, const CalibrationOptions& options,
-                     CalibrationReport* report, bool traced_only = false);
+                     CalibrationReport* report, const ModelErrorRemedies& remedies = {});
 
 // "a; b; c".
 std::string JoinedBySemicolons(const std::vector<std::string>& parts);

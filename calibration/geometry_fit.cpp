@@ -259,22 +259,21 @@ class GeometryFitter {
     ReadMarkers();
     if (data_.empty()) return true;
     SortByLayer();
+    PrepareTracedLayers();
+    if (data_.empty()) return true;
     if (!CheckReference()) return false;
     CheckMirroring(system_, by_layer_, report_);
     AddParameters();
     HoldWhatParallaxAloneTells();
     if (!farthest_reference_)
       for (int i : {pan_, tilt_, roll_}) Hold(i, ParameterStatus::kReference);
-    PrepareTracedLayers();
     AddResiduals();
     if (!Solve() || !CheckFittedImages()) return false;
     if (result_.covariance.size() == 0)
       report_->warnings.push_back("no uncertainties for the geometry: " + result_.covariance_message);
     ReportResiduals();
     WriteResults(display);
-    const bool traced_only =
-        !optics_.empty() && std::all_of(optics_.begin(), optics_.end(), [](const Optic& o) { return o.surfaces; });
-    return CheckModelError(blocks_, result_.free_parameters, options_, report_, traced_only);
+    return CheckModelError(blocks_, result_.free_parameters, options_, report_, Remedies());
   }
 
  private:
@@ -456,32 +455,69 @@ class GeometryFitter {
   }
 
   // Layers behind real lenses are seen through the exact trace: each marker
-  // with its Jacobian at the scene's values, or left out, and said so, where
-  // the scene's lens loses the ray the camera saw.
+  // with its Jacobian at the scene's values. A marker whose ray the scene's
+  // lenses lose is left out before anything counts it, and said so.
   void PrepareTracedLayers() {
     traced_.clear();
     traced_.resize(layer_count_);
-    traced_markers_.assign(data_.size(), std::nullopt);
     for (int k = 0; k < layer_count_; ++k)
       if (!by_layer_[k].empty() && system_.layers[k].ray_map)
-        traced_[k] = std::make_unique<TracedLayerModel>(system_.layers[k], ParametersBefore(k));
+        traced_[k] = std::make_unique<TracedLayerModel>(system_.layers[k], SceneParameters(k));
+    std::vector<MarkerDatum> kept;
+    traced_markers_.clear();
     int lost = 0;
-    const MarkerDatum* first_lost = nullptr;
-    for (size_t i = 0; i < data_.size(); ++i) {
-      const MarkerDatum& d = data_[i];
-      if (!traced_[d.layer]) continue;
-      traced_markers_[i] = traced_[d.layer]->Prepare(d.placement, d.angle_x, d.angle_y);
-      if (!traced_markers_[i]) ++lost, first_lost = first_lost ? first_lost : &d;
+    std::string first_lost;
+    for (const MarkerDatum& d : data_) {
+      std::optional<TracedMarker> t;
+      if (traced_[d.layer] && !(t = traced_[d.layer]->Prepare(d.placement, d.angle_x, d.angle_y))) {
+        if (lost++ == 0) first_lost = d.where.str();
+        continue;
+      }
+      kept.push_back(d);
+      traced_markers_.push_back(std::move(t));
     }
-    if (lost > 0)
-      report_->warnings.push_back(std::to_string(lost) + " marker" + (lost > 1 ? "s" : "") +
-                                  " seen by the camera would not reach its panel through the scene's lenses (the "
-                                  "first at " +
-                                  first_lost->where.str() + "): left out of the fit");
+    if (lost == 0) return;
+    report_->warnings.push_back(std::to_string(lost) + " marker" + (lost > 1 ? "s" : "") +
+                                " seen by the camera would not reach its panel through the scene's lenses (the first "
+                                "at " +
+                                first_lost + "): left out of the fit");
+    data_ = std::move(kept);
+    report_->markers = static_cast<int>(data_.size());
+    SortByLayer();
+  }
+
+  // The layer's parameters as the scene has them, before the fit's parameters exist.
+  MarkerParameters<double> SceneParameters(int k) const {
+    const VirtualLayer& layer = system_.layers[k];
+    MarkerParameters<double> q{layer.panel_distance_m,
+                               layer.panel.eye_from_panel_m[0],
+                               layer.panel.eye_from_panel_m[1],
+                               layer.panel.rotation_rad,
+                               0,
+                               0,
+                               0,
+                               {},
+                               {},
+                               {}};
+    for (int o : layer_optics_[k].element)
+      q.gaps.push_back(optics_[o].gap), q.focal_lengths.push_back(optics_[o].focal_length), q.distortions.push_back(0);
+    return q;
   }
 
   bool Traced(const MarkerDatum& d) const { return traced_[d.layer] != nullptr; }
-  bool LeftOut(size_t i) const { return Traced(data_[i]) && !traced_markers_[i]; }
+  // Whether every measured panel behind optic `o` is traced: its distortion then enters no residual.
+  bool AllTraced(const Optic& o) const {
+    return std::all_of(o.layers.begin(), o.layers.end(), [&](int k) { return traced_[k] != nullptr; });
+  }
+
+  // What the model-error message may offer to fit.
+  ModelErrorRemedies Remedies() const {
+    ModelErrorRemedies r;
+    r.focal_lengths = std::any_of(optics_.begin(), optics_.end(), [](const Optic& o) { return !o.surfaces; });
+    r.distortions = std::any_of(optics_.begin(), optics_.end(), [&](const Optic& o) { return !AllTraced(o); });
+    r.surfaces = std::any_of(optics_.begin(), optics_.end(), [](const Optic& o) { return o.surfaces; });
+    return r;
+  }
 
   // Model minus measurement of marker i under the layer's parameters `q` (rad).
   std::array<double, 2> AngleError(size_t i, const MarkerParameters<double>& q) const {
@@ -518,7 +554,14 @@ class GeometryFitter {
         Hold(o.focal, ParameterStatus::kNotFitted);
       else if (!o.surfaces && !parallax)
         HoldWithoutParallax(o.focal, "the focal length" + named);
-      if (options_.distortion == FitChoice::kHold && !o.surfaces) Hold(o.distortion, ParameterStatus::kNotFitted);
+      if (!o.surfaces && AllTraced(o)) {
+        Hold(o.distortion, ParameterStatus::kNotFitted);
+        if (options_.distortion != FitChoice::kHold)
+          report_->notes.push_back("the distortion of " + Quoted(o.name) +
+                                   " is not fitted: every panel behind it is seen through real lenses, traced");
+      } else if (options_.distortion == FitChoice::kHold && !o.surfaces) {
+        Hold(o.distortion, ParameterStatus::kNotFitted);
+      }
       if (options_.lens_gaps == FitChoice::kHold) {
         Hold(o.gap_index, ParameterStatus::kNotFitted);
       } else if (!o.placed_before) {
@@ -555,7 +598,6 @@ class GeometryFitter {
 
   void AddResiduals() {
     for (size_t i = 0; i < data_.size(); ++i) {
-      if (LeftOut(i)) continue;
       const MarkerDatum& d = data_[i];
       const PanelIndices& p = index_[d.layer];
       const LayerOptics& path = layer_optics_[d.layer];
@@ -596,8 +638,21 @@ class GeometryFitter {
   // magnifier's focal length, into the pupil plane or behind the eye.
   bool CheckFittedImages() {
     for (int k = 0; k < layer_count_; ++k) {
-      if (by_layer_[k].empty() || traced_[k]) continue;  // a traced layer loses the rays it cannot image
+      if (by_layer_[k].empty()) continue;
       const MarkerParameters<double> q = ParametersAfter(k);
+      if (traced_[k]) {
+        double diopters = NAN;
+        try {
+          diopters = traced_[k]->Diopters(q);
+        } catch (const Error&) {  // the lenses as fitted lose the paraxial rays
+        }
+        if (diopters >= 0) continue;
+        report_->message = "the fit images panel " + Quoted(system_.layers[k].name) +
+                           (std::isnan(diopters) ? " where the real lenses as fitted lose its paraxial rays"
+                                                 : " behind the eye (" + FormatFixed(diopters, 3) + " D)") +
+                           ", through the real lenses in front of it: the measurements do not match this display";
+        return false;
+      }
       const RayTransfer<double> m = LayerTransfer(layer_optics_[k], q);
       const std::vector<int>& on_path = layer_optics_[k].element;
       if (magnifier_ && q.distance > q.focal_lengths[0]) {
@@ -641,9 +696,7 @@ class GeometryFitter {
     std::vector<double> before(layer_count_, 0.0), after(layer_count_, 0.0), components;
     double sum_before = 0, sum_after = 0;
     std::vector<std::pair<double, const MarkerDatum*>> errors;
-    size_t used = 0;
     for (size_t i = 0; i < data_.size(); ++i) {
-      if (LeftOut(i)) continue;
       const MarkerDatum& d = data_[i];
       const std::array<double, 2> a = AngleError(i, ParametersBefore(d.layer)),
                                   b = AngleError(i, ParametersAfter(d.layer));
@@ -655,15 +708,13 @@ class GeometryFitter {
       errors.push_back({std::sqrt(error_after), &d});
       blocks_[d.block].squared_error_rad2 += error_after;
       blocks_[d.block].markers += 1;
-      ++used;
     }
-    report_->marker_rms_before_rad = std::sqrt(sum_before / used);
-    report_->marker_rms_after_rad = std::sqrt(sum_after / used);
+    report_->marker_rms_before_rad = std::sqrt(sum_before / data_.size());
+    report_->marker_rms_after_rad = std::sqrt(sum_after / data_.size());
     for (int k = 0; k < layer_count_; ++k) {
       if (by_layer_[k].empty()) continue;
       PanelResiduals& r = report_->panels[k];
-      r.markers = 0;
-      for (const MarkerDatum* d : by_layer_[k]) r.markers += LeftOut(static_cast<size_t>(d - data_.data())) ? 0 : 1;
+      r.markers = static_cast<int>(by_layer_[k].size());
       r.marker_rms_before_rad = std::sqrt(before[k] / r.markers);
       r.marker_rms_after_rad = std::sqrt(after[k] / r.markers);
     }

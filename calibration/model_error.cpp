@@ -42,7 +42,7 @@ std::string WorstPhotographs(const std::vector<MarkerBlock>& blocks, size_t coun
 }  // namespace
 
 bool CheckModelError(const std::vector<MarkerBlock>& blocks, int free_parameters, const CalibrationOptions& options,
-                     CalibrationReport* report, bool traced_only) {
+                     CalibrationReport* report, const ModelErrorRemedies& remedies) {
   if (!report->noise_from_detection) return true;
   double chi_square = 0;
   int residuals = 0, noise_dof = 0;
@@ -71,8 +71,9 @@ bool CheckModelError(const std::vector<MarkerBlock>& blocks, int free_parameters
                         " and " + (noise_exact ? std::string("infinitely many") : std::to_string(noise_dof)) +
                         " degrees of freedom, and at least " + FormatFixed(options.model_error_min_ratio, 2) +
                         " squared)): the display model does not describe these photographs (" +
-                        (traced_only ? "a lens other than its surfaces in the scene say, "
-                                     : "a focal length held at a wrong value, a lens's distortion, ") +
+                        (remedies.surfaces ? "a lens other than its surfaces in the scene say, " : "") +
+                        (remedies.focal_lengths ? "a focal length held at a wrong value, " : "") +
+                        (remedies.distortions ? "a lens's distortion, " : "") +
                         "a tilted panel, the camera's intrinsics). It is largest in " + WorstPhotographs(blocks, 3);
   if (options.accept_model_error) {
     report->warnings.push_back("model error: " + report->model_error +
@@ -81,9 +82,9 @@ bool CheckModelError(const std::vector<MarkerBlock>& blocks, int free_parameters
     return true;
   }
   std::vector<std::string> free_more;
-  if (options.focal_length != FitChoice::kFit && !traced_only) free_more.push_back("--focal-length fit");
+  if (options.focal_length != FitChoice::kFit && remedies.focal_lengths) free_more.push_back("--focal-length fit");
   if (options.lens_gaps != FitChoice::kFit) free_more.push_back("--lens-gaps fit");
-  if (options.distortion == FitChoice::kHold && !traced_only) free_more.push_back("--distortion fit");
+  if (options.distortion == FitChoice::kHold && remedies.distortions) free_more.push_back("--distortion fit");
   report->message = "model error: " + report->model_error +
                     ". The parameters below are what the wrong model fitted; check the scene against the display" +
                     (free_more.empty() ? "" : " (or fit what it holds: " + JoinWords(free_more, ", ") + ")") +

@@ -263,7 +263,8 @@ std::string BoardNotFoundReason(const Photo& photo, const cv::Mat& image8, const
 std::vector<int> OrderNearestPrediction(const std::vector<cv::Point2f>& corners,
                                         const std::vector<std::array<double, 2>>& predicted, int cols, int rows) {
   double best = INFINITY;
-  std::vector<int> order;
+  std::vector<int> order(predicted.size());  // as found, should no sum be finite
+  for (size_t k = 0; k < order.size(); ++k) order[k] = static_cast<int>(k);
   for (int flip = 0; flip < 4; ++flip) {
     std::vector<int> candidate(predicted.size());
     double sum = 0;
@@ -464,7 +465,14 @@ class CaptureDetector {
     for (int b = 0; b < board.corners_y(); ++b)
       for (int a = 0; a < board.corners_x(); ++a) {
         const auto pixel = board.corner(a, b);
-        const auto angle = ImagedMarker(designed_, layer, pixel[0], pixel[1], {}, c.camera_position);
+        auto angle = ImagedMarker(designed_, layer, pixel[0], pixel[1], {}, c.camera_position);
+        if (!std::isfinite(angle[0]) || !std::isfinite(angle[1])) {
+          // The scene's real lens loses the ray to this corner: its first-order place, good enough to order
+          // the corners found and to size the search.
+          VirtualLayer first_order = layer;
+          first_order.ray_map.reset();
+          angle = ImagedMarker(designed_, first_order, pixel[0], pixel[1], {}, c.camera_position);
+        }
         predicted.push_back(CameraPixelFromAngle(camera_, angle[0], angle[1]));
       }
     CornerSearch search = FindChessboardCorners(photo, board, predicted, check_);

@@ -20,9 +20,18 @@ TracedLayerModel::TracedLayerModel(const VirtualLayer& layer, const MarkerParame
       designed_(designed) {
   if (!map_) throw Error("internal error: the traced marker model for layer \"" + layer.name + "\" without a ray map");
   if (map_->panel_tilted()) throw Error("internal error: the traced marker model for a tilted panel");
-  if (static_cast<size_t>(map_->element_count()) != designed.gaps.size())
+  // The ray map's elements: the path's placed lenses and mirrors with power or surfaces; the fit's: those with power.
+  int fitted = 0;
+  for (const PathStep& step : layer.path) {
+    if (!step.position_m || step.kind == ElementKind::kPanel) continue;
+    if (!step.lens_system && step.power_diopters == 0) continue;
+    fit_element_.push_back(step.power_diopters != 0 ? fitted++ : -1);
+  }
+  if (static_cast<int>(fit_element_.size()) != map_->element_count() ||
+      static_cast<size_t>(fitted) != designed.gaps.size())
     throw Error("internal error: layer \"" + layer.name + "\": " + std::to_string(map_->element_count()) +
-                " elements with power in its ray map, " + std::to_string(designed.gaps.size()) + " in the fit");
+                " elements in its ray map, " + std::to_string(fitted) + " with power, " +
+                std::to_string(designed.gaps.size()) + " in the fit");
 }
 
 std::optional<std::array<double, 2>> TracedLayerModel::Seen(const MarkerParameters<double>& q, double camera_x_m,
@@ -35,11 +44,12 @@ std::optional<std::array<double, 2>> TracedLayerModel::Seen(const MarkerParamete
 
   RayMapAdjustment a;
   double moved = 0;
-  for (size_t i = 0; i < q.gaps.size(); ++i) {
-    moved += q.gaps[i] - designed_.gaps[i];
+  for (size_t i = 0; i < fit_element_.size(); ++i) {
+    const int j = fit_element_[i];
+    if (j >= 0) moved += q.gaps[j] - designed_.gaps[j];
     a.element_moved_m.push_back(moved);
-    a.element_power_diopters.push_back(map_->element_is_real_lens(static_cast<int>(i)) ? NAN
-                                                                                       : 1.0 / q.focal_lengths[i]);
+    const bool ideal = j >= 0 && !map_->element_is_real_lens(static_cast<int>(i));
+    a.element_power_diopters.push_back(ideal ? 1.0 / q.focal_lengths[j] : NAN);
   }
   a.panel_moved_m = moved + (q.distance - designed_.distance);
   const auto x = map_->PanelPoint(kGreen, camera_x_m, camera_y_m, e[0] / e[2], e[1] / e[2], a);

@@ -39,7 +39,7 @@ class TracedLayerModel {
   // `layer` compiled with its path, behind real lenses (layer.ray_map set, its
   // panel untilted); `designed` the layer's parameters as the scene has them,
   // whose gaps and focal lengths are those of the layer's elements with power
-  // (LayerOptics' order, which is the ray map's).
+  // (LayerOptics' order). A fitted gap moves its element and everything behind it.
   TracedLayerModel(const VirtualLayer& layer, const MarkerParameters<double>& designed);
 
   // The marker with its Jacobian at the designed parameters; nullopt when the
@@ -60,6 +60,9 @@ class TracedLayerModel {
   const LayerRayMap* map_;
   double sign_b_;
   MarkerParameters<double> designed_;
+  // Per element of the ray map: its index among the fit's elements (LayerOptics'), or -1 for an element the
+  // fit has no parameters of (a lens of zero power described by its surfaces).
+  std::vector<int> fit_element_;
 };
 
 }  // namespace layerlab

@@ -11,7 +11,8 @@
 // of exponent beta, scaled so that a full-field grating at its threshold
 // scores exactly 1:
 //   JND = (mean_x |J(x)|^beta)^(1/beta) / (mean over a period of |sin|^beta)^(1/beta).
-// A difference below threshold everywhere scores below 1; a uniform change of
+// A single grating below its threshold scores below 1 (several, or a
+// pattern that is not a grating, may pool above it); a uniform change of
 // luminance (f = 0) scores 0, as the CSF has it. The field in Barten's model
 // is the image's own extent.
 #pragma once

@@ -143,6 +143,7 @@ TEST(PerturbedPrototype, ARealMagnifierIsTracedWhereTheFirstOrderModelNamesItsDi
   const Measurements photographed = Photographed(designed, built, false, 2);
   const CalibrationReport off = Calibrate(designed, photographed, CalibrationOptions{}, &display);
   ExpectRecoveredOrRefused("LA1608 2 % off its surfaces, traced", off, TruthOf(built, panels, 0, false));
+  EXPECT_FALSE(off.IsSolutionUsable()) << "docs/calibration.md's table: refused as a model error";
   EXPECT_EQ(off.message.find("--distortion fit"), std::string::npos) << off.message;
   EXPECT_EQ(off.message.find("--focal-length fit"), std::string::npos) << off.message;
 

@@ -4,7 +4,11 @@
 // LA1608, examples/paper_prototype_la1608.json) built off its design is
 // recovered within the noise, where the first-order model calls the same
 // measurements a model error.
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 
 #include "layerlab/calibration/calibration.h"
 #include "layerlab/calibration/synthetic_measurements.h"
@@ -54,11 +58,11 @@ TracedMarker Seen(const DisplaySystem& system, const VirtualLayer& layer, const 
 }
 
 // examples/relay_magnifier.json with its magnifier a real LA1608: behind the
-// relay's inverted image, every layer's b < 0.
+// relay's inverted image, every layer's b < 0. Written beside the system's
+// temporary files, so that testing::BuiltSystem reads this scene.
 const DisplaySystem& InvertedBehindARealLens() {
   static const DisplaySystem system = [] {
-    const std::string file = testing::ExamplePath("relay_magnifier.json");
-    nlohmann::json scene = ReadJsonFile(file);
+    nlohmann::json scene = ReadJsonFile(testing::ExamplePath("relay_magnifier.json"));
     nlohmann::json& magnifier = testing::ElementNamed(scene, "magnifier");
     magnifier = {{"type", "lens"},
                  {"name", "magnifier"},
@@ -66,6 +70,11 @@ const DisplaySystem& InvertedBehindARealLens() {
                  {"surfaces",
                   {{{"radius", "38.6 mm"}, {"material", "N-BK7"}, {"thickness", "4.1 mm"}}, nlohmann::json::object()}},
                  {"next", magnifier["next"]}};
+    scene.erase("solve"), scene.erase("run");  // their target scene lies beside the example
+    const std::string file =
+        (std::filesystem::temp_directory_path() / ("layerlab_relay_la1608_" + std::to_string(::getpid()) + ".json"))
+            .string();
+    std::ofstream(file) << scene.dump(1);
     return testing::CompileJson(scene, file);
   }();
   return system;
@@ -132,6 +141,38 @@ TEST(TracedCalibration, EachParameterMovesTheMarkersAsTheBuiltDisplayShowsThem) 
     }
   EXPECT_LT(worst_right, 1e-4 * kArcmin);
   EXPECT_GT(least_designed, 3 * kArcmin);
+}
+
+// A fitted gap moves its element and everything behind it: the relay's far
+// lens built 0.4 mm farther, with the panels kept at their distances from it,
+// is what the model sees with that gap changed by 0.4 mm, and not as designed.
+TEST(TracedCalibration, AGapMovesItsLensAndWhatLiesBehindIt) {
+  const DisplaySystem& designed = InvertedBehindARealLens();
+  const DisplaySystem built = testing::BuiltSystem(designed, {}, {{"relay_far", 0.4e-3, std::nullopt}});
+  for (size_t k = 0; k < designed.layers.size(); ++k) {
+    const VirtualLayer& layer = designed.layers[k];
+    const TracedLayerModel model(layer, DesignedParameters(layer));
+    MarkerParameters<double> right = DesignedParameters(layer);
+    int far = -1, j = 0;
+    for (const PathStep& s : layer.path)
+      if (s.power_diopters != 0 && s.kind != ElementKind::kPanel) far = s.element == "relay_far" ? j : far, ++j;
+    ASSERT_GE(far, 0);
+    right.gaps[far] += 0.4e-3;
+    const PanelSpec& p = layer.panel;
+    double worst_right = 0, least_designed = INFINITY;
+    for (const std::array<double, 2> position : {std::array<double, 2>{0, 0}, {2e-3, 1e-3}})
+      for (const double u : {0.15, 0.85}) {
+        const double col = p.active_left + u * (p.active_cols - 1), row = p.active_top + 0.7 * (p.active_rows - 1);
+        const TracedMarker m = Seen(built, built.layers[k], model, col, row, position);
+        double e[2];
+        ASSERT_TRUE(model.AngleError(right, m, e));
+        worst_right = std::max(worst_right, std::hypot(e[0], e[1]));
+        ASSERT_TRUE(model.AngleError(DesignedParameters(layer), m, e));
+        least_designed = std::min(least_designed, std::hypot(e[0], e[1]));
+      }
+    EXPECT_LT(worst_right, 1e-4 * kArcmin) << layer.name;
+    EXPECT_GT(least_designed, 0.1 * kArcmin) << layer.name;  // 0.19 arcmin for the 0.4 D layer
+  }
 }
 
 testing::SyntheticSetup TracedSetup(double sigma_arcmin) {

@@ -9,14 +9,18 @@ import pytest
 from conftest import SKIP_REASON
 
 layerlab = pytest.importorskip("layerlab", reason=SKIP_REASON)
-skimage_metrics = pytest.importorskip("skimage.metrics", reason="scikit-image (python3-skimage) is not installed")
 ndimage = pytest.importorskip("scipy.ndimage", reason="SciPy is not installed")
+
+
+def skimage_metrics():
+    """scikit-image's metrics, for the SSIM tests alone (the others need NumPy and SciPy only)."""
+    return pytest.importorskip("skimage.metrics", reason="scikit-image (python3-skimage) is not installed")
 
 WEIGHTS = (0.0448, 0.2856, 0.3001, 0.2363, 0.1333)
 
 
 def reference_ssim(x, y, data_range=1.0):
-    return skimage_metrics.structural_similarity(x, y, gaussian_weights=True, sigma=1.5, use_sample_covariance=False,
+    return skimage_metrics().structural_similarity(x, y, gaussian_weights=True, sigma=1.5, use_sample_covariance=False,
                                                  data_range=data_range)
 
 
@@ -48,7 +52,7 @@ def reference_ms_ssim(x, y, data_range=1.0):
 
 def natural_pair():
     """A natural photograph (scikit-image's camera man) and a blurred, noisy copy of it."""
-    from skimage import data
+    data = pytest.importorskip("skimage.data", reason="scikit-image (python3-skimage) is not installed")
     x = data.camera().astype(np.float64) / 255
     rng = np.random.default_rng(3)
     y = np.clip(ndimage.gaussian_filter(x, 1.2) + rng.normal(0, 0.03, x.shape), 0, 1)
