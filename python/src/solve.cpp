@@ -222,9 +222,11 @@ py::object Retina(const Solution& s, const std::vector<double>& accommodation, d
   {
     py::gil_scoped_release release;
     const SceneRadiance scene = natural ? LightFieldRadiance(*s.target, s.sampling) : SceneRadiance{};
+    RetinaWorkspace workspace;  // shared by the states, as a focal stack's are
     for (size_t k = 0; k < accommodation.size(); ++k) {
       const std::array<double, 3> focus = ChannelAccommodation(system.eye, accommodation[k]);
-      Image image = RetinaOfDisplay(*s.model, s.patterns, grid, pupil, focus);
+      Image image =
+          RetinaOfDisplay(*s.model, s.patterns, DisplayRetinaTables(*s.model, grid, pupil, focus), &workspace);
       ApplyEyeOptics(system.eye, grid, &image);
       std::copy(image.pixels.begin(), image.pixels.end(), out + k * image.pixels.size());
       if (natural) {
