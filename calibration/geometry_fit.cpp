@@ -462,7 +462,7 @@ class GeometryFitter {
     traced_.resize(layer_count_);
     for (int k = 0; k < layer_count_; ++k)
       if (!by_layer_[k].empty() && system_.layers[k].ray_map)
-        traced_[k] = std::make_unique<TracedLayerModel>(system_.layers[k], SceneParameters(k));
+        traced_[k] = std::make_unique<TracedLayerModel>(system_.layers[k], ParametersBefore(k));
     std::vector<MarkerDatum> kept;
     traced_markers_.clear();
     int lost = 0;
@@ -486,8 +486,9 @@ class GeometryFitter {
     SortByLayer();
   }
 
-  // The layer's parameters as the scene has them, before the fit's parameters exist.
-  MarkerParameters<double> SceneParameters(int k) const {
+  // The layer's parameters as designed (seen by an unturned camera), from the
+  // scene alone: usable before the fit's parameters exist.
+  MarkerParameters<double> ParametersBefore(int k) const {
     const VirtualLayer& layer = system_.layers[k];
     MarkerParameters<double> q{layer.panel_distance_m,
                                layer.panel.eye_from_panel_m[0],
@@ -672,18 +673,6 @@ class GeometryFitter {
       }
     }
     return true;
-  }
-
-  // The layer's parameters as designed (seen by an unturned camera).
-  MarkerParameters<double> ParametersBefore(int k) const {
-    const VirtualLayer& layer = system_.layers[k];
-    MarkerParameters<double> q = LayerParameters<double>(index_[k], pan_, tilt_, roll_, layer_optics_[k], optics_,
-                                                         [&](int i) { return fit_.parameter(i).start; });
-    q.distance = layer.panel_distance_m;
-    q.eye_from_panel_x_m = layer.panel.eye_from_panel_m[0], q.eye_from_panel_y_m = layer.panel.eye_from_panel_m[1],
-    q.rotation = layer.panel.rotation_rad;
-    q.pan = q.tilt = q.roll = 0;
-    return q;
   }
 
   MarkerParameters<double> ParametersAfter(int k) const {

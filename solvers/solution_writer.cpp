@@ -67,9 +67,7 @@ nlohmann::json ReportToJson(const SolverReport& r) {
   const std::vector<const TraceColumn*> columns = WrittenColumns(r.trace);
   for (const IterationRecord& t : r.trace) {
     nlohmann::json row;
-    for (const TraceColumn* c : columns)
-      row[c->name] =
-          c->kind == TraceValueKind::kCount ? nlohmann::json(static_cast<int>(c->value(t))) : JsonNumber(c->value(t));
+    for (const TraceColumn* c : columns) row[c->name] = TraceJson(*c, t);
     j["trace"].push_back(std::move(row));
   }
   return j;

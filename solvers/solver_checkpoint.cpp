@@ -27,10 +27,7 @@ std::string PatternName(const VirtualLayer& layer, int iteration) {
 // integer, an infinite value as "inf" or "-inf", an unmeasured one as null.
 nlohmann::json CheckpointTraceRow(const IterationRecord& r) {
   nlohmann::json row = nlohmann::json::array();
-  for (const TraceColumn& c : TraceColumns()) {
-    const double v = c.value(r);
-    row.push_back(c.kind == TraceValueKind::kCount ? nlohmann::json(static_cast<int>(v)) : JsonNumber(v));
-  }
+  for (const TraceColumn& c : TraceColumns()) row.push_back(TraceJson(c, r));
   return row;
 }
 

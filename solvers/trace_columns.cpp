@@ -4,6 +4,9 @@
 #include <cmath>
 #include <cstdio>
 
+#include "layerlab/solvers/objective.h"
+#include "layerlab/systems/system_report.h"
+
 namespace layerlab {
 
 const std::vector<TraceColumn>& TraceColumns() {
@@ -51,11 +54,14 @@ std::string TraceField(const TraceColumn& column, double value, int decibel_deci
       std::snprintf(text, sizeof text, "%.9g", value);
       break;
     case TraceValueKind::kDecibels:
-      if (std::isinf(value)) return "inf";
-      std::snprintf(text, sizeof text, "%.*f", decibel_decimals, value);
-      break;
+      return FormatPsnr(value, decibel_decimals);
   }
   return text;
+}
+
+nlohmann::json TraceJson(const TraceColumn& column, const IterationRecord& row) {
+  const double v = column.value(row);
+  return column.kind == TraceValueKind::kCount ? nlohmann::json(static_cast<int>(v)) : JsonNumber(v);
 }
 
 }  // namespace layerlab

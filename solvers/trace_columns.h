@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "layerlab/solvers/types.h"
 
 namespace layerlab {
@@ -45,5 +47,9 @@ std::vector<const TraceColumn*> WrittenColumns(const std::vector<IterationRecord
 // (compare's traces.csv prints 3). NaN: "nan" (trace.csv) or, with
 // `nan_as_empty`, nothing.
 std::string TraceField(const TraceColumn& column, double value, int decibel_decimals = 6, bool nan_as_empty = false);
+
+// One value of `row` as report.json's trace and checkpoints hold it: a count
+// as an integer, an infinity as "inf" or "-inf" (JsonNumber), NaN as null.
+nlohmann::json TraceJson(const TraceColumn& column, const IterationRecord& row);
 
 }  // namespace layerlab
