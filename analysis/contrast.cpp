@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <iterator>
 #include <map>
+#include <memory>
 #include <numbers>
 #include <optional>
 
@@ -19,7 +20,7 @@
 #include "layerlab/framework/progress.h"
 #include "layerlab/framework/units.h"
 #include "layerlab/framework/version.h"
-#include "layerlab/retina/diffraction.h"
+#include "layerlab/retina/eye_optics.h"
 #include "layerlab/retina/lightfield_radiance.h"
 #include "layerlab/retina/retina.h"
 #include "layerlab/solvers/solve_config.h"
@@ -118,16 +119,19 @@ LightFieldGeometry StripGeometry(const DisplaySystem& system, double dt, int row
 // uncertainty) on the shifted retina, of several curves seen by one eye:
 // images(focus) makes what a state shares (a display's retinal tables), and
 // what it returns the image of curve n on grids[g] (0 the retina, 1 the shifted one).
-using RetinalImage = std::function<Image(const RetinaGrid&, const std::array<double, 3>&)>;
+using RetinalImage = std::function<Image(int grid, const std::array<double, 3>&)>;
 using CurveImage = std::function<Image(size_t curve, int grid)>;
 using StateImages = std::function<CurveImage(const std::array<double, 3>& focus)>;
 
-// What natural viewing of `scene` puts on the retina of `seer`.
-RetinalImage NaturalImage(const SceneRadiance& scene, const EyeModel& seer, const std::vector<PupilPoint>& its_pupil) {
-  return [scene, &its_pupil, &seer](const RetinaGrid& grid, const std::array<double, 3>& focus) {
-    Image image = RetinaOfScene(scene, grid, its_pupil, focus);
-    ApplyEyeOptics(seer, grid, &image);
-    return image;
+// The eye's optics on the retina and the shifted retina (nullptr without the peaks' uncertainty).
+using GridOptics = std::array<const EyeOptics*, 2>;
+
+// What natural viewing of `scene` puts on the retina of the eye of `optics`.
+RetinalImage NaturalImage(const SceneRadiance& scene, const GridOptics& optics) {
+  return [scene, optics](int grid, const std::array<double, 3>& focus) {
+    return optics[grid]->See([&](const RetinaGrid& traced, const std::vector<PupilPoint>& group) {
+      return RetinaOfScene(scene, traced, group, focus);
+    });
   };
 }
 
@@ -276,12 +280,23 @@ class ContrastRun {
   }
 
   void SweepOne(const EyeModel& eye, const RetinalImage& natural, ContrastCurve* curve) const {
-    const RetinaGrid(&grids)[2] = grids_;
     Sweep(eye,
           [&](const std::array<double, 3>& focus) -> CurveImage {
-            return [&natural, &grids, focus](size_t, int grid) { return natural(grids[grid], focus); };
+            return [&natural, focus](size_t, int grid) { return natural(grid, focus); };
           },
           {curve});
+  }
+
+  // The optics of the eye whose samples are `pupil`, on both grids, made once
+  // per eye (outside the parallel sweeps). The grating is vertical: the strips' edge rows repeat.
+  GridOptics Optics(const EyeModel& eye, const std::vector<PupilPoint>& pupil) {
+    GridOptics optics{};
+    for (int g = 0; g < (o_.peak_uncertainty ? 2 : 1); ++g) {
+      std::unique_ptr<EyeOptics>& made = optics_[{&pupil, g}];
+      if (!made) made = std::make_unique<EyeOptics>(eye, pupil, grids_[g], RowEdges::kRepeat);
+      optics[g] = made.get();
+    }
+    return optics;
   }
 
   ContrastCurve Blank(const std::string& name, double dt, double f) const {
@@ -293,7 +308,7 @@ class ContrastRun {
 
   double ReferenceAmplitude(const EyeModel& seer, const RetinalImage& natural, double dt, double f,
                             const std::string& label) const {
-    double r = Amplitude(natural(retina_, ChannelAccommodation(seer, dt)), retina_, f);
+    double r = Amplitude(natural(0, ChannelAccommodation(seer, dt)), retina_, f);
     if (!(r > 0)) throw Error("contrast: the target has no component at " + label);
     return r;
   }
@@ -331,7 +346,7 @@ class ContrastRun {
         return texture->Evaluate(u.x_m + dx / dt, u.y_m + dy / dt);
       };
       auto start = std::chrono::steady_clock::now();
-      RetinalImage natural = NaturalImage(plane, first_eye_, pupils_.front());
+      RetinalImage natural = NaturalImage(plane, Optics(first_eye_, pupils_.front()));
       continuous_reference_[target_index] = ReferenceAmplitude(first_eye_, natural, dt, f, label);
       ContrastCurve c = Blank("natural", dt, f);
       c.solver = "-";
@@ -394,7 +409,7 @@ class ContrastRun {
     std::vector<DrawnNatural>& drawn = drawn_[target_index];
     auto start = std::chrono::steady_clock::now();
     LightField target = RenderPlaneLightField(g, g.origin_z_m, texture);  // the plane is the origin plane
-    RetinalImage natural = NaturalImage(LightFieldRadiance(target, d.sampling), eye, pupils_[di]);
+    RetinalImage natural = NaturalImage(LightFieldRadiance(target, d.sampling), Optics(eye, pupils_[di]));
     const double reference = ReferenceAmplitude(eye, natural, dt, f, label);
     bool seen = std::any_of(drawn.begin(), drawn.end(), [&](const DrawnNatural& k) {
       return k.sampling == d.sampling && SameGeometry(k.geometry, g) && SameEye(*k.eye, eye);
@@ -471,18 +486,24 @@ class ContrastRun {
     const EyeModel& eye = own ? displays_[di].system.eye : moved_[seer].eye;
     const std::vector<PupilPoint>& pupil = own ? pupils_[di] : moved_[seer].pupil;
     const auto start = std::chrono::steady_clock::now();
+    const GridOptics optics = Optics(eye, pupil);
     Sweep(
         eye,
         [&](const std::array<double, 3>& focus) -> CurveImage {
-          // Every model of the display reads the same layers.
+          // Every model of the display reads the same layers; tables per grid and pupil group.
           const DisplayModel& model = *solves_[of_display.front()->model].model;
-          auto tables = std::make_shared<std::vector<DisplayRetinaTables>>();
-          for (int g = 0; g < (o_.peak_uncertainty ? 2 : 1); ++g) tables->emplace_back(model, grids_[g], pupil, focus);
+          auto tables = std::make_shared<std::vector<std::vector<DisplayRetinaTables>>>();
+          for (int g = 0; g < (o_.peak_uncertainty ? 2 : 1); ++g) {
+            tables->emplace_back();
+            for (size_t k = 0; k < optics[g]->groups(); ++k)
+              tables->back().emplace_back(model, optics[g]->traced(), optics[g]->group(k), focus);
+          }
           return [&, tables](size_t n, int grid) {
             const CurveView& v = *of_display[n];
-            Image image = RetinaOfDisplay(*solves_[v.model].model, solves_[v.patterns].t, (*tables)[grid]);
-            ApplyEyeOptics(eye, grids_[grid], &image);
-            return image;
+            std::vector<Image> images;
+            for (const DisplayRetinaTables& of_group : (*tables)[grid])
+              images.push_back(RetinaOfDisplay(*solves_[v.model].model, solves_[v.patterns].t, of_group));
+            return optics[grid]->Combine(images);
           };
         },
         of);
@@ -499,6 +520,7 @@ class ContrastRun {
   std::vector<MovedEye> moved_;
   RetinaGrid retina_, shifted_;
   RetinaGrid grids_[2];
+  std::map<std::pair<const std::vector<PupilPoint>*, int>, std::unique_ptr<EyeOptics>> optics_;
   PlaneTextureFactory texture_of_;
   std::string convention_;
 

@@ -11,7 +11,7 @@
 #include "layerlab/framework/atomic_file.h"
 #include "layerlab/framework/error.h"
 #include "layerlab/framework/units.h"
-#include "layerlab/retina/diffraction.h"
+#include "layerlab/retina/eye_optics.h"
 #include "layerlab/retina/lightfield_radiance.h"
 #include "layerlab/solvers/objective.h"
 #include "layerlab/systems/eye_pose_limits.h"
@@ -154,11 +154,15 @@ EyeboxMap MapEyebox(const DisplayModel& model, const Patterns& t, const SceneRad
     const RetinaGrid grid = jobs[n].gaze ? CenteredOnGaze(gaze_retina, eye.pose) : pupil_retina;
     const std::vector<PupilPoint> pupil = PupilSamples(eye);
     const auto focus = ChannelAccommodation(eye, o.accommodation_diopters);
-    const DisplayRetinaTables tables(model, grid, pupil, focus);
-    Image display = RetinaOfDisplay(model, t, tables, &workspace);
-    Image lit = RetinaOfDisplay(model, white, tables, &workspace);
-    Image seen = RetinaOfScene(natural, grid, pupil, focus);
-    for (Image* image : {&display, &lit, &seen}) ApplyEyeOptics(eye, grid, image);
+    const EyeOptics optics(eye, pupil, grid);
+    std::vector<Image> displays, lits, seens;
+    for (size_t k = 0; k < optics.groups(); ++k) {
+      const DisplayRetinaTables tables(model, optics.traced(), optics.group(k), focus);
+      displays.push_back(RetinaOfDisplay(model, t, tables, &workspace));
+      lits.push_back(RetinaOfDisplay(model, white, tables, &workspace));
+      seens.push_back(RetinaOfScene(natural, optics.traced(), optics.group(k), focus));
+    }
+    const Image display = optics.Combine(displays), lit = optics.Combine(lits), seen = optics.Combine(seens);
     EyeboxPoseResult r;
     r.pose = eye.pose;
     r.psnr_db = RetinalPsnr(display, seen);

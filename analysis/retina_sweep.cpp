@@ -15,7 +15,7 @@
 #include "layerlab/framework/png_writer.h"
 #include "layerlab/framework/polarization.h"
 #include "layerlab/framework/units.h"
-#include "layerlab/retina/diffraction.h"
+#include "layerlab/retina/eye_optics.h"
 #include "layerlab/retina/retina_workspace.h"
 
 namespace layerlab {
@@ -38,8 +38,8 @@ struct RetinaBatch {
 
 // The images of states [first, first + count), each computed in parallel within.
 RetinaBatch TraceBatch(const DisplayModel& model, const Patterns& t, const SceneRadiance& natural,
-                       const RetinaGrid& grid, const std::vector<PupilPoint>& pupil, const std::vector<double>& states,
-                       size_t first, size_t count, RetinaWorkspace* workspace) {
+                       const EyeOptics& optics, const std::vector<double>& states, size_t first, size_t count,
+                       RetinaWorkspace* workspace) {
   const DisplaySystem& system = model.system();
   const double white = model.white_luminance();
   RetinaBatch b{std::vector<RetinaStateResult>(count), std::vector<Image>(count), std::vector<Image>(count)};
@@ -49,13 +49,15 @@ RetinaBatch TraceBatch(const DisplayModel& model, const Patterns& t, const Scene
     r.diopters = states[first + s];
     r.name = RetinaStateName(r.diopters);
     const auto focus = ChannelAccommodation(system.eye, r.diopters);
-    b.display[s] = RetinaOfDisplay(model, t, DisplayRetinaTables(model, grid, pupil, focus), workspace);
-    ApplyEyeOptics(system.eye, grid, &b.display[s]);
+    b.display[s] = optics.See([&](const RetinaGrid& traced, const std::vector<PupilPoint>& group) {
+      return RetinaOfDisplay(model, t, DisplayRetinaTables(model, traced, group, focus), workspace);
+    });
     r.display_mean_cd_m2 = MeanLuminance(b.display[s]) * white;
     r.natural_mean_cd_m2 = NAN;
     if (natural) {
-      b.seen[s] = RetinaOfScene(natural, grid, pupil, focus);
-      ApplyEyeOptics(system.eye, grid, &b.seen[s]);
+      b.seen[s] = optics.See([&](const RetinaGrid& traced, const std::vector<PupilPoint>& group) {
+        return RetinaOfScene(natural, traced, group, focus);
+      });
       r.natural_mean_cd_m2 = MeanLuminance(b.seen[s]) * white;
     }
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -124,6 +126,7 @@ std::vector<RetinaStateResult> WriteRetinaSweep(
   const RetinaGrid grid =
       CenteredOnGaze(MakeRetinaGrid(field_x, field_y, o.resolution_deg * kRadiansPerDegree), system.eye.pose);
   const std::vector<PupilPoint> pupil = PupilSamples(system.eye);
+  const EyeOptics optics(system.eye, pupil, grid);  // its parts of the OTF serve every state
 
   const fs::path out = folder;
   fs::create_directories(out / "display");
@@ -138,7 +141,7 @@ std::vector<RetinaStateResult> WriteRetinaSweep(
   RetinaWorkspace workspace;  // every state's display image, sized for the first (again only for one needing more)
   for (size_t first = 0; first < o.states_diopters.size(); first += batch) {
     const size_t count = std::min(batch, o.states_diopters.size() - first);
-    RetinaBatch b = TraceBatch(model, t, natural, grid, pupil, o.states_diopters, first, count, &workspace);
+    RetinaBatch b = TraceBatch(model, t, natural, optics, o.states_diopters, first, count, &workspace);
     std::vector<double> seconds;
     WriteBatch(out, grid, bool(natural), &b, &seconds);
     for (size_t s = 0; s < count; ++s) {

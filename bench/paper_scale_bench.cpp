@@ -30,6 +30,7 @@
 #include "layerlab/kernels/pair_lattice.h"
 #include "layerlab/kernels/solve_workspace.h"
 #include "layerlab/kernels/synthesis.h"
+#include "layerlab/retina/eye_optics.h"
 #include "layerlab/retina/lightfield_radiance.h"
 #include "layerlab/retina/retina.h"
 #include "layerlab/retina/retinal_operator.h"
@@ -474,6 +475,32 @@ void BM_RetinaImageOfDisplay(benchmark::State& state) {
   DisplayRetinaImage(state, RetinaSweepGrid(GetWorkload("paper_prototype")), 1.0, 0.010);
 }
 
+// The same state through the wave-optics eye (retina/eye_optics.h): the grid
+// widened by the PSF's support, the pupil's groups traced and transformed. Its
+// parts of the OTF are made once, outside the timing, as a sweep makes them.
+void BM_RetinaImageOfDisplayWave(benchmark::State& state) {
+  const Workload& w = GetWorkload("paper_prototype");
+  const RetinaGrid grid = RetinaSweepGrid(w);
+  EyeModel eye = w.system.eye;
+  eye.diffraction = EyeDiffraction::kPupilFunction;
+  Patterns t = w.model->UniformPatterns(0.5f);
+  const std::vector<PupilPoint> pupil = PupilSamples(eye);
+  const EyeOptics optics(eye, pupil, grid);
+  RetinaWorkspace workspace;
+  double last = 0;
+  for (auto _ : state)
+    last = Timed(state, [&] {
+      const Image image = optics.See([&](const RetinaGrid& traced, const std::vector<PupilPoint>& group) {
+        return RetinaOfDisplay(*w.model, t, DisplayRetinaTables(*w.model, traced, group, {1.0, 1.0, 1.0}), &workspace);
+      });
+      benchmark::DoNotOptimize(image.pixels.data());
+    });
+  state.counters["retina_samples"] = double(grid.cols) * grid.rows;
+  state.counters["traced_samples"] = double(optics.traced().cols) * optics.traced().rows;
+  state.counters["transformed_groups"] = double(optics.transformed_groups());
+  Report(state, 0.030, last);
+}
+
 // The same state of natural viewing of the target: image-wise (RetinaOfScene
 // of a light field) and, for the ratio, the radiance called per ray.
 void NaturalRetinaImage(benchmark::State& state, bool ray_by_ray) {
@@ -676,6 +703,7 @@ BENCHMARK(BM_RankKIteration)
     ->UseManualTime();
 BENCHMARK(BM_RetinaImage)->Unit(benchmark::kMillisecond)->UseManualTime();
 BENCHMARK(BM_RetinaImageOfDisplay)->Unit(benchmark::kMillisecond)->UseManualTime();
+BENCHMARK(BM_RetinaImageOfDisplayWave)->Unit(benchmark::kMillisecond)->UseManualTime();
 BENCHMARK(BM_NaturalRetinaImage)->Unit(benchmark::kMillisecond)->UseManualTime();
 BENCHMARK(BM_NaturalRetinaImageRayByRay)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(2);
 BENCHMARK(BM_FocalStack)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(1);

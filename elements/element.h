@@ -119,6 +119,12 @@ class InlineOpticElement : public Element {
 enum class PupilShape { kSquare, kRound };
 enum class PupilSampling { kGrid, kJittered, kPoisson };
 enum class ChromaticAberration { kNone, kThibos };
+// How the eye's pupil diffracts (docs/eye-model.md): not at all (geometric
+// optics), by the diffraction-limited MTF multiplied into the geometric
+// image ("mtf"), or by the generalized pupil function ("wave").
+enum class EyeDiffraction { kNone, kPupilMtf, kPupilFunction };
+// Applegate & Lakshminarayanan's mean Stiles-Crawford coefficient (1993, J. Opt. Soc. Am. A 10:1611), per mm^2.
+inline constexpr double kStilesCrawfordRhoPerMm2 = 0.05;
 
 // What sets pupil_diameter when the eye asks for "auto" (eye/pupil_size.h):
 // luminance and field default to the display's (compile fills them in).
@@ -149,7 +155,8 @@ struct EyeModel {
   std::optional<PupilFromLuminance> pupil_auto;                           // the scene's pupil_diameter "auto"
   double pupil_luminance_used_cd_m2 = 0, pupil_field_area_used_deg2 = 0;  // cd/m2, deg2: what compile gave "auto"
   Wavefront wavefront;
-  bool diffraction = false;
+  EyeDiffraction diffraction = EyeDiffraction::kNone;
+  double stiles_crawford_rho_per_mm2 = 0;  // per mm^2 (eye/pupil_function.h); 0: no apodization
   EyePose pose;  // the scene's pupil_offset and gaze; retina, contrast and eyebox commands set their own
   std::optional<Binocular> binocular;  // one of two eyes: its pose turns it to the fixation
 };

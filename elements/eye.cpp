@@ -21,7 +21,8 @@
 // | pupil_eyes          | 1 or 2             | 1                | pupil_diameter "auto": eyes that see the field (1 attenuates the flux ten times) |
 // | zernike             | {"j": length}, or a population name | none | wavefront aberration, OSA/ANSI single index j 0 to 27 to coefficient ("0.1 um"); or salmon_van_de_pol_2006: the mean spherical aberration Z12 = 0.13 um at 6 mm of 2560 normal eyes (Salmon and van de Pol 2006, J. Cataract Refract. Surg. 32:2064); each pupil ray deviated by the wavefront's slope |
 // | zernike_pupil       | length             | required with coefficients | the pupil diameter the coefficients were measured at (the wavefront is evaluated at r over its radius) |
-// | diffraction         | boolean            | false            | convolve each channel's retinal image with the pupil's diffraction PSF (round: Airy; square: sinc squared) at its wavelength |
+// | diffraction         | false, true, mtf, wave | false        | true or mtf: each channel's retinal image times the diffraction-limited MTF at its wavelength (round: Airy; square: sinc squared); wave: the image from the generalized pupil function (aperture, Stiles-Crawford, wavefront) and the pupil-sampled views (docs/eye-model.md) |
+// | stiles_crawford     | boolean or number  | false            | with diffraction wave: the pupil's amplitude 10^(-rho r^2 / 2), r in mm; true is rho = 0.05 / mm^2 (Applegate & Lakshminarayanan 1993), a number is rho |
 // | pupil_offset        | [length, length]   | [0 mm, 0 mm]     | the eye's move across the eye plane (x right, y up): the wearer's fit, a point of an eyebox map; within 5 cm |
 // | gaze                | [angle, angle]     | [0 deg, 0 deg]   | where the eye looks, Fick angles: right, then up, within 50 deg; the pupil turns with it about the centre of rotation (elements/eye_pose.h) |
 // | rotation_radius     | length             | 10 mm            | pupil centre to the eye's centre of rotation, 0 to 3 cm |
@@ -128,9 +129,33 @@ void ReadPhysiologicalOptics(Params& p, EyeModel& m) {
   } else if (p.has("zernike_pupil")) {
     p.fail("zernike_pupil", "only with zernike coefficients");
   }
-  m.diffraction = p.boolean("diffraction", false);
-  if (m.diffraction && !m.pupil_auto && m.pupil_diameter_m == 0)
+  p.mark_read("diffraction");
+  if (p.has("diffraction")) {
+    const nlohmann::json& d = p.raw("diffraction");
+    if (d.is_boolean())
+      m.diffraction = d.get<bool>() ? EyeDiffraction::kPupilMtf : EyeDiffraction::kNone;
+    else if (d.is_string() && d.get<std::string>() == "mtf")
+      m.diffraction = EyeDiffraction::kPupilMtf;
+    else if (d.is_string() && d.get<std::string>() == "wave")
+      m.diffraction = EyeDiffraction::kPupilFunction;
+    else
+      p.fail("diffraction", "expected false, true (the same as \"mtf\") or \"wave\", got " + d.dump());
+  }
+  if (m.diffraction != EyeDiffraction::kNone && !m.pupil_auto && m.pupil_diameter_m == 0)
     p.fail("diffraction", "a pinhole pupil (pupil_diameter 0) has no diffraction-limited image");
+  p.mark_read("stiles_crawford");
+  if (p.has("stiles_crawford")) {
+    const nlohmann::json& sc = p.raw("stiles_crawford");
+    if (sc.is_boolean())
+      m.stiles_crawford_rho_per_mm2 = sc.get<bool>() ? kStilesCrawfordRhoPerMm2 : 0.0;
+    else if (sc.is_number() && std::isfinite(sc.get<double>()) && sc.get<double>() >= 0 && sc.get<double>() <= 1)
+      m.stiles_crawford_rho_per_mm2 = sc.get<double>();
+    else
+      p.fail("stiles_crawford", "expected true, false or rho per mm^2 in [0, 1], got " + sc.dump());
+    if (m.stiles_crawford_rho_per_mm2 > 0 && m.diffraction != EyeDiffraction::kPupilFunction)
+      p.fail("stiles_crawford",
+             "the Stiles-Crawford apodization is part of the pupil function: set diffraction \"wave\"");
+  }
 }
 
 // Where the eye sits and looks (elements/eye_pose.h); compile checks the

@@ -33,7 +33,7 @@ std::string PoseDescription(const EyeModel& eye) {
 
 std::string EyeModelLine(const EyeModel& eye) {
   const bool ideal = eye.chromatic_aberration == ChromaticAberration::kNone && !eye.pupil_auto &&
-                     eye.wavefront.empty() && !eye.diffraction;
+                     eye.wavefront.empty() && eye.diffraction == EyeDiffraction::kNone;
   std::string line = ideal ? "ideal eye (geometric optics): " : "physiological eye: ";
   line += FormatFixed(eye.pupil_diameter_m * 1e3, 2) + " mm " +
           (eye.pupil_shape == PupilShape::kSquare ? "square" : "round") + " pupil";
@@ -63,7 +63,13 @@ std::string EyeModelLine(const EyeModel& eye) {
       }
     line += " at " + FormatFixed(eye.wavefront.pupil_diameter_m * 1e3, 1) + " mm)";
   }
-  line += eye.diffraction ? "; diffraction" : "; no diffraction";
+  if (eye.diffraction == EyeDiffraction::kPupilFunction) {
+    line += "; diffraction by the pupil function (wave optics)";
+    if (eye.stiles_crawford_rho_per_mm2 > 0)
+      line += ", Stiles-Crawford rho " + FormatFixed(eye.stiles_crawford_rho_per_mm2, 3) + " / mm2";
+  } else {
+    line += eye.diffraction == EyeDiffraction::kPupilMtf ? "; diffraction" : "; no diffraction";
+  }
   return line + PoseDescription(eye);
 }
 

@@ -32,6 +32,17 @@ int FastFftSize(int n) {
   }
 }
 
+void Fft2d(std::vector<std::complex<double>>* field, int nx, int ny, bool inverse) {
+  if (nx <= 0 || ny <= 0 || field->size() != size_t(nx) * ny)
+    throw Error("a transformed field must hold nx x ny values");
+  Eigen::FFT<double> fft;
+  fft.SetFlag(Eigen::FFT<double>::Unscaled);
+  std::vector<std::complex<double>> in, out;
+  std::complex<double>* f = field->data();
+  for (int i = 0; i < ny; ++i) Transform(fft, f + size_t(i) * nx, nx, 1, inverse, in, out);
+  for (int j = 0; j < nx; ++j) Transform(fft, f + j, ny, nx, inverse, in, out);
+}
+
 void FilterPeriodic(std::vector<std::complex<double>>* field, int nx, int ny, double spacing,
                     const std::function<double(double fx, double fy)>& gain) {
   if (nx <= 0 || ny <= 0 || field->size() != size_t(nx) * ny) throw Error("a filtered field must hold nx x ny values");
@@ -50,6 +61,66 @@ void FilterPeriodic(std::vector<std::complex<double>>* field, int nx, int ny, do
   }
   for (int j = 0; j < nx; ++j) Transform(fft, f + j, ny, nx, true, in, out);
   for (int i = 0; i < ny; ++i) Transform(fft, f + size_t(i) * nx, nx, 1, true, in, out);
+}
+
+RealFft2d::RealFft2d(int nx, int ny) : nx_(nx), ny_(ny) {
+  if (nx < 2 || ny < 1 || nx % 2 != 0) throw Error("a real 2D transform needs an even width and a height >= 1");
+}
+
+namespace {
+
+// The columns [j, j + count) of a half spectrum (`half` columns, `rows` rows) transformed in place,
+// gathered into contiguous lines a block at a time (rows read and written in order).
+constexpr int kColumnBlock = 16;
+void TransformColumns(Eigen::FFT<float>& fft, std::complex<float>* spectrum, int half, int rows, int j, int count,
+                      bool inverse, std::vector<std::complex<float>>& lines, std::vector<std::complex<float>>& out) {
+  lines.resize(size_t(count) * rows), out.resize(rows);
+  for (int i = 0; i < rows; ++i)
+    for (int b = 0; b < count; ++b) lines[size_t(b) * rows + i] = spectrum[size_t(i) * half + j + b];
+  for (int b = 0; b < count; ++b) {
+    std::complex<float>* line = lines.data() + size_t(b) * rows;
+    if (inverse)
+      fft.inv(out.data(), line, rows);
+    else
+      fft.fwd(out.data(), line, rows);
+    std::copy(out.begin(), out.end(), line);
+  }
+  for (int i = 0; i < rows; ++i)
+    for (int b = 0; b < count; ++b) spectrum[size_t(i) * half + j + b] = lines[size_t(b) * rows + i];
+}
+
+}  // namespace
+
+void RealFft2d::Forward(const float* image, std::complex<float>* spectrum) const {
+  const int half = this->half(), blocks = (half + kColumnBlock - 1) / kColumnBlock;
+#pragma omp parallel
+  {
+    Eigen::FFT<float> fft;
+    fft.SetFlag(Eigen::FFT<float>::HalfSpectrum);
+#pragma omp for
+    for (int i = 0; i < ny_; ++i) fft.fwd(spectrum + size_t(i) * half, image + size_t(i) * nx_, nx_);
+    std::vector<std::complex<float>> lines, out;
+#pragma omp for
+    for (int k = 0; k < blocks; ++k)
+      TransformColumns(fft, spectrum, half, ny_, k * kColumnBlock, std::min(kColumnBlock, half - k * kColumnBlock),
+                       false, lines, out);
+  }
+}
+
+void RealFft2d::Inverse(std::complex<float>* spectrum, float* image) const {
+  const int half = this->half(), blocks = (half + kColumnBlock - 1) / kColumnBlock;
+#pragma omp parallel
+  {
+    Eigen::FFT<float> fft;
+    fft.SetFlag(Eigen::FFT<float>::HalfSpectrum);
+    std::vector<std::complex<float>> lines, out;
+#pragma omp for
+    for (int k = 0; k < blocks; ++k)
+      TransformColumns(fft, spectrum, half, ny_, k * kColumnBlock, std::min(kColumnBlock, half - k * kColumnBlock),
+                       true, lines, out);
+#pragma omp for
+    for (int i = 0; i < ny_; ++i) fft.inv(image + size_t(i) * nx_, spectrum + size_t(i) * half, nx_);
+  }
 }
 
 }  // namespace layerlab

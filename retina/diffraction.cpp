@@ -49,8 +49,4 @@ void ApplyDiffraction(PupilShape shape, double pupil_diameter, const std::array<
   }
 }
 
-void ApplyEyeOptics(const EyeModel& eye, const RetinaGrid& grid, Image* image) {
-  if (eye.diffraction) ApplyDiffraction(eye.pupil_shape, eye.pupil_diameter_m, eye.channel_wavelengths_m, grid, image);
-}
-
 }  // namespace layerlab

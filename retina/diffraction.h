@@ -26,7 +26,4 @@ double DiffractionOtf(PupilShape shape, double pupil_diameter, double wavelength
 void ApplyDiffraction(PupilShape shape, double pupil_diameter, const std::array<double, 3>& wavelengths,
                       const RetinaGrid& grid, Image* image);
 
-// The eye's optics after the pupil-sampled rays: diffraction when the eye asks for it.
-void ApplyEyeOptics(const EyeModel& eye, const RetinaGrid& grid, Image* image);
-
 }  // namespace layerlab

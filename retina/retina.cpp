@@ -90,13 +90,18 @@ std::vector<PupilPoint> PupilPositions(const EyeModel& eye) {
 
 }  // namespace
 
-std::vector<PupilPoint> PupilSamples(const EyeModel& eye) {
+std::vector<PupilPoint> PupilSamplesInOwnPlane(const EyeModel& eye) {
   std::vector<PupilPoint> points = PupilPositions(eye);
   if (!eye.wavefront.empty())
     for (PupilPoint& u : points) {
       const WavefrontSlope g = WavefrontSlopeAt(eye.wavefront, u.x_m, u.y_m);
       u.slope_x = g.x, u.slope_y = g.y;
     }
+  return points;
+}
+
+std::vector<PupilPoint> PupilSamples(const EyeModel& eye) {
+  std::vector<PupilPoint> points = PupilSamplesInOwnPlane(eye);
   // Placed by the eye's pose: from the pupil's own plane to the eye plane.
   const std::array<double, 2> center = OnEyePlane(eye.pose, 0, 0);
   for (PupilPoint& u : points) {

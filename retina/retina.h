@@ -45,6 +45,9 @@ RetinaGrid CenteredOnGaze(RetinaGrid grid, const EyePose& pose);
 // Each carries the slope of the eye's wavefront aberration at it, and is
 // placed on the eye plane by the eye's pose (elements/eye_pose.h).
 std::vector<PupilPoint> PupilSamples(const EyeModel& eye);
+// The same points before the eye's pose places them: in the pupil's own
+// plane, x right and y up from its centre (what the pupil function sees).
+std::vector<PupilPoint> PupilSamplesInOwnPlane(const EyeModel& eye);
 
 // Accommodation per color channel: D_a plus the eye's chromatic defocus, and
 // with chromatic_aberration "thibos" plus ThibosDefocus(channel wavelength, reference).

@@ -235,7 +235,7 @@ const BadScene kCases[] = {
      },
      "scene.json: /elements/0/channel_wavelengths/2: a wavelength must lie in 380 to 780 nm, got 46.5 nm"},
     {"DiffractionNotABoolean", kMul, [](json& s) { ElementNamed(s, "eye")["diffraction"] = "airy"; },
-     "scene.json: /elements/0/diffraction: expected true or false, got a string \"airy\""},
+     "scene.json: /elements/0/diffraction: expected false, true (the same as \"mtf\") or \"wave\", got \"airy\""},
     {"DiffractionThroughAPinhole", kMul,
      [](json& s) {
        ElementNamed(s, "eye")["pupil_diameter"] = "0 mm";

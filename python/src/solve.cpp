@@ -29,7 +29,7 @@
 #include "layerlab/python/src/result_dicts.h"
 #include "layerlab/python/src/solve_hooks.h"
 #include "layerlab/python/src/trace_table.h"
-#include "layerlab/retina/diffraction.h"
+#include "layerlab/retina/eye_optics.h"
 #include "layerlab/retina/lightfield_radiance.h"
 #include "layerlab/retina/retina.h"
 #include "layerlab/solvers/solution_writer.h"
@@ -223,15 +223,17 @@ py::object Retina(const Solution& s, const std::vector<double>& accommodation, d
     py::gil_scoped_release release;
     const SceneRadiance scene = natural ? LightFieldRadiance(*s.target, s.sampling) : SceneRadiance{};
     RetinaWorkspace workspace;  // shared by the states, as a focal stack's are
+    const EyeOptics optics(system.eye, pupil, grid);
     for (size_t k = 0; k < accommodation.size(); ++k) {
       const std::array<double, 3> focus = ChannelAccommodation(system.eye, accommodation[k]);
-      Image image =
-          RetinaOfDisplay(*s.model, s.patterns, DisplayRetinaTables(*s.model, grid, pupil, focus), &workspace);
-      ApplyEyeOptics(system.eye, grid, &image);
+      const Image image = optics.See([&](const RetinaGrid& traced, const std::vector<PupilPoint>& group) {
+        return RetinaOfDisplay(*s.model, s.patterns, DisplayRetinaTables(*s.model, traced, group, focus), &workspace);
+      });
       std::copy(image.pixels.begin(), image.pixels.end(), out + k * image.pixels.size());
       if (natural) {
-        Image target = RetinaOfScene(scene, grid, pupil, focus);
-        ApplyEyeOptics(system.eye, grid, &target);
+        const Image target = optics.See([&](const RetinaGrid& traced, const std::vector<PupilPoint>& group) {
+          return RetinaOfScene(scene, traced, group, focus);
+        });
         std::copy(target.pixels.begin(), target.pixels.end(), out_natural + k * target.pixels.size());
       }
     }
