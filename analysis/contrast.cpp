@@ -288,12 +288,12 @@ class ContrastRun {
   }
 
   // The optics of the eye whose samples are `pupil`, on both grids, made once
-  // per eye (outside the parallel sweeps). The grating is vertical: the strips' edge rows repeat.
+  // per eye (outside the parallel sweeps). The grating is vertical: the strips are uniform along y.
   GridOptics Optics(const EyeModel& eye, const std::vector<PupilPoint>& pupil) {
     GridOptics optics{};
     for (int g = 0; g < (o_.peak_uncertainty ? 2 : 1); ++g) {
       std::unique_ptr<EyeOptics>& made = optics_[{&pupil, g}];
-      if (!made) made = std::make_unique<EyeOptics>(eye, pupil, grids_[g], RowEdges::kRepeat);
+      if (!made) made = std::make_unique<EyeOptics>(eye, pupil, grids_[g], RowEdges::kUniform);
       optics[g] = made.get();
     }
     return optics;

@@ -12,6 +12,7 @@
 #include "layerlab/analysis/report_parts.h"
 #include "layerlab/app/command_line.h"
 #include "layerlab/app/commands.h"
+#include "layerlab/app/eye_diffraction_option.h"
 #include "layerlab/app/number_list.h"
 #include "layerlab/app/option_flags.h"
 #include "layerlab/app/pose_option.h"
@@ -30,7 +31,7 @@ namespace {
 // The sweep's options are the contrast option table's (analysis/contrast_option_table.h).
 struct ContrastCommandOptions {
   std::vector<std::string> scenes;
-  std::string out, accommodation, factorized_for;
+  std::string out, accommodation, factorized_for, diffraction;
   OptionFlags flags;
   PoseOption pose;
 };
@@ -59,6 +60,7 @@ void RunContrastCommand(const ContrastCommandOptions& o) {
   std::vector<std::string> warnings;
   for (const std::string& file : o.scenes) {
     displays.push_back(LoadContrastDisplay(file));
+    ApplyEyeDiffractionOption(o.diffraction, &displays.back().system);
     // The eye moved and turned as the command line says: each display's retina is seen from there.
     if (const std::string warning = ApplyPoseOption(o.pose, &displays.back().system); !warning.empty())
       warnings.push_back(displays.back().name + ": " + warning);
@@ -109,6 +111,7 @@ void AddContrastCommand(CLI::App& app) {
   cmd->add_option("scenes", o->scenes, "Display scene files (JSON)")->required();
   cmd->add_option("--out", o->out, "Output folder")->required();
   AddPoseOptions(cmd, o->pose);
+  AddEyeDiffractionOption(cmd, o->diffraction);
   AddOptionFlags(cmd, ContrastOptionTable(), o->flags, /*with_default=*/true);
   const ContrastOptionEntry& accommodation = *FindContrastOption("accommodation");
   cmd->add_option(accommodation.cli_flag, o->accommodation,

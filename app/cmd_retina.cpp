@@ -16,6 +16,7 @@
 #include "layerlab/analysis/retina_sweep.h"
 #include "layerlab/app/command_line.h"
 #include "layerlab/app/commands.h"
+#include "layerlab/app/eye_diffraction_option.h"
 #include "layerlab/app/natural_viewing.h"
 #include "layerlab/app/number_list.h"
 #include "layerlab/app/pose_option.h"
@@ -40,6 +41,7 @@ struct RetinaCommandOptions {
   std::string scene, patterns, out, sampling;
   TargetOption target;
   PoseOption pose;
+  std::string diffraction;
   std::string accommodation = "0.4,1.0,1.6,2.2", focal_stack, field, resolution = "0.05";
   std::string eyes = "scene", partner_patterns;
 };
@@ -166,6 +168,7 @@ void RunRetinaCommand(const RetinaCommandOptions& o) {
   // Everything is read and checked before anything is written.
   Scene scene = LoadScene(o.scene);
   DisplaySystem system = Compile(scene);
+  ApplyEyeDiffractionOption(o.diffraction, &system);
   if (const std::string warning = ApplyPoseOption(o.pose, &system); !warning.empty()) {
     system.warnings.push_back(warning);
     SayWarnings({warning});
@@ -229,6 +232,7 @@ void AddRetinaCommand(CLI::App& app) {
   cmd->add_option("--focal-stack", o->focal_stack, "Also first,last,step: D, e.g. 0,2.6,0.1 or \"0 D,2.6 D,0.1 D\"");
   AddTargetOptions(cmd, o->target, ": natural viewing of it (a scene's traced, not rendered)");
   AddPoseOptions(cmd, o->pose);
+  AddEyeDiffractionOption(cmd, o->diffraction);
   cmd->add_option("--resolution", o->resolution, "Retinal sample size: degrees or \"3 arcmin\" (default 0.05)");
   cmd->add_option("--field", o->field, "Retinal field W,H: degrees (default: the display's field of view)");
   cmd->add_option("--sampling", o->sampling,

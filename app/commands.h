@@ -16,6 +16,7 @@ void AddRunCommand(CLI::App& app);      // run SCENE.json --out DIR: the main jo
 void AddSweepCommand(CLI::App& app);    // sweep SWEEP.json --out DIR: a grid of jobs, one table
 // tolerance SCENE.json --out DIR: Monte Carlo over assembly tolerances
 void AddToleranceCommand(CLI::App& app);
+void AddPsfCommand(CLI::App& app);  // psf SCENE.json --out DIR: the eye's PSF and OTF by its pupil function
 #if LAYERLAB_WITH_CERES
 void AddFitCommand(CLI::App& app);                  // fit SCENE.json MEASUREMENTS.json --out CALIBRATED.json
 void AddCalibrationPatternsCommand(CLI::App& app);  // calibration-patterns SCENE.json --out DIR

@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
   layerlab::app::AddEyeboxCommand(app);
   layerlab::app::AddCompareCommand(app);
   layerlab::app::AddToleranceCommand(app);
+  layerlab::app::AddPsfCommand(app);
 #if LAYERLAB_WITH_CERES
   layerlab::app::AddFitCommand(app);
   layerlab::app::AddCalibrationPatternsCommand(app);

@@ -40,7 +40,8 @@ constexpr const char* kStagedCommands[] = {"run",
                                            "calibration-patterns",
                                            "camera-patterns",
                                            "sweep",
-                                           "tolerance"};
+                                           "tolerance",
+                                           "psf"};
 
 // Links and ".." resolved as far as the path exists; what does not exist yet is appended as spelled.
 fs::path RealPath(const std::string& path) {

@@ -160,8 +160,7 @@ EyeOptics::EyeOptics(const EyeModel& eye, const std::vector<PupilPoint>& pupil, 
     traced_.rows = field_rows_;
     traced_.center_y_rad = grid.center_y_rad + (0.5 * grid.rows - 0.5 * field_rows_ + top_) * grid.resolution_rad;
   } else {
-    field_rows_ = FastEvenFftSize(grid.rows + 2 * pad);
-    field_top_ = (field_rows_ - grid.rows) / 2;
+    field_rows_ = grid.rows;  // uniform along y: the rows wrap, exactly
   }
   if (double(traced_.cols) * traced_.rows > 1e8)
     throw Error("diffraction: the retina widened by the PSF's support (" + std::to_string(pad) +
@@ -248,20 +247,18 @@ Image EyeOptics::Combine(const std::vector<Image>& images) const {
       throw Error("eye optics: a group's image is not an RGB image of the traced grid");
   if (mode_ == EyeDiffraction::kNone) return images[0];
   Image out{grid_.cols, grid_.rows, {"R", "G", "B"}, std::vector<float>(size_t(grid_.cols) * grid_.rows * 3, 0.0f)};
-  // The transformed field of channel c of a traced image: rows beyond the traced ones repeat its edge rows.
+  // The transformed field of channel c of a traced image.
   auto fill = [&](const Image& image, int c, auto* field) {
 #pragma omp parallel for
-    for (int r = 0; r < field_rows_; ++r) {
-      const int row = std::clamp(r - field_top_, 0, traced_.rows - 1);
-      for (int j = 0; j < field_cols_; ++j) (*field)[size_t(r) * field_cols_ + j] = image.at(row, j, c);
-    }
+    for (int r = 0; r < field_rows_; ++r)
+      for (int j = 0; j < field_cols_; ++j) (*field)[size_t(r) * field_cols_ + j] = image.at(r, j, c);
   };
   auto crop = [&](const auto& field, int c, double scale) {
 #pragma omp parallel for
     for (int i = 0; i < grid_.rows; ++i)
       for (int j = 0; j < grid_.cols; ++j)
         out.pixels[(size_t(i) * grid_.cols + j) * 3 + c] +=
-            static_cast<float>(scale * std::real(field[size_t(field_top_ + top_ + i) * field_cols_ + left_ + j]));
+            static_cast<float>(scale * std::real(field[size_t(top_ + i) * field_cols_ + left_ + j]));
   };
   if (mode_ == EyeDiffraction::kPupilMtf) {
     std::vector<std::complex<double>> field(size_t(field_cols_) * field_rows_);

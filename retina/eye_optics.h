@@ -28,8 +28,9 @@
 // kEdgeTailMass of its light (a 1 / x^2 tail: lambda / (pi^2 D tail)), so the
 // tails meet the display or scene itself, not repeated edge values; the
 // image is transformed periodically there and cut back to the grid. A grid
-// whose content does not change along y (contrast's strips) may repeat its
-// edge rows instead.
+// whose content does not change along y (contrast's strips of a vertical
+// grating) is widened along x only (RowEdges::kUniform): its rows wrap,
+// which for such content is exact.
 #pragma once
 
 #include <array>
@@ -47,7 +48,7 @@ inline constexpr double kEdgeTailMass = 5e-4;
 inline constexpr double kWaveShapeTolerance = 0.02;
 inline constexpr double kWaveWeightBytes = 256e6;
 
-enum class RowEdges { kTrace, kRepeat };
+enum class RowEdges { kTrace, kUniform };
 
 // The rays' image of one group of pupil samples on a grid.
 using TraceGroup = std::function<Image(const RetinaGrid& grid, const std::vector<PupilPoint>& group)>;
@@ -77,8 +78,8 @@ class EyeOptics {
   double diameter_m_;
   std::array<double, 3> wavelengths_m_;
   RetinaGrid grid_, traced_;
-  int left_ = 0, top_ = 0;                               // grid() within traced()
-  int field_cols_ = 0, field_rows_ = 0, field_top_ = 0;  // the transformed field; traced() at (0, field_top_)
+  int left_ = 0, top_ = 0;               // grid() within traced()
+  int field_cols_ = 0, field_rows_ = 0;  // the transformed field: traced()
   std::vector<std::vector<PupilPoint>> groups_;
   // Wave optics: per channel the groups' parts; per group whether it is flat and its share at f = 0.
   std::array<OtfLattice, 3> parts_;

@@ -242,6 +242,15 @@ const BadScene kCases[] = {
        ElementNamed(s, "eye")["diffraction"] = true;
      },
      "scene.json: /elements/0/diffraction: a pinhole pupil (pupil_diameter 0) has no diffraction-limited image"},
+    {"StilesCrawfordWithoutWaveOptics", kMul, [](json& s) { ElementNamed(s, "eye")["stiles_crawford"] = true; },
+     "scene.json: /elements/0/stiles_crawford: the Stiles-Crawford apodization is part of the pupil function: set "
+     "diffraction \"wave\""},
+    {"StilesCrawfordNegative", kMul,
+     [](json& s) {
+       ElementNamed(s, "eye")["diffraction"] = "wave";
+       ElementNamed(s, "eye")["stiles_crawford"] = -0.05;
+     },
+     "scene.json: /elements/0/stiles_crawford: expected true, false or rho per mm^2 in [0, 1], got -0.05"},
     {"SpectralTableMissesAChannel", "hybrid_pbs_hwp.json",
      [](json& s) {
        ElementNamed(s, "pbs")["transmittance_p"] = {{"wavelengths", {"500 nm", "700 nm"}}, {"values", {0.9, 0.9}}};

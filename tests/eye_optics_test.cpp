@@ -51,7 +51,7 @@ double Contrast(const Image& image, const RetinaGrid& g, double cpd, bool whole)
 }
 
 Image Seen(const EyeModel& eye, const SceneRadiance& scene, const RetinaGrid& grid, double focus,
-           RowEdges rows = RowEdges::kRepeat) {
+           RowEdges rows = RowEdges::kUniform) {
   const std::vector<PupilPoint> pupil = PupilSamples(eye);
   const EyeOptics optics(eye, pupil, grid, rows);
   return optics.See([&](const RetinaGrid& traced, const std::vector<PupilPoint>& group) {
