@@ -26,6 +26,7 @@
 #include "layerlab/solvers/solve_config.h"
 #include "layerlab/systems/compile.h"
 #include "layerlab/systems/display_model.h"
+#include "layerlab/systems/panel_diffraction.h"
 #include "layerlab/targets/plane_lightfield.h"
 
 namespace layerlab {
@@ -487,6 +488,9 @@ class ContrastRun {
     const std::vector<PupilPoint>& pupil = own ? pupils_[di] : moved_[seer].pupil;
     const auto start = std::chrono::steady_clock::now();
     const GridOptics optics = Optics(eye, pupil);
+    // Each curve's patterns as this display's panels diffract them, once.
+    std::vector<Patterns> seen;
+    for (const CurveView* v : of_display) seen.push_back(SeenPatterns(displays_[di].system, solves_[v->patterns].t));
     Sweep(
         eye,
         [&](const std::array<double, 3>& focus) -> CurveImage {
@@ -502,7 +506,7 @@ class ContrastRun {
             const CurveView& v = *of_display[n];
             std::vector<Image> images;
             for (const DisplayRetinaTables& of_group : (*tables)[grid])
-              images.push_back(RetinaOfDisplay(*solves_[v.model].model, solves_[v.patterns].t, of_group));
+              images.push_back(RetinaOfDisplay(*solves_[v.model].model, seen[n], of_group));
             return optics[grid]->Combine(images);
           };
         },

@@ -17,6 +17,7 @@
 #include "layerlab/framework/units.h"
 #include "layerlab/retina/eye_optics.h"
 #include "layerlab/retina/retina_workspace.h"
+#include "layerlab/systems/panel_diffraction.h"
 
 namespace layerlab {
 
@@ -127,6 +128,7 @@ std::vector<RetinaStateResult> WriteRetinaSweep(
       CenteredOnGaze(MakeRetinaGrid(field_x, field_y, o.resolution_deg * kRadiansPerDegree), system.eye.pose);
   const std::vector<PupilPoint> pupil = PupilSamples(system.eye);
   const EyeOptics optics(system.eye, pupil, grid);  // its parts of the OTF serve every state
+  const Patterns seen = SeenPatterns(system, t);    // through the panels' diffraction, once
 
   const fs::path out = folder;
   fs::create_directories(out / "display");
@@ -141,7 +143,7 @@ std::vector<RetinaStateResult> WriteRetinaSweep(
   RetinaWorkspace workspace;  // every state's display image, sized for the first (again only for one needing more)
   for (size_t first = 0; first < o.states_diopters.size(); first += batch) {
     const size_t count = std::min(batch, o.states_diopters.size() - first);
-    RetinaBatch b = TraceBatch(model, t, natural, optics, o.states_diopters, first, count, &workspace);
+    RetinaBatch b = TraceBatch(model, seen, natural, optics, o.states_diopters, first, count, &workspace);
     std::vector<double> seconds;
     WriteBatch(out, grid, bool(natural), &b, &seconds);
     for (size_t s = 0; s < count; ++s) {

@@ -12,8 +12,8 @@
 #include "layerlab/analysis/report_parts.h"
 #include "layerlab/app/command_line.h"
 #include "layerlab/app/commands.h"
-#include "layerlab/app/eye_diffraction_option.h"
 #include "layerlab/app/number_list.h"
+#include "layerlab/app/optics_options.h"
 #include "layerlab/app/option_flags.h"
 #include "layerlab/app/pose_option.h"
 #include "layerlab/framework/atomic_file.h"
@@ -31,7 +31,8 @@ namespace {
 // The sweep's options are the contrast option table's (analysis/contrast_option_table.h).
 struct ContrastCommandOptions {
   std::vector<std::string> scenes;
-  std::string out, accommodation, factorized_for, diffraction;
+  std::string out, accommodation, factorized_for;
+  OpticsOptions optics;
   OptionFlags flags;
   PoseOption pose;
 };
@@ -60,7 +61,7 @@ void RunContrastCommand(const ContrastCommandOptions& o) {
   std::vector<std::string> warnings;
   for (const std::string& file : o.scenes) {
     displays.push_back(LoadContrastDisplay(file));
-    ApplyEyeDiffractionOption(o.diffraction, &displays.back().system);
+    ApplyOpticsOptions(o.optics, &displays.back().system);
     // The eye moved and turned as the command line says: each display's retina is seen from there.
     if (const std::string warning = ApplyPoseOption(o.pose, &displays.back().system); !warning.empty())
       warnings.push_back(displays.back().name + ": " + warning);
@@ -111,7 +112,7 @@ void AddContrastCommand(CLI::App& app) {
   cmd->add_option("scenes", o->scenes, "Display scene files (JSON)")->required();
   cmd->add_option("--out", o->out, "Output folder")->required();
   AddPoseOptions(cmd, o->pose);
-  AddEyeDiffractionOption(cmd, o->diffraction);
+  AddOpticsOptions(cmd, o->optics);
   AddOptionFlags(cmd, ContrastOptionTable(), o->flags, /*with_default=*/true);
   const ContrastOptionEntry& accommodation = *FindContrastOption("accommodation");
   cmd->add_option(accommodation.cli_flag, o->accommodation,

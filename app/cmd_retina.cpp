@@ -16,9 +16,9 @@
 #include "layerlab/analysis/retina_sweep.h"
 #include "layerlab/app/command_line.h"
 #include "layerlab/app/commands.h"
-#include "layerlab/app/eye_diffraction_option.h"
 #include "layerlab/app/natural_viewing.h"
 #include "layerlab/app/number_list.h"
+#include "layerlab/app/optics_options.h"
 #include "layerlab/app/pose_option.h"
 #include "layerlab/app/target_option.h"
 #include "layerlab/framework/error.h"
@@ -41,7 +41,7 @@ struct RetinaCommandOptions {
   std::string scene, patterns, out, sampling;
   TargetOption target;
   PoseOption pose;
-  std::string diffraction;
+  OpticsOptions optics;
   std::string accommodation = "0.4,1.0,1.6,2.2", focal_stack, field, resolution = "0.05";
   std::string eyes = "scene", partner_patterns;
 };
@@ -168,7 +168,7 @@ void RunRetinaCommand(const RetinaCommandOptions& o) {
   // Everything is read and checked before anything is written.
   Scene scene = LoadScene(o.scene);
   DisplaySystem system = Compile(scene);
-  ApplyEyeDiffractionOption(o.diffraction, &system);
+  ApplyOpticsOptions(o.optics, &system);
   if (const std::string warning = ApplyPoseOption(o.pose, &system); !warning.empty()) {
     system.warnings.push_back(warning);
     SayWarnings({warning});
@@ -232,7 +232,7 @@ void AddRetinaCommand(CLI::App& app) {
   cmd->add_option("--focal-stack", o->focal_stack, "Also first,last,step: D, e.g. 0,2.6,0.1 or \"0 D,2.6 D,0.1 D\"");
   AddTargetOptions(cmd, o->target, ": natural viewing of it (a scene's traced, not rendered)");
   AddPoseOptions(cmd, o->pose);
-  AddEyeDiffractionOption(cmd, o->diffraction);
+  AddOpticsOptions(cmd, o->optics);
   cmd->add_option("--resolution", o->resolution, "Retinal sample size: degrees or \"3 arcmin\" (default 0.05)");
   cmd->add_option("--field", o->field, "Retinal field W,H: degrees (default: the display's field of view)");
   cmd->add_option("--sampling", o->sampling,

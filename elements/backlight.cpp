@@ -3,6 +3,7 @@
 // | key       | type      | default  | meaning                          |
 // |-----------|-----------|----------|----------------------------------|
 // | luminance | luminance | required | "300 cd/m2"; a bare number is cd/m^2 |
+// | coherence_width | length | 0 (incoherent) | the width over which the light at the panels is spatially coherent (a collimated or laser backlight): each diffraction order of a panel's pixel grid spreads over lambda / width (systems/panel_diffraction.h) |
 #include "layerlab/elements/element.h"
 #include "layerlab/elements/registry.h"
 
@@ -12,7 +13,9 @@ namespace {
 std::unique_ptr<Element> MakeBacklight(Params& p) {
   double luminance = p.quantity("luminance", Dimension::kLuminance);
   p.require_range("luminance", luminance, 0.0, 1e7, true, false);
-  return std::make_unique<BacklightElement>(luminance);
+  const double coherence = p.quantity("coherence_width", Dimension::kLength, 0.0);
+  p.require_range("coherence_width", coherence, 0.0, 1.0, false, false);
+  return std::make_unique<BacklightElement>(luminance, coherence);
 }
 
 }  // namespace

@@ -196,6 +196,9 @@ struct PanelSpec {
   std::array<double, 2> tilt_rad = {0, 0};
   bool tilted() const { return tilt_rad[0] != 0 || tilt_rad[1] != 0; }
   double polarization_angle_rad = 0.0;  // rad, axis of the exit polarizer
+  // The open fraction of each pixel's rectangular aperture along x and y; 1: no black matrix, no diffraction.
+  std::array<double, 2> fill_factor = {1, 1};
+  bool diffracts() const { return fill_factor[0] < 1 || fill_factor[1] < 1; }
 };
 
 class PanelElement : public Element {
@@ -210,13 +213,16 @@ class PanelElement : public Element {
 
 class BacklightElement : public Element {
  public:
-  explicit BacklightElement(double luminance) : luminance_(luminance) {}
+  explicit BacklightElement(double luminance, double coherence_width_m = 0)
+      : luminance_(luminance), coherence_width_m_(coherence_width_m) {}
   ElementKind kind() const final { return ElementKind::kBacklight; }
   std::vector<std::string> output_ports() const final { return {}; }
-  double luminance() const { return luminance_; }  // cd/m^2
+  double luminance() const { return luminance_; }                  // cd/m^2
+  double coherence_width_m() const { return coherence_width_m_; }  // m; 0: incoherent (systems/panel_diffraction.h)
 
  private:
   double luminance_;
+  double coherence_width_m_;
 };
 
 }  // namespace layerlab

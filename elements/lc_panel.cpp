@@ -16,6 +16,7 @@
 // | rotation          | angle                | 0              | in-plane, counterclockwise as the eye sees it |
 // | tilt              | [angle, angle]       | [0, 0]         | turned about x, then about y, through the active region's centre (as mounted off true); its rays are traced to the tilted plane |
 // | polarization      | angle                | 0 deg          | axis of the exit polarizer, from eye-space x |
+// | fill_factor       | fraction or [x, y]   | 1              | the open width of a pixel's aperture over its pitch (the black matrix is the rest): below 1 the grid diffracts the light of the layers behind it (systems/panel_diffraction.h) |
 // | next              | name                 | required       | the panel behind, or the backlight           |
 #include <algorithm>
 #include <cmath>
@@ -91,6 +92,9 @@ std::unique_ptr<Element> MakeLcPanel(Params& p) {
   for (double t : s.tilt_rad)
     if (!(std::abs(t) < 0.5)) p.fail("tilt", "at most 0.5 rad (28.6 deg) either way, about each axis");
   s.polarization_angle_rad = p.quantity("polarization", Dimension::kAngle, 0.0);
+  s.fill_factor = p.quantity_pair("fill_factor", Dimension::kFraction, {1.0, 1.0});
+  p.require_range("fill_factor", std::min(s.fill_factor[0], s.fill_factor[1]), 0.0, 1.0, true, false);
+  p.require_range("fill_factor", std::max(s.fill_factor[0], s.fill_factor[1]), 0.0, 1.0, true, false);
   return std::make_unique<PanelElement>(s);
 }
 

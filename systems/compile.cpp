@@ -368,6 +368,7 @@ class Walker {
     const auto& backlight = static_cast<const BacklightElement&>(*node->element);
     branch.backlight = backlight.name();
     branch.backlight_luminance_cd_m2 = backlight.luminance();
+    branch.backlight_coherence_width_m = backlight.coherence_width_m();
     branch.optics_efficiency = PathEfficiency(light, polarization_angle);
     for (int c = 0; c < 3; ++c) branch.efficiency[c] = branch.optics_efficiency[c] * panels_transmittance[c];
     system_.branches.push_back(branch);

@@ -81,7 +81,8 @@ struct Branch {
   Rgb optics_efficiency{};  // combiners, mirrors and in-line optics, per channel; over subframes, 1/K of it each
   Rgb efficiency{};         // also times every panel's maximum transmittance
   std::string backlight;
-  double backlight_luminance_cd_m2 = 0;  // cd/m^2
+  double backlight_luminance_cd_m2 = 0;    // cd/m^2
+  double backlight_coherence_width_m = 0;  // m; 0: incoherent (systems/panel_diffraction.h)
 };
 
 struct DisplaySystem {

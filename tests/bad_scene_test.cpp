@@ -74,6 +74,15 @@ const BadScene kCases[] = {
      "black level is not modelled)"},
     {"ZeroPixelPitch", kMul, [](json& s) { ElementNamed(s, "rear")["pixel_pitch"] = "0 um"; },
      "scene.json: /elements/3/pixel_pitch: must be in (0, 0.01] (SI units), got 0"},
+    {"ZeroFillFactor", kMul,
+     [](json& s) {
+       ElementNamed(s, "front")["fill_factor"] = {0.8, 0};
+     },
+     "scene.json: /elements/2/fill_factor: must be in (0, 1] (SI units), got 0"},
+    {"FillFactorAboveOne", kMul, [](json& s) { ElementNamed(s, "front")["fill_factor"] = 1.2; },
+     "scene.json: /elements/2/fill_factor: must be in (0, 1] (SI units), got 1.2"},
+    {"NegativeCoherenceWidth", kMul, [](json& s) { ElementNamed(s, "backlight")["coherence_width"] = "-1 um"; },
+     "scene.json: /elements/4/coherence_width: must be in [0, 1] (SI units), got -0.000001"},
     {"ZeroFocalLength", kMul, [](json& s) { ElementNamed(s, "lens")["focal_length"] = "0 mm"; },
      "scene.json: /elements/1/focal_length: a thin lens needs a nonzero focal length (0 would be infinite power)"},
     {"FractionalResolution", kMul,

@@ -37,6 +37,7 @@
 #include "layerlab/solvers/solver_option_table.h"
 #include "layerlab/systems/compile.h"
 #include "layerlab/systems/layer_sampler.h"
+#include "layerlab/systems/panel_diffraction.h"
 
 namespace py = pybind11;
 
@@ -224,10 +225,11 @@ py::object Retina(const Solution& s, const std::vector<double>& accommodation, d
     const SceneRadiance scene = natural ? LightFieldRadiance(*s.target, s.sampling) : SceneRadiance{};
     RetinaWorkspace workspace;  // shared by the states, as a focal stack's are
     const EyeOptics optics(system.eye, pupil, grid);
+    const Patterns diffracted = SeenPatterns(system, s.patterns);  // through the panels' diffraction
     for (size_t k = 0; k < accommodation.size(); ++k) {
       const std::array<double, 3> focus = ChannelAccommodation(system.eye, accommodation[k]);
       const Image image = optics.See([&](const RetinaGrid& traced, const std::vector<PupilPoint>& group) {
-        return RetinaOfDisplay(*s.model, s.patterns, DisplayRetinaTables(*s.model, traced, group, focus), &workspace);
+        return RetinaOfDisplay(*s.model, diffracted, DisplayRetinaTables(*s.model, traced, group, focus), &workspace);
       });
       std::copy(image.pixels.begin(), image.pixels.end(), out + k * image.pixels.size());
       if (natural) {
