@@ -68,6 +68,24 @@ TEST(Contrast, PerfectOneLayerDisplayScoresOneAtItsPeak) {
   }
 }
 
+// The same through the wave-optics eye, its panel with a black matrix (no panel in front of it: nothing
+// diffracts it): natural viewing and the display pass the same optics, so the peak stays 1 at the depth.
+TEST(Contrast, PerfectOneLayerDisplayScoresOneThroughTheWaveOpticsEye) {
+  const double dt = 1.3;
+  ContrastDisplay d = OneLayerAt(dt);
+  d.system.eye.diffraction = EyeDiffraction::kPupilFunction;
+  d.system.layers[0].panel.fill_factor = {0.75, 0.75};
+  ContrastOptions o;
+  o.target_diopters = {dt};
+  o.accommodation_min_diopters = 1.1, o.accommodation_max_diopters = 1.5;
+  const std::vector<ContrastCurve> curves = RunContrast({d}, o);
+  for (double f : {2.0, 4.0}) {
+    const ContrastCurve& c = Curve(curves, "one_layer", f);
+    EXPECT_TRUE(Close(c.peak.value, 1.0, 0, 0.005)) << f << " cpd: " << c.peak.value;
+    EXPECT_TRUE(Close(c.peak.at_grid, dt, 0, 1e-9)) << f << " cpd";
+  }
+}
+
 // A single plane seen by one of a pair of eyes: the eyes verge on the target
 // (1 / |F|, F on the midline at its depth: D_t, metre angles) and accommodate
 // to the plane, so the conflict is D_t less the plane's depth, by hand; the
