@@ -5,6 +5,7 @@
 // and on a 1 deg field the contrast equals the MTF over the whole field (the
 // field padded by the scene itself).
 #include <cmath>
+#include <complex>
 #include <numbers>
 
 #include "layerlab/analysis/fourier.h"
@@ -95,6 +96,31 @@ TEST(WaveOptics, AZernikeDefocusIsAnAccommodation) {
   for (size_t k = 0; k < with.pixels.size(); ++k)
     worst = std::max(worst, double(std::abs(with.pixels[k] - shifted.pixels[k])));
   EXPECT_LT(worst, 2e-3);
+}
+
+// Coma along y (Z7) makes the OTF complex: a horizontal grating's phase moves. The wave-optics retina gives
+// the pupil function's OTF at (0, f), sign of the phase included (the rows run toward -y).
+TEST(WaveOptics, ComaAlongYGivesThePupilFunctionsComplexOtf) {
+  EyeModel eye = RoundEye(4e-3, 15, EyeDiffraction::kPupilFunction);
+  eye.wavefront.pupil_diameter_m = 4e-3;
+  eye.wavefront.coefficients_m = {0, 0, 0, 0, 0, 0, 0, 0.3e-6};
+  const double cpd = 12, f = cpd / kRadiansPerDegree;
+  const SceneRadiance grating = [f](const PupilPoint& o, double, double dy) {
+    const double v = 0.5 + 0.5 * std::cos(2 * kPi * f * (o.y_m + dy));  // at 1 D: (y + dy z) / z
+    return std::array<double, 3>{v, v, v};
+  };
+  const RetinaGrid g = MakeRetinaGrid(0.05 * kRadiansPerDegree, 1 * kRadiansPerDegree, 0.01 * kRadiansPerDegree);
+  const Image image = Seen(eye, grating, g, 1.0, RowEdges::kTrace);
+  const int n = WholeCycleSamples(g.rows / 2, 0.01, cpd), start = (g.rows - n) / 2;
+  std::complex<double> sum = 0;
+  for (int i = start; i < start + n; ++i)
+    sum += double(image.at(i, g.cols / 2, 1)) * std::polar(1.0, -2 * kPi * f * g.angle_y(i));
+  const std::complex<double> measured = 2.0 / n * sum / 0.5;
+  PupilOptics optics = PupilOpticsOf(eye, 555e-9);
+  const std::complex<double> otf = PupilOtf(optics, 0, f, 256);
+  EXPECT_GT(std::abs(otf.imag()), 0.05) << otf;  // the coma moves the grating
+  EXPECT_NEAR(measured.real(), otf.real(), 0.01) << measured << " against " << otf;
+  EXPECT_NEAR(measured.imag(), otf.imag(), 0.01) << measured << " against " << otf;
 }
 
 TEST(WaveOptics, AUniformFieldKeepsItsLuminanceAndASquarePupilGroupsByItsEdges) {
