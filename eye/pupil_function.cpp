@@ -113,18 +113,13 @@ PointSpread PupilPointSpread(const PupilOptics& p, double spacing_rad, int size)
     }
   // exp(+i k u.a) with u = J du, a = M spacing: exp(+2 pi i J M / n), the inverse transform.
   Fft2d(&field, n, n, true);
-  // Averaging over the cells filtered P by a box of side du: the PSF by sinc^2(a du / lambda) on each axis.
-  auto box = [&](int m) {
-    const double x = std::numbers::pi * double(m) / n;
-    return m == 0 ? 1.0 : std::pow(std::sin(x) / x, 2);
-  };
   PointSpread psf{size, spacing_rad, std::vector<double>(size_t(size) * size)};
   const double scale = std::pow(du, 4) / (p.wavelength_m * p.wavelength_m * PupilEnergy(p));
   for (int r = 0; r < size; ++r)
     for (int c = 0; c < size; ++c) {
       const int my = size / 2 - r, mx = c - size / 2;
       const int iy = ((my % n) + n) % n, ix = ((mx % n) + n) % n;
-      psf.density[size_t(r) * size + c] = std::norm(field[size_t(iy) * n + ix]) * scale / (box(mx) * box(my));
+      psf.density[size_t(r) * size + c] = std::norm(field[size_t(iy) * n + ix]) * scale;
     }
   return psf;
 }

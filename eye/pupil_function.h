@@ -58,10 +58,11 @@ std::complex<double> PupilOtf(const PupilOptics& p, double fx, double fy, int sa
 
 // The PSF on `size` x `size` samples `spacing_rad` apart, row 0 at the top
 // (+y), sample (size / 2, size / 2) at a = 0: |FFT(P)|^2 of P's cell means
-// (4 x 4 points, so the aperture's edge cells count their share; the box
-// filter this is divided out) at du = lambda / (N spacing) on N x N points,
-// N >= 4 size, normalized by integral |P|^2 in closed form (so the PSF's sum is
-// a check of energy, not its definition). The sampling rule: the PSF does
+// (4 x 4 points, so the aperture's edge cells count their share) at
+// du = lambda / (N spacing) on N x N points, N >= 4 size, normalized by
+// integral |P|^2 in closed form (so the PSF's sum is a check of energy, not
+// its definition). The cell means filter P by a box of side du: k samples
+// out the PSF is lowered by sinc^2(k / N), at most 5 % at the crop's edge. The sampling rule: the PSF does
 // not alias when the OTF's support |f| <= D / lambda lies within the grid's
 // Nyquist frequency, spacing <= lambda / (2 D) (a coarser spacing is refused,
 // naming it); N is chosen so that P has at least 64 samples across the
