@@ -85,8 +85,11 @@ std::vector<LayerDiffraction> PanelDiffraction(const DisplaySystem& system) {
       for (size_t back = front + 1; back < branch.layers.size(); ++back) {
         const VirtualLayer& k = system.layers[branch.layers[back]];
         const double gap = k.position_m - j.position_m;
-        // Coupled only without powered optics between them: both measured from the same lens or mirror.
-        if (!(gap > 0) || std::abs((k.panel_distance_m - j.panel_distance_m) - gap) > 1e-9) continue;
+        // A panel's next is a panel or a backlight (elements/lc_panel.cpp): nothing with power lies between
+        // two panels of a stack, so both are measured from the same lens or mirror.
+        if (!(gap > 0) || std::abs((k.panel_distance_m - j.panel_distance_m) - gap) > 1e-9)
+          throw Error("internal error: panels \"" + j.name + "\" and \"" + k.name + "\" of one stack are not " +
+                      "a straight gap apart");
         LayerDiffraction d{branch.layers[back], branch.layers[front], gap, {}};
         for (int c = 0; c < 3; ++c) {
           const double lambda = system.eye.channel_wavelengths_m[c];

@@ -23,8 +23,8 @@
 //   - thin panels (the grating is the pixel plane; the LC cell's thickness
 //     is not modelled), rectangular apertures (separable in x and y, each
 //     axis's shift d tan(theta) of its own order), axes of the two panels
-//     aligned, no powered optics between them (a pair separated by a lens or
-//     a curved mirror is not coupled);
+//     aligned (a stack's panels follow each other directly: nothing with
+//     power lies between them);
 //   - the orders of different panels in front of one layer are applied one
 //     after the other, as if independent (exact for the two-panel stacks of
 //     the paper's displays; for three or more panels the front panel's
