@@ -32,25 +32,42 @@ int FastFftSize(int n) {
   }
 }
 
+namespace {
+
+void CheckField(const std::vector<std::complex<double>>& field, int nx, int ny) {
+  if (nx <= 0 || ny <= 0 || field.size() != size_t(nx) * ny) throw Error("a 2D field must hold nx x ny values");
+}
+
+// The 2D transform with `fft`'s scaling: rows then columns forward, columns then rows back.
+void TransformField(Eigen::FFT<double>& fft, std::complex<double>* f, int nx, int ny, bool inverse) {
+  std::vector<std::complex<double>> in, out;
+  auto rows = [&] {
+    for (int i = 0; i < ny; ++i) Transform(fft, f + size_t(i) * nx, nx, 1, inverse, in, out);
+  };
+  auto columns = [&] {
+    for (int j = 0; j < nx; ++j) Transform(fft, f + j, ny, nx, inverse, in, out);
+  };
+  if (inverse)
+    columns(), rows();
+  else
+    rows(), columns();
+}
+
+}  // namespace
+
 void Fft2d(std::vector<std::complex<double>>* field, int nx, int ny, bool inverse) {
-  if (nx <= 0 || ny <= 0 || field->size() != size_t(nx) * ny)
-    throw Error("a transformed field must hold nx x ny values");
+  CheckField(*field, nx, ny);
   Eigen::FFT<double> fft;
   fft.SetFlag(Eigen::FFT<double>::Unscaled);
-  std::vector<std::complex<double>> in, out;
-  std::complex<double>* f = field->data();
-  for (int i = 0; i < ny; ++i) Transform(fft, f + size_t(i) * nx, nx, 1, inverse, in, out);
-  for (int j = 0; j < nx; ++j) Transform(fft, f + j, ny, nx, inverse, in, out);
+  TransformField(fft, field->data(), nx, ny, inverse);
 }
 
 void FilterPeriodic(std::vector<std::complex<double>>* field, int nx, int ny, double spacing,
                     const std::function<double(double fx, double fy)>& gain) {
-  if (nx <= 0 || ny <= 0 || field->size() != size_t(nx) * ny) throw Error("a filtered field must hold nx x ny values");
+  CheckField(*field, nx, ny);
   Eigen::FFT<double> fft;
-  std::vector<std::complex<double>> in, out;
   std::complex<double>* f = field->data();
-  for (int i = 0; i < ny; ++i) Transform(fft, f + size_t(i) * nx, nx, 1, false, in, out);
-  for (int j = 0; j < nx; ++j) Transform(fft, f + j, ny, nx, false, in, out);
+  TransformField(fft, f, nx, ny, false);
   for (int i = 0; i < ny; ++i) {
     const int ki = i <= ny / 2 ? i : i - ny;
     const double fy = ki / (ny * spacing);
@@ -59,8 +76,7 @@ void FilterPeriodic(std::vector<std::complex<double>>* field, int nx, int ny, do
       f[size_t(i) * nx + j] *= gain(kj / (nx * spacing), fy);
     }
   }
-  for (int j = 0; j < nx; ++j) Transform(fft, f + j, ny, nx, true, in, out);
-  for (int i = 0; i < ny; ++i) Transform(fft, f + size_t(i) * nx, nx, 1, true, in, out);
+  TransformField(fft, f, nx, ny, true);
 }
 
 RealFft2d::RealFft2d(int nx, int ny) : nx_(nx), ny_(ny) {
