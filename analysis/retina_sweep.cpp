@@ -12,11 +12,13 @@
 #include "layerlab/framework/atomic_file.h"
 #include "layerlab/framework/error.h"
 #include "layerlab/framework/exr_image.h"
+#include "layerlab/framework/fixed_order_sum.h"
 #include "layerlab/framework/png_writer.h"
 #include "layerlab/framework/polarization.h"
 #include "layerlab/framework/units.h"
 #include "layerlab/retina/eye_optics.h"
 #include "layerlab/retina/retina_workspace.h"
+#include "layerlab/solvers/objective.h"
 #include "layerlab/systems/panel_diffraction.h"
 
 namespace layerlab {
@@ -54,12 +56,14 @@ RetinaBatch TraceBatch(const DisplayModel& model, const Patterns& t, const Scene
       return RetinaOfDisplay(model, t, DisplayRetinaTables(model, traced, group, focus), workspace);
     });
     r.display_mean_cd_m2 = MeanLuminance(b.display[s]) * white;
-    r.natural_mean_cd_m2 = NAN;
+    r.natural_mean_cd_m2 = r.psnr_db = NAN;
     if (natural) {
       b.seen[s] = optics.See([&](const RetinaGrid& traced, const std::vector<PupilPoint>& group) {
         return RetinaOfScene(natural, traced, group, focus);
       });
       r.natural_mean_cd_m2 = MeanLuminance(b.seen[s]) * white;
+      const std::vector<float>&a = b.display[s].pixels, &n = b.seen[s].pixels;
+      r.psnr_db = PsnrDb(FixedOrderSquaredDifference(a.data(), n.data(), a.size()), a.size());
     }
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
@@ -133,7 +137,7 @@ std::vector<RetinaStateResult> WriteRetinaSweep(
   const fs::path out = folder;
   fs::create_directories(out / "display");
   if (natural) fs::create_directories(out / "natural");
-  std::string csv = "accommodation_D,display_mean_cd_m2,natural_mean_cd_m2,display_clipped_in_png,seconds\n";
+  std::string csv = "accommodation_D,display_mean_cd_m2,natural_mean_cd_m2,display_clipped_in_png,seconds,psnr_db\n";
   // States in batches: each state's images are computed (in parallel
   // within), then the batch's files are written in parallel. Writing, not
   // tracing, was most of a state's time (ZIP saves 5% of a float image at
@@ -150,8 +154,8 @@ std::vector<RetinaStateResult> WriteRetinaSweep(
       RetinaStateResult& r = b.r[s];
       for (int f = 0; f < 4; ++f) r.seconds += seconds[s * 4 + f];
       char row[160];
-      std::snprintf(row, sizeof row, "%.4f,%.6g,%.6g,%zu,%.3f\n", r.diopters, r.display_mean_cd_m2,
-                    r.natural_mean_cd_m2, r.display_clipped_in_png, r.seconds);
+      std::snprintf(row, sizeof row, "%.4f,%.6g,%.6g,%zu,%.3f,%.4f\n", r.diopters, r.display_mean_cd_m2,
+                    r.natural_mean_cd_m2, r.display_clipped_in_png, r.seconds, r.psnr_db);
       csv += row;
       if (o.keep_images) r.display = std::move(b.display[s]), r.natural = std::move(b.seen[s]);
       results.push_back(std::move(r));

@@ -39,6 +39,9 @@ struct RetinaStateResult {
   std::string name;  // "0.40D": the file stem in display/ and natural/
   double display_mean_cd_m2 = 0;
   double natural_mean_cd_m2 = 0;  // NaN without natural viewing
+  // The display's image against natural viewing: 10 log10(1 / MSE) over pixels and channels, display-relative
+  // (1 = the display's white); NaN without natural viewing.
+  double psnr_db = 0;
   size_t display_clipped_in_png = 0;
   double seconds = 0;      // spent on its images and files (the files of a few states are written at once)
   Image display, natural;  // with RetinaSweepOptions::keep_images (natural: with natural viewing), else empty

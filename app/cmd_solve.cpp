@@ -21,6 +21,7 @@
 #include "layerlab/app/command_line.h"
 #include "layerlab/app/commands.h"
 #include "layerlab/app/number_list.h"
+#include "layerlab/app/optics_options.h"
 #include "layerlab/app/pose_option.h"
 #include "layerlab/app/solver_flags.h"
 #include "layerlab/app/target_option.h"
@@ -50,6 +51,7 @@ struct Options {
   int checkpoint_every = 0;
   std::string max_memory;
   PoseOption pose;
+  OpticsOptions optics;  // --fill-factor
   std::string start_from;
 };
 
@@ -267,6 +269,7 @@ void Solve(const Options& o, Ranks& ranks) {
   DisplaySystem system = Compile(scene);
   if (const std::string warning = ApplyPoseOption(o.pose, &system); !warning.empty())
     system.warnings.push_back(warning);
+  ApplyOpticsOptions(o.optics, &system);
   SolveJob job;
   job.system = &system;
   job.config = SolveJobConfig(scene, system, o.solver.solver);
@@ -335,6 +338,7 @@ void AddSolveCommand(CLI::App& app) {
                   "Write OUT/checkpoint every N iterations (and when stopped early)");
   cmd->add_flag("--resume", o->resume, "Continue from OUT/checkpoint (same scene, target and solver)");
   AddPoseOptions(cmd, o->pose);
+  AddFillFactorOption(cmd, o->optics);
   cmd->add_option("--start-from", o->start_from,
                   "Begin from the patterns of an earlier solve (its output folder), e.g. for the eye's last position");
   cmd->add_option("--max-memory", o->max_memory,

@@ -10,6 +10,10 @@ void AddOpticsOptions(CLI::App* cmd, OpticsOptions& options) {
                   "The eye's diffraction, replacing the scene's: none, mtf (the MTF times the geometric image) or "
                   "wave (the pupil function)")
       ->check(CLI::IsMember({"none", "mtf", "wave"}));
+  AddFillFactorOption(cmd, options);
+}
+
+void AddFillFactorOption(CLI::App* cmd, OpticsOptions& options) {
   cmd->add_option("--fill-factor", options.fill_factor,
                   "Every panel's pixel aperture over its pitch, F or FX,FY in (0, 1], replacing the scenes': below 1 "
                   "the panels' grids diffract the layers behind them");

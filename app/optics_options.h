@@ -18,6 +18,8 @@ struct OpticsOptions {
 };
 
 void AddOpticsOptions(CLI::App* cmd, OpticsOptions& options);
+// --fill-factor alone (solve: the eye's diffraction does not enter a solve).
+void AddFillFactorOption(CLI::App* cmd, OpticsOptions& options);
 
 // Applies the options given to `system` (compiled): a pinhole pupil with diffraction and a fill factor
 // outside (0, 1] are refused, naming the option.

@@ -9,7 +9,9 @@
 
 namespace layerlab {
 
-JointPass::JointPass(const DisplayModel& model, SolveWorkspace* workspace) : model_(model), workspace_(workspace) {
+JointPass::JointPass(const DisplayModel& model, SolveWorkspace* workspace,
+                     const std::vector<LayerDiffraction>* diffraction)
+    : model_(model), workspace_(workspace), diffraction_(diffraction && !diffraction->empty() ? diffraction : nullptr) {
   if (!workspace_) {
     own_ = std::make_unique<SolveWorkspace>(model, omp_get_max_threads(), kJointPass);
     workspace_ = own_.get();
@@ -30,6 +32,19 @@ JointPass::JointPass(const DisplayModel& model, SolveWorkspace* workspace) : mod
 }
 
 double JointPass::Run(const LightField& l, const Patterns& t, const std::vector<char>* summed, bool with_objective) {
+  if (!diffraction_) return RunOn(l, t, summed, with_objective);
+  DiffractPatterns(*diffraction_, t, &seen_);
+  const double error = RunOn(l, seen_, summed, with_objective);
+  for (size_t k = 0; k < t.size(); ++k) {
+    const int layer = static_cast<int>(k);
+    if ((summed && !(*summed)[k]) || !Diffracts(*diffraction_, layer)) continue;
+    DiffractTransposed(*diffraction_, layer, t[k].rows, t[k].cols, &workspace_->joint_residual[k]);
+    DiffractTransposed(*diffraction_, layer, t[k].rows, t[k].cols, &workspace_->joint_den[k]);
+  }
+  return error;
+}
+
+double JointPass::RunOn(const LightField& l, const Patterns& t, const std::vector<char>* summed, bool with_objective) {
   const size_t layers = model_.layer_count();
   std::vector<std::vector<double>>&res_ = workspace_->joint_residual, &den_ = workspace_->joint_den;
   for (size_t k = 0; k < layers; ++k)

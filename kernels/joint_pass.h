@@ -15,6 +15,7 @@
 #include "layerlab/framework/lightfield.h"
 #include "layerlab/kernels/solve_workspace.h"
 #include "layerlab/systems/display_model.h"
+#include "layerlab/systems/panel_diffraction.h"
 
 namespace layerlab {
 
@@ -22,7 +23,12 @@ class JointPass {
  public:
   // In the solve's `workspace` (sized with kJointPass), or without one in a
   // workspace of its own for the thread count of now.
-  explicit JointPass(const DisplayModel& model, SolveWorkspace* workspace = nullptr);
+  // With `diffraction` (kept by the caller) the display is seen through its panels' diffraction D
+  // (systems/panel_diffraction.h): the pass reads the patterns D t, and the sums, made over D t's pixels, are
+  // mapped back to t's by D^T (the gradient's chain rule; for the multiplicative update the convolutive
+  // Lee-Seung step, D being non-negative).
+  explicit JointPass(const DisplayModel& model, SolveWorkspace* workspace = nullptr,
+                     const std::vector<LayerDiffraction>* diffraction = nullptr);
 
   // Returns ||l - l~||^2 of `t`; residual() and denominator() then hold its
   // sums. With `summed` ([layer], nonzero: needed; joint_column_pass.h) the
@@ -36,6 +42,7 @@ class JointPass {
   const std::vector<std::vector<double>>& denominator() const { return workspace_->joint_den; }
 
  private:
+  double RunOn(const LightField& l, const Patterns& t, const std::vector<char>* summed, bool with_objective);
   // Per thread: the float sums of every layer (ThreadWorkspace::num holds res, den), and the view's objective.
   void ViewOneTap(const float* target, const Patterns& t, size_t view, ThreadWorkspace* sums, double* error) const;
   void ViewGeneral(const float* target, const Patterns& t, size_t view, ThreadWorkspace* sums, double* error) const;
@@ -48,6 +55,8 @@ class JointPass {
   bool column_pass_ = false;  // every branch on the one-tap path: JointColumnPass
   std::unique_ptr<SolveWorkspace> own_;
   SolveWorkspace* workspace_;
+  const std::vector<LayerDiffraction>* diffraction_ = nullptr;  // null: none
+  Patterns seen_;                                               // D t
 };
 
 }  // namespace layerlab

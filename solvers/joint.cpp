@@ -77,10 +77,10 @@ class JointSolver final : public Solver {
     if (!loop.Start()) return loop.Finish();
     const LightField& l = loop.target();
     const float floor = static_cast<float>(options.floor);
-    JointPass pass(model, &loop.workspace());
+    JointPass pass(model, &loop.workspace(), loop.diffraction());
     // The retinal objective's pass (retinal_pass.h) gives the same sums for f / Bound().
     std::optional<RetinalPass> retinal;
-    if (loop.retinal()) retinal.emplace(model, l, *loop.retinal());
+    if (loop.retinal()) retinal.emplace(model, l, *loop.retinal(), loop.diffraction());
     auto run = [&](const Patterns& p) { return retinal ? retinal->Run(p) : pass.Run(l, p); };
     const JointPass& sums = retinal ? retinal->sums() : pass;
 
@@ -137,6 +137,7 @@ SolverType JointSolverType() {
       "joint", "every layer of every branch at once, one pass per iteration, over-relaxed multiplicative steps",
       [] { return std::make_unique<JointSolver>(); }, defaults);
   type.retinal_objective = true;
+  type.panel_diffraction = true;
   return type;
 }
 

@@ -17,6 +17,11 @@
 // pairs (kernels/pair_lattice.h) bins the target once; the second layer's
 // updates are then made from the pairs, the first's (with the objective)
 // from a pass over the rays.
+//
+// Through the panels' diffraction (SolverOptions::panel_diffraction) every
+// stack takes the depth-by-depth path, whose joint pass reads the diffracted
+// patterns D t and maps its sums back by D^T: the convolutive form of the
+// same step, t_a <- t_a * D_a^T(num) / D_a^T(den), D_a >= 0.
 #include <algorithm>
 #include <optional>
 
@@ -59,8 +64,9 @@ std::vector<std::vector<int>> LayersByDepth(const DisplayModel& model) {
 // iteration sums one layer per pass, so a rank-K one should sum K, not 2K).
 class DepthPass {
  public:
-  DepthPass(const DisplayModel& model, const std::vector<std::vector<int>>& by_depth, SolveWorkspace* workspace)
-      : pass_(model, workspace) {
+  DepthPass(const DisplayModel& model, const std::vector<std::vector<int>>& by_depth, SolveWorkspace* workspace,
+            const std::vector<LayerDiffraction>* diffraction)
+      : pass_(model, workspace, diffraction) {
     for (const std::vector<int>& layers : by_depth) {
       summed_.emplace_back(model.layer_count(), 0);
       for (int a : layers) summed_.back()[a] = 1;
@@ -78,11 +84,11 @@ class DepthPass {
   std::vector<std::vector<char>> summed_;  // [depth][layer]
 };
 
-// The rank-K iterations (K > 1 subframes).
-void SolveRankK(const DisplayModel& model, const SolverOptions& options, SolveLoop* loop, Patterns* t) {
+// The rank-K iterations (K > 1 subframes), and any stack through the panels' diffraction.
+void SolveByDepth(const DisplayModel& model, const SolverOptions& options, SolveLoop* loop, Patterns* t) {
   const LightField& l = loop->target();
   const std::vector<std::vector<int>> by_depth = LayersByDepth(model);
-  DepthPass pass(model, by_depth, &loop->workspace());
+  DepthPass pass(model, by_depth, &loop->workspace(), loop->diffraction());
   auto step = [&](size_t depth) {
     for (int a : by_depth[depth])
       ApplyMultiplicativeStepFromResidual(pass.residual(a), pass.denominator(a), options, &(*t)[a].rgb);
@@ -108,8 +114,8 @@ class MultiplicativeSolver final : public Solver {
     SolveLoop loop("multiplicative", model, target, options, t);
     const std::string why = Unsuitable(model.system());
     if (!loop.Start(why.empty() ? why : "the multiplicative solver " + why)) return loop.Finish();
-    if (model.branch_count() > 1) {
-      SolveRankK(model, options, &loop, t);
+    if (model.branch_count() > 1 || loop.diffraction()) {
+      SolveByDepth(model, options, &loop, t);
       return loop.Finish();
     }
     const LightField& l = loop.target();
@@ -155,6 +161,7 @@ SolverType MultiplicativeSolverType() {
       [] { return std::make_unique<MultiplicativeSolver>(); }, defaults);
   type.unsuitable = Unsuitable;
   type.default_rank = 3;
+  type.panel_diffraction = true;
   // The joint pass for rank K; the pair lattice for a stack of two.
   type.memory.passes = kSynthesisPass | kLayerUpdatePass | kJointPassIfBranches | kPairLatticeIfOneBranch;
   return type;

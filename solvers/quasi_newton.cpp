@@ -201,7 +201,7 @@ class QuasiNewtonRun {
     size_t longest = 1;
     for (size_t b = 0; b < model_.branch_count(); ++b) longest = std::max(longest, model_.branch_layers(b).size());
     plain_ = 1.0 / static_cast<double>(longest);
-    pass_.emplace(model_, &loop_.workspace());
+    pass_.emplace(model_, &loop_.workspace(), loop_.diffraction());
     layout_.emplace(model_);
     n_ = layout_->size();
     spare_.resize(kMemory);
@@ -230,7 +230,9 @@ class QuasiNewtonRun {
     if (warm_) warm_->Begin(&loop_);
     for (int k = 1; k <= warm_iterations_; ++k) {
       const bool last = k == warm_iterations_;
-      std::optional<double> objective = warm_->Iterate(!last);
+      // The hybrid's iterations do not see the panels' diffraction: their objective is measured through it.
+      std::optional<double> objective = warm_->Iterate(!last && !loop_.diffraction());
+      if (loop_.diffraction()) objective.reset();
       if (last) {
         loop_.SetUpMidway([&] { MakePass(); });
         objective = f_ = Run(*t_);
@@ -247,7 +249,7 @@ class QuasiNewtonRun {
 
   void MakePass() {
     warm_.reset();
-    if (loop_.retinal()) retinal_.emplace(model_, *l_, *loop_.retinal());
+    if (loop_.retinal()) retinal_.emplace(model_, *l_, *loop_.retinal(), loop_.diffraction());
   }
 
   void MakeVectors() {
@@ -367,6 +369,7 @@ SolverType QuasiNewtonSolverType() {
   type.memory.light_fields = 1;
   type.memory.fields_then_layers = true;
   type.retinal_objective = true;
+  type.panel_diffraction = true;
   type.memory.layer_doubles = 9 + kMemory * 2;
   type.options = {{"warm_start_iterations", "iterations of hybrid before the quasi-Newton steps"}, SubIterationsKey()};
   return type;

@@ -6,11 +6,13 @@
 
 namespace layerlab {
 
-RetinalPass::RetinalPass(const DisplayModel& model, const LightField& target, const RetinalObjective& objective)
+RetinalPass::RetinalPass(const DisplayModel& model, const LightField& target, const RetinalObjective& objective,
+                         const std::vector<LayerDiffraction>* diffraction)
     : model_(model),
       target_(target),
       objective_(objective),
-      pass_(model),
+      diffraction_(diffraction && !diffraction->empty() ? diffraction : nullptr),
+      pass_(model, nullptr, diffraction_),
       light_(model.geometry()),
       effective_(model.geometry()) {}
 
@@ -32,8 +34,14 @@ RetinalMeasures MeasureRetinalObjective(const DisplayModel& model, const LightFi
   return Measures(objective, light, target, per_state, f);
 }
 
+const Patterns& RetinalPass::Read(const Patterns& t) {
+  if (!diffraction_) return t;
+  DiffractPatterns(*diffraction_, t, &seen_);
+  return seen_;
+}
+
 double RetinalPass::Run(const Patterns& t) {
-  Synthesize(model_, t, &light_);
+  Synthesize(model_, Read(t), &light_);
   std::vector<double> per_state;
   const double f = objective_.EvaluateWithAdjoint(light_, &per_state, &effective_);
   last_ = Measures(objective_, light_, target_, per_state, f);
@@ -46,7 +54,7 @@ double RetinalPass::Run(const Patterns& t) {
 }
 
 double RetinalPass::Evaluate(const Patterns& t) {
-  Synthesize(model_, t, &light_);
+  Synthesize(model_, Read(t), &light_);
   std::vector<double> per_state;
   const double f = objective_.Evaluate(light_, &per_state);
   last_ = Measures(objective_, light_, target_, per_state, f);

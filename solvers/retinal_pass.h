@@ -30,7 +30,9 @@ RetinalMeasures MeasureRetinalObjective(const DisplayModel& model, const LightFi
 
 class RetinalPass {
  public:
-  RetinalPass(const DisplayModel& model, const LightField& target, const RetinalObjective& objective);
+  // With `diffraction` (kept by the caller) the display's light field is L(D t) (kernels/joint_pass.h).
+  RetinalPass(const DisplayModel& model, const LightField& target, const RetinalObjective& objective,
+              const std::vector<LayerDiffraction>* diffraction = nullptr);
 
   // f(t) / s; residual() and denominator() then hold the sums above.
   double Run(const Patterns& t);
@@ -44,9 +46,13 @@ class RetinalPass {
   const DisplayModel& model_;
   const LightField& target_;
   const RetinalObjective& objective_;
+  const std::vector<LayerDiffraction>* diffraction_;
   JointPass pass_;
+  Patterns seen_;                 // D t
   LightField light_, effective_;  // L(t); M (L - l), then L - m in place
   RetinalMeasures last_;
+
+  const Patterns& Read(const Patterns& t);  // D t, or t
 };
 
 }  // namespace layerlab

@@ -59,8 +59,16 @@ bool SolveLoop::Start(const std::string& refusal) {
     RequireSameRays(model_, source_);
     prepared_ = PrepareTarget(model_, source_, options_.target_range, &report_);
     const SolverType* type = SolverRegistry::Builtins().find(report_.solver);
-    workspace_ = std::make_unique<SolveWorkspace>(model_, omp_get_max_threads(),
-                                                  type ? type->memory.passes : unsigned(kAllPasses));
+    if (options_.panel_diffraction) diffraction_ = PanelDiffraction(model_.system());
+    if (!diffraction_.empty() && !(type && type->panel_diffraction)) {
+      Fail("the " + report_.solver + " solver does not model the panels' diffraction (\"panel_diffraction\"); " +
+           "joint, multiplicative and quasi-newton do");
+      return false;
+    }
+    report_.panel_diffraction = !diffraction_.empty();
+    unsigned passes = type ? type->memory.passes : unsigned(kAllPasses);
+    if (!diffraction_.empty()) passes |= kJointPass;  // the diffracted forward model runs through the joint pass
+    workspace_ = std::make_unique<SolveWorkspace>(model_, omp_get_max_threads(), passes);
     if (options_.objective == ObjectiveKind::kRetinal || options_.measure_focal_stack)
       retinal_ = std::make_unique<RetinalObjective>(model_, target(), RetinalOptionsOf(options_));
     if (retinal_) report_.pupil_positions = retinal_->pupil_count();
@@ -110,7 +118,7 @@ bool SolveLoop::Start(const std::string& refusal) {
     report_.initial_objective = m.objective;
     return Record(m.objective, m.light_field_objective, m.focal_stack_psnr_db);
   }
-  double objective = Objective(model_, target(), *patterns_, workspace_.get());
+  double objective = PatternsObjective();
   report_.initial_objective = objective;
   return Record(objective, objective,
                 retinal_ ? MeasureRetinal().focal_stack_psnr_db : std::numeric_limits<double>::quiet_NaN());
@@ -118,9 +126,15 @@ bool SolveLoop::Start(const std::string& refusal) {
 
 RetinalMeasures SolveLoop::MeasureRetinal() {
   const auto begin = std::chrono::steady_clock::now();
-  const RetinalMeasures m = MeasureRetinalObjective(model_, target(), *retinal_, *patterns_);
+  const RetinalMeasures m = MeasureRetinalObjective(model_, target(), *retinal_, Read());
   start_ += std::chrono::steady_clock::now() - begin;
   return m;
+}
+
+const Patterns& SolveLoop::Read() {
+  if (diffraction_.empty()) return *patterns_;
+  DiffractPatterns(diffraction_, *patterns_, &seen_);
+  return seen_;
 }
 
 double SolveLoop::ResumedState(const std::string& key, double fresh) const {
@@ -160,7 +174,7 @@ bool SolveLoop::EndIteration(std::optional<double> objective) {
     value = m.objective;
     if (!Record(value, m.light_field_objective, m.focal_stack_psnr_db)) return false;
   } else {
-    value = objective ? *objective : Objective(model_, target(), *patterns_, workspace_.get());
+    value = objective ? *objective : PatternsObjective();
     const double focal_stack =
         retinal_ ? MeasureRetinal().focal_stack_psnr_db : std::numeric_limits<double>::quiet_NaN();
     if (!Record(value, value, focal_stack)) return false;

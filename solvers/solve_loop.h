@@ -12,6 +12,7 @@
 #include "layerlab/solvers/objective.h"
 #include "layerlab/solvers/retinal_pass.h"
 #include "layerlab/solvers/solver.h"
+#include "layerlab/systems/panel_diffraction.h"
 
 namespace layerlab {
 
@@ -58,6 +59,10 @@ class SolveLoop {
     return options_.objective == ObjectiveKind::kRetinal ? retinal_.get() : nullptr;
   }
   void SetMeasures(const RetinalMeasures& m) { measured_ = m; }
+  // With options.panel_diffraction and panels that diffract: the forward
+  // model's D (systems/panel_diffraction.h), which the solver hands to its
+  // passes; nullptr otherwise. The loop's own objectives read D t then.
+  const std::vector<LayerDiffraction>* diffraction() const { return diffraction_.empty() ? nullptr : &diffraction_; }
   // Stops with a failure (for example a non-finite objective).
   void Fail(const std::string& message);
   // Stops because no further step can lower the objective.
@@ -82,6 +87,9 @@ class SolveLoop {
   bool Record(double objective, double light_field_objective, double focal_stack_psnr_db);
   // Measured here, off the clock (the solver did not spend it).
   RetinalMeasures MeasureRetinal();
+  // The patterns the forward model reads: D t with diffraction, else t itself.
+  const Patterns& Read();
+  double PatternsObjective() { return Objective(model_, target(), Read(), workspace_.get()); }
   void WriteCheckpoint();
 
   const DisplayModel& model_;
@@ -98,6 +106,8 @@ class SolveLoop {
   std::map<std::string, double> state_;
   std::unique_ptr<RetinalObjective> retinal_;
   std::optional<RetinalMeasures> measured_;
+  std::vector<LayerDiffraction> diffraction_;
+  Patterns seen_;  // D t
 };
 
 }  // namespace layerlab

@@ -62,6 +62,9 @@ struct SolverType {
   SolverMemory memory;
   // It minimizes the retinal objective when SolverOptions::objective asks (else only the light-field one).
   bool retinal_objective = false;
+  // It solves through the panels' diffraction when SolverOptions::panel_diffraction asks (else it refuses a
+  // display whose panels diffract).
+  bool panel_diffraction = false;
   // The keys it reads beyond CommonSolverOptionKeys().
   std::vector<SolverOptionKey> options;
 

@@ -137,6 +137,17 @@ CheckpointInputs CheckpointDigest(const DisplayModel& model, Sampling sampling, 
                 o.sub_iterations, o.warm_start_iterations, static_cast<unsigned long long>(o.seed), o.initial_value,
                 o.epsilon, o.floor, static_cast<int>(o.target_range));
   std::string options = std::string(text) + " objective=" + ToString(o.objective);
+  if (o.panel_diffraction) {  // and what it depends on beyond the system's geometry
+    options += " panel_diffraction=1";
+    for (const VirtualLayer& layer : model.system().layers) {
+      std::snprintf(text, sizeof text, " fill=%.17g,%.17g", layer.panel.fill_factor[0], layer.panel.fill_factor[1]);
+      options += text;
+    }
+    for (const Branch& branch : model.system().branches) {
+      std::snprintf(text, sizeof text, " coherence=%.17g", branch.backlight_coherence_width_m);
+      options += text;
+    }
+  }
   if (o.objective == ObjectiveKind::kRetinal) {  // what the retinal objective minimizes
     auto list = [](const std::vector<double>& values) {
       std::string s;

@@ -141,6 +141,17 @@ std::vector<SolverOptionEntry> MakeTable() {
   e.python = "eyebox_sigma", e.real = &SolverOptions::eyebox_sigma_m;
   add();
 
+  e.key = "panel_diffraction", e.kind = Kind::kBoolean, e.type = "boolean", e.default_text = "false";
+  e.meaning =
+      "solve through the panels' diffraction: the forward model sees each layer through the pixel grids of the "
+      "panels in front (fill_factor below 1; joint, multiplicative, quasi-newton; docs/optics.md)";
+  e.cli_flag = "--panel-diffraction";
+  e.cli_help = "Solve through the panels' diffraction (fill_factor below 1; joint, multiplicative, quasi-newton)";
+  e.python = "panel_diffraction";
+  e.get = [](const SolverOptions& o) { return int(o.panel_diffraction); };
+  e.set = [](SolverOptions& o, int i) { o.panel_diffraction = i != 0; };
+  add();
+
   // Not in the scene file.
   e.key = "epsilon", e.kind = Kind::kReal, e.type = "number", e.in_scene = false, e.has_range = true;
   e.range = {0, 1e-3, true, true}, e.default_text = "1e-12";

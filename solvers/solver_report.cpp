@@ -42,6 +42,7 @@ std::string SolverReport::FullReport() const {
     if (retinal_target == "traced") what += ", against the traced target scene";
     if (pupil_positions > 1) what += ", from " + std::to_string(pupil_positions) + " pupil positions";
   }
+  if (panel_diffraction) what += ", seen through the panels' diffraction";
   std::snprintf(buf, sizeof buf, "objective            %.9g -> %.9g (sum of squared errors%s)\n", initial_objective,
                 final_objective, what.c_str());
   out += buf;

@@ -97,6 +97,12 @@ struct SolverOptions {
   // every trace row, off the clock (the trace's seconds leave it out), so
   // that both objectives' solutions compare at equal solver time.
   bool measure_focal_stack = false;
+  // Solve through the panels' diffraction (systems/panel_diffraction.h): the
+  // forward model reads D t, the patterns as the eye sees them through the
+  // panels in front, instead of t. Only where a panel diffracts (fill_factor
+  // below 1 in front of another layer of its stack), and only by the solvers
+  // whose SolverType::panel_diffraction says so.
+  bool panel_diffraction = false;
   // Called after every iteration with its trace row (progress display); may be empty.
   std::function<void(const struct IterationRecord& row)> progress;
   // Asked after every iteration; true stops the solve with the patterns of
@@ -144,6 +150,7 @@ struct SolverReport {
   // The focal stack's target images (RetinalObjectiveOptions::target), when a focal stack was measured.
   std::string retinal_target = "lightfield";
   bool contrast_sensitivity = false;  // the retinal objective's residuals weighted by it
+  bool panel_diffraction = false;     // the forward model saw the panels' diffraction
   size_t pupil_positions = 1;         // the focal stack's pupil positions (an eyebox distribution's, or 1)
   Termination termination = Termination::kNotRun;
   std::string message = "not run";

@@ -1,6 +1,7 @@
 #include "layerlab/systems/panel_diffraction.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -44,22 +45,54 @@ DiffractionAxis Axis(double pitch, double fill, double wavelength, double gap, d
   return axis;
 }
 
-// Channel c of `in` convolved with `axis` along x (`along_x`) or y into `out`, zero beyond the layer.
-void Convolve(const LayerPattern& in, int c, const DiffractionAxis& axis, bool along_x, LayerPattern* out) {
-#pragma omp parallel for
-  for (int i = 0; i < in.rows; ++i)
-    for (int j = 0; j < in.cols; ++j) {
-      double sum = 0;
-      for (int k = -axis.reach; k <= axis.reach; ++k) {
-        const double w = axis.weight[k + axis.reach];
-        if (w == 0) continue;
+// A rows x cols x 3 image convolved with each channel's kernel along x (`axis` 0) or y (1) into `out` (not
+// `in`), zero beyond the layer; `transposed`: with the kernels flipped, the convolution's transpose. A row at
+// a time, tap by tap: each tap adds a shifted run of the input (contiguous, all three channels), in double.
+template <typename In, typename Out>
+void Convolve(const In* in, int rows, int cols, const std::array<std::array<DiffractionAxis, 2>, 3>& axes, int axis,
+              bool transposed, Out* out) {
+  const int sign = transposed ? -1 : 1;
+  int reach = 0;
+  for (int c = 0; c < 3; ++c) reach = std::max(reach, axes[c][axis].reach);
+  const size_t row = size_t(cols) * 3;
+#pragma omp parallel
+  {
+    std::vector<double> sum(row);
+#pragma omp for schedule(static)
+    for (int i = 0; i < rows; ++i) {
+      std::fill(sum.begin(), sum.end(), 0.0);
+      for (int k = -reach; k <= reach; ++k) {
+        double w[3];
+        for (int c = 0; c < 3; ++c) {
+          const DiffractionAxis& a = axes[c][axis];
+          w[c] = std::abs(k) <= a.reach ? a.weight[k + a.reach] : 0.0;
+        }
+        if (w[0] == 0 && w[1] == 0 && w[2] == 0) continue;
         // A ghost moved by +k pixels shows at j the pattern at j - k.
-        const int si = along_x ? i : i - k, sj = along_x ? j - k : j;
-        if (si < 0 || sj < 0 || si >= in.rows || sj >= in.cols) continue;
-        sum += w * in.rgb[(size_t(si) * in.cols + sj) * 3 + c];
+        const int shift = sign * k;
+        int j0 = 0, j1 = cols;  // the pixels of the row this tap reaches; `source` is the input at j0
+        const In* source = nullptr;
+        if (axis == 0) {
+          j0 = std::max(0, shift), j1 = std::min(cols, cols + shift);
+          if (j0 >= j1) continue;
+          source = in + size_t(i) * row + size_t(j0 - shift) * 3;
+        } else {
+          const int si = i - shift;
+          if (si < 0 || si >= rows) continue;
+          source = in + size_t(si) * row;
+        }
+        double* target = sum.data() + size_t(j0) * 3;
+        for (size_t j = 0, n = size_t(j1 - j0); j < n; ++j)
+          for (int c = 0; c < 3; ++c) target[j * 3 + c] += w[c] * source[j * 3 + c];
       }
-      out->rgb[(size_t(i) * in.cols + j) * 3 + c] = static_cast<float>(sum);
+      Out* o = out + size_t(i) * row;
+      for (size_t e = 0; e < row; ++e) o[e] = static_cast<Out>(sum[e]);
     }
+  }
+}
+
+void RequireLayer(const LayerDiffraction& d, size_t layers) {
+  if (d.layer < 0 || size_t(d.layer) >= layers) throw Error("panel diffraction: a layer the patterns do not hold");
 }
 
 }  // namespace
@@ -104,18 +137,40 @@ std::vector<LayerDiffraction> PanelDiffraction(const DisplaySystem& system) {
   return out;
 }
 
-Patterns DiffractedPatterns(const std::vector<LayerDiffraction>& diffraction, const Patterns& t) {
-  Patterns seen = t;
+void DiffractPatterns(const std::vector<LayerDiffraction>& diffraction, const Patterns& t, Patterns* seen) {
+  *seen = t;
+  std::vector<float> across;
   for (const LayerDiffraction& d : diffraction) {
-    if (d.layer < 0 || size_t(d.layer) >= t.size()) throw Error("panel diffraction: a layer the patterns do not hold");
-    LayerPattern& p = seen[d.layer];
-    LayerPattern across = p;
-    for (int c = 0; c < 3; ++c) {
-      Convolve(p, c, d.axes[c][0], true, &across);
-      Convolve(across, c, d.axes[c][1], false, &p);
-    }
+    RequireLayer(d, t.size());
+    LayerPattern& p = (*seen)[d.layer];
+    across.resize(p.rgb.size());
+    Convolve(p.rgb.data(), p.rows, p.cols, d.axes, 0, false, across.data());
+    Convolve(across.data(), p.rows, p.cols, d.axes, 1, false, p.rgb.data());
   }
+}
+
+Patterns DiffractedPatterns(const std::vector<LayerDiffraction>& diffraction, const Patterns& t) {
+  Patterns seen;
+  DiffractPatterns(diffraction, t, &seen);
   return seen;
+}
+
+void DiffractTransposed(const std::vector<LayerDiffraction>& diffraction, int layer, int rows, int cols,
+                        std::vector<double>* sums) {
+  if (sums->size() != size_t(rows) * cols * 3) throw Error("panel diffraction: sums not of the layer's size");
+  std::vector<double> across;
+  for (auto d = diffraction.rbegin(); d != diffraction.rend(); ++d) {  // D = D_n ... D_1, so D^T = D_1^T ... D_n^T
+    if (d->layer != layer) continue;
+    across.resize(sums->size());
+    Convolve(sums->data(), rows, cols, d->axes, 1, true, across.data());
+    Convolve(across.data(), rows, cols, d->axes, 0, true, sums->data());
+  }
+}
+
+bool Diffracts(const std::vector<LayerDiffraction>& diffraction, int layer) {
+  for (const LayerDiffraction& d : diffraction)
+    if (d.layer == layer) return true;
+  return false;
 }
 
 Patterns SeenPatterns(const DisplaySystem& system, const Patterns& t) {

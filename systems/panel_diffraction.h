@@ -76,6 +76,16 @@ std::vector<LayerDiffraction> PanelDiffraction(const DisplaySystem& system);
 // layer's channels convolved with its kernels (zero beyond the layer: its
 // border is dark). The same patterns when no panel diffracts.
 Patterns DiffractedPatterns(const std::vector<LayerDiffraction>& diffraction, const Patterns& t);
+// The same into `seen`, reusing its storage (a solve's forward model, every pass).
+void DiffractPatterns(const std::vector<LayerDiffraction>& diffraction, const Patterns& t, Patterns* seen);
+// The transpose for one layer of rows x cols pixels: sums over its seen
+// pixels ([pixel * 3 + channel], e.g. a gradient or the multiplicative
+// update's two sides) become sums over its own, in place. The kernels are
+// non-negative, so sums that are non-negative stay so.
+void DiffractTransposed(const std::vector<LayerDiffraction>& diffraction, int layer, int rows, int cols,
+                        std::vector<double>* sums);
+// Whether a panel in front diffracts `layer`.
+bool Diffracts(const std::vector<LayerDiffraction>& diffraction, int layer);
 // DiffractedPatterns(PanelDiffraction(system), t): what every retinal image of the display reads.
 Patterns SeenPatterns(const DisplaySystem& system, const Patterns& t);
 
