@@ -87,6 +87,8 @@ TEST(DiffractedSolve, SolvingThroughTheGridBeatsIgnoringIt) {
     // The trace is the objective as the eye sees the display.
     const double seen_through = Objective(model, target, DiffractedPatterns(d, through));
     EXPECT_NEAR(b.final_objective, seen_through, 1e-5 * seen_through);
+    const double seen_first = Objective(model, target, DiffractedPatterns(d, InitialPatterns(model, o)));
+    EXPECT_NEAR(b.trace.front().objective, seen_first, 1e-5 * seen_first);
     const double seen_ignoring = Objective(model, target, DiffractedPatterns(d, ignoring));
     EXPECT_LT(seen_through, 0.5 * seen_ignoring);
     if (std::string(name) == "multiplicative") {  // Lee-Seung's steps never raise it
