@@ -20,6 +20,7 @@
 #include "layerlab/systems/compile.h"
 #include "layerlab/systems/display_model.h"
 #include "layerlab/systems/eye_pose_limits.h"
+#include "layerlab/systems/panel_diffraction.h"
 
 namespace layerlab {
 namespace {
@@ -93,8 +94,13 @@ std::vector<CompareRun> CompareRunsOf(const std::vector<std::string>& scene_file
     std::vector<std::string> solvers = all ? SuitableSolvers(system) : selection.solvers;
     if (solvers.empty()) solvers.push_back(config.solver);
     const std::string name = std::filesystem::path(file).stem().string();
+    // The panels' diffraction is the display's physics, not a solver's setting: every row sees it, or is skipped.
+    const bool diffracted = config.options.panel_diffraction && !PanelDiffraction(system).empty();
     for (const std::string& solver : solvers) {
-      if (std::string why = UnsuitableSolver(solver, system); !why.empty()) {
+      std::string why = UnsuitableSolver(solver, system, registry);
+      if (why.empty() && diffracted && !registry.get(solver).panel_diffraction)
+        why = "does not model the panels' diffraction, which the scene's solve asks for (\"panel_diffraction\")";
+      if (!why.empty()) {
         if (skipped) skipped->push_back(name + " / " + solver + ": the solver " + why);
         continue;
       }
@@ -103,6 +109,7 @@ std::vector<CompareRun> CompareRunsOf(const std::vector<std::string>& scene_file
       SolverOptions options = own ? config.options : registry.find(solver)->defaults;
       options.iterations = selection.iterations.value_or(options.iterations);
       options.time_budget = selection.time_budget.value_or(options.time_budget);
+      options.panel_diffraction = config.options.panel_diffraction;
       const CompareRun run{
           name, system, solver, options, own ? config.sampling : Sampling::kNearest, own ? "scene" : "shared"};
       for (CompareRun& r : ObjectiveRuns(run, selection.objectives, skipped, registry)) runs.push_back(std::move(r));

@@ -1,7 +1,11 @@
 // `compare` with objectives (analysis/compare.h): each solver runs each
 // objective it minimizes, and every row of a comparison that includes the
 // retinal objective carries both PSNRs, in the table, the CSVs and the plot.
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 
 #include "layerlab/analysis/compare.h"
 #include "layerlab/kernels/synthesis.h"
@@ -122,6 +126,29 @@ TEST(Compare, TheEyeboxColumnCoversThePupilPositionsInsideTheLightField) {
   const std::vector<CompareResult> plain = RunComparison({{"stack", stack, "multiplicative", o}}, target);
   EXPECT_FALSE(plain[0].eyebox);
   EXPECT_EQ(CompareTable(plain).find("eyebox"), std::string::npos);
+}
+
+// The panels' diffraction the scene's solve asks for is the display's
+// physics: every row solves through it, and a solver that cannot is left out, saying why.
+TEST(Compare, EveryRowSolvesThroughThePanelsDiffractionOrIsLeftOut) {
+  nlohmann::json scene = testing::ReadExample("paper_prototype.json");
+  for (nlohmann::json& e : scene["elements"])
+    if (e["type"] == "lc_panel") e["fill_factor"] = 0.75;
+  scene["solve"]["panel_diffraction"] = true;
+  scene["solve"].erase("target_scene");
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / ("layerlab_compare_diffracted_" + std::to_string(::getpid()) + ".json");
+  std::ofstream(file) << scene.dump();
+  std::vector<std::string> skipped;
+  const std::vector<CompareRun> runs =
+      CompareRunsOf({file.string()}, {{"hybrid", "joint"}, 2, std::nullopt, false, {}}, &skipped);
+  std::filesystem::remove(file);
+  ASSERT_EQ(runs.size(), 1u);
+  EXPECT_EQ(runs[0].solver, "joint");
+  EXPECT_TRUE(runs[0].options.panel_diffraction);
+  ASSERT_EQ(skipped.size(), 1u);
+  EXPECT_NE(skipped[0].find("hybrid: the solver does not model the panels' diffraction"), std::string::npos)
+      << skipped[0];
 }
 
 }  // namespace
