@@ -33,18 +33,20 @@ py::array_t<double> Array(const std::vector<double>& v) { return py::array_t<dou
 
 // The retinal states as arrays: diopters, the images stacked (states, rows,
 // cols, 3) as Solution.retina gives them (one copy: each state has its own
-// buffer), natural (None without natural viewing) and the mean luminances.
+// buffer), natural (None without natural viewing), the mean luminances and each state's PSNR.
 py::dict RetinaDict(std::vector<RetinaStateResult>& states) {
   py::dict d;
-  std::vector<double> diopters, display_mean, natural_mean;
+  std::vector<double> diopters, display_mean, natural_mean, psnr;
   for (const RetinaStateResult& s : states) {
     diopters.push_back(s.diopters);
     display_mean.push_back(s.display_mean_cd_m2);
     natural_mean.push_back(s.natural_mean_cd_m2);
+    psnr.push_back(s.psnr_db);
   }
   d["diopters"] = Array(diopters);
   d["display_mean_cd_m2"] = Array(display_mean);
   d["natural_mean_cd_m2"] = Array(natural_mean);
+  d["psnr_db"] = Array(psnr);
   d["names"] = [&] {
     py::list names;
     for (const RetinaStateResult& s : states) names.append(s.name);

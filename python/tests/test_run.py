@@ -54,6 +54,10 @@ def check_the_arrays_and_tables(outcome, out, scene_path):
     np.testing.assert_allclose(retina["display_mean_cd_m2"], [float(r["display_mean_cd_m2"]) for r in written],
                                rtol=1e-5)
     states = len(written)
+    # Each state's PSNR: the display's image against natural viewing, over pixels and channels, peak 1.
+    error = ((retina["display"].astype(np.float64) - retina["natural"]) ** 2).mean(axis=(1, 2, 3))
+    np.testing.assert_allclose(retina["psnr_db"], 10 * np.log10(1 / error), atol=1e-9)
+    np.testing.assert_allclose(retina["psnr_db"], [float(r["psnr_db"]) for r in written], atol=1e-4)
     for images, means in ((retina["display"], retina["display_mean_cd_m2"]),
                           (retina["natural"], retina["natural_mean_cd_m2"])):
         assert images.dtype == np.float32 and images.shape[0] == states and images.shape[3] == 3
