@@ -475,14 +475,16 @@ void BM_RetinaImageOfDisplay(benchmark::State& state) {
   DisplayRetinaImage(state, RetinaSweepGrid(GetWorkload("paper_prototype")), 1.0, 0.010);
 }
 
-// The same state through the wave-optics eye (retina/eye_optics.h): the grid
-// widened by the PSF's support, the pupil's groups traced and transformed. Its
-// parts of the OTF are made once, outside the timing, as a sweep makes them.
-void BM_RetinaImageOfDisplayWave(benchmark::State& state) {
+// The same state through an eye that diffracts (retina/eye_optics.h): the
+// grid widened by the PSF's support; with the MTF, the geometric image times
+// the diffraction-limited MTF; by the pupil function, the pupil's groups
+// traced and transformed, its parts of the OTF made once, outside the timing,
+// as a sweep makes them.
+void DiffractedRetinaImage(benchmark::State& state, EyeDiffraction diffraction) {
   const Workload& w = GetWorkload("paper_prototype");
   const RetinaGrid grid = RetinaSweepGrid(w);
   EyeModel eye = w.system.eye;
-  eye.diffraction = EyeDiffraction::kPupilFunction;
+  eye.diffraction = diffraction;
   Patterns t = w.model->UniformPatterns(0.5f);
   const std::vector<PupilPoint> pupil = PupilSamples(eye);
   const EyeOptics optics(eye, pupil, grid);
@@ -499,6 +501,11 @@ void BM_RetinaImageOfDisplayWave(benchmark::State& state) {
   state.counters["traced_samples"] = double(optics.traced().cols) * optics.traced().rows;
   state.counters["transformed_groups"] = double(optics.transformed_groups());
   Report(state, 0.030, last);
+}
+
+void BM_RetinaImageOfDisplayMtf(benchmark::State& state) { DiffractedRetinaImage(state, EyeDiffraction::kPupilMtf); }
+void BM_RetinaImageOfDisplayWave(benchmark::State& state) {
+  DiffractedRetinaImage(state, EyeDiffraction::kPupilFunction);
 }
 
 // The same state of natural viewing of the target: image-wise (RetinaOfScene
@@ -703,6 +710,7 @@ BENCHMARK(BM_RankKIteration)
     ->UseManualTime();
 BENCHMARK(BM_RetinaImage)->Unit(benchmark::kMillisecond)->UseManualTime();
 BENCHMARK(BM_RetinaImageOfDisplay)->Unit(benchmark::kMillisecond)->UseManualTime();
+BENCHMARK(BM_RetinaImageOfDisplayMtf)->Unit(benchmark::kMillisecond)->UseManualTime();
 BENCHMARK(BM_RetinaImageOfDisplayWave)->Unit(benchmark::kMillisecond)->UseManualTime();
 BENCHMARK(BM_NaturalRetinaImage)->Unit(benchmark::kMillisecond)->UseManualTime();
 BENCHMARK(BM_NaturalRetinaImageRayByRay)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(2);

@@ -165,8 +165,23 @@ EyeOptics::EyeOptics(const EyeModel& eye, const std::vector<PupilPoint>& pupil, 
   if (double(traced_.cols) * traced_.rows > 1e8)
     throw Error("diffraction: the retina widened by the PSF's support (" + std::to_string(pad) +
                 " samples each side) would hold more than 1e8 samples; use a coarser resolution or a smaller field");
-  if (mode_ == EyeDiffraction::kPupilMtf) {
+  const int half = field_cols_ / 2 + 1;
+  const size_t bins = size_t(half) * field_rows_;
+  if (mode_ == EyeDiffraction::kPupilMtf) {  // one group: the rays' image, its gain the MTF (real and even)
     groups_ = {pupil};
+    flat_.assign(1, {false, false, false});
+    for (int c = 0; c < 3; ++c) {
+      std::vector<std::complex<float>> w(bins);
+#pragma omp parallel for
+      for (int i = 0; i < field_rows_; ++i) {
+        const int ki = i <= field_rows_ / 2 ? i : i - field_rows_;
+        for (int j = 0; j < half; ++j)
+          w[size_t(i) * half + j] = static_cast<float>(DiffractionOtf(shape_, diameter_m_, wavelengths_m_[c],
+                                                                      j / (field_cols_ * grid.resolution_rad),
+                                                                      ki / (field_rows_ * grid.resolution_rad)));
+      }
+      weights_[c] = {std::move(w)};
+    }
     return;
   }
   const std::vector<PupilPoint> own = PupilSamplesInOwnPlane(eye);
@@ -202,14 +217,12 @@ EyeOptics::EyeOptics(const EyeModel& eye, const std::vector<PupilPoint>& pupil, 
       flat_[g][c] = flat;
     }
   }
-  const size_t bins = size_t(field_cols_ / 2 + 1) * field_rows_;
   if (double(transformed_groups()) * 3 * bins * sizeof(std::complex<float>) > kWaveWeightBytes) return;
   for (int c = 0; c < 3; ++c) {
     weights_[c].resize(groups);
     for (int g = 0; g < groups; ++g) {
       if (flat_[g][c]) continue;
       std::vector<std::complex<float>> w(bins);  // read from the lattice until it is moved in
-      const int half = field_cols_ / 2 + 1;
 #pragma omp parallel for
       for (int i = 0; i < field_rows_; ++i)
         for (int j = 0; j < half; ++j) w[size_t(i) * half + j] = Weight(c, g, i, j);
@@ -260,17 +273,6 @@ Image EyeOptics::Combine(const std::vector<Image>& images) const {
         out.pixels[(size_t(i) * grid_.cols + j) * 3 + c] +=
             static_cast<float>(scale * std::real(field[size_t(top_ + i) * field_cols_ + left_ + j]));
   };
-  if (mode_ == EyeDiffraction::kPupilMtf) {
-    std::vector<std::complex<double>> field(size_t(field_cols_) * field_rows_);
-    for (int c = 0; c < 3; ++c) {
-      fill(images[0], c, &field);
-      FilterPeriodic(&field, field_cols_, field_rows_, grid_.resolution_rad, [&](double fx, double fy) {
-        return DiffractionOtf(shape_, diameter_m_, wavelengths_m_[c], fx, fy);
-      });
-      crop(field, c, 1.0);
-    }
-    return out;
-  }
   const RealFft2d fft(field_cols_, field_rows_);
   const int half = fft.half();
   std::vector<float> field(size_t(field_cols_) * field_rows_);

@@ -81,7 +81,8 @@ class EyeOptics {
   int left_ = 0, top_ = 0;               // grid() within traced()
   int field_cols_ = 0, field_rows_ = 0;  // the transformed field: traced()
   std::vector<std::vector<PupilPoint>> groups_;
-  // Wave optics: per channel the groups' parts; per group whether it is flat and its share at f = 0.
+  // Wave optics: per channel the groups' parts; per group whether it is flat and its share at f = 0. The MTF:
+  // one group, never flat, its weights the MTF.
   std::array<OtfLattice, 3> parts_;
   std::vector<std::array<bool, 3>> flat_;
   // The parts on the transform's half spectrum, [channel][group] (empty: flat, or read from the lattice
