@@ -170,18 +170,7 @@ EyeOptics::EyeOptics(const EyeModel& eye, const std::vector<PupilPoint>& pupil, 
   if (mode_ == EyeDiffraction::kPupilMtf) {  // one group: the rays' image, its gain the MTF (real and even)
     groups_ = {pupil};
     flat_.assign(1, {false, false, false});
-    for (int c = 0; c < 3; ++c) {
-      std::vector<std::complex<float>> w(bins);
-#pragma omp parallel for
-      for (int i = 0; i < field_rows_; ++i) {
-        const int ki = i <= field_rows_ / 2 ? i : i - field_rows_;
-        for (int j = 0; j < half; ++j)
-          w[size_t(i) * half + j] = static_cast<float>(DiffractionOtf(shape_, diameter_m_, wavelengths_m_[c],
-                                                                      j / (field_cols_ * grid.resolution_rad),
-                                                                      ki / (field_rows_ * grid.resolution_rad)));
-      }
-      weights_[c] = {std::move(w)};
-    }
+    for (int c = 0; c < 3; ++c) weights_[c] = {MtfOnHalfSpectrum(c)};
     return;
   }
   const std::vector<PupilPoint> own = PupilSamplesInOwnPlane(eye);
@@ -229,6 +218,20 @@ EyeOptics::EyeOptics(const EyeModel& eye, const std::vector<PupilPoint>& pupil, 
       weights_[c][g] = std::move(w);
     }
   }
+}
+
+std::vector<std::complex<float>> EyeOptics::MtfOnHalfSpectrum(int c) const {
+  const int half = field_cols_ / 2 + 1;
+  std::vector<std::complex<float>> w(size_t(half) * field_rows_);
+#pragma omp parallel for
+  for (int i = 0; i < field_rows_; ++i) {
+    const int ki = i <= field_rows_ / 2 ? i : i - field_rows_;
+    for (int j = 0; j < half; ++j)
+      w[size_t(i) * half + j] = static_cast<float>(DiffractionOtf(shape_, diameter_m_, wavelengths_m_[c],
+                                                                  j / (field_cols_ * grid_.resolution_rad),
+                                                                  ki / (field_rows_ * grid_.resolution_rad)));
+  }
+  return w;
 }
 
 std::complex<float> EyeOptics::Weight(int c, size_t g, int i, int j) const {

@@ -88,6 +88,8 @@ class EyeOptics {
   // The parts on the transform's half spectrum, [channel][group] (empty: flat, or read from the lattice
   // when they would not fit in kWaveWeightBytes).
   std::array<std::vector<std::vector<std::complex<float>>>, 3> weights_;
+  // Channel c's diffraction-limited MTF (real and even) at the transform's half-spectrum bins.
+  std::vector<std::complex<float>> MtfOnHalfSpectrum(int c) const;
   // Part g of channel c at half-spectrum bin (row i, column j).
   std::complex<float> Weight(int c, size_t g, int i, int j) const;
 };

@@ -59,13 +59,7 @@ bool SolveLoop::Start(const std::string& refusal) {
     RequireSameRays(model_, source_);
     prepared_ = PrepareTarget(model_, source_, options_.target_range, &report_);
     const SolverType* type = SolverRegistry::Builtins().find(report_.solver);
-    if (options_.panel_diffraction) diffraction_ = PanelDiffraction(model_.system());
-    if (!diffraction_.empty() && !(type && type->panel_diffraction)) {
-      Fail("the " + report_.solver + " solver does not model the panels' diffraction (\"panel_diffraction\"); " +
-           "joint, multiplicative and quasi-newton do");
-      return false;
-    }
-    report_.panel_diffraction = !diffraction_.empty();
+    if (!SetUpDiffraction(type)) return false;
     unsigned passes = type ? type->memory.passes : unsigned(kAllPasses);
     if (!diffraction_.empty()) passes |= kJointPass;  // the diffracted forward model runs through the joint pass
     workspace_ = std::make_unique<SolveWorkspace>(model_, omp_get_max_threads(), passes);
@@ -122,6 +116,17 @@ bool SolveLoop::Start(const std::string& refusal) {
   report_.initial_objective = objective;
   return Record(objective, objective,
                 retinal_ ? MeasureRetinal().focal_stack_psnr_db : std::numeric_limits<double>::quiet_NaN());
+}
+
+bool SolveLoop::SetUpDiffraction(const SolverType* type) {
+  if (options_.panel_diffraction) diffraction_ = PanelDiffraction(model_.system());
+  if (!diffraction_.empty() && !(type && type->panel_diffraction)) {
+    Fail("the " + report_.solver + " solver does not model the panels' diffraction (\"panel_diffraction\"); " +
+         "joint, multiplicative and quasi-newton do");
+    return false;
+  }
+  report_.panel_diffraction = !diffraction_.empty();
+  return true;
 }
 
 RetinalMeasures SolveLoop::MeasureRetinal() {

@@ -85,6 +85,8 @@ class SolveLoop {
   // The thread count of options.threads = 0.
   int AutomaticThreads() const;
   bool Record(double objective, double light_field_objective, double focal_stack_psnr_db);
+  // The panels' diffraction options.panel_diffraction asks for; false (failed) when the solver cannot model it.
+  bool SetUpDiffraction(const SolverType* type);
   // Measured here, off the clock (the solver did not spend it).
   RetinalMeasures MeasureRetinal();
   // The patterns the forward model reads: D t with diffraction, else t itself.
