@@ -12,13 +12,11 @@
 #include "layerlab/framework/atomic_file.h"
 #include "layerlab/framework/error.h"
 #include "layerlab/framework/exr_image.h"
-#include "layerlab/framework/fixed_order_sum.h"
 #include "layerlab/framework/png_writer.h"
 #include "layerlab/framework/polarization.h"
 #include "layerlab/framework/units.h"
 #include "layerlab/retina/eye_optics.h"
 #include "layerlab/retina/retina_workspace.h"
-#include "layerlab/solvers/objective.h"
 #include "layerlab/systems/panel_diffraction.h"
 
 namespace layerlab {
@@ -39,10 +37,34 @@ struct RetinaBatch {
   std::vector<Image> display, seen;
 };
 
+// Each state's display image against natural viewing by each metric, every (state, metric) a thread's work; its
+// time added to the state's seconds.
+void Score(const std::vector<const RetinalMetric*>& metrics, const MetricViewing& viewing, RetinaBatch* b) {
+  const int items = static_cast<int>(b->r.size() * metrics.size());
+  std::vector<double> spent(items);
+  std::vector<std::exception_ptr> failed(items);
+#pragma omp parallel for schedule(dynamic)
+  for (int i = 0; i < items; ++i) {
+    const size_t s = i / metrics.size(), k = i % metrics.size();
+    const auto start = std::chrono::steady_clock::now();
+    try {
+      b->r[s].scores[k].second = metrics[k]->score(b->display[s], b->seen[s], viewing);
+    } catch (...) {
+      failed[i] = std::current_exception();
+    }
+    spent[i] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  for (int i = 0; i < items; ++i) {
+    if (failed[i]) std::rethrow_exception(failed[i]);
+    b->r[i / metrics.size()].seconds += spent[i];
+  }
+}
+
 // The images of states [first, first + count), each computed in parallel within.
 RetinaBatch TraceBatch(const DisplayModel& model, const Patterns& t, const SceneRadiance& natural,
                        const EyeOptics& optics, const std::vector<double>& states, size_t first, size_t count,
-                       RetinaWorkspace* workspace) {
+                       const std::vector<const RetinalMetric*>& metrics, RetinaWorkspace* workspace) {
+  const MetricViewing viewing{optics.grid().resolution_rad / kRadiansPerDegree, model.white_luminance()};
   const DisplaySystem& system = model.system();
   const double white = model.white_luminance();
   RetinaBatch b{std::vector<RetinaStateResult>(count), std::vector<Image>(count), std::vector<Image>(count)};
@@ -56,17 +78,17 @@ RetinaBatch TraceBatch(const DisplayModel& model, const Patterns& t, const Scene
       return RetinaOfDisplay(model, t, DisplayRetinaTables(model, traced, group, focus), workspace);
     });
     r.display_mean_cd_m2 = MeanLuminance(b.display[s]) * white;
-    r.natural_mean_cd_m2 = r.psnr_db = NAN;
+    r.natural_mean_cd_m2 = NAN;
+    for (const RetinalMetric* m : metrics) r.scores.emplace_back(m->column, NAN);
     if (natural) {
       b.seen[s] = optics.See([&](const RetinaGrid& traced, const std::vector<PupilPoint>& group) {
         return RetinaOfScene(natural, traced, group, focus);
       });
       r.natural_mean_cd_m2 = MeanLuminance(b.seen[s]) * white;
-      const std::vector<float>&a = b.display[s].pixels, &n = b.seen[s].pixels;
-      r.psnr_db = PsnrDb(FixedOrderSquaredDifference(a.data(), n.data(), a.size()), a.size());
     }
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
+  if (natural) Score(metrics, viewing, &b);
   return b;
 }
 
@@ -133,11 +155,15 @@ std::vector<RetinaStateResult> WriteRetinaSweep(
   const std::vector<PupilPoint> pupil = PupilSamples(system.eye);
   const EyeOptics optics(system.eye, pupil, grid);  // its parts of the OTF serve every state
   const Patterns seen = SeenPatterns(system, t);    // through the panels' diffraction, once
+  const std::vector<const RetinalMetric*> metrics = o.metrics.empty() ? ParseRetinalMetrics("psnr", "") : o.metrics;
+  if (natural) CheckMetricSize(metrics, grid.cols, grid.rows, "retina: metrics");
 
   const fs::path out = folder;
   fs::create_directories(out / "display");
   if (natural) fs::create_directories(out / "natural");
-  std::string csv = "accommodation_D,display_mean_cd_m2,natural_mean_cd_m2,display_clipped_in_png,seconds,psnr_db\n";
+  std::string csv = "accommodation_D,display_mean_cd_m2,natural_mean_cd_m2,display_clipped_in_png,seconds";
+  for (const RetinalMetric* m : metrics) csv += "," + m->column;
+  csv += "\n";
   // States in batches: each state's images are computed (in parallel
   // within), then the batch's files are written in parallel. Writing, not
   // tracing, was most of a state's time (ZIP saves 5% of a float image at
@@ -147,16 +173,21 @@ std::vector<RetinaStateResult> WriteRetinaSweep(
   RetinaWorkspace workspace;  // every state's display image, sized for the first (again only for one needing more)
   for (size_t first = 0; first < o.states_diopters.size(); first += batch) {
     const size_t count = std::min(batch, o.states_diopters.size() - first);
-    RetinaBatch b = TraceBatch(model, seen, natural, optics, o.states_diopters, first, count, &workspace);
+    RetinaBatch b = TraceBatch(model, seen, natural, optics, o.states_diopters, first, count, metrics, &workspace);
     std::vector<double> seconds;
     WriteBatch(out, grid, bool(natural), &b, &seconds);
     for (size_t s = 0; s < count; ++s) {
       RetinaStateResult& r = b.r[s];
       for (int f = 0; f < 4; ++f) r.seconds += seconds[s * 4 + f];
       char row[160];
-      std::snprintf(row, sizeof row, "%.4f,%.6g,%.6g,%zu,%.3f,%.4f\n", r.diopters, r.display_mean_cd_m2,
-                    r.natural_mean_cd_m2, r.display_clipped_in_png, r.seconds, r.psnr_db);
+      std::snprintf(row, sizeof row, "%.4f,%.6g,%.6g,%zu,%.3f", r.diopters, r.display_mean_cd_m2, r.natural_mean_cd_m2,
+                    r.display_clipped_in_png, r.seconds);
       csv += row;
+      for (const auto& [column, value] : r.scores) {
+        std::snprintf(row, sizeof row, ",%.*f", column == "psnr_db" ? 4 : 6, value);
+        csv += row;
+      }
+      csv += "\n";
       if (o.keep_images) r.display = std::move(b.display[s]), r.natural = std::move(b.seen[s]);
       results.push_back(std::move(r));
       if (progress) progress(results.size(), o.states_diopters.size(), results.back());

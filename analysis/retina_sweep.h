@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "layerlab/framework/exr_image.h"
+#include "layerlab/metrics/retinal_metrics.h"
 #include "layerlab/retina/retina.h"
 #include "layerlab/systems/display_model.h"
 
@@ -25,6 +26,9 @@ struct RetinaSweepOptions {
   double resolution_deg = 0.05;             // per sample
   double field_x_deg = 0, field_y_deg = 0;  // 0: the display's field of view
   bool keep_images = false;                 // also return each state's images (RetinaStateResult::display, natural)
+  // With natural viewing, each state's display image is scored against it by these (metrics/retinal_metrics.h;
+  // empty: PSNR alone), one retina.csv column each.
+  std::vector<const RetinalMetric*> metrics;
 };
 
 // Accommodation states as `layerlab retina` takes them (ParseOptionValue:
@@ -39,9 +43,9 @@ struct RetinaStateResult {
   std::string name;  // "0.40D": the file stem in display/ and natural/
   double display_mean_cd_m2 = 0;
   double natural_mean_cd_m2 = 0;  // NaN without natural viewing
-  // The display's image against natural viewing: 10 log10(1 / MSE) over pixels and channels, display-relative
-  // (1 = the display's white); NaN without natural viewing.
-  double psnr_db = 0;
+  // The display's image against natural viewing, by each metric: (column, value), PSNR first; NaN without
+  // natural viewing.
+  std::vector<std::pair<std::string, double>> scores;
   size_t display_clipped_in_png = 0;
   double seconds = 0;      // spent on its images and files (the files of a few states are written at once)
   Image display, natural;  // with RetinaSweepOptions::keep_images (natural: with natural viewing), else empty

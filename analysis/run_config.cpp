@@ -74,10 +74,18 @@ RetinaRunConfig ReadRetina(Params& run, const DisplaySystem& system) {
   RetinaRunConfig r;
   r.enabled = true;
   Params p = run.object("retina");
-  for (const char* key : {"focal_stack", "field"}) p.mark_read(key);
+  for (const char* key : {"focal_stack", "field", "metrics"}) p.mark_read(key);
   for (const VirtualLayer& layer : system.layers) r.accommodation_diopters.push_back(layer.diopters);
   ReadOptionEntries(p, RetinaRunOptionTable(), &r);
   if (p.has("focal_stack")) r.focal_stack_diopters = DepthRange(p, "focal_stack");
+  if (p.has("metrics")) {
+    const std::string names = p.string("metrics");
+    try {
+      r.metrics = ParseRetinalMetrics(names, "metrics");
+    } catch (const Error& e) {
+      p.fail("metrics", std::string(e.what()).substr(std::string("metrics: ").size()));
+    }
+  }
   if (p.has("field")) {
     const RetinaRunOptionEntry& e = RetinaRunOption("field");
     std::array<double, 2> field = p.quantity_pair("field", Dimension::kAngle, {0, 0});

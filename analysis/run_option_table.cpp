@@ -56,6 +56,9 @@ std::vector<RetinaRunOptionEntry> MakeRetinaTable() {
   e.dimension = Dimension::kAngle, e.unit = "deg", e.has_range = true, e.range = {0, 170, true, true};
   e.constraint_note = " deg";
   add();
+  t.push_back(ByHand<RetinaRunConfig>("metrics", "names, comma-separated", "\"psnr\"",
+                                      "each state's display image scored against natural viewing, a retina.csv "
+                                      "column each: psnr, ssim, ms_ssim, jnd, or all (docs/metrics.md)"));
   e.key = "natural", e.kind = Kind::kBoolean, e.type = "boolean", e.default_text = "true";
   e.meaning = "also natural viewing of the target, side by side";
   e.get = [](const RetinaRunConfig& o) { return int(o.natural); };

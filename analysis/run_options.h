@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "layerlab/analysis/contrast.h"
+#include "layerlab/metrics/retinal_metrics.h"
 #include "layerlab/solvers/solver.h"
 
 namespace layerlab {
@@ -20,6 +21,7 @@ struct RetinaRunConfig {
   double field_x_deg = 0, field_y_deg = 0;     // 0 x 0: the display's field of view
   bool natural = true;                         // natural viewing of the target too
   bool natural_traced = false;                 // traced in the target scene rather than read from its light field
+  std::vector<const RetinalMetric*> metrics;   // each state scored against natural viewing by these (empty: PSNR)
   // Every state in D, sorted, duplicates removed: the slider's positions.
   std::vector<double> states() const;
   // False, with "field: value: constraint" in *error, for a value outside its table range.

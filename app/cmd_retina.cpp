@@ -44,6 +44,7 @@ struct RetinaCommandOptions {
   OpticsOptions optics;
   std::string accommodation = "0.4,1.0,1.6,2.2", focal_stack, field, resolution = "0.05";
   std::string eyes = "scene", partner_patterns;
+  std::string metrics = "psnr";
 };
 
 // --accommodation and --focal-stack's states, sorted, without repeats.
@@ -103,7 +104,7 @@ std::vector<RetinaStateResult> RetinaOfEye(const RetinaCommandOptions& o, const 
   DisplayModel model(system, g, config.sampling);
   const Patterns t = ReadPatterns(model, patterns);
   const SceneRadiance& natural = seen.radiance();
-  RetinaSweepOptions sweep{states, resolution, field[0], field[1], false};
+  RetinaSweepOptions sweep{states, resolution, field[0], field[1], false, ParseRetinalMetrics(o.metrics, "--metrics")};
   Progress progress(label, states.size());
   const std::vector<RetinaStateResult> results =
       WriteRetinaSweep(model, t, natural, sweep, folder, [&](size_t done, size_t, const RetinaStateResult& r) {
@@ -183,7 +184,20 @@ void RunRetinaCommand(const RetinaCommandOptions& o) {
   const bool both = o.eyes == "both";
   const std::vector<DisplaySystem> eyes = both ? BothEyes(o, system) : std::vector<DisplaySystem>{system};
   AccommodationStates(o);
-  for (const DisplaySystem& eye : eyes) RetinaField(o, eye, ParseOptionValue(o.resolution, "--resolution", kDegrees));
+  const std::vector<const RetinalMetric*> metrics = ParseRetinalMetrics(o.metrics, "--metrics");
+  const bool natural = !given.target.empty() || !given.target_scene.empty();
+  if (!natural && metrics.size() > 1)
+    throw Error(
+        "--metrics: the metrics score the display against natural viewing of a target: give --target or "
+        "--target-scene");
+  for (const DisplaySystem& eye : eyes) {
+    const double resolution = ParseOptionValue(o.resolution, "--resolution", kDegrees);
+    const std::array<double, 2> field = RetinaField(o, eye, resolution);
+    const RetinaGrid grid =
+        MakeRetinaGrid(field[0] > 0 ? field[0] * kRadiansPerDegree : eye.fov_x_rad,
+                       field[1] > 0 ? field[1] * kRadiansPerDegree : eye.fov_y_rad, resolution * kRadiansPerDegree);
+    if (natural) CheckMetricSize(metrics, grid.cols, grid.rows, "--metrics");
+  }
   const std::vector<std::string> written =
       both ? std::vector<std::string>{"left", "right", "index.html"}
            : std::vector<std::string>{"display", "natural", "retina.csv", "index.html"};
@@ -212,12 +226,24 @@ void RunRetinaCommand(const RetinaCommandOptions& o) {
     throw stage.Explain(e);
   }
   stage.Commit();
-  const bool natural = !given.target.empty() || !given.target_scene.empty();
   std::printf("wrote %s/{index.html,%s}: %zu states%s; values are display-relative (1 = %.4g cd/m2)\n", o.out.c_str(),
               both      ? "left,right"
               : natural ? "display,natural,retina.csv"
                         : "display,retina.csv",
               AccommodationStates(o).size(), both ? " per eye" : "", white);
+  if (natural)
+    for (size_t e = 0; e < results.size(); ++e) {
+      std::string line = both ? (eyes[e].eye.binocular->side < 0 ? "left eye, " : "right eye, ") : "";
+      line += "the mean over the states against natural viewing:";
+      for (size_t k = 0; !results[e].empty() && k < results[e].front().scores.size(); ++k) {
+        double sum = 0;
+        for (const RetinaStateResult& r : results[e]) sum += r.scores[k].second;
+        const RetinalMetric& m = *metrics[k];
+        line += (k ? ", " : " ") + m.name + " " + FormatFixed(sum / results[e].size(), m.unit == "dB" ? 2 : 4) +
+                (m.unit.empty() ? "" : " " + m.unit);
+      }
+      std::printf("%s\n", line.c_str());
+    }
 }
 
 }  // namespace
@@ -242,6 +268,9 @@ void AddRetinaCommand(CLI::App& app) {
                   "OUT/right (default scene)");
   cmd->add_option("--partner-patterns", o->partner_patterns,
                   "With --eyes both and a display per eye: the other eye's display's solve folder");
+  cmd->add_option("--metrics", o->metrics,
+                  "With a target: score each state's display image against natural viewing by these, a retina.csv "
+                  "column each: psnr, ssim, ms_ssim, jnd, or all (default psnr; docs/metrics.md)");
   cmd->add_option("--out", o->out, "Output folder")->required();
   cmd->callback([o] { RunRetinaCommand(*o); });
 }

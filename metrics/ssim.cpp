@@ -144,10 +144,14 @@ Plane EncodedLuminance(const Image& image) {
       if (!(image.pixels[3 * k + c] >= 0) || !std::isfinite(image.pixels[3 * k + c]))
         throw Error("luminance: pixel (" + std::to_string(k / image.width) + ", " + std::to_string(k % image.width) +
                     ") holds a negative or undefined value");
-    const double y = 0.2126 * image.pixels[3 * k] + 0.7152 * image.pixels[3 * k + 1] + 0.0722 * image.pixels[3 * k + 2];
-    out.values[k] = y <= 0.0031308 ? 12.92 * y : 1.055 * std::pow(y, 1 / 2.4) - 0.055;
+    out.values[k] = 0.2126 * image.pixels[3 * k] + 0.7152 * image.pixels[3 * k + 1] + 0.0722 * image.pixels[3 * k + 2];
   }
+  EncodeLuminance(&out);
   return out;
+}
+
+void EncodeLuminance(Plane* linear) {
+  for (double& y : linear->values) y = y <= 0.0031308 ? 12.92 * y : 1.055 * std::pow(y, 1 / 2.4) - 0.055;
 }
 
 }  // namespace layerlab

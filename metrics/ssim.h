@@ -49,5 +49,7 @@ double MsSsim(const Plane& x, const Plane& y, double data_range);
 // 1.055 Y^(1/2.4) - 0.055, continued above 1), the encoding the metrics
 // compare in, data range 1. A negative or undefined value is refused, naming its pixel (row, col).
 Plane EncodedLuminance(const Image& image);
+// That transfer curve applied to a plane of linear luminance (>= 0), in place.
+void EncodeLuminance(Plane* linear);
 
 }  // namespace layerlab

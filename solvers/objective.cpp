@@ -110,11 +110,6 @@ double Objective(const DisplayModel& model, const LightField& target, const Patt
   return SumAcrossRanks(total);
 }
 
-double PsnrDb(double objective, size_t samples) {
-  if (objective <= 0) return std::numeric_limits<double>::infinity();
-  return 10.0 * std::log10(double(samples) / objective);
-}
-
 std::string FormatPsnr(double db, int decimals) {
   if (std::isinf(db)) return "inf";
   char text[32];

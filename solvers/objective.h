@@ -7,6 +7,7 @@
 
 #include "layerlab/framework/lightfield.h"
 #include "layerlab/kernels/solve_workspace.h"
+#include "layerlab/metrics/psnr.h"
 #include "layerlab/solvers/solver.h"
 #include "layerlab/systems/display_model.h"
 
@@ -42,8 +43,6 @@ std::optional<std::string> FarBelowWarning(const DisplayModel& model, const Solv
 double Objective(const DisplayModel& model, const LightField& target, const Patterns& t, SolveWorkspace* workspace);
 double Objective(const DisplayModel& model, const LightField& target, const Patterns& t);
 
-// 10 log10(1 / MSE) with MSE = objective / samples; +inf for a perfect fit.
-double PsnrDb(double objective, size_t samples);
 // A PSNR for reports and tables: "31.42" with `decimals` digits, or "inf".
 std::string FormatPsnr(double db, int decimals);
 

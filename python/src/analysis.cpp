@@ -36,17 +36,20 @@ py::array_t<double> Array(const std::vector<double>& v) { return py::array_t<dou
 // buffer), natural (None without natural viewing), the mean luminances and each state's PSNR.
 py::dict RetinaDict(std::vector<RetinaStateResult>& states) {
   py::dict d;
-  std::vector<double> diopters, display_mean, natural_mean, psnr;
+  std::vector<double> diopters, display_mean, natural_mean;
   for (const RetinaStateResult& s : states) {
     diopters.push_back(s.diopters);
     display_mean.push_back(s.display_mean_cd_m2);
     natural_mean.push_back(s.natural_mean_cd_m2);
-    psnr.push_back(s.psnr_db);
   }
   d["diopters"] = Array(diopters);
   d["display_mean_cd_m2"] = Array(display_mean);
   d["natural_mean_cd_m2"] = Array(natural_mean);
-  d["psnr_db"] = Array(psnr);
+  for (size_t k = 0; !states.empty() && k < states.front().scores.size(); ++k) {  // one array per metric's column
+    std::vector<double> score;
+    for (const RetinaStateResult& s : states) score.push_back(s.scores[k].second);
+    d[py::str(states.front().scores[k].first)] = Array(score);
+  }
   d["names"] = [&] {
     py::list names;
     for (const RetinaStateResult& s : states) names.append(s.name);

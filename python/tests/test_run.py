@@ -58,6 +58,21 @@ def check_the_arrays_and_tables(outcome, out, scene_path):
     error = ((retina["display"].astype(np.float64) - retina["natural"]) ** 2).mean(axis=(1, 2, 3))
     np.testing.assert_allclose(retina["psnr_db"], 10 * np.log10(1 / error), atol=1e-9)
     np.testing.assert_allclose(retina["psnr_db"], [float(r["psnr_db"]) for r in written], atol=1e-4)
+    # The metrics the scene's run.retina asks for ("ssim,jnd"): SSIM against scikit-image's on the sRGB-encoded
+    # luminance; the JND as csf_jnd() gives it on the luminance in cd/m2 (white from the mean columns).
+    structural = pytest.importorskip("skimage.metrics", reason="scikit-image (python3-skimage) is not installed")
+    white = retina["display_mean_cd_m2"][0] / (retina["display"][0].astype(np.float64) @ [0.2126, 0.7152, 0.0722]).mean()
+    for k in range(states):
+        y = [np.maximum(images[k].astype(np.float64) @ [0.2126, 0.7152, 0.0722], 0)
+             for images in (retina["display"], retina["natural"])]
+        encoded = [np.where(v <= 0.0031308, 12.92 * v, 1.055 * v ** (1 / 2.4) - 0.055) for v in y]
+        ssim = structural.structural_similarity(encoded[0], encoded[1], gaussian_weights=True, sigma=1.5,
+                                                use_sample_covariance=False, data_range=1.0)
+        assert retina["ssim"][k] == pytest.approx(ssim, abs=1e-4)
+        assert float(written[k]["ssim"]) == pytest.approx(ssim, abs=2e-6)
+        jnd = layerlab.csf_jnd(y[1] * white, y[0] * white, 0.2)
+        assert retina["jnd"][k] == pytest.approx(jnd, rel=1e-4)
+    assert "ms_ssim" not in retina and "ms_ssim" not in written[0]
     for images, means in ((retina["display"], retina["display_mean_cd_m2"]),
                           (retina["natural"], retina["natural_mean_cd_m2"])):
         assert images.dtype == np.float32 and images.shape[0] == states and images.shape[3] == 3
