@@ -47,20 +47,49 @@ std::string RunLabel(const CompareResult& result) {
   return RunLabel(result.display, result.solver, ObjectiveOf(result.report));
 }
 
+std::vector<const TraceColumn*> MeasuredMetricColumns(const std::vector<CompareResult>& results) {
+  std::vector<const TraceColumn*> out;
+  for (const TraceColumn& c : TraceColumns()) {
+    if (c.kind != TraceValueKind::kScore) continue;
+    for (const CompareResult& r : results)
+      if (Measured(c, r.report.trace)) {
+        out.push_back(&c);
+        break;
+      }
+  }
+  return out;
+}
+
+double FinalTraceValue(const TraceColumn& column, const SolverReport& report) {
+  return report.trace.empty() ? std::numeric_limits<double>::quiet_NaN() : column.value(report.trace.back());
+}
+
+std::string MetricHeading(const TraceColumn& column) {
+  const std::string name = std::string(column.name).substr(std::string("focal_stack_").size());
+  if (name == "jnd") return "JND";
+  return name == "ms_ssim" ? "MS-SSIM" : name == "ssim" ? "SSIM" : name;
+}
+
 double FinalFocalStackPsnr(const SolverReport& report) {
   return report.trace.empty() ? std::numeric_limits<double>::quiet_NaN() : report.trace.back().focal_stack_psnr_db;
 }
 
 SolverOptions WithObjective(SolverOptions options, ObjectiveKind objective,
-                            const std::vector<ObjectiveKind>& objectives) {
+                            const std::vector<ObjectiveKind>& objectives,
+                            const std::vector<const RetinalMetric*>& metrics) {
   options.objective = objective;
   if (objective == ObjectiveKind::kLightField && Contains(objectives, ObjectiveKind::kRetinal))
     options.measure_focal_stack = true;
+  if (metrics.size() > 1 || (metrics.size() == 1 && metrics[0]->name != "psnr")) {
+    options.measure_metrics = metrics;
+    if (objective == ObjectiveKind::kLightField) options.measure_focal_stack = true;
+  }
   return options;
 }
 
 std::vector<CompareRun> ObjectiveRuns(const CompareRun& run, const std::vector<ObjectiveKind>& objectives,
-                                      std::vector<std::string>* skipped, const SolverRegistry& registry) {
+                                      std::vector<std::string>* skipped, const SolverRegistry& registry,
+                                      const std::vector<const RetinalMetric*>& metrics) {
   std::vector<CompareRun> runs;
   for (ObjectiveKind objective : objectives.empty() ? std::vector<ObjectiveKind>{run.options.objective} : objectives) {
     if (std::string why = ObjectiveRefusal(run.solver, objective, registry); !why.empty()) {
@@ -68,7 +97,7 @@ std::vector<CompareRun> ObjectiveRuns(const CompareRun& run, const std::vector<O
       continue;
     }
     runs.push_back(run);
-    runs.back().options = WithObjective(run.options, objective, objectives);
+    runs.back().options = WithObjective(run.options, objective, objectives, metrics);
   }
   return runs;
 }
@@ -112,7 +141,8 @@ std::vector<CompareRun> CompareRunsOf(const std::vector<std::string>& scene_file
       options.panel_diffraction = config.options.panel_diffraction;
       const CompareRun run{
           name, system, solver, options, own ? config.sampling : Sampling::kNearest, own ? "scene" : "shared"};
-      for (CompareRun& r : ObjectiveRuns(run, selection.objectives, skipped, registry)) runs.push_back(std::move(r));
+      for (CompareRun& r : ObjectiveRuns(run, selection.objectives, skipped, registry, selection.metrics))
+        runs.push_back(std::move(r));
     }
   }
   if (runs.empty()) throw Error("compare: no display and solver fit together; nothing to run");
@@ -227,7 +257,10 @@ std::string CompareTable(const std::vector<CompareResult>& results) {
   std::string out =
       "display                      solver                 objective   PSNR (dB)  focal stack (dB)   seconds  "
       "iterations  subframes  panel (Hz)  brightness (lum.)  brightness R G B       options  termination";
-  out += with_eyebox ? "  eyebox\n" : "\n";
+  out += with_eyebox ? "  eyebox" : "";
+  const std::vector<const TraceColumn*> metrics = MeasuredMetricColumns(results);
+  for (const TraceColumn* c : metrics) out += "  " + MetricHeading(*c);
+  out += "\n";
   for (const CompareResult& r : results) {
     const double focal_stack = FinalFocalStackPsnr(r.report);
     char line[400];
@@ -239,6 +272,13 @@ std::string CompareTable(const std::vector<CompareResult>& results) {
         r.brightness_efficiency[2], r.options_from.c_str(), ToString(r.report.termination).c_str());
     out += line;
     if (with_eyebox) out.insert(out.size() - 1, "  " + EyeboxText(r));
+    for (const TraceColumn* c : metrics) {
+      const double v = FinalTraceValue(*c, r.report);
+      char cell[40];
+      std::snprintf(cell, sizeof cell, "  %*s", int(MetricHeading(*c).size()),
+                    std::isnan(v) ? "-" : FormatFixed(v, std::string(c->unit) == "JND" ? 2 : 4).c_str());
+      out.insert(out.size() - 1, cell);
+    }
   }
   return out;
 }
@@ -248,7 +288,10 @@ std::string CompareCsv(const std::vector<CompareResult>& results) {
       "display,solver,objective,final_psnr_db,final_focal_stack_psnr_db,seconds,iterations,subframes,panel_refresh_hz,"
       "luminance_efficiency,efficiency_r,efficiency_g,efficiency_b,termination,solver_options";
   const bool with_eyebox = AnyEyebox(results);
-  out += with_eyebox ? ",eyebox_x_mm,eyebox_y_mm,eyebox_x_reaches_edge,eyebox_y_reaches_edge\n" : "\n";
+  out += with_eyebox ? ",eyebox_x_mm,eyebox_y_mm,eyebox_x_reaches_edge,eyebox_y_reaches_edge" : "";
+  const std::vector<const TraceColumn*> metrics = MeasuredMetricColumns(results);
+  for (const TraceColumn* c : metrics) out += std::string(",final_") + c->name;
+  out += "\n";
   for (const CompareResult& r : results) {
     char line[400];
     std::snprintf(line, sizeof line, "%s,%s,%s,%s,%s,%.6f,%d,%d,%.3f,%.6f,%.6f,%.6f,%.6f,%s,%s\n", r.display.c_str(),
@@ -264,6 +307,8 @@ std::string CompareCsv(const std::vector<CompareResult>& results) {
                       int(r.eyebox->reaches_edge[0]), int(r.eyebox->reaches_edge[1]));
       out.insert(out.size() - 1, extra);
     }
+    for (const TraceColumn* c : metrics)
+      out.insert(out.size() - 1, "," + TraceField(*c, FinalTraceValue(*c, r.report), 6, true));
   }
   return out;
 }
@@ -285,15 +330,17 @@ std::string TracesCsv(const std::vector<CompareResult>& results) {
 
 namespace {
 
-// One panel of PSNR against wall time, the PSNR read by `db`; no line for a run without a finite value.
+// One panel of a trace column against wall time, read by `db` (a PSNR, or with `score` a metric whose axis is
+// padded by a tenth of its range instead of rounded to whole dB); no line for a run without a finite value.
 PlotPanel PsnrPanel(const std::vector<CompareResult>& results, const std::string& title,
-                    double (*db)(const IterationRecord&)) {
+                    double (*db)(const IterationRecord&), const std::string& y_label = "PSNR (dB)",
+                    bool score = false) {
   static const char* kColors[] = {"#d62728", "#1f77b4", "#2ca02c", "#ff7f0e",
                                   "#9467bd", "#8c564b", "#e377c2", "#17becf"};
   PlotPanel panel;
   panel.title = title;
   panel.x_label = "wall time (s)";
-  panel.y_label = "PSNR (dB)";
+  panel.y_label = y_label;
   double t_max = 0, y_min = INFINITY, y_max = -INFINITY;
   for (size_t k = 0; k < results.size(); ++k) {
     PlotLine line{RunLabel(results[k]), kColors[k % 8], k >= 8, {}, {}};
@@ -310,6 +357,11 @@ PlotPanel PsnrPanel(const std::vector<CompareResult>& results, const std::string
   }
   if (!std::isfinite(y_min)) y_min = 0, y_max = 1;
   panel.x_max = t_max > 0 ? t_max * 1.02 : 1;
+  if (score) {
+    const double pad = std::max(0.1 * (y_max - y_min), 1e-3 * std::max(1.0, std::abs(y_max)));
+    panel.y_min = y_min - pad, panel.y_max = y_max + pad;
+    return panel;
+  }
   panel.y_min = std::floor(y_min - 0.5);
   panel.y_max = std::ceil(y_max + 0.5);
   return panel;
@@ -323,6 +375,16 @@ std::string PsnrAgainstTimeSvg(const std::vector<CompareResult>& results) {
   PlotPanel focal = PsnrPanel(results, "focal-stack PSNR against wall time (mean over accommodation states)",
                               [](const IterationRecord& r) { return r.focal_stack_psnr_db; });
   if (!focal.lines.empty()) panels.push_back(std::move(focal));
+  for (const TraceColumn* c : MeasuredMetricColumns(results)) {
+    const std::string heading = MetricHeading(*c);
+    PlotPanel panel =
+        PsnrPanel(results,
+                  "focal-stack " + heading + " against wall time (mean over accommodation states; " +
+                      (c->kind == TraceValueKind::kScore && std::string(c->unit) == "JND" ? "lower is better)"
+                                                                                          : "higher is better)"),
+                  c->value, heading, true);
+    if (!panel.lines.empty()) panels.push_back(std::move(panel));
+  }
   return RenderSvg(panels, static_cast<int>(panels.size()), "");
 }
 

@@ -13,6 +13,8 @@
 
 namespace layerlab {
 
+struct TraceColumn;  // solvers/trace_columns.h
+
 struct CompareRun {
   std::string display;  // a name for the scene
   DisplaySystem system;
@@ -55,6 +57,13 @@ struct CompareResult {
   std::optional<EyeboxExtent> eyebox = std::nullopt;  // with CompareEyebox::accommodation_diopters
 };
 
+// The focal stack's perceptual columns (solvers/trace_columns.h) that some run measured, in the table's order.
+std::vector<const TraceColumn*> MeasuredMetricColumns(const std::vector<CompareResult>& results);
+// A column's value in the report's last row: NaN when that row did not measure it.
+double FinalTraceValue(const TraceColumn& column, const SolverReport& report);
+// "SSIM", "MS-SSIM", "JND": a metric column's heading.
+std::string MetricHeading(const TraceColumn& column);
+
 // "DISPLAY / SOLVER", and " / retinal" for a solve of the retinal objective.
 std::string RunLabel(const std::string& display, const std::string& solver, ObjectiveKind objective);
 std::string RunLabel(const CompareResult& result);
@@ -83,19 +92,24 @@ struct CompareSelection {
   std::optional<double> time_budget;
   bool scene_options = false;
   std::vector<ObjectiveKind> objectives;
+  // The focal stack's metrics every run measures beside its PSNR (metrics/retinal_metrics.h): PSNR alone when
+  // empty or psnr only; else every row measures the focal stack and these (SolverOptions::measure_metrics).
+  std::vector<const RetinalMetric*> metrics;
 };
 
 // The options of one run of `objectives` (CompareSelection::objectives): the
 // objective set, and the focal stack measured when another run minimizes it.
 SolverOptions WithObjective(SolverOptions options, ObjectiveKind objective,
-                            const std::vector<ObjectiveKind>& objectives);
+                            const std::vector<ObjectiveKind>& objectives,
+                            const std::vector<const RetinalMetric*>& metrics = {});
 
 // `run` once per objective of `objectives` (none: its options' own) that its
 // solver minimizes, WithObjective; a line in *skipped for each it does not
 // ("NAME / SOLVER / retinal: the solver ...").
 std::vector<CompareRun> ObjectiveRuns(const CompareRun& run, const std::vector<ObjectiveKind>& objectives,
                                       std::vector<std::string>* skipped,
-                                      const SolverRegistry& registry = SolverRegistry::Builtins());
+                                      const SolverRegistry& registry = SolverRegistry::Builtins(),
+                                      const std::vector<const RetinalMetric*>& metrics = {});
 
 // The runs of `layerlab compare SCENES` (and of Python's compare()): each
 // scene file compiled, named by its stem. A named solver that does not suit a

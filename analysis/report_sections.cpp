@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "layerlab/analysis/svg_plot.h"
+#include "layerlab/solvers/trace_columns.h"
 
 namespace layerlab {
 namespace {
@@ -142,7 +143,12 @@ std::string CompareHtml(const std::vector<CompareResult>& results, const ReportI
   h += "<table><tr><th class=\"l\">display</th><th class=\"l\">solver</th><th class=\"l\">objective</th>"
        "<th>PSNR (dB)</th><th>focal-stack PSNR (dB)</th><th>seconds</th><th>iterations</th><th>brightness "
        "(luminance)</th><th>brightness R / G / B</th><th>balance R : G : B</th>"
-       "<th class=\"l\">termination</th><th class=\"l\">solver options</th></tr>\n";
+       "<th class=\"l\">termination</th><th class=\"l\">solver options</th>";
+  const std::vector<const TraceColumn*> metrics = MeasuredMetricColumns(results);
+  for (const TraceColumn* c : metrics)
+    h += "<th>focal-stack " + MetricHeading(*c) +
+         (std::string(c->unit).empty() ? "" : " (" + std::string(c->unit) + ")") + "</th>";
+  h += "</tr>\n";
   for (const CompareResult& r : results) {
     const double focal_stack = FinalFocalStackPsnr(r.report);
     h += "<tr><td class=\"l\">" + Escape(r.display) + "</td><td class=\"l\">" + Escape(r.solver) +
@@ -151,7 +157,12 @@ std::string CompareHtml(const std::vector<CompareResult>& results, const ReportI
          F(r.report.seconds, 2) + "</td><td>" + std::to_string(r.report.iterations) + "</td><td>" +
          F(r.luminance_efficiency, 4) + "</td><td>" + Rgb3(r.brightness_efficiency, 4) + "</td><td>" +
          Balance(r.brightness_efficiency) + "</td><td class=\"l\">" + Escape(ToString(r.report.termination)) +
-         "</td><td class=\"l\">" + Escape(r.options_from) + "</td></tr>\n";
+         "</td><td class=\"l\">" + Escape(r.options_from) + "</td>";
+    for (const TraceColumn* c : metrics) {
+      const double v = FinalTraceValue(*c, r.report);
+      h += "<td>" + (std::isnan(v) ? std::string("&ndash;") : F(v, std::string(c->unit) == "JND" ? 2 : 4)) + "</td>";
+    }
+    h += "</tr>\n";
   }
   h += "</table>\n<div class=\"grid\">" + HtmlFigure(plot, "", "plot") + "</div>\n";
   return h + "</section>\n";

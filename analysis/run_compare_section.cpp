@@ -46,8 +46,9 @@ void RowsOf(RunState& s, const ComparedDisplay& d, const std::string& solver, st
   base.iterations = c.iterations.value_or(base.iterations);
   base.time_budget = c.time_budget_s.value_or(base.time_budget);
   std::vector<std::string> skipped;
-  const std::vector<CompareRun> runs = ObjectiveRuns(
-      {d.name, d.system, solver, base, d.config.sampling, own ? "scene" : "shared"}, c.objectives, &skipped);
+  const std::vector<CompareRun> runs =
+      ObjectiveRuns({d.name, d.system, solver, base, d.config.sampling, own ? "scene" : "shared"}, c.objectives,
+                    &skipped, SolverRegistry::Builtins(), c.metrics);
   for (const std::string& line : skipped) s.page.warnings.push_back("compare: skipped " + line);
   for (const CompareRun& run : runs) {
     s.outcome.compare_scenes.push_back(d.system.file);

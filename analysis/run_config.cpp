@@ -151,6 +151,14 @@ CompareRunConfig ReadCompare(Params& run, const Scene& scene) {
     c.time_budget_s = p.quantity("time_budget", Dimension::kTime);
     p.require_range("time_budget", *c.time_budget_s, range.min, range.max, range.min_open, range.max_open);
   }
+  if (p.has("metrics")) {
+    const std::string names = p.string("metrics");
+    try {
+      c.metrics = ParseRetinalMetrics(names, "metrics");
+    } catch (const Error& e) {
+      p.fail("metrics", std::string(e.what()).substr(std::string("metrics: ").size()));
+    }
+  }
   if (p.has("objectives")) {
     p.mark_read("objectives");
     Params items = ArrayItems(p, "objectives");

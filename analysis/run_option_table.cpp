@@ -92,6 +92,9 @@ std::vector<CompareRunOptionEntry> MakeCompareTable() {
       "objectives", "array of strings", "each run's own",
       "\"lightfield\", \"retinal\": each solver runs each objective it minimizes (the retinal one: joint, "
       "quasi-newton); with \"retinal\" every row also records the focal-stack PSNR"));
+  t.push_back(ByHand<CompareRunConfig>("metrics", "names, comma-separated", "none",
+                                       "the focal stack also measured by these beside its PSNR: ssim, ms_ssim, jnd or "
+                                       "all; every row then measures the focal stack (docs/metrics.md)"));
   return t;
 }
 

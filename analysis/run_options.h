@@ -37,11 +37,12 @@ struct ContrastRunConfig {
 
 struct CompareRunConfig {
   bool enabled = false;
-  std::vector<std::string> scenes;        // displays beside this one (resolved paths)
-  std::vector<std::string> solvers;       // empty: each scene's own solver
-  std::optional<int> iterations;          // unset: each run's own
-  std::optional<double> time_budget_s;    // unset: each run's own
-  std::vector<ObjectiveKind> objectives;  // empty: each run's own (CompareSelection::objectives)
+  std::vector<std::string> scenes;            // displays beside this one (resolved paths)
+  std::vector<std::string> solvers;           // empty: each scene's own solver
+  std::optional<int> iterations;              // unset: each run's own
+  std::optional<double> time_budget_s;        // unset: each run's own
+  std::vector<ObjectiveKind> objectives;      // empty: each run's own (CompareSelection::objectives)
+  std::vector<const RetinalMetric*> metrics;  // empty: PSNR alone (CompareSelection::metrics)
   bool IsValid(std::string* error) const;
 };
 

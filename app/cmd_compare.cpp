@@ -44,7 +44,7 @@ struct CompareCommandOptions {
   std::string out, solvers;
   TargetOption target;
   std::optional<int> iterations;
-  std::string time_budget, objectives;
+  std::string time_budget, objectives, metrics;
   bool scene_options = false;
   std::string eyebox_at, eyebox_step = "0.5", quality = "1";
 };
@@ -59,6 +59,16 @@ CompareEyebox ReadCompareEyebox(const CompareCommandOptions& o) {
   eyebox.quality_db = ParseOptionValue(o.quality, "--quality", {Dimension::kFraction, ""});
   if (!(eyebox.quality_db > 0)) throw Error("--quality: must be above 0 dB");
   return eyebox;
+}
+
+std::vector<ObjectiveKind> ParseObjectives(const std::string& names) {
+  std::vector<ObjectiveKind> objectives;
+  for (const std::string& name : SplitNames(names)) {
+    const std::optional<ObjectiveKind> k = ObjectiveKindNamed(name);
+    if (!k) throw Error("--objectives: \"" + name + "\" is not one of lightfield or retinal");
+    objectives.push_back(*k);
+  }
+  return objectives;
 }
 
 }  // namespace
@@ -81,6 +91,10 @@ void AddCompareCommand(CLI::App& app) {
   cmd->add_option("--objectives", o->objectives,
                   "Objectives each solver runs, comma-separated: lightfield, retinal (the solvers that minimize it); "
                   "with retinal, every row also records the focal-stack PSNR (default: the light field's)");
+  cmd->add_option("--metrics", o->metrics,
+                  "Also measure the focal stack by these beside its PSNR, comma-separated: ssim, ms_ssim, jnd or all; "
+                  "every row then measures the focal stack, off the clock, at iterations 0, 1, 2, 3, 5, 8, ... and "
+                  "the last (docs/metrics.md)");
   cmd->add_option("--eyebox-at", o->eyebox_at,
                   "Also each solution's eyebox, with the eye focused here (D): where its retinal PSNR stays within "
                   "--quality dB of the centre's, over the pupil positions inside the light field's eyebox");
@@ -91,15 +105,13 @@ void AddCompareCommand(CLI::App& app) {
     if (o->iterations && *o->iterations <= 0) throw Error("--iterations: must be positive");
     std::optional<double> time_budget;
     if (!o->time_budget.empty()) time_budget = ParseOptionValue(o->time_budget, "--time-budget", kSeconds);
-    std::vector<ObjectiveKind> objectives;
-    for (const std::string& name : SplitNames(o->objectives)) {
-      const std::optional<ObjectiveKind> k = ObjectiveKindNamed(name);
-      if (!k) throw Error("--objectives: \"" + name + "\" is not one of lightfield or retinal");
-      objectives.push_back(*k);
-    }
+    const std::vector<ObjectiveKind> objectives = ParseObjectives(o->objectives);
     std::vector<std::string> skipped;
+    const std::vector<const RetinalMetric*> metrics =
+        o->metrics.empty() ? std::vector<const RetinalMetric*>{} : ParseRetinalMetrics(o->metrics, "--metrics");
     std::vector<CompareRun> runs = CompareRunsOf(
-        o->scenes, {SplitNames(o->solvers), o->iterations, time_budget, o->scene_options, objectives}, &skipped);
+        o->scenes, {SplitNames(o->solvers), o->iterations, time_budget, o->scene_options, objectives, metrics},
+        &skipped);
     for (const std::string& line : skipped) std::fprintf(stderr, "compare: skipped %s\n", line.c_str());
     SolveConfig target_config;
     ApplyTargetOption(o->target, target_config);

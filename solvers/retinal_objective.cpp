@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <exception>
 
 #include "layerlab/eye/contrast_sensitivity.h"
 #include "layerlab/eye/spectral_filter.h"
@@ -10,6 +11,7 @@
 #include "layerlab/framework/fixed_order_sum.h"
 #include "layerlab/framework/heap_block.h"
 #include "layerlab/framework/huge_page_allocator.h"
+#include "layerlab/framework/units.h"
 #include "layerlab/retina/lightfield_radiance.h"
 #include "layerlab/solvers/objective.h"
 
@@ -237,6 +239,37 @@ RetinalObjectiveMemory RetinalObjectiveBytes(const DisplayModel& model, const Re
     m.filter = size_t(std::max(threads, 1)) * (HeapBlockBytes(samples * sizeof(std::complex<double>)) + 4 * line);
   }
   return m;
+}
+
+std::vector<double> RetinalObjective::MeanScores(const LightField& x, const std::vector<const RetinalMetric*>& metrics,
+                                                 double white_cd_m2) const {
+  CheckMetricSize(metrics, grid_.cols, grid_.rows, "the focal stack's metrics (one sample per light-field pixel)");
+  const MetricViewing viewing{grid_.resolution_rad / kRadiansPerDegree, white_cd_m2};
+  const size_t states = states_.size(), items = states * metrics.size();
+  std::vector<double> mean(metrics.size(), 0.0);
+  for (const Pupil& p : pupils_) {
+    std::vector<std::vector<float>> images;
+    p.op->Apply(x, &images);
+    auto image = [&](std::vector<float> pixels) {
+      return Image{grid_.cols, grid_.rows, {"R", "G", "B"}, std::move(pixels)};
+    };
+    std::vector<double> score(items);
+    std::vector<std::exception_ptr> failed(items);
+#pragma omp parallel for schedule(dynamic)
+    for (size_t i = 0; i < items; ++i) {
+      const size_t a = i / metrics.size(), k = i % metrics.size();
+      try {
+        score[i] = metrics[k]->score(image(images[a]), image(p.target_images[a]), viewing);
+      } catch (...) {
+        failed[i] = std::current_exception();
+      }
+    }
+    for (size_t i = 0; i < items; ++i) {
+      if (failed[i]) std::rethrow_exception(failed[i]);
+      mean[i % metrics.size()] += p.weight * score[i] / double(states);
+    }
+  }
+  return mean;
 }
 
 double RetinalObjective::FocalStackPsnr(const std::vector<double>& per_state) const {

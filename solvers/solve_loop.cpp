@@ -8,7 +8,9 @@
 
 #include "layerlab/framework/error.h"
 #include "layerlab/framework/mpi_ranks.h"
+#include "layerlab/kernels/synthesis.h"
 #include "layerlab/solvers/solver_checkpoint.h"
+#include "layerlab/solvers/trace_columns.h"
 
 namespace layerlab {
 
@@ -71,29 +73,7 @@ bool SolveLoop::Start(const std::string& refusal) {
     return false;
   }
   report_.rays = static_cast<size_t>(SumAcrossRanks(double(model_.geometry().ray_count())));  // every rank's
-  if (const SolverCheckpoint* c = options_.resume) {
-    if (c->solver != report_.solver) {
-      Fail("the checkpoint is of solver \"" + c->solver + "\", not \"" + report_.solver + "\"");
-      return false;
-    }
-    if (c->iteration >= options_.iterations) {
-      Fail("the checkpoint is at iteration " + std::to_string(c->iteration) + ", not below the iteration limit " +
-           std::to_string(options_.iterations));
-      return false;
-    }
-    report_.setup_seconds = Seconds();
-    *patterns_ = c->patterns;
-    iteration_ = c->iteration;
-    state_ = c->state;
-    report_.trace = c->trace;
-    report_.initial_objective = c->trace.front().objective;
-    report_.final_objective = c->trace.back().objective;
-    report_.final_psnr_db = c->trace.back().psnr_db;
-    report_.iterations = iteration_;
-    start_ = std::chrono::steady_clock::now() -
-             std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(c->seconds));
-    return true;
-  }
+  if (const SolverCheckpoint* c = options_.resume) return Resume(*c);
   if (const Patterns* warm = options_.initial_patterns) {
     bool fits = warm->size() == model_.layer_count();
     for (size_t k = 0; fits && k < warm->size(); ++k)
@@ -107,15 +87,35 @@ bool SolveLoop::Start(const std::string& refusal) {
   const auto now = std::chrono::steady_clock::now();
   report_.setup_seconds = std::chrono::duration<double>(now - start_).count();
   start_ = now;
+  bool recorded = false;
   if (retinal()) {
     const RetinalMeasures m = MeasureRetinal();
     report_.initial_objective = m.objective;
-    return Record(m.objective, m.light_field_objective, m.focal_stack_psnr_db);
+    recorded = Record(m.objective, m.light_field_objective, m.focal_stack_psnr_db);
+  } else {
+    const double objective = PatternsObjective();
+    report_.initial_objective = objective;
+    recorded = Record(objective, objective,
+                      retinal_ ? MeasureRetinal().focal_stack_psnr_db : std::numeric_limits<double>::quiet_NaN());
   }
-  double objective = PatternsObjective();
-  report_.initial_objective = objective;
-  return Record(objective, objective,
-                retinal_ ? MeasureRetinal().focal_stack_psnr_db : std::numeric_limits<double>::quiet_NaN());
+  if (recorded && MetricRowDue()) MeasureMetrics();
+  return recorded && !stopped_;
+}
+
+void SolveLoop::MeasureMetrics() {
+  const auto begin = std::chrono::steady_clock::now();
+  try {
+    const LightField light = Synthesize(model_, Read());
+    const std::vector<double> scores = retinal_->MeanScores(light, options_.measure_metrics, model_.white_luminance());
+    for (size_t k = 0; k < scores.size(); ++k)
+      if (options_.measure_metrics[k]->name != "psnr")
+        FocalStackColumn(*options_.measure_metrics[k]).set(&report_.trace.back(), scores[k]);
+  } catch (const Error& e) {
+    Fail(e.what());
+  }
+  metric_row_ = iteration_;
+  next_metric_row_ = std::max(iteration_ + 1, static_cast<int>(std::ceil(iteration_ * kMetricRowGrowth)));
+  start_ += std::chrono::steady_clock::now() - begin;
 }
 
 bool SolveLoop::SetUpDiffraction(const SolverType* type) {
@@ -126,6 +126,30 @@ bool SolveLoop::SetUpDiffraction(const SolverType* type) {
     return false;
   }
   report_.panel_diffraction = !diffraction_.empty();
+  return true;
+}
+
+bool SolveLoop::Resume(const SolverCheckpoint& c) {
+  if (c.solver != report_.solver) {
+    Fail("the checkpoint is of solver \"" + c.solver + "\", not \"" + report_.solver + "\"");
+    return false;
+  }
+  if (c.iteration >= options_.iterations) {
+    Fail("the checkpoint is at iteration " + std::to_string(c.iteration) + ", not below the iteration limit " +
+         std::to_string(options_.iterations));
+    return false;
+  }
+  report_.setup_seconds = Seconds();
+  *patterns_ = c.patterns;
+  iteration_ = c.iteration;
+  state_ = c.state;
+  report_.trace = c.trace;
+  report_.initial_objective = c.trace.front().objective;
+  report_.final_objective = c.trace.back().objective;
+  report_.final_psnr_db = c.trace.back().psnr_db;
+  report_.iterations = iteration_;
+  start_ = std::chrono::steady_clock::now() -
+           std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(c.seconds));
   return true;
 }
 
@@ -201,6 +225,8 @@ bool SolveLoop::EndIteration(std::optional<double> objective) {
     report_.message = TimeBudgetMessage(Seconds());
     stopped_ = true;
   }
+  if (MetricRowDue() || (stopped_ && !options_.measure_metrics.empty() && retinal_ && metric_row_ != iteration_))
+    MeasureMetrics();
   // A stop short of the goal also checkpoints, so that the run can go on.
   const bool short_stop =
       stopped_ && (report_.termination == Termination::kInterrupted || report_.termination == Termination::kTimeBudget);
@@ -224,6 +250,10 @@ void SolveLoop::Converge(const std::string& message) {
 
 SolverReport SolveLoop::Finish() {
   report_.seconds = Seconds();
+  // A solve that ended outside EndIteration (converged, or failed after its last row): its last row's metrics.
+  if (!options_.measure_metrics.empty() && retinal_ && !report_.trace.empty() && metric_row_ != iteration_ &&
+      report_.termination != Termination::kFailed)
+    MeasureMetrics();
   workspace_.reset();
   if (report_.termination == Termination::kNotRun && !report_.trace.empty()) {
     report_.termination = Termination::kIterationLimit;

@@ -85,6 +85,13 @@ class SolveLoop {
   // The thread count of options.threads = 0.
   int AutomaticThreads() const;
   bool Record(double objective, double light_field_objective, double focal_stack_psnr_db);
+  // The focal stack's metrics (options.measure_metrics) of the patterns now, into the last trace row, off the
+  // clock; at the rows kMetricRowGrowth spaces and at the last.
+  void MeasureMetrics();
+  bool MetricRowDue() const { return !options_.measure_metrics.empty() && retinal_ && iteration_ >= next_metric_row_; }
+  // Start's end for a resumed solve: the checkpoint's patterns, trace and state; false (failed) when it is not
+  // this solver's or is at the iteration limit already.
+  bool Resume(const struct SolverCheckpoint& c);
   // The panels' diffraction options.panel_diffraction asks for; false (failed) when the solver cannot model it.
   bool SetUpDiffraction(const SolverType* type);
   // Measured here, off the clock (the solver did not spend it).
@@ -109,7 +116,12 @@ class SolveLoop {
   std::unique_ptr<RetinalObjective> retinal_;
   std::optional<RetinalMeasures> measured_;
   std::vector<LayerDiffraction> diffraction_;
-  Patterns seen_;  // D t
+  Patterns seen_;            // D t
+  int next_metric_row_ = 0;  // the next iteration whose row measures options.measure_metrics
+  int metric_row_ = -1;      // the last row that did
 };
+
+// The rows that measure the focal stack's metrics: 0, 1, 2, 3, 5, 8, 12, ..., each about this times the last.
+inline constexpr double kMetricRowGrowth = 1.5;
 
 }  // namespace layerlab

@@ -62,6 +62,10 @@ bool SolverOptions::IsValid(std::string* error) const {
     *error = std::move(grid);
     return false;
   }
+  if (!measure_metrics.empty() && objective != ObjectiveKind::kRetinal && !measure_focal_stack) {
+    *error = "measure_metrics: scores the focal stack, which this solve does not measure; set measure_focal_stack";
+    return false;
+  }
   if (objective == ObjectiveKind::kRetinal && !retinal.weights.empty() &&
       retinal.weights.size() != retinal.states_diopters.size())
     return fail("retinal.weights", double(retinal.weights.size()), "must be one per state (retinal.states)");

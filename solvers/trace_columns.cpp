@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "layerlab/framework/error.h"
 #include "layerlab/solvers/objective.h"
 #include "layerlab/systems/system_report.h"
 
@@ -24,8 +25,23 @@ const std::vector<TraceColumn>& TraceColumns() {
        [](const R& r) { return r.psnr_db; }, [](R* r, double v) { r->psnr_db = v; }, false},
       {"focal_stack_psnr_db", "dB", "the retinal PSNR, mean over accommodation states", TraceValueKind::kDecibels,
        [](const R& r) { return r.focal_stack_psnr_db; }, [](R* r, double v) { r->focal_stack_psnr_db = v; }, true},
+      // The focal stack's perceptual metrics: "focal_stack_" and the metric's column (metrics/retinal_metrics.h).
+      {"focal_stack_ssim", "", "the retinal SSIM, mean over accommodation states", TraceValueKind::kScore,
+       [](const R& r) { return r.focal_stack_ssim; }, [](R* r, double v) { r->focal_stack_ssim = v; }, true},
+      {"focal_stack_ms_ssim", "", "the retinal MS-SSIM, mean over accommodation states", TraceValueKind::kScore,
+       [](const R& r) { return r.focal_stack_ms_ssim; }, [](R* r, double v) { r->focal_stack_ms_ssim = v; }, true},
+      {"focal_stack_jnd", "JND", "the retinal CSF-weighted difference, mean over accommodation states",
+       TraceValueKind::kScore, [](const R& r) { return r.focal_stack_jnd; },
+       [](R* r, double v) { r->focal_stack_jnd = v; }, true},
   };
   return columns;
+}
+
+const TraceColumn& FocalStackColumn(const RetinalMetric& metric) {
+  const std::string name = "focal_stack_" + metric.column;
+  for (const TraceColumn& c : TraceColumns())
+    if (name == c.name) return c;
+  throw Error("internal error: no trace column for the metric " + metric.name);
 }
 
 bool Measured(const TraceColumn& column, const std::vector<IterationRecord>& trace) {
@@ -55,6 +71,9 @@ std::string TraceField(const TraceColumn& column, double value, int decibel_deci
       break;
     case TraceValueKind::kDecibels:
       return FormatPsnr(value, decibel_decimals);
+    case TraceValueKind::kScore:
+      std::snprintf(text, sizeof text, "%.6f", value);
+      break;
   }
   return text;
 }

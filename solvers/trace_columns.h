@@ -20,6 +20,7 @@ enum class TraceValueKind {
   kSeconds,    // wall time, printed %.6f
   kObjective,  // a sum of squares, printed %.9g
   kDecibels,   // a PSNR, printed %.6f ("inf" for a perfect fit)
+  kScore,      // a perceptual metric, printed %.6f
 };
 
 struct TraceColumn {
@@ -36,6 +37,8 @@ struct TraceColumn {
 
 // The columns, in the order the files write them.
 const std::vector<TraceColumn>& TraceColumns();
+// The column of a focal stack's metric ("focal_stack_" and its column; psnr: focal_stack_psnr_db).
+const TraceColumn& FocalStackColumn(const RetinalMetric& metric);
 
 // Whether any row of `trace` measured the column (always, unless measured_only).
 bool Measured(const TraceColumn& column, const std::vector<IterationRecord>& trace);

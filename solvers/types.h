@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "layerlab/kernels/workspace_pass.h"
+#include "layerlab/metrics/retinal_metrics.h"
 #include "layerlab/retina/scene_radiance.h"
 
 namespace layerlab {
@@ -97,6 +98,11 @@ struct SolverOptions {
   // every trace row, off the clock (the trace's seconds leave it out), so
   // that both objectives' solutions compare at equal solver time.
   bool measure_focal_stack = false;
+  // With it or the retinal objective: also these metrics of the focal stack (metrics/retinal_metrics.h; its
+  // PSNR is focal_stack_psnr_db already), each the mean over the states of the display's retinal image against
+  // the target's, off the clock, at iterations 0, 1, 2, 3, 5, 8, 12, ... (each about kMetricRowGrowth x the
+  // last) and the last: each costs a few retinal images' worth of filtering.
+  std::vector<const RetinalMetric*> measure_metrics;
   // Solve through the panels' diffraction (systems/panel_diffraction.h): the
   // forward model reads D t, the patterns as the eye sees them through the
   // panels in front, instead of t. Only where a panel diffracts (fill_factor
@@ -142,6 +148,11 @@ struct IterationRecord {
   // the light field's, and this is the mean over states of the retinal PSNR;
   // NaN with the light-field objective.
   double focal_stack_psnr_db = std::numeric_limits<double>::quiet_NaN();
+  // The focal stack's perceptual metrics (SolverOptions::measure_metrics), each the mean over states; NaN where
+  // not measured.
+  double focal_stack_ssim = std::numeric_limits<double>::quiet_NaN();
+  double focal_stack_ms_ssim = std::numeric_limits<double>::quiet_NaN();
+  double focal_stack_jnd = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct SolverReport {

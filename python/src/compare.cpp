@@ -55,7 +55,7 @@ std::vector<std::string> SolverList(const py::object& solvers, const std::string
 
 py::dict Compare(const py::object& scenes, const py::object& target, const py::object& solvers,
                  const py::object& iterations_arg, const py::object& time_budget_arg, bool scene_options,
-                 const py::object& objectives, const py::object& callback) {
+                 const py::object& objectives, const py::object& metrics, const py::object& callback) {
   std::optional<int> iterations;
   std::optional<double> time_budget;
   if (!iterations_arg.is_none())
@@ -71,8 +71,13 @@ py::dict Compare(const py::object& scenes, const py::object& target, const py::o
     if (!k) throw py::value_error("compare: objectives: \"" + name + "\" is not one of lightfield or retinal");
     objective_kinds.push_back(*k);
   }
-  const CompareSelection selection{SolverList(solvers, "compare: solvers"), iterations, time_budget, scene_options,
-                                   objective_kinds};
+  std::string metric_names;  // None, a name or a list of names
+  for (const std::string& name : SolverList(metrics, "compare: metrics")) metric_names += "," + name;
+  std::vector<const RetinalMetric*> metric_list;
+  if (!metric_names.empty())
+    CheckArgument([&] { metric_list = ParseRetinalMetrics(metric_names.substr(1), "compare: metrics"); });
+  const CompareSelection selection{
+      SolverList(solvers, "compare: solvers"), iterations, time_budget, scene_options, objective_kinds, metric_list};
   std::shared_ptr<LightField> given;
   SolveConfig target_config;  // a light-field folder, or a target scene file rendered as --target-scene does
   if (py::isinstance<LightField>(target)) {
@@ -126,10 +131,11 @@ py::dict Compare(const py::object& scenes, const py::object& target, const py::o
 void BindCompare(py::module_& m) {
   m.def("compare", &Compare, py::arg("scenes"), py::arg("target"), py::kw_only(), py::arg("solvers") = py::none(),
         py::arg("iterations") = py::none(), py::arg("time_budget") = py::none(), py::arg("scene_options") = false,
-        py::arg("objectives") = py::none(), py::arg("callback") = py::none(),
+        py::arg("objectives") = py::none(), py::arg("metrics") = py::none(), py::arg("callback") = py::none(),
         "Several displays and solvers on one target (a LightField, a light-field folder or a target scene file), as "
         "`layerlab compare`: like for like (each solver's defaults) unless scene_options; objectives (\"lightfield\", "
-        "\"retinal\" or a list) as --objectives. A dict of columns, one row per display, solver and objective "
+        "\"retinal\" or a list) as --objectives; metrics (\"ssim\", \"ms_ssim\", \"jnd\", \"all\" or a list) as "
+        "--metrics. A dict of columns, one row per display, solver and objective "
         "(scene, display, solver, objective, solver_options, final_psnr_db, final_focal_stack_psnr_db, seconds, "
         "iterations, subframes, panel_refresh_hz, luminance_efficiency, efficiency, termination, message, trace), with "
         "skipped, warnings and table");

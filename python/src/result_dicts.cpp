@@ -8,6 +8,7 @@
 #include "layerlab/python/src/json_convert.h"
 #include "layerlab/python/src/trace_table.h"
 #include "layerlab/solvers/solution_writer.h"
+#include "layerlab/solvers/trace_columns.h"
 
 namespace py = pybind11;
 
@@ -67,6 +68,11 @@ py::dict CompareColumns(const std::vector<std::string>& scenes, const std::vecto
   d["iterations"] = iterations, d["subframes"] = subframes;
   d["panel_refresh_hz"] = refresh, d["luminance_efficiency"] = luminance, d["efficiency"] = efficiency;
   d["termination"] = termination, d["solver_options"] = options_from, d["message"] = message, d["trace"] = traces;
+  for (const TraceColumn* c : MeasuredMetricColumns(results)) {  // final_focal_stack_ssim, ...: as compare.csv
+    py::array_t<double> values(n);
+    for (py::ssize_t i = 0; i < n; ++i) values.mutable_at(i) = FinalTraceValue(*c, results[i].report);
+    d[py::str(std::string("final_") + c->name)] = values;
+  }
   d["skipped"] = skipped, d["warnings"] = warnings;
   d["table"] = CompareTable(results);
   return d;

@@ -165,3 +165,25 @@ def test_objectives_each_row_with_both_psnrs(target_folder, tmp_path):
         layerlab.compare(SCENES[0], target_folder, objectives="retina")
     plain = layerlab.compare(SCENES[0], target_folder, iterations=1)
     assert plain["objective"] == ["lightfield"] and np.isnan(plain["final_focal_stack_psnr_db"][0])
+
+
+def test_metrics_beside_psnr_at_the_rows_that_measure_them(target_folder, tmp_path):
+    table = layerlab.compare(SCENES[0], target_folder, solvers="hybrid", metrics=["ssim", "jnd"], iterations=6)
+    assert "final_focal_stack_ms_ssim" not in table
+    trace = table["trace"][0]
+    # Measured at iterations 0, 1, 2, 3, 5 (each about 1.5 x the last) and the last, 6; the focal stack's PSNR at all.
+    measured = [int(i) for i, v in zip(trace["iteration"], trace["focal_stack_ssim"]) if np.isfinite(v)]
+    assert measured == [0, 1, 2, 3, 5, 6]
+    assert np.all(np.isfinite(trace["focal_stack_psnr_db"]))
+    assert np.array_equal(np.isfinite(trace["focal_stack_jnd"]), np.isfinite(trace["focal_stack_ssim"]))
+    assert table["final_focal_stack_ssim"][0] == trace["focal_stack_ssim"][-1]
+    assert 0 < trace["focal_stack_ssim"][-1] <= 1 and trace["focal_stack_ssim"][-1] > trace["focal_stack_ssim"][0]
+    assert trace["focal_stack_jnd"][-1] < trace["focal_stack_jnd"][0]  # the solve lowers the visible error
+    rows = command_csv(tmp_path, [SCENES[0]], ["--target", str(target_folder)], "--solvers", "hybrid", "--metrics",
+                       "ssim,jnd", "--iterations", "6")
+    np.testing.assert_allclose([float(rows[0]["final_focal_stack_ssim"])], table["final_focal_stack_ssim"], atol=1e-6)
+    np.testing.assert_allclose([float(rows[0]["final_focal_stack_jnd"])], table["final_focal_stack_jnd"], rtol=1e-6)
+    with pytest.raises(ValueError, match='compare: metrics: "lpips" is not a metric'):
+        layerlab.compare(SCENES[0], target_folder, metrics="lpips")
+    with pytest.raises(layerlab.Error, match="ms_ssim needs images of at least 176 x 176 samples; these are 80 x 40"):
+        layerlab.compare(SCENES[0], target_folder, metrics="ms_ssim", iterations=1)
