@@ -44,8 +44,16 @@ struct RetinaCommandOptions {
   OpticsOptions optics;
   std::string accommodation = "0.4,1.0,1.6,2.2", focal_stack, field, resolution = "0.05";
   std::string eyes = "scene", partner_patterns;
-  std::string metrics = "psnr";
+  std::string metrics = "psnr", fovea;
 };
+
+// --fovea X,Y in degrees, or none.
+std::optional<std::array<double, 2>> Fovea(const RetinaCommandOptions& o) {
+  if (o.fovea.empty()) return std::nullopt;
+  const std::vector<double> at = ParseNumberList(o.fovea, "--fovea", kDegrees);
+  if (at.size() != 2) throw Error("--fovea: \"" + o.fovea + "\" is not X,Y (degrees right and up from the centre)");
+  return std::array<double, 2>{at[0], at[1]};
+}
 
 // --accommodation and --focal-stack's states, sorted, without repeats.
 std::vector<double> AccommodationStates(const RetinaCommandOptions& o) {
@@ -104,7 +112,8 @@ std::vector<RetinaStateResult> RetinaOfEye(const RetinaCommandOptions& o, const 
   DisplayModel model(system, g, config.sampling);
   const Patterns t = ReadPatterns(model, patterns);
   const SceneRadiance& natural = seen.radiance();
-  RetinaSweepOptions sweep{states, resolution, field[0], field[1], false, ParseRetinalMetrics(o.metrics, "--metrics")};
+  RetinaSweepOptions sweep{states,   resolution, field[0], field[1], false, ParseRetinalMetrics(o.metrics, "--metrics"),
+                           Fovea(o)};
   Progress progress(label, states.size());
   const std::vector<RetinaStateResult> results =
       WriteRetinaSweep(model, t, natural, sweep, folder, [&](size_t done, size_t, const RetinaStateResult& r) {
@@ -185,6 +194,9 @@ void RunRetinaCommand(const RetinaCommandOptions& o) {
   const std::vector<DisplaySystem> eyes = both ? BothEyes(o, system) : std::vector<DisplaySystem>{system};
   AccommodationStates(o);
   const std::vector<const RetinalMetric*> metrics = ParseRetinalMetrics(o.metrics, "--metrics");
+  if (Fovea(o) && !(!given.target.empty() || !given.target_scene.empty()))
+    throw Error("--fovea: weights the metrics, which score the display against natural viewing of a target: give "
+                "--target or --target-scene");
   const bool natural = !given.target.empty() || !given.target_scene.empty();
   if (!natural && metrics.size() > 1)
     throw Error(
@@ -271,6 +283,9 @@ void AddRetinaCommand(CLI::App& app) {
   cmd->add_option("--metrics", o->metrics,
                   "With a target: score each state's display image against natural viewing by these, a retina.csv "
                   "column each: psnr, ssim, ms_ssim, jnd, or all (default psnr; docs/metrics.md)");
+  cmd->add_option("--fovea", o->fovea,
+                  "Weight every metric by eccentricity from this point, X,Y degrees right and up from the retina's "
+                  "centre, where the eye looks (0,0): the cortical magnification's area (docs/metrics.md)");
   cmd->add_option("--out", o->out, "Output folder")->required();
   cmd->callback([o] { RunRetinaCommand(*o); });
 }

@@ -37,6 +37,7 @@ double SineMinkowskiMean(double beta) {
 
 double CsfJnd(const Plane& reference, const Plane& test, const CsfJndOptions& o) {
   Check(reference, test, o);
+  CheckWeight(reference, o.weight, "CSF JND");
   double mean = 0;
   for (double v : reference.values) mean += v;
   mean /= static_cast<double>(reference.values.size());
@@ -51,9 +52,12 @@ double CsfJnd(const Plane& reference, const Plane& test, const CsfJndOptions& o)
                  [&](double fx, double fy) { return BartenContrastSensitivity(std::hypot(fx, fy), eye); });
 
   const double beta = o.minkowski_exponent;
-  double sum = 0;
-  for (const std::complex<double>& j : field) sum += std::pow(std::abs(j.real()), beta);
-  return std::pow(sum / static_cast<double>(field.size()), 1 / beta) / SineMinkowskiMean(beta);
+  double sum = 0, total = 0;
+  for (size_t k = 0; k < field.size(); ++k) {
+    const double w = o.weight ? o.weight->values[k] : 1.0;
+    sum += w * std::pow(std::abs(field[k].real()), beta), total += w;
+  }
+  return std::pow(sum / total, 1 / beta) / SineMinkowskiMean(beta);
 }
 
 }  // namespace layerlab

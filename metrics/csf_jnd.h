@@ -24,6 +24,8 @@ namespace layerlab {
 struct CsfJndOptions {
   double pixel_deg = 1.0 / 60;    // the images' sampling: degrees per pixel, both axes
   double minkowski_exponent = 4;  // beta, >= 1 (beta = 4 is a common choice for spatial pooling)
+  // Pooled by a Minkowski mean weighted by this (foveal_weight.h): (sum w |J|^beta / sum w)^(1/beta); null: uniform.
+  const Plane* weight = nullptr;
 };
 
 // Y in cd/m2 (linear luminance). Throws layerlab::Error naming what is wrong:

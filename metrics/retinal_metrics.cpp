@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <set>
 
 #include "layerlab/framework/error.h"
 #include "layerlab/metrics/csf_jnd.h"
+#include "layerlab/metrics/foveal_weight.h"
 #include "layerlab/metrics/psnr.h"
 #include "layerlab/metrics/ssim.h"
 
@@ -34,18 +36,28 @@ Plane Encoded(const Image& image, const char* which) {
   return p;
 }
 
-double Psnr(const Image& display, const Image& reference, const MetricViewing&) {
-  return ImagePsnrDb(display, reference);
+// The viewing's foveal weight of an image, or nothing.
+std::optional<Plane> Weight(const Image& image, const MetricViewing& v) {
+  if (!v.foveal) return std::nullopt;
+  return FovealWeight(image.width, image.height, v.pixel_deg, v.gaze_x_deg, v.gaze_y_deg);
 }
-double SsimOf(const Image& display, const Image& reference, const MetricViewing&) {
-  return Ssim(Encoded(display, "display"), Encoded(reference, "reference"), 1.0);
+
+double Psnr(const Image& display, const Image& reference, const MetricViewing& v) {
+  const std::optional<Plane> w = Weight(display, v);
+  return ImagePsnrDb(display, reference, w ? &*w : nullptr);
 }
-double MsSsimOf(const Image& display, const Image& reference, const MetricViewing&) {
-  return MsSsim(Encoded(display, "display"), Encoded(reference, "reference"), 1.0);
+double SsimOf(const Image& display, const Image& reference, const MetricViewing& v) {
+  const std::optional<Plane> w = Weight(display, v);
+  return Ssim(Encoded(display, "display"), Encoded(reference, "reference"), 1.0, w ? &*w : nullptr);
+}
+double MsSsimOf(const Image& display, const Image& reference, const MetricViewing& v) {
+  const std::optional<Plane> w = Weight(display, v);
+  return MsSsim(Encoded(display, "display"), Encoded(reference, "reference"), 1.0, w ? &*w : nullptr);
 }
 double JndOf(const Image& display, const Image& reference, const MetricViewing& v) {
+  const std::optional<Plane> w = Weight(display, v);
   return CsfJnd(Luminance(reference, v.white_cd_m2, "reference"), Luminance(display, v.white_cd_m2, "display"),
-                {v.pixel_deg, 4.0});
+                {v.pixel_deg, 4.0, w ? &*w : nullptr});
 }
 
 }  // namespace

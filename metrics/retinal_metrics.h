@@ -26,6 +26,10 @@ inline constexpr double kRingingFloor = 1e-3;
 struct MetricViewing {
   double pixel_deg = 0;    // the images' sampling, both axes
   double white_cd_m2 = 0;  // the luminance of display-relative 1
+  // Every metric's mean over the image weighted by eccentricity from the gaze (foveal_weight.h), the gaze
+  // measured from the image's centre (deg right, up).
+  bool foveal = false;
+  double gaze_x_deg = 0, gaze_y_deg = 0;
 };
 
 struct RetinalMetric {

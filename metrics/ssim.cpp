@@ -61,7 +61,8 @@ struct SsimTerms {
   double ssim = 0;       // mean of their product
 };
 
-SsimTerms Terms(const Plane& x, const Plane& y, double data_range) {
+// The means over the image less its border; with `weight`, means weighted by it.
+SsimTerms Terms(const Plane& x, const Plane& y, double data_range, const Plane* weight) {
   const int w = x.width, h = x.height;
   const size_t n = x.values.size();
   std::vector<double> xx(n), yy(n), xy(n);
@@ -71,15 +72,21 @@ SsimTerms Terms(const Plane& x, const Plane& y, double data_range) {
   const std::vector<double> uxx = Blurred(xx, w, h), uyy = Blurred(yy, w, h), uxy = Blurred(xy, w, h);
   const double c1 = std::pow(0.01 * data_range, 2), c2 = std::pow(0.03 * data_range, 2);
   SsimTerms sum;
-  size_t count = 0;
+  double count = 0;
   for (int i = kRadius; i < h - kRadius; ++i)
     for (int j = kRadius; j < w - kRadius; ++j) {
       const size_t k = static_cast<size_t>(i) * w + j;
       const double vx = uxx[k] - ux[k] * ux[k], vy = uyy[k] - uy[k] * uy[k], vxy = uxy[k] - ux[k] * uy[k];
       const double l = (2 * ux[k] * uy[k] + c1) / (ux[k] * ux[k] + uy[k] * uy[k] + c1);
       const double cs = (2 * vxy + c2) / (vx + vy + c2);
-      sum.luminance += l, sum.structure += cs, sum.ssim += l * cs;
-      ++count;
+      if (weight) {
+        const double a = weight->values[k];
+        sum.luminance += a * l, sum.structure += a * cs, sum.ssim += a * l * cs;
+        count += a;
+      } else {
+        sum.luminance += l, sum.structure += cs, sum.ssim += l * cs;
+        ++count;
+      }
     }
   sum.luminance /= count, sum.structure /= count, sum.ssim /= count;
   return sum;
@@ -115,24 +122,39 @@ Plane Halved(const Plane& p) {
 
 }  // namespace
 
-double Ssim(const Plane& x, const Plane& y, double data_range) {
+double Ssim(const Plane& x, const Plane& y, double data_range, const Plane* weight) {
   Check(x, y, data_range, 2 * kRadius + 1, "SSIM");
-  return Terms(x, y, data_range).ssim;
+  CheckWeight(x, weight, "SSIM");
+  return Terms(x, y, data_range, weight).ssim;
 }
 
-double MsSsim(const Plane& x, const Plane& y, double data_range) {
+double MsSsim(const Plane& x, const Plane& y, double data_range, const Plane* weight) {
   Check(x, y, data_range, kMsSsimMinSide, "MS-SSIM");
-  Plane a = x, b = y;
+  CheckWeight(x, weight, "MS-SSIM");
+  Plane a = x, b = y, w = weight ? *weight : Plane{};
   double product = 1;
   for (size_t j = 0; j < kScaleWeights.size(); ++j) {
-    const SsimTerms t = Terms(a, b, data_range);
+    const SsimTerms t = Terms(a, b, data_range, weight ? &w : nullptr);
     product *= std::pow(std::max(t.structure, 0.0), kScaleWeights[j]);
     if (j + 1 == kScaleWeights.size())
       product *= std::pow(std::max(t.luminance, 0.0), kScaleWeights[j]);
     else
-      a = Halved(a), b = Halved(b);
+      a = Halved(a), b = Halved(b), w = weight ? Halved(w) : w;
   }
   return product;
+}
+
+void CheckWeight(const Plane& image, const Plane* weight, const char* metric) {
+  if (!weight) return;
+  const std::string m = metric;
+  if (weight->width != image.width || weight->height != image.height || weight->values.size() != image.values.size())
+    throw Error(m + ": the weight is not of the image's size");
+  double sum = 0;
+  for (double v : weight->values) {
+    if (!(v >= 0) || !std::isfinite(v)) throw Error(m + ": a weight that is negative or not finite");
+    sum += v;
+  }
+  if (!(sum > 0)) throw Error(m + ": the weights are all 0");
 }
 
 Plane EncodedLuminance(const Image& image) {

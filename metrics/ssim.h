@@ -40,8 +40,12 @@ inline constexpr int kMsSsimMinSide = 11 * 16;
 // Throw layerlab::Error naming what is wrong: planes of other sizes, a side
 // shorter than the window (11; kMsSsimMinSide for MS-SSIM), a data range
 // not above 0, a value that is not finite.
-double Ssim(const Plane& x, const Plane& y, double data_range);
-double MsSsim(const Plane& x, const Plane& y, double data_range);
+// With `weight` (a plane of the images' size, >= 0, not all 0; foveal_weight.h)
+// every mean over the image is weighted by it (MS-SSIM: halved with the images).
+double Ssim(const Plane& x, const Plane& y, double data_range, const Plane* weight = nullptr);
+double MsSsim(const Plane& x, const Plane& y, double data_range, const Plane* weight = nullptr);
+// Throws layerlab::Error, naming `metric`, for a weight of another size, one negative or not finite, or all 0.
+void CheckWeight(const Plane& image, const Plane* weight, const char* metric);
 
 // The luminance of a linear RGB image in display-relative units (Rec. 709
 // primaries: Y = 0.2126 R + 0.7152 G + 0.0722 B), encoded by the sRGB

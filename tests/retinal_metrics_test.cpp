@@ -10,6 +10,7 @@
 
 #include "layerlab/framework/error.h"
 #include "layerlab/metrics/csf_jnd.h"
+#include "layerlab/metrics/foveal_weight.h"
 #include "layerlab/metrics/psnr.h"
 #include "layerlab/metrics/retinal_metrics.h"
 #include "layerlab/metrics/ssim.h"
@@ -54,7 +55,7 @@ TEST(RetinalMetrics, EachIsItsFilesFunctionOnTheImagesAsHandedOver) {
             MsSsim(EncodedLuminance(display), EncodedLuminance(reference), 1.0));
   // The JND reads luminance in cd/m2: the reference first, at the images' sampling, beta 4.
   EXPECT_NEAR(Named("jnd").score(display, reference, viewing),
-              CsfJnd(LuminanceOf(reference, 120.0), LuminanceOf(display, 120.0), {0.05, 4.0}), 1e-12);
+              CsfJnd(LuminanceOf(reference, 120.0), LuminanceOf(display, 120.0), {0.05, 4.0, nullptr}), 1e-12);
   EXPECT_EQ(Named("jnd").higher_is_better, false);
   EXPECT_EQ(Named("psnr").column, "psnr_db");
 }
@@ -98,6 +99,62 @@ TEST(RetinalMetrics, ListsAreReadInTheRegistrysOrderWithPsnrAlways) {
     EXPECT_NE(std::string(e.what()).find("ms_ssim needs images of at least 176 x 176"), std::string::npos) << e.what();
   }
   EXPECT_NO_THROW(CheckMetricSize(ParseRetinalMetrics("all", "m"), 176, 176, "retina"));
+}
+
+}  // namespace
+}  // namespace layerlab
+
+namespace layerlab {
+namespace {
+
+TEST(FovealWeight, IsTheCorticalAreaRelativeToTheFoveas) {
+  EXPECT_DOUBLE_EQ(FovealWeightAt(0), 1.0);
+  EXPECT_DOUBLE_EQ(FovealWeightAt(0.75), 0.25);                       // M(e) = 17.3 / (e + 0.75): half, squared
+  EXPECT_NEAR(FovealWeightAt(6.75), std::pow(0.75 / 7.5, 2), 1e-15);  // a hundredth
+  // Pixel centres 0.5 deg apart on a 4 x 3 image, the gaze 0.25 deg right of the centre: the pixel at
+  // (row 1, col 2) has its centre there (x = 0.25, y = 0).
+  const Plane w = FovealWeight(4, 3, 0.5, 0.25, 0);
+  EXPECT_DOUBLE_EQ(w.at(1, 2), 1.0);
+  EXPECT_NEAR(w.at(0, 0), FovealWeightAt(std::hypot(-0.75 - 0.25, 0.5)), 1e-15);
+  EXPECT_THROW(FovealWeight(4, 3, 0, 0, 0), Error);
+}
+
+TEST(FovealWeight, WeightsEveryMetricsMean) {
+  const Image display = Random(180, 180, 6), reference = Random(180, 180, 7);
+  Plane uniform{180, 180, std::vector<double>(180 * 180, 2.0)};
+  const Plane x = EncodedLuminance(display), y = EncodedLuminance(reference);
+  EXPECT_NEAR(Ssim(x, y, 1.0, &uniform), Ssim(x, y, 1.0), 1e-14);
+  EXPECT_NEAR(MsSsim(x, y, 1.0, &uniform), MsSsim(x, y, 1.0), 1e-14);
+  EXPECT_NEAR(ImagePsnrDb(display, reference, &uniform), ImagePsnrDb(display, reference), 1e-9);
+  const Plane a = LuminanceOf(reference, 50), b = LuminanceOf(display, 50);
+  EXPECT_NEAR(CsfJnd(a, b, {0.05, 4, &uniform}), CsfJnd(a, b, {0.05, 4, nullptr}), 1e-9);
+  // PSNR by hand: two pixels, an error of 0.1 in every channel of the first, weights 3 and 1: the weighted
+  // mean square 3 x 3 x 0.01 / (3 x 4) = 0.0075.
+  Image one{2, 1, {"R", "G", "B"}, {0.5f, 0.5f, 0.5f, 0.2f, 0.2f, 0.2f}}, other = one;
+  for (int c = 0; c < 3; ++c) other.pixels[c] += 0.1f;
+  const Plane w{2, 1, {3.0, 1.0}};
+  EXPECT_NEAR(ImagePsnrDb(other, one, &w), 10 * std::log10(1 / 0.0075), 1e-5);
+  // A difference far from the gaze counts less with the weighting, one at the gaze more.
+  const MetricViewing plain{0.05, 50.0}, foveal{0.05, 50.0, true, 0, 0};
+  for (bool at_gaze : {false, true}) {
+    Image changed = reference;
+    const int row0 = at_gaze ? 80 : 0, col0 = at_gaze ? 80 : 0;
+    for (int i = row0; i < row0 + 20; ++i)
+      for (int j = col0; j < col0 + 20; ++j)
+        for (int c = 0; c < 3; ++c) changed.pixels[(size_t(i) * 180 + j) * 3 + c] *= 0.8f;
+    for (const char* name : {"psnr", "ssim", "jnd"}) {
+      const double weighted = Named(name).score(changed, reference, foveal),
+                   unweighted = Named(name).score(changed, reference, plain);
+      const bool worse = Named(name).higher_is_better ? weighted < unweighted : weighted > unweighted;
+      EXPECT_EQ(worse, at_gaze) << name << (at_gaze ? " at the gaze" : " in the periphery") << ": " << weighted
+                                << " against " << unweighted;
+    }
+  }
+  Plane negative = uniform;
+  negative.values[5] = -1;
+  EXPECT_THROW(Ssim(x, y, 1.0, &negative), Error);
+  Plane zero{180, 180, std::vector<double>(180 * 180, 0.0)};
+  EXPECT_THROW(CsfJnd(a, b, {0.05, 4, &zero}), Error);
 }
 
 }  // namespace

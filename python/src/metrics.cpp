@@ -22,14 +22,14 @@ Plane PlaneOf(const py::array_t<double, py::array::c_style | py::array::forcecas
   return p;
 }
 
-template <double (*metric)(const Plane&, const Plane&, double)>
+template <double (*metric)(const Plane&, const Plane&, double, const Plane*)>
 double Metric(const py::array_t<double, py::array::c_style | py::array::forcecast>& x,
               const py::array_t<double, py::array::c_style | py::array::forcecast>& y, double data_range) {
   const Plane a = PlaneOf(x, "x"), b = PlaneOf(y, "y");
   double value = 0;
   CheckArgument([&] {
     py::gil_scoped_release release;
-    value = metric(a, b, data_range);
+    value = metric(a, b, data_range, nullptr);
   });
   return value;
 }
@@ -41,7 +41,7 @@ double Jnd(const py::array_t<double, py::array::c_style | py::array::forcecast>&
   double value = 0;
   CheckArgument([&] {
     py::gil_scoped_release release;
-    value = CsfJnd(a, b, {pixel_deg, minkowski_exponent});
+    value = CsfJnd(a, b, {pixel_deg, minkowski_exponent, nullptr});
   });
   return value;
 }
