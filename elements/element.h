@@ -199,6 +199,8 @@ struct PanelSpec {
   // The open fraction of each pixel's rectangular aperture along x and y; 1: no black matrix, no diffraction.
   std::array<double, 2> fill_factor = {1, 1};
   bool diffracts() const { return fill_factor[0] < 1 || fill_factor[1] < 1; }
+  // The liquid crystal's 10 to 90 % response times, rising and falling transmittance (s; 0: instant).
+  double rise_time_s = 0, fall_time_s = 0;
 };
 
 class PanelElement : public Element {

@@ -17,6 +17,8 @@
 // | tilt              | [angle, angle]       | [0, 0]         | turned about x, then about y, through the active region's centre (as mounted off true); its rays are traced to the tilted plane |
 // | polarization      | angle                | 0 deg          | axis of the exit polarizer, from eye-space x |
 // | fill_factor       | fraction or [x, y]   | 1              | the open width of a pixel's aperture over its pitch (the black matrix is the rest): below 1 the grid diffracts the light of the layers behind it (systems/panel_diffraction.h) |
+// | rise_time         | time                 | 0 s (instant)  | the liquid crystal's 10 to 90 % response to rising transmittance; a time-multiplexed display's light is the time average of what the panels show (systems/lc_response.h) |
+// | fall_time         | time                 | rise_time      | the same for falling transmittance |
 // | next              | name                 | required       | the panel behind, or the backlight           |
 #include <algorithm>
 #include <cmath>
@@ -95,6 +97,10 @@ std::unique_ptr<Element> MakeLcPanel(Params& p) {
   s.fill_factor = p.quantity_pair("fill_factor", Dimension::kFraction, {1.0, 1.0});
   p.require_range("fill_factor", std::min(s.fill_factor[0], s.fill_factor[1]), 0.0, 1.0, true, false);
   p.require_range("fill_factor", std::max(s.fill_factor[0], s.fill_factor[1]), 0.0, 1.0, true, false);
+  s.rise_time_s = p.quantity("rise_time", Dimension::kTime, 0.0);
+  p.require_range("rise_time", s.rise_time_s, 0.0, 1.0, false, false);
+  s.fall_time_s = p.quantity("fall_time", Dimension::kTime, s.rise_time_s);
+  p.require_range("fall_time", s.fall_time_s, 0.0, 1.0, false, false);
   return std::make_unique<PanelElement>(s);
 }
 

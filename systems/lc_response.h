@@ -1,0 +1,46 @@
+// The liquid crystal's response: what a time-multiplexed display's panels
+// actually show. A panel driven to transmittance t in a subframe of length
+// T = 1 / (K frame_rate) relaxes toward it from where the subframe before
+// left it, as a first-order system:
+//   x(s) = t + (x0 - t) exp(-s / tau),   0 <= s < T,
+// tau = time / ln 9 from the panel's 10 to 90 % rise_time (t > x0) or
+// fall_time (t < x0), on transmittance, per pixel and channel. The frame
+// repeats, so each pixel's start values are the periodic steady state of
+// its K driven values (found by running the cycle until it repeats). The
+// eye sees the time average of the light, a product of the stack's x(s):
+//   L = sum_k w_k (1/T) int_0^T prod_{j in k} P_j x_j(s) ds,
+// taken by Gauss-Legendre quadrature in s (kResponseNodes nodes: the
+// integrand is a sum of exponentials; 8 nodes hold a product of three
+// relaxing layers to 1e-9). A display of one subframe, or with instant
+// panels, shows its driven patterns: one node of weight 1.
+#pragma once
+
+#include <vector>
+
+#include "layerlab/systems/display_model.h"
+
+namespace layerlab {
+
+inline constexpr int kResponseNodes = 8;
+// tau = (10 to 90 % time) / ln 9.
+inline constexpr double kTenToNinetyPerTau = 2.1972245773362196;
+
+// What the panels show at one instant of every subframe, and its share of the frame's time.
+struct ShownInstant {
+  double weight = 1;  // the quadrature weight; the instants' weights sum to 1
+  Patterns patterns;  // every layer's transmittance at that instant of its subframe
+};
+
+// Whether any panel of the display responds in finite time across subframes.
+bool ResponseMatters(const DisplaySystem& system);
+
+// The instants of a frame (kResponseNodes of them, or the driven patterns alone when the response does not
+// matter). Throws layerlab::Error when the patterns are not the display's layers.
+std::vector<ShownInstant> ShownOverTime(const DisplaySystem& system, const Patterns& driven);
+
+// One pixel's transmittance at the start of each of its K subframes in the periodic steady state (the
+// building block of ShownOverTime, for tests): driven[k], subframe length T, rise and fall times (10 to 90 %).
+std::vector<double> SteadyStartValues(const std::vector<double>& driven, double subframe_s, double rise_s,
+                                      double fall_s);
+
+}  // namespace layerlab
