@@ -17,6 +17,7 @@
 #include "layerlab/framework/units.h"
 #include "layerlab/retina/eye_optics.h"
 #include "layerlab/retina/retina_workspace.h"
+#include "layerlab/systems/lc_response.h"
 #include "layerlab/systems/panel_diffraction.h"
 
 namespace layerlab {
@@ -61,7 +62,7 @@ void Score(const std::vector<const RetinalMetric*>& metrics, const MetricViewing
 }
 
 // The images of states [first, first + count), each computed in parallel within.
-RetinaBatch TraceBatch(const DisplayModel& model, const Patterns& t, const SceneRadiance& natural,
+RetinaBatch TraceBatch(const DisplayModel& model, const std::vector<ShownInstant>& shown, const SceneRadiance& natural,
                        const EyeOptics& optics, const std::vector<double>& states, size_t first, size_t count,
                        const std::vector<const RetinalMetric*>& metrics,
                        const std::optional<std::array<double, 2>>& fovea, RetinaWorkspace* workspace) {
@@ -77,7 +78,16 @@ RetinaBatch TraceBatch(const DisplayModel& model, const Patterns& t, const Scene
     r.name = RetinaStateName(r.diopters);
     const auto focus = ChannelAccommodation(system.eye, r.diopters);
     b.display[s] = optics.See([&](const RetinaGrid& traced, const std::vector<PupilPoint>& group) {
-      return RetinaOfDisplay(model, t, DisplayRetinaTables(model, traced, group, focus), workspace);
+      const DisplayRetinaTables tables(model, traced, group, focus);
+      if (shown.size() == 1) return RetinaOfDisplay(model, shown[0].patterns, tables, workspace);
+      Image mean;  // the time average of what the panels show (systems/lc_response.h): the retina is linear in light
+      for (const ShownInstant& instant : shown) {
+        const Image at = RetinaOfDisplay(model, instant.patterns, tables, workspace);
+        if (mean.pixels.empty()) mean = at, std::fill(mean.pixels.begin(), mean.pixels.end(), 0.0f);
+        for (size_t k = 0; k < at.pixels.size(); ++k)
+          mean.pixels[k] += static_cast<float>(instant.weight * at.pixels[k]);
+      }
+      return mean;
     });
     r.display_mean_cd_m2 = MeanLuminance(b.display[s]) * white;
     r.natural_mean_cd_m2 = NAN;
@@ -156,7 +166,9 @@ std::vector<RetinaStateResult> WriteRetinaSweep(
       CenteredOnGaze(MakeRetinaGrid(field_x, field_y, o.resolution_deg * kRadiansPerDegree), system.eye.pose);
   const std::vector<PupilPoint> pupil = PupilSamples(system.eye);
   const EyeOptics optics(system.eye, pupil, grid);  // its parts of the OTF serve every state
-  const Patterns seen = SeenPatterns(system, t);    // through the panels' diffraction, once
+  // What the panels show over a frame (their response), each instant through the panels' diffraction, once.
+  std::vector<ShownInstant> shown = ShownOverTime(system, t);
+  for (ShownInstant& instant : shown) instant.patterns = SeenPatterns(system, instant.patterns);
   const std::vector<const RetinalMetric*> metrics = o.metrics.empty() ? ParseRetinalMetrics("psnr", "") : o.metrics;
   if (natural) CheckMetricSize(metrics, grid.cols, grid.rows, "retina: metrics");
 
@@ -176,7 +188,7 @@ std::vector<RetinaStateResult> WriteRetinaSweep(
   for (size_t first = 0; first < o.states_diopters.size(); first += batch) {
     const size_t count = std::min(batch, o.states_diopters.size() - first);
     RetinaBatch b =
-        TraceBatch(model, seen, natural, optics, o.states_diopters, first, count, metrics, o.fovea_deg, &workspace);
+        TraceBatch(model, shown, natural, optics, o.states_diopters, first, count, metrics, o.fovea_deg, &workspace);
     std::vector<double> seconds;
     WriteBatch(out, grid, bool(natural), &b, &seconds);
     for (size_t s = 0; s < count; ++s) {

@@ -338,7 +338,7 @@ void AddSolveCommand(CLI::App& app) {
                   "Write OUT/checkpoint every N iterations (and when stopped early)");
   cmd->add_flag("--resume", o->resume, "Continue from OUT/checkpoint (same scene, target and solver)");
   AddPoseOptions(cmd, o->pose);
-  AddFillFactorOption(cmd, o->optics);
+  AddPanelOptions(cmd, o->optics);
   cmd->add_option("--start-from", o->start_from,
                   "Begin from the patterns of an earlier solve (its output folder), e.g. for the eye's last position");
   cmd->add_option("--max-memory", o->max_memory,

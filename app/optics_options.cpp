@@ -10,10 +10,13 @@ void AddOpticsOptions(CLI::App* cmd, OpticsOptions& options) {
                   "The eye's diffraction, replacing the scene's: none, mtf (the MTF times the geometric image) or "
                   "wave (the pupil function)")
       ->check(CLI::IsMember({"none", "mtf", "wave"}));
-  AddFillFactorOption(cmd, options);
+  AddPanelOptions(cmd, options);
 }
 
-void AddFillFactorOption(CLI::App* cmd, OpticsOptions& options) {
+void AddPanelOptions(CLI::App* cmd, OpticsOptions& options) {
+  cmd->add_option("--response-time", options.response_time,
+                  "Every panel's liquid-crystal response, RISE or RISE,FALL (10 to 90 %; ms, or with units), "
+                  "replacing the scenes': a time-multiplexed display shows the time average of its relaxing panels");
   cmd->add_option("--fill-factor", options.fill_factor,
                   "Every panel's pixel aperture over its pitch, F or FX,FY in (0, 1], replacing the scenes': below 1 "
                   "the panels' grids diffract the layers behind them");
@@ -35,6 +38,14 @@ void ApplyOpticsOptions(const OpticsOptions& options, DisplaySystem* system) {
     if (fill.size() != 2 || !(fill[0] > 0 && fill[0] <= 1) || !(fill[1] > 0 && fill[1] <= 1))
       throw Error("--fill-factor: \"" + options.fill_factor + "\" is not F or FX,FY in (0, 1]");
     for (VirtualLayer& layer : system->layers) layer.panel.fill_factor = {fill[0], fill[1]};
+  }
+  if (!options.response_time.empty()) {
+    std::vector<double> times = ParseNumberList(options.response_time, "--response-time", {Dimension::kTime, "ms"});
+    if (times.size() == 1) times.push_back(times[0]);  // in ms
+    if (times.size() != 2 || !(times[0] <= 1000) || !(times[1] <= 1000))
+      throw Error("--response-time: \"" + options.response_time + "\" is not RISE or RISE,FALL in [0, 1000 ms]");
+    for (VirtualLayer& layer : system->layers)
+      layer.panel.rise_time_s = times[0] * 1e-3, layer.panel.fall_time_s = times[1] * 1e-3;
   }
 }
 

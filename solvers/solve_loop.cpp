@@ -7,10 +7,12 @@
 #include <limits>
 
 #include "layerlab/framework/error.h"
+#include "layerlab/framework/fixed_order_sum.h"
 #include "layerlab/framework/mpi_ranks.h"
 #include "layerlab/kernels/synthesis.h"
 #include "layerlab/solvers/solver_checkpoint.h"
 #include "layerlab/solvers/trace_columns.h"
+#include "layerlab/systems/lc_response.h"
 
 namespace layerlab {
 
@@ -250,6 +252,18 @@ void SolveLoop::Converge(const std::string& message) {
 
 SolverReport SolveLoop::Finish() {
   report_.seconds = Seconds();
+  if (ResponseMatters(model_.system()) && !report_.trace.empty() && report_.termination != Termination::kFailed) {
+    LightField shown(model_.geometry());  // what the panels show over a frame, measured off the clock
+    for (const ShownInstant& instant : ShownOverTime(model_.system(), *patterns_)) {
+      const Patterns& seen =
+          diffraction_.empty() ? instant.patterns : DiffractedPatterns(diffraction_, instant.patterns);
+      const LightField at = Synthesize(model_, seen);
+      for (size_t r = 0; r < shown.rgb.size(); ++r) shown.rgb[r] += static_cast<float>(instant.weight * at.rgb[r]);
+    }
+    const LightField& l = target();
+    report_.shown_psnr_db =
+        PsnrDb(FixedOrderSquaredDifference(shown.rgb.data(), l.rgb.data(), shown.rgb.size()), shown.rgb.size());
+  }
   // A solve that ended outside EndIteration (converged, or failed after its last row): its last row's metrics.
   if (!options_.measure_metrics.empty() && retinal_ && !report_.trace.empty() && metric_row_ != iteration_ &&
       report_.termination != Termination::kFailed)

@@ -23,7 +23,9 @@ std::string SolverReport::BriefReport() const {
   std::snprintf(buf, sizeof buf, "%s: %s after %d iterations in %.3f s, PSNR %s (objective %.6g -> %.6g)",
                 solver.c_str(), ToString(termination).c_str(), iterations, seconds, Db(final_psnr_db).c_str(),
                 initial_objective, final_objective);
-  return buf;
+  std::string brief = buf;
+  if (!std::isnan(shown_psnr_db)) brief += ", shown through the panels' response " + Db(shown_psnr_db);
+  return brief;
 }
 
 std::string SolverReport::FullReport() const {
@@ -48,6 +50,10 @@ std::string SolverReport::FullReport() const {
   out += buf;
   out += "PSNR                 " + Db(trace.empty() ? 0 : trace.front().psnr_db) + " -> " + Db(final_psnr_db) +
          " (light field; peak 1 = display white)\n";
+  if (!std::isnan(shown_psnr_db))
+    out += "shown PSNR           " + Db(shown_psnr_db) +
+           " (light field of what the panels show through their liquid-crystal response; the solve assumes "
+           "instant panels)\n";
   if (!trace.empty() && !std::isnan(trace.back().focal_stack_psnr_db))
     out += "focal-stack PSNR     " + Db(trace.front().focal_stack_psnr_db) + " -> " +
            Db(trace.back().focal_stack_psnr_db) +

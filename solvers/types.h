@@ -162,6 +162,10 @@ struct SolverReport {
   std::string retinal_target = "lightfield";
   bool contrast_sensitivity = false;  // the retinal objective's residuals weighted by it
   bool panel_diffraction = false;     // the forward model saw the panels' diffraction
+  // The light-field PSNR of what the panels show over a frame through their liquid-crystal response
+  // (systems/lc_response.h), when it matters (a time-multiplexed display whose panels respond in finite
+  // time): the solvers assume instant panels, and psnr_db is that model's. NaN otherwise.
+  double shown_psnr_db = std::numeric_limits<double>::quiet_NaN();
   size_t pupil_positions = 1;         // the focal stack's pupil positions (an eyebox distribution's, or 1)
   Termination termination = Termination::kNotRun;
   std::string message = "not run";

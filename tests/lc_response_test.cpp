@@ -7,6 +7,8 @@
 #include <cmath>
 
 #include "layerlab/kernels/synthesis.h"
+#include "layerlab/solvers/objective.h"
+#include "layerlab/solvers/solver.h"
 #include "layerlab/systems/lc_response.h"
 #include "layerlab/tests/test_util.h"
 
@@ -93,6 +95,35 @@ TEST(LcResponse, InstantPanelsOrOneSubframeShowWhatTheyAreDriven) {
   for (nlohmann::json& e : scene["elements"])
     if (e["type"] == "lc_panel") e["rise_time"] = "8 ms";
   EXPECT_FALSE(ResponseMatters(testing::CompileJson(scene)));  // one subframe: the steady state is the driven value
+}
+
+// The solve assumes instant panels; its report adds the PSNR of what its patterns show through the response.
+TEST(LcResponse, ASolvesReportSaysWhatItsPanelsShow) {
+  for (const char* time : {"0 ms", "4 ms"}) {
+    const DisplaySystem system = RankTwo(time, time);
+    const DisplayModel model(system, DisplayLightFieldGeometry(system));
+    Patterns truth = model.UniformPatterns(0.3f);
+    for (size_t l = 0; l < truth.size(); ++l)
+      for (size_t v = 0; v < truth[l].rgb.size(); ++v) truth[l].rgb[v] = 0.2f + 0.6f * float((v * 7 + l * 3) % 11) / 10;
+    const LightField target = Synthesize(model, truth);
+    SolverOptions o = SolverRegistry::Builtins().get("multiplicative").defaults;
+    o.iterations = 5;
+    Patterns t;
+    const SolverReport r = SolverRegistry::Builtins().create("multiplicative")->Solve(model, target, o, &t);
+    if (!ResponseMatters(system)) {
+      EXPECT_TRUE(std::isnan(r.shown_psnr_db));
+      continue;
+    }
+    LightField shown(model.geometry());
+    for (const ShownInstant& i : ShownOverTime(system, t)) {
+      const LightField at = Synthesize(model, i.patterns);
+      for (size_t k = 0; k < shown.rgb.size(); ++k) shown.rgb[k] += static_cast<float>(i.weight * at.rgb[k]);
+    }
+    double error = 0;
+    for (size_t k = 0; k < shown.rgb.size(); ++k) error += std::pow(double(shown.rgb[k]) - target.rgb[k], 2);
+    EXPECT_NEAR(r.shown_psnr_db, PsnrDb(error, shown.rgb.size()), 1e-6);
+    EXPECT_LT(r.shown_psnr_db, r.final_psnr_db);
+  }
 }
 
 TEST(LcResponse, NegativeTimesAreRefusedNamingTheKey) {
