@@ -488,9 +488,13 @@ class ContrastRun {
     const std::vector<PupilPoint>& pupil = own ? pupils_[di] : moved_[seer].pupil;
     const auto start = std::chrono::steady_clock::now();
     const GridOptics optics = Optics(eye, pupil);
-    // Each curve's patterns as this display's panels diffract them, once.
-    std::vector<Patterns> seen;
-    for (const CurveView* v : of_display) seen.push_back(SeenPatterns(displays_[di].system, solves_[v->patterns].t));
+    // Each curve's patterns as this display's panels show them over a frame (their response), each instant
+    // as the panels diffract it, once.
+    std::vector<std::vector<ShownInstant>> seen;
+    for (const CurveView* v : of_display) {
+      seen.push_back(ShownOverTime(displays_[di].system, solves_[v->patterns].t));
+      for (ShownInstant& instant : seen.back()) instant.patterns = SeenPatterns(displays_[di].system, instant.patterns);
+    }
     Sweep(
         eye,
         [&](const std::array<double, 3>& focus) -> CurveImage {

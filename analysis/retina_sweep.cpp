@@ -78,16 +78,7 @@ RetinaBatch TraceBatch(const DisplayModel& model, const std::vector<ShownInstant
     r.name = RetinaStateName(r.diopters);
     const auto focus = ChannelAccommodation(system.eye, r.diopters);
     b.display[s] = optics.See([&](const RetinaGrid& traced, const std::vector<PupilPoint>& group) {
-      const DisplayRetinaTables tables(model, traced, group, focus);
-      if (shown.size() == 1) return RetinaOfDisplay(model, shown[0].patterns, tables, workspace);
-      Image mean;  // the time average of what the panels show (systems/lc_response.h): the retina is linear in light
-      for (const ShownInstant& instant : shown) {
-        const Image at = RetinaOfDisplay(model, instant.patterns, tables, workspace);
-        if (mean.pixels.empty()) mean = at, std::fill(mean.pixels.begin(), mean.pixels.end(), 0.0f);
-        for (size_t k = 0; k < at.pixels.size(); ++k)
-          mean.pixels[k] += static_cast<float>(instant.weight * at.pixels[k]);
-      }
-      return mean;
+      return RetinaOfDisplay(model, shown, DisplayRetinaTables(model, traced, group, focus), workspace);
     });
     r.display_mean_cd_m2 = MeanLuminance(b.display[s]) * white;
     r.natural_mean_cd_m2 = NAN;

@@ -112,7 +112,7 @@ std::vector<RetinaStateResult> RetinaOfEye(const RetinaCommandOptions& o, const 
   DisplayModel model(system, g, config.sampling);
   const Patterns t = ReadPatterns(model, patterns);
   const SceneRadiance& natural = seen.radiance();
-  RetinaSweepOptions sweep{states,   resolution, field[0], field[1], false, ParseRetinalMetrics(o.metrics, "--metrics"),
+  RetinaSweepOptions sweep{states,  resolution, field[0], field[1], false, ParseRetinalMetrics(o.metrics, "--metrics"),
                            Fovea(o)};
   Progress progress(label, states.size());
   const std::vector<RetinaStateResult> results =
@@ -174,6 +174,31 @@ std::vector<DisplaySystem> BothEyes(const RetinaCommandOptions& o, const Display
   return eyes;
 }
 
+// --metrics and --fovea checked before anything is traced: each metric named, a target to score against,
+// a retina each metric takes; the metrics.
+std::vector<const RetinalMetric*> CheckMetricOptions(const RetinaCommandOptions& o,
+                                                     const std::vector<DisplaySystem>& eyes, const SolveConfig& given) {
+  const std::vector<const RetinalMetric*> metrics = ParseRetinalMetrics(o.metrics, "--metrics");
+  if (Fovea(o) && !(!given.target.empty() || !given.target_scene.empty()))
+    throw Error(
+        "--fovea: weights the metrics, which score the display against natural viewing of a target: give "
+        "--target or --target-scene");
+  const bool natural = !given.target.empty() || !given.target_scene.empty();
+  if (!natural && metrics.size() > 1)
+    throw Error(
+        "--metrics: the metrics score the display against natural viewing of a target: give --target or "
+        "--target-scene");
+  for (const DisplaySystem& eye : eyes) {
+    const double resolution = ParseOptionValue(o.resolution, "--resolution", kDegrees);
+    const std::array<double, 2> field = RetinaField(o, eye, resolution);
+    const RetinaGrid grid =
+        MakeRetinaGrid(field[0] > 0 ? field[0] * kRadiansPerDegree : eye.fov_x_rad,
+                       field[1] > 0 ? field[1] * kRadiansPerDegree : eye.fov_y_rad, resolution * kRadiansPerDegree);
+    if (natural) CheckMetricSize(metrics, grid.cols, grid.rows, "--metrics");
+  }
+  return metrics;
+}
+
 void RunRetinaCommand(const RetinaCommandOptions& o) {
   // Everything is read and checked before anything is written.
   Scene scene = LoadScene(o.scene);
@@ -193,23 +218,7 @@ void RunRetinaCommand(const RetinaCommandOptions& o) {
   const bool both = o.eyes == "both";
   const std::vector<DisplaySystem> eyes = both ? BothEyes(o, system) : std::vector<DisplaySystem>{system};
   AccommodationStates(o);
-  const std::vector<const RetinalMetric*> metrics = ParseRetinalMetrics(o.metrics, "--metrics");
-  if (Fovea(o) && !(!given.target.empty() || !given.target_scene.empty()))
-    throw Error("--fovea: weights the metrics, which score the display against natural viewing of a target: give "
-                "--target or --target-scene");
-  const bool natural = !given.target.empty() || !given.target_scene.empty();
-  if (!natural && metrics.size() > 1)
-    throw Error(
-        "--metrics: the metrics score the display against natural viewing of a target: give --target or "
-        "--target-scene");
-  for (const DisplaySystem& eye : eyes) {
-    const double resolution = ParseOptionValue(o.resolution, "--resolution", kDegrees);
-    const std::array<double, 2> field = RetinaField(o, eye, resolution);
-    const RetinaGrid grid =
-        MakeRetinaGrid(field[0] > 0 ? field[0] * kRadiansPerDegree : eye.fov_x_rad,
-                       field[1] > 0 ? field[1] * kRadiansPerDegree : eye.fov_y_rad, resolution * kRadiansPerDegree);
-    if (natural) CheckMetricSize(metrics, grid.cols, grid.rows, "--metrics");
-  }
+  const std::vector<const RetinalMetric*> metrics = CheckMetricOptions(o, eyes, given);
   const std::vector<std::string> written =
       both ? std::vector<std::string>{"left", "right", "index.html"}
            : std::vector<std::string>{"display", "natural", "retina.csv", "index.html"};
@@ -238,6 +247,7 @@ void RunRetinaCommand(const RetinaCommandOptions& o) {
     throw stage.Explain(e);
   }
   stage.Commit();
+  const bool natural = !given.target.empty() || !given.target_scene.empty();
   std::printf("wrote %s/{index.html,%s}: %zu states%s; values are display-relative (1 = %.4g cd/m2)\n", o.out.c_str(),
               both      ? "left,right"
               : natural ? "display,natural,retina.csv"

@@ -457,6 +457,22 @@ Image RetinaOfDisplay(const DisplayModel& model, const Patterns& t, const Displa
   return RetinaOfDisplay(model, t, made, &made.workspace_);
 }
 
+Image RetinaOfDisplay(const DisplayModel& model, const std::vector<ShownInstant>& shown,
+                      const DisplayRetinaTables& made, RetinaWorkspace* workspace) {
+  if (shown.empty()) throw Error("internal error: no instant of the panels to see");
+  auto image = [&](const Patterns& t) {
+    return workspace ? RetinaOfDisplay(model, t, made, workspace) : RetinaOfDisplay(model, t, made);
+  };
+  if (shown.size() == 1) return image(shown[0].patterns);
+  Image mean;
+  for (const ShownInstant& instant : shown) {
+    const Image at = image(instant.patterns);
+    if (mean.pixels.empty()) mean = at, std::fill(mean.pixels.begin(), mean.pixels.end(), 0.0f);
+    for (size_t k = 0; k < at.pixels.size(); ++k) mean.pixels[k] += static_cast<float>(instant.weight * at.pixels[k]);
+  }
+  return mean;
+}
+
 Image RetinaOfDisplay(const DisplayModel& model, const Patterns& t, const DisplayRetinaTables& made,
                       RetinaWorkspace* workspace) {
   if (model.layer_count() != made.layers_ || model.branch_count() != made.branches_)

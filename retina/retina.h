@@ -21,6 +21,7 @@
 #include "layerlab/retina/retina_workspace.h"
 #include "layerlab/retina/scene_radiance.h"
 #include "layerlab/systems/display_model.h"
+#include "layerlab/systems/lc_response.h"
 
 namespace layerlab {
 
@@ -96,6 +97,10 @@ Image RetinaOfDisplay(const DisplayModel& model, const Patterns& t, const Displa
 // The same in `workspace`, fitted to the tables first (a sweep's states share one).
 Image RetinaOfDisplay(const DisplayModel& model, const Patterns& t, const DisplayRetinaTables& tables,
                       RetinaWorkspace* workspace);
+// The time average over a frame of what the panels show (systems/lc_response.h, ShownOverTime): the retina
+// is linear in the light, so the instants' images weighted by their shares. One instant: its image.
+Image RetinaOfDisplay(const DisplayModel& model, const std::vector<ShownInstant>& shown,
+                      const DisplayRetinaTables& tables, RetinaWorkspace* workspace = nullptr);
 
 // The radiance of a light field (LightFieldRadiance) is read image-wise
 // (RetinaOfLightField); any other (a traced target, the continuous plane) ray by ray.
