@@ -315,14 +315,20 @@ std::string CompareCsv(const std::vector<CompareResult>& results) {
 
 std::string TracesCsv(const std::vector<CompareResult>& results) {
   // `objective` is the value the run minimized, of the objective named in `objective_kind`.
-  // Every column, each run's unmeasured ones empty, so that the runs share one header.
+  // Every column (a focal-stack metric's where some run measured it), each run's unmeasured ones empty, so that
+  // the runs share one header.
+  const std::vector<const TraceColumn*> metrics = MeasuredMetricColumns(results);
+  std::vector<const TraceColumn*> columns;
+  for (const TraceColumn& c : TraceColumns())
+    if (c.kind != TraceValueKind::kScore || std::find(metrics.begin(), metrics.end(), &c) != metrics.end())
+      columns.push_back(&c);
   std::string out = "display,solver,objective_kind";
-  for (const TraceColumn& c : TraceColumns()) out += std::string(",") + c.name;
+  for (const TraceColumn* c : columns) out += std::string(",") + c->name;
   out += "\n";
   for (const CompareResult& r : results)
     for (const IterationRecord& row : r.report.trace) {
       out += r.display + "," + r.solver + "," + r.report.objective;
-      for (const TraceColumn& c : TraceColumns()) out += "," + TraceField(c, c.value(row), 3, c.measured_only);
+      for (const TraceColumn* c : columns) out += "," + TraceField(*c, c->value(row), 3, c->measured_only);
       out += "\n";
     }
   return out;

@@ -13,13 +13,16 @@ namespace layerlab {
 namespace {
 
 // A record whose fields all differ, and each field's value by its column's name, written here apart from the table.
-IterationRecord DistinctRecord() { return {7, 1.5, 42.25, 31.125, 27.0625}; }
+IterationRecord DistinctRecord() { return {7, 1.5, 42.25, 31.125, 27.0625, 0.875, 0.9375, 12.5}; }
 double FieldNamed(const IterationRecord& r, const std::string& name) {
   if (name == "iteration") return r.iteration;
   if (name == "seconds") return r.seconds;
   if (name == "objective") return r.objective;
   if (name == "psnr_db") return r.psnr_db;
   if (name == "focal_stack_psnr_db") return r.focal_stack_psnr_db;
+  if (name == "focal_stack_ssim") return r.focal_stack_ssim;
+  if (name == "focal_stack_ms_ssim") return r.focal_stack_ms_ssim;
+  if (name == "focal_stack_jnd") return r.focal_stack_jnd;
   ADD_FAILURE() << "no field for column " << name;
   return NAN;
 }
@@ -38,7 +41,7 @@ TEST(TraceColumns, EachColumnReadsAndWritesItsOwnField) {
       EXPECT_EQ(other.value(changed), other.value(r)) << c.name << " wrote " << other.name;
     }
   }
-  EXPECT_EQ(names.size(), 5u) << "a new column: add its field to FieldNamed";
+  EXPECT_EQ(names.size(), 8u) << "a new column: add its field to FieldNamed";
 }
 
 TEST(TraceColumns, TraceCsvAndReportJsonWriteTheTablesColumns) {
@@ -51,17 +54,21 @@ TEST(TraceColumns, TraceCsvAndReportJsonWriteTheTablesColumns) {
             "1,0.125000,3.75,inf\n");
   // A trace that measured the focal stack has its column too.
   report.trace[0].focal_stack_psnr_db = 18.5, report.trace[1].focal_stack_psnr_db = 19.75;
-  const std::string csv = TraceCsv(report);
-  std::string header;
-  for (const TraceColumn& c : TraceColumns()) header += (header.empty() ? "" : ",") + std::string(c.name);
-  EXPECT_EQ(csv, header +
-                     "\n"
-                     "0,0.000000,12.5,21.250000,18.500000\n"
-                     "1,0.125000,3.75,inf,19.750000\n");
+  EXPECT_EQ(TraceCsv(report),
+            "iteration,seconds,objective,psnr_db,focal_stack_psnr_db\n"
+            "0,0.000000,12.5,21.250000,18.500000\n"
+            "1,0.125000,3.75,inf,19.750000\n");
+  // And one that measured a metric of it in some rows, that column, empty where not measured ("nan").
+  report.trace[1].focal_stack_jnd = 2.5;
+  EXPECT_EQ(TraceCsv(report),
+            "iteration,seconds,objective,psnr_db,focal_stack_psnr_db,focal_stack_jnd\n"
+            "0,0.000000,12.5,21.250000,18.500000,nan\n"
+            "1,0.125000,3.75,inf,19.750000,2.500000\n");
   const nlohmann::json rows = ReportToJson(report)["trace"];
   ASSERT_EQ(rows.size(), 2u);
-  for (const TraceColumn& c : TraceColumns()) ASSERT_TRUE(rows[1].contains(c.name)) << c.name;
-  EXPECT_EQ(rows[1].size(), TraceColumns().size());
+  for (const TraceColumn* c : WrittenColumns(report.trace)) ASSERT_TRUE(rows[1].contains(c->name)) << c->name;
+  EXPECT_EQ(rows[1].size(), 6u);
+  EXPECT_EQ(rows[0]["focal_stack_jnd"].dump(), "null");  // NaN, written as null
   EXPECT_EQ(rows[1]["iteration"], 1);
   EXPECT_TRUE(rows[1]["iteration"].is_number_integer());
   EXPECT_EQ(rows[1]["psnr_db"], "inf");
@@ -83,6 +90,7 @@ TEST(TraceColumns, EachKindIsPrintedAsItsFilesPrintIt) {
   EXPECT_EQ(TraceField(named("psnr_db"), -INFINITY), "inf");
   EXPECT_EQ(TraceField(named("focal_stack_psnr_db"), NAN, 3, true), "");
   EXPECT_EQ(TraceField(named("focal_stack_psnr_db"), NAN), "nan");
+  EXPECT_EQ(TraceField(named("focal_stack_ms_ssim"), 1.0 / 3), "0.333333");
 }
 
 }  // namespace
