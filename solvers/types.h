@@ -166,7 +166,7 @@ struct SolverReport {
   // (systems/lc_response.h), when it matters (a time-multiplexed display whose panels respond in finite
   // time): the solvers assume instant panels, and psnr_db is that model's. NaN otherwise.
   double shown_psnr_db = std::numeric_limits<double>::quiet_NaN();
-  size_t pupil_positions = 1;         // the focal stack's pupil positions (an eyebox distribution's, or 1)
+  size_t pupil_positions = 1;  // the focal stack's pupil positions (an eyebox distribution's, or 1)
   Termination termination = Termination::kNotRun;
   std::string message = "not run";
   int iterations = 0;

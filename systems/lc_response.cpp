@@ -85,7 +85,9 @@ std::vector<ShownInstant> ShownOverTime(const DisplaySystem& system, const Patte
   static const std::array<std::array<double, 2>, kResponseNodes> nodes = GaussLegendre();
   std::vector<ShownInstant> out(kResponseNodes);
   for (int m = 0; m < kResponseNodes; ++m) out[m] = {nodes[m][1], driven};
-  for (const auto& [element, layers] : panels) {
+  for (const auto& panel_layers : panels) {  // (no structured binding: OpenMP's region below reads them)
+    const std::string& element = panel_layers.first;
+    const std::vector<int>& layers = panel_layers.second;
     for (int l : layers)
       if (l < 0) throw Error("internal error: panel \"" + element + "\" is missing a subframe");
     const PanelSpec& panel = system.layers[layers[0]].panel;
