@@ -10,8 +10,8 @@
 // <state> is the accommodation with two decimals: "0.40D".
 #pragma once
 
-#include <functional>
 #include <array>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
