@@ -70,6 +70,16 @@ std::vector<double> DepthRange(Params& parent, const std::string& key) {
   return values;
 }
 
+// A section's "metrics": names, comma-separated (metrics/retinal_metrics.h), refused naming the key.
+std::vector<const RetinalMetric*> MetricsKey(Params& p) {
+  const std::string names = p.string("metrics");
+  try {
+    return ParseRetinalMetrics(names, "metrics");
+  } catch (const Error& e) {
+    p.fail("metrics", std::string(e.what()).substr(std::string("metrics: ").size()));
+  }
+}
+
 RetinaRunConfig ReadRetina(Params& run, const DisplaySystem& system) {
   RetinaRunConfig r;
   r.enabled = true;
@@ -78,14 +88,7 @@ RetinaRunConfig ReadRetina(Params& run, const DisplaySystem& system) {
   for (const VirtualLayer& layer : system.layers) r.accommodation_diopters.push_back(layer.diopters);
   ReadOptionEntries(p, RetinaRunOptionTable(), &r);
   if (p.has("focal_stack")) r.focal_stack_diopters = DepthRange(p, "focal_stack");
-  if (p.has("metrics")) {
-    const std::string names = p.string("metrics");
-    try {
-      r.metrics = ParseRetinalMetrics(names, "metrics");
-    } catch (const Error& e) {
-      p.fail("metrics", std::string(e.what()).substr(std::string("metrics: ").size()));
-    }
-  }
+  if (p.has("metrics")) r.metrics = MetricsKey(p);
   if (p.has("field")) {
     const RetinaRunOptionEntry& e = RetinaRunOption("field");
     std::array<double, 2> field = p.quantity_pair("field", Dimension::kAngle, {0, 0});
@@ -151,14 +154,7 @@ CompareRunConfig ReadCompare(Params& run, const Scene& scene) {
     c.time_budget_s = p.quantity("time_budget", Dimension::kTime);
     p.require_range("time_budget", *c.time_budget_s, range.min, range.max, range.min_open, range.max_open);
   }
-  if (p.has("metrics")) {
-    const std::string names = p.string("metrics");
-    try {
-      c.metrics = ParseRetinalMetrics(names, "metrics");
-    } catch (const Error& e) {
-      p.fail("metrics", std::string(e.what()).substr(std::string("metrics: ").size()));
-    }
-  }
+  if (p.has("metrics")) c.metrics = MetricsKey(p);
   if (p.has("objectives")) {
     p.mark_read("objectives");
     Params items = ArrayItems(p, "objectives");
