@@ -109,6 +109,15 @@ std::vector<std::string> SuitableSolvers(const DisplaySystem& system, const Solv
   return out;
 }
 
+std::string CompareRefusal(const std::string& solver, const DisplaySystem& system, bool panel_diffraction,
+                           const SolverRegistry& registry) {
+  if (std::string why = UnsuitableSolver(solver, system, registry); !why.empty()) return why;
+  // The panels' diffraction is the display's physics, not a solver's setting: every row sees it, or is skipped.
+  if (panel_diffraction && !registry.get(solver).panel_diffraction && !PanelDiffraction(system).empty())
+    return "does not model the panels' diffraction, which the scene's solve asks for (\"panel_diffraction\")";
+  return "";
+}
+
 std::vector<CompareRun> CompareRunsOf(const std::vector<std::string>& scene_files, const CompareSelection& selection,
                                       std::vector<std::string>* skipped) {
   const SolverRegistry& registry = SolverRegistry::Builtins();
@@ -123,13 +132,9 @@ std::vector<CompareRun> CompareRunsOf(const std::vector<std::string>& scene_file
     std::vector<std::string> solvers = all ? SuitableSolvers(system) : selection.solvers;
     if (solvers.empty()) solvers.push_back(config.solver);
     const std::string name = std::filesystem::path(file).stem().string();
-    // The panels' diffraction is the display's physics, not a solver's setting: every row sees it, or is skipped.
-    const bool diffracted = config.options.panel_diffraction && !PanelDiffraction(system).empty();
     for (const std::string& solver : solvers) {
-      std::string why = UnsuitableSolver(solver, system, registry);
-      if (why.empty() && diffracted && !registry.get(solver).panel_diffraction)
-        why = "does not model the panels' diffraction, which the scene's solve asks for (\"panel_diffraction\")";
-      if (!why.empty()) {
+      if (const std::string why = CompareRefusal(solver, system, config.options.panel_diffraction, registry);
+          !why.empty()) {
         if (skipped) skipped->push_back(name + " / " + solver + ": the solver " + why);
         continue;
       }

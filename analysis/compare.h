@@ -120,6 +120,11 @@ std::vector<CompareRun> ObjectiveRuns(const CompareRun& run, const std::vector<O
 // every run); throws layerlab::Error naming two runs that see it from different places.
 std::array<double, 3> CommonTargetMove(const std::vector<CompareRun>& runs);
 
+// Why `solver` is left out of a comparison on `system` ("" when it is not), worded to follow "the solver": it
+// does not suit the display, or the scene's solve asks for the panels' diffraction and it does not model it.
+std::string CompareRefusal(const std::string& solver, const DisplaySystem& system, bool panel_diffraction,
+                           const SolverRegistry& registry = SolverRegistry::Builtins());
+
 std::vector<CompareRun> CompareRunsOf(const std::vector<std::string>& scene_files, const CompareSelection& selection,
                                       std::vector<std::string>* skipped);
 

@@ -24,7 +24,8 @@ bool MainSolveRow(const RunState& s, const ComparedDisplay& d, const CompareRun&
   const CompareRunConfig& c = s.in.run.compare;
   const SolverOptions& main = s.in.solve.options;
   if (&d.system != &s.in.system || run.solver != s.in.solve.solver || c.iterations ||
-      run.options.objective != main.objective || (run.options.measure_focal_stack && !main.measure_focal_stack))
+      run.options.objective != main.objective || (run.options.measure_focal_stack && !main.measure_focal_stack) ||
+      (!run.options.measure_metrics.empty() && run.options.measure_metrics != main.measure_metrics))
     return false;
   const std::optional<SolverReport> report = c.time_budget_s ? ReportWithTimeBudget(s.solved.report, *c.time_budget_s)
                                                              : std::optional<SolverReport>(s.solved.report);
@@ -37,7 +38,7 @@ bool MainSolveRow(const RunState& s, const ComparedDisplay& d, const CompareRun&
 // The rows of one display and solver: one per objective compared.
 void RowsOf(RunState& s, const ComparedDisplay& d, const std::string& solver, std::vector<CompareResult>* rows) {
   const CompareRunConfig& c = s.in.run.compare;
-  if (std::string why = UnsuitableSolver(solver, d.system); !why.empty()) {
+  if (std::string why = CompareRefusal(solver, d.system, d.config.options.panel_diffraction); !why.empty()) {
     s.page.warnings.push_back("compare: skipped " + d.name + " / " + solver + ": the solver " + why);
     return;
   }
@@ -45,6 +46,7 @@ void RowsOf(RunState& s, const ComparedDisplay& d, const std::string& solver, st
   SolverOptions base = solver == d.config.solver ? d.config.options : SolverRegistry::Builtins().find(solver)->defaults;
   base.iterations = c.iterations.value_or(base.iterations);
   base.time_budget = c.time_budget_s.value_or(base.time_budget);
+  base.panel_diffraction = d.config.options.panel_diffraction;  // the display's physics: every row's
   std::vector<std::string> skipped;
   const std::vector<CompareRun> runs =
       ObjectiveRuns({d.name, d.system, solver, base, d.config.sampling, own ? "scene" : "shared"}, c.objectives,

@@ -50,9 +50,7 @@ struct RetinaCommandOptions {
 // --fovea X,Y in degrees, or none.
 std::optional<std::array<double, 2>> Fovea(const RetinaCommandOptions& o) {
   if (o.fovea.empty()) return std::nullopt;
-  const std::vector<double> at = ParseNumberList(o.fovea, "--fovea", kDegrees);
-  if (at.size() != 2) throw Error("--fovea: \"" + o.fovea + "\" is not X,Y (degrees right and up from the centre)");
-  return std::array<double, 2>{at[0], at[1]};
+  return ParseSignedPair(o.fovea, "--fovea", kDegrees);
 }
 
 // --accommodation and --focal-stack's states, sorted, without repeats.

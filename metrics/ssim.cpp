@@ -88,6 +88,7 @@ SsimTerms Terms(const Plane& x, const Plane& y, double data_range, const Plane* 
         ++count;
       }
     }
+  if (!(count > 0)) throw Error("SSIM: the weights are 0 over the image less its border");
   sum.luminance /= count, sum.structure /= count, sum.ssim /= count;
   return sum;
 }

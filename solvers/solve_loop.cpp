@@ -112,8 +112,9 @@ void SolveLoop::MeasureMetrics() {
     for (size_t k = 0; k < scores.size(); ++k)
       if (options_.measure_metrics[k]->name != "psnr")
         FocalStackColumn(*options_.measure_metrics[k]).set(&report_.trace.back(), scores[k]);
-  } catch (const Error& e) {
-    Fail(e.what());
+  } catch (const Error& e) {  // the solve stands; the metrics are left unmeasured from here on
+    report_.warnings.push_back(std::string("the focal stack's metrics were not measured: ") + e.what());
+    options_.measure_metrics.clear();
   }
   metric_row_ = iteration_;
   next_metric_row_ = std::max(iteration_ + 1, static_cast<int>(std::ceil(iteration_ * kMetricRowGrowth)));
@@ -261,10 +262,10 @@ SolverReport SolveLoop::Finish() {
       for (size_t r = 0; r < shown.rgb.size(); ++r) shown.rgb[r] += static_cast<float>(instant.weight * at.rgb[r]);
     }
     const LightField& l = target();
-    report_.shown_psnr_db =
-        PsnrDb(FixedOrderSquaredDifference(shown.rgb.data(), l.rgb.data(), shown.rgb.size()), shown.rgb.size());
+    const double error = FixedOrderSquaredDifference(shown.rgb.data(), l.rgb.data(), shown.rgb.size());
+    report_.shown_psnr_db = PsnrDb(SumAcrossRanks(error), report_.rays * 3);  // every rank's rays
   }
-  // A solve that ended outside EndIteration (converged, or failed after its last row): its last row's metrics.
+  // A solve that ended outside EndIteration (converged): its last row's metrics.
   if (!options_.measure_metrics.empty() && retinal_ && !report_.trace.empty() && metric_row_ != iteration_ &&
       report_.termination != Termination::kFailed)
     MeasureMetrics();
