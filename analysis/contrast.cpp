@@ -26,7 +26,7 @@
 #include "layerlab/solvers/solve_config.h"
 #include "layerlab/systems/compile.h"
 #include "layerlab/systems/display_model.h"
-#include "layerlab/systems/panel_diffraction.h"
+#include "layerlab/systems/lc_response.h"
 #include "layerlab/targets/plane_lightfield.h"
 
 namespace layerlab {
@@ -491,10 +491,7 @@ class ContrastRun {
     // Each curve's patterns as this display's panels show them over a frame (their response), each instant
     // as the panels diffract it, once.
     std::vector<std::vector<ShownInstant>> seen;
-    for (const CurveView* v : of_display) {
-      seen.push_back(ShownOverTime(displays_[di].system, solves_[v->patterns].t));
-      for (ShownInstant& instant : seen.back()) instant.patterns = SeenPatterns(displays_[di].system, instant.patterns);
-    }
+    for (const CurveView* v : of_display) seen.push_back(SeenOverTime(displays_[di].system, solves_[v->patterns].t));
     Sweep(
         eye,
         [&](const std::array<double, 3>& focus) -> CurveImage {

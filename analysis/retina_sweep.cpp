@@ -18,7 +18,6 @@
 #include "layerlab/retina/eye_optics.h"
 #include "layerlab/retina/retina_workspace.h"
 #include "layerlab/systems/lc_response.h"
-#include "layerlab/systems/panel_diffraction.h"
 
 namespace layerlab {
 
@@ -158,8 +157,7 @@ std::vector<RetinaStateResult> WriteRetinaSweep(
   const std::vector<PupilPoint> pupil = PupilSamples(system.eye);
   const EyeOptics optics(system.eye, pupil, grid);  // its parts of the OTF serve every state
   // What the panels show over a frame (their response), each instant through the panels' diffraction, once.
-  std::vector<ShownInstant> shown = ShownOverTime(system, t);
-  for (ShownInstant& instant : shown) instant.patterns = SeenPatterns(system, instant.patterns);
+  const std::vector<ShownInstant> shown = SeenOverTime(system, t);
   const std::vector<const RetinalMetric*> metrics = o.metrics.empty() ? ParseRetinalMetrics("psnr", "") : o.metrics;
   if (natural) CheckMetricSize(metrics, grid.cols, grid.rows, "retina: metrics");
 

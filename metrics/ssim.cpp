@@ -79,14 +79,9 @@ SsimTerms Terms(const Plane& x, const Plane& y, double data_range, const Plane* 
       const double vx = uxx[k] - ux[k] * ux[k], vy = uyy[k] - uy[k] * uy[k], vxy = uxy[k] - ux[k] * uy[k];
       const double l = (2 * ux[k] * uy[k] + c1) / (ux[k] * ux[k] + uy[k] * uy[k] + c1);
       const double cs = (2 * vxy + c2) / (vx + vy + c2);
-      if (weight) {
-        const double a = weight->values[k];
-        sum.luminance += a * l, sum.structure += a * cs, sum.ssim += a * l * cs;
-        count += a;
-      } else {
-        sum.luminance += l, sum.structure += cs, sum.ssim += l * cs;
-        ++count;
-      }
+      const double a = weight ? weight->values[k] : 1.0;  // a x 1.0 is exact: unweighted sums keep their bits
+      sum.luminance += a * l, sum.structure += a * cs, sum.ssim += a * l * cs;
+      count += a;
     }
   if (!(count > 0)) throw Error("SSIM: the weights are 0 over the image less its border");
   sum.luminance /= count, sum.structure /= count, sum.ssim /= count;

@@ -255,10 +255,8 @@ SolverReport SolveLoop::Finish() {
   report_.seconds = Seconds();
   if (ResponseMatters(model_.system()) && !report_.trace.empty() && report_.termination != Termination::kFailed) {
     LightField shown(model_.geometry());  // what the panels show over a frame, measured off the clock
-    for (const ShownInstant& instant : ShownOverTime(model_.system(), *patterns_)) {
-      const Patterns& seen =
-          diffraction_.empty() ? instant.patterns : DiffractedPatterns(diffraction_, instant.patterns);
-      const LightField at = Synthesize(model_, seen);
+    for (const ShownInstant& instant : SeenOverTime(model_.system(), *patterns_, diffraction_)) {
+      const LightField at = Synthesize(model_, instant.patterns);
       for (size_t r = 0; r < shown.rgb.size(); ++r) shown.rgb[r] += static_cast<float>(instant.weight * at.rgb[r]);
     }
     const LightField& l = target();

@@ -108,4 +108,16 @@ std::vector<ShownInstant> ShownOverTime(const DisplaySystem& system, const Patte
   return out;
 }
 
+std::vector<ShownInstant> SeenOverTime(const DisplaySystem& system, const Patterns& driven,
+                                       const std::vector<LayerDiffraction>& diffraction) {
+  std::vector<ShownInstant> shown = ShownOverTime(system, driven);
+  if (!diffraction.empty())
+    for (ShownInstant& instant : shown) instant.patterns = DiffractedPatterns(diffraction, instant.patterns);
+  return shown;
+}
+
+std::vector<ShownInstant> SeenOverTime(const DisplaySystem& system, const Patterns& driven) {
+  return SeenOverTime(system, driven, PanelDiffraction(system));
+}
+
 }  // namespace layerlab

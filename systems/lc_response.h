@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "layerlab/systems/display_model.h"
+#include "layerlab/systems/panel_diffraction.h"
 
 namespace layerlab {
 
@@ -41,6 +42,11 @@ bool ResponseMatters(const DisplaySystem& system);
 // The instants of a frame (kResponseNodes of them, or the driven patterns alone when the response does not
 // matter). Throws layerlab::Error when the patterns are not the display's layers.
 std::vector<ShownInstant> ShownOverTime(const DisplaySystem& system, const Patterns& driven);
+// Those instants each as the eye sees them through `diffraction` (systems/panel_diffraction.h; default: the
+// display's own, PanelDiffraction): what every retinal image of the display reads.
+std::vector<ShownInstant> SeenOverTime(const DisplaySystem& system, const Patterns& driven,
+                                       const std::vector<LayerDiffraction>& diffraction);
+std::vector<ShownInstant> SeenOverTime(const DisplaySystem& system, const Patterns& driven);
 
 // One pixel's transmittance at the start of each of its K subframes in the periodic steady state (the
 // building block of ShownOverTime, for tests): driven[k], subframe length T, rise and fall times (10 to 90 %).
