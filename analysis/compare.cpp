@@ -9,6 +9,7 @@
 #include <set>
 
 #include "layerlab/analysis/eyebox_map.h"
+#include "layerlab/analysis/flicker_check.h"
 #include "layerlab/analysis/svg_plot.h"
 #include "layerlab/framework/error.h"
 #include "layerlab/framework/progress.h"
@@ -20,6 +21,7 @@
 #include "layerlab/systems/compile.h"
 #include "layerlab/systems/display_model.h"
 #include "layerlab/systems/eye_pose_limits.h"
+#include "layerlab/systems/lc_response.h"
 #include "layerlab/systems/panel_diffraction.h"
 
 namespace layerlab {
@@ -109,12 +111,16 @@ std::vector<std::string> SuitableSolvers(const DisplaySystem& system, const Solv
   return out;
 }
 
-std::string CompareRefusal(const std::string& solver, const DisplaySystem& system, bool panel_diffraction,
+std::string CompareRefusal(const std::string& solver, const DisplaySystem& system, const SolverOptions& physics,
                            const SolverRegistry& registry) {
   if (std::string why = UnsuitableSolver(solver, system, registry); !why.empty()) return why;
-  // The panels' diffraction is the display's physics, not a solver's setting: every row sees it, or is skipped.
-  if (panel_diffraction && !registry.get(solver).panel_diffraction && !PanelDiffraction(system).empty())
+  // The panels' diffraction and response are the display's physics, not a solver's setting: every row sees
+  // them, or is skipped.
+  const SolverType& type = registry.get(solver);
+  if (physics.panel_diffraction && !type.panel_diffraction && !PanelDiffraction(system).empty())
     return "does not model the panels' diffraction, which the scene's solve asks for (\"panel_diffraction\")";
+  if (physics.lc_response && !type.lc_response && ResponseMatters(system))
+    return "does not model the panels' liquid-crystal response, which the scene's solve asks for (\"lc_response\")";
   return "";
 }
 
@@ -133,8 +139,7 @@ std::vector<CompareRun> CompareRunsOf(const std::vector<std::string>& scene_file
     if (solvers.empty()) solvers.push_back(config.solver);
     const std::string name = std::filesystem::path(file).stem().string();
     for (const std::string& solver : solvers) {
-      if (const std::string why = CompareRefusal(solver, system, config.options.panel_diffraction, registry);
-          !why.empty()) {
+      if (const std::string why = CompareRefusal(solver, system, config.options, registry); !why.empty()) {
         if (skipped) skipped->push_back(name + " / " + solver + ": the solver " + why);
         continue;
       }
@@ -144,6 +149,8 @@ std::vector<CompareRun> CompareRunsOf(const std::vector<std::string>& scene_file
       options.iterations = selection.iterations.value_or(options.iterations);
       options.time_budget = selection.time_budget.value_or(options.time_budget);
       options.panel_diffraction = config.options.panel_diffraction;
+      options.lc_response = config.options.lc_response;
+      options.metric_settings = selection.metric_settings;
       const CompareRun run{
           name, system, solver, options, own ? config.sampling : Sampling::kNearest, own ? "scene" : "shared"};
       for (CompareRun& r : ObjectiveRuns(run, selection.objectives, skipped, registry, selection.metrics))
@@ -232,6 +239,7 @@ std::vector<CompareResult> RunComparison(const std::vector<CompareRun>& runs, co
                     run.options_from,
                     std::nullopt};
     r.report = registry.create(run.solver)->Solve(model, target, options, &t);
+    AddFlickerCheck(model, t, &r.report);
     if (progress) progress->Finish(r.report.BriefReport());
     if (eyebox.accommodation_diopters && r.report.IsSolutionUsable())
       r.eyebox = MeasureEyebox(model, t, target, run.sampling, eyebox);
@@ -244,6 +252,20 @@ namespace {
 
 bool AnyEyebox(const std::vector<CompareResult>& results) {
   return std::any_of(results.begin(), results.end(), [](const CompareResult& r) { return r.eyebox.has_value(); });
+}
+
+bool AnyFlicker(const std::vector<CompareResult>& results) {
+  return std::any_of(results.begin(), results.end(),
+                     [](const CompareResult& r) { return r.report.flicker.has_value(); });
+}
+
+// "visible 3.2 @ 60 Hz", "no 0.41", or "-" for a display of one subframe.
+std::string FlickerText(const CompareResult& r) {
+  if (!r.report.flicker) return "-";
+  const FlickerVerdict& f = *r.report.flicker;
+  char text[64];
+  std::snprintf(text, sizeof text, "%s %.2g @ %.0f Hz", f.visible() ? "visible" : "no", f.visibility, f.frequency_hz);
+  return text;
 }
 
 // "2.00 x >= 1.50 mm", or "-" for a run without one.
@@ -263,6 +285,8 @@ std::string CompareTable(const std::vector<CompareResult>& results) {
       "display                      solver                 objective   PSNR (dB)  focal stack (dB)   seconds  "
       "iterations  subframes  panel (Hz)  brightness (lum.)  brightness R G B       options  termination";
   out += with_eyebox ? "  eyebox" : "";
+  const bool with_flicker = AnyFlicker(results);
+  out += with_flicker ? "  flicker (visibility)     " : "";
   const std::vector<const TraceColumn*> metrics = MeasuredMetricColumns(results);
   for (const TraceColumn* c : metrics) out += "  " + MetricHeading(*c);
   out += "\n";
@@ -277,6 +301,11 @@ std::string CompareTable(const std::vector<CompareResult>& results) {
         r.brightness_efficiency[2], r.options_from.c_str(), ToString(r.report.termination).c_str());
     out += line;
     if (with_eyebox) out.insert(out.size() - 1, "  " + EyeboxText(r));
+    if (with_flicker) {
+      char cell[48];
+      std::snprintf(cell, sizeof cell, "  %-24s", FlickerText(r).c_str());
+      out.insert(out.size() - 1, cell);
+    }
     for (const TraceColumn* c : metrics) {
       const double v = FinalTraceValue(*c, r.report);
       char cell[40];
@@ -294,6 +323,10 @@ std::string CompareCsv(const std::vector<CompareResult>& results) {
       "luminance_efficiency,efficiency_r,efficiency_g,efficiency_b,termination,solver_options";
   const bool with_eyebox = AnyEyebox(results);
   out += with_eyebox ? ",eyebox_x_mm,eyebox_y_mm,eyebox_x_reaches_edge,eyebox_y_reaches_edge" : "";
+  const bool with_flicker = AnyFlicker(results);
+  out += with_flicker ? ",flicker_visible,flicker_visibility,flicker_hz,flicker_modulation,flicker_worst_x_deg,"
+                        "flicker_worst_y_deg,flicker_luminance_cd_m2"
+                      : "";
   const std::vector<const TraceColumn*> metrics = MeasuredMetricColumns(results);
   for (const TraceColumn* c : metrics) out += std::string(",final_") + c->name;
   out += "\n";
@@ -310,6 +343,13 @@ std::string CompareCsv(const std::vector<CompareResult>& results) {
       if (r.eyebox)
         std::snprintf(extra, sizeof extra, ",%.4f,%.4f,%d,%d", r.eyebox->within_m[0] * 1e3, r.eyebox->within_m[1] * 1e3,
                       int(r.eyebox->reaches_edge[0]), int(r.eyebox->reaches_edge[1]));
+      out.insert(out.size() - 1, extra);
+    }
+    if (with_flicker) {
+      char extra[200] = ",,,,,,,";
+      if (const std::optional<FlickerVerdict>& f = r.report.flicker)
+        std::snprintf(extra, sizeof extra, ",%d,%.6g,%.3f,%.6g,%.3f,%.3f,%.6g", int(f->visible()), f->visibility,
+                      f->frequency_hz, f->modulation, f->x_deg, f->y_deg, f->luminance_cd_m2);
       out.insert(out.size() - 1, extra);
     }
     for (const TraceColumn* c : metrics)

@@ -95,6 +95,7 @@ struct CompareSelection {
   // The focal stack's metrics every run measures beside its PSNR (metrics/retinal_metrics.h): PSNR alone when
   // empty or psnr only; else every row measures the focal stack and these (SolverOptions::measure_metrics).
   std::vector<const RetinalMetric*> metrics;
+  MetricSettings metric_settings;  // how they are measured (foveal weighting, the JND's exponent)
 };
 
 // The options of one run of `objectives` (CompareSelection::objectives): the
@@ -121,8 +122,9 @@ std::vector<CompareRun> ObjectiveRuns(const CompareRun& run, const std::vector<O
 std::array<double, 3> CommonTargetMove(const std::vector<CompareRun>& runs);
 
 // Why `solver` is left out of a comparison on `system` ("" when it is not), worded to follow "the solver": it
-// does not suit the display, or the scene's solve asks for the panels' diffraction and it does not model it.
-std::string CompareRefusal(const std::string& solver, const DisplaySystem& system, bool panel_diffraction,
+// does not suit the display, or the scene's solve (`physics`: its panel_diffraction and lc_response) asks for
+// the panels' diffraction or response and it does not model them.
+std::string CompareRefusal(const std::string& solver, const DisplaySystem& system, const SolverOptions& physics,
                            const SolverRegistry& registry = SolverRegistry::Builtins());
 
 std::vector<CompareRun> CompareRunsOf(const std::vector<std::string>& scene_files, const CompareSelection& selection,

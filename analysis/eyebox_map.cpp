@@ -15,7 +15,7 @@
 #include "layerlab/retina/lightfield_radiance.h"
 #include "layerlab/solvers/objective.h"
 #include "layerlab/systems/eye_pose_limits.h"
-#include "layerlab/systems/panel_diffraction.h"
+#include "layerlab/systems/lc_response.h"
 
 namespace layerlab {
 namespace {
@@ -143,8 +143,8 @@ EyeboxMap MapEyebox(const DisplayModel& model, const Patterns& t, const SceneRad
   Patterns white;
   for (const LayerPattern& p : t) white.emplace_back(p.cols, p.rows, 1.0f);
   const double luminance = model.white_luminance();
-  const Patterns diffracted = SeenPatterns(system, t),
-                 diffracted_white = SeenPatterns(system, white);  // the panels' diffraction
+  // What the panels show over a frame (their response), each instant through the panels' diffraction.
+  const std::vector<ShownInstant> shown = SeenOverTime(system, t), shown_white = SeenOverTime(system, white);
   EyeboxMap map;
   map.quality_db = o.quality_db;
   map.pupil = {int(pupil_grid.xs.size()), int(pupil_grid.ys.size()), pupil_grid.step, {}};
@@ -161,8 +161,8 @@ EyeboxMap MapEyebox(const DisplayModel& model, const Patterns& t, const SceneRad
     std::vector<Image> displays, lits, seens;
     for (size_t k = 0; k < optics.groups(); ++k) {
       const DisplayRetinaTables tables(model, optics.traced(), optics.group(k), focus);
-      displays.push_back(RetinaOfDisplay(model, diffracted, tables, &workspace));
-      lits.push_back(RetinaOfDisplay(model, diffracted_white, tables, &workspace));
+      displays.push_back(RetinaOfDisplay(model, shown, tables, &workspace));
+      lits.push_back(RetinaOfDisplay(model, shown_white, tables, &workspace));
       seens.push_back(RetinaOfScene(natural, optics.traced(), optics.group(k), focus));
     }
     const Image display = optics.Combine(displays), lit = optics.Combine(lits), seen = optics.Combine(seens);

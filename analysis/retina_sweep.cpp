@@ -63,10 +63,10 @@ void Score(const std::vector<const RetinalMetric*>& metrics, const MetricViewing
 // The images of states [first, first + count), each computed in parallel within.
 RetinaBatch TraceBatch(const DisplayModel& model, const std::vector<ShownInstant>& shown, const SceneRadiance& natural,
                        const EyeOptics& optics, const std::vector<double>& states, size_t first, size_t count,
-                       const std::vector<const RetinalMetric*>& metrics,
-                       const std::optional<std::array<double, 2>>& fovea, RetinaWorkspace* workspace) {
-  const MetricViewing viewing{optics.grid().resolution_rad / kRadiansPerDegree, model.white_luminance(),
-                              fovea.has_value(), fovea ? (*fovea)[0] : 0.0, fovea ? (*fovea)[1] : 0.0};
+                       const std::vector<const RetinalMetric*>& metrics, const MetricSettings& settings,
+                       RetinaWorkspace* workspace) {
+  const MetricViewing viewing =
+      MetricViewing::Of(optics.grid().resolution_rad / kRadiansPerDegree, model.white_luminance(), settings);
   const DisplaySystem& system = model.system();
   const double white = model.white_luminance();
   RetinaBatch b{std::vector<RetinaStateResult>(count), std::vector<Image>(count), std::vector<Image>(count)};
@@ -176,8 +176,8 @@ std::vector<RetinaStateResult> WriteRetinaSweep(
   RetinaWorkspace workspace;  // every state's display image, sized for the first (again only for one needing more)
   for (size_t first = 0; first < o.states_diopters.size(); first += batch) {
     const size_t count = std::min(batch, o.states_diopters.size() - first);
-    RetinaBatch b =
-        TraceBatch(model, shown, natural, optics, o.states_diopters, first, count, metrics, o.fovea_deg, &workspace);
+    RetinaBatch b = TraceBatch(model, shown, natural, optics, o.states_diopters, first, count, metrics,
+                               o.metric_settings, &workspace);
     std::vector<double> seconds;
     WriteBatch(out, grid, bool(natural), &b, &seconds);
     for (size_t s = 0; s < count; ++s) {

@@ -31,9 +31,9 @@ struct RetinaSweepOptions {
   // With natural viewing, each state's display image is scored against it by these (metrics/retinal_metrics.h;
   // empty: PSNR alone), one retina.csv column each.
   std::vector<const RetinalMetric*> metrics;
-  // With a value: every metric weighted by eccentricity from this point, deg right and up from the retina's
-  // centre (where the eye looks: {0, 0}; metrics/foveal_weight.h).
-  std::optional<std::array<double, 2>> fovea_deg;
+  // Foveal weighting (a gaze, deg right and up from the retina's centre, where the eye looks: {0, 0}) and the
+  // JND's Minkowski exponent (metrics/retinal_metrics.h).
+  MetricSettings metric_settings;
 };
 
 // Accommodation states as `layerlab retina` takes them (ParseOptionValue:

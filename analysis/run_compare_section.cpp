@@ -25,7 +25,8 @@ bool MainSolveRow(const RunState& s, const ComparedDisplay& d, const CompareRun&
   const SolverOptions& main = s.in.solve.options;
   if (&d.system != &s.in.system || run.solver != s.in.solve.solver || c.iterations ||
       run.options.objective != main.objective || (run.options.measure_focal_stack && !main.measure_focal_stack) ||
-      (!run.options.measure_metrics.empty() && run.options.measure_metrics != main.measure_metrics))
+      (!run.options.measure_metrics.empty() &&
+       (run.options.measure_metrics != main.measure_metrics || !(run.options.metric_settings == main.metric_settings))))
     return false;
   const std::optional<SolverReport> report = c.time_budget_s ? ReportWithTimeBudget(s.solved.report, *c.time_budget_s)
                                                              : std::optional<SolverReport>(s.solved.report);
@@ -38,7 +39,7 @@ bool MainSolveRow(const RunState& s, const ComparedDisplay& d, const CompareRun&
 // The rows of one display and solver: one per objective compared.
 void RowsOf(RunState& s, const ComparedDisplay& d, const std::string& solver, std::vector<CompareResult>* rows) {
   const CompareRunConfig& c = s.in.run.compare;
-  if (std::string why = CompareRefusal(solver, d.system, d.config.options.panel_diffraction); !why.empty()) {
+  if (std::string why = CompareRefusal(solver, d.system, d.config.options); !why.empty()) {
     s.page.warnings.push_back("compare: skipped " + d.name + " / " + solver + ": the solver " + why);
     return;
   }
@@ -47,6 +48,8 @@ void RowsOf(RunState& s, const ComparedDisplay& d, const std::string& solver, st
   base.iterations = c.iterations.value_or(base.iterations);
   base.time_budget = c.time_budget_s.value_or(base.time_budget);
   base.panel_diffraction = d.config.options.panel_diffraction;  // the display's physics: every row's
+  base.lc_response = d.config.options.lc_response;
+  base.metric_settings = c.metric_settings;
   std::vector<std::string> skipped;
   const std::vector<CompareRun> runs =
       ObjectiveRuns({d.name, d.system, solver, base, d.config.sampling, own ? "scene" : "shared"}, c.objectives,

@@ -80,15 +80,30 @@ std::vector<const RetinalMetric*> MetricsKey(Params& p) {
   }
 }
 
+// A section's "fovea" ([x, y] angles) and "jnd_minkowski_exponent", refused naming the key.
+MetricSettings MetricSettingsKeys(Params& p) {
+  MetricSettings s;
+  if (p.has("fovea")) {
+    const std::array<double, 2> gaze = p.quantity_pair("fovea", Dimension::kAngle, {0, 0});
+    s.fovea_deg = std::array<double, 2>{gaze[0] * kDegreesPerRadian, gaze[1] * kDegreesPerRadian};
+  }
+  if (p.has("jnd_minkowski_exponent")) {
+    s.jnd_minkowski_exponent = p.quantity("jnd_minkowski_exponent", Dimension::kFraction);
+    p.require_range("jnd_minkowski_exponent", s.jnd_minkowski_exponent, 1, 1e6, false, false);
+  }
+  return s;
+}
+
 RetinaRunConfig ReadRetina(Params& run, const DisplaySystem& system) {
   RetinaRunConfig r;
   r.enabled = true;
   Params p = run.object("retina");
-  for (const char* key : {"focal_stack", "field", "metrics"}) p.mark_read(key);
+  for (const char* key : {"focal_stack", "field", "metrics", "fovea", "jnd_minkowski_exponent"}) p.mark_read(key);
   for (const VirtualLayer& layer : system.layers) r.accommodation_diopters.push_back(layer.diopters);
   ReadOptionEntries(p, RetinaRunOptionTable(), &r);
   if (p.has("focal_stack")) r.focal_stack_diopters = DepthRange(p, "focal_stack");
   if (p.has("metrics")) r.metrics = MetricsKey(p);
+  r.metric_settings = MetricSettingsKeys(p);
   if (p.has("field")) {
     const RetinaRunOptionEntry& e = RetinaRunOption("field");
     std::array<double, 2> field = p.quantity_pair("field", Dimension::kAngle, {0, 0});
@@ -155,6 +170,7 @@ CompareRunConfig ReadCompare(Params& run, const Scene& scene) {
     p.require_range("time_budget", *c.time_budget_s, range.min, range.max, range.min_open, range.max_open);
   }
   if (p.has("metrics")) c.metrics = MetricsKey(p);
+  c.metric_settings = MetricSettingsKeys(p);
   if (p.has("objectives")) {
     p.mark_read("objectives");
     Params items = ArrayItems(p, "objectives");

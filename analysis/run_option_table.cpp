@@ -59,6 +59,11 @@ std::vector<RetinaRunOptionEntry> MakeRetinaTable() {
   t.push_back(ByHand<RetinaRunConfig>("metrics", "names, comma-separated", "\"psnr\"",
                                       "each state's display image scored against natural viewing, a retina.csv "
                                       "column each: psnr, ssim, ms_ssim, jnd, or all (docs/metrics.md)"));
+  t.push_back(ByHand<RetinaRunConfig>("fovea", "[angle, angle]", "none (uniform)",
+                                      "weight every metric by eccentricity from this gaze, right and up from the "
+                                      "retina's centre (docs/metrics.md)"));
+  t.push_back(ByHand<RetinaRunConfig>("jnd_minkowski_exponent", "number, at least 1", "4",
+                                      "the JND metric's Minkowski pooling exponent (docs/metrics.md)"));
   e.key = "natural", e.kind = Kind::kBoolean, e.type = "boolean", e.default_text = "true";
   e.meaning = "also natural viewing of the target, side by side";
   e.get = [](const RetinaRunConfig& o) { return int(o.natural); };
@@ -95,6 +100,11 @@ std::vector<CompareRunOptionEntry> MakeCompareTable() {
   t.push_back(ByHand<CompareRunConfig>("metrics", "names, comma-separated", "none",
                                        "the focal stack also measured by these beside its PSNR: ssim, ms_ssim, jnd or "
                                        "all; every row then measures the focal stack (docs/metrics.md)"));
+  t.push_back(ByHand<CompareRunConfig>("fovea", "[angle, angle]", "none (uniform)",
+                                       "weight every metric by eccentricity from this gaze, right and up from the "
+                                       "retina's centre (docs/metrics.md)"));
+  t.push_back(ByHand<CompareRunConfig>("jnd_minkowski_exponent", "number, at least 1", "4",
+                                       "the JND metric's Minkowski pooling exponent (docs/metrics.md)"));
   return t;
 }
 

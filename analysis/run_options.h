@@ -22,6 +22,7 @@ struct RetinaRunConfig {
   bool natural = true;                         // natural viewing of the target too
   bool natural_traced = false;                 // traced in the target scene rather than read from its light field
   std::vector<const RetinalMetric*> metrics;   // each state scored against natural viewing by these (empty: PSNR)
+  MetricSettings metric_settings;              // their foveal weighting and the JND's exponent
   // Every state in D, sorted, duplicates removed: the slider's positions.
   std::vector<double> states() const;
   // False, with "field: value: constraint" in *error, for a value outside its table range.
@@ -43,6 +44,7 @@ struct CompareRunConfig {
   std::optional<double> time_budget_s;        // unset: each run's own
   std::vector<ObjectiveKind> objectives;      // empty: each run's own (CompareSelection::objectives)
   std::vector<const RetinalMetric*> metrics;  // empty: PSNR alone (CompareSelection::metrics)
+  MetricSettings metric_settings;             // CompareSelection::metric_settings
   bool IsValid(std::string* error) const;
 };
 

@@ -14,7 +14,7 @@ std::string RunRetina(RunState& s) {
       r.natural ? s.target->Natural(r.natural_traced ? Target::Viewing::kTraced : Target::Viewing::kLightField)
                 : SceneRadiance{};
   RetinaSweepOptions sweep{r.states(), r.resolution_deg, r.field_x_deg, r.field_y_deg, s.request.keep_images,
-                           r.metrics,  std::nullopt};
+                           r.metrics,  r.metric_settings};
   Progress progress("retina", sweep.states_diopters.size());
   std::vector<RetinaStateResult> states =
       WriteRetinaSweep(*s.solved.model, s.solved.patterns, natural, sweep, (s.out / "retina").string(),

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <optional>
 
+#include "layerlab/analysis/flicker_check.h"
 #include "layerlab/analysis/report_parts.h"
 #include "layerlab/framework/progress.h"
 #include "layerlab/solvers/solution_writer.h"
@@ -48,6 +49,7 @@ SolvedJob RunSolveJob(const SolveJob& job, const LightField& views, const Target
     solved.report =
         SolverRegistry::Builtins().create(job.config.solver)->Solve(*solved.model, views, options, &solved.patterns);
   }
+  AddFlickerCheck(*solved.model, solved.patterns, &solved.report);
   if (progress)
     progress->Finish(job.progress_brief ? solved.report.BriefReport() : ToString(solved.report.termination));
   return solved;

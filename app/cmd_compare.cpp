@@ -15,6 +15,7 @@
 #include "layerlab/analysis/target_source.h"
 #include "layerlab/app/command_line.h"
 #include "layerlab/app/commands.h"
+#include "layerlab/app/metric_flags.h"
 #include "layerlab/app/number_list.h"
 #include "layerlab/app/target_option.h"
 #include "layerlab/framework/atomic_file.h"
@@ -47,6 +48,7 @@ struct CompareCommandOptions {
   std::string time_budget, objectives, metrics;
   bool scene_options = false;
   std::string eyebox_at, eyebox_step = "0.5", quality = "1";
+  MetricFlags metric_flags;
 };
 
 // --eyebox-at and its step and quality: nothing measured without it.
@@ -69,6 +71,22 @@ std::vector<ObjectiveKind> ParseObjectives(const std::string& names) {
     objectives.push_back(*k);
   }
   return objectives;
+}
+
+// What to run: --solvers, --iterations, --time-budget, --scene-options, --objectives, --metrics, --fovea and
+// --jnd-exponent.
+CompareSelection ReadSelection(const CompareCommandOptions& o) {
+  if (o.iterations && *o.iterations <= 0) throw Error("--iterations: must be positive");
+  std::optional<double> time_budget;
+  if (!o.time_budget.empty()) time_budget = ParseOptionValue(o.time_budget, "--time-budget", kSeconds);
+  const std::vector<const RetinalMetric*> metrics =
+      o.metrics.empty() ? std::vector<const RetinalMetric*>{} : ParseRetinalMetrics(o.metrics, "--metrics");
+  const MetricSettings settings = ParseMetricSettings(o.metric_flags);
+  if (o.metric_flags.given() && metrics.empty())
+    throw Error(std::string(o.metric_flags.fovea.empty() ? "--jnd-exponent" : "--fovea") +
+                ": sets how the focal stack's metrics are measured: give --metrics");
+  return {SplitNames(o.solvers),         o.iterations, time_budget, o.scene_options,
+          ParseObjectives(o.objectives), metrics,      settings};
 }
 
 }  // namespace
@@ -95,6 +113,7 @@ void AddCompareCommand(CLI::App& app) {
                   "Also measure the focal stack by these beside its PSNR, comma-separated: ssim, ms_ssim, jnd or all; "
                   "every row then measures the focal stack, off the clock, at iterations 0, 1, 2, 3, 5, 8, ... and "
                   "the last (docs/metrics.md)");
+  AddMetricSettingFlags(cmd, &o->metric_flags);
   cmd->add_option("--eyebox-at", o->eyebox_at,
                   "Also each solution's eyebox, with the eye focused here (D): where its retinal PSNR stays within "
                   "--quality dB of the centre's, over the pupil positions inside the light field's eyebox");
@@ -102,16 +121,8 @@ void AddCompareCommand(CLI::App& app) {
   cmd->add_option("--quality", o->quality, "The eyebox's PSNR drop from its centre: dB (default 1)");
   cmd->callback([o] {
     const CompareEyebox eyebox = ReadCompareEyebox(*o);
-    if (o->iterations && *o->iterations <= 0) throw Error("--iterations: must be positive");
-    std::optional<double> time_budget;
-    if (!o->time_budget.empty()) time_budget = ParseOptionValue(o->time_budget, "--time-budget", kSeconds);
-    const std::vector<ObjectiveKind> objectives = ParseObjectives(o->objectives);
     std::vector<std::string> skipped;
-    const std::vector<const RetinalMetric*> metrics =
-        o->metrics.empty() ? std::vector<const RetinalMetric*>{} : ParseRetinalMetrics(o->metrics, "--metrics");
-    std::vector<CompareRun> runs = CompareRunsOf(
-        o->scenes, {SplitNames(o->solvers), o->iterations, time_budget, o->scene_options, objectives, metrics},
-        &skipped);
+    std::vector<CompareRun> runs = CompareRunsOf(o->scenes, ReadSelection(*o), &skipped);
     for (const std::string& line : skipped) std::fprintf(stderr, "compare: skipped %s\n", line.c_str());
     SolveConfig target_config;
     ApplyTargetOption(o->target, target_config);

@@ -16,6 +16,7 @@
 #include "layerlab/analysis/retina_sweep.h"
 #include "layerlab/app/command_line.h"
 #include "layerlab/app/commands.h"
+#include "layerlab/app/metric_flags.h"
 #include "layerlab/app/natural_viewing.h"
 #include "layerlab/app/number_list.h"
 #include "layerlab/app/optics_options.h"
@@ -44,14 +45,9 @@ struct RetinaCommandOptions {
   OpticsOptions optics;
   std::string accommodation = "0.4,1.0,1.6,2.2", focal_stack, field, resolution = "0.05";
   std::string eyes = "scene", partner_patterns;
-  std::string metrics = "psnr", fovea;
+  std::string metrics = "psnr";
+  MetricFlags metric_flags;
 };
-
-// --fovea X,Y in degrees, or none.
-std::optional<std::array<double, 2>> Fovea(const RetinaCommandOptions& o) {
-  if (o.fovea.empty()) return std::nullopt;
-  return ParseSignedPair(o.fovea, "--fovea", kDegrees);
-}
 
 // --accommodation and --focal-stack's states, sorted, without repeats.
 std::vector<double> AccommodationStates(const RetinaCommandOptions& o) {
@@ -110,8 +106,13 @@ std::vector<RetinaStateResult> RetinaOfEye(const RetinaCommandOptions& o, const 
   DisplayModel model(system, g, config.sampling);
   const Patterns t = ReadPatterns(model, patterns);
   const SceneRadiance& natural = seen.radiance();
-  RetinaSweepOptions sweep{states,  resolution, field[0], field[1], false, ParseRetinalMetrics(o.metrics, "--metrics"),
-                           Fovea(o)};
+  RetinaSweepOptions sweep{states,
+                           resolution,
+                           field[0],
+                           field[1],
+                           false,
+                           ParseRetinalMetrics(o.metrics, "--metrics"),
+                           ParseMetricSettings(o.metric_flags)};
   Progress progress(label, states.size());
   const std::vector<RetinaStateResult> results =
       WriteRetinaSweep(model, t, natural, sweep, folder, [&](size_t done, size_t, const RetinaStateResult& r) {
@@ -172,15 +173,16 @@ std::vector<DisplaySystem> BothEyes(const RetinaCommandOptions& o, const Display
   return eyes;
 }
 
-// --metrics and --fovea checked before anything is traced: each metric named, a target to score against,
-// a retina each metric takes; the metrics.
+// --metrics, --fovea and --jnd-exponent checked before anything is traced: each metric named, a target to
+// score against, a retina each metric takes; the metrics.
 std::vector<const RetinalMetric*> CheckMetricOptions(const RetinaCommandOptions& o,
                                                      const std::vector<DisplaySystem>& eyes, const SolveConfig& given) {
   const std::vector<const RetinalMetric*> metrics = ParseRetinalMetrics(o.metrics, "--metrics");
-  if (Fovea(o) && !(!given.target.empty() || !given.target_scene.empty()))
-    throw Error(
-        "--fovea: weights the metrics, which score the display against natural viewing of a target: give "
-        "--target or --target-scene");
+  ParseMetricSettings(o.metric_flags);
+  if (o.metric_flags.given() && !(!given.target.empty() || !given.target_scene.empty()))
+    throw Error(std::string(o.metric_flags.fovea.empty() ? "--jnd-exponent" : "--fovea") +
+                ": sets how the metrics score the display against natural viewing of a target: give --target or "
+                "--target-scene");
   const bool natural = !given.target.empty() || !given.target_scene.empty();
   if (!natural && metrics.size() > 1)
     throw Error(
@@ -291,9 +293,7 @@ void AddRetinaCommand(CLI::App& app) {
   cmd->add_option("--metrics", o->metrics,
                   "With a target: score each state's display image against natural viewing by these, a retina.csv "
                   "column each: psnr, ssim, ms_ssim, jnd, or all (default psnr; docs/metrics.md)");
-  cmd->add_option("--fovea", o->fovea,
-                  "Weight every metric by eccentricity from this point, X,Y degrees right and up from the retina's "
-                  "centre, where the eye looks (0,0): the cortical magnification's area (docs/metrics.md)");
+  AddMetricSettingFlags(cmd, &o->metric_flags);
   cmd->add_option("--out", o->out, "Output folder")->required();
   cmd->callback([o] { RunRetinaCommand(*o); });
 }

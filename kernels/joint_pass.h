@@ -13,13 +13,14 @@
 #include <vector>
 
 #include "layerlab/framework/lightfield.h"
+#include "layerlab/kernels/ray_pass.h"
 #include "layerlab/kernels/solve_workspace.h"
 #include "layerlab/systems/display_model.h"
 #include "layerlab/systems/panel_diffraction.h"
 
 namespace layerlab {
 
-class JointPass {
+class JointPass final : public RayPass {
  public:
   // In the solve's `workspace` (sized with kJointPass), or without one in a
   // workspace of its own for the thread count of now.
@@ -36,10 +37,10 @@ class JointPass {
   // unwritten; the general path makes all. Without `with_objective` the one-tap
   // path does not compute it and returns 0.
   double Run(const LightField& l, const Patterns& t, const std::vector<char>* summed = nullptr,
-             bool with_objective = true);
+             bool with_objective = true) override;
   // [layer][pixel * 3 + channel]
-  const std::vector<std::vector<double>>& residual() const { return workspace_->joint_residual; }
-  const std::vector<std::vector<double>>& denominator() const { return workspace_->joint_den; }
+  const std::vector<std::vector<double>>& residual() const override { return workspace_->joint_residual; }
+  const std::vector<std::vector<double>>& denominator() const override { return workspace_->joint_den; }
 
  private:
   double RunOn(const LightField& l, const Patterns& t, const std::vector<char>* summed, bool with_objective);

@@ -57,10 +57,18 @@ double MsSsimOf(const Image& display, const Image& reference, const MetricViewin
 double JndOf(const Image& display, const Image& reference, const MetricViewing& v) {
   const std::optional<Plane> w = Weight(display, v);
   return CsfJnd(Luminance(reference, v.white_cd_m2, "reference"), Luminance(display, v.white_cd_m2, "display"),
-                {v.pixel_deg, 4.0, w ? &*w : nullptr});
+                {v.pixel_deg, v.jnd_minkowski_exponent, w ? &*w : nullptr});
 }
 
 }  // namespace
+
+void CheckMetricSettings(const MetricSettings& s, const std::string& exponent_field, const std::string& fovea_field) {
+  if (!std::isfinite(s.jnd_minkowski_exponent) || !(s.jnd_minkowski_exponent >= 1))
+    throw Error(exponent_field + ": " + std::to_string(s.jnd_minkowski_exponent) +
+                ": a Minkowski exponent must be 1 or more (1: the mean, 2: the RMS, large: the maximum)");
+  if (s.fovea_deg && !(std::isfinite((*s.fovea_deg)[0]) && std::isfinite((*s.fovea_deg)[1])))
+    throw Error(fovea_field + ": the gaze must be finite");
+}
 
 const std::vector<RetinalMetric>& RetinalMetrics() {
   static const std::vector<RetinalMetric> metrics = {
@@ -70,7 +78,8 @@ const std::vector<RetinalMetric>& RetinalMetrics() {
       {"ms_ssim", "ms_ssim", "", true, kMsSsimMinSide, "MS-SSIM of the sRGB-encoded luminance (Wang et al. 2003)",
        &MsSsimOf},
       {"jnd", "jnd", "JND", false, 1,
-       "the luminance difference weighted by Barten's CSF, Minkowski-pooled (beta 4), in just-noticeable differences",
+       "the luminance difference weighted by Barten's CSF, Minkowski-pooled (beta 4 unless set), in just-noticeable "
+       "differences",
        &JndOf},
   };
   return metrics;

@@ -7,12 +7,15 @@
 //   ssim     the sRGB-encoded luminance, data range 1         (ssim.h)
 //   ms_ssim  the same, at least kMsSsimMinSide on each side   (ssim.h)
 //   jnd      the luminance in cd/m2 (times the display's white), Barten's
-//            CSF at the images' sampling, Minkowski exponent 4 (csf_jnd.h)
+//            CSF at the images' sampling, Minkowski exponent 4 unless the
+//            user sets it (MetricSettings; csf_jnd.h)
 // A luminance below 0 by at most kRingingFloor (the wave-optics eye's
 // transform can ring that far below a black edge) counts as 0; lower, or
 // undefined, is refused naming its pixel.
 #pragma once
 
+#include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,6 +25,20 @@ namespace layerlab {
 
 inline constexpr double kRingingFloor = 1e-3;
 
+inline constexpr double kDefaultJndExponent = 4;
+
+// What a user sets of the metrics (retina, compare, run, sweep and Python take them alike).
+struct MetricSettings {
+  // Weight every metric's mean by eccentricity from this gaze (deg right, up from the image's centre;
+  // foveal_weight.h); empty: uniform.
+  std::optional<std::array<double, 2>> fovea_deg;
+  double jnd_minkowski_exponent = kDefaultJndExponent;  // the JND metric's pooling, >= 1
+  bool operator==(const MetricSettings&) const = default;
+};
+// Throws layerlab::Error naming `exponent_field` for an exponent below 1 or not finite, `fovea_field` for a
+// gaze not finite.
+void CheckMetricSettings(const MetricSettings& s, const std::string& exponent_field, const std::string& fovea_field);
+
 // What the metrics need beyond the two images.
 struct MetricViewing {
   double pixel_deg = 0;    // the images' sampling, both axes
@@ -30,6 +47,16 @@ struct MetricViewing {
   // measured from the image's centre (deg right, up).
   bool foveal = false;
   double gaze_x_deg = 0, gaze_y_deg = 0;
+  double jnd_minkowski_exponent = kDefaultJndExponent;
+
+  static MetricViewing Of(double pixel_deg, double white_cd_m2, const MetricSettings& s) {
+    return {pixel_deg,
+            white_cd_m2,
+            s.fovea_deg.has_value(),
+            s.fovea_deg ? (*s.fovea_deg)[0] : 0.0,
+            s.fovea_deg ? (*s.fovea_deg)[1] : 0.0,
+            s.jnd_minkowski_exponent};
+  }
 };
 
 struct RetinalMetric {

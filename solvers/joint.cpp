@@ -26,6 +26,7 @@
 // (the retinal residual outweighing the light) lands the value on the floor.
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -41,7 +42,7 @@ constexpr double kGrowth = 1.3;
 constexpr double kMaxRelaxation = 8.0;
 
 // ratio[k][i] = num / den = (den - res) / den, or 1 where the denominator is below epsilon.
-void Ratios(const JointPass& pass, double epsilon, std::vector<std::vector<double>>* ratio) {
+void Ratios(const RayPass& pass, double epsilon, std::vector<std::vector<double>>* ratio) {
   const auto& res = pass.residual();
   const auto& den = pass.denominator();
   ratio->resize(res.size());
@@ -77,12 +78,15 @@ class JointSolver final : public Solver {
     if (!loop.Start()) return loop.Finish();
     const LightField& l = loop.target();
     const float floor = static_cast<float>(options.floor);
-    JointPass pass(model, &loop.workspace(), loop.diffraction());
     // The retinal objective's pass (retinal_pass.h) gives the same sums for f / Bound().
     std::optional<RetinalPass> retinal;
-    if (loop.retinal()) retinal.emplace(model, l, *loop.retinal(), loop.diffraction());
-    auto run = [&](const Patterns& p) { return retinal ? retinal->Run(p) : pass.Run(l, p); };
-    const JointPass& sums = retinal ? retinal->sums() : pass;
+    std::unique_ptr<RayPass> pass;
+    if (loop.retinal())
+      retinal.emplace(model, l, *loop.retinal(), loop.diffraction(), loop.response());
+    else
+      pass = loop.MakePass();
+    auto run = [&](const Patterns& p) { return retinal ? retinal->Run(p) : pass->Run(l, p); };
+    const RayPass& sums = retinal ? retinal->sums() : *pass;
 
     std::vector<std::vector<double>> ratio, accepted_ratio;
     double accepted_objective = run(*t);

@@ -12,6 +12,8 @@
 #include "layerlab/framework/huge_page_allocator.h"
 #include "layerlab/solvers/objective.h"
 #include "layerlab/solvers/retinal_objective.h"
+#include "layerlab/systems/lc_response.h"
+#include "layerlab/systems/panel_diffraction.h"
 
 namespace layerlab {
 
@@ -106,7 +108,14 @@ MemoryEstimate EstimateSolveMemory(const DisplayModel& model, const std::string&
   // Each of the layer vectors is one huge-page block (quasi-newton's Vector).
   const double solver_layers =
       double(LargeAllocationBytes(static_cast<size_t>(layer_values * sizeof(double)))) * own.layer_doubles;
-  const WorkspaceLayout layout = SolveWorkspace::Layout(model, threads, own.passes);
+  // Through the response the solver's pass keeps the frame's light, one instant's light, the panels' start
+  // values (double) and one instant's patterns, and runs through the joint pass and synthesis (as it does
+  // through the panels' diffraction).
+  const bool response = options.lc_response && ResponseMatters(model.system());
+  const bool plain = !response && !(options.panel_diffraction && !PanelDiffraction(model.system()).empty());
+  const double response_bytes = response ? 2 * light_field + 3 * patterns : 0;
+  const WorkspaceLayout layout =
+      SolveWorkspace::Layout(model, threads, own.passes | (plain ? 0u : unsigned(kJointPass | kSynthesisPass)));
   const RetinalParts retinal = RetinalPartsOf(model, options, threads, light_field);
   const double pair_setup = PairListSetUpBytes(model, own.passes, threads);
   // Code, libraries and what the process holds before the solve; 64 MB where it cannot be read.
@@ -127,8 +136,8 @@ MemoryEstimate EstimateSolveMemory(const DisplayModel& model, const std::string&
   const double solver_own = own.fields_then_layers
                                 ? std::max(solver_fields + retinal.setup, solver_layers + retinal.steps)
                                 : solver_fields + solver_layers + std::max(retinal.setup, retinal.steps);
-  double counted =
-      light_field + depth + solver_own + retinal.kept + patterns + double(layout.bytes()) + pair_setup + program;
+  double counted = light_field + depth + solver_own + retinal.kept + patterns + response_bytes +
+                   double(layout.bytes()) + pair_setup + program;
   if (e.clipped_copy_counted) counted += double(e.clipped_copy);
   e.counted = static_cast<size_t>(counted);
   e.margin = static_cast<size_t>(kMemoryMarginFraction * counted + kMemoryMarginBytes +
@@ -149,6 +158,7 @@ MemoryEstimate EstimateSolveMemory(const DisplayModel& model, const std::string&
     if (own.light_fields > 0) e.breakdown += " + " + fields;
     if (own.layer_doubles > 0) e.breakdown += " + " + layers;
   }
+  if (response) e.breakdown += " + the LC response's light fields and start values " + FormatBytes(response_bytes);
   e.breakdown += retinal.described + " + patterns " + FormatBytes(patterns) + " + workspace " +
                  FormatBytes(double(layout.bytes())) + " (" + layout.Describe() + ")" +
                  (pair_setup > 0 ? " + making the pair lists " + FormatBytes(pair_setup) : "") + " + program " +

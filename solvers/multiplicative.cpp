@@ -23,6 +23,7 @@
 // patterns D t and maps its sums back by D^T: the convolutive form of the
 // same step, t_a <- t_a * D_a^T(num) / D_a^T(den), D_a >= 0.
 #include <algorithm>
+#include <memory>
 #include <optional>
 
 #include "layerlab/framework/error.h"
@@ -64,9 +65,8 @@ std::vector<std::vector<int>> LayersByDepth(const DisplayModel& model) {
 // iteration sums one layer per pass, so a rank-K one should sum K, not 2K).
 class DepthPass {
  public:
-  DepthPass(const DisplayModel& model, const std::vector<std::vector<int>>& by_depth, SolveWorkspace* workspace,
-            const std::vector<LayerDiffraction>* diffraction)
-      : pass_(model, workspace, diffraction) {
+  DepthPass(const DisplayModel& model, const std::vector<std::vector<int>>& by_depth, SolveLoop* loop)
+      : pass_(loop->MakePass()) {
     for (const std::vector<int>& layers : by_depth) {
       summed_.emplace_back(model.layer_count(), 0);
       for (int a : layers) summed_.back()[a] = 1;
@@ -74,13 +74,13 @@ class DepthPass {
   }
   // Without `objective` the one-tap path leaves it out and returns 0.
   double Run(const LightField& l, const Patterns& t, size_t depth, bool objective) {
-    return pass_.Run(l, t, &summed_[depth], objective);
+    return pass_->Run(l, t, &summed_[depth], objective);
   }
-  const double* residual(int layer) const { return pass_.residual()[layer].data(); }
-  const double* denominator(int layer) const { return pass_.denominator()[layer].data(); }
+  const double* residual(int layer) const { return pass_->residual()[layer].data(); }
+  const double* denominator(int layer) const { return pass_->denominator()[layer].data(); }
 
  private:
-  JointPass pass_;
+  std::unique_ptr<RayPass> pass_;
   std::vector<std::vector<char>> summed_;  // [depth][layer]
 };
 
@@ -88,7 +88,7 @@ class DepthPass {
 void SolveByDepth(const DisplayModel& model, const SolverOptions& options, SolveLoop* loop, Patterns* t) {
   const LightField& l = loop->target();
   const std::vector<std::vector<int>> by_depth = LayersByDepth(model);
-  DepthPass pass(model, by_depth, &loop->workspace(), loop->diffraction());
+  DepthPass pass(model, by_depth, loop);
   auto step = [&](size_t depth) {
     for (int a : by_depth[depth])
       ApplyMultiplicativeStepFromResidual(pass.residual(a), pass.denominator(a), options, &(*t)[a].rgb);
@@ -114,7 +114,7 @@ class MultiplicativeSolver final : public Solver {
     SolveLoop loop("multiplicative", model, target, options, t);
     const std::string why = Unsuitable(model.system());
     if (!loop.Start(why.empty() ? why : "the multiplicative solver " + why)) return loop.Finish();
-    if (model.branch_count() > 1 || loop.diffraction()) {
+    if (model.branch_count() > 1 || !loop.plain_forward()) {
       SolveByDepth(model, options, &loop, t);
       return loop.Finish();
     }

@@ -80,7 +80,7 @@ class Layout {
     Sweep(x.size(), [&](size_t begin, size_t end) { Scatter(x, begin, end, t); });
   }
   // g = 2 res; h = scale * x / (2 den), 0 where den is below epsilon; over [begin, end).
-  void GradientAndScale(const JointPass& pass, const Vector& x, double scale, double epsilon, size_t begin, size_t end,
+  void GradientAndScale(const RayPass& pass, const Vector& x, double scale, double epsilon, size_t begin, size_t end,
                         Vector* g, Vector* h) const {
     ForRange(begin, end, [&](size_t k, size_t i, size_t j) {
       const double res = pass.residual()[k][i], den = pass.denominator()[k][i];
@@ -201,7 +201,7 @@ class QuasiNewtonRun {
     size_t longest = 1;
     for (size_t b = 0; b < model_.branch_count(); ++b) longest = std::max(longest, model_.branch_layers(b).size());
     plain_ = 1.0 / static_cast<double>(longest);
-    pass_.emplace(model_, &loop_.workspace(), loop_.diffraction());
+    pass_ = loop_.MakePass();
     layout_.emplace(model_);
     n_ = layout_->size();
     spare_.resize(kMemory);
@@ -230,9 +230,10 @@ class QuasiNewtonRun {
     if (warm_) warm_->Begin(&loop_);
     for (int k = 1; k <= warm_iterations_; ++k) {
       const bool last = k == warm_iterations_;
-      // The hybrid's iterations do not see the panels' diffraction: their objective is measured through it.
-      std::optional<double> objective = warm_->Iterate(!last && !loop_.diffraction());
-      if (loop_.diffraction()) objective.reset();
+      // The hybrid's iterations see neither the panels' diffraction nor their response: their objective is
+      // measured through them.
+      std::optional<double> objective = warm_->Iterate(!last && loop_.plain_forward());
+      if (!loop_.plain_forward()) objective.reset();
       if (last) {
         loop_.SetUpMidway([&] { MakePass(); });
         objective = f_ = Run(*t_);
@@ -249,7 +250,7 @@ class QuasiNewtonRun {
 
   void MakePass() {
     warm_.reset();
-    if (loop_.retinal()) retinal_.emplace(model_, *l_, *loop_.retinal(), loop_.diffraction());
+    if (loop_.retinal()) retinal_.emplace(model_, *l_, *loop_.retinal(), loop_.diffraction(), loop_.response());
   }
 
   void MakeVectors() {
@@ -336,9 +337,9 @@ class QuasiNewtonRun {
   const LightField* l_ = nullptr;
   const double lo_, hi_ = 1.0;
   double plain_ = 1;  // the plain step's scale, 1 / layers of the longest branch
-  std::optional<JointPass> pass_;
+  std::unique_ptr<RayPass> pass_;
   std::optional<RetinalPass> retinal_;
-  const JointPass* sums_ = nullptr;
+  const RayPass* sums_ = nullptr;
   std::optional<Layout> layout_;
   size_t n_ = 0;
   Vector x_, g_, h_, d_, x_new_, g_new_, h_new_, free_, change_;
@@ -370,6 +371,7 @@ SolverType QuasiNewtonSolverType() {
   type.memory.fields_then_layers = true;
   type.retinal_objective = true;
   type.panel_diffraction = true;
+  type.lc_response = true;
   type.memory.layer_doubles = 9 + kMemory * 2;
   type.options = {{"warm_start_iterations", "iterations of hybrid before the quasi-Newton steps"}, SubIterationsKey()};
   return type;

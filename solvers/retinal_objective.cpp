@@ -242,9 +242,9 @@ RetinalObjectiveMemory RetinalObjectiveBytes(const DisplayModel& model, const Re
 }
 
 std::vector<double> RetinalObjective::MeanScores(const LightField& x, const std::vector<const RetinalMetric*>& metrics,
-                                                 double white_cd_m2) const {
+                                                 double white_cd_m2, const MetricSettings& settings) const {
   CheckMetricSize(metrics, grid_.cols, grid_.rows, "the focal stack's metrics (one sample per light-field pixel)");
-  const MetricViewing viewing{grid_.resolution_rad / kRadiansPerDegree, white_cd_m2};
+  const MetricViewing viewing = MetricViewing::Of(grid_.resolution_rad / kRadiansPerDegree, white_cd_m2, settings);
   const size_t states = states_.size(), items = states * metrics.size();
   std::vector<double> mean(metrics.size(), 0.0);
   for (const Pupil& p : pupils_) {

@@ -66,10 +66,11 @@ class RetinalObjective {
   // The focal-stack PSNR: the mean over states of each state's PSNR (peak 1).
   double FocalStackPsnr(const std::vector<double>& per_state) const;
   // Each metric of the display's retinal images of x against the target's, the mean over states (over an
-  // eyebox, the pupils' weighted mean), in the order given; `white_cd_m2` the luminance of display-relative 1.
-  // Throws layerlab::Error when the grid is smaller than a metric takes.
+  // eyebox, the pupils' weighted mean), in the order given; `white_cd_m2` the luminance of display-relative 1;
+  // `settings` the user's (foveal weighting, the JND's exponent). Throws layerlab::Error when the grid is
+  // smaller than a metric takes.
   std::vector<double> MeanScores(const LightField& x, const std::vector<const RetinalMetric*>& metrics,
-                                 double white_cd_m2) const;
+                                 double white_cd_m2, const MetricSettings& settings = {}) const;
 
  private:
   struct Pupil {

@@ -7,14 +7,17 @@
 namespace layerlab {
 
 RetinalPass::RetinalPass(const DisplayModel& model, const LightField& target, const RetinalObjective& objective,
-                         const std::vector<LayerDiffraction>* diffraction)
+                         const std::vector<LayerDiffraction>* diffraction, bool response)
     : model_(model),
       target_(target),
       objective_(objective),
       diffraction_(diffraction && !diffraction->empty() ? diffraction : nullptr),
-      pass_(model, nullptr, diffraction_),
-      light_(model.geometry()),
-      effective_(model.geometry()) {}
+      effective_(model.geometry()) {
+  if (response)
+    response_.emplace(model, nullptr, diffraction_);
+  else
+    joint_.emplace(model, nullptr, diffraction_), light_ = LightField(model.geometry());
+}
 
 namespace {
 
@@ -26,38 +29,45 @@ RetinalMeasures Measures(const RetinalObjective& objective, const LightField& li
 
 }  // namespace
 
-RetinalMeasures MeasureRetinalObjective(const DisplayModel& model, const LightField& target,
-                                        const RetinalObjective& objective, const Patterns& t) {
-  const LightField light = Synthesize(model, t);
+RetinalMeasures MeasureRetinalObjective(const LightField& target, const RetinalObjective& objective,
+                                        const LightField& light) {
   std::vector<double> per_state;
   const double f = objective.Evaluate(light, &per_state);
   return Measures(objective, light, target, per_state, f);
 }
 
-const Patterns& RetinalPass::Read(const Patterns& t) {
-  if (!diffraction_) return t;
-  DiffractPatterns(*diffraction_, t, &seen_);
-  return seen_;
+const LightField& RetinalPass::Light(const Patterns& t) {
+  if (response_) return response_->Light(t);
+  if (!diffraction_) {
+    Synthesize(model_, t, &light_);
+  } else {
+    DiffractPatterns(*diffraction_, t, &seen_);
+    Synthesize(model_, seen_, &light_);
+  }
+  return light_;
 }
 
 double RetinalPass::Run(const Patterns& t) {
-  Synthesize(model_, Read(t), &light_);
+  const LightField& light = Light(t);
   std::vector<double> per_state;
-  const double f = objective_.EvaluateWithAdjoint(light_, &per_state, &effective_);
-  last_ = Measures(objective_, light_, target_, per_state, f);
+  const double f = objective_.EvaluateWithAdjoint(light, &per_state, &effective_);
+  last_ = Measures(objective_, light, target_, per_state, f);
   const float inverse_scale = static_cast<float>(1.0 / scale());
 #pragma omp parallel for schedule(static)
   for (size_t i = 0; i < effective_.rgb.size(); ++i)
-    effective_.rgb[i] = light_.rgb[i] - inverse_scale * effective_.rgb[i];
-  pass_.Run(effective_, t);
+    effective_.rgb[i] = light.rgb[i] - inverse_scale * effective_.rgb[i];
+  if (response_)
+    response_->SumsOfLight(effective_, nullptr, /*with_objective=*/false);
+  else
+    joint_->Run(effective_, t);
   return f / scale();
 }
 
 double RetinalPass::Evaluate(const Patterns& t) {
-  Synthesize(model_, Read(t), &light_);
+  const LightField& light = Light(t);
   std::vector<double> per_state;
-  const double f = objective_.Evaluate(light_, &per_state);
-  last_ = Measures(objective_, light_, target_, per_state, f);
+  const double f = objective_.Evaluate(light, &per_state);
+  last_ = Measures(objective_, light, target_, per_state, f);
   return f / scale();
 }
 

@@ -12,7 +12,10 @@
 
 #include <vector>
 
+#include <optional>
+
 #include "layerlab/kernels/joint_pass.h"
+#include "layerlab/solvers/response_pass.h"
 #include "layerlab/solvers/retinal_objective.h"
 
 namespace layerlab {
@@ -24,21 +27,23 @@ struct RetinalMeasures {
   double focal_stack_psnr_db = 0;    // mean over states
 };
 
-// The measures of patterns `t` against `target`, from one synthesis.
-RetinalMeasures MeasureRetinalObjective(const DisplayModel& model, const LightField& target,
-                                        const RetinalObjective& objective, const Patterns& t);
+// The measures of the display's light field `light` against `target`.
+RetinalMeasures MeasureRetinalObjective(const LightField& target, const RetinalObjective& objective,
+                                        const LightField& light);
 
 class RetinalPass {
  public:
-  // With `diffraction` (kept by the caller) the display's light field is L(D t) (kernels/joint_pass.h).
+  // With `diffraction` (kept by the caller) the display's light field is L(D t) (kernels/joint_pass.h); with
+  // `response`, the frame's time average through the panels' LC response (solvers/response_pass.h), whose
+  // pass takes the same effective target.
   RetinalPass(const DisplayModel& model, const LightField& target, const RetinalObjective& objective,
-              const std::vector<LayerDiffraction>* diffraction = nullptr);
+              const std::vector<LayerDiffraction>* diffraction = nullptr, bool response = false);
 
   // f(t) / s; residual() and denominator() then hold the sums above.
   double Run(const Patterns& t);
   // f(t) / s alone (no gradient).
   double Evaluate(const Patterns& t);
-  const JointPass& sums() const { return pass_; }
+  const RayPass& sums() const { return response_ ? static_cast<const RayPass&>(*response_) : *joint_; }
   double scale() const { return objective_.Bound(); }
   const RetinalMeasures& last() const { return last_; }
 
@@ -47,12 +52,13 @@ class RetinalPass {
   const LightField& target_;
   const RetinalObjective& objective_;
   const std::vector<LayerDiffraction>* diffraction_;
-  JointPass pass_;
-  Patterns seen_;                 // D t
-  LightField light_, effective_;  // L(t); M (L - l), then L - m in place
+  std::optional<JointPass> joint_;        // the plain or diffracted forward model's pass
+  std::optional<ResponsePass> response_;  // or the response's
+  Patterns seen_;                         // D t
+  LightField light_, effective_;          // L(t) (not with the response: its pass keeps it); M (L - l), then L - m
   RetinalMeasures last_;
 
-  const Patterns& Read(const Patterns& t);  // D t, or t
+  const LightField& Light(const Patterns& t);
 };
 
 }  // namespace layerlab

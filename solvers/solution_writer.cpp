@@ -64,7 +64,9 @@ nlohmann::json ReportToJson(const SolverReport& r) {
   if (focal_stack) j["retinal_target"] = r.retinal_target;
   if (r.objective == "retinal") j["contrast_sensitivity"] = r.contrast_sensitivity;
   if (r.panel_diffraction) j["panel_diffraction"] = true;
+  if (r.lc_response) j["lc_response"] = true;
   if (!std::isnan(r.shown_psnr_db)) j["shown_psnr_db"] = JsonNumber(r.shown_psnr_db);
+  if (r.flicker) j["flicker"] = r.flicker->ToJson();
   if (focal_stack) j["pupil_positions"] = r.pupil_positions;
   const std::vector<const TraceColumn*> columns = WrittenColumns(r.trace);
   for (const IterationRecord& t : r.trace) {

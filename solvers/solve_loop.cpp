@@ -9,7 +9,9 @@
 #include "layerlab/framework/error.h"
 #include "layerlab/framework/fixed_order_sum.h"
 #include "layerlab/framework/mpi_ranks.h"
+#include "layerlab/kernels/joint_pass.h"
 #include "layerlab/kernels/synthesis.h"
+#include "layerlab/solvers/response_pass.h"
 #include "layerlab/solvers/solver_checkpoint.h"
 #include "layerlab/solvers/trace_columns.h"
 #include "layerlab/systems/lc_response.h"
@@ -63,9 +65,9 @@ bool SolveLoop::Start(const std::string& refusal) {
     RequireSameRays(model_, source_);
     prepared_ = PrepareTarget(model_, source_, options_.target_range, &report_);
     const SolverType* type = SolverRegistry::Builtins().find(report_.solver);
-    if (!SetUpDiffraction(type)) return false;
+    if (!SetUpForwardModel(type)) return false;
     unsigned passes = type ? type->memory.passes : unsigned(kAllPasses);
-    if (!diffraction_.empty()) passes |= kJointPass;  // the diffracted forward model runs through the joint pass
+    if (!plain_forward()) passes |= kJointPass | kSynthesisPass;  // the forward model then runs through these
     workspace_ = std::make_unique<SolveWorkspace>(model_, omp_get_max_threads(), passes);
     if (options_.objective == ObjectiveKind::kRetinal || options_.measure_focal_stack)
       retinal_ = std::make_unique<RetinalObjective>(model_, target(), RetinalOptionsOf(options_));
@@ -107,8 +109,9 @@ bool SolveLoop::Start(const std::string& refusal) {
 void SolveLoop::MeasureMetrics() {
   const auto begin = std::chrono::steady_clock::now();
   try {
-    const LightField light = Synthesize(model_, Read());
-    const std::vector<double> scores = retinal_->MeanScores(light, options_.measure_metrics, model_.white_luminance());
+    const LightField light = Light();
+    const std::vector<double> scores =
+        retinal_->MeanScores(light, options_.measure_metrics, model_.white_luminance(), options_.metric_settings);
     for (size_t k = 0; k < scores.size(); ++k)
       if (options_.measure_metrics[k]->name != "psnr")
         FocalStackColumn(*options_.measure_metrics[k]).set(&report_.trace.back(), scores[k]);
@@ -121,15 +124,43 @@ void SolveLoop::MeasureMetrics() {
   start_ += std::chrono::steady_clock::now() - begin;
 }
 
-bool SolveLoop::SetUpDiffraction(const SolverType* type) {
+bool SolveLoop::SetUpForwardModel(const SolverType* type) {
   if (options_.panel_diffraction) diffraction_ = PanelDiffraction(model_.system());
   if (!diffraction_.empty() && !(type && type->panel_diffraction)) {
     Fail("the " + report_.solver + " solver does not model the panels' diffraction (\"panel_diffraction\"); " +
          "joint, multiplicative and quasi-newton do");
     return false;
   }
+  response_ = options_.lc_response && ResponseMatters(model_.system());
+  if (response_ && !(type && type->lc_response)) {
+    Fail("the " + report_.solver + " solver does not model the panels' liquid-crystal response (\"lc_response\"); " +
+         "quasi-newton does");
+    return false;
+  }
   report_.panel_diffraction = !diffraction_.empty();
+  report_.lc_response = response_;
   return true;
+}
+
+std::unique_ptr<RayPass> SolveLoop::MakePass() {
+  if (response_) return std::make_unique<ResponsePass>(model_, workspace_.get(), diffraction());
+  return std::make_unique<JointPass>(model_, workspace_.get(), diffraction());
+}
+
+LightField SolveLoop::Light() {
+  LightField light(model_.geometry());
+  if (response_)
+    ShownLightField(model_, ResponseMap(model_.system(), *patterns_), diffraction(), &light, nullptr, workspace_.get());
+  else
+    Synthesize(model_, Read(), &light, workspace_.get());
+  return light;
+}
+
+double SolveLoop::PatternsObjective() {
+  if (!response_) return Objective(model_, target(), Read(), workspace_.get());
+  const LightField light = Light();
+  const LightField& l = target();
+  return SumAcrossRanks(FixedOrderSquaredDifference(light.rgb.data(), l.rgb.data(), l.rgb.size()));
 }
 
 bool SolveLoop::Resume(const SolverCheckpoint& c) {
@@ -158,7 +189,7 @@ bool SolveLoop::Resume(const SolverCheckpoint& c) {
 
 RetinalMeasures SolveLoop::MeasureRetinal() {
   const auto begin = std::chrono::steady_clock::now();
-  const RetinalMeasures m = MeasureRetinalObjective(model_, target(), *retinal_, Read());
+  const RetinalMeasures m = MeasureRetinalObjective(target(), *retinal_, Light());
   start_ += std::chrono::steady_clock::now() - begin;
   return m;
 }
@@ -253,12 +284,11 @@ void SolveLoop::Converge(const std::string& message) {
 
 SolverReport SolveLoop::Finish() {
   report_.seconds = Seconds();
-  if (ResponseMatters(model_.system()) && !report_.trace.empty() && report_.termination != Termination::kFailed) {
-    LightField shown(model_.geometry());  // what the panels show over a frame, measured off the clock
-    for (const ShownInstant& instant : SeenOverTime(model_.system(), *patterns_, diffraction_)) {
-      const LightField at = Synthesize(model_, instant.patterns);
-      for (size_t r = 0; r < shown.rgb.size(); ++r) shown.rgb[r] += static_cast<float>(instant.weight * at.rgb[r]);
-    }
+  // (Solved through the response, the PSNR is already what the panels show.)
+  if (!response_ && ResponseMatters(model_.system()) && !report_.trace.empty() &&
+      report_.termination != Termination::kFailed) {
+    // What the panels show over a frame, measured off the clock.
+    const LightField shown = ShownLightField(model_, *patterns_, diffraction());
     const LightField& l = target();
     const double error = FixedOrderSquaredDifference(shown.rgb.data(), l.rgb.data(), shown.rgb.size());
     report_.shown_psnr_db = PsnrDb(SumAcrossRanks(error), report_.rays * 3);  // every rank's rays

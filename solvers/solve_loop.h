@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 
+#include "layerlab/kernels/ray_pass.h"
 #include "layerlab/solvers/objective.h"
 #include "layerlab/solvers/retinal_pass.h"
 #include "layerlab/solvers/solver.h"
@@ -63,6 +64,14 @@ class SolveLoop {
   // model's D (systems/panel_diffraction.h), which the solver hands to its
   // passes; nullptr otherwise. The loop's own objectives read D t then.
   const std::vector<LayerDiffraction>* diffraction() const { return diffraction_.empty() ? nullptr : &diffraction_; }
+  // With options.lc_response and panels that respond in finite time: the forward model is the frame's time
+  // average through the response (solvers/response_pass.h).
+  bool response() const { return response_; }
+  // Whether the forward model is the plain one, l~(t) (no diffraction, no response).
+  bool plain_forward() const { return diffraction_.empty() && !response_; }
+  // The pass over the rays of the forward model the options ask for (JointPass, or ResponsePass), in this
+  // solve's workspace.
+  std::unique_ptr<RayPass> MakePass();
   // Stops with a failure (for example a non-finite objective).
   void Fail(const std::string& message);
   // Stops because no further step can lower the objective.
@@ -92,13 +101,15 @@ class SolveLoop {
   // Start's end for a resumed solve: the checkpoint's patterns, trace and state; false (failed) when it is not
   // this solver's or is at the iteration limit already.
   bool Resume(const struct SolverCheckpoint& c);
-  // The panels' diffraction options.panel_diffraction asks for; false (failed) when the solver cannot model it.
-  bool SetUpDiffraction(const SolverType* type);
+  // The panels' diffraction and response the options ask for; false (failed) when the solver cannot model them.
+  bool SetUpForwardModel(const SolverType* type);
   // Measured here, off the clock (the solver did not spend it).
   RetinalMeasures MeasureRetinal();
-  // The patterns the forward model reads: D t with diffraction, else t itself.
+  // The patterns the forward model reads: D t with diffraction, else t itself (without the response).
   const Patterns& Read();
-  double PatternsObjective() { return Objective(model_, target(), Read(), workspace_.get()); }
+  // The display's light field as the forward model sees it.
+  LightField Light();
+  double PatternsObjective();
   void WriteCheckpoint();
 
   const DisplayModel& model_;
@@ -116,6 +127,7 @@ class SolveLoop {
   std::unique_ptr<RetinalObjective> retinal_;
   std::optional<RetinalMeasures> measured_;
   std::vector<LayerDiffraction> diffraction_;
+  bool response_ = false;
   Patterns seen_;            // D t
   int next_metric_row_ = 0;  // the next iteration whose row measures options.measure_metrics
   int metric_row_ = -1;      // the last row that did

@@ -65,6 +65,9 @@ struct SolverType {
   // It solves through the panels' diffraction when SolverOptions::panel_diffraction asks (else it refuses a
   // display whose panels diffract).
   bool panel_diffraction = false;
+  // It solves through the panels' LC response when SolverOptions::lc_response asks (else it refuses a display
+  // whose panels respond in finite time across subframes).
+  bool lc_response = false;
   // The keys it reads beyond CommonSolverOptionKeys().
   std::vector<SolverOptionKey> options;
 

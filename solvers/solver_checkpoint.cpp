@@ -148,6 +148,15 @@ CheckpointInputs CheckpointDigest(const DisplayModel& model, Sampling sampling, 
       options += text;
     }
   }
+  if (o.lc_response) {  // and the response it solves through
+    options += " lc_response=1";
+    std::snprintf(text, sizeof text, " frame_rate=%.17g", model.system().frame_rate_hz);
+    options += text;
+    for (const VirtualLayer& layer : model.system().layers) {
+      std::snprintf(text, sizeof text, " response=%.17g,%.17g", layer.panel.rise_time_s, layer.panel.fall_time_s);
+      options += text;
+    }
+  }
   if (o.objective == ObjectiveKind::kRetinal) {  // what the retinal objective minimizes
     auto list = [](const std::vector<double>& values) {
       std::string s;

@@ -151,6 +151,17 @@ std::vector<SolverOptionEntry> MakeTable() {
   e.get = [](const SolverOptions& o) { return int(o.panel_diffraction); };
   e.set = [](SolverOptions& o, int i) { o.panel_diffraction = i != 0; };
   add();
+  e.key = "lc_response", e.kind = Kind::kBoolean, e.type = "boolean", e.default_text = "false";
+  e.meaning =
+      "solve through the panels' liquid-crystal response: the forward model is the frame's time average of what "
+      "the panels show as they relax between subframes (rise_time, fall_time; quasi-newton; "
+      "docs/time-multiplexing.md)";
+  e.cli_flag = "--lc-response";
+  e.cli_help = "Solve through the panels' LC response (rise_time, fall_time; quasi-newton)";
+  e.python = "lc_response";
+  e.get = [](const SolverOptions& o) { return int(o.lc_response); };
+  e.set = [](SolverOptions& o, int i) { o.lc_response = i != 0; };
+  add();
 
   // Not in the scene file.
   e.key = "epsilon", e.kind = Kind::kReal, e.type = "number", e.in_scene = false, e.has_range = true;

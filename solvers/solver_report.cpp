@@ -45,6 +45,7 @@ std::string SolverReport::FullReport() const {
     if (pupil_positions > 1) what += ", from " + std::to_string(pupil_positions) + " pupil positions";
   }
   if (panel_diffraction) what += ", seen through the panels' diffraction";
+  if (lc_response) what += ", shown through the panels' liquid-crystal response";
   std::snprintf(buf, sizeof buf, "objective            %.9g -> %.9g (sum of squared errors%s)\n", initial_objective,
                 final_objective, what.c_str());
   out += buf;
@@ -61,6 +62,7 @@ std::string SolverReport::FullReport() const {
                                 : " (mean over accommodation states)\n");
   std::snprintf(buf, sizeof buf, "target out of range  %zu values; scale %.6g\n", out_of_range, target_scale);
   out += buf;
+  if (flicker) out += "flicker              " + flicker->Describe() + "\n";
   out += WarningLines(warnings);
   out += "\niteration  seconds     objective        PSNR (dB)\n";
   for (const IterationRecord& r : trace) {

@@ -1,7 +1,7 @@
 // The solvers' vocabulary, apart from their machinery (in the manner of
 // ceres/types.h): the options a solve takes, the report it gives, the passes
 // and memory a solver declares, and the enums they name. What includes this
-// sees the light field and two small leaf headers, not the kernels.
+// sees the light field and small leaf headers, not the kernels.
 #pragma once
 
 #include <cstdint>
@@ -14,6 +14,7 @@
 #include "layerlab/kernels/workspace_pass.h"
 #include "layerlab/metrics/retinal_metrics.h"
 #include "layerlab/retina/scene_radiance.h"
+#include "layerlab/systems/flicker_verdict.h"
 
 namespace layerlab {
 
@@ -103,12 +104,19 @@ struct SolverOptions {
   // the target's, off the clock, at iterations 0, 1, 2, 3, 5, 8, 12, ... (each about kMetricRowGrowth x the
   // last) and the last: each costs a few retinal images' worth of filtering.
   std::vector<const RetinalMetric*> measure_metrics;
+  MetricSettings metric_settings;  // how they are measured (foveal weighting, the JND's exponent)
   // Solve through the panels' diffraction (systems/panel_diffraction.h): the
   // forward model reads D t, the patterns as the eye sees them through the
   // panels in front, instead of t. Only where a panel diffracts (fill_factor
   // below 1 in front of another layer of its stack), and only by the solvers
   // whose SolverType::panel_diffraction says so.
   bool panel_diffraction = false;
+  // Solve through the panels' liquid-crystal response (systems/lc_response.h):
+  // the forward model is the frame's time average of what the panels show
+  // as they relax between subframes (solvers/response_pass.h), not the
+  // driven patterns. Only where a panel responds in finite time across
+  // subframes, and only by the solvers whose SolverType::lc_response says so.
+  bool lc_response = false;
   // Called after every iteration with its trace row (progress display); may be empty.
   std::function<void(const struct IterationRecord& row)> progress;
   // Asked after every iteration; true stops the solve with the patterns of
@@ -162,10 +170,14 @@ struct SolverReport {
   std::string retinal_target = "lightfield";
   bool contrast_sensitivity = false;  // the retinal objective's residuals weighted by it
   bool panel_diffraction = false;     // the forward model saw the panels' diffraction
+  bool lc_response = false;           // the forward model saw the panels' LC response
   // The light-field PSNR of what the panels show over a frame through their liquid-crystal response
   // (systems/lc_response.h), when it matters (a time-multiplexed display whose panels respond in finite
   // time): the solvers assume instant panels, and psnr_db is that model's. NaN otherwise.
   double shown_psnr_db = std::numeric_limits<double>::quiet_NaN();
+  // Whether the solved patterns flicker visibly (analysis/flicker_check.h sets it; a display of one subframe
+  // has none).
+  std::optional<FlickerVerdict> flicker;
   size_t pupil_positions = 1;  // the focal stack's pupil positions (an eyebox distribution's, or 1)
   Termination termination = Termination::kNotRun;
   std::string message = "not run";

@@ -85,6 +85,8 @@ struct Branch {
   double backlight_coherence_width_m = 0;  // m; 0: incoherent (systems/panel_diffraction.h)
 };
 
+inline constexpr int kMaxSubframes = 64;  // the most subframes a scene may show per frame
+
 struct DisplaySystem {
   std::string name, file;
   std::string eye_name;
@@ -99,7 +101,7 @@ struct DisplaySystem {
   std::vector<Branch> branches;
   // Time multiplexing: K subframes per frame, the eye sees their mean; each
   // subframe's layers and branches are their own (a panel holds K patterns).
-  int subframes = 1;
+  int subframes = 1;          // 1 to kMaxSubframes
   double frame_rate_hz = 60;  // Hz; the panels refresh at subframes x frame_rate_hz
 
   double fov_x_rad = 0, fov_y_rad = 0;  // rad: the smallest layer field (Eq. 2)

@@ -19,6 +19,7 @@
 // driven patterns: one node of weight 1.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "layerlab/systems/display_model.h"
@@ -47,6 +48,40 @@ std::vector<ShownInstant> ShownOverTime(const DisplaySystem& system, const Patte
 std::vector<ShownInstant> SeenOverTime(const DisplaySystem& system, const Patterns& driven,
                                        const std::vector<LayerDiffraction>& diffraction);
 std::vector<ShownInstant> SeenOverTime(const DisplaySystem& system, const Patterns& driven);
+
+// The response of one driven frame as maps of the driven patterns: the
+// shown patterns at each node, and their transposes for the chain rule.
+class ResponseMap {
+ public:
+  // Throws layerlab::Error when the patterns are not the display's layers.
+  ResponseMap(const DisplaySystem& system, const Patterns& driven);
+  // kResponseNodes, or 1 (the driven patterns) when the response does not matter.
+  int instants() const { return static_cast<int>(weights_.size()); }
+  double weight(int m) const { return weights_[m]; }
+  // The patterns the panels show at node m, into *shown (sized like the driven ones).
+  void Shown(int m, Patterns* shown) const;
+  // out[l] += scale R_m^T g[l] for every layer of the panels whose layers `summed` ([layer], nonzero:
+  // needed; null: all) holds every one of; the other layers' out is left as it is.
+  void AddTransposed(int m, const std::vector<std::vector<double>>& g, double scale, const std::vector<char>* summed,
+                     std::vector<std::vector<double>>* out) const;
+
+ private:
+  struct Panel {
+    std::vector<int> layers;   // [subframe]
+    double a[2] = {0, 0};      // exp(-T / tau) of a fall (0) and a rise (1)
+    std::vector<double> e[2];  // [node]: exp(-s_m / tau) of a fall and a rise
+  };
+  const Patterns& driven_;
+  std::vector<double> weights_;
+  std::vector<Panel> panels_;
+  std::vector<std::vector<double>> start_;  // [layer][value]: x0, the steady state's start of its subframe
+};
+
+// The quadrature's nodes on [0, 1] of a subframe (fraction of it) and their weights (summing to 1).
+const std::array<std::array<double, 2>, kResponseNodes>& ResponseNodes();
+// A pixel's transmittance `s` seconds into a subframe driven to `t` from `x0` (rising in rise_s, falling in
+// fall_s, 10 to 90 %).
+double RelaxedTransmittance(double x0, double t, double s, double rise_s, double fall_s);
 
 // One pixel's transmittance at the start of each of its K subframes in the periodic steady state (the
 // building block of ShownOverTime, for tests): driven[k], subframe length T, rise and fall times (10 to 90 %).

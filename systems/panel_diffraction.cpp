@@ -173,8 +173,4 @@ bool Diffracts(const std::vector<LayerDiffraction>& diffraction, int layer) {
   return false;
 }
 
-Patterns SeenPatterns(const DisplaySystem& system, const Patterns& t) {
-  return DiffractedPatterns(PanelDiffraction(system), t);
-}
-
 }  // namespace layerlab

@@ -86,7 +86,5 @@ void DiffractTransposed(const std::vector<LayerDiffraction>& diffraction, int la
                         std::vector<double>* sums);
 // Whether a panel in front diffracts `layer`.
 bool Diffracts(const std::vector<LayerDiffraction>& diffraction, int layer);
-// DiffractedPatterns(PanelDiffraction(system), t): what every retinal image of the display reads.
-Patterns SeenPatterns(const DisplaySystem& system, const Patterns& t);
 
 }  // namespace layerlab

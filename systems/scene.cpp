@@ -17,6 +17,7 @@
 #include <map>
 
 #include "layerlab/framework/json_file.h"
+#include "layerlab/systems/display_system.h"
 
 namespace layerlab {
 
@@ -42,7 +43,7 @@ Scene ParseScene(nlohmann::json document, const std::string& file, const Element
     top.fail("format", "unknown scene format \"" + format + "\"; this layerlab reads \"" + kSceneFormat + "\"");
   scene.name = top.string("name", "");
   scene.description = top.string("description", "");
-  scene.subframes = static_cast<int>(top.integer("subframes", 1, 64, 1));
+  scene.subframes = static_cast<int>(top.integer("subframes", 1, kMaxSubframes, 1));
   scene.frame_rate_hz = top.quantity("frame_rate", Dimension::kFrequency, 60.0);
   top.require_range("frame_rate", scene.frame_rate_hz, 1.0, 1e4, false, false);  // below 1 Hz: a slide show
   for (const std::string& key : SceneTaskKeys()) top.mark_read(key);

@@ -22,7 +22,7 @@ TEST(Compare, EachSolverRunsEachObjectiveItMinimizes) {
   std::vector<std::string> skipped;
   const std::vector<CompareRun> runs =
       CompareRunsOf({testing::ExamplePath("paper_prototype.json")},
-                    {{"hybrid", "quasi-newton"}, 2, std::nullopt, false, kBoth, {}}, &skipped);
+                    {{"hybrid", "quasi-newton"}, 2, std::nullopt, false, kBoth, {}, {}}, &skipped);
   ASSERT_EQ(runs.size(), 3u);
   EXPECT_EQ(RunLabel(runs[0].display, runs[0].solver, runs[0].options.objective), "paper_prototype / hybrid");
   EXPECT_EQ(RunLabel(runs[1].display, runs[1].solver, runs[1].options.objective), "paper_prototype / quasi-newton");
@@ -39,7 +39,7 @@ TEST(Compare, EachSolverRunsEachObjectiveItMinimizes) {
 
   // Without objectives: the light field's, nothing measured off the clock.
   const std::vector<CompareRun> plain = CompareRunsOf({testing::ExamplePath("paper_prototype.json")},
-                                                      {{"quasi-newton"}, 2, std::nullopt, false, {}, {}}, nullptr);
+                                                      {{"quasi-newton"}, 2, std::nullopt, false, {}, {}, {}}, nullptr);
   ASSERT_EQ(plain.size(), 1u);
   EXPECT_EQ(plain[0].options.objective, ObjectiveKind::kLightField);
   EXPECT_FALSE(plain[0].options.measure_focal_stack);
@@ -141,7 +141,7 @@ TEST(Compare, EveryRowSolvesThroughThePanelsDiffractionOrIsLeftOut) {
   std::ofstream(file) << scene.dump();
   std::vector<std::string> skipped;
   const std::vector<CompareRun> runs =
-      CompareRunsOf({file.string()}, {{"hybrid", "joint"}, 2, std::nullopt, false, {}, {}}, &skipped);
+      CompareRunsOf({file.string()}, {{"hybrid", "joint"}, 2, std::nullopt, false, {}, {}, {}}, &skipped);
   std::filesystem::remove(file);
   ASSERT_EQ(runs.size(), 1u);
   EXPECT_EQ(runs[0].solver, "joint");

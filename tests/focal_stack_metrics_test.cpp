@@ -30,6 +30,8 @@ TEST(FocalStackMetrics, TheyAreTheMeanOverStatesAtTheRowsThatMeasureThem) {
   o.iterations = 9;
   o.measure_focal_stack = true;
   o.measure_metrics = ParseRetinalMetrics("ssim,jnd", "metrics");
+  o.metric_settings.fovea_deg = std::array<double, 2>{3.0, -2.0};  // weighted about a gaze, the JND pooled by RMS
+  o.metric_settings.jnd_minkowski_exponent = 2;
   Patterns t;
   const SolverReport report = SolverRegistry::Builtins().create("multiplicative")->Solve(model, target, o, &t);
   ASSERT_TRUE(report.IsSolutionUsable()) << report.message;
@@ -49,7 +51,8 @@ TEST(FocalStackMetrics, TheyAreTheMeanOverStatesAtTheRowsThatMeasureThem) {
   std::vector<std::vector<float>> shown, seen;
   op.Apply(Synthesize(model, t), &shown);
   op.Apply(target, &seen);
-  const MetricViewing viewing{grid.resolution_rad * 180 / std::acos(-1.0), model.white_luminance()};
+  const MetricViewing viewing{
+      grid.resolution_rad * 180 / std::acos(-1.0), model.white_luminance(), true, 3.0, -2.0, 2.0};
   double ssim = 0, jnd = 0;
   for (size_t a = 0; a < foci.size(); ++a) {
     const Image display{grid.cols, grid.rows, {"R", "G", "B"}, shown[a]},

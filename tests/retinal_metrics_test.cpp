@@ -60,6 +60,25 @@ TEST(RetinalMetrics, EachIsItsFilesFunctionOnTheImagesAsHandedOver) {
   EXPECT_EQ(Named("psnr").column, "psnr_db");
 }
 
+TEST(RetinalMetrics, TheJndsExponentIsTheUsersAndOneBelowOneIsRefused) {
+  const Image display = Random(64, 48, 1), reference = Random(64, 48, 2);
+  MetricSettings settings;
+  settings.jnd_minkowski_exponent = 2;
+  const MetricViewing viewing = MetricViewing::Of(0.05, 120.0, settings);
+  const double rms = CsfJnd(LuminanceOf(reference, 120.0), LuminanceOf(display, 120.0), {0.05, 2.0, nullptr});
+  EXPECT_NEAR(Named("jnd").score(display, reference, viewing), rms, 1e-12);
+  EXPECT_NE(rms, Named("jnd").score(display, reference, {0.05, 120.0}));  // beta 4 pools otherwise
+  for (double bad : {0.5, 0.0, -1.0, std::nan("")}) {
+    settings.jnd_minkowski_exponent = bad;
+    try {
+      CheckMetricSettings(settings, "/run/retina/jnd_minkowski_exponent", "/run/retina/fovea");
+      FAIL() << bad << " accepted";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("/run/retina/jnd_minkowski_exponent"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(RetinalMetrics, ATransformsRingingBelowBlackCountsAsBlackAndMoreIsRefused) {
   Image display = Random(20, 20, 4), reference = Random(20, 20, 5), black = display;
   for (int c = 0; c < 3; ++c) display.pixels[c] = -0.5f * float(kRingingFloor), black.pixels[c] = 0.0f;

@@ -397,7 +397,7 @@ TEST(RetinalObjective, TheSameBitsOnAnyThreadCount) {
   for (int n : {1, 2, 3, 4}) {
     omp_set_num_threads(n);
     const RetinalObjective objective(model, target, FewStates());
-    measures.push_back(MeasureRetinalObjective(model, target, objective, t));
+    measures.push_back(MeasureRetinalObjective(target, objective, Synthesize(model, t)));
     states.emplace_back();
     objective.Evaluate(Synthesize(model, t), &states.back());
   }

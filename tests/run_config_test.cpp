@@ -126,6 +126,12 @@ TEST(RunConfig, BadInputIsRefusedWithItsLocation) {
             "examples/scene.json: /run/compare/objectives/1: \"retina\" is not one of lightfield or retinal");
   EXPECT_EQ(RunError({{"compare", {{"objectives", json::array()}}}}),
             "examples/scene.json: /run/compare/objectives: expected a non-empty array, got an array");
+  for (const char* section : {"retina", "compare"}) {
+    const std::string error = RunError({{section, {{"jnd_minkowski_exponent", 0.5}}}});
+    EXPECT_NE(error.find(std::string("/run/") + section + "/jnd_minkowski_exponent"), std::string::npos) << error;
+    EXPECT_NE(RunError({{section, {{"fovea", {"2 deg"}}}}}).find("/run/" + std::string(section) + "/fovea"),
+              std::string::npos);
+  }
 }
 
 TEST(SolveConfig, TargetSceneIsResolvedAndExclusive) {

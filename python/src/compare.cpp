@@ -53,9 +53,25 @@ std::vector<std::string> SolverList(const py::object& solvers, const std::string
   return names;
 }
 
+// fovea=(x, y) degrees and jnd_exponent, checked; only with metrics.
+MetricSettings MetricSettingsArgs(const py::object& fovea, const py::object& jnd_exponent, bool with_metrics) {
+  MetricSettings settings;
+  if (!fovea.is_none()) {
+    const std::vector<double> gaze = fovea.cast<std::vector<double>>();
+    if (gaze.size() != 2) RaiseArgumentError("compare: fovea: give (x, y) in degrees");
+    settings.fovea_deg = std::array<double, 2>{gaze[0], gaze[1]};
+  }
+  if (!jnd_exponent.is_none()) settings.jnd_minkowski_exponent = RealArg(jnd_exponent, "compare: jnd_exponent");
+  CheckArgument([&] { CheckMetricSettings(settings, "compare: jnd_exponent", "compare: fovea"); });
+  if ((!fovea.is_none() || !jnd_exponent.is_none()) && !with_metrics)
+    RaiseArgumentError("compare: fovea and jnd_exponent set how the focal stack's metrics are measured: give metrics");
+  return settings;
+}
+
 py::dict Compare(const py::object& scenes, const py::object& target, const py::object& solvers,
                  const py::object& iterations_arg, const py::object& time_budget_arg, bool scene_options,
-                 const py::object& objectives, const py::object& metrics, const py::object& callback) {
+                 const py::object& objectives, const py::object& metrics, const py::object& fovea,
+                 const py::object& jnd_exponent, const py::object& callback) {
   std::optional<int> iterations;
   std::optional<double> time_budget;
   if (!iterations_arg.is_none())
@@ -76,8 +92,14 @@ py::dict Compare(const py::object& scenes, const py::object& target, const py::o
   std::vector<const RetinalMetric*> metric_list;
   if (!metric_names.empty())
     CheckArgument([&] { metric_list = ParseRetinalMetrics(metric_names.substr(1), "compare: metrics"); });
-  const CompareSelection selection{
-      SolverList(solvers, "compare: solvers"), iterations, time_budget, scene_options, objective_kinds, metric_list};
+  const MetricSettings settings = MetricSettingsArgs(fovea, jnd_exponent, !metric_list.empty());
+  const CompareSelection selection{SolverList(solvers, "compare: solvers"),
+                                   iterations,
+                                   time_budget,
+                                   scene_options,
+                                   objective_kinds,
+                                   metric_list,
+                                   settings};
   std::shared_ptr<LightField> given;
   SolveConfig target_config;  // a light-field folder, or a target scene file rendered as --target-scene does
   if (py::isinstance<LightField>(target)) {
@@ -131,13 +153,16 @@ py::dict Compare(const py::object& scenes, const py::object& target, const py::o
 void BindCompare(py::module_& m) {
   m.def("compare", &Compare, py::arg("scenes"), py::arg("target"), py::kw_only(), py::arg("solvers") = py::none(),
         py::arg("iterations") = py::none(), py::arg("time_budget") = py::none(), py::arg("scene_options") = false,
-        py::arg("objectives") = py::none(), py::arg("metrics") = py::none(), py::arg("callback") = py::none(),
+        py::arg("objectives") = py::none(), py::arg("metrics") = py::none(), py::arg("fovea") = py::none(),
+        py::arg("jnd_exponent") = py::none(), py::arg("callback") = py::none(),
         "Several displays and solvers on one target (a LightField, a light-field folder or a target scene file), as "
         "`layerlab compare`: like for like (each solver's defaults) unless scene_options; objectives (\"lightfield\", "
         "\"retinal\" or a list) as --objectives; metrics (\"ssim\", \"ms_ssim\", \"jnd\", \"all\" or a list) as "
-        "--metrics. A dict of columns, one row per display, solver and objective "
+        "--metrics, weighted about a gaze fovea=(x, y) degrees and the JND pooled with jnd_exponent as --fovea and "
+        "--jnd-exponent. A dict of columns, one row per display, solver and objective "
         "(scene, display, solver, objective, solver_options, final_psnr_db, final_focal_stack_psnr_db, seconds, "
-        "iterations, subframes, panel_refresh_hz, luminance_efficiency, efficiency, termination, message, trace), with "
+        "iterations, subframes, panel_refresh_hz, luminance_efficiency, efficiency, termination, message, "
+        "flicker_visible, flicker_visibility, flicker_hz (NaN for a display of one subframe), trace), with "
         "skipped, warnings and table");
 }
 

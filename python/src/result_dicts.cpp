@@ -1,6 +1,7 @@
 #include "layerlab/python/src/result_dicts.h"
 
 #include <cmath>
+#include <limits>
 
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
@@ -49,8 +50,14 @@ py::dict CompareColumns(const std::vector<std::string>& scenes, const std::vecto
   py::list scene, display, solver, objective, options_from, termination, message, traces;
   py::array_t<double> psnr(n), focal_stack(n), seconds(n), refresh(n), luminance(n), efficiency({n, py::ssize_t{3}});
   py::array_t<int> iterations(n), subframes(n);
+  py::array_t<double> flicker_visibility(n), flicker_hz(n);
+  py::list flicker_visible;  // True, False, or None for a display of one subframe
   for (py::ssize_t i = 0; i < n; ++i) {
     const CompareResult& r = results[i];
+    const std::optional<FlickerVerdict>& f = r.report.flicker;
+    flicker_visibility.mutable_at(i) = f ? f->visibility : std::numeric_limits<double>::quiet_NaN();
+    flicker_hz.mutable_at(i) = f ? f->frequency_hz : std::numeric_limits<double>::quiet_NaN();
+    flicker_visible.append(f ? py::object(py::bool_(f->visible())) : py::object(py::none()));
     scene.append(scenes.at(i)), display.append(r.display), solver.append(r.solver);
     objective.append(r.report.objective);
     focal_stack.mutable_at(i) = FinalFocalStackPsnr(r.report);
@@ -68,6 +75,7 @@ py::dict CompareColumns(const std::vector<std::string>& scenes, const std::vecto
   d["iterations"] = iterations, d["subframes"] = subframes;
   d["panel_refresh_hz"] = refresh, d["luminance_efficiency"] = luminance, d["efficiency"] = efficiency;
   d["termination"] = termination, d["solver_options"] = options_from, d["message"] = message, d["trace"] = traces;
+  d["flicker_visible"] = flicker_visible, d["flicker_visibility"] = flicker_visibility, d["flicker_hz"] = flicker_hz;
   for (const TraceColumn* c : MeasuredMetricColumns(results)) {  // final_focal_stack_ssim, ...: as compare.csv
     py::array_t<double> values(n);
     for (py::ssize_t i = 0; i < n; ++i) values.mutable_at(i) = FinalTraceValue(*c, results[i].report);

@@ -37,7 +37,7 @@
 #include "layerlab/solvers/solver_option_table.h"
 #include "layerlab/systems/compile.h"
 #include "layerlab/systems/layer_sampler.h"
-#include "layerlab/systems/panel_diffraction.h"
+#include "layerlab/systems/lc_response.h"
 
 namespace py = pybind11;
 
@@ -225,11 +225,13 @@ py::object Retina(const Solution& s, const std::vector<double>& accommodation, d
     const SceneRadiance scene = natural ? LightFieldRadiance(*s.target, s.sampling) : SceneRadiance{};
     RetinaWorkspace workspace;  // shared by the states, as a focal stack's are
     const EyeOptics optics(system.eye, pupil, grid);
-    const Patterns diffracted = SeenPatterns(system, s.patterns);  // through the panels' diffraction
+    // What the panels show over a frame (their response), each instant through the panels' diffraction.
+    const std::vector<ShownInstant> seen_over_time = SeenOverTime(system, s.patterns);
     for (size_t k = 0; k < accommodation.size(); ++k) {
       const std::array<double, 3> focus = ChannelAccommodation(system.eye, accommodation[k]);
       const Image image = optics.See([&](const RetinaGrid& traced, const std::vector<PupilPoint>& group) {
-        return RetinaOfDisplay(*s.model, diffracted, DisplayRetinaTables(*s.model, traced, group, focus), &workspace);
+        return RetinaOfDisplay(*s.model, seen_over_time, DisplayRetinaTables(*s.model, traced, group, focus),
+                               &workspace);
       });
       std::copy(image.pixels.begin(), image.pixels.end(), out + k * image.pixels.size());
       if (natural) {

@@ -191,3 +191,19 @@ def test_metrics_beside_psnr_at_the_rows_that_measure_them(target_folder, tmp_pa
     assert small["termination"] == ["iteration limit"]
     assert np.all(np.isnan(small["trace"][0]["focal_stack_ms_ssim"]))
     assert any("ms_ssim needs images of at least 176 x 176 samples; these are 80 x 40" in w for w in small["warnings"])
+
+
+def test_fovea_and_the_jnd_exponent_as_the_commands_and_bad_ones_refused(target_folder, tmp_path):
+    args = dict(solvers="hybrid", metrics="jnd", iterations=2)
+    plain = layerlab.compare(SCENES[0], target_folder, **args)
+    weighted = layerlab.compare(SCENES[0], target_folder, fovea=(3, -2), jnd_exponent=2, **args)
+    assert weighted["final_focal_stack_jnd"][0] != plain["final_focal_stack_jnd"][0]
+    rows = command_csv(tmp_path, [SCENES[0]], ["--target", str(target_folder)], "--solvers", "hybrid", "--metrics",
+                       "jnd", "--iterations", "2", "--fovea", "3,-2", "--jnd-exponent", "2")
+    np.testing.assert_allclose([float(rows[0]["final_focal_stack_jnd"])], weighted["final_focal_stack_jnd"], rtol=1e-6)
+    with pytest.raises(ValueError, match="compare: jnd_exponent: 0.5.*must be 1 or more"):
+        layerlab.compare(SCENES[0], target_folder, jnd_exponent=0.5, **args)
+    with pytest.raises(ValueError, match="give metrics"):
+        layerlab.compare(SCENES[0], target_folder, solvers="hybrid", fovea=(1, 1))
+    # A display of one subframe does not flicker: no verdict.
+    assert plain["flicker_visible"] == [None] and np.isnan(plain["flicker_visibility"][0])
