@@ -84,7 +84,9 @@ void AddSolveToPage(const DisplaySystem& system, const Patterns& patterns, const
   if (with_lightfield) links.push_back({"synthesized light field", prefix + "lightfield/lightfield.json"});
   files.push_back(prefix + "psnr_vs_time.svg");
   page->sections.push_back(
-      {"solve", "Factorization", files, SolveHtml(report.BriefReport(), links, plot, patterns_shown, panels)});
+      {"solve", "Factorization", files,
+       SolveHtml(report.BriefReport() + (report.flicker ? "; " + report.flicker->Describe() : std::string()), links,
+                 plot, patterns_shown, panels)});
 }
 
 void AddRetinaToPage(const std::vector<RetinaStateResult>& states, const std::vector<double>& declared, bool natural,

@@ -108,11 +108,12 @@ MemoryEstimate EstimateSolveMemory(const DisplayModel& model, const std::string&
   // Each of the layer vectors is one huge-page block (quasi-newton's Vector).
   const double solver_layers =
       double(LargeAllocationBytes(static_cast<size_t>(layer_values * sizeof(double)))) * own.layer_doubles;
-  // Through the response the solver's pass keeps the frame's light, one instant's light, the panels' start
-  // values (double) and one instant's patterns, and runs through the joint pass and synthesis (as it does
-  // through the panels' diffraction).
-  const bool response = options.lc_response && ResponseMatters(model.system());
-  const bool plain = !response && !(options.panel_diffraction && !PanelDiffraction(model.system()).empty());
+  // Where the panels' response matters the solve keeps the frame's light, one instant's light, the panels'
+  // start values (double) and one instant's patterns: through it, in its pass (which runs through the joint
+  // pass and synthesis, as it does through the panels' diffraction); without, for the shown PSNR at its end.
+  const bool response = ResponseMatters(model.system());
+  const bool plain =
+      !(options.lc_response && response) && !(options.panel_diffraction && !PanelDiffraction(model.system()).empty());
   const double response_bytes = response ? 2 * light_field + 3 * patterns : 0;
   const WorkspaceLayout layout =
       SolveWorkspace::Layout(model, threads, own.passes | (plain ? 0u : unsigned(kJointPass | kSynthesisPass)));

@@ -5,6 +5,7 @@
 // panels integrated by hand; instant panels and one subframe show what they
 // are driven to; bad times are refused naming the key.
 #include <cmath>
+#include <functional>
 
 #include "layerlab/kernels/synthesis.h"
 #include "layerlab/solvers/objective.h"
@@ -126,18 +127,33 @@ TEST(LcResponse, ASolvesReportSaysWhatItsPanelsShow) {
   }
 }
 
-TEST(LcResponse, NegativeTimesAreRefusedNamingTheKey) {
-  for (const char* key : {"rise_time", "fall_time"}) {
+// Negative times, rates and luminances, each refused naming its JSON pointer.
+TEST(LcResponse, NegativeTimesRatesAndLuminancesAreRefusedNamingTheKey) {
+  auto refused = [](const std::function<void(nlohmann::json&)>& edit, const std::string& pointer) {
     nlohmann::json scene = testing::ShrunkExample("tensor_display_rank2.json", 16, 8, 3);
-    for (nlohmann::json& e : scene["elements"])
-      if (e["type"] == "lc_panel") e[key] = "-1 ms";
+    edit(scene);
     try {
       testing::CompileJson(scene);
-      FAIL() << key << " accepted";
+      ADD_FAILURE() << pointer << " accepted";
     } catch (const Error& error) {
-      EXPECT_NE(std::string(error.what()).find(key), std::string::npos) << error.what();
+      EXPECT_NE(std::string(error.what()).find(pointer), std::string::npos) << error.what();
     }
-  }
+  };
+  for (const char* key : {"rise_time", "fall_time"})
+    refused(
+        [&](nlohmann::json& scene) {
+          for (nlohmann::json& e : scene["elements"])
+            if (e["type"] == "lc_panel") e[key] = "-1 ms";
+        },
+        key);
+  refused([](nlohmann::json& scene) { scene["frame_rate"] = "-60 Hz"; }, "/frame_rate");
+  refused([](nlohmann::json& scene) { scene["frame_rate"] = 0; }, "/frame_rate");
+  refused(
+      [](nlohmann::json& scene) {
+        for (nlohmann::json& e : scene["elements"])
+          if (e["type"] == "backlight") e["luminance"] = "-250 cd/m2";
+      },
+      "/luminance");
 }
 
 }  // namespace
