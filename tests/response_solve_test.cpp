@@ -49,9 +49,13 @@ double FrameObjective(const DisplayModel& model, const LightField& target, const
 }
 
 TEST(ResponseMap, ItsTransposeMapsBackTheChangeItShows) {
-  for (const char* example : {"tensor_display_rank2.json", "tensor_display_rank3.json"}) {
-    SCOPED_TRACE(example);
-    const DisplaySystem system = Stack(example, "3 ms", "9 ms");
+  // Fast panels, and slow ones whose start values carry much of the cycle before (prod a_k far from 0).
+  for (const auto& [example, rise, fall] :
+       std::vector<std::array<const char*, 3>>{{"tensor_display_rank2.json", "3 ms", "9 ms"},
+                                               {"tensor_display_rank3.json", "3 ms", "9 ms"},
+                                               {"tensor_display_rank2.json", "20 ms", "45 ms"}}) {
+    SCOPED_TRACE(std::string(example) + " " + rise + " " + fall);
+    const DisplaySystem system = Stack(example, rise, fall);
     ASSERT_TRUE(ResponseMatters(system));
     const DisplayModel model(system, DisplayLightFieldGeometry(system));
     const Patterns t = Random(model, 3);
