@@ -7,9 +7,11 @@
 
 #include "layerlab/eye/temporal_csf.h"
 #include "layerlab/framework/error.h"
+#include "layerlab/framework/mpi_ranks.h"
 #include "layerlab/framework/polarization.h"
 #include "layerlab/kernels/synthesis.h"
 #include "layerlab/systems/lc_response.h"
+#include "layerlab/systems/panel_diffraction.h"
 
 namespace layerlab {
 namespace {
@@ -106,10 +108,12 @@ void SampleSubframes(const DisplayModel& model, const ResponseMap& map, RegionGr
   const DisplaySystem& system = model.system();
   const LightFieldGeometry& g = model.geometry();
   const double scale = system.subframes * model.white_luminance();
+  const std::vector<LayerDiffraction> diffraction = PanelDiffraction(system);  // what the eye sees of them
   Patterns shown, alone;
   LightField light(g);
   for (int m = 0; m < map.instants(); ++m) {
     map.Shown(m, &shown);
+    if (!diffraction.empty()) shown = DiffractedPatterns(diffraction, shown);
     for (int k = 0; k < system.subframes; ++k) {
       alone = shown;
       for (size_t l = 0; l < alone.size(); ++l)
@@ -136,6 +140,19 @@ std::optional<FlickerVerdict> CheckFlicker(const DisplayModel& model, const Patt
   const ResponseMap map(system, t);
   const bool instant = map.instants() == 1;
   SampleSubframes(model, map, &grid);
+  // A rank's light field is a block of view rows: the regions' sums over every rank's rays.
+  std::vector<double> sums;
+  for (const RegionSignal& r : grid.regions) {
+    sums.push_back(double(r.rays));
+    for (const std::vector<double>& subframe : r.luminance) sums.insert(sums.end(), subframe.begin(), subframe.end());
+  }
+  SumAcrossRanks({std::span<double>(sums)}, 0.0);
+  size_t at = 0;
+  for (RegionSignal& r : grid.regions) {
+    r.rays = static_cast<size_t>(sums[at++]);
+    for (std::vector<double>& subframe : r.luminance)
+      for (double& v : subframe) v = sums[at++];
+  }
   FlickerVerdict worst;
   worst.what = "the solved patterns";
   // At three scales (flicker over a larger area is seen at a smaller modulation: Granit-Harper): the regions,

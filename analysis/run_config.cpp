@@ -171,6 +171,9 @@ CompareRunConfig ReadCompare(Params& run, const Scene& scene) {
   }
   if (p.has("metrics")) c.metrics = MetricsKey(p);
   c.metric_settings = MetricSettingsKeys(p);
+  for (const char* key : {"fovea", "jnd_minkowski_exponent"})
+    if (p.has(key) && c.metrics.empty())
+      p.fail(key, "sets how the focal stack's metrics are measured: give \"metrics\" too");
   if (p.has("objectives")) {
     p.mark_read("objectives");
     Params items = ArrayItems(p, "objectives");

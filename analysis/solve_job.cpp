@@ -48,8 +48,8 @@ SolvedJob RunSolveJob(const SolveJob& job, const LightField& views, const Target
     const ScopedSolveRanks partitioned(job.ranks);
     solved.report =
         SolverRegistry::Builtins().create(job.config.solver)->Solve(*solved.model, views, options, &solved.patterns);
+    AddFlickerCheck(*solved.model, solved.patterns, &solved.report);  // over every rank's rays
   }
-  AddFlickerCheck(*solved.model, solved.patterns, &solved.report);
   if (progress)
     progress->Finish(job.progress_brief ? solved.report.BriefReport() : ToString(solved.report.termination));
   return solved;

@@ -114,7 +114,10 @@ MemoryEstimate EstimateSolveMemory(const DisplayModel& model, const std::string&
   const bool response = ResponseMatters(model.system());
   const bool plain =
       !(options.lc_response && response) && !(options.panel_diffraction && !PanelDiffraction(model.system()).empty());
-  const double response_bytes = response ? 2 * light_field + 3 * patterns : 0;
+  // Through it, measuring the focal stack (the retinal objective's, or the light-field objective's measure)
+  // reads the frame's light, made in two more.
+  const bool measured = options.objective == ObjectiveKind::kRetinal || options.measure_focal_stack;
+  const double response_bytes = response ? (options.lc_response && measured ? 4 : 2) * light_field + 3 * patterns : 0;
   const WorkspaceLayout layout =
       SolveWorkspace::Layout(model, threads, own.passes | (plain ? 0u : unsigned(kJointPass | kSynthesisPass)));
   const RetinalParts retinal = RetinalPartsOf(model, options, threads, light_field);

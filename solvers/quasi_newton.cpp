@@ -201,7 +201,7 @@ class QuasiNewtonRun {
     size_t longest = 1;
     for (size_t b = 0; b < model_.branch_count(); ++b) longest = std::max(longest, model_.branch_layers(b).size());
     plain_ = 1.0 / static_cast<double>(longest);
-    pass_ = loop_.MakePass();
+    if (!loop_.retinal()) pass_ = loop_.MakePass();  // the retinal objective's pass has one of its own
     layout_.emplace(model_);
     n_ = layout_->size();
     spare_.resize(kMemory);

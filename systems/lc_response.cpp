@@ -155,9 +155,11 @@ void ResponseMap::AddTransposed(int m, const std::vector<std::vector<double>>& g
   for (const Panel& panel : panels_) {
     const std::vector<int>& layers = panel.layers;
     const int K = static_cast<int>(layers.size());
-    bool all = true;
-    for (int l : layers) all = all && (!summed || (*summed)[l]);
-    if (!all) continue;
+    int asked = 0;
+    for (int l : layers) asked += !summed || (*summed)[l];
+    if (asked == 0) continue;
+    if (asked != K)  // the response couples a panel's subframes: their sums come together or not at all
+      throw Error("internal error: the LC response's transpose asked for some of a panel's subframes only");
     const size_t values = driven_[layers[0]].rgb.size();
 #pragma omp parallel for schedule(static)
     for (size_t v = 0; v < values; ++v) {

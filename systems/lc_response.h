@@ -61,7 +61,8 @@ class ResponseMap {
   // The patterns the panels show at node m, into *shown (sized like the driven ones).
   void Shown(int m, Patterns* shown) const;
   // out[l] += scale R_m^T g[l] for every layer of the panels whose layers `summed` ([layer], nonzero:
-  // needed; null: all) holds every one of; the other layers' out is left as it is.
+  // needed; null: all) holds; the other layers' out is left as it is. Throws layerlab::Error for a panel of
+  // which `summed` holds some layers only (the response couples them).
   void AddTransposed(int m, const std::vector<std::vector<double>>& g, double scale, const std::vector<char>* summed,
                      std::vector<std::vector<double>>* out) const;
 

@@ -5,13 +5,18 @@
 // here from ShownOverTime's instants; solvers that model the response show
 // the target better than those that assume instant panels; the others
 // refuse it.
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
 #include <random>
 
+#include "layerlab/framework/lightfield_io.h"
 #include "layerlab/kernels/synthesis.h"
 #include "layerlab/solvers/objective.h"
 #include "layerlab/solvers/response_pass.h"
 #include "layerlab/solvers/retinal_objective.h"
+#include "layerlab/solvers/solution_writer.h"
 #include "layerlab/solvers/solver.h"
 #include "layerlab/systems/lc_response.h"
 #include "layerlab/tests/test_util.h"
@@ -89,6 +94,12 @@ TEST(ResponseMap, ItsTransposeMapsBackTheChangeItShows) {
       EXPECT_NEAR(change, mapped, 2e-3 * scale) << "node " << m;
       EXPECT_GT(mapped, 0.3 * scale) << "node " << m;
     }
+    // A panel's subframes come together: a mask holding one of them is refused.
+    std::vector<char> one(t.size(), 0);
+    one[0] = 1;
+    std::vector<std::vector<double>> back(t.size());
+    for (size_t l = 0; l < t.size(); ++l) back[l].assign(t[l].rgb.size(), 0.0);
+    EXPECT_THROW(at.AddTransposed(0, g, 1.0, &one, &back), Error);
   }
 }
 
@@ -140,6 +151,15 @@ TEST(ResponseSolve, SolvingThroughTheResponseShowsTheTargetBetter) {
     const double shown_first = FrameObjective(model, target, InitialPatterns(model, o));
     EXPECT_NEAR(b.trace.front().objective, shown_first, 1e-4 * shown_first);
     EXPECT_TRUE(std::isnan(b.shown_psnr_db));  // its PSNR is of what is shown already
+    // The light field it writes is the frame's, what it optimized.
+    const std::filesystem::path folder =
+        std::filesystem::temp_directory_path() / ("layerlab_response_solve_" + std::to_string(::getpid()));
+    WriteSolution(model, through, b, folder.string(), {.write_lightfield = true});
+    const LightField written = ReadLightField((folder / "lightfield").string());
+    const LightField frame = FrameLight(model, through);
+    ASSERT_EQ(written.rgb.size(), frame.rgb.size());
+    for (size_t r = 0; r < frame.rgb.size(); r += 31) ASSERT_NEAR(written.rgb[r], frame.rgb[r], 1e-6) << r;
+    std::filesystem::remove_all(folder);
     const double shown_assuming = FrameObjective(model, target, assuming);
     EXPECT_NEAR(a.shown_psnr_db, PsnrDb(shown_assuming, target.rgb.size()), 1e-3);
     EXPECT_LT(shown_through, 0.33 * shown_assuming);

@@ -132,6 +132,9 @@ TEST(RunConfig, BadInputIsRefusedWithItsLocation) {
     EXPECT_NE(RunError({{section, {{"fovea", {"2 deg"}}}}}).find("/run/" + std::string(section) + "/fovea"),
               std::string::npos);
   }
+  EXPECT_EQ(RunError({{"compare", {{"fovea", {"2 deg", "1 deg"}}}}}),
+            "examples/scene.json: /run/compare/fovea: sets how the focal stack's metrics are measured: give "
+            "\"metrics\" too");
 }
 
 TEST(SolveConfig, TargetSceneIsResolvedAndExclusive) {
