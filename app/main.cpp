@@ -4,9 +4,11 @@
 #include <cstdint>
 #include <cstdio>
 #include <exception>
+#include <optional>
 
 #include <CLI/CLI.hpp>
 
+#include "layerlab/app/command_help.h"
 #include "layerlab/app/command_line.h"
 #include "layerlab/app/commands.h"
 #include "layerlab/framework/error.h"
@@ -52,6 +54,8 @@ int main(int argc, char** argv) {
            "Every step on stderr: each iteration of each run, one line each")
         ->excludes(q);
   }
+  // `layerlab help [COMMAND]`, and a first word that is no command named as such with the closest one.
+  if (std::optional<int> code = layerlab::app::HelpOrUnknownCommand(app, argc, argv)) return *code;
   // Past a file-size limit, write() should fail with EFBIG (and the atomic
   // writers clean up) instead of the process dying half-way.
   std::signal(SIGXFSZ, SIG_IGN);

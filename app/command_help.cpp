@@ -1,0 +1,42 @@
+#include "layerlab/app/command_help.h"
+
+#include <cstdio>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "layerlab/framework/params.h"
+
+namespace layerlab::app {
+
+std::optional<int> HelpOrUnknownCommand(CLI::App& app, int argc, char** argv) {
+  if (argc < 2 || argv[1][0] == '-') return std::nullopt;  // options, or nothing: CLI11's own
+  std::vector<std::string> names;
+  for (const CLI::App* cmd : app.get_subcommands({})) names.push_back(cmd->get_name());
+  const std::string word = argv[1];
+  if (word == "help") {
+    if (argc == 2) {
+      std::cout << app.help();
+      return 0;
+    }
+    for (CLI::App* cmd : app.get_subcommands({}))
+      if (cmd->get_name() == argv[2]) {
+        std::cout << cmd->help();
+        return 0;
+      }
+    std::string error = std::string("layerlab: error: help: unknown command \"") + argv[2] + "\"";
+    if (std::optional<std::string> near = ClosestWord(argv[2], names)) error += "; did you mean \"" + *near + "\"?";
+    std::fprintf(stderr, "%s (layerlab help lists them)\n", error.c_str());
+    return 2;
+  }
+  for (const std::string& name : names)
+    if (name == word) return std::nullopt;
+  std::string error = "layerlab: error: unknown command \"" + word + "\"";
+  if (std::optional<std::string> near = ClosestWord(word, names)) error += "; did you mean \"" + *near + "\"?";
+  std::fprintf(stderr, "%s (layerlab help lists them)\n", error.c_str());
+  return 2;
+}
+
+}  // namespace layerlab::app
