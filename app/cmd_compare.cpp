@@ -83,8 +83,7 @@ CompareSelection ReadSelection(const CompareCommandOptions& o) {
       o.metrics.empty() ? std::vector<const RetinalMetric*>{} : ParseRetinalMetrics(o.metrics, "--metrics");
   const MetricSettings settings = ParseMetricSettings(o.metric_flags);
   if (o.metric_flags.given() && metrics.empty())
-    throw Error(std::string(o.metric_flags.fovea.empty() ? "--jnd-exponent" : "--fovea") +
-                ": sets how the focal stack's metrics are measured: give --metrics");
+    throw Error(o.metric_flags.named() + ": sets how the focal stack's metrics are measured: give --metrics");
   return {SplitNames(o.solvers),         o.iterations, time_budget, o.scene_options,
           ParseObjectives(o.objectives), metrics,      settings};
 }

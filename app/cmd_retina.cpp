@@ -180,7 +180,7 @@ std::vector<const RetinalMetric*> CheckMetricOptions(const RetinaCommandOptions&
   const std::vector<const RetinalMetric*> metrics = ParseRetinalMetrics(o.metrics, "--metrics");
   ParseMetricSettings(o.metric_flags);
   if (o.metric_flags.given() && !(!given.target.empty() || !given.target_scene.empty()))
-    throw Error(std::string(o.metric_flags.fovea.empty() ? "--jnd-exponent" : "--fovea") +
+    throw Error(o.metric_flags.named() +
                 ": sets how the metrics score the display against natural viewing of a target: give --target or "
                 "--target-scene");
   const bool natural = !given.target.empty() || !given.target_scene.empty();

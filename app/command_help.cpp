@@ -10,6 +10,17 @@
 #include "layerlab/framework/params.h"
 
 namespace layerlab::app {
+namespace {
+
+// "layerlab: error: PREFIXunknown command "WORD"; did you mean "NEAR"? ..." on stderr; the usage exit code.
+int UnknownCommand(const std::string& prefix, const std::string& word, const std::vector<std::string>& names) {
+  std::string error = "layerlab: error: " + prefix + "unknown command \"" + word + "\"";
+  if (std::optional<std::string> near = ClosestWord(word, names)) error += "; did you mean \"" + *near + "\"?";
+  std::fprintf(stderr, "%s (layerlab help lists them)\n", error.c_str());
+  return 2;
+}
+
+}  // namespace
 
 std::optional<int> HelpOrUnknownCommand(CLI::App& app, int argc, char** argv) {
   if (argc < 2 || argv[1][0] == '-') return std::nullopt;  // options, or nothing: CLI11's own
@@ -26,17 +37,11 @@ std::optional<int> HelpOrUnknownCommand(CLI::App& app, int argc, char** argv) {
         std::cout << cmd->help();
         return 0;
       }
-    std::string error = std::string("layerlab: error: help: unknown command \"") + argv[2] + "\"";
-    if (std::optional<std::string> near = ClosestWord(argv[2], names)) error += "; did you mean \"" + *near + "\"?";
-    std::fprintf(stderr, "%s (layerlab help lists them)\n", error.c_str());
-    return 2;
+    return UnknownCommand("help: ", argv[2], names);
   }
   for (const std::string& name : names)
     if (name == word) return std::nullopt;
-  std::string error = "layerlab: error: unknown command \"" + word + "\"";
-  if (std::optional<std::string> near = ClosestWord(word, names)) error += "; did you mean \"" + *near + "\"?";
-  std::fprintf(stderr, "%s (layerlab help lists them)\n", error.c_str());
-  return 2;
+  return UnknownCommand("", word, names);
 }
 
 }  // namespace layerlab::app

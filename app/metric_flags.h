@@ -15,6 +15,8 @@ namespace layerlab::app {
 struct MetricFlags {
   std::string fovea, jnd_exponent;
   bool given() const { return !fovea.empty() || !jnd_exponent.empty(); }
+  // The flag a refusal of their being given names: "--fovea" or "--jnd-exponent".
+  std::string named() const { return fovea.empty() ? "--jnd-exponent" : "--fovea"; }
 };
 
 void AddMetricSettingFlags(CLI::App* cmd, MetricFlags* flags);

@@ -72,8 +72,8 @@ double ResponsePass::SumsOfLight(const LightField& l, const std::vector<char>* s
 #pragma omp parallel for schedule(static)
     for (size_t r = 0; r < instant_.rgb.size(); ++r) instant_.rgb[r] -= light_.rgb[r] - l.rgb[r];
     pass_.Run(instant_, shown_, summed, /*with_objective=*/false);
-    map_->AddTransposed(m, pass_.residual(), map_->weight(m), summed, &residual_);
-    map_->AddTransposed(m, pass_.denominator(), map_->weight(m), summed, &denominator_);
+    map_->AddTransposed(m, map_->weight(m), summed,
+                        {{&pass_.residual(), &residual_}, {&pass_.denominator(), &denominator_}});
   }
   if (!with_objective) return 0;
   return SumAcrossRanks(FixedOrderSquaredDifference(light_.rgb.data(), l.rgb.data(), l.rgb.size()));

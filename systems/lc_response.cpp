@@ -144,12 +144,13 @@ void ResponseMap::Shown(int m, Patterns* shown) const {
     }
 }
 
-void ResponseMap::AddTransposed(int m, const std::vector<std::vector<double>>& g, double scale,
-                                const std::vector<char>* summed, std::vector<std::vector<double>>* out) const {
+void ResponseMap::AddTransposed(int m, double scale, const std::vector<char>* summed,
+                                const std::vector<TransposedSums>& sums) const {
   if (panels_.empty()) {
-    for (size_t l = 0; l < g.size(); ++l)
-      if (!summed || (*summed)[l])
-        for (size_t v = 0; v < g[l].size(); ++v) (*out)[l][v] += scale * g[l][v];
+    for (const TransposedSums& s : sums)
+      for (size_t l = 0; l < s.g->size(); ++l)
+        if (!summed || (*summed)[l])
+          for (size_t v = 0; v < (*s.g)[l].size(); ++v) (*s.out)[l][v] += scale * (*s.g)[l][v];
     return;
   }
   for (const Panel& panel : panels_) {
@@ -174,10 +175,13 @@ void ResponseMap::AddTransposed(int m, const std::vector<std::vector<double>>& g
       for (int j = K - 1; j >= 0; --j) J[0][j] = (1 - a[j]) * tail / (1 - cycle_product), tail *= a[j];
       for (int k = 0; k + 1 < K; ++k)
         for (int j = 0; j < K; ++j) J[k + 1][j] = a[k] * J[k][j] + (j == k ? 1 - a[k] : 0.0);
-      for (int j = 0; j < K; ++j) {
-        double sum = (1 - e[j]) * g[layers[j]][v];
-        for (int k = 0; k < K; ++k) sum += e[k] * g[layers[k]][v] * J[k][j];
-        (*out)[layers[j]][v] += scale * sum;
+      for (const TransposedSums& s : sums) {
+        const std::vector<std::vector<double>>& g = *s.g;
+        for (int j = 0; j < K; ++j) {
+          double sum = (1 - e[j]) * g[layers[j]][v];
+          for (int k = 0; k < K; ++k) sum += e[k] * g[layers[k]][v] * J[k][j];
+          (*s.out)[layers[j]][v] += scale * sum;
+        }
       }
     }
   }

@@ -64,7 +64,16 @@ class ResponseMap {
   // needed; null: all) holds; the other layers' out is left as it is. Throws layerlab::Error for a panel of
   // which `summed` holds some layers only (the response couples them).
   void AddTransposed(int m, const std::vector<std::vector<double>>& g, double scale, const std::vector<char>* summed,
-                     std::vector<std::vector<double>>* out) const;
+                     std::vector<std::vector<double>>* out) const {
+    AddTransposed(m, scale, summed, {{&g, out}});
+  }
+  // The same for several sums at once (a pass's residual and denominator): R_m built once per value for all.
+  struct TransposedSums {
+    const std::vector<std::vector<double>>* g;
+    std::vector<std::vector<double>>* out;
+  };
+  void AddTransposed(int m, double scale, const std::vector<char>* summed,
+                     const std::vector<TransposedSums>& sums) const;
 
  private:
   struct Panel {
