@@ -358,6 +358,34 @@ std::string CompareCsv(const std::vector<CompareResult>& results) {
   return out;
 }
 
+nlohmann::json CompareJson(const std::vector<CompareResult>& results) {
+  const auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  nlohmann::json rows = nlohmann::json::array();
+  for (const CompareResult& r : results) {
+    nlohmann::json row = {{"display", r.display},
+                          {"solver", r.solver},
+                          {"objective", r.report.objective},
+                          {"final_psnr_db", number(r.report.final_psnr_db)},
+                          {"final_focal_stack_psnr_db", number(FinalFocalStackPsnr(r.report))},
+                          {"seconds", r.report.seconds},
+                          {"iterations", r.report.iterations},
+                          {"subframes", r.subframes},
+                          {"panel_refresh_hz", r.panel_refresh_hz},
+                          {"luminance_efficiency", r.luminance_efficiency},
+                          {"efficiency_rgb", r.brightness_efficiency},
+                          {"termination", ToString(r.report.termination)},
+                          {"solver_options", r.options_from},
+                          {"eyebox", nullptr},
+                          {"flicker", nullptr}};
+    if (r.eyebox) row["eyebox"] = {{"within_m", r.eyebox->within_m}, {"reaches_edge", r.eyebox->reaches_edge}};
+    if (r.report.flicker) row["flicker"] = r.report.flicker->ToJson();
+    for (const TraceColumn* c : MeasuredMetricColumns(results))
+      row[std::string("final_") + c->name] = number(FinalTraceValue(*c, r.report));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
 std::string TracesCsv(const std::vector<CompareResult>& results) {
   // `objective` is the value the run minimized, of the objective named in `objective_kind`.
   // Every column (a focal-stack metric's where some run measured it), each run's unmeasured ones empty, so that

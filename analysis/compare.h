@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "layerlab/solvers/solver.h"
 #include "layerlab/systems/display_system.h"
 
@@ -146,7 +148,9 @@ std::vector<CompareResult> RunComparison(const std::vector<CompareRun>& runs, co
 
 std::string CompareTable(const std::vector<CompareResult>& results);  // fixed-width text
 std::string CompareCsv(const std::vector<CompareResult>& results);    // one row per run
-std::string TracesCsv(const std::vector<CompareResult>& results);     // one row per run and iteration
+// compare.csv's rows for machines (`layerlab compare --json`): its columns as keys, null where not measured.
+nlohmann::json CompareJson(const std::vector<CompareResult>& results);
+std::string TracesCsv(const std::vector<CompareResult>& results);  // one row per run and iteration
 // The light-field PSNR against wall time, and beside it the focal-stack PSNR
 // when some run measured it.
 std::string PsnrAgainstTimeSvg(const std::vector<CompareResult>& results);

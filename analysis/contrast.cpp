@@ -679,10 +679,11 @@ std::string PeakTable(const std::vector<ContrastCurve>& curves) {
   std::vector<char> line(width + 320);
   for (const ContrastCurve& c : curves) {
     std::snprintf(line.data(), line.size(),
-                  "%-*s %10.2f %8.1f %9.2f %13.3f %7.3f  %-6s %14.3f %10.3f  %-22s %9.2f %10.3f %10.3f", width,
+                  "%-*s %10.2f %8.1f %9.2f %13.3f %7s  %-6s %14.3f %10.3f  %-22s %9.2f %10.3f %10.3f", width,
                   c.display.c_str(), c.target_diopters, c.frequency, c.peak.at_grid, c.estimate.at,
-                  c.estimate.uncertainty, c.estimate.flat ? "flat" : "yes", c.peak.value, c.at_target, c.solver.c_str(),
-                  c.psnr_db, c.solve_seconds, c.sweep_seconds);
+                  c.contrast_shifted.empty() ? "n/a" : FormatFixed(c.estimate.uncertainty, 3).c_str(),
+                  c.estimate.flat ? "flat" : "yes", c.peak.value, c.at_target, c.solver.c_str(), c.psnr_db,
+                  c.solve_seconds, c.sweep_seconds);
     out += line.data();
     if (binocular && !std::isnan(c.vergence_diopters)) {
       std::snprintf(line.data(), line.size(), " %13.3f", c.vergence_diopters);
@@ -697,6 +698,30 @@ std::string PeakTable(const std::vector<ContrastCurve>& curves) {
     out += "\n";
   }
   return out;
+}
+
+nlohmann::json PeaksJson(const std::vector<ContrastCurve>& curves) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (const ContrastCurve& c : curves) {
+    const bool vac = !std::isnan(c.vergence_diopters) && !c.estimate.flat;
+    rows.push_back(
+        {{"display", c.display},
+         {"target_diopters", c.target_diopters},
+         {"frequency_cpd", c.frequency},
+         {"peak_diopters", c.peak.at_grid},
+         {"parabola_peak_diopters", c.estimate.at},
+         {"peak_uncertainty_diopters",
+          c.contrast_shifted.empty() ? nlohmann::json(nullptr) : nlohmann::json(c.estimate.uncertainty)},
+         {"flat", c.estimate.flat},
+         {"peak_contrast", c.peak.value},
+         {"contrast_at_target", c.at_target},
+         {"solver", c.solver},
+         {"psnr_db", c.psnr_db},
+         {"solve_seconds", c.solve_seconds},
+         {"sweep_seconds", c.sweep_seconds},
+         {"vac_diopters", vac ? nlohmann::json(c.vergence_diopters - c.estimate.at) : nlohmann::json(nullptr)}});
+  }
+  return rows;
 }
 
 std::string ContrastSvg(const std::vector<ContrastCurve>& all) {

@@ -19,6 +19,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "layerlab/analysis/fourier.h"
 #include "layerlab/framework/params.h"
 #include "layerlab/solvers/solver.h"
@@ -146,6 +148,9 @@ std::vector<std::string> ContrastWarnings(const std::vector<ContrastDisplay>& di
 // table as text, and the Fig. 5 style SVG.
 std::string ContrastCsv(const std::vector<ContrastCurve>& curves);
 std::string PeakTable(const std::vector<ContrastCurve>& curves);
+// The peak table's rows for machines (`layerlab contrast --json`): units in the keys; the uncertainty null
+// without the second sweep, the VAC null for one eye or a flat curve.
+nlohmann::json PeaksJson(const std::vector<ContrastCurve>& curves);
 // ContrastSvg leaves out the curves seen from the eyebox's other pupil positions (analysis/contrast_eyebox.h).
 std::string ContrastSvg(const std::vector<ContrastCurve>& curves);
 

@@ -28,19 +28,20 @@ void AddSceneKeys(std::vector<ContrastOptionEntry>& t) {
   add();
   e.key = "accommodation", e.kind = Kind::kConfig, e.type = "{from, to, step}: depth_range";
   e.default_text = "0 D to 2.6 D by 0.05 D", e.meaning = "the sweep (at least 3 states in a scene)";
-  e.cli_flag = "--accommodation", e.cli_help = "first,last,step: D, or with units: \"0 D,2.6 D,0.05 D\"";
+  e.cli_flag = "--accommodation",
+  e.cli_help = "FROM:TO:STEP, or three or more evenly spaced states: D, or with units: \"0 D:2.6 D:0.05 D\"";
   e.python = "accommodation";
   add();
   e.key = "retina_resolution", e.kind = Kind::kReal, e.type = "angle", e.dimension = Dimension::kAngle;
   e.unit = "deg", e.has_range = true, e.range = {0, 1, true, false}, e.constraint_note = " deg";
   e.default_text = "0.01 deg", e.meaning = "retinal sample size";
-  e.cli_flag = "--retina-resolution", e.cli_help = "Retinal sample size: degrees or \"0.6 arcmin\"";
+  e.cli_flag = "--resolution", e.cli_help = "Retinal sample size: degrees or \"0.6 arcmin\"";
   e.python = "retina_resolution", e.real = &ContrastOptions::retina_resolution_deg;
   add();
   e.key = "retina_field", e.kind = Kind::kReal, e.type = "angle", e.dimension = Dimension::kAngle, e.unit = "deg";
   e.has_range = true, e.range = {0, 170, true, true}, e.constraint_note = " deg";
   e.default_text = "20 deg", e.meaning = "horizontal, centered on field_center";
-  e.cli_flag = "--retina-field", e.cli_help = "Retinal field width: degrees";
+  e.cli_flag = "--field", e.cli_help = "Retinal field width: degrees";
   e.python = "retina_field", e.real = &ContrastOptions::retina_field_deg;
   add();
   e.key = "field_center", e.kind = Kind::kReal, e.type = "angle", e.dimension = Dimension::kAngle, e.unit = "deg";
@@ -108,17 +109,17 @@ void AddOtherOptions(std::vector<ContrastOptionEntry>& t) {
   };
   e.key = "reference", e.kind = Kind::kChoice, e.type = "sampled, continuous", e.default_text = "sampled";
   e.meaning =
-      "what normalizes: natural viewing of the sampled target light field, or of the continuous plane (the "
-      "convention before issue 19)";
+      "what normalizes: natural viewing of the sampled target light field (a perfect display scores 1), or of the "
+      "continuous plane (every display then also scaled by its pixel hold, sinc(f p))";
   e.cli_flag = "--reference", e.cli_help =
-                                  "Normalize by natural viewing of the sampled target light field or of the "
-                                  "continuous plane (before issue 19): sampled or continuous";
+                                  "Normalize by natural viewing of the sampled target light field (a perfect display "
+                                  "scores 1) or of the continuous plane: sampled or continuous";
   e.python = "reference", e.choices = {"sampled", "continuous"};
   e.get = [](const ContrastOptions& o) { return int(o.reference); };
   e.set = [](ContrastOptions& o, int i) { o.reference = ContrastReference(i); };
   add();
   e.key = "grating", e.kind = Kind::kChoice, e.type = "angle, plane", e.default_text = "angle";
-  e.meaning = "the grating uniform in visual angle, or in meters on the plane (before issue 19)";
+  e.meaning = "the grating uniform in visual angle, or in meters on the plane";
   e.cli_flag = "--grating", e.cli_help = "Grating uniform in visual angle or in meters on the plane: angle or plane";
   e.python = "grating", e.choices = {"angle", "plane"};
   e.get = [](const ContrastOptions& o) { return int(o.grating); };

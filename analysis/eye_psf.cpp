@@ -35,11 +35,11 @@ void Check(const EyeModel& eye, const EyePsfOptions& o) {
   if (o.psf_size < 3 || o.psf_size > 2049)
     throw Error("psf: --size: " + std::to_string(o.psf_size) + " is not in [3, 2049]");
   if (!(o.psf_spacing_rad >= 0) || !std::isfinite(o.psf_spacing_rad))
-    throw Error("psf: --spacing: " + FormatGeneral(o.psf_spacing_rad) + " is not a sample size >= 0");
+    throw Error("psf: --resolution: " + FormatGeneral(o.psf_spacing_rad) + " is not a sample size >= 0");
   const double shortest = *std::min_element(eye.channel_wavelengths_m.begin(), eye.channel_wavelengths_m.end());
   const double limit = shortest / (2 * eye.pupil_diameter_m);
   if (o.psf_spacing_rad > limit)
-    throw Error("psf: --spacing: " + FormatGeneral(o.psf_spacing_rad / kRadiansPerDegree * 60) +
+    throw Error("psf: --resolution: " + FormatGeneral(o.psf_spacing_rad / kRadiansPerDegree * 60) +
                 " arcmin would alias the PSF: at most lambda / (2 D) = " +
                 FormatGeneral(limit / kRadiansPerDegree * 60) + " arcmin for the " + FormatGeneral(shortest * 1e9) +
                 " nm channel and a " + FormatGeneral(eye.pupil_diameter_m * 1e3) + " mm pupil");

@@ -61,7 +61,7 @@ struct PoseJob {
 // field holds the target's rays only across its eyebox; a traced target has them all.
 std::vector<PoseJob> PosesToMap(const DisplaySystem& system, const SceneRadiance& natural, const EyeboxMapOptions& o,
                                 PoseGrid* pupil_grid, PoseGrid* gaze_grid) {
-  *pupil_grid = GridOf(o.pupil_half_range_m, o.pupil_step_m, "--range");
+  *pupil_grid = GridOf(o.pupil_half_range_m, o.pupil_step_m, "--eyebox-range");
   const bool with_gaze = o.gaze_half_range_rad[0] > 0 || o.gaze_half_range_rad[1] > 0;
   *gaze_grid = with_gaze ? GridOf(o.gaze_half_range_rad, o.gaze_step_rad, "--gaze-range") : PoseGrid{};
   const bool light_field = natural.target<LightFieldRays>() != nullptr;
@@ -83,7 +83,7 @@ std::vector<PoseJob> PosesToMap(const DisplaySystem& system, const SceneRadiance
   for (const PoseJob& job : jobs) {
     EyeModel eye = system.eye;
     eye.pose = job.pose;
-    const std::string option = job.gaze ? "--gaze-range" : "--range";
+    const std::string option = job.gaze ? "--gaze-range" : "--eyebox-range";
     const std::string where = job.gaze ? "at a gaze of " + FormatFixed(job.pose.gaze_rad[0] * kDegreesPerRadian, 2) +
                                              ", " + FormatFixed(job.pose.gaze_rad[1] * kDegreesPerRadian, 2) + " deg"
                                        : "at a pupil offset of " + FormatFixed(job.pose.pupil_offset_m[0] * 1e3, 3) +
@@ -124,7 +124,7 @@ EyeboxMap MapEyebox(const DisplayModel& model, const Patterns& t, const SceneRad
   if (!natural) throw Error("eyebox: a map compares the display with its target: give a target");
   if (!(o.quality_db > 0) || !std::isfinite(o.quality_db)) throw Error("--quality: give a PSNR drop above 0 dB");
   for (double h : o.pupil_half_range_m)
-    if (!(h >= 0) || h > kMaxPupilOffset) throw Error("--range: each half range must lie in 0 to 50 mm");
+    if (!(h >= 0) || h > kMaxPupilOffset) throw Error("--eyebox-range: each half range must lie in 0 to 50 mm");
   for (double h : o.gaze_half_range_rad)
     if (!(h >= 0) || h > kMaxGaze) throw Error("--gaze-range: each half range must lie in 0 to 50 deg");
   PoseGrid pupil_grid, gaze_grid;

@@ -62,7 +62,7 @@ struct EyeboxMap {
   double quality_db = 0;
 };
 
-// Throws Error, naming the option ("--range", "--gaze-range"), for a grid
+// Throws Error, naming the option ("--eyebox-range", "--gaze-range"), for a grid
 // whose gaze leaves the display's field, or whose pupil leaves the eyebox
 // when `natural` is a light field's (LightFieldRadiance: it holds rays only
 // across its eyebox; a traced target scene is seen from anywhere), before

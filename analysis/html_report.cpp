@@ -244,9 +244,13 @@ std::string RenderRunReport(const RunReportPage& page) {
   std::string h = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>" + Escape(page.title) +
                   "</title>\n<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<style>" +
                   kStyle + "</style>\n<script>" + kErrorCatcher + "</script>\n</head><body>\n";
-  h += "<header><h1>" + Escape(page.title) + "</h1><p>" + Escape(page.description) + "</p><p>scene <code>" +
-       Escape(page.scene_file) + "</code> &middot; <code>" + Escape(page.command) + "</code></p>\n<p id=\"version\">" +
-       Escape(page.version) + "</p>\n<nav>";
+  // One scene file, or a command's several ("a.json, b.json"); the command line always.
+  const std::string scenes =
+      page.scene_file.empty() ? ""
+                              : (page.scene_file.find(", ") == std::string::npos ? "scene <code>" : "scenes <code>") +
+                                    Escape(page.scene_file) + "</code> &middot; ";
+  h += "<header><h1>" + Escape(page.title) + "</h1><p>" + Escape(page.description) + "</p><p>" + scenes + "<code>" +
+       Escape(page.command) + "</code></p>\n<p id=\"version\">" + Escape(page.version) + "</p>\n<nav>";
   h += "<a href=\"#steps\">Steps</a>";
   if (page.system) h += "<a href=\"#system\">Display system</a>";
   for (const ReportSection& section : page.sections) h += "<a href=\"#" + section.id + "\">" + section.title + "</a>";

@@ -7,6 +7,7 @@
 #include <memory>
 #include <sstream>
 
+#include "layerlab/app/command_result.h"
 #include "layerlab/app/commands.h"
 #include "layerlab/calibration/capture_plan.h"
 #include "layerlab/calibration/measurements.h"
@@ -81,8 +82,14 @@ void AddCalibrationPatternsCommand(CLI::App& app) {
       throw stage.Explain(e);
     }
     stage.Commit();
-    std::cout << "wrote " << o->out << "/captures.json (" << plan.captures.size() << " photographs to take) and "
-              << files.size() << " pattern images in " << o->out << "/" << kPatternFolder << "/\n";
+    CommandResult result("calibration-patterns");
+    result.Text("wrote " + o->out + "/captures.json (" + std::to_string(plan.captures.size()) +
+                " photographs to take) and " + std::to_string(files.size()) + " pattern images in " + o->out + "/" +
+                kPatternFolder + "/\n");
+    result["out"] = o->out;
+    result["photographs_to_take"] = plan.captures.size();
+    result["pattern_images"] = files.size();
+    result.Print();
   });
 }
 

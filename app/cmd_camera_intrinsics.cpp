@@ -6,7 +6,9 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <sstream>
 
+#include "layerlab/app/command_result.h"
 #include "layerlab/app/commands.h"
 #include "layerlab/calibration/camera_calibration.h"
 #include "layerlab/calibration/measurements.h"
@@ -21,18 +23,20 @@ std::string PlusMinus(double value, double sigma, int decimals) {
   return FormatFixed(value, decimals) + " +- " + FormatFixed(sigma, decimals);
 }
 
-void PrintEstimate(const IntrinsicsEstimate& e) {
+std::string EstimateText(const IntrinsicsEstimate& e) {
   const CameraIntrinsics& c = e.camera;
   const CameraIntrinsicsUncertainty& u = *c.uncertainty;
-  std::cout << "camera intrinsics from " << e.views.size() << " photographs (" << e.width << " x " << e.height
-            << " pixels), one standard deviation:\n"
-            << "  fx " << PlusMinus(c.fx, u.fx_px, 2) << " px   fy " << PlusMinus(c.fy, u.fy_px, 2) << " px\n"
-            << "  cx " << PlusMinus(c.cx, u.cx_px, 2) << " px   cy " << PlusMinus(c.cy, u.cy_px, 2) << " px\n"
-            << "  k1 " << PlusMinus(c.k1, u.k1, 4) << "   k2 " << PlusMinus(c.k2, u.k2, 4) << "\n"
-            << "  reprojection error " << FormatFixed(u.rms_reprojection_px, 3) << " px RMS; per photograph:\n";
+  std::ostringstream out;
+  out << "camera intrinsics from " << e.views.size() << " photographs (" << e.width << " x " << e.height
+      << " pixels), one standard deviation:\n"
+      << "  fx " << PlusMinus(c.fx, u.fx_px, 2) << " px   fy " << PlusMinus(c.fy, u.fy_px, 2) << " px\n"
+      << "  cx " << PlusMinus(c.cx, u.cx_px, 2) << " px   cy " << PlusMinus(c.cy, u.cy_px, 2) << " px\n"
+      << "  k1 " << PlusMinus(c.k1, u.k1, 4) << "   k2 " << PlusMinus(c.k2, u.k2, 4) << "\n"
+      << "  reprojection error " << FormatFixed(u.rms_reprojection_px, 3) << " px RMS; per photograph:\n";
   for (const BoardView& v : e.views)
-    std::cout << "    " << v.photo << "  " << FormatFixed(v.rms_px, 3) << " px, the board tilted "
-              << FormatFixed(v.tilt_rad * kDegreesPerRadian, 0) << " deg from face-on\n";
+    out << "    " << v.photo << "  " << FormatFixed(v.rms_px, 3) << " px, the board tilted "
+        << FormatFixed(v.tilt_rad * kDegreesPerRadian, 0) << " deg from face-on\n";
+  return out.str();
 }
 
 }  // namespace
@@ -55,11 +59,18 @@ void AddCameraIntrinsicsCommand(CLI::App& app) {
         ReadCameraCapturePlanFile((std::filesystem::path(o->captures) / kCameraCapturesFile).string());
     const IntrinsicsEstimate e = EstimateIntrinsics(o->captures, plan);
     for (const PhotoFailure& f : e.failures) std::cerr << "warning: " << f.photo << ": " << f.reason << "\n";
-    PrintEstimate(e);
+    CommandResult result("camera-intrinsics");
+    result.Text(EstimateText(e));
     WriteFileAtomically(o->out, CameraIntrinsicsToJson(e.camera).dump(2) + "\n");
-    std::cout << "used " << e.views.size() << " of " << plan.photos.size() << " photographs";
-    if (!e.failures.empty()) std::cout << " (" << e.failures.size() << " failed, named above)";
-    std::cout << "; wrote " << o->out << "\n";
+    result.Text("used " + std::to_string(e.views.size()) + " of " + std::to_string(plan.photos.size()) +
+                " photographs" +
+                (e.failures.empty() ? "" : " (" + std::to_string(e.failures.size()) + " failed, named above)") +
+                "; wrote " + o->out + "\n");
+    result["out"] = o->out;
+    result["camera"] = CameraIntrinsicsToJson(e.camera);
+    result["photographs_used"] = e.views.size();
+    result["photographs"] = plan.photos.size();
+    result.Print();
   });
 }
 

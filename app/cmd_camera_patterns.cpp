@@ -3,7 +3,9 @@
 // measuring camera's intrinsics with camera-intrinsics; docs/calibration.md.
 #include <iostream>
 #include <memory>
+#include <sstream>
 
+#include "layerlab/app/command_result.h"
 #include "layerlab/app/commands.h"
 #include "layerlab/app/number_list.h"
 #include "layerlab/calibration/camera_capture_plan.h"
@@ -44,12 +46,20 @@ void AddCameraPatternsCommand(CLI::App& app) {
       throw stage.Explain(e);
     }
     stage.Commit();
-    std::cout << "wrote " << o->out << "/" << board.image << " (" << board.squares_x << " x " << board.squares_y
-              << " squares; print it at " << FormatGeneral(board.square_m * 1e3)
-              << " mm per square, measure a printed square and correct \"square_size\" if it differs, and keep it "
-                 "flat) and "
-              << o->out << "/" << kCameraCapturesFile << " (" << plan.photos.size()
-              << " photographs to take, each with its pose)\n";
+    std::ostringstream text;
+    text << "wrote " << o->out << "/" << board.image << " (" << board.squares_x << " x " << board.squares_y
+         << " squares; print it at " << FormatGeneral(board.square_m * 1e3)
+         << " mm per square, measure a printed square and correct \"square_size\" if it differs, and keep it "
+            "flat) and "
+         << o->out << "/" << kCameraCapturesFile << " (" << plan.photos.size()
+         << " photographs to take, each with its pose)\n";
+    CommandResult result("camera-patterns");
+    result.Text(text.str());
+    result["out"] = o->out;
+    result["board_image"] = board.image;
+    result["square_size_m"] = board.square_m;
+    result["photographs_to_take"] = plan.photos.size();
+    result.Print();
   });
 }
 

@@ -14,12 +14,14 @@
 #include "layerlab/analysis/report_parts.h"
 #include "layerlab/analysis/target_source.h"
 #include "layerlab/app/command_line.h"
+#include "layerlab/app/command_result.h"
 #include "layerlab/app/commands.h"
 #include "layerlab/app/metric_flags.h"
 #include "layerlab/app/number_list.h"
 #include "layerlab/app/target_option.h"
 #include "layerlab/framework/atomic_file.h"
 #include "layerlab/framework/error.h"
+#include "layerlab/framework/params.h"
 #include "layerlab/framework/staged_output.h"
 #include "layerlab/framework/warnings.h"
 #include "layerlab/solvers/solve_config.h"
@@ -145,7 +147,7 @@ void AddCompareCommand(CLI::App& app) {
 
     const std::string table = CompareTable(results);
     try {
-      RunReportPage page = CommandPage("compare", "", "", "", CommandLine());
+      RunReportPage page = CommandPage("compare", JoinWords(o->scenes, ", "), "", "", CommandLine());
       for (const CompareResult& r : results) page.steps.push_back({RunLabel(r), r.report.seconds});
       AddCompareToPage(results, stage.staging(), "", &page);
       page.warnings = warnings;
@@ -156,7 +158,12 @@ void AddCompareCommand(CLI::App& app) {
       throw stage.Explain(e);
     }
     stage.Commit();
-    std::cout << table << "wrote " << o->out << "/{index.html,compare.txt,compare.csv,traces.csv,psnr_vs_time.svg}\n";
+    CommandResult result("compare");
+    result.Text(table + "wrote " + o->out + "/{index.html,compare.txt,compare.csv,traces.csv,psnr_vs_time.svg}\n");
+    result["out"] = o->out;
+    result["runs"] = CompareJson(results);
+    result["warnings"] = warnings;
+    result.Print();
   });
 }
 

@@ -1,6 +1,9 @@
 // layerlab contrast SCENE... --out DIR: normalized contrast against
 // accommodation for each display (the paper's Fig. 5).
+#include <algorithm>
+#include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -11,6 +14,7 @@
 #include "layerlab/analysis/contrast_option_table.h"
 #include "layerlab/analysis/report_parts.h"
 #include "layerlab/app/command_line.h"
+#include "layerlab/app/command_result.h"
 #include "layerlab/app/commands.h"
 #include "layerlab/app/number_list.h"
 #include "layerlab/app/optics_options.h"
@@ -18,6 +22,7 @@
 #include "layerlab/app/pose_option.h"
 #include "layerlab/framework/atomic_file.h"
 #include "layerlab/framework/error.h"
+#include "layerlab/framework/params.h"
 #include "layerlab/framework/staged_output.h"
 #include "layerlab/framework/warnings.h"
 #include "layerlab/retina/retina.h"
@@ -37,19 +42,36 @@ struct ContrastCommandOptions {
   PoseOption pose;
 };
 
+// --accommodation's states as the sweep's FROM, TO and STEP: a range, or states evenly spaced (as
+// `retina --accommodation` takes them).
+std::array<double, 3> EvenSweep(const std::string& text, const std::string& option) {
+  if (text.find(':') != std::string::npos && text.find(',') == std::string::npos) {
+    const std::vector<double> r = ParseRangeBounds(text, option, kDiopters);
+    return {r[0], r[1], r[2]};
+  }
+  std::vector<double> states = ParseStates(text, option, kDiopters);
+  std::sort(states.begin(), states.end());
+  const double step = states.size() > 1 ? states[1] - states[0] : 0;
+  bool even = states.size() > 2 && step > 0;
+  for (size_t k = 1; even && k < states.size(); ++k) even = std::abs(states[k] - states[k - 1] - step) <= 1e-6 * step;
+  if (!even)
+    throw Error(option + ": \"" + text + "\": the sweep takes a range FROM:TO:STEP (e.g. 0:2.6:0.05) or three or " +
+                "more evenly spaced states");
+  return {states.front(), states.back(), step};
+}
+
 // The options read and checked, before anything is loaded.
 ContrastOptions ReadContrastOptions(const ContrastCommandOptions& o) {
   ContrastOptions options;
   ApplyOptionFlags(o.flags, ContrastOptionTable(), options);
   if (!o.accommodation.empty()) {
-    const std::vector<double> range =
-        ParseRangeBounds(o.accommodation, FindContrastOption("accommodation")->cli_flag, kDiopters);
+    const std::array<double, 3> range = EvenSweep(o.accommodation, FindContrastOption("accommodation")->cli_flag);
     options.accommodation_min_diopters = range[0];
     options.accommodation_max_diopters = range[1];
     options.accommodation_step_diopters = range[2];
   }
   CheckRetinaSampling(options.retina_field_deg, 3 * options.retina_resolution_deg, options.retina_resolution_deg,
-                      "--retina-field", "--retina-resolution");
+                      FindContrastOption("retina_field")->cli_flag, FindContrastOption("retina_resolution")->cli_flag);
   if (std::string why; !options.IsValid(&why)) throw Error(NameTheFlag(ContrastOptionTable(), why));
   options.show_progress = true;
   return options;
@@ -87,7 +109,7 @@ void RunContrastCommand(const ContrastCommandOptions& o) {
 
   const std::string peaks = PeakTable(curves);
   try {
-    RunReportPage page = CommandPage("contrast", "", "", "", CommandLine());
+    RunReportPage page = CommandPage("contrast", JoinWords(o.scenes, ", "), "", "", CommandLine());
     page.steps = {{"contrast sweep (" + std::to_string(curves.size()) + " curves)", seconds}};
     AddContrastToPage(curves, stage.staging(), "", &page);
     page.warnings = warnings;
@@ -98,10 +120,16 @@ void RunContrastCommand(const ContrastCommandOptions& o) {
     throw stage.Explain(e);
   }
   stage.Commit();
-  std::cout << peaks;
-  std::printf(
-      "sweep of %zu curves in %.2f s; wrote %s/{index.html,contrast.csv,peaks.txt,contrast.svg,report.json%s}\n",
-      curves.size(), seconds, o.out.c_str(), options.eyebox_range_m > 0 ? ",eyebox_peaks.csv,eyebox_peaks.svg" : "");
+  CommandResult result("contrast");
+  result.Text(peaks);
+  result.Text("sweep of " + std::to_string(curves.size()) + " curves in " + FormatFixed(seconds, 2) + " s; wrote " +
+              o.out + "/{index.html,contrast.csv,peaks.txt,contrast.svg,report.json" +
+              (options.eyebox_range_m > 0 ? ",eyebox_peaks.csv,eyebox_peaks.svg}\n" : "}\n"));
+  result["out"] = o.out;
+  result["seconds"] = seconds;
+  result["peaks"] = PeaksJson(curves);
+  result["warnings"] = warnings;
+  result.Print();
 }
 
 }  // namespace

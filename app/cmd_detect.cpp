@@ -5,7 +5,9 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <sstream>
 
+#include "layerlab/app/command_result.h"
 #include "layerlab/app/commands.h"
 #include "layerlab/calibration/capture_plan.h"
 #include "layerlab/calibration/measurements.h"
@@ -53,10 +55,20 @@ void AddDetectCommand(CLI::App& app) {
       throw Error(o->captures + ": no photograph could be used (" + std::to_string(d.failures.size()) +
                   " failed, each named above); nothing was written");
     WriteFileAtomically(o->out, FormatMeasurements(d.measurements));
-    std::cout << "detected " << d.corners << " corners and " << d.luminance_steps << " luminance steps in "
-              << plan.captures.size() - d.failures.size() << " of " << plan.captures.size() << " photographs";
-    if (!d.failures.empty()) std::cout << " (" << d.failures.size() << " failed, named above)";
-    std::cout << "; wrote " << o->out << "\n";
+    std::ostringstream text;
+    text << "detected " << d.corners << " corners and " << d.luminance_steps << " luminance steps in "
+         << plan.captures.size() - d.failures.size() << " of " << plan.captures.size() << " photographs";
+    if (!d.failures.empty()) text << " (" << d.failures.size() << " failed, named above)";
+    text << "; wrote " << o->out << "\n";
+    CommandResult result("detect");
+    result.Text(text.str());
+    result["out"] = o->out;
+    result["corners"] = d.corners;
+    result["luminance_steps"] = d.luminance_steps;
+    result["photographs"] = plan.captures.size();
+    result["failed"] = nlohmann::json::array();
+    for (const PhotoFailure& f : d.failures) result["failed"].push_back({{"photo", f.photo}, {"reason", f.reason}});
+    result.Print();
   });
 }
 

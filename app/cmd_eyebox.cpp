@@ -16,6 +16,7 @@
 #include "layerlab/analysis/report_parts.h"
 #include "layerlab/analysis/svg_plot.h"
 #include "layerlab/app/command_line.h"
+#include "layerlab/app/command_result.h"
 #include "layerlab/app/commands.h"
 #include "layerlab/app/natural_viewing.h"
 #include "layerlab/app/number_list.h"
@@ -85,9 +86,9 @@ ReportSection SwimSection(const std::vector<LayerSwim>& swim) {
 EyeboxMapOptions ReadEyeboxOptions(const EyeboxCommandOptions& o) {
   EyeboxMapOptions options;
   options.accommodation_diopters = ParseOptionValue(o.accommodation, "--accommodation", kDiopters, true);
-  options.pupil_half_range_m = HalfRanges(o.range, "--range", kMillimeters);
+  options.pupil_half_range_m = HalfRanges(o.range, "--eyebox-range", kMillimeters);
   for (double& v : options.pupil_half_range_m) v *= 1e-3;
-  options.pupil_step_m = ParseOptionValue(o.step, "--step", kMillimeters) * 1e-3;
+  options.pupil_step_m = ParseOptionValue(o.step, "--eyebox-step", kMillimeters) * 1e-3;
   options.gaze_half_range_rad = HalfRanges(o.gaze_range, "--gaze-range", kDegrees);
   for (double& v : options.gaze_half_range_rad) v *= kRadiansPerDegree;
   options.gaze_step_rad = ParseOptionValue(o.gaze_step, "--gaze-step", kDegrees) * kRadiansPerDegree;
@@ -153,13 +154,31 @@ void RunEyeboxCommand(const EyeboxCommandOptions& o) {
     WriteReportPage(page, stage.staging());
     stage.Commit();
     const auto pupil = map.pupil.within(map.quality_db);
-    for (const LayerSwim& l : swim)
-      std::printf("pupil swim of layer %s: up to %.2f arcmin, %.2f arcmin per mm of pupil motion\n", l.layer.c_str(),
-                  l.max_arcmin, l.rate_arcmin_per_mm);
-    std::printf("wrote %s/{index.html,eyebox.csv,eyebox.svg}: centre %.2f dB; within %.2f dB: %s x %s\n", o.out.c_str(),
-                map.pupil.centre().psnr_db, map.quality_db,
-                Extent(pupil[0], map.pupil.within_reaches_edge(map.quality_db)[0], 1e3, "mm").c_str(),
-                Extent(pupil[1], map.pupil.within_reaches_edge(map.quality_db)[1], 1e3, "mm").c_str());
+    CommandResult result("eyebox");
+    result["pupil_swim"] = nlohmann::json::array();
+    for (const LayerSwim& l : swim) {
+      char line[256];
+      std::snprintf(line, sizeof line,
+                    "pupil swim of layer %s: up to %.2f arcmin, %.2f arcmin per mm of pupil motion\n", l.layer.c_str(),
+                    l.max_arcmin, l.rate_arcmin_per_mm);
+      result.Text(line);
+      result["pupil_swim"].push_back(
+          {{"layer", l.layer}, {"max_arcmin", l.max_arcmin}, {"arcmin_per_mm", l.rate_arcmin_per_mm}});
+    }
+    const std::string x = Extent(pupil[0], map.pupil.within_reaches_edge(map.quality_db)[0], 1e3, "mm");
+    const std::string y = Extent(pupil[1], map.pupil.within_reaches_edge(map.quality_db)[1], 1e3, "mm");
+    char line[512];
+    std::snprintf(line, sizeof line,
+                  "wrote %s/{index.html,eyebox.csv,eyebox.svg}: centre %.2f dB; within %.2f dB: %s x %s\n",
+                  o.out.c_str(), map.pupil.centre().psnr_db, map.quality_db, x.c_str(), y.c_str());
+    result.Text(line);
+    result["out"] = o.out;
+    result["centre_psnr_db"] = map.pupil.centre().psnr_db;
+    result["quality_db"] = map.quality_db;
+    result["pupil_extent_within_quality_m"] = {pupil[0], pupil[1]};  // "at least" where it reaches the grid's edge
+    result["pupil_extent_reaches_edge"] = {map.pupil.within_reaches_edge(map.quality_db)[0],
+                                           map.pupil.within_reaches_edge(map.quality_db)[1]};
+    result.Print();
   } catch (const Error& e) {
     throw stage.Explain(e);
   }
@@ -176,8 +195,8 @@ void AddEyeboxCommand(CLI::App& app) {
   AddTargetOptions(cmd, o->target, ": what each pupil should see (a scene's traced from any pupil)");
   cmd->add_option("--accommodation", o->accommodation, "The eye's focus: D, or with units (\"1.0 D\", \"0.5 m\")")
       ->required();
-  cmd->add_option("--range", o->range, "Pupil offsets -R..R: mm, or X,Y half ranges (default 2)");
-  cmd->add_option("--step", o->step, "Pupil grid step: mm (default 1)");
+  cmd->add_option("--eyebox-range", o->range, "Pupil offsets -R..R: mm, or X,Y half ranges (default 2)");
+  cmd->add_option("--eyebox-step", o->step, "Pupil grid step: mm (default 1)");
   cmd->add_option("--gaze-range", o->gaze_range, "Gaze -G..G: degrees, or X,Y half ranges (default 0: no gaze grid)");
   cmd->add_option("--gaze-step", o->gaze_step, "Gaze grid step: degrees (default 5)");
   cmd->add_option("--gaze-field", o->gaze_field, "Retinal field W,H around each gaze: degrees (default 10,10)");

@@ -11,7 +11,9 @@
 #include <string>
 #include <tuple>
 
+#include "layerlab/app/command_result.h"
 #include "layerlab/app/commands.h"
+#include "layerlab/app/number_list.h"
 #include "layerlab/calibration/calibrated_scene.h"
 #include "layerlab/calibration/calibration.h"
 #include "layerlab/calibration/fit_steps.h"
@@ -27,11 +29,11 @@ namespace layerlab::app {
 namespace {
 
 struct FitCommandOptions {
-  std::string scene, measurements, out, report, loss = "none", reference = "camera";
+  std::string scene, measurements, out, report, loss = "none", axis = "camera", marker_loss_scale;
   std::string focal_length = ToString(CalibrationOptions().focal_length),
               lens_gaps = ToString(CalibrationOptions().lens_gaps),
               distortion = ToString(CalibrationOptions().distortion);
-  std::optional<double> marker_loss_arcmin, luminance_loss, model_error_level;  // unset: CalibrationOptions' own
+  std::optional<double> luminance_loss, model_error_level;  // unset: CalibrationOptions' own
   bool fit_focal_length = false, fit_lens_gaps = false, force = false, accept_model_error = false;
 };
 
@@ -39,9 +41,9 @@ CalibrationOptions ReadCalibrationOptions(const FitCommandOptions& o) {
   CalibrationOptions options;
   try {
     options.loss = RobustLossFromString(o.loss);
-    options.reference = AxisReferenceFromString(o.reference);
+    options.reference = AxisReferenceFromString(o.axis);
   } catch (const Error& e) {
-    throw Error(std::string(o.loss == ToString(options.loss) ? "--reference: " : "--loss: ") + e.message());
+    throw Error(std::string(o.loss == ToString(options.loss) ? "--axis: " : "--loss: ") + e.message());
   }
   for (const auto& [choice, text, flag, option] :
        {std::tuple{&options.focal_length, o.focal_length, o.fit_focal_length, "--focal-length"},
@@ -60,10 +62,13 @@ CalibrationOptions ReadCalibrationOptions(const FitCommandOptions& o) {
     options.model_error_level = *o.model_error_level;
   }
   // A value given must be positive (a negative one was ignored before).
-  for (const auto& [value, option] :
-       {std::pair{o.marker_loss_arcmin, "--marker-loss-scale"}, std::pair{o.luminance_loss, "--luminance-loss-scale"}})
-    if (value && !(*value > 0 && std::isfinite(*value))) throw Error(std::string(option) + ": must be positive");
-  if (o.marker_loss_arcmin) options.marker_loss_scale_rad = *o.marker_loss_arcmin / 60.0 * std::numbers::pi / 180.0;
+  if (o.luminance_loss && !(*o.luminance_loss > 0 && std::isfinite(*o.luminance_loss)))
+    throw Error("--luminance-loss-scale: must be positive");
+  if (!o.marker_loss_scale.empty()) {
+    const double arcmin = ParseOptionValue(o.marker_loss_scale, "--marker-loss-scale", kArcminutes);
+    if (!(arcmin > 0)) throw Error("--marker-loss-scale: must be positive");
+    options.marker_loss_scale_rad = arcmin / 60.0 * kRadiansPerDegree;
+  }
   options.luminance_loss_scale = o.luminance_loss.value_or(options.luminance_loss_scale);
   return options;
 }
@@ -109,7 +114,8 @@ void RunFitCommand(const FitCommandOptions& o) {
 
   CalibratedDisplay display;
   CalibrationReport report = Calibrate(system, measurements, options, &display);
-  std::cout << report.FullReport();
+  CommandResult result("fit");
+  result.Text(report.FullReport());
   if (!o.report.empty()) {
     nlohmann::json j = report.ToJson();
     j["layerlab"] = VersionLine();
@@ -118,7 +124,10 @@ void RunFitCommand(const FitCommandOptions& o) {
   if (!report.IsSolutionUsable()) throw Error("the calibration failed: " + report.message + "; nothing was written");
   RefuseUnresolved(o, report);
   WriteCalibratedScene(o, display);
-  std::cout << "wrote " << o.out << (o.report.empty() ? "" : " and " + o.report) << "\n";
+  result.Text("wrote " + o.out + (o.report.empty() ? "" : " and " + o.report) + "\n");
+  result["out"] = o.out;
+  result["calibration"] = report.ToJson();
+  result.Print();
 }
 
 }  // namespace
@@ -132,13 +141,15 @@ void AddFitCommand(CLI::App& app) {
   cmd->add_option("--report", o->report, "Also write the report as JSON to this file");
   cmd->add_option("--loss", o->loss, "Robust loss against outliers: none, huber or cauchy");
   const CalibrationOptions defaults;  // the one home of the loss scales' defaults
-  cmd->add_option("--marker-loss-scale", o->marker_loss_arcmin,
-                  "Marker error (arcmin) where the robust loss starts to discount (default " +
-                      FormatFixed(ArcminFromRadians(defaults.marker_loss_scale_rad), 0) + ")");
+  cmd->add_option("--marker-loss-scale", o->marker_loss_scale,
+                  "Marker error where the robust loss starts to discount: arcmin, or with units (default " +
+                      FormatFixed(ArcminFromRadians(defaults.marker_loss_scale_rad), 0) + " arcmin)");
   cmd->add_option("--luminance-loss-scale", o->luminance_loss,
                   "Luminance error, relative to the brightest reading, where the robust loss starts (default " +
                       FormatFixed(defaults.luminance_loss_scale, 2) + ")");
-  cmd->add_option("--reference", o->reference, "Eye axis: camera, or farthest-panel (centers the farthest panel)");
+  cmd->add_option("--axis", o->axis,
+                  "What defines the eye's axis: camera, or farthest-panel (centers the farthest "
+                  "panel)");
   cmd->add_option("--focal-length", o->focal_length,
                   "The focal length of every lens and curved mirror: auto (fitted when captures from two or more "
                   "camera positions determine it, else held and said so), fit, or hold (default auto)");

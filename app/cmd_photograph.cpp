@@ -10,6 +10,7 @@
 #include <memory>
 #include <sstream>
 
+#include "layerlab/app/command_result.h"
 #include "layerlab/app/commands.h"
 #include "layerlab/app/number_list.h"
 #include "layerlab/calibration/camera_capture_plan.h"
@@ -108,7 +109,12 @@ void PhotographDisplay(const PhotographOptions& o) {
     throw stage.Explain(e);
   }
   stage.Commit();
-  std::cout << "wrote " << plan.captures.size() << " photographs and captures.json to " << o.out << "\n";
+  CommandResult result("photograph");
+  result.Text("wrote " + std::to_string(plan.captures.size()) + " photographs and captures.json to " + o.out + "\n");
+  result["out"] = o.out;
+  result["photographs"] = plan.captures.size();
+  result["of"] = "the display";
+  result.Print();
 }
 
 // A camera capture plan (camera_captures.json): the printed board at each planned pose, through the camera
@@ -142,8 +148,13 @@ void PhotographBoard(const PhotographOptions& o) {
     throw stage.Explain(e);
   }
   stage.Commit();
-  std::cout << "wrote " << plan.photos.size() << " photographs of the printed board and " << kCameraCapturesFile
-            << " to " << o.out << "\n";
+  CommandResult result("photograph");
+  result.Text("wrote " + std::to_string(plan.photos.size()) + " photographs of the printed board and " +
+              kCameraCapturesFile + " to " + o.out + "\n");
+  result["out"] = o.out;
+  result["photographs"] = plan.photos.size();
+  result["of"] = "the printed board";
+  result.Print();
 }
 
 }  // namespace

@@ -2,10 +2,10 @@
 // pupil function beside the geometric path's (analysis/eye_psf.h).
 #include <algorithm>
 #include <cstdio>
-#include <iostream>
 #include <memory>
 
 #include "layerlab/analysis/eye_psf.h"
+#include "layerlab/app/command_result.h"
 #include "layerlab/app/commands.h"
 #include "layerlab/app/number_list.h"
 #include "layerlab/eye/eye_description.h"
@@ -45,7 +45,7 @@ void RunPsfCommand(const PsfCommandOptions& o) {
   if (!o.frequencies.empty())
     options.frequencies_cpd = ParseNumberList(o.frequencies, "--frequencies", kCyclesPerDegree);
   if (!o.spacing.empty())
-    options.psf_spacing_rad = ParseOptionValue(o.spacing, "--spacing", kDegrees) * kRadiansPerDegree;
+    options.psf_spacing_rad = ParseOptionValue(o.spacing, "--resolution", kDegrees) * kRadiansPerDegree;
   options.psf_size = o.size;
   const DisplaySystem system = Compile(LoadScene(o.scene));
   std::vector<std::string> written = {"mtf.csv", "mtf.svg"};
@@ -61,7 +61,12 @@ void RunPsfCommand(const PsfCommandOptions& o) {
     throw stage.Explain(e);
   }
   stage.Commit();
-  std::cout << EyeModelLine(system.eye) << "\nwrote " << o.out << "/{mtf.csv,mtf.svg,psf_*.exr,psf_*.png}\n";
+  CommandResult result("psf");
+  result.Text(EyeModelLine(system.eye) + "\nwrote " + o.out + "/{mtf.csv,mtf.svg,psf_*.exr,psf_*.png}\n");
+  result["out"] = o.out;
+  result["eye"] = EyeModelLine(system.eye);
+  result["files"] = written;
+  result.Print();
 }
 
 }  // namespace
@@ -76,7 +81,7 @@ void AddPsfCommand(CLI::App& app) {
                   "Vergence errors (object minus focus), comma-separated: D (default 0,0.1,0.25,0.5,1)");
   cmd->add_option("--frequencies", o->frequencies,
                   "Frequencies along x, comma-separated: cpd (default 2,5,10,20,30,60)");
-  cmd->add_option("--spacing", o->spacing,
+  cmd->add_option("--resolution", o->spacing,
                   "PSF sample size: degrees or \"0.1 arcmin\" (default: half the aliasing limit lambda / (2 D) of "
                   "the bluest channel)");
   cmd->add_option("--size", o->size, "PSF samples per side (default 255)");

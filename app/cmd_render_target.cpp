@@ -1,4 +1,4 @@
-// layerlab render-target TARGET.json OUT_DIR: renders a target scene
+// layerlab render-target TARGET.json --out DIR: renders a target scene
 // (docs/target-format.md) into a light-field folder (docs/lightfield-format.md),
 // color and depth. Progress goes to stderr (framework/progress.h).
 #include <algorithm>
@@ -6,7 +6,9 @@
 #include <memory>
 #include <string>
 
+#include "layerlab/app/command_result.h"
 #include "layerlab/app/commands.h"
+#include "layerlab/app/exit_status.h"
 #include "layerlab/framework/error.h"
 #include "layerlab/framework/lightfield_io.h"
 #include "layerlab/framework/progress.h"
@@ -24,7 +26,14 @@ void AddRenderTargetCommand(CLI::App& app) {
   CLI::App* cmd =
       app.add_subcommand("render-target", "Render a target scene (planes, meshes) into a light-field folder");
   cmd->add_option("target", options->target, "Target scene file (JSON)")->required();
-  cmd->add_option("out_dir", options->out_dir, "Light-field folder to write (created if needed)")->required();
+  cmd->add_option("--out", options->out_dir, "Light-field folder to write (created if needed)")->required();
+  // The form before --out, refused naming it (before CLI11 finds --out missing).
+  cmd->add_option_function<std::string>("out_dir",
+                                        [](const std::string& folder) {
+                                          throw UsageError("render-target: the output folder is given as --out " +
+                                                           folder + " (as every command takes it)");
+                                        })
+      ->group("");
   cmd->callback([options] {
     TargetScene target = LoadTarget(options->target);
     StagedOutput stage(options->out_dir, "render-target", {"views", "depth", "lightfield.json"},
@@ -47,6 +56,13 @@ void AddRenderTargetCommand(CLI::App& app) {
     }
     stage.Commit();
     Note("render-target: wrote " + options->out_dir);
+    CommandResult result("render-target");
+    result["out"] = options->out_dir;
+    result["views"] = {g.views_x, g.views_y};
+    result["pixels_per_view"] = {g.cols, g.rows};
+    result["rays"] = stats.rays;
+    result["seconds"] = stats.seconds;
+    result.Print();
   });
 }
 

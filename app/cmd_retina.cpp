@@ -15,6 +15,7 @@
 #include "layerlab/analysis/report_parts.h"
 #include "layerlab/analysis/retina_sweep.h"
 #include "layerlab/app/command_line.h"
+#include "layerlab/app/command_result.h"
 #include "layerlab/app/commands.h"
 #include "layerlab/app/metric_flags.h"
 #include "layerlab/app/natural_viewing.h"
@@ -51,7 +52,7 @@ struct RetinaCommandOptions {
 
 // --accommodation and --focal-stack's states, sorted, without repeats.
 std::vector<double> AccommodationStates(const RetinaCommandOptions& o) {
-  std::vector<double> states = ParseNumberList(o.accommodation, "--accommodation", kDiopters, true);
+  std::vector<double> states = ParseStates(o.accommodation, "--accommodation", kDiopters, true);
   if (!o.focal_stack.empty())
     for (double d : ParseRange(o.focal_stack, "--focal-stack", kDiopters)) states.push_back(d);
   std::sort(states.begin(), states.end());
@@ -85,7 +86,7 @@ void WriteRetinaPage(const RetinaCommandOptions& o, const Scene& scene, const Di
   double seconds = 0;
   for (const RetinaStateResult& r : results) seconds += r.seconds;
   page.steps = {{"retina (" + std::to_string(results.size()) + " accommodation states)", seconds}};
-  AddRetinaToPage(results, ParseNumberList(o.accommodation, "--accommodation", kDiopters, true), natural,
+  AddRetinaToPage(results, ParseStates(o.accommodation, "--accommodation", kDiopters, true), natural,
                   model.white_luminance(), "", &page);
   WriteReportPage(page, folder);
 }
@@ -137,7 +138,7 @@ void WriteBothEyesPage(const RetinaCommandOptions& o, const Scene& scene, const 
     double seconds = 0;
     for (const RetinaStateResult& r : results[k]) seconds += r.seconds;
     page.steps.push_back({"retina, " + side + " eye (" + std::to_string(results[k].size()) + " states)", seconds});
-    AddRetinaToPage(results[k], ParseNumberList(o.accommodation, "--accommodation", kDiopters, true), natural, white,
+    AddRetinaToPage(results[k], ParseStates(o.accommodation, "--accommodation", kDiopters, true), natural, white,
                     side + "/", &page);
     ReportSection& section = page.sections.back();
     section.id = side;
@@ -199,6 +200,44 @@ std::vector<const RetinalMetric*> CheckMetricOptions(const RetinaCommandOptions&
   return metrics;
 }
 
+// The result on stdout: what was written and, against natural viewing, each metric's mean over the states.
+void PrintRetinaResult(const RetinaCommandOptions& o, const std::vector<DisplaySystem>& eyes,
+                       const std::vector<std::vector<RetinaStateResult>>& results,
+                       const std::vector<const RetinalMetric*>& metrics, double white, bool natural) {
+  const bool both = eyes.size() > 1;
+  CommandResult result("retina");
+  char white_text[32];
+  std::snprintf(white_text, sizeof white_text, "%.4g", white);
+  result.Text("wrote " + o.out + "/{index.html," +
+              (both      ? "left,right"
+               : natural ? "display,natural,retina.csv"
+                         : "display,retina.csv") +
+              "}: " + std::to_string(AccommodationStates(o).size()) + " states" + (both ? " per eye" : "") +
+              "; values are display-relative (1 = " + white_text + " cd/m2)\n");
+  result["out"] = o.out;
+  result["accommodation_diopters"] = AccommodationStates(o);
+  result["white_cd_per_m2"] = white;
+  result["eyes"] = nlohmann::json::array();
+  for (size_t e = 0; e < results.size(); ++e) {
+    const std::string eye = both ? (eyes[e].eye.binocular->side < 0 ? "left" : "right") : "";
+    nlohmann::json mean = nlohmann::json::object();
+    std::string line = eye.empty() ? "" : eye + " eye, ";
+    line += "the mean over the states against natural viewing:";
+    for (size_t k = 0; natural && !results[e].empty() && k < results[e].front().scores.size(); ++k) {
+      double sum = 0;
+      for (const RetinaStateResult& r : results[e]) sum += r.scores[k].second;
+      const RetinalMetric& m = *metrics[k];
+      const double value = sum / results[e].size();
+      line += (k ? ", " : " ") + m.name + " " + FormatFixed(value, m.unit == "dB" ? 2 : 4) +
+              (m.unit.empty() ? "" : " " + m.unit);
+      mean[m.column] = value;  // retina.csv's column, its unit in the name
+    }
+    if (natural) result.Text(line + "\n");
+    result["eyes"].push_back({{"eye", eye.empty() ? "the scene's" : eye}, {"mean_against_natural", mean}});
+  }
+  result.Print();
+}
+
 void RunRetinaCommand(const RetinaCommandOptions& o) {
   // Everything is read and checked before anything is written.
   Scene scene = LoadScene(o.scene);
@@ -247,25 +286,7 @@ void RunRetinaCommand(const RetinaCommandOptions& o) {
     throw stage.Explain(e);
   }
   stage.Commit();
-  const bool natural = !given.target.empty() || !given.target_scene.empty();
-  std::printf("wrote %s/{index.html,%s}: %zu states%s; values are display-relative (1 = %.4g cd/m2)\n", o.out.c_str(),
-              both      ? "left,right"
-              : natural ? "display,natural,retina.csv"
-                        : "display,retina.csv",
-              AccommodationStates(o).size(), both ? " per eye" : "", white);
-  if (natural)
-    for (size_t e = 0; e < results.size(); ++e) {
-      std::string line = both ? (eyes[e].eye.binocular->side < 0 ? "left eye, " : "right eye, ") : "";
-      line += "the mean over the states against natural viewing:";
-      for (size_t k = 0; !results[e].empty() && k < results[e].front().scores.size(); ++k) {
-        double sum = 0;
-        for (const RetinaStateResult& r : results[e]) sum += r.scores[k].second;
-        const RetinalMetric& m = *metrics[k];
-        line += (k ? ", " : " ") + m.name + " " + FormatFixed(sum / results[e].size(), m.unit == "dB" ? 2 : 4) +
-                (m.unit.empty() ? "" : " " + m.unit);
-      }
-      std::printf("%s\n", line.c_str());
-    }
+  PrintRetinaResult(o, eyes, results, metrics, white, !given.target.empty() || !given.target_scene.empty());
 }
 
 }  // namespace
@@ -276,8 +297,10 @@ void AddRetinaCommand(CLI::App& app) {
   cmd->add_option("scene", o->scene, "Display scene file (JSON)")->required();
   cmd->add_option("--patterns", o->patterns, "Output folder of `layerlab solve` (its patterns/)")->required();
   cmd->add_option("--accommodation", o->accommodation,
-                  "States, comma-separated: D, or with units (\"1.0 D\", \"0.5 m\"; default 0.4,1.0,1.6,2.2)");
-  cmd->add_option("--focal-stack", o->focal_stack, "Also first,last,step: D, e.g. 0,2.6,0.1 or \"0 D,2.6 D,0.1 D\"");
+                  "States shown, comma-separated, each a value or a range FROM:TO:STEP: D, or with units (\"1.0 D\", "
+                  "\"0.5 m\"; default 0.4,1.0,1.6,2.2)");
+  cmd->add_option("--focal-stack", o->focal_stack,
+                  "Also scored in retina.csv, a range FROM:TO:STEP: D, e.g. 0:2.6:0.1 or \"0 D:2.6 D:0.1 D\"");
   AddTargetOptions(cmd, o->target, ": natural viewing of it (a scene's traced, not rendered)");
   AddPoseOptions(cmd, o->pose);
   AddOpticsOptions(cmd, o->optics);

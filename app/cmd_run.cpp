@@ -10,15 +10,17 @@
 //   DIR/compare/                     other displays on the same target (table, CSV, SVG)
 //   DIR/index.html                   the report
 #include <chrono>
-#include <cstdio>
-#include <iostream>
 #include <memory>
 #include <optional>
 #include <string>
 
 #include "layerlab/analysis/run_pipeline.h"
+#include "layerlab/app/command_result.h"
 #include "layerlab/app/commands.h"
+#include "layerlab/framework/progress.h"
+#include "layerlab/framework/units.h"
 #include "layerlab/framework/warnings.h"
+#include "layerlab/solvers/solution_writer.h"
 #include "layerlab/solvers/solver_option_table.h"
 
 namespace layerlab::app {
@@ -42,14 +44,21 @@ void AddRunCommand(CLI::App& app) {
     const auto start = std::chrono::steady_clock::now();
     const RunOutcome outcome = RunPipeline(*request);
     SayWarnings(outcome.warnings);
-    std::cout << outcome.compare_table;
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!outcome.removed.empty())
-      std::printf("run: removed %zu file%s an earlier run wrote into %s\n", outcome.removed.size(),
-                  outcome.removed.size() == 1 ? "" : "s", request->out.c_str());
-    if (outcome.solved) std::cout << outcome.report.BriefReport() << "\n";
-    std::printf("run: %.1f s; open %s in a browser (no server needed)\n",
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-                outcome.index_html.c_str());
+      Note("run: removed " + std::to_string(outcome.removed.size()) + " file" +
+           (outcome.removed.size() == 1 ? "" : "s") + " an earlier run wrote into " + request->out);
+    CommandResult result("run");
+    result.Text(outcome.compare_table);
+    if (outcome.solved) result.Text(outcome.report.BriefReport() + "\n");
+    result.Text("run: " + FormatFixed(seconds, 1) + " s; open " + outcome.index_html +
+                " in a browser (no server needed)\n");
+    result["out"] = request->out;
+    result["index_html"] = outcome.index_html;
+    result["seconds"] = seconds;
+    result["solve"] = outcome.solved ? ReportSummaryJson(outcome.report) : nlohmann::json(nullptr);
+    result["warnings"] = outcome.warnings;
+    result.Print();
   });
 }
 

@@ -19,6 +19,7 @@
 #include "layerlab/analysis/solve_job.h"
 #include "layerlab/analysis/target_source.h"
 #include "layerlab/app/command_line.h"
+#include "layerlab/app/command_result.h"
 #include "layerlab/app/commands.h"
 #include "layerlab/app/number_list.h"
 #include "layerlab/app/optics_options.h"
@@ -258,8 +259,12 @@ void WriteResults(const Options& o, const Scene& scene, const DisplaySystem& sys
   if (!switched.removed.empty())
     std::fprintf(stderr, "solve: removed %zu file%s an earlier solve wrote into %s\n", switched.removed.size(),
                  switched.removed.size() == 1 ? "" : "s", o.out.c_str());
-  std::cout << "wrote " << o.out << "/{index.html,patterns,panels,trace.csv,report.txt,report.json"
-            << (o.write_lightfield ? ",lightfield" : "") << "}\n";
+  CommandResult result("solve");
+  result.Text(solved.report.BriefReport() + "\nwrote " + o.out + "/{index.html,patterns,panels,trace.csv,report.txt," +
+              "report.json" + (o.write_lightfield ? ",lightfield" : "") + "}\n");
+  result["out"] = o.out;
+  result["report"] = ReportSummaryJson(solved.report);
+  result.Print();
 }
 
 // The solve of one process, or of this rank: the solve job's steps
@@ -313,8 +318,8 @@ void Solve(const Options& o, Ranks& ranks) {
   for (const std::string& w : TargetGeometryWarnings(system, views.whole)) found.push_back(w);
   report.warnings.insert(report.warnings.begin(), found.begin(), found.end());
   SayWarnings(report.warnings);
-  std::cout << report.BriefReport() << "\n";
-  if (!report.IsSolutionUsable()) throw Error("the solve failed: " + report.message + "; nothing was written");
+  if (!report.IsSolutionUsable())
+    throw Error("the solve failed: " + report.message + " (" + report.BriefReport() + "); nothing was written");
   WriteResults(o, scene, system, config, written, solved, *stage);
 #if LAYERLAB_WITH_MPI
   if (ranks.world) ranks.world->Barrier();  // the others wait for the results to be in place

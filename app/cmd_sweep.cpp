@@ -3,13 +3,16 @@
 // job folders, runs the jobs (--local -j N, --mpi under mpirun, or --slurm to
 // write a job array), and gathers one table and plots. Exits non-zero when a
 // job failed; the others still run, and a run again skips what is complete.
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
 #include <optional>
 #include <string>
+#include <thread>
 
 #include "layerlab/analysis/sweep_gather.h"
+#include "layerlab/app/command_result.h"
 #include "layerlab/app/commands.h"
 #include "layerlab/app/sweep_runners.h"
 #include "layerlab/framework/error.h"
@@ -24,14 +27,16 @@ void SayJob(const SweepSpec& spec, const SweepJob& job, const SweepJobState& s, 
   std::string values;
   for (size_t k = 0; k < spec.parameters.size(); ++k)
     values += (k ? ", " : "") + spec.parameters[k].name + " " + spec.parameters[k].labels[job.choice[k]];
+  // Progress, on stderr as every command's: the result on stdout is the summary (GatherAndReport).
   if (s.complete)
-    std::printf("%ssweep: job %s (%s) complete in %.1f s\n", prefix.c_str(), job.id.c_str(), values.c_str(), s.seconds);
+    std::fprintf(stderr, "%ssweep: job %s (%s) complete in %.1f s\n", prefix.c_str(), job.id.c_str(), values.c_str(),
+                 s.seconds);
   else if (s.busy)
-    std::printf("%ssweep: job %s (%s) not run: %s\n", prefix.c_str(), job.id.c_str(), values.c_str(), s.error.c_str());
+    std::fprintf(stderr, "%ssweep: job %s (%s) not run: %s\n", prefix.c_str(), job.id.c_str(), values.c_str(),
+                 s.error.c_str());
   else
-    std::printf("%ssweep: job %s (%s) failed: %s\n", prefix.c_str(), job.id.c_str(), values.c_str(),
-                s.error.empty() ? "the job process ended without a record" : s.error.c_str());
-  std::fflush(stdout);
+    std::fprintf(stderr, "%ssweep: job %s (%s) failed: %s\n", prefix.c_str(), job.id.c_str(), values.c_str(),
+                 s.error.empty() ? "the job process ended without a record" : s.error.c_str());
 }
 
 namespace {
@@ -54,8 +59,17 @@ void CheckSlurmOptions(const SlurmResources& r) {
 // The table, and the exit: non-zero when a job failed or did not run.
 void GatherAndReport(const SweepSpec& spec, const std::vector<SweepJob>& jobs, const std::string& out) {
   const SweepSummary s = GatherSweep(spec, jobs, out);
-  std::printf("sweep: %zu jobs: %zu complete, %zu failed, %zu not run; table %s/table.html\n", jobs.size(), s.complete,
-              s.failed, s.pending, out.c_str());
+  CommandResult result("sweep");
+  result.Text("sweep: " + std::to_string(jobs.size()) + " jobs: " + std::to_string(s.complete) + " complete, " +
+              std::to_string(s.failed) + " failed, " + std::to_string(s.pending) + " not run; table " + out +
+              "/table.html\n");
+  result["out"] = out;
+  result["jobs"] = jobs.size();
+  result["complete"] = s.complete;
+  result["failed"] = s.failed;
+  result["not_run"] = s.pending;
+  result["table"] = out + "/table.csv";
+  result.Print();
   if (s.failed || s.pending) throw CLI::RuntimeError(1);
 }
 
@@ -85,7 +99,16 @@ void RunSweepCommand(const SweepOptions& o) {
 #if LAYERLAB_WITH_MPI
     bool root = false;
     const size_t failed = RunSweepMpi(spec, jobs, o.out, &root);
-    if (root) std::printf("sweep: %zu jobs, %zu failed; table %s/table.html\n", jobs.size(), failed, o.out.c_str());
+    if (root) {
+      CommandResult result("sweep");
+      result.Text("sweep: " + std::to_string(jobs.size()) + " jobs, " + std::to_string(failed) + " failed; table " +
+                  o.out + "/table.html\n");
+      result["out"] = o.out;
+      result["jobs"] = jobs.size();
+      result["failed"] = failed;
+      result["table"] = o.out + "/table.csv";
+      result.Print();
+    }
     if (failed) throw CLI::RuntimeError(1);
     return;
 #else
@@ -102,13 +125,22 @@ void RunSweepCommand(const SweepOptions& o) {
   }
   const FileLock lock = LockSweepFolder(spec, o.out);
   const size_t written = WriteSweepFolders(spec, jobs, o.out);
-  std::printf("sweep: %zu jobs in %s/jobs (%zu scenes written)\n", jobs.size(), o.out.c_str(), written);
+  Note("sweep: " + std::to_string(jobs.size()) + " jobs in " + o.out + "/jobs (" + std::to_string(written) +
+       " scenes written)");
   if (scripts) {
-    for (const std::string& script : WriteSlurmScripts(*scripts)) std::printf("sweep: wrote %s\n", script.c_str());
-    std::printf("sweep: submit with sh %s/slurm/submit.sh\n", o.out.c_str());
+    CommandResult result("sweep");
+    result["out"] = o.out;
+    result["jobs"] = jobs.size();
+    const std::vector<std::string> written_scripts = WriteSlurmScripts(*scripts);
+    for (const std::string& script : written_scripts) result.Text("sweep: wrote " + script + "\n");
+    result["slurm_scripts"] = written_scripts;
+    result.Text("sweep: submit with sh " + o.out + "/slurm/submit.sh\n");
+    result["submit"] = "sh " + o.out + "/slurm/submit.sh";
+    result.Print();
     return;
   }
-  RunSweepLocally(spec, jobs, o.out, o.processes);
+  RunSweepLocally(spec, jobs, o.out,
+                  o.processes > 0 ? o.processes : std::max(1, static_cast<int>(std::thread::hardware_concurrency())));
   GatherAndReport(spec, jobs, o.out);
 }
 
@@ -123,7 +155,8 @@ void AddSweepCommand(CLI::App& app) {
   cmd->add_option("sweep", o->sweep, "Sweep file (JSON, layerlab-sweep/1)")->required();
   cmd->add_option("--out", o->out, "Output folder: manifest.json, jobs/, table.csv, table.html, plots/")->required();
   CLI::Option* local = cmd->add_flag("--local", o->local, "Run the jobs on this machine, a process pool (the default)");
-  cmd->add_option("-j,--jobs", o->processes, "With --local: jobs at a time")->check(CLI::Range(1, 1024));
+  cmd->add_option("-j,--jobs", o->processes, "With --local: jobs at a time (0: one per core; default 1)")
+      ->check(CLI::Range(0, 1024));
   CLI::Option* mpi =
       cmd->add_flag("--mpi", o->mpi, "Run as MPI ranks (mpirun -np N layerlab sweep ...): job i on rank i mod N");
   CLI::Option* slurm =

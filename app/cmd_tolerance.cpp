@@ -13,6 +13,7 @@
 #include "layerlab/analysis/tolerance.h"
 #include "layerlab/analysis/tolerance_report.h"
 #include "layerlab/app/command_line.h"
+#include "layerlab/app/command_result.h"
 #include "layerlab/app/commands.h"
 #include "layerlab/app/target_option.h"
 #include "layerlab/framework/atomic_file.h"
@@ -97,11 +98,16 @@ void RunToleranceCommand(const ToleranceCommandOptions& o) {
     const ToleranceReportInput in{scene.file, CommandLine(), &model, &run, o.seed, psnr_note};
     const std::string summary = ToleranceMarkdown(in);
     WriteFileAtomically(stage.staging() + "/tolerance.md", summary);
-    WriteFileAtomically(stage.staging() + "/tolerance.json", ToleranceJson(in).dump(2) + "\n");
+    const nlohmann::json json = ToleranceJson(in);
+    WriteFileAtomically(stage.staging() + "/tolerance.json", json.dump(2) + "\n");
     WriteToleranceCsv(in, stage.staging());
     stage.Commit();
-    std::printf("%s\nwrote %s/{tolerance.md,tolerance.json,samples.csv,draws.csv,sensitivity.csv}\n", summary.c_str(),
-                o.out.c_str());
+    CommandResult result("tolerance");
+    result.Text(summary + "\nwrote " + o.out +
+                "/{tolerance.md,tolerance.json,samples.csv,draws.csv,sensitivity.csv}\n");
+    result["out"] = o.out;
+    result["tolerance"] = json;  // tolerance.json
+    result.Print();
   } catch (const Error& e) {
     throw stage.Explain(e);
   }

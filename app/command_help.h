@@ -1,6 +1,7 @@
-// `layerlab help [COMMAND]`, and a first word that is no command: named as
-// such, with the closest command, instead of CLI11's "A subcommand is
-// required".
+// `layerlab help [COMMAND]`, its machine-readable forms (--json: every command
+// and option; --man; --completion bash|zsh), and a first word that is no
+// command: named as such, with the closest command, instead of CLI11's "A
+// subcommand is required".
 #pragma once
 
 #include <optional>
@@ -11,8 +12,11 @@ class App;
 
 namespace layerlab::app {
 
-// The exit code when argv asks for help or names no command (the help or the error printed), else nullopt
-// (parse as usual).
-std::optional<int> HelpOrUnknownCommand(CLI::App& app, int argc, char** argv);
+// The `help` subcommand; add it after every other command.
+void AddHelpCommand(CLI::App& app);
+
+// Before parsing: when the first word that is not a global flag is no command, the error printed and the
+// usage exit status; else nullopt (parse as usual).
+std::optional<int> RefuseUnknownCommand(const CLI::App& app, int argc, char** argv);
 
 }  // namespace layerlab::app

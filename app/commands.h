@@ -26,7 +26,7 @@ void AddCameraPatternsCommand(CLI::App& app);    // camera-patterns --out DIR: a
 void AddCameraIntrinsicsCommand(CLI::App& app);  // camera-intrinsics DIR --out CAMERA.json (OpenCV)
 #endif
 #if LAYERLAB_WITH_EMBREE
-void AddRenderTargetCommand(CLI::App& app);  // render-target TARGET.json OUT_DIR
+void AddRenderTargetCommand(CLI::App& app);  // render-target TARGET.json --out DIR
 #endif
 
 }  // namespace layerlab::app

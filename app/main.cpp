@@ -1,78 +1,110 @@
 // layerlab: the command-line front end. Every failure is one message on
-// stderr, location first, and a non-zero exit.
+// stderr, location first, and an exit status that says which kind
+// (app/exit_status.h, docs/cli.md).
 #include <csignal>
-#include <cstdint>
 #include <cstdio>
 #include <exception>
 #include <optional>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
 #include "layerlab/app/command_help.h"
 #include "layerlab/app/command_line.h"
+#include "layerlab/app/command_result.h"
 #include "layerlab/app/commands.h"
+#include "layerlab/app/exit_status.h"
+#include "layerlab/app/global_flags.h"
+#include "layerlab/app/renamed_options.h"
 #include "layerlab/framework/error.h"
 #include "layerlab/framework/interrupt.h"
-#include "layerlab/framework/progress.h"
 #include "layerlab/framework/version.h"
 #include "layerlab/kernels/row_kernels.h"
 
-int main(int argc, char** argv) {
-  layerlab::app::SetCommandLine(argc, argv);
-  CLI::App app{"layerlab: model, factorize and analyse layered light-field near-eye displays"};
-  app.require_subcommand(1);
-  app.set_version_flag("--version", layerlab::VersionLine(), "Print the version (and the git commit) and exit");
-  layerlab::app::AddInfoCommand(app);
-  layerlab::app::AddRunCommand(app);
-  layerlab::app::AddSweepCommand(app);
-  layerlab::app::AddSolveCommand(app);
-  layerlab::app::AddContrastCommand(app);
-  layerlab::app::AddRetinaCommand(app);
-  layerlab::app::AddEyeboxCommand(app);
-  layerlab::app::AddCompareCommand(app);
-  layerlab::app::AddToleranceCommand(app);
-  layerlab::app::AddPsfCommand(app);
+namespace {
+
+using namespace layerlab::app;
+
+void AddCommands(CLI::App& app) {
+  AddInfoCommand(app);
+  AddRunCommand(app);
+  AddSweepCommand(app);
+  AddSolveCommand(app);
+  AddContrastCommand(app);
+  AddRetinaCommand(app);
+  AddEyeboxCommand(app);
+  AddCompareCommand(app);
+  AddToleranceCommand(app);
+  AddPsfCommand(app);
 #if LAYERLAB_WITH_CERES
-  layerlab::app::AddFitCommand(app);
-  layerlab::app::AddCalibrationPatternsCommand(app);
-  layerlab::app::AddPhotographCommand(app);
-  layerlab::app::AddDetectCommand(app);
-  layerlab::app::AddCameraPatternsCommand(app);
-  layerlab::app::AddCameraIntrinsicsCommand(app);
+  AddFitCommand(app);
+  AddCalibrationPatternsCommand(app);
+  AddPhotographCommand(app);
+  AddDetectCommand(app);
+  AddCameraPatternsCommand(app);
+  AddCameraIntrinsicsCommand(app);
 #endif
 #if LAYERLAB_WITH_EMBREE
-  layerlab::app::AddRenderTargetCommand(app);
+  AddRenderTargetCommand(app);
 #endif
-  // How much every command says on stderr: one pair of flags, read here for all of them.
-  // Set as the flag is read, before the command's callback runs.
-  for (CLI::App* cmd : app.get_subcommands({})) {
-    CLI::Option* q = cmd->add_flag_function(
-        "--quiet,-q", [](std::int64_t) { layerlab::SetVerbosity(layerlab::Verbosity::kQuiet); },
-        "No progress or notes on stderr (errors and warnings remain)");
-    cmd->add_flag_function(
-           "--verbose,-v", [](std::int64_t) { layerlab::SetVerbosity(layerlab::Verbosity::kVerbose); },
-           "Every step on stderr: each iteration of each run, one line each")
-        ->excludes(q);
-  }
-  // `layerlab help [COMMAND]`, and a first word that is no command named as such with the closest one.
-  if (std::optional<int> code = layerlab::app::HelpOrUnknownCommand(app, argc, argv)) return *code;
-  // Past a file-size limit, write() should fail with EFBIG (and the atomic
-  // writers clean up) instead of the process dying half-way.
-  std::signal(SIGXFSZ, SIG_IGN);
+  AddHelpCommand(app);
+  AddGlobalFlags(app);
+  AddRenamedOptions(app);
+}
+
+// The subcommand the command line named, "" when none was reached.
+std::string Named(CLI::App& app) {
+  const std::vector<CLI::App*> parsed = app.get_subcommands();
+  return parsed.empty() ? "" : parsed.back()->get_name();
+}
+
+// The error on stderr (and with --json on stdout) and its status.
+int Fail(const std::string& command, const std::string& kind, const std::string& message, int status) {
+  std::fprintf(stderr, "layerlab: %s%s\n", kind.c_str(), message.c_str());
+  PrintFailure(command, message, status, JsonRequested());
+  return status;
+}
+
+int Run(CLI::App& app, int argc, char** argv) {
   try {
     layerlab::ActiveRowKernels();  // a bad LAYERLAB_ROW_KERNELS is an error here, not inside a parallel loop
     app.parse(argc, argv);
+  } catch (const CLI::RuntimeError& e) {  // a command's own status (sweep: a job failed), already explained
+    PrintFailure(Named(app), e.what(), e.get_exit_code(), JsonRequested());
+    return e.get_exit_code();
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);  // --help, --version
+    const std::string command = Named(app);
+    // A value CLI11 could not read or its check refused is a refused input, as any value layerlab refuses;
+    // the rest (an unknown option, a missing argument) is the command line itself.
+    const bool value = dynamic_cast<const CLI::ValidationError*>(&e) || dynamic_cast<const CLI::ConversionError*>(&e);
+    return Fail(command, "error: ",
+                (command.empty() ? "" : command + ": ") + e.what() + " (layerlab help" +
+                    (command.empty() ? "" : " " + command) + ")",
+                value ? kExitRefused : kExitUsage);
+  } catch (const UsageError& e) {
+    return Fail(Named(app), "error: ", e.what(), kExitUsage);
   } catch (const layerlab::InterruptedError& e) {
-    std::fprintf(stderr, "layerlab: %s\n", e.what());
-    return 130;
+    return Fail(Named(app), "", e.what(), kExitInterrupted);
   } catch (const layerlab::Error& e) {
-    std::fprintf(stderr, "layerlab: error: %s\n", e.what());
-    return 1;
+    return Fail(Named(app), "error: ", e.what(), kExitRefused);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "layerlab: internal error: %s\n", e.what());
-    return 3;
+    return Fail(Named(app), "internal error: ", e.what(), kExitInternal);
   }
-  return 0;
+  return kExitDone;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  SetCommandLine(argc, argv);
+  CLI::App app{"layerlab: model, factorize and analyse layered light-field near-eye displays", "layerlab"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", layerlab::VersionLine(), "Print the version (and the git commit) and exit");
+  AddCommands(app);
+  if (std::optional<int> status = RefuseUnknownCommand(app, argc, argv)) return *status;
+  // Past a file-size limit, write() should fail with EFBIG (and the atomic
+  // writers clean up) instead of the process dying half-way.
+  std::signal(SIGXFSZ, SIG_IGN);
+  return Run(app, argc, argv);
 }

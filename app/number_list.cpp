@@ -69,12 +69,16 @@ std::vector<double> ParseNumberList(const std::string& text, const std::string& 
 }
 
 std::vector<double> ParseRangeBounds(const std::string& text, const std::string& option, const OptionUnit& unit) {
-  std::vector<double> r = ParseNumberList(text, option, unit);
-  if (r.size() != 3)
-    throw Error(option + ": give first,last,step (\"" + text + "\" has " + std::to_string(r.size()) + " value" +
-                (r.size() == 1 ? "" : "s") + ")");
+  std::vector<std::string> items;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ':');) items.push_back(item);
+  if (items.size() != 3 || text.find(',') != std::string::npos)
+    throw Error(option + ": \"" + text + "\": give a range FROM:TO:STEP, e.g. 0:2.6:0.05 (a comma-separated list " +
+                "is a list of values)");
+  const std::vector<double> r = {ParseOptionValue(items[0], option, unit), ParseOptionValue(items[1], option, unit),
+                                 ParseOptionValue(items[2], option, unit)};
   if (!(r[1] > r[0]) || !(r[2] > 0))
-    throw Error(option + ": \"" + text + "\": last must exceed first and step must be above 0");
+    throw Error(option + ": \"" + text + "\": TO must exceed FROM and STEP must be above 0");
   if ((r[1] - r[0]) / r[2] > 1e5) throw Error(option + ": \"" + text + "\": more than 100000 steps");
   return r;
 }
@@ -87,6 +91,22 @@ std::vector<double> ParseRange(const std::string& text, const std::string& optio
     if (v > r[1] + 1e-9 * r[2]) break;
     values.push_back(v);
   }
+  return values;
+}
+
+std::vector<double> ParseStates(const std::string& text, const std::string& option, const OptionUnit& unit,
+                                bool depth) {
+  std::vector<double> values;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) {
+    if (item.find(':') == std::string::npos) {
+      values.push_back(ParseOptionValue(item, option, unit, depth));
+    } else {
+      const std::vector<double> range = ParseRange(item, option, unit);
+      values.insert(values.end(), range.begin(), range.end());
+    }
+  }
+  if (values.empty()) throw Error(option + ": give at least one value");
   return values;
 }
 

@@ -60,4 +60,12 @@ int GivenChoice(const OptionFlags& flags, const OptionSpec& e) {
   return index;
 }
 
+bool WasGiven(const OptionFlags& flags, const OptionSpec& e) {
+  if (const auto i = flags.integers.find(e.key); i != flags.integers.end() && i->second) return true;
+  if (const auto r = flags.reals.find(e.key); r != flags.reals.end() && r->second) return true;
+  if (const auto t = flags.texts.find(e.key); t != flags.texts.end() && !t->second.empty()) return true;
+  const auto b = flags.switches.find(e.key);
+  return b != flags.switches.end() && b->second;
+}
+
 }  // namespace layerlab::app

@@ -72,14 +72,19 @@ void ApplyOptionFlags(const OptionFlags& flags, const std::vector<OptionEntry<Op
   }
 }
 
+// Whether `e`'s flag was given.
+bool WasGiven(const OptionFlags& flags, const OptionSpec& e);
+
 // IsValid's "field: value: constraint" with the field named by its flag
-// ("--retina-field: 0: ..."), as the command's user wrote it.
+// ("--field: 0: ..."), as the command's user wrote it; with `given`, only
+// when that flag was given (else the value came from the scene: its key).
 template <class Options>
-std::string NameTheFlag(const std::vector<OptionEntry<Options>>& table, const std::string& why) {
+std::string NameTheFlag(const std::vector<OptionEntry<Options>>& table, const std::string& why,
+                        const OptionFlags* given = nullptr) {
   for (const OptionEntry<Options>& e : table)
     if (!e.cli_flag.empty() && why.rfind(e.key, 0) == 0 && why.size() > e.key.size() &&
         (why[e.key.size()] == ':' || why[e.key.size()] == '[' || why[e.key.size()] == '.'))
-      return e.cli_flag + why.substr(e.key.size());
+      return !given || WasGiven(*given, e) ? e.cli_flag + why.substr(e.key.size()) : why;
   return why;
 }
 

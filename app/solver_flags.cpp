@@ -1,5 +1,6 @@
 #include "layerlab/app/solver_flags.h"
 
+#include "layerlab/framework/error.h"
 #include "layerlab/framework/params.h"
 #include "layerlab/solvers/solver_option_table.h"
 #include "layerlab/systems/layer_sampler.h"
@@ -23,6 +24,8 @@ void AddSolverFlags(CLI::App* cmd, SolverFlags& flags) {
 void ApplySolverFlags(const SolverFlags& flags, SolveConfig& config) {
   if (!flags.sampling.empty()) config.sampling = SamplingFromString(flags.sampling);
   ApplyOptionFlags(flags, SolverOptionTable(), config.options);
+  // Checked here, before a target is read or rendered, with the field named by its flag.
+  if (std::string why; !config.options.IsValid(&why)) throw Error(NameTheFlag(SolverOptionTable(), why, &flags));
 }
 
 }  // namespace layerlab::app

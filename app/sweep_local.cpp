@@ -54,7 +54,7 @@ size_t RunSweepLocally(const SweepSpec& spec, const std::vector<SweepJob>& jobs,
     else
       todo.push_back(&job);
   }
-  if (skipped) std::printf("sweep: %zu of %zu jobs already complete, skipped\n", skipped, jobs.size());
+  if (skipped) std::fprintf(stderr, "sweep: %zu of %zu jobs already complete, skipped\n", skipped, jobs.size());
   std::map<pid_t, const SweepJob*> running;
   while (!todo.empty() || !running.empty()) {
     while (!todo.empty() && static_cast<int>(running.size()) < processes && !Interrupted()) {
@@ -75,8 +75,7 @@ size_t RunSweepLocally(const SweepSpec& spec, const std::vector<SweepJob>& jobs,
     running.erase(it);
     SweepJobState s = ReadJobState(out, *job);
     if (!s.complete && Interrupted() && WIFSIGNALED(status) && WTERMSIG(status) == SIGINT) {
-      std::printf("sweep: job %s interrupted; it runs again on resume\n", job->id.c_str());  // not a failure
-      std::fflush(stdout);
+      std::fprintf(stderr, "sweep: job %s interrupted; it runs again on resume\n", job->id.c_str());  // not a failure
       continue;
     }
     if (!s.complete && !s.failed && WIFEXITED(status) && WEXITSTATUS(status) == kJobBusyExit) {

@@ -53,8 +53,8 @@ size_t RunSweepMpi(const SweepSpec& spec, const std::vector<SweepJob>& jobs, con
   MPI_Allreduce(&failed, &total_failed, 1, MPI_UNSIGNED_LONG, MPI_SUM, MPI_COMM_WORLD);
   MPI_Allreduce(&ran, &total_ran, 1, MPI_UNSIGNED_LONG, MPI_SUM, MPI_COMM_WORLD);
   if (rank == 0) {
-    std::printf("sweep: %lu jobs ran on %d ranks, %lu skipped as complete\n", total_ran, size,
-                static_cast<unsigned long>(jobs.size()) - total_ran);
+    std::fprintf(stderr, "sweep: %lu jobs ran on %d ranks, %lu skipped as complete\n", total_ran, size,
+                 static_cast<unsigned long>(jobs.size()) - total_ran);
     try {
       GatherSweep(spec, jobs, out);
     } catch (const std::exception& e) {

@@ -544,7 +544,7 @@ struct ScratchFolder {
 };
 
 // The main job's focal stack as `layerlab retina --target dice --accommodation
-// 0.4,1.0,1.6,2.2 --focal-stack 0,2.6,0.1` runs it: the dice read, the model
+// 0.4,1.0,1.6,2.2 --focal-stack 0:2.6:0.1` runs it: the dice read, the model
 // made, 27 states of display and natural images written (EXR + PNG), here of
 // uniform patterns of 0.5. Smoke: the synthetic target, 2 coarse states.
 void BM_FocalStack(benchmark::State& state) {

@@ -22,6 +22,12 @@ foreach(header IN LISTS public_headers)
   install(FILES ${PROJECT_SOURCE_DIR}/${header} DESTINATION ${LAYERLAB_INSTALL_INCLUDEDIR}/${folder})
 endforeach()
 install(TARGETS layerlab RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+if(TARGET layerlab_cli_documents)  # where the shells and man(1) look for them
+  install(FILES ${PROJECT_BINARY_DIR}/share/layerlab.bash DESTINATION ${CMAKE_INSTALL_DATADIR}/bash-completion/completions
+          RENAME layerlab)
+  install(FILES ${PROJECT_BINARY_DIR}/share/_layerlab DESTINATION ${CMAKE_INSTALL_DATADIR}/zsh/vendor-completions)
+  install(FILES ${PROJECT_BINARY_DIR}/share/layerlab.1 DESTINATION ${CMAKE_INSTALL_MANDIR}/man1)
+endif()
 
 set(LAYERLAB_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/layerlab)
 install(EXPORT layerlabTargets NAMESPACE layerlab:: DESTINATION ${LAYERLAB_CMAKEDIR})

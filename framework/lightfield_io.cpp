@@ -125,7 +125,7 @@ struct Manifest {
 
 // Where a light field comes from, for a path that is not one.
 constexpr const char* kMakeOne =
-    "Render one from a target scene with `layerlab render-target TARGET.json LF_DIR`, or give the target scene "
+    "Render one from a target scene with `layerlab render-target TARGET.json --out LF_DIR`, or give the target scene "
     "itself (--target-scene TARGET.json, or \"target_scene\" in the scene's \"solve\" section); the folder format: "
     "docs/lightfield-format.md";
 

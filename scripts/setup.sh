@@ -13,6 +13,7 @@ packages=(cmake ninja-build g++ pkg-config
 packages+=(libopencv-calib3d-dev libopencv-imgproc-dev libopencv-imgcodecs-dev)
 packages+=(clang-14 libclang-rt-14-dev libomp-14-dev)  # the sanitizer and fuzz build in .ci/run (docs/robustness.md)
 packages+=(clang-format-14)  # the layout check in .ci/run (scripts/check_format.sh)
+packages+=(zsh groff-base)  # cli.completion checks the zsh completion parses and the man page renders (docs/cli.md)
 # The Python module and its tests, for Debian's /usr/bin/python3 (docs/python.md)
 packages+=(pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib)
 packages+=(python3-skimage)  # the perceptual metrics' reference in python/tests/test_metrics.py (docs/metrics.md)

@@ -41,7 +41,7 @@ PanelEncoding EncodeForPanel(const VirtualLayer& layer, const LayerPattern& patt
   return out;
 }
 
-nlohmann::json ReportToJson(const SolverReport& r) {
+nlohmann::json ReportSummaryJson(const SolverReport& r) {
   nlohmann::json j = {{"solver", r.solver},
                       {"termination", ToString(r.termination)},
                       {"message", r.message},
@@ -69,6 +69,11 @@ nlohmann::json ReportToJson(const SolverReport& r) {
   if (!std::isnan(r.shown_psnr_db)) j["shown_psnr_db"] = JsonNumber(r.shown_psnr_db);
   if (r.flicker) j["flicker"] = r.flicker->ToJson();
   if (focal_stack) j["pupil_positions"] = r.pupil_positions;
+  return j;
+}
+
+nlohmann::json ReportToJson(const SolverReport& r) {
+  nlohmann::json j = ReportSummaryJson(r);
   const std::vector<const TraceColumn*> columns = WrittenColumns(r.trace);
   for (const IterationRecord& t : r.trace) {
     nlohmann::json row;

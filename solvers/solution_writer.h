@@ -28,6 +28,8 @@ struct PanelEncoding {
 PanelEncoding EncodeForPanel(const VirtualLayer& layer, const LayerPattern& pattern);
 
 nlohmann::json ReportToJson(const SolverReport& report);
+// report.json without its trace: what `solve --json` and `run --json` print.
+nlohmann::json ReportSummaryJson(const SolverReport& report);
 std::string TraceCsv(const SolverReport& report);
 
 // A pattern is transmittance: every value finite and in [0, 1]. Throws

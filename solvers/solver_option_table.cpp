@@ -61,7 +61,7 @@ std::vector<SolverOptionEntry> MakeTable() {
   e.key = "initial_value", e.kind = Kind::kReal, e.type = "fraction", e.has_range = true;
   e.range = Closed(-1, 1), e.constraint_note = ", at least floor unless negative (random)";
   e.default_text = "the solver's", e.meaning = "initial transmittance; negative: random in [0.25, 0.75]";
-  e.cli_flag = "--initial", e.cli_help = "Initial transmittance (negative: random)";
+  e.cli_flag = "--initial-value", e.cli_help = "Initial transmittance (negative: random)";
   e.python = "initial_value", e.real = &SolverOptions::initial_value;
   add();
   e.key = "seed", e.kind = Kind::kSeed, e.type = "integer", e.default_text = "1";

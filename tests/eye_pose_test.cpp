@@ -362,7 +362,8 @@ TEST(EyeboxMap, EachPoseComparesItsOwnRetinalImages) {
     ADD_FAILURE() << "a pupil beyond the light field's eyebox was mapped";
   } catch (const Error& e) {
     const std::string m = e.what();
-    EXPECT_NE(m.find("--range: at a pupil offset of -2.000, 1.000 mm the pupil reaches 4.000 mm"), std::string::npos)
+    EXPECT_NE(m.find("--eyebox-range: at a pupil offset of -2.000, 1.000 mm the pupil reaches 4.000 mm"),
+              std::string::npos)
         << m;
     EXPECT_NE(m.find("stays inside up to 1.000 mm"), std::string::npos) << m;
   }

@@ -29,7 +29,7 @@ def test_contrast_curves(small_scene_path, tmp_path):
     if not command:
         pytest.skip("LAYERLAB_COMMAND not set (ctest sets it): no comparison with the command")
     subprocess.run([command, "contrast", str(small_scene_path), "--depths", "0.7,1.9", "--frequencies", "1",
-                    "--accommodation", "0,2.6,0.1", "--retina-field", "4", "--out", str(tmp_path)],
+                    "--accommodation", "0:2.6:0.1", "--field", "4", "--out", str(tmp_path)],
                    check=True, capture_output=True)
     with open(tmp_path / "contrast.csv") as f:
         rows = list(csv.DictReader(f))

@@ -25,12 +25,12 @@ refused() {  # $1: the message the refusal must contain; runs the rest
   echo "refused as expected: layerlab $*"
 }
 quick_retina=(--accommodation 1.0 --resolution 0.5)
-quick_contrast=(--depths 1.3 --frequencies 1 --accommodation 0.5,2.0,0.25 --no-peak-uncertainty)
+quick_contrast=(--depths 1.3 --frequencies 1 --accommodation 0.5:2.0:0.25 --no-peak-uncertainty)
 
 # Bare file names, inside examples/small.
 cd "$work/examples/small" || fail "no examples/small"
 ok info hybrid_small.json
-ok render-target small_dice_target.json lf
+ok render-target small_dice_target.json --out lf
 ok solve hybrid_small.json --target lf --iterations 2 --out s1
 ok solve hybrid_small.json --target-scene small_dice_target.json --iterations 2 --out s2
 ok solve hybrid_small.json --iterations 2 --out s3
@@ -58,7 +58,7 @@ grep -q '"../hybrid_pbs_hwp.json"' fitted/calibrated.json || fail "fitted/calibr
 cd "$work/elsewhere" || fail "no elsewhere"
 small=../examples/small
 ok info "$small/hybrid_small.json"
-ok render-target "$small/small_dice_target.json" lf
+ok render-target "$small/small_dice_target.json" --out lf
 ok solve "$small/hybrid_small.json" --target lf --iterations 2 --out s1
 ok solve "$small/hybrid_small.json" --target-scene "$small/small_dice_target.json" --iterations 2 --out s2
 ok solve "$small/hybrid_small.json" --iterations 2 --out s3
@@ -78,7 +78,7 @@ ok fit ../examples/paper_prototype.json ../examples/paper_prototype_measurements
 grep -q '"target_scene": "../targets/dice.json"' ../examples/small/c.json || fail "small/c.json: the target scene did not follow"
 
 # The target options: a folder that is not a light field points to render-target.
-render_hint="Render one from a target scene with \`layerlab render-target TARGET.json LF_DIR\`, or give the target scene itself (--target-scene TARGET.json"
+render_hint="Render one from a target scene with \`layerlab render-target TARGET.json --out LF_DIR\`, or give the target scene itself (--target-scene TARGET.json"
 refused "$small/small_dice_target.json: not a light-field folder (a file). $render_hint" \
   solve "$small/hybrid_small.json" --target "$small/small_dice_target.json" --out bad
 mkdir -p empty

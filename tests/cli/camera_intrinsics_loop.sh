@@ -29,6 +29,11 @@ echo '{ "fx": 360, "fy": 365, "cx": 203.3, "cy": 146.8, "k1": -0.05, "k2": 0.02 
   >"$work/log" 2>&1 || fail "photograph of the board failed"
 "$layerlab" camera-intrinsics "$work/photos" --out "$work/camera.json" >"$work/log" 2>&1 || fail "camera-intrinsics failed"
 grep -q "used 10 of 10 photographs; wrote" "$work/log" || fail "not every photograph used"
+# The same with --json (issue 50): one object on stdout, the estimate in it.
+"$layerlab" --json camera-intrinsics "$work/photos" --out "$work/camera_again.json" >"$work/intrinsics.json" 2>"$work/log" ||
+  fail "camera-intrinsics --json failed"
+/usr/bin/python3 "$(dirname "$0")/json_result.py" "$work/intrinsics.json" camera-intrinsics photographs_used=10 \
+  photographs=10 camera.fx || fail "camera-intrinsics --json"
 python3 - "$work/camera.json" "$work/truth.json" <<'PY' || fail "the estimate does not hold the truth"
 import json, sys
 est, truth = json.load(open(sys.argv[1])), json.load(open(sys.argv[2]))

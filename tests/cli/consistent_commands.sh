@@ -69,7 +69,7 @@ grep -q "<td class=\"l\">scene</td>" "$work/compare_own/index.html" || fail "com
 # 2. Units on the command line.
 "$layerlab" solve "$scene" --target "$target" --iterations 2 --time-budget "2 min" --quiet --out "$work/solve_units" >/dev/null ||
   fail "solve --time-budget \"2 min\" failed"
-"$layerlab" retina "$scene" --patterns "$work/solve" --accommodation "0.4 D,1.3 D" --focal-stack "1.0 D,1.6 D,0.3 D" \
+"$layerlab" retina "$scene" --patterns "$work/solve" --accommodation "0.4 D,1.3 D" --focal-stack "1.0 D:1.6 D:0.3 D" \
   --resolution "15 arcmin" --out "$work/retina" >"$work/retina.out" 2>"$work/retina.err" || fail "retina with units failed"
 ls "$work/retina/display" | tr '\n' ' ' | grep -q "^0.40D.exr 0.40D.png 1.00D.exr 1.00D.png 1.30D.exr 1.30D.png 1.60D.exr 1.60D.png $" ||
   fail "retina with units wrote $(ls "$work/retina/display" | tr '\n' ' ')"
@@ -87,8 +87,8 @@ if "$layerlab" compare "$scene" --objectives "lightfield,retina" --target "$targ
 fi
 grep -q -- "--objectives: \"retina\" is not one of lightfield or retinal" "$work/bad_objective.err" ||
   fail "the bad objective's error: $(cat "$work/bad_objective.err")"
-"$layerlab" contrast "$scene" --depths "1.3 D" --frequencies "1 cpd" --accommodation "0.5 D,2 D,0.5 D" --no-peak-uncertainty \
-  --retina-resolution "3 arcmin" --strip-rows 4 --out "$work/contrast" >"$work/contrast.out" 2>"$work/contrast.err" ||
+"$layerlab" contrast "$scene" --depths "1.3 D" --frequencies "1 cpd" --accommodation "0.5 D:2 D:0.5 D" --no-peak-uncertainty \
+  --resolution "3 arcmin" --strip-rows 4 --out "$work/contrast" >"$work/contrast.out" 2>"$work/contrast.err" ||
   fail "contrast with units failed"
 grep -q -E "^paper_prototype +1.30 +1.0 " "$work/contrast.out" || fail "contrast with units: no 1.30 D, 1 cpd curve"
 grep -qF "# $version" "$work/contrast/peaks.txt" || fail "peaks.txt does not name the version"

@@ -34,7 +34,7 @@ try() {  # try LABEL COMMAND...: any outcome but a clear one is a failure
 long=$(printf 'n%.0s' $(seq 300))
 
 # Light fields: a good one, then one copy per oddity.
-"$layerlab" render-target "$source/examples/small/small_dice_target.json" lf/good >/dev/null 2>&1 || { echo "FAIL: cannot render"; exit 1; }
+"$layerlab" render-target "$source/examples/small/small_dice_target.json" --out lf/good >/dev/null 2>&1 || { echo "FAIL: cannot render"; exit 1; }
 "$layerlab" solve "$small" --target lf/good --iterations 1 --out good_solution >/dev/null 2>&1 || { echo "FAIL: cannot solve"; exit 1; }
 variant() { rm -rf "lf/$1"; cp -r lf/good "lf/$1"; }
 v=lf/good/views/r00_c00.exr
@@ -120,7 +120,7 @@ for o in out/fifo out/file out/loop out/fifo_root out/link_root "out/$long" "out
   try "solve --out $o" "$layerlab" solve "$small" --target lf/good --iterations 1 --out "$o"
   try "retina --out $o" "$layerlab" retina "$small" --patterns good_solution --out "$o"
   try "run --out $o" "$layerlab" run "$small" --iterations 1 --out "$o"
-  try "render-target --out $o" "$layerlab" render-target "$source/examples/small/small_dice_target.json" "$o"
+  try "render-target --out $o" "$layerlab" render-target "$source/examples/small/small_dice_target.json" --out "$o"
 done
 # Silent nonsense: values that used to give a result without a word are refused, naming the option or key.
 refuse() {  # refuse LABEL PATTERN COMMAND...: a non-zero exit whose message matches PATTERN
@@ -154,10 +154,10 @@ refuse "frame_rate 1e-300 Hz" "/frame_rate: " "$layerlab" info nonsense/tiny_fra
 refuse "a panel relayed into the pupil" "is imaged into the pupil plane" "$layerlab" info nonsense/relayed_pupil.json
 refuse "contrast_sensitivity with the light-field objective" "contrast_sensitivity: true: weights the retinal objective" \
   "$layerlab" solve nonsense/weighted_lightfield.json --target lf/good --iterations 1 --out o
-refuse "contrast --retina-resolution 1e-9" "^layerlab: error: --retina-resolution: " \
-  "$layerlab" contrast "$small" --retina-resolution 1e-9 --out o
-refuse "contrast --retina-field 1e9" "^layerlab: error: --retina-field: 1e+09 deg is not a retinal field side" \
-  "$layerlab" contrast "$small" --retina-field 1e9 --out o
+refuse "contrast --resolution 1e-9" "^layerlab: error: --resolution: " \
+  "$layerlab" contrast "$small" --resolution 1e-9 --out o
+refuse "contrast --field 1e9" "^layerlab: error: --field: 1e+09 deg is not a retinal field side" \
+  "$layerlab" contrast "$small" --field 1e9 --out o
 refuse "retina --resolution 1e-9" "^layerlab: error: --resolution: " \
   "$layerlab" retina "$small" --patterns good_solution --resolution 1e-9 --out o
 # The eye's pose (docs/eye-pose.md): each refusal names its option and its limit.
@@ -171,14 +171,14 @@ refuse "retina --pupil-offset 1" "^layerlab: error: --pupil-offset: give X,Y" \
   "$layerlab" retina "$small" --patterns good_solution --pupil-offset 1 --out o
 refuse "solve --pupil-offset with the light-field objective" "the light-field objective weighs every view" \
   "$layerlab" solve "$small" --target lf/good --pupil-offset 1,0 --iterations 1 --out o
-refuse "eyebox beyond the light field's eyebox" "^layerlab: error: --range: at a pupil offset of" \
-  "$layerlab" eyebox "$small" --patterns good_solution --target lf/good --accommodation 1 --range 3 --out o
-refuse "eyebox --range -1" "^layerlab: error: --range: " \
-  "$layerlab" eyebox "$small" --patterns good_solution --target lf/good --accommodation 1 --range -1 --out o
+refuse "eyebox beyond the light field's eyebox" "^layerlab: error: --eyebox-range: at a pupil offset of" \
+  "$layerlab" eyebox "$small" --patterns good_solution --target lf/good --accommodation 1 --eyebox-range 3 --out o
+refuse "eyebox --eyebox-range -1" "^layerlab: error: --eyebox-range: " \
+  "$layerlab" eyebox "$small" --patterns good_solution --target lf/good --accommodation 1 --eyebox-range -1 --out o
 refuse "eyebox --gaze-range 1e9" "^layerlab: error: --gaze-range: " \
   "$layerlab" eyebox "$small" --patterns good_solution --target lf/good --accommodation 1 --gaze-range 1e9 --out o
-refuse "eyebox --step 1e-9" "^layerlab: error: --range: more than 101 positions" \
-  "$layerlab" eyebox "$small" --patterns good_solution --target lf/good --accommodation 1 --step 1e-9 --out o
+refuse "eyebox --eyebox-step 1e-9" "^layerlab: error: --eyebox-range: more than 101 positions" \
+  "$layerlab" eyebox "$small" --patterns good_solution --target lf/good --accommodation 1 --eyebox-step 1e-9 --out o
 refuse "contrast --out the scene's folder" "the output contains a scene" \
   "$layerlab" contrast nonsense/holds_scene/scene.json --out nonsense/holds_scene
 [ "$(ls -A nonsense/holds_scene)" = scene.json ] || { echo "FAIL: the refused contrast wrote beside its scene"; failures=$((failures + 1)); }

@@ -6,6 +6,6 @@
 mpiexec=$4 ranks=$5 exr_difference=$6
 rm -rf "$work" && mkdir -p "$work"
 small=$examples/small/hybrid_small.json
-"$layerlab" render-target "$examples/small/small_dice_target.json" "$work/lf" -q >"$work/log" 2>&1 ||
+"$layerlab" render-target "$examples/small/small_dice_target.json" --out "$work/lf" -q >"$work/log" 2>&1 ||
   fail "rendering the target failed"
 mpi() { "$mpiexec" --oversubscribe --allow-run-as-root -np "$@"; }

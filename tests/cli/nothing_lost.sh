@@ -130,7 +130,7 @@ echo "one writer at a time: the second refused naming process $pid on $(hostname
 "$layerlab" solve "$scene" --solver joint --target "$target" --iterations 2 --resume --out "$work/c" >"$work/log" 2>&1
 clean_error $?
 grep -q "checkpoint.json: /digest/target: the checkpoint was made for another target" "$work/log" || fail "resume with another target was not refused"
-"$layerlab" solve "$scene" --solver joint --target "$work/new/lightfield" --iterations 2 --resume --initial 0.3 --out "$work/c" >"$work/log" 2>&1
+"$layerlab" solve "$scene" --solver joint --target "$work/new/lightfield" --iterations 2 --resume --initial-value 0.3 --out "$work/c" >"$work/log" 2>&1
 clean_error $?
 grep -q "/digest/options: the checkpoint was made for another solver options" "$work/log" || fail "resume with other options was not refused"
 "$layerlab" solve "$scene" --solver joint --target "$work/new/lightfield" --iterations 2 --resume --out "$work/c" >"$work/log" 2>&1 ||

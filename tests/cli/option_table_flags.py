@@ -17,7 +17,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-ALWAYS_OWN = {"--help", "--quiet", "--verbose"}
+ALWAYS_OWN = {"--help", "--quiet", "--verbose", "--json"}
 
 
 def option_table(reference, section):

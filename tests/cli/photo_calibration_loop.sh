@@ -23,13 +23,17 @@ for e in scene["elements"]:
         e["rotation"] = "0.25 deg"
 json.dump(scene, open(sys.argv[2], "w"), indent=2)
 PY
-"$layerlab" photograph "$work/plan" --scene "$work/built.json" --out "$work/photos" --size 720 420 >"$work/log" 2>&1 ||
-  { cat "$work/log"; fail "photograph failed"; }
-"$layerlab" detect "$work/photos" --scene "$examples/paper_prototype.json" --out "$work/measurements.json" \
-  >"$work/log" 2>&1 || { cat "$work/log"; fail "detect failed"; }
-grep -q "detected 540 corners and 20 luminance steps in 32 of 32 photographs" "$work/log" || { cat "$work/log"; fail "not every photograph used"; }
-"$layerlab" fit "$examples/paper_prototype.json" "$work/measurements.json" --out "$work/calibrated.json" \
-  >"$work/fit.log" 2>&1 || { cat "$work/fit.log"; fail "fit failed"; }
+# photograph, detect and fit with --json (issue 50): each prints one object (json_result.py).
+check="/usr/bin/python3 $(dirname "$0")/json_result.py"
+"$layerlab" photograph "$work/plan" --scene "$work/built.json" --out "$work/photos" --size 720 420 --json \
+  >"$work/photograph.json" 2>"$work/log" || { cat "$work/log"; fail "photograph failed"; }
+$check "$work/photograph.json" photograph photographs=32 || fail "photograph --json"
+"$layerlab" detect "$work/photos" --scene "$examples/paper_prototype.json" --out "$work/measurements.json" --json \
+  >"$work/detect.json" 2>"$work/log" || { cat "$work/log"; fail "detect failed"; }
+$check "$work/detect.json" detect corners=540 luminance_steps=20 photographs=32 failed=[] || fail "not every photograph used"
+"$layerlab" fit "$examples/paper_prototype.json" "$work/measurements.json" --out "$work/calibrated.json" --json \
+  >"$work/fit.json" 2>"$work/fit.log" || { cat "$work/fit.log"; fail "fit failed"; }
+$check "$work/fit.json" fit "out=$work/calibrated.json" calibration || fail "fit --json"
 python3 - "$work/calibrated.json" <<'PY' || fail "the calibrated scene does not hold the built placement"
 import json, sys
 rear_a = [e for e in json.load(open(sys.argv[1]))["elements"] if e["name"] == "rear_a"][0]

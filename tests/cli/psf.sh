@@ -22,7 +22,7 @@ awk -F, '$1 == "G" && $3 + 0 == 0.1 && $4 + 0 == 20 {
   if ($5 - $7 < 0.05) { print "the geometric path is not off at 20 cpd, 0.1 D: " $0; exit 1 } }' "$work/a/mtf.csv" \
   || fail "20 cpd at 0.1 D: the wave-optics retina and pupil function disagree, or the geometric path agrees"
 mkdir -p "$work/kept" && echo keep >"$work/kept/mark"
-for bad in "--size 1" "--frequencies -3" "--vergence nine" "--spacing 1"; do
+for bad in "--size 1" "--frequencies -3" "--vergence nine" "--resolution 1"; do
   # shellcheck disable=SC2086
   "$layerlab" psf "$scene" $bad --out "$work/kept" >"$work/log" 2>&1 && fail "psf $bad was accepted"
   grep -q -- "${bad%% *}" "$work/log" || fail "psf $bad: the error does not name the option"

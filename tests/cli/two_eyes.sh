@@ -89,7 +89,7 @@ compared=$(sed -n 's/^left,hybrid,lightfield,\([0-9.]*\),.*/\1/p' "$work/compare
 if "$layerlab" compare "$work/small/left.json" "$work/small/right.json" --target-scene "$target" --iterations 1 \
   --out "$work/compare_both" >"$work/log" 2>&1; then fail "compare accepted displays seen by different eyes"; fi
 grep -q "see the target scene from different places" "$work/log" || fail "compare does not say why: $(tail -n 1 "$work/log")"
-"$layerlab" render-target "$target" "$work/lf" >"$work/log" 2>&1 || fail "render-target failed"
+"$layerlab" render-target "$target" --out "$work/lf" >"$work/log" 2>&1 || fail "render-target failed"
 "$layerlab" solve "$work/small/left.json" --target "$work/lf" --iterations 1 --out "$work/solve_lf" >"$work/log" 2>&1 ||
   fail "the solve on a light field failed"
 grep -q "is taken as it is, for an eye of a binocular pair with a display of its own" "$work/log" ||
