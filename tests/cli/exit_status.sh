@@ -25,7 +25,7 @@ status 0 "" solve --help
 status 0 "" --quiet info "$small"
 status 0 "" info "$small" --quiet
 status 0 "" -v info "$small"
-grep -q "^Usage: layerlab " <("$layerlab" help) || fail "the usage line does not start with \"layerlab\""
+grep -q "^Usage: layerlab \[OPTIONS\] SUBCOMMAND" <("$layerlab" help) || fail "layerlab help does not give the usage of layerlab (named so, not by its path)"
 
 status 2 '^layerlab: error: unknown command "frobnicate"' frobnicate
 status 2 '^layerlab: error: unknown command "sovle"; did you mean "solve"' -q --json sovle
