@@ -428,8 +428,7 @@ PlotPanel PsnrPanel(const std::vector<CompareResult>& results, const std::string
       line.x.push_back(row.seconds);
       line.y.push_back(db(row));
       t_max = std::max(t_max, row.seconds);
-      // The first iterate (often the flat initial guess) would squash the interesting range.
-      if (row.iteration > 0) y_min = std::min(y_min, db(row));
+      y_min = std::min(y_min, db(row));  // iteration 0 too: the curve is seen from where it starts
       y_max = std::max(y_max, db(row));
     }
     if (!line.x.empty()) panel.lines.push_back(std::move(line));

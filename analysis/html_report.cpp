@@ -37,6 +37,8 @@ h3{font-size:15px;margin:14px 0 6px}
 table{border-collapse:collapse;margin:6px 0 10px;font-variant-numeric:tabular-nums;display:block;overflow-x:auto;max-width:100%}
 th,td{border:1px solid #ddd;padding:3px 7px;text-align:right;white-space:nowrap}
 th{background:#f0f2f4;font-weight:600;white-space:normal;vertical-align:bottom;max-width:9em}
+table.summary th{max-width:none;min-width:22em;vertical-align:middle}
+table.summary td{text-align:left;font-weight:600}
 td.l,th.l{text-align:left}
 .grid{display:flex;flex-wrap:wrap;gap:14px;align-items:flex-start}
 figure{margin:0;max-width:100%}
@@ -118,6 +120,11 @@ constexpr const char* kScript = R"JS(
         if (!(img.naturalWidth > 0)) problems.push('image not shown: ' + img.getAttribute('src'));
       });
       var detail = images.length + ' images';
+      var first = document.querySelector('main section');
+      if (document.getElementById('summary')) {
+        if (first.id !== 'summary') problems.push('the summary is not the first section (' + first.id + ')');
+        detail += ', a summary of ' + document.querySelectorAll('#summary tr').length + ' numbers';
+      }
       var layout = document.querySelector('#layout svg');
       if (!document.getElementById('system')) detail += ', no display section';
       else if (!layout) problems.push('no optical layout diagram');
@@ -148,6 +155,20 @@ constexpr const char* kScript = R"JS(
   });
 })();
 )JS";
+
+// The key numbers first, each linked to the section it comes from; the display's brightness with them.
+std::string SummarySection(const RunReportPage& page) {
+  std::vector<SummaryItem> items = page.summary;
+  if (page.system)
+    items.push_back({"brightness efficiency (eye over backlight luminance)",
+                     FormatFixed(page.system->luminance_efficiency, 4), "system"});
+  if (items.empty()) return "";
+  std::string h = "<section id=\"summary\"><h2>Summary</h2><table class=\"summary\">\n";
+  for (const SummaryItem& item : items)
+    h += "<tr><th class=\"l\"><a href=\"#" + Escape(item.section) + "\">" + Escape(item.what) + "</a></th><td>" +
+         Escape(item.value) + "</td></tr>\n";
+  return h + "</table></section>\n";
+}
 
 std::string SystemSection(const RunReportPage& page) {
   const DisplaySystem& s = *page.system;
@@ -251,11 +272,13 @@ std::string RenderRunReport(const RunReportPage& page) {
                                     Escape(page.scene_file) + "</code> &middot; ";
   h += "<header><h1>" + Escape(page.title) + "</h1><p>" + Escape(page.description) + "</p><p>" + scenes + "<code>" +
        Escape(page.command) + "</code></p>\n<p id=\"version\">" + Escape(page.version) + "</p>\n<nav>";
+  if (!page.summary.empty() || page.system) h += "<a href=\"#summary\">Summary</a>";
   h += "<a href=\"#steps\">Steps</a>";
   if (page.system) h += "<a href=\"#system\">Display system</a>";
   for (const ReportSection& section : page.sections) h += "<a href=\"#" + section.id + "\">" + section.title + "</a>";
   h += "</nav></header>\n<main>\n";
   h += "<pre id=\"selftest\" hidden></pre>\n";
+  h += SummarySection(page);
   h += "<section id=\"steps\"><h2>Steps</h2><table><tr><th class=\"l\">step</th><th>wall time (s)</th></tr>\n";
   for (const auto& [step, seconds] : page.steps)
     h += "<tr><td class=\"l\">" + Escape(step) + "</td><td>" + F(seconds, 2) + "</td></tr>\n";

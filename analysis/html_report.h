@@ -42,7 +42,13 @@ struct ReportSection {
   std::string html;                // the <section> element
 };
 
-// The page's frame (header, steps, the display system) and its sections in order.
+// One number of the page's summary, first on the page: what it is, its value with its unit, and the
+// section that shows where it comes from.
+struct SummaryItem {
+  std::string what, value, section;
+};
+
+// The page's frame (header, summary, steps, the display system) and its sections in order.
 struct RunReportPage {
   std::string title, scene_file, description, command;
   std::string version;  // framework/version.h VersionLine()
@@ -53,6 +59,7 @@ struct RunReportPage {
   std::vector<std::string> warnings;
 
   std::vector<ReportSection> sections;
+  std::vector<SummaryItem> summary;  // each section adds its key numbers
 };
 
 // The pieces of a section's HTML: a number ("&ndash;" for NaN), file links, a linked figure.

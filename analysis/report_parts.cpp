@@ -1,6 +1,7 @@
 #include "layerlab/analysis/report_parts.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <optional>
@@ -12,7 +13,9 @@
 #include "layerlab/framework/png_writer.h"
 #include "layerlab/framework/units.h"
 #include "layerlab/framework/version.h"
+#include "layerlab/metrics/retinal_metrics.h"
 #include "layerlab/solvers/solution_writer.h"
+#include "layerlab/solvers/trace_columns.h"
 
 namespace layerlab {
 namespace {
@@ -25,6 +28,68 @@ void MakeFolder(const fs::path& folder) {
   std::error_code ec;
   fs::create_directories(folder, ec);
   if (ec) throw Error(folder.string() + ": cannot create the folder: " + ec.message());
+}
+
+// A value with its unit for the summary: "31.25 dB", "0.9412".
+std::string WithUnit(double value, const std::string& unit) {
+  if (!std::isfinite(value)) return "not measured";
+  return unit == "dB" || unit == "D" ? FormatFixed(value, 2) + " " + unit
+                                     : FormatFixed(value, 4) + (unit.empty() ? "" : " " + unit);
+}
+
+// The solve's key numbers: the solver and its time, the final light-field PSNR, and the focal stack's
+// PSNR and perceptual metrics where the solve measured them.
+void AddSolveSummary(const SolverReport& report, RunReportPage* page) {
+  page->summary.push_back({"solver",
+                           report.solver + ", " + std::to_string(report.iterations) + " iterations in " +
+                               FormatFixed(report.seconds, 2) + " s (" + ToString(report.termination) + ")",
+                           "solve"});
+  page->summary.push_back({"light-field PSNR", WithUnit(report.final_psnr_db, "dB"), "solve"});
+  const CompareResult self{"", report.solver, report, {}, 0};
+  for (const TraceColumn* c : MeasuredMetricColumns({self}))
+    page->summary.push_back(
+        {"focal stack, " + MetricHeading(*c), WithUnit(FinalTraceValue(*c, report), c->unit), "solve"});
+}
+
+// "+0.03", "-0.15", "0.00" (no sign where it rounds to zero).
+std::string Signed(double value, int decimals) {
+  const std::string text = FormatFixed(std::abs(value), decimals);
+  if (text.find_first_not_of("0.") == std::string::npos) return text;
+  return (value < 0 ? "-" : "+") + text;
+}
+
+// A layer's pattern in the eye's orientation (x right, y up as the eye sees the layer): the panel's pixel
+// order with the layer's mirror reversals undone (systems/display_system.h, flip_x and flip_y).
+std::vector<float> AsTheEyeSeesIt(const VirtualLayer& layer, const LayerPattern& t) {
+  std::vector<float> eye(t.rgb.size());
+  for (int row = 0; row < t.rows; ++row)
+    for (int col = 0; col < t.cols; ++col) {
+      const int from_col = layer.flip_x ? t.cols - 1 - col : col, from_row = layer.flip_y ? t.rows - 1 - row : row;
+      for (int c = 0; c < 3; ++c)
+        eye[(static_cast<size_t>(row) * t.cols + col) * 3 + c] =
+            t.rgb[(static_cast<size_t>(from_row) * t.cols + from_col) * 3 + c];
+    }
+  return eye;
+}
+
+// Each display's contrast peak against the target depth, one line per display and frequency: the
+// accommodation it draws, less where the grating is (the eye's pupil at its place).
+void AddContrastSummary(const std::vector<ContrastCurve>& curves, RunReportPage* page) {
+  std::vector<std::pair<std::string, std::string>> lines;  // (display at f, "+0.05 D at 0.70 D, ...")
+  for (const ContrastCurve& c : curves) {
+    if (c.display.rfind("natural", 0) == 0 || c.pupil_moved) continue;
+    const std::string what =
+        "contrast peak minus target depth: " + c.display + " at " + FormatFixed(c.frequency, 1) + " cpd";
+    const std::string value =
+        (c.estimate.flat ? std::string("flat") : Signed(c.estimate.at - c.target_diopters, 2) + " D") + " at " +
+        FormatFixed(c.target_diopters, 2) + " D";
+    auto line = std::find_if(lines.begin(), lines.end(), [&](const auto& l) { return l.first == what; });
+    if (line == lines.end())
+      lines.push_back({what, value});
+    else
+      line->second += ", " + value;
+  }
+  for (const auto& [what, value] : lines) page->summary.push_back({what, value, "contrast"});
 }
 
 }  // namespace
@@ -50,7 +115,7 @@ void AddSolveToPage(const DisplaySystem& system, const Patterns& patterns, const
   for (size_t k = 0; k < system.layers.size(); ++k) {
     const VirtualLayer& layer = system.layers[k];
     const std::string preview = "pattern_previews/" + layer.name + ".png";
-    WriteSrgbPng((out / preview).string(), patterns[k].cols, patterns[k].rows, patterns[k].rgb);
+    WriteSrgbPng((out / preview).string(), patterns[k].cols, patterns[k].rows, AsTheEyeSeesIt(layer, patterns[k]));
     files.push_back(prefix + preview);
     patterns_shown.push_back(Picture(layer.name + " (" + FormatFixed(layer.diopters, 2) + " D)", prefix + preview,
                                      {{"EXR", prefix + "patterns/" + layer.name + ".exr"}}));
@@ -83,6 +148,7 @@ void AddSolveToPage(const DisplaySystem& system, const Patterns& patterns, const
                  {"trace.csv", prefix + "trace.csv"}};
   if (with_lightfield) links.push_back({"synthesized light field", prefix + "lightfield/lightfield.json"});
   files.push_back(prefix + "psnr_vs_time.svg");
+  AddSolveSummary(report, page);
   page->sections.push_back(
       {"solve", "Factorization", files,
        SolveHtml(report.BriefReport() + (report.flicker ? "; " + report.flicker->Describe() : std::string()), links,
@@ -110,6 +176,18 @@ void AddRetinaToPage(const std::vector<RetinaStateResult>& states, const std::ve
     shown.push_back(rs);
   }
   if (shown.empty()) return;
+  for (size_t k = 0; natural && k < states.front().scores.size(); ++k) {
+    double sum = 0;
+    for (const RetinaStateResult& st : states) sum += st.scores[k].second;
+    const std::string& column = states.front().scores[k].first;
+    std::string name = column, unit;
+    for (const RetinalMetric& m : RetinalMetrics())
+      if (m.column == column) name = m.name, unit = m.unit;
+    for (char& ch : name) ch = ch == '_' ? '-' : static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+    page->summary.push_back({"retinal " + name + " against natural viewing (mean of " + std::to_string(states.size()) +
+                                 " accommodation states)",
+                             WithUnit(sum / double(states.size()), unit), "retina"});
+  }
   page->sections.push_back(
       {"retina", "Retinal images", files, RetinaHtml(shown, {{"retina.csv", prefix + "retina.csv"}}, white_cd_m2)});
 }
@@ -134,6 +212,7 @@ void AddContrastToPage(const std::vector<ContrastCurve>& curves, const std::stri
     eyebox = Picture("the contrast peak's error across the eyebox", prefix + "eyebox_peaks.svg",
                      {{"SVG", prefix + "eyebox_peaks.svg"}, {"CSV", prefix + "eyebox_peaks.csv"}});
   }
+  AddContrastSummary(curves, page);
   page->sections.push_back({"contrast", "Contrast", files, ContrastHtml(plot, curves, eyebox ? &*eyebox : nullptr)});
 }
 

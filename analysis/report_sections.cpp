@@ -33,7 +33,9 @@ std::string SolveHtml(const std::string& brief, const ReportLinks& links, const 
                       const std::vector<ReportImage>& patterns, const std::vector<ReportImage>& panels) {
   std::string h = "<section id=\"solve\"><h2>Factorization</h2><p>" + Escape(brief) + HtmlLinks(links) + "</p>\n";
   h += "<div class=\"grid\">" + HtmlFigure(psnr_plot, "", "plot") + "</div>\n";
-  h += "<h3>Layer patterns (linear transmittance, panel pixel order)</h3><div class=\"grid\">\n";
+  h += "<h3>Layer patterns as the eye sees them (linear transmittance; a mirror-reversed layer is turned back, so "
+       "that neighbouring layers line up; the EXRs and the panel-ready images are in the panel's pixel order)</h3>"
+       "<div class=\"grid\">\n";
   for (const ReportImage& p : patterns) h += HtmlFigure(p, "", "small");
   h += "</div>\n<h3>Panel-ready images (gamma- and black-level-encoded; the active region, a click shows the full "
        "panel)</h3><div class=\"grid\">\n";
@@ -41,6 +43,33 @@ std::string SolveHtml(const std::string& brief, const ReportLinks& links, const 
   h += "</div></section>\n";
   return h;
 }
+// The mean retinal luminance over accommodation, display and natural viewing, as a small plot inline in the
+// page (a table of nearly equal numbers took a screen); the table stays, folded, below it.
+std::string MeanLuminancePlot(const std::vector<ReportRetinaState>& states) {
+  PlotPanel panel;
+  panel.x_label = "accommodation (D)";
+  panel.y_label = "mean luminance (cd/m\u00b2)";
+  PlotLine display{"display", "#d62728", false, {}, {}}, natural{"natural viewing", "#1f77b4", true, {}, {}};
+  double lo = INFINITY, hi = -INFINITY;
+  for (const ReportRetinaState& s : states) {
+    display.x.push_back(s.diopters), display.y.push_back(s.display_mean_cd_m2);
+    lo = std::min(lo, s.display_mean_cd_m2), hi = std::max(hi, s.display_mean_cd_m2);
+    if (std::isfinite(s.natural_mean_cd_m2)) {
+      natural.x.push_back(s.diopters), natural.y.push_back(s.natural_mean_cd_m2);
+      lo = std::min(lo, s.natural_mean_cd_m2), hi = std::max(hi, s.natural_mean_cd_m2);
+    }
+  }
+  panel.lines.push_back(std::move(display));
+  if (!natural.x.empty()) panel.lines.push_back(std::move(natural));
+  panel.x_min = states.front().diopters, panel.x_max = std::max(states.back().diopters, panel.x_min + 0.1);
+  const double pad = std::max(0.1 * (hi - lo), 0.02 * std::max(hi, 1e-9));  // nearly equal values stay readable
+  panel.y_min = std::max(0.0, lo - pad), panel.y_max = hi + pad;
+  std::string svg = RenderSvg({panel}, 1, "mean retinal luminance against accommodation");
+  const std::string xmlns = " xmlns=\"http://www.w3.org/2000/svg\"";  // inline in HTML it needs none
+  if (const size_t at = svg.find(xmlns); at != std::string::npos) svg.erase(at, xmlns.size());
+  return svg;
+}
+
 std::string RetinaHtml(const std::vector<ReportRetinaState>& states, const ReportLinks& links, double white_cd_m2) {
   std::string h = "<section id=\"retina\"><h2>What the eye sees: retinal images over accommodation</h2>\n";
   h += "<p class=\"muted\">Drag the slider to focus the eye (a focal stack). Linear values are display-relative (1 = " +
@@ -69,9 +98,10 @@ std::string RetinaHtml(const std::vector<ReportRetinaState>& states, const Repor
   const ReportRetinaState& first = states[start];
   h += HtmlFigure(first.display, "retina-display", "retina");
   if (!first.natural.src.empty()) h += HtmlFigure(first.natural, "retina-natural", "retina");
-  h += "</div>\n<h3>Mean luminance at the retina</h3>\n<table><tr><th>accommodation (D)</th><th>display "
-       "(cd/m&sup2;)</th>"
-       "<th>natural viewing (cd/m&sup2;)</th><th class=\"l\">images</th></tr>\n";
+  h += "</div>\n<h3>Mean luminance at the retina</h3>\n<figure class=\"plot\">" + MeanLuminancePlot(states) +
+       "</figure>\n<details><summary>each state's mean luminance and its images</summary>\n<table><tr><th>"
+       "accommodation (D)</th><th>display (cd/m&sup2;)</th><th>natural viewing (cd/m&sup2;)</th><th "
+       "class=\"l\">images</th></tr>\n";
   nlohmann::json shown = nlohmann::json::array();
   for (const ReportRetinaState& s : states) {
     h += "<tr><td>" + F(s.diopters, 2) + (s.declared ? " &#9679;" : "") + "</td><td>" + F(s.display_mean_cd_m2, 2) +
@@ -89,7 +119,7 @@ std::string RetinaHtml(const std::vector<ReportRetinaState>& states, const Repor
     shown.push_back(j);
   }
   h += "</table>\n<p class=\"muted\">&#9679; a declared accommodation state (the slider's tick marks); the others are "
-       "the focal stack.</p>\n";
+       "the focal stack.</p>\n</details>\n";
   std::string data = shown.dump();
   for (size_t at = data.find("</"); at != std::string::npos; at = data.find("</", at + 3)) data.replace(at, 2, "<\\/");
   h += "<script>window.layerlabStates = " + data + ";</script>\n";

@@ -96,7 +96,7 @@ RetinaBatch TraceBatch(const DisplayModel& model, const std::vector<ShownInstant
 
 // The batch's files, in parallel: file f of state s = f / 4 is the display's
 // EXR, its PNG, the natural EXR, its PNG. Each file's seconds into `seconds`.
-void WriteBatch(const fs::path& out, const RetinaGrid& grid, bool natural, RetinaBatch* b,
+void WriteBatch(const fs::path& out, const RetinaGrid& grid, bool natural, ExrPixels pixels, RetinaBatch* b,
                 std::vector<double>* seconds) {
   const int files = static_cast<int>(b->r.size() * 4);
   std::vector<std::exception_ptr> failed(files);
@@ -111,7 +111,7 @@ void WriteBatch(const fs::path& out, const RetinaGrid& grid, bool natural, Retin
       const Image& image = of_display ? b->display[s] : b->seen[s];
       const fs::path stem = out / (of_display ? "display" : "natural") / b->r[s].name;
       if (exr)
-        WriteExr(stem.string() + ".exr", image, ExrCompression::kNone);
+        WriteExr(stem.string() + ".exr", image, ExrCompression::kNone, pixels);
       else {
         const size_t clipped =
             WriteSrgbPng(stem.string() + ".png", grid.cols, grid.rows, image.pixels, 1.0, PngCompression::kFast);
@@ -179,7 +179,7 @@ std::vector<RetinaStateResult> WriteRetinaSweep(
     RetinaBatch b = TraceBatch(model, shown, natural, optics, o.states_diopters, first, count, metrics,
                                o.metric_settings, &workspace);
     std::vector<double> seconds;
-    WriteBatch(out, grid, bool(natural), &b, &seconds);
+    WriteBatch(out, grid, bool(natural), o.exr_pixels, &b, &seconds);
     for (size_t s = 0; s < count; ++s) {
       RetinaStateResult& r = b.r[s];
       for (int f = 0; f < 4; ++f) r.seconds += seconds[s * 4 + f];

@@ -34,6 +34,9 @@ struct RetinaSweepOptions {
   // Foveal weighting (a gaze, deg right and up from the retina's centre, where the eye looks: {0, 0}) and the
   // JND's Minkowski exponent (metrics/retinal_metrics.h).
   MetricSettings metric_settings;
+  // The EXRs of the images: half floats by default (pictures to look at; the scores and retina.csv come from
+  // the float images in memory), float on request.
+  ExrPixels exr_pixels = ExrPixels::kHalf;
 };
 
 // Accommodation states as `layerlab retina` takes them (ParseOptionValue:

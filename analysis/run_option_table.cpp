@@ -77,6 +77,14 @@ std::vector<RetinaRunOptionEntry> MakeRetinaTable() {
   e.get = [](const RetinaRunConfig& o) { return int(o.natural_traced); };
   e.set = [](RetinaRunConfig& o, int i) { o.natural_traced = i != 0; };
   add();
+  e.key = "exr", e.kind = Kind::kChoice, e.type = "string", e.default_text = "half";
+  e.meaning =
+      "how the retinal images' EXRs store a value: \"half\" (16 bits, a relative error of at most 0.049 %, half "
+      "the size: pictures to look at; retina.csv and the page's numbers come from the float images) or \"float\"";
+  e.choices = {"half", "float"};
+  e.get = [](const RetinaRunConfig& o) { return int(o.exr_float); };
+  e.set = [](RetinaRunConfig& o, int i) { o.exr_float = i != 0; };
+  add();
   return t;
 }
 

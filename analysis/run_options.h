@@ -21,6 +21,7 @@ struct RetinaRunConfig {
   double field_x_deg = 0, field_y_deg = 0;     // 0 x 0: the display's field of view
   bool natural = true;                         // natural viewing of the target too
   bool natural_traced = false;                 // traced in the target scene rather than read from its light field
+  bool exr_float = false;                      // the images' EXRs in float, not half (RetinaSweepOptions::exr_pixels)
   std::vector<const RetinalMetric*> metrics;   // each state scored against natural viewing by these (empty: PSNR)
   MetricSettings metric_settings;              // their foveal weighting and the JND's exponent
   // Every state in D, sorted, duplicates removed: the slider's positions.

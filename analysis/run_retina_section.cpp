@@ -13,8 +13,14 @@ std::string RunRetina(RunState& s) {
   const SceneRadiance natural =
       r.natural ? s.target->Natural(r.natural_traced ? Target::Viewing::kTraced : Target::Viewing::kLightField)
                 : SceneRadiance{};
-  RetinaSweepOptions sweep{r.states(), r.resolution_deg, r.field_x_deg, r.field_y_deg, s.request.keep_images,
-                           r.metrics,  r.metric_settings};
+  RetinaSweepOptions sweep{r.states(),
+                           r.resolution_deg,
+                           r.field_x_deg,
+                           r.field_y_deg,
+                           s.request.keep_images,
+                           r.metrics,
+                           r.metric_settings,
+                           r.exr_float ? ExrPixels::kFloat : ExrPixels::kHalf};
   Progress progress("retina", sweep.states_diopters.size());
   std::vector<RetinaStateResult> states =
       WriteRetinaSweep(*s.solved.model, s.solved.patterns, natural, sweep, (s.out / "retina").string(),

@@ -113,6 +113,34 @@ std::string AxesSvg(const PlotPanel& panel, const PlotArea& a) {
   return svg;
 }
 
+// Line k's point symbol at (x, y): a circle, square, triangle or diamond, hollow, so that lines that
+// coincide stay apart by their symbols.
+std::string Symbol(size_t k, double x, double y, const std::string& color) {
+  const std::string style = "\" fill=\"white\" stroke=\"" + color + "\" stroke-width=\"1.5\"/>\n";
+  switch (k % 4) {
+    case 0:
+      return "<circle cx=\"" + Num(x) + "\" cy=\"" + Num(y) + "\" r=\"3.2" + style;
+    case 1:
+      return "<rect x=\"" + Num(x - 3) + "\" y=\"" + Num(y - 3) + "\" width=\"6\" height=\"6" + style;
+    case 2:
+      return "<polygon points=\"" + Num(x) + "," + Num(y - 4) + " " + Num(x + 3.6) + "," + Num(y + 2.6) + " " +
+             Num(x - 3.6) + "," + Num(y + 2.6) + style;
+    default:
+      return "<polygon points=\"" + Num(x) + "," + Num(y - 4) + " " + Num(x + 4) + "," + Num(y) + " " + Num(x) + "," +
+             Num(y + 4) + " " + Num(x - 4) + "," + Num(y) + style;
+  }
+}
+
+// Which points of an n-point line carry a symbol: every one up to kAllSymbols points, else about
+// kSymbols evenly spaced, each line starting at its own phase so that coinciding lines do not hide
+// each other's.
+constexpr size_t kAllSymbols = 40, kSymbols = 16;
+bool CarriesSymbol(size_t point, size_t n, size_t line) {
+  if (n <= kAllSymbols) return true;
+  const size_t every = n / kSymbols;
+  return point % every == (line * every / 4) % every;
+}
+
 // A panel's markers and lines.
 std::string DataSvg(const PlotPanel& panel, const PlotArea& a) {
   const double x0 = a.x0, x1 = a.x1, y0 = a.y0, y1 = a.y1;
@@ -136,6 +164,12 @@ std::string DataSvg(const PlotPanel& panel, const PlotArea& a) {
            (line.dashed ? " stroke-dasharray=\"6,3\"" : "") + " points=\"" + points + "\"><title>" +
            Escape(line.label) + "</title></polyline>\n";
   }
+  for (size_t l = 0; l < panel.lines.size(); ++l) {
+    const PlotLine& line = panel.lines[l];
+    for (size_t k = 0; k < line.x.size(); ++k)
+      if (std::isfinite(line.y[k]) && CarriesSymbol(k, line.x.size(), l))
+        svg += Symbol(l, X(line.x[k]), Y(std::clamp(line.y[k], panel.y_min, panel.y_max)), line.color);
+  }
   return svg;
 }
 
@@ -157,6 +191,7 @@ std::string LegendSvg(const std::vector<PlotPanel>& panels, const std::vector<Le
     svg += "<line x1=\"" + Num(x) + "\" y1=\"" + Num(y - 4) + "\" x2=\"" + Num(x + 24) + "\" y2=\"" + Num(y - 4) +
            "\" stroke=\"" + line.color + "\" stroke-width=\"2\"" + (line.dashed ? " stroke-dasharray=\"6,3\"" : "") +
            "/>\n";
+    svg += Symbol(k, x + 12, y - 4, line.color);
     svg += "<text x=\"" + Num(x + 30) + "\" y=\"" + Num(y) + "\">" + Escape(line.label) + "</text>\n";
   }
   return svg;

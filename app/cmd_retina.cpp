@@ -48,6 +48,7 @@ struct RetinaCommandOptions {
   std::string eyes = "scene", partner_patterns;
   std::string metrics = "psnr";
   MetricFlags metric_flags;
+  std::string exr = "half";
 };
 
 // --accommodation and --focal-stack's states, sorted, without repeats.
@@ -113,7 +114,8 @@ std::vector<RetinaStateResult> RetinaOfEye(const RetinaCommandOptions& o, const 
                            field[1],
                            false,
                            ParseRetinalMetrics(o.metrics, "--metrics"),
-                           ParseMetricSettings(o.metric_flags)};
+                           ParseMetricSettings(o.metric_flags),
+                           o.exr == "float" ? ExrPixels::kFloat : ExrPixels::kHalf};
   Progress progress(label, states.size());
   const std::vector<RetinaStateResult> results =
       WriteRetinaSweep(model, t, natural, sweep, folder, [&](size_t done, size_t, const RetinaStateResult& r) {
@@ -306,6 +308,10 @@ void AddRetinaCommand(CLI::App& app) {
   AddOpticsOptions(cmd, o->optics);
   cmd->add_option("--resolution", o->resolution, "Retinal sample size: degrees or \"3 arcmin\" (default 0.05)");
   cmd->add_option("--field", o->field, "Retinal field W,H: degrees (default: the display's field of view)");
+  cmd->add_option("--exr", o->exr,
+                  "How the images' EXRs store a value: half (16 bits, at most 0.049 % off, half the size: pictures "
+                  "to look at; retina.csv comes from the float images) or float (default half)")
+      ->check(CLI::IsMember({"half", "float"}));
   cmd->add_option("--sampling", o->sampling,
                   "Layer sampling: nearest or bilinear (default: the scene's solve section)");
   cmd->add_option("--eyes", o->eyes,

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <map>
 
+#include <Imath/half.h>
 #include <OpenEXR/IexBaseExc.h>
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
@@ -18,6 +19,7 @@
 #include "layerlab/framework/atomic_file.h"
 #include "layerlab/framework/error.h"
 #include "layerlab/framework/file_kind.h"
+#include "layerlab/framework/units.h"
 
 namespace layerlab {
 namespace {
@@ -272,7 +274,7 @@ std::string FindValueThatIsNotLight(const float* values, size_t count, int width
   return "";
 }
 
-void WriteExr(const std::string& path, const Image& image, ExrCompression compression) {
+void WriteExr(const std::string& path, const Image& image, ExrCompression compression, ExrPixels pixels) {
   size_t n = image.channels.size();
   if (image.width <= 0 || image.height <= 0 || n == 0 ||
       image.pixels.size() != static_cast<size_t>(image.width) * image.height * n)
@@ -282,11 +284,23 @@ void WriteExr(const std::string& path, const Image& image, ExrCompression compre
     Imf::Header header(image.width, image.height);
     header.compression() = compression == ExrCompression::kZip ? Imf::ZIP_COMPRESSION : Imf::NO_COMPRESSION;
     Imf::FrameBuffer frame;
+    std::vector<Imath::half> halves;
     char* base = const_cast<char*>(reinterpret_cast<const char*>(image.pixels.data()));
+    Imf::PixelType type = Imf::FLOAT;
+    size_t size = sizeof(float);
+    if (pixels == ExrPixels::kHalf) {
+      halves.resize(image.pixels.size());
+      for (size_t k = 0; k < halves.size(); ++k) {
+        if (!(std::abs(image.pixels[k]) <= HALF_MAX))
+          throw Error(path + ": " + FormatGeneral(image.pixels[k]) +
+                      " does not fit a half-float EXR (at most 65504); write it as float");
+        halves[k] = Imath::half(image.pixels[k]);
+      }
+      base = reinterpret_cast<char*>(halves.data()), type = Imf::HALF, size = sizeof(Imath::half);
+    }
     for (size_t c = 0; c < n; ++c) {
-      header.channels().insert(image.channels[c].c_str(), Imf::Channel(Imf::FLOAT));
-      frame.insert(image.channels[c].c_str(), Imf::Slice(Imf::FLOAT, base + c * sizeof(float), n * sizeof(float),
-                                                         n * sizeof(float) * image.width));
+      header.channels().insert(image.channels[c].c_str(), Imf::Channel(type));
+      frame.insert(image.channels[c].c_str(), Imf::Slice(type, base + c * size, n * size, n * size * image.width));
     }
     Imf::OutputFile file(out.temp_path().c_str(), header);
     file.setFrameBuffer(frame);

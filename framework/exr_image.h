@@ -37,8 +37,16 @@ Image ReadExr(const std::string& path, const std::vector<std::string>& channels,
 // it takes about 5 ms.
 enum class ExrCompression { kZip, kNone };
 
-// Writes float channels, atomically.
-void WriteExr(const std::string& path, const Image& image, ExrCompression compression = ExrCompression::kZip);
+// How WriteExr stores each value: as it is (32-bit float), or as a 16-bit
+// half (11 significant bits: a relative error of at most 2^-11 = 0.049 %,
+// values up to 65504), half the size; for pictures to look at, not for values
+// to compute with again.
+enum class ExrPixels { kFloat, kHalf };
+
+// Writes float channels, atomically. kHalf refuses a value beyond the largest
+// half rather than write it as infinity.
+void WriteExr(const std::string& path, const Image& image, ExrCompression compression = ExrCompression::kZip,
+              ExrPixels pixels = ExrPixels::kFloat);
 
 // The data window size of an EXR file without reading its pixels.
 struct ExrSize {

@@ -106,6 +106,20 @@ TEST(Compare, EveryRowCarriesBothPsnrsWhenOneMinimizesTheFocalStack) {
 // keep the 4 mm pupil inside the light field's 6 mm eyebox (1 mm each way in
 // steps of 0.5 mm); a display that shows its target exactly is within any
 // quality across them, and the table and CSV gain its column.
+// The plot's axis reaches iteration 0 (issue 50: a flat initial guess at 14 dB was drawn at the
+// axis' foot, 29 dB, so that the curve seemed to start high).
+TEST(Compare, PsnrAgainstTimeShowsIterationZero) {
+  CompareResult r;
+  r.display = "d", r.solver = "hybrid";
+  for (const auto& [iteration, psnr] : {std::pair{0, 14.0}, {1, 30.0}, {2, 31.0}, {3, 32.0}}) {
+    IterationRecord row;
+    row.iteration = iteration, row.seconds = 0.5 * iteration, row.psnr_db = psnr;
+    r.report.trace.push_back(row);
+  }
+  const std::string svg = PsnrAgainstTimeSvg({r});
+  EXPECT_NE(svg.find(">15<"), std::string::npos) << "no tick below 29 dB: " << svg;
+}
+
 TEST(Compare, TheEyeboxColumnCoversThePupilPositionsInsideTheLightField) {
   const DisplaySystem stack = testing::CompileJson(testing::ShrunkExample("multiplicative_2layer.json", 16, 8, 3));
   const DisplayModel model(stack, DisplayLightFieldGeometry(stack));

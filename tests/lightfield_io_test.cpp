@@ -177,6 +177,29 @@ TEST_F(LightFieldFolder, NotAnExr) {
   EXPECT_EQ(ReadError(), Path("views/r00_c00.exr") + ": not an OpenEXR file");
 }
 
+// Half-float EXRs (the retinal images' default): each value within half a unit in the last of 11
+// significant bits of the float, the file about half the size; a value beyond the largest half refused.
+TEST(ExrPixels, HalfKeepsElevenSignificantBits) {
+  const fs::path dir = fs::temp_directory_path() / ("layerlab_exr_half_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  Image image{64, 32, {"R", "G", "B"}, {}};
+  for (int k = 0; k < 64 * 32 * 3; ++k) image.pixels.push_back(0.001f + 1.7f * float(k % 997) / 997.f);
+  WriteExr((dir / "float.exr").string(), image, ExrCompression::kNone, ExrPixels::kFloat);
+  WriteExr((dir / "half.exr").string(), image, ExrCompression::kNone, ExrPixels::kHalf);
+  const Image back = ReadExr((dir / "half.exr").string(), {"R", "G", "B"});
+  ASSERT_EQ(back.pixels.size(), image.pixels.size());
+  double worst = 0;
+  for (size_t k = 0; k < image.pixels.size(); ++k)
+    worst = std::max(worst, std::abs(double(back.pixels[k]) - image.pixels[k]) / image.pixels[k]);
+  EXPECT_LE(worst, std::ldexp(1.0, -11));
+  EXPECT_GT(worst, 0.0) << "the values were not rounded to half";
+  EXPECT_LT(fs::file_size(dir / "half.exr"), 0.55 * fs::file_size(dir / "float.exr"));
+  image.pixels[5] = 70000.f;
+  EXPECT_THROW(WriteExr((dir / "big.exr").string(), image, ExrCompression::kNone, ExrPixels::kHalf), Error);
+  EXPECT_FALSE(fs::exists(dir / "big.exr"));
+  fs::remove_all(dir);
+}
+
 TEST_F(LightFieldFolder, HugeDeclaredSizeIsRefusedBeforeAllocating) {
   // Rewrite the dataWindow attribute (box2i: xmin ymin xmax ymax) to 1e9 x 1e9 pixels.
   std::string file = Path("views/r00_c00.exr");

@@ -1,4 +1,5 @@
-// analysis/svg_plot.h: one title per plot, and a marker that cannot be taken for a curve.
+// analysis/svg_plot.h: one title per plot, a marker that cannot be taken for a curve, and lines that
+// coincide told apart by their symbols.
 #include <gtest/gtest.h>
 
 #include "layerlab/analysis/svg_plot.h"
@@ -40,6 +41,28 @@ TEST(SvgPlot, AMarkerIsABandWithItsLabelNotALine) {
   EXPECT_EQ(Count(svg, "fill=\"#888\""), 2u) << "the band, and its block in the legend";
   EXPECT_EQ(Count(svg, ">target depth<"), 3u) << "labelled on the plot (text and tooltip) and in the legend";
   EXPECT_EQ(Count(svg, "stroke-dasharray"), 0u) << "no dashed line that could pass for a curve";
+}
+
+// Two runs with the same curve (issue 50: four runs showed as three lines): each line's points carry
+// its own symbol, hollow, so both show where they overlap; the legend shows the symbols too.
+TEST(SvgPlot, CoincidingLinesKeepTheirSymbols) {
+  PlotPanel p;
+  p.lines = {{"a", "#d62728", false, {0, 1, 2, 3}, {10, 20, 25, 27}},
+             {"b", "#1f77b4", false, {0, 1, 2, 3}, {10, 20, 25, 27}}};
+  const std::string svg = RenderSvg({p}, 1, "");
+  EXPECT_EQ(Count(svg, "<circle"), 4u + 1u) << "line a's four points and its legend entry";
+  EXPECT_EQ(Count(svg, "width=\"6\" height=\"6\""), 4u + 1u) << "line b's four points and its legend entry";
+  EXPECT_EQ(Count(svg, "fill=\"white\" stroke=\"#1f77b4\""), 5u);
+  // A long line carries about 16 symbols, each line at its own phase.
+  PlotPanel many;
+  std::vector<double> x(300), y(300);
+  for (size_t k = 0; k < x.size(); ++k) x[k] = double(k), y[k] = double(k % 7);
+  many.x_max = 300, many.y_max = 7;
+  many.lines = {{"a", "#d62728", false, x, y}, {"b", "#1f77b4", false, x, y}};
+  const std::string long_svg = RenderSvg({many}, 1, "");
+  EXPECT_GE(Count(long_svg, "<circle"), 14u);
+  EXPECT_LE(Count(long_svg, "<circle"), 20u);
+  EXPECT_EQ(Count(long_svg, "<circle"), Count(long_svg, "width=\"6\" height=\"6\"")) << "as many symbols on each line";
 }
 
 }  // namespace

@@ -40,6 +40,40 @@ run)
   grep -q 'type="range"' "$out/index.html" || fail "index.html has no accommodation slider"
   grep -q 'hybrid_pbs_hwp_small' "$out/index.html" || fail "index.html has no comparison with the PBS/HWP hybrid"
   if grep -q 'https\?://' "$out/index.html"; then fail "index.html refers to the network"; fi
+  # The summary leads the page with the numbers the files hold (issue 50).
+  /usr/bin/python3 - "$out" <<'PY' || fail "the page's summary disagrees with the files"
+import csv, html, json, re, sys
+out = sys.argv[1]
+page = open(out + "/index.html").read()
+main = page[page.index("<main>"):]
+assert main.index('<section id="summary">') < main.index('<section id="steps">'), "the summary is not first"
+summary = page[page.index('<section id="summary">'):]
+summary = summary[:summary.index("</section>")]
+rows = {html.unescape(re.sub("<[^>]*>", "", a)): html.unescape(b)
+        for a, b in re.findall(r"<tr><th[^>]*>(.*?)</th><td>(.*?)</td></tr>", summary)}
+report = json.load(open(out + "/solve/report.json"))
+assert rows["light-field PSNR"] == "%.2f dB" % report["final_psnr_db"], rows["light-field PSNR"]
+states = list(csv.DictReader(open(out + "/retina/retina.csv")))
+mean = sum(float(r["psnr_db"]) for r in states) / len(states)
+key = "retinal PSNR against natural viewing (mean of %d accommodation states)" % len(states)
+assert rows[key] == "%.2f dB" % mean, (rows.get(key), mean)
+assert any(k.startswith("contrast peak minus target depth: ") for k in rows), sorted(rows)
+system = json.load(open(out + "/system.json"))
+print("e2e: the summary's %d numbers agree with report.json, retina.csv and system.json" % len(rows))
+# The pattern previews are in the eye's orientation: a mirror-reversed layer's preview is its panel-order
+# image turned back (compared by correlation, the panel-ready image being gamma-encoded).
+import numpy
+from skimage import io
+for layer in system["layers"]:
+    eye = io.imread(out + "/solve/pattern_previews/%s.png" % layer["name"]).astype(float).mean(axis=2)
+    panel = io.imread(out + "/solve/panel_previews/%s.png" % layer["name"]).astype(float).mean(axis=2)
+    flip_x, flip_y = layer["flip"]
+    turned = panel[::-1 if flip_y else 1, ::-1 if flip_x else 1]
+    same = numpy.corrcoef(eye.ravel(), turned.ravel())[0, 1]
+    other = numpy.corrcoef(eye.ravel(), panel[:, ::-1].ravel() if not flip_x else panel.ravel())[0, 1]
+    assert same > 0.9 and same > other + 0.05, (layer["name"], same, other)
+print("e2e: the pattern previews are as the eye sees each layer")
+PY
   echo "e2e: run output complete ($n_display accommodation states)"
   ;;
 browse)
