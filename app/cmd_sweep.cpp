@@ -56,9 +56,9 @@ void CheckSlurmOptions(const SlurmResources& r) {
         throw Error(std::string("--slurm-") + key + ": " + problem);
 }
 
-// The table, and the exit: non-zero when a job failed or did not run.
-void GatherAndReport(const SweepSpec& spec, const std::vector<SweepJob>& jobs, const std::string& out) {
-  const SweepSummary s = GatherSweep(spec, jobs, out);
+// The summary every runner prints (local, MPI, --gather), and the exit: non-zero when a job failed or did
+// not run.
+void ReportSweep(const std::vector<SweepJob>& jobs, const SweepSummary& s, const std::string& out) {
   CommandResult result("sweep");
   result.Text("sweep: " + std::to_string(jobs.size()) + " jobs: " + std::to_string(s.complete) + " complete, " +
               std::to_string(s.failed) + " failed, " + std::to_string(s.pending) + " not run; table " + out +
@@ -71,6 +71,11 @@ void GatherAndReport(const SweepSpec& spec, const std::vector<SweepJob>& jobs, c
   result["table"] = out + "/table.csv";
   result.Print();
   if (s.failed || s.pending) throw CLI::RuntimeError(1);
+}
+
+// The table gathered from the job records, and the summary.
+void GatherAndReport(const SweepSpec& spec, const std::vector<SweepJob>& jobs, const std::string& out) {
+  ReportSweep(jobs, GatherSweep(spec, jobs, out), out);
 }
 
 void RunSweepCommand(const SweepOptions& o) {
@@ -98,18 +103,9 @@ void RunSweepCommand(const SweepOptions& o) {
   if (o.mpi) {
 #if LAYERLAB_WITH_MPI
     bool root = false;
-    const size_t failed = RunSweepMpi(spec, jobs, o.out, &root);
-    if (root) {
-      CommandResult result("sweep");
-      result.Text("sweep: " + std::to_string(jobs.size()) + " jobs, " + std::to_string(failed) + " failed; table " +
-                  o.out + "/table.html\n");
-      result["out"] = o.out;
-      result["jobs"] = jobs.size();
-      result["failed"] = failed;
-      result["table"] = o.out + "/table.csv";
-      result.Print();
-    }
-    if (failed) throw CLI::RuntimeError(1);
+    const SweepSummary summary = RunSweepMpi(spec, jobs, o.out, &root);
+    if (root) ReportSweep(jobs, summary, o.out);
+    if (summary.failed) throw CLI::RuntimeError(1);
     return;
 #else
     throw Error(

@@ -14,7 +14,8 @@
 
 namespace layerlab::app {
 
-size_t RunSweepMpi(const SweepSpec& spec, const std::vector<SweepJob>& jobs, const std::string& out, bool* is_root) {
+SweepSummary RunSweepMpi(const SweepSpec& spec, const std::vector<SweepJob>& jobs, const std::string& out,
+                         bool* is_root) {
   int initialized = 0;
   MPI_Initialized(&initialized);
   if (!initialized) MPI_Init(nullptr, nullptr);
@@ -52,18 +53,20 @@ size_t RunSweepMpi(const SweepSpec& spec, const std::vector<SweepJob>& jobs, con
   unsigned long total_failed = 0, total_ran = 0;
   MPI_Allreduce(&failed, &total_failed, 1, MPI_UNSIGNED_LONG, MPI_SUM, MPI_COMM_WORLD);
   MPI_Allreduce(&ran, &total_ran, 1, MPI_UNSIGNED_LONG, MPI_SUM, MPI_COMM_WORLD);
+  SweepSummary summary;  // rank 0's from the table; the others know the failures
+  summary.failed = total_failed;
   if (rank == 0) {
     std::fprintf(stderr, "sweep: %lu jobs ran on %d ranks, %lu skipped as complete\n", total_ran, size,
                  static_cast<unsigned long>(jobs.size()) - total_ran);
     try {
-      GatherSweep(spec, jobs, out);
+      summary = GatherSweep(spec, jobs, out);
     } catch (const std::exception& e) {
       abort_all(e.what());
     }
   }
   MPI_Barrier(MPI_COMM_WORLD);  // the table is in place before any rank reports success
   MPI_Finalize();
-  return total_failed;
+  return summary;
 }
 
 }  // namespace layerlab::app

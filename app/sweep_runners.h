@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "layerlab/analysis/sweep_gather.h"
 #include "layerlab/analysis/sweep_jobs.h"
 
 namespace layerlab::app {
@@ -41,6 +42,7 @@ std::vector<std::string> WriteSlurmScripts(const SlurmScripts& scripts);
 // Under mpirun: rank 0 writes the job folders, job i runs on rank i mod N,
 // rank 0 gathers. Returns the number of failed jobs on every rank; a rank that
 // throws ends all ranks (MPI_Abort). Without MPI built in, refuses naming --mpi.
-size_t RunSweepMpi(const SweepSpec& spec, const std::vector<SweepJob>& jobs, const std::string& out, bool* is_root);
+SweepSummary RunSweepMpi(const SweepSpec& spec, const std::vector<SweepJob>& jobs, const std::string& out,
+                         bool* is_root);
 
 }  // namespace layerlab::app

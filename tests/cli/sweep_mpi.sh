@@ -10,6 +10,9 @@ write_sweep "$sweep" '["solve"]' "[$PUPILS, $COMBINERS]"
 "$mpiexec" --oversubscribe --allow-run-as-root -np "$ranks" "$layerlab" sweep "$sweep" --out "$work/mpi" --mpi \
   >"$work/log" 2>&1 || fail "the MPI sweep failed"
 grep -q "sweep: 4 jobs ran on $ranks ranks" "$work/log" || fail "no summary from rank 0"
+# The summary every runner prints (a local sweep's: tests/cli/sweep_failing_job.sh), once, from rank 0.
+[ "$(grep -c "^sweep: 4 jobs: 4 complete, 0 failed, 0 not run; table" "$work/log")" -eq 1 ] ||
+  fail "the MPI sweep's summary is not the local one's, or not printed once"
 for i in 0 1 2 3; do
   id=00$i
   [ "$(state "$work/mpi" $id)" = complete ] || fail "job $id is not complete"
