@@ -7,6 +7,7 @@
 
 #include "layerlab/analysis/run_steps.h"
 #include "layerlab/framework/error.h"
+#include "layerlab/solvers/solver_option_table.h"
 #include "layerlab/systems/compile.h"
 
 namespace layerlab {
@@ -87,7 +88,9 @@ RunInputs ReadRunInputs(const RunRequest& request) {
   SceneFiles files(file, in.scene);
   in.system = Compile(in.scene);
   in.solve = SolveJobConfig(in.scene, in.system);
-  if (request.iterations && *request.iterations <= 0) throw Error("--iterations: must be positive");
+  if (request.iterations)
+    if (const std::string why = SolverOptionProblem("iterations", *request.iterations, "--iterations"); !why.empty())
+      throw Error(why);
   in.solve.options.iterations = request.iterations.value_or(in.solve.options.iterations);
   in.solve.options.threads = request.threads.value_or(in.solve.options.threads);
   in.run = ReadRunConfig(in.scene, in.system);

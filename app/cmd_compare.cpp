@@ -25,6 +25,7 @@
 #include "layerlab/framework/staged_output.h"
 #include "layerlab/framework/warnings.h"
 #include "layerlab/solvers/solve_config.h"
+#include "layerlab/solvers/solver_option_table.h"
 
 namespace layerlab::app {
 namespace {
@@ -78,7 +79,9 @@ std::vector<ObjectiveKind> ParseObjectives(const std::string& names) {
 // What to run: --solvers, --iterations, --time-budget, --scene-options, --objectives, --metrics, --fovea and
 // --jnd-exponent.
 CompareSelection ReadSelection(const CompareCommandOptions& o) {
-  if (o.iterations && *o.iterations <= 0) throw Error("--iterations: must be positive");
+  if (o.iterations)
+    if (const std::string why = SolverOptionProblem("iterations", *o.iterations, "--iterations"); !why.empty())
+      throw Error(why);
   std::optional<double> time_budget;
   if (!o.time_budget.empty()) time_budget = ParseOptionValue(o.time_budget, "--time-budget", kSeconds);
   const std::vector<const RetinalMetric*> metrics =

@@ -21,6 +21,7 @@
 #include "layerlab/framework/json_file.h"
 #include "layerlab/framework/progress.h"
 #include "layerlab/framework/staged_output.h"
+#include "layerlab/solvers/solver_option_table.h"
 #include "layerlab/systems/compile.h"
 
 namespace layerlab::app {
@@ -74,7 +75,8 @@ std::unique_ptr<ToleranceProbe> MakeProbe(const ToleranceCommandOptions& o, cons
 
 void RunToleranceCommand(const ToleranceCommandOptions& o) {
   if (o.samples < 1 || o.samples > 100000) throw Error("--samples: 1 to 100000, got " + std::to_string(o.samples));
-  if (o.iterations < 1) throw Error("--iterations: at least 1, got " + std::to_string(o.iterations));
+  if (const std::string why = SolverOptionProblem("iterations", o.iterations, "--iterations"); !why.empty())
+    throw Error(why);
   const Scene scene = LoadScene(o.scene);
   const DisplaySystem designed = Compile(scene);
   const ToleranceSpec spec = SpecOf(o, scene);

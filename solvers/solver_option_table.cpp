@@ -194,4 +194,9 @@ const std::vector<SolverOptionEntry>& SolverOptionTable() {
 
 const SolverOptionEntry* FindSolverOption(const std::string& key) { return FindOption(SolverOptionTable(), key); }
 
+std::string SolverOptionProblem(const std::string& key, double value, const std::string& name) {
+  const SolverOptionEntry& e = *FindSolverOption(key);
+  return !e.has_range || e.range.Contains(value) ? "" : OptionViolation(name, value, e.Constraint());
+}
+
 }  // namespace layerlab

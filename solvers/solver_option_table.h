@@ -23,5 +23,8 @@ using SolverOptionEntry = OptionEntry<SolverOptions>;
 const std::vector<SolverOptionEntry>& SolverOptionTable();
 // The entry of `key`, or nullptr.
 const SolverOptionEntry* FindSolverOption(const std::string& key);
+// "" when `value` lies in the range of option `key`, else IsValid's message for it under the name `name`
+// ("--iterations: 0: must be in [1, 1000000]"): one wording for every command that takes the option.
+std::string SolverOptionProblem(const std::string& key, double value, const std::string& name);
 
 }  // namespace layerlab

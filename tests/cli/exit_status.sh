@@ -48,6 +48,12 @@ status 1 '^layerlab: error: solve: Could not convert: --iterations = many' solve
 status 1 '^layerlab: error: --iterations: 0: must be in \[1, 1000000\]' \
   solve "$small" --iterations 0 --target "$work/no_such_target" --out "$work/o"
 [ ! -e "$work/o" ] || fail "a refused solve left $work/o"
+# One wording for the same range in every command that takes it.
+for command in compare tolerance; do
+  status 1 '^layerlab: error: --iterations: 0: must be in \[1, 1000000\]' \
+    $command "$small" --iterations 0 --target "$work/no_such_target" --out "$work/o"
+done
+status 1 '^layerlab: error: --iterations: 0: must be in \[1, 1000000\]' run "$small" --iterations 0 --out "$work/o"
 status 1 '^layerlab: error: --accommodation: "0,2.6,0.1": the sweep takes a range FROM:TO:STEP' \
   contrast "$small" --accommodation 0,2.6,0.1 --out "$work/o"
 status 1 '^layerlab: error: --focal-stack: "0,2.6,0.1": give a range FROM:TO:STEP' \
