@@ -176,17 +176,12 @@ void AddRetinaToPage(const std::vector<RetinaStateResult>& states, const std::ve
     shown.push_back(rs);
   }
   if (shown.empty()) return;
-  for (size_t k = 0; natural && k < states.front().scores.size(); ++k) {
-    double sum = 0;
-    for (const RetinaStateResult& st : states) sum += st.scores[k].second;
-    const std::string& column = states.front().scores[k].first;
-    std::string name = column, unit;
-    for (const RetinalMetric& m : RetinalMetrics())
-      if (m.column == column) name = m.name, unit = m.unit;
+  for (const MeanScore& s : MeanScoresOverStates(states)) {
+    std::string name = s.metric->name;
     for (char& ch : name) ch = ch == '_' ? '-' : static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
     page->summary.push_back({"retinal " + name + " against natural viewing (mean of " + std::to_string(states.size()) +
                                  " accommodation states)",
-                             WithUnit(sum / double(states.size()), unit), "retina"});
+                             WithUnit(s.mean, s.metric->unit), "retina"});
   }
   page->sections.push_back(
       {"retina", "Retinal images", files, RetinaHtml(shown, {{"retina.csv", prefix + "retina.csv"}}, white_cd_m2)});

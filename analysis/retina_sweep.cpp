@@ -136,6 +136,18 @@ void CheckAccommodationStates(const std::vector<double>& states, const std::stri
                   " is not a finite number of diopters >= 0");
 }
 
+std::vector<MeanScore> MeanScoresOverStates(const std::vector<RetinaStateResult>& states) {
+  std::vector<MeanScore> means;
+  for (size_t k = 0; !states.empty() && k < states.front().scores.size(); ++k) {
+    double sum = 0;
+    for (const RetinaStateResult& s : states) sum += s.scores[k].second;
+    if (std::isnan(sum)) continue;  // no natural viewing
+    for (const RetinalMetric& m : RetinalMetrics())
+      if (m.column == states.front().scores[k].first) means.push_back({&m, sum / double(states.size())});
+  }
+  return means;
+}
+
 std::string RetinaStateName(double diopters) {
   char name[32];
   std::snprintf(name, sizeof name, "%.2fD", diopters);

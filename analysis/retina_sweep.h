@@ -61,6 +61,14 @@ struct RetinaStateResult {
 
 std::string RetinaStateName(double diopters);
 
+// Each metric's mean over the states (the focal stack's score), the metric found by its retina.csv column;
+// empty without natural viewing (the scores are NaN) or without states.
+struct MeanScore {
+  const RetinalMetric* metric;
+  double mean;
+};
+std::vector<MeanScore> MeanScoresOverStates(const std::vector<RetinaStateResult>& states);
+
 // The mean luminance of a linear RGB image (kLuminanceWeights), in its units.
 double MeanLuminance(const Image& image);
 

@@ -54,17 +54,10 @@ std::vector<SweepResult> Results(const RunOutcome& outcome) {
   for (const RetinaStateResult& s : outcome.retina)
     r.push_back({"retinal mean at " + Number(s.diopters) + " D (cd/m2)", s.display_mean_cd_m2});
   // Each metric of run.retina.metrics against natural viewing, the mean over the states (the focal stack's).
-  for (size_t k = 0; !outcome.retina.empty() && k < outcome.retina.front().scores.size(); ++k) {
-    const std::string& column = outcome.retina.front().scores[k].first;
-    double sum = 0;
-    for (const RetinaStateResult& s : outcome.retina) sum += s.scores[k].second;
-    if (std::isnan(sum)) continue;  // no natural viewing
-    for (const RetinalMetric& m : RetinalMetrics())
-      if (m.column == column)
-        r.push_back(
-            {"focal-stack " + m.name + ", mean over the retinal states (" + (m.unit.empty() ? "1" : m.unit) + ")",
-             sum / double(outcome.retina.size())});
-  }
+  for (const MeanScore& s : MeanScoresOverStates(outcome.retina))
+    r.push_back({"focal-stack " + s.metric->name + ", mean over the retinal states (" +
+                     (s.metric->unit.empty() ? "1" : s.metric->unit) + ")",
+                 s.mean});
   std::string own;  // the swept display's curves, not natural viewing's or a listed scene's
   for (const ContrastCurve& c : outcome.contrast) {
     if (c.display == "natural") continue;

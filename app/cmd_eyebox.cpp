@@ -165,8 +165,8 @@ void RunEyeboxCommand(const EyeboxCommandOptions& o) {
       result["pupil_swim"].push_back(
           {{"layer", l.layer}, {"max_arcmin", l.max_arcmin}, {"arcmin_per_mm", l.rate_arcmin_per_mm}});
     }
-    const std::string x = Extent(pupil[0], map.pupil.within_reaches_edge(map.quality_db)[0], 1e3, "mm");
-    const std::string y = Extent(pupil[1], map.pupil.within_reaches_edge(map.quality_db)[1], 1e3, "mm");
+    const auto edge = map.pupil.within_reaches_edge(map.quality_db);
+    const std::string x = Extent(pupil[0], edge[0], 1e3, "mm"), y = Extent(pupil[1], edge[1], 1e3, "mm");
     char line[512];
     std::snprintf(line, sizeof line,
                   "wrote %s/{index.html,eyebox.csv,eyebox.svg}: centre %.2f dB; within %.2f dB: %s x %s\n",
@@ -176,8 +176,7 @@ void RunEyeboxCommand(const EyeboxCommandOptions& o) {
     result["centre_psnr_db"] = map.pupil.centre().psnr_db;
     result["quality_db"] = map.quality_db;
     result["pupil_extent_within_quality_m"] = {pupil[0], pupil[1]};  // "at least" where it reaches the grid's edge
-    result["pupil_extent_reaches_edge"] = {map.pupil.within_reaches_edge(map.quality_db)[0],
-                                           map.pupil.within_reaches_edge(map.quality_db)[1]};
+    result["pupil_extent_reaches_edge"] = {edge[0], edge[1]};
     result.Print();
   } catch (const Error& e) {
     throw stage.Explain(e);

@@ -177,9 +177,9 @@ std::vector<DisplaySystem> BothEyes(const RetinaCommandOptions& o, const Display
 }
 
 // --metrics, --fovea and --jnd-exponent checked before anything is traced: each metric named, a target to
-// score against, a retina each metric takes; the metrics.
-std::vector<const RetinalMetric*> CheckMetricOptions(const RetinaCommandOptions& o,
-                                                     const std::vector<DisplaySystem>& eyes, const SolveConfig& given) {
+// score against, a retina each metric takes.
+void CheckMetricOptions(const RetinaCommandOptions& o, const std::vector<DisplaySystem>& eyes,
+                        const SolveConfig& given) {
   const std::vector<const RetinalMetric*> metrics = ParseRetinalMetrics(o.metrics, "--metrics");
   ParseMetricSettings(o.metric_flags);
   if (o.metric_flags.given() && !(!given.target.empty() || !given.target_scene.empty()))
@@ -199,14 +199,13 @@ std::vector<const RetinalMetric*> CheckMetricOptions(const RetinaCommandOptions&
                        field[1] > 0 ? field[1] * kRadiansPerDegree : eye.fov_y_rad, resolution * kRadiansPerDegree);
     if (natural) CheckMetricSize(metrics, grid.cols, grid.rows, "--metrics");
   }
-  return metrics;
 }
 
 // The result on stdout: what was written and, against natural viewing, each metric's mean over the states.
 void PrintRetinaResult(const RetinaCommandOptions& o, const std::vector<DisplaySystem>& eyes,
-                       const std::vector<std::vector<RetinaStateResult>>& results,
-                       const std::vector<const RetinalMetric*>& metrics, double white, bool natural) {
+                       const std::vector<std::vector<RetinaStateResult>>& results, double white, bool natural) {
   const bool both = eyes.size() > 1;
+  const std::vector<double> states = AccommodationStates(o);
   CommandResult result("retina");
   char white_text[32];
   std::snprintf(white_text, sizeof white_text, "%.4g", white);
@@ -214,10 +213,10 @@ void PrintRetinaResult(const RetinaCommandOptions& o, const std::vector<DisplayS
               (both      ? "left,right"
                : natural ? "display,natural,retina.csv"
                          : "display,retina.csv") +
-              "}: " + std::to_string(AccommodationStates(o).size()) + " states" + (both ? " per eye" : "") +
+              "}: " + std::to_string(states.size()) + " states" + (both ? " per eye" : "") +
               "; values are display-relative (1 = " + white_text + " cd/m2)\n");
   result["out"] = o.out;
-  result["accommodation_diopters"] = AccommodationStates(o);
+  result["accommodation_diopters"] = states;
   result["white_cd_per_m2"] = white;
   result["eyes"] = nlohmann::json::array();
   for (size_t e = 0; e < results.size(); ++e) {
@@ -225,14 +224,11 @@ void PrintRetinaResult(const RetinaCommandOptions& o, const std::vector<DisplayS
     nlohmann::json mean = nlohmann::json::object();
     std::string line = eye.empty() ? "" : eye + " eye, ";
     line += "the mean over the states against natural viewing:";
-    for (size_t k = 0; natural && !results[e].empty() && k < results[e].front().scores.size(); ++k) {
-      double sum = 0;
-      for (const RetinaStateResult& r : results[e]) sum += r.scores[k].second;
-      const RetinalMetric& m = *metrics[k];
-      const double value = sum / results[e].size();
-      line += (k ? ", " : " ") + m.name + " " + FormatFixed(value, m.unit == "dB" ? 2 : 4) +
+    for (const MeanScore& s : MeanScoresOverStates(results[e])) {
+      const RetinalMetric& m = *s.metric;
+      line += (mean.empty() ? " " : ", ") + m.name + " " + FormatFixed(s.mean, m.unit == "dB" ? 2 : 4) +
               (m.unit.empty() ? "" : " " + m.unit);
-      mean[m.column] = value;  // retina.csv's column, its unit in the name
+      mean[m.column] = s.mean;  // retina.csv's column, its unit in the name
     }
     if (natural) result.Text(line + "\n");
     result["eyes"].push_back({{"eye", eye.empty() ? "the scene's" : eye}, {"mean_against_natural", mean}});
@@ -259,7 +255,7 @@ void RunRetinaCommand(const RetinaCommandOptions& o) {
   const bool both = o.eyes == "both";
   const std::vector<DisplaySystem> eyes = both ? BothEyes(o, system) : std::vector<DisplaySystem>{system};
   AccommodationStates(o);
-  const std::vector<const RetinalMetric*> metrics = CheckMetricOptions(o, eyes, given);
+  CheckMetricOptions(o, eyes, given);
   const std::vector<std::string> written =
       both ? std::vector<std::string>{"left", "right", "index.html"}
            : std::vector<std::string>{"display", "natural", "retina.csv", "index.html"};
@@ -288,7 +284,7 @@ void RunRetinaCommand(const RetinaCommandOptions& o) {
     throw stage.Explain(e);
   }
   stage.Commit();
-  PrintRetinaResult(o, eyes, results, metrics, white, !given.target.empty() || !given.target_scene.empty());
+  PrintRetinaResult(o, eyes, results, white, !given.target.empty() || !given.target_scene.empty());
 }
 
 }  // namespace
