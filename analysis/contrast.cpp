@@ -222,6 +222,7 @@ class ContrastRun {
     grids_[0] = retina_, grids_[1] = shifted_;
     texture_of_ = o.texture ? o.texture : CosineGrating(0.5, 1.0, o.grating);
     convention_ = ConventionLabel(o.reference, o.grating);
+    reference_ = o.reference;
   }
 
   std::vector<ContrastCurve> Run() {
@@ -304,6 +305,7 @@ class ContrastRun {
     ContrastCurve c;
     c.display = name, c.target_diopters = dt, c.frequency = f, c.accommodation = accommodation_,
     c.convention = convention_;
+    c.reference = reference_;
     return c;
   }
 
@@ -528,6 +530,7 @@ class ContrastRun {
   std::map<std::pair<const std::vector<PupilPoint>*, int>, std::unique_ptr<EyeOptics>> optics_;
   PlaneTextureFactory texture_of_;
   std::string convention_;
+  ContrastReference reference_ = ContrastReference::kSampledTarget;
 
   std::vector<std::vector<ContrastCurve>> of_target_;
   std::vector<std::vector<DrawnNatural>> drawn_;
@@ -639,6 +642,38 @@ std::string ContrastCsv(const std::vector<ContrastCurve>& curves) {
   return csv;
 }
 
+std::string AboveOneNote(const std::vector<ContrastCurve>& curves) {
+  const ContrastCurve* top = nullptr;
+  for (const ContrastCurve& c : curves)
+    if (!IsNatural(c) && c.peak.value > 1 && (!top || c.peak.value > top->peak.value)) top = &c;
+  if (!top) return "";
+  char what[160];
+  std::snprintf(what, sizeof what, "%s: %.3f at %.2f D, %.1f cpd", top->display.c_str(), top->peak.value,
+                top->target_diopters, top->frequency);
+  if (top->reference == ContrastReference::kContinuous) {
+    char why[200];
+    std::snprintf(why, sizeof why,
+                  "its retinal amplitude exceeds the grating's by %.1f %%, against a light-field error of %.1f %% rms "
+                  "(PSNR %.2f dB)",
+                  100 * (top->peak.value - 1), 100 * std::pow(10.0, -top->psnr_db / 20), top->psnr_db);
+    return std::string("A normalized contrast above 1 (") + what + ") against the continuous grating: " + why + ".";
+  }
+  const ContrastCurve* natural = nullptr;
+  for (const ContrastCurve& c : curves)
+    if (IsNatural(c) && c.target_diopters == top->target_diopters && c.frequency == top->frequency) natural = &c;
+  char kept[120] = "";
+  if (natural)
+    std::snprintf(kept, sizeof kept, " (here natural viewing's amplitude in focus is %.4f; the default grating's: 0.5)",
+                  natural->reference_amplitude);
+  return std::string("A normalized contrast above 1 (") + what +
+         ") is not more contrast than the grating has. The reference, natural viewing of the sampled target light "
+         "field, reads the light field's pixels on the grating's own plane, where the eye focuses, and so loses their "
+         "hold, sinc(f p) for pixels of p degrees" +
+         kept +
+         "; the display forms the grating from layers off that plane, whose pixels the eye sees out of focus, and "
+         "loses less. --reference continuous divides by the grating itself (docs/accommodation.md).";
+}
+
 std::string PeakTable(const std::vector<ContrastCurve>& curves) {
   std::string out;
   out += "# " + VersionLine() + "\n";
@@ -663,6 +698,7 @@ std::string PeakTable(const std::vector<ContrastCurve>& curves) {
                     c.display.c_str(), c.target_diopters, c.frequency, c.reference_amplitude);
       out += line;
     }
+  if (const std::string note = AboveOneNote(curves); !note.empty()) out += "# " + note + "\n";
   int width = 24;  // the display column: as wide as its longest name
   for (const ContrastCurve& c : curves) width = std::max(width, static_cast<int>(c.display.size()));
   // A binocular eye's conflict: its vergence on the target less its accommodation response (the curve's peak).

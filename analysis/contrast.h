@@ -98,7 +98,8 @@ inline constexpr double kMaxContrastEyeboxRange = 0.01;  // m
 inline constexpr int kMaxContrastEyeboxPupils = 81;
 
 struct ContrastCurve {
-  std::string convention;      // ConventionLabel(reference, grating)
+  std::string convention;  // ConventionLabel(reference, grating)
+  ContrastReference reference = ContrastReference::kSampledTarget;
   std::string display;         // "natural" for natural viewing; "D (factorized for S)" for S's patterns seen through D
   std::string factorized_for;  // the display the patterns were solved on when not this one (S), else ""
   std::string scene;           // the display's own name (its scene's); "" for natural viewing
@@ -125,6 +126,14 @@ struct ContrastCurve {
 // target strip), seen through the display, normalized as its own curve.
 std::vector<ContrastCurve> RunContrast(const std::vector<ContrastDisplay>& displays, const ContrastOptions& options,
                                        const ContrastDisplay* factorized_for = nullptr);
+
+// Why a display's peak normalized contrast is above 1, for the report and
+// peaks.txt; "" when none is. Against the sampled target (the default): the
+// reference reads the light field's pixels on the grating's own plane, in
+// focus, and so loses their hold, while the display's layers lie off that
+// plane (docs/accommodation.md, "Above 1"). Against the continuous plane: the
+// overshoot set beside the display's light-field error.
+std::string AboveOneNote(const std::vector<ContrastCurve>& curves);
 
 // "DISPLAY (factorized for OTHER)": no comma, so it is one CSV cell.
 std::string FactorizedForName(const std::string& display, const std::string& other);

@@ -220,6 +220,7 @@ void WriteEyeboxMap(const EyeboxMap& map, const std::string& folder) {
                    0,
                    1,
                    {},
+                   {},
                    {}};
     PlotPanel bright{gaze ? "brightness over the gaze" : "brightness over the eyebox",
                      psnr.x_label,
@@ -228,6 +229,7 @@ void WriteEyeboxMap(const EyeboxMap& map, const std::string& folder) {
                      1,
                      0,
                      1,
+                     {},
                      {},
                      {}};
     double lo = INFINITY, hi = -INFINITY, blo = INFINITY, bhi = -INFINITY;
@@ -263,7 +265,7 @@ void WritePupilSwim(const std::vector<LayerSwim>& swim, const std::string& folde
   const char* colors[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd"};
   std::vector<PlotPanel> panels;
   for (const LayerSwim& layer : swim) {
-    PlotPanel panel{"layer " + layer.layer, "pupil offset x (mm)", "swim x (arcmin)", 0, 1, -1, 1, {}, {}};
+    PlotPanel panel{"layer " + layer.layer, "pupil offset x (mm)", "swim x (arcmin)", 0, 1, -1, 1, {}, {}, {}};
     std::vector<double> fields;  // the field points on the midline, in order
     double lo = -0.1, hi = 0.1, reach = 0;
     for (const SwimSample& s : layer.samples) {

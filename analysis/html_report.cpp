@@ -42,13 +42,11 @@ table.summary td{text-align:left;font-weight:600}
 td.l,th.l{text-align:left}
 .grid{display:flex;flex-wrap:wrap;gap:14px;align-items:flex-start}
 figure{margin:0;max-width:100%}
-figure img{display:block;max-width:100%;border:1px solid #ccc;background:#000;image-rendering:pixelated}
+figure img{display:block;max-width:100%;height:auto;border:1px solid #ccc;background:#000;image-rendering:pixelated}
 figure.plot img{background:#fff;image-rendering:auto}
 figure.layout svg{display:block;max-width:100%;height:auto;border:1px solid #ccc}
-figure.small img{width:300px}
-figure.panel img{width:320px}
-figure.retina{flex:1 1 420px}
-figure.retina img{width:100%}
+figure.small,figure.panel,figure.retina{display:table}
+figure.small figcaption,figure.panel figcaption,figure.retina figcaption{display:table-caption;caption-side:bottom}
 figcaption{font-size:12px;color:#444;margin-top:3px}
 a.file{font-size:12px;margin-left:4px;padding:0 4px;border:1px solid #b8c4ce;border-radius:3px;text-decoration:none;color:#20507a}
 .slider{display:flex;align-items:center;gap:12px;margin:8px 0 12px;flex-wrap:wrap}
@@ -116,10 +114,26 @@ constexpr const char* kScript = R"JS(
     var problems = [];
     var images = Array.prototype.slice.call(document.images);
     Promise.all(images.map(imageReady)).then(function () {
+      var one_to_one = 0;
       images.forEach(function (img) {
         if (!(img.naturalWidth > 0)) problems.push('image not shown: ' + img.getAttribute('src'));
+        // A PNG written at the size the page shows it: its declared size is its own, and it is shown so
+        // wherever the window has room (framework/shown_image.h).
+        if (!img.hasAttribute('width')) {
+          if (/\.png$/.test(img.getAttribute('src'))) problems.push(img.getAttribute('src') + ' has no declared size');
+          return;
+        }
+        if (!(img.naturalWidth > 0)) return;
+        var w = +img.getAttribute('width'), h = +img.getAttribute('height');
+        if (img.naturalWidth !== w || img.naturalHeight !== h)
+          problems.push(img.getAttribute('src') + ' is ' + img.naturalWidth + ' x ' + img.naturalHeight +
+                        ' but declared ' + w + ' x ' + h);
+        else if (img.parentElement.parentElement.parentElement.clientWidth >= w + 40 &&
+                 Math.abs(img.clientWidth - w) > 0.5)
+          problems.push(img.getAttribute('src') + ' is shown ' + img.clientWidth + ' px wide, not its ' + w);
+        else one_to_one++;
       });
-      var detail = images.length + ' images';
+      var detail = images.length + ' images, ' + one_to_one + ' shown one to one';
       var first = document.querySelector('main section');
       if (document.getElementById('summary')) {
         if (first.id !== 'summary') problems.push('the summary is not the first section (' + first.id + ')');
@@ -243,10 +257,14 @@ std::string HtmlLinks(const std::vector<std::pair<std::string, std::string>>& li
 
 std::string HtmlFigure(const ReportImage& image, const std::string& id, const std::string& extra_class) {
   std::string id_attr = id.empty() ? "" : " id=\"" + id + "\"";
+  // A PNG is shown one image pixel to one CSS pixel, at the size it was written (framework/shown_image.h).
+  const std::string size =
+      image.width > 0 ? " width=\"" + std::to_string(image.width) + "\" height=\"" + std::to_string(image.height) + "\""
+                      : "";
   return "<figure class=\"" + extra_class + "\"><a" + (id.empty() ? "" : " id=\"" + id + "-link\"") + " href=\"" +
          Escape(image.href.empty() ? image.src : image.href) + "\"><img" + id_attr + " src=\"" + Escape(image.src) +
-         "\" alt=\"" + Escape(image.caption) + "\"></a><figcaption" + (id.empty() ? "" : " id=\"" + id + "-caption\"") +
-         ">" +
+         "\"" + size + " alt=\"" + Escape(image.caption) + "\"></a><figcaption" +
+         (id.empty() ? "" : " id=\"" + id + "-caption\"") + ">" +
          // A plot carries its own title: the caption only links its files.
          (extra_class == "plot" ? std::string() : Escape(image.caption)) + HtmlLinks(image.links) +
          "</figcaption></figure>\n";

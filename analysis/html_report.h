@@ -22,6 +22,7 @@ struct ReportImage {
   std::string src;                                         // the PNG or SVG shown
   std::vector<std::pair<std::string, std::string>> links;  // label, path: "EXR", "retina/display/0.40D.exr"
   std::string href;                                        // where a click on it goes; empty: src
+  int width = 0, height = 0;  // a PNG's pixels, shown one to one; 0: as the page lays it out
 };
 
 ReportImage Picture(std::string caption, std::string src, std::vector<std::pair<std::string, std::string>> links = {},

@@ -10,7 +10,7 @@
 namespace layerlab {
 namespace {
 
-constexpr double kWidth = 1000, kLeft = 70, kRight = 40, kRowHeight = 96, kTop = 46, kStripHeight = 120;
+constexpr double kWidth = 1000, kLeft = 70, kRight = 40, kRowHeight = 96, kTop = 46;
 const char* kBranchColors[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"};
 
 std::string Num(double v) { return FormatFixed(v, 1); }
@@ -85,9 +85,8 @@ struct LayoutScale {
 };
 
 // A branch's physical row: the eye, the optics and the panels, with their real intermediate images;
-// where each of its panels is drawn into panel_x, panel_y.
-std::string BranchRowSvg(const DisplaySystem& s, size_t b, const LayoutScale& scale, std::vector<double>* panel_x,
-                         std::vector<double>* panel_y) {
+// where each of its panels is drawn on the page's x axis into panel_x.
+std::string BranchRowSvg(const DisplaySystem& s, size_t b, const LayoutScale& scale, std::vector<double>* panel_x) {
   auto x_of = [&](double position) { return scale.x_of(position); };
   const Branch& branch = s.branches[b];
   const std::string color = kBranchColors[b % 6];
@@ -104,7 +103,7 @@ std::string BranchRowSvg(const DisplaySystem& s, size_t b, const LayoutScale& sc
   for (int k : branch.layers) {
     const VirtualLayer& l = s.layers[k];
     const double x = x_of(l.position_m);
-    (*panel_x)[k] = x, (*panel_y)[k] = y;
+    (*panel_x)[k] = x;
     svg += "<rect x=\"" + Num(x - 2.5) + "\" y=\"" + Num(y - 22) + "\" width=\"5\" height=\"44\" fill=\"" + color +
            "\"/>\n";
     svg += Text(x + 4, y + 34 + 10 * l.position_in_branch, l.name, "font-size=\"11\" fill=\"" + color + "\"");
@@ -120,40 +119,95 @@ std::string BranchRowSvg(const DisplaySystem& s, size_t b, const LayoutScale& sc
   return svg;
 }
 
-// The eye-space strip: images on a diopter axis (near on the left, infinity on the right),
-// each joined to its panel at panel_x, panel_y.
-std::string EyeSpaceStripSvg(const DisplaySystem& s, const LayoutScale& scale, double strip_top,
-                             const std::vector<double>& panel_x, const std::vector<double>& panel_y) {
+// The eye-space strip, below the physical rows' path-length axis: a band of connectors, one from each
+// panel's place on that axis (a dot of its branch's color) down to its image's mark on a diopter axis
+// (near on the left, infinity on the right). Nothing else is drawn in the band, so that no connector
+// crosses a label. Each mark's label hangs below the axis on a leader, to its right, on the lowest
+// level where it clears the labels and leaders already placed; a tick label a leader would cross is
+// left out (the mark's label gives its value).
+constexpr double kConnectorBand = 56, kMarkHeight = 40, kLevel = 13, kFontSize = 10;
+
+std::string ImageLabel(const VirtualLayer& l) {
+  return l.name + " " + FormatFixed(l.diopters, 2) + " D" + (l.inverted ? " (inverted)" : "");
+}
+
+// Each layer's label level (0 nearest the axis), placed from the right: a label spans from its mark
+// rightwards, so it must clear the labels on its level and pass below every leader in its span.
+std::vector<int> LabelLevels(const DisplaySystem& s, const LayoutScale& scale) {
+  const size_t n = s.layers.size();
+  std::vector<double> x(n), right(n);
+  for (size_t k = 0; k < n; ++k) {
+    x[k] = scale.x_of_diopters(s.layers[k].diopters);
+    right[k] = x[k] + 4 + 0.62 * kFontSize * static_cast<double>(ImageLabel(s.layers[k]).size());
+  }
+  std::vector<size_t> order(n);
+  for (size_t k = 0; k < n; ++k) order[k] = k;
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return x[a] > x[b]; });
+  std::vector<int> level(n, -1);
+  for (size_t i = 0; i < n; ++i) {
+    const size_t k = order[i];
+    for (int L = 0;; ++L) {
+      bool clear = true;
+      for (size_t j = 0; j < i && clear; ++j) {
+        const size_t m = order[j];  // placed, at or right of k
+        const bool label_overlaps = level[m] == L && x[m] < right[k] + 6 && x[k] < right[m] + 6;
+        const bool leader_crosses = x[m] <= right[k] + 2 && level[m] >= L;
+        clear = !label_overlaps && !leader_crosses;
+      }
+      if (clear) {
+        level[k] = L;
+        break;
+      }
+    }
+  }
+  return level;
+}
+
+struct StripSvg {
+  std::string svg;
+  double bottom = 0;
+};
+
+StripSvg EyeSpaceStripSvg(const DisplaySystem& s, const LayoutScale& scale, double strip_top,
+                          const std::vector<double>& panel_x) {
   auto x_of_diopters = [&](double D) { return scale.x_of_diopters(D); };
-  std::string svg =
-      Text(kLeft, strip_top - 8, "Images of the panels in eye space (diopters from the eye; 0 D is infinity)",
-           "font-size=\"13\" font-weight=\"bold\"");
-  const double axis_y = strip_top + kStripHeight - 30;
-  svg += "<rect x=\"" + Num(x_of_diopters(s.eye.accommodation_max_diopters)) + "\" y=\"" + Num(strip_top + 4) +
-         "\" width=\"" +
-         Num(x_of_diopters(s.eye.accommodation_min_diopters) - x_of_diopters(s.eye.accommodation_max_diopters)) +
-         "\" height=\"" + Num(axis_y - strip_top - 4) + "\" fill=\"#f3f3f3\"/>\n";
-  svg += Text(x_of_diopters(s.eye.accommodation_max_diopters) + 4, strip_top + 16, "accommodation range",
-              "font-size=\"10\" fill=\"#888\"");
+  const double marks_top = strip_top + kConnectorBand, axis_y = marks_top + kMarkHeight;
+  const double near_x = x_of_diopters(s.eye.accommodation_max_diopters);
+  std::string svg = "<rect x=\"" + Num(near_x) + "\" y=\"" + Num(marks_top - 6) + "\" width=\"" +
+                    Num(x_of_diopters(s.eye.accommodation_min_diopters) - near_x) + "\" height=\"" +
+                    Num(axis_y - marks_top + 6) + "\" fill=\"#eee\"/>\n";
   svg += Line(kLeft, axis_y, kLeft + scale.plot_width, axis_y, "stroke=\"#333\"");
+  const std::vector<int> level = LabelLevels(s, scale);
+  int levels = 0;
+  for (int L : level) levels = std::max(levels, L + 1);
+  auto baseline = [&](int L) { return axis_y + 34 + kLevel * L; };
   for (double D : NiceTicks(0, scale.max_diopters, 8)) {
     if (D > scale.max_diopters) continue;
     const double x = x_of_diopters(D);
-    svg += Line(x, axis_y, x, axis_y + 5, "stroke=\"#333\"") +
-           Text(x, axis_y + 17, Label(D, 1) + " D", "text-anchor=\"middle\" font-size=\"10\"");
+    const std::string text = Label(D, 1) + " D";
+    const double half = 0.31 * kFontSize * static_cast<double>(text.size()) + 2;
+    bool crossed = false;
+    for (const VirtualLayer& l : s.layers) crossed |= std::fabs(x_of_diopters(l.diopters) - x) < half;
+    svg += Line(x, axis_y, x, axis_y + 5, "stroke=\"#333\"");
+    if (!crossed) svg += Text(x, axis_y + 17, text, "text-anchor=\"middle\" font-size=\"10\"");
   }
   for (size_t k = 0; k < s.layers.size(); ++k) {
     const VirtualLayer& l = s.layers[k];
     const std::string color = kBranchColors[l.branch % 6];
-    const double x = x_of_diopters(l.diopters);
-    svg += Line(panel_x[k], panel_y[k] + 22, x, axis_y - 44,
-                "stroke=\"" + color + "\" stroke-dasharray=\"3,3\" stroke-opacity=\"0.6\"");
-    svg += Line(x, axis_y - 44, x, axis_y, "stroke=\"" + color + "\" stroke-width=\"3\"");
-    svg += Text(x, axis_y - 48 - 11 * (k % 2),
-                l.name + " " + FormatFixed(l.diopters, 2) + " D" + (l.inverted ? " (inverted)" : ""),
-                "text-anchor=\"middle\" font-size=\"10\" fill=\"" + color + "\"");
+    const double x = x_of_diopters(l.diopters), y = baseline(level[k]);
+    svg += "<circle cx=\"" + Num(panel_x[k]) + "\" cy=\"" + Num(strip_top) + "\" r=\"2.5\" fill=\"" + color + "\"/>\n";
+    svg += Line(panel_x[k], strip_top, x, marks_top,
+                "stroke=\"" + color + "\" stroke-dasharray=\"3,3\" stroke-opacity=\"0.7\" class=\"connector\"");
+    svg += Line(x, marks_top, x, axis_y, "stroke=\"" + color + "\" stroke-width=\"3\"");
+    svg += Line(x, axis_y, x, y - 3, "stroke=\"" + color + "\" stroke-width=\"1\" class=\"leader\"");
+    svg += Text(x + 4, y, ImageLabel(l), "font-size=\"10\" fill=\"" + color + "\"");
   }
-  return svg;
+  const double caption = baseline(levels) + 8;
+  svg += Text(kLeft, caption,
+              "Images of the panels in eye space (diopters from the eye; 0 D is infinity; grey: the accommodation "
+              "range), each joined to its panel's place above",
+              "font-size=\"13\" font-weight=\"bold\"");
+  return {svg, caption + 12};
 }
 
 }  // namespace
@@ -166,8 +220,12 @@ std::string RenderLayoutSvg(const DisplaySystem& s, bool standalone) {
     scale.max_diopters = std::max(scale.max_diopters, l.diopters);
   }
   scale.max_diopters = std::max({scale.max_diopters * 1.1, s.eye.accommodation_max_diopters, 0.5});
-  const double strip_top = kTop + rows * kRowHeight + 48;
-  const double height = strip_top + kStripHeight;
+  const double strip_top = kTop + rows * kRowHeight + 24;  // below the path-length axis and its labels
+  std::vector<double> panel_x(s.layers.size());
+  std::string rows_svg;
+  for (size_t b = 0; b < rows; ++b) rows_svg += BranchRowSvg(s, b, scale, &panel_x);
+  const StripSvg strip = EyeSpaceStripSvg(s, scale, strip_top, panel_x);
+  const double height = strip.bottom;
 
   std::string svg = std::string("<svg ") + (standalone ? "xmlns=\"http://www.w3.org/2000/svg\" " : "") + "width=\"" +
                     Num(kWidth) + "\" height=\"" + Num(height) + "\" viewBox=\"0 0 " + Num(kWidth) + " " + Num(height) +
@@ -178,14 +236,13 @@ std::string RenderLayoutSvg(const DisplaySystem& s, bool standalone) {
               "font-size=\"14\" font-weight=\"bold\"");
 
   // The physical rows: one per branch.
-  std::vector<double> panel_x(s.layers.size()), panel_y(s.layers.size());
-  for (size_t b = 0; b < rows; ++b) svg += BranchRowSvg(s, b, scale, &panel_x, &panel_y);
+  svg += rows_svg;
   for (double mm : NiceTicks(0, scale.farthest * 1.06e3, 8)) {
     const double x = scale.x_of(mm * 1e-3), y = kTop + rows * kRowHeight;
     svg += Line(x, y - 4, x, y + 2, "stroke=\"#999\"") +
            Text(x, y + 14, Label(mm, 0), "text-anchor=\"middle\" font-size=\"10\" fill=\"#555\"");
   }
-  svg += EyeSpaceStripSvg(s, scale, strip_top, panel_x, panel_y);
+  svg += strip.svg;
   return svg + "</svg>\n";
 }
 

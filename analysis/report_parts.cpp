@@ -11,6 +11,7 @@
 #include "layerlab/framework/atomic_file.h"
 #include "layerlab/framework/error.h"
 #include "layerlab/framework/png_writer.h"
+#include "layerlab/framework/shown_image.h"
 #include "layerlab/framework/units.h"
 #include "layerlab/framework/version.h"
 #include "layerlab/metrics/retinal_metrics.h"
@@ -92,6 +93,17 @@ void AddContrastSummary(const std::vector<ContrastCurve>& curves, RunReportPage*
   for (const auto& [what, value] : lines) page->summary.push_back({what, value, "contrast"});
 }
 
+// ", PNG at 1/3 of the samples (EXR: all)" for a picture reduced to fit its place on the page.
+std::string Reduced(int factor) {
+  return factor > 1 ? ", PNG at 1/" + std::to_string(factor) + " of the samples (EXR: all)" : "";
+}
+
+template <typename T>
+ReportImage Shown(ReportImage image, const ShownImage<T>& shown) {
+  image.width = shown.width, image.height = shown.height;
+  return image;
+}
+
 }  // namespace
 
 RunReportPage CommandPage(const std::string& command, const std::string& scene_file, const std::string& name,
@@ -115,10 +127,14 @@ void AddSolveToPage(const DisplaySystem& system, const Patterns& patterns, const
   for (size_t k = 0; k < system.layers.size(); ++k) {
     const VirtualLayer& layer = system.layers[k];
     const std::string preview = "pattern_previews/" + layer.name + ".png";
-    WriteSrgbPng((out / preview).string(), patterns[k].cols, patterns[k].rows, AsTheEyeSeesIt(layer, patterns[k]));
+    const ShownImage<float> pattern =
+        ShrinkToWidth(patterns[k].cols, patterns[k].rows, 3, AsTheEyeSeesIt(layer, patterns[k]), kPreviewWidthPx);
+    WriteSrgbPng((out / preview).string(), pattern.width, pattern.height, pattern.pixels);
     files.push_back(prefix + preview);
-    patterns_shown.push_back(Picture(layer.name + " (" + FormatFixed(layer.diopters, 2) + " D)", prefix + preview,
-                                     {{"EXR", prefix + "patterns/" + layer.name + ".exr"}}));
+    patterns_shown.push_back(
+        Shown(Picture(layer.name + " (" + FormatFixed(layer.diopters, 2) + " D)" + Reduced(pattern.factor),
+                      prefix + preview, {{"EXR", prefix + "patterns/" + layer.name + ".exr"}}),
+              pattern));
     // The panel-ready image cropped to the pixels the layer drives; the full panel is a click away.
     const PanelEncoding encoded = EncodeForPanel(layer, patterns[k]);
     const PanelSpec& panel = layer.panel;
@@ -130,13 +146,16 @@ void AddSolveToPage(const DisplaySystem& system, const Patterns& patterns, const
                                3 +
                            col];
     const std::string cropped = "panel_previews/" + layer.name + ".png";
-    WritePng8((out / cropped).string(), patterns[k].cols, patterns[k].rows, 3, active);
+    const ShownImage<uint8_t> drive = ShrinkToWidth(patterns[k].cols, patterns[k].rows, 3, active, kPreviewWidthPx);
+    WritePng8((out / cropped).string(), drive.width, drive.height, 3, drive.pixels);
     const std::string full = prefix + "panels/" + layer.name + ".png";
     files.push_back(prefix + cropped);
-    panels.push_back(Picture(layer.name + ": active " + std::to_string(patterns[k].cols) + " x " +
-                                 std::to_string(patterns[k].rows) + " of the " + std::to_string(panel.resolution_cols) +
-                                 " x " + std::to_string(panel.resolution_rows) + " panel",
-                             prefix + cropped, {{"full panel PNG", full}}, full));
+    panels.push_back(
+        Shown(Picture(layer.name + ": active " + std::to_string(patterns[k].cols) + " x " +
+                          std::to_string(patterns[k].rows) + " of the " + std::to_string(panel.resolution_cols) +
+                          " x " + std::to_string(panel.resolution_rows) + " panel" + Reduced(drive.factor),
+                      prefix + cropped, {{"full panel PNG", full}}, full),
+              drive));
   }
   CompareResult self{fs::path(system.file).stem().string(), report.solver, report, system.brightness_efficiency,
                      system.luminance_efficiency};
@@ -165,10 +184,12 @@ void AddRetinaToPage(const std::vector<RetinaStateResult>& states, const std::ve
     for (double d : declared) rs.declared |= std::abs(d - s.diopters) < 1e-9;
     const std::string d = prefix + "display/" + s.name, n = prefix + "natural/" + s.name;
     const std::string at = FormatFixed(s.diopters, 2) + " D";
-    rs.display = Picture("the display, focused at " + at, d + ".png", {{"PNG", d + ".png"}, {"EXR", d + ".exr"}});
+    rs.display = Picture("the display, focused at " + at + Reduced(s.png_factor), d + ".png",
+                         {{"PNG", d + ".png"}, {"EXR", d + ".exr"}});
     if (natural)
-      rs.natural = Picture("natural viewing of the target, focused at " + at, n + ".png",
+      rs.natural = Picture("natural viewing of the target, focused at " + at + Reduced(s.png_factor), n + ".png",
                            {{"PNG", n + ".png"}, {"EXR", n + ".exr"}});
+    for (ReportImage* image : {&rs.display, &rs.natural}) image->width = s.png_width, image->height = s.png_height;
     for (const ReportImage* image : {&rs.display, &rs.natural})
       for (const auto& [label, path] : image->links) files.push_back(path);
     rs.display_mean_cd_m2 = s.display_mean_cd_m2;

@@ -138,6 +138,8 @@ std::string ContrastHtml(const ReportImage& plot, const std::vector<ContrastCurv
          "same factorizations: the peak's error against where the pupil is.</p>\n<div class=\"grid\">" +
          HtmlFigure(*eyebox, "", "plot") + "</div>\n";
   if (!curves.empty()) h += "<p class=\"muted\">" + Escape(curves.front().convention) + ".</p>\n";
+  if (const std::string note = AboveOneNote(curves); !note.empty())
+    h += "<p class=\"muted\" id=\"contrast-above-one\">" + Escape(note) + "</p>\n";
   std::vector<std::string> eyes;  // the eye model of the curves, each once
   for (const ContrastCurve& c : curves)
     if (std::find(eyes.begin(), eyes.end(), c.eye) == eyes.end()) eyes.push_back(c.eye);

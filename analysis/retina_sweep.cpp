@@ -14,6 +14,7 @@
 #include "layerlab/framework/exr_image.h"
 #include "layerlab/framework/png_writer.h"
 #include "layerlab/framework/polarization.h"
+#include "layerlab/framework/shown_image.h"
 #include "layerlab/framework/units.h"
 #include "layerlab/retina/eye_optics.h"
 #include "layerlab/retina/retina_workspace.h"
@@ -113,9 +114,14 @@ void WriteBatch(const fs::path& out, const RetinaGrid& grid, bool natural, ExrPi
       if (exr)
         WriteExr(stem.string() + ".exr", image, ExrCompression::kNone, pixels);
       else {
+        const ShownImage<float> shown = ShrinkToWidth(grid.cols, grid.rows, 3, image.pixels, kRetinaWidthPx);
         const size_t clipped =
-            WriteSrgbPng(stem.string() + ".png", grid.cols, grid.rows, image.pixels, 1.0, PngCompression::kFast);
-        if (of_display) b->r[s].display_clipped_in_png = clipped;
+            WriteSrgbPng(stem.string() + ".png", shown.width, shown.height, shown.pixels, 1.0, PngCompression::kFast);
+        if (of_display) {
+          RetinaStateResult& r = b->r[s];
+          r.display_clipped_in_png = clipped;
+          r.png_width = shown.width, r.png_height = shown.height, r.png_factor = shown.factor;
+        }
       }
     } catch (...) {
       failed[f] = std::current_exception();

@@ -55,6 +55,8 @@ struct RetinaStateResult {
   // natural viewing.
   std::vector<std::pair<std::string, double>> scores;
   size_t display_clipped_in_png = 0;
+  // The PNGs' size: the retina's, reduced by png_factor to kRetinaWidthPx where it is wider (framework/shown_image.h).
+  int png_width = 0, png_height = 0, png_factor = 1;
   double seconds = 0;      // spent on its images and files (the files of a few states are written at once)
   Image display, natural;  // with RetinaSweepOptions::keep_images (natural: with natural viewing), else empty
 };

@@ -19,6 +19,9 @@ struct RunRequest {
   // Override the main solve's own (the scene's "solve" section).
   std::optional<int> iterations, threads;
   bool keep_images = false;  // also keep the retinal images in RunOutcome::retina (Python's run)
+  // A store of target renders by key that other runs read too (a sweep's DIR/targets:
+  // analysis/target_cache.h), or "": the run keeps its render in OUT/target only.
+  std::string shared_renders;
 };
 
 struct RunOutcome {

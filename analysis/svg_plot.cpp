@@ -56,24 +56,44 @@ std::vector<double> NiceTicks(double lo, double hi, int target_count) {
 
 namespace {
 
-// One legend for all panels, from the first panel's lines, wrapped into rows that fit the page.
+// The legend's entries: the first panel's lines, then a block for the panels' markers and one for their
+// levels (each labelled as the first panel that has one).
+struct LegendItem {
+  enum Kind { kLine, kMarker, kLevel } kind;
+  size_t line;  // kLine: the first panel's line
+  std::string label;
+};
+
+std::vector<LegendItem> LegendItems(const std::vector<PlotPanel>& panels) {
+  std::vector<LegendItem> items;
+  if (panels.empty()) return items;
+  for (size_t k = 0; k < panels.front().lines.size(); ++k)
+    items.push_back({LegendItem::kLine, k, panels.front().lines[k].label});
+  for (const PlotPanel& panel : panels)
+    if (!panel.markers.empty()) {
+      items.push_back({LegendItem::kMarker, 0, panel.markers[0].label});
+      break;
+    }
+  for (const PlotPanel& panel : panels)
+    if (!panel.levels.empty()) {
+      items.push_back({LegendItem::kLevel, 0, panel.levels[0].label});
+      break;
+    }
+  return items;
+}
+
 struct LegendEntry {
   double x;
   int row;
 };
 
-std::vector<LegendEntry> LayOutLegend(const std::vector<PlotPanel>& panels, bool markers, double page_w,
-                                      int* legend_rows) {
+// Where each legend item goes, wrapped into rows that fit the page.
+std::vector<LegendEntry> LayOutLegend(const std::vector<LegendItem>& items, double page_w, int* legend_rows) {
   std::vector<LegendEntry> legend;
-  *legend_rows = 0;
-  if (panels.empty()) return legend;
+  *legend_rows = items.empty() ? 0 : 1;
   double x = 20;
-  *legend_rows = 1;
-  std::vector<std::string> labels;
-  for (const PlotLine& line : panels.front().lines) labels.push_back(line.label);
-  if (markers) labels.push_back(panels.front().markers.empty() ? "target depth" : panels.front().markers[0].label);
-  for (const std::string& label : labels) {
-    double width = 44 + 7 * label.size();
+  for (const LegendItem& item : items) {
+    double width = 44 + 7 * item.label.size();
     if (x > 20 && x + width > page_w - 8) x = 20, ++*legend_rows;
     legend.push_back({x, *legend_rows - 1});
     x += width;
@@ -141,17 +161,26 @@ bool CarriesSymbol(size_t point, size_t n, size_t line) {
   return point % every == (line * every / 4) % every;
 }
 
-// A panel's markers and lines.
+// A panel's markers, levels and lines.
 std::string DataSvg(const PlotPanel& panel, const PlotArea& a) {
   const double x0 = a.x0, x1 = a.x1, y0 = a.y0, y1 = a.y1;
   auto X = [&](double x) { return x0 + (x - panel.x_min) / (panel.x_max - panel.x_min) * (x1 - x0); };
   auto Y = [&](double y) { return y0 - (y - panel.y_min) / (panel.y_max - panel.y_min) * (y0 - y1); };
   std::string svg;
+  std::string labels;  // over the lines, each on a white halo, so that a line does not hide it
+  const std::string label_style =
+      "fill=\"#555\" font-size=\"11\" stroke=\"white\" stroke-width=\"3\" paint-order=\"stroke\"";
   for (const PlotMarker& m : panel.markers) {
     svg += "<rect x=\"" + Num(X(m.x) - 5) + "\" y=\"" + Num(y1) + "\" width=\"10\" height=\"" + Num(y0 - y1) +
            "\" fill=\"#888\" fill-opacity=\"0.22\"><title>" + Escape(m.label) + "</title></rect>\n";
-    svg += "<text x=\"" + Num(X(m.x) + 8) + "\" y=\"" + Num(y0 - 6) + "\" fill=\"#555\" font-size=\"11\">" +
-           Escape(m.label) + "</text>\n";
+    labels += "<text x=\"" + Num(X(m.x) + 8) + "\" y=\"" + Num(y0 - 6) + "\" " + label_style + ">" + Escape(m.label) +
+              "</text>\n";
+  }
+  for (const PlotLevel& l : panel.levels) {
+    svg += "<rect x=\"" + Num(x0) + "\" y=\"" + Num(Y(l.y) - 4) + "\" width=\"" + Num(x1 - x0) +
+           "\" height=\"8\" fill=\"#888\" fill-opacity=\"0.22\"><title>" + Escape(l.label) + "</title></rect>\n";
+    labels += "<text x=\"" + Num(x1 - 6) + "\" y=\"" + Num(Y(l.y) - 7) + "\" text-anchor=\"end\" " + label_style + ">" +
+              Escape(l.label) + "</text>\n";
   }
   for (const PlotLine& line : panel.lines) {
     std::string points;
@@ -170,29 +199,33 @@ std::string DataSvg(const PlotPanel& panel, const PlotArea& a) {
       if (std::isfinite(line.y[k]) && CarriesSymbol(k, line.x.size(), l))
         svg += Symbol(l, X(line.x[k]), Y(std::clamp(line.y[k], panel.y_min, panel.y_max)), line.color);
   }
-  return svg;
+  return svg + labels;
 }
 
 // The legend's entries below the panels, the first `top` of the page above them.
-std::string LegendSvg(const std::vector<PlotPanel>& panels, const std::vector<LegendEntry>& legend, double top,
-                      double legend_row) {
+std::string LegendSvg(const std::vector<PlotPanel>& panels, const std::vector<LegendItem>& items,
+                      const std::vector<LegendEntry>& legend, double top, double legend_row) {
   std::string svg;
   for (size_t k = 0; k < legend.size(); ++k) {
+    const LegendItem& item = items[k];
     double x = legend[k].x, y = top + legend_row * (legend[k].row + 1) - 4;
-    if (k == panels.front().lines.size()) {  // the marker's entry: a block, as it is drawn
+    const std::string label =
+        "<text x=\"" + Num(x + 30) + "\" y=\"" + Num(y) + "\">" + Escape(item.label) + "</text>\n";
+    if (item.kind == LegendItem::kMarker) {  // a block, as it is drawn: upright for a marker, across for a level
       svg += "<rect x=\"" + Num(x + 7) + "\" y=\"" + Num(y - 12) +
-             "\" width=\"10\" height=\"14\" fill=\"#888\" "
-             "fill-opacity=\"0.35\"/>\n<text x=\"" +
-             Num(x + 30) + "\" y=\"" + Num(y) + "\">" +
-             Escape(panels.front().markers.empty() ? "target depth" : panels.front().markers[0].label) + "</text>\n";
+             "\" width=\"10\" height=\"14\" fill=\"#888\" fill-opacity=\"0.35\"/>\n" + label;
       continue;
     }
-    const PlotLine& line = panels.front().lines[k];
+    if (item.kind == LegendItem::kLevel) {
+      svg += "<rect x=\"" + Num(x) + "\" y=\"" + Num(y - 8) +
+             "\" width=\"24\" height=\"8\" fill=\"#888\" fill-opacity=\"0.35\"/>\n" + label;
+      continue;
+    }
+    const PlotLine& line = panels.front().lines[item.line];
     svg += "<line x1=\"" + Num(x) + "\" y1=\"" + Num(y - 4) + "\" x2=\"" + Num(x + 24) + "\" y2=\"" + Num(y - 4) +
            "\" stroke=\"" + line.color + "\" stroke-width=\"2\"" + (line.dashed ? " stroke-dasharray=\"6,3\"" : "") +
            "/>\n";
-    svg += Symbol(k, x + 12, y - 4, line.color);
-    svg += "<text x=\"" + Num(x + 30) + "\" y=\"" + Num(y) + "\">" + Escape(line.label) + "</text>\n";
+    svg += Symbol(item.line, x + 12, y - 4, line.color) + label;
   }
   return svg;
 }
@@ -204,12 +237,11 @@ std::string RenderSvg(const std::vector<PlotPanel>& panels, int columns, const s
   const double w = alone ? 640 : 460, h = alone ? 380 : 330, left = 62, right = 14, top = alone ? 12 : 30, bottom = 46,
                legend_row = 20;
   const std::string heading = alone && title.empty() ? panels.front().title : title;
-  bool markers = false;
-  for (const PlotPanel& panel : panels) markers |= !panel.markers.empty();
   int rows = static_cast<int>((panels.size() + columns - 1) / columns);
   const double page_w = w * columns;
   int legend_rows = 0;
-  const std::vector<LegendEntry> legend = LayOutLegend(panels, markers, page_w, &legend_rows);
+  const std::vector<LegendItem> items = LegendItems(panels);
+  const std::vector<LegendEntry> legend = LayOutLegend(items, page_w, &legend_rows);
   const double page_h = 36 + h * rows + 6 + legend_row * legend_rows;
   std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + Num(page_w) + "\" height=\"" + Num(page_h) +
                     "\" viewBox=\"0 0 " + Num(page_w) + " " + Num(page_h) +
@@ -229,7 +261,7 @@ std::string RenderSvg(const std::vector<PlotPanel>& panels, int columns, const s
     svg += DataSvg(panel, area);
     svg += "</g>\n";
   }
-  svg += LegendSvg(panels, legend, 36 + h * rows, legend_row);
+  svg += LegendSvg(panels, items, legend, 36 + h * rows, legend_row);
   svg += "</svg>\n";
   return svg;
 }

@@ -21,12 +21,20 @@ struct PlotMarker {
   std::string label = "target depth";
 };
 
+// A value on the y axis, e.g. the target depth a peak accommodation should
+// reach: a grey band across the panel with its label, in the legend as a block.
+struct PlotLevel {
+  double y = 0;
+  std::string label = "target depth";
+};
+
 struct PlotPanel {
   std::string title;
   std::string x_label, y_label;  // with units: "accommodation (D)"
   double x_min = 0, x_max = 1, y_min = 0, y_max = 1;
   std::vector<PlotLine> lines;
   std::vector<PlotMarker> markers;
+  std::vector<PlotLevel> levels;
 };
 
 // Panels laid out in `columns` columns; each panel 640 x 380 px alone, 460 x

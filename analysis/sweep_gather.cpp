@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "layerlab/analysis/svg_plot.h"
@@ -48,6 +49,13 @@ std::string Slug(const std::string& text) {
   return s.empty() ? "result" : s;
 }
 
+// " D" of "peak accommodation, 0.7 D, 2 cpd (D)": the unit in the column's last parentheses.
+std::string UnitOf(const std::string& column) {
+  const size_t open = column.rfind('('), close = column.rfind(')');
+  if (open == std::string::npos || close != column.size() - 1 || close == open + 1) return "";
+  return " " + column.substr(open + 1, close - open - 1);
+}
+
 struct Row {
   const SweepJob* job;
   SweepJobState state;
@@ -67,6 +75,7 @@ PlotPanel Panel(const SweepSpec& spec, const std::vector<Row>& rows, const std::
   panel.x_label = x_param >= 0 ? spec.parameters[x_param].column() : "job";
   std::map<std::string, PlotLine> lines;  // by the other parameters' labels
   std::vector<std::string> order;
+  std::set<double> ideals;
   double x_lo = INFINITY, x_hi = -INFINITY, y_lo = INFINITY, y_hi = -INFINITY;
   for (const Row& row : rows) {
     if (!row.state.complete) continue;
@@ -86,6 +95,12 @@ PlotPanel Panel(const SweepSpec& spec, const std::vector<Row>& rows, const std::
     line.x.push_back(x);
     line.y.push_back(y);
     x_lo = std::min(x_lo, x), x_hi = std::max(x_hi, x), y_lo = std::min(y_lo, y), y_hi = std::max(y_hi, y);
+    if (it->ideal) ideals.insert(*it->ideal);
+  }
+  *varies = std::isfinite(y_lo) && y_hi > y_lo;
+  for (double ideal : ideals) {
+    panel.levels.push_back({ideal, "target depth " + Cell(ideal) + UnitOf(column)});
+    y_lo = std::min(y_lo, ideal), y_hi = std::max(y_hi, ideal);
   }
   for (size_t i = 0; i < order.size(); ++i) {
     PlotLine line = lines[order[i]];
@@ -94,7 +109,6 @@ PlotPanel Panel(const SweepSpec& spec, const std::vector<Row>& rows, const std::
     line.dashed = (i / std::size(kColors)) % 2 == 1;
     panel.lines.push_back(line);
   }
-  *varies = std::isfinite(y_lo) && y_hi > y_lo;
   if (!std::isfinite(x_lo)) x_lo = 0, x_hi = 1, y_lo = 0, y_hi = 1;
   if (x_hi <= x_lo) x_lo -= 0.5, x_hi += 0.5;
   const double pad = y_hi > y_lo ? 0.08 * (y_hi - y_lo) : std::max(1e-3, 0.05 * std::fabs(y_hi));

@@ -46,26 +46,32 @@ std::string Number(double v) {
 // The job's row of the table, from what the pipeline returned.
 std::vector<SweepResult> Results(const RunOutcome& outcome) {
   std::vector<SweepResult> r;
+  auto add = [&](std::string column, nlohmann::json value, std::optional<double> ideal = std::nullopt) {
+    SweepResult& result = r.emplace_back();
+    result.column = std::move(column);
+    result.value = std::move(value);
+    result.ideal = ideal;
+  };
   if (outcome.solved) {
-    r.push_back({"PSNR (dB)", outcome.report.final_psnr_db});
-    r.push_back({"solve time (s)", outcome.report.seconds});
-    r.push_back({"iterations", outcome.report.iterations});
+    add("PSNR (dB)", outcome.report.final_psnr_db);
+    add("solve time (s)", outcome.report.seconds);
+    add("iterations", outcome.report.iterations);
   }
   for (const RetinaStateResult& s : outcome.retina)
-    r.push_back({"retinal mean at " + Number(s.diopters) + " D (cd/m2)", s.display_mean_cd_m2});
+    add("retinal mean at " + Number(s.diopters) + " D (cd/m2)", s.display_mean_cd_m2);
   // Each metric of run.retina.metrics against natural viewing, the mean over the states (the focal stack's).
   for (const MeanScore& s : MeanScoresOverStates(outcome.retina))
-    r.push_back({"focal-stack " + s.metric->name + ", mean over the retinal states (" +
-                     (s.metric->unit.empty() ? "1" : s.metric->unit) + ")",
-                 s.mean});
+    add("focal-stack " + s.metric->name + ", mean over the retinal states (" +
+            (s.metric->unit.empty() ? "1" : s.metric->unit) + ")",
+        s.mean);
   std::string own;  // the swept display's curves, not natural viewing's or a listed scene's
   for (const ContrastCurve& c : outcome.contrast) {
     if (c.display == "natural") continue;
     if (own.empty()) own = c.display;
     if (c.display != own) continue;
     const std::string at = Number(c.target_diopters) + " D, " + Number(c.frequency) + " cpd";
-    r.push_back({"peak contrast, " + at + " (1)", c.peak.value});
-    r.push_back({"peak accommodation, " + at + " (D)", c.peak.at_parabola});
+    add("peak contrast, " + at + " (1)", c.peak.value);
+    add("peak accommodation, " + at + " (D)", c.peak.at_parabola, c.target_diopters);
   }
   return r;
 }
@@ -80,7 +86,10 @@ void WriteState(const std::string& path, const SweepJob& job, const std::string&
   doc["seconds"] = seconds;
   doc["outputs"] = outputs;
   ordered_json rows = ordered_json::array();
-  for (const SweepResult& r : results) rows.push_back({{"column", r.column}, {"value", r.value}});
+  for (const SweepResult& r : results) {
+    rows.push_back({{"column", r.column}, {"value", r.value}});
+    if (r.ideal) rows.back()["ideal"] = *r.ideal;
+  }
   doc["results"] = rows;
   WriteFileAtomically(path, doc.dump(2) + "\n");
 }
@@ -255,8 +264,12 @@ SweepJobState ReadJobState(const std::string& out, const SweepJob& job) {
   if (doc.value("state", "") != "complete") return state;
   for (const auto& file : doc.value("outputs", nlohmann::json::array()))
     if (!file.is_string() || !fs::exists(fs::path(JobFolder(out, job)) / "out" / file.get<std::string>())) return state;
-  for (const auto& r : doc.value("results", nlohmann::json::array()))
-    state.results.push_back({r.value("column", ""), r.value("value", nlohmann::json())});
+  for (const auto& r : doc.value("results", nlohmann::json::array())) {
+    SweepResult& result = state.results.emplace_back();
+    result.column = r.value("column", "");
+    result.value = r.value("value", nlohmann::json());
+    if (r.contains("ideal") && r["ideal"].is_number()) result.ideal = r["ideal"].get<double>();
+  }
   state.complete = true;
   return state;
 }
@@ -280,7 +293,12 @@ SweepJobState RunSweepJob(const SweepSpec& spec, const SweepJob& job, const std:
   SweepJobState state = ReadJobState(out, job);
   if (state.complete) return state;
   if (ran) *ran = true;
-  RunRequest request{(folder / "scene.json").string(), (folder / "out").string(), spec.iterations, spec.threads, false};
+  RunRequest request;
+  request.scene = (folder / "scene.json").string();
+  request.out = (folder / "out").string();
+  request.iterations = spec.iterations;
+  request.threads = spec.threads;
+  request.shared_renders = (fs::path(out) / "targets").string();
   const auto start = std::chrono::steady_clock::now();
   auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   state = SweepJobState{};

@@ -9,6 +9,8 @@
 //                            the error), the scene's digest, its outputs, its results
 //   DIR/sweep.lock           held by the runner that writes the job folders
 //   DIR/jobs/<id>/job.lock   held by the process running that job
+//   DIR/targets/<key>/       a target scene's render, shared by the jobs whose
+//                            target is the same (analysis/target_cache.h)
 //
 // manifest.json: layerlab-sweep-manifest/1, written by the runner that expands the grid
 //
@@ -33,9 +35,10 @@
 // | runner | string | required | `"local"`, `"mpi rank R of N"`, `"slurm task T"` |
 // | seconds | number | required | wall time of the job (s) |
 // | outputs | array of paths | required | what it wrote, relative to `out/`; all must exist for the job to count as complete |
-// | results | array of `{column, value}` | required | the job's row of the table |
+// | results | array of `{column, value, ideal}` | required | the job's row of the table; `ideal` (where there is one) is what a perfect display gives, drawn in the plots as a reference |
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -60,6 +63,7 @@ struct SweepJob {
 struct SweepResult {
   std::string column;  // with its unit: "PSNR (dB)"
   nlohmann::json value;
+  std::optional<double> ideal;  // what a perfect display gives (a peak accommodation: the target's depth)
 };
 
 struct SweepJobState {

@@ -1,14 +1,17 @@
 #include "layerlab/analysis/target_cache.h"
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <thread>
 #include <vector>
 
 #include "layerlab/framework/atomic_file.h"
 #include "layerlab/framework/content_digest.h"
 #include "layerlab/framework/error.h"
 #include "layerlab/framework/file_read_observer.h"
+#include "layerlab/framework/interrupt.h"
 #include "layerlab/framework/json_file.h"
 #include "layerlab/framework/lightfield_io.h"
 
@@ -36,20 +39,24 @@ FileBytes BytesOfFile(const std::string& path) {
   return {size, bytes.value()};
 }
 
+// The file `from` hard-linked (or copied, where links fail) to `at`.
+void LinkFile(const fs::path& from, const fs::path& at, std::error_code& ec) {
+  fs::create_directories(at.parent_path(), ec);
+  std::error_code link_ec;
+  fs::create_hard_link(from, at, link_ec);
+  if (link_ec) fs::copy_file(from, at, fs::copy_options::overwrite_existing, ec);
+}
+
 // Every file under `from`, hard-linked (or copied) to the same place under `to`.
 void LinkTree(const fs::path& from, const fs::path& to) {
   std::error_code ec;
   for (auto it = fs::recursive_directory_iterator(from, ec); !ec && it != fs::recursive_directory_iterator();
        it.increment(ec)) {
     const fs::path at = to / it->path().lexically_relative(from);
-    if (it->is_directory()) {
+    if (it->is_directory())
       fs::create_directories(at, ec);
-    } else {
-      fs::create_directories(at.parent_path(), ec);
-      std::error_code link_ec;
-      fs::create_hard_link(it->path(), at, link_ec);
-      if (link_ec) fs::copy_file(it->path(), at, fs::copy_options::overwrite_existing, ec);
-    }
+    else
+      LinkFile(it->path(), at, ec);
     if (ec) break;
   }
   if (ec) throw Error(to.string() + ": cannot keep the earlier render (" + ec.message() + ")");
@@ -132,6 +139,39 @@ void KeepRender(const LightField& lf, const TargetScene& scene, const std::strin
                        std::to_string(g.cols) + " x " + std::to_string(g.rows) + " pixels"},
       {"light_field_digest", LightFieldDigest(lf)}};
   WriteFileAtomically((dir / "render.json").string(), record.dump(2) + "\n");
+}
+
+std::string SharedRenderFolder(const std::string& store, const std::string& digest) {
+  return (fs::path(store) / digest).string();
+}
+
+FileLock LockSharedRender(const std::string& store, const std::string& digest,
+                          const std::function<void(const std::string& holder)>& waiting) {
+  std::error_code ec;
+  fs::create_directories(store, ec);
+  if (ec) throw Error(store + ": cannot create the folder of shared target renders (" + ec.message() + ")");
+  const std::string path = SharedRenderFolder(store, digest) + ".lock";
+  bool told = false;
+  for (;;) {
+    std::string holder;
+    if (std::optional<FileLock> lock = FileLock::TryLock(path, &holder)) return std::move(*lock);
+    if (!told && waiting) waiting(holder.empty() ? "another process" : holder);
+    told = true;
+    if (Interrupted()) throw InterruptedError("interrupted while waiting for " + path);
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+}
+
+void ShareRender(const std::string& kept, const std::string& store, const std::string& digest) {
+  const fs::path done = SharedRenderFolder(store, digest), partial = done.string() + ".partial";
+  std::error_code ec;
+  fs::remove_all(partial, ec);
+  LinkTree(fs::path(kept) / "lightfield", partial / "lightfield");
+  LinkFile(fs::path(kept) / "render.json", partial / "render.json", ec);
+  if (ec) throw Error(partial.string() + ": cannot keep the target's render there (" + ec.message() + ")");
+  fs::remove_all(done, ec);  // an earlier render that could not be used; the lock keeps readers out
+  fs::rename(partial, done, ec);
+  if (ec) throw Error(done.string() + ": cannot keep the target's render there (" + ec.message() + ")");
 }
 
 }  // namespace layerlab

@@ -10,10 +10,18 @@
 // staging folder and switched into place with the rest of the run
 // (framework/staged_output.h), so a render that is killed or fails leaves
 // nothing that a later run would reuse.
+//
+// Runs that share a store (a sweep's jobs: DIR/targets) also keep each render
+// there by its key, STORE/<key>/, so that of the jobs whose target scene is
+// the same only the first renders it; the others wait for it on
+// STORE/<key>.lock and link its files.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
+
+#include "layerlab/framework/file_lock.h"
 
 #include "layerlab/framework/lightfield.h"
 #include "layerlab/targets/target_scene.h"
@@ -39,5 +47,19 @@ std::optional<LightField> ReadCachedRender(const std::string& folder, const std:
 // hard-linked (copied where links fail) instead of written again.
 void KeepRender(const LightField& lf, const TargetScene& scene, const std::string& digest, const std::string& folder,
                 const std::string& reuse_from = "");
+
+// Where the render for `digest` is kept in a shared store: STORE/<digest>.
+std::string SharedRenderFolder(const std::string& store, const std::string& digest);
+
+// Holds STORE/<digest>.lock, waiting while another process holds it (that one
+// renders the same scene); `waiting` is told once who holds it. Throws
+// InterruptedError when Ctrl-C arrives while waiting.
+FileLock LockSharedRender(const std::string& store, const std::string& digest,
+                          const std::function<void(const std::string& holder)>& waiting);
+
+// Puts the render KeepRender kept in `kept` into the store under `digest`,
+// hard-linked, switched into place whole (a partial copy of a killed process
+// is replaced). Call it holding LockSharedRender.
+void ShareRender(const std::string& kept, const std::string& store, const std::string& digest);
 
 }  // namespace layerlab

@@ -10,6 +10,7 @@
 #include "layerlab/framework/lightfield_io.h"
 #include "layerlab/framework/png_writer.h"
 #include "layerlab/framework/progress.h"
+#include "layerlab/framework/shown_image.h"
 #include "layerlab/framework/warnings.h"
 #include "layerlab/retina/lightfield_radiance.h"
 #include "layerlab/solvers/memory_estimate.h"
@@ -46,6 +47,56 @@ void AttachRetinalTarget(const Target& target, SolverOptions* options) {
   Note("retinal objective: the target's retinal images traced from " + target.source + ", ray by ray");
 }
 
+#if LAYERLAB_WITH_EMBREE
+namespace {
+
+void Render(const std::string& label, Target* target) {
+  const LightFieldGeometry& g = target->scene->geometry;
+  Progress progress(label, g.view_count());
+  char what[160];
+  std::snprintf(what, sizeof what, "%d x %d pixels", g.cols, g.rows);
+  RenderStats stats;
+  target->light_field = RenderTarget(*target->scene, &stats, [&](size_t done, size_t total) {
+    progress.Update(done, std::string("views rendered, ") + what);
+  });
+  std::snprintf(what, sizeof what, "%zu views of %d x %d pixels, %.1f Mrays/s", g.view_count(), g.cols, g.rows,
+                stats.rays / std::max(stats.seconds, 1e-9) / 1e6);
+  progress.Finish(what);
+}
+
+// The target's light field from the run's earlier render, else from the shared store (waiting for a
+// process that renders it now), else rendered; kept in cache->next, and put in the store when rendered.
+void ReadOrRender(const std::string& scene_file, const std::string& label, const RenderCache* cache, Target* target) {
+  if (!cache) return Render(label, target);
+  const std::string& digest = target->digest;
+  std::string why_not, reuse_from;
+  auto reuse = [&](const std::string& folder, const std::string& whose) {
+    std::optional<LightField> cached = ReadCachedRender(folder, digest, &why_not);
+    if (!cached) return false;
+    target->light_field = std::move(*cached);
+    target->reused = true;
+    reuse_from = folder;
+    Note(label + ": reusing the render of " + scene_file + " in " + folder + " (key " + digest + ": " + whose + ")");
+    return true;
+  };
+  std::optional<FileLock> shared;
+  if (!reuse(cache->previous, "the scene, its files and geometry unchanged") && !cache->shared.empty()) {
+    shared = LockSharedRender(cache->shared, digest, [&](const std::string& holder) {
+      Note(label + ": waiting for " + holder + ", which renders the same target scene");
+    });
+    reuse(SharedRenderFolder(cache->shared, digest), "the same scene, files and geometry as another job's");
+  }
+  if (!target->reused) {
+    Note(label + ": rendering " + scene_file + ": " + why_not);
+    Render(label, target);
+  }
+  KeepRender(target->light_field, *target->scene, digest, cache->next, reuse_from);
+  if (shared && !target->reused) ShareRender(cache->next, cache->shared, digest);
+}
+
+}  // namespace
+#endif
+
 std::unique_ptr<Target> LoadOrRenderTarget(const SolveConfig& config, const std::string& label,
                                            const RenderCache* cache) {
 #if LAYERLAB_WITH_EMBREE
@@ -73,34 +124,9 @@ std::unique_ptr<Target> LoadOrRenderTarget(const SolveConfig& config, const std:
   target->scene = scene ? std::move(scene) : std::make_unique<TargetScene>(LoadTarget(config.target_scene));
   MoveTargetScene(target->scene.get(), config.target_moved_m);
   target->moved_m = config.target_moved_m;
-  const LightFieldGeometry& g = target->scene->geometry;
   target->rendered = true;
   target->digest = TargetSceneDigest(*target->scene);
-  std::string why_not;
-  if (cache) {
-    if (std::optional<LightField> cached = ReadCachedRender(cache->previous, target->digest, &why_not)) {
-      target->light_field = std::move(*cached);
-      target->reused = true;
-      Note(label + ": reusing the render of " + config.target_scene + " in " + cache->previous + " (key " +
-           target->digest + ": the scene, its files and geometry unchanged)");
-    }
-  }
-  if (!target->reused) {
-    if (cache) Note(label + ": rendering " + config.target_scene + ": " + why_not);
-    Progress progress(label, g.view_count());
-    char what[160];
-    std::snprintf(what, sizeof what, "%d x %d pixels", g.cols, g.rows);
-    RenderStats stats;
-    target->light_field = RenderTarget(*target->scene, &stats, [&](size_t done, size_t total) {
-      progress.Update(done, std::string("views rendered, ") + what);
-    });
-    std::snprintf(what, sizeof what, "%zu views of %d x %d pixels, %.1f Mrays/s", g.view_count(), g.cols, g.rows,
-                  stats.rays / std::max(stats.seconds, 1e-9) / 1e6);
-    progress.Finish(what);
-  }
-  if (cache)
-    KeepRender(target->light_field, *target->scene, target->digest, cache->next,
-               target->reused ? cache->previous : std::string());
+  ReadOrRender(config.target_scene, label, cache, target.get());
   target->tracer = std::make_unique<TargetTracer>(*target->scene);
   return target;
 #else
@@ -147,10 +173,13 @@ size_t RefuseSolveBeyondMemory(const DisplaySystem& system, const LightFieldGeom
   return need.bytes;
 }
 
-void WriteCenterView(const LightField& lf, const std::string& path) {
+std::array<int, 2> WriteCenterView(const LightField& lf, const std::string& path) {
   const LightFieldGeometry& g = lf.geometry;
   const float* view = lf.view(g.view_index(g.views_y / 2, g.views_x / 2));
-  WriteSrgbPng(path, g.cols, g.rows, std::vector<float>(view, view + g.pixels_per_view() * 3));
+  const ShownImage<float> shown =
+      ShrinkToWidth(g.cols, g.rows, 3, std::vector<float>(view, view + g.pixels_per_view() * 3), kPreviewWidthPx);
+  WriteSrgbPng(path, shown.width, shown.height, shown.pixels);
+  return {shown.width, shown.height};
 }
 
 }  // namespace layerlab

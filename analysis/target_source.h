@@ -51,11 +51,13 @@ void AttachRetinalTarget(const Target& target, SolverOptions* options);
 struct RenderCache {
   std::string previous;  // may hold an earlier render (a run's committed OUT/target)
   std::string next;      // this run's render goes here (the staging folder's target/)
+  std::string shared;    // a store of renders by key shared by several runs (a sweep's DIR/targets), or ""
 };
 
 // Reads config.target, or renders config.target_scene with a progress bar of
-// views; with `cache`, a render of the same scene in cache->previous is read
-// instead, and the render is kept in cache->next. Says on stderr which.
+// views; with `cache`, a render of the same scene in cache->previous (then in
+// cache->shared) is read instead, and the render is kept in cache->next (and
+// a new one in cache->shared). Says on stderr which.
 // Throws layerlab::Error when neither is given or the scene needs Embree and
 // this build has none.
 std::unique_ptr<Target> LoadOrRenderTarget(const SolveConfig& config, const std::string& label,
@@ -84,7 +86,9 @@ size_t RefuseSolveBeyondMemory(const DisplaySystem& system, const SolveConfig& c
 size_t RefuseSolveBeyondMemory(const DisplaySystem& system, const LightFieldGeometry& geometry,
                                const SolveConfig& config, int threads, size_t limit, const std::string& limit_name);
 
-// The center view as an sRGB PNG (1 = white), to show what the target looks like.
-void WriteCenterView(const LightField& lf, const std::string& path);
+// The center view as an sRGB PNG (1 = white), to show what the target looks
+// like, reduced to the report's preview width (framework/shown_image.h);
+// returns its width and height.
+std::array<int, 2> WriteCenterView(const LightField& lf, const std::string& path);
 
 }  // namespace layerlab

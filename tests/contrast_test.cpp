@@ -11,6 +11,7 @@
 #include "layerlab/analysis/contrast_eyebox.h"
 #include "layerlab/framework/units.h"
 #include "layerlab/retina/retina.h"
+#include "layerlab/systems/display_model.h"
 #include "layerlab/tests/test_util.h"
 
 namespace layerlab {
@@ -66,6 +67,44 @@ TEST(Contrast, PerfectOneLayerDisplayScoresOneAtItsPeak) {
     const double sinc = std::sin(std::numbers::pi * f * p) / (std::numbers::pi * f * p);
     EXPECT_TRUE(Close(Curve(curves, "one_layer", f).contrast[0], sinc, 0.01)) << f << " cpd, pixel " << p << " deg";
   }
+}
+
+// Issue 50: the paper prototype's peak at 1.3 D, 2 cpd is 1.025. The reference, natural viewing of the
+// sampled target light field, reads its pixels on the grating's own plane, in focus: it keeps
+// sinc(f p) of the grating's amplitude, p the light field's pixel angle. The display keeps more, yet
+// less than the grating itself has: against the continuous plane it is below 1, and the note says so.
+TEST(Contrast, AboveOneIsTheSampledReferencesPixelHoldNotMoreThanTheGrating) {
+  ContrastDisplay d;
+  d.name = "paper_prototype";
+  d.system = testing::CompileJson(testing::ReadExample("paper_prototype.json"));
+  d.solver = "hybrid";
+  ContrastOptions o;
+  o.target_diopters = {1.3};
+  o.frequencies_cpd = {2.0};
+  o.accommodation_min_diopters = 1.25, o.accommodation_max_diopters = 1.35;
+  o.peak_uncertainty = false;
+  const std::vector<ContrastCurve> sampled = RunContrast({d}, o);
+  const ContrastCurve& natural = Curve(sampled, "natural", 2.0);
+  const ContrastCurve& display = Curve(sampled, "paper_prototype", 2.0);
+  const LightFieldGeometry g = DisplayLightFieldGeometry(d.system, 1.3);
+  const double p = std::atan(g.window_width_m / g.cols / g.origin_z_m) / kRadiansPerDegree;
+  const double sinc = std::sin(std::numbers::pi * 2.0 * p) / (std::numbers::pi * 2.0 * p);
+  EXPECT_TRUE(Close(natural.reference_amplitude, 0.5 * sinc, 0.005)) << "pixel " << p << " deg";
+  EXPECT_GT(display.at_target, 1.0);
+  const std::string note = AboveOneNote(sampled);
+  EXPECT_NE(note.find("paper_prototype: " + FormatFixed(display.peak.value, 3) + " at 1.30 D, 2.0 cpd"),
+            std::string::npos)
+      << note;
+  EXPECT_NE(note.find("on the grating's own plane"), std::string::npos) << note;
+
+  o.reference = ContrastReference::kContinuous;
+  const std::vector<ContrastCurve> continuous = RunContrast({d}, o);
+  const ContrastCurve& against_grating = Curve(continuous, "paper_prototype", 2.0);
+  EXPECT_LT(against_grating.at_target, 1.0) << "no more contrast than the grating has";
+  EXPECT_TRUE(Close(against_grating.at_target * Curve(continuous, "natural", 2.0).reference_amplitude,
+                    display.at_target * natural.reference_amplitude, 1e-9))
+      << "the display's own amplitude is the same whatever it is divided by";
+  EXPECT_EQ(AboveOneNote(continuous), "");
 }
 
 // The same through the wave-optics eye, its panel with a black matrix (no panel in front of it: nothing

@@ -43,6 +43,21 @@ TEST(SvgPlot, AMarkerIsABandWithItsLabelNotALine) {
   EXPECT_EQ(Count(svg, "stroke-dasharray"), 0u) << "no dashed line that could pass for a curve";
 }
 
+// Issue 50: a sweep's peak accommodation is drawn against the target's depth, a grey band across the
+// panel at that value, labelled there and in the legend, not a line that could pass for a curve.
+TEST(SvgPlot, ALevelIsABandAcrossThePanelAtItsValue) {
+  PlotPanel p = Panel("peak accommodation");
+  p.y_min = 0, p.y_max = 2;
+  p.levels.push_back({1.5, "target depth 1.5 D"});
+  const std::string svg = RenderSvg({p}, 1, "");
+  EXPECT_EQ(Count(svg, "<polyline"), 2u) << "only the two curves are lines";
+  EXPECT_EQ(Count(svg, ">target depth 1.5 D<"), 3u) << "labelled on the plot (text and tooltip) and in the legend";
+  // The band spans the plot area (x 62 to 626 of a lone 640 px panel) and is centred at y = 1.5: the
+  // plot area runs from y 370 (0) to 48 (2), so 1.5 lies at 370 - 0.75 * 322 = 128.5.
+  EXPECT_NE(svg.find("<rect x=\"62.00\" y=\"124.50\" width=\"564.00\" height=\"8\" fill=\"#888\""), std::string::npos)
+      << svg;
+}
+
 // Two runs with the same curve (issue 50: four runs showed as three lines): each line's points carry
 // its own symbol, hollow, so both show where they overlap; the legend shows the symbols too.
 TEST(SvgPlot, CoincidingLinesKeepTheirSymbols) {

@@ -3,6 +3,7 @@
 // grid's order, the values written at their pointers, paths rebased to the
 // job's folder. Running the jobs is tested end to end in tests/cli/sweep_*.sh.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <filesystem>
 #include <fstream>
@@ -298,6 +299,57 @@ TEST_F(SweepTest, AnOutputFolderInsideTheBaseScenesTargetIsRefusedUpFront) {
   }
   EXPECT_FALSE(fs::exists(out));
 }
+
+#if LAYERLAB_WITH_EMBREE
+// The file's inode: two paths with the same one are one file, linked.
+ino_t Inode(const fs::path& path) {
+  struct stat st {};
+  EXPECT_EQ(::stat(path.c_str(), &st), 0) << path;
+  return st.st_ino;
+}
+
+// Issue 50: every job rendered the same target (10.7 s per job at paper scale). The first job keeps its
+// render in DIR/targets/<key>/ and the next one, whose target scene is the same, links it instead.
+TEST_F(SweepTest, JobsWithTheSameTargetRenderItOnce) {
+  const SweepSpec spec = ReadSweepSpec(Write(Base()));
+  const std::string out = (dir_ / "out").string();
+  const std::vector<SweepJob> jobs = ExpandSweep(spec, out);
+  WriteSweepFolders(spec, jobs, out);
+  auto target = [&](size_t job) { return fs::path(JobFolder(out, jobs[job])) / "out" / "target"; };
+  ASSERT_TRUE(RunSweepJob(spec, jobs[0], out, "local").complete);
+  ASSERT_TRUE(RunSweepJob(spec, jobs[1], out, "local").complete);
+  const nlohmann::json record = ReadJsonFile((target(0) / "render.json").string());
+  const fs::path store = fs::path(out) / "targets" / record.at("digest").get<std::string>();
+  ASSERT_TRUE(fs::exists(store / "render.json")) << "the first job's render is in the store";
+  size_t files = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(store / "lightfield")) {
+    if (!entry.is_regular_file()) continue;
+    ++files;
+    const fs::path relative = entry.path().lexically_relative(store);
+    EXPECT_EQ(Inode(entry.path()), Inode(target(0) / relative)) << relative;
+    EXPECT_EQ(Inode(entry.path()), Inode(target(1) / relative))
+        << relative << ": the second job rendered the target again";
+  }
+  EXPECT_GT(files, 0u);
+  // A render in the store that was changed since is not used: the next job renders and replaces it.
+  fs::path some_file;
+  for (const auto& entry : fs::recursive_directory_iterator(store / "lightfield"))
+    if (entry.is_regular_file() && entry.path().extension() == ".exr") some_file = entry.path();
+  ASSERT_FALSE(some_file.empty());
+  const fs::path changed = some_file.string() + ".changed";
+  fs::copy_file(some_file, changed);
+  {
+    std::fstream f(changed, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(-16, std::ios::end);
+    f.write("0123456789abcdef", 16);
+  }
+  fs::rename(changed, some_file);  // a new file: the jobs' links keep the render they read
+  ASSERT_TRUE(RunSweepJob(spec, jobs[2], out, "local").complete);
+  const fs::path relative = some_file.lexically_relative(store);
+  EXPECT_NE(Inode(target(2) / relative), Inode(target(1) / relative));
+  EXPECT_EQ(Inode(some_file), Inode(target(2) / relative)) << "the new render replaced it";
+}
+#endif
 
 }  // namespace
 }  // namespace layerlab
