@@ -10,6 +10,7 @@
 #include <map>
 #include <set>
 
+#include "layerlab/analysis/sweep_gather.h"
 #include "layerlab/analysis/sweep_jobs.h"
 #include "layerlab/framework/error.h"
 #include "layerlab/framework/json_file.h"
@@ -348,6 +349,31 @@ TEST_F(SweepTest, JobsWithTheSameTargetRenderItOnce) {
   const fs::path relative = some_file.lexically_relative(store);
   EXPECT_NE(Inode(target(2) / relative), Inode(target(1) / relative));
   EXPECT_EQ(Inode(some_file), Inode(target(2) / relative)) << "the new render replaced it";
+}
+
+// Issue 50: a peak accommodation is plotted against its grating's depth, the value a perfect display
+// gives: job.json keeps it beside the result, and the plot draws it as a labelled band.
+TEST_F(SweepTest, APeakAccommodationIsPlottedAgainstItsTargetDepth) {
+  nlohmann::json sweep = Base();
+  sweep["work"] = {"solve", "contrast"};
+  sweep["parameters"][1]["values"] = {{0.5, 0.5}};
+  sweep["parameters"][1]["labels"] = {"50/50"};
+  const SweepSpec spec = ReadSweepSpec(Write(sweep));
+  const std::string out = (dir_ / "out").string();
+  const std::vector<SweepJob> jobs = ExpandSweep(spec, out);
+  WriteSweepFolders(spec, jobs, out);
+  for (const SweepJob& job : jobs) ASSERT_TRUE(RunSweepJob(spec, job, out, "local").complete);
+  const nlohmann::json record = ReadJsonFile(JobFolder(out, jobs[0]) + "/job.json");
+  std::map<std::string, double> ideal;
+  for (const auto& r : record.at("results"))
+    if (r.contains("ideal")) ideal[r.at("column")] = r.at("ideal");
+  const std::map<std::string, double> expected = {{"peak accommodation, 0.7 D, 0.5 cpd (D)", 0.7},
+                                                  {"peak accommodation, 1.9 D, 0.5 cpd (D)", 1.9}};
+  EXPECT_EQ(ideal, expected) << record.dump();
+  GatherSweep(spec, jobs, out);
+  std::ifstream plot(out + "/plots/peak_accommodation_0_7_d_0_5_cpd_d.svg");
+  const std::string svg((std::istreambuf_iterator<char>(plot)), std::istreambuf_iterator<char>());
+  EXPECT_NE(svg.find(">target depth 0.7 D</text>"), std::string::npos) << svg;
 }
 #endif
 
