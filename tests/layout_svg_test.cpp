@@ -86,10 +86,8 @@ bool Crosses(const Segment& s, const Box& b) {
 
 bool Overlap(const Box& a, const Box& b) { return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1; }
 
-class LayoutSvg : public ::testing::TestWithParam<std::string> {};
-
-TEST_P(LayoutSvg, ConnectorsAndLeadersCrossNoTextAndImageLabelsDoNotOverlap) {
-  const DisplaySystem system = Compile(LoadScene(testing::ExamplePath(GetParam())));
+// Every connector and leader clear of every text; the images' labels ("rear_a 0.40 D") clear of each other.
+void ExpectNothingCrosses(const DisplaySystem& system) {
   const std::string svg = RenderLayoutSvg(system);
   const std::vector<Segment> connectors = Lines(svg, "connector"), leaders = Lines(svg, "leader");
   ASSERT_EQ(connectors.size(), system.layers.size()) << "one connector per panel";
@@ -102,7 +100,6 @@ TEST_P(LayoutSvg, ConnectorsAndLeadersCrossNoTextAndImageLabelsDoNotOverlap) {
         EXPECT_FALSE(Crosses(s, b)) << (kind == &connectors ? "the connector" : "the leader") << " from (" << s.x0
                                     << ", " << s.y0 << ") to (" << s.x1 << ", " << s.y1 << ") crosses \"" << b.text
                                     << "\"";
-  // The images' labels ("rear_a 0.40 D") against each other.
   std::vector<Box> image_labels;
   for (const Box& b : boxes)
     if (std::regex_search(b.text, std::regex(" [0-9.]+ D( \\(inverted\\))?$"))) image_labels.push_back(b);
@@ -111,6 +108,31 @@ TEST_P(LayoutSvg, ConnectorsAndLeadersCrossNoTextAndImageLabelsDoNotOverlap) {
     for (size_t j = i + 1; j < image_labels.size(); ++j)
       EXPECT_FALSE(Overlap(image_labels[i], image_labels[j]))
           << "\"" << image_labels[i].text << "\" and \"" << image_labels[j].text << "\" overlap";
+}
+
+class LayoutSvg : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(LayoutSvg, ConnectorsAndLeadersCrossNoTextAndImageLabelsDoNotOverlap) {
+  ExpectNothingCrosses(Compile(LoadScene(testing::ExamplePath(GetParam()))));
+}
+
+// Three images 0.15 D apart (about 51 px): the right one's label on the lowest level, the middle one's a
+// level up (it would cover the right one's), and the left one's label, which clears the right one's, must
+// still pass below the middle one's leader: two levels up.
+TEST(LayoutSvgLabels, ALabelPassesBelowTheLeadersInItsSpan) {
+  nlohmann::json scene = testing::ReadExample("tensor_display_3layer.json");
+  testing::ElementNamed(scene, "front")["virtual_depth"] = "1.0 m";
+  testing::ElementNamed(scene, "middle")["gap"] = "17.647 cm";
+  testing::ElementNamed(scene, "rear")["gap"] = "25.21 cm";
+  const DisplaySystem system = testing::CompileJson(scene);
+  std::vector<double> diopters;
+  for (const VirtualLayer& l : system.layers) diopters.push_back(l.diopters);
+  std::sort(diopters.begin(), diopters.end());
+  ASSERT_EQ(diopters.size(), 3u);
+  EXPECT_NEAR(diopters[0], 0.70, 0.001);
+  EXPECT_NEAR(diopters[1], 0.85, 0.001);
+  EXPECT_NEAR(diopters[2], 1.00, 0.001);
+  ExpectNothingCrosses(system);
 }
 
 INSTANTIATE_TEST_SUITE_P(Examples, LayoutSvg,
