@@ -33,10 +33,12 @@ from ._layerlab import (
     read_lightfield,
     render_target,
     run,
+    set_verbosity,
     solve,
     solvers,
     ssim,
     synthesize,
+    verbosity,
 )
 
 

@@ -13,5 +13,6 @@ void BindAnalysis(pybind11::module_& m);    // analysis.cpp: run, contrast
 void BindCompare(pybind11::module_& m);     // compare.cpp: compare
 void BindFit(pybind11::module_& m);         // fit.cpp (Ceres builds) or fit_missing.cpp: fit
 void BindMetrics(pybind11::module_& m);     // metrics.cpp: ssim, ms_ssim, csf_jnd
+void BindVerbosity(pybind11::module_& m);   // verbosity.cpp: set_verbosity, verbosity
 
 }  // namespace layerlab::python

@@ -13,4 +13,5 @@ PYBIND11_MODULE(_layerlab, m) {
   layerlab::python::BindCompare(m);
   layerlab::python::BindFit(m);
   layerlab::python::BindMetrics(m);
+  layerlab::python::BindVerbosity(m);
 }
