@@ -40,7 +40,50 @@ from ._layerlab import (
     synthesize,
     verbosity,
 )
+from . import _layerlab
 
+
+def _spell_out_keywords(function, leading, keywords):
+    """`function` (a C++ function that takes its options as **kwargs) wrapped in one whose signature names
+    every option: the parameters `leading` (inspect.Parameter objects), then each of `keywords` ([(name,
+    annotation, default text)], from the option table) keyword-only with default None: not given, the
+    table's default, which the docstring states. An option given as None is left out of the call."""
+    import functools
+    import inspect
+
+    types = {"int": int, "float": float, "list": list, "bool": bool, "str": str, "object": object}
+    options = {name for name, _, _ in keywords}
+
+    @functools.wraps(function)
+    def wrapper(*args, **kwargs):
+        return function(*args, **{k: v for k, v in kwargs.items() if not (k in options and v is None)})
+
+    wrapper.__signature__ = inspect.Signature(leading + [
+        inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY, default=None, annotation=types[annotation])
+        for name, annotation, _ in keywords])
+    # pybind11's first docstring line is its own signature, with **kwargs: the one above replaces it.
+    doc = function.__doc__ or ""
+    wrapper.__doc__ = doc.split("\n", 1)[1].lstrip("\n") if doc.startswith(function.__name__ + "(") else doc
+    return wrapper
+
+
+def _parameters(*specs):
+    """inspect.Parameter objects from (name, default or ..., keyword_only): ... for a required one."""
+    import inspect
+
+    return [inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY if keyword_only
+                              else inspect.Parameter.POSITIONAL_OR_KEYWORD,
+                              default=inspect.Parameter.empty if default is ... else default)
+            for name, default, keyword_only in specs]
+
+
+solve = _spell_out_keywords(
+    _layerlab.solve,
+    _parameters(("display", ..., False), ("target", None, False), ("solver", None, True), ("sampling", None, True),
+                ("callback", None, True)),
+    _layerlab._solve_keywords)
+contrast = _spell_out_keywords(_layerlab.contrast, _parameters(("scenes", ..., False), ("section", None, False)),
+                               _layerlab._contrast_keywords)
 
 
 def retina(solution, accommodation, resolution=0.05, field=None, natural=False):

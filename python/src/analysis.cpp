@@ -214,6 +214,7 @@ void BindAnalysis(py::module_& m) {
       "Runs the scene's \"solve\" and \"run\" sections like `layerlab run SCENE --out OUT`; returns what was written "
       "and what was computed: report, patterns (arrays), retina (arrays), contrast (curves), compare (columns)");
   m.def("contrast", &Contrast, py::arg("scenes"), py::arg("section") = py::none(), ContrastDoc());
+  m.attr("_contrast_keywords") = KeywordSignature(ContrastKeywords());
 }
 
 }  // namespace layerlab::python

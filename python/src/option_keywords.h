@@ -15,8 +15,15 @@
 
 namespace layerlab::python {
 
-// "  name: meaning; in [a, b]; a or b (default: ...)\n" for each entry.
+// "  name: meaning (unit); in [a, b]; a or b (default: ...)\n" for each entry, the unit a real's (SI, or the
+// entry's own: "deg").
 std::string KeywordDoc(const std::vector<const OptionSpec*>& entries);
+
+// [(name, annotation, default)] for each entry: the keyword-only parameters
+// python/layerlab/__init__.py spells out in the signature of the function
+// that takes them ("int", "float", "list" (of reals), "bool", "str", "object";
+// the default as the reference gives it).
+pybind11::list KeywordSignature(const std::vector<const OptionSpec*>& entries);
 
 // The entry whose Python name is `name`; else raises TypeError "<function>()
 // got an unexpected option 'name'; options: a, b, ...".

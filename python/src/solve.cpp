@@ -299,6 +299,7 @@ void BindSolve(py::module_& m) {
         "The light field the display shows with these patterns (default geometry: display_geometry(system))");
   m.def(
       "solvers", [] { return SolverRegistry::Builtins().names(); }, "The solvers' names");
+  m.attr("_solve_keywords") = KeywordSignature(OptionKeywords());
 }
 
 }  // namespace layerlab::python

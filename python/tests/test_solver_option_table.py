@@ -6,6 +6,7 @@ Python name of the table is a parameter of solve() or one of its option
 keywords, documented in its docstring, and solve() takes no option the table
 lacks.
 """
+import inspect
 import re
 from pathlib import Path
 
@@ -35,7 +36,7 @@ def python_names():
 
 def test_every_python_name_of_the_table_is_a_keyword_and_no_other(small_system):
     table = python_names()
-    signature = layerlab.solve.__doc__.splitlines()[0]
+    signature = str(inspect.signature(layerlab.solve))
     own = {name for name in PARAMETERS if re.search(rf"\b{name}\b", signature)}
     assert own == PARAMETERS, signature
     options = table - PARAMETERS
