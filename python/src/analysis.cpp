@@ -152,8 +152,17 @@ py::list Contrast(const py::object& scenes, const py::object& section, const py:
   std::vector<std::string> files;
   if (py::isinstance<py::str>(scenes) || py::hasattr(scenes, "__fspath__")) {
     files.push_back(PathArg(scenes));
+  } else if (py::isinstance<py::iterable>(scenes)) {
+    size_t k = 0;
+    for (const py::handle& f : scenes) {
+      if (!py::isinstance<py::str>(f) && !py::hasattr(f, "__fspath__"))
+        throw py::type_error("contrast: scenes[" + std::to_string(k) + "]: expected a scene file's path, got " +
+                             TypeName(f));
+      files.push_back(PathArg(f));
+      ++k;
+    }
   } else {
-    for (const py::handle& f : scenes) files.push_back(PathArg(f));
+    throw py::type_error("contrast: scenes: expected a scene file's path or a list of them, got " + TypeName(scenes));
   }
   if (files.empty()) throw py::value_error("contrast: no scene");
   std::vector<std::pair<const ContrastOptionEntry*, py::handle>> rest;

@@ -158,7 +158,10 @@ void BindSystem(py::module_& m) {
         return "<layerlab.System " + s.name + ": " + std::to_string(s.layers.size()) + " layers, " +
                std::to_string(s.branches.size()) + " branches>";
       });
+}
 
+// After the classes, so that their signatures name layerlab.Scene and layerlab.System, not the C++ types.
+void BindSceneFunctions(py::module_& m) {
   m.def("load_scene", &LoadSceneFrom, py::arg("source"), py::arg("file") = "",
         "A scene from a file path or a dict (then `file` names it in errors, default \"<dict>\")");
   m.def("compile", &CompileScene, py::arg("scene"), "The display system of a scene");
@@ -167,9 +170,10 @@ void BindSystem(py::module_& m) {
 }  // namespace
 
 void BindScene(py::module_& m) {
-  BindSceneClass(m);
   BindLayer(m);
   BindSystem(m);
+  BindSceneClass(m);  // after System: Scene.compile returns one
+  BindSceneFunctions(m);
 }
 
 }  // namespace layerlab::python

@@ -217,3 +217,10 @@ def test_display_geometry_names_an_origin_that_makes_no_light_field(small_system
         layerlab.display_geometry(small_system, 1e-300)
     with pytest.raises(TypeError, match=r"display_geometry: origin_diopters: expected a number, got str"):
         layerlab.display_geometry(small_system, "1 D")
+
+
+def test_contrast_names_a_scene_argument_of_the_wrong_type(small_scene_path):
+    with pytest.raises(TypeError, match=r"^contrast: scenes: expected a scene file's path or a list of them, got int"):
+        layerlab.contrast(5)
+    with pytest.raises(TypeError, match=r"^contrast: scenes\[1\]: expected a scene file's path, got float"):
+        layerlab.contrast([small_scene_path, 1.5])

@@ -37,3 +37,17 @@ def test_the_wrapper_passes_options_through_and_leaves_none_out(small_scene_path
             layerlab.solve(scene, iteration=2)
     finally:
         layerlab.set_verbosity("normal")
+
+
+def test_no_signature_names_a_cpp_type():
+    """pybind11 writes a C++ type's name ("layerlab::DisplaySystem") where a class was not yet registered."""
+    import layerlab._layerlab as module
+
+    lines = []
+    for name in dir(module):
+        item = getattr(module, name)
+        members = [item] + [getattr(item, a) for a in vars(item)] if inspect.isclass(item) else [item]
+        for member in members:
+            doc = getattr(member, "__doc__", None) or ""
+            lines += [line for line in doc.splitlines() if "::" in line]
+    assert not lines, lines
