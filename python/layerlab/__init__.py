@@ -36,6 +36,7 @@ from ._layerlab import (
     set_verbosity,
     solve,
     solvers,
+    srgb,
     ssim,
     synthesize,
     verbosity,

@@ -14,5 +14,6 @@ void BindCompare(pybind11::module_& m);     // compare.cpp: compare
 void BindFit(pybind11::module_& m);         // fit.cpp (Ceres builds) or fit_missing.cpp: fit
 void BindMetrics(pybind11::module_& m);     // metrics.cpp: ssim, ms_ssim, csf_jnd
 void BindVerbosity(pybind11::module_& m);   // verbosity.cpp: set_verbosity, verbosity
+void BindSrgb(pybind11::module_& m);        // srgb.cpp: srgb
 
 }  // namespace layerlab::python

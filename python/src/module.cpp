@@ -14,4 +14,5 @@ PYBIND11_MODULE(_layerlab, m) {
   layerlab::python::BindFit(m);
   layerlab::python::BindMetrics(m);
   layerlab::python::BindVerbosity(m);
+  layerlab::python::BindSrgb(m);
 }
