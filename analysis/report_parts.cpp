@@ -59,20 +59,6 @@ std::string Signed(double value, int decimals) {
   return (value < 0 ? "-" : "+") + text;
 }
 
-// A layer's pattern in the eye's orientation (x right, y up as the eye sees the layer): the panel's pixel
-// order with the layer's mirror reversals undone (systems/display_system.h, flip_x and flip_y).
-std::vector<float> AsTheEyeSeesIt(const VirtualLayer& layer, const LayerPattern& t) {
-  std::vector<float> eye(t.rgb.size());
-  for (int row = 0; row < t.rows; ++row)
-    for (int col = 0; col < t.cols; ++col) {
-      const int from_col = layer.flip_x ? t.cols - 1 - col : col, from_row = layer.flip_y ? t.rows - 1 - row : row;
-      for (int c = 0; c < 3; ++c)
-        eye[(static_cast<size_t>(row) * t.cols + col) * 3 + c] =
-            t.rgb[(static_cast<size_t>(from_row) * t.cols + from_col) * 3 + c];
-    }
-  return eye;
-}
-
 // Each display's contrast peak against the target depth, one line per display and frequency: the
 // accommodation it draws, less where the grating is (the eye's pupil at its place).
 void AddContrastSummary(const std::vector<ContrastCurve>& curves, RunReportPage* page) {

@@ -22,6 +22,18 @@ namespace layerlab {
 
 namespace fs = std::filesystem;
 
+std::vector<float> AsTheEyeSeesIt(const VirtualLayer& layer, const LayerPattern& t) {
+  std::vector<float> eye(t.rgb.size());
+  for (int row = 0; row < t.rows; ++row)
+    for (int col = 0; col < t.cols; ++col) {
+      const int from_col = layer.flip_x ? t.cols - 1 - col : col, from_row = layer.flip_y ? t.rows - 1 - row : row;
+      for (int c = 0; c < 3; ++c)
+        eye[(static_cast<size_t>(row) * t.cols + col) * 3 + c] =
+            t.rgb[(static_cast<size_t>(from_row) * t.cols + from_col) * 3 + c];
+    }
+  return eye;
+}
+
 PanelEncoding EncodeForPanel(const VirtualLayer& layer, const LayerPattern& pattern) {
   const PanelSpec& panel = layer.panel;
   PanelEncoding out;

@@ -27,6 +27,10 @@ struct PanelEncoding {
 // Encodes a layer's pattern for its panel: code = 255 ((t - b) / (1 - b))^(1/gamma).
 PanelEncoding EncodeForPanel(const VirtualLayer& layer, const LayerPattern& pattern);
 
+// A layer's pattern in the eye's orientation (x right, y up as the eye sees the layer): the panel's pixel
+// order with the layer's mirror reversals undone (systems/display_system.h, flip_x and flip_y); [row][col][rgb].
+std::vector<float> AsTheEyeSeesIt(const VirtualLayer& layer, const LayerPattern& pattern);
+
 nlohmann::json ReportToJson(const SolverReport& report);
 // report.json without its trace: what `solve --json` and `run --json` print.
 nlohmann::json ReportSummaryJson(const SolverReport& report);

@@ -264,6 +264,22 @@ void BindSolve(py::module_& m) {
           "one (rows, cols, 3) float32 array per layer (System.layers order): transmittance in [0, 1], the panel's "
           "own pixel order; views of the solution's buffers")
       .def_property_readonly(
+          "patterns_as_seen",
+          [](const Solution& s) {
+            py::list list;
+            for (size_t k = 0; k < s.patterns.size(); ++k) {
+              const LayerPattern& p = s.patterns[k];
+              const std::vector<float> eye = AsTheEyeSeesIt(s.system->layers[k], p);
+              py::array_t<float> a(
+                  {static_cast<py::ssize_t>(p.rows), static_cast<py::ssize_t>(p.cols), py::ssize_t{3}});
+              std::copy(eye.begin(), eye.end(), a.mutable_data());
+              list.append(a);
+            }
+            return list;
+          },
+          "the patterns in the eye's orientation (x right, y up as the eye sees each layer: a mirror-reversed layer "
+          "turned back, so that neighbouring layers line up), as the run report shows them; copies")
+      .def_property_readonly(
           "report", [](const Solution& s) { return ReportDict(s.report); },
           "dict: solver, termination, message, iterations, seconds, final_psnr_db, ..., and "
           "trace: a dict of arrays iteration, seconds, objective, psnr_db (row 0: the initial guess)")
