@@ -10,7 +10,6 @@
 #include "layerlab/analysis/report_sections.h"
 #include "layerlab/framework/atomic_file.h"
 #include "layerlab/framework/error.h"
-#include "layerlab/framework/png_writer.h"
 #include "layerlab/framework/shown_image.h"
 #include "layerlab/framework/units.h"
 #include "layerlab/framework/version.h"
@@ -84,9 +83,8 @@ std::string Reduced(int factor) {
   return factor > 1 ? ", PNG at 1/" + std::to_string(factor) + " of the samples (EXR: all)" : "";
 }
 
-template <typename T>
-ReportImage Shown(ReportImage image, const ShownImage<T>& shown) {
-  image.width = shown.width, image.height = shown.height;
+ReportImage Shown(ReportImage image, const ShownPng& png) {
+  image.width = png.width, image.height = png.height;
   return image;
 }
 
@@ -113,9 +111,8 @@ void AddSolveToPage(const DisplaySystem& system, const Patterns& patterns, const
   for (size_t k = 0; k < system.layers.size(); ++k) {
     const VirtualLayer& layer = system.layers[k];
     const std::string preview = "pattern_previews/" + layer.name + ".png";
-    const ShownImage<float> pattern =
-        ShrinkToWidth(patterns[k].cols, patterns[k].rows, 3, AsTheEyeSeesIt(layer, patterns[k]), kPreviewWidthPx);
-    WriteSrgbPng((out / preview).string(), pattern.width, pattern.height, pattern.pixels);
+    const ShownPng pattern = WriteShownSrgbPng((out / preview).string(), patterns[k].cols, patterns[k].rows,
+                                               AsTheEyeSeesIt(layer, patterns[k]), kPreviewWidthPx);
     files.push_back(prefix + preview);
     patterns_shown.push_back(
         Shown(Picture(layer.name + " (" + FormatFixed(layer.diopters, 2) + " D)" + Reduced(pattern.factor),
@@ -132,8 +129,8 @@ void AddSolveToPage(const DisplaySystem& system, const Patterns& patterns, const
                                3 +
                            col];
     const std::string cropped = "panel_previews/" + layer.name + ".png";
-    const ShownImage<uint8_t> drive = ShrinkToWidth(patterns[k].cols, patterns[k].rows, 3, active, kPreviewWidthPx);
-    WritePng8((out / cropped).string(), drive.width, drive.height, 3, drive.pixels);
+    const ShownPng drive =
+        WriteShownPng8((out / cropped).string(), patterns[k].cols, patterns[k].rows, active, kPreviewWidthPx);
     const std::string full = prefix + "panels/" + layer.name + ".png";
     files.push_back(prefix + cropped);
     panels.push_back(

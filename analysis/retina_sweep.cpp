@@ -114,13 +114,12 @@ void WriteBatch(const fs::path& out, const RetinaGrid& grid, bool natural, ExrPi
       if (exr)
         WriteExr(stem.string() + ".exr", image, ExrCompression::kNone, pixels);
       else {
-        const ShownImage<float> shown = ShrinkToWidth(grid.cols, grid.rows, 3, image.pixels, kRetinaWidthPx);
-        const size_t clipped =
-            WriteSrgbPng(stem.string() + ".png", shown.width, shown.height, shown.pixels, 1.0, PngCompression::kFast);
+        const ShownPng png = WriteShownSrgbPng(stem.string() + ".png", grid.cols, grid.rows, image.pixels,
+                                               kRetinaWidthPx, PngCompression::kFast);
         if (of_display) {
           RetinaStateResult& r = b->r[s];
-          r.display_clipped_in_png = clipped;
-          r.png_width = shown.width, r.png_height = shown.height, r.png_factor = shown.factor;
+          r.display_clipped_in_png = png.clipped;
+          r.png_width = png.width, r.png_height = png.height, r.png_factor = png.factor;
         }
       }
     } catch (...) {

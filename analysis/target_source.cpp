@@ -8,7 +8,6 @@
 #include "layerlab/analysis/target_cache.h"
 #include "layerlab/framework/error.h"
 #include "layerlab/framework/lightfield_io.h"
-#include "layerlab/framework/png_writer.h"
 #include "layerlab/framework/progress.h"
 #include "layerlab/framework/shown_image.h"
 #include "layerlab/framework/warnings.h"
@@ -176,10 +175,9 @@ size_t RefuseSolveBeyondMemory(const DisplaySystem& system, const LightFieldGeom
 std::array<int, 2> WriteCenterView(const LightField& lf, const std::string& path) {
   const LightFieldGeometry& g = lf.geometry;
   const float* view = lf.view(g.view_index(g.views_y / 2, g.views_x / 2));
-  const ShownImage<float> shown =
-      ShrinkToWidth(g.cols, g.rows, 3, std::vector<float>(view, view + g.pixels_per_view() * 3), kPreviewWidthPx);
-  WriteSrgbPng(path, shown.width, shown.height, shown.pixels);
-  return {shown.width, shown.height};
+  const ShownPng png = WriteShownSrgbPng(path, g.cols, g.rows, std::vector<float>(view, view + g.pixels_per_view() * 3),
+                                         kPreviewWidthPx);
+  return {png.width, png.height};
 }
 
 }  // namespace layerlab

@@ -61,4 +61,24 @@ ShownImage<uint8_t> ShrinkToWidth(int width, int height, int channels, const std
   return Shrink(width, height, channels, pixels, max_width);
 }
 
+ShownPng WriteShownSrgbPng(const std::string& path, int width, int height, const std::vector<float>& rgb, int max_width,
+                           PngCompression compression) {
+  if (ShrinkFactor(width, max_width) == 1)
+    return {width, height, 1, WriteSrgbPng(path, width, height, rgb, 1.0, compression)};
+  const ShownImage<float> shown = ShrinkToWidth(width, height, 3, rgb, max_width);
+  return {shown.width, shown.height, shown.factor,
+          WriteSrgbPng(path, shown.width, shown.height, shown.pixels, 1.0, compression)};
+}
+
+ShownPng WriteShownPng8(const std::string& path, int width, int height, const std::vector<uint8_t>& rgb,
+                        int max_width) {
+  if (ShrinkFactor(width, max_width) == 1) {
+    WritePng8(path, width, height, 3, rgb);
+    return {width, height, 1, 0};
+  }
+  const ShownImage<uint8_t> shown = ShrinkToWidth(width, height, 3, rgb, max_width);
+  WritePng8(path, shown.width, shown.height, 3, shown.pixels);
+  return {shown.width, shown.height, shown.factor, 0};
+}
+
 }  // namespace layerlab

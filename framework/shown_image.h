@@ -6,8 +6,12 @@
 // sample.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
+
+#include "layerlab/framework/png_writer.h"
 
 namespace layerlab {
 
@@ -30,5 +34,18 @@ ShownImage<float> ShrinkToWidth(int width, int height, int channels, const std::
 // 8-bit codes (a panel's drive values): block means of the codes, rounded.
 ShownImage<uint8_t> ShrinkToWidth(int width, int height, int channels, const std::vector<uint8_t>& pixels,
                                   int max_width);
+
+// What a picture was written at: its size, the factor it was reduced by, and (sRGB) how many values lay
+// above white and were clipped.
+struct ShownPng {
+  int width = 0, height = 0, factor = 1;
+  size_t clipped = 0;
+};
+
+// Linear RGB as an sRGB PNG (WriteSrgbPng) reduced to `max_width`; written as it is, without a copy, when it fits.
+ShownPng WriteShownSrgbPng(const std::string& path, int width, int height, const std::vector<float>& rgb, int max_width,
+                           PngCompression compression = PngCompression::kSmallest);
+// 8-bit RGB codes as a PNG (WritePng8) reduced to `max_width`, without a copy when it fits.
+ShownPng WriteShownPng8(const std::string& path, int width, int height, const std::vector<uint8_t>& rgb, int max_width);
 
 }  // namespace layerlab

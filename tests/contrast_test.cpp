@@ -33,6 +33,15 @@ ContrastDisplay OneLayerAt(double diopters) {
   return d;
 }
 
+// A shipped example as a contrast display, named `name`, solved by `solver`.
+ContrastDisplay ExampleDisplay(const std::string& name, const std::string& file, const std::string& solver) {
+  ContrastDisplay d;
+  d.name = name;
+  d.system = testing::CompileJson(testing::ReadExample(file));
+  d.solver = solver;
+  return d;
+}
+
 const ContrastCurve& Curve(const std::vector<ContrastCurve>& curves, const std::string& display, double f) {
   for (const ContrastCurve& c : curves)
     if (c.display == display && c.frequency == f) return c;
@@ -74,10 +83,7 @@ TEST(Contrast, PerfectOneLayerDisplayScoresOneAtItsPeak) {
 // sinc(f p) of the grating's amplitude, p the light field's pixel angle. The display keeps more, yet
 // less than the grating itself has: against the continuous plane it is below 1, and the note says so.
 TEST(Contrast, AboveOneIsTheSampledReferencesPixelHoldNotMoreThanTheGrating) {
-  ContrastDisplay d;
-  d.name = "paper_prototype";
-  d.system = testing::CompileJson(testing::ReadExample("paper_prototype.json"));
-  d.solver = "hybrid";
+  ContrastDisplay d = ExampleDisplay("paper_prototype", "paper_prototype.json", "hybrid");
   ContrastOptions o;
   o.target_diopters = {1.3};
   o.frequencies_cpd = {2.0};
@@ -166,10 +172,7 @@ TEST(Contrast, ABinocularEyesConflictIsTheTargetLessTheAccommodationResponse) {
 // same bits), normalized by the centred eye's natural viewing; and a two-layer display's parallax makes them differ from the
 // centred eye's. eyebox_peaks.csv has a row per pupil position.
 TEST(Contrast, TheEyeboxCurvesAreThoseOfTheEyeMovedThere) {
-  ContrastDisplay d;
-  d.name = "two_layer";
-  d.system = testing::CompileJson(testing::ReadExample("multiplicative_2layer.json"));
-  d.solver = "multiplicative";
+  ContrastDisplay d = ExampleDisplay("two_layer", "multiplicative_2layer.json", "multiplicative");
   ContrastOptions o;
   o.target_diopters = {1.3};
   o.frequencies_cpd = {4.0};
@@ -314,10 +317,7 @@ TEST(Contrast, AChromaticEyesChannelsAreWeightedByTheirLuminance) {
 // sweep gives the same bits with any number of threads; a two-thread solve
 // merges its threads' sums in another order than a one-thread solve.
 TEST(Contrast, CurvesAreTheSameBitsOnAnyThreadCount) {
-  ContrastDisplay d;
-  d.name = "multiplicative_2layer";
-  d.system = testing::CompileJson(testing::ReadExample("multiplicative_2layer.json"));
-  d.solver = "multiplicative";
+  ContrastDisplay d = ExampleDisplay("multiplicative_2layer", "multiplicative_2layer.json", "multiplicative");
   d.options.iterations = 12;
   d.options_given = true;
   ContrastOptions o;
