@@ -17,6 +17,9 @@ packages+=(zsh groff-base)  # cli.completion checks the zsh completion parses an
 # The Python module and its tests, for Debian's /usr/bin/python3 (docs/python.md)
 packages+=(pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib)
 packages+=(python3-skimage)  # the perceptual metrics' reference in python/tests/test_metrics.py (docs/metrics.md)
+packages+=(python3-torch)  # layerlab.torch, the forward model's autograd Functions (docs/python.md)
+# pip install . into a virtual environment, offline, with Debian's build backend (python.pip_install)
+packages+=(python3-venv python3-pip python3-setuptools python3-wheel python3-build)
 packages+=(libopenmpi-dev openmpi-bin)  # layerlab sweep --mpi and its tests (docs/sweeps.md)
 
 missing=()

@@ -49,10 +49,7 @@ std::vector<std::vector<PupilPoint>> RetinalPupils(const EyeModel& eye, const Re
   return samples;
 }
 
-namespace {
-
-// One retinal sample per light-field pixel over the light field's window, as seen from the eyebox center.
-RetinaGrid GridOf(const LightFieldGeometry& g, double resolution) {
+RetinaGrid RetinalObjectiveGrid(const LightFieldGeometry& g, double resolution) {
   const double pixel = std::atan(g.window_width_m / g.cols / g.origin_z_m);
   RetinaGrid grid;
   grid.resolution_rad = resolution > 0 ? resolution : pixel;
@@ -67,6 +64,8 @@ RetinaGrid GridOf(const LightFieldGeometry& g, double resolution) {
   grid.center_y_rad = std::atan((g.window_top_m - g.window_height_m / 2) / g.origin_z_m);
   return grid;
 }
+
+namespace {
 
 // <r, H r> for channel c of an interleaved RGB image r on `grid`, r replaced by H r (H: gain S(f)^2, periodic).
 double ContrastSensitivityChannel(float* r, const RetinaGrid& grid, int c) {
@@ -103,7 +102,7 @@ RetinalObjective::RetinalObjective(const DisplayModel& model, const LightField& 
                 std::to_string(weights_.size()) + " weights");
   for (double w : weights_)
     if (!(w >= 0) || !std::isfinite(w)) throw Error("a state weight of the retinal objective must be >= 0");
-  const RetinaGrid grid = GridOf(model.geometry(), options.resolution_rad);
+  const RetinaGrid grid = RetinalObjectiveGrid(model.geometry(), options.resolution_rad);
   grid_ = grid;
   contrast_sensitivity_ = options.contrast_sensitivity;
   std::vector<std::array<double, 3>> foci;
@@ -217,7 +216,7 @@ RetinalObjectiveMemory RetinalObjectiveBytes(const DisplayModel& model, const Re
   const std::vector<double> states = RetinalStates(eye, options);
   std::vector<std::array<double, 3>> foci;
   for (double d : states) foci.push_back(ChannelAccommodation(eye, d));
-  const RetinaGrid grid = GridOf(model.geometry(), options.resolution_rad);
+  const RetinaGrid grid = RetinalObjectiveGrid(model.geometry(), options.resolution_rad);
   const std::vector<std::vector<PupilPoint>> pupils = RetinalPupils(eye, options);
   const std::vector<PupilPoint>& pupil = pupils.front();
   const LightFieldGeometry& g = model.geometry();

@@ -122,5 +122,8 @@ std::vector<double> RetinalStates(const EyeModel& eye, const RetinalObjectiveOpt
 // weight.
 std::vector<std::vector<PupilPoint>> RetinalPupils(const EyeModel& eye, const RetinalObjectiveOptions& options,
                                                    std::vector<double>* weights = nullptr);
+// The objective's retinal grid over the light field's window as seen from the eyebox center: `resolution_rad`
+// per sample, or, at 0, one sample per light-field pixel.
+RetinaGrid RetinalObjectiveGrid(const LightFieldGeometry& g, double resolution_rad);
 
 }  // namespace layerlab

@@ -1,23 +1,13 @@
 #include "layerlab/solvers/retinal_pass.h"
 
 #include "layerlab/framework/fixed_order_sum.h"
-#include "layerlab/kernels/synthesis.h"
 #include "layerlab/solvers/objective.h"
 
 namespace layerlab {
 
 RetinalPass::RetinalPass(const DisplayModel& model, const LightField& target, const RetinalObjective& objective,
                          const std::vector<LayerDiffraction>* diffraction, bool response)
-    : model_(model),
-      target_(target),
-      objective_(objective),
-      diffraction_(diffraction && !diffraction->empty() ? diffraction : nullptr),
-      effective_(model.geometry()) {
-  if (response)
-    response_.emplace(model, nullptr, diffraction_);
-  else
-    joint_.emplace(model, nullptr, diffraction_), light_ = LightField(model.geometry());
-}
+    : target_(target), objective_(objective), jacobian_(model, diffraction, response), effective_(model.geometry()) {}
 
 namespace {
 
@@ -36,19 +26,8 @@ RetinalMeasures MeasureRetinalObjective(const LightField& target, const RetinalO
   return Measures(objective, light, target, per_state, f);
 }
 
-const LightField& RetinalPass::Light(const Patterns& t) {
-  if (response_) return response_->Light(t);
-  if (!diffraction_) {
-    Synthesize(model_, t, &light_);
-  } else {
-    DiffractPatterns(*diffraction_, t, &seen_);
-    Synthesize(model_, seen_, &light_);
-  }
-  return light_;
-}
-
 double RetinalPass::Run(const Patterns& t) {
-  const LightField& light = Light(t);
+  const LightField& light = jacobian_.Light(t);
   std::vector<double> per_state;
   const double f = objective_.EvaluateWithAdjoint(light, &per_state, &effective_);
   last_ = Measures(objective_, light, target_, per_state, f);
@@ -56,15 +35,12 @@ double RetinalPass::Run(const Patterns& t) {
 #pragma omp parallel for schedule(static)
   for (size_t i = 0; i < effective_.rgb.size(); ++i)
     effective_.rgb[i] = light.rgb[i] - inverse_scale * effective_.rgb[i];
-  if (response_)
-    response_->SumsOfLight(effective_, nullptr, /*with_objective=*/false);
-  else
-    joint_->Run(effective_, t);
+  jacobian_.SumsAgainst(effective_);
   return f / scale();
 }
 
 double RetinalPass::Evaluate(const Patterns& t) {
-  const LightField& light = Light(t);
+  const LightField& light = jacobian_.Light(t);
   std::vector<double> per_state;
   const double f = objective_.Evaluate(light, &per_state);
   last_ = Measures(objective_, light, target_, per_state, f);

@@ -12,10 +12,7 @@
 
 #include <vector>
 
-#include <optional>
-
-#include "layerlab/kernels/joint_pass.h"
-#include "layerlab/solvers/response_pass.h"
+#include "layerlab/solvers/display_jacobian.h"
 #include "layerlab/solvers/retinal_objective.h"
 
 namespace layerlab {
@@ -43,22 +40,16 @@ class RetinalPass {
   double Run(const Patterns& t);
   // f(t) / s alone (no gradient).
   double Evaluate(const Patterns& t);
-  const RayPass& sums() const { return response_ ? static_cast<const RayPass&>(*response_) : *joint_; }
+  const RayPass& sums() const { return jacobian_.sums(); }
   double scale() const { return objective_.Bound(); }
   const RetinalMeasures& last() const { return last_; }
 
  private:
-  const DisplayModel& model_;
   const LightField& target_;
   const RetinalObjective& objective_;
-  const std::vector<LayerDiffraction>* diffraction_;
-  std::optional<JointPass> joint_;        // the plain or diffracted forward model's pass
-  std::optional<ResponsePass> response_;  // or the response's
-  Patterns seen_;                         // D t
-  LightField light_, effective_;          // L(t) (not with the response: its pass keeps it); M (L - l), then L - m
+  DisplayJacobian jacobian_;
+  LightField effective_;  // M (L - l), then L - m
   RetinalMeasures last_;
-
-  const LightField& Light(const Patterns& t);
 };
 
 }  // namespace layerlab

@@ -14,10 +14,12 @@ buffers that keep it alive. Lengths in meters, angles in radians.
 from .errors import ArgumentError, Error, Interrupted, SceneError
 from ._layerlab import (
     Branch,
+    DisplayOperator,
     Layer,
     LightField,
     LightFieldGeometry,
     PathStep,
+    RetinaOperator,
     Scene,
     Solution,
     System,
@@ -107,7 +109,7 @@ def focal_stack(solution, start, stop, step, resolution=0.05, field=None, natura
 
 
 __all__ = [
-    "ArgumentError", "Branch", "Error", "Interrupted", "Layer", "LightField", "LightFieldGeometry", "PathStep", "Scene",
+    "ArgumentError", "Branch", "DisplayOperator", "Error", "Interrupted", "Layer", "LightField", "LightFieldGeometry", "PathStep", "RetinaOperator", "Scene",
     "SceneError", "Solution", "System", "__version__", "compare", "compile", "contrast", "csf_jnd", "display_geometry", "fit", "focal_stack", "load_scene",
     "ms_ssim", "read_lightfield", "render_target", "retina", "run", "solve", "solvers", "ssim",
     "synthesize",

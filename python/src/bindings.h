@@ -15,5 +15,6 @@ void BindFit(pybind11::module_& m);         // fit.cpp (Ceres builds) or fit_mis
 void BindMetrics(pybind11::module_& m);     // metrics.cpp: ssim, ms_ssim, csf_jnd
 void BindVerbosity(pybind11::module_& m);   // verbosity.cpp: set_verbosity, verbosity
 void BindSrgb(pybind11::module_& m);        // srgb.cpp: srgb
+void BindOperators(pybind11::module_& m);   // operators.cpp: DisplayOperator, RetinaOperator
 
 }  // namespace layerlab::python

@@ -15,4 +15,5 @@ PYBIND11_MODULE(_layerlab, m) {
   layerlab::python::BindMetrics(m);
   layerlab::python::BindVerbosity(m);
   layerlab::python::BindSrgb(m);
+  layerlab::python::BindOperators(m);
 }

@@ -1,0 +1,278 @@
+// The linear and multilinear maps of the forward model with their adjoints,
+// for a loss of the caller's own (python/layerlab/torch.py wraps them as
+// autograd Functions): DisplayOperator, patterns -> light field
+// (solvers/display_jacobian.h), and RetinaOperator, light field -> retinal
+// images per accommodation state (retina/retinal_operator.h).
+#include <cmath>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include "layerlab/analysis/retina_sweep.h"
+#include "layerlab/framework/lightfield_checks.h"
+#include "layerlab/framework/units.h"
+#include "layerlab/python/src/arguments.h"
+#include "layerlab/python/src/bindings.h"
+#include "layerlab/python/src/numpy_view.h"
+#include "layerlab/retina/retina.h"
+#include "layerlab/retina/retinal_operator.h"
+#include "layerlab/solvers/display_jacobian.h"
+#include "layerlab/solvers/retinal_objective.h"
+#include "layerlab/systems/lc_response.h"
+#include "layerlab/systems/panel_diffraction.h"
+
+namespace py = pybind11;
+
+namespace layerlab::python {
+namespace {
+
+// A float32 array over a vector it owns (no copy: the capsule frees the vector with the array).
+template <typename Vector>
+py::array_t<float> OwningArray(Vector&& values, const std::vector<py::ssize_t>& shape) {
+  auto* owned = new Vector(std::move(values));
+  py::capsule owner(owned, [](void* p) { delete static_cast<Vector*>(p); });
+  return FloatView(shape, owned->data(), owner);
+}
+
+// Raises ArgumentError at the first value that is not finite, naming its index in an array of `shape`.
+void RequireFinite(const float* values, const std::vector<py::ssize_t>& shape, const std::string& what) {
+  size_t n = 1;
+  for (py::ssize_t d : shape) n *= static_cast<size_t>(d);
+  for (size_t i = 0; i < n; ++i) {
+    if (std::isfinite(values[i])) continue;
+    std::string index;
+    size_t rest = i;
+    for (size_t d = shape.size(); d-- > 0;) {
+      index = std::to_string(rest % shape[d]) + (index.empty() ? "" : ", ") + index;
+      rest /= shape[d];
+    }
+    RaiseArgumentError(what + ": value at (" + index + ") is " + Repr(py::float_(values[i])) + "; must be finite");
+  }
+}
+
+std::vector<py::ssize_t> LightFieldShape(const LightFieldGeometry& g) {
+  return {static_cast<py::ssize_t>(g.view_count()), g.rows, g.cols, 3};
+}
+
+// A light field of geometry `g` from an array of its shape; finite values (any sign: a gradient is no light).
+LightField LightFieldOf(const py::handle& value, const LightFieldGeometry& g, const std::string& what) {
+  const auto a = FloatArrayOfShape(value, LightFieldShape(g), what, "(views, rows, cols, RGB)");
+  RequireFinite(a.data(), LightFieldShape(g), what);
+  LightField lf(g);
+  std::copy(a.data(), a.data() + lf.rgb.size(), lf.rgb.begin());
+  return lf;
+}
+
+class DisplayOperator {
+ public:
+  DisplayOperator(std::shared_ptr<DisplaySystem> system, const std::optional<LightFieldGeometry>& geometry,
+                  const std::string& sampling, bool panel_diffraction, bool lc_response)
+      : system_(std::move(system)) {
+    const LightFieldGeometry g = geometry ? *geometry : DisplayLightFieldGeometry(*system_);
+    if (geometry) CheckGeometryArgument(g, "DisplayOperator: geometry");
+    Sampling how = Sampling::kNearest;
+    CheckArgument([&] { how = SamplingFromString(sampling); });
+    model_ = std::make_unique<DisplayModel>(*system_, g, how);
+    if (panel_diffraction) diffraction_ = PanelDiffraction(*system_);
+    response_ = lc_response && ResponseMatters(*system_);
+    jacobian_ = std::make_unique<DisplayJacobian>(*model_, &diffraction_, response_);
+  }
+
+  py::array_t<float> Forward(const py::sequence& patterns) {
+    const Patterns t = PatternsOf(patterns, "DisplayOperator.forward");
+    LightField light;
+    {
+      py::gil_scoped_release release;
+      std::lock_guard<std::mutex> lock(mutex_);
+      light = jacobian_->Light(t);
+    }
+    return OwningArray(std::move(light.rgb), LightFieldShape(model_->geometry()));
+  }
+
+  py::list Adjoint(const py::sequence& patterns, const py::handle& gradient) {
+    const Patterns t = PatternsOf(patterns, "DisplayOperator.adjoint");
+    const LightField v = LightFieldOf(gradient, model_->geometry(), "DisplayOperator.adjoint: light_field_gradient");
+    Patterns g;
+    {
+      py::gil_scoped_release release;
+      std::lock_guard<std::mutex> lock(mutex_);
+      g = DisplayJacobianTransposed(jacobian_.get(), t, v);
+    }
+    py::list out;
+    for (LayerPattern& p : g) out.append(OwningArray(std::move(p.rgb), {p.rows, p.cols, 3}));
+    return out;
+  }
+
+  const std::shared_ptr<DisplaySystem>& system() const { return system_; }
+  const LightFieldGeometry& geometry() const { return model_->geometry(); }
+  bool diffracts() const { return !diffraction_.empty(); }
+  bool responds() const { return response_; }
+
+ private:
+  // One (rows, cols, 3) array per layer, finite (values outside [0, 1] are allowed: an optimizer's step may
+  // leave the range, and the maps are defined there).
+  Patterns PatternsOf(const py::sequence& arrays, const std::string& what) const {
+    if (arrays.size() != system_->layers.size())
+      throw py::value_error(what + ": expected " + std::to_string(system_->layers.size()) +
+                            " patterns (one per layer), got " + std::to_string(arrays.size()));
+    Patterns t;
+    for (size_t k = 0; k < system_->layers.size(); ++k) {
+      const VirtualLayer& layer = system_->layers[k];
+      const std::string name = what + ": pattern " + std::to_string(k) + " (" + layer.name + ")";
+      const auto a = FloatArrayOfShape(arrays[k], {layer.rows, layer.cols, 3}, name, "(rows, cols, RGB)");
+      RequireFinite(a.data(), {layer.rows, layer.cols, 3}, name);
+      LayerPattern& p = t.emplace_back(layer.cols, layer.rows, 0.0f);
+      std::copy(a.data(), a.data() + p.rgb.size(), p.rgb.begin());
+    }
+    return t;
+  }
+
+  std::shared_ptr<DisplaySystem> system_;
+  std::unique_ptr<DisplayModel> model_;
+  std::vector<LayerDiffraction> diffraction_;
+  bool response_ = false;
+  std::unique_ptr<DisplayJacobian> jacobian_;
+  std::mutex mutex_;  // the Jacobian's buffers: one call at a time
+};
+
+class RetinaOperator {
+ public:
+  RetinaOperator(std::shared_ptr<DisplaySystem> system, const std::vector<double>& accommodation,
+                 std::optional<double> resolution_deg, const std::optional<LightFieldGeometry>& geometry,
+                 const std::string& sampling)
+      : system_(std::move(system)), accommodation_(accommodation) {
+    const LightFieldGeometry g = geometry ? *geometry : DisplayLightFieldGeometry(*system_);
+    if (geometry) CheckGeometryArgument(g, "RetinaOperator: geometry");
+    Sampling how = Sampling::kNearest;
+    CheckArgument([&] {
+      how = SamplingFromString(sampling);
+      CheckAccommodationStates(accommodation, "RetinaOperator: accommodation");
+    });
+    if (resolution_deg && !(*resolution_deg > 0 && *resolution_deg <= 10))
+      RaiseArgumentError("RetinaOperator: resolution_deg: " + Repr(py::float_(*resolution_deg)) +
+                         " is not a sample size in (0, 10] deg");
+    const RetinaGrid grid = RetinalObjectiveGrid(g, resolution_deg ? *resolution_deg * kRadiansPerDegree : 0.0);
+    CheckArgument([&] {
+      CheckRetinaSampling(grid.cols * grid.resolution_rad / kRadiansPerDegree,
+                          grid.rows * grid.resolution_rad / kRadiansPerDegree, grid.resolution_rad / kRadiansPerDegree,
+                          "RetinaOperator: field", "RetinaOperator: resolution_deg");
+    });
+    std::vector<std::array<double, 3>> foci;
+    for (double d : accommodation) foci.push_back(ChannelAccommodation(system_->eye, d));
+    py::gil_scoped_release release;
+    op_ = std::make_unique<RetinalOperator>(g, how, grid, PupilSamples(system_->eye), foci);
+  }
+
+  py::array_t<float> Forward(const py::handle& light_field) {
+    const LightField x = LightFieldOf(light_field, op_->geometry(), "RetinaOperator.forward: light_field");
+    std::vector<std::vector<float>> images;
+    {
+      py::gil_scoped_release release;
+      std::lock_guard<std::mutex> lock(mutex_);
+      op_->Apply(x, &images);
+    }
+    std::vector<float> stacked;
+    stacked.reserve(images.size() * op_->retinal_values());
+    for (const std::vector<float>& image : images) stacked.insert(stacked.end(), image.begin(), image.end());
+    return OwningArray(std::move(stacked), ImagesShape());
+  }
+
+  py::array_t<float> Adjoint(const py::handle& images) {
+    const auto a =
+        FloatArrayOfShape(images, ImagesShape(), "RetinaOperator.adjoint: images", "(states, rows, cols, RGB)");
+    RequireFinite(a.data(), ImagesShape(), "RetinaOperator.adjoint: images");
+    const size_t n = op_->retinal_values();
+    std::vector<std::vector<float>> y(accommodation_.size());
+    for (size_t s = 0; s < y.size(); ++s) y[s].assign(a.data() + s * n, a.data() + (s + 1) * n);
+    LightField out(op_->geometry());
+    {
+      py::gil_scoped_release release;
+      std::lock_guard<std::mutex> lock(mutex_);
+      op_->ApplyTranspose(y, &out);
+    }
+    return OwningArray(std::move(out.rgb), LightFieldShape(op_->geometry()));
+  }
+
+  std::vector<py::ssize_t> ImagesShape() const {
+    return {static_cast<py::ssize_t>(accommodation_.size()), op_->retina().rows, op_->retina().cols, 3};
+  }
+  const std::shared_ptr<DisplaySystem>& system() const { return system_; }
+  const std::vector<double>& accommodation() const { return accommodation_; }
+  const RetinalOperator& op() const { return *op_; }
+
+ private:
+  std::shared_ptr<DisplaySystem> system_;
+  std::vector<double> accommodation_;
+  std::unique_ptr<RetinalOperator> op_;
+  std::mutex mutex_;  // Apply's work buffer: one call at a time
+};
+
+}  // namespace
+
+void BindOperators(py::module_& m) {
+  py::class_<DisplayOperator, std::shared_ptr<DisplayOperator>>(
+      m, "DisplayOperator",
+      "The display's forward model L(t) (patterns to light field, display-relative) and its Jacobian's transpose: "
+      "the multilinear map the solvers minimize through (solvers/display_jacobian.h), subframes as branches")
+      .def(py::init<std::shared_ptr<DisplaySystem>, std::optional<LightFieldGeometry>, std::string, bool, bool>(),
+           py::arg("system"), py::kw_only(), py::arg("geometry") = py::none(), py::arg("sampling") = "nearest",
+           py::arg("panel_diffraction") = false, py::arg("lc_response") = false,
+           "geometry: the light field's (default display_geometry(system)); sampling: 'nearest' or 'bilinear'; "
+           "panel_diffraction, lc_response: the solver options of these names (the panels' diffraction, the "
+           "frame's average through their liquid-crystal response, where the display has them)")
+      .def("forward", &DisplayOperator::Forward, py::arg("patterns"),
+           "L(t): (views, rows, cols, 3) float32 from one (rows, cols, 3) pattern per layer")
+      .def("adjoint", &DisplayOperator::Adjoint, py::arg("patterns"), py::arg("light_field_gradient"),
+           "J(t)^T v: the patterns' gradient of <v, L(t)>, one (rows, cols, 3) float32 array per layer")
+      .def_property_readonly("system", &DisplayOperator::system)
+      .def_property_readonly("geometry", &DisplayOperator::geometry, "the light field's LightFieldGeometry")
+      .def_property_readonly("panel_diffraction", &DisplayOperator::diffracts,
+                             "whether the map includes the panels' diffraction (asked for, and a panel diffracts)")
+      .def_property_readonly("lc_response", &DisplayOperator::responds,
+                             "whether the map includes the panels' LC response (asked for, and it matters)")
+      .def_property_readonly(
+          "light_field_shape",
+          [](const DisplayOperator& op) { return py::tuple(py::cast(LightFieldShape(op.geometry()))); },
+          "(views, rows, cols, 3)")
+      .def_property_readonly(
+          "pattern_shapes",
+          [](const DisplayOperator& op) {
+            py::list shapes;
+            for (const VirtualLayer& l : op.system()->layers) shapes.append(py::make_tuple(l.rows, l.cols, 3));
+            return shapes;
+          },
+          "[(rows, cols, 3)] one per layer");
+
+  py::class_<RetinaOperator, std::shared_ptr<RetinaOperator>>(
+      m, "RetinaOperator",
+      "The eye's retinal images of a light field, one per accommodation state, and the transpose: the retinal "
+      "objective's linear operator A_a (retina/retinal_operator.h: the mean over the eye's pupil samples of the "
+      "light field read along each ray through the in-focus point)")
+      .def(py::init<std::shared_ptr<DisplaySystem>, std::vector<double>, std::optional<double>,
+                    std::optional<LightFieldGeometry>, std::string>(),
+           py::arg("system"), py::arg("accommodation"), py::kw_only(), py::arg("resolution_deg") = py::none(),
+           py::arg("geometry") = py::none(), py::arg("sampling") = "nearest",
+           "accommodation: states in D; resolution_deg: deg per retinal sample (default: one per light-field "
+           "pixel over its window); geometry: the light field's (default display_geometry(system))")
+      .def("forward", &RetinaOperator::Forward, py::arg("light_field"),
+           "A L: (states, rows, cols, 3) float32 from a (views, rows, cols, 3) light field")
+      .def("adjoint", &RetinaOperator::Adjoint, py::arg("images"),
+           "sum_a A_a^T y_a: (views, rows, cols, 3) float32 from (states, rows, cols, 3) images")
+      .def_property_readonly("system", &RetinaOperator::system)
+      .def_property_readonly("accommodation", &RetinaOperator::accommodation, "the states (D)")
+      .def_property_readonly(
+          "geometry", [](const RetinaOperator& r) { return r.op().geometry(); }, "the light field's LightFieldGeometry")
+      .def_property_readonly(
+          "images_shape", [](const RetinaOperator& r) { return py::tuple(py::cast(r.ImagesShape())); },
+          "(states, rows, cols, 3)")
+      .def_property_readonly(
+          "resolution_deg", [](const RetinaOperator& r) { return r.op().retina().resolution_rad / kRadiansPerDegree; },
+          "deg per retinal sample");
+}
+
+}  // namespace layerlab::python
