@@ -8,7 +8,8 @@
 
 Arrays are float32 NumPy arrays: a light field's .rgb is (views, rows, cols, 3),
 a pattern (rows, cols, 3); those a layerlab object owns are views of its
-buffers that keep it alive. Lengths in meters, angles in radians.
+buffers that keep it alive. Lengths in meters, angles in degrees; a value's unit
+ends its name (fov_x_deg, depth_m, frame_rate_hz).
 """
 
 from .errors import ArgumentError, Error, Interrupted, SceneError
@@ -89,14 +90,15 @@ contrast = _spell_out_keywords(_layerlab.contrast, _parameters(("scenes", ..., F
                                _layerlab._contrast_keywords)
 
 
-def retina(solution, accommodation, resolution=0.05, field=None, natural=False):
+def retina(solution, accommodation, *, resolution_deg=0.05, field_deg=None, natural=False):
     """What the eye sees of a solution focused at each of `accommodation` (D): (states, rows, cols, 3) float32,
-    display-relative linear RGB; natural=True: (display, natural). The same as Solution.retina."""
-    return solution.retina(accommodation, resolution=resolution, field=field, natural=natural)
+    display-relative linear RGB; resolution_deg: deg per sample; field_deg: (x, y) deg (default: the display's
+    field of view); natural=True: (display, natural). The same as Solution.retina."""
+    return solution.retina(accommodation, resolution_deg=resolution_deg, field_deg=field_deg, natural=natural)
 
 
-def focal_stack(solution, start, stop, step, resolution=0.05, field=None, natural=False):
-    """Retinal images from `start` to `stop` D (inclusive) by `step`: (diopters, images), images
+def focal_stack(solution, start, stop, step, *, resolution_deg=0.05, field_deg=None, natural=False):
+    """Retinal images from `start` to `stop` D (inclusive) by `step` D: (diopters, images), images
     (states, rows, cols, 3) as Solution.retina gives them; natural=True: (diopters, images, natural),
     the last what the eye sees of the target itself."""
     if not step > 0 or stop < start:
@@ -104,7 +106,7 @@ def focal_stack(solution, start, stop, step, resolution=0.05, field=None, natura
     import numpy
 
     diopters = start + step * numpy.arange(int(numpy.floor((stop - start) / step + 1e-9)) + 1)
-    seen = solution.retina(list(diopters), resolution=resolution, field=field, natural=natural)
+    seen = solution.retina(list(diopters), resolution_deg=resolution_deg, field_deg=field_deg, natural=natural)
     return (diopters, *seen) if natural else (diopters, seen)
 
 

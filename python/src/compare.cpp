@@ -53,18 +53,19 @@ std::vector<std::string> SolverList(const py::object& solvers, const std::string
   return names;
 }
 
-// fovea=(x, y) degrees and jnd_exponent, checked; only with metrics.
+// fovea_deg=(x, y) degrees and jnd_exponent, checked; only with metrics.
 MetricSettings MetricSettingsArgs(const py::object& fovea, const py::object& jnd_exponent, bool with_metrics) {
   MetricSettings settings;
   if (!fovea.is_none()) {
     const std::vector<double> gaze = fovea.cast<std::vector<double>>();
-    if (gaze.size() != 2) RaiseArgumentError("compare: fovea: give (x, y) in degrees");
+    if (gaze.size() != 2) RaiseArgumentError("compare: fovea_deg: give (x, y) in degrees");
     settings.fovea_deg = std::array<double, 2>{gaze[0], gaze[1]};
   }
   if (!jnd_exponent.is_none()) settings.jnd_minkowski_exponent = RealArg(jnd_exponent, "compare: jnd_exponent");
-  CheckArgument([&] { CheckMetricSettings(settings, "compare: jnd_exponent", "compare: fovea"); });
+  CheckArgument([&] { CheckMetricSettings(settings, "compare: jnd_exponent", "compare: fovea_deg"); });
   if ((!fovea.is_none() || !jnd_exponent.is_none()) && !with_metrics)
-    RaiseArgumentError("compare: fovea and jnd_exponent set how the focal stack's metrics are measured: give metrics");
+    RaiseArgumentError(
+        "compare: fovea_deg and jnd_exponent set how the focal stack's metrics are measured: give metrics");
   return settings;
 }
 
@@ -153,7 +154,7 @@ py::dict Compare(const py::object& scenes, const py::object& target, const py::o
 void BindCompare(py::module_& m) {
   m.def("compare", &Compare, py::arg("scenes"), py::arg("target"), py::kw_only(), py::arg("solvers") = py::none(),
         py::arg("iterations") = py::none(), py::arg("time_budget") = py::none(), py::arg("scene_options") = false,
-        py::arg("objectives") = py::none(), py::arg("metrics") = py::none(), py::arg("fovea") = py::none(),
+        py::arg("objectives") = py::none(), py::arg("metrics") = py::none(), py::arg("fovea_deg") = py::none(),
         py::arg("jnd_exponent") = py::none(), py::arg("callback") = py::none(),
         "Several displays and solvers on one target (a LightField, a light-field folder or a target scene file), as "
         "`layerlab compare`: like for like (each solver's defaults) unless scene_options; objectives (\"lightfield\", "

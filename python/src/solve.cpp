@@ -207,7 +207,7 @@ py::object Retina(const Solution& s, const std::vector<double>& accommodation, d
   const double field_y = field_deg ? field_deg->second : system.fov_y_rad / kRadiansPerDegree;
   CheckArgument([&] {
     CheckAccommodationStates(accommodation, "retina: accommodation");
-    CheckRetinaSampling(field_x, field_y, resolution_deg, "retina: field", "retina: resolution");
+    CheckRetinaSampling(field_x, field_y, resolution_deg, "retina: field_deg", "retina: resolution_deg");
   });
   const RetinaGrid grid = CenteredOnGaze(
       field_deg
@@ -301,11 +301,11 @@ void BindSolve(py::module_& m) {
           },
           py::arg("folder"), py::arg("write_lightfield") = false,
           "Writes what `layerlab solve` writes: patterns, panels, trace.csv, report.txt, report.json")
-      .def("retina", &Retina, py::arg("accommodation"), py::arg("resolution") = 0.05, py::arg("field") = py::none(),
-           py::arg("natural") = false,
-           "Retinal images (states, rows, cols, 3) at each accommodation (D); resolution in deg per sample, field "
-           "(x, y) in deg (default: the display's field of view); natural=True: (display, natural), the second "
-           "what the eye sees of the target light field itself")
+      .def("retina", &Retina, py::arg("accommodation"), py::kw_only(), py::arg("resolution_deg") = 0.05,
+           py::arg("field_deg") = py::none(), py::arg("natural") = false,
+           "Retinal images (states, rows, cols, 3) at each accommodation (D); resolution_deg: deg per sample; "
+           "field_deg: (x, y) in deg (default: the display's field of view); natural=True: (display, natural), the "
+           "second what the eye sees of the target light field itself")
       .def("__repr__", [](const Solution& s) { return "<layerlab.Solution " + s.report.BriefReport() + ">"; });
 
   m.def("solve", &Solve, py::arg("display"), py::arg("target") = py::none(), py::kw_only(),

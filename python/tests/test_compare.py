@@ -104,7 +104,7 @@ def test_each_row_against_its_display(target_folder):
     assert table["final_psnr_db"][0] == trace["psnr_db"][-1]
     np.testing.assert_allclose(table["efficiency"][0], system.brightness_efficiency, rtol=1e-12)
     assert table["subframes"][0] == scene.subframes
-    assert table["panel_refresh_hz"][0] == pytest.approx(scene.subframes * scene.frame_rate)
+    assert table["panel_refresh_hz"][0] == pytest.approx(scene.subframes * scene.frame_rate_hz)
 
 
 def test_a_light_field_target_all_solvers_and_the_callback(target_folder):
@@ -196,7 +196,7 @@ def test_metrics_beside_psnr_at_the_rows_that_measure_them(target_folder, tmp_pa
 def test_fovea_and_the_jnd_exponent_as_the_commands_and_bad_ones_refused(target_folder, tmp_path):
     args = dict(solvers="hybrid", metrics="jnd", iterations=2)
     plain = layerlab.compare(SCENES[0], target_folder, **args)
-    weighted = layerlab.compare(SCENES[0], target_folder, fovea=(3, -2), jnd_exponent=2, **args)
+    weighted = layerlab.compare(SCENES[0], target_folder, fovea_deg=(3, -2), jnd_exponent=2, **args)
     assert weighted["final_focal_stack_jnd"][0] != plain["final_focal_stack_jnd"][0]
     rows = command_csv(tmp_path, [SCENES[0]], ["--target", str(target_folder)], "--solvers", "hybrid", "--metrics",
                        "jnd", "--iterations", "2", "--fovea", "3,-2", "--jnd-exponent", "2")
@@ -204,6 +204,6 @@ def test_fovea_and_the_jnd_exponent_as_the_commands_and_bad_ones_refused(target_
     with pytest.raises(ValueError, match="compare: jnd_exponent: 0.5.*must be 1 or more"):
         layerlab.compare(SCENES[0], target_folder, jnd_exponent=0.5, **args)
     with pytest.raises(ValueError, match="give metrics"):
-        layerlab.compare(SCENES[0], target_folder, solvers="hybrid", fovea=(1, 1))
+        layerlab.compare(SCENES[0], target_folder, solvers="hybrid", fovea_deg=(1, 1))
     # A display of one subframe does not flicker: no verdict.
     assert plain["flicker_visible"] == [None] and np.isnan(plain["flicker_visibility"][0])

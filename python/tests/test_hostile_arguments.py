@@ -126,10 +126,10 @@ def test_a_geometry_number_of_the_wrong_type_is_a_type_error_naming_it():
 @pytest.mark.parametrize("kwargs, said", [
     ({"accommodation": [1.0, math.nan]}, r"retina: accommodation\[1\]: nan is not a finite number of diopters"),
     ({"accommodation": [-0.5]}, r"retina: accommodation\[0\]: -0.5 is not a finite number of diopters >= 0"),
-    ({"accommodation": [1.0], "field": (1e9, 1e9)}, r"retina: field: 1e\+09 deg is not a retinal field side"),
-    ({"accommodation": [1.0], "field": (0, 5)}, r"retina: field: 0 deg is not a retinal field side in \(0, 170\]"),
-    ({"accommodation": [1.0], "resolution": 20}, r"retina: resolution: 20 deg is not a retinal sample size"),
-    ({"accommodation": [1.0], "resolution": 1e-9}, r"retina: resolution: 1e-09 deg over a field of .* beyond the 1e8"),
+    ({"accommodation": [1.0], "field_deg": (1e9, 1e9)}, r"retina: field_deg: 1e\+09 deg is not a retinal field side"),
+    ({"accommodation": [1.0], "field_deg": (0, 5)}, r"retina: field_deg: 0 deg is not a retinal field side in \(0, 170\]"),
+    ({"accommodation": [1.0], "resolution_deg": 20}, r"retina: resolution_deg: 20 deg is not a retinal sample size"),
+    ({"accommodation": [1.0], "resolution_deg": 1e-9}, r"retina: resolution_deg: 1e-09 deg over a field of .* beyond the 1e8"),
     ({"accommodation": []}, r"retina: accommodation: no accommodation state given"),
 ])
 def test_retina_options_are_checked_as_the_command_checks_them(solution, kwargs, said):

@@ -57,7 +57,7 @@ def test_psnr_against_time_draws_the_trace_from_iteration_0(solution):
 
 
 def test_retina_and_contrast(solution, small_scene_path):
-    diopters, images = layerlab.focal_stack(solution, 0.4, 1.6, 0.6, resolution=0.2)
+    diopters, images = layerlab.focal_stack(solution, 0.4, 1.6, 0.6, resolution_deg=0.2)
     figure = saved(layerlab.plot.retina(images, diopters), "retina.png")
     shown = [ax.images[0].get_array() for ax in figure.axes if ax.images]
     assert len(shown) == 3

@@ -24,13 +24,13 @@ def test_small_prototype_layers_and_branches(small_scene_path):
     assert len(system.layers) == 4 and len(system.branches) == 2
     # The scene asks for images at 0.4, 1.0, 1.6 and 2.2 D (farthest first).
     assert system.diopters == pytest.approx([0.4, 1.0, 1.6, 2.2], abs=1e-9)
-    assert system.depths == pytest.approx([1 / 0.4, 1 / 1.0, 1 / 1.6, 1 / 2.2], rel=1e-9)
+    assert system.depths_m == pytest.approx([1 / 0.4, 1 / 1.0, 1 / 1.6, 1 / 2.2], rel=1e-9)
     # A thin lens of focal length f images a panel at distance d < f with M = f / (f - d).
-    f = system.focal_length
+    f = system.focal_length_m
     assert f == pytest.approx(0.075)
     for layer, m in zip(system.layers, system.magnifications):
         assert layer.magnification == m
-        assert m == pytest.approx(f / (f - layer.panel_distance), rel=1e-9)
+        assert m == pytest.approx(f / (f - layer.panel_distance_m), rel=1e-9)
     # Each branch: the half mirror's 0.5 times its two panels' maximum transmittance (from the scene).
     doc = scene_dict(small_scene_path)
     max_t = {e["name"]: e["max_transmittance"] for e in doc["elements"] if e["type"] == "lc_panel"}
@@ -45,7 +45,7 @@ def test_a_dict_is_the_same_scene_as_its_file(small_scene_path):
     from_file = layerlab.load_scene(small_scene_path).compile()
     from_dict = layerlab.compile(layerlab.load_scene(scene_dict(small_scene_path)))
     assert from_dict.file == "<dict>"
-    assert from_dict.depths == from_file.depths
+    assert from_dict.depths_m == from_file.depths_m
     assert from_dict.magnifications == from_file.magnifications
     assert from_dict.efficiencies == from_file.efficiencies
 

@@ -222,17 +222,17 @@ def test_retina_of_uniform_patterns(small_system):
     half = [np.full((l.rows, l.cols, 3), 0.5, np.float32) for l in small_system.layers]
     solution = layerlab.solve(small_system, layerlab.synthesize(small_system, half), iterations=1, initial_value=0.5)
     assert all((p == 0.5).all() for p in solution.patterns)
-    images = solution.retina([0.4, 1.3], resolution=0.2)
+    images = solution.retina([0.4, 1.3], resolution_deg=0.2)
     assert images.dtype == np.float32 and images.shape[0] == 2 and images.shape[3] == 3
     rows, cols = images.shape[1:3]
     np.testing.assert_allclose(images[:, rows // 4:3 * rows // 4, cols // 4:3 * cols // 4], 0.5, rtol=1e-5)
-    assert images.shape[2] == pytest.approx(np.degrees(small_system.fov_x) / 0.2, abs=1)
-    np.testing.assert_array_equal(layerlab.retina(solution, [0.4, 1.3], resolution=0.2), images)
-    diopters, stack = layerlab.focal_stack(solution, 0.0, 1.0, 0.5, resolution=0.2, field=(4, 2))
+    assert images.shape[2] == pytest.approx(small_system.fov_x_deg / 0.2, abs=1)
+    np.testing.assert_array_equal(layerlab.retina(solution, [0.4, 1.3], resolution_deg=0.2), images)
+    diopters, stack = layerlab.focal_stack(solution, 0.0, 1.0, 0.5, resolution_deg=0.2, field_deg=(4, 2))
     np.testing.assert_allclose(diopters, [0, 0.5, 1.0])
     assert stack.shape == (3, 10, 20, 3)
     with pytest.raises(ValueError, match="resolution"):
-        solution.retina([1.0], resolution=0)
+        solution.retina([1.0], resolution_deg=0)
 
 
 def test_natural_viewing_of_the_target(small_system):
@@ -246,15 +246,15 @@ def test_natural_viewing_of_the_target(small_system):
     lf.rgb[:] = picture[None, None, :, :]
     solution = layerlab.solve(small_system, lf, iterations=1)
     resolution, field = 0.1, (2.0, 1.0)
-    display, natural = solution.retina([1.0, 0.0], resolution=resolution, field=field, natural=True)
+    display, natural = solution.retina([1.0, 0.0], resolution_deg=resolution, field_deg=field, natural=True)
     assert natural.shape == display.shape == (2, 10, 20, 3) and natural.dtype == np.float32
-    np.testing.assert_array_equal(display, solution.retina([1.0, 0.0], resolution=resolution, field=field))
+    np.testing.assert_array_equal(display, solution.retina([1.0, 0.0], resolution_deg=resolution, field_deg=field))
     angles = np.radians((np.arange(20) + 0.5 - 10) * resolution)
     columns = np.floor((g.origin_z * np.tan(angles) - g.window_left) / (g.window_width / g.cols)).astype(int)
     np.testing.assert_allclose(natural[0], np.broadcast_to(picture[columns], (10, 20, 3)), rtol=2e-5)
     # Focused at infinity the same plane blurs: the columns mix.
     assert np.abs(natural[1] - natural[0]).max() > 0.05
-    diopters, images, seen = layerlab.focal_stack(solution, 0.0, 1.0, 1.0, resolution=resolution, field=field,
+    diopters, images, seen = layerlab.focal_stack(solution, 0.0, 1.0, 1.0, resolution_deg=resolution, field_deg=field,
                                                   natural=True)
     np.testing.assert_array_equal(seen[::-1], natural)
     np.testing.assert_array_equal(images[::-1], display)

@@ -69,9 +69,9 @@ def calls(source):
         "geometry_edited_negative_views": (lambda: layerlab.LightField(edited_geometry("views_y", -3)), "views_y"),
         "synthesize_bad_geometry": (lambda: layerlab.synthesize(system, patterns, geometry=edited_geometry(
             "rows", -1)), "rows"),
-        "retina_huge_field": (lambda: solution().retina([1.0], field=(1e9, 1e9)), "field"),
+        "retina_huge_field": (lambda: solution().retina([1.0], field_deg=(1e9, 1e9)), "field"),
         "retina_nan_state": (lambda: solution().retina([math.nan]), "accommodation[0]"),
-        "retina_tiny_resolution": (lambda: solution().retina([1.0], resolution=1e-9), "resolution"),
+        "retina_tiny_resolution": (lambda: solution().retina([1.0], resolution_deg=1e-9), "resolution"),
         "scene_dict_nan": (lambda: layerlab.load_scene(scene_with(math.nan)), "/elements/3/max_transmittance"),
         "scene_dict_numpy_value": (lambda: layerlab.load_scene(scene_with(np.float32(0.3))),
                                    "/elements/3/max_transmittance"),
