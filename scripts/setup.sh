@@ -20,6 +20,7 @@ packages+=(python3-skimage)  # the perceptual metrics' reference in python/tests
 packages+=(python3-torch)  # layerlab.torch, the forward model's autograd Functions (docs/python.md)
 # pip install . into a virtual environment, offline, with Debian's build backend (python.pip_install)
 packages+=(python3-venv python3-pip python3-setuptools python3-wheel python3-build)
+packages+=(python3-mypy)  # python.stubs type-checks a use of the API against the shipped stubs
 packages+=(libopenmpi-dev openmpi-bin)  # layerlab sweep --mpi and its tests (docs/sweeps.md)
 
 missing=()

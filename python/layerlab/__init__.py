@@ -12,6 +12,10 @@ buffers that keep it alive. Lengths in meters, angles in degrees; a value's unit
 ends its name (fov_x_deg, depth_m, frame_rate_hz).
 """
 
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
+
+import numpy
+
 from .errors import ArgumentError, Error, Interrupted, SceneError
 from ._layerlab import (
     Branch,
@@ -47,11 +51,12 @@ from ._layerlab import (
 from . import _layerlab
 
 
-def _spell_out_keywords(function, leading, keywords):
+def _spell_out_keywords(function, leading, keywords, returns):
     """`function` (a C++ function that takes its options as **kwargs) wrapped in one whose signature names
     every option: the parameters `leading` (inspect.Parameter objects), then each of `keywords` ([(name,
     annotation, default text)], from the option table) keyword-only with default None: not given, the
-    table's default, which the docstring states. An option given as None is left out of the call."""
+    table's default, which the docstring states; `returns` the return annotation. An option given as None is
+    left out of the call."""
     import functools
     import inspect
 
@@ -64,7 +69,7 @@ def _spell_out_keywords(function, leading, keywords):
 
     wrapper.__signature__ = inspect.Signature(leading + [
         inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY, default=None, annotation=types[annotation])
-        for name, annotation, _ in keywords])
+        for name, annotation, _ in keywords], return_annotation=returns)
     # pybind11's first docstring line is its own signature, with **kwargs: the one above replaces it.
     doc = function.__doc__ or ""
     wrapper.__doc__ = doc.split("\n", 1)[1].lstrip("\n") if doc.startswith(function.__name__ + "(") else doc
@@ -72,32 +77,39 @@ def _spell_out_keywords(function, leading, keywords):
 
 
 def _parameters(*specs):
-    """inspect.Parameter objects from (name, default or ..., keyword_only): ... for a required one."""
+    """inspect.Parameter objects from (name, default or ..., keyword_only, annotation): ... for a required one."""
     import inspect
 
     return [inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY if keyword_only
                               else inspect.Parameter.POSITIONAL_OR_KEYWORD,
-                              default=inspect.Parameter.empty if default is ... else default)
-            for name, default, keyword_only in specs]
+                              default=inspect.Parameter.empty if default is ... else default, annotation=annotation)
+            for name, default, keyword_only, annotation in specs]
 
 
 solve = _spell_out_keywords(
     _layerlab.solve,
-    _parameters(("display", ..., False), ("target", None, False), ("solver", None, True), ("sampling", None, True),
-                ("callback", None, True)),
-    _layerlab._solve_keywords)
-contrast = _spell_out_keywords(_layerlab.contrast, _parameters(("scenes", ..., False), ("section", None, False)),
-                               _layerlab._contrast_keywords)
+    _parameters(("display", ..., False, Union[Scene, System]),
+                ("target", None, False, Optional[Union[LightField, numpy.ndarray]]),
+                ("solver", None, True, Optional[str]), ("sampling", None, True, Optional[str]),
+                ("callback", None, True, Optional[Callable[[Dict[str, Any]], Any]])),
+    _layerlab._solve_keywords, Solution)
+contrast = _spell_out_keywords(
+    _layerlab.contrast, _parameters(("scenes", ..., False, Union[str, Sequence[str]]),
+                                    ("section", None, False, Optional[Dict[str, Any]])),
+    _layerlab._contrast_keywords, List[Dict[str, Any]])
 
 
-def retina(solution, accommodation, *, resolution_deg=0.05, field_deg=None, natural=False):
+def retina(solution: Solution, accommodation: Sequence[float], *, resolution_deg: float = 0.05,
+           field_deg: Optional[Tuple[float, float]] = None,
+           natural: bool = False) -> Union[numpy.ndarray, Tuple[numpy.ndarray, numpy.ndarray]]:
     """What the eye sees of a solution focused at each of `accommodation` (D): (states, rows, cols, 3) float32,
     display-relative linear RGB; resolution_deg: deg per sample; field_deg: (x, y) deg (default: the display's
     field of view); natural=True: (display, natural). The same as Solution.retina."""
     return solution.retina(accommodation, resolution_deg=resolution_deg, field_deg=field_deg, natural=natural)
 
 
-def focal_stack(solution, start, stop, step, *, resolution_deg=0.05, field_deg=None, natural=False):
+def focal_stack(solution: Solution, start: float, stop: float, step: float, *, resolution_deg: float = 0.05,
+                field_deg: Optional[Tuple[float, float]] = None, natural: bool = False) -> Tuple[numpy.ndarray, ...]:
     """Retinal images from `start` to `stop` D (inclusive) by `step` D: (diopters, images), images
     (states, rows, cols, 3) as Solution.retina gives them; natural=True: (diopters, images, natural),
     the last what the eye sees of the target itself."""
