@@ -115,6 +115,10 @@ enum class ParameterStatus {
 };
 std::string ToString(ParameterStatus status);
 
+// The SI unit of a ParameterEstimate's quantity: "m", "D", "rad", or "" (a ratio, gamma, or max_luminance in
+// the measurements' own unit).
+const char* ParameterSiUnit(const std::string& quantity);
+
 struct ParameterEstimate {
   std::string element;     // a panel, a lens or curved mirror, or "camera"
   std::string quantity;    // distance, virtual_depth, offset_x, offset_y, rotation, focal_length, gap, distortion,

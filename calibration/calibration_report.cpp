@@ -64,6 +64,13 @@ std::string ShowValue(const std::string& quantity, double si_value) { return Sho
 
 std::string ShowUnit(const std::string& quantity) { return ShownAs(quantity).unit; }
 
+const char* ParameterSiUnit(const std::string& quantity) {
+  const std::string shown = ShownAs(quantity).unit;
+  if (shown == "mm") return "m";
+  if (shown == "deg" || shown == "arcmin") return "rad";
+  return shown == "D" ? "D" : "";
+}
+
 const ParameterEstimate* CalibrationReport::find(const std::string& element, const std::string& quantity) const {
   for (const ParameterEstimate& p : parameters)
     if (p.element == element && p.quantity == quantity) return &p;

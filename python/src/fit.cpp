@@ -14,6 +14,7 @@
 #include "layerlab/calibration/calibrated_scene.h"
 #include "layerlab/calibration/calibration.h"
 #include "layerlab/framework/error.h"
+#include "layerlab/framework/units.h"
 #include "layerlab/python/src/bindings.h"
 #include "layerlab/python/src/json_convert.h"
 #include "layerlab/python/src/path_arg.h"
@@ -26,20 +27,24 @@ namespace {
 
 bool IsPath(const py::handle& value) { return py::isinstance<py::str>(value) || py::hasattr(value, "__fspath__"); }
 
+// The columns of the fitted parameters, each value in its `unit`: m, D, deg (the API's one angle unit), or "".
 py::dict ParameterTable(const std::vector<ParameterEstimate>& parameters) {
   const auto n = static_cast<py::ssize_t>(parameters.size());
-  py::list element, quantity, status;
+  py::list element, quantity, status, unit;
   py::array_t<double> scene_value(n), value(n), std_dev(n);
   py::array_t<bool> derived(n);
   for (py::ssize_t i = 0; i < n; ++i) {
     const ParameterEstimate& p = parameters[i];
+    const std::string si = ParameterSiUnit(p.quantity);
+    const double scale = si == "rad" ? 1 / kRadiansPerDegree : 1;
     element.append(p.element), quantity.append(p.quantity), status.append(ToString(p.status));
-    scene_value.mutable_at(i) = p.scene_value, value.mutable_at(i) = p.value;
-    std_dev.mutable_at(i) = p.std_dev.value_or(NAN), derived.mutable_at(i) = p.derived;
+    unit.append(si == "rad" ? "deg" : si);
+    scene_value.mutable_at(i) = p.scene_value * scale, value.mutable_at(i) = p.value * scale;
+    std_dev.mutable_at(i) = p.std_dev.value_or(NAN) * scale, derived.mutable_at(i) = p.derived;
   }
   py::dict d;
-  d["element"] = element, d["quantity"] = quantity, d["scene_value"] = scene_value, d["value"] = value;
-  d["std_dev"] = std_dev, d["status"] = status, d["derived"] = derived;
+  d["element"] = element, d["quantity"] = quantity, d["unit"] = unit, d["scene_value"] = scene_value;
+  d["value"] = value, d["std_dev"] = std_dev, d["status"] = status, d["derived"] = derived;
   return d;
 }
 
@@ -63,7 +68,7 @@ py::dict Fit(const py::object& scene, const py::object& measurements, const std:
     throw py::value_error("fit: focal_length / lens_gaps / distortion: " + e.message());
   }
   options.accept_model_error = accept_model_error;
-  if (marker_loss_arcmin) options.marker_loss_scale_rad = *marker_loss_arcmin / 60.0 * std::numbers::pi / 180.0;
+  if (marker_loss_arcmin) options.marker_loss_scale_rad = *marker_loss_arcmin / 60.0 * kRadiansPerDegree;
   if (luminance_loss_scale) options.luminance_loss_scale = *luminance_loss_scale;
   if (std::string why; !options.IsValid(&why)) throw py::value_error("fit: " + why);
 

@@ -43,9 +43,11 @@ def test_the_fit_recovers_the_true_placements(fitted):
     value = {(e, q): (v, s) for e, q, v, s in zip(p["element"], p["quantity"], p["value"], p["std_dev"])}
     for panel, (distance, ox, oy, rotation_deg) in TRUTH.items():
         for quantity, truth in (("distance", distance), ("offset_x", ox), ("offset_y", oy),
-                                ("rotation", np.radians(rotation_deg))):
+                                ("rotation", rotation_deg)):
             v, s = value[(panel, quantity)]
             assert s > 0 and abs(v - truth) < 4 * s, (panel, quantity, v, truth, s)
+    units = dict(zip(p["quantity"], p["unit"]))
+    assert units["rotation"] == "deg" and units["distance"] == "m" and units["virtual_depth"] == "D"
     fitted_rows = [k for k, st in enumerate(p["status"]) if st == "fitted"]
     assert fitted_rows and all(np.isfinite(p["std_dev"][k]) for k in fitted_rows if not p["derived"][k])
     assert fitted["report"]["usable"] and "fitted 420 markers and 68 luminance samples" in fitted["brief"]
@@ -59,6 +61,9 @@ def test_the_same_as_the_command(fitted, tmp_path):
     written = json.loads(report.read_text())
     p = fitted["parameters"]
     assert [(q["element"], q["quantity"]) for q in written["parameters"]] == list(zip(p["element"], p["quantity"]))
+    # The command's report is SI (rad); Python gives angles in degrees, the API's one angle unit.
+    for q, unit, value in zip(written["parameters"], p["unit"], p["value"]):
+        assert value == pytest.approx(q["value"] * (180 / np.pi if unit == "deg" else 1), rel=1e-12, abs=1e-15)
     assert fitted["report"]["geometry"] == pytest.approx(written["geometry"])
     # The calibrated scene, as the command writes it in this folder, key order included.
     assert json.dumps(fitted["scene"]) == json.dumps(json.loads(out.read_text()))
