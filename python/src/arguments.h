@@ -5,7 +5,9 @@
 // core (the same the command line makes) raise layerlab.ArgumentError too.
 #pragma once
 
+#include <memory>
 #include <string>
+#include <vector>
 
 #include <pybind11/pybind11.h>
 
@@ -79,6 +81,38 @@ inline double RealArg(const pybind11::handle& value, const std::string& name) {
     PyErr_Clear();
   }
   throw pybind11::type_error(name + ": expected a number, got " + TypeName(value) + " " + Repr(value));
+}
+
+// A bool (not an int): TypeError otherwise.
+inline bool BoolArg(const pybind11::handle& value, const std::string& name) {
+  if (!PyBool_Check(value.ptr()))
+    throw pybind11::type_error(name + ": expected a bool, got " + TypeName(value) + " " + Repr(value));
+  return value.ptr() == Py_True;
+}
+
+// A str: TypeError otherwise.
+inline std::string StringArg(const pybind11::handle& value, const std::string& name) {
+  if (!PyUnicode_Check(value.ptr()))
+    throw pybind11::type_error(name + ": expected a str, got " + TypeName(value) + " " + Repr(value));
+  return value.cast<std::string>();
+}
+
+// A list, tuple or 1-D array of real numbers (a str is not one): TypeError naming the argument or the item.
+inline std::vector<double> RealListArg(const pybind11::handle& value, const std::string& name) {
+  if (PyUnicode_Check(value.ptr()) || PyBytes_Check(value.ptr()) || !PySequence_Check(value.ptr()))
+    throw pybind11::type_error(name + ": expected a list of numbers, got " + TypeName(value) + " " + Repr(value));
+  std::vector<double> values;
+  const auto items = pybind11::reinterpret_borrow<pybind11::sequence>(value);
+  for (size_t i = 0; i < items.size(); ++i) values.push_back(RealArg(items[i], name + "[" + std::to_string(i) + "]"));
+  return values;
+}
+
+// The C++ object of a layerlab class `T` (`python_name` in messages): TypeError for anything else.
+template <typename T>
+std::shared_ptr<T> HolderArg(const pybind11::handle& value, const std::string& name, const std::string& python_name) {
+  if (!pybind11::isinstance<T>(value))
+    throw pybind11::type_error(name + ": expected a " + python_name + ", got " + TypeName(value));
+  return value.cast<std::shared_ptr<T>>();
 }
 
 // A geometry held to the limits a light-field manifest is held to

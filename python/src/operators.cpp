@@ -68,6 +68,20 @@ LightField LightFieldOf(const py::handle& value, const LightFieldGeometry& g, co
   return lf;
 }
 
+std::optional<LightFieldGeometry> GeometryArg(const py::handle& value, const std::string& name) {
+  if (value.is_none()) return std::nullopt;
+  if (!py::isinstance<LightFieldGeometry>(value))
+    throw py::type_error(name + ": expected a layerlab.LightFieldGeometry or None, got " + TypeName(value));
+  return value.cast<LightFieldGeometry>();
+}
+
+// A list or tuple (one pattern per layer): TypeError otherwise.
+py::sequence PatternListArg(const py::handle& value, const std::string& name) {
+  if (!py::isinstance<py::list>(value) && !py::isinstance<py::tuple>(value))
+    throw py::type_error(name + ": expected a list of (rows, cols, 3) arrays, one per layer, got " + TypeName(value));
+  return py::reinterpret_borrow<py::sequence>(value);
+}
+
 class DisplayOperator {
  public:
   DisplayOperator(std::shared_ptr<DisplaySystem> system, const std::optional<LightFieldGeometry>& geometry,
@@ -83,8 +97,9 @@ class DisplayOperator {
     jacobian_ = std::make_unique<DisplayJacobian>(*model_, &diffraction_, response_);
   }
 
-  py::array_t<float> Forward(const py::sequence& patterns) {
-    const Patterns t = PatternsOf(patterns, "DisplayOperator.forward");
+  py::array_t<float> Forward(const py::object& patterns) {
+    const Patterns t =
+        PatternsOf(PatternListArg(patterns, "DisplayOperator.forward: patterns"), "DisplayOperator.forward");
     LightField light;
     {
       py::gil_scoped_release release;
@@ -94,8 +109,9 @@ class DisplayOperator {
     return OwningArray(std::move(light.rgb), LightFieldShape(model_->geometry()));
   }
 
-  py::list Adjoint(const py::sequence& patterns, const py::handle& gradient) {
-    const Patterns t = PatternsOf(patterns, "DisplayOperator.adjoint");
+  py::list Adjoint(const py::object& patterns, const py::handle& gradient) {
+    const Patterns t =
+        PatternsOf(PatternListArg(patterns, "DisplayOperator.adjoint: patterns"), "DisplayOperator.adjoint");
     const LightField v = LightFieldOf(gradient, model_->geometry(), "DisplayOperator.adjoint: light_field_gradient");
     Patterns g;
     {
@@ -153,15 +169,16 @@ class RetinaOperator {
       how = SamplingFromString(sampling);
       CheckAccommodationStates(accommodation, "RetinaOperator: accommodation");
     });
-    if (resolution_deg && !(*resolution_deg > 0 && *resolution_deg <= 10))
-      RaiseArgumentError("RetinaOperator: resolution_deg: " + Repr(py::float_(*resolution_deg)) +
-                         " is not a sample size in (0, 10] deg");
-    const RetinaGrid grid = RetinalObjectiveGrid(g, resolution_deg ? *resolution_deg * kRadiansPerDegree : 0.0);
+    // The field the light field's window spans (one sample per pixel), checked with the resolution before a
+    // grid of that resolution is made (`layerlab retina`'s limits: CheckRetinaSampling).
+    const RetinaGrid per_pixel = RetinalObjectiveGrid(g, 0.0);
+    const double resolution = resolution_deg ? *resolution_deg : per_pixel.resolution_rad / kRadiansPerDegree;
     CheckArgument([&] {
-      CheckRetinaSampling(grid.cols * grid.resolution_rad / kRadiansPerDegree,
-                          grid.rows * grid.resolution_rad / kRadiansPerDegree, grid.resolution_rad / kRadiansPerDegree,
+      CheckRetinaSampling(per_pixel.cols * per_pixel.resolution_rad / kRadiansPerDegree,
+                          per_pixel.rows * per_pixel.resolution_rad / kRadiansPerDegree, resolution,
                           "RetinaOperator: field", "RetinaOperator: resolution_deg");
     });
+    const RetinaGrid grid = resolution_deg ? RetinalObjectiveGrid(g, resolution * kRadiansPerDegree) : per_pixel;
     std::vector<std::array<double, 3>> foci;
     for (double d : accommodation) foci.push_back(ChannelAccommodation(system_->eye, d));
     py::gil_scoped_release release;
@@ -219,7 +236,14 @@ void BindOperators(py::module_& m) {
       m, "DisplayOperator",
       "The display's forward model L(t) (patterns to light field, display-relative) and its Jacobian's transpose: "
       "the multilinear map the solvers minimize through (solvers/display_jacobian.h), subframes as branches")
-      .def(py::init<std::shared_ptr<DisplaySystem>, std::optional<LightFieldGeometry>, std::string, bool, bool>(),
+      .def(py::init([](const py::object& system, const py::object& geometry, const py::object& sampling,
+                       const py::object& panel_diffraction, const py::object& lc_response) {
+             const std::string name = "DisplayOperator: ";
+             return std::make_shared<DisplayOperator>(
+                 HolderArg<DisplaySystem>(system, name + "system", "layerlab.System"),
+                 GeometryArg(geometry, name + "geometry"), StringArg(sampling, name + "sampling"),
+                 BoolArg(panel_diffraction, name + "panel_diffraction"), BoolArg(lc_response, name + "lc_response"));
+           }),
            py::arg("system"), py::kw_only(), py::arg("geometry") = py::none(), py::arg("sampling") = "nearest",
            py::arg("panel_diffraction") = false, py::arg("lc_response") = false,
            "geometry: the light field's (default display_geometry(system)); sampling: 'nearest' or 'bilinear'; "
@@ -253,8 +277,16 @@ void BindOperators(py::module_& m) {
       "The eye's retinal images of a light field, one per accommodation state, and the transpose: the retinal "
       "objective's linear operator A_a (retina/retinal_operator.h: the mean over the eye's pupil samples of the "
       "light field read along each ray through the in-focus point)")
-      .def(py::init<std::shared_ptr<DisplaySystem>, std::vector<double>, std::optional<double>,
-                    std::optional<LightFieldGeometry>, std::string>(),
+      .def(py::init([](const py::object& system, const py::object& accommodation, const py::object& resolution_deg,
+                       const py::object& geometry, const py::object& sampling) {
+             const std::string name = "RetinaOperator: ";
+             return std::make_shared<RetinaOperator>(
+                 HolderArg<DisplaySystem>(system, name + "system", "layerlab.System"),
+                 RealListArg(accommodation, name + "accommodation"),
+                 resolution_deg.is_none() ? std::nullopt
+                                          : std::optional<double>(RealArg(resolution_deg, name + "resolution_deg")),
+                 GeometryArg(geometry, name + "geometry"), StringArg(sampling, name + "sampling"));
+           }),
            py::arg("system"), py::arg("accommodation"), py::kw_only(), py::arg("resolution_deg") = py::none(),
            py::arg("geometry") = py::none(), py::arg("sampling") = "nearest",
            "accommodation: states in D; resolution_deg: deg per retinal sample (default: one per light-field "

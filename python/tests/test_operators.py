@@ -125,6 +125,18 @@ def test_bad_arguments_are_named():
         layerlab.RetinaOperator(system, [float("nan")])
     with pytest.raises(layerlab.ArgumentError, match="resolution_deg"):
         layerlab.RetinaOperator(system, [1.0], resolution_deg=-1)
+    with pytest.raises(layerlab.ArgumentError, match=r"RetinaOperator: resolution_deg: 1e-09 deg over a field"):
+        layerlab.RetinaOperator(system, [1.0], resolution_deg=1e-9)
+    for make, said in ((lambda: layerlab.DisplayOperator("scene.json"), "DisplayOperator: system: expected a "
+                                                                        "layerlab.System, got str"),
+                       (lambda: layerlab.DisplayOperator(system, lc_response=1), "lc_response: expected a bool"),
+                       (lambda: layerlab.DisplayOperator(system, geometry=3), "geometry: expected a layerlab."
+                                                                             "LightFieldGeometry or None, got int"),
+                       (lambda: op.forward(5), r"forward: patterns: expected a list of \(rows, cols, 3\) arrays"),
+                       (lambda: layerlab.RetinaOperator(system, "1 D"), "accommodation: expected a list of numbers"),
+                       (lambda: layerlab.RetinaOperator(system, [1.0, "2"]), r"accommodation\[1\]: expected a number")):
+        with pytest.raises(TypeError, match=said):
+            make()
 
 
 def test_lc_response_adjoint_with_unequal_rise_and_fall():

@@ -69,6 +69,16 @@ def calls(source):
         "geometry_edited_negative_views": (lambda: layerlab.LightField(edited_geometry("views_y", -3)), "views_y"),
         "synthesize_bad_geometry": (lambda: layerlab.synthesize(system, patterns, geometry=edited_geometry(
             "rows", -1)), "rows"),
+        "operator_bad_geometry": (lambda: layerlab.DisplayOperator(system, geometry=edited_geometry("rows", -1)),
+                                  "rows"),
+        "operator_patterns_nan": (lambda: layerlab.DisplayOperator(system).forward(bad_patterns(math.nan)),
+                                  "pattern 0"),
+        "operator_gradient_inf": (lambda: layerlab.DisplayOperator(system).adjoint(
+            patterns, np.full(layerlab.DisplayOperator(system).light_field_shape, math.inf, np.float32)),
+            "light_field_gradient"),
+        "retina_operator_tiny_resolution": (lambda: layerlab.RetinaOperator(system, [1.0], resolution_deg=1e-9),
+                                            "resolution_deg"),
+        "retina_operator_nan_state": (lambda: layerlab.RetinaOperator(system, [math.nan]), "accommodation[0]"),
         "retina_huge_field": (lambda: solution().retina([1.0], field_deg=(1e9, 1e9)), "field"),
         "retina_nan_state": (lambda: solution().retina([math.nan]), "accommodation[0]"),
         "retina_tiny_resolution": (lambda: solution().retina([1.0], resolution_deg=1e-9), "resolution"),
