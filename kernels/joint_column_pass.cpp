@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "layerlab/framework/error.h"
+#include "layerlab/framework/fixed_parts.h"
 #include "layerlab/kernels/depth_sums_row.h"
 #include "layerlab/kernels/one_tap_view.h"
 #include "layerlab/kernels/row_kernels.h"
@@ -201,27 +202,29 @@ double JointColumnPass(const DisplayModel& model, const LightField& l, const Pat
   padded.PadAll(t);
   const LightFieldGeometry& g = model.geometry();
   std::vector<double> error(g.view_count());  // summed in view order: the same for any thread count
-  std::vector<std::vector<const ColumnSums*>> thread_sums(model.layer_count());  // [layer][thread]
+  std::vector<std::vector<const ColumnSums*>> part_sums(model.layer_count());  // [layer][part]
   // Checked here, copied by each thread; branches of unequal layer counts take the general path.
   std::optional<FusedRows> each_fused;
   if (summed || EqualLayerCounts(model)) each_fused.emplace(model, summed);
+  // Views cut into the workspace's fixed parts, merged in part order (framework/fixed_parts.h).
+  const int parts = workspace->threads();
+  for (auto& s : part_sums) s.resize(parts);
 #pragma omp parallel
   {
-    ThreadWorkspace& w = workspace->thread();
-    Reset(model, summed, &w);
-    const int threads = omp_get_num_threads(), me = omp_get_thread_num();
-#pragma omp single
-    for (auto& s : thread_sums) s.resize(threads);
-    for (size_t k = 0; k < model.layer_count(); ++k) thread_sums[k][me] = &w.layer_sums[k];
-    std::optional<FusedRows> fused = each_fused;
-    ForEachViewRunOfThread(g, me, threads, [&](int vc, int vr_begin, int vr_end) {
-      ViewRun(model, l, padded, vc, vr_begin, vr_end, fused ? &*fused : nullptr, objective, error.data(), &w);
+    ForEachPartOfThread(parts, [&](int p) {
+      ThreadWorkspace& w = workspace->thread(p);
+      Reset(model, summed, &w);
+      for (size_t k = 0; k < model.layer_count(); ++k) part_sums[k][p] = &w.layer_sums[k];
+      std::optional<FusedRows> fused = each_fused;
+      ForEachViewRunOfThread(g, p, parts, [&](int vc, int vr_begin, int vr_end) {
+        ViewRun(model, l, padded, vc, vr_begin, vr_end, fused ? &*fused : nullptr, objective, error.data(), &w);
+      });
     });
 #pragma omp barrier
-    // Merged in thread order, each thread a share of each layer's pixels.
+    // Merged in part order, each thread a share of each layer's pixels.
+    const int threads = omp_get_num_threads(), me = omp_get_thread_num();
     for (size_t k = 0; k < model.layer_count(); ++k)
-      if (Summed(summed, k))
-        ColumnSums::Merge(thread_sums[k], me, threads, (*sums.res)[k].data(), (*sums.den)[k].data());
+      if (Summed(summed, k)) ColumnSums::Merge(part_sums[k], me, threads, (*sums.res)[k].data(), (*sums.den)[k].data());
   }
   double total = 0;
   for (double e : error) total += e;

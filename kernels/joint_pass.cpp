@@ -2,6 +2,7 @@
 
 #include <omp.h>
 
+#include "layerlab/framework/fixed_parts.h"
 #include "layerlab/framework/mpi_ranks.h"
 #include "layerlab/kernels/joint_column_pass.h"
 #include "layerlab/kernels/one_tap_view.h"
@@ -13,7 +14,7 @@ JointPass::JointPass(const DisplayModel& model, SolveWorkspace* workspace,
                      const std::vector<LayerDiffraction>* diffraction)
     : model_(model), workspace_(workspace), diffraction_(diffraction && !diffraction->empty() ? diffraction : nullptr) {
   if (!workspace_) {
-    own_ = std::make_unique<SolveWorkspace>(model, omp_get_max_threads(), kJointPass);
+    own_ = std::make_unique<SolveWorkspace>(model, FixedParts(), kJointPass);
     workspace_ = own_.get();
   }
   const size_t layers = model.layer_count();
@@ -57,32 +58,36 @@ double JointPass::RunOn(const LightField& l, const Patterns& t, const std::vecto
       if ((*summed)[k]) sums.emplace_back(res_[k]), sums.emplace_back(den_[k]);
     return SumAcrossRanks(std::move(sums), error);
   }
-  // Views split evenly and statically, each view's error kept apart and
-  // summed in view order, thread sums merged in thread order: the same
-  // bits for a given thread count.
+  // Views cut into the workspace's fixed parts (a static schedule's shares),
+  // each part's sums kept apart, each view's error too (summed in view
+  // order), the parts merged in part order: the same bits on any team of at
+  // most that many threads (framework/fixed_parts.h).
   std::vector<double> view_error(model_.geometry().view_count());
-  std::vector<std::vector<const float*>> nums(layers), dens(layers);  // [layer][thread]
+  const int parts = workspace_->threads();
+  std::vector<std::vector<const float*>> nums(layers, std::vector<const float*>(parts)),
+      dens(layers, std::vector<const float*>(parts));  // [layer][part]
 #pragma omp parallel
   {
-    ThreadWorkspace& sums = workspace_->thread();
-    for (size_t k = 0; k < layers; ++k) {
-      sums.num[k].assign(t[k].rgb.size(), 0.0f);
-      sums.den[k].assign(t[k].rgb.size(), 0.0f);
-    }
+    ForEachPartOfThread(parts, [&](int p) {
+      ThreadWorkspace& sums = workspace_->thread(p);
+      for (size_t k = 0; k < layers; ++k) {
+        sums.num[k].assign(t[k].rgb.size(), 0.0f);
+        sums.den[k].assign(t[k].rgb.size(), 0.0f);
+        nums[k][p] = sums.num[k].data(), dens[k][p] = sums.den[k].data();
+      }
+      const ItemRange views = StaticShare(view_error.size(), p, parts);
+      for (size_t v = views.begin; v < views.end; ++v) {
+        double objective = 0;
+        if (one_tap_)
+          ViewOneTap(l.view(v), t, v, &sums, &objective);
+        else
+          ViewGeneral(l.view(v), t, v, &sums, &objective);
+        view_error[v] = objective;
+      }
+    });
+#pragma omp barrier
     const int threads = omp_get_num_threads(), me = omp_get_thread_num();
-#pragma omp single
-    for (size_t k = 0; k < layers; ++k) nums[k].resize(threads), dens[k].resize(threads);
-    for (size_t k = 0; k < layers; ++k) nums[k][me] = sums.num[k].data(), dens[k][me] = sums.den[k].data();
-#pragma omp for schedule(static)
-    for (size_t v = 0; v < view_error.size(); ++v) {
-      double objective = 0;
-      if (one_tap_)
-        ViewOneTap(l.view(v), t, v, &sums, &objective);
-      else
-        ViewGeneral(l.view(v), t, v, &sums, &objective);
-      view_error[v] = objective;
-    }
-    for (size_t k = 0; k < layers; ++k) {  // after the loop's barrier
+    for (size_t k = 0; k < layers; ++k) {
       MergeInThreadOrder(nums[k], res_[k].size() / 3, 3, me, threads, res_[k].data());
       MergeInThreadOrder(dens[k], den_[k].size() / 3, 3, me, threads, den_[k].data());
     }

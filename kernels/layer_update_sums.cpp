@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "layerlab/framework/fixed_parts.h"
 #include "layerlab/framework/mpi_ranks.h"
 #include "layerlab/kernels/one_tap_update.h"
 #include "layerlab/kernels/one_tap_view.h"
@@ -82,19 +83,22 @@ bool ComputeLayerUpdate(const DisplayModel& model, BranchLayer which, const Bran
     SumAcrossRanks({*update->num, *update->den, {error, error ? 1u : 0u}});
     return error != nullptr;
   }
-  std::vector<const float*> nums, dens;  // [thread]
+  // Views cut into the workspace's fixed parts, merged in part order (framework/fixed_parts.h).
+  const int parts = workspace->threads();
+  std::vector<const float*> nums(parts), dens(parts);  // [part]
 #pragma omp parallel
   {
-    ThreadWorkspace& ws = workspace->thread();
-    ws.num[layer].assign(m, 0.0f), ws.den[layer].assign(m, 0.0f);
-    ws.target.resize(n);
+    ForEachPartOfThread(parts, [&](int p) {
+      ThreadWorkspace& ws = workspace->thread(p);
+      ws.num[layer].assign(m, 0.0f), ws.den[layer].assign(m, 0.0f);
+      ws.target.resize(n);
+      nums[p] = ws.num[layer].data(), dens[p] = ws.den[layer].data();
+      const ItemRange views = StaticShare(g.view_count(), p, parts);
+      for (size_t v = views.begin; v < views.end; ++v)
+        AccumulateGeneral(model, layers, layer, t, w, v, branch_target(v, ws.target.data()), &ws);
+    });
+#pragma omp barrier
     const int threads = omp_get_num_threads(), me = omp_get_thread_num();
-#pragma omp single
-    nums.resize(threads), dens.resize(threads);
-    nums[me] = ws.num[layer].data(), dens[me] = ws.den[layer].data();
-#pragma omp for schedule(static)
-    for (size_t v = 0; v < g.view_count(); ++v)
-      AccumulateGeneral(model, layers, layer, t, w, v, branch_target(v, ws.target.data()), &ws);
     MergeInThreadOrder(nums, m / 3, 3, me, threads, numerator);
     MergeInThreadOrder(dens, m / 3, 3, me, threads, denominator);
   }

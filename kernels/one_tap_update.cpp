@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "layerlab/framework/fixed_parts.h"
 #include "layerlab/kernels/one_tap_view.h"
 #include "layerlab/kernels/row_kernels.h"
 
@@ -129,27 +130,28 @@ void OneTapUpdateSums(const DisplayModel& model, const UpdatedBranch& branch, co
   padded.PadRowsRead(model, t, view_errors ? layers : std::vector<int>(layers.begin() + 1, layers.end()));
   const Rgb4 w4{weight[0], weight[1], weight[2], 0.0f};
 
-  // Each thread takes an equal run of views (ForEachViewRunOfThread), sums
-  // them in float (a pixel gets a few rays per view), and the merge is in
-  // double, in thread order: the same bits for a given thread count.
-  std::vector<const ColumnSums*> thread_sums;
+  // Each of the workspace's fixed parts takes an equal run of views
+  // (ForEachViewRunOfThread), sums them in float (a pixel gets a few rays
+  // per view), and the merge is in double, in part order: the same bits on
+  // any team of at most that many threads (framework/fixed_parts.h).
+  const int parts = workspace->threads();
+  std::vector<const ColumnSums*> part_sums(parts);
 #pragma omp parallel
   {
-    ThreadWorkspace& w = workspace->thread();
-    w.update_sums.Reset(Pa, g.cols);
-    w.target.resize(g.pixels_per_view() * 3);
-    w.product.resize(g.cols);
-    w.zeros.assign(g.cols, Rgb4{});
-    const int threads = omp_get_num_threads(), me = omp_get_thread_num();
-#pragma omp single
-    thread_sums.resize(threads);
-    thread_sums[me] = &w.update_sums;
-    ForEachViewRunOfThread(g, me, threads, [&](int vc, int vr_begin, int vr_end) {
-      ForLayerCount<Accumulate>(static_cast<int>(layers.size()), model, layers, padded, branch_target, w4, vc, vr_begin,
-                                vr_end, view_errors, &w);
+    ForEachPartOfThread(parts, [&](int p) {
+      ThreadWorkspace& w = workspace->thread(p);
+      w.update_sums.Reset(Pa, g.cols);
+      w.target.resize(g.pixels_per_view() * 3);
+      w.product.resize(g.cols);
+      w.zeros.assign(g.cols, Rgb4{});
+      part_sums[p] = &w.update_sums;
+      ForEachViewRunOfThread(g, p, parts, [&](int vc, int vr_begin, int vr_end) {
+        ForLayerCount<Accumulate>(static_cast<int>(layers.size()), model, layers, padded, branch_target, w4, vc,
+                                  vr_begin, vr_end, view_errors, &w);
+      });
     });
 #pragma omp barrier
-    ColumnSums::Merge(thread_sums, me, threads, sums.num, sums.den);
+    ColumnSums::Merge(part_sums, omp_get_thread_num(), omp_get_num_threads(), sums.num, sums.den);
   }
 }
 

@@ -22,6 +22,7 @@
 #include <cmath>
 #include <vector>
 
+#include "layerlab/framework/fixed_parts.h"
 #include "layerlab/framework/mpi_ranks.h"
 #include "layerlab/solvers/additive_gram.h"
 #include "layerlab/solvers/solve_loop.h"
@@ -58,20 +59,20 @@ void Axpy(double alpha, const Vec& x, Vec* y) {
     for (size_t i = 0; i < x[k].size(); ++i) (*y)[k][i] += alpha * x[k][i];
 }
 
-// Each thread's sums over its views (a static schedule), added in thread
-// order: the same bits run to run for a given thread count, where a critical
-// section or a reduction adds in the order the threads arrive.
-class ThreadSums {
+// Sums over views cut into fixed parts (a static schedule's shares), each
+// part's kept apart and added in part order: the same bits on any team of at
+// most that many threads (framework/fixed_parts.h), where a critical section
+// or a reduction adds in the order the threads arrive.
+class PartSums {
  public:
-  // This thread's sums, zero; called by every thread of the team.
-  Vec* Mine(const Patterns& shape) {
-#pragma omp single
-    parts_.resize(omp_get_num_threads());
-    Vec& mine = parts_[omp_get_thread_num()];
-    mine = Zeros(shape);
-    return &mine;
+  PartSums() : parts_(FixedParts()) {}
+  int parts() const { return static_cast<int>(parts_.size()); }
+  // Part p's sums, zero.
+  Vec* Part(int p, const Patterns& shape) {
+    parts_[p] = Zeros(shape);
+    return &parts_[p];
   }
-  void SumInThreadOrder(const Patterns& shape, Vec* out) const {
+  void SumInPartOrder(const Patterns& shape, Vec* out) const {
     *out = Zeros(shape);
     for (const Vec& part : parts_) Axpy(1.0, part, out);
   }
@@ -108,28 +109,30 @@ class AdditiveOperator {
   double Residual(const Patterns& x, const LightField& l, Vec* gradient) const {
     const size_t views = model_.geometry().view_count();
     std::vector<double> view_sums(views);
-    ThreadSums locals;
+    PartSums locals;
 #pragma omp parallel
     {
       std::vector<float> r(n_), scratch(n_);
-      Vec* local = gradient ? locals.Mine(x) : nullptr;
-#pragma omp for schedule(static)
-      for (size_t v = 0; v < views; ++v) {
-        Apply(v, x, r.data(), scratch.data());
-        const float* lv = l.view(v);
-        double sum = 0;
-        for (size_t i = 0; i < n_; ++i) {
-          r[i] -= lv[i];
-          sum += double(r[i]) * r[i];
-          r[i] *= 2.0f;
+      ForEachPartOfThread(locals.parts(), [&](int p) {
+        Vec* local = gradient ? locals.Part(p, x) : nullptr;
+        const ItemRange share = StaticShare(views, p, locals.parts());
+        for (size_t v = share.begin; v < share.end; ++v) {
+          Apply(v, x, r.data(), scratch.data());
+          const float* lv = l.view(v);
+          double sum = 0;
+          for (size_t i = 0; i < n_; ++i) {
+            r[i] -= lv[i];
+            sum += double(r[i]) * r[i];
+            r[i] *= 2.0f;
+          }
+          view_sums[v] = sum;
+          if (gradient) ApplyTranspose(v, r.data(), local, scratch.data());
         }
-        view_sums[v] = sum;
-        if (gradient) ApplyTranspose(v, r.data(), local, scratch.data());
-      }
+      });
     }
     double total = 0;
     for (double s : view_sums) total += s;  // in view order
-    if (gradient) locals.SumInThreadOrder(x, gradient);
+    if (gradient) locals.SumInPartOrder(x, gradient);
     return SumAcrossRanks(gradient, nullptr, total);
   }
 
@@ -139,19 +142,21 @@ class AdditiveOperator {
     for (size_t k = 0; k < p.size(); ++k)
       for (size_t i = 0; i < p[k].size(); ++i) pf[k].rgb[i] = static_cast<float>(p[k][i]);
     const size_t views = model_.geometry().view_count();
-    ThreadSums locals;
+    PartSums locals;
 #pragma omp parallel
     {
       std::vector<float> ap(n_), scratch(n_);
-      Vec* local = locals.Mine(shape);
-#pragma omp for schedule(static)
-      for (size_t v = 0; v < views; ++v) {
-        Apply(v, pf, ap.data(), scratch.data());
-        for (size_t i = 0; i < n_; ++i) ap[i] *= 2.0f;
-        ApplyTranspose(v, ap.data(), local, scratch.data());
-      }
+      ForEachPartOfThread(locals.parts(), [&](int part) {
+        Vec* local = locals.Part(part, shape);
+        const ItemRange share = StaticShare(views, part, locals.parts());
+        for (size_t v = share.begin; v < share.end; ++v) {
+          Apply(v, pf, ap.data(), scratch.data());
+          for (size_t i = 0; i < n_; ++i) ap[i] *= 2.0f;
+          ApplyTranspose(v, ap.data(), local, scratch.data());
+        }
+      });
     }
-    locals.SumInThreadOrder(shape, hp);
+    locals.SumInPartOrder(shape, hp);
     SumAcrossRanks(hp, nullptr, 0.0);
     for (size_t k = 0; k < hp->size(); ++k)
       for (size_t i = 0; i < (*hp)[k].size(); ++i) (*hp)[k][i] *= free[k][i];

@@ -63,6 +63,7 @@ nlohmann::json ReportSummaryJson(const SolverReport& r) {
                       {"setup_seconds", r.setup_seconds},
                       {"rays", r.rays},
                       {"threads", r.threads},
+                      {"threads_min", r.threads_min},
                       {"initial_objective", r.initial_objective},
                       {"final_objective", r.final_objective},
                       {"final_psnr_db", JsonNumber(r.final_psnr_db)},

@@ -9,6 +9,7 @@
 #include "layerlab/framework/error.h"
 #include "layerlab/framework/fixed_order_sum.h"
 #include "layerlab/framework/mpi_ranks.h"
+#include "layerlab/framework/thread_budget.h"
 #include "layerlab/kernels/joint_pass.h"
 #include "layerlab/kernels/synthesis.h"
 #include "layerlab/solvers/response_pass.h"
@@ -56,11 +57,10 @@ bool SolveLoop::Start(const std::string& refusal) {
     return false;
   }
   const int threads = options_.threads > 0 ? options_.threads : AutomaticThreads();
-  if (threads != omp_get_max_threads()) {
-    saved_threads_ = omp_get_max_threads();
-    omp_set_num_threads(threads);
-  }
-  report_.threads = threads;
+  saved_threads_ = omp_get_max_threads();
+  omp_set_num_threads(threads);
+  parts_.emplace(threads);
+  report_.threads = report_.threads_min = threads;
   try {
     RequireSameRays(model_, source_);
     prepared_ = PrepareTarget(model_, source_, options_.target_range, &report_);
@@ -223,7 +223,15 @@ bool SolveLoop::Record(double objective, double light_field_objective, double fo
     Fail("the objective became " + std::to_string(objective) + " at iteration " + std::to_string(iteration_));
     return false;
   }
+  AdjustThreads();
   return true;
+}
+
+void SolveLoop::AdjustThreads() {
+  if (report_.threads <= 1) return;
+  const int threads = ThreadsForLoad(report_.threads);
+  if (threads != omp_get_max_threads()) omp_set_num_threads(threads);
+  report_.threads_min = std::min(report_.threads_min, threads);
 }
 
 bool SolveLoop::EndIteration(std::optional<double> objective) {

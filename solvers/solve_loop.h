@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 
+#include "layerlab/framework/fixed_parts.h"
 #include "layerlab/kernels/ray_pass.h"
 #include "layerlab/solvers/objective.h"
 #include "layerlab/solvers/retinal_pass.h"
@@ -94,6 +95,9 @@ class SolveLoop {
   // The thread count of options.threads = 0.
   int AutomaticThreads() const;
   bool Record(double objective, double light_field_objective, double focal_stack_psnr_db);
+  // The threads of the next iteration: at most report_.threads, fewer while other processes keep the cores
+  // busy (framework/thread_budget.h).
+  void AdjustThreads();
   // The focal stack's metrics (options.measure_metrics) of the patterns now, into the last trace row, off the
   // clock; at the rows kMetricRowGrowth spaces and at the last.
   void MeasureMetrics();
@@ -122,6 +126,9 @@ class SolveLoop {
   std::chrono::steady_clock::time_point start_;
   int iteration_ = 0;
   int saved_threads_ = 0;
+  // The solve's sums cut into report_.threads parts (framework/fixed_parts.h), so that an iteration may run on
+  // fewer threads where other processes keep the cores busy (AdjustThreads) with the same bits.
+  std::optional<ScopedParts> parts_;
   bool stopped_ = false;
   std::map<std::string, double> state_;
   std::unique_ptr<RetinalObjective> retinal_;

@@ -189,6 +189,9 @@ struct SolverReport {
   double initial_objective = 0, final_objective = 0, final_psnr_db = 0;
   size_t rays = 0;
   int threads = 0;  // worker threads the solve ran on (per process)
+  // The fewest an iteration ran on: below `threads` where other processes kept the cores busy (the results are
+  // the same bits: framework/fixed_parts.h).
+  int threads_min = 0;
   // Target preparation: how many values were beyond the display's range and what was done.
   size_t out_of_range = 0;
   double target_scale = 1;

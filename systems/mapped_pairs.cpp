@@ -4,6 +4,8 @@
 
 #include <algorithm>
 
+#include "layerlab/framework/fixed_parts.h"
+
 namespace layerlab {
 namespace {
 
@@ -166,24 +168,28 @@ void MappedPairs::Bin(const LightField& r, std::vector<float>* binned, std::vect
   const LightFieldGeometry& g = geometry_;
   const size_t n = pairs(), per_view = g.pixels_per_view() * 3;
   binned->resize(n);
+  // Views cut into fixed parts, each part's sums kept apart and added in part order: the same bits on any
+  // team of at most that many threads (framework/fixed_parts.h).
+  const int part_count = FixedParts();
+  if (parts->size() < size_t(part_count)) parts->resize(part_count);
 #pragma omp parallel
   {
-    const int threads = omp_get_num_threads(), me = omp_get_thread_num();
-#pragma omp single
-    if (parts->size() < size_t(threads)) parts->resize(threads);
-    std::vector<float>& mine = (*parts)[me];
-    mine.assign(n, 0.0f);
-#pragma omp for schedule(static)
-    for (size_t v = 0; v < g.view_count(); ++v) {
-      const uint32_t* pair = &ray_pair_[v * per_view];
-      const float* rv = r.view(v);
-      for (size_t k = 0; k < per_view; ++k)
-        if (pair[k] != kNoPair) mine[pair[k]] += rv[k];
-    }
+    ForEachPartOfThread(part_count, [&](int p) {
+      std::vector<float>& mine = (*parts)[p];
+      mine.assign(n, 0.0f);
+      const ItemRange views = StaticShare(g.view_count(), p, part_count);
+      for (size_t v = views.begin; v < views.end; ++v) {
+        const uint32_t* pair = &ray_pair_[v * per_view];
+        const float* rv = r.view(v);
+        for (size_t k = 0; k < per_view; ++k)
+          if (pair[k] != kNoPair) mine[pair[k]] += rv[k];
+      }
+    });
+#pragma omp barrier
 #pragma omp for schedule(static)
     for (size_t k = 0; k < n; ++k) {
       float sum = 0.0f;
-      for (int t = 0; t < threads; ++t) sum += (*parts)[t][k];
+      for (int p = 0; p < part_count; ++p) sum += (*parts)[p][k];
       (*binned)[k] = sum;
     }
   }

@@ -14,6 +14,7 @@
 
 #include "layerlab/framework/json_file.h"
 #include "layerlab/framework/random.h"
+#include "layerlab/framework/thread_budget.h"
 #include "layerlab/kernels/joint_pass.h"
 #include "layerlab/kernels/one_tap_view.h"
 #include "layerlab/kernels/solve_workspace.h"
@@ -1227,6 +1228,39 @@ TEST(SolverRegistry, UnknownSolverListsTheKnownOnes) {
     EXPECT_STREQ(e.what(),
                  "unknown solver \"hybird\"; did you mean \"hybrid\"? Known solvers: additive-trust-region, "
                  "hybrid, joint, multiplicative, quasi-newton");
+  }
+}
+
+// A solve cuts its sums into as many parts as it has threads (framework/fixed_parts.h), so iterations run on
+// fewer threads, as a busy machine has them run (framework/thread_budget.h), give the same bits: every
+// solver, and behind a real lens (its pixel pairs' binned sums), with a team that changes every iteration.
+TEST(Solvers, FewerThreadsOnABusyMachineGiveTheSameBits) {
+  std::vector<std::pair<std::string, std::string>> runs;
+  for (const std::string& solver : SolverRegistry::Builtins().names()) runs.emplace_back(solver, ExampleFor(solver));
+  runs.emplace_back("hybrid", "paper_prototype_la1608.json");
+  for (const auto& [solver, example] : runs) {
+    const Fixture f = MakeFixture(example, 24, 12, 5);
+    SolverOptions o = SolverRegistry::Builtins().find(solver)->defaults;
+    o.iterations = 4, o.threads = 3, o.seed = 7;
+    auto solve = [&](std::function<int(int)> budget, Patterns* t) {
+      SetThreadBudgetForTesting(std::move(budget));
+      const SolverReport r = RunSolver(solver, f, o, t);
+      SetThreadBudgetForTesting(nullptr);
+      return r;
+    };
+    Patterns all, changing, one;
+    const SolverReport r_all = solve([](int parts) { return parts; }, &all);
+    const SolverReport r_changing = solve([n = 0](int parts) mutable { return 1 + n++ % parts; }, &changing);
+    const SolverReport r_one = solve([](int) { return 1; }, &one);
+    ASSERT_TRUE(r_all.IsSolutionUsable()) << solver << ": " << r_all.FullReport();
+    EXPECT_EQ(r_all.threads_min, 3) << solver;
+    EXPECT_EQ(r_one.threads_min, 1) << solver;
+    for (size_t k = 0; k < all.size(); ++k) {
+      EXPECT_TRUE(ArraysSameBits(all[k].rgb, changing[k].rgb)) << solver << " on " << example << ", layer " << k;
+      EXPECT_TRUE(ArraysSameBits(all[k].rgb, one[k].rgb)) << solver << " on " << example << ", layer " << k;
+    }
+    EXPECT_EQ(r_all.final_objective, r_changing.final_objective) << solver;
+    EXPECT_EQ(r_all.final_objective, r_one.final_objective) << solver;
   }
 }
 
