@@ -1235,11 +1235,18 @@ TEST(SolverRegistry, UnknownSolverListsTheKnownOnes) {
 // fewer threads, as a busy machine has them run (framework/thread_budget.h), give the same bits: every
 // solver, and behind a real lens (its pixel pairs' binned sums), with a team that changes every iteration.
 TEST(Solvers, FewerThreadsOnABusyMachineGiveTheSameBits) {
-  std::vector<std::pair<std::string, std::string>> runs;
-  for (const std::string& solver : SolverRegistry::Builtins().names()) runs.emplace_back(solver, ExampleFor(solver));
-  runs.emplace_back("hybrid", "paper_prototype_la1608.json");
-  for (const auto& [solver, example] : runs) {
-    const Fixture f = MakeFixture(example, 24, 12, 5);
+  struct Run {
+    std::string solver, example;
+    int cols = 24, rows = 12, views = 5;
+  };
+  std::vector<Run> runs;
+  for (const std::string& solver : SolverRegistry::Builtins().names()) runs.push_back({solver, ExampleFor(solver)});
+  runs.push_back({"hybrid", "paper_prototype_la1608.json", 12, 6, 9});  // views enough for pixel pairs to pay
+  for (const auto& [solver, example, cols, rows, views] : runs) {
+    const Fixture f = MakeFixture(example, cols, rows, views);
+    if (example == "paper_prototype_la1608.json") {
+      ASSERT_NE(f.model->pair_list(0), nullptr);
+    }
     SolverOptions o = SolverRegistry::Builtins().find(solver)->defaults;
     o.iterations = 4, o.threads = 3, o.seed = 7;
     auto solve = [&](std::function<int(int)> budget, Patterns* t) {
