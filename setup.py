@@ -13,6 +13,7 @@ import re
 import shutil
 import subprocess
 import sys
+import sysconfig
 
 from setuptools import Extension, setup
 from setuptools.command.build_ext import build_ext
@@ -38,11 +39,13 @@ class CMakeModule(build_ext):
                             "-DLAYERLAB_WITH_PYTHON=ON", f"-DPython3_EXECUTABLE={sys.executable}",
                             "-DBUILD_TESTING=OFF", "-DLAYERLAB_WITH_BENCHMARKS=OFF"], check=True)
             subprocess.run(["cmake", "--build", CMAKE_BUILD, "--target", "_layerlab", "-j2"], check=True)
-        built = glob.glob(os.path.join(CMAKE_BUILD, "python", "layerlab", "_layerlab*.so"))
+        # The module built for this interpreter (its extension suffix names the Python version and ABI).
+        name = "_layerlab" + sysconfig.get_config_var("EXT_SUFFIX")
+        built = glob.glob(os.path.join(CMAKE_BUILD, "python", "layerlab", name))
         if len(built) != 1:
-            raise RuntimeError(f"layerlab: expected one _layerlab module in {CMAKE_BUILD}/python/layerlab, found "
+            raise RuntimeError(f"layerlab: expected one {name} module in {CMAKE_BUILD}/python/layerlab, found "
                                f"{len(built)}" + (" (LAYERLAB_BUILD_DIR: build it first, with "
-                                                  "LAYERLAB_WITH_PYTHON)" if GIVEN_BUILD else ""))
+                                                  "LAYERLAB_WITH_PYTHON, for this Python)" if GIVEN_BUILD else ""))
         target = self.get_ext_fullpath(ext.name)
         os.makedirs(os.path.dirname(target), exist_ok=True)
         shutil.copyfile(built[0], target)

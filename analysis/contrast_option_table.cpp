@@ -36,13 +36,13 @@ void AddSceneKeys(std::vector<ContrastOptionEntry>& t) {
   e.unit = "deg", e.has_range = true, e.range = {0, 1, true, false}, e.constraint_note = " deg";
   e.default_text = "0.01 deg", e.meaning = "retinal sample size";
   e.cli_flag = "--resolution", e.cli_help = "Retinal sample size: degrees or \"0.6 arcmin\"";
-  e.python = "retina_resolution", e.real = &ContrastOptions::retina_resolution_deg;
+  e.python = "retina_resolution_deg", e.real = &ContrastOptions::retina_resolution_deg;
   add();
   e.key = "retina_field", e.kind = Kind::kReal, e.type = "angle", e.dimension = Dimension::kAngle, e.unit = "deg";
   e.has_range = true, e.range = {0, 170, true, true}, e.constraint_note = " deg";
   e.default_text = "20 deg", e.meaning = "horizontal, centered on field_center";
   e.cli_flag = "--field", e.cli_help = "Retinal field width: degrees";
-  e.python = "retina_field", e.real = &ContrastOptions::retina_field_deg;
+  e.python = "retina_field_deg", e.real = &ContrastOptions::retina_field_deg;
   add();
   e.key = "field_center", e.kind = Kind::kReal, e.type = "angle", e.dimension = Dimension::kAngle, e.unit = "deg";
   e.has_range = true, e.range = {-80, 80, false, false}, e.constraint_note = " deg";
@@ -52,7 +52,7 @@ void AddSceneKeys(std::vector<ContrastOptionEntry>& t) {
       "its Fourier analysis and natural viewing's reference move there, and off the axis the window must lie inside "
       "each display's field (the target strip's)";
   e.cli_flag = "--field-center", e.cli_help = "Horizontal angle of the retinal window's centre: degrees";
-  e.python = "field_center", e.real = &ContrastOptions::field_center_deg;
+  e.python = "field_center_deg", e.real = &ContrastOptions::field_center_deg;
   add();
   e.key = "strip_rows", e.kind = Kind::kInteger, e.type = "integer", e.has_range = true;
   e.range = {1, 100000, false, false}, e.default_text = "24";

@@ -10,7 +10,8 @@
 // J(t)^T v, the patterns' gradient of <v, L(t)>, comes from the light-field
 // pass run against the effective target L - v: its residual sums are
 // P^T((L - (L - v)) o Q) = P^T(v o Q), mapped back through D^T and R_m^T.
-// Forming L - v rounds once in float (|error| <= 2^-24 max(|L|, |v|) per ray).
+// Forming L - v rounds once in float: Transposed scales v by a power of two to
+// the light's size first, so that the rounding is relative to v, not to L.
 #pragma once
 
 #include <optional>
@@ -33,6 +34,11 @@ class DisplayJacobian {
   const RayPass& SumsAgainst(const LightField& effective);
   // The pass whose sums SumsAgainst makes (the same object before and after).
   const RayPass& sums() const { return response_ ? static_cast<const RayPass&>(*response_) : *joint_; }
+  // J(t)^T v at once: the patterns' gradient of <v, L(t)>, as float patterns of t's shapes (L - s v formed in
+  // a buffer kept between calls, s a power of two that brings v to the light's size; zero for v = 0).
+  Patterns Transposed(const Patterns& t, const LightField& v);
+  // Forgets the patterns last given to Light (a caller that only wanted the light, and whose t is gone).
+  void Forget() { t_ = nullptr; }
 
  private:
   const DisplayModel& model_;
@@ -42,9 +48,7 @@ class DisplayJacobian {
   const Patterns* t_ = nullptr;                       // last given to Light
   Patterns seen_;                                     // D t
   LightField light_;                                  // L(t) (not with the response: its pass keeps it)
+  LightField effective_;                              // L - v (Transposed)
 };
-
-// J(t)^T v, once: the patterns' gradient of <v, L(t)>, as float patterns of t's shapes.
-Patterns DisplayJacobianTransposed(DisplayJacobian* jacobian, const Patterns& t, const LightField& v);
 
 }  // namespace layerlab

@@ -88,6 +88,7 @@ bool SolveLoop::Start(const std::string& refusal) {
   } else {
     *patterns_ = InitialPatterns(model_, options_);
   }
+  AdjustThreads();  // iteration 0 too runs on the threads the load leaves
   const auto now = std::chrono::steady_clock::now();
   report_.setup_seconds = std::chrono::duration<double>(now - start_).count();
   start_ = now;

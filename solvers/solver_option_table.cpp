@@ -70,7 +70,9 @@ std::vector<SolverOptionEntry> MakeTable() {
   e.key = "threads", e.kind = Kind::kInteger, e.type = "integer", e.has_range = true;
   e.range = Closed(0, 1024), e.constraint_note = " (0 = all cores)";
   e.default_text = "0 (every core; one per 16384 rays with the light-field objective)";
-  e.meaning = "worker threads (report.json `threads`: how many the solve ran on)";
+  e.meaning =
+      "worker threads: the most the solve runs on; an iteration runs on fewer while other processes keep the cores "
+      "busy, with the same results (report.json `threads`, and `threads_min`: the fewest an iteration ran on)";
   e.cli_flag = "--threads", e.cli_help = "Worker threads (0: all cores)";
   e.python = "threads", e.integer = &SolverOptions::threads;
   add();

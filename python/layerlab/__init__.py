@@ -12,9 +12,10 @@ buffers that keep it alive. Lengths in meters, angles in degrees; a value's unit
 ends its name (fov_x_deg, depth_m, frame_rate_hz).
 """
 
-from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
+from typing import Any as _Any, Callable as _Callable, Dict as _Dict, List as _List, Optional as _Optional
+from typing import Sequence as _Sequence, Tuple as _Tuple, Union as _Union
 
-import numpy
+import numpy as _numpy
 
 from .errors import ArgumentError, Error, Interrupted, SceneError
 from ._layerlab import (
@@ -37,6 +38,7 @@ from ._layerlab import (
     fit,
     load_scene,
     ms_ssim,
+    patterns_as_seen,
     read_lightfield,
     render_target,
     run,
@@ -88,43 +90,50 @@ def _parameters(*specs):
 
 solve = _spell_out_keywords(
     _layerlab.solve,
-    _parameters(("display", ..., False, Union[Scene, System]),
-                ("target", None, False, Optional[Union[LightField, numpy.ndarray]]),
-                ("solver", None, True, Optional[str]), ("sampling", None, True, Optional[str]),
-                ("callback", None, True, Optional[Callable[[Dict[str, Any]], Any]])),
+    _parameters(("display", ..., False, _Union[Scene, System]),
+                ("target", None, False, _Optional[_Union[LightField, _numpy.ndarray]]),
+                ("solver", None, True, _Optional[str]), ("sampling", None, True, _Optional[str]),
+                ("callback", None, True, _Optional[_Callable[[_Dict[str, _Any]], _Any]])),
     _layerlab._solve_keywords, Solution)
 contrast = _spell_out_keywords(
-    _layerlab.contrast, _parameters(("scenes", ..., False, Union[str, Sequence[str]]),
-                                    ("section", None, False, Optional[Dict[str, Any]])),
-    _layerlab._contrast_keywords, List[Dict[str, Any]])
+    _layerlab.contrast, _parameters(("scenes", ..., False, _Union[str, _Sequence[str]]),
+                                    ("section", None, False, _Optional[_Dict[str, _Any]])),
+    _layerlab._contrast_keywords, _List[_Dict[str, _Any]])
 
 
-def retina(solution: Solution, accommodation: Sequence[float], *, resolution_deg: float = 0.05,
-           field_deg: Optional[Tuple[float, float]] = None,
-           natural: bool = False) -> Union[numpy.ndarray, Tuple[numpy.ndarray, numpy.ndarray]]:
+def _require_solution(solution, function):
+    if not isinstance(solution, Solution):
+        raise TypeError(f"{function}: solution: expected a layerlab.Solution, got {type(solution).__name__}")
+
+
+def retina(solution: Solution, accommodation: _Sequence[float], *, resolution_deg: float = 0.05,
+           field_deg: _Optional[_Tuple[float, float]] = None,
+           natural: bool = False) -> _Union[_numpy.ndarray, _Tuple[_numpy.ndarray, _numpy.ndarray]]:
     """What the eye sees of a solution focused at each of `accommodation` (D): (states, rows, cols, 3) float32,
     display-relative linear RGB; resolution_deg: deg per sample; field_deg: (x, y) deg (default: the display's
     field of view); natural=True: (display, natural). The same as Solution.retina."""
+    _require_solution(solution, "retina")
     return solution.retina(accommodation, resolution_deg=resolution_deg, field_deg=field_deg, natural=natural)
 
 
 def focal_stack(solution: Solution, start: float, stop: float, step: float, *, resolution_deg: float = 0.05,
-                field_deg: Optional[Tuple[float, float]] = None, natural: bool = False) -> Tuple[numpy.ndarray, ...]:
+                field_deg: _Optional[_Tuple[float, float]] = None, natural: bool = False) -> _Tuple[_numpy.ndarray, ...]:
     """Retinal images from `start` to `stop` D (inclusive) by `step` D: (diopters, images), images
     (states, rows, cols, 3) as Solution.retina gives them; natural=True: (diopters, images, natural),
     the last what the eye sees of the target itself."""
+    _require_solution(solution, "focal_stack")
     if not step > 0 or stop < start:
         raise ValueError(f"focal_stack: needs step > 0 and stop >= start, got {start}, {stop}, {step}")
-    import numpy
 
-    diopters = start + step * numpy.arange(int(numpy.floor((stop - start) / step + 1e-9)) + 1)
+    diopters = start + step * _numpy.arange(int(_numpy.floor((stop - start) / step + 1e-9)) + 1)
     seen = solution.retina(list(diopters), resolution_deg=resolution_deg, field_deg=field_deg, natural=natural)
     return (diopters, *seen) if natural else (diopters, seen)
 
 
 __all__ = [
-    "ArgumentError", "Branch", "DisplayOperator", "Error", "Interrupted", "Layer", "LightField", "LightFieldGeometry", "PathStep", "RetinaOperator", "Scene",
-    "SceneError", "Solution", "System", "__version__", "compare", "compile", "contrast", "csf_jnd", "display_geometry", "fit", "focal_stack", "load_scene",
-    "ms_ssim", "read_lightfield", "render_target", "retina", "run", "solve", "solvers", "ssim",
-    "synthesize",
+    "__version__", "ArgumentError", "Branch", "compare", "compile", "contrast", "csf_jnd", "display_geometry",
+    "DisplayOperator", "Error", "fit", "focal_stack", "Interrupted", "Layer", "LightField", "LightFieldGeometry",
+    "load_scene", "ms_ssim", "PathStep", "patterns_as_seen", "read_lightfield", "render_target", "retina",
+    "RetinaOperator", "run", "Scene", "SceneError", "set_verbosity", "Solution", "solve", "solvers", "srgb", "ssim",
+    "synthesize", "System", "verbosity",
 ]

@@ -8,34 +8,38 @@ from .errors import ArgumentError as ArgumentError
 from .errors import Error as Error
 from .errors import Interrupted as Interrupted
 from .errors import SceneError as SceneError
-from ._layerlab import Branch as Branch
-from ._layerlab import DisplayOperator as DisplayOperator
-from ._layerlab import Layer as Layer
-from ._layerlab import LightField as LightField
-from ._layerlab import LightFieldGeometry as LightFieldGeometry
-from ._layerlab import PathStep as PathStep
-from ._layerlab import RetinaOperator as RetinaOperator
-from ._layerlab import Scene as Scene
-from ._layerlab import Solution as Solution
-from ._layerlab import System as System
 from ._layerlab import __version__ as __version__
+from ._layerlab import Branch as Branch
 from ._layerlab import compare as compare
 from ._layerlab import compile as compile
 from ._layerlab import csf_jnd as csf_jnd
 from ._layerlab import display_geometry as display_geometry
+from ._layerlab import DisplayOperator as DisplayOperator
 from ._layerlab import fit as fit
+from ._layerlab import Layer as Layer
+from ._layerlab import LightField as LightField
+from ._layerlab import LightFieldGeometry as LightFieldGeometry
 from ._layerlab import load_scene as load_scene
 from ._layerlab import ms_ssim as ms_ssim
+from ._layerlab import PathStep as PathStep
+from ._layerlab import patterns_as_seen as patterns_as_seen
 from ._layerlab import read_lightfield as read_lightfield
 from ._layerlab import render_target as render_target
+from ._layerlab import RetinaOperator as RetinaOperator
 from ._layerlab import run as run
+from ._layerlab import Scene as Scene
+from ._layerlab import set_verbosity as set_verbosity
+from ._layerlab import Solution as Solution
 from ._layerlab import solvers as solvers
+from ._layerlab import srgb as srgb
 from ._layerlab import ssim as ssim
 from ._layerlab import synthesize as synthesize
+from ._layerlab import System as System
+from ._layerlab import verbosity as verbosity
 
-def contrast(scenes: Union[str, Sequence[str]], section: Optional[Dict[str, Any]] = ..., *, depths: Optional[list] = ..., frequencies: Optional[list] = ..., accommodation: Optional[object] = ..., retina_resolution: Optional[float] = ..., retina_field: Optional[float] = ..., field_center: Optional[float] = ..., strip_rows: Optional[int] = ..., factorized_for: Optional[object] = ..., eyebox_range: Optional[float] = ..., eyebox_step: Optional[float] = ..., reference: Optional[str] = ..., grating: Optional[str] = ..., peak_uncertainty: Optional[bool] = ...) -> List[Dict[str, Any]]: ...
+def contrast(scenes: Union[str, Sequence[str]], section: Optional[Dict[str, Any]] = ..., *, depths: Optional[list] = ..., frequencies: Optional[list] = ..., accommodation: Optional[object] = ..., retina_resolution_deg: Optional[float] = ..., retina_field_deg: Optional[float] = ..., field_center_deg: Optional[float] = ..., strip_rows: Optional[int] = ..., factorized_for: Optional[object] = ..., eyebox_range: Optional[float] = ..., eyebox_step: Optional[float] = ..., reference: Optional[str] = ..., grating: Optional[str] = ..., peak_uncertainty: Optional[bool] = ...) -> List[Dict[str, Any]]: ...
 def focal_stack(solution: Solution, start: float, stop: float, step: float, *, resolution_deg: float = ..., field_deg: Optional[Tuple[float, float]] = ..., natural: bool = ...) -> Tuple[numpy.ndarray, ...]: ...
 def retina(solution: Solution, accommodation: Sequence[float], *, resolution_deg: float = ..., field_deg: Optional[Tuple[float, float]] = ..., natural: bool = ...) -> Union[numpy.ndarray, Tuple[numpy.ndarray, numpy.ndarray]]: ...
-def solve(display: Union[Scene, System], target: Optional[Union[LightField, numpy.ndarray, NoneType]] = ..., *, solver: Optional[str] = ..., sampling: Optional[str] = ..., callback: Optional[Callable[[Dict[str, Any]], Any]] = ..., iterations: Optional[int] = ..., sub_iterations: Optional[int] = ..., warm_start_iterations: Optional[int] = ..., time_budget: Optional[float] = ..., tolerance: Optional[float] = ..., initial_value: Optional[float] = ..., seed: Optional[int] = ..., threads: Optional[int] = ..., target_range: Optional[str] = ..., eyebox_range: Optional[float] = ..., eyebox_step: Optional[float] = ..., eyebox_sigma: Optional[float] = ..., panel_diffraction: Optional[bool] = ..., lc_response: Optional[bool] = ..., epsilon: Optional[float] = ..., floor: Optional[float] = ...) -> Solution: ...
+def solve(display: Union[Scene, System], target: Optional[Union[LightField, numpy.ndarray]] = ..., *, solver: Optional[str] = ..., sampling: Optional[str] = ..., callback: Optional[Callable[[Dict[str, Any]], Any]] = ..., iterations: Optional[int] = ..., sub_iterations: Optional[int] = ..., warm_start_iterations: Optional[int] = ..., time_budget: Optional[float] = ..., tolerance: Optional[float] = ..., initial_value: Optional[float] = ..., seed: Optional[int] = ..., threads: Optional[int] = ..., target_range: Optional[str] = ..., eyebox_range: Optional[float] = ..., eyebox_step: Optional[float] = ..., eyebox_sigma: Optional[float] = ..., panel_diffraction: Optional[bool] = ..., lc_response: Optional[bool] = ..., epsilon: Optional[float] = ..., floor: Optional[float] = ...) -> Solution: ...
 
 __all__: List[str]

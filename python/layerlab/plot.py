@@ -34,12 +34,16 @@ def _images(pictures, titles, columns, white=1.0):
     return figure
 
 
-def patterns(solution, columns=2):
+def patterns(solution, columns=2, *, system=None):
     """Each layer's pattern in the eye's orientation (Solution.patterns_as_seen), titled with its layer and
-    depth: transmittance, sRGB-encoded (1 = white)."""
-    layers = solution.system.layers
-    titles = [f"{layer.name} ({layer.diopters:.2f} D)" for layer in layers]
-    return _images(solution.patterns_as_seen, titles, columns)
+    depth: transmittance, sRGB-encoded (1 = white). `solution`: a layerlab.Solution, or, with `system` (a
+    layerlab.System), a list of one (rows, cols, 3) array per layer (patterns of your own)."""
+    if system is None:
+        system, seen = solution.system, solution.patterns_as_seen
+    else:
+        seen = _layerlab.patterns_as_seen(system, list(solution))
+    titles = [f"{layer.name} ({layer.diopters:.2f} D)" for layer in system.layers]
+    return _images(seen, titles, columns)
 
 
 def retina(images, diopters, columns=3, white=1.0):

@@ -11,11 +11,16 @@
 
 The forward passes call DisplayOperator.forward and RetinaOperator.forward,
 the backward passes their adjoints (the display's Jacobian transpose at the
-patterns, the retinal operator's transpose). The kernels compute in float32:
-float32 CPU tensors that are contiguous are read without a copy (other
-dtypes and layouts are converted once), results are returned without a copy
-and in the dtype of the inputs. Tensors on another device are refused.
+patterns, the retinal operator's transpose). The kernels compute in float32.
+A contiguous float32 CPU tensor is handed to the operator as a NumPy view of
+its memory (other dtypes and layouts are converted once); the operator then
+copies its inputs once into layerlab's own buffers (a pattern and a light
+field own their memory), and its results become tensors without a copy, in
+the inputs' dtype (torch.result_type over them). Tensors on another device
+are refused.
 """
+
+from typing import Sequence, Union
 
 import torch
 
@@ -29,6 +34,14 @@ def _array(tensor, what):
     if tensor.device.type != "cpu":
         raise ValueError(f"{what}: layerlab's kernels run on the CPU; got a tensor on {tensor.device}")
     return tensor.detach().to(torch.float32).contiguous().numpy()
+
+
+def _result_type(tensors):
+    """The dtype of a result computed from `tensors`, by torch's promotion; float32 without any."""
+    dtype = torch.float32 if not tensors else tensors[0].dtype
+    for t in tensors[1:]:
+        dtype = torch.promote_types(dtype, t.dtype)
+    return dtype
 
 
 def _display(display):
@@ -45,11 +58,12 @@ class Synthesize(torch.autograd.Function):
 
     @staticmethod
     def forward(ctx, display, *patterns):
-        ctx.display = display
-        ctx.dtype = patterns[0].dtype if patterns else torch.float32
-        ctx.save_for_backward(*patterns)
         arrays = [_array(p, f"synthesize: patterns[{k}]") for k, p in enumerate(patterns)]
-        return torch.from_numpy(display.forward(arrays)).to(ctx.dtype)
+        ctx.display = display
+        ctx.dtypes = [p.dtype for p in patterns]
+        ctx.save_for_backward(*patterns)
+        dtype = _result_type(patterns)
+        return torch.from_numpy(display.forward(arrays)).to(dtype)
 
     @staticmethod
     @torch.autograd.function.once_differentiable
@@ -59,8 +73,8 @@ class Synthesize(torch.autograd.Function):
             return (None,) + (None,) * len(patterns)
         arrays = [_array(p, f"synthesize: patterns[{k}]") for k, p in enumerate(patterns)]
         grads = ctx.display.adjoint(arrays, _array(grad_light_field, "synthesize: gradient"))
-        return (None,) + tuple(torch.from_numpy(g).to(ctx.dtype) if need else None
-                               for g, need in zip(grads, ctx.needs_input_grad[1:]))
+        return (None,) + tuple(torch.from_numpy(g).to(dtype) if need else None
+                               for g, need, dtype in zip(grads, ctx.needs_input_grad[1:], ctx.dtypes))
 
 
 class Retina(torch.autograd.Function):
@@ -69,9 +83,10 @@ class Retina(torch.autograd.Function):
 
     @staticmethod
     def forward(ctx, eye, light_field):
+        array = _array(light_field, "retina: light_field")
         ctx.eye = eye
         ctx.dtype = light_field.dtype
-        return torch.from_numpy(eye.forward(_array(light_field, "retina: light_field"))).to(ctx.dtype)
+        return torch.from_numpy(eye.forward(array)).to(ctx.dtype)
 
     @staticmethod
     @torch.autograd.function.once_differentiable
@@ -81,24 +96,32 @@ class Retina(torch.autograd.Function):
         return None, torch.from_numpy(ctx.eye.adjoint(_array(grad_images, "retina: gradient"))).to(ctx.dtype)
 
 
-def synthesize(display, patterns):
+def synthesize(display: Union[_layerlab.DisplayOperator, _layerlab.System],
+               patterns: Sequence[torch.Tensor]) -> torch.Tensor:
     """The light field (views, rows, cols, 3) the display shows with `patterns` (one (rows, cols, 3) tensor
     per layer, System.layers order), differentiable in the patterns. `display`: a layerlab.DisplayOperator
     (made once, reused), or a layerlab.System (an operator made for this call, with its defaults)."""
     display = _display(display)
-    patterns = list(patterns)
+    if isinstance(patterns, torch.Tensor) or not isinstance(patterns, (list, tuple)):
+        raise TypeError(f"synthesize: patterns: expected a list of tensors, one per layer, got "
+                        f"{type(patterns).__name__}")
+    for k, p in enumerate(patterns):
+        if not isinstance(p, torch.Tensor):
+            raise TypeError(f"synthesize: patterns[{k}]: expected a torch.Tensor, got {type(p).__name__}")
     return Synthesize.apply(display, *patterns)
 
 
-def retina(eye, light_field):
+def retina(eye: _layerlab.RetinaOperator, light_field: torch.Tensor) -> torch.Tensor:
     """The retinal images (states, rows, cols, 3) of a light field, one per accommodation state of `eye`
     (a layerlab.RetinaOperator), differentiable in the light field."""
     if not isinstance(eye, _layerlab.RetinaOperator):
         raise TypeError(f"retina: eye: expected a layerlab.RetinaOperator, got {type(eye).__name__}")
+    if not isinstance(light_field, torch.Tensor):
+        raise TypeError(f"retina: light_field: expected a torch.Tensor, got {type(light_field).__name__}")
     return Retina.apply(eye, light_field)
 
 
-def total_variation(pattern):
+def total_variation(pattern: torch.Tensor) -> torch.Tensor:
     """The anisotropic total variation of a (rows, cols, channels) tensor: the sum of the absolute
     differences of neighbouring pixels along rows and columns."""
     return (pattern[1:] - pattern[:-1]).abs().sum() + (pattern[:, 1:] - pattern[:, :-1]).abs().sum()

@@ -138,9 +138,13 @@ nlohmann::json ContrastSection(const py::object& section, const py::kwargs& keyw
     }
     if (given.is_null()) given = nlohmann::json::object();
     if (given.contains(e.key)) RaiseArgumentError("contrast: " + e.key + " is both in the section and a keyword");
-    given[e.key] = e.key == "factorized_for" && py::hasattr(value, "__fspath__")
-                       ? nlohmann::json(PathArg(value))
-                       : ToJson(value, "contrast()", "/run/contrast/" + e.key);
+    try {
+      given[e.key] = e.key == "factorized_for" && py::hasattr(value, "__fspath__")
+                         ? nlohmann::json(PathArg(value))
+                         : ToJson(value, "contrast()", "/run/contrast/" + e.key);
+    } catch (const py::type_error& wrong) {  // named by the keyword given, the section's key beside it
+      throw py::type_error("contrast: " + name.cast<std::string>() + ": " + wrong.what());
+    }
   }
   return given;
 }

@@ -57,7 +57,7 @@ std::vector<std::string> SolverList(const py::object& solvers, const std::string
 MetricSettings MetricSettingsArgs(const py::object& fovea, const py::object& jnd_exponent, bool with_metrics) {
   MetricSettings settings;
   if (!fovea.is_none()) {
-    const std::vector<double> gaze = fovea.cast<std::vector<double>>();
+    const std::vector<double> gaze = RealListArg(fovea, "compare: fovea_deg");
     if (gaze.size() != 2) RaiseArgumentError("compare: fovea_deg: give (x, y) in degrees");
     settings.fovea_deg = std::array<double, 2>{gaze[0], gaze[1]};
   }

@@ -2,6 +2,7 @@
 // the fitted parameters as columns with their standard deviations, the report,
 // and the calibrated scene as a dict, as the command would write it into the
 // working directory (relative paths rebased to it, as dict scenes are read).
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <numbers>
@@ -48,9 +49,48 @@ py::dict ParameterTable(const std::vector<ParameterEstimate>& parameters) {
   return d;
 }
 
+// The report as the API gives angles, in degrees: a parameter row of unit "rad" in "deg", and a key ending
+// "_rad" or "_arcmin" renamed "_deg" with its value converted (report.json itself stays SI).
+void AnglesInDegrees(nlohmann::json* j) {
+  if (j->is_array()) {
+    for (nlohmann::json& item : *j) AnglesInDegrees(&item);
+    return;
+  }
+  if (!j->is_object()) return;
+  if (j->contains("unit") && (*j)["unit"] == "rad") {
+    for (const char* key : {"value", "scene_value", "std_dev"})
+      if (j->contains(key) && (*j)[key].is_number()) (*j)[key] = (*j)[key].get<double>() / kRadiansPerDegree;
+    (*j)["unit"] = "deg";
+  }
+  nlohmann::json renamed = nlohmann::json::object();
+  for (auto& [key, value] : j->items()) {
+    AnglesInDegrees(&value);
+    const auto ends = [&](const std::string& suffix) {
+      return key.size() > suffix.size() && key.compare(key.size() - suffix.size(), suffix.size(), suffix) == 0;
+    };
+    const double scale = ends("_rad") ? 1 / kRadiansPerDegree : ends("_arcmin") ? 1.0 / 60 : 0;
+    if (scale == 0) {
+      renamed[key] = value;
+      continue;
+    }
+    const std::string name = key.substr(0, key.rfind('_')) + "_deg";
+    if (value.is_number()) {
+      renamed[name] = value.get<double>() * scale;
+    } else if (value.is_array() &&
+               std::all_of(value.begin(), value.end(), [](const auto& v) { return v.is_number(); })) {
+      nlohmann::json a = nlohmann::json::array();
+      for (const auto& v : value) a.push_back(v.get<double>() * scale);
+      renamed[name] = a;
+    } else {
+      renamed[key] = value;
+    }
+  }
+  *j = std::move(renamed);
+}
+
 py::dict Fit(const py::object& scene, const py::object& measurements, const std::string& loss,
              const std::string& reference, const std::string& focal_length, const std::string& lens_gaps,
-             const std::string& distortion, bool accept_model_error, std::optional<double> marker_loss_arcmin,
+             const std::string& distortion, bool accept_model_error, std::optional<double> marker_loss_deg,
              std::optional<double> luminance_loss_scale) {
   CalibrationOptions options;
   try {
@@ -68,7 +108,7 @@ py::dict Fit(const py::object& scene, const py::object& measurements, const std:
     throw py::value_error("fit: focal_length / lens_gaps / distortion: " + e.message());
   }
   options.accept_model_error = accept_model_error;
-  if (marker_loss_arcmin) options.marker_loss_scale_rad = *marker_loss_arcmin / 60.0 * kRadiansPerDegree;
+  if (marker_loss_deg) options.marker_loss_scale_rad = *marker_loss_deg * kRadiansPerDegree;
   if (luminance_loss_scale) options.luminance_loss_scale = *luminance_loss_scale;
   if (std::string why; !options.IsValid(&why)) throw py::value_error("fit: " + why);
 
@@ -115,7 +155,9 @@ py::dict Fit(const py::object& scene, const py::object& measurements, const std:
   py::dict d;
   d["parameters"] = ParameterTable(report.parameters);
   d["scene"] = py::module_::import("json").attr("loads")(calibrated.dump());  // key order kept
-  d["report"] = FromJson(report.ToJson());
+  nlohmann::json report_json = report.ToJson();
+  AnglesInDegrees(&report_json);
+  d["report"] = FromJson(report_json);
   d["brief"] = report.BriefReport();
   d["full"] = report.FullReport();
   d["warnings"] = report.warnings;
@@ -127,11 +169,13 @@ py::dict Fit(const py::object& scene, const py::object& measurements, const std:
 void BindFit(py::module_& m) {
   m.def("fit", &Fit, py::arg("scene"), py::arg("measurements"), py::kw_only(), py::arg("loss") = "none",
         py::arg("reference") = "camera", py::arg("focal_length") = "auto", py::arg("lens_gaps") = "auto",
-        py::arg("distortion") = "hold", py::arg("accept_model_error") = false,
-        py::arg("marker_loss_arcmin") = py::none(), py::arg("luminance_loss_scale") = py::none(),
+        py::arg("distortion") = "hold", py::arg("accept_model_error") = false, py::arg("marker_loss_deg") = py::none(),
+        py::arg("luminance_loss_scale") = py::none(),
         "Calibrates a scene from measurements of the built display, as `layerlab fit` (Ceres): a dict with "
-        "parameters (columns element, quantity, scene_value, value, std_dev, status, derived), scene (the "
-        "calibrated scene, paths relative to the working directory), report, brief, full, warnings");
+        "parameters (columns element, quantity, unit, scene_value, value, std_dev, status, derived; angles in deg), "
+        "scene (the calibrated scene, paths relative to the working directory), report (report.json's content with "
+        "angles in deg: keys ending _deg), brief, full, warnings. marker_loss_deg: float or None, the markers' "
+        "robust loss scale (deg); luminance_loss_scale: float or None");
 }
 
 }  // namespace layerlab::python

@@ -91,6 +91,7 @@ class DisplayOperator {
     if (geometry) CheckGeometryArgument(g, "DisplayOperator: geometry");
     Sampling how = Sampling::kNearest;
     CheckArgument([&] { how = SamplingFromString(sampling); });
+    py::gil_scoped_release release;
     model_ = std::make_unique<DisplayModel>(*system_, g, how);
     if (panel_diffraction) diffraction_ = PanelDiffraction(*system_);
     response_ = lc_response && ResponseMatters(*system_);
@@ -105,6 +106,7 @@ class DisplayOperator {
       py::gil_scoped_release release;
       std::lock_guard<std::mutex> lock(mutex_);
       light = jacobian_->Light(t);
+      jacobian_->Forget();  // t is this call's
     }
     return OwningArray(std::move(light.rgb), LightFieldShape(model_->geometry()));
   }
@@ -117,7 +119,7 @@ class DisplayOperator {
     {
       py::gil_scoped_release release;
       std::lock_guard<std::mutex> lock(mutex_);
-      g = DisplayJacobianTransposed(jacobian_.get(), t, v);
+      g = jacobian_->Transposed(t, v);
     }
     py::list out;
     for (LayerPattern& p : g) out.append(OwningArray(std::move(p.rgb), {p.rows, p.cols, 3}));
@@ -246,13 +248,16 @@ void BindOperators(py::module_& m) {
            }),
            py::arg("system"), py::kw_only(), py::arg("geometry") = py::none(), py::arg("sampling") = "nearest",
            py::arg("panel_diffraction") = false, py::arg("lc_response") = false,
-           "geometry: the light field's (default display_geometry(system)); sampling: 'nearest' or 'bilinear'; "
-           "panel_diffraction, lc_response: the solver options of these names (the panels' diffraction, the "
-           "frame's average through their liquid-crystal response, where the display has them)")
+           "system: layerlab.System; geometry: layerlab.LightFieldGeometry or None, the light field's (default "
+           "display_geometry(system)); sampling: str, 'nearest' (default) or 'bilinear'; panel_diffraction: bool "
+           "(default False), lc_response: bool (default False): the solver options of these names (the panels' "
+           "diffraction, the frame's average through their liquid-crystal response, where the display has them)")
       .def("forward", &DisplayOperator::Forward, py::arg("patterns"),
-           "L(t): (views, rows, cols, 3) float32 from one (rows, cols, 3) pattern per layer")
+           "L(t): (views, rows, cols, 3) float32 from `patterns`, a list of one (rows, cols, 3) float array per layer "
+           "(finite values)")
       .def("adjoint", &DisplayOperator::Adjoint, py::arg("patterns"), py::arg("light_field_gradient"),
-           "J(t)^T v: the patterns' gradient of <v, L(t)>, one (rows, cols, 3) float32 array per layer")
+           "J(t)^T v: the patterns' gradient of <v, L(t)>, one (rows, cols, 3) float32 array per layer; patterns as "
+           "forward's, light_field_gradient v a (views, rows, cols, 3) float array (finite values)")
       .def_property_readonly("system", &DisplayOperator::system)
       .def_property_readonly("geometry", &DisplayOperator::geometry, "the light field's LightFieldGeometry")
       .def_property_readonly("panel_diffraction", &DisplayOperator::diffracts,
@@ -289,12 +294,14 @@ void BindOperators(py::module_& m) {
            }),
            py::arg("system"), py::arg("accommodation"), py::kw_only(), py::arg("resolution_deg") = py::none(),
            py::arg("geometry") = py::none(), py::arg("sampling") = "nearest",
-           "accommodation: states in D; resolution_deg: deg per retinal sample (default: one per light-field "
-           "pixel over its window); geometry: the light field's (default display_geometry(system))")
+           "system: layerlab.System; accommodation: list of float, the states (D); resolution_deg: float or None, "
+           "deg per retinal sample (default: one sample per light-field pixel over its window); geometry: "
+           "layerlab.LightFieldGeometry or None, the light field's (default display_geometry(system)); sampling: "
+           "str, 'nearest' (default) or 'bilinear'")
       .def("forward", &RetinaOperator::Forward, py::arg("light_field"),
-           "A L: (states, rows, cols, 3) float32 from a (views, rows, cols, 3) light field")
+           "A L: (states, rows, cols, 3) float32 from light_field, a (views, rows, cols, 3) float array")
       .def("adjoint", &RetinaOperator::Adjoint, py::arg("images"),
-           "sum_a A_a^T y_a: (views, rows, cols, 3) float32 from (states, rows, cols, 3) images")
+           "sum_a A_a^T y_a: (views, rows, cols, 3) float32 from images, a (states, rows, cols, 3) float array")
       .def_property_readonly("system", &RetinaOperator::system)
       .def_property_readonly("accommodation", &RetinaOperator::accommodation, "the states (D)")
       .def_property_readonly(

@@ -164,6 +164,19 @@ py::object Solve(const py::object& display, const py::object& target, std::optio
   return py::cast(solution);
 }
 
+// Each pattern in the eye's orientation (AsTheEyeSeesIt), a new (rows, cols, 3) float32 array each.
+py::list PatternsAsSeen(const DisplaySystem& system, const Patterns& patterns) {
+  py::list list;
+  for (size_t k = 0; k < patterns.size(); ++k) {
+    const LayerPattern& p = patterns[k];
+    const std::vector<float> eye = AsTheEyeSeesIt(system.layers[k], p);
+    py::array_t<float> a({static_cast<py::ssize_t>(p.rows), static_cast<py::ssize_t>(p.cols), py::ssize_t{3}});
+    std::copy(eye.begin(), eye.end(), a.mutable_data());
+    list.append(a);
+  }
+  return list;
+}
+
 // Patterns from arrays, one (rows, cols, 3) per layer (a copy each: a pattern owns its buffer).
 Patterns PatternsOf(const DisplaySystem& system, const py::sequence& arrays) {
   if (arrays.size() != system.layers.size())
@@ -264,19 +277,7 @@ void BindSolve(py::module_& m) {
           "one (rows, cols, 3) float32 array per layer (System.layers order): transmittance in [0, 1], the panel's "
           "own pixel order; views of the solution's buffers")
       .def_property_readonly(
-          "patterns_as_seen",
-          [](const Solution& s) {
-            py::list list;
-            for (size_t k = 0; k < s.patterns.size(); ++k) {
-              const LayerPattern& p = s.patterns[k];
-              const std::vector<float> eye = AsTheEyeSeesIt(s.system->layers[k], p);
-              py::array_t<float> a(
-                  {static_cast<py::ssize_t>(p.rows), static_cast<py::ssize_t>(p.cols), py::ssize_t{3}});
-              std::copy(eye.begin(), eye.end(), a.mutable_data());
-              list.append(a);
-            }
-            return list;
-          },
+          "patterns_as_seen", [](const Solution& s) { return PatternsAsSeen(*s.system, s.patterns); },
           "the patterns in the eye's orientation (x right, y up as the eye sees each layer: a mirror-reversed layer "
           "turned back, so that neighbouring layers line up), as the run report shows them; copies")
       .def_property_readonly(
@@ -301,15 +302,38 @@ void BindSolve(py::module_& m) {
           },
           py::arg("folder"), py::arg("write_lightfield") = false,
           "Writes what `layerlab solve` writes: patterns, panels, trace.csv, report.txt, report.json")
-      .def("retina", &Retina, py::arg("accommodation"), py::kw_only(), py::arg("resolution_deg") = 0.05,
-           py::arg("field_deg") = py::none(), py::arg("natural") = false,
-           "Retinal images (states, rows, cols, 3) at each accommodation (D); resolution_deg: deg per sample; "
-           "field_deg: (x, y) in deg (default: the display's field of view); natural=True: (display, natural), the "
-           "second what the eye sees of the target light field itself")
+      .def(
+          "retina",
+          [](const Solution& s, const py::object& accommodation, const py::object& resolution_deg,
+             const py::object& field_deg, const py::object& natural) {
+            std::optional<std::pair<double, double>> field;
+            if (!field_deg.is_none()) {
+              const std::vector<double> xy = RealListArg(field_deg, "retina: field_deg");
+              if (xy.size() != 2) RaiseArgumentError("retina: field_deg: give (x, y) in degrees");
+              field = std::make_pair(xy[0], xy[1]);
+            }
+            return Retina(s, RealListArg(accommodation, "retina: accommodation"),
+                          RealArg(resolution_deg, "retina: resolution_deg"), field,
+                          BoolArg(natural, "retina: natural"));
+          },
+          py::arg("accommodation"), py::kw_only(), py::arg("resolution_deg") = 0.05, py::arg("field_deg") = py::none(),
+          py::arg("natural") = false,
+          "Retinal images (states, rows, cols, 3) float32 at each of accommodation (list of float, D); "
+          "resolution_deg: float, deg per sample (default 0.05); field_deg: (x, y) float deg, or None for the "
+          "display's field of view; natural: bool (default False): True returns (display, natural), the second what "
+          "the eye sees of the target light field itself")
       .def("__repr__", [](const Solution& s) { return "<layerlab.Solution " + s.report.BriefReport() + ">"; });
 
   m.def("solve", &Solve, py::arg("display"), py::arg("target") = py::none(), py::kw_only(),
         py::arg("solver") = py::none(), py::arg("sampling") = py::none(), py::arg("callback") = py::none(), SolveDoc());
+  m.def(
+      "patterns_as_seen",
+      [](const std::shared_ptr<DisplaySystem>& system, const py::sequence& patterns) {
+        return PatternsAsSeen(*system, PatternsOf(*system, patterns));
+      },
+      py::arg("system"), py::arg("patterns"),
+      "Patterns (one (rows, cols, 3) array per layer, in [0, 1]) in the eye's orientation, as "
+      "Solution.patterns_as_seen gives a solution's: new float32 arrays");
   m.def("synthesize", &Synthesize, py::arg("system"), py::arg("patterns"), py::arg("geometry") = py::none(),
         py::arg("sampling") = "nearest",
         "The light field the display shows with these patterns (default geometry: display_geometry(system))");

@@ -3,7 +3,6 @@ tree (build/python/tests/tutorial) where examples/ is the repository's; the figu
 that fails is named by its first line in the page. The page holds no other code than `python` and `sh`
 blocks (the sh ones build and install: python.readme and python.pip_install run those)."""
 
-import os
 import pathlib
 import re
 import shutil
@@ -34,19 +33,22 @@ def test_every_block_is_python_or_a_command_line():
 
 
 @pytest.mark.skipif(not has_embree(), reason="this build has no Embree: the tutorial renders its target")
-def test_the_tutorial_runs(request):
+def test_the_tutorial_runs(monkeypatch):
     folder = pathlib.Path.cwd() / "tutorial"
     shutil.rmtree(folder, ignore_errors=True)
     folder.mkdir()
     (folder / "examples").symlink_to(SOURCE_DIR / "examples")
-    os.chdir(folder)
+    monkeypatch.chdir(folder)
+    ceres = "needs Ceres" not in (layerlab.fit.__doc__ or "")
     namespace = {"__name__": "__tutorial__"}
     python = [(line, body) for kind, line, body in blocks() if kind == "python"]
     assert len(python) >= 10
     for line, body in python:
+        if not ceres and "layerlab.fit(" in body:
+            continue  # a build without Ceres: fit() says so (python.fit checks that)
         try:
             exec(compile(body, f"docs/python.md:{line}", "exec"), namespace)
         except Exception as e:
             raise AssertionError(f"docs/python.md, the block at line {line}: {type(e).__name__}: {e}") from e
-    for figure in ("patterns.png", "psnr.png", "focal_stack.png", "contrast.png"):
+    for figure in ("patterns.png", "psnr.png", "focal_stack.png", "contrast.png", "adam_patterns.png"):
         assert (folder / "out" / figure).stat().st_size > 0

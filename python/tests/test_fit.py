@@ -64,7 +64,27 @@ def test_the_same_as_the_command(fitted, tmp_path):
     # The command's report is SI (rad); Python gives angles in degrees, the API's one angle unit.
     for q, unit, value in zip(written["parameters"], p["unit"], p["value"]):
         assert value == pytest.approx(q["value"] * (180 / np.pi if unit == "deg" else 1), rel=1e-12, abs=1e-15)
-    assert fitted["report"]["geometry"] == pytest.approx(written["geometry"])
+    # report: report.json's content with its angles in degrees (keys ending _rad or _arcmin renamed _deg).
+    def in_degrees(j):
+        if isinstance(j, list):
+            return [in_degrees(v) for v in j]
+        if not isinstance(j, dict):
+            return j
+        out = {}
+        for key, value in j.items():
+            scale = 180 / np.pi if key.endswith("_rad") else 1 / 60 if key.endswith("_arcmin") else None
+            if scale and isinstance(value, (int, float)):
+                out[key.rsplit("_", 1)[0] + "_deg"] = value * scale
+            elif scale and isinstance(value, list) and all(isinstance(v, (int, float)) for v in value):
+                out[key.rsplit("_", 1)[0] + "_deg"] = [v * scale for v in value]
+            else:
+                out[key] = in_degrees(value)
+        if out.get("unit") == "rad":
+            out.update({k: out[k] * 180 / np.pi for k in ("value", "scene_value", "std_dev")
+                        if isinstance(out.get(k), (int, float))}, unit="deg")
+        return out
+    assert fitted["report"]["geometry"] == pytest.approx(in_degrees(written["geometry"]))
+    assert any(k.endswith("_deg") for k in json.dumps(fitted["report"]).replace('"', ' ').split())
     # The calibrated scene, as the command writes it in this folder, key order included.
     assert json.dumps(fitted["scene"]) == json.dumps(json.loads(out.read_text()))
     system = layerlab.load_scene(fitted["scene"]).compile()

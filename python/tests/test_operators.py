@@ -80,6 +80,22 @@ def test_display_adjoint_identity(display):
         assert abs(lhs - rhs) <= 1e-6 * abs(lhs), f"layer {a}: <J x, v> = {lhs}, <x, J^T v> = {rhs}"
 
 
+def test_display_adjoint_of_a_small_gradient(display):
+    """A mean loss over millions of rays hands the adjoint a v far below the light: the adjoint is linear, so
+    J^T (1e-7 v) is 1e-7 J^T v, kept to float precision (formed as L - v without scaling, v's digits below
+    L's last would round away)."""
+    rng = np.random.default_rng(3)
+    t = random_patterns(display, rng)
+    v = rng.standard_normal(display.light_field_shape).astype(np.float32)
+    big = display.adjoint(t, v)
+    small = display.adjoint(t, (v * np.float32(1e-7)).astype(np.float32))
+    for a, (g, h) in enumerate(zip(big, small)):
+        np.testing.assert_allclose(h.astype(np.float64) * 1e7, g, rtol=1e-5, atol=1e-5 * np.abs(g).max(),
+                                   err_msg=f"layer {a}")
+    zero = display.adjoint(t, np.zeros(display.light_field_shape, np.float32))
+    assert all(not z.any() for z in zero)
+
+
 def test_display_forward_is_synthesize_on_the_plain_model():
     """DisplayOperator.forward is layerlab.synthesize where both apply (no diffraction, no response)."""
     system = layerlab.load_scene(EXAMPLES / "small" / "hybrid_small.json").compile()

@@ -63,7 +63,46 @@ def test_torch_arguments_are_named():
     system = shrunk(EXAMPLES / "multiplicative_2layer.json")
     with pytest.raises(TypeError, match="display: expected a layerlab.DisplayOperator or layerlab.System, got str"):
         ltorch.synthesize("scene.json", [])
+    with pytest.raises(TypeError, match="patterns: expected a list of tensors"):
+        ltorch.synthesize(system, torch.zeros(3))
+    with pytest.raises(TypeError, match="light_field: expected a torch.Tensor, got list"):
+        ltorch.retina(layerlab.RetinaOperator(system, [1.0]), [0.5])
     with pytest.raises(TypeError, match=r"patterns\[0\]: expected a torch.Tensor, got ndarray"):
         ltorch.synthesize(system, [np.zeros((4, 6, 3)), np.zeros((4, 6, 3))])
     with pytest.raises(TypeError, match="eye: expected a layerlab.RetinaOperator"):
         ltorch.retina(system, torch.zeros(1))
+
+
+def test_gradients_only_where_asked_and_in_each_inputs_dtype():
+    """A pattern that needs no gradient gets none; the light field comes in the inputs' promoted dtype and
+    each gradient in its pattern's; a float64 or non-contiguous pattern is read as the same values."""
+    system = shrunk(EXAMPLES / "multiplicative_2layer.json")
+    display = layerlab.DisplayOperator(system)
+    rng = np.random.default_rng(6)
+    t = random_patterns(display, rng)
+    front = torch.from_numpy(t[0].astype(np.float64)).requires_grad_()
+    rear = torch.from_numpy(t[1].copy())  # no gradient asked
+    lf = ltorch.synthesize(display, [front, rear])
+    assert lf.dtype == torch.float64
+    w = torch.from_numpy(rng.standard_normal(display.light_field_shape))
+    (lf * w).sum().backward()
+    assert rear.grad is None and front.grad.dtype == torch.float64
+    expected = display.adjoint(t, w.numpy().astype(np.float32))[0]
+    np.testing.assert_allclose(front.grad.numpy(), expected, rtol=1e-5, atol=1e-6)
+    # A non-contiguous view (a transposed array's transpose) holds the same values: the same light field.
+    strided = torch.from_numpy(np.ascontiguousarray(t[1].transpose(1, 0, 2))).transpose(0, 1)
+    assert not strided.is_contiguous()
+    np.testing.assert_array_equal(ltorch.synthesize(display, [torch.from_numpy(t[0]), strided]).numpy(),
+                                  display.forward(t))
+
+
+def test_a_broadcast_gradient_reaches_the_patterns():
+    """lf.sum() hands backward a gradient of stride 0 (one value broadcast): read as the ones it stands for."""
+    system = shrunk(EXAMPLES / "additive_2layer.json")
+    display = layerlab.DisplayOperator(system)
+    t = random_patterns(display, np.random.default_rng(8))
+    patterns = [torch.from_numpy(p.copy()).requires_grad_() for p in t]
+    ltorch.synthesize(display, patterns).sum().backward()
+    ones = np.ones(display.light_field_shape, np.float32)
+    for p, e in zip(patterns, display.adjoint(t, ones)):
+        np.testing.assert_allclose(p.grad.numpy(), e, rtol=1e-6)
