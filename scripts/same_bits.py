@@ -26,7 +26,10 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 DEFAULT_DICE = os.path.join(ROOT, "..", "shared", "data", "dice")
-TIMED_JSON_KEY = re.compile(r"seconds|time|date|elapsed|version|^layerlab$|^command$|^host$", re.IGNORECASE)
+# What records the run and not its results: wall time, the build, and the fewest threads an iteration ran on
+# (threads_min: the machine's load at the time; framework/thread_budget.h).
+TIMED_JSON_KEY = re.compile(r"seconds|time|date|elapsed|version|^layerlab$|^command$|^host$|^threads_min$",
+                            re.IGNORECASE)
 
 
 def jobs(dice, quick):
