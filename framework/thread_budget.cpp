@@ -60,9 +60,11 @@ int UsableCores() {
 }  // namespace
 
 int OtherRunnableTasks() {
-  const int runnable = RunnableTasks(), own = OwnRunningThreads();
-  if (runnable < 0 || own < 0) return -1;
-  return std::max(0, runnable - own);
+  // This process's running threads read before and after the machine's: a worker that stops spinning
+  // in between counts as running (the larger count), not as another process's task.
+  const int own_before = OwnRunningThreads(), runnable = RunnableTasks(), own_after = OwnRunningThreads();
+  if (runnable < 0 || own_before < 0 || own_after < 0) return -1;
+  return std::max(0, runnable - std::max(own_before, own_after));
 }
 
 int ThreadsForLoad(int parts) {
@@ -71,16 +73,43 @@ int ThreadsForLoad(int parts) {
     if (budget_for_testing) return std::clamp(budget_for_testing(parts), 1, std::max(parts, 1));
   }
   if (parts <= 1) return 1;
-  // The load read at most every kLoadCheckSeconds per thread; in between, the last answer.
+  // The load read at most every kLoadCheckSeconds per thread; in between, the last answer. A task that is
+  // runnable for an instant (a kernel worker, a short command) must not cost the solve a thread: the
+  // smaller of the last two readings counts (the first time, two readings one after the other).
   thread_local std::chrono::steady_clock::time_point checked{};
-  thread_local int others = -1;
+  thread_local int previous = -1, others = -1;
   const auto now = std::chrono::steady_clock::now();
   if (now - checked >= std::chrono::duration<double>(kLoadCheckSeconds)) {
     checked = now;
-    others = OtherRunnableTasks();
+    const int reading = OtherRunnableTasks();
+    if (previous < 0) previous = OtherRunnableTasks();
+    others = reading < 0 || previous < 0 ? -1 : std::min(reading, previous);
+    previous = reading;
   }
   if (others < 0) return parts;
   return std::clamp(UsableCores() - others, 1, parts);
+}
+
+IterationThreads::IterationThreads(int parts, std::function<int(int)> load)
+    : parts_(std::max(parts, 1)), load_(std::move(load)) {}
+
+int IterationThreads::Next(double last_seconds) {
+  {
+    std::lock_guard<std::mutex> lock(budget_mutex);
+    if (budget_for_testing) return std::clamp(budget_for_testing(parts_), 1, parts_);
+  }
+  if (parts_ == 1) return 1;
+  if (last_seconds >= 0 && running_ > 0) {
+    double& mean = seconds_[running_ == 1 ? 1 : 0];
+    mean = mean < 0 ? last_seconds : (1 - kSmoothing) * mean + kSmoothing * last_seconds;
+  }
+  const int load = std::clamp(load_(parts_), 1, parts_);
+  if (load == 1) return running_ = 1;
+  ++iterations_;
+  const int preferred = seconds_[0] >= 0 && seconds_[1] >= 0 && seconds_[1] < seconds_[0] ? 1 : 0;
+  const int other = 1 - preferred;
+  const bool probe = (seconds_[other] < 0 && iterations_ >= 2) || iterations_ % kProbeEvery == 0;
+  return running_ = (probe ? other : preferred) == 1 ? 1 : load;
 }
 
 void SetThreadBudgetForTesting(std::function<int(int parts)> budget) {

@@ -17,11 +17,39 @@ int OtherRunnableTasks();
 // The threads for the next stretch of at most `parts` (>= 1): the cores this
 // process may run on less the other runnable tasks, at least 1; `parts`
 // where the load cannot be read. The load is read at most every
-// kLoadCheckSeconds (per calling thread; about 30 us a read).
+// kLoadCheckSeconds (per calling thread; about 30 us a read), and the smaller
+// of the last two readings counts, so that a task runnable for an instant
+// does not take a thread away.
 int ThreadsForLoad(int parts);
 inline constexpr double kLoadCheckSeconds = 0.01;
 
-// Tests replace ThreadsForLoad with a schedule of their own (nullptr: the load again).
+// Tests replace the choice (ThreadsForLoad and IterationThreads) with a schedule of their own (nullptr: the
+// load and the timings again).
 void SetThreadBudgetForTesting(std::function<int(int parts)> budget);
+
+// The threads of each iteration of a loop: the load's count, or one thread
+// where iterations timed on one thread ran faster. A core can be shared with
+// work this process cannot see (another virtual machine on the host): a team
+// then waits at every barrier as it does under a visible load, while no task
+// shows in /proc. Every kProbeEvery-th iteration (and early on, once each)
+// runs on the other choice, so that both stay timed; the choice never
+// changes a result (framework/fixed_parts.h), only how long it takes.
+class IterationThreads {
+ public:
+  static constexpr int kProbeEvery = 16;
+  static constexpr double kSmoothing = 0.3;  // weight of the newest iteration in each choice's mean time
+
+  // `load`: the count the load allows (ThreadsForLoad, or a test's).
+  explicit IterationThreads(int parts, std::function<int(int parts)> load = ThreadsForLoad);
+  // The threads of the next iteration, given the seconds of the iteration just run (negative: none to count).
+  int Next(double last_seconds);
+
+ private:
+  int parts_;
+  std::function<int(int)> load_;
+  int running_ = 0;                   // the threads of the iteration under way (0: none yet)
+  double seconds_[2] = {-1.0, -1.0};  // mean seconds per iteration: [0] on the load's count, [1] on one thread
+  long iterations_ = 0;
+};
 
 }  // namespace layerlab

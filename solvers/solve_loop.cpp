@@ -60,6 +60,7 @@ bool SolveLoop::Start(const std::string& refusal) {
   saved_threads_ = omp_get_max_threads();
   omp_set_num_threads(threads);
   parts_.emplace(threads);
+  threads_.emplace(threads);
   report_.threads = report_.threads_min = threads;
   try {
     RequireSameRays(model_, source_);
@@ -230,7 +231,11 @@ bool SolveLoop::Record(double objective, double light_field_objective, double fo
 
 void SolveLoop::AdjustThreads() {
   if (report_.threads <= 1) return;
-  const int threads = ThreadsForLoad(report_.threads);
+  // The seconds of the iteration just recorded (not of iteration 0, which is the start's other work).
+  const double now = Seconds();
+  const double last = iteration_ > 1 && last_recorded_ >= 0 ? now - last_recorded_ : -1;
+  last_recorded_ = iteration_ > 0 ? now : -1;
+  const int threads = threads_->Next(last);
   if (threads != omp_get_max_threads()) omp_set_num_threads(threads);
   report_.threads_min = std::min(report_.threads_min, threads);
 }

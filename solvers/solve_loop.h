@@ -10,6 +10,7 @@
 #include <string>
 
 #include "layerlab/framework/fixed_parts.h"
+#include "layerlab/framework/thread_budget.h"
 #include "layerlab/kernels/ray_pass.h"
 #include "layerlab/solvers/objective.h"
 #include "layerlab/solvers/retinal_pass.h"
@@ -129,6 +130,8 @@ class SolveLoop {
   // The solve's sums cut into report_.threads parts (framework/fixed_parts.h), so that an iteration may run on
   // fewer threads where other processes keep the cores busy (AdjustThreads) with the same bits.
   std::optional<ScopedParts> parts_;
+  std::optional<IterationThreads> threads_;
+  double last_recorded_ = -1;  // Seconds() at the last Record, when it was an iteration
   bool stopped_ = false;
   std::map<std::string, double> state_;
   std::unique_ptr<RetinalObjective> retinal_;

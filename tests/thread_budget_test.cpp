@@ -1,0 +1,108 @@
+// framework/thread_budget.h and framework/fixed_parts.h: the static schedule's shares, the load read from
+// /proc, and IterationThreads choosing between the load's count and one thread by timed iterations.
+#include "layerlab/framework/thread_budget.h"
+
+#include <gtest/gtest.h>
+#include <omp.h>
+#include <unistd.h>
+
+#include <sys/wait.h>
+#include <csignal>
+
+#include "layerlab/framework/fixed_parts.h"
+
+namespace layerlab {
+namespace {
+
+// OpenMP's static schedule, written out: n items over T threads, the first n % T one more each.
+TEST(FixedParts, StaticShareIsOpenMpsStaticSchedule) {
+  for (size_t n : {0, 1, 5, 13, 169, 1000})
+    for (int parts : {1, 2, 3, 7}) {
+      std::vector<int> owner(n, -1);
+#pragma omp parallel for schedule(static) num_threads(parts)
+      for (size_t i = 0; i < n; ++i) owner[i] = omp_get_thread_num();
+      if (omp_get_max_threads() < parts) continue;  // a team smaller than asked: nothing to compare
+      for (int p = 0; p < parts; ++p) {
+        const ItemRange r = StaticShare(n, p, parts);
+        for (size_t i = 0; i < n; ++i) EXPECT_EQ(owner[i] == p, i >= r.begin && i < r.end) << n << " " << p;
+      }
+    }
+}
+
+TEST(FixedParts, EachPartOnceWhateverTheTeam) {
+  for (int threads : {1, 2, 3, 5}) {
+    std::vector<int> done(5, 0);
+#pragma omp parallel num_threads(threads)
+    ForEachPartOfThread(5, [&](int p) {
+#pragma omp atomic
+      ++done[p];
+    });
+    for (int d : done) EXPECT_EQ(d, 1) << threads << " threads";
+  }
+}
+
+TEST(FixedParts, ScopedPartsSetsAndRestores) {
+  const int outside = FixedParts();
+  {
+    ScopedParts three(3);
+    EXPECT_EQ(FixedParts(), 3);
+    {
+      ScopedParts one(1);
+      EXPECT_EQ(FixedParts(), 1);
+    }
+    EXPECT_EQ(FixedParts(), 3);
+  }
+  EXPECT_EQ(FixedParts(), outside);
+}
+
+// Busy children are other runnable tasks: two of them show as at least two (they may share the count with
+// the machine's own), and the threads for the load then leave them their cores.
+TEST(ThreadBudget, BusyProcessesAreCounted) {
+  const int before = OtherRunnableTasks();
+  if (before < 0) GTEST_SKIP() << "no /proc/loadavg here";
+  pid_t children[2];
+  for (pid_t& c : children) {
+    c = fork();
+    if (c == 0) {
+      volatile unsigned long spin = 0;
+      for (;;) {
+        const unsigned long next = spin + 1;
+        spin = next;
+      }
+    }
+  }
+  usleep(200000);
+  int seen = 0;
+  for (int k = 0; k < 20 && seen < 2; ++k, usleep(5000)) seen = std::max(seen, OtherRunnableTasks());
+  for (pid_t c : children) kill(c, SIGKILL), waitpid(c, nullptr, 0);
+  EXPECT_GE(seen, 2);
+}
+
+// Iterations whose seconds depend on the threads they ran on, the load allowing two: the choice settles on
+// the faster, and runs the other only every kProbeEvery-th iteration (and early, to time it).
+int OneThreadShare(double seconds_on_two, double seconds_on_one) {
+  IterationThreads choice(2, [](int) { return 2; });
+  int threads = choice.Next(-1), on_one = 0;
+  for (int k = 0; k < 160; ++k) {
+    const double seconds = threads == 1 ? seconds_on_one : seconds_on_two;
+    threads = choice.Next(seconds);
+    on_one += threads == 1;
+  }
+  return on_one;
+}
+
+TEST(ThreadBudget, IterationThreadsKeepsTheFasterAndProbesTheOther) {
+  const int probes = 160 / IterationThreads::kProbeEvery;
+  EXPECT_LE(OneThreadShare(0.6, 1.0), probes + 2);        // two threads faster: one thread only to probe
+  EXPECT_GE(OneThreadShare(1.5, 1.0), 160 - probes - 2);  // a shared core: one thread but to probe
+}
+
+TEST(ThreadBudget, OneThreadWhereTheLoadLeavesOne) {
+  IterationThreads choice(4, [](int) { return 1; });
+  for (int k = 0; k < 40; ++k) EXPECT_EQ(choice.Next(k ? 0.1 : -1), 1);
+  IterationThreads single(1);
+  EXPECT_EQ(single.Next(-1), 1);
+}
+
+}  // namespace
+}  // namespace layerlab
