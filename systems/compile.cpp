@@ -420,6 +420,11 @@ class Walker {
       const double D = spec.virtual_depth->diopters;
       bool solvable = false;
       const double t = GapForDiopters(state.transfer, D, &solvable);
+      if (!solvable && !state.last_power)
+        Fail(node.where.child(key), FormatFixed(D, 3) + " D puts " + Quoted(name) +
+                                        " infinitely far: nothing with optical power lies between the eye and it, so "
+                                        "it is seen where it is (a virtual_depth of D puts it 1/D from the eye); give "
+                                        "a virtual_depth above 0 D, or a lens in front of it");
       if (!solvable)
         Fail(node.where.child(key), "no place behind " + Quoted(state.placed_name) + " images the panel at " +
                                         FormatFixed(D, 3) +
@@ -504,9 +509,12 @@ class Walker {
     // One lens and free space before it: panels behind it are imaged nearer than the lens itself.
     const bool magnifier_only = state.powered == 1 && state.steps[*state.last_power].kind == ElementKind::kLens &&
                                 state.placed_name == state.steps[*state.last_power].element;
-    if (magnifier_only)
-      Fail(at, wanted + " would not lie behind the lens, which is " + Mm(state.placed_at) + " from the eye (below " +
-                   FormatFixed(1.0 / state.placed_at, 1) + " D)");
+    if (magnifier_only) {
+      const double f = 1.0 / state.steps[*state.last_power].power_diopters;
+      Fail(at, wanted + " cannot be formed behind the lens: it is " + Mm(state.placed_at) +
+                   " from the eye, and a panel behind it is imaged between 0 D (at its focal plane, " + Mm(f) +
+                   " behind it) and " + FormatFixed(1.0 / state.placed_at, 1) + " D (against it)");
+    }
     const double nearest = state.transfer.a / state.transfer.b, farthest = state.transfer.c / state.transfer.d;
     Fail(at, wanted + " cannot be formed behind " + Quoted(state.placed_name) + " (" + Mm(state.placed_at) +
                  " from the pupil): panels behind it are imaged between " +
@@ -517,16 +525,16 @@ class Walker {
   [[noreturn]] void FailBehindTheEye(const SceneNode& node, const char* key, const PathState& state,
                                      const VirtualLayer& layer, double D) const {
     const Location at = node.where.child(key);
+    std::string why;
     if (state.powered == 1 && state.steps[*state.last_power].kind == ElementKind::kLens) {
       const double f = 1.0 / state.steps[*state.last_power].power_diopters;
       if (layer.panel_distance_m > f)
-        Fail(at, "the panel is " + Mm(layer.panel_distance_m) + " from the lens, beyond the focal length " + Mm(f) +
-                     ": the lens would form a real, inverted image, not a floating virtual one");
+        why = " (it is " + Mm(layer.panel_distance_m) + " from the lens, beyond the focal length " + Mm(f) + ")";
     }
     Fail(at, "panel " + Quoted(layer.name) + " would be imaged " + Mm(-1.0 / D) + " behind the eye (" +
-                 FormatFixed(D, 3) +
-                 " D): the optics in front of it form a real image that converges into the eye, "
-                 "which no eye can focus");
+                 FormatFixed(D, 3) + " D)" + why +
+                 ": the optics in front of it form a real image beyond the pupil, whose light converges into the "
+                 "eye, which no eye can focus; a real image in front of the eye is accepted");
   }
 
   void CheckOrder(const VirtualLayer& front, const VirtualLayer& back, const SceneNode& node, const char* key,
@@ -575,6 +583,7 @@ class Walker {
 
   void FindMagnifier();
   void CheckApertures();
+  void CheckFirstOrderValidity();
   void CheckEyePose();
   void MapRealLenses();
   void Finish();
@@ -643,6 +652,39 @@ void Walker::CheckApertures() {
                                " seen from the edges of the eyebox");
 }
 
+// Warns of every thin lens modelled beyond where first-order optics holds: a layer seen through it over a
+// field wider than kFirstOrderFieldDeg, or a lens faster than f/kFirstOrderFNumber; the real-lens model
+// traces it exactly (docs/optics.md, "Real lenses").
+void Walker::CheckFirstOrderValidity() {
+  std::vector<std::string> warned;
+  for (const VirtualLayer& l : system_.layers)
+    for (const PathStep& s : l.path) {
+      if (s.type != "thin_lens" || s.power_diopters == 0 ||
+          std::find(warned.begin(), warned.end(), s.element) != warned.end())
+        continue;
+      const double fx = l.fov_x_rad / kRadiansPerDegree, fy = l.fov_y_rad / kRadiansPerDegree;
+      const double f = std::abs(1.0 / s.power_diopters);
+      std::string why;
+      if (std::max(fx, fy) > kFirstOrderFieldDeg)
+        why = Quoted(l.name) + " is seen through it over " + FormatFixed(fx, 0) + " x " + FormatFixed(fy, 0) +
+              " deg, beyond the " + FormatFixed(kFirstOrderFieldDeg, 0) +
+              " deg within which its distortion and field "
+              "curvature stay small";
+      else if (s.clear_aperture_m && f / *s.clear_aperture_m < kFirstOrderFNumber)
+        why = "it is f/" + FormatFixed(f / *s.clear_aperture_m, 2) + " (" + Mm(f) + " over a " +
+              Mm(*s.clear_aperture_m) + " clear aperture), faster than f/" + FormatFixed(kFirstOrderFNumber, 0) +
+              ", where its spherical aberration is no longer small";
+      if (why.empty()) continue;
+      warned.push_back(s.element);
+      system_.warnings.push_back("the thin lens " + Quoted(s.element) +
+                                 " is modelled to first order outside where "
+                                 "that holds: " +
+                                 why +
+                                 "; describe it as a \"lens\" of surfaces and glass for the "
+                                 "exact trace (docs/optics.md, \"Real lenses\")");
+    }
+}
+
 void Walker::Finish() {
   SortFarthestFirst();
   system_.fov_x_rad = system_.fov_y_rad = INFINITY;
@@ -663,6 +705,7 @@ void Walker::Finish() {
     system_.vignetting_free_fov_y_rad = field(eye.eyebox_height_m);
   }
   CheckApertures();
+  CheckFirstOrderValidity();
   CheckEyePose();
   MapRealLenses();
   DescribeComponents();

@@ -13,4 +13,9 @@ namespace layerlab {
 // two panels of one stack at the same depth or out of order.
 DisplaySystem Compile(const Scene& scene);
 
+// A thin lens is warned of (DisplaySystem::warnings) when a layer is seen through it over a wider field than
+// this (deg, either axis), or when it is faster than this f-number: first-order optics no longer describes it.
+inline constexpr double kFirstOrderFieldDeg = 60;
+inline constexpr double kFirstOrderFNumber = 1;
+
 }  // namespace layerlab

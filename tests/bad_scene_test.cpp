@@ -139,8 +139,21 @@ const BadScene kCases[] = {
        rear.erase("virtual_depth");
        rear["distance"] = "80 mm";
      },
-     "scene.json: /elements/3/distance: the panel is 80.00 mm from the lens, beyond the focal length 75.00 mm: the "
-     "lens would form a real, inverted image, not a floating virtual one"},
+     "scene.json: /elements/3/distance: panel \"rear\" would be imaged 1190.00 mm behind the eye (-0.840 D) (it is "
+     "80.00 mm from the lens, beyond the focal length 75.00 mm): the optics in front of it form a real image beyond "
+     "the pupil, whose light converges into the eye, which no eye can focus; a real image in front of the eye is "
+     "accepted"},
+    // Without optics a panel is seen where it is: 0 D is no place, and the message says why (it said
+    // "the optics in front of it image every plane at 0 D" of a path with no optics).
+    {"NoOpticsAndZeroDiopters", kMul,
+     [](json& s) {
+       ElementNamed(s, "eye")["next"] = "front";
+       s["elements"].erase(1);  // the lens
+       ElementNamed(s, "front")["virtual_depth"] = "0 D";
+     },
+     "scene.json: /elements/1/virtual_depth: 0.000 D puts \"front\" infinitely far: nothing with optical power "
+     "lies between the eye and it, so it is seen where it is (a virtual_depth of D puts it 1/D from the eye); give a "
+     "virtual_depth above 0 D, or a lens in front of it"},
     {"TwoPanelsOfAStackAtOneDepth", kMul, [](json& s) { ElementNamed(s, "rear")["virtual_depth"] = "2.2 D"; },
      "scene.json: /elements/3/virtual_depth: panels \"front\" and \"rear\" of one stack are at the same depth "
      "(2.2000 D); a stack needs distinct planes"},
@@ -158,8 +171,9 @@ const BadScene kCases[] = {
      "scene.json: /elements/3/distance: missing placement: give \"distance\" (from the lens, e.g. \"72.81 mm\") or "
      "\"virtual_depth\" (from the eye, e.g. \"0.4 D\")"},
     {"ImageInFrontOfTheLens", kMul, [](json& s) { ElementNamed(s, "front")["virtual_depth"] = "150 D"; },
-     "scene.json: /elements/2/virtual_depth: a virtual image at 150.000 D (6.67 mm from the eye) would not lie "
-     "behind the lens, which is 10.00 mm from the eye (below 100.0 D)"},
+     "scene.json: /elements/2/virtual_depth: a virtual image at 150.000 D (6.67 mm from the eye) cannot be formed "
+     "behind the lens: it is 10.00 mm from the eye, and a panel behind it is imaged between 0 D (at its focal plane, "
+     "75.00 mm behind it) and 100.0 D (against it)"},
     {"NoEye", kMul, [](json& s) { s["elements"].erase(0); },
      "scene.json: /elements: the scene has no eye; the optical path starts at an element of type \"eye\""},
     {"TwoEyes", kMul,

@@ -192,5 +192,38 @@ TEST(Compile, ListsOnlyTheComponentsInUse) {
   EXPECT_FALSE(CompileJson(ReadExample("paper_prototype.json")).polarization_tracked);
 }
 
+// A thin lens standing in for a 3 mm lenslet compiled silently as a magnifier of 150 deg; first-order
+// optics is now said not to hold there, with the field it was asked to cover, and so is a lens faster than
+// f/1. None of the shipped examples is warned of.
+TEST(Compile, AThinLensBeyondFirstOrderIsWarnedOf) {
+  auto first_order = [](const DisplaySystem& s) {
+    std::string found;
+    for (const std::string& w : s.warnings)
+      if (w.find("modelled to first order outside where that holds") != std::string::npos) found = w;
+    return found;
+  };
+  nlohmann::json lenslet = ReadExample("multiplicative_2layer.json");
+  ElementNamed(lenslet, "lens")["focal_length"] = "3 mm";
+  ElementNamed(lenslet, "lens")["clear_aperture"] = "3 mm";
+  const DisplaySystem wide = CompileJson(lenslet);
+  const std::string warning = first_order(wide);
+  const double fx = wide.layers.front().fov_x_rad / kRadiansPerDegree;
+  ASSERT_GT(fx, kFirstOrderFieldDeg);
+  EXPECT_NE(warning.find("\"lens\""), std::string::npos) << warning;
+  EXPECT_NE(warning.find(FormatFixed(fx, 0) + " x "), std::string::npos) << warning;
+  EXPECT_NE(warning.find("describe it as a \"lens\" of surfaces"), std::string::npos) << warning;
+
+  nlohmann::json fast = ReadExample("multiplicative_2layer.json");
+  ElementNamed(fast, "lens")["clear_aperture"] = "100 mm";  // 75 mm over 100 mm: f/0.75
+  EXPECT_NE(first_order(CompileJson(fast)).find("it is f/0.75 (75.00 mm over a 100.00 mm clear aperture)"),
+            std::string::npos)
+      << first_order(CompileJson(fast));
+
+  for (const char* example : {"paper_prototype.json", "multiplicative_2layer.json", "additive_2layer.json",
+                              "relay_magnifier.json", "per_branch_magnifiers.json", "multifocal_tunable_4plane.json",
+                              "tensor_display_rank2.json", "hybrid_pbs_hwp.json"})
+    EXPECT_EQ(first_order(CompileJson(ReadExample(example))), "") << example;
+}
+
 }  // namespace
 }  // namespace layerlab
