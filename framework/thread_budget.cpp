@@ -99,17 +99,26 @@ int IterationThreads::Next(double last_seconds) {
     if (budget_for_testing) return std::clamp(budget_for_testing(parts_), 1, parts_);
   }
   if (parts_ == 1) return 1;
+  const auto preferred = [&] { return seconds_[0] >= 0 && seconds_[1] >= 0 && seconds_[1] < seconds_[0] ? 1 : 0; };
+  const int before = preferred();
   if (last_seconds >= 0 && running_ > 0) {
+    // A probe times its choice afresh (its mean is old by then); the choice in use is averaged.
     double& mean = seconds_[running_ == 1 ? 1 : 0];
-    mean = mean < 0 ? last_seconds : (1 - kSmoothing) * mean + kSmoothing * last_seconds;
+    mean = mean < 0 || probing_ ? last_seconds : (1 - kSmoothing) * mean + kSmoothing * last_seconds;
+    // A probe that confirms the choice makes the next one further off; one that overturns it, near.
+    if (probing_ && seconds_[0] >= 0 && seconds_[1] >= 0)
+      probe_every_ = preferred() == before ? std::min(2 * probe_every_, kProbeEveryMost) : kProbeEvery;
   }
+  probing_ = false;
   const int load = std::clamp(load_(parts_), 1, parts_);
   if (load == 1) return running_ = 1;
-  ++iterations_;
-  const int preferred = seconds_[0] >= 0 && seconds_[1] >= 0 && seconds_[1] < seconds_[0] ? 1 : 0;
-  const int other = 1 - preferred;
-  const bool probe = (seconds_[other] < 0 && iterations_ >= 2) || iterations_ % kProbeEvery == 0;
-  return running_ = (probe ? other : preferred) == 1 ? 1 : load;
+  ++since_probe_;
+  const int choice = preferred(), other = 1 - choice;
+  if ((seconds_[other] < 0 && since_probe_ >= 2) || since_probe_ >= probe_every_) {
+    probing_ = true;
+    since_probe_ = 0;
+  }
+  return running_ = (probing_ ? other : choice) == 1 ? 1 : load;
 }
 
 void SetThreadBudgetForTesting(std::function<int(int parts)> budget) {

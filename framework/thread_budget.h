@@ -31,13 +31,16 @@ void SetThreadBudgetForTesting(std::function<int(int parts)> budget);
 // where iterations timed on one thread ran faster. A core can be shared with
 // work this process cannot see (another virtual machine on the host): a team
 // then waits at every barrier as it does under a visible load, while no task
-// shows in /proc. Every kProbeEvery-th iteration (and early on, once each)
-// runs on the other choice, so that both stay timed; the choice never
-// changes a result (framework/fixed_parts.h), only how long it takes.
+// shows in /proc. An iteration now and then runs on the other choice, so
+// that both stay timed: once early, then kProbeEvery iterations on, the
+// interval doubling (up to kProbeEveryMost) while probes confirm the choice
+// and back to kProbeEvery when one overturns it. A probe's iteration times
+// its choice afresh; the choice in use keeps a running mean. The choice
+// never changes a result (framework/fixed_parts.h), only how long it takes.
 class IterationThreads {
  public:
-  static constexpr int kProbeEvery = 16;
-  static constexpr double kSmoothing = 0.3;  // weight of the newest iteration in each choice's mean time
+  static constexpr int kProbeEvery = 16, kProbeEveryMost = 256;
+  static constexpr double kSmoothing = 0.3;  // weight of the newest iteration in the mean of the choice in use
 
   // `load`: the count the load allows (ThreadsForLoad, or a test's).
   explicit IterationThreads(int parts, std::function<int(int parts)> load = ThreadsForLoad);
@@ -48,8 +51,9 @@ class IterationThreads {
   int parts_;
   std::function<int(int)> load_;
   int running_ = 0;                   // the threads of the iteration under way (0: none yet)
-  double seconds_[2] = {-1.0, -1.0};  // mean seconds per iteration: [0] on the load's count, [1] on one thread
-  long iterations_ = 0;
+  bool probing_ = false;              // the iteration under way runs on the choice not preferred
+  double seconds_[2] = {-1.0, -1.0};  // seconds per iteration: [0] on the load's count, [1] on one thread
+  int since_probe_ = 0, probe_every_ = kProbeEvery;
 };
 
 }  // namespace layerlab

@@ -79,7 +79,8 @@ TEST(ThreadBudget, BusyProcessesAreCounted) {
 }
 
 // Iterations whose seconds depend on the threads they ran on, the load allowing two: the choice settles on
-// the faster, and runs the other only every kProbeEvery-th iteration (and early, to time it).
+// the faster, and runs the other only to probe it: once early, then kProbeEvery on, further apart while
+// the probes confirm the choice.
 int OneThreadShare(double seconds_on_two, double seconds_on_one) {
   IterationThreads choice(2, [](int) { return 2; });
   int threads = choice.Next(-1), on_one = 0;
@@ -92,9 +93,23 @@ int OneThreadShare(double seconds_on_two, double seconds_on_one) {
 }
 
 TEST(ThreadBudget, IterationThreadsKeepsTheFasterAndProbesTheOther) {
-  const int probes = 160 / IterationThreads::kProbeEvery;
-  EXPECT_LE(OneThreadShare(0.6, 1.0), probes + 2);        // two threads faster: one thread only to probe
-  EXPECT_GE(OneThreadShare(1.5, 1.0), 160 - probes - 2);  // a shared core: one thread but to probe
+  // A probe early, then 32 and 64 iterations on (each confirming probe doubles the interval): 3 in 160.
+  EXPECT_EQ(OneThreadShare(0.6, 1.0), 3);        // two threads faster: one thread only to probe
+  EXPECT_EQ(OneThreadShare(1.5, 1.0), 160 - 3);  // a shared core: one thread but to probe
+}
+
+// A machine that changes: one thread faster for 100 iterations, then two threads. The first probe after
+// the change overturns the choice, and the probes come near again.
+TEST(ThreadBudget, IterationThreadsFollowsAChange) {
+  IterationThreads choice(2, [](int) { return 2; });
+  int threads = choice.Next(-1), late_on_two = 0;
+  for (int k = 0; k < 600; ++k) {
+    const bool shared = k < 100;
+    const double seconds = threads == 1 ? 1.0 : shared ? 1.5 : 0.6;
+    threads = choice.Next(seconds);
+    if (k >= 400) late_on_two += threads == 2;
+  }
+  EXPECT_GE(late_on_two, 190);  // settled on two threads, probing one now and then
 }
 
 TEST(ThreadBudget, OneThreadWhereTheLoadLeavesOne) {
