@@ -93,7 +93,7 @@ int ThreadsForLoad(int parts) {
 IterationThreads::IterationThreads(int parts, std::function<int(int)> load)
     : parts_(std::max(parts, 1)), load_(std::move(load)) {}
 
-int IterationThreads::Next(double last_seconds) {
+int IterationThreads::Next(double last_seconds, double last_cpu_seconds) {
   {
     std::lock_guard<std::mutex> lock(budget_mutex);
     if (budget_for_testing) return std::clamp(budget_for_testing(parts_), 1, parts_);
@@ -108,13 +108,17 @@ int IterationThreads::Next(double last_seconds) {
     // A probe that confirms the choice makes the next one further off; one that overturns it, near.
     if (probing_ && seconds_[0] >= 0 && seconds_[1] >= 0)
       probe_every_ = preferred() == before ? std::min(2 * probe_every_, kProbeEveryMost) : kProbeEvery;
+    // How busy the team was: a thread descheduled by work this process cannot see runs no CPU time.
+    if (running_ > 1 && last_cpu_seconds >= 0 && last_seconds > 0) busy_ = last_cpu_seconds / (running_ * last_seconds);
   }
   probing_ = false;
   const int load = std::clamp(load_(parts_), 1, parts_);
   if (load == 1) return running_ = 1;
   ++since_probe_;
   const int choice = preferred(), other = 1 - choice;
-  if ((seconds_[other] < 0 && since_probe_ >= 2) || since_probe_ >= probe_every_) {
+  // One thread is worth timing only where a team of more was kept waiting (or where that is unknown).
+  const bool worth = other == 0 || busy_ < 0 || busy_ < kBusyTeam;
+  if (worth && seconds_[choice] >= 0 && (seconds_[other] < 0 || since_probe_ >= probe_every_)) {
     probing_ = true;
     since_probe_ = 0;
   }

@@ -32,7 +32,9 @@ void SetThreadBudgetForTesting(std::function<int(int parts)> budget);
 // work this process cannot see (another virtual machine on the host): a team
 // then waits at every barrier as it does under a visible load, while no task
 // shows in /proc. An iteration now and then runs on the other choice, so
-// that both stay timed: once early, then kProbeEvery iterations on, the
+// that both stay timed, as long as a team of more threads was kept waiting
+// (it ran less CPU time than its threads x wall time; kBusyTeam): once
+// early, then kProbeEvery iterations on, the
 // interval doubling (up to kProbeEveryMost) while probes confirm the choice
 // and back to kProbeEvery when one overturns it. A probe's iteration times
 // its choice afresh; the choice in use keeps a running mean. The choice
@@ -40,12 +42,16 @@ void SetThreadBudgetForTesting(std::function<int(int parts)> budget);
 class IterationThreads {
  public:
   static constexpr int kProbeEvery = 16, kProbeEveryMost = 256;
+  // A team whose threads ran at least this share of its wall time (CPU time over threads x wall time) is
+  // not waiting on a shared core: one thread is then not probed.
+  static constexpr double kBusyTeam = 0.85;
   static constexpr double kSmoothing = 0.3;  // weight of the newest iteration in the mean of the choice in use
 
   // `load`: the count the load allows (ThreadsForLoad, or a test's).
   explicit IterationThreads(int parts, std::function<int(int parts)> load = ThreadsForLoad);
-  // The threads of the next iteration, given the seconds of the iteration just run (negative: none to count).
-  int Next(double last_seconds);
+  // The threads of the next iteration, given the seconds of the iteration just run and the CPU seconds this
+  // process spent in it (negative: not measured).
+  int Next(double last_seconds, double last_cpu_seconds = -1);
 
  private:
   int parts_;
@@ -54,6 +60,7 @@ class IterationThreads {
   bool probing_ = false;              // the iteration under way runs on the choice not preferred
   double seconds_[2] = {-1.0, -1.0};  // seconds per iteration: [0] on the load's count, [1] on one thread
   int since_probe_ = 0, probe_every_ = kProbeEvery;
+  double busy_ = -1;  // the last timed team's CPU time over its threads x wall time (-1: unknown)
 };
 
 }  // namespace layerlab

@@ -1,6 +1,7 @@
 #include "layerlab/solvers/solve_loop.h"
 
 #include <omp.h>
+#include <time.h>
 
 #include <algorithm>
 #include <cmath>
@@ -31,6 +32,12 @@ SolveLoop::SolveLoop(std::string solver, const DisplayModel& model, const LightF
 
 SolveLoop::~SolveLoop() {
   if (saved_threads_) omp_set_num_threads(saved_threads_);
+}
+
+double SolveLoop::ProcessCpuSeconds() {
+  timespec t{};
+  if (clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t) != 0) return -1;
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
 }
 
 double SolveLoop::Seconds() const {
@@ -89,7 +96,7 @@ bool SolveLoop::Start(const std::string& refusal) {
   } else {
     *patterns_ = InitialPatterns(model_, options_);
   }
-  AdjustThreads();  // iteration 0 too runs on the threads the load leaves
+  AdjustThreads(/*after_record=*/false);  // iteration 0 too runs on the threads the load leaves
   const auto now = std::chrono::steady_clock::now();
   report_.setup_seconds = std::chrono::duration<double>(now - start_).count();
   start_ = now;
@@ -225,17 +232,19 @@ bool SolveLoop::Record(double objective, double light_field_objective, double fo
     Fail("the objective became " + std::to_string(objective) + " at iteration " + std::to_string(iteration_));
     return false;
   }
-  AdjustThreads();
+  AdjustThreads(/*after_record=*/true);
   return true;
 }
 
-void SolveLoop::AdjustThreads() {
+void SolveLoop::AdjustThreads(bool after_record) {
   if (report_.threads <= 1) return;
-  // The seconds of the iteration just recorded (not of iteration 0, which is the start's other work).
-  const double now = Seconds();
-  const double last = iteration_ > 1 && last_recorded_ >= 0 ? now - last_recorded_ : -1;
-  last_recorded_ = iteration_ > 0 ? now : -1;
-  const int threads = threads_->Next(last);
+  // The seconds of the iteration just recorded: from the record before it (iteration 0 is the start's
+  // other work, not timed).
+  const double now = Seconds(), cpu = ProcessCpuSeconds();
+  const bool timed = after_record && iteration_ >= 1 && last_recorded_ >= 0;
+  const int threads =
+      threads_->Next(timed ? now - last_recorded_ : -1, timed && cpu >= 0 && last_cpu_ >= 0 ? cpu - last_cpu_ : -1);
+  if (after_record) last_recorded_ = now, last_cpu_ = cpu;
   if (threads != omp_get_max_threads()) omp_set_num_threads(threads);
   report_.threads_min = std::min(report_.threads_min, threads);
 }

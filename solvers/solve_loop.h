@@ -98,7 +98,9 @@ class SolveLoop {
   bool Record(double objective, double light_field_objective, double focal_stack_psnr_db);
   // The threads of the next iteration: at most report_.threads, fewer while other processes keep the cores
   // busy (framework/thread_budget.h).
-  void AdjustThreads();
+  void AdjustThreads(bool after_record);
+  // This process's CPU time (s, all threads); -1 where it cannot be read.
+  static double ProcessCpuSeconds();
   // The focal stack's metrics (options.measure_metrics) of the patterns now, into the last trace row, off the
   // clock; at the rows kMetricRowGrowth spaces and at the last.
   void MeasureMetrics();
@@ -131,7 +133,7 @@ class SolveLoop {
   // fewer threads where other processes keep the cores busy (AdjustThreads) with the same bits.
   std::optional<ScopedParts> parts_;
   std::optional<IterationThreads> threads_;
-  double last_recorded_ = -1;  // Seconds() at the last Record, when it was an iteration
+  double last_recorded_ = -1, last_cpu_ = -1;  // Seconds() and ProcessCpuSeconds() at the last Record
   bool stopped_ = false;
   std::map<std::string, double> state_;
   std::unique_ptr<RetinalObjective> retinal_;

@@ -81,12 +81,13 @@ TEST(ThreadBudget, BusyProcessesAreCounted) {
 // Iterations whose seconds depend on the threads they ran on, the load allowing two: the choice settles on
 // the faster, and runs the other only to probe it: once early, then kProbeEvery on, further apart while
 // the probes confirm the choice.
-int OneThreadShare(double seconds_on_two, double seconds_on_one) {
+// `busy`: the team's CPU time over its threads x wall time (negative: not measured).
+int OneThreadShare(double seconds_on_two, double seconds_on_one, double busy = -1) {
   IterationThreads choice(2, [](int) { return 2; });
   int threads = choice.Next(-1), on_one = 0;
   for (int k = 0; k < 160; ++k) {
     const double seconds = threads == 1 ? seconds_on_one : seconds_on_two;
-    threads = choice.Next(seconds);
+    threads = choice.Next(seconds, busy < 0 ? -1 : busy * threads * seconds);
     on_one += threads == 1;
   }
   return on_one;
@@ -96,6 +97,13 @@ TEST(ThreadBudget, IterationThreadsKeepsTheFasterAndProbesTheOther) {
   // A probe early, then 32 and 64 iterations on (each confirming probe doubles the interval): 3 in 160.
   EXPECT_EQ(OneThreadShare(0.6, 1.0), 3);        // two threads faster: one thread only to probe
   EXPECT_EQ(OneThreadShare(1.5, 1.0), 160 - 3);  // a shared core: one thread but to probe
+}
+
+// A team that ran its threads' whole time was waiting on nobody: one thread is not probed at all. A team
+// kept waiting (60 % busy) is, and one thread kept where it is faster.
+TEST(ThreadBudget, IterationThreadsProbesOnlyATeamKeptWaiting) {
+  EXPECT_EQ(OneThreadShare(0.6, 1.0, 0.95), 0);
+  EXPECT_EQ(OneThreadShare(1.5, 1.0, 0.6), 160 - 3);
 }
 
 // A machine that changes: one thread faster for 100 iterations, then two threads. The first probe after
