@@ -1242,8 +1242,10 @@ TEST(Solvers, FewerThreadsOnABusyMachineGiveTheSameBits) {
   std::vector<Run> runs;
   for (const std::string& solver : SolverRegistry::Builtins().names()) runs.push_back({solver, ExampleFor(solver)});
   runs.push_back({"hybrid", "paper_prototype_la1608.json", 12, 6, 9});  // views enough for pixel pairs to pay
-  for (const auto& [solver, example, cols, rows, views] : runs) {
-    const Fixture f = MakeFixture(example, cols, rows, views);
+  for (const Run& run : runs) {
+    const std::string& solver = run.solver;  // not a structured binding: lambdas below capture it
+    const std::string& example = run.example;
+    const Fixture f = MakeFixture(example, run.cols, run.rows, run.views);
     if (example == "paper_prototype_la1608.json") {
       ASSERT_NE(f.model->pair_list(0), nullptr);
     }
