@@ -105,9 +105,12 @@ int IterationThreads::Next(double last_seconds, double last_cpu_seconds) {
     // A probe times its choice afresh (its mean is old by then); the choice in use is averaged.
     double& mean = seconds_[running_ == 1 ? 1 : 0];
     mean = mean < 0 || probing_ ? last_seconds : (1 - kSmoothing) * mean + kSmoothing * last_seconds;
-    // A probe that confirms the choice makes the next one further off; one that overturns it, near.
+    // A probe that confirms the team makes the next one further off; one that overturns it, near. One
+    // thread preferred, the team is probed every kProbeEvery iterations: a shared core is often shared for
+    // a while only, and the team is what an idle machine runs fastest.
     if (probing_ && seconds_[0] >= 0 && seconds_[1] >= 0)
-      probe_every_ = preferred() == before ? std::min(2 * probe_every_, kProbeEveryMost) : kProbeEvery;
+      probe_every_ =
+          preferred() == before && preferred() == 0 ? std::min(2 * probe_every_, kProbeEveryMost) : kProbeEvery;
     // How busy the team was: a thread descheduled by work this process cannot see runs no CPU time.
     if (running_ > 1 && last_cpu_seconds >= 0 && last_seconds > 0) busy_ = last_cpu_seconds / (running_ * last_seconds);
   }

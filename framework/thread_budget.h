@@ -35,8 +35,9 @@ void SetThreadBudgetForTesting(std::function<int(int parts)> budget);
 // that both stay timed, as long as a team of more threads was kept waiting
 // (it ran less CPU time than its threads x wall time; kBusyTeam): once
 // early, then kProbeEvery iterations on, the
-// interval doubling (up to kProbeEveryMost) while probes confirm the choice
-// and back to kProbeEvery when one overturns it. A probe's iteration times
+// interval doubling (up to kProbeEveryMost) while probes confirm the team
+// and back to kProbeEvery when one overturns it; while one thread is
+// preferred, the team is probed every kProbeEvery iterations. A probe's iteration times
 // its choice afresh; the choice in use keeps a running mean. The choice
 // never changes a result (framework/fixed_parts.h), only how long it takes.
 class IterationThreads {

@@ -107,16 +107,17 @@ int OneThreadShare(double seconds_on_two, double seconds_on_one, double busy = -
 }
 
 TEST(ThreadBudget, IterationThreadsKeepsTheFasterAndProbesTheOther) {
-  // A probe early, then 32 and 64 iterations on (each confirming probe doubles the interval): 3 in 160.
-  EXPECT_EQ(OneThreadShare(0.6, 1.0), 3);        // two threads faster: one thread only to probe
-  EXPECT_EQ(OneThreadShare(1.5, 1.0), 160 - 3);  // a shared core: one thread but to probe
+  // Two threads faster: one thread probed early, then 32 and 64 iterations on (each confirming probe
+  // doubles the interval): 3 in 160. A shared core: one thread, the team probed every 16 iterations.
+  EXPECT_EQ(OneThreadShare(0.6, 1.0), 3);
+  EXPECT_EQ(OneThreadShare(1.5, 1.0), 160 - 9);
 }
 
 // A team that ran its threads' whole time was waiting on nobody: one thread is not probed at all. A team
 // kept waiting (60 % busy) is, and one thread kept where it is faster.
 TEST(ThreadBudget, IterationThreadsProbesOnlyATeamKeptWaiting) {
   EXPECT_EQ(OneThreadShare(0.6, 1.0, 0.95), 0);
-  EXPECT_EQ(OneThreadShare(1.5, 1.0, 0.6), 160 - 3);
+  EXPECT_EQ(OneThreadShare(1.5, 1.0, 0.6), 160 - 9);
 }
 
 // A machine that changes: one thread faster for 100 iterations, then two threads. The first probe after
