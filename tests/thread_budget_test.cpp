@@ -124,13 +124,17 @@ TEST(ThreadBudget, IterationThreadsProbesOnlyATeamKeptWaiting) {
 // the change overturns the choice, and the probes come near again.
 TEST(ThreadBudget, IterationThreadsFollowsAChange) {
   IterationThreads choice(2, [](int) { return 2; });
-  int threads = choice.Next(-1), late_on_two = 0;
+  int threads = choice.Next(-1), soon_on_two = 0, late_on_two = 0;
   for (int k = 0; k < 600; ++k) {
     const bool shared = k < 100;
     const double seconds = threads == 1 ? 1.0 : shared ? 1.5 : 0.6;
     threads = choice.Next(seconds);
+    if (k >= 100 && k < 160) soon_on_two += threads == 2;
     if (k >= 400) late_on_two += threads == 2;
   }
+  // The first probe after the change (within 16 iterations) turns it: a probe averaged into the team's old
+  // mean would take three probes, some 48 iterations.
+  EXPECT_GE(soon_on_two, 40);
   EXPECT_GE(late_on_two, 190);  // settled on two threads, probing one now and then
 }
 
