@@ -15,6 +15,14 @@ inline pybind11::array_t<float> FloatView(const std::vector<pybind11::ssize_t>& 
   return pybind11::array_t<float>(shape, data, owner);
 }
 
+// A float32 array over a vector it takes (no copy: the array's capsule frees the vector with the array).
+template <typename Vector>
+pybind11::array_t<float> OwningArray(Vector&& values, const std::vector<pybind11::ssize_t>& shape) {
+  auto* owned = new Vector(std::move(values));
+  pybind11::capsule owner(owned, [](void* p) { delete static_cast<Vector*>(p); });
+  return FloatView(shape, owned->data(), owner);
+}
+
 inline std::string ShapeString(const std::vector<pybind11::ssize_t>& shape) {
   std::string s = "(";
   for (size_t i = 0; i < shape.size(); ++i) s += (i ? ", " : "") + std::to_string(shape[i]);

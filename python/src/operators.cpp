@@ -18,6 +18,7 @@
 #include "layerlab/framework/units.h"
 #include "layerlab/python/src/arguments.h"
 #include "layerlab/python/src/bindings.h"
+#include "layerlab/python/src/display_args.h"
 #include "layerlab/python/src/numpy_view.h"
 #include "layerlab/retina/retina.h"
 #include "layerlab/retina/retinal_operator.h"
@@ -30,14 +31,6 @@ namespace py = pybind11;
 
 namespace layerlab::python {
 namespace {
-
-// A float32 array over a vector it owns (no copy: the capsule frees the vector with the array).
-template <typename Vector>
-py::array_t<float> OwningArray(Vector&& values, const std::vector<py::ssize_t>& shape) {
-  auto* owned = new Vector(std::move(values));
-  py::capsule owner(owned, [](void* p) { delete static_cast<Vector*>(p); });
-  return FloatView(shape, owned->data(), owner);
-}
 
 // Raises ArgumentError at the first value that is not finite, naming its index in an array of `shape`.
 void RequireFinite(const float* values, const std::vector<py::ssize_t>& shape, const std::string& what) {
@@ -87,12 +80,9 @@ class DisplayOperator {
   DisplayOperator(std::shared_ptr<DisplaySystem> system, const std::optional<LightFieldGeometry>& geometry,
                   const std::string& sampling, bool panel_diffraction, bool lc_response)
       : system_(std::move(system)) {
-    const LightFieldGeometry g = geometry ? *geometry : DisplayLightFieldGeometry(*system_);
-    if (geometry) CheckGeometryArgument(g, "DisplayOperator: geometry");
-    Sampling how = Sampling::kNearest;
-    CheckArgument([&] { how = SamplingFromString(sampling); });
+    const ModelRays rays = ModelRaysArg(*system_, geometry, sampling, "DisplayOperator");
     py::gil_scoped_release release;
-    model_ = std::make_unique<DisplayModel>(*system_, g, how);
+    model_ = std::make_unique<DisplayModel>(*system_, rays.geometry, rays.sampling);
     if (panel_diffraction) diffraction_ = PanelDiffraction(*system_);
     response_ = lc_response && ResponseMatters(*system_);
     jacobian_ = std::make_unique<DisplayJacobian>(*model_, &diffraction_, response_);
@@ -135,19 +125,9 @@ class DisplayOperator {
   // One (rows, cols, 3) array per layer, finite (values outside [0, 1] are allowed: an optimizer's step may
   // leave the range, and the maps are defined there).
   Patterns PatternsOf(const py::sequence& arrays, const std::string& what) const {
-    if (arrays.size() != system_->layers.size())
-      throw py::value_error(what + ": expected " + std::to_string(system_->layers.size()) +
-                            " patterns (one per layer), got " + std::to_string(arrays.size()));
-    Patterns t;
-    for (size_t k = 0; k < system_->layers.size(); ++k) {
-      const VirtualLayer& layer = system_->layers[k];
-      const std::string name = what + ": pattern " + std::to_string(k) + " (" + layer.name + ")";
-      const auto a = FloatArrayOfShape(arrays[k], {layer.rows, layer.cols, 3}, name, "(rows, cols, RGB)");
-      RequireFinite(a.data(), {layer.rows, layer.cols, 3}, name);
-      LayerPattern& p = t.emplace_back(layer.cols, layer.rows, 0.0f);
-      std::copy(a.data(), a.data() + p.rgb.size(), p.rgb.begin());
-    }
-    return t;
+    return PatternArrays(*system_, arrays, what, what + ": ", [](const LayerPattern& p, const std::string& name) {
+      RequireFinite(p.rgb.data(), {p.rows, p.cols, 3}, name);
+    });
   }
 
   std::shared_ptr<DisplaySystem> system_;
@@ -164,13 +144,9 @@ class RetinaOperator {
                  std::optional<double> resolution_deg, const std::optional<LightFieldGeometry>& geometry,
                  const std::string& sampling)
       : system_(std::move(system)), accommodation_(accommodation) {
-    const LightFieldGeometry g = geometry ? *geometry : DisplayLightFieldGeometry(*system_);
-    if (geometry) CheckGeometryArgument(g, "RetinaOperator: geometry");
-    Sampling how = Sampling::kNearest;
-    CheckArgument([&] {
-      how = SamplingFromString(sampling);
-      CheckAccommodationStates(accommodation, "RetinaOperator: accommodation");
-    });
+    const ModelRays rays = ModelRaysArg(*system_, geometry, sampling, "RetinaOperator");
+    const LightFieldGeometry& g = rays.geometry;
+    CheckArgument([&] { CheckAccommodationStates(accommodation, "RetinaOperator: accommodation"); });
     // The field the light field's window spans (one sample per pixel), checked with the resolution before a
     // grid of that resolution is made (`layerlab retina`'s limits: CheckRetinaSampling).
     const RetinaGrid per_pixel = RetinalObjectiveGrid(g, 0.0);
@@ -184,7 +160,7 @@ class RetinaOperator {
     std::vector<std::array<double, 3>> foci;
     for (double d : accommodation) foci.push_back(ChannelAccommodation(system_->eye, d));
     py::gil_scoped_release release;
-    op_ = std::make_unique<RetinalOperator>(g, how, grid, PupilSamples(system_->eye), foci);
+    op_ = std::make_unique<RetinalOperator>(g, rays.sampling, grid, PupilSamples(system_->eye), foci);
   }
 
   py::array_t<float> Forward(const py::handle& light_field) {

@@ -22,6 +22,7 @@
 #include "layerlab/kernels/synthesis.h"
 #include "layerlab/python/src/arguments.h"
 #include "layerlab/python/src/bindings.h"
+#include "layerlab/python/src/display_args.h"
 #include "layerlab/python/src/json_convert.h"
 #include "layerlab/python/src/numpy_view.h"
 #include "layerlab/python/src/option_keywords.h"
@@ -169,41 +170,24 @@ py::list PatternsAsSeen(const DisplaySystem& system, const Patterns& patterns) {
   py::list list;
   for (size_t k = 0; k < patterns.size(); ++k) {
     const LayerPattern& p = patterns[k];
-    const std::vector<float> eye = AsTheEyeSeesIt(system.layers[k], p);
-    py::array_t<float> a({static_cast<py::ssize_t>(p.rows), static_cast<py::ssize_t>(p.cols), py::ssize_t{3}});
-    std::copy(eye.begin(), eye.end(), a.mutable_data());
-    list.append(a);
+    list.append(OwningArray(AsTheEyeSeesIt(system.layers[k], p), {p.rows, p.cols, 3}));
   }
   return list;
 }
 
-// Patterns from arrays, one (rows, cols, 3) per layer (a copy each: a pattern owns its buffer).
+// Patterns from arrays, one (rows, cols, 3) per layer, in [0, 1] as ReadPatterns holds a pattern file to.
 Patterns PatternsOf(const DisplaySystem& system, const py::sequence& arrays) {
-  if (arrays.size() != system.layers.size())
-    throw py::value_error("synthesize: expected " + std::to_string(system.layers.size()) +
-                          " patterns (one per layer), got " + std::to_string(arrays.size()));
-  Patterns patterns;
-  for (size_t k = 0; k < system.layers.size(); ++k) {
-    const VirtualLayer& layer = system.layers[k];
-    auto a = FloatArrayOfShape(arrays[k], {layer.rows, layer.cols, 3},
-                               "pattern " + std::to_string(k) + " (" + layer.name + ")", "(rows, cols, RGB)");
-    LayerPattern& p = patterns.emplace_back(layer.cols, layer.rows, 0.0f);
-    std::copy(a.data(), a.data() + p.rgb.size(), p.rgb.begin());
-    // Transmittance in [0, 1], as ReadPatterns holds a pattern file to.
-    CheckArgument([&] { CheckTransmittance(p, "pattern " + std::to_string(k) + " (" + layer.name + ")"); });
-  }
-  return patterns;
+  return PatternArrays(system, arrays, "synthesize", "", [](const LayerPattern& p, const std::string& name) {
+    CheckArgument([&] { CheckTransmittance(p, name); });
+  });
 }
 
 std::shared_ptr<LightField> Synthesize(const std::shared_ptr<DisplaySystem>& system, const py::sequence& arrays,
                                        std::optional<LightFieldGeometry> geometry, const std::string& sampling) {
   const Patterns patterns = PatternsOf(*system, arrays);
-  const LightFieldGeometry g = geometry ? *geometry : DisplayLightFieldGeometry(*system);
-  if (geometry) CheckGeometryArgument(g, "synthesize: geometry");
-  Sampling how = Sampling::kNearest;
-  CheckArgument([&] { how = SamplingFromString(sampling); });
+  const ModelRays rays = ModelRaysArg(*system, geometry, sampling, "synthesize");
   py::gil_scoped_release release;
-  const DisplayModel model(*system, g, how);
+  const DisplayModel model(*system, rays.geometry, rays.sampling);
   return std::make_shared<LightField>(Synthesize(model, patterns));
 }
 
