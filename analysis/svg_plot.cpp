@@ -183,6 +183,7 @@ std::string DataSvg(const PlotPanel& panel, const PlotArea& a) {
               Escape(l.label) + "</text>\n";
   }
   for (const PlotLine& line : panel.lines) {
+    if (line.points_only) continue;
     std::string points;
     for (size_t k = 0; k < line.x.size(); ++k) {
       if (!std::isfinite(line.y[k])) continue;
@@ -196,7 +197,7 @@ std::string DataSvg(const PlotPanel& panel, const PlotArea& a) {
   for (size_t l = 0; l < panel.lines.size(); ++l) {
     const PlotLine& line = panel.lines[l];
     for (size_t k = 0; k < line.x.size(); ++k)
-      if (std::isfinite(line.y[k]) && CarriesSymbol(k, line.x.size(), l))
+      if (std::isfinite(line.y[k]) && (line.points_only || CarriesSymbol(k, line.x.size(), l)))
         svg += Symbol(l, X(line.x[k]), Y(std::clamp(line.y[k], panel.y_min, panel.y_max)), line.color);
   }
   return svg + labels;
@@ -222,9 +223,10 @@ std::string LegendSvg(const std::vector<PlotPanel>& panels, const std::vector<Le
       continue;
     }
     const PlotLine& line = panels.front().lines[item.line];
-    svg += "<line x1=\"" + Num(x) + "\" y1=\"" + Num(y - 4) + "\" x2=\"" + Num(x + 24) + "\" y2=\"" + Num(y - 4) +
-           "\" stroke=\"" + line.color + "\" stroke-width=\"2\"" + (line.dashed ? " stroke-dasharray=\"6,3\"" : "") +
-           "/>\n";
+    if (!line.points_only)
+      svg += "<line x1=\"" + Num(x) + "\" y1=\"" + Num(y - 4) + "\" x2=\"" + Num(x + 24) + "\" y2=\"" + Num(y - 4) +
+             "\" stroke=\"" + line.color + "\" stroke-width=\"2\"" + (line.dashed ? " stroke-dasharray=\"6,3\"" : "") +
+             "/>\n";
     svg += Symbol(item.line, x + 12, y - 4, line.color) + label;
   }
   return svg;

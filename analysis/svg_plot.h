@@ -12,6 +12,7 @@ struct PlotLine {
   std::string color;  // CSS color
   bool dashed = false;
   std::vector<double> x, y;
+  bool points_only = false;  // a symbol at every point, no line: a scatter
 };
 
 // A place on the x axis, e.g. the target depth: drawn as a grey band with

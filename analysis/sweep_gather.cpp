@@ -10,6 +10,7 @@
 
 #include "layerlab/analysis/svg_plot.h"
 #include "layerlab/framework/atomic_file.h"
+#include "layerlab/framework/csv_cell.h"
 #include "layerlab/framework/staged_output.h"
 
 namespace layerlab {
@@ -18,13 +19,6 @@ namespace {
 namespace fs = std::filesystem;
 
 const char* const kColors[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf"};
-
-std::string Csv(const std::string& cell) {
-  if (cell.find_first_of(",\"\n") == std::string::npos) return cell;
-  std::string q = "\"";
-  for (char c : cell) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
 
 std::string Cell(const nlohmann::json& v) {
   if (v.is_null()) return "";
@@ -149,10 +143,10 @@ SweepTable TableOf(const SweepSpec& spec, const std::vector<Row>& rows, const st
 
 std::string TableCsv(const SweepTable& table) {
   std::ostringstream csv;
-  for (size_t i = 0; i < table.header.size(); ++i) csv << (i ? "," : "") << Csv(table.header[i]);
+  for (size_t i = 0; i < table.header.size(); ++i) csv << (i ? "," : "") << CsvCell(table.header[i]);
   csv << "\n";
   for (const auto& line : table.cells) {
-    for (size_t i = 0; i < line.size(); ++i) csv << (i ? "," : "") << Csv(line[i]);
+    for (size_t i = 0; i < line.size(); ++i) csv << (i ? "," : "") << CsvCell(line[i]);
     csv << "\n";
   }
   return csv.str();

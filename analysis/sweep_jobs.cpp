@@ -53,25 +53,23 @@ std::vector<SweepResult> Results(const RunOutcome& outcome) {
     result.ideal = ideal;
   };
   if (outcome.solved) {
-    add("PSNR (dB)", outcome.report.final_psnr_db);
-    add("solve time (s)", outcome.report.seconds);
+    add(kPsnrColumn, outcome.report.final_psnr_db);
+    add(kSolveTimeColumn, outcome.report.seconds);
     add("iterations", outcome.report.iterations);
   }
   for (const RetinaStateResult& s : outcome.retina)
-    add("retinal mean at " + Number(s.diopters) + " D (cd/m2)", s.display_mean_cd_m2);
+    add(kRetinalMeanColumn + Number(s.diopters) + " D (cd/m2)", s.display_mean_cd_m2);
   // Each metric of run.retina.metrics against natural viewing, the mean over the states (the focal stack's).
   for (const MeanScore& s : MeanScoresOverStates(outcome.retina))
-    add("focal-stack " + s.metric->name + ", mean over the retinal states (" +
-            (s.metric->unit.empty() ? "1" : s.metric->unit) + ")",
-        s.mean);
+    add(FocalStackColumn(s.metric->name, s.metric->unit), s.mean);
   std::string own;  // the swept display's curves, not natural viewing's or a listed scene's
   for (const ContrastCurve& c : outcome.contrast) {
     if (c.display == "natural") continue;
     if (own.empty()) own = c.display;
     if (c.display != own) continue;
     const std::string at = Number(c.target_diopters) + " D, " + Number(c.frequency) + " cpd";
-    add("peak contrast, " + at + " (1)", c.peak.value);
-    add("peak accommodation, " + at + " (D)", c.peak.at_parabola, c.target_diopters);
+    add(kPeakContrastColumn + at + " (1)", c.peak.value);
+    add(kPeakAccommodationColumn + at + " (D)", c.peak.at_parabola, c.target_diopters);
   }
   return r;
 }
@@ -108,17 +106,18 @@ void WriteSceneIfChanged(const std::string& out, const SweepJob& job, size_t* wr
 
 }  // namespace
 
+std::string FocalStackColumn(const std::string& metric, const std::string& unit) {
+  return "focal-stack " + metric + ", mean over the retinal states (" + (unit.empty() ? "1" : unit) + ")";
+}
+
 std::string JobFolder(const std::string& out, const SweepJob& job) {
   return (fs::path(out) / "jobs" / job.id).string();
 }
 
-std::vector<SweepJob> ExpandSweep(const SweepSpec& spec, const std::string& out) {
-  const size_t n = spec.job_count();
-  if (n == 0 || n > kMaxSweepPoints)
-    throw Error(Location{spec.file, "/parameters"},
-                "the grid has " + std::to_string(n) + " points; a sweep has 1 to " + std::to_string(kMaxSweepPoints));
-  const size_t digits = std::max<size_t>(3, std::to_string(n - 1).size());
-  // The job's run section: only the declared work, with the base scene's settings for it.
+namespace {
+
+// The base scene with only the declared work in its run section, with the base scene's settings for it.
+ordered_json BaseForWork(const SweepSpec& spec) {
   ordered_json base = spec.base;
   ordered_json run = ordered_json::object();
   for (const char* step : {"retina", "contrast"}) {
@@ -135,40 +134,65 @@ std::vector<SweepJob> ExpandSweep(const SweepSpec& spec, const std::string& out)
     base["solve"].erase("target");
     base["solve"].erase("target_scene");
   }
+  return base;
+}
 
+SweepJob MakeJob(const SweepSpec& spec, const ordered_json& base, const std::string& out, std::string id,
+                 const std::vector<SceneValue>& values, const std::string& description) {
+  SweepJob job;
+  job.id = std::move(id);
+  job.scene = base;
+  for (const SceneValue& v : values) {
+    const ordered_json::json_pointer at(v.pointer);
+    if (!job.scene.contains(at))
+      throw Error(v.where, "\"" + v.pointer + "\" is in a part of the scene the work does not run");
+    job.scene[at] = v.value;
+  }
+  job.scene["description"] = description;
+  RebaseRelativePaths(job.scene, spec.scene, (fs::path(JobFolder(out, job)) / "scene.json").string());
+  job.scene_text = job.scene.dump(2) + "\n";
+  return job;
+}
+
+}  // namespace
+
+SweepJob MakeSweepJob(const SweepSpec& spec, const std::string& out, std::string id,
+                      const std::vector<SceneValue>& values, const std::string& description) {
+  return MakeJob(spec, BaseForWork(spec), out, std::move(id), values, description);
+}
+
+std::vector<SweepJob> ExpandSweep(const SweepSpec& spec, const std::string& out) {
+  const size_t n = spec.job_count();
+  if (n == 0 || n > kMaxSweepPoints)
+    throw Error(Location{spec.file, "/parameters"},
+                "the grid has " + std::to_string(n) + " points; a sweep has 1 to " + std::to_string(kMaxSweepPoints));
+  const size_t digits = std::max<size_t>(3, std::to_string(n - 1).size());
+  const ordered_json base = BaseForWork(spec);
   std::vector<SweepJob> jobs(n);
   for (size_t index = 0; index < n; ++index) {
-    SweepJob& job = jobs[index];
-    job.index = index;
-    job.id = std::to_string(index);
-    job.id.insert(0, static_cast<size_t>(digits) - std::min<size_t>(job.id.size(), digits), '0');
-    job.choice.resize(spec.parameters.size());
+    std::string id = std::to_string(index);
+    id.insert(0, static_cast<size_t>(digits) - std::min<size_t>(id.size(), digits), '0');
+    std::vector<size_t> choice(spec.parameters.size());
     size_t rest = index;
     for (size_t k = spec.parameters.size(); k-- > 0;) {
-      job.choice[k] = rest % spec.parameters[k].values.size();
+      choice[k] = rest % spec.parameters[k].values.size();
       rest /= spec.parameters[k].values.size();
     }
-    job.scene = base;
+    std::vector<SceneValue> values;
+    std::string labels;
     for (size_t k = 0; k < spec.parameters.size(); ++k) {
       const SweepParameter& p = spec.parameters[k];
-      const ordered_json& value = p.values[job.choice[k]];
-      for (size_t i = 0; i < p.pointers.size(); ++i) {
-        const ordered_json::json_pointer at(p.pointers[i]);
-        if (!job.scene.contains(at))
-          throw Error(Location{spec.file, "/parameters/" + std::to_string(k)},
-                      "\"" + p.pointers[i] + "\" is in a part of the scene the sweep's work does not run");
-        job.scene[at] = p.pointers.size() > 1 ? value[i] : value;
-      }
+      const ordered_json& value = p.values[choice[k]];
+      for (size_t i = 0; i < p.pointers.size(); ++i)
+        values.push_back({p.pointers[i], p.pointers.size() > 1 ? value[i] : value,
+                          Location{spec.file, "/parameters/" + std::to_string(k)}});
+      labels += (k ? ", " : "") + p.name + " = " + p.labels[choice[k]];
     }
-    job.scene["description"] =
-        "Job " + job.id + " of the sweep " + spec.file + ": the scene " + spec.scene + " with " + [&] {
-          std::string s;
-          for (size_t k = 0; k < spec.parameters.size(); ++k)
-            s += (k ? ", " : "") + spec.parameters[k].name + " = " + spec.parameters[k].labels[job.choice[k]];
-          return s;
-        }();
-    RebaseRelativePaths(job.scene, spec.scene, (fs::path(JobFolder(out, job)) / "scene.json").string());
-    job.scene_text = job.scene.dump(2) + "\n";
+    const std::string description =
+        "Job " + id + " of the sweep " + spec.file + ": the scene " + spec.scene + " with " + labels;
+    jobs[index] = MakeJob(spec, base, out, std::move(id), values, description);
+    jobs[index].index = index;
+    jobs[index].choice = std::move(choice);
   }
   return jobs;
 }

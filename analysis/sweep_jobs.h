@@ -45,6 +45,7 @@
 #include <nlohmann/json.hpp>
 
 #include "layerlab/analysis/sweep_spec.h"
+#include "layerlab/framework/error.h"
 #include "layerlab/framework/file_lock.h"
 
 namespace layerlab {
@@ -60,6 +61,15 @@ struct SweepJob {
   std::string scene_text;        // as written to scene.json
 };
 
+// The columns of a job's row that other code reads back (design/design_metrics.h).
+inline constexpr const char* kPsnrColumn = "PSNR (dB)";
+inline constexpr const char* kSolveTimeColumn = "solve time (s)";
+inline constexpr const char* kRetinalMeanColumn = "retinal mean at ";            // "<D> D (cd/m2)" follows
+inline constexpr const char* kPeakContrastColumn = "peak contrast, ";            // "<D> D, <f> cpd (1)" follows
+inline constexpr const char* kPeakAccommodationColumn = "peak accommodation, ";  // "<D> D, <f> cpd (D)" follows
+// "focal-stack ssim, mean over the retinal states (1)"
+std::string FocalStackColumn(const std::string& metric, const std::string& unit);
+
 struct SweepResult {
   std::string column;  // with its unit: "PSNR (dB)"
   nlohmann::json value;
@@ -73,6 +83,21 @@ struct SweepJobState {
   double seconds = 0;
   std::vector<SweepResult> results;
 };
+
+// A scene value a job writes at a JSON pointer; `where` names what asked for it, for the error
+// when the pointer is in a part of the scene the work leaves out.
+struct SceneValue {
+  std::string pointer;
+  nlohmann::ordered_json value;
+  Location where;
+};
+
+// One job: the base scene with only the declared work in its run section,
+// the values written in, its description, and its relative paths rebased to
+// DIR/jobs/<id>/. What ExpandSweep makes for each point, and `optimize` for
+// each design it evaluates (design/design_evaluator.h).
+SweepJob MakeSweepJob(const SweepSpec& spec, const std::string& out, std::string id,
+                      const std::vector<SceneValue>& values, const std::string& description);
 
 // Every point of the grid, in order (the last parameter fastest), in memory.
 std::vector<SweepJob> ExpandSweep(const SweepSpec& spec, const std::string& out);

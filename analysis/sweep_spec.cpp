@@ -2,13 +2,13 @@
 
 #include <cstdlib>
 #include <filesystem>
-#include <regex>
 #include <set>
 
 #include "layerlab/framework/checked_count.h"
 #include "layerlab/framework/error.h"
 #include "layerlab/framework/json_file.h"
 #include "layerlab/framework/params.h"
+#include "layerlab/framework/units.h"
 #include "layerlab/systems/scene.h"
 #include "layerlab/systems/scene_document.h"
 
@@ -21,17 +21,6 @@ using nlohmann::ordered_json;
 ordered_json InOrder(const nlohmann::json& value) { return ordered_json::parse(value.dump()); }
 
 std::string LabelOf(const ordered_json& value) { return value.is_string() ? value.get<std::string>() : value.dump(); }
-
-// "1.2 D" -> (1.2, "D"); "0.5" -> (0.5, ""); anything else: nothing.
-std::optional<std::pair<double, std::string>> NumberWithUnit(const std::string& label) {
-  // std::regex recurses per character: a label of 200000 digits overflowed the stack. No number
-  // with a unit is this long.
-  if (label.size() > 64) return std::nullopt;
-  static const std::regex form(R"(\s*([-+]?[0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?)\s*([^\s0-9][^\s]*)?\s*)");
-  std::smatch m;
-  if (!std::regex_match(label, m, form)) return std::nullopt;
-  return std::make_pair(std::strtod(m[1].str().c_str(), nullptr), m[2].str());
-}
 
 void ReadLabels(SweepParameter* p) {
   std::vector<double> numbers;

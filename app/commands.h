@@ -14,6 +14,8 @@ void AddRetinaCommand(CLI::App& app);   // retina SCENE.json --patterns DIR --ou
 void AddEyeboxCommand(CLI::App& app);   // eyebox SCENE.json --patterns DIR --target-scene T.json --out DIR
 void AddRunCommand(CLI::App& app);      // run SCENE.json --out DIR: the main job and its report
 void AddSweepCommand(CLI::App& app);    // sweep SWEEP.json --out DIR: a grid of jobs, one table
+// optimize DESIGN.json --out DIR: the display's design optimized by NLopt, each evaluation a run
+void AddOptimizeCommand(CLI::App& app);
 // tolerance SCENE.json --out DIR: Monte Carlo over assembly tolerances
 void AddToleranceCommand(CLI::App& app);
 void AddPsfCommand(CLI::App& app);  // psf SCENE.json --out DIR: the eye's PSF and OTF by its pupil function

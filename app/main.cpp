@@ -29,6 +29,7 @@ void AddCommands(CLI::App& app) {
   AddInfoCommand(app);
   AddRunCommand(app);
   AddSweepCommand(app);
+  AddOptimizeCommand(app);
   AddSolveCommand(app);
   AddContrastCommand(app);
   AddRetinaCommand(app);

@@ -40,6 +40,7 @@ constexpr const char* kStagedCommands[] = {"run",
                                            "calibration-patterns",
                                            "camera-patterns",
                                            "sweep",
+                                           "optimize",
                                            "tolerance",
                                            "psf"};
 

@@ -4,8 +4,10 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <numbers>
 #include <optional>
+#include <regex>
 
 #include "layerlab/framework/error.h"
 
@@ -146,6 +148,16 @@ Depth ParseDepth(std::string_view text) {
   }
   throw Error("\"" + std::string(text) + "\" is not a depth; expected diopters (D) or a distance in " +
               AcceptedUnits(Dimension::kLength));
+}
+
+std::optional<std::pair<double, std::string>> NumberWithUnit(const std::string& text) {
+  // std::regex recurses per character: a label of 200000 digits overflowed the stack. No number
+  // with a unit is this long.
+  if (text.size() > 64) return std::nullopt;
+  static const std::regex form(R"(\s*([-+]?[0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?)\s*([^\s0-9][^\s]*)?\s*)");
+  std::smatch m;
+  if (!std::regex_match(text, m, form)) return std::nullopt;
+  return std::make_pair(std::strtod(m[1].str().c_str(), nullptr), m[2].str());
 }
 
 std::string FormatGeneral(double value) {

@@ -3,8 +3,10 @@
 #pragma once
 
 #include <numbers>
+#include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 
 namespace layerlab {
 
@@ -43,6 +45,11 @@ struct Depth {
   double diopters = 0.0;
 };
 Depth ParseDepth(std::string_view text);
+
+// A label as a number and the unit written after it, without converting:
+// "1.2 D" -> (1.2, "D"), "0.5" -> (0.5, ""); anything else (or more than 64
+// characters) -> nothing.
+std::optional<std::pair<double, std::string>> NumberWithUnit(const std::string& text);
 
 // Formats a value in a chosen unit with fixed decimals: "72.81 mm".
 std::string FormatFixed(double value, int decimals);

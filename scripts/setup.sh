@@ -22,6 +22,7 @@ packages+=(python3-torch)  # layerlab.torch, the forward model's autograd Functi
 packages+=(python3-venv python3-pip python3-setuptools python3-wheel python3-build)
 packages+=(python3-mypy)  # python.stubs type-checks a use of the API against the shipped stubs
 packages+=(libopenmpi-dev openmpi-bin)  # layerlab sweep --mpi and its tests (docs/sweeps.md)
+packages+=(libnlopt-dev)  # layerlab optimize (docs/optimize.md)
 
 missing=()
 for p in "${packages[@]}"; do

@@ -1,0 +1,131 @@
+// optimize: a display design problem, `layerlab optimize DESIGN.json --out DIR`
+// (docs/optimize.md). A base scene, the scene values that vary (by JSON pointer,
+// with bounds in a unit), constraints, and the objective the optimizer
+// minimizes: metrics of each evaluated design, each a `layerlab run` of the
+// scene with the values written in (the sweep's jobs, analysis/sweep_jobs.h).
+//
+//   { "format": "layerlab-design/1", "scene": "../small/hybrid_small.json",
+//     "variables": [ { "name": "rear", "pointer": "/elements/4/virtual_depth", "min": "0.2 D", "max": "1.2 D" } ],
+//     "objective": "psnr" }
+//
+// | key | type | default | meaning |
+// | --- | --- | --- | --- |
+// | format | string | required | `"layerlab-design/1"` |
+// | name | string | the file's stem | title of the report and plots |
+// | description | string | `""` | |
+// | scene | path | required | the base scene (relative to this file); never modified |
+// | variables | array of variables | required | what the optimizer varies |
+// | constraints | array of constraints | `[]` | what a design must satisfy |
+// | objective | metric name or object | required | `"psnr"`, or `{ "terms": [ { "metric": "psnr", "weight": 1 }, ... ] }` |
+// | targets | array of paths | the scene's own | target scenes (`/solve/target_scene`); each design is evaluated on every one and its metrics averaged |
+// | iterations | integer | the scene's | outer iterations of each solve |
+// | threads | integer | 0 (all cores) | worker threads of each evaluation |
+// | optimizer | object | below | the algorithm and the budget |
+//
+// design.variable
+//
+// | key | type | default | meaning |
+// | --- | --- | --- | --- |
+// | name | string | required | the history's column (unique) |
+// | pointer | JSON pointer | required unless `pointers` | the scene value the variable sets; it must exist in the base scene |
+// | pointers | array of `{pointer, scale, offset}` | none | values set together, each `scale x + offset` (a spacing that moves two layers) |
+// | min, max | quantity | required | the bounds, in the variable's unit (`"0.2 D"`, `"60 mm"`, or a plain number) |
+// | start | quantity | the scene's value when it is in the unit and the bounds, else the middle | where the local search starts |
+// | tolerance | quantity | (max - min) / 1000 | the step below which the search stops |
+//
+// design.constraint: either linear in the variables, or on a metric of the evaluated design
+//
+// | key | type | default | meaning |
+// | --- | --- | --- | --- |
+// | name | string | required | named in messages and the history |
+// | terms | object `{variable: coefficient}` | required unless `metric` | the constraint is on sum(coefficient x variable), in the variables' common unit |
+// | metric | metric name | none | the constraint is on that metric of the design (docs/optimize.md lists them) |
+// | min, max | quantity | at least one | the bound(s), in the unit of the terms or the metric |
+//
+// design.objective.term: `{ "metric": NAME, "weight": w }`, weight > 0 (default 1).
+// The optimizer minimizes sum(w x v) over the terms, v counted negative for a
+// metric where higher is better; a single term is reported as its metric.
+//
+// design.optimizer
+//
+// | key | type | default | meaning |
+// | --- | --- | --- | --- |
+// | local | `"cobyla"`, `"bobyqa"`, `"nelder-mead"` | `"cobyla"` | NLopt's derivative-free local search; constraints go to COBYLA directly and to the others through an augmented Lagrangian |
+// | global | `"none"`, `"mlsl"`, `"crs"` | `"none"` | a global stage for problems with local optima: multistart from a low-discrepancy sequence (MLSL) or controlled random search (CRS2) |
+// | evaluations | integer | 60 | the budget in evaluations (each a solve per target) |
+// | seconds | number | none | a budget in wall time |
+// | seed | integer | 1 | of the global stage's random numbers (a resumed run replays them) |
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "layerlab/design/design_metrics.h"
+
+namespace layerlab {
+
+inline constexpr const char* kDesignFormat = "layerlab-design/1";
+
+struct DesignWrite {  // one scene value a variable sets: scale x + offset
+  std::string pointer;
+  double scale = 1, offset = 0;
+};
+
+struct DesignVariable {
+  std::string name;
+  std::string unit;  // as written ("D", "mm"); empty for a plain number
+  std::vector<DesignWrite> writes;
+  double min = 0, max = 0, start = 0, tolerance = 0;
+  std::string column() const;  // "name (unit)"
+  // The scene value written for x: "1.25 D", or a number when there is no unit.
+  nlohmann::ordered_json SceneValue(double x) const;
+};
+
+struct DesignConstraint {
+  std::string name;
+  std::string unit;
+  std::vector<double> coefficients;  // per variable; empty for a metric constraint
+  std::optional<size_t> metric;      // index into DesignSpec::metrics
+  std::optional<double> min, max;
+  // What the constraint bounds, for messages: "front - rear (D)", "brightness (cd/m2)".
+  std::string what;
+};
+
+struct DesignTerm {
+  size_t metric = 0;  // index into DesignSpec::metrics
+  double weight = 1;
+};
+
+struct DesignOptimizer {
+  std::string local = "cobyla", global = "none";
+  int evaluations = 60;
+  std::optional<double> seconds;
+  unsigned seed = 1;
+};
+
+struct DesignSpec {
+  std::string file, name, description;
+  std::string scene;  // resolved against the design file's folder
+  std::vector<DesignVariable> variables;
+  std::vector<DesignConstraint> constraints;
+  std::vector<DesignMetric> metrics;  // every metric the objective and constraints read, once each
+  std::vector<DesignTerm> objective;
+  std::vector<std::string> targets;  // absolute target scenes; empty: the scene's own
+  std::optional<int> iterations;
+  int threads = 0;
+  DesignOptimizer optimizer;
+  nlohmann::ordered_json base;                                          // the base scene's document, in file order
+  bool work_solve = false, work_retina = false, work_contrast = false;  // what the metrics need
+
+  // The objective's name with its unit: "PSNR (dB)" for one term, "weighted sum (1)" for several.
+  std::string objective_column() const;
+};
+
+// Reads and checks the design file and its base scene; throws layerlab::Error
+// naming the file and the JSON pointer.
+DesignSpec ReadDesignSpec(const std::string& path);
+
+}  // namespace layerlab

@@ -1,0 +1,210 @@
+// layerlab optimize (design/): the design file's checks, the constraints'
+// feasibility, the metrics read from a run's row, and the search on problems
+// whose optimum is known: one layer and a grating on one plane (its depth),
+// and two layers against a dense grid of the same evaluations.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+
+#include "layerlab/design/design_evaluator.h"
+#include "layerlab/design/design_search.h"
+#include "test_util.h"
+
+namespace layerlab {
+namespace {
+
+namespace fs = std::filesystem;
+using layerlab::testing::ErrorOf;
+using layerlab::testing::ExamplePath;
+using layerlab::testing::ReadExample;
+
+std::string Scratch(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("layerlab_design_test_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir.string();
+}
+
+// A design file beside the example scenes (so that "scene" resolves), with `edit` applied.
+std::string DesignFile(const std::string& name, const std::function<void(nlohmann::json&)>& edit) {
+  nlohmann::json d = ReadExample("optimize/two_layer_depths.json");
+  edit(d);
+  d["scene"] = ExamplePath("optimize/two_layer_small.json");
+  const std::string path = Scratch(name) + "/design.json";
+  std::ofstream(path) << d.dump(2);
+  return path;
+}
+
+std::string DesignError(const std::function<void(nlohmann::json&)>& edit) {
+  return ErrorOf([&] { CheckDesignFeasible(ReadDesignSpec(DesignFile("error", edit))); });
+}
+
+TEST(DesignSpec, ReadsTheExample) {
+  const DesignSpec spec = ReadDesignSpec(ExamplePath("optimize/two_layer_depths.json"));
+  ASSERT_EQ(spec.variables.size(), 2u);
+  EXPECT_EQ(spec.variables[0].unit, "D");
+  EXPECT_DOUBLE_EQ(spec.variables[0].start, 1.6);  // the scene's value, in the bounds
+  EXPECT_DOUBLE_EQ(spec.variables[1].start, 0.8);
+  EXPECT_EQ(spec.variables[0].SceneValue(1.25).get<std::string>(), "1.25 D");
+  ASSERT_EQ(spec.constraints.size(), 1u);
+  EXPECT_EQ(spec.constraints[0].what, "front - rear (D)");
+  EXPECT_EQ(spec.objective_column(), "psnr (dB)");
+  EXPECT_TRUE(spec.work_solve);
+  EXPECT_FALSE(spec.work_contrast);
+}
+
+TEST(DesignSpec, RefusesWithTheFileAndPointer) {
+  EXPECT_NE(DesignError([](auto& d) {
+              d["variables"][0]["pointer"] = "/elements/2/virtual_dept";
+            }).find("/variables/0/pointer: \"/elements/2/virtual_dept\" is not in the scene"),
+            std::string::npos);
+  EXPECT_NE(DesignError([](auto& d) {
+              d["variables"][0]["max"] = "400 mm";
+            }).find("/variables/0/max: is in \"mm\", but \"min\" is in \"D\""),
+            std::string::npos);
+  EXPECT_NE(DesignError([](auto& d) { d["variables"][0]["min"] = "0.6 Dpt"; }).find("unknown unit \"Dpt\""),
+            std::string::npos);
+  EXPECT_NE(DesignError([](auto& d) { d["variables"][1]["max"] = "0.1 D"; }).find("/variables/1/max: must be above"),
+            std::string::npos);
+  EXPECT_NE(DesignError([](auto& d) { d["objective"] = "psnrr"; }).find("/objective: unknown metric \"psnrr\""),
+            std::string::npos);
+  EXPECT_NE(DesignError([](auto& d) {
+              d["constraints"][0]["terms"] = {{"middle", 1}};
+            }).find("/constraints/0/terms/middle: \"middle\" is not a variable"),
+            std::string::npos);
+  EXPECT_NE(DesignError([](auto& d) { d["variables"][0]["strat"] = "1 D"; }).find("strat"), std::string::npos);
+}
+
+TEST(DesignFeasibility, AConstraintNoDesignMeetsIsNamedWithItsRange) {
+  // front - rear reaches at most 2.4 - 0.2 = 2.2 D within the bounds.
+  const std::string e = DesignError([](auto& d) { d["constraints"][0]["min"] = "2.5 D"; });
+  EXPECT_NE(e.find("/constraints/0: no design meets \"front before rear\": front - rear (D) must be at least 2.5 D, "
+                   "but within the variables' bounds it is at most 2.2 D"),
+            std::string::npos)
+      << e;
+  EXPECT_EQ(DesignError([](auto& d) { d["constraints"][0]["min"] = "2.2 D"; }), "no error");  // the corner meets it
+}
+
+TEST(DesignFeasibility, ConstraintsThatExcludeEveryDesignTogetherAreNamed) {
+  // Each alone is met somewhere; together they are not (the third is met where they come closest).
+  const std::string tight = DesignError([](auto& d) {
+    d["constraints"][0]["min"] = "1.5 D";
+    d["constraints"].push_back({{"name", "short track"}, {"terms", {{"front", 1}, {"rear", 1}}}, {"max", "1.6 D"}});
+    d["constraints"].push_back({{"name", "unrelated"}, {"terms", {{"rear", 1}}}, {"max", "1.5 D"}});
+  });
+  EXPECT_NE(
+      tight.find("/constraints/0: no design meets the constraints \"front before rear\", \"short track\" together"),
+      std::string::npos)
+      << tight;
+  EXPECT_EQ(tight.find("unrelated"), std::string::npos) << tight;
+  // Both miss by t: front - rear >= 1.5 - t, front + rear <= 1.6 + t at rear = 0.2 give
+  // 1.7 - t <= front <= 1.4 + t, so t = 0.15.
+  EXPECT_NE(tight.find("still misses each by 0.15"), std::string::npos) << tight;
+}
+
+TEST(DesignMetrics, AreReadFromARunsRow) {
+  std::vector<SweepResult> row(5);
+  row[0] = {kPsnrColumn, 31.5, std::nullopt};
+  row[1] = {std::string(kPeakAccommodationColumn) + "0.7 D, 2 cpd (D)", 0.8, 0.7};
+  row[2] = {std::string(kPeakAccommodationColumn) + "1.9 D, 2 cpd (D)", 1.6, 1.9};
+  row[3] = {std::string(kRetinalMeanColumn) + "0.4 D (cd/m2)", 20.0, std::nullopt};
+  row[4] = {std::string(kRetinalMeanColumn) + "2.2 D (cd/m2)", 30.0, std::nullopt};
+  auto value = [&](const std::string& name) {
+    std::string error;
+    const auto m = FindDesignMetric(name, &error);
+    EXPECT_TRUE(m) << error;
+    return MetricValue(*m, row);
+  };
+  EXPECT_DOUBLE_EQ(*value("psnr"), 31.5);
+  EXPECT_NEAR(*value("accommodation_error"), (0.1 + 0.3) / 2, 1e-15);
+  EXPECT_DOUBLE_EQ(*value("brightness"), 25.0);
+  EXPECT_FALSE(value("peak_contrast"));  // not in the row: the evaluation fails naming it
+  std::string error;
+  EXPECT_FALSE(FindDesignMetric("focal_stack_ssm", &error));
+  EXPECT_NE(error.find("did you mean \"focal_stack_ssim\""), std::string::npos) << error;
+}
+
+#if LAYERLAB_WITH_EMBREE
+
+TEST(DesignSearch, OneLayerFindsTheTargetsPlane) {
+  // A grating on a plane at 1.3 D is reproduced exactly, up to its rendering, by one layer at 1.3 D only.
+  const DesignSpec spec = ReadDesignSpec(ExamplePath("optimize/one_layer_depth.json"));
+  DesignEvaluator evaluator(spec, Scratch("one_layer"));
+  const DesignSearch search = SearchDesign(spec, &evaluator);
+  const DesignEvaluation* best = BestFeasible(spec, evaluator);
+  ASSERT_TRUE(best) << search.stopped;
+  EXPECT_NEAR(best->x[0], 1.3, 0.01) << search.stopped;
+  EXPECT_LE(evaluator.ran(), 25u);
+}
+
+TEST(DesignSearch, TheGlobalStagesFindTheOneLayerOptimum) {
+  for (const char* global : {"mlsl", "crs"}) {
+    DesignSpec spec = ReadDesignSpec(ExamplePath("optimize/one_layer_depth.json"));
+    spec.optimizer.global = global;
+    spec.optimizer.evaluations = 24;
+    DesignEvaluator evaluator(spec, Scratch(std::string("global_") + global));
+    const DesignSearch search = SearchDesign(spec, &evaluator);
+    const DesignEvaluation* best = BestFeasible(spec, evaluator);
+    ASSERT_TRUE(best) << global;
+    EXPECT_NEAR(best->x[0], 1.3, 0.02) << global << ": " << search.stopped;
+    EXPECT_LE(evaluator.ran(), 24u) << global;
+  }
+}
+
+TEST(DesignSearch, TwoLayersMatchADenseGrid) {
+  DesignSpec spec = ReadDesignSpec(ExamplePath("optimize/two_layer_depths.json"));
+  // The local search as the example runs it, against every feasible point of a 0.3 D grid.
+  spec.optimizer.evaluations = 40;
+  DesignEvaluator grid(spec, Scratch("grid"));
+  double grid_best = -INFINITY;
+  std::vector<double> at;
+  for (double front = 0.6; front <= 2.4 + 1e-9; front += 0.3)
+    for (double rear = 0.2; rear <= 1.6 + 1e-9; rear += 0.3) {
+      if (front - rear < 0.3) continue;
+      const DesignEvaluation& e = grid.Evaluate({front, rear});
+      ASSERT_FALSE(e.failed) << e.error;
+      if (e.metrics[0] > grid_best) grid_best = e.metrics[0], at = e.x;
+    }
+  DesignEvaluator evaluator(spec, Scratch("two_layers"));
+  const DesignSearch search = SearchDesign(spec, &evaluator);
+  const DesignEvaluation* best = BestFeasible(spec, evaluator);
+  ASSERT_TRUE(best) << search.stopped;
+  EXPECT_GE(best->metrics[0], grid_best - 0.05)
+      << "grid best " << grid_best << " dB at (" << at[0] << ", " << at[1] << ") D; found (" << best->x[0] << ", "
+      << best->x[1] << ") D after " << evaluator.ran() << " evaluations: " << search.stopped;
+  EXPECT_GE(best->x[0] - best->x[1], 0.3 - 1e-9);
+  EXPECT_LE(evaluator.ran(), 40u);
+  for (const DesignEvaluation* e : evaluator.evaluations()) EXPECT_FALSE(e->failed) << e->error;
+}
+
+TEST(DesignSearch, AResumedSearchRepeatsNoEvaluation) {
+  DesignSpec spec = ReadDesignSpec(ExamplePath("optimize/one_layer_depth.json"));
+  const std::string out = Scratch("resume");
+  spec.optimizer.evaluations = 5;  // stops part way, as a kill would
+  {
+    DesignEvaluator first(spec, out);
+    SearchDesign(spec, &first);
+    EXPECT_EQ(first.ran(), 5u);
+  }
+  spec.optimizer.evaluations = 25;
+  DesignEvaluator resumed(spec, out);
+  EXPECT_EQ(resumed.Resume(), 5u);
+  SearchDesign(spec, &resumed);
+  EXPECT_EQ(resumed.replayed(), 5u);
+  DesignEvaluator whole(spec, Scratch("whole"));
+  SearchDesign(spec, &whole);
+  // The same designs in the same order, the first five from the log.
+  const auto a = resumed.evaluations(), b = whole.evaluations();
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i]->x, b[i]->x) << i;
+  EXPECT_EQ(resumed.ran() + 5, whole.ran());
+}
+
+#endif
+
+}  // namespace
+}  // namespace layerlab
