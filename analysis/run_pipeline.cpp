@@ -94,6 +94,7 @@ RunOutcome RunPipeline(const RunRequest& request) {
   outcome.written = std::move(switched.written);
   outcome.removed = std::move(switched.removed);
   outcome.solved = s.ran_solve;
+  outcome.warm_started = s.warm_started;
   outcome.report = s.solved.report;
   outcome.index_html = (fs::absolute(request.out) / "index.html").lexically_normal().string();
   return outcome;

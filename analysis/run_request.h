@@ -22,6 +22,10 @@ struct RunRequest {
   // A store of target renders by key that other runs read too (a sweep's DIR/targets:
   // analysis/target_cache.h), or "": the run keeps its render in OUT/target only.
   std::string shared_renders;
+  // A solve folder (an earlier run's OUT/solve) whose patterns start the main
+  // solve when the display's layers have their shapes; else the solve starts
+  // cold and RunOutcome::warm_started says so. "": cold.
+  std::string warm_start;
 };
 
 struct RunOutcome {
@@ -30,6 +34,7 @@ struct RunOutcome {
   std::vector<std::string> recovered;  // what was cleared of interrupted or killed runs first
   std::vector<std::string> warnings;
   bool solved = false;
+  bool warm_started = false;  // the main solve began from RunRequest::warm_start's patterns
   SolverReport report;        // of the main solve, when solved
   std::string compare_table;  // empty without a comparison
   std::string index_html;     // the report's absolute path

@@ -2,6 +2,8 @@
 // written into OUT/solve.
 #include "layerlab/analysis/run_steps.h"
 #include "layerlab/framework/error.h"
+#include "layerlab/framework/progress.h"
+#include "layerlab/solvers/solution_writer.h"
 
 namespace layerlab {
 namespace {
@@ -13,6 +15,18 @@ std::string RunSolve(RunState& s) {
   job.config = in.solve;
   job.progress_label = "solve " + in.solve.solver;
   job.progress_brief = true;
+  Patterns warm;
+  if (!s.request.warm_start.empty())
+    job.before_solve = [&](const DisplayModel& model, SolverOptions* options) {
+      try {
+        warm = ReadPatterns(model, s.request.warm_start);
+      } catch (const Error& e) {
+        Note("solve: starting cold, not from " + s.request.warm_start + ": " + e.what());
+        return;
+      }
+      options->initial_patterns = &warm;
+      s.warm_started = true;
+    };
   s.solved = RunSolveJob(job, s.target->light_field, s.target.get());
   const SolverReport& report = s.solved.report;
   for (const std::string& w : TargetGeometryWarnings(in.system, s.target->light_field.geometry))

@@ -61,6 +61,7 @@ struct RunState {
   std::unique_ptr<Target> target;  // the target step's
   SolvedJob solved;                // the solve step's: model, patterns, report
   bool ran_solve = false;
+  bool warm_started = false;  // the solve began from RunRequest::warm_start
 };
 
 struct RunSection {

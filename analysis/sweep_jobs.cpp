@@ -299,7 +299,7 @@ SweepJobState ReadJobState(const std::string& out, const SweepJob& job) {
 }
 
 SweepJobState RunSweepJob(const SweepSpec& spec, const SweepJob& job, const std::string& out, const std::string& runner,
-                          bool* ran) {
+                          bool* ran, const std::string& warm_start) {
   if (ran) *ran = false;
   const fs::path folder = JobFolder(out, job);
   std::error_code ec;
@@ -323,6 +323,7 @@ SweepJobState RunSweepJob(const SweepSpec& spec, const SweepJob& job, const std:
   request.iterations = spec.iterations;
   request.threads = spec.threads;
   request.shared_renders = (fs::path(out) / "targets").string();
+  request.warm_start = warm_start;
   const auto start = std::chrono::steady_clock::now();
   auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   state = SweepJobState{};
@@ -330,6 +331,7 @@ SweepJobState RunSweepJob(const SweepSpec& spec, const SweepJob& job, const std:
   try {
     const RunOutcome outcome = RunPipeline(request);
     state.results = Results(outcome);
+    state.warm_started = outcome.warm_started;
     state.seconds = seconds();
     WriteState(JobStatePath(out, job), job, "complete", "", runner, state.seconds, outcome.written, state.results);
     state.complete = true;

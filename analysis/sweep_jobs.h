@@ -81,6 +81,7 @@ struct SweepJobState {
   bool busy = false;                      // another process is running it (error says which)
   std::string error, runner;
   double seconds = 0;
+  bool warm_started = false;  // in this process: its solve began from RunSweepJob's warm_start
   std::vector<SweepResult> results;
 };
 
@@ -121,9 +122,10 @@ SweepJobState ReadJobState(const std::string& out, const SweepJob& job);
 // scene if needed, runs the pipeline into jobs/<id>/out and records the
 // outcome in job.json. A failure is recorded and returned, not thrown. A job
 // that another process is running is left to it (busy, not run).
-// `ran` (optional) says whether it ran.
+// `ran` (optional) says whether it ran. `warm_start`: RunRequest::warm_start
+// (an earlier job's out/solve), and the state's `warm_started` says whether it took.
 SweepJobState RunSweepJob(const SweepSpec& spec, const SweepJob& job, const std::string& out, const std::string& runner,
-                          bool* ran = nullptr);
+                          bool* ran = nullptr, const std::string& warm_start = "");
 
 // The job with this id or index ("7", "007"); throws layerlab::Error listing the range.
 const SweepJob& FindSweepJob(const std::vector<SweepJob>& jobs, const std::string& id);

@@ -108,6 +108,21 @@ ordered_json DesignEvaluator::SceneWith(const std::vector<double>& x) const {
   return scene;
 }
 
+const DesignEvaluation* DesignEvaluator::Nearest(const std::vector<double>& x) const {
+  const DesignEvaluation* nearest = nullptr;
+  double best = INFINITY;
+  for (const auto& [y, e] : done_) {
+    if (e.failed) continue;
+    double d = 0;
+    for (size_t k = 0; k < x.size(); ++k) {
+      const double u = (x[k] - y[k]) / (spec_.variables[k].max - spec_.variables[k].min);
+      d += u * u;
+    }
+    if (d < best || (d == best && nearest && e.index < nearest->index)) best = d, nearest = &e;
+  }
+  return nearest;
+}
+
 void DesignEvaluator::Score(DesignEvaluation* e, const std::vector<SweepJobState>& states) const {
   e->metrics.assign(spec_.metrics.size(), std::numeric_limits<double>::quiet_NaN());
   e->seconds = 0;
@@ -166,6 +181,7 @@ size_t DesignEvaluator::Resume() {
     DesignEvaluation e;
     e.index = entry["index"].get<size_t>();
     e.id = IdOf(e.index);
+    if (entry.contains("warm_start") && entry["warm_start"].is_string()) e.warm_start = entry["warm_start"];
     bool numbers = true;
     for (const auto& v : entry["x"]) numbers = numbers && v.is_number();
     if (!numbers) continue;
@@ -188,7 +204,7 @@ size_t DesignEvaluator::Resume() {
 void DesignEvaluator::AppendLog(const DesignEvaluation& e) const {
   const std::string path = (fs::path(out_) / "evaluations.jsonl").string();
   std::ofstream log(path, std::ios::app);
-  log << nlohmann::json{{"index", e.index}, {"id", e.id}, {"x", e.x}}.dump() << "\n";
+  log << nlohmann::json{{"index", e.index}, {"id", e.id}, {"x", e.x}, {"warm_start", e.warm_start}}.dump() << "\n";
   log.flush();
   if (!log) throw Error(path + ": cannot append to the evaluation log");
 }
@@ -203,6 +219,11 @@ const DesignEvaluation& DesignEvaluator::Evaluate(const std::vector<double>& x) 
   e.index = next_index_++;
   e.id = IdOf(e.index);
   e.x = x;
+  // The nearest design's solves start this one's: in a resumed run the same one as in an
+  // uninterrupted run, since the log holds exactly the designs evaluated before.
+  const DesignEvaluation* warm = spec_.warm_start && spec_.work_solve ? Nearest(x) : nullptr;
+  std::vector<SweepJob> warm_jobs;
+  if (warm) warm_jobs = JobsOf(*warm);
   std::vector<SweepJobState> states;
   {
     // The runs' own lines are --verbose's; the evaluation's line below is the progress.
@@ -212,9 +233,12 @@ const DesignEvaluation& DesignEvaluator::Evaluate(const std::vector<double>& x) 
       Verbosity v;
       ~Restore() { SetVerbosity(v); }
     } restore{was};
-    for (const SweepJob& job : JobsOf(e)) {
-      SweepJobState s = RunSweepJob(sweeps_.front(), job, out_, "local");
+    const std::vector<SweepJob> jobs = JobsOf(e);
+    for (size_t t = 0; t < jobs.size(); ++t) {
+      const std::string from = warm ? (fs::path(JobFolder(out_, warm_jobs[t])) / "out" / "solve").string() : "";
+      SweepJobState s = RunSweepJob(sweeps_.front(), jobs[t], out_, "local", nullptr, from);
       if (s.busy) throw Error("optimize: evaluation " + e.id + ": " + s.error);
+      if (s.warm_started) e.warm_start = warm->id;
       states.push_back(std::move(s));
     }
   }
@@ -225,6 +249,7 @@ const DesignEvaluation& DesignEvaluator::Evaluate(const std::vector<double>& x) 
   for (size_t k = 0; k < spec_.variables.size(); ++k)
     line += (k ? ", " : " ") + spec_.variables[k].name + " " + FormatGeneral(x[k]) +
             (spec_.variables[k].unit.empty() ? "" : " " + spec_.variables[k].unit);
+  if (!e.warm_start.empty()) line += " (from " + e.warm_start + ")";
   if (e.failed) {
     line += ": failed: " + e.error;
   } else {

@@ -4,7 +4,7 @@
 // from the jobs' rows.
 //
 //   DIR/jobs/e0007[-t1]/     the job of evaluation 7 (on target 1), as a sweep's
-//   DIR/evaluations.jsonl    one line per finished evaluation: {index, id, x}
+//   DIR/evaluations.jsonl    one line per finished evaluation: {index, id, x, warm_start}
 //   DIR/targets/<key>/       the targets' renders, shared by every evaluation
 //
 // An optimization that was killed resumes from its log: the optimizer replays
@@ -31,6 +31,7 @@ struct DesignEvaluation {
   std::vector<double> metrics;  // per DesignSpec::metrics, the mean over the targets
   double loss = 0;              // what the optimizer minimizes (DesignSpec's objective)
   double seconds = 0;           // wall time of its jobs
+  std::string warm_start;       // the evaluation whose patterns its solves began from, or ""
   bool from_log = false;        // read back from an earlier run's log, not run here
 };
 
@@ -65,6 +66,8 @@ class DesignEvaluator {
  private:
   void AppendLog(const DesignEvaluation& e) const;
   std::vector<SceneValue> ValuesOf(const std::vector<double>& x) const;
+  // The evaluated design nearest x (relative to the bounds) that ran, or null.
+  const DesignEvaluation* Nearest(const std::vector<double>& x) const;
   void Score(DesignEvaluation* e, const std::vector<SweepJobState>& states) const;
 
   const DesignSpec& spec_;

@@ -45,7 +45,7 @@ Track TrackOf(const DesignSpec& spec, const DesignEvaluator& evaluator) {
 std::string HistoryCsv(const DesignSpec& spec, const Track& t) {
   std::vector<std::string> header = {"evaluation", "job"};
   for (const DesignVariable& v : spec.variables) header.push_back(v.column());
-  header.insert(header.end(), {"state", "error"});
+  header.insert(header.end(), {"state", "error", "warm start from"});
   for (const DesignMetric& m : spec.metrics) header.push_back(m.column());
   header.insert(header.end(), {"objective: " + spec.objective_column(), "best so far: " + spec.objective_column(),
                                "evaluation time (s)", "cumulative time (s)"});
@@ -58,6 +58,7 @@ std::string HistoryCsv(const DesignSpec& spec, const Track& t) {
     for (double x : e.x) line.push_back(Cell(x));
     line.push_back(e.failed ? "failed" : "complete");
     line.push_back(e.error);
+    line.push_back(e.warm_start);
     for (size_t m = 0; m < spec.metrics.size(); ++m) line.push_back(e.failed ? "" : Cell(e.metrics[m]));
     line.push_back(e.failed ? "" : Cell(ShownObjective(spec, e)));
     line.push_back(Cell(t.best_so_far[r]));

@@ -322,6 +322,7 @@ DesignSpec ReadDesignSpec(const std::string& path) {
   }
   if (p.has("iterations")) spec.iterations = static_cast<int>(p.integer("iterations", 1, 1000000));
   spec.threads = static_cast<int>(p.integer("threads", 0, 1024, 0));
+  spec.warm_start = p.boolean("warm_start", true);
   spec.optimizer = ReadOptimizer(p);
   CheckWork(p, &spec);
   p.check_all_read();

@@ -21,6 +21,7 @@
 // | iterations | integer | the scene's | outer iterations of each solve |
 // | threads | integer | 0 (all cores) | worker threads of each evaluation |
 // | optimizer | object | below | the algorithm and the budget |
+// | warm_start | boolean | true | each solve starts from the patterns of the nearest design evaluated so far (when the layers' shapes match) |
 //
 // design.variable
 //
@@ -116,6 +117,7 @@ struct DesignSpec {
   std::vector<std::string> targets;  // absolute target scenes; empty: the scene's own
   std::optional<int> iterations;
   int threads = 0;
+  bool warm_start = true;
   DesignOptimizer optimizer;
   nlohmann::ordered_json base;                                          // the base scene's document, in file order
   bool work_solve = false, work_retina = false, work_contrast = false;  // what the metrics need
