@@ -63,6 +63,14 @@ void RunOptimizeCommand(const OptimizeOptions& o) {
   result["report"] = o.out + "/report.html";
   if (!best) {
     result.Print();
+    const DesignEvaluation* ran = nullptr;
+    for (const DesignEvaluation* e : evaluator.evaluations())
+      if (!e->failed) ran = e;
+    if (!ran) {
+      const auto all = evaluator.evaluations();
+      throw Error(o.design + ": every evaluation failed" +
+                  (all.empty() ? std::string() : "; the first (" + all.front()->id + "): " + all.front()->error));
+    }
     std::string names;
     for (const DesignConstraint& c : spec.constraints) names += (names.empty() ? "\"" : ", \"") + c.name + "\"";
     throw Error(o.design + ": no evaluated design met the constraints " + names + "; see " + o.out + "/history.csv");

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <set>
 
+#include "layerlab/elements/registry.h"
 #include "layerlab/framework/error.h"
 #include "layerlab/framework/json_file.h"
 #include "layerlab/framework/params.h"
@@ -72,12 +73,13 @@ void CheckPointer(const DesignSpec& spec, const std::string& pointer, const Loca
   } catch (const ordered_json::exception&) {
     throw Error(at, "\"" + pointer + "\" is not a JSON pointer (\"/elements/3/virtual_depth\")");
   }
-  if (pointer.empty()) throw Error(at, "the whole scene cannot be a variable");
+  if (pointer.empty()) throw Error(at, "the whole scene cannot be a design value");
   if (!present)
     throw Error(at, "\"" + pointer + "\" is not in the scene " + spec.scene +
-                        " (a variable replaces a value the base scene has; add it there with a default)");
+                        " (a design replaces a value the base scene has; add it there with a default)");
   for (const std::string& path : ScenePathPointers(spec.base))
-    if (path == pointer) throw Error(at, "\"" + pointer + "\" is a file path; a variable sets a number");
+    if (path == pointer)
+      throw Error(at, "\"" + pointer + "\" is a file path; a design sets numbers and settings, not paths");
 }
 
 DesignVariable ReadVariable(Params& p, const DesignSpec& spec) {
@@ -90,6 +92,7 @@ DesignVariable ReadVariable(Params& p, const DesignSpec& spec) {
   v.min = lo.value;
   v.max = ReadAmountInUnit(p, "max", v.unit, "\"min\"").value;
   if (!(v.min < v.max)) p.fail("max", "must be above \"min\" (" + FormatGeneral(v.min) + " " + v.unit + ")");
+  if (!std::isfinite(v.max - v.min)) p.fail("max", "is too far from \"min\": their difference is not a finite number");
   if (p.has("pointer") == p.has("pointers")) p.fail("pointer", "give either \"pointer\" or \"pointers\"");
   if (p.has("pointer")) {
     v.writes.push_back({.pointer = p.string("pointer")});
@@ -131,6 +134,40 @@ DesignVariable ReadVariable(Params& p, const DesignSpec& spec) {
     if (!(v.tolerance > 0)) p.fail("tolerance", "must be positive");
   }
   return v;
+}
+
+// "fixed": values written into the base scene itself, before anything else reads it. A value may
+// be new where its parent object exists (a "run" section the base scene lacks); none may hold a path.
+void ReadFixed(Params& p, DesignSpec* spec) {
+  const nlohmann::json& fixed = p.raw("fixed");
+  if (!fixed.is_object()) p.fail("fixed", "must be an object of JSON pointers and values");
+  const std::vector<std::string> paths = ScenePathPointers(spec->base);
+  for (const auto& [pointer, value] : fixed.items()) {
+    const Location at = p.where("fixed").child(pointer);
+    std::optional<ordered_json::json_pointer> where;
+    try {
+      where = ordered_json::json_pointer(pointer);
+    } catch (const ordered_json::exception&) {
+      throw Error(at, "\"" + pointer + "\" is not a JSON pointer (\"/elements/2/fill_factor\")");
+    }
+    if (pointer.empty()) throw Error(at, "the whole scene cannot be a design value");
+    const ordered_json::json_pointer parent = where->parent_pointer();
+    if (!spec->base.contains(*where) && !(spec->base.contains(parent) && spec->base[parent].is_object()))
+      throw Error(at, "\"" + pointer + "\" is not in the scene " + spec->scene + ", nor is the object it would go in");
+    for (const DesignVariable& v : spec->variables)
+      for (const DesignWrite& w : v.writes)
+        if (w.pointer == pointer || w.pointer.rfind(pointer + "/", 0) == 0)
+          throw Error(at, "holds what the variable \"" + v.name + "\" sets");
+    spec->base[*where] = ordered_json::parse(value.dump());
+    if (ScenePathPointers(spec->base) != paths)
+      throw Error(at, "holds a file path; a fixed value is a number or a setting");
+  }
+  try {
+    ParamsKeyRecorder scene_keys;
+    ParseScene(nlohmann::json::parse(spec->base.dump()), spec->scene, ElementRegistry::WithBuiltins());
+  } catch (const Error& e) {
+    p.fail("fixed", "the base scene with these values is not usable: " + std::string(e.what()));
+  }
 }
 
 size_t AddMetric(DesignSpec* spec, const std::string& name, const Location& at) {
@@ -246,6 +283,17 @@ void CheckWork(Params& p, DesignSpec* spec) {
       !(solve && (solve->contains("target") || solve->contains("target_scene"))))
     p.fail("objective", "its metrics need a solve, and the base scene " + spec->scene +
                             " has no /solve/target or /solve/target_scene (or give \"targets\")");
+  // Without states of its own, run.retina looks at the layers' depths: a mean over them would move
+  // with the very depths being optimized.
+  const ordered_json* run = spec->base.contains("run") ? &spec->base["run"] : nullptr;
+  const ordered_json* retina = run && run->is_object() && run->contains("retina") ? &(*run)["retina"] : nullptr;
+  if (spec->work_retina &&
+      !(retina && retina->is_object() && (retina->contains("accommodation") || retina->contains("focal_stack"))))
+    p.fail("objective",
+           "a retinal metric is a mean over the retinal states, and the base scene " + spec->scene +
+               " names none (run.retina.accommodation or run.retina.focal_stack): they would be the layers' depths, "
+               "which the optimizer moves. Give them in the scene or in \"fixed\": {\"/run\": {\"retina\": "
+               "{\"focal_stack\": {\"from\": \"0 D\", \"to\": \"2.6 D\", \"step\": \"0.1 D\"}}}}");
 }
 
 }  // namespace
@@ -287,6 +335,10 @@ DesignSpec ReadDesignSpec(const std::string& path) {
 
   const nlohmann::json& variables = p.raw("variables");
   if (!variables.is_array() || variables.empty()) p.fail("variables", "must be a non-empty array of variables");
+  if (variables.size() > kMaxDesignVariables)
+    p.fail("variables", "has " + std::to_string(variables.size()) +
+                            " variables; a derivative-free search of more than " + std::to_string(kMaxDesignVariables) +
+                            " is surely a mistake");
   std::set<std::string> names;
   for (size_t i = 0; i < variables.size(); ++i) {
     const Location at = p.where("variables").child(i);
@@ -297,10 +349,14 @@ DesignSpec ReadDesignSpec(const std::string& path) {
     if (!names.insert(spec.variables.back().name).second)
       throw Error(at.child("name"), "\"" + spec.variables.back().name + "\" names two variables");
   }
+  if (p.has("fixed")) ReadFixed(p, &spec);
   ReadObjective(p, &spec);
   if (p.has("constraints")) {
     const nlohmann::json& constraints = p.raw("constraints");
     if (!constraints.is_array()) p.fail("constraints", "must be an array of constraints");
+    if (constraints.size() > kMaxDesignConstraints)
+      p.fail("constraints", "has " + std::to_string(constraints.size()) + " constraints; more than " +
+                                std::to_string(kMaxDesignConstraints) + " is surely a mistake");
     for (size_t i = 0; i < constraints.size(); ++i) {
       const Location at = p.where("constraints").child(i);
       if (!constraints[i].is_object()) throw Error(at, "a constraint is an object (name, terms or metric, min, max)");

@@ -16,6 +16,7 @@
 // | scene | path | required | the base scene (relative to this file); never modified |
 // | variables | array of variables | required | what the optimizer varies |
 // | constraints | array of constraints | `[]` | what a design must satisfy |
+// | fixed | object `{pointer: value}` | `{}` | values written into the base scene (any JSON but a path: `{"/elements/2/fill_factor": 0.75}`; new where their parent object exists), so that a variant of the scene needs no copy |
 // | objective | metric name or object | required | `"psnr"`, or `{ "terms": [ { "metric": "psnr", "weight": 1 }, ... ] }` |
 // | targets | array of paths | the scene's own | target scenes (`/solve/target_scene`); each design is evaluated on every one and its metrics averaged |
 // | iterations | integer | the scene's | outer iterations of each solve |
@@ -69,6 +70,8 @@
 namespace layerlab {
 
 inline constexpr const char* kDesignFormat = "layerlab-design/1";
+inline constexpr size_t kMaxDesignVariables = 32;     // more is refused as a mistake
+inline constexpr size_t kMaxDesignConstraints = 256;  // likewise
 
 struct DesignWrite {  // one scene value a variable sets: scale x + offset
   std::string pointer;

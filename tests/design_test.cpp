@@ -79,6 +79,33 @@ TEST(DesignSpec, RefusesWithTheFileAndPointer) {
   EXPECT_NE(DesignError([](auto& d) { d["variables"][0]["strat"] = "1 D"; }).find("strat"), std::string::npos);
 }
 
+TEST(DesignSpec, FixedValuesAreWrittenIntoTheBaseScene) {
+  const DesignSpec spec = ReadDesignSpec(DesignFile("fixed", [](auto& d) {
+    d["fixed"] = {{"/elements/2/fill_factor", 0.75}, {"/run", {{"retina", {{"accommodation", {"0.5 D", "1.5 D"}}}}}}};
+    d["objective"] = "focal_stack_ssim";
+  }));
+  EXPECT_EQ(spec.base["elements"][2]["fill_factor"], 0.75);
+  EXPECT_EQ(spec.base["run"]["retina"]["accommodation"][1], "1.5 D");
+  EXPECT_TRUE(spec.work_retina);
+  EXPECT_NE(DesignError([](auto& d) {
+              d["fixed"] = {{"/elements/2/virtual_depth", "1 D"}};
+            }).find("/fixed/~1elements~12~1virtual_depth: holds what the variable \"front\" sets"),
+            std::string::npos);
+  EXPECT_NE(DesignError([](auto& d) {
+              d["fixed"] = {{"/elements/2/fill_factor", "most"}};
+            }).find("/fixed: the base scene with these values is not usable"),
+            std::string::npos);
+  EXPECT_NE(DesignError([](auto& d) {
+              d["fixed"] = {{"/nothing/here", 1}};
+            }).find("nor is the object it would go in"),
+            std::string::npos);
+  // Without retinal states of its own the scene would look at the layers, which the optimizer moves.
+  EXPECT_NE(DesignError([](auto& d) {
+              d["objective"] = "focal_stack_psnr";
+            }).find("/objective: a retinal metric is a mean over the retinal states"),
+            std::string::npos);
+}
+
 TEST(DesignFeasibility, AConstraintNoDesignMeetsIsNamedWithItsRange) {
   // front - rear reaches at most 2.4 - 0.2 = 2.2 D within the bounds.
   const std::string e = DesignError([](auto& d) { d["constraints"][0]["min"] = "2.5 D"; });

@@ -221,6 +221,23 @@ done
 try "sweep --slurm-cpus-per-task 0" "$layerlab" sweep sweeps/basic.json --out sweeps/resources --slurm --slurm-cpus-per-task 0
 submit "the resources" sweeps/resources
 try "sweep --mpi without mpirun" env -u OMPI_COMM_WORLD_SIZE -u PMIX_RANK -u PMI_SIZE "$layerlab" sweep sweeps/basic.json --out sweeps/mpi --mpi
+# Design files (the design fuzzer's seeds beside its base scene, whose target is missing: every
+# evaluation fails), under hostile names and into hostile output folders: each ends with a clear
+# error, no text of the input runs.
+mkdir -p designs
+/usr/bin/python3 -c 'import re, sys; print(re.search(r"R\"json\((.*)\)json\"", open(sys.argv[1]).read(), re.S).group(1))' \
+  "$source/fuzz/design_fuzz.cpp" >designs/scene.json
+cp "$source"/fuzz/corpus/design/* designs/
+cp designs/basic.json "designs/$evil.json"
+design_out=0
+for d in designs/*.json; do
+  [ "$d" = designs/scene.json ] && continue
+  design_out=$((design_out + 1))
+  try "optimize $d" "$layerlab" optimize "$d" --out "designs/out$design_out" --evaluations 2
+done
+for o in "designs/$evil" "designs/o${nl}touch MARK9"; do
+  try "optimize --out $o" "$layerlab" optimize designs/basic.json --out "$o" --evaluations 1
+done
 markers=$(find "$work" -name 'MARK*')
 if [ -n "$markers" ]; then
   echo "FAIL: generated scripts ran a command of the input's: $markers"
