@@ -72,8 +72,10 @@ void RunOptimizeCommand(const OptimizeOptions& o) {
                   (all.empty() ? std::string() : "; the first (" + all.front()->id + "): " + all.front()->error));
     }
     std::string names;
-    for (const DesignConstraint& c : spec.constraints) names += (names.empty() ? "\"" : ", \"") + c.name + "\"";
-    throw Error(o.design + ": no evaluated design met the constraints " + names + "; see " + o.out + "/history.csv");
+    for (const std::string& name : UnmetConstraints(spec, evaluator))
+      names += (names.empty() ? "\"" : ", \"") + name + "\"";
+    throw Error(o.design + ": no evaluated design met the constraints; the closest missed " + names + " (see " + o.out +
+                "/history.csv)");
   }
   std::string values;
   nlohmann::json best_values = nlohmann::json::object();

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <system_error>
 
 #include "layerlab/framework/atomic_file.h"
 #include "layerlab/framework/error.h"
@@ -50,8 +51,11 @@ SweepSpec SweepFor(const DesignSpec& spec, const ordered_json& base, const std::
   s.solve = spec.work_solve;
   s.retina = spec.work_retina;
   s.contrast = spec.work_contrast;
-  s.iterations = spec.iterations;
   s.threads = spec.threads;
+  if (spec.iterations) {  // in the scene, so that its digest, which marks a job stale, covers it
+    if (!s.base.contains("solve") || !s.base["solve"].is_object()) s.base["solve"] = ordered_json::object();
+    s.base["solve"]["iterations"] = *spec.iterations;
+  }
   if (!target.empty()) {
     if (!s.base.contains("solve") || !s.base["solve"].is_object()) s.base["solve"] = ordered_json::object();
     s.base["solve"].erase("target");
@@ -95,9 +99,9 @@ std::vector<SweepJob> DesignEvaluator::JobsOf(const DesignEvaluation& e) const {
   std::vector<SweepJob> jobs;
   for (size_t t = 0; t < sweeps_.size(); ++t) {
     const std::string id = sweeps_.size() == 1 ? e.id : e.id + "-t" + std::to_string(t);
-    jobs.push_back(MakeSweepJob(
-        sweeps_[t], out_, id, ValuesOf(e.x),
-        "Evaluation " + e.id + " of the design " + spec_.file + ": the scene " + spec_.scene + " with " + labels));
+    jobs.push_back(MakeSweepJob(sweeps_[t], out_, id, ValuesOf(e.x),
+                                "Evaluation " + e.id + " of the design " + spec_.file + ": the scene " + spec_.scene +
+                                    " with " + labels + (spec_.warm_start ? "" : "; solved cold")));
   }
   return jobs;
 }
@@ -111,14 +115,14 @@ ordered_json DesignEvaluator::SceneWith(const std::vector<double>& x) const {
 const DesignEvaluation* DesignEvaluator::Nearest(const std::vector<double>& x) const {
   const DesignEvaluation* nearest = nullptr;
   double best = INFINITY;
-  for (const auto& [y, e] : done_) {
-    if (e.failed) continue;
+  for (const DesignEvaluation* e : asked_) {
+    if (e->failed) continue;
     double d = 0;
     for (size_t k = 0; k < x.size(); ++k) {
-      const double u = (x[k] - y[k]) / (spec_.variables[k].max - spec_.variables[k].min);
+      const double u = (x[k] - e->x[k]) / (spec_.variables[k].max - spec_.variables[k].min);
       d += u * u;
     }
-    if (d < best || (d == best && nearest && e.index < nearest->index)) best = d, nearest = &e;
+    if (d < best) best = d, nearest = e;  // the first asked among equals
   }
   return nearest;
 }
@@ -156,24 +160,40 @@ void DesignEvaluator::Score(DesignEvaluation* e, const std::vector<SweepJobState
 
 double DesignEvaluator::FailedLoss() const {
   double worst = -std::numeric_limits<double>::infinity(), best = std::numeric_limits<double>::infinity();
-  for (const auto& [x, e] : done_)
-    if (!e.failed) {
-      worst = std::max(worst, e.loss);
-      best = std::min(best, e.loss);
+  for (const DesignEvaluation* e : asked_)
+    if (!e->failed) {
+      worst = std::max(worst, e->loss);
+      best = std::min(best, e->loss);
     }
   if (!std::isfinite(worst)) return 1e3;
   return worst + 1 + (worst - best);
 }
 
 size_t DesignEvaluator::Resume() {
-  std::ifstream in(fs::path(out_) / "evaluations.jsonl");
+  const fs::path path = fs::path(out_) / "evaluations.jsonl";
+  std::string text;
+  {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream all;
+    all << in.rdbuf();
+    text = all.str();
+  }
+  // A run killed while appending leaves a line without its end: cut it, so that the next line
+  // appended starts a line of its own.
+  if (const size_t end = text.rfind('\n') == std::string::npos ? 0 : text.rfind('\n') + 1; end < text.size()) {
+    text.resize(end);
+    std::error_code ec;
+    fs::resize_file(path, end, ec);
+    if (ec) throw Error(path.string() + ": cannot cut the unfinished last line: " + ec.message());
+  }
+  std::istringstream in(text);
   std::string line;
   while (std::getline(in, line)) {
     nlohmann::json entry;
     try {
       entry = nlohmann::json::parse(line);
     } catch (const nlohmann::json::exception&) {
-      continue;  // the last line of a run killed while writing it
+      continue;  // edited by hand: its design runs again when asked
     }
     if (!entry.is_object() || !entry.contains("index") || !entry["index"].is_number_unsigned() ||
         !entry.contains("x") || !entry["x"].is_array() || entry["x"].size() != spec_.variables.size())
@@ -187,13 +207,14 @@ size_t DesignEvaluator::Resume() {
     if (!numbers) continue;
     for (const auto& v : entry["x"]) e.x.push_back(v.get<double>());
     next_index_ = std::max(next_index_, e.index + 1);
+    logged_index_[e.x] = e.index;
     std::vector<SweepJobState> states;
     bool finished = true;
     for (const SweepJob& job : JobsOf(e)) {
       states.push_back(ReadJobState(out_, job));
       finished = finished && (states.back().complete || states.back().failed);
     }
-    if (!finished) continue;  // its jobs were removed or are for another scene: run it again when asked
+    if (!finished) continue;  // its jobs were removed or are for another scene: run again, as this index, when asked
     Score(&e, states);
     e.from_log = true;
     done_[e.x] = e;
@@ -210,13 +231,16 @@ void DesignEvaluator::AppendLog(const DesignEvaluation& e) const {
 }
 
 const DesignEvaluation& DesignEvaluator::Evaluate(const std::vector<double>& x) {
-  const bool first_ask = touched_.emplace(x, true).second;
   if (auto it = done_.find(x); it != done_.end()) {
-    if (first_ask && it->second.from_log) ++replayed_;
+    if (std::find(asked_.begin(), asked_.end(), &it->second) == asked_.end()) {
+      asked_.push_back(&it->second);
+      if (it->second.from_log) ++replayed_;
+    }
     return it->second;
   }
   DesignEvaluation e;
-  e.index = next_index_++;
+  const auto logged = logged_index_.find(x);
+  e.index = logged != logged_index_.end() ? logged->second : next_index_++;
   e.id = IdOf(e.index);
   e.x = x;
   // The nearest design's solves start this one's: in a resumed run the same one as in an
@@ -225,6 +249,7 @@ const DesignEvaluation& DesignEvaluator::Evaluate(const std::vector<double>& x) 
   std::vector<SweepJob> warm_jobs;
   if (warm) warm_jobs = JobsOf(*warm);
   std::vector<SweepJobState> states;
+  bool solved = false;
   {
     // The runs' own lines are --verbose's; the evaluation's line below is the progress.
     const Verbosity was = CurrentVerbosity();
@@ -236,14 +261,16 @@ const DesignEvaluation& DesignEvaluator::Evaluate(const std::vector<double>& x) 
     const std::vector<SweepJob> jobs = JobsOf(e);
     for (size_t t = 0; t < jobs.size(); ++t) {
       const std::string from = warm ? (fs::path(JobFolder(out_, warm_jobs[t])) / "out" / "solve").string() : "";
-      SweepJobState s = RunSweepJob(sweeps_.front(), jobs[t], out_, "local", nullptr, from);
+      bool ran = false;
+      SweepJobState s = RunSweepJob(sweeps_.front(), jobs[t], out_, "local", &ran, from);
       if (s.busy) throw Error("optimize: evaluation " + e.id + ": " + s.error);
       if (s.warm_started) e.warm_start = warm->id;
+      solved = solved || ran;
       states.push_back(std::move(s));
     }
   }
   Score(&e, states);
-  ++ran_;
+  if (solved) ++ran_;  // else its jobs were finished by a run killed before it logged them
   AppendLog(e);
   std::string line = "optimize: evaluation " + e.id + ":";
   for (size_t k = 0; k < spec_.variables.size(); ++k)
@@ -258,7 +285,9 @@ const DesignEvaluation& DesignEvaluator::Evaluate(const std::vector<double>& x) 
           (m ? ", " : " -> ") + spec_.metrics[m].name + " " + FormatGeneral(e.metrics[m]) + " " + spec_.metrics[m].unit;
   }
   Note(line + " (" + FormatFixed(e.seconds, 1) + " s)");
-  return done_[x] = std::move(e);
+  DesignEvaluation& stored = done_[x] = std::move(e);
+  asked_.push_back(&stored);
+  return stored;
 }
 
 std::vector<const DesignEvaluation*> DesignEvaluator::evaluations() const {

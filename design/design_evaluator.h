@@ -51,10 +51,15 @@ class DesignEvaluator {
 
   // Every evaluation asked for in this process or found in the log, by index.
   std::vector<const DesignEvaluation*> evaluations() const;
-  size_t asked() const { return touched_.size(); }  // distinct designs asked for in this process
-  size_t ran() const { return ran_; }               // solved in this process
-  size_t replayed() const { return replayed_; }     // asked again and answered from the log
-  // The loss of a failed evaluation: worse than every evaluation so far, so that the search turns away.
+  // The designs asked for in this process, in the order asked. What the search
+  // decides from (FailedLoss, Nearest, the best so far) is read from these
+  // only, never from log entries it has not asked for yet: a resumed search
+  // then sees what an uninterrupted one saw at the same point.
+  const std::vector<const DesignEvaluation*>& asked_in_order() const { return asked_; }
+  size_t asked() const { return asked_.size(); }
+  size_t ran() const { return ran_; }            // solved in this process
+  size_t replayed() const { return replayed_; }  // asked again and answered from the log
+  // The loss of a failed evaluation: worse than every evaluation asked so far, so that the search turns away.
   double FailedLoss() const;
   // The jobs of an evaluation (one per target), for the report's links.
   std::vector<SweepJob> JobsOf(const DesignEvaluation& e) const;
@@ -66,7 +71,7 @@ class DesignEvaluator {
  private:
   void AppendLog(const DesignEvaluation& e) const;
   std::vector<SceneValue> ValuesOf(const std::vector<double>& x) const;
-  // The evaluated design nearest x (relative to the bounds) that ran, or null.
+  // The design asked so far nearest x (relative to the bounds) that ran, or null.
   const DesignEvaluation* Nearest(const std::vector<double>& x) const;
   void Score(DesignEvaluation* e, const std::vector<SweepJobState>& states) const;
 
@@ -74,7 +79,8 @@ class DesignEvaluator {
   std::string out_;
   std::vector<SweepSpec> sweeps_;  // one per target: the job settings and the base scene with that target
   std::map<std::vector<double>, DesignEvaluation> done_;
-  std::map<std::vector<double>, bool> touched_;  // asked for in this process
+  std::map<std::vector<double>, size_t> logged_index_;  // every design in the log, finished or not
+  std::vector<const DesignEvaluation*> asked_;          // into done_, whose nodes do not move
   size_t next_index_ = 0, ran_ = 0, replayed_ = 0;
 };
 

@@ -158,7 +158,8 @@ std::string ReportHtml(const DesignSpec& spec, const DesignEvaluator& evaluator,
   std::ostringstream h;
   h << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" << Escape(spec.name)
     << "</title>\n<style>body{font-family:sans-serif;margin:2em}table{border-collapse:collapse}"
-       "td,th{border:1px solid #ccc;padding:3px 8px;text-align:right}th{background:#eee}img{max-width:48%;margin:4px}"
+       "td,th{border:1px solid #ccc;padding:3px "
+       "8px;text-align:right}th{background:#eee}img{max-width:48%;margin:4px}img.wide{max-width:96%}"
        "</style></head><body>\n<h1>"
     << Escape(spec.name) << "</h1>\n";
   if (!spec.description.empty()) h << "<p>" << Escape(spec.description) << "</p>\n";
@@ -187,7 +188,7 @@ std::string ReportHtml(const DesignSpec& spec, const DesignEvaluator& evaluator,
   if (start && start->failed) h << "<p>The start failed: <code>" << Escape(start->error) << "</code></p>\n";
   h << "<p><a href=\"history.csv\">history.csv</a>";
   if (best) h << " · <a href=\"best_scene.json\">best_scene.json</a> (<code>layerlab run best_scene.json</code>)";
-  h << "</p>\n<img src=\"convergence.svg\" alt=\"convergence\">\n";
+  h << "</p>\n<img class=\"wide\" src=\"convergence.svg\" alt=\"convergence\">\n";
   if (surface) h << "<img src=\"surface.svg\" alt=\"objective over the variables\">\n";
   h << "</body></html>\n";
   return h.str();

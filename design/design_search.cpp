@@ -29,6 +29,13 @@ double Dot(const std::vector<double>& a, const double* x) {
   return s;
 }
 
+double Scale(const DesignConstraint& c) {
+  return std::max({1.0, c.min ? std::abs(*c.min) : 0.0, c.max ? std::abs(*c.max) : 0.0});
+}
+
+// What the search and the report count as meeting a constraint: within 1e-9 of its bound's scale.
+constexpr double kConstraintSlack = 1e-9;
+
 std::string Bound(const DesignConstraint& c, double v) {
   return FormatGeneral(v) + (c.unit.empty() || c.unit == "1" ? "" : " " + c.unit);
 }
@@ -85,9 +92,11 @@ double LeastViolation(const DesignSpec& spec, const std::vector<const DesignCons
   nlopt_set_xtol_abs(opt.get(), tol.data());
   nlopt_set_maxeval(opt.get(), 20000);
   double t = 0;
-  nlopt_optimize(opt.get(), z.data(), &t);
+  nlopt_optimize(opt.get(), z.data(), &t);  // whatever it returns, the violation is measured below
   x->assign(z.begin(), z.begin() + static_cast<long>(n));
-  return z[n];
+  double worst = 0;
+  for (const DesignConstraint* c : linear) worst = std::max(worst, ConstraintViolation(*c, *x, nullptr));
+  return worst;
 }
 
 // --- the search ---
@@ -128,8 +137,7 @@ struct Search {
       if (Interrupted()) throw InterruptedError("optimize: interrupted");
       if (OverBudget() || stage_done) {
         // A design already evaluated costs nothing: the budget stops only a new one.
-        std::vector<const DesignEvaluation*> all = evaluator->evaluations();
-        for (const DesignEvaluation* e : all)
+        for (const DesignEvaluation* e : evaluator->asked_in_order())
           if (e->x == point) return e;
         nlopt_force_stop(outer);
         return nullptr;
@@ -155,8 +163,7 @@ double LinearViolation(const DesignSpec& spec, const double* x) {
   double sum = 0;
   for (const DesignConstraint& c : spec.constraints)
     if (!c.metric)
-      sum += ConstraintViolation(c, point, nullptr) /
-             std::max({1.0, c.min ? std::abs(*c.min) : 0.0, c.max ? std::abs(*c.max) : 0.0});
+      if (const double v = ConstraintViolation(c, point, nullptr) / Scale(c); v > kConstraintSlack) sum += v;
   return sum;
 }
 
@@ -169,7 +176,7 @@ double Objective(unsigned, const double* x, double*, void* data) {
     return s.evaluator->FailedLoss() + 10 * v;
   }
   const DesignEvaluation* e = s.At(x);
-  if (!e) return 0;
+  if (!e) return HUGE_VAL;  // the search is stopping: no value, and none that could pass for a design's
   return e->failed ? s.evaluator->FailedLoss() : e->loss;
 }
 
@@ -177,8 +184,10 @@ double Constraint(unsigned, const double* x, double*, void* data) {
   const ConstraintData& d = *static_cast<ConstraintData*>(data);
   double value = 0;
   if (d.c->metric) {
+    // Outside the linear constraints a design is not run: it meets no constraint on its metrics.
+    if (LinearViolation(*d.search->spec, x) > 0) return 1;
     const DesignEvaluation* e = d.search->At(x);
-    if (!e) return 0;
+    if (!e) return HUGE_VAL;
     if (e->failed) return 1e3;  // a design that does not run meets no constraint on its metrics
     value = e->metrics[*d.c->metric];
   } else {
@@ -219,7 +228,7 @@ std::string Why(nlopt_result r, const Search& s) {
     case NLOPT_FTOL_REACHED:
       return "the objective stopped improving";
     case NLOPT_MAXEVAL_REACHED:
-      return "the budget of " + std::to_string(s.spec->optimizer.evaluations) + " evaluations was spent";
+      return "NLopt's limit of calls (100 x the stage's evaluations, most outside the linear constraints) was reached";
     case NLOPT_MAXTIME_REACHED:
       return "its time budget was spent";
     case NLOPT_ROUNDOFF_LIMITED:
@@ -294,19 +303,62 @@ double ConstraintViolation(const DesignConstraint& c, const std::vector<double>&
 
 bool MeetsConstraints(const DesignSpec& spec, const DesignEvaluation& e) {
   if (e.failed) return false;
-  for (const DesignConstraint& c : spec.constraints) {
-    const double scale = std::max({1.0, c.min ? std::abs(*c.min) : 0.0, c.max ? std::abs(*c.max) : 0.0});
-    if (ConstraintViolation(c, e.x, &e) > 1e-9 * scale) return false;
-  }
+  for (const DesignConstraint& c : spec.constraints)
+    if (ConstraintViolation(c, e.x, &e) > kConstraintSlack * Scale(c)) return false;
   return true;
 }
 
-const DesignEvaluation* BestFeasible(const DesignSpec& spec, const DesignEvaluator& evaluator) {
+const DesignEvaluation* BestFeasible(const DesignSpec& spec, const std::vector<const DesignEvaluation*>& among) {
   const DesignEvaluation* best = nullptr;
-  for (const DesignEvaluation* e : evaluator.evaluations())
-    if (MeetsConstraints(spec, *e) && (!best || e->loss < best->loss)) best = e;
+  for (const DesignEvaluation* e : among)
+    if (MeetsConstraints(spec, *e) &&
+        (!best || e->loss < best->loss || (e->loss == best->loss && e->index < best->index)))
+      best = e;
   return best;
 }
+
+const DesignEvaluation* BestFeasible(const DesignSpec& spec, const DesignEvaluator& evaluator) {
+  return BestFeasible(spec, evaluator.evaluations());
+}
+
+std::vector<std::string> UnmetConstraints(const DesignSpec& spec, const DesignEvaluator& evaluator) {
+  // The evaluation that comes closest: the least sum of relative violations.
+  const DesignEvaluation* closest = nullptr;
+  double least = INFINITY;
+  for (const DesignEvaluation* e : evaluator.evaluations()) {
+    if (e->failed) continue;
+    double sum = 0;
+    for (const DesignConstraint& c : spec.constraints) sum += ConstraintViolation(c, e->x, e) / Scale(c);
+    if (sum < least) least = sum, closest = e;
+  }
+  std::vector<std::string> unmet;
+  for (const DesignConstraint& c : spec.constraints)
+    if (!closest || ConstraintViolation(c, closest->x, closest) > kConstraintSlack * Scale(c)) unmet.push_back(c.name);
+  return unmet;
+}
+
+namespace {
+
+void CheckTogether(const DesignSpec& spec, const std::vector<const DesignConstraint*>& linear) {
+  std::vector<double> x;
+  const double t = LeastViolation(spec, linear, &x);
+  double scale = 1;
+  for (const DesignConstraint* c : linear) scale = std::max(scale, Scale(*c));
+  if (t <= 1e-7 * scale) return;
+  std::string names, first;
+  for (size_t i = 0; i < spec.constraints.size(); ++i) {
+    const DesignConstraint& c = spec.constraints[i];
+    if (c.metric || ConstraintViolation(c, x, nullptr) < 0.5 * t) continue;
+    names += (names.empty() ? "\"" : ", \"") + c.name + "\"";
+    if (first.empty()) first = "/constraints/" + std::to_string(i);
+  }
+  throw Error(Location{spec.file, first}, "no design meets the constraints " + names +
+                                              " together: within the variables' bounds the design "
+                                              "closest to meeting them still misses each by " +
+                                              FormatGeneral(t));
+}
+
+}  // namespace
 
 void CheckDesignFeasible(const DesignSpec& spec) {
   std::vector<const DesignConstraint*> linear;
@@ -329,24 +381,21 @@ void CheckDesignFeasible(const DesignSpec& spec) {
                           ", but within the variables' bounds it is at least " + Bound(c, lo));
     linear.push_back(&c);
   }
-  if (linear.size() < 2) return;
-  std::vector<double> x;
-  const double t = LeastViolation(spec, linear, &x);
-  double scale = 1;
-  for (const DesignConstraint* c : linear)
-    scale = std::max({scale, c->min ? std::abs(*c->min) : 0.0, c->max ? std::abs(*c->max) : 0.0});
-  if (t <= 1e-7 * scale) return;
-  std::string names, first;
+  if (linear.size() >= 2) CheckTogether(spec, linear);
+  // The start is the first evaluation and the report's reference: it must be a design that runs.
+  std::vector<double> start;
+  for (const DesignVariable& v : spec.variables) start.push_back(v.start);
   for (size_t i = 0; i < spec.constraints.size(); ++i) {
     const DesignConstraint& c = spec.constraints[i];
-    if (c.metric || ConstraintViolation(c, x, nullptr) < 0.5 * t) continue;
-    names += (names.empty() ? "\"" : ", \"") + c.name + "\"";
-    if (first.empty()) first = "/constraints/" + std::to_string(i);
+    if (c.metric || ConstraintViolation(c, start, nullptr) <= kConstraintSlack * Scale(c)) continue;
+    std::string values;
+    for (size_t k = 0; k < spec.variables.size(); ++k)
+      values += (k ? ", " : "") + spec.variables[k].name + " " + FormatGeneral(start[k]) +
+                (spec.variables[k].unit.empty() ? "" : " " + spec.variables[k].unit);
+    throw Error(
+        Location{spec.file, "/constraints/" + std::to_string(i)},
+        "the start (" + values + ") does not meet \"" + c.name + "\": give the variables a \"start\" that does");
   }
-  throw Error(Location{spec.file, first}, "no design meets the constraints " + names +
-                                              " together: within the variables' bounds the design "
-                                              "closest to meeting them still misses each by " +
-                                              FormatGeneral(t));
 }
 
 DesignSearch SearchDesign(const DesignSpec& spec, DesignEvaluator* evaluator) {
@@ -359,6 +408,7 @@ DesignSearch SearchDesign(const DesignSpec& spec, DesignEvaluator* evaluator) {
   std::vector<double> x;
   for (const DesignVariable& v : spec.variables) x.push_back(v.start);
   // The start is always evaluated first: the report compares the optimum with it.
+  s.stage_limit = evaluator->asked() + 1;
   Objective(static_cast<unsigned>(x.size()), x.data(), nullptr, &s);
   if (s.error) std::rethrow_exception(s.error);
   const nlopt_algorithm local = LocalAlgorithm(spec.optimizer.local);
@@ -369,7 +419,10 @@ DesignSearch SearchDesign(const DesignSpec& spec, DesignEvaluator* evaluator) {
   } else {
     if (spec.optimizer.global == "crs") {
       result.stopped = RunStage(&s, NLOPT_GN_CRS2_LM, std::nullopt, std::max(1, 2 * (budget - 1) / 3), &x);
-      if (const DesignEvaluation* best = BestFeasible(spec, *evaluator)) x = best->x;
+      // From the best design this search has seen (not the log's later ones), else from the start.
+      x.clear();
+      for (const DesignVariable& v : spec.variables) x.push_back(v.start);
+      if (const DesignEvaluation* best = BestFeasible(spec, evaluator->asked_in_order())) x = best->x;
     }
     if (s.stopped.empty()) result.stopped = RunStage(&s, local, std::nullopt, budget, &x);  // the rest
   }

@@ -16,7 +16,8 @@ namespace layerlab {
 
 // Refuses, before anything runs, linear constraints that no design within the
 // bounds satisfies: one alone (with the range it can reach), or several
-// together (those left violated at the design that violates them least).
+// together (those left violated at the design that violates them least); and
+// a start that does not meet one.
 // Throws layerlab::Error naming the design file's /constraints/<k>.
 void CheckDesignFeasible(const DesignSpec& spec);
 
@@ -27,8 +28,14 @@ double ConstraintViolation(const DesignConstraint& c, const std::vector<double>&
 // Whether evaluation e ran and meets every constraint (to 1e-9 of its scale).
 bool MeetsConstraints(const DesignSpec& spec, const DesignEvaluation& e);
 
-// The best evaluation that meets every constraint (to 1e-9 of its scale), or nothing.
+// The best evaluation that meets every constraint (to 1e-9 of its scale), or nothing: among
+// all the evaluator's, or among `among`.
 const DesignEvaluation* BestFeasible(const DesignSpec& spec, const DesignEvaluator& evaluator);
+const DesignEvaluation* BestFeasible(const DesignSpec& spec, const std::vector<const DesignEvaluation*>& among);
+
+// The constraints that the evaluation closest to meeting them all (the least sum of
+// relative violations) misses; every constraint when no evaluation ran.
+std::vector<std::string> UnmetConstraints(const DesignSpec& spec, const DesignEvaluator& evaluator);
 
 struct DesignSearch {
   std::string stopped;  // why the search ended, in words

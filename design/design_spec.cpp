@@ -2,7 +2,9 @@
 
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <set>
+#include <system_error>
 
 #include "layerlab/elements/registry.h"
 #include "layerlab/framework/error.h"
@@ -82,6 +84,23 @@ void CheckPointer(const DesignSpec& spec, const std::string& pointer, const Loca
       throw Error(at, "\"" + pointer + "\" is a file path; a design sets numbers and settings, not paths");
 }
 
+// A variable sets a number: the value it replaces must be one, or a quantity.
+void CheckNumberAt(const DesignSpec& spec, const std::string& pointer, const Location& at) {
+  const ordered_json& v = spec.base[ordered_json::json_pointer(pointer)];
+  if (!v.is_number() && !v.is_string())
+    throw Error(at,
+                "\"" + pointer + "\" holds " + v.dump() + " in the scene; a variable replaces a number or a quantity");
+}
+
+// No scene value may be set twice, nor inside another that is set: the later write would undo the earlier.
+void CheckDistinctWrites(const DesignSpec& spec, const std::string& pointer, const Location& at) {
+  for (const DesignVariable& v : spec.variables)
+    for (const DesignWrite& w : v.writes)
+      if (w.pointer == pointer || w.pointer.rfind(pointer + "/", 0) == 0 || pointer.rfind(w.pointer + "/", 0) == 0)
+        throw Error(at,
+                    "\"" + pointer + "\" overlaps \"" + w.pointer + "\", which the variable \"" + v.name + "\" sets");
+}
+
 DesignVariable ReadVariable(Params& p, const DesignSpec& spec) {
   DesignVariable v;
   v.name = p.string("name");
@@ -97,6 +116,8 @@ DesignVariable ReadVariable(Params& p, const DesignSpec& spec) {
   if (p.has("pointer")) {
     v.writes.push_back({.pointer = p.string("pointer")});
     CheckPointer(spec, v.writes[0].pointer, p.where("pointer"));
+    CheckDistinctWrites(spec, v.writes[0].pointer, p.where("pointer"));
+    CheckNumberAt(spec, v.writes[0].pointer, p.where("pointer"));
   } else {
     const nlohmann::json& list = p.raw("pointers");
     if (!list.is_array() || list.empty())
@@ -107,6 +128,13 @@ DesignVariable ReadVariable(Params& p, const DesignSpec& spec) {
       Params w(list[i], at);
       DesignWrite write{.pointer = w.string("pointer")};
       CheckPointer(spec, write.pointer, w.where("pointer"));
+      CheckDistinctWrites(spec, write.pointer, w.where("pointer"));
+      CheckNumberAt(spec, write.pointer, w.where("pointer"));
+      for (const DesignWrite& earlier : v.writes)
+        if (earlier.pointer == write.pointer || earlier.pointer.rfind(write.pointer + "/", 0) == 0 ||
+            write.pointer.rfind(earlier.pointer + "/", 0) == 0)
+          throw Error(w.where("pointer"),
+                      "\"" + write.pointer + "\" overlaps \"" + earlier.pointer + "\" of this variable");
       if (w.has("scale")) {
         const nlohmann::json& s = w.raw("scale");
         if (!s.is_number() || !std::isfinite(s.get<double>()) || s.get<double>() == 0)
@@ -136,6 +164,21 @@ DesignVariable ReadVariable(Params& p, const DesignSpec& spec) {
   return v;
 }
 
+// The base scene with every variable at its start must be one the scene reader takes: a variable in
+// a unit its value cannot have is named here, not by every evaluation.
+void CheckStartScene(Params& p, const DesignSpec& spec) {
+  ordered_json scene = spec.base;
+  for (const DesignVariable& v : spec.variables)
+    for (const DesignWrite& w : v.writes)
+      scene[ordered_json::json_pointer(w.pointer)] = v.SceneValue(w.scale * v.start + w.offset);
+  try {
+    ParamsKeyRecorder scene_keys;
+    ParseScene(nlohmann::json::parse(scene.dump()), spec.scene, ElementRegistry::WithBuiltins());
+  } catch (const Error& e) {
+    p.fail("variables", "the base scene with the variables at their starts is not usable: " + std::string(e.what()));
+  }
+}
+
 // "fixed": values written into the base scene itself, before anything else reads it. A value may
 // be new where its parent object exists (a "run" section the base scene lacks); none may hold a path.
 void ReadFixed(Params& p, DesignSpec* spec) {
@@ -152,7 +195,14 @@ void ReadFixed(Params& p, DesignSpec* spec) {
     }
     if (pointer.empty()) throw Error(at, "the whole scene cannot be a design value");
     const ordered_json::json_pointer parent = where->parent_pointer();
-    if (!spec->base.contains(*where) && !(spec->base.contains(parent) && spec->base[parent].is_object()))
+    bool there = false, parent_there = false;
+    try {
+      there = spec->base.contains(*where);
+      parent_there = spec->base.contains(parent) && spec->base[parent].is_object();
+    } catch (const ordered_json::exception&) {
+      throw Error(at, "\"" + pointer + "\" is not a place in the scene (an array index out of range)");
+    }
+    if (!there && !parent_there)
       throw Error(at, "\"" + pointer + "\" is not in the scene " + spec->scene + ", nor is the object it would go in");
     for (const DesignVariable& v : spec->variables)
       for (const DesignWrite& w : v.writes)
@@ -219,7 +269,18 @@ DesignConstraint ReadConstraint(Params& p, DesignSpec* spec) {
   const std::string unit = c.unit == "1" ? "" : c.unit;
   if (p.has("min")) c.min = ReadAmountInUnit(p, "min", unit, whose).value;
   if (p.has("max")) c.max = ReadAmountInUnit(p, "max", unit, whose).value;
-  if (c.min && c.max && !(*c.min <= *c.max)) p.fail("max", "is below \"min\"");
+  if (c.min && c.max && !(*c.min < *c.max))
+    p.fail("max", *c.min == *c.max
+                      ? "equals \"min\": an equality leaves no room to search; fix a variable instead, or give a range"
+                      : "is below \"min\"");
+  for (size_t k = 0; k < c.coefficients.size(); ++k)
+    if (!std::isfinite(c.coefficients[k] * spec->variables[k].min) ||
+        !std::isfinite(c.coefficients[k] * spec->variables[k].max))
+      p.fail("terms", "the coefficient of \"" + spec->variables[k].name + "\" times its bounds is not a finite number");
+  double reach = 0;
+  for (size_t k = 0; k < c.coefficients.size(); ++k)
+    reach += std::abs(c.coefficients[k]) * std::max(std::abs(spec->variables[k].min), std::abs(spec->variables[k].max));
+  if (!std::isfinite(reach)) p.fail("terms", "the sum of the terms over the bounds is not a finite number");
   return c;
 }
 
@@ -349,6 +410,7 @@ DesignSpec ReadDesignSpec(const std::string& path) {
     if (!names.insert(spec.variables.back().name).second)
       throw Error(at.child("name"), "\"" + spec.variables.back().name + "\" names two variables");
   }
+  CheckStartScene(p, spec);
   if (p.has("fixed")) ReadFixed(p, &spec);
   ReadObjective(p, &spec);
   if (p.has("constraints")) {
@@ -372,7 +434,8 @@ DesignSpec ReadDesignSpec(const std::string& path) {
       if (!targets[i].is_string()) throw Error(p.where("targets").child(i), "must be a path (a string)");
       const fs::path t = targets[i].get<std::string>();
       spec.targets.push_back((t.is_absolute() ? t : fs::absolute(path).parent_path() / t).lexically_normal().string());
-      if (!fs::is_regular_file(spec.targets.back()))
+      std::error_code ec;
+      if (!fs::is_regular_file(spec.targets.back(), ec))
         throw Error(p.where("targets").child(i), "\"" + spec.targets.back() + "\" is not a file");
     }
   }

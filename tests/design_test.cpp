@@ -77,6 +77,27 @@ TEST(DesignSpec, RefusesWithTheFileAndPointer) {
             }).find("/constraints/0/terms/middle: \"middle\" is not a variable"),
             std::string::npos);
   EXPECT_NE(DesignError([](auto& d) { d["variables"][0]["strat"] = "1 D"; }).find("strat"), std::string::npos);
+  EXPECT_NE(
+      DesignError([](auto& d) { d["variables"][1]["pointer"] = "/elements/2/virtual_depth"; })
+          .find("/variables/1/pointer: \"/elements/2/virtual_depth\" overlaps \"/elements/2/virtual_depth\", which the "
+                "variable \"front\" sets"),
+      std::string::npos);
+  EXPECT_NE(DesignError([](auto& d) { d["variables"][1]["pointer"] = "/elements/2"; }).find("overlaps"),
+            std::string::npos);
+  EXPECT_NE(DesignError([](auto& d) {
+              d["variables"][1]["pointer"] = "/elements/2/reversed";
+            }).find("holds true in the scene; a variable replaces a number or a quantity"),
+            std::string::npos);
+  EXPECT_NE(DesignError([](auto& d) {
+              d["variables"][1]["pointer"] = "/elements/0/pupil_diameter";
+            }).find("/variables: the base scene with the variables at their starts is not usable"),
+            std::string::npos);
+  EXPECT_NE(DesignError([](auto& d) { d["constraints"][0]["max"] = "0.3 D"; }).find("/constraints/0/max: equals"),
+            std::string::npos);
+  EXPECT_NE(DesignError([](auto& d) {
+              d["variables"][0]["start"] = "0.9 D";
+            }).find("/constraints/0: the start (front 0.9 D, rear 0.8 D) does not meet \"front before rear\""),
+            std::string::npos);
 }
 
 TEST(DesignSpec, FixedValuesAreWrittenIntoTheBaseScene) {
@@ -113,7 +134,12 @@ TEST(DesignFeasibility, AConstraintNoDesignMeetsIsNamedWithItsRange) {
                    "but within the variables' bounds it is at most 2.2 D"),
             std::string::npos)
       << e;
-  EXPECT_EQ(DesignError([](auto& d) { d["constraints"][0]["min"] = "2.2 D"; }), "no error");  // the corner meets it
+  EXPECT_EQ(DesignError([](auto& d) {  // the corner meets it, and starts there
+              d["constraints"][0]["min"] = "2.2 D";
+              d["variables"][0]["start"] = "2.4 D";
+              d["variables"][1]["start"] = "0.2 D";
+            }),
+            "no error");
 }
 
 TEST(DesignFeasibility, ConstraintsThatExcludeEveryDesignTogetherAreNamed) {
@@ -208,27 +234,48 @@ TEST(DesignSearch, TwoLayersMatchADenseGrid) {
   for (const DesignEvaluation* e : evaluator.evaluations()) EXPECT_FALSE(e->failed) << e->error;
 }
 
-TEST(DesignSearch, AResumedSearchRepeatsNoEvaluation) {
-  DesignSpec spec = ReadDesignSpec(ExamplePath("optimize/one_layer_depth.json"));
-  const std::string out = Scratch("resume");
-  spec.optimizer.evaluations = 5;  // stops part way, as a kill would
-  {
-    DesignEvaluator first(spec, out);
-    SearchDesign(spec, &first);
-    EXPECT_EQ(first.ran(), 5u);
-  }
-  spec.optimizer.evaluations = 25;
-  DesignEvaluator resumed(spec, out);
-  EXPECT_EQ(resumed.Resume(), 5u);
-  SearchDesign(spec, &resumed);
-  EXPECT_EQ(resumed.replayed(), 5u);
-  DesignEvaluator whole(spec, Scratch("whole"));
+TEST(DesignSearch, AResumedSearchRepeatsNoEvaluationAndEndsWhereAWholeOneEnds) {
+  // Two variables, a linear constraint that the global stage crosses, and warm starts: what the
+  // search decides from must be what it had asked so far, not the log's later entries.
+  DesignSpec spec = ReadDesignSpec(ExamplePath("optimize/two_layer_depths.json"));
+  spec.optimizer.global = "crs";
+  spec.optimizer.evaluations = 10;
+  const std::string whole_out = Scratch("whole");
+  DesignEvaluator whole(spec, whole_out);
   SearchDesign(spec, &whole);
-  // The same designs in the same order, the first five from the log.
+  ASSERT_EQ(whole.ran(), 10u);
+  // What a kill after four evaluations leaves: their log lines, a fifth cut short, no later jobs.
+  const std::string out = Scratch("resume");
+  fs::copy(whole_out, out, fs::copy_options::recursive | fs::copy_options::overwrite_existing);
+  {
+    std::ifstream in(whole_out + "/evaluations.jsonl");
+    std::ofstream log(out + "/evaluations.jsonl", std::ios::trunc);
+    std::string line;
+    for (int i = 0; i < 4 && std::getline(in, line); ++i) log << line << "\n";
+    log << "{\"index\": 4, \"id\": \"e0004\", \"x\": [1.9";
+  }
+  for (const DesignEvaluation* e : whole.evaluations())
+    if (e->index >= 4) fs::remove_all(out + "/jobs/" + e->id);
+  DesignEvaluator resumed(spec, out);
+  EXPECT_EQ(resumed.Resume(), 4u);
+  SearchDesign(spec, &resumed);
+  EXPECT_EQ(resumed.replayed(), 4u);
+  EXPECT_EQ(resumed.ran(), 6u);
   const auto a = resumed.evaluations(), b = whole.evaluations();
   ASSERT_EQ(a.size(), b.size());
-  for (size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i]->x, b[i]->x) << i;
-  EXPECT_EQ(resumed.ran() + 5, whole.ran());
+  for (size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i]->x, b[i]->x) << i;
+    EXPECT_EQ(a[i]->warm_start, b[i]->warm_start) << i;
+    EXPECT_EQ(a[i]->id, b[i]->id) << i;
+  }
+  // Every line of the log whole, one per evaluation.
+  std::ifstream log(out + "/evaluations.jsonl");
+  size_t lines = 0;
+  for (std::string line; std::getline(log, line); ++lines) {
+    nlohmann::json entry;
+    EXPECT_NO_THROW(entry = nlohmann::json::parse(line)) << line;
+  }
+  EXPECT_EQ(lines, 10u);
 }
 
 #endif
