@@ -52,7 +52,7 @@ SweepSpec SweepFor(const DesignSpec& spec, const ordered_json& base, const std::
   s.retina = spec.work_retina;
   s.contrast = spec.work_contrast;
   s.threads = spec.threads;
-  if (spec.iterations) {  // in the scene, so that its digest, which marks a job stale, covers it
+  if (spec.iterations && spec.work_solve) {  // in the scene, so that its digest, which marks a job stale, covers it
     if (!s.base.contains("solve") || !s.base["solve"].is_object()) s.base["solve"] = ordered_json::object();
     s.base["solve"]["iterations"] = *spec.iterations;
   }
@@ -170,6 +170,7 @@ double DesignEvaluator::FailedLoss() const {
 }
 
 size_t DesignEvaluator::Resume() {
+  if (!asked_.empty()) throw Error("internal error: DesignEvaluator::Resume after an evaluation");
   const fs::path path = fs::path(out_) / "evaluations.jsonl";
   std::string text;
   {
@@ -243,8 +244,8 @@ const DesignEvaluation& DesignEvaluator::Evaluate(const std::vector<double>& x) 
   e.index = logged != logged_index_.end() ? logged->second : next_index_++;
   e.id = IdOf(e.index);
   e.x = x;
-  // The nearest design's solves start this one's: in a resumed run the same one as in an
-  // uninterrupted run, since the log holds exactly the designs evaluated before.
+  // The nearest design asked so far starts this one's solves: in a resumed run the same one as in
+  // an uninterrupted run, since both have asked the same designs before this one.
   const DesignEvaluation* warm = spec_.warm_start && spec_.work_solve ? Nearest(x) : nullptr;
   std::vector<SweepJob> warm_jobs;
   if (warm) warm_jobs = JobsOf(*warm);

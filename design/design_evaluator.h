@@ -39,6 +39,8 @@ class DesignEvaluator {
  public:
   // Reads and writes nothing yet.
   DesignEvaluator(const DesignSpec& spec, std::string out);
+  DesignEvaluator(const DesignEvaluator&) = delete;  // asked_ points into done_
+  DesignEvaluator& operator=(const DesignEvaluator&) = delete;
 
   // Reads DIR/evaluations.jsonl when there is one (an earlier run's): the
   // evaluations whose jobs are finished for the same scenes; returns how many.

@@ -35,6 +35,7 @@ double Scale(const DesignConstraint& c) {
 
 // What the search and the report count as meeting a constraint: within 1e-9 of its bound's scale.
 constexpr double kConstraintSlack = 1e-9;
+bool Violates(const DesignConstraint& c, double violation) { return violation > kConstraintSlack * Scale(c); }
 
 std::string Bound(const DesignConstraint& c, double v) {
   return FormatGeneral(v) + (c.unit.empty() || c.unit == "1" ? "" : " " + c.unit);
@@ -163,7 +164,7 @@ double LinearViolation(const DesignSpec& spec, const double* x) {
   double sum = 0;
   for (const DesignConstraint& c : spec.constraints)
     if (!c.metric)
-      if (const double v = ConstraintViolation(c, point, nullptr) / Scale(c); v > kConstraintSlack) sum += v;
+      if (const double v = ConstraintViolation(c, point, nullptr); Violates(c, v)) sum += v / Scale(c);
   return sum;
 }
 
@@ -304,7 +305,7 @@ double ConstraintViolation(const DesignConstraint& c, const std::vector<double>&
 bool MeetsConstraints(const DesignSpec& spec, const DesignEvaluation& e) {
   if (e.failed) return false;
   for (const DesignConstraint& c : spec.constraints)
-    if (ConstraintViolation(c, e.x, &e) > kConstraintSlack * Scale(c)) return false;
+    if (Violates(c, ConstraintViolation(c, e.x, &e))) return false;
   return true;
 }
 
@@ -333,7 +334,7 @@ std::vector<std::string> UnmetConstraints(const DesignSpec& spec, const DesignEv
   }
   std::vector<std::string> unmet;
   for (const DesignConstraint& c : spec.constraints)
-    if (!closest || ConstraintViolation(c, closest->x, closest) > kConstraintSlack * Scale(c)) unmet.push_back(c.name);
+    if (!closest || Violates(c, ConstraintViolation(c, closest->x, closest))) unmet.push_back(c.name);
   return unmet;
 }
 
@@ -381,13 +382,14 @@ void CheckDesignFeasible(const DesignSpec& spec) {
                           ", but within the variables' bounds it is at least " + Bound(c, lo));
     linear.push_back(&c);
   }
-  if (linear.size() >= 2) CheckTogether(spec, linear);
-  // The start is the first evaluation and the report's reference: it must be a design that runs.
+  // The start is the first evaluation and the report's reference: it must be a design that runs. A
+  // start that meets them all shows the constraints can be met together.
   std::vector<double> start;
   for (const DesignVariable& v : spec.variables) start.push_back(v.start);
   for (size_t i = 0; i < spec.constraints.size(); ++i) {
     const DesignConstraint& c = spec.constraints[i];
-    if (c.metric || ConstraintViolation(c, start, nullptr) <= kConstraintSlack * Scale(c)) continue;
+    if (c.metric || !Violates(c, ConstraintViolation(c, start, nullptr))) continue;
+    if (linear.size() >= 2) CheckTogether(spec, linear);  // no design at all: the better message
     std::string values;
     for (size_t k = 0; k < spec.variables.size(); ++k)
       values += (k ? ", " : "") + spec.variables[k].name + " " + FormatGeneral(start[k]) +

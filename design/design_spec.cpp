@@ -88,8 +88,8 @@ void CheckPointer(const DesignSpec& spec, const std::string& pointer, const Loca
 void CheckNumberAt(const DesignSpec& spec, const std::string& pointer, const Location& at) {
   const ordered_json& v = spec.base[ordered_json::json_pointer(pointer)];
   if (!v.is_number() && !v.is_string())
-    throw Error(at,
-                "\"" + pointer + "\" holds " + v.dump() + " in the scene; a variable replaces a number or a quantity");
+    throw Error(at, "\"" + pointer + "\" holds " + JsonKindName(nlohmann::json::parse(v.dump())) +
+                        " in the scene; a variable replaces a number or a quantity");
 }
 
 // No scene value may be set twice, nor inside another that is set: the later write would undo the earlier.
@@ -410,8 +410,8 @@ DesignSpec ReadDesignSpec(const std::string& path) {
     if (!names.insert(spec.variables.back().name).second)
       throw Error(at.child("name"), "\"" + spec.variables.back().name + "\" names two variables");
   }
-  CheckStartScene(p, spec);
   if (p.has("fixed")) ReadFixed(p, &spec);
+  CheckStartScene(p, spec);
   ReadObjective(p, &spec);
   if (p.has("constraints")) {
     const nlohmann::json& constraints = p.raw("constraints");
@@ -433,7 +433,11 @@ DesignSpec ReadDesignSpec(const std::string& path) {
     for (size_t i = 0; i < targets.size(); ++i) {
       if (!targets[i].is_string()) throw Error(p.where("targets").child(i), "must be a path (a string)");
       const fs::path t = targets[i].get<std::string>();
-      spec.targets.push_back((t.is_absolute() ? t : fs::absolute(path).parent_path() / t).lexically_normal().string());
+      std::error_code absolute_error;  // written into each job's scene, whose folder is elsewhere
+      const fs::path target = fs::absolute(t.is_absolute() ? t : fs::path(path).parent_path() / t, absolute_error);
+      if (absolute_error)
+        throw Error(p.where("targets").child(i), "cannot resolve the path: " + absolute_error.message());
+      spec.targets.push_back(target.lexically_normal().string());
       std::error_code ec;
       if (!fs::is_regular_file(spec.targets.back(), ec))
         throw Error(p.where("targets").child(i), "\"" + spec.targets.back() + "\" is not a file");

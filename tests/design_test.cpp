@@ -86,7 +86,7 @@ TEST(DesignSpec, RefusesWithTheFileAndPointer) {
             std::string::npos);
   EXPECT_NE(DesignError([](auto& d) {
               d["variables"][1]["pointer"] = "/elements/2/reversed";
-            }).find("holds true in the scene; a variable replaces a number or a quantity"),
+            }).find("holds a boolean in the scene; a variable replaces a number or a quantity"),
             std::string::npos);
   EXPECT_NE(DesignError([](auto& d) {
               d["variables"][1]["pointer"] = "/elements/0/pupil_diameter";
@@ -244,15 +244,16 @@ TEST(DesignSearch, AResumedSearchRepeatsNoEvaluationAndEndsWhereAWholeOneEnds) {
   DesignEvaluator whole(spec, whole_out);
   SearchDesign(spec, &whole);
   ASSERT_EQ(whole.ran(), 10u);
-  // What a kill after four evaluations leaves: their log lines, a fifth cut short, no later jobs.
+  // What a kill after five evaluations leaves, with the fifth's jobs lost since: five log lines, a
+  // sixth cut short, no jobs after the fourth. The fifth design runs again under its own id.
   const std::string out = Scratch("resume");
   fs::copy(whole_out, out, fs::copy_options::recursive | fs::copy_options::overwrite_existing);
   {
     std::ifstream in(whole_out + "/evaluations.jsonl");
     std::ofstream log(out + "/evaluations.jsonl", std::ios::trunc);
     std::string line;
-    for (int i = 0; i < 4 && std::getline(in, line); ++i) log << line << "\n";
-    log << "{\"index\": 4, \"id\": \"e0004\", \"x\": [1.9";
+    for (int i = 0; i < 5 && std::getline(in, line); ++i) log << line << "\n";
+    log << "{\"index\": 5, \"id\": \"e0005\", \"x\": [1.9";
   }
   for (const DesignEvaluation* e : whole.evaluations())
     if (e->index >= 4) fs::remove_all(out + "/jobs/" + e->id);
@@ -268,14 +269,14 @@ TEST(DesignSearch, AResumedSearchRepeatsNoEvaluationAndEndsWhereAWholeOneEnds) {
     EXPECT_EQ(a[i]->warm_start, b[i]->warm_start) << i;
     EXPECT_EQ(a[i]->id, b[i]->id) << i;
   }
-  // Every line of the log whole, one per evaluation.
+  // Every line of the log whole: one per evaluation, the fifth's twice (before and after its jobs were lost).
   std::ifstream log(out + "/evaluations.jsonl");
   size_t lines = 0;
   for (std::string line; std::getline(log, line); ++lines) {
     nlohmann::json entry;
     EXPECT_NO_THROW(entry = nlohmann::json::parse(line)) << line;
   }
-  EXPECT_EQ(lines, 10u);
+  EXPECT_EQ(lines, 11u);
 }
 
 #endif
