@@ -652,37 +652,50 @@ void Walker::CheckApertures() {
                                " seen from the edges of the eyebox");
 }
 
-// Warns of every thin lens modelled beyond where first-order optics holds: a layer seen through it over a
-// field wider than kFirstOrderFieldDeg, or a lens faster than f/kFirstOrderFNumber; the real-lens model
-// traces it exactly (docs/optics.md, "Real lenses").
+// Warns of every first-order lens (a thin lens, a tunable lens) modelled beyond where first-order optics
+// holds: a layer seen through it over a field wider than kFirstOrderFieldDeg, or a lens faster than
+// f/kFirstOrderFNumber at its strongest power on the paths. A thin lens's remedy is the real-lens model,
+// traced exactly (docs/optics.md, "Real lenses"); a tunable lens has none yet.
 void Walker::CheckFirstOrderValidity() {
-  std::vector<std::string> warned;
+  struct Worst {
+    std::string element;
+    const VirtualLayer* widest = nullptr;  // the layer seen through it over the widest field
+    const PathStep* strongest = nullptr;   // its step of the strongest power
+  };
+  std::vector<Worst> lenses;  // in the order first met
   for (const VirtualLayer& l : system_.layers)
     for (const PathStep& s : l.path) {
-      if (s.type != "thin_lens" || s.power_diopters == 0 ||
-          std::find(warned.begin(), warned.end(), s.element) != warned.end())
-        continue;
-      const double fx = l.fov_x_rad / kRadiansPerDegree, fy = l.fov_y_rad / kRadiansPerDegree;
-      const double f = std::abs(1.0 / s.power_diopters);
-      std::string why;
-      if (std::max(fx, fy) > kFirstOrderFieldDeg)
-        why = Quoted(l.name) + " is seen through it over " + FormatFixed(fx, 0) + " x " + FormatFixed(fy, 0) +
-              " deg, beyond the " + FormatFixed(kFirstOrderFieldDeg, 0) +
-              " deg within which its distortion and field "
-              "curvature stay small";
-      else if (s.clear_aperture_m && f / *s.clear_aperture_m < kFirstOrderFNumber)
-        why = "it is f/" + FormatFixed(f / *s.clear_aperture_m, 2) + " (" + Mm(f) + " over a " +
-              Mm(*s.clear_aperture_m) + " clear aperture), faster than f/" + FormatFixed(kFirstOrderFNumber, 0) +
-              ", where its spherical aberration is no longer small";
-      if (why.empty()) continue;
-      warned.push_back(s.element);
-      system_.warnings.push_back("the thin lens " + Quoted(s.element) +
-                                 " is modelled to first order outside where "
-                                 "that holds: " +
-                                 why +
-                                 "; describe it as a \"lens\" of surfaces and glass for the "
-                                 "exact trace (docs/optics.md, \"Real lenses\")");
+      if ((s.type != "thin_lens" && s.type != "tunable_lens") || s.power_diopters == 0) continue;
+      auto it = std::find_if(lenses.begin(), lenses.end(), [&](const Worst& w) { return w.element == s.element; });
+      if (it == lenses.end()) it = lenses.insert(lenses.end(), Worst{s.element, &l, &s});
+      if (std::max(l.fov_x_rad, l.fov_y_rad) > std::max(it->widest->fov_x_rad, it->widest->fov_y_rad)) it->widest = &l;
+      if (std::abs(s.power_diopters) > std::abs(it->strongest->power_diopters)) it->strongest = &s;
     }
+  for (const Worst& w : lenses) {
+    const VirtualLayer& l = *w.widest;
+    const PathStep& s = *w.strongest;
+    const double fx = l.fov_x_rad / kRadiansPerDegree, fy = l.fov_y_rad / kRadiansPerDegree;
+    const double f = std::abs(1.0 / s.power_diopters);
+    std::string why;
+    if (std::max(fx, fy) > kFirstOrderFieldDeg)
+      why = Quoted(l.name) + " is seen through it over " + FormatFixed(fx, 0) + " x " + FormatFixed(fy, 0) +
+            " deg, beyond the " + FormatFixed(kFirstOrderFieldDeg, 0) +
+            " deg within which its distortion and field "
+            "curvature stay small";
+    else if (s.clear_aperture_m && f / *s.clear_aperture_m < kFirstOrderFNumber)
+      why = "it is f/" + FormatFixed(f / *s.clear_aperture_m, 2) + " (" + Mm(f) + " over a " + Mm(*s.clear_aperture_m) +
+            " clear aperture), faster than f/" + FormatFixed(kFirstOrderFNumber, 0) +
+            ", where its spherical aberration is no longer small";
+    if (why.empty()) continue;
+    const bool tunable = s.type == "tunable_lens";
+    system_.warnings.push_back(
+        std::string(tunable ? "the tunable lens " : "the thin lens ") + Quoted(w.element) +
+        " is modelled to first order outside where that holds: " + why +
+        (tunable ? "; layerlab has no exact model of a tunable lens, so its images there leave out those "
+                   "aberrations (docs/optics.md, \"Real lenses\")"
+                 : "; describe it as a \"lens\" of surfaces and glass for the exact trace (docs/optics.md, "
+                   "\"Real lenses\")"));
+  }
 }
 
 void Walker::Finish() {

@@ -219,6 +219,15 @@ TEST(Compile, AThinLensBeyondFirstOrderIsWarnedOf) {
             std::string::npos)
       << first_order(CompileJson(fast));
 
+  // A tunable lens is first-order too: at its strongest power (13.8841 D: 72.02 mm) over 80 mm, f/0.90.
+  nlohmann::json tunable = ReadExample("multifocal_tunable_4plane.json");
+  ElementNamed(tunable, "tunable")["clear_aperture"] = "80 mm";
+  const std::string tunable_warning = first_order(CompileJson(tunable));
+  EXPECT_NE(tunable_warning.find("the tunable lens \"tunable\""), std::string::npos) << tunable_warning;
+  EXPECT_NE(tunable_warning.find("it is f/0.90 (72.02 mm over a 80.00 mm clear aperture)"), std::string::npos)
+      << tunable_warning;
+  EXPECT_NE(tunable_warning.find("no exact model of a tunable lens"), std::string::npos) << tunable_warning;
+
   for (const char* example : {"paper_prototype.json", "multiplicative_2layer.json", "additive_2layer.json",
                               "relay_magnifier.json", "per_branch_magnifiers.json", "multifocal_tunable_4plane.json",
                               "tensor_display_rank2.json", "hybrid_pbs_hwp.json"})
