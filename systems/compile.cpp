@@ -665,7 +665,8 @@ void Walker::CheckFirstOrderValidity() {
   std::vector<Worst> lenses;  // in the order first met
   for (const VirtualLayer& l : system_.layers)
     for (const PathStep& s : l.path) {
-      if ((s.type != "thin_lens" && s.type != "tunable_lens") || s.power_diopters == 0) continue;
+      if ((s.type != "thin_lens" && s.type != "tunable_lens" && s.type != "mirror") || s.power_diopters == 0)
+        continue;  // a mirror with power is a curved one
       auto it = std::find_if(lenses.begin(), lenses.end(), [&](const Worst& w) { return w.element == s.element; });
       if (it == lenses.end()) it = lenses.insert(lenses.end(), Worst{s.element, &l, &s});
       if (std::max(l.fov_x_rad, l.fov_y_rad) > std::max(it->widest->fov_x_rad, it->widest->fov_y_rad)) it->widest = &l;
@@ -687,14 +688,17 @@ void Walker::CheckFirstOrderValidity() {
             " clear aperture), faster than f/" + FormatFixed(kFirstOrderFNumber, 0) +
             ", where its spherical aberration is no longer small";
     if (why.empty()) continue;
-    const bool tunable = s.type == "tunable_lens";
+    const std::string kind = s.type == "thin_lens"      ? "thin lens"
+                             : s.type == "tunable_lens" ? "tunable lens"
+                                                        : "curved mirror";
     system_.warnings.push_back(
-        std::string(tunable ? "the tunable lens " : "the thin lens ") + Quoted(w.element) +
-        " is modelled to first order outside where that holds: " + why +
-        (tunable ? "; layerlab has no exact model of a tunable lens, so its images there leave out those "
-                   "aberrations (docs/optics.md, \"Real lenses\")"
-                 : "; describe it as a \"lens\" of surfaces and glass for the exact trace (docs/optics.md, "
-                   "\"Real lenses\")"));
+        "the " + kind + " " + Quoted(w.element) + " is modelled to first order outside where that holds: " + why +
+        (s.type == "thin_lens"
+             ? "; describe it as a \"lens\" of surfaces and glass for the exact trace (docs/optics.md, "
+               "\"Real lenses\")"
+             : "; layerlab has no exact model of a " + kind +
+                   ", so its images there leave out those aberrations (docs/optics.md, \"Real "
+                   "lenses\")"));
   }
 }
 

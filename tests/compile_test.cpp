@@ -228,6 +228,18 @@ TEST(Compile, AThinLensBeyondFirstOrderIsWarnedOf) {
       << tunable_warning;
   EXPECT_NE(tunable_warning.find("no exact model of a tunable lens"), std::string::npos) << tunable_warning;
 
+  // A curved mirror as the magnifier (f = 3 mm): a 165 deg field, by first order.
+  nlohmann::json mirror = ReadExample("multiplicative_2layer.json");
+  ElementNamed(mirror, "lens") = {
+      {"type", "mirror"}, {"name", "lens"}, {"focal_length", "3 mm"}, {"fold", "horizontal"}, {"next", "front"}};
+  const DisplaySystem curved = CompileJson(mirror);
+  const std::string mirror_warning = first_order(curved);
+  const double mirror_fx = curved.layers.front().fov_x_rad / kRadiansPerDegree;
+  ASSERT_GT(mirror_fx, kFirstOrderFieldDeg);
+  EXPECT_NE(mirror_warning.find("the curved mirror \"lens\""), std::string::npos) << mirror_warning;
+  EXPECT_NE(mirror_warning.find(FormatFixed(mirror_fx, 0) + " x "), std::string::npos) << mirror_warning;
+  EXPECT_NE(mirror_warning.find("no exact model of a curved mirror"), std::string::npos) << mirror_warning;
+
   for (const char* example : {"paper_prototype.json", "multiplicative_2layer.json", "additive_2layer.json",
                               "relay_magnifier.json", "per_branch_magnifiers.json", "multifocal_tunable_4plane.json",
                               "tensor_display_rank2.json", "hybrid_pbs_hwp.json"})
