@@ -61,17 +61,7 @@ SweepParameter ReadParameter(Params& p, const SweepSpec& spec) {
   const std::string key = p.has("pointer") ? "pointer" : "pointers";
   for (size_t i = 0; i < out.pointers.size(); ++i) {
     const Location at = key == "pointer" ? p.where(key) : p.where(key).child(i);
-    const std::string& pointer = out.pointers[i];
-    bool present = false;
-    try {
-      present = spec.base.contains(ordered_json::json_pointer(pointer));
-    } catch (const ordered_json::exception&) {
-      throw Error(at, "\"" + pointer + "\" is not a JSON pointer (\"/elements/0/pupil_diameter\")");
-    }
-    if (pointer.empty()) throw Error(at, "the whole scene cannot be a parameter");
-    if (!present)
-      throw Error(at, "\"" + pointer + "\" is not in the scene " + spec.scene +
-                          " (a parameter replaces a value the base scene has; add it there with a default)");
+    RequireScenePointer(spec.base, spec.scene, out.pointers[i], at, "a parameter", "/elements/0/pupil_diameter");
   }
   const nlohmann::json& values = p.raw("values");
   if (!values.is_array()) p.fail("values", "must be an array");

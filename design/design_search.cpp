@@ -50,14 +50,11 @@ double LeastViolation(const DesignSpec& spec, const std::vector<const DesignCons
   struct Data {
     const DesignConstraint* c;
     bool upper;
-    std::vector<double> scale;
   };
   std::vector<Data> rows;
   for (const DesignConstraint* c : linear) {
-    std::vector<double> scale(n);
-    for (size_t k = 0; k < n; ++k) scale[k] = c->coefficients[k];
-    if (c->min) rows.push_back({c, false, scale});
-    if (c->max) rows.push_back({c, true, scale});
+    if (c->min) rows.push_back({c, false});
+    if (c->max) rows.push_back({c, true});
   }
   Opt opt(nlopt_create(NLOPT_LN_COBYLA, static_cast<unsigned>(n + 1)));
   std::vector<double> lo(n + 1), hi(n + 1), z(n + 1), tol(n + 1);
@@ -67,13 +64,13 @@ double LeastViolation(const DesignSpec& spec, const std::vector<const DesignCons
     hi[k] = spec.variables[k].max;
     z[k] = 0.5 * (lo[k] + hi[k]);
     tol[k] = 1e-9 * (hi[k] - lo[k]);
-    for (const Data& r : rows) span = std::max(span, std::abs(r.scale[k]) * (hi[k] - lo[k]));
+    for (const Data& r : rows) span = std::max(span, std::abs(r.c->coefficients[k]) * (hi[k] - lo[k]));
   }
   lo[n] = 0;
   hi[n] = HUGE_VAL;
   z[n] = 0;
   for (const Data& r : rows) {
-    const double v = Dot(r.scale, z.data());
+    const double v = Dot(r.c->coefficients, z.data());
     z[n] = std::max(z[n], r.upper ? v - *r.c->max : *r.c->min - v);
   }
   tol[n] = 1e-12 * std::max(span, 1.0);
@@ -86,7 +83,7 @@ double LeastViolation(const DesignSpec& spec, const std::vector<const DesignCons
         opt.get(),
         [](unsigned m, const double* v, double*, void* data) {
           const Data& d = *static_cast<Data*>(data);
-          const double a = Dot(d.scale, v);
+          const double a = Dot(d.c->coefficients, v);
           return (d.upper ? a - *d.c->max : *d.c->min - a) - v[m - 1];
         },
         &r, 0.0);

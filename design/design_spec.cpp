@@ -69,16 +69,7 @@ std::optional<double> SceneValueIn(const ordered_json& scene, const std::string&
 }
 
 void CheckPointer(const DesignSpec& spec, const std::string& pointer, const Location& at) {
-  bool present = false;
-  try {
-    present = spec.base.contains(ordered_json::json_pointer(pointer));
-  } catch (const ordered_json::exception&) {
-    throw Error(at, "\"" + pointer + "\" is not a JSON pointer (\"/elements/3/virtual_depth\")");
-  }
-  if (pointer.empty()) throw Error(at, "the whole scene cannot be a design value");
-  if (!present)
-    throw Error(at, "\"" + pointer + "\" is not in the scene " + spec.scene +
-                        " (a design replaces a value the base scene has; add it there with a default)");
+  RequireScenePointer(spec.base, spec.scene, pointer, at, "a variable", "/elements/3/virtual_depth");
   for (const std::string& path : ScenePathPointers(spec.base))
     if (path == pointer)
       throw Error(at, "\"" + pointer + "\" is a file path; a design sets numbers and settings, not paths");
@@ -92,11 +83,16 @@ void CheckNumberAt(const DesignSpec& spec, const std::string& pointer, const Loc
                         " in the scene; a variable replaces a number or a quantity");
 }
 
+// Whether two JSON pointers name the same value or one lies inside the other.
+bool Overlaps(const std::string& a, const std::string& b) {
+  return a == b || a.rfind(b + "/", 0) == 0 || b.rfind(a + "/", 0) == 0;
+}
+
 // No scene value may be set twice, nor inside another that is set: the later write would undo the earlier.
 void CheckDistinctWrites(const DesignSpec& spec, const std::string& pointer, const Location& at) {
   for (const DesignVariable& v : spec.variables)
     for (const DesignWrite& w : v.writes)
-      if (w.pointer == pointer || w.pointer.rfind(pointer + "/", 0) == 0 || pointer.rfind(w.pointer + "/", 0) == 0)
+      if (Overlaps(w.pointer, pointer))
         throw Error(at,
                     "\"" + pointer + "\" overlaps \"" + w.pointer + "\", which the variable \"" + v.name + "\" sets");
 }
@@ -131,8 +127,7 @@ DesignVariable ReadVariable(Params& p, const DesignSpec& spec) {
       CheckDistinctWrites(spec, write.pointer, w.where("pointer"));
       CheckNumberAt(spec, write.pointer, w.where("pointer"));
       for (const DesignWrite& earlier : v.writes)
-        if (earlier.pointer == write.pointer || earlier.pointer.rfind(write.pointer + "/", 0) == 0 ||
-            write.pointer.rfind(earlier.pointer + "/", 0) == 0)
+        if (Overlaps(earlier.pointer, write.pointer))
           throw Error(w.where("pointer"),
                       "\"" + write.pointer + "\" overlaps \"" + earlier.pointer + "\" of this variable");
       if (w.has("scale")) {
@@ -206,8 +201,7 @@ void ReadFixed(Params& p, DesignSpec* spec) {
       throw Error(at, "\"" + pointer + "\" is not in the scene " + spec->scene + ", nor is the object it would go in");
     for (const DesignVariable& v : spec->variables)
       for (const DesignWrite& w : v.writes)
-        if (w.pointer == pointer || w.pointer.rfind(pointer + "/", 0) == 0)
-          throw Error(at, "holds what the variable \"" + v.name + "\" sets");
+        if (Overlaps(w.pointer, pointer)) throw Error(at, "holds what the variable \"" + v.name + "\" sets");
     spec->base[*where] = ordered_json::parse(value.dump());
     if (ScenePathPointers(spec->base) != paths)
       throw Error(at, "holds a file path; a fixed value is a number or a setting");

@@ -51,4 +51,18 @@ ordered_json ReadDocumentInOrder(const std::string& path) {
   }
 }
 
+void RequireScenePointer(const nlohmann::ordered_json& scene, const std::string& scene_file, const std::string& pointer,
+                         const Location& at, const std::string& noun, const std::string& example) {
+  bool present = false;
+  try {
+    present = scene.contains(nlohmann::ordered_json::json_pointer(pointer));
+  } catch (const nlohmann::ordered_json::exception&) {
+    throw Error(at, "\"" + pointer + "\" is not a JSON pointer (\"" + example + "\")");
+  }
+  if (pointer.empty()) throw Error(at, "the whole scene cannot be " + noun);
+  if (!present)
+    throw Error(at, "\"" + pointer + "\" is not in the scene " + scene_file + " (" + noun +
+                        " replaces a value the base scene has; add it there with a default)");
+}
+
 }  // namespace layerlab

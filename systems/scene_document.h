@@ -9,6 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "layerlab/framework/error.h"
+
 namespace layerlab {
 
 // Every relative path of a scene ("solve": "target", "target_scene"; "run":
@@ -20,6 +22,13 @@ void RebaseRelativePaths(nlohmann::ordered_json& scene, const std::string& from_
 
 // A scene file's document with its keys in file order (LoadScene has checked it).
 nlohmann::ordered_json ReadDocumentInOrder(const std::string& path);
+
+// Refuses, at `at`, a `pointer` that is not a JSON pointer, is the whole
+// scene, or names no value of `scene` (the document of `scene_file`): what a
+// sweep's parameter and a design's variable replace must be there. `noun`
+// says what replaces it ("a parameter"), `example` shows a good pointer.
+void RequireScenePointer(const nlohmann::ordered_json& scene, const std::string& scene_file, const std::string& pointer,
+                         const Location& at, const std::string& noun, const std::string& example);
 
 // The JSON pointers of the relative-path values RebaseRelativePaths rebases, in `scene`.
 std::vector<std::string> ScenePathPointers(const nlohmann::ordered_json& scene);
