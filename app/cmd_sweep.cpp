@@ -117,7 +117,7 @@ void RunSweepCommand(const SweepOptions& o) {
   if (o.slurm) {
     SlurmResources resources = spec.slurm;
     resources.Override(o.slurm_resources);
-    scripts = MakeSlurmScripts(spec, jobs.size(), o.out, resources);
+    scripts = MakeSlurmScripts(SweepArrayCommand(spec), jobs.size(), o.out, resources);
   }
   const FileLock lock = LockSweepFolder(spec, o.out);
   const size_t written = WriteSweepFolders(spec, jobs, o.out);
@@ -158,17 +158,8 @@ void AddSweepCommand(CLI::App& app) {
   CLI::Option* slurm =
       cmd->add_flag("--slurm", o->slurm,
                     "Write a Slurm job array (DIR/slurm/array.sbatch), a gather step and submit.sh; run nothing");
-  const std::vector<CLI::Option*> resources = {
-      cmd->add_option("--slurm-time", o->slurm_resources.time,
-                      "With --slurm: each task's wall time (minutes, hours:minutes:seconds, days-hours, ...)"),
-      cmd->add_option("--slurm-mem", o->slurm_resources.mem,
-                      "With --slurm: each task's memory (an integer, unit K, M (default), G or T: 4G)"),
-      cmd->add_option("--slurm-partition", o->slurm_resources.partition, "With --slurm: the partition(s)"),
-      cmd->add_option("--slurm-account", o->slurm_resources.account, "With --slurm: the account charged"),
-      cmd->add_option("--slurm-cpus-per-task", o->slurm_resources.cpus_per_task,
-                      "With --slurm: each task's CPUs (default: the sweep's threads)")
-          ->check(CLI::Range(1, kMaxSlurmCpusPerTask))};
-  for (CLI::Option* r : resources) r->needs(slurm);
+  const std::vector<CLI::Option*> resources =
+      AddSlurmResourceFlags(cmd, slurm, &o->slurm_resources, "the sweep's threads");
   CLI::Option* job = cmd->add_option("--job", o->job, "Run only this job (its index), e.g. from a Slurm array task");
   CLI::Option* gather = cmd->add_flag("--gather", o->gather, "Only gather the table and plots from the job records");
   local->excludes(mpi)->excludes(slurm)->excludes(job)->excludes(gather);
@@ -176,8 +167,7 @@ void AddSweepCommand(CLI::App& app) {
   slurm->excludes(job)->excludes(gather);
   job->excludes(gather);
   cmd->callback([o, resources] {
-    for (const CLI::Option* r : resources)  // an empty value would read as not given
-      if (r->count() && r->as<std::string>().empty()) throw Error(r->get_name() + ": is empty");
+    CheckSlurmFlags(resources);
     RunSweepCommand(*o);
   });
 }

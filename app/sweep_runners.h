@@ -6,8 +6,12 @@
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "layerlab/analysis/sweep_gather.h"
 #include "layerlab/analysis/sweep_jobs.h"
+#include "layerlab/app/process_pool.h"
+#include "layerlab/framework/error.h"
 
 namespace layerlab::app {
 
@@ -16,9 +20,6 @@ void SayJob(const SweepSpec& spec, const SweepJob& job, const SweepJobState& sta
 
 // The exit status of `sweep --job ID` when another process holds that job.
 inline constexpr int kJobBusyExit = 75;  // EX_TEMPFAIL: try again later
-
-// This executable, for the pool's children and the Slurm scripts.
-std::string SelfExecutable();
 
 // Runs each unfinished job as `layerlab sweep SWEEP --out DIR --job ID`, at
 // most `processes` at a time (posix_spawn); prints a line per job.
@@ -30,12 +31,35 @@ struct SlurmScripts {
   std::string folder, logs, array, gather, submit;  // absolute paths
   std::string array_text, gather_text, submit_text;
 };
-// The scripts of the sweep's `job_count` jobs into `out`, with `resources`.
-// Writes nothing; throws layerlab::Error naming the field (the sweep file's
-// /name, --out, a resource) when a text cannot be carried safely into a
-// script (app/sweep_slurm.cpp says which).
-SlurmScripts MakeSlurmScripts(const SweepSpec& spec, size_t job_count, const std::string& out,
+// What the array runs: `layerlab COMMAND FILE --out DIR ARGUMENTS TASK_FLAG $SLURM_ARRAY_TASK_ID`
+// per task, and the same with --gather after them all.
+struct SlurmArrayCommand {
+  std::string command, file, file_what;  // "sweep", the sweep file, "SWEEP (the sweep file's path)"
+  std::string kind;                      // "sweep", "optimization": in comments and messages
+  std::string name;                      // the job's name (checked: SlurmJobNameProblem)
+  bool named = true;                     // given in the file, not its stem
+  int threads = 0;                       // each task's CPUs unless the resources say
+  std::vector<std::string> arguments;    // more arguments for every task (quoted)
+  std::string task_flag, task, tasks;    // "--job", "job of the sweep", "jobs"
+  std::string gathered;                  // what the gather step makes
+  Location empty;                        // named when there is no task
+};
+SlurmArrayCommand SweepArrayCommand(const SweepSpec& spec);
+
+// The scripts of `task_count` tasks into `out`, with `resources`. Writes
+// nothing; throws layerlab::Error naming the field (the file's /name, --out,
+// a resource) when a text cannot be carried safely into a script
+// (app/sweep_slurm.cpp says which).
+SlurmScripts MakeSlurmScripts(const SlurmArrayCommand& command, size_t task_count, const std::string& out,
                               const SlurmResources& resources);
+// --slurm-time, --slurm-mem, --slurm-partition, --slurm-account and
+// --slurm-cpus-per-task into `resources`, each needing `slurm`; `cpus`
+// says what the CPUs default to. Returns them, for CheckSlurmFlags.
+std::vector<CLI::Option*> AddSlurmResourceFlags(CLI::App* cmd, CLI::Option* slurm, SlurmResources* resources,
+                                                const std::string& cpus);
+// Throws layerlab::Error for a resource flag given an empty value (it would read as not given).
+void CheckSlurmFlags(const std::vector<CLI::Option*>& flags);
+
 // Writes them (and creates the logs folder); returns their paths.
 std::vector<std::string> WriteSlurmScripts(const SlurmScripts& scripts);
 

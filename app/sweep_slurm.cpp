@@ -1,5 +1,6 @@
-// `layerlab sweep --slurm`: the scripts of a Slurm job array. The array task
-// id selects the job (`--job $SLURM_ARRAY_TASK_ID`), so a task that is
+// `layerlab sweep --slurm` and `layerlab optimize --slurm`: the scripts of a
+// Slurm job array. The array task id selects the job (`--job
+// $SLURM_ARRAY_TASK_ID`) or the start (`--start ...`), so a task that is
 // requeued or run again finds its job complete and skips it; the gather step
 // runs after the whole array (afterany: also when some tasks failed).
 //
@@ -75,22 +76,39 @@ void WriteScript(const std::string& path, const std::string& text) {
 
 }  // namespace
 
-SlurmScripts MakeSlurmScripts(const SweepSpec& spec, size_t job_count, const std::string& out,
+SlurmArrayCommand SweepArrayCommand(const SweepSpec& spec) {
+  SlurmArrayCommand c;
+  c.command = "sweep";
+  c.file = spec.file;
+  c.file_what = "SWEEP (the sweep file's path)";
+  c.kind = "sweep";
+  c.name = spec.name;
+  c.named = spec.named;
+  c.threads = spec.threads;
+  c.task_flag = "--job";
+  c.task = "job of the sweep";
+  c.tasks = "jobs";
+  c.gathered = "the table and plots from every job's record";
+  c.empty = Location{spec.file, "/parameters"};
+  return c;
+}
+
+SlurmScripts MakeSlurmScripts(const SlurmArrayCommand& c, size_t job_count, const std::string& out,
                               const SlurmResources& resources) {
-  if (job_count == 0) throw Error(Location{spec.file, "/parameters"}, "the sweep has no jobs: nothing to submit");
-  if (const std::string problem = SlurmJobNameProblem(spec.name); !problem.empty())
-    throw Error(Location{spec.file, "/name"},
-                Shown(spec.name) + " " + problem +
-                    (spec.named ? "" : " (without \"name\", the name is the sweep file's stem: give one)"));
+  if (job_count == 0) throw Error(c.empty, "the " + c.kind + " has no " + c.tasks + ": nothing to submit");
+  if (const std::string problem = SlurmJobNameProblem(c.name); !problem.empty())
+    throw Error(Location{c.file, "/name"},
+                Shown(c.name) + " " + problem +
+                    (c.named ? "" : " (without \"name\", the name is the " + c.kind + " file's stem: give one)"));
   for (const auto& [key, value] :
        {std::pair{"time", &resources.time}, std::pair{"mem", &resources.mem},
         std::pair{"partition", &resources.partition}, std::pair{"account", &resources.account}})
     if (!value->empty())
       if (const std::string problem = SlurmValueProblem(key, *value); !problem.empty())
         throw Error(std::string("slurm ") + key + ": " + problem);
-  const std::string exe = SelfExecutable(), sweep = Absolute(spec.file), to = Absolute(out);
+  const std::string exe = SelfExecutable(), file = Absolute(c.file), to = Absolute(out);
   CheckScriptPath(exe, "the layerlab executable's path");
-  CheckScriptPath(sweep, "SWEEP (the sweep file's path)");
+  CheckScriptPath(file, c.file_what);
   CheckScriptPath(to, "--out");
   const fs::path dir = fs::path(to) / "slurm";
   const std::string logs = (dir / "logs").string();
@@ -102,13 +120,15 @@ SlurmScripts MakeSlurmScripts(const SweepSpec& spec, size_t job_count, const std
                 " holds \"hetjob\" or \"packjob\", which sbatch reads in an #SBATCH line as the start of another job; "
                 "rename it");
 
-  const int cpus = resources.cpus_per_task > 0 ? resources.cpus_per_task : spec.threads > 0 ? spec.threads : 1;
+  const int cpus = resources.cpus_per_task > 0 ? resources.cpus_per_task : c.threads > 0 ? c.threads : 1;
   std::string asked;  // what both scripts ask; the array's tasks also their CPUs
   if (!resources.time.empty()) asked += "#SBATCH --time=" + resources.time + "\n";
   if (!resources.mem.empty()) asked += "#SBATCH --mem=" + resources.mem + "\n";
   if (!resources.partition.empty()) asked += "#SBATCH --partition=" + resources.partition + "\n";
   if (!resources.account.empty()) asked += "#SBATCH --account=" + resources.account + "\n";
-  const std::string run = "exec " + ShellQuoted(exe) + " sweep " + ShellQuoted(sweep) + " --out " + ShellQuoted(to);
+  std::string run =
+      "exec " + ShellQuoted(exe) + " " + c.command + " " + ShellQuoted(file) + " --out " + ShellQuoted(to);
+  for (const std::string& a : c.arguments) run += " " + ShellQuoted(a);
   const std::string last = std::to_string(job_count - 1);
 
   SlurmScripts s;
@@ -117,24 +137,26 @@ SlurmScripts MakeSlurmScripts(const SweepSpec& spec, size_t job_count, const std
   s.array = (dir / "array.sbatch").string();
   s.gather = (dir / "gather.sbatch").string();
   s.submit = (dir / "submit.sh").string();
-  s.array_text = "#!/bin/bash\n#SBATCH --job-name=" + SbatchQuoted(spec.name) + "\n#SBATCH --array=0-" + last +
+  s.array_text = "#!/bin/bash\n#SBATCH --job-name=" + SbatchQuoted(c.name) + "\n#SBATCH --array=0-" + last +
                  "\n#SBATCH --ntasks=1\n#SBATCH --cpus-per-task=" + std::to_string(cpus) + "\n" + asked +
                  "#SBATCH --output=" + SbatchQuoted(PatternLiteral(logs) + "/job-%a.out") +
                  "\n"
-                 "# One task per job of the sweep (" +
-                 std::to_string(job_count) +
-                 " jobs), written by layerlab sweep --slurm and submitted by submit.sh.\n"
+                 "# One task per " +
+                 c.task + " (" + std::to_string(job_count) + " " + c.tasks + "), written by layerlab " + c.command +
+                 " --slurm and submitted by submit.sh.\n"
                  "# To run one task here: set SLURM_ARRAY_TASK_ID (0 to " +
                  last +
                  ") and run this script.\n"
                  "set -euo pipefail\n"
                  ": \"${SLURM_ARRAY_TASK_ID:?runs as a task of the Slurm array (sbatch), or with "
                  "SLURM_ARRAY_TASK_ID set}\"\n" +
-                 run + " --job \"$SLURM_ARRAY_TASK_ID\"\n";
-  s.gather_text = "#!/bin/bash\n#SBATCH --job-name=" + SbatchQuoted(spec.name + "-gather") + "\n#SBATCH --ntasks=1\n" +
+                 run + " " + c.task_flag + " \"$SLURM_ARRAY_TASK_ID\"\n";
+  s.gather_text = "#!/bin/bash\n#SBATCH --job-name=" + SbatchQuoted(c.name + "-gather") + "\n#SBATCH --ntasks=1\n" +
                   asked + "#SBATCH --output=" + SbatchQuoted(PatternLiteral(logs) + "/gather.out") +
                   "\n"
-                  "# The gather step of the sweep: the table and plots from every job's record.\n"
+                  "# The gather step of the " +
+                  c.kind + ": " + c.gathered +
+                  ".\n"
                   "set -euo pipefail\n" +
                   run + " --gather\n";
   s.submit_text =
@@ -147,6 +169,27 @@ SlurmScripts MakeSlurmScripts(const SweepSpec& spec, size_t job_count, const std
       "sbatch --dependency=afterany:\"${array%%;*}\" " +
       ShellQuoted(s.gather) + "\n";
   return s;
+}
+
+std::vector<CLI::Option*> AddSlurmResourceFlags(CLI::App* cmd, CLI::Option* slurm, SlurmResources* r,
+                                                const std::string& cpus) {
+  const std::vector<CLI::Option*> flags = {
+      cmd->add_option("--slurm-time", r->time,
+                      "With --slurm: each task's wall time (minutes, hours:minutes:seconds, days-hours, ...)"),
+      cmd->add_option("--slurm-mem", r->mem,
+                      "With --slurm: each task's memory (an integer, unit K, M (default), G or T: 4G)"),
+      cmd->add_option("--slurm-partition", r->partition, "With --slurm: the partition(s)"),
+      cmd->add_option("--slurm-account", r->account, "With --slurm: the account charged"),
+      cmd->add_option("--slurm-cpus-per-task", r->cpus_per_task,
+                      "With --slurm: each task's CPUs (default: " + cpus + ")")
+          ->check(CLI::Range(1, kMaxSlurmCpusPerTask))};
+  for (CLI::Option* f : flags) f->needs(slurm);
+  return flags;
+}
+
+void CheckSlurmFlags(const std::vector<CLI::Option*>& flags) {
+  for (const CLI::Option* f : flags)
+    if (f->count() && f->as<std::string>().empty()) throw Error(f->get_name() + ": is empty");
 }
 
 std::vector<std::string> WriteSlurmScripts(const SlurmScripts& s) {

@@ -64,20 +64,23 @@ SweepSpec SweepFor(const DesignSpec& spec, const ordered_json& base, const std::
   return s;
 }
 
-std::string IdOf(size_t index) {
-  char text[32];
-  std::snprintf(text, sizeof text, "e%04zu", index);
-  return text;
-}
-
 }  // namespace
 
-DesignEvaluator::DesignEvaluator(const DesignSpec& spec, std::string out) : spec_(spec), out_(std::move(out)) {
+DesignEvaluator::DesignEvaluator(const DesignSpec& spec, std::string out, std::string start)
+    : spec_(spec), out_(std::move(out)), start_(std::move(start)) {
+  log_ = start_.empty() ? (fs::path(out_) / "evaluations.jsonl").string()
+                        : (fs::path(out_) / "starts" / start_ / "evaluations.jsonl").string();
   const ordered_json base = BaseWithMetrics(spec);
   if (spec.targets.empty())
     sweeps_.push_back(SweepFor(spec, base, ""));
   else
     for (const std::string& target : spec.targets) sweeps_.push_back(SweepFor(spec, base, target));
+}
+
+std::string DesignEvaluator::IdOf(size_t index) const {
+  char text[32];
+  std::snprintf(text, sizeof text, "e%04zu", index);
+  return start_.empty() ? text : start_ + "-" + text;
 }
 
 std::vector<SceneValue> DesignEvaluator::ValuesOf(const std::vector<double>& x) const {
@@ -171,7 +174,7 @@ double DesignEvaluator::FailedLoss() const {
 
 size_t DesignEvaluator::Resume() {
   if (!asked_.empty()) throw Error("internal error: DesignEvaluator::Resume after an evaluation");
-  const fs::path path = fs::path(out_) / "evaluations.jsonl";
+  const fs::path path = log_;
   std::string text;
   {
     std::ifstream in(path, std::ios::binary);
@@ -202,6 +205,7 @@ size_t DesignEvaluator::Resume() {
     DesignEvaluation e;
     e.index = entry["index"].get<size_t>();
     e.id = IdOf(e.index);
+    e.start = start_;
     if (entry.contains("warm_start") && entry["warm_start"].is_string()) e.warm_start = entry["warm_start"];
     bool numbers = true;
     for (const auto& v : entry["x"]) numbers = numbers && v.is_number();
@@ -224,7 +228,10 @@ size_t DesignEvaluator::Resume() {
 }
 
 void DesignEvaluator::AppendLog(const DesignEvaluation& e) const {
-  const std::string path = (fs::path(out_) / "evaluations.jsonl").string();
+  const std::string& path = log_;
+  std::error_code ec;
+  fs::create_directories(fs::path(path).parent_path(), ec);
+  if (ec) throw Error(fs::path(path).parent_path().string() + ": cannot create the folder: " + ec.message());
   std::ofstream log(path, std::ios::app);
   log << nlohmann::json{{"index", e.index}, {"id", e.id}, {"x", e.x}, {"warm_start", e.warm_start}}.dump() << "\n";
   log.flush();
@@ -243,6 +250,7 @@ const DesignEvaluation& DesignEvaluator::Evaluate(const std::vector<double>& x) 
   const auto logged = logged_index_.find(x);
   e.index = logged != logged_index_.end() ? logged->second : next_index_++;
   e.id = IdOf(e.index);
+  e.start = start_;
   e.x = x;
   // The nearest design asked so far starts this one's solves: in a resumed run the same one as in
   // an uninterrupted run, since both have asked the same designs before this one.

@@ -5,6 +5,8 @@
 //
 //   DIR/jobs/e0007[-t1]/     the job of evaluation 7 (on target 1), as a sweep's
 //   DIR/evaluations.jsonl    one line per finished evaluation: {index, id, x, warm_start}
+//   DIR/starts/s01/evaluations.jsonl   the same for start 1 of a multistart, whose
+//                            evaluations are s01-e0000, ... (design/design_starts.h)
 //   DIR/targets/<key>/       the targets' renders, shared by every evaluation
 //
 // An optimization that was killed resumes from its log: the optimizer replays
@@ -24,7 +26,8 @@ namespace layerlab {
 
 struct DesignEvaluation {
   size_t index = 0;
-  std::string id;         // "e0007"
+  std::string id;         // "e0007", or "s01-e0007" in start 1 of a multistart
+  std::string start;      // "s01" in a multistart, else ""
   std::vector<double> x;  // in the variables' units
   bool failed = false;
   std::string error;
@@ -37,8 +40,9 @@ struct DesignEvaluation {
 
 class DesignEvaluator {
  public:
-  // Reads and writes nothing yet.
-  DesignEvaluator(const DesignSpec& spec, std::string out);
+  // Reads and writes nothing yet. `start` ("s01") names one start of a
+  // multistart: its own log and evaluation ids; "" for a single search.
+  DesignEvaluator(const DesignSpec& spec, std::string out, std::string start = "");
   DesignEvaluator(const DesignEvaluator&) = delete;  // asked_ points into done_
   DesignEvaluator& operator=(const DesignEvaluator&) = delete;
 
@@ -69,8 +73,11 @@ class DesignEvaluator {
   nlohmann::ordered_json SceneWith(const std::vector<double>& x) const;
 
   const SweepSpec& sweep() const { return sweeps_.front(); }
+  const std::string& log_path() const { return log_; }
+  const std::string& out() const { return out_; }
 
  private:
+  std::string IdOf(size_t index) const;
   void AppendLog(const DesignEvaluation& e) const;
   std::vector<SceneValue> ValuesOf(const std::vector<double>& x) const;
   // The design asked so far nearest x (relative to the bounds) that ran, or null.
@@ -78,7 +85,7 @@ class DesignEvaluator {
   void Score(DesignEvaluation* e, const std::vector<SweepJobState>& states) const;
 
   const DesignSpec& spec_;
-  std::string out_;
+  std::string out_, start_, log_;
   std::vector<SweepSpec> sweeps_;  // one per target: the job settings and the base scene with that target
   std::map<std::vector<double>, DesignEvaluation> done_;
   std::map<std::vector<double>, size_t> logged_index_;  // every design in the log, finished or not

@@ -29,9 +29,9 @@ struct Track {  // the history in evaluation order, with the best so far
   std::vector<double> best_so_far, elapsed;  // shown objective; cumulative evaluation time (s)
 };
 
-Track TrackOf(const DesignSpec& spec, const DesignEvaluator& evaluator) {
+Track TrackOf(const DesignSpec& spec, const DesignHistory& history) {
   Track t;
-  t.rows = evaluator.evaluations();
+  t.rows = history.evaluations;
   double best_loss = INFINITY, best_shown = NAN, clock = 0;
   for (const DesignEvaluation* e : t.rows) {
     clock += e->seconds;
@@ -43,7 +43,9 @@ Track TrackOf(const DesignSpec& spec, const DesignEvaluator& evaluator) {
 }
 
 std::string HistoryCsv(const DesignSpec& spec, const Track& t) {
+  const bool multistart = spec.optimizer.global == "multistart";
   std::vector<std::string> header = {"evaluation", "job"};
+  if (multistart) header.push_back("start");
   for (const DesignVariable& v : spec.variables) header.push_back(v.column());
   header.insert(header.end(), {"state", "error", "warm start from"});
   for (const DesignMetric& m : spec.metrics) header.push_back(m.column());
@@ -55,6 +57,7 @@ std::string HistoryCsv(const DesignSpec& spec, const Track& t) {
   for (size_t r = 0; r < t.rows.size(); ++r) {
     const DesignEvaluation& e = *t.rows[r];
     std::vector<std::string> line = {std::to_string(e.index), e.id};
+    if (multistart) line.push_back(e.start);
     for (double x : e.x) line.push_back(Cell(x));
     line.push_back(e.failed ? "failed" : "complete");
     line.push_back(e.error);
@@ -86,13 +89,15 @@ std::string ConvergenceSvg(const DesignSpec& spec, const Track& t) {
   for (int k = 0; k < 2; ++k) {
     PlotPanel& p = panels[k];
     p.title = k == 0 ? "against evaluations" : "against evaluation time";
-    p.x_label = k == 0 ? "evaluation" : "cumulative evaluation time (s)";
+    p.x_label =
+        k == 0 ? (spec.optimizer.global == "multistart" ? "evaluation (the starts one after another)" : "evaluation")
+               : "cumulative evaluation time (s)";
     p.y_label = objective;
     PlotLine each, best;
     each.label = "each evaluation", each.color = "#999999", each.points_only = true;
     best.label = "best so far", best.color = "#1f77b4";
     for (size_t r = 0; r < t.rows.size(); ++r) {
-      const double x = k == 0 ? static_cast<double>(t.rows[r]->index) : t.elapsed[r];
+      const double x = k == 0 ? static_cast<double>(r) : t.elapsed[r];
       if (!t.rows[r]->failed) {
         each.x.push_back(x);
         each.y.push_back(ShownObjective(spec, *t.rows[r]));
@@ -153,8 +158,30 @@ std::string SurfaceSvg(const DesignSpec& spec, const Track& t, const DesignEvalu
   return RenderSvg({p}, 1, spec.name + ": the evaluated designs, by " + spec.objective_column());
 }
 
-std::string ReportHtml(const DesignSpec& spec, const DesignEvaluator& evaluator, const DesignSearch& search,
-                       const DesignEvaluation* start, const DesignEvaluation* best, bool surface) {
+// A multistart's starts: where each began, its evaluations and its best design.
+void StartsTable(const DesignSpec& spec, const Track& t, std::ostringstream& h) {
+  h << "<h2>Starts</h2>\n<table>\n<tr><th>start</th>";
+  for (const DesignVariable& v : spec.variables) h << "<th>from: " << Escape(v.column()) << "</th>";
+  h << "<th>evaluations</th><th>best: " << Escape(spec.objective_column()) << "</th><th>at</th></tr>\n";
+  std::vector<std::string> order;
+  for (const DesignEvaluation* e : t.rows)
+    if (std::find(order.begin(), order.end(), e->start) == order.end()) order.push_back(e->start);
+  for (const std::string& id : order) {
+    std::vector<const DesignEvaluation*> own;
+    for (const DesignEvaluation* e : t.rows)
+      if (e->start == id) own.push_back(e);
+    const DesignEvaluation* best = BestFeasible(spec, own);
+    h << "<tr><th>" << Escape(id) << "</th>";
+    for (double x : own.front()->x) h << "<td>" << Cell(x) << "</td>";
+    h << "<td>" << own.size() << "</td><td>" << (best ? Cell(ShownObjective(spec, *best)) : "none feasible")
+      << "</td><td>" << (best ? Escape(best->id) : "") << "</td></tr>\n";
+  }
+  h << "</table>\n";
+}
+
+std::string ReportHtml(const DesignSpec& spec, const DesignEvaluator& evaluator, const DesignHistory& history,
+                       const Track& track, const DesignSearch& search, const DesignEvaluation* start,
+                       const DesignEvaluation* best, bool surface) {
   std::ostringstream h;
   h << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" << Escape(spec.name)
     << "</title>\n<style>body{font-family:sans-serif;margin:2em}table{border-collapse:collapse}"
@@ -163,8 +190,8 @@ std::string ReportHtml(const DesignSpec& spec, const DesignEvaluator& evaluator,
        "</style></head><body>\n<h1>"
     << Escape(spec.name) << "</h1>\n";
   if (!spec.description.empty()) h << "<p>" << Escape(spec.description) << "</p>\n";
-  h << "<p>Base scene <code>" << Escape(spec.scene) << "</code>; " << evaluator.evaluations().size() << " evaluations ("
-    << evaluator.ran() << " run by this command, " << evaluator.replayed()
+  h << "<p>Base scene <code>" << Escape(spec.scene) << "</code>; " << history.evaluations.size() << " evaluations ("
+    << history.ran << " run by this command, " << history.replayed
     << " read back from its log). The search ended because " << Escape(search.stopped) << ".</p>\n";
   auto link = [&](const DesignEvaluation& e) {
     std::string cells;
@@ -186,6 +213,7 @@ std::string ReportHtml(const DesignSpec& spec, const DesignEvaluator& evaluator,
   row("run (report)", link);
   h << "</table>\n";
   if (start && start->failed) h << "<p>The start failed: <code>" << Escape(start->error) << "</code></p>\n";
+  if (spec.optimizer.global == "multistart" && !track.rows.empty()) StartsTable(spec, track, h);
   h << "<p><a href=\"history.csv\">history.csv</a>";
   if (best) h << " · <a href=\"best_scene.json\">best_scene.json</a> (<code>layerlab run best_scene.json</code>)";
   h << "</p>\n<img class=\"wide\" src=\"convergence.svg\" alt=\"convergence\">\n";
@@ -202,9 +230,9 @@ double ShownObjective(const DesignSpec& spec, const DesignEvaluation& e) {
 }
 
 std::vector<std::string> WriteDesignReport(const DesignSpec& spec, const DesignEvaluator& evaluator,
-                                           const DesignSearch& search, const DesignEvaluation* best,
-                                           const std::string& out) {
-  const Track track = TrackOf(spec, evaluator);
+                                           const DesignHistory& history, const DesignSearch& search,
+                                           const DesignEvaluation* best, const std::string& out) {
+  const Track track = TrackOf(spec, history);
   const DesignEvaluation* start = track.rows.empty() ? nullptr : track.rows.front();
   for (const DesignEvaluation* e : track.rows) {
     std::vector<double> x0;
@@ -232,7 +260,8 @@ std::vector<std::string> WriteDesignReport(const DesignSpec& spec, const DesignE
       RebaseRelativePaths(scene, spec.scene, path);
       WriteFileAtomically((staging / "best_scene.json").string(), scene.dump(2) + "\n");
     }
-    WriteFileAtomically((staging / "report.html").string(), ReportHtml(spec, evaluator, search, start, best, surface));
+    WriteFileAtomically((staging / "report.html").string(),
+                        ReportHtml(spec, evaluator, history, track, search, start, best, surface));
   } catch (const Error& e) {
     throw stage.Explain(e);
   }

@@ -17,13 +17,22 @@
 
 namespace layerlab {
 
+// What the report is made from: every evaluation (by index; in a multistart
+// start by start), and how many this command ran and read back from logs.
+struct DesignHistory {
+  std::vector<const DesignEvaluation*> evaluations;
+  size_t ran = 0, replayed = 0;
+};
+
 // The objective as the history shows it: the metric itself for one term, else the weighted sum minimized.
 double ShownObjective(const DesignSpec& spec, const DesignEvaluation& e);
 
 // Writes the files above; `best` may be null (no design met the constraints:
-// no best_scene.json). Returns the files written, relative to `out`.
-std::vector<std::string> WriteDesignReport(const DesignSpec& spec, const DesignEvaluator& evaluator,
-                                           const DesignSearch& search, const DesignEvaluation* best,
-                                           const std::string& out);
+// no best_scene.json). `scenes` (any of the run's evaluators) supplies the
+// scenes and job folders of the history's designs. Returns the files written,
+// relative to `out`.
+std::vector<std::string> WriteDesignReport(const DesignSpec& spec, const DesignEvaluator& scenes,
+                                           const DesignHistory& history, const DesignSearch& search,
+                                           const DesignEvaluation* best, const std::string& out);
 
 }  // namespace layerlab

@@ -7,8 +7,10 @@
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <map>
 #include <memory>
 
+#include "layerlab/design/design_gradient.h"
 #include "layerlab/framework/error.h"
 #include "layerlab/framework/interrupt.h"
 #include "layerlab/framework/units.h"
@@ -106,14 +108,16 @@ struct Search {
   std::exception_ptr error;
   std::string stopped;
   Clock::time_point start;
-  size_t budget_base = 0;  // designs asked before this search began
+  size_t budget_base = 0;                                            // designs asked before this search began
+  int budget = 0;                                                    // the search's evaluations
+  std::map<const DesignEvaluation*, std::vector<double>> gradients;  // of the loss, for a gradient search
   size_t stage_limit = 0;  // the designs asked at which the running stage ends
   bool stage_done = false;
 
   bool OverBudget() {
     if (evaluator->asked() >= stage_limit) stage_done = true;
-    if (evaluator->asked() - budget_base >= static_cast<size_t>(spec->optimizer.evaluations)) {
-      stopped = "the budget of " + std::to_string(spec->optimizer.evaluations) + " evaluations was spent";
+    if (evaluator->asked() - budget_base >= static_cast<size_t>(budget)) {
+      stopped = "the budget of " + std::to_string(budget) + " evaluations was spent";
       return true;
     }
     if (spec->optimizer.seconds &&
@@ -165,21 +169,54 @@ double LinearViolation(const DesignSpec& spec, const double* x) {
   return sum;
 }
 
-double Objective(unsigned, const double* x, double*, void* data) {
+// The gradient of LinearViolation where it is positive.
+void LinearViolationGradient(const DesignSpec& spec, const double* x, double* grad) {
+  const std::vector<double> point(x, x + spec.variables.size());
+  for (const DesignConstraint& c : spec.constraints) {
+    if (c.metric || !Violates(c, ConstraintViolation(c, point, nullptr))) continue;
+    const double sign = c.min && *c.min - Dot(c.coefficients, x) > 0 ? -1.0 : 1.0;
+    for (size_t k = 0; k < point.size(); ++k) grad[k] += sign * c.coefficients[k] / Scale(c);
+  }
+}
+
+double Objective(unsigned n, const double* x, double* grad, void* data) {
   Search& s = *static_cast<Search*>(data);
+  if (grad) std::fill(grad, grad + n, 0.0);
   // A design outside the linear constraints is known to be infeasible without a run (and a
   // global stage proposes many): it costs no evaluation, and is worse than any that ran.
   if (const double v = LinearViolation(*s.spec, x); v > 0) {
     if (s.error || !s.stopped.empty() || s.stage_done) nlopt_force_stop(s.outer);
+    if (grad) {
+      LinearViolationGradient(*s.spec, x, grad);
+      for (unsigned k = 0; k < n; ++k) grad[k] *= 10;
+    }
     return s.evaluator->FailedLoss() + 10 * v;
   }
   const DesignEvaluation* e = s.At(x);
   if (!e) return HUGE_VAL;  // the search is stopping: no value, and none that could pass for a design's
+  if (grad && !e->failed) {
+    auto it = s.gradients.find(e);
+    if (it == s.gradients.end()) {
+      try {
+        // The loss is -psnr (GradientProblem: a single psnr objective).
+        std::vector<double> g = PsnrGradient(*s.spec, *s.evaluator, *e);
+        for (double& v : g) v = -v;
+        it = s.gradients.emplace(e, std::move(g)).first;
+      } catch (...) {
+        s.error = std::current_exception();
+        nlopt_force_stop(s.outer);
+        return HUGE_VAL;
+      }
+    }
+    std::copy(it->second.begin(), it->second.end(), grad);
+  }
   return e->failed ? s.evaluator->FailedLoss() : e->loss;
 }
 
-double Constraint(unsigned, const double* x, double*, void* data) {
+double Constraint(unsigned n, const double* x, double* grad, void* data) {
   const ConstraintData& d = *static_cast<ConstraintData*>(data);
+  if (grad)  // a gradient search has linear constraints only (GradientProblem)
+    for (unsigned k = 0; k < n; ++k) grad[k] = d.c->metric ? 0.0 : (d.upper ? 1.0 : -1.0) * d.c->coefficients[k];
   double value = 0;
   if (d.c->metric) {
     // Outside the linear constraints a design is not run: it meets no constraint on its metrics.
@@ -197,6 +234,7 @@ double Constraint(unsigned, const double* x, double*, void* data) {
 nlopt_algorithm LocalAlgorithm(const std::string& name) {
   if (name == "bobyqa") return NLOPT_LN_BOBYQA;
   if (name == "nelder-mead") return NLOPT_LN_NELDERMEAD;
+  if (name == "slsqp") return NLOPT_LD_SLSQP;
   return NLOPT_LN_COBYLA;
 }
 
@@ -256,7 +294,7 @@ std::string RunStage(Search* s, nlopt_algorithm algorithm, std::optional<nlopt_a
   }
   Opt outer;
   nlopt_opt target = stage.get();
-  const bool direct = algorithm == NLOPT_LN_COBYLA;
+  const bool direct = algorithm == NLOPT_LN_COBYLA || algorithm == NLOPT_LD_SLSQP;
   if (!spec.constraints.empty() && !direct) {
     outer = Create(NLOPT_AUGLAG, spec);
     nlopt_set_local_optimizer(outer.get(), stage.get());
@@ -299,6 +337,10 @@ double ConstraintViolation(const DesignConstraint& c, const std::vector<double>&
   return over;
 }
 
+bool MeetsLinearConstraints(const DesignSpec& spec, const std::vector<double>& x) {
+  return LinearViolation(spec, x.data()) == 0;
+}
+
 bool MeetsConstraints(const DesignSpec& spec, const DesignEvaluation& e) {
   if (e.failed) return false;
   for (const DesignConstraint& c : spec.constraints)
@@ -319,11 +361,11 @@ const DesignEvaluation* BestFeasible(const DesignSpec& spec, const DesignEvaluat
   return BestFeasible(spec, evaluator.evaluations());
 }
 
-std::vector<std::string> UnmetConstraints(const DesignSpec& spec, const DesignEvaluator& evaluator) {
+std::vector<std::string> UnmetConstraints(const DesignSpec& spec, const std::vector<const DesignEvaluation*>& among) {
   // The evaluation that comes closest: the least sum of relative violations.
   const DesignEvaluation* closest = nullptr;
   double least = INFINITY;
-  for (const DesignEvaluation* e : evaluator.evaluations()) {
+  for (const DesignEvaluation* e : among) {
     if (e->failed) continue;
     double sum = 0;
     for (const DesignConstraint& c : spec.constraints) sum += ConstraintViolation(c, e->x, e) / Scale(c);
@@ -398,20 +440,26 @@ void CheckDesignFeasible(const DesignSpec& spec) {
 }
 
 DesignSearch SearchDesign(const DesignSpec& spec, DesignEvaluator* evaluator) {
+  if (spec.optimizer.global == "multistart")
+    throw Error("internal error: SearchDesign on a multistart; each start is a SearchFromStart");
+  std::vector<double> x;
+  for (const DesignVariable& v : spec.variables) x.push_back(v.start);
+  return SearchFromStart(spec, x, spec.optimizer.evaluations, evaluator);
+}
+
+DesignSearch SearchFromStart(const DesignSpec& spec, std::vector<double> x, int budget, DesignEvaluator* evaluator) {
   Search s;
   s.spec = &spec;
   s.evaluator = evaluator;
   s.start = Clock::now();
   s.budget_base = evaluator->asked();
+  s.budget = budget;
   nlopt_srand(spec.optimizer.seed);
-  std::vector<double> x;
-  for (const DesignVariable& v : spec.variables) x.push_back(v.start);
   // The start is always evaluated first: the report compares the optimum with it.
   s.stage_limit = evaluator->asked() + 1;
   Objective(static_cast<unsigned>(x.size()), x.data(), nullptr, &s);
   if (s.error) std::rethrow_exception(s.error);
   const nlopt_algorithm local = LocalAlgorithm(spec.optimizer.local);
-  const int budget = spec.optimizer.evaluations;
   DesignSearch result;
   if (spec.optimizer.global == "mlsl") {
     result.stopped = RunStage(&s, NLOPT_G_MLSL_LDS, local, budget - 1, &x);
@@ -419,8 +467,7 @@ DesignSearch SearchDesign(const DesignSpec& spec, DesignEvaluator* evaluator) {
     if (spec.optimizer.global == "crs") {
       result.stopped = RunStage(&s, NLOPT_GN_CRS2_LM, std::nullopt, std::max(1, 2 * (budget - 1) / 3), &x);
       // From the best design this search has seen (not the log's later ones), else from the start.
-      x.clear();
-      for (const DesignVariable& v : spec.variables) x.push_back(v.start);
+      x = evaluator->asked_in_order().front()->x;
       if (const DesignEvaluation* best = BestFeasible(spec, evaluator->asked_in_order())) x = best->x;
     }
     if (s.stopped.empty()) result.stopped = RunStage(&s, local, std::nullopt, budget, &x);  // the rest

@@ -25,6 +25,9 @@ void CheckDesignFeasible(const DesignSpec& spec);
 // `e` supplies a metric constraint's value.
 double ConstraintViolation(const DesignConstraint& c, const std::vector<double>& x, const DesignEvaluation* e);
 
+// Whether design x meets every linear constraint (to 1e-9 of its scale): what can be known without a run.
+bool MeetsLinearConstraints(const DesignSpec& spec, const std::vector<double>& x);
+
 // Whether evaluation e ran and meets every constraint (to 1e-9 of its scale).
 bool MeetsConstraints(const DesignSpec& spec, const DesignEvaluation& e);
 
@@ -33,17 +36,22 @@ bool MeetsConstraints(const DesignSpec& spec, const DesignEvaluation& e);
 const DesignEvaluation* BestFeasible(const DesignSpec& spec, const DesignEvaluator& evaluator);
 const DesignEvaluation* BestFeasible(const DesignSpec& spec, const std::vector<const DesignEvaluation*>& among);
 
-// The constraints that the evaluation closest to meeting them all (the least sum of
-// relative violations) misses; every constraint when no evaluation ran.
-std::vector<std::string> UnmetConstraints(const DesignSpec& spec, const DesignEvaluator& evaluator);
+// The constraints that the evaluation among `among` closest to meeting them all (the
+// least sum of relative violations) misses; every constraint when none ran.
+std::vector<std::string> UnmetConstraints(const DesignSpec& spec, const std::vector<const DesignEvaluation*>& among);
 
 struct DesignSearch {
   std::string stopped;  // why the search ended, in words
   double seconds = 0;   // its wall time in this process
 };
 
-// Runs the optimizer's stages; the evaluations are the evaluator's. An error
-// or an interrupt inside an evaluation ends the search and is rethrown.
+// Runs the optimizer's stages from the design's start on its whole budget; the
+// evaluations are the evaluator's. An error or an interrupt inside an
+// evaluation ends the search and is rethrown. Not for a multistart.
 DesignSearch SearchDesign(const DesignSpec& spec, DesignEvaluator* evaluator);
+
+// The same from design x on `budget` evaluations: one start of a multistart
+// (design/design_starts.h) runs the local search alone.
+DesignSearch SearchFromStart(const DesignSpec& spec, std::vector<double> x, int budget, DesignEvaluator* evaluator);
 
 }  // namespace layerlab

@@ -6,6 +6,7 @@
 #include <set>
 #include <system_error>
 
+#include "layerlab/design/design_gradient.h"
 #include "layerlab/elements/registry.h"
 #include "layerlab/framework/error.h"
 #include "layerlab/framework/json_file.h"
@@ -310,11 +311,21 @@ void ReadObjective(Params& p, DesignSpec* spec) {
 DesignOptimizer ReadOptimizer(Params& p) {
   DesignOptimizer o;
   if (!p.has("optimizer")) return o;
-  if (!p.raw("optimizer").is_object()) p.fail("optimizer", "must be an object (local, global, evaluations, seconds)");
+  if (!p.raw("optimizer").is_object())
+    p.fail("optimizer", "must be an object (local, global, starts, evaluations, seconds, seed)");
   Params q = p.object("optimizer");
-  o.local = q.choice("local", {"cobyla", "bobyqa", "nelder-mead"}, "cobyla");
-  o.global = q.choice("global", {"none", "mlsl", "crs"}, "none");
+  o.local = q.choice("local", {"cobyla", "bobyqa", "nelder-mead", "slsqp"}, "cobyla");
+  o.global = q.choice("global", {"none", "mlsl", "crs", "multistart"}, "none");
   o.evaluations = static_cast<int>(q.integer("evaluations", 1, 100000, 60));
+  if (o.global == "multistart") {
+    o.starts = static_cast<int>(q.integer("starts", 2, 256, 4));
+    if (o.evaluations < o.starts)
+      q.fail("evaluations", "is " + std::to_string(o.evaluations) + ", fewer than the " + std::to_string(o.starts) +
+                                " starts: each start's local search needs at least one evaluation");
+  } else if (q.has("starts")) {
+    q.fail("starts",
+           "is read only with \"global\": \"multistart\" (this design's global stage is \"" + o.global + "\")");
+  }
   if (q.has("seconds")) {
     const double s = q.quantity("seconds", Dimension::kTime);
     if (!(s > 0)) q.fail("seconds", "must be positive");
@@ -441,6 +452,10 @@ DesignSpec ReadDesignSpec(const std::string& path) {
   spec.threads = static_cast<int>(p.integer("threads", 0, 1024, 0));
   spec.warm_start = p.boolean("warm_start", true);
   spec.optimizer = ReadOptimizer(p);
+  if (spec.optimizer.local == "slsqp")
+    if (const std::string problem = GradientProblem(spec); !problem.empty())
+      p.fail("optimizer",
+             "\"local\": \"slsqp\" follows the exact gradient of the solve's PSNR, which needs more: " + problem);
   CheckWork(p, &spec);
   p.check_all_read();
   return spec;

@@ -52,9 +52,10 @@
 //
 // | key | type | default | meaning |
 // | --- | --- | --- | --- |
-// | local | `"cobyla"`, `"bobyqa"`, `"nelder-mead"` | `"cobyla"` | NLopt's derivative-free local search; constraints go to COBYLA directly and to the others through an augmented Lagrangian |
-// | global | `"none"`, `"mlsl"`, `"crs"` | `"none"` | a global stage for problems with local optima: multistart from a low-discrepancy sequence (MLSL) or controlled random search (CRS2) |
-// | evaluations | integer | 60 | the budget in evaluations (each a solve per target) |
+// | local | `"cobyla"`, `"bobyqa"`, `"nelder-mead"`, `"slsqp"` | `"cobyla"` | NLopt's local search: derivative-free (constraints go to COBYLA directly and to the others through an augmented Lagrangian), or SLSQP on the exact gradient of the solve's PSNR (design/design_gradient.h; linear constraints only) |
+// | global | `"none"`, `"mlsl"`, `"crs"`, `"multistart"` | `"none"` | a global stage for problems with local optima: MLSL's multistart from a low-discrepancy sequence, controlled random search (CRS2), or independent local searches from `starts` points (design/design_starts.h), which the runners of `optimize --local/--mpi/--slurm` run in parallel |
+// | starts | integer, 2-256 | 4 | with `"multistart"`: the local searches, the first from the design's start |
+// | evaluations | integer | 60 | the budget in evaluations (each a solve per target); a multistart's is split among its starts |
 // | seconds | number | none | a budget in wall time |
 // | seed | integer | 1 | of the global stage's random numbers (a resumed run replays them) |
 #pragma once
@@ -106,6 +107,7 @@ struct DesignTerm {
 struct DesignOptimizer {
   std::string local = "cobyla", global = "none";
   int evaluations = 60;
+  int starts = 1;  // > 1 only for "multistart"
   std::optional<double> seconds;
   unsigned seed = 1;
 };

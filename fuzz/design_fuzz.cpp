@@ -9,6 +9,7 @@
 
 #include "layerlab/design/design_evaluator.h"
 #include "layerlab/design/design_search.h"
+#include "layerlab/design/design_starts.h"
 #include "layerlab/framework/error.h"
 #include "layerlab/fuzz/fuzz_util.h"
 
@@ -44,6 +45,19 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const std::vector<layerlab::SweepJob> jobs = evaluator.JobsOf(start);
     if (jobs.size() != std::max<size_t>(1, spec.targets.size())) __builtin_trap();
     (void)evaluator.SceneWith(start.x);
+    if (spec.optimizer.global == "multistart") {
+      // The starts: as many as asked, each within the bounds and the linear constraints.
+      const std::vector<std::vector<double>> points = layerlab::MultistartPoints(spec);
+      if (points.size() != static_cast<size_t>(spec.optimizer.starts)) __builtin_trap();
+      int budget = 0;
+      for (int k = 0; k < spec.optimizer.starts; ++k) budget += layerlab::StartBudget(spec, k);
+      if (budget != spec.optimizer.evaluations) __builtin_trap();
+      for (const std::vector<double>& x : points) {
+        if (!layerlab::MeetsLinearConstraints(spec, x)) __builtin_trap();
+        for (size_t k = 0; k < x.size(); ++k)
+          if (!(x[k] >= spec.variables[k].min && x[k] <= spec.variables[k].max)) __builtin_trap();
+      }
+    }
   } catch (const layerlab::Error&) {
   }
   return 0;

@@ -11,7 +11,15 @@
 #include <functional>
 
 #include "layerlab/design/design_evaluator.h"
+#include "layerlab/design/design_gradient.h"
 #include "layerlab/design/design_search.h"
+#include "layerlab/design/design_starts.h"
+#include "layerlab/design/placement_gradient.h"
+#include "layerlab/framework/lightfield_io.h"
+#include "layerlab/solvers/objective.h"
+#include "layerlab/solvers/solution_writer.h"
+#include "layerlab/systems/compile.h"
+#include "layerlab/systems/scene.h"
 #include "test_util.h"
 
 namespace layerlab {
@@ -125,6 +133,59 @@ TEST(DesignSpec, FixedValuesAreWrittenIntoTheBaseScene) {
               d["objective"] = "focal_stack_psnr";
             }).find("/objective: a retinal metric is a mean over the retinal states"),
             std::string::npos);
+}
+
+TEST(DesignSpec, AMultistartNeedsAnEvaluationPerStart) {
+  EXPECT_NE(DesignError([](auto& d) {
+              d["optimizer"] = {{"global", "multistart"}, {"starts", 6}, {"evaluations", 5}};
+            }).find("/optimizer/evaluations: is 5, fewer than the 6 starts"),
+            std::string::npos);
+  EXPECT_NE(DesignError([](auto& d) {
+              d["optimizer"] = {{"global", "crs"}, {"starts", 6}};
+            }).find("/optimizer/starts: is read only with \"global\": \"multistart\""),
+            std::string::npos);
+  EXPECT_NE(DesignError([](auto& d) {
+              d["optimizer"] = {{"global", "multistart"}, {"starts", 1}};
+            }).find("/optimizer/starts"),
+            std::string::npos);
+}
+
+TEST(DesignStarts, BeginAtTheStartThenFillTheFeasibleBox) {
+  DesignSpec spec = ReadDesignSpec(DesignFile("starts", [](auto& d) {
+    d["optimizer"] = {{"global", "multistart"}, {"starts", 12}, {"evaluations", 40}};
+  }));
+  const std::vector<std::vector<double>> points = MultistartPoints(spec);
+  ASSERT_EQ(points.size(), 12u);
+  EXPECT_EQ(points[0], (std::vector<double>{1.6, 0.8}));
+  // Halton, seed 1: index 2 is (1/4, 2/3) of the box, front 1.05 D and rear 1.133 D, which misses
+  // front - rear >= 0.3 D; index 3 is (3/4, 1/9): 1.95 D and 0.3556 D.
+  EXPECT_NEAR(points[1][0], 0.6 + 0.75 * 1.8, 1e-12);
+  EXPECT_NEAR(points[1][1], 0.2 + 1.4 / 9, 1e-12);
+  double lowest_front = INFINITY, highest_front = -INFINITY;
+  for (size_t i = 0; i < points.size(); ++i) {
+    EXPECT_GE(points[i][0], 0.6);
+    EXPECT_LE(points[i][0], 2.4);
+    EXPECT_GE(points[i][1], 0.2);
+    EXPECT_LE(points[i][1], 1.6);
+    EXPECT_GE(points[i][0] - points[i][1], 0.3 - 1e-12) << i;
+    for (size_t j = 0; j < i; ++j) EXPECT_NE(points[i], points[j]) << i << " " << j;
+    lowest_front = std::min(lowest_front, points[i][0]);
+    highest_front = std::max(highest_front, points[i][0]);
+  }
+  EXPECT_LT(lowest_front, 1.0);  // spread over the box, not bunched
+  EXPECT_GT(highest_front, 2.0);
+  EXPECT_EQ(MultistartPoints(spec), points);
+  spec.optimizer.seed = 5;  // the sequence from index 6: (3/8, 2/9) of the box
+  EXPECT_NEAR(MultistartPoints(spec)[1][0], 0.6 + 0.375 * 1.8, 1e-12);
+  EXPECT_NEAR(MultistartPoints(spec)[1][1], 0.2 + 1.4 * 2 / 9, 1e-12);
+  spec.optimizer.evaluations = 42;  // 4 x 3 + 30 left: 42 / 12 = 3, the first six take one more
+  int sum = 0;
+  for (int k = 0; k < 12; ++k) sum += StartBudget(spec, k);
+  EXPECT_EQ(sum, 42);
+  EXPECT_EQ(StartBudget(spec, 0), 4);
+  EXPECT_EQ(StartBudget(spec, 5), 4);
+  EXPECT_EQ(StartBudget(spec, 6), 3);
+  EXPECT_EQ(StartId(7), "s07");
 }
 
 TEST(DesignFeasibility, AConstraintNoDesignMeetsIsNamedWithItsRange) {
@@ -277,6 +338,98 @@ TEST(DesignSearch, AResumedSearchRepeatsNoEvaluationAndEndsWhereAWholeOneEnds) {
     EXPECT_NO_THROW(entry = nlohmann::json::parse(line)) << line;
   }
   EXPECT_EQ(lines, 11u);
+}
+
+TEST(DesignGradient, MatchesCentralDifferencesOfConvergedSolves) {
+  // The envelope theorem's gradient of the solve's PSNR with respect to both layers' depths, against
+  // central differences: of the error at the solved patterns on the display compiled at x +- h (the
+  // chain through the compile and the placement gradient), and of PSNR(x +- h) solved again
+  // (warm-started from x, as the optimizer would). The solved patterns hold detail at the pixel scale,
+  // so the error bends within a few hundredths of a pixel: the steps are small.
+  DesignSpec spec = ReadDesignSpec(ExamplePath("optimize/two_layer_depths.json"));
+  ASSERT_EQ(GradientProblem(spec), "");
+  spec.base["solve"]["solver"] = "quasi-newton";  // converges in far fewer iterations than the multiplicative updates
+  spec.iterations = 300;
+  const std::string out = Scratch("gradient");
+  DesignEvaluator evaluator(spec, out);
+  const std::vector<double> x = {1.6, 0.8};
+  const DesignEvaluation& at = evaluator.Evaluate(x);
+  ASSERT_FALSE(at.failed) << at.error;
+  const std::vector<double> exact = PsnrGradient(spec, evaluator, at);
+  ASSERT_EQ(exact.size(), 2u);
+  const std::string folder = JobFolder(out, evaluator.JobsOf(at).front());
+  const LightField target = ReadLightField(folder + "/out/target/lightfield");
+  const Patterns solved =
+      ReadPatterns(DisplayModel(Compile(LoadScene(folder + "/scene.json")), target.geometry, Sampling::kBilinear),
+                   folder + "/out/solve");
+  auto fixed_psnr = [&](const std::vector<double>& y) {
+    DesignEvaluation moved = at;
+    moved.x = y;
+    const SweepJob job = evaluator.JobsOf(moved).front();
+    const DisplaySystem system =
+        Compile(ParseScene(job.scene, JobFolder(out, job) + "/scene.json", ElementRegistry::WithBuiltins()));
+    return PsnrDb(Objective(DisplayModel(system, target.geometry, Sampling::kBilinear), target, solved),
+                  target.rgb.size());
+  };
+  for (size_t v = 0; v < 2; ++v) {
+    std::vector<double> up = x, down = x;
+    up[v] += 1e-4;
+    down[v] -= 1e-4;
+    const double chain = (fixed_psnr(up) - fixed_psnr(down)) / 2e-4;
+    EXPECT_NEAR(exact[v], chain, 0.03 * std::abs(chain)) << spec.variables[v].name << ": dB/D at fixed patterns";
+    up[v] = x[v] + 2e-3;
+    down[v] = x[v] - 2e-3;
+    const double resolved = (evaluator.Evaluate(up).metrics[0] - evaluator.Evaluate(down).metrics[0]) / 4e-3;
+    EXPECT_NEAR(exact[v], resolved, 0.15 * std::abs(resolved)) << spec.variables[v].name << ": dB/D solved again";
+    EXPECT_GT(std::abs(resolved), 0.3) << "a slope too small to check against";
+  }
+}
+
+TEST(DesignSearch, AGradientSearchFindsTheOneLayerOptimum) {
+  nlohmann::json d = ReadExample("optimize/one_layer_depth.json");
+  d["scene"] = ExamplePath("optimize/one_layer_small.json");
+  d["optimizer"] = {{"local", "slsqp"}, {"evaluations", 20}};
+  const std::string path = Scratch("slsqp_design") + "/design.json";
+  std::ofstream(path) << d.dump(2);
+  const DesignSpec spec = ReadDesignSpec(path);
+  DesignEvaluator evaluator(spec, Scratch("slsqp"));
+  const DesignSearch search = SearchDesign(spec, &evaluator);
+  const DesignEvaluation* best = BestFeasible(spec, evaluator);
+  ASSERT_TRUE(best) << search.stopped;
+  EXPECT_NEAR(best->x[0], 1.3, 0.01) << search.stopped;
+  EXPECT_LE(evaluator.ran(), 20u);
+}
+
+TEST(DesignSearch, AMultistartsStartsAreIndependentOfTheirOrder) {
+  // What lets the runners run the starts in parallel: a start's evaluations are the same whichever
+  // starts ran before it, and the best over them all finds the one-layer optimum.
+  DesignSpec spec = ReadDesignSpec(ExamplePath("optimize/one_layer_depth.json"));
+  spec.optimizer.global = "multistart";
+  spec.optimizer.starts = 3;
+  spec.optimizer.evaluations = 21;
+  const std::string forward = Scratch("starts_forward"), backward = Scratch("starts_backward");
+  for (int k = 0; k < 3; ++k) RunStart(spec, forward, k);
+  for (int k = 2; k >= 0; --k) RunStart(spec, backward, k);
+  const MultistartRecord a(spec, forward), b(spec, backward);
+  ASSERT_EQ(a.evaluations().size(), b.evaluations().size());
+  EXPECT_LE(a.evaluations().size(), 21u);
+  for (size_t i = 0; i < a.evaluations().size(); ++i) {
+    EXPECT_EQ(a.evaluations()[i]->id, b.evaluations()[i]->id) << i;
+    EXPECT_EQ(a.evaluations()[i]->x, b.evaluations()[i]->x) << i;
+    EXPECT_EQ(a.evaluations()[i]->metrics, b.evaluations()[i]->metrics) << i;
+    const DesignEvaluation& e = *a.evaluations()[i];
+    if (!e.warm_start.empty()) {
+      EXPECT_EQ(e.warm_start.substr(0, 4), e.start + "-") << "warm starts stay in a start";
+    }
+  }
+  EXPECT_EQ(a.evaluations().front()->x, std::vector<double>{0.6});
+  const DesignEvaluation* best = BestFeasible(spec, a.evaluations());
+  ASSERT_TRUE(best);
+  EXPECT_NEAR(best->x[0], 1.3, 0.01);
+  // A start whose log is complete is replayed, not run again.
+  const StartOutcome again = RunStart(spec, forward, 1);
+  EXPECT_EQ(again.ran, 0u);
+  EXPECT_EQ(again.replayed, again.asked);
 }
 
 #endif
