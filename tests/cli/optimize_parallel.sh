@@ -14,30 +14,30 @@ python3 - "$examples/optimize/one_layer_depth.json" "$design" <<'PY'
 import json, sys
 d = json.load(open(sys.argv[1]))
 d["scene"] = sys.argv[1].rsplit("/", 1)[0] + "/" + d["scene"]
-d["optimizer"] = {"global": "multistart", "starts": 3, "evaluations": 12}
+d["optimizer"] = {"global": "multistart", "starts": 3, "evaluations": 30}  # --evaluations 12 below
 json.dump(d, open(sys.argv[2], "w"))
 PY
-"$layerlab" optimize "$design" --out "$work/seq" --json >"$work/seq.json" 2>"$work/log" || fail "the starts one after another"
+"$layerlab" optimize "$design" --out "$work/seq" --evaluations 12 --json >"$work/seq.json" 2>"$work/log" || fail "the starts one after another"
 grep -q "each of its 3 starts ended (one after another)" "$work/seq.json" || fail "the sequential run's summary"
 grep -q '"ran": 12,' "$work/seq.json" && grep -q '"replayed": 0,' "$work/seq.json" || fail "the sequential run's counts"
 [ -f "$work/seq/starts/s02/evaluations.jsonl" ] || fail "no log of start s02"
-"$layerlab" optimize "$design" --out "$work/local" --local -j 2 --json >"$work/local.json" 2>"$work/log" ||
+"$layerlab" optimize "$design" --out "$work/local" --local -j 2 --evaluations 12 --json >"$work/local.json" 2>"$work/log" ||
   fail "the process pool"
 grep -q "each of its 3 starts ended (2 at a time)" "$work/local.json" || fail "the pool's summary"
 runs="seq local"
 if [ -n "$mpiexec" ]; then
   "$mpiexec" --oversubscribe --allow-run-as-root -np 2 "$layerlab" optimize "$design" --out "$work/mpi" --mpi \
-    >"$work/log" 2>&1 || fail "the MPI run"
+    --evaluations 12 >"$work/log" 2>&1 || fail "the MPI run"
   grep -q "rank 1: start s01" "$work/log" || fail "start s01 did not run on rank 1"
   "$mpiexec" --oversubscribe --allow-run-as-root -np 2 "$layerlab" optimize "$design" --out "$work/mpi" --mpi \
-    --json >"$work/mpi.json" 2>"$work/log" || fail "the MPI run again"
+    --evaluations 12 --json >"$work/mpi.json" 2>"$work/log" || fail "the MPI run again"
   grep -q '"ran": 0,' "$work/mpi.json" && grep -q '"replayed": 12,' "$work/mpi.json" || fail "the MPI run again ran evaluations"
   runs="$runs mpi"
 fi
-"$layerlab" optimize "$design" --out "$work/slurm" --slurm >"$work/log" 2>&1 || fail "--slurm"
+"$layerlab" optimize "$design" --out "$work/slurm" --slurm --evaluations 12 >"$work/log" 2>&1 || fail "--slurm"
 array=$work/slurm/slurm/array.sbatch
 grep -q "^#SBATCH --array=0-2$" "$array" || fail "the array does not cover starts 0 to 2"
-grep -q -- "--start \"\$SLURM_ARRAY_TASK_ID\"" "$array" || fail "the task does not select its start"
+grep -q -- "'--evaluations' '12' --start \"\$SLURM_ARRAY_TASK_ID\"" "$array" || fail "the task does not select its start"
 for task in 2 0; do
   SLURM_ARRAY_TASK_ID=$task "$array" >"$work/log" 2>&1 || fail "task $task"
 done
