@@ -219,10 +219,9 @@ void RunMultistart(const DesignSpec& spec, const OptimizeOptions& o) {
 void RunOptimizeCommand(const OptimizeOptions& o) {
   DesignSpec spec = ReadDesignSpec(o.design);
   if (o.evaluations > 0) {
-    if (o.evaluations < spec.optimizer.starts)
-      throw Error("--evaluations " + std::to_string(o.evaluations) + ": fewer than the design's " +
-                  std::to_string(spec.optimizer.starts) + " starts, each of which needs one at least");
     spec.optimizer.evaluations = o.evaluations;
+    if (const std::string problem = BudgetProblem(spec.optimizer); !problem.empty())
+      throw Error("--evaluations " + std::to_string(o.evaluations) + ": " + problem);
   }
   const bool runner = o.start >= 0 || o.local || o.mpi || o.slurm || o.gather;
   if (runner && spec.optimizer.global != "multistart")
@@ -270,7 +269,8 @@ void AddOptimizeCommand(CLI::App& app) {
   CLI::Option* local = cmd->add_flag(
       "--local", o->local, "A multistart: run the starts on this machine, a process pool (default: one after another)");
   cmd->add_option("-j,--jobs", o->processes, "With --local: starts at a time (0: one per core)")
-      ->check(CLI::Range(0, 1024));
+      ->check(CLI::Range(0, 1024))
+      ->needs(local);
   CLI::Option* mpi = cmd->add_flag(
       "--mpi", o->mpi, "A multistart: run as MPI ranks (mpirun -np N layerlab optimize ...): start k on rank k mod N");
   CLI::Option* slurm = cmd->add_flag(

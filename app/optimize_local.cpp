@@ -27,7 +27,7 @@ std::vector<std::string> RunStartsLocally(const DesignSpec& spec, const std::str
     const std::string id = StartId(static_cast<int>(k));
     if (WIFEXITED(status) && WEXITSTATUS(status) == 0) {
       Note("optimize: start " + id + " ended");
-    } else if (Interrupted() && WIFSIGNALED(status) && WTERMSIG(status) == SIGINT) {
+    } else if (Interrupted() && EndedByInterrupt(status)) {
       Note("optimize: start " + id + " interrupted; it resumes on the next run");
     } else {
       const std::string why = WIFSIGNALED(status) ? "was killed by signal " + std::to_string(WTERMSIG(status))
@@ -49,6 +49,8 @@ SlurmArrayCommand OptimizeArrayCommand(const DesignSpec& spec, const std::vector
   c.file_what = "DESIGN (the design file's path)";
   c.kind = "design";
   // The design's name is a title (spaces, colons): the job is named from the file's stem, made safe.
+  c.name_at = Location{spec.file, ""};
+  c.name_note = " (the job is named from the design file's stem: rename the file)";
   c.name = "optimize-";
   for (char ch : std::filesystem::path(spec.file).stem().string())
     if (c.name.size() < 120)

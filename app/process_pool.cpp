@@ -5,10 +5,12 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <csignal>
 #include <cstring>
 #include <filesystem>
 #include <map>
 
+#include "layerlab/app/exit_status.h"
 #include "layerlab/framework/error.h"
 #include "layerlab/framework/interrupt.h"
 
@@ -21,6 +23,11 @@ std::string SelfExecutable() {
   const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
   if (ec) throw Error("cannot find this executable (/proc/self/exe): " + ec.message());
   return self.string();
+}
+
+bool EndedByInterrupt(int status) {
+  return (WIFSIGNALED(status) && WTERMSIG(status) == SIGINT) ||
+         (WIFEXITED(status) && WEXITSTATUS(status) == kExitInterrupted);
 }
 
 namespace {

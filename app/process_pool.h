@@ -17,6 +17,10 @@ std::string SelfExecutable();
 // `ended(i, status)` with command i's wait status as it ends. After an
 // interrupt (framework/interrupt.h) no more commands start; the running ones
 // are waited for. Throws layerlab::Error when a child cannot be started.
+// Whether a child's wait status says it ended on Ctrl-C: killed by SIGINT, or
+// exited with kExitInterrupted after keeping what was complete (app/exit_status.h).
+bool EndedByInterrupt(int status);
+
 void RunProcessPool(const std::vector<std::vector<std::string>>& commands, int processes,
                     const std::function<void(size_t, int)>& ended);
 

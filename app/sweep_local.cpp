@@ -32,7 +32,7 @@ size_t RunSweepLocally(const SweepSpec& spec, const std::vector<SweepJob>& jobs,
   RunProcessPool(commands, processes, [&](size_t i, int status) {
     const SweepJob* job = todo[i];
     SweepJobState s = ReadJobState(out, *job);
-    if (!s.complete && Interrupted() && WIFSIGNALED(status) && WTERMSIG(status) == SIGINT) {
+    if (!s.complete && Interrupted() && EndedByInterrupt(status)) {
       std::fprintf(stderr, "sweep: job %s interrupted; it runs again on resume\n", job->id.c_str());  // not a failure
       return;
     }

@@ -37,12 +37,13 @@ struct SlurmArrayCommand {
   std::string command, file, file_what;  // "sweep", the sweep file, "SWEEP (the sweep file's path)"
   std::string kind;                      // "sweep", "optimization": in comments and messages
   std::string name;                      // the job's name (checked: SlurmJobNameProblem)
-  bool named = true;                     // given in the file, not its stem
-  int threads = 0;                       // each task's CPUs unless the resources say
-  std::vector<std::string> arguments;    // more arguments for every task (quoted)
-  std::string task_flag, task, tasks;    // "--job", "job of the sweep", "jobs"
-  std::string gathered;                  // what the gather step makes
-  Location empty;                        // named when there is no task
+  Location name_at;                      // where it comes from, and what to do about a bad one
+  std::string name_note;
+  int threads = 0;                     // each task's CPUs unless the resources say
+  std::vector<std::string> arguments;  // more arguments for every task (quoted)
+  std::string task_flag, task, tasks;  // "--job", "job of the sweep", "jobs"
+  std::string gathered;                // what the gather step makes
+  Location empty;                      // named when there is no task
 };
 SlurmArrayCommand SweepArrayCommand(const SweepSpec& spec);
 

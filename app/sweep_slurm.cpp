@@ -83,7 +83,8 @@ SlurmArrayCommand SweepArrayCommand(const SweepSpec& spec) {
   c.file_what = "SWEEP (the sweep file's path)";
   c.kind = "sweep";
   c.name = spec.name;
-  c.named = spec.named;
+  c.name_at = Location{spec.file, "/name"};
+  if (!spec.named) c.name_note = " (without \"name\", the name is the sweep file's stem: give one)";
   c.threads = spec.threads;
   c.task_flag = "--job";
   c.task = "job of the sweep";
@@ -97,9 +98,7 @@ SlurmScripts MakeSlurmScripts(const SlurmArrayCommand& c, size_t job_count, cons
                               const SlurmResources& resources) {
   if (job_count == 0) throw Error(c.empty, "the " + c.kind + " has no " + c.tasks + ": nothing to submit");
   if (const std::string problem = SlurmJobNameProblem(c.name); !problem.empty())
-    throw Error(Location{c.file, "/name"},
-                Shown(c.name) + " " + problem +
-                    (c.named ? "" : " (without \"name\", the name is the " + c.kind + " file's stem: give one)"));
+    throw Error(c.name_at, Shown(c.name) + " " + problem + c.name_note);
   for (const auto& [key, value] :
        {std::pair{"time", &resources.time}, std::pair{"mem", &resources.mem},
         std::pair{"partition", &resources.partition}, std::pair{"account", &resources.account}})

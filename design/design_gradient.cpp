@@ -1,8 +1,11 @@
 #include "layerlab/design/design_gradient.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 
+#include "layerlab/design/design_metrics.h"
 #include "layerlab/design/placement_gradient.h"
 #include "layerlab/framework/error.h"
 #include "layerlab/framework/lightfield_io.h"
@@ -45,8 +48,12 @@ std::string OtherThanPlacement(const DisplaySystem& a, const DisplaySystem& b) {
       return "layer " + x.name + "'s grid (its order, size, flips or rotation)";
     if (x.ray_map || y.ray_map) return "layer " + x.name + " (seen through a real lens)";
   }
-  for (size_t i = 0; i < a.branches.size(); ++i)
+  for (size_t i = 0; i < a.branches.size(); ++i) {
     if (a.branches[i].layers != b.branches[i].layers) return "the branches' layers";
+    if (a.branches[i].efficiency != b.branches[i].efficiency ||
+        a.branches[i].backlight_luminance_cd_m2 != b.branches[i].backlight_luminance_cd_m2)
+      return "branch " + std::to_string(i) + "'s light (its efficiency or backlight)";
+  }
   return "";
 }
 
@@ -80,10 +87,13 @@ std::vector<double> PsnrGradient(const DesignSpec& spec, const DesignEvaluator& 
   std::vector<std::vector<std::array<double, 5>>> moved(n);
   const DisplaySystem at = Compile(SceneOf(out, jobs.front()));
   for (size_t v = 0; v < n; ++v) {
-    const double h = 1e-6 * (spec.variables[v].max - spec.variables[v].min);
+    // Within the bounds, which may be physical limits (0 D): one-sided at a bound.
+    const DesignVariable& var = spec.variables[v];
+    const double h = 1e-6 * (var.max - var.min);
     DesignEvaluation plus = e, minus = e;
-    plus.x[v] += h;
-    minus.x[v] -= h;
+    plus.x[v] = std::min(var.max, e.x[v] + h);
+    minus.x[v] = std::max(var.min, e.x[v] - h);
+    const double span = plus.x[v] - minus.x[v];
     const DisplaySystem up = Compile(SceneOf(out, evaluator.JobsOf(plus).front()));
     const DisplaySystem down = Compile(SceneOf(out, evaluator.JobsOf(minus).front()));
     for (const DisplaySystem* s : {&up, &down})
@@ -94,7 +104,7 @@ std::vector<double> PsnrGradient(const DesignSpec& spec, const DesignEvaluator& 
     const auto p = Placement(up), m = Placement(down);
     moved[v].resize(p.size());
     for (size_t k = 0; k < p.size(); ++k)
-      for (int f = 0; f < 5; ++f) moved[v][k][f] = (p[k][f] - m[k][f]) / (2 * h);
+      for (int f = 0; f < 5; ++f) moved[v][k][f] = (p[k][f] - m[k][f]) / span;
   }
   for (const SweepJob& job : jobs) {
     const Scene scene = SceneOf(out, job);
@@ -110,10 +120,12 @@ std::vector<double> PsnrGradient(const DesignSpec& spec, const DesignEvaluator& 
     double error = 0;
     const std::vector<LayerPlacementGradient> g = PlacementGradient(model, target, t, &error);
     const double psnr = PsnrDb(error, target.rgb.size());
-    const double reported = e.metrics.empty() ? psnr : e.metrics[spec.objective[0].metric];
-    if (jobs.size() == 1 && std::abs(psnr - reported) > 1e-3)
-      throw Error("evaluation " + e.id + ": the gradient's PSNR, " + std::to_string(psnr) + " dB, is not the run's " +
-                  std::to_string(reported) + " dB: the gradient would be of another error");
+    const std::optional<double> reported =
+        MetricValue(spec.metrics[spec.objective[0].metric], ReadJobState(out, job).results);
+    if (!reported || std::abs(psnr - *reported) > 1e-3)
+      throw Error("evaluation " + e.id + ": the gradient's PSNR, " + std::to_string(psnr) + " dB, is not the run's" +
+                  (reported ? " " + std::to_string(*reported) + " dB" : "") +
+                  ": the gradient would be of another error");
     const double scale = -10.0 / std::log(10.0) / error / static_cast<double>(jobs.size());
     for (size_t v = 0; v < n; ++v)
       for (size_t k = 0; k < g.size(); ++k) {

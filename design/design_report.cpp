@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "layerlab/analysis/svg_plot.h"
+#include "layerlab/design/design_starts.h"
 #include "layerlab/framework/atomic_file.h"
 #include "layerlab/framework/csv_cell.h"
 #include "layerlab/framework/staged_output.h"
@@ -163,6 +164,7 @@ void StartsTable(const DesignSpec& spec, const Track& t, std::ostringstream& h) 
   h << "<h2>Starts</h2>\n<table>\n<tr><th>start</th>";
   for (const DesignVariable& v : spec.variables) h << "<th>from: " << Escape(v.column()) << "</th>";
   h << "<th>evaluations</th><th>best: " << Escape(spec.objective_column()) << "</th><th>at</th></tr>\n";
+  const std::vector<std::vector<double>> points = MultistartPoints(spec);
   std::vector<std::string> order;
   for (const DesignEvaluation* e : t.rows)
     if (std::find(order.begin(), order.end(), e->start) == order.end()) order.push_back(e->start);
@@ -172,7 +174,8 @@ void StartsTable(const DesignSpec& spec, const Track& t, std::ostringstream& h) 
       if (e->start == id) own.push_back(e);
     const DesignEvaluation* best = BestFeasible(spec, own);
     h << "<tr><th>" << Escape(id) << "</th>";
-    for (double x : own.front()->x) h << "<td>" << Cell(x) << "</td>";
+    const size_t k = static_cast<size_t>(std::stoi(id.substr(1)));  // "s07"
+    for (double x : points[k]) h << "<td>" << Cell(x) << "</td>";
     h << "<td>" << own.size() << "</td><td>" << (best ? Cell(ShownObjective(spec, *best)) : "none feasible")
       << "</td><td>" << (best ? Escape(best->id) : "") << "</td></tr>\n";
   }

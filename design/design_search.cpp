@@ -194,13 +194,18 @@ double Objective(unsigned n, const double* x, double* grad, void* data) {
   }
   const DesignEvaluation* e = s.At(x);
   if (!e) return HUGE_VAL;  // the search is stopping: no value, and none that could pass for a design's
-  if (grad && !e->failed) {
+  if (grad && e->failed) {  // no slope to follow: a zero gradient would read as converged
+    s.stopped = "evaluation " + e->id + " failed (" + e->error + "), and a gradient search has no slope there";
+    nlopt_force_stop(s.outer);
+    return s.evaluator->FailedLoss();
+  }
+  if (grad) {
     auto it = s.gradients.find(e);
     if (it == s.gradients.end()) {
       try {
-        // The loss is -psnr (GradientProblem: a single psnr objective).
+        // The loss is weight x (-psnr) (GradientProblem: a single psnr term).
         std::vector<double> g = PsnrGradient(*s.spec, *s.evaluator, *e);
-        for (double& v : g) v = -v;
+        for (double& v : g) v *= -s.spec->objective[0].weight;
         it = s.gradients.emplace(e, std::move(g)).first;
       } catch (...) {
         s.error = std::current_exception();

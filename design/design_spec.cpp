@@ -308,6 +308,16 @@ void ReadObjective(Params& p, DesignSpec* spec) {
   q.check_all_read();
 }
 
+}  // namespace
+
+std::string BudgetProblem(const DesignOptimizer& o) {
+  if (o.evaluations >= o.starts) return "";
+  return "fewer evaluations than the " + std::to_string(o.starts) +
+         " starts: each start's local search needs at least one evaluation";
+}
+
+namespace {
+
 DesignOptimizer ReadOptimizer(Params& p) {
   DesignOptimizer o;
   if (!p.has("optimizer")) return o;
@@ -319,9 +329,8 @@ DesignOptimizer ReadOptimizer(Params& p) {
   o.evaluations = static_cast<int>(q.integer("evaluations", 1, 100000, 60));
   if (o.global == "multistart") {
     o.starts = static_cast<int>(q.integer("starts", 2, 256, 4));
-    if (o.evaluations < o.starts)
-      q.fail("evaluations", "is " + std::to_string(o.evaluations) + ", fewer than the " + std::to_string(o.starts) +
-                                " starts: each start's local search needs at least one evaluation");
+    if (const std::string problem = BudgetProblem(o); !problem.empty())
+      q.fail("evaluations", "is " + std::to_string(o.evaluations) + ": " + problem);
   } else if (q.has("starts")) {
     q.fail("starts",
            "is read only with \"global\": \"multistart\" (this design's global stage is \"" + o.global + "\")");

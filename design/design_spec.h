@@ -112,6 +112,9 @@ struct DesignOptimizer {
   unsigned seed = 1;
 };
 
+// Why the budget cannot be spent as asked ("" when it can): a multistart needs an evaluation per start.
+std::string BudgetProblem(const DesignOptimizer& o);
+
 struct DesignSpec {
   std::string file, name, description;
   std::string scene;  // resolved against the design file's folder

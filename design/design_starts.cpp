@@ -92,10 +92,16 @@ StartOutcome RunStart(const DesignSpec& spec, const std::string& out, int k) {
 
 MultistartRecord::MultistartRecord(const DesignSpec& spec, const std::string& out) {
   for (int k = 0; k < spec.optimizer.starts; ++k) {
-    std::string holder;  // a start still running would append to the log read here
-    if (FileLock::HeldElsewhere((fs::path(out) / "starts" / StartId(k) / "start.lock").string(), &holder))
-      throw Error(out + ": start " + StartId(k) + " is still running" + (holder.empty() ? "" : " (" + holder + ")") +
-                  "; gather once every start has ended");
+    // Held while the log is read (Resume cuts an unfinished last line): a start running now would append to it.
+    const fs::path folder = fs::path(out) / "starts" / StartId(k);
+    std::optional<FileLock> lock;
+    if (fs::exists(folder)) {
+      std::string holder;
+      lock = FileLock::TryLock((folder / "start.lock").string(), &holder);
+      if (!lock)
+        throw Error(out + ": start " + StartId(k) + " is still running" + (holder.empty() ? "" : " (" + holder + ")") +
+                    "; gather once every start has ended");
+    }
     starts_.push_back(std::make_unique<DesignEvaluator>(spec, out, StartId(k)));
     if (starts_.back()->Resume() == 0) missing_.push_back(StartId(k));
     for (const DesignEvaluation* e : starts_.back()->evaluations()) all_.push_back(e);

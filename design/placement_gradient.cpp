@@ -4,25 +4,24 @@
 #include <cmath>
 
 #include "layerlab/framework/error.h"
+#include "layerlab/systems/layer_sampler.h"
 
 namespace layerlab {
 namespace {
 
-// A bilinear read of one channel in eye-space cell coordinates (col, row), pixel centres at integers:
-// the value and its slopes along col and row (0 outside the grid, as the sampler reads).
+// A bilinear read of one channel at panel coordinates (col, row) (LayerSampler::PanelCoordinates, pixel
+// centres at integers): the value and its slopes along col and row (0 outside the grid, as the sampler reads).
 struct Read {
   double value = 0, d_col = 0, d_row = 0;
 };
 
-struct Grid {
+struct Grid {  // in the panel's own order
   const float* rgb;
   int cols, rows;
-  bool flip_x, flip_y;
 
   double At(int col, int row, int c) const {
     if (col < 0 || col >= cols || row < 0 || row >= rows) return 0;
-    const int pc = flip_x ? cols - 1 - col : col, pr = flip_y ? rows - 1 - row : row;
-    return rgb[(static_cast<size_t>(pr) * cols + pc) * 3 + c];
+    return rgb[(static_cast<size_t>(row) * cols + col) * 3 + c];
   }
 };
 
@@ -100,6 +99,8 @@ std::vector<LayerPlacementGradient> PlacementGradient(const DisplayModel& model,
   if (target.geometry.ray_count() != lf.ray_count() || target.rgb.size() != lf.ray_count() * 3)
     throw Error("placement gradient: the target is not on the model's rays");
 
+  std::vector<LayerSampler> samplers;
+  for (size_t k = 0; k < n; ++k) samplers.emplace_back(system.layers[k], Sampling::kBilinear);
   const double inv_z = 1.0 / lf.origin_z_m;
   const size_t views = lf.view_count(), pixels = lf.pixels_per_view();
   std::vector<std::vector<Sums>> per_view(views, std::vector<Sums>(n));
@@ -110,25 +111,27 @@ std::vector<LayerPlacementGradient> PlacementGradient(const DisplayModel& model,
     const double px = lf.view_x(vc), py = lf.view_y(vr);
     std::vector<Sums>& sums = per_view[static_cast<size_t>(v)];
     std::vector<Read> reads(n);
-    std::vector<double> cols(n), rows(n);
+    std::vector<double> cols(n), rows(n);  // eye-space order, for the pitch's moment
+    std::vector<std::array<double, 2>> at(n);
     double view_error = 0;
     for (int i = 0; i < lf.rows; ++i)
       for (int j = 0; j < lf.cols; ++j) {
-        // u = D p + (x - p) / z_lf: the (x - p) / z_lf part here, D p per layer below.
+        // Where the ray meets each layer (systems/projection.h): u = D p + (x - p) / z_lf.
         const double ux = (lf.pixel_x(j) - px) * inv_z, uy = (lf.pixel_y(i) - py) * inv_z;
         for (size_t k = 0; k < n; ++k) {
           const VirtualLayer& layer = system.layers[k];
-          cols[k] =
-              (layer.diopters * px + ux - layer.eye_from_layer_tan_x) / layer.tan_pitch_x + 0.5 * layer.cols - 0.5;
-          rows[k] =
-              -(layer.diopters * py + uy - layer.eye_from_layer_tan_y) / layer.tan_pitch_y + 0.5 * layer.rows - 0.5;
+          at[k] = samplers[k].PanelCoordinates(layer.diopters * px + ux, layer.diopters * py + uy);
+          cols[k] = layer.flip_x ? layer.cols - 1 - at[k][0] : at[k][0];
+          rows[k] = layer.flip_y ? layer.rows - 1 - at[k][1] : at[k][1];
         }
         const size_t ray = static_cast<size_t>(v) * pixels + static_cast<size_t>(i) * lf.cols + j;
         for (int c = 0; c < 3; ++c) {
           for (size_t k = 0; k < n; ++k) {
             const VirtualLayer& layer = system.layers[k];
-            reads[k] =
-                Bilinear({t[k].rgb.data(), layer.cols, layer.rows, layer.flip_x, layer.flip_y}, cols[k], rows[k], c);
+            reads[k] = Bilinear({t[k].rgb.data(), layer.cols, layer.rows}, at[k][0], at[k][1], c);
+            // The slopes along the eye-space axes, which a flipped panel runs against.
+            if (layer.flip_x) reads[k].d_col = -reads[k].d_col;
+            if (layer.flip_y) reads[k].d_row = -reads[k].d_row;
           }
           double light = 0;
           for (size_t b = 0; b < model.branch_count(); ++b) {

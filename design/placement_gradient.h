@@ -4,8 +4,9 @@
 //
 //   E = sum over rays and channels (L - T)^2,   L = sum_b w_b prod_{k in b} s_k
 //
-// s_k is layer k read bilinearly (systems/layer_sampler.h) where ray (x, p)
-// meets it, at tan-angle u = D_k p + (x - p) / z_lf (systems/projection.h):
+// s_k is layer k read bilinearly where ray (x, p) meets it, at tan-angle
+// u = D_k p + (x - p) / z_lf (systems/projection.h), at the cell coordinates
+// of the sampler's rule (LayerSampler::PanelCoordinates), in eye order:
 //   col = (u_x - c_x) / a_x + cols/2 - 1/2,   row = -(u_y - c_y) / a_y + rows/2 - 1/2
 // (mirrored for flip_x / flip_y), with D_k the layer's diopters, c its grid
 // centre (eye_from_layer_tan) and a its tan pitch. Each of these five enters

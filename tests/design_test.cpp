@@ -138,7 +138,7 @@ TEST(DesignSpec, FixedValuesAreWrittenIntoTheBaseScene) {
 TEST(DesignSpec, AMultistartNeedsAnEvaluationPerStart) {
   EXPECT_NE(DesignError([](auto& d) {
               d["optimizer"] = {{"global", "multistart"}, {"starts", 6}, {"evaluations", 5}};
-            }).find("/optimizer/evaluations: is 5, fewer than the 6 starts"),
+            }).find("/optimizer/evaluations: is 5: fewer evaluations than the 6 starts"),
             std::string::npos);
   EXPECT_NE(DesignError([](auto& d) {
               d["optimizer"] = {{"global", "crs"}, {"starts", 6}};
@@ -371,6 +371,7 @@ TEST(DesignGradient, MatchesCentralDifferencesOfConvergedSolves) {
     return PsnrDb(Objective(DisplayModel(system, target.geometry, Sampling::kBilinear), target, solved),
                   target.rgb.size());
   };
+  ASSERT_NEAR(fixed_psnr(x), at.metrics[0], 1e-3) << "the target is not the one the solve saw (out of range?)";
   for (size_t v = 0; v < 2; ++v) {
     std::vector<double> up = x, down = x;
     up[v] += 1e-4;
@@ -397,7 +398,7 @@ TEST(DesignSearch, AGradientSearchFindsTheOneLayerOptimum) {
   const DesignEvaluation* best = BestFeasible(spec, evaluator);
   ASSERT_TRUE(best) << search.stopped;
   EXPECT_NEAR(best->x[0], 1.3, 0.01) << search.stopped;
-  EXPECT_LE(evaluator.ran(), 20u);
+  EXPECT_LE(evaluator.ran(), 12u) << "COBYLA takes 18 evaluations on this problem";
 }
 
 TEST(DesignSearch, AMultistartsStartsAreIndependentOfTheirOrder) {
