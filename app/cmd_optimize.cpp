@@ -22,6 +22,7 @@
 #include "layerlab/design/design_starts.h"
 #include "layerlab/framework/error.h"
 #include "layerlab/framework/interrupt.h"
+#include "layerlab/framework/params.h"
 #include "layerlab/framework/progress.h"
 #include "layerlab/framework/warnings.h"
 #if LAYERLAB_WITH_MPI
@@ -121,41 +122,70 @@ void RunSingleSearch(const DesignSpec& spec, const OptimizeOptions& o) {
   Report(spec, o, evaluator, {evaluator.evaluations(), evaluator.ran(), evaluator.replayed()}, search);
 }
 
-void RunMultistart(const DesignSpec& spec, const OptimizeOptions& o) {
+// --start K: one start, what a pool process, an MPI rank's turn and a Slurm task run.
+void RunOneStart(const DesignSpec& spec, const OptimizeOptions& o) {
+  const StartOutcome s = RunStart(spec, o.out, o.start);
+  CommandResult result("optimize");
+  result.Text("optimize: start " + StartId(o.start) + ": " + std::to_string(s.asked) + " evaluations (" +
+              std::to_string(s.ran) + " run here, " + std::to_string(s.replayed) + " from the log) in " +
+              FormatFixed(s.search.seconds, 1) + " s; stopped because " + s.search.stopped + "\n");
+  result["start"] = StartId(o.start);
+  result["evaluations"] = s.asked;
+  result["ran"] = s.ran;
+  result["replayed"] = s.replayed;
+  result["seconds"] = s.search.seconds;
+  result["stopped"] = s.search.stopped;
+  result.Print();
+}
+
+// --slurm: the array's scripts, made (and so checked) before the folder is locked and they are written.
+void WriteStartScripts(const DesignSpec& spec, const OptimizeOptions& o) {
+  SlurmResources resources;
+  resources.Override(o.slurm_resources);
+  const SlurmScripts scripts =
+      MakeSlurmScripts(OptimizeArrayCommand(spec, StartArguments(o)), spec.optimizer.starts, o.out, resources);
+  DesignEvaluator scenes(spec, o.out);
+  const FileLock lock = LockSweepFolder(scenes.sweep(), o.out);
+  CommandResult result("optimize");
+  result["out"] = o.out;
+  result["starts"] = spec.optimizer.starts;
+  const std::vector<std::string> written = WriteSlurmScripts(scripts);
+  for (const std::string& script : written) result.Text("optimize: wrote " + script + "\n");
+  result["slurm_scripts"] = written;
+  result.Text("optimize: submit with sh " + o.out + "/slurm/submit.sh\n");
+  result["submit"] = "sh " + o.out + "/slurm/submit.sh";
+  result.Print();
+}
+
+// The starts in this process or a pool (not MPI's, not a gather): why they ended.
+std::string RunStartsHere(const DesignSpec& spec, const OptimizeOptions& o) {
   const std::string starts = std::to_string(spec.optimizer.starts);
-  if (o.start >= 0) {  // one start: what a pool process, an MPI rank's turn and a Slurm task run
-    const StartOutcome s = RunStart(spec, o.out, o.start);
-    CommandResult result("optimize");
-    result.Text("optimize: start " + StartId(o.start) + ": " + std::to_string(s.asked) + " evaluations (" +
-                std::to_string(s.ran) + " run here, " + std::to_string(s.replayed) + " from the log) in " +
-                FormatFixed(s.search.seconds, 1) + " s; stopped because " + s.search.stopped + "\n");
-    result["start"] = StartId(o.start);
-    result["evaluations"] = s.asked;
-    result["ran"] = s.ran;
-    result["replayed"] = s.replayed;
-    result["seconds"] = s.search.seconds;
-    result["stopped"] = s.search.stopped;
-    result.Print();
-    return;
+  if (o.local) {
+    const int processes =
+        o.processes > 0 ? o.processes : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    const std::vector<std::string> failed = RunStartsLocally(spec, o.out, StartArguments(o), processes);
+    if (!failed.empty())
+      throw Error("optimize: " + std::to_string(failed.size()) + " of " + starts +
+                  " starts did not end: " + JoinWords(failed, " and ") +
+                  " (the finished evaluations are kept; run the same command again to resume)");
+    return "each of its " + starts + " starts ended (" + std::to_string(processes) + " at a time)";
   }
-  if (o.slurm) {
-    SlurmResources resources;
-    resources.Override(o.slurm_resources);
-    const SlurmScripts scripts =
-        MakeSlurmScripts(OptimizeArrayCommand(spec, StartArguments(o)), spec.optimizer.starts, o.out, resources);
-    DesignEvaluator scenes(spec, o.out);
-    const FileLock lock = LockSweepFolder(scenes.sweep(), o.out);
-    CommandResult result("optimize");
-    result["out"] = o.out;
-    result["starts"] = spec.optimizer.starts;
-    const std::vector<std::string> written = WriteSlurmScripts(scripts);
-    for (const std::string& script : written) result.Text("optimize: wrote " + script + "\n");
-    result["slurm_scripts"] = written;
-    result.Text("optimize: submit with sh " + o.out + "/slurm/submit.sh\n");
-    result["submit"] = "sh " + o.out + "/slurm/submit.sh";
-    result.Print();
-    return;
+  for (int k = 0; k < spec.optimizer.starts; ++k) {
+    try {
+      const StartOutcome s = RunStart(spec, o.out, k);
+      Note("optimize: start " + StartId(k) + ": " + std::to_string(s.asked) + " evaluations; stopped because " +
+           s.search.stopped);
+    } catch (const InterruptedError&) {
+      throw InterruptedError(
+          "optimize: interrupted; the finished evaluations are kept, run the same command again to resume");
+    }
   }
+  return "each of its " + starts + " starts ended (one after another)";
+}
+
+void RunMultistart(const DesignSpec& spec, const OptimizeOptions& o) {
+  if (o.start >= 0) return RunOneStart(spec, o);
+  if (o.slurm) return WriteStartScripts(spec, o);
   const auto begun = std::chrono::steady_clock::now();
   DesignSearch search;
   size_t earlier = 0;  // the evaluations earlier runs left: those after the runners are this command's
@@ -164,7 +194,7 @@ void RunMultistart(const DesignSpec& spec, const OptimizeOptions& o) {
     bool root = false;
     earlier = RunStartsMpi(spec, o.out, &root);
     if (!root) return;
-    search.stopped = "each of its " + starts + " starts ended (on MPI ranks)";
+    search.stopped = "each of its " + std::to_string(spec.optimizer.starts) + " starts ended (on MPI ranks)";
 #else
     throw Error(
         "--mpi: this layerlab was built without MPI (configure with -DLAYERLAB_WITH_MPI=ON; it needs "
@@ -174,41 +204,16 @@ void RunMultistart(const DesignSpec& spec, const OptimizeOptions& o) {
   DesignEvaluator scenes(spec, o.out);
   const FileLock lock = LockSweepFolder(scenes.sweep(), o.out);
   if (!o.mpi) earlier = MultistartRecord(spec, o.out).evaluations().size();
-  if (o.local) {
-    const int processes =
-        o.processes > 0 ? o.processes : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-    const std::vector<std::string> failed = RunStartsLocally(spec, o.out, StartArguments(o), processes);
-    if (!failed.empty()) {
-      std::string list;
-      for (const std::string& f : failed) list += (list.empty() ? "" : "; ") + f;
-      throw Error("optimize: " + std::to_string(failed.size()) + " of " + starts + " starts did not end: " + list +
-                  " (the finished evaluations are kept; run the same command again to resume)");
-    }
-    search.stopped = "each of its " + starts + " starts ended (" + std::to_string(processes) + " at a time)";
-  } else if (!o.mpi && !o.gather) {
-    InstallInterruptHandler();
-    for (int k = 0; k < spec.optimizer.starts; ++k) {
-      try {
-        const StartOutcome s = RunStart(spec, o.out, k);
-        Note("optimize: start " + StartId(k) + ": " + std::to_string(s.asked) + " evaluations; stopped because " +
-             s.search.stopped);
-      } catch (const InterruptedError&) {
-        throw InterruptedError(
-            "optimize: interrupted; the finished evaluations are kept, run the same command again to resume");
-      }
-    }
-    search.stopped = "each of its " + starts + " starts ended (one after another)";
-  } else if (o.gather) {
+  if (o.gather)
     search.stopped = "gathered from the starts' logs";
-  }
+  else if (!o.mpi)
+    search.stopped = RunStartsHere(spec, o);
   search.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begun).count();
   const MultistartRecord record(spec, o.out);
-  if (!record.missing().empty()) {
-    std::string list;
-    for (const std::string& id : record.missing()) list += (list.empty() ? "" : ", ") + id;
-    SayWarnings({o.out + ": the starts " + list + " have no evaluations yet; the report shows the others"},
+  if (!record.missing().empty())
+    SayWarnings({o.out + ": the starts " + JoinWords(record.missing(), " and ") +
+                 " have no evaluations yet; the report shows the others"},
                 "optimize: ");
-  }
   DesignHistory history;
   history.evaluations = record.evaluations();
   history.replayed = o.gather ? history.evaluations.size() : std::min(earlier, history.evaluations.size());
