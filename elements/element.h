@@ -201,6 +201,11 @@ struct PanelSpec {
   bool diffracts() const { return fill_factor[0] < 1 || fill_factor[1] < 1; }
   // The liquid crystal's 10 to 90 % response times, rising and falling transmittance (s; 0: instant).
   double rise_time_s = 0, fall_time_s = 0;
+  // A pattern the layer always shows (a printed mask, a panel held at one image): the active region's
+  // transmittance relative to max_transmittance, [row][col][rgb] in the panel's own order, in [0, 1].
+  // Null: the layer is solved.
+  std::shared_ptr<const std::vector<float>> fixed_pattern;
+  std::string fixed_pattern_file;  // as the scene names it, for messages
 };
 
 class PanelElement : public Element {

@@ -19,17 +19,54 @@
 // | fill_factor       | fraction or [x, y]   | 1              | the open width of a pixel's aperture over its pitch (the black matrix is the rest): below 1 the grid diffracts the light of the layers behind it (systems/panel_diffraction.h) |
 // | rise_time         | time                 | 0 s (instant)  | the liquid crystal's 10 to 90 % response to rising transmittance; a time-multiplexed display's light is the time average of what the panels show (systems/lc_response.h) |
 // | fall_time         | time                 | rise_time      | the same for falling transmittance |
+// | fixed_pattern     | path (OpenEXR)       | none (solved)  | a pattern the layer always shows instead of a solved one (a printed mask, a panel held at one image), relative to the scene file: the active region's size, channels R, G, B (or Y), linear transmittance relative to max_transmittance in [0, 1], in the panel's own pixel order |
 // | next              | name                 | required       | the panel behind, or the backlight           |
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <memory>
 
 #include "layerlab/elements/element.h"
 #include "layerlab/elements/registry.h"
+#include "layerlab/framework/exr_image.h"
 
 namespace layerlab {
 namespace {
 
 constexpr int64_t kMaxPixels = 1 << 15;
+
+// The fixed pattern's file, relative to the scene file: the active region's size, R, G, B or Y, each value in [0, 1].
+void ReadFixedPattern(Params& p, PanelSpec* s) {
+  s->fixed_pattern_file = p.string("fixed_pattern");
+  const std::string path = (std::filesystem::path(p.where().file).parent_path() / s->fixed_pattern_file).string();
+  Image image;
+  try {
+    const std::vector<std::string> names = ReadExrChannelNames(path);
+    const bool rgb = std::count(names.begin(), names.end(), "R") && std::count(names.begin(), names.end(), "G") &&
+                     std::count(names.begin(), names.end(), "B");
+    if (!rgb && !std::count(names.begin(), names.end(), "Y"))
+      throw Error(path + ": has neither channels R, G, B nor Y");
+    image = ReadExr(path, rgb ? std::vector<std::string>{"R", "G", "B"} : std::vector<std::string>{"Y"});
+  } catch (const Error& e) {
+    p.fail("fixed_pattern", e.what());
+  }
+  if (image.width != s->active_cols || image.height != s->active_rows)
+    p.fail("fixed_pattern", path + " is " + std::to_string(image.width) + " x " + std::to_string(image.height) +
+                                " pixels; the panel's active region is " + std::to_string(s->active_cols) + " x " +
+                                std::to_string(s->active_rows));
+  auto pattern = std::make_shared<std::vector<float>>(static_cast<size_t>(image.width) * image.height * 3);
+  const size_t channels = image.channels.size();
+  for (size_t i = 0; i < static_cast<size_t>(image.width) * image.height; ++i)
+    for (size_t c = 0; c < 3; ++c) {
+      const float v = image.pixels[i * channels + (channels == 3 ? c : 0)];
+      if (!(v >= 0.0f && v <= 1.0f))
+        p.fail("fixed_pattern", path + ": pixel (row " + std::to_string(i / image.width) + ", col " +
+                                    std::to_string(i % image.width) + ") holds " + std::to_string(v) +
+                                    ", outside the transmittance range [0, 1]");
+      (*pattern)[i * 3 + c] = v;
+    }
+  s->fixed_pattern = std::move(pattern);
+}
 
 std::unique_ptr<Element> MakeLcPanel(Params& p) {
   PanelSpec s;
@@ -101,6 +138,7 @@ std::unique_ptr<Element> MakeLcPanel(Params& p) {
   p.require_range("rise_time", s.rise_time_s, 0.0, 1.0, false, false);
   s.fall_time_s = p.quantity("fall_time", Dimension::kTime, s.rise_time_s);
   p.require_range("fall_time", s.fall_time_s, 0.0, 1.0, false, false);
+  if (p.has("fixed_pattern")) ReadFixedPattern(p, &s);
   return std::make_unique<PanelElement>(s);
 }
 

@@ -29,6 +29,7 @@
 #include "layerlab/framework/error.h"
 #include "layerlab/kernels/joint_pass.h"
 #include "layerlab/solvers/multiplicative_update.h"
+#include "layerlab/solvers/objective.h"
 #include "layerlab/solvers/solve_loop.h"
 
 namespace layerlab {
@@ -91,7 +92,8 @@ void SolveByDepth(const DisplayModel& model, const SolverOptions& options, Solve
   DepthPass pass(model, by_depth, loop);
   auto step = [&](size_t depth) {
     for (int a : by_depth[depth])
-      ApplyMultiplicativeStepFromResidual(pass.residual(a), pass.denominator(a), options, &(*t)[a].rgb);
+      if (!IsFixedLayer(model, static_cast<size_t>(a)))
+        ApplyMultiplicativeStepFromResidual(pass.residual(a), pass.denominator(a), options, &(*t)[a].rgb);
   };
   // The pass that gives an iteration's objective also gives the sums of
   // the next iteration's first step, applied only if there is one.
@@ -133,9 +135,12 @@ class MultiplicativeSolver final : public Solver {
     LayerUpdate first = KeptLayerUpdate(workspace);
     ComputeLayerUpdate(model, {0, order[0]}, whole, *t, workspace, &first);
     std::optional<double> objective;
+    // A fixed layer (a printed mask) is read, never updated; the first's pass still gives the objective.
+    const bool first_fixed = IsFixedLayer(model, static_cast<size_t>(order[0]));
     do {
-      ApplyLayerUpdate(first, options, t);
+      if (!first_fixed) ApplyLayerUpdate(first, options, t);
       for (size_t k = 1; k < order.size(); ++k) {
+        if (IsFixedLayer(model, static_cast<size_t>(order[k]))) continue;
         if (pairs)
           UpdateLayerFromPairs(model, 0, order[k], *pairs, options, t, workspace);
         else
@@ -162,6 +167,7 @@ SolverType MultiplicativeSolverType() {
   type.unsuitable = Unsuitable;
   type.default_rank = 3;
   type.panel_diffraction = true;
+  type.fixed_layers = true;
   // The joint pass for rank K; the pair lattice for a stack of two.
   type.memory.passes = kSynthesisPass | kLayerUpdatePass | kJointPassIfBranches | kPairLatticeIfOneBranch;
   return type;

@@ -117,7 +117,30 @@ std::string FormatPsnr(double db, int decimals) {
   return text;
 }
 
+void WriteFixedPatterns(const DisplayModel& model, Patterns* t) {
+  for (size_t k = 0; k < t->size(); ++k)
+    if (const auto& fixed = model.system().layers[k].panel.fixed_pattern) {
+      if (fixed->size() != (*t)[k].rgb.size())
+        throw Error("layer " + model.system().layers[k].name + ": its fixed pattern is not its size");
+      (*t)[k].rgb = *fixed;
+    }
+}
+
+namespace {
+
+Patterns StartingPatterns(const DisplayModel& model, const SolverOptions& options);
+
+}  // namespace
+
 Patterns InitialPatterns(const DisplayModel& model, const SolverOptions& options) {
+  Patterns t = StartingPatterns(model, options);
+  WriteFixedPatterns(model, &t);
+  return t;
+}
+
+namespace {
+
+Patterns StartingPatterns(const DisplayModel& model, const SolverOptions& options) {
   if (options.initial_value >= 0 && model.system().subframes > 1) {
     // Subframes that start equal get equal updates and stay equal (a rank-1
     // display K times over): each starts a little apart, the same on every machine.
@@ -136,6 +159,8 @@ Patterns InitialPatterns(const DisplayModel& model, const SolverOptions& options
     for (float& v : p.rgb) v = static_cast<float>(0.25 + 0.5 * rng.uniform());
   return t;
 }
+
+}  // namespace
 
 void RequireSameRays(const DisplayModel& model, const LightField& target) {
   const LightFieldGeometry &a = model.geometry(), &b = target.geometry;

@@ -46,8 +46,16 @@ double Objective(const DisplayModel& model, const LightField& target, const Patt
 // A PSNR for reports and tables: "31.42" with `decimals` digits, or "inf".
 std::string FormatPsnr(double db, int decimals);
 
-// Every pixel `initial_value`, or uniform in [0.25, 0.75] from `seed` when it is negative.
+// Every pixel `initial_value`, or uniform in [0.25, 0.75] from `seed` when it is negative; a layer with a
+// fixed pattern (PanelSpec::fixed_pattern) shows it.
 Patterns InitialPatterns(const DisplayModel& model, const SolverOptions& options);
+
+// Writes each fixed layer's pattern into `t` (a warm start's patterns may hold others).
+void WriteFixedPatterns(const DisplayModel& model, Patterns* t);
+// Whether layer k shows a fixed pattern: the solvers leave it as it is.
+inline bool IsFixedLayer(const DisplayModel& model, size_t k) {
+  return model.system().layers[k].panel.fixed_pattern != nullptr;
+}
 
 // Throws layerlab::Error unless the display is bound to exactly the target's rays.
 void RequireSameRays(const DisplayModel& model, const LightField& target);

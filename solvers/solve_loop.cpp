@@ -73,6 +73,16 @@ bool SolveLoop::Start(const std::string& refusal) {
     RequireSameRays(model_, source_);
     prepared_ = PrepareTarget(model_, source_, options_.target_range, &report_);
     const SolverType* type = SolverRegistry::Builtins().find(report_.solver);
+    if (type && !type->fixed_layers)
+      for (size_t k = 0; k < model_.layer_count(); ++k)
+        if (IsFixedLayer(model_, k)) {
+          const PanelSpec& panel = model_.system().layers[k].panel;
+          Fail("layer " + model_.system().layers[k].name + " shows a fixed pattern (" + panel.fixed_pattern_file +
+               "), which the " + report_.solver +
+               " solver would change: solve this display with the multiplicative "
+               "solver, which leaves it as it is");
+          return false;
+        }
     if (!SetUpForwardModel(type)) return false;
     unsigned passes = type ? type->memory.passes : unsigned(kAllPasses);
     if (!plain_forward()) passes |= kJointPass | kSynthesisPass;  // the forward model then runs through these
@@ -93,6 +103,7 @@ bool SolveLoop::Start(const std::string& refusal) {
              (*warm)[k].rgb.size() == 3 * (*warm)[k].pixel_count();
     if (!fits) throw Error("warm start: the patterns are not this display's layers");
     *patterns_ = *warm;
+    WriteFixedPatterns(model_, patterns_);
   } else {
     *patterns_ = InitialPatterns(model_, options_);
   }

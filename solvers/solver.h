@@ -65,6 +65,9 @@ struct SolverType {
   // It solves through the panels' diffraction when SolverOptions::panel_diffraction asks (else it refuses a
   // display whose panels diffract).
   bool panel_diffraction = false;
+  // It leaves a layer with a fixed pattern (PanelSpec::fixed_pattern: a printed mask) as it is (else it refuses
+  // a display that has one).
+  bool fixed_layers = false;
   // It solves through the panels' LC response when SolverOptions::lc_response asks (else it refuses a display
   // whose panels respond in finite time across subframes).
   bool lc_response = false;

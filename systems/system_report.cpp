@@ -128,6 +128,35 @@ std::string FormatAberrations(const DisplaySystem& s) {
   return out;
 }
 
+namespace {
+
+// The virtual layers, farthest first, and which of them show a fixed pattern.
+std::string FormatLayerTable(const DisplaySystem& s) {
+  std::string out;
+  out += "\nvirtual layers (farthest first; depth from the eye, distance from the nearest lens in front)\n";
+  out += Row("%-3s %-12s %-24s %8s %9s %10s %8s %10s %11s %15s %7s %5s", "#", "panel", "branch", "depth", "depth",
+             "distance", "magnif.", "pixel", "pixels", "field of view", "max f", "flip");
+  out += Row("%-3s %-12s %-24s %8s %9s %10s %8s %10s %11s %15s %7s %5s", "", "", "", "(D)", "(m)", "(mm)", "", "(mm)",
+             "", "(deg)", "(cpd)", "");
+  for (size_t k = 0; k < s.layers.size(); ++k) {
+    const VirtualLayer& l = s.layers[k];
+    std::string pixels = std::to_string(l.cols) + " x " + std::to_string(l.rows);
+    std::string fov = F(Deg(l.fov_x_rad), 2) + " x " + F(Deg(l.fov_y_rad), 2);
+    out += Row("%-3zu %-12s %-24s %8s %9s %10s %8s %10s %11s %15s %7s %5s", k, l.name.c_str(),
+               s.branches[l.branch].name.c_str(), F(l.diopters, 3).c_str(), F(l.depth_m, 4).c_str(),
+               F(l.panel_distance_m * 1e3, 2).c_str(), F(l.magnification, 2).c_str(), F(l.pitch_x_m * 1e3, 3).c_str(),
+               pixels.c_str(), fov.c_str(), F(l.max_cpd, 2).c_str(), FlipName(l).c_str());
+  }
+  for (size_t k = 0; k < s.layers.size(); ++k)
+    if (s.layers[k].panel.fixed_pattern)
+      out += Row("%-3zu %s shows a fixed pattern, %s: the solve leaves it as it is", k, s.layers[k].name.c_str(),
+                 s.layers[k].panel.fixed_pattern_file.c_str());
+
+  return out;
+}
+
+}  // namespace
+
 std::string FormatSystemTable(const DisplaySystem& s) {
   const EyeModel& eye = s.eye;
   std::string out;
@@ -159,21 +188,7 @@ std::string FormatSystemTable(const DisplaySystem& s) {
                aperture.c_str());
   }
   out += FormatOpticalPaths(s);
-  out += "\nvirtual layers (farthest first; depth from the eye, distance from the nearest lens in front)\n";
-  out += Row("%-3s %-12s %-24s %8s %9s %10s %8s %10s %11s %15s %7s %5s", "#", "panel", "branch", "depth", "depth",
-             "distance", "magnif.", "pixel", "pixels", "field of view", "max f", "flip");
-  out += Row("%-3s %-12s %-24s %8s %9s %10s %8s %10s %11s %15s %7s %5s", "", "", "", "(D)", "(m)", "(mm)", "", "(mm)",
-             "", "(deg)", "(cpd)", "");
-  for (size_t k = 0; k < s.layers.size(); ++k) {
-    const VirtualLayer& l = s.layers[k];
-    std::string pixels = std::to_string(l.cols) + " x " + std::to_string(l.rows);
-    std::string fov = F(Deg(l.fov_x_rad), 2) + " x " + F(Deg(l.fov_y_rad), 2);
-    out += Row("%-3zu %-12s %-24s %8s %9s %10s %8s %10s %11s %15s %7s %5s", k, l.name.c_str(),
-               s.branches[l.branch].name.c_str(), F(l.diopters, 3).c_str(), F(l.depth_m, 4).c_str(),
-               F(l.panel_distance_m * 1e3, 2).c_str(), F(l.magnification, 2).c_str(), F(l.pitch_x_m * 1e3, 3).c_str(),
-               pixels.c_str(), fov.c_str(), F(l.max_cpd, 2).c_str(), FlipName(l).c_str());
-  }
-
+  out += FormatLayerTable(s);
   out += FormatAberrations(s);
 
   out += "\nbranches (added at the eye; each the product of its layers, nearest the eye first)\n";
