@@ -10,6 +10,7 @@
 #include "layerlab/framework/error.h"
 #include "layerlab/framework/fixed_order_sum.h"
 #include "layerlab/framework/mpi_ranks.h"
+#include "layerlab/framework/params.h"
 #include "layerlab/framework/thread_budget.h"
 #include "layerlab/kernels/joint_pass.h"
 #include "layerlab/kernels/synthesis.h"
@@ -77,10 +78,16 @@ bool SolveLoop::Start(const std::string& refusal) {
       for (size_t k = 0; k < model_.layer_count(); ++k)
         if (IsFixedLayer(model_, k)) {
           const PanelSpec& panel = model_.system().layers[k].panel;
+          std::vector<std::string> able;  // the solvers that keep it and suit this display
+          const SolverRegistry& registry = SolverRegistry::Builtins();
+          for (const std::string& name : registry.names())
+            if (registry.get(name).fixed_layers && registry.get(name).Unsuitable(model_.system()).empty())
+              able.push_back(name);
           Fail("layer " + model_.system().layers[k].name + " shows a fixed pattern (" + panel.fixed_pattern_file +
-               "), which the " + report_.solver +
-               " solver would change: solve this display with the multiplicative "
-               "solver, which leaves it as it is");
+               "), which the " + report_.solver + " solver would change: " +
+               (able.empty() ? "no solver here keeps a fixed layer of a display like this one (the multiplicative "
+                               "solver, which does, solves one stack)"
+                             : "solve this display with the " + JoinWords(able) + " solver, which leaves it as it is"));
           return false;
         }
     if (!SetUpForwardModel(type)) return false;

@@ -146,10 +146,22 @@ TEST(FixedLayer, SolversThatWouldChangeItRefuse) {
     const SolverReport report = SolverRegistry::Builtins().create(solver)->Solve(model, target, SolverOptions(), &t);
     EXPECT_FALSE(report.IsSolutionUsable()) << solver;
     EXPECT_NE(report.message.find("layer rear shows a fixed pattern (mask.exr), which the " + std::string(solver) +
-                                  " solver would change"),
+                                  " solver would change: solve this display with the multiplicative solver"),
               std::string::npos)
         << report.message;
   }
+  // A display of two stacks: the multiplicative solver, which would keep the mask, solves one stack only.
+  nlohmann::json hybrid = ShrunkExample("hybrid_pbs_hwp.json", kCols, kRows, kViews);
+  hybrid["elements"][5]["fixed_pattern"] = "mask.exr";
+  const DisplaySystem two_stacks = CompileJson(hybrid, folder + "/scene.json");
+  const DisplayModel hybrid_model(two_stacks, DisplayLightFieldGeometry(two_stacks), Sampling::kNearest);
+  Patterns t;
+  const SolverReport report = SolverRegistry::Builtins().create("hybrid")->Solve(
+      hybrid_model, RandomLightField(hybrid_model.geometry(), 6), SolverOptions(), &t);
+  EXPECT_NE(report.message.find("layer rear_a shows a fixed pattern (mask.exr), which the hybrid solver would change: "
+                                "no solver here keeps a fixed layer of a display like this one"),
+            std::string::npos)
+      << report.message;
 }
 
 }  // namespace
