@@ -107,9 +107,9 @@ std::vector<double> PsnrGradient(const DesignSpec& spec, const DesignEvaluator& 
       for (int f = 0; f < 5; ++f) moved[v][k][f] = (p[k][f] - m[k][f]) / span;
   }
   for (const SweepJob& job : jobs) {
-    const Scene scene = SceneOf(out, job);
-    const DisplaySystem system = Compile(scene);
-    const SolveConfig config = ReadSolveConfig(scene, system);
+    // The jobs differ in their target only: the display compiled at x serves them all.
+    const DisplaySystem& system = at;
+    const SolveConfig config = ReadSolveConfig(SceneOf(out, job), system);
     const fs::path run = fs::path(JobFolder(out, job)) / "out";
     const LightField raw = ReadLightField((run / "target" / "lightfield").string());
     const DisplayModel model(system, raw.geometry, config.sampling);
