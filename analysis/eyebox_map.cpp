@@ -16,6 +16,7 @@
 #include "layerlab/solvers/objective.h"
 #include "layerlab/systems/eye_pose_limits.h"
 #include "layerlab/systems/lc_response.h"
+#include "layerlab/systems/source_spread.h"
 
 namespace layerlab {
 namespace {
@@ -142,6 +143,7 @@ EyeboxMap MapEyebox(const DisplayModel& model, const Patterns& t, const SceneRad
 
   Patterns white;
   for (const LayerPattern& p : t) white.emplace_back(p.cols, p.rows, 1.0f);
+  for (size_t k = 0; k < white.size(); ++k) KeepEmitterSites(system.layers[k], &white[k].rgb);  // LEDs at full
   const double luminance = model.white_luminance();
   // What the panels show over a frame (their response), each instant through the panels' diffraction.
   const std::vector<ShownInstant> shown = SeenOverTime(system, t), shown_white = SeenOverTime(system, white);

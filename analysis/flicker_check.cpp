@@ -12,6 +12,7 @@
 #include "layerlab/kernels/synthesis.h"
 #include "layerlab/systems/lc_response.h"
 #include "layerlab/systems/panel_diffraction.h"
+#include "layerlab/systems/source_spread.h"
 
 namespace layerlab {
 namespace {
@@ -108,7 +109,7 @@ void SampleSubframes(const DisplayModel& model, const ResponseMap& map, RegionGr
   const DisplaySystem& system = model.system();
   const LightFieldGeometry& g = model.geometry();
   const double scale = system.subframes * model.white_luminance();
-  const std::vector<LayerDiffraction> diffraction = PanelDiffraction(system);  // what the eye sees of them
+  const std::vector<LayerDiffraction> diffraction = SeenKernels(system, true);  // what the eye sees of them
   Patterns shown, alone;
   LightField light(g);
   for (int m = 0; m < map.instants(); ++m) {

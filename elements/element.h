@@ -17,6 +17,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "layerlab/elements/eye_pose.h"
@@ -171,6 +172,23 @@ class EyeElement : public Element {
   EyeModel model_;
 };
 
+// What a non-uniform backlight emits, relative to its luminance, as a layer at
+// its plane (elements/backlight.cpp): an image or a pinlight array (fixed: the
+// layer's fixed_pattern), or an LED array whose values are solved. An LED
+// array's layer is a fine grid of pitch led_pitch / led_stride: each LED's value
+// sits at the centre pixel of its led_stride x led_stride cell, every other
+// pixel holds 0, and what the eye sees is that grid convolved with the LED's
+// spread (systems/source_spread.h).
+struct EmitterSpec {
+  enum class Kind { kImage, kPinlights, kLeds };
+  Kind kind = Kind::kImage;
+  std::string description;  // "an array of 12 x 8 pinlights, 3.00 mm apart, 0.20 mm wide", for reports
+  int led_stride = 0;       // kLeds: fine pixels per LED along each axis (odd)
+  int led_cols = 0, led_rows = 0;
+  double spread_fwhm_m = 0;  // kLeds: the full width at half maximum of each LED's (Gaussian) spread, m
+  bool solved() const { return kind == Kind::kLeds; }
+};
+
 // A transmissive panel as mounted: its pixel grid, the region the images use,
 // its photometric response, and its placement on the optical path.
 struct PanelSpec {
@@ -206,6 +224,8 @@ struct PanelSpec {
   // Null: the layer is solved.
   std::shared_ptr<const std::vector<float>> fixed_pattern;
   std::string fixed_pattern_file;  // as the scene names it, for messages
+  // A backlight's emission seen as a layer (elements/backlight.cpp); none for a panel.
+  std::optional<EmitterSpec> emitter;
 };
 
 class PanelElement : public Element {
@@ -220,16 +240,21 @@ class PanelElement : public Element {
 
 class BacklightElement : public Element {
  public:
-  explicit BacklightElement(double luminance, double coherence_width_m = 0)
-      : luminance_(luminance), coherence_width_m_(coherence_width_m) {}
+  explicit BacklightElement(double luminance, double coherence_width_m = 0,
+                            std::optional<PanelSpec> emission = std::nullopt)
+      : luminance_(luminance), coherence_width_m_(coherence_width_m), emission_(std::move(emission)) {}
   ElementKind kind() const final { return ElementKind::kBacklight; }
   std::vector<std::string> output_ports() const final { return {}; }
   double luminance() const { return luminance_; }                  // cd/m^2
   double coherence_width_m() const { return coherence_width_m_; }  // m; 0: incoherent (systems/panel_diffraction.h)
+  // A non-uniform backlight's emission as a layer's grid (its emitter set), placed by the element's "gap"
+  // behind the panel in front; none for a uniform backlight.
+  const std::optional<PanelSpec>& emission() const { return emission_; }
 
  private:
   double luminance_;
   double coherence_width_m_;
+  std::optional<PanelSpec> emission_;
 };
 
 }  // namespace layerlab

@@ -23,49 +23,26 @@
 // | next              | name                 | required       | the panel behind, or the backlight           |
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <memory>
 
 #include "layerlab/elements/element.h"
+#include "layerlab/elements/pattern_file.h"
 #include "layerlab/elements/registry.h"
-#include "layerlab/framework/exr_image.h"
 
 namespace layerlab {
 namespace {
 
 constexpr int64_t kMaxPixels = 1 << 15;
 
-// The fixed pattern's file, relative to the scene file: the active region's size, R, G, B or Y, each value in [0, 1].
+// The fixed pattern's file, relative to the scene file: the active region's size.
 void ReadFixedPattern(Params& p, PanelSpec* s) {
-  s->fixed_pattern_file = p.string("fixed_pattern");
-  const std::string path = (std::filesystem::path(p.where().file).parent_path() / s->fixed_pattern_file).string();
-  Image image;
-  try {
-    const std::vector<std::string> names = ReadExrChannelNames(path);
-    const bool rgb = std::count(names.begin(), names.end(), "R") && std::count(names.begin(), names.end(), "G") &&
-                     std::count(names.begin(), names.end(), "B");
-    if (!rgb && !std::count(names.begin(), names.end(), "Y"))
-      throw Error(path + ": has neither channels R, G, B nor Y");
-    image = ReadExr(path, rgb ? std::vector<std::string>{"R", "G", "B"} : std::vector<std::string>{"Y"});
-  } catch (const Error& e) {
-    p.fail("fixed_pattern", e.what());
-  }
-  if (image.width != s->active_cols || image.height != s->active_rows)
-    p.fail("fixed_pattern", path + " is " + std::to_string(image.width) + " x " + std::to_string(image.height) +
+  PatternFile file = ReadPatternFile(p, "fixed_pattern", "transmittance");
+  if (file.cols != s->active_cols || file.rows != s->active_rows)
+    p.fail("fixed_pattern", file.path + " is " + std::to_string(file.cols) + " x " + std::to_string(file.rows) +
                                 " pixels; the panel's active region is " + std::to_string(s->active_cols) + " x " +
                                 std::to_string(s->active_rows));
-  auto pattern = std::make_shared<std::vector<float>>(static_cast<size_t>(image.width) * image.height * 3);
-  const size_t channels = image.channels.size();
-  for (size_t i = 0; i < static_cast<size_t>(image.width) * image.height; ++i)
-    for (size_t c = 0; c < 3; ++c) {
-      const float v = image.pixels[i * channels + (channels == 3 ? c : 0)];
-      if (!(v >= 0.0f && v <= 1.0f))
-        p.fail("fixed_pattern", path + ": pixel (row " + std::to_string(i / image.width) + ", col " +
-                                    std::to_string(i % image.width) + ") holds " + std::to_string(v) +
-                                    ", outside the transmittance range [0, 1]");
-      (*pattern)[i * 3 + c] = v;
-    }
-  s->fixed_pattern = std::move(pattern);
+  s->fixed_pattern_file = file.name;
+  s->fixed_pattern = std::move(file.rgb);
 }
 
 std::unique_ptr<Element> MakeLcPanel(Params& p) {

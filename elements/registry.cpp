@@ -63,7 +63,7 @@ std::unique_ptr<Element> ElementRegistry::create(Params& params) const {
     if (!(std::isalnum(c) || c == '_' || c == '-' || c == '.'))
       params.fail("name", "\"" + name + "\" may use only letters, digits, '_', '-' and '.'");
   std::optional<double> gap;
-  if (type->kind != ElementKind::kEye && type->kind != ElementKind::kBacklight) {
+  if (type->kind != ElementKind::kEye) {  // a backlight reads it only with a pattern (elements/backlight.cpp)
     gap = params.optional_quantity("gap", Dimension::kLength);
     if (gap && !(*gap > 0))
       params.fail(

@@ -14,6 +14,7 @@
 #include "layerlab/solvers/retinal_objective.h"
 #include "layerlab/systems/lc_response.h"
 #include "layerlab/systems/panel_diffraction.h"
+#include "layerlab/systems/source_spread.h"
 
 namespace layerlab {
 
@@ -113,7 +114,7 @@ MemoryEstimate EstimateSolveMemory(const DisplayModel& model, const std::string&
   // pass and synthesis, as it does through the panels' diffraction); without, for the shown PSNR at its end.
   const bool response = ResponseMatters(model.system());
   const bool plain =
-      !(options.lc_response && response) && !(options.panel_diffraction && !PanelDiffraction(model.system()).empty());
+      !(options.lc_response && response) && SeenKernels(model.system(), options.panel_diffraction).empty();
   // Through it, measuring the focal stack (the retinal objective's, or the light-field objective's measure)
   // reads the frame's light, made in two more.
   const bool measured = options.objective == ObjectiveKind::kRetinal || options.measure_focal_stack;

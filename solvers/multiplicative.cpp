@@ -31,6 +31,7 @@
 #include "layerlab/solvers/multiplicative_update.h"
 #include "layerlab/solvers/objective.h"
 #include "layerlab/solvers/solve_loop.h"
+#include "layerlab/systems/source_spread.h"
 
 namespace layerlab {
 namespace {
@@ -85,15 +86,18 @@ class DepthPass {
   std::vector<std::vector<char>> summed_;  // [depth][layer]
 };
 
-// The rank-K iterations (K > 1 subframes), and any stack through the panels' diffraction.
+// The rank-K iterations (K > 1 subframes), and any stack through the panels' diffraction or an LED array's
+// spread (its sites' step is the same Lee-Seung step through S: L <- L * S^T(num) / S^T(den)).
 void SolveByDepth(const DisplayModel& model, const SolverOptions& options, SolveLoop* loop, Patterns* t) {
   const LightField& l = loop->target();
   const std::vector<std::vector<int>> by_depth = LayersByDepth(model);
   DepthPass pass(model, by_depth, loop);
   auto step = [&](size_t depth) {
     for (int a : by_depth[depth])
-      if (!IsFixedLayer(model, static_cast<size_t>(a)))
+      if (!IsFixedLayer(model, static_cast<size_t>(a))) {
         ApplyMultiplicativeStepFromResidual(pass.residual(a), pass.denominator(a), options, &(*t)[a].rgb);
+        KeepEmitterSites(model.system().layers[a], &(*t)[a].rgb);  // the floor would lift the pixels between
+      }
   };
   // The pass that gives an iteration's objective also gives the sums of
   // the next iteration's first step, applied only if there is one.

@@ -12,6 +12,7 @@
 #include "layerlab/framework/polarization.h"
 #include "layerlab/framework/random.h"
 #include "layerlab/kernels/view_synthesizer.h"
+#include "layerlab/systems/source_spread.h"
 
 namespace layerlab {
 
@@ -80,6 +81,17 @@ std::optional<std::string> FarBelowWarning(const DisplayModel& model, const Solv
       causes.push_back("unequal branch brightness: branch \"" + branches[b].name + "\" gives " +
                        FormatFixed(100 * luminance[b] / luminance[brightest], 1) + " % of the light of \"" +
                        branches[brightest].name + "\"");
+  for (const VirtualLayer& layer : model.system().layers)
+    if (layer.panel.emitter && layer.panel.fixed_pattern) {
+      double lit = 0;
+      for (float v : *layer.panel.fixed_pattern) lit += v;
+      lit /= static_cast<double>(layer.panel.fixed_pattern->size());
+      if (lit < kDarkEmissionCause)
+        causes.push_back("the backlight \"" + layer.name + "\" emits on " + FormatFixed(100 * lit, 2) +
+                         " % of its plane (" + layer.panel.emitter->description +
+                         "): most of the light field's rays meet none of its light, so judge the display by its "
+                         "retinal images (layerlab retina)");
+    }
   std::string text = "the solve ended at " + FormatPsnr(report.final_psnr_db, 2) +
                      " dB, far below what the display can reach (under " + FormatFixed(kFarBelowPsnrDb, 0) +
                      " dB: 10 dB below the lowest shipped display on the dice); ";
@@ -117,13 +129,20 @@ std::string FormatPsnr(double db, int decimals) {
   return text;
 }
 
-void WriteFixedPatterns(const DisplayModel& model, Patterns* t) {
-  for (size_t k = 0; k < t->size(); ++k)
-    if (const auto& fixed = model.system().layers[k].panel.fixed_pattern) {
+bool IsConstrainedLayer(const DisplayModel& model, size_t k) {
+  return IsFixedLayer(model, k) || IsSolvedEmitter(model.system().layers[k]);
+}
+
+void HoldLayerConstraints(const DisplayModel& model, Patterns* t) {
+  for (size_t k = 0; k < t->size(); ++k) {
+    const VirtualLayer& layer = model.system().layers[k];
+    if (const auto& fixed = layer.panel.fixed_pattern) {
       if (fixed->size() != (*t)[k].rgb.size())
-        throw Error("layer " + model.system().layers[k].name + ": its fixed pattern is not its size");
+        throw Error("layer " + layer.name + ": its fixed pattern is not its size");
       (*t)[k].rgb = *fixed;
     }
+    KeepEmitterSites(layer, &(*t)[k].rgb);
+  }
 }
 
 namespace {
@@ -134,7 +153,7 @@ Patterns StartingPatterns(const DisplayModel& model, const SolverOptions& option
 
 Patterns InitialPatterns(const DisplayModel& model, const SolverOptions& options) {
   Patterns t = StartingPatterns(model, options);
-  WriteFixedPatterns(model, &t);
+  HoldLayerConstraints(model, &t);
   return t;
 }
 

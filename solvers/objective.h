@@ -31,10 +31,13 @@ inline constexpr double kFarBelowPsnrDb = 18.0;
 // A share of target values above the display's maximum, or a branch giving
 // less than this fraction of the brightest branch's luminance, is named as a cause.
 inline constexpr double kOutOfRangeCause = 0.01, kDimBranchCause = 0.5;
+// A fixed backlight pattern lit on less than this share of its plane (pinlights) is named as a cause: most rays
+// then meet none of its light.
+inline constexpr double kDarkEmissionCause = 0.25;
 
 // The warning for a usable solve that ended under kFarBelowPsnrDb, with its
 // causes when they are found (the out-of-range target share, unequal branch
-// brightness); nothing for a solve at or above it.
+// brightness, a backlight dark on most of its plane); nothing for a solve at or above it.
 std::optional<std::string> FarBelowWarning(const DisplayModel& model, const SolverReport& report);
 
 // Sum over rays and channels of (target - synthesized)^2, in double: in the
@@ -47,15 +50,19 @@ double Objective(const DisplayModel& model, const LightField& target, const Patt
 std::string FormatPsnr(double db, int decimals);
 
 // Every pixel `initial_value`, or uniform in [0.25, 0.75] from `seed` when it is negative; a layer with a
-// fixed pattern (PanelSpec::fixed_pattern) shows it.
+// fixed pattern (PanelSpec::fixed_pattern) shows it, an LED layer holds values only at its sites.
 Patterns InitialPatterns(const DisplayModel& model, const SolverOptions& options);
 
-// Writes each fixed layer's pattern into `t` (a warm start's patterns may hold others).
-void WriteFixedPatterns(const DisplayModel& model, Patterns* t);
+// Writes each fixed layer's pattern into `t` and sets each LED layer's pixels between its sites to 0
+// (systems/source_spread.h): a warm start's patterns may hold others.
+void HoldLayerConstraints(const DisplayModel& model, Patterns* t);
 // Whether layer k shows a fixed pattern: the solvers leave it as it is.
 inline bool IsFixedLayer(const DisplayModel& model, size_t k) {
   return model.system().layers[k].panel.fixed_pattern != nullptr;
 }
+// Whether layer k is fixed or solved only in part (an LED array's sites): the solvers that move every pixel of
+// every layer (SolverType::fixed_layers false) refuse it.
+bool IsConstrainedLayer(const DisplayModel& model, size_t k);
 
 // Throws layerlab::Error unless the display is bound to exactly the target's rays.
 void RequireSameRays(const DisplayModel& model, const LightField& target);

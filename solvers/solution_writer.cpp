@@ -16,6 +16,7 @@
 #include "layerlab/kernels/synthesis.h"
 #include "layerlab/solvers/response_pass.h"
 #include "layerlab/solvers/trace_columns.h"
+#include "layerlab/systems/source_spread.h"
 #include "layerlab/systems/system_report.h"
 
 namespace layerlab {
@@ -173,12 +174,12 @@ std::vector<std::string> WriteSolution(const DisplayModel& model, const Patterns
   WriteFileAtomically((fs::path(folder) / "report.json").string(), ReportToJson(annotated).dump(2) + "\n");
   written.insert(written.end(), {"trace.csv", "report.txt", "report.json"});
   if (what.write_lightfield) {
-    // The forward model's: through the panels' diffraction and response where the solve saw them.
-    const std::vector<LayerDiffraction> diffraction =
-        report.panel_diffraction ? PanelDiffraction(model.system()) : std::vector<LayerDiffraction>{};
-    LightField synthesized = report.lc_response         ? ShownLightField(model, t, &diffraction)
-                             : report.panel_diffraction ? Synthesize(model, DiffractedPatterns(diffraction, t))
-                                                        : Synthesize(model, t);
+    // The forward model's: through the LED arrays' spread, the panels' diffraction and response where the
+    // solve saw them.
+    const std::vector<LayerDiffraction> seen = SeenKernels(model.system(), report.panel_diffraction);
+    LightField synthesized = report.lc_response ? ShownLightField(model, t, &seen)
+                             : !seen.empty()    ? Synthesize(model, DiffractedPatterns(seen, t))
+                                                : Synthesize(model, t);
     synthesized.scene = "synthesized by layerlab " + report.solver + " for " + model.system().file;
     for (const std::string& f : WriteLightField(synthesized, (fs::path(folder) / "lightfield").string()))
       written.push_back("lightfield/" + f);

@@ -18,6 +18,7 @@
 #include "layerlab/solvers/solver_checkpoint.h"
 #include "layerlab/solvers/trace_columns.h"
 #include "layerlab/systems/lc_response.h"
+#include "layerlab/systems/source_spread.h"
 
 namespace layerlab {
 
@@ -74,22 +75,7 @@ bool SolveLoop::Start(const std::string& refusal) {
     RequireSameRays(model_, source_);
     prepared_ = PrepareTarget(model_, source_, options_.target_range, &report_);
     const SolverType* type = SolverRegistry::Builtins().find(report_.solver);
-    if (type && !type->fixed_layers)
-      for (size_t k = 0; k < model_.layer_count(); ++k)
-        if (IsFixedLayer(model_, k)) {
-          const PanelSpec& panel = model_.system().layers[k].panel;
-          std::vector<std::string> able;  // the solvers that keep it and suit this display
-          const SolverRegistry& registry = SolverRegistry::Builtins();
-          for (const std::string& name : registry.names())
-            if (registry.get(name).fixed_layers && registry.get(name).Unsuitable(model_.system()).empty())
-              able.push_back(name);
-          Fail("layer " + model_.system().layers[k].name + " shows a fixed pattern (" + panel.fixed_pattern_file +
-               "), which the " + report_.solver + " solver would change: " +
-               (able.empty() ? "no solver here keeps a fixed layer of a display like this one (the multiplicative "
-                               "solver, which does, solves one stack)"
-                             : "solve this display with the " + JoinWords(able) + " solver, which leaves it as it is"));
-          return false;
-        }
+    if (!KeepsConstrainedLayers(type)) return false;
     if (!SetUpForwardModel(type)) return false;
     unsigned passes = type ? type->memory.passes : unsigned(kAllPasses);
     if (!plain_forward()) passes |= kJointPass | kSynthesisPass;  // the forward model then runs through these
@@ -110,7 +96,7 @@ bool SolveLoop::Start(const std::string& refusal) {
              (*warm)[k].rgb.size() == 3 * (*warm)[k].pixel_count();
     if (!fits) throw Error("warm start: the patterns are not this display's layers");
     *patterns_ = *warm;
-    WriteFixedPatterns(model_, patterns_);
+    HoldLayerConstraints(model_, patterns_);
   } else {
     *patterns_ = InitialPatterns(model_, options_);
   }
@@ -151,9 +137,32 @@ void SolveLoop::MeasureMetrics() {
   start_ += std::chrono::steady_clock::now() - begin;
 }
 
+bool SolveLoop::KeepsConstrainedLayers(const SolverType* type) {
+  if (!type || type->fixed_layers) return true;
+  for (size_t k = 0; k < model_.layer_count(); ++k) {
+    if (!IsConstrainedLayer(model_, k)) continue;
+    const PanelSpec& panel = model_.system().layers[k].panel;
+    const std::string what = IsFixedLayer(model_, k)
+                                 ? " shows a fixed pattern (" + panel.fixed_pattern_file + ")"
+                                 : " emits " + panel.emitter->description + ", solved only at its LEDs";
+    std::vector<std::string> able;  // the solvers that keep it and suit this display
+    const SolverRegistry& registry = SolverRegistry::Builtins();
+    for (const std::string& name : registry.names())
+      if (registry.get(name).fixed_layers && registry.get(name).Unsuitable(model_.system()).empty())
+        able.push_back(name);
+    Fail("layer " + model_.system().layers[k].name + what + ", which the " + report_.solver + " solver would change: " +
+         (able.empty()
+              ? std::string("no solver here keeps ") + (IsFixedLayer(model_, k) ? "a fixed layer" : "an LED layer") +
+                    " of a display like this one (the multiplicative solver, which does, solves one stack)"
+              : "solve this display with the " + JoinWords(able) + " solver, which keeps it"));
+    return false;
+  }
+  return true;
+}
+
 bool SolveLoop::SetUpForwardModel(const SolverType* type) {
-  if (options_.panel_diffraction) diffraction_ = PanelDiffraction(model_.system());
-  if (!diffraction_.empty() && !(type && type->panel_diffraction)) {
+  const bool diffracts = options_.panel_diffraction && !PanelDiffraction(model_.system()).empty();
+  if (diffracts && !(type && type->panel_diffraction)) {
     Fail("the " + report_.solver + " solver does not model the panels' diffraction (\"panel_diffraction\"); " +
          "joint, multiplicative and quasi-newton do");
     return false;
@@ -164,7 +173,8 @@ bool SolveLoop::SetUpForwardModel(const SolverType* type) {
          "quasi-newton does");
     return false;
   }
-  report_.panel_diffraction = !diffraction_.empty();
+  diffraction_ = SeenKernels(model_.system(), diffracts);
+  report_.panel_diffraction = diffracts;
   report_.lc_response = response_;
   return true;
 }

@@ -109,6 +109,8 @@ class SolveLoop {
   // this solver's or is at the iteration limit already.
   bool Resume(const struct SolverCheckpoint& c);
   // The panels' diffraction and response the options ask for; false (failed) when the solver cannot model them.
+  // False (failed) when the display has a fixed or LED layer (IsConstrainedLayer) that the solver would change.
+  bool KeepsConstrainedLayers(const SolverType* type);
   bool SetUpForwardModel(const SolverType* type);
   // Measured here, off the clock (the solver did not spend it).
   RetinalMeasures MeasureRetinal();

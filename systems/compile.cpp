@@ -341,11 +341,7 @@ class Walker {
                               "panel at the solvers' start of 0.5) leaves the light field to float rounding and, with "
                               "hundreds of panels, underflows it to zero; layerlab takes at most " +
                               std::to_string(kMaxStackPanels) + " panels per stack");
-      if (system_.layers.size() == kMaxLayers)
-        Fail(node->where, "more than " + std::to_string(kMaxLayers) +
-                              " virtual layers (over every branch and "
-                              "subframe); layerlab compiles displays of up to " +
-                              std::to_string(kMaxLayers));
+      RequireLayerRoom(*node);
       const auto& panel = static_cast<const PanelElement&>(*node->element);
       VirtualLayer layer = Float(*node, panel.spec(), state, previous ? &*previous : nullptr);
       layer.branch = branch_index;
@@ -366,6 +362,14 @@ class Walker {
     }
     stack_.resize(stack_.size() - branch.layers.size());
     const auto& backlight = static_cast<const BacklightElement&>(*node->element);
+    if (backlight.emission()) {  // the stack's farthest layer, at its "gap" behind the panel in front
+      RequireLayerRoom(*node);
+      VirtualLayer layer = Float(*node, *backlight.emission(), state, &*previous);
+      layer.branch = branch_index;
+      layer.position_in_branch = static_cast<int>(branch.layers.size());
+      branch.layers.push_back(static_cast<int>(system_.layers.size()));
+      system_.layers.push_back(layer);
+    }
     branch.backlight = backlight.name();
     branch.backlight_luminance_cd_m2 = backlight.luminance();
     branch.backlight_coherence_width_m = backlight.coherence_width_m();
@@ -374,7 +378,15 @@ class Walker {
     system_.branches.push_back(branch);
   }
 
-  // Where the panel sits on its path, and the image the optics in front of it form.
+  void RequireLayerRoom(const SceneNode& node) const {
+    if (system_.layers.size() == kMaxLayers)
+      Fail(node.where, "more than " + std::to_string(kMaxLayers) +
+                           " virtual layers (over every branch and "
+                           "subframe); layerlab compiles displays of up to " +
+                           std::to_string(kMaxLayers));
+  }
+
+  // Where the panel (or a backlight's emission) sits on its path, and the image the optics in front of it form.
   VirtualLayer Float(const SceneNode& node, const PanelSpec& spec, const PathState& state, const VirtualLayer* front) {
     VirtualLayer layer;
     layer.name = layer.element = node.element->name();
@@ -708,7 +720,7 @@ void Walker::Finish() {
   for (const VirtualLayer& l : system_.layers) {
     system_.fov_x_rad = std::min(system_.fov_x_rad, l.fov_x_rad);
     system_.fov_y_rad = std::min(system_.fov_y_rad, l.fov_y_rad);
-    system_.max_cpd = std::max(system_.max_cpd, l.max_cpd);
+    if (!l.panel.emitter) system_.max_cpd = std::max(system_.max_cpd, l.max_cpd);  // a backlight's grid is no image's
   }
   WarnOutsideAccommodation();
   AddUpLight();

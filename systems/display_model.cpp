@@ -59,19 +59,25 @@ void DisplayModel::SynthesizeBranchView(size_t b, size_t view, const Patterns& t
 
 LightFieldGeometry DisplayLightFieldGeometry(const DisplaySystem& system, double origin_diopters) {
   if (system.layers.empty()) throw Error("the display has no layers");
+  // The panels' layers: a backlight's emission (elements/backlight.cpp) is lit through them, not an image.
   double near = 0, far = INFINITY;
-  for (const VirtualLayer& l : system.layers) near = std::max(near, l.diopters), far = std::min(far, l.diopters);
+  const VirtualLayer* farthest = nullptr;
+  for (const VirtualLayer& l : system.layers)
+    if (!l.panel.emitter) {
+      near = std::max(near, l.diopters), far = std::min(far, l.diopters);
+      if (!farthest) farthest = &l;
+    }
+  if (!farthest) throw Error("the display has no panels");
   if (origin_diopters < 0) origin_diopters = 0.5 * (near + far);
   if (!(origin_diopters > 0)) throw Error("the light-field origin plane must be at a finite depth (above 0 D)");
-  const VirtualLayer& farthest = system.layers.front();
   LightFieldGeometry g;
   g.origin_z_m = 1.0 / origin_diopters;
   g.window_width_m = 2 * g.origin_z_m * std::tan(system.fov_x_rad / 2);
   g.window_height_m = 2 * g.origin_z_m * std::tan(system.fov_y_rad / 2);
   g.window_left_m = -g.window_width_m / 2;
   g.window_top_m = g.window_height_m / 2;
-  g.cols = farthest.cols;
-  g.rows = farthest.rows;
+  g.cols = farthest->cols;
+  g.rows = farthest->rows;
   g.views_x = system.eye.views_x;
   g.views_y = system.eye.views_y;
   g.eyebox_width_m = system.eye.eyebox_width_m;

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "layerlab/framework/error.h"
+#include "layerlab/systems/source_spread.h"
 
 namespace layerlab {
 namespace {
@@ -206,7 +207,7 @@ std::vector<ShownInstant> SeenOverTime(const DisplaySystem& system, const Patter
 }
 
 std::vector<ShownInstant> SeenOverTime(const DisplaySystem& system, const Patterns& driven) {
-  return SeenOverTime(system, driven, PanelDiffraction(system));
+  return SeenOverTime(system, driven, SeenKernels(system, true));
 }
 
 }  // namespace layerlab

@@ -44,7 +44,8 @@ bool ResponseMatters(const DisplaySystem& system);
 // matter). Throws layerlab::Error when the patterns are not the display's layers.
 std::vector<ShownInstant> ShownOverTime(const DisplaySystem& system, const Patterns& driven);
 // Those instants each as the eye sees them through `diffraction` (systems/panel_diffraction.h; default: the
-// display's own, PanelDiffraction): what every retinal image of the display reads.
+// display's own, SeenKernels(system, true): its LED arrays' spread and its panels' diffraction): what every
+// retinal image of the display reads.
 std::vector<ShownInstant> SeenOverTime(const DisplaySystem& system, const Patterns& driven,
                                        const std::vector<LayerDiffraction>& diffraction);
 std::vector<ShownInstant> SeenOverTime(const DisplaySystem& system, const Patterns& driven);

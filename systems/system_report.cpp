@@ -62,7 +62,8 @@ std::string FormatOpticalPaths(const DisplaySystem& s) {
     element_row("eye \"" + s.eye_name + "\"", 0.0, "pupil");
     previous = 0.0;
     auto panel_row = [&](const VirtualLayer& l) {
-      element_row("panel \"" + l.name + "\"", l.position_m, "image at " + F(l.diopters, 3) + " D");
+      element_row((l.panel.emitter ? "backlight \"" : "panel \"") + l.name + "\"", l.position_m,
+                  "image at " + F(l.diopters, 3) + " D");
     };
     for (const PathStep& step : back.path) {
       if (step.kind == ElementKind::kPanel) {
@@ -101,8 +102,9 @@ nlohmann::json JsonNumber(double value) {
 
 double EveryLayerMaxCpd(const DisplaySystem& s) {
   double lowest = INFINITY;
-  for (const VirtualLayer& l : s.layers) lowest = std::min(lowest, l.max_cpd);
-  return s.layers.empty() ? 0 : lowest;
+  for (const VirtualLayer& l : s.layers)
+    if (!l.panel.emitter) lowest = std::min(lowest, l.max_cpd);  // a backlight's grid is no image's
+  return lowest == INFINITY ? 0 : lowest;
 }
 
 // Behind real lenses: what each layer's lens does at its field edge (lens_aberrations.h).
@@ -147,10 +149,16 @@ std::string FormatLayerTable(const DisplaySystem& s) {
                F(l.panel_distance_m * 1e3, 2).c_str(), F(l.magnification, 2).c_str(), F(l.pitch_x_m * 1e3, 3).c_str(),
                pixels.c_str(), fov.c_str(), F(l.max_cpd, 2).c_str(), FlipName(l).c_str());
   }
-  for (size_t k = 0; k < s.layers.size(); ++k)
-    if (s.layers[k].panel.fixed_pattern)
+  for (size_t k = 0; k < s.layers.size(); ++k) {
+    const PanelSpec& panel = s.layers[k].panel;
+    if (panel.emitter)
+      out +=
+          Row("%-3zu %s emits %s%s", k, s.layers[k].name.c_str(), panel.emitter->description.c_str(),
+              panel.emitter->solved() ? ": their values are solved with the panels" : ": the solve leaves it as it is");
+    else if (panel.fixed_pattern)
       out += Row("%-3zu %s shows a fixed pattern, %s: the solve leaves it as it is", k, s.layers[k].name.c_str(),
-                 s.layers[k].panel.fixed_pattern_file.c_str());
+                 panel.fixed_pattern_file.c_str());
+  }
 
   return out;
 }

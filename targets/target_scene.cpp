@@ -89,11 +89,13 @@ LightFieldGeometry ParseLightField(Params& lf, const std::string& base_dir, cons
     g.window_height_m = 2 * g.origin_z_m * std::tan(system.fov_y_rad / 2);
     g.window_left_m = -g.window_width_m / 2;
     g.window_top_m = g.window_height_m / 2;
-    // The layer that sets the field of view (the farthest) sets the resolution.
+    // The panel with the narrowest field (the farthest) sets the resolution; a backlight's emission grid
+    // (elements/backlight.cpp) is not an image's.
+    double narrowest = INFINITY;
     for (const VirtualLayer& layer : system.layers)
-      if (layer.fov_x_rad == system.fov_x_rad) {
+      if (!layer.panel.emitter && layer.fov_x_rad < narrowest) {
+        narrowest = layer.fov_x_rad;
         default_resolution = std::array<int64_t, 2>{layer.cols, layer.rows};
-        break;
       }
   } else {
     if (lf.has("field_of_view")) {

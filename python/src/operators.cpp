@@ -26,6 +26,7 @@
 #include "layerlab/solvers/retinal_objective.h"
 #include "layerlab/systems/lc_response.h"
 #include "layerlab/systems/panel_diffraction.h"
+#include "layerlab/systems/source_spread.h"
 
 namespace py = pybind11;
 
@@ -83,7 +84,7 @@ class DisplayOperator {
     const ModelRays rays = ModelRaysArg(*system_, geometry, sampling, "DisplayOperator");
     py::gil_scoped_release release;
     model_ = std::make_unique<DisplayModel>(*system_, rays.geometry, rays.sampling);
-    if (panel_diffraction) diffraction_ = PanelDiffraction(*system_);
+    diffraction_ = SeenKernels(*system_, panel_diffraction);
     response_ = lc_response && ResponseMatters(*system_);
     jacobian_ = std::make_unique<DisplayJacobian>(*model_, &diffraction_, response_);
   }
