@@ -169,6 +169,11 @@ void AddRetinaToPage(const std::vector<RetinaStateResult>& states, const std::ve
     const std::string at = FormatFixed(s.diopters, 2) + " D";
     rs.display = Picture("the display, focused at " + at + Reduced(s.png_factor), d + ".png",
                          {{"PNG", d + ".png"}, {"EXR", d + ".exr"}});
+    if (s.world_cd_m2 > 0) {  // see-through: the same with the world's light added
+      const std::string w = prefix + "see_through/" + s.name;
+      rs.display.links.push_back({"with the world, PNG", w + ".png"});
+      rs.display.links.push_back({"EXR", w + ".exr"});
+    }
     if (natural)
       rs.natural = Picture("natural viewing of the target, focused at " + at + Reduced(s.png_factor), n + ".png",
                            {{"PNG", n + ".png"}, {"EXR", n + ".exr"}});
@@ -180,6 +185,14 @@ void AddRetinaToPage(const std::vector<RetinaStateResult>& states, const std::ve
     shown.push_back(rs);
   }
   if (shown.empty()) return;
+  if (states.front().world_cd_m2 > 0) {
+    double sum = 0;
+    for (const RetinaStateResult& s : states) sum += s.contrast_against_world;
+    page->summary.push_back({"contrast against the world, (display + world) / world (mean of " +
+                                 std::to_string(states.size()) + " accommodation states; the world " +
+                                 FormatFixed(states.front().world_cd_m2, 1) + " cd/m2 at the eye)",
+                             FormatFixed(sum / double(states.size()), 3), "retina"});
+  }
   for (const MeanScore& s : MeanScoresOverStates(states)) {
     std::string name = s.metric->name;
     for (char& ch : name) ch = ch == '_' ? '-' : static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));

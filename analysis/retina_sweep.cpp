@@ -19,6 +19,7 @@
 #include "layerlab/retina/eye_optics.h"
 #include "layerlab/retina/retina_workspace.h"
 #include "layerlab/systems/lc_response.h"
+#include "layerlab/systems/world_view.h"
 
 namespace layerlab {
 
@@ -81,6 +82,10 @@ RetinaBatch TraceBatch(const DisplayModel& model, const std::vector<ShownInstant
       return RetinaOfDisplay(model, shown, DisplayRetinaTables(model, traced, group, focus), workspace);
     });
     r.display_mean_cd_m2 = MeanLuminance(b.display[s]) * white;
+    if (!system.worlds.empty()) {
+      r.world_cd_m2 = LuminanceOf(WorldAtEye(system));
+      r.contrast_against_world = (r.display_mean_cd_m2 + r.world_cd_m2) / r.world_cd_m2;
+    }
     r.natural_mean_cd_m2 = NAN;
     for (const RetinalMetric* m : metrics) r.scores.emplace_back(m->column, NAN);
     if (natural) {
@@ -129,6 +134,21 @@ void WriteBatch(const fs::path& out, const RetinaGrid& grid, bool natural, ExrPi
   }
   for (const std::exception_ptr& e : failed)
     if (e) std::rethrow_exception(e);
+}
+
+// A see-through display's images with the world's light added: see_through/<state>.exr and .png.
+void WriteSeeThrough(const DisplayModel& model, const fs::path& out, const RetinaGrid& grid, ExrPixels pixels,
+                     const RetinaBatch& b) {
+  const Rgb world = WorldAtEye(model.system());
+  fs::create_directories(out / "see_through");
+  for (size_t s = 0; s < b.display.size(); ++s) {
+    Image seen = b.display[s];
+    for (size_t i = 0; i < seen.pixels.size(); ++i)
+      seen.pixels[i] += static_cast<float>(world[i % 3] / model.white_luminance());
+    const fs::path stem = out / "see_through" / b.r[s].name;
+    WriteExr(stem.string() + ".exr", seen, ExrCompression::kNone, pixels);
+    WriteShownSrgbPng(stem.string() + ".png", grid.cols, grid.rows, seen.pixels, kRetinaWidthPx, PngCompression::kFast);
+  }
 }
 
 }  // namespace
@@ -183,6 +203,8 @@ std::vector<RetinaStateResult> WriteRetinaSweep(
   if (natural) fs::create_directories(out / "natural");
   std::string csv = "accommodation_D,display_mean_cd_m2,natural_mean_cd_m2,display_clipped_in_png,seconds";
   for (const RetinalMetric* m : metrics) csv += "," + m->column;
+  const bool see_through = !system.worlds.empty();
+  if (see_through) csv += ",world_cd_m2,contrast_against_world";
   csv += "\n";
   // States in batches: each state's images are computed (in parallel
   // within), then the batch's files are written in parallel. Writing, not
@@ -197,6 +219,7 @@ std::vector<RetinaStateResult> WriteRetinaSweep(
                                o.metric_settings, &workspace);
     std::vector<double> seconds;
     WriteBatch(out, grid, bool(natural), o.exr_pixels, &b, &seconds);
+    if (see_through) WriteSeeThrough(model, out, grid, o.exr_pixels, b);
     for (size_t s = 0; s < count; ++s) {
       RetinaStateResult& r = b.r[s];
       for (int f = 0; f < 4; ++f) r.seconds += seconds[s * 4 + f];
@@ -206,6 +229,10 @@ std::vector<RetinaStateResult> WriteRetinaSweep(
       csv += row;
       for (const auto& [column, value] : r.scores) {
         std::snprintf(row, sizeof row, ",%.*f", column == "psnr_db" ? 4 : 6, value);
+        csv += row;
+      }
+      if (see_through) {
+        std::snprintf(row, sizeof row, ",%.6g,%.6g", r.world_cd_m2, r.contrast_against_world);
         csv += row;
       }
       csv += "\n";

@@ -6,11 +6,15 @@
 //                               the brightest branch's full white (values
 //                               above are clipped and counted in retina.csv)
 //   natural/<state>.exr, .png   the same for natural viewing
-//   retina.csv                  one row per state: mean luminance (cd/m2), clipping, seconds
+//   see_through/<state>.exr, .png  a see-through display's image with the
+//                               world's light added (systems/world_view.h)
+//   retina.csv                  one row per state: mean luminance (cd/m2), clipping, seconds; with a world,
+//                               the world's luminance at the eye and the display's contrast against it
 // <state> is the accommodation with two decimals: "0.40D".
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <functional>
 #include <optional>
 #include <string>
@@ -59,6 +63,8 @@ struct RetinaStateResult {
   int png_width = 0, png_height = 0, png_factor = 1;
   double seconds = 0;      // spent on its images and files (the files of a few states are written at once)
   Image display, natural;  // with RetinaSweepOptions::keep_images (natural: with natural viewing), else empty
+  // See-through: the world's luminance at the eye (cd/m2), and (display_mean + world) / world; 0 and NaN without.
+  double world_cd_m2 = 0, contrast_against_world = NAN;
 };
 
 std::string RetinaStateName(double diopters);

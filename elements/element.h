@@ -31,9 +31,9 @@ namespace lenses {
 class LensSystem;
 }
 
-enum class ElementKind { kEye, kLens, kMirror, kCombiner, kInlineOptic, kPanel, kBacklight };
+enum class ElementKind { kEye, kLens, kMirror, kCombiner, kInlineOptic, kPanel, kBacklight, kWorld };
 
-// "an eye", "a lens", "a mirror", "a combiner", "an in-line optic", "a panel", "a backlight".
+// "an eye", "a lens", "a mirror", "a combiner", "an in-line optic", "a panel", "a backlight", "the world".
 std::string KindName(ElementKind kind);
 
 class Element {
@@ -41,7 +41,7 @@ class Element {
   virtual ~Element() = default;
   virtual ElementKind kind() const = 0;
   // Names of the outgoing connections, read from the element's JSON object
-  // (each names the next element away from the eye). A backlight has none.
+  // (each names the next element away from the eye). A backlight and the world have none.
   virtual std::vector<std::string> output_ports() const { return {"next"}; }
   // True when the element acts on polarization (compile then tracks Jones vectors).
   virtual bool polarizing() const { return false; }
@@ -255,6 +255,19 @@ class BacklightElement : public Element {
   double luminance_;
   double coherence_width_m_;
   std::optional<PanelSpec> emission_;
+};
+
+// The world seen through a combiner's port (optical see-through): natural,
+// unpolarized light of a uniform luminance (elements/world.cpp).
+class WorldElement : public Element {
+ public:
+  explicit WorldElement(double luminance) : luminance_(luminance) {}
+  ElementKind kind() const final { return ElementKind::kWorld; }
+  std::vector<std::string> output_ports() const final { return {}; }
+  double luminance() const { return luminance_; }  // cd/m^2
+
+ private:
+  double luminance_;
 };
 
 }  // namespace layerlab

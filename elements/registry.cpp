@@ -27,6 +27,8 @@ std::string KindName(ElementKind kind) {
       return "a panel";
     case ElementKind::kBacklight:
       return "a backlight";
+    case ElementKind::kWorld:
+      return "the world";
   }
   return "an element";
 }
@@ -63,7 +65,8 @@ std::unique_ptr<Element> ElementRegistry::create(Params& params) const {
     if (!(std::isalnum(c) || c == '_' || c == '-' || c == '.'))
       params.fail("name", "\"" + name + "\" may use only letters, digits, '_', '-' and '.'");
   std::optional<double> gap;
-  if (type->kind != ElementKind::kEye) {  // a backlight reads it only with a pattern (elements/backlight.cpp)
+  // A backlight reads it only with a pattern (elements/backlight.cpp); the world has no place.
+  if (type->kind != ElementKind::kEye && type->kind != ElementKind::kWorld) {
     gap = params.optional_quantity("gap", Dimension::kLength);
     if (gap && !(*gap > 0))
       params.fail(

@@ -154,8 +154,9 @@ class Walker {
   }
 
  private:
-  inline static const std::vector<ElementKind> kOptics = {
-      ElementKind::kLens, ElementKind::kMirror, ElementKind::kCombiner, ElementKind::kInlineOptic, ElementKind::kPanel};
+  inline static const std::vector<ElementKind> kOptics = {ElementKind::kLens,     ElementKind::kMirror,
+                                                          ElementKind::kCombiner, ElementKind::kInlineOptic,
+                                                          ElementKind::kPanel,    ElementKind::kWorld};
 
   [[noreturn]] static void Fail(const Location& at, const std::string& message) { throw Error(at, message); }
 
@@ -315,11 +316,33 @@ class Walker {
     } else if (e.kind() == ElementKind::kPanel) {
       if (state.label.empty()) state.label = "main";
       Stack(node, state);
+    } else if (e.kind() == ElementKind::kWorld) {
+      SeeThrough(node, state);
     } else {
       Pass(node, 0, state);
       Walk(Follow(node, 0, kOptics), state);
     }
     stack_.pop_back();
+  }
+
+  // The world behind a see-through path: its light at the eye, once (it is the same in every subframe).
+  void SeeThrough(const SceneNode& node, const PathState& state) {
+    const bool combined = std::any_of(state.steps.begin(), state.steps.end(),
+                                      [](const PathStep& s) { return s.kind == ElementKind::kCombiner; });
+    if (!combined)
+      Fail(node.where, "the world " + Quoted(node.element->name()) +
+                           " is reached without a combiner: a display seen against the world adds its light "
+                           "through a combiner's port (a half mirror or a beam splitter), not in line with the eye");
+    if (subframe_ > 0) return;
+    WorldView w;
+    w.element = node.element->name();
+    w.name = state.label;
+    w.luminance_cd_m2 = static_cast<const WorldElement&>(*node.element).luminance();
+    w.path = state.steps;
+    // Natural light: the mean of two orthogonal linear polarizations through the path.
+    const Rgb x = PathEfficiency(state.light, 0), y = PathEfficiency(state.light, std::acos(-1.0) / 2);
+    for (int c = 0; c < 3; ++c) w.efficiency[c] = 0.5 * (x[c] + y[c]);
+    system_.worlds.push_back(std::move(w));
   }
 
   // A panel stack from its front panel back to the backlight.
@@ -715,6 +738,8 @@ void Walker::CheckFirstOrderValidity() {
 }
 
 void Walker::Finish() {
+  if (system_.layers.empty())
+    Fail({scene_.file, "/elements"}, "no panel lies on any path from the eye: a display needs at least one");
   SortFarthestFirst();
   system_.fov_x_rad = system_.fov_y_rad = INFINITY;
   for (const VirtualLayer& l : system_.layers) {

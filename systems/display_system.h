@@ -85,6 +85,16 @@ struct Branch {
   double backlight_coherence_width_m = 0;  // m; 0: incoherent (systems/panel_diffraction.h)
 };
 
+// Optical see-through: a world element reached through a combiner's port (elements/world.cpp), whose light
+// the eye sees added to the display's (systems/world_view.h).
+struct WorldView {
+  std::string element;         // the world element
+  std::string name;            // its path, as a branch's: "bs.transmitted"
+  double luminance_cd_m2 = 0;  // the world's own
+  Rgb efficiency{};            // unpolarized light through the path to the eye, per channel
+  std::vector<PathStep> path;  // the elements from the eye to it, nearest the eye first
+};
+
 inline constexpr int kMaxSubframes = 64;  // the most subframes a scene may show per frame
 
 struct DisplaySystem {
@@ -99,6 +109,7 @@ struct DisplaySystem {
 
   std::vector<VirtualLayer> layers;  // farthest first (ascending diopters)
   std::vector<Branch> branches;
+  std::vector<WorldView> worlds;  // none for a display that is not see-through
   // Time multiplexing: K subframes per frame, the eye sees their mean; each
   // subframe's layers and branches are their own (a panel holds K patterns).
   int subframes = 1;          // 1 to kMaxSubframes

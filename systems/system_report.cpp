@@ -11,6 +11,7 @@
 #include "layerlab/framework/warnings.h"
 #include "layerlab/systems/intermediate_images.h"
 #include "layerlab/systems/lens_aberrations.h"
+#include "layerlab/systems/world_view.h"
 
 namespace layerlab {
 namespace {
@@ -132,6 +133,23 @@ std::string FormatAberrations(const DisplaySystem& s) {
 
 namespace {
 
+// The worlds a see-through display is seen against, and its full white's contrast against them.
+std::string FormatSeeThrough(const DisplaySystem& s) {
+  if (s.worlds.empty()) return "";
+  std::string out = "\nsee-through (the world's light added at the eye; the solve leaves it out)\n";
+  for (const WorldView& w : s.worlds) {
+    Rgb at_eye;
+    for (int c = 0; c < 3; ++c) at_eye[c] = w.luminance_cd_m2 * w.efficiency[c];
+    out += Row("  world %-16s through %-20s %s cd/m2 x efficiency %s = %s cd/m2 at the eye",
+               ("\"" + w.element + "\"").c_str(), w.name.c_str(), F(w.luminance_cd_m2, 1).c_str(),
+               Rgb3(w.efficiency, 4).c_str(), Rgb3(at_eye, 2).c_str());
+  }
+  out += Row("  ambient contrast       %s: the display's full white over the world, (%s + %s) / %s cd/m2",
+             F(AmbientContrastRatio(s), 3).c_str(), F(LuminanceOf(s.peak_luminance_cd_m2), 2).c_str(),
+             F(LuminanceOf(WorldAtEye(s)), 2).c_str(), F(LuminanceOf(WorldAtEye(s)), 2).c_str());
+  return out;
+}
+
 // The virtual layers, farthest first, and which of them show a fixed pattern.
 std::string FormatLayerTable(const DisplaySystem& s) {
   std::string out;
@@ -213,6 +231,7 @@ std::string FormatSystemTable(const DisplaySystem& s) {
                Rgb3(br.optics_efficiency, 4).c_str(), Rgb3(br.efficiency, 4).c_str(), br.backlight.c_str(),
                F(br.backlight_luminance_cd_m2, 1).c_str());
   }
+  out += FormatSeeThrough(s);
 
   out += "\nsystem\n";
   out += Row("  field of view          %s x %s deg (the smallest layer's, Eq. 2)", F(Deg(s.fov_x_rad), 2).c_str(),
@@ -286,6 +305,12 @@ nlohmann::json SystemToJson(const DisplaySystem& s) {
                              {"efficiency_rgb", b.efficiency},
                              {"backlight", b.backlight},
                              {"backlight_luminance_cd_m2", b.backlight_luminance_cd_m2}});
+  for (const WorldView& w : s.worlds)
+    j["worlds"].push_back({{"element", w.element},
+                           {"path", w.name},
+                           {"luminance_cd_m2", w.luminance_cd_m2},
+                           {"efficiency_rgb", w.efficiency}});
+  if (!s.worlds.empty()) j["ambient_contrast_ratio"] = AmbientContrastRatio(s);
   j["subframes"] = s.subframes;
   j["frame_rate_hz"] = s.frame_rate_hz;
   j["panel_refresh_rate_hz"] = s.subframes * s.frame_rate_hz;

@@ -1,0 +1,149 @@
+// Optical see-through (elements/world.cpp, systems/world_view.h): a world
+// reached through a combiner's port is seen with the path's efficiency for
+// natural light, added at the eye to the display's light. Checked by hand:
+// a half mirror passes its transmittance; a polarizing beam splitter passes
+// natural light (Tp + Ts) / 2 whatever a half-wave plate does before it;
+// the ambient contrast ratio is (peak + world) / world from the backlight,
+// the mirror and the panels; the retinal images with the world are the
+// display's plus the world's luminance over the display's white.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "layerlab/analysis/retina_sweep.h"
+#include "layerlab/framework/exr_image.h"
+#include "layerlab/solvers/objective.h"
+#include "layerlab/solvers/solver.h"
+#include "layerlab/systems/system_report.h"
+#include "layerlab/systems/world_view.h"
+#include "test_util.h"
+
+namespace layerlab {
+namespace {
+
+using layerlab::testing::CompileError;
+using layerlab::testing::CompileJson;
+
+// An eye, a combiner 15 mm away reflecting a magnifier and two panels (0.3 each) over a 5000 cd/m2
+// backlight, transmitting `world` (the element "outside", 300 cd/m2).
+nlohmann::json SeeThrough(const nlohmann::json& combiner, const nlohmann::json& world_path = nullptr) {
+  nlohmann::json s = {{"format", "layerlab-scene/1"}, {"name", "see-through test"}};
+  nlohmann::json e = nlohmann::json::array();
+  e.push_back({{"type", "eye"},
+               {"name", "eye"},
+               {"pupil_diameter", "4 mm"},
+               {"pupil_samples", {3, 3}},
+               {"eyebox", {"4 mm", "4 mm"}},
+               {"views", {3, 3}},
+               {"next", "combiner"}});
+  nlohmann::json c = combiner;
+  c["name"] = "combiner", c["gap"] = "15 mm", c["reflected"] = "lens";
+  c["transmitted"] = world_path.is_null() ? "outside" : world_path["name"];
+  e.push_back(c);
+  if (!world_path.is_null()) {
+    nlohmann::json w = world_path;
+    w["next"] = "outside";
+    e.push_back(w);
+  }
+  e.push_back(
+      {{"type", "thin_lens"}, {"name", "lens"}, {"focal_length", "50 mm"}, {"gap", "10 mm"}, {"next", "front"}});
+  for (const char* panel : {"front", "rear"})
+    e.push_back({{"type", "lc_panel"},
+                 {"name", panel},
+                 {"virtual_depth", std::string(panel) == "front" ? "2 D" : "0.5 D"},
+                 {"pixel_pitch", "100 um"},
+                 {"resolution", {40, 30}},
+                 {"next", std::string(panel) == "front" ? "rear" : "light"}});
+  e.push_back({{"type", "backlight"}, {"name", "light"}, {"luminance", "5000 cd/m2"}});
+  e.push_back({{"type", "world"}, {"name", "outside"}, {"luminance", "300 cd/m2"}});
+  s["elements"] = e;
+  return s;
+}
+
+TEST(SeeThrough, AHalfMirrorShowsTheWorldAtItsTransmittance) {
+  const DisplaySystem system =
+      CompileJson(SeeThrough({{"type", "half_mirror"}, {"reflectance", 0.3}, {"transmittance", 0.7}}));
+  ASSERT_EQ(system.worlds.size(), 1u);
+  const WorldView& w = system.worlds[0];
+  EXPECT_EQ(w.element, "outside");
+  EXPECT_EQ(w.name, "combiner.transmitted");
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(w.efficiency[c], 0.7, 1e-15);
+  EXPECT_NEAR(LuminanceOf(WorldAtEye(system)), 210, 1e-12);
+  // The display's full white: 5000 cd/m2 x 0.3 (mirror) x 0.3 x 0.3 (the panels) = 135 cd/m2.
+  const double peak = 5000 * 0.3 * 0.3 * 0.3;
+  EXPECT_NEAR(LuminanceOf(system.peak_luminance_cd_m2), peak, 1e-9);
+  EXPECT_NEAR(AmbientContrastRatio(system), (peak + 210) / 210, 1e-12);
+  const std::string table = FormatSystemTable(system);
+  EXPECT_NE(table.find("world \"outside\"        through combiner.transmitted 300.0 cd/m2 x efficiency 0.7000 "
+                       "0.7000 0.7000 = 210.00 210.00 210.00 cd/m2 at the eye"),
+            std::string::npos)
+      << table;
+  EXPECT_NE(table.find("ambient contrast       1.643: the display's full white over the world, (135.00 + 210.00) / "
+                       "210.00 cd/m2"),
+            std::string::npos)
+      << table;
+  EXPECT_EQ(SystemToJson(system)["worlds"][0]["path"], "combiner.transmitted");
+}
+
+// Natural light through a polarizing beam splitter: half of it along p (Tp), half along s (Ts), whatever a
+// half-wave plate turns before; one linear polarization alone would give Tp or Ts.
+TEST(SeeThrough, NaturalLightThroughAPolarizingSplitterIsTheMeanOfTwoPolarizations) {
+  const nlohmann::json pbs = {
+      {"type", "pbs"}, {"transmittance_p", 0.9}, {"transmittance_s", 0.02}, {"reflectance_s", 0.98}};
+  const nlohmann::json hwp = {{"type", "hwp"}, {"name", "plate"}, {"fast_axis", "22.5 deg"}};
+  for (const nlohmann::json& path : {nlohmann::json(nullptr), hwp}) {
+    const DisplaySystem system = CompileJson(SeeThrough(pbs, path));
+    ASSERT_EQ(system.worlds.size(), 1u);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(system.worlds[0].efficiency[c], 0.5 * (0.9 + 0.02), 1e-12);
+  }
+}
+
+TEST(SeeThrough, AWorldWithoutACombinerOrADisplayIsRefused) {
+  nlohmann::json inline_world = SeeThrough({{"type", "half_mirror"}});
+  inline_world["elements"][0]["next"] = "outside";
+  EXPECT_NE(CompileError(inline_world).find("the world \"outside\" is reached without a combiner"), std::string::npos)
+      << CompileError(inline_world);
+  nlohmann::json only_worlds = SeeThrough({{"type", "half_mirror"}});
+  only_worlds["elements"][1]["reflected"] = "far";
+  only_worlds["elements"].push_back({{"type", "world"}, {"name", "far"}, {"luminance", "10 cd/m2"}});
+  const std::string e = CompileError(only_worlds);
+  EXPECT_TRUE(e.find("no panel lies on any path from the eye") != std::string::npos ||
+              e.find("is not on the optical path from the eye") != std::string::npos)
+      << e;
+}
+
+// The retinal images with the world are the display's plus the world's luminance at the eye over the
+// display's white, and retina.csv gives (display mean + world) / world.
+TEST(SeeThrough, TheRetinalImagesAddTheWorld) {
+  const DisplaySystem system =
+      CompileJson(SeeThrough({{"type", "half_mirror"}, {"reflectance", 0.3}, {"transmittance", 0.7}}));
+  const DisplayModel model(system, DisplayLightFieldGeometry(system), Sampling::kBilinear);
+  Patterns t = InitialPatterns(model, SolverOptions{});
+  for (LayerPattern& p : t)
+    for (size_t k = 0; k < p.rgb.size(); ++k) p.rgb[k] = 0.2f + 0.6f * float(k % 7) / 7;
+  const std::string folder = ::testing::TempDir() + "layerlab_see_through";
+  std::filesystem::remove_all(folder);
+  RetinaSweepOptions o;
+  o.states_diopters = {1.0};
+  o.resolution_deg = 0.5;
+  o.exr_pixels = ExrPixels::kFloat;
+  const std::vector<RetinaStateResult> r = WriteRetinaSweep(model, t, SceneRadiance{}, o, folder, nullptr);
+  const Image display = ReadExr(folder + "/display/1.00D.exr", {"R", "G", "B"});
+  const Image seen = ReadExr(folder + "/see_through/1.00D.exr", {"R", "G", "B"});
+  ASSERT_EQ(seen.pixels.size(), display.pixels.size());
+  const double world = 210 / model.white_luminance();
+  for (size_t i = 0; i < seen.pixels.size(); ++i) ASSERT_NEAR(seen.pixels[i], display.pixels[i] + world, 1e-6);
+  ASSERT_EQ(r.size(), 1u);
+  EXPECT_NEAR(r[0].world_cd_m2, 210, 1e-9);
+  EXPECT_NEAR(r[0].contrast_against_world, (r[0].display_mean_cd_m2 + 210) / 210, 1e-12);
+  std::ifstream csv(folder + "/retina.csv");
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_NE(header.find(",world_cd_m2,contrast_against_world"), std::string::npos) << header;
+}
+
+}  // namespace
+}  // namespace layerlab
