@@ -37,6 +37,7 @@ namespace fs = std::filesystem;
 struct RetinaBatch {
   std::vector<RetinaStateResult> r;
   std::vector<Image> display, seen;
+  std::vector<Image> world;  // a see-through display's worlds, display-relative; empty: uniform or none
 };
 
 // Each state's display image against natural viewing by each metric, every (state, metric) a thread's work; its
@@ -64,14 +65,15 @@ void Score(const std::vector<const RetinalMetric*>& metrics, const MetricViewing
 
 // The images of states [first, first + count), each computed in parallel within.
 RetinaBatch TraceBatch(const DisplayModel& model, const std::vector<ShownInstant>& shown, const SceneRadiance& natural,
-                       const EyeOptics& optics, const std::vector<double>& states, size_t first, size_t count,
-                       const std::vector<const RetinalMetric*>& metrics, const MetricSettings& settings,
-                       RetinaWorkspace* workspace) {
+                       const SceneRadiance& world, const EyeOptics& optics, const std::vector<double>& states,
+                       size_t first, size_t count, const std::vector<const RetinalMetric*>& metrics,
+                       const MetricSettings& settings, RetinaWorkspace* workspace) {
   const MetricViewing viewing =
       MetricViewing::Of(optics.grid().resolution_rad / kRadiansPerDegree, model.white_luminance(), settings);
   const DisplaySystem& system = model.system();
   const double white = model.white_luminance();
-  RetinaBatch b{std::vector<RetinaStateResult>(count), std::vector<Image>(count), std::vector<Image>(count)};
+  RetinaBatch b{std::vector<RetinaStateResult>(count), std::vector<Image>(count), std::vector<Image>(count), {}};
+  if (world) b.world.resize(count);
   for (size_t s = 0; s < count; ++s) {
     auto start = std::chrono::steady_clock::now();
     RetinaStateResult& r = b.r[s];
@@ -82,8 +84,14 @@ RetinaBatch TraceBatch(const DisplayModel& model, const std::vector<ShownInstant
       return RetinaOfDisplay(model, shown, DisplayRetinaTables(model, traced, group, focus), workspace);
     });
     r.display_mean_cd_m2 = MeanLuminance(b.display[s]) * white;
+    if (world) {  // the worlds' scenes, seen as the eye focuses: cd/m^2, made display-relative
+      b.world[s] = optics.See([&](const RetinaGrid& traced, const std::vector<PupilPoint>& group) {
+        return RetinaOfScene(world, traced, group, focus);
+      });
+      for (float& v : b.world[s].pixels) v = static_cast<float>(v / white);
+    }
     if (!system.worlds.empty()) {
-      r.world_cd_m2 = LuminanceOf(WorldAtEye(system));
+      r.world_cd_m2 = world ? MeanLuminance(b.world[s]) * white : LuminanceOf(WorldAtEye(system));
       r.contrast_against_world = (r.display_mean_cd_m2 + r.world_cd_m2) / r.world_cd_m2;
     }
     r.natural_mean_cd_m2 = NAN;
@@ -144,7 +152,8 @@ void WriteSeeThrough(const DisplayModel& model, const fs::path& out, const Retin
   for (size_t s = 0; s < b.display.size(); ++s) {
     Image seen = b.display[s];
     for (size_t i = 0; i < seen.pixels.size(); ++i)
-      seen.pixels[i] += static_cast<float>(world[i % 3] / model.white_luminance());
+      seen.pixels[i] +=
+          b.world.empty() ? static_cast<float>(world[i % 3] / model.white_luminance()) : b.world[s].pixels[i];
     const fs::path stem = out / "see_through" / b.r[s].name;
     WriteExr(stem.string() + ".exr", seen, ExrCompression::kNone, pixels);
     WriteShownSrgbPng(stem.string() + ".png", grid.cols, grid.rows, seen.pixels, kRetinaWidthPx, PngCompression::kFast);
@@ -215,7 +224,7 @@ std::vector<RetinaStateResult> WriteRetinaSweep(
   RetinaWorkspace workspace;  // every state's display image, sized for the first (again only for one needing more)
   for (size_t first = 0; first < o.states_diopters.size(); first += batch) {
     const size_t count = std::min(batch, o.states_diopters.size() - first);
-    RetinaBatch b = TraceBatch(model, shown, natural, optics, o.states_diopters, first, count, metrics,
+    RetinaBatch b = TraceBatch(model, shown, natural, o.world, optics, o.states_diopters, first, count, metrics,
                                o.metric_settings, &workspace);
     std::vector<double> seconds;
     WriteBatch(out, grid, bool(natural), o.exr_pixels, &b, &seconds);

@@ -41,6 +41,9 @@ struct RetinaSweepOptions {
   // The EXRs of the images: half floats by default (pictures to look at; the scores and retina.csv come from
   // the float images in memory), float on request.
   ExrPixels exr_pixels = ExrPixels::kHalf;
+  // A see-through display's worlds along each ray, cd/m^2 at the eye (analysis/world_scene.h,
+  // WorldSceneRadiance); empty: its worlds are uniform (systems/world_view.h, WorldAtEye).
+  SceneRadiance world;
 };
 
 // Accommodation states as `layerlab retina` takes them (ParseOptionValue:

@@ -3,6 +3,7 @@
 #include "layerlab/analysis/report_parts.h"
 #include "layerlab/analysis/retina_sweep.h"
 #include "layerlab/analysis/run_steps.h"
+#include "layerlab/analysis/world_scene.h"
 #include "layerlab/framework/progress.h"
 
 namespace layerlab {
@@ -20,7 +21,8 @@ std::string RunRetina(RunState& s) {
                            s.request.keep_images,
                            r.metrics,
                            r.metric_settings,
-                           r.exr_float ? ExrPixels::kFloat : ExrPixels::kHalf};
+                           r.exr_float ? ExrPixels::kFloat : ExrPixels::kHalf,
+                           WorldSceneRadiance(s.solved.model->system())};
   Progress progress("retina", sweep.states_diopters.size());
   std::vector<RetinaStateResult> states =
       WriteRetinaSweep(*s.solved.model, s.solved.patterns, natural, sweep, (s.out / "retina").string(),

@@ -14,6 +14,7 @@
 
 #include "layerlab/analysis/report_parts.h"
 #include "layerlab/analysis/retina_sweep.h"
+#include "layerlab/analysis/world_scene.h"
 #include "layerlab/app/command_line.h"
 #include "layerlab/app/command_result.h"
 #include "layerlab/app/commands.h"
@@ -115,7 +116,8 @@ std::vector<RetinaStateResult> RetinaOfEye(const RetinaCommandOptions& o, const 
                            false,
                            ParseRetinalMetrics(o.metrics, "--metrics"),
                            ParseMetricSettings(o.metric_flags),
-                           o.exr == "float" ? ExrPixels::kFloat : ExrPixels::kHalf};
+                           o.exr == "float" ? ExrPixels::kFloat : ExrPixels::kHalf,
+                           WorldSceneRadiance(system)};
   Progress progress(label, states.size());
   const std::vector<RetinaStateResult> results =
       WriteRetinaSweep(model, t, natural, sweep, folder, [&](size_t done, size_t, const RetinaStateResult& r) {

@@ -258,16 +258,19 @@ class BacklightElement : public Element {
 };
 
 // The world seen through a combiner's port (optical see-through): natural,
-// unpolarized light of a uniform luminance (elements/world.cpp).
+// unpolarized light of a uniform luminance, or a scene's (elements/world.cpp).
 class WorldElement : public Element {
  public:
-  explicit WorldElement(double luminance) : luminance_(luminance) {}
+  WorldElement(double luminance, std::string scene_file) : luminance_(luminance), scene_file_(std::move(scene_file)) {}
   ElementKind kind() const final { return ElementKind::kWorld; }
   std::vector<std::string> output_ports() const final { return {}; }
   double luminance() const { return luminance_; }  // cd/m^2
+  // A target scene (docs/target-format.md) whose radiance, 1 = luminance(), the world shows; empty: uniform.
+  const std::string& scene_file() const { return scene_file_; }
 
  private:
   double luminance_;
+  std::string scene_file_;
 };
 
 }  // namespace layerlab

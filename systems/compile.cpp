@@ -337,8 +337,15 @@ class Walker {
     WorldView w;
     w.element = node.element->name();
     w.name = state.label;
-    w.luminance_cd_m2 = static_cast<const WorldElement&>(*node.element).luminance();
+    const auto& world = static_cast<const WorldElement&>(*node.element);
+    w.luminance_cd_m2 = world.luminance();
+    w.scene_file = world.scene_file();
     w.path = state.steps;
+    for (const PathStep& s : w.path)
+      if (s.power_diopters != 0 && !w.scene_file.empty())
+        Fail(node.where.child("scene"), "the world " + Quoted(w.element) + " is seen through " + Quoted(s.element) +
+                                            ", which has optical power: its scene would be imaged, which is not "
+                                            "modelled; a uniform world (no \"scene\") is the same through it");
     // Natural light: the mean of two orthogonal linear polarizations through the path.
     const Rgb x = PathEfficiency(state.light, 0), y = PathEfficiency(state.light, std::acos(-1.0) / 2);
     for (int c = 0; c < 3; ++c) w.efficiency[c] = 0.5 * (x[c] + y[c]);

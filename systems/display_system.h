@@ -92,6 +92,7 @@ struct WorldView {
   std::string name;            // its path, as a branch's: "bs.transmitted"
   double luminance_cd_m2 = 0;  // the world's own
   Rgb efficiency{};            // unpolarized light through the path to the eye, per channel
+  std::string scene_file;      // the world's scene (its radiance, 1 = luminance_cd_m2); empty: uniform
   std::vector<PathStep> path;  // the elements from the eye to it, nearest the eye first
 };
 

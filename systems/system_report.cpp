@@ -143,6 +143,8 @@ std::string FormatSeeThrough(const DisplaySystem& s) {
     out += Row("  world %-16s through %-20s %s cd/m2 x efficiency %s = %s cd/m2 at the eye",
                ("\"" + w.element + "\"").c_str(), w.name.c_str(), F(w.luminance_cd_m2, 1).c_str(),
                Rgb3(w.efficiency, 4).c_str(), Rgb3(at_eye, 2).c_str());
+    if (!w.scene_file.empty())
+      out += "    its scene " + w.scene_file + " (radiance 1: the luminance above), traced for the retinal images\n";
   }
   out += Row("  ambient contrast       %s: the display's full white over the world, (%s + %s) / %s cd/m2",
              F(AmbientContrastRatio(s), 3).c_str(), F(LuminanceOf(s.peak_luminance_cd_m2), 2).c_str(),

@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "layerlab/analysis/retina_sweep.h"
+#include "layerlab/analysis/world_scene.h"
 #include "layerlab/framework/exr_image.h"
 #include "layerlab/solvers/objective.h"
 #include "layerlab/solvers/solver.h"
@@ -143,6 +144,52 @@ TEST(SeeThrough, TheRetinalImagesAddTheWorld) {
   std::string header;
   std::getline(csv, header);
   EXPECT_NE(header.find(",world_cd_m2,contrast_against_world"), std::string::npos) << header;
+}
+
+// A world with a scene: a plane of constant radiance 0.5 is seen as 0.5 x 210 cd/m2 wherever it is.
+TEST(SeeThrough, AWorldsSceneIsTracedIntoTheImages) {
+  const std::string folder = ::testing::TempDir() + "layerlab_see_through_scene";
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  nlohmann::json wall = {{"format", "layerlab-target/1"},
+                         {"light_field",
+                          {{"origin_plane", "0.5 D"},
+                           {"field_of_view", {"40 deg", "30 deg"}},
+                           {"resolution", {8, 6}},
+                           {"views", {1, 1}},
+                           {"eyebox", {"1 mm", "1 mm"}}}},
+                         {"objects",
+                          {{{"type", "plane"},
+                            {"depth", "0.5 D"},
+                            {"size", {"80 deg", "60 deg"}},
+                            {"texture", {{"type", "constant"}, {"color", 0.5}}}}}}};
+  std::ofstream(folder + "/wall.json") << wall.dump();
+  nlohmann::json scene = SeeThrough({{"type", "half_mirror"}, {"reflectance", 0.3}, {"transmittance", 0.7}});
+  scene["elements"].back()["scene"] = "wall.json";
+  const DisplaySystem system = CompileJson(scene, folder + "/scene.json");
+  ASSERT_EQ(system.worlds.size(), 1u);
+  EXPECT_EQ(system.worlds[0].scene_file, folder + "/wall.json");
+  const DisplayModel model(system, DisplayLightFieldGeometry(system), Sampling::kBilinear);
+  const Patterns t = InitialPatterns(model, SolverOptions{});
+  RetinaSweepOptions o;
+  o.states_diopters = {1.0};
+  o.resolution_deg = 0.5;
+  o.exr_pixels = ExrPixels::kFloat;
+  o.world = WorldSceneRadiance(system);
+  ASSERT_TRUE(o.world);
+  const std::vector<RetinaStateResult> r = WriteRetinaSweep(model, t, SceneRadiance{}, o, folder + "/out", nullptr);
+  const Image display = ReadExr(folder + "/out/display/1.00D.exr", {"R", "G", "B"});
+  const Image seen = ReadExr(folder + "/out/see_through/1.00D.exr", {"R", "G", "B"});
+  const double world = 0.5 * 210 / model.white_luminance();
+  for (size_t i = 0; i < seen.pixels.size(); ++i) ASSERT_NEAR(seen.pixels[i], display.pixels[i] + world, 1e-6);
+  EXPECT_NEAR(r[0].world_cd_m2, 105, 1e-4);
+  // Through a lens the scene would be imaged: refused.
+  nlohmann::json imaged = scene;
+  imaged["elements"][1]["transmitted"] = "glass";
+  imaged["elements"].push_back(
+      {{"type", "thin_lens"}, {"name", "glass"}, {"focal_length", "1 m"}, {"gap", "5 mm"}, {"next", "outside"}});
+  const std::string e = testing::ErrorOf([&] { CompileJson(imaged, folder + "/scene.json"); });
+  EXPECT_NE(e.find("the world \"outside\" is seen through \"glass\", which has optical power"), std::string::npos) << e;
 }
 
 }  // namespace
