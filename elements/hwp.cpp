@@ -1,7 +1,7 @@
 // hwp: a half-wave plate, rotating linear polarization by twice the angle
 // between it and the fast axis. A real plate is a half wave only at its design
 // wavelength: a zero-order plate of order m has retardance
-// (2m + 1) pi lambda0 / lambda (the birefringence's own dispersion ignored).
+// (2m + 1) pi lambda0 / lambda (elements/wave_plate.h).
 //
 // | key               | type                       | default   | meaning                      |
 // |-------------------|----------------------------|-----------|------------------------------|
@@ -12,49 +12,14 @@
 // | transmittance     | fraction, [r,g,b] or table | 1         | intensity transmittance      |
 // | gap               | length                     | see thin_lens | path length from the element before it |
 // | next              | name                       | required  | toward the panels            |
-#include <numbers>
-
-#include "layerlab/elements/element.h"
 #include "layerlab/elements/registry.h"
-#include "layerlab/elements/spectral.h"
+#include "layerlab/elements/wave_plate.h"
 
 namespace layerlab {
-namespace {
 
-class HalfWavePlate final : public InlineOpticElement {
- public:
-  HalfWavePlate(double axis, std::array<double, 3> retardance, Rgb transmittance)
-      : axis_(axis), retardance_(retardance), transmittance_(transmittance) {}
-  bool polarizing() const override { return true; }
-
-  void transfer(Light& light) const override {
-    for (int c = 0; c < 3; ++c) {
-      if (light[c].polarized) light[c].field = Retarder(retardance_[c], axis_) * light[c].field;
-      light[c].attenuate(transmittance_[c]);
-    }
-  }
-
- private:
-  double axis_;
-  std::array<double, 3> retardance_;
-  Rgb transmittance_;
-};
-
-std::unique_ptr<Element> MakeHwp(Params& p) {
-  double axis = p.quantity("fast_axis", Dimension::kAngle, std::numbers::pi / 4);
-  double design = p.quantity("design_wavelength", Dimension::kLength, 550e-9);
-  p.require_range("design_wavelength", design, 100e-9, 3e-6, false, false);
-  int64_t order = p.integer("order", 0, 100, 0);
-  bool achromatic = p.boolean("achromatic", false);
-  std::array<double, 3> retardance{};
-  for (int c = 0; c < 3; ++c)
-    retardance[c] =
-        achromatic ? std::numbers::pi : (2.0 * order + 1.0) * std::numbers::pi * design / kChannelWavelengths[c];
-  return std::make_unique<HalfWavePlate>(axis, retardance, ReadSpectralFraction(p, "transmittance", 1.0));
+ElementType HwpType() {
+  return {"hwp", ElementKind::kInlineOptic, "half-wave plate (retarder)",
+          [](Params& p) { return MakeWavePlate(p, 0.5); }};
 }
-
-}  // namespace
-
-ElementType HwpType() { return {"hwp", ElementKind::kInlineOptic, "half-wave plate (retarder)", MakeHwp}; }
 
 }  // namespace layerlab

@@ -154,3 +154,67 @@ TEST(Polarization, IdealPbsAndHwpLoseNothing) {
 
 }  // namespace
 }  // namespace layerlab
+
+namespace layerlab {
+namespace {
+
+// An eye, in-line `optics` (nearest the eye first), a lens and one panel whose exit polarizer is along x.
+nlohmann::json InlineOptics(const std::vector<nlohmann::json>& optics) {
+  nlohmann::json s = {{"format", "layerlab-scene/1"}, {"name", "in-line polarization"}};
+  nlohmann::json e = nlohmann::json::array();
+  e.push_back({{"type", "eye"}, {"name", "eye"}, {"pupil_samples", {3, 3}}, {"views", {3, 3}}});
+  for (size_t k = 0; k < optics.size(); ++k) {
+    nlohmann::json o = optics[k];
+    o["name"] = "optic" + std::to_string(k);
+    e.back()["next"] = o["name"];
+    e.push_back(o);
+  }
+  e.back()["next"] = "lens";
+  e.push_back({{"type", "thin_lens"}, {"name", "lens"}, {"focal_length", "50 mm"}, {"next", "panel"}});
+  e.push_back({{"type", "lc_panel"},
+               {"name", "panel"},
+               {"virtual_depth", "1 D"},
+               {"pixel_pitch", "100 um"},
+               {"resolution", {20, 10}},
+               {"max_transmittance", 1.0},
+               {"next", "light"}});
+  e.push_back({{"type", "backlight"}, {"name", "light"}, {"luminance", "100 cd/m2"}});
+  s["elements"] = e;
+  return s;
+}
+
+double Efficiency(const std::vector<nlohmann::json>& optics) {
+  return CompileJson(InlineOptics(optics)).branches[0].optics_efficiency[1];
+}
+
+// By hand: the panel's light is x-polarized. A quarter-wave plate at 45 deg makes it circular, which a linear
+// polarizer at any angle passes at half; two of them are a half-wave plate, turning x into y; a polarizer passes
+// cos^2 of its angle to linear light (Malus).
+TEST(Polarization, QuarterWavePlatesAndALinearPolarizerByJonesCalculus) {
+  const nlohmann::json qwp = {{"type", "qwp"}, {"fast_axis", "45 deg"}, {"achromatic", true}};
+  auto polarizer = [](double deg) {
+    return nlohmann::json{{"type", "linear_polarizer"}, {"axis", std::to_string(deg) + " deg"}};
+  };
+  for (double deg : {0.0, 30.0, 90.0, 135.0}) {
+    const double a = deg * kPi / 180;
+    SCOPED_TRACE(std::to_string(deg) + " deg");
+    EXPECT_NEAR(Efficiency({polarizer(deg)}), std::pow(std::cos(a), 2), 1e-12);            // Malus
+    EXPECT_NEAR(Efficiency({polarizer(deg), qwp}), 0.5, 1e-12);                            // circular
+    EXPECT_NEAR(Efficiency({polarizer(deg), qwp, qwp}), std::pow(std::sin(a), 2), 1e-12);  // x turned to y
+  }
+  // A zero-order quarter-wave plate is a quarter wave at its design wavelength only (green, 549 nm, here): a
+  // retarder of delta at 45 deg leaves x-polarized light |E_x|^2 = cos^2(delta / 2) along x, delta = (pi / 2)
+  // 549 nm / lambda.
+  const nlohmann::json green_qwp = {{"type", "qwp"}, {"fast_axis", "45 deg"}, {"design_wavelength", "549 nm"}};
+  const DisplaySystem s = CompileJson(InlineOptics({polarizer(0), green_qwp}));
+  const double wavelength[] = {612e-9, 549e-9, 465e-9};
+  for (int c = 0; c < 3; ++c) {
+    const double delta = kPi / 2 * 549e-9 / wavelength[c];
+    EXPECT_NEAR(s.branches[0].optics_efficiency[c], std::pow(std::cos(delta / 2), 2), 1e-12) << "channel " << c;
+  }
+  // Along the panel's own polarization a polarizer passes its transmittance (natural light: tests/see_through_test.cpp).
+  EXPECT_NEAR(Efficiency({{{"type", "linear_polarizer"}, {"transmittance", 0.8}}}), 0.8, 1e-12);
+}
+
+}  // namespace
+}  // namespace layerlab

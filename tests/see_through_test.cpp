@@ -100,6 +100,14 @@ TEST(SeeThrough, NaturalLightThroughAPolarizingSplitterIsTheMeanOfTwoPolarizatio
     ASSERT_EQ(system.worlds.size(), 1u);
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(system.worlds[0].efficiency[c], 0.5 * (0.9 + 0.02), 1e-12);
   }
+  // A polarizer along p before the splitter: natural light leaves it at half along p, which the splitter passes
+  // at Tp; across p, at Ts.
+  for (const double deg : {0.0, 90.0}) {
+    const nlohmann::json polarizer = {
+        {"type", "linear_polarizer"}, {"name", "sheet"}, {"axis", std::to_string(deg) + " deg"}};
+    const DisplaySystem system = CompileJson(SeeThrough(pbs, polarizer));
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(system.worlds[0].efficiency[c], 0.5 * (deg == 0 ? 0.9 : 0.02), 1e-12);
+  }
 }
 
 TEST(SeeThrough, AWorldWithoutACombinerOrADisplayIsRefused) {
