@@ -143,7 +143,11 @@ EyeboxMap MapEyebox(const DisplayModel& model, const Patterns& t, const SceneRad
 
   Patterns white;
   for (const LayerPattern& p : t) white.emplace_back(p.cols, p.rows, 1.0f);
-  for (size_t k = 0; k < white.size(); ++k) KeepEmitterSites(system.layers[k], &white[k].rgb);  // LEDs at full
+  for (size_t k = 0; k < white.size(); ++k) {  // a fixed emission as it is, LEDs at full at their sites
+    if (system.layers[k].panel.emitter && system.layers[k].panel.fixed_pattern)
+      white[k].rgb = *system.layers[k].panel.fixed_pattern;
+    KeepEmitterSites(system.layers[k], &white[k].rgb);
+  }
   const double luminance = model.white_luminance();
   // What the panels show over a frame (their response), each instant through the panels' diffraction.
   const std::vector<ShownInstant> shown = SeenOverTime(system, t), shown_white = SeenOverTime(system, white);

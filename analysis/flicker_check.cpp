@@ -188,7 +188,7 @@ std::optional<FlickerVerdict> WorstCaseFlicker(const DisplaySystem& system, doub
   if (K < 2) return std::nullopt;
   double rise = 1e300, fall = 1e300;  // the fastest panel's
   for (const VirtualLayer& layer : system.layers)
-    if (layer.panel.rise_time_s + layer.panel.fall_time_s < rise + fall)
+    if (!layer.panel.emitter && layer.panel.rise_time_s + layer.panel.fall_time_s < rise + fall)
       rise = layer.panel.rise_time_s, fall = layer.panel.fall_time_s;
   double white = 0;
   for (int c = 0; c < 3; ++c) white += kLuminanceWeights[c] * system.peak_luminance_cd_m2[c];

@@ -92,7 +92,8 @@ RetinaBatch TraceBatch(const DisplayModel& model, const std::vector<ShownInstant
     }
     if (!system.worlds.empty()) {
       r.world_cd_m2 = world ? MeanLuminance(b.world[s]) * white : LuminanceOf(WorldAtEye(system));
-      r.contrast_against_world = (r.display_mean_cd_m2 + r.world_cd_m2) / r.world_cd_m2;
+      r.contrast_against_world = r.world_cd_m2 > 0 ? (r.display_mean_cd_m2 + r.world_cd_m2) / r.world_cd_m2
+                                                   : INFINITY;  // a world the path blocks (crossed polarizers)
     }
     r.natural_mean_cd_m2 = NAN;
     for (const RetinalMetric* m : metrics) r.scores.emplace_back(m->column, NAN);

@@ -99,7 +99,8 @@ RetinaRunConfig ReadRetina(Params& run, const DisplaySystem& system) {
   r.enabled = true;
   Params p = run.object("retina");
   for (const char* key : {"focal_stack", "field", "metrics", "fovea", "jnd_minkowski_exponent"}) p.mark_read(key);
-  for (const VirtualLayer& layer : system.layers) r.accommodation_diopters.push_back(layer.diopters);
+  for (const VirtualLayer& layer : system.layers)  // the panels' planes, not a backlight's emission
+    if (!layer.panel.emitter) r.accommodation_diopters.push_back(layer.diopters);
   ReadOptionEntries(p, RetinaRunOptionTable(), &r);
   if (p.has("focal_stack")) r.focal_stack_diopters = DepthRange(p, "focal_stack");
   if (p.has("metrics")) r.metrics = MetricsKey(p);

@@ -17,7 +17,8 @@ SceneRadiance WorldSceneRadiance(const DisplaySystem& system) {
   if (!any) return {};
 #if LAYERLAB_WITH_EMBREE
   struct Traced {
-    Rgb scale;  // cd/m^2 at the eye per unit of radiance
+    Rgb scale;              // cd/m^2 at the eye per unit of radiance
+    double sx = 1, sy = 1;  // -1 along an axis its path mirrors: the ray's x (y) in the world's own frame
     std::shared_ptr<const TargetScene> scene;
     std::shared_ptr<const TargetTracer> tracer;  // refers to *scene
   };
@@ -25,6 +26,7 @@ SceneRadiance WorldSceneRadiance(const DisplaySystem& system) {
   for (const WorldView& w : system.worlds) {
     Traced t;
     for (int c = 0; c < 3; ++c) t.scale[c] = w.luminance_cd_m2 * w.efficiency[c];
+    t.sx = w.flip_x ? -1 : 1, t.sy = w.flip_y ? -1 : 1;
     if (!w.scene_file.empty()) {
       t.scene = std::make_shared<const TargetScene>(LoadTarget(w.scene_file));
       t.tracer = std::make_shared<const TargetTracer>(*t.scene);
@@ -35,7 +37,7 @@ SceneRadiance WorldSceneRadiance(const DisplaySystem& system) {
     std::array<double, 3> sum{};
     for (const Traced& t : *worlds) {
       std::array<double, 3> radiance = {1, 1, 1};
-      if (t.tracer) radiance = t.tracer->TraceDirection(u.x_m, u.y_m, dx, dy).color;
+      if (t.tracer) radiance = t.tracer->TraceDirection(t.sx * u.x_m, t.sy * u.y_m, t.sx * dx, t.sy * dy).color;
       for (int c = 0; c < 3; ++c) sum[c] += t.scale[c] * radiance[c];
     }
     return sum;

@@ -108,6 +108,7 @@ CapturePlan PlanCaptures(const DisplaySystem& system, const PlanOptions& options
   }
   for (const VirtualLayer& layer : system.layers) {
     const PanelSpec& p = layer.panel;
+    if (p.emitter) continue;  // a backlight's emission shows no chessboard (elements/backlight.cpp)
     Chessboard board;
     board.panel = layer.name;
     board.squares_x = options.squares_x;

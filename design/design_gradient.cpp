@@ -75,6 +75,10 @@ std::string GradientProblem(const DesignSpec& spec) {
     return "the solve's panel_diffraction and lc_response are not in the gradient";
   if (value("objective").is_string() && value("objective") != "lightfield")
     return "the solve must minimize the light-field error (\"objective\": \"lightfield\")";
+  if (spec.base.contains("elements") && spec.base["elements"].is_array())
+    for (const auto& element : spec.base["elements"])
+      if (element.is_object() && element.contains("leds"))
+        return "the backlight's LED array is seen through its spread, which the gradient does not follow";
   return "";
 }
 

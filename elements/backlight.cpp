@@ -33,15 +33,21 @@ constexpr int kCoverageSamples = 16;
 // An LED's spread is sampled at least this finely (grid pixels per FWHM).
 constexpr int kPixelsPerSpread = 4;
 constexpr int kMaxLedStride = 33;
+constexpr double kWidestSpreadInPitches = 16;
 
 std::string Mm(double m, int decimals = 2) { return FormatFixed(m * 1e3, decimals) + " mm"; }
 
 // The grid of an emission layer: an active region of cols x rows pixels of the given pitch, linear values.
-PanelSpec EmissionGrid(Params& p, const std::string& key, double pitch_x, double pitch_y, int64_t cols, int64_t rows) {
-  if (cols > kMaxSidePixels || rows > kMaxSidePixels || cols * rows > kMaxEmissionPixels)
-    p.fail(key, "its emission would need a grid of " + std::to_string(cols) + " x " + std::to_string(rows) +
-                    " pixels; layerlab draws at most " + std::to_string(kMaxSidePixels) + " per side and " +
-                    std::to_string(kMaxEmissionPixels) + " in all");
+// (The sides are doubles until checked: a pinlight far smaller than its pitch asks for more pixels than an
+// integer holds.)
+PanelSpec EmissionGrid(Params& p, const std::string& key, double pitch_x, double pitch_y, double cols_wanted,
+                       double rows_wanted) {
+  if (!(cols_wanted <= kMaxSidePixels && rows_wanted <= kMaxSidePixels &&
+        cols_wanted * rows_wanted <= double(kMaxEmissionPixels)))
+    p.fail(key, "its emission would need a grid of " + FormatFixed(cols_wanted, 0) + " x " +
+                    FormatFixed(rows_wanted, 0) + " pixels; layerlab draws at most " + std::to_string(kMaxSidePixels) +
+                    " per side and " + std::to_string(kMaxEmissionPixels) + " in all");
+  const int64_t cols = static_cast<int64_t>(cols_wanted), rows = static_cast<int64_t>(rows_wanted);
   PanelSpec s;
   s.pitch_x_m = pitch_x;
   s.pitch_y_m = pitch_y;
@@ -52,10 +58,11 @@ PanelSpec EmissionGrid(Params& p, const std::string& key, double pitch_x, double
   return s;
 }
 
+// A pitch in [1 um, max_m]: finer than any emitter's grid needs.
 std::array<double, 2> PositivePitch(Params& q, const std::string& key, double max_m) {
   const std::array<double, 2> pitch = q.quantity_pair(key, Dimension::kLength, {0.0, 0.0});
   if (!q.has(key)) q.raw(key);  // reports the missing key
-  for (double v : pitch) q.require_range(key, v, 0.0, max_m, true, false);
+  for (double v : pitch) q.require_range(key, v, 1e-6, max_m, false, false);
   return pitch;
 }
 
@@ -95,8 +102,7 @@ PanelSpec Pinlights(Params& p) {
   q.check_all_read();
   // Each cell of the array is a whole number of grid pixels, none wider than diameter / kPixelsPerPinlight.
   const double h_max = diameter / kPixelsPerPinlight;
-  const int64_t nx = static_cast<int64_t>(std::ceil(pitch[0] / h_max - 1e-9)),
-                ny = static_cast<int64_t>(std::ceil(pitch[1] / h_max - 1e-9));
+  const double nx = std::ceil(pitch[0] / h_max - 1e-9), ny = std::ceil(pitch[1] / h_max - 1e-9);
   const double hx = pitch[0] / nx, hy = pitch[1] / ny;
   PanelSpec s = EmissionGrid(p, "pinlights", hx, hy, count[0] * nx, count[1] * ny);
   auto pattern = std::make_shared<std::vector<float>>(static_cast<size_t>(s.active_cols * s.active_rows) * 3, 0.0f);
@@ -112,7 +118,10 @@ PanelSpec Pinlights(Params& p) {
       for (int64_t row = r0; row <= r1; ++row)
         for (int64_t col = c0; col <= c1; ++col) {
           const float v = DiskCoverage(cx, cy, r, col * hx, row * hy, hx, hy);
-          for (int c = 0; c < 3; ++c) (*pattern)[static_cast<size_t>(row * s.active_cols + col) * 3 + c] = v;
+          for (int c = 0; c < 3; ++c) {  // a pixel two disks touch (diameter = pitch) keeps the larger share
+            float& at = (*pattern)[static_cast<size_t>(row * s.active_cols + col) * 3 + c];
+            at = std::max(at, v);
+          }
         }
     }
   s.fixed_pattern = std::move(pattern);
@@ -133,11 +142,13 @@ PanelSpec Leds(Params& p) {
   const std::array<int64_t, 2> count = q.integer_pair("count", 1, 1000);
   const double fwhm = q.quantity("spread_fwhm", Dimension::kLength);
   const double narrowest = std::max(pitch[0], pitch[1]) * kPixelsPerSpread / kMaxLedStride;
-  if (!(fwhm >= narrowest && fwhm <= 1.0))
-    q.fail("spread_fwhm", "must lie in " + Mm(narrowest, 3) + " to 1 m, got " + Mm(fwhm, 3) +
+  const double widest = kWidestSpreadInPitches * std::min(pitch[0], pitch[1]);
+  if (!(fwhm >= narrowest && fwhm <= widest))
+    q.fail("spread_fwhm", "must lie in " + Mm(narrowest, 3) + " to " + Mm(widest, 3) + ", got " + Mm(fwhm, 3) +
                               ": the grid draws an LED's spread with " + std::to_string(kPixelsPerSpread) +
                               " pixels across its FWHM and at most " + std::to_string(kMaxLedStride) +
-                              " pixels per LED");
+                              " pixels per LED, and a spread over more than " + FormatFixed(kWidestSpreadInPitches, 0) +
+                              " LEDs dims nothing locally");
   q.check_all_read();
   // An odd stride puts each LED on the centre pixel of its cell.
   int stride = static_cast<int>(std::ceil(std::max(pitch[0], pitch[1]) * kPixelsPerSpread / fwhm - 1e-9));

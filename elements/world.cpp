@@ -20,7 +20,7 @@ namespace {
 
 std::unique_ptr<Element> MakeWorld(Params& p) {
   const double luminance = p.quantity("luminance", Dimension::kLuminance);
-  p.require_range("luminance", luminance, 0.0, 1e7, false, false);
+  p.require_range("luminance", luminance, 0.0, 1e7, true, false);
   std::string scene;
   if (p.has("scene")) {
     scene = (std::filesystem::path(p.where().file).parent_path() / p.string("scene")).string();

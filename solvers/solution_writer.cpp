@@ -160,12 +160,19 @@ std::vector<std::string> WriteSolution(const DisplayModel& model, const Patterns
     const VirtualLayer& layer = model.system().layers[k];
     WriteExr(PatternFile(folder, layer), Image{t[k].cols, t[k].rows, {"R", "G", "B"}, t[k].rgb});
     written.push_back("patterns/" + layer.name + ".exr");
-    PanelEncoding panel = EncodeForPanel(layer, t[k]);
+    // An LED array is driven one value per LED: its panel image is the LEDs', not its fine grid's.
+    VirtualLayer driven = layer;
+    const LayerPattern values = IsSolvedEmitter(layer) ? LedValues(layer, t[k]) : LayerPattern{};
+    if (IsSolvedEmitter(layer)) {
+      driven.panel.resolution_cols = driven.panel.active_cols = values.cols;
+      driven.panel.resolution_rows = driven.panel.active_rows = values.rows;
+    }
+    PanelEncoding panel = EncodeForPanel(driven, IsSolvedEmitter(layer) ? values : t[k]);
     if (panel.below_black_level)
       annotated.warnings.push_back("panel \"" + layer.name + "\": " + std::to_string(panel.below_black_level) +
                                    " values are darker than its black level and were encoded as 0");
-    WritePng8((fs::path(folder) / "panels" / (layer.name + ".png")).string(), int(layer.panel.resolution_cols),
-              int(layer.panel.resolution_rows), 3, panel.pixels);
+    WritePng8((fs::path(folder) / "panels" / (layer.name + ".png")).string(), int(driven.panel.resolution_cols),
+              int(driven.panel.resolution_rows), 3, panel.pixels);
     written.push_back("panels/" + layer.name + ".png");
   }
   WriteFileAtomically((fs::path(folder) / "trace.csv").string(), TraceCsv(annotated));

@@ -340,6 +340,7 @@ class Walker {
     const auto& world = static_cast<const WorldElement&>(*node.element);
     w.luminance_cd_m2 = world.luminance();
     w.scene_file = world.scene_file();
+    w.flip_x = state.flip_x, w.flip_y = state.flip_y;
     w.path = state.steps;
     for (const PathStep& s : w.path)
       if (s.power_diopters != 0 && !w.scene_file.empty())

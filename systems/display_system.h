@@ -88,12 +88,13 @@ struct Branch {
 // Optical see-through: a world element reached through a combiner's port (elements/world.cpp), whose light
 // the eye sees added to the display's (systems/world_view.h).
 struct WorldView {
-  std::string element;         // the world element
-  std::string name;            // its path, as a branch's: "bs.transmitted"
-  double luminance_cd_m2 = 0;  // the world's own
-  Rgb efficiency{};            // unpolarized light through the path to the eye, per channel
-  std::string scene_file;      // the world's scene (its radiance, 1 = luminance_cd_m2); empty: uniform
-  std::vector<PathStep> path;  // the elements from the eye to it, nearest the eye first
+  std::string element;                  // the world element
+  std::string name;                     // its path, as a branch's: "bs.transmitted"
+  double luminance_cd_m2 = 0;           // the world's own
+  Rgb efficiency{};                     // unpolarized light through the path to the eye, per channel
+  std::string scene_file;               // the world's scene (its radiance, 1 = luminance_cd_m2); empty: uniform
+  bool flip_x = false, flip_y = false;  // mirror reversals on its path: the scene is seen mirrored
+  std::vector<PathStep> path;           // the elements from the eye to it, nearest the eye first
 };
 
 inline constexpr int kMaxSubframes = 64;  // the most subframes a scene may show per frame

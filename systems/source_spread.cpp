@@ -47,6 +47,20 @@ std::vector<LayerDiffraction> SeenKernels(const DisplaySystem& system, bool pane
   return kernels;
 }
 
+LayerPattern LedValues(const VirtualLayer& layer, const LayerPattern& pattern) {
+  if (!IsSolvedEmitter(layer) || pattern.cols != layer.cols || pattern.rows != layer.rows)
+    throw Error("internal error: layer \"" + layer.name + "\" is not an LED array of this pattern's size");
+  const EmitterSpec& e = *layer.panel.emitter;
+  const int stride = e.led_stride, centre = stride / 2;
+  LayerPattern leds(e.led_cols, e.led_rows, 0.0f);
+  for (int i = 0; i < e.led_rows; ++i)
+    for (int j = 0; j < e.led_cols; ++j)
+      for (int c = 0; c < 3; ++c)
+        leds.rgb[(size_t(i) * e.led_cols + j) * 3 + c] =
+            pattern.rgb[(size_t(i * stride + centre) * layer.cols + j * stride + centre) * 3 + c];
+  return leds;
+}
+
 void KeepEmitterSites(const VirtualLayer& layer, std::vector<float>* rgb) {
   if (!IsSolvedEmitter(layer)) return;
   const int stride = layer.panel.emitter->led_stride, centre = stride / 2;

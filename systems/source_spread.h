@@ -35,6 +35,9 @@ std::vector<LayerDiffraction> SeenKernels(const DisplaySystem& system, bool pane
 // Whether layer k is an LED array whose values are solved (and held at its sites).
 bool IsSolvedEmitter(const VirtualLayer& layer);
 
+// An LED layer's values, one pixel per LED (led_cols x led_rows, in the layer's own order): what drives them.
+LayerPattern LedValues(const VirtualLayer& layer, const LayerPattern& pattern);
+
 // Sets every pixel of an LED layer's pattern that is not an LED site to 0 (its rows x cols x 3 values);
 // a layer of another kind is left as it is.
 void KeepEmitterSites(const VirtualLayer& layer, std::vector<float>* rgb);

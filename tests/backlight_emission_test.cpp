@@ -256,6 +256,9 @@ TEST(BacklightEmission, TheMultiplicativeSolveKeepsTheLedsAtTheirSites) {
           ASSERT_EQ(v, 0.0f) << i << ", " << j;
       }
   EXPECT_EQ(sites, 9 * 9 * 3);
+  const LayerPattern values = LedValues(leds, t[0]);  // one pixel per LED, the site's value
+  ASSERT_EQ(values.cols, 9);
+  EXPECT_EQ(values.rgb[(2 * 9 + 5) * 3 + 1], t[0].rgb[((2 * stride + 1) * leds.cols + 5 * stride + 1) * 3 + 1]);
 
   Patterns refused;
   const SolverReport qn = SolverRegistry::Builtins().create("quasi-newton")->Solve(model, target, options, &refused);
@@ -285,7 +288,7 @@ TEST(BacklightEmission, AWrongBacklightIsRefusedNamingWhy) {
       << CompileError(Scene({{"gap", "5 mm"}}));
   nlohmann::json sharp = Leds();
   sharp["leds"]["spread_fwhm"] = "0.05 mm";
-  EXPECT_NE(CompileError(Scene(sharp)).find("/elements/2/leds/spread_fwhm: must lie in 0.121 mm to 1 m"),
+  EXPECT_NE(CompileError(Scene(sharp)).find("/elements/2/leds/spread_fwhm: must lie in 0.121 mm to 16.000 mm"),
             std::string::npos)
       << CompileError(Scene(sharp));
   nlohmann::json wide = OnePinlight();
@@ -297,6 +300,9 @@ TEST(BacklightEmission, AWrongBacklightIsRefusedNamingWhy) {
   fine["pinlights"]["count"] = {50, 50};
   EXPECT_NE(CompileError(Scene(fine)).find("its emission would need a grid of 400000 x 400000 pixels"),
             std::string::npos)
+      << CompileError(Scene(fine));
+  fine["pinlights"]["diameter"] = 1e-18;  // m: more pixels than an integer holds, refused before they are counted
+  EXPECT_NE(CompileError(Scene(fine)).find("its emission would need a grid of"), std::string::npos)
       << CompileError(Scene(fine));
 }
 

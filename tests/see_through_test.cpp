@@ -11,7 +11,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <sstream>
+#include <utility>
 
 #include "layerlab/analysis/retina_sweep.h"
 #include "layerlab/analysis/world_scene.h"
@@ -191,6 +193,27 @@ TEST(SeeThrough, AWorldsSceneIsTracedIntoTheImages) {
   const double world = 0.5 * 210 / model.white_luminance();
   for (size_t i = 0; i < seen.pixels.size(); ++i) ASSERT_NEAR(seen.pixels[i], display.pixels[i] + world, 1e-6);
   EXPECT_NEAR(r[0].world_cd_m2, 105, 1e-4);
+  // A patch 11 deg to the right of the world is seen on the right through the transmitted port, and on the
+  // left through the reflected one, which mirrors it.
+  nlohmann::json patch = wall;
+  patch["objects"][0]["size"] = {"0.1 m", "0.1 m"};
+  patch["objects"][0]["center"] = {"0.4 m", "0 m"};  // at 2 m: 11.3 deg right
+  std::ofstream(folder + "/patch.json") << patch.dump();
+  for (const bool reflected : {false, true}) {
+    nlohmann::json s = scene;
+    s["elements"].back()["scene"] = "patch.json";
+    if (reflected) std::swap(s["elements"][1]["reflected"], s["elements"][1]["transmitted"]);
+    const DisplaySystem mirrored = CompileJson(s, folder + "/scene.json");
+    const SceneRadiance radiance = WorldSceneRadiance(mirrored);
+    double left = 0, right = 0;
+    const PupilPoint centre{};
+    for (int k = -20; k <= 20; ++k) {
+      const double tan = std::tan(k * 1.0 * std::numbers::pi / 180);
+      (k < 0 ? left : right) += radiance(centre, tan, 0)[1];
+    }
+    EXPECT_GT(reflected ? left : right, 0) << (reflected ? "reflected" : "transmitted");
+    EXPECT_EQ(reflected ? right : left, 0) << (reflected ? "reflected" : "transmitted");
+  }
   // Through a lens the scene would be imaged: refused.
   nlohmann::json imaged = scene;
   imaged["elements"][1]["transmitted"] = "glass";

@@ -39,6 +39,7 @@
 #include "layerlab/systems/compile.h"
 #include "layerlab/systems/layer_sampler.h"
 #include "layerlab/systems/lc_response.h"
+#include "layerlab/systems/source_spread.h"
 
 namespace py = pybind11;
 
@@ -188,7 +189,7 @@ std::shared_ptr<LightField> Synthesize(const std::shared_ptr<DisplaySystem>& sys
   const ModelRays rays = ModelRaysArg(*system, geometry, sampling, "synthesize");
   py::gil_scoped_release release;
   const DisplayModel model(*system, rays.geometry, rays.sampling);
-  return std::make_shared<LightField>(Synthesize(model, patterns));
+  return std::make_shared<LightField>(Synthesize(model, DiffractedPatterns(SeenKernels(*system, false), patterns)));
 }
 
 // What the eye sees of the solution, focused at each of `accommodation` (D):
@@ -274,7 +275,8 @@ void BindSolve(py::module_& m) {
           "synthesize",
           [](const Solution& s) {
             py::gil_scoped_release release;
-            return std::make_shared<LightField>(Synthesize(*s.model, s.patterns));
+            return std::make_shared<LightField>(
+                Synthesize(*s.model, DiffractedPatterns(SeenKernels(s.model->system(), false), s.patterns)));
           },
           "The light field the display shows with these patterns (the target's geometry)")
       .def(
