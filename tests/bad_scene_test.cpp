@@ -36,7 +36,8 @@ const std::string kHybrid = "paper_prototype.json";
 const BadScene kCases[] = {
     {"UnknownType", kMul, [](json& s) { ElementNamed(s, "lens")["type"] = "thin_lense"; },
      "scene.json: /elements/1/type: unknown element type \"thin_lense\"; did you mean \"thin_lens\"? Known types: "
-     "backlight, eye, half_mirror, hwp, lc_panel, lens, mirror, pbs, thin_lens, tunable_lens"},
+     "backlight, eye, half_mirror, hwp, lc_panel, lens, linear_polarizer, mirror, pbs, qwp, thin_lens, tunable_lens, "
+     "world"},
     {"MisspelledKey", kMul,
      [](json& s) {
        json& lens = ElementNamed(s, "lens");
@@ -122,7 +123,7 @@ const BadScene kCases[] = {
      "scene.json: /elements/1: element \"lens\" (thin_lens) is not on the optical path from the eye"},
     {"BacklightRightAfterTheEye", kMul, [](json& s) { ElementNamed(s, "eye")["next"] = "backlight"; },
      "scene.json: /elements/0/next: \"backlight\" is backlight, a backlight; a lens, a mirror, a combiner, an in-line "
-     "optic or a panel was expected here"},
+     "optic, a panel or the world was expected here"},
     {"CombinerAfterAPanel", kHybrid,
      [](json& s) {
        ElementNamed(s, "rear_a")["next"] = "mirror2";

@@ -50,8 +50,8 @@ TEST(Registry, UnknownTypesListTheRegisteredOnes) {
     EXPECT_STREQ(
         e.what(),
         "scene.json: /elements/1/type: unknown element type \"nd_filtr\"; did you mean "
-        "\"nd_filter\"? Known types: backlight, eye, half_mirror, hwp, lc_panel, lens, mirror, nd_filter, pbs, "
-        "thin_lens, tunable_lens");
+        "\"nd_filter\"? Known types: backlight, eye, half_mirror, hwp, lc_panel, lens, linear_polarizer, mirror, "
+        "nd_filter, pbs, qwp, thin_lens, tunable_lens, world");
   }
 }
 

@@ -183,13 +183,18 @@ Patterns PatternsOf(const DisplaySystem& system, const py::sequence& arrays) {
   });
 }
 
+// The light the display shows with `patterns`: through its LED arrays' spread (systems/source_spread.h).
+LightField SeenLight(const DisplayModel& model, const Patterns& patterns) {
+  return Synthesize(model, DiffractedPatterns(SeenKernels(model.system(), false), patterns));
+}
+
 std::shared_ptr<LightField> Synthesize(const std::shared_ptr<DisplaySystem>& system, const py::sequence& arrays,
                                        std::optional<LightFieldGeometry> geometry, const std::string& sampling) {
   const Patterns patterns = PatternsOf(*system, arrays);
   const ModelRays rays = ModelRaysArg(*system, geometry, sampling, "synthesize");
   py::gil_scoped_release release;
   const DisplayModel model(*system, rays.geometry, rays.sampling);
-  return std::make_shared<LightField>(Synthesize(model, DiffractedPatterns(SeenKernels(*system, false), patterns)));
+  return std::make_shared<LightField>(SeenLight(model, patterns));
 }
 
 // What the eye sees of the solution, focused at each of `accommodation` (D):
@@ -275,8 +280,7 @@ void BindSolve(py::module_& m) {
           "synthesize",
           [](const Solution& s) {
             py::gil_scoped_release release;
-            return std::make_shared<LightField>(
-                Synthesize(*s.model, DiffractedPatterns(SeenKernels(s.model->system(), false), s.patterns)));
+            return std::make_shared<LightField>(SeenLight(*s.model, s.patterns));
           },
           "The light field the display shows with these patterns (the target's geometry)")
       .def(
