@@ -119,26 +119,22 @@ void AddSolveToPage(const DisplaySystem& system, const Patterns& patterns, const
                       prefix + preview, {{"EXR", prefix + "patterns/" + layer.name + ".exr"}}),
               pattern));
     // The panel-ready image cropped to the pixels the layer drives; the full panel is a click away.
-    const PanelEncoding encoded = EncodeForPanel(layer, patterns[k]);
-    const PanelSpec& panel = layer.panel;
-    std::vector<uint8_t> active(static_cast<size_t>(patterns[k].cols) * patterns[k].rows * 3);
-    for (int row = 0; row < patterns[k].rows; ++row)
-      for (int col = 0; col < patterns[k].cols * 3; ++col)
-        active[static_cast<size_t>(row) * patterns[k].cols * 3 + col] =
-            encoded.pixels[((static_cast<size_t>(row) + panel.active_top) * panel.resolution_cols + panel.active_left) *
-                               3 +
-                           col];
+    const PanelEncoding e = EncodeForPanel(layer, patterns[k]);
+    std::vector<uint8_t> active(static_cast<size_t>(e.active_cols) * e.active_rows * 3);
+    for (int row = 0; row < e.active_rows; ++row)
+      for (int col = 0; col < e.active_cols * 3; ++col)
+        active[static_cast<size_t>(row) * e.active_cols * 3 + col] =
+            e.pixels[((static_cast<size_t>(row) + e.active_top) * e.cols + e.active_left) * 3 + col];
     const std::string cropped = "panel_previews/" + layer.name + ".png";
     const ShownPng drive =
-        WriteShownPng8((out / cropped).string(), patterns[k].cols, patterns[k].rows, active, kPreviewWidthPx);
+        WriteShownPng8((out / cropped).string(), e.active_cols, e.active_rows, active, kPreviewWidthPx);
     const std::string full = prefix + "panels/" + layer.name + ".png";
     files.push_back(prefix + cropped);
-    panels.push_back(
-        Shown(Picture(layer.name + ": active " + std::to_string(patterns[k].cols) + " x " +
-                          std::to_string(patterns[k].rows) + " of the " + std::to_string(panel.resolution_cols) +
-                          " x " + std::to_string(panel.resolution_rows) + " panel" + Reduced(drive.factor),
-                      prefix + cropped, {{"full panel PNG", full}}, full),
-              drive));
+    panels.push_back(Shown(Picture(layer.name + ": active " + std::to_string(e.active_cols) + " x " +
+                                       std::to_string(e.active_rows) + " of the " + std::to_string(e.cols) + " x " +
+                                       std::to_string(e.rows) + " panel" + Reduced(drive.factor),
+                                   prefix + cropped, {{"full panel PNG", full}}, full),
+                           drive));
   }
   CompareResult self{fs::path(system.file).stem().string(), report.solver, report, system.brightness_efficiency,
                      system.luminance_efficiency};

@@ -35,10 +35,18 @@ std::vector<float> AsTheEyeSeesIt(const VirtualLayer& layer, const LayerPattern&
   return eye;
 }
 
-PanelEncoding EncodeForPanel(const VirtualLayer& layer, const LayerPattern& pattern) {
+PanelEncoding EncodeForPanel(const VirtualLayer& layer, const LayerPattern& driven) {
+  const bool leds = IsSolvedEmitter(layer);
+  const LayerPattern values = leds ? LedValues(layer, driven) : LayerPattern{};
+  const LayerPattern& pattern = leds ? values : driven;
   const PanelSpec& panel = layer.panel;
   PanelEncoding out;
-  out.pixels.assign(static_cast<size_t>(panel.resolution_cols) * panel.resolution_rows * 3, 0);
+  out.cols = leds ? pattern.cols : static_cast<int>(panel.resolution_cols);
+  out.rows = leds ? pattern.rows : static_cast<int>(panel.resolution_rows);
+  out.active_cols = pattern.cols, out.active_rows = pattern.rows;
+  out.active_left = leds ? 0 : static_cast<int>(panel.active_left);
+  out.active_top = leds ? 0 : static_cast<int>(panel.active_top);
+  out.pixels.assign(static_cast<size_t>(out.cols) * out.rows * 3, 0);
   const double black = panel.black_level, inverse_gamma = 1.0 / panel.gamma;
   for (int row = 0; row < pattern.rows; ++row)
     for (int col = 0; col < pattern.cols; ++col)
@@ -47,8 +55,7 @@ PanelEncoding EncodeForPanel(const VirtualLayer& layer, const LayerPattern& patt
         double drive = (t - black) / (1.0 - black);
         if (drive < 0) ++out.below_black_level, drive = 0;
         double code = std::round(255.0 * std::pow(std::min(drive, 1.0), inverse_gamma));
-        size_t at =
-            ((static_cast<size_t>(row) + panel.active_top) * panel.resolution_cols + col + panel.active_left) * 3 + c;
+        size_t at = ((static_cast<size_t>(row) + out.active_top) * out.cols + col + out.active_left) * 3 + c;
         out.pixels[at] = static_cast<uint8_t>(code);
       }
   return out;
@@ -160,19 +167,11 @@ std::vector<std::string> WriteSolution(const DisplayModel& model, const Patterns
     const VirtualLayer& layer = model.system().layers[k];
     WriteExr(PatternFile(folder, layer), Image{t[k].cols, t[k].rows, {"R", "G", "B"}, t[k].rgb});
     written.push_back("patterns/" + layer.name + ".exr");
-    // An LED array is driven one value per LED: its panel image is the LEDs', not its fine grid's.
-    VirtualLayer driven = layer;
-    const LayerPattern values = IsSolvedEmitter(layer) ? LedValues(layer, t[k]) : LayerPattern{};
-    if (IsSolvedEmitter(layer)) {
-      driven.panel.resolution_cols = driven.panel.active_cols = values.cols;
-      driven.panel.resolution_rows = driven.panel.active_rows = values.rows;
-    }
-    PanelEncoding panel = EncodeForPanel(driven, IsSolvedEmitter(layer) ? values : t[k]);
+    PanelEncoding panel = EncodeForPanel(layer, t[k]);
     if (panel.below_black_level)
       annotated.warnings.push_back("panel \"" + layer.name + "\": " + std::to_string(panel.below_black_level) +
                                    " values are darker than its black level and were encoded as 0");
-    WritePng8((fs::path(folder) / "panels" / (layer.name + ".png")).string(), int(driven.panel.resolution_cols),
-              int(driven.panel.resolution_rows), 3, panel.pixels);
+    WritePng8((fs::path(folder) / "panels" / (layer.name + ".png")).string(), panel.cols, panel.rows, 3, panel.pixels);
     written.push_back("panels/" + layer.name + ".png");
   }
   WriteFileAtomically((fs::path(folder) / "trace.csv").string(), TraceCsv(annotated));

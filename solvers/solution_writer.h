@@ -22,9 +22,12 @@ namespace layerlab {
 struct PanelEncoding {
   std::vector<uint8_t> pixels;   // [row][col][rgb] over the whole panel
   size_t below_black_level = 0;  // values the panel cannot make as dark as asked
+  int cols = 0, rows = 0;        // the whole panel's pixels
+  int active_cols = 0, active_rows = 0, active_left = 0, active_top = 0;  // the pixels the pattern drives
 };
 
-// Encodes a layer's pattern for its panel: code = 255 ((t - b) / (1 - b))^(1/gamma).
+// Encodes a layer's pattern for its panel: code = 255 ((t - b) / (1 - b))^(1/gamma). An LED array
+// (systems/source_spread.h) is driven one value per LED: its panel is its LEDs' grid, not its fine one.
 PanelEncoding EncodeForPanel(const VirtualLayer& layer, const LayerPattern& pattern);
 
 // A layer's pattern in the eye's orientation (x right, y up as the eye sees the layer): the panel's pixel

@@ -24,6 +24,18 @@ std::vector<std::string> ScenePathPointers(const ordered_json& scene) {
         for (size_t i = 0; i < (*s)["scenes"].size(); ++i)
           if ((*s)["scenes"][i].is_string())
             pointers.push_back(std::string("/run/") + section + "/scenes/" + std::to_string(i));
+  // The files elements read beside the scene: a lens's prescription, a panel's fixed pattern, a backlight's
+  // emission image, a world's scene.
+  if (scene.is_object() && scene.contains("elements") && scene["elements"].is_array())
+    for (size_t i = 0; i < scene["elements"].size(); ++i) {
+      const ordered_json& e = scene["elements"][i];
+      const std::string at = "/elements/" + std::to_string(i) + "/";
+      for (const char* key : {"prescription", "fixed_pattern", "scene"})
+        if (e.is_object() && e.contains(key) && e[key].is_string()) pointers.push_back(at + key);
+      if (const ordered_json* pattern = e.is_object() ? object(e, "pattern") : nullptr;
+          pattern && pattern->contains("file") && (*pattern)["file"].is_string())
+        pointers.push_back(at + "pattern/file");
+    }
   return pointers;
 }
 

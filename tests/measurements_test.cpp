@@ -331,5 +331,21 @@ TEST(CalibratedSceneTest, EveryRelativePathFollowsFromBareFileNames) {
   EXPECT_EQ(scene["solve"]["target_scene"], "targets/dice.json");
 }
 
+// The files elements read beside the scene follow too: a lens's prescription, a panel's fixed pattern, a
+// backlight's emission image and a world's scene.
+TEST(CalibratedSceneTest, ElementFilesFollow) {
+  nlohmann::ordered_json scene = {
+      {"elements",
+       {{{"type", "lens"}, {"prescription", "lenses/a.zmx"}},
+        {{"type", "lc_panel"}, {"fixed_pattern", "mask.exr"}},
+        {{"type", "backlight"}, {"pattern", {{"file", "glow.exr"}, {"pixel_pitch", "1 mm"}}}},
+        {{"type", "world"}, {"scene", "/abs/wall.json"}}}}};
+  RebaseRelativePaths(scene, "scene.json", "out/calibrated.json");
+  EXPECT_EQ(scene["elements"][0]["prescription"], "../lenses/a.zmx");
+  EXPECT_EQ(scene["elements"][1]["fixed_pattern"], "../mask.exr");
+  EXPECT_EQ(scene["elements"][2]["pattern"]["file"], "../glow.exr");
+  EXPECT_EQ(scene["elements"][3]["scene"], "/abs/wall.json");
+}
+
 }  // namespace
 }  // namespace layerlab
