@@ -7,6 +7,7 @@
 #include <exception>
 #include <filesystem>
 #include <numbers>
+#include <optional>
 
 #include "layerlab/analysis/run_option_table.h"
 #include "layerlab/framework/atomic_file.h"
@@ -18,6 +19,7 @@
 #include "layerlab/framework/units.h"
 #include "layerlab/retina/eye_optics.h"
 #include "layerlab/retina/retina_workspace.h"
+#include "layerlab/systems/ghosts.h"
 #include "layerlab/systems/lc_response.h"
 #include "layerlab/systems/world_view.h"
 
@@ -189,7 +191,9 @@ std::string RetinaStateName(double diopters) {
   return name;
 }
 
-std::vector<RetinaStateResult> WriteRetinaSweep(
+namespace {
+
+std::vector<RetinaStateResult> TraceSweep(
     const DisplayModel& model, const Patterns& t, const SceneRadiance& natural, const RetinaSweepOptions& o,
     const std::string& folder, const std::function<void(size_t, size_t, const RetinaStateResult&)>& progress) {
   const DisplaySystem& system = model.system();
@@ -253,6 +257,22 @@ std::vector<RetinaStateResult> WriteRetinaSweep(
   }
   WriteFileAtomically((out / "retina.csv").string(), csv);
   return results;
+}
+
+}  // namespace
+
+std::vector<RetinaStateResult> WriteRetinaSweep(
+    const DisplayModel& model, const Patterns& t, const SceneRadiance& natural, const RetinaSweepOptions& o,
+    const std::string& folder, const std::function<void(size_t, size_t, const RetinaStateResult&)>& progress) {
+  // A folded path's ghosts are seen with the display (systems/ghosts.h).
+  std::optional<DisplayModel> ghosted;
+  Patterns ghosted_patterns;
+  if (!model.system().ghosts.empty()) {
+    const GhostedDisplay g = WithGhosts(model.system());
+    ghosted.emplace(g.system, model.geometry(), model.sampling());
+    ghosted_patterns = GhostedPatterns(g, t);
+  }
+  return TraceSweep(ghosted ? *ghosted : model, ghosted ? ghosted_patterns : t, natural, o, folder, progress);
 }
 
 }  // namespace layerlab

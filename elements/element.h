@@ -43,6 +43,8 @@ class Element {
   // Names of the outgoing connections, read from the element's JSON object
   // (each names the next element away from the eye). A backlight and the world have none.
   virtual std::vector<std::string> output_ports() const { return {"next"}; }
+  // Those of its ports that a scene may leave out: nothing is seen through them.
+  virtual std::vector<std::string> optional_ports() const { return {}; }
   // True when the element acts on polarization (compile then tracks Jones vectors).
   virtual bool polarizing() const { return false; }
 
@@ -102,12 +104,18 @@ class MirrorElement : public Element {
 class CombinerElement : public Element {
  public:
   ElementKind kind() const final { return ElementKind::kCombiner; }
-  // Whether light through `port` is mirrored about the vertical axis (flip x)
-  // or the horizontal axis (flip y) in eye space.
-  virtual bool flips_x(size_t port) const = 0;
-  virtual bool flips_y(size_t port) const = 0;
-  // Applies the combiner to light leaving `port`'s side toward the eye.
-  virtual void transfer(size_t port, Light& light) const = 0;
+  // Whether light it transmits or reflects (`action`, as for transfer) is
+  // mirrored about the vertical axis (flip x) or the horizontal axis (flip y) in eye space.
+  virtual bool flips_x(size_t action) const = 0;
+  virtual bool flips_y(size_t action) const = 0;
+  // Applies the combiner to light that it transmits (kTransmittedPort) or
+  // reflects (kReflectedPort) toward the eye (elements/splitter_ports.h).
+  virtual void transfer(size_t action, Light& light) const = 0;
+  // At normal incidence ("fold": "back"): what it reflects returns along the path it came by.
+  virtual bool reflects_back() const { return false; }
+  // 1/m: the power of its reflection for light meeting its face toward the eye
+  // (a curved half mirror); its other face reflects with the opposite power.
+  virtual double reflection_power() const { return 0; }
 };
 
 // Something light passes through on its way (a wave plate, a filter).

@@ -44,7 +44,7 @@ std::unique_ptr<Element> MakeMirror(Params& p) {
   Rgb reflectance = p.fraction_rgb("reflectance", 1.0);
   for (double r : reflectance)
     if (!(r > 0)) p.fail("reflectance", "a mirror that reflects no light shows nothing behind it");
-  return std::make_unique<Mirror>(f, reflectance, ReadFold(p));
+  return std::make_unique<Mirror>(f, reflectance, ReadFold(p, false));
 }
 
 }  // namespace

@@ -8,10 +8,11 @@
 // | transmittance_s | fraction, [r,g,b] or table | 0          | Ts (leakage)                     |
 // | reflectance_p   | fraction, [r,g,b] or table | 0          | Rp (leakage)                     |
 // | p_axis          | angle                      | 0 deg      | p direction, from eye-space x    |
-// | fold            | horizontal, vertical       | horizontal | as for half_mirror               |
+// | fold            | horizontal, vertical, back | horizontal | as for half_mirror; back: a reflective polarizer at normal incidence |
 // | gap             | length                     | see thin_lens | path length from the element before it |
-// | transmitted     | name                       | required   | branch straight behind           |
-// | reflected       | name                       | required   | branch off to the side           |
+// | transmitted     | name or null               | required   | branch straight behind           |
+// | reflected       | name or null               | required, none with fold back | branch off to the side |
+// | reflected_from_behind | name or null         | nothing    | as for half_mirror               |
 #include <cmath>
 
 #include "layerlab/elements/element.h"
@@ -26,14 +27,16 @@ class PolarizingBeamSplitter final : public CombinerElement {
  public:
   PolarizingBeamSplitter(Rgb tp, Rgb rs, Rgb ts, Rgb rp, double axis, Fold fold)
       : tp_(tp), rs_(rs), ts_(ts), rp_(rp), axis_(axis), fold_(fold) {}
-  std::vector<std::string> output_ports() const override { return SplitterPorts(); }
+  std::vector<std::string> output_ports() const override { return SplitterPorts(fold_); }
+  std::vector<std::string> optional_ports() const override { return {"reflected_from_behind"}; }
   bool polarizing() const override { return true; }
-  bool flips_x(size_t port) const override { return ReflectedFlipsX(port, fold_); }
-  bool flips_y(size_t port) const override { return ReflectedFlipsY(port, fold_); }
+  bool flips_x(size_t action) const override { return ReflectedFlipsX(action, fold_); }
+  bool flips_y(size_t action) const override { return ReflectedFlipsY(action, fold_); }
+  bool reflects_back() const override { return fold_ == Fold::kBack; }
 
-  void transfer(size_t port, Light& light) const override {
-    const Rgb& p_eff = port == kReflectedPort ? rp_ : tp_;
-    const Rgb& s_eff = port == kReflectedPort ? rs_ : ts_;
+  void transfer(size_t action, Light& light) const override {
+    const Rgb& p_eff = action == kReflectedPort ? rp_ : tp_;
+    const Rgb& s_eff = action == kReflectedPort ? rs_ : ts_;
     double c = std::cos(axis_), s = std::sin(axis_);
     for (int k = 0; k < 3; ++k) {
       ChannelLight& ch = light[k];
@@ -66,7 +69,7 @@ std::unique_ptr<Element> MakePbs(Params& p) {
       p.fail("transmittance_s", std::string("Ts + Rs exceeds 1 in channel ") + kChannelNames[c]);
   }
   double axis = p.quantity("p_axis", Dimension::kAngle, 0.0);
-  return std::make_unique<PolarizingBeamSplitter>(tp, rs, ts, rp, axis, ReadFold(p));
+  return std::make_unique<PolarizingBeamSplitter>(tp, rs, ts, rp, axis, ReadFold(p, true));
 }
 
 }  // namespace

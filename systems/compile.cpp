@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numeric>
 #include <optional>
 #include <set>
 
+#include "layerlab/elements/splitter_ports.h"
 #include "layerlab/eye/pupil_size.h"
 #include "layerlab/framework/units.h"
 #include "layerlab/lenses/lens_system.h"
@@ -15,15 +17,10 @@
 #include "layerlab/systems/eye_pose_limits.h"
 #include "layerlab/systems/layer_ray_map.h"
 #include "layerlab/systems/optics.h"
+#include "layerlab/systems/route_light.h"
 
 namespace layerlab {
 namespace {
-
-// An element that acts on light on its way to the eye (efficiency, polarization).
-struct LightStep {
-  const Element* element;
-  size_t port;  // for combiners
-};
 
 // What the walk knows at one point of one path from the eye.
 struct PathState {
@@ -39,6 +36,9 @@ struct PathState {
   std::string tunable;               // a focus-tunable element passed, if any
   bool flip_x = false, flip_y = false;
   std::string label;
+  size_t length = 0;                       // elements met so far
+  int reversals = 0;                       // turns between away from and toward the eye (folded paths)
+  std::map<const SceneNode*, int> passes;  // since the first turn: how often each element was met
 };
 
 // The farthest a pupil point lies from the pupil's centre (a square's corner).
@@ -50,6 +50,14 @@ double PupilReach(const EyeModel& eye) {
 constexpr size_t kMaxPathElements = 256;  // from the eye to a backlight (each layer keeps its path)
 constexpr size_t kMaxStackPanels = 32;    // 0.5^32 = 2.3e-10 of white at the solvers' start
 constexpr size_t kMaxLayers = 1024;       // virtual layers, over every branch and subframe
+// Folded paths (docs/optics.md, "Paths that pass an element more than once"): a route that has turned is
+// followed while it can still pass kFaintestRoute of the light and meets no element more than kMaxPasses
+// times since its first turn; a stack's other routes are its ghosts when they bring at least kGhostFloor
+// of its brightest route's light.
+constexpr double kFaintestRoute = 1e-4;
+constexpr int kMaxPasses = 8;
+constexpr double kGhostFloor = 1e-3;
+constexpr size_t kMaxFoldedSteps = 100000;  // elements met on turned routes, per subframe
 
 std::string Mm(double meters) { return FormatFixed(meters * 1e3, 2) + " mm"; }
 std::string Quoted(const std::string& name) { return "\"" + name + "\""; }
@@ -114,15 +122,21 @@ class Walker {
 
     // Each subframe is its own walk of the same path (a tunable lens takes its
     // power of that subframe); its layers and branches are kept apart.
+    {
+      std::vector<const SceneNode*> path;
+      CheckConnections(eye_node, path);
+    }
     for (subframe_ = 0; subframe_ < K; ++subframe_) {
       visited_ = {&eye_node};
-      stack_ = {&eye_node};
+      folded_steps_ = 0;
       const size_t first_layer = system_.layers.size(), first_branch = system_.branches.size();
+      const size_t first_ghost = system_.ghosts.size();
       PathState start;
       start.previous_position = 0.0;
       start.previous_name = eye_node.element->name();
       try {
-        Walk(Follow(eye_node, 0, kOptics), start);
+        Walk(Follow(eye_node, 0), start);
+        SettleStacks();
       } catch (const Error& e) {
         if (!time_varying) throw;
         throw Error(e.where(),
@@ -133,6 +147,11 @@ class Walker {
       for (size_t k = first_layer; k < system_.layers.size(); ++k) {
         system_.layers[k].name += suffix;
         system_.layers[k].subframe = subframe_;
+      }
+      for (size_t g = first_ghost; g < system_.ghosts.size(); ++g) {
+        system_.ghosts[g].name += suffix;
+        for (VirtualLayer& layer : system_.ghosts[g].layers) layer.name += suffix, layer.subframe = subframe_;
+        for (int c = 0; c < 3; ++c) system_.ghosts[g].optics_efficiency[c] /= K, system_.ghosts[g].efficiency[c] /= K;
       }
       for (size_t b = first_branch; b < system_.branches.size(); ++b) {
         Branch& branch = system_.branches[b];
@@ -178,32 +197,59 @@ class Walker {
     return *eye;
   }
 
-  // The node that `from`'s port leads to, checked for existence, loops and kind.
-  const SceneNode& Follow(const SceneNode& from, size_t port, const std::vector<ElementKind>& expected) {
-    const std::string port_name = from.element->output_ports()[port];
-    const std::string& target = from.outputs[port];
-    Location at = from.where.child(port_name);
-    const SceneNode* next = scene_.find(target);
-    if (!next) {
-      std::vector<std::string> names;
-      for (const SceneNode& n : scene_.nodes) names.push_back(n.element->name());
-      std::string msg = "dangling connection: no element is named \"" + target + "\"";
-      if (auto near = ClosestWord(target, names)) msg += "; did you mean \"" + *near + "\"?";
-      Fail(at, msg);
+  // The connections from the eye, depth first: each names an element, none leads back onto its own path, and
+  // no element is reached by two. Light that passes an element again does so by a reflection back toward the
+  // eye, which the walk follows (Walk, WalkBack); the connections themselves form a tree.
+  void CheckConnections(const SceneNode& node, std::vector<const SceneNode*>& path) {
+    if (path.size() >= kMaxPathElements)
+      Fail(node.where, "the path from the eye to " + Quoted(node.element->name()) + " passes more than " +
+                           std::to_string(kMaxPathElements) + " elements; layerlab compiles paths of up to " +
+                           std::to_string(kMaxPathElements));
+    path.push_back(&node);
+    for (size_t port = 0; port < node.outputs.size(); ++port) {
+      const std::string& target = node.outputs[port];
+      if (target.empty()) continue;  // nothing there
+      const Location at = node.where.child(node.element->output_ports()[port]);
+      const SceneNode* next = scene_.find(target);
+      if (!next) {
+        std::vector<std::string> names;
+        for (const SceneNode& n : scene_.nodes) names.push_back(n.element->name());
+        std::string msg = "dangling connection: no element is named \"" + target + "\"";
+        if (auto near = ClosestWord(target, names)) msg += "; did you mean \"" + *near + "\"?";
+        Fail(at, msg);
+      }
+      if (std::find(path.begin(), path.end(), next) != path.end())
+        Fail(at, "cyclic connection: \"" + target + "\" is already on the path from the eye to \"" +
+                     node.element->name() +
+                     "\"; light that passes an element again gets there by a reflection back toward the eye, "
+                     "which layerlab follows itself: a half_mirror or pbs with \"fold\": \"back\" (at normal "
+                     "incidence) or the \"reflected_from_behind\" port of one folded sideways (docs/optics.md, "
+                     "\"Paths that pass an element more than once\")");
+      if (!predecessor_.emplace(next, Predecessor{&node, port}).second)
+        Fail(at, "\"" + target + "\" is already reached by another connection; each element sits on one optical path");
+      const std::vector<ElementKind>& expected = ExpectedAfter(node);
+      if (std::find(expected.begin(), expected.end(), next->element->kind()) == expected.end()) {
+        std::vector<std::string> kinds;
+        for (ElementKind k : expected) kinds.push_back(KindName(k));
+        Fail(at, "\"" + target + "\" is " + next->element->type() + ", " + KindName(next->element->kind()) + "; " +
+                     JoinWords(kinds) + " was expected here");
+      }
+      CheckConnections(*next, path);
     }
-    if (std::find(stack_.begin(), stack_.end(), next) != stack_.end() || next == &from)
-      Fail(at, "cyclic connection: \"" + target + "\" is already on the path from the eye to \"" +
-                   from.element->name() + "\"");
-    if (visited_.count(next))
-      Fail(at, "\"" + target + "\" is already reached by another connection; each element sits on one optical path");
-    if (std::find(expected.begin(), expected.end(), next->element->kind()) == expected.end()) {
-      std::vector<std::string> kinds;
-      for (ElementKind k : expected) kinds.push_back(KindName(k));
-      Fail(at, "\"" + target + "\" is " + next->element->type() + ", " + KindName(next->element->kind()) + "; " +
-                   JoinWords(kinds) + " was expected here");
-    }
+    path.pop_back();
+  }
+
+  // The node that `from`'s port leads to (CheckConnections has checked it), marked as reached.
+  const SceneNode& Follow(const SceneNode& from, size_t port) {
+    const SceneNode* next = scene_.find(from.outputs[port]);
     visited_.insert(next);
     return *next;
+  }
+
+  // What may follow `from`: after a panel, the rest of its stack; elsewhere, optics.
+  static const std::vector<ElementKind>& ExpectedAfter(const SceneNode& from) {
+    static const std::vector<ElementKind> stack = {ElementKind::kPanel, ElementKind::kBacklight};
+    return from.element->kind() == ElementKind::kPanel ? stack : kOptics;
   }
 
   // "gap" counts from the element before, which must have a place of its own.
@@ -222,14 +268,18 @@ class Walker {
     state.placed_name = name;
   }
 
-  // A lens, mirror, combiner or in-line optic: its place, power, flips and light.
-  PathStep Pass(const SceneNode& node, size_t port, PathState& state) {
+  // A lens, mirror, combiner or in-line optic: its place, power, flips and light. `action`: what a combiner does
+  // (kTransmittedPort, kReflectedPort); `gap`: the path length from the element met before it; `front`: the
+  // light meets a combiner's face toward the eye (its reflection's power is the opposite on the other face).
+  PathStep Pass(const SceneNode& node, size_t action, PathState& state, std::optional<double> gap, bool front) {
     const Element& e = *node.element;
     if (e.powers_given() > 0 && e.powers_given() != scene_.subframes)
       Fail(node.where, Quoted(e.name()) + " gives " + std::to_string(e.powers_given()) +
                            " powers, one per subframe, but the scene shows " + std::to_string(scene_.subframes) +
                            " (\"subframes\": " + std::to_string(scene_.subframes) + " at the top of the scene)");
     double power = e.power_in_subframe(subframe_);
+    if (e.kind() == ElementKind::kCombiner && action == kReflectedPort)
+      power = static_cast<const CombinerElement&>(e).reflection_power() * (front ? 1 : -1);
     std::shared_ptr<const lenses::LensSystem> lens;
     lenses::VertexTransfer vertices;
     if (e.kind() == ElementKind::kLens) lens = static_cast<const LensElement&>(e).lens_system();
@@ -247,8 +297,8 @@ class Walker {
     PathStep step{e.name(), e.type(), e.kind(), "", std::nullopt, power, false, false, std::nullopt, {}, nullptr, 0};
     if (lens) step.lens_system = lens, step.axial_length_m = lens->vertex_z_m(lens->size() - 1);
     const bool first_power = !state.last_power;
-    if (e.gap()) {
-      step.position_m = AfterPrevious(node, state, *e.gap());
+    if (gap) {
+      step.position_m = AfterPrevious(node, state, *gap);
     } else if (powered && first_power) {
       step.position_m = system_.eye.eye_relief_m;  // the magnifier, as the paper places it
       if (!(*step.position_m > state.placed_at))
@@ -284,45 +334,124 @@ class Walker {
     }
     if (e.kind() == ElementKind::kCombiner) {
       const auto& combiner = static_cast<const CombinerElement&>(e);
-      step.port = e.output_ports()[port];
-      step.flips_x = combiner.flips_x(port);
-      step.flips_y = combiner.flips_y(port);
+      step.port = ActionName(action);
+      step.flips_x = combiner.flips_x(action);
+      step.flips_y = combiner.flips_y(action);
     }
     state.flip_x = state.flip_x != step.flips_x;
     state.flip_y = state.flip_y != step.flips_y;
     state.previous_position = step.position_m;
     if (step.position_m) *state.previous_position += step.axial_length_m;
     state.previous_name = e.name();
-    state.light.push_back({&e, port});
+    state.light.push_back({&e, action});
     state.steps.push_back(step);
     return step;
   }
 
+  static std::string ActionName(size_t action) { return action == kReflectedPort ? "reflected" : "transmitted"; }
+
+  // Light met going away from the eye, from the element before it.
   void Walk(const SceneNode& node, PathState state) {
-    if (stack_.size() >= kMaxPathElements)
-      Fail(node.where, "the path from the eye to " + Quoted(node.element->name()) + " passes more than " +
-                           std::to_string(kMaxPathElements) + " elements; layerlab compiles paths of up to " +
-                           std::to_string(kMaxPathElements));
-    stack_.push_back(&node);
+    if (!Follows(node, state)) return;
     const Element& e = *node.element;
     if (e.kind() == ElementKind::kCombiner) {
-      ++combiners_;
-      for (size_t port = 0; port < e.output_ports().size(); ++port) {
-        PathState branch = state;
-        Pass(node, port, branch);
-        branch.label = (state.label.empty() ? "" : state.label + "/") + e.name() + "." + e.output_ports()[port];
-        Walk(Follow(node, port, kOptics), branch);
-      }
+      if (state.reversals == 0) ++combiners_;
+      const bool back = static_cast<const CombinerElement&>(e).reflects_back();
+      Split(node, kTransmittedPort, true, state, e.gap(), [&](PathState s) { Forward(node, kTransmittedPort, s); });
+      Split(node, kReflectedPort, true, state, e.gap(), [&](PathState s) {
+        if (!back) return Forward(node, kReflectedPort, s);
+        ++s.reversals;  // at normal incidence: back along the path toward the eye
+        Back(node, s);
+      });
     } else if (e.kind() == ElementKind::kPanel) {
       if (state.label.empty()) state.label = "main";
-      Stack(node, state);
+      arrivals_.emplace_back(&node, std::move(state));
     } else if (e.kind() == ElementKind::kWorld) {
       SeeThrough(node, state);
     } else {
-      Pass(node, 0, state);
-      Walk(Follow(node, 0, kOptics), state);
+      Pass(node, 0, state, e.gap(), true);
+      Forward(node, 0, state);
     }
-    stack_.pop_back();
+  }
+
+  // Light met going toward the eye, returning from `node`'s port `port` after a reflection behind it; `gap`:
+  // the path length to it from the element met before (that element's own "gap").
+  void WalkBack(const SceneNode& node, size_t port, PathState state, std::optional<double> gap) {
+    const Element& e = *node.element;
+    if (e.kind() == ElementKind::kEye) return;  // sent back into the eye: nothing is seen there
+    if (!Follows(node, state)) return;
+    if (e.kind() != ElementKind::kCombiner) {
+      Pass(node, 0, state, gap, true);
+      return Back(node, state);
+    }
+    // Each action sends the light back toward the eye or, turning again, on into one of its ports.
+    auto on = [&](size_t to) { return [&, to](PathState s) { ++s.reversals, Forward(node, to, s); }; };
+    auto back = [&](PathState s) { Back(node, s); };
+    if (static_cast<const CombinerElement&>(e).reflects_back()) {
+      Split(node, kTransmittedPort, false, state, gap, back);
+      Split(node, kReflectedPort, false, state, gap, on(kTransmittedPort));
+    } else if (port == kTransmittedPort) {  // from behind: on toward the eye, or reflected to the fourth side
+      Split(node, kTransmittedPort, false, state, gap, back);
+      Split(node, kReflectedPort, false, state, gap, on(kBehindPort));
+    } else if (port == kReflectedPort) {  // from its reflected branch: reflected toward the eye, or across
+      Split(node, kReflectedPort, true, state, gap, back);
+      Split(node, kTransmittedPort, true, state, gap, on(kBehindPort));
+    } else {  // from the fourth side: across into the reflected branch, or reflected into the transmitted one
+      Split(node, kTransmittedPort, false, state, gap, on(kReflectedPort));
+      Split(node, kReflectedPort, false, state, gap, on(kTransmittedPort));
+    }
+  }
+
+  // A combiner's action on a copy of the route, named in its label, then `go` on.
+  template <typename Go>
+  void Split(const SceneNode& node, size_t action, bool front, const PathState& state, std::optional<double> gap,
+             Go go) {
+    PathState branch = state;
+    Pass(node, action, branch, gap, front);
+    branch.label = (state.label.empty() ? "" : state.label + "/") + node.element->name() + "." + ActionName(action);
+    go(std::move(branch));
+  }
+
+  // On from `node`'s port away from the eye; a side with nothing there ends the route in the dark.
+  void Forward(const SceneNode& node, size_t port, PathState& state) {
+    if (node.outputs[port].empty()) return;
+    Walk(Follow(node, port), std::move(state));
+  }
+
+  // Back from `node` toward the eye, to the element that leads to it.
+  void Back(const SceneNode& node, PathState& state) {
+    const Predecessor& before = predecessor_.at(&node);
+    if (before.node->element->kind() != ElementKind::kEye && !node.element->gap())
+      Fail(node.where, "light reflected back toward the eye goes from " + Quoted(node.element->name()) + " back to " +
+                           Quoted(before.node->element->name()) + ", a path length the scene does not give: give " +
+                           Quoted(node.element->name()) + " a \"gap\" (from " + Quoted(before.node->element->name()) +
+                           ")");
+    WalkBack(*before.node, before.port, std::move(state), node.element->gap());
+  }
+
+  // Whether the route goes on to `node`: a route that has turned is followed while it may still bring
+  // kFaintestRoute of the light, meeting each element at most kMaxPasses times since its first turn.
+  bool Follows(const SceneNode& node, PathState& state) {
+    if (++state.length > kMaxPathElements)
+      Fail(node.where, "the path from the eye to " + Quoted(node.element->name()) + " passes more than " +
+                           std::to_string(kMaxPathElements) + " elements; layerlab compiles paths of up to " +
+                           std::to_string(kMaxPathElements));
+    if (state.reversals == 0) return true;
+    const Element& e = *node.element;
+    if (e.kind() == ElementKind::kLens && static_cast<const LensElement&>(e).lens_system())
+      Fail(node.where, "light reflected back toward the eye meets the lens " + Quoted(e.name()) +
+                           " again; a lens of surfaces is traced from the eye outward only: describe it as a "
+                           "thin_lens, or keep it off the folded part of the path");
+    if (++folded_steps_ > kMaxFoldedSteps)
+      Fail(node.where, "the light reflected back and forth through " + Quoted(e.name()) + " takes more than " +
+                           std::to_string(kMaxFoldedSteps) + " steps to fall below " +
+                           FormatFixed(kFaintestRoute * 100, 2) +
+                           " % of its strength: its mirrors lose too little light for layerlab to follow");
+    if (++state.passes[&node] > kMaxPasses) {
+      ++routes_cut_;
+      return false;
+    }
+    return BrightestThrough(state.light, system_.eye.channel_wavelengths_m) >= kFaintestRoute;
   }
 
   // The world behind a see-through path: its light at the eye, once (it is the same in every subframe).
@@ -353,8 +482,8 @@ class Walker {
     system_.worlds.push_back(std::move(w));
   }
 
-  // A panel stack from its front panel back to the backlight.
-  void Stack(const SceneNode& front, PathState state) {
+  // A panel stack from its front panel back to the backlight, seen by `state`'s route: its branch (the index).
+  int Stack(const SceneNode& front, PathState state) {
     Branch branch;
     branch.name = state.label;
     int branch_index = static_cast<int>(system_.branches.size());
@@ -388,10 +517,8 @@ class Walker {
       state.previous_name = layer.name;
       state.steps.push_back({layer.name, node->element->type(), ElementKind::kPanel, "", layer.position_m, 0, false,
                              false, std::nullopt, state.transfer, nullptr, 0});
-      stack_.push_back(node);
-      node = &Follow(*node, 0, {ElementKind::kPanel, ElementKind::kBacklight});
+      node = &Follow(*node, 0);
     }
-    stack_.resize(stack_.size() - branch.layers.size());
     const auto& backlight = static_cast<const BacklightElement&>(*node->element);
     if (backlight.emission()) {  // the stack's farthest layer, at its "gap" behind the panel in front
       RequireLayerRoom(*node);
@@ -407,6 +534,64 @@ class Walker {
     branch.optics_efficiency = PathEfficiency(light, polarization_angle);
     for (int c = 0; c < 3; ++c) branch.efficiency[c] = branch.optics_efficiency[c] * panels_transmittance[c];
     system_.branches.push_back(branch);
+    return branch_index;
+  }
+
+  // Each stack reached in this subframe: its branch by the route that brings the most light, its ghosts by the
+  // others that bring at least kGhostFloor of that (in the order the stacks were first reached).
+  void SettleStacks() {
+    std::vector<const SceneNode*> fronts;
+    for (const auto& [front, route] : arrivals_)
+      if (std::find(fronts.begin(), fronts.end(), front) == fronts.end()) fronts.push_back(front);
+    for (const SceneNode* front : fronts) {
+      const double angle = static_cast<const PanelElement&>(*front->element).spec().polarization_angle_rad;
+      std::vector<const PathState*> routes;
+      std::vector<double> light;  // Rec.709 luminance through each route's optics
+      for (const auto& [f, route] : arrivals_) {
+        if (f != front) continue;
+        routes.push_back(&route);
+        const Rgb e = PathEfficiency(route.light, angle);
+        light.push_back(kLuminanceWeights[0] * e[0] + kLuminanceWeights[1] * e[1] + kLuminanceWeights[2] * e[2]);
+      }
+      const size_t brightest = std::max_element(light.begin(), light.end()) - light.begin();
+      for (const PathState* route : routes) folded_ = folded_ || route->reversals > 0;
+      const int branch = Stack(*front, *routes[brightest]);
+      for (size_t r = 0; r < routes.size(); ++r)
+        if (r != brightest && light[r] > 0 && light[r] >= kGhostFloor * light[brightest])
+          AddGhost(*routes[r], *routes[brightest], branch, angle);
+    }
+    arrivals_.clear();
+  }
+
+  // A stack seen again by `route`, another than `main`'s (its branch): the same panels, each as far beyond the
+  // route's last placed element as on the main route, imaged by the route's own optics.
+  void AddGhost(const PathState& route, const PathState& main, int branch_index, double polarization_angle) {
+    const Branch& branch = system_.branches[branch_index];
+    Ghost ghost;
+    ghost.name = route.label;
+    ghost.branch = branch_index;
+    Rgb panels_transmittance = {1, 1, 1};
+    for (int k : branch.layers) {
+      VirtualLayer layer = system_.layers[k];
+      const double beyond = layer.position_m - main.placed_at;
+      const RayTransfer<double> m = route.transfer.then_gap(beyond);
+      // A real image behind the eye (D < 0) is seen as a blur, as any layer beyond the accommodation range.
+      if (ZeroWithinRounding(m.b, std::abs(route.transfer.b) + std::abs(beyond * route.transfer.d))) {
+        system_.warnings.push_back("the ghost of " + Quoted(branch.name) + " by " + Quoted(route.label) +
+                                   " is imaged into the pupil plane, where every pixel covers the whole field: it is "
+                                   "left out");
+        return;
+      }
+      layer.position_m = route.placed_at + beyond;
+      layer.path = route.steps;
+      SetImage(layer.panel, route, m, &layer);
+      if (!layer.panel.emitter)
+        for (int c = 0; c < 3; ++c) panels_transmittance[c] *= layer.panel.max_transmittance[c];
+      ghost.layers.push_back(std::move(layer));
+    }
+    ghost.optics_efficiency = PathEfficiency(route.light, polarization_angle);
+    for (int c = 0; c < 3; ++c) ghost.efficiency[c] = ghost.optics_efficiency[c] * panels_transmittance[c];
+    system_.ghosts.push_back(std::move(ghost));
   }
 
   void RequireLayerRoom(const SceneNode& node) const {
@@ -601,26 +786,8 @@ class Walker {
       channel.polarized = polarized;
       if (polarized) channel.field = LinearPolarization(polarization_angle);
     }
-    for (auto step = path.rbegin(); step != path.rend(); ++step) {  // from the panel toward the eye
-      switch (step->element->kind()) {
-        case ElementKind::kCombiner:
-          static_cast<const CombinerElement*>(step->element)->transfer(step->port, light);
-          break;
-        case ElementKind::kInlineOptic:
-          static_cast<const InlineOpticElement*>(step->element)->transfer(light);
-          break;
-        case ElementKind::kMirror:
-          static_cast<const MirrorElement*>(step->element)->transfer(light);
-          break;
-        case ElementKind::kLens:  // thin lenses are ideal; a real lens loses light at its surfaces and in its glass
-          if (auto lens = static_cast<const LensElement*>(step->element)->lens_system())
-            for (int c = 0; c < 3; ++c)
-              light[c].attenuate(lenses::AxialTransmittance(*lens, system_.eye.channel_wavelengths_m[c]));
-          break;
-        default:
-          break;
-      }
-    }
+    for (auto step = path.rbegin(); step != path.rend(); ++step)  // from the panel toward the eye
+      ApplyLightStep(*step, system_.eye.channel_wavelengths_m, light);
     return {light[0].power(), light[1].power(), light[2].power()};
   }
 
@@ -637,7 +804,15 @@ class Walker {
   const Scene& scene_;
   DisplaySystem system_;
   std::set<const SceneNode*> visited_;
-  std::vector<const SceneNode*> stack_;
+  struct Predecessor {
+    const SceneNode* node;
+    size_t port;
+  };
+  std::map<const SceneNode*, Predecessor> predecessor_;           // who leads to each element, and by which port
+  std::vector<std::pair<const SceneNode*, PathState>> arrivals_;  // stacks reached (their front panel) and how
+  size_t folded_steps_ = 0;
+  int routes_cut_ = 0;   // routes ended at kMaxPasses
+  bool folded_ = false;  // a stack is reached by a route that turned
   int combiners_ = 0;
   int subframe_ = 0;
 };
@@ -708,7 +883,8 @@ void Walker::CheckFirstOrderValidity() {
   std::vector<Worst> lenses;  // in the order first met
   for (const VirtualLayer& l : system_.layers)
     for (const PathStep& s : l.path) {
-      if ((s.type != "thin_lens" && s.type != "tunable_lens" && s.type != "mirror") || s.power_diopters == 0)
+      const bool curved_mirror = s.type == "mirror" || s.type == "half_mirror";
+      if ((s.type != "thin_lens" && s.type != "tunable_lens" && !curved_mirror) || s.power_diopters == 0)
         continue;  // a mirror with power is a curved one
       auto it = std::find_if(lenses.begin(), lenses.end(), [&](const Worst& w) { return w.element == s.element; });
       if (it == lenses.end()) it = lenses.insert(lenses.end(), Worst{s.element, &l, &s});
@@ -766,6 +942,11 @@ void Walker::Finish() {
     system_.vignetting_free_fov_x_rad = field(eye.eyebox_width_m);
     system_.vignetting_free_fov_y_rad = field(eye.eyebox_height_m);
   }
+  if (routes_cut_ > 0)
+    system_.warnings.push_back(std::to_string(routes_cut_) +
+                               " routes of light reflected back and forth were cut "
+                               "after meeting one element " +
+                               std::to_string(kMaxPasses) + " times; what they would show is left out");
   CheckApertures();
   CheckFirstOrderValidity();
   CheckEyePose();
@@ -862,7 +1043,8 @@ void Walker::DescribeComponents() {
     for (const VirtualLayer& l : layers)
       for (const PathStep& s : l.path) {
         if (s.kind == ElementKind::kLens) lenses.insert(s.element);
-        if (s.kind == ElementKind::kMirror) mirrors.insert(s.element);
+        if (s.kind == ElementKind::kMirror || (s.kind == ElementKind::kCombiner && s.power_diopters != 0))
+          mirrors.insert(s.element);  // fold mirrors and curved half mirrors
       }
     if (lenses.empty() && mirrors.empty())
       parts.push_back("direct view, no optics with power (" + std::to_string(layers.size()) + " layers)");
@@ -890,6 +1072,10 @@ void Walker::DescribeComponents() {
     parts.push_back("multiplicative stacks in " + std::to_string(products) + " branch" + (products > 1 ? "es" : ""));
   parts.push_back(system_.polarization_tracked ? "polarization (Jones vectors per channel)"
                                                : "no polarization model (no polarizing element)");
+  if (folded_)
+    parts.push_back("folded paths: each stack placed and solved by its brightest route; " +
+                    std::to_string(system_.ghosts.size() / K) + " ghost" + (system_.ghosts.size() / K == 1 ? "" : "s") +
+                    " by other routes, added in the retinal images");
   if (std::any_of(layers.begin(), layers.end(), [](const VirtualLayer& l) { return l.inverted; }))
     parts.push_back("inverted layers (real intermediate images)");
   if (std::any_of(layers.begin(), layers.end(), [](const VirtualLayer& l) { return l.flip_x || l.flip_y; }))

@@ -8,7 +8,7 @@
 namespace layerlab {
 
 DisplayModel::DisplayModel(const DisplaySystem& system, const LightFieldGeometry& lf, Sampling sampling)
-    : system_(system), lf_(lf) {
+    : system_(system), lf_(lf), sampling_(sampling) {
   for (const VirtualLayer& layer : system.layers) projections_.emplace_back(layer, lf, sampling);
   for (const Branch& b : system.branches)
     for (int c = 0; c < 3; ++c)  // a subframe's branch shown in every subframe of the frame

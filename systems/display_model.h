@@ -45,6 +45,7 @@ class DisplayModel {
 
   const DisplaySystem& system() const { return system_; }
   const LightFieldGeometry& geometry() const { return lf_; }
+  Sampling sampling() const { return sampling_; }
   size_t layer_count() const { return projections_.size(); }
   const LayerProjection& projection(size_t k) const { return projections_[k]; }
   size_t branch_count() const { return system_.branches.size(); }
@@ -69,6 +70,7 @@ class DisplayModel {
  private:
   DisplaySystem system_;
   LightFieldGeometry lf_;
+  Sampling sampling_;
   std::vector<LayerProjection> projections_;
   std::vector<std::array<float, 3>> weights_;
   double white_luminance_ = 0;

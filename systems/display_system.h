@@ -97,6 +97,18 @@ struct WorldView {
   std::vector<PathStep> path;           // the elements from the eye to it, nearest the eye first
 };
 
+// A folded path's ghost (docs/optics.md, "Paths that pass an element more than once"): a stack seen again by
+// another route than its branch's, the light that leaks through a wrong pass. It shows its branch's patterns
+// at its own depths and with its own efficiency; the solvers leave it out, the retinal images add it
+// (systems/ghosts.h).
+struct Ghost {
+  std::string name;                  // its route, as a branch's name: "rp.transmitted/hm.transmitted"
+  int branch = 0;                    // index into DisplaySystem::branches: the stack it shows again
+  std::vector<VirtualLayer> layers;  // one per layer of that branch, in the branch's order (nearest the eye first)
+  Rgb optics_efficiency{};           // as a branch's
+  Rgb efficiency{};
+};
+
 inline constexpr int kMaxSubframes = 64;  // the most subframes a scene may show per frame
 
 struct DisplaySystem {
@@ -112,6 +124,7 @@ struct DisplaySystem {
   std::vector<VirtualLayer> layers;  // farthest first (ascending diopters)
   std::vector<Branch> branches;
   std::vector<WorldView> worlds;  // none for a display that is not see-through
+  std::vector<Ghost> ghosts;      // none without a folded path
   // Time multiplexing: K subframes per frame, the eye sees their mean; each
   // subframe's layers and branches are their own (a panel holds K patterns).
   int subframes = 1;          // 1 to kMaxSubframes

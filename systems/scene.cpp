@@ -13,6 +13,8 @@
 // | tolerance   | object              | none               | assembly tolerances `layerlab tolerance` draws from (docs/optics.md, Tolerances) |
 #include "layerlab/systems/scene.h"
 
+#include <algorithm>
+
 #include <climits>
 #include <map>
 
@@ -70,9 +72,20 @@ Scene ParseScene(nlohmann::json document, const std::string& file, const Element
                               std::to_string(NAME_MAX) + " bytes: at most " + std::to_string(kMaxName));
     if (auto [it, fresh] = index_of_name.emplace(name, i); !fresh)
       params.fail("name", "element name \"" + name + "\" is already used by /elements/" + std::to_string(it->second));
+    const std::vector<std::string> optional = node.element->optional_ports();
     for (const std::string& port : node.element->output_ports()) {
+      const bool may_be_dark = node.element->kind() == ElementKind::kCombiner;  // a light trap behind that side
+      if (may_be_dark && std::count(optional.begin(), optional.end(), port) && !params.has(port)) {
+        node.outputs.emplace_back();
+        continue;
+      }
+      if (may_be_dark && params.has(port) && params.raw(port).is_null()) {
+        node.outputs.emplace_back();
+        continue;
+      }
       std::string target = params.string(port);
-      if (target.empty()) params.fail(port, "names no element");
+      if (target.empty())
+        params.fail(port, may_be_dark ? "names no element; null says that nothing is there" : "names no element");
       node.outputs.push_back(target);
     }
     params.check_all_read();

@@ -26,7 +26,8 @@ inline constexpr const char* kSceneFormat = "layerlab-scene/1";
 
 struct SceneNode {
   std::unique_ptr<Element> element;
-  // One entry per element->output_ports(): the name of the next element.
+  // One entry per element->output_ports(): the name of the next element; empty
+  // for a combiner's side with nothing there (null, or an optional port left out).
   std::vector<std::string> outputs;
   Location where;  // of the element's object
 };

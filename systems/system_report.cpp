@@ -152,6 +152,39 @@ std::string FormatSeeThrough(const DisplaySystem& s) {
   return out;
 }
 
+// A folded path's ghosts: each stack seen again by another route, its depths and its light against the branch's.
+std::string FormatGhosts(const DisplaySystem& s) {
+  if (s.ghosts.empty()) return "";
+  std::string out =
+      "\nghosts (the same patterns seen by another route of a folded path; added in the retinal images, "
+      "left out of the solve)\n";
+  for (const Ghost& g : s.ghosts) {
+    const Branch& b = s.branches[g.branch];
+    std::string depths;
+    for (const VirtualLayer& l : g.layers) depths += (depths.empty() ? "" : ", ") + F(l.diopters, 3);
+    Rgb relative;
+    for (int c = 0; c < 3; ++c) relative[c] = b.efficiency[c] > 0 ? g.efficiency[c] / b.efficiency[c] : 0;
+    out += Row("  of %-20s by %s", ("\"" + b.name + "\"").c_str(), g.name.c_str());
+    out += Row("    at %s D (the branch's at its own depths), efficiency %s = %s of the branch's", depths.c_str(),
+               Rgb3(g.efficiency, 5).c_str(), Rgb3(relative, 4).c_str());
+  }
+  return out;
+}
+
+nlohmann::json GhostsToJson(const DisplaySystem& s) {
+  nlohmann::json ghosts = nlohmann::json::array();
+  for (const Ghost& g : s.ghosts) {
+    std::vector<double> diopters;
+    for (const VirtualLayer& l : g.layers) diopters.push_back(l.diopters);
+    ghosts.push_back({{"branch", g.branch},
+                      {"route", g.name},
+                      {"layer_diopters", diopters},
+                      {"optics_efficiency_rgb", g.optics_efficiency},
+                      {"efficiency_rgb", g.efficiency}});
+  }
+  return ghosts;
+}
+
 // The virtual layers, farthest first, and which of them show a fixed pattern.
 std::string FormatLayerTable(const DisplaySystem& s) {
   std::string out;
@@ -233,6 +266,7 @@ std::string FormatSystemTable(const DisplaySystem& s) {
                Rgb3(br.optics_efficiency, 4).c_str(), Rgb3(br.efficiency, 4).c_str(), br.backlight.c_str(),
                F(br.backlight_luminance_cd_m2, 1).c_str());
   }
+  out += FormatGhosts(s);
   out += FormatSeeThrough(s);
 
   out += "\nsystem\n";
@@ -313,6 +347,7 @@ nlohmann::json SystemToJson(const DisplaySystem& s) {
                            {"luminance_cd_m2", w.luminance_cd_m2},
                            {"efficiency_rgb", w.efficiency}});
   if (!s.worlds.empty()) j["ambient_contrast_ratio"] = AmbientContrastRatio(s);
+  if (!s.ghosts.empty()) j["ghosts"] = GhostsToJson(s);
   j["subframes"] = s.subframes;
   j["frame_rate_hz"] = s.frame_rate_hz;
   j["panel_refresh_rate_hz"] = s.subframes * s.frame_rate_hz;

@@ -115,9 +115,17 @@ const BadScene kCases[] = {
     {"DanglingConnection", kMul, [](json& s) { ElementNamed(s, "eye")["next"] = "lenz"; },
      "scene.json: /elements/0/next: dangling connection: no element is named \"lenz\"; did you mean \"lens\"?"},
     {"CyclicConnection", kMul, [](json& s) { ElementNamed(s, "rear")["next"] = "front"; },
-     "scene.json: /elements/3/next: cyclic connection: \"front\" is already on the path from the eye to \"rear\""},
+     "scene.json: /elements/3/next: cyclic connection: \"front\" is already on the path from the eye to \"rear\";"
+     " light that passes an element again gets there by a reflection back toward the eye, which layerlab follows "
+     "itself: "
+     "a half_mirror or pbs with \"fold\": \"back\" (at normal incidence) or the \"reflected_from_behind\" port of one "
+     "folded sideways (docs/optics.md, \"Paths that pass an element more than once\")"},
     {"CycleBackToTheLens", kMul, [](json& s) { ElementNamed(s, "rear")["next"] = "lens"; },
-     "scene.json: /elements/3/next: cyclic connection: \"lens\" is already on the path from the eye to \"rear\""},
+     "scene.json: /elements/3/next: cyclic connection: \"lens\" is already on the path from the eye to \"rear\";"
+     " light that passes an element again gets there by a reflection back toward the eye, which layerlab follows "
+     "itself: "
+     "a half_mirror or pbs with \"fold\": \"back\" (at normal incidence) or the \"reflected_from_behind\" port of one "
+     "folded sideways (docs/optics.md, \"Paths that pass an element more than once\")"},
     // Without the lens the panels are viewed directly, which is a display of its own; the lens is then left over.
     {"LensLeftOffThePath", kMul, [](json& s) { ElementNamed(s, "eye")["next"] = "front"; },
      "scene.json: /elements/1: element \"lens\" (thin_lens) is not on the optical path from the eye"},

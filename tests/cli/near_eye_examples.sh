@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
-# Issue 51's non-uniform backlights and optical see-through, each shipped
-# example through every command a user runs on it: info names the emission
-# (or the world and the ambient contrast), solve writes the panels and the
+# Issue 51's near-eye and see-through examples (non-uniform backlights, the
+# world behind a combiner, paths folded by polarization), each through every
+# command a user runs on it: info names the emission (or the world and the
+# ambient contrast, or the ghosts), solve writes the panels and the
 # backlight's layer (the LEDs' values, or the fixed pinlights unchanged),
-# retina shows it (with the world added), run writes its report.
-# Usage: sources_and_see_through.sh LAYERLAB EXAMPLES_DIR WORK_DIR
+# retina shows it (with the world and the ghosts added), run writes its report.
+# Usage: near_eye_examples.sh LAYERLAB EXAMPLES_DIR WORK_DIR
 set -u
 layerlab=$1 examples=$2 work=$3
 fail() { echo "FAIL: $*"; for f in "$work"/*.err; do [ -f "$f" ] && { echo "== $f"; tail -n 8 "$f"; }; done; exit 1; }
@@ -35,4 +36,8 @@ check see_through rear_b front_b "ambient contrast       2.286: the display's fu
 [ -s "$work/see_through.retina/see_through/1.00D.exr" ] || fail "retina see_through wrote no see_through/1.00D.exr"
 head -1 "$work/see_through.retina/retina.csv" | grep -q ",world_cd_m2,contrast_against_world" ||
   fail "retina see_through's retina.csv has no world columns"
-echo "sources and see-through examples: info, solve, retina and run ok"
+check pancake rear front "folded paths: each stack placed and solved by its brightest route; 2 ghosts by other routes"
+grep -qF "by reflective_polarizer.transmitted/half_mirror.transmitted" "$work/pancake.info" ||
+  fail "info pancake does not list the ghost straight through its half mirror"
+check birdbath rear front "splitter.transmitted/bath.reflected/splitter.reflected"
+echo "near-eye examples: info, solve, retina and run ok"
