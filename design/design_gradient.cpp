@@ -47,6 +47,7 @@ std::string OtherThanPlacement(const DisplaySystem& a, const DisplaySystem& b) {
         x.rotation_rad != y.rotation_rad)
       return "layer " + x.name + "'s grid (its order, size, flips or rotation)";
     if (x.ray_map || y.ray_map) return "layer " + x.name + " (seen through a real lens)";
+    if (x.lenslets || y.lenslets) return "layer " + x.name + " (seen through a lens array)";
   }
   for (size_t i = 0; i < a.branches.size(); ++i) {
     if (a.branches[i].layers != b.branches[i].layers) return "the branches' layers";

@@ -70,6 +70,15 @@ class Element {
   std::optional<double> gap_;
 };
 
+// A lens array (elements/lens_array.cpp): identical thin lenslets of the
+// element's focal length on a square or hexagonal lattice centred on the axis.
+struct LensArraySpec {
+  double pitch_m = 0;      // m, lenslet centre to centre
+  int cols = 0, rows = 0;  // lenslets across (per row) and down
+  double fill = 1;         // each lenslet's clear aperture, as a fraction of its cell
+  bool hexagonal = false;  // rows sqrt(3)/2 pitch apart, every other one shifted by half a pitch
+};
+
 // A thin lens of either sign, anywhere on the path (paper Eq. 1 for the magnifier).
 class LensElement : public Element {
  public:
@@ -82,6 +91,8 @@ class LensElement : public Element {
   // A lens of real surfaces and glass (elements/lens.cpp), its first vertex
   // nearest the eye, traced exactly by lenses/; none for an ideal thin lens.
   virtual std::shared_ptr<const lenses::LensSystem> lens_system() const { return nullptr; }
+  // An array of such lenses, each focal_length(); none for a single lens.
+  virtual const LensArraySpec* lens_array() const { return nullptr; }
 };
 
 // A real lens's prescription as designed, without its tilt and decentre: the

@@ -338,9 +338,9 @@ std::vector<LayerTables> GeneralTables(const DisplayModel& model, const RetinaGr
         if (!s.separable() || model.projection(k).mapped()) continue;
         table.cols.resize(retina.cols), table.rows.resize(retina.rows);
         for (int j = 0; j < retina.cols; ++j)
-          table.cols[j] = s.Column(tan_x[j] + pupil[p].x_m * table.blur - table.deviation_x);
+          table.cols[j] = s.Column(tan_x[j] + pupil[p].x_m * table.blur - table.deviation_x, pupil[p].x_m);
         for (int i = 0; i < retina.rows; ++i)
-          table.rows[i] = s.Row(tan_y[i] + pupil[p].y_m * table.blur - table.deviation_y);
+          table.rows[i] = s.Row(tan_y[i] + pupil[p].y_m * table.blur - table.deviation_y, pupil[p].y_m);
       }
   return tables;
 }
@@ -393,10 +393,12 @@ void GeneralRetina(const DisplayModel& model, const Patterns& t, const RetinaGri
                 value[k * 3 + c] = Read(table.rows[i], table.cols[j], t[k], c);
                 continue;
               }
-              value[k * 3 + c] = s.separable() ? Read(table.rows[i], table.cols[j], t[k], c)
-                                               : Read(s.At(tan_x[j] + pupil[p].x_m * table.blur - table.deviation_x,
-                                                           tan_y[i] + pupil[p].y_m * table.blur - table.deviation_y),
-                                                      t[k], c);
+              value[k * 3 + c] =
+                  s.separable()
+                      ? Read(table.rows[i], table.cols[j], t[k], c)
+                      : Read(s.At(tan_x[j] + pupil[p].x_m * table.blur - table.deviation_x,
+                                  tan_y[i] + pupil[p].y_m * table.blur - table.deviation_y, pupil[p].x_m, pupil[p].y_m),
+                             t[k], c);
             }
           }
           for (size_t b = 0; b < model.branch_count(); ++b) {

@@ -16,6 +16,7 @@
 #include "layerlab/lenses/sequential_trace.h"
 #include "layerlab/systems/eye_pose_limits.h"
 #include "layerlab/systems/layer_ray_map.h"
+#include "layerlab/systems/lenslet_map.h"
 #include "layerlab/systems/optics.h"
 #include "layerlab/systems/route_light.h"
 
@@ -294,7 +295,8 @@ class Walker {
     }
     const bool powered = e.kind() == ElementKind::kLens || power != 0;
     if (e.powers_given() > 0) state.tunable = e.name();
-    PathStep step{e.name(), e.type(), e.kind(), "", std::nullopt, power, false, false, std::nullopt, {}, nullptr, 0};
+    PathStep step{e.name(),     e.type(), e.kind(), "", std::nullopt, power, false, false,
+                  std::nullopt, {},       nullptr,  0,  std::nullopt};
     if (lens) step.lens_system = lens, step.axial_length_m = lens->vertex_z_m(lens->size() - 1);
     const bool first_power = !state.last_power;
     if (gap) {
@@ -326,7 +328,10 @@ class Walker {
       state.last_power = state.steps.size();
       ++state.powered;
     }
-    if (e.kind() == ElementKind::kLens) step.clear_aperture_m = static_cast<const LensElement&>(e).clear_aperture();
+    if (e.kind() == ElementKind::kLens) {
+      step.clear_aperture_m = static_cast<const LensElement&>(e).clear_aperture();
+      if (const LensArraySpec* array = static_cast<const LensElement&>(e).lens_array()) step.lens_array = *array;
+    }
     if (e.kind() == ElementKind::kMirror) {
       const auto& mirror = static_cast<const MirrorElement&>(e);
       step.flips_x = mirror.flips_x();
@@ -516,7 +521,7 @@ class Walker {
       state.previous_position = layer.position_m;
       state.previous_name = layer.name;
       state.steps.push_back({layer.name, node->element->type(), ElementKind::kPanel, "", layer.position_m, 0, false,
-                             false, std::nullopt, state.transfer, nullptr, 0});
+                             false, std::nullopt, state.transfer, nullptr, 0, std::nullopt});
       node = &Follow(*node, 0);
     }
     const auto& backlight = static_cast<const BacklightElement&>(*node->element);
@@ -631,6 +636,7 @@ class Walker {
     const double D = m.a / m.b;
     if (D < 0) FailBehindTheEye(node, key, state, layer, D);
     SetImage(spec, state, m, &layer);
+    SeeThroughLenslets(node, state, m, &layer);
     if (spec.tilted() && subframe_ == 0)
       system_.warnings.push_back("panel " + Quoted(layer.name) +
                                  " is tilted: its layer's depth, pitch and field are the untilted panel's "
@@ -672,6 +678,49 @@ class Walker {
       return lens_at + *spec.distance_m;
     }
     return AfterPrevious(node, state, *node.element->gap());
+  }
+
+  // Behind a lens array: which lenslet each ray passes (systems/lenslet_map.h), the field the array spans, and
+  // the span of pupil points over which each lenslet shows only its own elemental image.
+  void SeeThroughLenslets(const SceneNode& node, const PathState& state, const RayTransfer<double>& m,
+                          VirtualLayer* layer) {
+    const PathStep* array = nullptr;
+    for (const PathStep& s : state.steps) {
+      if (!s.lens_array) continue;
+      if (array)
+        Fail(node.where, "panel " + Quoted(layer->name) + " is seen through two lens arrays, " +
+                             Quoted(array->element) + " and " + Quoted(s.element) + "; layerlab models one per path");
+      array = &s;
+    }
+    if (!array) return;
+    for (const PathStep& s : state.steps)
+      if (s.lens_system)
+        Fail(node.where, "panel " + Quoted(layer->name) + " is seen through the lens array " + Quoted(array->element) +
+                             " and the real lens " + Quoted(s.element) +
+                             ", which layerlab does not trace together; describe the lens as a thin_lens");
+    if (layer->panel.tilted())
+      Fail(node.where.child("tilt"),
+           "a tilted panel behind the lens array " + Quoted(array->element) + " is not modelled; give it no tilt");
+    const LensArraySpec& a = *array->lens_array;
+    const double P = array->power_diopters;
+    const RayTransfer<double>& before = array->arrival;  // pupil to the array
+    const RayTransfer<double> through = before.then_power(P);
+    // After the array: M2 = m through^-1 (both of determinant 1).
+    const double m2_a = m.a * through.d - m.b * through.c, m2_b = -m.a * through.b + m.b * through.a;
+    const double half_x = 0.5 * a.cols * a.pitch_m + (a.hexagonal && a.rows > 1 ? 0.25 * a.pitch_m : 0.0);
+    const double half_y =
+        0.5 * a.pitch_m * (a.hexagonal ? 0.5 * std::sqrt(3.0) * (a.rows - 1) + 2 / std::sqrt(3.0) : a.rows);
+    layer->fov_x_rad = std::min(layer->fov_x_rad, 2 * std::atan(half_x / std::abs(before.b)));
+    layer->fov_y_rad = std::min(layer->fov_y_rad, 2 * std::atan(half_y / std::abs(before.b)));
+    // A ray from pupil point p through lenslet i, at offset d from its centre, meets the panel
+    // d (alpha - M2.b P) - M2.b a1 p / b1 from the centre of i's elemental image, whose half width is alpha w / 2
+    // (alpha = M2.a + M2.b / b1): pupil points within +-E/2 see i's own, E = w (|alpha| - fill |alpha - M2.b P|) b1 /
+    // |M2.b a1|.
+    const double alpha = m2_a + m2_b / before.b;
+    const double span = a.pitch_m * (std::abs(alpha) - a.fill * std::abs(alpha - m2_b * P)) * std::abs(before.b) /
+                        std::abs(m2_b * before.a);
+    layer->lenslets =
+        std::make_shared<const LensletMap>(a, before.a, before.b, layer->diopters, m2_b * P / m.b, std::max(0.0, span));
   }
 
   // The transfer from the panel to the pupil; refused when it images the panel into the pupil plane.
@@ -793,6 +842,7 @@ class Walker {
 
   void FindMagnifier();
   void CheckApertures();
+  void CheckLensletCrosstalk();
   void CheckFirstOrderValidity();
   void CheckEyePose();
   void MapRealLenses();
@@ -829,7 +879,7 @@ void Walker::FindMagnifier() {
   }
   if (!lens) return;
   const auto& element = static_cast<const LensElement&>(*scene_.find(*lens)->element);
-  if (element.tunable()) return;
+  if (element.tunable() || element.lens_array()) return;
   system_.lens = *lens;
   system_.focal_length_m = element.focal_length();
   system_.clear_aperture_m = element.clear_aperture();
@@ -921,6 +971,21 @@ void Walker::CheckFirstOrderValidity() {
   }
 }
 
+// Rays from pupil points beyond a lens array's crosstalk-free span read neighbouring elemental images: modelled,
+// and said, with the limit.
+void Walker::CheckLensletCrosstalk() {
+  const EyeModel& eye = system_.eye;
+  const double reach = std::max(eye.eyebox_width_m, eye.eyebox_height_m) + eye.pupil_diameter_m;  // along an axis
+  for (const VirtualLayer& l : system_.layers)
+    if (l.lenslets && reach > l.lenslets->crosstalk_free_m() * (1 + 1e-9) && l.subframe == 0)
+      system_.warnings.push_back(
+          "through the lens array, pupil points reach " + Mm(reach) +
+          " across (the eyebox and the pupil), beyond the " + Mm(l.lenslets->crosstalk_free_m()) +
+          " within which each lenslet shows " + Quoted(l.name) +
+          "'s own elemental image behind it: rays from beyond read the neighbouring elemental images (crosstalk, "
+          "modelled in the solve and the retinal images)");
+}
+
 void Walker::Finish() {
   if (system_.layers.empty())
     Fail({scene_.file, "/elements"}, "no panel lies on any path from the eye: a display needs at least one");
@@ -948,6 +1013,7 @@ void Walker::Finish() {
                                "after meeting one element " +
                                std::to_string(kMaxPasses) + " times; what they would show is left out");
   CheckApertures();
+  CheckLensletCrosstalk();
   CheckFirstOrderValidity();
   CheckEyePose();
   MapRealLenses();
@@ -1072,6 +1138,14 @@ void Walker::DescribeComponents() {
     parts.push_back("multiplicative stacks in " + std::to_string(products) + " branch" + (products > 1 ? "es" : ""));
   parts.push_back(system_.polarization_tracked ? "polarization (Jones vectors per channel)"
                                                : "no polarization model (no polarizing element)");
+  for (const VirtualLayer& l : layers)
+    if (l.lenslets && l.subframe == 0) {
+      const LensArraySpec& a = l.lenslets->array();
+      parts.push_back("lens array: " + std::to_string(a.cols) + " x " + std::to_string(a.rows) +
+                      (a.hexagonal ? " hexagonal" : " square") + " lenslets " + Mm(a.pitch_m) + " apart before " +
+                      Quoted(l.name) + ", each its elemental image's own to pupil points within " +
+                      Mm(l.lenslets->crosstalk_free_m()));
+    }
   if (folded_)
     parts.push_back("folded paths: each stack placed and solved by its brightest route; " +
                     std::to_string(system_.ghosts.size() / K) + " ghost" + (system_.ghosts.size() / K == 1 ? "" : "s") +

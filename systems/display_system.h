@@ -26,6 +26,7 @@
 namespace layerlab {
 
 class SampledRayMap;  // systems/layer_ray_map.h
+class LensletMap;     // systems/lenslet_map.h
 
 // One element between the eye and a panel, in path order.
 struct PathStep {
@@ -42,6 +43,7 @@ struct PathStep {
   // the design wavelength (the eye's green channel).
   std::shared_ptr<const lenses::LensSystem> lens_system;
   double axial_length_m = 0;
+  std::optional<LensArraySpec> lens_array;  // a lens array's lattice (its lenslets' power is power_diopters)
 };
 
 struct VirtualLayer {
@@ -72,6 +74,9 @@ struct VirtualLayer {
   // (systems/layer_ray_map.h); the paraxial fields above are the design
   // wavelength's. None through ideal optics (the affine fast path).
   std::shared_ptr<const SampledRayMap> ray_map;
+  // Behind a lens array: which lenslet each eye ray passes, and how far that
+  // moves it on the grid above (the grid is the image through a lenslet on the axis).
+  std::shared_ptr<const LensletMap> lenslets;
 };
 
 struct Branch {

@@ -18,7 +18,7 @@ LayerSampler::LayerSampler(const VirtualLayer& layer, Sampling sampling)
     : sampling_(sampling),
       cols_(layer.cols),
       rows_(layer.rows),
-      separable_(layer.rotation_rad == 0.0),
+      separable_(layer.rotation_rad == 0.0 && (!layer.lenslets || layer.lenslets->separable())),
       diopters_(layer.diopters),
       eye_from_layer_tan_x_(layer.eye_from_layer_tan_x),
       eye_from_layer_tan_y_(layer.eye_from_layer_tan_y),
@@ -27,7 +27,8 @@ LayerSampler::LayerSampler(const VirtualLayer& layer, Sampling sampling)
       tan_pitch_x_(layer.tan_pitch_x),
       tan_pitch_y_(layer.tan_pitch_y),
       flip_x_(layer.flip_x),
-      flip_y_(layer.flip_y) {}
+      flip_y_(layer.flip_y),
+      lenslets_(layer.lenslets) {}
 
 std::array<double, 2> LayerSampler::PanelCoordinates(double tan_x, double tan_y) const {
   const double ux = tan_x - eye_from_layer_tan_x_, uy = tan_y - eye_from_layer_tan_y_;

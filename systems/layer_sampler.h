@@ -8,15 +8,19 @@
 // (columns left to right and rows top to bottom in eye space), then mirrored
 // for flip_x / flip_y into the panel's own order. Nearest sampling reads the
 // pixel containing the point (the paper's binary P_k); bilinear blends the
-// four around it. Points outside the grid read 0.
+// four around it. Points outside the grid read 0. Behind a lens array the
+// point first moves by the lenslet the ray passes, which depends on the ray's
+// pupil point p as well (lenslet_map.h): the overloads that take p.
 #pragma once
 
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <string>
 
 #include "layerlab/systems/display_system.h"
+#include "layerlab/systems/lenslet_map.h"
 
 namespace layerlab {
 
@@ -45,12 +49,23 @@ class LayerSampler {
   int rows() const { return rows_; }
   double diopters() const { return diopters_; }
   Sampling sampling() const { return sampling_; }
-  // Without rotation a column depends only on u_x and a row only on u_y.
+  // Without rotation (and behind a square lattice of lenslets) a column depends only on u_x and a row only on u_y.
   bool separable() const { return separable_; }
+  bool behind_lenslets() const { return lenslets_ != nullptr; }
 
   AxisTap Column(double tan_x) const;  // separable layers only
   AxisTap Row(double tan_y) const;     // separable layers only
   RayTaps At(double tan_x, double tan_y) const;
+  // The same for a ray from pupil point p (m), for a layer behind lenslets.
+  AxisTap Column(double tan_x, double pupil_x) const {
+    return Column(lenslets_ ? lenslets_->ShiftX(pupil_x, tan_x) : tan_x);
+  }
+  AxisTap Row(double tan_y, double pupil_y) const { return Row(lenslets_ ? lenslets_->ShiftY(pupil_y, tan_y) : tan_y); }
+  RayTaps At(double tan_x, double tan_y, double pupil_x, double pupil_y) const {
+    if (!lenslets_) return At(tan_x, tan_y);
+    const std::array<double, 2> u = lenslets_->Shift(pupil_x, pupil_y, tan_x, tan_y);
+    return At(u[0], u[1]);
+  }
   // The point's grid coordinates (col, row) in the panel's own order, pixel
   // centres at integers: the rule above before it picks cells.
   std::array<double, 2> PanelCoordinates(double tan_x, double tan_y) const;
@@ -64,6 +79,7 @@ class LayerSampler {
   bool separable_;
   double diopters_, eye_from_layer_tan_x_, eye_from_layer_tan_y_, cos_, sin_, tan_pitch_x_, tan_pitch_y_;
   bool flip_x_, flip_y_;
+  std::shared_ptr<const LensletMap> lenslets_;
 };
 
 // Inline: the general and mapped projections call these once per ray and channel.

@@ -28,12 +28,12 @@ LayerProjection::LayerProjection(const VirtualLayer& layer, const LightFieldGeom
   for (int c = 0; c < lf.views_x; ++c)
     for (int j = 0; j < lf.cols; ++j)
       col_taps_[static_cast<size_t>(c) * lf.cols + j] =
-          sampler_.Column(view_gain_ * lf.view_x(c) + pixel_gain_ * lf.pixel_x(j));
+          sampler_.Column(view_gain_ * lf.view_x(c) + pixel_gain_ * lf.pixel_x(j), lf.view_x(c));
   row_taps_.resize(static_cast<size_t>(lf.views_y) * lf.rows);
   for (int r = 0; r < lf.views_y; ++r)
     for (int i = 0; i < lf.rows; ++i)
       row_taps_[static_cast<size_t>(r) * lf.rows + i] =
-          sampler_.Row(view_gain_ * lf.view_y(r) + pixel_gain_ * lf.pixel_y(i));
+          sampler_.Row(view_gain_ * lf.view_y(r) + pixel_gain_ * lf.pixel_y(i), lf.view_y(r));
 }
 
 LayerProjection::MappedRays LayerProjection::MapView(size_t view) const {
@@ -73,7 +73,7 @@ RayTaps LayerProjection::Taps(size_t view, int i, int j) const {
     return LayerSampler::Combine(row_taps_[static_cast<size_t>(vr) * lf_.rows + i],
                                  col_taps_[static_cast<size_t>(vc) * lf_.cols + j], cols());
   return sampler_.At(view_gain_ * lf_.view_x(vc) + pixel_gain_ * lf_.pixel_x(j),
-                     view_gain_ * lf_.view_y(vr) + pixel_gain_ * lf_.pixel_y(i));
+                     view_gain_ * lf_.view_y(vr) + pixel_gain_ * lf_.pixel_y(i), lf_.view_x(vc), lf_.view_y(vr));
 }
 
 void LayerProjection::Gather(size_t view, const float* pattern, float* out) const {

@@ -48,7 +48,9 @@ class LayerProjection {
   // Nearest sampling of an axis-aligned layer reads one pixel per ray, from
   // two tables per view: ray (i, j) reads pixel (row_taps(v)[i].i0,
   // col_taps(v)[j].i0), and misses the layer where either is -1.
-  bool one_tap() const { return separable() && sampling() == Sampling::kNearest; }
+  // Behind lenslets a ray's taps depend on its pupil point, not only on the offset the retina's one-tap
+  // tables are keyed by: such a layer takes the general paths.
+  bool one_tap() const { return separable() && sampling() == Sampling::kNearest && !sampler_.behind_lenslets(); }
   const AxisTap* row_taps(size_t view) const { return &row_taps_[(view / lf_.views_x) * lf_.rows]; }
   const AxisTap* col_taps(size_t view) const { return &col_taps_[(view % lf_.views_x) * lf_.cols]; }
 

@@ -36,7 +36,8 @@ const std::string kHybrid = "paper_prototype.json";
 const BadScene kCases[] = {
     {"UnknownType", kMul, [](json& s) { ElementNamed(s, "lens")["type"] = "thin_lense"; },
      "scene.json: /elements/1/type: unknown element type \"thin_lense\"; did you mean \"thin_lens\"? Known types: "
-     "backlight, eye, half_mirror, hwp, lc_panel, lens, linear_polarizer, mirror, pbs, qwp, thin_lens, tunable_lens, "
+     "backlight, eye, half_mirror, hwp, lc_panel, lens, lens_array, linear_polarizer, mirror, pbs, qwp, thin_lens, "
+     "tunable_lens, "
      "world"},
     {"MisspelledKey", kMul,
      [](json& s) {

@@ -47,11 +47,11 @@ TEST(Registry, UnknownTypesListTheRegisteredOnes) {
     testing::CompileJson(scene, registry);
     FAIL();
   } catch (const Error& e) {
-    EXPECT_STREQ(
-        e.what(),
-        "scene.json: /elements/1/type: unknown element type \"nd_filtr\"; did you mean "
-        "\"nd_filter\"? Known types: backlight, eye, half_mirror, hwp, lc_panel, lens, linear_polarizer, mirror, "
-        "nd_filter, pbs, qwp, thin_lens, tunable_lens, world");
+    EXPECT_STREQ(e.what(),
+                 "scene.json: /elements/1/type: unknown element type \"nd_filtr\"; did you mean "
+                 "\"nd_filter\"? Known types: backlight, eye, half_mirror, hwp, lc_panel, lens, lens_array, "
+                 "linear_polarizer, mirror, "
+                 "nd_filter, pbs, qwp, thin_lens, tunable_lens, world");
   }
 }
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Issue 51's near-eye and see-through examples (non-uniform backlights, the
-# world behind a combiner, paths folded by polarization), each through every
+# world behind a combiner, paths folded by polarization, a lens array), each through every
 # command a user runs on it: info names the emission (or the world and the
 # ambient contrast, or the ghosts), solve writes the panels and the
 # backlight's layer (the LEDs' values, or the fixed pinlights unchanged),
@@ -40,4 +40,5 @@ check pancake rear front "folded paths: each stack placed and solved by its brig
 grep -qF "by reflective_polarizer.transmitted/half_mirror.transmitted" "$work/pancake.info" ||
   fail "info pancake does not list the ghost straight through its half mirror"
 check birdbath rear front "splitter.transmitted/bath.reflected/splitter.reflected"
+check integral_imaging panel panel "lens array: 16 x 12 square lenslets 1.00 mm apart before \"panel\""
 echo "near-eye examples: info, solve, retina and run ok"
