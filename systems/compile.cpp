@@ -712,13 +712,12 @@ class Walker {
         0.5 * a.pitch_m * (a.hexagonal ? 0.5 * std::sqrt(3.0) * (a.rows - 1) + 2 / std::sqrt(3.0) : a.rows);
     layer->fov_x_rad = std::min(layer->fov_x_rad, 2 * std::atan(half_x / std::abs(before.b)));
     layer->fov_y_rad = std::min(layer->fov_y_rad, 2 * std::atan(half_y / std::abs(before.b)));
-    // A ray from pupil point p through lenslet i, at offset d from its centre, meets the panel
-    // d (alpha - M2.b P) - M2.b a1 p / b1 from the centre of i's elemental image, whose half width is alpha w / 2
-    // (alpha = M2.a + M2.b / b1): pupil points within +-E/2 see i's own, E = w (|alpha| - fill |alpha - M2.b P|) b1 /
-    // |M2.b a1|.
-    const double alpha = m2_a + m2_b / before.b;
-    const double span = a.pitch_m * (std::abs(alpha) - a.fill * std::abs(alpha - m2_b * P)) * std::abs(before.b) /
-                        std::abs(m2_b * before.a);
+    // A ray from pupil point p through lenslet i, at offset d from its centre, meets the array heading
+    // d1 h / b1 - p / b1 (the path up to it has determinant 1) and the panel d (alpha - M2.b P) - M2.b p / b1
+    // from the centre of i's elemental image, whose half width is alpha w / 2 (alpha = M2.a + M2.b d1 / b1):
+    // pupil points within +-E/2 see i's own, E = w (|alpha| - fill |alpha - M2.b P|) |b1 / M2.b|.
+    const double alpha = m2_a + m2_b * before.d / before.b;
+    const double span = a.pitch_m * (std::abs(alpha) - a.fill * std::abs(alpha - m2_b * P)) * std::abs(before.b / m2_b);
     layer->lenslets =
         std::make_shared<const LensletMap>(a, before.a, before.b, layer->diopters, m2_b * P / m.b, std::max(0.0, span));
   }

@@ -168,15 +168,15 @@ TEST(LensArray, TheCrosstalkFreeSpanIsWhereEveryLensletShowsItsOwnElementalImage
   EXPECT_NEAR(E, kPitch * kEyeToArray / kF, 1e-12);
   EXPECT_LE(WorstCrosstalk(0.5 * E * 0.999, 3.3e-3, 0, 0), 0);
   EXPECT_GT(WorstCrosstalk(0.5 * E * 1.01, 3.3e-3, 0, 0), 0);
-  // A field lens of 100 mm 10 mm from the eye before the array, the panel 3.2 mm behind it: the span by the trace.
+  // A diverging lens (-100 mm) 10 mm from the eye before the array, the panel 3.2 mm behind it: the span by the trace.
   nlohmann::json relay = IntegralImaging("3.2 mm");
   relay["elements"][0]["next"] = "field_lens";
   relay["elements"][1]["gap"] = "20 mm";
   relay["elements"].push_back(
-      {{"type", "thin_lens"}, {"name", "field_lens"}, {"focal_length", "100 mm"}, {"gap", "10 mm"}, {"next", "mla"}});
+      {{"type", "thin_lens"}, {"name", "field_lens"}, {"focal_length", "-100 mm"}, {"gap", "10 mm"}, {"next", "mla"}});
   const double R = CompileJson(relay).layers[0].lenslets->crosstalk_free_m();
-  EXPECT_LE(WorstCrosstalk(0.5 * R * 0.999, 3.2e-3, 0.1, 0.01), 0) << R;
-  EXPECT_GT(WorstCrosstalk(0.5 * R * 1.01, 3.2e-3, 0.1, 0.01), 0) << R;
+  EXPECT_LE(WorstCrosstalk(0.5 * R * 0.999, 3.2e-3, -0.1, 0.01), 0) << R;
+  EXPECT_GT(WorstCrosstalk(0.5 * R * 1.01, 3.2e-3, -0.1, 0.01), 0) << R;
   // Its eyebox of 4 mm and pupil of 4 mm reach 8 mm across, within the 9.09 mm: no warning; 6 mm reach 10 mm.
   for (const std::string& w : s.warnings) EXPECT_EQ(w.find("crosstalk"), std::string::npos) << w;
   const DisplaySystem wide = CompileJson(IntegralImaging("3.3 mm", nlohmann::json::object(), "6 mm"));
