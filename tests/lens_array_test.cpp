@@ -141,10 +141,10 @@ TEST(LensArray, EveryRayReadsThePixelItsLensletSendsItTo) {
 
 // How far past its elemental image's edge the worst ray from pupil points +-p lands (m; <= 0: none leaves),
 // traced here: through a thin lens of focal length `lens_f` (0: none) `lens_at` from the eye, to the array at
-// kEyeToArray, through the lenslet at offset d from its centre c (every lenslet, d at its centre and near its
-// edges), free space g to the panel. Elemental image i is centred where the ray from the pupil's centre through
+// kEyeToArray, through the lenslet at offset d from its centre c (every lenslet, d at its centre and at the edges
+// of its clear aperture, a `fill` of the pitch), free space g to the panel. Elemental image i is centred where the ray from the pupil's centre through
 // lenslet i's centre meets the panel; it reaches half-way to its neighbours' centres.
-double WorstCrosstalk(double p, double g, double lens_f, double lens_at) {
+double WorstCrosstalk(double p, double g, double lens_f, double lens_at, double fill) {
   const double P = lens_f ? 1 / lens_f : 0, d1 = lens_at, d2 = kEyeToArray - lens_at;
   auto panel_x = [&](double pupil, double h, double c) {
     const double u = (h - pupil * (1 - d2 * P)) / (d1 + d2 - d1 * d2 * P);  // the direction that reaches h
@@ -155,7 +155,7 @@ double WorstCrosstalk(double p, double g, double lens_f, double lens_at) {
   for (int i = 0; i < kCols; ++i) {
     const double c = (i + 0.5 - 0.5 * kCols) * kPitch, centre = panel_x(0, c, c);
     const double half = 0.5 * (panel_x(0, c + kPitch, c + kPitch) - centre);
-    for (double d : {-0.499 * kPitch, 0.0, 0.499 * kPitch})
+    for (double d : {-0.5 * fill * kPitch, 0.0, 0.5 * fill * kPitch})
       for (double pupil : {-p, p}) beyond = std::max(beyond, std::abs(panel_x(pupil, c + d, c) - centre) - half);
   }
   return beyond;
@@ -166,17 +166,18 @@ TEST(LensArray, TheCrosstalkFreeSpanIsWhereEveryLensletShowsItsOwnElementalImage
   const DisplaySystem s = CompileJson(IntegralImaging("3.3 mm"));
   const double E = s.layers[0].lenslets->crosstalk_free_m();
   EXPECT_NEAR(E, kPitch * kEyeToArray / kF, 1e-12);
-  EXPECT_LE(WorstCrosstalk(0.5 * E * 0.999, 3.3e-3, 0, 0), 0);
-  EXPECT_GT(WorstCrosstalk(0.5 * E * 1.01, 3.3e-3, 0, 0), 0);
-  // A diverging lens (-100 mm) 10 mm from the eye before the array, the panel 3.2 mm behind it: the span by the trace.
-  nlohmann::json relay = IntegralImaging("3.2 mm");
+  EXPECT_LE(WorstCrosstalk(0.5 * E * (1 - 1e-6), 3.3e-3, 0, 0, 1), 0);
+  EXPECT_GT(WorstCrosstalk(0.5 * E * (1 + 1e-6), 3.3e-3, 0, 0, 1), 0);
+  // A diverging lens (-100 mm) 10 mm from the eye before the array, lenslets of 80 % fill, the panel 3.2 mm
+  // behind them: the span by the trace.
+  nlohmann::json relay = IntegralImaging("3.2 mm", {{"fill_factor", 0.8}});
   relay["elements"][0]["next"] = "field_lens";
   relay["elements"][1]["gap"] = "20 mm";
   relay["elements"].push_back(
       {{"type", "thin_lens"}, {"name", "field_lens"}, {"focal_length", "-100 mm"}, {"gap", "10 mm"}, {"next", "mla"}});
   const double R = CompileJson(relay).layers[0].lenslets->crosstalk_free_m();
-  EXPECT_LE(WorstCrosstalk(0.5 * R * 0.999, 3.2e-3, -0.1, 0.01), 0) << R;
-  EXPECT_GT(WorstCrosstalk(0.5 * R * 1.01, 3.2e-3, -0.1, 0.01), 0) << R;
+  EXPECT_LE(WorstCrosstalk(0.5 * R * (1 - 1e-6), 3.2e-3, -0.1, 0.01, 0.8), 0) << R;
+  EXPECT_GT(WorstCrosstalk(0.5 * R * (1 + 1e-6), 3.2e-3, -0.1, 0.01, 0.8), 0) << R;
   // Its eyebox of 4 mm and pupil of 4 mm reach 8 mm across, within the 9.09 mm: no warning; 6 mm reach 10 mm.
   for (const std::string& w : s.warnings) EXPECT_EQ(w.find("crosstalk"), std::string::npos) << w;
   const DisplaySystem wide = CompileJson(IntegralImaging("3.3 mm", nlohmann::json::object(), "6 mm"));
