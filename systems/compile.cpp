@@ -58,7 +58,7 @@ constexpr size_t kMaxLayers = 1024;       // virtual layers, over every branch a
 constexpr double kFaintestRoute = 1e-4;
 constexpr int kMaxPasses = 8;
 constexpr double kGhostFloor = 1e-3;
-constexpr size_t kMaxFoldedSteps = 100000;  // elements met on turned routes, per subframe
+constexpr size_t kMaxFoldedSteps = 100000;  // elements met on turned routes, over every subframe
 
 std::string Mm(double meters) { return FormatFixed(meters * 1e3, 2) + " mm"; }
 std::string Quoted(const std::string& name) { return "\"" + name + "\""; }
@@ -129,7 +129,6 @@ class Walker {
     }
     for (subframe_ = 0; subframe_ < K; ++subframe_) {
       visited_ = {&eye_node};
-      folded_steps_ = 0;
       const size_t first_layer = system_.layers.size(), first_branch = system_.branches.size();
       const size_t first_ghost = system_.ghosts.size();
       PathState start;
