@@ -27,6 +27,9 @@ LayerResult MeasureLayer(const VirtualLayer& nominal, const DisplaySystem& syste
   out.layer = nominal.name;
   const VirtualLayer* perturbed = Named(system, nominal.name);
   if (!perturbed) throw Error("the perturbed display has no layer \"" + nominal.name + "\"");
+  if (nominal.lenslets)
+    throw Error("layer \"" + nominal.name +
+                "\" is seen through a lens array, whose lenslets the tolerance analysis does not trace");
   out.misregistration =
       MeasureMisregistration(nominal, *perturbed, eye.channel_wavelengths_m, MisregistrationRays(nominal, eye));
   out.distortion_percent = 0;

@@ -928,6 +928,11 @@ std::string UndeterminedWarning(const ScalarFit& fit, const UndeterminedParamete
 
 bool FitGeometry(const DisplaySystem& system, const Measurements& measurements, const CalibrationOptions& options,
                  CalibratedDisplay* display, CalibrationReport* report) {
+  for (const VirtualLayer& l : system.layers)
+    if (l.lenslets)
+      throw Error("layer \"" + l.name +
+                  "\" is seen through a lens array, which the geometry fit does not model (it would fit the array "
+                  "as one lens)");
   return GeometryFitter(system, measurements, options, report).Fit(display);
 }
 

@@ -93,6 +93,10 @@ std::vector<LayerPlacementGradient> PlacementGradient(const DisplayModel& model,
                   "gradient is of the affine (ideal-optics) projection only");
     if (!p.separable())
       throw Error("layer " + layer.name + " is rotated: the placement gradient needs an axis-aligned grid");
+    if (layer.lenslets)
+      throw Error("layer " + layer.name +
+                  " is seen through a lens array: which lenslet a ray passes moves with the layer's depth, which "
+                  "the placement gradient does not follow");
     if (t[k].cols != layer.cols || t[k].rows != layer.rows)
       throw Error("placement gradient: the pattern of layer " + layer.name + " is not its size");
   }

@@ -166,8 +166,12 @@ class Walker {
 
     for (const SceneNode& node : scene_.nodes)
       if (!visited_.count(&node))
-        Fail(node.where, "element \"" + node.element->name() + "\" (" + node.element->type() +
-                             ") is not on the optical path from the eye");
+        Fail(node.where, "element \"" + node.element->name() + "\" (" + node.element->type() + ") " +
+                             (predecessor_.count(&node)
+                                  ? "is reached by no light: every route to it was left (below " +
+                                        FormatFixed(kFaintestRoute * 100, 2) + " % of the light, or past " +
+                                        std::to_string(kMaxPasses) + " passes of one element) or ends before it"
+                                  : "is not on the optical path from the eye"));
     Finish();
     return std::move(system_);
   }
@@ -201,11 +205,17 @@ class Walker {
   // no element is reached by two. Light that passes an element again does so by a reflection back toward the
   // eye, which the walk follows (Walk, WalkBack); the connections themselves form a tree.
   void CheckConnections(const SceneNode& node, std::vector<const SceneNode*>& path) {
-    if (path.size() >= kMaxPathElements)
+    // A stack's panels have their own limit, kMaxStackPanels, which Stack says: the check stops at the panel past it.
+    size_t panels = node.element->kind() == ElementKind::kPanel;
+    for (auto n = path.rbegin(); panels && n != path.rend() && (*n)->element->kind() == ElementKind::kPanel; ++n)
+      ++panels;
+    if (panels > kMaxStackPanels) return;
+    if (path.size() >= kMaxPathElements && !panels && node.element->kind() != ElementKind::kBacklight)
       Fail(node.where, "the path from the eye to " + Quoted(node.element->name()) + " passes more than " +
                            std::to_string(kMaxPathElements) + " elements; layerlab compiles paths of up to " +
                            std::to_string(kMaxPathElements));
     path.push_back(&node);
+    if (node.element->kind() == ElementKind::kCombiner) RequireSplitterPorts(node);
     for (size_t port = 0; port < node.outputs.size(); ++port) {
       const std::string& target = node.outputs[port];
       if (target.empty()) continue;  // nothing there
@@ -237,6 +247,23 @@ class Walker {
       CheckConnections(*next, path);
     }
     path.pop_back();
+  }
+
+  // The walk reads a combiner's ports as a splitter's (elements/splitter_ports.h); a combiner of another layout
+  // (a registered type of one's own) is refused rather than misread.
+  void RequireSplitterPorts(const SceneNode& node) const {
+    const auto& combiner = static_cast<const CombinerElement&>(*node.element);
+    const std::vector<std::string> ports = combiner.output_ports();
+    const std::vector<std::string> expected = {"transmitted", "reflected", "reflected_from_behind"};
+    const size_t count = combiner.reflects_back() ? 1 : ports.size();
+    bool splitter =
+        !ports.empty() && ports.size() <= 3 && (combiner.reflects_back() ? ports.size() == 1 : ports.size() >= 2);
+    for (size_t k = 0; splitter && k < count; ++k) splitter = ports[k] == expected[k];
+    if (!splitter)
+      Fail(node.where, "the combiner " + Quoted(node.element->name()) + " (" + node.element->type() + ") has ports " +
+                           JoinWords(ports, ", ") +
+                           "; layerlab walks a combiner's ports as a splitter's: transmitted, reflected and "
+                           "optionally reflected_from_behind, or transmitted alone when it reflects back");
   }
 
   // The node that `from`'s port leads to (CheckConnections has checked it), marked as reached.
@@ -382,7 +409,7 @@ class Walker {
   // the path length to it from the element met before (that element's own "gap").
   void WalkBack(const SceneNode& node, size_t port, PathState state, std::optional<double> gap) {
     const Element& e = *node.element;
-    if (e.kind() == ElementKind::kEye) return;  // sent back into the eye: nothing is seen there
+    if (e.kind() == ElementKind::kEye || IntoTheEye(node)) return;  // sent back into the eye: nothing seen there
     if (!Follows(node, state)) return;
     if (e.kind() != ElementKind::kCombiner) {
       Pass(node, 0, state, gap, true);
@@ -406,6 +433,13 @@ class Walker {
     }
   }
 
+  // Whether light going back toward the eye from `node` can only reach the eye (no combiner lies between).
+  bool IntoTheEye(const SceneNode& node) const {
+    for (const SceneNode* n = &node; n->element->kind() != ElementKind::kEye; n = predecessor_.at(n).node)
+      if (n->element->kind() == ElementKind::kCombiner) return false;
+    return true;
+  }
+
   // A combiner's action on a copy of the route, named in its label, then `go` on.
   template <typename Go>
   void Split(const SceneNode& node, size_t action, bool front, const PathState& state, std::optional<double> gap,
@@ -418,7 +452,7 @@ class Walker {
 
   // On from `node`'s port away from the eye; a side with nothing there ends the route in the dark.
   void Forward(const SceneNode& node, size_t port, PathState& state) {
-    if (node.outputs[port].empty()) return;
+    if (port >= node.outputs.size() || node.outputs[port].empty()) return;
     Walk(Follow(node, port), std::move(state));
   }
 
@@ -571,6 +605,16 @@ class Walker {
   // route's last placed element as on the main route, imaged by the route's own optics.
   void AddGhost(const PathState& route, const PathState& main, int branch_index, double polarization_angle) {
     const Branch& branch = system_.branches[branch_index];
+    auto leave_out = [&](const std::string& why) {
+      if (subframe_ == 0)
+        system_.warnings.push_back("the ghost of " + Quoted(branch.name) + " by " + Quoted(route.label) + " " + why +
+                                   ": it is left out");
+    };
+    if (route.placed_name != main.placed_name)  // its panels' distance from that element is the main route's
+      return leave_out("reaches the stack from " + Quoted(route.placed_name) + ", not from " +
+                       Quoted(main.placed_name) + " as the stack's route does, so its panels cannot be placed");
+    if (ghost_layers_ + branch.layers.size() + system_.layers.size() > kMaxLayers)
+      return leave_out("would take the display past " + std::to_string(kMaxLayers) + " layers with its ghosts");
     Ghost ghost;
     ghost.name = route.label;
     ghost.branch = branch_index;
@@ -580,21 +624,20 @@ class Walker {
       const double beyond = layer.position_m - main.placed_at;
       const RayTransfer<double> m = route.transfer.then_gap(beyond);
       // A real image behind the eye (D < 0) is seen as a blur, as any layer beyond the accommodation range.
-      if (ZeroWithinRounding(m.b, std::abs(route.transfer.b) + std::abs(beyond * route.transfer.d))) {
-        system_.warnings.push_back("the ghost of " + Quoted(branch.name) + " by " + Quoted(route.label) +
-                                   " is imaged into the pupil plane, where every pixel covers the whole field: it is "
-                                   "left out");
-        return;
-      }
+      if (ZeroWithinRounding(m.b, std::abs(route.transfer.b) + std::abs(beyond * route.transfer.d)))
+        return leave_out("is imaged into the pupil plane, where every pixel covers the whole field");
       layer.position_m = route.placed_at + beyond;
       layer.path = route.steps;
+      layer.lenslets.reset();
       SetImage(layer.panel, route, m, &layer);
+      SeeThroughLenslets(*scene_.find(layer.element), route, m, &layer);
       if (!layer.panel.emitter)
         for (int c = 0; c < 3; ++c) panels_transmittance[c] *= layer.panel.max_transmittance[c];
       ghost.layers.push_back(std::move(layer));
     }
     ghost.optics_efficiency = PathEfficiency(route.light, polarization_angle);
     for (int c = 0; c < 3; ++c) ghost.efficiency[c] = ghost.optics_efficiency[c] * panels_transmittance[c];
+    ghost_layers_ += ghost.layers.size();
     system_.ghosts.push_back(std::move(ghost));
   }
 
@@ -716,7 +759,10 @@ class Walker {
     // from the centre of i's elemental image, whose half width is alpha w / 2 (alpha = M2.a + M2.b d1 / b1):
     // pupil points within +-E/2 see i's own, E = w (|alpha| - fill |alpha - M2.b P|) |b1 / M2.b|.
     const double alpha = m2_a + m2_b * before.d / before.b;
-    const double span = a.pitch_m * (std::abs(alpha) - a.fill * std::abs(alpha - m2_b * P)) * std::abs(before.b / m2_b);
+    // On a hexagonal lattice in every direction: each elemental image's inscribed circle (radius alpha w / 2)
+    // against the lenslets' circumscribed one (fill w / sqrt 3).
+    const double reach = a.fill * (a.hexagonal ? 2 / std::sqrt(3.0) : 1.0);
+    const double span = a.pitch_m * (std::abs(alpha) - reach * std::abs(alpha - m2_b * P)) * std::abs(before.b / m2_b);
     layer->lenslets =
         std::make_shared<const LensletMap>(a, before.a, before.b, layer->diopters, m2_b * P / m.b, std::max(0.0, span));
   }
@@ -861,6 +907,7 @@ class Walker {
   size_t folded_steps_ = 0;
   int routes_cut_ = 0;   // routes ended at kMaxPasses
   bool folded_ = false;  // a stack is reached by a route that turned
+  size_t ghost_layers_ = 0;
   int combiners_ = 0;
   int subframe_ = 0;
 };
