@@ -4,7 +4,6 @@
 #include <cmath>
 #include <limits>
 #include <map>
-#include <numeric>
 #include <optional>
 #include <set>
 
@@ -15,6 +14,7 @@
 #include "layerlab/lenses/paraxial.h"
 #include "layerlab/lenses/sequential_trace.h"
 #include "layerlab/systems/eye_pose_limits.h"
+#include "layerlab/systems/layer_order.h"
 #include "layerlab/systems/layer_ray_map.h"
 #include "layerlab/systems/lenslet_map.h"
 #include "layerlab/systems/optics.h"
@@ -1109,19 +1109,7 @@ void Walker::MapRealLenses() {
 }
 
 // Farthest first, as the paper numbers its panels.
-void Walker::SortFarthestFirst() {
-  auto& layers = system_.layers;
-  std::vector<int> order(layers.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return layers[a].diopters < layers[b].diopters; });
-  std::vector<int> new_index(layers.size());
-  std::vector<VirtualLayer> sorted;
-  for (size_t i = 0; i < order.size(); ++i)
-    new_index[order[i]] = static_cast<int>(i), sorted.push_back(layers[order[i]]);
-  layers = std::move(sorted);
-  for (Branch& b : system_.branches)
-    for (int& k : b.layers) k = new_index[k];
-}
+void Walker::SortFarthestFirst() { SortLayersFarthestFirst(&system_); }
 
 // The display's peak luminance and its efficiencies, each backlight counted once.
 void Walker::AddUpLight() {

@@ -1,7 +1,8 @@
 #include "layerlab/systems/ghosts.h"
 
-#include <algorithm>
 #include <numeric>
+
+#include "layerlab/systems/layer_order.h"
 
 namespace layerlab {
 
@@ -28,23 +29,9 @@ GhostedDisplay WithGhosts(const DisplaySystem& system) {
     s.branches.push_back(std::move(branch));
   }
   s.ghosts.clear();
-  // Farthest first again, as every display's layers are.
-  std::vector<int> order(s.layers.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(),
-                   [&](int a, int b) { return s.layers[a].diopters < s.layers[b].diopters; });
-  std::vector<int> new_index(order.size());
-  std::vector<VirtualLayer> layers;
-  std::vector<int> pattern_of;
-  for (size_t i = 0; i < order.size(); ++i) {
-    new_index[order[i]] = static_cast<int>(i);
-    layers.push_back(std::move(s.layers[order[i]]));
-    pattern_of.push_back(g.pattern_of[order[i]]);
-  }
-  s.layers = std::move(layers);
+  std::vector<int> pattern_of;  // farthest first again, as every display's layers are
+  for (int before : SortLayersFarthestFirst(&s)) pattern_of.push_back(g.pattern_of[before]);
   g.pattern_of = std::move(pattern_of);
-  for (Branch& b : s.branches)
-    for (int& k : b.layers) k = new_index[k];
   return g;
 }
 

@@ -75,12 +75,9 @@ Scene ParseScene(nlohmann::json document, const std::string& file, const Element
     const std::vector<std::string> optional = node.element->optional_ports();
     for (const std::string& port : node.element->output_ports()) {
       const bool may_be_dark = node.element->kind() == ElementKind::kCombiner;  // a light trap behind that side
-      if (may_be_dark && std::count(optional.begin(), optional.end(), port) && !params.has(port)) {
-        node.outputs.emplace_back();
-        continue;
-      }
-      if (may_be_dark && params.has(port) && params.raw(port).is_null()) {
-        node.outputs.emplace_back();
+      const bool left_out = !params.has(port) && std::count(optional.begin(), optional.end(), port);
+      if (may_be_dark && (left_out || (params.has(port) && params.raw(port).is_null()))) {
+        node.outputs.emplace_back();  // nothing there
         continue;
       }
       std::string target = params.string(port);
