@@ -74,6 +74,11 @@ std::string TargetSceneDigest(const TargetScene& scene) {
     digest.add(tag, sizeof tag);
     digest.add(scene.moved_m.data(), sizeof scene.moved_m);
   }
+  if (scene.animation) {  // a moving scene's every frame has its own key; still scenes keep theirs
+    const char tag[] = "time";
+    digest.add(tag, sizeof tag);
+    digest.add(&scene.time_s, sizeof scene.time_s);
+  }
   if (scene.file_bytes)
     AddBytes(digest, *scene.file_bytes);
   else

@@ -51,12 +51,12 @@ namespace {
 
 void Render(const std::string& label, Target* target) {
   const LightFieldGeometry& g = target->scene->geometry;
-  Progress progress(label, g.view_count());
+  Progress progress(label, size_t(g.rows));
   char what[160];
   std::snprintf(what, sizeof what, "%d x %d pixels", g.cols, g.rows);
   RenderStats stats;
   target->light_field = RenderTarget(*target->scene, &stats, [&](size_t done, size_t total) {
-    progress.Update(done, std::string("views rendered, ") + what);
+    progress.Update(done, std::string("pixel rows rendered in every view, ") + what);
   });
   std::snprintf(what, sizeof what, "%zu views of %d x %d pixels, %.1f Mrays/s", g.view_count(), g.cols, g.rows,
                 stats.rays / std::max(stats.seconds, 1e-9) / 1e6);

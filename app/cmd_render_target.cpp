@@ -43,9 +43,10 @@ void AddRenderTargetCommand(CLI::App& app) {
     std::snprintf(what, sizeof what, "%d x %d pixels, %d samples per pixel; %s", g.cols, g.rows,
                   target.samples_per_pixel, target.description.c_str());
     RenderStats stats;
-    Progress progress("render-target", g.view_count());
-    LightField lf = RenderTarget(target, &stats,
-                                 [&](size_t done, size_t) { progress.Update(done, "views, " + std::string(what)); });
+    Progress progress("render-target", size_t(g.rows));
+    LightField lf = RenderTarget(target, &stats, [&](size_t done, size_t) {
+      progress.Update(done, "pixel rows of every view, " + std::string(what));
+    });
     std::snprintf(what, sizeof what, "%llu rays (%.1f Mrays/s)", static_cast<unsigned long long>(stats.rays),
                   stats.rays / std::max(stats.seconds, 1e-9) / 1e6);
     progress.Finish(what);

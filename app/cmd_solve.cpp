@@ -15,6 +15,7 @@
 #include <optional>
 #include <string>
 
+#include "layerlab/analysis/frame_sequence.h"
 #include "layerlab/analysis/report_parts.h"
 #include "layerlab/analysis/solve_job.h"
 #include "layerlab/analysis/target_source.h"
@@ -26,6 +27,7 @@
 #include "layerlab/app/pose_option.h"
 #include "layerlab/app/solver_flags.h"
 #include "layerlab/app/target_option.h"
+#include "layerlab/framework/atomic_file.h"
 #include "layerlab/framework/interrupt.h"
 #include "layerlab/framework/lightfield_io.h"
 #include "layerlab/framework/mpi_ranks.h"
@@ -54,6 +56,7 @@ struct Options {
   PoseOption pose;
   OpticsOptions optics;  // --fill-factor
   std::string start_from;
+  FrameSequenceOptions frames;  // --frames: a moving target, frame by frame
 };
 
 // The ranks of this solve: rank 0 of 1 unless mpirun started it.
@@ -179,14 +182,14 @@ void CheckMemory(const Options& o, const DisplaySystem& system, const SolveConfi
 // switched into place when complete; by rank 0 alone.
 void Stage(const Options& o, const SolveConfig& config, const Ranks& ranks, std::optional<StagedOutput>* stage) {
   if (!ranks.root()) return;
-  stage->emplace(
-      o.out, "solve",
-      std::vector<std::string>{"patterns", "panels", "lightfield", "trace.csv", "report.txt", "report.json",
-                               "checkpoint", "index.html", "pattern_previews", "panel_previews", "psnr_vs_time.svg"},
-      std::vector<NamedInput>{{o.scene, "the scene"},
-                              {config.target, "the target"},
-                              {config.target_scene, "the target scene"},
-                              {o.start_from, "the solve started from"}});
+  stage->emplace(o.out, "solve",
+                 std::vector<std::string>{"patterns", "panels", "lightfield", "trace.csv", "report.txt", "report.json",
+                                          "checkpoint", "index.html", "pattern_previews", "panel_previews",
+                                          "psnr_vs_time.svg", "frames.csv", "frames.txt"},
+                 std::vector<NamedInput>{{o.scene, "the scene"},
+                                         {config.target, "the target"},
+                                         {config.target_scene, "the target scene"},
+                                         {o.start_from, "the solve started from"}});
   for (const std::string& line : (*stage)->recovered()) Note("solve: " + line);
 }
 
@@ -267,6 +270,43 @@ void WriteResults(const Options& o, const Scene& scene, const DisplaySystem& sys
   result.Print();
 }
 
+// --frames: a moving target solved frame by frame (analysis/frame_sequence.h). The last frame's solution is
+// written as a solve's, with frames.csv and frames.txt beside it.
+void SolveFrames(const Options& o, const Scene& scene, const DisplaySystem& system, const SolveJob& job,
+                 const Ranks& ranks) {
+  if (ranks.size > 1) throw Error("--frames: not with MPI ranks; run it in one process");
+  if (o.resume || o.checkpoint_every > 0 || !o.start_from.empty())
+    throw Error("--frames: not with --resume, --checkpoint-every or --start-from (each frame starts from the last)");
+  const SolveConfig& config = job.config;
+  if (config.target_scene.empty())
+    throw Error(
+        "--frames: needs a target scene that moves (--target-scene, or the scene's solve.target_scene); "
+        "a light-field folder holds one frame");
+  TargetScene moving = LoadTarget(config.target_scene);
+  MoveTargetScene(&moving, config.target_moved_m);
+  RequireFrameSequence(job, moving, o.frames);
+  CheckMemory(o, system, config, ViewsOfRank(config, ranks), ranks);
+  std::optional<StagedOutput> stage;
+  Stage(o, config, ranks, &stage);
+  Progress progress("frames", size_t(o.frames.frames));
+  const FrameSequence sequence = SolveFrameSequence(job, moving, o.frames, [&](const FrameRow& r) {
+    char detail[160];
+    std::snprintf(detail, sizeof detail, "frames  last: %d iterations %.3f s  PSNR %.2f dB", r.iterations,
+                  r.solve_seconds, r.psnr_db);
+    progress.Update(size_t(r.frame + 1), detail);
+  });
+  progress.Finish("");
+  const std::string summary = FramesSummary(sequence, o.frames, moving);
+  try {
+    WriteFramesCsv(sequence, stage->staging() + "/frames.csv");
+    WriteFileAtomically(stage->staging() + "/frames.txt", summary);
+  } catch (const Error& e) {
+    throw stage->Explain(e);
+  }
+  Note(summary);
+  WriteResults(o, scene, system, config, *sequence.last.model, sequence.last, *stage);
+}
+
 // The solve of one process, or of this rank: the solve job's steps
 // (analysis/solve_job.h) with the command line's values.
 void Solve(const Options& o, Ranks& ranks) {
@@ -288,6 +328,7 @@ void Solve(const Options& o, Ranks& ranks) {
                 "needs --objective retinal (with joint or quasi-newton)");
   if (const std::string beyond = EyeboxGridWarning(EyeboxPupils(config.options), system.eye); !beyond.empty())
     system.warnings.push_back(beyond);
+  if (o.frames.frames != 0) return SolveFrames(o, scene, system, job, ranks);
   RefuseWithRanks(o, config.options, ranks);
   const RankViews views = ViewsOfRank(config, ranks);
   CheckMemory(o, system, config, views, ranks);
@@ -346,6 +387,12 @@ void AddSolveCommand(CLI::App& app) {
   AddPanelOptions(cmd, o->optics);
   cmd->add_option("--start-from", o->start_from,
                   "Begin from the patterns of an earlier solve (its output folder), e.g. for the eye's last position");
+  cmd->add_option("--frames", o->frames.frames,
+                  "Solve N frames of a moving target scene, each from the frame before (docs/target-format.md)");
+  cmd->add_option("--frame-iterations", o->frames.frame_iterations,
+                  "With --frames: iterations of each frame after the first (default 3)");
+  cmd->add_option("--cold-every", o->frames.cold_every,
+                  "With --frames: also solve every K-th frame cold, as its PSNR reference (default 1; 0: none)");
   cmd->add_option("--max-memory", o->max_memory,
                   "Refuse a run estimated to need more (e.g. 2 GB; default: the machine's memory)");
   cmd->callback([o] {

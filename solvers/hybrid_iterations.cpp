@@ -21,8 +21,10 @@ HybridIterations::HybridIterations(const DisplayModel& model, const SolverOption
 
 void HybridIterations::Begin(SolveLoop* loop) {
   workspace_ = &loop->workspace();
-  // After one iteration every set has emitted light of its own.
-  chase_.Begin(loop->target(), loop->resumed() && loop->iteration() > 0, workspace_);
+  // After one iteration every set has emitted light of its own, and so has every set of a warm start: its
+  // chase is then the target less what the others emit from the first iteration on, not its share of it.
+  const bool started = (loop->resumed() && loop->iteration() > 0) || options_.initial_patterns != nullptr;
+  chase_.Begin(loop->target(), started, workspace_);
   for (size_t m = 0; m < model_.branch_count(); ++m) pairs_.push_back(BranchPairs::IfItPays(model_, m));
   next_first_ = KeptLayerUpdate(workspace_);
 }

@@ -49,6 +49,49 @@ std::string Number(double x) {
 
 std::string Triple(double x, double y, double z) { return "(" + Number(x) + ", " + Number(y) + ", " + Number(z) + ")"; }
 
+void RequireTraceable(const std::array<float, 3>& origin, const std::array<float, 3>& direction, float t_near,
+                      float t_far) {
+  bool finite = std::isfinite(origin[0]) && std::isfinite(origin[1]) && std::isfinite(origin[2]) &&
+                std::isfinite(direction[0]) && std::isfinite(direction[1]) && std::isfinite(direction[2]) &&
+                std::isfinite(t_near) && !std::isnan(t_far);
+  bool nonzero = direction[0] != 0 || direction[1] != 0 || direction[2] != 0;
+  if (!finite || !nonzero || !(t_near >= 0) || !(t_far >= t_near))
+    throw Error("Embree: internal error: refusing to trace the ray from " + Triple(origin[0], origin[1], origin[2]) +
+                " along " + Triple(direction[0], direction[1], direction[2]) + " for t in [" + Number(t_near) + ", " +
+                Number(t_far) + "]");
+}
+
+void SetQuery(const std::array<float, 3>& origin, const std::array<float, 3>& direction, float t_near, float t_far,
+              RTCRayHit* query) {
+  query->ray.org_x = origin[0];
+  query->ray.org_y = origin[1];
+  query->ray.org_z = origin[2];
+  query->ray.dir_x = direction[0];
+  query->ray.dir_y = direction[1];
+  query->ray.dir_z = direction[2];
+  query->ray.tnear = t_near;
+  query->ray.tfar = t_far;
+  query->ray.time = 0.0f;
+  query->ray.mask = 0xFFFFFFFFu;
+  query->ray.id = 0;
+  query->ray.flags = 0;
+  query->hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  query->hit.primID = RTC_INVALID_GEOMETRY_ID;
+  query->hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+}
+
+RayHit HitOf(const RTCRayHit& query) {
+  RayHit hit;
+  if (query.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
+  hit.t = query.ray.tfar;
+  hit.geom_id = query.hit.geomID;
+  hit.prim_id = query.hit.primID;
+  hit.u = query.hit.u;
+  hit.v = query.hit.v;
+  hit.normal = {query.hit.Ng_x, query.hit.Ng_y, query.hit.Ng_z};
+  return hit;
+}
+
 }  // namespace
 
 struct EmbreeScene::Impl {
@@ -140,44 +183,31 @@ void EmbreeScene::Commit() {
 RayHit EmbreeScene::Intersect(const std::array<float, 3>& origin, const std::array<float, 3>& direction, float t_near,
                               float t_far) const {
   if (!impl_->committed) throw Error("Embree: internal error: intersect before the scene was committed");
-  bool finite = std::isfinite(origin[0]) && std::isfinite(origin[1]) && std::isfinite(origin[2]) &&
-                std::isfinite(direction[0]) && std::isfinite(direction[1]) && std::isfinite(direction[2]) &&
-                std::isfinite(t_near) && !std::isnan(t_far);
-  bool nonzero = direction[0] != 0 || direction[1] != 0 || direction[2] != 0;
-  if (!finite || !nonzero || !(t_near >= 0) || !(t_far >= t_near))
-    throw Error("Embree: internal error: refusing to trace the ray from " + Triple(origin[0], origin[1], origin[2]) +
-                " along " + Triple(direction[0], direction[1], direction[2]) + " for t in [" + Number(t_near) + ", " +
-                Number(t_far) + "]");
-
+  RequireTraceable(origin, direction, t_near, t_far);
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit query;
-  query.ray.org_x = origin[0];
-  query.ray.org_y = origin[1];
-  query.ray.org_z = origin[2];
-  query.ray.dir_x = direction[0];
-  query.ray.dir_y = direction[1];
-  query.ray.dir_z = direction[2];
-  query.ray.tnear = t_near;
-  query.ray.tfar = t_far;
-  query.ray.time = 0.0f;
-  query.ray.mask = 0xFFFFFFFFu;
-  query.ray.id = 0;
-  query.ray.flags = 0;
-  query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  query.hit.primID = RTC_INVALID_GEOMETRY_ID;
-  query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  SetQuery(origin, direction, t_near, t_far, &query);
   rtcIntersect1(impl_->scene.get(), &context, &query);
+  return HitOf(query);
+}
 
-  RayHit hit;
-  if (query.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
-  hit.t = query.ray.tfar;
-  hit.geom_id = query.hit.geomID;
-  hit.prim_id = query.hit.primID;
-  hit.u = query.hit.u;
-  hit.v = query.hit.v;
-  hit.normal = {query.hit.Ng_x, query.hit.Ng_y, query.hit.Ng_z};
-  return hit;
+void EmbreeScene::IntersectFrom(const std::array<float, 3>& origin, std::span<const std::array<float, 3>> directions,
+                                std::span<RayHit> hits) const {
+  if (!impl_->committed) throw Error("Embree: internal error: intersect before the scene was committed");
+  if (hits.size() != directions.size()) throw Error("Embree: internal error: hits and directions differ in count");
+  thread_local std::vector<RTCRayHit> queries;
+  queries.resize(directions.size());
+  for (size_t i = 0; i < directions.size(); ++i) {
+    RequireTraceable(origin, directions[i], 0.0f, std::numeric_limits<float>::infinity());
+    SetQuery(origin, directions[i], 0.0f, std::numeric_limits<float>::infinity(), &queries[i]);
+  }
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  rtcIntersect1M(impl_->scene.get(), &context, queries.data(), static_cast<unsigned>(queries.size()),
+                 sizeof(RTCRayHit));
+  for (size_t i = 0; i < queries.size(); ++i) hits[i] = HitOf(queries[i]);
 }
 
 }  // namespace layerlab

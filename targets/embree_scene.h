@@ -49,6 +49,11 @@ class EmbreeScene {
   // call from many threads. Refuses a non-finite ray or a zero direction.
   RayHit Intersect(const std::array<float, 3>& origin, const std::array<float, 3>& direction, float t_near = 0.0f,
                    float t_far = std::numeric_limits<float>::infinity()) const;
+  // The closest hits (t >= 0) of many rays from one origin, ray i along directions[i], traced together as
+  // one coherent stream (rays that share an origin and point in nearby directions traverse together).
+  // Refuses a non-finite ray or a zero direction. `hits` has as many entries as `directions`.
+  void IntersectFrom(const std::array<float, 3>& origin, std::span<const std::array<float, 3>> directions,
+                     std::span<RayHit> hits) const;
 
  private:
   struct Impl;

@@ -3,13 +3,90 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <optional>
+#include <vector>
 
 #include <tbb/parallel_for.h>
 
 #include "layerlab/targets/pixel_sampling.h"
+#include "layerlab/targets/plane_wave_table.h"
 #include "layerlab/targets/target_tracer.h"
 
 namespace layerlab {
+namespace {
+
+// One pixel row of every view. Its samples' points on the origin plane are the same in every view
+// (pixel_sampling.h), so the phases of a plane-wave texture at those points are computed once for the row
+// (plane_wave_table.h), and each view traces the row's rays as one coherent stream.
+class RowRenderer {
+ public:
+  RowRenderer(const TargetScene& target, const TargetTracer& tracer, const PixelSampler& sampler, int row)
+      : g_(target.geometry), tracer_(tracer), n_(sampler.samples()), row_(row) {
+    for (int j = 0; j < g_.cols; ++j)
+      for (int k = 0; k < n_; ++k) points_.push_back(sampler.Sample(row, j, k));
+    if (n_ > 1)
+      for (int j = 0; j < g_.cols; ++j) points_.push_back({g_.pixel_x(j), g_.pixel_y(row)});
+    const size_t samples = size_t(g_.cols) * n_;
+    tables_.resize(target.planes.size());
+    for (size_t p = 0; p < target.planes.size(); ++p) {
+      const TargetPlane& plane = target.planes[p];
+      if (const PlaneWaves* waves = plane.texture->plane_waves()) {
+        tables_[p].emplace(*waves, plane.depth_m, plane.center_m, g_.origin_z_m);
+        tables_[p]->SetPoints(std::span(points_).first(samples));
+      }
+    }
+    phases_.resize(target.planes.size());
+    slopes_.resize(points_.size());
+    hits_.resize(points_.size());
+  }
+
+  // Renders the row in `view` into `lf`; returns the rays traced.
+  uint64_t RenderView(size_t view, LightField* lf) {
+    const double vx = g_.view_x(static_cast<int>(view % g_.views_x));
+    const double vy = g_.view_y(static_cast<int>(view / g_.views_x));
+    const double z_lf = g_.origin_z_m;
+    for (size_t i = 0; i < points_.size(); ++i) slopes_[i] = {(points_[i][0] - vx) / z_lf, (points_[i][1] - vy) / z_lf};
+    tracer_.IntersectFrom(vx, vy, slopes_, hits_);
+    for (size_t p = 0; p < tables_.size(); ++p)
+      if (tables_[p]) tables_[p]->PhasesOfView(vx, vy, &phases_[p]);
+    float* rgb = lf->view(view) + size_t(row_) * g_.cols * 3;
+    float* depth = lf->depth.data() + view * g_.pixels_per_view() + size_t(row_) * g_.cols;
+    for (int j = 0; j < g_.cols; ++j) {
+      double sum[3] = {0, 0, 0};
+      for (int k = 0; k < n_; ++k) {
+        const size_t s = size_t(j) * n_ + k;
+        const Rgb color = Color(s, vx, vy);
+        for (int ch = 0; ch < 3; ++ch) sum[ch] += color[ch];
+      }
+      const size_t centre = n_ > 1 ? size_t(g_.cols) * n_ + j : size_t(j);
+      const double z = tracer_.Depth(hits_[centre], vx, vy, slopes_[centre][0], slopes_[centre][1]);
+      if (std::isfinite(z)) depth[j] = static_cast<float>(z);
+      for (int ch = 0; ch < 3; ++ch) rgb[size_t(j) * 3 + ch] = static_cast<float>(sum[ch] / n_);
+    }
+    return points_.size();
+  }
+
+ private:
+  Rgb Color(size_t s, double vx, double vy) const {
+    const int plane = tracer_.PlaneOf(hits_[s]);
+    if (plane >= 0 && tables_[plane]) {
+      const double value = tables_[plane]->Value(s, phases_[plane]);
+      return {value, value, value};
+    }
+    return tracer_.Shade(hits_[s], vx, vy, slopes_[s][0], slopes_[s][1]).color;
+  }
+
+  const LightFieldGeometry& g_;
+  const TargetTracer& tracer_;
+  const int n_, row_;
+  std::vector<std::array<double, 2>> points_;          // the row's samples, pixel by pixel; then its centres when n > 1
+  std::vector<std::optional<PlaneWaveTable>> tables_;  // per plane: the row's plane-wave phases
+  std::vector<PlaneWaveTable::ViewPhases> phases_;     // per plane: the view's
+  std::vector<std::array<double, 2>> slopes_;          // the view's ray directions (dx, dy, 1)
+  std::vector<RayHit> hits_;
+};
+
+}  // namespace
 
 LightField RenderTarget(const TargetScene& target, RenderStats* stats, const RenderProgress& progress) {
   auto start = std::chrono::steady_clock::now();
@@ -19,37 +96,16 @@ LightField RenderTarget(const TargetScene& target, RenderStats* stats, const Ren
   lf.scene = target.description;
   lf.depth.assign(g.ray_count(), kBackgroundDepth);
   const PixelSampler sampler(g, target.samples_per_pixel, target.seed);
-  const int n = sampler.samples();
   std::atomic<uint64_t> rays{0};
-  std::atomic<size_t> views_done{0};
+  std::atomic<size_t> rows_done{0};
 
-  tbb::parallel_for(size_t{0}, g.view_count(), [&](size_t view) {
-    const double vx = g.view_x(static_cast<int>(view % g.views_x));
-    const double vy = g.view_y(static_cast<int>(view / g.views_x));
-    float* rgb = lf.view(view);
-    float* depth = lf.depth.data() + view * g.pixels_per_view();
-    uint64_t view_rays = 0;
-    for (int i = 0; i < g.rows; ++i)
-      for (int j = 0; j < g.cols; ++j) {
-        double sum[3] = {0, 0, 0};
-        for (int k = 0; k < n; ++k) {
-          auto [x, y] = sampler.Sample(i, j, k);
-          TracedSample s = tracer.Trace(vx, vy, x, y);
-          for (int ch = 0; ch < 3; ++ch) sum[ch] += s.color[ch];
-          if (n == 1 && std::isfinite(s.z)) depth[static_cast<size_t>(i) * g.cols + j] = static_cast<float>(s.z);
-        }
-        view_rays += n;
-        if (n > 1) {
-          TracedSample center = tracer.Trace(vx, vy, g.pixel_x(j), g.pixel_y(i));
-          if (std::isfinite(center.z)) depth[static_cast<size_t>(i) * g.cols + j] = static_cast<float>(center.z);
-          ++view_rays;
-        }
-        size_t p = (static_cast<size_t>(i) * g.cols + j) * 3;
-        for (int ch = 0; ch < 3; ++ch) rgb[p + ch] = static_cast<float>(sum[ch] / n);
-      }
-    rays += view_rays;
-    size_t done = ++views_done;
-    if (progress) progress(done, g.view_count());
+  tbb::parallel_for(0, g.rows, [&](int row) {
+    RowRenderer renderer(target, tracer, sampler, row);
+    uint64_t row_rays = 0;
+    for (size_t view = 0; view < g.view_count(); ++view) row_rays += renderer.RenderView(view, &lf);
+    rays += row_rays;
+    size_t done = ++rows_done;
+    if (progress) progress(done, size_t(g.rows));
   });
 
   if (stats) {

@@ -3,7 +3,9 @@
 // through its samples on the shared window of the origin plane (a sheared
 // frustum, docs/lightfield-format.md). A pixel's color is the mean of its
 // samples; its depth is the eye-space z of the first surface along the ray
-// through the pixel center. Shading: target_tracer.h.
+// through the pixel center. Shading: target_tracer.h. The work goes row by
+// row: a row's rays in each view are one coherent stream, and a plane-wave
+// texture's phases at the row's samples serve every view (plane_wave_table.h).
 #pragma once
 
 #include <cstdint>
@@ -24,8 +26,9 @@ struct RenderStats {
   double seconds = 0;  // wall time, scene build included
 };
 
-// Called after each view is done with (views done, views in all), from the
-// rendering threads (one call at a time is not promised: lock if needed).
+// Called after each pixel row is done in every view with (rows done, rows in
+// all), from the rendering threads (one call at a time is not promised: lock
+// if needed).
 using RenderProgress = std::function<void(size_t, size_t)>;
 
 LightField RenderTarget(const TargetScene& target, RenderStats* stats = nullptr, const RenderProgress& progress = {});

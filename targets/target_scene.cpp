@@ -19,8 +19,7 @@ using nlohmann::json;
 constexpr int kMaxViewsPerAxis = 256;
 constexpr int kMaxPixelsPerAxis = 16384;
 constexpr size_t kMaxObjects = 4096;
-
-using Vec3 = std::array<double, 3>;
+constexpr size_t kMaxKeys = 100000;
 
 std::string Diopters(double z) { return FormatFixed(1.0 / z, 2) + " D"; }
 
@@ -134,13 +133,51 @@ LightFieldGeometry ParseLightField(Params& lf, const std::string& base_dir, cons
   return g;
 }
 
-// Rotation about x, then y, then z (eye-space axes): R = Rz Ry Rx.
-std::array<Vec3, 3> RotationMatrix(double ax, double ay, double az) {
-  double cx = std::cos(ax), sx = std::sin(ax), cy = std::cos(ay), sy = std::sin(ay), cz = std::cos(az),
-         sz = std::sin(az);
-  return {{{cz * cy, cz * sy * sx - sz * cx, cz * sy * cx + sz * sx},
-           {sz * cy, sz * sy * sx + cz * cx, sz * sy * cx - cz * sx},
-           {-sy, cy * sx, cy * cx}}};
+// The keys of an object's motion or of the camera: [{"time", "position", "rotation"}, ...] in time order.
+std::vector<MotionKey> ParseKeys(Params& p, const std::string& name, bool rotations) {
+  const json& list = p.raw(name);
+  if (!list.is_array() || list.empty())
+    p.fail(name, "expected an array of keys [{\"time\": \"0 s\", \"position\": [x, y, z]}, ...], got " + list.dump());
+  if (list.size() > kMaxKeys)
+    p.fail(name, std::to_string(list.size()) + " keys; the limit is " + std::to_string(kMaxKeys));
+  std::vector<MotionKey> keys;
+  const Location at = p.where(name);
+  for (size_t i = 0; i < list.size(); ++i) {
+    Params k(list[i], at.child(i));
+    MotionKey key;
+    key.time_s = k.quantity("time", Dimension::kTime);
+    k.require_range("time", key.time_s, 0.0, 1e6, false, false);
+    if (!keys.empty() && !(key.time_s > keys.back().time_s))
+      k.fail("time",
+             "keys must come in increasing time; the key before is at " + FormatFixed(keys.back().time_s, 4) + " s");
+    if (k.has("position")) {
+      Params xyz = ArrayParams(k, "position", 3, "[x, y, z]: lengths, z also as a depth such as \"1 D\"");
+      key.position_m = Vec3{xyz.quantity("0", Dimension::kLength), xyz.quantity("1", Dimension::kLength),
+                            rotations ? DepthOrLength(xyz, "2") : xyz.quantity("2", Dimension::kLength)};
+    }
+    if (rotations && k.has("rotation")) {
+      Params angles = ArrayParams(k, "rotation", 3, "three angles [about x, about y, about z]");
+      key.rotation_rad = Vec3{angles.quantity("0", Dimension::kAngle), angles.quantity("1", Dimension::kAngle),
+                              angles.quantity("2", Dimension::kAngle)};
+    }
+    k.mark_read("position");
+    if (rotations) k.mark_read("rotation");
+    k.check_all_read();
+    if (!key.position_m && !key.rotation_rad)
+      throw Error(k.where(), rotations ? "a key gives a \"position\", a \"rotation\" or both"
+                                       : "a camera key gives a \"position\"");
+    keys.push_back(key);
+  }
+  return keys;
+}
+
+TargetAnimation ParseAnimation(Params& a) {
+  TargetAnimation animation;
+  animation.frame_rate_hz = a.quantity("frame_rate", Dimension::kFrequency, animation.frame_rate_hz);
+  a.require_range("frame_rate", animation.frame_rate_hz, 0.0, 1e4, true, false);
+  if (a.has("camera")) animation.camera = ParseKeys(a, "camera", /*rotations=*/false);
+  a.check_all_read();
+  return animation;
 }
 
 TargetPlane ParsePlane(Params& o, const LightFieldGeometry& g, const std::string& base_dir, std::string& description,
@@ -181,16 +218,23 @@ TargetMesh ParseMesh(Params& o, const std::string& base_dir, std::string& descri
                 DepthOrLength(position_params, "2")};
   position_params.require_range("2", position[2], 0.0, 1e3, true, false);
 
-  std::array<Vec3, 3> r = RotationMatrix(angles[0], angles[1], angles[2]);
+  std::vector<Vec3> local(target.mesh.positions.size());
   Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
-  for (size_t i = 0; i < target.mesh.positions.size(); ++i) {
-    Vec3& p = target.mesh.positions[i];
-    Vec3 q{p[0] * scale, p[1] * scale, p[2] * scale};
-    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], q[k]), hi[k] = std::max(hi[k], q[k]);
-    for (int row = 0; row < 3; ++row) p[row] = position[row] + r[row][0] * q[0] + r[row][1] * q[1] + r[row][2] * q[2];
-    if (!(p[2] > 0))
-      o.fail("position", path + ": vertex " + std::to_string(i) + " lands at z = " + FormatFixed(p[2], 4) +
-                             " m, not in front of the pupil plane (z > 0)");
+  for (size_t i = 0; i < local.size(); ++i) {
+    const Vec3& p = target.mesh.positions[i];
+    local[i] = {p[0] * scale, p[1] * scale, p[2] * scale};
+    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], local[i][k]), hi[k] = std::max(hi[k], local[i][k]);
+  }
+  PlaceVertices(local, position, angles, &target.mesh.positions);
+  if (const std::string why = InFrontOfThePupil(target.mesh.positions); !why.empty())
+    o.fail("position", path + ": " + why);
+  if (o.has("keys")) {
+    auto motion = std::make_shared<MeshMotion>();
+    motion->local_m = std::move(local);
+    motion->position_m = position;
+    motion->rotation_rad = angles;
+    motion->keys = ParseKeys(o, "keys", /*rotations=*/true);
+    target.motion = std::move(motion);
   }
   // The mesh's own size (before rotation), so turning a mesh keeps its texture.
   double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
@@ -232,6 +276,42 @@ TargetLight ParseLight(Params& l) {
 
 }  // namespace
 
+std::string InFrontOfThePupil(const std::vector<Vec3>& vertices_m) {
+  for (size_t i = 0; i < vertices_m.size(); ++i)
+    if (!(vertices_m[i][2] > 0))
+      return "vertex " + std::to_string(i) + " lands at z = " + FormatFixed(vertices_m[i][2], 4) +
+             " m, not in front of the pupil plane (z > 0)";
+  return "";
+}
+
+TargetScene TargetSceneAt(const TargetScene& scene, double time_s) {
+  TargetScene posed = scene;
+  if (!scene.animation) return posed;
+  posed.time_s = time_s;
+  const Vec3 camera = PositionAt(scene.animation->camera, time_s, {0, 0, 0});
+  for (TargetMesh& mesh : posed.meshes) {
+    if (mesh.motion) {
+      const MeshMotion& m = *mesh.motion;
+      PlaceVertices(m.local_m, PositionAt(m.keys, time_s, m.position_m), RotationAt(m.keys, time_s, m.rotation_rad),
+                    &mesh.mesh.positions);
+      for (Vec3& p : mesh.mesh.positions)
+        for (int k = 0; k < 3; ++k) p[k] += scene.moved_m[k];
+    }
+    for (Vec3& p : mesh.mesh.positions)
+      for (int k = 0; k < 3; ++k) p[k] -= camera[k];
+    if (const std::string why = InFrontOfThePupil(mesh.mesh.positions); !why.empty())
+      throw Error(scene.file + ": at " + FormatFixed(time_s, 4) + " s, mesh " + mesh.file + ": " + why);
+  }
+  for (TargetPlane& plane : posed.planes) {
+    plane.center_m[0] -= camera[0], plane.center_m[1] -= camera[1];
+    plane.depth_m -= camera[2];
+    if (!(plane.depth_m > 0))
+      throw Error(scene.file + ": at " + FormatFixed(time_s, 4) + " s, the camera has passed a plane (at " +
+                  FormatFixed(plane.depth_m, 4) + " m from it)");
+  }
+  return posed;
+}
+
 std::array<double, 2> CoveringSize(const LightFieldGeometry& g, double z, std::array<double, 2> center) {
   double s = z / g.origin_z_m;
   auto half_extent = [&](double x0, double x1, double eyebox, double c) {
@@ -265,6 +345,10 @@ TargetScene ParseTarget(const json& document, const std::string& file, const Sce
     Params light = p.object("light");
     target.light = ParseLight(light);
   }
+  if (p.has("animation")) {
+    Params animation = p.object("animation");
+    target.animation = ParseAnimation(animation);
+  }
 
   const json& objects = p.raw("objects");
   Location objects_at = p.where("objects");
@@ -286,6 +370,9 @@ TargetScene ParseTarget(const json& document, const std::string& file, const Sce
     parts.push_back(what);
   }
   p.check_all_read();
+  if (!target.animation &&
+      std::any_of(target.meshes.begin(), target.meshes.end(), [](const TargetMesh& m) { return m.motion != nullptr; }))
+    target.animation.emplace();  // keys alone: the default frame rate
   for (size_t i = 0; i < parts.size(); ++i) target.description += (i ? "; " : "") + parts[i];
   return target;
 }

@@ -22,6 +22,7 @@
 #include "layerlab/framework/lightfield.h"
 #include "layerlab/framework/params.h"
 #include "layerlab/targets/mesh_io.h"
+#include "layerlab/targets/target_motion.h"
 #include "layerlab/targets/texture.h"
 
 namespace layerlab {
@@ -41,9 +42,10 @@ struct TargetPlane {
 // A triangle mesh in eye space, Lambertian under the scene's light.
 struct TargetMesh {
   std::string file;
-  TriangleMesh mesh;                       // positions in eye space, m
-  std::shared_ptr<const Texture> texture;  // a constant one for "color"
-  double uv_size_m = 1.0;                  // m per unit of texture coordinate
+  TriangleMesh mesh;                         // positions in eye space, m
+  std::shared_ptr<const Texture> texture;    // a constant one for "color"
+  double uv_size_m = 1.0;                    // m per unit of texture coordinate
+  std::shared_ptr<const MeshMotion> motion;  // its keys, when it moves (TargetSceneAt)
 };
 
 // shade = ambient + (1 - ambient) * max(0, n . to_light), n facing the viewer.
@@ -71,7 +73,19 @@ struct TargetScene {
   // scene given in the pair's frame from its own axis (elements/eye_pose.h PairFrameInDisplayFrame). Part of
   // its render's key.
   std::array<double, 3> moved_m{};
+  // A moving scene's "animation" (its frame rate, the camera's keys), also set when only meshes have keys; and
+  // the time it is posed at (TargetSceneAt), part of its render's key.
+  std::optional<TargetAnimation> animation;
+  double time_s = 0;  // s
 };
+
+// The scene at `time_s` (s): each moving mesh placed by its keys, and everything seen from the camera's keyed
+// position. A scene that does not move is returned as it is. Refuses a pose that puts a vertex or a plane at
+// or behind the pupil plane, naming the time.
+TargetScene TargetSceneAt(const TargetScene& scene, double time_s);
+
+// "" when every vertex lies in front of the pupil plane (z > 0), else which does not.
+std::string InFrontOfThePupil(const std::vector<std::array<double, 3>>& vertices_m);
 
 // Moves every plane (its centre, the texture's origin, and depth) and mesh of `scene` so that it lies `moved_m`
 // (m, eye space) from where its file places it; the light field's geometry stays.

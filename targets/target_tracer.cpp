@@ -34,30 +34,54 @@ TargetTracer::TargetTracer(const TargetScene& target) : target_(target) {
 }
 
 TracedSample TargetTracer::TraceDirection(double vx, double vy, double dx, double dy) const {
-  // Direction with unit z: the ray parameter is the eye-space depth.
-  Vec3 origin{vx, vy, 0}, direction{dx, dy, 1.0};
   RayHit hit = scene_.Intersect({static_cast<float>(vx), static_cast<float>(vy), 0.0f},
-                                {static_cast<float>(direction[0]), static_cast<float>(direction[1]), 1.0f});
+                                {static_cast<float>(dx), static_cast<float>(dy), 1.0f});
+  return Shade(hit, vx, vy, dx, dy);
+}
+
+void TargetTracer::IntersectFrom(double vx, double vy, std::span<const std::array<double, 2>> slopes,
+                                 std::span<RayHit> hits) const {
+  thread_local std::vector<std::array<float, 3>> directions;
+  directions.resize(slopes.size());
+  for (size_t i = 0; i < slopes.size(); ++i)
+    directions[i] = {static_cast<float>(slopes[i][0]), static_cast<float>(slopes[i][1]), 1.0f};
+  scene_.IntersectFrom({static_cast<float>(vx), static_cast<float>(vy), 0.0f}, directions, hits);
+}
+
+double TargetTracer::Depth(const RayHit& hit, double vx, double vy, double dx, double dy) const {
+  if (!hit.hit()) return INFINITY;
+  const Surface& surface = surfaces_[hit.geom_id];
+  if (surface.is_plane) return target_.planes[surface.index].depth_m;
+  // Direction with unit z: the ray parameter is the eye-space depth.
+  const Vec3 origin{vx, vy, 0}, direction{dx, dy, 1.0};
+  const TargetMesh& mesh = target_.meshes[surface.index];
+  const auto& tri = mesh.mesh.triangles[hit.prim_id];
+  const Vec3 &p0 = mesh.mesh.positions[tri[0]], &p1 = mesh.mesh.positions[tri[1]], &p2 = mesh.mesh.positions[tri[2]];
+  const Vec3 n = Cross(Sub(p1, p0), Sub(p2, p0));
+  const double n_dot_d = Dot(n, direction);
+  double z = n_dot_d != 0 ? Dot(n, Sub(p0, origin)) / n_dot_d : hit.t;
+  if (!std::isfinite(z) || std::abs(z - hit.t) > 1e-3 * hit.t) z = hit.t;  // grazing: keep Embree's
+  return z;
+}
+
+TracedSample TargetTracer::Shade(const RayHit& hit, double vx, double vy, double dx, double dy) const {
   if (!hit.hit()) return {target_.background, INFINITY};
   const Surface& surface = surfaces_[hit.geom_id];
   if (surface.is_plane) {
     const TargetPlane& plane = target_.planes[surface.index];
     double z = plane.depth_m;
-    return {
-        plane.texture->Evaluate(vx + direction[0] * z - plane.center_m[0], vy + direction[1] * z - plane.center_m[1]),
-        z};
+    return {plane.texture->Evaluate(vx + dx * z - plane.center_m[0], vy + dy * z - plane.center_m[1]), z};
   }
+  const Vec3 direction{dx, dy, 1.0};
   const TargetMesh& mesh = target_.meshes[surface.index];
   const auto& tri = mesh.mesh.triangles[hit.prim_id];
   const Vec3 &p0 = mesh.mesh.positions[tri[0]], &p1 = mesh.mesh.positions[tri[1]], &p2 = mesh.mesh.positions[tri[2]];
   Vec3 n = Cross(Sub(p1, p0), Sub(p2, p0));
-  double n_dot_d = Dot(n, direction);
-  double z = n_dot_d != 0 ? Dot(n, Sub(p0, origin)) / n_dot_d : hit.t;
-  if (!std::isfinite(z) || std::abs(z - hit.t) > 1e-3 * hit.t) z = hit.t;  // grazing: keep Embree's
+  const double z = Depth(hit, vx, vy, dx, dy);
   double length = std::sqrt(Dot(n, n));
   double lambert = 0;
   if (length > 0) {
-    if (n_dot_d > 0) length = -length;  // face the viewer
+    if (Dot(n, direction) > 0) length = -length;  // face the viewer
     lambert = std::max(0.0, Dot(n, target_.light.to_light) / length);
   }
   double shade = target_.light.ambient + (1 - target_.light.ambient) * lambert;

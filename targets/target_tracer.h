@@ -9,6 +9,8 @@
 // precision against the hit triangle's plane.
 #pragma once
 
+#include <array>
+#include <span>
 #include <vector>
 
 #include "layerlab/targets/embree_scene.h"
@@ -32,6 +34,17 @@ class TargetTracer {
   TracedSample Trace(double vx, double vy, double x, double y) const {
     const double z_lf = target_.geometry.origin_z_m;
     return TraceDirection(vx, vy, (x - vx) / z_lf, (y - vy) / z_lf);
+  }
+
+  // The same in two steps, for many rays at once: the closest hits of the rays from (vx, vy, 0) along
+  // (dx, dy, 1) for each (dx, dy) in `slopes`, traced as one coherent stream; then what a hit shows.
+  void IntersectFrom(double vx, double vy, std::span<const std::array<double, 2>> slopes, std::span<RayHit> hits) const;
+  TracedSample Shade(const RayHit& hit, double vx, double vy, double dx, double dy) const;
+  // The eye-space depth of a hit (+inf for a miss), without its color.
+  double Depth(const RayHit& hit, double vx, double vy, double dx, double dy) const;
+  // The plane a hit lies on, as an index into the scene's planes; -1 for a mesh or a miss.
+  int PlaneOf(const RayHit& hit) const {
+    return hit.hit() && surfaces_[hit.geom_id].is_plane ? static_cast<int>(surfaces_[hit.geom_id].index) : -1;
   }
 
  private:

@@ -78,36 +78,34 @@ class CheckerboardTexture final : public Texture {
 class NoiseTexture final : public Texture {
  public:
   NoiseTexture(double f_min, double f_max, int components, uint64_t seed, double contrast, double mean)
-      : f_min_(f_min), f_max_(f_max), contrast_(contrast), mean_(mean) {
+      : f_min_(f_min), f_max_(f_max) {
     SplitMix64 random(seed);
     // Unit variance: each cosine of amplitude a contributes a^2 / 2.
-    amplitude_ = std::sqrt(2.0 / components);
+    const double amplitude = std::sqrt(2.0 / components);
+    waves_.mean = mean;
+    waves_.gain = contrast * amplitude;
     for (int k = 0; k < components; ++k) {
       double f = f_min + (f_max - f_min) * random.uniform();
       double orientation = std::numbers::pi * random.uniform();
       double phase = kTwoPi * random.uniform();
-      kx_.push_back(kTwoPi * f * std::cos(orientation));
-      ky_.push_back(kTwoPi * f * std::sin(orientation));
-      phase_.push_back(phase);
+      waves_.kx.push_back(kTwoPi * f * std::cos(orientation));
+      waves_.ky.push_back(kTwoPi * f * std::sin(orientation));
+      waves_.phase.push_back(phase);
     }
   }
   Rgb Evaluate(double s, double t) const override {
-    double sum = 0;
-    const double *kx = kx_.data(), *ky = ky_.data(), *phase = phase_.data();
-    const size_t n = kx_.size();
-#pragma omp simd reduction(+ : sum)
-    for (size_t k = 0; k < n; ++k) sum += FastCos(kx[k] * s + ky[k] * t + phase[k]);
-    double value = std::max(0.0, mean_ * (1.0 + contrast_ * amplitude_ * sum));
+    double value = waves_.Evaluate(s, t);
     return {value, value, value};
   }
   std::string Describe() const override {
-    return "noise " + std::to_string(kx_.size()) + " components, " + Number(f_min_) + " to " + Number(f_max_) +
+    return "noise " + std::to_string(waves_.kx.size()) + " components, " + Number(f_min_) + " to " + Number(f_max_) +
            " cycles/m";
   }
+  const PlaneWaves* plane_waves() const override { return &waves_; }
 
  private:
-  double f_min_, f_max_, contrast_, mean_, amplitude_;
-  std::vector<double> kx_, ky_, phase_;  // rad per meter, rad
+  double f_min_, f_max_;
+  PlaneWaves waves_;
 };
 
 class ImageTexture final : public Texture {
@@ -169,6 +167,15 @@ double Fraction(Params& p, const std::string& key, double fallback) {
 }
 
 }  // namespace
+
+double PlaneWaves::Evaluate(double s, double t) const {
+  double sum = 0;
+  const double *kx_k = kx.data(), *ky_k = ky.data(), *phase_k = phase.data();
+  const size_t n = kx.size();
+#pragma omp simd reduction(+ : sum)
+  for (size_t k = 0; k < n; ++k) sum += FastCos(kx_k[k] * s + ky_k[k] * t + phase_k[k]);
+  return Clamped(sum);
+}
 
 std::unique_ptr<Texture> MakeConstantTexture(const Rgb& color) { return std::make_unique<ConstantTexture>(color); }
 

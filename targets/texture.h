@@ -27,6 +27,7 @@
 // |              | wrap         | clamp, repeat     | clamp    | outside the image                          |
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -38,6 +39,18 @@
 
 namespace layerlab {
 
+// A texture that is a sum of plane waves on its plane (the noise texture):
+//   max(0, mean (1 + gain sum_k cos(kx_k s + ky_k t + phase_k))).
+// A renderer may evaluate it against phases shared by many views
+// (targets/plane_wave_table.h).
+struct PlaneWaves {
+  std::vector<double> kx, ky, phase;  // rad per meter, rad per meter, rad
+  double mean = 0, gain = 0;
+
+  double Evaluate(double s, double t) const;
+  double Clamped(double sum) const { return std::max(0.0, mean * (1.0 + gain * sum)); }
+};
+
 class Texture {
  public:
   virtual ~Texture() = default;
@@ -48,6 +61,8 @@ class Texture {
   // True if Evaluate(s, t) gives the same bits for every finite t (a grating
   // of vertical bars): a renderer may evaluate one row and copy it.
   virtual bool ConstantAlongT() const { return false; }
+  // The texture's plane waves when it is a sum of them, else nullptr.
+  virtual const PlaneWaves* plane_waves() const { return nullptr; }
 };
 
 // What a texture on one surface needs to know.

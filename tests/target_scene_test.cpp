@@ -3,6 +3,7 @@
 #include <cmath>
 #include <functional>
 
+#include "layerlab/framework/error.h"
 #include "layerlab/framework/json_file.h"
 #include "layerlab/targets/target_scene.h"
 #include "layerlab/tests/render_test_util.h"
@@ -50,22 +51,26 @@ TEST(TargetSceneTest, DiceExamplePlacesItsMeshesInEyeSpace) {
   EXPECT_EQ(t.samples_per_pixel, 4);
 }
 
+// One view of 8 x 8 pixels through a 10-degree window, with `objects`.
+json OneViewTarget(std::vector<json> objects) {
+  return {{"format", "layerlab-target/1"},
+          {"light_field",
+           {{"origin_plane", "1 D"},
+            {"field_of_view", {"10 deg", "10 deg"}},
+            {"resolution", {8, 8}},
+            {"views", {1, 1}},
+            {"eyebox", {"1 mm", "1 mm"}}}},
+          {"objects", objects}};
+}
+
 TEST(TargetSceneTest, MeshPlacementIsScaleThenRotationXYZThenTranslation) {
   std::string dir = testing::ScratchDir();
   testing::WriteTextFile(dir + "/point.obj", "v 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n");
-  json target = {{"format", "layerlab-target/1"},
-                 {"light_field",
-                  {{"origin_plane", "1 D"},
-                   {"field_of_view", {"10 deg", "10 deg"}},
-                   {"resolution", {8, 8}},
-                   {"views", {1, 1}},
-                   {"eyebox", {"1 mm", "1 mm"}}}},
-                 {"objects",
-                  {{{"type", "mesh"},
-                    {"file", "point.obj"},
-                    {"scale", "1 cm"},
-                    {"position", {0, 0, "2 D"}},
-                    {"rotation", {"90 deg", "0 deg", "90 deg"}}}}}};
+  json target = OneViewTarget({{{"type", "mesh"},
+                                {"file", "point.obj"},
+                                {"scale", "1 cm"},
+                                {"position", {0, 0, "2 D"}},
+                                {"rotation", {"90 deg", "0 deg", "90 deg"}}}});
   TargetScene t = ParseTarget(target, dir + "/target.json");
   const auto& p = t.meshes[0].mesh.positions;
   // Rx(90) maps y to z and z to -y; then Rz(90) maps x to y and y to -x.
@@ -77,6 +82,73 @@ TEST(TargetSceneTest, MeshPlacementIsScaleThenRotationXYZThenTranslation) {
   expect(0, 0, 0.01, 0.5);  // x -> x -> y
   expect(1, 0, 0, 0.51);    // y -> z -> z
   expect(2, 0.01, 0, 0.5);  // z -> -y -> x
+}
+
+// A moving die against the same die placed by hand: at a key's time the mesh is where a still scene with
+// that key's placement puts it, halfway between two keys it is at the mean of their positions and angles,
+// after the last key it holds, and a camera at c moves every vertex and plane by -c.
+TEST(TargetSceneTest, KeysPlaceAMeshAsAStillSceneAtThatPlacement) {
+  auto die = [](json position, json rotation) {
+    return json{{"type", "mesh"},       {"file", "die.obj"},    {"scale", "2 cm"},
+                {"position", position}, {"rotation", rotation}, {"color", 0.5}};
+  };
+  const json backdrop = {{"type", "plane"}, {"depth", "0.5 D"}, {"texture", {{"type", "constant"}, {"color", 0.2}}}};
+  const std::string file = testing::ExamplePath("targets/target.json");
+  auto scene = [&](json die_keys, json camera) {
+    json moving = die({"1 cm", 0, "1 D"}, {"10 deg", 0, 0});
+    if (!die_keys.is_null()) moving["keys"] = die_keys;
+    json t = OneViewTarget({backdrop, moving});
+    if (!camera.is_null()) t["animation"] = {{"frame_rate", "10 Hz"}, {"camera", camera}};
+    return ParseTarget(t, file);
+  };
+  auto still = [&](json position, json rotation) {
+    return ParseTarget(OneViewTarget({die(position, rotation)}), file).meshes[0].mesh.positions;
+  };
+  const json keys = {{{"time", "1 s"}, {"position", {"1 cm", 0, "1 m"}}, {"rotation", {"10 deg", "20 deg", 0}}},
+                     {{"time", "3 s"}, {"position", {"5 cm", "-2 cm", "1.2 m"}}},
+                     {{"time", "4 s"}, {"rotation", {"10 deg", "80 deg", "-30 deg"}}}};
+  const TargetScene moving = scene(keys, nullptr);
+  ASSERT_TRUE(moving.animation);
+  EXPECT_EQ(moving.animation->frame_rate_hz, 30);
+  auto expect_at = [&](double time_s, const std::vector<std::array<double, 3>>& expected, const char* what) {
+    const TargetScene posed = TargetSceneAt(moving, time_s);
+    ASSERT_EQ(posed.meshes[0].mesh.positions.size(), expected.size());
+    for (size_t i = 0; i < expected.size(); ++i)
+      for (int k = 0; k < 3; ++k) EXPECT_NEAR(posed.meshes[0].mesh.positions[i][k], expected[i][k], 1e-15) << what << i;
+    EXPECT_EQ(posed.time_s, time_s);
+  };
+  // Before the first key: the keys' first values (position and rotation both given at 1 s).
+  expect_at(0.0, still({"1 cm", 0, "1 m"}, {"10 deg", "20 deg", 0}), "at 0 s ");
+  // 2 s: position halfway from 1 s to 3 s; the rotation halfway from 1 s to 4 s is a third of the way.
+  expect_at(2.0, still({"3 cm", "-1 cm", "1.1 m"}, {"10 deg", "40 deg", "-10 deg"}), "at 2 s ");
+  expect_at(5.0, still({"5 cm", "-2 cm", "1.2 m"}, {"10 deg", "80 deg", "-30 deg"}), "after the keys ");
+
+  const TargetScene seen = scene(nullptr, json{{{"time", "0 s"}, {"position", {0, 0, 0}}},
+                                               {{"time", "2 s"}, {"position", {"2 cm", "-4 mm", "10 cm"}}}});
+  const TargetScene at_1s = TargetSceneAt(seen, 1.0);
+  const auto placed = still({"1 cm", 0, "1 D"}, {"10 deg", 0, 0});
+  for (size_t i = 0; i < placed.size(); ++i) {
+    EXPECT_NEAR(at_1s.meshes[0].mesh.positions[i][0], placed[i][0] - 0.01, 1e-15);
+    EXPECT_NEAR(at_1s.meshes[0].mesh.positions[i][1], placed[i][1] + 0.002, 1e-15);
+    EXPECT_NEAR(at_1s.meshes[0].mesh.positions[i][2], placed[i][2] - 0.05, 1e-15);
+  }
+  EXPECT_NEAR(at_1s.planes[0].depth_m, 2.0 - 0.05, 1e-15);
+  EXPECT_NEAR(at_1s.planes[0].center_m[0], -0.01, 1e-15);
+  EXPECT_NEAR(at_1s.planes[0].center_m[1], 0.002, 1e-15);
+
+  // A still scene is the same at every time.
+  const TargetScene unmoving = scene(nullptr, nullptr);
+  EXPECT_FALSE(unmoving.animation);
+  EXPECT_EQ(TargetSceneAt(unmoving, 3.0).meshes[0].mesh.positions, unmoving.meshes[0].mesh.positions);
+  // A camera that walks through the plane is refused, naming the time.
+  const TargetScene through =
+      scene(nullptr, json{{{"time", "0 s"}, {"position", {0, 0, 0}}}, {{"time", "1 s"}, {"position", {0, 0, "3 m"}}}});
+  try {
+    TargetSceneAt(through, 0.8);
+    FAIL() << "accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("at 0.8000 s, mesh die.obj: vertex"), std::string::npos) << e.what();
+  }
 }
 
 json BaseTarget() {
@@ -196,6 +268,40 @@ const BadTarget kBadTargets[] = {
        t["objects"][0] = {{"type", "mesh"}, {"file", "die.obj"}, {"position", {0, "1 D"}}};
      },
      "/objects/0/position: expected [x, y, z]: lengths, z also as a depth such as \"1 D\", got [0,\"1 D\"]"},
+    {"KeysOutOfOrder",
+     [](json& t) {
+       t["objects"][0] = {
+           {"type", "mesh"},
+           {"file", "die.obj"},
+           {"position", {0, 0, "1 D"}},
+           {"scale", "1 cm"},
+           {"keys", {{{"time", "1 s"}, {"rotation", {0, 0, 0}}}, {{"time", "0.5 s"}, {"rotation", {0, 0, 0}}}}}};
+     },
+     "/objects/0/keys/1/time: keys must come in increasing time; the key before is at 1.0000 s"},
+    {"KeyOfNothing",
+     [](json& t) {
+       t["objects"][0] = {{"type", "mesh"},
+                          {"file", "die.obj"},
+                          {"position", {0, 0, "1 D"}},
+                          {"scale", "1 cm"},
+                          {"keys", {{{"time", "1 s"}}}}};
+     },
+     "/objects/0/keys/0: a key gives a \"position\", a \"rotation\" or both"},
+    {"CameraKeyWithARotation",
+     [](json& t) {
+       t["animation"] = {{"camera", {{{"time", "0 s"}, {"rotation", {0, 0, 0}}}}}};
+     },
+     "/animation/camera/0/rotation: unknown key \"rotation\"; known keys: position, time"},
+    {"PlaneKeys",
+     [](json& t) {
+       t["objects"][0]["keys"] = {{{"time", "0 s"}, {"position", {0, 0, "1 D"}}}};
+     },
+     "/objects/0/keys: unknown key \"keys\"; known keys: center, depth, size, texture, type"},
+    {"NoFrameRate",
+     [](json& t) {
+       t["animation"] = {{"frame_rate", "0 Hz"}};
+     },
+     "/animation/frame_rate: must be in (0, 10000] (SI units), got 0"},
 };
 
 INSTANTIATE_TEST_SUITE_P(Targets, BadTargetTest, ::testing::ValuesIn(kBadTargets),

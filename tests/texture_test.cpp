@@ -1,5 +1,6 @@
 // Textures against their formulas: gratings in cycles per degree at the
-// plane's depth, checkerboards, seeded noise, image sampling, and refusals.
+// plane's depth, checkerboards, seeded noise (and its plane-wave table), image
+// sampling, and refusals.
 #include <cmath>
 #include <cstring>
 #include <numbers>
@@ -11,6 +12,7 @@
 #include "layerlab/framework/units.h"
 #include "layerlab/targets/fast_cos.h"
 #include "layerlab/targets/length_or_angle.h"
+#include "layerlab/targets/plane_wave_table.h"
 #include "layerlab/targets/texture.h"
 #include "layerlab/tests/render_test_util.h"
 #include "layerlab/tests/test_util.h"
@@ -128,6 +130,56 @@ TEST(TextureTest, FastCosMatchesTheLibrary) {
   for (double x = -2e4; x < 2e4; x += 0.37) worst = std::max(worst, std::abs(FastCos(x) - std::cos(x)));
   for (double x = -7; x < 7; x += 1e-4) worst = std::max(worst, std::abs(FastCos(x) - std::cos(x)));
   EXPECT_LT(worst, 1e-11);
+}
+
+TEST(TextureTest, FastSinMatchesTheLibrary) {
+  double worst = 0;
+  for (double x = -2e4; x < 2e4; x += 0.37) worst = std::max(worst, std::abs(FastSin(x) - std::sin(x)));
+  for (double x = -7; x < 7; x += 1e-4) worst = std::max(worst, std::abs(FastSin(x) - std::sin(x)));
+  EXPECT_LT(worst, 1e-11);
+}
+
+// The table's angle-sum evaluation against the noise summed here with the library's cosine at the point where
+// each view's ray meets the plane: s = v + (x - v) z / z_lf - c.
+TEST(TextureTest, PlaneWaveTableIsTheNoiseWhereEachViewsRayMeetsThePlane) {
+  TextureFrame frame;
+  frame.reference_depth_m = 2.5;
+  auto noise = Parse({{"type", "noise"},
+                      {"band", {"0.5 cpd", "3 cpd"}},
+                      {"components", 48},
+                      {"seed", 7},
+                      {"contrast", 0.9},
+                      {"mean", 0.35}},
+                     frame);
+  const PlaneWaves* waves = noise->plane_waves();
+  ASSERT_NE(waves, nullptr);
+  ASSERT_EQ(waves->kx.size(), 48u);
+  const double z = 2.5, z_lf = 1.0;
+  const std::array<double, 2> centre{0.03, -0.02};
+  PlaneWaveTable table(*waves, z, centre, z_lf);
+  std::vector<std::array<double, 2>> points;
+  for (int i = 0; i < 40; ++i) points.push_back({-0.2 + 0.0107 * i, 0.15 - 0.0071 * i * (i % 3)});
+  table.SetPoints(points);
+  PlaneWaveTable::ViewPhases phases;
+  double worst = 0;
+  int clamped = 0;
+  for (double vx : {-0.003, 0.0, 0.0027})
+    for (double vy : {-0.0031, 0.002}) {
+      table.PhasesOfView(vx, vy, &phases);
+      for (size_t i = 0; i < points.size(); ++i) {
+        const double s = vx + (points[i][0] - vx) * z / z_lf - centre[0];
+        const double t = vy + (points[i][1] - vy) * z / z_lf - centre[1];
+        double sum = 0;
+        for (size_t k = 0; k < waves->kx.size(); ++k)
+          sum += std::cos(waves->kx[k] * s + waves->ky[k] * t + waves->phase[k]);
+        const double expected = std::max(0.0, 0.35 * (1 + 0.9 * std::sqrt(2.0 / 48) * sum));
+        clamped += expected == 0;
+        worst = std::max(worst, std::abs(table.Value(i, phases) - expected));
+        EXPECT_EQ(noise->Evaluate(s, t)[0], waves->Evaluate(s, t));
+      }
+    }
+  EXPECT_LT(worst, 1e-11);
+  EXPECT_GT(clamped, 0) << "no point where the noise clamps at 0";
 }
 
 TEST(TextureTest, ExrImageIsSampledBilinearlyBetweenPixelCenters) {
