@@ -8,6 +8,7 @@
 
 #include "layerlab/framework/atomic_file.h"
 #include "layerlab/framework/error.h"
+#include "layerlab/framework/huge_page_allocator.h"
 #include "layerlab/framework/units.h"
 #include "layerlab/solvers/solver.h"
 #if LAYERLAB_WITH_EMBREE
@@ -18,6 +19,10 @@ namespace layerlab {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// What the frames' renders and solves may keep of the large buffers they free, for the next frame to reuse
+// (framework/huge_page_allocator.h): more than a paper-scale frame makes and frees.
+constexpr size_t kKeptBytes = size_t(2) << 30;
 
 double SecondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
@@ -73,6 +78,7 @@ FrameSequence SolveFrameSequence(const SolveJob& job, const TargetScene& scene, 
 #if !LAYERLAB_WITH_EMBREE
   throw Error("--frames renders each frame's target, and this layerlab was built without Embree");
 #else
+  const LargeBlockReuse reuse(kKeptBytes);
   FrameSequence sequence;
   std::shared_ptr<DisplayModel> model;
   Patterns previous;

@@ -1,6 +1,8 @@
 #include "layerlab/framework/huge_page_allocator.h"
 
 #include <cstdlib>
+#include <map>
+#include <mutex>
 #include <new>
 
 #if defined(__linux__)
@@ -10,6 +12,63 @@
 namespace layerlab {
 namespace {
 constexpr size_t kHugePage = size_t(2) << 20;
+
+// The blocks a LargeBlockReuse keeps, by size.
+struct KeptBlocks {
+  std::mutex mutex;
+  bool active = false;
+  size_t limit = 0, bytes = 0, reused = 0;
+  std::multimap<size_t, void*> blocks;
+};
+KeptBlocks& Kept() {
+  static KeptBlocks kept;
+  return kept;
+}
+
+void* TakeKept(size_t rounded) {
+  KeptBlocks& k = Kept();
+  std::lock_guard<std::mutex> lock(k.mutex);
+  if (!k.active) return nullptr;
+  auto it = k.blocks.find(rounded);
+  if (it == k.blocks.end()) return nullptr;
+  void* p = it->second;
+  k.blocks.erase(it);
+  k.bytes -= rounded;
+  ++k.reused;
+  return p;
+}
+
+bool Keep(void* p, size_t rounded) {
+  KeptBlocks& k = Kept();
+  std::lock_guard<std::mutex> lock(k.mutex);
+  if (!k.active || k.bytes + rounded > k.limit) return false;
+  k.blocks.emplace(rounded, p);
+  k.bytes += rounded;
+  return true;
+}
+}  // namespace
+
+LargeBlockReuse::LargeBlockReuse(size_t keep_bytes) {
+  KeptBlocks& k = Kept();
+  std::lock_guard<std::mutex> lock(k.mutex);
+  k.active = true;
+  k.limit = keep_bytes;
+  k.reused = 0;
+}
+
+LargeBlockReuse::~LargeBlockReuse() {
+  KeptBlocks& k = Kept();
+  std::lock_guard<std::mutex> lock(k.mutex);
+  for (auto& [size, p] : k.blocks) std::free(p);
+  k.blocks.clear();
+  k.bytes = 0;
+  k.active = false;
+}
+
+size_t LargeBlockReuse::Reused() {
+  KeptBlocks& k = Kept();
+  std::lock_guard<std::mutex> lock(k.mutex);
+  return k.reused;
 }
 
 size_t LargeAllocationBytes(size_t bytes) {
@@ -25,6 +84,7 @@ void* AllocateLarge(size_t bytes) {
   if (bytes >= kHugePage) {
     if (bytes > static_cast<size_t>(-1) - (kHugePage - 1)) throw std::bad_alloc();
     const size_t rounded = LargeAllocationBytes(bytes);
+    if (void* kept = TakeKept(rounded)) return kept;
     void* p = std::aligned_alloc(kHugePage, rounded);
     if (p == nullptr) throw std::bad_alloc();
     madvise(p, rounded, MADV_HUGEPAGE);  // a hint: refused, the pages are just small
@@ -37,7 +97,7 @@ void* AllocateLarge(size_t bytes) {
 void FreeLarge(void* p, size_t bytes) {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
   if (bytes >= kHugePage) {
-    std::free(p);
+    if (!Keep(p, LargeAllocationBytes(bytes))) std::free(p);
     return;
   }
 #endif

@@ -17,6 +17,19 @@ void* AllocateLarge(size_t bytes);
 size_t LargeAllocationBytes(size_t bytes);
 void FreeLarge(void* p, size_t bytes);
 
+// While one is alive, blocks of 2 MB and more that are freed are kept, up to `keep_bytes` in all, and handed
+// to the next allocation of the same size: a loop that makes and frees the same buffers (a frame sequence's
+// renders and solves) pays their page faults once. When it ends the kept blocks are freed. Not nested.
+class LargeBlockReuse {
+ public:
+  explicit LargeBlockReuse(size_t keep_bytes);
+  ~LargeBlockReuse();
+  LargeBlockReuse(const LargeBlockReuse&) = delete;
+  LargeBlockReuse& operator=(const LargeBlockReuse&) = delete;
+  // Allocations served from kept blocks so far (for tests and reports).
+  static size_t Reused();
+};
+
 template <class T>
 struct HugePageAllocator {
   using value_type = T;

@@ -49,16 +49,21 @@ std::string Number(double x) {
 
 std::string Triple(double x, double y, double z) { return "(" + Number(x) + ", " + Number(y) + ", " + Number(z) + ")"; }
 
-void RequireTraceable(const std::array<float, 3>& origin, const std::array<float, 3>& direction, float t_near,
-                      float t_far) {
-  bool finite = std::isfinite(origin[0]) && std::isfinite(origin[1]) && std::isfinite(origin[2]) &&
-                std::isfinite(direction[0]) && std::isfinite(direction[1]) && std::isfinite(direction[2]) &&
-                std::isfinite(t_near) && !std::isnan(t_far);
-  bool nonzero = direction[0] != 0 || direction[1] != 0 || direction[2] != 0;
-  if (!finite || !nonzero || !(t_near >= 0) || !(t_far >= t_near))
-    throw Error("Embree: internal error: refusing to trace the ray from " + Triple(origin[0], origin[1], origin[2]) +
-                " along " + Triple(direction[0], direction[1], direction[2]) + " for t in [" + Number(t_near) + ", " +
-                Number(t_far) + "]");
+[[noreturn]] void RefuseRay(const std::array<float, 3>& origin, const std::array<float, 3>& direction, float t_near,
+                            float t_far) {
+  throw Error("Embree: internal error: refusing to trace the ray from " + Triple(origin[0], origin[1], origin[2]) +
+              " along " + Triple(direction[0], direction[1], direction[2]) + " for t in [" + Number(t_near) + ", " +
+              Number(t_far) + "]");
+}
+
+inline void RequireTraceable(const std::array<float, 3>& origin, const std::array<float, 3>& direction, float t_near,
+                             float t_far) {
+  const bool finite = std::isfinite(origin[0]) && std::isfinite(origin[1]) && std::isfinite(origin[2]) &&
+                      std::isfinite(direction[0]) && std::isfinite(direction[1]) && std::isfinite(direction[2]) &&
+                      std::isfinite(t_near) && !std::isnan(t_far);
+  const bool nonzero = direction[0] != 0 || direction[1] != 0 || direction[2] != 0;
+  if (!finite || !nonzero || !(t_near >= 0) || !(t_far >= t_near)) [[unlikely]]
+    RefuseRay(origin, direction, t_near, t_far);
 }
 
 void SetQuery(const std::array<float, 3>& origin, const std::array<float, 3>& direction, float t_near, float t_far,

@@ -45,5 +45,38 @@ TEST(HugePageAllocator, AnImpossibleSizeIsRefused) {
   EXPECT_THROW(a.allocate(static_cast<size_t>(-1) / 4), std::bad_alloc);  // fits, but not once rounded to 2 MB
 }
 
+// A block freed while a LargeBlockReuse lives goes to the next allocation of its size, up to the bytes it may
+// keep; a block of another size, or beyond them, is new; and outside one nothing is kept.
+TEST(HugePageAllocator, FreedBlocksAreReusedWhileAReuseLives) {
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  const size_t page = size_t(2) << 20;
+  {
+    const LargeBlockReuse reuse(5 * page);
+    void* a = AllocateLarge(2 * page);
+    FreeLarge(a, 2 * page);
+    void* b = AllocateLarge(2 * page - 4096);  // the same whole pages
+    EXPECT_EQ(b, a);
+    EXPECT_EQ(LargeBlockReuse::Reused(), 1u);
+    void* c = AllocateLarge(3 * page);
+    FreeLarge(b, 2 * page);
+    FreeLarge(c, 3 * page);  // 5 pages kept in all: still within the limit
+    void* d = AllocateLarge(6 * page);
+    FreeLarge(d, 6 * page);  // beyond the limit: freed, not kept
+    void* again = AllocateLarge(6 * page);
+    EXPECT_EQ(LargeBlockReuse::Reused(), 1u) << "a block beyond the limit was kept";
+    FreeLarge(again, 6 * page);
+    void* e = AllocateLarge(3 * page);
+    EXPECT_EQ(e, c);
+    EXPECT_EQ(LargeBlockReuse::Reused(), 2u);
+    FreeLarge(e, 3 * page);
+  }
+  void* f = AllocateLarge(2 * page);
+  FreeLarge(f, 2 * page);
+  void* g = AllocateLarge(2 * page);
+  FreeLarge(g, 2 * page);
+  EXPECT_EQ(LargeBlockReuse::Reused(), 2u) << "a block was reused after the reuse ended";
+#endif
+}
+
 }  // namespace
 }  // namespace layerlab
