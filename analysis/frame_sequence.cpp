@@ -62,10 +62,11 @@ void RequireFrameSequence(const SolveJob& job, const TargetScene& scene, const F
   if (options.frames < 1) throw Error("--frames: must be at least 1");
   if (options.frame_iterations < 1) throw Error("--frame-iterations: must be at least 1");
   if (options.cold_every < 0) throw Error("--cold-every: must be 0 (no cold solves) or positive");
-  if (!scene.animation)
-    throw Error(scene.file +
-                ": the target scene does not move (no \"animation\" and no mesh \"keys\"), so every frame "
-                "would be the same; docs/target-format.md, \"Moving scenes\"");
+  if (!TargetSceneMoves(scene))
+    throw Error(
+        scene.file +
+        ": the target scene does not move (no camera keys in \"animation\" and no mesh \"keys\"), so every frame "
+        "would be the same; docs/target-format.md, \"Moving scenes\"");
   if (job.config.options.objective == ObjectiveKind::kRetinal || job.config.options.measure_focal_stack)
     throw Error(
         "--frames: solves the light-field objective; the retinal objective and the focal stack are for one "

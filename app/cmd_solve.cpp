@@ -274,6 +274,7 @@ void WriteResults(const Options& o, const Scene& scene, const DisplaySystem& sys
 // written as a solve's, with frames.csv and frames.txt beside it.
 void SolveFrames(const Options& o, const Scene& scene, const DisplaySystem& system, const SolveJob& job,
                  const Ranks& ranks) {
+  if (o.frames.frames < 1) throw Error("--frames: must be at least 1, got " + std::to_string(o.frames.frames));
   if (ranks.size > 1) throw Error("--frames: not with MPI ranks; run it in one process");
   if (o.resume || o.checkpoint_every > 0 || !o.start_from.empty())
     throw Error("--frames: not with --resume, --checkpoint-every or --start-from (each frame starts from the last)");
@@ -395,7 +396,9 @@ void AddSolveCommand(CLI::App& app) {
                   "With --frames: also solve every K-th frame cold, as its PSNR reference (default 1; 0: none)");
   cmd->add_option("--max-memory", o->max_memory,
                   "Refuse a run estimated to need more (e.g. 2 GB; default: the machine's memory)");
-  cmd->callback([o] {
+  cmd->callback([o, cmd] {
+    for (const char* flag : {"--frame-iterations", "--cold-every"})
+      if (cmd->count(flag) && o->frames.frames == 0) throw Error(std::string(flag) + ": only with --frames N");
     Ranks ranks;
 #if LAYERLAB_WITH_MPI
     if (MpiWorld::Launched()) {

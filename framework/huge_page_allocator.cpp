@@ -16,6 +16,7 @@ constexpr size_t kHugePage = size_t(2) << 20;
 // The blocks a LargeBlockReuse keeps, by size.
 struct KeptBlocks {
   std::mutex mutex;
+  int depth = 0;  // LargeBlockReuse scopes alive: a nested one changes nothing
   bool active = false;
   size_t limit = 0, bytes = 0, reused = 0;
   std::multimap<size_t, void*> blocks;
@@ -42,7 +43,11 @@ bool Keep(void* p, size_t rounded) {
   KeptBlocks& k = Kept();
   std::lock_guard<std::mutex> lock(k.mutex);
   if (!k.active || k.bytes + rounded > k.limit) return false;
-  k.blocks.emplace(rounded, p);
+  try {
+    k.blocks.emplace(rounded, p);
+  } catch (const std::bad_alloc&) {
+    return false;  // freed instead
+  }
   k.bytes += rounded;
   return true;
 }
@@ -51,6 +56,7 @@ bool Keep(void* p, size_t rounded) {
 LargeBlockReuse::LargeBlockReuse(size_t keep_bytes) {
   KeptBlocks& k = Kept();
   std::lock_guard<std::mutex> lock(k.mutex);
+  if (k.depth++ > 0) return;
   k.active = true;
   k.limit = keep_bytes;
   k.reused = 0;
@@ -59,6 +65,7 @@ LargeBlockReuse::LargeBlockReuse(size_t keep_bytes) {
 LargeBlockReuse::~LargeBlockReuse() {
   KeptBlocks& k = Kept();
   std::lock_guard<std::mutex> lock(k.mutex);
+  if (--k.depth > 0) return;
   for (auto& [size, p] : k.blocks) std::free(p);
   k.blocks.clear();
   k.bytes = 0;

@@ -19,7 +19,8 @@ void FreeLarge(void* p, size_t bytes);
 
 // While one is alive, blocks of 2 MB and more that are freed are kept, up to `keep_bytes` in all, and handed
 // to the next allocation of the same size: a loop that makes and frees the same buffers (a frame sequence's
-// renders and solves) pays their page faults once. When it ends the kept blocks are freed. Not nested.
+// renders and solves) pays their page faults once. When it ends the kept blocks are freed. One nested in
+// another changes nothing: the outermost sets the limit and frees the blocks.
 class LargeBlockReuse {
  public:
   explicit LargeBlockReuse(size_t keep_bytes);

@@ -1,5 +1,6 @@
 #include "layerlab/targets/target_renderer.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -15,22 +16,29 @@
 namespace layerlab {
 namespace {
 
-// One pixel row of every view. Its samples' points on the origin plane are the same in every view
-// (pixel_sampling.h), so the phases of a plane-wave texture at those points are computed once for the row
-// (plane_wave_table.h), and each view traces the row's rays as one coherent stream.
+// The rays a view traces as one stream, at most (a block of a row's pixels, their samples and centres).
+constexpr size_t kRaysPerStream = 4096;
+// A plane-wave table of a block is made when it takes at most this much and more than one view reads it.
+constexpr size_t kTableBytes = size_t(32) << 20;
+
+// A block of one pixel row, in every view. Its samples' points on the origin plane are the same in every
+// view (pixel_sampling.h), so the phases of a plane-wave texture at those points are computed once for the
+// block (plane_wave_table.h), and each view traces the block's rays as one coherent stream.
 class RowRenderer {
  public:
-  RowRenderer(const TargetScene& target, const TargetTracer& tracer, const PixelSampler& sampler, int row)
-      : g_(target.geometry), tracer_(tracer), n_(sampler.samples()), row_(row) {
-    for (int j = 0; j < g_.cols; ++j)
+  RowRenderer(const TargetScene& target, const TargetTracer& tracer, const PixelSampler& sampler, int row,
+              int first_col, int cols)
+      : g_(target.geometry), tracer_(tracer), n_(sampler.samples()), row_(row), first_col_(first_col), cols_(cols) {
+    for (int j = first_col; j < first_col + cols; ++j)
       for (int k = 0; k < n_; ++k) points_.push_back(sampler.Sample(row, j, k));
     if (n_ > 1)
-      for (int j = 0; j < g_.cols; ++j) points_.push_back({g_.pixel_x(j), g_.pixel_y(row)});
-    const size_t samples = size_t(g_.cols) * n_;
+      for (int j = first_col; j < first_col + cols; ++j) points_.push_back({g_.pixel_x(j), g_.pixel_y(row)});
+    const size_t samples = size_t(cols) * n_;
     tables_.resize(target.planes.size());
     for (size_t p = 0; p < target.planes.size(); ++p) {
       const TargetPlane& plane = target.planes[p];
-      if (const PlaneWaves* waves = plane.texture->plane_waves()) {
+      const PlaneWaves* waves = plane.texture->plane_waves();
+      if (waves && g_.view_count() > 1 && samples * 2 * waves->kx.size() * sizeof(double) <= kTableBytes) {
         tables_[p].emplace(*waves, plane.depth_m, plane.center_m, g_.origin_z_m);
         tables_[p]->SetPoints(std::span(points_).first(samples));
       }
@@ -49,16 +57,17 @@ class RowRenderer {
     tracer_.IntersectFrom(vx, vy, slopes_, hits_);
     for (size_t p = 0; p < tables_.size(); ++p)
       if (tables_[p]) tables_[p]->PhasesOfView(vx, vy, &phases_[p]);
-    float* rgb = lf->view(view) + size_t(row_) * g_.cols * 3;
-    float* depth = lf->depth.data() + view * g_.pixels_per_view() + size_t(row_) * g_.cols;
-    for (int j = 0; j < g_.cols; ++j) {
+    const size_t first = size_t(row_) * g_.cols + first_col_;
+    float* rgb = lf->view(view) + first * 3;
+    float* depth = lf->depth.data() + view * g_.pixels_per_view() + first;
+    for (int j = 0; j < cols_; ++j) {
       double sum[3] = {0, 0, 0};
       for (int k = 0; k < n_; ++k) {
         const size_t s = size_t(j) * n_ + k;
         const Rgb color = Color(s, vx, vy);
         for (int ch = 0; ch < 3; ++ch) sum[ch] += color[ch];
       }
-      const size_t centre = n_ > 1 ? size_t(g_.cols) * n_ + j : size_t(j);
+      const size_t centre = n_ > 1 ? size_t(cols_) * n_ + j : size_t(j);
       const double z = tracer_.Depth(hits_[centre], vx, vy, slopes_[centre][0], slopes_[centre][1]);
       if (std::isfinite(z)) depth[j] = static_cast<float>(z);
       for (int ch = 0; ch < 3; ++ch) rgb[size_t(j) * 3 + ch] = static_cast<float>(sum[ch] / n_);
@@ -78,7 +87,7 @@ class RowRenderer {
 
   const LightFieldGeometry& g_;
   const TargetTracer& tracer_;
-  const int n_, row_;
+  const int n_, row_, first_col_, cols_;
   std::vector<std::array<double, 2>> points_;          // the row's samples, pixel by pixel; then its centres when n > 1
   std::vector<std::optional<PlaneWaveTable>> tables_;  // per plane: the row's plane-wave phases
   std::vector<PlaneWaveTable::ViewPhases> phases_;     // per plane: the view's
@@ -99,10 +108,14 @@ LightField RenderTarget(const TargetScene& target, RenderStats* stats, const Ren
   std::atomic<uint64_t> rays{0};
   std::atomic<size_t> rows_done{0};
 
+  const int rays_per_pixel = sampler.samples() + (sampler.samples() > 1 ? 1 : 0);
+  const int block = std::max(1, int(kRaysPerStream / size_t(rays_per_pixel)));
   tbb::parallel_for(0, g.rows, [&](int row) {
-    RowRenderer renderer(target, tracer, sampler, row);
     uint64_t row_rays = 0;
-    for (size_t view = 0; view < g.view_count(); ++view) row_rays += renderer.RenderView(view, &lf);
+    for (int first_col = 0; first_col < g.cols; first_col += block) {
+      RowRenderer renderer(target, tracer, sampler, row, first_col, std::min(block, g.cols - first_col));
+      for (size_t view = 0; view < g.view_count(); ++view) row_rays += renderer.RenderView(view, &lf);
+    }
     rays += row_rays;
     size_t done = ++rows_done;
     if (progress) progress(done, size_t(g.rows));

@@ -185,6 +185,7 @@ TargetPlane ParsePlane(Params& o, const LightFieldGeometry& g, const std::string
   TargetPlane plane;
   plane.depth_m = RequiredDepth(o, "depth");
   plane.center_m = o.quantity_pair("center", Dimension::kLength, {0, 0});
+  plane.covers_every_ray = !o.has("size");
   plane.size_m =
       o.has("size") ? LengthOrAnglePair(o, "size", plane.depth_m) : CoveringSize(g, plane.depth_m, plane.center_m);
   o.mark_read("size");
@@ -284,32 +285,56 @@ std::string InFrontOfThePupil(const std::vector<Vec3>& vertices_m) {
   return "";
 }
 
-TargetScene TargetSceneAt(const TargetScene& scene, double time_s) {
+namespace {
+
+std::string AtTime(double time_s) { return "at " + FormatFixed(time_s, 4) + " s"; }
+
+// `scene` at `time_s`, its still objects now seen from `camera_now_m`.
+TargetScene Posed(const TargetScene& scene, const Vec3& camera_now_m, double time_s) {
   TargetScene posed = scene;
-  if (!scene.animation) return posed;
   posed.time_s = time_s;
   const Vec3 camera = PositionAt(scene.animation->camera, time_s, {0, 0, 0});
+  const Vec3 by{camera[0] - camera_now_m[0], camera[1] - camera_now_m[1], camera[2] - camera_now_m[2]};
   for (TargetMesh& mesh : posed.meshes) {
     if (mesh.motion) {
       const MeshMotion& m = *mesh.motion;
       PlaceVertices(m.local_m, PositionAt(m.keys, time_s, m.position_m), RotationAt(m.keys, time_s, m.rotation_rad),
                     &mesh.mesh.positions);
       for (Vec3& p : mesh.mesh.positions)
-        for (int k = 0; k < 3; ++k) p[k] += scene.moved_m[k];
+        for (int k = 0; k < 3; ++k) p[k] += scene.moved_m[k] - camera[k];
+    } else {
+      for (Vec3& p : mesh.mesh.positions)
+        for (int k = 0; k < 3; ++k) p[k] -= by[k];
     }
-    for (Vec3& p : mesh.mesh.positions)
-      for (int k = 0; k < 3; ++k) p[k] -= camera[k];
     if (const std::string why = InFrontOfThePupil(mesh.mesh.positions); !why.empty())
-      throw Error(scene.file + ": at " + FormatFixed(time_s, 4) + " s, mesh " + mesh.file + ": " + why);
+      throw Error(scene.file + ": " + AtTime(time_s) + ", mesh " + mesh.file + ": " + why);
   }
-  for (TargetPlane& plane : posed.planes) {
-    plane.center_m[0] -= camera[0], plane.center_m[1] -= camera[1];
-    plane.depth_m -= camera[2];
+  for (size_t i = 0; i < posed.planes.size(); ++i) {
+    TargetPlane& plane = posed.planes[i];
+    plane.center_m[0] -= by[0], plane.center_m[1] -= by[1];
+    plane.depth_m -= by[2];
     if (!(plane.depth_m > 0))
-      throw Error(scene.file + ": at " + FormatFixed(time_s, 4) + " s, the camera has passed a plane (at " +
-                  FormatFixed(plane.depth_m, 4) + " m from it)");
+      throw Error(scene.file + ": " + AtTime(time_s) + ", the camera has passed the plane the file places at " +
+                  FormatFixed(scene.planes[i].depth_m +
+                                  PositionAt(scene.animation->camera, scene.time_s, {0, 0, 0})[2] - scene.moved_m[2],
+                              4) +
+                  " m (it would lie " + FormatFixed(plane.depth_m, 4) + " m from the pupil plane)");
+    if (plane.covers_every_ray) plane.size_m = CoveringSize(scene.geometry, plane.depth_m, plane.center_m);
   }
   return posed;
+}
+
+}  // namespace
+
+TargetScene TargetSceneAt(const TargetScene& scene, double time_s) {
+  if (!scene.animation) return scene;
+  return Posed(scene, PositionAt(scene.animation->camera, scene.time_s, {0, 0, 0}), time_s);
+}
+
+bool TargetSceneMoves(const TargetScene& scene) {
+  if (!scene.animation) return false;
+  if (!scene.animation->camera.empty()) return true;
+  return std::any_of(scene.meshes.begin(), scene.meshes.end(), [](const TargetMesh& m) { return m.motion != nullptr; });
 }
 
 std::array<double, 2> CoveringSize(const LightFieldGeometry& g, double z, std::array<double, 2> center) {
@@ -373,6 +398,7 @@ TargetScene ParseTarget(const json& document, const std::string& file, const Sce
   if (!target.animation &&
       std::any_of(target.meshes.begin(), target.meshes.end(), [](const TargetMesh& m) { return m.motion != nullptr; }))
     target.animation.emplace();  // keys alone: the default frame rate
+  if (target.animation) target = Posed(target, {0, 0, 0}, 0.0);
   for (size_t i = 0; i < parts.size(); ++i) target.description += (i ? "; " : "") + parts[i];
   return target;
 }

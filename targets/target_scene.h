@@ -37,6 +37,7 @@ struct TargetPlane {
   std::array<double, 2> center_m{};  // m; also the texture's origin
   std::array<double, 2> size_m{};    // m
   std::shared_ptr<const Texture> texture;
+  bool covers_every_ray = false;  // no "size" given: CoveringSize, and again wherever the scene moves it
 };
 
 // A triangle mesh in eye space, Lambertian under the scene's light.
@@ -80,9 +81,12 @@ struct TargetScene {
 };
 
 // The scene at `time_s` (s): each moving mesh placed by its keys, and everything seen from the camera's keyed
-// position. A scene that does not move is returned as it is. Refuses a pose that puts a vertex or a plane at
-// or behind the pupil plane, naming the time.
+// position. ParseTarget poses a moving scene at 0 s, so that every render of it is of a time (part of its
+// render's key). A scene that does not move is returned as it is. Refuses a pose that puts a vertex or a plane
+// at or behind the pupil plane, naming the time.
 TargetScene TargetSceneAt(const TargetScene& scene, double time_s);
+// Whether anything in it moves: the camera or a mesh has keys.
+bool TargetSceneMoves(const TargetScene& scene);
 
 // "" when every vertex lies in front of the pupil plane (z > 0), else which does not.
 std::string InFrontOfThePupil(const std::vector<std::array<double, 3>>& vertices_m);

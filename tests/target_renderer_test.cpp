@@ -427,6 +427,7 @@ TEST(TargetRendererTest, RenderingIsDeterministic) {
 // shared phases; here every pixel is traced again ray by ray (TraceDirection, Embree's single-ray query and
 // the texture evaluated at the hit) and averaged as the pixel's samples. A die in front of the noise gives
 // mesh hits and edges. A ray that grazes an edge may meet the other triangle in the stream: a few pixels.
+// Long rows are cut into streams of at most 4,096 rays.
 TEST(TargetRendererTest, RowStreamsAndSharedPhasesAreTheRaysOneByOne) {
   const json die = {{"type", "mesh"},
                     {"file", "die.obj"},
@@ -437,7 +438,7 @@ TEST(TargetRendererTest, RowStreamsAndSharedPhasesAreTheRaysOneByOne) {
   const json noise = {{"type", "plane"},
                       {"depth", "0.4 D"},
                       {"texture", {{"type", "noise"}, {"band", {"0.5 cpd", "3 cpd"}}, {"components", 24}}}};
-  for (int spp : {1, 4}) {
+  for (int spp : {1, 4, 144}) {  // 144 samples: each row of 36 pixels traced as two streams (28 + 8 pixels)
     const TargetScene target =
         ParseTarget(Target(LightFieldJson("1 D", {"12 deg", "8 deg"}, {36, 24}, {3, 2}), {noise, die}, spp),
                     testing::ExamplePath("targets/target.json"));

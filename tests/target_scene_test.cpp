@@ -136,6 +136,18 @@ TEST(TargetSceneTest, KeysPlaceAMeshAsAStillSceneAtThatPlacement) {
   EXPECT_NEAR(at_1s.planes[0].center_m[0], -0.01, 1e-15);
   EXPECT_NEAR(at_1s.planes[0].center_m[1], 0.002, 1e-15);
 
+  // Read, a moving scene is posed at 0 s: a camera whose first key is 1 cm right sees everything 1 cm left,
+  // and a plane whose size was left to cover every ray covers them from where it now is.
+  const TargetScene shifted = scene(nullptr, json{{{"time", "0 s"}, {"position", {"1 cm", 0, 0}}}});
+  EXPECT_EQ(shifted.time_s, 0.0);
+  for (size_t i = 0; i < placed.size(); ++i)
+    EXPECT_NEAR(shifted.meshes[0].mesh.positions[i][0], placed[i][0] - 0.01, 1e-15);
+  EXPECT_NEAR(shifted.planes[0].center_m[0], -0.01, 1e-15);
+  const std::array<double, 2> covering =
+      CoveringSize(shifted.geometry, shifted.planes[0].depth_m, shifted.planes[0].center_m);
+  EXPECT_EQ(shifted.planes[0].size_m, covering);
+  EXPECT_GT(covering[0], CoveringSize(shifted.geometry, 2.0, {0, 0})[0]) << "the moved plane needs to be wider";
+
   // A still scene is the same at every time.
   const TargetScene unmoving = scene(nullptr, nullptr);
   EXPECT_FALSE(unmoving.animation);

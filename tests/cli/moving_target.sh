@@ -35,4 +35,5 @@ refused "does not move" --frames 2
 refused "--frames" --target-scene "$moving" --frames -1
 refused "--frame-iterations" --target-scene "$moving" --frames 2 --frame-iterations 0
 refused "a light-field folder" --target "$work/a" --frames 2
+refused "--cold-every" --target-scene "$moving" --cold-every 2
 echo "moving target: frames.csv, frames.txt, the last solution; still scenes and bad counts refused"
