@@ -133,6 +133,13 @@ LightFieldGeometry ParseLightField(Params& lf, const std::string& base_dir, cons
   return g;
 }
 
+// A rotation: three angles [about x, about y, about z].
+Vec3 Angles(Params& p, const std::string& key) {
+  Params angles = ArrayParams(p, key, 3, "three angles [about x, about y, about z]");
+  return {angles.quantity("0", Dimension::kAngle), angles.quantity("1", Dimension::kAngle),
+          angles.quantity("2", Dimension::kAngle)};
+}
+
 // The keys of an object's motion or of the camera: [{"time", "position", "rotation"}, ...] in time order.
 std::vector<MotionKey> ParseKeys(Params& p, const std::string& name, bool rotations) {
   const json& list = p.raw(name);
@@ -155,11 +162,7 @@ std::vector<MotionKey> ParseKeys(Params& p, const std::string& name, bool rotati
       key.position_m = Vec3{xyz.quantity("0", Dimension::kLength), xyz.quantity("1", Dimension::kLength),
                             rotations ? DepthOrLength(xyz, "2") : xyz.quantity("2", Dimension::kLength)};
     }
-    if (rotations && k.has("rotation")) {
-      Params angles = ArrayParams(k, "rotation", 3, "three angles [about x, about y, about z]");
-      key.rotation_rad = Vec3{angles.quantity("0", Dimension::kAngle), angles.quantity("1", Dimension::kAngle),
-                              angles.quantity("2", Dimension::kAngle)};
-    }
+    if (rotations && k.has("rotation")) key.rotation_rad = Angles(k, "rotation");
     k.mark_read("position");
     if (rotations) k.mark_read("rotation");
     k.check_all_read();
@@ -208,11 +211,7 @@ TargetMesh ParseMesh(Params& o, const std::string& base_dir, std::string& descri
 
   double scale = o.quantity("scale", Dimension::kLength, 1.0);
   o.require_range("scale", scale, 0.0, 1e3, true, false);
-  Vec3 angles{0, 0, 0};
-  if (o.has("rotation")) {
-    Params rotation = ArrayParams(o, "rotation", 3, "three angles [about x, about y, about z]");
-    for (int k = 0; k < 3; ++k) angles[k] = rotation.quantity(std::to_string(k), Dimension::kAngle);
-  }
+  const Vec3 angles = o.has("rotation") ? Angles(o, "rotation") : Vec3{0, 0, 0};
   o.mark_read("rotation");
   Params position_params = ArrayParams(o, "position", 3, "[x, y, z]: lengths, z also as a depth such as \"1 D\"");
   Vec3 position{position_params.quantity("0", Dimension::kLength), position_params.quantity("1", Dimension::kLength),

@@ -14,6 +14,26 @@ Vec3 Cross(const Vec3& a, const Vec3& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
 
+// A mesh hit's triangle: its first vertex and its geometric normal (p1 - p0) x (p2 - p0).
+struct HitTriangle {
+  Vec3 p0, n;
+};
+
+HitTriangle TriangleOf(const TargetMesh& mesh, const RayHit& hit) {
+  const auto& tri = mesh.mesh.triangles[hit.prim_id];
+  const Vec3 &p0 = mesh.mesh.positions[tri[0]], &p1 = mesh.mesh.positions[tri[1]], &p2 = mesh.mesh.positions[tri[2]];
+  return {p0, Cross(Sub(p1, p0), Sub(p2, p0))};
+}
+
+// The hit's depth refined in double precision on its triangle's plane; the ray's direction has unit z, so its
+// parameter is the eye-space depth. A grazing ray keeps Embree's.
+double RefinedDepth(const HitTriangle& tri, const Vec3& origin, const Vec3& direction, float hit_t) {
+  const double n_dot_d = Dot(tri.n, direction);
+  double z = n_dot_d != 0 ? Dot(tri.n, Sub(tri.p0, origin)) / n_dot_d : hit_t;
+  if (!std::isfinite(z) || std::abs(z - hit_t) > 1e-3 * hit_t) z = hit_t;
+  return z;
+}
+
 }  // namespace
 
 TargetTracer::TargetTracer(const TargetScene& target) : target_(target) {
@@ -52,16 +72,7 @@ double TargetTracer::Depth(const RayHit& hit, double vx, double vy, double dx, d
   if (!hit.hit()) return INFINITY;
   const Surface& surface = surfaces_[hit.geom_id];
   if (surface.is_plane) return target_.planes[surface.index].depth_m;
-  // Direction with unit z: the ray parameter is the eye-space depth.
-  const Vec3 origin{vx, vy, 0}, direction{dx, dy, 1.0};
-  const TargetMesh& mesh = target_.meshes[surface.index];
-  const auto& tri = mesh.mesh.triangles[hit.prim_id];
-  const Vec3 &p0 = mesh.mesh.positions[tri[0]], &p1 = mesh.mesh.positions[tri[1]], &p2 = mesh.mesh.positions[tri[2]];
-  const Vec3 n = Cross(Sub(p1, p0), Sub(p2, p0));
-  const double n_dot_d = Dot(n, direction);
-  double z = n_dot_d != 0 ? Dot(n, Sub(p0, origin)) / n_dot_d : hit.t;
-  if (!std::isfinite(z) || std::abs(z - hit.t) > 1e-3 * hit.t) z = hit.t;  // grazing: keep Embree's
-  return z;
+  return RefinedDepth(TriangleOf(target_.meshes[surface.index], hit), {vx, vy, 0}, {dx, dy, 1.0}, hit.t);
 }
 
 TracedSample TargetTracer::Shade(const RayHit& hit, double vx, double vy, double dx, double dy) const {
@@ -74,10 +85,9 @@ TracedSample TargetTracer::Shade(const RayHit& hit, double vx, double vy, double
   }
   const Vec3 direction{dx, dy, 1.0};
   const TargetMesh& mesh = target_.meshes[surface.index];
-  const auto& tri = mesh.mesh.triangles[hit.prim_id];
-  const Vec3 &p0 = mesh.mesh.positions[tri[0]], &p1 = mesh.mesh.positions[tri[1]], &p2 = mesh.mesh.positions[tri[2]];
-  Vec3 n = Cross(Sub(p1, p0), Sub(p2, p0));
-  const double z = Depth(hit, vx, vy, dx, dy);
+  const HitTriangle tri = TriangleOf(mesh, hit);
+  const Vec3& n = tri.n;
+  const double z = RefinedDepth(tri, {vx, vy, 0}, direction, hit.t);
   double length = std::sqrt(Dot(n, n));
   double lambert = 0;
   if (length > 0) {
