@@ -57,13 +57,6 @@ bool SameEye(const EyeModel& a, const EyeModel& b) {
 
 bool IsNatural(const ContrastCurve& c) { return c.display.rfind("natural", 0) == 0; }
 
-bool SameGeometry(const LightFieldGeometry& a, const LightFieldGeometry& b) {
-  return a.origin_z_m == b.origin_z_m && a.window_left_m == b.window_left_m && a.window_top_m == b.window_top_m &&
-         a.window_width_m == b.window_width_m && a.window_height_m == b.window_height_m && a.cols == b.cols &&
-         a.rows == b.rows && a.views_x == b.views_x && a.views_y == b.views_y && a.eyebox_width_m == b.eyebox_width_m &&
-         a.eyebox_height_m == b.eyebox_height_m;
-}
-
 double Interpolate(const std::vector<double>& x, const std::vector<double>& y, double at) {
   for (size_t k = 1; k < x.size(); ++k)
     if (at <= x[k] + 1e-12) {
@@ -415,7 +408,7 @@ class ContrastRun {
     RetinalImage natural = NaturalImage(LightFieldRadiance(target, d.sampling), Optics(eye, pupils_[di]));
     const double reference = ReferenceAmplitude(eye, natural, dt, f, label);
     bool seen = std::any_of(drawn.begin(), drawn.end(), [&](const DrawnNatural& k) {
-      return k.sampling == d.sampling && SameGeometry(k.geometry, g) && SameEye(*k.eye, eye);
+      return k.sampling == d.sampling && k.geometry == g && SameEye(*k.eye, eye);
     });
     if (!seen) {
       ContrastCurve c = Blank(drawn.empty() ? "natural" : "natural (" + d.name + ")", dt, f);

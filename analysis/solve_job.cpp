@@ -40,7 +40,8 @@ SolvedJob RunSolveJob(const SolveJob& job, const LightField& views, const Target
   std::optional<Progress> progress;
   if (!job.progress_label.empty()) {
     progress.emplace(job.progress_label, options.iterations);
-    options.progress = [&](const IterationRecord& row) {
+    options.progress = [&, earlier = options.progress](const IterationRecord& row) {
+      if (earlier) earlier(row);  // a hook's own (before_solve)
       progress->Update(row.iteration, "iterations  PSNR " + Psnr(row.psnr_db));
     };
   }

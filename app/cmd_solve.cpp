@@ -1,15 +1,17 @@
 // layerlab solve SCENE.json --target LF_DIR --solver NAME --out DIR: factorize
 // a target light field (or a target scene, rendered first) into panel images,
-// with progress on the terminal. Under mpirun the views are partitioned
-// across the ranks in blocks of whole view rows (docs/mpi.md): each rank
-// reads (or renders) only its block, the solvers sum over the ranks
+// with progress on the terminal. Under mpirun the rays are partitioned
+// across the ranks in tiles of view rows by pixel rows (docs/mpi.md): each rank
+// reads (or renders) only its tile, the solvers sum over the ranks
 // (framework/mpi_ranks.h), and rank 0 alone reports and writes.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <functional>
 #include <iostream>
+#include <iterator>
 #include <map>
 #include <memory>
 #include <optional>
@@ -31,6 +33,7 @@
 #include "layerlab/framework/interrupt.h"
 #include "layerlab/framework/lightfield_io.h"
 #include "layerlab/framework/mpi_ranks.h"
+#include "layerlab/framework/thread_budget.h"
 #include "layerlab/solvers/solution_writer.h"
 #if LAYERLAB_WITH_MPI
 #include "layerlab/framework/mpi_world.h"
@@ -91,16 +94,19 @@ struct Ranks {
   }
 };
 
-// This rank's views of the target: its block of view rows read from the
-// folder, or rendered from the target scene; the whole target for one process.
-std::unique_ptr<Target> LoadRankTarget(const SolveConfig& config, const Ranks& ranks, const LightFieldGeometry& block) {
+// This rank's rays of the target: its tile read from the folder, or rendered
+// from the target scene; the whole target for one process.
+std::unique_ptr<Target> LoadRankTarget(const SolveConfig& config, const Ranks& ranks, const LightFieldGeometry& tile) {
   if (!ranks.group()) return LoadOrRenderTarget(config, "target");
   auto target = std::make_unique<Target>();
   if (!config.target.empty()) {
     target->source = config.target;
-    if (ranks.root()) Note("target: loading the light field " + config.target + ", view rows by rank");
-    target->light_field = ReadLightField(
-        config.target, {.load_depth = false, .first_view_row = block.first_view_row, .view_rows = block.views_y});
+    if (ranks.root()) Note("target: loading the light field " + config.target + ", a tile per rank");
+    target->light_field = ReadLightField(config.target, {.load_depth = false,
+                                                         .first_view_row = tile.first_view_row,
+                                                         .view_rows = tile.views_y,
+                                                         .first_pixel_row = tile.first_pixel_row,
+                                                         .pixel_rows = tile.rows});
     return target;
   }
 #if LAYERLAB_WITH_EMBREE
@@ -109,8 +115,8 @@ std::unique_ptr<Target> LoadRankTarget(const SolveConfig& config, const Ranks& r
     target->rendered = true;
     target->scene = std::make_unique<TargetScene>(LoadTarget(config.target_scene));
     MoveTargetScene(target->scene.get(), config.target_moved_m);  // a binocular eye's own display: from its axis
-    target->scene->geometry = block;
-    if (ranks.root()) Note("target: rendering " + config.target_scene + ", view rows by rank");
+    target->scene->geometry = tile;
+    if (ranks.root()) Note("target: rendering " + config.target_scene + ", a tile per rank");
     target->light_field = RenderTarget(*target->scene);
     return target;
   }
@@ -138,22 +144,73 @@ void RefuseWithRanks(const Options& o, const SolverOptions& opt, const Ranks& ra
                 "); run the solve in one process to checkpoint it");
 }
 
-// The views of the target this process solves: its rank's block of whole view rows, or all of them.
+// The rays of the target this process solves: its rank's tile, or all of them.
 struct RankViews {
   LightFieldGeometry whole, block;
-  ViewRowBlock rows;
+  RayTile tile;
 };
 
 RankViews ViewsOfRank(const SolveConfig& config, const Ranks& ranks) {
   RankViews v;
   v.whole = TargetGeometry(config);
-  if (ranks.size > v.whole.views_y)
-    throw Error(std::to_string(ranks.size) + " MPI ranks for " + std::to_string(v.whole.views_y) +
-                " view rows: each rank holds whole view rows; run at most " + std::to_string(v.whole.views_y));
-  v.rows = ViewRowsOfRank(v.whole.views_y, ranks.rank, ranks.size);
-  v.block = ranks.group() ? v.whole.ViewRows(v.rows.first, v.rows.count) : v.whole;
+  v.tile = RayTileOfRank(v.whole.views_y, v.whole.rows, ranks.rank, ranks.size);
+  v.block = ranks.group() ? v.whole.ViewRows(v.tile.first_view_row, v.tile.view_rows)
+                                .PixelRows(v.tile.first_pixel_row, v.tile.pixel_rows)
+                          : v.whole;
   return v;
 }
+
+// "view rows 0-12 x pixel rows 0-99 of 13 x 200" for the notes.
+std::string TileName(const RankViews& v) {
+  auto span = [](int first, int count) { return std::to_string(first) + "-" + std::to_string(first + count - 1); };
+  return "view rows " + span(v.tile.first_view_row, v.tile.view_rows) + " x pixel rows " +
+         span(v.tile.first_pixel_row, v.tile.pixel_rows) + " of " + std::to_string(v.whole.views_y) + " x " +
+         std::to_string(v.whole.rows) + " (" + std::to_string(v.tile.view_blocks) + " x " +
+         std::to_string(v.tile.pixel_blocks) + " tiles)";
+}
+
+#if LAYERLAB_WITH_MPI
+// A partitioned solve's per-iteration figures are counted from the end of this iteration to the last
+// (the first iterations also fault in the buffers, a cost that varies from run to run).
+constexpr int kTrafficFromIteration = 2;
+
+// This rank's CPU seconds and its sums' traffic at the end of iteration kTrafficFromIteration.
+struct TrafficMark {
+  bool set = false;
+  double cpu_seconds = 0;
+  MpiWorld::Traffic traffic;
+};
+
+// Collective: what the ranks' sums sent, on average per rank and iteration, and the CPU seconds of each
+// rank's compute and of its sums per iteration, from `mark` to the last iteration, said by rank 0.
+void NoteTraffic(const MpiWorld& world, const RankViews& views, int iterations, const TrafficMark& mark) {
+  const MpiWorld::Traffic& end = world.traffic();
+  const MpiWorld::Traffic& from = mark.traffic;
+  const double cpu = mark.set ? ProcessCpuSeconds() - mark.cpu_seconds : 0;
+  const double sums_cpu = end.cpu_seconds - from.cpu_seconds, compute = cpu - sums_cpu;
+  double totals[] = {end.sent_bytes - from.sent_bytes,
+                     end.whole_chunk_bytes - from.whole_chunk_bytes,
+                     double(end.sums - from.sums),
+                     compute,
+                     sums_cpu,
+                     end.seconds - from.seconds};
+  const int counted = iterations - kTrafficFromIteration;
+  if (!world.Any(!mark.set || counted < 1)) {
+    world.Sum(totals, std::size(totals));
+    const double most_compute = world.Max(compute), p = world.size(), per_rank = 1.0 / (p * counted);
+    char line[400];
+    std::snprintf(line, sizeof line,
+                  "MPI: %d ranks in %d x %d tiles, per rank and iteration (iterations %d-%d): sent %.3f MB in %.1f "
+                  "sums (%.0f %% of whole chunks' %.3f MB); CPU %.4f s computing (the most %.4f s), %.4f s in the "
+                  "sums (%.4f s wall)",
+                  world.size(), views.tile.view_blocks, views.tile.pixel_blocks, kTrafficFromIteration + 1, iterations,
+                  totals[0] * per_rank * 1e-6, totals[2] * per_rank,
+                  totals[1] > 0 ? 100 * totals[0] / totals[1] : 100.0, totals[1] * per_rank * 1e-6,
+                  totals[3] * per_rank, most_compute / counted, totals[4] * per_rank, totals[5] * per_rank);
+    Note(line);
+  }
+}
+#endif
 
 // The memory check: refuses what cannot fit before reading the views or
 // rendering the target (per rank: its block's rays).
@@ -171,9 +228,8 @@ void CheckMemory(const Options& o, const DisplaySystem& system, const SolveConfi
   }
   ranks.ThrowIfAnyFailed(refused);
   if (ranks.size > 1)
-    Note("rank 0 of " + std::to_string(ranks.size) + " needs about " + FormatBytes(double(need)) + " for view rows " +
-         std::to_string(views.rows.first) + "-" + std::to_string(views.rows.first + views.rows.count - 1) + " of " +
-         std::to_string(views.whole.views_y) + " (each rank its own block's share)");
+    Note("rank 0 of " + std::to_string(ranks.size) + " needs about " + FormatBytes(double(need)) + " for " +
+         TileName(views) + " (each rank its own tile's share)");
   else
     Note("the solve needs about " + FormatBytes(double(need)));
 }
@@ -340,9 +396,20 @@ void Solve(const Options& o, Ranks& ranks) {
   job.progress_label = config.solver;
   job.ranks = ranks.group();
   job.before_solve = std::ref(checkpointing);
+#if LAYERLAB_WITH_MPI
+  TrafficMark mark;
+  if (ranks.world)
+    job.before_solve = [&](const DisplayModel& model, SolverOptions* opt) {
+      checkpointing(model, opt);
+      opt->progress = [&](const IterationRecord& row) {
+        if (row.iteration == kTrafficFromIteration) mark = {true, ProcessCpuSeconds(), ranks.world->traffic()};
+      };
+    };
+#endif
   SolvedJob solved = RunSolveJob(job, target->light_field, target.get());
   SolverReport& report = solved.report;
 #if LAYERLAB_WITH_MPI
+  if (ranks.world) NoteTraffic(*ranks.world, views, report.iterations, mark);
   if (!ranks.root()) {  // every rank holds the same patterns and report: rank 0 writes them
     target.reset();
     ranks.world->Barrier();  // rank 0 has written (or ended every rank)

@@ -20,27 +20,42 @@ struct LightFieldGeometry {
   int cols = 1, rows = 1;                                // pixels per view
   int views_x = 1, views_y = 1;                          // views per row, per column
   double eyebox_width_m = 6e-3, eyebox_height_m = 6e-3;  // m
-  // A block of whole view rows of a larger light field (one MPI rank's share):
-  // its views_y rows are rows first_view_row.. of all_view_rows rows over the
-  // whole eyebox_height_m. all_view_rows 0: the light field is whole.
+  // A tile of a larger light field (one MPI rank's share): its views_y view
+  // rows are rows first_view_row.. of all_view_rows over the whole
+  // eyebox_height_m, and its `rows` pixel rows are rows first_pixel_row.. of
+  // all_pixel_rows over the whole window_height_m. 0: whole along that axis.
   int first_view_row = 0, all_view_rows = 0;
+  int first_pixel_row = 0, all_pixel_rows = 0;
 
-  // Pupil position of view column c / view row r (the same bits in a block as in the whole).
+  // Pupil position of view column c / view row r (the same bits in a tile as in the whole).
   double view_x(int c) const { return -eyebox_width_m / 2 + (c + 0.5) * eyebox_width_m / views_x; }
   double view_y(int r) const {
-    return eyebox_height_m / 2 -
-           (first_view_row + r + 0.5) * eyebox_height_m / (all_view_rows ? all_view_rows : views_y);
+    return eyebox_height_m / 2 - (first_view_row + r + 0.5) * eyebox_height_m / whole_view_rows();
   }
-  bool is_view_block() const { return all_view_rows != 0; }
-  // View rows [first, first + count) of this (whole) light field.
+  bool is_tile() const { return all_view_rows != 0 || all_pixel_rows != 0; }
+  // View rows [first, first + count) of this light field (whole along the view rows).
   LightFieldGeometry ViewRows(int first, int count) const {
-    LightFieldGeometry block = *this;
-    block.first_view_row = first, block.views_y = count, block.all_view_rows = views_y;
-    return block;
+    LightFieldGeometry tile = *this;
+    tile.first_view_row = first, tile.views_y = count, tile.all_view_rows = views_y;
+    return tile;
   }
+  // Pixel rows [first, first + count) of every view of this light field (whole along the pixel rows).
+  LightFieldGeometry PixelRows(int first, int count) const {
+    LightFieldGeometry tile = *this;
+    tile.first_pixel_row = first, tile.rows = count, tile.all_pixel_rows = rows;
+    return tile;
+  }
+  int whole_view_rows() const { return all_view_rows ? all_view_rows : views_y; }
+  int whole_pixel_rows() const { return all_pixel_rows ? all_pixel_rows : rows; }
+  // Origin-plane y of the point `position` pixel heights below the window's
+  // top edge (pixel row i's center: first_pixel_row + i + 0.5).
+  double window_y(double position) const { return window_top_m - position * window_height_m / whole_pixel_rows(); }
   // Origin-plane position of pixel column j / pixel row i.
   double pixel_x(int j) const { return window_left_m + (j + 0.5) * window_width_m / cols; }
-  double pixel_y(int i) const { return window_top_m - (i + 0.5) * window_height_m / rows; }
+  double pixel_y(int i) const { return window_y(first_pixel_row + i + 0.5); }
+
+  // The same rays: every field equal (a tile equals only the same tile).
+  bool operator==(const LightFieldGeometry&) const = default;
 
   size_t view_count() const { return static_cast<size_t>(views_x) * views_y; }
   size_t pixels_per_view() const { return static_cast<size_t>(cols) * rows; }

@@ -8,6 +8,7 @@
 #include <map>
 #include <regex>
 #include <set>
+#include <utility>
 
 #include "layerlab/framework/atomic_file.h"
 #include "layerlab/framework/error.h"
@@ -208,6 +209,20 @@ void ReadLightFieldWindow(Params window, LightFieldGeometry* g) {
 
 LightFieldGeometry ReadLightFieldGeometry(const std::string& folder) { return ReadManifest(folder).geometry; }
 
+namespace {
+
+// Rows [first, first + count) of the `have` rows of an axis (count 0: all of them), or an Error naming them.
+std::pair<int, int> RowsAsked(const std::string& manifest_path, const std::string& rows, const std::string& has,
+                              int first, int count, int have) {
+  if (count <= 0) return {0, have};
+  if (first < 0 || first + count > have)
+    throw Error(manifest_path + ": " + rows + " " + std::to_string(first) + " to " + std::to_string(first + count - 1) +
+                " were asked for; " + has + " " + std::to_string(have));
+  return {first, count};
+}
+
+}  // namespace
+
 LightField ReadLightField(const std::string& folder, const LightFieldReadOptions& options) {
   const Manifest manifest = ReadManifest(folder);
   // References, not a structured binding: the lambda below captures them, which
@@ -216,13 +231,14 @@ LightField ReadLightField(const std::string& folder, const LightFieldReadOptions
   const LightFieldGeometry& g = manifest.geometry;
   const std::string& views_pattern = manifest.views_pattern;
   const std::string& depth_pattern = manifest.depth_pattern;
-  const int first_row = options.view_rows > 0 ? options.first_view_row : 0;
-  const int rows = options.view_rows > 0 ? options.view_rows : g.views_y;
-  if (first_row < 0 || first_row + rows > g.views_y)
-    throw Error(manifest_path + ": view rows " + std::to_string(first_row) + " to " +
-                std::to_string(first_row + rows - 1) + " were asked for; the light field has " +
-                std::to_string(g.views_y));
-  LightField lf(options.view_rows > 0 ? g.ViewRows(first_row, rows) : g);
+  const std::pair<int, int> view_rows = RowsAsked(manifest_path, "view rows", "the light field has",
+                                                  options.first_view_row, options.view_rows, g.views_y);
+  const std::pair<int, int> pixel_rows =
+      RowsAsked(manifest_path, "pixel rows", "a view has", options.first_pixel_row, options.pixel_rows, g.rows);
+  const int first_row = view_rows.first, rows = view_rows.second;
+  LightFieldGeometry tile = options.view_rows > 0 ? g.ViewRows(first_row, rows) : g;
+  if (options.pixel_rows > 0) tile = tile.PixelRows(pixel_rows.first, pixel_rows.second);
+  LightField lf(tile);
   lf.scene = manifest.scene;
 
   for (int r = first_row; r < first_row + rows; ++r)
@@ -239,7 +255,7 @@ LightField ReadLightField(const std::string& folder, const LightFieldReadOptions
 
   bool with_depth = options.load_depth && !depth_pattern.empty();
   if (with_depth) lf.depth.assign(lf.geometry.ray_count(), 0.0f);
-  const size_t pixels = g.pixels_per_view();
+  const size_t pixels = lf.geometry.pixels_per_view(), skipped = size_t(pixel_rows.first) * g.cols;
   ParallelFor(lf.geometry.view_count(), [&](size_t v) {
     int r = first_row + static_cast<int>(v / g.views_x), c = static_cast<int>(v % g.views_x);
     std::string file = (fs::path(folder) / FillPattern(views_pattern, r, c)).string();
@@ -247,7 +263,7 @@ LightField ReadLightField(const std::string& folder, const LightFieldReadOptions
     if (image.width != g.cols || image.height != g.rows)
       throw Error(file + ": is " + std::to_string(image.width) + " x " + std::to_string(image.height) +
                   " pixels; the manifest declares " + std::to_string(g.cols) + " x " + std::to_string(g.rows));
-    std::copy(image.pixels.begin(), image.pixels.end(), lf.view(v));
+    std::copy_n(image.pixels.begin() + long(skipped * 3), pixels * 3, lf.view(v));
     if (!with_depth) return;
     std::string depth_file = (fs::path(folder) / FillPattern(depth_pattern, r, c)).string();
     std::error_code ec;
@@ -259,7 +275,7 @@ LightField ReadLightField(const std::string& folder, const LightFieldReadOptions
     if (depth.width != g.cols || depth.height != g.rows)
       throw Error(depth_file + ": is " + std::to_string(depth.width) + " x " + std::to_string(depth.height) +
                   " pixels; the manifest declares " + std::to_string(g.cols) + " x " + std::to_string(g.rows));
-    std::copy(depth.pixels.begin(), depth.pixels.end(), lf.depth.begin() + v * pixels);
+    std::copy_n(depth.pixels.begin() + long(skipped), pixels, lf.depth.begin() + long(v * pixels));
   });
   return lf;
 }
@@ -268,7 +284,7 @@ std::vector<std::string> WriteLightField(const LightField& lf, const std::string
   const LightFieldGeometry& g = lf.geometry;
   if (lf.rgb.size() != g.ray_count() * 3 || (!lf.depth.empty() && lf.depth.size() != g.ray_count()))
     throw Error(folder + ": internal error: light-field buffers do not match the geometry");
-  if (g.is_view_block()) throw Error(folder + ": internal error: a block of view rows is not a light field to write");
+  if (g.is_tile()) throw Error(folder + ": internal error: a tile of a light field is not a light field to write");
   const std::string views_pattern = "views/r{row:02}_c{col:02}.exr";
   const std::string depth_pattern = "depth/r{row:02}_c{col:02}.exr";
   std::error_code ec;
@@ -320,9 +336,13 @@ ContentDigest& AddGeometry(ContentDigest& digest, const LightFieldGeometry& g) {
                             g.window_height_m, g.eyebox_width_m,  g.eyebox_height_m, double(g.cols),
                             double(g.rows),    double(g.views_x), double(g.views_y)};
   digest.add(numbers, sizeof numbers);
-  if (g.is_view_block()) {  // a whole light field keys as it always did
+  if (g.is_tile()) {  // a whole light field keys as it always did
     const double block[] = {double(g.first_view_row), double(g.all_view_rows)};
     digest.add(block, sizeof block);
+  }
+  if (g.all_pixel_rows != 0) {
+    const double rows[] = {double(g.first_pixel_row), double(g.all_pixel_rows)};
+    digest.add(rows, sizeof rows);
   }
   return digest;
 }

@@ -15,9 +15,11 @@ inline constexpr const char* kLightFieldFormat = "lightfield/1";
 
 struct LightFieldReadOptions {
   bool load_depth = true;
-  // Only view rows [first_view_row, first_view_row + view_rows) (one MPI
-  // rank's block, LightFieldGeometry::ViewRows); 0 rows: every view.
+  // Only view rows [first_view_row, first_view_row + view_rows) and of each
+  // view only pixel rows [first_pixel_row, first_pixel_row + pixel_rows) (one
+  // MPI rank's tile, LightFieldGeometry::ViewRows and PixelRows); 0 rows: all.
   int first_view_row = 0, view_rows = 0;
+  int first_pixel_row = 0, pixel_rows = 0;
 };
 
 // Validates the manifest (format version, sizes, patterns that stay inside

@@ -1,5 +1,5 @@
-// The ranks of a view-partitioned solve (`mpirun -np N layerlab solve`,
-// docs/mpi.md): each rank holds a block of whole view rows, and every sum over
+// The ranks of a partitioned solve (`mpirun -np N layerlab solve`,
+// docs/mpi.md): each rank holds a tile of the rays (RayTileOfRank), and every sum over
 // rays a solver makes (update numerators and denominators, gradients, the
 // objective) is summed across the ranks here, at the point where the solver
 // has merged its threads' sums. With no ranks installed (one process, or a
@@ -49,11 +49,27 @@ double MaxAcrossRanks(double value);
 // True on every rank when it is true on any (a stop that all must make together).
 bool AnyRank(bool value);
 
-// View rows [first, first + count) that rank `rank` of `ranks` holds of `rows`:
-// contiguous blocks, their sizes differing by at most one.
-struct ViewRowBlock {
-  int first = 0, count = 0;
+// The part of values[begin, end) that a rank sends in a reduction: from its
+// first to its last value that is not +0.0 (a rank's rays reach a band of each
+// layer's rows, and its sums elsewhere are exact zeros, which add nothing).
+// {offset from begin, count}; {0, 0} when all are +0.0.
+struct Span {
+  size_t first = 0, count = 0;
 };
-ViewRowBlock ViewRowsOfRank(int rows, int rank, int ranks);
+Span NonzeroSpan(const double* values, size_t begin, size_t end);
+
+// The rays rank `rank` of `ranks` holds of a light field of `view_rows` view
+// rows of `pixel_rows` pixel rows each: a tile of whole view rows by whole
+// pixel rows (every view column, every pixel column). The ranks form a grid of
+// view_blocks x pixel_blocks tiles, rank = view block x pixel_blocks + pixel
+// block, chosen so that the largest tile has the fewest rays (on a tie the
+// more pixel blocks: a band of pixel rows reaches fewer layer rows); along an
+// axis the blocks differ by at most one row. Throws when no grid of `ranks`
+// tiles fits (more blocks along an axis than it has rows).
+struct RayTile {
+  int first_view_row = 0, view_rows = 0, first_pixel_row = 0, pixel_rows = 0;
+  int view_blocks = 1, pixel_blocks = 1;
+};
+RayTile RayTileOfRank(int view_rows, int pixel_rows, int rank, int ranks);
 
 }  // namespace layerlab

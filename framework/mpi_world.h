@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "layerlab/framework/mpi_ranks.h"
 
@@ -21,9 +22,17 @@ class MpiWorld final : public RankGroup {
   int rank() const override { return rank_; }
   int size() const override { return size_; }
   // A reduce-scatter and an allgather: rank j adds chunk j of every rank's
-  // values in rank order, then every rank gathers the chunks. For one rank
-  // the values are left as they are.
+  // values in rank order, then every rank gathers the chunks. Of a chunk a
+  // rank sends only its NonzeroSpan. For one rank the values are left as they are.
   void Sum(double* values, size_t n) const override;
+  // What this rank's Sum calls have sent (bytes, and the bytes the same sums
+  // would have sent as whole chunks) and the seconds they took (wall, CPU).
+  struct Traffic {
+    size_t sums = 0;
+    double sent_bytes = 0, whole_chunk_bytes = 0;
+    double seconds = 0, cpu_seconds = 0;
+  };
+  const Traffic& traffic() const { return traffic_; }
   double Max(double value) const override;
   bool Any(bool value) const override;
   void Barrier() const;
@@ -37,6 +46,8 @@ class MpiWorld final : public RankGroup {
 
  private:
   int rank_ = 0, size_ = 1;
+  mutable Traffic traffic_;
+  mutable std::vector<double> chunks_;
 };
 
 }  // namespace layerlab

@@ -2,6 +2,7 @@
 
 #include <dirent.h>
 #include <sched.h>
+#include <time.h>
 
 #include <algorithm>
 #include <chrono>
@@ -58,6 +59,12 @@ int UsableCores() {
 }
 
 }  // namespace
+
+double ProcessCpuSeconds() {
+  timespec t{};
+  if (clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t) != 0) return -1;
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
 
 int OtherRunnableTasks() {
   // This process's running threads read before and after the machine's: a worker that stops spinning

@@ -14,6 +14,9 @@ namespace layerlab {
 // (/proc/self/task/*/stat), at least 0; -1 where /proc cannot tell.
 int OtherRunnableTasks();
 
+// This process's CPU time (s, all threads); -1 where it cannot be read.
+double ProcessCpuSeconds();
+
 // The threads for the next stretch of at most `parts` (>= 1): the cores this
 // process may run on less the other runnable tasks, at least 1; `parts`
 // where the load cannot be read. The load is read at most every

@@ -183,11 +183,7 @@ Patterns StartingPatterns(const DisplayModel& model, const SolverOptions& option
 
 void RequireSameRays(const DisplayModel& model, const LightField& target) {
   const LightFieldGeometry &a = model.geometry(), &b = target.geometry;
-  bool same = a.cols == b.cols && a.rows == b.rows && a.views_x == b.views_x && a.views_y == b.views_y &&
-              a.origin_z_m == b.origin_z_m && a.window_left_m == b.window_left_m && a.window_top_m == b.window_top_m &&
-              a.window_width_m == b.window_width_m && a.window_height_m == b.window_height_m &&
-              a.eyebox_width_m == b.eyebox_width_m && a.eyebox_height_m == b.eyebox_height_m &&
-              a.first_view_row == b.first_view_row && a.all_view_rows == b.all_view_rows;
+  const bool same = a == b;
   if (!same || target.rgb.size() != b.ray_count() * 3)
     throw Error("the display model is bound to other rays than the target's light field");
 }

@@ -1,7 +1,6 @@
 #include "layerlab/solvers/solve_loop.h"
 
 #include <omp.h>
-#include <time.h>
 
 #include <algorithm>
 #include <cmath>
@@ -34,12 +33,6 @@ SolveLoop::SolveLoop(std::string solver, const DisplayModel& model, const LightF
 
 SolveLoop::~SolveLoop() {
   if (saved_threads_) omp_set_num_threads(saved_threads_);
-}
-
-double SolveLoop::ProcessCpuSeconds() {
-  timespec t{};
-  if (clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t) != 0) return -1;
-  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
 }
 
 double SolveLoop::Seconds() const {

@@ -99,8 +99,6 @@ class SolveLoop {
   // The threads of the next iteration: at most report_.threads, fewer while other processes keep the cores
   // busy (framework/thread_budget.h).
   void AdjustThreads(bool after_record);
-  // This process's CPU time (s, all threads); -1 where it cannot be read.
-  static double ProcessCpuSeconds();
   // The focal stack's metrics (options.measure_metrics) of the patterns now, into the last trace row, off the
   // clock; at the rows kMetricRowGrowth spaces and at the last.
   void MeasureMetrics();

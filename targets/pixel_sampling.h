@@ -26,15 +26,16 @@ class PixelSampler {
 
   int samples() const { return n_; }
 
-  // Origin-plane position (x, y) of sample k of pixel (row i, col j), in every view.
+  // Origin-plane position (x, y) of sample k of pixel (row i, col j), in every
+  // view; in a tile, the same as the whole light field's pixel there.
   std::array<double, 2> Sample(int i, int j, int k) const {
     if (n_ == 1) return {g_.pixel_x(j), g_.pixel_y(i)};
-    uint64_t key = static_cast<uint64_t>(i) * g_.cols + j;
+    const int row = g_.first_pixel_row + i;
+    uint64_t key = static_cast<uint64_t>(row) * g_.cols + j;
     SplitMix64 random(MixSeed(seed_, key * 4096 + k));
     double cell_x = (k % nx_ + random.uniform()) / nx_;  // in [0, 1) across the pixel, left to right
     double cell_y = (k / nx_ + random.uniform()) / ny_;  // top to bottom
-    return {g_.window_left_m + (j + cell_x) * g_.window_width_m / g_.cols,
-            g_.window_top_m - (i + cell_y) * g_.window_height_m / g_.rows};
+    return {g_.window_left_m + (j + cell_x) * g_.window_width_m / g_.cols, g_.window_y(row + cell_y)};
   }
 
  private:

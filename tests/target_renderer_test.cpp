@@ -470,6 +470,35 @@ TEST(TargetRendererTest, RowStreamsAndSharedPhasesAreTheRaysOneByOne) {
   }
 }
 
+// An MPI rank renders only its tile (LightFieldGeometry::ViewRows, PixelRows):
+// its rays are the whole render's, jitter included, to the bit.
+TEST(TargetRendererTest, ATileIsTheWholeRendersRaysBitForBit) {
+  const json die = {{"type", "mesh"},
+                    {"file", "die.obj"},
+                    {"scale", "2.5 cm"},
+                    {"position", {"1 cm", "0.5 cm", "1.2 D"}},
+                    {"texture", {{"type", "checkerboard"}, {"period", "2 cm"}}}};
+  const json noise = {{"type", "plane"},
+                      {"depth", "0.4 D"},
+                      {"texture", {{"type", "noise"}, {"band", {"0.5 cpd", "3 cpd"}}, {"components", 12}}}};
+  TargetScene target =
+      ParseTarget(Target(LightFieldJson("1 D", {"12 deg", "8 deg"}, {24, 10}, {3, 3}), {noise, die}, 4),
+                  testing::ExamplePath("targets/target.json"));
+  const LightField whole = RenderTarget(target);
+  const LightFieldGeometry g = target.geometry;
+  target.geometry = g.ViewRows(1, 2).PixelRows(3, 5);
+  const LightField tile = RenderTarget(target);
+  ASSERT_EQ(tile.geometry, target.geometry);
+  for (size_t v = 0; v < tile.geometry.view_count(); ++v)
+    for (int i = 0; i < 5; ++i) {
+      const size_t at = (v + 3) * g.pixels_per_view() + size_t(i + 3) * g.cols,
+                   mine = v * 5 * g.cols + size_t(i) * g.cols;
+      EXPECT_EQ(std::memcmp(&tile.rgb[mine * 3], &whole.rgb[at * 3], g.cols * 3 * sizeof(float)), 0)
+          << "view " << v << ", row " << i;
+      EXPECT_EQ(std::memcmp(&tile.depth[mine], &whole.depth[at], g.cols * sizeof(float)), 0) << "depth, view " << v;
+    }
+}
+
 TEST(TargetTracerTest, RayInAnyDirectionReadsThePlaneWhereItMeetsIt) {
   TargetScene target = ParseTarget(
       Target(LightFieldJson("1.3 D", {"10 deg", "6 deg"}, {20, 12}, {3, 3}), {GratingPlane("0.8 D", "20 deg")}),
