@@ -69,8 +69,8 @@ void RequireFrameSequence(const SolveJob& job, const TargetScene& scene, const F
         "would be the same; docs/target-format.md, \"Moving scenes\"");
   if (job.config.options.objective == ObjectiveKind::kRetinal || job.config.options.measure_focal_stack)
     throw Error(
-        "--frames: solves the light-field objective; the retinal objective and the focal stack are for one "
-        "frame");
+        "a frame sequence solves the light-field objective; the retinal objective and the focal stack are for "
+        "one frame");
 }
 
 FrameSequence SolveFrameSequence(const SolveJob& job, const TargetScene& scene, const FrameSequenceOptions& options,

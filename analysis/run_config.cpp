@@ -189,6 +189,16 @@ CompareRunConfig ReadCompare(Params& run, const Scene& scene) {
   return c;
 }
 
+FramesRunConfig ReadFrames(Params& run) {
+  FramesRunConfig f;
+  f.enabled = true;
+  Params p = run.object("frames");
+  if (!p.has("count")) p.fail("count", "is required: the frames to solve");
+  ReadOptionEntries(p, FramesRunOptionTable(), &f);
+  p.check_all_read();
+  return f;
+}
+
 }  // namespace
 
 std::vector<double> RetinaRunConfig::states() const {
@@ -204,8 +214,9 @@ RunConfig ReadRunConfig(const Scene& scene, const DisplaySystem& system) {
   if (!scene.document.contains("run")) return config;
   config.declared = true;
   Params p(scene.document["run"], {scene.file, "/run"});
-  for (const char* key : {"retina", "contrast", "compare"}) p.mark_read(key);
+  for (const char* key : {"retina", "contrast", "compare", "frames"}) p.mark_read(key);
   if (p.has("retina")) config.retina = ReadRetina(p, system);
+  if (p.has("frames")) config.frames = ReadFrames(p);
   if (p.has("contrast")) config.contrast = ReadContrast(p, scene);
   if (p.has("compare")) config.compare = ReadCompare(p, scene);
   ReadOptionEntries(p, RunOptionTable(), &config);

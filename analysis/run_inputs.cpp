@@ -5,6 +5,7 @@
 #include <list>
 #include <map>
 
+#include "layerlab/analysis/frame_sequence.h"
 #include "layerlab/analysis/run_steps.h"
 #include "layerlab/framework/error.h"
 #include "layerlab/solvers/solver_option_table.h"
@@ -42,6 +43,10 @@ void RequireWork(const RunInputs& in, const std::string& file) {
   if (in.run.compare.enabled)
     throw Error(run_at.child("compare"),
                 "a comparison needs a target: give \"solve\": {\"target\": ...} or {\"target_scene\": ...}");
+  if (in.run.frames.enabled)
+    throw Error(run_at.child("frames"),
+                "a frame sequence needs a target scene that moves: give \"solve\": "
+                "{\"target_scene\": ...}");
   if (!in.run.contrast.enabled)
     throw Error(file +
                 ": nothing to run: give a target in the \"solve\" section or analyses in a \"run\" section "
@@ -78,6 +83,28 @@ void ReadTargetGeometry(SceneFiles& files, RunInputs* in) {
   in->target_geometry = TargetGeometry(in->solve);
 }
 
+// run.frames: a target scene that moves and the light-field objective, checked before anything runs.
+void RequireFrames(const RunInputs& in, const std::string& file) {
+  if (!in.run.frames.enabled) return;
+  const Location at{file, "/run/frames"};
+  if (!in.solve.target.empty() || in.solve.target_scene.empty())
+    throw Error(at,
+                "a frame sequence needs a target scene that moves (\"solve\": {\"target_scene\": ...}); a "
+                "light-field folder holds one frame");
+#if LAYERLAB_WITH_EMBREE
+  SolveJob job;
+  job.system = &in.system;
+  job.config = in.solve;
+  try {
+    RequireFrameSequence(job, *in.target_scene, in.run.frames.sequence());
+  } catch (const Error& e) {
+    throw Error(at, e.message());
+  }
+#else
+  throw Error(at, "a frame sequence renders each frame's target, and this layerlab was built without Embree");
+#endif
+}
+
 }  // namespace
 
 RunInputs ReadRunInputs(const RunRequest& request) {
@@ -111,6 +138,7 @@ RunInputs ReadRunInputs(const RunRequest& request) {
     }
   }
   if (in.has_target()) ReadTargetGeometry(files, &in);
+  RequireFrames(in, file);
   return in;
 }
 

@@ -23,7 +23,8 @@ std::vector<RunOptionEntry> MakeRunTable() {
   std::vector<RunOptionEntry> t = {
       ByHand<RunConfig>("retina", "object", "none", "retinal images over accommodation (run.retina)"),
       ByHand<RunConfig>("contrast", "object", "none", "contrast against accommodation, Fig. 5 (run.contrast)"),
-      ByHand<RunConfig>("compare", "object", "none", "other displays on the same target (run.compare)")};
+      ByHand<RunConfig>("compare", "object", "none", "other displays on the same target (run.compare)"),
+      ByHand<RunConfig>("frames", "object", "none", "a moving target scene solved frame by frame (run.frames)")};
   RunOptionEntry e;
   e.key = "write_lightfield", e.kind = Kind::kBoolean, e.type = "boolean", e.default_text = "false";
   e.meaning = "the solve also writes the synthesized light field";
@@ -130,6 +131,23 @@ bool SetValueHolds(const OptionEntry<Options>& e, const std::optional<T>& value,
   return false;
 }
 
+std::vector<FramesRunOptionEntry> MakeFramesTable() {
+  std::vector<FramesRunOptionEntry> t;
+  auto integer = [&](const char* key, int FramesRunConfig::*field, double min, double max, const char* fallback,
+                     const char* meaning) {
+    FramesRunOptionEntry e;
+    e.key = key, e.kind = Kind::kInteger, e.type = "integer", e.has_range = true, e.range = {min, max, false, false};
+    e.default_text = fallback, e.meaning = meaning, e.integer = field;
+    t.push_back(e);
+  };
+  integer("count", &FramesRunConfig::count, 1, 100000, "required", "frames, the first at time 0");
+  integer("frame_iterations", &FramesRunConfig::frame_iterations, 1, 10000, "3",
+          "iterations of each frame after the first, begun from the frame before");
+  integer("cold_every", &FramesRunConfig::cold_every, 0, 100000, "1",
+          "every k-th frame also solved cold, as its PSNR reference (0: none)");
+  return t;
+}
+
 }  // namespace
 
 const std::vector<RunOptionEntry>& RunOptionTable() {
@@ -150,6 +168,13 @@ const std::vector<CompareRunOptionEntry>& CompareRunOptionTable() {
 const RetinaRunOptionEntry& RetinaRunOption(const std::string& key) { return Named(RetinaRunOptionTable(), key); }
 const CompareRunOptionEntry& CompareRunOption(const std::string& key) { return Named(CompareRunOptionTable(), key); }
 
+const std::vector<FramesRunOptionEntry>& FramesRunOptionTable() {
+  static const std::vector<FramesRunOptionEntry> table = MakeFramesTable();
+  return table;
+}
+
+bool FramesRunConfig::IsValid(std::string* error) const { return RangesHold(FramesRunOptionTable(), *this, error); }
+
 bool RetinaRunConfig::IsValid(std::string* error) const {
   if (!RangesHold(RetinaRunOptionTable(), *this, error)) return false;
   const RetinaRunOptionEntry& field = RetinaRunOption("field");
@@ -167,7 +192,8 @@ bool CompareRunConfig::IsValid(std::string* error) const {
 }
 
 bool RunConfig::IsValid(std::string* error) const {
-  return retina.IsValid(error) && contrast.options.IsValid(error) && compare.IsValid(error);
+  return retina.IsValid(error) && contrast.options.IsValid(error) && compare.IsValid(error) &&
+         (!frames.enabled || frames.IsValid(error));
 }
 
 }  // namespace layerlab

@@ -1,6 +1,6 @@
 // The options of the scene's "run" section, described once, a table per
-// struct: "run" (RunConfig), "run.retina" (RetinaRunConfig) and "run.compare"
-// (CompareRunConfig); "run.contrast" is the contrast option table's
+// struct: "run" (RunConfig), "run.retina" (RetinaRunConfig), "run.compare"
+// (CompareRunConfig) and "run.frames" (FramesRunConfig); "run.contrast" is the contrast option table's
 // (analysis/contrast_option_table.h). The section's reader
 // (analysis/run_config.cpp), the structs' IsValid and docs/scene-reference.md
 // are made from them; tests/run_option_table_test.cpp and
@@ -20,10 +20,12 @@ namespace layerlab {
 using RunOptionEntry = OptionEntry<RunConfig>;
 using RetinaRunOptionEntry = OptionEntry<RetinaRunConfig>;
 using CompareRunOptionEntry = OptionEntry<CompareRunConfig>;
+using FramesRunOptionEntry = OptionEntry<FramesRunConfig>;
 
 const std::vector<RunOptionEntry>& RunOptionTable();
 const std::vector<RetinaRunOptionEntry>& RetinaRunOptionTable();
 const std::vector<CompareRunOptionEntry>& CompareRunOptionTable();
+const std::vector<FramesRunOptionEntry>& FramesRunOptionTable();
 
 // The entry of `key` in its table; throws layerlab::Error when there is none.
 const RetinaRunOptionEntry& RetinaRunOption(const std::string& key);

@@ -13,6 +13,8 @@
 
 namespace layerlab {
 
+struct FrameSequenceOptions;  // analysis/frame_sequence.h
+
 struct RetinaRunConfig {
   bool enabled = false;
   std::vector<double> accommodation_diopters;  // default: the depths of the display's layers
@@ -49,10 +51,18 @@ struct CompareRunConfig {
   bool IsValid(std::string* error) const;
 };
 
+struct FramesRunConfig {
+  bool enabled = false;
+  int count = 0, frame_iterations = 3, cold_every = 1;  // FrameSequenceOptions' frames, frame_iterations, cold_every
+  FrameSequenceOptions sequence() const;  // defined with the frames step (analysis/run_frames_section.cpp)
+  bool IsValid(std::string* error) const;
+};
+
 struct RunConfig {
   RetinaRunConfig retina;
   ContrastRunConfig contrast;
   CompareRunConfig compare;
+  FramesRunConfig frames;
   bool write_lightfield = false;           // the synthesized light field of the solve
   bool declared = false;                   // the scene has a "run" section
   bool IsValid(std::string* error) const;  // every section's

@@ -2,7 +2,7 @@
 
 // Each section, in the order it runs and the page shows it: NameRunSection()
 // is defined in its own file (analysis/run_<name>_section.cpp).
-#define LAYERLAB_RUN_SECTIONS(X) X(Target) X(Solve) X(Retina) X(Contrast) X(Compare)
+#define LAYERLAB_RUN_SECTIONS(X) X(Target) X(Solve) X(Retina) X(Contrast) X(Compare) X(Frames)
 
 namespace layerlab {
 

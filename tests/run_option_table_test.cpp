@@ -10,6 +10,7 @@
 #include <set>
 
 #include "layerlab/analysis/run_config.h"
+#include "layerlab/analysis/frame_sequence.h"
 #include "layerlab/analysis/run_option_table.h"
 #include "layerlab/framework/params.h"
 #include "layerlab/systems/compile.h"
@@ -81,6 +82,9 @@ TEST(RunOptionTable, EachTableIsWellFormedAndItsDefaultsAreTheStructsOwn) {
   ExpectWellFormed(RunOptionTable());
   ExpectWellFormed(RetinaRunOptionTable());
   ExpectWellFormed(CompareRunOptionTable());
+  ExpectWellFormed(FramesRunOptionTable());
+  EXPECT_EQ(FramesRunConfig{}.sequence().frame_iterations, FrameSequenceOptions{}.frame_iterations);
+  EXPECT_EQ(FramesRunConfig{}.sequence().cold_every, FrameSequenceOptions{}.cold_every);
   const RetinaRunOptionEntry& resolution = RetinaRunOption("resolution");
   EXPECT_EQ(ParseQuantity(resolution.default_text, Dimension::kAngle) / resolution.FieldUnitInSI(),
             RetinaRunConfig{}.resolution_deg);
@@ -90,7 +94,7 @@ TEST(RunOptionTable, EachTableIsWellFormedAndItsDefaultsAreTheStructsOwn) {
 
 TEST(RunOptionTable, TheReaderReadsEachTablesKeysAndNoOther) {
   ParamsKeyRecorder recorder;
-  Read({{"retina", json::object()}, {"compare", json::object()}});
+  Read({{"retina", json::object()}, {"compare", json::object()}, {"frames", {{"count", 2}}}});
   auto keys = [](const auto& table) {
     std::set<std::string> out;
     for (const auto& e : table) out.insert(e.key);
@@ -99,6 +103,33 @@ TEST(RunOptionTable, TheReaderReadsEachTablesKeysAndNoOther) {
   EXPECT_EQ(recorder.keys().at("/run"), keys(RunOptionTable()));
   EXPECT_EQ(recorder.keys().at("/run/retina"), keys(RetinaRunOptionTable()));
   EXPECT_EQ(recorder.keys().at("/run/compare"), keys(CompareRunOptionTable()));
+  EXPECT_EQ(recorder.keys().at("/run/frames"), keys(FramesRunOptionTable()));
+}
+
+TEST(RunOptionTable, FramesNeedACountAndHoldEachValueToItsRange) {
+  EXPECT_NE(ReadError({{"frames", json::object()}}).find("/run/frames/count: is required"), std::string::npos)
+      << ReadError({{"frames", json::object()}});
+  const RunConfig read = Read({{"frames", {{"count", 60}, {"frame_iterations", 1}, {"cold_every", 10}}}});
+  EXPECT_TRUE(read.frames.enabled);
+  EXPECT_EQ(read.frames.sequence().frames, 60);
+  EXPECT_EQ(read.frames.sequence().frame_iterations, 1);
+  EXPECT_EQ(read.frames.sequence().cold_every, 10);
+  for (const FramesRunOptionEntry& e : FramesRunOptionTable())
+    for (bool at_min : {true, false}) {
+      const int inside = int(InsideRange(e.range, true, at_min, 1)),
+                outside = int(OutsideRange(e.range, true, at_min, 1));
+      json in = {{"count", 2}}, out = {{"count", 2}};
+      in[e.key] = inside, out[e.key] = outside;
+      EXPECT_EQ(ReadError({{"frames", in}}), "") << e.key << " at " << inside;
+      EXPECT_NE(ReadError({{"frames", out}}).find("/run/frames/" + e.key + ": "), std::string::npos)
+          << e.key << " at " << outside << ": " << ReadError({{"frames", out}});
+      FramesRunConfig f;
+      f.count = 2;
+      f.*e.integer = outside;
+      std::string why;
+      EXPECT_FALSE(f.IsValid(&why)) << e.key << " at " << outside;
+      EXPECT_EQ(why.rfind(e.key, 0), 0u) << why;
+    }
 }
 
 // Inside each range read, outside refused at the key, for the entries of `table` under /run/`object`.

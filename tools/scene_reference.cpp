@@ -76,6 +76,11 @@ std::map<std::string, KeyTable> OptionTables() {
   out["run.compare"] =
       OptionKeyTable("run.compare", "analysis/run_option_table.cpp",
                      "other displays on the same target (needs a target).", OptionSpecs(CompareRunOptionTable()));
+  out["run.frames"] = OptionKeyTable(
+      "run.frames", "analysis/run_option_table.cpp",
+      "a moving target scene (\"solve\": {\"target_scene\": ...} with keys, docs/target-format.md) solved frame "
+      "by frame, each frame from the one before, as `layerlab solve --frames` does; into OUT/frames.",
+      OptionSpecs(FramesRunOptionTable()));
   out["run.contrast"] = OptionKeyTable(
       "run.contrast", "analysis/contrast_option_table.cpp",
       "normalized contrast against accommodation (the paper's Fig. 5); needs no target: each display is factorized "
