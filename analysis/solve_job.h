@@ -37,7 +37,7 @@ struct SolveJob {
   SolveConfig config;                // the scene's, with the caller's overrides
   std::string progress_label;        // empty: no progress line (Python reports through its callback)
   bool progress_brief = false;       // end the progress line with the brief report, else with the termination
-  const RankGroup* ranks = nullptr;  // views partitioned across MPI ranks (framework/mpi_ranks.h)
+  const RankGroup* ranks = nullptr;  // rays partitioned across MPI ranks (framework/mpi_ranks.h)
   // Called with the model and the options just before the solver starts (checkpoints, resuming).
   std::function<void(const DisplayModel&, SolverOptions*)> before_solve;
 };

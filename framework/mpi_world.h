@@ -1,4 +1,4 @@
-// MPI_COMM_WORLD as the ranks of a view-partitioned solve (framework/mpi_ranks.h).
+// MPI_COMM_WORLD as the ranks of a partitioned solve (framework/mpi_ranks.h).
 // Built only with LAYERLAB_WITH_MPI; the process is an MPI rank when mpirun
 // (or another MPI launcher) started it, otherwise it runs as one process.
 #pragma once
