@@ -168,14 +168,21 @@ TEST(SumAcrossRanks, PacksEveryPartIntoOneMessageInOrder) {
   EXPECT_EQ(MaxAcrossRanks(1.0), 101.0);
 }
 
-TEST(ReadLightField, ViewRowsReadsOnlyTheBlock) {
-  const fs::path dir = fs::temp_directory_path() / ("layerlab_view_rows_" + std::to_string(::getpid()));
+// A light field of cols x rows pixels and views_x x views_y views, each value its index / 1000, written to
+// a fresh folder `dir`.
+LightField WriteNumberedLightField(const fs::path& dir, int cols, int rows, int views_x, int views_y) {
   fs::remove_all(dir);
   LightFieldGeometry g;
-  g.cols = 4, g.rows = 3, g.views_x = 2, g.views_y = 5;
+  g.cols = cols, g.rows = rows, g.views_x = views_x, g.views_y = views_y;
   LightField lf(g);
   for (size_t k = 0; k < lf.rgb.size(); ++k) lf.rgb[k] = 0.001f * float(k);
   WriteLightField(lf, dir.string());
+  return lf;
+}
+
+TEST(ReadLightField, ViewRowsReadsOnlyTheBlock) {
+  const fs::path dir = fs::temp_directory_path() / ("layerlab_view_rows_" + std::to_string(::getpid()));
+  const LightField lf = WriteNumberedLightField(dir, 4, 3, 2, 5);
   // A broken view outside the block is never read.
   std::ofstream(dir / "views" / "r00_c01.exr") << "not an EXR";
   const LightField block = ReadLightField(dir.string(), {.first_view_row = 2, .view_rows = 2});
@@ -195,12 +202,8 @@ TEST(ReadLightField, ViewRowsReadsOnlyTheBlock) {
 
 TEST(ReadLightField, PixelRowsReadOnlyTheTile) {
   const fs::path dir = fs::temp_directory_path() / ("layerlab_pixel_rows_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  LightFieldGeometry g;
-  g.cols = 4, g.rows = 5, g.views_x = 2, g.views_y = 3;
-  LightField lf(g);
-  for (size_t k = 0; k < lf.rgb.size(); ++k) lf.rgb[k] = 0.001f * float(k);
-  WriteLightField(lf, dir.string());
+  const LightField lf = WriteNumberedLightField(dir, 4, 5, 2, 3);
+  const LightFieldGeometry& g = lf.geometry;
   const LightField tile =
       ReadLightField(dir.string(), {.first_view_row = 1, .view_rows = 2, .first_pixel_row = 2, .pixel_rows = 2});
   EXPECT_EQ(tile.geometry, g.ViewRows(1, 2).PixelRows(2, 2));

@@ -9,8 +9,8 @@
 #include <limits>
 #include <set>
 
-#include "layerlab/analysis/run_config.h"
 #include "layerlab/analysis/frame_sequence.h"
+#include "layerlab/analysis/run_config.h"
 #include "layerlab/analysis/run_option_table.h"
 #include "layerlab/framework/params.h"
 #include "layerlab/systems/compile.h"
